@@ -1,0 +1,318 @@
+//! What every irsig tool shares, so that all of them behave alike at the command line.
+//!
+//! - **Input** is a path, or `-` for stdin ([`read_input`]). The bytes come back with the
+//!   name diagnostics should print (`<stdin>` for standard input).
+//! - **Output** goes to `-o FILE` or to stdout ([`write_output`]). A file is written to a
+//!   temporary file beside its destination and renamed into place only when complete, so a
+//!   failure never leaves a partial file.
+//! - **Exit codes** ([`run`]): 0 for success, 1 for bad input, 2 for bad usage. clap already
+//!   exits with 2 on a malformed command line; a tool signals a semantic usage error (two
+//!   options that contradict each other) with [`usage_error`]. A closed pipe on stdout counts
+//!   as success, as it does for `head` and ripgrep.
+//! - **Progress** ([`progress_bar`]) is drawn on stderr only when stderr is a terminal.
+//!
+//! This is the only library crate that knows about processes, exit codes and terminals.
+//!
+//! ```no_run
+//! use std::process::ExitCode;
+//! fn main() -> ExitCode {
+//!     irsig_cli::run(|| {
+//!         let input = irsig_cli::read_input("-")?;
+//!         irsig_cli::write_output(None, |w| w.write_all(&input.bytes))?;
+//!         Ok(())
+//!     })
+//! }
+//! # use std::io::Write;
+//! ```
+
+use std::fs::File;
+use std::io::{self, IsTerminal, Read, Write};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use miette::{Diagnostic, IntoDiagnostic, Report, WrapErr};
+
+/// Exit code for success.
+pub const EXIT_OK: u8 = 0;
+/// Exit code for bad input: a malformed, missing or out-of-range input file or value.
+pub const EXIT_BAD_INPUT: u8 = 1;
+/// Exit code for bad usage: a command line that cannot be carried out as written.
+pub const EXIT_USAGE: u8 = 2;
+
+/// The bytes of one input, with the name diagnostics print for it.
+#[derive(Debug, Clone)]
+pub struct Input {
+    /// The path as the user gave it, or `<stdin>`.
+    pub name: String,
+    /// The path, or `None` for stdin. Relative references inside the input (an OBJ's
+    /// `mtllib`, a scene's object files) resolve against its parent directory.
+    pub path: Option<PathBuf>,
+    /// The whole content.
+    pub bytes: Vec<u8>,
+}
+
+impl Input {
+    /// The directory relative references inside this input resolve against: the file's
+    /// parent directory, or the working directory for stdin.
+    #[must_use]
+    pub fn base_dir(&self) -> PathBuf {
+        self.path
+            .as_deref()
+            .and_then(Path::parent)
+            .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+    }
+}
+
+/// Reads a whole input: the file at `path`, or stdin when `path` is `-`.
+///
+/// # Errors
+/// A missing or unreadable file, reported with its name.
+pub fn read_input(path: &str) -> miette::Result<Input> {
+    if path == "-" {
+        let mut bytes = Vec::new();
+        io::stdin()
+            .lock()
+            .read_to_end(&mut bytes)
+            .into_diagnostic()
+            .wrap_err("cannot read standard input")?;
+        return Ok(Input {
+            name: "<stdin>".to_owned(),
+            path: None,
+            bytes,
+        });
+    }
+    let bytes = std::fs::read(path)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot read input file `{path}`"))?;
+    Ok(Input {
+        name: path.to_owned(),
+        path: Some(PathBuf::from(path)),
+        bytes,
+    })
+}
+
+/// Writes one output: to `path` atomically (temporary file + rename), or to stdout when
+/// `path` is `None` or `-`.
+///
+/// The writer is buffered. If `write` fails, the temporary file is removed and the
+/// destination is left as it was.
+///
+/// # Errors
+/// Any I/O error from `write`, from creating the temporary file or from the rename.
+pub fn write_output(
+    path: Option<&Path>,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> miette::Result<()> {
+    match path {
+        None => write_stdout(write),
+        Some(p) if p.as_os_str() == "-" => write_stdout(write),
+        Some(p) => write_file_atomic(p, write),
+    }
+}
+
+fn write_stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> miette::Result<()> {
+    let stdout = io::stdout();
+    let mut w = io::BufWriter::new(stdout.lock());
+    write(&mut w)
+        .and_then(|()| w.flush())
+        .into_diagnostic()
+        .wrap_err("cannot write to standard output")
+}
+
+/// Writes `path` atomically: a temporary file in the same directory, renamed on success.
+///
+/// # Errors
+/// Any I/O error; the destination is then untouched.
+pub fn write_file_atomic(
+    path: &Path,
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> miette::Result<()> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let ctx = || format!("cannot write output file `{}`", path.display());
+    let mut tmp = tempfile::Builder::new()
+        .prefix(".irsig-")
+        .suffix(".tmp")
+        .tempfile_in(&dir)
+        .into_diagnostic()
+        .wrap_err_with(ctx)?;
+    {
+        let mut w = io::BufWriter::new(tmp.as_file_mut());
+        write(&mut w)
+            .and_then(|()| w.flush())
+            .into_diagnostic()
+            .wrap_err_with(ctx)?;
+    }
+    tmp.as_file()
+        .sync_all()
+        .into_diagnostic()
+        .wrap_err_with(ctx)?;
+    tmp.persist(path)
+        .map_err(|e| e.error)
+        .into_diagnostic()
+        .wrap_err_with(ctx)?;
+    Ok(())
+}
+
+/// Writes several outputs so that either all of them appear or none does: every file is
+/// first written to a temporary beside its destination, and only when all are complete are
+/// they renamed into place.
+///
+/// # Errors
+/// Any I/O error; no destination is touched unless every temporary was written.
+pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
+    let mut staged = Vec::with_capacity(files.len());
+    for (path, bytes) in files {
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let ctx = || format!("cannot write output file `{}`", path.display());
+        let mut tmp = tempfile::Builder::new()
+            .prefix(".irsig-")
+            .suffix(".tmp")
+            .tempfile_in(&dir)
+            .into_diagnostic()
+            .wrap_err_with(ctx)?;
+        tmp.as_file_mut()
+            .write_all(bytes)
+            .and_then(|()| tmp.as_file().sync_all())
+            .into_diagnostic()
+            .wrap_err_with(ctx)?;
+        staged.push((tmp, path));
+    }
+    for (tmp, path) in staged {
+        tmp.persist(path)
+            .map_err(|e| e.error)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot write output file `{}`", path.display()))?;
+    }
+    Ok(())
+}
+
+/// Opens a file for reading with an error that names it.
+///
+/// # Errors
+/// A missing or unreadable file.
+pub fn open(path: &Path) -> miette::Result<File> {
+    File::open(path)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot open `{}`", path.display()))
+}
+
+/// A command line that is well formed but cannot be carried out as written (exit code 2).
+#[derive(Debug, thiserror::Error, Diagnostic)]
+#[error("{0}")]
+#[diagnostic(code(irsig::usage))]
+pub struct UsageError(pub String);
+
+/// Builds a usage error: [`run`] exits with code 2 for it.
+#[must_use]
+pub fn usage_error(message: impl Into<String>) -> Report {
+    Report::new(UsageError(message.into()))
+}
+
+/// Runs a tool's body and turns its outcome into the process exit code.
+///
+/// Errors are printed to stderr with miette (source snippets with file, line and column
+/// where the error carries them). A broken pipe on stdout is success.
+pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
+    match body() {
+        Ok(()) => ExitCode::from(EXIT_OK),
+        Err(report) => {
+            if is_broken_pipe(&report) {
+                return ExitCode::from(EXIT_OK);
+            }
+            let code = if report.downcast_ref::<UsageError>().is_some() {
+                EXIT_USAGE
+            } else {
+                EXIT_BAD_INPUT
+            };
+            eprintln!("{report:?}");
+            ExitCode::from(code)
+        }
+    }
+}
+
+fn is_broken_pipe(report: &Report) -> bool {
+    report.chain().any(|e| {
+        e.downcast_ref::<io::Error>()
+            .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
+    })
+}
+
+/// A progress bar on stderr, drawn only when stderr is a terminal, so that logs and pipes
+/// stay clean.
+#[must_use]
+pub fn progress_bar(len: u64, message: &str) -> indicatif::ProgressBar {
+    if !io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{msg:>12} [{bar:40}] {pos}/{len} ({eta} left)")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar())
+            .progress_chars("=> "),
+    );
+    bar.set_message(message.to_owned());
+    bar
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn failed_write_leaves_no_file_and_keeps_the_old_one() {
+        let dir = tempfile::tempdir().unwrap();
+        let dest = dir.path().join("out.txt");
+        std::fs::write(&dest, b"old").unwrap();
+        let err = write_output(Some(&dest), |w| {
+            w.write_all(b"partial")?;
+            Err(io::Error::other("disk on fire"))
+        });
+        assert!(err.is_err());
+        assert_eq!(std::fs::read(&dest).unwrap(), b"old");
+        let leftovers: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(
+            leftovers.len(),
+            1,
+            "temporary file left behind: {leftovers:?}"
+        );
+    }
+
+    #[test]
+    fn successful_write_replaces_the_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let dest = dir.path().join("out.txt");
+        write_output(Some(&dest), |w| w.write_all(b"new")).unwrap();
+        assert_eq!(std::fs::read(&dest).unwrap(), b"new");
+    }
+
+    #[test]
+    fn missing_input_names_the_file() {
+        let err = read_input("/no/such/file.obj").unwrap_err();
+        assert!(format!("{err:?}").contains("/no/such/file.obj"));
+    }
+
+    #[test]
+    fn usage_errors_are_recognised() {
+        let r = usage_error("--from must be below --to");
+        assert!(r.downcast_ref::<UsageError>().is_some());
+    }
+
+    #[test]
+    fn several_files_appear_together() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a");
+        let b = dir.path().join("b");
+        write_files_atomic(&[(a.clone(), b"1".to_vec()), (b.clone(), b"2".to_vec())]).unwrap();
+        assert_eq!(std::fs::read(a).unwrap(), b"1");
+        assert_eq!(std::fs::read(b).unwrap(), b"2");
+    }
+}

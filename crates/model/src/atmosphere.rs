@@ -1,0 +1,303 @@
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ModelError, ModelErrorKind, check_finite, check_increasing, check_range};
+
+/// One altitude of the `.atm` table, in SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AtmosphereLevel {
+    /// Altitude above sea level in metres (the radiosonde altitude).
+    pub altitude_asl_m: f64,
+    /// Air temperature at this altitude in kelvin.
+    pub temperature_k: f64,
+    /// Altitude above the ground in metres (the atmospheric model's altitude).
+    pub altitude_m: f64,
+    /// Band transmittance of the vertical path between the ground and this altitude, 0 to 1.
+    pub transmission: f64,
+    /// Band upwelled path radiance seen from this altitude looking straight down to the
+    /// ground, in W m⁻² sr⁻¹ (atmospheric emission only, no ground term).
+    pub path_radiance_w_m2_sr: f64,
+}
+
+/// One level of a radiosonde (`.rsd`), in SI.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RadiosondeLevel {
+    /// Altitude in metres.
+    pub altitude_m: f64,
+    /// Pressure in hectopascals (= millibars).
+    pub pressure_hpa: f64,
+    /// Air temperature in kelvin.
+    pub temperature_k: f64,
+    /// Dew-point depression in kelvin.
+    pub dew_point_depression_k: f64,
+}
+
+/// Slant-path tables taken directly from an atmospheric model run at many angles: the
+/// `table` atmosphere model. Grids increase strictly; values are row-major with the
+/// altitude (outer) and the angle (inner) as axes.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SlantTables {
+    /// Observer altitudes above the ground, metres.
+    pub altitude_m: Vec<f64>,
+    /// Nadir angles at the observer, degrees, 0 (straight down) to below 90.
+    pub nadir_deg: Vec<f64>,
+    /// Band transmittance from the observer to the ground, `[altitude][angle]`.
+    pub transmission: Vec<Vec<f64>>,
+    /// Band path radiance from the ground to the observer, W m⁻² sr⁻¹, `[altitude][angle]`.
+    pub path_radiance_w_m2_sr: Vec<Vec<f64>>,
+    /// Observer altitudes for the sky table, metres.
+    pub sky_altitude_m: Vec<f64>,
+    /// Zenith angles for the sky table, degrees, 0 (straight up) to 90.
+    pub sky_zenith_deg: Vec<f64>,
+    /// Band path radiance from the observer to space, W m⁻² sr⁻¹, `[altitude][angle]`.
+    pub sky_radiance_w_m2_sr: Vec<Vec<f64>>,
+}
+
+/// Everything the DIRTRAN tables say about one atmosphere, in SI units: the canonical
+/// atmosphere file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Atmosphere {
+    /// A short name (`us-std-1976`).
+    pub name: String,
+    /// Where the numbers come from (model, version, settings).
+    pub source: String,
+    /// The band `[λ1, λ2]` in micrometres the tables were integrated over.
+    pub band_um: [f64; 2],
+    /// The `.atm` table, altitudes increasing.
+    pub levels: Vec<AtmosphereLevel>,
+    /// The `.cor` coefficients `a1 a2 a3` of `τ(θ) = τ(0)(a1 + a2 secθ + a3 sec²θ)`
+    /// (thesis eq. 10), if given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmission_correction: Option<[f64; 3]>,
+    /// The `.dwr` angular sky radiance: `(zenith_deg, radiance_w_m2_sr)` seen from the
+    /// ground, zenith angles increasing within 0 to 90.
+    pub sky: Vec<(f64, f64)>,
+    /// The hemispheric (cosine-weighted) sky radiance in W m⁻² sr⁻¹ (`.dwr` row `-1`,
+    /// thesis eq. 5 and 6), if given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky_hemispheric_w_m2_sr: Option<f64>,
+    /// The `.rsd` radiosonde, if given.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub radiosonde: Vec<RadiosondeLevel>,
+    /// The `.rtt` table: `(temperature_k, band_radiance_w_m2_sr)`, temperatures increasing.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub band_radiance: Vec<(f64, f64)>,
+    /// Slant-path tables for the `table` model, if generated.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slant: Option<SlantTables>,
+}
+
+impl Atmosphere {
+    /// Checks the tables: altitudes increase, 0 ≤ τ ≤ 1, angles lie in 0–90° and increase,
+    /// radiances and temperatures are not negative, the band is sensible.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        check_finite(|| "band_um".into(), &self.band_um)?;
+        if !(self.band_um[0] > 0.0 && self.band_um[1] > self.band_um[0]) {
+            return Err(ModelError::new(
+                "band_um",
+                ModelErrorKind::Other(format!(
+                    "band [{}, {}] µm must have 0 < λ1 < λ2",
+                    self.band_um[0], self.band_um[1]
+                )),
+            ));
+        }
+        if self.levels.is_empty() {
+            return Err(ModelError::new("levels", ModelErrorKind::Empty));
+        }
+        for (i, l) in self.levels.iter().enumerate() {
+            let p = |f: &str| format!("levels[{i}].{f}");
+            check_finite(|| p("altitude_asl_m"), &[l.altitude_asl_m])?;
+            check_range(|| p("altitude_m"), l.altitude_m, 0.0, f64::MAX)?;
+            check_range(|| p("temperature_k"), l.temperature_k, 0.0, f64::MAX)?;
+            check_range(|| p("transmission"), l.transmission, 0.0, 1.0)?;
+            check_range(
+                || p("path_radiance_w_m2_sr"),
+                l.path_radiance_w_m2_sr,
+                0.0,
+                f64::MAX,
+            )?;
+        }
+        check_increasing(
+            |i| format!("levels[{i}].altitude_m"),
+            self.levels.iter().map(|l| l.altitude_m),
+        )?;
+        check_increasing(
+            |i| format!("levels[{i}].altitude_asl_m"),
+            self.levels.iter().map(|l| l.altitude_asl_m),
+        )?;
+        if let Some(c) = &self.transmission_correction {
+            check_finite(|| "transmission_correction".into(), c)?;
+        }
+        check_angle_table("sky", &self.sky)?;
+        if let Some(h) = self.sky_hemispheric_w_m2_sr {
+            check_range(|| "sky_hemispheric_w_m2_sr".into(), h, 0.0, f64::MAX)?;
+        }
+        for (i, r) in self.radiosonde.iter().enumerate() {
+            let p = |f: &str| format!("radiosonde[{i}].{f}");
+            check_finite(
+                || p("altitude_m"),
+                &[r.altitude_m, r.dew_point_depression_k],
+            )?;
+            check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
+            check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
+        }
+        check_increasing(
+            |i| format!("radiosonde[{i}].altitude_m"),
+            self.radiosonde.iter().map(|r| r.altitude_m),
+        )?;
+        for (i, &(t, l)) in self.band_radiance.iter().enumerate() {
+            check_range(
+                || format!("band_radiance[{i}].temperature_k"),
+                t,
+                0.0,
+                f64::MAX,
+            )?;
+            check_range(|| format!("band_radiance[{i}].radiance"), l, 0.0, f64::MAX)?;
+        }
+        check_increasing(
+            |i| format!("band_radiance[{i}].temperature_k"),
+            self.band_radiance.iter().map(|r| r.0),
+        )?;
+        if let Some(s) = &self.slant {
+            s.validate()?;
+        }
+        Ok(())
+    }
+}
+
+fn check_angle_table(name: &str, rows: &[(f64, f64)]) -> Result<(), ModelError> {
+    if rows.is_empty() {
+        return Err(ModelError::new(name, ModelErrorKind::Empty));
+    }
+    for (i, &(a, l)) in rows.iter().enumerate() {
+        check_range(|| format!("{name}[{i}].angle_deg"), a, 0.0, 90.0)?;
+        check_range(|| format!("{name}[{i}].radiance"), l, 0.0, f64::MAX)?;
+    }
+    check_increasing(
+        |i| format!("{name}[{i}].angle_deg"),
+        rows.iter().map(|r| r.0),
+    )
+}
+
+impl SlantTables {
+    /// Checks grid shapes, monotonic axes and value ranges.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let grid = |name: &str, rows: &[Vec<f64>], n: usize, m: usize, max: f64| {
+            if rows.len() != n || rows.iter().any(|r| r.len() != m) {
+                return Err(ModelError::new(
+                    format!("slant.{name}"),
+                    ModelErrorKind::Other(format!("expected a {n}×{m} grid")),
+                ));
+            }
+            for (i, r) in rows.iter().enumerate() {
+                for (j, &v) in r.iter().enumerate() {
+                    check_range(|| format!("slant.{name}[{i}][{j}]"), v, 0.0, max)?;
+                }
+            }
+            Ok(())
+        };
+        for (name, axis, max) in [
+            ("altitude_m", &self.altitude_m, f64::MAX),
+            ("nadir_deg", &self.nadir_deg, 90.0),
+            ("sky_altitude_m", &self.sky_altitude_m, f64::MAX),
+            ("sky_zenith_deg", &self.sky_zenith_deg, 90.0),
+        ] {
+            if axis.is_empty() {
+                return Err(ModelError::new(
+                    format!("slant.{name}"),
+                    ModelErrorKind::Empty,
+                ));
+            }
+            for (i, &v) in axis.iter().enumerate() {
+                check_range(|| format!("slant.{name}[{i}]"), v, 0.0, max)?;
+            }
+            check_increasing(|i| format!("slant.{name}[{i}]"), axis.iter().copied())?;
+        }
+        let (n, m) = (self.altitude_m.len(), self.nadir_deg.len());
+        grid("transmission", &self.transmission, n, m, 1.0)?;
+        grid(
+            "path_radiance_w_m2_sr",
+            &self.path_radiance_w_m2_sr,
+            n,
+            m,
+            f64::MAX,
+        )?;
+        grid(
+            "sky_radiance_w_m2_sr",
+            &self.sky_radiance_w_m2_sr,
+            self.sky_altitude_m.len(),
+            self.sky_zenith_deg.len(),
+            f64::MAX,
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn atmosphere() -> Atmosphere {
+        Atmosphere {
+            name: "t".into(),
+            source: "test".into(),
+            band_um: [8.0, 14.0],
+            levels: vec![
+                AtmosphereLevel {
+                    altitude_asl_m: 50.0,
+                    temperature_k: 287.8,
+                    altitude_m: 50.0,
+                    transmission: 0.964,
+                    path_radiance_w_m2_sr: 1.519,
+                },
+                AtmosphereLevel {
+                    altitude_asl_m: 100.0,
+                    temperature_k: 287.5,
+                    altitude_m: 100.0,
+                    transmission: 0.946,
+                    path_radiance_w_m2_sr: 2.282,
+                },
+            ],
+            transmission_correction: Some([1.1, -0.11, 0.007]),
+            sky: vec![(0.0, 11.66), (90.0, 43.9)],
+            sky_hemispheric_w_m2_sr: Some(15.13),
+            radiosonde: vec![],
+            band_radiance: vec![(200.0, 6.0), (201.0, 6.2)],
+            slant: None,
+        }
+    }
+
+    #[test]
+    fn a_good_atmosphere_passes() {
+        atmosphere().validate().unwrap();
+    }
+
+    #[test]
+    fn transmission_above_one_and_falling_altitudes_are_rejected() {
+        let mut a = atmosphere();
+        a.levels[1].transmission = 1.01;
+        assert_eq!(a.validate().unwrap_err().path, "levels[1].transmission");
+        let mut a = atmosphere();
+        a.levels[1].altitude_m = 10.0;
+        a.levels[1].altitude_asl_m = 10.0;
+        assert_eq!(a.validate().unwrap_err().path, "levels[1].altitude_m");
+    }
+
+    #[test]
+    fn sky_angles_past_90_and_negative_radiance_are_rejected() {
+        let mut a = atmosphere();
+        a.sky.push((95.0, 40.0));
+        assert!(a.validate().is_err());
+        let mut a = atmosphere();
+        a.sky[0].1 = -1.0;
+        assert!(a.validate().is_err());
+    }
+}

@@ -1,0 +1,50 @@
+//! The canonical irsig data model: what the stages hand each other.
+//!
+//! Every type here is plain data with serde derives and a `validate` method. Units are SI
+//! and are named in field names wherever they could be confused: lengths in metres
+//! (`_m`), temperatures in kelvin (`_k`), angles in degrees at the file boundary (`_deg`),
+//! radiance in W m⁻² sr⁻¹ (`_w_m2_sr`).
+//!
+//! | type | written by | read by |
+//! | --- | --- | --- |
+//! | [`Object`] | `irsig-import` | `irsig-flatten` |
+//! | [`Scene`] | the user | `irsig-flatten` |
+//! | [`RawScene`] | `irsig-flatten` | `irsig-trace` |
+//! | [`MaterialLibrary`] | the user, `irsig-atmos convert` | import, flatten, trace |
+//! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
+//! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
+//!
+//! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
+//! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
+//! the data.
+//!
+//! ```
+//! use irsig_model::{Material, MaterialId, MaterialLibrary};
+//! let lib = MaterialLibrary {
+//!     materials: vec![Material {
+//!         id: MaterialId(1),
+//!         name: "asphalt".into(),
+//!         emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
+//!         specular_fraction: 0.0,
+//!         source: "example".into(),
+//!     }],
+//! };
+//! assert!(lib.validate().is_ok());
+//! assert_eq!(lib.by_name("asphalt").map(|m| m.id), Some(MaterialId(1)));
+//! ```
+
+mod atmosphere;
+mod error;
+mod material;
+mod object;
+mod raw;
+mod scene;
+mod view;
+
+pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
+pub use error::{ModelError, ModelErrorKind};
+pub use material::{Material, MaterialId, MaterialLibrary};
+pub use object::{Facet, Object};
+pub use raw::{RawFacet, RawScene};
+pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
+pub use view::{LengthUnit, View};

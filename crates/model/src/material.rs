@@ -1,0 +1,189 @@
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ModelError, ModelErrorKind, check_increasing, check_range};
+
+/// A material's number, as facets and the interaction map carry it. 0 is never a material:
+/// the legacy interaction map uses 0 for "nothing hit".
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
+#[serde(transparent)]
+pub struct MaterialId(pub u16);
+
+/// One material: how it emits and reflects in the band.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// The material's number (1 or more), unique in its library.
+    pub id: MaterialId,
+    /// The name input files use for it (`asphalt`, `steel`), unique in its library.
+    pub name: String,
+    /// Angular emissivity, `(angle_deg, emissivity)`: the angle between the view ray and the
+    /// surface normal in degrees, 0 to 90, strictly increasing, with emissivity 0 to 1.
+    /// Linearly interpolated; rotationally symmetric (thesis §3.2.2, `.ems`).
+    pub emissivity: Vec<(f64, f64)>,
+    /// How the reflected part `r = 1 − ε` divides: 0 is Lambertian (diffuse), 1 is a
+    /// mirror (specular); in between, that fraction of `r` is specular and the rest diffuse.
+    pub specular_fraction: f64,
+    /// Where the numbers come from (a measurement, a paper, a legacy `.ems` file).
+    pub source: String,
+}
+
+/// A set of materials: the canonical form of the legacy material index file plus its
+/// `.ems` files.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialLibrary {
+    /// The materials, in any order.
+    pub materials: Vec<Material>,
+}
+
+impl Material {
+    /// Checks the emissivity table and the specular fraction.
+    ///
+    /// # Errors
+    /// The first rule broken, with its path below `prefix`.
+    pub fn validate(&self, prefix: &str) -> Result<(), ModelError> {
+        if self.id.0 == 0 {
+            return Err(ModelError::new(
+                format!("{prefix}.id"),
+                ModelErrorKind::Other("material id 0 is reserved for \"nothing hit\"".into()),
+            ));
+        }
+        if self.emissivity.is_empty() {
+            return Err(ModelError::new(
+                format!("{prefix}.emissivity"),
+                ModelErrorKind::Empty,
+            ));
+        }
+        for (i, &(angle, eps)) in self.emissivity.iter().enumerate() {
+            check_range(
+                || format!("{prefix}.emissivity[{i}].angle_deg"),
+                angle,
+                0.0,
+                90.0,
+            )?;
+            check_range(
+                || format!("{prefix}.emissivity[{i}].emissivity"),
+                eps,
+                0.0,
+                1.0,
+            )?;
+        }
+        check_increasing(
+            |i| format!("{prefix}.emissivity[{i}].angle_deg"),
+            self.emissivity.iter().map(|e| e.0),
+        )?;
+        check_range(
+            || format!("{prefix}.specular_fraction"),
+            self.specular_fraction,
+            0.0,
+            1.0,
+        )
+    }
+}
+
+impl MaterialLibrary {
+    /// Checks every material, and that ids and names are unique.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let mut ids = std::collections::HashSet::new();
+        let mut names = std::collections::HashSet::new();
+        for (i, m) in self.materials.iter().enumerate() {
+            let prefix = format!("materials[{i}]");
+            m.validate(&prefix)?;
+            if !ids.insert(m.id) {
+                return Err(ModelError::new(
+                    format!("{prefix}.id"),
+                    ModelErrorKind::Duplicate(m.id.0.to_string()),
+                ));
+            }
+            if !names.insert(m.name.as_str()) {
+                return Err(ModelError::new(
+                    format!("{prefix}.name"),
+                    ModelErrorKind::Duplicate(m.name.clone()),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The material with this name, if any. Names match exactly.
+    #[must_use]
+    pub fn by_name(&self, name: &str) -> Option<&Material> {
+        self.materials.iter().find(|m| m.name == name)
+    }
+
+    /// The material with this id, if any.
+    #[must_use]
+    pub fn by_id(&self, id: MaterialId) -> Option<&Material> {
+        self.materials.iter().find(|m| m.id == id)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mat(id: u16, name: &str, eps: Vec<(f64, f64)>) -> Material {
+        Material {
+            id: MaterialId(id),
+            name: name.into(),
+            emissivity: eps,
+            specular_fraction: 1.0,
+            source: "test".into(),
+        }
+    }
+
+    #[test]
+    fn emissivity_above_one_names_its_place() {
+        let lib = MaterialLibrary {
+            materials: vec![
+                mat(1, "a", vec![(0.0, 0.9)]),
+                mat(2, "b", vec![(0.0, 0.9), (45.0, 1.3)]),
+            ],
+        };
+        let err = lib.validate().unwrap_err();
+        assert_eq!(err.path, "materials[1].emissivity[1].emissivity");
+        assert!(err.to_string().contains("1.3"));
+    }
+
+    #[test]
+    fn angles_must_increase_and_stay_within_0_to_90() {
+        let m = mat(1, "a", vec![(0.0, 0.9), (0.0, 0.8)]);
+        assert!(matches!(
+            m.validate("m").unwrap_err().kind,
+            ModelErrorKind::NotIncreasing { .. }
+        ));
+        let m = mat(1, "a", vec![(0.0, 0.9), (95.0, 0.8)]);
+        assert!(matches!(
+            m.validate("m").unwrap_err().kind,
+            ModelErrorKind::OutOfRange { .. }
+        ));
+        let m = mat(1, "a", vec![(f64::NAN, 0.9)]);
+        assert_eq!(m.validate("m").unwrap_err().kind, ModelErrorKind::NotFinite);
+    }
+
+    #[test]
+    fn duplicate_names_and_ids_are_rejected() {
+        let lib = MaterialLibrary {
+            materials: vec![mat(1, "a", vec![(0.0, 0.9)]), mat(1, "b", vec![(0.0, 0.9)])],
+        };
+        assert!(matches!(
+            lib.validate().unwrap_err().kind,
+            ModelErrorKind::Duplicate(_)
+        ));
+        let lib = MaterialLibrary {
+            materials: vec![mat(1, "a", vec![(0.0, 0.9)]), mat(2, "a", vec![(0.0, 0.9)])],
+        };
+        assert!(matches!(
+            lib.validate().unwrap_err().kind,
+            ModelErrorKind::Duplicate(_)
+        ));
+    }
+
+    #[test]
+    fn id_zero_is_reserved() {
+        assert!(mat(0, "a", vec![(0.0, 0.9)]).validate("m").is_err());
+    }
+}

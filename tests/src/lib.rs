@@ -1,0 +1,59 @@
+//! End-to-end tests across the irsig binaries live in `tests/`, one file per area; each
+//! file says in its first comment what it covers. This library holds only what those files
+//! share.
+//!
+//! The binaries are those cargo builds beside the test executable ([`bin_path`]).
+
+use std::path::PathBuf;
+use std::process::Command;
+
+/// The repository root.
+#[must_use]
+pub fn repo_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .map_or_else(|| PathBuf::from("."), std::path::Path::to_path_buf)
+}
+
+/// The path of an irsig binary, built by this test run.
+///
+/// `cargo test` does not build other packages' binaries, so the first call builds every
+/// workspace binary (`cargo build --workspace --bins`, same profile, a no-op when they are
+/// up to date).
+///
+/// # Panics
+/// When the build fails or the binary does not exist.
+#[must_use]
+pub fn bin_path(name: &str) -> PathBuf {
+    static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    BUILT.get_or_init(|| {
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let mut cmd = Command::new(cargo);
+        cmd.args(["build", "--quiet", "--workspace", "--bins"]);
+        if !cfg!(debug_assertions) {
+            cmd.arg("--release");
+        }
+        let status = cmd
+            .current_dir(repo_root())
+            .status()
+            .expect("run cargo build");
+        assert!(status.success(), "cargo build --workspace --bins failed");
+    });
+    // The test executable sits in target/<profile>/deps; the binaries one level up.
+    let exe = std::env::current_exe().expect("current test executable");
+    let dir = exe
+        .parent()
+        .and_then(std::path::Path::parent)
+        .expect("target/<profile> directory");
+    let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
+    assert!(path.is_file(), "{} was not built", path.display());
+    path
+}
+
+/// A command for an irsig binary, run from the repository root.
+#[must_use]
+pub fn bin(name: &str) -> assert_cmd::Command {
+    let mut cmd = Command::new(bin_path(name));
+    cmd.current_dir(repo_root());
+    assert_cmd::Command::from_std(cmd)
+}
