@@ -39,9 +39,16 @@
 //!            obj.facets[0].vertices);
 //! ```
 
+pub mod atm;
+pub mod cor;
+pub mod dwr;
+pub mod ems;
 pub(crate) mod lex;
 pub mod object;
+pub mod rsd;
+pub mod rtt;
 pub mod scene;
+mod table;
 
 use crate::ParseError;
 
