@@ -463,3 +463,105 @@ fn a_failing_stage_stops_the_run_and_names_the_stage() {
         );
     assert!(!s.path("a.txt").exists() && !s.path("b.txt").exists());
 }
+
+/// Copies `formats/samples/pipeline.ron` and its inputs to a scratch directory.
+fn sample() -> Scratch {
+    let root = irsig_tests::repo_root().join("formats/samples");
+    let text = std::fs::read_to_string(root.join("pipeline.ron")).unwrap();
+    let inputs: Vec<(String, String)> = ["scene", "objects", "north", "south"]
+        .iter()
+        .map(|n| {
+            let name = format!("pipeline/{n}.txt");
+            let body = std::fs::read_to_string(root.join(&name)).unwrap();
+            (name, body)
+        })
+        .collect();
+    let refs: Vec<(&str, &str)> = inputs
+        .iter()
+        .map(|(a, b)| (a.as_str(), b.as_str()))
+        .collect();
+    Scratch::new(&text, &refs)
+}
+
+#[test]
+fn the_sample_pipeline_runs_the_same_by_runner_make_shell_and_pipe() {
+    let runner = sample();
+    runner.run(&[]).success();
+    let scene = "scene: a flat field, a road, a panel\nvehicle\n";
+    assert_eq!(runner.read("build/scene.txt"), scene);
+    let north = "NORTH SCENE: A FLAT FIELD, A ROAD, A PANEL\nVEHICLE\nLOOKING NORTH\n";
+    let south = "SOUTH SCENE: A FLAT FIELD, A ROAD, A PANEL\nVEHICLE\nLOOKING SOUTH\n";
+    assert_eq!(runner.read("build/view-01.txt"), north);
+    assert_eq!(runner.read("build/sheet.txt"), format!("{north}{south}"));
+    // 4 frames evenly over y = -1500..1500 m: -1500, -500, 500, 1500.
+    assert_eq!(
+        runner.read("build/fly-2.txt"),
+        format!("frame 2/4 at 0,-500,300 looking at 0,0,0: {scene}")
+    );
+    assert_eq!(
+        runner.read("build/fly-4.txt"),
+        format!("frame 4/4 at 0,1500,300 looking at 0,0,0: {scene}")
+    );
+    let outputs: Vec<String> = runner
+        .files()
+        .into_iter()
+        .filter(|f| f.starts_with("build/"))
+        .collect();
+    assert_eq!(outputs.len(), 8, "{outputs:?}");
+
+    let by_make = sample();
+    by_make.run(&["--emit-makefile", "Makefile"]).success();
+    assert!(
+        Command::new("make")
+            .args(["-j4", "-s"])
+            .current_dir(by_make.dir.path())
+            .env("PATH", path_with_tools())
+            .status()
+            .unwrap()
+            .success()
+    );
+    let by_shell = sample();
+    let script = by_shell.run(&["-n"]).success().get_output().stdout.clone();
+    // The dry run does not create directories: the script's commands need build/.
+    std::fs::create_dir(by_shell.path("build")).unwrap();
+    assert!(
+        Command::new("sh")
+            .arg("-c")
+            .arg(String::from_utf8(script).unwrap())
+            .current_dir(by_shell.dir.path())
+            .env("PATH", path_with_tools())
+            .status()
+            .unwrap()
+            .success()
+    );
+    for f in &outputs {
+        let expected = std::fs::read(runner.path(f)).unwrap();
+        assert_eq!(
+            std::fs::read(by_make.path(f)).unwrap(),
+            expected,
+            "make: {f}"
+        );
+        assert_eq!(
+            std::fs::read(by_shell.path(f)).unwrap(),
+            expected,
+            "sh: {f}"
+        );
+    }
+
+    // The Unix-pipe form of docs/pipelines.md: the scene stage streams into a view stage.
+    let piped = sample();
+    std::fs::create_dir(piped.path("build")).unwrap();
+    let pipe = "irsig-testcat pipeline/scene.txt pipeline/objects.txt --prefix 'scene: ' \
+                | irsig-testcat - pipeline/north.txt --prefix 'north ' --upper -o build/view-01.txt";
+    assert!(
+        Command::new("sh")
+            .arg("-c")
+            .arg(pipe)
+            .current_dir(piped.dir.path())
+            .env("PATH", path_with_tools())
+            .status()
+            .unwrap()
+            .success()
+    );
+    assert_eq!(piped.read("build/view-01.txt"), north);
+}
