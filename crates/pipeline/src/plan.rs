@@ -825,3 +825,138 @@ mod tests {
         assert_eq!(flag("--band"), "--band");
     }
 }
+
+#[cfg(test)]
+mod plan_tests {
+    use super::*;
+
+    fn tools() -> Tools {
+        Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))))
+    }
+
+    fn plan(text: &str, tools: &Tools) -> Result<Plan, PipelineError> {
+        // No inputs below exist on disk, so every input is produced by a stage or absent.
+        Pipeline::parse("p.ron", text, Path::new("/nonexistent"))?.plan(tools)
+    }
+
+    #[test]
+    fn parameters_become_the_words_a_user_would_type() {
+        let text = r#"(stages: [(
+            tool: "atmos convert",
+            inputs: {"materials": "m.ron"},
+            params: {"band": "8:14", "size": (512, 384), "mtf": ["a", "b"], "quiet": true,
+                     "loud": false, "scale": 1e-3, "--raw": "x"},
+            outputs: {"o": "out.ron", "truth": "t.exr"},
+        ), (tool: "gen", outputs: {"o": "m.ron"})])"#;
+        let p = plan(text, &tools()).unwrap();
+        assert_eq!(p.steps[0].argv, ["irsig-gen", "-o", "m.ron"]);
+        assert_eq!(
+            p.steps[1].argv,
+            [
+                "irsig-atmos",
+                "convert",
+                "--materials",
+                "m.ron",
+                "--band",
+                "8:14",
+                "--size",
+                "512",
+                "384",
+                "--mtf",
+                "a",
+                "--mtf",
+                "b",
+                "--quiet",
+                "--scale",
+                "1e-3",
+                "--raw",
+                "x",
+                "-o",
+                "out.ron",
+                "--truth",
+                "t.exr"
+            ]
+        );
+        assert_eq!(p.steps[1].deps, [0]);
+    }
+
+    fn reject_size(argv: &[String]) -> Result<(), String> {
+        match argv.iter().position(|w| w == "--size") {
+            Some(i) if argv.get(i + 1).is_some_and(|v| v.parse::<u32>().is_err()) => Err(format!(
+                "error: invalid value '{}' for '--size <N>': not a number\n\nUsage: x",
+                argv[i + 1]
+            )),
+            Some(_) | None if argv.iter().any(|w| w == "--bogus") => {
+                Err("error: unexpected argument '--bogus' found\n\n  tip: ...".to_owned())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    #[test]
+    fn validator_complaints_point_at_the_flag_or_the_value() {
+        let mut t = tools();
+        t.register("gen", reject_size);
+        let text = "(stages: [\n (tool: \"gen\", params: {\"size\": \"big\"}),\n])";
+        let e = plan(text, &t).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::BadParameter);
+        // `"big"` starts at line 2, column 33.
+        assert_eq!(e.line_column(), Some((2, 33)));
+        assert!(e.to_string().contains("invalid value 'big'"), "{e}");
+
+        let text = "(stages: [\n (tool: \"gen\", params: {\"bogus\": true}),\n])";
+        let e = plan(text, &t).unwrap_err();
+        // `"bogus"` starts at line 2, column 25 (after ` (tool: "gen", params: {`).
+        assert_eq!(e.line_column(), Some((2, 25)));
+        // An unregistered tool is not checked here.
+        assert!(plan(text, &tools()).is_ok());
+    }
+
+    #[test]
+    fn templates_need_a_sweep_and_known_variables() {
+        let e = plan(
+            r#"(stages: [(tool: "a", outputs: {"o": "{frame}.txt"})])"#,
+            &tools(),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("has no `sweep`"), "{e}");
+        let e = plan(
+            r#"(sweeps: {"s": Frames([{"v": 1}])}, stages: [(tool: "a", sweep: "t", outputs: {"o": "x"})])"#,
+            &tools(),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("no sweep named `t`"), "{e}");
+        let p = plan(
+            r#"(sweeps: {"s": Frames([{"v": 7}, {"v": 8}])}, stages: [(tool: "a", sweep: "s", outputs: {"o": "{{{v:03}}}-{frame}"})])"#,
+            &tools(),
+        )
+        .unwrap();
+        assert_eq!(p.steps[1].argv, ["irsig-a", "-o", "{008}-2"]);
+        assert_eq!(p.steps[1].name, "a#1[2]");
+    }
+
+    #[test]
+    fn an_unknown_tool_is_located() {
+        let t = Tools::new(|_| None);
+        let e = plan("(stages: [(tool: \"nope\")])", &t).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::UnknownTool);
+        assert_eq!(e.line_column(), Some((1, 18)));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn no_text_makes_the_parser_panic(text in "\\PC{0,200}") {
+            let _ = Pipeline::parse("p.ron", &text, Path::new("."));
+        }
+
+        #[test]
+        fn no_mangled_pipeline_makes_the_planner_panic(cut in 0usize..400, insert in "[\\[\\](){}\",:{}a-z0-9 ]{0,5}") {
+            let base = r#"(sweeps: {"s": Frames([{"v": 1}])}, stages: [(tool: "a", sweep: "s", args: ["{v}"], params: {"k": (1, 2)}, outputs: {"o": "o{frame}"}), (tool: "b", args: ["o1"], outputs: {"o": "x"})])"#;
+            let at = cut.min(base.len());
+            let text = format!("{}{insert}{}", &base[..at], &base[at..]);
+            if let Ok(p) = Pipeline::parse("p.ron", &text, Path::new("/nonexistent")) {
+                let _ = p.plan(&tools());
+            }
+        }
+    }
+}
