@@ -25,13 +25,14 @@
 //! geometric normal turned to face the incoming ray; [`Hit::back_face`] says when that
 //! needed a flip, so a tool can report inconsistent winding.
 
-use glam::Vec3A;
+use glam::{Mat3A, Vec3A};
 use obvhs::{
     BvhBuildParams,
     cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
     ray::{Ray, RayHit},
     triangle::Triangle,
 };
+use rayon::prelude::*;
 
 use crate::vec::{V3, add, cross, dot, normalize, scale, sub};
 
@@ -73,11 +74,13 @@ pub struct Geometry {
     radius_m: f64,
 }
 
-/// Per-ray constants of the watertight test.
+/// Per-ray constants of the watertight test: the translation to the ray origin and the
+/// paper's permute-and-shear, folded into one matrix so each vertex costs one SIMD
+/// matrix-vector product. Each output component has exactly two non-zero terms (1 and
+/// −S), so the products and sums round exactly as the paper's scalar form does.
 struct Shear {
     org: Vec3A,
-    k: [usize; 3],
-    s: [f32; 3],
+    m: Mat3A,
 }
 
 impl Shear {
@@ -97,40 +100,41 @@ impl Shear {
             std::mem::swap(&mut kx, &mut ky);
         }
         let sz = 1.0 / dir[kz];
-        Self {
-            org,
-            k: [kx, ky, kz],
-            s: [dir[kx] * sz, dir[ky] * sz, sz],
-        }
+        let (sx, sy) = (dir[kx] * sz, dir[ky] * sz);
+        // Rows: e_kx − sx·e_kz, e_ky − sy·e_kz, sz·e_kz.
+        let mut rows = [[0.0_f32; 3]; 3];
+        rows[0][kx] = 1.0;
+        rows[0][kz] = -sx;
+        rows[1][ky] = 1.0;
+        rows[1][kz] = -sy;
+        rows[2][kz] = sz;
+        let m = Mat3A::from_cols(
+            Vec3A::new(rows[0][0], rows[1][0], rows[2][0]),
+            Vec3A::new(rows[0][1], rows[1][1], rows[2][1]),
+            Vec3A::new(rows[0][2], rows[1][2], rows[2][2]),
+        );
+        Self { org, m }
     }
 
     /// The ray parameter of the hit, or +∞. Two-sided; an edge or vertex shared by two
     /// triangles is hit by both (never by neither), which is what makes it watertight.
     #[inline(always)]
     fn intersect(&self, v: &[Vec3A; 3], tmin: f32, tmax: f32) -> f32 {
-        let [kx, ky, kz] = self.k;
-        let [sx, sy, sz] = self.s;
-        let a = v[0] - self.org;
-        let b = v[1] - self.org;
-        let c = v[2] - self.org;
-        let ax = a[kx] - sx * a[kz];
-        let ay = a[ky] - sy * a[kz];
-        let bx = b[kx] - sx * b[kz];
-        let by = b[ky] - sy * b[kz];
-        let cx = c[kx] - sx * c[kz];
-        let cy = c[ky] - sy * c[kz];
-        let mut u = cx * by - cy * bx;
-        let mut vv = ax * cy - ay * cx;
-        let mut w = bx * ay - by * ax;
+        let a = self.m * (v[0] - self.org);
+        let b = self.m * (v[1] - self.org);
+        let c = self.m * (v[2] - self.org);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut vv = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
         if u == 0.0 || vv == 0.0 || w == 0.0 {
             // The paper's fallback: decide edge cases exactly in double precision.
             let (ax, ay, bx, by, cx, cy) = (
-                f64::from(ax),
-                f64::from(ay),
-                f64::from(bx),
-                f64::from(by),
-                f64::from(cx),
-                f64::from(cy),
+                f64::from(a.x),
+                f64::from(a.y),
+                f64::from(b.x),
+                f64::from(b.y),
+                f64::from(c.x),
+                f64::from(c.y),
             );
             u = (cx * by - cy * bx) as f32;
             vv = (ax * cy - ay * cx) as f32;
@@ -143,9 +147,8 @@ impl Shear {
         if det == 0.0 {
             return f32::INFINITY;
         }
-        let t_scaled = u * (sz * a[kz]) + vv * (sz * b[kz]) + w * (sz * c[kz]);
-        let t = t_scaled / det;
-        if t > tmin && t < tmax {
+        let t = (u * a.z + vv * b.z + w * c.z) / det;
+        if t > tmin && t <= tmax {
             t
         } else {
             f32::INFINITY
@@ -171,16 +174,16 @@ impl Geometry {
         }
         let centre_m = scale(add(lo, hi), 0.5);
         let tris_f64: Vec<[V3; 3]> = triangles
-            .iter()
+            .par_iter()
             .map(|t| t.map(|p| sub(p, centre_m)))
             .collect();
         let normals = tris_f64
-            .iter()
+            .par_iter()
             .map(|[a, b, c]| normalize(cross(sub(*b, *a), sub(*c, *a))))
             .collect();
         let to32 = |p: V3| Vec3A::new(p[0] as f32, p[1] as f32, p[2] as f32);
         let obvhs_tris: Vec<Triangle> = tris_f64
-            .iter()
+            .par_iter()
             .map(|t| Triangle {
                 v0: to32(t[0]),
                 v1: to32(t[1]),
@@ -194,7 +197,7 @@ impl Geometry {
         );
         let tris = bvh
             .primitive_indices
-            .iter()
+            .par_iter()
             .map(|&i| {
                 let t = &obvhs_tris[i as usize];
                 [t.v0, t.v1, t.v2]
@@ -305,18 +308,26 @@ impl Geometry {
         let shear = Shear::new(ray.origin, ray.direction);
         let mut hit = RayHit::none();
         let exclude = exclude.unwrap_or(u32::MAX);
-        let found = self.bvh.ray_traverse(ray, &mut hit, |r, id| {
+        // Ties (a ray through an edge shared by two facets) go to the lower facet index, so
+        // the answer does not depend on the BVH's layout or traversal order.
+        let mut best = (f32::INFINITY, u32::MAX);
+        self.bvh.ray_traverse(ray, &mut hit, |r, id| {
             // `id` is in BVH order; `tris` is stored in that order.
-            if self.facet_of[id] == exclude {
+            let facet = self.facet_of[id];
+            if facet == exclude {
                 return f32::INFINITY;
             }
-            shear.intersect(&self.tris[id], tmin, r.tmax.min(tmax))
+            let t = shear.intersect(&self.tris[id], tmin, r.tmax.min(tmax));
+            if t.total_cmp(&best.0).then(facet.cmp(&best.1)).is_lt() {
+                best = (t, facet);
+            }
+            t
         });
-        if !found {
+        let (t, facet) = best;
+        if !t.is_finite() {
             return None;
         }
-        let facet = self.facet_of[hit.primitive_id as usize];
-        Some(self.refine(facet, origin, dir, f64::from(hit.t) + shift))
+        Some(self.refine(facet, origin, dir, f64::from(t) + shift))
     }
 
     /// True when any facet lies along the ray with `t_min < t < t_max`, skipping
