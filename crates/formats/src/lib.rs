@@ -13,5 +13,6 @@
 //! ```
 
 mod error;
+pub mod legacy;
 
 pub use error::{ParseError, line_column};
