@@ -9,6 +9,8 @@
 pub trait Radiometry: Sync {
     /// Band radiance of a blackbody at `temperature_k`, W m⁻² sr⁻¹.
     fn radiance(&self, temperature_k: f64) -> f64;
+    /// dL/dT at `temperature_k`, W m⁻² sr⁻¹ K⁻¹.
+    fn radiance_derivative(&self, temperature_k: f64) -> f64;
     /// The blackbody temperature in kelvin whose band radiance is `radiance_w_m2_sr`
     /// (the apparent temperature).
     fn temperature(&self, radiance_w_m2_sr: f64) -> f64;
@@ -51,6 +53,9 @@ const SIGMA: f64 = 5.670_374_419e-8;
 impl Radiometry for TotalRadiance {
     fn radiance(&self, temperature_k: f64) -> f64 {
         SIGMA * temperature_k.powi(4) / std::f64::consts::PI
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        4.0 * SIGMA * temperature_k.powi(3) / std::f64::consts::PI
     }
     fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
         if radiance_w_m2_sr <= 0.0 {

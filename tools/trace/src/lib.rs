@@ -1,13 +1,16 @@
 //! `irsig-trace`: renders a raw scene through an atmosphere for one or more views and writes,
-//! per view, the radiance image (f32 EXR), the truth layers (multi-layer f32 EXR) and the
-//! legacy interaction map (8-bit nibble PNG) when the material ids fit in four bits.
+//! per view, the radiance image (f32 EXR), the truth layers (multi-layer f32 EXR), the
+//! legacy interaction map (8-bit nibble PNG) when the material ids fit in four bits, and
+//! the digital-count image (8- or 16-bit PNG) with its LUT (quantisation by
+//! `irsig-sensor-model`: the thesis's DC/K auto-bias of Figure 14, or a fixed calibration).
 //!
 //! The tracing is `irsig-tracer`; this crate reads the canonical files, picks the band and
 //! the atmosphere, and writes the outputs, all or none of them.
 //!
 //! ```text
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
-//! # -> out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png
+//! # -> out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, out/frame.dc.png,
+//! #    out/frame.lut.txt
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
 //! ```
 
@@ -17,7 +20,8 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use irsig_formats::ParseError;
 use irsig_model::{MaterialLibrary, ModelError, RawScene, View};
-use irsig_raster::{Raster, exr_bytes, write_png_gray8};
+use irsig_raster::{Raster, exr_bytes, write_png_gray8, write_png_gray16};
+use irsig_sensor_model::quantise::{BandConversion, Quantiser};
 use irsig_tracer::{
     Atmosphere, Camera, Frame, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum,
 };
@@ -27,7 +31,8 @@ use serde::de::DeserializeOwned;
 const EXAMPLE: &str = "\
 Examples:
   irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
-      writes out/frame.radiance.exr, out/frame.truth.exr and out/frame.map.png
+      writes out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, and the
+      digital counts out/frame.dc.png with out/frame.lut.txt
   irsig-trace --scene world.raw.ron --materials materials.ron --view flyby.ron -o out/f
       flyby.ron holds a list of views: writes out/f.0001.radiance.exr, out/f.0002..., with
       the BVH built once
@@ -79,6 +84,24 @@ pub struct Cli {
     /// write no files.
     #[arg(long, value_name = "COLUMN,ROW", value_parser = parse_pixel)]
     pub probe: Option<(u32, u32)>,
+    /// Digital-count image: `auto` (thesis Figure 14: DC/K around the scene's mid radiance,
+    /// auto-bias), `fixed` (DC/K at --reference-k, whose radiance maps to
+    /// --dc-at-reference, the same in every scene) or `none`.
+    #[arg(long, default_value = "auto", value_parser = ["auto", "fixed", "none"])]
+    pub dc: String,
+    /// Gain in digital counts per kelvin (default: the view's gain, else 2).
+    #[arg(long, value_name = "DC_PER_K")]
+    pub dc_per_k: Option<f64>,
+    /// Bits per count of the DC image (8 or 16).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=16))]
+    pub dc_bits: u8,
+    /// Reference temperature of `--dc fixed`, K.
+    #[arg(long, default_value_t = 300.0, value_name = "K")]
+    pub reference_k: f64,
+    /// Count that the reference temperature's radiance maps to in `--dc fixed` (default
+    /// mid-scale).
+    #[arg(long, value_name = "DC")]
+    pub dc_at_reference: Option<f64>,
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -254,6 +277,12 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         if max_id <= 15 {
             files.push((with_suffix(&stem, "map.png"), interaction_map(&frame)?));
         }
+        if cli.dc != "none" {
+            let view_gain = views.get(i).and_then(View::gain_dc_per_k);
+            let (png, lut) = dc_image(cli, &tracer, &frame, view_gain)?;
+            files.push((with_suffix(&stem, "dc.png"), png));
+            files.push((with_suffix(&stem, "lut.txt"), lut));
+        }
     }
     bar.finish_and_clear();
     if max_id > 15 {
@@ -264,6 +293,58 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         );
     }
     irsig_cli::write_files_atomic(&files)
+}
+
+/// `irsig-sensor-model`'s band conversions from the tracer's band.
+struct BandAdapter<'a, R>(&'a R);
+
+impl<R: Radiometry> BandConversion for BandAdapter<'_, R> {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        self.0.radiance(temperature_k)
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        self.0.radiance_derivative(temperature_k)
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        self.0.temperature(radiance_w_m2_sr)
+    }
+}
+
+/// The DC image (PNG, 8 or 16 bits) and its LUT text.
+fn dc_image<R: Radiometry, A: Atmosphere>(
+    cli: &Cli,
+    tracer: &Tracer<R, A>,
+    frame: &Frame,
+    view_gain: Option<f64>,
+) -> miette::Result<(Vec<u8>, Vec<u8>)> {
+    let band = BandAdapter(tracer.radiometry());
+    let gain = cli.dc_per_k.or(view_gain).unwrap_or(2.0);
+    let radiance: Vec<f32> = frame.radiance_w_m2_sr.iter().map(|&l| l as f32).collect();
+    let q = if cli.dc == "fixed" {
+        let mid = f64::from(1u32 << (cli.dc_bits - 1));
+        Quantiser::fixed(
+            cli.dc_bits,
+            gain,
+            cli.reference_k,
+            cli.dc_at_reference.unwrap_or(mid),
+            &band,
+        )
+    } else {
+        Quantiser::auto_bias_from_image(cli.dc_bits, gain, &radiance, &band)
+    }
+    .map_err(|e| miette!("digital counts: {e}"))?;
+    let (w, h) = raster_size(frame);
+    let counts = q
+        .quantise(&radiance, w)
+        .map_err(|e| miette!("digital counts: {e}"))?;
+    let mut png = Vec::new();
+    if cli.dc_bits <= 8 {
+        let bytes: Vec<u8> = counts.iter().map(|&c| c.min(255) as u8).collect();
+        write_png_gray8(&mut Cursor::new(&mut png), w, h, &bytes).into_diagnostic()?;
+    } else {
+        write_png_gray16(&mut Cursor::new(&mut png), w, h, &counts).into_diagnostic()?;
+    }
+    Ok((png, q.lut(&band).to_string().into_bytes()))
 }
 
 fn numbered(prefix: &Path, n: usize) -> PathBuf {
