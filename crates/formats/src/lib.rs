@@ -12,7 +12,13 @@
 //! assert_eq!(err.to_string(), "car.obj:3:9: expected a number, found `zero`");
 //! ```
 
+// A ParseError carries its source text for the miette snippet; it is built once, on the
+// cold path, so returning it unboxed costs nothing that matters.
+#![allow(clippy::result_large_err)]
+
+pub mod canonical;
 mod error;
 pub mod legacy;
+pub mod mesh;
 
 pub use error::{ParseError, line_column};

@@ -72,6 +72,11 @@ pub struct Atmosphere {
     /// (thesis eq. 10), if given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub transmission_correction: Option<[f64; 3]>,
+    /// The observer altitude in metres the `.cor` coefficients were fitted at, if known
+    /// (the reference LOWTRAN7 tables fit at 1000 m). The `.cor` format does not say it;
+    /// models use it to scale the angular correction to other altitudes.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmission_correction_altitude_m: Option<f64>,
     /// The `.dwr` angular sky radiance: `(zenith_deg, radiance_w_m2_sr)` seen from the
     /// ground, zenith angles increasing within 0 to 90.
     pub sky: Vec<(f64, f64)>,
@@ -133,6 +138,14 @@ impl Atmosphere {
         )?;
         if let Some(c) = &self.transmission_correction {
             check_finite(|| "transmission_correction".into(), c)?;
+        }
+        if let Some(h) = self.transmission_correction_altitude_m {
+            check_range(
+                || "transmission_correction_altitude_m".into(),
+                h,
+                0.0,
+                f64::MAX,
+            )?;
         }
         check_angle_table("sky", &self.sky)?;
         if let Some(h) = self.sky_hemispheric_w_m2_sr {
@@ -267,6 +280,7 @@ mod tests {
                 },
             ],
             transmission_correction: Some([1.1, -0.11, 0.007]),
+            transmission_correction_altitude_m: None,
             sky: vec![(0.0, 11.66), (90.0, 43.9)],
             sky_hemispheric_w_m2_sr: Some(15.13),
             radiosonde: vec![],

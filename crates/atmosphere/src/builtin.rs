@@ -1,0 +1,36 @@
+//! The built-in atmospheres: LOWTRAN7 8–14 µm tables in canonical form, shipped inside the
+//! binary so scenes can name them.
+
+use irsig_model::Atmosphere;
+
+use crate::error::{AtmosphereError, AtmosphereErrorKind};
+
+/// Names of the built-in atmospheres.
+pub const BUILTIN_NAMES: [&str; 2] = ["us-std-1976", "midlat-winter"];
+
+/// The canonical RON text of a built-in atmosphere.
+#[must_use]
+pub fn builtin_ron(name: &str) -> Option<&'static str> {
+    match name {
+        "us-std-1976" => Some(include_str!("../data/us-std-1976.ron")),
+        "midlat-winter" => Some(include_str!("../data/midlat-winter.ron")),
+        _ => None,
+    }
+}
+
+/// A built-in atmosphere by name (`us-std-1976`, `midlat-winter`): LOWTRAN7 model 6 and 3,
+/// no aerosol, 8–14 µm, with slant tables for the `table` model. See
+/// `crates/atmosphere/data/README.md` for provenance and caveats.
+///
+/// # Errors
+/// An unknown name.
+pub fn builtin(name: &str) -> Result<Atmosphere, AtmosphereError> {
+    let text =
+        builtin_ron(name).ok_or_else(|| AtmosphereErrorKind::UnknownBuiltin(name.to_owned()))?;
+    let atm: Atmosphere = ron::from_str(text).map_err(|e| AtmosphereErrorKind::CorruptBuiltin {
+        name: name.to_owned(),
+        message: e.to_string(),
+    })?;
+    atm.validate()?;
+    Ok(atm)
+}

@@ -1,0 +1,67 @@
+use irsig_model::ModelError;
+
+/// Why an atmosphere model could not be built, or a built-in atmosphere not found.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{kind}")]
+pub struct AtmosphereError {
+    /// What went wrong.
+    pub kind: AtmosphereErrorKind,
+}
+
+/// What went wrong building an atmosphere model.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum AtmosphereErrorKind {
+    /// The atmosphere breaks one of the canonical model's rules (see
+    /// [`irsig_model::Atmosphere::validate`]).
+    #[error("invalid atmosphere: {0}")]
+    Invalid(#[from] ModelError),
+    /// The chosen model needs a table the atmosphere does not have (the `thesis` model
+    /// needs the `.cor` coefficients, the `table` model the slant tables).
+    #[error("the `{model}` atmosphere model needs `{table}`, which this atmosphere does not have")]
+    MissingTable {
+        /// The model asked for.
+        model: &'static str,
+        /// The missing field of the canonical atmosphere.
+        table: &'static str,
+    },
+    /// The vertical transmission grows with altitude, which no atmosphere does; the layered
+    /// model cannot turn such a table into layers.
+    #[error(
+        "levels[{level}].transmission = {value} exceeds the level below ({below}): the vertical transmission from the ground must not grow with altitude"
+    )]
+    TransmissionIncreases {
+        /// Index of the offending level.
+        level: usize,
+        /// Its transmission.
+        value: f64,
+        /// The transmission of the level below it.
+        below: f64,
+    },
+    /// An atmosphere model name that is not one of `thesis`, `layered`, `table`, `none`.
+    #[error("unknown atmosphere model `{0}`: expected one of thesis, layered, table, none")]
+    UnknownModel(String),
+    /// A built-in atmosphere name that does not exist.
+    #[error("unknown built-in atmosphere `{0}`: expected one of {names}", names = crate::BUILTIN_NAMES.join(", "))]
+    UnknownBuiltin(String),
+    /// A built-in atmosphere file failed to parse (a bug in the shipped data).
+    #[error("built-in atmosphere `{name}` is corrupt: {message}")]
+    CorruptBuiltin {
+        /// The built-in's name.
+        name: String,
+        /// The parser's message.
+        message: String,
+    },
+}
+
+impl From<AtmosphereErrorKind> for AtmosphereError {
+    fn from(kind: AtmosphereErrorKind) -> Self {
+        Self { kind }
+    }
+}
+
+impl From<ModelError> for AtmosphereError {
+    fn from(e: ModelError) -> Self {
+        AtmosphereErrorKind::Invalid(e).into()
+    }
+}

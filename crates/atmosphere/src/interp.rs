@@ -1,0 +1,193 @@
+//! Small numeric helpers: table lookup, linear interpolation, the Appendix E quadratic
+//! least-squares fit, and the eq. 5 hemispheric integral of a piecewise-linear L(θ).
+
+/// Index `i` of the interval `[xs[i], xs[i + 1]]` holding `x` and the fraction along it,
+/// with `x` clamped to the table. `xs` increases strictly and has at least one entry.
+pub(crate) fn locate(xs: &[f64], x: f64) -> (usize, f64) {
+    let n = xs.len();
+    if n < 2 {
+        return (0, 0.0);
+    }
+    let first = xs[0];
+    let last = xs[n - 1];
+    if x.is_nan() {
+        return (0, f64::NAN);
+    }
+    if x <= first {
+        return (0, 0.0);
+    }
+    if x >= last {
+        return (n - 2, 1.0);
+    }
+    // Tables are short (≤ a few dozen rows): a binary search is as fast as anything.
+    let i = xs.partition_point(|&v| v <= x).saturating_sub(1).min(n - 2);
+    let f = (x - xs[i]) / (xs[i + 1] - xs[i]);
+    (i, f)
+}
+
+/// Linear interpolation of `ys` over `xs` at `x`, clamped at both ends.
+pub(crate) fn linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let (i, f) = locate(xs, x);
+    match (ys.get(i), ys.get(i + 1)) {
+        (Some(&a), Some(&b)) => a + f * (b - a),
+        (Some(&a), None) => a,
+        _ => f64::NAN,
+    }
+}
+
+/// Bilinear interpolation of the grid `zs[row][col]` over rows `xs` and columns `ys`,
+/// clamped at the edges.
+pub(crate) fn bilinear(xs: &[f64], ys: &[f64], zs: &[Vec<f64>], x: f64, y: f64) -> f64 {
+    let (i, fx) = locate(xs, x);
+    let row = |k: usize| zs.get(k).map_or(f64::NAN, |r| linear(ys, r, y));
+    if xs.len() < 2 {
+        return row(0);
+    }
+    let a = row(i);
+    let b = row(i + 1);
+    a + fx * (b - a)
+}
+
+/// The least-squares quadratic `y = a + b x + c x²` through the points (thesis Appendix E,
+/// eq. E1–E2: `B = (XᵀX)⁻¹ XᵀY`). `x` is centred on its mean before fitting so the normal
+/// equations stay well conditioned for angles in degrees. Returns a closure-free
+/// [`Quadratic`]; `None` with fewer than three distinct points.
+pub(crate) fn fit_quadratic(points: &[(f64, f64)]) -> Option<Quadratic> {
+    if points.len() < 3 {
+        return None;
+    }
+    let n = points.len() as f64;
+    let x0 = points.iter().map(|p| p.0).sum::<f64>() / n;
+    let mut s = [0.0_f64; 5];
+    let mut t = [0.0_f64; 3];
+    for &(x, y) in points {
+        let u = x - x0;
+        let mut p = 1.0;
+        for sk in &mut s {
+            *sk += p;
+            p *= u;
+        }
+        t[0] += y;
+        t[1] += y * u;
+        t[2] += y * u * u;
+    }
+    let m = [[s[0], s[1], s[2]], [s[1], s[2], s[3]], [s[2], s[3], s[4]]];
+    let det = det3(&m);
+    if det.abs() < 1e-12 * s[4].max(1.0) * s[2].max(1.0) {
+        return None;
+    }
+    let mut coef = [0.0; 3];
+    for (k, c) in coef.iter_mut().enumerate() {
+        let mut mk = m;
+        for (row, tv) in mk.iter_mut().zip(t) {
+            row[k] = tv;
+        }
+        *c = det3(&mk) / det;
+    }
+    Some(Quadratic { x0, coef })
+}
+
+fn det3(m: &[[f64; 3]; 3]) -> f64 {
+    m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+        - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+        + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+}
+
+/// A fitted quadratic in `x - x0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Quadratic {
+    x0: f64,
+    coef: [f64; 3],
+}
+
+impl Quadratic {
+    pub(crate) fn at(&self, x: f64) -> f64 {
+        let u = x - self.x0;
+        self.coef[0] + u * (self.coef[1] + u * self.coef[2])
+    }
+}
+
+/// Thesis eq. 5 for a radiance that is piecewise linear in zenith angle θ (degrees) over
+/// `[0°, 90°]`: `L_hemi = (1/π)∫∫ L cosθ dΩ = ∫₀^{π/2} L(θ) sin 2θ dθ`, integrated exactly
+/// segment by segment. Below the first and above the last angle the end values hold.
+pub(crate) fn hemispheric(angles_deg: &[f64], radiance: &[f64]) -> f64 {
+    let mut knots: Vec<(f64, f64)> = Vec::with_capacity(angles_deg.len() + 2);
+    let (Some(&first), Some(&last)) = (radiance.first(), radiance.last()) else {
+        return 0.0;
+    };
+    knots.push((0.0, first));
+    for (&a, &l) in angles_deg.iter().zip(radiance) {
+        if a > 0.0 && a < 90.0 {
+            knots.push((a.to_radians(), l));
+        }
+    }
+    knots.push((std::f64::consts::FRAC_PI_2, last));
+    let mut sum = 0.0;
+    for w in knots.windows(2) {
+        let ((t0, l0), (t1, l1)) = (w[0], w[1]);
+        if t1 <= t0 {
+            continue;
+        }
+        let slope = (l1 - l0) / (t1 - t0);
+        // ∫ sin2θ dθ = -cos2θ/2 ;  ∫ (θ - t0) sin2θ dθ = -(θ - t0)cos2θ/2 + sin2θ/4
+        let a = |t: f64| -(2.0 * t).cos() / 2.0;
+        let b = |t: f64| -(t - t0) * (2.0 * t).cos() / 2.0 + (2.0 * t).sin() / 4.0;
+        sum += l0 * (a(t1) - a(t0)) + slope * (b(t1) - b(t0));
+    }
+    sum
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use approx::assert_relative_eq;
+
+    #[test]
+    fn linear_interpolates_and_clamps() {
+        let xs = [0.0, 10.0, 20.0];
+        let ys = [1.0, 3.0, 4.0];
+        assert_relative_eq!(linear(&xs, &ys, 5.0), 2.0);
+        assert_relative_eq!(linear(&xs, &ys, 15.0), 3.5);
+        assert_relative_eq!(linear(&xs, &ys, -5.0), 1.0);
+        assert_relative_eq!(linear(&xs, &ys, 25.0), 4.0);
+        assert_relative_eq!(linear(&xs, &ys, 20.0), 4.0);
+    }
+
+    #[test]
+    fn quadratic_fit_recovers_an_exact_parabola() {
+        let pts: Vec<_> = (60..=83)
+            .map(|x| {
+                (
+                    f64::from(x),
+                    2.0 - 0.5 * f64::from(x) + 0.01 * f64::from(x * x),
+                )
+            })
+            .collect();
+        let q = fit_quadratic(&pts).unwrap();
+        for x in [60.0, 83.0, 90.0, 95.0] {
+            assert_relative_eq!(q.at(x), 2.0 - 0.5 * x + 0.01 * x * x, max_relative = 1e-9);
+        }
+        assert!(fit_quadratic(&pts[..2]).is_none());
+    }
+
+    #[test]
+    fn hemispheric_of_a_constant_is_the_constant() {
+        assert_relative_eq!(
+            hemispheric(&[0.0, 45.0, 90.0], &[7.0, 7.0, 7.0]),
+            7.0,
+            max_relative = 1e-12
+        );
+    }
+
+    #[test]
+    fn hemispheric_of_a_linear_ramp_matches_the_closed_form() {
+        // L(θ) = θ (radians): ∫₀^{π/2} θ sin2θ dθ = π/4.
+        let a: Vec<f64> = (0..=90).map(f64::from).collect();
+        let l: Vec<f64> = a.iter().map(|d| d.to_radians()).collect();
+        assert_relative_eq!(
+            hemispheric(&a, &l),
+            std::f64::consts::FRAC_PI_4,
+            max_relative = 1e-12
+        );
+    }
+}

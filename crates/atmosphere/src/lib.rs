@@ -1,0 +1,424 @@
+//! Atmosphere models for irsig: how much of a surface's radiance reaches the sensor, how
+//! much the air adds on the way, and what the sky looks like (thesis §3.2, eq. 8–11,
+//! Appendix E).
+//!
+//! An [`AtmosphereModel`] is built from a canonical [`irsig_model::Atmosphere`] and a
+//! [`ModelKind`]:
+//!
+//! | kind | τ and L_u of a path | cost |
+//! | --- | --- | --- |
+//! | `none` | vacuum: τ = 1, L_u = 0, sky radiance 0 | nothing |
+//! | `thesis` | `.cor` polynomial (eq. 10), `L_u·secθ` (eq. 11) | a few interpolations |
+//! | `layered` | eq. 8–9 layer by layer, curve-of-growth slant scaling | one pass over the layers |
+//! | `table` | LOWTRAN7 slant-path tables, bilinear, as corrections to `layered` | `layered` + two lookups |
+//!
+//! `docs/accuracy.md` measures each against LOWTRAN7's own slant paths; `table` is the
+//! accurate default where the atmosphere has slant tables (the built-ins do).
+//!
+//! Conventions: altitudes in metres above the ground of the tables (scene z = 0), ranges in
+//! metres, angles in degrees (nadir angle 0 = straight down, zenith angle 0 = straight up),
+//! radiance in W m⁻² sr⁻¹. The Earth is flat for paths (plane-parallel layers, as the
+//! scene is) and spherical only for the horizon ([`critical_nadir_angle_deg`]).
+//!
+//! ```
+//! use irsig_atmosphere::{builtin, AtmosphereModel, ModelKind};
+//! let atm = builtin("us-std-1976")?;
+//! let model = AtmosphereModel::new(&atm, ModelKind::Table)?;
+//! // A sensor 1 km up looking straight down at the ground.
+//! let p = model.path(1000.0, 0.0, 1000.0);
+//! assert!((p.transmission - 0.8195).abs() < 1e-3); // LOWTRAN7: 0.819461
+//! assert!((p.path_radiance_w_m2_sr - 7.388).abs() < 0.01);
+//! // The validation experiment's camera: 4.77 m above, 8.61 m from its target.
+//! let p = model.path(4.77, 0.0, 8.61);
+//! assert!(p.transmission > 0.98 && p.path_radiance_w_m2_sr < 1.0);
+//! // What a sensor at the ground sees at 60° from the zenith.
+//! assert!((model.sky_radiance(0.0, 60.0) - 16.224).abs() < 0.01);
+//! # Ok::<(), irsig_atmosphere::AtmosphereError>(())
+//! ```
+
+mod builtin;
+mod error;
+mod interp;
+mod layered;
+pub mod legacy;
+mod sky;
+mod table;
+mod thesis;
+
+use std::fmt;
+use std::str::FromStr;
+
+use irsig_model::Atmosphere;
+use serde::{Deserialize, Serialize};
+
+pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron};
+pub use error::{AtmosphereError, AtmosphereErrorKind};
+pub use layered::DEFAULT_CURVE_OF_GROWTH_EXPONENT;
+pub use sky::{
+    APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
+    HemisphericSky, SkyView,
+};
+
+use layered::{Profile, Slant};
+use sky::GroundSky;
+
+/// Earth radius in metres used for the horizon: LOWTRAN7's (6371.23 km), so the horizon
+/// agrees with the tables' own geometry.
+pub const EARTH_RADIUS_M: f64 = 6_371_230.0;
+
+/// The nadir angle in degrees of the horizon seen from `sensor_altitude_m` above a
+/// spherical Earth (thesis Figure 7): rays closer to nadir than this hit the ground, rays
+/// farther from it escape to space. `asin(R / (R + h))`; 90° at or below the ground.
+/// Refraction is ignored (it lowers the horizon by about 0.1° at 1 km).
+#[must_use]
+pub fn critical_nadir_angle_deg(sensor_altitude_m: f64) -> f64 {
+    let h = sensor_altitude_m.max(0.0);
+    (EARTH_RADIUS_M / (EARTH_RADIUS_M + h)).asin().to_degrees()
+}
+
+/// Which atmosphere model to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ModelKind {
+    /// The 1990 model: `.cor` polynomial and `L_u·secθ` (eq. 10–11), with both path ends.
+    Thesis,
+    /// Eq. 8–9 layer by layer, between any two altitudes.
+    Layered,
+    /// Slant-path tables from the atmospheric model itself; the accurate default.
+    Table,
+    /// Vacuum: τ = 1, L_u = 0 and a black (0 K) sky.
+    None,
+}
+
+impl ModelKind {
+    /// All kinds, in the order they are listed to users.
+    pub const ALL: [Self; 4] = [Self::Thesis, Self::Layered, Self::Table, Self::None];
+
+    /// The name used in files and on command lines.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Thesis => "thesis",
+            Self::Layered => "layered",
+            Self::Table => "table",
+            Self::None => "none",
+        }
+    }
+}
+
+impl fmt::Display for ModelKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for ModelKind {
+    type Err = AtmosphereError;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|k| k.name() == s)
+            .ok_or_else(|| AtmosphereErrorKind::UnknownModel(s.to_owned()).into())
+    }
+}
+
+/// What the air does to radiance on one path: `L_sensor = transmission · L_surface +
+/// path_radiance_w_m2_sr`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathTerms {
+    /// Band transmittance of the path, 0 to 1.
+    pub transmission: f64,
+    /// Band path radiance the air along the path sends toward the sensor, W m⁻² sr⁻¹.
+    pub path_radiance_w_m2_sr: f64,
+}
+
+impl PathTerms {
+    /// A path through vacuum.
+    pub const VACUUM: Self = Self {
+        transmission: 1.0,
+        path_radiance_w_m2_sr: 0.0,
+    };
+
+    /// The radiance at the sensor for `surface_radiance_w_m2_sr` leaving the far end.
+    #[must_use]
+    pub fn apply(&self, surface_radiance_w_m2_sr: f64) -> f64 {
+        self.transmission * surface_radiance_w_m2_sr + self.path_radiance_w_m2_sr
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Inner {
+    None,
+    Thesis(thesis::Thesis),
+    Layered(Profile),
+    Table(table::Table),
+}
+
+/// An atmosphere model the tracer asks for path terms and sky radiance. Cheap to query;
+/// build it once per render. `Send + Sync`, no interior mutability: results depend only on
+/// the arguments.
+///
+/// Non-finite arguments give NaN results; finite ones always give finite results, with
+/// the transmission in [0, 1] and radiances ≥ 0.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AtmosphereModel {
+    inner: Inner,
+    ground_sky: GroundSky,
+}
+
+impl AtmosphereModel {
+    /// Builds the `kind` model over `atmosphere`.
+    ///
+    /// # Errors
+    /// The atmosphere fails validation, lacks a table the model needs (`thesis`: the
+    /// `.cor`; `table`: the slant tables), or its transmission grows with altitude.
+    pub fn new(atmosphere: &Atmosphere, kind: ModelKind) -> Result<Self, AtmosphereError> {
+        atmosphere.validate()?;
+        let inner = match kind {
+            ModelKind::None => Inner::None,
+            ModelKind::Thesis => Inner::Thesis(thesis::Thesis::new(atmosphere)?),
+            ModelKind::Layered => Inner::Layered(Profile::new(atmosphere)?),
+            ModelKind::Table => Inner::Table(table::Table::new(atmosphere)?),
+        };
+        let ground_sky = GroundSky {
+            zenith_deg: atmosphere.sky.iter().map(|r| r.0).collect(),
+            radiance: atmosphere.sky.iter().map(|r| r.1).collect(),
+            given_hemispheric: atmosphere.sky_hemispheric_w_m2_sr,
+        };
+        Ok(Self { inner, ground_sky })
+    }
+
+    /// The model's kind.
+    #[must_use]
+    pub fn kind(&self) -> ModelKind {
+        match self.inner {
+            Inner::None => ModelKind::None,
+            Inner::Thesis(_) => ModelKind::Thesis,
+            Inner::Layered(_) => ModelKind::Layered,
+            Inner::Table(_) => ModelKind::Table,
+        }
+    }
+
+    /// The curve-of-growth exponent `p` of the layered slant scaling (`τ = exp(−u^p)`),
+    /// fitted to the `.cor` or [`DEFAULT_CURVE_OF_GROWTH_EXPONENT`]; `None` for `none`.
+    #[must_use]
+    pub fn curve_of_growth_exponent(&self) -> Option<f64> {
+        self.profile().map(|p| p.p)
+    }
+
+    /// The same model with the layered slant scaling's curve-of-growth exponent set to `p`
+    /// (`1` is Beer's law per layer) instead of fitted; `p` is held to [0.1, 1]. For
+    /// measuring the choice (docs/accuracy.md); `none` is returned unchanged.
+    ///
+    /// # Errors
+    /// As [`AtmosphereModel::new`].
+    pub fn with_curve_of_growth_exponent(
+        self,
+        atmosphere: &Atmosphere,
+        p: f64,
+    ) -> Result<Self, AtmosphereError> {
+        let p = if p.is_finite() {
+            p.clamp(0.1, 1.0)
+        } else {
+            DEFAULT_CURVE_OF_GROWTH_EXPONENT
+        };
+        let profile = Profile::with_exponent(atmosphere, Some(p))?;
+        let inner = match self.inner {
+            Inner::None => Inner::None,
+            Inner::Layered(_) => Inner::Layered(profile),
+            Inner::Thesis(mut t) => {
+                t.profile = profile;
+                Inner::Thesis(t)
+            }
+            Inner::Table(_) => Inner::Table(table::Table::with_profile(atmosphere, profile)?),
+        };
+        Ok(Self { inner, ..self })
+    }
+
+    fn profile(&self) -> Option<&Profile> {
+        match &self.inner {
+            Inner::None => None,
+            Inner::Thesis(t) => Some(&t.profile),
+            Inner::Layered(p) => Some(p),
+            Inner::Table(t) => Some(&t.profile),
+        }
+    }
+
+    /// Transmission and path radiance of the straight path between a sensor at
+    /// `sensor_altitude_m` and a point at `target_altitude_m`, `range_m` apart (metres;
+    /// altitudes above the ground, below-ground values taken as 0; a range shorter than
+    /// the altitude difference taken as that difference). The path radiance is what the
+    /// air sends toward the sensor. A zero-length path is vacuum.
+    #[must_use]
+    pub fn path(&self, sensor_altitude_m: f64, target_altitude_m: f64, range_m: f64) -> PathTerms {
+        if !(sensor_altitude_m.is_finite() && target_altitude_m.is_finite() && range_m.is_finite())
+        {
+            return PathTerms {
+                transmission: f64::NAN,
+                path_radiance_w_m2_sr: f64::NAN,
+            };
+        }
+        let Some(s) = Slant::new(sensor_altitude_m, target_altitude_m, range_m) else {
+            return PathTerms::VACUUM;
+        };
+        match &self.inner {
+            Inner::None => PathTerms::VACUUM,
+            Inner::Thesis(t) => t.path(&s),
+            Inner::Layered(p) => p.path(&s),
+            Inner::Table(t) => t.path(&s),
+        }
+    }
+
+    /// Sky radiance in W m⁻² sr⁻¹ seen from `observer_altitude_m` at `zenith_deg` (0 = up):
+    /// the path radiance from the observer to space. From the ground it is the `.dwr`
+    /// interpolated linearly (zenith angles past 90° see the ground's horizon: the 90°
+    /// value). From above the ground, `thesis` and `layered` remove the air below the
+    /// observer from the ground sky, `L(h,θ) = (L_d(0,θ) − L_up(0→h,θ)) / τ(0→h,θ)`, up to
+    /// 83° and extrapolate beyond by the Appendix E quadratic fitted over 60–83°; `table`
+    /// interpolates its sky table up to its last angle (90°) and extrapolates beyond (rays
+    /// below the horizontal that still miss the Earth) by an Appendix E least-squares
+    /// quadratic fitted over its last 10°, where the radiance climbs steeply. Angles
+    /// are clamped to 180° − [`critical_nadir_angle_deg`]. `none` gives 0 (a black sky).
+    ///
+    /// This fits a quadratic per call past 83°; a tracer should build a [`SkyView`] once
+    /// per observer altitude with [`AtmosphereModel::sky_view`].
+    #[must_use]
+    pub fn sky_radiance(&self, observer_altitude_m: f64, zenith_deg: f64) -> f64 {
+        if !(observer_altitude_m.is_finite() && zenith_deg.is_finite()) {
+            return f64::NAN;
+        }
+        let h = observer_altitude_m.max(0.0);
+        let z = zenith_deg.clamp(0.0, 180.0 - critical_nadir_angle_deg(h));
+        match &self.inner {
+            Inner::None => 0.0,
+            Inner::Table(t) => {
+                let last = t.slant.sky_zenith_deg.last().copied().unwrap_or(90.0);
+                if z <= last {
+                    t.sky(h, z)
+                } else {
+                    let points: Vec<(f64, f64)> = t
+                        .slant
+                        .sky_zenith_deg
+                        .iter()
+                        .filter(|&&a| a >= last - 10.0)
+                        .map(|&a| (a, t.sky(h, a)))
+                        .collect();
+                    interp::fit_quadratic(&points)
+                        .map_or_else(|| t.sky(h, last), |q| q.at(z).max(0.0))
+                }
+            }
+            _ if h <= 0.0 => self.ground_sky.at(z),
+            _ => sky::with_appendix_e(z, |zz| self.sky_above_ground(h, zz)),
+        }
+    }
+
+    /// Sky radiance from `h > 0` at `zenith_deg ≤ 90` by removing the air below the
+    /// observer from the ground sky.
+    fn sky_above_ground(&self, h: f64, zenith_deg: f64) -> f64 {
+        let ground = self.ground_sky.at(zenith_deg);
+        let sec = 1.0 / zenith_deg.to_radians().cos();
+        let Some(s) = Slant::new(0.0, h, h * sec) else {
+            return ground;
+        };
+        // The thesis defines no sky above the ground beyond "the upwelled-radiance routine
+        // stopped at the sensor's altitude" (§3.1.4): both models use the layered sum.
+        let below = match &self.inner {
+            Inner::Thesis(t) => t.profile.path(&s),
+            Inner::Layered(p) => p.path(&s),
+            Inner::Table(t) => t.path(&s),
+            Inner::None => PathTerms::VACUUM,
+        };
+        if below.transmission <= 1e-12 {
+            return 0.0;
+        }
+        ((ground - below.path_radiance_w_m2_sr) / below.transmission).max(0.0)
+    }
+
+    /// The angular sky radiance seen from `observer_altitude_m`, precomputed for cheap
+    /// lookups (0.25° grid, linear).
+    #[must_use]
+    pub fn sky_view(&self, observer_altitude_m: f64) -> SkyView {
+        let h = observer_altitude_m.max(0.0);
+        let max_zenith = 180.0 - critical_nadir_angle_deg(h);
+        let fit = |lo: f64| -> Option<interp::Quadratic> {
+            let pts: Vec<(f64, f64)> = (60..=83)
+                .map(f64::from)
+                .filter(|&a| a >= lo)
+                .map(|a| (a, self.sky_radiance(h, a)))
+                .collect();
+            interp::fit_quadratic(&pts)
+        };
+        // Past 83° the per-call path refits the same quadratic; fit it once here.
+        match &self.inner {
+            Inner::Thesis(_) | Inner::Layered(_) if h > 0.0 => {
+                let q = fit(APPENDIX_E_FIT_FROM_DEG);
+                SkyView::build(h, max_zenith, |z| {
+                    if z <= APPENDIX_E_EXTRAPOLATE_FROM_DEG {
+                        self.sky_above_ground(h, z)
+                    } else {
+                        q.map_or_else(
+                            || self.sky_above_ground(h, APPENDIX_E_EXTRAPOLATE_FROM_DEG),
+                            |q| q.at(z).max(0.0),
+                        )
+                    }
+                })
+            }
+            _ => SkyView::build(h, max_zenith, |z| self.sky_radiance(h, z)),
+        }
+    }
+
+    /// The hemispheric sky radiance at `observer_altitude_m` (see [`HemisphericSky`]):
+    /// the atmosphere's given value when it has one (the `.dwr` row `-1`, at the ground;
+    /// above the ground scaled by the ratio of eq. 5 there to eq. 5 at the ground), else
+    /// eq. 5 applied to [`AtmosphereModel::sky_radiance`]. When both a given and a computed
+    /// ground value exist and differ by more than [`HEMISPHERIC_TOLERANCE`], `warning` says
+    /// so. `none` gives 0.
+    #[must_use]
+    pub fn sky_hemispheric(&self, observer_altitude_m: f64) -> HemisphericSky {
+        if matches!(self.inner, Inner::None) {
+            return HemisphericSky {
+                radiance_w_m2_sr: 0.0,
+                given_w_m2_sr: None,
+                computed_w_m2_sr: 0.0,
+                warning: None,
+            };
+        }
+        let h = observer_altitude_m.max(0.0);
+        let computed_ground = match &self.inner {
+            Inner::Table(_) => self.sky_view(0.0).hemispheric(),
+            _ => self.ground_sky.computed_hemispheric(),
+        };
+        let computed = if h > 0.0 {
+            self.sky_view(h).hemispheric()
+        } else {
+            computed_ground
+        };
+        let given = self.ground_sky.given_hemispheric;
+        let warning = given.and_then(|g| {
+            let rel = (computed_ground - g).abs() / g.abs().max(1e-300);
+            (rel > HEMISPHERIC_TOLERANCE).then(|| {
+                format!(
+                    "the hemispheric sky radiance given ({g:.4} W m^-2 sr^-1) and eq. 5 applied to the angular sky table ({computed_ground:.4}) differ by {:.1} %; using the given value",
+                    rel * 100.0
+                )
+            })
+        });
+        let radiance = match given {
+            Some(g) if computed_ground > 0.0 => g * computed / computed_ground,
+            Some(g) => g,
+            None => computed,
+        };
+        HemisphericSky {
+            radiance_w_m2_sr: radiance,
+            given_w_m2_sr: given,
+            computed_w_m2_sr: computed,
+            warning,
+        }
+    }
+
+    /// [`critical_nadir_angle_deg`], for callers holding a model.
+    #[must_use]
+    pub fn critical_nadir_angle_deg(&self, sensor_altitude_m: f64) -> f64 {
+        critical_nadir_angle_deg(sensor_altitude_m)
+    }
+}

@@ -1,0 +1,116 @@
+//! The `table` model: τ and L_u on observer altitude × nadir angle from slant-path runs
+//! of the atmospheric model (what DIRSIG's atmospheric database does), and sky radiance on
+//! observer altitude × zenith angle.
+//!
+//! The tables hold paths from the observer down to the ground. To serve any path, and to
+//! stay continuous at the edges of the grid, the table is stored as corrections to the
+//! layered model: at every grid node the ratio of the table's slant optical depth to the
+//! layered model's, and the same for path radiance. A path's layered terms are then
+//! scaled by the ratios interpolated bilinearly at (upper end's altitude, angle), clamped
+//! to the grid. On the grid and for a ground target this returns the table exactly;
+//! between nodes it interpolates the (smooth) model error rather than the (steep)
+//! quantity itself; outside the grid (beyond the last angle, above the top altitude, or a
+//! path to a target above the ground) it is the layered model with the nearest correction.
+
+use irsig_model::{Atmosphere, SlantTables};
+
+use crate::PathTerms;
+use crate::error::{AtmosphereError, AtmosphereErrorKind};
+use crate::interp::bilinear;
+use crate::layered::{Profile, Slant};
+
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct Table {
+    pub profile: Profile,
+    pub slant: SlantTables,
+    depth_ratio: Vec<Vec<f64>>,
+    radiance_ratio: Vec<Vec<f64>>,
+}
+
+impl Table {
+    pub(crate) fn new(atm: &Atmosphere) -> Result<Self, AtmosphereError> {
+        Self::with_profile(atm, Profile::new(atm)?)
+    }
+
+    pub(crate) fn with_profile(
+        atm: &Atmosphere,
+        profile: Profile,
+    ) -> Result<Self, AtmosphereError> {
+        let slant = atm.slant.clone().ok_or(AtmosphereErrorKind::MissingTable {
+            model: "table",
+            table: "slant",
+        })?;
+        let mut depth_ratio = Vec::with_capacity(slant.altitude_m.len());
+        let mut radiance_ratio = Vec::with_capacity(slant.altitude_m.len());
+        for (i, &h) in slant.altitude_m.iter().enumerate() {
+            let mut dr = Vec::with_capacity(slant.nadir_deg.len());
+            let mut lr = Vec::with_capacity(slant.nadir_deg.len());
+            for (j, &a) in slant.nadir_deg.iter().enumerate() {
+                let sec = 1.0 / a.to_radians().cos();
+                let layered =
+                    Slant::new(h, 0.0, h * sec).map_or(PathTerms::VACUUM, |s| profile.path(&s));
+                let tau = slant
+                    .transmission
+                    .get(i)
+                    .and_then(|r| r.get(j))
+                    .copied()
+                    .unwrap_or(1.0);
+                let lu = slant
+                    .path_radiance_w_m2_sr
+                    .get(i)
+                    .and_then(|r| r.get(j))
+                    .copied()
+                    .unwrap_or(0.0);
+                dr.push(ratio(
+                    -tau.max(1e-300).ln(),
+                    -layered.transmission.max(1e-300).ln(),
+                ));
+                lr.push(ratio(lu, layered.path_radiance_w_m2_sr));
+            }
+            depth_ratio.push(dr);
+            radiance_ratio.push(lr);
+        }
+        Ok(Self {
+            profile,
+            slant,
+            depth_ratio,
+            radiance_ratio,
+        })
+    }
+
+    pub(crate) fn path(&self, s: &Slant) -> PathTerms {
+        let layered = self.profile.path(s);
+        let (h, a) = (s.hi(), s.angle_deg());
+        let t = &self.slant;
+        let dr = bilinear(&t.altitude_m, &t.nadir_deg, &self.depth_ratio, h, a);
+        let lr = bilinear(&t.altitude_m, &t.nadir_deg, &self.radiance_ratio, h, a);
+        let depth = -layered.transmission.max(1e-300).ln() * dr;
+        PathTerms {
+            transmission: (-depth).exp().clamp(0.0, 1.0),
+            path_radiance_w_m2_sr: (layered.path_radiance_w_m2_sr * lr).max(0.0),
+        }
+    }
+
+    /// Sky radiance from the sky table, bilinear in (altitude, zenith), clamped to it.
+    pub(crate) fn sky(&self, observer_m: f64, zenith_deg: f64) -> f64 {
+        let t = &self.slant;
+        bilinear(
+            &t.sky_altitude_m,
+            &t.sky_zenith_deg,
+            &t.sky_radiance_w_m2_sr,
+            observer_m,
+            zenith_deg,
+        )
+        .max(0.0)
+    }
+}
+
+/// `num / den`, or 1 where the layered value is too small for a ratio to mean anything
+/// (a path of almost no air).
+fn ratio(num: f64, den: f64) -> f64 {
+    if den > 1e-9 && num.is_finite() {
+        num / den
+    } else {
+        1.0
+    }
+}

@@ -1,0 +1,318 @@
+//! The compact binary raw scene: what `irsig-flatten` writes by default and `irsig-trace`
+//! reads, because RON of a million triangles is several times larger and slower (see
+//! `BENCHMARKS.md`, section "import and flatten").
+//!
+//! Layout (all little-endian, no padding, documented in `formats/canonical/raw-scene.md`):
+//!
+//! | offset | size | field |
+//! | --- | --- | --- |
+//! | 0 | 8 | magic `IRSIGRAW` |
+//! | 8 | 4 | `u32` version, 1 |
+//! | 12 | 4 | `u32` flags, 0 (reserved) |
+//! | 16 | 8 | `f64` terrain temperature, K |
+//! | 24 | 8 | `f64` terrain emissivity |
+//! | 32 | 4 | `u32` object count `O` |
+//! | 36 | 4 | `u32` position count `P` |
+//! | 40 | 4 | `u32` facet count `F` |
+//! | 44 | 4 | `u32` byte length `N` of the name block |
+//! | 48 | `N` | `O` names, each a `u32` byte length and that many UTF-8 bytes |
+//! | 48 + `N` | 24 `P` | positions, `f64` x y z in metres |
+//! | … | 28 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` reserved 0, `u32` object, `f64` temperature K |
+//!
+//! The reader checks that the file length equals what the header's counts imply before it
+//! allocates anything, so a corrupt count cannot make it allocate more than the file holds.
+
+use irsig_model::{MaterialId, RawFacet, RawScene, Terrain};
+
+use crate::ParseError;
+
+/// The first eight bytes of a binary raw scene.
+pub const MAGIC: &[u8; 8] = b"IRSIGRAW";
+/// The layout version this code reads and writes.
+pub const VERSION: u32 = 1;
+/// Header size in bytes.
+pub const HEADER_LEN: usize = 48;
+/// Bytes per position.
+pub const POSITION_LEN: usize = 24;
+/// Bytes per facet.
+pub const FACET_LEN: usize = 28;
+
+/// True when `bytes` start with [`MAGIC`].
+#[must_use]
+pub fn is_binary(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+/// Encodes a raw scene.
+///
+/// # Errors
+/// A scene with more than `u32::MAX` objects, positions or facets, or a name block over
+/// 4 GiB, which this layout cannot hold.
+pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
+    let too_big = |what: &str| {
+        std::io::Error::other(format!(
+            "the raw scene has too many {what} for the binary form"
+        ))
+    };
+    let count = |n: usize, what: &str| u32::try_from(n).map_err(|_| too_big(what));
+    let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
+    let mut out = Vec::with_capacity(
+        HEADER_LEN
+            + names_len
+            + POSITION_LEN * scene.positions_m.len()
+            + FACET_LEN * scene.facets.len(),
+    );
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&0u32.to_le_bytes());
+    out.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
+    out.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
+    out.extend_from_slice(&count(scene.objects.len(), "objects")?.to_le_bytes());
+    out.extend_from_slice(&count(scene.positions_m.len(), "positions")?.to_le_bytes());
+    out.extend_from_slice(&count(scene.facets.len(), "facets")?.to_le_bytes());
+    out.extend_from_slice(&count(names_len, "name bytes")?.to_le_bytes());
+    for name in &scene.objects {
+        out.extend_from_slice(&count(name.len(), "name bytes")?.to_le_bytes());
+        out.extend_from_slice(name.as_bytes());
+    }
+    for p in &scene.positions_m {
+        for c in p {
+            out.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for f in &scene.facets {
+        for v in f.vertices {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.extend_from_slice(&f.material.0.to_le_bytes());
+        out.extend_from_slice(&0u16.to_le_bytes());
+        out.extend_from_slice(&f.object.to_le_bytes());
+        out.extend_from_slice(&f.temperature_k.to_le_bytes());
+    }
+    Ok(out)
+}
+
+/// Writes a raw scene in the binary form.
+///
+/// # Errors
+/// As [`encode`], or an I/O error from `w`.
+pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    w.write_all(&encode(scene)?)
+}
+
+fn u32_at(b: &[u8], at: usize) -> u32 {
+    let mut a = [0; 4];
+    a.copy_from_slice(&b[at..at + 4]);
+    u32::from_le_bytes(a)
+}
+
+fn f64_at(b: &[u8], at: usize) -> f64 {
+    let mut a = [0; 8];
+    a.copy_from_slice(&b[at..at + 8]);
+    f64::from_le_bytes(a)
+}
+
+/// Decodes a binary raw scene. Does not validate the model rules (see
+/// [`super::read_raw_scene`], which does).
+///
+/// # Errors
+/// A wrong magic or version, a length that disagrees with the header's counts, a name that
+/// runs past its block or is not UTF-8; at the byte offset of the problem.
+pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
+    let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
+    if !is_binary(bytes) {
+        return Err(err(
+            0,
+            "expected a binary raw scene starting with `IRSIGRAW`".into(),
+        ));
+    }
+    if bytes.len() < HEADER_LEN {
+        return Err(err(
+            bytes.len(),
+            format!(
+                "truncated header: expected {HEADER_LEN} bytes, found {}",
+                bytes.len()
+            ),
+        ));
+    }
+    let version = u32_at(bytes, 8);
+    if version != VERSION {
+        return Err(err(
+            8,
+            format!("expected binary raw scene version {VERSION}, found {version}"),
+        ));
+    }
+    let objects = u32_at(bytes, 32) as usize;
+    let positions = u32_at(bytes, 36) as usize;
+    let facets = u32_at(bytes, 40) as usize;
+    let names_len = u32_at(bytes, 44) as usize;
+    // u64 arithmetic: u32 counts times record sizes cannot overflow it.
+    let expected = HEADER_LEN as u64
+        + names_len as u64
+        + POSITION_LEN as u64 * positions as u64
+        + FACET_LEN as u64 * facets as u64;
+    if expected != bytes.len() as u64 {
+        return Err(err(
+            bytes.len().min(HEADER_LEN),
+            format!(
+                "the header declares {objects} objects ({names_len} name bytes), {positions} \
+                 positions and {facets} facets, which take {expected} bytes, but the file has {}",
+                bytes.len()
+            ),
+        ));
+    }
+    // From here every count is bounded by the file length.
+    if objects.saturating_mul(4) > names_len {
+        return Err(err(
+            32,
+            format!("{objects} object names cannot fit in {names_len} bytes"),
+        ));
+    }
+    let mut names = Vec::with_capacity(objects);
+    let names_end = HEADER_LEN + names_len;
+    let mut at = HEADER_LEN;
+    for i in 0..objects {
+        if at + 4 > names_end {
+            return Err(err(at, format!("object name {i} runs past the name block")));
+        }
+        let len = u32_at(bytes, at) as usize;
+        at += 4;
+        if len > names_end - at {
+            return Err(err(at, format!("object name {i} runs past the name block")));
+        }
+        let name = std::str::from_utf8(&bytes[at..at + len])
+            .map_err(|_| err(at, format!("object name {i} is not UTF-8")))?;
+        names.push(name.to_owned());
+        at += len;
+    }
+    if at != names_end {
+        return Err(err(
+            at,
+            format!(
+                "the name block holds {} bytes after the last name",
+                names_end - at
+            ),
+        ));
+    }
+    let pos_bytes = &bytes[names_end..names_end + POSITION_LEN * positions];
+    let positions_m: Vec<[f64; 3]> = pos_bytes
+        .chunks_exact(POSITION_LEN)
+        .map(|c| [f64_at(c, 0), f64_at(c, 8), f64_at(c, 16)])
+        .collect();
+    let facet_start = names_end + POSITION_LEN * positions;
+    let facet_bytes = &bytes[facet_start..];
+    let facets: Vec<RawFacet> = facet_bytes
+        .chunks_exact(FACET_LEN)
+        .map(|c| RawFacet {
+            vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
+            material: MaterialId(u16::from_le_bytes([c[12], c[13]])),
+            object: u32_at(c, 16),
+            temperature_k: f64_at(c, 20),
+        })
+        .collect();
+    Ok(RawScene {
+        terrain: Terrain {
+            temperature_k: f64_at(bytes, 16),
+            emissivity: f64_at(bytes, 24),
+        },
+        objects: names,
+        positions_m,
+        facets,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene() -> RawScene {
+        RawScene {
+            terrain: Terrain {
+                temperature_k: 290.5,
+                emissivity: 0.95,
+            },
+            objects: vec!["car".into(), "ström".into()],
+            positions_m: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 1e-9]],
+            facets: vec![
+                RawFacet {
+                    vertices: [0, 1, 2],
+                    material: MaterialId(7),
+                    temperature_k: 300.25,
+                    object: 0,
+                },
+                RawFacet {
+                    vertices: [2, 1, 0],
+                    material: MaterialId(65535),
+                    temperature_k: 1e-3,
+                    object: 1,
+                },
+            ],
+        }
+    }
+
+    #[test]
+    fn round_trips_bit_exactly() {
+        let s = scene();
+        let bytes = encode(&s).unwrap();
+        // Header, names (4+3, 4+6 bytes: "ö" is two), 3 positions, 2 facets.
+        assert_eq!(bytes.len(), 48 + 17 + 3 * 24 + 2 * 28);
+        assert_eq!(decode("s.bin", &bytes).unwrap(), s);
+    }
+
+    #[test]
+    fn the_layout_is_the_documented_one() {
+        let bytes = encode(&scene()).unwrap();
+        assert_eq!(&bytes[..8], b"IRSIGRAW");
+        assert_eq!(bytes[8..12], 1u32.to_le_bytes());
+        assert_eq!(bytes[16..24], 290.5f64.to_le_bytes());
+        assert_eq!(bytes[32..36], 2u32.to_le_bytes());
+        assert_eq!(bytes[40..44], 2u32.to_le_bytes());
+        assert_eq!(bytes[48..52], 3u32.to_le_bytes());
+        assert_eq!(&bytes[52..55], b"car");
+        let facet0 = 48 + 17 + 3 * 24;
+        assert_eq!(bytes[facet0 + 12..facet0 + 14], 7u16.to_le_bytes());
+        assert_eq!(bytes[facet0 + 20..facet0 + 28], 300.25f64.to_le_bytes());
+    }
+
+    #[test]
+    fn truncation_at_every_length_is_an_error() {
+        let bytes = encode(&scene()).unwrap();
+        for n in 0..bytes.len() {
+            assert!(decode("s.bin", &bytes[..n]).is_err(), "length {n}");
+        }
+    }
+
+    #[test]
+    fn a_huge_declared_count_does_not_allocate() {
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[40..44].copy_from_slice(&u32::MAX.to_le_bytes());
+        let e = decode("s.bin", &bytes).unwrap_err();
+        assert!(e.message.contains("4294967295 facets"), "{e}");
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[32..36].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert!(decode("s.bin", &bytes).is_err());
+    }
+
+    #[test]
+    fn wrong_version_and_bad_names_are_errors() {
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[8] = 2;
+        assert!(
+            decode("s.bin", &bytes)
+                .unwrap_err()
+                .message
+                .contains("version")
+        );
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[48] = 200;
+        assert!(decode("s.bin", &bytes).is_err());
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[52] = 0xff;
+        assert!(
+            decode("s.bin", &bytes)
+                .unwrap_err()
+                .message
+                .contains("UTF-8")
+        );
+    }
+}

@@ -1,0 +1,251 @@
+//! The canonical irsig files: every `irsig_model` type as RON, and the raw scene also as a
+//! compact binary form.
+//!
+//! Reading parses and then validates: a syntax error carries the RON error's line and
+//! column; a value that breaks a model rule (an emissivity of 1.3) is reported with its
+//! path into the data (`materials[1].emissivity[1]`) and, where the path can be followed in
+//! the text, the line and column of that value.
+//!
+//! | type | RON | binary |
+//! | --- | --- | --- |
+//! | [`Object`] | yes | no |
+//! | [`Scene`] | yes | no |
+//! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
+//! | [`MaterialLibrary`], [`Atmosphere`], [`View`] | yes | no |
+//!
+//! The format pages are `formats/canonical/*.md` in the repository.
+
+pub mod binary;
+mod locate;
+
+use irsig_model::{Atmosphere, MaterialLibrary, ModelError, Object, RawScene, Scene, View};
+use serde::Serialize;
+use serde::de::DeserializeOwned;
+
+use crate::ParseError;
+
+/// A canonical irsig type: what it is called in messages, how deep its RON is pretty-printed
+/// and how it is validated.
+pub trait Canonical: Serialize + DeserializeOwned {
+    /// What the file holds, for messages ("object", "material library").
+    const WHAT: &'static str;
+    /// Nesting depth up to which the RON writer breaks lines; deeper values stay on one
+    /// line, so a vertex or a facet is one line of the file.
+    const PRETTY_DEPTH: usize;
+    /// The model's own checks.
+    ///
+    /// # Errors
+    /// The first rule broken, with its path into the data.
+    fn check(&self) -> Result<(), ModelError>;
+}
+
+macro_rules! canonical {
+    ($ty:ty, $what:literal, $depth:literal) => {
+        impl Canonical for $ty {
+            const WHAT: &'static str = $what;
+            const PRETTY_DEPTH: usize = $depth;
+            fn check(&self) -> Result<(), ModelError> {
+                self.validate()
+            }
+        }
+    };
+}
+
+canonical!(Object, "object", 2);
+canonical!(Scene, "scene", 4);
+canonical!(RawScene, "raw scene", 2);
+canonical!(MaterialLibrary, "material library", 3);
+canonical!(Atmosphere, "atmosphere", 3);
+canonical!(View, "view", 2);
+
+/// Parses RON text into `T` without validating it.
+///
+/// # Errors
+/// A syntax or shape error at the RON error's line and column.
+pub fn from_ron_unchecked<T: Canonical>(file: &str, text: &str) -> Result<T, ParseError> {
+    ron::from_str::<T>(text).map_err(|e| {
+        let offset = offset_of(text, e.span.start.line, e.span.start.col);
+        ParseError::at_offset(
+            file,
+            text,
+            offset,
+            format!("malformed {} (RON): {}", T::WHAT, e.code),
+        )
+    })
+}
+
+/// Parses and validates RON text.
+///
+/// # Errors
+/// A syntax error (at the RON error's line and column) or the first broken model rule (at
+/// the value's line and column where the path can be followed in the text, else at the
+/// start of the file), always naming `file`.
+pub fn from_ron<T: Canonical>(file: &str, text: &str) -> Result<T, ParseError> {
+    let value: T = from_ron_unchecked(file, text)?;
+    value
+        .check()
+        .map_err(|e| validation_error::<T>(file, text, &e))?;
+    Ok(value)
+}
+
+/// Parses and validates RON bytes, rejecting text that is not UTF-8 with the offset of the
+/// first bad byte.
+///
+/// # Errors
+/// As [`from_ron`], plus non-UTF-8 input.
+pub fn from_ron_bytes<T: Canonical>(file: &str, bytes: &[u8]) -> Result<T, ParseError> {
+    from_ron(file, utf8(file, bytes)?)
+}
+
+/// The text of `bytes`, or an error at the first byte that is not UTF-8.
+///
+/// # Errors
+/// Non-UTF-8 input.
+pub fn utf8<'a>(file: &str, bytes: &'a [u8]) -> Result<&'a str, ParseError> {
+    std::str::from_utf8(bytes).map_err(|e| {
+        let good = &bytes[..e.valid_up_to()];
+        // Safe: the prefix up to valid_up_to is UTF-8 by definition.
+        let text = std::str::from_utf8(good).unwrap_or("");
+        ParseError::at_offset(
+            file,
+            text,
+            text.len(),
+            format!("expected UTF-8 text, found byte {}", e.valid_up_to()),
+        )
+    })
+}
+
+fn validation_error<T: Canonical>(file: &str, text: &str, e: &ModelError) -> ParseError {
+    let offset = locate::path_offset(text, &e.path);
+    let len = locate::value_len(text, offset);
+    ParseError::at_span(
+        file,
+        text,
+        offset,
+        len.max(1),
+        format!("invalid {}: `{}`: {}", T::WHAT, e.path, e.kind),
+    )
+}
+
+/// Writes `value` as RON, pretty-printed to the type's depth, with a trailing newline.
+///
+/// # Errors
+/// Only if serde fails, which the model types never do for finite numbers.
+pub fn to_ron<T: Canonical>(value: &T) -> Result<String, ron::Error> {
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(T::PRETTY_DEPTH)
+        .indentor("  ")
+        .separate_tuple_members(false);
+    let mut text = ron::ser::to_string_pretty(value, config)?;
+    text.push('\n');
+    Ok(text)
+}
+
+/// Writes `value` as RON to `w`.
+///
+/// # Errors
+/// An I/O error from `w`, or a serialisation error as an I/O error.
+pub fn write_ron<T: Canonical>(value: &T, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let text = to_ron(value).map_err(std::io::Error::other)?;
+    w.write_all(text.as_bytes())
+}
+
+/// Reads a raw scene in either form: binary when the bytes start with
+/// [`binary::MAGIC`], RON otherwise. Validates it.
+///
+/// # Errors
+/// As [`binary::decode`] or [`from_ron_bytes`].
+pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
+    if binary::is_binary(bytes) {
+        let scene = binary::decode(file, bytes)?;
+        scene.validate().map_err(|e| {
+            ParseError::in_binary(
+                file,
+                0,
+                format!("invalid raw scene: `{}`: {}", e.path, e.kind),
+            )
+        })?;
+        Ok(scene)
+    } else {
+        from_ron_bytes(file, bytes)
+    }
+}
+
+/// The byte offset of 1-based `line` and character column `col` in `text`.
+fn offset_of(text: &str, line: usize, col: usize) -> usize {
+    let mut offset = 0;
+    for (i, l) in text.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            return offset
+                + l.char_indices()
+                    .nth(col.saturating_sub(1))
+                    .map_or(l.len(), |(b, _)| b);
+        }
+        offset += l.len();
+    }
+    text.len()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use irsig_model::{Material, MaterialId};
+
+    fn library() -> MaterialLibrary {
+        MaterialLibrary {
+            materials: vec![
+                Material {
+                    id: MaterialId(1),
+                    name: "asphalt".into(),
+                    emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
+                    specular_fraction: 0.0,
+                    source: "test".into(),
+                },
+                Material {
+                    id: MaterialId(2),
+                    name: "steel".into(),
+                    emissivity: vec![(0.0, 0.3), (60.0, 0.25)],
+                    specular_fraction: 1.0,
+                    source: "test".into(),
+                },
+            ],
+        }
+    }
+
+    #[test]
+    fn a_library_round_trips() {
+        let lib = library();
+        let text = to_ron(&lib).unwrap();
+        assert_eq!(from_ron::<MaterialLibrary>("lib.ron", &text).unwrap(), lib);
+    }
+
+    #[test]
+    fn syntax_errors_carry_ron_line_and_column() {
+        let text = "(\n  materials: [\n    (id: 1, name: \"a\", emissivity: [(0.0, 0.9)], specular_fraction: 0.0, source: \"x\" oops),\n  ],\n)\n";
+        let e = from_ron::<MaterialLibrary>("lib.ron", text).unwrap_err();
+        assert_eq!(e.file, "lib.ron");
+        assert_eq!(e.line, 3, "{e}");
+        assert!(e.column > 80, "{e}");
+    }
+
+    #[test]
+    fn validation_errors_point_at_the_value() {
+        let text = "(\n  materials: [\n    (id: 1, name: \"a\", emissivity: [(0.0, 0.9)], specular_fraction: 0.0, source: \"x\"),\n    (id: 2, name: \"b\", emissivity: [(0.0, 0.9), (45.0, 1.3)], specular_fraction: 0.0, source: \"x\"),\n  ],\n)\n";
+        let e = from_ron::<MaterialLibrary>("lib.ron", text).unwrap_err();
+        assert!(
+            e.message.contains("materials[1].emissivity[1].emissivity"),
+            "{e}"
+        );
+        // The path is followed to the tuple `(45.0, 1.3)` on line 4.
+        assert_eq!(e.line, 4, "{e}");
+        let col_of_tuple = text.lines().nth(3).unwrap().find("(45.0").unwrap() + 1;
+        assert_eq!(e.column, col_of_tuple, "{e}");
+        assert!(e.to_string().starts_with("lib.ron:4:"));
+    }
+
+    #[test]
+    fn non_utf8_is_rejected_with_its_offset() {
+        let e = from_ron_bytes::<MaterialLibrary>("lib.ron", b"(materials: [\xff])").unwrap_err();
+        assert!(e.message.contains("byte 13"), "{e}");
+    }
+}
