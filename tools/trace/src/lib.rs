@@ -14,6 +14,8 @@
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
 //! ```
 
+mod atmos;
+
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
@@ -58,9 +60,14 @@ pub struct Cli {
     /// The band: `total` is the whole spectrum (σT⁴/π), exact and for checking by hand.
     #[arg(long, default_value = "total", value_parser = ["total"])]
     pub band: String,
-    /// The atmosphere: `none` (a vacuum; the sky has radiance `--sky-radiance`).
-    #[arg(long, default_value = "none", value_parser = ["none"])]
+    /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`, ...), a canonical
+    /// atmosphere file (RON), or `none` (a vacuum whose sky has radiance --sky-radiance).
+    #[arg(long, default_value = "none", value_name = "NAME|FILE")]
     pub atmosphere: String,
+    /// The atmosphere model: `table` (slant-path tables), `layered` (eq. 8-9), `thesis`
+    /// (eq. 10-11, the 1990 model) or `none`.
+    #[arg(long, default_value = "table", value_parser = ["table", "layered", "thesis", "none"])]
+    pub atmosphere_model: String,
     /// Sky radiance for `--atmosphere none`, W m^-2 sr^-1 (0: cold space).
     #[arg(long, default_value_t = 0.0, value_name = "W_M2_SR")]
     pub sky_radiance: f64,
@@ -201,14 +208,43 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     for v in &cli.view {
         views.extend(read_views(v)?);
     }
-    let atmosphere = Vacuum {
-        sky_radiance_w_m2_sr: cli.sky_radiance,
-    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .into_diagnostic()?;
-    pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, atmosphere))
+    if cli.atmosphere == "none" {
+        let vacuum = Vacuum {
+            sky_radiance_w_m2_sr: cli.sky_radiance,
+        };
+        return pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, vacuum));
+    }
+    let atmosphere = if irsig_atmosphere::BUILTIN_NAMES.contains(&cli.atmosphere.as_str()) {
+        irsig_atmosphere::builtin(&cli.atmosphere).map_err(|e| miette!("{e}"))?
+    } else {
+        read_canonical(&cli.atmosphere, irsig_model::Atmosphere::validate)?
+    };
+    let kind: irsig_atmosphere::ModelKind =
+        cli.atmosphere_model.parse().map_err(|e| miette!("{e}"))?;
+    let model = irsig_atmosphere::AtmosphereModel::new(&atmosphere, kind)
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| format!("cannot build the {kind} model of `{}`", cli.atmosphere))?;
+    // The sky is precomputed up to the highest sensor or scene point.
+    let top = views
+        .iter()
+        .map(|v| v.position_m()[2])
+        .chain(scene.positions_m.iter().map(|p| p[2]))
+        .fold(0.0_f64, f64::max);
+    eprintln!(
+        "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, whose \
+         tables cover {:?} um: facet radiances and path terms are in different bands; use \
+         this only to check the geometry and the event logic",
+        cli.atmosphere, atmosphere.band_um
+    );
+    let air = atmos::Precomputed::new(model, top);
+    for w in &air.warnings {
+        eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
+    }
+    pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, air))
 }
 
 fn trace_all<R: Radiometry, A: Atmosphere>(
