@@ -13,7 +13,7 @@
 //! ...
 //! ```
 //!
-//! The thesis says the execute file "tell[s] the ray-tracer which viewing file to use,
+//! The thesis says the execute file "tell\[s\] the ray-tracer which viewing file to use,
 //! which scene file to use, and the names of the two output images", and that it exists
 //! "so fly-by scenarios may be created with relative ease"; the 1990 code reads five names
 //! (the three outputs include the LUT file). irsig reads a file as a sequence of frames of
