@@ -4,6 +4,10 @@
 //! and what was expected, and renders as a miette diagnostic with the offending source
 //! line underlined.
 //!
+//! [`legacy`] holds the 1990 formats of the thesis (object, scene, material index, viewing
+//! and execute files, and the DIRTRAN tables `.ems .atm .cor .dwr .rsd .rtt`), each with a
+//! `parse` and a round-tripping `write`; their spec pages are in `formats/legacy/`.
+//!
 //! ```
 //! use irsig_formats::ParseError;
 //! let text = "4\n6\n0.0 0.0 zero\n";

@@ -112,3 +112,39 @@ fn illustrative_rsd() {
     assert_eq!(r.rows[2].pressure_mb, 898.76);
     assert_eq!(r.rows[2].temperature_c, 8.5);
 }
+
+#[test]
+fn material_index_view_and_execute_samples() {
+    let (name, text) = sample("materials.mat");
+    let m = legacy::material_index::parse(&name, &text).unwrap();
+    assert_eq!(m.materials.len(), 9);
+    let water = m.by_index(6).unwrap();
+    assert_eq!(water.name, "water");
+    assert_eq!(water.ems_file.as_deref(), Some("water-hale-querry.ems"));
+    assert!(water.specular);
+    assert!(!m.by_name("grass").unwrap().specular);
+
+    // Thesis Table 2, frame 2.
+    let (name, text) = sample("flyby-frame2.view");
+    let v = legacy::view::parse(&name, &text).unwrap();
+    assert_eq!(v.position, [0.8, -3.0, 0.7]);
+    assert_eq!(v.omega_phi_kappa_deg, [77.2948, 0.0, 14.9314]);
+    assert_eq!(v.pixels, [256, 256]);
+    assert_eq!(v.gain_dc_per_k, Some(2.0));
+
+    let (name, text) = sample("flyby.exec");
+    let e = legacy::execute::parse(&name, &text).unwrap();
+    assert_eq!(e.frames.len(), 2);
+    assert_eq!(e.frames[1].view, "flyby-frame2.view");
+    assert_eq!(e.frames[1].lut, "frame2.lut");
+    // Every file the execute file reads exists among the samples, and parses.
+    for f in &e.frames {
+        let (n, t) = sample(&f.view);
+        legacy::view::parse(&n, &t).unwrap();
+        let (n, t) = sample(&f.scene);
+        for entry in scene::parse(&n, &t).unwrap().entries {
+            let (n, t) = sample(&entry.object);
+            object::parse(&n, &t).unwrap();
+        }
+    }
+}

@@ -43,12 +43,15 @@ pub mod atm;
 pub mod cor;
 pub mod dwr;
 pub mod ems;
+pub mod execute;
 pub(crate) mod lex;
+pub mod material_index;
 pub mod object;
 pub mod rsd;
 pub mod rtt;
 pub mod scene;
 mod table;
+pub mod view;
 
 use crate::ParseError;
 
