@@ -260,6 +260,29 @@ pub fn progress_bar(len: u64, message: &str) -> indicatif::ProgressBar {
     bar
 }
 
+/// The path of the stage program `irsig-<tool>`: beside the running executable first (a cargo
+/// build or an install directory), then on `PATH`. The umbrella `irsig` and the pipeline
+/// runner share this lookup, so both run the same program a user would.
+#[must_use]
+pub fn find_tool(tool: &str) -> Option<PathBuf> {
+    let name = format!("irsig-{tool}{}", std::env::consts::EXE_SUFFIX);
+    let beside = std::env::current_exe()
+        .ok()
+        .and_then(|exe| exe.parent().map(|d| d.join(&name)));
+    if let Some(p) = beside.filter(|p| is_file(p)) {
+        return Some(p);
+    }
+    std::env::var_os("PATH").and_then(|path| {
+        std::env::split_paths(&path)
+            .map(|dir| dir.join(&name))
+            .find(|p| is_file(p))
+    })
+}
+
+fn is_file(p: &Path) -> bool {
+    p.metadata().is_ok_and(|m| m.is_file())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -7,7 +7,7 @@
 //! ```
 
 use std::ffi::OsString;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
@@ -87,23 +87,7 @@ fn run_stage(stage: &str, args: Vec<OsString>) -> ExitCode {
     }
 }
 
-/// The path of `irsig-<stage>`: beside this executable first (a cargo build or an install
-/// directory), then on `PATH`.
+/// The path of `irsig-<stage>`: beside this executable first, then on `PATH`.
 fn find_stage(stage: &str) -> Option<PathBuf> {
-    let name = format!("irsig-{stage}{}", std::env::consts::EXE_SUFFIX);
-    let beside = std::env::current_exe()
-        .ok()
-        .and_then(|exe| exe.parent().map(|d| d.join(&name)));
-    if let Some(p) = beside.filter(|p| is_file(p)) {
-        return Some(p);
-    }
-    std::env::var_os("PATH").and_then(|path| {
-        std::env::split_paths(&path)
-            .map(|dir| dir.join(&name))
-            .find(|p| is_file(p))
-    })
-}
-
-fn is_file(p: &Path) -> bool {
-    p.metadata().is_ok_and(|m| m.is_file())
+    irsig_cli::find_tool(stage)
 }

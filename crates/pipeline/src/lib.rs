@@ -1,0 +1,54 @@
+//! Declarative irsig pipelines: a RON file of stages, each run as its own tool
+//! (`irsig-<tool>`), exactly as a user would type it.
+//!
+//! - [`Pipeline::load`] / [`Pipeline::parse`] read the file (RON syntax checked by `ron`),
+//!   keeping the position of every value, so later errors point at a line and column.
+//! - [`Pipeline::plan`] expands frame sweeps into one step per frame, builds each step's
+//!   command line, finds the tools, validates parameters with the tools' own command-line
+//!   parsers ([`Tools::register`]), and checks for duplicate outputs, missing inputs and
+//!   cycles, all before anything runs.
+//! - [`Plan::run`] runs the steps in dependency order, independent ones in parallel, and
+//!   skips a step whose outputs are up to date with its tool, command line and input
+//!   contents (SHA-256, kept in `.irsig-run/` beside the pipeline file).
+//! - [`Plan::dry_run`] lists what would run; [`Plan::makefile`] writes the same steps as a
+//!   Makefile.
+//!
+//! The format is documented in `formats/pipeline.md`.
+//!
+//! ```
+//! use irsig_pipeline::{Pipeline, Tools};
+//! use std::path::{Path, PathBuf};
+//!
+//! let text = r#"Pipeline(
+//!     sweeps: {"views": Frames([{"view": "a"}, {"view": "b"}])},
+//!     stages: [
+//!         Stage(tool: "echo", sweep: "views",
+//!               params: {"label": "{view}"}, outputs: {"o": "out/{frame:02}.txt"}),
+//!     ],
+//! )"#;
+//! let pipeline = Pipeline::parse("demo.ron", text, Path::new(".")).unwrap();
+//! let tools = Tools::new(|tool| Some(PathBuf::from(format!("/bin/irsig-{tool}"))));
+//! let plan = pipeline.plan(&tools).unwrap();
+//! let commands: Vec<String> = plan.steps.iter().map(|s| s.command_line()).collect();
+//! assert_eq!(commands, [
+//!     "irsig-echo --label a -o out/01.txt",
+//!     "irsig-echo --label b -o out/02.txt",
+//! ]);
+//! ```
+
+mod emit;
+mod error;
+mod plan;
+mod run;
+mod spec;
+mod value;
+
+pub use error::{ErrorKind, PipelineError};
+pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};
+pub use run::{Event, RunOptions, RunSummary};
+
+/// `word` quoted for a POSIX shell when it needs quoting, as dry runs and Makefiles print it.
+#[must_use]
+pub fn shell_quote(word: &str) -> String {
+    shlex::try_quote(word).map_or_else(|_| word.to_owned(), std::borrow::Cow::into_owned)
+}

@@ -1,0 +1,962 @@
+//! From the pipeline file to a checked plan: templates expanded per frame, every stage
+//! instance's command line built, tools found, parameters validated, outputs unique, inputs
+//! present or produced, and the instances ordered so that producers come first.
+
+use std::collections::{BTreeMap, BTreeSet, HashMap};
+use std::path::{Component, Path, PathBuf};
+
+use crate::error::{ErrorKind, PipelineError};
+use crate::spec::{self, Param, PipelineSpec, Source, Spanned, StageSpec};
+use crate::value;
+
+/// Checks a stage's command line (program name first, as `std::env::args` gives it) the way
+/// the tool itself would parse it, without running anything. The message is shown to the
+/// user at the offending parameter.
+pub type Validator = fn(argv: &[String]) -> Result<(), String>;
+
+/// Finds a tool's program by the tool's name.
+type Lookup = dyn Fn(&str) -> Option<PathBuf> + Send + Sync;
+
+/// A byte range `(start, end)` in the pipeline file.
+type Span = (usize, usize);
+
+/// How the runner finds and checks the tools stages name.
+pub struct Tools {
+    lookup: Box<Lookup>,
+    validators: BTreeMap<String, Validator>,
+}
+
+impl std::fmt::Debug for Tools {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Tools")
+            .field("validators", &self.validators.keys().collect::<Vec<_>>())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Tools {
+    /// Tools found by `lookup` (the tool's name, such as `trace`, to the path of its
+    /// program, or `None` when there is no such tool), with no parameter validators yet.
+    pub fn new(lookup: impl Fn(&str) -> Option<PathBuf> + Send + Sync + 'static) -> Self {
+        Self {
+            lookup: Box::new(lookup),
+            validators: BTreeMap::new(),
+        }
+    }
+
+    /// Registers the parameter check of `tool`: usually `Cli::try_parse_from` of the tool's
+    /// own clap `Cli`, so that every flag has a single definition. Stages of tools without a
+    /// validator are checked only when they run.
+    pub fn register(&mut self, tool: &str, validator: Validator) -> &mut Self {
+        self.validators.insert(tool.to_owned(), validator);
+        self
+    }
+
+    /// The tools with a registered validator.
+    pub fn validated_tools(&self) -> impl Iterator<Item = &str> {
+        self.validators.keys().map(String::as_str)
+    }
+
+    fn validate(&self, tool: &str, argv: &[String]) -> Option<Result<(), String>> {
+        self.validators.get(tool).map(|v| v(argv))
+    }
+}
+
+/// A parsed pipeline file, not yet checked against the file system or the tools.
+#[derive(Debug, Clone)]
+pub struct Pipeline {
+    file: String,
+    text: String,
+    base_dir: PathBuf,
+    spec: PipelineSpec,
+}
+
+impl Pipeline {
+    /// Reads and parses the pipeline file at `path`. Paths in it are relative to its
+    /// directory.
+    ///
+    /// # Errors
+    /// An unreadable file, or any error of [`Pipeline::parse`].
+    pub fn load(path: &Path) -> Result<Self, PipelineError> {
+        let text = std::fs::read_to_string(path).map_err(|e| {
+            PipelineError::io(format!("cannot read pipeline file `{}`", path.display()), e)
+        })?;
+        let base_dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        Self::parse(&path.display().to_string(), &text, &base_dir)
+    }
+
+    /// Parses pipeline text. `file` is the name errors show; relative paths in the pipeline
+    /// resolve against `base_dir`, where the stages also run.
+    ///
+    /// # Errors
+    /// Invalid RON ([`ErrorKind::Syntax`]) or a value that does not fit the pipeline shape
+    /// ([`ErrorKind::Structure`]), located at its line and column.
+    pub fn parse(file: &str, text: &str, base_dir: &Path) -> Result<Self, PipelineError> {
+        let src = Source { file, text };
+        // `ron` is the judge of syntax, so a syntax error reads as it would for any RON file.
+        if let Err(e) = ron::Options::default().from_str::<serde::de::IgnoredAny>(text) {
+            let offset = offset_of(text, e.span.start.line, e.span.start.col);
+            return Err(src.error(ErrorKind::Syntax, offset, offset + 1, e.code.to_string()));
+        }
+        let root = value::parse(text)
+            .map_err(|e| src.error(ErrorKind::Syntax, e.offset, e.offset + 1, e.message.clone()))?;
+        let spec = spec::pipeline(src, &root)?;
+        Ok(Self {
+            file: file.to_owned(),
+            text: text.to_owned(),
+            base_dir: base_dir.to_path_buf(),
+            spec,
+        })
+    }
+
+    /// The directory the stages run in and relative paths resolve against.
+    #[must_use]
+    pub fn base_dir(&self) -> &Path {
+        &self.base_dir
+    }
+
+    fn source(&self) -> Source<'_> {
+        Source {
+            file: &self.file,
+            text: &self.text,
+        }
+    }
+
+    /// Expands sweeps, builds every command line and checks the whole pipeline before
+    /// anything runs.
+    ///
+    /// # Errors
+    /// Located errors for an undefined sweep or template variable, an unknown tool
+    /// ([`ErrorKind::UnknownTool`]), parameters the tool rejects
+    /// ([`ErrorKind::BadParameter`]), an output written twice
+    /// ([`ErrorKind::DuplicateOutput`]), an input neither on disk nor produced
+    /// ([`ErrorKind::MissingInput`]) and dependency cycles ([`ErrorKind::Cycle`]).
+    pub fn plan(&self, tools: &Tools) -> Result<Plan, PipelineError> {
+        let src = self.source();
+        let mut steps = Vec::new();
+        let mut names = BTreeMap::new();
+        for (index, stage) in self.spec.stages.iter().enumerate() {
+            let program = self.find_tool(stage, tools)?;
+            let base_name = stage.name.as_ref().map_or_else(
+                || format!("{}#{}", stage.tool.value, index + 1),
+                |n| n.value.clone(),
+            );
+            if let Some(n) = &stage.name {
+                if let Some(first) = names.insert(n.value.clone(), n.start) {
+                    return Err(src.error(
+                        ErrorKind::Structure,
+                        n.start,
+                        n.end,
+                        format!(
+                            "stage name `{}` is already used on line {}",
+                            n.value,
+                            src.line(first)
+                        ),
+                    ));
+                }
+            }
+            for (frame, vars) in self.frames_of(stage)? {
+                let name = match frame {
+                    Some(f) => format!("{base_name}[{f}]"),
+                    None => base_name.clone(),
+                };
+                let step = build_step(
+                    src,
+                    stage,
+                    name,
+                    &program,
+                    vars.as_ref(),
+                    self.gathered(stage)?,
+                )?;
+                check_parameters(src, stage, &step, tools)?;
+                steps.push(step);
+            }
+        }
+        let order = self.link(&mut steps)?;
+        Ok(Plan {
+            file: self.file.clone(),
+            text: self.text.clone(),
+            base_dir: self.base_dir.clone(),
+            steps: reorder(steps, &order),
+        })
+    }
+
+    fn find_tool(&self, stage: &StageSpec, tools: &Tools) -> Result<PathBuf, PipelineError> {
+        let tool = stage
+            .tool
+            .value
+            .split_whitespace()
+            .next()
+            .unwrap_or_default();
+        (tools.lookup)(tool).ok_or_else(|| {
+            self.source()
+                .error(
+                    ErrorKind::UnknownTool,
+                    stage.tool.start,
+                    stage.tool.end,
+                    format!("unknown tool `{tool}`: no program `irsig-{tool}` was found"),
+                )
+                .with_help(
+                    "a stage's tool is run as the program irsig-<tool>, looked up beside \
+                     irsig-run and then on PATH",
+                )
+        })
+    }
+
+    /// The frames a stage runs for: `(Some(frame number from 1), variables)` per frame of
+    /// its sweep, or one `(None, None)` for a stage without a sweep.
+    #[allow(clippy::type_complexity)]
+    fn frames_of(
+        &self,
+        stage: &StageSpec,
+    ) -> Result<Vec<(Option<usize>, Option<BTreeMap<String, String>>)>, PipelineError> {
+        let Some(sweep) = &stage.sweep else {
+            return Ok(vec![(None, None)]);
+        };
+        let frames = self.sweep_frames(sweep)?;
+        Ok(frames
+            .into_iter()
+            .enumerate()
+            .map(|(i, vars)| (Some(i + 1), Some(vars)))
+            .collect())
+    }
+
+    fn gathered(
+        &self,
+        stage: &StageSpec,
+    ) -> Result<Option<Vec<BTreeMap<String, String>>>, PipelineError> {
+        stage
+            .gather
+            .as_ref()
+            .map(|g| self.sweep_frames(g))
+            .transpose()
+    }
+
+    /// Every frame's variables, `frame` (from 1) and `frames` included.
+    fn sweep_frames(
+        &self,
+        name: &Spanned<String>,
+    ) -> Result<Vec<BTreeMap<String, String>>, PipelineError> {
+        let Some(sweep) = self.spec.sweeps.get(&name.value) else {
+            let known: Vec<_> = self.spec.sweeps.keys().map(String::as_str).collect();
+            return Err(self.source().error(
+                ErrorKind::Structure,
+                name.start,
+                name.end,
+                format!(
+                    "no sweep named `{}` (the pipeline defines: {})",
+                    name.value,
+                    if known.is_empty() {
+                        "none".to_owned()
+                    } else {
+                        known.join(", ")
+                    }
+                ),
+            ));
+        };
+        let count = sweep.frames.len();
+        Ok(sweep
+            .frames
+            .iter()
+            .enumerate()
+            .map(|(i, vars)| {
+                let mut vars = vars.clone();
+                vars.insert("frame".to_owned(), (i + 1).to_string());
+                vars.insert("frames".to_owned(), count.to_string());
+                vars
+            })
+            .collect())
+    }
+
+    /// Finds each step's producers, refuses duplicate outputs and missing inputs, and
+    /// returns a dependency order (or the cycle that prevents one).
+    fn link(&self, steps: &mut [Step]) -> Result<Vec<usize>, PipelineError> {
+        let src = self.source();
+        let mut producer: HashMap<PathBuf, (usize, usize)> = HashMap::new();
+        for (i, step) in steps.iter().enumerate() {
+            for out in &step.outputs {
+                if let Some(&(j, start)) = producer.get(&out.key) {
+                    let first = &steps[j];
+                    return Err(src.error(
+                        ErrorKind::DuplicateOutput,
+                        out.start,
+                        out.end,
+                        format!(
+                            "`{}` is written by stage `{}` here and by stage `{}` on line {}",
+                            out.path.display(),
+                            step.name,
+                            first.name,
+                            src.line(start)
+                        ),
+                    ));
+                }
+                producer.insert(out.key.clone(), (i, out.start));
+            }
+        }
+        for step in steps.iter_mut() {
+            let mut deps = BTreeSet::new();
+            for input in &step.inputs {
+                if let Some(&(j, _)) = producer.get(&input.key) {
+                    deps.insert(j);
+                } else if !self.base_dir.join(&input.path).is_file() {
+                    return Err(src
+                        .error(
+                            ErrorKind::MissingInput,
+                            input.start,
+                            input.end,
+                            format!(
+                                "input file `{}` does not exist and no stage writes it",
+                                input.path.display()
+                            ),
+                        )
+                        .with_help(format!(
+                            "paths are relative to the pipeline's directory `{}`",
+                            self.base_dir.display()
+                        )));
+                }
+            }
+            step.deps = deps.into_iter().collect();
+        }
+        topological_order(src, steps)
+    }
+}
+
+/// Kahn's algorithm, lowest index first among the ready steps, so the order (and so the
+/// dry-run listing and the Makefile) follows the file.
+fn topological_order(src: Source<'_>, steps: &[Step]) -> Result<Vec<usize>, PipelineError> {
+    let mut waiting: Vec<usize> = steps.iter().map(|s| s.deps.len()).collect();
+    let mut dependents = vec![Vec::new(); steps.len()];
+    for (i, s) in steps.iter().enumerate() {
+        for &d in &s.deps {
+            dependents[d].push(i);
+        }
+    }
+    let mut ready: BTreeSet<usize> = (0..steps.len()).filter(|&i| waiting[i] == 0).collect();
+    let mut order = Vec::with_capacity(steps.len());
+    while let Some(i) = ready.pop_first() {
+        order.push(i);
+        for &d in &dependents[i] {
+            waiting[d] -= 1;
+            if waiting[d] == 0 {
+                ready.insert(d);
+            }
+        }
+    }
+    if order.len() == steps.len() {
+        return Ok(order);
+    }
+    // Walk back along unfinished dependencies until a step repeats: that loop is a cycle.
+    let Some(start) = (0..steps.len()).find(|&i| waiting[i] > 0) else {
+        return Ok(order);
+    };
+    let mut path = vec![start];
+    let mut current = start;
+    while let Some(&next) = steps[current].deps.iter().find(|&&d| waiting[d] > 0) {
+        if let Some(pos) = path.iter().position(|&p| p == next) {
+            path.drain(..pos);
+            break;
+        }
+        path.push(next);
+        current = next;
+    }
+    // path[k] reads a file written by path[k + 1] (cyclically).
+    let mut story = Vec::new();
+    let mut first_span = (steps[path[0]].start, steps[path[0]].end);
+    for (k, &i) in path.iter().enumerate() {
+        let j = path[(k + 1) % path.len()];
+        let via = steps[i]
+            .inputs
+            .iter()
+            .find(|inp| steps[j].outputs.iter().any(|o| o.key == inp.key));
+        if let Some(inp) = via {
+            if k == 0 {
+                first_span = (inp.start, inp.end);
+            }
+            story.push(format!(
+                "`{}` reads `{}`, written by `{}`",
+                steps[i].name,
+                inp.path.display(),
+                steps[j].name
+            ));
+        }
+    }
+    Err(src.error(
+        ErrorKind::Cycle,
+        first_span.0,
+        first_span.1,
+        format!("the stages form a cycle: {}", story.join("; ")),
+    ))
+}
+
+fn reorder(steps: Vec<Step>, order: &[usize]) -> Vec<Step> {
+    let mut new_index = vec![0; steps.len()];
+    for (new, &old) in order.iter().enumerate() {
+        new_index[old] = new;
+    }
+    let mut slots: Vec<Option<Step>> = steps.into_iter().map(Some).collect();
+    order
+        .iter()
+        .filter_map(|&old| slots.get_mut(old).and_then(Option::take))
+        .map(|mut s| {
+            s.deps = s.deps.iter().map(|&d| new_index[d]).collect();
+            s.deps.sort_unstable();
+            s
+        })
+        .collect()
+}
+
+/// A file a step reads or writes, with where the pipeline file names it.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FileRef {
+    /// The path as written (after templates), relative to the pipeline's directory.
+    pub path: PathBuf,
+    /// The lexically normalised path, for matching outputs to inputs.
+    key: PathBuf,
+    start: usize,
+    end: usize,
+}
+
+/// One run of one tool: a stage, or one frame of a swept stage.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Step {
+    /// The stage's name, with `[frame]` for a frame of a sweep: `trace[3]`.
+    pub name: String,
+    /// The tool's name, such as `trace`.
+    pub tool: String,
+    /// The program found for the tool.
+    pub program: PathBuf,
+    /// The command line, program name (`irsig-<tool>`) first: exactly what a user would type.
+    pub argv: Vec<String>,
+    /// Files read: positional `args` and `inputs`.
+    pub inputs: Vec<FileRef>,
+    /// Files written: `outputs`.
+    pub outputs: Vec<FileRef>,
+    /// Indices (in [`Plan::steps`]) of the steps whose outputs this one reads.
+    pub deps: Vec<usize>,
+    start: usize,
+    end: usize,
+    /// (argv index, key span, value span) of each flag, to locate a validator's complaint.
+    flags: Vec<(usize, Span, Span)>,
+    tool_span: Span,
+}
+
+impl Step {
+    /// The command line, shell-quoted so that it can be pasted into a shell.
+    #[must_use]
+    pub fn command_line(&self) -> String {
+        self.argv
+            .iter()
+            .map(|w| crate::shell_quote(w))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+}
+
+fn flag(key: &str) -> String {
+    if key.starts_with('-') {
+        key.to_owned()
+    } else if key.chars().count() == 1 {
+        format!("-{key}")
+    } else {
+        format!("--{key}")
+    }
+}
+
+fn build_step(
+    src: Source<'_>,
+    stage: &StageSpec,
+    name: String,
+    program: &Path,
+    vars: Option<&BTreeMap<String, String>>,
+    gathered: Option<Vec<BTreeMap<String, String>>>,
+) -> Result<Step, PipelineError> {
+    let mut words = stage.tool.value.split_whitespace();
+    let tool = words.next().unwrap_or_default().to_owned();
+    let mut argv = vec![format!("irsig-{tool}")];
+    argv.extend(words.map(str::to_owned));
+    let mut inputs = Vec::new();
+    let mut outputs = Vec::new();
+    let mut flags = Vec::new();
+    let file = |s: &Spanned<String>,
+                vars: Option<&BTreeMap<String, String>>|
+     -> Result<FileRef, PipelineError> {
+        let path = expand(src, s, vars)?;
+        if path == "-" || path.is_empty() {
+            return Err(src.error(
+                ErrorKind::Structure,
+                s.start,
+                s.end,
+                "expected a file path: pipeline stages pass files, not standard input or output",
+            ));
+        }
+        let path = PathBuf::from(path);
+        Ok(FileRef {
+            key: normalise(&path),
+            path,
+            start: s.start,
+            end: s.end,
+        })
+    };
+    for arg in &stage.args {
+        match (&gathered, arg.value.contains('{')) {
+            (Some(frames), true) => {
+                for frame in frames {
+                    inputs.push(file(arg, Some(frame))?);
+                }
+            }
+            _ => inputs.push(file(arg, vars)?),
+        }
+    }
+    for input in &inputs {
+        argv.push(positional(&input.path));
+    }
+    for (key, path) in &stage.inputs {
+        let f = file(path, vars)?;
+        flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
+        argv.push(flag(&key.value));
+        argv.push(f.path.display().to_string());
+        inputs.push(f);
+    }
+    for (key, param) in &stage.params {
+        let at = argv.len();
+        let (vstart, vend) = match param {
+            Param::Switch(_) => (key.start, key.end),
+            Param::One(v) => (v.start, v.end),
+            Param::Repeated(vs) | Param::Several(vs) => (
+                vs.first().map_or(key.start, |v| v.start),
+                vs.last().map_or(key.end, |v| v.end),
+            ),
+        };
+        match param {
+            Param::Switch(false) => continue,
+            Param::Switch(true) => argv.push(flag(&key.value)),
+            Param::One(v) => {
+                argv.push(flag(&key.value));
+                argv.push(expand(src, v, vars)?);
+            }
+            Param::Repeated(vs) => {
+                for v in vs {
+                    argv.push(flag(&key.value));
+                    argv.push(expand(src, v, vars)?);
+                }
+            }
+            Param::Several(vs) => {
+                argv.push(flag(&key.value));
+                for v in vs {
+                    argv.push(expand(src, v, vars)?);
+                }
+            }
+        }
+        flags.push((at, (key.start, key.end), (vstart, vend)));
+    }
+    for (key, path) in &stage.outputs {
+        let f = file(path, vars)?;
+        flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
+        argv.push(flag(&key.value));
+        argv.push(f.path.display().to_string());
+        outputs.push(f);
+    }
+    Ok(Step {
+        name,
+        tool,
+        program: program.to_path_buf(),
+        argv,
+        inputs,
+        outputs,
+        deps: Vec::new(),
+        start: stage.start,
+        end: stage.end,
+        flags,
+        tool_span: (stage.tool.start, stage.tool.end),
+    })
+}
+
+/// A positional path that starts with `-` would read as a flag: `./-x` is the same file.
+fn positional(path: &Path) -> String {
+    let s = path.display().to_string();
+    if s.starts_with('-') {
+        format!("./{s}")
+    } else {
+        s
+    }
+}
+
+/// Lexical normalisation (no file system access): `./a/../b` and `b` are the same key.
+fn normalise(path: &Path) -> PathBuf {
+    let mut out: Vec<Component<'_>> = Vec::new();
+    for c in path.components() {
+        match c {
+            Component::CurDir => {}
+            Component::ParentDir => match out.last() {
+                Some(Component::Normal(_)) => {
+                    out.pop();
+                }
+                Some(Component::RootDir | Component::Prefix(_)) => {}
+                _ => out.push(c),
+            },
+            other => out.push(other),
+        }
+    }
+    out.iter().collect()
+}
+
+/// Substitutes `{name}` and `{name:0N}` (zero-padded to N digits) from the frame's
+/// variables; `{{` and `}}` are literal braces.
+fn expand(
+    src: Source<'_>,
+    text: &Spanned<String>,
+    vars: Option<&BTreeMap<String, String>>,
+) -> Result<String, PipelineError> {
+    let err = |message: String| src.error(ErrorKind::Structure, text.start, text.end, message);
+    let s = &text.value;
+    let mut out = String::with_capacity(s.len());
+    let mut rest = s.as_str();
+    while let Some(i) = rest.find(['{', '}']) {
+        out.push_str(&rest[..i]);
+        let tail = &rest[i..];
+        if tail.starts_with("{{") || tail.starts_with("}}") {
+            out.push_str(&tail[..1]);
+            rest = &tail[2..];
+            continue;
+        }
+        if tail.starts_with('}') {
+            return Err(err(format!(
+                "unmatched `}}` in {s:?}; write `}}}}` for a literal brace"
+            )));
+        }
+        let Some(close) = tail.find('}') else {
+            return Err(err(format!(
+                "unmatched `{{` in {s:?}; write `{{{{` for a literal brace"
+            )));
+        };
+        let inner = &tail[1..close];
+        let (name, width) = match inner.split_once(':') {
+            None => (inner, None),
+            Some((n, w)) => {
+                let width = w
+                    .strip_prefix('0')
+                    .and_then(|d| d.parse::<usize>().ok())
+                    .filter(|&d| d <= 32)
+                    .ok_or_else(|| {
+                        err(format!(
+                            "bad format `{{{inner}}}`: expected `{{{n}}}` or a zero-padded width such as `{{{n}:03}}`"
+                        ))
+                    })?;
+                (n, Some(width))
+            }
+        };
+        if !spec::is_variable(name) {
+            return Err(err(format!(
+                "bad template `{{{inner}}}`: expected `{{variable}}`"
+            )));
+        }
+        let Some(vars) = vars else {
+            return Err(err(format!(
+                "`{{{name}}}` is a frame variable, but this stage has no `sweep` (or `gather`)"
+            )));
+        };
+        let Some(value) = vars.get(name) else {
+            let known: Vec<_> = vars.keys().map(String::as_str).collect();
+            return Err(err(format!(
+                "unknown variable `{name}`: this sweep defines {}",
+                known.join(", ")
+            )));
+        };
+        match width {
+            Some(w) => out.push_str(&format!("{value:0>w$}")),
+            None => out.push_str(value),
+        }
+        rest = &tail[close + 1..];
+    }
+    out.push_str(rest);
+    Ok(out)
+}
+
+fn check_parameters(
+    src: Source<'_>,
+    stage: &StageSpec,
+    step: &Step,
+    tools: &Tools,
+) -> Result<(), PipelineError> {
+    let Some(Err(message)) = tools.validate(&step.tool, &step.argv) else {
+        return Ok(());
+    };
+    // clap's report: "error: <what>\n\n  tip: ...\n\nUsage: ...". Keep the first paragraph
+    // and point at the flag or value it names.
+    let message = message.trim_start_matches("error: ");
+    let first = message
+        .split("\n\n")
+        .next()
+        .unwrap_or(message)
+        .trim()
+        .to_owned();
+    let invalid_value = first.starts_with("invalid value");
+    let mut span = step.tool_span;
+    let quoted =
+        |word: &str| first.contains(&format!("'{word}'")) || first.contains(&format!("'{word} "));
+    if let Some(&(_, key, value)) = step
+        .flags
+        .iter()
+        .find(|(at, _, _)| step.argv.get(*at).is_some_and(|w| quoted(w)))
+    {
+        span = if invalid_value { value } else { key };
+    } else if let Some(input) = step
+        .inputs
+        .iter()
+        .find(|i| quoted(&i.path.display().to_string()))
+    {
+        span = (input.start, input.end);
+    }
+    Err(src
+        .error(
+            ErrorKind::BadParameter,
+            span.0,
+            span.1,
+            format!(
+                "`irsig-{}` rejects this stage's parameters: {first}",
+                step.tool
+            ),
+        )
+        .with_help(format!(
+            "the stage `{}` runs: {}\n`irsig-{} --help` lists its flags",
+            stage
+                .name
+                .as_ref()
+                .map_or(step.name.as_str(), |n| n.value.as_str()),
+            step.command_line(),
+            step.tool
+        )))
+}
+
+/// The byte offset of a 1-based line and character column in `text`.
+fn offset_of(text: &str, line: usize, column: usize) -> usize {
+    let mut offset = 0;
+    for (i, l) in text.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            return offset
+                + l.char_indices()
+                    .nth(column.saturating_sub(1))
+                    .map_or(l.len(), |(b, _)| b);
+        }
+        offset += l.len();
+    }
+    text.len()
+}
+
+/// A checked pipeline: every step with its command line, in an order where producers come
+/// before the steps that read their outputs.
+#[derive(Debug, Clone)]
+pub struct Plan {
+    pub(crate) file: String,
+    pub(crate) text: String,
+    pub(crate) base_dir: PathBuf,
+    /// The steps, dependencies first.
+    pub steps: Vec<Step>,
+}
+
+impl Plan {
+    /// The directory the steps run in.
+    #[must_use]
+    pub fn base_dir(&self) -> &Path {
+        &self.base_dir
+    }
+
+    pub(crate) fn source(&self) -> Source<'_> {
+        Source {
+            file: &self.file,
+            text: &self.text,
+        }
+    }
+
+    pub(crate) fn step_error(
+        &self,
+        step: &Step,
+        kind: ErrorKind,
+        message: String,
+    ) -> PipelineError {
+        self.source().error(kind, step.start, step.end, message)
+    }
+
+    pub(crate) fn file_error(
+        &self,
+        file: &FileRef,
+        kind: ErrorKind,
+        message: String,
+    ) -> PipelineError {
+        self.source().error(kind, file.start, file.end, message)
+    }
+
+    /// `file:line:column` of the stage a step comes from.
+    #[must_use]
+    pub fn location(&self, step: &Step) -> String {
+        let (line, column) = irsig_formats::line_column(&self.text, step.start);
+        format!("{}:{line}:{column}", self.file)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn offsets_from_line_and_column() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(offset_of(t, 1, 1), 0);
+        assert_eq!(offset_of(t, 2, 3), 5);
+        // "ab\n" is 3 bytes, "cdé\n" is 5 (é takes two).
+        assert_eq!(offset_of(t, 3, 1), 8);
+        assert_eq!(offset_of(t, 9, 9), t.len());
+    }
+
+    #[test]
+    fn normalising_paths() {
+        assert_eq!(normalise(Path::new("./a/../b/c")), PathBuf::from("b/c"));
+        assert_eq!(normalise(Path::new("../x")), PathBuf::from("../x"));
+        assert_eq!(normalise(Path::new("/a/./b")), PathBuf::from("/a/b"));
+    }
+
+    #[test]
+    fn flags_follow_the_command_line_convention() {
+        assert_eq!(flag("o"), "-o");
+        assert_eq!(flag("band"), "--band");
+        assert_eq!(flag("--band"), "--band");
+    }
+}
+
+#[cfg(test)]
+mod plan_tests {
+    use super::*;
+
+    fn tools() -> Tools {
+        Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))))
+    }
+
+    fn plan(text: &str, tools: &Tools) -> Result<Plan, PipelineError> {
+        // No inputs below exist on disk, so every input is produced by a stage or absent.
+        Pipeline::parse("p.ron", text, Path::new("/nonexistent"))?.plan(tools)
+    }
+
+    #[test]
+    fn parameters_become_the_words_a_user_would_type() {
+        let text = r#"(stages: [(
+            tool: "atmos convert",
+            inputs: {"materials": "m.ron"},
+            params: {"band": "8:14", "size": (512, 384), "mtf": ["a", "b"], "quiet": true,
+                     "loud": false, "scale": 1e-3, "--raw": "x"},
+            outputs: {"o": "out.ron", "truth": "t.exr"},
+        ), (tool: "gen", outputs: {"o": "m.ron"})])"#;
+        let p = plan(text, &tools()).unwrap();
+        assert_eq!(p.steps[0].argv, ["irsig-gen", "-o", "m.ron"]);
+        assert_eq!(
+            p.steps[1].argv,
+            [
+                "irsig-atmos",
+                "convert",
+                "--materials",
+                "m.ron",
+                "--band",
+                "8:14",
+                "--size",
+                "512",
+                "384",
+                "--mtf",
+                "a",
+                "--mtf",
+                "b",
+                "--quiet",
+                "--scale",
+                "1e-3",
+                "--raw",
+                "x",
+                "-o",
+                "out.ron",
+                "--truth",
+                "t.exr"
+            ]
+        );
+        assert_eq!(p.steps[1].deps, [0]);
+    }
+
+    fn reject_size(argv: &[String]) -> Result<(), String> {
+        match argv.iter().position(|w| w == "--size") {
+            Some(i) if argv.get(i + 1).is_some_and(|v| v.parse::<u32>().is_err()) => Err(format!(
+                "error: invalid value '{}' for '--size <N>': not a number\n\nUsage: x",
+                argv[i + 1]
+            )),
+            Some(_) | None if argv.iter().any(|w| w == "--bogus") => {
+                Err("error: unexpected argument '--bogus' found\n\n  tip: ...".to_owned())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    #[test]
+    fn validator_complaints_point_at_the_flag_or_the_value() {
+        let mut t = tools();
+        t.register("gen", reject_size);
+        let text = "(stages: [\n (tool: \"gen\", params: {\"size\": \"big\"}),\n])";
+        let e = plan(text, &t).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::BadParameter);
+        // `"big"` starts at line 2, column 33.
+        assert_eq!(e.line_column(), Some((2, 33)));
+        assert!(e.to_string().contains("invalid value 'big'"), "{e}");
+
+        let text = "(stages: [\n (tool: \"gen\", params: {\"bogus\": true}),\n])";
+        let e = plan(text, &t).unwrap_err();
+        // `"bogus"` starts at line 2, column 25 (after ` (tool: "gen", params: {`).
+        assert_eq!(e.line_column(), Some((2, 25)));
+        // An unregistered tool is not checked here.
+        assert!(plan(text, &tools()).is_ok());
+    }
+
+    #[test]
+    fn templates_need_a_sweep_and_known_variables() {
+        let e = plan(
+            r#"(stages: [(tool: "a", outputs: {"o": "{frame}.txt"})])"#,
+            &tools(),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("has no `sweep`"), "{e}");
+        let e = plan(
+            r#"(sweeps: {"s": Frames([{"v": 1}])}, stages: [(tool: "a", sweep: "t", outputs: {"o": "x"})])"#,
+            &tools(),
+        )
+        .unwrap_err();
+        assert!(e.to_string().contains("no sweep named `t`"), "{e}");
+        let p = plan(
+            r#"(sweeps: {"s": Frames([{"v": 7}, {"v": 8}])}, stages: [(tool: "a", sweep: "s", outputs: {"o": "{{{v:03}}}-{frame}"})])"#,
+            &tools(),
+        )
+        .unwrap();
+        assert_eq!(p.steps[1].argv, ["irsig-a", "-o", "{008}-2"]);
+        assert_eq!(p.steps[1].name, "a#1[2]");
+    }
+
+    #[test]
+    fn an_unknown_tool_is_located() {
+        let t = Tools::new(|_| None);
+        let e = plan("(stages: [(tool: \"nope\")])", &t).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::UnknownTool);
+        assert_eq!(e.line_column(), Some((1, 18)));
+    }
+
+    proptest::proptest! {
+        #[test]
+        fn no_text_makes_the_parser_panic(text in "\\PC{0,200}") {
+            let _ = Pipeline::parse("p.ron", &text, Path::new("."));
+        }
+
+        #[test]
+        fn no_mangled_pipeline_makes_the_planner_panic(cut in 0usize..400, insert in "[\\[\\](){}\",:{}a-z0-9 ]{0,5}") {
+            let base = r#"(sweeps: {"s": Frames([{"v": 1}])}, stages: [(tool: "a", sweep: "s", args: ["{v}"], params: {"k": (1, 2)}, outputs: {"o": "o{frame}"}), (tool: "b", args: ["o1"], outputs: {"o": "x"})])"#;
+            let at = cut.min(base.len());
+            let text = format!("{}{insert}{}", &base[..at], &base[at..]);
+            if let Ok(p) = Pipeline::parse("p.ron", &text, Path::new("/nonexistent")) {
+                let _ = p.plan(&tools());
+            }
+        }
+    }
+}

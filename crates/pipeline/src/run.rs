@@ -1,0 +1,356 @@
+//! Running a plan: the up-to-date check by content hash, the run state file, and parallel
+//! execution of the steps in dependency order.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::mpsc;
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::error::{ErrorKind, PipelineError};
+use crate::plan::{Plan, Step};
+
+/// How to run a plan.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RunOptions {
+    /// At most this many tools at once (at least 1).
+    pub jobs: usize,
+    /// Run every step, up to date or not.
+    pub force: bool,
+}
+
+/// What the runner is doing, for the caller to report (the library prints nothing).
+#[derive(Debug, Clone, Copy)]
+#[non_exhaustive]
+pub enum Event<'a> {
+    /// The step's outputs match its inputs, parameters and tool: it is skipped.
+    UpToDate(&'a Step),
+    /// The step's tool is being started.
+    Started(&'a Step),
+    /// The step's tool finished and wrote its outputs.
+    Finished(&'a Step),
+}
+
+/// How many steps ran and how many were skipped as up to date.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct RunSummary {
+    /// Steps whose tool ran.
+    pub ran: usize,
+    /// Steps skipped because their outputs were up to date.
+    pub up_to_date: usize,
+}
+
+/// What the runner remembers about a step's last successful run.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+struct Record {
+    /// SHA-256 of the tool program, the command line and every input's path and content.
+    recipe_sha256: String,
+    /// SHA-256 of every output's path and content just after the run.
+    outputs_sha256: String,
+}
+
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+struct State {
+    steps: BTreeMap<String, Record>,
+}
+
+impl Plan {
+    /// Where the run state lives: `.irsig-run/<pipeline file stem>.state.ron` in the
+    /// pipeline's directory.
+    #[must_use]
+    pub fn state_path(&self) -> PathBuf {
+        let stem = Path::new(&self.file)
+            .file_stem()
+            .map_or_else(|| "pipeline".into(), |s| s.to_string_lossy().into_owned());
+        self.base_dir
+            .join(".irsig-run")
+            .join(format!("{stem}.state.ron"))
+    }
+
+    /// A missing or unreadable state file means nothing is known to be up to date: the state
+    /// is a cache, and the worst a lost one costs is a re-run.
+    fn load_state(&self) -> State {
+        std::fs::read_to_string(self.state_path())
+            .ok()
+            .and_then(|t| ron::from_str(&t).ok())
+            .unwrap_or_default()
+    }
+
+    fn save_state(&self, state: &State) -> Result<(), PipelineError> {
+        let path = self.state_path();
+        let io = |e| PipelineError::io(format!("cannot write run state `{}`", path.display()), e);
+        let text = ron::ser::to_string_pretty(state, ron::ser::PrettyConfig::default())
+            .map_err(|e| io(std::io::Error::other(e.to_string())))?;
+        let dir = path
+            .parent()
+            .map_or_else(|| PathBuf::from("."), Path::to_path_buf);
+        std::fs::create_dir_all(&dir).map_err(io)?;
+        let tmp = dir.join(format!(
+            ".{}.tmp",
+            path.file_name()
+                .map_or_else(String::new, |n| n.to_string_lossy().into_owned())
+        ));
+        std::fs::write(&tmp, text).map_err(io)?;
+        std::fs::rename(&tmp, &path).map_err(io)
+    }
+
+    fn tool_hashes(&self) -> Result<BTreeMap<PathBuf, String>, PipelineError> {
+        let programs: BTreeSet<&PathBuf> = self.steps.iter().map(|s| &s.program).collect();
+        programs
+            .into_iter()
+            .map(|p| {
+                let bytes = std::fs::read(p).map_err(|e| {
+                    PipelineError::io(format!("cannot read tool program `{}`", p.display()), e)
+                })?;
+                Ok((p.clone(), hex(&Sha256::digest(bytes))))
+            })
+            .collect()
+    }
+
+    /// The recipe hash of a step, or `None` when an input does not exist (yet).
+    fn recipe(&self, step: &Step, tool_sha256: &str) -> Option<String> {
+        let mut h = Sha256::new();
+        h.update(tool_sha256.as_bytes());
+        for word in &step.argv {
+            h.update((word.len() as u64).to_le_bytes());
+            h.update(word.as_bytes());
+        }
+        for input in &step.inputs {
+            let bytes = std::fs::read(self.base_dir.join(&input.path)).ok()?;
+            h.update(Sha256::digest(bytes));
+        }
+        Some(hex(&h.finalize()))
+    }
+
+    /// The hash of the step's outputs as they are now, or `None` when one is missing.
+    fn outputs_hash(&self, step: &Step) -> Option<String> {
+        let mut h = Sha256::new();
+        for out in &step.outputs {
+            let bytes = std::fs::read(self.base_dir.join(&out.path)).ok()?;
+            let name = out.path.to_string_lossy();
+            h.update((name.len() as u64).to_le_bytes());
+            h.update(name.as_bytes());
+            h.update(Sha256::digest(bytes));
+        }
+        Some(hex(&h.finalize()))
+    }
+
+    /// A step is up to date when the last run with the same tool, command line and input
+    /// contents left outputs that are still there, unchanged. A step without outputs is
+    /// never up to date (it exists for what it prints).
+    fn is_up_to_date(&self, step: &Step, recipe: Option<&str>, record: Option<&Record>) -> bool {
+        let (Some(recipe), Some(record)) = (recipe, record) else {
+            return false;
+        };
+        !step.outputs.is_empty()
+            && record.recipe_sha256 == recipe
+            && self.outputs_hash(step).as_deref() == Some(record.outputs_sha256.as_str())
+    }
+
+    /// The steps a run would start, in order, without running anything: those not up to
+    /// date and those downstream of them (all of them with `force`).
+    ///
+    /// # Errors
+    /// A tool program that cannot be read for hashing.
+    pub fn dry_run(&self, force: bool) -> Result<Vec<&Step>, PipelineError> {
+        let tools = self.tool_hashes()?;
+        let state = self.load_state();
+        let mut would_run = vec![false; self.steps.len()];
+        for (i, step) in self.steps.iter().enumerate() {
+            would_run[i] = force
+                || step.deps.iter().any(|&d| would_run[d])
+                || !self.is_up_to_date(
+                    step,
+                    tools
+                        .get(&step.program)
+                        .and_then(|t| self.recipe(step, t))
+                        .as_deref(),
+                    state.steps.get(&step.name),
+                );
+        }
+        Ok(self
+            .steps
+            .iter()
+            .zip(would_run)
+            .filter_map(|(s, run)| run.then_some(s))
+            .collect())
+    }
+
+    /// Runs the plan: each step when its producers are done, up to `jobs` at a time,
+    /// skipping those up to date. After the first failure no new step starts; those
+    /// running finish, and the failure is returned. The state is saved after every step,
+    /// so an interrupted run keeps what it finished.
+    ///
+    /// # Errors
+    /// [`ErrorKind::StageFailed`] for a tool that cannot start, fails, or does not write a
+    /// declared output; [`ErrorKind::Io`] for the run state.
+    pub fn run(
+        &self,
+        options: RunOptions,
+        on_event: &(dyn Fn(Event<'_>) + Sync),
+    ) -> Result<RunSummary, PipelineError> {
+        let tools = self.tool_hashes()?;
+        let mut state = self.load_state();
+        let n = self.steps.len();
+        let mut waiting: Vec<usize> = self.steps.iter().map(|s| s.deps.len()).collect();
+        let mut dependents = vec![Vec::new(); n];
+        for (i, s) in self.steps.iter().enumerate() {
+            for &d in &s.deps {
+                dependents[d].push(i);
+            }
+        }
+        let mut ready: BTreeSet<usize> = (0..n).filter(|&i| waiting[i] == 0).collect();
+        let mut summary = RunSummary::default();
+        let mut failure = None;
+        let (tx, rx) = mpsc::channel();
+        std::thread::scope(|scope| {
+            let mut running = 0usize;
+            loop {
+                while failure.is_none() && running < options.jobs.max(1) {
+                    let Some(i) = ready.pop_first() else { break };
+                    let step = &self.steps[i];
+                    let record = state.steps.get(&step.name).cloned();
+                    let tool = tools.get(&step.program).cloned().unwrap_or_default();
+                    let tx = tx.clone();
+                    running += 1;
+                    scope.spawn(move || {
+                        let outcome =
+                            self.run_step(step, &tool, record.as_ref(), options.force, on_event);
+                        // The receiver outlives every worker inside this scope.
+                        let _ = tx.send((i, outcome));
+                    });
+                }
+                if running == 0 {
+                    break;
+                }
+                let Ok((i, outcome)) = rx.recv() else { break };
+                running -= 1;
+                match outcome {
+                    Ok(None) => summary.up_to_date += 1,
+                    Ok(Some(record)) => {
+                        summary.ran += 1;
+                        state.steps.insert(self.steps[i].name.clone(), record);
+                        if let Err(e) = self.save_state(&state) {
+                            failure.get_or_insert(e);
+                        }
+                    }
+                    Err(e) => {
+                        failure.get_or_insert(e);
+                    }
+                }
+                if failure.is_none() {
+                    for &d in &dependents[i] {
+                        waiting[d] -= 1;
+                        if waiting[d] == 0 {
+                            ready.insert(d);
+                        }
+                    }
+                }
+            }
+        });
+        match failure {
+            Some(e) => Err(e),
+            None => Ok(summary),
+        }
+    }
+
+    /// Runs one step unless it is up to date. `Ok(None)`: skipped; `Ok(Some(record))`: ran.
+    fn run_step(
+        &self,
+        step: &Step,
+        tool_sha256: &str,
+        record: Option<&Record>,
+        force: bool,
+        on_event: &(dyn Fn(Event<'_>) + Sync),
+    ) -> Result<Option<Record>, PipelineError> {
+        let Some(recipe) = self.recipe(step, tool_sha256) else {
+            let missing = step
+                .inputs
+                .iter()
+                .find(|i| !self.base_dir.join(&i.path).is_file());
+            let message = format!(
+                "stage `{}` cannot run: its input `{}` is missing",
+                step.name,
+                missing.map_or_else(String::new, |m| m.path.display().to_string())
+            );
+            return Err(match missing {
+                Some(m) => self.file_error(m, ErrorKind::StageFailed, message),
+                None => self.step_error(step, ErrorKind::StageFailed, message),
+            });
+        };
+        if !force && self.is_up_to_date(step, Some(&recipe), record) {
+            on_event(Event::UpToDate(step));
+            return Ok(None);
+        }
+        for out in &step.outputs {
+            if let Some(dir) = self.base_dir.join(&out.path).parent() {
+                std::fs::create_dir_all(dir).map_err(|e| {
+                    PipelineError::io(format!("cannot create directory `{}`", dir.display()), e)
+                })?;
+            }
+        }
+        on_event(Event::Started(step));
+        let status = Command::new(&step.program)
+            .args(step.argv.iter().skip(1))
+            .current_dir(&self.base_dir)
+            .status()
+            .map_err(|e| {
+                self.step_error(
+                    step,
+                    ErrorKind::StageFailed,
+                    format!(
+                        "stage `{}`: cannot start `{}`: {e}",
+                        step.name,
+                        step.program.display()
+                    ),
+                )
+            })?;
+        if !status.success() {
+            let how = status.code().map_or_else(
+                || "was killed by a signal".to_owned(),
+                |c| format!("exited with code {c}"),
+            );
+            return Err(self.step_error(
+                step,
+                ErrorKind::StageFailed,
+                format!(
+                    "stage `{}` failed: `{}` {how}",
+                    step.name,
+                    step.command_line()
+                ),
+            ));
+        }
+        let Some(outputs_sha256) = self.outputs_hash(step) else {
+            let missing = step
+                .outputs
+                .iter()
+                .find(|o| !self.base_dir.join(&o.path).is_file());
+            let message = format!(
+                "stage `{}` succeeded but did not write its output `{}`",
+                step.name,
+                missing.map_or_else(String::new, |m| m.path.display().to_string())
+            );
+            return Err(match missing {
+                Some(m) => self.file_error(m, ErrorKind::StageFailed, message),
+                None => self.step_error(step, ErrorKind::StageFailed, message),
+            });
+        };
+        on_event(Event::Finished(step));
+        Ok(Some(Record {
+            recipe_sha256: recipe,
+            outputs_sha256,
+        }))
+    }
+}
+
+fn hex(bytes: &[u8]) -> String {
+    use std::fmt::Write;
+    bytes
+        .iter()
+        .fold(String::with_capacity(bytes.len() * 2), |mut s, b| {
+            let _ = write!(s, "{b:02x}");
+            s
+        })
+}

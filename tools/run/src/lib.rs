@@ -1,0 +1,144 @@
+//! `irsig-run PIPELINE.ron`: runs a declarative pipeline, each stage as its own tool
+//! (`irsig-<tool>`, found beside this program or on `PATH`), in dependency order,
+//! independent stages in parallel, skipping stages whose outputs are up to date.
+//!
+//! ```text
+//! irsig-run pipelines/quickstart.ron            # run what is out of date
+//! irsig-run -n pipelines/quickstart.ron         # print the commands instead
+//! irsig-run --emit-makefile Makefile p.ron      # the same steps as a Makefile
+//! ```
+//!
+//! Before anything runs, every stage's parameters are checked by the tool's own clap `Cli`
+//! ([`tools`]), so an unknown or mistyped parameter is reported at its line and column in
+//! the pipeline file.
+
+use std::path::PathBuf;
+
+use clap::Parser;
+use irsig_pipeline::{Event, Pipeline, RunOptions, Tools};
+
+/// Command line of `irsig-run`.
+#[derive(Debug, Parser)]
+#[command(
+    name = "irsig-run",
+    version,
+    about = "Run a declarative irsig pipeline file (RON)",
+    after_help = "\
+Each stage runs as its tool, irsig-<tool>, in the pipeline file's directory. A stage is
+skipped when its tool, command line and input contents are those of its last successful
+run and its outputs are unchanged since (SHA-256; the state is kept in .irsig-run/ beside
+the pipeline file).
+
+Examples:
+  irsig-run pipelines/quickstart.ron
+  irsig-run --dry-run --force pipelines/quickstart.ron
+  irsig-run --emit-makefile pipelines/Makefile pipelines/quickstart.ron && make -C pipelines -j"
+)]
+pub struct Cli {
+    /// The pipeline file (RON). Paths in it are relative to its directory.
+    pub pipeline: PathBuf,
+
+    /// Run at most N tools at once [default: the number of CPUs].
+    #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub jobs: Option<u32>,
+
+    /// Run every stage, even those up to date.
+    #[arg(long)]
+    pub force: bool,
+
+    /// Print the commands that would run (shell-quoted), one per line, and run nothing.
+    #[arg(short = 'n', long, conflicts_with = "emit_makefile")]
+    pub dry_run: bool,
+
+    /// Write an equivalent Makefile to FILE (`-` for stdout) and run nothing.
+    #[arg(long, value_name = "FILE")]
+    pub emit_makefile: Option<PathBuf>,
+
+    /// Do not report stages on stderr.
+    #[arg(short, long)]
+    pub quiet: bool,
+}
+
+/// The tools the runner knows, with the parameter validators of those whose `Cli` is
+/// available to it. A tool without a validator still runs; its parameters are then checked
+/// only when it starts.
+///
+/// Every stage tool exposes `pub struct Cli` (clap) in its library; registering it here
+/// (`tools.register("trace", check::<irsig_trace::Cli>)`) is all it takes. The stage tools
+/// (import, flatten, atmos, trace, sensor) are registered as they land on main; today the
+/// only stage tool in the workspace is `run` itself (a pipeline may run a sub-pipeline).
+#[must_use]
+pub fn tools() -> Tools {
+    let mut tools = Tools::new(irsig_cli::find_tool);
+    tools.register("run", check::<Cli>);
+    tools
+}
+
+/// Parses `argv` with the tool's own `Cli`, as the tool will.
+fn check<C: Parser>(argv: &[String]) -> Result<(), String> {
+    match C::try_parse_from(argv) {
+        Ok(_) => Ok(()),
+        // `--help` and `--version` are valid command lines that print and exit.
+        Err(e) if !e.use_stderr() => Ok(()),
+        Err(e) => Err(e.render().to_string()),
+    }
+}
+
+/// Runs `irsig-run`.
+///
+/// # Errors
+/// A malformed or inconsistent pipeline file (with its line and column), a failed stage,
+/// or an unwritable Makefile.
+pub fn run(cli: Cli) -> miette::Result<()> {
+    let pipeline = Pipeline::load(&cli.pipeline)?;
+    let plan = pipeline.plan(&tools())?;
+    if let Some(path) = &cli.emit_makefile {
+        let text = plan.makefile()?;
+        return irsig_cli::write_output(Some(path), |w| w.write_all(text.as_bytes()));
+    }
+    if cli.dry_run {
+        let steps = plan.dry_run(cli.force)?;
+        let mut text = String::new();
+        let dir = plan.base_dir();
+        if dir != std::path::Path::new(".") && !steps.is_empty() {
+            let d = dir.display().to_string();
+            text.push_str(&format!("cd {}\n", irsig_pipeline::shell_quote(&d)));
+        }
+        for step in steps {
+            text.push_str(&step.command_line());
+            text.push('\n');
+        }
+        return irsig_cli::write_output(None, |w| w.write_all(text.as_bytes()));
+    }
+    let jobs = cli.jobs.map_or_else(
+        || std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+        |j| usize::try_from(j).unwrap_or(1),
+    );
+    let quiet = cli.quiet;
+    let report = move |event: Event<'_>| {
+        if quiet {
+            return;
+        }
+        match event {
+            Event::UpToDate(step) => eprintln!("  up to date  {}", step.name),
+            Event::Started(step) => {
+                eprintln!("     running  {}: {}", step.name, step.command_line());
+            }
+            _ => {}
+        }
+    };
+    let summary = plan.run(
+        RunOptions {
+            jobs,
+            force: cli.force,
+        },
+        &report,
+    )?;
+    if !quiet {
+        eprintln!(
+            "irsig-run: {} stage(s) ran, {} up to date",
+            summary.ran, summary.up_to_date
+        );
+    }
+    Ok(())
+}
