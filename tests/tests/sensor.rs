@@ -1,0 +1,265 @@
+//! `irsig-sensor` end to end: a radiance EXR through blur, reduction, noise and
+//! quantisation, from files and in a pipe; every side output; bad input and bad usage
+//! leave no output behind.
+
+use std::path::Path;
+
+use irsig_raster::{Raster, exr_bytes, read_exr};
+use irsig_tests::bin;
+use predicates::prelude::*;
+
+const W: usize = 24;
+const H: usize = 16;
+
+/// A 24 × 16 radiance image: 40 W m^-2 sr^-1 on the left half, 60 on the right, with
+/// truth layers (material ids and a range with NaN where "nothing was hit").
+fn scene() -> Raster {
+    let mut r = Raster::new(W, H);
+    let radiance: Vec<f32> = (0..W * H)
+        .map(|i| if i % W < W / 2 { 40.0 } else { 60.0 })
+        .collect();
+    let material: Vec<f32> = (0..W * H)
+        .map(|i| if i % W < 13 { 1.0 } else { 2.0 })
+        .collect();
+    let range: Vec<f32> = (0..W * H)
+        .map(|i| {
+            if i / W < 2 {
+                f32::NAN
+            } else {
+                100.0 + (i / W) as f32
+            }
+        })
+        .collect();
+    r.push_layer("radiance", "W m^-2 sr^-1", radiance).unwrap();
+    r.push_layer("material_primary", "", material).unwrap();
+    r.push_layer("range", "m", range).unwrap();
+    r
+}
+
+fn write_scene(dir: &Path) -> std::path::PathBuf {
+    let p = dir.join("radiance.exr");
+    std::fs::write(&p, exr_bytes(&scene()).unwrap()).unwrap();
+    p
+}
+
+#[test]
+fn box_blur_matches_the_thesis_by_hand_and_every_output_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    let out = dir.path().join("sensor.exr");
+    let (dc, lut, t, grey, colour) = (
+        dir.path().join("dc.png"),
+        dir.path().join("dc.lut"),
+        dir.path().join("t.exr"),
+        dir.path().join("grey.png"),
+        dir.path().join("colour.png"),
+    );
+    bin("irsig-sensor")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .args(["--mtf", "box:5x5", "--dc-per-kelvin", "4", "--dc-png"])
+        .arg(&dc)
+        .arg("--lut")
+        .arg(&lut)
+        .arg("--temperature-exr")
+        .arg(&t)
+        .arg("--preview")
+        .arg(&grey)
+        .arg("--colour-preview")
+        .arg(&colour)
+        .assert()
+        .success();
+    let r = read_exr(&std::fs::read(&out).unwrap()).unwrap();
+    let radiance = &r.layer("radiance").unwrap().data;
+    // Column 11 sees columns 9..=13 through the 5-wide box: three at 40, two at 60.
+    let by_hand = (3.0 * 40.0 + 2.0 * 60.0) / 5.0;
+    assert!((radiance[5 * W + 11] - by_hand).abs() < 1e-4);
+    // Far from the step nothing changes; reflect edges keep the borders level.
+    assert!((radiance[5 * W] - 40.0).abs() < 1e-4);
+    assert!((radiance[5 * W + W - 1] - 60.0).abs() < 1e-4);
+    // Truth layers pass through unchanged (NaN included) and keep their units.
+    let range = r.layer("range").unwrap();
+    assert_eq!(range.unit, "m");
+    assert!(range.data[0].is_nan() && (range.data[5 * W] - 105.0).abs() < 1e-6);
+    assert_eq!(
+        r.layer("material_primary").unwrap().data,
+        scene().layer("material_primary").unwrap().data
+    );
+    // The LUT has a header and one line per 8-bit count.
+    let lut_text = std::fs::read_to_string(&lut).unwrap();
+    assert_eq!(lut_text.lines().count(), 257);
+    assert!(lut_text.starts_with("# dc radiance_w_m2_sr temperature_k temperature_c"));
+    let t_exr = read_exr(&std::fs::read(&t).unwrap()).unwrap();
+    let temperature = &t_exr.layer("apparent_temperature").unwrap().data;
+    // 40 and 60 W m^-2 sr^-1 in 8-14 um are blackbodies of roughly 278 K and 313 K.
+    assert!((270.0..290.0).contains(&temperature[5 * W]));
+    assert!((305.0..320.0).contains(&temperature[5 * W + W - 1]));
+    for png in [&dc, &grey, &colour] {
+        let bytes = std::fs::read(png).unwrap();
+        assert_eq!(&bytes[1..4], b"PNG", "{}", png.display());
+    }
+}
+
+#[test]
+fn pipe_gives_the_same_image_as_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    let out = dir.path().join("sensor.exr");
+    let args = [
+        "--mtf",
+        "gauss:hp=0.25",
+        "--mtf",
+        "jitter:0.3",
+        "--nedt-k",
+        "0.1",
+    ];
+    bin("irsig-sensor")
+        .arg(&input)
+        .arg("-o")
+        .arg(&out)
+        .args(args)
+        .assert()
+        .success();
+    let piped = bin("irsig-sensor")
+        .args(["-", "-o", "-"])
+        .args(args)
+        .write_stdin(std::fs::read(&input).unwrap())
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    assert_eq!(piped, std::fs::read(&out).unwrap());
+}
+
+#[test]
+fn noise_is_reproducible_by_seed() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    let run = |seed: &str| {
+        bin("irsig-sensor")
+            .arg(&input)
+            .args(["--nedt-k", "0.05", "--seed", seed])
+            .assert()
+            .success()
+            .get_output()
+            .stdout
+            .clone()
+    };
+    assert_eq!(run("3"), run("3"));
+    assert_ne!(run("3"), run("4"));
+}
+
+#[test]
+fn supersampled_input_is_reduced_consistently() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    let out = bin("irsig-sensor")
+        .arg(&input)
+        .args(["--samples-per-pixel", "2"])
+        .assert()
+        .success()
+        .get_output()
+        .stdout
+        .clone();
+    let r = read_exr(&out).unwrap();
+    assert_eq!((r.width, r.height), (W / 2, H / 2));
+    // Sensor column 6 integrates render columns 12 and 13: material 1 and 2 tie, the
+    // smaller id wins; radiance is the mean, 60.
+    let m = &r.layer("material_primary").unwrap().data;
+    assert!((m[6] - 1.0).abs() < 1e-6 && (m[7] - 2.0).abs() < 1e-6);
+    let l = &r.layer("radiance").unwrap().data;
+    assert!((l[6] - 60.0).abs() < 1e-4 && (l[5] - 40.0).abs() < 1e-4);
+    // Range: row 0 of the sensor covers render rows 0-1, all NaN.
+    let range = &r.layer("range").unwrap().data;
+    assert!(range[0].is_nan() && (range[W / 2] - 102.5).abs() < 1e-4);
+}
+
+#[test]
+fn bad_input_names_the_problem_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    // No radiance layer.
+    let mut r = Raster::new(4, 4);
+    r.push_layer("range", "m", vec![1.0; 16]).unwrap();
+    let no_radiance = dir.path().join("no_radiance.exr");
+    std::fs::write(&no_radiance, exr_bytes(&r).unwrap()).unwrap();
+    let out = dir.path().join("out.exr");
+    let lut = dir.path().join("lut.txt");
+    bin("irsig-sensor")
+        .arg(&no_radiance)
+        .arg("-o")
+        .arg(&out)
+        .args(["--dc-per-kelvin", "2", "--lut"])
+        .arg(&lut)
+        .assert()
+        .code(1)
+        .stderr(
+            predicate::str::contains("no `radiance` layer").and(predicate::str::contains("range")),
+        );
+    assert!(!out.exists() && !lut.exists());
+
+    // A NaN radiance is named by column and row.
+    let mut r = Raster::new(4, 4);
+    let mut data = vec![50.0; 16];
+    data[2 * 4 + 3] = f32::NAN;
+    r.push_layer("radiance", "W m^-2 sr^-1", data).unwrap();
+    let nan = dir.path().join("nan.exr");
+    std::fs::write(&nan, exr_bytes(&r).unwrap()).unwrap();
+    bin("irsig-sensor")
+        .arg(&nan)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("x 3, y 2").and(predicate::str::contains("nan.exr")));
+    assert!(!out.exists());
+
+    // Not an EXR at all.
+    let junk = dir.path().join("junk.exr");
+    std::fs::write(&junk, b"not an image").unwrap();
+    bin("irsig-sensor")
+        .arg(&junk)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("junk.exr"));
+
+    // A size that does not divide by k.
+    let odd = dir.path().join("odd.exr");
+    let mut r = Raster::new(5, 4);
+    r.push_layer("radiance", "W m^-2 sr^-1", vec![50.0; 20])
+        .unwrap();
+    std::fs::write(&odd, exr_bytes(&r).unwrap()).unwrap();
+    bin("irsig-sensor")
+        .arg(&odd)
+        .args(["--samples-per-pixel", "2"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("multiples"));
+}
+
+#[test]
+fn bad_usage_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    // Counts without a calibration.
+    bin("irsig-sensor")
+        .arg(&input)
+        .arg("--dc-png")
+        .arg(dir.path().join("dc.png"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("calibration"));
+    // A malformed MTF.
+    bin("irsig-sensor")
+        .arg(&input)
+        .args(["--mtf", "box:0x3"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("box width_px"));
+    bin("irsig-sensor")
+        .arg(&input)
+        .args(["--band-min-um", "14", "--band-max-um", "8"])
+        .assert()
+        .code(2);
+}

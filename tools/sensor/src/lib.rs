@@ -1,0 +1,420 @@
+//! `irsig-sensor`: what a thermal imager makes of the radiance field the tracer computed
+//! (thesis §3.4, §4.2, §5.2).
+//!
+//! Reads the tracer's multi-layer EXR (path or `-`), blurs its `radiance` layer
+//! (W m⁻² sr⁻¹) by the cascaded MTF given with `--mtf` (by FFT, edges by `--edge`),
+//! reduces it from the render grid to the sensor grid when the input was rendered at
+//! `--samples-per-pixel` k > 1, adds NEΔT noise when asked, and writes the same EXR with
+//! the sensor's radiance (truth layers pass through, or are reduced consistently when the
+//! resolution changes). On request it also writes the apparent-temperature EXR, the
+//! digital-count PNG and its LUT, a grey preview and a colour preview with a kelvin colour
+//! bar. All outputs appear together or not at all. File forms: `formats/sensor.md`.
+//!
+//! ```no_run
+//! use clap::Parser;
+//! let cli = irsig_sensor::Cli::parse_from([
+//!     "irsig-sensor", "radiance.exr", "-o", "sensor.exr", "--mtf", "box:5x5",
+//!     "--dc-per-kelvin", "4", "--dc-png", "dc.png", "--lut", "dc.lut",
+//! ]);
+//! irsig_sensor::run(cli)?;
+//! # Ok::<(), miette::Report>(())
+//! ```
+
+pub mod band;
+mod preview;
+pub mod spec;
+
+use std::path::PathBuf;
+
+use clap::{Parser, ValueEnum};
+use irsig_raster::{Raster, exr_bytes, read_exr};
+use irsig_sensor_model::blur::{EdgeMode, blur};
+use irsig_sensor_model::mtf::{Mtf, MtfChain};
+use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
+use irsig_sensor_model::quantise::{BandConversion, Quantiser, apparent_temperature};
+use irsig_sensor_model::sample::{reduce_majority, reduce_mean, reduce_mean_ignoring_nan};
+use irsig_sensor_model::{Plane, SensorError};
+use miette::{IntoDiagnostic, WrapErr, miette};
+
+/// The name of the layer the sensor acts on.
+pub const RADIANCE_LAYER: &str = "radiance";
+
+/// Command line of `irsig-sensor`.
+#[derive(Debug, Parser)]
+#[command(
+    name = "irsig-sensor",
+    version,
+    about = "Blur, sample, add noise to and quantise a radiance EXR as a thermal imager would",
+    after_help = "Example:\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
+gauss:hp=0.25 | ss:across=0.3,along=0.2 | diffraction:lambda-um=10,f=2,pitch-um=25 | \
+footprint:1x1 | motion:len=3,angle=30 | jitter:0.3 | jitter:x=0.3,y=0.5"
+)]
+pub struct Cli {
+    /// The tracer's radiance EXR (with a `radiance` layer in W m^-2 sr^-1), or `-`.
+    #[arg(default_value = "-")]
+    pub input: String,
+
+    /// The output EXR (`-` or absent: stdout).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+
+    /// One MTF component; repeat to cascade them (their product, eq. 12).
+    #[arg(long = "mtf", value_name = "KIND:PARAMS", value_parser = spec::parse_mtf)]
+    pub mtf: Vec<Mtf>,
+
+    /// How the image continues beyond its edges for the blur.
+    #[arg(long, value_enum, default_value_t = Edge::Reflect)]
+    pub edge: Edge,
+
+    /// The input was rendered at this many samples per sensor pixel in each direction;
+    /// after the blur each k x k block is averaged into one detector.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=64))]
+    pub samples_per_pixel: u32,
+
+    /// Layers to reduce by majority rather than by mean when k > 1 (in addition to
+    /// `material*`, `event`, `interaction*` and `*_id`).
+    #[arg(long = "categorical", value_name = "LAYER")]
+    pub categorical: Vec<String>,
+
+    /// Short end of the spectral band, micrometres.
+    #[arg(long, default_value_t = 8.0)]
+    pub band_min_um: f64,
+
+    /// Long end of the spectral band, micrometres.
+    #[arg(long, default_value_t = 14.0)]
+    pub band_max_um: f64,
+
+    /// Noise-equivalent temperature difference, kelvin: adds Gaussian noise of
+    /// σ = NEdT·dL/dT(reference) to the radiance.
+    #[arg(long)]
+    pub nedt_k: Option<f64>,
+
+    /// The temperature the NEdT is quoted at, kelvin.
+    #[arg(long, default_value_t = 300.0)]
+    pub nedt_reference_k: f64,
+
+    /// Seed of the noise: the same seed gives the same noise, bit for bit.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+
+    /// Bits per digital count (1-16).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=16))]
+    pub bits: u8,
+
+    /// Fixed gain, counts per W m^-2 sr^-1 (with --offset-dc).
+    #[arg(long, conflicts_with = "dc_per_kelvin")]
+    pub gain_dc_per_radiance: Option<f64>,
+
+    /// Fixed offset, the count of zero radiance (with --gain-dc-per-radiance).
+    #[arg(long, requires = "gain_dc_per_radiance")]
+    pub offset_dc: Option<f64>,
+
+    /// Gain in counts per kelvin: the thesis's auto-bias (Figure 14) puts the scene's
+    /// mid radiance at mid-scale; with --reference-k the calibration is fixed instead.
+    #[arg(long)]
+    pub dc_per_kelvin: Option<f64>,
+
+    /// Fixed calibration: the temperature (K) at which the gain is --dc-per-kelvin and
+    /// whose blackbody radiance maps to --dc-at-reference.
+    #[arg(long, requires = "dc_per_kelvin")]
+    pub reference_k: Option<f64>,
+
+    /// Fixed calibration: the count of a blackbody at --reference-k (default mid-scale).
+    #[arg(long, requires = "reference_k")]
+    pub dc_at_reference: Option<f64>,
+
+    /// Write the digital counts as a grey PNG (8-bit up to 8 bits, else 16-bit, counts
+    /// unscaled).
+    #[arg(long)]
+    pub dc_png: Option<PathBuf>,
+
+    /// Write the LUT: count, radiance, K, degC for every count.
+    #[arg(long)]
+    pub lut: Option<PathBuf>,
+
+    /// Write the apparent (blackbody) temperature of the sensor's radiance, K, as an EXR.
+    #[arg(long)]
+    pub temperature_exr: Option<PathBuf>,
+
+    /// Write a grey preview PNG: apparent temperature stretched from its minimum (black)
+    /// to its maximum (white).
+    #[arg(long)]
+    pub preview: Option<PathBuf>,
+
+    /// Bits of the grey preview.
+    #[arg(long, value_enum, default_value_t = PreviewBits::Eight)]
+    pub preview_bits: PreviewBits,
+
+    /// Write a colour preview PNG (inferno map) with a colour bar labelled in kelvin.
+    #[arg(long)]
+    pub colour_preview: Option<PathBuf>,
+}
+
+/// `--preview-bits`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum PreviewBits {
+    /// 8-bit grey.
+    #[value(name = "8")]
+    Eight,
+    /// 16-bit grey.
+    #[value(name = "16")]
+    Sixteen,
+}
+
+/// `--edge`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Edge {
+    /// Mirror about the edge (… c b a | a b c …).
+    Reflect,
+    /// Zero radiance beyond the edge.
+    Zero,
+    /// Periodic.
+    Wrap,
+}
+
+impl From<Edge> for EdgeMode {
+    fn from(e: Edge) -> Self {
+        match e {
+            Edge::Reflect => Self::Reflect,
+            Edge::Zero => Self::Zero,
+            Edge::Wrap => Self::Wrap,
+        }
+    }
+}
+
+/// How counts are calibrated, from the command line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Calibration {
+    /// `--gain-dc-per-radiance`, `--offset-dc`.
+    GainOffset {
+        /// Counts per W m^-2 sr^-1.
+        gain_dc_per_w_m2_sr: f64,
+        /// Count of zero radiance.
+        offset_dc: f64,
+    },
+    /// `--dc-per-kelvin` alone: Figure 14.
+    AutoBias {
+        /// Counts per kelvin at the scene's mid radiance.
+        dc_per_kelvin: f64,
+    },
+    /// `--dc-per-kelvin` with `--reference-k`.
+    Fixed {
+        /// Counts per kelvin at the reference.
+        dc_per_kelvin: f64,
+        /// Reference temperature, K.
+        reference_k: f64,
+        /// Count of the reference blackbody.
+        dc_at_reference: f64,
+    },
+}
+
+impl Cli {
+    /// The count calibration the flags ask for, if any.
+    #[must_use]
+    pub fn calibration(&self) -> Option<Calibration> {
+        if let Some(g) = self.gain_dc_per_radiance {
+            return Some(Calibration::GainOffset {
+                gain_dc_per_w_m2_sr: g,
+                offset_dc: self.offset_dc.unwrap_or(0.0),
+            });
+        }
+        let dc_per_kelvin = self.dc_per_kelvin?;
+        Some(match self.reference_k {
+            Some(reference_k) => Calibration::Fixed {
+                dc_per_kelvin,
+                reference_k,
+                dc_at_reference: self
+                    .dc_at_reference
+                    .unwrap_or(f64::from(1u32 << (self.bits - 1))),
+            },
+            None => Calibration::AutoBias { dc_per_kelvin },
+        })
+    }
+}
+
+/// Whether a truth layer holds labels (reduced by majority) rather than quantities.
+#[must_use]
+pub fn is_categorical(name: &str, extra: &[String]) -> bool {
+    name.starts_with("material")
+        || name.starts_with("interaction")
+        || name == "event"
+        || name.ends_with("_id")
+        || extra.iter().any(|e| e == name)
+}
+
+/// What the sensor made of one input.
+#[derive(Debug, Clone)]
+pub struct SensorOutput {
+    /// The input's layers with `radiance` replaced by the sensor's, at the sensor grid.
+    pub raster: Raster,
+    /// The sensor's radiance, W m^-2 sr^-1.
+    pub radiance: Vec<f32>,
+}
+
+/// Everything `process` needs besides the image.
+#[derive(Debug, Clone)]
+pub struct Settings {
+    /// The MTF cascade.
+    pub chain: MtfChain,
+    /// Edge handling.
+    pub edge: EdgeMode,
+    /// Render samples per sensor pixel.
+    pub samples_per_pixel: u32,
+    /// Extra categorical layer names.
+    pub categorical: Vec<String>,
+    /// NEdT in K and its reference temperature, if noise is wanted.
+    pub nedt: Option<(f64, f64)>,
+    /// Noise seed.
+    pub seed: u64,
+}
+
+/// Blur, reduce and add noise: the sensor's radiance and the consistent truth layers.
+///
+/// # Errors
+/// A missing `radiance` layer, a non-finite radiance, a size that does not divide by k,
+/// or invalid settings.
+pub fn process(
+    input: &Raster,
+    settings: &Settings,
+    band: &impl BandConversion,
+) -> miette::Result<SensorOutput> {
+    let layer = input.layer(RADIANCE_LAYER).ok_or_else(|| {
+        let names: Vec<&str> = input.layers.iter().map(|l| l.name.as_str()).collect();
+        miette!(
+            "no `{RADIANCE_LAYER}` layer (W m^-2 sr^-1) in the input; it has: {}",
+            names.join(", ")
+        )
+    })?;
+    let k = settings.samples_per_pixel as usize;
+    let plane = Plane::from_f32(input.width, input.height, &layer.data).map_err(sensor)?;
+    plane
+        .check_finite()
+        .map_err(|e| miette!("layer `{RADIANCE_LAYER}`: {e}"))?;
+    let blurred = blur(
+        &plane,
+        &settings.chain,
+        settings.edge,
+        settings.samples_per_pixel,
+    )
+    .map_err(sensor)?;
+    let mut sensor_plane = reduce_mean(&blurred, k).map_err(sensor)?;
+    if let Some((nedt_k, reference_k)) = settings.nedt {
+        let sigma = nedt_radiance_sigma(nedt_k, reference_k, band).map_err(sensor)?;
+        add_gaussian_noise(&mut sensor_plane, sigma, settings.seed).map_err(sensor)?;
+    }
+    let radiance = sensor_plane.to_f32();
+    let mut raster = Raster::new(sensor_plane.width, sensor_plane.height);
+    for l in &input.layers {
+        let data = if l.name == RADIANCE_LAYER {
+            radiance.clone()
+        } else if k == 1 {
+            l.data.clone()
+        } else if is_categorical(&l.name, &settings.categorical) {
+            reduce_majority(&l.data, input.width, input.height, k).map_err(sensor)?
+        } else {
+            reduce_mean_ignoring_nan(&l.data, input.width, input.height, k).map_err(sensor)?
+        };
+        raster
+            .push_layer(l.name.clone(), l.unit.clone(), data)
+            .into_diagnostic()?;
+    }
+    Ok(SensorOutput { raster, radiance })
+}
+
+fn sensor(e: SensorError) -> miette::Report {
+    miette!("{e}")
+}
+
+/// Runs the tool.
+///
+/// # Errors
+/// Bad input (named), bad usage (exit 2), or an output that cannot be written.
+pub fn run(cli: Cli) -> miette::Result<()> {
+    let wants_counts = cli.dc_png.is_some() || cli.lut.is_some();
+    let calibration = cli.calibration();
+    if wants_counts && calibration.is_none() {
+        return Err(irsig_cli::usage_error(
+            "--dc-png and --lut need a calibration: --dc-per-kelvin (auto-bias), \
+             --dc-per-kelvin with --reference-k (fixed), or --gain-dc-per-radiance",
+        ));
+    }
+    if !(cli.band_min_um.is_finite() && cli.band_max_um.is_finite())
+        || cli.band_min_um <= 0.0
+        || cli.band_max_um <= cli.band_min_um
+    {
+        return Err(irsig_cli::usage_error(format!(
+            "the band {} to {} um is empty: --band-min-um must be positive and below --band-max-um",
+            cli.band_min_um, cli.band_max_um
+        )));
+    }
+    let band = band::PlanckBand::new(cli.band_min_um, cli.band_max_um);
+
+    let input = irsig_cli::read_input(&cli.input)?;
+    let raster = read_exr(&input.bytes)
+        .map_err(|e| miette!("`{}` is not a readable EXR: {e}", input.name))?;
+    let settings = Settings {
+        chain: MtfChain::new(cli.mtf.clone()),
+        edge: cli.edge.into(),
+        samples_per_pixel: cli.samples_per_pixel,
+        categorical: cli.categorical.clone(),
+        nedt: cli.nedt_k.map(|n| (n, cli.nedt_reference_k)),
+        seed: cli.seed,
+    };
+    let out = process(&raster, &settings, &band).wrap_err_with(|| format!("`{}`", input.name))?;
+    let (w, h) = (out.raster.width, out.raster.height);
+
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let temperature =
+        if cli.temperature_exr.is_some() || cli.preview.is_some() || cli.colour_preview.is_some() {
+            Some(apparent_temperature(&out.radiance, w, &band).map_err(sensor)?)
+        } else {
+            None
+        };
+    if let (Some(path), Some(t)) = (&cli.temperature_exr, &temperature) {
+        let mut r = Raster::new(w, h);
+        r.push_layer("apparent_temperature", "K", t.clone())
+            .into_diagnostic()?;
+        files.push((path.clone(), exr_bytes(&r).into_diagnostic()?));
+    }
+    if let Some(cal) = calibration.filter(|_| wants_counts) {
+        let q = match cal {
+            Calibration::GainOffset {
+                gain_dc_per_w_m2_sr,
+                offset_dc,
+            } => Quantiser::from_gain_offset(cli.bits, gain_dc_per_w_m2_sr, offset_dc),
+            Calibration::AutoBias { dc_per_kelvin } => {
+                Quantiser::auto_bias_from_image(cli.bits, dc_per_kelvin, &out.radiance, &band)
+            }
+            Calibration::Fixed {
+                dc_per_kelvin,
+                reference_k,
+                dc_at_reference,
+            } => Quantiser::fixed(cli.bits, dc_per_kelvin, reference_k, dc_at_reference, &band),
+        }
+        .map_err(|e| miette!("quantisation: {e}"))?;
+        if let Some(path) = &cli.dc_png {
+            let counts = q.quantise(&out.radiance, w).map_err(sensor)?;
+            files.push((path.clone(), preview::counts_png(&counts, w, h, cli.bits)?));
+        }
+        if let Some(path) = &cli.lut {
+            files.push((path.clone(), q.lut(&band).to_string().into_bytes()));
+        }
+    }
+    if let (Some(path), Some(t)) = (&cli.preview, &temperature) {
+        files.push((path.clone(), preview::grey(t, w, h, cli.preview_bits)?));
+    }
+    if let (Some(path), Some(t)) = (&cli.colour_preview, &temperature) {
+        files.push((path.clone(), preview::colour_with_bar(t, w, h)?));
+    }
+    let exr = exr_bytes(&out.raster).into_diagnostic()?;
+    match &cli.output {
+        Some(p) if p.as_os_str() != "-" => {
+            files.push((p.clone(), exr));
+            irsig_cli::write_files_atomic(&files)
+        }
+        _ => {
+            irsig_cli::write_files_atomic(&files)?;
+            irsig_cli::write_output(None, |w| w.write_all(&exr))
+        }
+    }
+}

@@ -1,0 +1,141 @@
+//! PNG encodings of the sensor's outputs: digital counts, and previews of the apparent
+//! temperature (grey, and colour with a colour bar labelled in kelvin).
+
+use irsig_raster::{write_png_gray8, write_png_gray16, write_png_rgb8};
+use miette::IntoDiagnostic;
+
+use crate::PreviewBits;
+
+/// Counts as a grey PNG: 8-bit when they fit, else 16-bit, unscaled.
+pub fn counts_png(counts: &[u16], w: usize, h: usize, bits: u8) -> miette::Result<Vec<u8>> {
+    let mut out = Vec::new();
+    if bits <= 8 {
+        let bytes: Vec<u8> = counts.iter().map(|&c| c.min(255) as u8).collect();
+        write_png_gray8(&mut out, w, h, &bytes).into_diagnostic()?;
+    } else {
+        write_png_gray16(&mut out, w, h, counts).into_diagnostic()?;
+    }
+    Ok(out)
+}
+
+/// The finite range of the temperatures (a flat image gets a 1 K span so it maps to
+/// mid-grey rather than dividing by zero).
+fn range(t: &[f32]) -> (f64, f64) {
+    let (lo, hi) = t
+        .iter()
+        .filter(|v| v.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(f64::from(v)), hi.max(f64::from(v)))
+        });
+    if !lo.is_finite() {
+        return (0.0, 1.0);
+    }
+    if hi - lo < 1e-9 {
+        return (lo - 0.5, hi + 0.5);
+    }
+    (lo, hi)
+}
+
+fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
+    ((f64::from(v) - lo) / (hi - lo)).clamp(0.0, 1.0)
+}
+
+/// Apparent temperature stretched linearly from its minimum (black) to maximum (white).
+pub fn grey(t: &[f32], w: usize, h: usize, bits: PreviewBits) -> miette::Result<Vec<u8>> {
+    let r = range(t);
+    let mut out = Vec::new();
+    match bits {
+        PreviewBits::Eight => {
+            let v: Vec<u8> = t
+                .iter()
+                .map(|&x| (unit(x, r) * 255.0).round() as u8)
+                .collect();
+            write_png_gray8(&mut out, w, h, &v).into_diagnostic()?;
+        }
+        PreviewBits::Sixteen => {
+            let v: Vec<u16> = t
+                .iter()
+                .map(|&x| (unit(x, r) * 65535.0).round() as u16)
+                .collect();
+            write_png_gray16(&mut out, w, h, &v).into_diagnostic()?;
+        }
+    }
+    Ok(out)
+}
+
+const GAP: usize = 6;
+const BAR: usize = 16;
+const TICK: usize = 4;
+const GLYPH: usize = 8;
+const LABEL_CHARS: usize = 7;
+const MIN_HEIGHT: usize = 64;
+
+/// The image in the inferno colour map (coldest dark, hottest bright) with, to its right, a
+/// vertical colour bar from the minimum (bottom) to the maximum (top) temperature and five
+/// labelled ticks in kelvin. The canvas is at least 64 pixels tall so that labels fit.
+pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>> {
+    let r = range(t);
+    let cw = w + GAP + BAR + TICK + 2 + LABEL_CHARS * GLYPH + 2;
+    let ch = h.max(MIN_HEIGHT);
+    let mut rgb = vec![0u8; cw * ch * 3];
+    let mut put = |x: usize, y: usize, c: [u8; 3]| {
+        if x < cw && y < ch {
+            let i = (y * cw + x) * 3;
+            rgb[i..i + 3].copy_from_slice(&c);
+        }
+    };
+    let colour = |u: f64| {
+        let c = colorous::INFERNO.eval_continuous(u);
+        [c.r, c.g, c.b]
+    };
+    for y in 0..h {
+        for x in 0..w {
+            let v = t[y * w + x];
+            // NaN (no data) shows as mid-grey, outside the colour map.
+            let c = if v.is_finite() {
+                colour(unit(v, r))
+            } else {
+                [128, 128, 128]
+            };
+            put(x, y, c);
+        }
+    }
+    // The bar spans rows top..=bottom, leaving half a glyph above and below for labels.
+    let top = GLYPH / 2;
+    let bottom = ch - 1 - GLYPH / 2;
+    let x0 = w + GAP;
+    for y in top..=bottom {
+        let u = (bottom - y) as f64 / (bottom - top) as f64;
+        for x in x0..x0 + BAR {
+            put(x, y, colour(u));
+        }
+    }
+    let white = [255, 255, 255];
+    for i in 0..5_u8 {
+        let u = f64::from(i) / 4.0;
+        let y = bottom - ((bottom - top) as f64 * u).round() as usize;
+        for x in x0 + BAR..x0 + BAR + TICK {
+            put(x, y, white);
+        }
+        let label = format!("{:.1}K", r.0 + u * (r.1 - r.0));
+        let lx = x0 + BAR + TICK + 2;
+        let ly = y.saturating_sub(GLYPH / 2);
+        for (n, ch) in label.chars().take(LABEL_CHARS).enumerate() {
+            let glyph = font8x8::legacy::BASIC_LEGACY
+                .get(ch as usize)
+                .copied()
+                .unwrap_or([0; 8]);
+            for (gy, bits) in glyph.iter().enumerate() {
+                for gx in 0..GLYPH {
+                    // Bit 0 is the leftmost pixel of the row.
+                    if bits >> gx & 1 == 1 {
+                        put(lx + n * GLYPH + gx, ly + gy, white);
+                    }
+                }
+            }
+        }
+    }
+    let mut out = Vec::new();
+    write_png_rgb8(&mut out, cw, ch, &rgb).into_diagnostic()?;
+    Ok(out)
+}
