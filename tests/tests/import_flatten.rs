@@ -251,11 +251,7 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
         ("garbled.glb", &["garbled.glb"]),
         (
             "http-uri.glb",
-            &[
-                "http-uri.glb",
-                "example.invalid/tri.bin",
-                "never fetches",
-            ],
+            &["http-uri.glb", "example.invalid/tri.bin", "never fetches"],
         ),
     ];
     for (file, expect) in cases {

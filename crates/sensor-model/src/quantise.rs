@@ -31,6 +31,20 @@ pub trait BandConversion {
     fn temperature(&self, radiance_w_m2_sr: f64) -> f64;
 }
 
+/// The project's band model: exact band radiance (8–14 µm by default, optional sensor
+/// response) from irsig-radiometry.
+impl BandConversion for irsig_radiometry::Band {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        irsig_radiometry::Band::radiance(self, temperature_k)
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        irsig_radiometry::Band::radiance_derivative(self, temperature_k)
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        irsig_radiometry::Band::temperature(self, radiance_w_m2_sr)
+    }
+}
+
 /// Highest supported number of bits per count.
 pub const MAX_BITS: u8 = 16;
 

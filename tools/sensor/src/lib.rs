@@ -20,7 +20,6 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
-pub mod band;
 mod preview;
 pub mod spec;
 
@@ -338,16 +337,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
              --dc-per-kelvin with --reference-k (fixed), or --gain-dc-per-radiance",
         ));
     }
-    if !(cli.band_min_um.is_finite() && cli.band_max_um.is_finite())
-        || cli.band_min_um <= 0.0
-        || cli.band_max_um <= cli.band_min_um
-    {
-        return Err(irsig_cli::usage_error(format!(
-            "the band {} to {} um is empty: --band-min-um must be positive and below --band-max-um",
+    let band = irsig_radiometry::Band::new(cli.band_min_um, cli.band_max_um).map_err(|e| {
+        irsig_cli::usage_error(format!(
+            "--band-min-um {} and --band-max-um {}: {e}",
             cli.band_min_um, cli.band_max_um
-        )));
-    }
-    let band = band::PlanckBand::new(cli.band_min_um, cli.band_max_um);
+        ))
+    })?;
 
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = read_exr(&input.bytes)
