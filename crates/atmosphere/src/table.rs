@@ -82,8 +82,17 @@ impl Table {
         let layered = self.profile.path(s);
         let (h, a) = (s.hi(), s.angle_deg());
         let t = &self.slant;
-        let dr = bilinear(&t.altitude_m, &t.nadir_deg, &self.depth_ratio, h, a);
-        let lr = bilinear(&t.altitude_m, &t.nadir_deg, &self.radiance_ratio, h, a);
+        let mut dr = bilinear(&t.altitude_m, &t.nadir_deg, &self.depth_ratio, h, a);
+        let mut lr = bilinear(&t.altitude_m, &t.nadir_deg, &self.radiance_ratio, h, a);
+        // Past the table's last angle the correction fades linearly to none at 90°: the
+        // edge correction describes long grazing paths to the ground, not horizontal ones
+        // (holding it costs 0.9 K on a 1 km horizontal path that `layered` gets to 0.4 K).
+        let last = t.nadir_deg.last().copied().unwrap_or(90.0);
+        if a > last && last < 90.0 {
+            let keep = ((90.0 - a) / (90.0 - last)).clamp(0.0, 1.0);
+            dr = 1.0 + keep * (dr - 1.0);
+            lr = 1.0 + keep * (lr - 1.0);
+        }
         let depth = -layered.transmission.max(1e-300).ln() * dr;
         PathTerms {
             transmission: (-depth).exp().clamp(0.0, 1.0),
