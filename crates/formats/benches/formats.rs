@@ -112,8 +112,7 @@ fn to_object(mesh: &irsig_formats::mesh::Mesh) -> Object {
 static RAW: LazyLock<RawScene> =
     LazyLock::new(|| irsig_scene::flatten(&scene(), &[&SPHERE]).unwrap());
 static RAW_RON: LazyLock<String> = LazyLock::new(|| canonical::to_ron(&*RAW).unwrap());
-static RAW_BIN: LazyLock<Vec<u8>> =
-    LazyLock::new(|| canonical::binary::encode(&RAW).unwrap());
+static RAW_BIN: LazyLock<Vec<u8>> = LazyLock::new(|| canonical::binary::encode(&RAW).unwrap());
 
 #[divan::bench(sample_count = 3, sample_size = 1)]
 fn obj_parse(b: Bencher) {
@@ -128,7 +127,10 @@ fn obj_import_and_flatten(b: Bencher) {
         .counter(ItemsCount::new(TRIANGLES))
         .bench(|| {
             let object = to_object(&read_obj("s.obj", &OBJ, None).unwrap());
-            irsig_scene::flatten(&scene(), &[&object]).unwrap().facets.len()
+            irsig_scene::flatten(&scene(), &[&object])
+                .unwrap()
+                .facets
+                .len()
         });
 }
 
@@ -138,7 +140,10 @@ fn glb_import_and_flatten(b: Bencher) {
         .counter(ItemsCount::new(TRIANGLES))
         .bench(|| {
             let object = to_object(&read_gltf("s.glb", &GLB, None).unwrap());
-            irsig_scene::flatten(&scene(), &[&object]).unwrap().facets.len()
+            irsig_scene::flatten(&scene(), &[&object])
+                .unwrap()
+                .facets
+                .len()
         });
 }
 

@@ -1,3 +1,5 @@
+use std::sync::Arc;
+
 use miette::{Diagnostic, NamedSource, SourceSpan};
 
 /// A malformed input: which file, where in it, and what was expected there.
@@ -16,8 +18,10 @@ pub struct ParseError {
     pub column: usize,
     /// What is wrong, said as "expected X, found Y" where that fits.
     pub message: String,
+    // Behind an `Arc` so that `Result<_, ParseError>` stays small (clippy's
+    // `result_large_err`) and cloning an error does not copy the file.
     #[source_code]
-    source_code: NamedSource<String>,
+    source_code: Arc<NamedSource<String>>,
     #[label("here")]
     span: SourceSpan,
     #[help]
@@ -51,7 +55,7 @@ impl ParseError {
         let len = len.min(source.len() - offset);
         let (line, column) = line_column(source, offset);
         Self {
-            source_code: NamedSource::new(file.clone(), source.to_owned()),
+            source_code: Arc::new(NamedSource::new(file.clone(), source.to_owned())),
             file,
             line,
             column,
@@ -67,7 +71,7 @@ impl ParseError {
     pub fn in_binary(file: impl Into<String>, offset: usize, message: impl Into<String>) -> Self {
         let file = file.into();
         Self {
-            source_code: NamedSource::new(file.clone(), String::new()),
+            source_code: Arc::new(NamedSource::new(file.clone(), String::new())),
             file,
             line: 1,
             column: offset.saturating_add(1),

@@ -18,6 +18,7 @@
 
 pub mod canonical;
 mod error;
+pub mod legacy;
 pub mod mesh;
 
 pub use error::{ParseError, line_column};
