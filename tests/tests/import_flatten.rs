@@ -341,3 +341,83 @@ fn obj_from_stdin_with_format() {
     // The MTL is not looked for when the OBJ comes from stdin: a warning says so.
     assert!(String::from_utf8_lossy(&out.stderr).contains("standard input"));
 }
+
+/// A library with the material index the thesis's sample facet file uses (6).
+const LIBRARY_6: &str = "(materials: [(id: 6, name: \"six\", emissivity: [(0.0, 0.9)], specular_fraction: 0.0, source: \"test\")])";
+
+#[test]
+fn legacy_facet_file_and_legacy_scene_in_km() {
+    let dir = tempfile::tempdir().unwrap();
+    let fac = repo_root().join("formats/legacy/samples/thesis-4facets.fac");
+    std::fs::copy(&fac, dir.path().join("thesis-4facets.fac")).unwrap();
+    std::fs::write(dir.path().join("lib.ron"), LIBRARY_6).unwrap();
+    // Import: 4 facets, km to m, material index 6 is id 6.
+    let out = bin("irsig-import")
+        .arg(&fac)
+        .args(["--unit", "km", "--materials"])
+        .arg(dir.path().join("lib.ron"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let object: irsig_model::Object =
+        irsig_formats::canonical::from_ron("fac", &String::from_utf8(out.stdout).unwrap()).unwrap();
+    assert_eq!(object.facets.len(), 4);
+    assert!(object.facets.iter().all(|f| f.material.0 == 6));
+    assert!(
+        object
+            .positions_m
+            .iter()
+            .any(|p| (p[0] + 4096.91).abs() < 1e-9 && (p[1] + 3133.2).abs() < 1e-9)
+    );
+    // Flatten a legacy scene: rotate 90° about z, translate (10, −3, 0.5) km, scale
+    // (0.5, 0.5, 1), 300 K. By hand, the vertex (−4.09691, −3.1332, 0) km scales to
+    // (−2.048455, −1.5666, 0), turns to (1.5666, −2.048455, 0) and moves to
+    // (11.5666, −5.048455, 0.5) km.
+    std::fs::write(
+        dir.path().join("scene.scn"),
+        "thesis-4facets.fac\n0 0 90\n10 -3 0.5\n0.5 0.5 1\n300\n",
+    )
+    .unwrap();
+    let out = bin("irsig-flatten")
+        .arg(dir.path().join("scene.scn"))
+        .args(["--unit", "km", "--ron", "--materials"])
+        .arg(dir.path().join("lib.ron"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let raw = irsig_formats::canonical::read_raw_scene("raw", &out.stdout).unwrap();
+    let want = [11_566.6, -5_048.455, 500.0];
+    assert!(
+        raw.positions_m
+            .iter()
+            .any(|q| (0..3).all(|k| (q[k] - want[k]).abs() < 1e-9)),
+        "{:?}",
+        &raw.positions_m[..3]
+    );
+    assert!(
+        raw.facets
+            .iter()
+            .all(|f| (f.temperature_k - 300.0).abs() < 1e-12)
+    );
+    // Without a temperature the same scene is an error pointing at the entry's line.
+    std::fs::write(
+        dir.path().join("cold.scn"),
+        "thesis-4facets.fac\n0 0 90\n10 -3 0.5\n0.5 0.5 1\n",
+    )
+    .unwrap();
+    let out = bin("irsig-flatten")
+        .arg(dir.path().join("cold.scn"))
+        .args(["--unit", "km", "--ron"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cold.scn:1:1"));
+}

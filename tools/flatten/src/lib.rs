@@ -1,6 +1,11 @@
 //! `irsig-flatten`: a scene and its objects in, a world-space raw scene out.
 //!
-//! The scene is canonical RON ([`irsig_model::Scene`]). Each placement's object file is
+//! The scene is canonical RON ([`irsig_model::Scene`]) or the 1990 scene file (object name
+//! and nine values, optional temperature; `irsig_formats::legacy::scene`), told apart by
+//! the extension (`.ron` is RON) or `--scene-format`. A legacy scene's translations are in
+//! its length unit, `--unit` (km for the 1990 data). An object file ending in `.ron` is a
+//! canonical object; any other is a legacy facet file read in `--unit`, whose material
+//! indices are material ids. Each placement's object file is
 //! read relative to the scene file's directory (the working directory when the scene comes
 //! from standard input); `--object NAME=PATH` replaces the file a placement names by
 //! another path or by `-` (standard input), which lets `irsig-import` feed it through a
@@ -19,9 +24,18 @@ use std::collections::HashMap;
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 
-use clap::Parser;
-use irsig_model::{MaterialLibrary, Object, Scene};
+use clap::{Parser, ValueEnum};
+use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object, Placement, Scene};
 use miette::miette;
+
+/// The scene file forms.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum SceneFormat {
+    /// Canonical RON.
+    Ron,
+    /// The 1990 scene file: object name, nine values, optional temperature.
+    Legacy,
+}
 
 /// Command line of `irsig-flatten`.
 #[derive(Debug, Parser)]
@@ -42,6 +56,13 @@ pub struct Cli {
     /// NAME is the `object` path exactly as the scene writes it. Repeatable.
     #[arg(long = "object", value_name = "NAME=PATH")]
     pub objects: Vec<String>,
+    /// The scene's form; by default `.ron` files (and stdin) are RON, others legacy.
+    #[arg(long, value_enum)]
+    pub scene_format: Option<SceneFormat>,
+    /// Length unit of legacy files: the legacy scene's translations and legacy facet
+    /// files' coordinates (km for the 1990 data). RON files are always in metres.
+    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    pub unit: LengthUnit,
     /// Check that every facet's material id is in this material library.
     #[arg(long, value_name = "LIBRARY")]
     pub materials: Option<PathBuf>,
@@ -51,6 +72,10 @@ pub struct Cli {
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+}
+
+fn parse_unit(s: &str) -> Result<LengthUnit, String> {
+    s.parse()
 }
 
 /// Runs `irsig-flatten`.
@@ -87,8 +112,45 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
 
     let scene_input = irsig_cli::read_input(&cli.scene)?;
-    let scene: Scene =
-        irsig_formats::canonical::from_ron_bytes(&scene_input.name, &scene_input.bytes)?;
+    let format = cli.scene_format.unwrap_or_else(|| {
+        if cli.scene == "-" || cli.scene.ends_with(".ron") {
+            SceneFormat::Ron
+        } else {
+            SceneFormat::Legacy
+        }
+    });
+    // For a legacy scene, where each entry starts, to point errors at it.
+    let mut entry_positions = Vec::new();
+    let scene: Scene = match format {
+        SceneFormat::Ron => {
+            irsig_formats::canonical::from_ron_bytes(&scene_input.name, &scene_input.bytes)?
+        }
+        SceneFormat::Legacy => {
+            let text = irsig_formats::legacy::decode(&scene_input.name, &scene_input.bytes)?;
+            let file = irsig_formats::legacy::scene::parse(&scene_input.name, text)?;
+            let metres = cli.unit.metres();
+            entry_positions = file.entries.iter().map(|e| e.position).collect();
+            Scene {
+                objects: file
+                    .entries
+                    .into_iter()
+                    .map(|e| Placement {
+                        object: PathBuf::from(e.object),
+                        rotation_deg: e.rotation_deg,
+                        translation_m: e.translation.map(|t| t * metres),
+                        scale: e.scale,
+                        temperature_k: e.temperature_k,
+                        overrides: Vec::new(),
+                    })
+                    .collect(),
+                ..Scene::default()
+            }
+        }
+    };
+    let where_placed = |i: Option<usize>| match i.and_then(|i| entry_positions.get(i)) {
+        Some(p) => format!("{}:{p}", scene_input.name),
+        None => scene_input.name.clone(),
+    };
     for name in replacements.keys() {
         if !scene.objects.iter().any(|p| &p.object == name) {
             return Err(irsig_cli::usage_error(format!(
@@ -116,7 +178,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 placement.object.display()
             ))
         })?;
-        let object: Object = irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
+        let object = if source == "-" || source.ends_with(".ron") {
+            irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?
+        } else {
+            legacy_object(&input, cli.unit)?
+        };
         loaded.insert(placement.object.clone(), object);
     }
     let objects: Vec<&Object> = scene
@@ -124,8 +190,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .iter()
         .filter_map(|p| loaded.get(&p.object))
         .collect();
-    let raw =
-        irsig_scene::flatten(&scene, &objects).map_err(|e| miette!("{}: {e}", scene_input.name))?;
+    let raw = irsig_scene::flatten(&scene, &objects)
+        .map_err(|e| miette!("{}: {e}", where_placed(e.placement)))?;
     if let Some(path) = &cli.materials {
         check_materials(path, &raw)?;
     }
@@ -136,6 +202,52 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             irsig_formats::canonical::binary::write(&raw, w)
         }
     })
+}
+
+/// A legacy facet file as a canonical object: coordinates from `unit` to metres, material
+/// indices as ids, facet temperatures kept. Checked here, so that a bad facet is reported
+/// at its line.
+fn legacy_object(input: &irsig_cli::Input, unit: LengthUnit) -> miette::Result<Object> {
+    let mesh = irsig_formats::mesh::read_legacy_object(&input.name, &input.bytes)?;
+    let metres = unit.metres();
+    let object = Object {
+        name: Path::new(&input.name)
+            .file_stem()
+            .map_or_else(|| "object".to_owned(), |s| s.to_string_lossy().into_owned()),
+        source: format!("legacy facet file {} (unit {unit:?})", input.name),
+        positions_m: mesh
+            .positions
+            .iter()
+            .map(|p| p.map(|c| c * metres))
+            .collect(),
+        facets: mesh
+            .triangles
+            .iter()
+            .map(|t| Facet {
+                vertices: t.vertices,
+                material: MaterialId(
+                    t.material
+                        .and_then(|m| mesh.materials.get(m as usize))
+                        .and_then(|m| m.id)
+                        .unwrap_or(0),
+                ),
+                temperature_k: t.temperature_k,
+            })
+            .collect(),
+    };
+    object.validate().map_err(|e| {
+        let place = e
+            .path
+            .strip_prefix("facets[")
+            .and_then(|r| r.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+            .map_or_else(
+                || input.name.clone(),
+                |i| mesh.triangle_location(i).to_string(),
+            );
+        miette!("{place}: {}: {}", e.path, e.kind)
+    })?;
+    Ok(object)
 }
 
 fn resolve(base: &Path, object: &Path) -> String {

@@ -1,10 +1,14 @@
 //! `irsig-import`: a mesh file in, a canonical irsig object (RON) out.
 //!
-//! Reads Wavefront OBJ (+ MTL) and glTF 2.0 / GLB (`irsig_formats::mesh`), converts
+//! Reads the 1990 Intergraph-derived facet file (`.fac`, `irsig_formats::legacy::object`),
+//! Wavefront OBJ (+ MTL) and glTF 2.0 / GLB (`irsig_formats::mesh`), converts
 //! lengths to metres (`--unit`, then `--scale`), maps every facet's material name to an id
 //! through a material library, and writes an [`irsig_model::Object`]. A facet whose
 //! material the library does not know is an error that names the material and where it is
-//! first used, unless `--default-material` names the material to use instead.
+//! first used, unless `--default-material` names the material to use instead. A facet
+//! file numbers its materials instead of naming them: its material index is the library's
+//! material id (a library converted from the 1990 material index file keeps its numbers).
+//! Facet temperatures in a facet file (an irsig extension) are kept.
 //!
 //! ```text
 //! irsig-import car.obj --materials materials.ron -o car.ron
@@ -21,6 +25,8 @@ use miette::miette;
 /// The mesh formats `irsig-import` reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum Format {
+    /// The 1990 Intergraph-derived facet (object) file: material indices are library ids.
+    Intergraph,
     /// Wavefront OBJ, with MTL files beside it.
     Obj,
     /// glTF 2.0, JSON (`.gltf`) or binary (`.glb`): the content tells which.
@@ -34,16 +40,16 @@ pub enum Format {
 #[command(
     name = "irsig-import",
     version,
-    about = "Mesh file (OBJ + MTL, glTF/GLB) -> canonical irsig object (RON)",
-    after_help = "Examples:\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --format obj --materials materials.ron > car.ron\n\n\
+    about = "Mesh file (Intergraph facet file, OBJ + MTL, glTF/GLB) -> canonical irsig object (RON)",
+    after_help = "Examples:\n  irsig-import vehicle.fac --unit km --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --format obj --materials materials.ron > car.ron\n\n\
 Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
-unnamed), mapped to ids through --materials. Lengths are converted to metres: --unit\n\
+unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: --unit\n\
 gives the file's unit (1990 data are in km), --scale multiplies on top."
 )]
 pub struct Cli {
     /// The mesh file, or `-` for standard input (then --format is required).
     pub input: String,
-    /// The format; by default from the file extension (.obj, .gltf, .glb).
+    /// The format; by default from the file extension (.fac, .obj, .gltf, .glb).
     #[arg(long, value_enum)]
     pub format: Option<Format>,
     /// The material library (canonical RON) that maps material names to ids.
@@ -86,7 +92,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         (Some(f), _) => f,
         (None, "-") => {
             return Err(irsig_cli::usage_error(
-                "reading standard input needs --format (obj, gltf or glb)",
+                "reading standard input needs --format (intergraph, obj, gltf or glb)",
             ));
         }
         (None, path) => format_of(path)?,
@@ -105,6 +111,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let input = irsig_cli::read_input(&cli.input)?;
     let base_dir = input.path.as_ref().map(|_| input.base_dir());
     let mesh = match format {
+        Format::Intergraph => mesh::read_legacy_object(&input.name, &input.bytes)?,
         Format::Obj => mesh::read_obj(&input.name, &input.bytes, base_dir.as_deref())?,
         Format::Gltf | Format::Glb => {
             mesh::read_gltf(&input.name, &input.bytes, base_dir.as_deref())?
@@ -129,11 +136,12 @@ fn format_of(path: &str) -> miette::Result<Format> {
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
     match ext.as_deref() {
+        Some("fac") => Ok(Format::Intergraph),
         Some("obj") => Ok(Format::Obj),
         Some("gltf") => Ok(Format::Gltf),
         Some("glb") => Ok(Format::Glb),
         _ => Err(irsig_cli::usage_error(format!(
-            "cannot tell the format of `{path}` from its extension; give --format obj, gltf or glb"
+            "cannot tell the format of `{path}` from its extension; give --format intergraph, obj, gltf or glb"
         ))),
     }
 }
@@ -147,7 +155,11 @@ fn read_library(path: &std::path::Path) -> miette::Result<MaterialLibrary> {
 }
 
 fn known_names(library: &MaterialLibrary) -> String {
-    let names: Vec<&str> = library.materials.iter().map(|m| m.name.as_str()).collect();
+    let names: Vec<String> = library
+        .materials
+        .iter()
+        .map(|m| format!("{} (id {})", m.name, m.id.0))
+        .collect();
     if names.is_empty() {
         "no materials".into()
     } else {
@@ -167,7 +179,11 @@ fn to_object(
     // Map each material name once.
     let mut ids = Vec::with_capacity(mesh.materials.len());
     for m in &mesh.materials {
-        let id = match (library.by_name(&m.name), default) {
+        let found = match m.id {
+            Some(id) => library.by_id(MaterialId(id)),
+            None => library.by_name(&m.name),
+        };
+        let id = match (found, default) {
             (Some(found), _) => found.id,
             (None, Some(d)) => d,
             (None, None) => {

@@ -344,6 +344,7 @@ impl Walk<'_> {
             let id = u32::try_from(self.mesh.materials.len()).unwrap_or(u32::MAX);
             self.mesh.materials.push(MaterialUse {
                 name,
+                id: None,
                 first_use: Location {
                     file: self.file.to_owned(),
                     line: None,

@@ -19,9 +19,15 @@
 //!   climb out of its directory (`..`); any other URI (`http://`, `file:///`, an absolute
 //!   path) is an error, and irsig never reaches the network. Every accessor is bounds-
 //!   checked against its buffer before it is read; sparse accessors are refused.
+//! - **Legacy facet files** ([`crate::legacy::object`]) become meshes too
+//!   ([`read_legacy_object`]): three vertices of their own per facet, the material index
+//!   kept as a number ([`MaterialUse::id`]), the optional facet temperature kept.
 
 mod gltf_read;
 mod obj;
+
+use crate::ParseError;
+use crate::legacy::object::ObjectFile;
 
 use std::fmt;
 
@@ -45,6 +51,9 @@ pub struct MaterialUse {
     /// The name (`usemtl` name, glTF material name, or `material N` for an unnamed glTF
     /// material).
     pub name: String,
+    /// For formats that number materials instead of naming them (the legacy facet file's
+    /// material index), the number: it is the material's id in the library.
+    pub id: Option<u16>,
     /// Where it is first used.
     pub first_use: Location,
 }
@@ -97,6 +106,57 @@ pub struct Mesh {
     pub warnings: Vec<String>,
     origins: Vec<Origin>,
     parts: Vec<String>,
+}
+
+/// Reads a legacy (Intergraph-derived) facet file into a [`Mesh`].
+///
+/// # Errors
+/// Non-UTF-8 text or any error of [`crate::legacy::object::parse`].
+pub fn read_legacy_object(file: &str, bytes: &[u8]) -> Result<Mesh, ParseError> {
+    let text = crate::legacy::decode(file, bytes)?;
+    let object = crate::legacy::object::parse(file, text)?;
+    from_legacy_object(file, &object)
+}
+
+/// Converts a parsed legacy facet file into a [`Mesh`]: each facet keeps its own three
+/// vertices, its material index (as [`MaterialUse::id`]) and its temperature.
+///
+/// # Errors
+/// More than 2^32 / 3 facets.
+pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, ParseError> {
+    let too_big = || ParseError::at_offset(file, "", 0, "too many facets for one object");
+    let mut mesh = Mesh {
+        file: file.to_owned(),
+        ..Mesh::default()
+    };
+    let mut by_index = std::collections::HashMap::new();
+    for (i, f) in object.facets.iter().enumerate() {
+        let material = *by_index.entry(f.material_index).or_insert_with(|| {
+            mesh.materials.push(MaterialUse {
+                name: format!("material index {}", f.material_index),
+                id: Some(f.material_index),
+                first_use: Location {
+                    file: file.to_owned(),
+                    line: Some(f.position.line),
+                    part: None,
+                },
+            });
+            u32::try_from(mesh.materials.len() - 1).unwrap_or(u32::MAX)
+        });
+        let base = u32::try_from(mesh.positions.len()).map_err(|_| too_big())?;
+        mesh.positions.extend(f.vertices);
+        mesh.triangles.push(Triangle {
+            vertices: [base, base + 1, base + 2],
+            material: Some(material),
+            temperature_k: f.temperature_k,
+        });
+        mesh.origins.push(Origin {
+            first_triangle: u32::try_from(i).map_err(|_| too_big())?,
+            line: u32::try_from(f.position.line).unwrap_or(u32::MAX),
+            part: None,
+        });
+    }
+    Ok(mesh)
 }
 
 impl Mesh {

@@ -208,6 +208,7 @@ fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseEr
                     names.insert(name, out.materials.len());
                     out.materials.push(MaterialUse {
                         name: name.to_owned(),
+                        id: None,
                         first_use: Location {
                             file: file.to_owned(),
                             line: Some(line_index + 1),
