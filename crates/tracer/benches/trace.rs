@@ -1,0 +1,228 @@
+//! Tracer throughput on one core: primary radiance samples per second on a tessellated
+//! sphere (1k, 100k and 1M triangles) over a ground plate, diffuse, with one specular
+//! bounce and with the sky-view factor on; the same primary rays through bare obvhs
+//! (its own, non-watertight triangle test, no radiometry) for the ratio; and BVH build time.
+//!
+//! `cargo bench -p irsig-tracer` (a few seconds per case). Figures go to BENCHMARKS.md.
+
+use std::sync::OnceLock;
+
+use divan::counter::ItemsCount;
+use glam::Vec3A;
+use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
+use irsig_tracer::geometry::Geometry;
+use irsig_tracer::testing::{Mesh, ground_quad, triangles, uv_sphere};
+use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+use obvhs::{
+    BvhBuildParams,
+    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
+    ray::{Ray, RayHit},
+    triangle::Triangle,
+};
+
+fn main() {
+    divan::main();
+}
+
+/// Sphere sizes: (rings, segments) → 1 024, 99 904 and 1 001 112 triangles.
+const SIZES: [(u32, u32); 3] = [(17, 32), (224, 224), (708, 708)];
+const IMAGE: [u32; 2] = [128, 128];
+
+fn mesh(i: usize) -> Mesh {
+    let (rings, segments) = SIZES[i];
+    let mut m = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
+    let g = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
+    let base = m.0.len() as u32;
+    m.0.extend(g.0);
+    m.1.extend(g.1.iter().map(|f| f.map(|v| v + base)));
+    m
+}
+
+fn raw_scene(m: &Mesh) -> RawScene {
+    let n = m.1.len();
+    RawScene {
+        objects: vec!["sphere".into()],
+        positions_m: m.0.clone(),
+        facets: m
+            .1
+            .iter()
+            .enumerate()
+            .map(|(i, f)| RawFacet {
+                vertices: *f,
+                // The ground plate (last two facets) is material 2.
+                material: MaterialId(if i + 2 >= n { 2 } else { 1 }),
+                temperature_k: 290.0 + (i % 17) as f64,
+                object: 0,
+            })
+            .collect(),
+        ..RawScene::default()
+    }
+}
+
+fn materials(sphere_specular: f64) -> MaterialLibrary {
+    let m = |id: u16, s: f64| Material {
+        id: MaterialId(id),
+        name: format!("m{id}"),
+        emissivity: vec![(0.0, 0.95), (45.0, 0.93), (70.0, 0.85), (90.0, 0.0)],
+        specular_fraction: s,
+        source: "bench".into(),
+    };
+    MaterialLibrary {
+        materials: vec![m(1, sphere_specular), m(2, 0.0)],
+    }
+}
+
+fn camera() -> Camera {
+    Camera::from_view(&View::LookAt {
+        position_m: [30.0, -30.0, 25.0],
+        target_m: [0.0, 0.0, 10.0],
+        up: [0.0, 0.0, 1.0],
+        pixels: IMAGE,
+        fov_deg: [50.0, 50.0],
+        gain_dc_per_k: None,
+    })
+    .unwrap()
+}
+
+struct Prepared {
+    diffuse: Tracer<TotalRadiance, Vacuum>,
+    specular: Tracer<TotalRadiance, Vacuum>,
+    bare: CwBvh,
+    bare_tris: Vec<Triangle>,
+}
+
+fn prepared(i: usize) -> &'static Prepared {
+    static CACHE: [OnceLock<Prepared>; 3] = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    CACHE[i].get_or_init(|| {
+        let m = mesh(i);
+        let sc = raw_scene(&m);
+        let sky = Vacuum {
+            sky_radiance_w_m2_sr: 20.0,
+        };
+        let diffuse = Tracer::new(&sc, &materials(0.0), TotalRadiance, sky).unwrap();
+        let specular = Tracer::new(&sc, &materials(1.0), TotalRadiance, sky).unwrap();
+        // Bare obvhs on the same triangles, re-centred exactly as the tracer does.
+        let c = diffuse.geometry().centre_m();
+        let to32 = |p: [f64; 3]| {
+            Vec3A::new(
+                (p[0] - c[0]) as f32,
+                (p[1] - c[1]) as f32,
+                (p[2] - c[2]) as f32,
+            )
+        };
+        let bare_tris: Vec<Triangle> = triangles(&m)
+            .iter()
+            .map(|t| Triangle {
+                v0: to32(t[0]),
+                v1: to32(t[1]),
+                v2: to32(t[2]),
+            })
+            .collect();
+        let bare = build_cwbvh_from_tris(
+            &bare_tris,
+            BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        Prepared {
+            diffuse,
+            specular,
+            bare,
+            bare_tris,
+        }
+    })
+}
+
+fn one_core<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap()
+        .install(f)
+}
+
+const PIXELS: usize = (IMAGE[0] * IMAGE[1]) as usize;
+
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn shaded_diffuse(bencher: divan::Bencher, i: usize) {
+    let p = prepared(i);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            p.diffuse
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}
+
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn shaded_specular_bounce(bencher: divan::Bencher, i: usize) {
+    let p = prepared(i);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            p.specular
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}
+
+#[divan::bench(args = [0, 1, 2], sample_count = 3, sample_size = 1)]
+fn shaded_sky_view_16_rays(bencher: divan::Bencher, i: usize) {
+    let p = prepared(i);
+    let cam = camera();
+    let opts = TraceOptions {
+        sky_view_rays: 16,
+        ..TraceOptions::default()
+    };
+    bencher
+        .counter(ItemsCount::new(PIXELS))
+        .bench(|| one_core(|| p.diffuse.render(&cam, &opts, &|_| {}).unwrap()));
+}
+
+/// The same primary rays, closest hit with obvhs's own triangle test and nothing else.
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn bare_obvhs_primary(bencher: divan::Bencher, i: usize) {
+    let p = prepared(i);
+    let cam = camera();
+    let origin = p.diffuse.geometry().to_local(cam.position_m);
+    let o = Vec3A::new(origin[0] as f32, origin[1] as f32, origin[2] as f32);
+    let dirs: Vec<Vec3A> = (0..IMAGE[1])
+        .flat_map(|r| (0..IMAGE[0]).map(move |c| (c, r)))
+        .map(|(c, r)| {
+            let d = cam.pixel_direction(c, r);
+            Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32)
+        })
+        .collect();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        let mut hits = 0u32;
+        for d in &dirs {
+            let mut hit = RayHit::none();
+            if p.bare
+                .ray_traverse(Ray::new_inf(o, *d), &mut hit, |ray, id| {
+                    p.bare_tris[p.bare.primitive_indices[id] as usize].intersect(ray)
+                })
+            {
+                hits += 1;
+            }
+        }
+        divan::black_box(hits)
+    });
+}
+
+/// Geometry only (re-centring, BVH build, BVH-order copies) from world triangles.
+#[divan::bench(args = [0, 1, 2], sample_count = 3, sample_size = 1)]
+fn bvh_build(bencher: divan::Bencher, i: usize) {
+    let tris = triangles(&mesh(i));
+    bencher.bench(|| Geometry::new(&tris));
+}
+
+/// The whole scene set-up a 1M-triangle trace pays before its first ray: validation,
+/// L_T per facet, BVH.
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn scene_setup_1m(bencher: divan::Bencher) {
+    let sc = raw_scene(&mesh(2));
+    let mats = materials(0.0);
+    bencher.bench(|| Tracer::new(&sc, &mats, TotalRadiance, Vacuum::default()).unwrap());
+}

@@ -1,0 +1,56 @@
+use irsig_model::ModelError;
+
+/// Why a scene, view or option set cannot be traced.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{kind}")]
+pub struct TraceError {
+    /// What is wrong.
+    pub kind: TraceErrorKind,
+}
+
+impl TraceError {
+    pub(crate) fn new(kind: TraceErrorKind) -> Self {
+        Self { kind }
+    }
+}
+
+/// What is wrong with the tracer's input.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum TraceErrorKind {
+    /// The raw scene breaks a rule of the data model (empty, bad index, NaN, degenerate
+    /// triangle).
+    #[error("raw scene: {0}")]
+    InvalidScene(ModelError),
+    /// The material library breaks a rule of the data model.
+    #[error("material library: {0}")]
+    InvalidMaterials(ModelError),
+    /// A facet names a material the library does not have.
+    #[error(
+        "raw scene: facets[{facet}] uses material {material}, which the material library does not define"
+    )]
+    UnknownMaterial {
+        /// Index of the facet in the raw scene.
+        facet: usize,
+        /// The material id it names.
+        material: u16,
+    },
+    /// The view breaks a rule of the data model.
+    #[error("view: {0}")]
+    InvalidView(ModelError),
+    /// A trace option is out of range.
+    #[error("trace options: {0}")]
+    InvalidOptions(String),
+    /// A pixel asked for lies outside the image.
+    #[error("pixel ({column}, {row}) lies outside the {width}x{height} image")]
+    PixelOutsideImage {
+        /// Column asked for.
+        column: u32,
+        /// Row asked for.
+        row: u32,
+        /// Image width.
+        width: u32,
+        /// Image height.
+        height: u32,
+    },
+}

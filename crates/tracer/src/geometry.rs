@@ -1,0 +1,633 @@
+//! Triangles in an obvhs CWBVH, intersected with the watertight test of Woop, Benthin and
+//! Wald (2013, "Watertight Ray/Triangle Intersection", JCGT 2(1)).
+//!
+//! # Precision
+//!
+//! obvhs works in f32. The geometry is re-centred on the centre of its bounding box (in f64)
+//! before it is rounded to f32, so a scene at map coordinates 500 km from the origin is
+//! intersected exactly as the same scene at the origin. Every ray is also started, in f64,
+//! just before it enters the scene's bounding box, so a sensor 12 km away does not lose
+//! f32 digits to its distance. The closest hit is then refined in f64: distance, point and
+//! angle come from the f64 plane of the hit triangle.
+//!
+//! The CWBVH node test clamps its entry distance to a fixed 1e-4 and ignores `ray.tmin`;
+//! a primitive nearer than 1e-4 (metres) to the ray origin would be silently skipped. So
+//! every ray handed to obvhs starts at least [`ORIGIN_BACKOFF_M`] *before* the first
+//! distance it may hit, and the triangle callback enforces the real minimum distance
+//! itself.
+//!
+//! # Back faces
+//!
+//! Facets are **two-sided**: a ray hits a triangle from either side. Meshes from OBJ and
+//! glTF are often wound inconsistently, and a closed mesh is seen only from outside anyway;
+//! dropping reversed hits (what the 1990 code did, silently) leaks rays through every
+//! facet wound the wrong way. The normal used for angles and reflections is the
+//! geometric normal turned to face the incoming ray; [`Hit::back_face`] says when that
+//! needed a flip, so a tool can report inconsistent winding.
+
+use glam::{Mat3A, Vec3A};
+use obvhs::{
+    BvhBuildParams,
+    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
+    ray::{Ray, RayHit},
+    triangle::Triangle,
+};
+use rayon::prelude::*;
+
+use crate::vec::{V3, add, cross, dot, normalize, scale, sub};
+
+/// How far before the first admissible distance a ray handed to obvhs starts, in metres:
+/// twice the CWBVH's fixed 1e-4 entry clamp.
+pub const ORIGIN_BACKOFF_M: f64 = 2e-4;
+
+/// A closest hit, in world-relative f64 terms.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Hit {
+    /// Index of the facet in the input triangle list (the raw scene's facet index).
+    pub facet: u32,
+    /// Distance from the ray origin in metres (the ray direction is a unit vector).
+    pub distance_m: f64,
+    /// The hit point in local (re-centred) coordinates, metres.
+    pub point_local: V3,
+    /// The unit facet normal turned towards the ray's origin.
+    pub normal: V3,
+    /// Cosine of the angle between the reversed ray and `normal`, 0 to 1.
+    pub cos_incidence: f64,
+    /// True when the ray arrived from the side opposite the facet's winding normal.
+    pub back_face: bool,
+}
+
+/// Triangles in a CWBVH, re-centred, with f64 copies for refinement.
+#[derive(Debug)]
+pub struct Geometry {
+    centre_m: V3,
+    bvh: CwBvh,
+    /// f32 local vertices in BVH order (obvhs's `primitive_indices` applied).
+    tris: Vec<[Vec3A; 3]>,
+    /// BVH order → input facet index.
+    facet_of: Vec<u32>,
+    /// f64 local vertices per input facet.
+    tris_f64: Vec<[V3; 3]>,
+    /// Unit winding normal per input facet.
+    normals: Vec<V3>,
+    bounds_local: [V3; 2],
+    radius_m: f64,
+}
+
+/// Per-ray constants of the watertight test: the translation to the ray origin and the
+/// paper's permute-and-shear, folded into one matrix so each vertex costs one SIMD
+/// matrix-vector product. Each output component has exactly two non-zero terms (1 and
+/// −S), so the products and sums round exactly as the paper's scalar form does.
+struct Shear {
+    org: Vec3A,
+    m: Mat3A,
+}
+
+impl Shear {
+    fn new(org: Vec3A, dir: Vec3A) -> Self {
+        let a = dir.abs();
+        let kz = if a.x > a.y {
+            if a.x > a.z { 0 } else { 2 }
+        } else if a.y > a.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        // Keep the winding of the sheared triangle.
+        if dir[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let sz = 1.0 / dir[kz];
+        let (sx, sy) = (dir[kx] * sz, dir[ky] * sz);
+        // Rows: e_kx − sx·e_kz, e_ky − sy·e_kz, sz·e_kz.
+        let mut rows = [[0.0_f32; 3]; 3];
+        rows[0][kx] = 1.0;
+        rows[0][kz] = -sx;
+        rows[1][ky] = 1.0;
+        rows[1][kz] = -sy;
+        rows[2][kz] = sz;
+        let m = Mat3A::from_cols(
+            Vec3A::new(rows[0][0], rows[1][0], rows[2][0]),
+            Vec3A::new(rows[0][1], rows[1][1], rows[2][1]),
+            Vec3A::new(rows[0][2], rows[1][2], rows[2][2]),
+        );
+        Self { org, m }
+    }
+
+    /// The ray parameter of the hit, or +∞. Two-sided; an edge or vertex shared by two
+    /// triangles is hit by both (never by neither), which is what makes it watertight.
+    #[inline(always)]
+    fn intersect(&self, v: &[Vec3A; 3], tmin: f32, tmax: f32) -> f32 {
+        let a = self.m * (v[0] - self.org);
+        let b = self.m * (v[1] - self.org);
+        let c = self.m * (v[2] - self.org);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut vv = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
+        if u == 0.0 || vv == 0.0 || w == 0.0 {
+            // The paper's fallback: decide edge cases exactly in double precision.
+            let (ax, ay, bx, by, cx, cy) = (
+                f64::from(a.x),
+                f64::from(a.y),
+                f64::from(b.x),
+                f64::from(b.y),
+                f64::from(c.x),
+                f64::from(c.y),
+            );
+            u = (cx * by - cy * bx) as f32;
+            vv = (ax * cy - ay * cx) as f32;
+            w = (bx * ay - by * ax) as f32;
+        }
+        if (u < 0.0 || vv < 0.0 || w < 0.0) && (u > 0.0 || vv > 0.0 || w > 0.0) {
+            return f32::INFINITY;
+        }
+        let det = u + vv + w;
+        if det == 0.0 {
+            return f32::INFINITY;
+        }
+        let t = (u * a.z + vv * b.z + w * c.z) / det;
+        if t > tmin && t <= tmax {
+            t
+        } else {
+            f32::INFINITY
+        }
+    }
+}
+
+impl Geometry {
+    /// Builds the BVH over `triangles` (world metres, f64). The caller has checked that
+    /// there is at least one triangle, that every number is finite and that no triangle is
+    /// degenerate.
+    #[must_use]
+    pub fn new(triangles: &[[V3; 3]]) -> Self {
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for t in triangles {
+            for p in t {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(p[k]);
+                    hi[k] = hi[k].max(p[k]);
+                }
+            }
+        }
+        let centre_m = scale(add(lo, hi), 0.5);
+        let tris_f64: Vec<[V3; 3]> = triangles
+            .par_iter()
+            .map(|t| t.map(|p| sub(p, centre_m)))
+            .collect();
+        let normals = tris_f64
+            .par_iter()
+            .map(|[a, b, c]| normalize(cross(sub(*b, *a), sub(*c, *a))))
+            .collect();
+        let to32 = |p: V3| Vec3A::new(p[0] as f32, p[1] as f32, p[2] as f32);
+        let obvhs_tris: Vec<Triangle> = tris_f64
+            .par_iter()
+            .map(|t| Triangle {
+                v0: to32(t[0]),
+                v1: to32(t[1]),
+                v2: to32(t[2]),
+            })
+            .collect();
+        let bvh = build_cwbvh_from_tris(
+            &obvhs_tris,
+            BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        let tris = bvh
+            .primitive_indices
+            .par_iter()
+            .map(|&i| {
+                let t = &obvhs_tris[i as usize];
+                [t.v0, t.v1, t.v2]
+            })
+            .collect();
+        let facet_of = bvh.primitive_indices.clone();
+        let bounds_local = [sub(lo, centre_m), sub(hi, centre_m)];
+        let radius_m = 0.5 * dot(sub(hi, lo), sub(hi, lo)).sqrt();
+        Self {
+            centre_m,
+            bvh,
+            tris,
+            facet_of,
+            tris_f64,
+            normals,
+            bounds_local,
+            radius_m,
+        }
+    }
+
+    /// The world point (metres) the local coordinates are measured from.
+    #[must_use]
+    pub fn centre_m(&self) -> V3 {
+        self.centre_m
+    }
+
+    /// Half the diagonal of the scene's bounding box, metres.
+    #[must_use]
+    pub fn radius_m(&self) -> f64 {
+        self.radius_m
+    }
+
+    /// World coordinates (metres) of a local point.
+    #[must_use]
+    pub fn to_world(&self, local: V3) -> V3 {
+        add(local, self.centre_m)
+    }
+
+    /// Local coordinates of a world point (metres).
+    #[must_use]
+    pub fn to_local(&self, world: V3) -> V3 {
+        sub(world, self.centre_m)
+    }
+
+    /// The unit winding normal of facet `facet` (input order).
+    #[must_use]
+    pub fn normal(&self, facet: u32) -> V3 {
+        self.normals[facet as usize]
+    }
+
+    /// The smallest distance a secondary ray from a surface point accepts, metres: a
+    /// little above f32 rounding at the scene's size.
+    #[must_use]
+    pub fn surface_epsilon_m(&self) -> f64 {
+        1e-6 * self.radius_m.max(1.0)
+    }
+
+    /// The part `[t0, t1]` of `[t_min, t_max]` along the ray inside the scene's bounds,
+    /// padded for f32 rounding; `None` when the ray misses them.
+    fn clip(&self, origin: V3, dir: V3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+        let pad = 1e-6 * self.radius_m + 1e-6;
+        let (mut t0, mut t1) = (t_min, t_max);
+        for k in 0..3 {
+            let lo = self.bounds_local[0][k] - pad;
+            let hi = self.bounds_local[1][k] + pad;
+            if dir[k] == 0.0 {
+                if origin[k] < lo || origin[k] > hi {
+                    return None;
+                }
+            } else {
+                let inv = 1.0 / dir[k];
+                let (mut a, mut b) = ((lo - origin[k]) * inv, (hi - origin[k]) * inv);
+                if a > b {
+                    std::mem::swap(&mut a, &mut b);
+                }
+                t0 = t0.max(a);
+                t1 = t1.min(b);
+            }
+        }
+        (t0 <= t1).then_some((t0, t1))
+    }
+
+    /// The obvhs ray for `[t0, t1]` of the f64 ray, started [`ORIGIN_BACKOFF_M`] before
+    /// `t0`; returns the ray, its shift along the f64 ray, and the f32 admissible range.
+    fn prepare(&self, origin: V3, dir: V3, t0: f64, t1: f64) -> (Ray, f64, f32, f32) {
+        let shift = t0 - ORIGIN_BACKOFF_M.max(1e-7 * self.radius_m);
+        let o = add(origin, scale(dir, shift));
+        let o32 = Vec3A::new(o[0] as f32, o[1] as f32, o[2] as f32);
+        let d32 = Vec3A::new(dir[0] as f32, dir[1] as f32, dir[2] as f32);
+        let tmin = (t0 - shift) as f32;
+        let tmax = (t1 - shift) as f32;
+        (Ray::new(o32, d32, 0.0, tmax), shift, tmin, tmax)
+    }
+
+    /// The closest facet along the ray `origin + t·dir` (local metres, `dir` a unit vector)
+    /// with `t_min < t < t_max`, skipping facet `exclude` (the facet a secondary ray leaves).
+    #[must_use]
+    pub fn closest_hit(
+        &self,
+        origin: V3,
+        dir: V3,
+        t_min: f64,
+        t_max: f64,
+        exclude: Option<u32>,
+    ) -> Option<Hit> {
+        let (t0, t1) = self.clip(origin, dir, t_min, t_max)?;
+        let (ray, shift, tmin, tmax) = self.prepare(origin, dir, t0, t1);
+        let shear = Shear::new(ray.origin, ray.direction);
+        let mut hit = RayHit::none();
+        let exclude = exclude.unwrap_or(u32::MAX);
+        // Ties (a ray through an edge shared by two facets) go to the lower facet index, so
+        // the answer does not depend on the BVH's layout or traversal order.
+        let mut best = (f32::INFINITY, u32::MAX);
+        self.bvh.ray_traverse(ray, &mut hit, |r, id| {
+            // `id` is in BVH order; `tris` is stored in that order.
+            let facet = self.facet_of[id];
+            if facet == exclude {
+                return f32::INFINITY;
+            }
+            let t = shear.intersect(&self.tris[id], tmin, r.tmax.min(tmax));
+            if t.total_cmp(&best.0).then(facet.cmp(&best.1)).is_lt() {
+                best = (t, facet);
+            }
+            t
+        });
+        let (t, facet) = best;
+        if !t.is_finite() {
+            return None;
+        }
+        Some(self.refine(facet, origin, dir, f64::from(t) + shift))
+    }
+
+    /// True when any facet lies along the ray with `t_min < t < t_max`, skipping
+    /// `exclude`. Cheaper than [`Self::closest_hit`]: traversal stops at the first hit.
+    #[must_use]
+    pub fn occluded(
+        &self,
+        origin: V3,
+        dir: V3,
+        t_min: f64,
+        t_max: f64,
+        exclude: Option<u32>,
+    ) -> bool {
+        let Some((t0, t1)) = self.clip(origin, dir, t_min, t_max) else {
+            return false;
+        };
+        let (ray, _, tmin, tmax) = self.prepare(origin, dir, t0, t1);
+        let shear = Shear::new(ray.origin, ray.direction);
+        let exclude = exclude.unwrap_or(u32::MAX);
+        !self.bvh.ray_traverse_miss(ray, |_, id| {
+            if self.facet_of[id] == exclude {
+                return f32::INFINITY;
+            }
+            shear.intersect(&self.tris[id], tmin, tmax)
+        })
+    }
+
+    /// The f64 distance, point and facing normal of a hit found in f32.
+    fn refine(&self, facet: u32, origin: V3, dir: V3, t_f32: f64) -> Hit {
+        let n = self.normals[facet as usize];
+        let a = self.tris_f64[facet as usize][0];
+        let dn = dot(dir, n);
+        // The f64 plane distance, unless the ray runs so close to parallel to the plane
+        // that it is worse conditioned than the f32 distance from the watertight test.
+        let t_plane = dot(sub(a, origin), n) / dn;
+        let distance_m = if dn.abs() > 1e-6 && t_plane.is_finite() {
+            t_plane
+        } else {
+            t_f32
+        };
+        let back_face = dn > 0.0;
+        let normal = if back_face { scale(n, -1.0) } else { n };
+        Hit {
+            facet,
+            distance_m,
+            point_local: add(origin, scale(dir, distance_m)),
+            normal,
+            cos_incidence: dn.abs().min(1.0),
+            back_face,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::testing::{box_mesh, uv_sphere};
+
+    fn tris(mesh: &(Vec<V3>, Vec<[u32; 3]>)) -> Vec<[V3; 3]> {
+        mesh.1
+            .iter()
+            .map(|f| f.map(|i| mesh.0[i as usize]))
+            .collect()
+    }
+
+    /// Directions spread over the sphere (a Fibonacci lattice).
+    fn directions(n: usize) -> Vec<V3> {
+        let golden = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
+        (0..n)
+            .map(|i| {
+                let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+                let r = (1.0 - z * z).sqrt();
+                let phi = golden * i as f64;
+                [r * phi.cos(), r * phi.sin(), z]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn rays_at_shared_edges_and_vertices_of_closed_meshes_never_leak() {
+        // A finely tessellated sphere: aim at every vertex and every edge midpoint.
+        let sphere = uv_sphere([0.3, -0.2, 1.0], 2.0, 48, 96);
+        let geometry = Geometry::new(&tris(&sphere));
+        let mut targets = sphere.0.clone();
+        for f in &sphere.1 {
+            for k in 0..3 {
+                let (a, b) = (sphere.0[f[k] as usize], sphere.0[f[(k + 1) % 3] as usize]);
+                targets.push(scale(add(a, b), 0.5));
+            }
+        }
+        // Rays towards an edge from outside can only miss through a crack.
+        let dirs = directions(24);
+        let centre = geometry.to_local([0.3, -0.2, 1.0]);
+        let mut leaks = 0;
+        for &p in &targets {
+            for &d in &dirs {
+                let pl = geometry.to_local(p);
+                // Only directions that enter the sphere at this point (from outside).
+                let outward = normalize(sub(pl, centre));
+                if dot(outward, d) > -0.05 {
+                    continue;
+                }
+                let origin = sub(pl, scale(d, 10.0));
+                if geometry
+                    .closest_hit(origin, d, 0.0, f64::INFINITY, None)
+                    .is_none()
+                {
+                    leaks += 1;
+                }
+            }
+        }
+        assert_eq!(leaks, 0, "rays leaked through the sphere's shared edges");
+
+        // A box: its faces' diagonals and its edges and corners are shared edges.
+        let cube = box_mesh([-1.0, -2.0, 0.0], [1.5, 0.5, 3.0]);
+        let geometry = Geometry::new(&tris(&cube));
+        let mut targets = Vec::new();
+        for f in &cube.1 {
+            let [a, b, c] = f.map(|i| cube.0[i as usize]);
+            for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                targets.push(add(scale(a, 1.0 - t), scale(b, t)));
+                targets.push(add(scale(b, 1.0 - t), scale(c, t)));
+                targets.push(add(scale(c, 1.0 - t), scale(a, t)));
+            }
+        }
+        // Every ray that passes through a target point and on into the solid's interior
+        // must hit: a miss is a crack. (A ray that only touches a corner or runs along an
+        // edge outside the solid may legitimately miss after rounding.)
+        let dirs = directions(64);
+        let mut leaks = 0;
+        let (lo, hi) = ([-1.0, -2.0, 0.0], [1.5, 0.5, 3.0]);
+        for &p in &targets {
+            for &d in &dirs {
+                let q = add(p, scale(d, 1e-3));
+                if !(0..3).all(|k| q[k] > lo[k] + 1e-9 && q[k] < hi[k] - 1e-9) {
+                    continue;
+                }
+                let origin = sub(geometry.to_local(p), scale(d, 20.0));
+                if geometry
+                    .closest_hit(origin, d, 0.0, f64::INFINITY, None)
+                    .is_none()
+                {
+                    leaks += 1;
+                }
+            }
+        }
+        assert_eq!(leaks, 0, "rays leaked through the box's shared edges");
+    }
+
+    #[test]
+    fn distances_points_and_normals_are_right() {
+        // The unit square at z = 2 (two triangles), seen from above and below.
+        let quad = box_mesh([0.0, 0.0, 2.0], [1.0, 1.0, 2.0 + 1e-3]);
+        let geometry = Geometry::new(&tris(&quad));
+        let o = geometry.to_local([0.3, 0.4, 10.0]);
+        let hit = geometry
+            .closest_hit(o, [0.0, 0.0, -1.0], 0.0, f64::INFINITY, None)
+            .unwrap();
+        assert!((hit.distance_m - (10.0 - 2.001)).abs() < 1e-12);
+        assert!((hit.cos_incidence - 1.0).abs() < 1e-12);
+        assert!(hit.normal[2] > 0.999);
+        let w = geometry.to_world(hit.point_local);
+        assert!((w[0] - 0.3).abs() < 1e-12 && (w[2] - 2.001).abs() < 1e-12);
+        // t_max before the surface: no hit; occlusion agrees.
+        assert!(
+            geometry
+                .closest_hit(o, [0.0, 0.0, -1.0], 0.0, 7.0, None)
+                .is_none()
+        );
+        assert!(!geometry.occluded(o, [0.0, 0.0, -1.0], 0.0, 7.0, None));
+        assert!(geometry.occluded(o, [0.0, 0.0, -1.0], 0.0, 8.5, None));
+        // Missing the bounds entirely.
+        assert!(!geometry.occluded(o, [0.0, 0.0, 1.0], 0.0, f64::INFINITY, None));
+    }
+
+    #[test]
+    fn back_faces_are_hit_and_reported() {
+        // One triangle facing +z, seen from below.
+        let geometry = Geometry::new(&[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
+        let o = geometry.to_local([0.2, 0.2, -5.0]);
+        let hit = geometry
+            .closest_hit(o, [0.0, 0.0, 1.0], 0.0, f64::INFINITY, None)
+            .unwrap();
+        assert!(hit.back_face);
+        assert!(hit.normal[2] < -0.999, "normal faces the ray");
+        let o = geometry.to_local([0.2, 0.2, 5.0]);
+        let hit = geometry
+            .closest_hit(o, [0.0, 0.0, -1.0], 0.0, f64::INFINITY, None)
+            .unwrap();
+        assert!(!hit.back_face);
+    }
+
+    #[test]
+    fn grazing_rays_at_89_9_degrees_hit_with_the_right_angle() {
+        // A 10 m x 10 m plate; rays 89.9° from its normal.
+        let plate = [
+            [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 0.0]],
+            [[0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [0.0, 10.0, 0.0]],
+        ];
+        let geometry = Geometry::new(&plate);
+        let theta = 89.9_f64.to_radians();
+        let d = [theta.sin(), 0.0, -theta.cos()];
+        // Aim at (5, 5, 0) from 100 m back along the ray.
+        let target = [5.0, 5.0, 0.0];
+        let o = geometry.to_local(sub(target, scale(d, 100.0)));
+        let hit = geometry
+            .closest_hit(o, d, 0.0, f64::INFINITY, None)
+            .unwrap();
+        let angle = hit.cos_incidence.acos().to_degrees();
+        assert!((angle - 89.9).abs() < 1e-9, "{angle}");
+        let w = geometry.to_world(hit.point_local);
+        assert!((w[0] - 5.0).abs() < 1e-9 && w[2].abs() < 1e-12, "{w:?}");
+        assert!((hit.distance_m - 100.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_sensor_12_km_away_resolves_centimetre_detail() {
+        // Two 1 cm squares 1 cm apart at the far end of a 12 km line of sight.
+        let mut t = Vec::new();
+        for (x0, z) in [(0.0, 0.0), (0.02, 0.001)] {
+            let q = box_mesh([x0, 0.0, z], [x0 + 0.01, 0.01, z + 1e-4]);
+            t.extend(tris(&q));
+        }
+        let geometry = Geometry::new(&t);
+        let sensor = [5000.0, -6000.0, 9000.0];
+        for (x, expect_hit) in [
+            (0.005, true),
+            (0.015, false),
+            (0.025, true),
+            (0.0095, true),
+            (0.0105, false),
+        ] {
+            let target = [x, 0.005, 0.0];
+            let d = normalize(sub(target, sensor));
+            let o = geometry.to_local(sensor);
+            let hit = geometry.closest_hit(o, d, 0.0, f64::INFINITY, None);
+            assert_eq!(hit.is_some(), expect_hit, "x = {x}");
+            if let Some(h) = hit {
+                let w = geometry.to_world(h.point_local);
+                // The hit point lies on the square's top face within 1e-6 m... [x, y]
+                // within a micrometre of where the ray crosses that face.
+                assert!((w[1] - 0.005).abs() < 1e-3, "{w:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn facets_far_smaller_and_far_larger_than_the_scene_scale_are_hit() {
+        // A 50 km ground triangle and a 1 mm triangle above it.
+        let t = vec![
+            [
+                [-25_000.0, -25_000.0, 0.0],
+                [25_000.0, -25_000.0, 0.0],
+                [0.0, 25_000.0, 0.0],
+            ],
+            [[0.0, 0.0, 1.0], [0.001, 0.0, 1.0], [0.0, 0.001, 1.0]],
+        ];
+        let geometry = Geometry::new(&t);
+        let down = [0.0, 0.0, -1.0];
+        let hit = geometry
+            .closest_hit(
+                geometry.to_local([0.0002, 0.0002, 100.0]),
+                down,
+                0.0,
+                f64::INFINITY,
+                None,
+            )
+            .unwrap();
+        assert_eq!(hit.facet, 1);
+        let hit = geometry
+            .closest_hit(
+                geometry.to_local([0.002, 0.002, 100.0]),
+                down,
+                0.0,
+                f64::INFINITY,
+                None,
+            )
+            .unwrap();
+        assert_eq!(hit.facet, 0);
+        assert!((hit.distance_m - 100.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn secondary_rays_skip_their_own_facet_and_see_near_neighbours() {
+        // Floor and a wall 0.5 mm away across a corner: a ray from the floor towards the
+        // wall must hit it although it is far closer than obvhs's 1e-4 clamp... 0.5 mm is
+        // 5e-4 m; also test 5e-5 m.
+        for gap in [5e-4, 5e-5] {
+            let t = vec![
+                [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+                [[gap, -1.0, -1.0], [gap, 1.0, -1.0], [gap, 0.0, 1.0]],
+            ];
+            let geometry = Geometry::new(&t);
+            let p = geometry.to_local([0.0, 0.2, 0.0]);
+            let d = normalize([1.0, 0.0, 0.0001]);
+            let hit =
+                geometry.closest_hit(p, d, geometry.surface_epsilon_m(), f64::INFINITY, Some(0));
+            let hit = hit.unwrap_or_else(|| panic!("gap {gap}: missed"));
+            assert_eq!(hit.facet, 1);
+            assert!((hit.distance_m - gap).abs() < 1e-9);
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! irsig-tracer: the radiometric ray tracer of irsig (thesis §3.3, Appendix H; SPEC §4).
+//!
+//! A [`Tracer`] holds a flattened scene in an obvhs CWBVH with a watertight triangle test
+//! ([`geometry`]), every facet's blackbody radiance `L_T` precomputed, the terrain
+//! background, a band model ([`Radiometry`]) and an atmosphere ([`Atmosphere`]). A
+//! [`Camera`] (the ω φ κ matrix of Appendix H or a look-at view; pixel (0, 0) is the
+//! top-left, see [`camera`]) gives the primary rays. Each ray meets one of the events of
+//! thesis Figure 6 ([`Event`]) and gets
+//!
+//! ```text
+//! L = τ·[ε(φ)·L_T + r(φ)·(s·L_spec + (1 − s)·(F·L_d + (1 − F)·L_b))] + L_u
+//! ```
+//!
+//! with `s` the material's specular fraction, `L_spec` the surface-leaving radiance of the
+//! facet the reflection ray hits (or the sky at the mirror angle), and `F` the sky-view
+//! factor when that model is switched on ([`TraceOptions`]). τ and L_u come from the
+//! atmosphere for the path between the hit point and the sensor (both altitudes). Facets
+//! are two-sided ([`geometry`] explains why).
+//!
+//! The tracer knows no file syntax; `irsig-trace` reads files and writes images.
+//!
+//! ```
+//! use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, Terrain, View};
+//! use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+//!
+//! // A 10 m blackbody square at 300 K on the ground, seen straight down from 100 m.
+//! let scene = RawScene {
+//!     terrain: Terrain::default(),
+//!     objects: vec!["plate".into()],
+//!     positions_m: vec![[-5.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0], [-5.0, 5.0, 0.0]],
+//!     facets: [[0, 1, 2], [0, 2, 3]]
+//!         .map(|vertices| RawFacet { vertices, material: MaterialId(1), temperature_k: 300.0, object: 0 })
+//!         .to_vec(),
+//! };
+//! let materials = MaterialLibrary {
+//!     materials: vec![Material {
+//!         id: MaterialId(1),
+//!         name: "black".into(),
+//!         emissivity: vec![(0.0, 1.0), (90.0, 1.0)],
+//!         specular_fraction: 0.0,
+//!         source: "example".into(),
+//!     }],
+//! };
+//! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;
+//! let camera = Camera::from_view(&View::Legacy {
+//!     position_m: [0.0, 0.0, 100.0],
+//!     pixels: [4, 4],
+//!     omega_phi_kappa_deg: [0.0, 0.0, 0.0],
+//!     fov_deg: [2.0, 2.0],
+//!     gain_dc_per_k: None,
+//! })?;
+//! let frame = tracer.render(&camera, &TraceOptions::default(), &|_| {})?;
+//! let t = tracer.apparent_temperature_k(frame.radiance_w_m2_sr[5]);
+//! assert!((t - 300.0).abs() < 1e-9);
+//! # Ok::<(), irsig_tracer::TraceError>(())
+//! ```
+
+pub mod camera;
+pub mod env;
+mod error;
+pub mod geometry;
+pub mod testing;
+mod tracer;
+mod vec;
+
+pub use camera::{
+    Camera, look_at_omega_phi_kappa_deg, omega_phi_kappa_matrix, thesis_look_at_angles_deg,
+};
+pub use env::{Atmosphere, PathTerms, Radiometry, TotalRadiance, Vacuum};
+pub use error::{TraceError, TraceErrorKind};
+pub use tracer::{Event, Frame, Sample, TraceOptions, Tracer};
+pub use vec::V3;

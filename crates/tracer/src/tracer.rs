@@ -1,0 +1,693 @@
+//! The radiance equation along each ray: the four events of thesis Figure 6 (SPEC §4).
+
+use std::fmt;
+
+use irsig_model::{MaterialLibrary, RawScene, Terrain};
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+use crate::camera::Camera;
+use crate::env::{Atmosphere, Radiometry, range_to_ground_m};
+use crate::error::{TraceError, TraceErrorKind};
+use crate::geometry::{Geometry, Hit};
+use crate::vec::{V3, add, basis, dot, scale, sub};
+
+/// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Event {
+    /// Event 1, above the horizon: the ray sees the sky path from the sensor to space.
+    Sky,
+    /// Event 1, below the horizon: the ray sees the terrain background.
+    Terrain,
+    /// Event 2: a purely diffuse facet.
+    Diffuse,
+    /// Event 3: a facet with a specular part whose reflection ray leaves the scene.
+    SpecularEscapes,
+    /// Event 4: a facet with a specular part whose reflection ray hits another facet.
+    SpecularHitsFacet,
+}
+
+impl Event {
+    /// The thesis's event number (1 to 4).
+    #[must_use]
+    pub fn number(self) -> u8 {
+        match self {
+            Self::Sky | Self::Terrain => 1,
+            Self::Diffuse => 2,
+            Self::SpecularEscapes => 3,
+            Self::SpecularHitsFacet => 4,
+        }
+    }
+}
+
+/// Options of one rendering. The defaults are the thesis's model: one specular bounce,
+/// no sky-view factor (F = 1), one ray per pixel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TraceOptions {
+    /// Specular reflection rays along one path (default 1; Appendix A: one is enough at
+    /// earth-ambient temperatures). 0 makes specular facets reflect the sky at the mirror
+    /// angle without tracing. At the last bounce a facet's specular part reflects the
+    /// hemispheric sky.
+    pub specular_bounces: u32,
+    /// Cosine-weighted hemisphere rays per diffuse primary hit for the sky-view factor F;
+    /// 0 (default) switches the model off (F = 1, no rays cast).
+    pub sky_view_rays: u32,
+    /// Supersampling: `n` gives n × n stratified, jittered rays per pixel; 1 (default) is
+    /// one ray through the pixel centre.
+    pub supersampling: u32,
+    /// Seed of every random choice (sky-view directions, sub-pixel jitter). Each pixel
+    /// draws from its own stream derived from the seed and its index, so the image does not
+    /// depend on the thread count.
+    pub seed: u64,
+}
+
+impl Default for TraceOptions {
+    fn default() -> Self {
+        Self {
+            specular_bounces: 1,
+            sky_view_rays: 0,
+            supersampling: 1,
+            seed: 0,
+        }
+    }
+}
+
+impl TraceOptions {
+    fn validate(&self) -> Result<(), TraceError> {
+        let bad = |m: String| Err(TraceError::new(TraceErrorKind::InvalidOptions(m)));
+        if self.specular_bounces > 64 {
+            return bad(format!(
+                "specular_bounces {} is out of range: expected 0 to 64",
+                self.specular_bounces
+            ));
+        }
+        if self.supersampling == 0 || self.supersampling > 64 {
+            return bad(format!(
+                "supersampling {} is out of range: expected 1 to 64",
+                self.supersampling
+            ));
+        }
+        if self.sky_view_rays > 1 << 20 {
+            return bad(format!(
+                "sky_view_rays {} is out of range: expected 0 to {}",
+                self.sky_view_rays,
+                1 << 20
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// Every term of the radiance equation for one ray,
+/// `L = τ·[ε·L_T + r·(s·L_spec + (1 − s)·(F·L_d + (1 − F)·L_b))] + L_u`.
+/// Terms that do not apply (no facet hit, no specular part) are NaN.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sample {
+    /// What the ray met.
+    pub event: Event,
+    /// Material id of the facet hit (0: none).
+    pub primary_material: u16,
+    /// Material id of the facet the specular reflection ray hit (0: none).
+    pub secondary_material: u16,
+    /// Raw-scene index of the facet hit, if any.
+    pub facet: Option<u32>,
+    /// True when the facet was hit on its back face.
+    pub back_face: bool,
+    /// Distance from the sensor to the hit (or to the terrain), metres.
+    pub range_m: f64,
+    /// Angle between the reversed ray and the facet normal, degrees.
+    pub incidence_deg: f64,
+    /// Kinetic temperature of what was hit (facet or terrain), K.
+    pub temperature_k: f64,
+    /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
+    pub emissivity: f64,
+    /// Reflectance `r = 1 − ε`.
+    pub reflectance: f64,
+    /// The material's specular fraction `s`.
+    pub specular_fraction: f64,
+    /// `L_T`, blackbody band radiance at the kinetic temperature, W m⁻² sr⁻¹.
+    pub blackbody_w_m2_sr: f64,
+    /// Radiance arriving along the mirror direction, W m⁻² sr⁻¹: `L_b` of event 4 (the
+    /// surface-leaving radiance of the second facet) or `L_d(θ_r)` of event 3.
+    pub specular_incident_w_m2_sr: f64,
+    /// Zenith angle of the reflection ray, degrees.
+    pub reflected_zenith_deg: f64,
+    /// Hemispheric sky radiance at the hit, `L_d`, W m⁻² sr⁻¹.
+    pub sky_hemispheric_w_m2_sr: f64,
+    /// Sky-view (shape) factor F (1 when the model is off).
+    pub sky_view_factor: f64,
+    /// Diffuse incident radiance `F·L_d + (1 − F)·L_b`, W m⁻² sr⁻¹.
+    pub diffuse_incident_w_m2_sr: f64,
+    /// Surface-leaving radiance towards the sensor, W m⁻² sr⁻¹.
+    pub surface_leaving_w_m2_sr: f64,
+    /// τ of the path from the hit to the sensor.
+    pub transmission: f64,
+    /// `L_u`, path radiance of the path to the sensor (the whole sky path for a sky
+    /// miss), W m⁻² sr⁻¹.
+    pub path_radiance_w_m2_sr: f64,
+    /// Radiance at the sensor, W m⁻² sr⁻¹.
+    pub radiance_w_m2_sr: f64,
+}
+
+impl Sample {
+    fn miss(event: Event) -> Self {
+        Self {
+            event,
+            primary_material: 0,
+            secondary_material: 0,
+            facet: None,
+            back_face: false,
+            range_m: f64::NAN,
+            incidence_deg: f64::NAN,
+            temperature_k: f64::NAN,
+            emissivity: f64::NAN,
+            reflectance: f64::NAN,
+            specular_fraction: f64::NAN,
+            blackbody_w_m2_sr: f64::NAN,
+            specular_incident_w_m2_sr: f64::NAN,
+            reflected_zenith_deg: f64::NAN,
+            sky_hemispheric_w_m2_sr: f64::NAN,
+            sky_view_factor: f64::NAN,
+            diffuse_incident_w_m2_sr: f64::NAN,
+            surface_leaving_w_m2_sr: f64::NAN,
+            transmission: f64::NAN,
+            path_radiance_w_m2_sr: f64::NAN,
+            radiance_w_m2_sr: f64::NAN,
+        }
+    }
+}
+
+impl fmt::Display for Sample {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let facet = self
+            .facet
+            .map_or_else(|| "none".to_owned(), |i| i.to_string());
+        writeln!(
+            f,
+            "event                      {} ({:?})",
+            self.event.number(),
+            self.event
+        )?;
+        writeln!(
+            f,
+            "facet                      {facet}{}",
+            if self.back_face { " (back face)" } else { "" }
+        )?;
+        writeln!(f, "primary material           {}", self.primary_material)?;
+        writeln!(f, "secondary material         {}", self.secondary_material)?;
+        writeln!(f, "range_m                    {}", self.range_m)?;
+        writeln!(f, "incidence_deg              {}", self.incidence_deg)?;
+        writeln!(f, "kinetic temperature_k      {}", self.temperature_k)?;
+        writeln!(f, "emissivity ε               {}", self.emissivity)?;
+        writeln!(f, "reflectance r = 1 − ε      {}", self.reflectance)?;
+        writeln!(f, "specular fraction s        {}", self.specular_fraction)?;
+        writeln!(f, "L_T (W m-2 sr-1)           {}", self.blackbody_w_m2_sr)?;
+        writeln!(
+            f,
+            "reflected zenith_deg       {}",
+            self.reflected_zenith_deg
+        )?;
+        writeln!(
+            f,
+            "L_spec = L_b or L_d(θr)    {}",
+            self.specular_incident_w_m2_sr
+        )?;
+        writeln!(
+            f,
+            "L_d hemispheric            {}",
+            self.sky_hemispheric_w_m2_sr
+        )?;
+        writeln!(f, "sky-view factor F          {}", self.sky_view_factor)?;
+        writeln!(
+            f,
+            "F·L_d + (1 − F)·L_b        {}",
+            self.diffuse_incident_w_m2_sr
+        )?;
+        writeln!(
+            f,
+            "surface-leaving L(0,θ)     {}",
+            self.surface_leaving_w_m2_sr
+        )?;
+        writeln!(f, "τ                          {}", self.transmission)?;
+        writeln!(
+            f,
+            "L_u (W m-2 sr-1)           {}",
+            self.path_radiance_w_m2_sr
+        )?;
+        write!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)
+    }
+}
+
+/// One rendered frame: the (supersampled) radiance of every pixel and the terms of the ray
+/// through each pixel's centre. Row-major, row 0 at the top.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Frame {
+    /// Columns.
+    pub width: u32,
+    /// Rows.
+    pub height: u32,
+    /// Radiance at the sensor per pixel, W m⁻² sr⁻¹ (mean of the sub-pixel rays).
+    pub radiance_w_m2_sr: Vec<f64>,
+    /// The terms of the centre ray of each pixel.
+    pub truth: Vec<Sample>,
+}
+
+#[derive(Debug, Clone)]
+struct MaterialData {
+    id: u16,
+    emissivity: Vec<(f64, f64)>,
+    specular_fraction: f64,
+}
+
+impl MaterialData {
+    /// Angular emissivity, linearly interpolated, held constant beyond the table's ends.
+    fn emissivity_at(&self, angle_deg: f64) -> f64 {
+        let t = &self.emissivity;
+        let Some(&(a0, e0)) = t.first() else {
+            return 1.0;
+        };
+        if angle_deg <= a0 {
+            return e0;
+        }
+        for w in t.windows(2) {
+            let ((a, ea), (b, eb)) = (w[0], w[1]);
+            if angle_deg <= b {
+                return ea + (eb - ea) * (angle_deg - a) / (b - a);
+            }
+        }
+        t.last().map_or(1.0, |e| e.1)
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+struct FacetData {
+    material: u16,
+    temperature_k: f64,
+    blackbody: f64,
+}
+
+/// A scene ready to trace: the BVH, per-facet radiometry (L_T precomputed), the terrain,
+/// the band and the atmosphere. Build it once and render as many views as needed.
+#[derive(Debug)]
+pub struct Tracer<R, A> {
+    geometry: Geometry,
+    facets: Vec<FacetData>,
+    materials: Vec<MaterialData>,
+    terrain: Terrain,
+    terrain_leaving: f64,
+    radiometry: R,
+    atmosphere: A,
+}
+
+/// Per-ray state shared by the events.
+struct Ctx<'a> {
+    options: &'a TraceOptions,
+    rng: Option<ChaCha8Rng>,
+    seed: u64,
+}
+
+impl Ctx<'_> {
+    fn rng(&mut self) -> &mut ChaCha8Rng {
+        let seed = self.seed;
+        self.rng
+            .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
+    }
+}
+
+fn splitmix64(mut x: u64) -> u64 {
+    x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    x = (x ^ (x >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    x ^ (x >> 31)
+}
+
+impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
+    /// Validates the scene and materials, builds the BVH and precomputes each facet's L_T.
+    ///
+    /// # Errors
+    /// The raw scene or material library is invalid, or a facet names an unknown material.
+    pub fn new(
+        scene: &RawScene,
+        materials: &MaterialLibrary,
+        radiometry: R,
+        atmosphere: A,
+    ) -> Result<Self, TraceError> {
+        scene
+            .validate()
+            .map_err(|e| TraceError::new(TraceErrorKind::InvalidScene(e)))?;
+        materials
+            .validate()
+            .map_err(|e| TraceError::new(TraceErrorKind::InvalidMaterials(e)))?;
+        let mut slot_of = vec![u16::MAX; usize::from(u16::MAX) + 1];
+        let mut mats = Vec::with_capacity(materials.materials.len());
+        for (slot, m) in materials.materials.iter().enumerate() {
+            slot_of[usize::from(m.id.0)] = slot as u16;
+            mats.push(MaterialData {
+                id: m.id.0,
+                emissivity: m.emissivity.clone(),
+                specular_fraction: m.specular_fraction,
+            });
+        }
+        let mut facets = Vec::with_capacity(scene.facets.len());
+        let mut triangles = Vec::with_capacity(scene.facets.len());
+        for (i, f) in scene.facets.iter().enumerate() {
+            let slot = slot_of[usize::from(f.material.0)];
+            if slot == u16::MAX {
+                return Err(TraceError::new(TraceErrorKind::UnknownMaterial {
+                    facet: i,
+                    material: f.material.0,
+                }));
+            }
+            facets.push(FacetData {
+                material: slot,
+                temperature_k: f.temperature_k,
+                blackbody: radiometry.radiance(f.temperature_k),
+            });
+            // Indices were checked by validate().
+            triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
+        }
+        let terrain = scene.terrain;
+        let terrain_leaving = terrain.emissivity * radiometry.radiance(terrain.temperature_k)
+            + (1.0 - terrain.emissivity) * atmosphere.sky_hemispheric(0.0);
+        Ok(Self {
+            geometry: Geometry::new(&triangles),
+            facets,
+            materials: mats,
+            terrain,
+            terrain_leaving,
+            radiometry,
+            atmosphere,
+        })
+    }
+
+    /// The geometry (BVH and re-centring).
+    #[must_use]
+    pub fn geometry(&self) -> &Geometry {
+        &self.geometry
+    }
+
+    /// The band model.
+    #[must_use]
+    pub fn radiometry(&self) -> &R {
+        &self.radiometry
+    }
+
+    /// Apparent (blackbody) temperature of a radiance, K.
+    #[must_use]
+    pub fn apparent_temperature_k(&self, radiance_w_m2_sr: f64) -> f64 {
+        self.radiometry.temperature(radiance_w_m2_sr)
+    }
+
+    /// Renders every pixel of `camera`'s image, rows in parallel (rayon). `progress` is
+    /// called with 1 after each row. The result does not depend on the thread count.
+    ///
+    /// # Errors
+    /// The options are out of range.
+    pub fn render(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Frame, TraceError> {
+        options.validate()?;
+        let [w, h] = camera.pixels;
+        let rows: Vec<(Vec<f64>, Vec<Sample>)> = (0..h)
+            .into_par_iter()
+            .map(|row| {
+                let mut rad = Vec::with_capacity(w as usize);
+                let mut truth = Vec::with_capacity(w as usize);
+                for col in 0..w {
+                    let (l, s) = self.pixel(camera, options, col, row);
+                    rad.push(l);
+                    truth.push(s);
+                }
+                progress(1);
+                (rad, truth)
+            })
+            .collect();
+        let mut radiance = Vec::with_capacity(w as usize * h as usize);
+        let mut truth = Vec::with_capacity(w as usize * h as usize);
+        for (r, t) in rows {
+            radiance.extend(r);
+            truth.extend(t);
+        }
+        Ok(Frame {
+            width: w,
+            height: h,
+            radiance_w_m2_sr: radiance,
+            truth,
+        })
+    }
+
+    /// The terms of the ray through the centre of pixel `(column, row)`, exactly as
+    /// [`Self::render`] computes them for the truth outputs.
+    ///
+    /// # Errors
+    /// The pixel lies outside the image, or the options are out of range.
+    pub fn probe(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        column: u32,
+        row: u32,
+    ) -> Result<Sample, TraceError> {
+        options.validate()?;
+        let [w, h] = camera.pixels;
+        if column >= w || row >= h {
+            return Err(TraceError::new(TraceErrorKind::PixelOutsideImage {
+                column,
+                row,
+                width: w,
+                height: h,
+            }));
+        }
+        Ok(self.pixel(camera, options, column, row).1)
+    }
+
+    /// Radiance of a pixel (mean over its sub-pixel rays) and the centre ray's terms.
+    fn pixel(&self, camera: &Camera, options: &TraceOptions, col: u32, row: u32) -> (f64, Sample) {
+        let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
+        let mut ctx = Ctx {
+            options,
+            rng: None,
+            seed: splitmix64(options.seed ^ splitmix64(index)),
+        };
+        let origin = self.geometry.to_local(camera.position_m);
+        let sensor_alt = camera.position_m[2];
+        let centre = self.shade(
+            origin,
+            camera.pixel_direction(col, row),
+            sensor_alt,
+            &mut ctx,
+        );
+        let n = options.supersampling;
+        if n <= 1 {
+            return (centre.radiance_w_m2_sr, centre);
+        }
+        let mut sum = 0.0;
+        for j in 0..n {
+            for i in 0..n {
+                let (jx, jy): (f64, f64) = {
+                    let rng = ctx.rng();
+                    (rng.random(), rng.random())
+                };
+                let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
+                let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
+                sum += self
+                    .shade(origin, camera.direction_at(x, y), sensor_alt, &mut ctx)
+                    .radiance_w_m2_sr;
+            }
+        }
+        (sum / f64::from(n * n), centre)
+    }
+
+    /// The full radiance equation along one primary ray.
+    fn shade(&self, origin: V3, dir: V3, sensor_alt: f64, ctx: &mut Ctx<'_>) -> Sample {
+        let Some(hit) = self
+            .geometry
+            .closest_hit(origin, dir, 0.0, f64::INFINITY, None)
+        else {
+            return self.miss(dir, sensor_alt);
+        };
+        let mut s = self.surface(&hit, dir, 0, ctx);
+        let hit_alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
+        let path = self
+            .atmosphere
+            .path(sensor_alt.max(0.0), hit_alt, hit.distance_m);
+        s.range_m = hit.distance_m;
+        s.transmission = path.transmission;
+        s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
+        s.radiance_w_m2_sr =
+            path.transmission * s.surface_leaving_w_m2_sr + path.path_radiance_w_m2_sr;
+        s
+    }
+
+    /// Event 1: the ray leaves the scene from the sensor.
+    fn miss(&self, dir: V3, sensor_alt: f64) -> Sample {
+        let alt = sensor_alt.max(0.0);
+        let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
+        if nadir < self.atmosphere.critical_nadir_angle_deg(alt) {
+            let range = range_to_ground_m(alt, nadir).unwrap_or(0.0);
+            let path = self.atmosphere.path(alt, 0.0, range);
+            let mut s = Sample::miss(Event::Terrain);
+            s.range_m = range;
+            s.temperature_k = self.terrain.temperature_k;
+            s.emissivity = self.terrain.emissivity;
+            s.reflectance = 1.0 - self.terrain.emissivity;
+            s.blackbody_w_m2_sr = self.radiometry.radiance(self.terrain.temperature_k);
+            s.surface_leaving_w_m2_sr = self.terrain_leaving;
+            s.transmission = path.transmission;
+            s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
+            s.radiance_w_m2_sr =
+                path.transmission * self.terrain_leaving + path.path_radiance_w_m2_sr;
+            s
+        } else {
+            let mut s = Sample::miss(Event::Sky);
+            s.transmission = 0.0;
+            let l = self.atmosphere.sky_radiance(alt, 180.0 - nadir);
+            s.path_radiance_w_m2_sr = l;
+            s.radiance_w_m2_sr = l;
+            s
+        }
+    }
+
+    /// Radiance arriving at a surface point at altitude `alt` along `dir` from outside the
+    /// scene: the sky above the horizon, the terrain below it.
+    fn escaped(&self, dir: V3, alt: f64) -> f64 {
+        let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
+        if nadir < self.atmosphere.critical_nadir_angle_deg(alt) {
+            self.terrain_leaving
+        } else {
+            self.atmosphere.sky_radiance(alt, 180.0 - nadir)
+        }
+    }
+
+    /// Surface-leaving radiance of a hit (events 2–4) with every term, `depth` specular
+    /// bounces already spent.
+    fn surface(&self, hit: &Hit, dir: V3, depth: u32, ctx: &mut Ctx<'_>) -> Sample {
+        let fd = self.facets[hit.facet as usize];
+        let m = &self.materials[usize::from(fd.material)];
+        let incidence_deg = hit.cos_incidence.acos().to_degrees();
+        let eps = m.emissivity_at(incidence_deg);
+        let r = 1.0 - eps;
+        let sfrac = m.specular_fraction;
+        let alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
+        let sky_hemi = self.atmosphere.sky_hemispheric(alt);
+        let mut s = Sample::miss(Event::Diffuse);
+        s.primary_material = m.id;
+        s.facet = Some(hit.facet);
+        s.back_face = hit.back_face;
+        s.incidence_deg = incidence_deg;
+        s.temperature_k = fd.temperature_k;
+        s.emissivity = eps;
+        s.reflectance = r;
+        s.specular_fraction = sfrac;
+        s.blackbody_w_m2_sr = fd.blackbody;
+        s.sky_hemispheric_w_m2_sr = sky_hemi;
+        let mut spec = 0.0;
+        if sfrac > 0.0 {
+            // Mirror direction about the normal facing the ray.
+            let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
+            s.reflected_zenith_deg = refl[2].clamp(-1.0, 1.0).acos().to_degrees();
+            spec = if depth < ctx.options.specular_bounces {
+                let eps_m = self.geometry.surface_epsilon_m();
+                match self.geometry.closest_hit(
+                    hit.point_local,
+                    refl,
+                    eps_m,
+                    f64::INFINITY,
+                    Some(hit.facet),
+                ) {
+                    Some(h2) => {
+                        let second = self.surface(&h2, refl, depth + 1, ctx);
+                        s.event = Event::SpecularHitsFacet;
+                        s.secondary_material = second.primary_material;
+                        second.surface_leaving_w_m2_sr
+                    }
+                    None => {
+                        s.event = Event::SpecularEscapes;
+                        self.escaped(refl, alt)
+                    }
+                }
+            } else {
+                // No bounce left: the mirror reflects the hemispheric sky.
+                s.event = Event::SpecularEscapes;
+                sky_hemi
+            };
+            s.specular_incident_w_m2_sr = spec;
+        }
+        let mut diffuse = 0.0;
+        if sfrac < 1.0 {
+            let (l, f) = if depth == 0 && ctx.options.sky_view_rays > 0 {
+                self.hemisphere(hit, alt, ctx)
+            } else {
+                (sky_hemi, 1.0)
+            };
+            diffuse = l;
+            s.sky_view_factor = f;
+            s.diffuse_incident_w_m2_sr = l;
+        }
+        s.surface_leaving_w_m2_sr =
+            eps * fd.blackbody + r * (sfrac * spec + (1.0 - sfrac) * diffuse);
+        s
+    }
+
+    /// Diffuse incident radiance over the hemisphere above a hit by N cosine-weighted,
+    /// stratified rays, and the sky-view factor F (the cosine-weighted fraction of rays that
+    /// reach the sky). A blocked ray brings the surface-leaving radiance of the facet it
+    /// hits, `ε₂·L_T2 + r₂·L_d` (no further rays); an unblocked one the sky at its zenith
+    /// angle, or the terrain below the horizon.
+    fn hemisphere(&self, hit: &Hit, alt: f64, ctx: &mut Ctx<'_>) -> (f64, f64) {
+        let n = ctx.options.sky_view_rays;
+        let m = (f64::from(n).sqrt()) as u32;
+        let (t, b) = basis(hit.normal);
+        let eps_m = self.geometry.surface_epsilon_m();
+        let (mut sum, mut sky) = (0.0, 0u32);
+        for k in 0..n {
+            let (xi1, xi2): (f64, f64) = {
+                let rng = ctx.rng();
+                (rng.random(), rng.random())
+            };
+            // An m × m grid of strata, then any remainder unstratified.
+            let (u1, u2) = if k < m * m {
+                (
+                    (f64::from(k % m) + xi1) / f64::from(m),
+                    (f64::from(k / m) + xi2) / f64::from(m),
+                )
+            } else {
+                (xi1, xi2)
+            };
+            // Malley's method: uniform on the disc, projected up.
+            let rad = u1.sqrt();
+            let phi = std::f64::consts::TAU * u2;
+            let z = (1.0 - u1).max(0.0).sqrt();
+            let d = add(
+                add(scale(t, rad * phi.cos()), scale(b, rad * phi.sin())),
+                scale(hit.normal, z),
+            );
+            match self.geometry.closest_hit(
+                hit.point_local,
+                d,
+                eps_m,
+                f64::INFINITY,
+                Some(hit.facet),
+            ) {
+                Some(h2) => {
+                    let fd = self.facets[h2.facet as usize];
+                    let m2 = &self.materials[usize::from(fd.material)];
+                    let e2 = m2.emissivity_at(h2.cos_incidence.acos().to_degrees());
+                    let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
+                    sum += e2 * fd.blackbody + (1.0 - e2) * self.atmosphere.sky_hemispheric(alt2);
+                }
+                None => {
+                    if d[2] >= 0.0 {
+                        sky += 1;
+                    }
+                    sum += self.escaped(d, alt);
+                }
+            }
+        }
+        (sum / f64::from(n), f64::from(sky) / f64::from(n))
+    }
+}

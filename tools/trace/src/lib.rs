@@ -1,0 +1,508 @@
+//! `irsig-trace`: renders a raw scene through an atmosphere for one or more views and writes,
+//! per view, the radiance image (f32 EXR), the truth layers (multi-layer f32 EXR), the
+//! legacy interaction map (8-bit nibble PNG) when the material ids fit in four bits, and
+//! the digital-count image (8- or 16-bit PNG) with its LUT (quantisation by
+//! `irsig-sensor-model`: the thesis's DC/K auto-bias of Figure 14, or a fixed calibration).
+//!
+//! The tracing is `irsig-tracer`; this crate reads the canonical files, picks the band and
+//! the atmosphere, and writes the outputs, all or none of them.
+//!
+//! ```text
+//! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
+//! # -> out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, out/frame.dc.png,
+//! #    out/frame.lut.txt
+//! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
+//! ```
+
+mod atmos;
+
+use std::io::Cursor;
+use std::path::{Path, PathBuf};
+
+use clap::Parser;
+use irsig_formats::ParseError;
+use irsig_model::{MaterialLibrary, ModelError, RawScene, View};
+use irsig_raster::{Raster, exr_bytes, write_png_gray8, write_png_gray16};
+use irsig_sensor_model::quantise::{BandConversion, Quantiser};
+use irsig_tracer::{
+    Atmosphere, Camera, Frame, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum,
+};
+use miette::{IntoDiagnostic, WrapErr, miette};
+use serde::de::DeserializeOwned;
+
+const EXAMPLE: &str = "\
+Examples:
+  irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
+      writes out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, and the
+      digital counts out/frame.dc.png with out/frame.lut.txt
+  irsig-trace --scene world.raw.ron --materials materials.ron --view flyby.ron -o out/f
+      flyby.ron holds a list of views: writes out/f.0001.radiance.exr, out/f.0002..., with
+      the BVH built once
+  irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,64
+      prints every term of the radiance equation for pixel column 128, row 64
+
+Pixel (0, 0) is the top-left; rows run downwards.";
+
+/// Render a raw scene: radiance EXR, truth EXR and the legacy interaction map per view.
+#[derive(Debug, Parser)]
+#[command(name = "irsig-trace", version, about, after_help = EXAMPLE)]
+pub struct Cli {
+    /// The raw scene (canonical RON), or `-` for stdin.
+    #[arg(long, value_name = "FILE")]
+    pub scene: String,
+    /// The material library (canonical RON).
+    #[arg(long, value_name = "FILE")]
+    pub materials: String,
+    /// One or more view files (canonical RON), each holding a view or a list of views;
+    /// frames are numbered in the order given.
+    #[arg(long, value_name = "FILE", required = true, num_args = 1..)]
+    pub view: Vec<String>,
+    /// The band: `total` is the whole spectrum (σT⁴/π), exact and for checking by hand.
+    #[arg(long, default_value = "total", value_parser = ["total"])]
+    pub band: String,
+    /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`, ...), a canonical
+    /// atmosphere file (RON), or `none` (a vacuum whose sky has radiance --sky-radiance).
+    #[arg(long, default_value = "none", value_name = "NAME|FILE")]
+    pub atmosphere: String,
+    /// The atmosphere model: `table` (slant-path tables), `layered` (eq. 8-9), `thesis`
+    /// (eq. 10-11, the 1990 model) or `none`.
+    #[arg(long, default_value = "table", value_parser = ["table", "layered", "thesis", "none"])]
+    pub atmosphere_model: String,
+    /// Sky radiance for `--atmosphere none`, W m^-2 sr^-1 (0: cold space).
+    #[arg(long, default_value_t = 0.0, value_name = "W_M2_SR")]
+    pub sky_radiance: f64,
+    /// Output path prefix; files are PREFIX.radiance.exr, PREFIX.truth.exr, PREFIX.map.png
+    /// (PREFIX.NNNN.* for several views). Required unless --probe is given.
+    #[arg(short = 'o', long, value_name = "PREFIX")]
+    pub out: Option<PathBuf>,
+    /// Specular bounces per path (thesis: 1).
+    #[arg(long, default_value_t = 1)]
+    pub bounces: u32,
+    /// Sky-view factor rays per diffuse hit (0: off, F = 1 as in the thesis).
+    #[arg(long, default_value_t = 0, value_name = "N")]
+    pub sky_view_rays: u32,
+    /// Supersampling: N for N x N stratified rays per pixel (1: one ray through the centre).
+    #[arg(long, default_value_t = 1, value_name = "N")]
+    pub supersample: u32,
+    /// Seed for sky-view directions and sub-pixel jitter.
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Print every term of the radiance equation for pixel COLUMN,ROW of the first view and
+    /// write no files.
+    #[arg(long, value_name = "COLUMN,ROW", value_parser = parse_pixel)]
+    pub probe: Option<(u32, u32)>,
+    /// Digital-count image: `auto` (thesis Figure 14: DC/K around the scene's mid radiance,
+    /// auto-bias), `fixed` (DC/K at --reference-k, whose radiance maps to
+    /// --dc-at-reference, the same in every scene) or `none`.
+    #[arg(long, default_value = "auto", value_parser = ["auto", "fixed", "none"])]
+    pub dc: String,
+    /// Gain in digital counts per kelvin (default: the view's gain, else 2).
+    #[arg(long, value_name = "DC_PER_K")]
+    pub dc_per_k: Option<f64>,
+    /// Bits per count of the DC image (8 or 16).
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=16))]
+    pub dc_bits: u8,
+    /// Reference temperature of `--dc fixed`, K.
+    #[arg(long, default_value_t = 300.0, value_name = "K")]
+    pub reference_k: f64,
+    /// Count that the reference temperature's radiance maps to in `--dc fixed` (default
+    /// mid-scale).
+    #[arg(long, value_name = "DC")]
+    pub dc_at_reference: Option<f64>,
+    /// Worker threads (default: all cores). The images do not depend on it.
+    #[arg(long)]
+    pub threads: Option<usize>,
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected COLUMN,ROW such as 128,64, found `{s}`"))?;
+    let p = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("expected a pixel index (0 or more), found `{t}`"))
+    };
+    Ok((p(a)?, p(b)?))
+}
+
+/// Reads one canonical RON file and validates it.
+fn read_canonical<T: DeserializeOwned>(
+    path: &str,
+    validate: impl Fn(&T) -> Result<(), ModelError>,
+) -> miette::Result<T> {
+    let input = irsig_cli::read_input(path)?;
+    let text = std::str::from_utf8(&input.bytes).map_err(|e| {
+        ParseError::in_binary(&input.name, e.valid_up_to(), "expected UTF-8 RON text")
+    })?;
+    let value: T = ron::from_str(text).map_err(|e| {
+        let offset = offset_of(text, e.span.start.line, e.span.start.col);
+        ParseError::at_offset(&input.name, text, offset, e.code.to_string())
+    })?;
+    validate(&value).map_err(|e| miette!("{}: {e}", input.name))?;
+    Ok(value)
+}
+
+/// Byte offset of a 1-based line and character column.
+fn offset_of(text: &str, line: usize, col: usize) -> usize {
+    let mut offset = 0;
+    for (i, l) in text.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            return offset
+                + l.char_indices()
+                    .nth(col.saturating_sub(1))
+                    .map_or(l.len(), |(b, _)| b);
+        }
+        offset += l.len();
+    }
+    text.len()
+}
+
+/// The views of one file: a single view or a list.
+fn read_views(path: &str) -> miette::Result<Vec<View>> {
+    let input = irsig_cli::read_input(path)?;
+    let text = std::str::from_utf8(&input.bytes).map_err(|e| {
+        ParseError::in_binary(&input.name, e.valid_up_to(), "expected UTF-8 RON text")
+    })?;
+    let views = match ron::from_str::<View>(text) {
+        Ok(v) => vec![v],
+        Err(single) => ron::from_str::<Vec<View>>(text).map_err(|_| {
+            let offset = offset_of(text, single.span.start.line, single.span.start.col);
+            ParseError::at_offset(
+                &input.name,
+                text,
+                offset,
+                format!("expected a view or a list of views: {}", single.code),
+            )
+        })?,
+    };
+    if views.is_empty() {
+        return Err(miette!("{}: the list of views is empty", input.name));
+    }
+    for (i, v) in views.iter().enumerate() {
+        v.validate()
+            .map_err(|e| miette!("{}: view {}: {e}", input.name, i + 1))?;
+    }
+    Ok(views)
+}
+
+/// Runs the tool.
+///
+/// # Errors
+/// Bad input (with file, line and column where there is one) or an unwritable output.
+pub fn run(cli: Cli) -> miette::Result<()> {
+    if cli.probe.is_none() && cli.out.is_none() {
+        return Err(irsig_cli::usage_error(
+            "give -o PREFIX for the output files, or --probe COLUMN,ROW",
+        ));
+    }
+    if !cli.sky_radiance.is_finite() || cli.sky_radiance < 0.0 {
+        return Err(irsig_cli::usage_error(format!(
+            "--sky-radiance {} is out of range: expected a finite radiance of 0 or more",
+            cli.sky_radiance
+        )));
+    }
+    let scene: RawScene = read_canonical(&cli.scene, RawScene::validate)?;
+    let materials: MaterialLibrary = read_canonical(&cli.materials, MaterialLibrary::validate)?;
+    let mut views = Vec::new();
+    for v in &cli.view {
+        views.extend(read_views(v)?);
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(cli.threads.unwrap_or(0))
+        .build()
+        .into_diagnostic()?;
+    if cli.atmosphere == "none" {
+        let vacuum = Vacuum {
+            sky_radiance_w_m2_sr: cli.sky_radiance,
+        };
+        return pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, vacuum));
+    }
+    let atmosphere = if irsig_atmosphere::BUILTIN_NAMES.contains(&cli.atmosphere.as_str()) {
+        irsig_atmosphere::builtin(&cli.atmosphere).map_err(|e| miette!("{e}"))?
+    } else {
+        read_canonical(&cli.atmosphere, irsig_model::Atmosphere::validate)?
+    };
+    let kind: irsig_atmosphere::ModelKind =
+        cli.atmosphere_model.parse().map_err(|e| miette!("{e}"))?;
+    let model = irsig_atmosphere::AtmosphereModel::new(&atmosphere, kind)
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| format!("cannot build the {kind} model of `{}`", cli.atmosphere))?;
+    // The sky is precomputed up to the highest sensor or scene point.
+    let top = views
+        .iter()
+        .map(|v| v.position_m()[2])
+        .chain(scene.positions_m.iter().map(|p| p[2]))
+        .fold(0.0_f64, f64::max);
+    eprintln!(
+        "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, whose \
+         tables cover {:?} um: facet radiances and path terms are in different bands; use \
+         this only to check the geometry and the event logic",
+        cli.atmosphere, atmosphere.band_um
+    );
+    let air = atmos::Precomputed::new(model, top);
+    for w in &air.warnings {
+        eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
+    }
+    pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, air))
+}
+
+fn trace_all<R: Radiometry, A: Atmosphere>(
+    cli: &Cli,
+    scene: &RawScene,
+    materials: &MaterialLibrary,
+    views: &[View],
+    radiometry: R,
+    atmosphere: A,
+) -> miette::Result<()> {
+    let options = TraceOptions {
+        specular_bounces: cli.bounces,
+        sky_view_rays: cli.sky_view_rays,
+        supersampling: cli.supersample,
+        seed: cli.seed,
+    };
+    let tracer = Tracer::new(scene, materials, radiometry, atmosphere)
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?;
+    let cameras = views
+        .iter()
+        .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
+        .collect::<miette::Result<Vec<_>>>()?;
+    if let Some((column, row)) = cli.probe {
+        let cam = &cameras[0];
+        let s = tracer
+            .probe(cam, &options, column, row)
+            .map_err(|e| miette!("--probe: {e}"))?;
+        println!("pixel ({column}, {row}), view 1");
+        println!("{s}");
+        println!(
+            "apparent temperature_k     {}",
+            tracer.apparent_temperature_k(s.radiance_w_m2_sr)
+        );
+        return Ok(());
+    }
+    let Some(prefix) = cli.out.as_deref() else {
+        return Ok(());
+    };
+    let max_id = materials
+        .materials
+        .iter()
+        .map(|m| m.id.0)
+        .max()
+        .unwrap_or(0);
+    let mut files = Vec::new();
+    let total_rows: u64 = cameras.iter().map(|c| u64::from(c.pixels[1])).sum();
+    let bar = irsig_cli::progress_bar(total_rows, "tracing");
+    for (i, cam) in cameras.iter().enumerate() {
+        let frame = tracer
+            .render(cam, &options, &|n| bar.inc(n))
+            .map_err(|e| miette!("{e}"))?;
+        let stem = if cameras.len() == 1 {
+            prefix.to_path_buf()
+        } else {
+            numbered(prefix, i + 1)
+        };
+        files.push((
+            with_suffix(&stem, "radiance.exr"),
+            exr_bytes(&radiance_raster(&frame)?).into_diagnostic()?,
+        ));
+        files.push((
+            with_suffix(&stem, "truth.exr"),
+            exr_bytes(&truth_raster(&tracer, &frame)?).into_diagnostic()?,
+        ));
+        if max_id <= 15 {
+            files.push((with_suffix(&stem, "map.png"), interaction_map(&frame)?));
+        }
+        if cli.dc != "none" {
+            let view_gain = views.get(i).and_then(View::gain_dc_per_k);
+            let (png, lut) = dc_image(cli, &tracer, &frame, view_gain)?;
+            files.push((with_suffix(&stem, "dc.png"), png));
+            files.push((with_suffix(&stem, "lut.txt"), lut));
+        }
+    }
+    bar.finish_and_clear();
+    if max_id > 15 {
+        eprintln!(
+            "irsig-trace: interaction map not written: material id {max_id} does not fit the \
+             legacy 4-bit nibble (ids 1 to 15); the truth EXR's material_primary and \
+             material_secondary layers hold the same information losslessly"
+        );
+    }
+    irsig_cli::write_files_atomic(&files)
+}
+
+/// `irsig-sensor-model`'s band conversions from the tracer's band.
+struct BandAdapter<'a, R>(&'a R);
+
+impl<R: Radiometry> BandConversion for BandAdapter<'_, R> {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        self.0.radiance(temperature_k)
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        self.0.radiance_derivative(temperature_k)
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        self.0.temperature(radiance_w_m2_sr)
+    }
+}
+
+/// The DC image (PNG, 8 or 16 bits) and its LUT text.
+fn dc_image<R: Radiometry, A: Atmosphere>(
+    cli: &Cli,
+    tracer: &Tracer<R, A>,
+    frame: &Frame,
+    view_gain: Option<f64>,
+) -> miette::Result<(Vec<u8>, Vec<u8>)> {
+    let band = BandAdapter(tracer.radiometry());
+    let gain = cli.dc_per_k.or(view_gain).unwrap_or(2.0);
+    let radiance: Vec<f32> = frame.radiance_w_m2_sr.iter().map(|&l| l as f32).collect();
+    let q = if cli.dc == "fixed" {
+        let mid = f64::from(1u32 << (cli.dc_bits - 1));
+        Quantiser::fixed(
+            cli.dc_bits,
+            gain,
+            cli.reference_k,
+            cli.dc_at_reference.unwrap_or(mid),
+            &band,
+        )
+    } else {
+        Quantiser::auto_bias_from_image(cli.dc_bits, gain, &radiance, &band)
+    }
+    .map_err(|e| miette!("digital counts: {e}"))?;
+    let (w, h) = raster_size(frame);
+    let counts = q
+        .quantise(&radiance, w)
+        .map_err(|e| miette!("digital counts: {e}"))?;
+    let mut png = Vec::new();
+    if cli.dc_bits <= 8 {
+        let bytes: Vec<u8> = counts.iter().map(|&c| c.min(255) as u8).collect();
+        write_png_gray8(&mut Cursor::new(&mut png), w, h, &bytes).into_diagnostic()?;
+    } else {
+        write_png_gray16(&mut Cursor::new(&mut png), w, h, &counts).into_diagnostic()?;
+    }
+    Ok((png, q.lut(&band).to_string().into_bytes()))
+}
+
+fn numbered(prefix: &Path, n: usize) -> PathBuf {
+    let mut s = prefix.as_os_str().to_owned();
+    s.push(format!(".{n:04}"));
+    PathBuf::from(s)
+}
+
+fn with_suffix(stem: &Path, suffix: &str) -> PathBuf {
+    let mut s = stem.as_os_str().to_owned();
+    s.push(".");
+    s.push(suffix);
+    PathBuf::from(s)
+}
+
+fn raster_size(frame: &Frame) -> (usize, usize) {
+    (frame.width as usize, frame.height as usize)
+}
+
+fn radiance_raster(frame: &Frame) -> miette::Result<Raster> {
+    let (w, h) = raster_size(frame);
+    let mut r = Raster::new(w, h);
+    r.push_layer(
+        "radiance",
+        "W m^-2 sr^-1",
+        frame.radiance_w_m2_sr.iter().map(|&x| x as f32).collect(),
+    )
+    .into_diagnostic()?;
+    Ok(r)
+}
+
+/// The truth layers: the terms of each pixel's centre ray. NaN where a term does not apply
+/// (no facet hit).
+fn truth_raster<R: Radiometry, A: Atmosphere>(
+    tracer: &Tracer<R, A>,
+    frame: &Frame,
+) -> miette::Result<Raster> {
+    let (w, h) = raster_size(frame);
+    let mut r = Raster::new(w, h);
+    let t = &frame.truth;
+    let layer = |f: &dyn Fn(&irsig_tracer::Sample) -> f64| -> Vec<f32> {
+        t.iter().map(|s| f(s) as f32).collect()
+    };
+    let layers: Vec<(&str, &str, Vec<f32>)> = vec![
+        (
+            "material_primary",
+            "",
+            layer(&|s| f64::from(s.primary_material)),
+        ),
+        (
+            "material_secondary",
+            "",
+            layer(&|s| f64::from(s.secondary_material)),
+        ),
+        ("event", "", layer(&|s| f64::from(s.event.number()))),
+        ("range", "m", layer(&|s| s.range_m)),
+        ("incidence", "deg", layer(&|s| s.incidence_deg)),
+        ("kinetic_temperature", "K", layer(&|s| s.temperature_k)),
+        ("emissivity", "", layer(&|s| s.emissivity)),
+        ("transmission", "", layer(&|s| s.transmission)),
+        (
+            "path_radiance",
+            "W m^-2 sr^-1",
+            layer(&|s| s.path_radiance_w_m2_sr),
+        ),
+        ("sky_view_factor", "", layer(&|s| s.sky_view_factor)),
+        (
+            "apparent_temperature",
+            "K",
+            frame
+                .radiance_w_m2_sr
+                .iter()
+                .map(|&l| tracer.apparent_temperature_k(l) as f32)
+                .collect(),
+        ),
+    ];
+    for (name, unit, data) in layers {
+        r.push_layer(name, unit, data).into_diagnostic()?;
+    }
+    Ok(r)
+}
+
+/// The 1990 interaction map (thesis §4.2): primary material id in the upper nibble,
+/// reflected material id in the lower; 0 where nothing was hit. The caller has checked that
+/// every id is at most 15.
+fn interaction_map(frame: &Frame) -> miette::Result<Vec<u8>> {
+    let (w, h) = raster_size(frame);
+    let data: Vec<u8> = frame
+        .truth
+        .iter()
+        .map(|s| ((s.primary_material as u8 & 0x0f) << 4) | (s.secondary_material as u8 & 0x0f))
+        .collect();
+    let mut bytes = Vec::new();
+    write_png_gray8(&mut Cursor::new(&mut bytes), w, h, &data).into_diagnostic()?;
+    Ok(bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pixel_argument_parses_and_rejects_junk() {
+        assert_eq!(parse_pixel("128,64"), Ok((128, 64)));
+        assert!(parse_pixel("128").is_err());
+        assert!(parse_pixel("-1,3").is_err());
+    }
+
+    #[test]
+    fn offsets_follow_lines_and_columns() {
+        let t = "ab\ncdé\nf";
+        assert_eq!(offset_of(t, 2, 3), 5);
+        assert_eq!(offset_of(t, 3, 1), 8);
+        assert_eq!(offset_of(t, 9, 1), t.len());
+    }
+
+    #[test]
+    fn numbered_and_suffixed_names() {
+        let p = numbered(Path::new("out/f"), 7);
+        assert_eq!(
+            with_suffix(&p, "truth.exr"),
+            PathBuf::from("out/f.0007.truth.exr")
+        );
+    }
+}

@@ -1,0 +1,247 @@
+//! irsig-trace from the command line: the outputs of a plate seen straight down against a
+//! hand computation, sequences, the probe, the >15-material message and bad input.
+
+use std::path::Path;
+use std::process::Command;
+
+const SIGMA: f64 = 5.670_374_419e-8;
+
+fn total_radiance(t: f64) -> f64 {
+    SIGMA * t.powi(4) / std::f64::consts::PI
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_string_lossy().into_owned()
+}
+
+/// A 20 m plate of two facets: material 1 (ε = 0.9 flat, diffuse, 300 K) and material
+/// `second` (blackbody, 320 K).
+fn inputs(dir: &Path, second: u16) -> (String, String, String) {
+    let scene = write(
+        dir,
+        "scene.ron",
+        &format!(
+            "(terrain: (temperature_k: 286.0, emissivity: 1.0), objects: [\"plate\"],
+              positions_m: [(-10.0, -10.0, 0.0), (10.0, -10.0, 0.0), (10.0, 10.0, 0.0), (-10.0, 10.0, 0.0)],
+              facets: [(vertices: (0, 1, 2), material: 1, temperature_k: 300.0, object: 0),
+                       (vertices: (0, 2, 3), material: {second}, temperature_k: 320.0, object: 0)])"
+        ),
+    );
+    let mats = write(
+        dir,
+        "mats.ron",
+        &format!(
+            "(materials: [
+               (id: 1, name: \"grey\", emissivity: [(0.0, 0.9), (90.0, 0.9)], specular_fraction: 0.0, source: \"test\"),
+               (id: {second}, name: \"black\", emissivity: [(0.0, 1.0)], specular_fraction: 0.0, source: \"test\")])"
+        ),
+    );
+    let view = write(
+        dir,
+        "view.ron",
+        "Legacy(position_m: (0.0, 0.0, 100.0), pixels: (8, 6), omega_phi_kappa_deg: (0.0, 0.0, 0.0), fov_deg: (5.0, 4.0), gain_dc_per_k: Some(2.0))",
+    );
+    (scene, mats, view)
+}
+
+fn trace() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_irsig-trace"))
+}
+
+#[test]
+fn a_plate_seen_straight_down_gives_the_hand_computed_images() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let prefix = dir.path().join("f");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--sky-radiance", "10", "-o"])
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let read = |s: &str| {
+        irsig_raster::read_exr(&std::fs::read(dir.path().join(format!("f.{s}.exr"))).unwrap())
+            .unwrap()
+    };
+    let rad = read("radiance");
+    let truth = read("truth");
+    assert_eq!((rad.width, rad.height), (8, 6));
+    let l = &rad.layer("radiance").unwrap().data;
+    let mat = &truth.layer("material_primary").unwrap().data;
+    // The diagonal from (−10, −10) to (10, 10) splits the plate: facet 0 (material 1) lies
+    // below it (x > y). Top-left pixel looks north-west (x < y): material 2.
+    let grey = 0.9 * total_radiance(300.0) + 0.1 * 10.0;
+    let black = total_radiance(320.0);
+    assert!((f64::from(mat[0]) - 2.0).abs() < 1e-6);
+    assert!((f64::from(l[0]) - black).abs() < 1e-4 * black);
+    let last = 8 * 6 - 1;
+    assert!((f64::from(mat[last]) - 1.0).abs() < 1e-6);
+    assert!((f64::from(l[last]) - grey).abs() < 1e-4 * grey);
+    let t_app = &truth.layer("apparent_temperature").unwrap().data;
+    assert!((f64::from(t_app[0]) - 320.0).abs() < 1e-3);
+    // The nibble map: material 1 → 0x10, material 2 → 0x20; PNG written.
+    assert!(dir.path().join("f.map.png").exists());
+    // DC image and LUT: auto-bias, 256 entries plus a header.
+    let lut = std::fs::read_to_string(dir.path().join("f.lut.txt")).unwrap();
+    assert_eq!(lut.lines().count(), 257);
+    assert!(dir.path().join("f.dc.png").exists());
+}
+
+#[test]
+fn more_than_15_materials_skip_the_nibble_map_and_say_why() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 16);
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &view,
+            "--dc",
+            "none",
+            "-o",
+        ])
+        .arg(dir.path().join("f"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("interaction map not written"));
+    assert!(!dir.path().join("f.map.png").exists());
+    assert!(dir.path().join("f.truth.exr").exists());
+    assert!(!dir.path().join("f.dc.png").exists());
+}
+
+#[test]
+fn a_list_of_views_gives_numbered_frames_and_the_probe_prints_every_term() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, _) = inputs(dir.path(), 2);
+    let views = write(
+        dir.path(),
+        "views.ron",
+        "[Legacy(position_m: (0.0, 0.0, 100.0), pixels: (4, 4), omega_phi_kappa_deg: (0.0, 0.0, 0.0), fov_deg: (5.0, 5.0)),
+          LookAt(position_m: (0.0, -50.0, 50.0), target_m: (0.0, 0.0, 0.0), pixels: (6, 2), fov_deg: (10.0, 5.0))]",
+    );
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &views,
+            "-o",
+        ])
+        .arg(dir.path().join("seq"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for n in ["0001", "0002"] {
+        assert!(dir.path().join(format!("seq.{n}.radiance.exr")).exists());
+    }
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &views,
+            "--probe",
+            "3,3",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for term in [
+        "event",
+        "emissivity",
+        "L_T",
+        "τ",
+        "L_u",
+        "apparent temperature_k",
+    ] {
+        assert!(text.contains(term), "{term} missing from\n{text}");
+    }
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &views,
+            "--probe",
+            "4,0",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+}
+
+#[test]
+fn bad_input_exits_1_with_file_line_and_column_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, _, view) = inputs(dir.path(), 2);
+    let bad = write(dir.path(), "bad.ron", "(materials: [(id: 1 name: \"x\")])");
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &bad,
+            "--view",
+            &view,
+            "-o",
+        ])
+        .arg(dir.path().join("f"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.ron:1:"), "{err}");
+    assert!(!dir.path().join("f.radiance.exr").exists());
+    // A facet naming a material the library lacks.
+    let (_, mats, _) = inputs(dir.path(), 2);
+    let scene2 = write(
+        dir.path(),
+        "scene2.ron",
+        &std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("material: 2", "material: 9"),
+    );
+    let out = trace()
+        .args([
+            "--scene",
+            &scene2,
+            "--materials",
+            &mats,
+            "--view",
+            &view,
+            "-o",
+        ])
+        .arg(dir.path().join("f"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("material 9"));
+    // Usage: neither -o nor --probe.
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
