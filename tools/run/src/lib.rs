@@ -63,14 +63,19 @@ pub struct Cli {
 /// available to it. A tool without a validator still runs; its parameters are then checked
 /// only when it starts.
 ///
-/// Every stage tool exposes `pub struct Cli` (clap) in its library; registering it here
-/// (`tools.register("trace", check::<irsig_trace::Cli>)`) is all it takes. The stage tools
-/// (import, flatten, atmos, trace, sensor) are registered as they land on main; today the
-/// only stage tool in the workspace is `run` itself (a pipeline may run a sub-pipeline).
+/// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
+/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: import, flatten, atmos,
+/// trace and run itself (a pipeline may run a sub-pipeline). Not yet: sensor (not on main
+/// when this was written).
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
-    tools.register("run", check::<Cli>);
+    tools
+        .register("import", check::<irsig_import::Cli>)
+        .register("flatten", check::<irsig_flatten::Cli>)
+        .register("atmos", check::<irsig_atmos::Cli>)
+        .register("trace", check::<irsig_trace::Cli>)
+        .register("run", check::<Cli>);
     tools
 }
 
