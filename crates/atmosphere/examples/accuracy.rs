@@ -13,6 +13,10 @@ use irsig_atmosphere::{AtmosphereModel, ModelKind};
 use lowtran::{Rtt, Truth, atmosphere, error_k, truth};
 
 fn main() {
+    if std::env::args().any(|a| a == "--summary") {
+        summary();
+        return;
+    }
     for name in ["us-std-1976", "midlat-winter"] {
         let a = atmosphere(name);
         let rtt = Rtt::new(&a);
@@ -110,5 +114,69 @@ fn main() {
             }
             println!();
         }
+    }
+}
+
+/// Largest |error| (K) per model over both atmospheres, by kind of path.
+fn summary() {
+    type Select = fn(&Truth) -> bool;
+    let cats: [(&str, Select); 6] = [
+        ("0–60°", |t| t.kind == "ground" && t.angle_deg <= 60.0),
+        ("60–80°", |t| {
+            t.kind == "ground" && t.angle_deg > 60.0 && t.angle_deg <= 80.0
+        }),
+        ("80–88°", |t| {
+            t.kind == "ground" && t.angle_deg > 80.0 && t.angle_deg <= 88.0
+        }),
+        ("slabs", |t| t.kind == "segment"),
+        ("horizontal ≤ 1 km", |t| {
+            t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
+        }),
+        ("horizontal 5 km", |t| {
+            t.kind == "horizontal" && t.range_m.unwrap() > 1000.0
+        }),
+    ];
+    println!(
+        "\n| model |{}",
+        cats.iter()
+            .map(|c| format!(" {} |", c.0))
+            .collect::<String>()
+    );
+    println!("| --- |{}", " ---: |".repeat(cats.len()));
+    for (label, k) in [
+        ("thesis (1990)", 0),
+        ("thesis (scaled)", 1),
+        ("layered, p = 1", 2),
+        ("layered (fitted p)", 3),
+        ("table", 4),
+    ] {
+        print!("| {label} |");
+        for (_, sel) in &cats {
+            let mut worst = 0.0_f64;
+            for name in ["us-std-1976", "midlat-winter"] {
+                let a = atmosphere(name);
+                let rtt = Rtt::new(&a);
+                let mut legacy = a.clone();
+                legacy.transmission_correction_altitude_m = None;
+                let m = match k {
+                    0 => AtmosphereModel::new(&legacy, ModelKind::Thesis).unwrap(),
+                    1 => AtmosphereModel::new(&a, ModelKind::Thesis).unwrap(),
+                    2 => AtmosphereModel::new(&a, ModelKind::Layered)
+                        .unwrap()
+                        .with_curve_of_growth_exponent(&a, 1.0)
+                        .unwrap(),
+                    3 => AtmosphereModel::new(&a, ModelKind::Layered).unwrap(),
+                    _ => AtmosphereModel::new(&a, ModelKind::Table).unwrap(),
+                };
+                for t in truth(name)
+                    .iter()
+                    .filter(|t| t.transmission.is_some() && sel(t))
+                {
+                    worst = worst.max(error_k(&m, &rtt, t, 300.0).abs());
+                }
+            }
+            print!(" {worst:.2} K |");
+        }
+        println!();
     }
 }

@@ -227,6 +227,49 @@ impl Profile {
         }
     }
 
+    /// Sky radiance from `h` at air mass `m` (zenith angle θ, `m = secθ`), given the sky
+    /// `ground_sky` seen from the ground at that angle.
+    ///
+    /// The profile ends at its top level; the air above it is one more layer, with the
+    /// top layer's radiance and the absorber amount that makes the model reproduce the
+    /// ground sky at this angle. Seen from `h`, the sky is the profile's layers above `h`
+    /// plus that layer, each through the curve of growth from `h`. Subtracting the air
+    /// below `h` from the ground sky with band-mean terms instead, `(L_d − L_up)/τ`,
+    /// over-subtracts (the low air emits in the same opaque parts of the band that hide
+    /// the sky above it) and is 20–60 % low.
+    pub(crate) fn sky(&self, h: f64, m: f64, ground_sky: f64) -> f64 {
+        let top = self.z_m.last().copied().unwrap_or(0.0);
+        let w_top = self.w.last().copied().unwrap_or(0.0);
+        let b_top = self.b.last().copied().unwrap_or(0.0);
+        let known = |from: f64| {
+            Slant::new(from, top, (top - from).max(0.0) * m)
+                .map_or(0.0, |s| self.path(&s).path_radiance_w_m2_sr)
+        };
+        let residual = ground_sky - known(0.0);
+        let t_top = self.transmittance(m * w_top);
+        // Absorber coordinate of "space" along this direction.
+        let w_space = if residual <= 0.0 || b_top <= 0.0 {
+            w_top
+        } else {
+            let t_space = t_top - residual / b_top;
+            if t_space <= 1e-300 {
+                f64::INFINITY
+            } else {
+                ((-t_space.ln()).powf(1.0 / self.p) / m).max(w_top)
+            }
+        };
+        let h = h.min(top);
+        let w_h = self.w_at(h);
+        let above = b_top
+            * (self.transmittance(m * (w_top - w_h))
+                - if w_space.is_finite() {
+                    self.transmittance(m * (w_space - w_h))
+                } else {
+                    0.0
+                });
+        (known(h) + above).max(0.0)
+    }
+
     /// Vertical transmittance from the ground at `z`, linear between levels.
     pub(crate) fn tau_at(&self, z: f64) -> f64 {
         crate::interp::linear(&self.z_m, &self.tau, z)

@@ -272,9 +272,10 @@ impl AtmosphereModel {
     /// Sky radiance in W m⁻² sr⁻¹ seen from `observer_altitude_m` at `zenith_deg` (0 = up):
     /// the path radiance from the observer to space. From the ground it is the `.dwr`
     /// interpolated linearly (zenith angles past 90° see the ground's horizon: the 90°
-    /// value). From above the ground, `thesis` and `layered` remove the air below the
-    /// observer from the ground sky, `L(h,θ) = (L_d(0,θ) − L_up(0→h,θ)) / τ(0→h,θ)`, up to
-    /// 83° and extrapolate beyond by the Appendix E quadratic fitted over 60–83°; `table`
+    /// value). From above the ground, `thesis` and `layered` sum the layered profile
+    /// above the observer and the air above the profile's top (sized so the ground sky is
+    /// reproduced) up to 83°, and extrapolate beyond by the Appendix E quadratic fitted
+    /// over 60–83°; `table`
     /// interpolates its sky table up to its last angle (90°) and extrapolates beyond (rays
     /// below the horizontal that still miss the Earth) by an Appendix E least-squares
     /// quadratic fitted over its last 10°, where the radiance climbs steeply. Angles
@@ -312,26 +313,16 @@ impl AtmosphereModel {
         }
     }
 
-    /// Sky radiance from `h > 0` at `zenith_deg ≤ 90` by removing the air below the
-    /// observer from the ground sky.
+    /// Sky radiance from `h > 0` at `zenith_deg ≤ 90` for `thesis` and `layered`: the
+    /// layered profile above the observer plus the air above the profile's top, sized to
+    /// reproduce the ground sky (see `Profile::sky`).
     fn sky_above_ground(&self, h: f64, zenith_deg: f64) -> f64 {
         let ground = self.ground_sky.at(zenith_deg);
-        let sec = 1.0 / zenith_deg.to_radians().cos();
-        let Some(s) = Slant::new(0.0, h, h * sec) else {
-            return ground;
-        };
-        // The thesis defines no sky above the ground beyond "the upwelled-radiance routine
-        // stopped at the sensor's altitude" (§3.1.4): both models use the layered sum.
-        let below = match &self.inner {
-            Inner::Thesis(t) => t.profile.path(&s),
-            Inner::Layered(p) => p.path(&s),
-            Inner::Table(t) => t.path(&s),
-            Inner::None => PathTerms::VACUUM,
-        };
-        if below.transmission <= 1e-12 {
-            return 0.0;
+        let m = 1.0 / zenith_deg.to_radians().cos().max(1e-9);
+        match self.profile() {
+            Some(p) => p.sky(h, m, ground),
+            None => 0.0,
         }
-        ((ground - below.path_radiance_w_m2_sr) / below.transmission).max(0.0)
     }
 
     /// The angular sky radiance seen from `observer_altitude_m`, precomputed for cheap

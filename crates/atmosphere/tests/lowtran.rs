@@ -68,3 +68,29 @@ fn thesis_model_reproduces_its_own_fit_altitude_but_not_others() {
         assert!(at_80 > 3.0, "{name}: {at_80} K");
     }
 }
+
+#[test]
+fn sky_from_above_the_ground_follows_lowtran() {
+    for name in ["us-std-1976", "midlat-winter"] {
+        let a = atmosphere(name);
+        let table = AtmosphereModel::new(&a, ModelKind::Table).unwrap();
+        let layered = AtmosphereModel::new(&a, ModelKind::Layered).unwrap();
+        for t in truth(name).iter().filter(|t| t.kind == "sky") {
+            let rel = |m: &AtmosphereModel| {
+                m.sky_radiance(t.observer_m, t.angle_deg) / t.radiance_w_m2_sr - 1.0
+            };
+            assert!(
+                rel(&table).abs() < 0.03,
+                "{name} table {t:?}: {}",
+                rel(&table)
+            );
+            if t.angle_deg <= 62.5 {
+                assert!(
+                    rel(&layered).abs() < 0.08,
+                    "{name} layered {t:?}: {}",
+                    rel(&layered)
+                );
+            }
+        }
+    }
+}

@@ -143,11 +143,29 @@ pub struct Transform {
 /// about world x first, then y, then z, each counter-clockwise looking down the axis.
 #[must_use]
 pub fn rotation_matrix(rotation_deg: [f64; 3]) -> [[f64; 3]; 3] {
-    let [(sx, cx), (sy, cy), (sz, cz)] = rotation_deg.map(|a| a.to_radians().sin_cos());
+    let [(sx, cx), (sy, cy), (sz, cz)] = rotation_deg.map(sin_cos_deg);
     let rx = [[1.0, 0.0, 0.0], [0.0, cx, -sx], [0.0, sx, cx]];
     let ry = [[cy, 0.0, sy], [0.0, 1.0, 0.0], [-sy, 0.0, cy]];
     let rz = [[cz, -sz, 0.0], [sz, cz, 0.0], [0.0, 0.0, 1.0]];
     mul(&rz, &mul(&ry, &rx))
+}
+
+/// `(sin, cos)` of an angle in degrees, exact at multiples of 90° (where `to_radians`
+/// would leave 6e-17 instead of 0 and make hand-checked scenes come out a hair off).
+#[allow(clippy::float_cmp)] // an exact test for whole quarter turns is the point
+fn sin_cos_deg(angle_deg: f64) -> (f64, f64) {
+    let quarter = angle_deg / 90.0;
+    if quarter.fract() == 0.0 && quarter.abs() < 1e15 {
+        // rem_euclid of an integral f64 is integral: 0, 1, 2 or 3.
+        match quarter.rem_euclid(4.0) as u8 {
+            0 => (0.0, 1.0),
+            1 => (1.0, 0.0),
+            2 => (0.0, -1.0),
+            _ => (-1.0, 0.0),
+        }
+    } else {
+        angle_deg.to_radians().sin_cos()
+    }
 }
 
 fn mul(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {

@@ -279,3 +279,17 @@ fn terrain_is_closed_and_holds_the_volume_under_it() {
     t.validate().unwrap();
     assert!((volume(&t) - 16.0).abs() < 1e-9, "{}", volume(&t));
 }
+
+#[test]
+#[allow(clippy::float_cmp)] // exactness is what is tested
+fn quarter_turns_are_exact() {
+    let r = rotation_matrix([90.0, -180.0, 270.0]);
+    for row in r {
+        for v in row {
+            assert!(v == 0.0 || v == 1.0 || v == -1.0, "{r:?}");
+        }
+    }
+    // And the general case agrees with the exact one to rounding.
+    let a = rotation_matrix([90.0 + 1e-9, 0.0, 0.0]);
+    assert!((a[2][1] - 1.0).abs() < 1e-12);
+}

@@ -2,7 +2,7 @@
 //! 4096² (the floor: 4096² under 1 s), plus quantisation and noise at 1024².
 
 use irsig_sensor_model::Plane;
-use irsig_sensor_model::blur::{EdgeMode, blur};
+use irsig_sensor_model::blur::{EdgeMode, Precision, blur, blur_with_precision};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::add_gaussian_noise;
 use irsig_sensor_model::quantise::Quantiser;
@@ -46,6 +46,15 @@ fn fft_blur_cascade_reflect(bencher: divan::Bencher, n: usize) {
     let image = scene(n);
     let chain = cascade();
     bencher.bench(|| blur(&image, &chain, EdgeMode::Reflect, 1).unwrap());
+}
+
+#[divan::bench(args = [512, 1024, 4096], sample_count = 3, sample_size = 1)]
+fn fft_blur_cascade_reflect_single(bencher: divan::Bencher, n: usize) {
+    let image = scene(n);
+    let chain = cascade();
+    bencher.bench(|| {
+        blur_with_precision(&image, &chain, EdgeMode::Reflect, 1, Precision::Single).unwrap()
+    });
 }
 
 #[divan::bench(args = [1024, 4096], sample_count = 3, sample_size = 1)]

@@ -56,6 +56,58 @@ pub fn reduce_mean(image: &Plane, factor: usize) -> Result<Plane> {
     })
 }
 
+/// The mean of every `factor` × `factor` block of an f32 truth layer, over the samples
+/// that are not NaN (truth layers hold NaN where a quantity does not apply, such as the
+/// range where no facet was hit); NaN where the whole block is.
+///
+/// # Errors
+/// Data of the wrong length, an empty image, or sides that are not multiples of `factor`.
+pub fn reduce_mean_ignoring_nan(
+    values: &[f32],
+    width: usize,
+    height: usize,
+    factor: usize,
+) -> Result<Vec<f32>> {
+    check_layer(values.len(), width, height)?;
+    check_factor(width, height, factor)?;
+    let (w, h) = (width / factor, height / factor);
+    let mut out = vec![0.0_f32; w * h];
+    out.par_chunks_mut(w).enumerate().for_each(|(y, row)| {
+        for (x, value) in row.iter_mut().enumerate() {
+            let (mut sum, mut n) = (0.0_f64, 0_usize);
+            for sy in y * factor..(y + 1) * factor {
+                for &v in &values[sy * width + x * factor..sy * width + (x + 1) * factor] {
+                    if !v.is_nan() {
+                        sum += f64::from(v);
+                        n += 1;
+                    }
+                }
+            }
+            *value = if n == 0 {
+                f32::NAN
+            } else {
+                (sum / n as f64) as f32
+            };
+        }
+    });
+    Ok(out)
+}
+
+fn check_layer(len: usize, width: usize, height: usize) -> Result<()> {
+    if width == 0 || height == 0 {
+        return Err(SensorErrorKind::EmptyImage { width, height }.into());
+    }
+    if len != width * height {
+        return Err(SensorErrorKind::SizeMismatch {
+            width,
+            height,
+            actual: len,
+        }
+        .into());
+    }
+    Ok(())
+}
+
 /// The majority label of every `factor` × `factor` block of a categorical layer (ties to
 /// the smallest label; labels compared by value with `f32::total_cmp`).
 ///
@@ -67,17 +119,7 @@ pub fn reduce_majority(
     height: usize,
     factor: usize,
 ) -> Result<Vec<f32>> {
-    if width == 0 || height == 0 {
-        return Err(SensorErrorKind::EmptyImage { width, height }.into());
-    }
-    if labels.len() != width * height {
-        return Err(SensorErrorKind::SizeMismatch {
-            width,
-            height,
-            actual: labels.len(),
-        }
-        .into());
-    }
+    check_layer(labels.len(), width, height)?;
     check_factor(width, height, factor)?;
     let (w, h) = (width / factor, height / factor);
     let mut out = vec![0.0_f32; w * h];
@@ -156,6 +198,18 @@ mod tests {
         ];
         let r = reduce_majority(&labels, 4, 2, 2).unwrap();
         assert_eq!(r, vec![5.0, 2.0]);
+    }
+
+    #[test]
+    fn truth_means_skip_nan() {
+        #[rustfmt::skip]
+        let range = [
+            10.0, f32::NAN, f32::NAN, f32::NAN,
+            20.0, 30.0, f32::NAN, f32::NAN,
+        ];
+        let r = reduce_mean_ignoring_nan(&range, 4, 2, 2).unwrap();
+        assert!((r[0] - 20.0).abs() < 1e-6);
+        assert!(r[1].is_nan());
     }
 
     #[test]

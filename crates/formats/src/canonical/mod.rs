@@ -110,7 +110,10 @@ pub fn utf8<'a>(file: &str, bytes: &'a [u8]) -> Result<&'a str, ParseError> {
             file,
             text,
             text.len(),
-            format!("expected UTF-8 text, found byte {}", e.valid_up_to()),
+            format!(
+                "expected UTF-8 text, found a byte that is not (byte offset {})",
+                e.valid_up_to()
+            ),
         )
     })
 }
@@ -246,6 +249,6 @@ mod tests {
     #[test]
     fn non_utf8_is_rejected_with_its_offset() {
         let e = from_ron_bytes::<MaterialLibrary>("lib.ron", b"(materials: [\xff])").unwrap_err();
-        assert!(e.message.contains("byte 13"), "{e}");
+        assert!(e.message.contains("byte offset 13"), "{e}");
     }
 }

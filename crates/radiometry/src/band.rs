@@ -1,0 +1,462 @@
+//! [`Band`]: blackbody band radiance `L(T)`, its derivative and its inverse `T(L)`.
+
+use crate::constants::{C1L_W_M2_SR, C2_M_K};
+use crate::error::{RadiometryError, RadiometryErrorKind};
+use crate::planck;
+
+const METRES_PER_UM: f64 = 1e-6;
+
+/// A relative spectral response: response (dimensionless, usually 0–1) against wavelength
+/// (µm), linearly interpolated between the tabulated points and zero outside them.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SensorResponse {
+    wavelength_um: Vec<f64>,
+    response: Vec<f64>,
+}
+
+impl SensorResponse {
+    /// A response table from matching columns.
+    ///
+    /// # Errors
+    /// [`RadiometryErrorKind::InvalidResponse`] when there are fewer than two points, the
+    /// columns differ in length, a wavelength is not finite and positive, the wavelengths do
+    /// not strictly increase, a response is negative or not finite, or all responses are 0.
+    pub fn new(wavelength_um: Vec<f64>, response: Vec<f64>) -> Result<Self, RadiometryError> {
+        let bad = |m: String| {
+            Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidResponse,
+                m,
+            ))
+        };
+        if wavelength_um.len() != response.len() {
+            return bad(format!(
+                "{} wavelengths but {} responses",
+                wavelength_um.len(),
+                response.len()
+            ));
+        }
+        if wavelength_um.len() < 2 {
+            return bad(format!(
+                "need at least 2 points, found {}",
+                wavelength_um.len()
+            ));
+        }
+        for (i, (&w, &r)) in wavelength_um.iter().zip(&response).enumerate() {
+            if !(w.is_finite() && w > 0.0) {
+                return bad(format!(
+                    "point {}: wavelength must be a positive number of µm, found {w}",
+                    i + 1
+                ));
+            }
+            if !(r.is_finite() && r >= 0.0) {
+                return bad(format!(
+                    "point {}: response must be finite and ≥ 0, found {r}",
+                    i + 1
+                ));
+            }
+        }
+        for (i, pair) in wavelength_um.windows(2).enumerate() {
+            let &[a, b] = pair else { continue };
+            if b <= a {
+                return bad(format!(
+                    "wavelengths must increase: point {} ({b} µm) follows {a} µm",
+                    i + 2
+                ));
+            }
+        }
+        if response.iter().all(|&r| r == 0.0) {
+            return bad("the response is zero everywhere".to_owned());
+        }
+        Ok(Self {
+            wavelength_um,
+            response,
+        })
+    }
+
+    /// The tabulated wavelengths, µm.
+    #[must_use]
+    pub fn wavelength_um(&self) -> &[f64] {
+        &self.wavelength_um
+    }
+
+    /// The tabulated responses.
+    #[must_use]
+    pub fn response(&self) -> &[f64] {
+        &self.response
+    }
+
+    /// The response at `wavelength_um`, linearly interpolated; 0 outside the table.
+    #[must_use]
+    pub fn at(&self, wavelength_um: f64) -> f64 {
+        interpolate_or_zero(&self.wavelength_um, &self.response, wavelength_um)
+    }
+}
+
+fn interpolate_or_zero(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let (Some(&first), Some(&last)) = (xs.first(), xs.last()) else {
+        return 0.0;
+    };
+    if !(x >= first && x <= last) {
+        return 0.0;
+    }
+    let i = xs.partition_point(|&v| v <= x).clamp(1, xs.len() - 1);
+    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
+    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+}
+
+/// How the band integral is done.
+#[derive(Debug, Clone, PartialEq)]
+enum Kernel {
+    /// SRF = 1: closed-form series (see [`crate::planck`]).
+    Flat,
+    /// Gauss–Legendre quadrature with the SRF folded into the weights.
+    Nodes(Vec<Node>),
+}
+
+/// One quadrature node: `weight · SRF(λ) · c1L / λ^5` and `c2 / λ`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Node {
+    weight: f64,
+    c2_over_lambda: f64,
+}
+
+/// A spectral band `[λmin, λmax]` with an optional sensor response: maps a blackbody's
+/// kinetic temperature to the radiance a sensor with this band sees, and back.
+///
+/// Units: temperatures in K, radiance in W m^-2 sr^-1 (band-integrated, response-weighted),
+/// wavelengths in µm at this API. Constants are CODATA 2018.
+///
+/// The default is the thesis's 8–14 µm with a flat response.
+///
+/// # Accuracy
+/// - Flat response: closed-form series, relative error ~1e-15 at any temperature (the test
+///   suite checks ≤ 1e-10 against adaptive quadrature from 3 K to 5000 K).
+/// - With a response table: Gauss–Legendre quadrature on each linear piece of the table
+///   (4 nodes per piece up to 0.1 µm, 8 nodes per 1 µm otherwise), relative error ≤ 1e-10
+///   from 50 K up (checked against the flat series with a flat table). Below 50 K the
+///   Planck function is so steep across a piece that the relative error grows (1e-3 at
+///   10 K); the result stays positive and strictly increasing in T, so [`Band::temperature`]
+///   still inverts it exactly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Band {
+    lambda_min_um: f64,
+    lambda_max_um: f64,
+    kernel: Kernel,
+    /// Mean wavelength (m) and integral of the response over the band (m), for the
+    /// first guess of the inverse.
+    centre_m: f64,
+    width_m: f64,
+}
+
+impl Default for Band {
+    fn default() -> Self {
+        Self::lwir()
+    }
+}
+
+impl Band {
+    /// The thesis band: 8–14 µm, flat response.
+    #[must_use]
+    pub fn lwir() -> Self {
+        Self::flat_unchecked(8.0, 14.0)
+    }
+
+    fn flat_unchecked(lambda_min_um: f64, lambda_max_um: f64) -> Self {
+        Self {
+            lambda_min_um,
+            lambda_max_um,
+            kernel: Kernel::Flat,
+            centre_m: 0.5 * (lambda_min_um + lambda_max_um) * METRES_PER_UM,
+            width_m: (lambda_max_um - lambda_min_um) * METRES_PER_UM,
+        }
+    }
+
+    /// A band from `lambda_min_um` to `lambda_max_um` with a flat response.
+    ///
+    /// # Errors
+    /// [`RadiometryErrorKind::InvalidBand`] unless `0 < lambda_min_um < lambda_max_um` and
+    /// both are finite.
+    pub fn new(lambda_min_um: f64, lambda_max_um: f64) -> Result<Self, RadiometryError> {
+        if !(lambda_min_um.is_finite() && lambda_max_um.is_finite())
+            || lambda_min_um <= 0.0
+            || lambda_max_um <= lambda_min_um
+        {
+            return Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidBand,
+                format!("need 0 < λmin < λmax (µm), found {lambda_min_um} to {lambda_max_um}"),
+            ));
+        }
+        Ok(Self::flat_unchecked(lambda_min_um, lambda_max_um))
+    }
+
+    /// This band weighted by a sensor response. The response multiplies the Planck
+    /// function inside `[λmin, λmax]`; it is zero outside its own table.
+    ///
+    /// # Errors
+    /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero everywhere
+    /// inside the band.
+    pub fn with_response(self, srf: &SensorResponse) -> Result<Self, RadiometryError> {
+        let lo = self.lambda_min_um;
+        let hi = self.lambda_max_um;
+        let mut nodes = Vec::new();
+        let mut width_m = 0.0;
+        let mut moment = 0.0;
+        for pair in srf.wavelength_um.windows(2) {
+            let &[w0, w1] = pair else { continue };
+            let a = w0.max(lo);
+            let b = w1.min(hi);
+            if b <= a {
+                continue;
+            }
+            let length = b - a;
+            let (order, pieces) = if length <= 0.1 {
+                (4, 1)
+            } else {
+                (8, length.ceil() as usize)
+            };
+            let rule = gauss_legendre(order);
+            let piece = length / pieces as f64;
+            for p in 0..pieces {
+                let start = a + piece * p as f64;
+                for &(t, w) in &rule {
+                    let lambda_um = start + 0.5 * piece * (t + 1.0);
+                    let response = srf.at(lambda_um);
+                    if response <= 0.0 {
+                        continue;
+                    }
+                    let lambda_m = lambda_um * METRES_PER_UM;
+                    let dl_m = 0.5 * piece * w * METRES_PER_UM;
+                    width_m += dl_m * response;
+                    moment += dl_m * response * lambda_m;
+                    let l5 = lambda_m * lambda_m * lambda_m * lambda_m * lambda_m;
+                    nodes.push(Node {
+                        weight: dl_m * response * C1L_W_M2_SR / l5,
+                        c2_over_lambda: C2_M_K / lambda_m,
+                    });
+                }
+            }
+        }
+        if nodes.is_empty() || width_m <= 0.0 {
+            return Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidResponse,
+                format!("the sensor response is zero everywhere inside the band {lo}–{hi} µm"),
+            ));
+        }
+        Ok(Self {
+            lambda_min_um: lo,
+            lambda_max_um: hi,
+            kernel: Kernel::Nodes(nodes),
+            centre_m: moment / width_m,
+            width_m,
+        })
+    }
+
+    /// Lower band limit, µm.
+    #[must_use]
+    pub fn lambda_min_um(&self) -> f64 {
+        self.lambda_min_um
+    }
+
+    /// Upper band limit, µm.
+    #[must_use]
+    pub fn lambda_max_um(&self) -> f64 {
+        self.lambda_max_um
+    }
+
+    /// Whether a sensor response weights this band.
+    #[must_use]
+    pub fn has_response(&self) -> bool {
+        matches!(self.kernel, Kernel::Nodes(_))
+    }
+
+    /// Number of quadrature nodes (0 for a flat band, which uses the closed-form series).
+    #[must_use]
+    pub fn quadrature_nodes(&self) -> usize {
+        match &self.kernel {
+            Kernel::Flat => 0,
+            Kernel::Nodes(n) => n.len(),
+        }
+    }
+
+    /// Band radiance of a blackbody at `t_k` kelvin, W m^-2 sr^-1.
+    ///
+    /// `t_k ≤ 0` gives 0; NaN gives NaN; a radiance beyond `f64::MAX` (only for
+    /// temperatures above ~1e306 K) saturates at `f64::MAX`. Never Inf for finite input.
+    #[must_use]
+    pub fn radiance(&self, t_k: f64) -> f64 {
+        self.radiance_and_derivative(t_k).0
+    }
+
+    /// `dL/dT` at `t_k`, W m^-2 sr^-1 K^-1. 0 for `t_k ≤ 0`, NaN for NaN.
+    #[must_use]
+    pub fn radiance_derivative(&self, t_k: f64) -> f64 {
+        self.radiance_and_derivative(t_k).1
+    }
+
+    /// `(L(T), dL/dT)` in one evaluation (they share all the exponentials).
+    #[must_use]
+    pub fn radiance_and_derivative(&self, t_k: f64) -> (f64, f64) {
+        if t_k.is_nan() {
+            return (f64::NAN, f64::NAN);
+        }
+        if t_k <= 0.0 {
+            return (0.0, 0.0);
+        }
+        let t_k = t_k.min(f64::MAX);
+        match &self.kernel {
+            Kernel::Flat => planck::flat_band(
+                self.lambda_min_um * METRES_PER_UM,
+                self.lambda_max_um * METRES_PER_UM,
+                t_k,
+            ),
+            Kernel::Nodes(nodes) => nodes_radiance(nodes, t_k),
+        }
+    }
+
+    /// The temperature (K) of the blackbody whose band radiance is `radiance_w_m2_sr`: the
+    /// apparent (brightness) temperature.
+    ///
+    /// - `radiance ≤ 0` gives **0 K**: the band radiance tends to 0 as T → 0+, so 0 K is the
+    ///   continuous extension, and a negative radiance (a noisy or over-corrected pixel) has
+    ///   no blackbody temperature; callers that must distinguish it test the sign first.
+    /// - NaN gives NaN; `+∞` gives `f64::MAX`; any finite positive radiance gives a finite
+    ///   temperature (saturating at `f64::MAX` if even that is too cold).
+    ///
+    /// Safeguarded Newton iteration on `ln L` in `1/T` (nearly linear where Wien's law
+    /// holds), kept inside a bracket; `|T(L(T)) − T| < 1e-6 K` from 3 K to 5000 K.
+    #[must_use]
+    pub fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        let target = radiance_w_m2_sr;
+        if target.is_nan() {
+            return f64::NAN;
+        }
+        if target <= 0.0 {
+            return 0.0;
+        }
+        let ln_target = target.ln();
+        // First guess: Planck at the band's mean wavelength times its width.
+        let lc = self.centre_m;
+        let ratio = C1L_W_M2_SR * self.width_m / (lc * lc * lc * lc * lc * target);
+        let mut t = (C2_M_K / lc) / ratio.ln_1p();
+        if !(t.is_finite() && t > 0.0) {
+            t = if ratio.ln_1p() == 0.0 { f64::MAX } else { 1.0 };
+        }
+        let (mut lo, mut hi) = (0.0_f64, f64::INFINITY);
+        for _ in 0..200 {
+            let (l, dl) = self.radiance_and_derivative(t);
+            #[allow(clippy::float_cmp)] // an exact hit ends the search
+            if l == target {
+                return t;
+            }
+            if l < target {
+                lo = t;
+            } else {
+                hi = t;
+            }
+            // Newton on g(u) = ln L(1/u) − ln L*, u = 1/T: T_new = T / (1 + δ),
+            // δ = (ln L − ln L*) / (d ln L / d ln T).
+            let slope = t * dl / l;
+            let mut next = f64::NAN;
+            if l > 0.0 && slope.is_finite() && slope > 0.0 {
+                let delta = (l.ln() - ln_target) / slope;
+                if delta > -1.0 {
+                    next = t / (1.0 + delta);
+                }
+            }
+            if !(next > lo && next < hi) {
+                next = if hi.is_infinite() {
+                    (t * 4.0).min(f64::MAX)
+                } else if lo == 0.0 {
+                    t * 0.25
+                } else {
+                    (lo.sqrt() * hi.sqrt()).clamp(lo, hi)
+                };
+            }
+            if t >= f64::MAX && next >= t {
+                return f64::MAX;
+            }
+            if (next - t).abs() <= 1e-15 * t || (hi.is_finite() && hi - lo <= 2e-16 * hi) {
+                return next;
+            }
+            t = next;
+        }
+        t
+    }
+}
+
+fn nodes_radiance(nodes: &[Node], t_k: f64) -> (f64, f64) {
+    let mut radiance = 0.0;
+    let mut derivative = 0.0;
+    for node in nodes {
+        let y = node.c2_over_lambda / t_k;
+        if y > 745.0 {
+            // exp(−y) underflows: this node and every one with a shorter wavelength add 0.
+            continue;
+        }
+        // 1/(e^y − 1) = e^{−y} / (1 − e^{−y}); expm1 keeps 1 − e^{−y} exact for small y.
+        let em = (-y).exp();
+        let one_minus = -(-y).exp_m1();
+        radiance += node.weight * (em / one_minus);
+        // d/dT 1/(e^y − 1) = (y/T) e^y/(e^y − 1)^2, written so no factor overflows:
+        // e^{−y} · (y / (1 − e^{−y})) / (T (1 − e^{−y})).
+        derivative += node.weight * em * (y / one_minus) / (t_k * one_minus);
+    }
+    (radiance.min(f64::MAX), derivative.min(f64::MAX))
+}
+
+/// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the Legendre recurrence).
+pub(crate) fn gauss_legendre(order: usize) -> Vec<(f64, f64)> {
+    let n = order as f64;
+    let mut rule = Vec::with_capacity(order);
+    for i in 0..order {
+        let mut x = (std::f64::consts::PI * (i as f64 + 0.75) / (n + 0.5)).cos();
+        let mut derivative = 1.0;
+        for _ in 0..100 {
+            let (mut p0, mut p1) = (1.0_f64, x);
+            for k in 2..=order {
+                let k = k as f64;
+                let p2 = ((2.0 * k - 1.0) * x * p1 - (k - 1.0) * p0) / k;
+                p0 = p1;
+                p1 = p2;
+            }
+            derivative = n * (x * p1 - p0) / (x * x - 1.0);
+            let dx = p1 / derivative;
+            x -= dx;
+            if dx.abs() < 1e-16 {
+                break;
+            }
+        }
+        let w = 2.0 / ((1.0 - x * x) * derivative * derivative);
+        rule.push((x, w));
+    }
+    rule
+}
+
+#[cfg(test)]
+#[allow(clippy::float_cmp)] // exact values are the point of these checks
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gauss_legendre_integrates_polynomials_of_degree_2n_minus_1_exactly() {
+        for order in [4, 8] {
+            let rule = gauss_legendre(order);
+            let weight_sum: f64 = rule.iter().map(|&(_, w)| w).sum();
+            assert!((weight_sum - 2.0).abs() < 1e-14);
+            // ∫_{-1}^{1} x^(2n-2) dx = 2/(2n-1).
+            let degree = 2 * order - 2;
+            let integral: f64 = rule.iter().map(|&(x, w)| w * x.powi(degree as i32)).sum();
+            assert!((integral - 2.0 / (degree as f64 + 1.0)).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn interpolation_is_zero_outside_and_linear_inside() {
+        let srf = SensorResponse::new(vec![8.0, 10.0, 12.0], vec![0.0, 1.0, 0.5]).unwrap();
+        assert_eq!(srf.at(7.9), 0.0);
+        assert_eq!(srf.at(12.1), 0.0);
+        assert!((srf.at(9.0) - 0.5).abs() < 1e-15);
+        assert!((srf.at(11.0) - 0.75).abs() < 1e-15);
+        assert!((srf.at(12.0) - 0.5).abs() < 1e-15);
+    }
+}

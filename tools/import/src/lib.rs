@@ -1,0 +1,246 @@
+//! `irsig-import`: a mesh file in, a canonical irsig object (RON) out.
+//!
+//! Reads Wavefront OBJ (+ MTL) and glTF 2.0 / GLB (`irsig_formats::mesh`), converts
+//! lengths to metres (`--unit`, then `--scale`), maps every facet's material name to an id
+//! through a material library, and writes an [`irsig_model::Object`]. A facet whose
+//! material the library does not know is an error that names the material and where it is
+//! first used, unless `--default-material` names the material to use instead.
+//!
+//! ```text
+//! irsig-import car.obj --materials materials.ron -o car.ron
+//! irsig-import hand.glb --materials materials.ron --default-material skin | irsig-flatten scene.ron --object hand.ron=-
+//! ```
+
+use std::path::PathBuf;
+
+use clap::{Parser, ValueEnum};
+use irsig_formats::mesh::{self, Mesh};
+use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object};
+use miette::miette;
+
+/// The mesh formats `irsig-import` reads.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Wavefront OBJ, with MTL files beside it.
+    Obj,
+    /// glTF 2.0, JSON (`.gltf`) or binary (`.glb`): the content tells which.
+    Gltf,
+    /// Binary glTF; the same reader as `gltf`.
+    Glb,
+}
+
+/// Command line of `irsig-import`.
+#[derive(Debug, Parser)]
+#[command(
+    name = "irsig-import",
+    version,
+    about = "Mesh file (OBJ + MTL, glTF/GLB) -> canonical irsig object (RON)",
+    after_help = "Examples:\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --format obj --materials materials.ron > car.ron\n\n\
+Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
+unnamed), mapped to ids through --materials. Lengths are converted to metres: --unit\n\
+gives the file's unit (1990 data are in km), --scale multiplies on top."
+)]
+pub struct Cli {
+    /// The mesh file, or `-` for standard input (then --format is required).
+    pub input: String,
+    /// The format; by default from the file extension (.obj, .gltf, .glb).
+    #[arg(long, value_enum)]
+    pub format: Option<Format>,
+    /// The material library (canonical RON) that maps material names to ids.
+    #[arg(long, value_name = "LIBRARY")]
+    pub materials: PathBuf,
+    /// The material for facets whose material the library does not know or that have
+    /// none. Without it those facets are an error.
+    #[arg(long, value_name = "NAME")]
+    pub default_material: Option<String>,
+    /// The length unit of the file's coordinates.
+    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    pub unit: LengthUnit,
+    /// An extra factor applied after the unit conversion.
+    #[arg(long, default_value_t = 1.0)]
+    pub scale: f64,
+    /// The object's name (default: the file name without its extension).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Output file (default: standard output).
+    #[arg(short, long)]
+    pub output: Option<PathBuf>,
+}
+
+fn parse_unit(s: &str) -> Result<LengthUnit, String> {
+    s.parse()
+}
+
+/// Runs `irsig-import`.
+///
+/// # Errors
+/// Bad usage (exit 2), or an unreadable, malformed or inconsistent input (exit 1).
+pub fn run(cli: Cli) -> miette::Result<()> {
+    if !(cli.scale.is_finite() && cli.scale > 0.0) {
+        return Err(irsig_cli::usage_error(format!(
+            "--scale must be a positive finite number, found {}",
+            cli.scale
+        )));
+    }
+    let format = match (cli.format, cli.input.as_str()) {
+        (Some(f), _) => f,
+        (None, "-") => {
+            return Err(irsig_cli::usage_error(
+                "reading standard input needs --format (obj, gltf or glb)",
+            ));
+        }
+        (None, path) => format_of(path)?,
+    };
+    let library = read_library(&cli.materials)?;
+    let default = match &cli.default_material {
+        Some(name) => Some(library.by_name(name).map(|m| m.id).ok_or_else(|| {
+            irsig_cli::usage_error(format!(
+                "--default-material `{name}` is not in {}; it has: {}",
+                cli.materials.display(),
+                known_names(&library)
+            ))
+        })?),
+        None => None,
+    };
+    let input = irsig_cli::read_input(&cli.input)?;
+    let base_dir = input.path.as_ref().map(|_| input.base_dir());
+    let mesh = match format {
+        Format::Obj => mesh::read_obj(&input.name, &input.bytes, base_dir.as_deref())?,
+        Format::Gltf | Format::Glb => {
+            mesh::read_gltf(&input.name, &input.bytes, base_dir.as_deref())?
+        }
+    };
+    for w in &mesh.warnings {
+        eprintln!("warning: {w}");
+    }
+    let name = cli.name.clone().unwrap_or_else(|| {
+        std::path::Path::new(&input.name)
+            .file_stem()
+            .map_or_else(|| "object".to_owned(), |s| s.to_string_lossy().into_owned())
+    });
+    let object = to_object(&mesh, &library, &cli, default, name, format)?;
+    irsig_cli::write_output(cli.output.as_deref(), |w| {
+        irsig_formats::canonical::write_ron(&object, w)
+    })
+}
+
+fn format_of(path: &str) -> miette::Result<Format> {
+    let ext = std::path::Path::new(path)
+        .extension()
+        .map(|e| e.to_string_lossy().to_ascii_lowercase());
+    match ext.as_deref() {
+        Some("obj") => Ok(Format::Obj),
+        Some("gltf") => Ok(Format::Gltf),
+        Some("glb") => Ok(Format::Glb),
+        _ => Err(irsig_cli::usage_error(format!(
+            "cannot tell the format of `{path}` from its extension; give --format obj, gltf or glb"
+        ))),
+    }
+}
+
+fn read_library(path: &std::path::Path) -> miette::Result<MaterialLibrary> {
+    let input = irsig_cli::read_input(&path.to_string_lossy())?;
+    Ok(irsig_formats::canonical::from_ron_bytes(
+        &input.name,
+        &input.bytes,
+    )?)
+}
+
+fn known_names(library: &MaterialLibrary) -> String {
+    let names: Vec<&str> = library.materials.iter().map(|m| m.name.as_str()).collect();
+    if names.is_empty() {
+        "no materials".into()
+    } else {
+        names.join(", ")
+    }
+}
+
+fn to_object(
+    mesh: &Mesh,
+    library: &MaterialLibrary,
+    cli: &Cli,
+    default: Option<MaterialId>,
+    name: String,
+    format: Format,
+) -> miette::Result<Object> {
+    let library_name = cli.materials.display();
+    // Map each material name once.
+    let mut ids = Vec::with_capacity(mesh.materials.len());
+    for m in &mesh.materials {
+        let id = match (library.by_name(&m.name), default) {
+            (Some(found), _) => found.id,
+            (None, Some(d)) => d,
+            (None, None) => {
+                return Err(miette!(
+                    help = "add the material to the library, or name a default with --default-material NAME",
+                    "{}: material `{}` is not in {library_name} (which has: {})",
+                    m.first_use,
+                    m.name,
+                    known_names(library)
+                ));
+            }
+        };
+        ids.push(id);
+    }
+    let factor = cli.unit.metres() * cli.scale;
+    let mut facets = Vec::with_capacity(mesh.triangles.len());
+    for (i, t) in mesh.triangles.iter().enumerate() {
+        let material = match t.material.and_then(|m| ids.get(m as usize)) {
+            Some(&id) => id,
+            None => default.ok_or_else(|| {
+                miette!(
+                    help = "name a material for such facets with --default-material NAME",
+                    "{}: facet {i} has no material",
+                    mesh.triangle_location(i)
+                )
+            })?,
+        };
+        facets.push(Facet {
+            vertices: t.vertices,
+            material,
+            temperature_k: t.temperature_k,
+        });
+    }
+    let object = Object {
+        name,
+        source: format!(
+            "irsig-import {} {} (unit {}, scale {})",
+            format!("{format:?}").to_lowercase(),
+            mesh.file,
+            format!("{:?}", cli.unit).to_lowercase(),
+            cli.scale
+        ),
+        positions_m: mesh
+            .positions
+            .iter()
+            .map(|p| p.map(|c| c * factor))
+            .collect(),
+        facets,
+    };
+    object.validate().map_err(|e| {
+        // `facets[i]...` names a triangle: say where it came from in the input.
+        let place = e
+            .path
+            .strip_prefix("facets[")
+            .and_then(|r| r.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+            .map_or_else(
+                || mesh.file.clone(),
+                |i| mesh.triangle_location(i).to_string(),
+            );
+        miette!("{place}: {}: {}", e.path, e.kind)
+    })?;
+    Ok(object)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn formats_come_from_extensions() {
+        assert_eq!(format_of("a/B.OBJ").unwrap(), Format::Obj);
+        assert_eq!(format_of("x.glb").unwrap(), Format::Glb);
+        assert!(format_of("x.stl").is_err());
+    }
+}

@@ -1,0 +1,6 @@
+use clap::Parser as _;
+use std::process::ExitCode;
+
+fn main() -> ExitCode {
+    irsig_cli::run(|| irsig_import::run(irsig_import::Cli::parse()))
+}
