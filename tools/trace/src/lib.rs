@@ -48,7 +48,8 @@ Pixel (0, 0) is the top-left; rows run downwards.";
 #[derive(Debug, Parser)]
 #[command(name = "irsig-trace", version, about, after_help = EXAMPLE)]
 pub struct Cli {
-    /// The raw scene (canonical RON), or `-` for stdin.
+    /// The raw scene (canonical RON or the binary form `irsig-flatten` writes), or `-` for
+    /// stdin.
     #[arg(long, value_name = "FILE")]
     pub scene: String,
     /// The material library (canonical RON).
@@ -205,7 +206,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             cli.sky_radiance
         )));
     }
-    let scene: RawScene = read_canonical(&cli.scene, RawScene::validate)?;
+    let scene = {
+        let input = irsig_cli::read_input(&cli.scene)?;
+        irsig_formats::canonical::read_raw_scene(&input.name, &input.bytes)?
+    };
     let materials: MaterialLibrary = read_canonical(&cli.materials, MaterialLibrary::validate)?;
     let mut views = Vec::new();
     for v in &cli.view {
