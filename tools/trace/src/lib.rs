@@ -22,6 +22,7 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use irsig_formats::ParseError;
 use irsig_model::{MaterialLibrary, ModelError, RawScene, View};
+use irsig_radiometry::Band;
 use irsig_raster::{Raster, exr_bytes, write_png_gray8, write_png_gray16};
 use irsig_sensor_model::quantise::{BandConversion, Quantiser};
 use irsig_tracer::{
@@ -47,7 +48,8 @@ Pixel (0, 0) is the top-left; rows run downwards.";
 #[derive(Debug, Parser)]
 #[command(name = "irsig-trace", version, about, after_help = EXAMPLE)]
 pub struct Cli {
-    /// The raw scene (canonical RON), or `-` for stdin.
+    /// The raw scene (canonical RON or the binary form `irsig-flatten` writes), or `-` for
+    /// stdin.
     #[arg(long, value_name = "FILE")]
     pub scene: String,
     /// The material library (canonical RON).
@@ -57,8 +59,10 @@ pub struct Cli {
     /// frames are numbered in the order given.
     #[arg(long, value_name = "FILE", required = true, num_args = 1..)]
     pub view: Vec<String>,
-    /// The band: `total` is the whole spectrum (σT⁴/π), exact and for checking by hand.
-    #[arg(long, default_value = "total", value_parser = ["total"])]
+    /// The band in micrometres, `MIN-MAX` (default the thesis's 8-14, flat response), or
+    /// `total` for the whole spectrum (σT⁴/π), exact and for checking by hand. Use the band
+    /// the atmosphere's tables were integrated over.
+    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|total")]
     pub band: String,
     /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`, ...), a canonical
     /// atmosphere file (RON), or `none` (a vacuum whose sky has radiance --sky-radiance).
@@ -202,7 +206,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             cli.sky_radiance
         )));
     }
-    let scene: RawScene = read_canonical(&cli.scene, RawScene::validate)?;
+    let scene = {
+        let input = irsig_cli::read_input(&cli.scene)?;
+        irsig_formats::canonical::read_raw_scene(&input.name, &input.bytes)?
+    };
     let materials: MaterialLibrary = read_canonical(&cli.materials, MaterialLibrary::validate)?;
     let mut views = Vec::new();
     for v in &cli.view {
@@ -212,11 +219,55 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .into_diagnostic()?;
+    if cli.band == "total" {
+        pool.install(|| with_atmosphere(&cli, &scene, &materials, &views, TotalRadiance))
+    } else {
+        let band = parse_band(&cli.band)?;
+        pool.install(|| with_atmosphere(&cli, &scene, &materials, &views, BandRadiometry(band)))
+    }
+}
+
+/// `MIN-MAX` in micrometres → a flat-response band.
+fn parse_band(text: &str) -> miette::Result<Band> {
+    let bad = || {
+        irsig_cli::usage_error(format!(
+            "--band `{text}`: expected MIN-MAX in micrometres such as 8-14, or `total`"
+        ))
+    };
+    let (a, b) = text.split_once('-').ok_or_else(bad)?;
+    let a: f64 = a.trim().parse().map_err(|_| bad())?;
+    let b: f64 = b.trim().parse().map_err(|_| bad())?;
+    Band::new(a, b).map_err(|e| irsig_cli::usage_error(format!("--band `{text}`: {e}")))
+}
+
+/// `irsig_radiometry::Band` as the tracer's band model.
+#[derive(Debug)]
+struct BandRadiometry(Band);
+
+impl Radiometry for BandRadiometry {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        self.0.radiance(temperature_k)
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        self.0.radiance_derivative(temperature_k)
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        self.0.temperature(radiance_w_m2_sr)
+    }
+}
+
+fn with_atmosphere<R: Radiometry>(
+    cli: &Cli,
+    scene: &RawScene,
+    materials: &MaterialLibrary,
+    views: &[View],
+    radiometry: R,
+) -> miette::Result<()> {
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
             sky_radiance_w_m2_sr: cli.sky_radiance,
         };
-        return pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, vacuum));
+        return trace_all(cli, scene, materials, views, radiometry, vacuum);
     }
     let atmosphere = if irsig_atmosphere::BUILTIN_NAMES.contains(&cli.atmosphere.as_str()) {
         irsig_atmosphere::builtin(&cli.atmosphere).map_err(|e| miette!("{e}"))?
@@ -234,17 +285,19 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .map(|v| v.position_m()[2])
         .chain(scene.positions_m.iter().map(|p| p[2]))
         .fold(0.0_f64, f64::max);
-    eprintln!(
-        "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, whose \
-         tables cover {:?} um: facet radiances and path terms are in different bands; use \
-         this only to check the geometry and the event logic",
-        cli.atmosphere, atmosphere.band_um
-    );
+    if cli.band == "total" {
+        eprintln!(
+            "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, \
+             whose tables cover {:?} um: facet radiances and path terms are in different \
+             bands; use this only to check the geometry and the event logic",
+            cli.atmosphere, atmosphere.band_um
+        );
+    }
     let air = atmos::Precomputed::new(model, top);
     for w in &air.warnings {
         eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
     }
-    pool.install(|| trace_all(&cli, &scene, &materials, &views, TotalRadiance, air))
+    trace_all(cli, scene, materials, views, radiometry, air)
 }
 
 fn trace_all<R: Radiometry, A: Atmosphere>(

@@ -57,7 +57,7 @@ fn a_plate_seen_straight_down_gives_the_hand_computed_images() {
     let prefix = dir.path().join("f");
     let out = trace()
         .args(["--scene", &scene, "--materials", &mats, "--view", &view])
-        .args(["--sky-radiance", "10", "-o"])
+        .args(["--band", "total", "--sky-radiance", "10", "-o"])
         .arg(&prefix)
         .output()
         .unwrap();
@@ -92,6 +92,77 @@ fn a_plate_seen_straight_down_gives_the_hand_computed_images() {
     let lut = std::fs::read_to_string(dir.path().join("f.lut.txt")).unwrap();
     assert_eq!(lut.lines().count(), 257);
     assert!(dir.path().join("f.dc.png").exists());
+}
+
+#[test]
+fn the_default_8_to_14_um_band_gives_a_blackbody_its_own_temperature() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &view,
+            "--probe",
+            "0,0",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let t: f64 = text
+        .lines()
+        .find_map(|l| l.strip_prefix("apparent temperature_k"))
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap();
+    // A blackbody in a vacuum: its apparent temperature is its kinetic one in any band.
+    assert!((t - 320.0).abs() < 1e-6, "{t}");
+    // With a real atmosphere the path terms enter: τ < 1 and L = τ·L_s + L_u.
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &view,
+            "--probe",
+            "0,0",
+        ])
+        .args(["--atmosphere", "us-std-1976"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8_lossy(&out.stdout);
+    let get = |k: &str| -> f64 {
+        text.lines()
+            .find_map(|l| l.strip_prefix(k))
+            .unwrap()
+            .trim()
+            .parse()
+            .unwrap()
+    };
+    let (tau, lu, ls, l) = (
+        get("τ"),
+        get("L_u (W m-2 sr-1)"),
+        get("surface-leaving L(0,θ)"),
+        get("L at sensor (W m-2 sr-1)"),
+    );
+    assert!(tau > 0.5 && tau < 1.0, "{tau}");
+    assert!((tau * ls + lu - l).abs() < 1e-9 * l);
 }
 
 #[test]
