@@ -13,5 +13,6 @@
 //! ```
 
 mod error;
+pub mod srf;
 
 pub use error::{ParseError, line_column};
