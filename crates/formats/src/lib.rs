@@ -24,5 +24,6 @@ pub mod canonical;
 mod error;
 pub mod legacy;
 pub mod mesh;
+pub mod srf;
 
 pub use error::{ParseError, line_column};

@@ -1,27 +1,50 @@
-//! `irsig-atmos`: the atmosphere stage's tools. One subcommand per module.
+//! `irsig-atmos`: the atmosphere stage's tools, one module per subcommand.
 //!
 //! - `convert` ([`convert`]): legacy DIRTRAN tables (`.atm .cor .dwr .rtt .rsd`) to and
 //!   from the canonical atmosphere file, units stated, every table validated.
+//! - Calculators a user decides a scene's models with (band radiance, apparent
+//!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors).
+//!   Each prints a plain aligned table by default, or `--format csv` / `--format ron`.
 //!
 //! ```text
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
+//! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
+//! irsig-atmos temperature --radiance 54.93
+//! irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us.rtt
+//! irsig-atmos bounces --target-temperature 260:400:10 --max 4
+//! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
+//!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
 //! ```
-
-pub mod convert;
 
 use clap::{Parser, Subcommand};
 
-/// Atmosphere tables and radiometry calculators.
+mod bounces;
+mod common;
+pub mod convert;
+mod radiance;
+mod rtt;
+mod shape_factor;
+mod temperature;
+
+pub use common::Format;
+
+/// Atmosphere tables, and band radiance calculators (8–14 µm unless `--band` says
+/// otherwise).
 #[derive(Debug, Parser)]
 #[command(
     name = "irsig-atmos",
     version,
-    about,
-    after_help = "\
-Example:
+    after_help = "Examples:
   irsig-atmos convert --to-legacy builtin:us-std-1976 --altitude-unit km \\
-      --radiance-unit W/cm2/sr --out-dir /tmp"
+      --radiance-unit W/cm2/sr --out-dir /tmp
+  irsig-atmos radiance --temperature 300
+  irsig-atmos temperature --radiance 54.93 --band 8:14
+  irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us-std.rtt
+  irsig-atmos bounces --target-emissivity 0.98 --target-temperature 260:400:10 \\
+      --background-emissivity 0.95 --background-temperature 300 --max 4
+  irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
+      --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr"
 )]
 pub struct Cli {
     /// What to do.
@@ -34,14 +57,30 @@ pub struct Cli {
 pub enum Command {
     /// DIRTRAN tables <-> canonical atmosphere, validated, units stated.
     Convert(convert::ConvertArgs),
+    /// Band radiance (W m^-2 sr^-1) of a blackbody at each temperature.
+    Radiance(radiance::Args),
+    /// Apparent (brightness) temperature (K) of each band radiance.
+    Temperature(temperature::Args),
+    /// Write a radiance-temperature table (`.rtt`).
+    Rtt(rtt::Args),
+    /// Apparent temperature of a specular target after 0..N bounces (thesis Appendix A).
+    Bounces(bounces::Args),
+    /// Apparent temperature of a diffuse object against shape factor (thesis Appendix B).
+    ShapeFactor(shape_factor::Args),
 }
 
-/// Runs the tool.
+/// Runs one subcommand.
 ///
 /// # Errors
-/// Whatever the subcommand reports: bad input (exit 1) or bad usage (exit 2).
+/// Bad input (exit 1): a malformed table or SRF file, a bad value (negative temperature,
+/// emissivity outside 0–1, malformed list or range); or bad usage (exit 2).
 pub fn run(cli: Cli) -> miette::Result<()> {
     match cli.command {
         Command::Convert(args) => convert::run(&args),
+        Command::Radiance(a) => radiance::run(&a),
+        Command::Temperature(a) => temperature::run(&a),
+        Command::Rtt(a) => rtt::run(&a),
+        Command::Bounces(a) => bounces::run(&a),
+        Command::ShapeFactor(a) => shape_factor::run(&a),
     }
 }

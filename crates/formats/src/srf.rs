@@ -1,0 +1,156 @@
+//! Sensor response function (SRF) tables: two whitespace-separated columns per line,
+//! `wavelength_um response`, wavelengths strictly increasing, responses finite and ≥ 0.
+//! Blank lines and lines starting with `#` are ignored. See `formats/srf.md`.
+//!
+//! ```
+//! let table = irsig_formats::srf::parse("camera.srf", "# demo\n8.0 0.1\n10.0 1.0\n12.0 0.2\n")?;
+//! assert_eq!(table.wavelength_um, vec![8.0, 10.0, 12.0]);
+//! assert_eq!(table.response[1], 1.0);
+//! # Ok::<(), irsig_formats::ParseError>(())
+//! ```
+
+// ParseError is the crate's shared error; its size is decided there, not here.
+#![allow(clippy::result_large_err)]
+
+use crate::ParseError;
+
+/// A parsed SRF table: matching columns, wavelength in µm and relative response.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SrfTable {
+    /// Wavelengths, µm, strictly increasing.
+    pub wavelength_um: Vec<f64>,
+    /// Relative response (dimensionless), finite and ≥ 0.
+    pub response: Vec<f64>,
+}
+
+/// Parses the text of an SRF file named `file` (for messages).
+///
+/// # Errors
+/// A [`ParseError`] at the offending line and column: a field that is not a number, a
+/// missing or extra column, a wavelength that is not positive or does not increase, a
+/// negative or non-finite response, fewer than two rows, or responses that are all 0.
+pub fn parse(file: &str, text: &str) -> Result<SrfTable, ParseError> {
+    let mut wavelength_um = Vec::new();
+    let mut response = Vec::new();
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let start = offset;
+        offset += line.len();
+        let content = line.trim_end_matches(['\n', '\r']);
+        if content.trim().is_empty() || content.trim_start().starts_with('#') {
+            continue;
+        }
+        let mut fields = Vec::new();
+        let mut pos = 0;
+        for piece in content.split_whitespace() {
+            let at = content[pos..].find(piece).map_or(pos, |i| pos + i);
+            pos = at + piece.len();
+            fields.push((start + at, piece));
+        }
+        let number = |(at, s): (usize, &str), what: &str| -> Result<f64, ParseError> {
+            match s.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(ParseError::at_span(
+                    file,
+                    text,
+                    at,
+                    s.len(),
+                    format!("expected {what} (a finite number), found `{s}`"),
+                )),
+            }
+        };
+        let [w_field, r_field] = fields[..] else {
+            let at = fields.get(2).map_or(start + content.len(), |f| f.0);
+            return Err(ParseError::at_offset(
+                file,
+                text,
+                at,
+                format!(
+                    "expected 2 columns `wavelength_um response`, found {}",
+                    fields.len()
+                ),
+            ));
+        };
+        let w = number(w_field, "a wavelength in µm")?;
+        let r = number(r_field, "a response")?;
+        if w <= 0.0 {
+            return Err(ParseError::at_span(
+                file,
+                text,
+                w_field.0,
+                w_field.1.len(),
+                format!("expected a positive wavelength in µm, found {w}"),
+            ));
+        }
+        let last = wavelength_um.last().copied().unwrap_or(0.0);
+        if w <= last {
+            return Err(ParseError::at_span(
+                file,
+                text,
+                w_field.0,
+                w_field.1.len(),
+                format!("wavelengths must increase: {w} µm follows {last} µm"),
+            ));
+        }
+        if r < 0.0 {
+            return Err(ParseError::at_span(
+                file,
+                text,
+                r_field.0,
+                r_field.1.len(),
+                format!("expected a response ≥ 0, found {r}"),
+            ));
+        }
+        wavelength_um.push(w);
+        response.push(r);
+    }
+    if wavelength_um.len() < 2 {
+        return Err(ParseError::at_offset(
+            file,
+            text,
+            text.len(),
+            format!(
+                "expected at least 2 rows `wavelength_um response`, found {}",
+                wavelength_um.len()
+            ),
+        ));
+    }
+    if response.iter().all(|&r| r <= 0.0) {
+        return Err(ParseError::at_offset(
+            file,
+            text,
+            0,
+            "the response is 0 at every wavelength",
+        ));
+    }
+    Ok(SrfTable {
+        wavelength_um,
+        response,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let e = parse("a.srf", "8 0.5\n9 x\n").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 3));
+        let e = parse("a.srf", "8 0.5\n7 0.5\n").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 1));
+        let e = parse("a.srf", "8 0.5\n9 -1\n").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 3));
+        let e = parse("a.srf", "8 0.5 3\n").unwrap_err();
+        assert_eq!((e.line, e.column), (1, 7));
+        assert!(parse("a.srf", "8 0.5\n").is_err());
+        assert!(parse("a.srf", "8 0\n9 0\n").is_err());
+        assert!(parse("a.srf", "8 NaN\n9 1\n").is_err());
+    }
+
+    #[test]
+    fn comments_and_blank_lines_are_skipped() {
+        let t = parse("a.srf", "# x\n\n8 0.5\r\n  9   1  \n").unwrap();
+        assert_eq!(t.wavelength_um.len(), 2);
+    }
+}

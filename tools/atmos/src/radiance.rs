@@ -1,0 +1,32 @@
+//! `irsig-atmos radiance`: band radiance of blackbodies.
+
+use crate::common::{BandArgs, Column, Format, print_table, temperatures};
+
+/// Arguments of `radiance`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Temperature(s), K: a value, a list `a,b,c` or a range `from:to:step`.
+    #[arg(long, allow_hyphen_values = true)]
+    pub temperature: String,
+    #[command(flatten)]
+    pub band: BandArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: Format,
+}
+
+pub fn run(args: &Args) -> miette::Result<()> {
+    let band = args.band.band()?;
+    let rows: Vec<Vec<f64>> = temperatures("--temperature", &args.temperature)?
+        .into_iter()
+        .map(|t| vec![t, band.radiance(t)])
+        .collect();
+    print_table(
+        args.format,
+        &[
+            Column::new("temperature_k", 4),
+            Column::new("radiance_w_m2_sr", 6),
+        ],
+        &rows,
+    )
+}

@@ -1,0 +1,41 @@
+//! `irsig-atmos temperature`: apparent (brightness) temperature of band radiances.
+
+use miette::miette;
+
+use crate::common::{BandArgs, Column, Format, print_table, values};
+
+/// Arguments of `temperature`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Band radiance(s), W m^-2 sr^-1: a value, a list or a range `from:to:step`.
+    /// Must be ≥ 0 (0 gives 0 K).
+    #[arg(long, allow_hyphen_values = true)]
+    pub radiance: String,
+    #[command(flatten)]
+    pub band: BandArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t)]
+    pub format: Format,
+}
+
+pub fn run(args: &Args) -> miette::Result<()> {
+    let band = args.band.band()?;
+    let radiances = values("--radiance", &args.radiance)?;
+    if let Some(bad) = radiances.iter().find(|&&l| l < 0.0) {
+        return Err(miette!(
+            "--radiance: a band radiance must be ≥ 0 W m^-2 sr^-1, found {bad}"
+        ));
+    }
+    let rows: Vec<Vec<f64>> = radiances
+        .into_iter()
+        .map(|l| vec![l, band.temperature(l)])
+        .collect();
+    print_table(
+        args.format,
+        &[
+            Column::new("radiance_w_m2_sr", 6),
+            Column::new("temperature_k", 4),
+        ],
+        &rows,
+    )
+}
