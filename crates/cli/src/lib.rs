@@ -127,17 +127,8 @@ pub fn write_file_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> miette::Result<()> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
     let ctx = || format!("cannot write output file `{}`", path.display());
-    let mut tmp = tempfile::Builder::new()
-        .prefix(".irsig-")
-        .suffix(".tmp")
-        .tempfile_in(&dir)
-        .into_diagnostic()
-        .wrap_err_with(ctx)?;
+    let mut tmp = staged_file(path).into_diagnostic().wrap_err_with(ctx)?;
     {
         let mut w = io::BufWriter::new(tmp.as_file_mut());
         write(&mut w)
@@ -165,17 +156,8 @@ pub fn write_file_atomic(
 pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
     let mut staged = Vec::with_capacity(files.len());
     for (path, bytes) in files {
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
         let ctx = || format!("cannot write output file `{}`", path.display());
-        let mut tmp = tempfile::Builder::new()
-            .prefix(".irsig-")
-            .suffix(".tmp")
-            .tempfile_in(&dir)
-            .into_diagnostic()
-            .wrap_err_with(ctx)?;
+        let mut tmp = staged_file(path).into_diagnostic().wrap_err_with(ctx)?;
         tmp.as_file_mut()
             .write_all(bytes)
             .and_then(|()| tmp.as_file().sync_all())
@@ -190,6 +172,26 @@ pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
             .wrap_err_with(|| format!("cannot write output file `{}`", path.display()))?;
     }
     Ok(())
+}
+
+/// A temporary file beside `path`, to be renamed onto it when complete.
+///
+/// Created with mode 0o666 less the umask, as `File::create` would make the destination:
+/// tempfile's default 0o600 would otherwise survive the rename and leave every output
+/// readable by its owner only.
+fn staged_file(path: &Path) -> io::Result<tempfile::NamedTempFile> {
+    let dir = match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".irsig-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(dir)
 }
 
 /// Opens a file for reading with an error that names it.
@@ -327,6 +329,22 @@ mod tests {
     fn usage_errors_are_recognised() {
         let r = usage_error("--from must be below --to");
         assert!(r.downcast_ref::<UsageError>().is_some());
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn outputs_get_the_permissions_file_create_would_give() {
+        use std::os::unix::fs::PermissionsExt;
+        let dir = tempfile::tempdir().unwrap();
+        let reference = dir.path().join("reference");
+        File::create(&reference).unwrap();
+        let mode = |p: &Path| std::fs::metadata(p).unwrap().permissions().mode() & 0o777;
+        let one = dir.path().join("one");
+        write_output(Some(&one), |w| w.write_all(b"x")).unwrap();
+        let many = dir.path().join("many");
+        write_files_atomic(&[(many.clone(), b"y".to_vec())]).unwrap();
+        assert_eq!(mode(&one), mode(&reference));
+        assert_eq!(mode(&many), mode(&reference));
     }
 
     #[test]

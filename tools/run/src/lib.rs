@@ -75,6 +75,7 @@ pub fn tools() -> Tools {
         .register("flatten", check::<irsig_flatten::Cli>)
         .register("atmos", check::<irsig_atmos::Cli>)
         .register("trace", check::<irsig_trace::Cli>)
+        .register("sensor", check::<irsig_sensor::Cli>)
         .register("run", check::<Cli>);
     tools
 }
