@@ -151,7 +151,7 @@ fn shape_factor_csv_and_ron_parse_back_and_match_table_b1() {
         .nth(1)
         .unwrap()
         .split(',')
-        .last()
+        .next_back()
         .unwrap()
         .parse()
         .unwrap();
