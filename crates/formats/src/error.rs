@@ -106,6 +106,25 @@ pub fn line_column(source: &str, offset: usize) -> (usize, usize) {
     (line, column)
 }
 
+/// The byte offset of 1-based `line` and character `column` in `source`, the inverse of
+/// [`line_column`]: how a position reported by another parser (RON's `line:col`) becomes
+/// a span. A column past the line's end gives the line's end; a line past the end of the
+/// text gives the text's length.
+#[must_use]
+pub fn offset_of(source: &str, line: usize, column: usize) -> usize {
+    let mut offset = 0;
+    for (i, l) in source.split_inclusive('\n').enumerate() {
+        if i + 1 == line {
+            return offset
+                + l.char_indices()
+                    .nth(column.saturating_sub(1))
+                    .map_or(l.len(), |(b, _)| b);
+        }
+        offset += l.len();
+    }
+    source.len()
+}
+
 fn floor_char_boundary(s: &str, mut i: usize) -> usize {
     while i > 0 && !s.is_char_boundary(i) {
         i -= 1;
@@ -124,6 +143,21 @@ mod tests {
         assert_eq!(line_column("ab\ncd", 4), (2, 2));
         // 'é' is two bytes but one column.
         assert_eq!(line_column("é x", 3), (1, 3));
+    }
+
+    #[test]
+    fn offset_of_inverts_line_column() {
+        let t = "ab\ncé d\n";
+        for offset in [0, 1, 3, 4, 6, 7] {
+            let (line, column) = line_column(t, offset);
+            assert_eq!(offset_of(t, line, column), offset);
+        }
+        assert_eq!(offset_of(t, 9, 1), t.len());
+        assert_eq!(
+            offset_of(t, 1, 99),
+            3,
+            "past the line's end: the end of the line"
+        );
     }
 
     #[test]

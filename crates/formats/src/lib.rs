@@ -26,4 +26,4 @@ pub mod legacy;
 pub mod mesh;
 pub mod srf;
 
-pub use error::{ParseError, line_column};
+pub use error::{ParseError, line_column, offset_of};

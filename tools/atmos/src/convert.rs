@@ -215,7 +215,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
         Some(p) => {
             let (file, text) = read_text(p)?;
             let s: SlantTables = ron::from_str(&text).map_err(|e| {
-                let offset = offset_of(&text, e.span.start.line, e.span.start.col);
+                let offset = irsig_formats::offset_of(&text, e.span.start.line, e.span.start.col);
                 Report::new(ParseError::at_offset(
                     &file,
                     &text,
@@ -373,19 +373,4 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         ));
     }
     irsig_cli::write_files_atomic(&files)
-}
-
-/// Byte offset of 1-based `line`, `col` (characters) in `text`, clamped to its length.
-fn offset_of(text: &str, line: usize, col: usize) -> usize {
-    let mut offset = 0;
-    for (i, l) in text.split_inclusive('\n').enumerate() {
-        if i + 1 == line {
-            return offset
-                + l.char_indices()
-                    .nth(col.saturating_sub(1))
-                    .map_or(l.len(), |(b, _)| b);
-        }
-        offset += l.len();
-    }
-    text.len()
 }

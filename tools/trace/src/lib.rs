@@ -140,26 +140,11 @@ fn read_canonical<T: DeserializeOwned>(
         ParseError::in_binary(&input.name, e.valid_up_to(), "expected UTF-8 RON text")
     })?;
     let value: T = ron::from_str(text).map_err(|e| {
-        let offset = offset_of(text, e.span.start.line, e.span.start.col);
+        let offset = irsig_formats::offset_of(text, e.span.start.line, e.span.start.col);
         ParseError::at_offset(&input.name, text, offset, e.code.to_string())
     })?;
     validate(&value).map_err(|e| miette!("{}: {e}", input.name))?;
     Ok(value)
-}
-
-/// Byte offset of a 1-based line and character column.
-fn offset_of(text: &str, line: usize, col: usize) -> usize {
-    let mut offset = 0;
-    for (i, l) in text.split_inclusive('\n').enumerate() {
-        if i + 1 == line {
-            return offset
-                + l.char_indices()
-                    .nth(col.saturating_sub(1))
-                    .map_or(l.len(), |(b, _)| b);
-        }
-        offset += l.len();
-    }
-    text.len()
 }
 
 /// The views of one file: a single view or a list.
@@ -171,7 +156,8 @@ fn read_views(path: &str) -> miette::Result<Vec<View>> {
     let views = match ron::from_str::<View>(text) {
         Ok(v) => vec![v],
         Err(single) => ron::from_str::<Vec<View>>(text).map_err(|_| {
-            let offset = offset_of(text, single.span.start.line, single.span.start.col);
+            let offset =
+                irsig_formats::offset_of(text, single.span.start.line, single.span.start.col);
             ParseError::at_offset(
                 &input.name,
                 text,
@@ -540,14 +526,6 @@ mod tests {
         assert_eq!(parse_pixel("128,64"), Ok((128, 64)));
         assert!(parse_pixel("128").is_err());
         assert!(parse_pixel("-1,3").is_err());
-    }
-
-    #[test]
-    fn offsets_follow_lines_and_columns() {
-        let t = "ab\ncdé\nf";
-        assert_eq!(offset_of(t, 2, 3), 5);
-        assert_eq!(offset_of(t, 3, 1), 8);
-        assert_eq!(offset_of(t, 9, 1), t.len());
     }
 
     #[test]

@@ -64,7 +64,7 @@ canonical!(View, "view", 2);
 /// A syntax or shape error at the RON error's line and column.
 pub fn from_ron_unchecked<T: Canonical>(file: &str, text: &str) -> Result<T, ParseError> {
     ron::from_str::<T>(text).map_err(|e| {
-        let offset = offset_of(text, e.span.start.line, e.span.start.col);
+        let offset = crate::offset_of(text, e.span.start.line, e.span.start.col);
         ParseError::at_offset(
             file,
             text,
@@ -172,21 +172,6 @@ pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> 
     } else {
         from_ron_bytes(file, bytes)
     }
-}
-
-/// The byte offset of 1-based `line` and character column `col` in `text`.
-fn offset_of(text: &str, line: usize, col: usize) -> usize {
-    let mut offset = 0;
-    for (i, l) in text.split_inclusive('\n').enumerate() {
-        if i + 1 == line {
-            return offset
-                + l.char_indices()
-                    .nth(col.saturating_sub(1))
-                    .map_or(l.len(), |(b, _)| b);
-        }
-        offset += l.len();
-    }
-    text.len()
 }
 
 #[cfg(test)]
