@@ -235,18 +235,9 @@ fn legacy_object(input: &irsig_cli::Input, unit: LengthUnit) -> miette::Result<O
             })
             .collect(),
     };
-    object.validate().map_err(|e| {
-        let place = e
-            .path
-            .strip_prefix("facets[")
-            .and_then(|r| r.split(']').next())
-            .and_then(|i| i.parse::<usize>().ok())
-            .map_or_else(
-                || input.name.clone(),
-                |i| mesh.triangle_location(i).to_string(),
-            );
-        miette!("{place}: {}: {}", e.path, e.kind)
-    })?;
+    object
+        .validate()
+        .map_err(|e| miette!("{}: {}: {}", mesh.locate(&e.path), e.path, e.kind))?;
     Ok(object)
 }
 

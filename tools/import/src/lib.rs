@@ -233,19 +233,9 @@ fn to_object(
             .collect(),
         facets,
     };
-    object.validate().map_err(|e| {
-        // `facets[i]...` names a triangle: say where it came from in the input.
-        let place = e
-            .path
-            .strip_prefix("facets[")
-            .and_then(|r| r.split(']').next())
-            .and_then(|i| i.parse::<usize>().ok())
-            .map_or_else(
-                || mesh.file.clone(),
-                |i| mesh.triangle_location(i).to_string(),
-            );
-        miette!("{place}: {}: {}", e.path, e.kind)
-    })?;
+    object
+        .validate()
+        .map_err(|e| miette!("{}: {}: {}", mesh.locate(&e.path), e.path, e.kind))?;
     Ok(object)
 }
 

@@ -177,6 +177,21 @@ impl Mesh {
         }
     }
 
+    /// Where in the input a model error's path points: for `facets[i]...` the origin of
+    /// triangle `i` (facet `i` of an object built from this mesh, in order), otherwise the
+    /// file. Lets importers report `Object::validate` errors at the input line.
+    #[must_use]
+    pub fn locate(&self, model_path: &str) -> String {
+        model_path
+            .strip_prefix("facets[")
+            .and_then(|r| r.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+            .map_or_else(
+                || self.file.clone(),
+                |i| self.triangle_location(i).to_string(),
+            )
+    }
+
     /// The material name of triangle `index`, if any.
     #[must_use]
     pub fn material_name(&self, index: usize) -> Option<&str> {
