@@ -20,6 +20,7 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+pub mod contact_sheet;
 mod preview;
 pub mod spec;
 
@@ -44,7 +45,7 @@ pub const RADIANCE_LAYER: &str = "radiance";
     name = "irsig-sensor",
     version,
     about = "Blur, sample, add noise to and quantise a radiance EXR as a thermal imager would",
-    after_help = "Example:\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
+    after_help = "Example:\n  irsig-sensor --contact-sheet sheet.png --sheet-columns 8 f01.dc.png f02.dc.png ...\n\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
 gauss:hp=0.25 | ss:across=0.3,along=0.2 | diffraction:lambda-um=10,f=2,pitch-um=25 | \
 footprint:1x1 | motion:len=3,angle=30 | jitter:0.3 | jitter:x=0.3,y=0.5"
 )]
@@ -52,6 +53,24 @@ pub struct Cli {
     /// The tracer's radiance EXR (with a `radiance` layer in W m^-2 sr^-1), or `-`.
     #[arg(default_value = "-")]
     pub input: String,
+
+    /// Further input images, for --contact-sheet only.
+    #[arg(value_name = "MORE", requires = "contact_sheet")]
+    pub more_inputs: Vec<String>,
+
+    /// Contact-sheet mode: put every input image (PNG, or EXR whose `radiance` layer is
+    /// stretched over all EXR inputs) side by side, labelled 1, 2, ..., in one 8-bit grey
+    /// PNG written to this file; nothing else is done or written.
+    #[arg(long, value_name = "PNG", conflicts_with_all = [
+        "output", "mtf", "dc_png", "lut", "temperature_exr", "preview", "colour_preview",
+        "nedt_k", "dc_per_kelvin", "gain_dc_per_radiance",
+    ])]
+    pub contact_sheet: Option<PathBuf>,
+
+    /// Tiles per row of the contact sheet (default: a near-square sheet).
+    #[arg(long, value_name = "N", requires = "contact_sheet",
+          value_parser = clap::value_parser!(u32).range(1..))]
+    pub sheet_columns: Option<u32>,
 
     /// The output EXR (`-` or absent: stdout).
     #[arg(short, long)]
@@ -329,6 +348,15 @@ fn sensor(e: SensorError) -> miette::Report {
 /// # Errors
 /// Bad input (named), bad usage (exit 2), or an output that cannot be written.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    if let Some(sheet) = &cli.contact_sheet {
+        let mut inputs = Vec::with_capacity(1 + cli.more_inputs.len());
+        for name in std::iter::once(&cli.input).chain(&cli.more_inputs) {
+            let input = irsig_cli::read_input(name)?;
+            inputs.push((input.name, input.bytes));
+        }
+        let png = contact_sheet::build(&inputs, cli.sheet_columns.map(|c| c as usize))?;
+        return irsig_cli::write_files_atomic(&[(sheet.clone(), png)]);
+    }
     let wants_counts = cli.dc_png.is_some() || cli.lut.is_some();
     let calibration = cli.calibration();
     if wants_counts && calibration.is_none() {

@@ -14,20 +14,28 @@
 //! irsig-trace --scene world.raw --materials materials.ron --view view.ron \
 //!     --radiance-exr out/frame.exr --dc-png out/frame.png   # only these two
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
+//! irsig-trace --scene world.raw --materials materials.ron --view frame1.view -o out/f1
+//! irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
 //! ```
+//!
+//! A view file is canonical RON (one view or a list) or a 1990 viewing file, told apart by
+//! its first character (`views`); the viewing file's position is in `--view-unit` (km, as
+//! in the thesis) and becomes metres on reading. A 1990 execute file sequences viewing
+//! files into frames, each writing the map, DC image and LUT it names.
 //!
 //! `-o PREFIX` writes every output under one prefix; the per-output flags write only the
 //! files named, for one view, so that `irsig-run` and Makefiles see each file a stage
 //! writes.
 
 mod atmos;
+mod views;
 
 use std::io::Cursor;
 use std::path::{Path, PathBuf};
 
 use clap::Parser;
 use irsig_formats::ParseError;
-use irsig_model::{MaterialLibrary, ModelError, RawScene, View};
+use irsig_model::{LengthUnit, MaterialLibrary, ModelError, RawScene, View};
 use irsig_radiometry::Band;
 use irsig_raster::{Raster, exr_bytes, write_png_gray8, write_png_gray16};
 use irsig_sensor_model::quantise::{BandConversion, Quantiser};
@@ -50,6 +58,11 @@ Examples:
       writes only the outputs named (one view), as a pipeline stage or a Makefile rule does
   irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,64
       prints every term of the radiance equation for pixel column 128, row 64
+  irsig-trace --scene world.raw --materials materials.ron --view frame1.view -o out/f1
+      frame1.view is a 1990 viewing file (numbers; position in km, see --view-unit)
+  irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
+      a 1990 execute file: per frame a viewing file and the map image, DC image and LUT
+      to write (paths relative to flyby.exec); the BVH is built once
 
 Pixel (0, 0) is the top-left; rows run downwards.";
 
@@ -64,10 +77,24 @@ pub struct Cli {
     /// The material library (canonical RON).
     #[arg(long, value_name = "FILE")]
     pub materials: String,
-    /// One or more view files (canonical RON), each holding a view or a list of views;
+    /// One or more view files, each a canonical RON view, a RON list of views, or a 1990
+    /// viewing file (told apart by their first character: a number starts a viewing file);
     /// frames are numbered in the order given.
-    #[arg(long, value_name = "FILE", required = true, num_args = 1..)]
+    #[arg(long, value_name = "FILE", num_args = 1.., required_unless_present = "execute")]
     pub view: Vec<String>,
+    /// Length unit of the positions in 1990 viewing files (km in the thesis's files),
+    /// converted to metres on reading. Canonical views are always in metres.
+    #[arg(long, default_value = "km", value_name = "UNIT", value_parser = parse_unit)]
+    pub view_unit: LengthUnit,
+    /// A 1990 execute file: frames of (viewing file, scene file, map image, output image,
+    /// LUT), paths relative to it. Each frame writes its interaction map PNG, its DC image
+    /// PNG and its LUT under the names given; the BVH of --scene is built once. Every
+    /// frame must name the same scene file: the legacy scene that --scene was flattened
+    /// from.
+    #[arg(long, value_name = "FILE", conflicts_with_all = [
+        "view", "out", "radiance_exr", "truth_exr", "map_png", "dc_png", "lut"
+    ])]
+    pub execute: Option<String>,
     /// The band in micrometres, `MIN-MAX` (default the thesis's 8-14, flat response), or
     /// `total` for the whole spectrum (σT⁴/π), exact and for checking by hand. Use the band
     /// the atmosphere's tables were integrated over.
@@ -187,12 +214,17 @@ impl Cli {
 }
 
 /// The files one frame writes.
+#[derive(Debug, Clone, Default)]
 struct Outputs {
     radiance_exr: Option<PathBuf>,
     truth_exr: Option<PathBuf>,
     map_png: Option<PathBuf>,
     dc_png: Option<PathBuf>,
     lut: Option<PathBuf>,
+}
+
+fn parse_unit(s: &str) -> Result<LengthUnit, String> {
+    s.parse()
 }
 
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
@@ -224,41 +256,13 @@ fn read_canonical<T: DeserializeOwned>(
     Ok(value)
 }
 
-/// The views of one file: a single view or a list.
-fn read_views(path: &str) -> miette::Result<Vec<View>> {
-    let input = irsig_cli::read_input(path)?;
-    let text = std::str::from_utf8(&input.bytes).map_err(|e| {
-        ParseError::in_binary(&input.name, e.valid_up_to(), "expected UTF-8 RON text")
-    })?;
-    let views = match ron::from_str::<View>(text) {
-        Ok(v) => vec![v],
-        Err(single) => ron::from_str::<Vec<View>>(text).map_err(|_| {
-            let offset =
-                irsig_formats::offset_of(text, single.span.start.line, single.span.start.col);
-            ParseError::at_offset(
-                &input.name,
-                text,
-                offset,
-                format!("expected a view or a list of views: {}", single.code),
-            )
-        })?,
-    };
-    if views.is_empty() {
-        return Err(miette!("{}: the list of views is empty", input.name));
-    }
-    for (i, v) in views.iter().enumerate() {
-        v.validate()
-            .map_err(|e| miette!("{}: view {}: {e}", input.name, i + 1))?;
-    }
-    Ok(views)
-}
-
 /// Runs the tool.
 ///
 /// # Errors
 /// Bad input (with file, line and column where there is one) or an unwritable output.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    if cli.probe.is_none() && cli.out.is_none() && !cli.has_output_flags() {
+    if cli.probe.is_none() && cli.out.is_none() && !cli.has_output_flags() && cli.execute.is_none()
+    {
         return Err(irsig_cli::usage_error(
             "give -o PREFIX for all the output files, per-output flags such as \
              --radiance-exr FILE, or --probe COLUMN,ROW",
@@ -267,6 +271,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     if cli.dc == "none" && (cli.dc_png.is_some() || cli.lut.is_some()) {
         return Err(irsig_cli::usage_error(
             "--dc-png and --lut need digital counts: drop `--dc none`",
+        ));
+    }
+    if cli.dc == "none" && cli.execute.is_some() {
+        return Err(irsig_cli::usage_error(
+            "an execute file names each frame's DC image and LUT: drop `--dc none`",
         ));
     }
     if !cli.sky_radiance.is_finite() || cli.sky_radiance < 0.0 {
@@ -280,19 +289,32 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         irsig_formats::canonical::read_raw_scene(&input.name, &input.bytes)?
     };
     let materials: MaterialLibrary = read_canonical(&cli.materials, MaterialLibrary::validate)?;
-    let mut views = Vec::new();
-    for v in &cli.view {
-        views.extend(read_views(v)?);
-    }
+    let (views, outputs) = match &cli.execute {
+        Some(path) => {
+            let (views, outputs) = views::read_execute(path, cli.view_unit)?;
+            (views, Some(outputs))
+        }
+        None => {
+            let mut views = Vec::new();
+            for v in &cli.view {
+                views.extend(views::read_views(v, cli.view_unit)?);
+            }
+            (views, None)
+        }
+    };
+    let job = Job {
+        views: &views,
+        outputs: outputs.as_deref(),
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .into_diagnostic()?;
     if cli.band == "total" {
-        pool.install(|| with_atmosphere(&cli, &scene, &materials, &views, TotalRadiance))
+        pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, TotalRadiance))
     } else {
         let band = parse_band(&cli.band)?;
-        pool.install(|| with_atmosphere(&cli, &scene, &materials, &views, BandRadiometry(band)))
+        pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, BandRadiometry(band)))
     }
 }
 
@@ -325,18 +347,25 @@ impl Radiometry for BandRadiometry {
     }
 }
 
+/// The frames of one run: their views and, from an execute file, the files each writes
+/// (`None`: the outputs follow from -o or the per-output flags).
+struct Job<'a> {
+    views: &'a [View],
+    outputs: Option<&'a [Outputs]>,
+}
+
 fn with_atmosphere<R: Radiometry>(
     cli: &Cli,
     scene: &RawScene,
     materials: &MaterialLibrary,
-    views: &[View],
+    job: &Job<'_>,
     radiometry: R,
 ) -> miette::Result<()> {
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
             sky_radiance_w_m2_sr: cli.sky_radiance,
         };
-        return trace_all(cli, scene, materials, views, radiometry, vacuum);
+        return trace_all(cli, scene, materials, job, radiometry, vacuum);
     }
     let atmosphere = if irsig_atmosphere::BUILTIN_NAMES.contains(&cli.atmosphere.as_str()) {
         irsig_atmosphere::builtin(&cli.atmosphere).map_err(|e| miette!("{e}"))?
@@ -349,7 +378,8 @@ fn with_atmosphere<R: Radiometry>(
         .map_err(|e| miette!("{e}"))
         .wrap_err_with(|| format!("cannot build the {kind} model of `{}`", cli.atmosphere))?;
     // The sky is precomputed up to the highest sensor or scene point.
-    let top = views
+    let top = job
+        .views
         .iter()
         .map(|v| v.position_m()[2])
         .chain(scene.positions_m.iter().map(|p| p[2]))
@@ -366,14 +396,14 @@ fn with_atmosphere<R: Radiometry>(
     for w in &air.warnings {
         eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
     }
-    trace_all(cli, scene, materials, views, radiometry, air)
+    trace_all(cli, scene, materials, job, radiometry, air)
 }
 
 fn trace_all<R: Radiometry, A: Atmosphere>(
     cli: &Cli,
     scene: &RawScene,
     materials: &MaterialLibrary,
-    views: &[View],
+    job: &Job<'_>,
     radiometry: R,
     atmosphere: A,
 ) -> miette::Result<()> {
@@ -386,6 +416,7 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
     let tracer = Tracer::new(scene, materials, radiometry, atmosphere)
         .map_err(|e| miette!("{e}"))
         .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?;
+    let views = job.views;
     let cameras = views
         .iter()
         .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
@@ -403,10 +434,10 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         );
         return Ok(());
     }
-    if cli.out.is_none() && !cli.has_output_flags() {
+    if cli.out.is_none() && !cli.has_output_flags() && job.outputs.is_none() {
         return Ok(());
     }
-    if cli.out.is_none() && cameras.len() > 1 {
+    if cli.out.is_none() && job.outputs.is_none() && cameras.len() > 1 {
         return Err(irsig_cli::usage_error(format!(
             "the per-output flags name one file each, but {} views were given: trace one \
              view per run, or use -o PREFIX for numbered outputs",
@@ -420,7 +451,11 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         .max()
         .unwrap_or(0);
     let map_fits = max_id <= 15;
-    if !map_fits && let Some(path) = &cli.map_png {
+    let first_map = job
+        .outputs
+        .and_then(|o| o.first())
+        .and_then(|o| o.map_png.as_ref());
+    if !map_fits && let Some(path) = cli.map_png.as_ref().or(first_map) {
         return Err(miette!(
             "{}: interaction map not written: material id {max_id} of `{}` does not fit the \
              legacy 4-bit nibble (ids 1 to 15); the truth EXR's material_primary and \
@@ -436,7 +471,10 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         let frame = tracer
             .render(cam, &options, &|n| bar.inc(n))
             .map_err(|e| miette!("{e}"))?;
-        let out = cli.outputs(i, cameras.len(), map_fits);
+        let out = match job.outputs {
+            Some(all) => all.get(i).cloned().unwrap_or_default(),
+            None => cli.outputs(i, cameras.len(), map_fits),
+        };
         if let Some(path) = out.radiance_exr {
             files.push((
                 path,
