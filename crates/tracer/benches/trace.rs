@@ -11,7 +11,9 @@ use divan::counter::ItemsCount;
 use glam::Vec3A;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 use irsig_tracer::geometry::Geometry;
-use irsig_tracer::testing::{Mesh, ground_quad, triangles, uv_sphere};
+use irsig_tracer::testing::{
+    EdgeExperiment, Mesh, PitExperiment, ground_quad, triangles, uv_sphere,
+};
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 use obvhs::{
     BvhBuildParams,
@@ -225,4 +227,30 @@ fn scene_setup_1m(bencher: divan::Bencher) {
     let sc = raw_scene(&mesh(2));
     let mats = materials(0.0);
     bencher.bench(|| Tracer::new(&sc, &mats, TotalRadiance, Vacuum::default()).unwrap());
+}
+
+/// Time per diffuse hit with the sky-view factor on, N rays: the pit of the F-error table
+/// (docs/accuracy.md), 256 pixels, every one a floor hit.
+#[divan::bench(args = [4, 16, 64, 256, 1024], sample_count = 3, sample_size = 1)]
+fn sky_view_pit(bencher: divan::Bencher, rays: u32) {
+    static PIT: OnceLock<PitExperiment> = OnceLock::new();
+    let pit = PIT.get_or_init(PitExperiment::new);
+    bencher
+        .counter(ItemsCount::new(256_usize))
+        .bench(|| one_core(|| pit.estimates(rays, 1)));
+}
+
+/// Time per pixel with N × N supersampling: the slanted-edge image of the supersampling
+/// table (docs/accuracy.md), 24 × 64 pixels.
+#[divan::bench(args = [1, 2, 4, 8, 16], sample_count = 3, sample_size = 1)]
+fn supersampling_edge(bencher: divan::Bencher, n: u32) {
+    static EDGE: OnceLock<EdgeExperiment> = OnceLock::new();
+    let edge = EDGE.get_or_init(EdgeExperiment::new);
+    let options = TraceOptions {
+        supersampling: n,
+        ..TraceOptions::default()
+    };
+    bencher
+        .counter(ItemsCount::new((24 * 64) as usize))
+        .bench(|| one_core(|| edge.tracer.render(&edge.camera, &options, &|_| {}).unwrap()));
 }

@@ -228,6 +228,12 @@ impl Geometry {
         self.centre_m
     }
 
+    /// The scene's bounding box in world metres, `[low corner, high corner]`.
+    #[must_use]
+    pub fn bounds_m(&self) -> [V3; 2] {
+        self.bounds_local.map(|p| add(p, self.centre_m))
+    }
+
     /// Half the diagonal of the scene's bounding box, metres.
     #[must_use]
     pub fn radius_m(&self) -> f64 {

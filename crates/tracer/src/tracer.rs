@@ -12,6 +12,7 @@ use crate::camera::Camera;
 use crate::env::{Atmosphere, Radiometry, range_to_ground_m};
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::{Geometry, Hit};
+use crate::path_table::{PathTable, PathTermsMode};
 use crate::vec::{V3, add, basis, dot, scale, sub};
 
 /// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
@@ -280,6 +281,7 @@ pub struct Tracer<R, A> {
     terrain_leaving: f64,
     radiometry: R,
     atmosphere: A,
+    path_terms: PathTermsMode,
 }
 
 /// Per-ray state shared by the events.
@@ -310,6 +312,8 @@ struct FrameConsts<'a> {
     sensor_alt: f64,
     /// The Earth's limb seen from the sensor, degrees from nadir.
     sensor_critical_nadir_deg: f64,
+    /// The primary hits' path terms, when [`PathTermsMode::Tabulated`].
+    path_table: Option<PathTable>,
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -382,6 +386,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             terrain_leaving,
             radiometry,
             atmosphere,
+            path_terms: PathTermsMode::Exact,
         })
     }
 
@@ -407,7 +412,39 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
             sensor_critical_nadir_deg: self.atmosphere.critical_nadir_angle_deg(sensor_alt),
+            path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
+                let [lo, hi] = self.geometry.bounds_m();
+                let p = camera.position_m;
+                // Nearest and farthest points of the box from the sensor.
+                let near: f64 = (0..3)
+                    .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let far: f64 = (0..3)
+                    .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                PathTable::new(
+                    &self.atmosphere,
+                    sensor_alt,
+                    [lo[2].max(0.0), hi[2].max(0.0)],
+                    [near, far],
+                )
+            }),
         }
+    }
+
+    /// Chooses how primary hits get their path terms (default [`PathTermsMode::Exact`]).
+    #[must_use]
+    pub fn with_path_terms(mut self, mode: PathTermsMode) -> Self {
+        self.path_terms = mode;
+        self
+    }
+
+    /// How primary hits get their path terms.
+    #[must_use]
+    pub fn path_terms(&self) -> PathTermsMode {
+        self.path_terms
     }
 
     /// Apparent (blackbody) temperature of a radiance, K.
@@ -533,9 +570,10 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         };
         self.surface(&hit, dir, 0, ctx, s);
         let hit_alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
-        let path = self
-            .atmosphere
-            .path(sensor_alt.max(0.0), hit_alt, hit.distance_m);
+        let path = match &fc.path_table {
+            Some(table) => table.path(hit_alt, hit.distance_m),
+            None => self.atmosphere.path(sensor_alt, hit_alt, hit.distance_m),
+        };
         s.range_m = hit.distance_m;
         s.transmission = path.transmission;
         s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
