@@ -11,8 +11,14 @@
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
 //! # -> out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, out/frame.dc.png,
 //! #    out/frame.lut.txt
+//! irsig-trace --scene world.raw --materials materials.ron --view view.ron \
+//!     --radiance-exr out/frame.exr --dc-png out/frame.png   # only these two
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
 //! ```
+//!
+//! `-o PREFIX` writes every output under one prefix; the per-output flags write only the
+//! files named, for one view, so that `irsig-run` and Makefiles see each file a stage
+//! writes.
 
 mod atmos;
 
@@ -39,6 +45,9 @@ Examples:
   irsig-trace --scene world.raw.ron --materials materials.ron --view flyby.ron -o out/f
       flyby.ron holds a list of views: writes out/f.0001.radiance.exr, out/f.0002..., with
       the BVH built once
+  irsig-trace --scene world.raw --materials materials.ron --view view.ron \\
+      --radiance-exr frame.exr --dc-png frame.png --lut frame.lut
+      writes only the outputs named (one view), as a pipeline stage or a Makefile rule does
   irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,64
       prints every term of the radiance equation for pixel column 128, row 64
 
@@ -75,10 +84,29 @@ pub struct Cli {
     /// Sky radiance for `--atmosphere none`, W m^-2 sr^-1 (0: cold space).
     #[arg(long, default_value_t = 0.0, value_name = "W_M2_SR")]
     pub sky_radiance: f64,
-    /// Output path prefix; files are PREFIX.radiance.exr, PREFIX.truth.exr, PREFIX.map.png
-    /// (PREFIX.NNNN.* for several views). Required unless --probe is given.
+    /// Output path prefix; files are PREFIX.radiance.exr, PREFIX.truth.exr, PREFIX.map.png,
+    /// PREFIX.dc.png and PREFIX.lut.txt (PREFIX.NNNN.* for several views). Give this, or
+    /// one or more of the per-output flags below, or --probe.
     #[arg(short = 'o', long, value_name = "PREFIX")]
     pub out: Option<PathBuf>,
+    /// Write the radiance image (f32 EXR, W m^-2 sr^-1) to FILE. The per-output flags write
+    /// only the outputs named, for one view, so that a pipeline or a Makefile sees every
+    /// file a stage writes.
+    #[arg(long, value_name = "FILE", conflicts_with = "out")]
+    pub radiance_exr: Option<PathBuf>,
+    /// Write the truth layers (multi-layer f32 EXR) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with = "out")]
+    pub truth_exr: Option<PathBuf>,
+    /// Write the legacy interaction map (8-bit nibble PNG) to FILE; an error when a
+    /// material id does not fit in four bits.
+    #[arg(long, value_name = "FILE", conflicts_with = "out")]
+    pub map_png: Option<PathBuf>,
+    /// Write the digital-count image (PNG, --dc-bits deep) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with = "out")]
+    pub dc_png: Option<PathBuf>,
+    /// Write the digital-count LUT (text: DC, radiance, K, degC) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with = "out")]
+    pub lut: Option<PathBuf>,
     /// Specular bounces per path (thesis: 1).
     #[arg(long, default_value_t = 1)]
     pub bounces: u32,
@@ -116,6 +144,55 @@ pub struct Cli {
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
+}
+
+impl Cli {
+    fn has_output_flags(&self) -> bool {
+        self.radiance_exr.is_some()
+            || self.truth_exr.is_some()
+            || self.map_png.is_some()
+            || self.dc_png.is_some()
+            || self.lut.is_some()
+    }
+
+    /// Where each output of frame `index` (from 0) of `frames` goes; `None` for an output
+    /// not wanted. With -o PREFIX every output is wanted (the map when the ids fit, the
+    /// counts unless `--dc none`); with the per-output flags only those named.
+    fn outputs(&self, index: usize, frames: usize, map_fits: bool) -> Outputs {
+        match &self.out {
+            Some(prefix) => {
+                let stem = if frames == 1 {
+                    prefix.clone()
+                } else {
+                    numbered(prefix, index + 1)
+                };
+                let dc = self.dc != "none";
+                Outputs {
+                    radiance_exr: Some(with_suffix(&stem, "radiance.exr")),
+                    truth_exr: Some(with_suffix(&stem, "truth.exr")),
+                    map_png: map_fits.then(|| with_suffix(&stem, "map.png")),
+                    dc_png: dc.then(|| with_suffix(&stem, "dc.png")),
+                    lut: dc.then(|| with_suffix(&stem, "lut.txt")),
+                }
+            }
+            None => Outputs {
+                radiance_exr: self.radiance_exr.clone(),
+                truth_exr: self.truth_exr.clone(),
+                map_png: self.map_png.clone(),
+                dc_png: self.dc_png.clone(),
+                lut: self.lut.clone(),
+            },
+        }
+    }
+}
+
+/// The files one frame writes.
+struct Outputs {
+    radiance_exr: Option<PathBuf>,
+    truth_exr: Option<PathBuf>,
+    map_png: Option<PathBuf>,
+    dc_png: Option<PathBuf>,
+    lut: Option<PathBuf>,
 }
 
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
@@ -181,9 +258,15 @@ fn read_views(path: &str) -> miette::Result<Vec<View>> {
 /// # Errors
 /// Bad input (with file, line and column where there is one) or an unwritable output.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    if cli.probe.is_none() && cli.out.is_none() {
+    if cli.probe.is_none() && cli.out.is_none() && !cli.has_output_flags() {
         return Err(irsig_cli::usage_error(
-            "give -o PREFIX for the output files, or --probe COLUMN,ROW",
+            "give -o PREFIX for all the output files, per-output flags such as \
+             --radiance-exr FILE, or --probe COLUMN,ROW",
+        ));
+    }
+    if cli.dc == "none" && (cli.dc_png.is_some() || cli.lut.is_some()) {
+        return Err(irsig_cli::usage_error(
+            "--dc-png and --lut need digital counts: drop `--dc none`",
         ));
     }
     if !cli.sky_radiance.is_finite() || cli.sky_radiance < 0.0 {
@@ -320,15 +403,32 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         );
         return Ok(());
     }
-    let Some(prefix) = cli.out.as_deref() else {
+    if cli.out.is_none() && !cli.has_output_flags() {
         return Ok(());
-    };
+    }
+    if cli.out.is_none() && cameras.len() > 1 {
+        return Err(irsig_cli::usage_error(format!(
+            "the per-output flags name one file each, but {} views were given: trace one \
+             view per run, or use -o PREFIX for numbered outputs",
+            cameras.len()
+        )));
+    }
     let max_id = materials
         .materials
         .iter()
         .map(|m| m.id.0)
         .max()
         .unwrap_or(0);
+    let map_fits = max_id <= 15;
+    if !map_fits && let Some(path) = &cli.map_png {
+        return Err(miette!(
+            "{}: interaction map not written: material id {max_id} of `{}` does not fit the \
+             legacy 4-bit nibble (ids 1 to 15); the truth EXR's material_primary and \
+             material_secondary layers hold the same information losslessly",
+            path.display(),
+            cli.materials
+        ));
+    }
     let mut files = Vec::new();
     let total_rows: u64 = cameras.iter().map(|c| u64::from(c.pixels[1])).sum();
     let bar = irsig_cli::progress_bar(total_rows, "tracing");
@@ -336,31 +436,29 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         let frame = tracer
             .render(cam, &options, &|n| bar.inc(n))
             .map_err(|e| miette!("{e}"))?;
-        let stem = if cameras.len() == 1 {
-            prefix.to_path_buf()
-        } else {
-            numbered(prefix, i + 1)
-        };
-        files.push((
-            with_suffix(&stem, "radiance.exr"),
-            exr_bytes(&radiance_raster(&frame)?).into_diagnostic()?,
-        ));
-        files.push((
-            with_suffix(&stem, "truth.exr"),
-            exr_bytes(&truth_raster(&tracer, &frame)?).into_diagnostic()?,
-        ));
-        if max_id <= 15 {
-            files.push((with_suffix(&stem, "map.png"), interaction_map(&frame)?));
+        let out = cli.outputs(i, cameras.len(), map_fits);
+        if let Some(path) = out.radiance_exr {
+            files.push((
+                path,
+                exr_bytes(&radiance_raster(&frame)?).into_diagnostic()?,
+            ));
         }
-        if cli.dc != "none" {
+        if let Some(path) = out.truth_exr {
+            let truth = truth_raster(&tracer, &frame)?;
+            files.push((path, exr_bytes(&truth).into_diagnostic()?));
+        }
+        if let Some(path) = out.map_png {
+            files.push((path, interaction_map(&frame)?));
+        }
+        if out.dc_png.is_some() || out.lut.is_some() {
             let view_gain = views.get(i).and_then(View::gain_dc_per_k);
             let (png, lut) = dc_image(cli, &tracer, &frame, view_gain)?;
-            files.push((with_suffix(&stem, "dc.png"), png));
-            files.push((with_suffix(&stem, "lut.txt"), lut));
+            files.extend(out.dc_png.map(|path| (path, png)));
+            files.extend(out.lut.map(|path| (path, lut)));
         }
     }
     bar.finish_and_clear();
-    if max_id > 15 {
+    if !map_fits && cli.out.is_some() {
         eprintln!(
             "irsig-trace: interaction map not written: material id {max_id} does not fit the \
              legacy 4-bit nibble (ids 1 to 15); the truth EXR's material_primary and \

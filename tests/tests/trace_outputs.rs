@@ -1,0 +1,171 @@
+//! `irsig-trace` end to end: the per-output flags write exactly the files named, with the
+//! same bytes as the `-o PREFIX` form; conflicting or impossible requests are refused
+//! before anything is written.
+
+use std::path::Path;
+
+use irsig_tests::bin;
+use predicates::prelude::*;
+
+/// A small view of the sample boxes (the demo camera at 48 × 36 pixels).
+const VIEW: &str = "LookAt(position_m: (1.5, -14.0, 3.0), target_m: (1.5, 1.0, 0.5), \
+                    pixels: (48, 36), fov_deg: (64.0, 48.0))";
+
+/// Flattens the sample scene into `dir` and writes the small view; returns (raw, view).
+fn inputs(dir: &Path) -> (std::path::PathBuf, std::path::PathBuf) {
+    let raw = dir.join("scene.raw");
+    bin("irsig-flatten")
+        .args([
+            "formats/canonical/samples/scene.ron",
+            "--materials",
+            "formats/canonical/samples/materials.ron",
+            "-o",
+        ])
+        .arg(&raw)
+        .assert()
+        .success();
+    let view = dir.join("view.ron");
+    std::fs::write(&view, VIEW).unwrap();
+    (raw, view)
+}
+
+fn trace(raw: &Path, view: &Path) -> assert_cmd::Command {
+    let mut cmd = bin("irsig-trace");
+    cmd.arg("--scene")
+        .arg(raw)
+        .args(["--materials", "formats/canonical/samples/materials.ron"])
+        .arg("--view")
+        .arg(view)
+        .args(["--atmosphere", "us-std-1976"]);
+    cmd
+}
+
+#[test]
+fn per_output_flags_write_only_the_files_named_with_the_prefix_forms_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    let prefix = dir.path().join("all");
+    trace(&raw, &view).arg("-o").arg(&prefix).assert().success();
+
+    let only = dir.path().join("only");
+    std::fs::create_dir(&only).unwrap();
+    trace(&raw, &view)
+        .arg("--radiance-exr")
+        .arg(only.join("r.exr"))
+        .arg("--lut")
+        .arg(only.join("l.txt"))
+        .assert()
+        .success();
+    let mut written: Vec<_> = std::fs::read_dir(&only)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect();
+    written.sort();
+    assert_eq!(written, ["l.txt", "r.exr"]);
+    let read = |p: &Path| std::fs::read(p).unwrap();
+    assert_eq!(
+        read(&only.join("r.exr")),
+        read(&dir.path().join("all.radiance.exr"))
+    );
+    assert_eq!(
+        read(&only.join("l.txt")),
+        read(&dir.path().join("all.lut.txt"))
+    );
+
+    // The other three, in a second run: the same bytes again.
+    trace(&raw, &view)
+        .arg("--truth-exr")
+        .arg(only.join("t.exr"))
+        .arg("--map-png")
+        .arg(only.join("m.png"))
+        .arg("--dc-png")
+        .arg(only.join("d.png"))
+        .assert()
+        .success();
+    for (mine, theirs) in [
+        ("t.exr", "all.truth.exr"),
+        ("m.png", "all.map.png"),
+        ("d.png", "all.dc.png"),
+    ] {
+        assert_eq!(
+            read(&only.join(mine)),
+            read(&dir.path().join(theirs)),
+            "{mine}"
+        );
+    }
+}
+
+#[test]
+fn prefix_and_per_output_flags_together_are_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    trace(&raw, &view)
+        .arg("-o")
+        .arg(dir.path().join("p"))
+        .arg("--radiance-exr")
+        .arg(dir.path().join("r.exr"))
+        .assert()
+        .code(2);
+    assert!(!dir.path().join("r.exr").exists());
+}
+
+#[test]
+fn per_output_flags_with_several_views_are_refused_before_anything_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, _) = inputs(dir.path());
+    let two = dir.path().join("two.ron");
+    std::fs::write(&two, format!("[{VIEW}, {VIEW}]")).unwrap();
+    trace(&raw, &two)
+        .arg("--radiance-exr")
+        .arg(dir.path().join("r.exr"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("2 views"));
+    assert!(!dir.path().join("r.exr").exists());
+}
+
+#[test]
+fn counts_without_a_quantiser_are_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    trace(&raw, &view)
+        .args(["--dc", "none", "--dc-png"])
+        .arg(dir.path().join("d.png"))
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--dc none"));
+}
+
+#[test]
+fn an_interaction_map_that_cannot_hold_the_ids_is_an_error_and_nothing_is_written() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    // The sample library with one more material, id 16: beyond the 4-bit nibble.
+    let library = std::fs::read_to_string(
+        irsig_tests::repo_root().join("formats/canonical/samples/materials.ron"),
+    )
+    .unwrap();
+    let mut lib: irsig_model::MaterialLibrary = ron::from_str(&library).unwrap();
+    let mut extra = lib.materials[0].clone();
+    extra.id = irsig_model::MaterialId(16);
+    extra.name = "sixteenth".into();
+    lib.materials.push(extra);
+    let big = dir.path().join("big.ron");
+    std::fs::write(&big, ron::to_string(&lib).unwrap()).unwrap();
+    bin("irsig-trace")
+        .arg("--scene")
+        .arg(&raw)
+        .arg("--materials")
+        .arg(&big)
+        .arg("--view")
+        .arg(&view)
+        .arg("--radiance-exr")
+        .arg(dir.path().join("r.exr"))
+        .arg("--map-png")
+        .arg(dir.path().join("m.png"))
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("id 16"));
+    assert!(!dir.path().join("r.exr").exists());
+    assert!(!dir.path().join("m.png").exists());
+}
