@@ -24,6 +24,7 @@ pub mod canonical;
 mod error;
 pub mod legacy;
 pub mod mesh;
+pub mod nk;
 pub mod srf;
 
 pub use error::{ParseError, line_column, offset_of};

@@ -142,6 +142,9 @@ pub struct Band {
     lambda_min_um: f64,
     lambda_max_um: f64,
     kernel: Kernel,
+    /// The response the nodes were made from (kept for band averages of other spectral
+    /// quantities, such as Fresnel emissivity).
+    response: Option<SensorResponse>,
     /// Mean wavelength (m) and integral of the response over the band (m), for the
     /// first guess of the inverse.
     centre_m: f64,
@@ -166,6 +169,7 @@ impl Band {
             lambda_min_um,
             lambda_max_um,
             kernel: Kernel::Flat,
+            response: None,
             centre_m: 0.5 * (lambda_min_um + lambda_max_um) * METRES_PER_UM,
             width_m: (lambda_max_um - lambda_min_um) * METRES_PER_UM,
         }
@@ -196,6 +200,33 @@ impl Band {
     /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero everywhere
     /// inside the band.
     pub fn with_response(self, srf: &SensorResponse) -> Result<Self, RadiometryError> {
+        self.with_response_quadrature(srf, 8, 1.0)
+    }
+
+    /// [`Band::with_response`] with a chosen quadrature: `nodes_per_piece` Gauss–Legendre
+    /// nodes on each piece, every linear piece of the response cut into pieces of at most
+    /// `max_piece_um` µm. `with_response` uses 8 nodes and 1 µm (4 nodes, uncut, for
+    /// pieces of 0.1 µm or less); `docs/accuracy.md` tabulates the error against both.
+    ///
+    /// # Errors
+    /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero everywhere
+    /// inside the band, or `nodes_per_piece` is 0 or above 64, or `max_piece_um` is not
+    /// finite and positive.
+    pub fn with_response_quadrature(
+        self,
+        srf: &SensorResponse,
+        nodes_per_piece: usize,
+        max_piece_um: f64,
+    ) -> Result<Self, RadiometryError> {
+        if !((1..=64).contains(&nodes_per_piece) && max_piece_um.is_finite() && max_piece_um > 0.0)
+        {
+            return Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidResponse,
+                format!(
+                    "quadrature needs 1–64 nodes per piece and a positive piece length, found {nodes_per_piece} nodes per {max_piece_um} µm"
+                ),
+            ));
+        }
         let lo = self.lambda_min_um;
         let hi = self.lambda_max_um;
         let mut nodes = Vec::new();
@@ -209,10 +240,15 @@ impl Band {
                 continue;
             }
             let length = b - a;
-            let (order, pieces) = if length <= 0.1 {
+            #[allow(clippy::float_cmp)] // the default rule, chosen by its exact parameters
+            let default_rule = nodes_per_piece == 8 && max_piece_um == 1.0;
+            let (order, pieces) = if default_rule && length <= 0.1 {
                 (4, 1)
             } else {
-                (8, length.ceil() as usize)
+                (
+                    nodes_per_piece,
+                    (length / max_piece_um).ceil().max(1.0) as usize,
+                )
             };
             let rule = gauss_legendre(order);
             let piece = length / pieces as f64;
@@ -246,6 +282,7 @@ impl Band {
             lambda_min_um: lo,
             lambda_max_um: hi,
             kernel: Kernel::Nodes(nodes),
+            response: Some(srf.clone()),
             centre_m: moment / width_m,
             width_m,
         })
@@ -267,6 +304,12 @@ impl Band {
     #[must_use]
     pub fn has_response(&self) -> bool {
         matches!(self.kernel, Kernel::Nodes(_))
+    }
+
+    /// The sensor response weighting this band, if any.
+    #[must_use]
+    pub fn response(&self) -> Option<&SensorResponse> {
+        self.response.as_ref()
     }
 
     /// Number of quadrature nodes (0 for a flat band, which uses the closed-form series).

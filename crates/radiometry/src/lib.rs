@@ -23,7 +23,9 @@ pub mod calculators;
 pub mod constants;
 mod emissivity;
 mod error;
+pub mod fresnel;
 mod planck;
+mod table;
 
 pub use band::{Band, SensorResponse};
 pub use calculators::{
@@ -31,3 +33,4 @@ pub use calculators::{
 };
 pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
+pub use table::RadianceTable;

@@ -11,7 +11,9 @@ use divan::counter::ItemsCount;
 use glam::Vec3A;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 use irsig_tracer::geometry::Geometry;
-use irsig_tracer::testing::{Mesh, ground_quad, triangles, uv_sphere};
+use irsig_tracer::testing::{
+    EdgeExperiment, Mesh, PitExperiment, ground_quad, triangles, uv_sphere,
+};
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 use obvhs::{
     BvhBuildParams,
@@ -225,4 +227,79 @@ fn scene_setup_1m(bencher: divan::Bencher) {
     let sc = raw_scene(&mesh(2));
     let mats = materials(0.0);
     bencher.bench(|| Tracer::new(&sc, &mats, TotalRadiance, Vacuum::default()).unwrap());
+}
+
+/// Time per diffuse hit with the sky-view factor on, N rays: the pit of the F-error table
+/// (docs/accuracy.md), 256 pixels, every one a floor hit.
+#[divan::bench(args = [4, 16, 64, 256, 1024], sample_count = 3, sample_size = 1)]
+fn sky_view_pit(bencher: divan::Bencher, rays: u32) {
+    static PIT: OnceLock<PitExperiment> = OnceLock::new();
+    let pit = PIT.get_or_init(PitExperiment::new);
+    bencher
+        .counter(ItemsCount::new(256_usize))
+        .bench(|| one_core(|| pit.estimates(rays, 1)));
+}
+
+/// Time per pixel with N × N supersampling: the slanted-edge image of the supersampling
+/// table (docs/accuracy.md), 24 × 64 pixels.
+#[divan::bench(args = [1, 2, 4, 8, 16], sample_count = 3, sample_size = 1)]
+fn supersampling_edge(bencher: divan::Bencher, n: u32) {
+    static EDGE: OnceLock<EdgeExperiment> = OnceLock::new();
+    let edge = EDGE.get_or_init(EdgeExperiment::new);
+    let options = TraceOptions {
+        supersampling: n,
+        ..TraceOptions::default()
+    };
+    bencher
+        .counter(ItemsCount::new((24 * 64) as usize))
+        .bench(|| one_core(|| edge.tracer.render(&edge.camera, &options, &|_| {}).unwrap()));
+}
+
+/// The real atmosphere's adapter, its hemispheric sky precomputed (as irsig-trace's
+/// adapter does: eq. 5 is an integral) at the ground; the scene is within 25 m of it.
+struct Air(irsig_atmosphere::AtmosphereModel, f64);
+
+impl irsig_tracer::Atmosphere for Air {
+    fn path(&self, s: f64, t: f64, r: f64) -> irsig_tracer::PathTerms {
+        let p = self.0.path(s, t, r);
+        irsig_tracer::PathTerms {
+            transmission: p.transmission,
+            path_radiance_w_m2_sr: p.path_radiance_w_m2_sr,
+        }
+    }
+    fn sky_radiance(&self, alt: f64, zenith_deg: f64) -> f64 {
+        self.0.sky_radiance(alt, zenith_deg)
+    }
+    fn sky_hemispheric(&self, _: f64) -> f64 {
+        self.1
+    }
+    fn critical_nadir_angle_deg(&self, alt: f64) -> f64 {
+        self.0.critical_nadir_angle_deg(alt)
+    }
+}
+
+/// The 100k-triangle scene under the built-in US Standard atmosphere (table model, the
+/// tool's default): path terms exact per hit, or tabulated per frame (the table's build
+/// included in every render).
+#[divan::bench(args = ["exact", "tabulated"], sample_count = 3, sample_size = 1)]
+fn shaded_us_std_atmosphere_100k(bencher: divan::Bencher, mode: &str) {
+    use irsig_atmosphere::{AtmosphereModel, ModelKind, builtin};
+    let sc = raw_scene(&mesh(1));
+    let model = AtmosphereModel::new(&builtin("us-std-1976").unwrap(), ModelKind::Table).unwrap();
+    let hemispheric = model.sky_hemispheric(0.0).radiance_w_m2_sr;
+    let tracer = Tracer::new(&sc, &materials(0.0), TotalRadiance, Air(model, hemispheric))
+        .unwrap()
+        .with_path_terms(if mode == "exact" {
+            irsig_tracer::PathTermsMode::Exact
+        } else {
+            irsig_tracer::PathTermsMode::Tabulated
+        });
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            tracer
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
 }

@@ -161,9 +161,24 @@ impl Camera {
     /// centre of a pixel.
     #[must_use]
     pub fn direction_at(&self, x: f64, y: f64) -> V3 {
-        let [w, h] = self.pixels;
-        let u = (2.0 * x / f64::from(w) - 1.0) * self.tan_half_fov[0];
-        let v = (1.0 - 2.0 * y / f64::from(h)) * self.tan_half_fov[1];
+        self.direction_uv(self.u_at(x), self.v_at(y))
+    }
+
+    /// Image-plane coordinate (at unit distance along `forward`) of image x.
+    #[inline]
+    pub(crate) fn u_at(&self, x: f64) -> f64 {
+        (2.0 * x / f64::from(self.pixels[0]) - 1.0) * self.tan_half_fov[0]
+    }
+
+    /// Image-plane coordinate (at unit distance along `forward`) of image y.
+    #[inline]
+    pub(crate) fn v_at(&self, y: f64) -> f64 {
+        (1.0 - 2.0 * y / f64::from(self.pixels[1])) * self.tan_half_fov[1]
+    }
+
+    /// The unit direction through image-plane point `(u, v)`.
+    #[inline]
+    pub(crate) fn direction_uv(&self, u: f64, v: f64) -> V3 {
         normalize(add(
             self.forward,
             add(scale(self.right, u), scale(self.up, v)),

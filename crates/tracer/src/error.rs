@@ -35,6 +35,15 @@ pub enum TraceErrorKind {
         /// The material id it names.
         material: u16,
     },
+    /// A material's angular emissivity table is not one irsig-radiometry can interpolate
+    /// (the data model's checks should have caught it first).
+    #[error("material library: material {material}: {reason}")]
+    InvalidEmissivity {
+        /// The material's id.
+        material: u16,
+        /// What is wrong with its table.
+        reason: String,
+    },
     /// The view breaks a rule of the data model.
     #[error("view: {0}")]
     InvalidView(ModelError),

@@ -59,6 +59,7 @@ pub mod camera;
 pub mod env;
 mod error;
 pub mod geometry;
+mod path_table;
 pub mod testing;
 mod tracer;
 mod vec;
@@ -68,5 +69,6 @@ pub use camera::{
 };
 pub use env::{Atmosphere, PathTerms, Radiometry, TotalRadiance, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
+pub use path_table::{PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode};
 pub use tracer::{Event, Frame, Sample, TraceOptions, Tracer};
 pub use vec::V3;

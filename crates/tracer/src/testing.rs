@@ -2,7 +2,10 @@
 //! counter-clockwise-outward triangles, metres). The project's scene generators live in
 //! `irsig-scene`; these exist so the tracer can be tested on its own.
 
+use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
+
 use crate::vec::V3;
+use crate::{Camera, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
 /// A closed mesh: vertex positions and triangles as vertex indices.
 pub type Mesh = (Vec<V3>, Vec<[u32; 3]>);
@@ -99,4 +102,327 @@ pub fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {
         .iter()
         .map(|f| f.map(|i| mesh.0[i as usize]))
         .collect()
+}
+
+/// A square pit: a `2·half_width_m` square floor at z = 0 facing up, and four walls
+/// `depth_m` high standing on its edges (each a thin closed box outside the floor, so the
+/// floor's whole hemisphere is bounded by the walls and the opening). Returns
+/// `(floor, walls)`.
+#[must_use]
+pub fn square_pit(half_width_m: f64, depth_m: f64) -> (Mesh, Mesh) {
+    let (w, c, t) = (half_width_m, depth_m, 0.1 * half_width_m);
+    let mut walls: Mesh = (Vec::new(), Vec::new());
+    for (lo, hi) in [
+        ([-w - t, -w - t, 0.0], [-w, w + t, c]),
+        ([w, -w - t, 0.0], [w + t, w + t, c]),
+        ([-w, -w - t, 0.0], [w, -w, c]),
+        ([-w, w, 0.0], [w, w + t, c]),
+    ] {
+        let b = box_mesh(lo, hi);
+        let base = walls.0.len() as u32;
+        walls.0.extend(b.0);
+        walls.1.extend(b.1.iter().map(|f| f.map(|v| v + base)));
+    }
+    (ground_quad([-w, -w], [w, w], 0.0), walls)
+}
+
+/// The exact sky-view factor at the centre of a square pit's floor ([`square_pit`]): the
+/// configuration factor from a differential horizontal element to the square opening
+/// `depth_m` above it, four times J. R. Howell's catalogue case B-3 (*A Catalog of
+/// Radiation Heat Transfer Configuration Factors*: plane element to a parallel `a × b`
+/// rectangle at distance `c`, the element's normal through a corner),
+/// `F = 1/(2π) [X/√(1+X²) atan(Y/√(1+X²)) + Y/√(1+Y²) atan(X/√(1+Y²))]`, X = a/c, Y = b/c.
+#[must_use]
+pub fn pit_centre_sky_view_factor(half_width_m: f64, depth_m: f64) -> f64 {
+    let x = half_width_m / depth_m;
+    let s = (1.0 + x * x).sqrt();
+    // Four corner rectangles of a × a: 4 · 2 · X/√(1+X²) · atan(X/√(1+X²)) / (2π).
+    4.0 * (x / s * (x / s).atan()) / std::f64::consts::PI
+}
+
+/// Two coplanar rectangles at z = 0 filling `[-r, r]²`, split along the straight line
+/// through `(x_bottom, -r)` and `(x_top, r)`: `(west part, east part)`, both facing up.
+/// `-r < x_bottom, x_top < r`.
+#[must_use]
+pub fn split_square(r: f64, x_bottom: f64, x_top: f64) -> (Mesh, Mesh) {
+    let quad = |p: [[f64; 2]; 4]| -> Mesh {
+        (
+            p.iter().map(|q| [q[0], q[1], 0.0]).collect(),
+            vec![[0, 1, 2], [0, 2, 3]],
+        )
+    };
+    (
+        quad([[-r, -r], [x_bottom, -r], [x_top, r], [-r, r]]),
+        quad([[x_bottom, -r], [r, -r], [r, r], [x_top, r]]),
+    )
+}
+
+/// The exact fraction of the pixel `[column, column + 1] × [row, row + 1]` (image units)
+/// lying left of the line `x = x0 + slope·y`, by integrating the clamped width
+/// `clamp(x0 + slope·y − column, 0, 1)` over the row analytically (it is linear between
+/// the rows where the line enters and leaves the pixel).
+#[must_use]
+pub fn pixel_fraction_left_of_line(x0: f64, slope: f64, column: f64, row: f64) -> f64 {
+    let width = |y: f64| (x0 + slope * y - column).clamp(0.0, 1.0);
+    // Breakpoints: the row's ends and where the line crosses the pixel's two sides.
+    let mut ys = vec![row, row + 1.0];
+    if slope != 0.0 {
+        for x in [column, column + 1.0] {
+            let y = (x - x0) / slope;
+            if y > row && y < row + 1.0 {
+                ys.push(y);
+            }
+        }
+    }
+    ys.sort_by(f64::total_cmp);
+    // The width is linear on each piece: the trapezoid rule is exact there.
+    ys.windows(2)
+        .map(|p| 0.5 * (width(p[0]) + width(p[1])) * (p[1] - p[0]))
+        .sum()
+}
+
+/// A raw scene from meshes, each with its material id and kinetic temperature (K); one
+/// object per mesh, default terrain.
+#[must_use]
+pub fn raw_scene(parts: &[(&Mesh, u16, f64)]) -> RawScene {
+    let mut s = RawScene::default();
+    for (k, (mesh, material, temperature_k)) in parts.iter().enumerate() {
+        let base = s.positions_m.len() as u32;
+        s.objects.push(format!("part{k}"));
+        s.positions_m.extend(&mesh.0);
+        s.facets.extend(mesh.1.iter().map(|f| RawFacet {
+            vertices: f.map(|v| v + base),
+            material: MaterialId(*material),
+            temperature_k: *temperature_k,
+            object: k as u32,
+        }));
+    }
+    s
+}
+
+/// A library of grey materials `(id, emissivity at every angle, specular fraction)`.
+#[must_use]
+pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
+    MaterialLibrary {
+        materials: materials
+            .iter()
+            .map(|&(id, emissivity, specular_fraction)| Material {
+                id: MaterialId(id),
+                name: format!("grey{id}"),
+                emissivity: vec![(0.0, emissivity)],
+                specular_fraction,
+                source: "irsig_tracer::testing".into(),
+            })
+            .collect(),
+    }
+}
+
+/// The sky-view factor trade (issue 4): a 2 m square pit 1 m deep ([`square_pit`]; floor
+/// ε = 0.9 at 300 K, blackbody walls at 300 K, a uniform sky of a 250 K blackbody, whole
+/// spectrum) seen straight down through a 16 × 16 image so narrow (0.001°) that every
+/// pixel's ray lands within a millimetre of the floor's centre: 256 independent F
+/// estimates (each pixel draws its own random stream) of one exact configuration factor.
+#[derive(Debug)]
+pub struct PitExperiment {
+    /// The pit's tracer.
+    pub tracer: Tracer<TotalRadiance, Vacuum>,
+    /// The nadir camera over the floor's centre.
+    pub camera: Camera,
+    /// The exact F at the floor's centre ([`pit_centre_sky_view_factor`]).
+    pub exact_sky_view_factor: f64,
+    /// The exact radiance of a centre pixel given the exact F, W m⁻² sr⁻¹.
+    pub exact_radiance_w_m2_sr: f64,
+}
+
+impl PitExperiment {
+    /// Floor half-width and pit depth, metres.
+    pub const HALF_WIDTH_M: f64 = 1.0;
+    /// Pit depth, metres.
+    pub const DEPTH_M: f64 = 1.0;
+
+    /// Builds the pit and its camera.
+    ///
+    /// # Panics
+    /// Never: the scene is fixed and valid.
+    #[must_use]
+    pub fn new() -> Self {
+        let (floor, walls) = square_pit(Self::HALF_WIDTH_M, Self::DEPTH_M);
+        let scene = raw_scene(&[(&floor, 1, 300.0), (&walls, 2, 300.0)]);
+        let materials = grey_materials(&[(1, 0.9, 0.0), (2, 1.0, 0.0)]);
+        let l_sky = TotalRadiance.radiance(250.0);
+        let tracer = Tracer::new(
+            &scene,
+            &materials,
+            TotalRadiance,
+            Vacuum {
+                sky_radiance_w_m2_sr: l_sky,
+            },
+        )
+        .unwrap();
+        let camera = Camera::from_view(&View::Legacy {
+            // Slightly off the floor's diagonals, so no ray runs along a triangle edge.
+            position_m: [0.0011, 0.0023, 50.0],
+            pixels: [16, 16],
+            omega_phi_kappa_deg: [0.0; 3],
+            fov_deg: [0.001, 0.001],
+            gain_dc_per_k: None,
+        })
+        .unwrap();
+        let f = pit_centre_sky_view_factor(Self::HALF_WIDTH_M, Self::DEPTH_M);
+        let l_t = TotalRadiance.radiance(300.0);
+        Self {
+            tracer,
+            camera,
+            exact_sky_view_factor: f,
+            exact_radiance_w_m2_sr: 0.9 * l_t + 0.1 * (f * l_sky + (1.0 - f) * l_t),
+        }
+    }
+
+    /// Renders with `rays` sky-view rays per hit; `(F, radiance)` per pixel.
+    ///
+    /// # Panics
+    /// If `rays` is out of [`TraceOptions`]' range.
+    #[must_use]
+    pub fn estimates(&self, rays: u32, seed: u64) -> Vec<(f64, f64)> {
+        let options = TraceOptions {
+            sky_view_rays: rays,
+            seed,
+            ..TraceOptions::default()
+        };
+        let frame = self.tracer.render(&self.camera, &options, &|_| {}).unwrap();
+        frame
+            .truth
+            .iter()
+            .zip(&frame.radiance_w_m2_sr)
+            .map(|(s, &l)| (s.sky_view_factor, l))
+            .collect()
+    }
+}
+
+impl Default for PitExperiment {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The supersampling trade (issue 4): two coplanar blackbody facets, 330 K west and 300 K
+/// east of a straight edge, seen straight down (black sky, whole spectrum) by a 24 × 64
+/// image. In image units the edge is the line `x = X0 + SLOPE·y`, so each pixel's exact
+/// radiance is `f·L(330) + (1 − f)·L(300)` with `f` its area left of the line
+/// ([`pixel_fraction_left_of_line`]).
+#[derive(Debug)]
+pub struct EdgeExperiment {
+    /// The two facets' tracer.
+    pub tracer: Tracer<TotalRadiance, Vacuum>,
+    /// The nadir camera.
+    pub camera: Camera,
+}
+
+impl EdgeExperiment {
+    /// Where the edge crosses the image's top (image x at y = 0).
+    pub const X0: f64 = 5.3;
+    /// Image-x change of the edge per image row (about 11.3° from vertical).
+    pub const SLOPE: f64 = 0.2;
+    /// Image size.
+    pub const PIXELS: [u32; 2] = [24, 64];
+    /// Field of view, degrees (x, y).
+    pub const FOV_DEG: [f64; 2] = [10.0, 20.0];
+    /// Sensor height above the facets, metres.
+    pub const HEIGHT_M: f64 = 100.0;
+    /// West (hot) and east facet temperatures, K.
+    pub const TEMPERATURES_K: [f64; 2] = [330.0, 300.0];
+
+    /// Builds the facets and the camera. The image-to-ground map is worked out by hand
+    /// from the camera's documented convention (pixel (0, 0) top-left, x east, y south
+    /// for a nadir view with ω = φ = κ = 0): ground x = x_c + (2x/W − 1)·tan(fov_x/2)·H,
+    /// ground y = y_c + (1 − 2y/H_px)·tan(fov_y/2)·H.
+    ///
+    /// # Panics
+    /// Never: the scene is fixed and valid.
+    #[must_use]
+    pub fn new() -> Self {
+        let centre = [3.7, -1.9];
+        let [w, h] = Self::PIXELS.map(f64::from);
+        let (tx, ty) = (
+            (Self::FOV_DEG[0] / 2.0).to_radians().tan(),
+            (Self::FOV_DEG[1] / 2.0).to_radians().tan(),
+        );
+        let ground_x = |x: f64| centre[0] + (2.0 * x / w - 1.0) * tx * Self::HEIGHT_M;
+        let image_y = |gy: f64| (1.0 - (gy - centre[1]) / (ty * Self::HEIGHT_M)) * h / 2.0;
+        let r = 100.0;
+        // The edge's ground x at ground y = centre ± r, from its image-space line, relative
+        // to the centre (split_square is centred on the origin).
+        let edge_x = |gy: f64| ground_x(Self::X0 + Self::SLOPE * image_y(gy)) - centre[0];
+        let (west, east) = split_square(r, edge_x(centre[1] - r), edge_x(centre[1] + r));
+        // split_square is centred on the origin: move it under the camera.
+        let shift = |m: Mesh| -> Mesh {
+            (
+                m.0.iter()
+                    .map(|p| [p[0] + centre[0], p[1] + centre[1], p[2]])
+                    .collect(),
+                m.1,
+            )
+        };
+        let (west, east) = (shift(west), shift(east));
+        let scene = raw_scene(&[
+            (&west, 1, Self::TEMPERATURES_K[0]),
+            (&east, 1, Self::TEMPERATURES_K[1]),
+        ]);
+        let tracer = Tracer::new(
+            &scene,
+            &grey_materials(&[(1, 1.0, 0.0)]),
+            TotalRadiance,
+            Vacuum::default(),
+        )
+        .unwrap();
+        let camera = Camera::from_view(&View::Legacy {
+            position_m: [centre[0], centre[1], Self::HEIGHT_M],
+            pixels: Self::PIXELS,
+            omega_phi_kappa_deg: [0.0; 3],
+            fov_deg: Self::FOV_DEG,
+            gain_dc_per_k: None,
+        })
+        .unwrap();
+        Self { tracer, camera }
+    }
+
+    /// The exact radiance of pixel `(column, row)`, W m⁻² sr⁻¹.
+    #[must_use]
+    pub fn exact_radiance_w_m2_sr(column: u32, row: u32) -> f64 {
+        let f = pixel_fraction_left_of_line(Self::X0, Self::SLOPE, column.into(), row.into());
+        let [hot, cold] = Self::TEMPERATURES_K.map(|t| TotalRadiance.radiance(t));
+        f * hot + (1.0 - f) * cold
+    }
+
+    /// Renders with n × n supersampling; `(exact, rendered)` radiance of every pixel the
+    /// edge crosses (0 < f < 1), row-major.
+    ///
+    /// # Panics
+    /// If `n` is out of [`TraceOptions`]' range.
+    #[must_use]
+    pub fn edge_pixels(&self, n: u32, seed: u64) -> Vec<(f64, f64)> {
+        let options = TraceOptions {
+            supersampling: n,
+            seed,
+            ..TraceOptions::default()
+        };
+        let frame = self.tracer.render(&self.camera, &options, &|_| {}).unwrap();
+        let [w, _] = Self::PIXELS;
+        frame
+            .radiance_w_m2_sr
+            .iter()
+            .enumerate()
+            .filter_map(|(i, &l)| {
+                let (col, row) = (i as u32 % w, i as u32 / w);
+                let f = pixel_fraction_left_of_line(Self::X0, Self::SLOPE, col.into(), row.into());
+                (f > 0.0 && f < 1.0).then(|| (Self::exact_radiance_w_m2_sr(col, row), l))
+            })
+            .collect()
+    }
+}
+
+impl Default for EdgeExperiment {
+    fn default() -> Self {
+        Self::new()
+    }
 }

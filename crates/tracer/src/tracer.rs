@@ -3,6 +3,7 @@
 use std::fmt;
 
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
+use irsig_radiometry::EmissivityTable;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -11,6 +12,7 @@ use crate::camera::Camera;
 use crate::env::{Atmosphere, Radiometry, range_to_ground_m};
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::{Geometry, Hit};
+use crate::path_table::{PathTable, PathTermsMode};
 use crate::vec::{V3, add, basis, dot, scale, sub};
 
 /// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
@@ -256,28 +258,9 @@ pub struct Frame {
 #[derive(Debug, Clone)]
 struct MaterialData {
     id: u16,
-    emissivity: Vec<(f64, f64)>,
+    /// The project's one angular-emissivity interpolation (linear, held beyond the ends).
+    emissivity: EmissivityTable,
     specular_fraction: f64,
-}
-
-impl MaterialData {
-    /// Angular emissivity, linearly interpolated, held constant beyond the table's ends.
-    fn emissivity_at(&self, angle_deg: f64) -> f64 {
-        let t = &self.emissivity;
-        let Some(&(a0, e0)) = t.first() else {
-            return 1.0;
-        };
-        if angle_deg <= a0 {
-            return e0;
-        }
-        for w in t.windows(2) {
-            let ((a, ea), (b, eb)) = (w[0], w[1]);
-            if angle_deg <= b {
-                return ea + (eb - ea) * (angle_deg - a) / (b - a);
-            }
-        }
-        t.last().map_or(1.0, |e| e.1)
-    }
 }
 
 #[derive(Debug, Clone, Copy)]
@@ -298,6 +281,7 @@ pub struct Tracer<R, A> {
     terrain_leaving: f64,
     radiometry: R,
     atmosphere: A,
+    path_terms: PathTermsMode,
 }
 
 /// Per-ray state shared by the events.
@@ -313,6 +297,23 @@ impl Ctx<'_> {
         self.rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
+}
+
+/// What every ray of one frame shares, computed once per frame rather than per ray.
+struct FrameConsts<'a> {
+    camera: &'a Camera,
+    /// Image-plane u of each column's centre.
+    us: Vec<f64>,
+    /// Image-plane v of each row's centre.
+    vs: Vec<f64>,
+    /// The sensor in local coordinates.
+    origin: V3,
+    /// The sensor's altitude, metres (clamped at the ground).
+    sensor_alt: f64,
+    /// The Earth's limb seen from the sensor, degrees from nadir.
+    sensor_critical_nadir_deg: f64,
+    /// The primary hits' path terms, when [`PathTermsMode::Tabulated`].
+    path_table: Option<PathTable>,
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -343,9 +344,16 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         let mut mats = Vec::with_capacity(materials.materials.len());
         for (slot, m) in materials.materials.iter().enumerate() {
             slot_of[usize::from(m.id.0)] = slot as u16;
+            let (angle_deg, emissivity) = m.emissivity.iter().copied().unzip();
+            let emissivity = EmissivityTable::new(angle_deg, emissivity).map_err(|e| {
+                TraceError::new(TraceErrorKind::InvalidEmissivity {
+                    material: m.id.0,
+                    reason: e.to_string(),
+                })
+            })?;
             mats.push(MaterialData {
                 id: m.id.0,
-                emissivity: m.emissivity.clone(),
+                emissivity,
                 specular_fraction: m.specular_fraction,
             });
         }
@@ -378,6 +386,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             terrain_leaving,
             radiometry,
             atmosphere,
+            path_terms: PathTermsMode::Exact,
         })
     }
 
@@ -391,6 +400,51 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     #[must_use]
     pub fn radiometry(&self) -> &R {
         &self.radiometry
+    }
+
+    fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
+        let [w, h] = camera.pixels;
+        let sensor_alt = camera.position_m[2].max(0.0);
+        FrameConsts {
+            camera,
+            us: (0..w).map(|c| camera.u_at(f64::from(c) + 0.5)).collect(),
+            vs: (0..h).map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
+            origin: self.geometry.to_local(camera.position_m),
+            sensor_alt,
+            sensor_critical_nadir_deg: self.atmosphere.critical_nadir_angle_deg(sensor_alt),
+            path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
+                let [lo, hi] = self.geometry.bounds_m();
+                let p = camera.position_m;
+                // Nearest and farthest points of the box from the sensor.
+                let near: f64 = (0..3)
+                    .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                let far: f64 = (0..3)
+                    .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                PathTable::new(
+                    &self.atmosphere,
+                    sensor_alt,
+                    [lo[2].max(0.0), hi[2].max(0.0)],
+                    [near, far],
+                )
+            }),
+        }
+    }
+
+    /// Chooses how primary hits get their path terms (default [`PathTermsMode::Exact`]).
+    #[must_use]
+    pub fn with_path_terms(mut self, mode: PathTermsMode) -> Self {
+        self.path_terms = mode;
+        self
+    }
+
+    /// How primary hits get their path terms.
+    #[must_use]
+    pub fn path_terms(&self) -> PathTermsMode {
+        self.path_terms
     }
 
     /// Apparent (blackbody) temperature of a radiance, K.
@@ -412,26 +466,21 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     ) -> Result<Frame, TraceError> {
         options.validate()?;
         let [w, h] = camera.pixels;
-        let rows: Vec<(Vec<f64>, Vec<Sample>)> = (0..h)
-            .into_par_iter()
-            .map(|row| {
-                let mut rad = Vec::with_capacity(w as usize);
-                let mut truth = Vec::with_capacity(w as usize);
-                for col in 0..w {
-                    let (l, s) = self.pixel(camera, options, col, row);
-                    rad.push(l);
-                    truth.push(s);
+        let n = w as usize * h as usize;
+        let fc = self.frame_consts(camera);
+        // Rows write straight into the frame: no per-row vectors to gather and copy.
+        let mut radiance = vec![0.0; n];
+        let mut truth = vec![Sample::miss(Event::Sky); n];
+        radiance
+            .par_chunks_mut(w.max(1) as usize)
+            .zip(truth.par_chunks_mut(w.max(1) as usize))
+            .enumerate()
+            .for_each(|(row, (rad, tru))| {
+                for (col, (l_out, s_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
+                    *l_out = self.pixel(&fc, options, col as u32, row as u32, s_out);
                 }
                 progress(1);
-                (rad, truth)
-            })
-            .collect();
-        let mut radiance = Vec::with_capacity(w as usize * h as usize);
-        let mut truth = Vec::with_capacity(w as usize * h as usize);
-        for (r, t) in rows {
-            radiance.extend(r);
-            truth.extend(t);
-        }
+            });
         Ok(Frame {
             width: w,
             height: h,
@@ -462,30 +511,38 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 height: h,
             }));
         }
-        Ok(self.pixel(camera, options, column, row).1)
+        let mut s = Sample::miss(Event::Sky);
+        self.pixel(&self.frame_consts(camera), options, column, row, &mut s);
+        Ok(s)
     }
 
-    /// Radiance of a pixel (mean over its sub-pixel rays) and the centre ray's terms.
-    fn pixel(&self, camera: &Camera, options: &TraceOptions, col: u32, row: u32) -> (f64, Sample) {
+    /// Radiance of a pixel (mean over its sub-pixel rays); the centre ray's terms go to
+    /// `centre` (written in place: a sample is ~180 bytes, and moving it through every
+    /// call level showed as memory copies in the profile).
+    fn pixel(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        col: u32,
+        row: u32,
+        centre: &mut Sample,
+    ) -> f64 {
+        let camera = fc.camera;
         let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
         let mut ctx = Ctx {
             options,
             rng: None,
             seed: splitmix64(options.seed ^ splitmix64(index)),
         };
-        let origin = self.geometry.to_local(camera.position_m);
-        let sensor_alt = camera.position_m[2];
-        let centre = self.shade(
-            origin,
-            camera.pixel_direction(col, row),
-            sensor_alt,
-            &mut ctx,
-        );
+        // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
+        let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
+        self.shade(fc, dir, &mut ctx, centre);
         let n = options.supersampling;
         if n <= 1 {
-            return (centre.radiance_w_m2_sr, centre);
+            return centre.radiance_w_m2_sr;
         }
         let mut sum = 0.0;
+        let mut sub_sample = Sample::miss(Event::Sky);
         for j in 0..n {
             for i in 0..n {
                 let (jx, jy): (f64, f64) = {
@@ -494,40 +551,41 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 };
                 let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
                 let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                sum += self
-                    .shade(origin, camera.direction_at(x, y), sensor_alt, &mut ctx)
-                    .radiance_w_m2_sr;
+                self.shade(fc, camera.direction_at(x, y), &mut ctx, &mut sub_sample);
+                sum += sub_sample.radiance_w_m2_sr;
             }
         }
-        (sum / f64::from(n * n), centre)
+        sum / f64::from(n * n)
     }
 
-    /// The full radiance equation along one primary ray.
-    fn shade(&self, origin: V3, dir: V3, sensor_alt: f64, ctx: &mut Ctx<'_>) -> Sample {
+    /// The full radiance equation along one primary ray, every term into `s`.
+    fn shade(&self, fc: &FrameConsts<'_>, dir: V3, ctx: &mut Ctx<'_>, s: &mut Sample) {
+        let sensor_alt = fc.sensor_alt;
         let Some(hit) = self
             .geometry
-            .closest_hit(origin, dir, 0.0, f64::INFINITY, None)
+            .closest_hit(fc.origin, dir, 0.0, f64::INFINITY, None)
         else {
-            return self.miss(dir, sensor_alt);
+            *s = self.miss(dir, sensor_alt, fc.sensor_critical_nadir_deg);
+            return;
         };
-        let mut s = self.surface(&hit, dir, 0, ctx);
+        self.surface(&hit, dir, 0, ctx, s);
         let hit_alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
-        let path = self
-            .atmosphere
-            .path(sensor_alt.max(0.0), hit_alt, hit.distance_m);
+        let path = match &fc.path_table {
+            Some(table) => table.path(hit_alt, hit.distance_m),
+            None => self.atmosphere.path(sensor_alt, hit_alt, hit.distance_m),
+        };
         s.range_m = hit.distance_m;
         s.transmission = path.transmission;
         s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
         s.radiance_w_m2_sr =
             path.transmission * s.surface_leaving_w_m2_sr + path.path_radiance_w_m2_sr;
-        s
     }
 
     /// Event 1: the ray leaves the scene from the sensor.
-    fn miss(&self, dir: V3, sensor_alt: f64) -> Sample {
+    fn miss(&self, dir: V3, sensor_alt: f64, critical_nadir_deg: f64) -> Sample {
         let alt = sensor_alt.max(0.0);
         let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
-        if nadir < self.atmosphere.critical_nadir_angle_deg(alt) {
+        if nadir < critical_nadir_deg {
             let range = range_to_ground_m(alt, nadir).unwrap_or(0.0);
             let path = self.atmosphere.path(alt, 0.0, range);
             let mut s = Sample::miss(Event::Terrain);
@@ -565,16 +623,16 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
 
     /// Surface-leaving radiance of a hit (events 2–4) with every term, `depth` specular
     /// bounces already spent.
-    fn surface(&self, hit: &Hit, dir: V3, depth: u32, ctx: &mut Ctx<'_>) -> Sample {
+    fn surface(&self, hit: &Hit, dir: V3, depth: u32, ctx: &mut Ctx<'_>, s: &mut Sample) {
         let fd = self.facets[hit.facet as usize];
         let m = &self.materials[usize::from(fd.material)];
         let incidence_deg = hit.cos_incidence.acos().to_degrees();
-        let eps = m.emissivity_at(incidence_deg);
+        let eps = m.emissivity.at(incidence_deg);
         let r = 1.0 - eps;
         let sfrac = m.specular_fraction;
         let alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
         let sky_hemi = self.atmosphere.sky_hemispheric(alt);
-        let mut s = Sample::miss(Event::Diffuse);
+        *s = Sample::miss(Event::Diffuse);
         s.primary_material = m.id;
         s.facet = Some(hit.facet);
         s.back_face = hit.back_face;
@@ -600,7 +658,8 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                     Some(hit.facet),
                 ) {
                     Some(h2) => {
-                        let second = self.surface(&h2, refl, depth + 1, ctx);
+                        let mut second = Sample::miss(Event::Diffuse);
+                        self.surface(&h2, refl, depth + 1, ctx, &mut second);
                         s.event = Event::SpecularHitsFacet;
                         s.secondary_material = second.primary_material;
                         second.surface_leaving_w_m2_sr
@@ -630,7 +689,6 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         }
         s.surface_leaving_w_m2_sr =
             eps * fd.blackbody + r * (sfrac * spec + (1.0 - sfrac) * diffuse);
-        s
     }
 
     /// Diffuse incident radiance over the hemisphere above a hit by N cosine-weighted,
@@ -676,7 +734,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 Some(h2) => {
                     let fd = self.facets[h2.facet as usize];
                     let m2 = &self.materials[usize::from(fd.material)];
-                    let e2 = m2.emissivity_at(h2.cos_incidence.acos().to_degrees());
+                    let e2 = m2.emissivity.at(h2.cos_incidence.acos().to_degrees());
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
                     sum += e2 * fd.blackbody + (1.0 - e2) * self.atmosphere.sky_hemispheric(alt2);
                 }

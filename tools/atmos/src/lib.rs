@@ -5,6 +5,9 @@
 //! - Calculators a user decides a scene's models with (band radiance, apparent
 //!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors).
 //!   Each prints a plain aligned table by default, or `--format csv` / `--format ron`.
+//! - `fresnel`: an angular emissivity table of a smooth opaque surface from its complex
+//!   refractive index (constant, or a `wavelength_um n k` table averaged over the band),
+//!   as a canonical material library entry or a legacy `.ems`.
 //!
 //! ```text
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
@@ -15,6 +18,8 @@
 //! irsig-atmos bounces --target-temperature 260:400:10 --max 4
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
+//! irsig-atmos fresnel --n 1.2 --k 0.05 -o glassy.ron
+//! irsig-atmos fresnel --nk-table water.nk --band 8:14 --temperature 300 -o water.ems
 //! ```
 
 use clap::{Parser, Subcommand};
@@ -22,6 +27,7 @@ use clap::{Parser, Subcommand};
 mod bounces;
 mod common;
 pub mod convert;
+mod fresnel;
 mod radiance;
 mod rtt;
 mod shape_factor;
@@ -44,7 +50,10 @@ pub use common::Format;
   irsig-atmos bounces --target-emissivity 0.98 --target-temperature 260:400:10 \\
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
-      --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr"
+      --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
+  irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
+  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8:14 \\
+      --temperature 300 --angles 0:90:5 --legacy -o water.ems"
 )]
 pub struct Cli {
     /// What to do.
@@ -67,6 +76,19 @@ pub enum Command {
     Bounces(bounces::Args),
     /// Apparent temperature of a diffuse object against shape factor (thesis Appendix B).
     ShapeFactor(shape_factor::Args),
+    /// Angular emissivity of a smooth opaque surface from its complex refractive index
+    /// (Fresnel), as a material library entry (RON) or a legacy `.ems`.
+    #[command(after_help = "Examples:
+  irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
+  irsig-atmos fresnel --n 25 --k 90 --name aluminium --id 7 -o aluminium.ron
+  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8:14 \\
+      --temperature 300 --angles 0:90:5 --legacy -o water.ems
+
+A constant index gives the monochromatic table. A table of n, k against wavelength is
+averaged over the band (and the --srf response) with Planck weighting at --temperature:
+eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
+Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
+    Fresnel(fresnel::Args),
 }
 
 /// Runs one subcommand.
@@ -82,5 +104,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Command::Rtt(a) => rtt::run(&a),
         Command::Bounces(a) => bounces::run(&a),
         Command::ShapeFactor(a) => shape_factor::run(&a),
+        Command::Fresnel(a) => fresnel::run(&a),
     }
 }

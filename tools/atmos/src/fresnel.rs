@@ -1,0 +1,184 @@
+//! `irsig-atmos fresnel`: an angular emissivity table of a smooth opaque surface from its
+//! complex refractive index, as a canonical material library entry or a legacy `.ems`.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+use irsig_model::{Material, MaterialId, MaterialLibrary};
+use irsig_radiometry::EmissivityTable;
+use irsig_radiometry::fresnel::{
+    ComplexIndex, IndexTable, band_emissivity_table, emissivity_table,
+};
+use miette::miette;
+
+use crate::common::{BandArgs, diagnostic, values};
+
+/// Arguments of `fresnel`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Real part of a constant refractive index (> 0).
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        required_unless_present = "nk_table",
+        conflicts_with = "nk_table"
+    )]
+    pub n: Option<f64>,
+    /// Extinction coefficient (imaginary part, ≥ 0) of a constant index.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        default_value_t = 0.0,
+        conflicts_with = "nk_table"
+    )]
+    pub k: f64,
+    /// A table of `wavelength_um n k` rows (formats/nk.md); `-` for stdin. The emissivity
+    /// is then averaged over the band with Planck weighting at `--temperature`.
+    #[arg(long, value_name = "FILE")]
+    pub nk_table: Option<PathBuf>,
+    /// Band limits `min:max` in µm for the spectral average [default: 8:14].
+    #[arg(long, value_name = "MIN_UM:MAX_UM")]
+    pub band: Option<String>,
+    /// Sensor response file weighting the spectral average (formats/srf.md).
+    #[arg(long, value_name = "FILE")]
+    pub srf: Option<PathBuf>,
+    /// Temperature of the Planck weighting, K: the surface temperature the table is made
+    /// for [default: 300].
+    #[arg(long, allow_hyphen_values = true)]
+    pub temperature: Option<f64>,
+    /// Angles from the surface normal, deg: a list `a,b,c` or a range `from:to:step`,
+    /// 0–90, increasing. Include 90 (ε = 0) so interpolation reaches grazing.
+    #[arg(long, default_value = "0:90:1", allow_hyphen_values = true)]
+    pub angles: String,
+    /// Write a legacy `.ems` (also chosen by an `-o` name ending in `.ems`).
+    #[arg(long)]
+    pub legacy: bool,
+    /// Material name in the library entry [default: the nk table's file stem, else
+    /// `fresnel`].
+    #[arg(long)]
+    pub name: Option<String>,
+    /// Material id in the library entry (1–65535).
+    #[arg(long, default_value_t = 1)]
+    pub id: u16,
+    /// Fraction of the reflection that is specular (0 diffuse – 1 mirror). Fresnel's
+    /// equations describe a smooth surface, hence 1.
+    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
+    pub specular_fraction: f64,
+    /// Output file (stdout when absent or `-`).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+fn legacy_by_name(path: Option<&Path>) -> bool {
+    path.and_then(Path::extension)
+        .is_some_and(|e| e.eq_ignore_ascii_case("ems"))
+}
+
+pub fn run(args: &Args) -> miette::Result<()> {
+    // clap's `requires` is waived when a conflicting argument (here --n) is present, so
+    // this rule is checked by hand.
+    if args.nk_table.is_none()
+        && (args.band.is_some() || args.srf.is_some() || args.temperature.is_some())
+    {
+        return Err(irsig_cli::usage_error(
+            "--band, --srf and --temperature weight the spectral average of --nk-table; \
+             a constant --n/--k has none",
+        ));
+    }
+    let angles = values("--angles", &args.angles)?;
+    let (table, source, default_name) = match (&args.nk_table, args.n) {
+        (Some(path), _) => {
+            let input = irsig_cli::read_input(&path.to_string_lossy())?;
+            let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+            let nk = irsig_formats::nk::parse(&input.name, text)?;
+            let index = IndexTable::new(nk.wavelength_um, &nk.n, &nk.k)
+                .map_err(|e| miette!("{}: {e}", input.name))?;
+            let band_args = BandArgs {
+                band: args.band.clone().unwrap_or_else(|| "8:14".to_owned()),
+                srf: args.srf.clone(),
+            };
+            let band = band_args.band()?;
+            let t = args.temperature.unwrap_or(300.0);
+            let table = band_emissivity_table(&index, &band, t, &angles)
+                .map_err(|e| miette!("{}: {e}", input.name))?;
+            let srf = args
+                .srf
+                .as_ref()
+                .map(|p| format!(" weighted by the response {}", p.display()))
+                .unwrap_or_default();
+            let source = format!(
+                "Fresnel, smooth opaque surface (irsig-atmos fresnel): n, k from {} linearly \
+                 interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K",
+                input.name,
+                band.lambda_min_um(),
+                band.lambda_max_um()
+            );
+            let stem = input
+                .path
+                .as_deref()
+                .and_then(Path::file_stem)
+                .map(|s| s.to_string_lossy().into_owned());
+            (table, source, stem)
+        }
+        (None, Some(n)) => {
+            let index = ComplexIndex::new(n, args.k).map_err(diagnostic)?;
+            let table = emissivity_table(index, &angles).map_err(|e| miette!("--angles: {e}"))?;
+            let source = format!(
+                "Fresnel, smooth opaque surface (irsig-atmos fresnel): constant index n = {n}, k = {}",
+                args.k
+            );
+            (table, source, None)
+        }
+        (None, None) => return Err(irsig_cli::usage_error("give --n (and --k) or --nk-table")),
+    };
+    let output = args.output.as_deref();
+    if args.legacy || legacy_by_name(output) {
+        write_ems(&table, output)
+    } else {
+        let name = args
+            .name
+            .clone()
+            .or(default_name)
+            .unwrap_or_else(|| "fresnel".to_owned());
+        write_library(&table, name, args, source, output)
+    }
+}
+
+fn pairs(table: &EmissivityTable) -> Vec<(f64, f64)> {
+    table
+        .angle_deg()
+        .iter()
+        .copied()
+        .zip(table.emissivity().iter().copied())
+        .collect()
+}
+
+fn write_ems(table: &EmissivityTable, output: Option<&Path>) -> miette::Result<()> {
+    let ems = irsig_formats::legacy::ems::EmsTable::from_pairs(&pairs(table));
+    let text = irsig_formats::legacy::ems::write(&ems).map_err(diagnostic)?;
+    irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
+}
+
+fn write_library(
+    table: &EmissivityTable,
+    name: String,
+    args: &Args,
+    source: String,
+    output: Option<&Path>,
+) -> miette::Result<()> {
+    let library = MaterialLibrary {
+        materials: vec![Material {
+            id: MaterialId(args.id),
+            name,
+            emissivity: pairs(table),
+            specular_fraction: args.specular_fraction,
+            source,
+        }],
+    };
+    // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).
+    library
+        .validate()
+        .map_err(|e| miette!("the material library entry is not valid: {e}"))?;
+    let text = irsig_formats::canonical::to_ron(&library).map_err(diagnostic)?;
+    irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
+}
