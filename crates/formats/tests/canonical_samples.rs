@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 
 use irsig_formats::canonical::{self, Canonical};
-use irsig_model::{Atmosphere, MaterialLibrary, Object, Scene, View};
+use irsig_model::{Atmosphere, MaterialLibrary, Object, RegionSet, Scene, View};
 
 fn sample(name: &str) -> String {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
@@ -50,4 +50,16 @@ fn the_flattened_sample_is_the_same_in_ron_and_binary() {
     );
     assert_eq!(canonical::read_raw_scene("r.bin", &bin).unwrap(), raw);
     assert!(bin.starts_with(b"IRSIGRAW"));
+}
+
+#[test]
+fn the_regions_sample_reads_and_round_trips() {
+    let set: RegionSet = round_trip("regions.ron");
+    assert_eq!(set.references.len(), 2);
+    assert_eq!(set.regions.len(), 3);
+    assert_eq!(
+        RegionSet::reference(&set.regions[1], "measured"),
+        Some(297.4)
+    );
+    assert_eq!(RegionSet::reference(&set.regions[2], "kinetic"), None);
 }

@@ -13,6 +13,7 @@
 //! | [`MaterialLibrary`] | the user, `irsig-atmos convert` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
+//! | [`RegionSet`] | the user | `irsig-stats` |
 //!
 //! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
 //! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
@@ -38,6 +39,7 @@ mod error;
 mod material;
 mod object;
 mod raw;
+mod regions;
 mod scene;
 mod view;
 
@@ -46,5 +48,6 @@ pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary};
 pub use object::{Facet, Object};
 pub use raw::{RawFacet, RawScene};
+pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
 pub use view::{LengthUnit, View};

@@ -76,6 +76,7 @@ pub fn tools() -> Tools {
         .register("atmos", check::<irsig_atmos::Cli>)
         .register("trace", check::<irsig_trace::Cli>)
         .register("sensor", check::<irsig_sensor::Cli>)
+        .register("stats", check::<irsig_stats::Cli>)
         .register("run", check::<Cli>);
     tools
 }

@@ -11,14 +11,16 @@
 //! | [`Object`] | yes | no |
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
-//! | [`MaterialLibrary`], [`Atmosphere`], [`View`] | yes | no |
+//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`] | yes | no |
 //!
 //! The format pages are `formats/canonical/*.md` in the repository.
 
 pub mod binary;
 mod locate;
 
-use irsig_model::{Atmosphere, MaterialLibrary, ModelError, Object, RawScene, Scene, View};
+use irsig_model::{
+    Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene, View,
+};
 use serde::Serialize;
 use serde::de::DeserializeOwned;
 
@@ -57,6 +59,7 @@ canonical!(RawScene, "raw scene", 2);
 canonical!(MaterialLibrary, "material library", 3);
 canonical!(Atmosphere, "atmosphere", 3);
 canonical!(View, "view", 2);
+canonical!(RegionSet, "regions file", 3);
 
 /// Parses RON text into `T` without validating it.
 ///
@@ -116,6 +119,17 @@ pub fn utf8<'a>(file: &str, bytes: &'a [u8]) -> Result<&'a str, ParseError> {
             ),
         )
     })
+}
+
+/// An error about the value at a model `path` (`regions[2].pixels`) of canonical RON `text`,
+/// at that value's line and column where the path can be followed (else the start of the
+/// file): for checks a tool makes after reading, such as a region that selects no pixel
+/// of a particular image.
+#[must_use]
+pub fn error_at_path(file: &str, text: &str, path: &str, message: impl Into<String>) -> ParseError {
+    let offset = locate::path_offset(text, path);
+    let len = locate::value_len(text, offset);
+    ParseError::at_span(file, text, offset, len.max(1), message)
 }
 
 fn validation_error<T: Canonical>(file: &str, text: &str, e: &ModelError) -> ParseError {

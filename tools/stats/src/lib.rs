@@ -1,0 +1,518 @@
+//! `irsig-stats`: the thesis's local-area analysis (Shor 1990, §4.8–4.9, Tables 5–7) as a
+//! stage. It reads a traced image and a regions file (`formats/canonical/regions.md`: each
+//! region a material id, a pixel box or both, with optional reference temperatures such as
+//! a paper's values and their source), and writes per region the pixel count and the mean,
+//! standard deviation, minimum and maximum apparent temperature, beside each reference
+//! value and the difference mean − reference. Aligned text by default, `--format csv|ron`.
+//!
+//! The regions select pixels by the `material_primary` layer of the tracer's truth EXR. The
+//! values are, by default, that EXR's `apparent_temperature` layer (K); `--layer` picks
+//! another layer in kelvin, and `--radiance FILE` takes the `radiance` layer of another
+//! image of the same size (the sensor stage's blurred EXR, say) and converts it to apparent
+//! temperature in `--band`.
+//!
+//! ```no_run
+//! use clap::Parser;
+//! let cli = irsig_stats::Cli::parse_from([
+//!     "irsig-stats", "out/frame.truth.exr", "--regions", "regions.ron",
+//!     "--radiance", "out/frame.sensor.exr", "--celsius", "-o", "out/table.txt",
+//! ]);
+//! irsig_stats::run(cli)?;
+//! # Ok::<(), miette::Report>(())
+//! ```
+
+pub mod stats;
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+use clap::Parser;
+use irsig_model::RegionSet;
+use irsig_radiometry::Band;
+use irsig_raster::{Raster, read_exr};
+use miette::miette;
+use serde::Serialize;
+
+use crate::stats::{RegionProblem, RegionStats, region_stats};
+
+/// The truth layer regions select by.
+pub const MATERIAL_LAYER: &str = "material_primary";
+/// The default value layer: the tracer's apparent temperature, K.
+pub const APPARENT_LAYER: &str = "apparent_temperature";
+/// The layer `--radiance` reads, W m⁻² sr⁻¹.
+pub const RADIANCE_LAYER: &str = "radiance";
+
+/// 0 °C in kelvin.
+const ZERO_CELSIUS_K: f64 = 273.15;
+
+const EXAMPLE: &str = "\
+Examples:
+  irsig-stats out/frame.truth.exr --regions regions.ron
+      mean/std/min/max apparent temperature (K) per region, beside the regions file's
+      reference values, as an aligned table on stdout
+  irsig-stats out/frame.truth.exr --regions regions.ron --radiance out/frame.sensor.exr \\
+      --band 8:14 --celsius --format csv -o table.csv
+      the same for the sensor stage's blurred radiance, in degC, as CSV
+  irsig-stats out/frame.truth.exr --regions regions.ron --layer kinetic_temperature
+      the kinetic temperature the tracer assigned, per region
+
+The regions file (canonical RON, formats/canonical/regions.md):
+  (references: [(name: \"paper\", source: \"Table 7\")],
+   regions: [(name: \"pool\", material: Some(2), pixels: Some((columns: (10, 40), rows: (5, 9))),
+              references: [(name: \"paper\", temperature_k: 286.5)])])";
+
+/// Output form of the table.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum Format {
+    /// Aligned columns for reading, with the sources as `#` comment lines.
+    #[default]
+    Table,
+    /// Comma-separated values with a header row, full precision.
+    Csv,
+    /// RON: `(values: .., unit: .., references: [..], regions: [..])`, full precision.
+    Ron,
+}
+
+/// Per-region statistics of a traced image beside reference values.
+#[derive(Debug, Parser)]
+#[command(name = "irsig-stats", version, about, after_help = EXAMPLE)]
+pub struct Cli {
+    /// The tracer's truth EXR (its `material_primary` layer selects pixels), or `-`.
+    pub truth: String,
+    /// The regions file (canonical RON).
+    #[arg(long, value_name = "FILE")]
+    pub regions: String,
+    /// Take the values from this image's `radiance` layer (W m^-2 sr^-1), converted to
+    /// apparent temperature in --band, instead of a layer of the truth EXR. Same size as
+    /// the truth EXR.
+    #[arg(long, value_name = "FILE", conflicts_with = "layer")]
+    pub radiance: Option<String>,
+    /// The truth EXR's layer to take the values from, in kelvin.
+    #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
+    pub layer: String,
+    /// The band of --radiance, `min:max` in micrometres (flat response), as the tracer's.
+    #[arg(long, default_value = "8:14", value_name = "MIN_UM:MAX_UM")]
+    pub band: String,
+    /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
+    #[arg(long)]
+    pub celsius: bool,
+    /// Output form.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+    /// Output file (`-` or absent: stdout); written atomically.
+    #[arg(short = 'o', long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// One region's row of the table.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Row {
+    /// The region's name.
+    pub region: String,
+    /// Pixels selected.
+    pub pixels: usize,
+    /// Mean, in the table's unit.
+    pub mean: f64,
+    /// Population standard deviation, K.
+    pub std_dev: f64,
+    /// Minimum, in the table's unit.
+    pub min: f64,
+    /// Maximum, in the table's unit.
+    pub max: f64,
+    /// Per reference column (in the file's order): the reference and mean − reference;
+    /// `None` where the region gives no value for that column.
+    pub references: Vec<Option<Compared>>,
+}
+
+/// A reference value and our mean's difference from it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct Compared {
+    /// The reference, in the table's unit.
+    pub reference: f64,
+    /// Mean − reference, K.
+    pub difference: f64,
+}
+
+/// Everything the output shows.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Table {
+    /// Where the values come from (`apparent_temperature of out/f.truth.exr`).
+    pub values: String,
+    /// `K` or `degC`.
+    pub unit: String,
+    /// Reference columns: name and source.
+    pub references: Vec<(String, String)>,
+    /// One row per region, in the regions file's order.
+    pub regions: Vec<Row>,
+}
+
+/// Runs the tool.
+///
+/// # Errors
+/// Unreadable or malformed input (the regions file with line and column), a missing
+/// layer, images of different sizes, a region that selects nothing, or an unwritable
+/// output; nothing is written then.
+pub fn run(cli: Cli) -> miette::Result<()> {
+    let regions_input = irsig_cli::read_input(&cli.regions)?;
+    let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
+    let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
+    let band = if cli.radiance.is_some() {
+        Some(parse_band(&cli.band)?)
+    } else {
+        None
+    };
+
+    let truth_input = irsig_cli::read_input(&cli.truth)?;
+    let truth = read_image(&truth_input.name, &truth_input.bytes)?;
+    let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
+    let (values, source): (Vec<f32>, String) = match (&cli.radiance, band) {
+        (Some(path), Some(band)) => {
+            let input = irsig_cli::read_input(path)?;
+            let image = read_image(&input.name, &input.bytes)?;
+            if (image.width, image.height) != (truth.width, truth.height) {
+                return Err(miette!(
+                    "{}: the image is {} x {} pixels but the truth EXR {} is {} x {}: \
+                     expected the same size (trace and sense at one resolution, or reduce \
+                     the truth layers with the sensor stage)",
+                    input.name,
+                    image.width,
+                    image.height,
+                    truth_input.name,
+                    truth.width,
+                    truth.height
+                ));
+            }
+            let radiance = layer(&image, &input.name, RADIANCE_LAYER)?;
+            let temperatures = radiance
+                .iter()
+                .map(|&l| {
+                    if l.is_finite() {
+                        band.temperature(f64::from(l)) as f32
+                    } else {
+                        f32::NAN
+                    }
+                })
+                .collect();
+            (
+                temperatures,
+                format!(
+                    "apparent temperature of the `radiance` layer of {} in {} um",
+                    input.name, cli.band
+                ),
+            )
+        }
+        _ => (
+            layer(&truth, &truth_input.name, &cli.layer)?.to_vec(),
+            format!("`{}` layer of {}", cli.layer, truth_input.name),
+        ),
+    };
+
+    let offset = if cli.celsius { ZERO_CELSIUS_K } else { 0.0 };
+    let mut rows = Vec::with_capacity(set.regions.len());
+    for (i, region) in set.regions.iter().enumerate() {
+        let s: RegionStats = region_stats(region, ids, &values, truth.width).map_err(|p| {
+            let (path, message) = match p {
+                RegionProblem::BoxOutside { width, height } => (
+                    format!("regions[{i}].pixels"),
+                    format!(
+                        "region `{}`: the box reaches beyond the image {} ({width} x {height} \
+                         pixels: columns 0-{}, rows 0-{})",
+                        region.name,
+                        truth_input.name,
+                        width.saturating_sub(1),
+                        height.saturating_sub(1)
+                    ),
+                ),
+                RegionProblem::Empty => (
+                    format!("regions[{i}]"),
+                    format!(
+                        "region `{}` selects no pixel of {}: expected at least one pixel \
+                         {}",
+                        region.name,
+                        truth_input.name,
+                        selection(region)
+                    ),
+                ),
+                RegionProblem::NotFinite { column, row } => (
+                    format!("regions[{i}]"),
+                    format!(
+                        "region `{}`: pixel ({column}, {row}) has no finite value ({source})",
+                        region.name
+                    ),
+                ),
+            };
+            irsig_formats::canonical::error_at_path(
+                &regions_input.name,
+                regions_text,
+                &path,
+                message,
+            )
+        })?;
+        let references = set
+            .references
+            .iter()
+            .map(|c| {
+                RegionSet::reference(region, &c.name).map(|r| Compared {
+                    reference: r - offset,
+                    difference: s.mean - r,
+                })
+            })
+            .collect();
+        rows.push(Row {
+            region: region.name.clone(),
+            pixels: s.pixels,
+            mean: s.mean - offset,
+            std_dev: s.std_dev,
+            min: s.min - offset,
+            max: s.max - offset,
+            references,
+        });
+    }
+    let table = Table {
+        values: source,
+        unit: if cli.celsius { "degC" } else { "K" }.into(),
+        references: set
+            .references
+            .iter()
+            .map(|c| (c.name.clone(), c.source.clone()))
+            .collect(),
+        regions: rows,
+    };
+    let text = render(&table, cli.format)?;
+    irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
+}
+
+/// What a region asks for, in words.
+fn selection(region: &irsig_model::Region) -> String {
+    let material = region.material.map(|m| format!("of material {}", m.0));
+    let pixels = region.pixels.map(|b| {
+        format!(
+            "in columns {}-{}, rows {}-{}",
+            b.columns.0, b.columns.1, b.rows.0, b.rows.1
+        )
+    });
+    [material, pixels]
+        .into_iter()
+        .flatten()
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+fn parse_band(text: &str) -> miette::Result<Band> {
+    let bad = || {
+        irsig_cli::usage_error(format!(
+            "--band `{text}`: expected `min:max` in micrometres such as 8:14"
+        ))
+    };
+    let (a, b) = text.split_once(':').ok_or_else(bad)?;
+    let a: f64 = a.trim().parse().map_err(|_| bad())?;
+    let b: f64 = b.trim().parse().map_err(|_| bad())?;
+    Band::new(a, b).map_err(|e| irsig_cli::usage_error(format!("--band `{text}`: {e}")))
+}
+
+fn read_image(name: &str, bytes: &[u8]) -> miette::Result<Raster> {
+    read_exr(bytes).map_err(|e| miette!("{name}: cannot read the EXR: {e}"))
+}
+
+fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
+    image
+        .layer(layer)
+        .map(|l| l.data.as_slice())
+        .ok_or_else(|| {
+            let names: Vec<&str> = image.layers.iter().map(|l| l.name.as_str()).collect();
+            miette!(
+                "{name}: no layer `{layer}` (it has: {}); expected the tracer's truth EXR for \
+             `{MATERIAL_LAYER}` and `{APPARENT_LAYER}`, or an image with `{RADIANCE_LAYER}` \
+             for --radiance",
+                names.join(", ")
+            )
+        })
+}
+
+/// The table as text, CSV or RON.
+///
+/// # Errors
+/// Only if RON serialisation fails, which it does not for finite numbers.
+pub fn render(table: &Table, format: Format) -> miette::Result<String> {
+    let unit = if table.unit == "K" { "k" } else { "c" };
+    let mut header: Vec<String> = ["region", "pixels"]
+        .into_iter()
+        .map(String::from)
+        .chain(
+            ["mean", "std_dev", "min", "max"]
+                .iter()
+                .enumerate()
+                .map(|(i, h)| {
+                    // The spread is a difference: kelvin whatever the unit.
+                    if i == 1 {
+                        format!("{h}_k")
+                    } else {
+                        format!("{h}_{unit}")
+                    }
+                }),
+        )
+        .collect();
+    for (name, _) in &table.references {
+        header.push(format!("{name}_{unit}"));
+        header.push(format!("mean_minus_{name}_k"));
+    }
+    let cells = |row: &Row, full: bool| -> Vec<String> {
+        let num = |v: f64| {
+            if full {
+                format!("{v}")
+            } else {
+                format!("{v:.2}")
+            }
+        };
+        let mut c = vec![
+            row.region.clone(),
+            row.pixels.to_string(),
+            num(row.mean),
+            num(row.std_dev),
+            num(row.min),
+            num(row.max),
+        ];
+        for r in &row.references {
+            match r {
+                Some(r) => {
+                    c.push(num(r.reference));
+                    c.push(if full {
+                        format!("{}", r.difference)
+                    } else {
+                        format!("{:+.2}", r.difference)
+                    });
+                }
+                None => {
+                    let empty = if full { "" } else { "-" };
+                    c.push(empty.into());
+                    c.push(empty.into());
+                }
+            }
+        }
+        c
+    };
+    let mut out = String::new();
+    match format {
+        Format::Table => {
+            let _ = writeln!(out, "# values: {} ({})", table.values, table.unit);
+            for (name, source) in &table.references {
+                let _ = writeln!(out, "# {name}: {source}");
+            }
+            let body: Vec<Vec<String>> = table.regions.iter().map(|r| cells(r, false)).collect();
+            let widths: Vec<usize> = (0..header.len())
+                .map(|i| {
+                    body.iter()
+                        .filter_map(|r| r.get(i).map(|s| s.chars().count()))
+                        .chain([header[i].len()])
+                        .max()
+                        .unwrap_or(0)
+                })
+                .collect();
+            for line in std::iter::once(&header).chain(&body) {
+                let padded: Vec<String> = line
+                    .iter()
+                    .zip(&widths)
+                    .enumerate()
+                    .map(|(i, (s, &w))| {
+                        let pad = w.saturating_sub(s.chars().count());
+                        // The region name reads best left-aligned, numbers right-aligned.
+                        if i == 0 {
+                            format!("{s}{}", " ".repeat(pad))
+                        } else {
+                            format!("{}{s}", " ".repeat(pad))
+                        }
+                    })
+                    .collect();
+                let _ = writeln!(out, "{}", padded.join("  ").trim_end());
+            }
+        }
+        Format::Csv => {
+            let _ = writeln!(out, "{}", header.join(","));
+            for row in &table.regions {
+                let c: Vec<String> = cells(row, true).into_iter().map(csv_field).collect();
+                let _ = writeln!(out, "{}", c.join(","));
+            }
+        }
+        Format::Ron => {
+            let config = ron::ser::PrettyConfig::new()
+                .depth_limit(3)
+                .indentor("  ")
+                .separate_tuple_members(false);
+            out = ron::ser::to_string_pretty(table, config).map_err(|e| miette!("{e}"))?;
+            out.push('\n');
+        }
+    }
+    Ok(out)
+}
+
+/// A CSV field, quoted when it holds a comma, a quote or a line break (RFC 4180).
+fn csv_field(s: String) -> String {
+    if s.contains([',', '"', '\n', '\r']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn table() -> Table {
+        Table {
+            values: "test".into(),
+            unit: "degC".into(),
+            references: vec![
+                ("paper".into(), "Table 7".into()),
+                ("other".into(), String::new()),
+            ],
+            regions: vec![Row {
+                region: "Left, Pool".into(),
+                pixels: 12,
+                mean: 10.0,
+                std_dev: 0.25,
+                min: 9.5,
+                max: 10.5,
+                references: vec![
+                    Some(Compared {
+                        reference: 9.62,
+                        difference: 0.38,
+                    }),
+                    None,
+                ],
+            }],
+        }
+    }
+
+    #[test]
+    fn text_csv_and_ron_carry_the_same_row() {
+        let t = table();
+        let text = render(&t, Format::Table).unwrap();
+        assert!(text.starts_with("# values: test (degC)\n# paper: Table 7\n"));
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[3].starts_with("region"));
+        assert!(lines[3].contains("paper_c") && lines[3].contains("mean_minus_paper_k"));
+        assert!(lines[4].starts_with("Left, Pool"));
+        assert!(lines[4].contains("9.62") && lines[4].contains("+0.38"));
+        assert!(lines[4].trim_end().ends_with('-'));
+
+        let csv = render(&t, Format::Csv).unwrap();
+        let mut l = csv.lines();
+        assert_eq!(
+            l.next(),
+            Some(
+                "region,pixels,mean_c,std_dev_k,min_c,max_c,paper_c,mean_minus_paper_k,\
+                 other_c,mean_minus_other_k"
+            )
+        );
+        assert_eq!(
+            l.next(),
+            Some("\"Left, Pool\",12,10,0.25,9.5,10.5,9.62,0.38,,")
+        );
+
+        let ron_text = render(&t, Format::Ron).unwrap();
+        let v: ron::Value = ron::from_str(&ron_text).unwrap();
+        let again = format!("{v:?}");
+        assert!(again.contains("Left, Pool") && again.contains("9.62"));
+    }
+}
