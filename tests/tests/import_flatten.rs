@@ -165,8 +165,9 @@ fn real_glbs_import_with_their_triangle_counts() {
             "{}",
             String::from_utf8_lossy(&out.stderr)
         );
-        let text = String::from_utf8(out.stdout).unwrap();
-        let object: irsig_model::Object = irsig_formats::canonical::from_ron(file, &text).unwrap();
+        // Standard output is a pipe here, so the importer writes the binary object.
+        assert!(out.stdout.starts_with(b"IRSIGOBJ"));
+        let object = irsig_formats::canonical::read_object(file, &out.stdout).unwrap();
         assert_eq!(object.facets.len(), triangles);
         // --unit cm: the 0.2 m-sized models become 2 mm-sized.
         let extent = object
@@ -333,8 +334,7 @@ fn obj_from_stdin_with_format() {
         String::from_utf8_lossy(&out.stderr)
     );
     let object: irsig_model::Object =
-        irsig_formats::canonical::from_ron("<stdin>", &String::from_utf8(out.stdout).unwrap())
-            .unwrap();
+        irsig_formats::canonical::read_object("<stdin>", &out.stdout).unwrap();
     // --unit km: the 2-unit edge is 2000 m.
     let max_x = object.positions_m.iter().map(|p| p[0]).fold(0.0, f64::max);
     assert!((max_x - 2000.0).abs() < 1e-9);
@@ -364,7 +364,7 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
         String::from_utf8_lossy(&out.stderr)
     );
     let object: irsig_model::Object =
-        irsig_formats::canonical::from_ron("fac", &String::from_utf8(out.stdout).unwrap()).unwrap();
+        irsig_formats::canonical::read_object("fac", &out.stdout).unwrap();
     assert_eq!(object.facets.len(), 4);
     assert!(object.facets.iter().all(|f| f.material.0 == 6));
     assert!(
@@ -420,4 +420,92 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
         .unwrap();
     assert_eq!(out.status.code(), Some(1));
     assert!(String::from_utf8_lossy(&out.stderr).contains("cold.scn:1:1"));
+}
+
+#[test]
+fn import_writes_binary_into_pipes_and_bin_files_and_ron_to_redirections() {
+    let dir = tempfile::tempdir().unwrap();
+    let root = repo_root();
+    let sample: irsig_model::Object = irsig_formats::canonical::from_ron(
+        "box.ron",
+        &std::fs::read_to_string(root.join(SAMPLES).join("box.ron")).unwrap(),
+    )
+    .unwrap();
+    // A `.bin` output file: binary, and the same geometry as the RON sample.
+    let bin_file = dir.path().join("box.bin");
+    bin("irsig-import")
+        .args([&format!("{SAMPLES}/box.obj"), "--materials", LIBRARY, "-o"])
+        .arg(&bin_file)
+        .assert()
+        .success();
+    let bytes = std::fs::read(&bin_file).unwrap();
+    assert!(bytes.starts_with(b"IRSIGOBJ"));
+    let object = irsig_formats::canonical::read_object("box.bin", &bytes).unwrap();
+    assert_eq!(object.positions_m, sample.positions_m);
+    assert_eq!(object.facets, sample.facets);
+    // Standard output redirected to a file (`> box.ron`): RON, as a person would open it.
+    let redirected = dir.path().join("redirected.ron");
+    let status = Command::new(bin_path("irsig-import"))
+        .current_dir(&root)
+        .args([&format!("{SAMPLES}/box.obj"), "--materials", LIBRARY])
+        .stdout(std::fs::File::create(&redirected).unwrap())
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let text = std::fs::read_to_string(&redirected).unwrap();
+    assert!(text.starts_with("(\n  name: \"box\""), "{text}");
+    // --ron into a pipe overrides the pipe's default.
+    let out = bin("irsig-import")
+        .args([
+            &format!("{SAMPLES}/box.obj"),
+            "--materials",
+            LIBRARY,
+            "--ron",
+        ])
+        .output()
+        .unwrap();
+    assert!(out.stdout.starts_with(b"(\n"));
+    // flatten reads the binary object where the scene names box.ron, with the same result
+    // as from the RON sample.
+    let from_ron = bin("irsig-flatten")
+        .args([&format!("{SAMPLES}/scene.ron"), "--ron"])
+        .output()
+        .unwrap();
+    let from_bin = bin("irsig-flatten")
+        .args([&format!("{SAMPLES}/scene.ron"), "--ron", "--object"])
+        .arg(format!("box.ron={}", bin_file.display()))
+        .output()
+        .unwrap();
+    assert!(
+        from_bin.status.success(),
+        "{}",
+        String::from_utf8_lossy(&from_bin.stderr)
+    );
+    assert_eq!(from_bin.stdout, from_ron.stdout);
+}
+
+#[test]
+fn malformed_binary_objects_fail_in_flatten_with_offset_and_no_output() {
+    let o = "tests/data/malformed/object";
+    let cases: &[(&str, &[&str])] = &[
+        ("truncated.bin", &["truncated.bin:1:", "the file has 197"]),
+        ("wrong-magic.bin", &["wrong-magic.bin:1:1:", "`IRSIGOBJ`"]),
+        (
+            "count-lies.bin",
+            &["count-lies.bin:1:", "1000000000 facets"],
+        ),
+        ("nan.bin", &["nan.bin:1:83:", "positions_m[1]"]),
+        (
+            "index-out-of-range.bin",
+            &["index-out-of-range.bin:1:179:", "facets[1].vertices[2]"],
+        ),
+    ];
+    for (file, expect) in cases {
+        let object = format!("box.ron={o}/{file}");
+        assert_fails_cleanly(
+            "irsig-flatten",
+            &[&format!("{SAMPLES}/scene.ron"), "--object", &object],
+            expect,
+        );
+    }
 }

@@ -245,6 +245,29 @@ fn is_broken_pipe(report: &Report) -> bool {
     })
 }
 
+/// True when standard output is a pipe or a socket (`tool | next-tool`), not a terminal and
+/// not a file a shell redirection opened. Tools use it to pick a compact binary form for
+/// data that flows into another tool and a readable one for what a person will open.
+#[must_use]
+pub fn stdout_is_pipe() -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd as _;
+        use std::os::unix::fs::FileTypeExt as _;
+        // fstat on a duplicate of fd 1; the duplicate is closed when `file` drops.
+        io::stdout()
+            .as_fd()
+            .try_clone_to_owned()
+            .map(File::from)
+            .and_then(|file| file.metadata())
+            .is_ok_and(|m| m.file_type().is_fifo() || m.file_type().is_socket())
+    }
+    #[cfg(not(unix))]
+    {
+        false
+    }
+}
+
 /// A progress bar on stderr, drawn only when stderr is a terminal, so that logs and pipes
 /// stay clean.
 #[must_use]

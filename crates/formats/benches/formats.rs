@@ -1,5 +1,7 @@
-//! Parse and write throughput at a million triangles: OBJ and GLB import, OBJ import plus
-//! flatten (the 2 s floor of issue 2), and the raw scene as RON and as binary.
+//! Parse and write throughput at a million triangles: parse-and-flatten for every form an
+//! object reaches `irsig-flatten` in (OBJ, GLB, legacy facet file, canonical object as RON
+//! and as binary; the 2 s floor of issue 2 is OBJ), the object's own write and read in
+//! both forms, and the raw scene as RON and as binary.
 //!
 //! Inputs are generated here (a UV sphere of exactly 1,000,000 triangles), never committed.
 
@@ -74,6 +76,33 @@ static GLB: LazyLock<Vec<u8>> = LazyLock::new(|| {
     glb.extend_from_slice(&bin);
     glb
 });
+
+/// The sphere as a legacy facet file (metres, material index 1, 6 decimals as the 1990
+/// files have).
+static FAC: LazyLock<Vec<u8>> = LazyLock::new(|| {
+    use irsig_formats::legacy::object::{LegacyFacet, ObjectFile, write};
+    let round = |c: f64| (c * 1e6).round() / 1e6;
+    let file = ObjectFile {
+        facets: SPHERE
+            .facets
+            .iter()
+            .map(|f| LegacyFacet {
+                material_index: 1,
+                temperature_k: None,
+                vertices: f
+                    .vertices
+                    .map(|v| SPHERE.positions_m[v as usize].map(round)),
+                position: Default::default(),
+            })
+            .collect(),
+        count_position: Default::default(),
+    };
+    write(&file).unwrap().into_bytes()
+});
+
+static OBJECT_RON: LazyLock<String> = LazyLock::new(|| canonical::to_ron(&*SPHERE).unwrap());
+static OBJECT_BIN: LazyLock<Vec<u8>> =
+    LazyLock::new(|| canonical::binary_object::encode(&SPHERE).unwrap());
 
 fn scene() -> Scene {
     Scene {
@@ -179,6 +208,74 @@ fn raw_binary_read(b: Bencher) {
         .counter(ItemsCount::new(TRIANGLES))
         .bench(|| {
             canonical::read_raw_scene("s.bin", &RAW_BIN)
+                .unwrap()
+                .facets
+                .len()
+        });
+}
+
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn fac_import_and_flatten(b: Bencher) {
+    b.counter(BytesCount::new(FAC.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| {
+            let mesh = irsig_formats::mesh::read_legacy_object("s.fac", &FAC).unwrap();
+            let object = to_object(&mesh);
+            irsig_scene::flatten(&scene(), &[&object])
+                .unwrap()
+                .facets
+                .len()
+        });
+}
+
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn object_ron_write(b: Bencher) {
+    b.counter(BytesCount::new(OBJECT_RON.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| canonical::to_ron(&*SPHERE).unwrap().len());
+}
+
+/// What `irsig-flatten` does with a RON object: read, validate, flatten.
+#[divan::bench(sample_count = 3, sample_size = 1)]
+fn object_ron_read_and_flatten(b: Bencher) {
+    b.counter(BytesCount::new(OBJECT_RON.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| {
+            let object = canonical::read_object("s.ron", OBJECT_RON.as_bytes()).unwrap();
+            irsig_scene::flatten(&scene(), &[&object])
+                .unwrap()
+                .facets
+                .len()
+        });
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn object_binary_write(b: Bencher) {
+    b.counter(BytesCount::new(OBJECT_BIN.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| canonical::binary_object::encode(&SPHERE).unwrap().len());
+}
+
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn object_binary_read(b: Bencher) {
+    b.counter(BytesCount::new(OBJECT_BIN.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| {
+            canonical::read_object("s.bin", &OBJECT_BIN)
+                .unwrap()
+                .facets
+                .len()
+        });
+}
+
+/// What `irsig-flatten` does with a binary object: read, validate, flatten.
+#[divan::bench(sample_count = 5, sample_size = 1)]
+fn object_binary_read_and_flatten(b: Bencher) {
+    b.counter(BytesCount::new(OBJECT_BIN.len()))
+        .counter(ItemsCount::new(TRIANGLES))
+        .bench(|| {
+            let object = canonical::read_object("s.bin", &OBJECT_BIN).unwrap();
+            irsig_scene::flatten(&scene(), &[&object])
                 .unwrap()
                 .facets
                 .len()

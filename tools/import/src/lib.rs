@@ -1,4 +1,4 @@
-//! `irsig-import`: a mesh file in, a canonical irsig object (RON) out.
+//! `irsig-import`: a mesh file in, a canonical irsig object (RON or binary) out.
 //!
 //! Reads the 1990 Intergraph-derived facet file (`.fac`, `irsig_formats::legacy::object`),
 //! Wavefront OBJ (+ MTL) and glTF 2.0 / GLB (`irsig_formats::mesh`), converts
@@ -9,6 +9,13 @@
 //! file numbers its materials instead of naming them: its material index is the library's
 //! material id (a library converted from the 1990 material index file keeps its numbers).
 //! Facet temperatures in a facet file (an irsig extension) are kept.
+//!
+//! The object is written in one of its two forms (`formats/canonical/object.md`): the
+//! compact binary form when the output goes to another program (standard output is a
+//! pipe) or to a file whose name ends in `.bin`, and RON otherwise (a terminal, a file a
+//! shell redirection made, any other file name), because RON is what a person opens and a
+//! million-triangle RON object costs seconds to write and read again. `--binary` and
+//! `--ron` override the choice. Every object reader accepts both.
 //!
 //! ```text
 //! irsig-import car.obj --materials materials.ron -o car.ron
@@ -40,11 +47,14 @@ pub enum Format {
 #[command(
     name = "irsig-import",
     version,
-    about = "Mesh file (Intergraph facet file, OBJ + MTL, glTF/GLB) -> canonical irsig object (RON)",
+    about = "Mesh file (Intergraph facet file, OBJ + MTL, glTF/GLB) -> canonical irsig object (RON, or binary into a pipe)",
     after_help = "Examples:\n  irsig-import vehicle.fac --unit km --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --format obj --materials materials.ron > car.ron\n\n\
 Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
 unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: --unit\n\
-gives the file's unit (1990 data are in km), --scale multiplies on top."
+gives the file's unit (1990 data are in km), --scale multiplies on top.\n\n\
+Output form: binary (IRSIGOBJ) into a pipe or to a file ending in .bin, RON otherwise\n\
+(terminal, redirection to a file, other names); --binary or --ron to choose. Readers\n\
+(irsig-flatten) take either form."
 )]
 pub struct Cli {
     /// The mesh file, or `-` for standard input (then --format is required).
@@ -68,9 +78,30 @@ pub struct Cli {
     /// The object's name (default: the file name without its extension).
     #[arg(long)]
     pub name: Option<String>,
+    /// Write the binary object (the default into a pipe or to a `.bin` file).
+    #[arg(long, conflicts_with = "ron")]
+    pub binary: bool,
+    /// Write RON (the default to a terminal, a redirected file or any non-`.bin` file).
+    #[arg(long)]
+    pub ron: bool,
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+}
+
+/// Whether `irsig-import` writes the binary object: `--binary`/`--ron` when given, else
+/// binary for a `.bin` output file, and for standard output when `stdout_is_pipe`.
+#[must_use]
+pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
+    if cli.binary || cli.ron {
+        return cli.binary;
+    }
+    match cli.output.as_deref() {
+        Some(path) if path.as_os_str() != "-" => path
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("bin")),
+        _ => stdout_is_pipe,
+    }
 }
 
 fn parse_unit(s: &str) -> Result<LengthUnit, String> {
@@ -126,8 +157,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             .map_or_else(|| "object".to_owned(), |s| s.to_string_lossy().into_owned())
     });
     let object = to_object(&mesh, &library, &cli, default, name, format)?;
+    let binary = writes_binary(&cli, irsig_cli::stdout_is_pipe());
     irsig_cli::write_output(cli.output.as_deref(), |w| {
-        irsig_formats::canonical::write_ron(&object, w)
+        if binary {
+            irsig_formats::canonical::binary_object::write(&object, w)
+        } else {
+            irsig_formats::canonical::write_ron(&object, w)
+        }
     })
 }
 
@@ -248,5 +284,33 @@ mod tests {
         assert_eq!(format_of("a/B.OBJ").unwrap(), Format::Obj);
         assert_eq!(format_of("x.glb").unwrap(), Format::Glb);
         assert!(format_of("x.stl").is_err());
+    }
+
+    #[test]
+    fn the_output_form_follows_flags_then_file_name_then_pipe() {
+        let cli = |args: &[&str]| {
+            let mut all = vec!["irsig-import", "car.obj", "--materials", "m.ron"];
+            all.extend_from_slice(args);
+            Cli::try_parse_from(all).unwrap()
+        };
+        assert!(writes_binary(&cli(&[]), true));
+        assert!(!writes_binary(&cli(&[]), false));
+        assert!(writes_binary(&cli(&["-o", "-"]), true));
+        assert!(writes_binary(&cli(&["-o", "car.BIN"]), false));
+        assert!(!writes_binary(&cli(&["-o", "car.ron"]), true));
+        assert!(!writes_binary(&cli(&["-o", "car"]), true));
+        assert!(!writes_binary(&cli(&["--ron"]), true));
+        assert!(writes_binary(&cli(&["--binary", "-o", "car.ron"]), false));
+        assert!(
+            Cli::try_parse_from([
+                "irsig-import",
+                "x.obj",
+                "--materials",
+                "m.ron",
+                "--ron",
+                "--binary"
+            ])
+            .is_err()
+        );
     }
 }

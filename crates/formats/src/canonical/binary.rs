@@ -142,6 +142,13 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
             format!("expected binary raw scene version {VERSION}, found {version}"),
         ));
     }
+    let flags = u32_at(bytes, 12);
+    if flags != 0 {
+        return Err(err(
+            12,
+            format!("expected header flags 0 (reserved), found {flags:#x}"),
+        ));
+    }
     let objects = u32_at(bytes, 32) as usize;
     let positions = u32_at(bytes, 36) as usize;
     let facets = u32_at(bytes, 40) as usize;
@@ -200,16 +207,23 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
         .map(|c| [f64_at(c, 0), f64_at(c, 8), f64_at(c, 16)])
         .collect();
     let facet_start = names_end + POSITION_LEN * positions;
-    let facet_bytes = &bytes[facet_start..];
-    let facets: Vec<RawFacet> = facet_bytes
-        .chunks_exact(FACET_LEN)
-        .map(|c| RawFacet {
+    let mut facets = Vec::with_capacity(facets);
+    for (i, c) in bytes[facet_start..].chunks_exact(FACET_LEN).enumerate() {
+        // Reserved bytes must be 0, so that decoding and encoding are inverse and a later
+        // version can give them a meaning.
+        if c[14] != 0 || c[15] != 0 {
+            return Err(err(
+                facet_start + FACET_LEN * i + 14,
+                format!("facet {i}: expected the reserved u16 to be 0"),
+            ));
+        }
+        facets.push(RawFacet {
             vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
             material: MaterialId(u16::from_le_bytes([c[12], c[13]])),
             object: u32_at(c, 16),
             temperature_k: f64_at(c, 20),
-        })
-        .collect();
+        });
+    }
     Ok(RawScene {
         terrain: Terrain {
             temperature_k: f64_at(bytes, 16),
@@ -306,6 +320,23 @@ mod tests {
         let mut bytes = encode(&scene()).unwrap();
         bytes[48] = 200;
         assert!(decode("s.bin", &bytes).is_err());
+        let mut bytes = encode(&scene()).unwrap();
+        bytes[12] = 1;
+        assert!(
+            decode("s.bin", &bytes)
+                .unwrap_err()
+                .message
+                .contains("flags")
+        );
+        let mut bytes = encode(&scene()).unwrap();
+        let facet1 = 48 + 17 + 3 * 24 + 28;
+        bytes[facet1 + 15] = 1;
+        let e = decode("s.bin", &bytes).unwrap_err();
+        assert!(
+            e.message.starts_with("facet 1: expected the reserved"),
+            "{e}"
+        );
+        assert_eq!(e.column, facet1 + 14 + 1);
         let mut bytes = encode(&scene()).unwrap();
         bytes[52] = 0xff;
         assert!(

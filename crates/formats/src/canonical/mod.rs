@@ -8,7 +8,7 @@
 //!
 //! | type | RON | binary |
 //! | --- | --- | --- |
-//! | [`Object`] | yes | no |
+//! | [`Object`] | yes (small objects, hand-made tests, diffs) | yes ([`binary_object`], what `irsig-import` writes into a pipe) |
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
 //! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`] | yes | no |
@@ -16,6 +16,7 @@
 //! The format pages are `formats/canonical/*.md` in the repository.
 
 pub mod binary;
+pub mod binary_object;
 mod locate;
 
 use irsig_model::{
@@ -183,6 +184,29 @@ pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> 
             )
         })?;
         Ok(scene)
+    } else {
+        from_ron_bytes(file, bytes)
+    }
+}
+
+/// Reads an object in either form: binary when the bytes start with
+/// [`binary_object::MAGIC`] or `file` ends in `.bin` (so that a damaged binary file is
+/// reported as one), RON otherwise. Validates it; a rule broken in a binary object is
+/// reported at the byte offset of the record it concerns.
+///
+/// # Errors
+/// As [`binary_object::decode`] or [`from_ron_bytes`], or the first broken model rule.
+pub fn read_object(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
+    if binary_object::is_binary(bytes) || file.ends_with(".bin") {
+        let object = binary_object::decode(file, bytes)?;
+        object.validate().map_err(|e| {
+            ParseError::in_binary(
+                file,
+                binary_object::offset_of_path(&object, &e.path),
+                format!("invalid object: `{}`: {}", e.path, e.kind),
+            )
+        })?;
+        Ok(object)
     } else {
         from_ron_bytes(file, bytes)
     }

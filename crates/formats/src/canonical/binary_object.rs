@@ -1,0 +1,390 @@
+//! The compact binary object: what `irsig-import` writes into a pipe (or to a `.bin` file)
+//! and what every object reader accepts beside RON, because the RON object of a million
+//! triangles is 73 MB and takes seconds to write and read (see `BENCHMARKS.md`, section
+//! "import and flatten"); this form is 48 MB and takes tens of milliseconds.
+//!
+//! Layout (all little-endian, no padding, documented in `formats/canonical/object.md`):
+//!
+//! | offset | size | field |
+//! | --- | --- | --- |
+//! | 0 | 8 | magic `IRSIGOBJ` |
+//! | 8 | 4 | `u32` version, 1 |
+//! | 12 | 4 | `u32` flags, 0 (reserved) |
+//! | 16 | 4 | `u32` byte length `N` of the name |
+//! | 20 | 4 | `u32` byte length `S` of the source |
+//! | 24 | 4 | `u32` position count `P` |
+//! | 28 | 4 | `u32` facet count `F` |
+//! | 32 | `N` | name, UTF-8 |
+//! | 32 + `N` | `S` | source, UTF-8 |
+//! | … | 24 `P` | positions, `f64` x y z in metres |
+//! | … | 24 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` facet flags, `f64` temperature K |
+//!
+//! Facet flags: bit 0 set means the facet has a temperature of its own (`Some(T)`); clear
+//! means it has none, and the temperature field is written as 0 and ignored. The other
+//! bits are reserved and must be 0.
+//!
+//! The reader checks that the file length equals what the header's counts imply before it
+//! allocates anything, so a corrupt count cannot make it allocate more than the file holds.
+//!
+//! ```
+//! use irsig_formats::canonical::binary_object;
+//! use irsig_model::{Facet, MaterialId, Object};
+//!
+//! let object = Object {
+//!     name: "tri".into(),
+//!     source: String::new(),
+//!     positions_m: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
+//!     facets: vec![Facet { vertices: [0, 1, 2], material: MaterialId(1), temperature_k: None }],
+//! };
+//! let bytes = binary_object::encode(&object).unwrap();
+//! assert_eq!(bytes.len(), 32 + 3 + 3 * 24 + 24);
+//! assert_eq!(binary_object::decode("tri.bin", &bytes).unwrap(), object);
+//! ```
+
+use irsig_model::{Facet, MaterialId, Object};
+
+use crate::ParseError;
+
+/// The first eight bytes of a binary object.
+pub const MAGIC: &[u8; 8] = b"IRSIGOBJ";
+/// The layout version this code reads and writes.
+pub const VERSION: u32 = 1;
+/// Header size in bytes.
+pub const HEADER_LEN: usize = 32;
+/// Bytes per position.
+pub const POSITION_LEN: usize = 24;
+/// Bytes per facet.
+pub const FACET_LEN: usize = 24;
+/// Facet flag: the facet carries its own temperature.
+pub const HAS_TEMPERATURE: u16 = 1;
+
+/// True when `bytes` start with [`MAGIC`].
+#[must_use]
+pub fn is_binary(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+/// Encodes an object.
+///
+/// # Errors
+/// An object with more than `u32::MAX` positions or facets, or a name or source over
+/// 4 GiB, which this layout cannot hold.
+pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
+    let count = |n: usize, what: &str| {
+        u32::try_from(n).map_err(|_| {
+            std::io::Error::other(format!(
+                "the object has too many {what} for the binary form"
+            ))
+        })
+    };
+    let mut out = Vec::with_capacity(
+        HEADER_LEN
+            + object.name.len()
+            + object.source.len()
+            + POSITION_LEN * object.positions_m.len()
+            + FACET_LEN * object.facets.len(),
+    );
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(&0u32.to_le_bytes());
+    out.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
+    out.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
+    out.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());
+    out.extend_from_slice(&count(object.facets.len(), "facets")?.to_le_bytes());
+    out.extend_from_slice(object.name.as_bytes());
+    out.extend_from_slice(object.source.as_bytes());
+    for p in &object.positions_m {
+        for c in p {
+            out.extend_from_slice(&c.to_le_bytes());
+        }
+    }
+    for f in &object.facets {
+        for v in f.vertices {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.extend_from_slice(&f.material.0.to_le_bytes());
+        let (flags, t) = match f.temperature_k {
+            Some(t) => (HAS_TEMPERATURE, t),
+            None => (0, 0.0),
+        };
+        out.extend_from_slice(&flags.to_le_bytes());
+        out.extend_from_slice(&t.to_le_bytes());
+    }
+    Ok(out)
+}
+
+/// Writes an object in the binary form.
+///
+/// # Errors
+/// As [`encode`], or an I/O error from `w`.
+pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    w.write_all(&encode(object)?)
+}
+
+// Callers pass slices whose length the header check has already proved.
+fn u32_at(b: &[u8], at: usize) -> u32 {
+    let mut a = [0; 4];
+    a.copy_from_slice(&b[at..at + 4]);
+    u32::from_le_bytes(a)
+}
+
+fn f64_at(b: &[u8], at: usize) -> f64 {
+    let mut a = [0; 8];
+    a.copy_from_slice(&b[at..at + 8]);
+    f64::from_le_bytes(a)
+}
+
+/// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`) starts in
+/// the encoding of `object`, so that an error can give its byte offset.
+#[must_use]
+pub fn offset_of_path(object: &Object, path: &str) -> usize {
+    let index = |prefix: &str| {
+        path.strip_prefix(prefix)
+            .and_then(|rest| rest.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+    };
+    let positions_at = HEADER_LEN + object.name.len() + object.source.len();
+    let facets_at = positions_at + POSITION_LEN * object.positions_m.len();
+    if let Some(i) = index("positions_m[") {
+        positions_at + POSITION_LEN * i
+    } else if let Some(i) = index("facets[") {
+        facets_at + FACET_LEN * i
+    } else if path.starts_with("facets") {
+        facets_at
+    } else {
+        0
+    }
+}
+
+/// Decodes a binary object. Does not validate the model rules (see
+/// [`super::read_object`], which does).
+///
+/// # Errors
+/// A wrong magic or version, a length that disagrees with the header's counts, a name or
+/// source that is not UTF-8, reserved flags that are set; at the byte offset of the
+/// problem.
+pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
+    let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
+    if !is_binary(bytes) {
+        return Err(err(
+            0,
+            "expected a binary object starting with `IRSIGOBJ`".into(),
+        ));
+    }
+    if bytes.len() < HEADER_LEN {
+        return Err(err(
+            bytes.len(),
+            format!(
+                "truncated header: expected {HEADER_LEN} bytes, found {}",
+                bytes.len()
+            ),
+        ));
+    }
+    let version = u32_at(bytes, 8);
+    if version != VERSION {
+        return Err(err(
+            8,
+            format!("expected binary object version {VERSION}, found {version}"),
+        ));
+    }
+    let flags = u32_at(bytes, 12);
+    if flags != 0 {
+        return Err(err(
+            12,
+            format!("expected header flags 0 (reserved), found {flags:#x}"),
+        ));
+    }
+    let name_len = u32_at(bytes, 16) as usize;
+    let source_len = u32_at(bytes, 20) as usize;
+    let positions = u32_at(bytes, 24) as usize;
+    let facets = u32_at(bytes, 28) as usize;
+    // u64 arithmetic: u32 counts times record sizes cannot overflow it.
+    let expected = HEADER_LEN as u64
+        + name_len as u64
+        + source_len as u64
+        + POSITION_LEN as u64 * positions as u64
+        + FACET_LEN as u64 * facets as u64;
+    if expected != bytes.len() as u64 {
+        return Err(err(
+            bytes.len().min(HEADER_LEN),
+            format!(
+                "the header declares a {name_len}-byte name, a {source_len}-byte source, \
+                 {positions} positions and {facets} facets, which take {expected} bytes, but \
+                 the file has {}",
+                bytes.len()
+            ),
+        ));
+    }
+    // From here every count is bounded by the file length.
+    let text = |at: usize, len: usize, what: &str| {
+        std::str::from_utf8(&bytes[at..at + len])
+            .map(str::to_owned)
+            .map_err(|e| {
+                err(
+                    at + e.valid_up_to(),
+                    format!("the object's {what} is not UTF-8"),
+                )
+            })
+    };
+    let name = text(HEADER_LEN, name_len, "name")?;
+    let source = text(HEADER_LEN + name_len, source_len, "source")?;
+    let positions_at = HEADER_LEN + name_len + source_len;
+    let facets_at = positions_at + POSITION_LEN * positions;
+    let positions_m: Vec<[f64; 3]> = bytes[positions_at..facets_at]
+        .chunks_exact(POSITION_LEN)
+        .map(|c| [f64_at(c, 0), f64_at(c, 8), f64_at(c, 16)])
+        .collect();
+    let mut out = Vec::with_capacity(facets);
+    for (i, c) in bytes[facets_at..].chunks_exact(FACET_LEN).enumerate() {
+        let flags = u16::from_le_bytes([c[14], c[15]]);
+        if flags & !HAS_TEMPERATURE != 0 {
+            return Err(err(
+                facets_at + FACET_LEN * i + 14,
+                format!("facet {i}: expected facet flags 0 or 1, found {flags:#x}"),
+            ));
+        }
+        out.push(Facet {
+            vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
+            material: MaterialId(u16::from_le_bytes([c[12], c[13]])),
+            temperature_k: (flags & HAS_TEMPERATURE != 0).then(|| f64_at(c, 16)),
+        });
+    }
+    Ok(Object {
+        name,
+        source,
+        positions_m,
+        facets: out,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn object() -> Object {
+        Object {
+            name: "ström".into(),
+            source: "test".into(),
+            positions_m: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 1e-9]],
+            facets: vec![
+                Facet {
+                    vertices: [0, 1, 2],
+                    material: MaterialId(7),
+                    temperature_k: Some(300.25),
+                },
+                Facet {
+                    vertices: [2, 1, 0],
+                    material: MaterialId(65535),
+                    temperature_k: None,
+                },
+            ],
+        }
+    }
+
+    // "ström" is 6 bytes, "test" 4.
+    const FACETS_AT: usize = 32 + 6 + 4 + 3 * 24;
+
+    #[test]
+    fn round_trips_bit_exactly() {
+        let o = object();
+        let bytes = encode(&o).unwrap();
+        assert_eq!(bytes.len(), FACETS_AT + 2 * 24);
+        assert_eq!(decode("o.bin", &bytes).unwrap(), o);
+    }
+
+    #[test]
+    fn the_layout_is_the_documented_one() {
+        let bytes = encode(&object()).unwrap();
+        assert_eq!(&bytes[..8], b"IRSIGOBJ");
+        assert_eq!(bytes[8..12], 1u32.to_le_bytes());
+        assert_eq!(bytes[16..20], 6u32.to_le_bytes());
+        assert_eq!(bytes[20..24], 4u32.to_le_bytes());
+        assert_eq!(bytes[24..28], 3u32.to_le_bytes());
+        assert_eq!(bytes[28..32], 2u32.to_le_bytes());
+        assert_eq!(&bytes[32..38], "ström".as_bytes());
+        assert_eq!(&bytes[38..42], b"test");
+        assert_eq!(bytes[42 + 24..42 + 32], 1.0f64.to_le_bytes());
+        let f0 = FACETS_AT;
+        assert_eq!(bytes[f0 + 8..f0 + 12], 2u32.to_le_bytes());
+        assert_eq!(bytes[f0 + 12..f0 + 14], 7u16.to_le_bytes());
+        assert_eq!(bytes[f0 + 14..f0 + 16], 1u16.to_le_bytes());
+        assert_eq!(bytes[f0 + 16..f0 + 24], 300.25f64.to_le_bytes());
+        let f1 = FACETS_AT + 24;
+        assert_eq!(bytes[f1 + 14..f1 + 16], 0u16.to_le_bytes());
+        assert_eq!(bytes[f1 + 16..f1 + 24], 0.0f64.to_le_bytes());
+    }
+
+    #[test]
+    fn truncation_at_every_length_is_an_error() {
+        let bytes = encode(&object()).unwrap();
+        for n in 0..bytes.len() {
+            let e = decode("o.bin", &bytes[..n]).unwrap_err();
+            assert_eq!(e.file, "o.bin");
+        }
+    }
+
+    #[test]
+    fn wrong_magic_and_version_are_errors() {
+        let mut bytes = encode(&object()).unwrap();
+        bytes[..8].copy_from_slice(b"IRSIGRAW");
+        let e = decode("o.bin", &bytes).unwrap_err();
+        assert!(e.message.contains("`IRSIGOBJ`"), "{e}");
+        let mut bytes = encode(&object()).unwrap();
+        bytes[8] = 2;
+        let e = decode("o.bin", &bytes).unwrap_err();
+        assert!(e.message.contains("version 1, found 2"), "{e}");
+        assert_eq!(e.column, 9, "byte offset 8 is column 9");
+    }
+
+    #[test]
+    fn lying_counts_do_not_allocate_and_say_what_they_claim() {
+        for (at, what) in [
+            (16, "4294967295-byte name"),
+            (20, "4294967295-byte source"),
+            (24, "4294967295 positions"),
+            (28, "4294967295 facets"),
+        ] {
+            let mut bytes = encode(&object()).unwrap();
+            bytes[at..at + 4].copy_from_slice(&u32::MAX.to_le_bytes());
+            let e = decode("o.bin", &bytes).unwrap_err();
+            assert!(e.message.contains(what), "{e}");
+        }
+        // One facet fewer than the bytes hold is as wrong as one more.
+        let mut bytes = encode(&object()).unwrap();
+        bytes[28..32].copy_from_slice(&1u32.to_le_bytes());
+        let e = decode("o.bin", &bytes).unwrap_err();
+        assert!(
+            e.message.contains("take 138 bytes, but the file has 162"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn bad_text_and_reserved_bits_are_errors_at_their_offset() {
+        let mut bytes = encode(&object()).unwrap();
+        bytes[32] = 0xff;
+        let e = decode("o.bin", &bytes).unwrap_err();
+        assert!(e.message.contains("name is not UTF-8"), "{e}");
+        assert_eq!(e.column, 33, "offset 32 is the first invalid byte");
+        let mut bytes = encode(&object()).unwrap();
+        bytes[12] = 1;
+        assert!(decode("o.bin", &bytes).is_err());
+        let mut bytes = encode(&object()).unwrap();
+        bytes[FACETS_AT + 24 + 14] = 2;
+        let e = decode("o.bin", &bytes).unwrap_err();
+        assert!(
+            e.message.starts_with("facet 1: expected facet flags"),
+            "{e}"
+        );
+        assert_eq!(e.column, FACETS_AT + 24 + 14 + 1);
+    }
+
+    #[test]
+    fn validation_paths_map_to_record_offsets() {
+        let o = object();
+        assert_eq!(offset_of_path(&o, "positions_m[2]"), 42 + 48);
+        assert_eq!(offset_of_path(&o, "facets[1].vertices[2]"), FACETS_AT + 24);
+        assert_eq!(offset_of_path(&o, "facets"), FACETS_AT);
+        assert_eq!(offset_of_path(&o, "name"), 0);
+    }
+}
