@@ -430,7 +430,7 @@ pub struct Step {
     pub program: PathBuf,
     /// The command line, program name (`irsig-<tool>`) first: exactly what a user would type.
     pub argv: Vec<String>,
-    /// Files read: positional `args` and `inputs`.
+    /// Files read: positional `args`, `inputs` and `reads`.
     pub inputs: Vec<FileRef>,
     /// Files written: `outputs`.
     pub outputs: Vec<FileRef>,
@@ -519,6 +519,9 @@ fn build_step(
         argv.push(flag(&key.value));
         argv.push(f.path.display().to_string());
         inputs.push(f);
+    }
+    for read in &stage.reads {
+        inputs.push(file(read, vars)?);
     }
     for (key, param) in &stage.params {
         let at = argv.len();
@@ -837,6 +840,22 @@ mod plan_tests {
     fn plan(text: &str, tools: &Tools) -> Result<Plan, PipelineError> {
         // No inputs below exist on disk, so every input is produced by a stage or absent.
         Pipeline::parse("p.ron", text, Path::new("/nonexistent"))?.plan(tools)
+    }
+
+    #[test]
+    fn reads_are_inputs_that_order_the_steps_but_are_not_words_of_the_command() {
+        let text = r#"(stages: [
+            (tool: "flatten", args: ["scene.ron"], reads: ["car.ron"], outputs: {"o": "w.raw"}),
+            (tool: "import", outputs: {"o": "car.ron"}),
+            (tool: "gen", outputs: {"o": "scene.ron"}),
+        ])"#;
+        let p = plan(text, &tools()).unwrap();
+        let flatten = p.steps.iter().find(|s| s.tool == "flatten").unwrap();
+        assert_eq!(flatten.argv, ["irsig-flatten", "scene.ron", "-o", "w.raw"]);
+        let read: Vec<_> = flatten.inputs.iter().map(|f| f.path.clone()).collect();
+        assert_eq!(read, [PathBuf::from("scene.ron"), PathBuf::from("car.ron")]);
+        assert_eq!(flatten.deps.len(), 2, "flatten waits for import and gen");
+        assert_eq!(p.steps.last().unwrap().tool, "flatten");
     }
 
     #[test]

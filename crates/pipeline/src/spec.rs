@@ -77,6 +77,10 @@ pub(crate) struct StageSpec {
     pub args: Vec<Spanned<String>>,
     /// Input files given by flag: `{"materials": "m.ron"}` -> `--materials m.ron`.
     pub inputs: Vec<FlagFile>,
+    /// Files the tool reads that its command line does not name (the objects a scene file
+    /// lists): inputs for ordering, up-to-date checks and Makefile prerequisites, never
+    /// words of the command.
+    pub reads: Vec<Spanned<String>>,
     /// Output files given by flag: `{"o": "out.exr"}` -> `-o out.exr`.
     pub outputs: Vec<FlagFile>,
     pub params: Vec<(Spanned<String>, Param)>,
@@ -146,7 +150,7 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
 }
 
 const STAGE_FIELDS: &[&str] = &[
-    "name", "tool", "args", "inputs", "outputs", "params", "sweep", "gather",
+    "name", "tool", "args", "inputs", "reads", "outputs", "params", "sweep", "gather",
 ];
 
 fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
@@ -162,24 +166,8 @@ fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
         .get("name")
         .map(|n| string(src, n, "a stage name"))
         .transpose()?;
-    let args = match f.get("args") {
-        None => Vec::new(),
-        Some(n) => match &n.kind {
-            Kind::List(items) => items
-                .iter()
-                .map(|i| string(src, i, "a file path"))
-                .collect::<Result<_, _>>()?,
-            other => {
-                return Err(src.structure(
-                    n,
-                    format!(
-                        "expected `args` to be a list of input file paths, found {}",
-                        other.describe()
-                    ),
-                ));
-            }
-        },
-    };
+    let args = file_list(src, f.get("args").copied(), "args")?;
+    let reads = file_list(src, f.get("reads").copied(), "reads")?;
     let inputs = f
         .get("inputs")
         .map(|n| path_map(src, n, "inputs"))
@@ -216,6 +204,7 @@ fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
         tool,
         args,
         inputs,
+        reads,
         outputs,
         params,
         sweep,
@@ -223,6 +212,30 @@ fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
         start: node.start,
         end: node.end,
     })
+}
+
+/// A list of file paths: the `args` or `reads` field (absent: none).
+fn file_list(
+    src: Source<'_>,
+    node: Option<&Node>,
+    field: &str,
+) -> Result<Vec<Spanned<String>>, PipelineError> {
+    let Some(n) = node else {
+        return Ok(Vec::new());
+    };
+    match &n.kind {
+        Kind::List(items) => items
+            .iter()
+            .map(|i| string(src, i, "a file path"))
+            .collect(),
+        other => Err(src.structure(
+            n,
+            format!(
+                "expected `{field}` to be a list of input file paths, found {}",
+                other.describe()
+            ),
+        )),
+    }
 }
 
 fn path_map(src: Source<'_>, node: &Node, field: &str) -> Result<Vec<FlagFile>, PipelineError> {
