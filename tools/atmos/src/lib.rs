@@ -1,7 +1,9 @@
 //! `irsig-atmos`: the atmosphere stage's tools, one module per subcommand.
 //!
 //! - `convert` ([`convert`]): legacy DIRTRAN tables (`.atm .cor .dwr .rtt .rsd`) to and
-//!   from the canonical atmosphere file, units stated, every table validated.
+//!   from the canonical atmosphere file, units stated, every table validated; and the
+//!   legacy material index file with its `.ems` tables to and from the canonical material
+//!   library ([`materials`]).
 //! - Calculators a user decides a scene's models with (band radiance, apparent
 //!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors).
 //!   Each prints a plain aligned table by default, or `--format csv` / `--format ron`.
@@ -12,6 +14,7 @@
 //! ```text
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
+//! irsig-atmos convert --material-index materials.mat --default-emissivity 0.9 -o lib.ron
 //! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
 //! irsig-atmos temperature --radiance 54.93
 //! irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us.rtt
@@ -28,6 +31,7 @@ mod bounces;
 mod common;
 pub mod convert;
 mod fresnel;
+pub mod materials;
 mod radiance;
 mod rtt;
 mod shape_factor;
@@ -64,7 +68,8 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// DIRTRAN tables <-> canonical atmosphere, validated, units stated.
+    /// DIRTRAN tables <-> canonical atmosphere, material index + .ems <-> material
+    /// library; validated, units stated.
     Convert(convert::ConvertArgs),
     /// Band radiance (W m^-2 sr^-1) of a blackbody at each temperature.
     Radiance(radiance::Args),

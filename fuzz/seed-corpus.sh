@@ -1,0 +1,40 @@
+#!/bin/sh
+# Seeds fuzz/corpus/<target>/ from the repository's samples and malformed corpora.
+# Run from fuzz/ after a release build of irsig-flatten (for a binary raw scene seed):
+#   IRSIG_BIN=/path/to/target/release ./seed-corpus.sh
+set -eu
+root=..
+c=corpus
+bin=${IRSIG_BIN:-$root/target/release}
+for t in object scene material_index view execute ems atm cor dwr rsd rtt obj gltf canonical_ron raw_scene binary_object; do
+  mkdir -p "$c/$t"
+done
+# Legacy targets: the matching files by extension.
+for pair in object:fac scene:scn material_index:mat view:view execute:exec ems:ems atm:atm cor:cor dwr:dwr rsd:rsd rtt:rtt; do
+  t=${pair%%:*}; ext=${pair#*:}
+  cp $root/formats/legacy/samples/*."$ext" $root/tests/data/malformed/legacy/*."$ext" "$c/$t/" 2>/dev/null || true
+done
+# OBJ, and OBJ + NUL + MTL (the target writes the part after the NUL to m.mtl).
+cp $root/formats/canonical/samples/box.obj $root/tests/data/malformed/mesh/*.obj "$c/obj/"
+{ sed 's/^mtllib .*/mtllib m.mtl/' $root/formats/canonical/samples/box.obj; printf '\0'; cat $root/formats/canonical/samples/box.mtl; } > "$c/obj/box-with-mtl"
+# glTF/GLB: the real third-party files and the malformed ones.
+cp $root/tests/data/third-party/webxr-input-profiles/generic-fixed-hand/left.glb "$c/gltf/hand.glb"
+cp $root/tests/data/third-party/webxr-input-profiles/generic-trigger/none.glb "$c/gltf/trigger.glb"
+cp $root/tests/data/malformed/mesh/*.glb "$c/gltf/"
+# Canonical RON: a type byte (see canonical_ron.rs), then the sample.
+s=$root/formats/canonical/samples
+seed() { { printf "$1"; cat "$2"; } > "$c/canonical_ron/$3"; }
+seed '\000' $s/box.ron object
+seed '\001' $s/scene.ron scene
+seed '\003' $s/materials.ron materials
+seed '\004' $s/atmosphere.ron atmosphere
+seed '\005' $s/view.ron view
+seed '\005' $s/view-look-at.ron view-look-at
+seed '\006' $root/formats/samples/pipeline.ron pipeline
+for f in $root/tests/data/malformed/scene/*.ron; do seed '\001' "$f" "bad-$(basename "$f")"; done
+# Binary forms.
+"$bin/irsig-flatten" $s/scene.ron -o "$c/raw_scene/scene.raw"
+"$bin/irsig-flatten" $s/scene.ron --ron -o "$c/canonical_ron/raw.tmp"
+seed '\002' "$c/canonical_ron/raw.tmp" raw && rm "$c/canonical_ron/raw.tmp"
+cp $root/tests/data/object/tri.bin $root/tests/data/malformed/object/*.bin "$c/binary_object/"
+"$bin/irsig-import" $s/box.obj --materials $s/materials.ron -o "$c/binary_object/box.bin"

@@ -1,0 +1,193 @@
+//! `irsig-atmos convert --material-index`: the 1990 material index file and the `.ems`
+//! tables it names (thesis §3.2.2, §4.1, Appendix H `emis_type`) to a canonical material
+//! library, and `--materials-to-legacy` back.
+//!
+//! Each index entry `index name [file.ems [0|1]]` becomes a material with id = index,
+//! the `.ems` rows as its angular emissivity (validated by the `.ems` parser: 0 ≤ ε ≤ 1,
+//! angles 0–90° strictly increasing) and specular fraction 0 or 1 from the flag. An entry
+//! without an `.ems` file is an error naming its line, unless `--default-emissivity E`
+//! says which constant emissivity such materials get; the material's `source` records
+//! which happened. Back to legacy, a library is written as `STEM.mat` plus `NAME.ems` per
+//! material; a specular fraction strictly between 0 and 1 has no legacy form and is an
+//! error rather than a silent rounding.
+
+use std::path::{Path, PathBuf};
+
+use irsig_formats::ParseError;
+use irsig_formats::legacy::{Position, ems, material_index};
+use irsig_model::{Material, MaterialId, MaterialLibrary};
+use miette::{IntoDiagnostic, Report, WrapErr};
+
+use crate::convert::ConvertArgs;
+
+/// The material index (and its `.ems` tables) to a canonical material library.
+///
+/// # Errors
+/// A malformed index or `.ems` file (file, line, column), a missing `.ems` file (the index
+/// line naming it), an entry without `.ems` and no `--default-emissivity`, a library that
+/// breaks a model rule; nothing is written then.
+pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
+    let default = match args.default_emissivity {
+        Some(e) if !(0.0..=1.0).contains(&e) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--default-emissivity must lie in 0–1, found {e}"
+            )));
+        }
+        other => other,
+    };
+    let input = irsig_cli::read_input(index_path)?;
+    let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
+    let index = material_index::parse(&input.name, text).map_err(Report::new)?;
+    let ems_dir = args.ems_dir.clone().unwrap_or_else(|| input.base_dir());
+    let at = |p: Position, message: String| {
+        Report::new(ParseError::at_offset(
+            &input.name,
+            text,
+            irsig_formats::offset_of(text, p.line, p.column),
+            message,
+        ))
+    };
+    let mut materials = Vec::with_capacity(index.materials.len());
+    for entry in &index.materials {
+        let (emissivity, source) = match (&entry.ems_file, default) {
+            (Some(file), _) => {
+                let path = ems_dir.join(file);
+                let ems_input = irsig_cli::read_input(&path.to_string_lossy()).map_err(|e| {
+                    e.wrap_err(format!(
+                        "{}:{}: material `{}` names the .ems file {}, which cannot be read",
+                        input.name,
+                        entry.position,
+                        entry.name,
+                        path.display()
+                    ))
+                })?;
+                let ems_text = irsig_formats::canonical::utf8(&ems_input.name, &ems_input.bytes)
+                    .map_err(Report::new)?;
+                let table = ems::parse(&ems_input.name, ems_text).map_err(Report::new)?;
+                (
+                    table.to_pairs(),
+                    format!(
+                        "material index {} line {}, emissivity from {}",
+                        input.name, entry.position.line, ems_input.name
+                    ),
+                )
+            }
+            (None, Some(e)) => (
+                vec![(0.0, e)],
+                format!(
+                    "material index {} line {}, no .ems file: constant emissivity {e} from \
+                     --default-emissivity",
+                    input.name, entry.position.line
+                ),
+            ),
+            (None, None) => {
+                return Err(at(
+                    entry.position,
+                    format!(
+                        "material `{}` (index {}) names no .ems file, so its emissivity is \
+                         unknown",
+                        entry.name, entry.index
+                    ),
+                )
+                .wrap_err("add its .ems file to the index, or give --default-emissivity E"));
+            }
+        };
+        materials.push(Material {
+            id: MaterialId(entry.index),
+            name: entry.name.clone(),
+            emissivity,
+            specular_fraction: if entry.specular { 1.0 } else { 0.0 },
+            source,
+        });
+    }
+    let library = MaterialLibrary { materials };
+    // The parsers already enforce the model's rules; this is the last line of defence and
+    // names the entry if a rule ever diverges.
+    if let Err(e) = library.validate() {
+        let entry = e
+            .path
+            .strip_prefix("materials[")
+            .and_then(|r| r.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+            .and_then(|i| index.materials.get(i));
+        let p = entry.map_or(Position { line: 1, column: 1 }, |m| m.position);
+        return Err(at(
+            p,
+            format!(
+                "the converted material library is invalid: `{}`: {}",
+                e.path, e.kind
+            ),
+        ));
+    }
+    let ron = irsig_formats::canonical::to_ron(&library)
+        .into_diagnostic()
+        .wrap_err("cannot write RON")?;
+    irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
+}
+
+/// A canonical material library to `STEM.mat` and one `NAME.ems` per material in
+/// `--out-dir`, all or nothing.
+///
+/// # Errors
+/// An unreadable or invalid library, a specular fraction other than 0 or 1, a name the
+/// legacy files cannot hold (whitespace, `#`, a number), or an I/O error.
+pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
+    let input = irsig_cli::read_input(input)?;
+    let library: MaterialLibrary =
+        irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes).map_err(Report::new)?;
+    let stem = args.stem.clone().unwrap_or_else(|| "materials".to_owned());
+    if stem.is_empty() || stem.contains(['/', '\\']) {
+        return Err(irsig_cli::usage_error(format!(
+            "--stem must be a plain file stem, found `{stem}`"
+        )));
+    }
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut entries = Vec::with_capacity(library.materials.len());
+    for (i, m) in library.materials.iter().enumerate() {
+        #[allow(clippy::float_cmp)] // exactly 0 or 1 is what the flag can say
+        let specular = match m.specular_fraction {
+            f if f == 0.0 => false,
+            f if f == 1.0 => true,
+            f => {
+                return Err(miette::miette!(
+                    "{}: `materials[{i}]` (`{}`): specular_fraction {f} has no legacy form; the \
+                     material index file holds only 0 (diffuse) or 1 (specular)",
+                    input.name,
+                    m.name
+                ));
+            }
+        };
+        // The name becomes a file name: nothing that could leave --out-dir.
+        if m.name.contains(['/', '\\']) || m.name.starts_with('.') {
+            return Err(miette::miette!(
+                "{}: `materials[{i}]`: the name `{}` cannot be a legacy .ems file name (no `/`, \\ or \
+                 leading `.`)",
+                input.name,
+                m.name
+            ));
+        }
+        let ems_file = format!("{}.ems", m.name);
+        let table = ems::EmsTable::from_pairs(&m.emissivity);
+        let text = ems::write(&table)
+            .map_err(|e| miette::miette!("{}: cannot write {ems_file}: {e}", input.name))?;
+        files.push((args.out_dir.join(&ems_file), text.into_bytes()));
+        entries.push(material_index::MaterialEntry {
+            index: m.id.0,
+            name: m.name.clone(),
+            ems_file: Some(ems_file),
+            specular,
+            position: Position::default(),
+        });
+    }
+    let index = material_index::MaterialIndexFile { materials: entries };
+    let text = material_index::write(&index)
+        .map_err(|e| miette::miette!("{}: cannot write the material index: {e}", input.name))?;
+    files.push((args.out_dir.join(format!("{stem}.mat")), text.into_bytes()));
+    if !Path::new(&args.out_dir).is_dir() {
+        return Err(miette::miette!(
+            "output directory {} does not exist",
+            args.out_dir.display()
+        ));
+    }
+    irsig_cli::write_files_atomic(&files)
+}

@@ -1,0 +1,238 @@
+//! `irsig-atmos convert --material-index` and `--materials-to-legacy` end to end on the
+//! legacy samples (`formats/legacy/samples/materials.mat` and the Hale & Querry water
+//! `.ems` it names): the library holds what the files say (read here with a plain
+//! whitespace split, not the parsers under test), converts back to the same files, and bad
+//! input fails with the file, line and what is wrong, writing nothing.
+
+use std::path::{Path, PathBuf};
+
+use assert_cmd::Command;
+use irsig_model::{MaterialId, MaterialLibrary};
+use predicates::prelude::*;
+
+fn samples() -> PathBuf {
+    [env!("CARGO_MANIFEST_DIR"), "../../formats/legacy/samples"]
+        .iter()
+        .collect()
+}
+
+fn atmos() -> Command {
+    Command::cargo_bin("irsig-atmos").unwrap()
+}
+
+/// `(angle, emissivity)` rows of an `.ems` file, by a plain split.
+fn ems_rows(path: &Path) -> Vec<(f64, f64)> {
+    std::fs::read_to_string(path)
+        .unwrap()
+        .lines()
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            let v: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
+            (v[0], v[1])
+        })
+        .collect()
+}
+
+fn library(bytes: &[u8]) -> MaterialLibrary {
+    irsig_formats::canonical::from_ron_bytes("out.ron", bytes).unwrap()
+}
+
+#[test]
+fn the_sample_index_converts_with_an_explicit_default() {
+    let mat = samples().join("materials.mat");
+    let out = atmos()
+        .args(["convert", "--material-index"])
+        .arg(&mat)
+        .args(["--default-emissivity", "0.9"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let lib = library(&out.stdout);
+    // materials.mat: nine entries, indices 1-9 in file order.
+    let names: Vec<&str> = lib.materials.iter().map(|m| m.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "asphalt", "grass", "conifer", "steel", "glass", "water", "rubber", "concrete", "wood"
+        ]
+    );
+    for (i, m) in lib.materials.iter().enumerate() {
+        assert_eq!(m.id, MaterialId(u16::try_from(i + 1).unwrap()));
+    }
+    // Water (index 6): the .ems rows exactly, and the specular flag 1.
+    let water = lib.by_name("water").unwrap();
+    assert_eq!(water.id, MaterialId(6));
+    assert_eq!(
+        water.emissivity,
+        ems_rows(&samples().join("water-hale-querry.ems"))
+    );
+    assert_eq!(water.emissivity.len(), 19);
+    assert!((water.specular_fraction - 1.0).abs() < f64::EPSILON);
+    assert!(
+        water.source.contains("water-hale-querry.ems"),
+        "{}",
+        water.source
+    );
+    // The others: the constant the user named, diffuse, and a source that says so.
+    let asphalt = lib.by_name("asphalt").unwrap();
+    assert_eq!(asphalt.emissivity, [(0.0, 0.9)]);
+    assert!(asphalt.specular_fraction.abs() < f64::EPSILON);
+    assert!(
+        asphalt.source.contains("--default-emissivity") && asphalt.source.contains("line 5"),
+        "{}",
+        asphalt.source
+    );
+}
+
+#[test]
+fn a_library_goes_back_to_the_same_legacy_files() {
+    let dir = tempfile::tempdir().unwrap();
+    // Only water has an .ems, so convert an index with water alone, then go back.
+    std::fs::write(
+        dir.path().join("one.mat"),
+        "6 water water-hale-querry.ems 1\n",
+    )
+    .unwrap();
+    std::fs::copy(
+        samples().join("water-hale-querry.ems"),
+        dir.path().join("water-hale-querry.ems"),
+    )
+    .unwrap();
+    let lib_path = dir.path().join("lib.ron");
+    atmos()
+        .args(["convert", "--material-index"])
+        .arg(dir.path().join("one.mat"))
+        .arg("-o")
+        .arg(&lib_path)
+        .assert()
+        .success();
+    let back = dir.path().join("back");
+    std::fs::create_dir(&back).unwrap();
+    atmos()
+        .args(["convert", "--materials-to-legacy"])
+        .arg(&lib_path)
+        .arg("--out-dir")
+        .arg(&back)
+        .args(["--stem", "legacy"])
+        .assert()
+        .success();
+    // The index names water.ems (the library's name for it) with the specular flag.
+    let index = std::fs::read_to_string(back.join("legacy.mat")).unwrap();
+    let fields: Vec<&str> = index.split_whitespace().collect();
+    assert_eq!(fields, ["6", "water", "water.ems", "1"]);
+    // The table holds the original numbers.
+    assert_eq!(
+        ems_rows(&back.join("water.ems")),
+        ems_rows(&samples().join("water-hale-querry.ems"))
+    );
+    // And converting back again gives the same library, up to its provenance.
+    let again = atmos()
+        .args(["convert", "--material-index"])
+        .arg(back.join("legacy.mat"))
+        .output()
+        .unwrap();
+    let mut a = library(&again.stdout);
+    let mut b = library(&std::fs::read(&lib_path).unwrap());
+    for m in a.materials.iter_mut().chain(b.materials.iter_mut()) {
+        m.source.clear();
+    }
+    assert_eq!(a, b);
+}
+
+#[test]
+fn an_entry_without_ems_and_no_default_is_an_error_at_its_line() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("lib.ron");
+    atmos()
+        .args(["convert", "--material-index"])
+        .arg(samples().join("materials.mat"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(
+            predicate::str::contains("materials.mat:5:1")
+                .and(predicate::str::contains("`asphalt`"))
+                .and(predicate::str::contains("--default-emissivity")),
+        );
+    assert!(!out.exists());
+}
+
+#[test]
+fn bad_ems_files_and_values_fail_cleanly() {
+    let dir = tempfile::tempdir().unwrap();
+    let corpus: PathBuf = [
+        env!("CARGO_MANIFEST_DIR"),
+        "../../tests/data/malformed/legacy",
+    ]
+    .iter()
+    .collect();
+    let out = dir.path().join("lib.ron");
+    for (ems, expect) in [
+        ("emissivity-above-one.ems", "emissivity-above-one.ems:"),
+        ("angle-above-90.ems", "angle-above-90.ems:"),
+        ("angles-not-increasing.ems", "angles-not-increasing.ems:"),
+    ] {
+        std::fs::write(dir.path().join("i.mat"), format!("1 paint {ems} 0\n")).unwrap();
+        atmos()
+            .args(["convert", "--material-index"])
+            .arg(dir.path().join("i.mat"))
+            .arg("--ems-dir")
+            .arg(&corpus)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1)
+            .stderr(predicate::str::contains(expect));
+        assert!(!out.exists());
+    }
+    // An .ems file that does not exist: the index line that names it.
+    std::fs::write(dir.path().join("i.mat"), "1 paint\n2 steel nowhere.ems 1\n").unwrap();
+    atmos()
+        .args(["convert", "--material-index"])
+        .arg(dir.path().join("i.mat"))
+        .args(["--default-emissivity", "0.5", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("i.mat:2:1").and(predicate::str::contains("nowhere.ems")));
+    assert!(!out.exists());
+    // A default emissivity outside 0-1 is bad usage.
+    atmos()
+        .args(["convert", "--material-index"])
+        .arg(dir.path().join("i.mat"))
+        .args(["--default-emissivity", "1.5"])
+        .assert()
+        .code(2);
+    // Material flags do not mix with atmosphere ones.
+    atmos()
+        .args(["convert", "--material-index", "x.mat", "--atm", "x.atm"])
+        .assert()
+        .code(2);
+}
+
+#[test]
+fn a_partly_specular_material_has_no_legacy_form() {
+    let dir = tempfile::tempdir().unwrap();
+    let lib = dir.path().join("lib.ron");
+    std::fs::write(
+        &lib,
+        "(materials: [(id: 1, name: \"paint\", emissivity: [(0.0, 0.9)], specular_fraction: 0.0, source: \"t\"), (id: 2, name: \"gloss\", emissivity: [(0.0, 0.9)], specular_fraction: 0.5, source: \"t\")])",
+    )
+    .unwrap();
+    atmos()
+        .args(["convert", "--materials-to-legacy"])
+        .arg(&lib)
+        .arg("--out-dir")
+        .arg(dir.path())
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("`gloss`").and(predicate::str::contains("0.5")));
+    // Nothing written, not even the first material's .ems.
+    assert!(!dir.path().join("paint.ems").exists());
+    assert!(!dir.path().join("materials.mat").exists());
+}
