@@ -249,6 +249,11 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
             &["face-out-of-range.obj:5:7", "index 7"],
         ),
         ("truncated.glb", &["truncated.glb", "GLB"]),
+        ("short-header.glb", &["short-header.glb", "12-byte header"]),
+        (
+            "short-colour.obj",
+            &["short-colour.mtl:3:1", "three numbers"],
+        ),
         ("garbled.glb", &["garbled.glb"]),
         (
             "http-uri.glb",

@@ -87,6 +87,24 @@ fn percent_decode(s: &str) -> Option<String> {
 /// the vertices, or no triangles at all.
 pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mesh, ParseError> {
     let bin_err = |msg: String| ParseError::in_binary(file, 0, msg);
+    // gltf 1.4 subtracts the 12-byte header from the declared length unchecked (an
+    // arithmetic overflow panic when it is smaller); check it first.
+    if let Some(declared) = bytes
+        .strip_prefix(b"glTF")
+        .and_then(|rest| rest.get(4..8))
+        .and_then(|b| <[u8; 4]>::try_from(b).ok())
+        .map(u32::from_le_bytes)
+        && declared < 12
+    {
+        return Err(ParseError::in_binary(
+            file,
+            8,
+            format!(
+                "malformed GLB header: declared length {declared} bytes, expected at least the \
+                 12-byte header"
+            ),
+        ));
+    }
     let doc = gltf::Gltf::from_slice(bytes).map_err(|e| match e {
         gltf::Error::Deserialize(j) => {
             let msg = format!("malformed glTF JSON: {j}");

@@ -269,9 +269,11 @@ fn check_mtl(
     match std::fs::read(&full) {
         Ok(bytes) => {
             let mtl_name = full.display().to_string();
+            let mtl_text = String::from_utf8_lossy(&bytes);
+            check_mtl_colours(&mtl_name, &mtl_text)?;
             let mut reader = std::io::BufReader::new(bytes.as_slice());
             tobj::load_mtl_buf(&mut reader).map_err(|e| {
-                ParseError::at_offset(&mtl_name, "", 0, format!("malformed MTL: {e}"))
+                ParseError::at_offset(&mtl_name, &mtl_text, 0, format!("malformed MTL: {e}"))
             })?;
             Ok(())
         }
@@ -283,6 +285,30 @@ fn check_mtl(
             Ok(())
         }
     }
+}
+
+/// tobj 4.0 panics on a colour line (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than three values
+/// instead of returning an error; this finds such a line first and says where it is.
+fn check_mtl_colours(mtl_name: &str, text: &str) -> Result<(), ParseError> {
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let mut words = line.split_whitespace();
+        if let Some(key) = words.next()
+            && matches!(key, "Ka" | "Kd" | "Ks" | "Ke")
+            && words.count() < 3
+        {
+            let at = offset + line.find(key).unwrap_or(0);
+            return Err(ParseError::at_span(
+                mtl_name,
+                text,
+                at,
+                key.len(),
+                format!("malformed MTL: expected three numbers (r g b) after `{key}`"),
+            ));
+        }
+        offset += line.len();
+    }
+    Ok(())
 }
 
 #[cfg(test)]
