@@ -146,6 +146,11 @@ pub struct Cli {
     /// Seed for sky-view directions and sub-pixel jitter.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
+    /// Path terms (τ, L_u) of facet hits: `exact` (one atmosphere call per hit) or
+    /// `tabulated` (a per-frame altitude × range table; worst error 15 mK, see
+    /// docs/accuracy.md; faster from about 200 × 200 pixels up).
+    #[arg(long, default_value = "exact", value_parser = ["exact", "tabulated"])]
+    pub path_terms: String,
     /// Print every term of the radiance equation for pixel COLUMN,ROW of the first view and
     /// write no files.
     #[arg(long, value_name = "COLUMN,ROW", value_parser = parse_pixel)]
@@ -415,7 +420,12 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
     };
     let tracer = Tracer::new(scene, materials, radiometry, atmosphere)
         .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?;
+        .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?
+        .with_path_terms(if cli.path_terms == "tabulated" {
+            irsig_tracer::PathTermsMode::Tabulated
+        } else {
+            irsig_tracer::PathTermsMode::Exact
+        });
     let views = job.views;
     let cameras = views
         .iter()
