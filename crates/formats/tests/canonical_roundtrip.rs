@@ -104,7 +104,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
             .enumerate()
             .map(|(i, (mut emissivity, specular_fraction, source))| {
                 emissivity.sort_by(|a, b| a.0.total_cmp(&b.0));
-                emissivity.dedup_by(|a, b| a.0 == b.0);
+                emissivity.dedup_by(|a, b| a.0.total_cmp(&b.0).is_eq());
                 let id = u16::try_from(i + 1).unwrap_or(u16::MAX);
                 Material {
                     id: MaterialId(id),

@@ -70,7 +70,7 @@ pub struct Cli {
 pub enum Command {
     /// DIRTRAN tables <-> canonical atmosphere, material index + .ems <-> material
     /// library; validated, units stated.
-    Convert(convert::ConvertArgs),
+    Convert(Box<convert::ConvertArgs>),
     /// Band radiance (W m^-2 sr^-1) of a blackbody at each temperature.
     Radiance(radiance::Args),
     /// Apparent (brightness) temperature (K) of each band radiance.

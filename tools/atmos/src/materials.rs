@@ -144,10 +144,10 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let mut entries = Vec::with_capacity(library.materials.len());
     for (i, m) in library.materials.iter().enumerate() {
-        #[allow(clippy::float_cmp)] // exactly 0 or 1 is what the flag can say
+        // Exactly 0 or 1 is what the legacy flag can say.
         let specular = match m.specular_fraction {
-            f if f == 0.0 => false,
-            f if f == 1.0 => true,
+            0.0 => false,
+            1.0 => true,
             f => {
                 return Err(miette::miette!(
                     "{}: `materials[{i}]` (`{}`): specular_fraction {f} has no legacy form; the \
