@@ -3,7 +3,7 @@
 //! hemispherical emissivity, the `.rtt` interpolation error, and the Fresnel generator
 //! against the shared water reference and against a constant index.
 //!
-//! `cargo run --release -p irsig-radiometry --example accuracy`
+//! `cargo run --release -p irsig-radiometry --example radiometry_accuracy`
 //!
 //! Every reference here is computed independently of the code under test: the flat-band
 //! Planck series against a response table that is flat, composite Simpson on a 1e-4 µm

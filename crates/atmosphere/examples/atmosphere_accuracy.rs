@@ -1,7 +1,7 @@
 //! Prints the atmosphere-model accuracy tables of docs/accuracy.md: each model against
 //! LOWTRAN7's own slant paths, as apparent-temperature error (K) of a 300 K blackbody.
 //!
-//! `cargo run -p irsig-atmosphere --example accuracy`
+//! `cargo run -p irsig-atmosphere --example atmosphere_accuracy`
 
 // Truth rows are selected by the exact altitudes and angles written in the CSV.
 #![allow(clippy::float_cmp)]
