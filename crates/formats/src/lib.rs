@@ -21,6 +21,7 @@
 #![allow(clippy::result_large_err)]
 
 pub mod canonical;
+mod columns;
 mod error;
 pub mod legacy;
 pub mod mesh;

@@ -12,7 +12,7 @@
 // ParseError is the crate's shared error; its size is decided there, not here.
 #![allow(clippy::result_large_err)]
 
-use crate::ParseError;
+use crate::{ParseError, columns};
 
 /// A parsed index table: matching columns.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,89 +32,31 @@ pub struct NkTable {
 /// a row without exactly 3 columns, a wavelength that is not positive or does not
 /// increase, `n ≤ 0`, `k < 0`, or fewer than two rows.
 pub fn parse(file: &str, text: &str) -> Result<NkTable, ParseError> {
+    let rows = columns::rows(
+        file,
+        text,
+        "wavelength_um n k",
+        [
+            "a wavelength in µm",
+            "the real part n",
+            "the extinction coefficient k",
+        ],
+    )?;
     let mut table = NkTable {
-        wavelength_um: Vec::new(),
-        n: Vec::new(),
-        k: Vec::new(),
+        wavelength_um: Vec::with_capacity(rows.len()),
+        n: Vec::with_capacity(rows.len()),
+        k: Vec::with_capacity(rows.len()),
     };
-    let mut offset = 0;
-    for line in text.split_inclusive('\n') {
-        let start = offset;
-        offset += line.len();
-        let content = line.trim_end_matches(['\n', '\r']);
-        if content.trim().is_empty() || content.trim_start().starts_with('#') {
-            continue;
+    for [w, n, k] in rows {
+        if n.value <= 0.0 {
+            return Err(n.error(file, text, format!("expected n > 0, found {}", n.value)));
         }
-        let mut fields = Vec::new();
-        let mut pos = 0;
-        for piece in content.split_whitespace() {
-            let at = content[pos..].find(piece).map_or(pos, |i| pos + i);
-            pos = at + piece.len();
-            fields.push((start + at, piece));
+        if k.value < 0.0 {
+            return Err(k.error(file, text, format!("expected k ≥ 0, found {}", k.value)));
         }
-        let [w_field, n_field, k_field] = fields[..] else {
-            let at = fields.get(3).map_or(start + content.len(), |f| f.0);
-            return Err(ParseError::at_offset(
-                file,
-                text,
-                at,
-                format!(
-                    "expected 3 columns `wavelength_um n k`, found {}",
-                    fields.len()
-                ),
-            ));
-        };
-        let number = |(at, s): (usize, &str), what: &str| -> Result<f64, ParseError> {
-            match s.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(ParseError::at_span(
-                    file,
-                    text,
-                    at,
-                    s.len(),
-                    format!("expected {what} (a finite number), found `{s}`"),
-                )),
-            }
-        };
-        let refuse = |(at, s): (usize, &str), message: String| {
-            Err(ParseError::at_span(file, text, at, s.len(), message))
-        };
-        let w = number(w_field, "a wavelength in µm")?;
-        let n = number(n_field, "the real part n")?;
-        let k = number(k_field, "the extinction coefficient k")?;
-        if w <= 0.0 {
-            return refuse(
-                w_field,
-                format!("expected a positive wavelength in µm, found {w}"),
-            );
-        }
-        let last = table.wavelength_um.last().copied().unwrap_or(0.0);
-        if w <= last {
-            return refuse(
-                w_field,
-                format!("wavelengths must increase: {w} µm follows {last} µm"),
-            );
-        }
-        if n <= 0.0 {
-            return refuse(n_field, format!("expected n > 0, found {n}"));
-        }
-        if k < 0.0 {
-            return refuse(k_field, format!("expected k ≥ 0, found {k}"));
-        }
-        table.wavelength_um.push(w);
-        table.n.push(n);
-        table.k.push(k);
-    }
-    if table.wavelength_um.len() < 2 {
-        return Err(ParseError::at_offset(
-            file,
-            text,
-            text.len(),
-            format!(
-                "expected at least 2 rows `wavelength_um n k`, found {}",
-                table.wavelength_um.len()
-            ),
-        ));
+        table.wavelength_um.push(w.value);
+        table.n.push(n.value);
+        table.k.push(k.value);
     }
     Ok(table)
 }

@@ -12,7 +12,7 @@
 // ParseError is the crate's shared error; its size is decided there, not here.
 #![allow(clippy::result_large_err)]
 
-use crate::ParseError;
+use crate::{ParseError, columns};
 
 /// A parsed SRF table: matching columns, wavelength in µm and relative response.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,90 +30,24 @@ pub struct SrfTable {
 /// missing or extra column, a wavelength that is not positive or does not increase, a
 /// negative or non-finite response, fewer than two rows, or responses that are all 0.
 pub fn parse(file: &str, text: &str) -> Result<SrfTable, ParseError> {
-    let mut wavelength_um = Vec::new();
-    let mut response = Vec::new();
-    let mut offset = 0;
-    for line in text.split_inclusive('\n') {
-        let start = offset;
-        offset += line.len();
-        let content = line.trim_end_matches(['\n', '\r']);
-        if content.trim().is_empty() || content.trim_start().starts_with('#') {
-            continue;
-        }
-        let mut fields = Vec::new();
-        let mut pos = 0;
-        for piece in content.split_whitespace() {
-            let at = content[pos..].find(piece).map_or(pos, |i| pos + i);
-            pos = at + piece.len();
-            fields.push((start + at, piece));
-        }
-        let number = |(at, s): (usize, &str), what: &str| -> Result<f64, ParseError> {
-            match s.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(ParseError::at_span(
-                    file,
-                    text,
-                    at,
-                    s.len(),
-                    format!("expected {what} (a finite number), found `{s}`"),
-                )),
-            }
-        };
-        let [w_field, r_field] = fields[..] else {
-            let at = fields.get(2).map_or(start + content.len(), |f| f.0);
-            return Err(ParseError::at_offset(
+    let rows = columns::rows(
+        file,
+        text,
+        "wavelength_um response",
+        ["a wavelength in µm", "a response"],
+    )?;
+    let mut wavelength_um = Vec::with_capacity(rows.len());
+    let mut response = Vec::with_capacity(rows.len());
+    for [w, r] in rows {
+        if r.value < 0.0 {
+            return Err(r.error(
                 file,
                 text,
-                at,
-                format!(
-                    "expected 2 columns `wavelength_um response`, found {}",
-                    fields.len()
-                ),
-            ));
-        };
-        let w = number(w_field, "a wavelength in µm")?;
-        let r = number(r_field, "a response")?;
-        if w <= 0.0 {
-            return Err(ParseError::at_span(
-                file,
-                text,
-                w_field.0,
-                w_field.1.len(),
-                format!("expected a positive wavelength in µm, found {w}"),
+                format!("expected a response ≥ 0, found {}", r.value),
             ));
         }
-        let last = wavelength_um.last().copied().unwrap_or(0.0);
-        if w <= last {
-            return Err(ParseError::at_span(
-                file,
-                text,
-                w_field.0,
-                w_field.1.len(),
-                format!("wavelengths must increase: {w} µm follows {last} µm"),
-            ));
-        }
-        if r < 0.0 {
-            return Err(ParseError::at_span(
-                file,
-                text,
-                r_field.0,
-                r_field.1.len(),
-                format!("expected a response ≥ 0, found {r}"),
-            ));
-        }
-        wavelength_um.push(w);
-        response.push(r);
-    }
-    if wavelength_um.len() < 2 {
-        return Err(ParseError::at_offset(
-            file,
-            text,
-            text.len(),
-            format!(
-                "expected at least 2 rows `wavelength_um response`, found {}",
-                wavelength_um.len()
-            ),
-        ));
+        wavelength_um.push(w.value);
+        response.push(r.value);
     }
     if response.iter().all(|&r| r <= 0.0) {
         return Err(ParseError::at_offset(

@@ -100,16 +100,64 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
     w.write_all(&encode(scene)?)
 }
 
-fn u32_at(b: &[u8], at: usize) -> u32 {
+// Callers pass offsets whose bytes the header check has already proved present.
+pub(super) fn u32_at(b: &[u8], at: usize) -> u32 {
     let mut a = [0; 4];
     a.copy_from_slice(&b[at..at + 4]);
     u32::from_le_bytes(a)
 }
 
-fn f64_at(b: &[u8], at: usize) -> f64 {
+pub(super) fn f64_at(b: &[u8], at: usize) -> f64 {
     let mut a = [0; 8];
     a.copy_from_slice(&b[at..at + 8]);
     f64::from_le_bytes(a)
+}
+
+/// The checks every irsig binary file opens with: its 8-byte magic, a whole fixed-size
+/// header, the version at byte 8 and reserved flags at byte 12 that are 0. `what` names
+/// the format in messages ("binary raw scene").
+pub(super) fn check_header(
+    file: &str,
+    bytes: &[u8],
+    magic: &[u8; 8],
+    what: &str,
+    header_len: usize,
+    version: u32,
+) -> Result<(), ParseError> {
+    let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
+    if !bytes.starts_with(magic) {
+        return Err(err(
+            0,
+            format!(
+                "expected a {what} starting with `{}`",
+                String::from_utf8_lossy(magic)
+            ),
+        ));
+    }
+    if bytes.len() < header_len {
+        return Err(err(
+            bytes.len(),
+            format!(
+                "truncated header: expected {header_len} bytes, found {}",
+                bytes.len()
+            ),
+        ));
+    }
+    let found = u32_at(bytes, 8);
+    if found != version {
+        return Err(err(
+            8,
+            format!("expected {what} version {version}, found {found}"),
+        ));
+    }
+    let flags = u32_at(bytes, 12);
+    if flags != 0 {
+        return Err(err(
+            12,
+            format!("expected header flags 0 (reserved), found {flags:#x}"),
+        ));
+    }
+    Ok(())
 }
 
 /// Decodes a binary raw scene. Does not validate the model rules (see
@@ -120,35 +168,7 @@ fn f64_at(b: &[u8], at: usize) -> f64 {
 /// runs past its block or is not UTF-8; at the byte offset of the problem.
 pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
     let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
-    if !is_binary(bytes) {
-        return Err(err(
-            0,
-            "expected a binary raw scene starting with `IRSIGRAW`".into(),
-        ));
-    }
-    if bytes.len() < HEADER_LEN {
-        return Err(err(
-            bytes.len(),
-            format!(
-                "truncated header: expected {HEADER_LEN} bytes, found {}",
-                bytes.len()
-            ),
-        ));
-    }
-    let version = u32_at(bytes, 8);
-    if version != VERSION {
-        return Err(err(
-            8,
-            format!("expected binary raw scene version {VERSION}, found {version}"),
-        ));
-    }
-    let flags = u32_at(bytes, 12);
-    if flags != 0 {
-        return Err(err(
-            12,
-            format!("expected header flags 0 (reserved), found {flags:#x}"),
-        ));
-    }
+    check_header(file, bytes, MAGIC, "binary raw scene", HEADER_LEN, VERSION)?;
     let objects = u32_at(bytes, 32) as usize;
     let positions = u32_at(bytes, 36) as usize;
     let facets = u32_at(bytes, 40) as usize;

@@ -43,6 +43,7 @@
 
 use irsig_model::{Facet, MaterialId, Object};
 
+use super::binary::{check_header, f64_at, u32_at};
 use crate::ParseError;
 
 /// The first eight bytes of a binary object.
@@ -121,19 +122,6 @@ pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()>
     w.write_all(&encode(object)?)
 }
 
-// Callers pass slices whose length the header check has already proved.
-fn u32_at(b: &[u8], at: usize) -> u32 {
-    let mut a = [0; 4];
-    a.copy_from_slice(&b[at..at + 4]);
-    u32::from_le_bytes(a)
-}
-
-fn f64_at(b: &[u8], at: usize) -> f64 {
-    let mut a = [0; 8];
-    a.copy_from_slice(&b[at..at + 8]);
-    f64::from_le_bytes(a)
-}
-
 /// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`) starts in
 /// the encoding of `object`, so that an error can give its byte offset.
 #[must_use]
@@ -165,35 +153,7 @@ pub fn offset_of_path(object: &Object, path: &str) -> usize {
 /// problem.
 pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
     let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
-    if !is_binary(bytes) {
-        return Err(err(
-            0,
-            "expected a binary object starting with `IRSIGOBJ`".into(),
-        ));
-    }
-    if bytes.len() < HEADER_LEN {
-        return Err(err(
-            bytes.len(),
-            format!(
-                "truncated header: expected {HEADER_LEN} bytes, found {}",
-                bytes.len()
-            ),
-        ));
-    }
-    let version = u32_at(bytes, 8);
-    if version != VERSION {
-        return Err(err(
-            8,
-            format!("expected binary object version {VERSION}, found {version}"),
-        ));
-    }
-    let flags = u32_at(bytes, 12);
-    if flags != 0 {
-        return Err(err(
-            12,
-            format!("expected header flags 0 (reserved), found {flags:#x}"),
-        ));
-    }
+    check_header(file, bytes, MAGIC, "binary object", HEADER_LEN, VERSION)?;
     let name_len = u32_at(bytes, 16) as usize;
     let source_len = u32_at(bytes, 20) as usize;
     let positions = u32_at(bytes, 24) as usize;
