@@ -11,7 +11,9 @@ use std::path::PathBuf;
 use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
-const STAGES: &[&str] = &["import", "flatten", "atmos", "trace", "sensor", "run"];
+const STAGES: &[&str] = &[
+    "import", "flatten", "atmos", "trace", "sensor", "stats", "run",
+];
 
 const USAGE: &str = "\
 irsig: radiometric thermal-infrared (8-14 um) synthetic imagery
@@ -25,6 +27,7 @@ Stages (each is also a program of its own, irsig-<STAGE>):
   atmos     DIRTRAN tables <-> canonical atmosphere; band radiance calculators
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
   sensor    MTF blur, noise, quantisation
+  stats     per-region apparent temperature beside reference values (Tables 5-7)
   run       run a declarative pipeline file (RON)
 
 Example:
