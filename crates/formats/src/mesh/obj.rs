@@ -1,20 +1,35 @@
-//! Wavefront OBJ through `tobj`, with a first pass of our own over the text for what
-//! `tobj` does not keep: the line and column of a bad number, non-finite coordinates,
-//! `usemtl` names that no MTL defines, and which line each triangle came from.
+//! Wavefront OBJ through `tobj`, with a pass of our own over the text for what `tobj`
+//! does not keep: the line and column of a bad number, non-finite coordinates, `usemtl`
+//! names that no MTL defines, which material and which line each triangle came from.
+//!
+//! The two passes read the same text independently, so they run at the same time
+//! (`rayon::join`: on two threads when rayon has two, one after the other otherwise). The
+//! outcome does not depend on which finishes first: an error of our pass always wins,
+//! because it names a line and column, and once our pass has failed `tobj`'s reads end at
+//! once instead of parsing the rest of a file whose import has already failed.
 
 use std::collections::HashMap;
-use std::io::Read as _;
+use std::io::{BufRead, Read};
 use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use super::{Location, MaterialUse, Mesh, Origin, Triangle};
 use crate::ParseError;
 
-/// What the first pass learns.
+/// What our own pass learns.
 struct Scan {
     materials: Vec<MaterialUse>,
+    /// Runs of triangles with one material: from `first_triangle` on, until the next run,
+    /// triangles have `material` (an index into `materials`, `None` before any `usemtl`).
+    material_runs: Vec<MaterialRun>,
     origins: Vec<Origin>,
     warnings: Vec<String>,
     triangles: usize,
+}
+
+struct MaterialRun {
+    first_triangle: usize,
+    material: Option<u32>,
 }
 
 /// Reads an OBJ file's text. `base_dir` is where `mtllib` files are looked for (`None`
@@ -26,7 +41,33 @@ struct Scan {
 /// file, or no triangles at all; at the offending line and column.
 pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mesh, ParseError> {
     let text = crate::canonical::utf8(file, bytes)?;
-    let scan = scan(file, text, base_dir)?;
+    let options = tobj::LoadOptions {
+        single_index: false,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
+    let scan_failed = AtomicBool::new(false);
+    let (scan, parsed) = rayon::join(
+        || {
+            let scan = scan(file, text, base_dir);
+            if scan.is_err() {
+                scan_failed.store(true, Ordering::Relaxed);
+            }
+            scan
+        },
+        || {
+            let mut reader = StoppableText {
+                rest: text.as_bytes(),
+                stop: &scan_failed,
+            };
+            // Materials are not tobj's business here: the scan assigns them by name, since
+            // in the thermal band the name is all that matters and tobj forgets names that
+            // no MTL defines. MTL files are checked by the scan.
+            tobj::load_obj_buf(&mut reader, &options, |_| Ok((Vec::new(), HashMap::new())))
+        },
+    );
+    let scan = scan?;
     if scan.triangles == 0 {
         return Err(ParseError::at_offset(
             file,
@@ -35,42 +76,10 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             "expected at least one face with three or more vertices, found none (empty mesh)",
         ));
     }
-    let mut mat_map = HashMap::new();
-    let tobj_materials: Vec<tobj::Material> = scan
-        .materials
-        .iter()
-        .enumerate()
-        .map(|(i, m)| {
-            mat_map.insert(m.name.clone(), i);
-            tobj::Material {
-                name: m.name.clone(),
-                ..tobj::Material::default()
-            }
-        })
-        .collect();
-    let options = tobj::LoadOptions {
-        single_index: false,
-        triangulate: true,
-        ignore_points: true,
-        ignore_lines: true,
-    };
-    // A first `mtllib` line of our own makes tobj's material loader hand it every `usemtl`
-    // name found by the scan, whether or not an MTL file defines it: in the thermal band
-    // the name is all that matters, and tobj forgets names it has no material for.
-    let first = std::cell::Cell::new(true);
-    let mut reader = std::io::Cursor::new(b"mtllib irsig-usemtl-names\n".as_slice())
-        .chain(std::io::Cursor::new(text.as_bytes()));
-    let mut reader = std::io::BufReader::new(&mut reader);
-    let loader = |_: &Path| -> tobj::MTLLoadResult {
-        if first.replace(false) {
-            Ok((tobj_materials.clone(), mat_map.clone()))
-        } else {
-            Ok((Vec::new(), HashMap::new()))
-        }
-    };
-    let (models, _) = tobj::load_obj_buf(&mut reader, &options, loader)
-        .map_err(|e| ParseError::at_offset(file, text, 0, format!("malformed OBJ: {e}")))?;
-    let mut positions = Vec::new();
+    let (models, _) =
+        parsed.map_err(|e| ParseError::at_offset(file, text, 0, format!("malformed OBJ: {e}")))?;
+    let total_positions: usize = models.iter().map(|m| m.mesh.positions.len() / 3).sum();
+    let mut positions = Vec::with_capacity(total_positions);
     let mut triangles = Vec::with_capacity(scan.triangles);
     for model in models {
         let mesh = model.mesh;
@@ -78,10 +87,9 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             ParseError::at_offset(file, text, 0, "more than 2^32 vertices in one OBJ")
         })?;
         positions.extend(mesh.positions.chunks_exact(3).map(|c| [c[0], c[1], c[2]]));
-        let material = mesh.material_id.and_then(|m| u32::try_from(m).ok());
         triangles.extend(mesh.indices.chunks_exact(3).map(|c| Triangle {
             vertices: [base + c[0], base + c[1], base + c[2]],
-            material,
+            material: None,
             temperature_k: None,
         }));
     }
@@ -98,6 +106,16 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             ),
         ));
     }
+    // tobj keeps the faces in file order (its models follow one another in the file), so
+    // the scan's runs label them.
+    let mut runs = scan.material_runs.iter().peekable();
+    let mut material = None;
+    for (i, t) in triangles.iter_mut().enumerate() {
+        while let Some(run) = runs.next_if(|r| r.first_triangle <= i) {
+            material = run.material;
+        }
+        t.material = material;
+    }
     Ok(Mesh {
         file: file.to_owned(),
         positions,
@@ -109,17 +127,56 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
     })
 }
 
+/// The OBJ text as tobj reads it. Once `stop` is set every read fails, which ends tobj's
+/// parse at the next line.
+struct StoppableText<'a> {
+    rest: &'a [u8],
+    stop: &'a AtomicBool,
+}
+
+impl StoppableText<'_> {
+    fn check(&self) -> std::io::Result<()> {
+        if self.stop.load(Ordering::Relaxed) {
+            Err(std::io::Error::other("the scan of the OBJ failed first"))
+        } else {
+            Ok(())
+        }
+    }
+}
+
+impl Read for StoppableText<'_> {
+    fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
+        self.check()?;
+        self.rest.read(buf)
+    }
+}
+
+impl BufRead for StoppableText<'_> {
+    fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
+        self.check()?;
+        Ok(self.rest)
+    }
+
+    fn consume(&mut self, amount: usize) {
+        self.rest = self.rest.get(amount..).unwrap_or_default();
+    }
+}
+
 fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseError> {
     let mut out = Scan {
         materials: Vec::new(),
+        material_runs: Vec::new(),
         origins: Vec::new(),
         warnings: Vec::new(),
         triangles: 0,
     };
-    let mut names: HashMap<&str, usize> = HashMap::new();
+    let mut names: HashMap<&str, u32> = HashMap::new();
     let mut vertices = 0usize;
     let mut offset = 0usize;
     let mut skipped_short_faces = 0usize;
+    // The material of the last `usemtl`, and whether a run with it has been started.
+    let mut current_material: Option<u32> = None;
+    let mut run_started = false;
     for (line_index, raw) in text.split_inclusive('\n').enumerate() {
         let line_start = offset;
         offset += raw.len();
@@ -187,6 +244,13 @@ fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseEr
                 }
                 let first = u32::try_from(out.triangles)
                     .map_err(|_| err(line, "more than 2^32 triangles in one OBJ".into()))?;
+                if !run_started {
+                    out.material_runs.push(MaterialRun {
+                        first_triangle: out.triangles,
+                        material: current_material,
+                    });
+                    run_started = true;
+                }
                 out.origins.push(Origin {
                     first_triangle: first,
                     line: u32::try_from(line_index + 1).unwrap_or(u32::MAX),
@@ -204,17 +268,28 @@ fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseEr
                         "expected a material name after `usemtl`",
                     ));
                 }
-                if !names.contains_key(name) {
-                    names.insert(name, out.materials.len());
-                    out.materials.push(MaterialUse {
-                        name: name.to_owned(),
-                        id: None,
-                        first_use: Location {
-                            file: file.to_owned(),
-                            line: Some(line_index + 1),
-                            part: None,
-                        },
-                    });
+                let index = match names.get(name) {
+                    Some(&index) => index,
+                    None => {
+                        let index = u32::try_from(out.materials.len()).map_err(|_| {
+                            err(name, "more than 2^32 material names in one OBJ".into())
+                        })?;
+                        names.insert(name, index);
+                        out.materials.push(MaterialUse {
+                            name: name.to_owned(),
+                            id: None,
+                            first_use: Location {
+                                file: file.to_owned(),
+                                line: Some(line_index + 1),
+                                part: None,
+                            },
+                        });
+                        index
+                    }
+                };
+                if current_material != Some(index) {
+                    current_material = Some(index);
+                    run_started = false;
                 }
             }
             Some("mtllib") => {
@@ -368,6 +443,126 @@ mod tests {
         let e = read_obj("e.obj", b"# nothing\nv 0 0 0\n", None).unwrap_err();
         assert!(e.message.contains("empty mesh"), "{e}");
         assert!(read_obj("e.obj", b"", None).is_err());
+    }
+
+    /// A grid of `n` by `n` quads in the z = 0 plane: `(n + 1)^2` vertex lines first, then
+    /// one face line per quad, with `usemtl` lines wherever `material_at(face)` says.
+    fn grid(n: usize, material_at: impl Fn(usize) -> Option<&'static str>) -> String {
+        let mut text = String::new();
+        for y in 0..=n {
+            for x in 0..=n {
+                text.push_str(&format!("v {x}.5 {y}.25 0\n"));
+            }
+        }
+        let v = |x: usize, y: usize| y * (n + 1) + x + 1;
+        for q in 0..n * n {
+            if let Some(name) = material_at(q) {
+                text.push_str(&format!("usemtl {name}\n"));
+            }
+            let (x, y) = (q % n, q / n);
+            let (a, b, c, d) = (v(x, y), v(x + 1, y), v(x + 1, y + 1), v(x, y + 1));
+            text.push_str(&format!("f {a} {b} {c} {d}\n"));
+        }
+        text
+    }
+
+    /// Runs `read_obj` on a rayon pool of `threads` threads: with one, the scan and tobj run
+    /// one after the other; with two, at the same time.
+    fn read_with_threads(threads: usize, text: &str) -> Result<Mesh, ParseError> {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| read_obj("g.obj", text.as_bytes(), None))
+    }
+
+    #[test]
+    fn errors_late_in_a_big_file_keep_their_line_and_column_at_any_thread_count() {
+        // 201 x 201 vertex lines: tobj is still parsing when the scan reaches the bad line.
+        let good = grid(200, |_| None);
+        let vertex_lines = 201 * 201;
+        // A bad number on the last vertex line, third coordinate.
+        let mut lines: Vec<&str> = good.lines().collect();
+        let last_vertex = lines[vertex_lines - 1].replace(" 0", " 0x1");
+        lines[vertex_lines - 1] = &last_vertex;
+        let bad_number = lines.join("\n");
+        // The last face points one past the last vertex.
+        let mut lines: Vec<&str> = good.lines().collect();
+        let last = lines.len() - 1;
+        let past = format!("f 1 2 {}", vertex_lines + 1);
+        lines[last] = &past;
+        let bad_face = lines.join("\n");
+        for threads in [1, 2] {
+            let e = read_with_threads(threads, &bad_number).unwrap_err();
+            // "v 200.5 200.25 0x1": the third coordinate starts at column 16.
+            assert_eq!((e.line, e.column), (vertex_lines, 16), "{e}");
+            assert!(e.message.contains("z coordinate"), "{e}");
+            let e = read_with_threads(threads, &bad_face).unwrap_err();
+            assert_eq!((e.line, e.column), (last + 1, 7), "{e}");
+            assert!(e.message.contains("does not exist"), "{e}");
+        }
+    }
+
+    #[test]
+    #[allow(clippy::float_cmp)] // x + 0.5 and y + 0.25 are exact in binary, and so is their parse
+    fn materials_follow_usemtl_across_objects_and_groups_at_any_thread_count() {
+        // 4 x 4 quads, two triangles each. Quad 0 has no material; `usemtl` lines before
+        // quads 1 (a), 5 (b), 6 (b again: no change), 9 (a again) and 12 (c); `o` and `g`
+        // lines make tobj split the faces into models.
+        let material_at = |q: usize| match q {
+            1 | 9 => Some("a"),
+            5 | 6 => Some("b"),
+            12 => Some("c"),
+            _ => None,
+        };
+        let text = grid(4, material_at)
+            .replace("usemtl b\n", "o part\nusemtl b\n")
+            .replace("usemtl c\n", "g rest\nusemtl c\n");
+        let expected = |q: usize| match q {
+            0 => None,
+            1..=4 | 9..=11 => Some("a"),
+            5..=8 => Some("b"),
+            _ => Some("c"),
+        };
+        for threads in [1, 2] {
+            let m = read_with_threads(threads, &text).unwrap();
+            assert_eq!(m.triangles.len(), 32);
+            let names: Vec<_> = m.materials.iter().map(|m| m.name.as_str()).collect();
+            assert_eq!(names, ["a", "b", "c"]);
+            for t in 0..32 {
+                assert_eq!(m.material_name(t), expected(t / 2), "triangle {t}");
+            }
+            // The grid's quad q has corners at x + 0.5 and y + 0.25 for its (x, y); its
+            // first triangle starts at its (x, y) corner, whatever model tobj put it in.
+            for q in 0..16 {
+                let first = m.triangles[2 * q].vertices[0] as usize;
+                let [x, y, _] = m.positions[first];
+                assert_eq!(
+                    [x, y],
+                    [(q % 4) as f64 + 0.5, (q / 4) as f64 + 0.25],
+                    "quad {q}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn tobj_input_ends_once_the_scan_has_failed() {
+        let stop = AtomicBool::new(false);
+        let mut text = StoppableText {
+            rest: b"v 0 0 0\nv 1 0 0\n",
+            stop: &stop,
+        };
+        let mut line = String::new();
+        text.read_line(&mut line).unwrap();
+        assert_eq!(line, "v 0 0 0\n");
+        stop.store(true, Ordering::Relaxed);
+        assert!(text.read_line(&mut line).is_err());
+        assert!(text.read(&mut [0; 4]).is_err());
+        // Consuming more than is left cannot panic.
+        text.consume(100);
+        stop.store(false, Ordering::Relaxed);
+        assert!(text.fill_buf().unwrap().is_empty());
     }
 
     #[test]
