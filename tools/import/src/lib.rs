@@ -156,7 +156,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             .file_stem()
             .map_or_else(|| "object".to_owned(), |s| s.to_string_lossy().into_owned())
     });
-    let object = to_object(&mesh, &library, &cli, default, name, format)?;
+    // The text and the mesh are dropped as soon as the object is built: the peak memory of
+    // a million-triangle import is set by what is alive at once.
+    drop(input);
+    let object = to_object(mesh, &library, &cli, default, name, format)?;
     let binary = writes_binary(&cli, irsig_cli::stdout_is_pipe());
     irsig_cli::write_output(cli.output.as_deref(), |w| {
         if binary {
@@ -204,7 +207,7 @@ fn known_names(library: &MaterialLibrary) -> String {
 }
 
 fn to_object(
-    mesh: &Mesh,
+    mut mesh: Mesh,
     library: &MaterialLibrary,
     cli: &Cli,
     default: Option<MaterialId>,
@@ -253,7 +256,7 @@ fn to_object(
             temperature_k: t.temperature_k,
         });
     }
-    let object = Object {
+    let mut object = Object {
         name,
         source: format!(
             "irsig-import {} {} (unit {}, scale {})",
@@ -262,13 +265,13 @@ fn to_object(
             format!("{:?}", cli.unit).to_lowercase(),
             cli.scale
         ),
-        positions_m: mesh
-            .positions
-            .iter()
-            .map(|p| p.map(|c| c * factor))
-            .collect(),
+        positions_m: std::mem::take(&mut mesh.positions),
         facets,
     };
+    // Scaled in place: a million positions need not be copied.
+    for p in &mut object.positions_m {
+        *p = p.map(|c| c * factor);
+    }
     object
         .validate()
         .map_err(|e| miette!("{}: {}: {}", mesh.locate(&e.path), e.path, e.kind))?;

@@ -43,18 +43,11 @@ pub fn is_binary(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
-/// Encodes a raw scene.
+/// Encodes a raw scene into one buffer; [`write`] streams the same bytes instead.
 ///
 /// # Errors
-/// A scene with more than `u32::MAX` objects, positions or facets, or a name block over
-/// 4 GiB, which this layout cannot hold.
+/// As [`write`], less the I/O errors.
 pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
-    let too_big = |what: &str| {
-        std::io::Error::other(format!(
-            "the raw scene has too many {what} for the binary form"
-        ))
-    };
-    let count = |n: usize, what: &str| u32::try_from(n).map_err(|_| too_big(what));
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
     let mut out = Vec::with_capacity(
         HEADER_LEN
@@ -62,25 +55,46 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
             + POSITION_LEN * scene.positions_m.len()
             + FACET_LEN * scene.facets.len(),
     );
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&0u32.to_le_bytes());
-    out.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
-    out.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
-    out.extend_from_slice(&count(scene.objects.len(), "objects")?.to_le_bytes());
-    out.extend_from_slice(&count(scene.positions_m.len(), "positions")?.to_le_bytes());
-    out.extend_from_slice(&count(scene.facets.len(), "facets")?.to_le_bytes());
-    out.extend_from_slice(&count(names_len, "name bytes")?.to_le_bytes());
+    write(scene, &mut out)?;
+    Ok(out)
+}
+
+/// Writes a raw scene in the binary form, a few hundred kilobytes at a time, so that a
+/// million-triangle scene is never held encoded in memory whole (40 MB).
+///
+/// # Errors
+/// A scene with more than `u32::MAX` objects, positions or facets, or a name block over
+/// 4 GiB, which this layout cannot hold (found before anything is written), or an I/O
+/// error from `w`.
+pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let too_big = |what: &str| {
+        std::io::Error::other(format!(
+            "the raw scene has too many {what} for the binary form"
+        ))
+    };
+    let count = |n: usize, what: &str| u32::try_from(n).map_err(|_| too_big(what));
+    let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
+    let mut header = Vec::with_capacity(HEADER_LEN + names_len);
+    header.extend_from_slice(MAGIC);
+    header.extend_from_slice(&VERSION.to_le_bytes());
+    header.extend_from_slice(&0u32.to_le_bytes());
+    header.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
+    header.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
+    header.extend_from_slice(&count(scene.objects.len(), "objects")?.to_le_bytes());
+    header.extend_from_slice(&count(scene.positions_m.len(), "positions")?.to_le_bytes());
+    header.extend_from_slice(&count(scene.facets.len(), "facets")?.to_le_bytes());
+    header.extend_from_slice(&count(names_len, "name bytes")?.to_le_bytes());
     for name in &scene.objects {
-        out.extend_from_slice(&count(name.len(), "name bytes")?.to_le_bytes());
-        out.extend_from_slice(name.as_bytes());
+        header.extend_from_slice(&count(name.len(), "name bytes")?.to_le_bytes());
+        header.extend_from_slice(name.as_bytes());
     }
-    for p in &scene.positions_m {
+    w.write_all(&header)?;
+    write_records(w, &scene.positions_m, POSITION_LEN, |p, out| {
         for c in p {
             out.extend_from_slice(&c.to_le_bytes());
         }
-    }
-    for f in &scene.facets {
+    })?;
+    write_records(w, &scene.facets, FACET_LEN, |f, out| {
         for v in f.vertices {
             out.extend_from_slice(&v.to_le_bytes());
         }
@@ -88,16 +102,31 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
         out.extend_from_slice(&0u16.to_le_bytes());
         out.extend_from_slice(&f.object.to_le_bytes());
         out.extend_from_slice(&f.temperature_k.to_le_bytes());
-    }
-    Ok(out)
+    })
 }
 
-/// Writes a raw scene in the binary form.
-///
-/// # Errors
-/// As [`encode`], or an I/O error from `w`.
-pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-    w.write_all(&encode(scene)?)
+/// Bytes encoded per `write_all` by [`write_records`]: large enough that the writer's
+/// buffer is bypassed and the system calls are few, small enough to stay in cache.
+const CHUNK_LEN: usize = 256 * 1024;
+
+/// Encodes `records` (each `record_len` bytes, by `encode`) into a reused buffer and
+/// writes it whenever it is full.
+pub(super) fn write_records<T>(
+    w: &mut dyn std::io::Write,
+    records: &[T],
+    record_len: usize,
+    encode: impl Fn(&T, &mut Vec<u8>),
+) -> std::io::Result<()> {
+    let per_chunk = (CHUNK_LEN / record_len).max(1);
+    let mut buf = Vec::with_capacity(per_chunk * record_len);
+    for chunk in records.chunks(per_chunk) {
+        buf.clear();
+        for r in chunk {
+            encode(r, &mut buf);
+        }
+        w.write_all(&buf)?;
+    }
+    Ok(())
 }
 
 // Callers pass offsets whose bytes the header check has already proved present.
@@ -306,6 +335,44 @@ mod tests {
         let facet0 = 48 + 17 + 3 * 24;
         assert_eq!(bytes[facet0 + 12..facet0 + 14], 7u16.to_le_bytes());
         assert_eq!(bytes[facet0 + 20..facet0 + 28], 300.25f64.to_le_bytes());
+    }
+
+    #[test]
+    fn a_scene_of_many_chunks_streams_and_reads_back() {
+        // 20,000 facets of 28 bytes: 560,000 bytes, three 256 KiB chunks. Written through
+        // a writer that takes at most 5 bytes a call.
+        struct Trickle(Vec<u8>);
+        impl std::io::Write for Trickle {
+            fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+                let n = buf.len().min(5);
+                self.0.extend_from_slice(&buf[..n]);
+                Ok(n)
+            }
+            fn flush(&mut self) -> std::io::Result<()> {
+                Ok(())
+            }
+        }
+        let n = 20_000u32;
+        let mut s = scene();
+        s.positions_m = (0..n + 2)
+            .map(|i| [f64::from(i), 0.5, f64::from(i % 2)])
+            .collect();
+        s.facets = (0..n)
+            .map(|i| RawFacet {
+                vertices: [i, i + 2, i + 1],
+                material: MaterialId((i % 5) as u16),
+                temperature_k: 200.0 + f64::from(i) / 64.0,
+                object: i % 2,
+            })
+            .collect();
+        let mut w = Trickle(Vec::new());
+        write(&s, &mut w).unwrap();
+        let names = 4 + 3 + 4 + 6;
+        assert_eq!(
+            w.0.len(),
+            48 + names + 24 * (n as usize + 2) + 28 * n as usize
+        );
+        assert_eq!(decode("s.raw", &w.0).unwrap(), s);
     }
 
     #[test]

@@ -65,19 +65,11 @@ pub fn is_binary(bytes: &[u8]) -> bool {
     bytes.starts_with(MAGIC)
 }
 
-/// Encodes an object.
+/// Encodes an object into one buffer; [`write`] streams the same bytes instead.
 ///
 /// # Errors
-/// An object with more than `u32::MAX` positions or facets, or a name or source over
-/// 4 GiB, which this layout cannot hold.
+/// As [`write`], less the I/O errors.
 pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
-    let count = |n: usize, what: &str| {
-        u32::try_from(n).map_err(|_| {
-            std::io::Error::other(format!(
-                "the object has too many {what} for the binary form"
-            ))
-        })
-    };
     let mut out = Vec::with_capacity(
         HEADER_LEN
             + object.name.len()
@@ -85,21 +77,43 @@ pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
             + POSITION_LEN * object.positions_m.len()
             + FACET_LEN * object.facets.len(),
     );
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(&0u32.to_le_bytes());
-    out.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
-    out.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
-    out.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());
-    out.extend_from_slice(&count(object.facets.len(), "facets")?.to_le_bytes());
-    out.extend_from_slice(object.name.as_bytes());
-    out.extend_from_slice(object.source.as_bytes());
-    for p in &object.positions_m {
+    write(object, &mut out)?;
+    Ok(out)
+}
+
+/// Writes an object in the binary form, a few hundred kilobytes at a time, so that a
+/// million-triangle object is never held encoded in memory whole (36 MB) and a reader at
+/// the other end of a pipe starts at once.
+///
+/// # Errors
+/// An object with more than `u32::MAX` positions or facets, or a name or source over
+/// 4 GiB, which this layout cannot hold (found before anything is written), or an I/O
+/// error from `w`.
+pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
+    let count = |n: usize, what: &str| {
+        u32::try_from(n).map_err(|_| {
+            std::io::Error::other(format!(
+                "the object has too many {what} for the binary form"
+            ))
+        })
+    };
+    let mut header = Vec::with_capacity(HEADER_LEN + object.name.len() + object.source.len());
+    header.extend_from_slice(MAGIC);
+    header.extend_from_slice(&VERSION.to_le_bytes());
+    header.extend_from_slice(&0u32.to_le_bytes());
+    header.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
+    header.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
+    header.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());
+    header.extend_from_slice(&count(object.facets.len(), "facets")?.to_le_bytes());
+    header.extend_from_slice(object.name.as_bytes());
+    header.extend_from_slice(object.source.as_bytes());
+    w.write_all(&header)?;
+    super::binary::write_records(w, &object.positions_m, POSITION_LEN, |p, out| {
         for c in p {
             out.extend_from_slice(&c.to_le_bytes());
         }
-    }
-    for f in &object.facets {
+    })?;
+    super::binary::write_records(w, &object.facets, FACET_LEN, |f, out| {
         for v in f.vertices {
             out.extend_from_slice(&v.to_le_bytes());
         }
@@ -110,16 +124,7 @@ pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
         };
         out.extend_from_slice(&flags.to_le_bytes());
         out.extend_from_slice(&t.to_le_bytes());
-    }
-    Ok(out)
-}
-
-/// Writes an object in the binary form.
-///
-/// # Errors
-/// As [`encode`], or an I/O error from `w`.
-pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-    w.write_all(&encode(object)?)
+    })
 }
 
 /// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`) starts in
@@ -272,6 +277,63 @@ mod tests {
         let f1 = FACETS_AT + 24;
         assert_eq!(bytes[f1 + 14..f1 + 16], 0u16.to_le_bytes());
         assert_eq!(bytes[f1 + 16..f1 + 24], 0.0f64.to_le_bytes());
+    }
+
+    /// Takes at most 7 bytes per call, and fails once `limit` bytes have been taken.
+    struct Trickle {
+        bytes: Vec<u8>,
+        limit: usize,
+    }
+
+    impl std::io::Write for Trickle {
+        fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+            if self.bytes.len() >= self.limit {
+                return Err(std::io::Error::other("disk full"));
+            }
+            let n = buf.len().min(7);
+            self.bytes.extend_from_slice(&buf[..n]);
+            Ok(n)
+        }
+        fn flush(&mut self) -> std::io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn an_object_of_many_chunks_streams_and_reads_back() {
+        // 30,000 facets are 720,000 bytes: several of the writer's 256 KiB chunks.
+        let n = 30_000u32;
+        let o = Object {
+            name: "strip".into(),
+            source: String::new(),
+            positions_m: (0..n + 2)
+                .map(|i| [f64::from(i), f64::from(i % 2), -1.5])
+                .collect(),
+            facets: (0..n)
+                .map(|i| Facet {
+                    vertices: [i, i + 1, i + 2],
+                    material: MaterialId((i % 7) as u16),
+                    temperature_k: (i % 3 == 0).then(|| 250.0 + f64::from(i) / 1024.0),
+                })
+                .collect(),
+        };
+        let mut w = Trickle {
+            bytes: Vec::new(),
+            limit: usize::MAX,
+        };
+        write(&o, &mut w).unwrap();
+        assert_eq!(
+            w.bytes.len(),
+            32 + 5 + 24 * (n as usize + 2) + 24 * n as usize
+        );
+        assert_eq!(decode("s.bin", &w.bytes).unwrap(), o);
+        // A writer that fails part way reports it.
+        let mut w = Trickle {
+            bytes: Vec::new(),
+            limit: 500_000,
+        };
+        let e = write(&o, &mut w).unwrap_err();
+        assert_eq!(e.to_string(), "disk full");
     }
 
     #[test]

@@ -47,7 +47,25 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
         ignore_points: true,
         ignore_lines: true,
     };
+    // tobj starts a new model, with vertices of its own, wherever the material changes;
+    // it must know every `usemtl` name from the start to do so (it forgets names no MTL
+    // defines). A quick search for `usemtl` lines gives them before either pass runs, and
+    // a first `mtllib` line of our own makes tobj's material loader hand them over.
+    let names = usemtl_names(text);
+    let tobj_materials: Vec<tobj::Material> = names
+        .iter()
+        .map(|&name| tobj::Material {
+            name: name.to_owned(),
+            ..tobj::Material::default()
+        })
+        .collect();
+    let mat_map: HashMap<String, usize> = names
+        .iter()
+        .enumerate()
+        .map(|(i, &name)| (name.to_owned(), i))
+        .collect();
     let scan_failed = AtomicBool::new(false);
+    let (options, scan_failed) = (&options, &scan_failed);
     let (scan, parsed) = rayon::join(
         || {
             let scan = scan(file, text, base_dir);
@@ -56,15 +74,21 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             }
             scan
         },
-        || {
-            let mut reader = StoppableText {
-                rest: text.as_bytes(),
-                stop: &scan_failed,
+        move || {
+            let first_mtllib = std::cell::Cell::new(true);
+            let loader = |_: &Path| -> tobj::MTLLoadResult {
+                if first_mtllib.replace(false) {
+                    Ok((tobj_materials.clone(), mat_map.clone()))
+                } else {
+                    Ok((Vec::new(), HashMap::new()))
+                }
             };
-            // Materials are not tobj's business here: the scan assigns them by name, since
-            // in the thermal band the name is all that matters and tobj forgets names that
-            // no MTL defines. MTL files are checked by the scan.
-            tobj::load_obj_buf(&mut reader, &options, |_| Ok((Vec::new(), HashMap::new())))
+            let mut reader = StoppableText {
+                prefix: b"mtllib irsig-usemtl-names\n",
+                rest: text.as_bytes(),
+                stop: scan_failed,
+            };
+            tobj::load_obj_buf(&mut reader, options, loader)
         },
     );
     let scan = scan?;
@@ -107,7 +131,7 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
         ));
     }
     // tobj keeps the faces in file order (its models follow one another in the file), so
-    // the scan's runs label them.
+    // the scan's runs label them; the materials are the scan's, which names them by line.
     let mut runs = scan.material_runs.iter().peekable();
     let mut material = None;
     for (i, t) in triangles.iter_mut().enumerate() {
@@ -127,9 +151,39 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
     })
 }
 
-/// The OBJ text as tobj reads it. Once `stop` is set every read fails, which ends tobj's
-/// parse at the next line.
+/// The names of the `usemtl` lines in the order of their first use, found as [`scan`]
+/// finds them: `usemtl` as the first word of a line, the rest of the line trimmed.
+fn usemtl_names(text: &str) -> Vec<&str> {
+    let mut names: Vec<&str> = Vec::new();
+    let mut seen = std::collections::HashSet::new();
+    // Lines already looked at end before `done`, so that no byte is searched twice however
+    // many times a line holds `usemtl`.
+    let mut done = 0;
+    for (at, _) in text.match_indices("usemtl") {
+        if at < done {
+            continue;
+        }
+        let line_start = text[done..at].rfind('\n').map_or(done, |i| done + i + 1);
+        let line_end = text[at..].find('\n').map_or(text.len(), |i| at + i);
+        done = line_end;
+        let line = text[line_start..line_end].trim_end_matches(['\n', '\r']);
+        if line.split_whitespace().next() != Some("usemtl")
+            || !text[line_start..at].trim_start().is_empty()
+        {
+            continue;
+        }
+        let name = line.trim_start()["usemtl".len()..].trim();
+        if !name.is_empty() && seen.insert(name) {
+            names.push(name);
+        }
+    }
+    names
+}
+
+/// The OBJ text as tobj reads it: `prefix`, then `rest`. Once `stop` is set every read
+/// fails, which ends tobj's parse at the next line.
 struct StoppableText<'a> {
+    prefix: &'a [u8],
     rest: &'a [u8],
     stop: &'a AtomicBool,
 }
@@ -146,19 +200,30 @@ impl StoppableText<'_> {
 
 impl Read for StoppableText<'_> {
     fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
-        self.check()?;
-        self.rest.read(buf)
+        let mut part = self.fill_buf()?;
+        let n = part.read(buf)?;
+        self.consume(n);
+        Ok(n)
     }
 }
 
 impl BufRead for StoppableText<'_> {
     fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
         self.check()?;
-        Ok(self.rest)
+        Ok(if self.prefix.is_empty() {
+            self.rest
+        } else {
+            self.prefix
+        })
     }
 
     fn consume(&mut self, amount: usize) {
-        self.rest = self.rest.get(amount..).unwrap_or_default();
+        let part = if self.prefix.is_empty() {
+            &mut self.rest
+        } else {
+            &mut self.prefix
+        };
+        *part = part.get(amount..).unwrap_or_default();
     }
 }
 
@@ -547,15 +612,32 @@ mod tests {
     }
 
     #[test]
+    fn usemtl_names_are_found_as_the_scan_finds_them() {
+        let text = "usemtl a\n  usemtl  b c \r\n# usemtl x\ng usemtl y\nusemtlz w\n\tusemtl a\nusemtl\nusemtl d";
+        assert_eq!(usemtl_names(text), ["a", "b c", "d"]);
+        // The scan's first uses agree (it rejects the bare `usemtl` line, so without it).
+        let scanned =
+            text.replace("usemtl\nusemtl d", "usemtl d") + "\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let m = read_obj("u.obj", scanned.as_bytes(), None).unwrap();
+        let names: Vec<_> = m.materials.iter().map(|m| m.name.as_str()).collect();
+        assert_eq!(names, usemtl_names(&scanned));
+        // A line full of `usemtl` is searched once, not once per occurrence.
+        let long = "usemtl".repeat(200_000);
+        assert!(usemtl_names(&long).is_empty());
+    }
+
+    #[test]
     fn tobj_input_ends_once_the_scan_has_failed() {
         let stop = AtomicBool::new(false);
         let mut text = StoppableText {
+            prefix: b"# first\n",
             rest: b"v 0 0 0\nv 1 0 0\n",
             stop: &stop,
         };
         let mut line = String::new();
         text.read_line(&mut line).unwrap();
-        assert_eq!(line, "v 0 0 0\n");
+        text.read_line(&mut line).unwrap();
+        assert_eq!(line, "# first\nv 0 0 0\n");
         stop.store(true, Ordering::Relaxed);
         assert!(text.read_line(&mut line).is_err());
         assert!(text.read(&mut [0; 4]).is_err());
