@@ -2,16 +2,18 @@
 //! does not keep: the line and column of a bad number, non-finite coordinates, `usemtl`
 //! names that no MTL defines, which material and which line each triangle came from.
 //!
-//! The two passes read the same text independently, so they run at the same time
-//! (`rayon::join`: on two threads when rayon has two, one after the other otherwise). The
-//! outcome does not depend on which finishes first: an error of our pass always wins,
-//! because it names a line and column, and once our pass has failed `tobj`'s reads end at
-//! once instead of parsing the rest of a file whose import has already failed.
+//! The two passes run at the same time (`rayon::join`: on two threads when rayon has two,
+//! one after the other otherwise), our pass ahead: `tobj` is handed only lines our pass has
+//! already accepted ([`Checked`]), as when the two ran one after the other, so `tobj` never
+//! sees input our checks reject (tobj 4.0 can panic on some of it in a build with overflow
+//! checks). Our pass is about three times faster, so `tobj` seldom waits. The outcome does
+//! not depend on timing: an error of our pass always wins, because it names a line and
+//! column, and once our pass has failed `tobj`'s input ends.
 
 use std::collections::HashMap;
 use std::io::{BufRead, Read};
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Condvar, Mutex, PoisonError};
 
 use super::{Location, MaterialUse, Mesh, Origin, Triangle};
 use crate::ParseError;
@@ -64,13 +66,16 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
         .enumerate()
         .map(|(i, &name)| (name.to_owned(), i))
         .collect();
-    let scan_failed = AtomicBool::new(false);
-    let (options, scan_failed) = (&options, &scan_failed);
+    let checked = Checked::default();
+    let (options, checked) = (&options, &checked);
     let (scan, parsed) = rayon::join(
         || {
-            let scan = scan(file, text, base_dir);
-            if scan.is_err() {
-                scan_failed.store(true, Ordering::Relaxed);
+            // Whatever happens to the scan, even a panic, tobj stops waiting for it.
+            let mut outcome = FailUnlessCleared(Some(checked));
+            let scan = scan(file, text, base_dir, checked);
+            if scan.is_ok() {
+                checked.publish(text.len());
+                outcome.0 = None;
             }
             scan
         },
@@ -83,11 +88,7 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
                     Ok((Vec::new(), HashMap::new()))
                 }
             };
-            let mut reader = StoppableText {
-                prefix: b"mtllib irsig-usemtl-names\n",
-                rest: text.as_bytes(),
-                stop: scan_failed,
-            };
+            let mut reader = CheckedText::new(b"mtllib irsig-usemtl-names\n", text, checked);
             tobj::load_obj_buf(&mut reader, options, loader)
         },
     );
@@ -180,25 +181,88 @@ fn usemtl_names(text: &str) -> Vec<&str> {
     names
 }
 
-/// The OBJ text as tobj reads it: `prefix`, then `rest`. Once `stop` is set every read
-/// fails, which ends tobj's parse at the next line.
-struct StoppableText<'a> {
-    prefix: &'a [u8],
-    rest: &'a [u8],
-    stop: &'a AtomicBool,
+/// How far our scan has checked the text: the byte offset of the end of its last accepted
+/// line, or that it has failed. The scan publishes every [`Checked::STEP`] bytes.
+#[derive(Debug, Default)]
+struct Checked {
+    state: Mutex<CheckedState>,
+    changed: Condvar,
 }
 
-impl StoppableText<'_> {
-    fn check(&self) -> std::io::Result<()> {
-        if self.stop.load(Ordering::Relaxed) {
-            Err(std::io::Error::other("the scan of the OBJ failed first"))
-        } else {
-            Ok(())
+#[derive(Debug, Clone, Copy, Default)]
+enum CheckedState {
+    UpTo(usize),
+    #[default]
+    Nothing,
+    Failed,
+}
+
+impl Checked {
+    /// Bytes of text between two publications: small against the text, large against a line.
+    const STEP: usize = 256 * 1024;
+
+    fn set(&self, state: CheckedState) {
+        *self.state.lock().unwrap_or_else(PoisonError::into_inner) = state;
+        self.changed.notify_all();
+    }
+
+    fn publish(&self, up_to: usize) {
+        self.set(CheckedState::UpTo(up_to));
+    }
+
+    /// Waits until more than `offset` bytes are checked; `None` once the scan has failed.
+    fn beyond(&self, offset: usize) -> Option<usize> {
+        let mut state = self.state.lock().unwrap_or_else(PoisonError::into_inner);
+        loop {
+            match *state {
+                CheckedState::Failed => return None,
+                CheckedState::UpTo(n) if n > offset => return Some(n),
+                _ => {
+                    state = self
+                        .changed
+                        .wait(state)
+                        .unwrap_or_else(PoisonError::into_inner);
+                }
+            }
         }
     }
 }
 
-impl Read for StoppableText<'_> {
+/// Marks the scan failed when dropped, unless cleared (set to `None`) first.
+struct FailUnlessCleared<'a>(Option<&'a Checked>);
+
+impl Drop for FailUnlessCleared<'_> {
+    fn drop(&mut self) {
+        if let Some(checked) = self.0 {
+            checked.set(CheckedState::Failed);
+        }
+    }
+}
+
+/// The OBJ text as tobj reads it: `prefix`, then the text as far as the scan has accepted
+/// it. A read past that waits for the scan, and fails once the scan has failed.
+struct CheckedText<'a> {
+    prefix: &'a [u8],
+    text: &'a [u8],
+    /// How far tobj has read, and how far it may read without asking again.
+    at: usize,
+    allowed: usize,
+    checked: &'a Checked,
+}
+
+impl<'a> CheckedText<'a> {
+    fn new(prefix: &'a [u8], text: &'a str, checked: &'a Checked) -> Self {
+        Self {
+            prefix,
+            text: text.as_bytes(),
+            at: 0,
+            allowed: 0,
+            checked,
+        }
+    }
+}
+
+impl Read for CheckedText<'_> {
     fn read(&mut self, buf: &mut [u8]) -> std::io::Result<usize> {
         let mut part = self.fill_buf()?;
         let n = part.read(buf)?;
@@ -207,27 +271,37 @@ impl Read for StoppableText<'_> {
     }
 }
 
-impl BufRead for StoppableText<'_> {
+impl BufRead for CheckedText<'_> {
     fn fill_buf(&mut self) -> std::io::Result<&[u8]> {
-        self.check()?;
-        Ok(if self.prefix.is_empty() {
-            self.rest
-        } else {
-            self.prefix
-        })
+        if !self.prefix.is_empty() {
+            return Ok(self.prefix);
+        }
+        if self.at >= self.allowed && self.at < self.text.len() {
+            self.allowed = self
+                .checked
+                .beyond(self.at)
+                .ok_or_else(|| std::io::Error::other("the scan of the OBJ failed first"))?
+                .min(self.text.len());
+        }
+        Ok(self.text.get(self.at..self.allowed).unwrap_or_default())
     }
 
     fn consume(&mut self, amount: usize) {
-        let part = if self.prefix.is_empty() {
-            &mut self.rest
+        if self.prefix.is_empty() {
+            self.at = (self.at + amount).min(self.allowed);
         } else {
-            &mut self.prefix
-        };
-        *part = part.get(amount..).unwrap_or_default();
+            self.prefix = self.prefix.get(amount..).unwrap_or_default();
+        }
     }
 }
 
-fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseError> {
+/// Our pass over the text, publishing its progress to `checked` as it goes.
+fn scan(
+    file: &str,
+    text: &str,
+    base_dir: Option<&Path>,
+    checked: &Checked,
+) -> Result<Scan, ParseError> {
     let mut out = Scan {
         materials: Vec::new(),
         material_runs: Vec::new(),
@@ -242,8 +316,14 @@ fn scan(file: &str, text: &str, base_dir: Option<&Path>) -> Result<Scan, ParseEr
     // The material of the last `usemtl`, and whether a run with it has been started.
     let mut current_material: Option<u32> = None;
     let mut run_started = false;
+    let mut published = 0usize;
     for (line_index, raw) in text.split_inclusive('\n').enumerate() {
         let line_start = offset;
+        // Every line before this one is accepted.
+        if line_start - published >= Checked::STEP {
+            checked.publish(line_start);
+            published = line_start;
+        }
         offset += raw.len();
         let line = raw.trim_end_matches(['\n', '\r']);
         let at = |token: &str| line_start + (token.as_ptr() as usize - line.as_ptr() as usize);
@@ -627,24 +707,37 @@ mod tests {
     }
 
     #[test]
-    fn tobj_input_ends_once_the_scan_has_failed() {
-        let stop = AtomicBool::new(false);
-        let mut text = StoppableText {
-            prefix: b"# first\n",
-            rest: b"v 0 0 0\nv 1 0 0\n",
-            stop: &stop,
-        };
+    fn tobj_reads_only_what_the_scan_has_accepted_and_stops_when_it_fails() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+        let checked = Checked::default();
+        checked.publish(8);
+        let mut reader = CheckedText::new(b"# first\n", text, &checked);
         let mut line = String::new();
-        text.read_line(&mut line).unwrap();
-        text.read_line(&mut line).unwrap();
+        reader.read_line(&mut line).unwrap();
+        reader.read_line(&mut line).unwrap();
         assert_eq!(line, "# first\nv 0 0 0\n");
-        stop.store(true, Ordering::Relaxed);
-        assert!(text.read_line(&mut line).is_err());
-        assert!(text.read(&mut [0; 4]).is_err());
-        // Consuming more than is left cannot panic.
-        text.consume(100);
-        stop.store(false, Ordering::Relaxed);
-        assert!(text.fill_buf().unwrap().is_empty());
+        // The next line waits until the scan, on another thread, accepts it.
+        std::thread::scope(|s| {
+            s.spawn(|| {
+                std::thread::sleep(std::time::Duration::from_millis(20));
+                checked.publish(16);
+            });
+            let mut next = String::new();
+            reader.read_line(&mut next).unwrap();
+            assert_eq!(next, "v 1 0 0\n");
+        });
+        // Consuming more than was handed out cannot run ahead of the scan.
+        reader.consume(100);
+        assert_eq!(reader.at, 16);
+        checked.set(CheckedState::Failed);
+        assert!(reader.read_line(&mut line).is_err());
+        assert!(reader.read(&mut [0; 4]).is_err());
+        // Once all is accepted, the end of the text is the end of the input.
+        checked.publish(text.len());
+        let mut rest = String::new();
+        reader.read_to_string(&mut rest).unwrap();
+        assert_eq!(rest, "v 0 1 0\n");
+        assert!(reader.fill_buf().unwrap().is_empty());
     }
 
     #[test]
