@@ -248,6 +248,13 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
             "face-out-of-range.obj",
             &["face-out-of-range.obj:5:7", "index 7"],
         ),
+        (
+            "texcoord-before-first.obj",
+            &[
+                "texcoord-before-first.obj:7:7",
+                "texture coordinate index -5",
+            ],
+        ),
         ("truncated.glb", &["truncated.glb", "GLB"]),
         ("short-header.glb", &["short-header.glb", "12-byte header"]),
         (

@@ -311,6 +311,7 @@ fn scan(
     };
     let mut names: HashMap<&str, u32> = HashMap::new();
     let mut vertices = 0usize;
+    let (mut texcoords, mut normals) = (0usize, 0usize);
     let mut offset = 0usize;
     let mut skipped_short_faces = 0usize;
     // The material of the last `usemtl`, and whether a run with it has been started.
@@ -381,6 +382,30 @@ fn scan(
                             ),
                         ));
                     }
+                    // tobj 4.0.5 turns a texture or normal index of 0, or a negative one that
+                    // reaches before the first, into an index near 2^64 and overflows on it
+                    // (a panic with overflow checks); positive ones it bounds-checks itself.
+                    let mut parts = w.split('/').skip(1);
+                    for (what, defined) in [("texture coordinate", texcoords), ("normal", normals)]
+                    {
+                        let Some(part) = parts.next().filter(|p| !p.is_empty()) else {
+                            continue;
+                        };
+                        let i: i64 = part.parse().map_err(|_| {
+                            err(
+                                w,
+                                format!("expected a {what} index in `{w}`, found `{part}`"),
+                            )
+                        })?;
+                        if i == 0 || (i < 0 && i.unsigned_abs() > defined as u64) {
+                            return Err(err(
+                                w,
+                                format!(
+                                    "{what} index {i} does not exist: {defined} are defined before this face (indices count from 1, negative ones from the end)"
+                                ),
+                            ));
+                        }
+                    }
                     n += 1;
                 }
                 if n < 3 {
@@ -441,7 +466,12 @@ fn scan(
                 let name = line.trim_start()["mtllib".len()..].trim();
                 check_mtl(file, text, at(name), name, base_dir, &mut out.warnings)?;
             }
-            Some("vn" | "vt") => {
+            Some(kind @ ("vn" | "vt")) => {
+                if kind == "vt" {
+                    texcoords += 1;
+                } else {
+                    normals += 1;
+                }
                 for w in words.take(2) {
                     if w.parse::<f64>().is_err() {
                         return Err(err(w, format!("expected a number, found `{w}`")));
@@ -581,6 +611,31 @@ mod tests {
         // Negative indices count back from the last vertex.
         let m = read_obj("b.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n", None).unwrap();
         assert_eq!(m.triangles.len(), 1);
+    }
+
+    #[test]
+    fn texture_and_normal_indices_that_reach_before_the_first_are_errors() {
+        let head = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n";
+        for (face, column) in [
+            ("f 1/-2 2/1 3/1", 3),
+            ("f 1/1 2/0 3/1", 7),
+            ("f 1//1 2//1 3//-2", 13),
+            ("f 1/1/0 2/1/1 3/1/1", 3),
+            ("f 1/x 2/1 3/1", 3),
+        ] {
+            let text = format!("{head}{face}\n");
+            let e = read_obj("t.obj", text.as_bytes(), None).unwrap_err();
+            assert_eq!((e.line, e.column), (6, column), "{face}: {e}");
+        }
+        // In range, from either end, they are fine.
+        let text = format!("{head}f 1/1/1 2/-1/-1 3//1\n");
+        assert_eq!(
+            read_obj("t.obj", text.as_bytes(), None)
+                .unwrap()
+                .triangles
+                .len(),
+            1
+        );
     }
 
     #[test]
