@@ -2,7 +2,8 @@
 //! it repeatedly on one thread, so a sampling profiler sees shading and traversal rather
 //! than the BVH build. `perf record -g target/release/examples/shade_profile 1 40`
 //! (size index 0/1/2 = 1k/100k/1M triangles, then the number of renders; add `spec` or
-//! `f16` for the specular or sky-view case).
+//! `f16` for the specular or sky-view case, `radiance` for the diffuse case without the
+//! truth terms).
 
 use irsig_model::View;
 use irsig_tracer::testing::{grey_materials, ground_quad, raw_scene, uv_sphere};
@@ -34,6 +35,7 @@ fn main() {
     .expect("valid view");
     let options = TraceOptions {
         sky_view_rays: if mode == "f16" { 16 } else { 0 },
+        truth: mode != "radiance",
         ..TraceOptions::default()
     };
     let pool = rayon::ThreadPoolBuilder::new()
