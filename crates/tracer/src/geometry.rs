@@ -65,15 +65,12 @@ pub struct Hit<P = ()> {
 pub struct Geometry<P = ()> {
     centre_m: V3,
     bvh: CwBvh,
-    /// f32 local vertices and input facet index in BVH order (obvhs's
-    /// `primitive_indices` applied), one cache line per triangle.
-    tris: Vec<BvhTriangle>,
-    /// The f64 plane and the caller's data of each triangle, in BVH order like `tris`: all
-    /// a hit reads beyond the traversal, in one record. (Separate normal, vertex and
-    /// radiometry tables in input order cost three or four cache misses per hit at 1M
-    /// triangles, where a miss is as dear as the rest of the shading.)
-    records: Vec<FacetRecord<P>>,
+    /// Per triangle, in BVH order (obvhs's `primitive_indices` applied): what the
+    /// traversal reads, then what a hit reads.
+    tris: Vec<FacetLines<P>>,
     bounds_local: [V3; 2],
+    /// `bounds_local` grown by a margin for f32 rounding: the box rays are clipped to.
+    padded_bounds_local: [V3; 2],
     radius_m: f64,
 }
 
@@ -86,6 +83,20 @@ pub struct Geometry<P = ()> {
 struct BvhTriangle {
     v: [Vec3A; 3],
     facet: u32,
+}
+
+/// A triangle's two cache lines, side by side: the first is all the traversal reads of a
+/// candidate; the second, the plane and data, only a hit reads. Separate normal, vertex
+/// and radiometry tables in input order cost three or four cache misses per hit at 1M
+/// triangles, where a miss is as dear as the rest of the shading; a separate table in BVH
+/// order still cost one. Side by side, the second line usually arrives with the first
+/// (the adjacent-line prefetcher fetches 128-byte-aligned pairs): at 1M triangles the radiance-only
+/// shaded/bare ratio went from 0.94 to 0.99 (BENCHMARKS.md).
+#[derive(Debug, Clone, Copy)]
+#[repr(C, align(128))]
+struct FacetLines<P> {
+    tri: BvhTriangle,
+    rec: FacetRecord<P>,
 }
 
 /// A facet's plane in local f64 coordinates, unit winding normal `n` and `offset = n·a` for
@@ -220,34 +231,35 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             BvhBuildParams::medium_build(),
             &mut std::time::Duration::default(),
         );
-        let (tris, records) = bvh
+        let tris = bvh
             .primitive_indices
             .par_iter()
             .map(|&i| {
                 let t = &obvhs_tris[i as usize];
                 let [a, b, c] = triangles[i as usize].map(|p| sub(p, centre_m));
                 let normal = normalize(cross(sub(b, a), sub(c, a)));
-                (
-                    BvhTriangle {
+                FacetLines {
+                    tri: BvhTriangle {
                         v: [t.v0, t.v1, t.v2],
                         facet: i,
                     },
-                    FacetRecord {
+                    rec: FacetRecord {
                         normal,
                         offset: dot(normal, a),
                         data: data[i as usize],
                     },
-                )
+                }
             })
-            .unzip();
+            .collect();
         let bounds_local = [sub(lo, centre_m), sub(hi, centre_m)];
         let radius_m = 0.5 * dot(sub(hi, lo), sub(hi, lo)).sqrt();
+        let pad = [1e-6 * radius_m + 1e-6; 3];
         Self {
             centre_m,
             bvh,
             tris,
-            records,
             bounds_local,
+            padded_bounds_local: [sub(bounds_local[0], pad), add(bounds_local[1], pad)],
             radius_m,
         }
     }
@@ -292,18 +304,24 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     /// The part `[t0, t1]` of `[t_min, t_max]` along the ray inside the scene's bounds,
     /// padded for f32 rounding; `None` when the ray misses them.
     fn clip(&self, origin: V3, dir: V3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
-        let pad = 1e-6 * self.radius_m + 1e-6;
         let (mut t0, mut t1) = (t_min, t_max);
-        // Branch-free slabs (this runs once per ray and showed in the profile). A zero
-        // direction component gives ±∞ distances: no constraint when the origin is inside
-        // that slab, an empty interval when outside. (An origin exactly on a padded slab
-        // plane gives NaN, which `min`/`max` skip; nothing lies in the pad to be missed.)
+        // Slabs of the padded box (this runs once per ray and showed in the profile, so
+        // the padding is done once, in `new`). A zero direction component gives ±∞
+        // distances: no constraint when the origin is inside that slab, an empty interval
+        // when outside. An origin exactly on a padded plane gives a NaN: the comparisons
+        // below (which compile to plain min/max instructions, where `f64::min` needs a NaN
+        // check) then leave that bound as it was; nothing lies in the pad to be missed.
         for k in 0..3 {
             let inv = 1.0 / dir[k];
-            let a = (self.bounds_local[0][k] - pad - origin[k]) * inv;
-            let b = (self.bounds_local[1][k] + pad - origin[k]) * inv;
-            t0 = t0.max(a.min(b));
-            t1 = t1.min(a.max(b));
+            let a = (self.padded_bounds_local[0][k] - origin[k]) * inv;
+            let b = (self.padded_bounds_local[1][k] - origin[k]) * inv;
+            let (near, far) = if a < b { (a, b) } else { (b, a) };
+            if near > t0 {
+                t0 = near;
+            }
+            if far < t1 {
+                t1 = far;
+            }
         }
         (t0 <= t1).then_some((t0, t1))
     }
@@ -341,7 +359,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         let mut best = (f32::INFINITY, u32::MAX, 0);
         self.bvh.ray_traverse(ray, &mut hit, |r, id| {
             // `id` is in BVH order; `tris` is stored in that order.
-            let tri = &self.tris[id];
+            let tri = &self.tris[id].tri;
             let facet = tri.facet;
             if facet == exclude {
                 return f32::INFINITY;
@@ -377,7 +395,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         let shear = Shear::new(ray.origin, ray.direction);
         let exclude = exclude.unwrap_or(u32::MAX);
         !self.bvh.ray_traverse_miss(ray, |_, id| {
-            let tri = &self.tris[id];
+            let tri = &self.tris[id].tri;
             if tri.facet == exclude {
                 return f32::INFINITY;
             }
@@ -391,7 +409,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             normal: n,
             offset,
             data,
-        } = self.records[slot];
+        } = self.tris[slot].rec;
         let dn = dot(dir, n);
         // The f64 plane distance, unless the ray runs so close to parallel to the plane
         // that it is worse conditioned than the f32 distance from the watertight test.
