@@ -263,6 +263,14 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
         ),
         ("garbled.glb", &["garbled.glb"]),
         (
+            "position-out-of-range.gltf",
+            &[
+                "position-out-of-range.gltf",
+                "meshes[0].primitives[0].attributes[\"POSITION\"]",
+                "Index out of bounds",
+            ],
+        ),
+        (
             "http-uri.glb",
             &["http-uri.glb", "example.invalid/tri.bin", "never fetches"],
         ),

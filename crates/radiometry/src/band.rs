@@ -134,9 +134,9 @@ struct Node {
 /// - With a response table: Gauss–Legendre quadrature on each linear piece of the table
 ///   (4 nodes per piece up to 0.1 µm, 8 nodes per 1 µm otherwise), relative error ≤ 1e-10
 ///   from 50 K up (checked against the flat series with a flat table). Below 50 K the
-///   Planck function is so steep across a piece that the relative error grows (1e-3 at
-///   10 K); the result stays positive and strictly increasing in T, so [`Band::temperature`]
-///   still inverts it exactly.
+///   Planck function is so steep across a piece that the relative error can grow (a flat
+///   8–14 µm table measured 2.0e-11 at 10 K; docs/accuracy.md); the result stays positive
+///   and strictly increasing in T, so [`Band::temperature`] still inverts it exactly.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Band {
     lambda_min_um: f64,

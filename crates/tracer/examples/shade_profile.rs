@@ -1,12 +1,33 @@
 //! A profiling harness: builds the benchmark's sphere-over-ground scene once and renders
 //! it repeatedly on one thread, so a sampling profiler sees shading and traversal rather
-//! than the BVH build. `perf record -g target/release/examples/shade_profile 1 40`
-//! (size index 0/1/2 = 1k/100k/1M triangles, then the number of renders; add `spec` or
-//! `f16` for the specular or sky-view case).
+//! than the BVH build.
+//!
+//! `shade_profile SIZE RENDERS [MODE]`: SIZE 0/1/2 = 1k/100k/1M triangles; MODE `diffuse`
+//! (default), `radiance` (diffuse without the truth terms), `spec`, `f16` (sky-view factor,
+//! 16 rays) or `bare` (the same primary rays through bare obvhs). For a profiler:
+//! `perf record -g target/profiling/examples/shade_profile 1 200 radiance`.
+//!
+//! MODE `compare` measures the shaded/bare ratio on a shared, noisy machine: it interleaves
+//! one bare pass, one diffuse pass with the truth terms and one without (each timed on its
+//! second run, with warm caches), RENDERS times, and prints the fastest and the median pass
+//! of each. Interference only ever adds time, and
+//! interleaving exposes the three to the same conditions, so the ratio of the fastest
+//! passes is the stable figure.
 
+use std::time::Instant;
+
+use glam::Vec3A;
 use irsig_model::View;
-use irsig_tracer::testing::{grey_materials, ground_quad, raw_scene, uv_sphere};
+use irsig_tracer::testing::{Mesh, grey_materials, ground_quad, raw_scene, uv_sphere};
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+use obvhs::{
+    BvhBuildParams,
+    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
+    ray::{Ray, RayHit},
+    triangle::Triangle,
+};
+
+const PIXELS: f64 = 128.0 * 128.0;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -34,40 +55,84 @@ fn main() {
     .expect("valid view");
     let options = TraceOptions {
         sky_view_rays: if mode == "f16" { 16 } else { 0 },
+        truth: mode != "radiance",
         ..TraceOptions::default()
     };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .expect("a thread pool");
-    if mode == "bare" {
-        bare(
-            &tracer,
-            &camera,
-            &irsig_tracer::testing::triangles(&sphere_and_ground(&sphere, &ground)),
-            renders,
+    let shaded = |options: &TraceOptions| {
+        let frame = pool
+            .install(|| tracer.render(&camera, options, &|_| {}))
+            .expect("valid options");
+        frame.radiance_w_m2_sr.iter().sum::<f64>()
+    };
+    if mode == "bare" || mode == "compare" {
+        let bare = Bare::new(&tracer, &camera, &sphere_and_ground(&sphere, &ground));
+        if mode == "bare" {
+            let start = Instant::now();
+            let hits: u64 = (0..renders).map(|_| bare.pass()).sum();
+            let per = start.elapsed().as_secs_f64() / f64::from(renders) / PIXELS;
+            println!("{:.1} ns per bare ray ({hits} hits)", per * 1e9);
+            return;
+        }
+        let radiance_only = TraceOptions {
+            truth: false,
+            ..options
+        };
+        let mut times = [const { Vec::new() }; 3];
+        // Each kind runs twice in a row and only the second pass is timed: the first warms
+        // the caches with that kind's own data (the bare BVH and the tracer's are separate
+        // copies; at 1M triangles each evicts the other), as a long render would.
+        let time_warm = |f: &dyn Fn()| {
+            f();
+            let t = Instant::now();
+            f();
+            t.elapsed().as_secs_f64()
+        };
+        for _ in 0..renders {
+            times[0].push(time_warm(&|| {
+                std::hint::black_box(bare.pass());
+            }));
+            times[1].push(time_warm(&|| {
+                std::hint::black_box(shaded(&options));
+            }));
+            times[2].push(time_warm(&|| {
+                std::hint::black_box(shaded(&radiance_only));
+            }));
+        }
+        let mut fastest = [0.0; 3];
+        for (i, name) in ["bare obvhs", "shaded, truth", "shaded, radiance only"]
+            .iter()
+            .enumerate()
+        {
+            let t = &mut times[i];
+            t.sort_by(f64::total_cmp);
+            fastest[i] = t[0];
+            println!(
+                "{name:<22} fastest {:7.1} ns/ray, median {:7.1} ns/ray",
+                t[0] / PIXELS * 1e9,
+                t[t.len() / 2] / PIXELS * 1e9
+            );
+        }
+        println!(
+            "shaded/bare throughput (fastest passes): truth {:.3}, radiance only {:.3}",
+            fastest[0] / fastest[1],
+            fastest[0] / fastest[2]
         );
         return;
     }
-    let start = std::time::Instant::now();
-    let mut checksum = 0.0;
-    for _ in 0..renders {
-        let frame = pool
-            .install(|| tracer.render(&camera, &options, &|_| {}))
-            .expect("valid options");
-        checksum += frame.radiance_w_m2_sr.iter().sum::<f64>();
-    }
-    let per = start.elapsed().as_secs_f64() / f64::from(renders) / 16384.0;
+    let start = Instant::now();
+    let checksum: f64 = (0..renders).map(|_| shaded(&options)).sum();
+    let per = start.elapsed().as_secs_f64() / f64::from(renders) / PIXELS;
     println!(
         "{:.1} ns per primary sample (checksum {checksum:.6e})",
         per * 1e9
     );
 }
 
-fn sphere_and_ground(
-    sphere: &irsig_tracer::testing::Mesh,
-    ground: &irsig_tracer::testing::Mesh,
-) -> irsig_tracer::testing::Mesh {
+fn sphere_and_ground(sphere: &Mesh, ground: &Mesh) -> Mesh {
     let mut m = sphere.clone();
     let base = m.0.len() as u32;
     m.0.extend(&ground.0);
@@ -75,61 +140,75 @@ fn sphere_and_ground(
     m
 }
 
-/// The same primary rays through bare obvhs (its own triangle test, nothing else).
-fn bare(
-    tracer: &Tracer<TotalRadiance, Vacuum>,
-    camera: &Camera,
-    tris: &[[[f64; 3]; 3]],
-    renders: u32,
-) {
-    use glam::Vec3A;
-    use obvhs::{
-        BvhBuildParams,
-        cwbvh::builder::build_cwbvh_from_tris,
-        ray::{Ray, RayHit},
-        triangle::Triangle,
-    };
-    let c = tracer.geometry().centre_m();
-    let v = |p: [f64; 3]| {
-        Vec3A::new(
-            (p[0] - c[0]) as f32,
-            (p[1] - c[1]) as f32,
-            (p[2] - c[2]) as f32,
-        )
-    };
-    let tris: Vec<Triangle> = tris
-        .iter()
-        .map(|t| Triangle {
-            v0: v(t[0]),
-            v1: v(t[1]),
-            v2: v(t[2]),
-        })
-        .collect();
-    let bvh = build_cwbvh_from_tris(
-        &tris,
-        BvhBuildParams::medium_build(),
-        &mut std::time::Duration::default(),
-    );
-    let o = v(camera.position_m);
-    let dirs: Vec<Vec3A> = (0..128)
-        .flat_map(|r| (0..128).map(move |c| (c, r)))
-        .map(|(c, r)| {
-            let d = camera.pixel_direction(c, r);
-            Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32)
-        })
-        .collect();
-    let start = std::time::Instant::now();
-    let mut hits = 0u64;
-    for _ in 0..renders {
-        for d in &dirs {
+/// The same primary rays through bare obvhs: its own triangle test on triangles stored in BVH
+/// order, nothing else.
+struct Bare {
+    bvh: CwBvh,
+    tris: Vec<Triangle>,
+    origin: Vec3A,
+    dirs: Vec<Vec3A>,
+}
+
+impl Bare {
+    fn new(tracer: &Tracer<TotalRadiance, Vacuum>, camera: &Camera, mesh: &Mesh) -> Self {
+        // Re-centred exactly as the tracer does.
+        let c = tracer.geometry().centre_m();
+        let v = |p: [f64; 3]| {
+            Vec3A::new(
+                (p[0] - c[0]) as f32,
+                (p[1] - c[1]) as f32,
+                (p[2] - c[2]) as f32,
+            )
+        };
+        let tris: Vec<Triangle> = irsig_tracer::testing::triangles(mesh)
+            .iter()
+            .map(|t| Triangle {
+                v0: v(t[0]),
+                v1: v(t[1]),
+                v2: v(t[2]),
+            })
+            .collect();
+        let bvh = build_cwbvh_from_tris(
+            &tris,
+            BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        // In BVH order, so a candidate costs one memory access (as in the tracer), not a
+        // `primitive_indices` lookup and then the triangle: the stronger baseline.
+        let tris = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| tris[i as usize])
+            .collect();
+        let dirs = (0..128)
+            .flat_map(|r| (0..128).map(move |c| (c, r)))
+            .map(|(c, r)| {
+                let d = camera.pixel_direction(c, r);
+                Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32)
+            })
+            .collect();
+        Self {
+            bvh,
+            tris,
+            origin: v(camera.position_m),
+            dirs,
+        }
+    }
+
+    /// One pass over every pixel's ray; the number of hits.
+    fn pass(&self) -> u64 {
+        let mut hits = 0;
+        for d in &self.dirs {
             let mut hit = RayHit::none();
-            if bvh.ray_traverse(Ray::new_inf(o, *d), &mut hit, |ray, id| {
-                tris[bvh.primitive_indices[id] as usize].intersect(ray)
-            }) {
+            if self
+                .bvh
+                .ray_traverse(Ray::new_inf(self.origin, *d), &mut hit, |ray, id| {
+                    self.tris[id].intersect(ray)
+                })
+            {
                 hits += 1;
             }
         }
+        hits
     }
-    let per = start.elapsed().as_secs_f64() / f64::from(renders) / 16384.0;
-    println!("{:.1} ns per bare ray ({hits} hits)", per * 1e9);
 }

@@ -62,6 +62,10 @@ pub struct TraceOptions {
     /// draws from its own stream derived from the seed and its index, so the image does not
     /// depend on the thread count.
     pub seed: u64,
+    /// Keep every term of each pixel's centre ray in [`Frame::truth`] (default). Off, the
+    /// frame holds the radiance only: a renderer that needs neither the truth layers nor
+    /// the interaction map saves writing ~170 bytes per pixel.
+    pub truth: bool,
 }
 
 impl Default for TraceOptions {
@@ -71,6 +75,7 @@ impl Default for TraceOptions {
             sky_view_rays: 0,
             supersampling: 1,
             seed: 0,
+            truth: true,
         }
     }
 }
@@ -251,7 +256,7 @@ pub struct Frame {
     pub height: u32,
     /// Radiance at the sensor per pixel, W m⁻² sr⁻¹ (mean of the sub-pixel rays).
     pub radiance_w_m2_sr: Vec<f64>,
-    /// The terms of the centre ray of each pixel.
+    /// The terms of the centre ray of each pixel; empty when [`TraceOptions::truth`] is off.
     pub truth: Vec<Sample>,
 }
 
@@ -263,10 +268,14 @@ struct MaterialData {
     specular_fraction: f64,
 }
 
-#[derive(Debug, Clone, Copy)]
-struct FacetData {
+/// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
+/// reads it with the plane, in one cache line.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacetRadiometry {
+    /// Index into the tracer's material list (not the material id).
     material: u16,
     temperature_k: f64,
+    /// L_T, W m⁻² sr⁻¹.
     blackbody: f64,
 }
 
@@ -274,8 +283,7 @@ struct FacetData {
 /// the band and the atmosphere. Build it once and render as many views as needed.
 #[derive(Debug)]
 pub struct Tracer<R, A> {
-    geometry: Geometry,
-    facets: Vec<FacetData>,
+    geometry: Geometry<FacetRadiometry>,
     materials: Vec<MaterialData>,
     terrain: Terrain,
     terrain_leaving: f64,
@@ -367,7 +375,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                     material: f.material.0,
                 }));
             }
-            facets.push(FacetData {
+            facets.push(FacetRadiometry {
                 material: slot,
                 temperature_k: f.temperature_k,
                 blackbody: radiometry.radiance(f.temperature_k),
@@ -379,8 +387,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         let terrain_leaving = terrain.emissivity * radiometry.radiance(terrain.temperature_k)
             + (1.0 - terrain.emissivity) * atmosphere.sky_hemispheric(0.0);
         Ok(Self {
-            geometry: Geometry::new(&triangles),
-            facets,
+            geometry: Geometry::with_data(&triangles, &facets),
             materials: mats,
             terrain,
             terrain_leaving,
@@ -392,7 +399,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
 
     /// The geometry (BVH and re-centring).
     #[must_use]
-    pub fn geometry(&self) -> &Geometry {
+    pub fn geometry(&self) -> &Geometry<FacetRadiometry> {
         &self.geometry
     }
 
@@ -469,18 +476,33 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         let n = w as usize * h as usize;
         let fc = self.frame_consts(camera);
         // Rows write straight into the frame: no per-row vectors to gather and copy.
+        let row_len = w.max(1) as usize;
         let mut radiance = vec![0.0; n];
-        let mut truth = vec![Sample::miss(Event::Sky); n];
-        radiance
-            .par_chunks_mut(w.max(1) as usize)
-            .zip(truth.par_chunks_mut(w.max(1) as usize))
-            .enumerate()
-            .for_each(|(row, (rad, tru))| {
-                for (col, (l_out, s_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                    *l_out = self.pixel(&fc, options, col as u32, row as u32, s_out);
-                }
-                progress(1);
-            });
+        let mut truth = Vec::new();
+        if options.truth {
+            truth = vec![Sample::miss(Event::Sky); n];
+            radiance
+                .par_chunks_mut(row_len)
+                .zip(truth.par_chunks_mut(row_len))
+                .enumerate()
+                .for_each(|(row, (rad, tru))| {
+                    for (col, (l_out, s_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
+                        *l_out = self.pixel(&fc, options, col as u32, row as u32, s_out);
+                    }
+                    progress(1);
+                });
+        } else {
+            radiance
+                .par_chunks_mut(row_len)
+                .enumerate()
+                .for_each(|(row, rad)| {
+                    let mut scratch = Sample::miss(Event::Sky);
+                    for (col, l_out) in rad.iter_mut().enumerate() {
+                        *l_out = self.pixel(&fc, options, col as u32, row as u32, &mut scratch);
+                    }
+                    progress(1);
+                });
+        }
         Ok(Frame {
             width: w,
             height: h,
@@ -623,8 +645,15 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
 
     /// Surface-leaving radiance of a hit (events 2–4) with every term, `depth` specular
     /// bounces already spent.
-    fn surface(&self, hit: &Hit, dir: V3, depth: u32, ctx: &mut Ctx<'_>, s: &mut Sample) {
-        let fd = self.facets[hit.facet as usize];
+    fn surface(
+        &self,
+        hit: &Hit<FacetRadiometry>,
+        dir: V3,
+        depth: u32,
+        ctx: &mut Ctx<'_>,
+        s: &mut Sample,
+    ) {
+        let fd = hit.data;
         let m = &self.materials[usize::from(fd.material)];
         let incidence_deg = hit.cos_incidence.acos().to_degrees();
         let eps = m.emissivity.at(incidence_deg);
@@ -696,7 +725,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     /// reach the sky). A blocked ray brings the surface-leaving radiance of the facet it
     /// hits, `ε₂·L_T2 + r₂·L_d` (no further rays); an unblocked one the sky at its zenith
     /// angle, or the terrain below the horizon.
-    fn hemisphere(&self, hit: &Hit, alt: f64, ctx: &mut Ctx<'_>) -> (f64, f64) {
+    fn hemisphere(&self, hit: &Hit<FacetRadiometry>, alt: f64, ctx: &mut Ctx<'_>) -> (f64, f64) {
         let n = ctx.options.sky_view_rays;
         let m = (f64::from(n).sqrt()) as u32;
         let (t, b) = basis(hit.normal);
@@ -732,7 +761,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 Some(hit.facet),
             ) {
                 Some(h2) => {
-                    let fd = self.facets[h2.facet as usize];
+                    let fd = h2.data;
                     let m2 = &self.materials[usize::from(fd.material)];
                     let e2 = m2.emissivity.at(h2.cos_incidence.acos().to_degrees());
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);

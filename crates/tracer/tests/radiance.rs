@@ -434,6 +434,32 @@ fn supersampling_averages_a_pixel_split_by_an_edge() {
     assert!(close(f.radiance_w_m2_sr[2], ground, 1e-12));
 }
 
+#[test]
+fn the_radiance_does_not_depend_on_keeping_the_truth_terms() {
+    // Dropping the per-pixel terms must not change a single bit of the image, with every
+    // random choice (jitter, hemisphere rays) in play.
+    let tracer = hot_plate_tracer();
+    let cam = nadir([-3.0, 0.37, 30.0], [24, 16], 40.0);
+    let with = TraceOptions {
+        supersampling: 2,
+        sky_view_rays: 16,
+        seed: 5,
+        ..TraceOptions::default()
+    };
+    let without = TraceOptions {
+        truth: false,
+        ..with
+    };
+    let a = tracer.render(&cam, &with, &|_| {}).unwrap();
+    let b = tracer.render(&cam, &without, &|_| {}).unwrap();
+    assert_eq!(a.truth.len(), 24 * 16);
+    assert!(b.truth.is_empty());
+    let bits = |f: &irsig_tracer::Frame| -> Vec<u64> {
+        f.radiance_w_m2_sr.iter().map(|x| x.to_bits()).collect()
+    };
+    assert_eq!(bits(&a), bits(&b));
+}
+
 fn render_all(
     tracer: &Tracer<TotalRadiance, Vacuum>,
     cam: &Camera,

@@ -417,6 +417,7 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
         sky_view_rays: cli.sky_view_rays,
         supersampling: cli.supersample,
         seed: cli.seed,
+        truth: true,
     };
     let tracer = Tracer::new(scene, materials, radiometry, atmosphere)
         .map_err(|e| miette!("{e}"))
@@ -478,13 +479,18 @@ fn trace_all<R: Radiometry, A: Atmosphere>(
     let total_rows: u64 = cameras.iter().map(|c| u64::from(c.pixels[1])).sum();
     let bar = irsig_cli::progress_bar(total_rows, "tracing");
     for (i, cam) in cameras.iter().enumerate() {
-        let frame = tracer
-            .render(cam, &options, &|n| bar.inc(n))
-            .map_err(|e| miette!("{e}"))?;
         let out = match job.outputs {
             Some(all) => all.get(i).cloned().unwrap_or_default(),
             None => cli.outputs(i, cameras.len(), map_fits),
         };
+        // The per-pixel terms are kept only when an output of this frame reads them.
+        let options = TraceOptions {
+            truth: out.truth_exr.is_some() || out.map_png.is_some(),
+            ..options
+        };
+        let frame = tracer
+            .render(cam, &options, &|n| bar.inc(n))
+            .map_err(|e| miette!("{e}"))?;
         if let Some(path) = out.radiance_exr {
             files.push((
                 path,

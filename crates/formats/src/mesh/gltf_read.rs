@@ -105,7 +105,7 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             ),
         ));
     }
-    let doc = gltf::Gltf::from_slice(bytes).map_err(|e| match e {
+    let doc = parse_and_validate(bytes).map_err(|e| match e {
         gltf::Error::Deserialize(j) => {
             let msg = format!("malformed glTF JSON: {j}");
             match std::str::from_utf8(bytes) {
@@ -522,6 +522,46 @@ impl Walk<'_> {
             }));
         Ok(())
     }
+}
+
+/// `gltf::Gltf::from_slice`, except that a primitive's `POSITION` accessor index is checked
+/// before gltf's own validation runs: gltf-json 1.4.1 indexes the accessor list with it
+/// unchecked (mesh.rs `primitive_validate_hook`) and panics when it is out of range (found
+/// by the `gltf` fuzz target). The index is reported the way gltf reports every other bad
+/// index.
+fn parse_and_validate(bytes: &[u8]) -> Result<gltf::Gltf, gltf::Error> {
+    use gltf::json::{Path, mesh::Semantic, validation::Checked, validation::Error};
+    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice_without_validation(bytes)?;
+    let json = document.into_json();
+    let accessors = json.accessors.len();
+    let mut bad = Vec::new();
+    for (i, mesh) in json.meshes.iter().enumerate() {
+        for (j, primitive) in mesh.primitives.iter().enumerate() {
+            if let Some(index) = primitive
+                .attributes
+                .get(&Checked::Valid(Semantic::Positions))
+                && index.value() >= accessors
+            {
+                bad.push((
+                    Path::new()
+                        .field("meshes")
+                        .index(i)
+                        .field("primitives")
+                        .index(j)
+                        .field("attributes")
+                        .key("POSITION"),
+                    Error::IndexOutOfBounds,
+                ));
+            }
+        }
+    }
+    if !bad.is_empty() {
+        return Err(gltf::Error::Validation(bad));
+    }
+    Ok(gltf::Gltf {
+        document: gltf::Document::from_json(json)?,
+        blob,
+    })
 }
 
 #[cfg(test)]
