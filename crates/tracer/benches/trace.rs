@@ -8,19 +8,12 @@
 use std::sync::OnceLock;
 
 use divan::counter::ItemsCount;
-use glam::Vec3A;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
-    EdgeExperiment, Mesh, PitExperiment, ground_quad, triangles, uv_sphere,
+    BareObvhs, EdgeExperiment, Mesh, PitExperiment, ground_quad, triangles, uv_sphere,
 };
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
-use obvhs::{
-    BvhBuildParams,
-    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
-    ray::{Ray, RayHit},
-    triangle::Triangle,
-};
 
 fn main() {
     divan::main();
@@ -89,8 +82,7 @@ fn camera() -> Camera {
 struct Prepared {
     diffuse: Tracer<TotalRadiance, Vacuum>,
     specular: Tracer<TotalRadiance, Vacuum>,
-    bare: CwBvh,
-    bare_tris: Vec<Triangle>,
+    bare: BareObvhs,
 }
 
 fn prepared(i: usize) -> &'static Prepared {
@@ -103,40 +95,11 @@ fn prepared(i: usize) -> &'static Prepared {
         };
         let diffuse = Tracer::new(&sc, &materials(0.0), TotalRadiance, sky).unwrap();
         let specular = Tracer::new(&sc, &materials(1.0), TotalRadiance, sky).unwrap();
-        // Bare obvhs on the same triangles, re-centred exactly as the tracer does.
-        let c = diffuse.geometry().centre_m();
-        let to32 = |p: [f64; 3]| {
-            Vec3A::new(
-                (p[0] - c[0]) as f32,
-                (p[1] - c[1]) as f32,
-                (p[2] - c[2]) as f32,
-            )
-        };
-        let bare_tris: Vec<Triangle> = triangles(&m)
-            .iter()
-            .map(|t| Triangle {
-                v0: to32(t[0]),
-                v1: to32(t[1]),
-                v2: to32(t[2]),
-            })
-            .collect();
-        let bare = build_cwbvh_from_tris(
-            &bare_tris,
-            BvhBuildParams::medium_build(),
-            &mut std::time::Duration::default(),
-        );
-        // In BVH order, so a candidate costs one memory access (as in the tracer), not a
-        // `primitive_indices` lookup and then the triangle.
-        let bare_tris = bare
-            .primitive_indices
-            .iter()
-            .map(|&i| bare_tris[i as usize])
-            .collect();
+        let bare = BareObvhs::new(&m, diffuse.geometry().centre_m());
         Prepared {
             diffuse,
             specular,
             bare,
-            bare_tris,
         }
     })
 }
@@ -196,29 +159,10 @@ fn shaded_sky_view_16_rays(bencher: divan::Bencher, i: usize) {
 fn bare_obvhs_primary(bencher: divan::Bencher, i: usize) {
     let p = prepared(i);
     let cam = camera();
-    let origin = p.diffuse.geometry().to_local(cam.position_m);
-    let o = Vec3A::new(origin[0] as f32, origin[1] as f32, origin[2] as f32);
-    let dirs: Vec<Vec3A> = (0..IMAGE[1])
-        .flat_map(|r| (0..IMAGE[0]).map(move |c| (c, r)))
-        .map(|(c, r)| {
-            let d = cam.pixel_direction(c, r);
-            Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32)
-        })
-        .collect();
-    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
-        let mut hits = 0u32;
-        for d in &dirs {
-            let mut hit = RayHit::none();
-            if p.bare
-                .ray_traverse(Ray::new_inf(o, *d), &mut hit, |ray, id| {
-                    p.bare_tris[id].intersect(ray)
-                })
-            {
-                hits += 1;
-            }
-        }
-        divan::black_box(hits)
-    });
+    let rays = p.bare.primary_rays(&cam);
+    bencher
+        .counter(ItemsCount::new(PIXELS))
+        .bench(|| divan::black_box(p.bare.pass(&rays)));
 }
 
 /// Geometry only (re-centring, BVH build, BVH-order copies) from world triangles.

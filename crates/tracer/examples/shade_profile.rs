@@ -16,16 +16,9 @@
 
 use std::time::Instant;
 
-use glam::Vec3A;
 use irsig_model::View;
-use irsig_tracer::testing::{Mesh, grey_materials, ground_quad, raw_scene, uv_sphere};
+use irsig_tracer::testing::{BareObvhs, Mesh, grey_materials, ground_quad, raw_scene, uv_sphere};
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
-use obvhs::{
-    BvhBuildParams,
-    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
-    ray::{Ray, RayHit},
-    triangle::Triangle,
-};
 
 const PIXELS: f64 = 128.0 * 128.0;
 
@@ -69,10 +62,14 @@ fn main() {
         frame.radiance_w_m2_sr.iter().sum::<f64>()
     };
     if mode == "bare" || mode == "compare" {
-        let bare = Bare::new(&tracer, &camera, &sphere_and_ground(&sphere, &ground));
+        let bare = BareObvhs::new(
+            &sphere_and_ground(&sphere, &ground),
+            tracer.geometry().centre_m(),
+        );
+        let rays = bare.primary_rays(&camera);
         if mode == "bare" {
             let start = Instant::now();
-            let hits: u64 = (0..renders).map(|_| bare.pass()).sum();
+            let hits: u64 = (0..renders).map(|_| bare.pass(&rays)).sum();
             let per = start.elapsed().as_secs_f64() / f64::from(renders) / PIXELS;
             println!("{:.1} ns per bare ray ({hits} hits)", per * 1e9);
             return;
@@ -93,7 +90,7 @@ fn main() {
         };
         for _ in 0..renders {
             times[0].push(time_warm(&|| {
-                std::hint::black_box(bare.pass());
+                std::hint::black_box(bare.pass(&rays));
             }));
             times[1].push(time_warm(&|| {
                 std::hint::black_box(shaded(&options));
@@ -138,77 +135,4 @@ fn sphere_and_ground(sphere: &Mesh, ground: &Mesh) -> Mesh {
     m.0.extend(&ground.0);
     m.1.extend(ground.1.iter().map(|f| f.map(|v| v + base)));
     m
-}
-
-/// The same primary rays through bare obvhs: its own triangle test on triangles stored in BVH
-/// order, nothing else.
-struct Bare {
-    bvh: CwBvh,
-    tris: Vec<Triangle>,
-    origin: Vec3A,
-    dirs: Vec<Vec3A>,
-}
-
-impl Bare {
-    fn new(tracer: &Tracer<TotalRadiance, Vacuum>, camera: &Camera, mesh: &Mesh) -> Self {
-        // Re-centred exactly as the tracer does.
-        let c = tracer.geometry().centre_m();
-        let v = |p: [f64; 3]| {
-            Vec3A::new(
-                (p[0] - c[0]) as f32,
-                (p[1] - c[1]) as f32,
-                (p[2] - c[2]) as f32,
-            )
-        };
-        let tris: Vec<Triangle> = irsig_tracer::testing::triangles(mesh)
-            .iter()
-            .map(|t| Triangle {
-                v0: v(t[0]),
-                v1: v(t[1]),
-                v2: v(t[2]),
-            })
-            .collect();
-        let bvh = build_cwbvh_from_tris(
-            &tris,
-            BvhBuildParams::medium_build(),
-            &mut std::time::Duration::default(),
-        );
-        // In BVH order, so a candidate costs one memory access (as in the tracer), not a
-        // `primitive_indices` lookup and then the triangle: the stronger baseline.
-        let tris = bvh
-            .primitive_indices
-            .iter()
-            .map(|&i| tris[i as usize])
-            .collect();
-        let dirs = (0..128)
-            .flat_map(|r| (0..128).map(move |c| (c, r)))
-            .map(|(c, r)| {
-                let d = camera.pixel_direction(c, r);
-                Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32)
-            })
-            .collect();
-        Self {
-            bvh,
-            tris,
-            origin: v(camera.position_m),
-            dirs,
-        }
-    }
-
-    /// One pass over every pixel's ray; the number of hits.
-    fn pass(&self) -> u64 {
-        let mut hits = 0;
-        for d in &self.dirs {
-            let mut hit = RayHit::none();
-            if self
-                .bvh
-                .ray_traverse(Ray::new_inf(self.origin, *d), &mut hit, |ray, id| {
-                    self.tris[id].intersect(ray)
-                })
-            {
-                hits += 1;
-            }
-        }
-        hits
-    }
 }

@@ -426,3 +426,88 @@ impl Default for EdgeExperiment {
         Self::new()
     }
 }
+
+/// The baseline of the tracer's speed: bare obvhs on the same triangles and rays, with its
+/// own (not watertight) triangle test and nothing else. The triangles are re-centred
+/// exactly as [`crate::geometry::Geometry`] does and stored in BVH order, so a candidate
+/// costs one memory access, as in the tracer (a `primitive_indices` lookup first would be a
+/// second random access the tracer does not make, and would flatter the ratio).
+#[derive(Debug)]
+pub struct BareObvhs {
+    bvh: obvhs::cwbvh::CwBvh,
+    tris: Vec<obvhs::triangle::Triangle>,
+    centre_m: V3,
+}
+
+impl BareObvhs {
+    /// Builds the CWBVH (medium build, as the tracer) over `mesh`, re-centred on `centre_m`
+    /// (the tracer's [`crate::geometry::Geometry::centre_m`]).
+    #[must_use]
+    pub fn new(mesh: &Mesh, centre_m: V3) -> Self {
+        let tris: Vec<obvhs::triangle::Triangle> = triangles(mesh)
+            .iter()
+            .map(|t| obvhs::triangle::Triangle {
+                v0: f32_local(t[0], centre_m),
+                v1: f32_local(t[1], centre_m),
+                v2: f32_local(t[2], centre_m),
+            })
+            .collect();
+        let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
+            &tris,
+            obvhs::BvhBuildParams::medium_build(),
+            &mut std::time::Duration::default(),
+        );
+        let tris = bvh
+            .primitive_indices
+            .iter()
+            .map(|&i| tris[i as usize])
+            .collect();
+        Self {
+            bvh,
+            tris,
+            centre_m,
+        }
+    }
+
+    /// The f32 rays of every pixel of `camera` (from its position, through pixel centres),
+    /// made once so that timing a pass measures traversal only.
+    #[must_use]
+    pub fn primary_rays(&self, camera: &Camera) -> Vec<obvhs::ray::Ray> {
+        let origin = f32_local(camera.position_m, self.centre_m);
+        let [w, h] = camera.pixels;
+        (0..h)
+            .flat_map(|r| (0..w).map(move |c| (c, r)))
+            .map(|(c, r)| {
+                let d = camera.pixel_direction(c, r);
+                obvhs::ray::Ray::new_inf(
+                    origin,
+                    glam::Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32),
+                )
+            })
+            .collect()
+    }
+
+    /// Closest hit of every ray; the number of rays that hit.
+    #[must_use]
+    pub fn pass(&self, rays: &[obvhs::ray::Ray]) -> u64 {
+        let mut hits = 0;
+        for ray in rays {
+            let mut hit = obvhs::ray::RayHit::none();
+            if self
+                .bvh
+                .ray_traverse(*ray, &mut hit, |r, id| self.tris[id].intersect(r))
+            {
+                hits += 1;
+            }
+        }
+        hits
+    }
+}
+
+fn f32_local(p: V3, centre_m: V3) -> glam::Vec3A {
+    glam::Vec3A::new(
+        (p[0] - centre_m[0]) as f32,
+        (p[1] - centre_m[1]) as f32,
+        (p[2] - centre_m[2]) as f32,
+    )
+}
