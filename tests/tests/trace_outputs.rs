@@ -96,6 +96,47 @@ fn per_output_flags_write_only_the_files_named_with_the_prefix_forms_bytes() {
 }
 
 #[test]
+fn one_output_goes_to_standard_output_with_the_file_forms_bytes() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    let file = dir.path().join("r.exr");
+    trace(&raw, &view)
+        .arg("--radiance-exr")
+        .arg(&file)
+        .assert()
+        .success();
+    let piped = trace(&raw, &view)
+        .args(["--radiance-exr", "-"])
+        .arg("--lut")
+        .arg(dir.path().join("l.txt"))
+        .output()
+        .unwrap();
+    assert!(piped.status.success());
+    assert_eq!(piped.stdout, std::fs::read(&file).unwrap());
+    assert!(dir.path().join("l.txt").exists());
+    // And the sensor stage reads it from its standard input.
+    bin("irsig-sensor")
+        .args(["-", "-o"])
+        .arg(dir.path().join("s.exr"))
+        .write_stdin(piped.stdout)
+        .assert()
+        .success();
+    assert!(dir.path().join("s.exr").exists());
+}
+
+#[test]
+fn two_outputs_to_standard_output_are_a_usage_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    trace(&raw, &view)
+        .args(["--radiance-exr", "-", "--dc-png", "-"])
+        .assert()
+        .code(2)
+        .stdout(predicate::str::is_empty())
+        .stderr(predicate::str::contains("only one output"));
+}
+
+#[test]
 fn prefix_and_per_output_flags_together_are_a_usage_error() {
     let dir = tempfile::tempdir().unwrap();
     let (raw, view) = inputs(dir.path());

@@ -149,13 +149,26 @@ pub fn write_file_atomic(
 
 /// Writes several outputs so that either all of them appear or none does: every file is
 /// first written to a temporary beside its destination, and only when all are complete are
-/// they renamed into place.
+/// they renamed into place. One output may be `-`, standard output: it is written last,
+/// after every file is in place.
 ///
 /// # Errors
-/// Any I/O error; no destination is touched unless every temporary was written.
+/// Any I/O error, or more than one output named `-`; no destination is touched unless every
+/// temporary was written.
 pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
+    let is_stdout = |p: &PathBuf| p.as_os_str() == "-";
+    if files.iter().filter(|(p, _)| is_stdout(p)).count() > 1 {
+        return Err(usage_error(
+            "only one output can go to standard output (`-`)",
+        ));
+    }
     let mut staged = Vec::with_capacity(files.len());
+    let mut to_stdout = None;
     for (path, bytes) in files {
+        if is_stdout(path) {
+            to_stdout = Some(bytes);
+            continue;
+        }
         let ctx = || format!("cannot write output file `{}`", path.display());
         let mut tmp = staged_file(path).into_diagnostic().wrap_err_with(ctx)?;
         tmp.as_file_mut()
@@ -171,7 +184,10 @@ pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
             .into_diagnostic()
             .wrap_err_with(|| format!("cannot write output file `{}`", path.display()))?;
     }
-    Ok(())
+    match to_stdout {
+        Some(bytes) => write_stdout(|w| w.write_all(bytes)),
+        None => Ok(()),
+    }
 }
 
 /// A temporary file beside `path`, to be renamed onto it when complete.

@@ -118,7 +118,8 @@ pub struct Cli {
     pub out: Option<PathBuf>,
     /// Write the radiance image (f32 EXR, W m^-2 sr^-1) to FILE. The per-output flags write
     /// only the outputs named, for one view, so that a pipeline or a Makefile sees every
-    /// file a stage writes.
+    /// file a stage writes. Any one of them may be `-`, standard output (e.g. piped into
+    /// `irsig-sensor -`).
     #[arg(long, value_name = "FILE", conflicts_with = "out")]
     pub radiance_exr: Option<PathBuf>,
     /// Write the truth layers (multi-layer f32 EXR) to FILE.
@@ -271,6 +272,21 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         return Err(irsig_cli::usage_error(
             "give -o PREFIX for all the output files, per-output flags such as \
              --radiance-exr FILE, or --probe COLUMN,ROW",
+        ));
+    }
+    let to_stdout = [
+        &cli.radiance_exr,
+        &cli.truth_exr,
+        &cli.map_png,
+        &cli.dc_png,
+        &cli.lut,
+    ]
+    .iter()
+    .filter(|p| p.as_deref().is_some_and(|p| p.as_os_str() == "-"))
+    .count();
+    if to_stdout > 1 {
+        return Err(irsig_cli::usage_error(
+            "only one output can go to standard output (`-`)",
         ));
     }
     if cli.dc == "none" && (cli.dc_png.is_some() || cli.lut.is_some()) {
