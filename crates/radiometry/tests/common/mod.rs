@@ -1,0 +1,3 @@
+//! Helpers shared by the radiometry integration tests.
+
+pub mod water;
