@@ -13,10 +13,10 @@ use irsig_raster::read_exr;
 use miette::{IntoDiagnostic, miette};
 
 use crate::RADIANCE_LAYER;
+use crate::preview::{GLYPH, for_each_text_pixel};
 
 /// Black gap around each cell, pixels.
 pub const GAP: usize = 4;
-const GLYPH: usize = 8;
 
 /// One input's pixels before they are put on the sheet.
 enum Tile {
@@ -149,21 +149,12 @@ fn label(
             sheet[(y0 + y) * sw + x0 + x] = 0;
         }
     }
-    for (n, ch) in text.chars().enumerate() {
-        let glyph = font8x8::legacy::BASIC_LEGACY
-            .get(ch as usize)
-            .copied()
-            .unwrap_or([0; 8]);
-        for (gy, bits) in glyph.iter().enumerate() {
-            for gx in 0..GLYPH {
-                let (x, y) = (1 + n * GLYPH + gx, 1 + gy);
-                // Bit 0 is the leftmost pixel of the row.
-                if bits >> gx & 1 == 1 && x < bw && y < bh {
-                    sheet[(y0 + y) * sw + x0 + x] = 255;
-                }
-            }
+    for_each_text_pixel(text, |gx, gy| {
+        let (x, y) = (1 + gx, 1 + gy);
+        if x < bw && y < bh {
+            sheet[(y0 + y) * sw + x0 + x] = 255;
         }
-    }
+    });
 }
 
 #[cfg(test)]

@@ -66,7 +66,7 @@ pub fn grey(t: &[f32], w: usize, h: usize, bits: PreviewBits) -> miette::Result<
 const GAP: usize = 6;
 const BAR: usize = 16;
 const TICK: usize = 4;
-const GLYPH: usize = 8;
+pub(crate) const GLYPH: usize = 8;
 const LABEL_CHARS: usize = 7;
 const MIN_HEIGHT: usize = 64;
 
@@ -120,22 +120,29 @@ pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>>
         let label = format!("{:.1}K", r.0 + u * (r.1 - r.0));
         let lx = x0 + BAR + TICK + 2;
         let ly = y.saturating_sub(GLYPH / 2);
-        for (n, ch) in label.chars().take(LABEL_CHARS).enumerate() {
-            let glyph = font8x8::legacy::BASIC_LEGACY
-                .get(ch as usize)
-                .copied()
-                .unwrap_or([0; 8]);
-            for (gy, bits) in glyph.iter().enumerate() {
-                for gx in 0..GLYPH {
-                    // Bit 0 is the leftmost pixel of the row.
-                    if bits >> gx & 1 == 1 {
-                        put(lx + n * GLYPH + gx, ly + gy, white);
-                    }
-                }
-            }
-        }
+        let label: String = label.chars().take(LABEL_CHARS).collect();
+        for_each_text_pixel(&label, |x, y| put(lx + x, ly + y, white));
     }
     let mut out = Vec::new();
     write_png_rgb8(&mut out, cw, ch, &rgb).into_diagnostic()?;
     Ok(out)
+}
+
+/// Calls `lit(x, y)` for every lit pixel of `text` in the 8 × 8 legacy font, `(0, 0)` being
+/// the top-left of the first glyph; characters outside it are blank.
+pub(crate) fn for_each_text_pixel(text: &str, mut lit: impl FnMut(usize, usize)) {
+    for (n, ch) in text.chars().enumerate() {
+        let glyph = font8x8::legacy::BASIC_LEGACY
+            .get(ch as usize)
+            .copied()
+            .unwrap_or([0; 8]);
+        for (gy, bits) in glyph.iter().enumerate() {
+            for gx in 0..GLYPH {
+                // Bit 0 is the leftmost pixel of the row.
+                if bits >> gx & 1 == 1 {
+                    lit(n * GLYPH + gx, gy);
+                }
+            }
+        }
+    }
 }
