@@ -106,10 +106,17 @@ pub fn critical_nadir_angle_deg(altitude_m: f64) -> f64 {
 /// spherical Earth's surface, or `None` when the ray misses it.
 #[must_use]
 pub fn range_to_ground_m(altitude_m: f64, nadir_deg: f64) -> Option<f64> {
+    range_to_ground_from_cos_m(altitude_m, nadir_deg.to_radians().cos())
+}
+
+/// [`range_to_ground_m`] for a ray whose nadir angle has cosine `cos_nadir` (the negated
+/// z of a unit direction: no angle needed).
+#[must_use]
+pub fn range_to_ground_from_cos_m(altitude_m: f64, cos_nadir: f64) -> Option<f64> {
     let h = altitude_m.max(0.0);
     let r0 = EARTH_RADIUS_M + h;
     // |o + t d|² = R² with o = (0, r0), d·o/|o| = −cos(nadir).
-    let c = nadir_deg.to_radians().cos();
+    let c = cos_nadir;
     let b = -r0 * c;
     let disc = b * b - (r0 * r0 - EARTH_RADIUS_M * EARTH_RADIUS_M);
     if disc < 0.0 || c <= 0.0 {

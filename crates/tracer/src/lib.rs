@@ -70,5 +70,5 @@ pub use camera::{
 pub use env::{Atmosphere, PathTerms, Radiometry, TotalRadiance, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
 pub use path_table::{PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode};
-pub use tracer::{Event, FacetRadiometry, Frame, Sample, TraceOptions, Tracer};
+pub use tracer::{Event, FacetRadiometry, Frame, Sample, TraceOptions, Tracer, TruthPixel};
 pub use vec::V3;

@@ -294,7 +294,7 @@ impl PitExperiment {
             .truth
             .iter()
             .zip(&frame.radiance_w_m2_sr)
-            .map(|(s, &l)| (s.sky_view_factor, l))
+            .map(|(s, &l)| (f64::from(s.sky_view_factor), l))
             .collect()
     }
 }

@@ -9,7 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
-use crate::env::{Atmosphere, Radiometry, range_to_ground_m};
+use crate::env::{Atmosphere, Radiometry, range_to_ground_from_cos_m};
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::{Geometry, Hit};
 use crate::path_table::{PathTable, PathTermsMode};
@@ -62,9 +62,10 @@ pub struct TraceOptions {
     /// draws from its own stream derived from the seed and its index, so the image does not
     /// depend on the thread count.
     pub seed: u64,
-    /// Keep every term of each pixel's centre ray in [`Frame::truth`] (default). Off, the
-    /// frame holds the radiance only: a renderer that needs neither the truth layers nor
-    /// the interaction map saves writing ~170 bytes per pixel.
+    /// Keep the truth layers of each pixel's centre ray in [`Frame::truth`] (default). Off,
+    /// the frame holds the radiance only: a renderer that needs neither the truth layers
+    /// nor the interaction map saves writing them and computing the terms only they read
+    /// (the incidence angle, where a material's emissivity is flat).
     pub truth: bool,
 }
 
@@ -246,8 +247,57 @@ impl fmt::Display for Sample {
     }
 }
 
-/// One rendered frame: the (supersampled) radiance of every pixel and the terms of the ray
-/// through each pixel's centre. Row-major, row 0 at the top.
+/// The truth layers of one pixel: the terms of the ray through its centre that the truth
+/// outputs carry, rounded to f32 as the truth EXR stores them (36 bytes, where a whole
+/// [`Sample`] is 144: the frame's truth is written once per pixel, and at 1M triangles the
+/// bigger record cost ~40 ns per pixel in evicted BVH lines). [`Tracer::probe`] gives every
+/// term of a pixel in f64. Terms that do not apply are NaN, as in [`Sample`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TruthPixel {
+    /// What the ray met.
+    pub event: Event,
+    /// Material id of the facet hit (0: none).
+    pub primary_material: u16,
+    /// Material id of the facet the specular reflection ray hit (0: none).
+    pub secondary_material: u16,
+    /// Distance from the sensor to the hit (or to the terrain), metres.
+    pub range_m: f32,
+    /// Angle between the reversed ray and the facet normal, degrees.
+    pub incidence_deg: f32,
+    /// Kinetic temperature of what was hit (facet or terrain), K.
+    pub temperature_k: f32,
+    /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
+    pub emissivity: f32,
+    /// τ of the path from the hit to the sensor.
+    pub transmission: f32,
+    /// `L_u`, path radiance of the path to the sensor, W m⁻² sr⁻¹.
+    pub path_radiance_w_m2_sr: f32,
+    /// Sky-view (shape) factor F (1 when the model is off).
+    pub sky_view_factor: f32,
+}
+
+// The size the frame's memory traffic was measured at (the doc above).
+const _: () = assert!(std::mem::size_of::<TruthPixel>() == 36);
+
+impl From<&Sample> for TruthPixel {
+    fn from(s: &Sample) -> Self {
+        Self {
+            event: s.event,
+            primary_material: s.primary_material,
+            secondary_material: s.secondary_material,
+            range_m: s.range_m as f32,
+            incidence_deg: s.incidence_deg as f32,
+            temperature_k: s.temperature_k as f32,
+            emissivity: s.emissivity as f32,
+            transmission: s.transmission as f32,
+            path_radiance_w_m2_sr: s.path_radiance_w_m2_sr as f32,
+            sky_view_factor: s.sky_view_factor as f32,
+        }
+    }
+}
+
+/// One rendered frame: the (supersampled) radiance of every pixel and the truth layers of
+/// the ray through each pixel's centre. Row-major, row 0 at the top.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Frame {
     /// Columns.
@@ -256,8 +306,9 @@ pub struct Frame {
     pub height: u32,
     /// Radiance at the sensor per pixel, W m⁻² sr⁻¹ (mean of the sub-pixel rays).
     pub radiance_w_m2_sr: Vec<f64>,
-    /// The terms of the centre ray of each pixel; empty when [`TraceOptions::truth`] is off.
-    pub truth: Vec<Sample>,
+    /// The truth layers of each pixel's centre ray; empty when [`TraceOptions::truth`] is
+    /// off.
+    pub truth: Vec<TruthPixel>,
 }
 
 #[derive(Debug, Clone)]
@@ -286,6 +337,8 @@ pub struct Tracer<R, A> {
     geometry: Geometry<FacetRadiometry>,
     materials: Vec<MaterialData>,
     terrain: Terrain,
+    /// The terrain's L_T, W m⁻² sr⁻¹.
+    terrain_blackbody: f64,
     terrain_leaving: f64,
     radiometry: R,
     atmosphere: A,
@@ -296,12 +349,14 @@ pub struct Tracer<R, A> {
 struct Ctx<'a> {
     options: &'a TraceOptions,
     rng: Option<ChaCha8Rng>,
-    seed: u64,
+    /// The pixel's index in the image, from which its random stream is seeded.
+    pixel_index: u64,
 }
 
 impl Ctx<'_> {
+    /// The pixel's random stream, seeded on first use (most pixels never draw).
     fn rng(&mut self) -> &mut ChaCha8Rng {
-        let seed = self.seed;
+        let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
         self.rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
@@ -318,8 +373,9 @@ struct FrameConsts<'a> {
     origin: V3,
     /// The sensor's altitude, metres (clamped at the ground).
     sensor_alt: f64,
-    /// The Earth's limb seen from the sensor, degrees from nadir.
-    sensor_critical_nadir_deg: f64,
+    /// Cosine of the Earth's limb's angle from nadir seen from the sensor: rays with a
+    /// larger cosine of their nadir angle meet the ground.
+    cos_critical_nadir: f64,
     /// The primary hits' path terms, when [`PathTermsMode::Tabulated`].
     path_table: Option<PathTable>,
 }
@@ -384,12 +440,14 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
         }
         let terrain = scene.terrain;
-        let terrain_leaving = terrain.emissivity * radiometry.radiance(terrain.temperature_k)
+        let terrain_blackbody = radiometry.radiance(terrain.temperature_k);
+        let terrain_leaving = terrain.emissivity * terrain_blackbody
             + (1.0 - terrain.emissivity) * atmosphere.sky_hemispheric(0.0);
         Ok(Self {
             geometry: Geometry::with_data(&triangles, &facets),
             materials: mats,
             terrain,
+            terrain_blackbody,
             terrain_leaving,
             radiometry,
             atmosphere,
@@ -418,7 +476,11 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             vs: (0..h).map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
-            sensor_critical_nadir_deg: self.atmosphere.critical_nadir_angle_deg(sensor_alt),
+            cos_critical_nadir: self
+                .atmosphere
+                .critical_nadir_angle_deg(sensor_alt)
+                .to_radians()
+                .cos(),
             path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
                 let [lo, hi] = self.geometry.bounds_m();
                 let p = camera.position_m;
@@ -480,14 +542,17 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         let mut radiance = vec![0.0; n];
         let mut truth = Vec::new();
         if options.truth {
-            truth = vec![Sample::miss(Event::Sky); n];
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
             radiance
                 .par_chunks_mut(row_len)
                 .zip(truth.par_chunks_mut(row_len))
                 .enumerate()
                 .for_each(|(row, (rad, tru))| {
-                    for (col, (l_out, s_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                        *l_out = self.pixel(&fc, options, col as u32, row as u32, s_out);
+                    let mut centre = Sample::miss(Event::Sky);
+                    for (col, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
+                        *l_out =
+                            self.pixel::<true>(&fc, options, col as u32, row as u32, &mut centre);
+                        *t_out = TruthPixel::from(&centre);
                     }
                     progress(1);
                 });
@@ -498,7 +563,8 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 .for_each(|(row, rad)| {
                     let mut scratch = Sample::miss(Event::Sky);
                     for (col, l_out) in rad.iter_mut().enumerate() {
-                        *l_out = self.pixel(&fc, options, col as u32, row as u32, &mut scratch);
+                        *l_out =
+                            self.pixel::<false>(&fc, options, col as u32, row as u32, &mut scratch);
                     }
                     progress(1);
                 });
@@ -534,14 +600,15 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             }));
         }
         let mut s = Sample::miss(Event::Sky);
-        self.pixel(&self.frame_consts(camera), options, column, row, &mut s);
+        self.pixel::<true>(&self.frame_consts(camera), options, column, row, &mut s);
         Ok(s)
     }
 
-    /// Radiance of a pixel (mean over its sub-pixel rays); the centre ray's terms go to
-    /// `centre` (written in place: a sample is ~180 bytes, and moving it through every
-    /// call level showed as memory copies in the profile).
-    fn pixel(
+    /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
+    /// terms go to `centre` (written in place: a sample is ~180 bytes, and moving it
+    /// through every call level showed as memory copies in the profile); without, `centre`
+    /// is not touched.
+    fn pixel<const TRUTH: bool>(
         &self,
         fc: &FrameConsts<'_>,
         options: &TraceOptions,
@@ -550,21 +617,19 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         centre: &mut Sample,
     ) -> f64 {
         let camera = fc.camera;
-        let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
         let mut ctx = Ctx {
             options,
             rng: None,
-            seed: splitmix64(options.seed ^ splitmix64(index)),
+            pixel_index: u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
         };
         // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
         let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
-        self.shade(fc, dir, &mut ctx, centre);
+        let centre_radiance = self.shade::<TRUTH>(fc, dir, &mut ctx, centre);
         let n = options.supersampling;
         if n <= 1 {
-            return centre.radiance_w_m2_sr;
+            return centre_radiance;
         }
         let mut sum = 0.0;
-        let mut sub_sample = Sample::miss(Event::Sky);
         for j in 0..n {
             for i in 0..n {
                 let (jx, jy): (f64, f64) = {
@@ -573,62 +638,78 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 };
                 let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
                 let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                self.shade(fc, camera.direction_at(x, y), &mut ctx, &mut sub_sample);
-                sum += sub_sample.radiance_w_m2_sr;
+                // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
+                sum += self.shade::<false>(fc, camera.direction_at(x, y), &mut ctx, centre);
             }
         }
         sum / f64::from(n * n)
     }
 
-    /// The full radiance equation along one primary ray, every term into `s`.
-    fn shade(&self, fc: &FrameConsts<'_>, dir: V3, ctx: &mut Ctx<'_>, s: &mut Sample) {
-        let sensor_alt = fc.sensor_alt;
+    /// The full radiance equation along one primary ray: the radiance at the sensor. With
+    /// `TRUTH`, every term also goes to `s`; without, `s` is not touched, and a term only
+    /// the truth outputs read (e.g. the incidence angle, where the emissivity table is
+    /// flat) is not computed. Both give the same radiance, bit for bit.
+    fn shade<const TRUTH: bool>(
+        &self,
+        fc: &FrameConsts<'_>,
+        dir: V3,
+        ctx: &mut Ctx<'_>,
+        s: &mut Sample,
+    ) -> f64 {
         let Some(hit) = self
             .geometry
             .closest_hit(fc.origin, dir, 0.0, f64::INFINITY, None)
         else {
-            *s = self.miss(dir, sensor_alt, fc.sensor_critical_nadir_deg);
-            return;
+            return self.miss::<TRUTH>(fc, dir, s);
         };
-        self.surface(&hit, dir, 0, ctx, s);
         let hit_alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
+        let leaving = self.surface::<TRUTH>(&hit, dir, hit_alt, 0, ctx, s);
         let path = match &fc.path_table {
             Some(table) => table.path(hit_alt, hit.distance_m),
-            None => self.atmosphere.path(sensor_alt, hit_alt, hit.distance_m),
+            None => self.atmosphere.path(fc.sensor_alt, hit_alt, hit.distance_m),
         };
-        s.range_m = hit.distance_m;
-        s.transmission = path.transmission;
-        s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
-        s.radiance_w_m2_sr =
-            path.transmission * s.surface_leaving_w_m2_sr + path.path_radiance_w_m2_sr;
-    }
-
-    /// Event 1: the ray leaves the scene from the sensor.
-    fn miss(&self, dir: V3, sensor_alt: f64, critical_nadir_deg: f64) -> Sample {
-        let alt = sensor_alt.max(0.0);
-        let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
-        if nadir < critical_nadir_deg {
-            let range = range_to_ground_m(alt, nadir).unwrap_or(0.0);
-            let path = self.atmosphere.path(alt, 0.0, range);
-            let mut s = Sample::miss(Event::Terrain);
-            s.range_m = range;
-            s.temperature_k = self.terrain.temperature_k;
-            s.emissivity = self.terrain.emissivity;
-            s.reflectance = 1.0 - self.terrain.emissivity;
-            s.blackbody_w_m2_sr = self.radiometry.radiance(self.terrain.temperature_k);
-            s.surface_leaving_w_m2_sr = self.terrain_leaving;
+        let radiance = path.transmission * leaving + path.path_radiance_w_m2_sr;
+        if TRUTH {
+            s.range_m = hit.distance_m;
             s.transmission = path.transmission;
             s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
-            s.radiance_w_m2_sr =
-                path.transmission * self.terrain_leaving + path.path_radiance_w_m2_sr;
-            s
+            s.radiance_w_m2_sr = radiance;
+        }
+        radiance
+    }
+
+    /// Event 1: the ray leaves the scene from the sensor. The ground test compares
+    /// cosines, so a miss costs no arc cosine unless it sees the sky.
+    fn miss<const TRUTH: bool>(&self, fc: &FrameConsts<'_>, dir: V3, s: &mut Sample) -> f64 {
+        let alt = fc.sensor_alt;
+        let cos_nadir = (-dir[2]).clamp(-1.0, 1.0);
+        if cos_nadir > fc.cos_critical_nadir {
+            let range = range_to_ground_from_cos_m(alt, cos_nadir).unwrap_or(0.0);
+            let path = self.atmosphere.path(alt, 0.0, range);
+            let radiance = path.transmission * self.terrain_leaving + path.path_radiance_w_m2_sr;
+            if TRUTH {
+                *s = Sample::miss(Event::Terrain);
+                s.range_m = range;
+                s.temperature_k = self.terrain.temperature_k;
+                s.emissivity = self.terrain.emissivity;
+                s.reflectance = 1.0 - self.terrain.emissivity;
+                s.blackbody_w_m2_sr = self.terrain_blackbody;
+                s.surface_leaving_w_m2_sr = self.terrain_leaving;
+                s.transmission = path.transmission;
+                s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
+                s.radiance_w_m2_sr = radiance;
+            }
+            radiance
         } else {
-            let mut s = Sample::miss(Event::Sky);
-            s.transmission = 0.0;
-            let l = self.atmosphere.sky_radiance(alt, 180.0 - nadir);
-            s.path_radiance_w_m2_sr = l;
-            s.radiance_w_m2_sr = l;
-            s
+            let zenith_deg = dir[2].clamp(-1.0, 1.0).acos().to_degrees();
+            let radiance = self.atmosphere.sky_radiance(alt, zenith_deg);
+            if TRUTH {
+                *s = Sample::miss(Event::Sky);
+                s.transmission = 0.0;
+                s.path_radiance_w_m2_sr = radiance;
+                s.radiance_w_m2_sr = radiance;
+            }
+            radiance
         }
     }
 
@@ -643,41 +724,50 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         }
     }
 
-    /// Surface-leaving radiance of a hit (events 2–4) with every term, `depth` specular
-    /// bounces already spent.
-    fn surface(
+    /// Surface-leaving radiance of a hit at altitude `alt` (events 2–4), `depth` specular
+    /// bounces already spent; with `TRUTH`, every term into `s`.
+    fn surface<const TRUTH: bool>(
         &self,
         hit: &Hit<FacetRadiometry>,
         dir: V3,
+        alt: f64,
         depth: u32,
         ctx: &mut Ctx<'_>,
         s: &mut Sample,
-    ) {
+    ) -> f64 {
         let fd = hit.data;
         let m = &self.materials[usize::from(fd.material)];
-        let incidence_deg = hit.cos_incidence.acos().to_degrees();
-        let eps = m.emissivity.at(incidence_deg);
+        let (eps, incidence_deg) = if TRUTH {
+            let angle = hit.cos_incidence.acos().to_degrees();
+            (m.emissivity.at(angle), angle)
+        } else {
+            (m.emissivity.at_cos(hit.cos_incidence), f64::NAN)
+        };
         let r = 1.0 - eps;
         let sfrac = m.specular_fraction;
-        let alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
         let sky_hemi = self.atmosphere.sky_hemispheric(alt);
-        *s = Sample::miss(Event::Diffuse);
-        s.primary_material = m.id;
-        s.facet = Some(hit.facet);
-        s.back_face = hit.back_face;
-        s.incidence_deg = incidence_deg;
-        s.temperature_k = fd.temperature_k;
-        s.emissivity = eps;
-        s.reflectance = r;
-        s.specular_fraction = sfrac;
-        s.blackbody_w_m2_sr = fd.blackbody;
-        s.sky_hemispheric_w_m2_sr = sky_hemi;
+        if TRUTH {
+            *s = Sample::miss(Event::Diffuse);
+            s.primary_material = m.id;
+            s.facet = Some(hit.facet);
+            s.back_face = hit.back_face;
+            s.incidence_deg = incidence_deg;
+            s.temperature_k = fd.temperature_k;
+            s.emissivity = eps;
+            s.reflectance = r;
+            s.specular_fraction = sfrac;
+            s.blackbody_w_m2_sr = fd.blackbody;
+            s.sky_hemispheric_w_m2_sr = sky_hemi;
+        }
         let mut spec = 0.0;
         if sfrac > 0.0 {
             // Mirror direction about the normal facing the ray.
             let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
-            s.reflected_zenith_deg = refl[2].clamp(-1.0, 1.0).acos().to_degrees();
-            spec = if depth < ctx.options.specular_bounces {
+            if TRUTH {
+                s.reflected_zenith_deg = refl[2].clamp(-1.0, 1.0).acos().to_degrees();
+            }
+            let event;
+            (spec, event) = if depth < ctx.options.specular_bounces {
                 let eps_m = self.geometry.surface_epsilon_m();
                 match self.geometry.closest_hit(
                     hit.point_local,
@@ -687,23 +777,25 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                     Some(hit.facet),
                 ) {
                     Some(h2) => {
-                        let mut second = Sample::miss(Event::Diffuse);
-                        self.surface(&h2, refl, depth + 1, ctx, &mut second);
-                        s.event = Event::SpecularHitsFacet;
-                        s.secondary_material = second.primary_material;
-                        second.surface_leaving_w_m2_sr
+                        if TRUTH {
+                            s.secondary_material = self.materials[usize::from(h2.data.material)].id;
+                        }
+                        let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
+                        // L_b: the second facet's surface-leaving radiance (its own terms
+                        // are not kept).
+                        let l_b = self.surface::<false>(&h2, refl, alt2, depth + 1, ctx, s);
+                        (l_b, Event::SpecularHitsFacet)
                     }
-                    None => {
-                        s.event = Event::SpecularEscapes;
-                        self.escaped(refl, alt)
-                    }
+                    None => (self.escaped(refl, alt), Event::SpecularEscapes),
                 }
             } else {
                 // No bounce left: the mirror reflects the hemispheric sky.
-                s.event = Event::SpecularEscapes;
-                sky_hemi
+                (sky_hemi, Event::SpecularEscapes)
             };
-            s.specular_incident_w_m2_sr = spec;
+            if TRUTH {
+                s.event = event;
+                s.specular_incident_w_m2_sr = spec;
+            }
         }
         let mut diffuse = 0.0;
         if sfrac < 1.0 {
@@ -713,11 +805,16 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 (sky_hemi, 1.0)
             };
             diffuse = l;
-            s.sky_view_factor = f;
-            s.diffuse_incident_w_m2_sr = l;
+            if TRUTH {
+                s.sky_view_factor = f;
+                s.diffuse_incident_w_m2_sr = l;
+            }
         }
-        s.surface_leaving_w_m2_sr =
-            eps * fd.blackbody + r * (sfrac * spec + (1.0 - sfrac) * diffuse);
+        let leaving = eps * fd.blackbody + r * (sfrac * spec + (1.0 - sfrac) * diffuse);
+        if TRUTH {
+            s.surface_leaving_w_m2_sr = leaving;
+        }
+        leaving
     }
 
     /// Diffuse incident radiance over the hemisphere above a hit by N cosine-weighted,
@@ -763,7 +860,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 Some(h2) => {
                     let fd = h2.data;
                     let m2 = &self.materials[usize::from(fd.material)];
-                    let e2 = m2.emissivity.at(h2.cos_incidence.acos().to_degrees());
+                    let e2 = m2.emissivity.at_cos(h2.cos_incidence);
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
                     sum += e2 * fd.blackbody + (1.0 - e2) * self.atmosphere.sky_hemispheric(alt2);
                 }

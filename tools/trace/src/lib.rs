@@ -628,21 +628,20 @@ fn truth_raster<R: Radiometry, A: Atmosphere>(
     let (w, h) = raster_size(frame);
     let mut r = Raster::new(w, h);
     let t = &frame.truth;
-    let layer = |f: &dyn Fn(&irsig_tracer::Sample) -> f64| -> Vec<f32> {
-        t.iter().map(|s| f(s) as f32).collect()
-    };
+    let layer =
+        |f: &dyn Fn(&irsig_tracer::TruthPixel) -> f32| -> Vec<f32> { t.iter().map(f).collect() };
     let layers: Vec<(&str, &str, Vec<f32>)> = vec![
         (
             "material_primary",
             "",
-            layer(&|s| f64::from(s.primary_material)),
+            layer(&|s| f32::from(s.primary_material)),
         ),
         (
             "material_secondary",
             "",
-            layer(&|s| f64::from(s.secondary_material)),
+            layer(&|s| f32::from(s.secondary_material)),
         ),
-        ("event", "", layer(&|s| f64::from(s.event.number()))),
+        ("event", "", layer(&|s| f32::from(s.event.number()))),
         ("range", "m", layer(&|s| s.range_m)),
         ("incidence", "deg", layer(&|s| s.incidence_deg)),
         ("kinetic_temperature", "K", layer(&|s| s.temperature_k)),
