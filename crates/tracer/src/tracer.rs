@@ -64,8 +64,7 @@ pub struct TraceOptions {
     pub seed: u64,
     /// Keep the truth layers of each pixel's centre ray in [`Frame::truth`] (default). Off,
     /// the frame holds the radiance only: a renderer that needs neither the truth layers
-    /// nor the interaction map saves writing them and computing the terms only they read
-    /// (the incidence angle, where a material's emissivity is flat).
+    /// nor the interaction map saves writing them and the terms only they read.
     pub truth: bool,
 }
 
@@ -124,7 +123,9 @@ pub struct Sample {
     pub back_face: bool,
     /// Distance from the sensor to the hit (or to the terrain), metres.
     pub range_m: f64,
-    /// Angle between the reversed ray and the facet normal, degrees.
+    /// Cosine of the angle between the reversed ray and the facet normal.
+    pub cos_incidence: f64,
+    /// That angle, degrees.
     pub incidence_deg: f64,
     /// Kinetic temperature of what was hit (facet or terrain), K.
     pub temperature_k: f64,
@@ -167,6 +168,7 @@ impl Sample {
             facet: None,
             back_face: false,
             range_m: f64::NAN,
+            cos_incidence: f64::NAN,
             incidence_deg: f64::NAN,
             temperature_k: f64::NAN,
             emissivity: f64::NAN,
@@ -248,8 +250,8 @@ impl fmt::Display for Sample {
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
-/// outputs carry, rounded to f32 as the truth EXR stores them (36 bytes, where a whole
-/// [`Sample`] is 144: the frame's truth is written once per pixel, and at 1M triangles the
+/// outputs carry, rounded to f32 as the truth EXR stores them (40 bytes, where a whole
+/// [`Sample`] is 152: the frame's truth is written once per pixel, and at 1M triangles the
 /// bigger record cost ~40 ns per pixel in evicted BVH lines). [`Tracer::probe`] gives every
 /// term of a pixel in f64. Terms that do not apply are NaN, as in [`Sample`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -262,8 +264,11 @@ pub struct TruthPixel {
     pub secondary_material: u16,
     /// Distance from the sensor to the hit (or to the terrain), metres.
     pub range_m: f32,
-    /// Angle between the reversed ray and the facet normal, degrees.
-    pub incidence_deg: f32,
+    /// Cosine of the angle between the reversed ray and the facet normal, kept in f64 (an
+    /// f32 cosine would blur angles near the normal by 0.02°): the angle is derived when a
+    /// layer is written ([`Self::incidence_deg`]), as the apparent temperature is from
+    /// the radiance, so a frame whose outputs do not show it does not pay the arc cosine.
+    pub cos_incidence: f64,
     /// Kinetic temperature of what was hit (facet or terrain), K.
     pub temperature_k: f32,
     /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
@@ -277,7 +282,16 @@ pub struct TruthPixel {
 }
 
 // The size the frame's memory traffic was measured at (the doc above).
-const _: () = assert!(std::mem::size_of::<TruthPixel>() == 36);
+const _: () = assert!(std::mem::size_of::<TruthPixel>() == 40);
+
+impl TruthPixel {
+    /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
+    /// when no facet was hit).
+    #[must_use]
+    pub fn incidence_deg(&self) -> f32 {
+        self.cos_incidence.acos().to_degrees() as f32
+    }
+}
 
 impl From<&Sample> for TruthPixel {
     fn from(s: &Sample) -> Self {
@@ -286,7 +300,7 @@ impl From<&Sample> for TruthPixel {
             primary_material: s.primary_material,
             secondary_material: s.secondary_material,
             range_m: s.range_m as f32,
-            incidence_deg: s.incidence_deg as f32,
+            cos_incidence: s.cos_incidence,
             temperature_k: s.temperature_k as f32,
             emissivity: s.emissivity as f32,
             transmission: s.transmission as f32,
@@ -577,8 +591,8 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         })
     }
 
-    /// The terms of the ray through the centre of pixel `(column, row)`, exactly as
-    /// [`Self::render`] computes them for the truth outputs.
+    /// Every term of the ray through the centre of pixel `(column, row)`, exactly as
+    /// [`Self::render`] computes them for the truth outputs, in f64.
     ///
     /// # Errors
     /// The pixel lies outside the image, or the options are out of range.
@@ -601,6 +615,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         }
         let mut s = Sample::miss(Event::Sky);
         self.pixel::<true>(&self.frame_consts(camera), options, column, row, &mut s);
+        s.incidence_deg = s.cos_incidence.acos().to_degrees();
         Ok(s)
     }
 
@@ -646,9 +661,9 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     }
 
     /// The full radiance equation along one primary ray: the radiance at the sensor. With
-    /// `TRUTH`, every term also goes to `s`; without, `s` is not touched, and a term only
-    /// the truth outputs read (e.g. the incidence angle, where the emissivity table is
-    /// flat) is not computed. Both give the same radiance, bit for bit.
+    /// `TRUTH`, every term also goes to `s` (the incidence angle as its cosine: the angle
+    /// is derived where it is shown, [`Self::probe`] or a truth layer); without, `s` is not
+    /// touched. Both give the same radiance, bit for bit.
     fn shade<const TRUTH: bool>(
         &self,
         fc: &FrameConsts<'_>,
@@ -737,12 +752,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     ) -> f64 {
         let fd = hit.data;
         let m = &self.materials[usize::from(fd.material)];
-        let (eps, incidence_deg) = if TRUTH {
-            let angle = hit.cos_incidence.acos().to_degrees();
-            (m.emissivity.at(angle), angle)
-        } else {
-            (m.emissivity.at_cos(hit.cos_incidence), f64::NAN)
-        };
+        let eps = m.emissivity.at_cos(hit.cos_incidence);
         let r = 1.0 - eps;
         let sfrac = m.specular_fraction;
         let sky_hemi = self.atmosphere.sky_hemispheric(alt);
@@ -751,7 +761,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             s.primary_material = m.id;
             s.facet = Some(hit.facet);
             s.back_face = hit.back_face;
-            s.incidence_deg = incidence_deg;
+            s.cos_incidence = hit.cos_incidence;
             s.temperature_k = fd.temperature_k;
             s.emissivity = eps;
             s.reflectance = r;

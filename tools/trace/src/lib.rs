@@ -643,7 +643,11 @@ fn truth_raster<R: Radiometry, A: Atmosphere>(
         ),
         ("event", "", layer(&|s| f32::from(s.event.number()))),
         ("range", "m", layer(&|s| s.range_m)),
-        ("incidence", "deg", layer(&|s| s.incidence_deg)),
+        (
+            "incidence",
+            "deg",
+            layer(&irsig_tracer::TruthPixel::incidence_deg),
+        ),
         ("kinetic_temperature", "K", layer(&|s| s.temperature_k)),
         ("emissivity", "", layer(&|s| s.emissivity)),
         ("transmission", "", layer(&|s| s.transmission)),
