@@ -11,7 +11,8 @@ use divan::counter::ItemsCount;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
-    BareObvhs, EdgeExperiment, Mesh, PitExperiment, ground_quad, triangles, uv_sphere,
+    BareObvhs, EdgeExperiment, Mesh, PitExperiment, geometry_pass, ground_quad, primary_directions,
+    triangles, uv_sphere,
 };
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
@@ -163,6 +164,22 @@ fn bare_obvhs_primary(bencher: divan::Bencher, i: usize) {
     bencher
         .counter(ItemsCount::new(PIXELS))
         .bench(|| divan::black_box(p.bare.pass(&rays)));
+}
+
+/// The same primary rays through the tracer's own geometry without shading: f64 clip,
+/// watertight test, f64 refinement (what the tracer adds to obvhs before any radiometry).
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn tracer_geometry_primary(bencher: divan::Bencher, i: usize) {
+    let p = prepared(i);
+    let cam = camera();
+    let directions = primary_directions(&cam);
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        divan::black_box(geometry_pass(
+            p.diffuse.geometry(),
+            cam.position_m,
+            &directions,
+        ))
+    });
 }
 
 /// Geometry only (re-centring, BVH build, BVH-order copies) from world triangles.

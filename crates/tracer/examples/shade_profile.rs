@@ -8,16 +8,19 @@
 //! `perf record -g target/profiling/examples/shade_profile 1 200 radiance`.
 //!
 //! MODE `compare` measures the shaded/bare ratio on a shared, noisy machine: it interleaves
-//! one bare pass, one diffuse pass with the truth terms and one without (each timed on its
-//! second run, with warm caches), RENDERS times, and prints the fastest and the median pass
-//! of each. Interference only ever adds time, and
+//! one bare pass, one pass of the tracer's geometry alone (closest hits, no shading), one
+//! diffuse pass with the truth terms and one without (each timed on its second run, with
+//! warm caches), RENDERS times, and prints the fastest and the median pass of each. Interference only ever adds time, and
 //! interleaving exposes the three to the same conditions, so the ratio of the fastest
 //! passes is the stable figure.
 
 use std::time::Instant;
 
 use irsig_model::View;
-use irsig_tracer::testing::{BareObvhs, Mesh, grey_materials, ground_quad, raw_scene, uv_sphere};
+use irsig_tracer::testing::{
+    BareObvhs, Mesh, geometry_pass, grey_materials, ground_quad, primary_directions, raw_scene,
+    uv_sphere,
+};
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
 const PIXELS: f64 = 128.0 * 128.0;
@@ -78,7 +81,8 @@ fn main() {
             truth: false,
             ..options
         };
-        let mut times = [const { Vec::new() }; 3];
+        let directions = primary_directions(&camera);
+        let mut times = [const { Vec::new() }; 4];
         // Each kind runs twice in a row and only the second pass is timed: the first warms
         // the caches with that kind's own data (the bare BVH and the tracer's are separate
         // copies; at 1M triangles each evicts the other), as a long render would.
@@ -93,16 +97,28 @@ fn main() {
                 std::hint::black_box(bare.pass(&rays));
             }));
             times[1].push(time_warm(&|| {
-                std::hint::black_box(shaded(&options));
+                std::hint::black_box(geometry_pass(
+                    tracer.geometry(),
+                    camera.position_m,
+                    &directions,
+                ));
             }));
             times[2].push(time_warm(&|| {
+                std::hint::black_box(shaded(&options));
+            }));
+            times[3].push(time_warm(&|| {
                 std::hint::black_box(shaded(&radiance_only));
             }));
         }
-        let mut fastest = [0.0; 3];
-        for (i, name) in ["bare obvhs", "shaded, truth", "shaded, radiance only"]
-            .iter()
-            .enumerate()
+        let mut fastest = [0.0; 4];
+        for (i, name) in [
+            "bare obvhs",
+            "tracer geometry only",
+            "shaded, truth",
+            "shaded, radiance only",
+        ]
+        .iter()
+        .enumerate()
         {
             let t = &mut times[i];
             t.sort_by(f64::total_cmp);
@@ -114,9 +130,13 @@ fn main() {
             );
         }
         println!(
-            "shaded/bare throughput (fastest passes): truth {:.3}, radiance only {:.3}",
+            "throughput of the fastest passes: shaded/bare: truth {:.3}, radiance only {:.3}; \
+             geometry/bare {:.3}; shaded/geometry: truth {:.3}, radiance only {:.3}",
+            fastest[0] / fastest[2],
+            fastest[0] / fastest[3],
             fastest[0] / fastest[1],
-            fastest[0] / fastest[2]
+            fastest[1] / fastest[2],
+            fastest[1] / fastest[3]
         );
         return;
     }

@@ -4,6 +4,7 @@
 
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 
+use crate::geometry::Geometry;
 use crate::vec::V3;
 use crate::{Camera, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
@@ -502,6 +503,39 @@ impl BareObvhs {
         }
         hits
     }
+}
+
+/// The unit direction of every pixel's centre ray of `camera`, row by row.
+#[must_use]
+pub fn primary_directions(camera: &Camera) -> Vec<V3> {
+    let [w, h] = camera.pixels;
+    (0..h)
+        .flat_map(|r| (0..w).map(move |c| camera.pixel_direction(c, r)))
+        .collect()
+}
+
+/// The tracer's own geometry on primary rays, without shading: [`Geometry::closest_hit`]
+/// (f64 clip, watertight test, f64 refinement) from the sensor at `position_m` along each
+/// of `directions`; the number of rays that hit. Between [`BareObvhs::pass`] and a render
+/// it splits the tracer's cost into what its geometry adds to obvhs and what the
+/// radiometry adds to that.
+#[must_use]
+pub fn geometry_pass<P: Copy + Send + Sync>(
+    geometry: &Geometry<P>,
+    position_m: V3,
+    directions: &[V3],
+) -> u64 {
+    let origin = geometry.to_local(position_m);
+    directions
+        .iter()
+        .map(|&d| {
+            u64::from(
+                geometry
+                    .closest_hit(origin, d, 0.0, f64::INFINITY, None)
+                    .is_some(),
+            )
+        })
+        .sum()
 }
 
 fn f32_local(p: V3, centre_m: V3) -> glam::Vec3A {
