@@ -255,6 +255,10 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
                 "texture coordinate index -5",
             ],
         ),
+        (
+            "short-normal.obj",
+            &["short-normal.obj:5:7", "3 numbers after `vn`"],
+        ),
         ("truncated.glb", &["truncated.glb", "GLB"]),
         ("short-header.glb", &["short-header.glb", "12-byte header"]),
         (

@@ -467,15 +467,29 @@ fn scan(
                 check_mtl(file, text, at(name), name, base_dir, &mut out.warnings)?;
             }
             Some(kind @ ("vn" | "vt")) => {
-                if kind == "vt" {
+                // What tobj requires (and otherwise reports at 1:1): u v for a texture
+                // coordinate (w optional), x y z for a normal.
+                let (need, what) = if kind == "vt" {
                     texcoords += 1;
+                    (2, "a texture coordinate (u v)")
                 } else {
                     normals += 1;
-                }
-                for w in words.take(2) {
+                    (3, "a normal (x y z)")
+                };
+                let mut found = 0;
+                for w in words.take(need) {
                     if w.parse::<f64>().is_err() {
                         return Err(err(w, format!("expected a number, found `{w}`")));
                     }
+                    found += 1;
+                }
+                if found < need {
+                    return Err(ParseError::at_offset(
+                        file,
+                        text,
+                        line_start + line.len(),
+                        format!("expected {need} numbers after `{kind}` for {what}, found {found}"),
+                    ));
                 }
             }
             _ => {}
@@ -600,6 +614,23 @@ mod tests {
         assert!(e.message.contains("finite"));
         let e = read_obj("b.obj", b"v 0 0\n", None).unwrap_err();
         assert!(e.message.contains("z coordinate"), "{e}");
+    }
+
+    #[test]
+    fn short_normal_and_texture_lines_name_line_and_column() {
+        // The column is just past the line's last character.
+        let e = read_obj("b.obj", b"v 0 0 0\nvn 0 1\n", None).unwrap_err();
+        assert_eq!((e.line, e.column), (2, 7), "{e}");
+        assert!(e.message.contains("3 numbers after `vn`"), "{e}");
+        assert!(e.message.contains("found 2"), "{e}");
+        let e = read_obj("b.obj", b"vt 0.5\n", None).unwrap_err();
+        assert_eq!((e.line, e.column), (1, 7), "{e}");
+        assert!(e.message.contains("2 numbers after `vt`"), "{e}");
+        let e = read_obj("b.obj", b"vn 0 x 1\n", None).unwrap_err();
+        assert_eq!((e.line, e.column), (1, 6), "{e}");
+        // A third texture coordinate (w) is optional.
+        let tri = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0 0\nvt 1 0\nvn 0 0 1\nf 1/1/1 2/2/1 3/1/1\n";
+        assert!(read_obj("b.obj", tri, None).is_ok());
     }
 
     #[test]
