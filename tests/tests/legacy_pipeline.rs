@@ -34,6 +34,7 @@ fn bin_dir() -> PathBuf {
 }
 
 #[test]
+#[allow(clippy::float_cmp)] // the library's numbers are the files' numbers, exactly
 fn the_makefile_turns_1990_inputs_into_images() {
     let dir = legacy_copy();
     let out = Command::new("make")
@@ -48,6 +49,17 @@ fn the_makefile_turns_1990_inputs_into_images() {
     );
     let build = dir.path().join("build");
     assert!(build.join("atmosphere.ron").is_file());
+    // The library made from the material index carries the .ems rows and the flags.
+    let library = std::fs::read_to_string(build.join("materials.ron")).unwrap();
+    let library: irsig_model::MaterialLibrary = ron::from_str(&library).unwrap();
+    let ids: Vec<u16> = library.materials.iter().map(|m| m.id.0).collect();
+    assert_eq!(ids, [1, 2, 4, 5, 6]);
+    let water = &library.materials[4];
+    assert_eq!(water.name, "water");
+    assert_eq!(water.specular_fraction, 1.0);
+    assert_eq!(water.emissivity.first(), Some(&(0.0, 0.985191)));
+    assert_eq!(water.emissivity.last(), Some(&(90.0, 0.0)));
+    assert_eq!(library.materials[1].specular_fraction, 0.0);
     for f in ["frame-04", "frame-14", "pond"] {
         for ext in ["map.png", "dc.png", "lut"] {
             assert!(build.join(format!("{f}.{ext}")).is_file(), "{f}.{ext}");
@@ -93,7 +105,12 @@ fn the_makefile_turns_1990_inputs_into_images() {
         .success();
     bin("irsig-trace")
         .current_dir(dir.path())
-        .args(["--scene", "direct.raw", "--materials", "materials.ron"])
+        .args([
+            "--scene",
+            "direct.raw",
+            "--materials",
+            "build/materials.ron",
+        ])
         .args([
             "--atmosphere",
             "build/atmosphere.ron",
@@ -135,6 +152,17 @@ fn the_makefile_turns_1990_inputs_into_images() {
 /// Scene, materials and a raw scene in a scratch directory, for irsig-trace alone.
 fn trace_scratch() -> tempfile::TempDir {
     let dir = legacy_copy();
+    bin("irsig-atmos")
+        .current_dir(dir.path())
+        .args([
+            "convert",
+            "--material-index",
+            "materials.mat",
+            "-o",
+            "materials.ron",
+        ])
+        .assert()
+        .success();
     bin("irsig-flatten")
         .current_dir(dir.path())
         .args(["scene.scn", "--unit", "km", "-o", "scene.raw"])
