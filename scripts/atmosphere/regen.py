@@ -136,6 +136,7 @@ def write_slant(model, name, d):
         f.write("// Written by scripts/atmosphere/regen.py.\n(\n")
         f.write(f"    altitude_m: {ron_list([h * 1e3 for h in SLANT_ALT_KM])},\n")
         f.write(f"    nadir_deg: {ron_list(SLANT_NADIR)},\n")
+        f.write(f"    ground_m: Some({GROUND * 1e3!r}),\n")
         f.write(f"    transmission: {ron_grid(tau)},\n")
         f.write(f"    path_radiance_w_m2_sr: {ron_grid(lu)},\n")
         f.write(f"    sky_altitude_m: {ron_list([h * 1e3 for h in SKY_ALT_KM])},\n")
@@ -172,7 +173,7 @@ def write_truth(model, name, d):
                     t, l = path(model, 2, h, GROUND, 180.0 - a)
                 except RuntimeError:
                     continue                                   # ray misses the ground
-                f.write(f"ground,{h},0,{a},,{t:.7g},{l * 1e4:.7g}\n")
+                f.write(f"ground,{h},{GROUND},{a},,{t:.7g},{l * 1e4:.7g}\n")
         # paths between two altitudes, both above the ground
         for h1, h2 in ((3.0, 1.0), (3.0, 0.3), (1.0, 0.3), (1.0, 0.5), (0.3, 0.1)):
             for a in (0, 30, 60, 75, 80):

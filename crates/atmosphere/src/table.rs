@@ -2,12 +2,14 @@
 //! of the atmospheric model (what DIRSIG's atmospheric database does), and sky radiance on
 //! observer altitude × zenith angle.
 //!
-//! The tables hold paths from the observer down to the ground. To serve any path, and to
-//! stay continuous at the edges of the grid, the table is stored as corrections to the
-//! layered model: at every grid node the ratio of the table's slant optical depth to the
-//! layered model's, and the same for path radiance. A path's layered terms are then
-//! scaled by the ratios interpolated bilinearly at (upper end's altitude, angle), clamped
-//! to the grid. On the grid and for a ground target this returns the table exactly;
+//! The tables hold paths from the observer down to their lower end: the ground, or 1 m
+//! above it for LOWTRAN's ([`SlantTables::ground_m`]). To serve any path, and to stay
+//! continuous at the edges of the grid, the table is stored as corrections to the layered
+//! model: at every grid node the ratio of the table's slant optical depth to the layered
+//! model's over the same path, and the same for path radiance. A path's layered terms are
+//! then scaled by the ratios interpolated bilinearly at (upper end's altitude, angle),
+//! clamped to the grid. On the grid and for a target at the tables' lower end this returns
+//! the table exactly (a target on the ground then gets the last metre of air as well);
 //! between nodes it interpolates the (smooth) model error rather than the (steep)
 //! quantity itself; outside the grid (beyond the last angle, above the top altitude, or a
 //! path to a target above the ground) it is the layered model with the nearest correction.
@@ -42,13 +44,17 @@ impl Table {
         })?;
         let mut depth_ratio = Vec::with_capacity(slant.altitude_m.len());
         let mut radiance_ratio = Vec::with_capacity(slant.altitude_m.len());
+        // The layered model over the table's own paths: to its lower end, not to 0 m. (Taken
+        // to 0 m, the 2 m row's ratio was LOWTRAN's 1 m of air over the layered model's 2 m:
+        // half the optical depth for every path starting near 2 m.)
+        let end = slant.ground_m.unwrap_or(0.0);
         for (i, &h) in slant.altitude_m.iter().enumerate() {
             let mut dr = Vec::with_capacity(slant.nadir_deg.len());
             let mut lr = Vec::with_capacity(slant.nadir_deg.len());
             for (j, &a) in slant.nadir_deg.iter().enumerate() {
                 let sec = 1.0 / a.to_radians().cos();
-                let layered =
-                    Slant::new(h, 0.0, h * sec).map_or(PathTerms::VACUUM, |s| profile.path(&s));
+                let layered = Slant::new(h, end, (h - end) * sec)
+                    .map_or(PathTerms::VACUUM, |s| profile.path(&s));
                 let tau = slant
                     .transmission
                     .get(i)

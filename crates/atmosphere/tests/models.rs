@@ -62,6 +62,45 @@ fn curve_of_growth_exponent_is_fitted_between_strong_line_and_beer() {
 }
 
 #[test]
+fn the_table_model_returns_lowtran_at_every_node_down_to_2_m() {
+    // LOWTRAN's slant paths end 1 m above the ground (`slant.ground_m`). On every node, a
+    // path from the node's altitude to 1 m at the node's angle must come back as LOWTRAN's
+    // own numbers. (With the layered reference taken to 0 m instead, the 2 m row erred by
+    // half its optical depth, the 5 m row by a fifth.)
+    for name in ["us-std-1976", "midlat-winter"] {
+        let atm = builtin(name).unwrap();
+        let slant = atm.slant.clone().unwrap();
+        assert_eq!(slant.ground_m, Some(1.0), "{name}");
+        let table = AtmosphereModel::new(&atm, ModelKind::Table).unwrap();
+        for (i, &h) in slant.altitude_m.iter().enumerate() {
+            for (j, &a) in slant.nadir_deg.iter().enumerate() {
+                let range = (h - 1.0) / a.to_radians().cos();
+                let p = table.path(h, 1.0, range);
+                let (tau, lu) = (slant.transmission[i][j], slant.path_radiance_w_m2_sr[i][j]);
+                assert_relative_eq!(p.transmission, tau, max_relative = 1e-9);
+                assert_relative_eq!(p.path_radiance_w_m2_sr, lu, max_relative = 1e-9);
+            }
+        }
+        // To the ground itself the path has one more metre of air: less τ, more L_u.
+        let to_1m = table.path(5.0, 1.0, 4.0);
+        let to_ground = table.path(5.0, 0.0, 5.0);
+        assert!(to_ground.transmission < to_1m.transmission, "{name}");
+        assert!(to_ground.path_radiance_w_m2_sr > to_1m.path_radiance_w_m2_sr);
+    }
+}
+
+#[test]
+fn slant_tables_ending_at_or_above_their_lowest_altitude_are_refused() {
+    let mut atm = builtin("us-std-1976").unwrap();
+    let slant = atm.slant.as_mut().unwrap();
+    slant.ground_m = Some(slant.altitude_m[0]);
+    let e = atm.validate().unwrap_err().to_string();
+    assert!(e.contains("slant.ground_m"), "{e}");
+    atm.slant.as_mut().unwrap().ground_m = Some(f64::NAN);
+    assert!(atm.validate().is_err());
+}
+
+#[test]
 fn a_short_oblique_path_near_the_ground_is_almost_clear() {
     // The validation experiment's camera: 4.77 m above and 8.61 m from its target.
     // LOWTRAN7 gives τ = 0.9857, L = 0.60 W m⁻² sr⁻¹ for 10 m horizontal at 5 m.

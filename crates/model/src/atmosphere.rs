@@ -43,9 +43,15 @@ pub struct SlantTables {
     pub altitude_m: Vec<f64>,
     /// Nadir angles at the observer, degrees, 0 (straight down) to below 90.
     pub nadir_deg: Vec<f64>,
-    /// Band transmittance from the observer to the ground, `[altitude][angle]`.
+    /// The altitude of the paths' lower end, metres, when it is not the ground itself:
+    /// LOWTRAN's paths stop 1 m up (an end at 0 m makes it add a ground's emission), so the
+    /// built-in tables hold paths to 1 m. `None`: to 0 m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_m: Option<f64>,
+    /// Band transmittance from the observer to the paths' lower end, `[altitude][angle]`.
     pub transmission: Vec<Vec<f64>>,
-    /// Band path radiance from the ground to the observer, W m⁻² sr⁻¹, `[altitude][angle]`.
+    /// Band path radiance from the paths' lower end to the observer, W m⁻² sr⁻¹,
+    /// `[altitude][angle]`.
     pub path_radiance_w_m2_sr: Vec<Vec<f64>>,
     /// Observer altitudes for the sky table, metres.
     pub sky_altitude_m: Vec<f64>,
@@ -234,6 +240,18 @@ impl SlantTables {
                 check_range(|| format!("slant.{name}[{i}]"), v, 0.0, max)?;
             }
             check_increasing(|i| format!("slant.{name}[{i}]"), axis.iter().copied())?;
+        }
+        if let Some(g) = self.ground_m {
+            // Below the lowest observer altitude, so that every path has some air.
+            let lowest = self.altitude_m[0];
+            if !(g >= 0.0 && g < lowest) {
+                return Err(ModelError::new(
+                    "slant.ground_m",
+                    ModelErrorKind::Other(format!(
+                        "expected 0 m or more and below the lowest altitude ({lowest} m), found {g}"
+                    )),
+                ));
+            }
         }
         let (n, m) = (self.altitude_m.len(), self.nadir_deg.len());
         grid("transmission", &self.transmission, n, m, 1.0)?;
