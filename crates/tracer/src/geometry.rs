@@ -25,7 +25,7 @@
 //! geometric normal turned to face the incoming ray; [`Hit::back_face`] says when that
 //! needed a flip, so a tool can report inconsistent winding.
 
-use glam::{Mat3A, Vec3A};
+use glam::Vec3A;
 use obvhs::{
     BvhBuildParams,
     cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
@@ -110,48 +110,56 @@ struct FacetRecord<P> {
     data: P,
 }
 
-/// Per-ray constants of the watertight test: the translation to the ray origin and the
-/// paper's permute-and-shear, folded into one matrix so each vertex costs one SIMD
-/// matrix-vector product. Each output component has exactly two non-zero terms (1 and
-/// −S), so the products and sums round exactly as the paper's scalar form does.
+/// Per-ray constants of the watertight test: the ray origin, and the paper's shear
+/// `(Sx, Sy, −Sz)`. The paper's permutation of the axes (kz the dominant one, kx and ky
+/// the others in winding order) is a type parameter of [`Shear::intersect`], so each
+/// vertex costs one subtraction, two constant shuffles and one multiply-subtract: a
+/// general 3 × 3 matrix product cost three broadcasts, three products and two sums. The
+/// sheared coordinates are `A[kx] − Sx·A[kz]`, `A[ky] − Sy·A[kz]` and `Sz·A[kz]`,
+/// rounded exactly as in the paper's scalar form.
+#[derive(Clone, Copy)]
 struct Shear {
     org: Vec3A,
-    m: Mat3A,
+    s: Vec3A,
+}
+
+/// The paper's axis permutation of a ray direction: the dominant axis kz, and whether kx
+/// and ky are swapped to keep the sheared triangle's winding (`dir[kz] < 0`).
+fn axes(dir: Vec3A) -> (usize, bool) {
+    let a = dir.abs();
+    let kz = if a.x > a.y {
+        if a.x > a.z { 0 } else { 2 }
+    } else if a.y > a.z {
+        1
+    } else {
+        2
+    };
+    (kz, dir[kz] < 0.0)
 }
 
 impl Shear {
-    fn new(org: Vec3A, dir: Vec3A) -> Self {
-        let a = dir.abs();
-        let kz = if a.x > a.y {
-            if a.x > a.z { 0 } else { 2 }
-        } else if a.y > a.z {
-            1
-        } else {
-            2
-        };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        // Keep the winding of the sheared triangle.
-        if dir[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
+    fn new<const KX: usize, const KY: usize, const KZ: usize>(org: Vec3A, dir: Vec3A) -> Self {
+        let sz = 1.0 / dir[KZ];
+        Self {
+            org,
+            s: Vec3A::new(dir[KX] * sz, dir[KY] * sz, -sz),
         }
-        let sz = 1.0 / dir[kz];
-        let (sx, sy) = (dir[kx] * sz, dir[ky] * sz);
-        // Rows: e_kx − sx·e_kz, e_ky − sy·e_kz, sz·e_kz, built as whole vectors (writing
-        // single floats into an array and reloading it as a vector stalled store
-        // forwarding: a fifth of this function's time in the profile).
-        let e = [Vec3A::X, Vec3A::Y, Vec3A::Z];
-        let m = Mat3A::from_cols(e[kx] - sx * e[kz], e[ky] - sy * e[kz], sz * e[kz]).transpose();
-        Self { org, m }
     }
 
     /// The ray parameter of the hit, or +∞. Two-sided; an edge or vertex shared by two
     /// triangles is hit by both (never by neither), which is what makes it watertight.
     #[inline(always)]
-    fn intersect(&self, v: &[Vec3A; 3], tmin: f32, tmax: f32) -> f32 {
-        let a = self.m * (v[0] - self.org);
-        let b = self.m * (v[1] - self.org);
-        let c = self.m * (v[2] - self.org);
+    fn intersect<const KX: usize, const KY: usize, const KZ: usize>(
+        &self,
+        v: &[Vec3A; 3],
+        tmin: f32,
+        tmax: f32,
+    ) -> f32 {
+        let shear = |p: Vec3A| {
+            let d = p - self.org;
+            Vec3A::new(d[KX], d[KY], 0.0) - Vec3A::splat(d[KZ]) * self.s
+        };
+        let (a, b, c) = (shear(v[0]), shear(v[1]), shear(v[2]));
         let mut u = c.x * b.y - c.y * b.x;
         let mut vv = a.x * c.y - a.y * c.x;
         let mut w = b.x * a.y - b.y * a.x;
@@ -183,6 +191,20 @@ impl Shear {
             f32::INFINITY
         }
     }
+}
+
+/// `$s.$m::<KX, KY, KZ>(args)` for the axis permutation of the ray direction `$dir`.
+macro_rules! with_axes {
+    ($dir:expr, $s:ident.$m:ident($($arg:expr),*)) => {
+        match axes($dir) {
+            (0, false) => $s.$m::<1, 2, 0>($($arg),*),
+            (0, true) => $s.$m::<2, 1, 0>($($arg),*),
+            (1, false) => $s.$m::<2, 0, 1>($($arg),*),
+            (1, true) => $s.$m::<0, 2, 1>($($arg),*),
+            (2, false) => $s.$m::<0, 1, 2>($($arg),*),
+            _ => $s.$m::<1, 0, 2>($($arg),*),
+        }
+    };
 }
 
 impl Geometry {
@@ -351,9 +373,28 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     ) -> Option<Hit<P>> {
         let (t0, t1) = self.clip(origin, dir, t_min, t_max)?;
         let (ray, shift, tmin, tmax) = self.prepare(origin, dir, t0, t1);
-        let shear = Shear::new(ray.origin, ray.direction);
-        let mut hit = RayHit::none();
         let exclude = exclude.unwrap_or(u32::MAX);
+        let (t, facet, slot) = with_axes!(
+            ray.direction,
+            self.closest_candidate(ray, tmin, tmax, exclude)
+        );
+        if !t.is_finite() {
+            return None;
+        }
+        Some(self.refine(slot, facet, origin, dir, f64::from(t) + shift))
+    }
+
+    /// The closest candidate of an obvhs ray whose axis permutation is `KX KY KZ`: f32
+    /// distance, facet and BVH slot (distance +∞ when none).
+    fn closest_candidate<const KX: usize, const KY: usize, const KZ: usize>(
+        &self,
+        ray: Ray,
+        tmin: f32,
+        tmax: f32,
+        exclude: u32,
+    ) -> (f32, u32, usize) {
+        let shear = Shear::new::<KX, KY, KZ>(ray.origin, ray.direction);
+        let mut hit = RayHit::none();
         // Ties (a ray through an edge shared by two facets) go to the lower facet index, so
         // the answer does not depend on the BVH's layout or traversal order.
         let mut best = (f32::INFINITY, u32::MAX, 0);
@@ -364,17 +405,13 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             if facet == exclude {
                 return f32::INFINITY;
             }
-            let t = shear.intersect(&tri.v, tmin, r.tmax.min(tmax));
+            let t = shear.intersect::<KX, KY, KZ>(&tri.v, tmin, r.tmax.min(tmax));
             if t.total_cmp(&best.0).then(facet.cmp(&best.1)).is_lt() {
                 best = (t, facet, id);
             }
             t
         });
-        let (t, facet, slot) = best;
-        if !t.is_finite() {
-            return None;
-        }
-        Some(self.refine(slot, facet, origin, dir, f64::from(t) + shift))
+        best
     }
 
     /// True when any facet lies along the ray with `t_min < t < t_max`, skipping
@@ -392,14 +429,25 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             return false;
         };
         let (ray, _, tmin, tmax) = self.prepare(origin, dir, t0, t1);
-        let shear = Shear::new(ray.origin, ray.direction);
         let exclude = exclude.unwrap_or(u32::MAX);
+        with_axes!(ray.direction, self.any_candidate(ray, tmin, tmax, exclude))
+    }
+
+    /// True when an obvhs ray whose axis permutation is `KX KY KZ` hits any candidate.
+    fn any_candidate<const KX: usize, const KY: usize, const KZ: usize>(
+        &self,
+        ray: Ray,
+        tmin: f32,
+        tmax: f32,
+        exclude: u32,
+    ) -> bool {
+        let shear = Shear::new::<KX, KY, KZ>(ray.origin, ray.direction);
         !self.bvh.ray_traverse_miss(ray, |_, id| {
             let tri = &self.tris[id].tri;
             if tri.facet == exclude {
                 return f32::INFINITY;
             }
-            shear.intersect(&tri.v, tmin, tmax)
+            shear.intersect::<KX, KY, KZ>(&tri.v, tmin, tmax)
         })
     }
 
