@@ -250,10 +250,11 @@ impl fmt::Display for Sample {
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
-/// outputs carry, rounded to f32 as the truth EXR stores them (40 bytes, where a whole
-/// [`Sample`] is 152: the frame's truth is written once per pixel, and at 1M triangles the
-/// bigger record cost ~40 ns per pixel in evicted BVH lines). [`Tracer::probe`] gives every
-/// term of a pixel in f64. Terms that do not apply are NaN, as in [`Sample`].
+/// outputs carry, rounded to f32 as the truth EXR stores them: 40 bytes, where a whole
+/// [`Sample`] is 152. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
+/// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
+/// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
+/// apply are NaN, as in [`Sample`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TruthPixel {
     /// What the ray met.
@@ -620,7 +621,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     }
 
     /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
-    /// terms go to `centre` (written in place: a sample is ~180 bytes, and moving it
+    /// terms go to `centre` (written in place: a sample is ~150 bytes, and moving it
     /// through every call level showed as memory copies in the profile); without, `centre`
     /// is not touched.
     fn pixel<const TRUTH: bool>(
