@@ -154,6 +154,10 @@ mod tests {
         // by about t²·sin²60°/(2R) ≈ 0.115 m, lengthening the path by that / cos 60°.
         let r = range_to_ground_m(700.0, 60.0).unwrap();
         assert!((r - 1400.23).abs() < 0.01, "{r}");
+        // The same by the cosine the tracer passes: cos 60° = 0.5.
+        let r = range_to_ground_from_cos_m(700.0, 0.5).unwrap();
+        assert!((r - 1400.23).abs() < 0.01, "{r}");
+        assert!(range_to_ground_from_cos_m(700.0, 0.0).is_none());
         assert!(range_to_ground_m(700.0, 89.5).is_none());
         assert!(range_to_ground_m(700.0, 120.0).is_none());
     }
