@@ -67,15 +67,28 @@ const GAP: usize = 6;
 const BAR: usize = 16;
 const TICK: usize = 4;
 pub(crate) const GLYPH: usize = 8;
-const LABEL_CHARS: usize = 7;
 const MIN_HEIGHT: usize = 64;
+
+/// The five tick labels of the colour bar over `r` (K), bottom to top, with as many
+/// decimals as make ticks a quarter of the range apart read differently (at least one, at
+/// most three: 1 mK), so a scene spanning 0.08 K is not labelled 300.0K five times.
+fn tick_labels(r: (f64, f64)) -> [String; 5] {
+    let step = (r.1 - r.0) / 4.0;
+    let decimals = (1..=3).find(|&d| step >= 10f64.powi(-d)).unwrap_or(3) as usize;
+    std::array::from_fn(|i| {
+        let u = i as f64 / 4.0;
+        format!("{:.decimals$}K", r.0 + u * (r.1 - r.0))
+    })
+}
 
 /// The image in the inferno colour map (coldest dark, hottest bright) with, to its right, a
 /// vertical colour bar from the minimum (bottom) to the maximum (top) temperature and five
 /// labelled ticks in kelvin. The canvas is at least 64 pixels tall so that labels fit.
 pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>> {
     let r = range(t);
-    let cw = w + GAP + BAR + TICK + 2 + LABEL_CHARS * GLYPH + 2;
+    let labels = tick_labels(r);
+    let label_chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
+    let cw = w + GAP + BAR + TICK + 2 + label_chars * GLYPH + 2;
     let ch = h.max(MIN_HEIGHT);
     let mut rgb = vec![0u8; cw * ch * 3];
     let mut put = |x: usize, y: usize, c: [u8; 3]| {
@@ -111,17 +124,15 @@ pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>>
         }
     }
     let white = [255, 255, 255];
-    for i in 0..5_u8 {
-        let u = f64::from(i) / 4.0;
+    for (i, label) in labels.iter().enumerate() {
+        let u = i as f64 / 4.0;
         let y = bottom - ((bottom - top) as f64 * u).round() as usize;
         for x in x0 + BAR..x0 + BAR + TICK {
             put(x, y, white);
         }
-        let label = format!("{:.1}K", r.0 + u * (r.1 - r.0));
         let lx = x0 + BAR + TICK + 2;
         let ly = y.saturating_sub(GLYPH / 2);
-        let label: String = label.chars().take(LABEL_CHARS).collect();
-        for_each_text_pixel(&label, |x, y| put(lx + x, ly + y, white));
+        for_each_text_pixel(label, |x, y| put(lx + x, ly + y, white));
     }
     let mut out = Vec::new();
     write_png_rgb8(&mut out, cw, ch, &rgb).into_diagnostic()?;
@@ -144,5 +155,31 @@ pub(crate) fn for_each_text_pixel(text: &str, mut lit: impl FnMut(usize, usize))
                 }
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tick_labels_resolve_the_range() {
+        // 290-310 K: ticks 5 K apart, one decimal.
+        assert_eq!(
+            tick_labels((290.0, 310.0)),
+            ["290.0K", "295.0K", "300.0K", "305.0K", "310.0K"].map(String::from)
+        );
+        // 0.08 K: ticks 0.02 K apart need two decimals.
+        assert_eq!(
+            tick_labels((300.0, 300.08)),
+            ["300.00K", "300.02K", "300.04K", "300.06K", "300.08K"].map(String::from)
+        );
+        // 4 mK: three decimals, no more (ticks 1 mK apart).
+        assert_eq!(
+            tick_labels((300.0, 300.004)),
+            ["300.000K", "300.001K", "300.002K", "300.003K", "300.004K"].map(String::from)
+        );
+        // Hot and wide: every label whole, the canvas grows to fit them.
+        assert_eq!(tick_labels((1000.0, 1600.0))[4], "1600.0K");
     }
 }
