@@ -123,10 +123,9 @@ pub struct Sample {
     pub back_face: bool,
     /// Distance from the sensor to the hit (or to the terrain), metres.
     pub range_m: f64,
-    /// Cosine of the angle between the reversed ray and the facet normal.
+    /// Cosine of the angle between the reversed ray and the facet normal (the angle:
+    /// [`Self::incidence_deg`]).
     pub cos_incidence: f64,
-    /// That angle, degrees.
-    pub incidence_deg: f64,
     /// Kinetic temperature of what was hit (facet or terrain), K.
     pub temperature_k: f64,
     /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
@@ -160,6 +159,13 @@ pub struct Sample {
 }
 
 impl Sample {
+    /// The angle between the reversed ray and the facet normal, degrees (NaN when no facet
+    /// was hit).
+    #[must_use]
+    pub fn incidence_deg(&self) -> f64 {
+        self.cos_incidence.acos().to_degrees()
+    }
+
     fn miss(event: Event) -> Self {
         Self {
             event,
@@ -169,7 +175,6 @@ impl Sample {
             back_face: false,
             range_m: f64::NAN,
             cos_incidence: f64::NAN,
-            incidence_deg: f64::NAN,
             temperature_k: f64::NAN,
             emissivity: f64::NAN,
             reflectance: f64::NAN,
@@ -207,7 +212,7 @@ impl fmt::Display for Sample {
         writeln!(f, "primary material           {}", self.primary_material)?;
         writeln!(f, "secondary material         {}", self.secondary_material)?;
         writeln!(f, "range_m                    {}", self.range_m)?;
-        writeln!(f, "incidence_deg              {}", self.incidence_deg)?;
+        writeln!(f, "incidence_deg              {}", self.incidence_deg())?;
         writeln!(f, "kinetic temperature_k      {}", self.temperature_k)?;
         writeln!(f, "emissivity ε               {}", self.emissivity)?;
         writeln!(f, "reflectance r = 1 − ε      {}", self.reflectance)?;
@@ -251,7 +256,7 @@ impl fmt::Display for Sample {
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
 /// outputs carry, rounded to f32 as the truth EXR stores them: 40 bytes, where a whole
-/// [`Sample`] is 152. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
+/// [`Sample`] is 144. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
 /// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
 /// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
@@ -282,8 +287,9 @@ pub struct TruthPixel {
     pub sky_view_factor: f32,
 }
 
-// The size the frame's memory traffic was measured at (the doc above).
+// The sizes the frame's memory traffic was measured at (the doc above).
 const _: () = assert!(std::mem::size_of::<TruthPixel>() == 40);
+const _: () = assert!(std::mem::size_of::<Sample>() == 144);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -616,12 +622,11 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         }
         let mut s = Sample::miss(Event::Sky);
         self.pixel::<true>(&self.frame_consts(camera), options, column, row, &mut s);
-        s.incidence_deg = s.cos_incidence.acos().to_degrees();
         Ok(s)
     }
 
     /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
-    /// terms go to `centre` (written in place: a sample is ~150 bytes, and moving it
+    /// terms go to `centre` (written in place: a sample is 144 bytes, and moving it
     /// through every call level showed as memory copies in the profile); without, `centre`
     /// is not touched.
     fn pixel<const TRUTH: bool>(
@@ -663,7 +668,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
 
     /// The full radiance equation along one primary ray: the radiance at the sensor. With
     /// `TRUTH`, every term also goes to `s` (the incidence angle as its cosine: the angle
-    /// is derived where it is shown, [`Self::probe`] or a truth layer); without, `s` is not
+    /// is derived where it is shown, [`Sample::incidence_deg`] or a truth layer); without, `s` is not
     /// touched. Both give the same radiance, bit for bit.
     fn shade<const TRUTH: bool>(
         &self,

@@ -123,7 +123,11 @@ fn a_specular_facet_at_40_degrees_matches_the_hand_computation() {
     let t = tau(h, 0.0, range);
     let expected = t * (eps * lt(310.0) + (1.0 - eps) * sky(40.0)) + (1.0 - t) * L_AIR;
     assert_eq!(s.event, Event::SpecularEscapes);
-    assert!((s.incidence_deg - 40.0).abs() < 1e-6, "{}", s.incidence_deg);
+    assert!(
+        (s.incidence_deg() - 40.0).abs() < 1e-6,
+        "{}",
+        s.incidence_deg()
+    );
     assert!((s.reflected_zenith_deg - 40.0).abs() < 1e-6);
     assert!(close(s.emissivity, eps, 1e-9));
     assert!(close(s.range_m, range, 1e-9));
