@@ -11,8 +11,8 @@ use divan::counter::ItemsCount;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
-    BareObvhs, EdgeExperiment, Mesh, PitExperiment, geometry_pass, ground_quad, primary_directions,
-    triangles, uv_sphere,
+    BENCH_EMISSIVITY, BareObvhs, EdgeExperiment, Mesh, PitExperiment, geometry_pass, ground_quad,
+    primary_directions, triangles, uv_sphere,
 };
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
@@ -59,7 +59,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
     let m = |id: u16, s: f64| Material {
         id: MaterialId(id),
         name: format!("m{id}"),
-        emissivity: vec![(0.0, 0.95), (45.0, 0.93), (70.0, 0.85), (90.0, 0.0)],
+        emissivity: BENCH_EMISSIVITY.to_vec(),
         specular_fraction: s,
         source: "bench".into(),
     };

@@ -22,8 +22,8 @@ use std::time::Instant;
 
 use irsig_model::View;
 use irsig_tracer::testing::{
-    BareObvhs, Mesh, geometry_pass, grey_materials, ground_quad, primary_directions, raw_scene,
-    uv_sphere,
+    BENCH_EMISSIVITY, BareObvhs, Mesh, geometry_pass, grey_materials, ground_quad,
+    primary_directions, raw_scene, uv_sphere,
 };
 use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
 
@@ -42,7 +42,7 @@ fn main() {
     let mut materials = grey_materials(&[(1, 0.93, specular), (2, 0.95, 0.0)]);
     if args.get(4).is_some_and(|a| a == "angular") {
         for m in &mut materials.materials {
-            m.emissivity = vec![(0.0, 0.95), (45.0, 0.93), (70.0, 0.85), (90.0, 0.0)];
+            m.emissivity = BENCH_EMISSIVITY.to_vec();
         }
     }
     let sky = Vacuum {

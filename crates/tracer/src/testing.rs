@@ -201,6 +201,11 @@ pub fn raw_scene(parts: &[(&Mesh, u16, f64)]) -> RawScene {
     s
 }
 
+/// The benchmarks' angular emissivity table, `(angle_deg, emissivity)`: 0.95 at the normal,
+/// falling to 0 at grazing (the divan bench's materials and `shade_profile ... angular`).
+pub const BENCH_EMISSIVITY: [(f64, f64); 4] =
+    [(0.0, 0.95), (45.0, 0.93), (70.0, 0.85), (90.0, 0.0)];
+
 /// A library of grey materials `(id, emissivity at every angle, specular fraction)`.
 #[must_use]
 pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
@@ -477,11 +482,9 @@ impl BareObvhs {
     #[must_use]
     pub fn primary_rays(&self, camera: &Camera) -> Vec<obvhs::ray::Ray> {
         let origin = f32_local(camera.position_m, self.centre_m);
-        let [w, h] = camera.pixels;
-        (0..h)
-            .flat_map(|r| (0..w).map(move |c| (c, r)))
-            .map(|(c, r)| {
-                let d = camera.pixel_direction(c, r);
+        primary_directions(camera)
+            .iter()
+            .map(|d| {
                 obvhs::ray::Ray::new_inf(
                     origin,
                     glam::Vec3A::new(d[0] as f32, d[1] as f32, d[2] as f32),
