@@ -14,7 +14,9 @@
 
 use rayon::prelude::*;
 
-use crate::env::{Atmosphere, PathTerms};
+use irsig_atmosphere::PathTerms;
+
+use crate::env::Atmosphere;
 
 /// How the tracer gets the path terms (τ, L_u) of a primary hit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -27,6 +29,43 @@ pub enum PathTermsMode {
     /// sensor's, where near-horizontal paths vary fastest), interpolated bilinearly.
     /// Terrain misses and secondary paths stay exact.
     Tabulated,
+}
+
+impl PathTermsMode {
+    /// Both modes, in the order they are listed to users.
+    pub const ALL: [Self; 2] = [Self::Exact, Self::Tabulated];
+    /// Their names, in the same order.
+    pub const NAMES: [&'static str; 2] = ["exact", "tabulated"];
+
+    /// The name used in files and on command lines.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Exact => Self::NAMES[0],
+            Self::Tabulated => Self::NAMES[1],
+        }
+    }
+}
+
+impl std::fmt::Display for PathTermsMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not a [`PathTermsMode`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown path-terms mode `{0}`: expected one of exact, tabulated")]
+pub struct UnknownPathTermsMode(pub String);
+
+impl std::str::FromStr for PathTermsMode {
+    type Err = UnknownPathTermsMode;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownPathTermsMode(s.to_owned()))
+    }
 }
 
 /// Altitude nodes of the path table.

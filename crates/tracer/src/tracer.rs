@@ -1,15 +1,17 @@
-//! The radiance equation along each ray: the four events of thesis Figure 6 (SPEC §4).
+//! The radiance equation along each ray: the four events of thesis Figure 6 (§3.3).
 
 use std::fmt;
 
+use irsig_atmosphere::range_to_ground_from_cos_m;
+use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
-use irsig_radiometry::EmissivityTable;
+use irsig_radiometry::{BandModel, EmissivityTable};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
-use crate::env::{Atmosphere, Radiometry, range_to_ground_from_cos_m};
+use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::{Geometry, Hit};
 use crate::path_table::{PathTable, PathTermsMode};
@@ -298,6 +300,26 @@ impl TruthPixel {
     pub fn incidence_deg(&self) -> f32 {
         self.cos_incidence.acos().to_degrees() as f32
     }
+
+    /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
+    /// the layers that come from the pixel's radiance instead ([`Layer::Radiance`],
+    /// [`Layer::ApparentTemperature`]).
+    #[must_use]
+    pub fn layer(&self, layer: Layer) -> Option<f32> {
+        Some(match layer {
+            Layer::MaterialPrimary => f32::from(self.primary_material),
+            Layer::MaterialSecondary => f32::from(self.secondary_material),
+            Layer::Event => f32::from(self.event.number()),
+            Layer::Range => self.range_m,
+            Layer::Incidence => self.incidence_deg(),
+            Layer::KineticTemperature => self.temperature_k,
+            Layer::Emissivity => self.emissivity,
+            Layer::Transmission => self.transmission,
+            Layer::PathRadiance => self.path_radiance_w_m2_sr,
+            Layer::SkyViewFactor => self.sky_view_factor,
+            Layer::Radiance | Layer::ApparentTemperature => return None,
+        })
+    }
 }
 
 impl From<&Sample> for TruthPixel {
@@ -332,6 +354,25 @@ pub struct Frame {
     pub truth: Vec<TruthPixel>,
 }
 
+impl Frame {
+    /// One truth layer of every pixel, row-major, as the truth EXR stores it (f32; NaN
+    /// where the term does not apply). `None` when the frame kept no truth or the layer
+    /// comes from the radiance ([`TruthPixel::layer`]).
+    #[must_use]
+    pub fn truth_layer(&self, layer: Layer) -> Option<Vec<f32>> {
+        if self.truth.is_empty() {
+            return None;
+        }
+        self.truth.iter().map(|p| p.layer(layer)).collect()
+    }
+
+    /// The radiance of every pixel rounded to f32, as the radiance EXR stores it.
+    #[must_use]
+    pub fn radiance_f32(&self) -> Vec<f32> {
+        self.radiance_w_m2_sr.iter().map(|&l| l as f32).collect()
+    }
+}
+
 #[derive(Debug, Clone)]
 struct MaterialData {
     id: u16,
@@ -361,7 +402,7 @@ pub struct Tracer<R, A> {
     /// The terrain's L_T, W m⁻² sr⁻¹.
     terrain_blackbody: f64,
     terrain_leaving: f64,
-    radiometry: R,
+    band: R,
     atmosphere: A,
     path_terms: PathTermsMode,
 }
@@ -408,7 +449,7 @@ fn splitmix64(mut x: u64) -> u64 {
     x ^ (x >> 31)
 }
 
-impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
+impl<R: BandModel, A: Atmosphere> Tracer<R, A> {
     /// Validates the scene and materials, builds the BVH and precomputes each facet's L_T.
     ///
     /// # Errors
@@ -416,7 +457,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     pub fn new(
         scene: &RawScene,
         materials: &MaterialLibrary,
-        radiometry: R,
+        band: R,
         atmosphere: A,
     ) -> Result<Self, TraceError> {
         scene
@@ -455,13 +496,13 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             facets.push(FacetRadiometry {
                 material: slot,
                 temperature_k: f.temperature_k,
-                blackbody: radiometry.radiance(f.temperature_k),
+                blackbody: band.radiance(f.temperature_k),
             });
             // Indices were checked by validate().
             triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
         }
         let terrain = scene.terrain;
-        let terrain_blackbody = radiometry.radiance(terrain.temperature_k);
+        let terrain_blackbody = band.radiance(terrain.temperature_k);
         let terrain_leaving = terrain.emissivity * terrain_blackbody
             + (1.0 - terrain.emissivity) * atmosphere.sky_hemispheric(0.0);
         Ok(Self {
@@ -470,7 +511,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             terrain,
             terrain_blackbody,
             terrain_leaving,
-            radiometry,
+            band,
             atmosphere,
             path_terms: PathTermsMode::Exact,
         })
@@ -482,10 +523,10 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         &self.geometry
     }
 
-    /// The band model.
+    /// The band.
     #[must_use]
-    pub fn radiometry(&self) -> &R {
-        &self.radiometry
+    pub fn band(&self) -> &R {
+        &self.band
     }
 
     fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
@@ -540,7 +581,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
     /// Apparent (blackbody) temperature of a radiance, K.
     #[must_use]
     pub fn apparent_temperature_k(&self, radiance_w_m2_sr: f64) -> f64 {
-        self.radiometry.temperature(radiance_w_m2_sr)
+        self.band.temperature(radiance_w_m2_sr)
     }
 
     /// Renders every pixel of `camera`'s image, rows in parallel (rayon). `progress` is

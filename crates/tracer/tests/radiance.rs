@@ -3,12 +3,11 @@
 //! the horizon, the sky-view factor against an exact configuration factor, supersampling,
 //! re-centring 500 km away, thread-count independence and two views that must agree.
 
+use irsig_atmosphere::PathTerms;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, Terrain, View};
-use irsig_tracer::env::critical_nadir_angle_deg;
+use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{Mesh, box_mesh, ground_quad};
-use irsig_tracer::{
-    Atmosphere, Camera, Event, PathTerms, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum,
-};
+use irsig_tracer::{Atmosphere, Camera, Event, TraceOptions, Tracer, Vacuum};
 
 /// A made-up atmosphere whose every term is a closed form: τ depends on the range and on
 /// both ends' altitudes, the sky on the zenith angle.
@@ -40,9 +39,6 @@ impl Atmosphere for TestAir {
     }
     fn sky_hemispheric(&self, _: f64) -> f64 {
         SKY_HEMI
-    }
-    fn critical_nadir_angle_deg(&self, alt: f64) -> f64 {
-        critical_nadir_angle_deg(alt)
     }
 }
 
