@@ -60,7 +60,9 @@ pub mod camera;
 pub mod env;
 mod error;
 pub mod geometry;
+mod path;
 mod path_table;
+mod shade;
 pub mod testing;
 mod tracer;
 mod vec;
@@ -73,5 +75,7 @@ pub use error::{TraceError, TraceErrorKind};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
-pub use tracer::{Event, FacetRadiometry, Frame, Sample, TraceOptions, Tracer, TruthPixel};
+pub use tracer::{
+    Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
+};
 pub use vec::V3;

@@ -371,7 +371,7 @@ fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
     Ok(from_ron_bytes(&input.name, &input.bytes)?)
 }
 
-fn with_atmosphere<R: BandModel>(
+fn with_atmosphere<R: BandModel + Clone>(
     cli: &Cli,
     scene: &RawScene,
     materials: &MaterialLibrary,
@@ -411,7 +411,7 @@ fn with_atmosphere<R: BandModel>(
     trace_all(cli, scene, materials, job, band, air)
 }
 
-fn trace_all<R: BandModel, A: Atmosphere>(
+fn trace_all<R: BandModel + Clone, A: Atmosphere>(
     cli: &Cli,
     scene: &RawScene,
     materials: &MaterialLibrary,
