@@ -33,7 +33,7 @@ use irsig_formats::legacy::decode;
 use irsig_formats::views::{parse_views, read_execute};
 use irsig_model::truth::Layer;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_radiometry::{BandModel, InverseTable, TotalRadiance};
 use irsig_raster::{Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_sensor_model::quantise::Quantiser;
 use irsig_tracer::{Atmosphere, Camera, Frame, PathTermsMode, TraceOptions, Tracer, Vacuum};
@@ -574,11 +574,14 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
     for layer in Layer::TRUTH {
         let data = match frame.truth_layer(layer) {
             Some(data) => data,
-            None if layer == Layer::ApparentTemperature => frame
-                .radiance_w_m2_sr
-                .par_iter()
-                .map(|&l| tracer.apparent_temperature_k(l) as f32)
-                .collect(),
+            None if layer == Layer::ApparentTemperature => {
+                let inverse = InverseTable::new(tracer.band(), &frame.radiance_w_m2_sr);
+                frame
+                    .radiance_w_m2_sr
+                    .par_iter()
+                    .map(|&l| inverse.temperature(l) as f32)
+                    .collect()
+            }
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;
