@@ -143,6 +143,11 @@ pub struct Cli {
     /// Supersampling: N for N x N stratified rays per pixel (1: one ray through the centre).
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub supersample: u32,
+    /// Adaptive supersampling: give the N x N rays of --supersample only to pixels whose
+    /// centre ray's apparent temperature differs from a neighbour's by more than K kelvin
+    /// (edges); the others keep their centre ray.
+    #[arg(long, value_name = "K", requires = "supersample")]
+    pub adaptive_supersampling: Option<f64>,
     /// Seed for sky-view directions and sub-pixel jitter.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -423,6 +428,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
         specular_bounces: cli.bounces,
         sky_view_rays: cli.sky_view_rays,
         supersampling: cli.supersample,
+        adaptive_threshold_k: cli.adaptive_supersampling,
         seed: cli.seed,
         truth: true,
     };
