@@ -36,6 +36,7 @@
 //! ```
 
 mod atmosphere;
+pub mod decision;
 mod error;
 mod material;
 mod object;

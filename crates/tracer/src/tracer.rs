@@ -503,7 +503,16 @@ pub(crate) struct Ctx<'a> {
     pixel_index: u64,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    /// The state of a ray of pixel `pixel_index` (row-major) rendered with `options`.
+    pub(crate) fn for_pixel(options: &'a TraceOptions, pixel_index: u64) -> Self {
+        Self {
+            options,
+            rng: None,
+            pixel_index,
+        }
+    }
+
     /// The pixel's random stream, seeded on first use (most pixels never draw).
     pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
         let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
@@ -528,6 +537,13 @@ pub(crate) struct FrameConsts<'a> {
     pub(crate) cos_critical_nadir: f64,
     /// The primary hits' path terms in every sub-band, when [`PathTermsMode::Tabulated`].
     pub(crate) path_table: Option<PathTable>,
+}
+
+impl FrameConsts<'_> {
+    /// The camera of the frame.
+    pub(crate) fn camera(&self) -> &Camera {
+        self.camera
+    }
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -727,6 +743,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
+        self.frame_consts_with(camera, self.path_terms == PathTermsMode::Tabulated)
+    }
+
+    /// What a frame's rays share, with this tracer's path-term table when `table`.
+    pub(crate) fn frame_consts_with<'a>(&self, camera: &'a Camera, table: bool) -> FrameConsts<'a> {
         let [w, h] = camera.pixels;
         let sensor_alt = camera.position_m[2].max(0.0);
         FrameConsts {
@@ -740,27 +761,32 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .critical_nadir_angle_deg(sensor_alt)
                 .to_radians()
                 .cos(),
-            path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
-                let [lo, hi] = self.geometry.bounds_m();
-                let p = camera.position_m;
-                // Nearest and farthest points of the box from the sensor.
-                let near: f64 = (0..3)
-                    .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let far: f64 = (0..3)
-                    .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let atmospheres: Vec<&A> = self.bands.bands.iter().map(|b| &b.atmosphere).collect();
-                PathTable::new(
-                    &atmospheres,
-                    sensor_alt,
-                    [lo[2].max(0.0), hi[2].max(0.0)],
-                    [near, far],
-                )
-            }),
+            path_table: table.then(|| self.path_table(camera, &self.bands)),
         }
+    }
+
+    /// The path-term table of `camera`'s frame for every sub-band of `set`: over the
+    /// scene's altitudes, from the nearest to the farthest point of its box.
+    pub(crate) fn path_table<S: Atmosphere>(&self, camera: &Camera, set: &BandSet<S>) -> PathTable {
+        let sensor_alt = camera.position_m[2].max(0.0);
+        let [lo, hi] = self.geometry.bounds_m();
+        let p = camera.position_m;
+        // Nearest and farthest points of the box from the sensor.
+        let near: f64 = (0..3)
+            .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let far: f64 = (0..3)
+            .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let atmospheres: Vec<&S> = set.bands.iter().map(|b| &b.atmosphere).collect();
+        PathTable::new(
+            &atmospheres,
+            sensor_alt,
+            [lo[2].max(0.0), hi[2].max(0.0)],
+            [near, far],
+        )
     }
 
     /// Chooses how primary hits get their path terms (default [`PathTermsMode::Exact`]).
@@ -975,11 +1001,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         centre: &mut Sample,
     ) -> f64 {
         let camera = fc.camera;
-        let mut ctx = Ctx {
+        let mut ctx = Ctx::for_pixel(
             options,
-            rng: None,
-            pixel_index: u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
-        };
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
         // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
         let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
         self.follow(fc, dir, &mut ctx, path);
