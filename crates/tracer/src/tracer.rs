@@ -673,6 +673,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         Ok(tracer)
     }
 
+    /// This tracer with its sub-bands replaced by `sub_bands` (another atmosphere or
+    /// another partition of the band), the BVH kept.
+    ///
+    /// # Errors
+    /// As [`Tracer::band_set`].
+    pub fn with_bands(mut self, sub_bands: Vec<SubBand<B, A>>) -> Result<Self, TraceError> {
+        self.bands = self.band_set(sub_bands)?;
+        Ok(self)
+    }
+
     /// The sub-bands `sub_bands` prepared for this tracer's scene: every facet temperature's
     /// and the terrain's blackbody radiance in each, and each material's emissivity. For
     /// evaluating recorded paths under another band model or atmosphere (the pilot).

@@ -315,3 +315,101 @@ fn bad_input_exits_1_with_file_line_and_column_and_writes_nothing() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn a_tolerance_runs_the_pilot_prints_and_writes_its_decision() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let prefix = dir.path().join("f");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "--tolerance", "0.3", "-o"])
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // The table names every model, and why the scene needs no bounces.
+    for model in [
+        "atmosphere",
+        "bounces",
+        "sky-view",
+        "supersampling",
+        "path-terms",
+        "sub-bands",
+    ] {
+        assert!(stderr.contains(model), "{stderr}");
+    }
+    assert!(stderr.contains("no specular material"), "{stderr}");
+    let text = std::fs::read_to_string(dir.path().join("f.decision.ron")).unwrap();
+    let decision: irsig_model::decision::Decision =
+        irsig_formats::canonical::from_ron("f.decision.ron", &text).unwrap();
+    assert!((decision.tolerance_k - 0.3).abs() < 1e-12);
+    assert!(decision.predicted.percentile_k <= 0.3, "{decision:?}");
+    assert!(dir.path().join("f.radiance.exr").is_file());
+    // A decision applied again gives the same image, without a pilot.
+    let again = dir.path().join("g");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "--decision"])
+        .arg(dir.path().join("f.decision.ron"))
+        .arg("-o")
+        .arg(&again)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(dir.path().join("f.radiance.exr")).unwrap(),
+        std::fs::read(dir.path().join("g.radiance.exr")).unwrap()
+    );
+}
+
+#[test]
+fn bad_tolerances_and_pins_are_refused_before_tracing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    for (args, says) in [
+        (vec!["--tolerance", "0"], "a tolerance of 0 K"),
+        (vec!["--tolerance", "-0.1"], "a tolerance of -0.1 K"),
+        (
+            vec!["--tolerance", "0.1", "--tolerance-percentile", "0"],
+            "percentile",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--tolerance-percentile", "100.5"],
+            "percentile",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--pin", "bounce=2"],
+            "unknown model `bounce`",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--pin", "supersampling=0"],
+            "supersampling=0",
+        ),
+        (vec!["--tolerance", "0.1", "--bounces", "2"], "--bounces"),
+    ] {
+        let out = trace()
+            .args([
+                "--scene",
+                &scene,
+                "--materials",
+                &mats,
+                "--view",
+                &view,
+                "-o",
+            ])
+            .arg(dir.path().join("x"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        assert!(!dir.path().join("x.radiance.exr").exists());
+    }
+}
