@@ -40,12 +40,17 @@ mod emit;
 mod error;
 mod plan;
 mod run;
+mod slurm;
 mod spec;
 mod value;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};
 pub use run::{Event, RunOptions, RunSummary};
+pub use slurm::{
+    Dependency, MEMORY_FLOOR_MIB, MEMORY_PER_INPUT_BYTE, NodeLimits, SlurmJob, SlurmOptions,
+    SlurmScripts, estimate_memory_mib,
+};
 
 /// `word` quoted for a POSIX shell when it needs quoting, as dry runs and Makefiles print it.
 #[must_use]

@@ -78,6 +78,34 @@ impl Plan {
             .unwrap_or_default()
     }
 
+    /// Where runners that share a pipeline's state take turns: `.irsig-run/<stem>.lock`.
+    fn lock_path(&self) -> PathBuf {
+        self.state_path().with_extension("lock")
+    }
+
+    /// Records a step's successful run in the state file. Several runners may finish steps of
+    /// one pipeline at once (the tasks of a Slurm job array, each an `irsig-run --step`), so
+    /// the file is re-read and rewritten under an exclusive lock on `.irsig-run/<stem>.lock`:
+    /// every runner's record survives, whichever writes last.
+    fn record(&self, step: &Step, record: Record) -> Result<(), PipelineError> {
+        let path = self.lock_path();
+        let io = |e| PipelineError::io(format!("cannot lock run state `{}`", path.display()), e);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(io)?;
+        }
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(io)?;
+        fs4::FileExt::lock(&lock).map_err(io)?;
+        let mut state = self.load_state();
+        state.steps.insert(step.name.clone(), record);
+        // The lock is released when `lock` is closed, after the new state is in place.
+        self.save_state(&state)
+    }
+
     fn save_state(&self, state: &State) -> Result<(), PipelineError> {
         let path = self.state_path();
         let io = |e| PipelineError::io(format!("cannot write run state `{}`", path.display()), e);
@@ -192,7 +220,7 @@ impl Plan {
         on_event: &(dyn Fn(Event<'_>) + Sync),
     ) -> Result<RunSummary, PipelineError> {
         let tools = self.tool_hashes()?;
-        let mut state = self.load_state();
+        let state = self.load_state();
         let n = self.steps.len();
         let mut waiting: Vec<usize> = self.steps.iter().map(|s| s.deps.len()).collect();
         let mut dependents = vec![Vec::new(); n];
@@ -231,8 +259,7 @@ impl Plan {
                     Ok(None) => summary.up_to_date += 1,
                     Ok(Some(record)) => {
                         summary.ran += 1;
-                        state.steps.insert(self.steps[i].name.clone(), record);
-                        if let Err(e) = self.save_state(&state) {
+                        if let Err(e) = self.record(&self.steps[i], record) {
                             failure.get_or_insert(e);
                         }
                     }
@@ -253,6 +280,57 @@ impl Plan {
         match failure {
             Some(e) => Err(e),
             None => Ok(summary),
+        }
+    }
+
+    /// Runs the one step named `name` (`trace[3]` for frame 3 of the stage `trace`) unless
+    /// it is up to date, and records it in the run state: what a task of a Slurm job array
+    /// does. Its inputs must exist; the steps before it are not run.
+    ///
+    /// # Errors
+    /// [`ErrorKind::UnknownStep`] when the plan has no step of that name; otherwise as
+    /// [`Plan::run`].
+    pub fn run_step_named(
+        &self,
+        name: &str,
+        force: bool,
+        on_event: &(dyn Fn(Event<'_>) + Sync),
+    ) -> Result<RunSummary, PipelineError> {
+        let Some(step) = self.steps.iter().find(|s| s.name == name) else {
+            const SHOWN: usize = 12;
+            let names: Vec<&str> = self.steps.iter().map(|s| s.name.as_str()).collect();
+            let mut listed = names[..names.len().min(SHOWN)].join(", ");
+            if names.len() > SHOWN {
+                listed.push_str(&format!(", ... ({} more)", names.len() - SHOWN));
+            }
+            return Err(PipelineError::plain(
+                ErrorKind::UnknownStep,
+                format!(
+                    "`{}` has no step named `{name}`; its steps are: {listed}",
+                    self.file
+                ),
+            ));
+        };
+        let bytes = std::fs::read(&step.program).map_err(|e| {
+            PipelineError::io(
+                format!("cannot read tool program `{}`", step.program.display()),
+                e,
+            )
+        })?;
+        let tool = hex(&Sha256::digest(bytes));
+        let record = self.load_state().steps.get(&step.name).cloned();
+        match self.run_step(step, &tool, record.as_ref(), force, on_event)? {
+            None => Ok(RunSummary {
+                ran: 0,
+                up_to_date: 1,
+            }),
+            Some(record) => {
+                self.record(step, record)?;
+                Ok(RunSummary {
+                    ran: 1,
+                    up_to_date: 0,
+                })
+            }
         }
     }
 
