@@ -11,7 +11,8 @@
 //!   skips a step whose outputs are up to date with its tool, command line and input
 //!   contents (SHA-256, kept in `.irsig-run/` beside the pipeline file).
 //! - [`Plan::dry_run`] lists what would run; [`Plan::makefile`] writes the same steps as a
-//!   Makefile.
+//!   Makefile; [`Plan::slurm`] writes them as Slurm batch scripts (a job array per frame
+//!   sweep), whose tasks each run one step ([`Plan::run_step_named`]).
 //!
 //! The format is documented in `formats/pipeline.md`.
 //!

@@ -78,14 +78,14 @@ impl Plan {
             .unwrap_or_default()
     }
 
-    /// Where runners that share a pipeline's state take turns: `.irsig-run/<stem>.lock`.
+    /// Where runners that share a pipeline's state take turns: `.irsig-run/<stem>.state.lock`.
     fn lock_path(&self) -> PathBuf {
         self.state_path().with_extension("lock")
     }
 
     /// Records a step's successful run in the state file. Several runners may finish steps of
     /// one pipeline at once (the tasks of a Slurm job array, each an `irsig-run --step`), so
-    /// the file is re-read and rewritten under an exclusive lock on `.irsig-run/<stem>.lock`:
+    /// the file is re-read and rewritten under an exclusive lock on `.irsig-run/<stem>.state.lock`:
     /// every runner's record survives, whichever writes last.
     fn record(&self, step: &Step, record: Record) -> Result<(), PipelineError> {
         let path = self.lock_path();

@@ -34,10 +34,8 @@ pub(crate) fn emit(cli: &Cli, dir: &Path) -> miette::Result<()> {
         .parent()
         .map_or_else(|| PathBuf::from("/"), Path::to_path_buf);
     let plan = Pipeline::parse(&shown, &text, &base_dir)?.plan(&crate::tools())?;
-    std::fs::create_dir_all(dir)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot create directory `{}`", dir.display()))?;
-    let script_dir = std::fs::canonicalize(dir)
+    // Made absolute without touching the disk: nothing is created before the plan passes.
+    let script_dir = std::path::absolute(dir)
         .into_diagnostic()
         .wrap_err_with(|| format!("cannot resolve directory `{}`", dir.display()))?;
     let runner = std::env::current_exe()
@@ -65,6 +63,9 @@ pub(crate) fn emit(cli: &Cli, dir: &Path) -> miette::Result<()> {
         node,
         force: cli.force,
     })?;
+    std::fs::create_dir_all(&script_dir)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot create directory `{}`", dir.display()))?;
     let files: Vec<(PathBuf, Vec<u8>)> = scripts
         .files
         .iter()
