@@ -27,5 +27,6 @@ pub mod legacy;
 pub mod mesh;
 pub mod nk;
 pub mod srf;
+pub mod views;
 
 pub use error::{ParseError, line_column, offset_of};
