@@ -76,6 +76,6 @@ pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
 pub use tracer::{
-    Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
+    BandSet, Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
 };
 pub use vec::V3;

@@ -33,7 +33,7 @@ use irsig_formats::legacy::decode;
 use irsig_formats::views::{parse_views, read_execute};
 use irsig_model::truth::Layer;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_radiometry::{BandModel, InverseTable, TotalRadiance};
 use irsig_raster::{Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_sensor_model::quantise::Quantiser;
 use irsig_tracer::{Atmosphere, Camera, Frame, PathTermsMode, TraceOptions, Tracer, Vacuum};
@@ -143,6 +143,11 @@ pub struct Cli {
     /// Supersampling: N for N x N stratified rays per pixel (1: one ray through the centre).
     #[arg(long, default_value_t = 1, value_name = "N")]
     pub supersample: u32,
+    /// Adaptive supersampling: give the N x N rays of --supersample only to pixels whose
+    /// centre ray's apparent temperature differs from a neighbour's by more than K kelvin
+    /// (edges); the others keep their centre ray.
+    #[arg(long, value_name = "K", requires = "supersample")]
+    pub adaptive_supersampling: Option<f64>,
     /// Seed for sky-view directions and sub-pixel jitter.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
@@ -423,6 +428,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
         specular_bounces: cli.bounces,
         sky_view_rays: cli.sky_view_rays,
         supersampling: cli.supersample,
+        adaptive_threshold_k: cli.adaptive_supersampling,
         seed: cli.seed,
         truth: true,
     };
@@ -574,11 +580,14 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
     for layer in Layer::TRUTH {
         let data = match frame.truth_layer(layer) {
             Some(data) => data,
-            None if layer == Layer::ApparentTemperature => frame
-                .radiance_w_m2_sr
-                .par_iter()
-                .map(|&l| tracer.apparent_temperature_k(l) as f32)
-                .collect(),
+            None if layer == Layer::ApparentTemperature => {
+                let inverse = InverseTable::new(tracer.band(), &frame.radiance_w_m2_sr);
+                frame
+                    .radiance_w_m2_sr
+                    .par_iter()
+                    .map(|&l| inverse.temperature(l) as f32)
+                    .collect()
+            }
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;
