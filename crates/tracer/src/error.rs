@@ -50,6 +50,9 @@ pub enum TraceErrorKind {
     /// A trace option is out of range.
     #[error("trace options: {0}")]
     InvalidOptions(String),
+    /// A tile asked for is empty or reaches beyond the image.
+    #[error("{0}")]
+    InvalidTile(crate::tile::TileError),
     /// A pixel asked for lies outside the image.
     #[error("pixel ({column}, {row}) lies outside the {width}x{height} image")]
     PixelOutsideImage {

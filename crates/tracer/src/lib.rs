@@ -65,6 +65,7 @@ mod path_table;
 pub mod pilot;
 mod shade;
 pub mod testing;
+pub mod tile;
 mod tracer;
 mod vec;
 
@@ -76,7 +77,9 @@ pub use error::{TraceError, TraceErrorKind};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
+pub use tile::{Tile, TileError};
 pub use tracer::{
-    BandSet, Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
+    BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, TraceOptions, Tracer,
+    TruthPixel,
 };
 pub use vec::V3;

@@ -15,6 +15,7 @@ use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::Geometry;
 use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
+use crate::tile::Tile;
 use crate::vec::V3;
 
 /// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
@@ -495,6 +496,10 @@ pub struct Tracer<B, A> {
     pub(crate) path_terms: PathTermsMode,
 }
 
+/// The span of [`Tracer::inverse_table`], K: the apparent temperatures of earth-ambient
+/// scenes and of the clear sky in the thermal infrared.
+pub const INVERSE_TABLE_K: [f64; 2] = [150.0, 500.0];
+
 /// Per-ray state shared by the events.
 pub(crate) struct Ctx<'a> {
     pub(crate) options: &'a TraceOptions,
@@ -818,6 +823,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         self.band.temperature(radiance_w_m2_sr)
     }
 
+    /// The inverse table every image of this tracer takes apparent temperatures through
+    /// (adaptive supersampling's edge test, the truth EXR's `apparent_temperature`): over
+    /// the band radiances of [`INVERSE_TABLE_K`], whatever the image. The same radiance so
+    /// gets the same temperature, bit for bit, in a whole frame and in each of its tiles: a
+    /// table over an image's own radiance range starts Newton's polish elsewhere for a tile
+    /// than for its frame, and the last bits, and so an edge test at its threshold, could
+    /// differ. Radiances outside the span are solved cold, to the same precision.
+    #[must_use]
+    pub fn inverse_table(&self) -> InverseTable<'_, B> {
+        let [lo, hi] = INVERSE_TABLE_K.map(|t| self.band.radiance(t));
+        InverseTable::new(&self.band, &[lo, hi])
+    }
+
     /// Renders every pixel of `camera`'s image, rows in parallel (rayon). `progress` is
     /// called with 1 after each row. The result does not depend on the thread count.
     ///
@@ -944,7 +962,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// neighbours' by more than `threshold_k` (the diagonal ones count: a corner of a facet
     /// can cut into a pixel whose 4-neighbours' centres all miss it).
     pub(crate) fn edges(&self, frame: &Frame, threshold_k: f64) -> Vec<bool> {
-        let inverse = InverseTable::new(&self.band, &frame.radiance_w_m2_sr);
+        let inverse = self.inverse_table();
         let t: Vec<f64> = frame
             .radiance_w_m2_sr
             .par_iter()
@@ -960,6 +978,159 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .any(|j| (t[i] - t[j]).abs() > threshold_k)
             })
             .collect()
+    }
+
+    /// Renders the pixels of `tile` of `camera`'s image, rows in parallel, exactly as
+    /// [`Self::render`] renders them in the whole image: each pixel's rays and random
+    /// stream are its own (seeded by its index in the whole image), and adaptive
+    /// supersampling compares the tile's pixels with their neighbours' centre rays over a
+    /// one-pixel margin, so every pixel is bit for bit the whole frame's. The frame returned
+    /// is the tile's: `tile.width × tile.height`, row 0 the tile's top row. What it holds
+    /// beyond its pixels: the camera's per-column and per-row directions and, with adaptive
+    /// supersampling, the centre radiance of the margin.
+    ///
+    /// # Errors
+    /// The options are out of range, or the tile is empty or reaches beyond the image.
+    pub fn render_tile(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Frame, TraceError> {
+        options.validate()?;
+        let [w, h] = camera.pixels;
+        tile.check(w, h)
+            .map_err(|e| TraceError::new(TraceErrorKind::InvalidTile(e)))?;
+        let fc = self.frame_consts(camera);
+        let adaptive = options
+            .adaptive_threshold_k
+            .filter(|_| options.supersampling > 1);
+        let Some(threshold_k) = adaptive else {
+            return Ok(self.render_rect(&fc, options, tile, progress));
+        };
+        // The centre rays of the tile and a one-pixel margin: an edge test needs all 8
+        // neighbours, as in the whole frame (the margin stops at the image's border, where
+        // the whole frame's neighbourhood stops too).
+        let centre_options = TraceOptions {
+            supersampling: 1,
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        let halo = tile.grown(1, w, h);
+        let centres = self.render_rect(&fc, &centre_options, halo, &|_| {});
+        let refine = self.edges(&centres, threshold_k);
+        let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+        let (tw, hw) = (tile.width as usize, halo.width as usize);
+        let crop = |r: usize| (r + dy) * hw + dx..(r + dy) * hw + dx + tw;
+        let mut radiance = Vec::with_capacity(tile.pixels());
+        let mut flags = Vec::with_capacity(tile.pixels());
+        let mut truth = Vec::new();
+        for r in 0..tile.height as usize {
+            radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
+            flags.extend_from_slice(&refine[crop(r)]);
+            if !centres.truth.is_empty() {
+                truth.extend_from_slice(&centres.truth[crop(r)]);
+            }
+        }
+        drop(centres);
+        let full = TraceOptions {
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        radiance
+            .par_chunks_mut(tw)
+            .zip(flags.par_chunks(tw))
+            .enumerate()
+            .for_each(|(r, (rad, flags))| {
+                let mut path = Path::default();
+                let mut scratch = Sample::miss(Event::Sky);
+                let row = tile.y + r as u32;
+                for (c, (l_out, &flag)) in rad.iter_mut().zip(flags).enumerate() {
+                    if flag {
+                        *l_out = self.pixel::<false>(
+                            &fc,
+                            &full,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut scratch,
+                        );
+                    }
+                }
+                progress(1);
+            });
+        Ok(Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+        })
+    }
+
+    /// The pixels of `tile` (checked to lie in the image), rows in parallel: a frame of the
+    /// tile's size.
+    fn render_rect(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Frame {
+        let n = tile.pixels();
+        let row_len = tile.width.max(1) as usize;
+        let mut radiance = vec![0.0; n];
+        let mut truth = Vec::new();
+        if options.truth {
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+            radiance
+                .par_chunks_mut(row_len)
+                .zip(truth.par_chunks_mut(row_len))
+                .enumerate()
+                .for_each(|(r, (rad, tru))| {
+                    let mut path = Path::default();
+                    let mut centre = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
+                        *l_out = self.pixel::<true>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut centre,
+                        );
+                        *t_out = TruthPixel::from(&centre);
+                    }
+                    progress(1);
+                });
+        } else {
+            radiance
+                .par_chunks_mut(row_len)
+                .enumerate()
+                .for_each(|(r, rad)| {
+                    let mut path = Path::default();
+                    let mut scratch = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, l_out) in rad.iter_mut().enumerate() {
+                        *l_out = self.pixel::<false>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut scratch,
+                        );
+                    }
+                    progress(1);
+                });
+        }
+        Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+        }
     }
 
     /// Every term of the ray through the centre of pixel `(column, row)`, exactly as
