@@ -11,6 +11,11 @@
 //! Pixel `(0, 0)` is the top-left corner; `data[row * width + column]`, row 0 at the top,
 //! columns left to right, as in EXR and PNG.
 //!
+//! A raster may say which frame it is part of ([`FramePart`]): the frame's size, where its
+//! pixels lie in it and which run made them. irsig-trace writes that on every image, and
+//! [`merge`] puts the tiles of a frame back together, byte for byte the frame rendered
+//! whole.
+//!
 //! ```
 //! use irsig_raster::{Raster, read_exr, write_exr};
 //! let mut r = Raster::new(2, 1);
@@ -25,6 +30,8 @@
 use std::io::{Cursor, Seek, Write};
 
 use exr::prelude::{self as x, ReadChannels, ReadLayers, WritableImage};
+
+pub mod merge;
 
 /// One image plane: a name, its unit and `width × height` samples, row-major from the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,6 +53,29 @@ pub struct Raster {
     pub height: usize,
     /// The layers, each `width × height` samples.
     pub layers: Vec<Layer>,
+    /// The frame these pixels are part of, and the run that made them; `None` for an image
+    /// that says nothing of either.
+    pub part: Option<FramePart>,
+}
+
+/// Where a raster's pixels lie in the frame they belong to, and which run made them: a
+/// whole frame is the part at (0, 0) of its own size; a tile is a rectangle of it. In an
+/// EXR, the frame is the display window, the part's origin the data window's, and the run
+/// the text attribute `irsig.run` (formats/images.md).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FramePart {
+    /// The frame's columns.
+    pub frame_width: usize,
+    /// The frame's rows.
+    pub frame_height: usize,
+    /// The column of the raster's first pixel in the frame.
+    pub x: usize,
+    /// The row of the raster's first pixel in the frame.
+    pub y: usize,
+    /// What made the pixels, as one line of text: the same for every tile of a frame and
+    /// for the frame rendered whole, different for another scene, view or option (irsig-trace
+    /// writes a SHA-256 of its inputs and options).
+    pub run: String,
 }
 
 /// What went wrong reading or writing an image.
@@ -79,17 +109,28 @@ pub enum RasterError {
     /// An I/O error.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// The frame a raster says it is part of does not hold it.
+    #[error("{0}")]
+    Part(String),
 }
 
 impl Raster {
-    /// An image of this size with no layers yet.
+    /// An image of this size with no layers yet, part of no larger frame.
     #[must_use]
     pub fn new(width: usize, height: usize) -> Self {
         Self {
             width,
             height,
             layers: Vec::new(),
+            part: None,
         }
+    }
+
+    /// This raster, as `part` of a frame.
+    #[must_use]
+    pub fn with_part(mut self, part: FramePart) -> Self {
+        self.part = Some(part);
+        self
     }
 
     /// Adds a layer.
@@ -157,14 +198,70 @@ impl Raster {
                 return Err(RasterError::DuplicateLayer(l.name.clone()));
             }
         }
+        if let Some(p) = &self.part {
+            p.check(self.width, self.height)?;
+        }
         Ok(())
     }
 }
 
-/// The header attribute holding the layers' units, one `name=unit` line per layer. One
-/// attribute rather than one per layer: exr keeps attributes in a hash map, whose order
-/// would make the file's bytes differ from run to run.
+impl FramePart {
+    /// The whole of a `width × height` frame made by `run`.
+    #[must_use]
+    pub fn whole(width: usize, height: usize, run: impl Into<String>) -> Self {
+        Self {
+            frame_width: width,
+            frame_height: height,
+            x: 0,
+            y: 0,
+            run: run.into(),
+        }
+    }
+
+    /// Whether this part is its whole frame (of a raster `width × height`).
+    #[must_use]
+    pub fn is_whole(&self, width: usize, height: usize) -> bool {
+        self.x == 0 && self.y == 0 && self.frame_width == width && self.frame_height == height
+    }
+
+    /// Checks that a `width × height` raster at this place lies inside the frame, that
+    /// every coordinate fits an EXR's 32-bit window, and that the run is one line.
+    pub(crate) fn check(&self, width: usize, height: usize) -> Result<(), RasterError> {
+        let inside = |start: usize, len: usize, size: usize| {
+            start.checked_add(len).is_some_and(|end| end <= size)
+        };
+        let fits = |v: usize| i32::try_from(v).is_ok();
+        if !inside(self.x, width, self.frame_width) || !inside(self.y, height, self.frame_height) {
+            return Err(RasterError::Part(format!(
+                "a {width}x{height} part at column {}, row {} does not lie inside its {}x{} frame",
+                self.x, self.y, self.frame_width, self.frame_height
+            )));
+        }
+        if !(fits(self.frame_width) && fits(self.frame_height)) {
+            return Err(RasterError::Part(format!(
+                "a {}x{} frame is too large for an EXR window",
+                self.frame_width, self.frame_height
+            )));
+        }
+        if self.run.is_empty() || self.run.contains(['\n', '\r']) {
+            return Err(RasterError::Part(format!(
+                "the run {:?} must be one line of text",
+                self.run
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// The header attribute holding the layers' units, one `name=unit` line per layer, in the
+/// raster's order of layers. One attribute rather than one per layer: exr keeps attributes
+/// in a hash map, whose order would make the file's bytes differ from run to run.
 const UNITS_ATTRIBUTE: &str = "irsig.units";
+
+/// The header attribute naming the run that made a frame's pixels ([`FramePart::run`]).
+/// exr writes the layer's own custom attributes, then the image's: this one is the
+/// image's, the units the layer's, so each map holds one and the bytes stay the same.
+const RUN_ATTRIBUTE: &str = "irsig.run";
 
 /// Writes the raster as a single-part EXR with one `f32` channel per layer (ZIP
 /// compression, lossless, scan lines top to bottom: the bytes depend only on the data).
@@ -193,13 +290,30 @@ pub fn write_exr(out: &mut (impl Write + Seek), raster: &Raster) -> Result<(), R
         blocks: x::Blocks::ScanLines,
         line_order: x::LineOrder::Increasing,
     };
+    let mut image_attributes = x::ImageAttributes::new(x::IntegerBounds::from_dimensions((
+        raster.width,
+        raster.height,
+    )));
+    if let Some(p) = &raster.part {
+        // Checked by `check`: every coordinate fits an i32.
+        let at = |v: usize| i32::try_from(v).unwrap_or(i32::MAX);
+        attributes.layer_position = x::Vec2(at(p.x), at(p.y));
+        image_attributes = x::ImageAttributes::new(x::IntegerBounds::from_dimensions((
+            p.frame_width,
+            p.frame_height,
+        )));
+        image_attributes.other.insert(
+            x::Text::from(RUN_ATTRIBUTE),
+            x::AttributeValue::Text(x::Text::from(p.run.as_str())),
+        );
+    }
     let layer = x::Layer::new(
         (raster.width, raster.height),
         attributes,
         encoding,
         x::AnyChannels::sort(channels),
     );
-    x::Image::from_layer(layer)
+    x::Image::new(image_attributes, layer)
         .write()
         .non_parallel()
         .to_buffered(out)?;
@@ -216,11 +330,14 @@ pub fn exr_bytes(raster: &Raster) -> Result<Vec<u8>, RasterError> {
     Ok(bytes)
 }
 
-/// Reads an EXR: every channel of its first part becomes a layer, in the file's
-/// (alphabetical) channel order.
+/// Reads an EXR: every channel of its first part becomes a layer, in the order of the
+/// units attribute (the order the raster had when written, so that a raster read back
+/// writes the same bytes), channels it does not list after them in the file's
+/// (alphabetical) order. The frame the image is part of ([`Raster::part`]) is read when the
+/// file names its run.
 ///
 /// # Errors
-/// A malformed or empty EXR.
+/// A malformed or empty EXR, or a part that does not lie inside its frame.
 pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
     let image = x::read()
         .no_deep_data()
@@ -230,27 +347,150 @@ pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
         .all_attributes()
         .non_parallel()
         .from_buffered(Cursor::new(bytes))?;
+    let display = image.attributes.display_window;
     let Some(part) = image.layer_data.into_iter().next() else {
         return Err(RasterError::Empty("no image parts".into()));
     };
     let (width, height) = (part.size.width(), part.size.height());
-    let units = match part.attributes.other.get(&x::Text::from(UNITS_ATTRIBUTE)) {
-        Some(x::AttributeValue::Text(t)) => t.to_string(),
-        _ => String::new(),
+    let text = |name: &str| match part.attributes.other.get(&x::Text::from(name)) {
+        Some(x::AttributeValue::Text(t)) => Some(t.to_string()),
+        _ => None,
     };
+    let units = text(UNITS_ATTRIBUTE).unwrap_or_default();
+    let frame = text(RUN_ATTRIBUTE)
+        .map(|run| frame_part(run, display, part.attributes.layer_position))
+        .transpose()?;
     let mut raster = Raster::new(width, height);
     for channel in part.channel_data.list {
         let name = channel.name.to_string();
-        let unit = units
-            .lines()
-            .find_map(|line| line.strip_prefix(name.as_str())?.strip_prefix('='))
-            .unwrap_or_default()
-            .to_owned();
+        let unit = unit_of(&units, &name).unwrap_or_default().to_owned();
         let data: Vec<f32> = channel.sample_data.values_as_f32().collect();
         raster.push_layer(name, unit, data)?;
     }
+    // Stable: channels the units do not list keep the file's order, after those it does.
+    raster
+        .layers
+        .sort_by_key(|l| order_of(&units, &l.name).unwrap_or(usize::MAX));
+    raster.part = frame;
     raster.check()?;
     Ok(raster)
+}
+
+/// What an EXR's header says of its image, without its pixels: size, layers (names and
+/// units, in the order [`read_exr`] gives them) and the frame it is part of.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct RasterInfo {
+    /// Columns.
+    pub width: usize,
+    /// Rows.
+    pub height: usize,
+    /// `(name, unit)` of each layer.
+    pub layers: Vec<(String, String)>,
+    /// The frame the image is part of, if the file says.
+    pub part: Option<FramePart>,
+}
+
+/// Reads an EXR's header only (its first part): what [`read_exr`] would give, without
+/// decoding a pixel.
+///
+/// # Errors
+/// A malformed or empty EXR header, or a part that does not lie inside its frame.
+pub fn read_exr_info(bytes: &[u8]) -> Result<RasterInfo, RasterError> {
+    let meta = x::MetaData::read_from_buffered(Cursor::new(bytes), false)?;
+    let Some(header) = meta.headers.first() else {
+        return Err(RasterError::Empty("no image parts".into()));
+    };
+    let text = |name: &str| {
+        let key = x::Text::from(name);
+        match header
+            .own_attributes
+            .other
+            .get(&key)
+            .or_else(|| header.shared_attributes.other.get(&key))
+        {
+            Some(x::AttributeValue::Text(t)) => Some(t.to_string()),
+            _ => None,
+        }
+    };
+    let units = text(UNITS_ATTRIBUTE).unwrap_or_default();
+    let (width, height) = (header.layer_size.width(), header.layer_size.height());
+    let part = text(RUN_ATTRIBUTE)
+        .map(|run| {
+            frame_part(
+                run,
+                header.shared_attributes.display_window,
+                header.own_attributes.layer_position,
+            )
+        })
+        .transpose()?;
+    let mut layers: Vec<(String, String)> = header
+        .channels
+        .list
+        .iter()
+        .map(|c| {
+            let name = c.name.to_string();
+            let unit = unit_of(&units, &name).unwrap_or_default().to_owned();
+            (name, unit)
+        })
+        .collect();
+    layers.sort_by_key(|(name, _)| order_of(&units, name).unwrap_or(usize::MAX));
+    if width == 0 || height == 0 {
+        return Err(RasterError::Empty(format!("{width}×{height} pixels")));
+    }
+    if let Some(p) = &part {
+        p.check(width, height)?;
+    }
+    Ok(RasterInfo {
+        width,
+        height,
+        layers,
+        part,
+    })
+}
+
+/// The unit the units attribute gives layer `name`.
+fn unit_of<'a>(units: &'a str, name: &str) -> Option<&'a str> {
+    units
+        .lines()
+        .find_map(|line| line.strip_prefix(name)?.strip_prefix('='))
+}
+
+/// The place of layer `name` in the units attribute.
+fn order_of(units: &str, name: &str) -> Option<usize> {
+    units.lines().position(|line| {
+        line.strip_prefix(name)
+            .is_some_and(|rest| rest.starts_with('='))
+    })
+}
+
+/// The frame part a header describes: display window (the frame, which must start at the
+/// origin), data window origin (the part's place) and run.
+fn frame_part(
+    run: String,
+    display: x::IntegerBounds,
+    position: x::Vec2<i32>,
+) -> Result<FramePart, RasterError> {
+    let (Ok(x0), Ok(y0)) = (usize::try_from(position.x()), usize::try_from(position.y())) else {
+        return Err(RasterError::Part(format!(
+            "the data window starts at column {}, row {}, before its frame",
+            position.x(),
+            position.y()
+        )));
+    };
+    if display.position != x::Vec2(0, 0) {
+        return Err(RasterError::Part(format!(
+            "the frame (display window) starts at ({}, {}), not at (0, 0)",
+            display.position.x(),
+            display.position.y()
+        )));
+    }
+    Ok(FramePart {
+        frame_width: display.size.width(),
+        frame_height: display.size.height(),
+        x: x0,
+        y: y0,
+        run,
+    })
 }
 
 /// Writes an 8-bit grey PNG; `data` is row-major from the top.
@@ -403,6 +643,54 @@ mod tests {
             let want: Vec<u32> = l.data.iter().map(|v| v.to_bits()).collect();
             assert_eq!(bits, want, "layer {}", l.name);
         }
+    }
+
+    #[test]
+    fn a_raster_read_back_keeps_its_layer_order_and_writes_the_same_bytes() {
+        // "range" sorts before "radiance" nowhere: the file's channels are alphabetical,
+        // the raster's order is the units attribute's.
+        let mut r = Raster::new(2, 1);
+        r.push_layer("zeta", "K", vec![1.0, 2.0]).unwrap();
+        r.push_layer("alpha", "", vec![3.0, 4.0]).unwrap();
+        r.push_layer("alpha_2", "m", vec![5.0, 6.0]).unwrap();
+        let bytes = exr_bytes(&r).unwrap();
+        let back = read_exr(&bytes).unwrap();
+        assert_eq!(back, r);
+        assert_eq!(exr_bytes(&back).unwrap(), bytes);
+        let info = read_exr_info(&bytes).unwrap();
+        assert_eq!(info, r.info());
+    }
+
+    #[test]
+    fn a_part_of_a_frame_keeps_its_place_frame_and_run() {
+        let part = FramePart {
+            frame_width: 10,
+            frame_height: 8,
+            x: 7,
+            y: 6,
+            run: "0123abcd".into(),
+        };
+        let mut r = Raster::new(3, 2).with_part(part.clone());
+        r.push_layer("radiance", "W m^-2 sr^-1", vec![1.0; 6])
+            .unwrap();
+        r.push_layer("range", "m", vec![2.0; 6]).unwrap();
+        let bytes = exr_bytes(&r).unwrap();
+        let back = read_exr(&bytes).unwrap();
+        assert_eq!(back.part, Some(part.clone()));
+        assert_eq!(back, r);
+        assert_eq!(exr_bytes(&back).unwrap(), bytes, "bytes stable");
+        assert_eq!(read_exr_info(&bytes).unwrap().part, Some(part.clone()));
+        // A part outside its frame, or a run of two lines, is not written.
+        let mut outside = r.clone();
+        outside.part.as_mut().unwrap().x = 8;
+        assert!(matches!(exr_bytes(&outside), Err(RasterError::Part(_))));
+        let mut two_lines = r.clone();
+        two_lines.part.as_mut().unwrap().run = "a\nb".into();
+        assert!(matches!(exr_bytes(&two_lines), Err(RasterError::Part(_))));
+        // Without a part, nothing of a frame is written or read.
+        let mut plain = r.clone();
+        plain.part = None;
+        assert_eq!(read_exr(&exr_bytes(&plain).unwrap()).unwrap().part, None);
     }
 
     #[test]
