@@ -106,6 +106,28 @@ impl BandArg {
     }
 }
 
+/// `--band` of the tools that render or re-render a frame (irsig-trace, irsig-merge): the
+/// shared band of every tool, or `total`, the whole spectrum (σT⁴/π), exact and for checking
+/// by hand.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TraceBand {
+    /// `total`: σT⁴/π.
+    Total,
+    /// A band as every tool takes it.
+    Band(BandArg),
+}
+
+impl FromStr for TraceBand {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s == "total" {
+            Ok(Self::Total)
+        } else {
+            s.parse().map(Self::Band)
+        }
+    }
+}
+
 /// A flat band `MIN-MAX` in micrometres as `[min, max]`, for settings that cannot take a
 /// response file (the band a DIRTRAN table was integrated over): a clap value parser.
 ///
@@ -171,6 +193,38 @@ impl DcArgs {
             },
             None => Calibration::AutoBias { dc_per_kelvin },
         })
+    }
+}
+
+/// The gain of the tracer's digital counts when neither the command line nor the view
+/// gives one, counts per kelvin (the thesis experiment's viewing files say 2).
+pub const TRACER_DC_PER_KELVIN: f64 = 2.0;
+
+impl DcArgs {
+    /// The quantiser of the tracer's digital-count image (irsig-trace, and irsig-merge for
+    /// a frame traced in tiles), over the whole frame's radiance (f32, W m⁻² sr⁻¹): the
+    /// flags' calibration, with the view's DC/K (`view_dc_per_kelvin`), else
+    /// [`TRACER_DC_PER_KELVIN`], for a missing gain. One function, so that a merged frame's
+    /// counts and LUT are those of the frame traced whole.
+    ///
+    /// # Errors
+    /// A calibration the quantiser refuses (no finite radiance, a gain of 0), as a message.
+    pub fn tracer_quantiser(
+        &self,
+        view_dc_per_kelvin: Option<f64>,
+        radiance_w_m2_sr: &[f32],
+        band: &impl irsig_radiometry::BandModel,
+    ) -> miette::Result<irsig_sensor_model::quantise::Quantiser> {
+        let calibration = self
+            .calibration(view_dc_per_kelvin.or(Some(TRACER_DC_PER_KELVIN)))
+            .ok_or_else(|| miette!("digital counts: no gain"))?;
+        irsig_sensor_model::quantise::Quantiser::calibrate(
+            self.dc_bits,
+            &calibration,
+            radiance_w_m2_sr,
+            band,
+        )
+        .map_err(|e| miette!("digital counts: {e}"))
     }
 }
 

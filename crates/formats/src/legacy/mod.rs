@@ -20,6 +20,7 @@
 //! | [`dwr`] | angle → L_d, plus `-1 L_d,hemi` | `read_dwr`, `dwr_type` |
 //! | [`rsd`] | radiosonde | (DIRTRAN input) |
 //! | [`rtt`] | temperature → band radiance | `read_rtt`, `planck_type` |
+//! | [`map`] | interaction map pixels (an image the 1990 tracer wrote) | — |
 //!
 //! Layout is read liberally, as C `fscanf` did: blank lines anywhere, LF or CRLF line
 //! ends, spaces or tabs, trailing whitespace, a leading UTF-8 byte-order mark, and `#`
@@ -45,6 +46,7 @@ pub mod dwr;
 pub mod ems;
 pub mod execute;
 pub(crate) mod lex;
+pub mod map;
 pub mod material_index;
 pub mod object;
 pub mod rsd;
