@@ -100,8 +100,7 @@ pub struct Cli {
 ///
 /// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
 /// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: import, flatten, atmos,
-/// trace and run itself (a pipeline may run a sub-pipeline). Not yet: sensor (not on main
-/// when this was written).
+/// trace, merge, sensor, stats and run itself (a pipeline may run a sub-pipeline).
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
@@ -110,6 +109,7 @@ pub fn tools() -> Tools {
         .register("flatten", check::<irsig_flatten::Cli>)
         .register("atmos", check::<irsig_atmos::Cli>)
         .register("trace", check::<irsig_trace::Cli>)
+        .register("merge", check::<irsig_merge::Cli>)
         .register("sensor", check::<irsig_sensor::Cli>)
         .register("stats", check::<irsig_stats::Cli>)
         .register("run", check::<Cli>);

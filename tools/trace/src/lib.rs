@@ -16,35 +16,42 @@
 //! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
 //! irsig-trace --scene world.raw --materials materials.ron --view frame1.view -o out/f1
 //! irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
+//! irsig-trace --scene world.raw --materials materials.ron --view view.ron --tile 6/4x4 \
+//!     -o tiles/t06      # tile 6 of a 4 x 4 grid; irsig-merge puts the frame together
 //! ```
 //!
 //! `-o PREFIX` writes every output under one prefix; the per-output flags write only the
 //! files named, for one view, so that `irsig-run` and Makefiles see each file a stage
 //! writes.
+//!
+//! Every EXR says which frame it is part of and which run made it (`irsig.run`, a SHA-256
+//! of the inputs and of the settings the pixels depend on; formats/images.md): a tile
+//! (`--tile`) is a rectangle of its frame, and the tiles of a frame merge (irsig-merge)
+//! into the bytes the frame traced whole writes.
 
 mod tolerance;
 
 use std::path::{Path, PathBuf};
-use std::str::FromStr;
 
 use clap::Parser;
 use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere};
-use irsig_cli::args::{BandArg, DcArgs, named};
+pub use irsig_cli::args::TraceBand;
+use irsig_cli::args::{DcArgs, named};
 use irsig_formats::canonical::{from_ron_bytes, read_raw_scene};
 use irsig_formats::legacy::decode;
 use irsig_formats::views::{parse_views, read_execute};
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::truth::Layer;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
-use irsig_radiometry::{BandModel, InverseTable, TotalRadiance};
-use irsig_raster::{Raster, counts_png, exr_bytes, write_png_gray8};
-use irsig_sensor_model::quantise::Quantiser;
+use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_raster::{FramePart, Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{
-    Atmosphere, Camera, Frame, PathTermsMode, SubBand, TraceOptions, Tracer, Vacuum,
+    Atmosphere, Camera, Frame, PathTermsMode, SubBand, Tile, TraceOptions, Tracer, Vacuum,
 };
 use miette::{IntoDiagnostic, WrapErr, miette};
 use rayon::prelude::*;
+use sha2::{Digest, Sha256};
 
 const EXAMPLE: &str = "\
 Examples:
@@ -64,6 +71,11 @@ Examples:
   irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
       a 1990 execute file: per frame a viewing file and the map image, DC image and LUT
       to write (names relative to flyby.exec); the BVH is built once
+  irsig-trace --scene world.raw --materials materials.ron --view view.ron --tile 6/4x4 \\
+      -o tiles/t06
+      tile 6 of a 4 x 4 grid (row by row from the top-left): tiles/t06.radiance.exr and
+      tiles/t06.truth.exr, its pixels bit for bit the whole frame's; irsig-merge
+      tiles/*.exr -o out/frame writes the frame's files
 
 Pixel (0, 0) is the top-left; rows run downwards.";
 
@@ -206,6 +218,15 @@ pub struct Cli {
     /// write no files.
     #[arg(long, value_name = "COLUMN,ROW", value_parser = parse_pixel)]
     pub probe: Option<(u32, u32)>,
+    /// Trace one tile of the image: X,Y,W,H (W x H pixels from column X, row Y) or I/CxR
+    /// (tile I, from 1 row by row, of a grid of C columns and R rows). Writes the radiance
+    /// and truth EXRs of the tile, each pixel bit for bit the whole frame's; irsig-merge
+    /// assembles a frame's tiles and writes its map, counts and LUT, which depend on the
+    /// whole frame.
+    #[arg(long, value_name = "X,Y,W,H|I/CxR", value_parser = parse_tile, conflicts_with_all = [
+        "probe", "tolerance", "execute", "map_png", "dc_png", "lut",
+    ])]
+    pub tile: Option<TileArg>,
     /// How radiance becomes digital counts. Without a gain the view's DC/K is used, else
     /// 2 counts per kelvin (the thesis's auto-bias).
     #[command(flatten)]
@@ -215,30 +236,6 @@ pub struct Cli {
     pub threads: Option<usize>,
 }
 
-/// The gain when neither the command line nor the view gives one, counts per kelvin (the
-/// thesis experiment's viewing files say 2).
-const DEFAULT_DC_PER_KELVIN: f64 = 2.0;
-
-/// `--band`: the shared band of every tool, or the whole spectrum.
-#[derive(Debug, Clone, PartialEq)]
-pub enum TraceBand {
-    /// `total`: σT⁴/π.
-    Total,
-    /// A band as every tool takes it.
-    Band(BandArg),
-}
-
-impl FromStr for TraceBand {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        if s == "total" {
-            Ok(Self::Total)
-        } else {
-            s.parse().map(Self::Band)
-        }
-    }
-}
-
 impl Cli {
     fn has_output_flags(&self) -> bool {
         self.radiance_exr.is_some()
@@ -246,6 +243,7 @@ impl Cli {
             || self.map_png.is_some()
             || self.dc_png.is_some()
             || self.lut.is_some()
+            || self.decision_out.is_some()
     }
 
     /// Where each output of frame `index` (from 0) of `frames` goes; `None` for an output
@@ -259,11 +257,13 @@ impl Cli {
                 } else {
                     numbered(prefix, index + 1)
                 };
-                let dc = !self.no_dc;
+                // A tile's map and counts are the merge's: they need the whole frame.
+                let whole = self.tile.is_none();
+                let dc = !self.no_dc && whole;
                 Outputs {
                     radiance_exr: Some(with_suffix(&stem, "radiance.exr")),
                     truth_exr: Some(with_suffix(&stem, "truth.exr")),
-                    map_png: map_fits.then(|| with_suffix(&stem, "map.png")),
+                    map_png: (map_fits && whole).then(|| with_suffix(&stem, "map.png")),
                     dc_png: dc.then(|| with_suffix(&stem, "dc.png")),
                     lut: dc.then(|| with_suffix(&stem, "lut.txt")),
                 }
@@ -293,6 +293,68 @@ fn parse_unit(s: &str) -> Result<LengthUnit, String> {
     s.parse()
 }
 
+/// `--tile`: a rectangle, or a tile of a grid (resolved against each view's image).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TileArg {
+    /// `X,Y,W,H`.
+    Rect(Tile),
+    /// `I/CxR`: tile `index` (from 1) of `columns × rows`.
+    Grid {
+        /// The tile, from 1, row by row from the top-left.
+        index: u32,
+        /// Grid columns.
+        columns: u32,
+        /// Grid rows.
+        rows: u32,
+    },
+}
+
+impl TileArg {
+    /// The tile of a `width × height` image.
+    fn of(self, width: u32, height: u32) -> Result<Tile, String> {
+        let tile = match self {
+            Self::Rect(t) => t,
+            Self::Grid {
+                index,
+                columns,
+                rows,
+            } => Tile::of_grid(index, columns, rows, width, height).map_err(|e| e.to_string())?,
+        };
+        tile.check(width, height).map_err(|e| e.to_string())?;
+        Ok(tile)
+    }
+}
+
+fn parse_tile(s: &str) -> Result<TileArg, String> {
+    let number = |t: &str, what: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("expected {what} (a whole number), found `{t}` in `{s}`"))
+    };
+    if let Some((index, grid)) = s.split_once('/') {
+        let (columns, rows) = grid
+            .split_once(['x', 'X'])
+            .ok_or_else(|| format!("expected I/CxR such as 6/4x4, found `{s}`"))?;
+        return Ok(TileArg::Grid {
+            index: number(index, "a tile number I")?,
+            columns: number(columns, "a number of columns C")?,
+            rows: number(rows, "a number of rows R")?,
+        });
+    }
+    let parts: Vec<&str> = s.split(',').collect();
+    let [x, y, w, h] = parts[..] else {
+        return Err(format!(
+            "expected X,Y,W,H (pixels) such as 0,0,256,256, or I/CxR such as 6/4x4; found `{s}`"
+        ));
+    };
+    Ok(TileArg::Rect(Tile {
+        x: number(x, "a column X")?,
+        y: number(y, "a row Y")?,
+        width: number(w, "a width W")?,
+        height: number(h, "a height H")?,
+    }))
+}
+
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     let (a, b) = s
         .split_once(',')
@@ -306,10 +368,12 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
 }
 
 /// The frames of one run: their views and, from an execute file, the files each writes
-/// (`None`: the outputs follow from -o or the per-output flags).
+/// (`None`: the outputs follow from -o or the per-output flags); and the hash of what
+/// every frame's pixels depend on, fed as the run's inputs are read.
 struct Job {
     views: Vec<View>,
     outputs: Option<Vec<Outputs>>,
+    run: Sha256,
 }
 
 /// Reads the views: every --view file, or the frames of --execute.
@@ -331,6 +395,7 @@ fn read_job(cli: &Cli) -> miette::Result<Job> {
         return Ok(Job {
             views,
             outputs: Some(outputs),
+            run: Sha256::new(),
         });
     }
     let mut views = Vec::new();
@@ -342,6 +407,7 @@ fn read_job(cli: &Cli) -> miette::Result<Job> {
     Ok(Job {
         views,
         outputs: None,
+        run: Sha256::new(),
     })
 }
 
@@ -391,28 +457,70 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             cli.sky_radiance
         )));
     }
+    let mut run = Sha256::new();
+    run.update(RUN_HASH_VERSION);
     let scene = {
         let input = irsig_cli::read_input(&cli.scene)?;
+        hash_field(&mut run, "scene", &input.bytes);
         read_raw_scene(&input.name, &input.bytes)?
     };
     let materials: MaterialLibrary = {
         let input = irsig_cli::read_input(&cli.materials)?;
         from_ron_bytes(&input.name, &input.bytes)?
     };
-    let job = read_job(&cli)?;
+    hash_field(&mut run, "materials", format!("{materials:?}").as_bytes());
+    let mut job = read_job(&cli)?;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .into_diagnostic()?;
     match &cli.band {
         TraceBand::Total => {
+            hash_field(&mut run, "band", format!("{TotalRadiance:?}").as_bytes());
+            job.run = run;
             pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, TotalRadiance))
         }
         TraceBand::Band(arg) => {
             let band = arg.load()?;
+            hash_field(&mut run, "band", format!("{band:?}").as_bytes());
+            job.run = run;
             pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, band))
         }
     }
+}
+
+/// The first words of every run hash: a new rule for what the hash covers gets a new
+/// version, so that tiles of the two rules never merge.
+const RUN_HASH_VERSION: &[u8] = b"irsig-trace run 1\n";
+
+/// Feeds one named input into a run hash, its length first, so that no two different
+/// sequences of inputs hash alike.
+fn hash_field(run: &mut Sha256, name: &str, bytes: &[u8]) {
+    run.update(name.as_bytes());
+    run.update((bytes.len() as u64).to_le_bytes());
+    run.update(bytes);
+}
+
+/// The run of one frame, as its EXRs name it (`irsig.run`): the hash of the inputs (scene
+/// bytes, materials, band, atmosphere), the view and the settings the pixels are rendered
+/// with; not the outputs, the tile, the thread count or the digital-count flags, which
+/// change no pixel. A frame traced whole and every tile of it name the same run.
+fn frame_run(run: &Sha256, view: &View, settings: &Settings) -> String {
+    let mut h = run.clone();
+    hash_field(&mut h, "view", format!("{view:?}").as_bytes());
+    let options = TraceOptions {
+        truth: true,
+        ..settings.options
+    };
+    let settings = format!("{options:?} {:?} {:?}", settings.kind, settings.path_terms);
+    hash_field(&mut h, "settings", settings.as_bytes());
+    let digest = h.finalize();
+    let mut hex = String::with_capacity(7 + 64);
+    hex.push_str("sha256:");
+    for b in digest {
+        hex.push_str(&format!("{b:02x}"));
+    }
+    hex
 }
 
 /// The canonical atmosphere `--atmosphere` names: a built-in, else a file.
@@ -448,16 +556,18 @@ fn with_atmosphere<R: BandModel + Clone>(
     job: &Job,
     band: R,
 ) -> miette::Result<()> {
+    let mut run = job.run.clone();
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
             sky_radiance_w_m2_sr: cli.sky_radiance,
         };
+        hash_field(&mut run, "atmosphere", format!("{vacuum:?}").as_bytes());
         let air = Air {
             kinds: None,
             precomputed: Box::new(move |_| Ok(vacuum)),
             direct: Box::new(move |_| Ok(vacuum)),
         };
-        return trace_all(cli, scene, materials, job, band, &air);
+        return trace_all(cli, scene, materials, job, &run, band, &air);
     }
     let atmosphere = read_atmosphere(&cli.atmosphere)?;
     // The sky is precomputed up to the highest sensor or scene point.
@@ -467,6 +577,12 @@ fn with_atmosphere<R: BandModel + Clone>(
         .map(|v| v.position_m()[2])
         .chain(scene.positions_m.iter().map(|p| p[2]))
         .fold(0.0_f64, f64::max);
+    // The sky's precomputed levels depend on the top: so do the pixels.
+    hash_field(
+        &mut run,
+        "atmosphere",
+        format!("{atmosphere:?} top {:x}", top.to_bits()).as_bytes(),
+    );
     if cli.band == TraceBand::Total {
         eprintln!(
             "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, \
@@ -503,7 +619,7 @@ fn with_atmosphere<R: BandModel + Clone>(
         }),
         direct: Box::new(direct),
     };
-    trace_all(cli, scene, materials, job, band, &air)
+    trace_all(cli, scene, materials, job, &run, band, &air)
 }
 
 /// What a frame is rendered with: the options, the atmosphere model and the path terms.
@@ -648,11 +764,13 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     Ok(decision)
 }
 
+#[allow(clippy::too_many_lines)]
 fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     cli: &Cli,
     scene: &RawScene,
     materials: &MaterialLibrary,
     job: &Job,
+    run: &Sha256,
     band: R,
     air: &Air<'_, A, S>,
 ) -> miette::Result<()> {
@@ -722,8 +840,21 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             cli.materials
         ));
     }
+    // Every view's tile, checked before anything is traced.
+    let tiles = cameras
+        .iter()
+        .map(|c| {
+            let [w, h] = c.pixels;
+            match cli.tile {
+                None => Ok(Tile::whole(w, h)),
+                Some(t) => t
+                    .of(w, h)
+                    .map_err(|e| irsig_cli::usage_error(format!("--tile: {e}"))),
+            }
+        })
+        .collect::<miette::Result<Vec<_>>>()?;
     let mut files = Vec::new();
-    let total_rows: u64 = cameras.iter().map(|c| u64::from(c.pixels[1])).sum();
+    let total_rows: u64 = tiles.iter().map(|t| u64::from(t.height)).sum();
     let bar = irsig_cli::progress_bar(total_rows, "tracing");
     for (i, cam) in cameras.iter().enumerate() {
         let out = match &job.outputs {
@@ -760,39 +891,54 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
                 .map_err(|e| miette!("{e}"))?;
             kind = settings.kind;
         }
+        let images = out.radiance_exr.is_some()
+            || out.truth_exr.is_some()
+            || out.map_png.is_some()
+            || out.dc_png.is_some()
+            || out.lut.is_some();
+        if !images {
+            // Only the pilot's decision was asked for.
+            continue;
+        }
         tracer = tracer.with_path_terms(settings.path_terms);
         // The per-pixel terms are kept only when an output of this frame reads them.
         let options = TraceOptions {
             truth: out.truth_exr.is_some() || out.map_png.is_some(),
             ..settings.options
         };
-        let frame = tracer
-            .render(cam, &options, &|n| bar.inc(n))
-            .map_err(|e| miette!("{e}"))?;
+        let tile = tiles[i];
+        let frame = if cli.tile.is_some() {
+            tracer.render_tile(cam, &options, tile, &|n| bar.inc(n))
+        } else {
+            tracer.render(cam, &options, &|n| bar.inc(n))
+        }
+        .map_err(|e| miette!("{e}"))?;
+        let part = FramePart {
+            frame_width: cam.pixels[0] as usize,
+            frame_height: cam.pixels[1] as usize,
+            x: tile.x as usize,
+            y: tile.y as usize,
+            run: frame_run(run, &views[i], &settings),
+        };
         let radiance = frame.radiance_f32();
         let (w, h) = (frame.width as usize, frame.height as usize);
         if let Some(path) = out.radiance_exr {
-            let mut r = Raster::new(w, h);
+            let mut r = Raster::new(w, h).with_part(part.clone());
             push(&mut r, Layer::Radiance, radiance.clone())?;
             files.push((path, exr_bytes(&r).into_diagnostic()?));
         }
         if let Some(path) = out.truth_exr {
-            files.push((
-                path,
-                exr_bytes(&truth_raster(&tracer, &frame)?).into_diagnostic()?,
-            ));
+            let r = truth_raster(&tracer, &frame)?.with_part(part.clone());
+            files.push((path, exr_bytes(&r).into_diagnostic()?));
         }
         if let Some(path) = out.map_png {
             files.push((path, interaction_map(&frame)?));
         }
         if out.dc_png.is_some() || out.lut.is_some() {
             let view_gain = views.get(i).and_then(View::gain_dc_per_k);
-            let calibration = cli
+            let q = cli
                 .dc
-                .calibration(view_gain.or(Some(DEFAULT_DC_PER_KELVIN)))
-                .ok_or_else(|| miette!("no digital-count gain"))?;
-            let q = Quantiser::calibrate(cli.dc.dc_bits, &calibration, &radiance, tracer.band())
-                .map_err(|e| miette!("digital counts: {e}"))?;
+                .tracer_quantiser(view_gain, &radiance, tracer.band())?;
             if let Some(path) = out.dc_png {
                 let counts = q
                     .quantise(&radiance, w)
@@ -808,7 +954,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         }
     }
     bar.finish_and_clear();
-    if !map_fits && cli.output.is_some() {
+    if !map_fits && cli.output.is_some() && cli.tile.is_none() {
         eprintln!(
             "irsig-trace: interaction map not written: material id {max_id} does not fit the \
              legacy 4-bit nibble (ids 1 to 15); the truth EXR's material_primary and \
@@ -858,7 +1004,8 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
         let data = match frame.truth_layer(layer) {
             Some(data) => data,
             None if layer == Layer::ApparentTemperature => {
-                let inverse = InverseTable::new(tracer.band(), &frame.radiance_w_m2_sr);
+                // The tracer's table, the same for a frame and its tiles.
+                let inverse = tracer.inverse_table();
                 frame
                     .radiance_w_m2_sr
                     .par_iter()
@@ -872,15 +1019,18 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
     Ok(r)
 }
 
-/// The 1990 interaction map (thesis §4.2): primary material id in the upper nibble,
-/// reflected material id in the lower; 0 where nothing was hit. The caller has checked that
-/// every id is at most 15.
+/// The 1990 interaction map (thesis §4.2, `irsig_formats::legacy::map`): primary material
+/// id in the upper nibble, reflected material id in the lower; 0 where nothing was hit. The
+/// caller has checked that every id is at most 15.
 fn interaction_map(frame: &Frame) -> miette::Result<Vec<u8>> {
     let data: Vec<u8> = frame
         .truth
         .iter()
-        .map(|s| ((s.primary_material as u8 & 0x0f) << 4) | (s.secondary_material as u8 & 0x0f))
-        .collect();
+        .map(|s| {
+            irsig_formats::legacy::map::pixel(s.primary_material, s.secondary_material)
+                .ok_or_else(|| miette!("material id above 15 in the interaction map"))
+        })
+        .collect::<miette::Result<_>>()?;
     let mut bytes = Vec::new();
     write_png_gray8(
         &mut bytes,
@@ -917,7 +1067,7 @@ mod tests {
         assert_eq!("total".parse::<TraceBand>(), Ok(TraceBand::Total));
         assert_eq!(
             "8-14".parse::<TraceBand>(),
-            Ok(TraceBand::Band(BandArg::default()))
+            Ok(TraceBand::Band(irsig_cli::args::BandArg::default()))
         );
         assert!("8:14".parse::<TraceBand>().is_err());
     }
