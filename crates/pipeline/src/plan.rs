@@ -986,6 +986,48 @@ mod plan_tests {
     }
 
     #[test]
+    fn a_tiles_sweep_is_one_frame_per_tile_and_a_gather_merges_them() {
+        let text = r#"(sweeps: {"t": Tiles(columns: 3, rows: 2)}, stages: [
+            (name: "trace", tool: "a", sweep: "t", params: {"tile": "{tile}"},
+             outputs: {"o": "t{frame:02}-{tile_column}-{tile_row}"}),
+            (name: "merge", tool: "m", gather: "t", args: ["t{frame:02}-{tile_column}-{tile_row}"],
+             outputs: {"o": "frame"}),
+        ])"#;
+        let p = plan(text, &tools()).unwrap();
+        assert_eq!(p.steps.len(), 7);
+        // Tile 5 of 3 x 2: second row, second column.
+        let five = p.steps.iter().find(|s| s.name == "trace[5]").unwrap();
+        assert_eq!(five.argv, ["irsig-a", "--tile", "5/3x2", "-o", "t05-2-2"]);
+        let merge = p.steps.last().unwrap();
+        assert_eq!(
+            merge.argv,
+            [
+                "irsig-m", "t01-1-1", "t02-2-1", "t03-3-1", "t04-1-2", "t05-2-2", "t06-3-2", "-o",
+                "frame"
+            ]
+        );
+        assert_eq!(merge.deps.len(), 6);
+        for (bad, says) in [
+            ("Tiles(columns: 0, rows: 2)", "from 1 to 100000"),
+            ("Tiles(columns: 2)", "needs `rows: N`"),
+            (
+                "Tiles(columns: 1000, rows: 1000)",
+                "more than one sweep may hold",
+            ),
+            (
+                "Tiles(columns: 2, rows: 2, depth: 3)",
+                "unknown field `depth`",
+            ),
+        ] {
+            let text = format!(
+                r#"(sweeps: {{"t": {bad}}}, stages: [(tool: "a", sweep: "t", outputs: {{"o": "x{{frame}}"}})])"#
+            );
+            let e = plan(&text, &tools()).unwrap_err();
+            assert!(e.to_string().contains(says), "{bad}: {e}");
+        }
+    }
+
+    #[test]
     fn an_unknown_tool_is_located() {
         let t = Tools::new(|_| None);
         let e = plan("(stages: [(tool: \"nope\")])", &t).unwrap_err();

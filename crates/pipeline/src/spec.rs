@@ -390,12 +390,14 @@ fn sweep(src: Source<'_>, node: &Node) -> Result<SweepSpec, PipelineError> {
             frames_list(src, &items[0])?
         }
         Kind::Struct(Some(name), _) if name == "FlyBy" => fly_by(src, node)?,
+        Kind::Struct(Some(name), _) if name == "Tiles" => tiles(src, node)?,
         other => {
             return Err(src.structure(
                 node,
                 format!(
-                    "expected a sweep: Frames([{{\"var\": \"value\", ...}}, ...]) or \
-                     FlyBy(frames: N, path: [(x, y, z), ...], look_at: (x, y, z)), found {}",
+                    "expected a sweep: Frames([{{\"var\": \"value\", ...}}, ...]), \
+                     FlyBy(frames: N, path: [(x, y, z), ...], look_at: (x, y, z)) or \
+                     Tiles(columns: C, rows: R), found {}",
                     other.describe()
                 ),
             ));
@@ -506,6 +508,61 @@ fn fly_by(src: Source<'_>, node: &Node) -> Result<Vec<BTreeMap<String, String>>,
             if let Some(target) = &look_at {
                 vars.insert("look_at".to_owned(), triple(target));
             }
+            vars
+        })
+        .collect())
+}
+
+/// The most tiles one `Tiles` sweep may cut a frame into.
+const TILES_MAX: u64 = 100_000;
+
+/// A frame cut into `columns × rows` tiles: one "frame" of the sweep per tile, numbered from
+/// 1 row by row from the top-left, with the variables `tile` (`I/CxR`, as `irsig-trace
+/// --tile` takes it), `tile_column` and `tile_row` (from 1).
+fn tiles(src: Source<'_>, node: &Node) -> Result<Vec<BTreeMap<String, String>>, PipelineError> {
+    let f = fields_of(src, node, "Tiles", &["columns", "rows"])?;
+    let count = |name: &str| -> Result<u64, PipelineError> {
+        let Some(n) = f.get(name) else {
+            return Err(src.structure(
+                node,
+                format!(
+                    "Tiles needs `{name}: N`, the number of tiles {}",
+                    if name == "rows" {
+                        "down the frame"
+                    } else {
+                        "across the frame"
+                    }
+                ),
+            ));
+        };
+        match &n.kind {
+            Kind::Number(t) => t.replace('_', "").parse::<u64>().ok(),
+            _ => None,
+        }
+        .filter(|&v| (1..=TILES_MAX).contains(&v))
+        .ok_or_else(|| {
+            src.structure(
+                n,
+                format!("expected `{name}` to be a whole number from 1 to {TILES_MAX}"),
+            )
+        })
+    };
+    let (columns, rows) = (count("columns")?, count("rows")?);
+    if columns * rows > TILES_MAX {
+        return Err(src.structure(
+            node,
+            format!("{columns} x {rows} tiles are more than one sweep may hold ({TILES_MAX})"),
+        ));
+    }
+    Ok((1..=columns * rows)
+        .map(|i| {
+            let mut vars = BTreeMap::new();
+            vars.insert("tile".to_owned(), format!("{i}/{columns}x{rows}"));
+            vars.insert(
+                "tile_column".to_owned(),
+                ((i - 1) % columns + 1).to_string(),
+            );
+            vars.insert("tile_row".to_owned(), ((i - 1) / columns + 1).to_string());
             vars
         })
         .collect())
