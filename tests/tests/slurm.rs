@@ -1,6 +1,8 @@
 //! `irsig-run --emit-slurm` through a real Slurm cluster (the single-node one
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
-//! frames as a job array, byte for byte the same files as `irsig-run` writes; a per-frame
+//! frames as a job array, byte for byte the same files as `irsig-run` writes; one 1024²
+//! frame in 16 tiles (`pipelines/quickstart-tiles.ron`: a job array of tiles, the merge and
+//! the sensor stage after it), byte for byte the frame `irsig-run` traces whole; a per-frame
 //! chain waiting task by task (`aftercorr`), a failed task, and a re-submission that runs only
 //! what is still out of date; a memory request beyond the node refused at its line and
 //! column. Without a running cluster those tests fail and say why: they never skip.
@@ -305,6 +307,98 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     wait_for(&jobs);
     assert_all_completed(cluster.path(), &jobs);
     assert_same_files(&local.path().join(build), &cluster.path().join(build));
+}
+
+/// `pipelines/quickstart-tiles.ron` with the frame traced whole: the same flatten, one trace
+/// writing what the merge writes, the same sensor stage; into `out/whole/`.
+const WHOLE_FRAME: &str = r#"Pipeline(stages: [
+    Stage(name: "flatten", tool: "flatten", args: ["quickstart/scene.ron"],
+          reads: ["quickstart/ground.ron", "quickstart/box.ron"],
+          inputs: {"materials": "quickstart/materials.ron"}, outputs: {"o": "../out/whole/scene.raw"}),
+    Stage(name: "trace", tool: "trace",
+          inputs: {"scene": "../out/whole/scene.raw", "materials": "quickstart/materials.ron",
+                   "view": "quickstart/view-1024.ron"},
+          params: {"band": "8-14", "atmosphere": "us-std-1976", "atmosphere-model": "table",
+                   "supersample": 2, "adaptive-supersampling": 0.25, "sky-view-rays": 4,
+                   "dc-per-kelvin": 4},
+          outputs: {"radiance-exr": "../out/whole/radiance.exr", "truth-exr": "../out/whole/truth.exr",
+                    "map-png": "../out/whole/map.png", "dc-png": "../out/whole/dc.png",
+                    "lut": "../out/whole/lut.txt"}),
+    Stage(name: "sensor", tool: "sensor", args: ["../out/whole/radiance.exr"],
+          params: {"mtf": "box:5x5", "dc-per-kelvin": 4},
+          outputs: {"o": "../out/whole/sensor.exr", "temperature-exr": "../out/whole/temperature.exr",
+                    "colour-preview": "../out/whole/colour.png"}),
+])
+"#;
+
+#[test]
+fn one_frame_in_16_tiles_through_the_cluster_writes_the_whole_frames_bytes() {
+    require_cluster();
+    let root = tempfile::tempdir().unwrap();
+    let pipelines = root.path().join("pipelines");
+    std::fs::create_dir(&pipelines).unwrap();
+    std::fs::copy(
+        repo_root().join("pipelines/quickstart-tiles.ron"),
+        pipelines.join("quickstart-tiles.ron"),
+    )
+    .unwrap();
+    copy_tree(
+        &repo_root().join("pipelines/quickstart"),
+        &pipelines.join("quickstart"),
+    );
+    std::fs::write(pipelines.join("whole.ron"), WHOLE_FRAME).unwrap();
+    bin("irsig-run")
+        .current_dir(&pipelines)
+        .args(["--quiet", "whole.ron"])
+        .assert()
+        .success();
+
+    let jobs = emit_and_submit(&pipelines, "quickstart-tiles.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(
+        scripts,
+        [
+            "01-flatten.sbatch",
+            "02-trace.sbatch",
+            "03-merge.sbatch",
+            "04-sensor.sbatch"
+        ]
+    );
+    let trace = std::fs::read_to_string(pipelines.join("slurm/02-trace.sbatch")).unwrap();
+    assert!(trace.contains("\n#SBATCH --array=1-16\n"), "{trace}");
+    let submit_sh = std::fs::read_to_string(pipelines.join("slurm/submit.sh")).unwrap();
+    // The merge waits for every tile, the sensor stage for the merge.
+    assert!(
+        submit_sh.contains("--dependency=afterok:$job2 "),
+        "{submit_sh}"
+    );
+    assert!(
+        submit_sh.contains("--dependency=afterok:$job3 "),
+        "{submit_sh}"
+    );
+    wait_for(&jobs);
+    assert_all_completed(&pipelines, &jobs);
+    let states = task_states(&jobs);
+    let tile_tasks = states.keys().filter(|(id, _)| *id == jobs[1].0).count();
+    assert_eq!(tile_tasks, 16, "one task per tile: {states:?}");
+
+    let (whole, tiled) = (
+        root.path().join("out/whole"),
+        root.path().join("out/quickstart-tiles"),
+    );
+    let mut names = files(&tiled);
+    names.retain(|n| n != Path::new("tiles"));
+    assert_eq!(names, files(&whole));
+    for name in &names {
+        let (a, b) = (
+            std::fs::read(whole.join(name)).unwrap(),
+            std::fs::read(tiled.join(name)).unwrap(),
+        );
+        assert!(a == b, "{} differs from the whole frame's", name.display());
+    }
+    // The scene, 5 frame files, 3 sensor files; 16 tiles of 2 files.
+    assert_eq!(names.len(), 1 + 5 + 3);
+    assert_eq!(files(&tiled.join("tiles")).len(), 32);
 }
 
 /// Frames 1-3 of `a` (each reading its own input), `b` per frame of `a`, and a sheet of all
