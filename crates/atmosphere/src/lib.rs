@@ -42,6 +42,7 @@ mod interp;
 mod layered;
 pub mod legacy;
 mod sky;
+mod spectral;
 mod table;
 mod thesis;
 
@@ -51,13 +52,14 @@ use std::str::FromStr;
 use irsig_model::Atmosphere;
 use serde::{Deserialize, Serialize};
 
-pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron};
+pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron, builtin_spectral, builtin_spectral_bytes};
 pub use error::{AtmosphereError, AtmosphereErrorKind};
 pub use layered::DEFAULT_CURVE_OF_GROWTH_EXPONENT;
 pub use sky::{
     APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
     HemisphericSky, SkyView,
 };
+pub use spectral::{BandQuadrature, collapse};
 
 use layered::{Profile, Slant};
 use sky::GroundSky;

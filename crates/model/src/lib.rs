@@ -12,6 +12,7 @@
 //! | [`RawScene`] | `irsig-flatten` | `irsig-trace` |
 //! | [`MaterialLibrary`] | the user, `irsig-atmos convert` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
+//! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //!
@@ -41,6 +42,7 @@ mod object;
 mod raw;
 mod regions;
 mod scene;
+mod spectral;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
@@ -50,4 +52,8 @@ pub use object::{Facet, Object};
 pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
+pub use spectral::{
+    CorrectionPaths, ProfileLevel, SpectralAtmosphere, SpectralAxis, SpectralGrid,
+    SpectralSlantTables,
+};
 pub use view::{LengthUnit, View};

@@ -17,10 +17,12 @@
 
 pub mod binary;
 pub mod binary_object;
+pub mod binary_spectral;
 mod locate;
 
 use irsig_model::{
-    Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene, View,
+    Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
+    SpectralAtmosphere, View,
 };
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -61,6 +63,7 @@ canonical!(MaterialLibrary, "material library", 3);
 canonical!(Atmosphere, "atmosphere", 3);
 canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
+canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
 
 /// Parses RON text into `T` without validating it.
 ///
@@ -184,6 +187,22 @@ pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> 
             )
         })?;
         Ok(scene)
+    } else {
+        from_ron_bytes(file, bytes)
+    }
+}
+
+/// Reads a spectral atmosphere in either form: binary when the bytes start with
+/// [`binary_spectral::MAGIC`], RON otherwise. Validates it.
+///
+/// # Errors
+/// As [`binary_spectral::decode`] or [`from_ron_bytes`].
+pub fn read_spectral_atmosphere(
+    file: &str,
+    bytes: &[u8],
+) -> Result<SpectralAtmosphere, ParseError> {
+    if binary_spectral::is_binary(bytes) {
+        binary_spectral::decode(file, bytes)
     } else {
         from_ron_bytes(file, bytes)
     }
