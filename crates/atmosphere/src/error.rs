@@ -48,6 +48,9 @@ pub enum AtmosphereErrorKind {
     /// response that is negative, not finite or zero everywhere in it.
     #[error("{0}")]
     Band(String),
+    /// An atmosphere build's plan that cannot be made or assembled.
+    #[error("{0}")]
+    Plan(String),
     /// A built-in atmosphere file failed to parse (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {

@@ -41,6 +41,7 @@ mod error;
 mod interp;
 mod layered;
 pub mod legacy;
+pub mod plan;
 mod sky;
 mod spectral;
 mod table;

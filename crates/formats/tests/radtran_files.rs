@@ -171,6 +171,15 @@ fn a_lowtran7_run_reads_the_same_in_tape6_and_tape7() {
             assert_eq!(r7.header.as_ref().unwrap().iemsct, 1);
         }
     }
+    // The profile LOWTRAN used: US Standard 1976 at 0 and 10 km.
+    let p = &t6.runs[0].profile;
+    assert_eq!(p.len(), 33);
+    assert_eq!(p[0], [0.0, 1013.0, 288.2]);
+    assert_eq!(p[10], [10.0, 265.0, 223.3]);
+    assert!(
+        t6.runs[1].profile.is_empty(),
+        "a repeat with IRPT = 3 prints no profile"
+    );
     // The calculation after IRPT = 3 inherits card 1; card 3 is its own.
     let h = t7.runs[1].header.as_ref().unwrap();
     assert_eq!(h.path.unwrap()[2], 120.0);

@@ -11,7 +11,13 @@
 //!   refractive index (constant, or a `wavelength_um n k` table averaged over the band),
 //!   as a canonical material library entry or a legacy `.ems`.
 //!
+//! - `plan` and `build` ([`plan`], [`build`]): the LOWTRAN7 runs a scene needs, and their
+//!   outputs assembled into a canonical spectral atmosphere; [`lowtran`] finds and runs
+//!   the program (issue 14).
+//!
 //! ```text
+//! irsig-atmos plan --scene scene.raw --view view.ron --model tropical -o plan
+//! irsig-atmos build plan -o tropical.spa
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
 //! irsig-atmos convert --material-index materials.mat --default-emissivity 0.9 -o lib.ron
@@ -28,10 +34,13 @@
 use clap::{Parser, Subcommand};
 
 mod bounces;
+pub mod build;
 mod common;
 pub mod convert;
 mod fresnel;
+pub mod lowtran;
 pub mod materials;
+pub mod plan;
 mod radiance;
 mod rtt;
 mod shape_factor;
@@ -94,6 +103,12 @@ averaged over the band (and the --srf response) with Planck weighting at --tempe
 eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
 Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
     Fresnel(fresnel::Args),
+    /// The radiative-transfer paths a scene needs: a plan and one LOWTRAN7 card deck per
+    /// path.
+    Plan(plan::PlanArgs),
+    /// A plan's runs (LOWTRAN7, run here, or given tape7s) assembled into one spectral
+    /// atmosphere.
+    Build(build::BuildArgs),
 }
 
 /// Runs one subcommand.
@@ -110,5 +125,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Command::Bounces(a) => bounces::run(&a),
         Command::ShapeFactor(a) => shape_factor::run(&a),
         Command::Fresnel(a) => fresnel::run(&a),
+        Command::Plan(a) => plan::run(&a),
+        Command::Build(a) => build::run(&a),
     }
 }

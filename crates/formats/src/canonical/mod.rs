@@ -21,7 +21,7 @@ pub mod binary_spectral;
 mod locate;
 
 use irsig_model::{
-    Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
+    Atmosphere, AtmospherePlan, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
     SpectralAtmosphere, View,
 };
 use serde::Serialize;
@@ -64,6 +64,7 @@ canonical!(Atmosphere, "atmosphere", 3);
 canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
 canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
+canonical!(AtmospherePlan, "atmosphere plan", 2);
 
 /// Parses RON text into `T` without validating it.
 ///

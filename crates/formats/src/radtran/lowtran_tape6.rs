@@ -58,6 +58,9 @@ pub struct Tape6Run {
     pub integrated_radiance_w_cm2_sr: Option<f64>,
     /// Errors, warnings and resets LOWTRAN printed.
     pub messages: Vec<Message>,
+    /// The first `ATMOSPHERIC PROFILES` table: altitude (km), pressure (mb) and
+    /// temperature (K) of each of LOWTRAN's levels (a run after `IRPT = 3` has none).
+    pub profile: Vec<[f64; 3]>,
     /// Whether LOWTRAN gave up on the path (`GEO:  IERROR NE 0`).
     pub rejected: bool,
     /// Where the run starts.
@@ -152,6 +155,8 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
     let mut iemsct: Option<i64> = None;
     let mut in_table = false;
     let mut started = false;
+    // 0: outside, 1: after the `ATMOSPHERIC PROFILES` banner, 2: in its Z P T table.
+    let mut profile_state = 0;
     for line in &lines {
         let b = body(line);
         let t = b.trim();
@@ -163,10 +168,32 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             let f: Vec<&str> = rest.split_whitespace().collect();
             iemsct = f.get(2).and_then(|s| s.parse().ok());
         }
+        if t.starts_with("ATMOSPHERIC PROFILES") && run.profile.is_empty() {
+            profile_state = 1;
+            continue;
+        }
+        if profile_state == 1 && t.starts_with('I') && t.contains(" Z ") {
+            profile_state = 2;
+            continue;
+        }
+        if profile_state == 2 {
+            let tok: Vec<&str> = t.split_whitespace().collect();
+            let row = (tok.len() >= 4 && tok[0].bytes().all(|c| c.is_ascii_digit()))
+                .then(|| [number(tok[1]), number(tok[2]), number(tok[3])]);
+            match row {
+                Some([Some(z), Some(p), Some(tk)]) => {
+                    run.profile.push([z, p, tk]);
+                    continue;
+                }
+                _ if run.profile.is_empty() => continue,
+                _ => profile_state = 0,
+            }
+        }
         if t.starts_with("CARD 5 *****") {
             run.iemsct = iemsct;
             runs.push(std::mem::take(&mut run));
             in_table = false;
+            profile_state = 0;
             started = false;
             continue;
         }

@@ -32,7 +32,8 @@
 //! FREQ is cm⁻¹; radiances are W cm⁻² sr⁻¹ per cm⁻¹, irradiances W cm⁻² per cm⁻¹. A
 //! calculation LOWTRAN rejects (a path its geometry cannot make) writes only the next
 //! `IRPT` and ` -9999.`: such a run is kept, marked as failed, so that the runs still line
-//! up with the deck's calculations (TAPE6 says why).
+//! up with the deck's calculations (TAPE6 says why). Transmittances up to 1.01 are read:
+//! LOWTRAN prints 1.0002 on metre-long humid paths (a slightly negative optical depth).
 
 use super::{Edit, Source, TextLine, number, read_card, text_lines};
 use crate::ParseError;
@@ -117,6 +118,10 @@ pub struct LowtranTape7 {
     /// One run per calculation of the deck, in order.
     pub runs: Vec<Run>,
 }
+
+/// The largest transmittance the reader takes: LOWTRAN7 prints values a little above 1
+/// (1.0002 for a 1 m tropical path); users of the table clamp them to 1.
+pub const TRANSMITTANCE_MAX: f64 = 1.01;
 
 const TRANSMITTANCE: [&str; 13] = [
     "FREQ",
@@ -310,9 +315,11 @@ fn read_rows(
                         None
                     }
                 }
-                1 if !(0.0..=1.0).contains(&v) => {
-                    Some(format!("expected a transmittance from 0 to 1, found {v}"))
-                }
+                // LOWTRAN7 prints transmittances a little above 1 (1.0002) on paths of a
+                // few metres, where its continuum gives a slightly negative optical depth.
+                1 if !(0.0..=TRANSMITTANCE_MAX).contains(&v) => Some(format!(
+                    "expected a transmittance from 0 to 1 (LOWTRAN prints up to {TRANSMITTANCE_MAX}), found {v}"
+                )),
                 c if c + 1 < n && names[c].contains("RADIANCE") && v < 0.0 => {
                     Some(format!("expected a radiance of 0 or more, found {v}"))
                 }
