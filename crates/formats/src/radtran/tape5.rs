@@ -865,7 +865,13 @@ fn real_field(value: f64, width: usize, decimals: usize) -> Option<String> {
     } else {
         sci.replacen('e', ".e", 1)
     };
-    exact(&sci).then(|| format!("{sci:>width$}"))
+    if exact(&sci) {
+        return Some(format!("{sci:>width$}"));
+    }
+    // Last: the digits alone, the decimal point implied (how `9999999999` reads in F10.3).
+    let scaled = value * 10f64.powi(i32::try_from(decimals).unwrap_or(0));
+    let digits = format!("{scaled:.0}");
+    exact(&digits).then(|| format!("{digits:>width$}"))
 }
 
 struct Writer {
@@ -906,11 +912,11 @@ impl Writer {
     }
 
     fn text(&mut self, text: &str, width: usize, what: &str) -> Result<String, WriteError> {
-        if text.len() > width || !text.bytes().all(|b| (b' '..=b'~').contains(&b)) {
+        if text.len() > width || !text.is_ascii() || text.contains(['\n', '\r']) {
             return Err(WriteError::new(
                 format!("card {}", self.card),
                 WriteErrorKind::OutOfRange(format!(
-                    "{what} `{text}` must be printable ASCII of at most {width} characters"
+                    "{what} `{text}` must be ASCII on one line, at most {width} characters"
                 )),
             ));
         }
@@ -1245,6 +1251,15 @@ mod tests {
 
     #[test]
     fn numbers_that_do_not_fit_are_refused_by_the_writer() {
+        // Ten digits without a point read with implied decimals, and write back so.
+        let d = parse(
+            "d",
+            "    6    2    1\n    0\n9999999999\n   710.000  1250.000     5.000\n    0\n",
+        )
+        .unwrap();
+        assert_eq!(d.calculations()[0].card3.h1_km(), 9_999_999.999);
+        assert_eq!(parse("d", &write(&d).unwrap()).unwrap(), d);
+        assert!(parse("d", "    6    2    1 é\n").is_err());
         let mut d = parse("TAPE5", ABBREVIATED).unwrap();
         if let Step::Full(c) = &mut d.steps[0] {
             c.geometry.card3 = Card3::Path {
