@@ -28,5 +28,6 @@ pub mod mesh;
 pub mod nk;
 pub mod radtran;
 pub mod srf;
+pub mod views;
 
 pub use error::{ParseError, line_column, offset_of};

@@ -15,6 +15,7 @@
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
+//! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
 //!
 //! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
 //! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
@@ -44,6 +45,7 @@ mod raw;
 mod regions;
 mod scene;
 mod spectral;
+pub mod truth;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};

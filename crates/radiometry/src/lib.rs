@@ -19,18 +19,22 @@
 //! ```
 
 mod band;
+mod band_model;
 pub mod calculators;
 pub mod constants;
 mod emissivity;
 mod error;
 pub mod fresnel;
+mod inverse;
 mod planck;
 mod table;
 
 pub use band::{Band, SensorResponse};
+pub use band_model::{BandModel, STEFAN_BOLTZMANN_W_M2_K4, TotalRadiance};
 pub use calculators::{
     Surface, bounce_radiances, bounce_temperatures, shape_factor_radiance, shape_factor_temperature,
 };
 pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
+pub use inverse::InverseTable;
 pub use table::RadianceTable;

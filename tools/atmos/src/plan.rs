@@ -1,6 +1,6 @@
 //! `irsig-atmos plan`: the radiative-transfer runs a scene needs (issue 14, Build 3). Reads
-//! the raw scene (its lowest point is the ground) and its views (canonical RON: one view
-//! or a list), and writes `DIR/plan.ron` (the node lists, `irsig_model::AtmospherePlan`)
+//! the raw scene (its lowest point is the ground) and its views (`irsig_formats::views`:
+//! a RON view or list, or a 1990 viewing file), and writes `DIR/plan.ron` (the node lists, `irsig_model::AtmospherePlan`)
 //! and one LOWTRAN7 card deck per path, `DIR/runs/NNNN.tape5`, in the order of
 //! `irsig_atmosphere::plan::paths`. The directory appears whole or not at all.
 
@@ -10,7 +10,7 @@ use clap::Args;
 use irsig_atmosphere::plan::{deck, make_plan, paths};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
-use irsig_model::{PlanModel, RadiosondeLevel, View};
+use irsig_model::{LengthUnit, PlanModel, RadiosondeLevel, View};
 use miette::{IntoDiagnostic, WrapErr, miette};
 
 /// Arguments of `irsig-atmos plan`.
@@ -26,9 +26,14 @@ pub struct PlanArgs {
     /// ground of every path.
     #[arg(long, value_name = "FILE")]
     pub scene: String,
-    /// A view file (canonical RON: one view or a list); repeat for more.
+    /// A view file (canonical RON: one view or a list; or a 1990 viewing file); repeat
+    /// for more.
     #[arg(long, value_name = "FILE", required = true)]
     pub view: Vec<String>,
+    /// The length unit of a 1990 viewing file's position: `m` or `km` (the thesis's files
+    /// are in km). RON views are always metres.
+    #[arg(long, value_name = "UNIT", default_value = "m", value_parser = ["m", "km"])]
+    pub view_unit: String,
     /// A LOWTRAN7 standard model: tropical, midlat-summer, midlat-winter,
     /// subarctic-summer, subarctic-winter, us-std-1976 (or its number 1-6).
     #[arg(
@@ -98,27 +103,10 @@ pub(crate) fn model_of(
         })
 }
 
-fn read_views(path: &str) -> miette::Result<Vec<View>> {
+fn read_views(path: &str, unit: LengthUnit) -> miette::Result<Vec<View>> {
     let input = irsig_cli::read_input(path)?;
-    let text = canonical::utf8(&input.name, &input.bytes)?;
-    if let Ok(v) = canonical::from_ron::<View>(&input.name, text) {
-        return Ok(vec![v]);
-    }
-    let views: Vec<View> = ron::from_str(text).map_err(|_| {
-        // Report the single-view reading's error: it names the line and column.
-        match canonical::from_ron::<View>(&input.name, text) {
-            Err(e) => miette::Report::new(e),
-            Ok(_) => miette!("{}: not a view", input.name),
-        }
-    })?;
-    if views.is_empty() {
-        return Err(miette!("{}: the list of views is empty", input.name));
-    }
-    for (i, v) in views.iter().enumerate() {
-        v.validate()
-            .map_err(|e| miette!("{}: view {}: {e}", input.name, i + 1))?;
-    }
-    Ok(views)
+    let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+    Ok(irsig_formats::views::parse_views(&input.name, text, unit)?)
 }
 
 /// Writes `files` (relative paths and contents) as the directory `dir`, all or nothing:
@@ -190,7 +178,12 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     let ground_z = lowest.min(0.0);
     let mut observers = Vec::new();
     for v in &a.view {
-        for view in read_views(v)? {
+        let unit = if a.view_unit == "km" {
+            LengthUnit::Km
+        } else {
+            LengthUnit::M
+        };
+        for view in read_views(v, unit)? {
             observers.push(view.position_m()[2] - ground_z);
         }
     }
