@@ -1,6 +1,7 @@
 //! LOWTRAN7 card decks (`TAPE5`): the program's input, one 80-column card a line, read
 //! with Fortran formats (LOWTRAN7 user's guide, AFGL-TR-88-0177, §3; the formats below are
-//! the program's own `FORMAT` statements). Spec page: `formats/radtran/tape5.md`.
+//! the program's own `FORMAT` statements). Spec page: `formats/radtran/tape5.md`. A deck
+//! is ASCII: LOWTRAN counts columns in bytes.
 //!
 //! A deck is a list of calculations. The first gives every card; each ends with card 5,
 //! `IRPT`, which says what the next one changes: 1 every card, 3 the geometry (card 3)
@@ -813,6 +814,28 @@ pub fn parse(file: &str, text: &str) -> Result<CardDeck, ParseError> {
             "expected card 1 of a LOWTRAN7 deck, found an empty file",
         ));
     }
+    // LOWTRAN counts columns in bytes, irsig in characters: the two agree on ASCII only.
+    if let Some(at) = text.find(|c: char| !c.is_ascii()) {
+        return Err(src.error(
+            at,
+            1,
+            "expected ASCII: a card's columns are bytes, and this character is more than one",
+        ));
+    }
+    // A card is one line of printable characters (tabs aside): a carriage return or other
+    // control character inside one would end or garble the record.
+    for line in &r.lines {
+        if let Some(i) = line.text.find(|c: char| c.is_ascii_control() && c != '\t') {
+            return Err(src.error(
+                line.offset + i,
+                1,
+                format!(
+                    "expected printable characters on a card, found the control character {:?}",
+                    &line.text[i..=i]
+                ),
+            ));
+        }
+    }
     let mut steps = Vec::new();
     let mut iemsct = read_full(&mut r).map(|c| {
         let i = c.card1.iemsct;
@@ -859,6 +882,11 @@ fn real_field(value: f64, width: usize, decimals: usize) -> Option<String> {
     if exact(&short) {
         return Some(format!("{short:>width$}"));
     }
+    // `.666666666`: the leading zero costs a column.
+    let bare = short.replacen("0.", ".", 1);
+    if short.trim_start_matches('-').starts_with("0.") && exact(&bare) {
+        return Some(format!("{bare:>width$}"));
+    }
     let sci = format!("{value:e}");
     let sci = if sci.contains('.') {
         sci
@@ -868,10 +896,28 @@ fn real_field(value: f64, width: usize, decimals: usize) -> Option<String> {
     if exact(&sci) {
         return Some(format!("{sci:>width$}"));
     }
-    // Last: the digits alone, the decimal point implied (how `9999999999` reads in F10.3).
-    let scaled = value * 10f64.powi(i32::try_from(decimals).unwrap_or(0));
-    let digits = format!("{scaled:.0}");
-    exact(&digits).then(|| format!("{digits:>width$}"))
+    // Last: the significant digits alone, the decimal point implied and an exponent if
+    // needed (how `9999999999` or `66666666+6` read in F10.3).
+    let (mantissa, exp10) = sci.split_once('e').unwrap_or((&sci, "0"));
+    let exp10: i64 = exp10.parse().unwrap_or(0);
+    let sign = if value < 0.0 { "-" } else { "" };
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    let digits = digits.trim_end_matches('0');
+    let digits = if digits.is_empty() { "0" } else { digits };
+    let len = i64::try_from(digits.len()).unwrap_or(0);
+    let e = exp10 - (len - 1) + i64::try_from(decimals).unwrap_or(0);
+    let candidates = [
+        format!(
+            "{sign}{digits}{}",
+            "0".repeat(usize::try_from(e).unwrap_or(0))
+        ),
+        format!("{sign}{digits}{e:+}"),
+        format!("{sign}{digits}E{e}"),
+    ];
+    candidates
+        .into_iter()
+        .find(|c| exact(c))
+        .map(|c| format!("{c:>width$}"))
 }
 
 struct Writer {
@@ -1259,7 +1305,16 @@ mod tests {
         .unwrap();
         assert_eq!(d.calculations()[0].card3.h1_km(), 9_999_999.999);
         assert_eq!(parse("d", &write(&d).unwrap()).unwrap(), d);
-        assert!(parse("d", "    6    2    1 é\n").is_err());
+        let e = parse("d", "    6    2    1\n    0 é\n").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 7));
+        // Found by fuzzing: a byte-order mark inside a title.
+        assert!(parse("d", "    7    2    1    0    0    0    0    0    0    0    0    1\n    0\n    1    0    0T\u{feff}\n").is_err());
+        // Found by fuzzing: a field in Fortran's exponent form without E or point.
+        let d = parse("d", "    6    2    1\n    0\n                                        66666666+6\n   710.000  1250.000     5.000\n    0\n").unwrap();
+        assert!(
+            matches!(d.calculations()[0].card3, Card3::Path { beta_deg, .. } if beta_deg == 66_666_666_000.0)
+        );
+        assert_eq!(parse("d", &write(&d).unwrap()).unwrap(), d);
         let mut d = parse("TAPE5", ABBREVIATED).unwrap();
         if let Step::Full(c) = &mut d.steps[0] {
             c.geometry.card3 = Card3::Path {
