@@ -37,6 +37,7 @@
 //! ```
 
 mod atmosphere;
+pub mod decision;
 mod error;
 mod material;
 mod object;
@@ -46,6 +47,7 @@ mod regions;
 mod scene;
 mod spectral;
 pub mod truth;
+pub mod uncertainty;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};

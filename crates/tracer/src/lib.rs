@@ -62,6 +62,7 @@ mod error;
 pub mod geometry;
 mod path;
 mod path_table;
+pub mod pilot;
 mod shade;
 pub mod testing;
 mod tracer;

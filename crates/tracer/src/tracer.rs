@@ -173,6 +173,12 @@ pub struct Sample {
     pub path_radiance_w_m2_sr: f64,
     /// Radiance at the sensor, W m⁻² sr⁻¹.
     pub radiance_w_m2_sr: f64,
+    /// ∂L/∂T of the facet hit's kinetic temperature, `Σ τ·ε·dL_T/dT` over the sub-bands,
+    /// W m⁻² sr⁻¹ K⁻¹ (0 for a miss): what the error budget propagates a temperature's
+    /// uncertainty by.
+    pub temperature_sensitivity: f64,
+    /// ∂L/∂ε of the facet hit, `Σ τ·(L_T − L_reflected)`, W m⁻² sr⁻¹ (0 for a miss).
+    pub emissivity_sensitivity: f64,
 }
 
 impl Sample {
@@ -206,6 +212,8 @@ impl Sample {
             transmission: f64::NAN,
             path_radiance_w_m2_sr: f64::NAN,
             radiance_w_m2_sr: f64::NAN,
+            temperature_sensitivity: 0.0,
+            emissivity_sensitivity: 0.0,
         }
     }
 }
@@ -267,13 +275,23 @@ impl fmt::Display for Sample {
             "L_u (W m-2 sr-1)           {}",
             self.path_radiance_w_m2_sr
         )?;
-        write!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)
+        writeln!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)?;
+        writeln!(
+            f,
+            "dL/dT_kinetic              {}",
+            self.temperature_sensitivity
+        )?;
+        write!(
+            f,
+            "dL/dε                      {}",
+            self.emissivity_sensitivity
+        )
     }
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
-/// outputs carry, rounded to f32 as the truth EXR stores them: 40 bytes, where a whole
-/// [`Sample`] is 144. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
+/// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
+/// [`Sample`] is 160. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
 /// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
 /// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
@@ -302,11 +320,18 @@ pub struct TruthPixel {
     pub path_radiance_w_m2_sr: f32,
     /// Sky-view (shape) factor F (1 when the model is off).
     pub sky_view_factor: f32,
+    /// Raw-scene index of the facet hit (`u32::MAX`: none): the error budget's uncertainties
+    /// are per material or per object.
+    pub facet: u32,
+    /// [`Sample::temperature_sensitivity`], W m⁻² sr⁻¹ K⁻¹.
+    pub temperature_sensitivity: f32,
+    /// [`Sample::emissivity_sensitivity`], W m⁻² sr⁻¹.
+    pub emissivity_sensitivity: f32,
 }
 
 // The sizes the frame's memory traffic was measured at (the doc above).
-const _: () = assert!(std::mem::size_of::<TruthPixel>() == 40);
-const _: () = assert!(std::mem::size_of::<Sample>() == 144);
+const _: () = assert!(std::mem::size_of::<TruthPixel>() == 56);
+const _: () = assert!(std::mem::size_of::<Sample>() == 160);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -317,8 +342,8 @@ impl TruthPixel {
     }
 
     /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
-    /// the layers that come from the pixel's radiance instead ([`Layer::Radiance`],
-    /// [`Layer::ApparentTemperature`]).
+    /// the layers that come from the pixel's radiance and the declared uncertainties
+    /// instead ([`Layer::Radiance`], [`Layer::ApparentTemperature`], [`Layer::BUDGET`]).
     #[must_use]
     pub fn layer(&self, layer: Layer) -> Option<f32> {
         Some(match layer {
@@ -332,7 +357,14 @@ impl TruthPixel {
             Layer::Transmission => self.transmission,
             Layer::PathRadiance => self.path_radiance_w_m2_sr,
             Layer::SkyViewFactor => self.sky_view_factor,
-            Layer::Radiance | Layer::ApparentTemperature => return None,
+            Layer::Radiance
+            | Layer::ApparentTemperature
+            | Layer::SigmaKineticTemperature
+            | Layer::SigmaEmissivity
+            | Layer::SigmaTransmission
+            | Layer::SigmaPathRadiance
+            | Layer::SigmaModel
+            | Layer::SigmaTotal => return None,
         })
     }
 }
@@ -350,6 +382,9 @@ impl From<&Sample> for TruthPixel {
             transmission: s.transmission as f32,
             path_radiance_w_m2_sr: s.path_radiance_w_m2_sr as f32,
             sky_view_factor: s.sky_view_factor as f32,
+            facet: s.facet.unwrap_or(u32::MAX),
+            temperature_sensitivity: s.temperature_sensitivity as f32,
+            emissivity_sensitivity: s.emissivity_sensitivity as f32,
         }
     }
 }
@@ -435,6 +470,8 @@ pub(crate) struct BandData<A> {
     pub(crate) emissivity: Vec<EmissivityTable>,
     /// L_T per temperature index, W m⁻² sr⁻¹; empty when `inline`.
     pub(crate) blackbody: Vec<f64>,
+    /// dL_T/dT per temperature index, W m⁻² sr⁻¹ K⁻¹ (for the error budget).
+    pub(crate) derivative: Vec<f64>,
     /// The facet records hold this sub-band's L_T (the tracer's own first sub-band).
     pub(crate) inline: bool,
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
@@ -503,7 +540,16 @@ pub(crate) struct Ctx<'a> {
     pixel_index: u64,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    /// The state of a ray of pixel `pixel_index` (row-major) rendered with `options`.
+    pub(crate) fn for_pixel(options: &'a TraceOptions, pixel_index: u64) -> Self {
+        Self {
+            options,
+            rng: None,
+            pixel_index,
+        }
+    }
+
     /// The pixel's random stream, seeded on first use (most pixels never draw).
     pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
         let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
@@ -528,6 +574,13 @@ pub(crate) struct FrameConsts<'a> {
     pub(crate) cos_critical_nadir: f64,
     /// The primary hits' path terms in every sub-band, when [`PathTermsMode::Tabulated`].
     pub(crate) path_table: Option<PathTable>,
+}
+
+impl FrameConsts<'_> {
+    /// The camera of the frame.
+    pub(crate) fn camera(&self) -> &Camera {
+        self.camera
+    }
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -657,6 +710,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         Ok(tracer)
     }
 
+    /// This tracer with its sub-bands replaced by `sub_bands` (another atmosphere or
+    /// another partition of the band), the BVH kept.
+    ///
+    /// # Errors
+    /// As [`Tracer::band_set`].
+    pub fn with_bands(mut self, sub_bands: Vec<SubBand<B, A>>) -> Result<Self, TraceError> {
+        self.bands = self.band_set(sub_bands)?;
+        Ok(self)
+    }
+
     /// The sub-bands `sub_bands` prepared for this tracer's scene: every facet temperature's
     /// and the terrain's blackbody radiance in each, and each material's emissivity. For
     /// evaluating recorded paths under another band model or atmosphere (the pilot).
@@ -688,11 +751,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     ))));
                 }
             };
-            let blackbody = self
+            let (blackbody, derivative) = self
                 .temperatures
                 .iter()
-                .map(|&t| sb.band.radiance(t))
-                .collect();
+                .map(|&t| sb.band.radiance_and_derivative(t))
+                .unzip();
             let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
             let terrain_leaving = terrain.emissivity * terrain_blackbody
                 + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
@@ -700,6 +763,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 atmosphere: sb.atmosphere,
                 emissivity,
                 blackbody,
+                derivative,
                 inline: false,
                 terrain_blackbody,
                 terrain_leaving,
@@ -727,6 +791,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
+        self.frame_consts_with(camera, self.path_terms == PathTermsMode::Tabulated)
+    }
+
+    /// What a frame's rays share, with this tracer's path-term table when `table`.
+    pub(crate) fn frame_consts_with<'a>(&self, camera: &'a Camera, table: bool) -> FrameConsts<'a> {
         let [w, h] = camera.pixels;
         let sensor_alt = camera.position_m[2].max(0.0);
         FrameConsts {
@@ -740,27 +809,32 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .critical_nadir_angle_deg(sensor_alt)
                 .to_radians()
                 .cos(),
-            path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
-                let [lo, hi] = self.geometry.bounds_m();
-                let p = camera.position_m;
-                // Nearest and farthest points of the box from the sensor.
-                let near: f64 = (0..3)
-                    .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let far: f64 = (0..3)
-                    .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let atmospheres: Vec<&A> = self.bands.bands.iter().map(|b| &b.atmosphere).collect();
-                PathTable::new(
-                    &atmospheres,
-                    sensor_alt,
-                    [lo[2].max(0.0), hi[2].max(0.0)],
-                    [near, far],
-                )
-            }),
+            path_table: table.then(|| self.path_table(camera, &self.bands)),
         }
+    }
+
+    /// The path-term table of `camera`'s frame for every sub-band of `set`: over the
+    /// scene's altitudes, from the nearest to the farthest point of its box.
+    pub(crate) fn path_table<S: Atmosphere>(&self, camera: &Camera, set: &BandSet<S>) -> PathTable {
+        let sensor_alt = camera.position_m[2].max(0.0);
+        let [lo, hi] = self.geometry.bounds_m();
+        let p = camera.position_m;
+        // Nearest and farthest points of the box from the sensor.
+        let near: f64 = (0..3)
+            .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let far: f64 = (0..3)
+            .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let atmospheres: Vec<&S> = set.bands.iter().map(|b| &b.atmosphere).collect();
+        PathTable::new(
+            &atmospheres,
+            sensor_alt,
+            [lo[2].max(0.0), hi[2].max(0.0)],
+            [near, far],
+        )
     }
 
     /// Chooses how primary hits get their path terms (default [`PathTermsMode::Exact`]).
@@ -975,11 +1049,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         centre: &mut Sample,
     ) -> f64 {
         let camera = fc.camera;
-        let mut ctx = Ctx {
+        let mut ctx = Ctx::for_pixel(
             options,
-            rng: None,
-            pixel_index: u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
-        };
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
         // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
         let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
         self.follow(fc, dir, &mut ctx, path);

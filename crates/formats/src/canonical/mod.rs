@@ -11,7 +11,7 @@
 //! | [`Object`] | yes (small objects, hand-made tests, diffs) | yes ([`binary_object`], what `irsig-import` writes into a pipe) |
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
-//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`] | yes | no |
+//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`], [`Decision`], [`Uncertainties`] | yes | no |
 //!
 //! The format pages are `formats/canonical/*.md` in the repository.
 
@@ -20,6 +20,8 @@ pub mod binary_object;
 pub mod binary_spectral;
 mod locate;
 
+use irsig_model::decision::Decision;
+use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
     Atmosphere, AtmospherePlan, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
     SpectralAtmosphere, View,
@@ -65,6 +67,8 @@ canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
 canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
 canonical!(AtmospherePlan, "atmosphere plan", 2);
+canonical!(Decision, "decision", 3);
+canonical!(Uncertainties, "uncertainties file", 3);
 
 /// Parses RON text into `T` without validating it.
 ///
