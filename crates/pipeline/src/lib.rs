@@ -10,7 +10,7 @@
 //! - [`Plan::run`] runs the steps in dependency order, independent ones in parallel, and
 //!   skips a step whose outputs are up to date with its tool, command line and input
 //!   contents (SHA-256, kept in `.irsig-run/` beside the pipeline file).
-//! - [`Plan::dry_run`] lists what would run; [`Plan::makefile`] writes the same steps as a
+//! - [`Plan::dry_run`] lists every step and whether a run would start it; [`Plan::makefile`] writes the same steps as a
 //!   Makefile.
 //!
 //! The format is documented in `formats/pipeline.md`.

@@ -149,12 +149,13 @@ impl Plan {
             && self.outputs_hash(step).as_deref() == Some(record.outputs_sha256.as_str())
     }
 
-    /// The steps a run would start, in order, without running anything: those not up to
-    /// date and those downstream of them (all of them with `force`).
+    /// Every step in order, each with whether a run would start it, without running
+    /// anything: a run starts those not up to date and those downstream of them (all of
+    /// them with `force`); `false` marks a step a run would skip as up to date.
     ///
     /// # Errors
     /// A tool program that cannot be read for hashing.
-    pub fn dry_run(&self, force: bool) -> Result<Vec<&Step>, PipelineError> {
+    pub fn dry_run(&self, force: bool) -> Result<Vec<(&Step, bool)>, PipelineError> {
         let tools = self.tool_hashes()?;
         let state = self.load_state();
         let mut would_run = vec![false; self.steps.len()];
@@ -170,12 +171,7 @@ impl Plan {
                     state.steps.get(&step.name),
                 );
         }
-        Ok(self
-            .steps
-            .iter()
-            .zip(would_run)
-            .filter_map(|(s, run)| run.then_some(s))
-            .collect())
+        Ok(self.steps.iter().zip(would_run).collect())
     }
 
     /// Runs the plan: each step when its producers are done, up to `jobs` at a time,

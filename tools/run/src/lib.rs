@@ -46,7 +46,8 @@ pub struct Cli {
     #[arg(long)]
     pub force: bool,
 
-    /// Print the commands that would run (shell-quoted), one per line, and run nothing.
+    /// Print every stage's command (shell-quoted), one per line, those up to date as
+    /// `# up to date: COMMAND` comments, and run nothing.
     #[arg(short = 'n', long, conflicts_with = "emit_makefile")]
     pub dry_run: bool,
 
@@ -111,7 +112,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let d = dir.display().to_string();
             text.push_str(&format!("cd {}\n", irsig_pipeline::shell_quote(&d)));
         }
-        for step in steps {
+        // A step that is up to date is still listed, as a comment, so that the output says
+        // what the pipeline is and still pastes into a shell that runs only what is stale.
+        for (step, run) in steps {
+            if !run {
+                text.push_str("# up to date: ");
+            }
             text.push_str(&step.command_line());
             text.push('\n');
         }
