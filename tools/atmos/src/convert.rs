@@ -209,19 +209,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let (file, text) = read_text(dwr_path)?;
     let dwr_table = dwr::parse(&file, &text).map_err(Report::new)?;
     let mut tables = DirtranTables {
-        atm: atm_table
-            .rows
-            .iter()
-            .map(|r| {
-                [
-                    r.altitude_asl_km,
-                    r.temperature_k,
-                    r.altitude_km,
-                    r.transmission,
-                    r.upwelled_radiance_w_cm2_sr,
-                ]
-            })
-            .collect(),
+        atm: atm_table.to_rows(),
         dwr: dwr_table.to_pairs(),
         ..DirtranTables::default()
     };
@@ -238,19 +226,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     }
     if let Some(p) = &args.rsd {
         let (file, text) = read_text(p)?;
-        tables.rsd = rsd::parse(&file, &text)
-            .map_err(Report::new)?
-            .rows
-            .iter()
-            .map(|r| {
-                [
-                    r.altitude_km,
-                    r.pressure_mb,
-                    r.temperature_c,
-                    r.dew_point_depression_c,
-                ]
-            })
-            .collect();
+        tables.rsd = rsd::parse(&file, &text).map_err(Report::new)?.to_rows();
     }
     let slant = match &args.slant {
         Some(p) => {
@@ -312,20 +288,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         miette::miette!("cannot write the {what}: {e}")
     };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    let atm_table = atm::AtmTable {
-        rows: t
-            .atm
-            .iter()
-            .map(|r| atm::AtmRow {
-                altitude_asl_km: r[0],
-                temperature_k: r[1],
-                altitude_km: r[2],
-                transmission: r[3],
-                upwelled_radiance_w_cm2_sr: r[4],
-                position: Default::default(),
-            })
-            .collect(),
-    };
+    let atm_table = atm::AtmTable::from_rows(&t.atm);
     files.push((
         path("atm"),
         atm::write(&atm_table)
@@ -382,19 +345,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         ));
     }
     if !t.rsd.is_empty() {
-        let table = rsd::RsdTable {
-            rows: t
-                .rsd
-                .iter()
-                .map(|r| rsd::RsdRow {
-                    altitude_km: r[0],
-                    pressure_mb: r[1],
-                    temperature_c: r[2],
-                    dew_point_depression_c: r[3],
-                    position: Default::default(),
-                })
-                .collect(),
-        };
+        let table = rsd::RsdTable::from_rows(&t.rsd);
         files.push((
             path("rsd"),
             rsd::write(&table)
