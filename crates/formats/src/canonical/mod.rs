@@ -17,6 +17,7 @@
 
 pub mod binary;
 pub mod binary_object;
+mod layout;
 mod locate;
 
 use irsig_model::{
