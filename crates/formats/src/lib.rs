@@ -26,6 +26,7 @@ mod error;
 pub mod legacy;
 pub mod mesh;
 pub mod nk;
+pub mod ron_tree;
 pub mod srf;
 
 pub use error::{ParseError, line_column, offset_of};

@@ -1,8 +1,9 @@
 //! Declarative irsig pipelines: a RON file of stages, each run as its own tool
 //! (`irsig-<tool>`), exactly as a user would type it.
 //!
-//! - [`Pipeline::load`] / [`Pipeline::parse`] read the file (RON syntax checked by `ron`),
-//!   keeping the position of every value, so later errors point at a line and column.
+//! - [`Pipeline::load`] / [`Pipeline::parse`] read the file through
+//!   `irsig_formats::ron_tree` (RON syntax checked by `ron`), keeping the position of every
+//!   value, so later errors point at a line and column.
 //! - [`Pipeline::plan`] expands frame sweeps into one step per frame, builds each step's
 //!   command line, finds the tools, validates parameters with the tools' own command-line
 //!   parsers ([`Tools::register`]), and checks for duplicate outputs, missing inputs and
@@ -41,7 +42,6 @@ mod error;
 mod plan;
 mod run;
 mod spec;
-mod value;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};

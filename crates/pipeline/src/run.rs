@@ -72,16 +72,20 @@ impl Plan {
     /// A missing or unreadable state file means nothing is known to be up to date: the state
     /// is a cache, and the worst a lost one costs is a re-run.
     fn load_state(&self) -> State {
-        std::fs::read_to_string(self.state_path())
+        let path = self.state_path();
+        std::fs::read_to_string(&path)
             .ok()
-            .and_then(|t| ron::from_str(&t).ok())
+            .and_then(|t| {
+                let file = path.display().to_string();
+                irsig_formats::canonical::from_ron_as(&file, &t, "run state").ok()
+            })
             .unwrap_or_default()
     }
 
     fn save_state(&self, state: &State) -> Result<(), PipelineError> {
         let path = self.state_path();
         let io = |e| PipelineError::io(format!("cannot write run state `{}`", path.display()), e);
-        let text = ron::ser::to_string_pretty(state, ron::ser::PrettyConfig::default())
+        let text = irsig_formats::canonical::to_ron_pretty(state)
             .map_err(|e| io(std::io::Error::other(e.to_string())))?;
         let dir = path
             .parent()
