@@ -165,7 +165,7 @@ fn an_srf_file_is_used_and_a_bad_one_is_refused_with_its_position() {
         "radiance",
         "--temperature",
         "300",
-        "--srf",
+        "--band",
         "formats/samples/srf-8-12um.txt",
     ]);
     let (a, b) = (
@@ -181,7 +181,7 @@ fn an_srf_file_is_used_and_a_bad_one_is_refused_with_its_position() {
             "radiance",
             "--temperature",
             "300",
-            "--srf",
+            "--band",
             bad.to_str().unwrap(),
         ])
         .assert()
@@ -256,7 +256,7 @@ fn fresnel_water_from_the_hale_querry_table_matches_the_reference_ems() {
         "--nk-table",
         "formats/samples/water-hale-querry-nk.txt",
         "--band",
-        "8:14",
+        "8-14",
         "--temperature",
         "300",
         "--angles",
@@ -373,7 +373,7 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
         (&["--nk-table", bad_nk], 1, "bad.nk:2:7"),
         (&["--nk-table", "no-such-file.nk"], 1, "no-such-file.nk"),
         (
-            &["--nk-table", water, "--band", "7:14"],
+            &["--nk-table", water, "--band", "7-14"],
             1,
             "covers 8–14 µm",
         ),

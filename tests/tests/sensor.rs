@@ -259,7 +259,7 @@ fn bad_usage_exits_2() {
         .stderr(predicate::str::contains("box width_px"));
     bin("irsig-sensor")
         .arg(&input)
-        .args(["--band-min-um", "14", "--band-max-um", "8"])
+        .args(["--band", "14-8"])
         .assert()
         .code(2);
 }

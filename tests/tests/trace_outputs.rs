@@ -166,15 +166,15 @@ fn per_output_flags_with_several_views_are_refused_before_anything_is_written() 
 }
 
 #[test]
-fn counts_without_a_quantiser_are_a_usage_error() {
+fn no_dc_with_a_dc_output_is_a_usage_error() {
     let dir = tempfile::tempdir().unwrap();
     let (raw, view) = inputs(dir.path());
     trace(&raw, &view)
-        .args(["--dc", "none", "--dc-png"])
+        .args(["--no-dc", "--dc-png"])
         .arg(dir.path().join("d.png"))
         .assert()
         .code(2)
-        .stderr(predicate::str::contains("--dc none"));
+        .stderr(predicate::str::contains("--no-dc"));
 }
 
 #[test]

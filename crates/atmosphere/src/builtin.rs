@@ -1,5 +1,6 @@
 //! The built-in atmospheres: LOWTRAN7 8–14 µm tables in canonical form, shipped inside the
-//! binary so scenes can name them.
+//! binary so scenes can name them, and decoded by `irsig-formats` (this crate knows no file
+//! syntax).
 
 use irsig_model::Atmosphere;
 
@@ -27,10 +28,13 @@ pub fn builtin_ron(name: &str) -> Option<&'static str> {
 pub fn builtin(name: &str) -> Result<Atmosphere, AtmosphereError> {
     let text =
         builtin_ron(name).ok_or_else(|| AtmosphereErrorKind::UnknownBuiltin(name.to_owned()))?;
-    let atm: Atmosphere = ron::from_str(text).map_err(|e| AtmosphereErrorKind::CorruptBuiltin {
-        name: name.to_owned(),
-        message: e.to_string(),
-    })?;
-    atm.validate()?;
-    Ok(atm)
+    irsig_formats::canonical::from_ron::<Atmosphere>(&format!("builtin:{name}"), text).map_err(
+        |e| {
+            AtmosphereErrorKind::CorruptBuiltin {
+                name: name.to_owned(),
+                message: e.to_string(),
+            }
+            .into()
+        },
+    )
 }

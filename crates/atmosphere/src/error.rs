@@ -18,12 +18,16 @@ pub enum AtmosphereErrorKind {
     Invalid(#[from] ModelError),
     /// The chosen model needs a table the atmosphere does not have (the `thesis` model
     /// needs the `.cor` coefficients, the `table` model the slant tables).
-    #[error("the `{model}` atmosphere model needs `{table}`, which this atmosphere does not have")]
+    #[error(
+        "the `{model}` atmosphere model needs `{table}`, which this atmosphere does not have; {instead}"
+    )]
     MissingTable {
         /// The model asked for.
         model: &'static str,
         /// The missing field of the canonical atmosphere.
         table: &'static str,
+        /// What to use instead.
+        instead: &'static str,
     },
     /// The vertical transmission grows with altitude, which no atmosphere does; the layered
     /// model cannot turn such a table into layers.
@@ -44,7 +48,7 @@ pub enum AtmosphereErrorKind {
     /// A built-in atmosphere name that does not exist.
     #[error("unknown built-in atmosphere `{0}`: expected one of {names}", names = crate::BUILTIN_NAMES.join(", "))]
     UnknownBuiltin(String),
-    /// A built-in atmosphere file failed to parse (a bug in the shipped data).
+    /// A built-in atmosphere failed to decode (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {
         /// The built-in's name.

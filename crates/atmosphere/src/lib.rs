@@ -37,10 +37,12 @@
 //! ```
 
 mod builtin;
+mod earth;
 mod error;
 mod interp;
 mod layered;
 pub mod legacy;
+mod precomputed;
 mod sky;
 mod table;
 mod thesis;
@@ -52,8 +54,12 @@ use irsig_model::Atmosphere;
 use serde::{Deserialize, Serialize};
 
 pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron};
+pub use earth::{
+    EARTH_RADIUS_M, critical_nadir_angle_deg, range_to_ground_from_cos_m, range_to_ground_m,
+};
 pub use error::{AtmosphereError, AtmosphereErrorKind};
 pub use layered::DEFAULT_CURVE_OF_GROWTH_EXPONENT;
+pub use precomputed::{PrecomputedAtmosphere, SKY_LEVELS};
 pub use sky::{
     APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
     HemisphericSky, SkyView,
@@ -61,20 +67,6 @@ pub use sky::{
 
 use layered::{Profile, Slant};
 use sky::GroundSky;
-
-/// Earth radius in metres used for the horizon: LOWTRAN7's (6371.23 km), so the horizon
-/// agrees with the tables' own geometry.
-pub const EARTH_RADIUS_M: f64 = 6_371_230.0;
-
-/// The nadir angle in degrees of the horizon seen from `sensor_altitude_m` above a
-/// spherical Earth (thesis Figure 7): rays closer to nadir than this hit the ground, rays
-/// farther from it escape to space. `asin(R / (R + h))`; 90° at or below the ground.
-/// Refraction is ignored (it lowers the horizon by about 0.1° at 1 km).
-#[must_use]
-pub fn critical_nadir_angle_deg(sensor_altitude_m: f64) -> f64 {
-    let h = sensor_altitude_m.max(0.0);
-    (EARTH_RADIUS_M / (EARTH_RADIUS_M + h)).asin().to_degrees()
-}
 
 /// Which atmosphere model to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -93,15 +85,17 @@ pub enum ModelKind {
 impl ModelKind {
     /// All kinds, in the order they are listed to users.
     pub const ALL: [Self; 4] = [Self::Thesis, Self::Layered, Self::Table, Self::None];
+    /// Their names, in the same order.
+    pub const NAMES: [&'static str; 4] = ["thesis", "layered", "table", "none"];
 
     /// The name used in files and on command lines.
     #[must_use]
     pub fn name(self) -> &'static str {
         match self {
-            Self::Thesis => "thesis",
-            Self::Layered => "layered",
-            Self::Table => "table",
-            Self::None => "none",
+            Self::Thesis => Self::NAMES[0],
+            Self::Layered => Self::NAMES[1],
+            Self::Table => Self::NAMES[2],
+            Self::None => Self::NAMES[3],
         }
     }
 }

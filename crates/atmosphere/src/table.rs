@@ -41,6 +41,9 @@ impl Table {
         let slant = atm.slant.clone().ok_or(AtmosphereErrorKind::MissingTable {
             model: "table",
             table: "slant",
+            instead: "slant tables come from slant-path runs of an atmospheric code (`irsig-atmos \
+                      build`), not from DIRTRAN tables: use the `layered` model (eq. 8-9) or \
+                      the `thesis` model (eq. 10-11) with this atmosphere",
         })?;
         let mut depth_ratio = Vec::with_capacity(slant.altitude_m.len());
         let mut radiance_ratio = Vec::with_capacity(slant.altitude_m.len());

@@ -51,6 +51,8 @@ impl Thesis {
             .ok_or(AtmosphereErrorKind::MissingTable {
                 model: "thesis",
                 table: "transmission_correction",
+                instead: "the thesis model scales τ by the `.cor` polynomial (eq. 10): give the \
+                          `.cor` when converting, or use the `layered` model (eq. 8-9)",
             })?;
         let d_ref = atm
             .transmission_correction_altitude_m

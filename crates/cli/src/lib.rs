@@ -11,6 +11,9 @@
 //!   as success, as it does for `head` and ripgrep.
 //! - **Progress** ([`progress_bar`]) is drawn on stderr only when stderr is a terminal.
 //!
+//! - **Shared flags** ([`args`]): the band, the digital-count calibration and library enums
+//!   named on the command line, spelt the same in every tool.
+//!
 //! This is the only library crate that knows about processes, exit codes and terminals.
 //!
 //! ```no_run
@@ -24,6 +27,8 @@
 //! }
 //! # use std::io::Write;
 //! ```
+
+pub mod args;
 
 use std::fs::File;
 use std::io::{self, IsTerminal, Read, Write};

@@ -28,5 +28,6 @@ pub mod mesh;
 pub mod nk;
 pub mod ron_tree;
 pub mod srf;
+pub mod views;
 
 pub use error::{ParseError, line_column, offset_of};

@@ -14,6 +14,7 @@
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
+//! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
 //!
 //! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
 //! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
@@ -41,6 +42,7 @@ mod object;
 mod raw;
 mod regions;
 mod scene;
+pub mod truth;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};

@@ -834,7 +834,7 @@ mod plan_tests {
         let text = r#"(stages: [(
             tool: "atmos convert",
             inputs: {"materials": "m.ron"},
-            params: {"band": "8:14", "size": (512, 384), "mtf": ["a", "b"], "quiet": true,
+            params: {"band": "8-14", "size": (512, 384), "mtf": ["a", "b"], "quiet": true,
                      "loud": false, "scale": 1e-3, "--raw": "x"},
             outputs: {"o": "out.ron", "truth": "t.exr"},
         ), (tool: "gen", outputs: {"o": "m.ron"})])"#;
@@ -848,7 +848,7 @@ mod plan_tests {
                 "--materials",
                 "m.ron",
                 "--band",
-                "8:14",
+                "8-14",
                 "--size",
                 "512",
                 "384",

@@ -259,7 +259,7 @@ fn params(src: Source<'_>, node: &Node) -> Result<Vec<(Spanned<String>, Param)>,
         return Err(src.structure(
             node,
             format!(
-                "expected `params` to be a map from flag to value, such as {{\"band\": \"8:14\"}}, found {}",
+                "expected `params` to be a map from flag to value, such as {{\"band\": \"8-14\"}}, found {}",
                 node.kind.describe()
             ),
         ));

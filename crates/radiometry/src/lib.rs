@@ -19,6 +19,7 @@
 //! ```
 
 mod band;
+mod band_model;
 pub mod calculators;
 pub mod constants;
 mod emissivity;
@@ -28,6 +29,7 @@ mod planck;
 mod table;
 
 pub use band::{Band, SensorResponse};
+pub use band_model::{BandModel, STEFAN_BOLTZMANN_W_M2_K4, TotalRadiance};
 pub use calculators::{
     Surface, bounce_radiances, bounce_temperatures, shape_factor_radiance, shape_factor_temperature,
 };

@@ -282,6 +282,27 @@ pub fn write_png_gray16(
     encode(out, &image::DynamicImage::ImageLuma16(img))
 }
 
+/// Digital counts of `bits` bits as a grey PNG: 8-bit up to 8 bits, else 16-bit, counts
+/// unscaled (a 12-bit image uses 0..=4095 of the 16-bit range).
+///
+/// # Errors
+/// A size mismatch or an encoder error.
+pub fn counts_png(
+    counts: &[u16],
+    width: usize,
+    height: usize,
+    bits: u8,
+) -> Result<Vec<u8>, RasterError> {
+    let mut out = Vec::new();
+    if bits <= 8 {
+        let bytes: Vec<u8> = counts.iter().map(|&c| c.min(255) as u8).collect();
+        write_png_gray8(&mut out, width, height, &bytes)?;
+    } else {
+        write_png_gray16(&mut out, width, height, counts)?;
+    }
+    Ok(out)
+}
+
 /// Writes an 8-bit RGB PNG; `data` holds `r, g, b` per pixel, row-major from the top.
 ///
 /// # Errors

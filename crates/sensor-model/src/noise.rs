@@ -17,7 +17,7 @@ use rayon::prelude::*;
 
 use crate::Plane;
 use crate::error::{Result, non_negative, positive};
-use crate::quantise::BandConversion;
+use irsig_radiometry::BandModel;
 
 /// The radiance noise σ (W m⁻² sr⁻¹) of a sensor with the given NEΔT (K) quoted at
 /// `reference_temperature_k`: NEΔT · dL/dT(T_ref).
@@ -28,7 +28,7 @@ use crate::quantise::BandConversion;
 pub fn nedt_radiance_sigma(
     nedt_k: f64,
     reference_temperature_k: f64,
-    band: &impl BandConversion,
+    band: &impl BandModel,
 ) -> Result<f64> {
     non_negative("nedt_k", nedt_k)?;
     positive("reference_temperature_k", reference_temperature_k)?;

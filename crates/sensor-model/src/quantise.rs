@@ -14,35 +14,40 @@
 //!   reference temperature and a fixed offset, so counts mean the same in every scene
 //!   (with `dc_per_kelvin = 1/NEΔT` one count is one NEΔT at the reference).
 //!
-//! Radiance ↔ temperature comes from the band (any [`BandConversion`], normally
+//! Radiance ↔ temperature comes from the band (any `irsig_radiometry::BandModel`, normally
 //! `irsig_radiometry::Band`).
 
 use std::fmt;
 
+use irsig_radiometry::BandModel;
+
 use crate::error::{Result, SensorError, SensorErrorKind, finite, positive};
 
-/// Conversion between band radiance and blackbody temperature for one spectral band.
-pub trait BandConversion {
-    /// Blackbody band radiance at `temperature_k`, W m⁻² sr⁻¹.
-    fn radiance(&self, temperature_k: f64) -> f64;
-    /// dL/dT at `temperature_k`, W m⁻² sr⁻¹ K⁻¹.
-    fn radiance_derivative(&self, temperature_k: f64) -> f64;
-    /// The blackbody temperature in kelvin whose band radiance is `radiance_w_m2_sr`.
-    fn temperature(&self, radiance_w_m2_sr: f64) -> f64;
-}
-
-/// The project's band model: exact band radiance (8–14 µm by default, optional sensor
-/// response) from irsig-radiometry.
-impl BandConversion for irsig_radiometry::Band {
-    fn radiance(&self, temperature_k: f64) -> f64 {
-        irsig_radiometry::Band::radiance(self, temperature_k)
-    }
-    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
-        irsig_radiometry::Band::radiance_derivative(self, temperature_k)
-    }
-    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
-        irsig_radiometry::Band::temperature(self, radiance_w_m2_sr)
-    }
+/// How the line from radiance to counts is chosen: the three calibrations of
+/// [`Quantiser`], as data, so that every stage that writes counts offers the same ones.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Calibration {
+    /// [`Quantiser::from_gain_offset`]: gain and offset as given.
+    GainOffset {
+        /// Counts per W m⁻² sr⁻¹.
+        gain_dc_per_w_m2_sr: f64,
+        /// The count of zero radiance.
+        offset_dc: f64,
+    },
+    /// [`Quantiser::auto_bias`] over the image's own range (thesis Figure 14).
+    AutoBias {
+        /// Counts per kelvin at the scene's mid radiance.
+        dc_per_kelvin: f64,
+    },
+    /// [`Quantiser::fixed`] (§5.2): the same counts in every scene.
+    Fixed {
+        /// Counts per kelvin at the reference.
+        dc_per_kelvin: f64,
+        /// The reference temperature, K.
+        reference_k: f64,
+        /// The count of a blackbody at the reference; `None`: mid-scale, 2^(bits−1).
+        dc_at_reference: Option<f64>,
+    },
 }
 
 /// Highest supported number of bits per count.
@@ -88,7 +93,7 @@ impl Quantiser {
         dc_per_kelvin: f64,
         min_radiance_w_m2_sr: f64,
         max_radiance_w_m2_sr: f64,
-        band: &impl BandConversion,
+        band: &impl BandModel,
     ) -> Result<Self> {
         check_bits(bits)?;
         positive("dc_per_kelvin", dc_per_kelvin)?;
@@ -122,7 +127,7 @@ impl Quantiser {
         bits: u8,
         dc_per_kelvin: f64,
         radiance_w_m2_sr: &[f32],
-        band: &impl BandConversion,
+        band: &impl BandModel,
     ) -> Result<Self> {
         let (lo, hi) = finite_range(radiance_w_m2_sr)?;
         Self::auto_bias(bits, dc_per_kelvin, lo, hi, band)
@@ -141,7 +146,7 @@ impl Quantiser {
         dc_per_kelvin: f64,
         reference_temperature_k: f64,
         dc_at_reference: f64,
-        band: &impl BandConversion,
+        band: &impl BandModel,
     ) -> Result<Self> {
         check_bits(bits)?;
         positive("dc_per_kelvin", dc_per_kelvin)?;
@@ -154,6 +159,43 @@ impl Quantiser {
         let gain = dc_per_kelvin / slope;
         let reference_radiance = band.radiance(reference_temperature_k);
         Self::from_gain_offset(bits, gain, dc_at_reference - gain * reference_radiance)
+    }
+
+    /// The quantiser `calibration` gives for an image `radiance_w_m2_sr` (whose range only
+    /// [`Calibration::AutoBias`] reads).
+    ///
+    /// # Errors
+    /// As the constructor the calibration names.
+    pub fn calibrate(
+        bits: u8,
+        calibration: &Calibration,
+        radiance_w_m2_sr: &[f32],
+        band: &impl BandModel,
+    ) -> Result<Self> {
+        match *calibration {
+            Calibration::GainOffset {
+                gain_dc_per_w_m2_sr,
+                offset_dc,
+            } => Self::from_gain_offset(bits, gain_dc_per_w_m2_sr, offset_dc),
+            Calibration::AutoBias { dc_per_kelvin } => {
+                Self::auto_bias_from_image(bits, dc_per_kelvin, radiance_w_m2_sr, band)
+            }
+            Calibration::Fixed {
+                dc_per_kelvin,
+                reference_k,
+                dc_at_reference,
+            } => {
+                check_bits(bits)?;
+                let mid_scale = f64::from(1u32 << (bits - 1));
+                Self::fixed(
+                    bits,
+                    dc_per_kelvin,
+                    reference_k,
+                    dc_at_reference.unwrap_or(mid_scale),
+                    band,
+                )
+            }
+        }
     }
 
     /// Bits per count.
@@ -216,7 +258,7 @@ impl Quantiser {
     /// occurred, with the radiance of the first pixel that produced each.) Counts whose
     /// radiance is ≤ 0 carry whatever temperature the band documents for that case.
     #[must_use]
-    pub fn lut(&self, band: &impl BandConversion) -> Lut {
+    pub fn lut(&self, band: &impl BandModel) -> Lut {
         let entries = (0..=self.max_count())
             .map(|dc| {
                 let radiance_w_m2_sr = self.radiance_at(dc);
@@ -322,7 +364,7 @@ impl fmt::Display for Lut {
 pub fn apparent_temperature(
     radiance_w_m2_sr: &[f32],
     width: usize,
-    band: &impl BandConversion,
+    band: &impl BandModel,
 ) -> Result<Vec<f32>> {
     check_finite(radiance_w_m2_sr, width)?;
     Ok(radiance_w_m2_sr
@@ -358,7 +400,7 @@ pub(crate) mod tests {
         s * h / 3.0
     }
 
-    impl BandConversion for SimpsonBand {
+    impl BandModel for SimpsonBand {
         fn radiance(&self, t_k: f64) -> f64 {
             simpson(|l| planck(l, t_k))
         }
@@ -490,5 +532,36 @@ pub(crate) mod tests {
             // f32 radiance carries ~1e-7 relative, i.e. ~1e-5 K here.
             assert!((f64::from(*got) - want).abs() < 1e-3, "{got} vs {want}");
         }
+    }
+
+    #[test]
+    fn each_calibration_is_its_constructor() {
+        let band = SimpsonBand;
+        let image = [40.0_f32, 60.0, 52.0];
+        let auto = Calibration::AutoBias { dc_per_kelvin: 4.0 };
+        assert_eq!(
+            Quantiser::calibrate(8, &auto, &image, &band).unwrap(),
+            Quantiser::auto_bias(8, 4.0, 40.0, 60.0, &band).unwrap()
+        );
+        // A fixed calibration without a reference count puts the reference at mid-scale.
+        let fixed = Calibration::Fixed {
+            dc_per_kelvin: 10.0,
+            reference_k: 300.0,
+            dc_at_reference: None,
+        };
+        assert_eq!(
+            Quantiser::calibrate(12, &fixed, &image, &band).unwrap(),
+            Quantiser::fixed(12, 10.0, 300.0, 2048.0, &band).unwrap()
+        );
+        let line = Calibration::GainOffset {
+            gain_dc_per_w_m2_sr: 3.0,
+            offset_dc: -20.0,
+        };
+        assert_eq!(
+            Quantiser::calibrate(8, &line, &[], &band).unwrap(),
+            Quantiser::from_gain_offset(8, 3.0, -20.0).unwrap()
+        );
+        assert!(Quantiser::calibrate(0, &fixed, &image, &band).is_err());
+        assert!(Quantiser::calibrate(17, &fixed, &image, &band).is_err());
     }
 }

@@ -9,12 +9,13 @@ use std::sync::OnceLock;
 
 use divan::counter::ItemsCount;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
+use irsig_radiometry::TotalRadiance;
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
     BENCH_EMISSIVITY, BareObvhs, EdgeExperiment, Mesh, PitExperiment, geometry_pass, ground_quad,
     primary_directions, triangles, uv_sphere,
 };
-use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 
 fn main() {
     divan::main();
@@ -224,39 +225,17 @@ fn supersampling_edge(bencher: divan::Bencher, n: u32) {
         .bench(|| one_core(|| edge.tracer.render(&edge.camera, &options, &|_| {}).unwrap()));
 }
 
-/// The real atmosphere's adapter, its hemispheric sky precomputed (as irsig-trace's
-/// adapter does: eq. 5 is an integral) at the ground; the scene is within 25 m of it.
-struct Air(irsig_atmosphere::AtmosphereModel, f64);
-
-impl irsig_tracer::Atmosphere for Air {
-    fn path(&self, s: f64, t: f64, r: f64) -> irsig_tracer::PathTerms {
-        let p = self.0.path(s, t, r);
-        irsig_tracer::PathTerms {
-            transmission: p.transmission,
-            path_radiance_w_m2_sr: p.path_radiance_w_m2_sr,
-        }
-    }
-    fn sky_radiance(&self, alt: f64, zenith_deg: f64) -> f64 {
-        self.0.sky_radiance(alt, zenith_deg)
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        self.1
-    }
-    fn critical_nadir_angle_deg(&self, alt: f64) -> f64 {
-        self.0.critical_nadir_angle_deg(alt)
-    }
-}
-
 /// The 100k-triangle scene under the built-in US Standard atmosphere (table model, the
 /// tool's default): path terms exact per hit, or tabulated per frame (the table's build
 /// included in every render).
 #[divan::bench(args = ["exact", "tabulated"], sample_count = 3, sample_size = 1)]
 fn shaded_us_std_atmosphere_100k(bencher: divan::Bencher, mode: &str) {
-    use irsig_atmosphere::{AtmosphereModel, ModelKind, builtin};
+    use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, builtin};
     let sc = raw_scene(&mesh(1));
     let model = AtmosphereModel::new(&builtin("us-std-1976").unwrap(), ModelKind::Table).unwrap();
-    let hemispheric = model.sky_hemispheric(0.0).radiance_w_m2_sr;
-    let tracer = Tracer::new(&sc, &materials(0.0), TotalRadiance, Air(model, hemispheric))
+    // The sky precomputed up to the scene's top, as irsig-trace does.
+    let air = PrecomputedAtmosphere::new(model, 25.0);
+    let tracer = Tracer::new(&sc, &materials(0.0), TotalRadiance, air)
         .unwrap()
         .with_path_terms(if mode == "exact" {
             irsig_tracer::PathTermsMode::Exact

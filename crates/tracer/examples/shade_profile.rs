@@ -21,11 +21,12 @@
 use std::time::Instant;
 
 use irsig_model::View;
+use irsig_radiometry::TotalRadiance;
 use irsig_tracer::testing::{
     BENCH_EMISSIVITY, BareObvhs, Mesh, geometry_pass, grey_materials, ground_quad,
     primary_directions, raw_scene, uv_sphere,
 };
-use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 
 const PIXELS: f64 = 128.0 * 128.0;
 

@@ -4,8 +4,8 @@
 //!
 //! `cargo run --release -p irsig-tracer --example trade_tables`
 
+use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{EdgeExperiment, PitExperiment};
-use irsig_tracer::{Radiometry, TotalRadiance};
 
 fn stats(errors: &[f64]) -> (f64, f64, f64) {
     let n = errors.len() as f64;

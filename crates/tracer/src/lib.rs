@@ -1,8 +1,8 @@
-//! irsig-tracer: the radiometric ray tracer of irsig (thesis §3.3, Appendix H; SPEC §4).
+//! irsig-tracer: the radiometric ray tracer of irsig (thesis §3.3, Figure 6, Appendix H).
 //!
 //! A [`Tracer`] holds a flattened scene in an obvhs CWBVH with a watertight triangle test
 //! ([`geometry`]), every facet's blackbody radiance `L_T` precomputed, the terrain
-//! background, a band model ([`Radiometry`]) and an atmosphere ([`Atmosphere`]). A
+//! background, a band model (`irsig_radiometry::BandModel`) and an atmosphere ([`Atmosphere`]). A
 //! [`Camera`] (the ω φ κ matrix of Appendix H or a look-at view; pixel (0, 0) is the
 //! top-left, see [`camera`]) gives the primary rays. Each ray meets one of the events of
 //! thesis Figure 6 ([`Event`]) and gets
@@ -21,7 +21,8 @@
 //!
 //! ```
 //! use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, Terrain, View};
-//! use irsig_tracer::{Camera, TotalRadiance, TraceOptions, Tracer, Vacuum};
+//! use irsig_radiometry::TotalRadiance;
+//! use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 //!
 //! // A 10 m blackbody square at 300 K on the ground, seen straight down from 100 m.
 //! let scene = RawScene {
@@ -59,7 +60,9 @@ pub mod camera;
 pub mod env;
 mod error;
 pub mod geometry;
+mod path;
 mod path_table;
+mod shade;
 pub mod testing;
 mod tracer;
 mod vec;
@@ -67,8 +70,12 @@ mod vec;
 pub use camera::{
     Camera, look_at_omega_phi_kappa_deg, omega_phi_kappa_matrix, thesis_look_at_angles_deg,
 };
-pub use env::{Atmosphere, PathTerms, Radiometry, TotalRadiance, Vacuum};
+pub use env::{Atmosphere, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
-pub use path_table::{PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode};
-pub use tracer::{Event, FacetRadiometry, Frame, Sample, TraceOptions, Tracer, TruthPixel};
+pub use path_table::{
+    PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
+};
+pub use tracer::{
+    Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
+};
 pub use vec::V3;

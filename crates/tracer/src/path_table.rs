@@ -14,7 +14,9 @@
 
 use rayon::prelude::*;
 
-use crate::env::{Atmosphere, PathTerms};
+use irsig_atmosphere::PathTerms;
+
+use crate::env::Atmosphere;
 
 /// How the tracer gets the path terms (τ, L_u) of a primary hit.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -29,12 +31,49 @@ pub enum PathTermsMode {
     Tabulated,
 }
 
+impl PathTermsMode {
+    /// Both modes, in the order they are listed to users.
+    pub const ALL: [Self; 2] = [Self::Exact, Self::Tabulated];
+    /// Their names, in the same order.
+    pub const NAMES: [&'static str; 2] = ["exact", "tabulated"];
+
+    /// The name used in files and on command lines.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Exact => Self::NAMES[0],
+            Self::Tabulated => Self::NAMES[1],
+        }
+    }
+}
+
+impl std::fmt::Display for PathTermsMode {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not a [`PathTermsMode`].
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("unknown path-terms mode `{0}`: expected one of exact, tabulated")]
+pub struct UnknownPathTermsMode(pub String);
+
+impl std::str::FromStr for PathTermsMode {
+    type Err = UnknownPathTermsMode;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownPathTermsMode(s.to_owned()))
+    }
+}
+
 /// Altitude nodes of the path table.
 pub const PATH_TABLE_ALTITUDES: usize = 65;
 /// Range nodes of the path table.
 pub const PATH_TABLE_RANGES: usize = 513;
 
-/// One frame's path-term table.
+/// One frame's path-term table, for every sub-band.
 #[derive(Debug, Clone)]
 pub(crate) struct PathTable {
     sensor_alt_m: f64,
@@ -44,8 +83,19 @@ pub(crate) struct PathTable {
     per_u: f64,
     range0_m: f64,
     per_range: f64,
-    /// `(τ, L_u)` per node, altitude-major.
+    /// Sub-bands.
+    bands: usize,
+    /// `(τ, L_u)` per node and sub-band: altitude-major, then range, then sub-band.
     nodes: Vec<(f64, f64)>,
+}
+
+/// Where a hit falls in the table: its first node and the two interpolation weights. The
+/// same for every sub-band, so it is found once per hit.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Cell {
+    node: usize,
+    fa: f64,
+    fr: f64,
 }
 
 /// The node coordinates and interpolation weight of `x` on a grid starting at `x0` with
@@ -60,10 +110,10 @@ fn cell(x: f64, x0: f64, per: f64, n: usize) -> (usize, f64) {
 }
 
 impl PathTable {
-    /// Tabulates `atmosphere` for a sensor at `sensor_alt_m` over hits at altitudes
-    /// `alt_m` and ranges `range_m` (both `[low, high]`).
+    /// Tabulates each of `atmospheres` (one per sub-band) for a sensor at `sensor_alt_m`
+    /// over hits at altitudes `alt_m` and ranges `range_m` (both `[low, high]`).
     pub(crate) fn new<A: Atmosphere>(
-        atmosphere: &A,
+        atmospheres: &[&A],
         sensor_alt_m: f64,
         alt_m: [f64; 2],
         range_m: [f64; 2],
@@ -87,10 +137,12 @@ impl PathTable {
             .flat_map_iter(|i| {
                 let alt = sensor_alt_m + h0_m * (u_lo + i as f64 / per_u).sinh();
                 let vertical = (sensor_alt_m - alt).abs();
-                (0..PATH_TABLE_RANGES).map(move |j| {
+                (0..PATH_TABLE_RANGES).flat_map(move |j| {
                     let range = (range_m[0] + j as f64 / per_range).max(vertical);
-                    let p = atmosphere.path(sensor_alt_m, alt, range);
-                    (p.transmission, p.path_radiance_w_m2_sr)
+                    atmospheres.iter().map(move |a| {
+                        let p = a.path(sensor_alt_m, alt, range);
+                        (p.transmission, p.path_radiance_w_m2_sr)
+                    })
                 })
             })
             .collect();
@@ -101,24 +153,41 @@ impl PathTable {
             per_u,
             range0_m: range_m[0],
             per_range,
+            bands: atmospheres.len(),
             nodes,
         }
     }
 
-    /// The bilinearly interpolated path terms of a hit at `alt_m`, `range_m` away.
+    /// Where a hit at `alt_m`, `range_m` away falls.
     #[inline]
-    pub(crate) fn path(&self, alt_m: f64, range_m: f64) -> PathTerms {
+    pub(crate) fn cell(&self, alt_m: f64, range_m: f64) -> Cell {
         let u = ((alt_m - self.sensor_alt_m) / self.h0_m).asinh();
         let (i, fa) = cell(u, self.u0, self.per_u, PATH_TABLE_ALTITUDES);
         let (j, fr) = cell(range_m, self.range0_m, self.per_range, PATH_TABLE_RANGES);
-        let k = i * PATH_TABLE_RANGES + j;
-        let at = |k: usize| self.nodes.get(k).copied().unwrap_or((f64::NAN, f64::NAN));
+        Cell {
+            node: i * PATH_TABLE_RANGES + j,
+            fa,
+            fr,
+        }
+    }
+
+    /// The bilinearly interpolated path terms of sub-band `band` in `cell`.
+    #[inline]
+    pub(crate) fn terms(&self, cell: Cell, band: usize) -> PathTerms {
+        let at = |node: usize| {
+            self.nodes
+                .get(node * self.bands + band)
+                .copied()
+                .unwrap_or((f64::NAN, f64::NAN))
+        };
+        let k = cell.node;
         let (a, b, c, d) = (
             at(k),
             at(k + 1),
             at(k + PATH_TABLE_RANGES),
             at(k + PATH_TABLE_RANGES + 1),
         );
+        let (fa, fr) = (cell.fa, cell.fr);
         let lerp = |x: f64, y: f64, t: f64| x + (y - x) * t;
         PathTerms {
             transmission: lerp(lerp(a.0, b.0, fr), lerp(c.0, d.0, fr), fa),

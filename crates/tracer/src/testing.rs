@@ -6,7 +6,9 @@ use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, Vie
 
 use crate::geometry::Geometry;
 use crate::vec::V3;
-use crate::{Camera, Radiometry, TotalRadiance, TraceOptions, Tracer, Vacuum};
+use irsig_radiometry::{BandModel, TotalRadiance};
+
+use crate::{Camera, TraceOptions, Tracer, Vacuum};
 
 /// A closed mesh: vertex positions and triangles as vertex indices.
 pub type Mesh = (Vec<V3>, Vec<[u32; 3]>);

@@ -1,19 +1,21 @@
-//! The radiance equation along each ray: the four events of thesis Figure 6 (SPEC §4).
+//! The radiance equation along each ray: the four events of thesis Figure 6 (§3.3).
 
 use std::fmt;
 
+use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
-use irsig_radiometry::EmissivityTable;
+use irsig_radiometry::{BandModel, EmissivityTable};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
-use crate::env::{Atmosphere, Radiometry, range_to_ground_from_cos_m};
+use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
-use crate::geometry::{Geometry, Hit};
+use crate::geometry::Geometry;
+use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
-use crate::vec::{V3, add, basis, dot, scale, sub};
+use crate::vec::V3;
 
 /// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -166,7 +168,7 @@ impl Sample {
         self.cos_incidence.acos().to_degrees()
     }
 
-    fn miss(event: Event) -> Self {
+    pub(crate) fn miss(event: Event) -> Self {
         Self {
             event,
             primary_material: 0,
@@ -298,6 +300,26 @@ impl TruthPixel {
     pub fn incidence_deg(&self) -> f32 {
         self.cos_incidence.acos().to_degrees() as f32
     }
+
+    /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
+    /// the layers that come from the pixel's radiance instead ([`Layer::Radiance`],
+    /// [`Layer::ApparentTemperature`]).
+    #[must_use]
+    pub fn layer(&self, layer: Layer) -> Option<f32> {
+        Some(match layer {
+            Layer::MaterialPrimary => f32::from(self.primary_material),
+            Layer::MaterialSecondary => f32::from(self.secondary_material),
+            Layer::Event => f32::from(self.event.number()),
+            Layer::Range => self.range_m,
+            Layer::Incidence => self.incidence_deg(),
+            Layer::KineticTemperature => self.temperature_k,
+            Layer::Emissivity => self.emissivity,
+            Layer::Transmission => self.transmission,
+            Layer::PathRadiance => self.path_radiance_w_m2_sr,
+            Layer::SkyViewFactor => self.sky_view_factor,
+            Layer::Radiance | Layer::ApparentTemperature => return None,
+        })
+    }
 }
 
 impl From<&Sample> for TruthPixel {
@@ -332,12 +354,45 @@ pub struct Frame {
     pub truth: Vec<TruthPixel>,
 }
 
+impl Frame {
+    /// One truth layer of every pixel, row-major, as the truth EXR stores it (f32; NaN
+    /// where the term does not apply). `None` when the frame kept no truth or the layer
+    /// comes from the radiance ([`TruthPixel::layer`]).
+    #[must_use]
+    pub fn truth_layer(&self, layer: Layer) -> Option<Vec<f32>> {
+        if self.truth.is_empty() {
+            return None;
+        }
+        self.truth.iter().map(|p| p.layer(layer)).collect()
+    }
+
+    /// The radiance of every pixel rounded to f32, as the radiance EXR stores it.
+    #[must_use]
+    pub fn radiance_f32(&self) -> Vec<f32> {
+        self.radiance_w_m2_sr.iter().map(|&l| l as f32).collect()
+    }
+}
+
+/// One sub-band of a spectral rendering: its part of the band, the atmosphere over it and
+/// the materials' emissivity over it. A rendering sums the radiance equation over its
+/// sub-bands (issue of band averaging: one band-mean τ times one band radiance is only an
+/// approximation, measured in docs/accuracy.md).
 #[derive(Debug, Clone)]
-struct MaterialData {
-    id: u16,
-    /// The project's one angular-emissivity interpolation (linear, held beyond the ends).
-    emissivity: EmissivityTable,
-    specular_fraction: f64,
+pub struct SubBand<B, A> {
+    /// The blackbody radiance over this sub-band (its wavelengths, weighted by the
+    /// response).
+    pub band: B,
+    /// The atmosphere over this sub-band.
+    pub atmosphere: A,
+    /// Each material's angular emissivity over this sub-band, in the library's order;
+    /// `None`: the materials' own band tables.
+    pub emissivity: Option<Vec<EmissivityTable>>,
+}
+
+#[derive(Debug, Clone)]
+pub(crate) struct MaterialData {
+    pub(crate) id: u16,
+    pub(crate) specular_fraction: f64,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
@@ -345,30 +400,61 @@ struct MaterialData {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FacetRadiometry {
     /// Index into the tracer's material list (not the material id).
-    material: u16,
-    temperature_k: f64,
-    /// L_T, W m⁻² sr⁻¹.
-    blackbody: f64,
+    pub(crate) material: u16,
+    /// Index into each sub-band's blackbody table (sub-bands after the first).
+    pub(crate) temperature_index: u32,
+    pub(crate) temperature_k: f64,
+    /// L_T in the first sub-band (the whole band when there is one), W m⁻² sr⁻¹: kept here,
+    /// beside the plane, because a table in facet order costs a cache miss per hit at 1M
+    /// triangles.
+    pub(crate) blackbody: f64,
+}
+
+/// A sub-band as the tracer keeps it: the atmosphere, each material's emissivity and the
+/// blackbody radiance of every facet temperature, precomputed.
+#[derive(Debug)]
+pub(crate) struct BandData<A> {
+    pub(crate) atmosphere: A,
+    /// Per material slot.
+    pub(crate) emissivity: Vec<EmissivityTable>,
+    /// L_T per temperature index, W m⁻² sr⁻¹ (empty for the first sub-band, whose L_T is
+    /// in the facet records).
+    pub(crate) blackbody: Vec<f64>,
+    /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
+    pub(crate) terrain_blackbody: f64,
+    pub(crate) terrain_leaving: f64,
+}
+
+impl<A> BandData<A> {
+    /// L_T of a facet in this sub-band (`first`: this is the first sub-band).
+    #[inline]
+    pub(crate) fn blackbody_of(&self, first: bool, facet: &FacetRadiometry) -> f64 {
+        if first {
+            facet.blackbody
+        } else {
+            self.blackbody[facet.temperature_index as usize]
+        }
+    }
 }
 
 /// A scene ready to trace: the BVH, per-facet radiometry (L_T precomputed), the terrain,
-/// the band and the atmosphere. Build it once and render as many views as needed.
+/// the band (and its sub-bands, each with its atmosphere). Build it once and render as many
+/// views as needed.
 #[derive(Debug)]
-pub struct Tracer<R, A> {
-    geometry: Geometry<FacetRadiometry>,
-    materials: Vec<MaterialData>,
-    terrain: Terrain,
-    /// The terrain's L_T, W m⁻² sr⁻¹.
-    terrain_blackbody: f64,
-    terrain_leaving: f64,
-    radiometry: R,
-    atmosphere: A,
-    path_terms: PathTermsMode,
+pub struct Tracer<B, A> {
+    pub(crate) geometry: Geometry<FacetRadiometry>,
+    pub(crate) materials: Vec<MaterialData>,
+    pub(crate) terrain: Terrain,
+    /// The whole band: what the apparent temperature inverts.
+    pub(crate) band: B,
+    /// The sub-bands the radiance equation is summed over (one: the band itself).
+    pub(crate) bands: Vec<BandData<A>>,
+    pub(crate) path_terms: PathTermsMode,
 }
 
 /// Per-ray state shared by the events.
-struct Ctx<'a> {
-    options: &'a TraceOptions,
+pub(crate) struct Ctx<'a> {
+    pub(crate) options: &'a TraceOptions,
     rng: Option<ChaCha8Rng>,
     /// The pixel's index in the image, from which its random stream is seeded.
     pixel_index: u64,
@@ -376,7 +462,7 @@ struct Ctx<'a> {
 
 impl Ctx<'_> {
     /// The pixel's random stream, seeded on first use (most pixels never draw).
-    fn rng(&mut self) -> &mut ChaCha8Rng {
+    pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
         let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
         self.rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
@@ -384,21 +470,21 @@ impl Ctx<'_> {
 }
 
 /// What every ray of one frame shares, computed once per frame rather than per ray.
-struct FrameConsts<'a> {
+pub(crate) struct FrameConsts<'a> {
     camera: &'a Camera,
     /// Image-plane u of each column's centre.
     us: Vec<f64>,
     /// Image-plane v of each row's centre.
     vs: Vec<f64>,
     /// The sensor in local coordinates.
-    origin: V3,
+    pub(crate) origin: V3,
     /// The sensor's altitude, metres (clamped at the ground).
-    sensor_alt: f64,
+    pub(crate) sensor_alt: f64,
     /// Cosine of the Earth's limb's angle from nadir seen from the sensor: rays with a
     /// larger cosine of their nadir angle meet the ground.
-    cos_critical_nadir: f64,
-    /// The primary hits' path terms, when [`PathTermsMode::Tabulated`].
-    path_table: Option<PathTable>,
+    pub(crate) cos_critical_nadir: f64,
+    /// The primary hits' path terms in every sub-band, when [`PathTermsMode::Tabulated`].
+    pub(crate) path_table: Option<PathTable>,
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -408,16 +494,41 @@ fn splitmix64(mut x: u64) -> u64 {
     x ^ (x >> 31)
 }
 
-impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
-    /// Validates the scene and materials, builds the BVH and precomputes each facet's L_T.
+impl<B: BandModel + Clone, A: Atmosphere> Tracer<B, A> {
+    /// Validates the scene and materials, builds the BVH and precomputes each facet's L_T,
+    /// for one band and its atmosphere.
     ///
     /// # Errors
     /// The raw scene or material library is invalid, or a facet names an unknown material.
     pub fn new(
         scene: &RawScene,
         materials: &MaterialLibrary,
-        radiometry: R,
+        band: B,
         atmosphere: A,
+    ) -> Result<Self, TraceError> {
+        let one = SubBand {
+            band: band.clone(),
+            atmosphere,
+            emissivity: None,
+        };
+        Self::with_sub_bands(scene, materials, band, vec![one])
+    }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// [`Tracer::new`] for a radiance summed over `sub_bands` (the spectral model): each
+    /// sub-band brings its own blackbody radiance, atmosphere and, optionally, material
+    /// emissivities. `band` is the whole band, whose inverse gives the apparent
+    /// temperature; the sub-bands should partition it.
+    ///
+    /// # Errors
+    /// As [`Tracer::new`]; also no sub-band, or a sub-band whose emissivity list does not
+    /// have one table per material.
+    pub fn with_sub_bands(
+        scene: &RawScene,
+        materials: &MaterialLibrary,
+        band: B,
+        sub_bands: Vec<SubBand<B, A>>,
     ) -> Result<Self, TraceError> {
         scene
             .validate()
@@ -425,25 +536,37 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         materials
             .validate()
             .map_err(|e| TraceError::new(TraceErrorKind::InvalidMaterials(e)))?;
+        if sub_bands.is_empty() {
+            return Err(TraceError::new(TraceErrorKind::InvalidOptions(
+                "no sub-band: expected at least one".into(),
+            )));
+        }
         let mut slot_of = vec![u16::MAX; usize::from(u16::MAX) + 1];
         let mut mats = Vec::with_capacity(materials.materials.len());
+        let mut tables = Vec::with_capacity(materials.materials.len());
         for (slot, m) in materials.materials.iter().enumerate() {
             slot_of[usize::from(m.id.0)] = slot as u16;
             let (angle_deg, emissivity) = m.emissivity.iter().copied().unzip();
-            let emissivity = EmissivityTable::new(angle_deg, emissivity).map_err(|e| {
+            let table = EmissivityTable::new(angle_deg, emissivity).map_err(|e| {
                 TraceError::new(TraceErrorKind::InvalidEmissivity {
                     material: m.id.0,
                     reason: e.to_string(),
                 })
             })?;
+            tables.push(table);
             mats.push(MaterialData {
                 id: m.id.0,
-                emissivity,
                 specular_fraction: m.specular_fraction,
             });
         }
+        // Temperatures for the sub-bands after the first: one table entry per distinct
+        // temperature (scenes hold few), so K sub-bands cost K small tables, not K × facets.
+        let spectral = sub_bands.len() > 1;
+        let mut temperatures: Vec<f64> = Vec::new();
+        let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
         let mut facets = Vec::with_capacity(scene.facets.len());
         let mut triangles = Vec::with_capacity(scene.facets.len());
+        let first = &sub_bands[0].band;
         for (i, f) in scene.facets.iter().enumerate() {
             let slot = slot_of[usize::from(f.material.0)];
             if slot == u16::MAX {
@@ -452,26 +575,62 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                     material: f.material.0,
                 }));
             }
+            let temperature_index = if spectral {
+                *index_of
+                    .entry(f.temperature_k.to_bits())
+                    .or_insert_with(|| {
+                        temperatures.push(f.temperature_k);
+                        (temperatures.len() - 1) as u32
+                    })
+            } else {
+                0
+            };
             facets.push(FacetRadiometry {
                 material: slot,
+                temperature_index,
                 temperature_k: f.temperature_k,
-                blackbody: radiometry.radiance(f.temperature_k),
+                blackbody: first.radiance(f.temperature_k),
             });
             // Indices were checked by validate().
             triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
         }
         let terrain = scene.terrain;
-        let terrain_blackbody = radiometry.radiance(terrain.temperature_k);
-        let terrain_leaving = terrain.emissivity * terrain_blackbody
-            + (1.0 - terrain.emissivity) * atmosphere.sky_hemispheric(0.0);
+        let mut bands = Vec::with_capacity(sub_bands.len());
+        for (k, sb) in sub_bands.into_iter().enumerate() {
+            let emissivity = match sb.emissivity {
+                None => tables.clone(),
+                Some(e) if e.len() == tables.len() => e,
+                Some(e) => {
+                    return Err(TraceError::new(TraceErrorKind::InvalidOptions(format!(
+                        "sub-band {}: {} emissivity tables for {} materials",
+                        k + 1,
+                        e.len(),
+                        tables.len()
+                    ))));
+                }
+            };
+            let blackbody = if k == 0 {
+                Vec::new()
+            } else {
+                temperatures.iter().map(|&t| sb.band.radiance(t)).collect()
+            };
+            let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
+            let terrain_leaving = terrain.emissivity * terrain_blackbody
+                + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
+            bands.push(BandData {
+                atmosphere: sb.atmosphere,
+                emissivity,
+                blackbody,
+                terrain_blackbody,
+                terrain_leaving,
+            });
+        }
         Ok(Self {
             geometry: Geometry::with_data(&triangles, &facets),
             materials: mats,
             terrain,
-            terrain_blackbody,
-            terrain_leaving,
-            radiometry,
-            atmosphere,
+            band,
+            bands,
             path_terms: PathTermsMode::Exact,
         })
     }
@@ -482,10 +641,16 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         &self.geometry
     }
 
-    /// The band model.
+    /// The whole band.
     #[must_use]
-    pub fn radiometry(&self) -> &R {
-        &self.radiometry
+    pub fn band(&self) -> &B {
+        &self.band
+    }
+
+    /// How many sub-bands the radiance equation is summed over (1: the band model).
+    #[must_use]
+    pub fn sub_bands(&self) -> usize {
+        self.bands.len()
     }
 
     fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
@@ -497,7 +662,7 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             vs: (0..h).map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
-            cos_critical_nadir: self
+            cos_critical_nadir: self.bands[0]
                 .atmosphere
                 .critical_nadir_angle_deg(sensor_alt)
                 .to_radians()
@@ -514,8 +679,9 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                     .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
                     .sum::<f64>()
                     .sqrt();
+                let atmospheres: Vec<&A> = self.bands.iter().map(|b| &b.atmosphere).collect();
                 PathTable::new(
-                    &self.atmosphere,
+                    &atmospheres,
                     sensor_alt,
                     [lo[2].max(0.0), hi[2].max(0.0)],
                     [near, far],
@@ -537,10 +703,10 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         self.path_terms
     }
 
-    /// Apparent (blackbody) temperature of a radiance, K.
+    /// Apparent (blackbody) temperature of a radiance in the whole band, K.
     #[must_use]
     pub fn apparent_temperature_k(&self, radiance_w_m2_sr: f64) -> f64 {
-        self.radiometry.temperature(radiance_w_m2_sr)
+        self.band.temperature(radiance_w_m2_sr)
     }
 
     /// Renders every pixel of `camera`'s image, rows in parallel (rayon). `progress` is
@@ -569,10 +735,17 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 .zip(truth.par_chunks_mut(row_len))
                 .enumerate()
                 .for_each(|(row, (rad, tru))| {
+                    let mut path = Path::default();
                     let mut centre = Sample::miss(Event::Sky);
                     for (col, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                        *l_out =
-                            self.pixel::<true>(&fc, options, col as u32, row as u32, &mut centre);
+                        *l_out = self.pixel::<true>(
+                            &fc,
+                            options,
+                            col as u32,
+                            row as u32,
+                            &mut path,
+                            &mut centre,
+                        );
                         *t_out = TruthPixel::from(&centre);
                     }
                     progress(1);
@@ -582,10 +755,17 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 .par_chunks_mut(row_len)
                 .enumerate()
                 .for_each(|(row, rad)| {
+                    let mut path = Path::default();
                     let mut scratch = Sample::miss(Event::Sky);
                     for (col, l_out) in rad.iter_mut().enumerate() {
-                        *l_out =
-                            self.pixel::<false>(&fc, options, col as u32, row as u32, &mut scratch);
+                        *l_out = self.pixel::<false>(
+                            &fc,
+                            options,
+                            col as u32,
+                            row as u32,
+                            &mut path,
+                            &mut scratch,
+                        );
                     }
                     progress(1);
                 });
@@ -621,20 +801,29 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
             }));
         }
         let mut s = Sample::miss(Event::Sky);
-        self.pixel::<true>(&self.frame_consts(camera), options, column, row, &mut s);
+        let mut path = Path::default();
+        self.pixel::<true>(
+            &self.frame_consts(camera),
+            options,
+            column,
+            row,
+            &mut path,
+            &mut s,
+        );
         Ok(s)
     }
 
     /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
     /// terms go to `centre` (written in place: a sample is 144 bytes, and moving it
     /// through every call level showed as memory copies in the profile); without, `centre`
-    /// is not touched.
+    /// is not touched. `path` is scratch space reused from pixel to pixel.
     fn pixel<const TRUTH: bool>(
         &self,
         fc: &FrameConsts<'_>,
         options: &TraceOptions,
         col: u32,
         row: u32,
+        path: &mut Path,
         centre: &mut Sample,
     ) -> f64 {
         let camera = fc.camera;
@@ -645,7 +834,8 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
         };
         // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
         let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
-        let centre_radiance = self.shade::<TRUTH>(fc, dir, &mut ctx, centre);
+        self.follow(fc, dir, &mut ctx, path);
+        let centre_radiance = self.radiance::<TRUTH>(fc, path, centre);
         let n = options.supersampling;
         if n <= 1 {
             return centre_radiance;
@@ -660,234 +850,10 @@ impl<R: Radiometry, A: Atmosphere> Tracer<R, A> {
                 let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
                 let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
                 // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
-                sum += self.shade::<false>(fc, camera.direction_at(x, y), &mut ctx, centre);
+                self.follow(fc, camera.direction_at(x, y), &mut ctx, path);
+                sum += self.radiance::<false>(fc, path, centre);
             }
         }
         sum / f64::from(n * n)
-    }
-
-    /// The full radiance equation along one primary ray: the radiance at the sensor. With
-    /// `TRUTH`, every term also goes to `s` (the incidence angle as its cosine: the angle
-    /// is derived where it is shown, [`Sample::incidence_deg`] or a truth layer); without, `s` is not
-    /// touched. Both give the same radiance, bit for bit.
-    fn shade<const TRUTH: bool>(
-        &self,
-        fc: &FrameConsts<'_>,
-        dir: V3,
-        ctx: &mut Ctx<'_>,
-        s: &mut Sample,
-    ) -> f64 {
-        let Some(hit) = self
-            .geometry
-            .closest_hit(fc.origin, dir, 0.0, f64::INFINITY, None)
-        else {
-            return self.miss::<TRUTH>(fc, dir, s);
-        };
-        let hit_alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
-        let leaving = self.surface::<TRUTH>(&hit, dir, hit_alt, 0, ctx, s);
-        let path = match &fc.path_table {
-            Some(table) => table.path(hit_alt, hit.distance_m),
-            None => self.atmosphere.path(fc.sensor_alt, hit_alt, hit.distance_m),
-        };
-        let radiance = path.transmission * leaving + path.path_radiance_w_m2_sr;
-        if TRUTH {
-            s.range_m = hit.distance_m;
-            s.transmission = path.transmission;
-            s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
-            s.radiance_w_m2_sr = radiance;
-        }
-        radiance
-    }
-
-    /// Event 1: the ray leaves the scene from the sensor. The ground test compares
-    /// cosines, so a miss costs no arc cosine unless it sees the sky.
-    fn miss<const TRUTH: bool>(&self, fc: &FrameConsts<'_>, dir: V3, s: &mut Sample) -> f64 {
-        let alt = fc.sensor_alt;
-        let cos_nadir = (-dir[2]).clamp(-1.0, 1.0);
-        if cos_nadir > fc.cos_critical_nadir {
-            let range = range_to_ground_from_cos_m(alt, cos_nadir).unwrap_or(0.0);
-            let path = self.atmosphere.path(alt, 0.0, range);
-            let radiance = path.transmission * self.terrain_leaving + path.path_radiance_w_m2_sr;
-            if TRUTH {
-                *s = Sample::miss(Event::Terrain);
-                s.range_m = range;
-                s.temperature_k = self.terrain.temperature_k;
-                s.emissivity = self.terrain.emissivity;
-                s.reflectance = 1.0 - self.terrain.emissivity;
-                s.blackbody_w_m2_sr = self.terrain_blackbody;
-                s.surface_leaving_w_m2_sr = self.terrain_leaving;
-                s.transmission = path.transmission;
-                s.path_radiance_w_m2_sr = path.path_radiance_w_m2_sr;
-                s.radiance_w_m2_sr = radiance;
-            }
-            radiance
-        } else {
-            let zenith_deg = dir[2].clamp(-1.0, 1.0).acos().to_degrees();
-            let radiance = self.atmosphere.sky_radiance(alt, zenith_deg);
-            if TRUTH {
-                *s = Sample::miss(Event::Sky);
-                s.transmission = 0.0;
-                s.path_radiance_w_m2_sr = radiance;
-                s.radiance_w_m2_sr = radiance;
-            }
-            radiance
-        }
-    }
-
-    /// Radiance arriving at a surface point at altitude `alt` along `dir` from outside the
-    /// scene: the sky above the horizon, the terrain below it.
-    fn escaped(&self, dir: V3, alt: f64) -> f64 {
-        let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
-        if nadir < self.atmosphere.critical_nadir_angle_deg(alt) {
-            self.terrain_leaving
-        } else {
-            self.atmosphere.sky_radiance(alt, 180.0 - nadir)
-        }
-    }
-
-    /// Surface-leaving radiance of a hit at altitude `alt` (events 2–4), `depth` specular
-    /// bounces already spent; with `TRUTH`, every term into `s`.
-    fn surface<const TRUTH: bool>(
-        &self,
-        hit: &Hit<FacetRadiometry>,
-        dir: V3,
-        alt: f64,
-        depth: u32,
-        ctx: &mut Ctx<'_>,
-        s: &mut Sample,
-    ) -> f64 {
-        let fd = hit.data;
-        let m = &self.materials[usize::from(fd.material)];
-        let eps = m.emissivity.at_cos(hit.cos_incidence);
-        let r = 1.0 - eps;
-        let sfrac = m.specular_fraction;
-        let sky_hemi = self.atmosphere.sky_hemispheric(alt);
-        if TRUTH {
-            *s = Sample::miss(Event::Diffuse);
-            s.primary_material = m.id;
-            s.facet = Some(hit.facet);
-            s.back_face = hit.back_face;
-            s.cos_incidence = hit.cos_incidence;
-            s.temperature_k = fd.temperature_k;
-            s.emissivity = eps;
-            s.reflectance = r;
-            s.specular_fraction = sfrac;
-            s.blackbody_w_m2_sr = fd.blackbody;
-            s.sky_hemispheric_w_m2_sr = sky_hemi;
-        }
-        let mut spec = 0.0;
-        if sfrac > 0.0 {
-            // Mirror direction about the normal facing the ray.
-            let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
-            if TRUTH {
-                s.reflected_zenith_deg = refl[2].clamp(-1.0, 1.0).acos().to_degrees();
-            }
-            let event;
-            (spec, event) = if depth < ctx.options.specular_bounces {
-                let eps_m = self.geometry.surface_epsilon_m();
-                match self.geometry.closest_hit(
-                    hit.point_local,
-                    refl,
-                    eps_m,
-                    f64::INFINITY,
-                    Some(hit.facet),
-                ) {
-                    Some(h2) => {
-                        if TRUTH {
-                            s.secondary_material = self.materials[usize::from(h2.data.material)].id;
-                        }
-                        let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                        // L_b: the second facet's surface-leaving radiance (its own terms
-                        // are not kept).
-                        let l_b = self.surface::<false>(&h2, refl, alt2, depth + 1, ctx, s);
-                        (l_b, Event::SpecularHitsFacet)
-                    }
-                    None => (self.escaped(refl, alt), Event::SpecularEscapes),
-                }
-            } else {
-                // No bounce left: the mirror reflects the hemispheric sky.
-                (sky_hemi, Event::SpecularEscapes)
-            };
-            if TRUTH {
-                s.event = event;
-                s.specular_incident_w_m2_sr = spec;
-            }
-        }
-        let mut diffuse = 0.0;
-        if sfrac < 1.0 {
-            let (l, f) = if depth == 0 && ctx.options.sky_view_rays > 0 {
-                self.hemisphere(hit, alt, ctx)
-            } else {
-                (sky_hemi, 1.0)
-            };
-            diffuse = l;
-            if TRUTH {
-                s.sky_view_factor = f;
-                s.diffuse_incident_w_m2_sr = l;
-            }
-        }
-        let leaving = eps * fd.blackbody + r * (sfrac * spec + (1.0 - sfrac) * diffuse);
-        if TRUTH {
-            s.surface_leaving_w_m2_sr = leaving;
-        }
-        leaving
-    }
-
-    /// Diffuse incident radiance over the hemisphere above a hit by N cosine-weighted,
-    /// stratified rays, and the sky-view factor F (the cosine-weighted fraction of rays that
-    /// reach the sky). A blocked ray brings the surface-leaving radiance of the facet it
-    /// hits, `ε₂·L_T2 + r₂·L_d` (no further rays); an unblocked one the sky at its zenith
-    /// angle, or the terrain below the horizon.
-    fn hemisphere(&self, hit: &Hit<FacetRadiometry>, alt: f64, ctx: &mut Ctx<'_>) -> (f64, f64) {
-        let n = ctx.options.sky_view_rays;
-        let m = (f64::from(n).sqrt()) as u32;
-        let (t, b) = basis(hit.normal);
-        let eps_m = self.geometry.surface_epsilon_m();
-        let (mut sum, mut sky) = (0.0, 0u32);
-        for k in 0..n {
-            let (xi1, xi2): (f64, f64) = {
-                let rng = ctx.rng();
-                (rng.random(), rng.random())
-            };
-            // An m × m grid of strata, then any remainder unstratified.
-            let (u1, u2) = if k < m * m {
-                (
-                    (f64::from(k % m) + xi1) / f64::from(m),
-                    (f64::from(k / m) + xi2) / f64::from(m),
-                )
-            } else {
-                (xi1, xi2)
-            };
-            // Malley's method: uniform on the disc, projected up.
-            let rad = u1.sqrt();
-            let phi = std::f64::consts::TAU * u2;
-            let z = (1.0 - u1).max(0.0).sqrt();
-            let d = add(
-                add(scale(t, rad * phi.cos()), scale(b, rad * phi.sin())),
-                scale(hit.normal, z),
-            );
-            match self.geometry.closest_hit(
-                hit.point_local,
-                d,
-                eps_m,
-                f64::INFINITY,
-                Some(hit.facet),
-            ) {
-                Some(h2) => {
-                    let fd = h2.data;
-                    let m2 = &self.materials[usize::from(fd.material)];
-                    let e2 = m2.emissivity.at_cos(h2.cos_incidence);
-                    let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                    sum += e2 * fd.blackbody + (1.0 - e2) * self.atmosphere.sky_hemispheric(alt2);
-                }
-                None => {
-                    if d[2] >= 0.0 {
-                        sky += 1;
-                    }
-                    sum += self.escaped(d, alt);
-                }
-            }
-        }
-        (sum / f64::from(n), f64::from(sky) / f64::from(n))
     }
 }

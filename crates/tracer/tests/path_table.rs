@@ -7,44 +7,7 @@ use irsig_atmosphere::{AtmosphereModel, ModelKind, builtin};
 use irsig_model::View;
 use irsig_radiometry::Band;
 use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene, uv_sphere};
-use irsig_tracer::{
-    Atmosphere, Camera, Event, PathTerms, PathTermsMode, Radiometry, TraceOptions, Tracer,
-};
-
-struct Air(AtmosphereModel);
-
-impl Atmosphere for Air {
-    fn path(&self, s: f64, t: f64, r: f64) -> PathTerms {
-        let p = self.0.path(s, t, r);
-        PathTerms {
-            transmission: p.transmission,
-            path_radiance_w_m2_sr: p.path_radiance_w_m2_sr,
-        }
-    }
-    fn sky_radiance(&self, alt: f64, zenith_deg: f64) -> f64 {
-        self.0.sky_radiance(alt, zenith_deg)
-    }
-    fn sky_hemispheric(&self, alt: f64) -> f64 {
-        self.0.sky_hemispheric(alt).radiance_w_m2_sr
-    }
-    fn critical_nadir_angle_deg(&self, alt: f64) -> f64 {
-        self.0.critical_nadir_angle_deg(alt)
-    }
-}
-
-struct Lwir(Band);
-
-impl Radiometry for Lwir {
-    fn radiance(&self, t: f64) -> f64 {
-        self.0.radiance(t)
-    }
-    fn radiance_derivative(&self, t: f64) -> f64 {
-        self.0.radiance_derivative(t)
-    }
-    fn temperature(&self, l: f64) -> f64 {
-        self.0.temperature(l)
-    }
-}
+use irsig_tracer::{Camera, Event, PathTermsMode, TraceOptions, Tracer};
 
 /// The worst apparent-temperature difference (K) between tabulated and exact path terms
 /// over every pixel that hits a facet, for each camera.
@@ -56,9 +19,9 @@ fn worst_error_k(atmosphere: &str, kind: ModelKind) -> f64 {
     let scene = raw_scene(&[(&ground, 1, 288.0), (&tower, 2, 300.0), (&sphere, 2, 330.0)]);
     let materials = grey_materials(&[(1, 0.95, 0.0), (2, 0.9, 0.3)]);
     let model = AtmosphereModel::new(&builtin(atmosphere).unwrap(), kind).unwrap();
-    let exact = Tracer::new(&scene, &materials, Lwir(Band::default()), Air(model)).unwrap();
+    let exact = Tracer::new(&scene, &materials, Band::default(), model).unwrap();
     let model = AtmosphereModel::new(&builtin(atmosphere).unwrap(), kind).unwrap();
-    let tabulated = Tracer::new(&scene, &materials, Lwir(Band::default()), Air(model))
+    let tabulated = Tracer::new(&scene, &materials, Band::default(), model)
         .unwrap()
         .with_path_terms(PathTermsMode::Tabulated);
     assert_eq!(tabulated.path_terms(), PathTermsMode::Tabulated);

@@ -57,8 +57,8 @@ fn sky_view_factor_error_falls_with_rays_and_stays_unbiased() {
 fn supersampled_edge_pixels_converge_to_their_exact_coverage() {
     let edge = EdgeExperiment::new();
     let [hot, cold] = EdgeExperiment::TEMPERATURES_K.map(|t| {
-        use irsig_tracer::Radiometry;
-        irsig_tracer::TotalRadiance.radiance(t)
+        use irsig_radiometry::BandModel;
+        irsig_radiometry::TotalRadiance.radiance(t)
     });
     let contrast = hot - cold;
     // Pixels the edge does not cross are exact at any N (the image-to-ground map is right).

@@ -2,9 +2,9 @@
 //! printer (aligned text, CSV, RON).
 
 use std::io::Write;
-use std::path::PathBuf;
 
-use irsig_radiometry::{Band, SensorResponse};
+use irsig_cli::args::BandArg;
+use irsig_radiometry::Band;
 use miette::miette;
 
 /// Output format of a table.
@@ -19,43 +19,18 @@ pub enum Format {
     Ron,
 }
 
-/// `--band` and `--srf`.
+/// `--band`, as every tool takes it.
 #[derive(Debug, clap::Args)]
 pub struct BandArgs {
-    /// Band limits `min:max` in µm.
-    #[arg(long, default_value = "8:14", value_name = "MIN_UM:MAX_UM")]
-    pub band: String,
-    /// Sensor response file: two columns `wavelength_um response` (formats/srf.md).
-    #[arg(long, value_name = "FILE")]
-    pub srf: Option<PathBuf>,
+    /// The band: `MIN-MAX` in micrometres (flat response) or a sensor response file
+    /// (formats/srf.md), whose first and last wavelengths bound it.
+    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
+    pub band: BandArg,
 }
 
 impl BandArgs {
     pub fn band(&self) -> miette::Result<Band> {
-        let (lo, hi) = self
-            .band
-            .split_once(':')
-            .ok_or_else(|| miette!("--band: expected `min:max` in µm, found `{}`", self.band))?;
-        let parse = |s: &str| {
-            s.trim().parse::<f64>().map_err(|_| {
-                miette!(
-                    "--band: expected a number of µm, found `{s}` in `{}`",
-                    self.band
-                )
-            })
-        };
-        let band = Band::new(parse(lo)?, parse(hi)?).map_err(|e| miette!("--band: {e}"))?;
-        let Some(path) = &self.srf else {
-            return Ok(band);
-        };
-        let input = irsig_cli::read_input(&path.to_string_lossy())?;
-        let text = String::from_utf8(input.bytes)
-            .map_err(|_| miette!("{}: not UTF-8 text", input.name))?;
-        let table = irsig_formats::srf::parse(&input.name, &text)?;
-        let srf = SensorResponse::new(table.wavelength_um, table.response)
-            .map_err(|e| miette!("{}: {e}", input.name))?;
-        band.with_response(&srf)
-            .map_err(|e| miette!("{}: {e}", input.name))
+        self.band.load()
     }
 }
 

@@ -78,8 +78,8 @@ pub struct ConvertArgs {
         default_value = "DIRTRAN tables converted by irsig-atmos convert"
     )]
     pub source: String,
-    /// The band the tables were integrated over, µm, as `LOW:HIGH`.
-    #[arg(long, default_value = "8:14", value_parser = parse_band)]
+    /// The band the tables were integrated over: `MIN-MAX` in micrometres.
+    #[arg(long, default_value = "8-14", value_name = "MIN-MAX", value_parser = irsig_cli::args::flat_band)]
     pub band: [f64; 2],
     /// Output canonical atmosphere or material library (stdout when absent or `-`).
     #[arg(short, long, value_name = "FILE", conflicts_with = "legacy_out")]
@@ -132,24 +132,6 @@ pub enum RadianceUnit {
     /// W m⁻² sr⁻¹.
     #[value(name = "W/m2/sr")]
     WM2Sr,
-}
-
-fn parse_band(s: &str) -> Result<[f64; 2], String> {
-    let (a, b) = s
-        .split_once(':')
-        .ok_or_else(|| format!("expected LOW:HIGH in µm, found `{s}`"))?;
-    let lo: f64 = a
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a number in µm, found `{a}`"))?;
-    let hi: f64 = b
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected a number in µm, found `{b}`"))?;
-    if !(lo.is_finite() && hi.is_finite() && lo > 0.0 && hi > lo) {
-        return Err(format!("expected 0 < LOW < HIGH, found {lo}:{hi}"));
-    }
-    Ok([lo, hi])
 }
 
 impl ConvertArgs {

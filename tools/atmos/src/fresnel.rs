@@ -11,7 +11,9 @@ use irsig_radiometry::fresnel::{
 };
 use miette::miette;
 
-use crate::common::{BandArgs, diagnostic, values};
+use irsig_cli::args::BandArg;
+
+use crate::common::{diagnostic, values};
 
 /// Arguments of `fresnel`.
 #[derive(Debug, clap::Args)]
@@ -36,12 +38,10 @@ pub struct Args {
     /// is then averaged over the band with Planck weighting at `--temperature`.
     #[arg(long, value_name = "FILE")]
     pub nk_table: Option<PathBuf>,
-    /// Band limits `min:max` in µm for the spectral average [default: 8:14].
-    #[arg(long, value_name = "MIN_UM:MAX_UM")]
-    pub band: Option<String>,
-    /// Sensor response file weighting the spectral average (formats/srf.md).
-    #[arg(long, value_name = "FILE")]
-    pub srf: Option<PathBuf>,
+    /// The band of the spectral average: `MIN-MAX` in micrometres (flat response) or a
+    /// sensor response file (formats/srf.md) [default: 8-14].
+    #[arg(long, value_name = "MIN-MAX|FILE")]
+    pub band: Option<BandArg>,
     /// Temperature of the Planck weighting, K: the surface temperature the table is made
     /// for [default: 300].
     #[arg(long, allow_hyphen_values = true)]
@@ -77,11 +77,9 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
 pub fn run(args: &Args) -> miette::Result<()> {
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
-    if args.nk_table.is_none()
-        && (args.band.is_some() || args.srf.is_some() || args.temperature.is_some())
-    {
+    if args.nk_table.is_none() && (args.band.is_some() || args.temperature.is_some()) {
         return Err(irsig_cli::usage_error(
-            "--band, --srf and --temperature weight the spectral average of --nk-table; \
+            "--band and --temperature weight the spectral average of --nk-table; \
              a constant --n/--k has none",
         ));
     }
@@ -93,19 +91,15 @@ pub fn run(args: &Args) -> miette::Result<()> {
             let nk = irsig_formats::nk::parse(&input.name, text)?;
             let index = IndexTable::new(nk.wavelength_um, &nk.n, &nk.k)
                 .map_err(|e| miette!("{}: {e}", input.name))?;
-            let band_args = BandArgs {
-                band: args.band.clone().unwrap_or_else(|| "8:14".to_owned()),
-                srf: args.srf.clone(),
-            };
-            let band = band_args.band()?;
+            let band_arg = args.band.clone().unwrap_or_default();
+            let band = band_arg.load()?;
             let t = args.temperature.unwrap_or(300.0);
             let table = band_emissivity_table(&index, &band, t, &angles)
                 .map_err(|e| miette!("{}: {e}", input.name))?;
-            let srf = args
-                .srf
-                .as_ref()
-                .map(|p| format!(" weighted by the response {}", p.display()))
-                .unwrap_or_default();
+            let srf = match &band_arg {
+                BandArg::Response(path) => format!(" weighted by the response {path}"),
+                BandArg::Flat { .. } => String::new(),
+            };
             let source = format!(
                 "Fresnel, smooth opaque surface (irsig-atmos fresnel): n, k from {} linearly \
                  interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K",

@@ -22,7 +22,7 @@
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
 //! irsig-atmos fresnel --n 1.2 --k 0.05 -o glassy.ron
-//! irsig-atmos fresnel --nk-table water.nk --band 8:14 --temperature 300 -o water.ems
+//! irsig-atmos fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
 //! ```
 
 use clap::{Parser, Subcommand};
@@ -49,14 +49,14 @@ pub use common::Format;
   irsig-atmos convert --to-legacy builtin:us-std-1976 --altitude-unit km \\
       --radiance-unit W/cm2/sr --out-dir /tmp
   irsig-atmos radiance --temperature 300
-  irsig-atmos temperature --radiance 54.93 --band 8:14
+  irsig-atmos temperature --radiance 54.93 --band 8-14
   irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us-std.rtt
   irsig-atmos bounces --target-emissivity 0.98 --target-temperature 260:400:10 \\
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
       --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
   irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
-  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8:14 \\
+  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
       --temperature 300 --angles 0:90:5 --legacy -o water.ems"
 )]
 pub struct Cli {
@@ -86,11 +86,11 @@ pub enum Command {
     #[command(after_help = "Examples:
   irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
   irsig-atmos fresnel --n 25 --k 90 --name aluminium --id 7 -o aluminium.ron
-  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8:14 \\
+  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
       --temperature 300 --angles 0:90:5 --legacy -o water.ems
 
 A constant index gives the monochromatic table. A table of n, k against wavelength is
-averaged over the band (and the --srf response) with Planck weighting at --temperature:
+averaged over the band (weighted by its response, for a response file) with Planck weighting at --temperature:
 eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
 Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
     Fresnel(fresnel::Args),

@@ -27,17 +27,20 @@ pub mod spec;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
-use irsig_raster::{Raster, exr_bytes, read_exr};
+use irsig_cli::args::{BandArg, DcArgs};
+use irsig_model::truth::Layer;
+use irsig_radiometry::BandModel;
+use irsig_raster::{Raster, counts_png, exr_bytes, read_exr};
 use irsig_sensor_model::blur::{EdgeMode, blur};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
-use irsig_sensor_model::quantise::{BandConversion, Quantiser, apparent_temperature};
+use irsig_sensor_model::quantise::{Quantiser, apparent_temperature};
 use irsig_sensor_model::sample::{reduce_majority, reduce_mean, reduce_mean_ignoring_nan};
 use irsig_sensor_model::{Plane, SensorError};
 use miette::{IntoDiagnostic, WrapErr, miette};
 
 /// The name of the layer the sensor acts on.
-pub const RADIANCE_LAYER: &str = "radiance";
+const RADIANCE_LAYER: &str = Layer::Radiance.name();
 
 /// Command line of `irsig-sensor`.
 #[derive(Debug, Parser)]
@@ -63,7 +66,7 @@ pub struct Cli {
     /// PNG written to this file; nothing else is done or written.
     #[arg(long, value_name = "PNG", conflicts_with_all = [
         "output", "mtf", "dc_png", "lut", "temperature_exr", "preview", "colour_preview",
-        "nedt_k", "dc_per_kelvin", "gain_dc_per_radiance",
+        "nedt_k",
     ])]
     pub contact_sheet: Option<PathBuf>,
 
@@ -94,13 +97,10 @@ pub struct Cli {
     #[arg(long = "categorical", value_name = "LAYER")]
     pub categorical: Vec<String>,
 
-    /// Short end of the spectral band, micrometres.
-    #[arg(long, default_value_t = 8.0)]
-    pub band_min_um: f64,
-
-    /// Long end of the spectral band, micrometres.
-    #[arg(long, default_value_t = 14.0)]
-    pub band_max_um: f64,
+    /// The band, as the tracer's: `MIN-MAX` in micrometres (flat response) or a sensor
+    /// response file (formats/srf.md).
+    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
+    pub band: BandArg,
 
     /// Noise-equivalent temperature difference, kelvin: adds Gaussian noise of
     /// σ = NEdT·dL/dT(reference) to the radiance.
@@ -115,31 +115,9 @@ pub struct Cli {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
 
-    /// Bits per digital count (1-16).
-    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u8).range(1..=16))]
-    pub bits: u8,
-
-    /// Fixed gain, counts per W m^-2 sr^-1 (with --offset-dc).
-    #[arg(long, conflicts_with = "dc_per_kelvin")]
-    pub gain_dc_per_radiance: Option<f64>,
-
-    /// Fixed offset, the count of zero radiance (with --gain-dc-per-radiance).
-    #[arg(long, requires = "gain_dc_per_radiance")]
-    pub offset_dc: Option<f64>,
-
-    /// Gain in counts per kelvin: the thesis's auto-bias (Figure 14) puts the scene's
-    /// mid radiance at mid-scale; with --reference-k the calibration is fixed instead.
-    #[arg(long)]
-    pub dc_per_kelvin: Option<f64>,
-
-    /// Fixed calibration: the temperature (K) at which the gain is --dc-per-kelvin and
-    /// whose blackbody radiance maps to --dc-at-reference.
-    #[arg(long, requires = "dc_per_kelvin")]
-    pub reference_k: Option<f64>,
-
-    /// Fixed calibration: the count of a blackbody at --reference-k (default mid-scale).
-    #[arg(long, requires = "reference_k")]
-    pub dc_at_reference: Option<f64>,
+    /// How radiance becomes digital counts (--dc-png and --lut need a gain).
+    #[command(flatten)]
+    pub dc: DcArgs,
 
     /// Write the digital counts as a grey PNG (8-bit up to 8 bits, else 16-bit, counts
     /// unscaled).
@@ -200,64 +178,11 @@ impl From<Edge> for EdgeMode {
     }
 }
 
-/// How counts are calibrated, from the command line.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Calibration {
-    /// `--gain-dc-per-radiance`, `--offset-dc`.
-    GainOffset {
-        /// Counts per W m^-2 sr^-1.
-        gain_dc_per_w_m2_sr: f64,
-        /// Count of zero radiance.
-        offset_dc: f64,
-    },
-    /// `--dc-per-kelvin` alone: Figure 14.
-    AutoBias {
-        /// Counts per kelvin at the scene's mid radiance.
-        dc_per_kelvin: f64,
-    },
-    /// `--dc-per-kelvin` with `--reference-k`.
-    Fixed {
-        /// Counts per kelvin at the reference.
-        dc_per_kelvin: f64,
-        /// Reference temperature, K.
-        reference_k: f64,
-        /// Count of the reference blackbody.
-        dc_at_reference: f64,
-    },
-}
-
-impl Cli {
-    /// The count calibration the flags ask for, if any.
-    #[must_use]
-    pub fn calibration(&self) -> Option<Calibration> {
-        if let Some(g) = self.gain_dc_per_radiance {
-            return Some(Calibration::GainOffset {
-                gain_dc_per_w_m2_sr: g,
-                offset_dc: self.offset_dc.unwrap_or(0.0),
-            });
-        }
-        let dc_per_kelvin = self.dc_per_kelvin?;
-        Some(match self.reference_k {
-            Some(reference_k) => Calibration::Fixed {
-                dc_per_kelvin,
-                reference_k,
-                dc_at_reference: self
-                    .dc_at_reference
-                    .unwrap_or(f64::from(1u32 << (self.bits - 1))),
-            },
-            None => Calibration::AutoBias { dc_per_kelvin },
-        })
-    }
-}
-
-/// Whether a truth layer holds labels (reduced by majority) rather than quantities.
+/// Whether a layer holds labels (reduced by majority) rather than quantities: the tracer's
+/// label layers (`irsig_model::truth::Layer::is_label`) and any named in `extra`.
 #[must_use]
 pub fn is_categorical(name: &str, extra: &[String]) -> bool {
-    name.starts_with("material")
-        || name.starts_with("interaction")
-        || name == "event"
-        || name.ends_with("_id")
-        || extra.iter().any(|e| e == name)
+    Layer::from_name(name).is_some_and(Layer::is_label) || extra.iter().any(|e| e == name)
 }
 
 /// What the sensor made of one input.
@@ -294,7 +219,7 @@ pub struct Settings {
 pub fn process(
     input: &Raster,
     settings: &Settings,
-    band: &impl BandConversion,
+    band: &impl BandModel,
 ) -> miette::Result<SensorOutput> {
     let layer = input.layer(RADIANCE_LAYER).ok_or_else(|| {
         let names: Vec<&str> = input.layers.iter().map(|l| l.name.as_str()).collect();
@@ -358,19 +283,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         return irsig_cli::write_files_atomic(&[(sheet.clone(), png)]);
     }
     let wants_counts = cli.dc_png.is_some() || cli.lut.is_some();
-    let calibration = cli.calibration();
+    let calibration = cli.dc.calibration(None);
     if wants_counts && calibration.is_none() {
         return Err(irsig_cli::usage_error(
             "--dc-png and --lut need a calibration: --dc-per-kelvin (auto-bias), \
              --dc-per-kelvin with --reference-k (fixed), or --gain-dc-per-radiance",
         ));
     }
-    let band = irsig_radiometry::Band::new(cli.band_min_um, cli.band_max_um).map_err(|e| {
-        irsig_cli::usage_error(format!(
-            "--band-min-um {} and --band-max-um {}: {e}",
-            cli.band_min_um, cli.band_max_um
-        ))
-    })?;
+    let band = cli.band.load()?;
 
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = read_exr(&input.bytes)
@@ -395,29 +315,21 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         };
     if let (Some(path), Some(t)) = (&cli.temperature_exr, &temperature) {
         let mut r = Raster::new(w, h);
-        r.push_layer("apparent_temperature", "K", t.clone())
+        let layer = Layer::ApparentTemperature;
+        r.push_layer(layer.name(), layer.unit(), t.clone())
             .into_diagnostic()?;
         files.push((path.clone(), exr_bytes(&r).into_diagnostic()?));
     }
     if let Some(cal) = calibration.filter(|_| wants_counts) {
-        let q = match cal {
-            Calibration::GainOffset {
-                gain_dc_per_w_m2_sr,
-                offset_dc,
-            } => Quantiser::from_gain_offset(cli.bits, gain_dc_per_w_m2_sr, offset_dc),
-            Calibration::AutoBias { dc_per_kelvin } => {
-                Quantiser::auto_bias_from_image(cli.bits, dc_per_kelvin, &out.radiance, &band)
-            }
-            Calibration::Fixed {
-                dc_per_kelvin,
-                reference_k,
-                dc_at_reference,
-            } => Quantiser::fixed(cli.bits, dc_per_kelvin, reference_k, dc_at_reference, &band),
-        }
-        .map_err(|e| miette!("quantisation: {e}"))?;
+        let bits = cli.dc.dc_bits;
+        let q = Quantiser::calibrate(bits, &cal, &out.radiance, &band)
+            .map_err(|e| miette!("quantisation: {e}"))?;
         if let Some(path) = &cli.dc_png {
             let counts = q.quantise(&out.radiance, w).map_err(sensor)?;
-            files.push((path.clone(), preview::counts_png(&counts, w, h, cli.bits)?));
+            files.push((
+                path.clone(),
+                counts_png(&counts, w, h, bits).into_diagnostic()?,
+            ));
         }
         if let Some(path) = &cli.lut {
             files.push((path.clone(), q.lut(&band).to_string().into_bytes()));

@@ -1,22 +1,10 @@
-//! PNG encodings of the sensor's outputs: digital counts, and previews of the apparent
-//! temperature (grey, and colour with a colour bar labelled in kelvin).
+//! PNG previews of the sensor's apparent temperature: grey, and colour with a colour bar
+//! labelled in kelvin.
 
 use irsig_raster::{write_png_gray8, write_png_gray16, write_png_rgb8};
 use miette::IntoDiagnostic;
 
 use crate::PreviewBits;
-
-/// Counts as a grey PNG: 8-bit when they fit, else 16-bit, unscaled.
-pub fn counts_png(counts: &[u16], w: usize, h: usize, bits: u8) -> miette::Result<Vec<u8>> {
-    let mut out = Vec::new();
-    if bits <= 8 {
-        let bytes: Vec<u8> = counts.iter().map(|&c| c.min(255) as u8).collect();
-        write_png_gray8(&mut out, w, h, &bytes).into_diagnostic()?;
-    } else {
-        write_png_gray16(&mut out, w, h, counts).into_diagnostic()?;
-    }
-    Ok(out)
-}
 
 /// The finite range of the temperatures (a flat image gets a 1 K span so it maps to
 /// mid-grey rather than dividing by zero).

@@ -27,8 +27,9 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Parser;
+use irsig_cli::args::BandArg;
 use irsig_model::RegionSet;
-use irsig_radiometry::Band;
+use irsig_model::truth::Layer;
 use irsig_raster::{Raster, read_exr};
 use miette::miette;
 use serde::Serialize;
@@ -36,11 +37,11 @@ use serde::Serialize;
 use crate::stats::{RegionProblem, RegionStats, region_stats};
 
 /// The truth layer regions select by.
-pub const MATERIAL_LAYER: &str = "material_primary";
+const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
 /// The default value layer: the tracer's apparent temperature, K.
-pub const APPARENT_LAYER: &str = "apparent_temperature";
+const APPARENT_LAYER: &str = Layer::ApparentTemperature.name();
 /// The layer `--radiance` reads, W m⁻² sr⁻¹.
-pub const RADIANCE_LAYER: &str = "radiance";
+const RADIANCE_LAYER: &str = Layer::Radiance.name();
 
 /// 0 °C in kelvin.
 const ZERO_CELSIUS_K: f64 = 273.15;
@@ -51,7 +52,7 @@ Examples:
       mean/std/min/max apparent temperature (K) per region, beside the regions file's
       reference values, as an aligned table on stdout
   irsig-stats out/frame.truth.exr --regions regions.ron --radiance out/frame.sensor.exr \\
-      --band 8:14 --celsius --format csv -o table.csv
+      --band 8-14 --celsius --format csv -o table.csv
       the same for the sensor stage's blurred radiance, in degC, as CSV
   irsig-stats out/frame.truth.exr --regions regions.ron --layer kinetic_temperature
       the kinetic temperature the tracer assigned, per region
@@ -90,9 +91,10 @@ pub struct Cli {
     /// The truth EXR's layer to take the values from, in kelvin.
     #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
     pub layer: String,
-    /// The band of --radiance, `min:max` in micrometres (flat response), as the tracer's.
-    #[arg(long, default_value = "8:14", value_name = "MIN_UM:MAX_UM")]
-    pub band: String,
+    /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres (flat response) or
+    /// a sensor response file (formats/srf.md).
+    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
+    pub band: BandArg,
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
@@ -157,7 +159,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
     let band = if cli.radiance.is_some() {
-        Some(parse_band(&cli.band)?)
+        Some(cli.band.load()?)
     } else {
         None
     };
@@ -296,18 +298,6 @@ fn selection(region: &irsig_model::Region) -> String {
         .flatten()
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-fn parse_band(text: &str) -> miette::Result<Band> {
-    let bad = || {
-        irsig_cli::usage_error(format!(
-            "--band `{text}`: expected `min:max` in micrometres such as 8:14"
-        ))
-    };
-    let (a, b) = text.split_once(':').ok_or_else(bad)?;
-    let a: f64 = a.trim().parse().map_err(|_| bad())?;
-    let b: f64 = b.trim().parse().map_err(|_| bad())?;
-    Band::new(a, b).map_err(|e| irsig_cli::usage_error(format!("--band `{text}`: {e}")))
 }
 
 fn read_image(name: &str, bytes: &[u8]) -> miette::Result<Raster> {

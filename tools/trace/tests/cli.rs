@@ -177,8 +177,7 @@ fn more_than_15_materials_skip_the_nibble_map_and_say_why() {
             &mats,
             "--view",
             &view,
-            "--dc",
-            "none",
+            "--no-dc",
             "-o",
         ])
         .arg(dir.path().join("f"))

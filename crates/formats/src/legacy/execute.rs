@@ -40,8 +40,16 @@ pub struct ExecuteFrame {
     pub image: String,
     /// The look-up-table file to write.
     pub lut: String,
-    /// Where the frame's first name is.
-    pub position: Position,
+    /// Where each name is, in the order above (view, scene, map image, image, LUT).
+    pub positions: [Position; 5],
+}
+
+impl ExecuteFrame {
+    /// Where the frame starts: its viewing file's name.
+    #[must_use]
+    pub fn position(&self) -> Position {
+        self.positions[0]
+    }
 }
 
 /// A parsed execute file.
@@ -78,7 +86,7 @@ pub fn parse(file: &str, text: &str) -> Result<ExecuteFile, ParseError> {
                     map_image: name(m),
                     image: name(i),
                     lut: name(l),
-                    position: position(*v),
+                    positions: [v, s, m, i, l].map(|t| position(*t)),
                 });
                 pending.clear();
             }
@@ -135,7 +143,14 @@ mod tests {
         assert_eq!(e.frames[0].map_image, "m1");
         assert_eq!(e.frames[0].lut, "l1");
         assert_eq!(e.frames[1].view, "a2.view");
-        assert_eq!(e.frames[1].position, Position { line: 5, column: 1 });
+        assert_eq!(e.frames[1].position(), Position { line: 5, column: 1 });
+        assert_eq!(
+            e.frames[1].positions[4],
+            Position {
+                line: 5,
+                column: 21
+            }
+        );
         let again = parse("x", &write(&e).unwrap()).unwrap();
         assert_eq!(
             again.frames.iter().map(|f| &f.image).collect::<Vec<_>>(),
@@ -160,7 +175,7 @@ mod tests {
                 map_image: "m".into(),
                 image: "i".into(),
                 lut: "l".into(),
-                position: Position::default(),
+                positions: [Position::default(); 5],
             }],
         };
         assert!(matches!(

@@ -1,0 +1,137 @@
+//! An [`AtmosphereModel`] with its sky precomputed on a grid of observer altitudes, for a
+//! renderer's hot path: a sky ray costs two table lookups instead of an integration, and
+//! the hemispheric sky (eq. 5, an integral) is read rather than recomputed.
+
+use crate::sky::SkyView;
+use crate::{AtmosphereModel, PathTerms};
+
+/// Altitude levels of the precomputed sky, from the ground to the top.
+pub const SKY_LEVELS: usize = 33;
+
+/// An atmosphere model with its sky precomputed between the ground and a top altitude.
+/// Path terms are the model's own, exact; the sky is interpolated linearly between
+/// [`SKY_LEVELS`] altitudes (each a [`SkyView`], itself linear on a 0.25° grid).
+#[derive(Debug, Clone)]
+pub struct PrecomputedAtmosphere {
+    model: AtmosphereModel,
+    /// `(altitude_m, sky view, hemispheric radiance)`, altitudes increasing.
+    levels: Vec<(f64, SkyView, f64)>,
+    warnings: Vec<String>,
+}
+
+impl PrecomputedAtmosphere {
+    /// Precomputes the sky of `model` at [`SKY_LEVELS`] altitudes from the ground to
+    /// `max_altitude_m` (at least 1 m): the highest sensor or scene point.
+    #[must_use]
+    pub fn new(model: AtmosphereModel, max_altitude_m: f64) -> Self {
+        let top = if max_altitude_m.is_finite() {
+            max_altitude_m.max(1.0)
+        } else {
+            1.0
+        };
+        let mut warnings = Vec::new();
+        let levels = (0..SKY_LEVELS)
+            .map(|i| {
+                let h = top * i as f64 / (SKY_LEVELS - 1) as f64;
+                let hemi = model.sky_hemispheric(h);
+                if let Some(w) = hemi.warning
+                    && !warnings.contains(&w)
+                {
+                    warnings.push(w);
+                }
+                (h, model.sky_view(h), hemi.radiance_w_m2_sr)
+            })
+            .collect();
+        Self {
+            model,
+            levels,
+            warnings,
+        }
+    }
+
+    /// The model underneath.
+    #[must_use]
+    pub fn model(&self) -> &AtmosphereModel {
+        &self.model
+    }
+
+    /// What the model warned about while the sky was precomputed (a given hemispheric sky
+    /// that disagrees with eq. 5), each once; a tool should print them.
+    #[must_use]
+    pub fn warnings(&self) -> &[String] {
+        &self.warnings
+    }
+
+    /// The two levels around `altitude_m` and the weight of the upper one.
+    fn bracket(&self, altitude_m: f64) -> (usize, usize, f64) {
+        let n = self.levels.len();
+        let top = self.levels[n - 1].0;
+        let x = (altitude_m.max(0.0) / top * (n - 1) as f64).min((n - 1) as f64);
+        let i = (x.floor() as usize).min(n - 2);
+        (i, i + 1, x - i as f64)
+    }
+
+    /// The model's path terms ([`AtmosphereModel::path`]).
+    #[must_use]
+    pub fn path(&self, sensor_altitude_m: f64, target_altitude_m: f64, range_m: f64) -> PathTerms {
+        self.model
+            .path(sensor_altitude_m, target_altitude_m, range_m)
+    }
+
+    /// Sky radiance seen from `observer_altitude_m` at `zenith_deg`, W m⁻² sr⁻¹,
+    /// interpolated between the two nearest levels.
+    #[must_use]
+    pub fn sky_radiance(&self, observer_altitude_m: f64, zenith_deg: f64) -> f64 {
+        let (a, b, w) = self.bracket(observer_altitude_m);
+        (1.0 - w) * self.levels[a].1.radiance(zenith_deg)
+            + w * self.levels[b].1.radiance(zenith_deg)
+    }
+
+    /// The hemispheric sky radiance at `observer_altitude_m`, W m⁻² sr⁻¹ (the value
+    /// [`AtmosphereModel::sky_hemispheric`] gives, interpolated between levels).
+    #[must_use]
+    pub fn sky_hemispheric(&self, observer_altitude_m: f64) -> f64 {
+        let (a, b, w) = self.bracket(observer_altitude_m);
+        (1.0 - w) * self.levels[a].2 + w * self.levels[b].2
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{ModelKind, builtin};
+
+    #[test]
+    fn levels_reproduce_the_model_where_they_lie() {
+        let model =
+            AtmosphereModel::new(&builtin("us-std-1976").unwrap(), ModelKind::Table).unwrap();
+        let p = PrecomputedAtmosphere::new(model.clone(), 3200.0);
+        // 3200 m / 32 steps: a level every 100 m.
+        for (h, z) in [(0.0, 0.0), (100.0, 45.0), (1000.0, 80.0), (3200.0, 30.0)] {
+            let exact = model.sky_radiance(h, z);
+            assert!(
+                (p.sky_radiance(h, z) - exact).abs() < 1e-6 * exact.max(1.0),
+                "{h} {z}"
+            );
+            let hemi = model.sky_hemispheric(h).radiance_w_m2_sr;
+            assert!(
+                (p.sky_hemispheric(h) - hemi).abs() < 1e-12 * hemi.max(1.0),
+                "{h}"
+            );
+        }
+        // Between levels: linear in altitude.
+        let mid = p.sky_hemispheric(150.0);
+        let expected = 0.5 * (p.sky_hemispheric(100.0) + p.sky_hemispheric(200.0));
+        assert!((mid - expected).abs() < 1e-12);
+        // Above the top: the top level.
+        assert!((p.sky_hemispheric(1e6) - p.sky_hemispheric(3200.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_non_finite_top_is_taken_as_the_ground() {
+        let model =
+            AtmosphereModel::new(&builtin("us-std-1976").unwrap(), ModelKind::Table).unwrap();
+        let p = PrecomputedAtmosphere::new(model, f64::NAN);
+        assert!(p.sky_hemispheric(0.5).is_finite());
+    }
+}

@@ -1,0 +1,151 @@
+//! The layers of the images the tracer writes: their names, units and order. The names are
+//! the contract between the stages: `irsig-trace` writes them, `irsig-sensor` passes them
+//! through (reducing labels by majority and quantities by mean when it samples),
+//! `irsig-stats` selects pixels by [`Layer::MaterialPrimary`] and measures
+//! [`Layer::ApparentTemperature`]. Every stage names a layer through this enum, never a
+//! string of its own. `formats/sensor.md` documents the files.
+//!
+//! ```
+//! use irsig_model::truth::Layer;
+//! assert_eq!(Layer::ApparentTemperature.name(), "apparent_temperature");
+//! assert_eq!(Layer::from_name("material_primary"), Some(Layer::MaterialPrimary));
+//! assert!(Layer::MaterialPrimary.is_label() && !Layer::Range.is_label());
+//! ```
+
+/// One layer of the radiance EXR or the truth EXR.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Layer {
+    /// Radiance at the sensor, W m⁻² sr⁻¹: the radiance EXR's one layer, and the layer the
+    /// sensor stage acts on.
+    Radiance,
+    /// Material id of the facet the primary ray hit (0: none).
+    MaterialPrimary,
+    /// Material id of the facet the specular reflection ray hit (0: none).
+    MaterialSecondary,
+    /// The thesis's ray event, 1 to 4 (Figure 6).
+    Event,
+    /// Distance from the sensor to the hit, metres.
+    Range,
+    /// Angle between the reversed ray and the facet normal, degrees.
+    Incidence,
+    /// Kinetic temperature of what was hit, K.
+    KineticTemperature,
+    /// Emissivity at the incidence angle.
+    Emissivity,
+    /// Transmission of the path from the hit to the sensor.
+    Transmission,
+    /// Path radiance of the path to the sensor, W m⁻² sr⁻¹.
+    PathRadiance,
+    /// Sky-view (shape) factor F.
+    SkyViewFactor,
+    /// Apparent (blackbody) temperature of the radiance at the sensor in the band, K.
+    ApparentTemperature,
+}
+
+impl Layer {
+    /// The truth EXR's layers, in the order the tracer writes them.
+    pub const TRUTH: [Self; 11] = [
+        Self::MaterialPrimary,
+        Self::MaterialSecondary,
+        Self::Event,
+        Self::Range,
+        Self::Incidence,
+        Self::KineticTemperature,
+        Self::Emissivity,
+        Self::Transmission,
+        Self::PathRadiance,
+        Self::SkyViewFactor,
+        Self::ApparentTemperature,
+    ];
+
+    /// Every layer: the radiance, then the truth layers.
+    pub const ALL: [Self; 12] = [
+        Self::Radiance,
+        Self::MaterialPrimary,
+        Self::MaterialSecondary,
+        Self::Event,
+        Self::Range,
+        Self::Incidence,
+        Self::KineticTemperature,
+        Self::Emissivity,
+        Self::Transmission,
+        Self::PathRadiance,
+        Self::SkyViewFactor,
+        Self::ApparentTemperature,
+    ];
+
+    /// The layer's name in the EXR.
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Radiance => "radiance",
+            Self::MaterialPrimary => "material_primary",
+            Self::MaterialSecondary => "material_secondary",
+            Self::Event => "event",
+            Self::Range => "range",
+            Self::Incidence => "incidence",
+            Self::KineticTemperature => "kinetic_temperature",
+            Self::Emissivity => "emissivity",
+            Self::Transmission => "transmission",
+            Self::PathRadiance => "path_radiance",
+            Self::SkyViewFactor => "sky_view_factor",
+            Self::ApparentTemperature => "apparent_temperature",
+        }
+    }
+
+    /// The unit the EXR states for it (empty for labels and ratios).
+    #[must_use]
+    pub const fn unit(self) -> &'static str {
+        match self {
+            Self::Radiance | Self::PathRadiance => "W m^-2 sr^-1",
+            Self::Range => "m",
+            Self::Incidence => "deg",
+            Self::KineticTemperature | Self::ApparentTemperature => "K",
+            Self::MaterialPrimary
+            | Self::MaterialSecondary
+            | Self::Event
+            | Self::Emissivity
+            | Self::Transmission
+            | Self::SkyViewFactor => "",
+        }
+    }
+
+    /// Whether the layer holds labels (material ids, events), which are reduced by majority
+    /// and never averaged.
+    #[must_use]
+    pub const fn is_label(self) -> bool {
+        matches!(
+            self,
+            Self::MaterialPrimary | Self::MaterialSecondary | Self::Event
+        )
+    }
+
+    /// The layer of this name, if it is one of irsig's.
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|l| l.name() == name)
+    }
+}
+
+impl std::fmt::Display for Layer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_are_unique_and_round_trip() {
+        for (i, a) in Layer::ALL.iter().enumerate() {
+            assert_eq!(Layer::from_name(a.name()), Some(*a));
+            for b in &Layer::ALL[i + 1..] {
+                assert_ne!(a.name(), b.name());
+            }
+        }
+        assert_eq!(Layer::ALL[1..], Layer::TRUTH);
+        assert_eq!(Layer::from_name("Radiance"), None);
+    }
+}

@@ -1,0 +1,97 @@
+//! What every consumer of a band needs from it: blackbody radiance, its derivative and its
+//! inverse. The tracer shades with it, the sensor stage quantises and adds noise with it,
+//! and the apparent temperature everywhere comes from it, so it is defined once, here.
+
+use crate::band::Band;
+use crate::constants::{BOLTZMANN_J_K, PLANCK_J_S, SPEED_OF_LIGHT_M_S};
+
+/// Blackbody band radiance and its inverse for one spectral band.
+///
+/// [`Band`] is the project's real band (8–14 µm by default, optional sensor response);
+/// [`TotalRadiance`] is the whole spectrum in closed form, for tests and hand checks.
+pub trait BandModel: Sync {
+    /// Band radiance of a blackbody at `temperature_k`, W m⁻² sr⁻¹.
+    fn radiance(&self, temperature_k: f64) -> f64;
+    /// dL/dT at `temperature_k`, W m⁻² sr⁻¹ K⁻¹.
+    fn radiance_derivative(&self, temperature_k: f64) -> f64;
+    /// The blackbody temperature in kelvin whose band radiance is `radiance_w_m2_sr` (the
+    /// apparent temperature); 0 K for a radiance of 0 or less.
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64;
+}
+
+impl BandModel for Band {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        Band::radiance(self, temperature_k)
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        Band::radiance_derivative(self, temperature_k)
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        Band::temperature(self, radiance_w_m2_sr)
+    }
+}
+
+/// The whole spectrum: `L(T) = σT⁴/π`, with its exact inverse. For tests and for comparing
+/// with a hand computation.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct TotalRadiance;
+
+/// Stefan–Boltzmann constant, W m⁻² K⁻⁴: `2π⁵k⁴ / (15h³c²)`, exact in the 2019 SI
+/// (CODATA 2018 lists 5.670 374 419…e-8).
+pub const STEFAN_BOLTZMANN_W_M2_K4: f64 = 2.0
+    * std::f64::consts::PI
+    * std::f64::consts::PI
+    * std::f64::consts::PI
+    * std::f64::consts::PI
+    * std::f64::consts::PI
+    * BOLTZMANN_J_K
+    * BOLTZMANN_J_K
+    * BOLTZMANN_J_K
+    * BOLTZMANN_J_K
+    / (15.0 * PLANCK_J_S * PLANCK_J_S * PLANCK_J_S * SPEED_OF_LIGHT_M_S * SPEED_OF_LIGHT_M_S);
+
+impl BandModel for TotalRadiance {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        STEFAN_BOLTZMANN_W_M2_K4 * temperature_k.powi(4) / std::f64::consts::PI
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        4.0 * STEFAN_BOLTZMANN_W_M2_K4 * temperature_k.powi(3) / std::f64::consts::PI
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        if radiance_w_m2_sr <= 0.0 {
+            0.0
+        } else {
+            (radiance_w_m2_sr * std::f64::consts::PI / STEFAN_BOLTZMANN_W_M2_K4).powf(0.25)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stefan_boltzmann_matches_codata_2018() {
+        // CODATA 2018: σ = 5.670 374 419… × 10⁻⁸ W m⁻² K⁻⁴.
+        assert!((STEFAN_BOLTZMANN_W_M2_K4 / 5.670_374_419e-8 - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn total_radiance_round_trips() {
+        for t in [3.0, 77.0, 300.0, 1500.0] {
+            let l = TotalRadiance.radiance(t);
+            assert!((TotalRadiance.temperature(l) - t).abs() < 1e-9 * t);
+        }
+        // σ·300⁴/π by hand: 5.670374419e-8 · 8.1e9 = 459.3003; / π = 146.1995.
+        assert!((TotalRadiance.radiance(300.0) - 146.199_5).abs() < 1e-3);
+        assert!(TotalRadiance.temperature(0.0).abs() < f64::MIN_POSITIVE);
+    }
+
+    #[test]
+    fn the_band_is_a_band_model() {
+        fn through_trait(b: &impl BandModel, t: f64) -> f64 {
+            b.temperature(b.radiance(t))
+        }
+        assert!((through_trait(&Band::default(), 300.0) - 300.0).abs() < 1e-6);
+    }
+}

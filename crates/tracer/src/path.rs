@@ -1,0 +1,297 @@
+//! The geometry of one ray from the sensor, recorded once and then evaluated in every
+//! sub-band: which facets it met, at what angles and altitudes, where its reflections and
+//! hemisphere rays went. Tracing (the BVH) is the expensive part; evaluating the radiance
+//! equation on a recorded path is a few table lookups per sub-band, so a spectral
+//! rendering of K sub-bands traces each ray once, not K times.
+
+use rand::Rng;
+
+use irsig_atmosphere::range_to_ground_from_cos_m;
+use irsig_radiometry::BandModel;
+
+use crate::env::Atmosphere;
+use crate::geometry::Hit;
+use crate::tracer::{Ctx, FacetRadiometry, FrameConsts, Tracer};
+use crate::vec::{V3, add, basis, dot, scale, sub};
+
+/// Where a ray that left the scene ends.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Escape {
+    /// Above the horizon: the sky seen from `alt_m` at `zenith_deg`.
+    Sky { alt_m: f64, zenith_deg: f64 },
+    /// Below it: the terrain background.
+    Terrain,
+}
+
+/// A facet a ray met: what its radiance needs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Surface {
+    pub(crate) facet: u32,
+    pub(crate) data: FacetRadiometry,
+    /// Cosine of the angle between the reversed ray and the facet normal.
+    pub(crate) cos_incidence: f64,
+    pub(crate) back_face: bool,
+    /// Altitude of the hit above the ground, metres.
+    pub(crate) alt_m: f64,
+}
+
+/// What arrives along the mirror direction of a facet with a specular part.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Mirror {
+    /// The next node of the path: the reflection ray hit a facet (event 4).
+    Next,
+    /// The reflection ray left the scene (event 3).
+    Escaped(Escape),
+    /// No bounce left: the hemispheric sky.
+    Hemispheric,
+}
+
+/// What arrives diffusely at a facet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Diffuse {
+    /// The hemispheric sky (F = 1, the thesis's model).
+    Hemispheric,
+    /// Sky-view rays `rays[start..start + count]` of the path, `sky` of which reached the
+    /// sky.
+    Rays { start: u32, count: u32, sky: u32 },
+}
+
+/// One facet of a path: the surface, and where its reflected and diffuse light come from
+/// (`None` where the material has no such part).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Node {
+    pub(crate) surface: Surface,
+    pub(crate) mirror: Option<Mirror>,
+    pub(crate) diffuse: Option<Diffuse>,
+    /// z of the unit reflection direction (its zenith angle is shown in the probe).
+    pub(crate) reflected_z: f64,
+}
+
+/// A sky-view ray from a facet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum HemiRay {
+    /// It hit another facet, whose surface-leaving radiance it brings back
+    /// (`ε₂·L_T2 + r₂·L_d`, no further rays).
+    Facet(Surface),
+    /// It left the scene.
+    Escaped(Escape),
+}
+
+/// What the ray from the sensor met first.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Primary {
+    /// Event 1 above the horizon: the sky path from the sensor to space.
+    Sky { zenith_deg: f64 },
+    /// Event 1 below the horizon: the terrain, `range_m` away along the curved Earth. Its
+    /// path terms use `path_range_m`, the range to a flat ground at the same nadir angle
+    /// (`altitude / cos nadir`): the atmosphere models are plane-parallel and read the
+    /// slant angle from the range, and LOWTRAN's own slant paths to the ground at that
+    /// angle (which do follow the curved Earth) are what they reproduce.
+    Terrain { range_m: f64, path_range_m: f64 },
+    /// A facet, `range_m` away at `alt_m`: the path's first node.
+    Facet { range_m: f64, alt_m: f64 },
+}
+
+/// A recorded path: the primary event, the chain of facets of its specular bounces (node
+/// `i + 1` is what node `i`'s reflection ray hit) and the sky-view rays of its first facet.
+/// Scratch space reused from ray to ray.
+#[derive(Debug, Clone)]
+pub(crate) struct Path {
+    pub(crate) primary: Primary,
+    pub(crate) nodes: Vec<Node>,
+    pub(crate) rays: Vec<HemiRay>,
+}
+
+impl Default for Path {
+    fn default() -> Self {
+        Self {
+            primary: Primary::Sky { zenith_deg: 0.0 },
+            nodes: Vec::new(),
+            rays: Vec::new(),
+        }
+    }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Traces the ray from the sensor along `dir` and records its path into `path`.
+    pub(crate) fn follow(&self, fc: &FrameConsts<'_>, dir: V3, ctx: &mut Ctx<'_>, path: &mut Path) {
+        path.nodes.clear();
+        path.rays.clear();
+        match self
+            .geometry
+            .closest_hit(fc.origin, dir, 0.0, f64::INFINITY, None)
+        {
+            None => path.primary = self.primary_miss(fc, dir),
+            Some(hit) => {
+                let alt = self.geometry.to_world(hit.point_local)[2].max(0.0);
+                path.primary = Primary::Facet {
+                    range_m: hit.distance_m,
+                    alt_m: alt,
+                };
+                self.follow_surface(&hit, dir, alt, 0, ctx, path);
+            }
+        }
+    }
+
+    /// Event 1: the ray leaves the scene from the sensor. The ground test compares
+    /// cosines, so a miss costs no arc cosine unless it sees the sky.
+    fn primary_miss(&self, fc: &FrameConsts<'_>, dir: V3) -> Primary {
+        let alt = fc.sensor_alt;
+        let cos_nadir = (-dir[2]).clamp(-1.0, 1.0);
+        if cos_nadir > fc.cos_critical_nadir {
+            Primary::Terrain {
+                range_m: range_to_ground_from_cos_m(alt, cos_nadir).unwrap_or(0.0),
+                path_range_m: alt / cos_nadir,
+            }
+        } else {
+            Primary::Sky {
+                zenith_deg: dir[2].clamp(-1.0, 1.0).acos().to_degrees(),
+            }
+        }
+    }
+
+    /// Where a ray from a surface point at altitude `alt` along `dir` that leaves the scene
+    /// ends: the sky above the horizon, the terrain below it.
+    fn escape(&self, dir: V3, alt: f64) -> Escape {
+        let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
+        if nadir < self.bands[0].atmosphere.critical_nadir_angle_deg(alt) {
+            Escape::Terrain
+        } else {
+            Escape::Sky {
+                alt_m: alt,
+                zenith_deg: 180.0 - nadir,
+            }
+        }
+    }
+
+    /// Records the facet `hit` at altitude `alt` as the next node, `depth` specular bounces
+    /// already spent, then follows its reflection ray (while bounces remain) and, at the
+    /// first facet, its sky-view rays.
+    fn follow_surface(
+        &self,
+        hit: &Hit<FacetRadiometry>,
+        dir: V3,
+        alt: f64,
+        depth: u32,
+        ctx: &mut Ctx<'_>,
+        path: &mut Path,
+    ) {
+        let m = &self.materials[usize::from(hit.data.material)];
+        let sfrac = m.specular_fraction;
+        let index = path.nodes.len();
+        path.nodes.push(Node {
+            surface: surface(hit, alt),
+            mirror: None,
+            diffuse: None,
+            reflected_z: f64::NAN,
+        });
+        if sfrac > 0.0 {
+            // Mirror direction about the normal facing the ray.
+            let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
+            path.nodes[index].reflected_z = refl[2];
+            let mirror = if depth < ctx.options.specular_bounces {
+                let eps_m = self.geometry.surface_epsilon_m();
+                match self.geometry.closest_hit(
+                    hit.point_local,
+                    refl,
+                    eps_m,
+                    f64::INFINITY,
+                    Some(hit.facet),
+                ) {
+                    Some(h2) => {
+                        let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
+                        self.follow_surface(&h2, refl, alt2, depth + 1, ctx, path);
+                        Mirror::Next
+                    }
+                    None => Mirror::Escaped(self.escape(refl, alt)),
+                }
+            } else {
+                Mirror::Hemispheric
+            };
+            path.nodes[index].mirror = Some(mirror);
+        }
+        if sfrac < 1.0 {
+            let diffuse = if depth == 0 && ctx.options.sky_view_rays > 0 {
+                self.follow_hemisphere(hit, alt, ctx, path)
+            } else {
+                Diffuse::Hemispheric
+            };
+            path.nodes[index].diffuse = Some(diffuse);
+        }
+    }
+
+    /// N cosine-weighted, stratified rays over the hemisphere above a hit: each a facet it
+    /// hits or the sky or terrain it escapes to. The sky-view factor F is the fraction that
+    /// reach the sky.
+    fn follow_hemisphere(
+        &self,
+        hit: &Hit<FacetRadiometry>,
+        alt: f64,
+        ctx: &mut Ctx<'_>,
+        path: &mut Path,
+    ) -> Diffuse {
+        let n = ctx.options.sky_view_rays;
+        let m = (f64::from(n).sqrt()) as u32;
+        let (t, b) = basis(hit.normal);
+        let eps_m = self.geometry.surface_epsilon_m();
+        let start = path.rays.len() as u32;
+        let mut sky = 0u32;
+        for k in 0..n {
+            let (xi1, xi2): (f64, f64) = {
+                let rng = ctx.rng();
+                (rng.random(), rng.random())
+            };
+            // An m × m grid of strata, then any remainder unstratified.
+            let (u1, u2) = if k < m * m {
+                (
+                    (f64::from(k % m) + xi1) / f64::from(m),
+                    (f64::from(k / m) + xi2) / f64::from(m),
+                )
+            } else {
+                (xi1, xi2)
+            };
+            // Malley's method: uniform on the disc, projected up.
+            let rad = u1.sqrt();
+            let phi = std::f64::consts::TAU * u2;
+            let z = (1.0 - u1).max(0.0).sqrt();
+            let d = add(
+                add(scale(t, rad * phi.cos()), scale(b, rad * phi.sin())),
+                scale(hit.normal, z),
+            );
+            let ray = match self.geometry.closest_hit(
+                hit.point_local,
+                d,
+                eps_m,
+                f64::INFINITY,
+                Some(hit.facet),
+            ) {
+                Some(h2) => {
+                    let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
+                    HemiRay::Facet(surface(&h2, alt2))
+                }
+                None => {
+                    if d[2] >= 0.0 {
+                        sky += 1;
+                    }
+                    HemiRay::Escaped(self.escape(d, alt))
+                }
+            };
+            path.rays.push(ray);
+        }
+        Diffuse::Rays {
+            start,
+            count: n,
+            sky,
+        }
+    }
+}
+
+fn surface(hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
+    Surface {
+        facet: hit.facet,
+        data: hit.data,
+        cos_incidence: hit.cos_incidence,
+        back_face: hit.back_face,
+        alt_m: alt,
+    }
+}

@@ -1,0 +1,280 @@
+//! The radiance equation on a recorded path, summed over the sub-bands (thesis eq. 2 and 6,
+//! the events of Figure 6):
+//!
+//! ```text
+//! L = Σ_k τ_k·[ε_k·L_T,k + r_k·(s·L_spec,k + (1 − s)·(F·L_d,k + (1 − F)·L_b,k))] + L_u,k
+//! ```
+//!
+//! With one sub-band this is the band model. With several, the truth terms are the
+//! band-integrated ones: radiances add over sub-bands; the emissivity is the emitted-
+//! radiance-weighted mean `Σ ε_k L_T,k / Σ L_T,k`, and the transmission the one that keeps
+//! `L = τ·L_leaving + L_u` true, `Σ τ_k L_leaving,k / Σ L_leaving,k`.
+
+use irsig_radiometry::BandModel;
+
+use crate::env::Atmosphere;
+use crate::path::{Diffuse, Escape, HemiRay, Mirror, Node, Path, Primary};
+use crate::tracer::{BandData, Event, FrameConsts, Sample, Tracer};
+
+/// The terms of one facet's surface-leaving radiance in one sub-band.
+#[derive(Debug, Clone, Copy, Default)]
+struct SurfaceTerms {
+    emissivity: f64,
+    blackbody: f64,
+    specular_incident: f64,
+    sky_hemispheric: f64,
+    diffuse_incident: f64,
+    leaving: f64,
+}
+
+/// Band-integrated terms of the first facet, summed over sub-bands.
+#[derive(Debug, Clone, Copy, Default)]
+struct Sums {
+    emitted: f64,
+    blackbody: f64,
+    specular_incident: f64,
+    sky_hemispheric: f64,
+    diffuse_incident: f64,
+    leaving: f64,
+    transmitted: f64,
+    path_radiance: f64,
+    radiance: f64,
+}
+
+impl Sums {
+    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64) {
+        self.emitted += t.emissivity * t.blackbody;
+        self.blackbody += t.blackbody;
+        self.specular_incident += t.specular_incident;
+        self.sky_hemispheric += t.sky_hemispheric;
+        self.diffuse_incident += t.diffuse_incident;
+        self.leaving += t.leaving;
+        self.transmitted += transmission * t.leaving;
+        self.path_radiance += path_radiance;
+        self.radiance += transmission * t.leaving + path_radiance;
+    }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// The radiance at the sensor of a recorded path, W m⁻² sr⁻¹. With `TRUTH`, every term
+    /// also goes to `s`; without, `s` is not touched. Both give the same radiance, bit for
+    /// bit.
+    pub(crate) fn radiance<const TRUTH: bool>(
+        &self,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        s: &mut Sample,
+    ) -> f64 {
+        match path.primary {
+            Primary::Sky { zenith_deg } => {
+                let radiance: f64 = self
+                    .bands
+                    .iter()
+                    .map(|b| b.atmosphere.sky_radiance(fc.sensor_alt, zenith_deg))
+                    .sum();
+                if TRUTH {
+                    *s = Sample::miss(Event::Sky);
+                    s.transmission = 0.0;
+                    s.path_radiance_w_m2_sr = radiance;
+                    s.radiance_w_m2_sr = radiance;
+                }
+                radiance
+            }
+            Primary::Terrain {
+                range_m,
+                path_range_m,
+            } => {
+                let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
+                let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
+                for b in &self.bands {
+                    let p = b.atmosphere.path(fc.sensor_alt, 0.0, path_range_m);
+                    radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
+                    if TRUTH {
+                        transmitted += p.transmission * b.terrain_leaving;
+                        path_radiance += p.path_radiance_w_m2_sr;
+                        blackbody += b.terrain_blackbody;
+                        leaving += b.terrain_leaving;
+                        single_tau = p.transmission;
+                    }
+                }
+                if TRUTH {
+                    *s = Sample::miss(Event::Terrain);
+                    s.range_m = range_m;
+                    s.temperature_k = self.terrain.temperature_k;
+                    s.emissivity = self.terrain.emissivity;
+                    s.reflectance = 1.0 - self.terrain.emissivity;
+                    s.blackbody_w_m2_sr = blackbody;
+                    s.surface_leaving_w_m2_sr = leaving;
+                    s.transmission = self.effective_transmission(single_tau, transmitted, leaving);
+                    s.path_radiance_w_m2_sr = path_radiance;
+                    s.radiance_w_m2_sr = radiance;
+                }
+                radiance
+            }
+            Primary::Facet { range_m, alt_m } => {
+                let cell = fc.path_table.as_ref().map(|t| t.cell(alt_m, range_m));
+                let mut sums = Sums::default();
+                let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
+                let mut radiance = 0.0;
+                for (k, b) in self.bands.iter().enumerate() {
+                    let first = self.leaving_chain(k, b, path);
+                    let p = match (&fc.path_table, cell) {
+                        (Some(table), Some(cell)) => table.terms(cell, k),
+                        _ => b.atmosphere.path(fc.sensor_alt, alt_m, range_m),
+                    };
+                    radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
+                    if TRUTH {
+                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr);
+                        single = first;
+                        single_tau = p.transmission;
+                    }
+                }
+                if TRUTH {
+                    self.facet_truth(path, range_m, &sums, &single, single_tau, s);
+                    s.radiance_w_m2_sr = radiance;
+                }
+                radiance
+            }
+        }
+    }
+
+    /// The transmission to report: the sub-band's own with one sub-band, else the
+    /// leaving-radiance-weighted mean.
+    fn effective_transmission(&self, single: f64, transmitted: f64, leaving: f64) -> f64 {
+        if self.bands.len() == 1 {
+            single
+        } else {
+            transmitted / leaving
+        }
+    }
+
+    /// The truth terms of a path whose first event is a facet.
+    fn facet_truth(
+        &self,
+        path: &Path,
+        range_m: f64,
+        sums: &Sums,
+        single: &SurfaceTerms,
+        single_tau: f64,
+        s: &mut Sample,
+    ) {
+        let node = &path.nodes[0];
+        let surface = &node.surface;
+        let m = &self.materials[usize::from(surface.data.material)];
+        let one = self.bands.len() == 1;
+        *s = Sample::miss(Event::Diffuse);
+        s.primary_material = m.id;
+        s.facet = Some(surface.facet);
+        s.back_face = surface.back_face;
+        s.range_m = range_m;
+        s.cos_incidence = surface.cos_incidence;
+        s.temperature_k = surface.data.temperature_k;
+        s.emissivity = if one {
+            single.emissivity
+        } else {
+            sums.emitted / sums.blackbody
+        };
+        s.reflectance = 1.0 - s.emissivity;
+        s.specular_fraction = m.specular_fraction;
+        s.blackbody_w_m2_sr = sums.blackbody;
+        s.sky_hemispheric_w_m2_sr = sums.sky_hemispheric;
+        if let Some(mirror) = node.mirror {
+            s.reflected_zenith_deg = node.reflected_z.clamp(-1.0, 1.0).acos().to_degrees();
+            s.event = match mirror {
+                Mirror::Next => {
+                    let second = &path.nodes[1].surface;
+                    s.secondary_material = self.materials[usize::from(second.data.material)].id;
+                    Event::SpecularHitsFacet
+                }
+                Mirror::Escaped(_) | Mirror::Hemispheric => Event::SpecularEscapes,
+            };
+            s.specular_incident_w_m2_sr = sums.specular_incident;
+        }
+        if let Some(diffuse) = node.diffuse {
+            s.sky_view_factor = match diffuse {
+                Diffuse::Hemispheric => 1.0,
+                Diffuse::Rays { count, sky, .. } => f64::from(sky) / f64::from(count),
+            };
+            s.diffuse_incident_w_m2_sr = sums.diffuse_incident;
+        }
+        s.surface_leaving_w_m2_sr = sums.leaving;
+        s.transmission = self.effective_transmission(single_tau, sums.transmitted, sums.leaving);
+        s.path_radiance_w_m2_sr = sums.path_radiance;
+    }
+
+    /// The surface-leaving terms of the path's first facet in sub-band `k`: the chain of
+    /// specular bounces evaluated from its far end back.
+    fn leaving_chain(&self, k: usize, b: &BandData<A>, path: &Path) -> SurfaceTerms {
+        let mut next = 0.0;
+        let mut terms = SurfaceTerms::default();
+        for node in path.nodes.iter().rev() {
+            terms = self.surface_terms(k, b, node, next, path);
+            next = terms.leaving;
+        }
+        terms
+    }
+
+    /// `ε·L_T + r·(s·L_spec + (1 − s)·L_diffuse)` of one node in sub-band `k`, given the
+    /// surface-leaving radiance `next` of the node its reflection ray hit.
+    #[inline]
+    fn surface_terms(
+        &self,
+        k: usize,
+        b: &BandData<A>,
+        node: &Node,
+        next: f64,
+        path: &Path,
+    ) -> SurfaceTerms {
+        let surface = &node.surface;
+        let slot = usize::from(surface.data.material);
+        let sfrac = self.materials[slot].specular_fraction;
+        let eps = b.emissivity[slot].at_cos(surface.cos_incidence);
+        let blackbody = b.blackbody_of(k == 0, &surface.data);
+        let sky_hemi = b.atmosphere.sky_hemispheric(surface.alt_m);
+        let specular_incident = match node.mirror {
+            None => 0.0,
+            Some(Mirror::Next) => next,
+            Some(Mirror::Escaped(e)) => escaped(b, e),
+            Some(Mirror::Hemispheric) => sky_hemi,
+        };
+        let diffuse_incident = match node.diffuse {
+            None => 0.0,
+            Some(Diffuse::Hemispheric) => sky_hemi,
+            Some(Diffuse::Rays { start, count, .. }) => {
+                let rays = &path.rays[start as usize..(start + count) as usize];
+                let sum: f64 = rays
+                    .iter()
+                    .map(|ray| match *ray {
+                        HemiRay::Facet(h) => {
+                            let slot = usize::from(h.data.material);
+                            let e2 = b.emissivity[slot].at_cos(h.cos_incidence);
+                            e2 * b.blackbody_of(k == 0, &h.data)
+                                + (1.0 - e2) * b.atmosphere.sky_hemispheric(h.alt_m)
+                        }
+                        HemiRay::Escaped(e) => escaped(b, e),
+                    })
+                    .sum();
+                sum / f64::from(count)
+            }
+        };
+        let leaving = eps * blackbody
+            + (1.0 - eps) * (sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident);
+        SurfaceTerms {
+            emissivity: eps,
+            blackbody,
+            specular_incident,
+            sky_hemispheric: sky_hemi,
+            diffuse_incident,
+            leaving,
+        }
+    }
+}
+
+/// Radiance arriving along a ray that left the scene, in one sub-band.
+#[inline]
+fn escaped<A: Atmosphere>(b: &BandData<A>, e: Escape) -> f64 {
+    match e {
+        Escape::Sky { alt_m, zenith_deg } => b.atmosphere.sky_radiance(alt_m, zenith_deg),
+        Escape::Terrain => b.terrain_leaving,
+    }
+}
