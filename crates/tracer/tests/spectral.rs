@@ -57,9 +57,8 @@ fn sub_bands(emissivity: Option<[f64; 3]>) -> Vec<SubBand<Band, Air>> {
         .map(|k| SubBand {
             band: Band::new(EDGES_UM[k], EDGES_UM[k + 1]).unwrap(),
             atmosphere: AIRS[k],
-            emissivity: emissivity.map(|e| {
-                vec![EmissivityTable::new(vec![0.0, 90.0], vec![e[k], e[k]]).unwrap()]
-            }),
+            emissivity: emissivity
+                .map(|e| vec![EmissivityTable::new(vec![0.0, 90.0], vec![e[k], e[k]]).unwrap()]),
         })
         .collect()
 }
@@ -68,13 +67,7 @@ fn plate_tracer(emissivity: Option<[f64; 3]>) -> Tracer<Band, Air> {
     let plate = ground_quad([-10.0, -10.0], [10.0, 10.0], 0.0);
     let scene = raw_scene(&[(&plate, 1, 300.0)]);
     let materials = grey_materials(&[(1, 0.9, 0.0)]);
-    Tracer::with_sub_bands(
-        &scene,
-        &materials,
-        Band::default(),
-        sub_bands(emissivity),
-    )
-    .unwrap()
+    Tracer::with_sub_bands(&scene, &materials, Band::default(), sub_bands(emissivity)).unwrap()
 }
 
 fn camera(target: [f64; 3]) -> Camera {
@@ -115,11 +108,17 @@ fn a_grey_plate_is_the_sum_of_its_sub_bands() {
         path_radiance += (1.0 - t) * air.l_air;
         blackbody += l_t;
     }
-    assert!(close(s.radiance_w_m2_sr, expected), "{s}\nexpected {expected}");
+    assert!(
+        close(s.radiance_w_m2_sr, expected),
+        "{s}\nexpected {expected}"
+    );
     // The band-integrated terms: radiances add; ε and τ are the weighted means that keep
     // the equation true.
     assert!(close(s.blackbody_w_m2_sr, blackbody), "{s}");
-    assert!(close(s.blackbody_w_m2_sr, Band::default().radiance(300.0)), "{s}");
+    assert!(
+        close(s.blackbody_w_m2_sr, Band::default().radiance(300.0)),
+        "{s}"
+    );
     assert!(close(s.surface_leaving_w_m2_sr, leaving), "{s}");
     assert!(close(s.path_radiance_w_m2_sr, path_radiance), "{s}");
     assert!((s.emissivity - 0.9).abs() < 1e-12, "{s}");
@@ -159,7 +158,9 @@ fn each_sub_band_uses_its_own_emissivity() {
     let scene = raw_scene(&[(&plate, 1, 300.0)]);
     let materials = grey_materials(&[(1, 0.9, 0.0)]);
     assert!(Tracer::with_sub_bands(&scene, &materials, Band::default(), bands).is_err());
-    assert!(Tracer::<Band, Air>::with_sub_bands(&scene, &materials, Band::default(), vec![]).is_err());
+    assert!(
+        Tracer::<Band, Air>::with_sub_bands(&scene, &materials, Band::default(), vec![]).is_err()
+    );
 }
 
 #[test]
@@ -195,7 +196,10 @@ fn misses_and_tabulated_paths_are_summed_too() {
         let leaving = terrain.emissivity * l_t + (1.0 - terrain.emissivity) * air.sky;
         expected += t * leaving + (1.0 - t) * air.l_air;
     }
-    assert!((s.radiance_w_m2_sr - expected).abs() < 1e-9 * expected, "{s}");
+    assert!(
+        (s.radiance_w_m2_sr - expected).abs() < 1e-9 * expected,
+        "{s}"
+    );
     // Tabulated path terms read every sub-band's own table.
     let tabulated = plate_tracer(None).with_path_terms(PathTermsMode::Tabulated);
     let exact = tracer

@@ -11,9 +11,9 @@ use irsig_radiometry::fresnel::{
 };
 use miette::miette;
 
-use irsig_cli::args::BandArg;
+use irsig_cli::args::{BandArg, values};
 
-use crate::common::{diagnostic, values};
+use crate::common::diagnostic;
 
 /// Arguments of `fresnel`.
 #[derive(Debug, clap::Args)]

@@ -37,8 +37,6 @@ mod rtt;
 mod shape_factor;
 mod temperature;
 
-pub use common::Format;
-
 /// Atmosphere tables, and band radiance calculators (8–14 µm unless `--band` says
 /// otherwise).
 #[derive(Debug, Parser)]
