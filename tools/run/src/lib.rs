@@ -65,9 +65,9 @@ pub struct Cli {
 /// only when it starts.
 ///
 /// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
-/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: import, flatten, atmos,
-/// trace and run itself (a pipeline may run a sub-pipeline). Not yet: sensor (not on main
-/// when this was written).
+/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: every stage tool (import,
+/// flatten, atmos, material, trace, sensor, stats) and run itself (a pipeline may run a
+/// sub-pipeline).
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
@@ -75,6 +75,7 @@ pub fn tools() -> Tools {
         .register("import", check::<irsig_import::Cli>)
         .register("flatten", check::<irsig_flatten::Cli>)
         .register("atmos", check::<irsig_atmos::Cli>)
+        .register("material", check::<irsig_material::Cli>)
         .register("trace", check::<irsig_trace::Cli>)
         .register("sensor", check::<irsig_sensor::Cli>)
         .register("stats", check::<irsig_stats::Cli>)
