@@ -131,8 +131,8 @@ pub fn print_table(
                 columns: columns.iter().map(|c| c.name.as_str()).collect(),
                 rows,
             };
-            let text = ron::ser::to_string_pretty(&table, ron::ser::PrettyConfig::default())
-                .map_err(std::io::Error::other)?;
+            let text =
+                irsig_formats::canonical::to_ron_pretty(&table).map_err(std::io::Error::other)?;
             writeln!(w, "{text}")
         }
     })

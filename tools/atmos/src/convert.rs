@@ -9,7 +9,6 @@ use clap::{Args, ValueEnum};
 use irsig_atmosphere::legacy::{
     ConvertOptions, DirtranTables, LegacyUnits, from_atmosphere, to_atmosphere,
 };
-use irsig_formats::ParseError;
 use irsig_formats::legacy::{atm, cor, dwr, rsd, rtt};
 use irsig_model::{Atmosphere, SlantTables};
 use miette::{IntoDiagnostic, Report, WrapErr};
@@ -174,15 +173,9 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let slant = match &args.slant {
         Some(p) => {
             let (file, text) = read_text(p)?;
-            let s: SlantTables = ron::from_str(&text).map_err(|e| {
-                let offset = irsig_formats::offset_of(&text, e.span.start.line, e.span.start.col);
-                Report::new(ParseError::at_offset(
-                    &file,
-                    &text,
-                    offset,
-                    format!("malformed slant tables (RON): {}", e.code),
-                ))
-            })?;
+            let s: SlantTables =
+                irsig_formats::canonical::from_ron_as(&file, &text, "slant tables")
+                    .map_err(Report::new)?;
             Some(s)
         }
         None => None,
@@ -297,8 +290,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         ));
     }
     if let Some(s) = &atmosphere.slant {
-        let text =
-            ron::ser::to_string_pretty(s, ron::ser::PrettyConfig::default()).into_diagnostic()?;
+        let text = irsig_formats::canonical::to_ron_pretty(s).into_diagnostic()?;
         files.push((path("slant.ron"), text.into_bytes()));
     }
     if !Path::new(&args.out_dir).is_dir() {
