@@ -414,12 +414,8 @@ pub fn render(table: &Table, format: TableFormat) -> miette::Result<String> {
             }
         }
         TableFormat::Ron => {
-            let config = ron::ser::PrettyConfig::new()
-                .depth_limit(3)
-                .indentor("  ")
-                .separate_tuple_members(false);
-            out = ron::ser::to_string_pretty(table, config).map_err(|e| miette!("{e}"))?;
-            out.push('\n');
+            out =
+                irsig_formats::canonical::to_ron_at_depth(table, 3).map_err(|e| miette!("{e}"))?;
         }
     }
     Ok(out)

@@ -168,8 +168,18 @@ fn validation_error<T: Canonical>(file: &str, text: &str, e: &ModelError) -> Par
 /// # Errors
 /// Only if serde fails, which the model types never do for finite numbers.
 pub fn to_ron<T: Canonical>(value: &T) -> Result<String, ron::Error> {
+    to_ron_at_depth(value, T::PRETTY_DEPTH)
+}
+
+/// Any serde value as RON in the canonical layout: lines broken down to nesting `depth`
+/// (deeper values stay on one line), two-space indents, a trailing newline. For RON a tool
+/// writes that is not a model type (a table of results).
+///
+/// # Errors
+/// Only if serde fails, which it does not for finite numbers.
+pub fn to_ron_at_depth<T: Serialize>(value: &T, depth: usize) -> Result<String, ron::Error> {
     let config = ron::ser::PrettyConfig::new()
-        .depth_limit(T::PRETTY_DEPTH)
+        .depth_limit(depth)
         .indentor("  ")
         .separate_tuple_members(false);
     let mut text = ron::ser::to_string_pretty(value, config)?;
