@@ -36,6 +36,7 @@
 //! ```
 
 mod atmosphere;
+pub mod decision;
 mod error;
 mod material;
 mod object;
@@ -43,6 +44,7 @@ mod raw;
 mod regions;
 mod scene;
 pub mod truth;
+pub mod uncertainty;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};

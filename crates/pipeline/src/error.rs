@@ -37,6 +37,10 @@ pub enum ErrorKind {
     NotMakeable,
     /// Reading or writing a file of the runner's own (the pipeline file, the run state).
     Io,
+    /// A step asked for by name (`irsig-run --step`) that the plan does not have.
+    UnknownStep,
+    /// A stage asks Slurm for more CPUs or memory than any node of the cluster declares.
+    ExceedsNode,
 }
 
 #[derive(Debug)]
@@ -46,6 +50,8 @@ enum Detail {
         message: String,
         source: std::io::Error,
     },
+    /// An error with no place in the pipeline file.
+    Plain(String),
 }
 
 impl PipelineError {
@@ -88,6 +94,14 @@ impl PipelineError {
         }
     }
 
+    /// An error about the command line's request rather than a place in the file.
+    pub(crate) fn plain(kind: ErrorKind, message: String) -> Self {
+        Self {
+            kind,
+            detail: Detail::Plain(message),
+        }
+    }
+
     pub(crate) fn with_help(mut self, help: impl Into<String>) -> Self {
         if let Detail::Located(e) = self.detail {
             self.detail = Detail::Located(Box::new(e.with_help(help)));
@@ -106,7 +120,7 @@ impl PipelineError {
     pub fn line_column(&self) -> Option<(usize, usize)> {
         match &self.detail {
             Detail::Located(e) => Some((e.line, e.column)),
-            Detail::Io { .. } => None,
+            Detail::Io { .. } | Detail::Plain(_) => None,
         }
     }
 }
@@ -116,6 +130,7 @@ impl fmt::Display for PipelineError {
         match &self.detail {
             Detail::Located(e) => e.fmt(f),
             Detail::Io { message, source } => write!(f, "{message}: {source}"),
+            Detail::Plain(message) => f.write_str(message),
         }
     }
 }
@@ -123,7 +138,7 @@ impl fmt::Display for PipelineError {
 impl std::error::Error for PipelineError {
     fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
         match &self.detail {
-            Detail::Located(_) => None,
+            Detail::Located(_) | Detail::Plain(_) => None,
             Detail::Io { source, .. } => Some(source),
         }
     }
@@ -144,27 +159,29 @@ impl Diagnostic for PipelineError {
             ErrorKind::StageFailed => "irsig::pipeline::stage_failed",
             ErrorKind::NotMakeable => "irsig::pipeline::not_makeable",
             ErrorKind::Io => "irsig::pipeline::io",
+            ErrorKind::UnknownStep => "irsig::pipeline::unknown_step",
+            ErrorKind::ExceedsNode => "irsig::pipeline::exceeds_node",
         }))
     }
 
     fn help<'a>(&'a self) -> Option<Box<dyn fmt::Display + 'a>> {
         match &self.detail {
             Detail::Located(e) => e.help(),
-            Detail::Io { .. } => None,
+            Detail::Io { .. } | Detail::Plain(_) => None,
         }
     }
 
     fn source_code(&self) -> Option<&dyn miette::SourceCode> {
         match &self.detail {
             Detail::Located(e) => e.source_code(),
-            Detail::Io { .. } => None,
+            Detail::Io { .. } | Detail::Plain(_) => None,
         }
     }
 
     fn labels(&self) -> Option<Box<dyn Iterator<Item = miette::LabeledSpan> + '_>> {
         match &self.detail {
             Detail::Located(e) => e.labels(),
-            Detail::Io { .. } => None,
+            Detail::Io { .. } | Detail::Plain(_) => None,
         }
     }
 }

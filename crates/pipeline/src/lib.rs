@@ -11,8 +11,10 @@
 //! - [`Plan::run`] runs the steps in dependency order, independent ones in parallel, and
 //!   skips a step whose outputs are up to date with its tool, command line and input
 //!   contents (SHA-256, kept in `.irsig-run/` beside the pipeline file).
-//! - [`Plan::dry_run`] lists every step and whether a run would start it; [`Plan::makefile`] writes the same steps as a
-//!   Makefile.
+//! - [`Plan::dry_run`] lists every step and whether a run would start it;
+//!   [`Plan::makefile`] writes the same steps as a Makefile; [`Plan::slurm`] writes them as
+//!   Slurm batch scripts (a job array per frame sweep), whose tasks each run one step
+//!   ([`Plan::run_step_named`]).
 //!
 //! The format is documented in `formats/pipeline.md`.
 //!
@@ -41,11 +43,16 @@ mod emit;
 mod error;
 mod plan;
 mod run;
+mod slurm;
 mod spec;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};
 pub use run::{Event, RunOptions, RunSummary};
+pub use slurm::{
+    Dependency, MEMORY_FLOOR_MIB, MEMORY_PER_INPUT_BYTE, NodeLimits, SlurmJob, SlurmOptions,
+    SlurmScripts, estimate_memory_mib,
+};
 
 /// `word` quoted for a POSIX shell when it needs quoting, as dry runs and Makefiles print it.
 #[must_use]

@@ -131,6 +131,21 @@ impl Pipeline {
     /// ([`ErrorKind::DuplicateOutput`]), an input neither on disk nor produced
     /// ([`ErrorKind::MissingInput`]) and dependency cycles ([`ErrorKind::Cycle`]).
     pub fn plan(&self, tools: &Tools) -> Result<Plan, PipelineError> {
+        self.plan_checking(tools, true)
+    }
+
+    /// As [`Pipeline::plan`], for running single steps ([`Plan::run_step_named`]): an input
+    /// that is neither on disk nor produced is not an error here, only for the step that
+    /// reads it when it runs. A task of a Slurm job array runs one frame; another frame's
+    /// missing input is not its concern.
+    ///
+    /// # Errors
+    /// As [`Pipeline::plan`], less [`ErrorKind::MissingInput`].
+    pub fn plan_for_single_steps(&self, tools: &Tools) -> Result<Plan, PipelineError> {
+        self.plan_checking(tools, false)
+    }
+
+    fn plan_checking(&self, tools: &Tools, inputs_must_exist: bool) -> Result<Plan, PipelineError> {
         let src = self.source();
         let mut steps = Vec::new();
         let mut names = BTreeMap::new();
@@ -159,7 +174,7 @@ impl Pipeline {
                     Some(f) => format!("{base_name}[{f}]"),
                     None => base_name.clone(),
                 };
-                let step = build_step(
+                let mut step = build_step(
                     src,
                     stage,
                     name,
@@ -167,15 +182,18 @@ impl Pipeline {
                     vars.as_ref(),
                     self.gathered(stage)?,
                 )?;
+                step.stage = index;
+                step.frame = frame;
                 check_parameters(src, stage, &step, tools)?;
                 steps.push(step);
             }
         }
-        let order = self.link(&mut steps)?;
+        let order = self.link(&mut steps, inputs_must_exist)?;
         Ok(Plan {
             file: self.file.clone(),
             text: self.text.clone(),
             base_dir: self.base_dir.clone(),
+            stages: self.spec.stages.clone(),
             steps: reorder(steps, &order),
         })
     }
@@ -269,7 +287,11 @@ impl Pipeline {
 
     /// Finds each step's producers, refuses duplicate outputs and missing inputs, and
     /// returns a dependency order (or the cycle that prevents one).
-    fn link(&self, steps: &mut [Step]) -> Result<Vec<usize>, PipelineError> {
+    fn link(
+        &self,
+        steps: &mut [Step],
+        inputs_must_exist: bool,
+    ) -> Result<Vec<usize>, PipelineError> {
         let src = self.source();
         let mut producer: HashMap<PathBuf, (usize, usize)> = HashMap::new();
         for (i, step) in steps.iter().enumerate() {
@@ -297,7 +319,7 @@ impl Pipeline {
             for input in &step.inputs {
                 if let Some(&(j, _)) = producer.get(&input.key) {
                     deps.insert(j);
-                } else if !self.base_dir.join(&input.path).is_file() {
+                } else if inputs_must_exist && !self.base_dir.join(&input.path).is_file() {
                     return Err(src
                         .error(
                             ErrorKind::MissingInput,
@@ -410,7 +432,7 @@ pub struct FileRef {
     /// The path as written (after templates), relative to the pipeline's directory.
     pub path: PathBuf,
     /// The lexically normalised path, for matching outputs to inputs.
-    key: PathBuf,
+    pub(crate) key: PathBuf,
     start: usize,
     end: usize,
 }
@@ -432,7 +454,12 @@ pub struct Step {
     pub outputs: Vec<FileRef>,
     /// Indices (in [`Plan::steps`]) of the steps whose outputs this one reads.
     pub deps: Vec<usize>,
-    start: usize,
+    /// The frame of the stage's sweep this step runs (from 1), or `None` for a stage without
+    /// `sweep`.
+    pub frame: Option<usize>,
+    /// The index of the stage in the pipeline file's `stages`.
+    pub(crate) stage: usize,
+    pub(crate) start: usize,
     end: usize,
     /// (argv index, key span, value span) of each flag, to locate a validator's complaint.
     flags: Vec<(usize, Span, Span)>,
@@ -566,6 +593,8 @@ fn build_step(
         inputs,
         outputs,
         deps: Vec::new(),
+        frame: None,
+        stage: 0,
         start: stage.start,
         end: stage.end,
         flags,
@@ -737,6 +766,8 @@ pub struct Plan {
     pub(crate) file: String,
     pub(crate) text: String,
     pub(crate) base_dir: PathBuf,
+    /// The stages as the file gives them, for the back ends that group steps by stage.
+    pub(crate) stages: Vec<StageSpec>,
     /// The steps, dependencies first.
     pub steps: Vec<Step>,
 }

@@ -56,6 +56,32 @@ struct State {
     steps: BTreeMap<String, Record>,
 }
 
+/// The run state as a runner last read or wrote it, and the state file's stamp then. For a
+/// pipeline of thousands of steps the file is hundreds of kilobytes: a runner that finds it
+/// as it left it does not parse it again before adding a record.
+#[derive(Debug, Default)]
+struct StateCache {
+    state: State,
+    seen: Option<Stamp>,
+}
+
+/// What tells one version of the state file from another: its size, modification time and,
+/// on Unix, inode and change time (every save renames a new file into place, so a file
+/// another runner saved is a new inode even within the clock's granularity).
+type Stamp = (u64, Option<std::time::SystemTime>, u64, i64);
+
+fn stamp(path: &Path) -> Option<Stamp> {
+    let m = std::fs::metadata(path).ok()?;
+    #[cfg(unix)]
+    let (inode, changed) = {
+        use std::os::unix::fs::MetadataExt;
+        (m.ino(), m.ctime_nsec() + 1_000_000_000 * m.ctime())
+    };
+    #[cfg(not(unix))]
+    let (inode, changed) = (0, 0);
+    Some((m.len(), m.modified().ok(), inode, changed))
+}
+
 impl Plan {
     /// Where the run state lives: `.irsig-run/<pipeline file stem>.state.ron` in the
     /// pipeline's directory.
@@ -80,6 +106,55 @@ impl Plan {
                 irsig_formats::canonical::from_ron_as(&file, &t, "run state").ok()
             })
             .unwrap_or_default()
+    }
+
+    /// Where runners that share a pipeline's state take turns: `.irsig-run/<stem>.state.lock`.
+    fn lock_path(&self) -> PathBuf {
+        self.state_path().with_extension("lock")
+    }
+
+    /// The state file as it is now, with its stamp taken first (so a change while it is read
+    /// shows as a changed stamp later, and costs a re-read, never a lost record).
+    fn load_cached(&self) -> StateCache {
+        let seen = stamp(&self.state_path());
+        StateCache {
+            state: self.load_state(),
+            seen,
+        }
+    }
+
+    /// Records a step's successful run in the state file. Several runners may finish steps of
+    /// one pipeline at once (the tasks of a Slurm job array, each an `irsig-run --step`), so
+    /// the file is rewritten under an exclusive lock on `.irsig-run/<stem>.state.lock`, from
+    /// its current contents: every runner's record survives, whichever writes last. The file
+    /// is parsed again only when another runner has replaced it since `cache` saw it.
+    fn record(
+        &self,
+        cache: &mut StateCache,
+        step: &Step,
+        record: Record,
+    ) -> Result<(), PipelineError> {
+        let path = self.lock_path();
+        let io = |e| PipelineError::io(format!("cannot lock run state `{}`", path.display()), e);
+        if let Some(dir) = path.parent() {
+            std::fs::create_dir_all(dir).map_err(io)?;
+        }
+        let lock = std::fs::OpenOptions::new()
+            .create(true)
+            .truncate(false)
+            .write(true)
+            .open(&path)
+            .map_err(io)?;
+        fs4::FileExt::lock(&lock).map_err(io)?;
+        let state_path = self.state_path();
+        if stamp(&state_path) != cache.seen {
+            *cache = self.load_cached();
+        }
+        cache.state.steps.insert(step.name.clone(), record);
+        self.save_state(&cache.state)?;
+        cache.seen = stamp(&state_path);
+        // The lock is released when `lock` is closed, after the new state is in place.
+        Ok(())
     }
 
     fn save_state(&self, state: &State) -> Result<(), PipelineError> {
@@ -192,7 +267,7 @@ impl Plan {
         on_event: &(dyn Fn(Event<'_>) + Sync),
     ) -> Result<RunSummary, PipelineError> {
         let tools = self.tool_hashes()?;
-        let mut state = self.load_state();
+        let mut cache = self.load_cached();
         let n = self.steps.len();
         let mut waiting: Vec<usize> = self.steps.iter().map(|s| s.deps.len()).collect();
         let mut dependents = vec![Vec::new(); n];
@@ -211,7 +286,7 @@ impl Plan {
                 while failure.is_none() && running < options.jobs.max(1) {
                     let Some(i) = ready.pop_first() else { break };
                     let step = &self.steps[i];
-                    let record = state.steps.get(&step.name).cloned();
+                    let record = cache.state.steps.get(&step.name).cloned();
                     let tool = tools.get(&step.program).cloned().unwrap_or_default();
                     let tx = tx.clone();
                     running += 1;
@@ -231,8 +306,7 @@ impl Plan {
                     Ok(None) => summary.up_to_date += 1,
                     Ok(Some(record)) => {
                         summary.ran += 1;
-                        state.steps.insert(self.steps[i].name.clone(), record);
-                        if let Err(e) = self.save_state(&state) {
+                        if let Err(e) = self.record(&mut cache, &self.steps[i], record) {
                             failure.get_or_insert(e);
                         }
                     }
@@ -253,6 +327,58 @@ impl Plan {
         match failure {
             Some(e) => Err(e),
             None => Ok(summary),
+        }
+    }
+
+    /// Runs the one step named `name` (`trace[3]` for frame 3 of the stage `trace`) unless
+    /// it is up to date, and records it in the run state: what a task of a Slurm job array
+    /// does. Its inputs must exist; the steps before it are not run.
+    ///
+    /// # Errors
+    /// [`ErrorKind::UnknownStep`] when the plan has no step of that name; otherwise as
+    /// [`Plan::run`].
+    pub fn run_step_named(
+        &self,
+        name: &str,
+        force: bool,
+        on_event: &(dyn Fn(Event<'_>) + Sync),
+    ) -> Result<RunSummary, PipelineError> {
+        let Some(step) = self.steps.iter().find(|s| s.name == name) else {
+            const SHOWN: usize = 12;
+            let names: Vec<&str> = self.steps.iter().map(|s| s.name.as_str()).collect();
+            let mut listed = names[..names.len().min(SHOWN)].join(", ");
+            if names.len() > SHOWN {
+                listed.push_str(&format!(", ... ({} more)", names.len() - SHOWN));
+            }
+            return Err(PipelineError::plain(
+                ErrorKind::UnknownStep,
+                format!(
+                    "`{}` has no step named `{name}`; its steps are: {listed}",
+                    self.file
+                ),
+            ));
+        };
+        let bytes = std::fs::read(&step.program).map_err(|e| {
+            PipelineError::io(
+                format!("cannot read tool program `{}`", step.program.display()),
+                e,
+            )
+        })?;
+        let tool = hex(&Sha256::digest(bytes));
+        let mut cache = self.load_cached();
+        let record = cache.state.steps.get(&step.name).cloned();
+        match self.run_step(step, &tool, record.as_ref(), force, on_event)? {
+            None => Ok(RunSummary {
+                ran: 0,
+                up_to_date: 1,
+            }),
+            Some(record) => {
+                self.record(&mut cache, step, record)?;
+                Ok(RunSummary {
+                    ran: 1,
+                    up_to_date: 0,
+                })
+            }
         }
     }
 

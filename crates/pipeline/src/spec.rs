@@ -86,6 +86,8 @@ pub(crate) struct StageSpec {
     pub params: Vec<(Spanned<String>, Param)>,
     pub sweep: Option<Spanned<String>>,
     pub gather: Option<Spanned<String>>,
+    /// What a Slurm task of this stage asks for (`irsig-run --emit-slurm`).
+    pub slurm: Option<crate::slurm::Resources>,
     pub start: usize,
     pub end: usize,
 }
@@ -150,7 +152,7 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
 }
 
 const STAGE_FIELDS: &[&str] = &[
-    "name", "tool", "args", "inputs", "reads", "outputs", "params", "sweep", "gather",
+    "name", "tool", "args", "inputs", "reads", "outputs", "params", "sweep", "gather", "slurm",
 ];
 
 fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
@@ -191,6 +193,10 @@ fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
         .get("gather")
         .map(|n| string(src, n, "the name of a sweep"))
         .transpose()?;
+    let slurm = f
+        .get("slurm")
+        .map(|n| crate::slurm::resources(src, n))
+        .transpose()?;
     if let (Some(_), Some(g)) = (&sweep, &gather) {
         return Err(src.error(
             ErrorKind::Structure,
@@ -209,6 +215,7 @@ fn stage(src: Source<'_>, node: &Node) -> Result<StageSpec, PipelineError> {
         params,
         sweep,
         gather,
+        slurm,
         start: node.start,
         end: node.end,
     })
@@ -327,7 +334,7 @@ fn string(src: Source<'_>, node: &Node, what: &str) -> Result<Spanned<String>, P
 }
 
 /// The fields of a struct value `Name(field: ...)` or `(field: ...)`, refusing unknown ones.
-fn fields_of<'n>(
+pub(crate) fn fields_of<'n>(
     src: Source<'_>,
     node: &'n Node,
     type_name: &str,

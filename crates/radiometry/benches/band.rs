@@ -1,10 +1,11 @@
 //! Throughput of L(T) (flat band: series; with an SRF: quadrature), of the `.rtt`-style
-//! table lookup that can replace it (`RadianceTable`, linear interpolation), of T(L), and
-//! of the Fresnel generator.
+//! table lookup that can replace it (`RadianceTable`, linear interpolation), of T(L) cold
+//! and through the image's inverse table (`InverseTable`, table start and Newton polish),
+//! and of the Fresnel generator.
 
 use divan::{Bencher, black_box};
 use irsig_radiometry::fresnel::{ComplexIndex, IndexTable, band_emissivity_table};
-use irsig_radiometry::{Band, RadianceTable, SensorResponse};
+use irsig_radiometry::{Band, InverseTable, RadianceTable, SensorResponse};
 
 fn main() {
     divan::main();
@@ -43,6 +44,36 @@ fn temperature_flat_8_14(b: Bencher) {
         .bench(|| {
             l.iter()
                 .map(|&l| band.temperature(black_box(l)))
+                .sum::<f64>()
+        });
+}
+
+/// T(L) through the inverse table an image's apparent-temperature layer uses (its
+/// construction, 256 cold solves, included: what a 1000-pixel image would pay).
+#[divan::bench]
+fn temperature_flat_8_14_inverse_table(b: Bencher) {
+    let band = Band::default();
+    let l: Vec<f64> = temps().iter().map(|&t| band.radiance(t)).collect();
+    b.counter(divan::counter::ItemsCount::new(l.len()))
+        .bench(|| {
+            let table = InverseTable::new(&band, &l);
+            l.iter()
+                .map(|&l| table.temperature(black_box(l)))
+                .sum::<f64>()
+        });
+}
+
+/// The same lookups with the table built once (a large image, where its construction is
+/// amortised).
+#[divan::bench]
+fn temperature_flat_8_14_inverse_table_lookup(b: Bencher) {
+    let band = Band::default();
+    let l: Vec<f64> = temps().iter().map(|&t| band.radiance(t)).collect();
+    let table = InverseTable::new(&band, &l);
+    b.counter(divan::counter::ItemsCount::new(l.len()))
+        .bench(|| {
+            l.iter()
+                .map(|&l| table.temperature(black_box(l)))
                 .sum::<f64>()
         });
 }

@@ -17,6 +17,13 @@ pub trait BandModel: Sync {
     /// The blackbody temperature in kelvin whose band radiance is `radiance_w_m2_sr` (the
     /// apparent temperature); 0 K for a radiance of 0 or less.
     fn temperature(&self, radiance_w_m2_sr: f64) -> f64;
+    /// `(L(T), dL/dT)` together, for bands that share the work between the two.
+    fn radiance_and_derivative(&self, temperature_k: f64) -> (f64, f64) {
+        (
+            self.radiance(temperature_k),
+            self.radiance_derivative(temperature_k),
+        )
+    }
 }
 
 impl BandModel for Band {
@@ -28,6 +35,9 @@ impl BandModel for Band {
     }
     fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
         Band::temperature(self, radiance_w_m2_sr)
+    }
+    fn radiance_and_derivative(&self, temperature_k: f64) -> (f64, f64) {
+        Band::radiance_and_derivative(self, temperature_k)
     }
 }
 

@@ -25,6 +25,7 @@ pub mod constants;
 mod emissivity;
 mod error;
 pub mod fresnel;
+mod inverse;
 mod planck;
 mod table;
 
@@ -35,4 +36,5 @@ pub use calculators::{
 };
 pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
+pub use inverse::InverseTable;
 pub use table::RadianceTable;

@@ -19,7 +19,8 @@
 
 use std::fmt;
 
-use irsig_radiometry::BandModel;
+use irsig_radiometry::{BandModel, InverseTable};
+use rayon::prelude::*;
 
 use crate::error::{Result, SensorError, SensorErrorKind, finite, positive};
 
@@ -357,7 +358,8 @@ impl fmt::Display for Lut {
     }
 }
 
-/// The apparent (blackbody-equivalent) temperature in K of every pixel.
+/// The apparent (blackbody-equivalent) temperature in K of every pixel, in parallel, through
+/// the band's inverse table (`irsig_radiometry::InverseTable`); the same at any thread count.
 ///
 /// # Errors
 /// A non-finite pixel, named by column and row.
@@ -367,9 +369,11 @@ pub fn apparent_temperature(
     band: &impl BandModel,
 ) -> Result<Vec<f32>> {
     check_finite(radiance_w_m2_sr, width)?;
-    Ok(radiance_w_m2_sr
-        .iter()
-        .map(|&l| band.temperature(f64::from(l)) as f32)
+    let radiance: Vec<f64> = radiance_w_m2_sr.iter().map(|&l| f64::from(l)).collect();
+    let inverse = InverseTable::new(band, &radiance);
+    Ok(radiance
+        .par_iter()
+        .map(|&l| inverse.temperature(l) as f32)
         .collect())
 }
 

@@ -62,6 +62,7 @@ mod error;
 pub mod geometry;
 mod path;
 mod path_table;
+pub mod pilot;
 mod shade;
 pub mod testing;
 mod tracer;
@@ -76,6 +77,6 @@ pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
 pub use tracer::{
-    Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
+    BandSet, Event, FacetRadiometry, Frame, Sample, SubBand, TraceOptions, Tracer, TruthPixel,
 };
 pub use vec::V3;

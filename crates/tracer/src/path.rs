@@ -154,7 +154,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// ends: the sky above the horizon, the terrain below it.
     fn escape(&self, dir: V3, alt: f64) -> Escape {
         let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
-        if nadir < self.bands[0].atmosphere.critical_nadir_angle_deg(alt) {
+        if nadir < self.bands.bands[0].atmosphere.critical_nadir_angle_deg(alt) {
             Escape::Terrain
         } else {
             Escape::Sky {

@@ -14,13 +14,16 @@ use irsig_radiometry::BandModel;
 
 use crate::env::Atmosphere;
 use crate::path::{Diffuse, Escape, HemiRay, Mirror, Node, Path, Primary};
-use crate::tracer::{BandData, Event, FrameConsts, Sample, Tracer};
+use crate::path_table::PathTable;
+use crate::tracer::{BandData, BandSet, Event, FrameConsts, Sample, Tracer};
 
 /// The terms of one facet's surface-leaving radiance in one sub-band.
 #[derive(Debug, Clone, Copy, Default)]
 struct SurfaceTerms {
     emissivity: f64,
     blackbody: f64,
+    /// `s·L_spec + (1 − s)·L_diffuse`: what the reflectance multiplies.
+    reflected: f64,
     specular_incident: f64,
     sky_hemispheric: f64,
     diffuse_incident: f64,
@@ -39,10 +42,15 @@ struct Sums {
     transmitted: f64,
     path_radiance: f64,
     radiance: f64,
+    /// `Σ τ·ε·dL_T/dT`.
+    temperature_sensitivity: f64,
+    /// `Σ τ·(L_T − L_reflected)`.
+    emissivity_sensitivity: f64,
 }
 
 impl Sums {
-    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64) {
+    /// Adds one sub-band's terms; `derivative` is its dL_T/dT at the facet's temperature.
+    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64, derivative: f64) {
         self.emitted += t.emissivity * t.blackbody;
         self.blackbody += t.blackbody;
         self.specular_incident += t.specular_incident;
@@ -52,6 +60,8 @@ impl Sums {
         self.transmitted += transmission * t.leaving;
         self.path_radiance += path_radiance;
         self.radiance += transmission * t.leaving + path_radiance;
+        self.temperature_sensitivity += transmission * t.emissivity * derivative;
+        self.emissivity_sensitivity += transmission * (t.blackbody - t.reflected);
     }
 }
 
@@ -65,9 +75,23 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         path: &Path,
         s: &mut Sample,
     ) -> f64 {
+        self.radiance_with::<TRUTH, A>(&self.bands, fc.path_table.as_ref(), fc, path, s)
+    }
+
+    /// [`Self::radiance`] in the sub-bands of `set`, with `table` (built for `set`) for the
+    /// path terms of facet hits, or the exact terms when `None`.
+    pub(crate) fn radiance_with<const TRUTH: bool, S: Atmosphere>(
+        &self,
+        set: &BandSet<S>,
+        table: Option<&PathTable>,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        s: &mut Sample,
+    ) -> f64 {
+        let one = set.bands.len() == 1;
         match path.primary {
             Primary::Sky { zenith_deg } => {
-                let radiance: f64 = self
+                let radiance: f64 = set
                     .bands
                     .iter()
                     .map(|b| b.atmosphere.sky_radiance(fc.sensor_alt, zenith_deg))
@@ -86,7 +110,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             } => {
                 let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
                 let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
-                for b in &self.bands {
+                for b in &set.bands {
                     let p = b.atmosphere.path(fc.sensor_alt, 0.0, path_range_m);
                     radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
@@ -105,32 +129,34 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     s.reflectance = 1.0 - self.terrain.emissivity;
                     s.blackbody_w_m2_sr = blackbody;
                     s.surface_leaving_w_m2_sr = leaving;
-                    s.transmission = self.effective_transmission(single_tau, transmitted, leaving);
+                    s.transmission = effective_transmission(one, single_tau, transmitted, leaving);
                     s.path_radiance_w_m2_sr = path_radiance;
                     s.radiance_w_m2_sr = radiance;
                 }
                 radiance
             }
             Primary::Facet { range_m, alt_m } => {
-                let cell = fc.path_table.as_ref().map(|t| t.cell(alt_m, range_m));
+                let cell = table.map(|t| t.cell(alt_m, range_m));
                 let mut sums = Sums::default();
                 let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
                 let mut radiance = 0.0;
-                for (k, b) in self.bands.iter().enumerate() {
-                    let first = self.leaving_chain(k, b, path);
-                    let p = match (&fc.path_table, cell) {
+                for (k, b) in set.bands.iter().enumerate() {
+                    let first = self.leaving_chain(b, path);
+                    let p = match (table, cell) {
                         (Some(table), Some(cell)) => table.terms(cell, k),
                         _ => b.atmosphere.path(fc.sensor_alt, alt_m, range_m),
                     };
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
-                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr);
+                        let facet = &path.nodes[0].surface.data;
+                        let derivative = b.derivative[facet.temperature_index as usize];
+                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr, derivative);
                         single = first;
                         single_tau = p.transmission;
                     }
                 }
                 if TRUTH {
-                    self.facet_truth(path, range_m, &sums, &single, single_tau, s);
+                    self.facet_truth(one, path, range_m, &sums, &single, single_tau, s);
                     s.radiance_w_m2_sr = radiance;
                 }
                 radiance
@@ -138,19 +164,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         }
     }
 
-    /// The transmission to report: the sub-band's own with one sub-band, else the
-    /// leaving-radiance-weighted mean.
-    fn effective_transmission(&self, single: f64, transmitted: f64, leaving: f64) -> f64 {
-        if self.bands.len() == 1 {
-            single
-        } else {
-            transmitted / leaving
-        }
-    }
-
     /// The truth terms of a path whose first event is a facet.
+    #[allow(clippy::too_many_arguments)]
     fn facet_truth(
         &self,
+        one: bool,
         path: &Path,
         range_m: f64,
         sums: &Sums,
@@ -161,7 +179,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let node = &path.nodes[0];
         let surface = &node.surface;
         let m = &self.materials[usize::from(surface.data.material)];
-        let one = self.bands.len() == 1;
         *s = Sample::miss(Event::Diffuse);
         s.primary_material = m.id;
         s.facet = Some(surface.facet);
@@ -198,29 +215,30 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             s.diffuse_incident_w_m2_sr = sums.diffuse_incident;
         }
         s.surface_leaving_w_m2_sr = sums.leaving;
-        s.transmission = self.effective_transmission(single_tau, sums.transmitted, sums.leaving);
+        s.transmission = effective_transmission(one, single_tau, sums.transmitted, sums.leaving);
         s.path_radiance_w_m2_sr = sums.path_radiance;
+        s.temperature_sensitivity = sums.temperature_sensitivity;
+        s.emissivity_sensitivity = sums.emissivity_sensitivity;
     }
 
-    /// The surface-leaving terms of the path's first facet in sub-band `k`: the chain of
+    /// The surface-leaving terms of the path's first facet in sub-band `b`: the chain of
     /// specular bounces evaluated from its far end back.
-    fn leaving_chain(&self, k: usize, b: &BandData<A>, path: &Path) -> SurfaceTerms {
+    fn leaving_chain<S: Atmosphere>(&self, b: &BandData<S>, path: &Path) -> SurfaceTerms {
         let mut next = 0.0;
         let mut terms = SurfaceTerms::default();
         for node in path.nodes.iter().rev() {
-            terms = self.surface_terms(k, b, node, next, path);
+            terms = self.surface_terms(b, node, next, path);
             next = terms.leaving;
         }
         terms
     }
 
-    /// `ε·L_T + r·(s·L_spec + (1 − s)·L_diffuse)` of one node in sub-band `k`, given the
+    /// `ε·L_T + r·(s·L_spec + (1 − s)·L_diffuse)` of one node in sub-band `b`, given the
     /// surface-leaving radiance `next` of the node its reflection ray hit.
     #[inline]
-    fn surface_terms(
+    fn surface_terms<S: Atmosphere>(
         &self,
-        k: usize,
-        b: &BandData<A>,
+        b: &BandData<S>,
         node: &Node,
         next: f64,
         path: &Path,
@@ -229,7 +247,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let slot = usize::from(surface.data.material);
         let sfrac = self.materials[slot].specular_fraction;
         let eps = b.emissivity[slot].at_cos(surface.cos_incidence);
-        let blackbody = b.blackbody_of(k == 0, &surface.data);
+        let blackbody = b.blackbody_of(&surface.data);
         let sky_hemi = b.atmosphere.sky_hemispheric(surface.alt_m);
         let specular_incident = match node.mirror {
             None => 0.0,
@@ -248,7 +266,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         HemiRay::Facet(h) => {
                             let slot = usize::from(h.data.material);
                             let e2 = b.emissivity[slot].at_cos(h.cos_incidence);
-                            e2 * b.blackbody_of(k == 0, &h.data)
+                            e2 * b.blackbody_of(&h.data)
                                 + (1.0 - e2) * b.atmosphere.sky_hemispheric(h.alt_m)
                         }
                         HemiRay::Escaped(e) => escaped(b, e),
@@ -257,17 +275,24 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 sum / f64::from(count)
             }
         };
-        let leaving = eps * blackbody
-            + (1.0 - eps) * (sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident);
+        let reflected = sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident;
+        let leaving = eps * blackbody + (1.0 - eps) * reflected;
         SurfaceTerms {
             emissivity: eps,
             blackbody,
+            reflected,
             specular_incident,
             sky_hemispheric: sky_hemi,
             diffuse_incident,
             leaving,
         }
     }
+}
+
+/// The transmission to report: the sub-band's own with one sub-band (`one`), else the
+/// leaving-radiance-weighted mean.
+fn effective_transmission(one: bool, single: f64, transmitted: f64, leaving: f64) -> f64 {
+    if one { single } else { transmitted / leaving }
 }
 
 /// Radiance arriving along a ray that left the scene, in one sub-band.

@@ -4,7 +4,7 @@ use std::fmt;
 
 use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
-use irsig_radiometry::{BandModel, EmissivityTable};
+use irsig_radiometry::{BandModel, EmissivityTable, InverseTable};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -47,7 +47,7 @@ impl Event {
 
 /// Options of one rendering. The defaults are the thesis's model: one specular bounce,
 /// no sky-view factor (F = 1), one ray per pixel.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TraceOptions {
     /// Specular reflection rays along one path (default 1; Appendix A: one is enough at
     /// earth-ambient temperatures). 0 makes specular facets reflect the sky at the mirror
@@ -60,6 +60,12 @@ pub struct TraceOptions {
     /// Supersampling: `n` gives n × n stratified, jittered rays per pixel; 1 (default) is
     /// one ray through the pixel centre.
     pub supersampling: u32,
+    /// Adaptive supersampling (the thesis's §3.3.4 countermeasure): with a threshold, only
+    /// pixels whose centre ray's apparent temperature differs from one of its 8 neighbours'
+    /// by more than this many kelvin get the n × n rays; the others keep their centre ray. A pixel
+    /// that is refined gets exactly what a full n × n rendering gives it. `None` (default):
+    /// every pixel gets n × n.
+    pub adaptive_threshold_k: Option<f64>,
     /// Seed of every random choice (sky-view directions, sub-pixel jitter). Each pixel
     /// draws from its own stream derived from the seed and its index, so the image does not
     /// depend on the thread count.
@@ -76,6 +82,7 @@ impl Default for TraceOptions {
             specular_bounces: 1,
             sky_view_rays: 0,
             supersampling: 1,
+            adaptive_threshold_k: None,
             seed: 0,
             truth: true,
         }
@@ -95,6 +102,14 @@ impl TraceOptions {
             return bad(format!(
                 "supersampling {} is out of range: expected 1 to 64",
                 self.supersampling
+            ));
+        }
+        if let Some(t) = self.adaptive_threshold_k
+            && !(t.is_finite() && t > 0.0)
+        {
+            return bad(format!(
+                "adaptive_threshold_k {t} is out of range: expected a finite number of kelvin \
+                 above 0"
             ));
         }
         if self.sky_view_rays > 1 << 20 {
@@ -158,6 +173,12 @@ pub struct Sample {
     pub path_radiance_w_m2_sr: f64,
     /// Radiance at the sensor, W m⁻² sr⁻¹.
     pub radiance_w_m2_sr: f64,
+    /// ∂L/∂T of the facet hit's kinetic temperature, `Σ τ·ε·dL_T/dT` over the sub-bands,
+    /// W m⁻² sr⁻¹ K⁻¹ (0 for a miss): what the error budget propagates a temperature's
+    /// uncertainty by.
+    pub temperature_sensitivity: f64,
+    /// ∂L/∂ε of the facet hit, `Σ τ·(L_T − L_reflected)`, W m⁻² sr⁻¹ (0 for a miss).
+    pub emissivity_sensitivity: f64,
 }
 
 impl Sample {
@@ -191,6 +212,8 @@ impl Sample {
             transmission: f64::NAN,
             path_radiance_w_m2_sr: f64::NAN,
             radiance_w_m2_sr: f64::NAN,
+            temperature_sensitivity: 0.0,
+            emissivity_sensitivity: 0.0,
         }
     }
 }
@@ -252,13 +275,23 @@ impl fmt::Display for Sample {
             "L_u (W m-2 sr-1)           {}",
             self.path_radiance_w_m2_sr
         )?;
-        write!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)
+        writeln!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)?;
+        writeln!(
+            f,
+            "dL/dT_kinetic              {}",
+            self.temperature_sensitivity
+        )?;
+        write!(
+            f,
+            "dL/dε                      {}",
+            self.emissivity_sensitivity
+        )
     }
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
-/// outputs carry, rounded to f32 as the truth EXR stores them: 40 bytes, where a whole
-/// [`Sample`] is 144. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
+/// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
+/// [`Sample`] is 160. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
 /// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
 /// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
@@ -287,11 +320,18 @@ pub struct TruthPixel {
     pub path_radiance_w_m2_sr: f32,
     /// Sky-view (shape) factor F (1 when the model is off).
     pub sky_view_factor: f32,
+    /// Raw-scene index of the facet hit (`u32::MAX`: none): the error budget's uncertainties
+    /// are per material or per object.
+    pub facet: u32,
+    /// [`Sample::temperature_sensitivity`], W m⁻² sr⁻¹ K⁻¹.
+    pub temperature_sensitivity: f32,
+    /// [`Sample::emissivity_sensitivity`], W m⁻² sr⁻¹.
+    pub emissivity_sensitivity: f32,
 }
 
 // The sizes the frame's memory traffic was measured at (the doc above).
-const _: () = assert!(std::mem::size_of::<TruthPixel>() == 40);
-const _: () = assert!(std::mem::size_of::<Sample>() == 144);
+const _: () = assert!(std::mem::size_of::<TruthPixel>() == 56);
+const _: () = assert!(std::mem::size_of::<Sample>() == 160);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -302,8 +342,8 @@ impl TruthPixel {
     }
 
     /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
-    /// the layers that come from the pixel's radiance instead ([`Layer::Radiance`],
-    /// [`Layer::ApparentTemperature`]).
+    /// the layers that come from the pixel's radiance and the declared uncertainties
+    /// instead ([`Layer::Radiance`], [`Layer::ApparentTemperature`], [`Layer::BUDGET`]).
     #[must_use]
     pub fn layer(&self, layer: Layer) -> Option<f32> {
         Some(match layer {
@@ -317,7 +357,14 @@ impl TruthPixel {
             Layer::Transmission => self.transmission,
             Layer::PathRadiance => self.path_radiance_w_m2_sr,
             Layer::SkyViewFactor => self.sky_view_factor,
-            Layer::Radiance | Layer::ApparentTemperature => return None,
+            Layer::Radiance
+            | Layer::ApparentTemperature
+            | Layer::SigmaKineticTemperature
+            | Layer::SigmaEmissivity
+            | Layer::SigmaTransmission
+            | Layer::SigmaPathRadiance
+            | Layer::SigmaModel
+            | Layer::SigmaTotal => return None,
         })
     }
 }
@@ -335,6 +382,9 @@ impl From<&Sample> for TruthPixel {
             transmission: s.transmission as f32,
             path_radiance_w_m2_sr: s.path_radiance_w_m2_sr as f32,
             sky_view_factor: s.sky_view_factor as f32,
+            facet: s.facet.unwrap_or(u32::MAX),
+            temperature_sensitivity: s.temperature_sensitivity as f32,
+            emissivity_sensitivity: s.emissivity_sensitivity as f32,
         }
     }
 }
@@ -401,11 +451,12 @@ pub(crate) struct MaterialData {
 pub struct FacetRadiometry {
     /// Index into the tracer's material list (not the material id).
     pub(crate) material: u16,
-    /// Index into each sub-band's blackbody table (sub-bands after the first).
+    /// Index into the tracer's distinct temperatures, and so into every band set's
+    /// blackbody tables.
     pub(crate) temperature_index: u32,
     pub(crate) temperature_k: f64,
-    /// L_T in the first sub-band (the whole band when there is one), W m⁻² sr⁻¹: kept here,
-    /// beside the plane, because a table in facet order costs a cache miss per hit at 1M
+    /// L_T in the tracer's first sub-band (the whole band when there is one), W m⁻² sr⁻¹:
+    /// kept here, beside the plane, because a table costs a cache miss per hit at 1M
     /// triangles.
     pub(crate) blackbody: f64,
 }
@@ -417,23 +468,48 @@ pub(crate) struct BandData<A> {
     pub(crate) atmosphere: A,
     /// Per material slot.
     pub(crate) emissivity: Vec<EmissivityTable>,
-    /// L_T per temperature index, W m⁻² sr⁻¹ (empty for the first sub-band, whose L_T is
-    /// in the facet records).
+    /// L_T per temperature index, W m⁻² sr⁻¹; empty when `inline`.
     pub(crate) blackbody: Vec<f64>,
+    /// dL_T/dT per temperature index, W m⁻² sr⁻¹ K⁻¹ (for the error budget).
+    pub(crate) derivative: Vec<f64>,
+    /// The facet records hold this sub-band's L_T (the tracer's own first sub-band).
+    pub(crate) inline: bool,
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
     pub(crate) terrain_blackbody: f64,
     pub(crate) terrain_leaving: f64,
 }
 
 impl<A> BandData<A> {
-    /// L_T of a facet in this sub-band (`first`: this is the first sub-band).
+    /// L_T of a facet in this sub-band, W m⁻² sr⁻¹.
     #[inline]
-    pub(crate) fn blackbody_of(&self, first: bool, facet: &FacetRadiometry) -> f64 {
-        if first {
+    pub(crate) fn blackbody_of(&self, facet: &FacetRadiometry) -> f64 {
+        if self.inline {
             facet.blackbody
         } else {
             self.blackbody[facet.temperature_index as usize]
         }
+    }
+}
+
+/// The sub-bands a radiance is summed over, ready for a tracer's scene: its own
+/// ([`Tracer::with_sub_bands`]) or another set on the same scene ([`Tracer::band_set`]),
+/// which the pilot evaluates recorded paths with.
+#[derive(Debug)]
+pub struct BandSet<A> {
+    pub(crate) bands: Vec<BandData<A>>,
+}
+
+impl<A> BandSet<A> {
+    /// The number of sub-bands.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.bands.len()
+    }
+
+    /// Whether the set has no sub-band (never, once built).
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        self.bands.is_empty()
     }
 }
 
@@ -448,7 +524,11 @@ pub struct Tracer<B, A> {
     /// The whole band: what the apparent temperature inverts.
     pub(crate) band: B,
     /// The sub-bands the radiance equation is summed over (one: the band itself).
-    pub(crate) bands: Vec<BandData<A>>,
+    pub(crate) bands: BandSet<A>,
+    /// Every distinct facet temperature, K, in temperature-index order.
+    pub(crate) temperatures: Vec<f64>,
+    /// Each material's band emissivity, by slot.
+    pub(crate) emissivity: Vec<EmissivityTable>,
     pub(crate) path_terms: PathTermsMode,
 }
 
@@ -460,7 +540,16 @@ pub(crate) struct Ctx<'a> {
     pixel_index: u64,
 }
 
-impl Ctx<'_> {
+impl<'a> Ctx<'a> {
+    /// The state of a ray of pixel `pixel_index` (row-major) rendered with `options`.
+    pub(crate) fn for_pixel(options: &'a TraceOptions, pixel_index: u64) -> Self {
+        Self {
+            options,
+            rng: None,
+            pixel_index,
+        }
+    }
+
     /// The pixel's random stream, seeded on first use (most pixels never draw).
     pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
         let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
@@ -485,6 +574,13 @@ pub(crate) struct FrameConsts<'a> {
     pub(crate) cos_critical_nadir: f64,
     /// The primary hits' path terms in every sub-band, when [`PathTermsMode::Tabulated`].
     pub(crate) path_table: Option<PathTable>,
+}
+
+impl FrameConsts<'_> {
+    /// The camera of the frame.
+    pub(crate) fn camera(&self) -> &Camera {
+        self.camera
+    }
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -559,11 +655,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 specular_fraction: m.specular_fraction,
             });
         }
-        // Temperatures for the sub-bands after the first: one table entry per distinct
-        // temperature (scenes hold few), so K sub-bands cost K small tables, not K × facets.
-        let spectral = sub_bands.len() > 1;
+        // One table entry per distinct temperature (scenes hold few, and neighbouring facets
+        // usually share one), so K sub-bands cost K small tables, not K × facets.
         let mut temperatures: Vec<f64> = Vec::new();
         let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
+        let mut last: Option<(u64, u32)> = None;
         let mut facets = Vec::with_capacity(scene.facets.len());
         let mut triangles = Vec::with_capacity(scene.facets.len());
         let first = &sub_bands[0].band;
@@ -575,15 +671,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     material: f.material.0,
                 }));
             }
-            let temperature_index = if spectral {
-                *index_of
-                    .entry(f.temperature_k.to_bits())
-                    .or_insert_with(|| {
+            let bits = f.temperature_k.to_bits();
+            let temperature_index = match last {
+                Some((b, index)) if b == bits => index,
+                _ => {
+                    let index = *index_of.entry(bits).or_insert_with(|| {
                         temperatures.push(f.temperature_k);
                         (temperatures.len() - 1) as u32
-                    })
-            } else {
-                0
+                    });
+                    last = Some((bits, index));
+                    index
+                }
             };
             facets.push(FacetRadiometry {
                 material: slot,
@@ -594,26 +692,70 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             // Indices were checked by validate().
             triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
         }
-        let terrain = scene.terrain;
+        let mut tracer = Self {
+            geometry: Geometry::with_data(&triangles, &facets),
+            materials: mats,
+            terrain: scene.terrain,
+            band,
+            bands: BandSet { bands: Vec::new() },
+            temperatures,
+            emissivity: tables,
+            path_terms: PathTermsMode::Exact,
+        };
+        let mut own = tracer.band_set(sub_bands)?;
+        // The first sub-band's L_T is in the facet records.
+        own.bands[0].inline = true;
+        own.bands[0].blackbody = Vec::new();
+        tracer.bands = own;
+        Ok(tracer)
+    }
+
+    /// This tracer with its sub-bands replaced by `sub_bands` (another atmosphere or
+    /// another partition of the band), the BVH kept.
+    ///
+    /// # Errors
+    /// As [`Tracer::band_set`].
+    pub fn with_bands(mut self, sub_bands: Vec<SubBand<B, A>>) -> Result<Self, TraceError> {
+        self.bands = self.band_set(sub_bands)?;
+        Ok(self)
+    }
+
+    /// The sub-bands `sub_bands` prepared for this tracer's scene: every facet temperature's
+    /// and the terrain's blackbody radiance in each, and each material's emissivity. For
+    /// evaluating recorded paths under another band model or atmosphere (the pilot).
+    ///
+    /// # Errors
+    /// No sub-band, or a sub-band whose emissivity list does not have one table per
+    /// material.
+    pub fn band_set<S: Atmosphere>(
+        &self,
+        sub_bands: Vec<SubBand<B, S>>,
+    ) -> Result<BandSet<S>, TraceError> {
+        if sub_bands.is_empty() {
+            return Err(TraceError::new(TraceErrorKind::InvalidOptions(
+                "no sub-band: expected at least one".into(),
+            )));
+        }
+        let terrain = self.terrain;
         let mut bands = Vec::with_capacity(sub_bands.len());
         for (k, sb) in sub_bands.into_iter().enumerate() {
             let emissivity = match sb.emissivity {
-                None => tables.clone(),
-                Some(e) if e.len() == tables.len() => e,
+                None => self.emissivity.clone(),
+                Some(e) if e.len() == self.emissivity.len() => e,
                 Some(e) => {
                     return Err(TraceError::new(TraceErrorKind::InvalidOptions(format!(
                         "sub-band {}: {} emissivity tables for {} materials",
                         k + 1,
                         e.len(),
-                        tables.len()
+                        self.emissivity.len()
                     ))));
                 }
             };
-            let blackbody = if k == 0 {
-                Vec::new()
-            } else {
-                temperatures.iter().map(|&t| sb.band.radiance(t)).collect()
-            };
+            let (blackbody, derivative) = self
+                .temperatures
+                .iter()
+                .map(|&t| sb.band.radiance_and_derivative(t))
+                .unzip();
             let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
             let terrain_leaving = terrain.emissivity * terrain_blackbody
                 + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
@@ -621,18 +763,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 atmosphere: sb.atmosphere,
                 emissivity,
                 blackbody,
+                derivative,
+                inline: false,
                 terrain_blackbody,
                 terrain_leaving,
             });
         }
-        Ok(Self {
-            geometry: Geometry::with_data(&triangles, &facets),
-            materials: mats,
-            terrain,
-            band,
-            bands,
-            path_terms: PathTermsMode::Exact,
-        })
+        Ok(BandSet { bands })
     }
 
     /// The geometry (BVH and re-centring).
@@ -654,6 +791,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
+        self.frame_consts_with(camera, self.path_terms == PathTermsMode::Tabulated)
+    }
+
+    /// What a frame's rays share, with this tracer's path-term table when `table`.
+    pub(crate) fn frame_consts_with<'a>(&self, camera: &'a Camera, table: bool) -> FrameConsts<'a> {
         let [w, h] = camera.pixels;
         let sensor_alt = camera.position_m[2].max(0.0);
         FrameConsts {
@@ -662,32 +804,37 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             vs: (0..h).map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
-            cos_critical_nadir: self.bands[0]
+            cos_critical_nadir: self.bands.bands[0]
                 .atmosphere
                 .critical_nadir_angle_deg(sensor_alt)
                 .to_radians()
                 .cos(),
-            path_table: (self.path_terms == PathTermsMode::Tabulated).then(|| {
-                let [lo, hi] = self.geometry.bounds_m();
-                let p = camera.position_m;
-                // Nearest and farthest points of the box from the sensor.
-                let near: f64 = (0..3)
-                    .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let far: f64 = (0..3)
-                    .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
-                    .sum::<f64>()
-                    .sqrt();
-                let atmospheres: Vec<&A> = self.bands.iter().map(|b| &b.atmosphere).collect();
-                PathTable::new(
-                    &atmospheres,
-                    sensor_alt,
-                    [lo[2].max(0.0), hi[2].max(0.0)],
-                    [near, far],
-                )
-            }),
+            path_table: table.then(|| self.path_table(camera, &self.bands)),
         }
+    }
+
+    /// The path-term table of `camera`'s frame for every sub-band of `set`: over the
+    /// scene's altitudes, from the nearest to the farthest point of its box.
+    pub(crate) fn path_table<S: Atmosphere>(&self, camera: &Camera, set: &BandSet<S>) -> PathTable {
+        let sensor_alt = camera.position_m[2].max(0.0);
+        let [lo, hi] = self.geometry.bounds_m();
+        let p = camera.position_m;
+        // Nearest and farthest points of the box from the sensor.
+        let near: f64 = (0..3)
+            .map(|k| (p[k] - p[k].clamp(lo[k], hi[k])).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let far: f64 = (0..3)
+            .map(|k| (p[k] - lo[k]).abs().max((p[k] - hi[k]).abs()).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        let atmospheres: Vec<&S> = set.bands.iter().map(|b| &b.atmosphere).collect();
+        PathTable::new(
+            &atmospheres,
+            sensor_alt,
+            [lo[2].max(0.0), hi[2].max(0.0)],
+            [near, far],
+        )
     }
 
     /// Chooses how primary hits get their path terms (default [`PathTermsMode::Exact`]).
@@ -721,6 +868,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         progress: &(dyn Fn(u64) + Sync),
     ) -> Result<Frame, TraceError> {
         options.validate()?;
+        if options.supersampling > 1
+            && let Some(threshold_k) = options.adaptive_threshold_k
+        {
+            return self.render_adaptive(camera, options, threshold_k, progress);
+        }
         let [w, h] = camera.pixels;
         let n = w as usize * h as usize;
         let fc = self.frame_consts(camera);
@@ -778,6 +930,76 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         })
     }
 
+    /// Adaptive supersampling: the centre rays first, then n × n rays at the pixels whose
+    /// centre differs from one of its 8 neighbours' by more than `threshold_k` in apparent
+    /// temperature. Each refined pixel is computed exactly as a full n × n rendering
+    /// computes it (its own random stream from the start), so it matches that rendering.
+    fn render_adaptive(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        threshold_k: f64,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Frame, TraceError> {
+        let centre_options = TraceOptions {
+            supersampling: 1,
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        let mut frame = self.render(camera, &centre_options, progress)?;
+        let refine = self.edges(&frame, threshold_k);
+        let fc = self.frame_consts(camera);
+        let full = TraceOptions {
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        let w = frame.width.max(1) as usize;
+        frame
+            .radiance_w_m2_sr
+            .par_chunks_mut(w)
+            .zip(refine.par_chunks(w))
+            .enumerate()
+            .for_each(|(row, (rad, flags))| {
+                let mut path = Path::default();
+                let mut scratch = Sample::miss(Event::Sky);
+                for (col, (l_out, &flag)) in rad.iter_mut().zip(flags).enumerate() {
+                    if flag {
+                        *l_out = self.pixel::<false>(
+                            &fc,
+                            &full,
+                            col as u32,
+                            row as u32,
+                            &mut path,
+                            &mut scratch,
+                        );
+                    }
+                }
+            });
+        Ok(frame)
+    }
+
+    /// The pixels of `frame` whose apparent temperature differs from one of its 8
+    /// neighbours' by more than `threshold_k` (the diagonal ones count: a corner of a facet
+    /// can cut into a pixel whose 4-neighbours' centres all miss it).
+    pub(crate) fn edges(&self, frame: &Frame, threshold_k: f64) -> Vec<bool> {
+        let inverse = InverseTable::new(&self.band, &frame.radiance_w_m2_sr);
+        let t: Vec<f64> = frame
+            .radiance_w_m2_sr
+            .par_iter()
+            .map(|&l| inverse.temperature(l))
+            .collect();
+        let (w, h) = (frame.width as usize, frame.height as usize);
+        (0..w * h)
+            .into_par_iter()
+            .map(|i| {
+                let (col, row) = (i % w, i / w);
+                let rows = row.saturating_sub(1)..(row + 2).min(h);
+                rows.flat_map(|r| (col.saturating_sub(1)..(col + 2).min(w)).map(move |c| r * w + c))
+                    .any(|j| (t[i] - t[j]).abs() > threshold_k)
+            })
+            .collect()
+    }
+
     /// Every term of the ray through the centre of pixel `(column, row)`, exactly as
     /// [`Self::render`] computes them for the truth outputs, in f64.
     ///
@@ -827,11 +1049,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         centre: &mut Sample,
     ) -> f64 {
         let camera = fc.camera;
-        let mut ctx = Ctx {
+        let mut ctx = Ctx::for_pixel(
             options,
-            rng: None,
-            pixel_index: u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
-        };
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
         // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
         let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
         self.follow(fc, dir, &mut ctx, path);

@@ -6,11 +6,15 @@
 //! irsig-run pipelines/quickstart.ron            # run what is out of date
 //! irsig-run -n pipelines/quickstart.ron         # print the commands instead
 //! irsig-run --emit-makefile Makefile p.ron      # the same steps as a Makefile
+//! irsig-run --emit-slurm slurm/ p.ron           # Slurm batch scripts: sh slurm/submit.sh
+//! irsig-run --step 'trace[3]' p.ron             # one step (what a Slurm task runs)
 //! ```
 //!
 //! Before anything runs, every stage's parameters are checked by the tool's own clap `Cli`
 //! ([`tools`]), so an unknown or mistyped parameter is reported at its line and column in
 //! the pipeline file.
+
+mod slurm;
 
 use std::path::PathBuf;
 
@@ -32,7 +36,8 @@ the pipeline file).
 Examples:
   irsig-run pipelines/quickstart.ron
   irsig-run --dry-run --force pipelines/quickstart.ron
-  irsig-run --emit-makefile pipelines/Makefile pipelines/quickstart.ron && make -C pipelines -j"
+  irsig-run --emit-makefile pipelines/Makefile pipelines/quickstart.ron && make -C pipelines -j
+  irsig-run --emit-slurm slurm pipelines/thesis-flyby.ron && sh slurm/submit.sh"
 )]
 pub struct Cli {
     /// The pipeline file (RON). Paths in it are relative to its directory.
@@ -52,8 +57,38 @@ pub struct Cli {
     pub dry_run: bool,
 
     /// Write an equivalent Makefile to FILE (`-` for stdout) and run nothing.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "emit_slurm")]
     pub emit_makefile: Option<PathBuf>,
+
+    /// Write Slurm batch scripts for the steps out of date into DIR (a job per stage, a job
+    /// array per frame sweep, `--dependency` between them) and `DIR/submit.sh`, which submits
+    /// them; run nothing. See formats/pipeline.md.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["dry_run", "step"])]
+    pub emit_slurm: Option<PathBuf>,
+
+    /// With --emit-slurm: the partition every job is submitted to.
+    #[arg(long, value_name = "NAME", requires = "emit_slurm")]
+    pub partition: Option<String>,
+
+    /// With --emit-slurm: a further `#SBATCH` option for every job (repeatable), such as
+    /// `--sbatch=--account=proj42`.
+    #[arg(
+        long,
+        value_name = "OPTION",
+        requires = "emit_slurm",
+        allow_hyphen_values = true
+    )]
+    pub sbatch: Vec<String>,
+
+    /// With --emit-slurm: a shell line every job runs first (repeatable), such as
+    /// `--setup 'module load irsig'`.
+    #[arg(long, value_name = "LINE", requires = "emit_slurm")]
+    pub setup: Vec<String>,
+
+    /// Run only the step NAME (`trace[3]`: frame 3 of the stage `trace`) unless it is up to
+    /// date; its inputs must exist. What each task of the Slurm scripts runs.
+    #[arg(long, value_name = "NAME", conflicts_with_all = ["dry_run", "emit_makefile"])]
+    pub step: Option<String>,
 
     /// Do not report stages on stderr.
     #[arg(short, long)]
@@ -99,8 +134,15 @@ fn check<C: Parser>(argv: &[String]) -> Result<(), String> {
 /// A malformed or inconsistent pipeline file (with its line and column), a failed stage,
 /// or an unwritable Makefile.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    if let Some(dir) = &cli.emit_slurm {
+        return slurm::emit(&cli, dir);
+    }
     let pipeline = Pipeline::load(&cli.pipeline)?;
-    let plan = pipeline.plan(&tools())?;
+    let plan = if cli.step.is_some() {
+        pipeline.plan_for_single_steps(&tools())?
+    } else {
+        pipeline.plan(&tools())?
+    };
     if let Some(path) = &cli.emit_makefile {
         let text = plan.makefile()?;
         return irsig_cli::write_output(Some(path), |w| w.write_all(text.as_bytes()));
@@ -141,13 +183,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             _ => {}
         }
     };
-    let summary = plan.run(
-        RunOptions {
-            jobs,
-            force: cli.force,
-        },
-        &report,
-    )?;
+    let summary = match &cli.step {
+        Some(name) => plan.run_step_named(name, cli.force, &report)?,
+        None => plan.run(
+            RunOptions {
+                jobs,
+                force: cli.force,
+            },
+            &report,
+        )?,
+    };
     if !quiet {
         eprintln!(
             "irsig-run: {} stage(s) ran, {} up to date",

@@ -22,6 +22,8 @@
 //! files named, for one view, so that `irsig-run` and Makefiles see each file a stage
 //! writes.
 
+mod tolerance;
+
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
@@ -31,12 +33,17 @@ use irsig_cli::args::{BandArg, DcArgs, named};
 use irsig_formats::canonical::{from_ron_bytes, read_raw_scene};
 use irsig_formats::legacy::decode;
 use irsig_formats::views::{parse_views, read_execute};
+use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::truth::Layer;
+use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_radiometry::{BandModel, InverseTable, TotalRadiance};
 use irsig_raster::{Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_sensor_model::quantise::Quantiser;
-use irsig_tracer::{Atmosphere, Camera, Frame, PathTermsMode, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
+use irsig_tracer::{
+    Atmosphere, Camera, Frame, PathTermsMode, SubBand, TraceOptions, Tracer, Vacuum,
+};
 use miette::{IntoDiagnostic, WrapErr, miette};
 use rayon::prelude::*;
 
@@ -101,9 +108,9 @@ pub struct Cli {
     pub atmosphere: String,
     /// The atmosphere model: `table` (slant-path tables), `layered` (eq. 8-9), `thesis`
     /// (eq. 10-11, the 1990 model) or `none`.
-    #[arg(long, default_value = "table", value_name = "MODEL",
-          value_parser = named::<ModelKind>(&ModelKind::NAMES))]
-    pub atmosphere_model: ModelKind,
+    /// [default: table]
+    #[arg(long, value_name = "MODEL", value_parser = named::<ModelKind>(&ModelKind::NAMES))]
+    pub atmosphere_model: Option<ModelKind>,
     /// Sky radiance for `--atmosphere none`, W m^-2 sr^-1 (0: cold space).
     #[arg(long, default_value_t = 0.0, value_name = "W_M2_SR")]
     pub sky_radiance: f64,
@@ -134,24 +141,73 @@ pub struct Cli {
     /// With -o, write no DC image or LUT.
     #[arg(long, conflicts_with = "execute")]
     pub no_dc: bool,
-    /// Specular bounces per path (thesis: 1).
-    #[arg(long, default_value_t = 1)]
-    pub bounces: u32,
-    /// Sky-view factor rays per diffuse hit (0: off, F = 1 as in the thesis).
-    #[arg(long, default_value_t = 0, value_name = "N")]
-    pub sky_view_rays: u32,
-    /// Supersampling: N for N x N stratified rays per pixel (1: one ray through the centre).
-    #[arg(long, default_value_t = 1, value_name = "N")]
-    pub supersample: u32,
+    /// Specular bounces per path (thesis: 1) [default: 1].
+    #[arg(long)]
+    pub bounces: Option<u32>,
+    /// Sky-view factor rays per diffuse hit (0: off, F = 1 as in the thesis) [default: 0].
+    #[arg(long, value_name = "N")]
+    pub sky_view_rays: Option<u32>,
+    /// Supersampling: N for N x N stratified rays per pixel (1: one ray through the centre)
+    /// [default: 1].
+    #[arg(long, value_name = "N")]
+    pub supersample: Option<u32>,
+    /// Adaptive supersampling: give the N x N rays of --supersample only to pixels whose
+    /// centre ray's apparent temperature differs from a neighbour's by more than K kelvin
+    /// (edges); the others keep their centre ray.
+    #[arg(long, value_name = "K", requires = "supersample")]
+    pub adaptive_supersampling: Option<f64>,
     /// Seed for sky-view directions and sub-pixel jitter.
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Path terms (τ, L_u) of facet hits: `exact` (one atmosphere call per hit) or
     /// `tabulated` (a per-frame altitude × range table; worst error 15 mK, see
-    /// docs/accuracy.md; faster from about 200 × 200 pixels up).
-    #[arg(long, default_value = "exact", value_name = "MODE",
-          value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
-    pub path_terms: PathTermsMode,
+    /// docs/accuracy.md; faster from about 200 × 200 pixels up) [default: exact].
+    #[arg(long, value_name = "MODE", value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
+    pub path_terms: Option<PathTermsMode>,
+    /// Let the tool choose the models (atmosphere, bounces, sky-view rays, supersampling,
+    /// path terms, sub-bands) for this scene and view: the cheapest whose predicted error
+    /// against the most accurate settings stays within K kelvin at --tolerance-percentile
+    /// of the pixels. A pilot over a sample of pixels decides per frame; the decision is
+    /// printed on stderr and written beside the outputs (PREFIX.decision.ron with -o, else
+    /// --decision-out). Pin a model by hand with --pin.
+    #[arg(long, value_name = "K", allow_negative_numbers = true, conflicts_with_all = [
+        "atmosphere_model", "bounces", "sky_view_rays", "supersample", "path_terms",
+        "adaptive_supersampling", "decision",
+    ])]
+    pub tolerance: Option<f64>,
+    /// The percentile of pixels --tolerance applies to, more than 0 and at most 100.
+    #[arg(
+        long,
+        default_value_t = 99.0,
+        value_name = "P",
+        requires = "tolerance",
+        allow_negative_numbers = true
+    )]
+    pub tolerance_percentile: f64,
+    /// With --tolerance, fix one model's setting: MODEL=SETTING, with MODEL one of
+    /// atmosphere (table, layered, thesis), bounces (N), sky-view (N rays, 0: off),
+    /// supersampling (N or adaptive-N), path-terms (exact, tabulated), sub-bands (1, K,
+    /// full). Repeat for several.
+    #[arg(long, value_name = "MODEL=SETTING", requires = "tolerance")]
+    pub pin: Vec<tolerance::Pin>,
+    /// Apply a decision an earlier --tolerance run wrote (for every frame), instead of
+    /// piloting: tiles of one frame share their frame's decision.
+    #[arg(long, value_name = "FILE")]
+    pub decision: Option<String>,
+    /// Declared uncertainties of the inputs (canonical RON, formats/canonical/
+    /// uncertainties.md): the truth EXR gains the error budget, one σ layer (K) per source
+    /// and their root-sum-square.
+    #[arg(long, value_name = "FILE")]
+    pub uncertainties: Option<String>,
+    /// With --tolerance and the per-output flags, write the decision (canonical RON) to
+    /// FILE.
+    #[arg(
+        long,
+        value_name = "FILE",
+        requires = "tolerance",
+        conflicts_with = "output"
+    )]
+    pub decision_out: Option<PathBuf>,
     /// Print every term of the radiance equation for pixel COLUMN,ROW of the first view and
     /// write no files.
     #[arg(long, value_name = "COLUMN,ROW", value_parser = parse_pixel)]
@@ -325,6 +381,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             "only one output can go to standard output (`-`)",
         ));
     }
+    if let Some(t) = cli.tolerance {
+        irsig_model::decision::check_tolerance(t, "--tolerance")
+            .and_then(|()| {
+                irsig_model::decision::check_percentile(
+                    cli.tolerance_percentile,
+                    "--tolerance-percentile",
+                )
+            })
+            .map_err(|e| irsig_cli::usage_error(format!("{}: {}", e.path, e.kind)))?;
+    }
     if !cli.sky_radiance.is_finite() || cli.sky_radiance < 0.0 {
         return Err(irsig_cli::usage_error(format!(
             "--sky-radiance {} is out of range: expected a finite radiance of 0 or more",
@@ -340,19 +406,50 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         from_ron_bytes(&input.name, &input.bytes)?
     };
     let job = read_job(&cli)?;
+    let uncertainties = match &cli.uncertainties {
+        Some(path) => Some(read_uncertainties(path, &materials)?),
+        None => None,
+    };
+    let inputs = Inputs {
+        scene,
+        materials,
+        job,
+        uncertainties,
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
         .into_diagnostic()?;
     match &cli.band {
-        TraceBand::Total => {
-            pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, TotalRadiance))
-        }
+        TraceBand::Total => pool.install(|| with_atmosphere(&cli, &inputs, TotalRadiance)),
         TraceBand::Band(arg) => {
             let band = arg.load()?;
-            pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, band))
+            pool.install(|| with_atmosphere(&cli, &inputs, band))
         }
     }
+}
+
+/// The declared uncertainties (canonical RON), checked against the material library: an
+/// emissivity ± that would leave [0, 1] is an error at its line and column.
+fn read_uncertainties(path: &str, materials: &MaterialLibrary) -> miette::Result<Uncertainties> {
+    let input = irsig_cli::read_input(path)?;
+    let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+    let u: Uncertainties = from_ron_bytes(&input.name, &input.bytes)?;
+    u.check_emissivity(|id| {
+        let m = materials.materials.iter().find(|m| m.id == id)?;
+        let normal = m.emissivity.first().map(|r| r.1)?;
+        let most = m.emissivity.iter().map(|r| r.1).fold(0.0, f64::max);
+        Some((normal, most))
+    })
+    .map_err(|e| {
+        irsig_formats::canonical::error_at_path(
+            &input.name,
+            text,
+            &e.path,
+            format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
+        )
+    })?;
+    Ok(u)
 }
 
 /// The canonical atmosphere `--atmosphere` names: a built-in, else a file.
@@ -371,24 +468,42 @@ fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
     Ok(from_ron_bytes(&input.name, &input.bytes)?)
 }
 
+/// The atmosphere of the run, in the two forms the run needs: precomputed for rendering
+/// (`A`), and computed afresh for the pilot's few pixels (`S`), for any model kind its
+/// tables allow.
+struct Air<'a, A, S> {
+    /// The kinds on offer, most accurate first (`None`: a vacuum).
+    kinds: Option<Vec<ModelKind>>,
+    precomputed: Box<dyn Fn(ModelKind) -> miette::Result<A> + 'a>,
+    direct: Box<dyn Fn(ModelKind) -> miette::Result<S> + 'a>,
+}
+
+/// What a run reads besides the band and the atmosphere.
+struct Inputs {
+    scene: RawScene,
+    materials: MaterialLibrary,
+    job: Job,
+    uncertainties: Option<Uncertainties>,
+}
+
 fn with_atmosphere<R: BandModel + Clone>(
     cli: &Cli,
-    scene: &RawScene,
-    materials: &MaterialLibrary,
-    job: &Job,
+    inputs: &Inputs,
     band: R,
 ) -> miette::Result<()> {
+    let (scene, job) = (&inputs.scene, &inputs.job);
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
             sky_radiance_w_m2_sr: cli.sky_radiance,
         };
-        return trace_all(cli, scene, materials, job, band, vacuum);
+        let air = Air {
+            kinds: None,
+            precomputed: Box::new(move |_| Ok(vacuum)),
+            direct: Box::new(move |_| Ok(vacuum)),
+        };
+        return trace_all(cli, inputs, band, &air);
     }
     let atmosphere = read_atmosphere(&cli.atmosphere)?;
-    let kind = cli.atmosphere_model;
-    let model = AtmosphereModel::new(&atmosphere, kind)
-        .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| format!("cannot build the {kind} model of `{}`", cli.atmosphere))?;
     // The sky is precomputed up to the highest sensor or scene point.
     let top = job
         .views
@@ -404,32 +519,209 @@ fn with_atmosphere<R: BandModel + Clone>(
             cli.atmosphere, atmosphere.band_um
         );
     }
-    let air = PrecomputedAtmosphere::new(model, top);
-    for w in air.warnings() {
-        eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
-    }
-    trace_all(cli, scene, materials, job, band, air)
+    let name = cli.atmosphere.clone();
+    let model = {
+        let atmosphere = atmosphere.clone();
+        move |kind: ModelKind| {
+            AtmosphereModel::new(&atmosphere, kind)
+                .map_err(|e| miette!("{e}"))
+                .wrap_err_with(|| format!("cannot build the {kind} model of `{name}`"))
+        }
+    };
+    let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+        .into_iter()
+        .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
+        .collect();
+    let direct = model.clone();
+    let warned = std::sync::Once::new();
+    let air = Air {
+        kinds: Some(kinds),
+        precomputed: Box::new(move |kind| {
+            let air = PrecomputedAtmosphere::new(model(kind)?, top);
+            warned.call_once(|| {
+                for w in air.warnings() {
+                    eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
+                }
+            });
+            Ok(air)
+        }),
+        direct: Box::new(direct),
+    };
+    trace_all(cli, inputs, band, &air)
 }
 
-fn trace_all<R: BandModel + Clone, A: Atmosphere>(
+/// What a frame is rendered with: the options, the atmosphere model and the path terms.
+#[derive(Debug, Clone, Copy)]
+struct Settings {
+    options: TraceOptions,
+    kind: ModelKind,
+    path_terms: PathTermsMode,
+}
+
+impl Settings {
+    /// The settings of the command line (or their defaults).
+    fn from_cli(cli: &Cli) -> Self {
+        Self {
+            options: TraceOptions {
+                specular_bounces: cli.bounces.unwrap_or(1),
+                sky_view_rays: cli.sky_view_rays.unwrap_or(0),
+                supersampling: cli.supersample.unwrap_or(1),
+                adaptive_threshold_k: cli.adaptive_supersampling,
+                seed: cli.seed,
+                truth: true,
+            },
+            kind: cli.atmosphere_model.unwrap_or(ModelKind::Table),
+            path_terms: cli.path_terms.unwrap_or_default(),
+        }
+    }
+
+    /// These settings with a decision's choices applied.
+    fn with_decision(mut self, d: &Decision) -> miette::Result<Self> {
+        for c in &d.choices {
+            let bad = || {
+                miette!(
+                    "the decision's {}={} is not a setting of that model",
+                    c.model,
+                    c.setting
+                )
+            };
+            match c.model {
+                SwitchableModel::Atmosphere => {
+                    self.kind = c.setting.parse().map_err(|_| bad())?;
+                }
+                SwitchableModel::Bounces => {
+                    self.options.specular_bounces = c.setting.parse().map_err(|_| bad())?;
+                }
+                SwitchableModel::SkyView => {
+                    self.options.sky_view_rays = c.setting.parse().map_err(|_| bad())?;
+                }
+                SwitchableModel::Supersampling => {
+                    let (n, adaptive) = match tolerance::parse_supersample(&c.setting) {
+                        Some(Supersample::Every(n)) => (n, None),
+                        Some(Supersample::Adaptive(n)) => (n, Some(d.tolerance_k)),
+                        None => return Err(bad()),
+                    };
+                    self.options.supersampling = n;
+                    self.options.adaptive_threshold_k = adaptive;
+                }
+                SwitchableModel::PathTerms => {
+                    self.path_terms = c.setting.parse().map_err(|_| bad())?;
+                }
+                SwitchableModel::SubBands => {
+                    if c.setting != "1" {
+                        return Err(miette!(
+                            "the decision asks for {} sub-bands; this atmosphere has no spectra",
+                            c.setting
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(self)
+    }
+}
+
+/// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md):
+/// one `path` call, and precomputing the sky of one sub-band up to a few km.
+fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
+    match kind {
+        ModelKind::Table => (880.0, 5e6),
+        ModelKind::Layered => (830.0, 88e6),
+        ModelKind::Thesis => (92.0, 121e6),
+        ModelKind::None => (5.0, 0.0),
+    }
+}
+
+/// The pilot's decision for `camera`'s frame.
+fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     cli: &Cli,
-    scene: &RawScene,
+    tracer: &Tracer<R, A>,
     materials: &MaterialLibrary,
-    job: &Job,
-    band: R,
-    atmosphere: A,
-) -> miette::Result<()> {
-    let options = TraceOptions {
-        specular_bounces: cli.bounces,
-        sky_view_rays: cli.sky_view_rays,
-        supersampling: cli.supersample,
-        seed: cli.seed,
-        truth: true,
+    air: &Air<'_, A, S>,
+    camera: &Camera,
+    tolerance_k: f64,
+) -> miette::Result<Decision> {
+    let offer = tolerance::offer(materials, air.kinds.as_deref(), &cli.pin)
+        .map_err(irsig_cli::usage_error)?;
+    let mut bands = Vec::new();
+    for &kind in &offer.atmospheres {
+        let set = tracer
+            .band_set(vec![SubBand {
+                band: tracer.band().clone(),
+                atmosphere: (air.direct)(kind)?,
+                emissivity: None,
+            }])
+            .map_err(|e| miette!("{e}"))?;
+        let (path_call_ns, sky_ns) = atmosphere_costs(kind);
+        bands.push(BandChoice {
+            atmosphere: kind.name().to_owned(),
+            sub_bands: "1".to_owned(),
+            set,
+            path_call_ns,
+            sky_ns,
+        });
+    }
+    let space = PilotSpace {
+        bands,
+        atmospheres: offer
+            .atmospheres
+            .iter()
+            .map(|k| k.name().to_owned())
+            .collect(),
+        sub_bands: vec!["1".to_owned()],
+        bounces: offer.bounces,
+        sky_view_rays: offer.sky_view_rays,
+        supersampling: offer.supersampling,
+        path_terms: offer.path_terms,
+        reasons: offer.reasons,
+        pinned: offer.pinned,
     };
-    let tracer = Tracer::new(scene, materials, band, atmosphere)
+    // About one pixel in 768 (256 at 512 x 384), at least 64 and at most 4096.
+    let pixels = (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 768).clamp(64, 4096);
+    let decision = tracer
+        .pilot(
+            camera,
+            &space,
+            tolerance_k,
+            cli.tolerance_percentile,
+            pixels as u32,
+            cli.seed,
+        )
+        .map_err(|e| irsig_cli::usage_error(e.to_string()))?;
+    eprint!("{}", tolerance::table(&decision));
+    Ok(decision)
+}
+
+fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
+    cli: &Cli,
+    inputs: &Inputs,
+    band: R,
+    air: &Air<'_, A, S>,
+) -> miette::Result<()> {
+    let Inputs {
+        scene,
+        materials,
+        job,
+        uncertainties,
+    } = inputs;
+    let uncertainties = uncertainties.as_ref();
+    let applied = match &cli.decision {
+        Some(path) => {
+            let input = irsig_cli::read_input(path)?;
+            let d: Decision = from_ron_bytes(&input.name, &input.bytes)?;
+            Some(d)
+        }
+        None => None,
+    };
+    let base = match &applied {
+        Some(d) => Settings::from_cli(cli).with_decision(d)?,
+        None => Settings::from_cli(cli),
+    };
+    let mut kind = base.kind;
+    let mut tracer = Tracer::new(scene, materials, band, (air.precomputed)(kind)?)
         .map_err(|e| miette!("{e}"))
         .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?
-        .with_path_terms(cli.path_terms);
+        .with_path_terms(base.path_terms);
     let views = &job.views;
     let cameras = views
         .iter()
@@ -438,7 +730,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
     if let Some((column, row)) = cli.probe {
         let cam = &cameras[0];
         let s = tracer
-            .probe(cam, &options, column, row)
+            .probe(cam, &base.options, column, row)
             .map_err(|e| miette!("--probe: {e}"))?;
         println!("pixel ({column}, {row}), view 1");
         println!("{s}");
@@ -487,10 +779,49 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
             Some(all) => all.get(i).cloned().unwrap_or_default(),
             None => cli.outputs(i, cameras.len(), map_fits),
         };
+        let (settings, model_k) = match cli.tolerance {
+            Some(tolerance_k) => {
+                let d = decide(cli, &tracer, materials, air, cam, tolerance_k)?;
+                let settings = base.with_decision(&d)?;
+                let decision_file = match &cli.output {
+                    Some(_) => out
+                        .radiance_exr
+                        .as_ref()
+                        .map(|p| sibling(p, "radiance.exr", "decision.ron")),
+                    None => cli.decision_out.clone(),
+                };
+                if let Some(path) = decision_file {
+                    let text = irsig_formats::canonical::to_ron(&d).into_diagnostic()?;
+                    files.push((path, text.into_bytes()));
+                }
+                (settings, d.predicted.percentile_k)
+            }
+            None => (
+                base,
+                applied.as_ref().map_or(0.0, |d| d.predicted.percentile_k),
+            ),
+        };
+        let budget = uncertainties.map(|u| Budget {
+            uncertainties: u,
+            scene,
+            model_k,
+        });
+        if settings.kind != kind {
+            let sub_band = SubBand {
+                band: tracer.band().clone(),
+                atmosphere: (air.precomputed)(settings.kind)?,
+                emissivity: None,
+            };
+            tracer = tracer
+                .with_bands(vec![sub_band])
+                .map_err(|e| miette!("{e}"))?;
+            kind = settings.kind;
+        }
+        tracer = tracer.with_path_terms(settings.path_terms);
         // The per-pixel terms are kept only when an output of this frame reads them.
         let options = TraceOptions {
             truth: out.truth_exr.is_some() || out.map_png.is_some(),
-            ..options
+            ..settings.options
         };
         let frame = tracer
             .render(cam, &options, &|n| bar.inc(n))
@@ -505,7 +836,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
         if let Some(path) = out.truth_exr {
             files.push((
                 path,
-                exr_bytes(&truth_raster(&tracer, &frame)?).into_diagnostic()?,
+                exr_bytes(&truth_raster(&tracer, &frame, budget.as_ref())?).into_diagnostic()?,
             ));
         }
         if let Some(path) = out.map_png {
@@ -544,6 +875,15 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere>(
     irsig_cli::write_files_atomic(&files)
 }
 
+/// `path` with its `suffix` replaced by `with` (`f.0001.radiance.exr` → `f.0001.decision.ron`).
+fn sibling(path: &Path, suffix: &str, with: &str) -> PathBuf {
+    let s = path.to_string_lossy();
+    PathBuf::from(match s.strip_suffix(suffix) {
+        Some(stem) => format!("{stem}{with}"),
+        None => format!("{s}.{with}"),
+    })
+}
+
 fn numbered(prefix: &Path, n: usize) -> PathBuf {
     let mut s = prefix.as_os_str().to_owned();
     s.push(format!(".{n:04}"));
@@ -569,21 +909,114 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
 fn truth_raster<R: BandModel, A: Atmosphere>(
     tracer: &Tracer<R, A>,
     frame: &Frame,
+    budget: Option<&Budget<'_>>,
 ) -> miette::Result<Raster> {
     let mut r = Raster::new(frame.width as usize, frame.height as usize);
+    let inverse = InverseTable::new(tracer.band(), &frame.radiance_w_m2_sr);
+    let apparent: Vec<f64> = frame
+        .radiance_w_m2_sr
+        .par_iter()
+        .map(|&l| inverse.temperature(l))
+        .collect();
     for layer in Layer::TRUTH {
         let data = match frame.truth_layer(layer) {
             Some(data) => data,
-            None if layer == Layer::ApparentTemperature => frame
-                .radiance_w_m2_sr
-                .par_iter()
-                .map(|&l| tracer.apparent_temperature_k(l) as f32)
-                .collect(),
+            None if layer == Layer::ApparentTemperature => {
+                apparent.iter().map(|&t| t as f32).collect()
+            }
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;
     }
+    if let Some(budget) = budget {
+        for (layer, data) in budget.layers(tracer.band(), frame, &apparent) {
+            push(&mut r, layer, data)?;
+        }
+    }
     Ok(r)
+}
+
+/// The error budget of a run: the declared uncertainties, the scene they name facets of,
+/// and the residual of the models chosen by the tolerance pilot.
+struct Budget<'a> {
+    uncertainties: &'a Uncertainties,
+    scene: &'a RawScene,
+    /// The pilot's predicted error at its percentile, K (0 without `--tolerance`).
+    model_k: f64,
+}
+
+impl Budget<'_> {
+    /// The σ layers ([`Layer::BUDGET`]), K: each declared uncertainty propagated to the
+    /// apparent temperature through the radiance equation's partial derivatives at the
+    /// pixel (`∂L/∂T = Σ τ·ε·dL_T/dT`, `∂L/∂ε = Σ τ·(L_T − L_reflected)`, `∂L/∂τ = L − L_u`
+    /// for a relative σ of τ, `L_u` for a relative σ of the path radiance), over the band's
+    /// dL/dT at the pixel's apparent temperature; and their root-sum-square.
+    fn layers<R: BandModel>(
+        &self,
+        band: &R,
+        frame: &Frame,
+        apparent: &[f64],
+    ) -> Vec<(Layer, Vec<f32>)> {
+        let u = self.uncertainties;
+        let per_pixel: Vec<[f64; 5]> = frame
+            .truth
+            .par_iter()
+            .zip(&frame.radiance_w_m2_sr)
+            .zip(apparent)
+            .map(|((p, &l), &t)| {
+                let slope = band.radiance_derivative(t);
+                let in_k = |sigma_l: f64| {
+                    if slope > 0.0 && sigma_l.is_finite() {
+                        sigma_l.abs() / slope
+                    } else {
+                        0.0
+                    }
+                };
+                let (temperature, emissivity) = match self.scene.facets.get(p.facet as usize) {
+                    Some(facet) => {
+                        let object = self
+                            .scene
+                            .objects
+                            .get(facet.object as usize)
+                            .map_or("", String::as_str);
+                        (
+                            in_k(
+                                f64::from(p.temperature_sensitivity)
+                                    * u.temperature_sigma_k(facet.material, object),
+                            ),
+                            in_k(
+                                f64::from(p.emissivity_sensitivity)
+                                    * u.emissivity_sigma(facet.material),
+                            ),
+                        )
+                    }
+                    None => (0.0, 0.0),
+                };
+                let path = f64::from(p.path_radiance_w_m2_sr);
+                let path = if path.is_finite() { path } else { 0.0 };
+                [
+                    temperature,
+                    emissivity,
+                    in_k(u.transmission_relative * (l - path)),
+                    in_k(u.path_radiance_relative * path),
+                    self.model_k,
+                ]
+            })
+            .collect();
+        let mut out: Vec<(Layer, Vec<f32>)> = Layer::BUDGET[..5]
+            .iter()
+            .enumerate()
+            .map(|(k, &layer)| (layer, per_pixel.iter().map(|s| s[k] as f32).collect()))
+            .collect();
+        out.push((
+            Layer::SigmaTotal,
+            per_pixel
+                .iter()
+                .map(|s| s.iter().map(|v| v * v).sum::<f64>().sqrt() as f32)
+                .collect(),
+        ));
+        out
+    }
 }
 
 /// The 1990 interaction map (thesis §4.2): primary material id in the upper nibble,

@@ -315,3 +315,187 @@ fn bad_input_exits_1_with_file_line_and_column_and_writes_nothing() {
         .unwrap();
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn a_tolerance_runs_the_pilot_prints_and_writes_its_decision() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let prefix = dir.path().join("f");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "--tolerance", "0.3", "-o"])
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    // The table names every model, and why the scene needs no bounces.
+    for model in [
+        "atmosphere",
+        "bounces",
+        "sky-view",
+        "supersampling",
+        "path-terms",
+        "sub-bands",
+    ] {
+        assert!(stderr.contains(model), "{stderr}");
+    }
+    assert!(stderr.contains("no specular material"), "{stderr}");
+    let text = std::fs::read_to_string(dir.path().join("f.decision.ron")).unwrap();
+    let decision: irsig_model::decision::Decision =
+        irsig_formats::canonical::from_ron("f.decision.ron", &text).unwrap();
+    assert!((decision.tolerance_k - 0.3).abs() < 1e-12);
+    assert!(decision.predicted.percentile_k <= 0.3, "{decision:?}");
+    assert!(dir.path().join("f.radiance.exr").is_file());
+    // A decision applied again gives the same image, without a pilot.
+    let again = dir.path().join("g");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "--decision"])
+        .arg(dir.path().join("f.decision.ron"))
+        .arg("-o")
+        .arg(&again)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        std::fs::read(dir.path().join("f.radiance.exr")).unwrap(),
+        std::fs::read(dir.path().join("g.radiance.exr")).unwrap()
+    );
+}
+
+#[test]
+fn bad_tolerances_and_pins_are_refused_before_tracing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    for (args, says) in [
+        (vec!["--tolerance", "0"], "a tolerance of 0 K"),
+        (vec!["--tolerance", "-0.1"], "a tolerance of -0.1 K"),
+        (
+            vec!["--tolerance", "0.1", "--tolerance-percentile", "0"],
+            "percentile",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--tolerance-percentile", "100.5"],
+            "percentile",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--pin", "bounce=2"],
+            "unknown model `bounce`",
+        ),
+        (
+            vec!["--tolerance", "0.1", "--pin", "supersampling=0"],
+            "supersampling=0",
+        ),
+        (vec!["--tolerance", "0.1", "--bounces", "2"], "--bounces"),
+    ] {
+        let out = trace()
+            .args([
+                "--scene",
+                &scene,
+                "--materials",
+                &mats,
+                "--view",
+                &view,
+                "-o",
+            ])
+            .arg(dir.path().join("x"))
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(says), "{args:?}: {stderr}");
+        assert!(!dir.path().join("x.radiance.exr").exists());
+    }
+}
+
+#[test]
+fn declared_uncertainties_give_the_error_budget_layers() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let uncertainties = write(
+        dir.path(),
+        "u.ron",
+        "(temperature: [(facets: All, sigma_k: 0.1), (facets: Material(2), sigma_k: 0.5)],
+          emissivity: [(material: 1, sigma: 0.01)], transmission_relative: 0.0,
+          path_radiance_relative: 0.0)",
+    );
+    let prefix = dir.path().join("f");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args([
+            "--band",
+            "total",
+            "--sky-radiance",
+            "10",
+            "--uncertainties",
+            &uncertainties,
+        ])
+        .arg("--truth-exr")
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let truth = irsig_raster::read_exr(&std::fs::read(&prefix).unwrap()).unwrap();
+    let layer = |n: &str| truth.layer(n).unwrap().data.clone();
+    let (mat, sig_t, sig_e, total) = (
+        layer("material_primary"),
+        layer("sigma_kinetic_temperature"),
+        layer("sigma_emissivity"),
+        layer("sigma_total"),
+    );
+    // Material 2 is a blackbody (ε = 1, no atmosphere): its apparent temperature is its
+    // kinetic one, so σ_T passes through whole; material 1 is grey, ε = 0.9 under a 10 W m^-2
+    // sr^-1 sky: σ_T is scaled by ε·dL/dT(300 K)/dL/dT(T_app), by hand 0.1 × 0.92.
+    let l = |t: f64| total_radiance(t);
+    let d = |t: f64| 4.0 * SIGMA * t.powi(3) / std::f64::consts::PI;
+    let grey = 0.9 * l(300.0) + 0.1 * 10.0;
+    let t_app = (grey * std::f64::consts::PI / SIGMA).powf(0.25);
+    for i in 0..mat.len() {
+        let (t, e, all) = (
+            f64::from(sig_t[i]),
+            f64::from(sig_e[i]),
+            f64::from(total[i]),
+        );
+        if mat[i].to_bits() == 2.0_f32.to_bits() {
+            assert!((t - 0.5).abs() < 1e-5, "pixel {i}: {t}");
+            assert!(e.abs() < 1e-9, "pixel {i}: {e}");
+        } else if mat[i].to_bits() == 1.0_f32.to_bits() {
+            assert!(
+                (t - 0.1 * 0.9 * d(300.0) / d(t_app)).abs() < 1e-5,
+                "pixel {i}: {t}"
+            );
+            // ∂L/∂ε = L_T − L_sky, by hand.
+            assert!(
+                (e - 0.01 * (l(300.0) - 10.0) / d(t_app)).abs() < 1e-5,
+                "pixel {i}: {e}"
+            );
+        }
+        assert!((all - (t * t + e * e).sqrt()).abs() < 1e-5);
+    }
+    // An emissivity ± that would leave [0, 1] is refused at its line.
+    let bad = write(
+        dir.path(),
+        "bad.ron",
+        "(emissivity: [\n  (material: 2, sigma: 0.01),\n])",
+    );
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--band", "total", "--uncertainties", &bad, "-o"])
+        .arg(dir.path().join("x"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("bad.ron:2:"), "{stderr}");
+    assert!(!dir.path().join("x.radiance.exr").exists());
+}

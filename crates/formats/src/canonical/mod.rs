@@ -11,7 +11,7 @@
 //! | [`Object`] | yes (small objects, hand-made tests, diffs) | yes ([`binary_object`], what `irsig-import` writes into a pipe) |
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
-//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`] | yes | no |
+//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`], [`Decision`], [`Uncertainties`] | yes | no |
 //!
 //! The format pages are `formats/canonical/*.md` in the repository.
 
@@ -19,6 +19,8 @@ pub mod binary;
 pub mod binary_object;
 mod layout;
 
+use irsig_model::decision::Decision;
+use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
     Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene, View,
 };
@@ -61,6 +63,8 @@ canonical!(MaterialLibrary, "material library", 3);
 canonical!(Atmosphere, "atmosphere", 3);
 canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
+canonical!(Decision, "decision", 3);
+canonical!(Uncertainties, "uncertainties file", 3);
 
 /// Parses RON text into `T` without validating it.
 ///

@@ -1,0 +1,240 @@
+//! What the tolerance pilot chose for a frame, and why: the models it could switch, the
+//! setting it chose for each, the error each costs against the most accurate setting
+//! (kelvin of apparent temperature, at a percentile of the pilot's pixels and at worst),
+//! and what each costs. The tracer writes it beside its outputs (`.decision.ron`); the run
+//! report reads it; a tile or a later run can apply it again instead of piloting anew.
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{ModelError, ModelErrorKind, check_range};
+
+/// A model of the radiance equation that has cheaper and dearer settings.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SwitchableModel {
+    /// The atmosphere model: `table`, `layered`, `thesis`.
+    Atmosphere,
+    /// Specular bounces per path: 0, 1, 2, …
+    Bounces,
+    /// Sky-view (shape factor) rays per diffuse hit: 0 (F = 1) or N.
+    SkyView,
+    /// Rays per pixel: 1 (the centre), N × N, or adaptive (N × N where the image has an
+    /// edge).
+    Supersampling,
+    /// Path terms of facet hits: `exact` or `tabulated`.
+    PathTerms,
+    /// Sub-bands the radiance is summed over: 1 (the band model), K, or `full`.
+    SubBands,
+}
+
+impl SwitchableModel {
+    /// Every model, in the order they are listed to users.
+    pub const ALL: [Self; 6] = [
+        Self::Atmosphere,
+        Self::Bounces,
+        Self::SkyView,
+        Self::Supersampling,
+        Self::PathTerms,
+        Self::SubBands,
+    ];
+    /// Their names, in the same order.
+    pub const NAMES: [&'static str; 6] = [
+        "atmosphere",
+        "bounces",
+        "sky-view",
+        "supersampling",
+        "path-terms",
+        "sub-bands",
+    ];
+
+    /// The name used in files and on command lines.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        Self::NAMES[self as usize]
+    }
+}
+
+impl fmt::Display for SwitchableModel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A name that is not one of the [`SwitchableModel`]s.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "unknown model `{0}`: expected one of atmosphere, bounces, sky-view, supersampling, path-terms, sub-bands"
+)]
+pub struct UnknownModel(pub String);
+
+impl FromStr for SwitchableModel {
+    type Err = UnknownModel;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL
+            .into_iter()
+            .find(|m| m.name() == s)
+            .ok_or_else(|| UnknownModel(s.to_owned()))
+    }
+}
+
+/// An error estimated over the pilot's pixels, kelvin of apparent temperature.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ErrorEstimate {
+    /// At the decision's percentile of the pilot's pixels, K.
+    pub percentile_k: f64,
+    /// The largest over the pilot's pixels, K.
+    pub max_k: f64,
+}
+
+/// The setting chosen for one model.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelChoice {
+    /// Which model.
+    pub model: SwitchableModel,
+    /// The setting, as the command line spells it (`table`, `1`, `0`, `2`, `adaptive`,
+    /// `exact`, `16`).
+    pub setting: String,
+    /// The most accurate setting the pilot compared it with.
+    pub reference: String,
+    /// Set by the user (`--pin`): the pilot did not choose it.
+    pub pinned: bool,
+    /// Its error against the reference setting, the other models at theirs.
+    pub error: ErrorEstimate,
+    /// Its cost relative to the reference setting's, the other models at theirs (1: as
+    /// dear; 0.1: a tenth).
+    pub relative_cost: f64,
+    /// Why this setting: a model that cannot matter for this scene says so here.
+    pub reason: String,
+}
+
+/// What the pilot chose for a frame, with what it predicts and what it cost.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Decision {
+    /// The tolerance asked for, K.
+    pub tolerance_k: f64,
+    /// The percentile of pixels the tolerance applies to, (0, 100].
+    pub percentile: f64,
+    /// One choice per model, in [`SwitchableModel::ALL`] order.
+    pub choices: Vec<ModelChoice>,
+    /// The predicted error of the chosen combination against the all-reference render
+    /// (the per-pixel sum of the models' errors: an upper bound).
+    pub predicted: ErrorEstimate,
+    /// The chosen combination's estimated cost relative to the all-reference render's.
+    pub relative_cost: f64,
+    /// Pixels the pilot traced.
+    pub pilot_pixels: u32,
+}
+
+impl Decision {
+    /// The choice for `model`, if the decision has one.
+    #[must_use]
+    pub fn choice(&self, model: SwitchableModel) -> Option<&ModelChoice> {
+        self.choices.iter().find(|c| c.model == model)
+    }
+
+    /// Checks the numbers: a positive tolerance, a percentile in (0, 100], finite errors
+    /// and costs, each model at most once.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        check_tolerance(self.tolerance_k, "tolerance_k")?;
+        check_percentile(self.percentile, "percentile")?;
+        for (i, c) in self.choices.iter().enumerate() {
+            let p = |f: &str| format!("choices[{i}].{f}");
+            check_range(
+                || p("error.percentile_k"),
+                c.error.percentile_k,
+                0.0,
+                f64::MAX,
+            )?;
+            check_range(|| p("error.max_k"), c.error.max_k, 0.0, f64::MAX)?;
+            check_range(|| p("relative_cost"), c.relative_cost, 0.0, f64::MAX)?;
+            if self.choices[..i].iter().any(|o| o.model == c.model) {
+                return Err(ModelError::new(
+                    p("model"),
+                    ModelErrorKind::Duplicate(c.model.name().to_owned()),
+                ));
+            }
+        }
+        check_range(
+            || "predicted.percentile_k".into(),
+            self.predicted.percentile_k,
+            0.0,
+            f64::MAX,
+        )?;
+        check_range(
+            || "predicted.max_k".into(),
+            self.predicted.max_k,
+            0.0,
+            f64::MAX,
+        )?;
+        check_range(|| "relative_cost".into(), self.relative_cost, 0.0, f64::MAX)
+    }
+}
+
+/// A tolerance must be finite and above 0 K.
+///
+/// # Errors
+/// Zero, negative or not finite, at `path`.
+pub fn check_tolerance(tolerance_k: f64, path: &str) -> Result<(), ModelError> {
+    if tolerance_k.is_finite() && tolerance_k > 0.0 {
+        Ok(())
+    } else {
+        Err(ModelError::new(
+            path,
+            ModelErrorKind::Other(format!(
+                "a tolerance of {tolerance_k} K: expected a finite number of kelvin above 0"
+            )),
+        ))
+    }
+}
+
+/// A percentile must lie in (0, 100].
+///
+/// # Errors
+/// Outside it, or not finite, at `path`.
+pub fn check_percentile(percentile: f64, path: &str) -> Result<(), ModelError> {
+    if percentile > 0.0 && percentile <= 100.0 {
+        Ok(())
+    } else {
+        Err(ModelError::new(
+            path,
+            ModelErrorKind::Other(format!(
+                "a percentile of {percentile}: expected more than 0 and at most 100"
+            )),
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn model_names_round_trip() {
+        for m in SwitchableModel::ALL {
+            assert_eq!(m.name().parse::<SwitchableModel>(), Ok(m));
+        }
+        assert!("bounce".parse::<SwitchableModel>().is_err());
+    }
+
+    #[test]
+    fn tolerances_and_percentiles_are_checked() {
+        assert!(check_tolerance(0.1, "t").is_ok());
+        for bad in [0.0, -0.1, f64::NAN, f64::INFINITY] {
+            assert!(check_tolerance(bad, "t").is_err(), "{bad}");
+        }
+        assert!(check_percentile(100.0, "p").is_ok());
+        assert!(check_percentile(0.5, "p").is_ok());
+        for bad in [0.0, -1.0, 100.5, f64::NAN] {
+            assert!(check_percentile(bad, "p").is_err(), "{bad}");
+        }
+    }
+}

@@ -1,0 +1,678 @@
+//! The tolerance pilot: which models does this scene, seen from this view, need to meet a
+//! tolerance in kelvin?
+//!
+//! A stratified sample of pixels is traced once with the most accurate geometry (the most
+//! bounces and sky-view rays on offer), and each recorded path is evaluated again under
+//! every cheaper setting of every model, the others at their most accurate: the atmosphere
+//! models and sub-band counts as other [`BandSet`]s, the bounces by cutting the path, the
+//! sky-view factor by dropping its rays, the tabulated path terms through a table. Only
+//! supersampling needs more rays: each sample pixel's sub-pixel rays are traced at each
+//! candidate density (with one bounce and no sky-view rays, which do not change where the
+//! edges are). The per-pixel error of a combination is bounded by the sum of its models'
+//! errors; the cheapest combination whose bound meets the tolerance at the percentile is
+//! chosen. Costs come from counts the pilot makes (rays, path evaluations, path-term calls
+//! per sub-band) times fixed unit costs measured once (BENCHMARKS.md), so the choice is the
+//! same on every run of the same inputs.
+
+use irsig_model::decision::{Decision, ErrorEstimate, ModelChoice, SwitchableModel};
+use irsig_radiometry::BandModel;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+use crate::camera::Camera;
+use crate::env::Atmosphere;
+use crate::error::{TraceError, TraceErrorKind};
+use crate::path::{Diffuse, Escape, HemiRay, Mirror, Path, Primary};
+use crate::path_table::{PathTable, PathTermsMode};
+use crate::tracer::{BandSet, Ctx, Event, FrameConsts, Sample, TraceOptions, Tracer};
+
+/// Unit costs of the cost model, nanoseconds (BENCHMARKS.md, 2-core Zen 3): a ray through
+/// the BVH (100k-1M triangles), a node or hemisphere ray evaluated in one sub-band, a path
+/// table lookup in one sub-band.
+const RAY_NS: f64 = 300.0;
+const NODE_EVAL_NS: f64 = 25.0;
+const HEMI_EVAL_NS: f64 = 12.0;
+const TABLE_LOOKUP_NS: f64 = 15.0;
+/// Nodes of a path table (65 altitudes × 513 ranges): what building one costs in path calls.
+const TABLE_NODES: f64 = 65.0 * 513.0;
+
+/// How many rays a pixel gets.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Supersample {
+    /// `n × n` rays in every pixel (`1`: the centre ray only).
+    Every(u32),
+    /// `n × n` rays only where the centre differs from a neighbour's by more than the
+    /// tolerance (adaptive supersampling, thesis §3.3.4).
+    Adaptive(u32),
+}
+
+impl Supersample {
+    /// The setting as the decision names it: `1`, `4`, `adaptive-4`.
+    #[must_use]
+    pub fn name(self) -> String {
+        match self {
+            Self::Every(n) => n.to_string(),
+            Self::Adaptive(n) => format!("adaptive-{n}"),
+        }
+    }
+
+    fn n(self) -> u32 {
+        match self {
+            Self::Every(n) | Self::Adaptive(n) => n,
+        }
+    }
+}
+
+/// A band set the pilot may choose: an atmosphere model over some sub-bands.
+#[derive(Debug)]
+pub struct BandChoice<S> {
+    /// The atmosphere model's name (`table`, `layered`, `thesis`, `none`).
+    pub atmosphere: String,
+    /// The sub-bands' name (`1` for the band model, `16`, `full`).
+    pub sub_bands: String,
+    /// The set, built for the tracer's scene ([`Tracer::band_set`]).
+    pub set: BandSet<S>,
+    /// What one exact path-terms call costs in one of its sub-bands, ns (BENCHMARKS.md:
+    /// `table` 880, `layered` 830, `thesis` 92, `none` 5).
+    pub path_call_ns: f64,
+    /// What precomputing the sky for one of its sub-bands costs a rendering, ns.
+    pub sky_ns: f64,
+}
+
+/// What the pilot may choose from. Each list is ordered from the most accurate setting
+/// (the reference, first) to the cheapest; a model with one entry is fixed (pinned, or one
+/// that cannot matter), and `reasons` says why.
+#[derive(Debug)]
+pub struct PilotSpace<S> {
+    /// Every (atmosphere, sub-bands) pair the pilot needs: the reference pair, each
+    /// atmosphere at the reference sub-bands, and each sub-band count at the reference
+    /// atmosphere; also the band model (`1`) at the reference atmosphere, whose table
+    /// measures the tabulated path terms.
+    pub bands: Vec<BandChoice<S>>,
+    /// Atmosphere models, reference first.
+    pub atmospheres: Vec<String>,
+    /// Sub-band counts, reference first.
+    pub sub_bands: Vec<String>,
+    /// Specular bounces, reference (most) first.
+    pub bounces: Vec<u32>,
+    /// Sky-view rays per diffuse hit, reference first; 0 is the thesis's F = 1.
+    pub sky_view_rays: Vec<u32>,
+    /// Rays per pixel, reference first.
+    pub supersampling: Vec<Supersample>,
+    /// Path terms, reference (`Exact`) first.
+    pub path_terms: Vec<PathTermsMode>,
+    /// Models whose setting is fixed, and why (pinned by the user, or cannot matter here).
+    pub reasons: Vec<(SwitchableModel, String)>,
+    /// Models the user pinned.
+    pub pinned: Vec<SwitchableModel>,
+}
+
+/// One sample pixel's errors (kelvin, against the reference setting, per model and
+/// alternative in list order, the reference's own 0 included) and the counts the cost
+/// model needs.
+#[derive(Debug, Clone, Default)]
+struct PixelSample {
+    errors: [Vec<f64>; 6],
+    /// The primary ray hit a facet.
+    hit: bool,
+    /// Reflection rays the path traced at each bounce limit, by `bounces` index.
+    reflection_rays: Vec<u32>,
+    /// Hemisphere rays at the first facet (0 when it has no diffuse part).
+    diffuse: bool,
+    /// Nodes in the reference path (facets evaluated per sub-band).
+    nodes: u32,
+    /// The pixel is at an edge (adaptive supersampling refines it).
+    edge: bool,
+}
+
+fn model_index(m: SwitchableModel) -> usize {
+    m as usize
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Runs the pilot over about `pixels` stratified sample pixels of `camera`'s image and
+    /// chooses, for each model of `space`, the cheapest setting whose combination meets
+    /// `tolerance_k` at `percentile` of the sample.
+    ///
+    /// # Errors
+    /// A space without its reference band set, or a tolerance or percentile out of range.
+    pub fn pilot<S: Atmosphere>(
+        &self,
+        camera: &Camera,
+        space: &PilotSpace<S>,
+        tolerance_k: f64,
+        percentile: f64,
+        pixels: u32,
+        seed: u64,
+    ) -> Result<Decision, TraceError> {
+        let bad = |m: String| TraceError::new(TraceErrorKind::InvalidOptions(m));
+        irsig_model::decision::check_tolerance(tolerance_k, "tolerance")
+            .map_err(|e| bad(e.to_string()))?;
+        irsig_model::decision::check_percentile(percentile, "percentile")
+            .map_err(|e| bad(e.to_string()))?;
+        let find = |atmosphere: &str, sub_bands: &str| {
+            space
+                .bands
+                .iter()
+                .position(|b| b.atmosphere == atmosphere && b.sub_bands == sub_bands)
+        };
+        let (Some(ref_atm), Some(ref_sb)) = (space.atmospheres.first(), space.sub_bands.first())
+        else {
+            return Err(bad(
+                "the pilot needs at least one atmosphere and one sub-band count".into(),
+            ));
+        };
+        let reference = find(ref_atm, ref_sb).ok_or_else(|| {
+            bad(format!(
+                "no band set for atmosphere {ref_atm}, sub-bands {ref_sb}"
+            ))
+        })?;
+        let atm_sets = space
+            .atmospheres
+            .iter()
+            .map(|a| find(a, ref_sb).ok_or_else(|| bad(format!("no band set for {a}, {ref_sb}"))))
+            .collect::<Result<Vec<_>, _>>()?;
+        let sb_sets = space
+            .sub_bands
+            .iter()
+            .map(|k| find(ref_atm, k).ok_or_else(|| bad(format!("no band set for {ref_atm}, {k}"))))
+            .collect::<Result<Vec<_>, _>>()?;
+        for list_empty in [
+            space.bounces.is_empty(),
+            space.sky_view_rays.is_empty(),
+            space.supersampling.is_empty(),
+            space.path_terms.is_empty(),
+        ] {
+            if list_empty {
+                return Err(bad("every model needs at least one setting".into()));
+            }
+        }
+        let fc = self.frame_consts_with(camera, false);
+        // The tabulated path terms are measured in the band model (one table, not K).
+        let band_model = find(ref_atm, "1").unwrap_or(reference);
+        let table = space
+            .path_terms
+            .contains(&PathTermsMode::Tabulated)
+            .then(|| self.path_table(camera, &space.bands[band_model].set));
+        let samples = sample_pixels(camera.pixels, pixels, seed);
+        let geometry = TraceOptions {
+            specular_bounces: space.bounces[0],
+            sky_view_rays: space.sky_view_rays[0],
+            supersampling: 1,
+            adaptive_threshold_k: None,
+            seed,
+            truth: false,
+        };
+        let results: Vec<PixelSample> = samples
+            .par_iter()
+            .map(|&(col, row)| {
+                self.pilot_pixel(
+                    &fc,
+                    space,
+                    &geometry,
+                    (reference, band_model),
+                    (&atm_sets, &sb_sets),
+                    table.as_ref(),
+                    tolerance_k,
+                    (col, row),
+                )
+            })
+            .collect();
+        Ok(choose(
+            space,
+            &results,
+            tolerance_k,
+            percentile,
+            camera.pixels,
+        ))
+    }
+
+    /// One sample pixel: its reference path evaluated under every alternative.
+    #[allow(clippy::too_many_arguments)]
+    fn pilot_pixel<S: Atmosphere>(
+        &self,
+        fc: &FrameConsts<'_>,
+        space: &PilotSpace<S>,
+        geometry: &TraceOptions,
+        (reference, band_model): (usize, usize),
+        (atm_sets, sb_sets): (&[usize], &[usize]),
+        table: Option<&PathTable>,
+        tolerance_k: f64,
+        (col, row): (u32, u32),
+    ) -> PixelSample {
+        let camera = fc.camera();
+        let t = |l: f64| self.band.temperature(l);
+        let mut ctx = Ctx::for_pixel(
+            geometry,
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
+        let mut path = Path::default();
+        let mut scratch = Sample::miss(Event::Sky);
+        self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
+        let eval = |set: usize, table: Option<&PathTable>, p: &Path, s: &mut Sample| {
+            self.radiance_with::<false, S>(&space.bands[set].set, table, fc, p, s)
+        };
+        let l_ref = eval(reference, None, &path, &mut scratch);
+        let t_ref = t(l_ref);
+        let mut out = PixelSample {
+            hit: matches!(path.primary, Primary::Facet { .. }),
+            nodes: path.nodes.len() as u32,
+            diffuse: path.nodes.first().is_some_and(|n| n.diffuse.is_some()),
+            ..PixelSample::default()
+        };
+        let mut err = |model: SwitchableModel, l: f64| {
+            out.errors[model_index(model)].push((t(l) - t_ref).abs());
+        };
+        for &set in atm_sets {
+            err(
+                SwitchableModel::Atmosphere,
+                eval(set, None, &path, &mut scratch),
+            );
+        }
+        for &set in sb_sets {
+            err(
+                SwitchableModel::SubBands,
+                eval(set, None, &path, &mut scratch),
+            );
+        }
+        let mut cut = Path::default();
+        for &b in &space.bounces {
+            path.truncated(b, &mut cut);
+            err(
+                SwitchableModel::Bounces,
+                eval(reference, None, &cut, &mut scratch),
+            );
+        }
+        for &n in &space.sky_view_rays {
+            path.with_sky_rays(n, &mut cut);
+            err(
+                SwitchableModel::SkyView,
+                eval(reference, None, &cut, &mut scratch),
+            );
+        }
+        // Tabulated against exact, both in the band model.
+        let l_band = eval(band_model, None, &path, &mut scratch);
+        for &mode in &space.path_terms {
+            let l = match mode {
+                PathTermsMode::Exact => l_band,
+                PathTermsMode::Tabulated => eval(band_model, table, &path, &mut scratch),
+            };
+            out.errors[model_index(SwitchableModel::PathTerms)].push((t(l) - t(l_band)).abs());
+        }
+        out.reflection_rays = space
+            .bounces
+            .iter()
+            .map(|&b| path.reflection_rays(b))
+            .collect();
+        // Supersampling: the sub-pixel rays at each density, with one bounce and no
+        // sky-view rays (edges are where they are whatever the radiometry).
+        let cheap = TraceOptions {
+            specular_bounces: geometry.specular_bounces.min(1),
+            sky_view_rays: 0,
+            ..*geometry
+        };
+        let mut ctx = Ctx::for_pixel(
+            &cheap,
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
+        // The mean over n × n sub-pixel rays, once per density (an adaptive setting refines
+        // an edge pixel exactly as the full setting of its density does).
+        let mut densities: Vec<(u32, f64)> = Vec::new();
+        for s in &space.supersampling {
+            let n = s.n();
+            if densities.iter().any(|&(m, _)| m == n) {
+                continue;
+            }
+            let mean = if n <= 1 {
+                self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
+                eval(reference, None, &path, &mut scratch)
+            } else {
+                let mut sum = 0.0;
+                for j in 0..n {
+                    for i in 0..n {
+                        let (jx, jy): (f64, f64) = {
+                            let rng = ctx.rng();
+                            (rng.random(), rng.random())
+                        };
+                        let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
+                        let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
+                        self.follow(fc, camera.direction_at(x, y), &mut ctx, &mut path);
+                        sum += eval(reference, None, &path, &mut scratch);
+                    }
+                }
+                sum / f64::from(n * n)
+            };
+            densities.push((n, mean));
+        }
+        let centre_l = match densities.iter().find(|&&(n, _)| n <= 1) {
+            Some(&(_, l)) => l,
+            None => {
+                self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
+                eval(reference, None, &path, &mut scratch)
+            }
+        };
+        let mean_of = |n: u32| {
+            densities
+                .iter()
+                .find(|&&(m, _)| m == n)
+                .map_or(centre_l, |&(_, l)| l)
+        };
+        // An edge: a neighbour's centre ray differs by more than the tolerance.
+        let [w, h] = camera.pixels;
+        let t_centre = t(centre_l);
+        out.edge = (-1i64..=1)
+            .flat_map(|dr| (-1i64..=1).map(move |dc| (dr, dc)))
+            .filter(|&(dr, dc)| (dr, dc) != (0, 0))
+            .map(|(dr, dc)| (i64::from(col) + dc, i64::from(row) + dr))
+            .filter(|&(c, r)| c >= 0 && r >= 0 && c < i64::from(w) && r < i64::from(h))
+            .any(|(c, r)| {
+                self.follow(
+                    fc,
+                    camera.pixel_direction(c as u32, r as u32),
+                    &mut ctx,
+                    &mut path,
+                );
+                (t(eval(reference, None, &path, &mut scratch)) - t_centre).abs() > tolerance_k
+            });
+        let t_ss_ref = t(mean_of(space.supersampling[0].n()));
+        for s in &space.supersampling {
+            let l = match *s {
+                Supersample::Adaptive(_) if !out.edge => centre_l,
+                Supersample::Adaptive(n) | Supersample::Every(n) => mean_of(n),
+            };
+            out.errors[model_index(SwitchableModel::Supersampling)].push((t(l) - t_ss_ref).abs());
+        }
+        out
+    }
+}
+
+/// About `count` pixels, one in each cell of a grid over the image, at a seeded random
+/// place in its cell.
+fn sample_pixels([w, h]: [u32; 2], count: u32, seed: u64) -> Vec<(u32, u32)> {
+    let count = count.clamp(1, w.saturating_mul(h).max(1));
+    let aspect = f64::from(w) / f64::from(h.max(1));
+    let across = ((f64::from(count) * aspect).sqrt().round() as u32).clamp(1, w.max(1));
+    let down = (count / across).clamp(1, h.max(1));
+    let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x7069_6c6f_7400_0000);
+    let mut out = Vec::with_capacity((across * down) as usize);
+    for j in 0..down {
+        for i in 0..across {
+            let (c0, c1) = (
+                i * w / across,
+                ((i + 1) * w / across).max(i * w / across + 1),
+            );
+            let (r0, r1) = (j * h / down, ((j + 1) * h / down).max(j * h / down + 1));
+            out.push((
+                rng.random_range(c0..c1.min(w)),
+                rng.random_range(r0..r1.min(h)),
+            ));
+        }
+    }
+    out
+}
+
+/// The value at `percentile` of `values` (nearest rank).
+fn percentile_of(values: &mut [f64], percentile: f64) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    let rank = ((percentile / 100.0) * values.len() as f64).ceil() as usize;
+    values[rank.clamp(1, values.len()) - 1]
+}
+
+/// A combination: one index per model, into its list.
+type Combo = [usize; 6];
+
+fn choose<S>(
+    space: &PilotSpace<S>,
+    samples: &[PixelSample],
+    tolerance_k: f64,
+    percentile: f64,
+    [w, h]: [u32; 2],
+) -> Decision {
+    let lens = [
+        space.atmospheres.len(),
+        space.bounces.len(),
+        space.sky_view_rays.len(),
+        space.supersampling.len(),
+        space.path_terms.len(),
+        space.sub_bands.len(),
+    ];
+    let pixels = f64::from(w) * f64::from(h);
+    let n = samples.len().max(1) as f64;
+    let mean = |f: &dyn Fn(&PixelSample) -> f64| samples.iter().map(f).sum::<f64>() / n;
+    let hit_fraction = mean(&|s| f64::from(u8::from(s.hit)));
+    let diffuse_fraction = mean(&|s| f64::from(u8::from(s.diffuse)));
+    let edge_fraction = mean(&|s| f64::from(u8::from(s.edge)));
+    let nodes = mean(&|s| f64::from(s.nodes));
+    let band_of = |atm: &str, k: &str| {
+        space
+            .bands
+            .iter()
+            .find(|b| b.atmosphere == atm && b.sub_bands == k)
+    };
+    let k_of =
+        |name: &str| band_of(&space.atmospheres[0], name).map_or(1.0, |b| b.set.len() as f64);
+    // The estimated cost of a rendering, ns.
+    let cost = |c: &Combo| -> f64 {
+        let atm = &space.atmospheres[c[0]];
+        let k = k_of(&space.sub_bands[c[5]]);
+        let sky_rays = f64::from(space.sky_view_rays[c[2]]);
+        let reflections = mean(&|s| f64::from(s.reflection_rays[c[1]]));
+        let rays_per_path = 1.0 + reflections + diffuse_fraction * sky_rays;
+        let paths_per_pixel = match space.supersampling[c[3]] {
+            Supersample::Every(1) | Supersample::Adaptive(1) => 1.0,
+            Supersample::Every(n) => 1.0 + f64::from(n * n),
+            // The centre rays, the 8 neighbours' comparison (free: they are the image), and
+            // the refined pixels again from their centre.
+            Supersample::Adaptive(n) => 1.0 + edge_fraction * (1.0 + f64::from(n * n)),
+        };
+        let choice = band_of(atm, &space.sub_bands[c[5]]);
+        let (path_call_ns, sky_ns) = choice.map_or((880.0, 2e6), |b| (b.path_call_ns, b.sky_ns));
+        let evals = paths_per_pixel
+            * k
+            * (nodes * NODE_EVAL_NS + diffuse_fraction * sky_rays * HEMI_EVAL_NS);
+        let path_terms = match space.path_terms[c[4]] {
+            PathTermsMode::Exact => paths_per_pixel * hit_fraction * k * path_call_ns,
+            PathTermsMode::Tabulated => paths_per_pixel * hit_fraction * k * TABLE_LOOKUP_NS,
+        };
+        let fixed = k * sky_ns
+            + match space.path_terms[c[4]] {
+                PathTermsMode::Exact => 0.0,
+                PathTermsMode::Tabulated => k * TABLE_NODES * path_call_ns,
+            };
+        pixels * (paths_per_pixel * rays_per_path * RAY_NS + evals + path_terms) + fixed
+    };
+    // The per-pixel bound of a combination: the sum of its models' errors.
+    let bound = |c: &Combo| -> Vec<f64> {
+        samples
+            .iter()
+            .map(|s| {
+                (0..6)
+                    .map(|m| s.errors[m].get(c[m]).copied().unwrap_or(0.0))
+                    .sum()
+            })
+            .collect()
+    };
+    let reference: Combo = [0; 6];
+    let reference_cost = cost(&reference);
+    let mut best: Option<(f64, Combo, f64, f64)> = None;
+    let mut combo = [0usize; 6];
+    loop {
+        let mut b = bound(&combo);
+        let worst = b.iter().copied().fold(0.0, f64::max);
+        let p = percentile_of(&mut b, percentile);
+        if p <= tolerance_k {
+            let c = cost(&combo);
+            // At equal cost (a model that changes nothing here), the cheaper settings.
+            let cheaper = |b: &Combo| combo.iter().sum::<usize>() > b.iter().sum::<usize>();
+            if best.is_none_or(|(bc, b, ..)| c < bc * (1.0 - 1e-12) || (c <= bc && cheaper(&b))) {
+                best = Some((c, combo, p, worst));
+            }
+        }
+        // Next combination (odometer over the lists).
+        let mut m = 0;
+        loop {
+            if m == 6 {
+                break;
+            }
+            combo[m] += 1;
+            if combo[m] < lens[m] {
+                break;
+            }
+            combo[m] = 0;
+            m += 1;
+        }
+        if m == 6 {
+            break;
+        }
+    }
+    // The all-reference combination has no error against itself, so one always meets it.
+    let (chosen_cost, chosen, p, worst) = best.unwrap_or((reference_cost, reference, 0.0, 0.0));
+    let settings = |m: usize, i: usize| -> String {
+        match m {
+            0 => space.atmospheres[i].clone(),
+            1 => space.bounces[i].to_string(),
+            2 => space.sky_view_rays[i].to_string(),
+            3 => space.supersampling[i].name(),
+            4 => space.path_terms[i].name().to_owned(),
+            _ => space.sub_bands[i].clone(),
+        }
+    };
+    let choices = SwitchableModel::ALL
+        .iter()
+        .enumerate()
+        .map(|(m, &model)| {
+            let i = chosen[m];
+            let mut errors: Vec<f64> = samples
+                .iter()
+                .map(|s| s.errors[m].get(i).copied().unwrap_or(0.0))
+                .collect();
+            let max_k = errors.iter().copied().fold(0.0, f64::max);
+            let mut alone = reference;
+            alone[m] = i;
+            let reason = space
+                .reasons
+                .iter()
+                .find(|(r, _)| *r == model)
+                .map(|(_, why)| why.clone())
+                .unwrap_or_else(|| {
+                    if lens[m] == 1 {
+                        "the only setting on offer".to_owned()
+                    } else if i == lens[m] - 1 {
+                        "the cheapest setting meets the tolerance".to_owned()
+                    } else {
+                        "the cheapest combination that meets the tolerance".to_owned()
+                    }
+                });
+            ModelChoice {
+                model,
+                setting: settings(m, i),
+                reference: settings(m, 0),
+                pinned: space.pinned.contains(&model),
+                error: ErrorEstimate {
+                    percentile_k: percentile_of(&mut errors, percentile),
+                    max_k,
+                },
+                relative_cost: cost(&alone) / reference_cost,
+                reason,
+            }
+        })
+        .collect();
+    Decision {
+        tolerance_k,
+        percentile,
+        choices,
+        predicted: ErrorEstimate {
+            percentile_k: p,
+            max_k: worst,
+        },
+        relative_cost: chosen_cost / reference_cost,
+        pilot_pixels: samples.len() as u32,
+    }
+}
+
+impl Path {
+    /// This path with at most `bounces` specular bounces, into `out`: what a rendering with
+    /// that limit records (the last facet reflects the hemispheric sky).
+    pub(crate) fn truncated(&self, bounces: u32, out: &mut Path) {
+        out.primary = self.primary;
+        out.rays.clone_from(&self.rays);
+        out.nodes.clear();
+        let keep = (bounces as usize + 1).min(self.nodes.len());
+        out.nodes.extend_from_slice(&self.nodes[..keep]);
+        if let Some(last) = out.nodes.last_mut()
+            && keep == bounces as usize + 1
+            && last.mirror.is_some()
+        {
+            last.mirror = Some(Mirror::Hemispheric);
+        }
+    }
+
+    /// This path with only the first `n` of its first facet's sky-view rays (0: F = 1).
+    pub(crate) fn with_sky_rays(&self, n: u32, out: &mut Path) {
+        out.clone_from(self);
+        if let Some(node) = out.nodes.first_mut()
+            && let Some(Diffuse::Rays { start, count, .. }) = node.diffuse
+        {
+            let n = n.min(count);
+            node.diffuse = Some(if n == 0 {
+                Diffuse::Hemispheric
+            } else {
+                let rays = &self.rays[start as usize..(start + n) as usize];
+                let sky = rays
+                    .iter()
+                    .filter(|r| matches!(r, HemiRay::Escaped(Escape::Sky { zenith_deg, .. }) if *zenith_deg <= 90.0))
+                    .count() as u32;
+                Diffuse::Rays {
+                    start,
+                    count: n,
+                    sky,
+                }
+            });
+        }
+    }
+
+    /// Reflection rays this path traced within `bounces` bounces.
+    pub(crate) fn reflection_rays(&self, bounces: u32) -> u32 {
+        let traced = self
+            .nodes
+            .iter()
+            .take(bounces as usize)
+            .filter(|n| matches!(n.mirror, Some(Mirror::Next | Mirror::Escaped(_))))
+            .count();
+        traced as u32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_pixels_cover_the_image_one_per_cell() {
+        let s = sample_pixels([512, 384], 256, 1);
+        assert!((200..=300).contains(&s.len()), "{}", s.len());
+        assert!(s.iter().all(|&(c, r)| c < 512 && r < 384));
+        // Every quarter of the image holds about a quarter of them.
+        let left_top = s.iter().filter(|&&(c, r)| c < 256 && r < 192).count();
+        assert!(
+            (s.len() / 4).abs_diff(left_top) <= 8,
+            "{left_top} of {}",
+            s.len()
+        );
+        assert_eq!(sample_pixels([512, 384], 256, 1), s);
+        assert_eq!(sample_pixels([3, 2], 1000, 1).len(), 6);
+    }
+
+    #[test]
+    fn percentiles_by_nearest_rank() {
+        let mut v: Vec<f64> = (1..=100).map(f64::from).collect();
+        assert!((percentile_of(&mut v, 99.0) - 99.0).abs() < 1e-12);
+        assert!((percentile_of(&mut v, 100.0) - 100.0).abs() < 1e-12);
+        assert!((percentile_of(&mut v, 0.5) - 1.0).abs() < 1e-12);
+        assert!(percentile_of(&mut [], 99.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,527 @@
+//! `irsig-run --emit-slurm` through a real Slurm cluster (the single-node one
+//! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
+//! frames as a job array, byte for byte the same files as `irsig-run` writes; a per-frame
+//! chain waiting task by task (`aftercorr`), a failed task, and a re-submission that runs only
+//! what is still out of date; a memory request beyond the node refused at its line and
+//! column. Without a running cluster those tests fail and say why: they never skip.
+//!
+//! Also, without a cluster: `irsig-run --step` (what each task runs) and its shared run
+//! state under concurrent runners, and `submit.sh` without `sbatch` on `PATH`.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use irsig_tests::{bin, bin_path, repo_root};
+use predicates::prelude::*;
+
+/// How long a submission may take before the test gives up and names what is still queued.
+/// The fly-by takes 20-40 s on the 2-core machine.
+const TIMEOUT: Duration = Duration::from_secs(300);
+
+/// Why the cluster cannot take jobs, if it cannot.
+fn cluster_problem() -> Option<String> {
+    let output = |program: &str, args: &[&str]| -> Result<String, String> {
+        let out = Command::new(program)
+            .args(args)
+            .stdin(Stdio::null())
+            .output()
+            .map_err(|e| {
+                format!("cannot run `{program}` ({e}): is Debian's slurm-wlm installed?")
+            })?;
+        if out.status.success() {
+            Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+        } else {
+            Err(format!(
+                "`{program} {}` failed: {}",
+                args.join(" "),
+                String::from_utf8_lossy(&out.stderr).trim()
+            ))
+        }
+    };
+    match output("scontrol", &["ping"]) {
+        Err(e) => return Some(e),
+        Ok(text) if !text.contains("is UP") => {
+            return Some(format!("slurmctld is not answering: {}", text.trim()));
+        }
+        Ok(_) => {}
+    }
+    match output("sinfo", &["--noheader", "--format=%T"]) {
+        Err(e) => Some(e),
+        Ok(states) => {
+            let usable = states
+                .lines()
+                .any(|s| ["idle", "mixed", "allocated", "completing"].contains(&s.trim()));
+            (!usable).then(|| format!("no node takes jobs (sinfo states: {})", states.trim()))
+        }
+    }
+}
+
+/// Fails the test, with the reason, unless the cluster takes jobs.
+fn require_cluster() {
+    if let Some(problem) = cluster_problem() {
+        panic!(
+            "the Slurm cluster these tests submit to is not running: {problem}\n\
+             start it with `scripts/slurm/start-local-cluster.sh` (as root; .ci/run does), \
+             after `apt-get install slurm-wlm munge`"
+        );
+    }
+}
+
+/// Copies a pipeline file and its data directory (without any `build/`) into a new scratch
+/// directory.
+fn copy_pipeline(name: &str) -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let src = repo_root().join("pipelines");
+    std::fs::copy(
+        src.join(format!("{name}.ron")),
+        dir.path().join(format!("{name}.ron")),
+    )
+    .unwrap();
+    copy_tree(&src.join(name), &dir.path().join(name));
+    dir
+}
+
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap();
+        if path.is_dir() {
+            if name != "build" {
+                copy_tree(&path, &to.join(name));
+            }
+        } else {
+            std::fs::copy(&path, to.join(name)).unwrap();
+        }
+    }
+}
+
+/// `irsig-run --emit-slurm slurm PIPELINE` in `dir`, then `sh slurm/submit.sh`: the job ids
+/// with their scripts, in submission order.
+fn emit_and_submit(dir: &Path, pipeline: &str) -> Vec<(String, String)> {
+    bin("irsig-run")
+        .current_dir(dir)
+        .args(["--emit-slurm", "slurm", pipeline])
+        .assert()
+        .success();
+    submit(dir)
+}
+
+fn submit(dir: &Path) -> Vec<(String, String)> {
+    let out = Command::new("sh")
+        .arg("slurm/submit.sh")
+        .current_dir(dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "submit.sh failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .map(|l| {
+            let (id, script) = l.split_once(' ').unwrap_or_else(|| panic!("line {l:?}"));
+            assert!(id.chars().all(|c| c.is_ascii_digit()), "job id {id:?}");
+            (id.to_owned(), script.to_owned())
+        })
+        .collect()
+}
+
+/// Every task of the jobs: `(job id, array task or "-") -> (state, exit code)`, from
+/// `scontrol show job`, which keeps finished jobs for the cluster's MinJobAge (10 min).
+/// (`sacct` needs slurmdbd for array tasks; the local cluster has no database.)
+fn task_states(jobs: &[(String, String)]) -> BTreeMap<(String, String), (String, String)> {
+    let mut states = BTreeMap::new();
+    for (id, script) in jobs {
+        let out = Command::new("scontrol")
+            .args(["--oneliner", "show", "job", id])
+            .output()
+            .unwrap();
+        let text = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success() && !text.trim().is_empty(),
+            "scontrol knows no job {id} ({script}): {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for line in text.lines() {
+            let field = |key: &str| {
+                line.split_whitespace()
+                    .find_map(|w| w.strip_prefix(key))
+                    .unwrap_or("-")
+                    .to_owned()
+            };
+            states.insert(
+                (id.clone(), field("ArrayTaskId=")),
+                (field("JobState="), field("ExitCode=")),
+            );
+        }
+    }
+    states
+}
+
+/// Waits until none of the jobs is pending or running. On timeout, cancels them and fails
+/// naming each job, task and state.
+fn wait_for(jobs: &[(String, String)]) {
+    let ids: Vec<&str> = jobs.iter().map(|(id, _)| id.as_str()).collect();
+    let start = Instant::now();
+    loop {
+        let out = Command::new("squeue")
+            .args(["--noheader", "--format=%i %T %r", "--jobs", &ids.join(",")])
+            .output()
+            .unwrap();
+        let queued = String::from_utf8_lossy(&out.stdout).trim().to_owned();
+        if out.status.success() && queued.is_empty() {
+            return;
+        }
+        if start.elapsed() > TIMEOUT {
+            let _ = Command::new("scancel").args(&ids).status();
+            panic!(
+                "the jobs did not finish within {} s; still queued (job_task state reason):\n{queued}\n\
+                 jobs: {jobs:?}",
+                TIMEOUT.as_secs()
+            );
+        }
+        std::thread::sleep(Duration::from_millis(250));
+    }
+}
+
+/// Fails, with each failed task's log, unless every task of the jobs completed.
+fn assert_all_completed(dir: &Path, jobs: &[(String, String)]) {
+    let states = task_states(jobs);
+    let failed: Vec<String> = states
+        .iter()
+        .filter(|(_, (state, _))| state != "COMPLETED")
+        .map(|((id, task), (state, exit))| format!("job {id} task {task}: {state} (exit {exit})"))
+        .collect();
+    assert!(
+        failed.is_empty(),
+        "{}\nlogs:\n{}",
+        failed.join("\n"),
+        logs(dir)
+    );
+}
+
+fn logs(dir: &Path) -> String {
+    let mut text = String::new();
+    if let Ok(entries) = std::fs::read_dir(dir.join("slurm/logs")) {
+        for e in entries.flatten() {
+            text.push_str(&format!(
+                "--- {}\n{}",
+                e.file_name().to_string_lossy(),
+                std::fs::read_to_string(e.path()).unwrap_or_default()
+            ));
+        }
+    }
+    text
+}
+
+/// Every file under `dir`, relative, sorted.
+fn files(dir: &Path) -> Vec<PathBuf> {
+    let mut out: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| PathBuf::from(e.unwrap().file_name()))
+        .collect();
+    out.sort();
+    out
+}
+
+/// The same files, byte for byte.
+fn assert_same_files(expected: &Path, got: &Path) {
+    let names = files(expected);
+    assert_eq!(
+        names,
+        files(got),
+        "{} vs {}",
+        expected.display(),
+        got.display()
+    );
+    for name in names {
+        let (a, b) = (
+            std::fs::read(expected.join(&name)).unwrap(),
+            std::fs::read(got.join(&name)).unwrap(),
+        );
+        assert!(a == b, "{} differs from irsig-run's", name.display());
+    }
+}
+
+#[test]
+fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
+    require_cluster();
+    let local = copy_pipeline("thesis-flyby");
+    bin("irsig-run")
+        .current_dir(local.path())
+        .args(["--quiet", "thesis-flyby.ron"])
+        .assert()
+        .success();
+    let cluster = copy_pipeline("thesis-flyby");
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(
+        scripts,
+        [
+            "01-flatten.sbatch",
+            "02-trace.sbatch",
+            "03-contact-sheet.sbatch"
+        ]
+    );
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/02-trace.sbatch")).unwrap();
+    assert!(trace.contains("\n#SBATCH --array=1-24\n"), "{trace}");
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    let states = task_states(&jobs);
+    let trace_tasks = states.keys().filter(|(id, _)| *id == jobs[1].0).count();
+    assert_eq!(trace_tasks, 24, "one task per frame: {states:?}");
+    let build = "thesis-flyby/build";
+    assert_same_files(&local.path().join(build), &cluster.path().join(build));
+    // 1 raw scene, 5 files per frame, the contact sheet.
+    assert_eq!(files(&cluster.path().join(build)).len(), 1 + 24 * 5 + 1);
+
+    // The tasks recorded their runs in the shared state: irsig-run finds all 26 steps done.
+    bin("irsig-run")
+        .current_dir(cluster.path())
+        .arg("thesis-flyby.ron")
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("0 stage(s) ran, 26 up to date"));
+
+    // A lost frame: the next submission is that frame, and the sheet after it.
+    std::fs::remove_file(cluster.path().join(build).join("frame-07.truth.exr")).unwrap();
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(scripts, ["01-trace.sbatch", "02-contact-sheet.sbatch"]);
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/01-trace.sbatch")).unwrap();
+    assert!(trace.contains("\n#SBATCH --array=7\n"), "{trace}");
+    assert!(
+        !cluster
+            .path()
+            .join("slurm/03-contact-sheet.sbatch")
+            .exists(),
+        "the earlier submission's scripts are replaced"
+    );
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    assert_same_files(&local.path().join(build), &cluster.path().join(build));
+}
+
+/// Frames 1-3 of `a` (each reading its own input), `b` per frame of `a`, and a sheet of all
+/// `b`s; every run of testcat logs its output's name to `log.txt`.
+const CHAIN: &str = r#"Pipeline(
+    sweeps: {"f": Frames([{"n": "1"}, {"n": "2"}, {"n": "3"}])},
+    stages: [
+        Stage(name: "a", tool: "testcat", sweep: "f", args: ["in-{n}.txt"],
+              params: {"prefix": "a{frame}:", "log": "log.txt"}, outputs: {"o": "build/a-{frame}.txt"}),
+        Stage(name: "b", tool: "testcat", sweep: "f", args: ["build/a-{frame}.txt"],
+              params: {"upper": true, "log": "log.txt"}, outputs: {"o": "build/b-{frame}.txt"},
+              slurm: (memory_mib: 50)),
+        Stage(name: "sheet", tool: "testcat", gather: "f", args: ["build/b-{frame}.txt"],
+              params: {"log": "log.txt"}, outputs: {"o": "build/sheet.txt"}),
+    ],
+)
+"#;
+
+fn chain() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("chain.ron"), CHAIN).unwrap();
+    for n in 1..=3 {
+        std::fs::write(dir.path().join(format!("in-{n}.txt")), format!("in {n}\n")).unwrap();
+    }
+    dir
+}
+
+/// How often each output was written, from testcat's log.
+fn runs(dir: &Path) -> BTreeMap<String, usize> {
+    let mut counts = BTreeMap::new();
+    for line in std::fs::read_to_string(dir.join("log.txt"))
+        .unwrap_or_default()
+        .lines()
+    {
+        *counts.entry(line.to_owned()).or_default() += 1;
+    }
+    counts
+}
+
+#[test]
+fn a_failed_frame_is_all_a_resubmission_runs_again() {
+    require_cluster();
+    let dir = chain();
+    bin("irsig-run")
+        .current_dir(dir.path())
+        .args(["--emit-slurm", "slurm", "chain.ron"])
+        .assert()
+        .success();
+    let submit_sh = std::fs::read_to_string(dir.path().join("slurm/submit.sh")).unwrap();
+    assert!(
+        submit_sh.contains("--dependency=aftercorr:$job1 "),
+        "{submit_sh}"
+    );
+    assert!(
+        submit_sh.contains("--dependency=afterok:$job2 "),
+        "{submit_sh}"
+    );
+    // Frame 2's input vanishes between emission and the task: a[2] fails, so b[2] (which
+    // waits for it alone) and the sheet (which waits for every b) never run; b[1] and b[3]
+    // do not wait for a[2].
+    std::fs::remove_file(dir.path().join("in-2.txt")).unwrap();
+    let jobs = submit(dir.path());
+    wait_for(&jobs);
+    let states = task_states(&jobs);
+    let state = |job: usize, task: &str| states[&(jobs[job].0.clone(), task.to_owned())].0.clone();
+    let got = [
+        state(0, "1"),
+        state(0, "2"),
+        state(0, "3"),
+        state(1, "1"),
+        state(1, "2"),
+        state(1, "3"),
+        state(2, "-"),
+    ];
+    assert_eq!(
+        got.iter().map(String::as_str).collect::<Vec<_>>(),
+        [
+            "COMPLETED",
+            "FAILED",
+            "COMPLETED",
+            "COMPLETED",
+            "CANCELLED",
+            "COMPLETED",
+            "CANCELLED"
+        ],
+        "{states:?}\n{}",
+        logs(dir.path())
+    );
+    let failed_log =
+        std::fs::read_to_string(dir.path().join(format!("slurm/logs/a-{}_2.out", jobs[0].0)))
+            .unwrap();
+    assert!(
+        failed_log.contains("stage `a[2]` cannot run"),
+        "{failed_log}"
+    );
+
+    // The input is back: the next submission is frame 2 of a and b, and the sheet.
+    std::fs::write(dir.path().join("in-2.txt"), "in 2\n").unwrap();
+    let jobs = emit_and_submit(dir.path(), "chain.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(scripts, ["01-a.sbatch", "02-b.sbatch", "03-sheet.sbatch"]);
+    for script in ["01-a.sbatch", "02-b.sbatch"] {
+        let text = std::fs::read_to_string(dir.path().join("slurm").join(script)).unwrap();
+        assert!(text.contains("\n#SBATCH --array=2\n"), "{text}");
+    }
+    wait_for(&jobs);
+    assert_all_completed(dir.path(), &jobs);
+    let once = |name: &str| (format!("build/{name}.txt"), 1);
+    assert_eq!(
+        runs(dir.path()),
+        BTreeMap::from([
+            once("a-1"),
+            once("a-2"),
+            once("a-3"),
+            once("b-1"),
+            once("b-2"),
+            once("b-3"),
+            once("sheet"),
+        ])
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.path().join("build/sheet.txt")).unwrap(),
+        "A1:IN 1\nA2:IN 2\nA3:IN 3\n"
+    );
+}
+
+#[test]
+fn memory_beyond_the_largest_node_is_refused_at_its_line_and_column() {
+    require_cluster();
+    let dir = chain();
+    let text = CHAIN.replace("memory_mib: 50", "memory_mib: 1048576");
+    std::fs::write(dir.path().join("chain.ron"), &text).unwrap();
+    let line = text[..text.find("1048576").unwrap()].matches('\n').count() + 1;
+    bin("irsig-run")
+        .current_dir(dir.path())
+        .args(["--emit-slurm", "slurm", "chain.ron"])
+        .assert()
+        .code(1)
+        .stderr(
+            predicate::str::contains(format!("chain.ron:{line}:"))
+                .and(predicate::str::contains("asks for 1048576 MiB per task"))
+                .and(predicate::str::contains("sinfo")),
+        );
+    assert!(
+        !dir.path().join("slurm/submit.sh").exists(),
+        "no scripts written"
+    );
+}
+
+#[test]
+fn submit_without_sbatch_on_path_says_so() {
+    let dir = chain();
+    let empty = tempfile::tempdir().unwrap();
+    bin("irsig-run")
+        .current_dir(dir.path())
+        .env("PATH", empty.path())
+        .args(["--emit-slurm", "slurm", "chain.ron"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains("sinfo is not on PATH"));
+    let out = Command::new("/bin/sh")
+        .arg("slurm/submit.sh")
+        .current_dir(dir.path())
+        .env("PATH", empty.path())
+        .stdin(Stdio::null())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("sbatch is not on PATH"), "{stderr}");
+    assert!(out.stdout.is_empty());
+}
+
+#[test]
+fn one_step_runs_alone_and_concurrent_runners_keep_every_record() {
+    let dir = chain();
+    let run = |args: &[&str]| {
+        let mut cmd = bin("irsig-run");
+        cmd.current_dir(dir.path()).args(args).arg("chain.ron");
+        cmd.assert()
+    };
+    // b[1] needs a[1]'s output, which does not exist yet.
+    run(&["--step", "b[1]"])
+        .code(1)
+        .stderr(predicate::str::contains("build/a-1.txt"));
+    run(&["--step", "a[9]"]).code(1).stderr(
+        predicate::str::contains("no step named `a[9]`")
+            .and(predicate::str::contains("a[1], a[2], a[3]")),
+    );
+    // The three frames of a, as three runners at once (as three Slurm tasks would).
+    let program = bin_path("irsig-run");
+    let children: Vec<_> = (1..=3)
+        .map(|n| {
+            Command::new(&program)
+                .current_dir(dir.path())
+                .args(["--quiet", "--step", &format!("a[{n}]"), "chain.ron"])
+                .spawn()
+                .unwrap()
+        })
+        .collect();
+    for mut c in children {
+        assert!(c.wait().unwrap().success());
+    }
+    run(&["--step", "a[2]"])
+        .success()
+        .stderr(predicate::str::contains("0 stage(s) ran, 1 up to date"));
+    // Every runner's record survived: the whole run finds a up to date.
+    run(&[])
+        .success()
+        .stderr(predicate::str::contains("4 stage(s) ran, 3 up to date"));
+    assert_eq!(runs(dir.path()).values().sum::<usize>(), 7);
+    // Another frame's missing input is that frame's problem, not this step's.
+    std::fs::remove_file(dir.path().join("in-2.txt")).unwrap();
+    run(&["--step", "a[1]", "--force"])
+        .success()
+        .stderr(predicate::str::contains("1 stage(s) ran"));
+    run(&["--step", "a[2]", "--force"])
+        .code(1)
+        .stderr(predicate::str::contains("its input `in-2.txt` is missing"));
+}

@@ -1,0 +1,279 @@
+//! `--tolerance`: what the pilot may choose from for this scene, the pins that fix a model,
+//! the decision printed and applied.
+
+use std::fmt::Write as _;
+use std::str::FromStr;
+
+use irsig_atmosphere::ModelKind;
+use irsig_model::MaterialLibrary;
+use irsig_model::decision::{Decision, SwitchableModel};
+use irsig_tracer::PathTermsMode;
+use irsig_tracer::pilot::Supersample;
+
+/// The most bounces, sky-view rays and rays per pixel the pilot compares against. Four
+/// bounces: Appendix A finds one enough at earth-ambient temperatures, so four leave only
+/// hot-background scenes for more. 64 sky-view rays: the stratified estimate of F is then
+/// good to about 1/64 (docs/accuracy.md). 4 × 4 rays: an edge's area to 1/16 of a pixel.
+pub const REFERENCE_BOUNCES: u32 = 4;
+const REFERENCE_SKY_VIEW_RAYS: u32 = 64;
+const REFERENCE_SUPERSAMPLING: u32 = 4;
+
+/// A model fixed by hand: `--pin MODEL=SETTING`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pin {
+    /// The model.
+    pub model: SwitchableModel,
+    /// Its setting, checked against the model's settings.
+    pub setting: String,
+}
+
+impl FromStr for Pin {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let (model, setting) = s
+            .split_once('=')
+            .ok_or_else(|| format!("expected MODEL=SETTING such as bounces=2, found `{s}`"))?;
+        let model: SwitchableModel = model.trim().parse().map_err(|e| format!("{e}"))?;
+        let setting = setting.trim().to_owned();
+        check_setting(model, &setting)?;
+        Ok(Self { model, setting })
+    }
+}
+
+/// Whether `setting` is one `model` has.
+fn check_setting(model: SwitchableModel, setting: &str) -> Result<(), String> {
+    let ok = match model {
+        SwitchableModel::Atmosphere => setting.parse::<ModelKind>().is_ok(),
+        SwitchableModel::Bounces => setting.parse::<u32>().is_ok_and(|b| b <= 64),
+        SwitchableModel::SkyView => setting.parse::<u32>().is_ok_and(|n| n <= 1 << 20),
+        SwitchableModel::Supersampling => parse_supersample(setting).is_some(),
+        SwitchableModel::PathTerms => setting.parse::<PathTermsMode>().is_ok(),
+        SwitchableModel::SubBands => {
+            setting == "full" || setting.parse::<u32>().is_ok_and(|k| k >= 1)
+        }
+    };
+    if ok {
+        Ok(())
+    } else {
+        let expected = match model {
+            SwitchableModel::Atmosphere => "table, layered, thesis or none",
+            SwitchableModel::Bounces => "a number of bounces, 0 to 64",
+            SwitchableModel::SkyView => "a number of rays (0: off)",
+            SwitchableModel::Supersampling => "N (N x N rays per pixel) or adaptive-N",
+            SwitchableModel::PathTerms => "exact or tabulated",
+            SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
+        };
+        Err(format!("{model}={setting}: expected {expected}"))
+    }
+}
+
+/// `N` or `adaptive-N`, N from 1 to 64.
+pub fn parse_supersample(s: &str) -> Option<Supersample> {
+    let (adaptive, n) = match s.strip_prefix("adaptive-") {
+        Some(n) => (true, n),
+        None => (false, s),
+    };
+    let n: u32 = n.parse().ok().filter(|n| (1..=64).contains(n))?;
+    Some(if adaptive {
+        Supersample::Adaptive(n)
+    } else {
+        Supersample::Every(n)
+    })
+}
+
+/// The settings on offer for each model, most accurate first, and why a model has one.
+#[derive(Debug)]
+pub struct Offer {
+    pub atmospheres: Vec<ModelKind>,
+    pub bounces: Vec<u32>,
+    pub sky_view_rays: Vec<u32>,
+    pub supersampling: Vec<Supersample>,
+    pub path_terms: Vec<PathTermsMode>,
+    pub reasons: Vec<(SwitchableModel, String)>,
+    pub pinned: Vec<SwitchableModel>,
+}
+
+/// What the pilot may choose for a scene with `materials` under `atmosphere` (the kinds
+/// its tables allow, or `None` for a vacuum), with `pins` fixing models.
+///
+/// # Errors
+/// A pin the scene cannot honour (an atmosphere model whose table is missing).
+pub fn offer(
+    materials: &MaterialLibrary,
+    kinds: Option<&[ModelKind]>,
+    pins: &[Pin],
+) -> Result<Offer, String> {
+    let mut reasons = Vec::new();
+    let specular = materials
+        .materials
+        .iter()
+        .any(|m| m.specular_fraction > 0.0);
+    let diffuse = materials
+        .materials
+        .iter()
+        .any(|m| m.specular_fraction < 1.0);
+    let mut atmospheres = match kinds {
+        Some(k) => k.to_vec(),
+        None => {
+            reasons.push((
+                SwitchableModel::Atmosphere,
+                "no atmosphere (--atmosphere none)".to_owned(),
+            ));
+            vec![ModelKind::None]
+        }
+    };
+    let mut bounces = if specular {
+        vec![REFERENCE_BOUNCES, 2, 1, 0]
+    } else {
+        reasons.push((
+            SwitchableModel::Bounces,
+            "no specular material: bounces cannot matter".to_owned(),
+        ));
+        vec![0]
+    };
+    let mut sky_view_rays = if diffuse {
+        vec![REFERENCE_SKY_VIEW_RAYS, 16, 0]
+    } else {
+        reasons.push((
+            SwitchableModel::SkyView,
+            "no diffuse material: the sky-view factor cannot matter".to_owned(),
+        ));
+        vec![0]
+    };
+    let r = REFERENCE_SUPERSAMPLING;
+    let mut supersampling = vec![
+        Supersample::Every(r),
+        Supersample::Adaptive(r),
+        Supersample::Every(2),
+        Supersample::Adaptive(2),
+        Supersample::Every(1),
+    ];
+    let mut path_terms = if kinds.is_some() {
+        vec![PathTermsMode::Exact, PathTermsMode::Tabulated]
+    } else {
+        reasons.push((
+            SwitchableModel::PathTerms,
+            "no atmosphere: path terms are exact and free".to_owned(),
+        ));
+        vec![PathTermsMode::Exact]
+    };
+    reasons.push((
+        SwitchableModel::SubBands,
+        "the atmosphere has no spectra: the band model".to_owned(),
+    ));
+    let mut pinned = Vec::new();
+    for pin in pins {
+        let why = format!("pinned by --pin {}={}", pin.model, pin.setting);
+        reasons.retain(|(m, _)| *m != pin.model);
+        reasons.push((pin.model, why));
+        pinned.push(pin.model);
+        match pin.model {
+            SwitchableModel::Atmosphere => {
+                let kind: ModelKind = pin.setting.parse().map_err(|e| format!("{e}"))?;
+                if !atmospheres.contains(&kind) {
+                    return Err(format!(
+                        "--pin atmosphere={kind}: this atmosphere offers {}",
+                        atmospheres
+                            .iter()
+                            .map(ToString::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ));
+                }
+                atmospheres = vec![kind];
+            }
+            SwitchableModel::Bounces => bounces = vec![parse_u32(&pin.setting)?],
+            SwitchableModel::SkyView => sky_view_rays = vec![parse_u32(&pin.setting)?],
+            SwitchableModel::Supersampling => {
+                supersampling = vec![parse_supersample(&pin.setting).ok_or("bad pin")?];
+            }
+            SwitchableModel::PathTerms => {
+                path_terms = vec![pin.setting.parse().map_err(|e| format!("{e}"))?];
+            }
+            SwitchableModel::SubBands => {
+                if pin.setting != "1" {
+                    return Err(format!(
+                        "--pin sub-bands={}: this atmosphere has no spectra; only 1 (the band \
+                         model) is on offer",
+                        pin.setting
+                    ));
+                }
+            }
+        }
+    }
+    Ok(Offer {
+        atmospheres,
+        bounces,
+        sky_view_rays,
+        supersampling,
+        path_terms,
+        reasons,
+        pinned,
+    })
+}
+
+fn parse_u32(s: &str) -> Result<u32, String> {
+    s.parse()
+        .map_err(|_| format!("expected a whole number, found `{s}`"))
+}
+
+/// The decision as the table printed on stderr: model, choice, error at the percentile and
+/// at worst (K), relative cost, why.
+#[must_use]
+pub fn table(d: &Decision) -> String {
+    let mut out = String::new();
+    let p = d.percentile;
+    let _ = writeln!(
+        out,
+        "irsig-trace: --tolerance {} K at the {p}th percentile, from {} pilot pixels:",
+        d.tolerance_k, d.pilot_pixels
+    );
+    let _ = writeln!(
+        out,
+        "  {:<14} {:<12} {:<12} {:>9} {:>9} {:>7}  why",
+        "model", "choice", "reference", "p(K)", "worst(K)", "cost"
+    );
+    for c in &d.choices {
+        let _ = writeln!(
+            out,
+            "  {:<14} {:<12} {:<12} {:>9.4} {:>9.4} {:>7.3}  {}",
+            c.model.name(),
+            c.setting,
+            c.reference,
+            c.error.percentile_k,
+            c.error.max_k,
+            c.relative_cost,
+            c.reason
+        );
+    }
+    let _ = writeln!(
+        out,
+        "  predicted error of the combination: {:.4} K at the {p}th percentile, {:.4} K at \
+         worst; cost {:.3} of the most accurate rendering",
+        d.predicted.percentile_k, d.predicted.max_k, d.relative_cost
+    );
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pins_name_a_model_and_one_of_its_settings() {
+        assert_eq!(
+            "bounces=2".parse::<Pin>(),
+            Ok(Pin {
+                model: SwitchableModel::Bounces,
+                setting: "2".into()
+            })
+        );
+        assert!("supersampling=adaptive-4".parse::<Pin>().is_ok());
+        let e = "bounce=2".parse::<Pin>().unwrap_err();
+        assert!(e.contains("unknown model `bounce`"), "{e}");
+        assert!("bounces".parse::<Pin>().is_err());
+        assert!("atmosphere=lowtran".parse::<Pin>().is_err());
+        assert!("supersampling=0".parse::<Pin>().is_err());
+        assert!("sub-bands=0".parse::<Pin>().is_err());
+    }
+}
