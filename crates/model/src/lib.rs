@@ -10,7 +10,7 @@
 //! | [`Object`] | `irsig-import` | `irsig-flatten` |
 //! | [`Scene`] | the user | `irsig-flatten` |
 //! | [`RawScene`] | `irsig-flatten` | `irsig-trace` |
-//! | [`MaterialLibrary`] | the user, `irsig-atmos convert` | import, flatten, trace |
+//! | [`MaterialLibrary`] | the user, `irsig-material` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
