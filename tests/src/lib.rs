@@ -18,8 +18,8 @@ pub fn repo_root() -> PathBuf {
 /// The path of an irsig binary, built by this test run.
 ///
 /// `cargo test` does not build other packages' binaries, so the first call builds every
-/// workspace binary (`cargo build --workspace --bins`, same profile, a no-op when they are
-/// up to date).
+/// workspace binary, the test-only ones too (`cargo build --workspace --bins --features
+/// irsig-tests/test-tools`, same profile, a no-op when they are up to date).
 ///
 /// # Panics
 /// When the build fails or the binary does not exist.
@@ -29,7 +29,14 @@ pub fn bin_path(name: &str) -> PathBuf {
     BUILT.get_or_init(|| {
         let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
         let mut cmd = Command::new(cargo);
-        cmd.args(["build", "--quiet", "--workspace", "--bins"]);
+        cmd.args([
+            "build",
+            "--quiet",
+            "--workspace",
+            "--bins",
+            "--features",
+            "irsig-tests/test-tools",
+        ]);
         if !cfg!(debug_assertions) {
             cmd.arg("--release");
         }

@@ -152,15 +152,9 @@ fn the_makefile_turns_1990_inputs_into_images() {
 /// Scene, materials and a raw scene in a scratch directory, for irsig-trace alone.
 fn trace_scratch() -> tempfile::TempDir {
     let dir = legacy_copy();
-    bin("irsig-atmos")
+    bin("irsig-material")
         .current_dir(dir.path())
-        .args([
-            "convert",
-            "--material-index",
-            "materials.mat",
-            "-o",
-            "materials.ron",
-        ])
+        .args(["convert", "materials.mat", "-o", "materials.ron"])
         .assert()
         .success();
     bin("irsig-flatten")

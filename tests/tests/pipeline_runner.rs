@@ -212,12 +212,21 @@ fn dry_run_prints_what_would_run_and_runs_nothing() {
     );
     assert!(!s.path("build").exists() && !s.path("log.txt").exists());
 
+    // Up-to-date steps are listed too, as shell comments, so the output still pastes into a
+    // shell and runs only what is out of date.
     s.run(&[]).success();
-    s.run(&["-n"]).success().stdout("");
+    s.run(&["-n"]).success().stdout(
+        "# up to date: irsig-testcat head.txt --prefix A: --log log.txt -o build/a.txt\n\
+         # up to date: irsig-testcat build/a.txt --prefix B: --upper --log log.txt -o build/b.txt\n\
+         # up to date: irsig-testcat build/b.txt tail.txt --log log.txt -o build/c.txt\n",
+    );
     std::fs::write(s.path("tail.txt"), "other\n").unwrap();
-    s.run(&["-n"])
-        .success()
-        .stdout("irsig-testcat build/b.txt tail.txt --log log.txt -o build/c.txt\n");
+    s.run(&["-n"]).success().stdout(
+        "# up to date: irsig-testcat head.txt --prefix A: --log log.txt -o build/a.txt\n\
+         # up to date: irsig-testcat build/a.txt --prefix B: --upper --log log.txt -o build/b.txt\n\
+         irsig-testcat build/b.txt tail.txt --log log.txt -o build/c.txt\n",
+    );
+    assert_eq!(s.runs("build/c.txt"), 1, "the dry runs ran nothing");
 }
 
 #[test]

@@ -2,7 +2,7 @@
 //! binary so scenes can name them, and decoded by `irsig-formats` (this crate knows no file
 //! syntax).
 
-use irsig_model::Atmosphere;
+use irsig_model::{Atmosphere, SpectralAtmosphere};
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
 
@@ -37,4 +37,34 @@ pub fn builtin(name: &str) -> Result<Atmosphere, AtmosphereError> {
             .into()
         },
     )
+}
+
+/// The bytes of a built-in spectral atmosphere (binary spectral atmosphere,
+/// `formats/canonical/spectral-atmosphere.md`).
+#[must_use]
+pub fn builtin_spectral_bytes(name: &str) -> Option<&'static [u8]> {
+    match name {
+        "us-std-1976" => Some(include_bytes!("../data/us-std-1976.spectral.bin")),
+        "midlat-winter" => Some(include_bytes!("../data/midlat-winter.spectral.bin")),
+        _ => None,
+    }
+}
+
+/// A built-in atmosphere in spectral form (LOWTRAN7's 710–1250 cm⁻¹ every 5 cm⁻¹, at the
+/// paths and nodes of [`builtin`]): [`crate::collapse`] over flat 8–14 µm gives
+/// [`builtin`]'s tables back (`tests/spectral.rs`), and over any other band or response
+/// the band atmosphere for that sensor.
+///
+/// # Errors
+/// An unknown name.
+pub fn builtin_spectral(name: &str) -> Result<SpectralAtmosphere, AtmosphereError> {
+    let bytes = builtin_spectral_bytes(name)
+        .ok_or_else(|| AtmosphereErrorKind::UnknownBuiltin(name.to_owned()))?;
+    irsig_formats::canonical::binary_spectral::decode(name, bytes).map_err(|e| {
+        AtmosphereErrorKind::CorruptBuiltin {
+            name: name.to_owned(),
+            message: e.to_string(),
+        }
+        .into()
+    })
 }

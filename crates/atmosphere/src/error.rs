@@ -48,6 +48,13 @@ pub enum AtmosphereErrorKind {
     /// A built-in atmosphere name that does not exist.
     #[error("unknown built-in atmosphere `{0}`: expected one of {names}", names = crate::BUILTIN_NAMES.join(", "))]
     UnknownBuiltin(String),
+    /// A band a spectral atmosphere cannot be collapsed over: outside its grid, or with a
+    /// response that is negative, not finite or zero everywhere in it.
+    #[error("{0}")]
+    Band(String),
+    /// An atmosphere build's plan that cannot be made or assembled.
+    #[error("{0}")]
+    Plan(String),
     /// A built-in atmosphere failed to decode (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {

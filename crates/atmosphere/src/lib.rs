@@ -42,8 +42,10 @@ mod error;
 mod interp;
 mod layered;
 pub mod legacy;
+pub mod plan;
 mod precomputed;
 mod sky;
+mod spectral;
 mod table;
 mod thesis;
 
@@ -53,7 +55,7 @@ use std::str::FromStr;
 use irsig_model::Atmosphere;
 use serde::{Deserialize, Serialize};
 
-pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron};
+pub use builtin::{BUILTIN_NAMES, builtin, builtin_ron, builtin_spectral, builtin_spectral_bytes};
 pub use earth::{
     EARTH_RADIUS_M, critical_nadir_angle_deg, range_to_ground_from_cos_m, range_to_ground_m,
 };
@@ -64,6 +66,7 @@ pub use sky::{
     APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
     HemisphericSky, SkyView,
 };
+pub use spectral::{BandQuadrature, collapse};
 
 use layered::{Profile, Slant};
 use sky::GroundSky;

@@ -1,7 +1,8 @@
 //! The command-line vocabulary the tools share, defined once so that every tool spells a
 //! setting the same way: the band (`--band MIN-MAX` or `--band RESPONSE-FILE`), the
 //! digital-count calibration (`--dc-per-kelvin`, `--reference-k`, `--dc-at-reference`,
-//! `--gain-dc-per-radiance`, `--offset-dc`, `--dc-bits`) and library enums offered by name.
+//! `--gain-dc-per-radiance`, `--offset-dc`, `--dc-bits`), library enums offered by name,
+//! a table's `--format` and lists or ranges of numbers (`--angles 0:90:5`).
 
 use std::str::FromStr;
 
@@ -240,6 +241,60 @@ where
     PossibleValuesParser::new(names).try_map(|s: String| s.parse::<T>())
 }
 
+/// The form in which a tool prints a table (`--format`): the atmosphere calculators' and
+/// the region statistics' one spelling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum TableFormat {
+    /// Aligned columns for reading.
+    #[default]
+    Table,
+    /// Comma-separated values with a header row, full precision.
+    Csv,
+    /// RON, full precision.
+    Ron,
+}
+
+/// The numbers of an option such as `--angles`: a single value `a`, a list `a,b,c` or an
+/// inclusive range `from:to:step` (at most a million values). `option` names the flag in
+/// messages.
+///
+/// # Errors
+/// A value that is not a finite number, a step that is not above 0, a range that ends
+/// before it starts or holds more than a million values.
+pub fn values(option: &str, text: &str) -> miette::Result<Vec<f64>> {
+    let number = |s: &str| -> miette::Result<f64> {
+        match s.trim().parse::<f64>() {
+            Ok(v) if v.is_finite() => Ok(v),
+            _ => Err(miette!(
+                "{option}: expected a finite number, found `{s}` in `{text}`"
+            )),
+        }
+    };
+    let parts: Vec<&str> = text.split(':').collect();
+    match parts[..] {
+        [single] => single.split(',').map(number).collect(),
+        [from, to, step] => {
+            let (from, to, step) = (number(from)?, number(to)?, number(step)?);
+            if step <= 0.0 {
+                return Err(miette!("{option}: range `{text}` needs a step > 0"));
+            }
+            if to < from {
+                return Err(miette!("{option}: range `{text}` ends before it starts"));
+            }
+            let count = ((to - from) / step + 1e-9).floor() + 1.0;
+            if count > 1e6 {
+                return Err(miette!("{option}: range `{text}` has more than 1e6 values"));
+            }
+            Ok((0..count as usize)
+                .map(|i| from + step * i as f64)
+                .collect())
+        }
+        _ => Err(miette!(
+            "{option}: expected a value, a list `a,b,c` or a range `from:to:step`, found `{text}`"
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -338,5 +393,36 @@ mod tests {
                 offset_dc: 0.0
             })
         );
+    }
+
+    #[test]
+    fn table_formats_are_spelt_table_csv_ron() {
+        use clap::ValueEnum;
+        let names: Vec<String> = TableFormat::value_variants()
+            .iter()
+            .filter_map(|f| f.to_possible_value().map(|v| v.get_name().to_owned()))
+            .collect();
+        assert_eq!(names, ["table", "csv", "ron"]);
+        assert_eq!(TableFormat::default(), TableFormat::Table);
+    }
+
+    #[test]
+    fn values_are_one_a_list_or_a_range() {
+        assert_eq!(values("--t", "300").unwrap(), [300.0]);
+        assert_eq!(values("--t", "1, 2.5,-3").unwrap(), [1.0, 2.5, -3.0]);
+        // 0 to 90 in steps of 30 includes both ends; a step that overshoots stops short.
+        assert_eq!(values("--a", "0:90:30").unwrap(), [0.0, 30.0, 60.0, 90.0]);
+        assert_eq!(values("--a", "0:1:0.4").unwrap(), [0.0, 0.4, 0.8]);
+        for (bad, says) in [
+            ("x", "expected a finite number, found `x`"),
+            ("1,inf", "expected a finite number"),
+            ("0:90:0", "needs a step > 0"),
+            ("90:0:5", "ends before it starts"),
+            ("0:1e7:1", "more than 1e6 values"),
+            ("1:2", "a range `from:to:step`"),
+        ] {
+            let e = values("--a", bad).unwrap_err().to_string();
+            assert!(e.starts_with("--a: ") && e.contains(says), "{bad}: {e}");
+        }
     }
 }

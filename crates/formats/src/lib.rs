@@ -26,6 +26,8 @@ mod error;
 pub mod legacy;
 pub mod mesh;
 pub mod nk;
+pub mod radtran;
+pub mod ron_tree;
 pub mod srf;
 pub mod views;
 

@@ -4,6 +4,7 @@
 use std::path::PathBuf;
 
 use irsig_formats::canonical::{self, Canonical};
+use irsig_model::uncertainty::{Facets, Uncertainties};
 use irsig_model::{Atmosphere, MaterialLibrary, Object, RegionSet, Scene, View};
 
 fn sample(name: &str) -> String {
@@ -35,6 +36,9 @@ fn every_sample_reads_and_round_trips() {
     assert_eq!(view.pixels(), [256, 256]);
     let look: View = round_trip("view-look-at.ron");
     assert!(matches!(look, View::LookAt { .. }));
+    let u: Uncertainties = round_trip("uncertainties.ron");
+    assert_eq!(u.temperature[1].facets, Facets::Object("panel".into()));
+    assert!((u.path_radiance_relative - 0.05).abs() < 1e-12);
 }
 
 #[test]

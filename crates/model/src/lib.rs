@@ -10,8 +10,9 @@
 //! | [`Object`] | `irsig-import` | `irsig-flatten` |
 //! | [`Scene`] | the user | `irsig-flatten` |
 //! | [`RawScene`] | `irsig-flatten` | `irsig-trace` |
-//! | [`MaterialLibrary`] | the user, `irsig-atmos convert` | import, flatten, trace |
+//! | [`MaterialLibrary`] | the user, `irsig-material` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
+//! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
@@ -40,17 +41,25 @@ pub mod decision;
 mod error;
 mod material;
 mod object;
+mod plan;
 mod raw;
 mod regions;
 mod scene;
+mod spectral;
 pub mod truth;
+pub mod uncertainty;
 mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary};
 pub use object::{Facet, Object};
+pub use plan::{AtmospherePlan, PlanModel};
 pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
+pub use spectral::{
+    CorrectionPaths, ProfileLevel, SpectralAtmosphere, SpectralAxis, SpectralGrid,
+    SpectralSlantTables,
+};
 pub use view::{LengthUnit, View};

@@ -40,6 +40,20 @@ pub enum Layer {
     SkyViewFactor,
     /// Apparent (blackbody) temperature of the radiance at the sensor in the band, K.
     ApparentTemperature,
+    /// The error budget (with declared uncertainties): σ of the apparent temperature from
+    /// the kinetic temperature's uncertainty, K.
+    SigmaKineticTemperature,
+    /// σ of the apparent temperature from the emissivity's uncertainty, K.
+    SigmaEmissivity,
+    /// σ of the apparent temperature from the atmosphere's transmission, K.
+    SigmaTransmission,
+    /// σ of the apparent temperature from the atmosphere's path (and sky) radiance, K.
+    SigmaPathRadiance,
+    /// The residual of the models the tolerance pilot chose (its predicted error at its
+    /// percentile), K.
+    SigmaModel,
+    /// The root-sum-square of the σ layers, K.
+    SigmaTotal,
 }
 
 impl Layer {
@@ -58,8 +72,19 @@ impl Layer {
         Self::ApparentTemperature,
     ];
 
-    /// Every layer: the radiance, then the truth layers.
-    pub const ALL: [Self; 12] = [
+    /// The error budget's layers, written after [`Layer::TRUTH`] when uncertainties are
+    /// declared.
+    pub const BUDGET: [Self; 6] = [
+        Self::SigmaKineticTemperature,
+        Self::SigmaEmissivity,
+        Self::SigmaTransmission,
+        Self::SigmaPathRadiance,
+        Self::SigmaModel,
+        Self::SigmaTotal,
+    ];
+
+    /// Every layer: the radiance, the truth layers, the error budget.
+    pub const ALL: [Self; 18] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -72,6 +97,12 @@ impl Layer {
         Self::PathRadiance,
         Self::SkyViewFactor,
         Self::ApparentTemperature,
+        Self::SigmaKineticTemperature,
+        Self::SigmaEmissivity,
+        Self::SigmaTransmission,
+        Self::SigmaPathRadiance,
+        Self::SigmaModel,
+        Self::SigmaTotal,
     ];
 
     /// The layer's name in the EXR.
@@ -90,6 +121,12 @@ impl Layer {
             Self::PathRadiance => "path_radiance",
             Self::SkyViewFactor => "sky_view_factor",
             Self::ApparentTemperature => "apparent_temperature",
+            Self::SigmaKineticTemperature => "sigma_kinetic_temperature",
+            Self::SigmaEmissivity => "sigma_emissivity",
+            Self::SigmaTransmission => "sigma_transmission",
+            Self::SigmaPathRadiance => "sigma_path_radiance",
+            Self::SigmaModel => "sigma_model",
+            Self::SigmaTotal => "sigma_total",
         }
     }
 
@@ -100,7 +137,14 @@ impl Layer {
             Self::Radiance | Self::PathRadiance => "W m^-2 sr^-1",
             Self::Range => "m",
             Self::Incidence => "deg",
-            Self::KineticTemperature | Self::ApparentTemperature => "K",
+            Self::KineticTemperature
+            | Self::ApparentTemperature
+            | Self::SigmaKineticTemperature
+            | Self::SigmaEmissivity
+            | Self::SigmaTransmission
+            | Self::SigmaPathRadiance
+            | Self::SigmaModel
+            | Self::SigmaTotal => "K",
             Self::MaterialPrimary
             | Self::MaterialSecondary
             | Self::Event
@@ -145,7 +189,8 @@ mod tests {
                 assert_ne!(a.name(), b.name());
             }
         }
-        assert_eq!(Layer::ALL[1..], Layer::TRUTH);
+        assert_eq!(Layer::ALL[1..12], Layer::TRUTH);
+        assert_eq!(Layer::ALL[12..], Layer::BUDGET);
         assert_eq!(Layer::from_name("Radiance"), None);
     }
 }

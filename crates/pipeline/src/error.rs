@@ -76,6 +76,14 @@ impl PipelineError {
         }
     }
 
+    /// An error already located by the shared parser.
+    pub(crate) fn located(kind: ErrorKind, error: ParseError) -> Self {
+        Self {
+            kind,
+            detail: Detail::Located(Box::new(error)),
+        }
+    }
+
     pub(crate) fn io(message: impl Into<String>, source: std::io::Error) -> Self {
         Self {
             kind: ErrorKind::Io,

@@ -1,8 +1,9 @@
 //! Declarative irsig pipelines: a RON file of stages, each run as its own tool
 //! (`irsig-<tool>`), exactly as a user would type it.
 //!
-//! - [`Pipeline::load`] / [`Pipeline::parse`] read the file (RON syntax checked by `ron`),
-//!   keeping the position of every value, so later errors point at a line and column.
+//! - [`Pipeline::load`] / [`Pipeline::parse`] read the file through
+//!   `irsig_formats::ron_tree` (RON syntax checked by `ron`), keeping the position of every
+//!   value, so later errors point at a line and column.
 //! - [`Pipeline::plan`] expands frame sweeps into one step per frame, builds each step's
 //!   command line, finds the tools, validates parameters with the tools' own command-line
 //!   parsers ([`Tools::register`]), and checks for duplicate outputs, missing inputs and
@@ -10,9 +11,10 @@
 //! - [`Plan::run`] runs the steps in dependency order, independent ones in parallel, and
 //!   skips a step whose outputs are up to date with its tool, command line and input
 //!   contents (SHA-256, kept in `.irsig-run/` beside the pipeline file).
-//! - [`Plan::dry_run`] lists what would run; [`Plan::makefile`] writes the same steps as a
-//!   Makefile; [`Plan::slurm`] writes them as Slurm batch scripts (a job array per frame
-//!   sweep), whose tasks each run one step ([`Plan::run_step_named`]).
+//! - [`Plan::dry_run`] lists every step and whether a run would start it;
+//!   [`Plan::makefile`] writes the same steps as a Makefile; [`Plan::slurm`] writes them as
+//!   Slurm batch scripts (a job array per frame sweep), whose tasks each run one step
+//!   ([`Plan::run_step_named`]).
 //!
 //! The format is documented in `formats/pipeline.md`.
 //!
@@ -43,7 +45,6 @@ mod plan;
 mod run;
 mod slurm;
 mod spec;
-mod value;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};

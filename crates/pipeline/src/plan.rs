@@ -7,7 +7,6 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::error::{ErrorKind, PipelineError};
 use crate::spec::{self, Param, PipelineSpec, Source, Spanned, StageSpec};
-use crate::value;
 
 /// Checks a stage's command line (program name first, as `std::env::args` gives it) the way
 /// the tool itself would parse it, without running anything. The message is shown to the
@@ -96,13 +95,10 @@ impl Pipeline {
     /// ([`ErrorKind::Structure`]), located at its line and column.
     pub fn parse(file: &str, text: &str, base_dir: &Path) -> Result<Self, PipelineError> {
         let src = Source { file, text };
-        // `ron` is the judge of syntax, so a syntax error reads as it would for any RON file.
-        if let Err(e) = ron::Options::default().from_str::<serde::de::IgnoredAny>(text) {
-            let offset = offset_of(text, e.span.start.line, e.span.start.col);
-            return Err(src.error(ErrorKind::Syntax, offset, offset + 1, e.code.to_string()));
-        }
-        let root = value::parse(text)
-            .map_err(|e| src.error(ErrorKind::Syntax, e.offset, e.offset + 1, e.message.clone()))?;
+        // `ron` is the judge of syntax (through irsig-formats), so a syntax error reads as it
+        // would for any RON file; the tree keeps every value's position for later errors.
+        let root = irsig_formats::ron_tree::parse(file, text, "pipeline")
+            .map_err(|e| PipelineError::located(ErrorKind::Syntax, e))?;
         let spec = spec::pipeline(src, &root)?;
         Ok(Self {
             file: file.to_owned(),
@@ -763,21 +759,6 @@ fn check_parameters(
         )))
 }
 
-/// The byte offset of a 1-based line and character column in `text`.
-fn offset_of(text: &str, line: usize, column: usize) -> usize {
-    let mut offset = 0;
-    for (i, l) in text.split_inclusive('\n').enumerate() {
-        if i + 1 == line {
-            return offset
-                + l.char_indices()
-                    .nth(column.saturating_sub(1))
-                    .map_or(l.len(), |(b, _)| b);
-        }
-        offset += l.len();
-    }
-    text.len()
-}
-
 /// A checked pipeline: every step with its command line, in an order where producers come
 /// before the steps that read their outputs.
 #[derive(Debug, Clone)]
@@ -834,16 +815,6 @@ impl Plan {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn offsets_from_line_and_column() {
-        let t = "ab\ncdé\nf";
-        assert_eq!(offset_of(t, 1, 1), 0);
-        assert_eq!(offset_of(t, 2, 3), 5);
-        // "ab\n" is 3 bytes, "cdé\n" is 5 (é takes two).
-        assert_eq!(offset_of(t, 3, 1), 8);
-        assert_eq!(offset_of(t, 9, 9), t.len());
-    }
 
     #[test]
     fn normalising_paths() {

@@ -98,9 +98,13 @@ impl Plan {
     /// A missing or unreadable state file means nothing is known to be up to date: the state
     /// is a cache, and the worst a lost one costs is a re-run.
     fn load_state(&self) -> State {
-        std::fs::read_to_string(self.state_path())
+        let path = self.state_path();
+        std::fs::read_to_string(&path)
             .ok()
-            .and_then(|t| ron::from_str(&t).ok())
+            .and_then(|t| {
+                let file = path.display().to_string();
+                irsig_formats::canonical::from_ron_as(&file, &t, "run state").ok()
+            })
             .unwrap_or_default()
     }
 
@@ -156,7 +160,7 @@ impl Plan {
     fn save_state(&self, state: &State) -> Result<(), PipelineError> {
         let path = self.state_path();
         let io = |e| PipelineError::io(format!("cannot write run state `{}`", path.display()), e);
-        let text = ron::ser::to_string_pretty(state, ron::ser::PrettyConfig::default())
+        let text = irsig_formats::canonical::to_ron_pretty(state)
             .map_err(|e| io(std::io::Error::other(e.to_string())))?;
         let dir = path
             .parent()
@@ -224,12 +228,13 @@ impl Plan {
             && self.outputs_hash(step).as_deref() == Some(record.outputs_sha256.as_str())
     }
 
-    /// The steps a run would start, in order, without running anything: those not up to
-    /// date and those downstream of them (all of them with `force`).
+    /// Every step in order, each with whether a run would start it, without running
+    /// anything: a run starts those not up to date and those downstream of them (all of
+    /// them with `force`); `false` marks a step a run would skip as up to date.
     ///
     /// # Errors
     /// A tool program that cannot be read for hashing.
-    pub fn dry_run(&self, force: bool) -> Result<Vec<&Step>, PipelineError> {
+    pub fn dry_run(&self, force: bool) -> Result<Vec<(&Step, bool)>, PipelineError> {
         let tools = self.tool_hashes()?;
         let state = self.load_state();
         let mut would_run = vec![false; self.steps.len()];
@@ -245,12 +250,7 @@ impl Plan {
                     state.steps.get(&step.name),
                 );
         }
-        Ok(self
-            .steps
-            .iter()
-            .zip(would_run)
-            .filter_map(|(s, run)| run.then_some(s))
-            .collect())
+        Ok(self.steps.iter().zip(would_run).collect())
     }
 
     /// Runs the plan: each step when its producers are done, up to `jobs` at a time,

@@ -8,10 +8,11 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::fmt::Write;
 use std::path::{Path, PathBuf};
 
+use irsig_formats::ron_tree::{Kind, Node};
+
 use crate::error::{ErrorKind, PipelineError};
 use crate::plan::{Plan, Step};
 use crate::spec::{self, Source, Spanned};
-use crate::value::{Kind, Node};
 
 /// Memory asked for a task whose stage does not say: a floor for the process, its tables
 /// and a frame of up to 256 × 256 pixels (irsig-trace, the thesis fly-by frame: 17 MiB peak).
@@ -185,7 +186,7 @@ impl Plan {
         let pending: BTreeSet<&str> = self
             .dry_run(options.force)?
             .into_iter()
-            .map(|s| s.name.as_str())
+            .filter_map(|(s, runs)| runs.then_some(s.name.as_str()))
             .collect();
         // Stages in the order of their first pending step: producers come first.
         let mut stage_order: Vec<usize> = Vec::new();

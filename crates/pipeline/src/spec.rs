@@ -4,7 +4,7 @@
 use std::collections::BTreeMap;
 
 use crate::error::{ErrorKind, PipelineError};
-use crate::value::{Kind, Node};
+use irsig_formats::ron_tree::{Key, Kind, Node};
 
 /// A value with the byte range of its text in the pipeline file.
 #[derive(Debug, Clone, PartialEq)]
@@ -340,7 +340,7 @@ pub(crate) fn fields_of<'n>(
     type_name: &str,
     allowed: &[&str],
 ) -> Result<BTreeMap<&'n str, &'n Node>, PipelineError> {
-    let fields: &[(crate::value::Key, Node)] = match &node.kind {
+    let fields: &[(Key, Node)] = match &node.kind {
         Kind::Struct(name, fields) if name.as_deref().is_none_or(|n| n == type_name) => fields,
         Kind::Tuple(name, items)
             if items.is_empty() && name.as_deref().is_none_or(|n| n == type_name) =>

@@ -22,6 +22,8 @@ use crate::tracer::{BandData, BandSet, Event, FrameConsts, Sample, Tracer};
 struct SurfaceTerms {
     emissivity: f64,
     blackbody: f64,
+    /// `s·L_spec + (1 − s)·L_diffuse`: what the reflectance multiplies.
+    reflected: f64,
     specular_incident: f64,
     sky_hemispheric: f64,
     diffuse_incident: f64,
@@ -40,10 +42,15 @@ struct Sums {
     transmitted: f64,
     path_radiance: f64,
     radiance: f64,
+    /// `Σ τ·ε·dL_T/dT`.
+    temperature_sensitivity: f64,
+    /// `Σ τ·(L_T − L_reflected)`.
+    emissivity_sensitivity: f64,
 }
 
 impl Sums {
-    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64) {
+    /// Adds one sub-band's terms; `derivative` is its dL_T/dT at the facet's temperature.
+    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64, derivative: f64) {
         self.emitted += t.emissivity * t.blackbody;
         self.blackbody += t.blackbody;
         self.specular_incident += t.specular_incident;
@@ -53,6 +60,8 @@ impl Sums {
         self.transmitted += transmission * t.leaving;
         self.path_radiance += path_radiance;
         self.radiance += transmission * t.leaving + path_radiance;
+        self.temperature_sensitivity += transmission * t.emissivity * derivative;
+        self.emissivity_sensitivity += transmission * (t.blackbody - t.reflected);
     }
 }
 
@@ -139,7 +148,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     };
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
-                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr);
+                        let facet = &path.nodes[0].surface.data;
+                        let derivative = b.derivative[facet.temperature_index as usize];
+                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr, derivative);
                         single = first;
                         single_tau = p.transmission;
                     }
@@ -206,6 +217,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         s.surface_leaving_w_m2_sr = sums.leaving;
         s.transmission = effective_transmission(one, single_tau, sums.transmitted, sums.leaving);
         s.path_radiance_w_m2_sr = sums.path_radiance;
+        s.temperature_sensitivity = sums.temperature_sensitivity;
+        s.emissivity_sensitivity = sums.emissivity_sensitivity;
     }
 
     /// The surface-leaving terms of the path's first facet in sub-band `b`: the chain of
@@ -262,11 +275,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 sum / f64::from(count)
             }
         };
-        let leaving = eps * blackbody
-            + (1.0 - eps) * (sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident);
+        let reflected = sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident;
+        let leaving = eps * blackbody + (1.0 - eps) * reflected;
         SurfaceTerms {
             emissivity: eps,
             blackbody,
+            reflected,
             specular_incident,
             sky_hemispheric: sky_hemi,
             diffuse_incident,

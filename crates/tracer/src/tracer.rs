@@ -174,6 +174,12 @@ pub struct Sample {
     pub path_radiance_w_m2_sr: f64,
     /// Radiance at the sensor, W m⁻² sr⁻¹.
     pub radiance_w_m2_sr: f64,
+    /// ∂L/∂T of the facet hit's kinetic temperature, `Σ τ·ε·dL_T/dT` over the sub-bands,
+    /// W m⁻² sr⁻¹ K⁻¹ (0 for a miss): what the error budget propagates a temperature's
+    /// uncertainty by.
+    pub temperature_sensitivity: f64,
+    /// ∂L/∂ε of the facet hit, `Σ τ·(L_T − L_reflected)`, W m⁻² sr⁻¹ (0 for a miss).
+    pub emissivity_sensitivity: f64,
 }
 
 impl Sample {
@@ -207,6 +213,8 @@ impl Sample {
             transmission: f64::NAN,
             path_radiance_w_m2_sr: f64::NAN,
             radiance_w_m2_sr: f64::NAN,
+            temperature_sensitivity: 0.0,
+            emissivity_sensitivity: 0.0,
         }
     }
 }
@@ -268,13 +276,23 @@ impl fmt::Display for Sample {
             "L_u (W m-2 sr-1)           {}",
             self.path_radiance_w_m2_sr
         )?;
-        write!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)
+        writeln!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)?;
+        writeln!(
+            f,
+            "dL/dT_kinetic              {}",
+            self.temperature_sensitivity
+        )?;
+        write!(
+            f,
+            "dL/dε                      {}",
+            self.emissivity_sensitivity
+        )
     }
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
-/// outputs carry, rounded to f32 as the truth EXR stores them: 40 bytes, where a whole
-/// [`Sample`] is 144. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
+/// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
+/// [`Sample`] is 160. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
 /// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
 /// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
@@ -303,11 +321,18 @@ pub struct TruthPixel {
     pub path_radiance_w_m2_sr: f32,
     /// Sky-view (shape) factor F (1 when the model is off).
     pub sky_view_factor: f32,
+    /// Raw-scene index of the facet hit (`u32::MAX`: none): the error budget's uncertainties
+    /// are per material or per object.
+    pub facet: u32,
+    /// [`Sample::temperature_sensitivity`], W m⁻² sr⁻¹ K⁻¹.
+    pub temperature_sensitivity: f32,
+    /// [`Sample::emissivity_sensitivity`], W m⁻² sr⁻¹.
+    pub emissivity_sensitivity: f32,
 }
 
 // The sizes the frame's memory traffic was measured at (the doc above).
-const _: () = assert!(std::mem::size_of::<TruthPixel>() == 40);
-const _: () = assert!(std::mem::size_of::<Sample>() == 144);
+const _: () = assert!(std::mem::size_of::<TruthPixel>() == 56);
+const _: () = assert!(std::mem::size_of::<Sample>() == 160);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -318,8 +343,8 @@ impl TruthPixel {
     }
 
     /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
-    /// the layers that come from the pixel's radiance instead ([`Layer::Radiance`],
-    /// [`Layer::ApparentTemperature`]).
+    /// the layers that come from the pixel's radiance and the declared uncertainties
+    /// instead ([`Layer::Radiance`], [`Layer::ApparentTemperature`], [`Layer::BUDGET`]).
     #[must_use]
     pub fn layer(&self, layer: Layer) -> Option<f32> {
         Some(match layer {
@@ -333,7 +358,14 @@ impl TruthPixel {
             Layer::Transmission => self.transmission,
             Layer::PathRadiance => self.path_radiance_w_m2_sr,
             Layer::SkyViewFactor => self.sky_view_factor,
-            Layer::Radiance | Layer::ApparentTemperature => return None,
+            Layer::Radiance
+            | Layer::ApparentTemperature
+            | Layer::SigmaKineticTemperature
+            | Layer::SigmaEmissivity
+            | Layer::SigmaTransmission
+            | Layer::SigmaPathRadiance
+            | Layer::SigmaModel
+            | Layer::SigmaTotal => return None,
         })
     }
 }
@@ -351,6 +383,9 @@ impl From<&Sample> for TruthPixel {
             transmission: s.transmission as f32,
             path_radiance_w_m2_sr: s.path_radiance_w_m2_sr as f32,
             sky_view_factor: s.sky_view_factor as f32,
+            facet: s.facet.unwrap_or(u32::MAX),
+            temperature_sensitivity: s.temperature_sensitivity as f32,
+            emissivity_sensitivity: s.emissivity_sensitivity as f32,
         }
     }
 }
@@ -436,6 +471,8 @@ pub(crate) struct BandData<A> {
     pub(crate) emissivity: Vec<EmissivityTable>,
     /// L_T per temperature index, W m⁻² sr⁻¹; empty when `inline`.
     pub(crate) blackbody: Vec<f64>,
+    /// dL_T/dT per temperature index, W m⁻² sr⁻¹ K⁻¹ (for the error budget).
+    pub(crate) derivative: Vec<f64>,
     /// The facet records hold this sub-band's L_T (the tracer's own first sub-band).
     pub(crate) inline: bool,
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
@@ -719,11 +756,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     ))));
                 }
             };
-            let blackbody = self
+            let (blackbody, derivative) = self
                 .temperatures
                 .iter()
-                .map(|&t| sb.band.radiance(t))
-                .collect();
+                .map(|&t| sb.band.radiance_and_derivative(t))
+                .unzip();
             let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
             let terrain_leaving = terrain.emissivity * terrain_blackbody
                 + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
@@ -731,6 +768,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 atmosphere: sb.atmosphere,
                 emissivity,
                 blackbody,
+                derivative,
                 inline: false,
                 terrain_blackbody,
                 terrain_leaving,

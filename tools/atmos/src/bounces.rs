@@ -1,9 +1,10 @@
 //! `irsig-atmos bounces`: thesis Appendix A, the apparent temperature of a specular target
 //! after 0..N bounces, every background surface alike (Figure A-1).
 
+use irsig_cli::args::TableFormat;
 use irsig_radiometry::{Surface, bounce_temperatures};
 
-use crate::common::{BandArgs, Column, Format, diagnostic, fractions, print_table, temperatures};
+use crate::common::{BandArgs, Column, diagnostic, fractions, print_table, temperatures};
 
 /// Arguments of `bounces`. Each of the four surface options takes a value, a list
 /// `a,b,c` or a range `from:to:step`; every combination is printed.
@@ -28,7 +29,7 @@ pub struct Args {
     pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
-    pub format: Format,
+    pub format: TableFormat,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {

@@ -1,23 +1,11 @@
-//! What the subcommands share: value lists and ranges, the band options, and the table
+//! What the subcommands share: checked value lists, the band options, and the table
 //! printer (aligned text, CSV, RON).
 
 use std::io::Write;
 
-use irsig_cli::args::BandArg;
+use irsig_cli::args::{BandArg, TableFormat, values};
 use irsig_radiometry::Band;
 use miette::miette;
-
-/// Output format of a table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
-pub enum Format {
-    /// Aligned columns for reading.
-    #[default]
-    Table,
-    /// Comma-separated values with a header row.
-    Csv,
-    /// RON: `(columns: [..], rows: [[..], ..])`.
-    Ron,
-}
 
 /// `--band`, as every tool takes it.
 #[derive(Debug, clap::Args)]
@@ -31,41 +19,6 @@ pub struct BandArgs {
 impl BandArgs {
     pub fn band(&self) -> miette::Result<Band> {
         self.band.load()
-    }
-}
-
-/// Parses a single value `a`, a list `a,b,c` or an inclusive range `a:b:step`.
-pub fn values(option: &str, text: &str) -> miette::Result<Vec<f64>> {
-    let number = |s: &str| -> miette::Result<f64> {
-        match s.trim().parse::<f64>() {
-            Ok(v) if v.is_finite() => Ok(v),
-            _ => Err(miette!(
-                "{option}: expected a finite number, found `{s}` in `{text}`"
-            )),
-        }
-    };
-    let parts: Vec<&str> = text.split(':').collect();
-    match parts[..] {
-        [single] => single.split(',').map(number).collect(),
-        [from, to, step] => {
-            let (from, to, step) = (number(from)?, number(to)?, number(step)?);
-            if step <= 0.0 {
-                return Err(miette!("{option}: range `{text}` needs a step > 0"));
-            }
-            if to < from {
-                return Err(miette!("{option}: range `{text}` ends before it starts"));
-            }
-            let count = ((to - from) / step + 1e-9).floor() + 1.0;
-            if count > 1e6 {
-                return Err(miette!("{option}: range `{text}` has more than 1e6 values"));
-            }
-            Ok((0..count as usize)
-                .map(|i| from + step * i as f64)
-                .collect())
-        }
-        _ => Err(miette!(
-            "{option}: expected a value, a list `a,b,c` or a range `from:to:step`, found `{text}`"
-        )),
     }
 }
 
@@ -120,9 +73,13 @@ fn text_value(v: f64, decimals: usize) -> String {
 }
 
 /// Prints `rows` under `columns` to stdout in `format`. CSV and RON carry full precision.
-pub fn print_table(format: Format, columns: &[Column], rows: &[Vec<f64>]) -> miette::Result<()> {
+pub fn print_table(
+    format: TableFormat,
+    columns: &[Column],
+    rows: &[Vec<f64>],
+) -> miette::Result<()> {
     irsig_cli::write_output(None, |w: &mut dyn Write| match format {
-        Format::Table => {
+        TableFormat::Table => {
             let cells: Vec<Vec<String>> = rows
                 .iter()
                 .map(|r| {
@@ -160,7 +117,7 @@ pub fn print_table(format: Format, columns: &[Column], rows: &[Vec<f64>]) -> mie
             }
             Ok(())
         }
-        Format::Csv => {
+        TableFormat::Csv => {
             let header: Vec<&str> = columns.iter().map(|c| c.name.as_str()).collect();
             writeln!(w, "{}", header.join(","))?;
             for r in rows {
@@ -169,13 +126,13 @@ pub fn print_table(format: Format, columns: &[Column], rows: &[Vec<f64>]) -> mie
             }
             Ok(())
         }
-        Format::Ron => {
+        TableFormat::Ron => {
             let table = RonTable {
                 columns: columns.iter().map(|c| c.name.as_str()).collect(),
                 rows,
             };
-            let text = ron::ser::to_string_pretty(&table, ron::ser::PrettyConfig::default())
-                .map_err(std::io::Error::other)?;
+            let text =
+                irsig_formats::canonical::to_ron_pretty(&table).map_err(std::io::Error::other)?;
             writeln!(w, "{text}")
         }
     })

@@ -1,24 +1,20 @@
 //! `irsig-atmos convert`: legacy DIRTRAN tables (thesis Figure 9) to and from the canonical
 //! atmosphere file, with the legacy units stated on the command line and every table
 //! validated (altitudes increase; 0 ≤ τ ≤ 1; angles in 0–90° and increasing; radiances
-//! ≥ 0); and the legacy material index file with its `.ems` tables to and from the
-//! canonical material library (`--material-index`, `--materials-to-legacy`; see
-//! [`crate::materials`]).
+//! ≥ 0). Material files (the index and its `.ems` tables) are `irsig-material`'s.
 
 use std::path::{Path, PathBuf};
 
-use clap::{ArgGroup, Args, ValueEnum};
+use clap::{Args, ValueEnum};
 use irsig_atmosphere::legacy::{
     ConvertOptions, DirtranTables, LegacyUnits, from_atmosphere, to_atmosphere,
 };
-use irsig_formats::ParseError;
 use irsig_formats::legacy::{atm, cor, dwr, rsd, rtt};
 use irsig_model::{Atmosphere, SlantTables};
 use miette::{IntoDiagnostic, Report, WrapErr};
 
 /// Arguments of `irsig-atmos convert`.
 #[derive(Debug, Clone, Args)]
-#[command(group(ArgGroup::new("legacy_out").args(["to_legacy", "materials_to_legacy"])))]
 #[command(after_help = "\
 Examples:
   # DIRTRAN tables (km, W cm^-2 sr^-1) to a canonical atmosphere
@@ -30,15 +26,10 @@ Examples:
   irsig-atmos convert --to-legacy us-std-1976.ron --altitude-unit km \\
       --radiance-unit W/cm2/sr --out-dir legacy/ --stem us
 
-  # the 1990 material index file and the .ems tables it names to a material library;
-  # entries without an .ems file get the constant emissivity 0.9
-  irsig-atmos convert --material-index materials.mat --default-emissivity 0.9 -o lib.ron
-
-  # a material library back to legacy/materials.mat plus legacy/NAME.ems per material
-  irsig-atmos convert --materials-to-legacy lib.ron --out-dir legacy/")]
+Material files (the index and its .ems tables) convert with irsig-material convert.")]
 pub struct ConvertArgs {
     /// The `.atm` table (altitude ASL, T in K, altitude above ground, τ, L_u).
-    #[arg(long, value_name = "FILE", required_unless_present_any = ["to_legacy", "material_index", "materials_to_legacy"])]
+    #[arg(long, value_name = "FILE", required_unless_present = "to_legacy")]
     pub atm: Option<String>,
     /// The `.cor` coefficients a1 a2 a3 (thesis eq. 10).
     #[arg(long, value_name = "FILE")]
@@ -49,7 +40,7 @@ pub struct ConvertArgs {
     #[arg(long, value_name = "METRES", requires = "cor")]
     pub cor_altitude_m: Option<f64>,
     /// The `.dwr` sky table (zenith angle, L_d; `-1` row = hemispheric).
-    #[arg(long, value_name = "FILE", required_unless_present_any = ["to_legacy", "material_index", "materials_to_legacy"])]
+    #[arg(long, value_name = "FILE", required_unless_present = "to_legacy")]
     pub dwr: Option<String>,
     /// The `.rtt` temperature → band radiance table.
     #[arg(long, value_name = "FILE")]
@@ -60,17 +51,15 @@ pub struct ConvertArgs {
     /// Slant tables (canonical `SlantTables` RON, SI) from scripts/atmosphere/regen.py.
     #[arg(long, value_name = "FILE")]
     pub slant: Option<String>,
-    /// Unit of every altitude in the legacy tables (DIRTRAN wrote km). Not needed for
-    /// material files, which hold no altitudes.
-    #[arg(long, value_enum, required_unless_present_any = ["material_index", "materials_to_legacy"])]
-    pub altitude_unit: Option<AltitudeUnit>,
+    /// Unit of every altitude in the legacy tables (DIRTRAN wrote km).
+    #[arg(long, value_enum)]
+    pub altitude_unit: AltitudeUnit,
     /// Unit of every radiance in the legacy tables (DIRTRAN wrote W/cm2/sr; the thesis
-    /// text once says W/m2/sr for the `.rtt`, so it must be stated). Not needed for
-    /// material files.
-    #[arg(long, value_enum, required_unless_present_any = ["material_index", "materials_to_legacy"])]
-    pub radiance_unit: Option<RadianceUnit>,
+    /// text once says W/m2/sr for the `.rtt`, so it must be stated).
+    #[arg(long, value_enum)]
+    pub radiance_unit: RadianceUnit,
     /// Name of the atmosphere.
-    #[arg(long, required_unless_present_any = ["to_legacy", "material_index", "materials_to_legacy"])]
+    #[arg(long, required_unless_present = "to_legacy")]
     pub name: Option<String>,
     /// Where the numbers come from (model, version, settings).
     #[arg(
@@ -81,37 +70,19 @@ pub struct ConvertArgs {
     /// The band the tables were integrated over: `MIN-MAX` in micrometres.
     #[arg(long, default_value = "8-14", value_name = "MIN-MAX", value_parser = irsig_cli::args::flat_band)]
     pub band: [f64; 2],
-    /// Output canonical atmosphere or material library (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE", conflicts_with = "legacy_out")]
+    /// Output canonical atmosphere (stdout when absent or `-`).
+    #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub output: Option<PathBuf>,
     /// Convert the other way: this canonical atmosphere (a file, `-`, or `builtin:NAME`)
     /// to DIRTRAN tables.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["atm", "cor", "dwr", "rtt", "rsd", "slant"])]
     pub to_legacy: Option<String>,
-    /// Directory for the legacy files written by `--to-legacy` or `--materials-to-legacy`.
-    #[arg(long, value_name = "DIR", requires = "legacy_out", default_value = ".")]
+    /// Directory for the legacy files written by `--to-legacy`.
+    #[arg(long, value_name = "DIR", requires = "to_legacy", default_value = ".")]
     pub out_dir: PathBuf,
-    /// File stem of the DIRTRAN tables written by `--to-legacy` (default: the name), or of
-    /// the material index written by `--materials-to-legacy` (default: `materials`).
-    #[arg(long, requires = "legacy_out")]
+    /// File stem of the DIRTRAN tables written by `--to-legacy` (default: the name).
+    #[arg(long, requires = "to_legacy")]
     pub stem: Option<String>,
-    /// Convert this 1990 material index file (`index name [file.ems [0|1]]` per line) and
-    /// the `.ems` tables it names to a canonical material library, instead of DIRTRAN
-    /// tables to an atmosphere.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["atm", "cor", "dwr", "rtt", "rsd", "slant", "name", "to_legacy", "materials_to_legacy"])]
-    pub material_index: Option<String>,
-    /// The directory the index's `.ems` file names are relative to (default: the index
-    /// file's directory).
-    #[arg(long, value_name = "DIR", requires = "material_index")]
-    pub ems_dir: Option<PathBuf>,
-    /// The constant emissivity (0–1, at every angle) of materials the index gives no
-    /// `.ems` file. Without it such a material is an error.
-    #[arg(long, value_name = "E", requires = "material_index")]
-    pub default_emissivity: Option<f64>,
-    /// Convert this canonical material library (a file or `-`) to a material index file
-    /// (`STEM.mat`) and one `NAME.ems` per material in `--out-dir`.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["atm", "cor", "dwr", "rtt", "rsd", "slant", "name", "to_legacy"])]
-    pub materials_to_legacy: Option<String>,
 }
 
 /// A legacy altitude unit.
@@ -135,22 +106,17 @@ pub enum RadianceUnit {
 }
 
 impl ConvertArgs {
-    fn units(&self) -> miette::Result<LegacyUnits> {
-        let (Some(altitude), Some(radiance)) = (self.altitude_unit, self.radiance_unit) else {
-            return Err(irsig_cli::usage_error(
-                "DIRTRAN tables need --altitude-unit and --radiance-unit",
-            ));
-        };
-        Ok(LegacyUnits {
-            metres_per_altitude_unit: match altitude {
+    fn units(&self) -> LegacyUnits {
+        LegacyUnits {
+            metres_per_altitude_unit: match self.altitude_unit {
                 AltitudeUnit::Km => 1000.0,
                 AltitudeUnit::M => 1.0,
             },
-            si_per_radiance_unit: match radiance {
+            si_per_radiance_unit: match self.radiance_unit {
                 RadianceUnit::WCm2Sr => 1e4,
                 RadianceUnit::WM2Sr => 1.0,
             },
-        })
+        }
     }
 }
 
@@ -160,12 +126,6 @@ impl ConvertArgs {
 /// A missing or malformed table (file, line, column and what was expected), a converted
 /// atmosphere that breaks a rule, or an I/O error; nothing is written then.
 pub fn run(args: &ConvertArgs) -> miette::Result<()> {
-    if let Some(index) = &args.material_index {
-        return crate::materials::from_legacy(args, index);
-    }
-    if let Some(library) = &args.materials_to_legacy {
-        return crate::materials::to_legacy(args, library);
-    }
     match &args.to_legacy {
         Some(input) => to_legacy(args, input),
         None => from_legacy(args),
@@ -191,19 +151,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let (file, text) = read_text(dwr_path)?;
     let dwr_table = dwr::parse(&file, &text).map_err(Report::new)?;
     let mut tables = DirtranTables {
-        atm: atm_table
-            .rows
-            .iter()
-            .map(|r| {
-                [
-                    r.altitude_asl_km,
-                    r.temperature_k,
-                    r.altitude_km,
-                    r.transmission,
-                    r.upwelled_radiance_w_cm2_sr,
-                ]
-            })
-            .collect(),
+        atm: atm_table.to_rows(),
         dwr: dwr_table.to_pairs(),
         ..DirtranTables::default()
     };
@@ -220,32 +168,14 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     }
     if let Some(p) = &args.rsd {
         let (file, text) = read_text(p)?;
-        tables.rsd = rsd::parse(&file, &text)
-            .map_err(Report::new)?
-            .rows
-            .iter()
-            .map(|r| {
-                [
-                    r.altitude_km,
-                    r.pressure_mb,
-                    r.temperature_c,
-                    r.dew_point_depression_c,
-                ]
-            })
-            .collect();
+        tables.rsd = rsd::parse(&file, &text).map_err(Report::new)?.to_rows();
     }
     let slant = match &args.slant {
         Some(p) => {
             let (file, text) = read_text(p)?;
-            let s: SlantTables = ron::from_str(&text).map_err(|e| {
-                let offset = irsig_formats::offset_of(&text, e.span.start.line, e.span.start.col);
-                Report::new(ParseError::at_offset(
-                    &file,
-                    &text,
-                    offset,
-                    format!("malformed slant tables (RON): {}", e.code),
-                ))
-            })?;
+            let s: SlantTables =
+                irsig_formats::canonical::from_ron_as(&file, &text, "slant tables")
+                    .map_err(Report::new)?;
             Some(s)
         }
         None => None,
@@ -261,7 +191,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
         name: name.clone(),
         source: args.source.clone(),
         band_um: args.band,
-        units: args.units()?,
+        units: args.units(),
         cor_altitude_m: args.cor_altitude_m,
         slant,
     };
@@ -282,7 +212,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
                 .map_err(Report::new)?
         }
     };
-    let t = from_atmosphere(&atmosphere, args.units()?);
+    let t = from_atmosphere(&atmosphere, args.units());
     let stem = args.stem.clone().unwrap_or_else(|| atmosphere.name.clone());
     if stem.is_empty() || stem.contains(['/', '\\']) {
         return Err(irsig_cli::usage_error(format!(
@@ -294,20 +224,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         miette::miette!("cannot write the {what}: {e}")
     };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    let atm_table = atm::AtmTable {
-        rows: t
-            .atm
-            .iter()
-            .map(|r| atm::AtmRow {
-                altitude_asl_km: r[0],
-                temperature_k: r[1],
-                altitude_km: r[2],
-                transmission: r[3],
-                upwelled_radiance_w_cm2_sr: r[4],
-                position: Default::default(),
-            })
-            .collect(),
-    };
+    let atm_table = atm::AtmTable::from_rows(&t.atm);
     files.push((
         path("atm"),
         atm::write(&atm_table)
@@ -364,19 +281,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         ));
     }
     if !t.rsd.is_empty() {
-        let table = rsd::RsdTable {
-            rows: t
-                .rsd
-                .iter()
-                .map(|r| rsd::RsdRow {
-                    altitude_km: r[0],
-                    pressure_mb: r[1],
-                    temperature_c: r[2],
-                    dew_point_depression_c: r[3],
-                    position: Default::default(),
-                })
-                .collect(),
-        };
+        let table = rsd::RsdTable::from_rows(&t.rsd);
         files.push((
             path("rsd"),
             rsd::write(&table)
@@ -385,8 +290,7 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         ));
     }
     if let Some(s) = &atmosphere.slant {
-        let text =
-            ron::ser::to_string_pretty(s, ron::ser::PrettyConfig::default()).into_diagnostic()?;
+        let text = irsig_formats::canonical::to_ron_pretty(s).into_diagnostic()?;
         files.push((path("slant.ron"), text.into_bytes()));
     }
     if !Path::new(&args.out_dir).is_dir() {

@@ -1,43 +1,43 @@
 //! `irsig-atmos`: the atmosphere stage's tools, one module per subcommand.
 //!
 //! - `convert` ([`convert`]): legacy DIRTRAN tables (`.atm .cor .dwr .rtt .rsd`) to and
-//!   from the canonical atmosphere file, units stated, every table validated; and the
-//!   legacy material index file with its `.ems` tables to and from the canonical material
-//!   library ([`materials`]).
+//!   from the canonical atmosphere file, units stated, every table validated.
 //! - Calculators a user decides a scene's models with (band radiance, apparent
 //!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors).
 //!   Each prints a plain aligned table by default, or `--format csv` / `--format ron`.
-//! - `fresnel`: an angular emissivity table of a smooth opaque surface from its complex
-//!   refractive index (constant, or a `wavelength_um n k` table averaged over the band),
-//!   as a canonical material library entry or a legacy `.ems`.
+//!
+//! Material files (the 1990 index and its `.ems` tables, Fresnel emissivity) are
+//! `irsig-material`'s.
+//!
+//! - `plan` and `build` ([`plan`], [`build`]): the LOWTRAN7 runs a scene needs, and their
+//!   outputs assembled into a canonical spectral atmosphere; [`lowtran`] finds and runs
+//!   the program (issue 14).
 //!
 //! ```text
+//! irsig-atmos plan --scene scene.raw --view view.ron --model tropical -o plan
+//! irsig-atmos build plan -o tropical.spa
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
-//! irsig-atmos convert --material-index materials.mat --default-emissivity 0.9 -o lib.ron
 //! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
 //! irsig-atmos temperature --radiance 54.93
 //! irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us.rtt
 //! irsig-atmos bounces --target-temperature 260:400:10 --max 4
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
-//! irsig-atmos fresnel --n 1.2 --k 0.05 -o glassy.ron
-//! irsig-atmos fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
 //! ```
 
 use clap::{Parser, Subcommand};
 
 mod bounces;
+pub mod build;
 mod common;
 pub mod convert;
-mod fresnel;
-pub mod materials;
+pub mod lowtran;
+pub mod plan;
 mod radiance;
 mod rtt;
 mod shape_factor;
 mod temperature;
-
-pub use common::Format;
 
 /// Atmosphere tables, and band radiance calculators (8–14 µm unless `--band` says
 /// otherwise).
@@ -55,9 +55,8 @@ pub use common::Format;
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
       --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
-  irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
-  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
-      --temperature 300 --angles 0:90:5 --legacy -o water.ems"
+
+Material libraries (the 1990 index and .ems tables, Fresnel emissivity): irsig-material."
 )]
 pub struct Cli {
     /// What to do.
@@ -68,8 +67,7 @@ pub struct Cli {
 /// The subcommands.
 #[derive(Debug, Subcommand)]
 pub enum Command {
-    /// DIRTRAN tables <-> canonical atmosphere, material index + .ems <-> material
-    /// library; validated, units stated.
+    /// DIRTRAN tables <-> canonical atmosphere; validated, units stated.
     Convert(Box<convert::ConvertArgs>),
     /// Band radiance (W m^-2 sr^-1) of a blackbody at each temperature.
     Radiance(radiance::Args),
@@ -81,19 +79,12 @@ pub enum Command {
     Bounces(bounces::Args),
     /// Apparent temperature of a diffuse object against shape factor (thesis Appendix B).
     ShapeFactor(shape_factor::Args),
-    /// Angular emissivity of a smooth opaque surface from its complex refractive index
-    /// (Fresnel), as a material library entry (RON) or a legacy `.ems`.
-    #[command(after_help = "Examples:
-  irsig-atmos fresnel --n 1.2 --k 0.05 --angles 0:90:5
-  irsig-atmos fresnel --n 25 --k 90 --name aluminium --id 7 -o aluminium.ron
-  irsig-atmos fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
-      --temperature 300 --angles 0:90:5 --legacy -o water.ems
-
-A constant index gives the monochromatic table. A table of n, k against wavelength is
-averaged over the band (weighted by its response, for a response file) with Planck weighting at --temperature:
-eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
-Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
-    Fresnel(fresnel::Args),
+    /// The radiative-transfer paths a scene needs: a plan and one LOWTRAN7 card deck per
+    /// path.
+    Plan(plan::PlanArgs),
+    /// A plan's runs (LOWTRAN7, run here, or given tape7s) assembled into one spectral
+    /// atmosphere.
+    Build(build::BuildArgs),
 }
 
 /// Runs one subcommand.
@@ -109,6 +100,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Command::Rtt(a) => rtt::run(&a),
         Command::Bounces(a) => bounces::run(&a),
         Command::ShapeFactor(a) => shape_factor::run(&a),
-        Command::Fresnel(a) => fresnel::run(&a),
+        Command::Plan(a) => plan::run(&a),
+        Command::Build(a) => build::run(&a),
     }
 }

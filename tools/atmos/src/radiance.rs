@@ -1,6 +1,8 @@
 //! `irsig-atmos radiance`: band radiance of blackbodies.
 
-use crate::common::{BandArgs, Column, Format, print_table, temperatures};
+use irsig_cli::args::TableFormat;
+
+use crate::common::{BandArgs, Column, print_table, temperatures};
 
 /// Arguments of `radiance`.
 #[derive(Debug, clap::Args)]
@@ -12,7 +14,7 @@ pub struct Args {
     pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
-    pub format: Format,
+    pub format: TableFormat,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {

@@ -3,9 +3,10 @@
 
 use miette::miette;
 
+use irsig_cli::args::TableFormat;
 use irsig_radiometry::shape_factor_temperature;
 
-use crate::common::{BandArgs, Column, Format, diagnostic, fractions, print_table, temperatures};
+use crate::common::{BandArgs, Column, diagnostic, fractions, print_table, temperatures};
 
 /// Unit of `--ld`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -44,7 +45,7 @@ pub struct Args {
     pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
-    pub format: Format,
+    pub format: TableFormat,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {

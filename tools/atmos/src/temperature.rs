@@ -1,8 +1,9 @@
 //! `irsig-atmos temperature`: apparent (brightness) temperature of band radiances.
 
+use irsig_cli::args::{TableFormat, values};
 use miette::miette;
 
-use crate::common::{BandArgs, Column, Format, print_table, values};
+use crate::common::{BandArgs, Column, print_table};
 
 /// Arguments of `temperature`.
 #[derive(Debug, clap::Args)]
@@ -15,7 +16,7 @@ pub struct Args {
     pub band: BandArgs,
     /// Output format.
     #[arg(long, value_enum, default_value_t)]
-    pub format: Format,
+    pub format: TableFormat,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {

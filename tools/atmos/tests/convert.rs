@@ -65,7 +65,9 @@ fn reference_tables_convert_to_the_builtin_and_back() {
         .arg(&out)
         .assert()
         .success();
-    let converted: Atmosphere = ron::from_str(&std::fs::read_to_string(&out).unwrap()).unwrap();
+    let converted: Atmosphere =
+        irsig_formats::canonical::from_ron("out.ron", &std::fs::read_to_string(&out).unwrap())
+            .unwrap();
     assert_eq!(converted, builtin);
 
     atmos()
@@ -119,7 +121,8 @@ fn metres_and_si_radiance_are_honoured() {
         .get_output()
         .stdout
         .clone();
-    let a: Atmosphere = ron::from_str(std::str::from_utf8(&out).unwrap()).unwrap();
+    let a: Atmosphere =
+        irsig_formats::canonical::from_ron("stdout", std::str::from_utf8(&out).unwrap()).unwrap();
     assert!((a.levels[1].altitude_m - 100.0).abs() < 1e-12);
     assert!((a.levels[1].path_radiance_w_m2_sr - 2.282).abs() < 1e-12);
     assert_eq!(a.sky_hemispheric_w_m2_sr, Some(15.13));

@@ -12,7 +12,7 @@ use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
 const STAGES: &[&str] = &[
-    "import", "flatten", "atmos", "trace", "sensor", "stats", "run",
+    "import", "flatten", "atmos", "material", "trace", "sensor", "stats", "run",
 ];
 
 const USAGE: &str = "\
@@ -25,6 +25,7 @@ Stages (each is also a program of its own, irsig-<STAGE>):
   import    Intergraph facet files, OBJ (+MTL), glTF/GLB -> canonical objects
   flatten   scene + objects -> raw world-space scene
   atmos     DIRTRAN tables <-> canonical atmosphere; band radiance calculators
+  material  material index + .ems <-> material library; Fresnel emissivity
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
   sensor    MTF blur, noise, quantisation
   stats     per-region apparent temperature beside reference values (Tables 5-7)

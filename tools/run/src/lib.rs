@@ -51,7 +51,8 @@ pub struct Cli {
     #[arg(long)]
     pub force: bool,
 
-    /// Print the commands that would run (shell-quoted), one per line, and run nothing.
+    /// Print every stage's command (shell-quoted), one per line, those up to date as
+    /// `# up to date: COMMAND` comments, and run nothing.
     #[arg(short = 'n', long, conflicts_with = "emit_makefile")]
     pub dry_run: bool,
 
@@ -99,8 +100,9 @@ pub struct Cli {
 /// only when it starts.
 ///
 /// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
-/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: import, flatten, atmos,
-/// trace, merge, sensor, stats and run itself (a pipeline may run a sub-pipeline).
+/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: every stage tool (import,
+/// flatten, atmos, material, trace, merge, sensor, stats) and run itself (a pipeline may run
+/// a sub-pipeline).
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
@@ -108,6 +110,7 @@ pub fn tools() -> Tools {
         .register("import", check::<irsig_import::Cli>)
         .register("flatten", check::<irsig_flatten::Cli>)
         .register("atmos", check::<irsig_atmos::Cli>)
+        .register("material", check::<irsig_material::Cli>)
         .register("trace", check::<irsig_trace::Cli>)
         .register("merge", check::<irsig_merge::Cli>)
         .register("sensor", check::<irsig_sensor::Cli>)
@@ -153,7 +156,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let d = dir.display().to_string();
             text.push_str(&format!("cd {}\n", irsig_pipeline::shell_quote(&d)));
         }
-        for step in steps {
+        // A step that is up to date is still listed, as a comment, so that the output says
+        // what the pipeline is and still pastes into a shell that runs only what is stale.
+        for (step, run) in steps {
+            if !run {
+                text.push_str("# up to date: ");
+            }
             text.push_str(&step.command_line());
             text.push('\n');
         }

@@ -54,7 +54,15 @@ pub fn grey(t: &[f32], w: usize, h: usize, bits: PreviewBits) -> miette::Result<
 const GAP: usize = 6;
 const BAR: usize = 16;
 const TICK: usize = 4;
+/// Blank columns between a tick and its label: three times the two blank columns between
+/// the font's characters, so that a tick never reads as a minus sign before the number.
+const LABEL_GAP: usize = 6;
 pub(crate) const GLYPH: usize = 8;
+/// The font's digits and letters are lit on rows 0–6 of their 8 × 8 cell: a label whose
+/// cell starts this many rows above its tick is centred on it.
+const LABEL_HALF: usize = 3;
+/// Blank rows kept between the outermost labels and the canvas's top and bottom edges.
+const EDGE: usize = 2;
 const MIN_HEIGHT: usize = 64;
 
 /// The five tick labels of the colour bar over `r` (K), bottom to top, with as many
@@ -76,7 +84,7 @@ pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>>
     let r = range(t);
     let labels = tick_labels(r);
     let label_chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
-    let cw = w + GAP + BAR + TICK + 2 + label_chars * GLYPH + 2;
+    let cw = w + GAP + BAR + TICK + LABEL_GAP + label_chars * GLYPH + 2;
     let ch = h.max(MIN_HEIGHT);
     let mut rgb = vec![0u8; cw * ch * 3];
     let mut put = |x: usize, y: usize, c: [u8; 3]| {
@@ -101,9 +109,10 @@ pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>>
             put(x, y, c);
         }
     }
-    // The bar spans rows top..=bottom, leaving half a glyph above and below for labels.
-    let top = GLYPH / 2;
-    let bottom = ch - 1 - GLYPH / 2;
+    // The bar spans rows top..=bottom, leaving room above and below for the outermost
+    // labels, which are centred on the bar's ends, and a margin beyond them.
+    let top = EDGE + LABEL_HALF;
+    let bottom = ch - 1 - EDGE - LABEL_HALF;
     let x0 = w + GAP;
     for y in top..=bottom {
         let u = (bottom - y) as f64 / (bottom - top) as f64;
@@ -118,8 +127,8 @@ pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>>
         for x in x0 + BAR..x0 + BAR + TICK {
             put(x, y, white);
         }
-        let lx = x0 + BAR + TICK + 2;
-        let ly = y.saturating_sub(GLYPH / 2);
+        let lx = x0 + BAR + TICK + LABEL_GAP;
+        let ly = y - LABEL_HALF;
         for_each_text_pixel(label, |x, y| put(lx + x, ly + y, white));
     }
     let mut out = Vec::new();
@@ -169,5 +178,59 @@ mod tests {
         );
         // Hot and wide: every label whole, the canvas grows to fit them.
         assert_eq!(tick_labels((1000.0, 1600.0))[4], "1600.0K");
+    }
+
+    /// Whether each pixel of the decoded PNG is white (ticks and labels are the only white).
+    fn white_pixels(png: &[u8]) -> (usize, usize, Vec<bool>) {
+        let img = image::load_from_memory(png).unwrap().to_rgb8();
+        let (w, h) = (img.width() as usize, img.height() as usize);
+        let white = img.pixels().map(|p| p.0 == [255, 255, 255]).collect();
+        (w, h, white)
+    }
+
+    #[test]
+    fn ticks_stand_apart_from_their_labels_and_no_label_touches_an_edge() {
+        // The quickstart's range, whose top label read as "-321.9K"; an image of 64 rows,
+        // the least the bar allows, so the labels are as crowded as they get.
+        let (w, h) = (40, 64);
+        let t: Vec<f32> = (0..w * h)
+            .map(|i| 250.7 + 71.2 * (i / w) as f32 / (h - 1) as f32)
+            .collect();
+        let (cw, ch, white) = white_pixels(&colour_with_bar(&t, w, h).unwrap());
+        let at = |x: usize, y: usize| white[y * cw + x];
+        let tick_x = w + GAP + BAR;
+        let tick_rows: Vec<usize> = (0..ch).filter(|&y| at(tick_x, y)).collect();
+        assert_eq!(tick_rows.len(), 5, "{tick_rows:?}");
+        let label_x = tick_x + TICK;
+        // Rows of the label drawn beside each tick: the white pixels right of the ticks.
+        let label_rows: Vec<usize> = (0..ch)
+            .filter(|&y| (label_x..cw).any(|x| at(x, y)))
+            .collect();
+        for &y in &tick_rows {
+            // The tick is TICK pixels long and ends there.
+            assert!((tick_x..label_x).all(|x| at(x, y)), "tick at row {y}");
+            // Across the whole height of the label beside it, the columns after the tick
+            // stay dark for more than the font's two blank columns between characters.
+            let first_lit = (y.saturating_sub(GLYPH)..(y + GLYPH).min(ch))
+                .filter_map(|row| (label_x..cw).find(|&x| at(x, row)))
+                .min()
+                .unwrap();
+            let gap = first_lit - label_x;
+            assert!(
+                gap >= 5,
+                "tick at row {y}: {gap} dark columns before its label"
+            );
+        }
+        // Every lit pixel of every label's glyphs is on the canvas (none clipped) ...
+        let drawn = white.iter().filter(|&&p| p).count() - 5 * TICK;
+        let mut expected = 0;
+        for label in tick_labels(range(&t)) {
+            for_each_text_pixel(&label, |_, _| expected += 1);
+        }
+        assert_eq!(drawn, expected, "lit label pixels on the canvas");
+        // ... and a blank margin separates the top and bottom labels from the edges.
+        let (first, last) = (label_rows[0], *label_rows.last().unwrap());
+        assert!(first >= 2, "top label starts at row {first}");
+        assert!(last <= ch - 3, "bottom label ends at row {last} of {ch}");
     }
 }

@@ -27,7 +27,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::BandArg;
+use irsig_cli::args::{BandArg, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::{Raster, read_exr};
@@ -62,18 +62,6 @@ The regions file (canonical RON, formats/canonical/regions.md):
    regions: [(name: \"pool\", material: Some(2), pixels: Some((columns: (10, 40), rows: (5, 9))),
               references: [(name: \"paper\", temperature_k: 286.5)])])";
 
-/// Output form of the table.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, clap::ValueEnum)]
-pub enum Format {
-    /// Aligned columns for reading, with the sources as `#` comment lines.
-    #[default]
-    Table,
-    /// Comma-separated values with a header row, full precision.
-    Csv,
-    /// RON: `(values: .., unit: .., references: [..], regions: [..])`, full precision.
-    Ron,
-}
-
 /// Per-region statistics of a traced image beside reference values.
 #[derive(Debug, Parser)]
 #[command(name = "irsig-stats", version, about, after_help = EXAMPLE)]
@@ -98,9 +86,11 @@ pub struct Cli {
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
-    /// Output form.
-    #[arg(long, value_enum, default_value_t = Format::Table)]
-    pub format: Format,
+    /// Output form: `table` (aligned columns, the sources as `#` comment lines), `csv`
+    /// (a header row, full precision) or `ron` (`(values: .., unit: .., references: [..],
+    /// regions: [..])`, full precision).
+    #[arg(long, value_enum, default_value_t = TableFormat::Table)]
+    pub format: TableFormat,
     /// Output file (`-` or absent: stdout); written atomically.
     #[arg(short = 'o', long, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -323,7 +313,7 @@ fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [
 ///
 /// # Errors
 /// Only if RON serialisation fails, which it does not for finite numbers.
-pub fn render(table: &Table, format: Format) -> miette::Result<String> {
+pub fn render(table: &Table, format: TableFormat) -> miette::Result<String> {
     let unit = if table.unit == "K" { "k" } else { "c" };
     let mut header: Vec<String> = ["region", "pixels"]
         .into_iter()
@@ -383,7 +373,7 @@ pub fn render(table: &Table, format: Format) -> miette::Result<String> {
     };
     let mut out = String::new();
     match format {
-        Format::Table => {
+        TableFormat::Table => {
             let _ = writeln!(out, "# values: {} ({})", table.values, table.unit);
             for (name, source) in &table.references {
                 let _ = writeln!(out, "# {name}: {source}");
@@ -416,20 +406,16 @@ pub fn render(table: &Table, format: Format) -> miette::Result<String> {
                 let _ = writeln!(out, "{}", padded.join("  ").trim_end());
             }
         }
-        Format::Csv => {
+        TableFormat::Csv => {
             let _ = writeln!(out, "{}", header.join(","));
             for row in &table.regions {
                 let c: Vec<String> = cells(row, true).into_iter().map(csv_field).collect();
                 let _ = writeln!(out, "{}", c.join(","));
             }
         }
-        Format::Ron => {
-            let config = ron::ser::PrettyConfig::new()
-                .depth_limit(3)
-                .indentor("  ")
-                .separate_tuple_members(false);
-            out = ron::ser::to_string_pretty(table, config).map_err(|e| miette!("{e}"))?;
-            out.push('\n');
+        TableFormat::Ron => {
+            out =
+                irsig_formats::canonical::to_ron_at_depth(table, 3).map_err(|e| miette!("{e}"))?;
         }
     }
     Ok(out)
@@ -477,7 +463,7 @@ mod tests {
     #[test]
     fn text_csv_and_ron_carry_the_same_row() {
         let t = table();
-        let text = render(&t, Format::Table).unwrap();
+        let text = render(&t, TableFormat::Table).unwrap();
         assert!(text.starts_with("# values: test (degC)\n# paper: Table 7\n"));
         let lines: Vec<&str> = text.lines().collect();
         assert!(lines[3].starts_with("region"));
@@ -486,7 +472,7 @@ mod tests {
         assert!(lines[4].contains("9.62") && lines[4].contains("+0.38"));
         assert!(lines[4].trim_end().ends_with('-'));
 
-        let csv = render(&t, Format::Csv).unwrap();
+        let csv = render(&t, TableFormat::Csv).unwrap();
         let mut l = csv.lines();
         assert_eq!(
             l.next(),
@@ -500,7 +486,7 @@ mod tests {
             Some("\"Left, Pool\",12,10,0.25,9.5,10.5,9.62,0.38,,")
         );
 
-        let ron_text = render(&t, Format::Ron).unwrap();
+        let ron_text = render(&t, TableFormat::Ron).unwrap();
         let v: ron::Value = ron::from_str(&ron_text).unwrap();
         let again = format!("{v:?}");
         assert!(again.contains("Left, Pool") && again.contains("9.62"));

@@ -42,6 +42,7 @@ use irsig_formats::legacy::decode;
 use irsig_formats::views::{parse_views, read_execute};
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::truth::Layer;
+use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_raster::{FramePart, Raster, counts_png, exr_bytes, write_png_gray8};
@@ -205,6 +206,11 @@ pub struct Cli {
     /// piloting: tiles of one frame share their frame's decision.
     #[arg(long, value_name = "FILE")]
     pub decision: Option<String>,
+    /// Declared uncertainties of the inputs (canonical RON, formats/canonical/
+    /// uncertainties.md): the truth EXR gains the error budget, one σ layer (K) per source
+    /// and their root-sum-square.
+    #[arg(long, value_name = "FILE")]
+    pub uncertainties: Option<String>,
     /// With --tolerance and the per-output flags, write the decision (canonical RON) to
     /// FILE.
     #[arg(
@@ -469,7 +475,21 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         from_ron_bytes(&input.name, &input.bytes)?
     };
     hash_field(&mut run, "materials", format!("{materials:?}").as_bytes());
-    let mut job = read_job(&cli)?;
+    let job = read_job(&cli)?;
+    let uncertainties = match &cli.uncertainties {
+        Some(path) => Some(read_uncertainties(path, &materials)?),
+        None => None,
+    };
+    // The budget's layers are pixels of the truth EXR: tiles of other uncertainties differ.
+    if let Some(u) = &uncertainties {
+        hash_field(&mut run, "uncertainties", format!("{u:?}").as_bytes());
+    }
+    let mut inputs = Inputs {
+        scene,
+        materials,
+        job,
+        uncertainties,
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
@@ -477,14 +497,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     match &cli.band {
         TraceBand::Total => {
             hash_field(&mut run, "band", format!("{TotalRadiance:?}").as_bytes());
-            job.run = run;
-            pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, TotalRadiance))
+            inputs.job.run = run;
+            pool.install(|| with_atmosphere(&cli, &inputs, TotalRadiance))
         }
         TraceBand::Band(arg) => {
             let band = arg.load()?;
             hash_field(&mut run, "band", format!("{band:?}").as_bytes());
-            job.run = run;
-            pool.install(|| with_atmosphere(&cli, &scene, &materials, &job, band))
+            inputs.job.run = run;
+            pool.install(|| with_atmosphere(&cli, &inputs, band))
         }
     }
 }
@@ -523,6 +543,29 @@ fn frame_run(run: &Sha256, view: &View, settings: &Settings) -> String {
     hex
 }
 
+/// The declared uncertainties (canonical RON), checked against the material library: an
+/// emissivity ± that would leave [0, 1] is an error at its line and column.
+fn read_uncertainties(path: &str, materials: &MaterialLibrary) -> miette::Result<Uncertainties> {
+    let input = irsig_cli::read_input(path)?;
+    let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+    let u: Uncertainties = from_ron_bytes(&input.name, &input.bytes)?;
+    u.check_emissivity(|id| {
+        let m = materials.materials.iter().find(|m| m.id == id)?;
+        let normal = m.emissivity.first().map(|r| r.1)?;
+        let most = m.emissivity.iter().map(|r| r.1).fold(0.0, f64::max);
+        Some((normal, most))
+    })
+    .map_err(|e| {
+        irsig_formats::canonical::error_at_path(
+            &input.name,
+            text,
+            &e.path,
+            format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
+        )
+    })?;
+    Ok(u)
+}
+
 /// The canonical atmosphere `--atmosphere` names: a built-in, else a file.
 fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
     if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
@@ -549,13 +592,20 @@ struct Air<'a, A, S> {
     direct: Box<dyn Fn(ModelKind) -> miette::Result<S> + 'a>,
 }
 
+/// What a run reads besides the band and the atmosphere.
+struct Inputs {
+    scene: RawScene,
+    materials: MaterialLibrary,
+    job: Job,
+    uncertainties: Option<Uncertainties>,
+}
+
 fn with_atmosphere<R: BandModel + Clone>(
     cli: &Cli,
-    scene: &RawScene,
-    materials: &MaterialLibrary,
-    job: &Job,
+    inputs: &Inputs,
     band: R,
 ) -> miette::Result<()> {
+    let (scene, job) = (&inputs.scene, &inputs.job);
     let mut run = job.run.clone();
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
@@ -567,7 +617,7 @@ fn with_atmosphere<R: BandModel + Clone>(
             precomputed: Box::new(move |_| Ok(vacuum)),
             direct: Box::new(move |_| Ok(vacuum)),
         };
-        return trace_all(cli, scene, materials, job, &run, band, &air);
+        return trace_all(cli, inputs, &run, band, &air);
     }
     let atmosphere = read_atmosphere(&cli.atmosphere)?;
     // The sky is precomputed up to the highest sensor or scene point.
@@ -619,7 +669,7 @@ fn with_atmosphere<R: BandModel + Clone>(
         }),
         direct: Box::new(direct),
     };
-    trace_all(cli, scene, materials, job, &run, band, &air)
+    trace_all(cli, inputs, &run, band, &air)
 }
 
 /// What a frame is rendered with: the options, the atmosphere model and the path terms.
@@ -767,13 +817,18 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
 #[allow(clippy::too_many_lines)]
 fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     cli: &Cli,
-    scene: &RawScene,
-    materials: &MaterialLibrary,
-    job: &Job,
+    inputs: &Inputs,
     run: &Sha256,
     band: R,
     air: &Air<'_, A, S>,
 ) -> miette::Result<()> {
+    let Inputs {
+        scene,
+        materials,
+        job,
+        uncertainties,
+    } = inputs;
+    let uncertainties = uncertainties.as_ref();
     let applied = match &cli.decision {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
@@ -861,7 +916,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             Some(all) => all.get(i).cloned().unwrap_or_default(),
             None => cli.outputs(i, cameras.len(), map_fits),
         };
-        let settings = match cli.tolerance {
+        let (settings, model_k) = match cli.tolerance {
             Some(tolerance_k) => {
                 let d = decide(cli, &tracer, materials, air, cam, tolerance_k)?;
                 let settings = base.with_decision(&d)?;
@@ -876,10 +931,18 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
                     let text = irsig_formats::canonical::to_ron(&d).into_diagnostic()?;
                     files.push((path, text.into_bytes()));
                 }
-                settings
+                (settings, d.predicted.percentile_k)
             }
-            None => base,
+            None => (
+                base,
+                applied.as_ref().map_or(0.0, |d| d.predicted.percentile_k),
+            ),
         };
+        let budget = uncertainties.map(|u| Budget {
+            uncertainties: u,
+            scene,
+            model_k,
+        });
         if settings.kind != kind {
             let sub_band = SubBand {
                 band: tracer.band().clone(),
@@ -928,7 +991,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             files.push((path, exr_bytes(&r).into_diagnostic()?));
         }
         if let Some(path) = out.truth_exr {
-            let r = truth_raster(&tracer, &frame)?.with_part(part.clone());
+            let r = truth_raster(&tracer, &frame, budget.as_ref())?.with_part(part.clone());
             files.push((path, exr_bytes(&r).into_diagnostic()?));
         }
         if let Some(path) = out.map_png {
@@ -998,30 +1061,120 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
 fn truth_raster<R: BandModel, A: Atmosphere>(
     tracer: &Tracer<R, A>,
     frame: &Frame,
+    budget: Option<&Budget<'_>>,
 ) -> miette::Result<Raster> {
     let mut r = Raster::new(frame.width as usize, frame.height as usize);
+    // The tracer's table, the same for a frame and its tiles.
+    let inverse = tracer.inverse_table();
+    let apparent: Vec<f64> = frame
+        .radiance_w_m2_sr
+        .par_iter()
+        .map(|&l| inverse.temperature(l))
+        .collect();
     for layer in Layer::TRUTH {
         let data = match frame.truth_layer(layer) {
             Some(data) => data,
             None if layer == Layer::ApparentTemperature => {
-                // The tracer's table, the same for a frame and its tiles.
-                let inverse = tracer.inverse_table();
-                frame
-                    .radiance_w_m2_sr
-                    .par_iter()
-                    .map(|&l| inverse.temperature(l) as f32)
-                    .collect()
+                apparent.iter().map(|&t| t as f32).collect()
             }
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;
     }
+    if let Some(budget) = budget {
+        for (layer, data) in budget.layers(tracer.band(), frame, &apparent) {
+            push(&mut r, layer, data)?;
+        }
+    }
     Ok(r)
 }
 
-/// The 1990 interaction map (thesis §4.2, `irsig_formats::legacy::map`): primary material
-/// id in the upper nibble, reflected material id in the lower; 0 where nothing was hit. The
-/// caller has checked that every id is at most 15.
+/// The error budget of a run: the declared uncertainties, the scene they name facets of,
+/// and the residual of the models chosen by the tolerance pilot.
+struct Budget<'a> {
+    uncertainties: &'a Uncertainties,
+    scene: &'a RawScene,
+    /// The pilot's predicted error at its percentile, K (0 without `--tolerance`).
+    model_k: f64,
+}
+
+impl Budget<'_> {
+    /// The σ layers ([`Layer::BUDGET`]), K: each declared uncertainty propagated to the
+    /// apparent temperature through the radiance equation's partial derivatives at the
+    /// pixel (`∂L/∂T = Σ τ·ε·dL_T/dT`, `∂L/∂ε = Σ τ·(L_T − L_reflected)`, `∂L/∂τ = L − L_u`
+    /// for a relative σ of τ, `L_u` for a relative σ of the path radiance), over the band's
+    /// dL/dT at the pixel's apparent temperature; and their root-sum-square.
+    fn layers<R: BandModel>(
+        &self,
+        band: &R,
+        frame: &Frame,
+        apparent: &[f64],
+    ) -> Vec<(Layer, Vec<f32>)> {
+        let u = self.uncertainties;
+        let per_pixel: Vec<[f64; 5]> = frame
+            .truth
+            .par_iter()
+            .zip(&frame.radiance_w_m2_sr)
+            .zip(apparent)
+            .map(|((p, &l), &t)| {
+                let slope = band.radiance_derivative(t);
+                let in_k = |sigma_l: f64| {
+                    if slope > 0.0 && sigma_l.is_finite() {
+                        sigma_l.abs() / slope
+                    } else {
+                        0.0
+                    }
+                };
+                let (temperature, emissivity) = match self.scene.facets.get(p.facet as usize) {
+                    Some(facet) => {
+                        let object = self
+                            .scene
+                            .objects
+                            .get(facet.object as usize)
+                            .map_or("", String::as_str);
+                        (
+                            in_k(
+                                f64::from(p.temperature_sensitivity)
+                                    * u.temperature_sigma_k(facet.material, object),
+                            ),
+                            in_k(
+                                f64::from(p.emissivity_sensitivity)
+                                    * u.emissivity_sigma(facet.material),
+                            ),
+                        )
+                    }
+                    None => (0.0, 0.0),
+                };
+                let path = f64::from(p.path_radiance_w_m2_sr);
+                let path = if path.is_finite() { path } else { 0.0 };
+                [
+                    temperature,
+                    emissivity,
+                    in_k(u.transmission_relative * (l - path)),
+                    in_k(u.path_radiance_relative * path),
+                    self.model_k,
+                ]
+            })
+            .collect();
+        let mut out: Vec<(Layer, Vec<f32>)> = Layer::BUDGET[..5]
+            .iter()
+            .enumerate()
+            .map(|(k, &layer)| (layer, per_pixel.iter().map(|s| s[k] as f32).collect()))
+            .collect();
+        out.push((
+            Layer::SigmaTotal,
+            per_pixel
+                .iter()
+                .map(|s| s.iter().map(|v| v * v).sum::<f64>().sqrt() as f32)
+                .collect(),
+        ));
+        out
+    }
+}
+
+/// The 1990 interaction map (thesis §4.2): primary material id in the upper nibble,
+/// reflected material id in the lower; 0 where nothing was hit. The caller has checked that
+/// every id is at most 15.
 fn interaction_map(frame: &Frame) -> miette::Result<Vec<u8>> {
     let data: Vec<u8> = frame
         .truth

@@ -413,3 +413,89 @@ fn bad_tolerances_and_pins_are_refused_before_tracing() {
         assert!(!dir.path().join("x.radiance.exr").exists());
     }
 }
+
+#[test]
+fn declared_uncertainties_give_the_error_budget_layers() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let uncertainties = write(
+        dir.path(),
+        "u.ron",
+        "(temperature: [(facets: All, sigma_k: 0.1), (facets: Material(2), sigma_k: 0.5)],
+          emissivity: [(material: 1, sigma: 0.01)], transmission_relative: 0.0,
+          path_radiance_relative: 0.0)",
+    );
+    let prefix = dir.path().join("f");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args([
+            "--band",
+            "total",
+            "--sky-radiance",
+            "10",
+            "--uncertainties",
+            &uncertainties,
+        ])
+        .arg("--truth-exr")
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let truth = irsig_raster::read_exr(&std::fs::read(&prefix).unwrap()).unwrap();
+    let layer = |n: &str| truth.layer(n).unwrap().data.clone();
+    let (mat, sig_t, sig_e, total) = (
+        layer("material_primary"),
+        layer("sigma_kinetic_temperature"),
+        layer("sigma_emissivity"),
+        layer("sigma_total"),
+    );
+    // Material 2 is a blackbody (ε = 1, no atmosphere): its apparent temperature is its
+    // kinetic one, so σ_T passes through whole; material 1 is grey, ε = 0.9 under a 10 W m^-2
+    // sr^-1 sky: σ_T is scaled by ε·dL/dT(300 K)/dL/dT(T_app), by hand 0.1 × 0.92.
+    let l = |t: f64| total_radiance(t);
+    let d = |t: f64| 4.0 * SIGMA * t.powi(3) / std::f64::consts::PI;
+    let grey = 0.9 * l(300.0) + 0.1 * 10.0;
+    let t_app = (grey * std::f64::consts::PI / SIGMA).powf(0.25);
+    for i in 0..mat.len() {
+        let (t, e, all) = (
+            f64::from(sig_t[i]),
+            f64::from(sig_e[i]),
+            f64::from(total[i]),
+        );
+        if mat[i].to_bits() == 2.0_f32.to_bits() {
+            assert!((t - 0.5).abs() < 1e-5, "pixel {i}: {t}");
+            assert!(e.abs() < 1e-9, "pixel {i}: {e}");
+        } else if mat[i].to_bits() == 1.0_f32.to_bits() {
+            assert!(
+                (t - 0.1 * 0.9 * d(300.0) / d(t_app)).abs() < 1e-5,
+                "pixel {i}: {t}"
+            );
+            // ∂L/∂ε = L_T − L_sky, by hand.
+            assert!(
+                (e - 0.01 * (l(300.0) - 10.0) / d(t_app)).abs() < 1e-5,
+                "pixel {i}: {e}"
+            );
+        }
+        assert!((all - (t * t + e * e).sqrt()).abs() < 1e-5);
+    }
+    // An emissivity ± that would leave [0, 1] is refused at its line.
+    let bad = write(
+        dir.path(),
+        "bad.ron",
+        "(emissivity: [\n  (material: 2, sigma: 0.01),\n])",
+    );
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--band", "total", "--uncertainties", &bad, "-o"])
+        .arg(dir.path().join("x"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(stderr.contains("bad.ron:2:"), "{stderr}");
+    assert!(!dir.path().join("x.radiance.exr").exists());
+}

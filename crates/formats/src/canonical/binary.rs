@@ -24,6 +24,7 @@
 
 use irsig_model::{MaterialId, RawFacet, RawScene, Terrain};
 
+use super::layout::{self, Form, f64_at, u32_at};
 use crate::ParseError;
 
 /// The first eight bytes of a binary raw scene.
@@ -33,9 +34,16 @@ pub const VERSION: u32 = 1;
 /// Header size in bytes.
 pub const HEADER_LEN: usize = 48;
 /// Bytes per position.
-pub const POSITION_LEN: usize = 24;
+pub const POSITION_LEN: usize = layout::POSITION_LEN;
 /// Bytes per facet.
 pub const FACET_LEN: usize = 28;
+
+const FORM: Form = Form {
+    magic: MAGIC,
+    version: VERSION,
+    header_len: HEADER_LEN,
+    noun: "raw scene",
+};
 
 /// True when `bytes` start with [`MAGIC`].
 #[must_use]
@@ -67,17 +75,9 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
 /// 4 GiB, which this layout cannot hold (found before anything is written), or an I/O
 /// error from `w`.
 pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-    let too_big = |what: &str| {
-        std::io::Error::other(format!(
-            "the raw scene has too many {what} for the binary form"
-        ))
-    };
-    let count = |n: usize, what: &str| u32::try_from(n).map_err(|_| too_big(what));
+    let count = |n: usize, what: &str| FORM.count(n, what);
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
-    let mut header = Vec::with_capacity(HEADER_LEN + names_len);
-    header.extend_from_slice(MAGIC);
-    header.extend_from_slice(&VERSION.to_le_bytes());
-    header.extend_from_slice(&0u32.to_le_bytes());
+    let mut header = FORM.start_header(HEADER_LEN + names_len);
     header.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
     header.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
     header.extend_from_slice(&count(scene.objects.len(), "objects")?.to_le_bytes());
@@ -89,12 +89,8 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
         header.extend_from_slice(name.as_bytes());
     }
     w.write_all(&header)?;
-    write_records(w, &scene.positions_m, POSITION_LEN, |p, out| {
-        for c in p {
-            out.extend_from_slice(&c.to_le_bytes());
-        }
-    })?;
-    write_records(w, &scene.facets, FACET_LEN, |f, out| {
+    layout::write_positions(w, &scene.positions_m)?;
+    layout::write_records(w, &scene.facets, FACET_LEN, |f, out| {
         for v in f.vertices {
             out.extend_from_slice(&v.to_le_bytes());
         }
@@ -105,90 +101,6 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
     })
 }
 
-/// Bytes encoded per `write_all` by [`write_records`]: large enough that the writer's
-/// buffer is bypassed and the system calls are few, small enough to stay in cache.
-const CHUNK_LEN: usize = 256 * 1024;
-
-/// Encodes `records` (each `record_len` bytes, by `encode`) into a reused buffer and
-/// writes it whenever it is full.
-pub(super) fn write_records<T>(
-    w: &mut dyn std::io::Write,
-    records: &[T],
-    record_len: usize,
-    encode: impl Fn(&T, &mut Vec<u8>),
-) -> std::io::Result<()> {
-    let per_chunk = (CHUNK_LEN / record_len).max(1);
-    let mut buf = Vec::with_capacity(per_chunk * record_len);
-    for chunk in records.chunks(per_chunk) {
-        buf.clear();
-        for r in chunk {
-            encode(r, &mut buf);
-        }
-        w.write_all(&buf)?;
-    }
-    Ok(())
-}
-
-// Callers pass offsets whose bytes the header check has already proved present.
-pub(super) fn u32_at(b: &[u8], at: usize) -> u32 {
-    let mut a = [0; 4];
-    a.copy_from_slice(&b[at..at + 4]);
-    u32::from_le_bytes(a)
-}
-
-pub(super) fn f64_at(b: &[u8], at: usize) -> f64 {
-    let mut a = [0; 8];
-    a.copy_from_slice(&b[at..at + 8]);
-    f64::from_le_bytes(a)
-}
-
-/// The checks every irsig binary file opens with: its 8-byte magic, a whole fixed-size
-/// header, the version at byte 8 and reserved flags at byte 12 that are 0. `what` names
-/// the format in messages ("binary raw scene").
-pub(super) fn check_header(
-    file: &str,
-    bytes: &[u8],
-    magic: &[u8; 8],
-    what: &str,
-    header_len: usize,
-    version: u32,
-) -> Result<(), ParseError> {
-    let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
-    if !bytes.starts_with(magic) {
-        return Err(err(
-            0,
-            format!(
-                "expected a {what} starting with `{}`",
-                String::from_utf8_lossy(magic)
-            ),
-        ));
-    }
-    if bytes.len() < header_len {
-        return Err(err(
-            bytes.len(),
-            format!(
-                "truncated header: expected {header_len} bytes, found {}",
-                bytes.len()
-            ),
-        ));
-    }
-    let found = u32_at(bytes, 8);
-    if found != version {
-        return Err(err(
-            8,
-            format!("expected {what} version {version}, found {found}"),
-        ));
-    }
-    let flags = u32_at(bytes, 12);
-    if flags != 0 {
-        return Err(err(
-            12,
-            format!("expected header flags 0 (reserved), found {flags:#x}"),
-        ));
-    }
-    Ok(())
-}
-
 /// Decodes a binary raw scene. Does not validate the model rules (see
 /// [`super::read_raw_scene`], which does).
 ///
@@ -197,7 +109,7 @@ pub(super) fn check_header(
 /// runs past its block or is not UTF-8; at the byte offset of the problem.
 pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
     let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
-    check_header(file, bytes, MAGIC, "binary raw scene", HEADER_LEN, VERSION)?;
+    FORM.check_header(file, bytes)?;
     let objects = u32_at(bytes, 32) as usize;
     let positions = u32_at(bytes, 36) as usize;
     let facets = u32_at(bytes, 40) as usize;
@@ -207,16 +119,12 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
         + names_len as u64
         + POSITION_LEN as u64 * positions as u64
         + FACET_LEN as u64 * facets as u64;
-    if expected != bytes.len() as u64 {
-        return Err(err(
-            bytes.len().min(HEADER_LEN),
-            format!(
-                "the header declares {objects} objects ({names_len} name bytes), {positions} \
-                 positions and {facets} facets, which take {expected} bytes, but the file has {}",
-                bytes.len()
-            ),
-        ));
-    }
+    FORM.check_length(file, bytes, expected, || {
+        format!(
+            "{objects} objects ({names_len} name bytes), {positions} positions and {facets} \
+             facets"
+        )
+    })?;
     // From here every count is bounded by the file length.
     if objects.saturating_mul(4) > names_len {
         return Err(err(
@@ -250,11 +158,8 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
             ),
         ));
     }
-    let pos_bytes = &bytes[names_end..names_end + POSITION_LEN * positions];
-    let positions_m: Vec<[f64; 3]> = pos_bytes
-        .chunks_exact(POSITION_LEN)
-        .map(|c| [f64_at(c, 0), f64_at(c, 8), f64_at(c, 16)])
-        .collect();
+    let positions_m =
+        layout::read_positions(&bytes[names_end..names_end + POSITION_LEN * positions]);
     let facet_start = names_end + POSITION_LEN * positions;
     let mut facets = Vec::with_capacity(facets);
     for (i, c) in bytes[facet_start..].chunks_exact(FACET_LEN).enumerate() {

@@ -44,7 +44,7 @@
 
 use irsig_model::{Facet, MaterialId, Object};
 
-use super::binary::{check_header, f64_at, u32_at};
+use super::layout::{self, Form, f64_at, u32_at};
 use crate::ParseError;
 
 /// The first eight bytes of a binary object.
@@ -54,11 +54,18 @@ pub const VERSION: u32 = 1;
 /// Header size in bytes.
 pub const HEADER_LEN: usize = 32;
 /// Bytes per position.
-pub const POSITION_LEN: usize = 24;
+pub const POSITION_LEN: usize = layout::POSITION_LEN;
 /// Bytes per facet.
 pub const FACET_LEN: usize = 24;
 /// Facet flag: the facet carries its own temperature.
 pub const HAS_TEMPERATURE: u16 = 1;
+
+const FORM: Form = Form {
+    magic: MAGIC,
+    version: VERSION,
+    header_len: HEADER_LEN,
+    noun: "object",
+};
 
 /// True when `bytes` start with [`MAGIC`].
 #[must_use]
@@ -91,17 +98,8 @@ pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
 /// 4 GiB, which this layout cannot hold (found before anything is written), or an I/O
 /// error from `w`.
 pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
-    let count = |n: usize, what: &str| {
-        u32::try_from(n).map_err(|_| {
-            std::io::Error::other(format!(
-                "the object has too many {what} for the binary form"
-            ))
-        })
-    };
-    let mut header = Vec::with_capacity(HEADER_LEN + object.name.len() + object.source.len());
-    header.extend_from_slice(MAGIC);
-    header.extend_from_slice(&VERSION.to_le_bytes());
-    header.extend_from_slice(&0u32.to_le_bytes());
+    let count = |n: usize, what: &str| FORM.count(n, what);
+    let mut header = FORM.start_header(HEADER_LEN + object.name.len() + object.source.len());
     header.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());
@@ -109,12 +107,8 @@ pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()>
     header.extend_from_slice(object.name.as_bytes());
     header.extend_from_slice(object.source.as_bytes());
     w.write_all(&header)?;
-    super::binary::write_records(w, &object.positions_m, POSITION_LEN, |p, out| {
-        for c in p {
-            out.extend_from_slice(&c.to_le_bytes());
-        }
-    })?;
-    super::binary::write_records(w, &object.facets, FACET_LEN, |f, out| {
+    layout::write_positions(w, &object.positions_m)?;
+    layout::write_records(w, &object.facets, FACET_LEN, |f, out| {
         for v in f.vertices {
             out.extend_from_slice(&v.to_le_bytes());
         }
@@ -159,7 +153,7 @@ pub fn offset_of_path(object: &Object, path: &str) -> usize {
 /// problem.
 pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
     let err = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
-    check_header(file, bytes, MAGIC, "binary object", HEADER_LEN, VERSION)?;
+    FORM.check_header(file, bytes)?;
     let name_len = u32_at(bytes, 16) as usize;
     let source_len = u32_at(bytes, 20) as usize;
     let positions = u32_at(bytes, 24) as usize;
@@ -170,17 +164,12 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
         + source_len as u64
         + POSITION_LEN as u64 * positions as u64
         + FACET_LEN as u64 * facets as u64;
-    if expected != bytes.len() as u64 {
-        return Err(err(
-            bytes.len().min(HEADER_LEN),
-            format!(
-                "the header declares a {name_len}-byte name, a {source_len}-byte source, \
-                 {positions} positions and {facets} facets, which take {expected} bytes, but \
-                 the file has {}",
-                bytes.len()
-            ),
-        ));
-    }
+    FORM.check_length(file, bytes, expected, || {
+        format!(
+            "a {name_len}-byte name, a {source_len}-byte source, {positions} positions and \
+             {facets} facets"
+        )
+    })?;
     // From here every count is bounded by the file length.
     let text = |at: usize, len: usize, what: &str| {
         std::str::from_utf8(&bytes[at..at + len])
@@ -196,10 +185,7 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
     let source = text(HEADER_LEN + name_len, source_len, "source")?;
     let positions_at = HEADER_LEN + name_len + source_len;
     let facets_at = positions_at + POSITION_LEN * positions;
-    let positions_m: Vec<[f64; 3]> = bytes[positions_at..facets_at]
-        .chunks_exact(POSITION_LEN)
-        .map(|c| [f64_at(c, 0), f64_at(c, 8), f64_at(c, 16)])
-        .collect();
+    let positions_m = layout::read_positions(&bytes[positions_at..facets_at]);
     let mut out = Vec::with_capacity(facets);
     for (i, c) in bytes[facets_at..].chunks_exact(FACET_LEN).enumerate() {
         let flags = u16::from_le_bytes([c[14], c[15]]);

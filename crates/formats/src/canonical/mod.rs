@@ -11,17 +11,20 @@
 //! | [`Object`] | yes (small objects, hand-made tests, diffs) | yes ([`binary_object`], what `irsig-import` writes into a pipe) |
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
-//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`], [`Decision`] | yes | no |
+//! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`], [`Decision`], [`Uncertainties`] | yes | no |
 //!
 //! The format pages are `formats/canonical/*.md` in the repository.
 
 pub mod binary;
 pub mod binary_object;
-mod locate;
+pub mod binary_spectral;
+mod layout;
 
 use irsig_model::decision::Decision;
+use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
-    Atmosphere, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene, View,
+    Atmosphere, AtmospherePlan, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
+    SpectralAtmosphere, View,
 };
 use serde::Serialize;
 use serde::de::DeserializeOwned;
@@ -62,22 +65,47 @@ canonical!(MaterialLibrary, "material library", 3);
 canonical!(Atmosphere, "atmosphere", 3);
 canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
+canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
+canonical!(AtmospherePlan, "atmosphere plan", 2);
 canonical!(Decision, "decision", 3);
+canonical!(Uncertainties, "uncertainties file", 3);
 
 /// Parses RON text into `T` without validating it.
 ///
 /// # Errors
 /// A syntax or shape error at the RON error's line and column.
 pub fn from_ron_unchecked<T: Canonical>(file: &str, text: &str) -> Result<T, ParseError> {
+    from_ron_as(file, text, T::WHAT)
+}
+
+/// Parses RON text into any serde type, for RON files that are not a model type (slant
+/// tables, a tool's own state); `what` names the file's content in messages.
+///
+/// # Errors
+/// A syntax or shape error at the RON error's line and column.
+pub fn from_ron_as<T: DeserializeOwned>(
+    file: &str,
+    text: &str,
+    what: &str,
+) -> Result<T, ParseError> {
     ron::from_str::<T>(text).map_err(|e| {
         let offset = crate::offset_of(text, e.span.start.line, e.span.start.col);
         ParseError::at_offset(
             file,
             text,
             offset,
-            format!("malformed {} (RON): {}", T::WHAT, e.code),
+            format!("malformed {what} (RON): {}", e.code),
         )
     })
+}
+
+/// Any serde value as pretty-printed RON, for RON that is not a model type (a table of
+/// numbers a tool prints, a tool's own state).
+///
+/// # Errors
+/// Only if serde fails, which it does not for finite numbers.
+pub fn to_ron_pretty<T: Serialize>(value: &T) -> Result<String, ron::Error> {
+    ron::ser::to_string_pretty(value, ron::ser::PrettyConfig::default())
 }
 
 /// Parses and validates RON text.
@@ -130,19 +158,15 @@ pub fn utf8<'a>(file: &str, bytes: &'a [u8]) -> Result<&'a str, ParseError> {
 /// of a particular image.
 #[must_use]
 pub fn error_at_path(file: &str, text: &str, path: &str, message: impl Into<String>) -> ParseError {
-    let offset = locate::path_offset(text, path);
-    let len = locate::value_len(text, offset);
-    ParseError::at_span(file, text, offset, len.max(1), message)
+    let (start, end) = crate::ron_tree::locate(text, path);
+    ParseError::at_span(file, text, start, (end - start).max(1), message)
 }
 
 fn validation_error<T: Canonical>(file: &str, text: &str, e: &ModelError) -> ParseError {
-    let offset = locate::path_offset(text, &e.path);
-    let len = locate::value_len(text, offset);
-    ParseError::at_span(
+    error_at_path(
         file,
         text,
-        offset,
-        len.max(1),
+        &e.path,
         format!("invalid {}: `{}`: {}", T::WHAT, e.path, e.kind),
     )
 }
@@ -152,8 +176,18 @@ fn validation_error<T: Canonical>(file: &str, text: &str, e: &ModelError) -> Par
 /// # Errors
 /// Only if serde fails, which the model types never do for finite numbers.
 pub fn to_ron<T: Canonical>(value: &T) -> Result<String, ron::Error> {
+    to_ron_at_depth(value, T::PRETTY_DEPTH)
+}
+
+/// Any serde value as RON in the canonical layout: lines broken down to nesting `depth`
+/// (deeper values stay on one line), two-space indents, a trailing newline. For RON a tool
+/// writes that is not a model type (a table of results).
+///
+/// # Errors
+/// Only if serde fails, which it does not for finite numbers.
+pub fn to_ron_at_depth<T: Serialize>(value: &T, depth: usize) -> Result<String, ron::Error> {
     let config = ron::ser::PrettyConfig::new()
-        .depth_limit(T::PRETTY_DEPTH)
+        .depth_limit(depth)
         .indentor("  ")
         .separate_tuple_members(false);
     let mut text = ron::ser::to_string_pretty(value, config)?;
@@ -186,6 +220,22 @@ pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> 
             )
         })?;
         Ok(scene)
+    } else {
+        from_ron_bytes(file, bytes)
+    }
+}
+
+/// Reads a spectral atmosphere in either form: binary when the bytes start with
+/// [`binary_spectral::MAGIC`], RON otherwise. Validates it.
+///
+/// # Errors
+/// As [`binary_spectral::decode`] or [`from_ron_bytes`].
+pub fn read_spectral_atmosphere(
+    file: &str,
+    bytes: &[u8],
+) -> Result<SpectralAtmosphere, ParseError> {
+    if binary_spectral::is_binary(bytes) {
+        binary_spectral::decode(file, bytes)
     } else {
         from_ron_bytes(file, bytes)
     }

@@ -37,11 +37,66 @@ pub struct AtmRow {
     pub position: Position,
 }
 
+impl AtmRow {
+    /// The row's values in the file's column order: altitude ASL (km), temperature (K),
+    /// altitude above ground (km), transmission, upwelled radiance (W cm⁻² sr⁻¹).
+    #[must_use]
+    pub fn to_values(&self) -> [f64; 5] {
+        [
+            self.altitude_asl_km,
+            self.temperature_k,
+            self.altitude_km,
+            self.transmission,
+            self.upwelled_radiance_w_cm2_sr,
+        ]
+    }
+
+    /// A row from values in the file's column order ([`AtmRow::to_values`]).
+    #[must_use]
+    pub fn from_values(values: [f64; 5], position: Position) -> Self {
+        let [
+            altitude_asl_km,
+            temperature_k,
+            altitude_km,
+            transmission,
+            upwelled_radiance_w_cm2_sr,
+        ] = values;
+        Self {
+            altitude_asl_km,
+            temperature_k,
+            altitude_km,
+            transmission,
+            upwelled_radiance_w_cm2_sr,
+            position,
+        }
+    }
+}
+
 /// A parsed `.atm` table.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct AtmTable {
     /// The rows, altitudes strictly increasing.
     pub rows: Vec<AtmRow>,
+}
+
+impl AtmTable {
+    /// The rows as arrays in the file's column order ([`AtmRow::to_values`]), the form
+    /// `irsig_atmosphere::legacy::DirtranTables::atm` takes.
+    #[must_use]
+    pub fn to_rows(&self) -> Vec<[f64; 5]> {
+        self.rows.iter().map(AtmRow::to_values).collect()
+    }
+
+    /// A table from arrays in the file's column order, without positions (for writing).
+    #[must_use]
+    pub fn from_rows(rows: &[[f64; 5]]) -> Self {
+        Self {
+            rows: rows
+                .iter()
+                .map(|&v| AtmRow::from_values(v, Position::default()))
+                .collect(),
+        }
+    }
 }
 
 const COLUMNS: &str = "altitude ASL in km, temperature in K, altitude above ground in km, \
@@ -58,16 +113,6 @@ fn check(rows: &[[f64; 5]]) -> Result<(), Violation> {
     increasing(rows, 2, "the altitude above ground")
 }
 
-fn to_values(r: &AtmRow) -> [f64; 5] {
-    [
-        r.altitude_asl_km,
-        r.temperature_k,
-        r.altitude_km,
-        r.transmission,
-        r.upwelled_radiance_w_cm2_sr,
-    ]
-}
-
 /// Reads an `.atm` table.
 ///
 /// # Errors
@@ -82,23 +127,7 @@ pub fn parse(file: &str, text: &str) -> Result<AtmTable, ParseError> {
     Ok(AtmTable {
         rows: raw
             .iter()
-            .map(|r| {
-                let [
-                    altitude_asl_km,
-                    temperature_k,
-                    altitude_km,
-                    transmission,
-                    lu,
-                ] = r.values;
-                AtmRow {
-                    altitude_asl_km,
-                    temperature_k,
-                    altitude_km,
-                    transmission,
-                    upwelled_radiance_w_cm2_sr: lu,
-                    position: r.position,
-                }
-            })
+            .map(|r| AtmRow::from_values(r.values, r.position))
             .collect(),
     })
 }
@@ -108,8 +137,7 @@ pub fn parse(file: &str, text: &str) -> Result<AtmTable, ParseError> {
 /// # Errors
 /// A [`WriteError`] for an empty table or a value the parser would reject.
 pub fn write(table: &AtmTable) -> Result<String, WriteError> {
-    let rows: Vec<[f64; 5]> = table.rows.iter().map(to_values).collect();
-    write_rows(&rows, check)
+    write_rows(&table.to_rows(), check)
 }
 
 // Parsing a decimal literal must give exactly the f64 of the same Rust literal.
@@ -130,6 +158,15 @@ mod tests {
         assert_eq!(t.rows[1].upwelled_radiance_w_cm2_sr, 7.387_818e-4);
         assert_eq!(t.rows[0].altitude_asl_km, 0.05);
         assert_eq!(t.rows[0].temperature_k, 287.825);
+    }
+
+    #[test]
+    fn rows_are_the_columns_in_file_order() {
+        let t = parse("a.atm", "0.05 287.825 0.05 0.964055 1.5e-4\n").unwrap();
+        assert_eq!(t.to_rows(), [[0.05, 287.825, 0.05, 0.964_055, 1.5e-4]]);
+        let back = AtmTable::from_rows(&t.to_rows());
+        assert_eq!(back.rows[0].upwelled_radiance_w_cm2_sr, 1.5e-4);
+        assert_eq!(write(&back).unwrap(), write(&t).unwrap());
     }
 
     #[test]

@@ -33,11 +33,63 @@ pub struct RsdRow {
     pub position: Position,
 }
 
+impl RsdRow {
+    /// The row's values in the file's column order: altitude (km), pressure (mb),
+    /// temperature (°C), dew-point depression (°C).
+    #[must_use]
+    pub fn to_values(&self) -> [f64; 4] {
+        [
+            self.altitude_km,
+            self.pressure_mb,
+            self.temperature_c,
+            self.dew_point_depression_c,
+        ]
+    }
+
+    /// A row from values in the file's column order ([`RsdRow::to_values`]).
+    #[must_use]
+    pub fn from_values(values: [f64; 4], position: Position) -> Self {
+        let [
+            altitude_km,
+            pressure_mb,
+            temperature_c,
+            dew_point_depression_c,
+        ] = values;
+        Self {
+            altitude_km,
+            pressure_mb,
+            temperature_c,
+            dew_point_depression_c,
+            position,
+        }
+    }
+}
+
 /// A parsed `.rsd` file.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct RsdTable {
     /// The levels, altitudes strictly increasing.
     pub rows: Vec<RsdRow>,
+}
+
+impl RsdTable {
+    /// The rows as arrays in the file's column order ([`RsdRow::to_values`]), the form
+    /// `irsig_atmosphere::legacy::DirtranTables::rsd` takes.
+    #[must_use]
+    pub fn to_rows(&self) -> Vec<[f64; 4]> {
+        self.rows.iter().map(RsdRow::to_values).collect()
+    }
+
+    /// A table from arrays in the file's column order, without positions (for writing).
+    #[must_use]
+    pub fn from_rows(rows: &[[f64; 4]]) -> Self {
+        Self {
+            rows: rows
+                .iter()
+                .map(|&v| RsdRow::from_values(v, Position::default()))
+                .collect(),
+        }
+    }
 }
 
 const COLUMNS: &str =
@@ -72,21 +124,7 @@ pub fn parse(file: &str, text: &str) -> Result<RsdTable, ParseError> {
     Ok(RsdTable {
         rows: raw
             .iter()
-            .map(|r| {
-                let [
-                    altitude_km,
-                    pressure_mb,
-                    temperature_c,
-                    dew_point_depression_c,
-                ] = r.values;
-                RsdRow {
-                    altitude_km,
-                    pressure_mb,
-                    temperature_c,
-                    dew_point_depression_c,
-                    position: r.position,
-                }
-            })
+            .map(|r| RsdRow::from_values(r.values, r.position))
             .collect(),
     })
 }
@@ -96,19 +134,7 @@ pub fn parse(file: &str, text: &str) -> Result<RsdTable, ParseError> {
 /// # Errors
 /// A [`WriteError`] for an empty table or a value the parser would reject.
 pub fn write(table: &RsdTable) -> Result<String, WriteError> {
-    let rows: Vec<[f64; 4]> = table
-        .rows
-        .iter()
-        .map(|r| {
-            [
-                r.altitude_km,
-                r.pressure_mb,
-                r.temperature_c,
-                r.dew_point_depression_c,
-            ]
-        })
-        .collect();
-    write_rows(&rows, check)
+    write_rows(&table.to_rows(), check)
 }
 
 // Parsing a decimal literal must give exactly the f64 of the same Rust literal.
@@ -131,5 +157,17 @@ mod tests {
             let e = parse("s.rsd", text).unwrap_err();
             assert_eq!((e.line, e.column), (line, col), "{text:?}: {e}");
         }
+    }
+
+    #[test]
+    fn rows_are_the_columns_in_file_order() {
+        let t = parse("s.rsd", "0.154 1013 12.5 3.1\n1.5 850 4 6\n").unwrap();
+        assert_eq!(
+            t.to_rows(),
+            [[0.154, 1013.0, 12.5, 3.1], [1.5, 850.0, 4.0, 6.0]]
+        );
+        let back = RsdTable::from_rows(&t.to_rows());
+        assert_eq!(write(&back).unwrap(), write(&t).unwrap());
+        assert_eq!(back.rows[1].temperature_c, 4.0);
     }
 }

@@ -1,6 +1,6 @@
-//! `irsig-atmos convert --material-index`: the 1990 material index file and the `.ems`
-//! tables it names (thesis §3.2.2, §4.1, Appendix H `emis_type`) to a canonical material
-//! library, and `--materials-to-legacy` back.
+//! `irsig-material convert`: the 1990 material index file and the `.ems` tables it names
+//! (thesis §3.2.2, §4.1, Appendix H `emis_type`) to a canonical material library, and
+//! `--to-legacy` back.
 //!
 //! Each index entry `index name [file.ems [0|1]]` becomes a material with id = index,
 //! the `.ems` rows as its angular emissivity (validated by the `.ems` parser: 0 ≤ ε ≤ 1,
@@ -18,7 +18,61 @@ use irsig_formats::legacy::{Position, ems, material_index};
 use irsig_model::{Material, MaterialId, MaterialLibrary};
 use miette::{IntoDiagnostic, Report, WrapErr};
 
-use crate::convert::ConvertArgs;
+/// Arguments of `irsig-material convert`.
+#[derive(Debug, Clone, clap::Args)]
+#[command(after_help = "\
+Examples:
+  # the 1990 material index file and the .ems tables it names to a material library;
+  # entries without an .ems file get the constant emissivity 0.9
+  irsig-material convert materials.mat --default-emissivity 0.9 -o lib.ron
+
+  # a material library back to legacy/materials.mat plus legacy/NAME.ems per material
+  irsig-material convert --to-legacy lib.ron --out-dir legacy/")]
+pub struct ConvertArgs {
+    /// The 1990 material index file (`index name [file.ems [0|1]]` per line), or `-`,
+    /// converted with the `.ems` tables it names to a canonical material library.
+    #[arg(
+        value_name = "INDEX",
+        required_unless_present = "to_legacy",
+        conflicts_with = "to_legacy"
+    )]
+    pub index: Option<String>,
+    /// The directory the index's `.ems` file names are relative to (default: the index
+    /// file's directory).
+    #[arg(long, value_name = "DIR", conflicts_with = "to_legacy")]
+    pub ems_dir: Option<PathBuf>,
+    /// The constant emissivity (0–1, at every angle) of materials the index gives no
+    /// `.ems` file. Without it such a material is an error.
+    #[arg(long, value_name = "E", conflicts_with = "to_legacy")]
+    pub default_emissivity: Option<f64>,
+    /// Output canonical material library (stdout when absent or `-`).
+    #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
+    pub output: Option<PathBuf>,
+    /// Convert the other way: this canonical material library (a file or `-`) to a
+    /// material index file (`STEM.mat`) and one `NAME.ems` per material in `--out-dir`.
+    #[arg(long, value_name = "LIBRARY")]
+    pub to_legacy: Option<String>,
+    /// Directory for the legacy files written by `--to-legacy`.
+    #[arg(long, value_name = "DIR", requires = "to_legacy", default_value = ".")]
+    pub out_dir: PathBuf,
+    /// File stem of the material index written by `--to-legacy`.
+    #[arg(long, requires = "to_legacy", default_value = "materials")]
+    pub stem: String,
+}
+
+/// Runs `irsig-material convert`.
+///
+/// # Errors
+/// As [`from_legacy`] and [`to_legacy`].
+pub fn run(args: &ConvertArgs) -> miette::Result<()> {
+    match (&args.to_legacy, &args.index) {
+        (Some(library), _) => to_legacy(args, library),
+        (None, Some(index)) => from_legacy(args, index),
+        (None, None) => Err(irsig_cli::usage_error(
+            "give a material index file, or --to-legacy LIBRARY",
+        )),
+    }
+}
 
 /// The material index (and its `.ems` tables) to a canonical material library.
 ///
@@ -135,7 +189,7 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
     let input = irsig_cli::read_input(input)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes).map_err(Report::new)?;
-    let stem = args.stem.clone().unwrap_or_else(|| "materials".to_owned());
+    let stem = &args.stem;
     if stem.is_empty() || stem.contains(['/', '\\']) {
         return Err(irsig_cli::usage_error(format!(
             "--stem must be a plain file stem, found `{stem}`"

@@ -1,19 +1,16 @@
-//! `irsig-atmos fresnel`: an angular emissivity table of a smooth opaque surface from its
+//! `irsig-material fresnel`: an angular emissivity table of a smooth opaque surface from its
 //! complex refractive index, as a canonical material library entry or a legacy `.ems`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
+use irsig_cli::args::{BandArg, values};
 use irsig_model::{Material, MaterialId, MaterialLibrary};
 use irsig_radiometry::EmissivityTable;
 use irsig_radiometry::fresnel::{
     ComplexIndex, IndexTable, band_emissivity_table, emissivity_table,
 };
 use miette::miette;
-
-use irsig_cli::args::BandArg;
-
-use crate::common::{diagnostic, values};
 
 /// Arguments of `fresnel`.
 #[derive(Debug, clap::Args)]
@@ -74,6 +71,12 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("ems"))
 }
 
+/// Runs `irsig-material fresnel`.
+///
+/// # Errors
+/// A bad index or angle list, an unreadable or malformed n, k table or response file, a
+/// band the table does not cover, an invalid library entry, or an I/O error; nothing is
+/// written then.
 pub fn run(args: &Args) -> miette::Result<()> {
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
@@ -101,7 +104,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 BandArg::Flat { .. } => String::new(),
             };
             let source = format!(
-                "Fresnel, smooth opaque surface (irsig-atmos fresnel): n, k from {} linearly \
+                "Fresnel, smooth opaque surface (irsig-material fresnel): n, k from {} linearly \
                  interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K",
                 input.name,
                 band.lambda_min_um(),
@@ -115,10 +118,10 @@ pub fn run(args: &Args) -> miette::Result<()> {
             (table, source, stem)
         }
         (None, Some(n)) => {
-            let index = ComplexIndex::new(n, args.k).map_err(diagnostic)?;
+            let index = ComplexIndex::new(n, args.k).map_err(|e| miette!("{e}"))?;
             let table = emissivity_table(index, &angles).map_err(|e| miette!("--angles: {e}"))?;
             let source = format!(
-                "Fresnel, smooth opaque surface (irsig-atmos fresnel): constant index n = {n}, k = {}",
+                "Fresnel, smooth opaque surface (irsig-material fresnel): constant index n = {n}, k = {}",
                 args.k
             );
             (table, source, None)
@@ -149,7 +152,7 @@ fn pairs(table: &EmissivityTable) -> Vec<(f64, f64)> {
 
 fn write_ems(table: &EmissivityTable, output: Option<&Path>) -> miette::Result<()> {
     let ems = irsig_formats::legacy::ems::EmsTable::from_pairs(&pairs(table));
-    let text = irsig_formats::legacy::ems::write(&ems).map_err(diagnostic)?;
+    let text = irsig_formats::legacy::ems::write(&ems).map_err(|e| miette!("{e}"))?;
     irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
 }
 
@@ -173,6 +176,6 @@ fn write_library(
     library
         .validate()
         .map_err(|e| miette!("the material library entry is not valid: {e}"))?;
-    let text = irsig_formats::canonical::to_ron(&library).map_err(diagnostic)?;
+    let text = irsig_formats::canonical::to_ron(&library).map_err(|e| miette!("{e}"))?;
     irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
 }

@@ -1,4 +1,4 @@
-//! `irsig-atmos convert --material-index` and `--materials-to-legacy` end to end on the
+//! `irsig-material convert` and `convert --to-legacy` end to end on the
 //! legacy samples (`formats/legacy/samples/materials.mat` and the Hale & Querry water
 //! `.ems` it names): the library holds what the files say (read here with a plain
 //! whitespace split, not the parsers under test), converts back to the same files, and bad
@@ -16,8 +16,8 @@ fn samples() -> PathBuf {
         .collect()
 }
 
-fn atmos() -> Command {
-    Command::cargo_bin("irsig-atmos").unwrap()
+fn material() -> Command {
+    Command::cargo_bin("irsig-material").unwrap()
 }
 
 /// `(angle, emissivity)` rows of an `.ems` file, by a plain split.
@@ -40,8 +40,8 @@ fn library(bytes: &[u8]) -> MaterialLibrary {
 #[test]
 fn the_sample_index_converts_with_an_explicit_default() {
     let mat = samples().join("materials.mat");
-    let out = atmos()
-        .args(["convert", "--material-index"])
+    let out = material()
+        .arg("convert")
         .arg(&mat)
         .args(["--default-emissivity", "0.9"])
         .output()
@@ -103,8 +103,8 @@ fn a_library_goes_back_to_the_same_legacy_files() {
     )
     .unwrap();
     let lib_path = dir.path().join("lib.ron");
-    atmos()
-        .args(["convert", "--material-index"])
+    material()
+        .arg("convert")
         .arg(dir.path().join("one.mat"))
         .arg("-o")
         .arg(&lib_path)
@@ -112,8 +112,8 @@ fn a_library_goes_back_to_the_same_legacy_files() {
         .success();
     let back = dir.path().join("back");
     std::fs::create_dir(&back).unwrap();
-    atmos()
-        .args(["convert", "--materials-to-legacy"])
+    material()
+        .args(["convert", "--to-legacy"])
         .arg(&lib_path)
         .arg("--out-dir")
         .arg(&back)
@@ -130,8 +130,8 @@ fn a_library_goes_back_to_the_same_legacy_files() {
         ems_rows(&samples().join("water-hale-querry.ems"))
     );
     // And converting back again gives the same library, up to its provenance.
-    let again = atmos()
-        .args(["convert", "--material-index"])
+    let again = material()
+        .arg("convert")
         .arg(back.join("legacy.mat"))
         .output()
         .unwrap();
@@ -147,8 +147,8 @@ fn a_library_goes_back_to_the_same_legacy_files() {
 fn an_entry_without_ems_and_no_default_is_an_error_at_its_line() {
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("lib.ron");
-    atmos()
-        .args(["convert", "--material-index"])
+    material()
+        .arg("convert")
         .arg(samples().join("materials.mat"))
         .arg("-o")
         .arg(&out)
@@ -178,8 +178,8 @@ fn bad_ems_files_and_values_fail_cleanly() {
         ("angles-not-increasing.ems", "angles-not-increasing.ems:"),
     ] {
         std::fs::write(dir.path().join("i.mat"), format!("1 paint {ems} 0\n")).unwrap();
-        atmos()
-            .args(["convert", "--material-index"])
+        material()
+            .arg("convert")
             .arg(dir.path().join("i.mat"))
             .arg("--ems-dir")
             .arg(&corpus)
@@ -192,8 +192,8 @@ fn bad_ems_files_and_values_fail_cleanly() {
     }
     // An .ems file that does not exist: the index line that names it.
     std::fs::write(dir.path().join("i.mat"), "1 paint\n2 steel nowhere.ems 1\n").unwrap();
-    atmos()
-        .args(["convert", "--material-index"])
+    material()
+        .arg("convert")
         .arg(dir.path().join("i.mat"))
         .args(["--default-emissivity", "0.5", "-o"])
         .arg(&out)
@@ -202,17 +202,21 @@ fn bad_ems_files_and_values_fail_cleanly() {
         .stderr(predicate::str::contains("i.mat:2:1").and(predicate::str::contains("nowhere.ems")));
     assert!(!out.exists());
     // A default emissivity outside 0-1 is bad usage.
-    atmos()
-        .args(["convert", "--material-index"])
+    material()
+        .arg("convert")
         .arg(dir.path().join("i.mat"))
         .args(["--default-emissivity", "1.5"])
         .assert()
         .code(2);
-    // Material flags do not mix with atmosphere ones.
-    atmos()
-        .args(["convert", "--material-index", "x.mat", "--atm", "x.atm"])
-        .assert()
-        .code(2);
+    // An index to read and a library to write back do not mix; nor does --ems-dir with
+    // --to-legacy, and one of the two is needed.
+    for args in [
+        &["convert", "x.mat", "--to-legacy", "lib.ron"][..],
+        &["convert", "--to-legacy", "lib.ron", "--ems-dir", "d"],
+        &["convert"],
+    ] {
+        material().args(args).assert().code(2);
+    }
 }
 
 #[test]
@@ -224,8 +228,8 @@ fn a_partly_specular_material_has_no_legacy_form() {
         "(materials: [(id: 1, name: \"paint\", emissivity: [(0.0, 0.9)], specular_fraction: 0.0, source: \"t\"), (id: 2, name: \"gloss\", emissivity: [(0.0, 0.9)], specular_fraction: 0.5, source: \"t\")])",
     )
     .unwrap();
-    atmos()
-        .args(["convert", "--materials-to-legacy"])
+    material()
+        .args(["convert", "--to-legacy"])
         .arg(&lib)
         .arg("--out-dir")
         .arg(dir.path())

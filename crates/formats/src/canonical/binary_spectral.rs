@@ -1,0 +1,274 @@
+//! The compact binary spectral atmosphere: what `irsig-atmos build` writes and the two
+//! built-ins are embedded as. A spectral atmosphere holds tens of thousands of numbers
+//! (the built-ins ~80 000 each); as RON they would be ~1 MB and take tens of milliseconds
+//! to parse, as single-precision binary they are ~320 kB and load in well under a
+//! millisecond. Spec page: `formats/canonical/spectral-atmosphere.md`.
+//!
+//! Layout (little-endian, no padding):
+//!
+//! | offset | size | field |
+//! | --- | --- | --- |
+//! | 0 | 8 | magic `IRSIGSPA` |
+//! | 8 | 4 | `u32` version, 1 |
+//! | 12 | 4 | `u32` byte length `H` of the header |
+//! | 16 | `H` | header: the atmosphere as canonical RON (UTF-8) with every table of spectra empty |
+//! | 16 + `H` | … | the tables of spectra, each a `u32` count `N` and `N` `f32` values |
+//!
+//! The tables follow in this order, each only when the header has the field:
+//! `level_transmission`, `level_path_radiance_w_m2_sr_per_unit`,
+//! `transmission_correction.transmission`, `sky_radiance_w_m2_sr_per_unit`,
+//! `sky_hemispheric_w_m2_sr_per_unit`, `slant.transmission`,
+//! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`.
+//! Each count is checked against the bytes left before anything is allocated; the file
+//! must end after the last table; the result is validated.
+
+use irsig_model::SpectralAtmosphere;
+
+use crate::ParseError;
+
+/// The first eight bytes of a binary spectral atmosphere.
+pub const MAGIC: &[u8; 8] = b"IRSIGSPA";
+/// The layout version this code reads and writes.
+pub const VERSION: u32 = 1;
+
+/// True when `bytes` start with [`MAGIC`].
+#[must_use]
+pub fn is_binary(bytes: &[u8]) -> bool {
+    bytes.starts_with(MAGIC)
+}
+
+fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
+    let mut t = vec![
+        &a.level_transmission,
+        &a.level_path_radiance_w_m2_sr_per_unit,
+    ];
+    if let Some(c) = &a.transmission_correction {
+        t.push(&c.transmission);
+    }
+    t.push(&a.sky_radiance_w_m2_sr_per_unit);
+    if let Some(h) = &a.sky_hemispheric_w_m2_sr_per_unit {
+        t.push(h);
+    }
+    if let Some(s) = &a.slant {
+        t.extend([
+            &s.transmission,
+            &s.path_radiance_w_m2_sr_per_unit,
+            &s.sky_radiance_w_m2_sr_per_unit,
+        ]);
+    }
+    t
+}
+
+fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
+    let mut t = vec![
+        &mut a.level_transmission,
+        &mut a.level_path_radiance_w_m2_sr_per_unit,
+    ];
+    if let Some(c) = &mut a.transmission_correction {
+        t.push(&mut c.transmission);
+    }
+    t.push(&mut a.sky_radiance_w_m2_sr_per_unit);
+    if let Some(h) = &mut a.sky_hemispheric_w_m2_sr_per_unit {
+        t.push(h);
+    }
+    if let Some(s) = &mut a.slant {
+        t.extend([
+            &mut s.transmission,
+            &mut s.path_radiance_w_m2_sr_per_unit,
+            &mut s.sky_radiance_w_m2_sr_per_unit,
+        ]);
+    }
+    t
+}
+
+/// Encodes a spectral atmosphere.
+///
+/// # Errors
+/// A table longer than `u32::MAX` values, or a header serde cannot write (never for a
+/// validated atmosphere).
+pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error> {
+    let mut header = atmosphere.clone();
+    for t in tables_mut(&mut header) {
+        t.clear();
+    }
+    let ron = ron::ser::to_string(&header).map_err(std::io::Error::other)?;
+    let too_big = || std::io::Error::other("a table of spectra holds more than 2^32 values");
+    let total: usize = tables(atmosphere).iter().map(|t| 4 + 4 * t.len()).sum();
+    let mut out = Vec::with_capacity(16 + ron.len() + total);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION.to_le_bytes());
+    out.extend_from_slice(
+        &u32::try_from(ron.len())
+            .map_err(|_| too_big())?
+            .to_le_bytes(),
+    );
+    out.extend_from_slice(ron.as_bytes());
+    for t in tables(atmosphere) {
+        out.extend_from_slice(&u32::try_from(t.len()).map_err(|_| too_big())?.to_le_bytes());
+        for v in t {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    Ok(out)
+}
+
+fn u32_at(file: &str, bytes: &[u8], at: usize, what: &str) -> Result<u32, ParseError> {
+    bytes
+        .get(at..at + 4)
+        .and_then(|b| b.try_into().ok())
+        .map(u32::from_le_bytes)
+        .ok_or_else(|| {
+            ParseError::in_binary(
+                file,
+                at,
+                format!("expected {what} (4 bytes), found the end of the file: it is truncated"),
+            )
+        })
+}
+
+/// Decodes and validates a binary spectral atmosphere.
+///
+/// # Errors
+/// A [`ParseError`] at the byte offset: a wrong magic or version, a header that is not
+/// UTF-8 RON of a spectral atmosphere, a count larger than the bytes left, bytes after the
+/// last table, or a broken model rule.
+pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError> {
+    if !is_binary(bytes) {
+        return Err(ParseError::in_binary(
+            file,
+            0,
+            "expected the magic `IRSIGSPA` of a binary spectral atmosphere",
+        ));
+    }
+    let version = u32_at(file, bytes, 8, "the version")?;
+    if version != VERSION {
+        return Err(ParseError::in_binary(
+            file,
+            8,
+            format!("expected version {VERSION}, found {version}"),
+        ));
+    }
+    let h = u32_at(file, bytes, 12, "the header length")? as usize;
+    let header = bytes.get(16..16usize.saturating_add(h)).ok_or_else(|| {
+        ParseError::in_binary(
+            file,
+            12,
+            format!(
+                "the header length {h} runs past the end of the file ({} bytes)",
+                bytes.len()
+            ),
+        )
+    })?;
+    let text = std::str::from_utf8(header).map_err(|e| {
+        ParseError::in_binary(file, 16 + e.valid_up_to(), "expected a UTF-8 RON header")
+    })?;
+    let mut atm: SpectralAtmosphere = ron::from_str(text).map_err(|e| {
+        let offset = crate::offset_of(text, e.span.start.line, e.span.start.col);
+        ParseError::in_binary(
+            file,
+            16 + offset,
+            format!("malformed header (RON): {}", e.code),
+        )
+    })?;
+    let mut at = 16 + h;
+    for t in tables_mut(&mut atm) {
+        let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
+        let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
+            ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "a table of {n} values needs {} bytes, but only {} are left: the file is truncated",
+                    n.saturating_mul(4),
+                    bytes.len() - at - 4
+                ),
+            )
+        })?;
+        at += 4;
+        *t = bytes[at..at + len]
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        at += len;
+    }
+    if at != bytes.len() {
+        return Err(ParseError::in_binary(
+            file,
+            at,
+            format!(
+                "expected the end of the file after the last table, found {} more bytes",
+                bytes.len() - at
+            ),
+        ));
+    }
+    atm.validate().map_err(|e| {
+        ParseError::in_binary(
+            file,
+            16,
+            format!("invalid spectral atmosphere: `{}`: {}", e.path, e.kind),
+        )
+    })?;
+    Ok(atm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use irsig_model::{ProfileLevel, SpectralAxis, SpectralGrid};
+
+    fn small() -> SpectralAtmosphere {
+        SpectralAtmosphere {
+            name: "t".into(),
+            source: "test".into(),
+            grid: SpectralGrid {
+                axis: SpectralAxis::WavenumberPerCm,
+                points: vec![710.0, 715.0],
+            },
+            levels: vec![ProfileLevel {
+                altitude_asl_m: 1000.0,
+                temperature_k: 281.0,
+                altitude_m: 1000.0,
+            }],
+            level_transmission: vec![0.1, 0.2],
+            level_path_radiance_w_m2_sr_per_unit: vec![0.1, 0.09],
+            transmission_correction: None,
+            sky_zenith_deg: vec![0.0],
+            sky_radiance_w_m2_sr_per_unit: vec![0.1, 0.2],
+            sky_hemispheric_w_m2_sr_per_unit: Some(vec![0.3, 0.4]),
+            radiosonde: vec![],
+            slant: None,
+        }
+    }
+
+    #[test]
+    fn round_trips_bit_for_bit() {
+        let a = small();
+        let bytes = encode(&a).unwrap();
+        assert_eq!(decode("a.spa", &bytes).unwrap(), a);
+        assert_eq!(encode(&decode("a.spa", &bytes).unwrap()).unwrap(), bytes);
+    }
+
+    #[test]
+    fn damage_is_reported_at_its_offset() {
+        let bytes = encode(&small()).unwrap();
+        let e = decode("a", &bytes[..bytes.len() - 2]).unwrap_err();
+        assert!(e.message.contains("truncated"), "{}", e.message);
+        let mut longer = bytes.clone();
+        longer.push(0);
+        assert_eq!(decode("a", &longer).unwrap_err().column, bytes.len() + 1);
+        let mut huge = bytes.clone();
+        let h = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        huge[16 + h..20 + h].copy_from_slice(&u32::MAX.to_le_bytes());
+        assert!(decode("a", &huge).is_err());
+        let mut bad = bytes.clone();
+        let last = bad.len() - 4;
+        bad[last..].copy_from_slice(&f32::NAN.to_le_bytes());
+        assert!(
+            decode("a", &bad)
+                .unwrap_err()
+                .message
+                .contains("invalid spectral atmosphere")
+        );
+        assert!(decode("a", b"IRSIGRAW").is_err());
+    }
+}

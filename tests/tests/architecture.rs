@@ -1,0 +1,138 @@
+//! The rules `ARCHITECTURE.md` states about how the workspace fits together ("Architecture
+//! invariants"), checked against `cargo metadata` rather than trusted to review.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use irsig_tests::repo_root;
+use serde_json::Value;
+
+/// One workspace package as `cargo metadata --no-deps` describes it.
+#[derive(Debug)]
+struct Package {
+    name: String,
+    /// The package directory relative to the repository root (`crates/formats`, `tools/trace`).
+    dir: PathBuf,
+    /// Binary targets: name and the features they require.
+    bins: Vec<(String, Vec<String>)>,
+    /// The features the package turns on by default.
+    default_features: Vec<String>,
+}
+
+impl Package {
+    fn is_tool(&self) -> bool {
+        self.dir.starts_with("tools")
+    }
+}
+
+fn strings(v: &Value) -> Vec<String> {
+    v.as_array()
+        .map(|a| {
+            a.iter()
+                .filter_map(Value::as_str)
+                .map(str::to_owned)
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The workspace's packages, read once per test from `cargo metadata`.
+fn workspace() -> Vec<Package> {
+    let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+    let out = Command::new(cargo)
+        .args([
+            "metadata",
+            "--format-version",
+            "1",
+            "--no-deps",
+            "--offline",
+        ])
+        .current_dir(repo_root())
+        .output()
+        .expect("run cargo metadata");
+    assert!(
+        out.status.success(),
+        "cargo metadata failed: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let meta: Value = serde_json::from_slice(&out.stdout).expect("cargo metadata JSON");
+    let root = Path::new(meta["workspace_root"].as_str().expect("workspace_root"));
+    meta["packages"]
+        .as_array()
+        .expect("packages")
+        .iter()
+        .map(|p| {
+            let manifest = Path::new(p["manifest_path"].as_str().expect("manifest_path"));
+            let dir = manifest
+                .parent()
+                .and_then(|d| d.strip_prefix(root).ok())
+                .expect("package inside the workspace")
+                .to_path_buf();
+            let bins = p["targets"]
+                .as_array()
+                .expect("targets")
+                .iter()
+                .filter(|t| strings(&t["kind"]).iter().any(|k| k == "bin"))
+                .map(|t| {
+                    (
+                        t["name"].as_str().expect("name").to_owned(),
+                        strings(&t["required-features"]),
+                    )
+                })
+                .collect();
+            Package {
+                name: p["name"].as_str().expect("name").to_owned(),
+                dir,
+                bins,
+                default_features: strings(&p["features"]["default"]),
+            }
+        })
+        .collect()
+}
+
+/// Fails with every broken rule at once, one per line.
+fn assert_none(broken: &[String], rule: &str) {
+    assert!(broken.is_empty(), "{rule}:\n  {}", broken.join("\n  "));
+}
+
+#[test]
+fn the_workspace_is_what_the_code_map_says() {
+    let packages = workspace();
+    let by_dir: BTreeMap<String, &str> = packages
+        .iter()
+        .map(|p| (p.dir.display().to_string(), p.name.as_str()))
+        .collect();
+    // A sanity check on the reading itself, so that the rules below cannot pass vacuously.
+    assert_eq!(by_dir.get("crates/formats"), Some(&"irsig-formats"));
+    assert_eq!(by_dir.get("tools/trace"), Some(&"irsig-trace"));
+    assert!(packages.len() > 10, "{by_dir:?}");
+}
+
+#[test]
+fn release_binaries_are_the_tools_alone() {
+    // `cargo build --release --bins` builds every binary that needs no feature, and what it
+    // builds lands on a user's PATH: only `tools/*` may have such binaries. A test-only
+    // program sits behind a feature that is off by default.
+    let broken: Vec<String> = workspace()
+        .iter()
+        .filter(|p| !p.is_tool())
+        .flat_map(|p| {
+            p.bins.iter().filter_map(move |(bin, required)| {
+                let behind_a_feature = !required.is_empty()
+                    && required.iter().all(|f| !p.default_features.contains(f));
+                (!behind_a_feature).then(|| {
+                    format!(
+                        "`{bin}` of {} ({}) is built by `cargo build --release --bins`",
+                        p.name,
+                        p.dir.display()
+                    )
+                })
+            })
+        })
+        .collect();
+    assert_none(
+        &broken,
+        "binaries outside tools/* must require a non-default feature",
+    );
+}

@@ -1,0 +1,263 @@
+//! End-to-end tests of `irsig-material`: the Fresnel generator against the shared
+//! reference `.ems` and a hand computation, bad input refused with exit 1 or 2 and no
+//! output; the stage's place (`irsig material`, the pipeline runner checking its
+//! parameters, and no material subcommands left in `irsig-atmos`). Material-library
+//! conversion is tested beside the tool (`tools/material/tests/convert.rs`).
+
+use irsig_tests::bin;
+use predicates::prelude::*;
+
+fn stdout_of(args: &[&str]) -> String {
+    let out = bin("irsig-material").args(args).assert().success();
+    String::from_utf8(out.get_output().stdout.clone()).unwrap()
+}
+
+/// `(angle_deg, emissivity)` rows of a legacy `.ems` text.
+fn ems_rows(text: &str) -> Vec<(f64, f64)> {
+    irsig_formats::legacy::ems::parse("out.ems", text)
+        .unwrap()
+        .to_pairs()
+}
+
+#[test]
+#[allow(clippy::float_cmp)] // the angles are small integers, printed and read exactly
+fn fresnel_water_from_the_hale_querry_table_matches_the_reference_ems() {
+    // formats/legacy/samples/water-hale-querry.ems is the shared reference (same sha256):
+    // the same physics by a 0.0005 µm trapezoid rule, printed to 6 decimals.
+    let out = stdout_of(&[
+        "fresnel",
+        "--nk-table",
+        "formats/samples/water-hale-querry-nk.txt",
+        "--band",
+        "8-14",
+        "--temperature",
+        "300",
+        "--angles",
+        "0:90:5",
+        "--legacy",
+    ]);
+    let reference = std::fs::read_to_string(
+        irsig_tests::repo_root().join("formats/legacy/samples/water-hale-querry.ems"),
+    )
+    .unwrap();
+    let (ours, theirs) = (ems_rows(&out), ems_rows(&reference));
+    assert_eq!(ours.len(), theirs.len());
+    for (a, b) in ours.iter().zip(&theirs) {
+        assert_eq!(a.0, b.0);
+        assert!((a.1 - b.1).abs() < 6e-7, "{a:?} vs {b:?}");
+    }
+}
+
+#[test]
+fn fresnel_constant_index_writes_a_material_library_entry() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("glassy.ron");
+    bin("irsig-material")
+        .args([
+            "fresnel",
+            "--n",
+            "1.2",
+            "--k",
+            "0.05",
+            "--angles",
+            "0,30,60,90",
+        ])
+        .args([
+            "--name",
+            "glassy",
+            "--id",
+            "3",
+            "-o",
+            path.to_str().unwrap(),
+        ])
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let lib: irsig_model::MaterialLibrary =
+        irsig_formats::canonical::from_ron("glassy.ron", &text).unwrap();
+    let m = &lib.materials[0];
+    assert_eq!(
+        (m.id.0, m.name.as_str(), m.specular_fraction),
+        (3, "glassy", 1.0)
+    );
+    assert!(m.source.contains("n = 1.2, k = 0.05"), "{}", m.source);
+    // Normal incidence by hand: 1 − (0.2² + 0.05²)/(2.2² + 0.05²) = 0.991761...
+    let normal = 1.0 - (0.04 + 0.0025) / (4.84 + 0.0025);
+    assert_eq!(m.emissivity.len(), 4);
+    assert!(
+        (m.emissivity[0].1 - normal).abs() < 1e-12,
+        "{:?}",
+        m.emissivity
+    );
+    assert_eq!(m.emissivity[3], (90.0, 0.0));
+    // Same on stdout with `-o -`, and a `.ems` name selects the legacy layout.
+    let piped = stdout_of(&[
+        "fresnel",
+        "--n",
+        "1.2",
+        "--k",
+        "0.05",
+        "--angles",
+        "0,30,60,90",
+        "--name",
+        "glassy",
+        "--id",
+        "3",
+        "-o",
+        "-",
+    ]);
+    assert_eq!(piped, text);
+    let ems = dir.path().join("glassy.ems");
+    bin("irsig-material")
+        .args([
+            "fresnel",
+            "--n",
+            "1.2",
+            "--k",
+            "0.05",
+            "--angles",
+            "0,30,60,90",
+        ])
+        .args(["-o", ems.to_str().unwrap()])
+        .assert()
+        .success();
+    let rows = ems_rows(&std::fs::read_to_string(&ems).unwrap());
+    assert_eq!(rows, m.emissivity);
+}
+
+#[test]
+fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad_nk = dir.path().join("bad.nk");
+    std::fs::write(&bad_nk, "8 1.2 0.1\n9 1.3 -0.2\n").unwrap();
+    let bad_nk = bad_nk.to_str().unwrap();
+    let water = "formats/samples/water-hale-querry-nk.txt";
+    let cases: &[(&[&str], i32, &str)] = &[
+        (&["--n", "0"], 1, "n must be finite and > 0, found 0"),
+        (&["--n", "-1.5"], 1, "found -1.5"),
+        (&["--n", "NaN"], 1, "found NaN"),
+        (
+            &["--n", "1.2", "--k", "-0.1"],
+            1,
+            "k must be finite and ≥ 0, found -0.1",
+        ),
+        (&["--n", "1.2", "--angles", "0:95:5"], 1, "0–90"),
+        (&["--n", "1.2", "--angles", "30,10"], 1, "increase"),
+        (&["--nk-table", bad_nk], 1, "bad.nk:2:7"),
+        (&["--nk-table", "no-such-file.nk"], 1, "no-such-file.nk"),
+        (
+            &["--nk-table", water, "--band", "7-14"],
+            1,
+            "covers 8–14 µm",
+        ),
+        (
+            &["--nk-table", water, "--temperature", "-5"],
+            1,
+            "temperature",
+        ),
+        (
+            &["--n", "1.2", "--nk-table", water],
+            2,
+            "cannot be used with",
+        ),
+        (&["--k", "0.1"], 2, "required"),
+        (&["--n", "1.2", "--temperature", "300"], 2, "--nk-table"),
+    ];
+    for (args, code, message) in cases {
+        let out_file = dir.path().join("out.ron");
+        let out = bin("irsig-material")
+            .arg("fresnel")
+            .args(*args)
+            .args(["-o", out_file.to_str().unwrap()])
+            .assert()
+            .code(*code);
+        // miette wraps long messages at 80 columns behind a `│` gutter: unwrap them.
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr)
+            .split_whitespace()
+            .filter(|w| *w != "│")
+            .collect::<Vec<_>>()
+            .join(" ");
+        assert!(stderr.contains(message), "{args:?}: {stderr}");
+        assert!(!out_file.exists(), "{args:?}: output left behind");
+    }
+}
+
+#[test]
+fn materials_are_irsig_materials_not_irsig_atmos() {
+    for (args, refused) in [
+        (&["fresnel", "--n", "1.2"][..], "'fresnel'"),
+        (
+            &[
+                "convert",
+                "--material-index",
+                "formats/legacy/samples/materials.mat",
+            ],
+            "'--material-index'",
+        ),
+    ] {
+        bin("irsig-atmos")
+            .args(args)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains(refused));
+    }
+    // The umbrella runs it as a stage, and lists it.
+    bin("irsig")
+        .args([
+            "material", "fresnel", "--n", "1.5", "--angles", "0", "--legacy",
+        ])
+        .assert()
+        .success()
+        .stdout(predicate::str::starts_with("0"));
+    bin("irsig")
+        .arg("--version")
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("  material "));
+}
+
+#[test]
+fn the_pipeline_runner_checks_material_stages_before_running_any() {
+    let dir = tempfile::tempdir().unwrap();
+    let mat = irsig_tests::repo_root().join("formats/legacy/samples/materials.mat");
+    let pipeline = format!(
+        r#"Pipeline(stages: [
+    Stage(tool: "material convert", args: ["{}"], params: {{"default-emissivity": 0.9}},
+          outputs: {{"o": "lib.ron"}}),
+    Stage(tool: "material fresnel", params: {{"--n": 1.5, "no-such-flag": 1}},
+          outputs: {{"o": "glass.ron"}}),
+])"#,
+        mat.display()
+    );
+    std::fs::write(dir.path().join("p.ron"), &pipeline).unwrap();
+    let out = bin("irsig-run")
+        .current_dir(dir.path())
+        .arg("p.ron")
+        .assert()
+        .code(1);
+    let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+    // Rejected by irsig-material's own command line, at the stage, before anything ran.
+    assert!(
+        stderr.contains("p.ron:4:") && stderr.contains("rejects this stage's parameters"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("lib.ron").exists(), "a stage ran");
+    // Without the bad flag both stages run.
+    std::fs::write(
+        dir.path().join("p.ron"),
+        pipeline.replace(", \"no-such-flag\": 1", ""),
+    )
+    .unwrap();
+    bin("irsig-run")
+        .current_dir(dir.path())
+        .arg("p.ron")
+        .assert()
+        .success();
+    let lib: irsig_model::MaterialLibrary = irsig_formats::canonical::from_ron_bytes(
+        "lib.ron",
+        &std::fs::read(dir.path().join("lib.ron")).unwrap(),
+    )
+    .unwrap();
+    assert_eq!(lib.materials.len(), 9);
+    assert!(dir.path().join("glass.ron").exists());
+}

