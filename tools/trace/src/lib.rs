@@ -800,6 +800,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     };
     // About one pixel in 768 (256 at 512 x 384), at least 64 and at most 4096.
     let pixels = (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 768).clamp(64, 4096);
+    let started = std::time::Instant::now();
     let decision = tracer
         .pilot(
             camera,
@@ -811,6 +812,13 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         )
         .map_err(|e| irsig_cli::usage_error(e.to_string()))?;
     eprint!("{}", tolerance::table(&decision));
+    // What the pilot cost, for comparing with the rendering it chose (the decision file
+    // holds no time: it must be the same on every run).
+    eprintln!(
+        "  pilot: {} pixels in {:.3} s",
+        decision.pilot_pixels,
+        started.elapsed().as_secs_f64()
+    );
     Ok(decision)
 }
 
