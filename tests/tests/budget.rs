@@ -11,6 +11,7 @@
 //! (`material_secondary` 0): the concrete, the pyramid's and the panel's faces that mirror
 //! the sky, and the pool where it mirrors the sky.
 
+use std::collections::HashMap;
 use std::path::Path;
 
 use irsig_model::{MaterialLibrary, RawScene};
@@ -19,13 +20,15 @@ use irsig_tests::{bin, repo_root};
 const SIGMA_T_K: f64 = 0.1;
 const SIGMA_EPS: f64 = 0.01;
 
-/// Traces the experiment as its pipeline does, into `out` (a truth EXR), and returns it.
-fn trace(
+/// Traces the experiment as its pipeline does (and with `extra` flags), into `out` (a
+/// truth EXR), and returns it.
+fn trace_with(
     dir: &Path,
     scene: &Path,
     materials: &Path,
     uncertainties: Option<&Path>,
     out: &str,
+    extra: &[&str],
 ) -> irsig_raster::Raster {
     let root = repo_root().join("pipelines/thesis-experiment");
     let truth = dir.join(out);
@@ -43,9 +46,13 @@ fn trace(
             "midlat-winter",
             "--atmosphere-model",
             "table",
-            "--bounces",
-            "1",
         ])
+        .args(if extra.contains(&"--bounces") {
+            &[][..]
+        } else {
+            &["--bounces", "1"][..]
+        })
+        .args(extra)
         .arg("--truth-exr")
         .arg(&truth);
     if let Some(u) = uncertainties {
@@ -58,6 +65,83 @@ fn trace(
         String::from_utf8_lossy(&o.stderr)
     );
     irsig_raster::read_exr(&std::fs::read(&truth).unwrap()).unwrap()
+}
+
+fn trace(
+    dir: &Path,
+    scene: &Path,
+    materials: &Path,
+    uncertainties: Option<&Path>,
+    out: &str,
+) -> irsig_raster::Raster {
+    trace_with(dir, scene, materials, uncertainties, out, &[])
+}
+
+/// The raw scene of the experiment, flattened into `dir`.
+fn flatten(dir: &Path) -> std::path::PathBuf {
+    let root = repo_root().join("pipelines/thesis-experiment");
+    let scene = dir.join("scene.raw");
+    let o = bin("irsig-flatten")
+        .arg(root.join("scene.ron"))
+        .arg("--materials")
+        .arg(root.join("materials.ron"))
+        .arg("-o")
+        .arg(&scene)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    scene
+}
+
+/// The uncertainties of §5.1: every facet ±0.1 K, every material's emissivity ±0.01.
+fn uncertainties(dir: &Path, materials: &MaterialLibrary) -> std::path::PathBuf {
+    let entries: Vec<String> = materials
+        .materials
+        .iter()
+        .map(|m| format!("(material: {}, sigma: {SIGMA_EPS})", m.id.0))
+        .collect();
+    let path = dir.join("u.ron");
+    std::fs::write(
+        &path,
+        format!(
+            "(temperature: [(facets: All, sigma_k: {SIGMA_T_K})], emissivity: [{}])",
+            entries.join(", ")
+        ),
+    )
+    .unwrap();
+    path
+}
+
+fn library() -> MaterialLibrary {
+    let path = repo_root().join("pipelines/thesis-experiment/materials.ron");
+    let text = std::fs::read_to_string(path).unwrap();
+    irsig_formats::canonical::from_ron("materials.ron", &text).unwrap()
+}
+
+/// Region means of a truth EXR's `layer`, by `irsig-stats` over the experiment's regions.
+fn region_means(truth: &Path, layer: &str) -> HashMap<String, f64> {
+    let out = bin("irsig-stats")
+        .arg(truth)
+        .arg("--regions")
+        .arg(repo_root().join("pipelines/thesis-experiment/regions.ron"))
+        .args(["--layer", layer, "--format", "csv"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let mean = header.iter().position(|h| *h == "mean_k").unwrap();
+    lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            (cells[0].to_owned(), cells[mean].parse().unwrap())
+        })
+        .collect()
 }
 
 fn layer<'a>(r: &'a irsig_raster::Raster, name: &str) -> &'a [f32] {
@@ -111,36 +195,10 @@ fn compare(base: &irsig_raster::Raster, moved: &irsig_raster::Raster, sigma: &st
 #[test]
 fn the_budget_agrees_with_finite_difference_re_renders_within_5_percent() {
     let dir = tempfile::tempdir().unwrap();
-    let root = repo_root().join("pipelines/thesis-experiment");
-    let materials_path = root.join("materials.ron");
-    let scene = dir.path().join("scene.raw");
-    let o = bin("irsig-flatten")
-        .arg(root.join("scene.ron"))
-        .arg("--materials")
-        .arg(&materials_path)
-        .arg("-o")
-        .arg(&scene)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-
-    let text = std::fs::read_to_string(&materials_path).unwrap();
-    let materials: MaterialLibrary =
-        irsig_formats::canonical::from_ron("materials.ron", &text).unwrap();
-    let entries: Vec<String> = materials
-        .materials
-        .iter()
-        .map(|m| format!("(material: {}, sigma: {SIGMA_EPS})", m.id.0))
-        .collect();
-    let uncertainties = dir.path().join("u.ron");
-    std::fs::write(
-        &uncertainties,
-        format!(
-            "(temperature: [(facets: All, sigma_k: {SIGMA_T_K})], emissivity: [{}])",
-            entries.join(", ")
-        ),
-    )
-    .unwrap();
+    let materials_path = repo_root().join("pipelines/thesis-experiment/materials.ron");
+    let scene = flatten(dir.path());
+    let materials = library();
+    let uncertainties = uncertainties(dir.path(), &materials);
     let base = trace(
         dir.path(),
         &scene,
@@ -194,4 +252,63 @@ fn the_budget_agrees_with_finite_difference_re_renders_within_5_percent() {
     let moved = trace(dir.path(), &scene, &higher_path, None, "higher.truth.exr");
     let n = compare(&base, &moved, "sigma_emissivity");
     assert!(n > 10_000, "only {n} pixels compared");
+}
+
+#[test]
+fn the_thesis_experiment_readme_budget_table_is_what_the_tools_give() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let materials = repo_root().join("pipelines/thesis-experiment/materials.ron");
+    let scene = flatten(d);
+    let u = uncertainties(d, &library());
+    trace_with(d, &scene, &materials, Some(&u), "base.exr", &[]);
+    trace_with(
+        d,
+        &scene,
+        &materials,
+        None,
+        "sky.exr",
+        &["--sky-view-rays", "64"],
+    );
+    trace_with(d, &scene, &materials, None, "b4.exr", &["--bounces", "4"]);
+    let sigma_t = region_means(&d.join("base.exr"), "sigma_kinetic_temperature");
+    let sigma_e = region_means(&d.join("base.exr"), "sigma_emissivity");
+    let base = region_means(&d.join("base.exr"), "apparent_temperature");
+    let sky = region_means(&d.join("sky.exr"), "apparent_temperature");
+    let b4 = region_means(&d.join("b4.exr"), "apparent_temperature");
+
+    let readme =
+        std::fs::read_to_string(repo_root().join("pipelines/thesis-experiment/README.md")).unwrap();
+    let rows: Vec<Vec<&str>> = readme
+        .lines()
+        .skip_while(|l| !l.starts_with("| region | σ_T |"))
+        .skip(2)
+        .take_while(|l| l.starts_with('|') && !l.starts_with("| thesis"))
+        .map(|l| l.trim_matches('|').split('|').map(str::trim).collect())
+        .collect();
+    assert_eq!(rows.len(), 8, "the README's budget table has 8 regions");
+    for row in rows {
+        let region = row[0];
+        let printed: Vec<f64> = row[1..]
+            .iter()
+            .map(|c| c.trim_start_matches('+').parse().unwrap())
+            .collect();
+        let shape = sky[region] - base[region];
+        let bounce = b4[region] - base[region];
+        let ours = [
+            sigma_t[region],
+            sigma_e[region],
+            shape,
+            bounce,
+            (sigma_t[region].powi(2) + sigma_e[region].powi(2) + shape.powi(2) + bounce.powi(2))
+                .sqrt(),
+        ];
+        for (p, o) in printed.iter().zip(ours) {
+            // Printed to 2 decimals.
+            assert!(
+                (p - o).abs() <= 0.005 + 1e-9,
+                "{region}: printed {p}, the tools give {o}"
+            );
+        }
+    }
 }
