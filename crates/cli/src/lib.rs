@@ -34,7 +34,7 @@ mod staged;
 pub use staged::{Staged, remove_staged_files};
 
 use std::fs::File;
-use std::io::{self, IsTerminal, Read, Write};
+use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -73,14 +73,15 @@ impl Input {
 
 /// Reads a whole input: the file at `path`, or stdin when `path` is `-`.
 ///
+/// Reads through [`irsig_formats::file`]: only a regular file or a pipe, at most
+/// [`irsig_formats::file::MAX_INPUT_BYTES`].
+///
 /// # Errors
-/// A missing or unreadable file, reported with its name.
+/// A missing or unreadable file, a device or directory, or an input longer than the limit,
+/// reported with its name.
 pub fn read_input(path: &str) -> miette::Result<Input> {
     if path == "-" {
-        let mut bytes = Vec::new();
-        io::stdin()
-            .lock()
-            .read_to_end(&mut bytes)
+        let bytes = irsig_formats::file::read_bounded(io::stdin().lock())
             .into_diagnostic()
             .wrap_err("cannot read standard input")?;
         return Ok(Input {
@@ -89,7 +90,7 @@ pub fn read_input(path: &str) -> miette::Result<Input> {
             bytes,
         });
     }
-    let bytes = std::fs::read(path)
+    let bytes = irsig_formats::file::read_file(Path::new(path))
         .into_diagnostic()
         .wrap_err_with(|| format!("cannot read input file `{path}`"))?;
     Ok(Input {
@@ -314,6 +315,17 @@ mod tests {
     fn missing_input_names_the_file() {
         let err = read_input("/no/such/file.obj").unwrap_err();
         assert!(format!("{err:?}").contains("/no/such/file.obj"));
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_named_as_input_is_refused() {
+        let err = read_input("/dev/zero").unwrap_err();
+        let text = format!("{err:?}");
+        assert!(
+            text.contains("/dev/zero") && text.contains("not a regular file"),
+            "{text}"
+        );
     }
 
     #[test]

@@ -23,6 +23,7 @@
 pub mod canonical;
 mod columns;
 mod error;
+pub mod file;
 pub mod legacy;
 pub mod mesh;
 pub mod nk;

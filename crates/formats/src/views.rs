@@ -215,7 +215,7 @@ pub fn read_execute(
                 frame.positions[0]
             )
         };
-        let bytes = std::fs::read(&view_file).map_err(|e| {
+        let bytes = crate::file::read_file(&view_file).map_err(|e| {
             at(
                 frame.positions[0],
                 format!("cannot read the viewing file `{}`: {e}", frame.view),

@@ -39,6 +39,7 @@
 mod atmosphere;
 pub mod decision;
 mod error;
+pub mod limits;
 mod material;
 mod object;
 mod plan;
