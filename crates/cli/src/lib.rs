@@ -124,11 +124,19 @@ pub(crate) fn write_stdout(
 ) -> miette::Result<()> {
     let stdout = io::stdout();
     let mut w = io::BufWriter::new(stdout.lock());
-    write(&mut w)
-        .and_then(|()| w.flush())
-        .into_diagnostic()
-        .wrap_err("cannot write to standard output")
+    match write(&mut w).and_then(|()| w.flush()) {
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Err(Report::new(ClosedStdout)),
+        r => r
+            .into_diagnostic()
+            .wrap_err("cannot write to standard output"),
+    }
 }
+
+/// The reader of standard output closed it (`tool | head`): it has all it wanted, and
+/// [`run`] exits with success.
+#[derive(Debug, thiserror::Error, Diagnostic)]
+#[error("standard output was closed by its reader")]
+pub struct ClosedStdout;
 
 /// Writes `path` atomically: a temporary file in the same directory, renamed on success.
 ///
@@ -209,8 +217,9 @@ pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
 
 fn is_broken_pipe(report: &Report) -> bool {
     report.chain().any(|e| {
-        e.downcast_ref::<io::Error>()
-            .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
+        e.is::<ClosedStdout>()
+            || e.downcast_ref::<io::Error>()
+                .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
     })
 }
 
@@ -326,6 +335,18 @@ mod tests {
             text.contains("/dev/zero") && text.contains("not a regular file"),
             "{text}"
         );
+    }
+
+    #[test]
+    fn a_closed_stdout_is_success_even_when_wrapped() {
+        // `into_diagnostic` hides the io::Error from the chain; the closed pipe must still
+        // be recognised, as it is whatever context a tool adds.
+        let r = Report::new(ClosedStdout).wrap_err("writing the scene");
+        assert!(is_broken_pipe(&r));
+        let hidden = Err::<(), _>(io::Error::from(io::ErrorKind::BrokenPipe))
+            .into_diagnostic()
+            .unwrap_err();
+        assert!(!is_broken_pipe(&hidden), "why write_stdout marks it itself");
     }
 
     #[test]

@@ -856,13 +856,11 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         let s = tracer
             .probe(cam, &base.options, column, row)
             .map_err(|e| miette!("--probe: {e}"))?;
-        println!("pixel ({column}, {row}), view 1");
-        println!("{s}");
-        println!(
-            "apparent temperature_k     {}",
-            tracer.apparent_temperature_k(s.radiance_w_m2_sr)
-        );
-        return Ok(());
+        let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+        return irsig_cli::write_output(None, |w| {
+            writeln!(w, "pixel ({column}, {row}), view 1\n{s}")?;
+            writeln!(w, "apparent temperature_k     {t}")
+        });
     }
     if cli.output.is_none() && !cli.has_output_flags() && job.outputs.is_none() {
         return Ok(());
