@@ -58,6 +58,7 @@ impl std::str::FromStr for LengthUnit {
 /// Both forms give a pinhole camera with `pixels = [columns, rows]` and full fields of view
 /// `fov_deg = [x, y]`. Positions are world coordinates in metres (x east, y north, z up).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum View {
     /// The 1990 viewing file: image-plane rotations ω φ κ about x, y and z (the
     /// photogrammetric matrix of thesis Appendix H). ω = φ = κ = 0 looks straight down.
