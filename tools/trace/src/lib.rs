@@ -582,14 +582,15 @@ fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
     Ok(from_ron_bytes(&input.name, &input.bytes)?)
 }
 
-/// The atmosphere of the run, in the two forms the run needs: precomputed for rendering
-/// (`A`), and computed afresh for the pilot's few pixels (`S`), for any model kind its
-/// tables allow.
+/// The atmosphere of the run, for any model kind its tables allow: for rendering (`A`),
+/// and for the pilot's band sets (`S`), which evaluate each kind as a rendering with it
+/// would (its sky precomputed: computing the hemispheric sky afresh at every pilot facet
+/// cost more than the whole pilot otherwise does).
 struct Air<'a, A, S> {
     /// The kinds on offer, most accurate first (`None`: a vacuum).
     kinds: Option<Vec<ModelKind>>,
     precomputed: Box<dyn Fn(ModelKind) -> miette::Result<A> + 'a>,
-    direct: Box<dyn Fn(ModelKind) -> miette::Result<S> + 'a>,
+    pilot: Box<dyn Fn(ModelKind) -> miette::Result<S> + 'a>,
 }
 
 /// What a run reads besides the band and the atmosphere.
@@ -615,7 +616,7 @@ fn with_atmosphere<R: BandModel + Clone>(
         let air = Air {
             kinds: None,
             precomputed: Box::new(move |_| Ok(vacuum)),
-            direct: Box::new(move |_| Ok(vacuum)),
+            pilot: Box::new(move |_| Ok(vacuum)),
         };
         return trace_all(cli, inputs, &run, band, &air);
     }
@@ -654,7 +655,10 @@ fn with_atmosphere<R: BandModel + Clone>(
         .into_iter()
         .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
         .collect();
-    let direct = model.clone();
+    let pilot = {
+        let model = model.clone();
+        move |kind| Ok(PrecomputedAtmosphere::new(model(kind)?, top))
+    };
     let warned = std::sync::Once::new();
     let air = Air {
         kinds: Some(kinds),
@@ -667,7 +671,7 @@ fn with_atmosphere<R: BandModel + Clone>(
             });
             Ok(air)
         }),
-        direct: Box::new(direct),
+        pilot: Box::new(pilot),
     };
     trace_all(cli, inputs, &run, band, &air)
 }
@@ -770,7 +774,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         let set = tracer
             .band_set(vec![SubBand {
                 band: tracer.band().clone(),
-                atmosphere: (air.direct)(kind)?,
+                atmosphere: (air.pilot)(kind)?,
                 emissivity: None,
             }])
             .map_err(|e| miette!("{e}"))?;
@@ -798,8 +802,12 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         reasons: offer.reasons,
         pinned: offer.pinned,
     };
-    // About one pixel in 768 (256 at 512 x 384), at least 64 and at most 4096.
-    let pixels = (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 768).clamp(64, 4096);
+    // About one pixel in 192 (1024 at 512 x 384), at least 1024 (every pixel of a smaller
+    // image) and at most 4096: a thin population of pixels (edges, a small hot object) of
+    // 1 % needs several hundred samples to be seen at all.
+    let pixels =
+        (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
+    let started = std::time::Instant::now();
     let decision = tracer
         .pilot(
             camera,
@@ -811,6 +819,13 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         )
         .map_err(|e| irsig_cli::usage_error(e.to_string()))?;
     eprint!("{}", tolerance::table(&decision));
+    // What the pilot cost, for comparing with the rendering it chose (the decision file
+    // holds no time: it must be the same on every run).
+    eprintln!(
+        "  pilot: {} pixels in {:.3} s",
+        decision.pilot_pixels,
+        started.elapsed().as_secs_f64()
+    );
     Ok(decision)
 }
 
