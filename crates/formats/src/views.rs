@@ -97,7 +97,7 @@ pub fn parse_views(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>
                     format!(
                         "expected a view, a list of views (RON) or a 1990 viewing file \
                          (numbers): {}",
-                        e.code
+                        crate::canonical::ron_message(&e.code)
                     ),
                 ));
             }

@@ -17,3 +17,8 @@ pub const MEMORY_BUDGET_BYTES: u64 = 16 << 30;
 /// The longest input file a tool reads whole: 4 GiB. Longer inputs, and endless ones such
 /// as a device, are refused before they are read.
 pub const MAX_INPUT_BYTES: u64 = 4 << 30;
+
+/// The largest coordinate a scene or object may have, metres: 10⁹ m, more than twice the
+/// Moon's distance. Beyond it a triangle's area overflows and it could not be told from a
+/// degenerate one.
+pub const MAX_COORDINATE_M: f64 = 1e9;
