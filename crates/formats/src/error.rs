@@ -89,14 +89,20 @@ impl Snippet {
         let column = source[line_start..offset].chars().count();
         let from = column.saturating_sub(SNIPPET_HALF_WIDTH);
         let to = column + SNIPPET_HALF_WIDTH;
+        // A CRLF file's lines keep no `\r`: the renderer would count it as a line break.
         let prev = (line_start > 0).then(|| {
             let start = source[..line_start - 1].rfind('\n').map_or(0, |i| i + 1);
-            &source[start..line_start - 1]
+            source[start..line_start - 1].trim_end_matches('\r')
         });
         let next = (line_end < source.len()).then(|| {
             let rest = &source[line_end + 1..];
-            &rest[..rest.find('\n').unwrap_or(rest.len())]
+            rest[..rest.find('\n').unwrap_or(rest.len())].trim_end_matches('\r')
         });
+        let line_end = if source[offset..line_end].ends_with('\r') {
+            line_end - 1
+        } else {
+            line_end
+        };
         let mut text = String::new();
         let mut error_line = 0;
         if let Some(p) = prev {
@@ -331,6 +337,18 @@ mod tests {
         assert_eq!(col(line, 'X'), col(caret, '┬'), "caret under the X:\n{out}");
         assert!(line.contains('…'), "the cut is marked: {out}");
         assert!(out.contains(" 2 │ …"), "the next line, cut alike: {out}");
+    }
+
+    #[test]
+    fn a_crlf_file_shows_each_line_once_with_its_number() {
+        let src = "o cube\r\nv nan 0 0\r\nv nan 0 0\r\nv 1 2 3\r\n";
+        let e = ParseError::at_offset("f.obj", src, 10, "expected a finite x");
+        assert_eq!((e.line, e.column), (2, 3));
+        let out = render(&e);
+        assert!(out.contains(" 1 │ o cube\n"), "{out}");
+        assert!(out.contains(" 2 │ v nan 0 0\n"), "{out}");
+        assert!(out.contains(" 3 │ v nan 0 0\n"), "{out}");
+        assert!(!out.contains('\r'), "{out:?}");
     }
 
     #[test]
