@@ -599,8 +599,27 @@ fn choose<S>(
                 .find(|(r, _)| *r == model)
                 .map(|(_, why)| why.clone())
                 .unwrap_or_else(|| {
+                    // Every alternative gave every pilot pixel the reference's temperature:
+                    // the model cannot matter in this view (as far as the pilot saw).
+                    let inert = lens[m] > 1
+                        && samples.iter().all(|s| s.errors[m].iter().all(|&e| e == 0.0));
                     if lens[m] == 1 {
                         "the only setting on offer".to_owned()
+                    } else if inert {
+                        match model {
+                            SwitchableModel::SkyView => format!(
+                                "the sky-view rays of the {} pilot pixels met no facet: F = 1 is exact here",
+                                samples.len()
+                            ),
+                            SwitchableModel::Bounces => format!(
+                                "every bounce count offered gave the {} pilot pixels the same temperatures",
+                                samples.len()
+                            ),
+                            _ => format!(
+                                "every setting gave the {} pilot pixels the same temperatures",
+                                samples.len()
+                            ),
+                        }
                     } else if i == lens[m] - 1 {
                         "the cheapest setting meets the tolerance".to_owned()
                     } else {
