@@ -1,9 +1,12 @@
 //! What every legacy fuzz target checks: decoding and parsing never panic; an error
-//! points inside the input; a parsed file writes back and the writing parses again.
+//! points inside the input; a parsed file writes back, the writing parses again, and it
+//! gives back the same values: written once more, it is the same text (as the canonical
+//! targets check).
 
 use irsig_formats::ParseError;
 
-/// Runs `parse` on `data`; on success, `write` must succeed and its output must parse.
+/// Runs `parse` on `data`; on success, `write` must succeed, its output must parse, and
+/// writing that again must give the same text.
 pub fn check<T, W: std::fmt::Debug>(
     data: &[u8],
     parse: impl Fn(&str, &str) -> Result<T, ParseError>,
@@ -19,9 +22,15 @@ pub fn check<T, W: std::fmt::Debug>(
     match parse("fuzz", text) {
         Ok(parsed) => {
             let written = write(&parsed).expect("a parsed file must write back");
-            if let Err(e) = parse("rewritten", &written) {
-                panic!("writer output does not parse: {e}\n{written}");
-            }
+            let again = match parse("rewritten", &written) {
+                Ok(again) => again,
+                Err(e) => panic!("writer output does not parse: {e}\n{written}"),
+            };
+            let rewritten = write(&again).expect("a parsed file must write back");
+            assert_eq!(
+                rewritten, written,
+                "the written file does not give back the same values"
+            );
         }
         Err(e) => {
             let lines = text.split('\n').count();

@@ -288,6 +288,32 @@ fn assert_fails_cleanly(tool: &str, args: &[&str], expect: &[&str]) {
 }
 
 #[test]
+fn zero_area_triangles_are_dropped_with_a_warning_or_refused_with_strict() {
+    // Real meshes (pybullet_data's) hold a few exactly degenerate triangles among
+    // thousands; no ray can hit them. They are dropped by default, and --strict refuses them.
+    let obj = "tests/data/malformed/mesh/degenerate.obj";
+    let out = bin("irsig-import")
+        .args([obj, "--materials", LIBRARY, "--ron"])
+        .output()
+        .unwrap();
+    let stderr = unwrap_report(&String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("dropped 1 zero-area triangle of 2")
+            && stderr.contains("degenerate.obj:7")
+            && stderr.contains("--strict"),
+        "{stderr}"
+    );
+    let object: irsig_model::Object = ron::from_str(&String::from_utf8_lossy(&out.stdout)).unwrap();
+    assert_eq!(object.facets.len(), 1);
+    assert_fails_cleanly(
+        "irsig-import",
+        &[obj, "--materials", LIBRARY, "--strict"],
+        &["degenerate.obj:7", "degenerate"],
+    );
+}
+
+#[test]
 fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
     let m = "tests/data/malformed/mesh";
     let cases: &[(&str, &[&str])] = &[
@@ -297,7 +323,6 @@ fn malformed_meshes_fail_with_file_line_and_column_and_no_output() {
         ("inf.obj", &["inf.obj:3:5", "finite"]),
         ("non-utf8.obj", &["non-utf8.obj:4:9", "UTF-8"]),
         ("empty.obj", &["empty.obj:", "empty mesh"]),
-        ("degenerate.obj", &["degenerate.obj:7", "degenerate"]),
         (
             "face-out-of-range.obj",
             &["face-out-of-range.obj:5:7", "index 7"],

@@ -29,9 +29,12 @@
 //! ```
 
 pub mod args;
+mod staged;
+
+pub use staged::{Staged, remove_staged_files};
 
 use std::fs::File;
-use std::io::{self, IsTerminal, Read, Write};
+use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -70,14 +73,15 @@ impl Input {
 
 /// Reads a whole input: the file at `path`, or stdin when `path` is `-`.
 ///
+/// Reads through [`irsig_formats::file`]: only a regular file or a pipe, at most
+/// [`irsig_formats::file::MAX_INPUT_BYTES`].
+///
 /// # Errors
-/// A missing or unreadable file, reported with its name.
+/// A missing or unreadable file, a device or directory, or an input longer than the limit,
+/// reported with its name.
 pub fn read_input(path: &str) -> miette::Result<Input> {
     if path == "-" {
-        let mut bytes = Vec::new();
-        io::stdin()
-            .lock()
-            .read_to_end(&mut bytes)
+        let bytes = irsig_formats::file::read_bounded(io::stdin().lock())
             .into_diagnostic()
             .wrap_err("cannot read standard input")?;
         return Ok(Input {
@@ -86,7 +90,7 @@ pub fn read_input(path: &str) -> miette::Result<Input> {
             bytes,
         });
     }
-    let bytes = std::fs::read(path)
+    let bytes = irsig_formats::file::read_file(Path::new(path))
         .into_diagnostic()
         .wrap_err_with(|| format!("cannot read input file `{path}`"))?;
     Ok(Input {
@@ -115,104 +119,50 @@ pub fn write_output(
     }
 }
 
-fn write_stdout(write: impl FnOnce(&mut dyn Write) -> io::Result<()>) -> miette::Result<()> {
+pub(crate) fn write_stdout(
+    write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+) -> miette::Result<()> {
     let stdout = io::stdout();
     let mut w = io::BufWriter::new(stdout.lock());
-    write(&mut w)
-        .and_then(|()| w.flush())
-        .into_diagnostic()
-        .wrap_err("cannot write to standard output")
+    match write(&mut w).and_then(|()| w.flush()) {
+        Err(e) if e.kind() == io::ErrorKind::BrokenPipe => Err(Report::new(ClosedStdout)),
+        r => r
+            .into_diagnostic()
+            .wrap_err("cannot write to standard output"),
+    }
 }
+
+/// The reader of standard output closed it (`tool | head`): it has all it wanted, and
+/// [`run`] exits with success.
+#[derive(Debug, thiserror::Error, Diagnostic)]
+#[error("standard output was closed by its reader")]
+pub struct ClosedStdout;
 
 /// Writes `path` atomically: a temporary file in the same directory, renamed on success.
 ///
 /// # Errors
-/// Any I/O error; the destination is then untouched.
+/// Any I/O error, or `path` is a directory; the destination is then untouched.
 pub fn write_file_atomic(
     path: &Path,
     write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
 ) -> miette::Result<()> {
-    let ctx = || format!("cannot write output file `{}`", path.display());
-    let mut tmp = staged_file(path).into_diagnostic().wrap_err_with(ctx)?;
-    {
-        let mut w = io::BufWriter::new(tmp.as_file_mut());
-        write(&mut w)
-            .and_then(|()| w.flush())
-            .into_diagnostic()
-            .wrap_err_with(ctx)?;
-    }
-    tmp.as_file()
-        .sync_all()
-        .into_diagnostic()
-        .wrap_err_with(ctx)?;
-    tmp.persist(path)
-        .map_err(|e| e.error)
-        .into_diagnostic()
-        .wrap_err_with(ctx)?;
-    Ok(())
+    let mut staged = Staged::new();
+    staged.stage_with(path, write)?;
+    staged.commit()
 }
 
-/// Writes several outputs so that either all of them appear or none does: every file is
-/// first written to a temporary beside its destination, and only when all are complete are
-/// they renamed into place. One output may be `-`, standard output: it is written last,
-/// after every file is in place.
+/// Writes several outputs so that either all of them appear or none does (see [`Staged`]).
+/// One output may be `-`, standard output: it is written last, after every file is in place.
 ///
 /// # Errors
-/// Any I/O error, or more than one output named `-`; no destination is touched unless every
-/// temporary was written.
+/// Any I/O error, a destination that is a directory, the same output named twice, or more
+/// than one output named `-`; every destination is then as it was.
 pub fn write_files_atomic(files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
-    let is_stdout = |p: &PathBuf| p.as_os_str() == "-";
-    if files.iter().filter(|(p, _)| is_stdout(p)).count() > 1 {
-        return Err(usage_error(
-            "only one output can go to standard output (`-`)",
-        ));
-    }
-    let mut staged = Vec::with_capacity(files.len());
-    let mut to_stdout = None;
+    let mut staged = Staged::new();
     for (path, bytes) in files {
-        if is_stdout(path) {
-            to_stdout = Some(bytes);
-            continue;
-        }
-        let ctx = || format!("cannot write output file `{}`", path.display());
-        let mut tmp = staged_file(path).into_diagnostic().wrap_err_with(ctx)?;
-        tmp.as_file_mut()
-            .write_all(bytes)
-            .and_then(|()| tmp.as_file().sync_all())
-            .into_diagnostic()
-            .wrap_err_with(ctx)?;
-        staged.push((tmp, path));
+        staged.stage(path, bytes)?;
     }
-    for (tmp, path) in staged {
-        tmp.persist(path)
-            .map_err(|e| e.error)
-            .into_diagnostic()
-            .wrap_err_with(|| format!("cannot write output file `{}`", path.display()))?;
-    }
-    match to_stdout {
-        Some(bytes) => write_stdout(|w| w.write_all(bytes)),
-        None => Ok(()),
-    }
-}
-
-/// A temporary file beside `path`, to be renamed onto it when complete.
-///
-/// Created with mode 0o666 less the umask, as `File::create` would make the destination:
-/// tempfile's default 0o600 would otherwise survive the rename and leave every output
-/// readable by its owner only.
-fn staged_file(path: &Path) -> io::Result<tempfile::NamedTempFile> {
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-        _ => PathBuf::from("."),
-    };
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(".irsig-").suffix(".tmp");
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        builder.permissions(std::fs::Permissions::from_mode(0o666));
-    }
-    builder.tempfile_in(dir)
+    staged.commit()
 }
 
 /// Opens a file for reading with an error that names it.
@@ -242,6 +192,12 @@ pub fn usage_error(message: impl Into<String>) -> Report {
 /// Errors are printed to stderr with miette (source snippets with file, line and column
 /// where the error carries them). A broken pipe on stdout is success.
 pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
+    // An interrupted run leaves no staged `.irsig-*.tmp` file behind. Setting the handler
+    // fails only when one is already set (a tool that runs another tool's body in-process).
+    let _ = ctrlc::set_handler(|| {
+        remove_staged_files();
+        std::process::exit(130);
+    });
     match body() {
         Ok(()) => ExitCode::from(EXIT_OK),
         Err(report) => {
@@ -261,8 +217,9 @@ pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
 
 fn is_broken_pipe(report: &Report) -> bool {
     report.chain().any(|e| {
-        e.downcast_ref::<io::Error>()
-            .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
+        e.is::<ClosedStdout>()
+            || e.downcast_ref::<io::Error>()
+                .is_some_and(|io| io.kind() == io::ErrorKind::BrokenPipe)
     })
 }
 
@@ -369,6 +326,29 @@ mod tests {
         assert!(format!("{err:?}").contains("/no/such/file.obj"));
     }
 
+    #[cfg(unix)]
+    #[test]
+    fn a_device_named_as_input_is_refused() {
+        let err = read_input("/dev/zero").unwrap_err();
+        let text = format!("{err:?}");
+        assert!(
+            text.contains("/dev/zero") && text.contains("not a regular file"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn a_closed_stdout_is_success_even_when_wrapped() {
+        // `into_diagnostic` hides the io::Error from the chain; the closed pipe must still
+        // be recognised, as it is whatever context a tool adds.
+        let r = Report::new(ClosedStdout).wrap_err("writing the scene");
+        assert!(is_broken_pipe(&r));
+        let hidden = Err::<(), _>(io::Error::from(io::ErrorKind::BrokenPipe))
+            .into_diagnostic()
+            .unwrap_err();
+        assert!(!is_broken_pipe(&hidden), "why write_stdout marks it itself");
+    }
+
     #[test]
     fn usage_errors_are_recognised() {
         let r = usage_error("--from must be below --to");
@@ -399,5 +379,84 @@ mod tests {
         write_files_atomic(&[(a.clone(), b"1".to_vec()), (b.clone(), b"2".to_vec())]).unwrap();
         assert_eq!(std::fs::read(a).unwrap(), b"1");
         assert_eq!(std::fs::read(b).unwrap(), b"2");
+    }
+
+    fn names(dir: &Path) -> Vec<String> {
+        let mut v: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    }
+
+    #[test]
+    fn a_directory_among_the_outputs_leaves_no_file() {
+        // `--radiance-exr d/r.exr --truth-exr d/adir` used to leave `r.exr`.
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir(dir.path().join("adir")).unwrap();
+        let err = write_files_atomic(&[
+            (dir.path().join("r.exr"), b"1".to_vec()),
+            (dir.path().join("adir"), b"2".to_vec()),
+        ])
+        .unwrap_err();
+        assert!(format!("{err:?}").contains("is a directory"), "{err:?}");
+        assert_eq!(names(dir.path()), ["adir"]);
+    }
+
+    #[test]
+    fn the_same_output_twice_is_refused() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.exr");
+        let again = dir.path().join(".").join("a.exr");
+        let err = write_files_atomic(&[(a, b"1".to_vec()), (again, b"2".to_vec())]).unwrap_err();
+        assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+        assert!(names(dir.path()).is_empty(), "{:?}", names(dir.path()));
+    }
+
+    #[test]
+    fn a_failed_rename_undoes_the_earlier_ones() {
+        let dir = tempfile::tempdir().unwrap();
+        let (d1, d2) = (dir.path().join("d1"), dir.path().join("d2"));
+        std::fs::create_dir(&d1).unwrap();
+        std::fs::create_dir(&d2).unwrap();
+        let old = d1.join("old");
+        std::fs::write(&old, b"before").unwrap();
+        let mut staged = Staged::new();
+        staged.stage(&old, b"after").unwrap();
+        staged.stage(&d1.join("new"), b"n").unwrap();
+        staged.stage(&d2.join("last"), b"l").unwrap();
+        // The last file's staged copy disappears (its folder is swapped for an empty one):
+        // its rename fails after the first two have been made.
+        std::fs::rename(&d2, dir.path().join("moved")).unwrap();
+        std::fs::create_dir(&d2).unwrap();
+        assert!(staged.commit().is_err());
+        assert_eq!(std::fs::read(&old).unwrap(), b"before");
+        assert_eq!(names(&d1), ["old"]);
+        assert!(names(&d2).is_empty(), "{:?}", names(&d2));
+    }
+
+    #[test]
+    fn staged_files_hold_no_descriptor_and_vanish_when_dropped() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut staged = Staged::new();
+        for i in 0..3 {
+            staged
+                .stage(&dir.path().join(format!("f{i}")), b"x")
+                .unwrap();
+        }
+        let mut held: Vec<_> = std::fs::read_dir("/proc/self/fd").map_or(vec![], |d| {
+            d.filter_map(|e| std::fs::read_link(e.ok()?.path()).ok())
+                .collect()
+        });
+        held.retain(|p| p.starts_with(dir.path()));
+        assert!(held.is_empty(), "descriptors held: {held:?}");
+        assert_eq!(names(dir.path()).len(), 3);
+        drop(staged);
+        assert!(names(dir.path()).is_empty());
+        let mut staged = Staged::new();
+        staged.stage(&dir.path().join("g"), b"x").unwrap();
+        drop(staged);
+        assert!(names(dir.path()).is_empty());
     }
 }

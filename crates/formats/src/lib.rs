@@ -23,6 +23,7 @@
 pub mod canonical;
 mod columns;
 mod error;
+pub mod file;
 pub mod legacy;
 pub mod lut;
 pub mod mesh;

@@ -100,7 +100,10 @@ pub fn parse(file: &str, text: &str, what: &str) -> Result<Node, ParseError> {
             file,
             text,
             offset,
-            format!("malformed {what} (RON): {}", e.code),
+            format!(
+                "malformed {what} (RON): {}",
+                crate::canonical::ron_message(&e.code)
+            ),
         ));
     }
     parse_tree(text).map_err(|e| {

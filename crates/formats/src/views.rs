@@ -44,6 +44,21 @@ pub fn is_legacy_viewing_file(text: &str) -> bool {
     rest.starts_with(|c: char| c.is_ascii_digit() || matches!(c, '+' | '-' | '.'))
 }
 
+/// Whether RON `text` starts with `[` once whitespace and comments are skipped.
+fn starts_as_list(text: &str) -> bool {
+    let mut rest = text.trim_start_matches('\u{feff}');
+    loop {
+        rest = rest.trim_start();
+        if rest.starts_with("//") {
+            rest = rest.split_once('\n').map_or("", |(_, r)| r);
+        } else if let Some(after) = rest.strip_prefix("/*") {
+            rest = after.split_once("*/").map_or("", |(_, r)| r);
+        } else {
+            return rest.starts_with('[');
+        }
+    }
+}
+
 /// The views of one file's text: a RON view, a RON list of views, or a 1990 viewing file
 /// whose position is in `unit`. Every view is validated; a broken rule is reported at its
 /// value's line and column.
@@ -66,8 +81,15 @@ pub fn parse_views(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>
         Ok(v) => (vec![v], false),
         Err(single) => match ron::from_str::<Vec<View>>(text) {
             Ok(v) => (v, true),
-            Err(_) => {
-                let offset = offset_of(text, single.span.start.line, single.span.start.col);
+            Err(as_list) => {
+                // Report the error of the form the text starts as: a list's own error
+                // (an unknown field in its third view) rather than "expected a view" at `[`.
+                let e = if starts_as_list(text) {
+                    as_list
+                } else {
+                    single
+                };
+                let offset = offset_of(text, e.span.start.line, e.span.start.col);
                 return Err(ParseError::at_offset(
                     file,
                     text,
@@ -75,7 +97,7 @@ pub fn parse_views(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>
                     format!(
                         "expected a view, a list of views (RON) or a 1990 viewing file \
                          (numbers): {}",
-                        single.code
+                        crate::canonical::ron_message(&e.code)
                     ),
                 ));
             }
@@ -215,7 +237,7 @@ pub fn read_execute(
                 frame.positions[0]
             )
         };
-        let bytes = std::fs::read(&view_file).map_err(|e| {
+        let bytes = crate::file::read_file(&view_file).map_err(|e| {
             at(
                 frame.positions[0],
                 format!("cannot read the viewing file `{}`: {e}", frame.view),
@@ -284,6 +306,39 @@ fn resolve(base: &Path, name: &str) -> Result<PathBuf, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn misspelt_fields_are_errors_at_their_place() {
+        // `gain_dc_per_kk` and `upp` used to be skipped, and the later error blamed `up`.
+        let cases = [
+            (
+                "LookAt(position_m: (0, -10, 5), target_m: (0, 0, 0), pixels: (4, 3), \
+                 fov_deg: (10, 8), gain_dc_per_kk: 2)",
+                "gain_dc_per_kk",
+            ),
+            (
+                "LookAt(position_m: (0, -10, 5), target_m: (0, 0, 0), upp: (0, 0, 1), \
+                 pixels: (4, 3), fov_deg: (10, 8))",
+                "upp",
+            ),
+            (
+                "Legacy(position_m: (0, 0, 5), pixels: (4, 3), omega_phi_kappa_deg: (0, 0, 0), \
+                 fov_deg: (10, 8), colour: 1)",
+                "colour",
+            ),
+        ];
+        for (text, field) in cases {
+            let e = parse_views("v.ron", text, LengthUnit::M).unwrap_err();
+            assert!(e.message.contains(field), "{field}: {e}");
+            let at = text.find(field).unwrap();
+            assert_eq!(e.column, at + 1, "{e}");
+            // The same view third in a list is reported at its place too.
+            let list = format!("[\n  {LOOK},\n  {LOOK},\n  {text},\n]\n");
+            let e = parse_views("v.ron", &list, LengthUnit::M).unwrap_err();
+            assert!(e.message.contains(field), "{field}: {e}");
+            assert_eq!((e.line, e.column), (4, at + 3), "{e}");
+        }
+    }
 
     #[test]
     fn legacy_and_ron_views_are_told_apart() {

@@ -50,15 +50,44 @@ pub enum ModelErrorKind {
     Other(String),
 }
 
+/// A number as a person reads it: as written for ordinary magnitudes, in scientific notation
+/// (`1.797e308`, `2.5e-12`) for very large or very small ones, never hundreds of digits.
+struct Number(f64);
+
+impl fmt::Display for Number {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let a = self.0.abs();
+        if a != 0.0 && a.is_finite() && !(1e-6..1e15).contains(&a) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
 impl fmt::Display for ModelErrorKind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Self::NotFinite => write!(f, "expected a finite number, found NaN or infinity"),
             Self::OutOfRange { value, min, max } => {
-                write!(f, "{value} is out of range: expected {min} to {max}")
+                let (value, min) = (Number(*value), Number(*min));
+                if *max >= f64::MAX {
+                    write!(f, "{value} is out of range: expected at least {min}")
+                } else {
+                    write!(
+                        f,
+                        "{value} is out of range: expected {min} to {}",
+                        Number(*max)
+                    )
+                }
             }
             Self::NotIncreasing { previous, value } => {
-                write!(f, "{value} does not increase after {previous}")
+                write!(
+                    f,
+                    "{} does not increase after {}",
+                    Number(*value),
+                    Number(*previous)
+                )
             }
             Self::IndexOutOfRange { index, len } => {
                 write!(f, "index {index} is out of range for {len} entries")
@@ -129,4 +158,31 @@ pub(crate) fn check_increasing(
         previous = Some(v);
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_are_short_whatever_their_size() {
+        // f64::MAX as an upper bound used to be written out in 309 digits.
+        let e = ModelErrorKind::OutOfRange {
+            value: -1.0,
+            min: 1e-12,
+            max: f64::MAX,
+        };
+        assert_eq!(e.to_string(), "-1 is out of range: expected at least 1e-12");
+        let e = ModelErrorKind::OutOfRange {
+            value: 1e300,
+            min: 0.0,
+            max: 1.0,
+        };
+        assert_eq!(e.to_string(), "1e300 is out of range: expected 0 to 1");
+        let e = ModelErrorKind::NotIncreasing {
+            previous: 40.0,
+            value: 0.5,
+        };
+        assert_eq!(e.to_string(), "0.5 does not increase after 40");
+    }
 }

@@ -39,6 +39,7 @@
 mod atmosphere;
 pub mod decision;
 mod error;
+pub mod limits;
 mod material;
 mod object;
 mod plan;
@@ -53,7 +54,7 @@ mod view;
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary};
-pub use object::{Facet, Object};
+pub use object::{Facet, Object, triangle_is_degenerate};
 pub use plan::{AtmospherePlan, PlanModel};
 pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};

@@ -46,6 +46,10 @@ impl Object {
         }
         for (i, p) in self.positions_m.iter().enumerate() {
             check_finite(|| format!("positions_m[{i}]"), p)?;
+            for (k, &x) in p.iter().enumerate() {
+                let m = crate::limits::MAX_COORDINATE_M;
+                check_range(|| format!("positions_m[{i}][{k}]"), x, -m, m)?;
+            }
         }
         let len = self.positions_m.len();
         for (i, f) in self.facets.iter().enumerate() {
@@ -99,6 +103,18 @@ pub fn triangle_is_degenerate(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn huge_coordinates_are_out_of_range_not_degenerate() {
+        // 1e300 used to be reported as a "degenerate triangle": its area overflows.
+        let o = tri(
+            vec![[0.0, 0.0, 0.0], [1e300, 0.0, 0.0], [0.0, 1e300, 0.0]],
+            [0, 1, 2],
+        );
+        let e = o.validate().unwrap_err();
+        assert_eq!(e.path, "positions_m[1][0]");
+        assert!(e.to_string().contains("1e300"), "{e}");
+    }
 
     fn tri(positions: Vec<[f64; 3]>, vertices: [u32; 3]) -> Object {
         Object {

@@ -47,6 +47,10 @@ impl RawScene {
         }
         for (i, p) in self.positions_m.iter().enumerate() {
             check_finite(|| format!("positions_m[{i}]"), p)?;
+            for (k, &x) in p.iter().enumerate() {
+                let m = crate::limits::MAX_COORDINATE_M;
+                check_range(|| format!("positions_m[{i}][{k}]"), x, -m, m)?;
+            }
         }
         let len = self.positions_m.len();
         for (i, f) in self.facets.iter().enumerate() {

@@ -49,6 +49,7 @@ impl Terrain {
 
 /// Which facets of an object an override applies to.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum FacetSelection {
     /// Facets `first..=last`, counted from 0 in the object's facet order.
     Range {

@@ -58,6 +58,7 @@ impl std::str::FromStr for LengthUnit {
 /// Both forms give a pinhole camera with `pixels = [columns, rows]` and full fields of view
 /// `fov_deg = [x, y]`. Positions are world coordinates in metres (x east, y north, z up).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
 pub enum View {
     /// The 1990 viewing file: image-plane rotations ω φ κ about x, y and z (the
     /// photogrammetric matrix of thesis Appendix H). ω = φ = κ = 0 looks straight down.
@@ -147,6 +148,16 @@ impl View {
                 ModelErrorKind::Other(format!("image size {w}x{h} has no pixels")),
             ));
         }
+        if u64::from(w) * u64::from(h) > crate::limits::MAX_IMAGE_PIXELS {
+            return Err(ModelError::new(
+                "pixels",
+                ModelErrorKind::Other(format!(
+                    "image size {w}x{h} is more than the {} pixels (8192x8192) one image \
+                     may have",
+                    crate::limits::MAX_IMAGE_PIXELS
+                )),
+            ));
+        }
         for (i, f) in self.fov_deg().into_iter().enumerate() {
             check_range(|| format!("fov_deg[{i}]"), f, 1e-9, 179.999)?;
         }
@@ -203,6 +214,25 @@ impl View {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_image_larger_than_the_budget_is_rejected_before_any_allocation() {
+        let view = |pixels| View::LookAt {
+            position_m: [0.0, -10.0, 5.0],
+            target_m: [0.0; 3],
+            up: [0.0, 0.0, 1.0],
+            pixels,
+            fov_deg: [10.0, 10.0],
+            gain_dc_per_k: None,
+        };
+        // 100,000 x 100,000 would be 80 GB of radiance alone; u32::MAX squared overflows
+        // a u32 product.
+        for p in [[100_000, 100_000], [u32::MAX, u32::MAX], [8193, 8192]] {
+            let e = view(p).validate().unwrap_err();
+            assert_eq!(e.path, "pixels", "{p:?}");
+        }
+        view([8192, 8192]).validate().unwrap();
+    }
 
     #[test]
     fn look_at_straight_down_with_z_up_is_rejected() {

@@ -109,6 +109,9 @@ pub enum RasterError {
     /// An I/O error.
     #[error(transparent)]
     Io(#[from] std::io::Error),
+    /// A header claims an image larger than the memory budget allows.
+    #[error("{0}")]
+    TooLarge(String),
     /// The frame a raster says it is part of does not hold it.
     #[error("{0}")]
     Part(String),
@@ -339,6 +342,7 @@ pub fn exr_bytes(raster: &Raster) -> Result<Vec<u8>, RasterError> {
 /// # Errors
 /// A malformed or empty EXR, or a part that does not lie inside its frame.
 pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
+    check_claimed_size(bytes)?;
     let image = x::read()
         .no_deep_data()
         .largest_resolution_level()
@@ -374,6 +378,35 @@ pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
     raster.part = frame;
     raster.check()?;
     Ok(raster)
+}
+
+/// Refuses an EXR whose header claims more than an image may hold
+/// ([`irsig_model::limits::MAX_IMAGE_PIXELS`], and [`irsig_model::limits::MEMORY_BUDGET_BYTES`]
+/// over all its channels), before a pixel is decoded: the header is a few hundred bytes and
+/// can claim anything.
+fn check_claimed_size(bytes: &[u8]) -> Result<(), RasterError> {
+    use irsig_model::limits::{MAX_IMAGE_PIXELS, MEMORY_BUDGET_BYTES};
+    let meta = x::MetaData::read_from_buffered(Cursor::new(bytes), false)?;
+    let mut total = 0u64;
+    for header in &meta.headers {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        let pixels = (w as u64).saturating_mul(h as u64);
+        if pixels > MAX_IMAGE_PIXELS {
+            return Err(RasterError::TooLarge(format!(
+                "the header claims {w}x{h} pixels, more than the {MAX_IMAGE_PIXELS} \
+                 (8192x8192) one image may have"
+            )));
+        }
+        // Four bytes per sample as read, for every channel of every part.
+        total = total.saturating_add(pixels.saturating_mul(4 * header.channels.list.len() as u64));
+    }
+    if total > MEMORY_BUDGET_BYTES {
+        return Err(RasterError::TooLarge(format!(
+            "the header claims {total} bytes of samples, more than the {MEMORY_BUDGET_BYTES} \
+             bytes (16 GiB) of the memory budget"
+        )));
+    }
+    Ok(())
 }
 
 /// What an EXR's header says of its image, without its pixels: size, layers (names and
@@ -706,6 +739,33 @@ mod tests {
         for cut in [4, 20, bytes.len() / 2, bytes.len() - 1] {
             assert!(read_exr(&bytes[..cut]).is_err(), "cut at {cut}");
         }
+    }
+
+    /// `bytes` with the box2i attribute `name` set to (0, 0)–(`max`, `max`).
+    fn patch_box(bytes: &mut [u8], name: &str, max: i32) {
+        let key = format!("{name}\0box2i\0");
+        let at = bytes
+            .windows(key.len())
+            .position(|w| w == key.as_bytes())
+            .unwrap()
+            + key.len()
+            + 4; // the attribute's size
+        for (i, v) in [0i32, 0, max, max].into_iter().enumerate() {
+            bytes[at + 4 * i..at + 4 * i + 4].copy_from_slice(&v.to_le_bytes());
+        }
+    }
+
+    #[test]
+    fn a_header_claiming_a_huge_image_is_refused_before_decoding() {
+        // A few hundred bytes whose header claims 100,000 x 100,000 pixels used to abort
+        // the reader allocating them.
+        let mut bytes = exr_bytes(&sample()).unwrap();
+        assert!(bytes.len() < 1000);
+        patch_box(&mut bytes, "dataWindow", 99_999);
+        patch_box(&mut bytes, "displayWindow", 99_999);
+        let e = read_exr(&bytes).unwrap_err();
+        assert!(matches!(e, RasterError::TooLarge(_)), "{e}");
+        assert!(e.to_string().contains("100000x100000"), "{e}");
     }
 
     #[test]

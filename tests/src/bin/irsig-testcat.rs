@@ -6,7 +6,8 @@
 //! Test hooks, none of which touch the output: `--log FILE` appends the output's name to
 //! FILE each run (to count runs); `--touch FILE` creates FILE on start and `--wait-for FILE`
 //! waits up to 20 s for FILE to appear (two stages that wait for each other prove they run
-//! at the same time).
+//! at the same time); `--copy-stdin` copies standard input into the output as it comes, so
+//! the output is being written for as long as stdin stays open (an interrupt test).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -39,6 +40,9 @@ struct Cli {
     /// Waits (at most 20 s) for this file to exist before writing.
     #[arg(long)]
     wait_for: Option<PathBuf>,
+    /// Copies standard input into the output after the inputs, while the output is staged.
+    #[arg(long)]
+    copy_stdin: bool,
 }
 
 fn main() -> ExitCode {
@@ -78,5 +82,12 @@ fn run(cli: Cli) -> miette::Result<()> {
             .map_or_else(|| "-".to_owned(), |p| p.display().to_string());
         writeln!(f, "{name}").into_diagnostic()?;
     }
-    irsig_cli::write_output(cli.o.as_deref(), |w| w.write_all(&bytes))
+    irsig_cli::write_output(cli.o.as_deref(), |w| {
+        w.write_all(&bytes)?;
+        if cli.copy_stdin {
+            w.flush()?;
+            std::io::copy(&mut std::io::stdin().lock(), w)?;
+        }
+        Ok(())
+    })
 }

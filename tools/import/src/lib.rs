@@ -87,6 +87,10 @@ pub struct Cli {
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// Refuse a mesh with zero-area triangles. By default they are dropped (no ray can hit
+    /// them) with a warning that says how many and where the first few are.
+    #[arg(long)]
+    pub strict: bool,
 }
 
 /// Whether `irsig-import` writes the binary object: `--binary`/`--ron` when given, else
@@ -272,10 +276,53 @@ fn to_object(
     for p in &mut object.positions_m {
         *p = p.map(|c| c * factor);
     }
+    if !cli.strict {
+        drop_zero_area(&mut object, &mesh);
+    }
     object
         .validate()
         .map_err(|e| miette!("{}: {}: {}", mesh.locate(&e.path), e.path, e.kind))?;
     Ok(object)
+}
+
+/// Removes the facets whose triangle has no area (what `Object::validate` calls degenerate)
+/// and says on stderr how many and where the first few are. Facets with a non-finite
+/// coordinate or a vertex index out of range are kept, for `validate` to refuse.
+fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
+    let positions = &object.positions_m;
+    let mut dropped = Vec::new();
+    let mut i = 0;
+    object.facets.retain(|f| {
+        let p = f.vertices.map(|v| positions.get(v as usize).copied());
+        let zero = match p {
+            [Some(a), Some(b), Some(c)] => {
+                a.iter().chain(&b).chain(&c).all(|x| x.is_finite())
+                    && irsig_model::triangle_is_degenerate(a, b, c)
+            }
+            _ => false,
+        };
+        if zero {
+            dropped.push(i);
+        }
+        i += 1;
+        !zero
+    });
+    if dropped.is_empty() {
+        return;
+    }
+    let first: Vec<String> = dropped
+        .iter()
+        .take(3)
+        .map(|&i| mesh.triangle_location(i).to_string())
+        .collect();
+    eprintln!(
+        "warning: dropped {} zero-area triangle{} of {} (no ray can hit them), the first at {}; \
+         --strict refuses them",
+        dropped.len(),
+        if dropped.len() == 1 { "" } else { "s" },
+        dropped.len() + object.facets.len(),
+        first.join(", ")
+    );
 }
 
 #[cfg(test)]

@@ -871,13 +871,11 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         let s = tracer
             .probe(cam, &base.options, column, row)
             .map_err(|e| miette!("--probe: {e}"))?;
-        println!("pixel ({column}, {row}), view 1");
-        println!("{s}");
-        println!(
-            "apparent temperature_k     {}",
-            tracer.apparent_temperature_k(s.radiance_w_m2_sr)
-        );
-        return Ok(());
+        let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+        return irsig_cli::write_output(None, |w| {
+            writeln!(w, "pixel ({column}, {row}), view 1\n{s}")?;
+            writeln!(w, "apparent temperature_k     {t}")
+        });
     }
     if cli.output.is_none() && !cli.has_output_flags() && job.outputs.is_none() {
         return Ok(());
@@ -923,7 +921,9 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             }
         })
         .collect::<miette::Result<Vec<_>>>()?;
-    let mut files = Vec::new();
+    // Each frame is staged as soon as it is traced (memory and descriptors bounded by one
+    // frame); all of them are renamed into place together when every frame succeeded.
+    let mut staged = irsig_cli::Staged::new();
     let total_rows: u64 = tiles.iter().map(|t| u64::from(t.height)).sum();
     let bar = irsig_cli::progress_bar(total_rows, "tracing");
     for (i, cam) in cameras.iter().enumerate() {
@@ -944,7 +944,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
                 };
                 if let Some(path) = decision_file {
                     let text = irsig_formats::canonical::to_ron(&d).into_diagnostic()?;
-                    files.push((path, text.into_bytes()));
+                    staged.stage(&path, &text.into_bytes())?;
                 }
                 (settings, d.predicted.percentile_k)
             }
@@ -1003,14 +1003,14 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         if let Some(path) = out.radiance_exr {
             let mut r = Raster::new(w, h).with_part(part.clone());
             push(&mut r, Layer::Radiance, radiance.clone())?;
-            files.push((path, exr_bytes(&r).into_diagnostic()?));
+            staged.stage(&path, &exr_bytes(&r).into_diagnostic()?)?;
         }
         if let Some(path) = out.truth_exr {
             let r = truth_raster(&tracer, &frame, budget.as_ref())?.with_part(part.clone());
-            files.push((path, exr_bytes(&r).into_diagnostic()?));
+            staged.stage(&path, &exr_bytes(&r).into_diagnostic()?)?;
         }
         if let Some(path) = out.map_png {
-            files.push((path, interaction_map(&frame)?));
+            staged.stage(&path, &interaction_map(&frame)?)?;
         }
         if out.dc_png.is_some() || out.lut.is_some() {
             let view_gain = views.get(i).and_then(View::gain_dc_per_k);
@@ -1021,13 +1021,13 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
                 let counts = q
                     .quantise(&radiance, w)
                     .map_err(|e| miette!("digital counts: {e}"))?;
-                files.push((
-                    path,
-                    counts_png(&counts, w, h, cli.dc.dc_bits).into_diagnostic()?,
-                ));
+                staged.stage(
+                    &path,
+                    &counts_png(&counts, w, h, cli.dc.dc_bits).into_diagnostic()?,
+                )?;
             }
             if let Some(path) = out.lut {
-                files.push((path, q.lut(tracer.band()).to_string().into_bytes()));
+                staged.stage(&path, &q.lut(tracer.band()).to_string().into_bytes())?;
             }
         }
     }
@@ -1039,7 +1039,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
              material_secondary layers hold the same information losslessly"
         );
     }
-    irsig_cli::write_files_atomic(&files)
+    staged.commit()
 }
 
 /// `path` with its `suffix` replaced by `with` (`f.0001.radiance.exr` → `f.0001.decision.ron`).

@@ -167,7 +167,10 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
         ParseError::in_binary(
             file,
             16 + offset,
-            format!("malformed header (RON): {}", e.code),
+            format!(
+                "malformed header (RON): {}",
+                crate::canonical::ron_message(&e.code)
+            ),
         )
     })?;
     let mut at = 16 + h;

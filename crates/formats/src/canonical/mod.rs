@@ -94,9 +94,21 @@ pub fn from_ron_as<T: DeserializeOwned>(
             file,
             text,
             offset,
-            format!("malformed {what} (RON): {}", e.code),
+            format!("malformed {what} (RON): {}", ron_message(&e.code)),
         )
     })
+}
+
+/// What a RON error says, in the user's terms: ron's own text where it speaks of the file,
+/// and what is wrong with the file where ron speaks of its API (its recursion limit).
+#[must_use]
+pub fn ron_message(code: &ron::Error) -> String {
+    match code {
+        ron::Error::ExceededRecursionLimit => "values are nested too deeply (more than 128 \
+            levels of brackets); no irsig file nests more than a few"
+            .to_owned(),
+        other => other.to_string(),
+    }
 }
 
 /// Any serde value as pretty-printed RON, for RON that is not a model type (a table of
@@ -288,6 +300,14 @@ mod tests {
                 },
             ],
         }
+    }
+
+    #[test]
+    fn deep_nesting_is_said_in_the_files_terms() {
+        let text = format!("{}{}", "[".repeat(10_000), "]".repeat(10_000));
+        let e = from_ron_as::<ron::Value>("deep.ron", &text, "table").unwrap_err();
+        assert!(e.message.contains("nested too deeply"), "{e}");
+        assert!(!e.message.contains("serde_stacker"), "{e}");
     }
 
     #[test]

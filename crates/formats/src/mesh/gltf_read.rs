@@ -218,7 +218,7 @@ fn load_uri(
         ))
     })?;
     let full = dir.join(path);
-    std::fs::read(&full).map_err(|e| err(format!("cannot read `{}`: {e}", full.display())))
+    crate::file::read_file(&full).map_err(|e| err(format!("cannot read `{}`: {e}", full.display())))
 }
 
 struct Walk<'a> {

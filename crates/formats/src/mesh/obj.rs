@@ -530,7 +530,7 @@ fn check_mtl(
         return Ok(());
     };
     let full = dir.join(path);
-    match std::fs::read(&full) {
+    match crate::file::read_file(&full) {
         Ok(bytes) => {
             let mtl_name = full.display().to_string();
             let mtl_text = String::from_utf8_lossy(&bytes);

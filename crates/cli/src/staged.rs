@@ -1,0 +1,270 @@
+//! All-or-nothing output: every file a run writes is staged beside its destination and only
+//! renamed into place, all together, when the run has succeeded.
+//!
+//! - A staged file is complete on disk and holds no descriptor, so a run may stage one frame
+//!   after another (a fly-by of hundreds of views) with memory and descriptors bounded by one
+//!   frame.
+//! - [`Staged::commit`] checks every destination before the first rename, renames them in
+//!   turn, and when a later rename fails it undoes the earlier ones: a replaced file is put
+//!   back from the copy it was moved to, a new one is removed.
+//! - The same destination named twice is refused, as is a destination that is a directory.
+//! - Staged files are named `.irsig-*.tmp`; an interrupted run (SIGINT, SIGTERM) removes
+//!   them ([`remove_staged_files`], called from [`crate::run`]'s signal handler), and a
+//!   commit under way is finished before they are.
+
+use std::collections::HashSet;
+use std::io::{self, Write};
+use std::path::{Path, PathBuf};
+use std::sync::{Mutex, MutexGuard, PoisonError};
+
+use miette::{IntoDiagnostic, WrapErr};
+use tempfile::TempPath;
+
+/// The staged files of this process that are not yet renamed into place. Held locked for the
+/// whole of a commit, so an interrupt waits until the renames are done (or undone).
+static PENDING: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
+    PENDING.lock().unwrap_or_else(PoisonError::into_inner)
+}
+
+/// Removes every staged file this process still holds (an interrupted run). Returns how many
+/// were removed.
+pub fn remove_staged_files() -> usize {
+    pending()
+        .drain(..)
+        .filter(|p| std::fs::remove_file(p).is_ok())
+        .count()
+}
+
+/// A staged file's place in [`PENDING`], from its creation (before a byte is written) until
+/// it is renamed into place or removed.
+struct Registration(PathBuf);
+
+impl Registration {
+    fn new(path: &Path) -> Self {
+        pending().push(path.to_path_buf());
+        Self(path.to_path_buf())
+    }
+}
+
+impl Drop for Registration {
+    fn drop(&mut self) {
+        let mut list = pending();
+        if let Some(i) = list.iter().position(|x| *x == self.0) {
+            list.swap_remove(i);
+        }
+    }
+}
+
+struct Entry {
+    /// `None` once renamed into place. Dropped (the file removed) before `_registration`.
+    staged: Option<TempPath>,
+    _registration: Registration,
+    dest: PathBuf,
+}
+
+impl std::fmt::Debug for Staged {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let dests: Vec<_> = self.entries.iter().map(|e| &e.dest).collect();
+        f.debug_struct("Staged")
+            .field("files", &dests)
+            .field("stdout", &self.stdout.is_some())
+            .finish()
+    }
+}
+
+/// Outputs staged for an all-or-nothing commit. Dropping it without [`Staged::commit`]
+/// removes every staged file and leaves every destination untouched.
+#[derive(Default)]
+pub struct Staged {
+    entries: Vec<Entry>,
+    keys: HashSet<PathBuf>,
+    stdout: Option<Vec<u8>>,
+}
+
+impl Staged {
+    /// Nothing staged yet.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Stages `bytes` for `dest` (`-` is standard output, written after every file is in
+    /// place).
+    ///
+    /// # Errors
+    /// The destination is a directory, is named twice, or its temporary cannot be written.
+    pub fn stage(&mut self, dest: &Path, bytes: &[u8]) -> miette::Result<()> {
+        if dest.as_os_str() == "-" {
+            if self.stdout.is_some() {
+                return Err(crate::usage_error(
+                    "only one output can go to standard output (`-`)",
+                ));
+            }
+            self.stdout = Some(bytes.to_vec());
+            return Ok(());
+        }
+        self.stage_with(dest, |w| w.write_all(bytes))
+    }
+
+    /// Stages what `write` writes for `dest`, a file (not `-`).
+    ///
+    /// # Errors
+    /// As [`Staged::stage`], or any error from `write`.
+    pub fn stage_with(
+        &mut self,
+        dest: &Path,
+        write: impl FnOnce(&mut dyn Write) -> io::Result<()>,
+    ) -> miette::Result<()> {
+        let ctx = || format!("cannot write output file `{}`", dest.display());
+        check_destination(dest).wrap_err_with(ctx)?;
+        let mut tmp = staged_file(dest).into_diagnostic().wrap_err_with(ctx)?;
+        let registration = Registration::new(tmp.path());
+        {
+            let mut w = io::BufWriter::new(tmp.as_file_mut());
+            write(&mut w)
+                .and_then(|()| w.flush())
+                .into_diagnostic()
+                .wrap_err_with(ctx)?;
+        }
+        tmp.as_file()
+            .sync_all()
+            .into_diagnostic()
+            .wrap_err_with(ctx)?;
+        // The key is the destination in its real directory, so `d/a` and `./d/../d/a` are
+        // one output. The directory exists: the temporary was just made in it.
+        let key = std::fs::canonicalize(parent_dir(dest))
+            .map(|d| d.join(dest.file_name().unwrap_or_default()))
+            .unwrap_or_else(|_| dest.to_path_buf());
+        if !self.keys.insert(key) {
+            return Err(crate::usage_error(format!(
+                "`{}` is named as more than one output",
+                dest.display()
+            )));
+        }
+        self.entries.push(Entry {
+            staged: Some(tmp.into_temp_path()),
+            _registration: registration,
+            dest: dest.to_path_buf(),
+        });
+        Ok(())
+    }
+
+    /// Renames every staged file into place, then writes standard output.
+    ///
+    /// # Errors
+    /// A destination that became a directory, or a rename that fails; every destination is
+    /// then as it was before the commit.
+    pub fn commit(mut self) -> miette::Result<()> {
+        {
+            let mut list = pending();
+            for e in &self.entries {
+                check_destination(&e.dest)
+                    .wrap_err_with(|| format!("cannot write output file `{}`", e.dest.display()))?;
+            }
+            let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
+            for e in &mut self.entries {
+                match place(&mut e.staged, &e.dest, &mut list) {
+                    Ok(backup) => done.push((e.dest.clone(), backup)),
+                    Err(err) => {
+                        for (dest, backup) in done.into_iter().rev() {
+                            undo(&dest, backup);
+                        }
+                        return Err(err).into_diagnostic().wrap_err_with(|| {
+                            format!("cannot write output file `{}`", e.dest.display())
+                        });
+                    }
+                }
+            }
+            // Success: the replaced files' copies (`done`'s backups) are removed on drop.
+        }
+        match self.stdout.take() {
+            Some(bytes) => crate::write_stdout(|w| w.write_all(&bytes)),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Moves `staged` onto `dest`, first moving an existing `dest` aside to a backup beside it.
+/// Returns the backup (`None` when `dest` did not exist). On error `dest` is as it was.
+fn place(
+    staged: &mut Option<TempPath>,
+    dest: &Path,
+    pending: &mut Vec<PathBuf>,
+) -> io::Result<Option<TempPath>> {
+    let backup = if dest.symlink_metadata().is_ok() {
+        let b = tempfile::Builder::new()
+            .prefix(".irsig-")
+            .suffix(".bak")
+            .tempfile_in(parent_dir(dest))?
+            .into_temp_path();
+        std::fs::rename(dest, &b)?;
+        Some(b)
+    } else {
+        None
+    };
+    let from = staged.as_deref().map(Path::to_path_buf).unwrap_or_default();
+    match std::fs::rename(&from, dest) {
+        Ok(()) => {
+            // Placed: the temporary no longer exists under its own name.
+            pending.retain(|x| *x != from);
+            if let Some(tmp) = staged.take() {
+                let _ = tmp.keep();
+            }
+            Ok(backup)
+        }
+        Err(e) => {
+            if let Some(b) = backup {
+                let _ = std::fs::rename(&b, dest);
+                let _ = b.keep();
+            }
+            Err(e)
+        }
+    }
+}
+
+/// Puts `dest` back as it was before [`place`]: its backup renamed back, or removed.
+fn undo(dest: &Path, backup: Option<TempPath>) {
+    match backup {
+        Some(b) => {
+            if std::fs::rename(&b, dest).is_ok() {
+                let _ = b.keep();
+            }
+        }
+        None => {
+            let _ = std::fs::remove_file(dest);
+        }
+    }
+}
+
+/// An output destination must not be an existing directory.
+fn check_destination(dest: &Path) -> miette::Result<()> {
+    if dest.is_dir() {
+        return Err(miette::miette!("`{}` is a directory", dest.display()));
+    }
+    Ok(())
+}
+
+fn parent_dir(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+/// A temporary file beside `path`, to be renamed onto it when complete.
+///
+/// Created with mode 0o666 less the umask, as `File::create` would make the destination:
+/// tempfile's default 0o600 would otherwise survive the rename and leave every output
+/// readable by its owner only.
+fn staged_file(path: &Path) -> io::Result<tempfile::NamedTempFile> {
+    let mut builder = tempfile::Builder::new();
+    builder.prefix(".irsig-").suffix(".tmp");
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        builder.permissions(std::fs::Permissions::from_mode(0o666));
+    }
+    builder.tempfile_in(parent_dir(path))
+}

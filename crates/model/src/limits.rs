@@ -1,0 +1,24 @@
+//! The memory budget every reader checks a size against before it allocates.
+//!
+//! Sizes read from a file (an image's pixel count, a header's claimed dimensions, a file's
+//! length) are taken on trust by nothing: a 400-byte EXR that claims 100,000 × 100,000
+//! pixels, or a view of 4,294,967,295 columns, is refused with a location instead of
+//! aborting on an allocation of tens of gigabytes.
+
+/// The most pixels one image may have: 2²⁶ = 67,108,864 (8,192 × 8,192). This holds for a
+/// view, for every frame a tracer renders and for an EXR read back. The tracer keeps about
+/// 150 bytes per pixel of a frame with every truth layer, so one frame stays within
+/// [`MEMORY_BUDGET_BYTES`].
+pub const MAX_IMAGE_PIXELS: u64 = 1 << 26;
+
+/// The most bytes a reader allocates for one file's content or one decoded image: 16 GiB.
+pub const MEMORY_BUDGET_BYTES: u64 = 16 << 30;
+
+/// The longest input file a tool reads whole: 4 GiB. Longer inputs, and endless ones such
+/// as a device, are refused before they are read.
+pub const MAX_INPUT_BYTES: u64 = 4 << 30;
+
+/// The largest coordinate a scene or object may have, metres: 10⁹ m, more than twice the
+/// Moon's distance. Beyond it a triangle's area overflows and it could not be told from a
+/// degenerate one.
+pub const MAX_COORDINATE_M: f64 = 1e9;

@@ -1,0 +1,142 @@
+//! The malformed corpus, end to end and data-driven: every case listed in a
+//! `tests/data/malformed/*/cases.tsv` manifest runs through its tool, which must exit 1
+//! within a time and memory bound, name the case's file with a line and column (a binary
+//! file's byte offset is given as line 1, column offset + 1; an OBJ face is located by its
+//! line), hold the manifest's message
+//! fragment, and leave its output folder empty: no output and no staged temporary file.
+//!
+//! A manifest line is `file<TAB>tool<TAB>arguments<TAB>fragment`; in the arguments `{in}`
+//! is the case's path and `{out}` an empty folder for outputs. Lines starting with `#` are
+//! comments.
+
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use irsig_tests::{bin_path, repo_root};
+
+/// No case may take longer (a parser that loops, or reads without end).
+const TIME_LIMIT: Duration = Duration::from_secs(60);
+/// Nor map more virtual memory, KiB (`ulimit -v`): a size taken on trust aborts the tool,
+/// which then does not exit with 1.
+const MEMORY_LIMIT_KIB: u64 = 4 << 20;
+
+fn unwrap_report(stderr: &str) -> String {
+    stderr
+        .lines()
+        .map(|l| l.trim_start().trim_start_matches(['│', '×']).trim())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Whether `text` holds `STEM.EXT:LINE`, where `STEM` is the case's file stem (the error
+/// may lie in a file the case names, `short-colour.mtl` of `short-colour.obj`). A column
+/// follows the line everywhere except for an OBJ face, which is located by its line.
+fn has_location(text: &str, file: &str) -> bool {
+    let stem = Path::new(file)
+        .file_stem()
+        .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
+    let key = format!("{stem}.");
+    text.match_indices(&key).any(|(i, _)| {
+        let rest = &text[i + key.len()..];
+        let ext = rest.bytes().take_while(u8::is_ascii_alphanumeric).count();
+        rest[ext..]
+            .strip_prefix(':')
+            .is_some_and(|r| r.bytes().next().is_some_and(|b| b.is_ascii_digit()))
+    })
+}
+
+/// Runs one case; returns what is wrong with its outcome, if anything.
+fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -> Option<String> {
+    let out = tempfile::tempdir().unwrap();
+    let case = folder.join(file);
+    let args: Vec<String> = args
+        .split_whitespace()
+        .map(|a| {
+            a.replace("{in}", &case.to_string_lossy())
+                .replace("{out}", &out.path().to_string_lossy())
+        })
+        .collect();
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(format!("ulimit -v {MEMORY_LIMIT_KIB}; exec \"$@\""))
+        .arg("sh")
+        .arg(bin_path(tool))
+        .args(&args)
+        .current_dir(repo_root())
+        .stdin(Stdio::null())
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let start = Instant::now();
+    let status = loop {
+        if let Some(s) = child.try_wait().unwrap() {
+            break s;
+        }
+        if start.elapsed() > TIME_LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Some(format!("took longer than {TIME_LIMIT:?}"));
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    let mut stderr = String::new();
+    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    let text = unwrap_report(&stderr);
+    let left: Vec<_> = std::fs::read_dir(out.path())
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    let mut wrong = Vec::new();
+    if status.code() != Some(1) {
+        wrong.push(format!("exit {status}, expected 1"));
+    }
+    if !has_location(&text, file) {
+        wrong.push(format!("no `{file}:LINE`"));
+    }
+    if !text.contains(fragment) {
+        wrong.push(format!("no `{fragment}`"));
+    }
+    if !left.is_empty() {
+        wrong.push(format!("left {left:?}"));
+    }
+    (!wrong.is_empty()).then(|| format!("{}: {}\n{stderr}", wrong.join("; "), args.join(" ")))
+}
+
+#[test]
+fn every_malformed_case_fails_cleanly_with_a_location() {
+    let root = repo_root().join("tests/data/malformed");
+    let mut folders: Vec<_> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("cases.tsv").is_file())
+        .collect();
+    folders.sort();
+    assert!(!folders.is_empty(), "no manifest under {}", root.display());
+    let mut failures = Vec::new();
+    let mut count = 0;
+    for folder in &folders {
+        let manifest = std::fs::read_to_string(folder.join("cases.tsv")).unwrap();
+        for line in manifest
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
+        {
+            let cols: Vec<&str> = line.split('\t').collect();
+            let [file, tool, args, fragment] = cols[..] else {
+                panic!("{}: malformed manifest line `{line}`", folder.display());
+            };
+            assert!(folder.join(file).is_file(), "{file} is listed but missing");
+            count += 1;
+            if let Some(w) = run_case(folder, file, tool, args, fragment) {
+                failures.push(format!("{}/{file}: {w}", folder.display()));
+            }
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} of {count} cases failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
