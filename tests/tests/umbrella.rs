@@ -27,3 +27,34 @@ fn unknown_stage_is_a_usage_error() {
 fn no_arguments_is_a_usage_error() {
     bin("irsig").assert().code(2);
 }
+
+#[test]
+fn version_lists_the_merge_stage() {
+    bin("irsig")
+        .arg("--version")
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("merge"));
+}
+
+#[test]
+fn a_reader_that_closes_the_pipe_is_success() {
+    // `irsig --help | head -c1`: the read end is closed before the usage is written, which
+    // used to panic in `print!` (exit 101).
+    for arg in ["--help", "--version"] {
+        let mut child = std::process::Command::new(irsig_tests::bin_path("irsig"))
+            .arg(arg)
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::piped())
+            .spawn()
+            .unwrap();
+        drop(child.stdout.take());
+        let out = child.wait_with_output().unwrap();
+        assert!(
+            out.status.success(),
+            "{arg}: {:?} {}",
+            out.status,
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}

@@ -7,12 +7,14 @@
 //! ```
 
 use std::ffi::OsString;
+use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::PathBuf;
 use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
 const STAGES: &[&str] = &[
-    "import", "flatten", "atmos", "material", "trace", "sensor", "stats", "report", "run",
+    "import", "flatten", "atmos", "material", "trace", "merge", "sensor", "stats", "report", "run",
 ];
 
 const USAGE: &str = "\
@@ -27,6 +29,7 @@ Stages (each is also a program of its own, irsig-<STAGE>):
   atmos     DIRTRAN tables <-> canonical atmosphere; band radiance calculators
   material  material index + .ems <-> material library; Fresnel emissivity
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
+  merge     the tiles of a frame (trace --tile) -> the frame's images, byte for byte
   sensor    MTF blur, noise, quantisation
   stats     per-region apparent temperature beside reference values (Tables 5-7)
   report    one self-contained HTML page of a run: images, plots, tables, provenance
@@ -44,19 +47,16 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     };
     match first.to_str() {
-        Some("--help" | "-h" | "help") => {
-            print!("{USAGE}");
-            ExitCode::SUCCESS
-        }
+        Some("--help" | "-h" | "help") => to_stdout(USAGE),
         Some("--version" | "-V") => {
-            println!("irsig {}", env!("CARGO_PKG_VERSION"));
+            let mut text = format!("irsig {}\n", env!("CARGO_PKG_VERSION"));
             for stage in STAGES {
-                match find_stage(stage) {
-                    Some(path) => println!("  {stage:<8} {}", path.display()),
-                    None => println!("  {stage:<8} (not found)"),
-                }
+                let _ = match find_stage(stage) {
+                    Some(path) => writeln!(text, "  {stage:<8} {}", path.display()),
+                    None => writeln!(text, "  {stage:<8} (not found)"),
+                };
             }
-            ExitCode::SUCCESS
+            to_stdout(&text)
         }
         Some(stage) if !stage.starts_with('-') => run_stage(stage, args.collect()),
         _ => {
@@ -66,6 +66,20 @@ fn main() -> ExitCode {
             );
             eprint!("{USAGE}");
             ExitCode::from(2)
+        }
+    }
+}
+
+/// Writes `text` to standard output: a reader that closed the pipe has all it wanted
+/// (exit 0), any other failure to write is an error.
+fn to_stdout(text: &str) -> ExitCode {
+    let mut out = std::io::stdout().lock();
+    match out.write_all(text.as_bytes()).and_then(|()| out.flush()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("irsig: cannot write to standard output: {e}");
+            ExitCode::from(1)
         }
     }
 }
