@@ -1,6 +1,6 @@
 //! `irsig-trace --sub-bands` against LOWTRAN7's own spectral integral.
 //!
-//! A blackbody terrain seen through a slant path of a built-in atmosphere's tables: the
+//! A blackbody plate seen through a slant path of an atmosphere's tables: the
 //! radiance at the sensor is `∫ τ(λ) B(λ, T) dλ + L_path` over 8–14 µm. This test computes
 //! that integral itself, from the LOWTRAN7 spectra the built-in holds (its grid, the
 //! trapezoid rule in wavelength, the band closed at 14 µm by linear interpolation in
@@ -8,7 +8,7 @@
 //! integral, so that nothing of the code under test enters the expected value. The full
 //! grid must agree within 0.02 K (the floor of docs/accuracy.md); the band model, one
 //! band-mean τ times the band radiance, is off by much more, which the sub-bands remove
-//! step by step.
+//! step by step. `scripts/accuracy/spectral-table.sh` runs the whole table.
 
 use std::path::Path;
 
@@ -101,16 +101,25 @@ fn node(nodes: &[f64], x: f64) -> usize {
     nodes.iter().position(|&v| (v - x).abs() < 1e-9).unwrap()
 }
 
-/// The one-facet scene (a speck far out of view) over a blackbody terrain at `t_k`.
+/// A blackbody plate at `t_k`, 200 km across, 1 m above the ground: where LOWTRAN7's
+/// slant paths end (the tables' `ground_m`), so that the path is the table's own.
 fn scene(dir: &Path, t_k: f64) -> std::path::PathBuf {
     let path = dir.join(format!("scene-{t_k}.ron"));
     std::fs::write(
         &path,
         format!(
-            "(terrain: (temperature_k: {t_k:?}, emissivity: 1.0), objects: [\"speck\"], \
-             positions_m: [(-1e5, -1e5, 0.0), (-99999.0, -1e5, 0.0), (-1e5, -99999.0, 0.0)], \
-             facets: [(vertices: (0, 1, 2), material: 1, temperature_k: 300.0, object: 0)])"
+            "(objects: [\"plate\"], \
+             positions_m: [(-1e5, -1e5, 1.0), (1e5, -1e5, 1.0), (1e5, 1e5, 1.0), (-1e5, 1e5, 1.0)], \
+             facets: [(vertices: (0, 1, 2), material: 1, temperature_k: {t_k:?}, object: 0), \
+                      (vertices: (0, 2, 3), material: 1, temperature_k: {t_k:?}, object: 0)])"
         ),
+    )
+    .unwrap();
+    let materials = dir.join("black.ron");
+    std::fs::write(
+        &materials,
+        "(materials: [(id: 1, name: \"black\", emissivity: [(0.0, 1.0), (90.0, 1.0)], \
+         specular_fraction: 0.0, source: \"a blackbody\")])",
     )
     .unwrap();
     path
@@ -127,11 +136,11 @@ fn probe(
     nadir_deg: f64,
 ) -> (f64, u32) {
     let view = dir.join("view.ron");
-    let reach = altitude_m * nadir_deg.to_radians().tan();
+    let reach = (altitude_m - 1.0) * nadir_deg.to_radians().tan();
     std::fs::write(
         &view,
         format!(
-            "LookAt(position_m: (0.0, 0.0, {altitude_m:?}), target_m: ({reach:?}, 0.0, 0.0), \
+            "LookAt(position_m: (0.0, 0.0, {altitude_m:?}), target_m: ({reach:?}, 0.0, 1.0), \
              up: (0.0, 1.0, 0.0), pixels: (1, 1), fov_deg: (0.01, 0.01))"
         ),
     )
@@ -139,7 +148,8 @@ fn probe(
     let out = bin("irsig-trace")
         .arg("--scene")
         .arg(scene(dir, t_k))
-        .args(["--materials", "pipelines/quickstart/materials.ron"])
+        .arg("--materials")
+        .arg(dir.join("black.ron"))
         .arg("--view")
         .arg(&view)
         .args(["--atmosphere", atmosphere, "--sub-bands", sub_bands])
@@ -159,7 +169,7 @@ fn probe(
             .unwrap_or_else(|| panic!("no `{name}` in\n{stdout}"))
             .trim()
     };
-    assert!(field("event").ends_with("(Terrain)"), "{stdout}");
+    assert!(field("event").ends_with("(Diffuse)"), "{stdout}");
     let count = stdout
         .lines()
         .next()
@@ -217,19 +227,22 @@ fn more_sub_bands_converge_on_the_full_grid() {
     let a = irsig_atmosphere::builtin_spectral("us-std-1976").unwrap();
     let s = a.slant.as_ref().unwrap();
     let (ai, ni) = (node(&s.altitude_m, 1000.0), node(&s.nadir_deg, 40.0));
-    let expected = apparent_k(lowtran_integral(&a, ai, ni, 300.0));
+    // 260 K, 40 K from the 300 K the sub-bands' τ are weighted for: the case where a few
+    // sub-bands do least well.
+    let expected = apparent_k(lowtran_integral(&a, ai, ni, 260.0));
     let errors: Vec<f64> = ["1", "4", "16", "64"]
         .iter()
         .map(|k| {
-            let (l, n) = probe(dir.path(), "us-std-1976", k, 300.0, 1000.0, 40.0);
+            let (l, n) = probe(dir.path(), "us-std-1976", k, 260.0, 1000.0, 40.0);
             assert_eq!(n.to_string(), *k);
             (apparent_k(l) - expected).abs()
         })
         .collect();
     eprintln!("errors at K = 1, 4, 16, 64: {errors:?}");
-    assert!(errors[0] > 0.3, "{errors:?}");
-    assert!(errors[1] < errors[0] && errors[2] < errors[1], "{errors:?}");
-    assert!(errors[3] < 0.05, "{errors:?}");
+    assert!(errors[0] > 0.15, "{errors:?}");
+    assert!(errors[1] < errors[0] / 2.0, "{errors:?}");
+    assert!(errors[2] <= errors[1] + 1e-3, "{errors:?}");
+    assert!(errors[3] < 0.005, "{errors:?}");
 }
 
 #[test]
@@ -246,7 +259,8 @@ fn sub_bands_need_spectra_and_a_count_the_grid_can_make() {
         let out = bin("irsig-trace")
             .arg("--scene")
             .arg(scene(dir.path(), 300.0))
-            .args(["--materials", "pipelines/quickstart/materials.ron"])
+            .arg("--materials")
+            .arg(dir.path().join("black.ron"))
             .arg("--view")
             .arg(&view)
             .args(["--probe", "0,0"])
@@ -375,5 +389,116 @@ fn the_tolerance_pilot_offers_sub_bands_of_a_spectral_atmosphere_and_the_decisio
             .data
             .iter()
             .all(|&k| k.to_bits() == 4.0_f32.to_bits())
+    );
+}
+
+/// Plans and builds (LOWTRAN7 running) a tropical atmosphere whose slant tables have rows
+/// for observers at 0.3, 1 and 3 km over the quickstart scene; its path.
+fn tropical(dir: &Path) -> std::path::PathBuf {
+    let raw = dir.join("quickstart.raw");
+    bin("irsig-flatten")
+        .args([
+            "pipelines/quickstart/scene.ron",
+            "--materials",
+            "pipelines/quickstart/materials.ron",
+            "-o",
+        ])
+        .arg(&raw)
+        .assert()
+        .success();
+    let views = dir.join("observers.ron");
+    let view = |z: f64| {
+        format!(
+            "LookAt(position_m: (0.0, -50.0, {z:?}), target_m: (0.0, 50.0, 0.0), \
+             pixels: (64, 48), fov_deg: (40.0, 30.0))"
+        )
+    };
+    std::fs::write(
+        &views,
+        format!("[{}, {}, {}]", view(300.0), view(1000.0), view(3000.0)),
+    )
+    .unwrap();
+    let plan = dir.join("plan");
+    bin("irsig-atmos")
+        .args(["plan", "--scene"])
+        .arg(&raw)
+        .arg("--view")
+        .arg(&views)
+        .args(["--model", "tropical", "-o"])
+        .arg(&plan)
+        .assert()
+        .success();
+    let out = dir.join("tropical.spa");
+    bin("irsig-atmos")
+        .arg("build")
+        .arg(&plan)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    out
+}
+
+/// The table of docs/accuracy.md ("Band against spectral"): every row's error of the band
+/// model and of 4, 16, 64 sub-bands and the full grid against LOWTRAN7's own integral,
+/// as Markdown on stdout, with the floor held on every row. Needs LOWTRAN7 (IRSIG_LOWTRAN)
+/// for the tropical atmosphere; `scripts/accuracy/spectral-table.sh` runs it.
+#[test]
+#[ignore = "the whole table: a few minutes; scripts/accuracy/spectral-table.sh"]
+fn accuracy_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let tropical = tropical(dir.path());
+    let tropical_name = tropical.to_str().unwrap().to_owned();
+    let bytes = std::fs::read(&tropical).unwrap();
+    let mut atmospheres: Vec<(String, String, SpectralAtmosphere)> =
+        irsig_atmosphere::BUILTIN_NAMES
+            .iter()
+            .map(|n| {
+                (
+                    (*n).to_owned(),
+                    (*n).to_owned(),
+                    irsig_atmosphere::builtin_spectral(n).unwrap(),
+                )
+            })
+            .collect();
+    atmospheres.push((
+        "tropical (irsig-atmos build)".to_owned(),
+        tropical_name,
+        irsig_formats::canonical::read_spectral_atmosphere("tropical.spa", &bytes).unwrap(),
+    ));
+    let counts = ["1", "4", "16", "64", "full"];
+    println!(
+        "| atmosphere | T (K) | observer (m) | nadir (°) | LOWTRAN7 T_app (K) | band | K = 4 | K = 16 | K = 64 | full |"
+    );
+    println!("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
+    let mut worst = [0.0_f64; 5];
+    for (label, arg, a) in &atmospheres {
+        let s = a.slant.as_ref().unwrap();
+        for t_k in [260.0, 290.0, 320.0] {
+            for altitude_m in [300.0, 1000.0, 3000.0] {
+                for nadir_deg in [0.0, 40.0, 70.0, 80.0] {
+                    let ai = node(&s.altitude_m, altitude_m);
+                    let ni = node(&s.nadir_deg, nadir_deg);
+                    let expected = apparent_k(lowtran_integral(a, ai, ni, t_k));
+                    let mut row =
+                        format!("| {label} | {t_k} | {altitude_m} | {nadir_deg} | {expected:.3} |");
+                    for (k, count) in counts.iter().enumerate() {
+                        let (l, _) = probe(dir.path(), arg, count, t_k, altitude_m, nadir_deg);
+                        let e = apparent_k(l) - expected;
+                        worst[k] = worst[k].max(e.abs());
+                        row.push_str(&format!(" {e:+.4} |"));
+                    }
+                    println!("{row}");
+                    assert!(
+                        worst[4] < 0.02,
+                        "{row}: the full grid is off by more than 0.02 K"
+                    );
+                }
+            }
+        }
+    }
+    println!(
+        "| worst | | | | | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
+        worst[0], worst[1], worst[2], worst[3], worst[4]
     );
 }

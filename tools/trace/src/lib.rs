@@ -44,7 +44,7 @@ use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::truth::Layer;
 use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, SpectralAtmosphere, View};
-use irsig_radiometry::{Band, BandModel, TotalRadiance};
+use irsig_radiometry::{Band, BandModel, TotalRadiance, spectral_radiance_per_um};
 use irsig_raster::{FramePart, Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{
@@ -690,13 +690,40 @@ impl<'a> Split<'a> {
                 let Some(band) = self.sub_band(w[0], w[1])? else {
                     return Ok(None);
                 };
-                let atmosphere =
+                let at = |e: irsig_atmosphere::AtmosphereError| {
+                    miette!("sub-band {}-{} um: {e}", w[0], w[1])
+                };
+                let mut atmosphere =
                     irsig_atmosphere::collapse(spectral, w[0], w[1], |l| self.weight(l))
-                        .map_err(|e| miette!("sub-band {}-{} um: {e}", w[0], w[1]))?;
+                        .map_err(at)?;
+                if !count.is_band() {
+                    // τ as the target sees it: weighted by the blackbody at the reference
+                    // temperature, so that τ times the sub-band's L_T is ∫ τ B dλ across
+                    // the sub-band (without it the full grid reads up to 0.024 K warm in
+                    // a tropical atmosphere; docs/accuracy.md). Radiances keep the
+                    // response alone.
+                    let seen = irsig_atmosphere::collapse(spectral, w[0], w[1], |l| {
+                        self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
+                    })
+                    .map_err(at)?;
+                    with_transmission(&mut atmosphere, &seen);
+                }
                 Ok(Some((band, atmosphere)))
             })
             .filter_map(Result::transpose)
             .collect()
+    }
+}
+
+/// `atmosphere` with the transmittances of `seen`, the same atmosphere collapsed with
+/// another weight: the profile's, the `.cor` fit's and the slant tables'.
+fn with_transmission(atmosphere: &mut irsig_model::Atmosphere, seen: &irsig_model::Atmosphere) {
+    for (level, s) in atmosphere.levels.iter_mut().zip(&seen.levels) {
+        level.transmission = s.transmission;
+    }
+    atmosphere.transmission_correction = seen.transmission_correction;
+    if let (Some(slant), Some(s)) = (atmosphere.slant.as_mut(), seen.slant.as_ref()) {
+        slant.transmission.clone_from(&s.transmission);
     }
 }
 
