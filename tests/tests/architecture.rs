@@ -18,6 +18,9 @@ struct Package {
     bins: Vec<(String, Vec<String>)>,
     /// The features the package turns on by default.
     default_features: Vec<String>,
+    /// The packages it depends on to build (normal and build dependencies; not the
+    /// dev-dependencies its tests use).
+    dependencies: Vec<String>,
 }
 
 impl Package {
@@ -86,6 +89,13 @@ fn workspace() -> Vec<Package> {
                 dir,
                 bins,
                 default_features: strings(&p["features"]["default"]),
+                dependencies: p["dependencies"]
+                    .as_array()
+                    .expect("dependencies")
+                    .iter()
+                    .filter(|d| d["kind"].as_str() != Some("dev"))
+                    .map(|d| d["name"].as_str().expect("name").to_owned())
+                    .collect(),
             }
         })
         .collect()
@@ -135,4 +145,69 @@ fn release_binaries_are_the_tools_alone() {
         &broken,
         "binaries outside tools/* must require a non-default feature",
     );
+}
+
+#[test]
+fn no_library_depends_on_a_tool() {
+    let packages = workspace();
+    let tools: Vec<&str> = packages
+        .iter()
+        .filter(|p| p.is_tool())
+        .map(|p| p.name.as_str())
+        .collect();
+    assert!(tools.contains(&"irsig-trace"), "{tools:?}");
+    let broken: Vec<String> = packages
+        .iter()
+        .filter(|p| p.dir.starts_with("crates"))
+        .flat_map(|p| {
+            p.dependencies
+                .iter()
+                .filter(|d| tools.contains(&d.as_str()))
+                .map(move |d| format!("{} ({}) depends on the tool {d}", p.name, p.dir.display()))
+        })
+        .collect();
+    assert_none(&broken, "crates/* must not depend on tools/*");
+}
+
+/// Crates only one workspace package may depend on (outside tests), and which.
+const OWNERS: [(&str, &[&str]); 7] = [
+    // file syntax: only irsig-formats knows it
+    ("ron", &["irsig-formats"]),
+    ("gltf", &["irsig-formats"]),
+    ("tobj", &["irsig-formats"]),
+    ("nom", &["irsig-formats"]),
+    // EXR files: only irsig-raster reads and writes them
+    ("exr", &["irsig-raster"]),
+    // terminals: progress bars only through irsig-cli
+    ("indicatif", &["irsig-cli"]),
+    // command lines: the tools, the flags they share in irsig-cli, and the test-only
+    // program of irsig-tests (behind a feature: `release_binaries_are_the_tools_alone`)
+    ("clap", &["irsig-cli", "irsig-tests", "TOOLS"]),
+];
+
+#[test]
+fn file_syntax_terminals_and_command_lines_each_have_their_owners() {
+    let packages = workspace();
+    let formats = packages
+        .iter()
+        .find(|p| p.name == "irsig-formats")
+        .expect("irsig-formats");
+    // The reading is live: the owner really depends on what it owns.
+    assert!(formats.dependencies.iter().any(|d| d == "ron"));
+    let mut broken = Vec::new();
+    for (krate, owners) in OWNERS {
+        for p in &packages {
+            let allowed =
+                owners.contains(&p.name.as_str()) || (owners.contains(&"TOOLS") && p.is_tool());
+            if !allowed && p.dependencies.iter().any(|d| d == krate) {
+                broken.push(format!(
+                    "{} ({}) depends on {krate}, which belongs to {}",
+                    p.name,
+                    p.dir.display(),
+                    owners.join(", ").replace("TOOLS", "tools/*")
+                ));
+            }
+        }
+    }
+    assert_none(&broken, "each crate above has its owners");
 }

@@ -258,6 +258,59 @@ fn the_pipeline_writes_every_table_7_region_and_the_regions_rank_as_physics_pred
     within("Top Pyramid", 29.9, 36.2);
     within("Bottom Pyramid", 29.9, 36.2);
 
+    // The README's table (°C, 2 decimals) is what the pipeline gives: "ours" is the mean
+    // after the blur, the other columns Table 7's values, the differences theirs.
+    let readme =
+        std::fs::read_to_string(repo_root().join("pipelines/thesis-experiment/README.md")).unwrap();
+    let rows: Vec<Vec<f64>> = TABLE_7
+        .iter()
+        .map(|region| {
+            let line = readme
+                .lines()
+                .find(|l| l.starts_with(&format!("| {region} | ")))
+                .unwrap_or_else(|| panic!("no README row for {region}"));
+            let cells: Vec<f64> = line
+                .trim_matches('|')
+                .split('|')
+                .skip(1)
+                .map(|c| {
+                    c.trim()
+                        .replace('−', "-")
+                        .trim_start_matches('+')
+                        .parse()
+                        .unwrap()
+                })
+                .collect();
+            assert_eq!(cells.len(), 6, "{line}");
+            let ours = mean(region) - 273.15;
+            assert!(
+                (cells[0] - ours).abs() <= 0.005 + 1e-9,
+                "{region}: the README says {} °C, the pipeline gives {ours}",
+                cells[0]
+            );
+            let (real, synthetic) = (cells[2], cells[3]);
+            assert!((cells[4] - (cells[0] - real)).abs() <= 0.011, "{line}");
+            assert!((cells[5] - (cells[0] - synthetic)).abs() <= 0.011, "{line}");
+            vec![ours, real, synthetic]
+        })
+        .collect();
+    let mean_abs = |column: usize| {
+        rows.iter().map(|r| (r[0] - r[column]).abs()).sum::<f64>() / rows.len() as f64
+    };
+    for (column, what) in [(1, "ours − real"), (2, "ours − 1990 synthetic")] {
+        let printed = if column == 1 { "2.10" } else { "0.66" };
+        let stated = format!("mean |{what}| = {printed} K");
+        assert!(
+            readme.to_lowercase().contains(&stated.to_lowercase()),
+            "the README no longer states `{stated}`"
+        );
+        let measured = mean_abs(column);
+        assert!(
+            (measured - printed.parse::<f64>().unwrap()).abs() <= 0.005 + 1e-9,
+            "{what}: the README says {printed} K, the pipeline gives {measured}"
+        );
+    }
+
     regions_that_do_not_fit_fail_at_their_line_and_column(&data);
 }
 

@@ -4,6 +4,7 @@
 
 use crate::sky::SkyView;
 use crate::{AtmosphereModel, PathTerms};
+use rayon::prelude::*;
 
 /// Altitude levels of the precomputed sky, from the ground to the top.
 pub const SKY_LEVELS: usize = 33;
@@ -29,19 +30,24 @@ impl PrecomputedAtmosphere {
         } else {
             1.0
         };
-        let mut warnings = Vec::new();
-        let levels = (0..SKY_LEVELS)
+        // Each level on its own (rayon); collected in order, so the same on any thread count.
+        let computed: Vec<_> = (0..SKY_LEVELS)
+            .into_par_iter()
             .map(|i| {
                 let h = top * i as f64 / (SKY_LEVELS - 1) as f64;
-                let hemi = model.sky_hemispheric(h);
-                if let Some(w) = hemi.warning
-                    && !warnings.contains(&w)
-                {
-                    warnings.push(w);
-                }
-                (h, model.sky_view(h), hemi.radiance_w_m2_sr)
+                (h, model.sky_view(h), model.sky_hemispheric(h))
             })
             .collect();
+        let mut warnings = Vec::new();
+        let mut levels = Vec::with_capacity(SKY_LEVELS);
+        for (h, view, hemi) in computed {
+            if let Some(w) = hemi.warning
+                && !warnings.contains(&w)
+            {
+                warnings.push(w);
+            }
+            levels.push((h, view, hemi.radiance_w_m2_sr));
+        }
         Self {
             model,
             levels,

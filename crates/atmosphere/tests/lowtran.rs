@@ -22,35 +22,59 @@ fn worst(name: &str, kind: ModelKind, rows: impl Fn(&common::lowtran::Truth) -> 
         .fold(0.0, f64::max)
 }
 
+/// The path categories of docs/accuracy.md's summary table, as its example selects them.
+type Select = fn(&common::lowtran::Truth) -> bool;
+const CATEGORIES: [(&str, Select); 6] = [
+    ("0-60°", |t| t.kind == "ground" && t.angle_deg <= 60.0),
+    ("60-80°", |t| {
+        t.kind == "ground" && t.angle_deg > 60.0 && t.angle_deg <= 80.0
+    }),
+    ("80-88°", |t| {
+        t.kind == "ground" && t.angle_deg > 80.0 && t.angle_deg <= 88.0
+    }),
+    ("slabs", |t| t.kind == "segment"),
+    ("horizontal ≤ 1 km", |t| {
+        t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
+    }),
+    ("horizontal 5 km", |t| {
+        t.kind == "horizontal" && t.range_m.unwrap() > 1000.0
+    }),
+];
+
+/// Every figure of a model's row of the summary table holds, at the precision it is
+/// printed to (2 decimals: the largest error over both atmospheres rounds to it).
+fn holds_summary_row(kind: ModelKind, printed_k: [f64; 6]) {
+    for ((category, select), printed) in CATEGORIES.iter().zip(printed_k) {
+        let e = ["us-std-1976", "midlat-winter"]
+            .iter()
+            .map(|name| worst(name, kind, select))
+            .fold(0.0, f64::max);
+        assert!(
+            (e - printed).abs() <= 0.005 + 1e-9,
+            "{kind} {category}: docs/accuracy.md prints {printed} K, the model is {e} K"
+        );
+    }
+}
+
+#[test]
+fn table_model_holds_the_summary_row_of_docs_accuracy() {
+    holds_summary_row(ModelKind::Table, [0.03, 0.09, 0.57, 0.26, 0.36, 0.74]);
+}
+
+#[test]
+fn layered_model_holds_the_summary_row_of_docs_accuracy() {
+    holds_summary_row(ModelKind::Layered, [0.21, 0.62, 2.77, 0.50, 0.36, 0.74]);
+}
+
 #[test]
 fn table_model_matches_lowtran_on_its_grid_to_hundredths_of_a_kelvin() {
+    // docs/accuracy.md: "on its rows it is within 0.06 K to 88°".
     for name in ["us-std-1976", "midlat-winter"] {
         let on_grid = |t: &common::lowtran::Truth| [300.0, 1000.0, 3000.0].contains(&t.observer_m);
         let e = worst(name, ModelKind::Table, |t| {
             t.kind == "ground" && t.angle_deg <= 88.0 && on_grid(t)
         });
         assert!(e < 0.06, "{name}: {e} K");
-        // Between the 2 and 3 km rows the interpolated correction is coarser.
-        let e = worst(name, ModelKind::Table, |t| {
-            t.kind == "ground" && t.angle_deg <= 88.0
-        });
-        assert!(e < 0.6, "{name}: off the grid {e} K");
-    }
-}
-
-#[test]
-fn layered_model_is_within_a_few_tenths_of_a_kelvin_to_80_degrees() {
-    for name in ["us-std-1976", "midlat-winter"] {
-        let e = worst(name, ModelKind::Layered, |t| {
-            t.kind == "ground" && t.angle_deg <= 80.0
-        });
-        assert!(e < 0.7, "{name}: {e} K");
-        let e = worst(name, ModelKind::Layered, |t| t.kind == "segment");
-        assert!(e < 0.6, "{name}: segments {e} K");
-        let e = worst(name, ModelKind::Layered, |t| {
-            t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
-        });
-        assert!(e < 0.6, "{name}: horizontal {e} K");
     }
 }
 
@@ -71,25 +95,33 @@ fn thesis_model_reproduces_its_own_fit_altitude_but_not_others() {
 
 #[test]
 fn sky_from_above_the_ground_follows_lowtran() {
+    // docs/accuracy.md: `table` within 0.7 % off its angle grid to 84° and 2.8 % to the
+    // horizon (past it an extrapolation, held to 3 %); `thesis` and `layered` within
+    // 1.5 % at 0.3 km, 2.7 % at 1 km and 7 % at 3 km up to 62.5°.
     for name in ["us-std-1976", "midlat-winter"] {
         let a = atmosphere(name);
         let table = AtmosphereModel::new(&a, ModelKind::Table).unwrap();
         let layered = AtmosphereModel::new(&a, ModelKind::Layered).unwrap();
+        let thesis = AtmosphereModel::new(&a, ModelKind::Thesis).unwrap();
         for t in truth(name).iter().filter(|t| t.kind == "sky") {
             let rel = |m: &AtmosphereModel| {
                 m.sky_radiance(t.observer_m, t.angle_deg) / t.radiance_w_m2_sr - 1.0
             };
+            let table_bound = if t.angle_deg <= 84.0 { 0.007 } else { 0.03 };
             assert!(
-                rel(&table).abs() < 0.03,
+                rel(&table).abs() < table_bound,
                 "{name} table {t:?}: {}",
                 rel(&table)
             );
             if t.angle_deg <= 62.5 {
-                assert!(
-                    rel(&layered).abs() < 0.08,
-                    "{name} layered {t:?}: {}",
-                    rel(&layered)
-                );
+                let bound = match t.observer_m {
+                    h if h <= 300.0 => 0.015,
+                    h if h <= 1000.0 => 0.027,
+                    _ => 0.07,
+                };
+                for (label, m) in [("layered", &layered), ("thesis", &thesis)] {
+                    assert!(rel(m).abs() < bound, "{name} {label} {t:?}: {}", rel(m));
+                }
             }
         }
     }

@@ -213,21 +213,24 @@ impl Geometry {
     /// and that no triangle is degenerate.
     #[must_use]
     pub fn new(triangles: &[[V3; 3]]) -> Self {
-        Self::with_data(triangles, &vec![(); triangles.len()])
+        Self::with_data(|i| triangles[i], &vec![(); triangles.len()])
     }
 }
 
 impl<P: Copy + Send + Sync> Geometry<P> {
-    /// Builds the BVH over `triangles` (world metres, f64), attaching `data[i]` to facet `i`
-    /// (each [`Hit`] carries a copy). The caller has checked that there is at least one
-    /// triangle, that every number is finite, that no triangle is degenerate, and that
-    /// `data` has one entry per triangle.
+    /// Builds the BVH over the triangles `triangle(i)` (world metres, f64) for `i` below
+    /// `data.len()`, attaching `data[i]` to facet `i` (each [`Hit`] carries a copy). The
+    /// triangles are read through a function, twice, rather than from a slice, so that a
+    /// caller holding them as indexed vertices (a raw scene) need not make a 72-byte copy of
+    /// every facet that would live through the BVH build, the peak of a frame's memory. The
+    /// caller has checked that there is at least one triangle, that every number is
+    /// finite and that no triangle is degenerate.
     #[must_use]
-    pub fn with_data(triangles: &[[V3; 3]], data: &[P]) -> Self {
-        assert_eq!(triangles.len(), data.len(), "one datum per triangle");
+    pub fn with_data(triangle: impl Fn(usize) -> [V3; 3] + Sync, data: &[P]) -> Self {
+        let count = data.len();
         let mut lo = [f64::INFINITY; 3];
         let mut hi = [f64::NEG_INFINITY; 3];
-        for t in triangles {
+        for t in (0..count).map(&triangle) {
             for p in t {
                 for k in 0..3 {
                     lo[k] = lo[k].min(p[k]);
@@ -237,10 +240,10 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         }
         let centre_m = scale(add(lo, hi), 0.5);
         let to32 = |p: V3| Vec3A::new(p[0] as f32, p[1] as f32, p[2] as f32);
-        let obvhs_tris: Vec<Triangle> = triangles
-            .par_iter()
-            .map(|t| {
-                let [a, b, c] = t.map(|p| to32(sub(p, centre_m)));
+        let obvhs_tris: Vec<Triangle> = (0..count)
+            .into_par_iter()
+            .map(|i| {
+                let [a, b, c] = triangle(i).map(|p| to32(sub(p, centre_m)));
                 Triangle {
                     v0: a,
                     v1: b,
@@ -258,7 +261,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             .par_iter()
             .map(|&i| {
                 let t = &obvhs_tris[i as usize];
-                let [a, b, c] = triangles[i as usize].map(|p| sub(p, centre_m));
+                let [a, b, c] = triangle(i as usize).map(|p| sub(p, centre_m));
                 let normal = normalize(cross(sub(b, a), sub(c, a)));
                 FacetLines {
                     tri: BvhTriangle {

@@ -412,7 +412,11 @@ fn sample_pixels([w, h]: [u32; 2], count: u32, seed: u64) -> Vec<(u32, u32)> {
     out
 }
 
+/// The confidence with which the pilot's estimate of a percentile bounds the image's own.
+pub const CONFIDENCE: f64 = 0.95;
+
 /// The value at `percentile` of `values` (nearest rank).
+#[cfg(test)]
 fn percentile_of(values: &mut [f64], percentile: f64) -> f64 {
     if values.is_empty() {
         return 0.0;
@@ -420,6 +424,42 @@ fn percentile_of(values: &mut [f64], percentile: f64) -> f64 {
     values.sort_by(f64::total_cmp);
     let rank = ((percentile / 100.0) * values.len() as f64).ceil() as usize;
     values[rank.clamp(1, values.len()) - 1]
+}
+
+/// The 1-based rank of the order statistic of `n` samples that is at least the
+/// population's `percentile` with probability [`CONFIDENCE`]: the smallest `k` with
+/// P(X ≤ k − 1) ≥ CONFIDENCE, X ~ Binomial(n, percentile/100) being the count of samples
+/// below the population's percentile (distribution-free; any continuous distribution).
+/// `n` when even the largest sample is not enough, and for the 100th percentile.
+fn confident_rank(n: usize, percentile: f64) -> usize {
+    let q = percentile / 100.0;
+    if n == 0 || q >= 1.0 {
+        return n;
+    }
+    // P(X = j) in logs, from j = 0 up: ln C(n, j) + j ln q + (n − j) ln(1 − q).
+    let (ln_q, ln_1q) = (q.ln(), (1.0 - q).ln());
+    let mut ln_choose = 0.0;
+    let mut cumulative = 0.0;
+    for j in 0..n {
+        if j > 0 {
+            ln_choose += ((n - j + 1) as f64).ln() - (j as f64).ln();
+        }
+        cumulative += (ln_choose + j as f64 * ln_q + (n - j) as f64 * ln_1q).exp();
+        if cumulative >= CONFIDENCE {
+            return j + 1;
+        }
+    }
+    n
+}
+
+/// An upper bound, with [`CONFIDENCE`], on the `percentile` of the population `values`
+/// are a random sample of: their order statistic at [`confident_rank`].
+fn percentile_bound(values: &mut [f64], percentile: f64) -> f64 {
+    if values.is_empty() {
+        return 0.0;
+    }
+    values.sort_by(f64::total_cmp);
+    values[confident_rank(values.len(), percentile).clamp(1, values.len()) - 1]
 }
 
 /// A combination: one index per model, into its list.
@@ -503,7 +543,7 @@ fn choose<S>(
     loop {
         let mut b = bound(&combo);
         let worst = b.iter().copied().fold(0.0, f64::max);
-        let p = percentile_of(&mut b, percentile);
+        let p = percentile_bound(&mut b, percentile);
         if p <= tolerance_k {
             let c = cost(&combo);
             // At equal cost (a model that changes nothing here), the cheaper settings.
@@ -559,8 +599,27 @@ fn choose<S>(
                 .find(|(r, _)| *r == model)
                 .map(|(_, why)| why.clone())
                 .unwrap_or_else(|| {
+                    // Every alternative gave every pilot pixel the reference's temperature:
+                    // the model cannot matter in this view (as far as the pilot saw).
+                    let inert = lens[m] > 1
+                        && samples.iter().all(|s| s.errors[m].iter().all(|&e| e == 0.0));
                     if lens[m] == 1 {
                         "the only setting on offer".to_owned()
+                    } else if inert {
+                        match model {
+                            SwitchableModel::SkyView => format!(
+                                "the sky-view rays of the {} pilot pixels met no facet: F = 1 is exact here",
+                                samples.len()
+                            ),
+                            SwitchableModel::Bounces => format!(
+                                "every bounce count offered gave the {} pilot pixels the same temperatures",
+                                samples.len()
+                            ),
+                            _ => format!(
+                                "every setting gave the {} pilot pixels the same temperatures",
+                                samples.len()
+                            ),
+                        }
                     } else if i == lens[m] - 1 {
                         "the cheapest setting meets the tolerance".to_owned()
                     } else {
@@ -573,7 +632,7 @@ fn choose<S>(
                 reference: settings(m, 0),
                 pinned: space.pinned.contains(&model),
                 error: ErrorEstimate {
-                    percentile_k: percentile_of(&mut errors, percentile),
+                    percentile_k: percentile_bound(&mut errors, percentile),
                     max_k,
                 },
                 relative_cost: cost(&alone) / reference_cost,
@@ -665,6 +724,22 @@ mod tests {
         );
         assert_eq!(sample_pixels([512, 384], 256, 1), s);
         assert_eq!(sample_pixels([3, 2], 1000, 1).len(), 6);
+    }
+
+    #[test]
+    fn confident_ranks_are_binomial_order_statistics() {
+        // 299 samples: the largest bounds the 99th percentile with 95 % confidence
+        // (1 − 0.99^299 = 0.95046), 298 do not (1 − 0.99^298 = 0.94996).
+        assert_eq!(confident_rank(299, 99.0), 299);
+        assert_eq!(confident_rank(250, 99.0), 250);
+        // 1024 samples: exceedances E ~ Binomial(1024, 0.01), P(E ≥ 5) = 0.9755 ≥ 0.95
+        // and P(E ≥ 6) = 0.9423 < 0.95 (summed by hand), so the 5th largest, rank 1020.
+        assert_eq!(confident_rank(1024, 99.0), 1020);
+        // The median of 100 samples: P(X ≤ 58) = 0.9557, P(X ≤ 57) = 0.9334
+        // (Binomial(100, 0.5), summed by hand), so rank 59.
+        assert_eq!(confident_rank(100, 50.0), 59);
+        assert_eq!(confident_rank(10, 100.0), 10);
+        assert_eq!(confident_rank(0, 99.0), 0);
     }
 
     #[test]

@@ -454,6 +454,13 @@ impl BareObvhs {
     /// (the tracer's [`crate::geometry::Geometry::centre_m`]).
     #[must_use]
     pub fn new(mesh: &Mesh, centre_m: V3) -> Self {
+        Self::with_params(mesh, centre_m, obvhs::BvhBuildParams::medium_build())
+    }
+
+    /// As [`BareObvhs::new`], with obvhs's build `params` (one of its presets, for
+    /// measuring what build quality trades against traversal).
+    #[must_use]
+    pub fn with_params(mesh: &Mesh, centre_m: V3, params: obvhs::BvhBuildParams) -> Self {
         let tris: Vec<obvhs::triangle::Triangle> = triangles(mesh)
             .iter()
             .map(|t| obvhs::triangle::Triangle {
@@ -464,7 +471,7 @@ impl BareObvhs {
             .collect();
         let bvh = obvhs::cwbvh::builder::build_cwbvh_from_tris(
             &tris,
-            obvhs::BvhBuildParams::medium_build(),
+            params,
             &mut std::time::Duration::default(),
         );
         let tris = bvh

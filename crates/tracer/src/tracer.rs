@@ -668,7 +668,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
         let mut last: Option<(u64, u32)> = None;
         let mut facets = Vec::with_capacity(scene.facets.len());
-        let mut triangles = Vec::with_capacity(scene.facets.len());
         let first = &sub_bands[0].band;
         for (i, f) in scene.facets.iter().enumerate() {
             let slot = slot_of[usize::from(f.material.0)];
@@ -696,11 +695,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 temperature_k: f.temperature_k,
                 blackbody: first.radiance(f.temperature_k),
             });
-            // Indices were checked by validate().
-            triangles.push(f.vertices.map(|v| scene.positions_m[v as usize]));
         }
+        // Indices were checked by validate().
+        let triangle = |i: usize| {
+            scene.facets[i]
+                .vertices
+                .map(|v| scene.positions_m[v as usize])
+        };
         let mut tracer = Self {
-            geometry: Geometry::with_data(&triangles, &facets),
+            geometry: Geometry::with_data(triangle, &facets),
             materials: mats,
             terrain: scene.terrain,
             band,

