@@ -122,12 +122,17 @@ pub fn offer(
         .materials
         .iter()
         .any(|m| m.specular_fraction < 1.0);
+    // Sub-bands pinned to the band model: every atmosphere model costs one sky, as without
+    // spectra.
+    let band_pinned = pins
+        .iter()
+        .any(|p| p.model == SwitchableModel::SubBands && p.setting == "1");
     let mut atmospheres = match kinds {
         // Spectra with slant tables: the table model, LOWTRAN's own paths in every
         // sub-band; the layered and thesis models, approximations for atmospheres without
         // slant tables, would each cost a sky precomputation per sub-band of the pilot's
         // full grid (BENCHMARKS.md: 88 and 121 ms).
-        Some(k) if spectral && k.contains(&ModelKind::Table) => {
+        Some(k) if spectral && !band_pinned && k.contains(&ModelKind::Table) => {
             reasons.push((
                 SwitchableModel::Atmosphere,
                 "a spectral atmosphere with slant tables: the table model".to_owned(),
@@ -304,5 +309,24 @@ mod tests {
         assert!("atmosphere=lowtran".parse::<Pin>().is_err());
         assert!("supersampling=0".parse::<Pin>().is_err());
         assert!("sub-bands=0".parse::<Pin>().is_err());
+    }
+
+    #[test]
+    fn a_spectral_atmosphere_offers_sub_bands_over_the_table_model() {
+        let materials = MaterialLibrary::default();
+        let kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis];
+        let o = offer(&materials, Some(&kinds), true, &[]).unwrap();
+        assert_eq!(o.sub_bands, SPECTRAL_SUB_BANDS.to_vec());
+        assert_eq!(o.atmospheres, vec![ModelKind::Table]);
+        // The band model pinned: every atmosphere model again, as without spectra.
+        let pin: Pin = "sub-bands=1".parse().unwrap();
+        let o = offer(&materials, Some(&kinds), true, &[pin]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        assert_eq!(o.atmospheres, kinds.to_vec());
+        // Without spectra only the band model; a count above 1 cannot be pinned.
+        let o = offer(&materials, Some(&kinds), false, &[]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        let pin: Pin = "sub-bands=16".parse().unwrap();
+        assert!(offer(&materials, Some(&kinds), false, &[pin]).is_err());
     }
 }
