@@ -9,4 +9,4 @@ cd "$(dirname "$0")/.."
 cargo build --release --bins --quiet
 bin="${CARGO_TARGET_DIR:-target}/release"
 "$bin/irsig-run" "$@" pipelines/quickstart.ron
-echo "quickstart: out/quickstart/colour.png is the picture (sensor.exr the radiance, lut.txt the counts)"
+echo "quickstart: out/quickstart/colour.png is the picture, report.html the run report (sensor.exr the radiance, lut.txt the counts)"

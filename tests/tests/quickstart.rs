@@ -23,7 +23,7 @@ use irsig_raster::Raster;
 use irsig_tests::{bin, bin_path, repo_root};
 
 /// Every file the quickstart writes, under `out/quickstart/`.
-const OUTPUTS: [&str; 10] = [
+const OUTPUTS: [&str; 11] = [
     "scene.raw",
     "radiance.exr",
     "truth.exr",
@@ -34,6 +34,7 @@ const OUTPUTS: [&str; 10] = [
     "lut.txt",
     "preview.png",
     "colour.png",
+    "report.html",
 ];
 
 /// A copy of `pipelines/quickstart.ron` and `pipelines/quickstart/` in `<tmp>/pipelines/`,
@@ -245,7 +246,7 @@ fn the_quickstart_writes_every_output() {
     // A second run has nothing to do.
     run.run(&[])
         .success()
-        .stderr(predicates::str::contains("0 stage(s) ran, 3 up to date"));
+        .stderr(predicates::str::contains("0 stage(s) ran, 4 up to date"));
 }
 
 /// The warm panel's apparent temperature, by hand, against the sensor image.
@@ -462,7 +463,11 @@ fn runner_makefile_and_pipe_give_byte_identical_outputs() {
              --dc-png ../out/quickstart/dc.png --lut ../out/quickstart/lut.txt \
              --preview ../out/quickstart/preview.png \
              --colour-preview ../out/quickstart/colour.png \
-           < ../out/quickstart/radiance.exr > ../out/quickstart/sensor.exr");
+           < ../out/quickstart/radiance.exr > ../out/quickstart/sensor.exr
+         irsig-report ../out/quickstart/truth.exr --radiance ../out/quickstart/sensor.exr \
+             --regions quickstart/regions.ron --lut ../out/quickstart/lut.txt \
+             --colour-preview ../out/quickstart/colour.png --pipeline quickstart.ron \
+             --profile 256,0:256,383 -o ../out/quickstart/report.html");
 
     for name in OUTPUTS {
         let expected = runner.read(name);

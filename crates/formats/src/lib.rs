@@ -24,6 +24,7 @@ pub mod canonical;
 mod columns;
 mod error;
 pub mod legacy;
+pub mod lut;
 pub mod mesh;
 pub mod nk;
 pub mod radtran;

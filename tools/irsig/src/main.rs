@@ -12,7 +12,7 @@ use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
 const STAGES: &[&str] = &[
-    "import", "flatten", "atmos", "material", "trace", "sensor", "stats", "run",
+    "import", "flatten", "atmos", "material", "trace", "sensor", "stats", "report", "run",
 ];
 
 const USAGE: &str = "\
@@ -29,6 +29,7 @@ Stages (each is also a program of its own, irsig-<STAGE>):
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
   sensor    MTF blur, noise, quantisation
   stats     per-region apparent temperature beside reference values (Tables 5-7)
+  report    one self-contained HTML page of a run: images, plots, tables, provenance
   run       run a declarative pipeline file (RON)
 
 Example:

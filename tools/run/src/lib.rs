@@ -101,7 +101,7 @@ pub struct Cli {
 ///
 /// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
 /// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: every stage tool (import,
-/// flatten, atmos, material, trace, merge, sensor, stats) and run itself (a pipeline may run
+/// flatten, atmos, material, trace, merge, sensor, stats, report) and run itself (a pipeline may run
 /// a sub-pipeline).
 #[must_use]
 pub fn tools() -> Tools {
@@ -115,6 +115,7 @@ pub fn tools() -> Tools {
         .register("merge", check::<irsig_merge::Cli>)
         .register("sensor", check::<irsig_sensor::Cli>)
         .register("stats", check::<irsig_stats::Cli>)
+        .register("report", check::<irsig_report::Cli>)
         .register("run", check::<Cli>);
     tools
 }

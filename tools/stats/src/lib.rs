@@ -199,48 +199,96 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         ),
     };
 
-    let offset = if cli.celsius { ZERO_CELSIUS_K } else { 0.0 };
-    let mut rows = Vec::with_capacity(set.regions.len());
-    for (i, region) in set.regions.iter().enumerate() {
-        let s: RegionStats = region_stats(region, ids, &values, truth.width).map_err(|p| {
-            let (path, message) = match p {
-                RegionProblem::BoxOutside { width, height } => (
-                    format!("regions[{i}].pixels"),
-                    format!(
-                        "region `{}`: the box reaches beyond the image {} ({width} x {height} \
+    let table = tabulate(&Inputs {
+        regions_name: &regions_input.name,
+        regions_text,
+        set: &set,
+        image_name: &truth_input.name,
+        material_ids: ids,
+        width: truth.width,
+        values: &values,
+        source,
+        celsius: cli.celsius,
+    })?;
+    let text = render(&table, cli.format)?;
+    irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
+}
+
+/// What [`tabulate`] reads: the regions (their file's name and text, for messages at the
+/// offending line), the image's material ids and values, pixel by pixel.
+#[derive(Debug)]
+pub struct Inputs<'a> {
+    /// The regions file's name, for messages.
+    pub regions_name: &'a str,
+    /// Its text, for the line and column of a region that does not fit the image.
+    pub regions_text: &'a str,
+    /// The regions, as read from that text.
+    pub set: &'a RegionSet,
+    /// The image's name, for messages.
+    pub image_name: &'a str,
+    /// The `material_primary` layer, row by row.
+    pub material_ids: &'a [f32],
+    /// The image's width, pixels.
+    pub width: usize,
+    /// The values, K, one per pixel in the same order.
+    pub values: &'a [f32],
+    /// Where the values come from, in words (the table's `values`).
+    pub source: String,
+    /// Show temperatures in degC rather than K.
+    pub celsius: bool,
+}
+
+/// The table of per-region statistics of `inputs.values`: what `irsig-stats` prints, for a
+/// caller that has read the images itself (the run report).
+///
+/// # Errors
+/// A region that reaches beyond the image, selects no pixel or meets a non-finite value,
+/// at the region's line in the regions file.
+pub fn tabulate(inputs: &Inputs<'_>) -> miette::Result<Table> {
+    let offset = if inputs.celsius { ZERO_CELSIUS_K } else { 0.0 };
+    let mut rows = Vec::with_capacity(inputs.set.regions.len());
+    for (i, region) in inputs.set.regions.iter().enumerate() {
+        let s: RegionStats = region_stats(region, inputs.material_ids, inputs.values, inputs.width)
+            .map_err(|p| {
+                let (path, message) = match p {
+                    RegionProblem::BoxOutside { width, height } => (
+                        format!("regions[{i}].pixels"),
+                        format!(
+                            "region `{}`: the box reaches beyond the image {} ({width} x {height} \
                          pixels: columns 0-{}, rows 0-{})",
-                        region.name,
-                        truth_input.name,
-                        width.saturating_sub(1),
-                        height.saturating_sub(1)
+                            region.name,
+                            inputs.image_name,
+                            width.saturating_sub(1),
+                            height.saturating_sub(1)
+                        ),
                     ),
-                ),
-                RegionProblem::Empty => (
-                    format!("regions[{i}]"),
-                    format!(
-                        "region `{}` selects no pixel of {}: expected at least one pixel \
+                    RegionProblem::Empty => (
+                        format!("regions[{i}]"),
+                        format!(
+                            "region `{}` selects no pixel of {}: expected at least one pixel \
                          {}",
-                        region.name,
-                        truth_input.name,
-                        selection(region)
+                            region.name,
+                            inputs.image_name,
+                            selection(region)
+                        ),
                     ),
-                ),
-                RegionProblem::NotFinite { column, row } => (
-                    format!("regions[{i}]"),
-                    format!(
-                        "region `{}`: pixel ({column}, {row}) has no finite value ({source})",
-                        region.name
+                    RegionProblem::NotFinite { column, row } => (
+                        format!("regions[{i}]"),
+                        format!(
+                            "region `{}`: pixel ({column}, {row}) has no finite value ({})",
+                            region.name, inputs.source
+                        ),
                     ),
-                ),
-            };
-            irsig_formats::canonical::error_at_path(
-                &regions_input.name,
-                regions_text,
-                &path,
-                message,
-            )
-        })?;
-        let references = set
+                };
+                irsig_formats::canonical::error_at_path(
+                    inputs.regions_name,
+                    inputs.regions_text,
+                    &path,
+                    message,
+                )
+            })?;
+        let references = inputs
+            .set
             .references
             .iter()
             .map(|c| {
@@ -260,18 +308,17 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             references,
         });
     }
-    let table = Table {
-        values: source,
-        unit: if cli.celsius { "degC" } else { "K" }.into(),
-        references: set
+    Ok(Table {
+        values: inputs.source.clone(),
+        unit: if inputs.celsius { "degC" } else { "K" }.into(),
+        references: inputs
+            .set
             .references
             .iter()
             .map(|c| (c.name.clone(), c.source.clone()))
             .collect(),
         regions: rows,
-    };
-    let text = render(&table, cli.format)?;
-    irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
+    })
 }
 
 /// What a region asks for, in words.
