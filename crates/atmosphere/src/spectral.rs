@@ -212,6 +212,140 @@ impl BandQuadrature {
     }
 }
 
+/// How many sub-bands a spectral rendering sums over.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SubBandCount {
+    /// `K` sub-bands (1: the band model over a collapsed atmosphere).
+    Count(usize),
+    /// One sub-band per interval of the atmosphere's grid inside the band.
+    Full,
+}
+
+impl SubBandCount {
+    /// The band model: one sub-band.
+    pub const BAND: Self = Self::Count(1);
+
+    /// Whether this is the band model.
+    #[must_use]
+    pub fn is_band(self) -> bool {
+        self == Self::BAND
+    }
+}
+
+impl std::fmt::Display for SubBandCount {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Count(k) => write!(f, "{k}"),
+            Self::Full => f.write_str("full"),
+        }
+    }
+}
+
+impl std::str::FromStr for SubBandCount {
+    type Err = String;
+
+    /// `full`, or a whole number from 1 up.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s == "full" {
+            return Ok(Self::Full);
+        }
+        match s.parse::<usize>() {
+            Ok(k) if k >= 1 => Ok(Self::Count(k)),
+            _ => Err(format!(
+                "expected a number of sub-bands (1 or more; 1 is the band model) or `full`, found `{s}`"
+            )),
+        }
+    }
+}
+
+/// The edges (µm, increasing, `count + 1` of them from `lo_um` to `hi_um`) of the
+/// sub-bands of `[lo_um, hi_um]` on `grid`.
+///
+/// `Full` gives one sub-band per stretch between neighbouring grid points (the band's ends
+/// closing the first and last). `Count(K)` gives K sub-bands that each hold about an equal
+/// share of `share(a, b)`, the caller's in-band radiance between `a` and `b` µm (the
+/// response-weighted blackbody radiance at a reference temperature): every inner edge is
+/// the grid point nearest its equal share, so that the sub-bands' trapezoid integrals add
+/// up to the whole band's, and each sub-band spans at least one grid interval. Bright
+/// parts of the band get narrow sub-bands, where an error in τ costs the most radiance.
+///
+/// # Errors
+/// As [`BandQuadrature::new`] for the band; a count of 0, or more sub-bands than the grid
+/// has intervals in the band; a share that is negative or not finite, or 0 over the band.
+pub fn sub_band_edges(
+    grid: &SpectralGrid,
+    lo_um: f64,
+    hi_um: f64,
+    count: SubBandCount,
+    share: impl Fn(f64, f64) -> f64,
+) -> Result<Vec<f64>, AtmosphereError> {
+    // Checks the band against the grid.
+    BandQuadrature::new(grid, lo_um, hi_um, |_| 1.0)?;
+    let band_error =
+        |message: String| -> AtmosphereError { AtmosphereErrorKind::Band(message).into() };
+    let mut nodes: Vec<f64> = grid
+        .points
+        .iter()
+        .map(|&p| match grid.axis {
+            SpectralAxis::WavenumberPerCm => 1e4 / p,
+            SpectralAxis::WavelengthUm => p,
+        })
+        .filter(|&l| l > lo_um * (1.0 + 1e-12) && l < hi_um * (1.0 - 1e-12))
+        .collect();
+    nodes.sort_by(f64::total_cmp);
+    nodes.insert(0, lo_um);
+    nodes.push(hi_um);
+    let intervals = nodes.len() - 1;
+    let k = match count {
+        SubBandCount::Full => return Ok(nodes),
+        SubBandCount::Count(0) => return Err(band_error("0 sub-bands: expected 1 or more".into())),
+        SubBandCount::Count(k) if k > intervals => {
+            return Err(band_error(format!(
+                "{k} sub-bands: the atmosphere's grid has {intervals} intervals in {lo_um}-{hi_um} um; ask for at most {intervals}, or `full`"
+            )));
+        }
+        SubBandCount::Count(k) => k,
+    };
+    // The cumulative share at every node.
+    let mut cumulative = vec![0.0; nodes.len()];
+    for i in 0..intervals {
+        let s = share(nodes[i], nodes[i + 1]);
+        if !(s.is_finite() && s >= 0.0) {
+            return Err(band_error(format!(
+                "the in-band radiance between {} and {} um is {s}: expected a finite value of 0 or more",
+                nodes[i],
+                nodes[i + 1]
+            )));
+        }
+        cumulative[i + 1] = cumulative[i] + s;
+    }
+    let total = cumulative[intervals];
+    if total <= 0.0 {
+        return Err(band_error(format!(
+            "the in-band radiance is 0 over {lo_um}-{hi_um} um: no share to divide"
+        )));
+    }
+    let mut picked = vec![0_usize];
+    for j in 1..k {
+        let target = total * j as f64 / k as f64;
+        let nearest = cumulative.partition_point(|&c| c < target);
+        let nearest = if nearest > 0
+            && (nearest == cumulative.len()
+                || target - cumulative[nearest - 1] < cumulative[nearest] - target)
+        {
+            nearest - 1
+        } else {
+            nearest
+        };
+        // Strictly after the previous edge, and leaving one interval for each sub-band
+        // still to come.
+        let last = *picked.last().unwrap_or(&0);
+        picked.push(nearest.max(last + 1).min(intervals - (k - j)));
+    }
+    picked.push(intervals);
+    Ok(picked.into_iter().map(|i| nodes[i]).collect())
+}
+
 /// Least-squares `r ≈ a1 + a2 sec θ + a3 sec² θ` (thesis eq. 10) by Householder-free
 /// modified Gram–Schmidt on the three columns, which is accurate enough for the eight
 /// decimals the `.cor` prints.
@@ -421,6 +555,47 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("outside"), "{e}");
+    }
+
+    #[test]
+    fn sub_bands_hold_equal_shares_on_grid_points() {
+        // 8-14 um every 0.5 um; a share proportional to the width: equal shares are equal
+        // widths, on grid points.
+        let g = grid(
+            SpectralAxis::WavelengthUm,
+            (0..=14).map(|i| 7.5 + 0.5 * f64::from(i)).collect(),
+        );
+        let width = |a: f64, b: f64| b - a;
+        let e = sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(4), width).unwrap();
+        assert_eq!(e, vec![8.0, 9.5, 11.0, 12.5, 14.0]);
+        let one = sub_band_edges(&g, 8.0, 14.0, SubBandCount::BAND, width).unwrap();
+        assert_eq!(one, vec![8.0, 14.0]);
+        // Full: every grid point inside, closed by the band's ends (not on the grid here).
+        let full = sub_band_edges(&g, 8.2, 13.7, SubBandCount::Full, width).unwrap();
+        assert_eq!(full.len(), 13, "{full:?}");
+        assert_eq!((full[0], full[1], full[12]), (8.2, 8.5, 13.7));
+        // A share that is all in the upper half: the edges crowd there, one interval each
+        // at least.
+        let upper = |a: f64, b: f64| (b.min(14.0) - a.max(11.0)).max(0.0);
+        let e = sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(3), upper).unwrap();
+        assert_eq!(e, vec![8.0, 12.0, 13.0, 14.0]);
+        // As many sub-bands as intervals is the full grid; more is refused, as is 0.
+        let twelve = sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(12), upper).unwrap();
+        assert_eq!(
+            twelve,
+            sub_band_edges(&g, 8.0, 14.0, SubBandCount::Full, upper).unwrap()
+        );
+        let e = sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(13), width).unwrap_err();
+        assert!(e.to_string().contains("12 intervals"), "{e}");
+        assert!(sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(0), width).is_err());
+        assert!(sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(2), |_, _| 0.0).is_err());
+        assert!(sub_band_edges(&g, 8.0, 14.0, SubBandCount::Count(2), |_, _| f64::NAN).is_err());
+        assert!(sub_band_edges(&g, 7.0, 14.0, SubBandCount::Count(2), width).is_err());
+        assert_eq!("full".parse(), Ok(SubBandCount::Full));
+        assert_eq!("16".parse(), Ok(SubBandCount::Count(16)));
+        assert!("0".parse::<SubBandCount>().is_err());
+        assert!("-3".parse::<SubBandCount>().is_err());
+        assert_eq!(SubBandCount::Count(16).to_string(), "16");
     }
 
     #[test]

@@ -40,6 +40,9 @@ pub enum Layer {
     SkyViewFactor,
     /// Apparent (blackbody) temperature of the radiance at the sensor in the band, K.
     ApparentTemperature,
+    /// How many sub-bands the radiance equation was summed over (1: the band model); the
+    /// other layers hold band-integrated values either way.
+    SubBands,
     /// The error budget (with declared uncertainties): σ of the apparent temperature from
     /// the kinetic temperature's uncertainty, K.
     SigmaKineticTemperature,
@@ -58,7 +61,7 @@ pub enum Layer {
 
 impl Layer {
     /// The truth EXR's layers, in the order the tracer writes them.
-    pub const TRUTH: [Self; 11] = [
+    pub const TRUTH: [Self; 12] = [
         Self::MaterialPrimary,
         Self::MaterialSecondary,
         Self::Event,
@@ -70,6 +73,7 @@ impl Layer {
         Self::PathRadiance,
         Self::SkyViewFactor,
         Self::ApparentTemperature,
+        Self::SubBands,
     ];
 
     /// The error budget's layers, written after [`Layer::TRUTH`] when uncertainties are
@@ -84,7 +88,7 @@ impl Layer {
     ];
 
     /// Every layer: the radiance, the truth layers, the error budget.
-    pub const ALL: [Self; 18] = [
+    pub const ALL: [Self; 19] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -97,6 +101,7 @@ impl Layer {
         Self::PathRadiance,
         Self::SkyViewFactor,
         Self::ApparentTemperature,
+        Self::SubBands,
         Self::SigmaKineticTemperature,
         Self::SigmaEmissivity,
         Self::SigmaTransmission,
@@ -121,6 +126,7 @@ impl Layer {
             Self::PathRadiance => "path_radiance",
             Self::SkyViewFactor => "sky_view_factor",
             Self::ApparentTemperature => "apparent_temperature",
+            Self::SubBands => "sub_bands",
             Self::SigmaKineticTemperature => "sigma_kinetic_temperature",
             Self::SigmaEmissivity => "sigma_emissivity",
             Self::SigmaTransmission => "sigma_transmission",
@@ -148,19 +154,20 @@ impl Layer {
             Self::MaterialPrimary
             | Self::MaterialSecondary
             | Self::Event
+            | Self::SubBands
             | Self::Emissivity
             | Self::Transmission
             | Self::SkyViewFactor => "",
         }
     }
 
-    /// Whether the layer holds labels (material ids, events), which are reduced by majority
+    /// Whether the layer holds labels (material ids, events, the sub-band count), which are reduced by majority
     /// and never averaged.
     #[must_use]
     pub const fn is_label(self) -> bool {
         matches!(
             self,
-            Self::MaterialPrimary | Self::MaterialSecondary | Self::Event
+            Self::MaterialPrimary | Self::MaterialSecondary | Self::Event | Self::SubBands
         )
     }
 
@@ -189,8 +196,8 @@ mod tests {
                 assert_ne!(a.name(), b.name());
             }
         }
-        assert_eq!(Layer::ALL[1..12], Layer::TRUTH);
-        assert_eq!(Layer::ALL[12..], Layer::BUDGET);
+        assert_eq!(Layer::ALL[1..13], Layer::TRUTH);
+        assert_eq!(Layer::ALL[13..], Layer::BUDGET);
         assert_eq!(Layer::from_name("Radiance"), None);
     }
 }

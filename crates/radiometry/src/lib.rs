@@ -37,4 +37,5 @@ pub use calculators::{
 pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
 pub use inverse::InverseTable;
+pub use planck::spectral_radiance_per_um;
 pub use table::RadianceTable;

@@ -106,6 +106,19 @@ fn tail_and_edge(x: f64) -> (f64, f64) {
 /// Band radiance (W m^-2 sr^-1) and its temperature derivative (W m^-2 sr^-1 K^-1) of a
 /// blackbody at `t_k` over `[lambda1_m, lambda2_m]`, SRF = 1. `t_k` must be positive and
 /// finite and `0 < lambda1_m < lambda2_m`; the radiance saturates at `f64::MAX`.
+/// Planck's spectral radiance at one wavelength, W m⁻² sr⁻¹ µm⁻¹:
+/// `c1L / (λ⁵ (exp(c2 / (λ T)) − 1))`, 0 for `T ≤ 0`. For weighting spectral quantities by
+/// a blackbody (a sub-band's transmittance as its target sees it), not for band radiances,
+/// which [`crate::Band`] integrates.
+#[must_use]
+pub fn spectral_radiance_per_um(wavelength_um: f64, t_k: f64) -> f64 {
+    if t_k <= 0.0 {
+        return 0.0;
+    }
+    let l = wavelength_um * 1e-6;
+    C1L_W_M2_SR / (l.powi(5) * (C2_M_K / (l * t_k)).exp_m1()) * 1e-6
+}
+
 pub(crate) fn flat_band(lambda1_m: f64, lambda2_m: f64, t_k: f64) -> (f64, f64) {
     let x1 = C2_M_K / (lambda1_m * t_k);
     let x2 = C2_M_K / (lambda2_m * t_k);
@@ -146,6 +159,29 @@ pub(crate) fn flat_band(lambda1_m: f64, lambda2_m: f64, t_k: f64) -> (f64, f64) 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_spectral_radiance_integrates_to_the_band_and_peaks_at_wiens_wavelength() {
+        // Simpson over 8-14 um against the closed-form band.
+        let n = 2000;
+        let h = 6.0 / f64::from(n);
+        let mut s = spectral_radiance_per_um(8.0, 300.0) + spectral_radiance_per_um(14.0, 300.0);
+        for i in 1..n {
+            let w = if i % 2 == 1 { 4.0 } else { 2.0 };
+            s += w * spectral_radiance_per_um(8.0 + h * f64::from(i), 300.0);
+        }
+        let band = flat_band(8e-6, 14e-6, 300.0).0;
+        assert!(
+            (s * h / 3.0 / band - 1.0).abs() < 1e-10,
+            "{} vs {band}",
+            s * h / 3.0
+        );
+        // Wien: λ_max T = 2897.77 um K.
+        let peak = 2_897.771_955 / 300.0;
+        let at = |l: f64| spectral_radiance_per_um(l, 300.0);
+        assert!(at(peak) > at(peak - 0.01) && at(peak) > at(peak + 0.01));
+        assert!(spectral_radiance_per_um(10.0, 0.0).abs() < f64::MIN_POSITIVE);
+    }
 
     /// P(x) by composite Simpson on a fine grid: an independent check of both series near
     /// the switch point, where either could be off.

@@ -344,7 +344,8 @@ impl TruthPixel {
 
     /// The value of truth `layer` for this pixel, as the truth EXR stores it; `None` for
     /// the layers that come from the pixel's radiance and the declared uncertainties
-    /// instead ([`Layer::Radiance`], [`Layer::ApparentTemperature`], [`Layer::BUDGET`]).
+    /// instead ([`Layer::Radiance`], [`Layer::ApparentTemperature`], [`Layer::BUDGET`]), and
+    /// the frame's sub-band count ([`Layer::SubBands`], the tracer's).
     #[must_use]
     pub fn layer(&self, layer: Layer) -> Option<f32> {
         Some(match layer {
@@ -360,6 +361,7 @@ impl TruthPixel {
             Layer::SkyViewFactor => self.sky_view_factor,
             Layer::Radiance
             | Layer::ApparentTemperature
+            | Layer::SubBands
             | Layer::SigmaKineticTemperature
             | Layer::SigmaEmissivity
             | Layer::SigmaTransmission

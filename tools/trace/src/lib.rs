@@ -34,7 +34,7 @@ mod tolerance;
 use std::path::{Path, PathBuf};
 
 use clap::Parser;
-use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere};
+use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBandCount};
 pub use irsig_cli::args::TraceBand;
 use irsig_cli::args::{DcArgs, named};
 use irsig_formats::canonical::{from_ron_bytes, read_raw_scene};
@@ -43,8 +43,8 @@ use irsig_formats::views::{parse_views, read_execute};
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::truth::Layer;
 use irsig_model::uncertainty::Uncertainties;
-use irsig_model::{LengthUnit, MaterialLibrary, RawScene, View};
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_model::{LengthUnit, MaterialLibrary, RawScene, SpectralAtmosphere, View};
+use irsig_radiometry::{Band, BandModel, TotalRadiance, spectral_radiance_per_um};
 use irsig_raster::{FramePart, Raster, counts_png, exr_bytes, write_png_gray8};
 use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{
@@ -114,10 +114,20 @@ pub struct Cli {
     /// hand. Use the band the atmosphere's tables were integrated over.
     #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE|total")]
     pub band: TraceBand,
-    /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`), a canonical
-    /// atmosphere file (RON), or `none` (a vacuum whose sky has radiance --sky-radiance).
+    /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`; both also in
+    /// spectral form), a canonical atmosphere file (RON), a spectral atmosphere file (what
+    /// `irsig-atmos build` writes), or `none` (a vacuum whose sky has radiance
+    /// --sky-radiance).
     #[arg(long, default_value = "none", value_name = "NAME|FILE")]
     pub atmosphere: String,
+    /// Sum the radiance equation over sub-bands of the band (the spectral model), each
+    /// with its own τ, path and sky radiance collapsed from a spectral atmosphere: K
+    /// sub-bands, each holding an equal share of the band's response-weighted blackbody
+    /// radiance at 300 K, or `full`, one per interval of the atmosphere's spectral grid.
+    /// 1, the default, is the band model: one band-mean τ times the band radiance, the
+    /// faster model (docs/accuracy.md measures what it costs in kelvin).
+    #[arg(long, value_name = "K|full", value_parser = parse_sub_bands)]
+    pub sub_bands: Option<SubBandCount>,
     /// The atmosphere model: `table` (slant-path tables), `layered` (eq. 8-9), `thesis`
     /// (eq. 10-11, the 1990 model) or `none`.
     /// [default: table]
@@ -184,7 +194,7 @@ pub struct Cli {
     /// --decision-out). Pin a model by hand with --pin.
     #[arg(long, value_name = "K", allow_negative_numbers = true, conflicts_with_all = [
         "atmosphere_model", "bounces", "sky_view_rays", "supersample", "path_terms",
-        "adaptive_supersampling", "decision",
+        "adaptive_supersampling", "decision", "sub_bands",
     ])]
     pub tolerance: Option<f64>,
     /// The percentile of pixels --tolerance applies to, more than 0 and at most 100.
@@ -296,6 +306,10 @@ struct Outputs {
 }
 
 fn parse_unit(s: &str) -> Result<LengthUnit, String> {
+    s.parse()
+}
+
+fn parse_sub_bands(s: &str) -> Result<SubBandCount, String> {
     s.parse()
 }
 
@@ -498,13 +512,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         TraceBand::Total => {
             hash_field(&mut run, "band", format!("{TotalRadiance:?}").as_bytes());
             inputs.job.run = run;
-            pool.install(|| with_atmosphere(&cli, &inputs, TotalRadiance))
+            pool.install(|| with_atmosphere(&cli, &inputs, TotalRadiance, None))
         }
         TraceBand::Band(arg) => {
             let band = arg.load()?;
             hash_field(&mut run, "band", format!("{band:?}").as_bytes());
             inputs.job.run = run;
-            pool.install(|| with_atmosphere(&cli, &inputs, band))
+            let split = Split::of(&band);
+            pool.install(|| with_atmosphere(&cli, &inputs, band.clone(), Some(&split)))
         }
     }
 }
@@ -526,13 +541,17 @@ fn hash_field(run: &mut Sha256, name: &str, bytes: &[u8]) {
 /// with; not the outputs, the tile, the thread count or the digital-count flags, which
 /// change no pixel. A frame traced whole and every tile of it name the same run.
 fn frame_run(run: &Sha256, view: &View, settings: &Settings) -> String {
+    let sub_bands = settings.sub_bands;
     let mut h = run.clone();
     hash_field(&mut h, "view", format!("{view:?}").as_bytes());
     let options = TraceOptions {
         truth: true,
         ..settings.options
     };
-    let settings = format!("{options:?} {:?} {:?}", settings.kind, settings.path_terms);
+    let mut settings = format!("{options:?} {:?} {:?}", settings.kind, settings.path_terms);
+    if !sub_bands.is_band() {
+        settings.push_str(&format!(" sub-bands {sub_bands}"));
+    }
     hash_field(&mut h, "settings", settings.as_bytes());
     let digest = h.finalize();
     let mut hex = String::with_capacity(7 + 64);
@@ -566,10 +585,29 @@ fn read_uncertainties(path: &str, materials: &MaterialLibrary) -> miette::Result
     Ok(u)
 }
 
-/// The canonical atmosphere `--atmosphere` names: a built-in, else a file.
-fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
+/// The atmosphere `--atmosphere` names, in band or spectral form.
+#[allow(clippy::large_enum_variant)] // one per run
+enum AirData {
+    Band(irsig_model::Atmosphere),
+    /// A spectral atmosphere and the bytes it was read from (what the run hash covers).
+    Spectral(SpectralAtmosphere, Vec<u8>),
+}
+
+/// A sub-band count's sub-bands: their band models and collapsed atmospheres.
+type Collapsed = std::sync::Arc<Vec<(Band, irsig_model::Atmosphere)>>;
+
+/// The atmosphere `--atmosphere` names: a built-in (in spectral form when `spectral`), else
+/// a file, spectral or not by its content.
+fn read_atmosphere(name: &str, spectral: bool) -> miette::Result<AirData> {
     if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
-        return irsig_atmosphere::builtin(name).map_err(|e| miette!("{e}"));
+        if spectral {
+            let a = irsig_atmosphere::builtin_spectral(name).map_err(|e| miette!("{e}"))?;
+            let bytes = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+            return Ok(AirData::Spectral(a, bytes.to_vec()));
+        }
+        return irsig_atmosphere::builtin(name)
+            .map(AirData::Band)
+            .map_err(|e| miette!("{e}"));
     }
     if !Path::new(name).exists() {
         return Err(irsig_cli::usage_error(format!(
@@ -579,19 +617,133 @@ fn read_atmosphere(name: &str) -> miette::Result<irsig_model::Atmosphere> {
         )));
     }
     let input = irsig_cli::read_input(name)?;
-    Ok(from_ron_bytes(&input.name, &input.bytes)?)
+    if irsig_formats::canonical::binary_spectral::is_binary(&input.bytes) {
+        let a = irsig_formats::canonical::read_spectral_atmosphere(&input.name, &input.bytes)?;
+        return Ok(AirData::Spectral(a, input.bytes));
+    }
+    match from_ron_bytes::<irsig_model::Atmosphere>(&input.name, &input.bytes) {
+        Ok(a) => Ok(AirData::Band(a)),
+        Err(band_error) => {
+            // A spectral atmosphere in RON has a spectral grid; a band one has none.
+            let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+            if text.contains("grid") {
+                let a = from_ron_bytes::<SpectralAtmosphere>(&input.name, &input.bytes)?;
+                Ok(AirData::Spectral(a, input.bytes))
+            } else {
+                Err(band_error.into())
+            }
+        }
+    }
 }
 
-/// The atmosphere of the run, for any model kind its tables allow: for rendering (`A`),
-/// and for the pilot's band sets (`S`), which evaluate each kind as a rendering with it
-/// would (its sky precomputed: computing the hemispheric sky afresh at every pilot facet
-/// cost more than the whole pilot otherwise does).
-struct Air<'a, A, S> {
+/// The reference temperature of the sub-bands' equal shares, K: about the scenes'
+/// (earth-ambient) temperatures, where the band's radiance is what the sensor sees.
+const SHARE_REFERENCE_K: f64 = 300.0;
+
+/// How the band divides into sub-bands: its range, a sub-band's band model, and its
+/// response (the weight of [`irsig_atmosphere::collapse`]).
+struct Split<'a> {
+    range_um: [f64; 2],
+    response: Option<&'a irsig_radiometry::SensorResponse>,
+}
+
+impl<'a> Split<'a> {
+    fn of(band: &'a Band) -> Self {
+        Self {
+            range_um: [band.lambda_min_um(), band.lambda_max_um()],
+            response: band.response(),
+        }
+    }
+
+    /// The band model of `[a, b]` µm with the band's response; `None` where the response
+    /// is 0 throughout.
+    fn sub_band(&self, a: f64, b: f64) -> miette::Result<Option<Band>> {
+        let flat = Band::new(a, b).map_err(|e| miette!("sub-band {a}-{b} um: {e}"))?;
+        match self.response {
+            None => Ok(Some(flat)),
+            Some(r) => Ok(flat.with_response(r).ok()),
+        }
+    }
+
+    fn weight(&self, wavelength_um: f64) -> f64 {
+        self.response.map_or(1.0, |r| r.at(wavelength_um))
+    }
+
+    /// The sub-bands of `count`: their edges and band models (those the response
+    /// reaches), each with the atmosphere collapsed over it.
+    fn collapse(
+        &self,
+        spectral: &SpectralAtmosphere,
+        count: SubBandCount,
+    ) -> miette::Result<Vec<(Band, irsig_model::Atmosphere)>> {
+        let [lo, hi] = self.range_um;
+        let share = |a: f64, b: f64| match self.sub_band(a, b) {
+            Ok(Some(band)) => band.radiance(SHARE_REFERENCE_K),
+            Ok(None) => 0.0,
+            Err(_) => f64::NAN,
+        };
+        let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
+            .map_err(|e| irsig_cli::usage_error(format!("--sub-bands {count}: {e}")))?;
+        edges
+            .par_windows(2)
+            .map(|w| {
+                let Some(band) = self.sub_band(w[0], w[1])? else {
+                    return Ok(None);
+                };
+                let at = |e: irsig_atmosphere::AtmosphereError| {
+                    miette!("sub-band {}-{} um: {e}", w[0], w[1])
+                };
+                let mut atmosphere =
+                    irsig_atmosphere::collapse(spectral, w[0], w[1], |l| self.weight(l))
+                        .map_err(at)?;
+                if !count.is_band() {
+                    // τ as the target sees it: weighted by the blackbody at the reference
+                    // temperature, so that τ times the sub-band's L_T is ∫ τ B dλ across
+                    // the sub-band (without it the full grid reads up to 0.024 K warm in
+                    // a tropical atmosphere; docs/accuracy.md). Radiances keep the
+                    // response alone.
+                    let seen = irsig_atmosphere::collapse(spectral, w[0], w[1], |l| {
+                        self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
+                    })
+                    .map_err(at)?;
+                    with_transmission(&mut atmosphere, &seen);
+                }
+                Ok(Some((band, atmosphere)))
+            })
+            .filter_map(Result::transpose)
+            .collect()
+    }
+}
+
+/// `atmosphere` with the transmittances of `seen`, the same atmosphere collapsed with
+/// another weight: the profile's, the `.cor` fit's and the slant tables'.
+fn with_transmission(atmosphere: &mut irsig_model::Atmosphere, seen: &irsig_model::Atmosphere) {
+    for (level, s) in atmosphere.levels.iter_mut().zip(&seen.levels) {
+        level.transmission = s.transmission;
+    }
+    atmosphere.transmission_correction = seen.transmission_correction;
+    if let (Some(slant), Some(s)) = (atmosphere.slant.as_mut(), seen.slant.as_ref()) {
+        slant.transmission.clone_from(&s.transmission);
+    }
+}
+
+/// The atmosphere of the run, for any model kind its tables allow, over the band or over
+/// sub-bands of it: for rendering (`A`), and for the pilot's band sets (`S`), which
+/// evaluate each kind as a rendering with it would (its sky precomputed: computing the
+/// hemispheric sky afresh at every pilot facet cost more than the whole pilot otherwise
+/// does, and with K sub-bands K times more).
+struct Air<'a, R, A, S> {
     /// The kinds on offer, most accurate first (`None`: a vacuum).
     kinds: Option<Vec<ModelKind>>,
-    precomputed: Box<dyn Fn(ModelKind) -> miette::Result<A> + 'a>,
-    pilot: Box<dyn Fn(ModelKind) -> miette::Result<S> + 'a>,
+    /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
+    spectral: bool,
+    precomputed: SubBandsOf<'a, R, A>,
+    pilot: SubBandsOf<'a, R, S>,
 }
+
+/// The sub-bands of a model kind and a count.
+type SubBandsOf<'a, R, T> =
+    Box<dyn Fn(ModelKind, SubBandCount) -> miette::Result<Vec<SubBand<R, T>>> + 'a>;
 
 /// What a run reads besides the band and the atmosphere.
 struct Inputs {
@@ -601,10 +753,57 @@ struct Inputs {
     uncertainties: Option<Uncertainties>,
 }
 
-fn with_atmosphere<R: BandModel + Clone>(
+/// A band model that sub-bands of a band can be: [`Band`], not the whole spectrum.
+trait SubBandModel: BandModel + Clone {
+    fn of_band(band: &Band) -> miette::Result<Self>;
+}
+
+impl SubBandModel for Band {
+    fn of_band(band: &Band) -> miette::Result<Self> {
+        Ok(band.clone())
+    }
+}
+
+impl SubBandModel for TotalRadiance {
+    fn of_band(_: &Band) -> miette::Result<Self> {
+        Err(irsig_cli::usage_error(
+            "the `total` band (the whole spectrum) has no sub-bands",
+        ))
+    }
+}
+
+/// The error of sub-bands asked of an atmosphere without spectra.
+fn no_spectra(name: &str, count: SubBandCount) -> miette::Report {
+    irsig_cli::usage_error(format!(
+        "--sub-bands {count}: the atmosphere `{name}` has no spectra; sub-bands need a \
+         spectral atmosphere (a built-in, or a file irsig-atmos build wrote), and the \
+         `total` band has none"
+    ))
+}
+
+/// One sub-band, the whole band, for the band model.
+fn whole<R: Clone, T>(
+    band: &R,
+    name: &str,
+    count: SubBandCount,
+    atmosphere: impl FnOnce() -> miette::Result<T>,
+) -> miette::Result<Vec<SubBand<R, T>>> {
+    if !count.is_band() {
+        return Err(no_spectra(name, count));
+    }
+    Ok(vec![SubBand {
+        band: band.clone(),
+        atmosphere: atmosphere()?,
+        emissivity: None,
+    }])
+}
+
+#[allow(clippy::too_many_lines)]
+fn with_atmosphere<R: SubBandModel>(
     cli: &Cli,
     inputs: &Inputs,
     band: R,
+    split: Option<&Split<'_>>,
 ) -> miette::Result<()> {
     let (scene, job) = (&inputs.scene, &inputs.job);
     let mut run = job.run.clone();
@@ -613,14 +812,21 @@ fn with_atmosphere<R: BandModel + Clone>(
             sky_radiance_w_m2_sr: cli.sky_radiance,
         };
         hash_field(&mut run, "atmosphere", format!("{vacuum:?}").as_bytes());
+        let (b1, b2) = (band.clone(), band.clone());
         let air = Air {
             kinds: None,
-            precomputed: Box::new(move |_| Ok(vacuum)),
-            pilot: Box::new(move |_| Ok(vacuum)),
+            spectral: false,
+            precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
+            pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
         };
         return trace_all(cli, inputs, &run, band, &air);
     }
-    let atmosphere = read_atmosphere(&cli.atmosphere)?;
+    // A built-in is read in spectral form when sub-bands may be asked for.
+    let wants_spectra = split.is_some()
+        && (cli.sub_bands.is_some_and(|c| !c.is_band())
+            || cli.tolerance.is_some()
+            || cli.decision.is_some());
+    let data = read_atmosphere(&cli.atmosphere, wants_spectra)?;
     // The sky is precomputed up to the highest sensor or scene point.
     let top = job
         .views
@@ -629,59 +835,129 @@ fn with_atmosphere<R: BandModel + Clone>(
         .chain(scene.positions_m.iter().map(|p| p[2]))
         .fold(0.0_f64, f64::max);
     // The sky's precomputed levels depend on the top: so do the pixels.
-    hash_field(
-        &mut run,
-        "atmosphere",
-        format!("{atmosphere:?} top {:x}", top.to_bits()).as_bytes(),
-    );
+    match &data {
+        AirData::Band(atmosphere) => hash_field(
+            &mut run,
+            "atmosphere",
+            format!("{atmosphere:?} top {:x}", top.to_bits()).as_bytes(),
+        ),
+        AirData::Spectral(_, bytes) => {
+            hash_field(&mut run, "spectral atmosphere", bytes);
+            hash_field(&mut run, "top", &top.to_bits().to_le_bytes());
+        }
+    }
     if cli.band == TraceBand::Total {
+        let band_um = match &data {
+            AirData::Band(a) => format!("{:?}", a.band_um),
+            AirData::Spectral(..) => "its spectral range".to_owned(),
+        };
         eprintln!(
             "irsig-trace: warning: the `total` band (whole spectrum) is combined with `{}`, \
-             whose tables cover {:?} um: facet radiances and path terms are in different \
+             whose tables cover {band_um} um: facet radiances and path terms are in different \
              bands; use this only to check the geometry and the event logic",
-            cli.atmosphere, atmosphere.band_um
+            cli.atmosphere
         );
     }
     let name = cli.atmosphere.clone();
-    let model = {
-        let atmosphere = atmosphere.clone();
-        move |kind: ModelKind| {
-            AtmosphereModel::new(&atmosphere, kind)
-                .map_err(|e| miette!("{e}"))
-                .wrap_err_with(|| format!("cannot build the {kind} model of `{name}`"))
-        }
-    };
-    let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
-        .into_iter()
-        .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
-        .collect();
-    let pilot = {
-        let model = model.clone();
-        move |kind| Ok(PrecomputedAtmosphere::new(model(kind)?, top))
+    let model = move |atmosphere: &irsig_model::Atmosphere, kind: ModelKind| {
+        AtmosphereModel::new(atmosphere, kind)
+            .map_err(|e| miette!("{e}"))
+            .wrap_err_with(|| format!("cannot build the {kind} model of `{name}`"))
     };
     let warned = std::sync::Once::new();
-    let air = Air {
-        kinds: Some(kinds),
-        precomputed: Box::new(move |kind| {
-            let air = PrecomputedAtmosphere::new(model(kind)?, top);
-            warned.call_once(|| {
-                for w in air.warnings() {
-                    eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
-                }
-            });
-            Ok(air)
-        }),
-        pilot: Box::new(pilot),
+    let precompute = move |model: AtmosphereModel| {
+        let air = PrecomputedAtmosphere::new(model, top);
+        warned.call_once(|| {
+            for w in air.warnings() {
+                eprintln!("irsig-trace: warning: {}: {w}", cli.atmosphere);
+            }
+        });
+        air
     };
-    trace_all(cli, inputs, &run, band, &air)
+    match data {
+        AirData::Band(atmosphere) => {
+            let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+                .into_iter()
+                .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
+                .collect();
+            let (a1, a2) = (atmosphere.clone(), atmosphere);
+            let (m1, m2) = (model.clone(), model);
+            let (b1, b2) = (band.clone(), band.clone());
+            let air = Air {
+                kinds: Some(kinds),
+                spectral: false,
+                precomputed: Box::new(move |kind, count| {
+                    whole(&b1, &cli.atmosphere, count, || {
+                        Ok(precompute(m1(&a1, kind)?))
+                    })
+                }),
+                pilot: Box::new(move |kind, count| {
+                    whole(&b2, &cli.atmosphere, count, || {
+                        Ok(PrecomputedAtmosphere::new(m2(&a2, kind)?, top))
+                    })
+                }),
+            };
+            trace_all(cli, inputs, &run, band, &air)
+        }
+        AirData::Spectral(spectral, _) => {
+            let Some(split) = split else {
+                return Err(no_spectra(&cli.atmosphere, SubBandCount::Full));
+            };
+            // Each count's collapsed sub-bands, made once.
+            let cache: std::sync::Mutex<std::collections::HashMap<SubBandCount, Collapsed>> =
+                std::sync::Mutex::default();
+            let collapsed = |count: SubBandCount| -> miette::Result<Collapsed> {
+                if let Some(c) = cache.lock().map_err(|_| miette!("poisoned"))?.get(&count) {
+                    return Ok(c.clone());
+                }
+                let c = std::sync::Arc::new(split.collapse(&spectral, count)?);
+                cache
+                    .lock()
+                    .map_err(|_| miette!("poisoned"))?
+                    .insert(count, c.clone());
+                Ok(c)
+            };
+            let one = collapsed(SubBandCount::BAND)?;
+            let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+                .into_iter()
+                .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
+                .collect();
+            let collapsed = &collapsed;
+            // The pilot evaluates its paths in every sub-band with every sky-view ray: the
+            // precomputed sky costs a few ms per sub-band (table model) and saves a slant
+            // integration per ray, so the pilot's sets are precomputed too (`S` = `A`).
+            let sub_bands = move |kind: ModelKind, count: SubBandCount| {
+                collapsed(count)?
+                    .iter()
+                    .map(|(b, a)| {
+                        Ok(SubBand {
+                            band: R::of_band(b)?,
+                            atmosphere: precompute(model(a, kind)?),
+                            emissivity: None,
+                        })
+                    })
+                    .collect()
+            };
+            let sub_bands = &sub_bands;
+            let air = Air {
+                kinds: Some(kinds),
+                spectral: true,
+                precomputed: Box::new(sub_bands),
+                pilot: Box::new(sub_bands),
+            };
+            trace_all(cli, inputs, &run, band, &air)
+        }
+    }
 }
 
-/// What a frame is rendered with: the options, the atmosphere model and the path terms.
+/// What a frame is rendered with: the options, the atmosphere model, the path terms and
+/// the sub-bands.
 #[derive(Debug, Clone, Copy)]
 struct Settings {
     options: TraceOptions,
     kind: ModelKind,
     path_terms: PathTermsMode,
+    sub_bands: SubBandCount,
 }
 
 impl Settings {
@@ -698,6 +974,7 @@ impl Settings {
             },
             kind: cli.atmosphere_model.unwrap_or(ModelKind::Table),
             path_terms: cli.path_terms.unwrap_or_default(),
+            sub_bands: cli.sub_bands.unwrap_or(SubBandCount::BAND),
         }
     }
 
@@ -734,12 +1011,7 @@ impl Settings {
                     self.path_terms = c.setting.parse().map_err(|_| bad())?;
                 }
                 SwitchableModel::SubBands => {
-                    if c.setting != "1" {
-                        return Err(miette!(
-                            "the decision asks for {} sub-bands; this atmosphere has no spectra",
-                            c.setting
-                        ));
-                    }
+                    self.sub_bands = c.setting.parse().map_err(|_| bad())?;
                 }
             }
         }
@@ -763,30 +1035,59 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     cli: &Cli,
     tracer: &Tracer<R, A>,
     materials: &MaterialLibrary,
-    air: &Air<'_, A, S>,
+    air: &Air<'_, R, A, S>,
     camera: &Camera,
     tolerance_k: f64,
 ) -> miette::Result<Decision> {
-    let offer = tolerance::offer(materials, air.kinds.as_deref(), &cli.pin)
+    let mut offer = tolerance::offer(materials, air.kinds.as_deref(), air.spectral, &cli.pin)
         .map_err(irsig_cli::usage_error)?;
-    let mut bands = Vec::new();
+    let (Some(&ref_kind), Some(&ref_count)) = (offer.atmospheres.first(), offer.sub_bands.first())
+    else {
+        return Err(miette!(
+            "the pilot has no atmosphere or sub-band count to offer"
+        ));
+    };
+    // A count the band's grid cannot make (more sub-bands than grid intervals in a narrow
+    // band) is not on offer, unless it is the one pinned.
+    let pinned_count = offer.sub_bands.len() == 1;
+    let mut pairs: Vec<(ModelKind, SubBandCount)> = Vec::new();
     for &kind in &offer.atmospheres {
-        let set = tracer
-            .band_set(vec![SubBand {
-                band: tracer.band().clone(),
-                atmosphere: (air.pilot)(kind)?,
-                emissivity: None,
-            }])
-            .map_err(|e| miette!("{e}"))?;
+        pairs.push((kind, ref_count));
+    }
+    for &count in &offer.sub_bands {
+        pairs.push((ref_kind, count));
+    }
+    // The band model at the reference atmosphere measures the tabulated path terms.
+    pairs.push((ref_kind, SubBandCount::BAND));
+    let mut bands: Vec<BandChoice<S>> = Vec::new();
+    let mut unavailable = Vec::new();
+    for (kind, count) in pairs {
+        let (atmosphere, sub_bands) = (kind.name().to_owned(), count.to_string());
+        if bands
+            .iter()
+            .any(|b| b.atmosphere == atmosphere && b.sub_bands == sub_bands)
+        {
+            continue;
+        }
+        let sub = match (air.pilot)(kind, count) {
+            Ok(sub) => sub,
+            Err(e) if count == ref_count || pinned_count => return Err(e),
+            Err(_) => {
+                unavailable.push(count);
+                continue;
+            }
+        };
+        let set = tracer.band_set(sub).map_err(|e| miette!("{e}"))?;
         let (path_call_ns, sky_ns) = atmosphere_costs(kind);
         bands.push(BandChoice {
-            atmosphere: kind.name().to_owned(),
-            sub_bands: "1".to_owned(),
+            atmosphere,
+            sub_bands,
             set,
             path_call_ns,
             sky_ns,
         });
     }
+    offer.sub_bands.retain(|c| !unavailable.contains(c));
     let space = PilotSpace {
         bands,
         atmospheres: offer
@@ -794,7 +1095,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             .iter()
             .map(|k| k.name().to_owned())
             .collect(),
-        sub_bands: vec!["1".to_owned()],
+        sub_bands: offer.sub_bands.iter().map(ToString::to_string).collect(),
         bounces: offer.bounces,
         sky_view_rays: offer.sky_view_rays,
         supersampling: offer.supersampling,
@@ -835,7 +1136,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     inputs: &Inputs,
     run: &Sha256,
     band: R,
-    air: &Air<'_, A, S>,
+    air: &Air<'_, R, A, S>,
 ) -> miette::Result<()> {
     let Inputs {
         scene,
@@ -856,11 +1157,12 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         Some(d) => Settings::from_cli(cli).with_decision(d)?,
         None => Settings::from_cli(cli),
     };
-    let mut kind = base.kind;
-    let mut tracer = Tracer::new(scene, materials, band, (air.precomputed)(kind)?)
-        .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?
-        .with_path_terms(base.path_terms);
+    let (mut kind, mut count) = (base.kind, base.sub_bands);
+    let mut tracer =
+        Tracer::with_sub_bands(scene, materials, band, (air.precomputed)(kind, count)?)
+            .map_err(|e| miette!("{e}"))
+            .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?
+            .with_path_terms(base.path_terms);
     let views = &job.views;
     let cameras = views
         .iter()
@@ -872,8 +1174,10 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             .probe(cam, &base.options, column, row)
             .map_err(|e| miette!("--probe: {e}"))?;
         let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+        let sub_bands = tracer.sub_bands();
         return irsig_cli::write_output(None, |w| {
-            writeln!(w, "pixel ({column}, {row}), view 1\n{s}")?;
+            writeln!(w, "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)
+{s}")?;
             writeln!(w, "apparent temperature_k     {t}")
         });
     }
@@ -958,16 +1262,11 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             scene,
             model_k,
         });
-        if settings.kind != kind {
-            let sub_band = SubBand {
-                band: tracer.band().clone(),
-                atmosphere: (air.precomputed)(settings.kind)?,
-                emissivity: None,
-            };
+        if settings.kind != kind || settings.sub_bands != count {
             tracer = tracer
-                .with_bands(vec![sub_band])
+                .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
                 .map_err(|e| miette!("{e}"))?;
-            kind = settings.kind;
+            (kind, count) = (settings.kind, settings.sub_bands);
         }
         let images = out.radiance_exr.is_some()
             || out.truth_exr.is_some()
@@ -1092,6 +1391,7 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
             None if layer == Layer::ApparentTemperature => {
                 apparent.iter().map(|&t| t as f32).collect()
             }
+            None if layer == Layer::SubBands => vec![tracer.sub_bands() as f32; apparent.len()],
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;

@@ -4,7 +4,7 @@
 use std::fmt::Write as _;
 use std::str::FromStr;
 
-use irsig_atmosphere::ModelKind;
+use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::MaterialLibrary;
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
@@ -48,9 +48,7 @@ fn check_setting(model: SwitchableModel, setting: &str) -> Result<(), String> {
         SwitchableModel::SkyView => setting.parse::<u32>().is_ok_and(|n| n <= 1 << 20),
         SwitchableModel::Supersampling => parse_supersample(setting).is_some(),
         SwitchableModel::PathTerms => setting.parse::<PathTermsMode>().is_ok(),
-        SwitchableModel::SubBands => {
-            setting == "full" || setting.parse::<u32>().is_ok_and(|k| k >= 1)
-        }
+        SwitchableModel::SubBands => setting.parse::<SubBandCount>().is_ok(),
     };
     if ok {
         Ok(())
@@ -89,18 +87,30 @@ pub struct Offer {
     pub sky_view_rays: Vec<u32>,
     pub supersampling: Vec<Supersample>,
     pub path_terms: Vec<PathTermsMode>,
+    pub sub_bands: Vec<SubBandCount>,
     pub reasons: Vec<(SwitchableModel, String)>,
     pub pinned: Vec<SwitchableModel>,
 }
 
+/// The sub-band counts offered with a spectral atmosphere, most accurate first: the
+/// atmosphere's full grid, then 16 and 4 sub-bands of equal shares, then the band model.
+pub const SPECTRAL_SUB_BANDS: [SubBandCount; 4] = [
+    SubBandCount::Full,
+    SubBandCount::Count(16),
+    SubBandCount::Count(4),
+    SubBandCount::BAND,
+];
+
 /// What the pilot may choose for a scene with `materials` under `atmosphere` (the kinds
-/// its tables allow, or `None` for a vacuum), with `pins` fixing models.
+/// its tables allow, or `None` for a vacuum; `spectral` when it has spectra, so that
+/// sub-band counts are on offer), with `pins` fixing models.
 ///
 /// # Errors
 /// A pin the scene cannot honour (an atmosphere model whose table is missing).
 pub fn offer(
     materials: &MaterialLibrary,
     kinds: Option<&[ModelKind]>,
+    spectral: bool,
     pins: &[Pin],
 ) -> Result<Offer, String> {
     let mut reasons = Vec::new();
@@ -112,7 +122,23 @@ pub fn offer(
         .materials
         .iter()
         .any(|m| m.specular_fraction < 1.0);
+    // Sub-bands pinned to the band model: every atmosphere model costs one sky, as without
+    // spectra.
+    let band_pinned = pins
+        .iter()
+        .any(|p| p.model == SwitchableModel::SubBands && p.setting == "1");
     let mut atmospheres = match kinds {
+        // Spectra with slant tables: the table model, LOWTRAN's own paths in every
+        // sub-band; the layered and thesis models, approximations for atmospheres without
+        // slant tables, would each cost a sky precomputation per sub-band of the pilot's
+        // full grid (BENCHMARKS.md: 88 and 121 ms).
+        Some(k) if spectral && !band_pinned && k.contains(&ModelKind::Table) => {
+            reasons.push((
+                SwitchableModel::Atmosphere,
+                "a spectral atmosphere with slant tables: the table model".to_owned(),
+            ));
+            vec![ModelKind::Table]
+        }
         Some(k) => k.to_vec(),
         None => {
             reasons.push((
@@ -157,10 +183,15 @@ pub fn offer(
         ));
         vec![PathTermsMode::Exact]
     };
-    reasons.push((
-        SwitchableModel::SubBands,
-        "the atmosphere has no spectra: the band model".to_owned(),
-    ));
+    let mut sub_bands = if spectral {
+        SPECTRAL_SUB_BANDS.to_vec()
+    } else {
+        reasons.push((
+            SwitchableModel::SubBands,
+            "the atmosphere has no spectra: the band model".to_owned(),
+        ));
+        vec![SubBandCount::BAND]
+    };
     let mut pinned = Vec::new();
     for pin in pins {
         let why = format!("pinned by --pin {}={}", pin.model, pin.setting);
@@ -191,13 +222,15 @@ pub fn offer(
                 path_terms = vec![pin.setting.parse().map_err(|e| format!("{e}"))?];
             }
             SwitchableModel::SubBands => {
-                if pin.setting != "1" {
+                let count: SubBandCount = pin.setting.parse()?;
+                if !spectral && !count.is_band() {
                     return Err(format!(
                         "--pin sub-bands={}: this atmosphere has no spectra; only 1 (the band \
                          model) is on offer",
                         pin.setting
                     ));
                 }
+                sub_bands = vec![count];
             }
         }
     }
@@ -207,6 +240,7 @@ pub fn offer(
         sky_view_rays,
         supersampling,
         path_terms,
+        sub_bands,
         reasons,
         pinned,
     })
@@ -275,5 +309,24 @@ mod tests {
         assert!("atmosphere=lowtran".parse::<Pin>().is_err());
         assert!("supersampling=0".parse::<Pin>().is_err());
         assert!("sub-bands=0".parse::<Pin>().is_err());
+    }
+
+    #[test]
+    fn a_spectral_atmosphere_offers_sub_bands_over_the_table_model() {
+        let materials = MaterialLibrary::default();
+        let kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis];
+        let o = offer(&materials, Some(&kinds), true, &[]).unwrap();
+        assert_eq!(o.sub_bands, SPECTRAL_SUB_BANDS.to_vec());
+        assert_eq!(o.atmospheres, vec![ModelKind::Table]);
+        // The band model pinned: every atmosphere model again, as without spectra.
+        let pin: Pin = "sub-bands=1".parse().unwrap();
+        let o = offer(&materials, Some(&kinds), true, &[pin]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        assert_eq!(o.atmospheres, kinds.to_vec());
+        // Without spectra only the band model; a count above 1 cannot be pinned.
+        let o = offer(&materials, Some(&kinds), false, &[]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        let pin: Pin = "sub-bands=16".parse().unwrap();
+        assert!(offer(&materials, Some(&kinds), false, &[pin]).is_err());
     }
 }
