@@ -1176,8 +1176,11 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
         let sub_bands = tracer.sub_bands();
         return irsig_cli::write_output(None, |w| {
-            writeln!(w, "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)
-{s}")?;
+            writeln!(
+                w,
+                "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)"
+            )?;
+            writeln!(w, "{s}")?;
             writeln!(w, "apparent temperature_k     {t}")
         });
     }
