@@ -114,14 +114,17 @@ fn an_interrupt_leaves_no_staged_file() {
         assert!(start.elapsed().as_secs() < 60, "nothing was staged");
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
+    // Hold the pipe open through the wait: `Child::wait` closes a stdin it still owns, and
+    // the end of its input would let the tool finish normally, racing the signal.
+    let stdin = child.stdin.take();
     let killed = Command::new("kill")
         .args(["-TERM", &child.id().to_string()])
         .status()
         .unwrap();
     assert!(killed.success());
     let status = child.wait().unwrap();
-    assert!(!status.success());
-    drop(child.stdin.take());
+    drop(stdin);
+    assert!(!status.success(), "{status:?}");
     let left: Vec<_> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name())
