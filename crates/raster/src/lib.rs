@@ -272,6 +272,16 @@ const RUN_ATTRIBUTE: &str = "irsig.run";
 /// # Errors
 /// An empty or inconsistent raster, or an I/O error.
 pub fn write_exr(out: &mut (impl Write + Seek), raster: &Raster) -> Result<(), RasterError> {
+    write_exr_threads(out, raster, true)
+}
+
+/// [`write_exr`], its blocks compressed on exr's own threads (`parallel`) or on this one:
+/// the bytes are the same either way (a test holds it).
+fn write_exr_threads(
+    out: &mut (impl Write + Seek),
+    raster: &Raster,
+    parallel: bool,
+) -> Result<(), RasterError> {
     raster.check()?;
     let channels: x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> = raster
         .layers
@@ -316,10 +326,15 @@ pub fn write_exr(out: &mut (impl Write + Seek), raster: &Raster) -> Result<(), R
         encoding,
         x::AnyChannels::sort(channels),
     );
-    x::Image::new(image_attributes, layer)
-        .write()
-        .non_parallel()
-        .to_buffered(out)?;
+    // Blocks compressed in parallel are written in increasing line order: the same bytes
+    // as one thread writes (cargo bench -p irsig-raster --bench exr: 1.41 s on one thread,
+    // 0.73 s on two, for 11 layers of 1024 × 1024).
+    let image = x::Image::new(image_attributes, layer);
+    if parallel {
+        image.write().to_buffered(out)?;
+    } else {
+        image.write().non_parallel().to_buffered(out)?;
+    }
     Ok(())
 }
 
@@ -649,6 +664,36 @@ fn mismatch(name: &str, len: usize, width: usize, height: usize) -> RasterError 
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn parallel_compression_writes_the_same_bytes_as_one_thread() {
+        // Many scan-line blocks (ZIP: 16 lines each), several layers, data that compresses
+        // unevenly, so blocks finish out of order on the threads.
+        let (w, h) = (257, 300);
+        let mut r = super::Raster::new(w, h);
+        for l in 0..3u32 {
+            let data = (0..w * h)
+                .map(|i| {
+                    let i = i as u32;
+                    if (i / 700) % 3 == l {
+                        (i.wrapping_mul(2_654_435_761) >> 7) as f32
+                    } else {
+                        280.0
+                    }
+                })
+                .collect();
+            r.push_layer(format!("l{l}"), "K", data).unwrap();
+        }
+        let write = |parallel| {
+            let mut bytes = Vec::new();
+            super::write_exr_threads(&mut std::io::Cursor::new(&mut bytes), &r, parallel).unwrap();
+            bytes
+        };
+        let one = write(false);
+        for _ in 0..4 {
+            assert_eq!(write(true), one);
+        }
+    }
+
     use super::*;
 
     fn sample() -> Raster {
