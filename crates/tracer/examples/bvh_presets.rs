@@ -41,12 +41,12 @@ fn main() {
     let camera = Camera::from_view(&view).expect("camera");
     let presets: [(&str, BvhBuildParams); 5] = [
         ("fastest_build", BvhBuildParams::fastest_build()),
-        ("very_fast_build", BvhBuildParams::very_fast_build()),
-        ("fast_build", BvhBuildParams::fast_build()),
         (
-            "medium_build (the tracer's)",
-            BvhBuildParams::medium_build(),
+            "very_fast_build (the tracer's)",
+            BvhBuildParams::very_fast_build(),
         ),
+        ("fast_build", BvhBuildParams::fast_build()),
+        ("medium_build", BvhBuildParams::medium_build()),
         ("slow_build", BvhBuildParams::slow_build()),
     ];
     let centre = [0.0, 0.0, 0.0];

@@ -450,11 +450,11 @@ pub struct BareObvhs {
 }
 
 impl BareObvhs {
-    /// Builds the CWBVH (medium build, as the tracer) over `mesh`, re-centred on `centre_m`
+    /// Builds the CWBVH (obvhs's very fast preset, as the tracer) over `mesh`, re-centred on `centre_m`
     /// (the tracer's [`crate::geometry::Geometry::centre_m`]).
     #[must_use]
     pub fn new(mesh: &Mesh, centre_m: V3) -> Self {
-        Self::with_params(mesh, centre_m, obvhs::BvhBuildParams::medium_build())
+        Self::with_params(mesh, centre_m, obvhs::BvhBuildParams::very_fast_build())
     }
 
     /// As [`BareObvhs::new`], with obvhs's build `params` (one of its presets, for
