@@ -879,8 +879,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         InverseTable::new(&self.band, &[lo, hi])
     }
 
-    /// Renders every pixel of `camera`'s image, rows in parallel (rayon). `progress` is
-    /// called with 1 after each row. The result does not depend on the thread count.
+    /// Renders every pixel of `camera`'s image, rows in parallel (rayon): the whole image as
+    /// one tile ([`Self::render_tile`]). `progress` is called with 1 after each row. The
+    /// result does not depend on the thread count.
     ///
     /// # Errors
     /// The options are out of range.
@@ -890,115 +891,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         options: &TraceOptions,
         progress: &(dyn Fn(u64) + Sync),
     ) -> Result<Frame, TraceError> {
-        options.validate()?;
-        if options.supersampling > 1
-            && let Some(threshold_k) = options.adaptive_threshold_k
-        {
-            return self.render_adaptive(camera, options, threshold_k, progress);
-        }
         let [w, h] = camera.pixels;
-        let n = w as usize * h as usize;
-        let fc = self.frame_consts(camera);
-        // Rows write straight into the frame: no per-row vectors to gather and copy.
-        let row_len = w.max(1) as usize;
-        let mut radiance = vec![0.0; n];
-        let mut truth = Vec::new();
-        if options.truth {
-            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
-            radiance
-                .par_chunks_mut(row_len)
-                .zip(truth.par_chunks_mut(row_len))
-                .enumerate()
-                .for_each(|(row, (rad, tru))| {
-                    let mut path = Path::default();
-                    let mut centre = Sample::miss(Event::Sky);
-                    for (col, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                        *l_out = self.pixel::<true>(
-                            &fc,
-                            options,
-                            col as u32,
-                            row as u32,
-                            &mut path,
-                            &mut centre,
-                        );
-                        *t_out = TruthPixel::from(&centre);
-                    }
-                    progress(1);
-                });
-        } else {
-            radiance
-                .par_chunks_mut(row_len)
-                .enumerate()
-                .for_each(|(row, rad)| {
-                    let mut path = Path::default();
-                    let mut scratch = Sample::miss(Event::Sky);
-                    for (col, l_out) in rad.iter_mut().enumerate() {
-                        *l_out = self.pixel::<false>(
-                            &fc,
-                            options,
-                            col as u32,
-                            row as u32,
-                            &mut path,
-                            &mut scratch,
-                        );
-                    }
-                    progress(1);
-                });
-        }
-        Ok(Frame {
-            width: w,
-            height: h,
-            radiance_w_m2_sr: radiance,
-            truth,
-        })
-    }
-
-    /// Adaptive supersampling: the centre rays first, then n × n rays at the pixels whose
-    /// centre differs from one of its 8 neighbours' by more than `threshold_k` in apparent
-    /// temperature. Each refined pixel is computed exactly as a full n × n rendering
-    /// computes it (its own random stream from the start), so it matches that rendering.
-    fn render_adaptive(
-        &self,
-        camera: &Camera,
-        options: &TraceOptions,
-        threshold_k: f64,
-        progress: &(dyn Fn(u64) + Sync),
-    ) -> Result<Frame, TraceError> {
-        let centre_options = TraceOptions {
-            supersampling: 1,
-            adaptive_threshold_k: None,
-            ..*options
-        };
-        let mut frame = self.render(camera, &centre_options, progress)?;
-        let refine = self.edges(&frame, threshold_k);
-        let fc = self.frame_consts(camera);
-        let full = TraceOptions {
-            adaptive_threshold_k: None,
-            ..*options
-        };
-        let w = frame.width.max(1) as usize;
-        frame
-            .radiance_w_m2_sr
-            .par_chunks_mut(w)
-            .zip(refine.par_chunks(w))
-            .enumerate()
-            .for_each(|(row, (rad, flags))| {
-                let mut path = Path::default();
-                let mut scratch = Sample::miss(Event::Sky);
-                for (col, (l_out, &flag)) in rad.iter_mut().zip(flags).enumerate() {
-                    if flag {
-                        *l_out = self.pixel::<false>(
-                            &fc,
-                            &full,
-                            col as u32,
-                            row as u32,
-                            &mut path,
-                            &mut scratch,
-                        );
-                    }
-                }
-            });
-        Ok(frame)
+        self.render_tile(camera, options, Tile::whole(w, h), progress)
     }
 
     /// The pixels of `frame` whose apparent temperature differs from one of its 8
@@ -1063,20 +957,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let halo = tile.grown(1, w, h);
         let centres = self.render_rect(&fc, &centre_options, halo, &|_| {});
         let refine = self.edges(&centres, threshold_k);
-        let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
-        let (tw, hw) = (tile.width as usize, halo.width as usize);
-        let crop = |r: usize| (r + dy) * hw + dx..(r + dy) * hw + dx + tw;
-        let mut radiance = Vec::with_capacity(tile.pixels());
-        let mut flags = Vec::with_capacity(tile.pixels());
-        let mut truth = Vec::new();
-        for r in 0..tile.height as usize {
-            radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
-            flags.extend_from_slice(&refine[crop(r)]);
-            if !centres.truth.is_empty() {
-                truth.extend_from_slice(&centres.truth[crop(r)]);
+        let tw = tile.width as usize;
+        let (mut radiance, flags, truth) = if halo == tile {
+            // The whole image: the margin is empty, nothing to crop.
+            (centres.radiance_w_m2_sr, refine, centres.truth)
+        } else {
+            let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+            let hw = halo.width as usize;
+            let crop = |r: usize| (r + dy) * hw + dx..(r + dy) * hw + dx + tw;
+            let mut radiance = Vec::with_capacity(tile.pixels());
+            let mut flags = Vec::with_capacity(tile.pixels());
+            let mut truth = Vec::new();
+            for r in 0..tile.height as usize {
+                radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
+                flags.extend_from_slice(&refine[crop(r)]);
+                if !centres.truth.is_empty() {
+                    truth.extend_from_slice(&centres.truth[crop(r)]);
+                }
             }
-        }
-        drop(centres);
+            (radiance, flags, truth)
+        };
         let full = TraceOptions {
             adaptive_threshold_k: None,
             ..*options
