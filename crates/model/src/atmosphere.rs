@@ -33,6 +33,24 @@ pub struct RadiosondeLevel {
     pub dew_point_depression_k: f64,
 }
 
+/// A radiosonde profile's rules (both atmosphere forms carry one): finite altitudes and
+/// dew-point depressions, pressures and temperatures ≥ 0, altitudes increasing.
+pub(crate) fn check_radiosonde(levels: &[RadiosondeLevel]) -> Result<(), ModelError> {
+    for (i, r) in levels.iter().enumerate() {
+        let p = |f: &str| format!("radiosonde[{i}].{f}");
+        check_finite(
+            || p("altitude_m"),
+            &[r.altitude_m, r.dew_point_depression_k],
+        )?;
+        check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
+        check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
+    }
+    check_increasing(
+        |i| format!("radiosonde[{i}].altitude_m"),
+        levels.iter().map(|r| r.altitude_m),
+    )
+}
+
 /// Slant-path tables taken directly from an atmospheric model run at many angles: the
 /// `table` atmosphere model. Grids increase strictly; values are row-major with the
 /// altitude (outer) and the angle (inner) as axes.
@@ -157,19 +175,7 @@ impl Atmosphere {
         if let Some(h) = self.sky_hemispheric_w_m2_sr {
             check_range(|| "sky_hemispheric_w_m2_sr".into(), h, 0.0, f64::MAX)?;
         }
-        for (i, r) in self.radiosonde.iter().enumerate() {
-            let p = |f: &str| format!("radiosonde[{i}].{f}");
-            check_finite(
-                || p("altitude_m"),
-                &[r.altitude_m, r.dew_point_depression_k],
-            )?;
-            check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
-            check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
-        }
-        check_increasing(
-            |i| format!("radiosonde[{i}].altitude_m"),
-            self.radiosonde.iter().map(|r| r.altitude_m),
-        )?;
+        check_radiosonde(&self.radiosonde)?;
         for (i, &(t, l)) in self.band_radiance.iter().enumerate() {
             check_range(
                 || format!("band_radiance[{i}].temperature_k"),

@@ -11,6 +11,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::RadiosondeLevel;
+use crate::atmosphere::check_radiosonde;
 use crate::error::{ModelError, ModelErrorKind, check_finite, check_increasing, check_range};
 
 /// What the spectral grid's numbers are.
@@ -275,19 +276,7 @@ impl SpectralAtmosphere {
         if let Some(h) = &self.sky_hemispheric_w_m2_sr_per_unit {
             check_spectra("sky_hemispheric_w_m2_sr_per_unit", h, 1, n, f64::MAX)?;
         }
-        for (i, r) in self.radiosonde.iter().enumerate() {
-            let p = |f: &str| format!("radiosonde[{i}].{f}");
-            check_finite(
-                || p("altitude_m"),
-                &[r.altitude_m, r.dew_point_depression_k],
-            )?;
-            check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
-            check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
-        }
-        check_increasing(
-            |i| format!("radiosonde[{i}].altitude_m"),
-            self.radiosonde.iter().map(|r| r.altitude_m),
-        )?;
+        check_radiosonde(&self.radiosonde)?;
         if let Some(s) = &self.slant {
             check_axis("slant.altitude_m", &s.altitude_m, f64::MAX)?;
             check_axis("slant.nadir_deg", &s.nadir_deg, 89.999)?;
