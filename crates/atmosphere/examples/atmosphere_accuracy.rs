@@ -119,23 +119,7 @@ fn main() {
 
 /// Largest |error| (K) per model over both atmospheres, by kind of path.
 fn summary() {
-    type Select = fn(&Truth) -> bool;
-    let cats: [(&str, Select); 6] = [
-        ("0–60°", |t| t.kind == "ground" && t.angle_deg <= 60.0),
-        ("60–80°", |t| {
-            t.kind == "ground" && t.angle_deg > 60.0 && t.angle_deg <= 80.0
-        }),
-        ("80–88°", |t| {
-            t.kind == "ground" && t.angle_deg > 80.0 && t.angle_deg <= 88.0
-        }),
-        ("slabs", |t| t.kind == "segment"),
-        ("horizontal ≤ 1 km", |t| {
-            t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
-        }),
-        ("horizontal 5 km", |t| {
-            t.kind == "horizontal" && t.range_m.unwrap() > 1000.0
-        }),
-    ];
+    let cats = lowtran::SUMMARY_CATEGORIES;
     println!(
         "\n| model |{}",
         cats.iter()

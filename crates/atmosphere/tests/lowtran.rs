@@ -22,29 +22,10 @@ fn worst(name: &str, kind: ModelKind, rows: impl Fn(&common::lowtran::Truth) -> 
         .fold(0.0, f64::max)
 }
 
-/// The path categories of docs/accuracy.md's summary table, as its example selects them.
-type Select = fn(&common::lowtran::Truth) -> bool;
-const CATEGORIES: [(&str, Select); 6] = [
-    ("0-60°", |t| t.kind == "ground" && t.angle_deg <= 60.0),
-    ("60-80°", |t| {
-        t.kind == "ground" && t.angle_deg > 60.0 && t.angle_deg <= 80.0
-    }),
-    ("80-88°", |t| {
-        t.kind == "ground" && t.angle_deg > 80.0 && t.angle_deg <= 88.0
-    }),
-    ("slabs", |t| t.kind == "segment"),
-    ("horizontal ≤ 1 km", |t| {
-        t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
-    }),
-    ("horizontal 5 km", |t| {
-        t.kind == "horizontal" && t.range_m.unwrap() > 1000.0
-    }),
-];
-
 /// Every figure of a model's row of the summary table holds, at the precision it is
 /// printed to (2 decimals: the largest error over both atmospheres rounds to it).
 fn holds_summary_row(kind: ModelKind, printed_k: [f64; 6]) {
-    for ((category, select), printed) in CATEGORIES.iter().zip(printed_k) {
+    for ((category, select), printed) in common::lowtran::SUMMARY_CATEGORIES.iter().zip(printed_k) {
         let e = ["us-std-1976", "midlat-winter"]
             .iter()
             .map(|name| worst(name, kind, select))

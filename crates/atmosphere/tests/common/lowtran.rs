@@ -97,3 +97,25 @@ pub fn error_k(model: &AtmosphereModel, rtt: &Rtt, t: &Truth, target_k: f64) -> 
     let truth = t.transmission.unwrap() * lt + t.radiance_w_m2_sr;
     rtt.temperature(p.transmission * lt + p.path_radiance_w_m2_sr) - rtt.temperature(truth)
 }
+
+/// A selection of truth paths.
+pub type Select = fn(&Truth) -> bool;
+
+/// The path categories of docs/accuracy.md's atmosphere summary table, in its column order
+/// (shared by the example that prints it and the test that holds it).
+pub const SUMMARY_CATEGORIES: [(&str, Select); 6] = [
+    ("0–60°", |t| t.kind == "ground" && t.angle_deg <= 60.0),
+    ("60–80°", |t| {
+        t.kind == "ground" && t.angle_deg > 60.0 && t.angle_deg <= 80.0
+    }),
+    ("80–88°", |t| {
+        t.kind == "ground" && t.angle_deg > 80.0 && t.angle_deg <= 88.0
+    }),
+    ("slabs", |t| t.kind == "segment"),
+    ("horizontal ≤ 1 km", |t| {
+        t.kind == "horizontal" && t.range_m.unwrap() <= 1000.0
+    }),
+    ("horizontal 5 km", |t| {
+        t.kind == "horizontal" && t.range_m.unwrap() > 1000.0
+    }),
+];
