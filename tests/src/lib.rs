@@ -64,3 +64,44 @@ pub fn bin(name: &str) -> assert_cmd::Command {
     cmd.current_dir(repo_root());
     assert_cmd::Command::from_std(cmd)
 }
+
+/// Per region, the named numeric columns of `irsig-stats TRUTH --regions REGIONS --format
+/// csv EXTRA...` (kelvin, pixels).
+///
+/// # Panics
+/// When irsig-stats fails.
+#[must_use]
+pub fn stats_csv(
+    truth: &std::path::Path,
+    regions: &std::path::Path,
+    extra: &[&str],
+) -> std::collections::HashMap<String, std::collections::HashMap<String, f64>> {
+    let out = bin("irsig-stats")
+        .arg(truth)
+        .arg("--regions")
+        .arg(regions)
+        .args(["--format", "csv"])
+        .args(extra)
+        .output()
+        .expect("run irsig-stats");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).expect("UTF-8 CSV");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("a header row").split(',').collect();
+    lines
+        .map(|l| {
+            let cells: Vec<&str> = l.split(',').collect();
+            let values = header
+                .iter()
+                .zip(&cells)
+                .skip(1)
+                .filter_map(|(h, c)| c.parse().ok().map(|v| ((*h).to_owned(), v)))
+                .collect();
+            (cells[0].to_owned(), values)
+        })
+        .collect()
+}

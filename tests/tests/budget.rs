@@ -120,27 +120,10 @@ fn library() -> MaterialLibrary {
 
 /// Region means of a truth EXR's `layer`, by `irsig-stats` over the experiment's regions.
 fn region_means(truth: &Path, layer: &str) -> HashMap<String, f64> {
-    let out = bin("irsig-stats")
-        .arg(truth)
-        .arg("--regions")
-        .arg(repo_root().join("pipelines/thesis-experiment/regions.ron"))
-        .args(["--layer", layer, "--format", "csv"])
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let mean = header.iter().position(|h| *h == "mean_k").unwrap();
-    lines
-        .map(|l| {
-            let cells: Vec<&str> = l.split(',').collect();
-            (cells[0].to_owned(), cells[mean].parse().unwrap())
-        })
+    let regions = repo_root().join("pipelines/thesis-experiment/regions.ron");
+    irsig_tests::stats_csv(truth, &regions, &["--layer", layer])
+        .into_iter()
+        .map(|(region, columns)| (region, columns["mean_k"]))
         .collect()
 }
 

@@ -65,34 +65,11 @@ fn run_pipeline(pipeline: &Path) {
 /// Per region, the named CSV columns of `irsig-stats --format csv` on the pipeline's
 /// outputs (kelvin).
 fn stats_csv(data: &Path, extra: &[&str]) -> HashMap<String, HashMap<String, f64>> {
-    let out = bin("irsig-stats")
-        .arg(data.join("out/experiment.truth.exr"))
-        .arg("--regions")
-        .arg(data.join("regions.ron"))
-        .args(["--format", "csv"])
-        .args(extra)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    let text = String::from_utf8(out.stdout).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    lines
-        .map(|l| {
-            let cells: Vec<&str> = l.split(',').collect();
-            let values = header
-                .iter()
-                .zip(&cells)
-                .skip(1)
-                .filter_map(|(h, c)| c.parse().ok().map(|v| ((*h).to_owned(), v)))
-                .collect();
-            (cells[0].to_owned(), values)
-        })
-        .collect()
+    irsig_tests::stats_csv(
+        &data.join("out/experiment.truth.exr"),
+        &data.join("regions.ron"),
+        extra,
+    )
 }
 
 /// Band radiance of a blackbody, 8–14 µm, W m⁻² sr⁻¹, by Simpson's rule on Planck's law
