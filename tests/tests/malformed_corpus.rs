@@ -140,3 +140,39 @@ fn every_malformed_case_fails_cleanly_with_a_location() {
         failures.join("\n")
     );
 }
+
+/// In a log the message is one line, however long the path before it: `grep` finds it.
+/// (On a terminal miette wraps it to the window; stderr here is a pipe.)
+#[test]
+fn a_long_path_does_not_wrap_the_message() {
+    let dir = tempfile::tempdir().unwrap();
+    let deep = dir.path().join("a".repeat(120)).join("b".repeat(120));
+    std::fs::create_dir_all(&deep).unwrap();
+    let case = deep.join("non-utf8.obj");
+    std::fs::copy(
+        repo_root().join("tests/data/malformed/mesh/non-utf8.obj"),
+        &case,
+    )
+    .unwrap();
+    let out = Command::new(bin_path("irsig-import"))
+        .arg(&case)
+        .args([
+            "--materials",
+            "formats/canonical/samples/materials.ron",
+            "-o",
+        ])
+        .arg(dir.path().join("object.bin"))
+        .current_dir(repo_root())
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let line = format!(
+        "{}:4:9: expected UTF-8 text, found a byte that is not",
+        case.display()
+    );
+    assert!(
+        stderr.lines().any(|l| l.contains(&line)),
+        "no line holding `{line}` in\n{stderr}"
+    );
+}

@@ -198,6 +198,12 @@ pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
         remove_staged_files();
         std::process::exit(130);
     });
+    // In a log or a pipe a message stays on one line, whatever the length of its path, so
+    // that `grep` finds it; on a terminal miette wraps it to the window.
+    let wrap = io::stderr().is_terminal();
+    let _ = miette::set_hook(Box::new(move |_| {
+        Box::new(miette::MietteHandlerOpts::new().wrap_lines(wrap).build())
+    }));
     match body() {
         Ok(()) => ExitCode::from(EXIT_OK),
         Err(report) => {
