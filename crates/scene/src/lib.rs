@@ -318,9 +318,39 @@ pub fn flatten(scene: &Scene, objects: &[&Object]) -> Result<RawScene, FlattenEr
             });
         }
     }
-    raw.validate()
-        .map_err(|e| scene_err(FlattenErrorKind::Model(e)))?;
+    raw.validate().map_err(|e| {
+        // A rule of the whole raw scene (a coordinate the transform made too large) still
+        // belongs to the placement that made the offending position or facet.
+        let placement = raw_index(&e.path, "facets")
+            .and_then(|k| raw.facets.get(k))
+            .map(|f| f.object as usize)
+            .or_else(|| {
+                raw_index(&e.path, "positions_m").map(|k| {
+                    let mut end = 0;
+                    objects
+                        .iter()
+                        .position(|o| {
+                            end += o.positions_m.len();
+                            k < end
+                        })
+                        .unwrap_or(objects.len().saturating_sub(1))
+                })
+            });
+        FlattenError {
+            placement,
+            object: placement
+                .and_then(|i| objects.get(i))
+                .map(|o| o.name.clone()),
+            kind: FlattenErrorKind::Model(e),
+        }
+    })?;
     Ok(raw)
+}
+
+/// `k` of a model path `field[k]...`.
+fn raw_index(path: &str, field: &str) -> Option<usize> {
+    let rest = path.strip_prefix(field)?.strip_prefix('[')?;
+    rest[..rest.find(']')?].parse().ok()
 }
 
 #[cfg(test)]

@@ -127,13 +127,19 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     });
     // For a legacy scene, where each entry starts, to point errors at it.
     let mut entry_positions = Vec::new();
+    let scene_text: String;
     let scene: Scene = match format {
         SceneFormat::Ron => {
-            irsig_formats::canonical::from_ron_bytes(&scene_input.name, &scene_input.bytes)?
+            let scene =
+                irsig_formats::canonical::from_ron_bytes(&scene_input.name, &scene_input.bytes)?;
+            scene_text =
+                irsig_formats::canonical::utf8(&scene_input.name, &scene_input.bytes)?.to_owned();
+            scene
         }
         SceneFormat::Legacy => {
             let text = irsig_formats::legacy::decode(&scene_input.name, &scene_input.bytes)?;
             let file = irsig_formats::legacy::scene::parse(&scene_input.name, text)?;
+            scene_text = text.to_owned();
             let metres = cli.unit.metres();
             entry_positions = file.entries.iter().map(|e| e.position).collect();
             Scene {
@@ -153,9 +159,37 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             }
         }
     };
-    let where_placed = |i: Option<usize>| match i.and_then(|i| entry_positions.get(i)) {
-        Some(p) => format!("{}:{p}", scene_input.name),
-        None => scene_input.name.clone(),
+    // An error about placement `i` (or the scene value at a model `path`), at its line and
+    // column in the scene file.
+    let at = |i: Option<usize>, path: Option<&str>, message: String| -> miette::Report {
+        let name = &scene_input.name;
+        let i = i.or_else(|| path.and_then(|p| index_in(p, "objects")));
+        match format {
+            SceneFormat::Ron => {
+                let path = path.map_or_else(
+                    || i.map(|i| format!("objects[{i}]")),
+                    |p| Some(p.to_owned()),
+                );
+                match path {
+                    Some(p) => miette::Report::new(irsig_formats::canonical::error_at_path(
+                        name,
+                        &scene_text,
+                        &p,
+                        message,
+                    )),
+                    None => miette!("{name}: {message}"),
+                }
+            }
+            SceneFormat::Legacy => match i.and_then(|i| entry_positions.get(i)) {
+                Some(p) => miette::Report::new(irsig_formats::ParseError::at_offset(
+                    name.clone(),
+                    &scene_text,
+                    irsig_formats::offset_of(&scene_text, p.line, p.column),
+                    message,
+                )),
+                None => miette!("{name}: {message}"),
+            },
+        }
     };
     for name in replacements.keys() {
         if !scene.objects.iter().any(|p| &p.object == name) {
@@ -169,20 +203,33 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let base = scene_input.base_dir();
     // Each distinct object file is read once, however many placements use it.
     let mut loaded: HashMap<PathBuf, Object> = HashMap::new();
-    for placement in &scene.objects {
+    // The file each placement's object was read from.
+    let sources: Vec<String> = scene
+        .objects
+        .iter()
+        .map(|p| match replacements.get(&p.object) {
+            Some(path) => path.clone(),
+            None => resolve(&base, &p.object),
+        })
+        .collect();
+    for (i, placement) in scene.objects.iter().enumerate() {
         if loaded.contains_key(&placement.object) {
             continue;
         }
-        let source = match replacements.get(&placement.object) {
-            Some(path) => path.clone(),
-            None => resolve(&base, &placement.object),
-        };
+        let source = sources[i].clone();
         let input = irsig_cli::read_input(&source).map_err(|e| {
-            e.wrap_err(format!(
-                "{}: cannot read the object `{}`",
-                scene_input.name,
-                placement.object.display()
-            ))
+            let why: Vec<String> = e.chain().map(ToString::to_string).collect();
+            at(
+                Some(i),
+                (format == SceneFormat::Ron)
+                    .then(|| format!("objects[{i}].object"))
+                    .as_deref(),
+                format!(
+                    "cannot read the object `{}`: {}",
+                    placement.object.display(),
+                    why.join(": ")
+                ),
+            )
         })?;
         let object = if source == "-"
             || source.ends_with(".ron")
@@ -200,10 +247,37 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .iter()
         .filter_map(|p| loaded.get(&p.object))
         .collect();
-    let raw = irsig_scene::flatten(&scene, &objects)
-        .map_err(|e| miette!("{}: {e}", where_placed(e.placement)))?;
+    let raw = irsig_scene::flatten(&scene, &objects).map_err(|e| {
+        // A rule of the scene itself is at its own value; anything else at the placement.
+        let path = match (&e.kind, e.placement) {
+            (irsig_scene::FlattenErrorKind::Model(m), None) => Some(m.path.clone()),
+            _ => None,
+        };
+        at(e.placement, path.as_deref(), e.to_string())
+    })?;
     if let Some(path) = &cli.materials {
-        check_materials(path, &raw)?;
+        check_materials(path, &raw, |r, message| {
+            // The facet's material came from its object file unless an override of the
+            // placement changed it: point at whichever gave it.
+            let i = raw.facets[r].object as usize;
+            let first: usize = objects[..i].iter().map(|o| o.facets.len()).sum();
+            let k = r - first;
+            let from_object =
+                objects[i].facets.get(k).map(|f| f.material) == Some(raw.facets[r].material);
+            let source = &sources[i];
+            if from_object && source != "-" {
+                if let Ok(input) = irsig_cli::read_input(source) {
+                    return miette::Report::new(irsig_formats::canonical::object_error_at_path(
+                        &input.name,
+                        &input.bytes,
+                        objects[i],
+                        &format!("facets[{k}].material"),
+                        message,
+                    ));
+                }
+            }
+            at(Some(i), None, message)
+        })?;
     }
     irsig_cli::write_output(cli.output.as_deref(), |w| {
         if cli.ron {
@@ -259,7 +333,11 @@ fn resolve(base: &Path, object: &Path) -> String {
     }
 }
 
-fn check_materials(path: &Path, raw: &irsig_model::RawScene) -> miette::Result<()> {
+fn check_materials(
+    path: &Path,
+    raw: &irsig_model::RawScene,
+    at: impl Fn(usize, String) -> miette::Report,
+) -> miette::Result<()> {
     let input = irsig_cli::read_input(&path.to_string_lossy())?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
@@ -269,12 +347,21 @@ fn check_materials(path: &Path, raw: &irsig_model::RawScene) -> miette::Result<(
                 .objects
                 .get(f.object as usize)
                 .map_or("?", String::as_str);
-            return Err(miette!(
-                "object `{object}`: raw facet {i} has material id {}, which {} does not define",
-                f.material.0,
-                input.name
+            // Reported where the facet's material was given.
+            return Err(at(
+                i,
+                format!(
+                    "object `{object}`: raw facet {i} has material id {}, which {} does not define",
+                    f.material.0, input.name
+                ),
             ));
         }
     }
     Ok(())
+}
+
+/// `i` of a model path `field[i]...`.
+fn index_in(path: &str, field: &str) -> Option<usize> {
+    let rest = path.strip_prefix(field)?.strip_prefix('[')?;
+    rest[..rest.find(']')?].parse().ok()
 }

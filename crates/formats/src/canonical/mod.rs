@@ -227,7 +227,7 @@ pub fn read_raw_scene(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> 
         scene.validate().map_err(|e| {
             ParseError::in_binary(
                 file,
-                0,
+                binary::offset_of_path(&scene, &e.path),
                 format!("invalid raw scene: `{}`: {}", e.path, e.kind),
             )
         })?;
@@ -273,6 +273,41 @@ pub fn read_object(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
         Ok(object)
     } else {
         from_ron_bytes(file, bytes)
+    }
+}
+
+/// An error about the value at a model `path` (`facets[3].material`) of an object read
+/// from `bytes` by [`read_object`]: at the value's line and column in RON, at the record's
+/// byte offset in the binary form. For checks a tool makes after reading, such as a
+/// material id the library does not define.
+#[must_use]
+pub fn object_error_at_path(
+    file: &str,
+    bytes: &[u8],
+    object: &Object,
+    path: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    if binary_object::is_binary(bytes) || file.ends_with(".bin") {
+        ParseError::in_binary(file, binary_object::offset_of_path(object, path), message)
+    } else {
+        error_at_path(file, &String::from_utf8_lossy(bytes), path, message)
+    }
+}
+
+/// As [`object_error_at_path`], for a raw scene read by [`read_raw_scene`].
+#[must_use]
+pub fn raw_scene_error_at_path(
+    file: &str,
+    bytes: &[u8],
+    scene: &RawScene,
+    path: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    if binary::is_binary(bytes) {
+        ParseError::in_binary(file, binary::offset_of_path(scene, path), message)
+    } else {
+        error_at_path(file, &String::from_utf8_lossy(bytes), path, message)
     }
 }
 
