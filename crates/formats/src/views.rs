@@ -157,8 +157,9 @@ pub struct ExecuteFrame {
 /// execute file's directory, never absolute and never climbing out of it with `..`, so an
 /// execute file cannot write outside its own folder. Every frame must name the same scene
 /// file (one run traces one flattened scene with one BVH); no two outputs may share a name;
-/// no output may be an input of the run (a viewing file, the execute file itself). Each is
-/// an error at the offending name.
+/// no output may be an input of the run (a viewing file, the scene file, the execute file
+/// itself), a folder, or in a folder that does not exist. Each is an error at the offending
+/// name.
 ///
 /// # Errors
 /// As above, a viewing file that cannot be read or parsed (its own error, with the frame
@@ -182,6 +183,7 @@ pub fn read_execute(
         0,
     );
     let mut outputs: HashMap<PathBuf, usize> = HashMap::new();
+    let mut scenes: std::collections::HashSet<PathBuf> = std::collections::HashSet::new();
     for (i, frame) in parsed.frames.iter().enumerate() {
         let number = i + 1;
         if frame.scene != first_scene {
@@ -203,12 +205,21 @@ pub fn read_execute(
         }
         let view_file = resolved[0].clone();
         inputs.entry(view_file.clone()).or_insert(number);
+        // The scene file is an input of the run too, though the tracer reads its flattened
+        // form: writing over it would destroy the run's source.
+        if let Ok(scene) = resolve(base, &frame.scene) {
+            scenes.insert(scene);
+        }
         for (k, path) in resolved.iter().enumerate().skip(1) {
-            if let Some(&other) = inputs.get(path) {
-                let what = if other == 0 {
-                    "the execute file itself".to_owned()
-                } else {
-                    format!("the viewing file of frame {other}")
+            let input = inputs
+                .get(path)
+                .copied()
+                .or_else(|| scenes.contains(path).then_some(usize::MAX));
+            if let Some(other) = input {
+                let what = match other {
+                    0 => "the execute file itself".to_owned(),
+                    usize::MAX => "the run's scene file".to_owned(),
+                    _ => format!("the viewing file of frame {other}"),
                 };
                 return Err(at(
                     places[k],
@@ -225,6 +236,27 @@ pub fn read_execute(
                     format!(
                         "expected a file name no other output uses, found `{}`, which frame \
                          {other} also writes",
+                        names[k]
+                    ),
+                ));
+            }
+            // Checked before any frame is traced, so that no work is lost at the end.
+            if path.is_dir() {
+                return Err(at(
+                    places[k],
+                    format!(
+                        "expected an output file name, found `{}`, which is a folder",
+                        names[k]
+                    ),
+                ));
+            }
+            let folder = path.parent().filter(|d| !d.as_os_str().is_empty());
+            if folder.is_some_and(|d| !d.is_dir()) {
+                return Err(at(
+                    places[k],
+                    format!(
+                        "expected an output in an existing folder, found `{}`, whose folder does \
+                         not exist",
                         names[k]
                     ),
                 ));

@@ -144,6 +144,16 @@ impl Atmosphere {
             check_finite(|| p("altitude_asl_m"), &[l.altitude_asl_m])?;
             check_range(|| p("altitude_m"), l.altitude_m, 0.0, f64::MAX)?;
             check_range(|| p("temperature_k"), l.temperature_k, 0.0, f64::MAX)?;
+            if l.temperature_k <= 0.0 {
+                // As the `.atm` it comes from: air at 0 K is no atmosphere.
+                return Err(ModelError::new(
+                    p("temperature_k"),
+                    ModelErrorKind::Other(format!(
+                        "expected a temperature above 0 K, found {}",
+                        l.temperature_k
+                    )),
+                ));
+            }
             check_range(|| p("transmission"), l.transmission, 0.0, 1.0)?;
             check_range(
                 || p("path_radiance_w_m2_sr"),
@@ -189,6 +199,20 @@ impl Atmosphere {
             |i| format!("band_radiance[{i}].temperature_k"),
             self.band_radiance.iter().map(|r| r.0),
         )?;
+        // As the `.rtt` it comes from: band radiance never falls as the temperature rises,
+        // else radiance to temperature has no single answer.
+        for (i, w) in self.band_radiance.windows(2).enumerate() {
+            if w[1].1 < w[0].1 {
+                return Err(ModelError::new(
+                    format!("band_radiance[{}].radiance", i + 1),
+                    ModelErrorKind::Other(format!(
+                        "expected a radiance of at least {} (the row before), found {}: band \
+                         radiance never falls as the temperature rises",
+                        w[0].1, w[1].1
+                    )),
+                ));
+            }
+        }
         if let Some(s) = &self.slant {
             s.validate()?;
         }

@@ -91,7 +91,11 @@ impl Default for TraceOptions {
 }
 
 impl TraceOptions {
-    fn validate(&self) -> Result<(), TraceError> {
+    /// Checks every option against its range (what [`Tracer`] checks before tracing).
+    ///
+    /// # Errors
+    /// The first option out of range.
+    pub fn validate(&self) -> Result<(), TraceError> {
         let bad = |m: String| Err(TraceError::new(TraceErrorKind::InvalidOptions(m)));
         if self.specular_bounces > 64 {
             return bad(format!(

@@ -479,19 +479,38 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
     let mut run = Sha256::new();
     run.update(RUN_HASH_VERSION);
-    let scene = {
-        let input = irsig_cli::read_input(&cli.scene)?;
-        hash_field(&mut run, "scene", &input.bytes);
-        read_raw_scene(&input.name, &input.bytes)?
-    };
+    let scene_input = irsig_cli::read_input(&cli.scene)?;
+    hash_field(&mut run, "scene", &scene_input.bytes);
+    let scene = read_raw_scene(&scene_input.name, &scene_input.bytes)?;
     let materials: MaterialLibrary = {
         let input = irsig_cli::read_input(&cli.materials)?;
         from_ron_bytes(&input.name, &input.bytes)?
     };
+    // A facet whose material the library lacks, at its place in the scene file.
+    if let Some((i, f)) = scene
+        .facets
+        .iter()
+        .enumerate()
+        .find(|(_, f)| materials.by_id(f.material).is_none())
+    {
+        return Err(miette::Report::new(
+            irsig_formats::canonical::raw_scene_error_at_path(
+                &scene_input.name,
+                &scene_input.bytes,
+                &scene,
+                &format!("facets[{i}].material"),
+                format!(
+                    "facets[{i}] uses material {}, which the material library {} does not define",
+                    f.material.0, cli.materials
+                ),
+            ),
+        ));
+    }
+    drop(scene_input);
     hash_field(&mut run, "materials", format!("{materials:?}").as_bytes());
     let job = read_job(&cli)?;
     let uncertainties = match &cli.uncertainties {
-        Some(path) => Some(read_uncertainties(path, &materials)?),
+        Some(path) => Some(read_uncertainties(path, &materials, &scene.objects)?),
         None => None,
     };
     // The budget's layers are pixels of the truth EXR: tiles of other uncertainties differ.
@@ -564,10 +583,40 @@ fn frame_run(run: &Sha256, view: &View, settings: &Settings) -> String {
 
 /// The declared uncertainties (canonical RON), checked against the material library: an
 /// emissivity ± that would leave [0, 1] is an error at its line and column.
-fn read_uncertainties(path: &str, materials: &MaterialLibrary) -> miette::Result<Uncertainties> {
+fn read_uncertainties(
+    path: &str,
+    materials: &MaterialLibrary,
+    objects: &[String],
+) -> miette::Result<Uncertainties> {
     let input = irsig_cli::read_input(path)?;
     let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
     let u: Uncertainties = from_ron_bytes(&input.name, &input.bytes)?;
+    // An object the raw scene does not have (a misspelt name) would select no facet and
+    // silently declare nothing.
+    for (i, t) in u.temperature.iter().enumerate() {
+        if let irsig_model::uncertainty::Facets::Object(name) = &t.facets {
+            if !objects.iter().any(|o| o == name) {
+                return Err(miette::Report::new(
+                    irsig_formats::canonical::error_at_path(
+                        &input.name,
+                        text,
+                        &format!("temperature[{i}].facets"),
+                        format!(
+                            "invalid uncertainties file: `temperature[{i}].facets`: the raw scene \
+                         has no object `{name}`; its objects include {}",
+                            // A few, not a million names.
+                            objects
+                                .iter()
+                                .take(8)
+                                .map(|o| format!("`{o}`"))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    ),
+                ));
+            }
+        }
+    }
     u.check_emissivity(|id| {
         let m = materials.materials.iter().find(|m| m.id == id)?;
         let normal = m.emissivity.first().map(|r| r.1)?;
@@ -772,6 +821,52 @@ impl SubBandModel for TotalRadiance {
     }
 }
 
+/// A spectral atmosphere file must cover the band: else an error at its grid (`grid.points`,
+/// in the RON or in the binary form's RON header), before anything is traced.
+fn check_spectral_range(
+    name: &str,
+    a: &SpectralAtmosphere,
+    bytes: &[u8],
+    [lo, hi]: [f64; 2],
+) -> miette::Result<()> {
+    let wavelengths = a.grid.points.iter().map(|&p| match a.grid.axis {
+        irsig_model::SpectralAxis::WavenumberPerCm => 1e4 / p,
+        irsig_model::SpectralAxis::WavelengthUm => p,
+    });
+    let (min, max) = wavelengths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+        (lo.min(w), hi.max(w))
+    });
+    let slack = 1e-9 * max;
+    if lo >= min - slack && hi <= max + slack {
+        return Ok(());
+    }
+    let message = format!(
+        "the band {lo}-{hi} um reaches outside this atmosphere's spectral grid, {min:.6}-{max:.6} \
+         um: trace a band inside the grid, or build the atmosphere over the band"
+    );
+    let file = if name == "-" { "<stdin>" } else { name };
+    let e = if irsig_formats::canonical::binary_spectral::is_binary(bytes) {
+        // The header's RON starts at byte 16.
+        let header_len = bytes
+            .get(12..16)
+            .map_or(0, |b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]) as usize);
+        let header = bytes
+            .get(16..16 + header_len)
+            .map(String::from_utf8_lossy)
+            .unwrap_or_default();
+        let (start, _) = irsig_formats::ron_tree::locate(&header, "grid.points");
+        irsig_formats::ParseError::in_binary(file, 16 + start, message)
+    } else {
+        irsig_formats::canonical::error_at_path(
+            file,
+            &String::from_utf8_lossy(bytes),
+            "grid.points",
+            message,
+        )
+    };
+    Err(miette::Report::new(e))
+}
+
 /// The error of sub-bands asked of an atmosphere without spectra.
 fn no_spectra(name: &str, count: SubBandCount) -> miette::Report {
     irsig_cli::usage_error(format!(
@@ -827,6 +922,11 @@ fn with_atmosphere<R: SubBandModel>(
             || cli.tolerance.is_some()
             || cli.decision.is_some());
     let data = read_atmosphere(&cli.atmosphere, wants_spectra)?;
+    if let (AirData::Spectral(a, bytes), Some(sp)) = (&data, &split)
+        && (cli.atmosphere == "-" || Path::new(&cli.atmosphere).exists())
+    {
+        check_spectral_range(&cli.atmosphere, a, bytes, sp.range_um)?;
+    }
     // The sky is precomputed up to the highest sensor or scene point.
     let top = job
         .views
@@ -978,14 +1078,17 @@ impl Settings {
         }
     }
 
-    /// These settings with a decision's choices applied.
-    fn with_decision(mut self, d: &Decision) -> miette::Result<Self> {
-        for c in &d.choices {
+    /// These settings with a decision's choices applied; a choice that is not a setting of
+    /// its model, or puts an option out of range, is returned with its index.
+    fn with_decision(mut self, d: &Decision) -> Result<Self, (usize, String)> {
+        for (i, c) in d.choices.iter().enumerate() {
             let bad = || {
-                miette!(
-                    "the decision's {}={} is not a setting of that model",
-                    c.model,
-                    c.setting
+                (
+                    i,
+                    format!(
+                        "the decision's {}={} is not a setting of that model",
+                        c.model, c.setting
+                    ),
                 )
             };
             match c.model {
@@ -1014,6 +1117,9 @@ impl Settings {
                     self.sub_bands = c.setting.parse().map_err(|_| bad())?;
                 }
             }
+            self.options
+                .validate()
+                .map_err(|e| (i, format!("the decision's {}={}: {e}", c.model, c.setting)))?;
         }
         Ok(self)
     }
@@ -1149,12 +1255,25 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             let d: Decision = from_ron_bytes(&input.name, &input.bytes)?;
+            // Each choice is checked here, where the file's text can point at it.
+            if let Err((i, message)) = Settings::from_cli(cli).with_decision(&d) {
+                return Err(miette::Report::new(
+                    irsig_formats::canonical::error_at_path(
+                        &input.name,
+                        &String::from_utf8_lossy(&input.bytes),
+                        &format!("choices[{i}].setting"),
+                        message,
+                    ),
+                ));
+            }
             Some(d)
         }
         None => None,
     };
     let base = match &applied {
-        Some(d) => Settings::from_cli(cli).with_decision(d)?,
+        Some(d) => Settings::from_cli(cli)
+            .with_decision(d)
+            .map_err(|(_, m)| miette!("{m}"))?,
         None => Settings::from_cli(cli),
     };
     let (mut kind, mut count) = (base.kind, base.sub_bands);
@@ -1241,7 +1360,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         let (settings, model_k) = match cli.tolerance {
             Some(tolerance_k) => {
                 let d = decide(cli, &tracer, materials, air, cam, tolerance_k)?;
-                let settings = base.with_decision(&d)?;
+                let settings = base.with_decision(&d).map_err(|(_, m)| miette!("{m}"))?;
                 let decision_file = match &cli.output {
                     Some(_) => out
                         .radiance_exr

@@ -173,6 +173,51 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             ),
         )
     })?;
+    // The header's tables are empty: their values follow it. Values in both places would
+    // be silently replaced.
+    let c = atm.transmission_correction.as_ref();
+    let sl = atm.slant.as_ref();
+    let in_header = [
+        ("level_transmission", atm.level_transmission.len()),
+        (
+            "level_path_radiance_w_m2_sr_per_unit",
+            atm.level_path_radiance_w_m2_sr_per_unit.len(),
+        ),
+        (
+            "transmission_correction.transmission",
+            c.map_or(0, |c| c.transmission.len()),
+        ),
+        (
+            "sky_radiance_w_m2_sr_per_unit",
+            atm.sky_radiance_w_m2_sr_per_unit.len(),
+        ),
+        (
+            "sky_hemispheric_w_m2_sr_per_unit",
+            atm.sky_hemispheric_w_m2_sr_per_unit
+                .as_ref()
+                .map_or(0, Vec::len),
+        ),
+        ("slant.transmission", sl.map_or(0, |s| s.transmission.len())),
+        (
+            "slant.path_radiance_w_m2_sr_per_unit",
+            sl.map_or(0, |s| s.path_radiance_w_m2_sr_per_unit.len()),
+        ),
+        (
+            "slant.sky_radiance_w_m2_sr_per_unit",
+            sl.map_or(0, |s| s.sky_radiance_w_m2_sr_per_unit.len()),
+        ),
+    ];
+    if let Some((path, n)) = in_header.into_iter().find(|&(_, n)| n > 0) {
+        let (start, _) = crate::ron_tree::locate(text, path);
+        return Err(ParseError::in_binary(
+            file,
+            16 + start,
+            format!(
+                "expected `{path}` empty in the header (the values follow the header), found \
+                 {n} values"
+            ),
+        ));
+    }
     let mut at = 16 + h;
     for t in tables_mut(&mut atm) {
         let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
