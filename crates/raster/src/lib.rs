@@ -424,6 +424,48 @@ fn check_claimed_size(bytes: &[u8]) -> Result<(), RasterError> {
     Ok(())
 }
 
+/// Where in the bytes of an EXR reading it failed with `error`, as a byte offset, for a
+/// message that points into the file (`file.exr:1:OFFSET+1`): the magic number (0) or the
+/// version (4) when they are wrong, the end of the file when it is cut short, the
+/// `dataWindow` attribute when the header claims too large an image, the start of the
+/// header (8) when the header is malformed, and the end of the header (the offset table)
+/// when the header reads but the pixel data does not.
+#[must_use]
+pub fn exr_error_offset(bytes: &[u8], error: &RasterError) -> usize {
+    const MAGIC: [u8; 4] = [0x76, 0x2f, 0x31, 0x01];
+    if bytes.len() < 4 || bytes[..4] != MAGIC {
+        return 0;
+    }
+    if bytes.len() < 8 {
+        return bytes.len();
+    }
+    if bytes[4] != 2 {
+        return 4;
+    }
+    if let RasterError::TooLarge(_) = error {
+        return exr_attribute_offset(bytes, "dataWindow").unwrap_or(8);
+    }
+    let truncated = matches!(error, RasterError::Exr(e) if e.to_string().contains("missing bytes"));
+    let mut cursor = Cursor::new(bytes);
+    match x::MetaData::read_from_buffered(&mut cursor, false) {
+        Err(_) if truncated => bytes.len(),
+        Err(_) => 8,
+        Ok(_) => usize::try_from(cursor.position()).unwrap_or(8),
+    }
+}
+
+/// The byte offset of the header attribute `name` (the first byte of its name) in the bytes
+/// of an EXR, if its header has one.
+#[must_use]
+pub fn exr_attribute_offset(bytes: &[u8], name: &str) -> Option<usize> {
+    let key: Vec<u8> = name.bytes().chain([0]).collect();
+    bytes
+        .get(8..)?
+        .windows(key.len())
+        .position(|w| w == key.as_slice())
+        .map(|i| i + 8)
+}
+
 /// What an EXR's header says of its image, without its pixels: size, layers (names and
 /// units, in the order [`read_exr`] gives them) and the frame it is part of.
 #[derive(Debug, Clone, PartialEq, Eq)]

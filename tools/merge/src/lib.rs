@@ -136,8 +136,13 @@ fn read_tiles(names: &[String]) -> miette::Result<Tiles> {
             ));
         }
         let input = irsig_cli::read_input(name)?;
-        let info = read_exr_info(&input.bytes)
-            .map_err(|e| miette!("`{}` is not a readable EXR: {e}", input.name))?;
+        let info = read_exr_info(&input.bytes).map_err(|e| {
+            miette::Report::new(irsig_formats::ParseError::in_binary(
+                input.name.clone(),
+                irsig_raster::exr_error_offset(&input.bytes, &e),
+                format!("not a readable EXR: {e}"),
+            ))
+        })?;
         let tile = Tile {
             name: input.name,
             info,
@@ -243,8 +248,13 @@ fn merge(tiles: &[Tile]) -> miette::Result<Raster> {
     let mut frame = layout.frame();
     for tile in tiles {
         let input = irsig_cli::read_input(&tile.name)?;
-        let raster = read_exr(&input.bytes)
-            .map_err(|e| miette!("`{}` is not a readable EXR: {e}", input.name))?;
+        let raster = read_exr(&input.bytes).map_err(|e| {
+            miette::Report::new(irsig_formats::ParseError::in_binary(
+                input.name.clone(),
+                irsig_raster::exr_error_offset(&input.bytes, &e),
+                format!("not a readable EXR: {e}"),
+            ))
+        })?;
         layout
             .paste(&mut frame, &tile.name, &raster)
             .map_err(|e| miette!("{e}"))?;

@@ -191,7 +191,13 @@ fn provenance(role: &'static str, input: &Input) -> Provenance {
 }
 
 fn read_image(input: &Input) -> miette::Result<Raster> {
-    read_exr(&input.bytes).map_err(|e| miette!("{}: cannot read the EXR: {e}", input.name))
+    read_exr(&input.bytes).map_err(|e| {
+        miette::Report::new(irsig_formats::ParseError::in_binary(
+            input.name.clone(),
+            irsig_raster::exr_error_offset(&input.bytes, &e),
+            format!("cannot read the EXR: {e}"),
+        ))
+    })
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {

@@ -293,8 +293,24 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let band = cli.band.load()?;
 
     let input = irsig_cli::read_input(&cli.input)?;
-    let raster = read_exr(&input.bytes)
-        .map_err(|e| miette!("`{}` is not a readable EXR: {e}", input.name))?;
+    let raster = read_exr(&input.bytes).map_err(|e| {
+        miette::Report::new(irsig_formats::ParseError::in_binary(
+            input.name.clone(),
+            irsig_raster::exr_error_offset(&input.bytes, &e),
+            format!("not a readable EXR: {e}"),
+        ))
+    })?;
+    if raster.layer(RADIANCE_LAYER).is_none() {
+        let names: Vec<&str> = raster.layers.iter().map(|l| l.name.as_str()).collect();
+        return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
+            input.name.clone(),
+            irsig_raster::exr_attribute_offset(&input.bytes, "channels").unwrap_or(8),
+            format!(
+                "no `{RADIANCE_LAYER}` layer (W m^-2 sr^-1) in the input; it has: {}",
+                names.join(", ")
+            ),
+        )));
+    }
     let settings = Settings {
         chain: MtfChain::new(cli.mtf.clone()),
         edge: cli.edge.into(),

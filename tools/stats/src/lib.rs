@@ -338,7 +338,13 @@ fn selection(region: &irsig_model::Region) -> String {
 }
 
 fn read_image(name: &str, bytes: &[u8]) -> miette::Result<Raster> {
-    read_exr(bytes).map_err(|e| miette!("{name}: cannot read the EXR: {e}"))
+    read_exr(bytes).map_err(|e| {
+        miette::Report::new(irsig_formats::ParseError::in_binary(
+            name,
+            irsig_raster::exr_error_offset(bytes, &e),
+            format!("cannot read the EXR: {e}"),
+        ))
+    })
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
