@@ -77,14 +77,17 @@ impl Pipeline {
     /// # Errors
     /// An unreadable file, or any error of [`Pipeline::parse`].
     pub fn load(path: &Path) -> Result<Self, PipelineError> {
-        let text = std::fs::read_to_string(path).map_err(|e| {
+        let bytes = std::fs::read(path).map_err(|e| {
             PipelineError::io(format!("cannot read pipeline file `{}`", path.display()), e)
         })?;
+        // Not UTF-8: an error at the first bad byte, as every reader of text gives.
+        let text = irsig_formats::canonical::utf8(&path.display().to_string(), &bytes)
+            .map_err(|e| PipelineError::located(ErrorKind::Syntax, e))?;
         let base_dir = match path.parent() {
             Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
             _ => PathBuf::from("."),
         };
-        Self::parse(&path.display().to_string(), &text, &base_dir)
+        Self::parse(&path.display().to_string(), text, &base_dir)
     }
 
     /// Parses pipeline text. `file` is the name errors show; relative paths in the pipeline

@@ -112,12 +112,22 @@ fn spectra_of_lowtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
 
 fn spectra_of_modtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
     let t = modtran_tape7::parse(file, text)?;
-    let tau = t
-        .transmission()
-        .ok_or_else(|| miette!("{file}: no TOT_TRANS or COMBIN TRANS column"))?;
+    let tau = t.transmission().ok_or_else(|| {
+        located(
+            file,
+            text,
+            t.header_position,
+            "expected a TOT_TRANS or COMBIN TRANS column in the header, found none".into(),
+        )
+    })?;
     let l = t.path_thermal_radiance().ok_or_else(|| {
-        miette!(
-            "{file}: a transmittance-mode tape7 has no path radiance; run MODTRAN in radiance mode"
+        located(
+            file,
+            text,
+            t.header_position,
+            "expected the path radiance columns (PTH_THRML, THRML_SCT) of a radiance-mode \
+             tape7, found none: run MODTRAN in radiance mode"
+                .into(),
         )
     })?;
     Ok(PathSpectra {
@@ -125,6 +135,75 @@ fn spectra_of_modtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
         transmission: tau.to_vec(),
         radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
     })
+}
+
+/// Every run must be on one spectral grid, the one most runs share: a given tape7 on
+/// another (a run of another deck, a file cut or edited) is an error at its first row off
+/// that grid.
+fn check_grids(runs: &[RunResult], given: &[Option<PathBuf>]) -> Result<(), Report> {
+    fn grid_of(r: &RunResult) -> &[f64] {
+        &r.spectra.wavenumber_per_cm
+    }
+    let Some(common) = runs
+        .iter()
+        .map(grid_of)
+        .max_by_key(|g| runs.iter().filter(|r| grid_of(r) == *g).count())
+    else {
+        return Ok(());
+    };
+    for (i, r) in runs.iter().enumerate() {
+        let grid = grid_of(r);
+        if grid == common {
+            continue;
+        }
+        let describe = |g: &[f64]| match (g.first(), g.last()) {
+            (Some(a), Some(b)) => format!("{} points, {a} to {b} cm-1", g.len()),
+            _ => "no points".to_owned(),
+        };
+        let message = format!(
+            "expected the spectral grid of the other runs ({}), found {}",
+            describe(common),
+            describe(grid)
+        );
+        let Some(Some(file)) = given.get(i) else {
+            return Err(miette!("run {i}: {message}"));
+        };
+        let input = irsig_cli::read_input(&file.to_string_lossy())?;
+        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+        // The first row whose wavenumber is not the common grid's (or the end of the rows).
+        let k = grid
+            .iter()
+            .zip(common)
+            .position(|(a, b)| a.to_bits() != b.to_bits())
+            .unwrap_or(grid.len().min(common.len()));
+        let offset = grid
+            .get(k)
+            .map_or(text.trim_end().len().saturating_sub(1), |&w| {
+                row_offset(text, w)
+            });
+        return Err(Report::new(ParseError::at_offset(
+            &input.name,
+            text,
+            offset,
+            message,
+        )));
+    }
+    Ok(())
+}
+
+/// The offset of the first line of `text` that starts with wavenumber `w` (`710.` as
+/// LOWTRAN prints it, `2050.00` as MODTRAN does), else 0.
+fn row_offset(text: &str, w: f64) -> usize {
+    let keys = [format!("{w:.0}."), format!("{w:.2}")];
+    let mut offset = 0;
+    for line in text.split_inclusive('\n') {
+        let t = line.trim_start();
+        if keys.iter().any(|k| t.starts_with(k.as_str())) {
+            return offset + (line.len() - t.len());
+        }
+        offset += line.len();
+    }
+    0
 }
 
 /// Reads a run's given outputs.
@@ -150,6 +229,21 @@ fn read_given(tape7: &Path) -> Result<RunResult, Report> {
             .first()
             .map(|r| r.profile.clone())
             .unwrap_or_default();
+        // A TAPE6 is given for its profile: one without two levels of it is cut short or
+        // is not LOWTRAN7's.
+        if profile.len() < 2 {
+            return Err(Report::new(ParseError::at_offset(
+                &input.name,
+                text,
+                text.trim_end().len().saturating_sub(1),
+                format!(
+                    "expected the first run's ATMOSPHERIC PROFILES table with at least two \
+                     levels (the profile's temperatures come from it), found {} by the end of \
+                     the file",
+                    profile.len()
+                ),
+            )));
+        }
     }
     Ok(RunResult {
         spectra,
@@ -334,6 +428,7 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     if ok.len() != all.len() {
         return Err(miette!("only {} of {} runs finished", ok.len(), all.len()));
     }
+    check_grids(&ok, &given)?;
     let (temperature, ground_asl_m, model_text): (Box<dyn Fn(f64) -> f64>, f64, String) =
         match &plan.model {
             PlanModel::Radiosonde(levels) => {

@@ -92,13 +92,28 @@ pub fn run(args: &Args) -> miette::Result<()> {
             let input = irsig_cli::read_input(&path.to_string_lossy())?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let nk = irsig_formats::nk::parse(&input.name, text)?;
+            let first_um = nk.wavelength_um.first().copied().unwrap_or(f64::NAN);
             let index = IndexTable::new(nk.wavelength_um, &nk.n, &nk.k)
                 .map_err(|e| miette!("{}: {e}", input.name))?;
             let band_arg = args.band.clone().unwrap_or_default();
             let band = band_arg.load()?;
             let t = args.temperature.unwrap_or(300.0);
-            let table = band_emissivity_table(&index, &band, t, &angles)
-                .map_err(|e| miette!("{}: {e}", input.name))?;
+            let table = band_emissivity_table(&index, &band, t, &angles).map_err(|e| {
+                // A table that does not cover the band ends too early or starts too late:
+                // point at its first or its last row.
+                let rows: Vec<usize> = data_rows(text).collect();
+                let row = if first_um > band.lambda_min_um() {
+                    rows.first()
+                } else {
+                    rows.last()
+                };
+                miette::Report::new(irsig_formats::ParseError::at_offset(
+                    input.name.clone(),
+                    text,
+                    row.copied().unwrap_or(0),
+                    e.to_string(),
+                ))
+            })?;
             let srf = match &band_arg {
                 BandArg::Response(path) => format!(" weighted by the response {path}"),
                 BandArg::Flat { .. } => String::new(),
@@ -178,4 +193,16 @@ fn write_library(
         .map_err(|e| miette!("the material library entry is not valid: {e}"))?;
     let text = irsig_formats::canonical::to_ron(&library).map_err(|e| miette!("{e}"))?;
     irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
+}
+
+/// The byte offsets of the rows of a table's `text`: its lines that are neither blank nor
+/// comments, at their first character.
+fn data_rows(text: &str) -> impl Iterator<Item = usize> + '_ {
+    let mut offset = 0;
+    text.split_inclusive('\n').filter_map(move |line| {
+        let at = offset;
+        offset += line.len();
+        let t = line.trim_start();
+        (!t.is_empty() && !t.starts_with('#')).then(|| at + (line.len() - t.len()))
+    })
 }

@@ -177,16 +177,41 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             continue;
         }
         if profile_state == 2 {
-            let tok: Vec<&str> = t.split_whitespace().collect();
-            let row = (tok.len() >= 4 && tok[0].bytes().all(|c| c.is_ascii_digit()))
-                .then(|| [number(tok[1]), number(tok[2]), number(tok[3])]);
-            match row {
-                Some([Some(z), Some(p), Some(tk)]) => {
+            let row_line = TextLine {
+                text: b,
+                offset: line.offset + (line.text.len() - b.len()),
+                number: line.number,
+            };
+            let tokens = row_line.tokens();
+            // A row starts with its level number I; anything else (the units line, a blank
+            // line, the next table) is not a row.
+            let is_row = tokens
+                .first()
+                .is_some_and(|&(_, i)| i.bytes().all(|c| c.is_ascii_digit()));
+            if is_row {
+                let value = |k: usize| tokens.get(k).and_then(|&(_, v)| number(v));
+                if let (Some(z), Some(p), Some(tk)) = (value(1), value(2), value(3)) {
                     run.profile.push([z, p, tk]);
                     continue;
                 }
-                _ if run.profile.is_empty() => continue,
-                _ => profile_state = 0,
+                let (at, found) = (1..4)
+                    .find_map(|k| match tokens.get(k) {
+                        Some(&(at, v)) if number(v).is_none() => Some((at, v)),
+                        None => Some((line.offset + line.text.len(), "the end of the line")),
+                        _ => None,
+                    })
+                    .unwrap_or((line.offset, ""));
+                return Err(src.error(
+                    at,
+                    found.len(),
+                    format!(
+                        "expected a profile row (I, then Z in km, P in mb and T in K as finite \
+                         numbers), found `{found}`"
+                    ),
+                ));
+            }
+            if !run.profile.is_empty() {
+                profile_state = 0;
             }
         }
         if t.starts_with("CARD 5 *****") {

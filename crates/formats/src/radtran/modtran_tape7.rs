@@ -17,7 +17,8 @@
 //! line: each of its words ends a column, and a column's name is what every header line
 //! holds between the end of the previous column and the end of this one. Every row must
 //! have exactly as many numbers as the header has columns. `FREQ` is cm⁻¹ and must
-//! strictly increase; radiances are W cm⁻² sr⁻¹ per cm⁻¹.
+//! strictly increase; radiances are W cm⁻² sr⁻¹ per cm⁻¹, not negative; transmittances
+//! (`TOT_TRANS`, `COMBIN TRANS`) lie in 0–1.01.
 //!
 //! Card 4's range is kept as [`ModtranTape7::declared`] and never used: the rows are the
 //! data. A file cut down after MODTRAN wrote it (as pyradi's `tape7-01b`, whose card 4
@@ -26,6 +27,20 @@
 use super::{Source, TextLine, number, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
+
+/// Transmittance columns, checked to lie in 0-1.01.
+const TRANSMITTANCES: [&str; 2] = ["TOT_TRANS", "COMBIN TRANS"];
+/// Radiance columns, checked not to be negative.
+const RADIANCES: [&str; 8] = [
+    "PTH_THRML",
+    "THRML_SCT",
+    "SURF_EMIS",
+    "SOL_SCAT",
+    "SING_SCAT",
+    "GRND_RFLT",
+    "DRCT_RFLT",
+    "TOTAL_RAD",
+];
 
 /// What the columns say the file is.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -64,6 +79,8 @@ pub struct ModtranTape7 {
     pub positions: Vec<Position>,
     /// Card 4's range, if a card 4 was found before the column header.
     pub declared: Option<DeclaredRange>,
+    /// Where the column header's last line is.
+    pub header_position: Position,
 }
 
 impl ModtranTape7 {
@@ -204,6 +221,23 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
                     format!("expected {} (a finite number), found `{tok}`", names[c]),
                 ));
             };
+            // As for LOWTRAN's TAPE7: τ within 0-1.01 (printed slightly above 1 on short
+            // humid paths), radiances not negative.
+            let name = names[c].as_str();
+            if TRANSMITTANCES.contains(&name) && !(0.0..=1.01).contains(&v) {
+                return Err(src.error(
+                    at,
+                    tok.len(),
+                    format!("expected {name} from 0 to 1.01, found {v}"),
+                ));
+            }
+            if RADIANCES.contains(&name) && v < 0.0 {
+                return Err(src.error(
+                    at,
+                    tok.len(),
+                    format!("expected {name} of 0 or more (a radiance), found {v}"),
+                ));
+            }
             if c == 0 {
                 if let Some(&prev) = columns[0].last()
                     && v <= prev
@@ -269,6 +303,7 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
         columns,
         positions,
         declared,
+        header_position: last.position(),
     })
 }
 
