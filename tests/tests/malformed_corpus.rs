@@ -2,8 +2,10 @@
 //! `tests/data/malformed/*/cases.tsv` manifest runs through its tool, which must exit 1
 //! within a time and memory bound, name the case's file with a line and column (a binary
 //! file's byte offset is given as line 1, column offset + 1; an OBJ face is located by its
-//! line), hold the manifest's message
-//! fragment, and leave its output folder empty: no output and no staged temporary file.
+//! line; a bad sample of an image by its pixel, `pixel (x X, y Y)`), hold the manifest's
+//! message
+//! fragment, and leave its output folder empty and its own folder as it was (outputs an
+//! execute file names lie beside it): no output and no staged temporary file.
 //!
 //! A manifest line is `file<TAB>tool<TAB>arguments<TAB>fragment`; in the arguments `{in}`
 //! is the case's path and `{out}` an empty folder for outputs. Lines starting with `#` are
@@ -31,8 +33,15 @@ fn unwrap_report(stderr: &str) -> String {
 
 /// Whether `text` holds `STEM.EXT:LINE`, where `STEM` is the case's file stem (the error
 /// may lie in a file the case names, `short-colour.mtl` of `short-colour.obj`). A column
-/// follows the line everywhere except for an OBJ face, which is located by its line.
+/// follows the line everywhere except for an OBJ face, which is located by its line. An
+/// image's sample is located by its pixel instead: the file's name and `pixel (x X, y Y)`.
 fn has_location(text: &str, file: &str) -> bool {
+    let name = Path::new(file)
+        .file_name()
+        .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
+    if text.contains(&name) && text.contains("pixel (x ") {
+        return true;
+    }
     let stem = Path::new(file)
         .file_stem()
         .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
@@ -46,9 +55,20 @@ fn has_location(text: &str, file: &str) -> bool {
     })
 }
 
+/// The names in `dir`, sorted.
+fn listing(dir: &Path) -> Vec<std::ffi::OsString> {
+    let mut names: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    names.sort();
+    names
+}
+
 /// Runs one case; returns what is wrong with its outcome, if anything.
 fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -> Option<String> {
     let out = tempfile::tempdir().unwrap();
+    let before = listing(folder);
     let case = folder.join(file);
     let args: Vec<String> = args
         .split_whitespace()
@@ -100,6 +120,10 @@ fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -
     }
     if !left.is_empty() {
         wrong.push(format!("left {left:?}"));
+    }
+    let after = listing(folder);
+    if after != before {
+        wrong.push(format!("changed its own folder: {before:?} -> {after:?}"));
     }
     (!wrong.is_empty()).then(|| format!("{}: {}\n{stderr}", wrong.join("; "), args.join(" ")))
 }
