@@ -684,6 +684,7 @@ impl<'a> Split<'a> {
         };
         let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
             .map_err(|e| irsig_cli::usage_error(format!("--sub-bands {count}: {e}")))?;
+        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
         edges
             .par_windows(2)
             .map(|w| {
@@ -693,19 +694,20 @@ impl<'a> Split<'a> {
                 let at = |e: irsig_atmosphere::AtmosphereError| {
                     miette!("sub-band {}-{} um: {e}", w[0], w[1])
                 };
-                let mut atmosphere =
-                    irsig_atmosphere::collapse(spectral, w[0], w[1], |l| self.weight(l))
-                        .map_err(at)?;
+                let mut atmosphere = collapser
+                    .collapse(w[0], w[1], |l| self.weight(l))
+                    .map_err(at)?;
                 if !count.is_band() {
                     // τ as the target sees it: weighted by the blackbody at the reference
                     // temperature, so that τ times the sub-band's L_T is ∫ τ B dλ across
                     // the sub-band (without it the full grid reads up to 0.024 K warm in
                     // a tropical atmosphere; docs/accuracy.md). Radiances keep the
                     // response alone.
-                    let seen = irsig_atmosphere::collapse(spectral, w[0], w[1], |l| {
-                        self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
-                    })
-                    .map_err(at)?;
+                    let seen = collapser
+                        .collapse(w[0], w[1], |l| {
+                            self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
+                        })
+                        .map_err(at)?;
                     with_transmission(&mut atmosphere, &seen);
                 }
                 Ok(Some((band, atmosphere)))
