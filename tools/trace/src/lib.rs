@@ -1052,15 +1052,18 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     // A count the band's grid cannot make (more sub-bands than grid intervals in a narrow
     // band) is not on offer, unless it is the one pinned.
     let pinned_count = offer.sub_bands.len() == 1;
+    // The sub-band counts at the reference atmosphere; every other model is measured in
+    // the band model (`Tracer::pilot` says why), so each atmosphere in it.
     let mut pairs: Vec<(ModelKind, SubBandCount)> = Vec::new();
-    for &kind in &offer.atmospheres {
-        pairs.push((kind, ref_count));
-    }
     for &count in &offer.sub_bands {
         pairs.push((ref_kind, count));
     }
-    // The band model at the reference atmosphere measures the tabulated path terms.
     pairs.push((ref_kind, SubBandCount::BAND));
+    for &kind in &offer.atmospheres {
+        pairs.push((kind, SubBandCount::BAND));
+    }
+    // The pilot's time includes making its band sets (each sub-band's sky).
+    let started = std::time::Instant::now();
     let mut bands: Vec<BandChoice<S>> = Vec::new();
     let mut unavailable = Vec::new();
     for (kind, count) in pairs {
@@ -1073,7 +1076,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         }
         let sub = match (air.pilot)(kind, count) {
             Ok(sub) => sub,
-            Err(e) if count == ref_count || pinned_count => return Err(e),
+            Err(e) if count == ref_count || count.is_band() || pinned_count => return Err(e),
             Err(_) => {
                 unavailable.push(count);
                 continue;
@@ -1110,7 +1113,6 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     // 1 % needs several hundred samples to be seen at all.
     let pixels =
         (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
-    let started = std::time::Instant::now();
     let decision = tracer
         .pilot(
             camera,
