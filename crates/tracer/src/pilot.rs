@@ -239,8 +239,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// every other model's error is measured in the band model, against the band model
     /// at the reference geometry. A model's error in kelvin is a difference of two
     /// radiances through the same band quadrature; changing the quadrature changes that
-    /// difference by the quadrature's own relative error (under 1 %, docs/accuracy.md
-    /// "Band against spectral"), a second-order term far under any tolerance, while
+    /// difference by the quadrature's own relative error (a few per cent at most: the band
+    /// model is up to 1.9 K off at 300 K, docs/accuracy.md "Band against spectral"), so a
+    /// 0.3 K error is misjudged by about 0.01 K, while
     /// evaluating the geometric alternatives (a pixel's 4 × 4 sub-pixel rays, its eight
     /// neighbours, each bounce limit) in every sub-band of the full grid cost the pilot
     /// 30 times as much.
