@@ -344,7 +344,7 @@ fn bad_tiles_are_refused_and_nothing_is_written() {
     std::fs::write(&junk, "not an image").unwrap();
     merge(&[junk])
         .code(1)
-        .stderr(says("junk.exr` is not a readable EXR"));
+        .stderr(says("junk.exr:1:1: not a readable EXR"));
     // An output made from tiles not given.
     let radiance_only: Vec<PathBuf> = all
         .iter()
