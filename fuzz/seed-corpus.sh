@@ -49,3 +49,12 @@ cp $root/formats/radtran/samples/us-std-1976.tape7 "$c/lowtran_tape7/"
 for k in truncated column-count repeated-wavenumber falling-wavenumber; do cp "$r/$k/runs/0000.tape7" "$c/lowtran_tape7/$k.tape7"; done
 cp $root/tests/data/third-party/pyradi/tape7-* "$r/modtran-column-count/runs/0000.tape7" "$c/modtran_tape7/"
 cp $root/crates/atmosphere/data/us-std-1976.spectral.bin "$c/spectral_atmosphere/"
+# Sensor responses, n, k tables, regions files and EXRs: the samples and the malformed cases.
+m=$root/tests/data/malformed
+mkdir -p "$c/srf" "$c/nk" "$c/regions" "$c/exr_sensor"
+cp $root/formats/samples/srf-8-12um.txt $m/srf/*.srf "$c/srf/"
+cp $root/formats/samples/water-hale-querry-nk.txt $m/nk/*.nk "$c/nk/"
+cp $s/regions.ron "$c/regions/"
+cp $root/pipelines/thesis-experiment/regions.ron "$c/regions/thesis-experiment.ron"
+for f in $m/regions/*.ron; do cp "$f" "$c/regions/bad-$(basename "$f")"; done
+cp $m/base/truth.exr $m/exr-sensor/*.exr "$c/exr_sensor/"
