@@ -421,9 +421,12 @@ fn scan(
                     });
                     run_started = true;
                 }
+                // The face's column: where its `f` is (past any indentation).
+                let column = line.len() - line.trim_start().len() + 1;
                 out.origins.push(Origin {
                     first_triangle: first,
                     line: u32::try_from(line_index + 1).unwrap_or(u32::MAX),
+                    column: u32::try_from(column).unwrap_or(u32::MAX),
                     part: None,
                 });
                 out.triangles += n - 2;
@@ -451,6 +454,7 @@ fn scan(
                             first_use: Location {
                                 file: file.to_owned(),
                                 line: Some(line_index + 1),
+                                column: Some(line.len() - line.trim_start().len() + 1),
                                 part: None,
                             },
                         });
@@ -529,7 +533,15 @@ fn check_mtl(
         ));
         return Ok(());
     };
-    let full = dir.join(path);
+    let full = super::gltf_read::inside(dir, &path, name).map_err(|why| {
+        ParseError::at_span(
+            file,
+            text,
+            offset,
+            name.len().max(1),
+            format!("mtllib `{name}`: {why}"),
+        )
+    })?;
     match crate::file::read_file(&full) {
         Ok(bytes) => {
             let mtl_name = full.display().to_string();
@@ -591,6 +603,16 @@ mod tests {
         let p = |i: u32| m.positions[i as usize];
         let t1 = m.triangles[1].vertices.map(p);
         assert_eq!(t1, [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+    }
+
+    #[test]
+    fn a_face_is_located_at_the_line_and_column_of_its_f() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n\t  f 2 4 3 1\n";
+        let m = read_obj("c.obj", text.as_bytes(), None).unwrap();
+        assert_eq!(m.triangle_location(0).to_string(), "c.obj:5:1");
+        // A tab and two spaces before the `f`: its third character.
+        assert_eq!(m.triangle_location(1).to_string(), "c.obj:6:4");
+        assert_eq!(m.triangle_location(2).to_string(), "c.obj:6:4");
     }
 
     #[test]
