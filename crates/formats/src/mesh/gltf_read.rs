@@ -144,20 +144,26 @@ impl<'a> Source<'a> {
     /// A JSON syntax or type error, at the line and column `serde_json` gives.
     fn syntax_error(&self, bytes: &[u8], j: &gltf::json::Error) -> ParseError {
         let msg = format!("malformed glTF JSON: {j}");
-        let offset_in = |text: &str| {
-            text.split_inclusive('\n')
+        // serde_json counts columns in bytes.
+        let offset_in = |text: &[u8]| {
+            text.split_inclusive(|&b| b == b'\n')
                 .take(j.line().saturating_sub(1))
-                .map(str::len)
+                .map(<[u8]>::len)
                 .sum::<usize>()
                 + j.column().saturating_sub(1)
         };
         match (self.glb, self.json) {
-            (false, Some(text)) => ParseError::at_offset(self.file, text, offset_in(text), msg),
-            (true, Some(text)) => ParseError::in_binary(
-                self.file,
-                GLB_JSON_START + offset_in(text).min(text.len()),
-                format!("{msg} (in the GLB's JSON chunk)"),
-            ),
+            (false, Some(text)) => {
+                ParseError::at_offset(self.file, text, offset_in(text.as_bytes()), msg)
+            }
+            (true, _) => {
+                let chunk = bytes.get(GLB_JSON_START..).unwrap_or_default();
+                ParseError::in_binary(
+                    self.file,
+                    GLB_JSON_START + offset_in(chunk).min(chunk.len()),
+                    format!("{msg} (in the GLB's JSON chunk)"),
+                )
+            }
             (false, None) => {
                 let (text, valid) = match std::str::from_utf8(bytes) {
                     Ok(t) => (t, t.len()),
@@ -173,11 +179,6 @@ impl<'a> Source<'a> {
                     "expected UTF-8 JSON text, found a byte that is not",
                 )
             }
-            (true, None) => ParseError::in_binary(
-                self.file,
-                GLB_JSON_START,
-                format!("{msg} (in the GLB's JSON chunk)"),
-            ),
         }
     }
 }
@@ -199,35 +200,8 @@ impl<'a> Source<'a> {
 /// is not a multiple of 3, or no triangles at all.
 pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mesh, ParseError> {
     let source = Source::new(file, bytes);
-    if let Some(declared) = bytes
-        .strip_prefix(b"glTF")
-        .and_then(|rest| rest.get(4..8))
-        .and_then(|b| <[u8; 4]>::try_from(b).ok())
-        .map(u32::from_le_bytes)
-    {
-        // gltf 1.4 subtracts the 12-byte header from the declared length unchecked (an
-        // arithmetic overflow panic when it is smaller), and reads a file longer than
-        // declared as if it ended there.
-        if declared < 12 {
-            return Err(ParseError::in_binary(
-                file,
-                8,
-                format!(
-                    "malformed GLB header: declared length {declared} bytes, expected at least \
-                     the 12-byte header"
-                ),
-            ));
-        }
-        if declared as usize != bytes.len() {
-            return Err(ParseError::in_binary(
-                file,
-                8,
-                format!(
-                    "the GLB header states a length of {declared} bytes, but the file has {}",
-                    bytes.len()
-                ),
-            ));
-        }
+    if bytes.starts_with(b"glTF") {
+        check_glb_container(file, bytes)?;
     }
     let doc = parse_and_validate(bytes).map_err(|e| match e {
         gltf::Error::Deserialize(j) => source.syntax_error(bytes, &j),
@@ -378,6 +352,106 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
         }
     }
     Ok(mesh)
+}
+
+/// A GLB's header and chunk headers (glTF 2.0 §4.4), each checked at its byte offset
+/// before gltf reads them: gltf 1.4 subtracts the 12-byte header from the stated length
+/// unchecked (an overflow panic when it is smaller), reads a file longer than stated as if
+/// it ended there, and reports container errors with no offset.
+fn check_glb_container(file: &str, bytes: &[u8]) -> Result<(), ParseError> {
+    let at = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
+    let u32_at = |offset: usize| {
+        bytes
+            .get(offset..offset.checked_add(4)?)
+            .and_then(|b| <[u8; 4]>::try_from(b).ok())
+            .map(|b| u32::from_le_bytes(b) as usize)
+    };
+    let len = bytes.len();
+    let (Some(version), Some(declared)) = (u32_at(4), u32_at(8)) else {
+        return Err(at(
+            len,
+            format!("expected the 12-byte GLB header, found the end of the file after {len} bytes"),
+        ));
+    };
+    if declared < 12 {
+        return Err(at(
+            8,
+            format!(
+                "malformed GLB header: declared length {declared} bytes, expected at least the \
+                 12-byte header"
+            ),
+        ));
+    }
+    if version != 2 {
+        return Err(at(
+            4,
+            format!("expected GLB container version 2, found {version}"),
+        ));
+    }
+    if declared != len {
+        return Err(at(
+            8,
+            format!("the GLB header states a length of {declared} bytes, but the file has {len}"),
+        ));
+    }
+    let Some(json_len) = u32_at(12).filter(|_| len >= GLB_JSON_START) else {
+        return Err(at(
+            12,
+            "expected the JSON chunk's 8-byte header after the GLB header, found the end of the \
+             file"
+                .into(),
+        ));
+    };
+    if &bytes[16..20] != b"JSON" {
+        return Err(at(
+            16,
+            format!(
+                "expected the first chunk to be of type `JSON`, found {:?}",
+                String::from_utf8_lossy(&bytes[16..20])
+            ),
+        ));
+    }
+    let json_end = GLB_JSON_START.saturating_add(json_len);
+    if json_end > len {
+        return Err(at(
+            12,
+            format!(
+                "the JSON chunk states {json_len} bytes, but {} follow its header",
+                len - GLB_JSON_START
+            ),
+        ));
+    }
+    if json_end < len {
+        let Some(bin_len) = u32_at(json_end).filter(|_| len - json_end >= 8) else {
+            return Err(at(
+                json_end,
+                format!(
+                    "expected an 8-byte chunk header after the JSON chunk, found {} bytes",
+                    len - json_end
+                ),
+            ));
+        };
+        let ty = &bytes[json_end + 4..json_end + 8];
+        if ty != b"BIN\0" {
+            return Err(at(
+                json_end + 4,
+                format!(
+                    "expected the second chunk to be of type `BIN`, found {:?}",
+                    String::from_utf8_lossy(ty)
+                ),
+            ));
+        }
+        if bin_len > len - json_end - 8 {
+            return Err(at(
+                json_end,
+                format!(
+                    "the BIN chunk states {bin_len} bytes, but {} follow its header",
+                    len - json_end - 8
+                ),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Whether a glTF `asset.version` is 2.x (`major.minor`, both digits).
