@@ -300,7 +300,7 @@ fn zero_area_triangles_are_dropped_with_a_warning_or_refused_with_strict() {
     assert!(out.status.success(), "{stderr}");
     assert!(
         stderr.contains("dropped 1 zero-area triangle of 2")
-            && stderr.contains("degenerate.obj:7")
+            && stderr.contains("degenerate.obj:7:1")
             && stderr.contains("--strict"),
         "{stderr}"
     );
@@ -309,7 +309,8 @@ fn zero_area_triangles_are_dropped_with_a_warning_or_refused_with_strict() {
     assert_fails_cleanly(
         "irsig-import",
         &[obj, "--materials", LIBRARY, "--strict"],
-        &["degenerate.obj:7", "degenerate"],
+        // Line 7's face, whose `f` is its first character.
+        &["degenerate.obj:7:1", "degenerate"],
     );
 }
 
