@@ -30,17 +30,25 @@ impl PrecomputedAtmosphere {
         } else {
             1.0
         };
-        // Each level on its own (rayon); collected in order, so the same on any thread count.
-        let computed: Vec<_> = (0..SKY_LEVELS)
+        // Each level's view on its own (rayon); collected in order, so the same on any
+        // thread count. The hemispheric sky is eq. 5 over these same views (level 0 is the
+        // ground), each computed once.
+        let views: Vec<(f64, SkyView)> = (0..SKY_LEVELS)
             .into_par_iter()
             .map(|i| {
                 let h = top * i as f64 / (SKY_LEVELS - 1) as f64;
-                (h, model.sky_view(h), model.sky_hemispheric(h))
+                (h, model.sky_view(h))
+            })
+            .collect();
+        let hemispheric: Vec<_> = views
+            .iter()
+            .map(|(h, view)| {
+                model.sky_hemispheric_from(Some(&views[0].1), (*h > 0.0).then_some(view))
             })
             .collect();
         let mut warnings = Vec::new();
         let mut levels = Vec::with_capacity(SKY_LEVELS);
-        for (h, view, hemi) in computed {
+        for ((h, view), hemi) in views.into_iter().zip(hemispheric) {
             if let Some(w) = hemi.warning
                 && !warnings.contains(&w)
             {
