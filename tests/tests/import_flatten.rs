@@ -300,7 +300,7 @@ fn zero_area_triangles_are_dropped_with_a_warning_or_refused_with_strict() {
     assert!(out.status.success(), "{stderr}");
     assert!(
         stderr.contains("dropped 1 zero-area triangle of 2")
-            && stderr.contains("degenerate.obj:7")
+            && stderr.contains("degenerate.obj:7:1")
             && stderr.contains("--strict"),
         "{stderr}"
     );
@@ -309,7 +309,8 @@ fn zero_area_triangles_are_dropped_with_a_warning_or_refused_with_strict() {
     assert_fails_cleanly(
         "irsig-import",
         &[obj, "--materials", LIBRARY, "--strict"],
-        &["degenerate.obj:7", "degenerate"],
+        // Line 7's face, whose `f` is its first character.
+        &["degenerate.obj:7:1", "degenerate"],
     );
 }
 
@@ -611,4 +612,96 @@ fn malformed_binary_objects_fail_in_flatten_with_offset_and_no_output() {
             expect,
         );
     }
+}
+
+/// A square pyramid standing on the ground in glTF's axes (+Y up): base corners
+/// (±1, 0, ±1), apex (0, 2, 0), every face wound counter-clockwise seen from outside. Its
+/// volume is base × height / 3 = 4 × 2 / 3. The glTF text and its buffer (`pyramid.bin`).
+fn pyramid_gltf() -> (String, Vec<u8>) {
+    let positions: [[f32; 3]; 5] = [
+        [-1.0, 0.0, -1.0],
+        [1.0, 0.0, -1.0],
+        [1.0, 0.0, 1.0],
+        [-1.0, 0.0, 1.0],
+        [0.0, 2.0, 0.0],
+    ];
+    // Base (normal -y), then the sides facing -z, +x, +z and -x.
+    let indices: [u8; 18] = [0, 1, 2, 0, 2, 3, 0, 4, 1, 1, 4, 2, 2, 4, 3, 3, 4, 0];
+    let mut buf: Vec<u8> = positions
+        .iter()
+        .flatten()
+        .flat_map(|v| v.to_le_bytes())
+        .collect();
+    buf.extend(indices);
+    let text = format!(
+        r#"{{"asset":{{"version":"2.0"}},
+"buffers":[{{"byteLength":{},"uri":"pyramid.bin"}}],
+"bufferViews":[{{"buffer":0,"byteLength":60}},{{"buffer":0,"byteOffset":60,"byteLength":18}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3","min":[-1,0,-1],"max":[1,2,1]}},
+  {{"bufferView":1,"componentType":5121,"count":18,"type":"SCALAR"}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}]}}"#,
+        buf.len()
+    );
+    (text, buf)
+}
+
+/// The volume enclosed by an object's facets, positive when they face outward.
+fn object_volume(o: &irsig_model::Object) -> f64 {
+    o.facets
+        .iter()
+        .map(|f| {
+            let [a, b, c] = f.vertices.map(|i| o.positions_m[i as usize]);
+            (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0])
+                + a[2] * (b[0] * c[1] - b[1] * c[0]))
+                / 6.0
+        })
+        .sum()
+}
+
+#[test]
+#[allow(clippy::float_cmp)] // small integers and their negatives: exact in f32 and f64
+fn gltf_is_turned_to_z_up_unless_its_axes_are_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("pyramid.gltf");
+    let (text, buf) = pyramid_gltf();
+    std::fs::write(&model, text).unwrap();
+    std::fs::write(dir.path().join("pyramid.bin"), buf).unwrap();
+    let import = |extra: &[&str]| {
+        let out = dir.path().join("p.bin");
+        bin("irsig-import")
+            .arg(&model)
+            .args(["--materials", LIBRARY, "--default-material", "skin", "-o"])
+            .arg(&out)
+            .args(extra)
+            .assert()
+            .success();
+        irsig_formats::canonical::read_object("p.bin", &std::fs::read(&out).unwrap()).unwrap()
+    };
+    // (x, y, z) -> (x, -z, y): the apex (0, 2, 0) is on top at z = 2, the base corner
+    // (1, 0, -1) lies on the ground at (1, 1, 0).
+    let o = import(&[]);
+    assert_eq!(o.positions_m[4], [0.0, 0.0, 2.0]);
+    assert_eq!(o.positions_m[1], [1.0, 1.0, 0.0]);
+    assert!(o.positions_m[..4].iter().all(|p| p[2] == 0.0));
+    assert!(o.source.contains("+Y up turned to +Z up"), "{}", o.source);
+    // A rotation: the faces still face outward and enclose the same volume.
+    assert!((object_volume(&o) - 8.0 / 3.0).abs() < 1e-12);
+
+    let kept = import(&["--keep-axes"]);
+    assert_eq!(kept.positions_m[4], [0.0, 2.0, 0.0]);
+    assert_eq!(kept.positions_m[1], [1.0, 0.0, -1.0]);
+    assert!((object_volume(&kept) - 8.0 / 3.0).abs() < 1e-12);
+
+    // The flag means nothing for a format with no stated up axis.
+    bin("irsig-import")
+        .args([
+            "formats/canonical/samples/box.obj",
+            "--materials",
+            LIBRARY,
+            "--keep-axes",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--keep-axes is for glTF"));
 }

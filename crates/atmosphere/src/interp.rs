@@ -38,14 +38,49 @@ pub(crate) fn linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 /// Bilinear interpolation of the grid `zs[row][col]` over rows `xs` and columns `ys`,
 /// clamped at the edges.
 pub(crate) fn bilinear(xs: &[f64], ys: &[f64], zs: &[Vec<f64>], x: f64, y: f64) -> f64 {
-    let (i, fx) = locate(xs, x);
-    let row = |k: usize| zs.get(k).map_or(f64::NAN, |r| linear(ys, r, y));
-    if xs.len() < 2 {
-        return row(0);
+    Cell::locate(xs, ys, x, y).of(zs)
+}
+
+/// Where a point lies in a grid of rows `xs` and columns `ys`: located once, for
+/// [`bilinear`] interpolation of several tables on that grid.
+pub(crate) struct Cell {
+    i: usize,
+    fx: f64,
+    j: usize,
+    fy: f64,
+    rows: usize,
+}
+
+impl Cell {
+    pub(crate) fn locate(xs: &[f64], ys: &[f64], x: f64, y: f64) -> Self {
+        let (i, fx) = locate(xs, x);
+        let (j, fy) = locate(ys, y);
+        Self {
+            i,
+            fx,
+            j,
+            fy,
+            rows: xs.len(),
+        }
     }
-    let a = row(i);
-    let b = row(i + 1);
-    a + fx * (b - a)
+
+    /// The table `zs[row][col]` at the cell: what [`bilinear`] gives, to the bit.
+    pub(crate) fn of(&self, zs: &[Vec<f64>]) -> f64 {
+        let row = |k: usize| {
+            zs.get(k)
+                .map_or(f64::NAN, |r| match (r.get(self.j), r.get(self.j + 1)) {
+                    (Some(&a), Some(&b)) => a + self.fy * (b - a),
+                    (Some(&a), None) => a,
+                    _ => f64::NAN,
+                })
+        };
+        if self.rows < 2 {
+            return row(0);
+        }
+        let a = row(self.i);
+        let b = row(self.i + 1);
+        a + self.fx * (b - a)
+    }
 }
 
 /// The least-squares quadratic `y = a + b x + c x²` through the points (thesis Appendix E,

@@ -18,7 +18,7 @@ use irsig_model::{Atmosphere, SlantTables};
 
 use crate::PathTerms;
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
-use crate::interp::bilinear;
+use crate::interp::{Cell, bilinear};
 use crate::layered::{Profile, Slant};
 
 #[derive(Debug, Clone, PartialEq)]
@@ -91,8 +91,9 @@ impl Table {
         let layered = self.profile.path(s);
         let (h, a) = (s.hi(), s.angle_deg());
         let t = &self.slant;
-        let mut dr = bilinear(&t.altitude_m, &t.nadir_deg, &self.depth_ratio, h, a);
-        let mut lr = bilinear(&t.altitude_m, &t.nadir_deg, &self.radiance_ratio, h, a);
+        let cell = Cell::locate(&t.altitude_m, &t.nadir_deg, h, a);
+        let mut dr = cell.of(&self.depth_ratio);
+        let mut lr = cell.of(&self.radiance_ratio);
         // Past the table's last angle the correction fades linearly to none at 90°: the
         // edge correction describes long grazing paths to the ground, not horizontal ones
         // (holding it costs 0.9 K on a 1 km horizontal path that `layered` gets to 0.4 K).

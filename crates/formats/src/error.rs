@@ -25,11 +25,13 @@ pub struct ParseError {
     pub message: String,
     // Behind an `Arc` so that `Result<_, ParseError>` stays small (clippy's
     // `result_large_err`) and cloning an error does not copy the snippet.
+    // `None` for a binary file, which has no text to show: the message's `file:1:column`
+    // (the byte offset) is the whole location.
     #[source_code]
-    source_code: Arc<Snippet>,
+    source_code: Option<Arc<Snippet>>,
     /// The span in the snippet, which is what the renderer underlines.
     #[label("here")]
-    label: SourceSpan,
+    label: Option<SourceSpan>,
     #[help]
     help: Option<String>,
 }
@@ -182,8 +184,9 @@ impl ParseError {
         let len = len.min(source.len() - offset);
         let (line, column) = line_column(source, offset);
         let (snippet, label) = Snippet::around(file.clone(), source, offset, len);
+        let label = Some(label);
         Self {
-            source_code: Arc::new(snippet),
+            source_code: Some(Arc::new(snippet)),
             file,
             line,
             column,
@@ -198,14 +201,13 @@ impl ParseError {
     #[must_use]
     pub fn in_binary(file: impl Into<String>, offset: usize, message: impl Into<String>) -> Self {
         let file = file.into();
-        let (snippet, label) = Snippet::around(file.clone(), "", 0, 0);
         Self {
-            source_code: Arc::new(snippet),
+            source_code: None,
             file,
             line: 1,
             column: offset.saturating_add(1),
             message: message.into(),
-            label,
+            label: None,
             help: None,
         }
     }
@@ -220,7 +222,7 @@ impl ParseError {
     /// The byte offset and length of the span in the source.
     #[must_use]
     pub fn span(&self) -> (usize, usize) {
-        self.source_code.span
+        self.source_code.as_ref().map_or((0, 0), |s| s.span)
     }
 }
 

@@ -194,6 +194,19 @@ fn index_widths_strips_fans_and_several_primitives() {
     }
     assert_eq!(m.material_name(0), Some("steel"));
     assert_eq!(m.material_name(2), Some("material 1"));
+    // Each primitive's triangles, and each material's first use, are located at the
+    // primitive's text.
+    let second = text
+        .find("{\"attributes\":{\"POSITION\":0},\"indices\":2")
+        .unwrap();
+    let (line, column) = (
+        text[..second].matches('\n').count() + 1,
+        second - text[..second].rfind('\n').unwrap(),
+    );
+    assert_eq!(m.triangle_location(2).line, Some(line));
+    assert_eq!(m.triangle_location(2).column, Some(column));
+    assert_eq!(m.materials[1].first_use.line, Some(line));
+    assert_eq!(m.materials[1].first_use.column, Some(column));
     assert_eq!(m.material_name(4), None);
 }
 
@@ -251,4 +264,170 @@ fn obj_with_mtl_beside_it() {
     assert_eq!(m.triangles.len(), 12);
     assert!(m.warnings.is_empty(), "{:?}", m.warnings);
     assert!(signed_volume(&m) > 0.0);
+}
+
+/// The 1-based line and column of the first `needle` in `text`, found by searching.
+fn line_col_of(text: &str, needle: &str) -> (usize, usize) {
+    let at = text.find(needle).unwrap();
+    let line = text[..at].matches('\n').count() + 1;
+    let column = at - text[..at].rfind('\n').map_or(0, |i| i + 1) + 1;
+    (line, column)
+}
+
+/// One triangle's three positions, then `indices` as u8 from byte 36.
+fn triangle_gltf(version: &str, indices: &[u8], buffer_length_delta: i64) -> String {
+    let mut buf = f32s(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+    buf.extend(indices);
+    let b64 = base64::engine::general_purpose::STANDARD.encode(&buf);
+    let declared = buf.len() as i64 + buffer_length_delta;
+    format!(
+        r#"{{"asset":{{"version":"{version}"}},
+"buffers":[{{"byteLength":{declared},"uri":"data:application/octet-stream;base64,{b64}"}}],
+"bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":{n}}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+  {{"bufferView":1,"componentType":5121,"count":{n},"type":"SCALAR"}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},
+  "indices":1}}]}}],
+"nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}]}}"#,
+        n = indices.len()
+    )
+}
+
+#[test]
+fn gltf_leniency_is_refused_at_the_json_path() {
+    assert!(
+        read_gltf(
+            "ok.gltf",
+            triangle_gltf("2.0", &[0, 1, 2], 0).as_bytes(),
+            None
+        )
+        .is_ok()
+    );
+
+    // Four indices make no triangle list.
+    let text = triangle_gltf("2.0", &[0, 1, 2, 0], 0);
+    let e = read_gltf("four.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(
+        e.message.starts_with("meshes[0].primitives[0].indices: "),
+        "{e}"
+    );
+    assert!(e.message.contains("multiple of 3"), "{e}");
+    assert_eq!((e.line, e.column), line_col_of(&text, "\"indices\""), "{e}");
+
+    // glTF 1.0 is another format.
+    let text = triangle_gltf("1.0", &[0, 1, 2], 0);
+    let e = read_gltf("v1.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.starts_with("asset.version: "), "{e}");
+    assert!(e.message.contains("\"1.0\""), "{e}");
+    assert_eq!((e.line, e.column), line_col_of(&text, "\"version\""), "{e}");
+    assert!(
+        read_gltf(
+            "v21.gltf",
+            triangle_gltf("2.1", &[0, 1, 2], 0).as_bytes(),
+            None
+        )
+        .is_ok()
+    );
+    for bad in ["2", "2.", "20.0", "2.0.1", "3.0"] {
+        let text = triangle_gltf(bad, &[0, 1, 2], 0);
+        assert!(read_gltf("v.gltf", text.as_bytes(), None).is_err(), "{bad}");
+    }
+
+    // A buffer whose byteLength is shorter than the bytes it holds (and than its views).
+    let text = triangle_gltf("2.0", &[0, 1, 2], -3);
+    let e = read_gltf("short.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.starts_with("buffers[0].byteLength: "), "{e}");
+    assert!(
+        e.message.contains("declares 36 bytes, but its data has 39"),
+        "{e}"
+    );
+    assert_eq!(
+        (e.line, e.column),
+        line_col_of(&text, "\"byteLength\""),
+        "{e}"
+    );
+    // Or longer.
+    let text = triangle_gltf("2.0", &[0, 1, 2], 1);
+    assert!(read_gltf("long.gltf", text.as_bytes(), None).is_err());
+
+    // A view past its buffer's byteLength, even one no accessor reads.
+    let text = triangle_gltf("2.0", &[0, 1, 2], 0).replace(
+        r#"{"buffer":0,"byteOffset":36,"byteLength":3}]"#,
+        r#"{"buffer":0,"byteOffset":36,"byteLength":3},{"buffer":0,"byteOffset":8,"byteLength":32}]"#,
+    );
+    let e = read_gltf("view.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.starts_with("bufferViews[2].byteLength: "), "{e}");
+    assert!(
+        e.message
+            .contains("32 bytes from byte 8 run past the 39 bytes"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_glb_whose_header_length_is_not_the_files_is_refused_at_byte_8() {
+    let (name, mut bytes) = third_party("generic-fixed-hand/left.glb");
+    assert!(read_gltf(&name, &bytes, None).is_ok());
+    // The header states fewer bytes than the file has: the rest would go unread.
+    bytes.extend([0; 8]);
+    let e = read_gltf(&name, &bytes, None).unwrap_err();
+    assert_eq!((e.line, e.column), (1, 9), "{e}");
+    assert!(
+        e.message.contains(&format!("{} bytes", bytes.len() - 8)),
+        "{e}"
+    );
+    assert!(
+        e.message.contains(&format!("the file has {}", bytes.len())),
+        "{e}"
+    );
+}
+
+#[test]
+fn glb_errors_are_at_the_byte_offset_of_their_json_path() {
+    let (name, mut bytes) = third_party("generic-fixed-hand/left.glb");
+    // The version string, kept the same length: "2.0" becomes "1.0".
+    let at = bytes
+        .windows(15)
+        .position(|w| w == b"\"version\":\"2.0\"")
+        .unwrap();
+    bytes[at + 11] = b'1';
+    let e = read_gltf(&name, &bytes, None).unwrap_err();
+    assert!(e.message.starts_with("asset.version: "), "{e}");
+    assert_eq!((e.line, e.column), (1, at + 1), "{e}");
+}
+
+#[cfg(unix)]
+#[test]
+fn a_symbolic_link_out_of_the_model_directory_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    let model = dir.path().join("model");
+    std::fs::create_dir(&model).unwrap();
+    let buf = f32s(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+    std::fs::write(dir.path().join("outside.bin"), &buf).unwrap();
+    std::fs::write(model.join("inside.bin"), &buf).unwrap();
+    std::os::unix::fs::symlink("../outside.bin", model.join("out.bin")).unwrap();
+    // A link that stays inside is fine.
+    std::os::unix::fs::symlink("inside.bin", model.join("in.bin")).unwrap();
+    let text = |uri: &str| {
+        format!(
+            r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":36,"uri":"{uri}"}}],
+"bufferViews":[{{"buffer":0,"byteLength":36}}],
+"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}}],
+"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}}}}]}}],"nodes":[{{"mesh":0}}]}}"#
+        )
+    };
+    assert!(read_gltf("m.gltf", text("in.bin").as_bytes(), Some(&model)).is_ok());
+    let bad = text("out.bin");
+    let e = read_gltf("m.gltf", bad.as_bytes(), Some(&model)).unwrap_err();
+    assert!(e.message.starts_with("buffers[0].uri: "), "{e}");
+    assert!(e.message.contains("symbolic link"), "{e}");
+    assert_eq!((e.line, e.column), line_col_of(&bad, "\"uri\""), "{e}");
+
+    // The same for an OBJ's mtllib.
+    std::fs::write(dir.path().join("outside.mtl"), "newmtl a\n").unwrap();
+    std::os::unix::fs::symlink("../outside.mtl", model.join("out.mtl")).unwrap();
+    let obj = b"mtllib out.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let e = read_obj("m.obj", obj, Some(&model)).unwrap_err();
+    assert_eq!((e.line, e.column), (1, 8), "{e}");
+    assert!(e.message.contains("symbolic link"), "{e}");
 }

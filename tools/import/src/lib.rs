@@ -8,7 +8,8 @@
 //! first used, unless `--default-material` names the material to use instead. A facet
 //! file numbers its materials instead of naming them: its material index is the library's
 //! material id (a library converted from the 1990 material index file keeps its numbers).
-//! Facet temperatures in a facet file (an irsig extension) are kept.
+//! Facet temperatures in a facet file (an irsig extension) are kept. glTF is +Y up (glTF
+//! 2.0 §3.4) and irsig +Z up: glTF positions are turned to +Z up unless `--keep-axes`.
 //!
 //! The object is written in one of its two forms (`formats/canonical/object.md`): the
 //! compact binary form when the output goes to another program (standard output is a
@@ -52,6 +53,8 @@ pub enum Format {
 Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
 unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: --unit\n\
 gives the file's unit (1990 data are in km), --scale multiplies on top.\n\n\
+glTF is +Y up, irsig +Z up: glTF positions are turned (x, y, z) -> (x, -z, y), a rotation\n\
+that keeps every front a front; --keep-axes keeps the file's axes.\n\n\
 Output form: binary (IRSIGOBJ) into a pipe or to a file ending in .bin, RON otherwise\n\
 (terminal, redirection to a file, other names); --binary or --ron to choose. Readers\n\
 (irsig-flatten) take either form."
@@ -87,6 +90,11 @@ pub struct Cli {
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
+    /// Keep a glTF's own axes. glTF is +Y up and irsig +Z up, so by default positions are
+    /// turned by 90° about +X, (x, y, z) -> (x, -z, y): a rotation, so fronts stay fronts
+    /// and what was up in the model is up in the scene. glTF and GLB only.
+    #[arg(long)]
+    pub keep_axes: bool,
     /// Refuse a mesh with zero-area triangles. By default they are dropped (no ray can hit
     /// them) with a warning that says how many and where the first few are.
     #[arg(long)]
@@ -132,6 +140,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         }
         (None, path) => format_of(path)?,
     };
+    let gltf = matches!(format, Format::Gltf | Format::Glb);
+    if cli.keep_axes && !gltf {
+        return Err(irsig_cli::usage_error(
+            "--keep-axes is for glTF and GLB, whose axes are +Y up; other formats state no up \
+             axis and are never turned",
+        ));
+    }
     let library = read_library(&cli.materials)?;
     let default = match &cli.default_material {
         Some(name) => Some(library.by_name(name).map(|m| m.id).ok_or_else(|| {
@@ -145,13 +160,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
     let input = irsig_cli::read_input(&cli.input)?;
     let base_dir = input.path.as_ref().map(|_| input.base_dir());
-    let mesh = match format {
+    let mut mesh = match format {
         Format::Intergraph => mesh::read_legacy_object(&input.name, &input.bytes)?,
         Format::Obj => mesh::read_obj(&input.name, &input.bytes, base_dir.as_deref())?,
         Format::Gltf | Format::Glb => {
             mesh::read_gltf(&input.name, &input.bytes, base_dir.as_deref())?
         }
     };
+    if gltf && !cli.keep_axes {
+        mesh.y_up_to_z_up();
+    }
     for w in &mesh.warnings {
         eprintln!("warning: {w}");
     }
@@ -263,11 +281,16 @@ fn to_object(
     let mut object = Object {
         name,
         source: format!(
-            "irsig-import {} {} (unit {}, scale {})",
+            "irsig-import {} {} (unit {}, scale {}{})",
             format!("{format:?}").to_lowercase(),
             mesh.file,
             format!("{:?}", cli.unit).to_lowercase(),
-            cli.scale
+            cli.scale,
+            match format {
+                Format::Gltf | Format::Glb if cli.keep_axes => ", the file's axes kept",
+                Format::Gltf | Format::Glb => ", +Y up turned to +Z up",
+                _ => "",
+            }
         ),
         positions_m: std::mem::take(&mut mesh.positions),
         facets,

@@ -1025,16 +1025,22 @@ fn with_atmosphere<R: SubBandModel>(
                 .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
                 .collect();
             let collapsed = &collapsed;
-            // The pilot evaluates its paths in every sub-band with every sky-view ray: the
-            // precomputed sky costs a few ms per sub-band (table model) and saves a slant
-            // integration per ray, so the pilot's sets are precomputed too (`S` = `A`).
-            let sub_bands = move |kind: ModelKind, count: SubBandCount| {
+            // The pilot evaluates its paths in every sub-band: the precomputed sky costs a
+            // few ms per sub-band (table model) and saves a slant integration per ray, so
+            // the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
+            // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its cost).
+            let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
                 collapsed(count)?
                     .iter()
                     .map(|(b, a)| {
+                        let m = model(a, kind)?;
                         Ok(SubBand {
                             band: R::of_band(b)?,
-                            atmosphere: precompute(model(a, kind)?),
+                            atmosphere: if pilot && !count.is_band() {
+                                PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
+                            } else {
+                                precompute(m)
+                            },
                             emissivity: None,
                         })
                     })
@@ -1044,8 +1050,8 @@ fn with_atmosphere<R: SubBandModel>(
             let air = Air {
                 kinds: Some(kinds),
                 spectral: true,
-                precomputed: Box::new(sub_bands),
-                pilot: Box::new(sub_bands),
+                precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
+                pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
             };
             trace_all(cli, inputs, &run, band, &air)
         }
@@ -1126,6 +1132,13 @@ impl Settings {
         Ok(self)
     }
 }
+
+/// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
+/// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with
+/// summing sub-bands, so coarser levels change every count's sky alike and leave the
+/// sub-band error the pilot measures: on the quickstart and the thesis experiment its
+/// choices and errors are those of 33 levels (docs/accuracy.md).
+const PILOT_SKY_LEVELS: usize = 5;
 
 /// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md):
 /// one `path` call, and precomputing the sky of one sub-band up to a few km.

@@ -7,7 +7,7 @@ use base64::Engine as _;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 
-use super::{Location, MaterialUse, Mesh, Origin, Triangle};
+use super::{Location, MaterialUse, Mesh, Origin, Triangle, json_path};
 use crate::ParseError;
 
 type Matrix = [[f64; 4]; 4]; // column-major, m[column][row], as glTF stores it
@@ -77,96 +77,225 @@ fn percent_decode(s: &str) -> Option<String> {
     String::from_utf8(out).ok()
 }
 
+/// Where a GLB's JSON chunk starts: after the 12-byte header and the chunk's 8-byte header.
+const GLB_JSON_START: usize = 20;
+
+/// The glTF's JSON as it lies in the file, to point errors at the text of a JSON path: a
+/// `.gltf` error at its line and column, a GLB error at its byte offset.
+struct Source<'a> {
+    file: &'a str,
+    /// The JSON text: the whole `.gltf`, or a GLB's JSON chunk (`None` when it is not
+    /// UTF-8 or the GLB is too short to hold it).
+    json: Option<&'a str>,
+    glb: bool,
+}
+
+impl<'a> Source<'a> {
+    fn new(file: &'a str, bytes: &'a [u8]) -> Self {
+        let glb = bytes.starts_with(b"glTF");
+        let json = if glb {
+            bytes
+                .get(12..16)
+                .and_then(|b| <[u8; 4]>::try_from(b).ok())
+                .map(|b| u32::from_le_bytes(b) as usize)
+                .and_then(|n| bytes.get(GLB_JSON_START..GLB_JSON_START.checked_add(n)?))
+        } else {
+            Some(bytes)
+        };
+        Self {
+            file,
+            json: json.and_then(|b| std::str::from_utf8(b).ok()),
+            glb,
+        }
+    }
+
+    /// The byte offset and length in the file of `path`'s text (of the deepest part of it
+    /// present), with `tree` the parsed JSON when the caller has it.
+    fn span(&self, path: &str, tree: Option<&json_path::Tree<'_>>) -> Option<(usize, usize)> {
+        let (start, end) = match tree {
+            Some(t) => t.locate(path),
+            None => json_path::Tree::parse(self.json?)?.locate(path),
+        };
+        let shift = if self.glb { GLB_JSON_START } else { 0 };
+        Some((start + shift, end - start))
+    }
+
+    /// An error at `path`, said as `path: message`.
+    fn error(&self, path: &str, message: impl std::fmt::Display) -> ParseError {
+        let message = format!("{path}: {message}");
+        match (self.json, self.span(path, None)) {
+            (Some(text), Some((at, len))) if !self.glb => {
+                ParseError::at_span(self.file, text, at, len, message)
+            }
+            (_, Some((at, _))) => ParseError::in_binary(self.file, at, message),
+            _ => ParseError::in_binary(self.file, 0, message),
+        }
+    }
+
+    /// The line and column of `path`, as [`Source::error`] gives them.
+    fn line_column(&self, path: &str, tree: Option<&json_path::Tree<'_>>) -> (usize, usize) {
+        match (self.json, self.span(path, tree)) {
+            (Some(text), Some((at, _))) if !self.glb => crate::error::line_column(text, at),
+            (_, Some((at, _))) => (1, at + 1),
+            _ => (1, 1),
+        }
+    }
+
+    /// A JSON syntax or type error, at the line and column `serde_json` gives.
+    fn syntax_error(&self, bytes: &[u8], j: &gltf::json::Error) -> ParseError {
+        let msg = format!("malformed glTF JSON: {j}");
+        // serde_json counts columns in bytes.
+        let offset_in = |text: &[u8]| {
+            text.split_inclusive(|&b| b == b'\n')
+                .take(j.line().saturating_sub(1))
+                .map(<[u8]>::len)
+                .sum::<usize>()
+                + j.column().saturating_sub(1)
+        };
+        match (self.glb, self.json) {
+            (false, Some(text)) => {
+                ParseError::at_offset(self.file, text, offset_in(text.as_bytes()), msg)
+            }
+            (true, _) => {
+                let chunk = bytes.get(GLB_JSON_START..).unwrap_or_default();
+                ParseError::in_binary(
+                    self.file,
+                    GLB_JSON_START + offset_in(chunk).min(chunk.len()),
+                    format!("{msg} (in the GLB's JSON chunk)"),
+                )
+            }
+            (false, None) => {
+                let (text, valid) = match std::str::from_utf8(bytes) {
+                    Ok(t) => (t, t.len()),
+                    Err(e) => (
+                        std::str::from_utf8(&bytes[..e.valid_up_to()]).unwrap_or_default(),
+                        e.valid_up_to(),
+                    ),
+                };
+                ParseError::at_offset(
+                    self.file,
+                    text,
+                    valid,
+                    "expected UTF-8 JSON text, found a byte that is not",
+                )
+            }
+        }
+    }
+}
+
 /// Reads a glTF (JSON) or GLB file. `base_dir` is where external buffers are looked for
-/// (`None` for standard input, where only GLB and `data:` buffers work).
+/// (`None` for standard input, where only GLB and `data:` buffers work). Positions are in
+/// the file's axes (+Y up): [`Mesh::y_up_to_z_up`] turns them into irsig's.
+///
+/// Errors name the JSON path of what is wrong (`meshes[0].primitives[1].indices`), at
+/// its line and column in a `.gltf`, at its byte offset in a GLB (line 1, column offset
+/// + 1), and keep `serde_json`'s line and column for a syntax error.
 ///
 /// # Errors
-/// Malformed JSON (at its line and column for `.gltf` text), a malformed GLB container, a
-/// glTF that fails validation, a buffer URI that is not local and relative, a missing or
-/// short buffer, an accessor that runs past its buffer, non-finite positions, an index past
-/// the vertices, or no triangles at all.
+/// Malformed JSON, a malformed GLB container or one whose stated length is not the file's,
+/// a glTF that fails validation or is not version 2, a buffer URI that is not local and
+/// relative (or a symbolic link that leads out of the model's directory), a buffer whose
+/// bytes are not its `byteLength`, a buffer view or accessor that runs past its buffer,
+/// non-finite positions, an index past the vertices, a triangle list whose index count
+/// is not a multiple of 3, or no triangles at all.
 pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mesh, ParseError> {
-    let bin_err = |msg: String| ParseError::in_binary(file, 0, msg);
-    // gltf 1.4 subtracts the 12-byte header from the declared length unchecked (an
-    // arithmetic overflow panic when it is smaller); check it first.
-    if let Some(declared) = bytes
-        .strip_prefix(b"glTF")
-        .and_then(|rest| rest.get(4..8))
-        .and_then(|b| <[u8; 4]>::try_from(b).ok())
-        .map(u32::from_le_bytes)
-        && declared < 12
-    {
-        return Err(ParseError::in_binary(
-            file,
-            8,
+    let source = Source::new(file, bytes);
+    if bytes.starts_with(b"glTF") {
+        check_glb_container(file, bytes)?;
+    }
+    let doc = parse_and_validate(bytes).map_err(|e| match e {
+        gltf::Error::Deserialize(j) => source.syntax_error(bytes, &j),
+        gltf::Error::Binary(b) => {
+            ParseError::in_binary(file, 0, format!("malformed GLB container: {b}"))
+        }
+        gltf::Error::Validation(v) => {
+            let (path, first) = v.first().map_or_else(
+                || (String::new(), String::new()),
+                |(p, err)| (p.as_str().to_owned(), err.to_string()),
+            );
+            let more = match v.len() {
+                0 | 1 => String::new(),
+                n => format!(" (and {} more problems)", n - 1),
+            };
+            source.error(&path, format!("invalid glTF: {first}{more}"))
+        }
+        other => ParseError::in_binary(file, 0, format!("cannot read glTF: {other}")),
+    })?;
+    let asset = &doc.as_json().asset;
+    if !is_version_2(&asset.version) {
+        return Err(source.error(
+            "asset.version",
             format!(
-                "malformed GLB header: declared length {declared} bytes, expected at least the \
-                 12-byte header"
+                "expected glTF version \"2.x\", found \"{}\" (glTF 1.0 is a different format)",
+                asset.version
             ),
         ));
     }
-    let doc = parse_and_validate(bytes).map_err(|e| match e {
-        gltf::Error::Deserialize(j) => {
-            let msg = format!("malformed glTF JSON: {j}");
-            match std::str::from_utf8(bytes) {
-                Ok(text) if !bytes.starts_with(b"glTF") => {
-                    let (line, col) = (j.line(), j.column());
-                    let offset = text
-                        .split_inclusive('\n')
-                        .take(line.saturating_sub(1))
-                        .map(str::len)
-                        .sum::<usize>()
-                        + col.saturating_sub(1);
-                    ParseError::at_offset(file, text, offset, msg)
-                }
-                _ => bin_err(format!("{msg} (in the GLB's JSON chunk)")),
-            }
-        }
-        gltf::Error::Binary(b) => bin_err(format!("malformed GLB container: {b}")),
-        gltf::Error::Validation(v) => {
-            let first: Vec<String> = v
-                .iter()
-                .take(3)
-                .map(|(path, err)| format!("{}: {err}", path.as_str()))
-                .collect();
-            bin_err(format!(
-                "invalid glTF ({} problems): {}",
-                v.len(),
-                first.join("; ")
-            ))
-        }
-        other => bin_err(format!("cannot read glTF: {other}")),
-    })?;
+    if let Some(min) = asset.min_version.as_deref().filter(|&m| m != "2.0") {
+        return Err(source.error(
+            "asset.minVersion",
+            format!("the file needs glTF \"{min}\"; irsig reads \"2.0\""),
+        ));
+    }
 
     let mut buffers: Vec<Vec<u8>> = Vec::new();
     for buffer in doc.buffers() {
         let i = buffer.index();
-        let data = match buffer.source() {
-            gltf::buffer::Source::Bin => doc.blob.clone().ok_or_else(|| {
-                bin_err(format!(
-                    "buffer {i} refers to the GLB BIN chunk, but there is none"
-                ))
-            })?,
-            gltf::buffer::Source::Uri(uri) => load_uri(file, uri, base_dir, i)?,
+        let declared = buffer.length();
+        let (mut data, slack) = match buffer.source() {
+            gltf::buffer::Source::Bin => (
+                doc.blob.clone().ok_or_else(|| {
+                    source.error(
+                        &format!("buffers[{i}]"),
+                        "refers to the GLB BIN chunk, but there is none",
+                    )
+                })?,
+                // The BIN chunk is padded to four bytes (glTF 2.0 §4.4.3.3).
+                3,
+            ),
+            gltf::buffer::Source::Uri(uri) => (load_uri(&source, uri, base_dir, i)?, 0),
         };
-        if data.len() < buffer.length() {
-            return Err(bin_err(format!(
-                "buffer {i} declares {} bytes but holds {}",
-                buffer.length(),
-                data.len()
-            )));
+        if data.len() < declared || data.len() > declared.saturating_add(slack) {
+            return Err(source.error(
+                &format!("buffers[{i}].byteLength"),
+                format!(
+                    "the buffer declares {declared} bytes, but its data has {}",
+                    data.len()
+                ),
+            ));
         }
+        data.truncate(declared);
         buffers.push(data);
+    }
+    for view in doc.views() {
+        let buffer = view.buffer();
+        if view
+            .offset()
+            .checked_add(view.length())
+            .is_none_or(|end| end > buffer.length())
+        {
+            return Err(source.error(
+                &format!("bufferViews[{}].byteLength", view.index()),
+                format!(
+                    "{} bytes from byte {} run past the {} bytes of buffers[{}]",
+                    view.length(),
+                    view.offset(),
+                    buffer.length(),
+                    buffer.index()
+                ),
+            ));
+        }
     }
 
     let mut reader = Walk {
-        file,
+        source: &source,
         buffers: &buffers,
         mesh: Mesh {
             file: file.to_owned(),
             ..Mesh::default()
         },
         material_index: std::collections::HashMap::new(),
+        primitive_paths: Vec::new(),
     };
     let roots: Vec<gltf::Node<'_>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
@@ -188,20 +317,181 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
         reader.node(&node, &IDENTITY, 0)?;
     }
     if reader.mesh.triangles.is_empty() {
-        return Err(bin_err(
-            "expected at least one triangle primitive in the scene, found none (empty mesh)".into(),
+        return Err(source.error(
+            "meshes",
+            "expected at least one triangle primitive in the scene, found none (empty mesh)",
         ));
     }
-    Ok(reader.mesh)
+    // Where each primitive's triangles and each material's first use are, for the
+    // importer's messages: the JSON is parsed again once for all of them.
+    let Walk {
+        mut mesh,
+        primitive_paths,
+        ..
+    } = reader;
+    let tree = source.json.and_then(json_path::Tree::parse);
+    let places: Vec<(usize, usize)> = primitive_paths
+        .iter()
+        .map(|p| source.line_column(p, tree.as_ref()))
+        .collect();
+    for origin in &mut mesh.origins {
+        if let Some(&(line, column)) = origin.part.and_then(|p| places.get(p as usize)) {
+            origin.line = u32::try_from(line).unwrap_or(u32::MAX);
+            origin.column = u32::try_from(column).unwrap_or(u32::MAX);
+        }
+    }
+    for m in &mut mesh.materials {
+        if let Some(&(line, column)) = mesh
+            .parts
+            .iter()
+            .position(|p| Some(p) == m.first_use.part.as_ref())
+            .and_then(|p| places.get(p))
+        {
+            m.first_use.line = Some(line);
+            m.first_use.column = Some(column);
+        }
+    }
+    Ok(mesh)
+}
+
+/// A GLB's header and chunk headers (glTF 2.0 §4.4), each checked at its byte offset
+/// before gltf reads them: gltf 1.4 subtracts the 12-byte header from the stated length
+/// unchecked (an overflow panic when it is smaller), reads a file longer than stated as if
+/// it ended there, and reports container errors with no offset.
+fn check_glb_container(file: &str, bytes: &[u8]) -> Result<(), ParseError> {
+    let at = |offset: usize, msg: String| ParseError::in_binary(file, offset, msg);
+    let u32_at = |offset: usize| {
+        bytes
+            .get(offset..offset.checked_add(4)?)
+            .and_then(|b| <[u8; 4]>::try_from(b).ok())
+            .map(|b| u32::from_le_bytes(b) as usize)
+    };
+    let len = bytes.len();
+    let (Some(version), Some(declared)) = (u32_at(4), u32_at(8)) else {
+        return Err(at(
+            len,
+            format!("expected the 12-byte GLB header, found the end of the file after {len} bytes"),
+        ));
+    };
+    if declared < 12 {
+        return Err(at(
+            8,
+            format!(
+                "malformed GLB header: declared length {declared} bytes, expected at least the \
+                 12-byte header"
+            ),
+        ));
+    }
+    if version != 2 {
+        return Err(at(
+            4,
+            format!("expected GLB container version 2, found {version}"),
+        ));
+    }
+    if declared != len {
+        return Err(at(
+            8,
+            format!("the GLB header states a length of {declared} bytes, but the file has {len}"),
+        ));
+    }
+    let Some(json_len) = u32_at(12).filter(|_| len >= GLB_JSON_START) else {
+        return Err(at(
+            12,
+            "expected the JSON chunk's 8-byte header after the GLB header, found the end of the \
+             file"
+                .into(),
+        ));
+    };
+    if &bytes[16..20] != b"JSON" {
+        return Err(at(
+            16,
+            format!(
+                "expected the first chunk to be of type `JSON`, found {:?}",
+                String::from_utf8_lossy(&bytes[16..20])
+            ),
+        ));
+    }
+    let json_end = GLB_JSON_START.saturating_add(json_len);
+    if json_end > len {
+        return Err(at(
+            12,
+            format!(
+                "the JSON chunk states {json_len} bytes, but {} follow its header",
+                len - GLB_JSON_START
+            ),
+        ));
+    }
+    if json_end < len {
+        let Some(bin_len) = u32_at(json_end).filter(|_| len - json_end >= 8) else {
+            return Err(at(
+                json_end,
+                format!(
+                    "expected an 8-byte chunk header after the JSON chunk, found {} bytes",
+                    len - json_end
+                ),
+            ));
+        };
+        let ty = &bytes[json_end + 4..json_end + 8];
+        if ty != b"BIN\0" {
+            return Err(at(
+                json_end + 4,
+                format!(
+                    "expected the second chunk to be of type `BIN`, found {:?}",
+                    String::from_utf8_lossy(ty)
+                ),
+            ));
+        }
+        if bin_len > len - json_end - 8 {
+            return Err(at(
+                json_end,
+                format!(
+                    "the BIN chunk states {bin_len} bytes, but {} follow its header",
+                    len - json_end - 8
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Whether a glTF `asset.version` is 2.x (`major.minor`, both digits).
+fn is_version_2(version: &str) -> bool {
+    version
+        .strip_prefix("2.")
+        .is_some_and(|minor| !minor.is_empty() && minor.bytes().all(|b| b.is_ascii_digit()))
+}
+
+/// `dir/rel`, for a reference `rel` that [`local_relative_path`] accepted, once every
+/// symbolic link on the way is followed: it must still lie inside `dir`, so that a link in
+/// the model's directory that leads out of it is refused as `..` is. A file that does not
+/// exist is returned as joined, for the caller's read to report.
+///
+/// # Errors
+/// The reference leads out of `dir`, in words.
+pub(crate) fn inside(dir: &Path, rel: &Path, uri: &str) -> Result<PathBuf, String> {
+    let full = dir.join(rel);
+    let (Ok(real_dir), Ok(real)) = (dir.canonicalize(), full.canonicalize()) else {
+        return Ok(full);
+    };
+    if real.starts_with(&real_dir) {
+        Ok(full)
+    } else {
+        Err(format!(
+            "`{uri}` leads out of the model's directory through a symbolic link (to {}), which \
+             irsig refuses as it refuses `..`",
+            real.display()
+        ))
+    }
 }
 
 fn load_uri(
-    file: &str,
+    source: &Source<'_>,
     uri: &str,
     base_dir: Option<&Path>,
     index: usize,
 ) -> Result<Vec<u8>, ParseError> {
-    let err = |msg: String| ParseError::in_binary(file, 0, format!("buffer {index}: {msg}"));
+    let path = format!("buffers[{index}].uri");
+    let err = |msg: String| source.error(&path, msg);
     if let Some(rest) = uri.strip_prefix("data:") {
         // Embedded data travels inside the file: allowed, it is not a network access.
         let (_, payload) = rest
@@ -211,21 +501,23 @@ fn load_uri(
             .decode(payload)
             .map_err(|e| err(format!("malformed base64 in its `data:` URI: {e}")));
     }
-    let path = local_relative_path(uri).map_err(err)?;
+    let rel = local_relative_path(uri).map_err(err)?;
     let dir = base_dir.ok_or_else(|| {
         err(format!(
             "external file `{uri}` cannot be found for a glTF read from standard input; give the file's path instead"
         ))
     })?;
-    let full = dir.join(path);
+    let full = inside(dir, &rel, uri).map_err(err)?;
     crate::file::read_file(&full).map_err(|e| err(format!("cannot read `{}`: {e}", full.display())))
 }
 
 struct Walk<'a> {
-    file: &'a str,
+    source: &'a Source<'a>,
     buffers: &'a [Vec<u8>],
     mesh: Mesh,
     material_index: std::collections::HashMap<Option<usize>, Option<u32>>,
+    /// The JSON path of each of `mesh.parts`.
+    primitive_paths: Vec<String>,
 }
 
 fn multiply(a: &Matrix, b: &Matrix) -> Matrix {
@@ -252,8 +544,9 @@ fn label(kind: &str, index: usize, name: Option<&str>) -> String {
 }
 
 impl Walk<'_> {
-    fn err(&self, part: &str, msg: String) -> ParseError {
-        ParseError::in_binary(self.file, 0, format!("{part}: {msg}"))
+    /// An error at JSON `path`, in `part` (the node, mesh and primitive being read).
+    fn err(&self, path: &str, part: &str, msg: impl std::fmt::Display) -> ParseError {
+        self.source.error(path, format!("{msg} (reading {part})"))
     }
 
     fn node(
@@ -265,6 +558,7 @@ impl Walk<'_> {
         let node_label = label("node", node.index(), node.name());
         if depth > MAX_DEPTH {
             return Err(self.err(
+                &format!("nodes[{}].children", node.index()),
                 &node_label,
                 format!("the node hierarchy is deeper than {MAX_DEPTH} levels (a cycle?)"),
             ));
@@ -278,7 +572,8 @@ impl Walk<'_> {
                     label("mesh", mesh.index(), mesh.name()),
                     primitive.index()
                 );
-                self.primitive(&primitive, &world, part)?;
+                let path = format!("meshes[{}].primitives[{}]", mesh.index(), primitive.index());
+                self.primitive(&primitive, &world, part, path)?;
             }
         }
         for child in node.children() {
@@ -295,34 +590,42 @@ impl Walk<'_> {
         element_len: usize,
         part: &str,
     ) -> Result<(&[u8], usize), ParseError> {
-        let what = format!("accessor {}", accessor.index());
+        let at = format!("accessors[{}]", accessor.index());
         if accessor.sparse().is_some() {
-            return Err(self.err(part, format!("{what} is sparse, which irsig does not read")));
+            return Err(self.err(
+                &format!("{at}.sparse"),
+                part,
+                "a sparse accessor, which irsig does not read",
+            ));
         }
-        let view = accessor
-            .view()
-            .ok_or_else(|| self.err(part, format!("{what} has no buffer view")))?;
-        let buffer = self
-            .buffers
-            .get(view.buffer().index())
-            .ok_or_else(|| self.err(part, format!("{what}: its buffer does not exist")))?;
+        let view = accessor.view().ok_or_else(|| {
+            self.err(
+                &at,
+                part,
+                "expected a `bufferView`, found none (irsig does not read all-zero accessors)",
+            )
+        })?;
+        let view_at = format!("bufferViews[{}]", view.index());
+        let buffer = self.buffers.get(view.buffer().index()).ok_or_else(|| {
+            self.err(
+                &format!("{view_at}.buffer"),
+                part,
+                "the buffer does not exist",
+            )
+        })?;
         let view_end = view
             .offset()
             .checked_add(view.length())
             .filter(|&e| e <= buffer.len())
-            .ok_or_else(|| {
-                self.err(
-                    part,
-                    format!("{what}: buffer view {} runs past its buffer", view.index()),
-                )
-            })?;
+            .ok_or_else(|| self.err(&view_at, part, "the view runs past its buffer"))?;
         let view_bytes = &buffer[view.offset()..view_end];
         let stride = view.stride().unwrap_or(element_len);
         if stride < element_len {
             return Err(self.err(
+                &format!("{view_at}.byteStride"),
                 part,
                 format!(
-                    "{what}: byte stride {stride} is shorter than an element ({element_len} bytes)"
+                    "byte stride {stride} is shorter than an element of {at} ({element_len} bytes)"
                 ),
             ));
         }
@@ -338,11 +641,11 @@ impl Walk<'_> {
                 Ok((&view_bytes[accessor.offset()..end], stride))
             }
             _ => Err(self.err(
+                &format!("{at}.count"),
                 part,
                 format!(
-                    "{what}: {count} elements from byte {} run past buffer view {} ({} bytes)",
+                    "{count} elements from byte {} run past {view_at} ({} bytes)",
                     accessor.offset(),
-                    view.index(),
                     view_bytes.len()
                 ),
             )),
@@ -364,8 +667,9 @@ impl Walk<'_> {
                 name,
                 id: None,
                 first_use: Location {
-                    file: self.file.to_owned(),
+                    file: self.source.file.to_owned(),
                     line: None,
+                    column: None,
                     part: Some(part.to_owned()),
                 },
             });
@@ -375,11 +679,13 @@ impl Walk<'_> {
         id
     }
 
+    #[allow(clippy::too_many_lines)] // one primitive, read in order: positions, indices, triangles
     fn primitive(
         &mut self,
         primitive: &gltf::Primitive<'_>,
         world: &Matrix,
         part: String,
+        path: String,
     ) -> Result<(), ParseError> {
         let mode = primitive.mode();
         if !matches!(
@@ -388,19 +694,34 @@ impl Walk<'_> {
         ) {
             self.mesh.warnings.push(format!(
                 "{}: skipped {part}: mode {mode:?} has no triangles",
-                self.file
+                self.source.file
             ));
             return Ok(());
         }
-        let positions = primitive
-            .get(&gltf::Semantic::Positions)
-            .ok_or_else(|| self.err(&part, "expected a POSITION attribute, found none".into()))?;
-        if positions.data_type() != DataType::F32 || positions.dimensions() != Dimensions::Vec3 {
+        let positions = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| {
+            self.err(
+                &format!("{path}.attributes"),
+                &part,
+                "expected a POSITION attribute, found none",
+            )
+        })?;
+        let pos_at = format!("accessors[{}]", positions.index());
+        if positions.data_type() != DataType::F32 {
             return Err(self.err(
+                &format!("{pos_at}.componentType"),
                 &part,
                 format!(
-                    "expected POSITION as float VEC3, found {:?} {:?}",
-                    positions.data_type(),
+                    "expected POSITION as float (5126), found {:?}",
+                    positions.data_type()
+                ),
+            ));
+        }
+        if positions.dimensions() != Dimensions::Vec3 {
+            return Err(self.err(
+                &format!("{pos_at}.type"),
+                &part,
+                format!(
+                    "expected POSITION as VEC3, found {:?}",
                     positions.dimensions()
                 ),
             ));
@@ -425,11 +746,16 @@ impl Walk<'_> {
                 *v = world[0][r] * p[0] + world[1][r] * p[1] + world[2][r] * p[2] + world[3][r];
             }
             if !w.iter().all(|v| v.is_finite()) {
-                return Err(self.err(&part, format!("vertex {k} is not finite: {p:?}")));
+                return Err(self.err(
+                    &pos_at,
+                    &part,
+                    format!("expected finite positions, found {p:?} at vertex {k}"),
+                ));
             }
             new_positions.push(w);
         }
 
+        let indices_at = format!("{path}.indices");
         let indices: Vec<u32> = match primitive.indices() {
             None => (0..u32::try_from(vertex_count).unwrap_or(u32::MAX)).collect(),
             Some(acc) => {
@@ -439,6 +765,7 @@ impl Walk<'_> {
                     (DataType::U32, Dimensions::Scalar) => 4,
                     (t, d) => {
                         return Err(self.err(
+                            &format!("accessors[{}]", acc.index()),
                             &part,
                             format!("expected u8, u16 or u32 SCALAR indices, found {t:?} {d:?}"),
                         ));
@@ -468,8 +795,23 @@ impl Walk<'_> {
             .find(|&(_, &i)| i as usize >= vertex_count)
         {
             return Err(self.err(
+                &indices_at,
                 &part,
-                format!("index {k} is {i}, past the {vertex_count} vertices"),
+                format!("index {k} is {i}, past the {vertex_count} vertices of {pos_at}"),
+            ));
+        }
+        if mode == Mode::Triangles && indices.len() % 3 != 0 {
+            let (at, what) = match primitive.indices() {
+                Some(_) => (indices_at.as_str(), "indices"),
+                None => (pos_at.as_str(), "vertices (no indices)"),
+            };
+            return Err(self.err(
+                at,
+                &part,
+                format!(
+                    "a triangle list needs a multiple of 3 {what}, found {}",
+                    indices.len()
+                ),
             ));
         }
         let mut corners: Vec<[u32; 3]> = match mode {
@@ -502,14 +844,16 @@ impl Walk<'_> {
             }
         }
         let offset =
-            u32::try_from(base).map_err(|_| self.err(&part, "more than 2^32 vertices".into()))?;
+            u32::try_from(base).map_err(|_| self.err(&pos_at, &part, "more than 2^32 vertices"))?;
         let material = self.material(primitive, &part);
         let first_triangle = u32::try_from(self.mesh.triangles.len())
-            .map_err(|_| self.err(&part, "more than 2^32 triangles".into()))?;
+            .map_err(|_| self.err(&indices_at, &part, "more than 2^32 triangles"))?;
         self.mesh.parts.push(part);
+        self.primitive_paths.push(path);
         self.mesh.origins.push(Origin {
             first_triangle,
             line: 0,
+            column: 0,
             part: u32::try_from(self.mesh.parts.len() - 1).ok(),
         });
         self.mesh.positions.extend(new_positions);

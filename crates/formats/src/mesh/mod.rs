@@ -17,13 +17,21 @@
 //!   u32, or absent (non-indexed). A buffer is the GLB `BIN` chunk, an embedded
 //!   `data:…;base64,` URI, or a **relative local file** beside the glTF that does not
 //!   climb out of its directory (`..`); any other URI (`http://`, `file:///`, an absolute
-//!   path) is an error, and irsig never reaches the network. Every accessor is bounds-
-//!   checked against its buffer before it is read; sparse accessors are refused.
+//!   path) is an error, and irsig never reaches the network; so is a symbolic link that
+//!   leads out of the model's directory. `asset.version` must be 2.x, a GLB's stated
+//!   length the file's, a buffer's `byteLength` its data's (a GLB `BIN` chunk may add up
+//!   to 3 bytes of padding), every buffer view inside its buffer, a triangle list's index
+//!   count a multiple of 3. Every accessor is bounds-checked against its buffer before it
+//!   is read; sparse accessors are refused. Errors name the JSON path of what is wrong
+//!   (`meshes[0].primitives[1].indices`), at its line and column in a `.gltf` and its
+//!   byte offset in a GLB. Positions stay in the file's axes (+Y up):
+//!   [`Mesh::y_up_to_z_up`] turns them into irsig's.
 //! - **Legacy facet files** ([`crate::legacy::object`]) become meshes too
 //!   ([`read_legacy_object`]): three vertices of their own per facet, the material index
 //!   kept as a number ([`MaterialUse::id`]), the optional facet temperature kept.
 
 mod gltf_read;
+mod json_path;
 mod obj;
 
 use crate::ParseError;
@@ -63,8 +71,10 @@ pub struct MaterialUse {
 pub struct Location {
     /// The file name as the user gave it.
     pub file: String,
-    /// The 1-based line, for text files.
+    /// The 1-based line, for text files (line 1 for a GLB).
     pub line: Option<usize>,
+    /// The 1-based column in characters (for a GLB, the byte offset + 1).
+    pub column: Option<usize>,
     /// What part of the file, for binary files (`mesh "Body" primitive 0`).
     pub part: Option<String>,
 }
@@ -74,6 +84,9 @@ impl fmt::Display for Location {
         f.write_str(&self.file)?;
         if let Some(l) = self.line {
             write!(f, ":{l}")?;
+            if let Some(c) = self.column {
+                write!(f, ":{c}")?;
+            }
         }
         if let Some(p) = &self.part {
             write!(f, " ({p})")?;
@@ -83,11 +96,12 @@ impl fmt::Display for Location {
 }
 
 /// Where a run of triangles came from: triangles from `first_triangle` on, until the next
-/// run, came from `line` or `part`.
+/// run, came from `line` and `column` (0 when unknown) and `part`.
 #[derive(Debug, Clone, PartialEq)]
 struct Origin {
     first_triangle: u32,
     line: u32,
+    column: u32,
     part: Option<u32>,
 }
 
@@ -138,6 +152,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
                 first_use: Location {
                     file: file.to_owned(),
                     line: Some(f.position.line),
+                    column: Some(f.position.column),
                     part: None,
                 },
             });
@@ -153,6 +168,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
         mesh.origins.push(Origin {
             first_triangle: u32::try_from(i).map_err(|_| too_big())?,
             line: u32::try_from(f.position.line).unwrap_or(u32::MAX),
+            column: u32::try_from(f.position.column).unwrap_or(u32::MAX),
             part: None,
         });
     }
@@ -170,7 +186,8 @@ impl Mesh {
         let origin = i.checked_sub(1).and_then(|i| self.origins.get(i));
         Location {
             file: self.file.clone(),
-            line: origin.map(|o| o.line as usize).filter(|&l| l > 0).or(None),
+            line: origin.map(|o| o.line as usize).filter(|&l| l > 0),
+            column: origin.map(|o| o.column as usize).filter(|&c| c > 0),
             part: origin
                 .and_then(|o| o.part)
                 .and_then(|p| self.parts.get(p as usize).cloned()),
@@ -190,6 +207,16 @@ impl Mesh {
                 || self.file.clone(),
                 |i| self.triangle_location(i).to_string(),
             )
+    }
+
+    /// Turns positions from glTF's axes (+Y up, +Z toward the viewer; glTF 2.0 §3.4) into
+    /// irsig's (+Z up): `(x, y, z)` becomes `(x, -z, y)`, a rotation of 90° about +X. A
+    /// rotation keeps handedness, so counter-clockwise fronts stay fronts and no winding
+    /// changes; what was up in the file is up in the scene.
+    pub fn y_up_to_z_up(&mut self) {
+        for p in &mut self.positions {
+            *p = [p[0], -p[2], p[1]];
+        }
     }
 
     /// The material name of triangle `index`, if any.

@@ -421,9 +421,12 @@ fn scan(
                     });
                     run_started = true;
                 }
+                // The face's column: where its `f` is (past any indentation).
+                let column = line.len() - line.trim_start().len() + 1;
                 out.origins.push(Origin {
                     first_triangle: first,
                     line: u32::try_from(line_index + 1).unwrap_or(u32::MAX),
+                    column: u32::try_from(column).unwrap_or(u32::MAX),
                     part: None,
                 });
                 out.triangles += n - 2;
@@ -451,6 +454,7 @@ fn scan(
                             first_use: Location {
                                 file: file.to_owned(),
                                 line: Some(line_index + 1),
+                                column: Some(line.len() - line.trim_start().len() + 1),
                                 part: None,
                             },
                         });
@@ -529,15 +533,23 @@ fn check_mtl(
         ));
         return Ok(());
     };
-    let full = dir.join(path);
+    let full = super::gltf_read::inside(dir, &path, name).map_err(|why| {
+        ParseError::at_span(
+            file,
+            text,
+            offset,
+            name.len().max(1),
+            format!("mtllib `{name}`: {why}"),
+        )
+    })?;
     match crate::file::read_file(&full) {
         Ok(bytes) => {
             let mtl_name = full.display().to_string();
-            let mtl_text = String::from_utf8_lossy(&bytes);
-            check_mtl_colours(&mtl_name, &mtl_text)?;
+            let mtl_text = crate::canonical::utf8(&mtl_name, &bytes)?;
+            check_mtl_lines(&mtl_name, mtl_text)?;
             let mut reader = std::io::BufReader::new(bytes.as_slice());
             tobj::load_mtl_buf(&mut reader).map_err(|e| {
-                ParseError::at_offset(&mtl_name, &mtl_text, 0, format!("malformed MTL: {e}"))
+                ParseError::at_offset(&mtl_name, mtl_text, 0, format!("malformed MTL: {e}"))
             })?;
             Ok(())
         }
@@ -551,26 +563,82 @@ fn check_mtl(
     }
 }
 
-/// tobj 4.0 panics on a colour line (`Ka`, `Kd`, `Ks`, `Ke`) with fewer than three values
-/// instead of returning an error; this finds such a line first and says where it is.
-fn check_mtl_colours(mtl_name: &str, text: &str) -> Result<(), ParseError> {
+/// Checks every MTL line tobj parses, as tobj reads it, and says where the first bad one
+/// is (at the value, or at the key when a value is missing): tobj reports only "material parse error" with no line (and tobj 4.0 panics on a
+/// colour line with fewer than three values). Colours and textures mean nothing in the
+/// thermal band, but a file that breaks its own syntax is refused, not half-read.
+fn check_mtl_lines(mtl_name: &str, text: &str) -> Result<(), ParseError> {
     let mut offset = 0;
-    for line in text.split_inclusive('\n') {
+    for raw in text.split_inclusive('\n') {
+        let line_start = offset;
+        offset += raw.len();
+        let line = raw.trim_end_matches(['\n', '\r']);
+        let at = |token: &str| line_start + (token.as_ptr() as usize - line.as_ptr() as usize);
+        let err = |token: &str, msg: String| {
+            ParseError::at_span(mtl_name, text, at(token), token.len().max(1), msg)
+        };
         let mut words = line.split_whitespace();
-        if let Some(key) = words.next()
-            && matches!(key, "Ka" | "Kd" | "Ks" | "Ke")
-            && words.count() < 3
-        {
-            let at = offset + line.find(key).unwrap_or(0);
-            return Err(ParseError::at_span(
-                mtl_name,
-                text,
-                at,
-                key.len(),
-                format!("malformed MTL: expected three numbers (r g b) after `{key}`"),
-            ));
+        let Some(key) = words.next() else { continue };
+        let numbers = match key {
+            "Ka" | "Kd" | "Ks" | "Ke" => 3,
+            "Ns" | "Ni" | "d" => 1,
+            "newmtl" | "map_Ka" | "map_Kd" | "map_Ks" | "map_Bump" | "map_bump" | "map_Ns"
+            | "map_ns" | "map_NS" | "bump" | "map_d" => {
+                if line.trim_start()[key.len()..].trim().is_empty() {
+                    let what = if key == "newmtl" {
+                        "a material name"
+                    } else {
+                        "a texture file name"
+                    };
+                    return Err(err(key, format!("expected {what} after `{key}`")));
+                }
+                continue;
+            }
+            "illum" => {
+                let Some(w) = words.next() else {
+                    return Err(err(
+                        key,
+                        "expected an illumination model (0 to 255) after `illum`".into(),
+                    ));
+                };
+                if w.parse::<u8>().is_err() {
+                    return Err(err(
+                        w,
+                        format!("expected an illumination model (0 to 255), found `{w}`"),
+                    ));
+                }
+                continue;
+            }
+            _ => continue,
+        };
+        for k in 0..numbers {
+            let Some(w) = words.next() else {
+                let what = if numbers == 3 {
+                    "three numbers (r g b)"
+                } else {
+                    "a number"
+                };
+                return Err(err(
+                    key,
+                    format!("malformed MTL: expected {what} after `{key}`, found {k}"),
+                ));
+            };
+            match w.parse::<f64>() {
+                Ok(v) if v.is_finite() => {}
+                Ok(_) => {
+                    return Err(err(
+                        w,
+                        format!("expected a finite number after `{key}`, found `{w}`"),
+                    ));
+                }
+                Err(_) => {
+                    return Err(err(
+                        w,
+                        format!("expected a number after `{key}`, found `{w}`"),
+                    ));
+                }
+            }
         }
-        offset += line.len();
     }
     Ok(())
 }
@@ -591,6 +659,16 @@ mod tests {
         let p = |i: u32| m.positions[i as usize];
         let t1 = m.triangles[1].vertices.map(p);
         assert_eq!(t1, [[0.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]]);
+    }
+
+    #[test]
+    fn a_face_is_located_at_the_line_and_column_of_its_f() {
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n\t  f 2 4 3 1\n";
+        let m = read_obj("c.obj", text.as_bytes(), None).unwrap();
+        assert_eq!(m.triangle_location(0).to_string(), "c.obj:5:1");
+        // A tab and two spaces before the `f`: its third character.
+        assert_eq!(m.triangle_location(1).to_string(), "c.obj:6:4");
+        assert_eq!(m.triangle_location(2).to_string(), "c.obj:6:4");
     }
 
     #[test]
@@ -824,6 +902,31 @@ mod tests {
         reader.read_to_string(&mut rest).unwrap();
         assert_eq!(rest, "v 0 1 0\n");
         assert!(reader.fill_buf().unwrap().is_empty());
+    }
+
+    #[test]
+    fn mtl_lines_tobj_would_refuse_without_a_place_are_located() {
+        let head = "newmtl a\nKd 0.5 0.5 0.5\n";
+        for (line, column, fragment) in [
+            ("Ka 0.1 x 0.3", 8, "found `x`"),
+            ("  Ks 1 1", 3, "three numbers"),
+            ("Ke 0 NaN 0", 6, "finite"),
+            ("Ns 1e999", 4, "finite"),
+            ("d", 1, "a number"),
+            ("Ni 1,5", 4, "`1,5`"),
+            ("illum 2.5", 7, "0 to 255"),
+            ("illum 300", 7, "0 to 255"),
+            ("newmtl   ", 1, "material name"),
+            ("map_Kd", 1, "texture file name"),
+        ] {
+            let text = format!("{head}{line}\n");
+            let e = check_mtl_lines("t.mtl", &text).unwrap_err();
+            assert_eq!((e.line, e.column), (3, column), "{line}: {e}");
+            assert!(e.message.contains(fragment), "{line}: {e}");
+        }
+        let fine =
+            "# c\nnewmtl a b\nKa 0 0 0\nKd 1 1 1 # rgb\nNs 10\nd 1\nillum 2\nmap_Kd t.png\nTr 0\n";
+        assert!(check_mtl_lines("t.mtl", fine).is_ok());
     }
 
     #[test]
