@@ -29,6 +29,7 @@
 //! (`--tile`) is a rectangle of its frame, and the tiles of a frame merge (irsig-merge)
 //! into the bytes the frame traced whole writes.
 
+mod spectral_materials;
 mod tolerance;
 
 use std::path::{Path, PathBuf};
@@ -484,9 +485,27 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         hash_field(&mut run, "scene", &input.bytes);
         read_raw_scene(&input.name, &input.bytes)?
     };
+    // Spectral materials: their band tables are their curves averaged over the band (the
+    // curves stay, for the sub-bands).
     let materials: MaterialLibrary = {
         let input = irsig_cli::read_input(&cli.materials)?;
-        from_ron_bytes(&input.name, &input.bytes)?
+        let lib: MaterialLibrary = from_ron_bytes(&input.name, &input.bytes)?;
+        match &cli.band {
+            _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
+            TraceBand::Band(arg) => spectral_materials::band_library(
+                &lib,
+                &arg.load()?,
+                &input.name,
+                &String::from_utf8_lossy(&input.bytes),
+            )?,
+            TraceBand::Total => {
+                return Err(irsig_cli::usage_error(format!(
+                    "`{}` has spectral materials, which the `total` band (the whole \
+                     spectrum) cannot average: give --band",
+                    cli.materials
+                )));
+            }
+        }
     };
     hash_field(&mut run, "materials", format!("{materials:?}").as_bytes());
     let job = read_job(&cli)?;
@@ -933,7 +952,7 @@ fn with_atmosphere<R: SubBandModel>(
                         Ok(SubBand {
                             band: R::of_band(b)?,
                             atmosphere: precompute(model(a, kind)?),
-                            emissivity: None,
+                            emissivity: spectral_materials::sub_band_tables(&inputs.materials, b)?,
                         })
                     })
                     .collect()
