@@ -183,17 +183,19 @@ pub(crate) fn hemispheric(angles_deg: &[f64], radiance: &[f64]) -> f64 {
         }
     }
     knots.push((std::f64::consts::FRAC_PI_2, last));
+    // sin 2θ and cos 2θ once per knot: each is an end of two segments.
+    let trig: Vec<(f64, f64)> = knots.iter().map(|&(t, _)| (2.0 * t).sin_cos()).collect();
     let mut sum = 0.0;
-    for w in knots.windows(2) {
+    for (w, s) in knots.windows(2).zip(trig.windows(2)) {
         let ((t0, l0), (t1, l1)) = (w[0], w[1]);
         if t1 <= t0 {
             continue;
         }
         let slope = (l1 - l0) / (t1 - t0);
         // ∫ sin2θ dθ = -cos2θ/2 ;  ∫ (θ - t0) sin2θ dθ = -(θ - t0)cos2θ/2 + sin2θ/4
-        let a = |t: f64| -(2.0 * t).cos() / 2.0;
-        let b = |t: f64| -(t - t0) * (2.0 * t).cos() / 2.0 + (2.0 * t).sin() / 4.0;
-        sum += l0 * (a(t1) - a(t0)) + slope * (b(t1) - b(t0));
+        let a = |(_, cos2t): (f64, f64)| -cos2t / 2.0;
+        let b = |t: f64, (sin2t, cos2t): (f64, f64)| -(t - t0) * cos2t / 2.0 + sin2t / 4.0;
+        sum += l0 * (a(s[1]) - a(s[0])) + slope * (b(t1, s[1]) - b(t0, s[0]));
     }
     sum
 }

@@ -204,16 +204,22 @@ impl Profile {
         let mut radiance = 0.0;
         let mut z0 = lo;
         let top = self.z_m.last().copied().unwrap_or(0.0);
-        // Walk the pieces of the path between level boundaries, bottom to top.
+        // Walk the pieces of the path between level boundaries, bottom to top. The
+        // transmittance from the observer to a boundary is computed once: each boundary
+        // ends one piece and starts the next.
+        let to_observer = |z: f64| self.transmittance(m * (w_obs - self.w_at(z)));
         let (mut i, _) = locate(&self.z_m, lo);
+        let mut t0 = to_observer(z0);
         while z0 < hi && z0 < top {
             let next = self.z_m.get(i + 1).copied().unwrap_or(top);
             let z1 = next.min(hi);
             if z1 > z0 {
-                let (near, far) = if looking_down { (z1, z0) } else { (z0, z1) };
-                let t_near = self.transmittance(m * (w_obs - self.w_at(near)));
-                let t_far = self.transmittance(m * (w_obs - self.w_at(far)));
+                let t1 = to_observer(z1);
+                let (t_near, t_far) = if looking_down { (t1, t0) } else { (t0, t1) };
                 radiance += self.b.get(i + 1).copied().unwrap_or(0.0) * (t_near - t_far);
+                t0 = t1;
+            } else {
+                t0 = to_observer(z1);
             }
             z0 = z1;
             i += 1;

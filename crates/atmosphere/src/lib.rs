@@ -66,7 +66,7 @@ pub use sky::{
     APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
     HemisphericSky, SkyView,
 };
-pub use spectral::{BandQuadrature, SubBandCount, collapse, sub_band_edges};
+pub use spectral::{BandQuadrature, Collapser, SubBandCount, collapse, sub_band_edges};
 
 use layered::{Profile, Slant};
 use sky::GroundSky;
@@ -363,6 +363,20 @@ impl AtmosphereModel {
     /// so. `none` gives 0.
     #[must_use]
     pub fn sky_hemispheric(&self, observer_altitude_m: f64) -> HemisphericSky {
+        let h = observer_altitude_m.max(0.0);
+        let ground = matches!(self.inner, Inner::Table(_)).then(|| self.sky_view(0.0));
+        let here = (h > 0.0 && !matches!(self.inner, Inner::None)).then(|| self.sky_view(h));
+        self.sky_hemispheric_from(ground.as_ref(), here.as_ref())
+    }
+
+    /// [`AtmosphereModel::sky_hemispheric`] from sky views already computed: `ground`
+    /// at 0 m (needed by the `table` model only) and `here` at the observer's altitude
+    /// (`None` at the ground). [`PrecomputedAtmosphere`] computes each view once.
+    pub(crate) fn sky_hemispheric_from(
+        &self,
+        ground: Option<&SkyView>,
+        here: Option<&SkyView>,
+    ) -> HemisphericSky {
         if matches!(self.inner, Inner::None) {
             return HemisphericSky {
                 radiance_w_m2_sr: 0.0,
@@ -371,16 +385,12 @@ impl AtmosphereModel {
                 warning: None,
             };
         }
-        let h = observer_altitude_m.max(0.0);
-        let computed_ground = match &self.inner {
-            Inner::Table(_) => self.sky_view(0.0).hemispheric(),
+        let computed_ground = match (&self.inner, ground) {
+            (Inner::Table(_), Some(view)) => view.hemispheric(),
+            (Inner::Table(_), None) => self.sky_view(0.0).hemispheric(),
             _ => self.ground_sky.computed_hemispheric(),
         };
-        let computed = if h > 0.0 {
-            self.sky_view(h).hemispheric()
-        } else {
-            computed_ground
-        };
+        let computed = here.map_or(computed_ground, SkyView::hemispheric);
         let given = self.ground_sky.given_hemispheric;
         let warning = given.and_then(|g| {
             let rel = (computed_ground - g).abs() / g.abs().max(1e-300);

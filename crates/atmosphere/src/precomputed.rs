@@ -25,22 +25,40 @@ impl PrecomputedAtmosphere {
     /// `max_altitude_m` (at least 1 m): the highest sensor or scene point.
     #[must_use]
     pub fn new(model: AtmosphereModel, max_altitude_m: f64) -> Self {
+        Self::with_levels(model, max_altitude_m, SKY_LEVELS)
+    }
+
+    /// As [`PrecomputedAtmosphere::new`] with `levels` altitudes (at least 2). Fewer
+    /// levels cost less and interpolate the sky more coarsely in altitude: the tolerance
+    /// pilot's sub-band sets use few, because linear interpolation commutes with the
+    /// sub-bands' sum and so changes every count's sky alike.
+    #[must_use]
+    pub fn with_levels(model: AtmosphereModel, max_altitude_m: f64, levels: usize) -> Self {
+        let count = levels.max(2);
         let top = if max_altitude_m.is_finite() {
             max_altitude_m.max(1.0)
         } else {
             1.0
         };
-        // Each level on its own (rayon); collected in order, so the same on any thread count.
-        let computed: Vec<_> = (0..SKY_LEVELS)
+        // Each level's view on its own (rayon); collected in order, so the same on any
+        // thread count. The hemispheric sky is eq. 5 over these same views (level 0 is the
+        // ground), each computed once.
+        let views: Vec<(f64, SkyView)> = (0..count)
             .into_par_iter()
             .map(|i| {
-                let h = top * i as f64 / (SKY_LEVELS - 1) as f64;
-                (h, model.sky_view(h), model.sky_hemispheric(h))
+                let h = top * i as f64 / (count - 1) as f64;
+                (h, model.sky_view(h))
+            })
+            .collect();
+        let hemispheric: Vec<_> = views
+            .iter()
+            .map(|(h, view)| {
+                model.sky_hemispheric_from(Some(&views[0].1), (*h > 0.0).then_some(view))
             })
             .collect();
         let mut warnings = Vec::new();
-        let mut levels = Vec::with_capacity(SKY_LEVELS);
-        for (h, view, hemi) in computed {
+        let mut levels = Vec::with_capacity(count);
+        for ((h, view), hemi) in views.into_iter().zip(hemispheric) {
             if let Some(w) = hemi.warning
                 && !warnings.contains(&w)
             {
@@ -131,6 +149,28 @@ mod tests {
         assert!((mid - expected).abs() < 1e-12);
         // Above the top: the top level.
         assert!((p.sky_hemispheric(1e6) - p.sky_hemispheric(3200.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn fewer_levels_lie_evenly_and_reproduce_the_model_there() {
+        let model =
+            AtmosphereModel::new(&builtin("us-std-1976").unwrap(), ModelKind::Table).unwrap();
+        // 3200 m in 4 steps: a level every 800 m.
+        let p = PrecomputedAtmosphere::with_levels(model.clone(), 3200.0, 5);
+        for h in [0.0, 800.0, 1600.0, 2400.0, 3200.0] {
+            let exact = model.sky_radiance(h, 60.0);
+            assert!(
+                (p.sky_radiance(h, 60.0) - exact).abs() < 1e-6 * exact,
+                "{h}"
+            );
+        }
+        let mid = p.sky_hemispheric(400.0);
+        let expected = 0.5 * (p.sky_hemispheric(0.0) + p.sky_hemispheric(800.0));
+        assert!((mid - expected).abs() < 1e-12);
+        // Fewer than two levels would have no top: two.
+        let two = PrecomputedAtmosphere::with_levels(model.clone(), 3200.0, 0);
+        let exact = model.sky_hemispheric(3200.0).radiance_w_m2_sr;
+        assert!((two.sky_hemispheric(3200.0) - exact).abs() < 1e-12 * exact);
     }
 
     #[test]

@@ -409,7 +409,43 @@ pub fn collapse(
     hi_um: f64,
     weight: impl Fn(f64) -> f64,
 ) -> Result<Atmosphere, AtmosphereError> {
-    spectral.validate()?;
+    Collapser::new(spectral)?.collapse(lo_um, hi_um, weight)
+}
+
+/// A spectral atmosphere checked once, for [`collapse`]s over many bands: the sub-bands of
+/// a trace (a hundred or more for the full grid) would otherwise check every table of it
+/// twice each.
+#[derive(Debug, Clone, Copy)]
+pub struct Collapser<'a>(&'a SpectralAtmosphere);
+
+impl<'a> Collapser<'a> {
+    /// # Errors
+    /// An invalid spectral atmosphere.
+    pub fn new(spectral: &'a SpectralAtmosphere) -> Result<Self, AtmosphereError> {
+        spectral.validate()?;
+        Ok(Self(spectral))
+    }
+
+    /// [`collapse`] over `[lo_um, hi_um]` with response `weight(λ in µm)`.
+    ///
+    /// # Errors
+    /// As [`collapse`].
+    pub fn collapse(
+        &self,
+        lo_um: f64,
+        hi_um: f64,
+        weight: impl Fn(f64) -> f64,
+    ) -> Result<Atmosphere, AtmosphereError> {
+        collapse_valid(self.0, lo_um, hi_um, weight)
+    }
+}
+
+fn collapse_valid(
+    spectral: &SpectralAtmosphere,
+    lo_um: f64,
+    hi_um: f64,
+    weight: impl Fn(f64) -> f64,
+) -> Result<Atmosphere, AtmosphereError> {
     let q = BandQuadrature::new(&spectral.grid, lo_um, hi_um, weight)?;
     let n = spectral.grid.points.len();
     let levels = spectral

@@ -86,9 +86,10 @@ pub struct BandChoice<S> {
 #[derive(Debug)]
 pub struct PilotSpace<S> {
     /// Every (atmosphere, sub-bands) pair the pilot needs: the reference pair, each
-    /// atmosphere at the reference sub-bands, and each sub-band count at the reference
-    /// atmosphere; also the band model (`1`) at the reference atmosphere, whose table
-    /// measures the tabulated path terms.
+    /// sub-band count at the reference atmosphere, and each atmosphere in the band model
+    /// (`1`), the reference atmosphere's band model included: every model but the
+    /// sub-bands is measured in it (see [`Tracer::pilot`]). Where an atmosphere has no band
+    /// model here, it is measured at the reference sub-bands.
     pub bands: Vec<BandChoice<S>>,
     /// Atmosphere models, reference first.
     pub atmospheres: Vec<String>,
@@ -168,10 +169,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 "no band set for atmosphere {ref_atm}, sub-bands {ref_sb}"
             ))
         })?;
+        // Every model but the sub-bands is measured in the band model (see `pilot_pixel`).
+        let band_model = find(ref_atm, "1").unwrap_or(reference);
         let atm_sets = space
             .atmospheres
             .iter()
-            .map(|a| find(a, ref_sb).ok_or_else(|| bad(format!("no band set for {a}, {ref_sb}"))))
+            .map(|a| {
+                find(a, "1")
+                    .or_else(|| find(a, ref_sb))
+                    .ok_or_else(|| bad(format!("no band set for {a}")))
+            })
             .collect::<Result<Vec<_>, _>>()?;
         let sb_sets = space
             .sub_bands
@@ -189,8 +196,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             }
         }
         let fc = self.frame_consts_with(camera, false);
-        // The tabulated path terms are measured in the band model (one table, not K).
-        let band_model = find(ref_atm, "1").unwrap_or(reference);
         let table = space
             .path_terms
             .contains(&PathTermsMode::Tabulated)
@@ -229,6 +234,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// One sample pixel: its reference path evaluated under every alternative.
+    ///
+    /// Only the sub-bands are measured against the reference sub-bands (the full grid):
+    /// every other model's error is measured in the band model, against the band model
+    /// at the reference geometry. A model's error in kelvin is a difference of two
+    /// radiances through the same band quadrature; changing the quadrature changes that
+    /// difference by the quadrature's own relative error (a few per cent at most: the band
+    /// model is up to 1.9 K off at 300 K, docs/accuracy.md "Band against spectral"), so a
+    /// 0.3 K error is misjudged by about 0.01 K, while
+    /// evaluating the geometric alternatives (a pixel's 4 × 4 sub-pixel rays, its eight
+    /// neighbours, each bounce limit) in every sub-band of the full grid cost the pilot
+    /// 30 times as much.
     #[allow(clippy::too_many_arguments)]
     fn pilot_pixel<S: Atmosphere>(
         &self,
@@ -253,8 +269,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let eval = |set: usize, table: Option<&PathTable>, p: &Path, s: &mut Sample| {
             self.radiance_with::<false, S>(&space.bands[set].set, table, fc, p, s)
         };
-        let l_ref = eval(reference, None, &path, &mut scratch);
-        let t_ref = t(l_ref);
+        // The sub-bands are compared on the path with its first facet's sky-view rays
+        // folded into the hemispheric sky (F = 1): the sky is where the spectral structure
+        // is (the facets a ray meets are grey bodies at short range), and 64 sky lookups
+        // per sub-band were most of the pilot's time.
+        let mut hemispheric = Path::default();
+        path.with_sky_rays(0, &mut hemispheric);
+        let t_ref = t(eval(reference, None, &hemispheric, &mut scratch));
+        let l_band = eval(band_model, None, &path, &mut scratch);
+        let t_band = t(l_band);
         let mut out = PixelSample {
             hit: matches!(path.primary, Primary::Facet { .. }),
             nodes: path.nodes.len() as u32,
@@ -262,17 +285,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ..PixelSample::default()
         };
         let mut err = |model: SwitchableModel, l: f64| {
-            out.errors[model_index(model)].push((t(l) - t_ref).abs());
+            let against = if model == SwitchableModel::SubBands {
+                t_ref
+            } else {
+                t_band
+            };
+            out.errors[model_index(model)].push((t(l) - against).abs());
         };
-        for &set in atm_sets {
-            err(
-                SwitchableModel::Atmosphere,
-                eval(set, None, &path, &mut scratch),
-            );
-        }
         for &set in sb_sets {
             err(
                 SwitchableModel::SubBands,
+                eval(set, None, &hemispheric, &mut scratch),
+            );
+        }
+        for &set in atm_sets {
+            err(
+                SwitchableModel::Atmosphere,
                 eval(set, None, &path, &mut scratch),
             );
         }
@@ -281,18 +309,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             path.truncated(b, &mut cut);
             err(
                 SwitchableModel::Bounces,
-                eval(reference, None, &cut, &mut scratch),
+                eval(band_model, None, &cut, &mut scratch),
             );
         }
         for &n in &space.sky_view_rays {
             path.with_sky_rays(n, &mut cut);
             err(
                 SwitchableModel::SkyView,
-                eval(reference, None, &cut, &mut scratch),
+                eval(band_model, None, &cut, &mut scratch),
             );
         }
-        // Tabulated against exact, both in the band model.
-        let l_band = eval(band_model, None, &path, &mut scratch);
         for &mode in &space.path_terms {
             let l = match mode {
                 PathTermsMode::Exact => l_band,
@@ -326,7 +352,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             }
             let mean = if n <= 1 {
                 self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
-                eval(reference, None, &path, &mut scratch)
+                eval(band_model, None, &path, &mut scratch)
             } else {
                 let mut sum = 0.0;
                 for j in 0..n {
@@ -338,7 +364,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
                         let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
                         self.follow(fc, camera.direction_at(x, y), &mut ctx, &mut path);
-                        sum += eval(reference, None, &path, &mut scratch);
+                        sum += eval(band_model, None, &path, &mut scratch);
                     }
                 }
                 sum / f64::from(n * n)
@@ -349,7 +375,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             Some(&(_, l)) => l,
             None => {
                 self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
-                eval(reference, None, &path, &mut scratch)
+                eval(band_model, None, &path, &mut scratch)
             }
         };
         let mean_of = |n: u32| {
@@ -373,7 +399,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     &mut ctx,
                     &mut path,
                 );
-                (t(eval(reference, None, &path, &mut scratch)) - t_centre).abs() > tolerance_k
+                (t(eval(band_model, None, &path, &mut scratch)) - t_centre).abs() > tolerance_k
             });
         let t_ss_ref = t(mean_of(space.supersampling[0].n()));
         for s in &space.supersampling {

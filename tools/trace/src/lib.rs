@@ -703,6 +703,7 @@ impl<'a> Split<'a> {
         };
         let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
             .map_err(|e| irsig_cli::usage_error(format!("--sub-bands {count}: {e}")))?;
+        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
         edges
             .par_windows(2)
             .map(|w| {
@@ -712,19 +713,20 @@ impl<'a> Split<'a> {
                 let at = |e: irsig_atmosphere::AtmosphereError| {
                     miette!("sub-band {}-{} um: {e}", w[0], w[1])
                 };
-                let mut atmosphere =
-                    irsig_atmosphere::collapse(spectral, w[0], w[1], |l| self.weight(l))
-                        .map_err(at)?;
+                let mut atmosphere = collapser
+                    .collapse(w[0], w[1], |l| self.weight(l))
+                    .map_err(at)?;
                 if !count.is_band() {
                     // τ as the target sees it: weighted by the blackbody at the reference
                     // temperature, so that τ times the sub-band's L_T is ∫ τ B dλ across
                     // the sub-band (without it the full grid reads up to 0.024 K warm in
                     // a tropical atmosphere; docs/accuracy.md). Radiances keep the
                     // response alone.
-                    let seen = irsig_atmosphere::collapse(spectral, w[0], w[1], |l| {
-                        self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
-                    })
-                    .map_err(at)?;
+                    let seen = collapser
+                        .collapse(w[0], w[1], |l| {
+                            self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
+                        })
+                        .map_err(at)?;
                     with_transmission(&mut atmosphere, &seen);
                 }
                 Ok(Some((band, atmosphere)))
@@ -942,16 +944,22 @@ fn with_atmosphere<R: SubBandModel>(
                 .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
                 .collect();
             let collapsed = &collapsed;
-            // The pilot evaluates its paths in every sub-band with every sky-view ray: the
-            // precomputed sky costs a few ms per sub-band (table model) and saves a slant
-            // integration per ray, so the pilot's sets are precomputed too (`S` = `A`).
-            let sub_bands = move |kind: ModelKind, count: SubBandCount| {
+            // The pilot evaluates its paths in every sub-band: the precomputed sky costs a
+            // few ms per sub-band (table model) and saves a slant integration per ray, so
+            // the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
+            // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its cost).
+            let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
                 collapsed(count)?
                     .iter()
                     .map(|(b, a)| {
+                        let m = model(a, kind)?;
                         Ok(SubBand {
                             band: R::of_band(b)?,
-                            atmosphere: precompute(model(a, kind)?),
+                            atmosphere: if pilot && !count.is_band() {
+                                PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
+                            } else {
+                                precompute(m)
+                            },
                             emissivity: spectral_materials::sub_band_tables(&inputs.materials, b)?,
                         })
                     })
@@ -961,8 +969,8 @@ fn with_atmosphere<R: SubBandModel>(
             let air = Air {
                 kinds: Some(kinds),
                 spectral: true,
-                precomputed: Box::new(sub_bands),
-                pilot: Box::new(sub_bands),
+                precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
+                pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
             };
             trace_all(cli, inputs, &run, band, &air)
         }
@@ -1038,6 +1046,13 @@ impl Settings {
     }
 }
 
+/// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
+/// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with
+/// summing sub-bands, so coarser levels change every count's sky alike and leave the
+/// sub-band error the pilot measures: on the quickstart and the thesis experiment its
+/// choices and errors are those of 33 levels (docs/accuracy.md).
+const PILOT_SKY_LEVELS: usize = 5;
+
 /// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md):
 /// one `path` call, and precomputing the sky of one sub-band up to a few km.
 fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
@@ -1069,15 +1084,18 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     // A count the band's grid cannot make (more sub-bands than grid intervals in a narrow
     // band) is not on offer, unless it is the one pinned.
     let pinned_count = offer.sub_bands.len() == 1;
+    // The sub-band counts at the reference atmosphere; every other model is measured in
+    // the band model (`Tracer::pilot` says why), so each atmosphere in it.
     let mut pairs: Vec<(ModelKind, SubBandCount)> = Vec::new();
-    for &kind in &offer.atmospheres {
-        pairs.push((kind, ref_count));
-    }
     for &count in &offer.sub_bands {
         pairs.push((ref_kind, count));
     }
-    // The band model at the reference atmosphere measures the tabulated path terms.
     pairs.push((ref_kind, SubBandCount::BAND));
+    for &kind in &offer.atmospheres {
+        pairs.push((kind, SubBandCount::BAND));
+    }
+    // The pilot's time includes making its band sets (each sub-band's sky).
+    let started = std::time::Instant::now();
     let mut bands: Vec<BandChoice<S>> = Vec::new();
     let mut unavailable = Vec::new();
     for (kind, count) in pairs {
@@ -1090,7 +1108,7 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         }
         let sub = match (air.pilot)(kind, count) {
             Ok(sub) => sub,
-            Err(e) if count == ref_count || pinned_count => return Err(e),
+            Err(e) if count == ref_count || count.is_band() || pinned_count => return Err(e),
             Err(_) => {
                 unavailable.push(count);
                 continue;
@@ -1127,7 +1145,6 @@ fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     // 1 % needs several hundred samples to be seen at all.
     let pixels =
         (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
-    let started = std::time::Instant::now();
     let decision = tracer
         .pilot(
             camera,
