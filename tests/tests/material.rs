@@ -261,3 +261,86 @@ fn the_pipeline_runner_checks_material_stages_before_running_any() {
     assert_eq!(lib.materials.len(), 9);
     assert!(dir.path().join("glass.ron").exists());
 }
+
+#[test]
+#[allow(clippy::float_cmp)] // values copied from the files, compared as printed there
+fn dirsig_materials_become_spectral_materials_and_a_missing_ems_is_refused_at_its_filename() {
+    let src = irsig_tests::repo_root().join("tests/data/third-party/dirsig-channel");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("lib.ron");
+    // The real database: its ID 100 entry names no emissivity file (line 2, the ID's
+    // value at column 20) ...
+    bin("irsig-material")
+        .arg("dirsig")
+        .arg(src.join("anadirsig.mat"))
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("anadirsig.mat:2:20"))
+        .stderr(predicate::str::contains("--default-emissivity"));
+    // ... and, given a default for it, grass names `emissivity/grass_texture.ems`, which is
+    // not there (line 77, the value at column 33).
+    bin("irsig-material")
+        .arg("dirsig")
+        .arg(src.join("anadirsig.mat"))
+        .args(["--default-emissivity", "0.95", "-o"])
+        .arg(&out)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("anadirsig.mat:77:33"))
+        .stderr(predicate::str::contains("grass_texture.ems"));
+    assert!(!out.exists());
+
+    // Water (the index form, wavenumbers) and a background (the CURVE_BEGIN form, µm).
+    std::fs::create_dir(dir.path().join("emissivity")).unwrap();
+    for f in ["muddy_water.ems", "background_1.ems"] {
+        std::fs::copy(
+            src.join("emissivity").join(f),
+            dir.path().join("emissivity").join(f),
+        )
+        .unwrap();
+    }
+    let mat = dir.path().join("two.mat");
+    std::fs::write(
+        &mat,
+        "MATERIAL_ENTRY {\n  ID = 2\n  NAME = water\n  SURFACE_PROPERTIES {\n    EMISSIVITY_PROP {\n      FILENAME = emissivity/muddy_water.ems\n      SPECULAR_FRACTION = 1\n    }\n  }\n}\n\
+         MATERIAL_ENTRY {\n  ID = 5\n  NAME = background\n  SURFACE_PROPERTIES {\n    EMISSIVITY_PROP {\n      FILENAME = emissivity/background_1.ems\n    }\n  }\n}\n",
+    )
+    .unwrap();
+    bin("irsig-material")
+        .arg("dirsig")
+        .arg(&mat)
+        .arg("-o")
+        .arg(&out)
+        .assert()
+        .success();
+    let bytes = std::fs::read(&out).unwrap();
+    let lib: irsig_model::MaterialLibrary =
+        irsig_formats::canonical::from_ron_bytes("lib.ron", &bytes).unwrap();
+    let water = lib.by_name("water").unwrap();
+    assert_eq!((water.id.0, water.specular_fraction), (2, 1.0));
+    let s = water.spectral.as_ref().unwrap();
+    // muddy_water.ems: 0.974 at 1050 and 950 cm⁻¹ (9.52 and 10.53 µm), so at 10 µm.
+    let k = s.wavelength_um.partition_point(|&w| w < 10.0);
+    assert!((s.wavelength_um[k] - 1e4 / 950.0).abs() < 1e-9);
+    assert_eq!(s.emissivity[k], 0.974);
+    // Its 8-14 µm average: 0.974 from 1250 cm⁻¹ (8 µm) to 750 cm⁻¹ (13.33 µm), rising to
+    // 1.0 at 650 cm⁻¹ (15.38 µm), so 0.9825 at 14 µm; the last 0.67 µm hold about 7 %
+    // of the 300 K band radiance, so the average lies within 0.974 + 0.07 · 0.0085.
+    let (a0, e0) = water.emissivity[0];
+    assert_eq!(a0, 0.0);
+    assert!(e0 > 0.974 && e0 < 0.9747, "{e0}");
+    // The angular factors of the file: 1 at 0°, 0 from 86° on (its lines 88-92).
+    assert_eq!(water.emissivity.len(), 91);
+    assert_eq!(water.emissivity[86].1, 0.0);
+    let bg = lib.by_name("background").unwrap();
+    let s = bg.spectral.as_ref().unwrap();
+    assert_eq!(
+        (s.wavelength_um[0], *s.wavelength_um.last().unwrap()),
+        (0.35, 14.983)
+    );
+    assert!(s.emissivity.iter().all(|&e| e == 0.98));
+    assert!(bg.emissivity.iter().all(|&(_, e)| (e - 0.98).abs() < 1e-12));
+    assert_eq!(bg.specular_fraction, 0.0);
+}

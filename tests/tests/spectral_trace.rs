@@ -56,7 +56,23 @@ fn apparent_k(radiance: f64) -> f64 {
 /// LOWTRAN7's own integral for the slant path of table node (`altitude`, `angle`) to a
 /// blackbody at `t_k`: `∫ τ B dλ + ∫ L_path dλ` over 8–14 µm, W m⁻² sr⁻¹.
 fn lowtran_integral(a: &SpectralAtmosphere, altitude: usize, angle: usize, t_k: f64) -> f64 {
+    lowtran_integral_of(a, altitude, angle, t_k, |_| 1.0, &[])
+}
+
+/// As [`lowtran_integral`] for a Lambertian surface of emissivity `eps(λ)` (µm), which
+/// also reflects `1 − ε` of the ground's hemispheric sky:
+/// `∫ τ (ε B + (1 − ε) L_hemi) dλ + ∫ L_path dλ`. `breaks`: wavenumbers (cm⁻¹) where
+/// `eps` jumps, added as nodes on both sides.
+fn lowtran_integral_of(
+    a: &SpectralAtmosphere,
+    altitude: usize,
+    angle: usize,
+    t_k: f64,
+    eps: impl Fn(f64) -> f64,
+    breaks: &[f64],
+) -> f64 {
     assert_eq!(a.grid.axis, SpectralAxis::WavenumberPerCm);
+    let hemi = a.sky_hemispheric_w_m2_sr_per_unit.as_ref().unwrap();
     let s = a.slant.as_ref().unwrap();
     let n = a.grid.points.len();
     let at = (altitude * s.nadir_deg.len() + angle) * n;
@@ -64,11 +80,11 @@ fn lowtran_integral(a: &SpectralAtmosphere, altitude: usize, angle: usize, t_k: 
     let path = &s.path_radiance_w_m2_sr_per_unit[at..at + n];
     let nu = &a.grid.points;
     // (wavenumber, τ, L_path per cm⁻¹) at ν, linear in ν between grid points.
-    let value = |x: f64| -> (f64, f64) {
+    let value = |x: f64| -> (f64, f64, f64) {
         let k = nu.partition_point(|&p| p < x).clamp(1, n - 1);
         let t = (x - nu[k - 1]) / (nu[k] - nu[k - 1]);
         let lerp = |v: &[f32]| f64::from(v[k - 1]) * (1.0 - t) + f64::from(v[k]) * t;
-        (lerp(tau), lerp(path))
+        (lerp(tau), lerp(path), lerp(hemi))
     };
     let mut nodes: Vec<f64> = vec![1e4 / 14.0];
     nodes.extend(
@@ -77,16 +93,28 @@ fn lowtran_integral(a: &SpectralAtmosphere, altitude: usize, angle: usize, t_k: 
             .filter(|&x| x > 1e4 / 14.0 && x < 1e4 / 8.0),
     );
     nodes.push(1e4 / 8.0);
-    // The integrand per µm at each node, in increasing wavelength.
+    // The integrand per µm at each node, in increasing wavelength; at a jump of ε, its
+    // value on each side.
     let mut points: Vec<(f64, f64)> = nodes
         .iter()
-        .map(|&x| {
-            let (t, l) = value(x);
+        .flat_map(|&x| {
+            let (t, l, h) = value(x);
             let wavelength = 1e4 / x;
-            (
-                wavelength,
-                t * planck_per_um(wavelength, t_k) + l * x * x / 1e4,
-            )
+            let at = move |w: f64, e: f64| {
+                (
+                    w,
+                    t * (e * planck_per_um(wavelength, t_k) + (1.0 - e) * h * x * x / 1e4)
+                        + l * x * x / 1e4,
+                )
+            };
+            if breaks.iter().any(|&b| (b - x).abs() < 1e-9) {
+                vec![
+                    at(wavelength, eps(wavelength - 1e-9)),
+                    at(wavelength + 1e-12, eps(wavelength + 1e-9)),
+                ]
+            } else {
+                vec![at(wavelength, eps(wavelength))]
+            }
         })
         .collect();
     points.sort_by(|p, q| p.0.total_cmp(&q.0));
@@ -135,6 +163,28 @@ fn probe(
     altitude_m: f64,
     nadir_deg: f64,
 ) -> (f64, u32) {
+    probe_with(
+        dir,
+        None,
+        atmosphere,
+        Some(sub_bands),
+        t_k,
+        altitude_m,
+        nadir_deg,
+    )
+}
+
+/// As [`probe`] with the plate made of material 1 of `materials` (else a blackbody), and
+/// `--sub-bands` given only when `sub_bands` is.
+fn probe_with(
+    dir: &Path,
+    materials: Option<&Path>,
+    atmosphere: &str,
+    sub_bands: Option<&str>,
+    t_k: f64,
+    altitude_m: f64,
+    nadir_deg: f64,
+) -> (f64, u32) {
     let view = dir.join("view.ron");
     let reach = (altitude_m - 1.0) * nadir_deg.to_radians().tan();
     std::fs::write(
@@ -145,14 +195,16 @@ fn probe(
         ),
     )
     .unwrap();
+    let scene = scene(dir, t_k);
     let out = bin("irsig-trace")
         .arg("--scene")
-        .arg(scene(dir, t_k))
+        .arg(scene)
         .arg("--materials")
-        .arg(dir.join("black.ron"))
+        .arg(materials.map_or_else(|| dir.join("black.ron"), Path::to_path_buf))
         .arg("--view")
         .arg(&view)
-        .args(["--atmosphere", atmosphere, "--sub-bands", sub_bands])
+        .args(["--atmosphere", atmosphere])
+        .args(sub_bands.map(|k| ["--sub-bands", k]).into_iter().flatten())
         .args(["--probe", "0,0"])
         .output()
         .unwrap();
@@ -501,4 +553,153 @@ fn accuracy_table() {
         "| worst | | | | | {:.4} | {:.4} | {:.4} | {:.4} | {:.4} |",
         worst[0], worst[1], worst[2], worst[3], worst[4]
     );
+}
+
+/// A Lambertian material whose emissivity steps from 0.5 below 10 µm to 0.9 above
+/// (between 10 and 10.000001 µm), with a flat angular shape.
+const STEP: &str = "(materials: [(id: 1, name: \"step\", emissivity: [(0.0, 1.0), (90.0, 1.0)], \
+    specular_fraction: 0.0, source: \"a step\",\n\
+    spectral: Some((wavelength_um: [7.0, 10.0, 10.000001, 15.0], emissivity: [0.5, 0.5, 0.9, 0.9])))])";
+
+#[test]
+fn a_spectral_material_is_averaged_per_sub_band_and_over_the_band() {
+    let dir = tempfile::tempdir().unwrap();
+    let step = dir.path().join("step.ron");
+    std::fs::write(&step, STEP).unwrap();
+    let eps = |w: f64| if w <= 10.0 { 0.5 } else { 0.9 };
+    let a = irsig_atmosphere::builtin_spectral("us-std-1976").unwrap();
+    let s = a.slant.as_ref().unwrap();
+    // Full grid: ∫ τ (ε B + (1 − ε) L_hemi) dλ + L_path by hand, from the built-in's
+    // LOWTRAN7 spectra (10 µm is a grid point, so every grid interval lies on one side of
+    // the step): within the 0.02 K of the full grid's floor.
+    for (t_k, altitude_m, nadir_deg) in [(300.0, 1000.0, 0.0), (260.0, 300.0, 60.0)] {
+        let (ai, ni) = (
+            node(&s.altitude_m, altitude_m),
+            node(&s.nadir_deg, nadir_deg),
+        );
+        let expected = apparent_k(lowtran_integral_of(&a, ai, ni, t_k, eps, &[1000.0]));
+        let (full, n) = probe_with(
+            dir.path(),
+            Some(&step),
+            "us-std-1976",
+            Some("full"),
+            t_k,
+            altitude_m,
+            nadir_deg,
+        );
+        assert_eq!(n, 108);
+        let dt = apparent_k(full) - expected;
+        eprintln!(
+            "step material, {t_k} K from {altitude_m} m at {nadir_deg} deg: full grid {dt:+.4} K"
+        );
+        assert!(
+            dt.abs() < 0.02,
+            "{t_k} K, {altitude_m} m, {nadir_deg} deg: {dt} K"
+        );
+        // A grey material of the band-average emissivity is not the same thing: the step
+        // weights the two halves of the band by the atmosphere as well.
+        let grey = |e: f64| apparent_k(lowtran_integral_of(&a, ai, ni, t_k, |_| e, &[]));
+        assert!((grey(0.5) - expected).abs() > 1.0);
+    }
+
+    // The band model: the band average over 8-14 µm, Planck-weighted at 300 K,
+    // (0.5 ∫₈¹⁰ B + 0.9 ∫₁₀¹⁴ B) / ∫₈¹⁴ B by the test's own Simpson sums, traced as a grey
+    // material of that emissivity gives the same radiance.
+    let simpson = |lo: f64, hi: f64| {
+        let n = 4000;
+        let h = (hi - lo) / f64::from(n);
+        let mut sum = planck_per_um(lo, 300.0) + planck_per_um(hi, 300.0);
+        for i in 1..n {
+            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * planck_per_um(lo + h * f64::from(i), 300.0);
+        }
+        sum * h / 3.0
+    };
+    let (low, high) = (simpson(8.0, 10.0), simpson(10.0, 14.0));
+    let mean = (0.5 * low + 0.9 * high) / (low + high);
+    // 300 K: 19.44 of the 54.93 W m-2 sr-1 lie below 10 um (a midpoint sum of 20 000
+    // intervals, separately), so ε̄ = 0.5 + 0.4 · 35.49 / 54.93 = 0.7584.
+    assert!((mean - 0.7584).abs() < 1e-4, "{mean}");
+    let grey = dir.path().join("grey.ron");
+    std::fs::write(
+        &grey,
+        format!(
+            "(materials: [(id: 1, name: \"grey\", emissivity: [(0.0, {mean:?}), (90.0, {mean:?})], \
+             specular_fraction: 0.0, source: \"the step's band mean\")])"
+        ),
+    )
+    .unwrap();
+    for (t_k, altitude_m, nadir_deg) in [(300.0, 1000.0, 0.0), (260.0, 300.0, 60.0)] {
+        let (band, one) = probe_with(
+            dir.path(),
+            Some(&step),
+            "us-std-1976",
+            None,
+            t_k,
+            altitude_m,
+            nadir_deg,
+        );
+        let (reference, _) = probe_with(
+            dir.path(),
+            Some(&grey),
+            "us-std-1976",
+            None,
+            t_k,
+            altitude_m,
+            nadir_deg,
+        );
+        assert_eq!(one, 1);
+        assert!(
+            (band / reference - 1.0).abs() < 1e-6,
+            "{band} vs {reference}"
+        );
+    }
+}
+
+#[test]
+fn a_spectral_curve_short_of_the_band_is_refused_at_its_place() {
+    let dir = tempfile::tempdir().unwrap();
+    let short = dir.path().join("short.ron");
+    std::fs::write(
+        &short,
+        "(materials: [(id: 1, name: \"short\", emissivity: [(0.0, 1.0)],\n\
+         specular_fraction: 0.0, source: \"x\",\n\
+         spectral: Some((wavelength_um: [8.5, 14.0], emissivity: [0.9, 0.9])))])",
+    )
+    .unwrap();
+    let view = dir.path().join("view.ron");
+    std::fs::write(
+        &view,
+        "LookAt(position_m: (0.0, 0.0, 100.0), target_m: (0.0, 0.0, 1.0), up: (0.0, 1.0, 0.0), \
+         pixels: (2, 2), fov_deg: (1.0, 1.0))",
+    )
+    .unwrap();
+    let out = dir.path().join("out");
+    for sub_bands in [None, Some("4")] {
+        bin("irsig-trace")
+            .arg("--scene")
+            .arg(scene(dir.path(), 300.0))
+            .arg("--materials")
+            .arg(&short)
+            .arg("--view")
+            .arg(&view)
+            .args(sub_bands.map(|k| ["--sub-bands", k]).into_iter().flatten())
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .code(1)
+            .stderr(predicates::str::contains("short.ron:3:"))
+            .stderr(predicates::str::contains("8.5"));
+        assert_eq!(
+            std::fs::read_dir(dir.path())
+                .unwrap()
+                .filter(|e| e
+                    .as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .starts_with("out"))
+                .count(),
+            0
+        );
+    }
 }

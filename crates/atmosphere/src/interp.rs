@@ -1,5 +1,6 @@
-//! Small numeric helpers: table lookup, linear interpolation, the Appendix E quadratic
-//! least-squares fit, and the eq. 5 hemispheric integral of a piecewise-linear L(θ).
+//! Small numeric helpers: table lookup, linear and monotone cubic interpolation, the
+//! Appendix E quadratic least-squares fit, and the eq. 5 hemispheric integral of a
+//! piecewise-linear L(θ).
 
 /// Index `i` of the interval `[xs[i], xs[i + 1]]` holding `x` and the fraction along it,
 /// with `x` clamped to the table. `xs` increases strictly and has at least one entry.
@@ -35,14 +36,68 @@ pub(crate) fn linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     }
 }
 
-/// Bilinear interpolation of the grid `zs[row][col]` over rows `xs` and columns `ys`,
-/// clamped at the edges.
-pub(crate) fn bilinear(xs: &[f64], ys: &[f64], zs: &[Vec<f64>], x: f64, y: f64) -> f64 {
-    Cell::locate(xs, ys, x, y).of(zs)
+/// Monotone piecewise-cubic Hermite interpolation of `ys` over `xs` at `x`, clamped at
+/// both ends (Fritsch & Carlson 1980, with the weighted harmonic-mean slopes of Fritsch &
+/// Butland 1984; the ends take their interval's secant). It passes through every node,
+/// follows a curve that bends between them (the sky's rise toward the horizon, which
+/// linear interpolation overestimates), and never overshoots: between two nodes it stays
+/// between their values, and where the data are monotone so is the curve. Local: a value
+/// depends on four nodes. Fewer than three nodes: linear.
+pub(crate) fn monotone_cubic(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let n = xs.len().min(ys.len());
+    if n < 3 {
+        return linear(xs, ys, x);
+    }
+    let (i, f) = locate(&xs[..n], x);
+    if f.is_nan() {
+        return f64::NAN;
+    }
+    let secant = |k: usize| (ys[k + 1] - ys[k]) / (xs[k + 1] - xs[k]);
+    let slope = |k: usize| -> f64 {
+        if k == 0 {
+            return secant(0);
+        }
+        if k == n - 1 {
+            return secant(n - 2);
+        }
+        let (d0, d1) = (secant(k - 1), secant(k));
+        if d0 * d1 <= 0.0 {
+            return 0.0;
+        }
+        let (h0, h1) = (xs[k] - xs[k - 1], xs[k + 1] - xs[k]);
+        let (w0, w1) = (2.0 * h1 + h0, h1 + 2.0 * h0);
+        (w0 + w1) / (w0 / d0 + w1 / d1)
+    };
+    let h = xs[i + 1] - xs[i];
+    let (f2, f3) = (f * f, f * f * f);
+    let h00 = 2.0 * f3 - 3.0 * f2 + 1.0;
+    let h10 = f3 - 2.0 * f2 + f;
+    let h01 = -2.0 * f3 + 3.0 * f2;
+    let h11 = f3 - f2;
+    h00 * ys[i] + h10 * h * slope(i) + h01 * ys[i + 1] + h11 * h * slope(i + 1)
 }
 
-/// Where a point lies in a grid of rows `xs` and columns `ys`: located once, for
-/// [`bilinear`] interpolation of several tables on that grid.
+/// Interpolation of the grid `zs[row][col]`: monotone cubic along each row (columns
+/// `ys`, [`monotone_cubic`]), then linear between the rows `xs`; clamped at the edges.
+pub(crate) fn linear_by_monotone_cubic(
+    xs: &[f64],
+    ys: &[f64],
+    zs: &[Vec<f64>],
+    x: f64,
+    y: f64,
+) -> f64 {
+    let (i, fx) = locate(xs, x);
+    let row = |k: usize| zs.get(k).map_or(f64::NAN, |r| monotone_cubic(ys, r, y));
+    if xs.len() < 2 {
+        return row(0);
+    }
+    let a = row(i);
+    let b = row(i + 1);
+    a + fx * (b - a)
+}
+
+/// Where a point lies in a grid of rows `xs` and columns `ys`: located once, for the
+/// bilinear interpolation of several tables on that grid, clamped at the edges.
 pub(crate) struct Cell {
     i: usize,
     fx: f64,
@@ -64,7 +119,7 @@ impl Cell {
         }
     }
 
-    /// The table `zs[row][col]` at the cell: what [`bilinear`] gives, to the bit.
+    /// The table `zs[row][col]` at the cell, interpolated bilinearly.
     pub(crate) fn of(&self, zs: &[Vec<f64>]) -> f64 {
         let row = |k: usize| {
             zs.get(k)
@@ -226,5 +281,53 @@ mod tests {
             std::f64::consts::FRAC_PI_4,
             max_relative = 1e-12
         );
+    }
+
+    #[test]
+    fn monotone_cubic_is_exact_on_nodes_and_for_a_cubic_it_can_hold() {
+        // Nodes of y = x³ on 1..5 (convex, increasing): every node returned exactly, the
+        // curve between them below the chord (as the cubic is) and never outside the
+        // interval's values.
+        let xs = [1.0, 2.0, 3.0, 4.0, 5.0];
+        let ys: Vec<f64> = xs.iter().map(|x: &f64| x.powi(3)).collect();
+        for (x, y) in xs.iter().zip(&ys) {
+            assert_relative_eq!(monotone_cubic(&xs, &ys, *x), *y);
+        }
+        for k in 0..40 {
+            let x = 1.0 + 0.1 * f64::from(k);
+            let v = monotone_cubic(&xs, &ys, x);
+            let lin = linear(&xs, &ys, x);
+            assert!(v <= lin + 1e-12, "{x}: {v} above the chord {lin}");
+            // Within 4 % of x³ away from the one-sided first interval.
+            if x >= 2.0 {
+                assert!((v / x.powi(3) - 1.0).abs() < 0.04, "{x}: {v}");
+            }
+        }
+        assert_relative_eq!(monotone_cubic(&xs, &ys, 0.0), 1.0);
+        assert_relative_eq!(monotone_cubic(&xs, &ys, 9.0), 125.0);
+        assert!(monotone_cubic(&xs, &ys, f64::NAN).is_nan());
+    }
+
+    #[test]
+    // Flat data must give exactly flat values: equality is the point.
+    #[allow(clippy::float_cmp)]
+    fn monotone_cubic_does_not_overshoot_a_step() {
+        // A step: linear or natural splines ring; a monotone cubic stays in [0, 1] and flat
+        // where the data are flat.
+        let xs = [0.0, 1.0, 2.0, 3.0, 4.0];
+        let ys = [0.0, 0.0, 1.0, 1.0, 1.0];
+        for k in 0..=40 {
+            let x = 0.1 * f64::from(k);
+            let v = monotone_cubic(&xs, &ys, x);
+            assert!((0.0..=1.0).contains(&v), "{x}: {v}");
+            if x <= 1.0 {
+                assert_eq!(v, 0.0);
+            }
+            if x >= 2.0 {
+                assert_eq!(v, 1.0);
+            }
+        }
+        // Two nodes: the line.
+        assert_relative_eq!(monotone_cubic(&[0.0, 2.0], &[1.0, 3.0], 1.0), 2.0);
     }
 }

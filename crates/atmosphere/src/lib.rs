@@ -268,7 +268,7 @@ impl AtmosphereModel {
 
     /// Sky radiance in W m⁻² sr⁻¹ seen from `observer_altitude_m` at `zenith_deg` (0 = up):
     /// the path radiance from the observer to space. From the ground it is the `.dwr`
-    /// interpolated linearly (zenith angles past 90° see the ground's horizon: the 90°
+    /// interpolated by a monotone cubic in angle (zenith angles past 90° see the ground's horizon: the 90°
     /// value). From above the ground, `thesis` and `layered` sum the layered profile
     /// above the observer and the air above the profile's top (sized so the ground sky is
     /// reproduced) up to 83°, and extrapolate beyond by the Appendix E quadratic fitted

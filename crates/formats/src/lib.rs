@@ -22,6 +22,7 @@
 
 pub mod canonical;
 mod columns;
+pub mod dirsig;
 mod error;
 pub mod file;
 pub mod legacy;

@@ -30,6 +30,7 @@
 //!         emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
 //!         specular_fraction: 0.0,
 //!         source: "example".into(),
+//!         spectral: None,
 //!     }],
 //! };
 //! assert!(lib.validate().is_ok());
@@ -53,7 +54,7 @@ mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
 pub use error::{ModelError, ModelErrorKind};
-pub use material::{Material, MaterialId, MaterialLibrary};
+pub use material::{Material, MaterialId, MaterialLibrary, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};
 pub use plan::{AtmospherePlan, PlanModel};
 pub use raw::{RawFacet, RawScene};

@@ -25,6 +25,61 @@ pub struct Material {
     pub specular_fraction: f64,
     /// Where the numbers come from (a measurement, a paper, a legacy `.ems` file).
     pub source: String,
+    /// The emissivity against wavelength, if known (DIRSIG `.ems` curves, the Fresnel
+    /// equations over an n, k table). Then ε(λ, θ) = ε(λ) · `emissivity`(θ) /
+    /// `emissivity`(0°): the angular table gives the shape, this curve the spectrum, and a
+    /// tracer averages it over each band or sub-band it uses. `None`: the angular table is
+    /// the band's.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub spectral: Option<SpectralEmissivity>,
+}
+
+/// A material's emissivity at normal incidence against wavelength: linear between the
+/// samples, undefined outside them (a band the curve does not cover is an error).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralEmissivity {
+    /// Wavelengths, µm, strictly increasing, above 0; at least two.
+    pub wavelength_um: Vec<f64>,
+    /// Emissivity at each wavelength, 0 to 1.
+    pub emissivity: Vec<f64>,
+}
+
+impl SpectralEmissivity {
+    /// Checks the curve.
+    ///
+    /// # Errors
+    /// The first rule broken, with its path below `prefix`.
+    pub fn validate(&self, prefix: &str) -> Result<(), ModelError> {
+        if self.wavelength_um.len() < 2 {
+            return Err(ModelError::new(
+                format!("{prefix}.wavelength_um"),
+                ModelErrorKind::Other(
+                    "a spectral emissivity needs at least two wavelengths".into(),
+                ),
+            ));
+        }
+        if self.emissivity.len() != self.wavelength_um.len() {
+            return Err(ModelError::new(
+                format!("{prefix}.emissivity"),
+                ModelErrorKind::Other(format!(
+                    "{} emissivities for {} wavelengths",
+                    self.emissivity.len(),
+                    self.wavelength_um.len()
+                )),
+            ));
+        }
+        for (i, &w) in self.wavelength_um.iter().enumerate() {
+            check_range(|| format!("{prefix}.wavelength_um[{i}]"), w, 1e-3, 1e4)?;
+        }
+        for (i, &e) in self.emissivity.iter().enumerate() {
+            check_range(|| format!("{prefix}.emissivity[{i}]"), e, 0.0, 1.0)?;
+        }
+        check_increasing(
+            |i| format!("{prefix}.wavelength_um[{i}]"),
+            self.wavelength_um.iter().copied(),
+        )
+    }
 }
 
 /// A set of materials: the canonical form of the legacy material index file plus its
@@ -77,7 +132,21 @@ impl Material {
             self.specular_fraction,
             0.0,
             1.0,
-        )
+        )?;
+        if let Some(s) = &self.spectral {
+            s.validate(&format!("{prefix}.spectral"))?;
+            if self.emissivity.first().is_some_and(|r| r.1 <= 0.0) {
+                return Err(ModelError::new(
+                    format!("{prefix}.emissivity[0].emissivity"),
+                    ModelErrorKind::Other(
+                        "a spectral material's angular table gives the shape ε(θ)/ε(0°): its \
+                         first value must be above 0"
+                            .into(),
+                    ),
+                ));
+            }
+        }
+        Ok(())
     }
 }
 
@@ -132,6 +201,7 @@ mod tests {
             emissivity: eps,
             specular_fraction: 1.0,
             source: "test".into(),
+            spectral: None,
         }
     }
 

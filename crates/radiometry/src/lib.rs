@@ -27,6 +27,7 @@ mod error;
 pub mod fresnel;
 mod inverse;
 mod planck;
+mod spectral_emissivity;
 mod table;
 
 pub use band::{Band, SensorResponse};
@@ -38,4 +39,5 @@ pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
 pub use inverse::InverseTable;
 pub use planck::spectral_radiance_per_um;
+pub use spectral_emissivity::band_average_emissivity;
 pub use table::RadianceTable;

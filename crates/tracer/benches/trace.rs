@@ -63,6 +63,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         emissivity: BENCH_EMISSIVITY.to_vec(),
         specular_fraction: s,
         source: "bench".into(),
+        spectral: None,
     };
     MaterialLibrary {
         materials: vec![m(1, sphere_specular), m(2, 0.0)],

@@ -40,6 +40,7 @@
 //!         emissivity: vec![(0.0, 1.0), (90.0, 1.0)],
 //!         specular_fraction: 0.0,
 //!         source: "example".into(),
+//!         spectral: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;

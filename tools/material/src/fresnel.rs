@@ -185,6 +185,7 @@ fn write_library(
             emissivity: pairs(table),
             specular_fraction: args.specular_fraction,
             source,
+            spectral: None,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

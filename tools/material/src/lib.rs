@@ -17,6 +17,7 @@
 use clap::{Parser, Subcommand};
 
 pub mod convert;
+pub mod dirsig;
 pub mod fresnel;
 
 /// Material libraries: the 1990 material files converted, and angular emissivity from
@@ -58,6 +59,9 @@ averaged over the band (a response file as --band weights it) with Planck weight
 eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
 Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
     Fresnel(fresnel::Args),
+    /// A DIRSIG classic .mat and the spectral .ems curves it names -> a canonical material
+    /// library of spectral materials (ε(λ) with an angular shape).
+    Dirsig(dirsig::Args),
 }
 
 /// Runs one subcommand.
@@ -70,5 +74,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     match cli.command {
         Command::Convert(args) => convert::run(&args),
         Command::Fresnel(args) => fresnel::run(&args),
+        Command::Dirsig(args) => dirsig::run(&args),
     }
 }

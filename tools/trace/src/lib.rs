@@ -29,6 +29,7 @@
 //! (`--tile`) is a rectangle of its frame, and the tiles of a frame merge (irsig-merge)
 //! into the bytes the frame traced whole writes.
 
+mod spectral_materials;
 mod tolerance;
 
 use std::path::{Path, PathBuf};
@@ -482,9 +483,27 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let scene_input = irsig_cli::read_input(&cli.scene)?;
     hash_field(&mut run, "scene", &scene_input.bytes);
     let scene = read_raw_scene(&scene_input.name, &scene_input.bytes)?;
+    // Spectral materials: their band tables are their curves averaged over the band (the
+    // curves stay, for the sub-bands).
     let materials: MaterialLibrary = {
         let input = irsig_cli::read_input(&cli.materials)?;
-        from_ron_bytes(&input.name, &input.bytes)?
+        let lib: MaterialLibrary = from_ron_bytes(&input.name, &input.bytes)?;
+        match &cli.band {
+            _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
+            TraceBand::Band(arg) => spectral_materials::band_library(
+                &lib,
+                &arg.load()?,
+                &input.name,
+                &String::from_utf8_lossy(&input.bytes),
+            )?,
+            TraceBand::Total => {
+                return Err(irsig_cli::usage_error(format!(
+                    "`{}` has spectral materials, which the `total` band (the whole \
+                     spectrum) cannot average: give --band",
+                    cli.materials
+                )));
+            }
+        }
     };
     // A facet whose material the library lacks, at its place in the scene file.
     if let Some((i, f)) = scene
@@ -1041,7 +1060,7 @@ fn with_atmosphere<R: SubBandModel>(
                             } else {
                                 precompute(m)
                             },
-                            emissivity: None,
+                            emissivity: spectral_materials::sub_band_tables(&inputs.materials, b)?,
                         })
                     })
                     .collect()

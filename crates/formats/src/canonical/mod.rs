@@ -325,6 +325,7 @@ mod tests {
                     emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
                     specular_fraction: 0.0,
                     source: "test".into(),
+                    spectral: None,
                 },
                 Material {
                     id: MaterialId(2),
@@ -332,6 +333,7 @@ mod tests {
                     emissivity: vec![(0.0, 0.3), (60.0, 0.25)],
                     specular_fraction: 1.0,
                     source: "test".into(),
+                    spectral: None,
                 },
             ],
         }

@@ -1,0 +1,205 @@
+//! DIRSIG classic `.mat`: material entries, nested `NAME { … }` blocks of `KEY = VALUE`
+//! lines. What irsig reads of an entry: `ID`, `NAME`, and in
+//! `SURFACE_PROPERTIES { EMISSIVITY_PROP { … } }` the `FILENAME` of its `.ems` and its
+//! `SPECULAR_FRACTION`; everything else (solvers, thermal properties) is skipped.
+//!
+//! ```text
+//! MATERIAL_ENTRY {
+//!     ID           = 4
+//!     NAME         = grass
+//!     SURFACE_PROPERTIES {
+//!         EMISSIVITY_PROP_NAME = ClassicEmissivity
+//!         EMISSIVITY_PROP {
+//!             FILENAME          = emissivity/grass_texture.ems
+//!             SPECULAR_FRACTION = 0.1
+//!         }
+//!     }
+//! }
+//! ```
+
+use crate::ParseError;
+use crate::legacy::Position;
+use nom::Input;
+
+use crate::legacy::lex::{Lines, position};
+
+/// A value and where it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Located<T> {
+    /// The value.
+    pub value: T,
+    /// Where it is.
+    pub position: Position,
+    /// Its byte range in the file.
+    pub span: (usize, usize),
+}
+
+/// One `MATERIAL_ENTRY`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Entry {
+    /// `ID`.
+    pub id: Located<u64>,
+    /// `NAME` (the rest of its line, trimmed).
+    pub name: String,
+    /// `EMISSIVITY_PROP`'s `FILENAME`, if any: a path relative to the `.mat`'s folder.
+    pub emissivity_file: Option<Located<String>>,
+    /// `EMISSIVITY_PROP`'s `SPECULAR_FRACTION`, if any, 0 to 1.
+    pub specular_fraction: Option<f64>,
+    /// Where the entry starts.
+    pub position: Position,
+}
+
+/// An entry being read: where it starts, `ID`, `NAME`, `FILENAME`, `SPECULAR_FRACTION`.
+type Partial = (
+    Position,
+    Option<Located<u64>>,
+    Option<String>,
+    Option<Located<String>>,
+    Option<f64>,
+);
+
+/// Reads a DIRSIG `.mat`.
+///
+/// # Errors
+/// A [`ParseError`] at the place: a line that is neither `KEY = VALUE`, `NAME {` nor `}`,
+/// an unbalanced brace, an entry without `ID` or `NAME`, an `ID` that is not a whole
+/// number, or a `SPECULAR_FRACTION` that is not a number 0 to 1.
+pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
+    let mut lines = Lines::new(file, text);
+    let mut entries = Vec::new();
+    let mut stack: Vec<String> = Vec::new();
+    let mut current: Option<Partial> = None;
+    let mut entry_span = None;
+    while let Some(line) = lines.next_line() {
+        let body = *line.span.fragment();
+        if body == "}" {
+            let Some(block) = stack.pop() else {
+                return Err(lines.error(
+                    line.span,
+                    "expected a block to close, found `}` at the top level",
+                ));
+            };
+            if stack.is_empty() && block == "MATERIAL_ENTRY" {
+                let Some((pos, id, name, file_name, specular)) = current.take() else {
+                    continue;
+                };
+                let span = entry_span.take().unwrap_or(line.span);
+                let id = id.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no ID"))?;
+                let name =
+                    name.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no NAME"))?;
+                entries.push(Entry {
+                    id,
+                    name,
+                    emissivity_file: file_name,
+                    specular_fraction: specular,
+                    position: pos,
+                });
+            }
+            continue;
+        }
+        if let Some(block) = body.strip_suffix('{') {
+            let block = block.trim();
+            if block.is_empty() || block.contains(char::is_whitespace) {
+                return Err(lines.error(line.span, format!("expected `NAME {{`, found `{body}`")));
+            }
+            if stack.is_empty() {
+                if block != "MATERIAL_ENTRY" {
+                    return Err(lines.error(
+                        line.span,
+                        format!("expected MATERIAL_ENTRY {{, found `{body}`"),
+                    ));
+                }
+                current = Some((position(line.span), None, None, None, None));
+                entry_span = Some(line.span);
+            }
+            stack.push(block.to_owned());
+            continue;
+        }
+        let Some((key, value)) = body.split_once('=') else {
+            return Err(lines.error(
+                line.span,
+                format!("expected `KEY = VALUE`, `NAME {{` or `}}`, found `{body}`"),
+            ));
+        };
+        if stack.is_empty() {
+            return Err(lines.error(
+                line.span,
+                "expected MATERIAL_ENTRY {, found a value outside any entry",
+            ));
+        }
+        let (key, raw) = (key.trim(), value.trim());
+        let start = line.span.location_offset() + body.len() - value.trim_start().len();
+        let vspan = line.span.take_from(start - line.span.location_offset());
+        let vspan = vspan.take(raw.len());
+        let (vpos, vrange) = (position(vspan), (start, raw.len()));
+        let path: Vec<&str> = stack.iter().map(String::as_str).collect();
+        let Some(entry) = current.as_mut() else {
+            continue;
+        };
+        match (path.as_slice(), key) {
+            (["MATERIAL_ENTRY"], "ID") => {
+                let id = lines.unsigned(vspan, "a material ID")?;
+                entry.1 = Some(Located {
+                    value: id,
+                    position: vpos,
+                    span: vrange,
+                });
+            }
+            (["MATERIAL_ENTRY"], "NAME") => entry.2 = Some(raw.to_owned()),
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
+                entry.3 = Some(Located {
+                    value: raw.to_owned(),
+                    position: vpos,
+                    span: vrange,
+                });
+            }
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "SPECULAR_FRACTION") => {
+                let f = lines.real(vspan, "a specular fraction")?;
+                if !(0.0..=1.0).contains(&f) {
+                    return Err(lines.error(
+                        vspan,
+                        format!("expected a specular fraction 0 to 1, found {f}"),
+                    ));
+                }
+                entry.4 = Some(f);
+            }
+            _ => {}
+        }
+    }
+    if let Some(open) = stack.last() {
+        return Err(lines.eof_error(&format!("expected `}}` closing {open}, found end of file")));
+    }
+    Ok(entries)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn entries_read_with_their_emissivity_file() {
+        let text = "MATERIAL_ENTRY {\n    ID = 4\n    NAME = grass lawn\n    RAD_SOLVER {\n    }\n    SURFACE_PROPERTIES {\n        EMISSIVITY_PROP {\n            FILENAME = emissivity/grass.ems\n            SPECULAR_FRACTION = 0.1\n        }\n    }\n}\nMATERIAL_ENTRY {\n  ID = 100\n  NAME = bare\n}\n";
+        let e = parse("a.mat", text).unwrap();
+        assert_eq!(e.len(), 2);
+        assert_eq!(e[0].id.value, 4);
+        assert_eq!(e[0].name, "grass lawn");
+        let f = e[0].emissivity_file.as_ref().unwrap();
+        assert_eq!(f.value, "emissivity/grass.ems");
+        assert_eq!((f.position.line, f.position.column), (8, 24));
+        assert_eq!(&text[f.span.0..f.span.0 + f.span.1], "emissivity/grass.ems");
+        assert_eq!(e[0].specular_fraction, Some(0.1));
+        assert!(e[1].emissivity_file.is_none());
+    }
+
+    #[test]
+    fn malformed_entries_fail_at_their_place() {
+        let e = parse("b.mat", "MATERIAL_ENTRY {\n  ID = four\n}\n").unwrap_err();
+        assert_eq!((e.line, e.column), (2, 8), "{e}");
+        let e = parse("b.mat", "MATERIAL_ENTRY {\n  ID = 4\n").unwrap_err();
+        assert!(e.message.contains("closing MATERIAL_ENTRY"), "{e}");
+        let e = parse("b.mat", "MATERIAL_ENTRY {\n  NAME = x\n}\n").unwrap_err();
+        assert!(e.message.contains("no ID"), "{e}");
+        let e = parse("b.mat", "}\n").unwrap_err();
+        assert_eq!(e.line, 1);
+    }
+}

@@ -1,0 +1,162 @@
+//! A spectral emissivity ε(λ) averaged over a band: the single value whose product with
+//! the band radiance `L(T)` is the radiance the surface emits in the band at `T`.
+
+use crate::band::gauss_legendre;
+use crate::{Band, RadiometryError, RadiometryErrorKind, spectral_radiance_per_um};
+
+/// Gauss–Legendre nodes on each piece between breakpoints; ε is linear on a piece and the
+/// Planck function smooth, so 8 nodes on pieces of at most 0.25 µm are exact to ~1e-12.
+const NODES_PER_PIECE: usize = 8;
+const MAX_PIECE_UM: f64 = 0.25;
+
+/// The band average of a spectral emissivity (linear between its samples):
+///
+/// ```text
+/// ε̄ = ∫ ε(λ) S(λ) B_λ(λ, T) dλ / ∫ S(λ) B_λ(λ, T) dλ   over [λmin, λmax] of `band`,
+/// ```
+///
+/// `S` the band's response (1 when flat), `B_λ` Planck's radiance at `temperature_k`,
+/// by Gauss–Legendre quadrature on every piece between the band's limits, the curve's
+/// wavelengths and the response's.
+///
+/// # Errors
+/// - [`RadiometryErrorKind::InvalidEmissivity`]: the curve has fewer than two samples,
+///   lengths differ, or it does not cover the band where the response is not zero (it is
+///   not extrapolated); the message says what it covers and what is needed.
+/// - [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is finite and > 0.
+/// - [`RadiometryErrorKind::InvalidResponse`] when the weights are zero across the band.
+pub fn band_average_emissivity(
+    wavelength_um: &[f64],
+    emissivity: &[f64],
+    band: &Band,
+    temperature_k: f64,
+) -> Result<f64, RadiometryError> {
+    let bad = |m: String| RadiometryError::new(RadiometryErrorKind::InvalidEmissivity, m);
+    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+        return Err(RadiometryError::new(
+            RadiometryErrorKind::InvalidTemperature,
+            format!(
+                "the Planck weighting temperature must be finite and > 0 K, found {temperature_k}"
+            ),
+        ));
+    }
+    if wavelength_um.len() < 2 || wavelength_um.len() != emissivity.len() {
+        return Err(bad(format!(
+            "a spectral emissivity needs at least two samples and one emissivity per \
+             wavelength ({} wavelengths, {} emissivities)",
+            wavelength_um.len(),
+            emissivity.len()
+        )));
+    }
+    let response = band.response();
+    let (mut lo, mut hi) = (band.lambda_min_um(), band.lambda_max_um());
+    if let Some(srf) = response {
+        let w = srf.wavelength_um();
+        if let (Some(&first), Some(&last)) = (w.first(), w.last()) {
+            lo = lo.max(first);
+            hi = hi.min(last);
+        }
+    }
+    let (first, last) = (wavelength_um[0], wavelength_um[wavelength_um.len() - 1]);
+    if first > lo || last < hi {
+        return Err(bad(format!(
+            "the spectral emissivity covers {first}–{last} µm but the band needs {lo}–{hi} µm \
+             (it is not extrapolated)"
+        )));
+    }
+    let mut breaks: Vec<f64> = vec![lo, hi];
+    breaks.extend(wavelength_um.iter().copied().filter(|&w| w > lo && w < hi));
+    if let Some(srf) = response {
+        breaks.extend(
+            srf.wavelength_um()
+                .iter()
+                .copied()
+                .filter(|&w| w > lo && w < hi),
+        );
+    }
+    breaks.sort_by(f64::total_cmp);
+    breaks.dedup();
+    let eps_at = |l: f64| {
+        let k = wavelength_um
+            .partition_point(|&w| w <= l)
+            .clamp(1, wavelength_um.len() - 1);
+        let (w0, w1) = (wavelength_um[k - 1], wavelength_um[k]);
+        let t = ((l - w0) / (w1 - w0)).clamp(0.0, 1.0);
+        emissivity[k - 1] + t * (emissivity[k] - emissivity[k - 1])
+    };
+    let rule = gauss_legendre(NODES_PER_PIECE);
+    let (mut num, mut den) = (0.0, 0.0);
+    for pair in breaks.windows(2) {
+        let &[a, b] = pair else { continue };
+        let pieces = ((b - a) / MAX_PIECE_UM).ceil().max(1.0);
+        let h = (b - a) / pieces;
+        for p in 0..pieces as usize {
+            let start = a + h * p as f64;
+            for &(x, w) in &rule {
+                let l = start + 0.5 * h * (x + 1.0);
+                let weight = 0.5
+                    * h
+                    * w
+                    * response.map_or(1.0, |r| r.at(l))
+                    * spectral_radiance_per_um(l, temperature_k);
+                num += weight * eps_at(l);
+                den += weight;
+            }
+        }
+    }
+    if den.is_nan() || den <= 0.0 {
+        return Err(RadiometryError::new(
+            RadiometryErrorKind::InvalidResponse,
+            "the Planck and response weights are zero across the band",
+        ));
+    }
+    Ok((num / den).clamp(0.0, 1.0))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ∫ B dλ over [a, b] by composite Simpson (2000 intervals), the test's own sum.
+    fn planck_integral(a: f64, b: f64, t: f64) -> f64 {
+        let n = 2000;
+        let h = (b - a) / f64::from(n);
+        let mut s = spectral_radiance_per_um(a, t) + spectral_radiance_per_um(b, t);
+        for i in 1..n {
+            let w = if i % 2 == 1 { 4.0 } else { 2.0 };
+            s += w * spectral_radiance_per_um(a + h * f64::from(i), t);
+        }
+        s * h / 3.0
+    }
+
+    #[test]
+    fn a_step_averages_to_the_planck_shares_of_its_two_sides() {
+        // ε = 0.5 below 10 µm and 0.9 above (the step between 10 and 10.000001 µm):
+        // ε̄ = (0.5 ∫₈¹⁰ B + 0.9 ∫₁₀¹⁴ B) / ∫₈¹⁴ B.
+        let w = [7.0, 10.0, 10.000_001, 15.0];
+        let e = [0.5, 0.5, 0.9, 0.9];
+        let band = Band::new(8.0, 14.0).unwrap();
+        for t in [250.0, 300.0, 350.0] {
+            let (lo, hi) = (
+                planck_integral(8.0, 10.0, t),
+                planck_integral(10.0, 14.0, t),
+            );
+            let expected = (0.5 * lo + 0.9 * hi) / (lo + hi);
+            let got = band_average_emissivity(&w, &e, &band, t).unwrap();
+            assert!((got - expected).abs() < 1e-7, "{t} K: {got} vs {expected}");
+        }
+        // A constant curve averages to itself; a sub-band of one side is that side.
+        let sub = Band::new(10.5, 12.0).unwrap();
+        assert!((band_average_emissivity(&w, &e, &sub, 300.0).unwrap() - 0.9).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_curve_short_of_the_band_is_refused() {
+        let band = Band::new(8.0, 14.0).unwrap();
+        let err = band_average_emissivity(&[8.5, 14.0], &[0.9, 0.9], &band, 300.0).unwrap_err();
+        assert!(err.to_string().contains("8.5–14 µm"), "{err}");
+        assert!(err.to_string().contains("8–14 µm"), "{err}");
+        assert!(band_average_emissivity(&[8.0], &[0.9], &band, 300.0).is_err());
+        assert!(band_average_emissivity(&[8.0, 14.0], &[0.9, 0.9], &band, f64::NAN).is_err());
+    }
+}

@@ -1,0 +1,175 @@
+//! `irsig-material dirsig`: a DIRSIG classic `.mat` and the spectral `.ems` curves it
+//! names to a canonical material library of spectral materials.
+//!
+//! Each `MATERIAL_ENTRY` becomes a material with id = `ID`, name = `NAME`, specular
+//! fraction = `SPECULAR_FRACTION` (0 when absent) and, from its `.ems`, `spectral` = the
+//! mean of the file's curves (DIRSIG picks one per pixel from a texture map; irsig has
+//! none) and the angular table = the file's 91 angular factors times that curve's 8–14 µm
+//! average at 300 K (the factors alone when the curve does not cover 8–14 µm): the
+//! tracer keeps the shape and averages the curve over its own band. A `FILENAME` that
+//! cannot be read is an error at its place in the `.mat`; an entry without one is an
+//! error unless `--default-emissivity E` gives it a constant, band-only emissivity.
+
+use std::path::PathBuf;
+
+use irsig_formats::ParseError;
+use irsig_formats::dirsig::{ems, mat};
+use irsig_model::{Material, MaterialId, MaterialLibrary, SpectralEmissivity};
+use irsig_radiometry::{Band, band_average_emissivity};
+use miette::{IntoDiagnostic, Report, WrapErr};
+
+/// Arguments of `irsig-material dirsig`.
+#[derive(Debug, Clone, clap::Args)]
+#[command(after_help = "\
+Examples:
+  irsig-material dirsig materials/anadirsig.mat --default-emissivity 0.95 -o lib.ron")]
+pub struct Args {
+    /// The DIRSIG `.mat` file; the `.ems` files it names are relative to its folder.
+    #[arg(value_name = "MAT")]
+    pub mat: String,
+    /// The constant emissivity (0–1) of entries that name no `.ems` file. Without it such
+    /// an entry is an error.
+    #[arg(long, value_name = "E")]
+    pub default_emissivity: Option<f64>,
+    /// Output canonical material library (stdout when absent or `-`).
+    #[arg(short, long, value_name = "FILE")]
+    pub output: Option<PathBuf>,
+}
+
+/// Runs `irsig-material dirsig`.
+///
+/// # Errors
+/// A malformed `.mat` or `.ems` (file, line, column), an `.ems` that cannot be read (at
+/// its `FILENAME` in the `.mat`), an entry without one and no `--default-emissivity`, an
+/// `ID` outside 1–65535, curves of one file on different wavelengths; nothing is written.
+pub fn run(args: &Args) -> miette::Result<()> {
+    if let Some(e) = args.default_emissivity {
+        if !(0.0..=1.0).contains(&e) {
+            return Err(irsig_cli::usage_error(format!(
+                "--default-emissivity must lie in 0–1, found {e}"
+            )));
+        }
+    }
+    let input = irsig_cli::read_input(&args.mat)?;
+    let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
+    let entries = mat::parse(&input.name, text).map_err(Report::new)?;
+    let dir = input.base_dir();
+    let at_span = |span: (usize, usize), message: String| {
+        Report::new(ParseError::at_span(
+            &input.name,
+            text,
+            span.0,
+            span.1,
+            message,
+        ))
+    };
+    let thesis_band = Band::new(8.0, 14.0).map_err(|e| miette::miette!("{e}"))?;
+    let mut materials = Vec::with_capacity(entries.len());
+    for entry in &entries {
+        let id = u16::try_from(entry.id.value)
+            .ok()
+            .filter(|&i| i > 0)
+            .ok_or_else(|| {
+                at_span(
+                    entry.id.span,
+                    format!(
+                        "expected a material ID 1 to 65535, found {}",
+                        entry.id.value
+                    ),
+                )
+            })?;
+        let Some(file) = &entry.emissivity_file else {
+            let Some(e) = args.default_emissivity else {
+                return Err(at_span(
+                    entry.id.span,
+                    format!(
+                        "material `{}` (ID {id}) names no emissivity file, so its emissivity \
+                         is unknown: give --default-emissivity E",
+                        entry.name
+                    ),
+                ));
+            };
+            materials.push(Material {
+                id: MaterialId(id),
+                name: entry.name.clone(),
+                emissivity: vec![(0.0, e)],
+                specular_fraction: entry.specular_fraction.unwrap_or(0.0),
+                source: format!(
+                    "DIRSIG {} ID {id}: no emissivity file, constant {e} from --default-emissivity",
+                    input.name
+                ),
+                spectral: None,
+            });
+            continue;
+        };
+        let path = dir.join(&file.value);
+        let bytes = std::fs::read(&path).map_err(|e| {
+            at_span(
+                file.span,
+                format!(
+                    "material `{}` names the emissivity file `{}`, which cannot be read ({e})",
+                    entry.name,
+                    path.display()
+                ),
+            )
+        })?;
+        let ems_name = path.display().to_string();
+        let ems_text = irsig_formats::canonical::utf8(&ems_name, &bytes).map_err(Report::new)?;
+        let curves = ems::parse(&ems_name, ems_text).map_err(Report::new)?;
+        let first = &curves.curves[0];
+        let n = curves.curves.len() as f64;
+        let mut mean = vec![0.0; first.emissivity.len()];
+        for c in &curves.curves {
+            if c.wavelength_um != first.wavelength_um {
+                return Err(Report::new(ParseError::at_offset(
+                    &ems_name,
+                    ems_text,
+                    irsig_formats::offset_of(ems_text, c.position.line, c.position.column),
+                    "this curve's wavelengths differ from the first curve's: the curves of \
+                     one file are averaged, so they must share their wavelengths",
+                )));
+            }
+            for (m, e) in mean.iter_mut().zip(&c.emissivity) {
+                *m += e / n;
+            }
+        }
+        let mean: Vec<f64> = mean.into_iter().map(|e| e.clamp(0.0, 1.0)).collect();
+        let scale = band_average_emissivity(&first.wavelength_um, &mean, &thesis_band, 300.0)
+            .unwrap_or(1.0);
+        let emissivity = curves
+            .angular_factor
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (k as f64, (f * scale).clamp(0.0, 1.0)))
+            .collect();
+        materials.push(Material {
+            id: MaterialId(id),
+            name: entry.name.clone(),
+            emissivity,
+            specular_fraction: entry.specular_fraction.unwrap_or(0.0),
+            source: format!(
+                "DIRSIG {} ID {id}, {} (mean of {} curve(s))",
+                input.name,
+                file.value,
+                curves.curves.len()
+            ),
+            spectral: Some(SpectralEmissivity {
+                wavelength_um: first.wavelength_um.clone(),
+                emissivity: mean,
+            }),
+        });
+    }
+    let library = MaterialLibrary { materials };
+    if let Err(e) = library.validate() {
+        return Err(miette::miette!(
+            "{}: the converted material library is invalid: `{}`: {}",
+            input.name,
+            e.path,
+            e.kind
+        ));
+    }
+    let ron = irsig_formats::canonical::to_ron(&library)
+        .into_diagnostic()
+        .wrap_err("cannot write RON")?;
+    irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
+}
