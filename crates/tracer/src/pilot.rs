@@ -15,7 +15,7 @@
 //! same on every run of the same inputs.
 
 use irsig_model::decision::{Decision, ErrorEstimate, ModelChoice, SwitchableModel};
-use irsig_radiometry::BandModel;
+use irsig_radiometry::{BandModel, InverseTable};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
@@ -201,6 +201,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .contains(&PathTermsMode::Tabulated)
             .then(|| self.path_table(camera, &space.bands[band_model].set));
         let samples = sample_pixels(camera.pixels, pixels, seed);
+        // Apparent temperatures through the tracer's one table (a Newton polish from it,
+        // not a cold solve: some 25 per sample).
+        let inverse = self.inverse_table();
         let geometry = TraceOptions {
             specular_bounces: space.bounces[0],
             sky_view_rays: space.sky_view_rays[0],
@@ -219,6 +222,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     (reference, band_model),
                     (&atm_sets, &sb_sets),
                     table.as_ref(),
+                    &inverse,
                     tolerance_k,
                     (col, row),
                 )
@@ -254,11 +258,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         (reference, band_model): (usize, usize),
         (atm_sets, sb_sets): (&[usize], &[usize]),
         table: Option<&PathTable>,
+        inverse: &InverseTable<'_, B>,
         tolerance_k: f64,
         (col, row): (u32, u32),
     ) -> PixelSample {
         let camera = fc.camera();
-        let t = |l: f64| self.band.temperature(l);
+        let t = |l: f64| inverse.temperature(l);
         let mut ctx = Ctx::for_pixel(
             geometry,
             u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
@@ -481,11 +486,18 @@ fn confident_rank(n: usize, percentile: f64) -> usize {
 /// An upper bound, with [`CONFIDENCE`], on the `percentile` of the population `values`
 /// are a random sample of: their order statistic at [`confident_rank`].
 fn percentile_bound(values: &mut [f64], percentile: f64) -> f64 {
+    let rank = confident_rank(values.len(), percentile);
+    order_statistic(values, rank)
+}
+
+/// The `rank`-th smallest of `values` (1-based, clamped to them; 0 for none), by
+/// selection: the pilot reads one per combination of settings, hundreds per frame.
+fn order_statistic(values: &mut [f64], rank: usize) -> f64 {
     if values.is_empty() {
         return 0.0;
     }
-    values.sort_by(f64::total_cmp);
-    values[confident_rank(values.len(), percentile).clamp(1, values.len()) - 1]
+    let k = rank.clamp(1, values.len()) - 1;
+    *values.select_nth_unstable_by(k, f64::total_cmp).1
 }
 
 /// A combination: one index per model, into its list.
@@ -564,12 +576,13 @@ fn choose<S>(
     };
     let reference: Combo = [0; 6];
     let reference_cost = cost(&reference);
+    let rank = confident_rank(samples.len(), percentile);
     let mut best: Option<(f64, Combo, f64, f64)> = None;
     let mut combo = [0usize; 6];
     loop {
         let mut b = bound(&combo);
         let worst = b.iter().copied().fold(0.0, f64::max);
-        let p = percentile_bound(&mut b, percentile);
+        let p = order_statistic(&mut b, rank);
         if p <= tolerance_k {
             let c = cost(&combo);
             // At equal cost (a model that changes nothing here), the cheaper settings.
@@ -750,6 +763,23 @@ mod tests {
         );
         assert_eq!(sample_pixels([512, 384], 256, 1), s);
         assert_eq!(sample_pixels([3, 2], 1000, 1).len(), 6);
+    }
+
+    #[test]
+    fn order_statistics_are_those_of_the_sorted_values() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let values: Vec<f64> = (0..1000).map(|_| rng.random::<f64>()).collect();
+        let mut sorted = values.clone();
+        sorted.sort_by(f64::total_cmp);
+        for rank in [1, 5, 500, 995, 1000] {
+            let v = order_statistic(&mut values.clone(), rank);
+            assert_eq!(v.to_bits(), sorted[rank - 1].to_bits());
+        }
+        // Clamped to the values, and none gives 0.
+        let bits = |rank| order_statistic(&mut values.clone(), rank).to_bits();
+        assert_eq!(bits(0), sorted[0].to_bits());
+        assert_eq!(bits(5000), sorted[999].to_bits());
+        assert_eq!(order_statistic(&mut [], 3).to_bits(), 0.0_f64.to_bits());
     }
 
     #[test]
