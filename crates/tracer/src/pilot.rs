@@ -276,8 +276,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         // The sub-bands are compared on the path with its first facet's sky-view rays
         // folded into the hemispheric sky (F = 1): the sky is where the spectral structure
-        // is (the facets a ray meets are grey bodies at short range), and 64 sky lookups
-        // per sub-band were most of the pilot's time.
+        // is (the facets a sky-view ray meets are at short range, through air of τ ≈ 1),
+        // and 64 sky lookups per sub-band were most of the pilot's time.
         let mut hemispheric = Path::default();
         path.with_sky_rays(0, &mut hemispheric);
         let t_ref = t(eval(reference, None, &hemispheric, &mut scratch));
