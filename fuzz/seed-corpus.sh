@@ -58,3 +58,7 @@ cp $s/regions.ron "$c/regions/"
 cp $root/pipelines/thesis-experiment/regions.ron "$c/regions/thesis-experiment.ron"
 for f in $m/regions/*.ron; do cp "$f" "$c/regions/bad-$(basename "$f")"; done
 cp $m/base/truth.exr $m/exr-sensor/*.exr "$c/exr_sensor/"
+# DIRSIG material sets and curves: the third-party samples.
+mkdir -p "$c/dirsig_mat" "$c/dirsig_ems"
+cp $root/tests/data/third-party/dirsig-channel/anadirsig.mat "$c/dirsig_mat/"
+cp $root/tests/data/third-party/dirsig-channel/emissivity/*.ems "$c/dirsig_ems/"
