@@ -27,14 +27,9 @@
 use num_complex::Complex64;
 
 use crate::band::Band;
-use crate::constants::{C1L_W_M2_SR, C2_M_K};
 use crate::emissivity::EmissivityTable;
 use crate::error::{RadiometryError, RadiometryErrorKind};
-
-/// Gauss–Legendre nodes per piece of the spectral integral (see [`band_emissivity_table`]).
-const SPECTRAL_NODES_PER_PIECE: usize = 8;
-/// The longest piece of the spectral integral, µm.
-const SPECTRAL_MAX_PIECE_UM: f64 = 0.25;
+use crate::planck_weights;
 
 /// A complex refractive index `N = n + i k` (`n > 0`, `k ≥ 0`, both finite) of a medium
 /// seen from vacuum or air.
@@ -416,8 +411,8 @@ fn check_angles(angles_deg: &[f64]) -> Result<(), RadiometryError> {
     Ok(())
 }
 
-/// One wavelength of the spectral integral: its weight `w · S(λ) · B_λ(λ, T)` (scaled so
-/// the largest is 1) and the index there.
+/// One wavelength of the spectral integral: its weight (see [`crate::planck_weights`])
+/// and the index there.
 struct SpectralNode {
     weight: f64,
     index: ComplexIndex,
@@ -428,113 +423,33 @@ fn spectral_nodes(
     band: &Band,
     temperature_k: f64,
 ) -> Result<Vec<SpectralNode>, RadiometryError> {
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidTemperature,
-            format!(
-                "the Planck weighting temperature must be finite and > 0 K, found {temperature_k}"
-            ),
-        ));
-    }
-    let response = band.response();
-    // Where the integrand can be non-zero: the band, cut to the response's support.
-    let (mut lo, mut hi) = (band.lambda_min_um(), band.lambda_max_um());
-    if let Some(srf) = response {
-        let w = srf.wavelength_um();
-        if let (Some(&first), Some(&last)) = (w.first(), w.last()) {
-            lo = lo.max(first);
-            hi = hi.min(last);
-        }
-    }
-    let (Some(&t_first), Some(&t_last)) = (table.wavelength_um.first(), table.wavelength_um.last())
-    else {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidRefractiveIndex,
-            "the index table is empty",
-        ));
-    };
-    if hi <= lo {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidResponse,
-            format!(
-                "the sensor response is zero everywhere inside the band {}–{} µm",
-                band.lambda_min_um(),
-                band.lambda_max_um()
-            ),
-        ));
-    }
-    if t_first > lo || t_last < hi {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidRefractiveIndex,
-            format!(
-                "the index table covers {t_first}–{t_last} µm but the band needs {lo}–{hi} µm; \
-                 extend the table (it is not extrapolated)"
-            ),
-        ));
-    }
-    let mut breaks: Vec<f64> = vec![lo, hi];
-    breaks.extend(
-        table
-            .wavelength_um
-            .iter()
-            .copied()
-            .filter(|&w| w > lo && w < hi),
-    );
-    if let Some(srf) = response {
-        breaks.extend(
-            srf.wavelength_um()
-                .iter()
-                .copied()
-                .filter(|&w| w > lo && w < hi),
-        );
-    }
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
-    let rule = crate::band::gauss_legendre(SPECTRAL_NODES_PER_PIECE);
-    // Planck's law in logarithms, so no temperature underflows the weights to all-zero:
-    // ln B = ln c1L − 5 ln λ − ln(e^x − 1), x = c2/(λT).
-    let ln_planck = |lambda_um: f64| {
-        let lambda_m = lambda_um * 1e-6;
-        let x = C2_M_K / (lambda_m * temperature_k);
-        let ln_expm1 = if x > 30.0 {
-            x + (-(-x).exp()).ln_1p()
-        } else {
-            x.exp_m1().ln()
+    let nodes = planck_weights::nodes(band, temperature_k, &table.wavelength_um, |lo, hi| {
+        let (Some(&t_first), Some(&t_last)) =
+            (table.wavelength_um.first(), table.wavelength_um.last())
+        else {
+            return Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidRefractiveIndex,
+                "the index table is empty",
+            ));
         };
-        C1L_W_M2_SR.ln() - 5.0 * lambda_m.ln() - ln_expm1
-    };
-    let mut raw: Vec<(f64, f64, f64)> = Vec::new(); // (ln weight, λ, quadrature weight·S)
-    for pair in breaks.windows(2) {
-        let &[a, b] = pair else { continue };
-        let pieces = ((b - a) / SPECTRAL_MAX_PIECE_UM).ceil().max(1.0);
-        let h = (b - a) / pieces;
-        for p in 0..pieces as usize {
-            let start = a + h * p as f64;
-            for &(t, w) in &rule {
-                let lambda = start + 0.5 * h * (t + 1.0);
-                let s = response.map_or(1.0, |r| r.at(lambda));
-                if s > 0.0 {
-                    raw.push((ln_planck(lambda), lambda, 0.5 * h * w * s));
-                }
-            }
+        if t_first > lo || t_last < hi {
+            return Err(RadiometryError::new(
+                RadiometryErrorKind::InvalidRefractiveIndex,
+                format!(
+                    "the index table covers {t_first}–{t_last} µm but the band needs {lo}–{hi} \
+                     µm; extend the table (it is not extrapolated)"
+                ),
+            ));
         }
-    }
-    let max_ln = raw.iter().map(|r| r.0).fold(f64::NEG_INFINITY, f64::max);
-    let nodes: Vec<SpectralNode> = raw
+        Ok(())
+    })?;
+    Ok(nodes
         .into_iter()
-        .map(|(ln_b, lambda, w)| SpectralNode {
-            weight: w * (ln_b - max_ln).exp(),
-            index: table.at(lambda),
+        .map(|n| SpectralNode {
+            weight: n.weight,
+            index: table.at(n.wavelength_um),
         })
-        .collect();
-    let total: f64 = nodes.iter().map(|n| n.weight).sum();
-    if total.is_nan() || total <= 0.0 {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidResponse,
-            "the Planck and response weights are zero across the band",
-        ));
-    }
-    Ok(nodes)
+        .collect())
 }
 
 #[cfg(test)]

@@ -27,6 +27,7 @@ mod error;
 pub mod fresnel;
 mod inverse;
 mod planck;
+mod planck_weights;
 mod spectral_emissivity;
 mod table;
 

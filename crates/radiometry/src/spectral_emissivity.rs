@@ -1,13 +1,8 @@
 //! A spectral emissivity ε(λ) averaged over a band: the single value whose product with
 //! the band radiance `L(T)` is the radiance the surface emits in the band at `T`.
 
-use crate::band::gauss_legendre;
-use crate::{Band, RadiometryError, RadiometryErrorKind, spectral_radiance_per_um};
-
-/// Gauss–Legendre nodes on each piece between breakpoints; ε is linear on a piece and the
-/// Planck function smooth, so 8 nodes on pieces of at most 0.25 µm are exact to ~1e-12.
-const NODES_PER_PIECE: usize = 8;
-const MAX_PIECE_UM: f64 = 0.25;
+use crate::planck_weights;
+use crate::{Band, RadiometryError, RadiometryErrorKind};
 
 /// The band average of a spectral emissivity (linear between its samples):
 ///
@@ -17,7 +12,7 @@ const MAX_PIECE_UM: f64 = 0.25;
 ///
 /// `S` the band's response (1 when flat), `B_λ` Planck's radiance at `temperature_k`,
 /// by Gauss–Legendre quadrature on every piece between the band's limits, the curve's
-/// wavelengths and the response's.
+/// wavelengths and the response's ([`crate::planck_weights`]).
 ///
 /// # Errors
 /// - [`RadiometryErrorKind::InvalidEmissivity`]: the curve has fewer than two samples,
@@ -32,14 +27,6 @@ pub fn band_average_emissivity(
     temperature_k: f64,
 ) -> Result<f64, RadiometryError> {
     let bad = |m: String| RadiometryError::new(RadiometryErrorKind::InvalidEmissivity, m);
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidTemperature,
-            format!(
-                "the Planck weighting temperature must be finite and > 0 K, found {temperature_k}"
-            ),
-        ));
-    }
     if wavelength_um.len() < 2 || wavelength_um.len() != emissivity.len() {
         return Err(bad(format!(
             "a spectral emissivity needs at least two samples and one emissivity per \
@@ -48,34 +35,16 @@ pub fn band_average_emissivity(
             emissivity.len()
         )));
     }
-    let response = band.response();
-    let (mut lo, mut hi) = (band.lambda_min_um(), band.lambda_max_um());
-    if let Some(srf) = response {
-        let w = srf.wavelength_um();
-        if let (Some(&first), Some(&last)) = (w.first(), w.last()) {
-            lo = lo.max(first);
-            hi = hi.min(last);
+    let nodes = planck_weights::nodes(band, temperature_k, wavelength_um, |lo, hi| {
+        let (first, last) = (wavelength_um[0], wavelength_um[wavelength_um.len() - 1]);
+        if first > lo || last < hi {
+            return Err(bad(format!(
+                "the spectral emissivity covers {first}–{last} µm but the band needs \
+                 {lo}–{hi} µm (it is not extrapolated)"
+            )));
         }
-    }
-    let (first, last) = (wavelength_um[0], wavelength_um[wavelength_um.len() - 1]);
-    if first > lo || last < hi {
-        return Err(bad(format!(
-            "the spectral emissivity covers {first}–{last} µm but the band needs {lo}–{hi} µm \
-             (it is not extrapolated)"
-        )));
-    }
-    let mut breaks: Vec<f64> = vec![lo, hi];
-    breaks.extend(wavelength_um.iter().copied().filter(|&w| w > lo && w < hi));
-    if let Some(srf) = response {
-        breaks.extend(
-            srf.wavelength_um()
-                .iter()
-                .copied()
-                .filter(|&w| w > lo && w < hi),
-        );
-    }
-    breaks.sort_by(f64::total_cmp);
-    breaks.dedup();
+        Ok(())
+    })?;
     let eps_at = |l: f64| {
         let k = wavelength_um
             .partition_point(|&w| w <= l)
@@ -84,38 +53,16 @@ pub fn band_average_emissivity(
         let t = ((l - w0) / (w1 - w0)).clamp(0.0, 1.0);
         emissivity[k - 1] + t * (emissivity[k] - emissivity[k - 1])
     };
-    let rule = gauss_legendre(NODES_PER_PIECE);
-    let (mut num, mut den) = (0.0, 0.0);
-    for pair in breaks.windows(2) {
-        let &[a, b] = pair else { continue };
-        let pieces = ((b - a) / MAX_PIECE_UM).ceil().max(1.0);
-        let h = (b - a) / pieces;
-        for p in 0..pieces as usize {
-            let start = a + h * p as f64;
-            for &(x, w) in &rule {
-                let l = start + 0.5 * h * (x + 1.0);
-                let weight = 0.5
-                    * h
-                    * w
-                    * response.map_or(1.0, |r| r.at(l))
-                    * spectral_radiance_per_um(l, temperature_k);
-                num += weight * eps_at(l);
-                den += weight;
-            }
-        }
-    }
-    if den.is_nan() || den <= 0.0 {
-        return Err(RadiometryError::new(
-            RadiometryErrorKind::InvalidResponse,
-            "the Planck and response weights are zero across the band",
-        ));
-    }
+    let (num, den) = nodes.iter().fold((0.0, 0.0), |(num, den), n| {
+        (num + n.weight * eps_at(n.wavelength_um), den + n.weight)
+    });
     Ok((num / den).clamp(0.0, 1.0))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::spectral_radiance_per_um;
 
     /// ∫ B dλ over [a, b] by composite Simpson (2000 intervals), the test's own sum.
     fn planck_integral(a: f64, b: f64, t: f64) -> f64 {
