@@ -105,24 +105,13 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
 /// starts in the encoding of `scene`, so that an error can give its byte offset.
 #[must_use]
 pub fn offset_of_path(scene: &RawScene, path: &str) -> usize {
-    let index = |prefix: &str| {
-        path.strip_prefix(prefix)
-            .and_then(|rest| rest.split(']').next())
-            .and_then(|i| i.parse::<usize>().ok())
-    };
     let names: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
     let positions_at = HEADER_LEN + names;
     let facets_at = positions_at + POSITION_LEN * scene.positions_m.len();
-    if let Some(i) = index("positions_m[") {
-        positions_at + POSITION_LEN * i
-    } else if let Some(i) = index("facets[") {
-        facets_at + FACET_LEN * i
-    } else if path.starts_with("facets") {
-        facets_at
-    } else if path.starts_with("terrain") {
-        16
-    } else {
-        0
+    match layout::record_offset(path, positions_at, facets_at, FACET_LEN) {
+        Some(at) => at,
+        None if path.starts_with("terrain") => 16,
+        None => 0,
     }
 }
 

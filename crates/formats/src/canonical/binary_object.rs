@@ -126,22 +126,9 @@ pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()>
 /// the encoding of `object`, so that an error can give its byte offset.
 #[must_use]
 pub fn offset_of_path(object: &Object, path: &str) -> usize {
-    let index = |prefix: &str| {
-        path.strip_prefix(prefix)
-            .and_then(|rest| rest.split(']').next())
-            .and_then(|i| i.parse::<usize>().ok())
-    };
     let positions_at = HEADER_LEN + object.name.len() + object.source.len();
     let facets_at = positions_at + POSITION_LEN * object.positions_m.len();
-    if let Some(i) = index("positions_m[") {
-        positions_at + POSITION_LEN * i
-    } else if let Some(i) = index("facets[") {
-        facets_at + FACET_LEN * i
-    } else if path.starts_with("facets") {
-        facets_at
-    } else {
-        0
-    }
+    layout::record_offset(path, positions_at, facets_at, FACET_LEN).unwrap_or(0)
 }
 
 /// Decodes a binary object. Does not validate the model rules (see

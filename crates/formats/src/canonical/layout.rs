@@ -9,6 +9,29 @@ use crate::ParseError;
 /// Bytes per position: `f64` x y z in metres.
 pub(super) const POSITION_LEN: usize = 24;
 
+/// Where the record a validation path names starts, for a body of positions from
+/// `positions_at` and facets of `facet_len` bytes from `facets_at`: `positions_m[i]…` and
+/// `facets[i]…` at their record, `facets…` at the first; `None` for any other path.
+pub(super) fn record_offset(
+    path: &str,
+    positions_at: usize,
+    facets_at: usize,
+    facet_len: usize,
+) -> Option<usize> {
+    let index = |prefix: &str| {
+        path.strip_prefix(prefix)
+            .and_then(|rest| rest.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok())
+    };
+    if let Some(i) = index("positions_m[") {
+        Some(positions_at + POSITION_LEN * i)
+    } else if let Some(i) = index("facets[") {
+        Some(facets_at + facet_len * i)
+    } else {
+        path.starts_with("facets").then_some(facets_at)
+    }
+}
+
 /// One binary form: how its header opens and how messages name it.
 #[derive(Debug)]
 pub(super) struct Form {
