@@ -100,6 +100,31 @@ pub fn read_input(path: &str) -> miette::Result<Input> {
     })
 }
 
+/// Decodes an EXR input (`name` for messages), or an error at its byte offset: the
+/// reader every tool that takes an image shares.
+///
+/// # Errors
+/// Bytes that are not a readable EXR, at the offset where they stop being one.
+pub fn read_exr(name: &str, bytes: &[u8]) -> miette::Result<irsig_raster::Raster> {
+    irsig_raster::read_exr(bytes).map_err(|e| exr_error(name, bytes, &e))
+}
+
+/// An EXR input's header only (its size and layers), as [`read_exr`].
+///
+/// # Errors
+/// As [`read_exr`], for the header.
+pub fn read_exr_info(name: &str, bytes: &[u8]) -> miette::Result<irsig_raster::RasterInfo> {
+    irsig_raster::read_exr_info(bytes).map_err(|e| exr_error(name, bytes, &e))
+}
+
+fn exr_error(name: &str, bytes: &[u8], e: &irsig_raster::RasterError) -> Report {
+    Report::new(irsig_formats::ParseError::in_binary(
+        name,
+        irsig_raster::exr_error_offset(bytes, e),
+        format!("not a readable EXR: {e}"),
+    ))
+}
+
 /// Writes one output: to `path` atomically (temporary file + rename), or to stdout when
 /// `path` is `None` or `-`.
 ///

@@ -30,7 +30,7 @@ use irsig_model::LengthUnit;
 use irsig_model::truth::Layer;
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_raster::merge::Layout;
-use irsig_raster::{Raster, RasterInfo, counts_png, exr_bytes, read_exr, read_exr_info};
+use irsig_raster::{Raster, RasterInfo, counts_png, exr_bytes};
 use miette::{IntoDiagnostic, miette};
 
 const EXAMPLE: &str = "\
@@ -136,13 +136,7 @@ fn read_tiles(names: &[String]) -> miette::Result<Tiles> {
             ));
         }
         let input = irsig_cli::read_input(name)?;
-        let info = read_exr_info(&input.bytes).map_err(|e| {
-            miette::Report::new(irsig_formats::ParseError::in_binary(
-                input.name.clone(),
-                irsig_raster::exr_error_offset(&input.bytes, &e),
-                format!("not a readable EXR: {e}"),
-            ))
-        })?;
+        let info = irsig_cli::read_exr_info(&input.name, &input.bytes)?;
         let tile = Tile {
             name: input.name,
             info,
@@ -248,13 +242,7 @@ fn merge(tiles: &[Tile]) -> miette::Result<Raster> {
     let mut frame = layout.frame();
     for tile in tiles {
         let input = irsig_cli::read_input(&tile.name)?;
-        let raster = read_exr(&input.bytes).map_err(|e| {
-            miette::Report::new(irsig_formats::ParseError::in_binary(
-                input.name.clone(),
-                irsig_raster::exr_error_offset(&input.bytes, &e),
-                format!("not a readable EXR: {e}"),
-            ))
-        })?;
+        let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;
         layout
             .paste(&mut frame, &tile.name, &raster)
             .map_err(|e| miette!("{e}"))?;

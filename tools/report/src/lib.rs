@@ -32,7 +32,7 @@ use irsig_cli::args::BandArg;
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
-use irsig_raster::{Raster, read_exr};
+use irsig_raster::Raster;
 use miette::miette;
 use sha2::{Digest, Sha256};
 
@@ -190,16 +190,6 @@ fn provenance(role: &'static str, input: &Input) -> Provenance {
     }
 }
 
-fn read_image(input: &Input) -> miette::Result<Raster> {
-    read_exr(&input.bytes).map_err(|e| {
-        miette::Report::new(irsig_formats::ParseError::in_binary(
-            input.name.clone(),
-            irsig_raster::exr_error_offset(&input.bytes, &e),
-            format!("cannot read the EXR: {e}"),
-        ))
-    })
-}
-
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
     image
         .layer(layer)
@@ -290,7 +280,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("truth EXR", &input));
-            let image = read_image(&input)?;
+            let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             Some((input.name, image))
         }
         None => None,
@@ -300,7 +290,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let band = cli.band.load()?;
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("radiance EXR", &input));
-            let image = read_image(&input)?;
+            let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             if let Some((name, t)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
             {

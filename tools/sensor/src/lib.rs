@@ -30,7 +30,7 @@ use clap::{Parser, ValueEnum};
 use irsig_cli::args::{BandArg, DcArgs};
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
-use irsig_raster::{Raster, counts_png, exr_bytes, read_exr};
+use irsig_raster::{Raster, counts_png, exr_bytes};
 use irsig_sensor_model::blur::{EdgeMode, blur};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
@@ -293,13 +293,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let band = cli.band.load()?;
 
     let input = irsig_cli::read_input(&cli.input)?;
-    let raster = read_exr(&input.bytes).map_err(|e| {
-        miette::Report::new(irsig_formats::ParseError::in_binary(
-            input.name.clone(),
-            irsig_raster::exr_error_offset(&input.bytes, &e),
-            format!("not a readable EXR: {e}"),
-        ))
-    })?;
+    let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;
     if raster.layer(RADIANCE_LAYER).is_none() {
         let names: Vec<&str> = raster.layers.iter().map(|l| l.name.as_str()).collect();
         return Err(miette::Report::new(irsig_formats::ParseError::in_binary(

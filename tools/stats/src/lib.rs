@@ -30,7 +30,7 @@ use clap::Parser;
 use irsig_cli::args::{BandArg, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
-use irsig_raster::{Raster, read_exr};
+use irsig_raster::Raster;
 use miette::miette;
 use serde::Serialize;
 
@@ -155,12 +155,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
 
     let truth_input = irsig_cli::read_input(&cli.truth)?;
-    let truth = read_image(&truth_input.name, &truth_input.bytes)?;
+    let truth = irsig_cli::read_exr(&truth_input.name, &truth_input.bytes)?;
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
     let (values, source): (Vec<f32>, String) = match (&cli.radiance, band) {
         (Some(path), Some(band)) => {
             let input = irsig_cli::read_input(path)?;
-            let image = read_image(&input.name, &input.bytes)?;
+            let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             if (image.width, image.height) != (truth.width, truth.height) {
                 return Err(miette!(
                     "{}: the image is {} x {} pixels but the truth EXR {} is {} x {}: \
@@ -335,16 +335,6 @@ fn selection(region: &irsig_model::Region) -> String {
         .flatten()
         .collect::<Vec<_>>()
         .join(" ")
-}
-
-fn read_image(name: &str, bytes: &[u8]) -> miette::Result<Raster> {
-    read_exr(bytes).map_err(|e| {
-        miette::Report::new(irsig_formats::ParseError::in_binary(
-            name,
-            irsig_raster::exr_error_offset(bytes, &e),
-            format!("cannot read the EXR: {e}"),
-        ))
-    })
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
