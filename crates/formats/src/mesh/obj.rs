@@ -518,7 +518,7 @@ fn check_mtl(
     base_dir: Option<&Path>,
     warnings: &mut Vec<String>,
 ) -> Result<(), ParseError> {
-    let path = super::gltf_read::local_relative_path(name).map_err(|why| {
+    let refused = |why| {
         ParseError::at_span(
             file,
             text,
@@ -526,22 +526,15 @@ fn check_mtl(
             name.len().max(1),
             format!("mtllib `{name}`: {why}"),
         )
-    })?;
+    };
+    let path = super::gltf_read::local_relative_path(name).map_err(refused)?;
     let Some(dir) = base_dir else {
         warnings.push(format!(
             "{file}: mtllib `{name}` not read (the OBJ came from standard input); material names come from `usemtl`"
         ));
         return Ok(());
     };
-    let full = super::gltf_read::inside(dir, &path, name).map_err(|why| {
-        ParseError::at_span(
-            file,
-            text,
-            offset,
-            name.len().max(1),
-            format!("mtllib `{name}`: {why}"),
-        )
-    })?;
+    let full = super::gltf_read::inside(dir, &path, name).map_err(refused)?;
     match crate::file::read_file(&full) {
         Ok(bytes) => {
             let mtl_name = full.display().to_string();
