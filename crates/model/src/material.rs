@@ -8,6 +8,14 @@ use crate::error::{ModelError, ModelErrorKind, check_increasing, check_range};
 #[serde(transparent)]
 pub struct MaterialId(pub u16);
 
+impl MaterialId {
+    /// Checks that a facet's material id is 1 or more: 0 is "nothing hit" in the
+    /// interaction map, never a facet's material. `path` names the field for the error.
+    pub(crate) fn check_facet(self, path: impl Fn() -> String) -> Result<(), ModelError> {
+        check_range(path, f64::from(self.0), 1.0, f64::from(u16::MAX))
+    }
+}
+
 /// One material: how it emits and reflects in the band.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]

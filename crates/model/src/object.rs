@@ -64,13 +64,7 @@ impl Object {
                     ));
                 }
             }
-            // Id 0 is "nothing hit" in the interaction map: never a facet's material.
-            check_range(
-                || format!("facets[{i}].material"),
-                f64::from(f.material.0),
-                1.0,
-                f64::from(u16::MAX),
-            )?;
+            f.material.check_facet(|| format!("facets[{i}].material"))?;
             if let Some(t) = f.temperature_k {
                 check_range(|| format!("facets[{i}].temperature_k"), t, 0.0, f64::MAX)?;
             }

@@ -74,13 +74,7 @@ impl RawScene {
                     },
                 ));
             }
-            // Id 0 is "nothing hit" in the interaction map: never a facet's material.
-            check_range(
-                || format!("facets[{i}].material"),
-                f64::from(f.material.0),
-                1.0,
-                f64::from(u16::MAX),
-            )?;
+            f.material.check_facet(|| format!("facets[{i}].material"))?;
             check_range(
                 || format!("facets[{i}].temperature_k"),
                 f.temperature_k,
