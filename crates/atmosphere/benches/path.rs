@@ -34,6 +34,29 @@ fn path(bencher: divan::Bencher, kind: &str) {
         });
 }
 
+/// What each further sub-band pays for a path once it is located
+/// ([`AtmosphereModel::path_along`]): a spectral rendering locates a path once and
+/// evaluates it in every sub-band.
+#[divan::bench(args = ["none", "thesis", "layered", "table"])]
+fn path_along_located(bencher: divan::Bencher, kind: &str) {
+    let atm = builtin("us-std-1976").unwrap();
+    let model = AtmosphereModel::new(&atm, kind.parse::<ModelKind>().unwrap()).unwrap();
+    let located: Vec<_> = geometries()
+        .iter()
+        .map(|&(s, t, r)| model.locate_path(s, t, r))
+        .collect();
+    bencher
+        .counter(divan::counter::ItemsCount::new(located.len()))
+        .bench(|| {
+            let mut acc = 0.0;
+            for g in &located {
+                let p = model.path_along(divan::black_box(g));
+                acc += p.transmission + p.path_radiance_w_m2_sr;
+            }
+            acc
+        });
+}
+
 #[divan::bench(args = ["thesis", "layered", "table"])]
 fn sky_view_lookup(bencher: divan::Bencher, kind: &str) {
     let atm = builtin("us-std-1976").unwrap();

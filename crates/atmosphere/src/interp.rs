@@ -98,6 +98,7 @@ pub(crate) fn linear_by_monotone_cubic(
 
 /// Where a point lies in a grid of rows `xs` and columns `ys`: located once, for the
 /// bilinear interpolation of several tables on that grid, clamped at the edges.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Cell {
     i: usize,
     fx: f64,

@@ -92,6 +92,19 @@ impl Slant {
     }
 }
 
+/// A slant path located among a profile's levels ([`Profile::walk`]): the same for every
+/// profile on those levels, so the sub-bands of one atmosphere search once per path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Walk {
+    airmass: f64,
+    looking_down: bool,
+    lo: f64,
+    hi: f64,
+    /// `locate(z_m, lo)` and `locate(z_m, hi)`.
+    lo_at: (usize, f64),
+    hi_at: (usize, f64),
+}
+
 /// The vertical profile both the `thesis` and `layered` models read: levels from the
 /// ground (a level at 0 m with τ = 1 and L_u = 0 is added), the absorber coordinate and
 /// the layer radiances.
@@ -196,41 +209,110 @@ impl Profile {
 
     /// The layered path terms (eq. 8–9 in cumulative form) for a slant path.
     pub(crate) fn path(&self, s: &Slant) -> PathTerms {
-        let m = s.airmass;
-        let (lo, hi) = (s.lo(), s.hi());
-        let w_obs = self.w_at(s.observer_m);
-        let transmission = self.transmittance(m * (self.w_at(hi) - self.w_at(lo)));
-        let looking_down = s.observer_m >= s.other_m;
+        self.along(&self.walk(s))
+    }
+
+    /// Where the ends of `s` lie among the levels: the grid search of [`Profile::path`],
+    /// valid for every profile on the same levels (the sub-bands of one atmosphere).
+    pub(crate) fn walk(&self, s: &Slant) -> Walk {
+        Walk {
+            airmass: s.airmass,
+            looking_down: s.observer_m >= s.other_m,
+            lo: s.lo(),
+            hi: s.hi(),
+            lo_at: locate(&self.z_m, s.lo()),
+            hi_at: locate(&self.z_m, s.hi()),
+        }
+    }
+
+    /// Absorber coordinate at a located altitude ([`Profile::w_at`] without the search).
+    fn w_located(&self, (i, f): (usize, f64)) -> f64 {
+        match (self.w.get(i), self.w.get(i + 1)) {
+            (Some(&a), Some(&b)) => a + f * (b - a),
+            (Some(&a), None) => a,
+            _ => 0.0,
+        }
+    }
+
+    /// The layered path terms along a located path.
+    ///
+    /// Every transmittance is taken from the observer, so the observer's own end is 1 and
+    /// the far end is the path's transmission: each is computed once (a path inside one
+    /// layer, the common case near the ground, costs one curve-of-growth evaluation).
+    pub(crate) fn along(&self, walk: &Walk) -> PathTerms {
+        self.along_with_depth(walk).0
+    }
+
+    /// [`Profile::along`] and the path's optical depth `u^p` (its transmission is
+    /// `exp(−depth)`), for a model that scales the depth without taking a logarithm.
+    pub(crate) fn along_with_depth(&self, walk: &Walk) -> (PathTerms, f64) {
+        let m = walk.airmass;
+        let (lo, hi) = (walk.lo, walk.hi);
+        let (w_lo, w_hi) = (self.w_located(walk.lo_at), self.w_located(walk.hi_at));
+        let u_total = m * (w_hi - w_lo);
+        let depth = u_total.abs().powf(self.p);
+        let transmission = (-depth).exp();
+        let w_obs = if walk.looking_down { w_hi } else { w_lo };
+        // Exact comparisons: a transmittance is reused only where it would be computed from
+        // the very same argument.
+        #[allow(clippy::float_cmp)]
+        let to_observer = |w_z: f64| {
+            let u = m * (w_obs - w_z);
+            if u == 0.0 {
+                // exp(−0^p), exactly.
+                1.0
+            } else if u.abs() == u_total.abs() {
+                transmission
+            } else {
+                self.transmittance(u)
+            }
+        };
+        let n = self.z_m.len();
+        // A level's own location, as `locate` finds it (the top level is the end of the
+        // last interval).
+        let level = |k: usize| {
+            if k + 1 >= n {
+                (n.saturating_sub(2), 1.0)
+            } else {
+                (k, 0.0)
+            }
+        };
         let mut radiance = 0.0;
         let mut z0 = lo;
         let top = self.z_m.last().copied().unwrap_or(0.0);
         // Walk the pieces of the path between level boundaries, bottom to top. The
         // transmittance from the observer to a boundary is computed once: each boundary
         // ends one piece and starts the next.
-        let to_observer = |z: f64| self.transmittance(m * (w_obs - self.w_at(z)));
-        let (mut i, _) = locate(&self.z_m, lo);
-        let mut t0 = to_observer(z0);
+        let mut i = walk.lo_at.0;
+        let mut t0 = to_observer(w_lo);
         while z0 < hi && z0 < top {
             let next = self.z_m.get(i + 1).copied().unwrap_or(top);
-            let z1 = next.min(hi);
-            if z1 > z0 {
-                let t1 = to_observer(z1);
-                let (t_near, t_far) = if looking_down { (t1, t0) } else { (t0, t1) };
-                radiance += self.b.get(i + 1).copied().unwrap_or(0.0) * (t_near - t_far);
-                t0 = t1;
+            let (z1, at) = if hi <= next {
+                (hi, walk.hi_at)
             } else {
-                t0 = to_observer(z1);
+                (next, level(i + 1))
+            };
+            let t1 = to_observer(self.w_located(at));
+            if z1 > z0 {
+                let (t_near, t_far) = if walk.looking_down {
+                    (t1, t0)
+                } else {
+                    (t0, t1)
+                };
+                radiance += self.b.get(i + 1).copied().unwrap_or(0.0) * (t_near - t_far);
             }
+            t0 = t1;
             z0 = z1;
             i += 1;
-            if i + 1 >= self.z_m.len() {
+            if i + 1 >= n {
                 break;
             }
         }
-        PathTerms {
+        let terms = PathTerms {
             transmission: transmission.clamp(0.0, 1.0),
             path_radiance_w_m2_sr: radiance.max(0.0),
-        }
+        };
+        (terms, depth)
     }
 
     /// Sky radiance from `h` at air mass `m` (zenith angle θ, `m = secθ`), given the sky

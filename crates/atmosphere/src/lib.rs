@@ -143,6 +143,25 @@ impl PathTerms {
     }
 }
 
+/// A path located in a model's grids ([`AtmosphereModel::locate_path`]), to be evaluated
+/// in every model on the same grids ([`AtmosphereModel::path_along`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PathGeometry(Located);
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Located {
+    /// An end or the range is not finite: the terms are NaN.
+    NonFinite,
+    /// A path of no length, or no atmosphere: vacuum.
+    Vacuum,
+    /// The `thesis` model's path (it searches per band).
+    Slant(Slant),
+    /// The `layered` model's path and its levels.
+    Layered(Slant, layered::Walk),
+    /// The `table` model's path, its levels and its slant-grid cell.
+    Table(Slant, table::TableWalk),
+}
+
 #[derive(Debug, Clone, PartialEq)]
 enum Inner {
     None,
@@ -248,21 +267,72 @@ impl AtmosphereModel {
     /// air sends toward the sensor. A zero-length path is vacuum.
     #[must_use]
     pub fn path(&self, sensor_altitude_m: f64, target_altitude_m: f64, range_m: f64) -> PathTerms {
+        self.path_along(&self.locate_path(sensor_altitude_m, target_altitude_m, range_m))
+    }
+
+    /// The grid searches of [`AtmosphereModel::path`] for a path: where its ends lie among
+    /// the levels and where it lies in the slant tables. A spectral rendering asks every
+    /// sub-band for the same path; their models share these grids
+    /// ([`AtmosphereModel::shares_path_grids`]), so the path is located once and evaluated
+    /// in each ([`AtmosphereModel::path_along`]).
+    #[must_use]
+    pub fn locate_path(
+        &self,
+        sensor_altitude_m: f64,
+        target_altitude_m: f64,
+        range_m: f64,
+    ) -> PathGeometry {
         if !(sensor_altitude_m.is_finite() && target_altitude_m.is_finite() && range_m.is_finite())
         {
-            return PathTerms {
-                transmission: f64::NAN,
-                path_radiance_w_m2_sr: f64::NAN,
-            };
+            return PathGeometry(Located::NonFinite);
         }
         let Some(s) = Slant::new(sensor_altitude_m, target_altitude_m, range_m) else {
-            return PathTerms::VACUUM;
+            return PathGeometry(Located::Vacuum);
         };
-        match &self.inner {
-            Inner::None => PathTerms::VACUUM,
-            Inner::Thesis(t) => t.path(&s),
-            Inner::Layered(p) => p.path(&s),
-            Inner::Table(t) => t.path(&s),
+        PathGeometry(match &self.inner {
+            Inner::None => Located::Vacuum,
+            Inner::Thesis(_) => Located::Slant(s),
+            Inner::Layered(p) => Located::Layered(s, p.walk(&s)),
+            Inner::Table(t) => Located::Table(s, t.walk(&s)),
+        })
+    }
+
+    /// [`AtmosphereModel::path`] of a path located by this model or by one that shares its
+    /// grids ([`AtmosphereModel::shares_path_grids`]): the same terms, bit for bit. A path
+    /// located by a model of another kind is located again here; one located in other
+    /// grids of the same kind gives other (finite, but wrong) terms.
+    #[must_use]
+    pub fn path_along(&self, geometry: &PathGeometry) -> PathTerms {
+        let s = match &geometry.0 {
+            Located::NonFinite => {
+                return PathTerms {
+                    transmission: f64::NAN,
+                    path_radiance_w_m2_sr: f64::NAN,
+                };
+            }
+            Located::Vacuum => return PathTerms::VACUUM,
+            Located::Slant(s) | Located::Layered(s, _) | Located::Table(s, _) => s,
+        };
+        match (&self.inner, &geometry.0) {
+            (Inner::None, _) => PathTerms::VACUUM,
+            (Inner::Thesis(t), _) => t.path(s),
+            (Inner::Layered(p), Located::Layered(_, w)) => p.along(w),
+            (Inner::Layered(p), _) => p.path(s),
+            (Inner::Table(t), Located::Table(_, w)) => t.along(w),
+            (Inner::Table(t), _) => t.path(s),
+        }
+    }
+
+    /// Whether a path located by this model ([`AtmosphereModel::locate_path`]) is located
+    /// for `other` too: the same kind on the same levels and slant grid, as the sub-bands
+    /// collapsed from one spectral atmosphere are.
+    #[must_use]
+    pub fn shares_path_grids(&self, other: &Self) -> bool {
+        match (&self.inner, &other.inner) {
+            (Inner::None, Inner::None) | (Inner::Thesis(_), Inner::Thesis(_)) => true,
+            (Inner::Layered(a), Inner::Layered(b)) => a.z_m == b.z_m,
+            (Inner::Table(a), Inner::Table(b)) => a.shares_grids(b),
+            _ => false,
         }
     }
 

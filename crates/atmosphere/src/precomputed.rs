@@ -91,7 +91,9 @@ impl PrecomputedAtmosphere {
         let n = self.levels.len();
         let top = self.levels[n - 1].0;
         let x = (altitude_m.max(0.0) / top * (n - 1) as f64).min((n - 1) as f64);
-        let i = (x.floor() as usize).min(n - 2);
+        // x ≥ 0 (a NaN altitude is taken as 0): truncation is its floor, without a call to
+        // libm's `floor`.
+        let i = (x as usize).min(n - 2);
         (i, i + 1, x - i as f64)
     }
 

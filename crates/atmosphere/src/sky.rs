@@ -110,7 +110,9 @@ impl SkyView {
     pub fn radiance(&self, zenith_deg: f64) -> f64 {
         let x = (zenith_deg / self.step_deg).max(0.0);
         let last = self.radiance.len().saturating_sub(1);
-        let i = (x.floor() as usize).min(last.saturating_sub(1));
+        // x ≥ 0: truncation is its floor, without a call to libm's `floor` (a sky ray's
+        // lookup runs once per sub-band).
+        let i = (x as usize).min(last.saturating_sub(1));
         let f = (x - i as f64).clamp(0.0, 1.0);
         match (self.radiance.get(i), self.radiance.get(i + 1)) {
             (Some(&a), Some(&b)) => a + f * (b - a),

@@ -19,7 +19,16 @@ use irsig_model::{Atmosphere, SlantTables};
 use crate::PathTerms;
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
 use crate::interp::{Cell, linear_by_monotone_cubic};
-use crate::layered::{Profile, Slant};
+use crate::layered::{Profile, Slant, Walk};
+
+/// A slant path located in a table's grids ([`Table::walk`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct TableWalk {
+    layered: Walk,
+    cell: Cell,
+    /// How much of the correction holds past the table's last angle (`None`: all of it).
+    keep: Option<f64>,
+}
 
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Table {
@@ -56,8 +65,12 @@ impl Table {
             let mut lr = Vec::with_capacity(slant.nadir_deg.len());
             for (j, &a) in slant.nadir_deg.iter().enumerate() {
                 let sec = 1.0 / a.to_radians().cos();
-                let layered = Slant::new(h, end, (h - end) * sec)
-                    .map_or(PathTerms::VACUUM, |s| profile.path(&s));
+                // The layered optical depth as `along` scales it, so that a path through a
+                // node gets the table's own value back.
+                let (layered, layered_depth) = Slant::new(h, end, (h - end) * sec)
+                    .map_or((PathTerms::VACUUM, 0.0), |s| {
+                        profile.along_with_depth(&profile.walk(&s))
+                    });
                 let tau = slant
                     .transmission
                     .get(i)
@@ -70,10 +83,7 @@ impl Table {
                     .and_then(|r| r.get(j))
                     .copied()
                     .unwrap_or(0.0);
-                dr.push(ratio(
-                    -tau.max(1e-300).ln(),
-                    -layered.transmission.max(1e-300).ln(),
-                ));
+                dr.push(ratio(-tau.max(1e-300).ln(), layered_depth));
                 lr.push(ratio(lu, layered.path_radiance_w_m2_sr));
             }
             depth_ratio.push(dr);
@@ -88,26 +98,49 @@ impl Table {
     }
 
     pub(crate) fn path(&self, s: &Slant) -> PathTerms {
-        let layered = self.profile.path(s);
+        self.along(&self.walk(s))
+    }
+
+    /// Where `s` lies in the levels and in the slant grid: the grid searches of
+    /// [`Table::path`], valid for every table on the same grids (the sub-bands of one
+    /// atmosphere).
+    pub(crate) fn walk(&self, s: &Slant) -> TableWalk {
         let (h, a) = (s.hi(), s.angle_deg());
         let t = &self.slant;
-        let cell = Cell::locate(&t.altitude_m, &t.nadir_deg, h, a);
-        let mut dr = cell.of(&self.depth_ratio);
-        let mut lr = cell.of(&self.radiance_ratio);
         // Past the table's last angle the correction fades linearly to none at 90°: the
         // edge correction describes long grazing paths to the ground, not horizontal ones
         // (holding it costs 0.9 K on a 1 km horizontal path that `layered` gets to 0.4 K).
         let last = t.nadir_deg.last().copied().unwrap_or(90.0);
-        if a > last && last < 90.0 {
-            let keep = ((90.0 - a) / (90.0 - last)).clamp(0.0, 1.0);
+        let keep = (a > last && last < 90.0).then(|| ((90.0 - a) / (90.0 - last)).clamp(0.0, 1.0));
+        TableWalk {
+            layered: self.profile.walk(s),
+            cell: Cell::locate(&t.altitude_m, &t.nadir_deg, h, a),
+            keep,
+        }
+    }
+
+    /// The path terms along a located path.
+    pub(crate) fn along(&self, walk: &TableWalk) -> PathTerms {
+        let (layered, layered_depth) = self.profile.along_with_depth(&walk.layered);
+        let mut dr = walk.cell.of(&self.depth_ratio);
+        let mut lr = walk.cell.of(&self.radiance_ratio);
+        if let Some(keep) = walk.keep {
             dr = 1.0 + keep * (dr - 1.0);
             lr = 1.0 + keep * (lr - 1.0);
         }
-        let depth = -layered.transmission.max(1e-300).ln() * dr;
+        let depth = layered_depth * dr;
         PathTerms {
             transmission: (-depth).exp().clamp(0.0, 1.0),
             path_radiance_w_m2_sr: (layered.path_radiance_w_m2_sr * lr).max(0.0),
         }
+    }
+
+    /// Whether `other` has the same levels and slant grid, so that a path located in one
+    /// ([`Table::walk`]) is located in the other.
+    pub(crate) fn shares_grids(&self, other: &Self) -> bool {
+        self.profile.z_m == other.profile.z_m
+            && self.slant.altitude_m == other.slant.altitude_m
+            && self.slant.nadir_deg == other.slant.nadir_deg
     }
 
     /// Sky radiance from the sky table, clamped to it: a monotone cubic in zenith angle

@@ -421,7 +421,58 @@ fn check_claimed_size(bytes: &[u8]) -> Result<(), RasterError> {
              bytes (16 GiB) of the memory budget"
         )));
     }
+    // Nor more than the file's bytes can hold: a block is inflated into a buffer of the
+    // size its header claims before its data is read, so a kilobyte claiming gigabytes
+    // would allocate them.
+    for header in &meta.headers {
+        let (w, h) = (header.layer_size.width(), header.layer_size.height());
+        // The bytes the samples take in the file: each channel's own sample size and
+        // sampling (a subsampled channel stores one sample per `sampling` pixels).
+        let claimed = header
+            .channels
+            .list
+            .iter()
+            .map(|c| {
+                let (sx, sy) = (c.sampling.x().max(1), c.sampling.y().max(1));
+                (w.div_ceil(sx) as u64)
+                    .saturating_mul(h.div_ceil(sy) as u64)
+                    .saturating_mul(c.sample_type.bytes_per_sample() as u64)
+            })
+            .fold(0u64, u64::saturating_add);
+        let ratio = max_expansion(header.compression);
+        let holds = (bytes.len() as u64).saturating_mul(ratio);
+        if claimed > holds {
+            return Err(RasterError::TooLarge(format!(
+                "the header claims {w}x{h} pixels of {} channels ({claimed} bytes of samples), \
+                 more than the file's {} bytes can hold {} (at most {ratio} bytes per byte)",
+                header.channels.list.len(),
+                bytes.len(),
+                compression_name(header.compression),
+            )));
+        }
+    }
     Ok(())
+}
+
+/// The most one byte of a block compressed with `c` can stand for once decompressed,
+/// rounded up: deflate (ZIP, and PXR24 after its 24-bit packing) reaches 1032:1, OpenEXR's
+/// run-length code 64:1 (a run of up to 128 bytes in two), uncompressed 1:1. The wavelet and
+/// block codes (PIZ, B44, DWA) are given a generous 65 536.
+fn max_expansion(c: x::Compression) -> u64 {
+    match c {
+        x::Compression::Uncompressed => 1,
+        x::Compression::RLE => 128,
+        x::Compression::ZIP1 | x::Compression::ZIP16 | x::Compression::PXR24 => 2048,
+        _ => 65_536,
+    }
+}
+
+/// `c` as a phrase for an error message.
+fn compression_name(c: x::Compression) -> String {
+    match c {
+        x::Compression::Uncompressed => "uncompressed".to_owned(),
+        other => format!("compressed with {other:?}"),
+    }
 }
 
 /// Where in the bytes of an EXR reading it failed with `error`, as a byte offset, for a

@@ -27,6 +27,12 @@ pub trait Atmosphere: Sync {
     fn critical_nadir_angle_deg(&self, sensor_altitude_m: f64) -> f64 {
         critical_nadir_angle_deg(sensor_altitude_m)
     }
+    /// The atmosphere model underneath, when the path terms are an
+    /// [`AtmosphereModel`]'s: then sub-bands whose models share grids locate each path
+    /// once ([`AtmosphereModel::locate_path`]) and evaluate it in each.
+    fn model(&self) -> Option<&AtmosphereModel> {
+        None
+    }
 }
 
 impl Atmosphere for PrecomputedAtmosphere {
@@ -38,6 +44,9 @@ impl Atmosphere for PrecomputedAtmosphere {
     }
     fn sky_hemispheric(&self, observer_altitude_m: f64) -> f64 {
         PrecomputedAtmosphere::sky_hemispheric(self, observer_altitude_m)
+    }
+    fn model(&self) -> Option<&AtmosphereModel> {
+        Some(PrecomputedAtmosphere::model(self))
     }
 }
 
@@ -52,6 +61,9 @@ impl Atmosphere for AtmosphereModel {
     }
     fn sky_hemispheric(&self, observer_altitude_m: f64) -> f64 {
         AtmosphereModel::sky_hemispheric(self, observer_altitude_m).radiance_w_m2_sr
+    }
+    fn model(&self) -> Option<&AtmosphereModel> {
+        Some(self)
     }
 }
 

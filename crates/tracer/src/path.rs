@@ -33,6 +33,10 @@ pub(crate) struct Surface {
     pub(crate) back_face: bool,
     /// Altitude of the hit above the ground, metres.
     pub(crate) alt_m: f64,
+    /// ε at this incidence in the tracer's own emissivity tables, found once: every
+    /// sub-band whose table for the material is the same reads it
+    /// ([`crate::tracer::BandData::emissivity_of`]).
+    pub(crate) emissivity: f64,
 }
 
 /// What arrives along the mirror direction of a facet with a specular part.
@@ -180,7 +184,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let sfrac = m.specular_fraction;
         let index = path.nodes.len();
         path.nodes.push(Node {
-            surface: surface(hit, alt),
+            surface: self.surface(hit, alt),
             mirror: None,
             diffuse: None,
             reflected_z: f64::NAN,
@@ -217,6 +221,18 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 Diffuse::Hemispheric
             };
             path.nodes[index].diffuse = Some(diffuse);
+        }
+    }
+
+    /// The record of a hit at altitude `alt`.
+    fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
+        Surface {
+            facet: hit.facet,
+            data: hit.data,
+            cos_incidence: hit.cos_incidence,
+            back_face: hit.back_face,
+            alt_m: alt,
+            emissivity: self.emissivity[usize::from(hit.data.material)].at_cos(hit.cos_incidence),
         }
     }
 
@@ -267,7 +283,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ) {
                 Some(h2) => {
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                    HemiRay::Facet(surface(&h2, alt2))
+                    HemiRay::Facet(self.surface(&h2, alt2))
                 }
                 None => {
                     if d[2] >= 0.0 {
@@ -283,15 +299,5 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             count: n,
             sky,
         }
-    }
-}
-
-fn surface(hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
-    Surface {
-        facet: hit.facet,
-        data: hit.data,
-        cos_incidence: hit.cos_incidence,
-        back_face: hit.back_face,
-        alt_m: alt,
     }
 }

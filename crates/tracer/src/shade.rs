@@ -10,6 +10,7 @@
 //! radiance-weighted mean `Σ ε_k L_T,k / Σ L_T,k`, and the transmission the one that keeps
 //! `L = τ·L_leaving + L_u` true, `Σ τ_k L_leaving,k / Σ L_leaving,k`.
 
+use irsig_atmosphere::PathTerms;
 use irsig_radiometry::BandModel;
 
 use crate::env::Atmosphere;
@@ -110,8 +111,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             } => {
                 let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
                 let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
-                for b in &set.bands {
-                    let p = b.atmosphere.path(fc.sensor_alt, 0.0, path_range_m);
+                set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
                     radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
                         transmitted += p.transmission * b.terrain_leaving;
@@ -120,7 +120,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         leaving += b.terrain_leaving;
                         single_tau = p.transmission;
                     }
-                }
+                });
                 if TRUTH {
                     *s = Sample::miss(Event::Terrain);
                     s.range_m = range_m;
@@ -140,12 +140,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let mut sums = Sums::default();
                 let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
                 let mut radiance = 0.0;
-                for (k, b) in set.bands.iter().enumerate() {
+                let mut add = |b: &BandData<S>, p: PathTerms| {
                     let first = self.leaving_chain(b, path);
-                    let p = match (table, cell) {
-                        (Some(table), Some(cell)) => table.terms(cell, k),
-                        _ => b.atmosphere.path(fc.sensor_alt, alt_m, range_m),
-                    };
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
                         let facet = &path.nodes[0].surface.data;
@@ -154,6 +150,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         single = first;
                         single_tau = p.transmission;
                     }
+                };
+                match (table, cell) {
+                    (Some(table), Some(cell)) => {
+                        for (k, b) in set.bands.iter().enumerate() {
+                            add(b, table.terms(cell, k));
+                        }
+                    }
+                    _ => set.path_terms(fc.sensor_alt, alt_m, range_m, |_, b, p| add(b, p)),
                 }
                 if TRUTH {
                     self.facet_truth(one, path, range_m, &sums, &single, single_tau, s);
@@ -246,7 +250,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let surface = &node.surface;
         let slot = usize::from(surface.data.material);
         let sfrac = self.materials[slot].specular_fraction;
-        let eps = b.emissivity[slot].at_cos(surface.cos_incidence);
+        let eps = b.emissivity_of(surface);
         let blackbody = b.blackbody_of(&surface.data);
         let sky_hemi = b.atmosphere.sky_hemispheric(surface.alt_m);
         let specular_incident = match node.mirror {
@@ -264,8 +268,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .iter()
                     .map(|ray| match *ray {
                         HemiRay::Facet(h) => {
-                            let slot = usize::from(h.data.material);
-                            let e2 = b.emissivity[slot].at_cos(h.cos_incidence);
+                            let e2 = b.emissivity_of(&h);
                             e2 * b.blackbody_of(&h.data)
                                 + (1.0 - e2) * b.atmosphere.sky_hemispheric(h.alt_m)
                         }

@@ -2,6 +2,7 @@
 
 use std::fmt;
 
+use irsig_atmosphere::PathTerms;
 use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
 use irsig_radiometry::{BandModel, EmissivityTable, InverseTable};
@@ -475,6 +476,8 @@ pub(crate) struct BandData<A> {
     pub(crate) atmosphere: A,
     /// Per material slot.
     pub(crate) emissivity: Vec<EmissivityTable>,
+    /// Per material slot: the table is the tracer's own, so a recorded hit's ε holds here.
+    pub(crate) own_emissivity: Vec<bool>,
     /// L_T per temperature index, W m⁻² sr⁻¹; empty when `inline`.
     pub(crate) blackbody: Vec<f64>,
     /// dL_T/dT per temperature index, W m⁻² sr⁻¹ K⁻¹ (for the error budget).
@@ -487,6 +490,18 @@ pub(crate) struct BandData<A> {
 }
 
 impl<A> BandData<A> {
+    /// ε of a recorded hit in this sub-band: the one found when the hit was recorded where
+    /// the material's table is the tracer's own, else looked up (bit for bit the same).
+    #[inline]
+    pub(crate) fn emissivity_of(&self, surface: &crate::path::Surface) -> f64 {
+        let slot = usize::from(surface.data.material);
+        if self.own_emissivity[slot] {
+            surface.emissivity
+        } else {
+            self.emissivity[slot].at_cos(surface.cos_incidence)
+        }
+    }
+
     /// L_T of a facet in this sub-band, W m⁻² sr⁻¹.
     #[inline]
     pub(crate) fn blackbody_of(&self, facet: &FacetRadiometry) -> f64 {
@@ -504,6 +519,55 @@ impl<A> BandData<A> {
 #[derive(Debug)]
 pub struct BandSet<A> {
     pub(crate) bands: Vec<BandData<A>>,
+    /// Every sub-band's atmosphere model shares the first's grids, so a path is located
+    /// once and evaluated in each ([`BandSet::path_terms`]).
+    pub(crate) shared_grids: bool,
+}
+
+impl<A: Atmosphere> BandSet<A> {
+    fn new(bands: Vec<BandData<A>>) -> Self {
+        let shared_grids = match bands.first().and_then(|b| b.atmosphere.model()) {
+            Some(first) => bands.iter().all(|b| {
+                b.atmosphere
+                    .model()
+                    .is_some_and(|m| first.shares_path_grids(m))
+            }),
+            None => false,
+        };
+        Self {
+            bands,
+            shared_grids,
+        }
+    }
+
+    /// The path terms of every sub-band for the path between a sensor at `sensor_m`
+    /// and a point at `target_m`, `range_m` apart, passed to `each` in sub-band order: the
+    /// same terms, bit for bit, as each sub-band's own `path`, with the grid searches done
+    /// once when the sub-bands share their grids.
+    #[inline]
+    pub(crate) fn path_terms(
+        &self,
+        sensor_m: f64,
+        target_m: f64,
+        range_m: f64,
+        mut each: impl FnMut(usize, &BandData<A>, PathTerms),
+    ) {
+        let located = if self.shared_grids {
+            self.bands
+                .first()
+                .and_then(|b| b.atmosphere.model())
+                .map(|m| m.locate_path(sensor_m, target_m, range_m))
+        } else {
+            None
+        };
+        for (k, b) in self.bands.iter().enumerate() {
+            let p = match (&located, b.atmosphere.model()) {
+                (Some(g), Some(m)) => m.path_along(g),
+                _ => b.atmosphere.path(sensor_m, target_m, range_m),
+            };
+            each(k, b, p);
+        }
+    }
 }
 
 impl<A> BandSet<A> {
@@ -711,7 +775,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             materials: mats,
             terrain: scene.terrain,
             band,
-            bands: BandSet { bands: Vec::new() },
+            bands: BandSet {
+                bands: Vec::new(),
+                shared_grids: false,
+            },
             temperatures,
             emissivity: tables,
             path_terms: PathTermsMode::Exact,
@@ -773,9 +840,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
             let terrain_leaving = terrain.emissivity * terrain_blackbody
                 + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
+            let own_emissivity = emissivity
+                .iter()
+                .zip(&self.emissivity)
+                .map(|(a, b)| a == b)
+                .collect();
             bands.push(BandData {
                 atmosphere: sb.atmosphere,
                 emissivity,
+                own_emissivity,
                 blackbody,
                 derivative,
                 inline: false,
@@ -783,7 +856,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 terrain_leaving,
             });
         }
-        Ok(BandSet { bands })
+        Ok(BandSet::new(bands))
     }
 
     /// The geometry (BVH and re-centring).
