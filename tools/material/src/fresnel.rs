@@ -5,7 +5,7 @@ use std::io::Write;
 use std::path::{Path, PathBuf};
 
 use irsig_cli::args::{BandArg, values};
-use irsig_model::{Material, MaterialId, MaterialLibrary};
+use irsig_model::{Material, MaterialId, MaterialLibrary, SpectralEmissivity};
 use irsig_radiometry::EmissivityTable;
 use irsig_radiometry::fresnel::{
     ComplexIndex, IndexTable, band_emissivity_table, emissivity_table,
@@ -31,10 +31,17 @@ pub struct Args {
         conflicts_with = "nk_table"
     )]
     pub k: f64,
-    /// A table of `wavelength_um n k` rows (formats/nk.md); `-` for stdin. The emissivity
-    /// is then averaged over the band with Planck weighting at `--temperature`.
+    /// A table of `wavelength_um n k` rows (formats/nk.md); `-` for stdin. The angular
+    /// table is then averaged over the band with Planck weighting at `--temperature`, and
+    /// the library entry keeps the spectrum too: ε(λ) at normal incidence at the table's
+    /// wavelengths (`spectral`), which a tracer averages over its own band or sub-bands.
     #[arg(long, value_name = "FILE")]
     pub nk_table: Option<PathBuf>,
+    /// With `--nk-table`: write the band-averaged angular table only, without the spectrum
+    /// (a band-only material, as a legacy `.ems` always is; needed for `irsig-trace --band
+    /// total`, which cannot average a spectrum).
+    #[arg(long, requires = "nk_table")]
+    pub band_only: bool,
     /// The band of the spectral average: `MIN-MAX` in micrometres (flat response) or a
     /// sensor response file (formats/srf.md) [default: 8-14].
     #[arg(long, value_name = "MIN-MAX|FILE")]
@@ -47,7 +54,9 @@ pub struct Args {
     /// 0–90, increasing. Include 90 (ε = 0) so interpolation reaches grazing.
     #[arg(long, default_value = "0:90:1", allow_hyphen_values = true)]
     pub angles: String,
-    /// Write a legacy `.ems` (also chosen by an `-o` name ending in `.ems`).
+    /// Write a legacy `.ems` (also chosen by an `-o` name ending in `.ems`): the
+    /// band-averaged angular table only, since the 1990 format has no wavelength axis to
+    /// carry the spectrum of an `--nk-table`.
     #[arg(long)]
     pub legacy: bool,
     /// Material name in the library entry [default: the nk table's file stem, else
@@ -87,7 +96,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         ));
     }
     let angles = values("--angles", &args.angles)?;
-    let (table, source, default_name) = match (&args.nk_table, args.n) {
+    let (table, spectral, source, default_name) = match (&args.nk_table, args.n) {
         (Some(path), _) => {
             let input = irsig_cli::read_input(&path.to_string_lossy())?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
@@ -118,9 +127,21 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 BandArg::Response(path) => format!(" weighted by the response {path}"),
                 BandArg::Flat { .. } => String::new(),
             };
+            // The spectrum: the Fresnel equations at normal incidence on every row. With it
+            // a tracer takes ε(λ, θ) = ε(λ) · table(θ) / table(0°), the band's angular shape
+            // at every wavelength (its error: docs/accuracy.md, "Fresnel emissivity").
+            let spectral = (!args.band_only).then(|| SpectralEmissivity {
+                wavelength_um: index.wavelength_um().to_vec(),
+                emissivity: index.index().iter().map(|i| i.emissivity(0.0)).collect(),
+            });
+            let kept = if spectral.is_some() {
+                "; spectral: normal-incidence emissivity at the table's wavelengths"
+            } else {
+                ""
+            };
             let source = format!(
                 "Fresnel, smooth opaque surface (irsig-material fresnel): n, k from {} linearly \
-                 interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K",
+                 interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K{kept}",
                 input.name,
                 band.lambda_min_um(),
                 band.lambda_max_um()
@@ -130,7 +151,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 .as_deref()
                 .and_then(Path::file_stem)
                 .map(|s| s.to_string_lossy().into_owned());
-            (table, source, stem)
+            (table, spectral, source, stem)
         }
         (None, Some(n)) => {
             let index = ComplexIndex::new(n, args.k).map_err(|e| miette!("{e}"))?;
@@ -139,7 +160,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 "Fresnel, smooth opaque surface (irsig-material fresnel): constant index n = {n}, k = {}",
                 args.k
             );
-            (table, source, None)
+            (table, None, source, None)
         }
         (None, None) => return Err(irsig_cli::usage_error("give --n (and --k) or --nk-table")),
     };
@@ -152,7 +173,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
             .clone()
             .or(default_name)
             .unwrap_or_else(|| "fresnel".to_owned());
-        write_library(&table, name, args, source, output)
+        write_library(&table, spectral, name, args, source, output)
     }
 }
 
@@ -173,6 +194,7 @@ fn write_ems(table: &EmissivityTable, output: Option<&Path>) -> miette::Result<(
 
 fn write_library(
     table: &EmissivityTable,
+    spectral: Option<SpectralEmissivity>,
     name: String,
     args: &Args,
     source: String,
@@ -185,7 +207,7 @@ fn write_library(
             emissivity: pairs(table),
             specular_fraction: args.specular_fraction,
             source,
-            spectral: None,
+            spectral,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

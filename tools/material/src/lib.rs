@@ -57,7 +57,15 @@ A constant index gives the monochromatic table. A table of n, k against waveleng
 averaged over the band (a response file as --band weights it) with Planck weighting at
 --temperature:
 eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
-Output is a canonical material library (RON) unless --legacy or -o NAME.ems.")]
+Output is a canonical material library (RON) unless --legacy or -o NAME.ems.
+
+With --nk-table the library entry also keeps the spectrum by default: eps(lambda) at
+normal incidence at the table's wavelengths (`spectral`), so that irsig-trace averages it
+over its own band or each of its --sub-bands, taking the angular table above as the
+shape, eps(lambda, theta) = eps(lambda) table(theta) / table(0). A Fresnel surface's shape
+changes with wavelength, so this is an approximation whose error docs/accuracy.md
+measures (\"Fresnel emissivity\"). --band-only drops the spectrum; a legacy .ems cannot
+carry it.")]
     Fresnel(fresnel::Args),
     /// A DIRSIG classic .mat and the spectral .ems curves it names -> a canonical material
     /// library of spectral materials (ε(λ) with an angular shape).

@@ -113,7 +113,9 @@ pub struct Cli {
     pub execute: Option<String>,
     /// The band: `MIN-MAX` in micrometres (flat response) or a sensor response file
     /// (formats/srf.md); or `total`, the whole spectrum (σT⁴/π), exact and for checking by
-    /// hand. Use the band the atmosphere's tables were integrated over.
+    /// hand. A built-in atmosphere is collapsed from its spectra over any band other than
+    /// its tables' flat 8-14; with a band-form atmosphere file use the band its tables were
+    /// integrated over.
     #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE|total")]
     pub band: TraceBand,
     /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`; both also in
@@ -956,7 +958,36 @@ fn with_atmosphere<R: SubBandModel>(
         && (cli.sub_bands.is_some_and(|c| !c.is_band())
             || cli.tolerance.is_some()
             || cli.decision.is_some());
-    let data = read_atmosphere(&cli.atmosphere, wants_spectra)?;
+    let mut data = read_atmosphere(&cli.atmosphere, wants_spectra)?;
+    // A built-in's band tables are for the flat band they were made for (8-14 um): any
+    // other band, or a sensor response, collapses its spectra instead (else the band model
+    // would add the flat band's path and sky radiance to a response-weighted emission).
+    if let (AirData::Band(a), Some(sp)) = (&data, &split) {
+        let other_band = sp.response.is_some()
+            || sp
+                .range_um
+                .iter()
+                .zip(a.band_um)
+                .any(|(x, y)| (x - y).abs() > 1e-9 * y);
+        if other_band && irsig_atmosphere::BUILTIN_NAMES.contains(&cli.atmosphere.as_str()) {
+            data = read_atmosphere(&cli.atmosphere, true)?;
+        } else if other_band {
+            eprintln!(
+                "irsig-trace: warning: `{}` holds band tables for {}-{} um, flat; the band \
+                 traced is {}-{} um{}: its path and sky radiances are the tables' band's",
+                cli.atmosphere,
+                a.band_um[0],
+                a.band_um[1],
+                sp.range_um[0],
+                sp.range_um[1],
+                if sp.response.is_some() {
+                    " with a sensor response"
+                } else {
+                    ""
+                }
+            );
+        }
+    }
     if let (AirData::Spectral(a, bytes), Some(sp)) = (&data, &split)
         && (cli.atmosphere == "-" || Path::new(&cli.atmosphere).exists())
     {
