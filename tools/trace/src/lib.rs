@@ -33,6 +33,7 @@ mod spectral_materials;
 mod tolerance;
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
 
 use clap::Parser;
 use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBandCount};
@@ -539,7 +540,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         hash_field(&mut run, "uncertainties", format!("{u:?}").as_bytes());
     }
     let mut inputs = Inputs {
-        scene,
+        scene: Mutex::new(Some(scene)),
         materials,
         job,
         uncertainties,
@@ -819,7 +820,10 @@ type SubBandsOf<'a, R, T> =
 
 /// What a run reads besides the band and the atmosphere.
 struct Inputs {
-    scene: RawScene,
+    /// Taken by `trace_all`, which drops it once the tracer is built unless the error
+    /// budget reads it (its facets' temperatures and emissivities): at 1M facets it is
+    /// 44 MB that a frame's outputs need not share memory with.
+    scene: Mutex<Option<RawScene>>,
     materials: MaterialLibrary,
     job: Job,
     uncertainties: Option<Uncertainties>,
@@ -923,7 +927,17 @@ fn with_atmosphere<R: SubBandModel>(
     band: R,
     split: Option<&Split<'_>>,
 ) -> miette::Result<()> {
-    let (scene, job) = (&inputs.scene, &inputs.job);
+    let job = &inputs.job;
+    let top_scene = inputs
+        .scene
+        .lock()
+        .map_err(|_| miette!("the raw scene's lock is poisoned"))?
+        .as_ref()
+        .ok_or_else(|| miette!("the raw scene was already traced"))?
+        .positions_m
+        .iter()
+        .map(|p| p[2])
+        .fold(0.0_f64, f64::max);
     let mut run = job.run.clone();
     if cli.atmosphere == "none" {
         let vacuum = Vacuum {
@@ -984,8 +998,7 @@ fn with_atmosphere<R: SubBandModel>(
         .views
         .iter()
         .map(|v| v.position_m()[2])
-        .chain(scene.positions_m.iter().map(|p| p[2]))
-        .fold(0.0_f64, f64::max);
+        .fold(top_scene, f64::max);
     // The sky's precomputed levels depend on the top: so do the pixels.
     match &data {
         AirData::Band(atmosphere) => hash_field(
@@ -1312,12 +1325,18 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     air: &Air<'_, R, A, S>,
 ) -> miette::Result<()> {
     let Inputs {
-        scene,
+        scene: _,
         materials,
         job,
         uncertainties,
     } = inputs;
     let uncertainties = uncertainties.as_ref();
+    let scene = inputs
+        .scene
+        .lock()
+        .map_err(|_| miette!("the raw scene's lock is poisoned"))?
+        .take()
+        .ok_or_else(|| miette!("the raw scene was already traced"))?;
     let applied = match &cli.decision {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
@@ -1345,10 +1364,11 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
     };
     let (mut kind, mut count) = (base.kind, base.sub_bands);
     let mut tracer =
-        Tracer::with_sub_bands(scene, materials, band, (air.precomputed)(kind, count)?)
+        Tracer::with_sub_bands(&scene, materials, band, (air.precomputed)(kind, count)?)
             .map_err(|e| miette!("{e}"))
             .wrap_err_with(|| format!("cannot trace `{}` with `{}`", cli.scene, cli.materials))?
             .with_path_terms(base.path_terms);
+    let scene = uncertainties.is_some().then_some(scene);
     let views = &job.views;
     let cameras = views
         .iter()
@@ -1446,7 +1466,7 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
                 applied.as_ref().map_or(0.0, |d| d.predicted.percentile_k),
             ),
         };
-        let budget = uncertainties.map(|u| Budget {
+        let budget = uncertainties.zip(scene.as_ref()).map(|(u, scene)| Budget {
             uncertainties: u,
             scene,
             model_k,
