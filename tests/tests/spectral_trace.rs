@@ -681,6 +681,64 @@ fn a_spectral_material_is_averaged_per_sub_band_and_over_the_band() {
     }
 }
 
+/// A material whose angular shape changes with wavelength: the step of [`STEP`] at normal
+/// incidence, but at 60° the long-wavelength half falls to 0.3 while the short one stays
+/// 0.5 (ε(λ, θ) on a grid, `spectral.angular`). No separable form ε(λ) · f(θ) gives that.
+const CROSSED: &str = "(materials: [(id: 1, name: \"crossed\", emissivity: [(0.0, 1.0), (90.0, 1.0)], \
+    specular_fraction: 0.0, source: \"a step whose halves part with angle\",\n\
+    spectral: Some((wavelength_um: [7.0, 10.0, 10.000001, 15.0], emissivity: [0.5, 0.5, 0.9, 0.9], \
+    angular: Some((angle_deg: [0.0, 60.0, 90.0], \
+    emissivity: [[0.5, 0.5, 0.0], [0.5, 0.5, 0.0], [0.9, 0.3, 0.0], [0.9, 0.3, 0.0]])))))])";
+
+#[test]
+fn a_material_with_emissivity_on_a_wavelength_angle_grid_is_averaged_angle_by_angle() {
+    let dir = tempfile::tempdir().unwrap();
+    let crossed = dir.path().join("crossed.ron");
+    std::fs::write(&crossed, CROSSED).unwrap();
+    let a = irsig_atmosphere::builtin_spectral("us-std-1976").unwrap();
+    let s = a.slant.as_ref().unwrap();
+    // Seen at 60° (the plate is horizontal, so the incidence is the nadir angle): by hand
+    // from the built-in's LOWTRAN7 spectra with ε = 0.5 below 10 µm and 0.3 above. The
+    // separable form (the 0° curve times a flat shape) would give 0.5 and 0.9.
+    let (t_k, altitude_m, nadir_deg) = (300.0, 300.0, 60.0);
+    let (ai, ni) = (
+        node(&s.altitude_m, altitude_m),
+        node(&s.nadir_deg, nadir_deg),
+    );
+    let at_60 = |w: f64| if w <= 10.0 { 0.5 } else { 0.3 };
+    let expected = apparent_k(lowtran_integral_of(
+        &a,
+        ai,
+        ni,
+        t_k,
+        at_60,
+        &[1000.0],
+        |_| 1.0,
+    ));
+    let separable = apparent_k(lowtran_integral_of(
+        &a,
+        ai,
+        ni,
+        t_k,
+        |w| if w <= 10.0 { 0.5 } else { 0.9 },
+        &[1000.0],
+        |_| 1.0,
+    ));
+    assert!((separable - expected).abs() > 5.0, "{separable} {expected}");
+    let (full, n) = probe_with(
+        dir.path(),
+        Some(&crossed),
+        "us-std-1976",
+        Some("full"),
+        t_k,
+        altitude_m,
+        nadir_deg,
+    );
+    assert_eq!(n, 108);
+    let dt = apparent_k(full) - expected;
+    assert!(dt.abs() < 0.02, "full grid {dt:+.4} K");
+}
+
 #[test]
 fn a_spectral_curve_short_of_the_band_is_refused_at_its_place() {
     let dir = tempfile::tempdir().unwrap();

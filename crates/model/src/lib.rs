@@ -54,7 +54,7 @@ mod view;
 
 pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
 pub use error::{ModelError, ModelErrorKind};
-pub use material::{Material, MaterialId, MaterialLibrary, SpectralEmissivity};
+pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};
 pub use plan::{AtmospherePlan, PlanModel};
 pub use raw::{RawFacet, RawScene};

@@ -51,6 +51,23 @@ pub struct SpectralEmissivity {
     pub wavelength_um: Vec<f64>,
     /// Emissivity at each wavelength, 0 to 1.
     pub emissivity: Vec<f64>,
+    /// ε at every wavelength and angle, when the angular shape changes with wavelength (a
+    /// Fresnel surface: `irsig-material fresnel --nk-table`). Then a band or sub-band's
+    /// angular table is this table averaged over it angle by angle, and the material's
+    /// `emissivity` table and the curve above are not used for it. `None`: the separable
+    /// form ε(λ) · `emissivity`(θ) / `emissivity`(0°).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular: Option<SpectralAngular>,
+}
+
+/// ε(λ, θ) on a grid: one row per wavelength of the curve it belongs to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralAngular {
+    /// Angles from the surface normal, degrees, 0 to 90, strictly increasing.
+    pub angle_deg: Vec<f64>,
+    /// `emissivity[i][j]`: ε at the curve's `wavelength_um[i]` and `angle_deg[j]`, 0 to 1.
+    pub emissivity: Vec<Vec<f64>>,
 }
 
 impl SpectralEmissivity {
@@ -86,7 +103,58 @@ impl SpectralEmissivity {
         check_increasing(
             |i| format!("{prefix}.wavelength_um[{i}]"),
             self.wavelength_um.iter().copied(),
-        )
+        )?;
+        if let Some(a) = &self.angular {
+            a.validate(&format!("{prefix}.angular"), self.wavelength_um.len())?;
+        }
+        Ok(())
+    }
+}
+
+impl SpectralAngular {
+    /// Checks the grid: `rows` rows (one per wavelength) of one value per angle.
+    ///
+    /// # Errors
+    /// The first rule broken, with its path below `prefix`.
+    pub fn validate(&self, prefix: &str, rows: usize) -> Result<(), ModelError> {
+        if self.angle_deg.is_empty() {
+            return Err(ModelError::new(
+                format!("{prefix}.angle_deg"),
+                ModelErrorKind::Empty,
+            ));
+        }
+        for (j, &a) in self.angle_deg.iter().enumerate() {
+            check_range(|| format!("{prefix}.angle_deg[{j}]"), a, 0.0, 90.0)?;
+        }
+        check_increasing(
+            |j| format!("{prefix}.angle_deg[{j}]"),
+            self.angle_deg.iter().copied(),
+        )?;
+        if self.emissivity.len() != rows {
+            return Err(ModelError::new(
+                format!("{prefix}.emissivity"),
+                ModelErrorKind::Other(format!(
+                    "{} rows for {rows} wavelengths",
+                    self.emissivity.len()
+                )),
+            ));
+        }
+        for (i, row) in self.emissivity.iter().enumerate() {
+            if row.len() != self.angle_deg.len() {
+                return Err(ModelError::new(
+                    format!("{prefix}.emissivity[{i}]"),
+                    ModelErrorKind::Other(format!(
+                        "{} values for {} angles",
+                        row.len(),
+                        self.angle_deg.len()
+                    )),
+                ));
+            }
+            for (j, &e) in row.iter().enumerate() {
+                check_range(|| format!("{prefix}.emissivity[{i}][{j}]"), e, 0.0, 1.0)?;
+            }
+        }
+        Ok(())
     }
 }
 
@@ -263,5 +331,32 @@ mod tests {
     #[test]
     fn id_zero_is_reserved() {
         assert!(mat(0, "a", vec![(0.0, 0.9)]).validate("m").is_err());
+    }
+
+    #[test]
+    fn an_angular_grid_must_fit_its_curve_and_hold_emissivities() {
+        let with = |rows: Vec<Vec<f64>>| {
+            let mut m = mat(1, "a", vec![(0.0, 0.9), (90.0, 0.0)]);
+            m.spectral = Some(SpectralEmissivity {
+                wavelength_um: vec![8.0, 14.0],
+                emissivity: vec![0.9, 0.8],
+                angular: Some(SpectralAngular {
+                    angle_deg: vec![0.0, 90.0],
+                    emissivity: rows,
+                }),
+            });
+            m.validate("m")
+        };
+        assert!(with(vec![vec![0.9, 0.0], vec![0.8, 0.0]]).is_ok());
+        // A row short: the row named.
+        let e = with(vec![vec![0.9, 0.0], vec![0.8]]).unwrap_err();
+        assert_eq!(e.path, "m.spectral.angular.emissivity[1]");
+        // A row missing: the grid named.
+        let e = with(vec![vec![0.9, 0.0]]).unwrap_err();
+        assert_eq!(e.path, "m.spectral.angular.emissivity");
+        // A value above 1: its row and column.
+        let e = with(vec![vec![0.9, 0.0], vec![1.2, 0.0]]).unwrap_err();
+        assert_eq!(e.path, "m.spectral.angular.emissivity[1][0]");
+        assert!(matches!(e.kind, ModelErrorKind::OutOfRange { .. }));
     }
 }

@@ -156,6 +156,8 @@ pub fn run(args: &Args) -> miette::Result<()> {
             spectral: Some(SpectralEmissivity {
                 wavelength_um: first.wavelength_um.clone(),
                 emissivity: mean,
+                // DIRSIG's angular factors are one curve for every wavelength.
+                angular: None,
             }),
         });
     }

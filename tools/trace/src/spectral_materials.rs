@@ -1,6 +1,7 @@
 //! Spectral materials (`Material::spectral`): ε(λ) averaged over the band for the band
 //! model and over each sub-band for the spectral model, response- and Planck-weighted at
-//! the sub-bands' reference temperature, as the atmosphere's τ is collapsed. The angular
+//! the sub-bands' reference temperature, as the atmosphere's τ is collapsed. A material with
+//! ε(λ, θ) on a grid (`spectral.angular`) is averaged angle by angle; otherwise the angular
 //! table gives the shape: ε(λ, θ) = ε(λ) · ε_table(θ) / ε_table(0°), held to [0, 1].
 
 use irsig_model::{Material, MaterialLibrary};
@@ -82,6 +83,16 @@ fn averaged(
     let Some(s) = &m.spectral else {
         return EmissivityTable::new(angles, values);
     };
+    if let Some(a) = &s.angular {
+        // ε(λ, θ) on a grid: each angle's column averaged over the band.
+        let averaged = (0..a.angle_deg.len())
+            .map(|j| {
+                let column: Vec<f64> = a.emissivity.iter().map(|row| row[j]).collect();
+                band_average_emissivity(&s.wavelength_um, &column, band, WEIGHT_K)
+            })
+            .collect::<Result<Vec<f64>, _>>()?;
+        return EmissivityTable::new(a.angle_deg.clone(), averaged);
+    }
     let mean = band_average_emissivity(&s.wavelength_um, &s.emissivity, band, WEIGHT_K)?;
     let normal = values.first().copied().unwrap_or(1.0);
     let scaled = values
