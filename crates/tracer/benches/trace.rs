@@ -8,12 +8,12 @@
 use std::sync::OnceLock;
 
 use divan::counter::ItemsCount;
-use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
+use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene};
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
-    BENCH_EMISSIVITY, BareObvhs, EdgeExperiment, Mesh, PitExperiment, geometry_pass, ground_quad,
-    primary_directions, triangles, uv_sphere,
+    BENCH_EMISSIVITY, BareObvhs, EdgeExperiment, Mesh, PitExperiment, bench_camera, bench_scene,
+    geometry_pass, primary_directions, triangles,
 };
 use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 
@@ -21,18 +21,9 @@ fn main() {
     divan::main();
 }
 
-/// Sphere sizes: (rings, segments) → 1 024, 99 904 and 1 001 112 triangles.
-const SIZES: [(u32, u32); 3] = [(17, 32), (224, 224), (708, 708)];
-const IMAGE: [u32; 2] = [128, 128];
-
+/// The sphere over the ground, `i` 0/1/2: 1 024, 99 904 and 1 001 112 sphere triangles.
 fn mesh(i: usize) -> Mesh {
-    let (rings, segments) = SIZES[i];
-    let mut m = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
-    let g = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
-    let base = m.0.len() as u32;
-    m.0.extend(g.0);
-    m.1.extend(g.1.iter().map(|f| f.map(|v| v + base)));
-    m
+    bench_scene(i)
 }
 
 fn raw_scene(m: &Mesh) -> RawScene {
@@ -71,15 +62,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
 }
 
 fn camera() -> Camera {
-    Camera::from_view(&View::LookAt {
-        position_m: [30.0, -30.0, 25.0],
-        target_m: [0.0, 0.0, 10.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: IMAGE,
-        fov_deg: [50.0, 50.0],
-        gain_dc_per_k: None,
-    })
-    .unwrap()
+    bench_camera(128)
 }
 
 struct Prepared {
@@ -115,7 +98,7 @@ fn one_core<T: Send>(f: impl FnOnce() -> T + Send) -> T {
         .install(f)
 }
 
-const PIXELS: usize = (IMAGE[0] * IMAGE[1]) as usize;
+const PIXELS: usize = 128 * 128;
 
 #[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
 fn shaded_diffuse(bencher: divan::Bencher, i: usize) {

@@ -12,33 +12,15 @@
 
 use std::time::Instant;
 
-use irsig_model::View;
-use irsig_tracer::Camera;
-use irsig_tracer::testing::{BareObvhs, Mesh, ground_quad, uv_sphere};
+use irsig_tracer::testing::{BareObvhs, bench_camera, bench_scene};
 use obvhs::BvhBuildParams;
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let size: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(2);
     let rounds: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(3);
-    let (rings, segments) = [(17, 32), (224, 224), (708, 708)][size.min(2)];
-    let sphere = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
-    let ground = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
-    // One mesh: the sphere, then the ground's vertices after its own.
-    let offset = sphere.0.len() as u32;
-    let mut mesh: Mesh = sphere;
-    mesh.0.extend(&ground.0);
-    mesh.1
-        .extend(ground.1.iter().map(|t| t.map(|i| i + offset)));
-    let view = View::LookAt {
-        position_m: [30.0, -30.0, 25.0],
-        target_m: [0.0, 0.0, 10.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: [128, 128],
-        fov_deg: [50.0, 50.0],
-        gain_dc_per_k: None,
-    };
-    let camera = Camera::from_view(&view).expect("camera");
+    let mesh = bench_scene(size);
+    let camera = bench_camera(128);
     let presets: [(&str, BvhBuildParams); 5] = [
         ("fastest_build", BvhBuildParams::fastest_build()),
         (

@@ -20,13 +20,12 @@
 
 use std::time::Instant;
 
-use irsig_model::View;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::testing::{
-    BENCH_EMISSIVITY, BareObvhs, Mesh, geometry_pass, grey_materials, ground_quad,
-    primary_directions, raw_scene, uv_sphere,
+    BENCH_EMISSIVITY, BareObvhs, bench_camera, bench_ground, bench_scene, bench_sphere,
+    geometry_pass, grey_materials, primary_directions, raw_scene,
 };
-use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{TraceOptions, Tracer, Vacuum};
 
 const PIXELS: f64 = 128.0 * 128.0;
 
@@ -35,9 +34,7 @@ fn main() {
     let size: usize = args.get(1).and_then(|a| a.parse().ok()).unwrap_or(1);
     let renders: u32 = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(20);
     let mode = args.get(3).map_or("diffuse", String::as_str);
-    let (rings, segments) = [(17, 32), (224, 224), (708, 708)][size.min(2)];
-    let sphere = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
-    let ground = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
+    let (sphere, ground) = (bench_sphere(size), bench_ground());
     let scene = raw_scene(&[(&sphere, 1, 300.0), (&ground, 2, 290.0)]);
     let specular = if mode == "spec" { 1.0 } else { 0.0 };
     let mut materials = grey_materials(&[(1, 0.93, specular), (2, 0.95, 0.0)]);
@@ -50,15 +47,7 @@ fn main() {
         sky_radiance_w_m2_sr: 20.0,
     };
     let tracer = Tracer::new(&scene, &materials, TotalRadiance, sky).expect("valid scene");
-    let camera = Camera::from_view(&View::LookAt {
-        position_m: [30.0, -30.0, 25.0],
-        target_m: [0.0, 0.0, 10.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: [128, 128],
-        fov_deg: [50.0, 50.0],
-        gain_dc_per_k: None,
-    })
-    .expect("valid view");
+    let camera = bench_camera(128);
     let options = TraceOptions {
         sky_view_rays: if mode == "f16" { 16 } else { 0 },
         truth: mode != "radiance",
@@ -75,10 +64,7 @@ fn main() {
         frame.radiance_w_m2_sr.iter().sum::<f64>()
     };
     if mode == "bare" || mode == "compare" {
-        let bare = BareObvhs::new(
-            &sphere_and_ground(&sphere, &ground),
-            tracer.geometry().centre_m(),
-        );
+        let bare = BareObvhs::new(&bench_scene(size), tracer.geometry().centre_m());
         let rays = bare.primary_rays(&camera);
         if mode == "bare" {
             let start = Instant::now();
@@ -157,12 +143,4 @@ fn main() {
         "{:.1} ns per primary sample (checksum {checksum:.6e})",
         per * 1e9
     );
-}
-
-fn sphere_and_ground(sphere: &Mesh, ground: &Mesh) -> Mesh {
-    let mut m = sphere.clone();
-    let base = m.0.len() as u32;
-    m.0.extend(&ground.0);
-    m.1.extend(ground.1.iter().map(|f| f.map(|v| v + base)));
-    m
 }

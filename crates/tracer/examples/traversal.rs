@@ -19,10 +19,8 @@
 use std::io::Write;
 use std::time::Instant;
 
-use irsig_model::View;
-use irsig_tracer::Camera;
 use irsig_tracer::geometry::Geometry;
-use irsig_tracer::testing::{BareObvhs, Mesh, geometry_pass, ground_quad, triangles, uv_sphere};
+use irsig_tracer::testing::{BareObvhs, bench_camera, bench_scene, geometry_pass, triangles};
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
@@ -33,26 +31,11 @@ fn main() {
     let size: usize = args.get(2).and_then(|a| a.parse().ok()).unwrap_or(2);
     let pixels: u32 = args.get(3).and_then(|a| a.parse().ok()).unwrap_or(1024);
     let rounds: u32 = args.get(4).and_then(|a| a.parse().ok()).unwrap_or(5);
-    let (rings, segments) = [(17, 32), (224, 224), (708, 708)][size.min(2)];
-    let sphere = uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments);
-    let ground = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
-    let offset = sphere.0.len() as u32;
-    let mut mesh: Mesh = sphere;
-    mesh.0.extend(&ground.0);
-    mesh.1
-        .extend(ground.1.iter().map(|t| t.map(|i| i + offset)));
+    let mesh = bench_scene(size);
     let tris = triangles(&mesh);
     let geometry = Geometry::with_data(|i| tris[i], &vec![(); tris.len()]);
     let centre = geometry.centre_m();
-    let view = View::LookAt {
-        position_m: [30.0, -30.0, 25.0],
-        target_m: [0.0, 0.0, 10.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: [pixels, pixels],
-        fov_deg: [50.0, 50.0],
-        gain_dc_per_k: None,
-    };
-    let camera = Camera::from_view(&view).expect("camera");
+    let camera = bench_camera(pixels);
     let bare = BareObvhs::new(&mesh, centre);
     let scanline: Vec<(u32, u32)> = (0..pixels)
         .flat_map(|r| (0..pixels).map(move |c| (c, r)))

@@ -98,6 +98,49 @@ pub fn ground_quad(lo: [f64; 2], hi: [f64; 2], z: f64) -> Mesh {
     )
 }
 
+/// The benchmarks' scene ("the shade profile's"): a UV sphere of radius 10 m centred 12 m
+/// up over a 200 m ground quad. `size` 0, 1, 2 gives about 1k, 100k and 1M triangles.
+/// [`bench_sphere`] is the sphere alone, the ground the last two triangles of [`bench_scene`].
+#[must_use]
+pub fn bench_sphere(size: usize) -> Mesh {
+    let (rings, segments) = [(17, 32), (224, 224), (708, 708)][size.min(2)];
+    uv_sphere([0.0, 0.0, 12.0], 10.0, rings, segments)
+}
+
+/// The ground quad of [`bench_scene`].
+#[must_use]
+pub fn bench_ground() -> Mesh {
+    ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0)
+}
+
+/// [`bench_sphere`] and [`bench_ground`] as one mesh: the sphere, then the ground's
+/// vertices after its own.
+#[must_use]
+pub fn bench_scene(size: usize) -> Mesh {
+    let mut mesh = bench_sphere(size);
+    let ground = bench_ground();
+    let offset = mesh.0.len() as u32;
+    mesh.0.extend(&ground.0);
+    mesh.1
+        .extend(ground.1.iter().map(|t| t.map(|i| i + offset)));
+    mesh
+}
+
+/// The benchmarks' camera on [`bench_scene`]: from (30, −30, 25) m towards the sphere's
+/// centre, a 50° square field of `pixels` × `pixels`.
+#[must_use]
+pub fn bench_camera(pixels: u32) -> Camera {
+    Camera::from_view(&View::LookAt {
+        position_m: [30.0, -30.0, 25.0],
+        target_m: [0.0, 0.0, 10.0],
+        up: [0.0, 0.0, 1.0],
+        pixels: [pixels, pixels],
+        fov_deg: [50.0, 50.0],
+        gain_dc_per_k: None,
+    })
+    .expect("the bench view is valid")
+}
+
 /// The triangles of a mesh as vertex triples.
 #[must_use]
 pub fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {
