@@ -97,6 +97,12 @@ pub enum RasterError {
     /// Two layers share a name.
     #[error("duplicate layer `{0}`")]
     DuplicateLayer(String),
+    /// A layer's name or unit holds a character the units attribute cannot carry.
+    #[error(
+        "layer {0:?}: a name or unit with `=` (in a name) or a control character cannot be \
+         written to the units attribute (`name=unit` lines) and read back"
+    )]
+    BadLayerName(String),
     /// The image has no pixels or no layers.
     #[error("the image is empty: {0}")]
     Empty(String),
@@ -158,11 +164,14 @@ impl Raster {
         if self.layer(&name).is_some() {
             return Err(RasterError::DuplicateLayer(name));
         }
-        self.layers.push(Layer {
-            name,
-            unit: unit.into(),
-            data,
-        });
+        let unit = unit.into();
+        // The units attribute is `name=unit` lines: a name holding `=` or either holding a
+        // line break would read back as another layer's (the EXR fuzz target found a name
+        // with a newline that came back in another order, without its unit).
+        if name.contains('=') || name.chars().chain(unit.chars()).any(char::is_control) {
+            return Err(RasterError::BadLayerName(format!("{name}={unit}")));
+        }
+        self.layers.push(Layer { name, unit, data });
         Ok(())
     }
 

@@ -1,5 +1,7 @@
-//! An EXR cannot hold more samples than its bytes encode: a header's claim is checked
-//! against the file's size before a block is inflated into a buffer of the claimed size.
+//! What the EXR reader refuses before it trusts a file, found by the `exr_sensor` fuzz
+//! target: a header claiming more samples than the file's bytes encode (checked before a
+//! block is inflated into a buffer of the claimed size), and layer names the units
+//! attribute cannot carry.
 
 /// 1,192 bytes, found by the `exr_sensor` fuzz target: a ZIP16 scanline image whose data
 /// window claims 11,337,726 × 4 pixels of 12 f32 channels (2.2 GB of samples, inside the
@@ -32,4 +34,27 @@ fn a_real_compressed_frame_is_not_refused() {
     assert!(bytes.len() < 64 * 48 * 4 / 4, "{} bytes", bytes.len());
     let back = irsig_raster::read_exr(&bytes).unwrap();
     assert_eq!(back.width, 64);
+}
+
+#[test]
+fn a_layer_name_the_units_attribute_cannot_carry_is_refused() {
+    // The exr_sensor fuzz target found a channel named "em\nssivity": written, its units
+    // line split in two and the layer read back in another place without its unit.
+    let mut r = irsig_raster::Raster::new(2, 2);
+    for name in ["em\nssivity", "a=b", "tab\there"] {
+        let err = r.push_layer(name, "1", vec![0.0; 4]).unwrap_err();
+        assert!(err.to_string().contains("units attribute"), "{err}");
+    }
+    let err = r
+        .push_layer("radiance", "W\nm-2", vec![0.0; 4])
+        .unwrap_err();
+    assert!(err.to_string().contains("units attribute"), "{err}");
+    // The fuzz target's input itself is refused when read.
+    let found = include_bytes!("data/newline-in-channel-name.exr");
+    let err = irsig_raster::read_exr(found).unwrap_err();
+    assert!(err.to_string().contains("units attribute"), "{err}");
+    // Names with spaces, dots and non-ASCII letters are fine.
+    r.push_layer("apparent temperature.K", "K", vec![0.0; 4])
+        .unwrap();
+    r.push_layer("émissivité", "1", vec![0.0; 4]).unwrap();
 }
