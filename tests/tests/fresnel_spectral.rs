@@ -211,11 +211,7 @@ fn separable_table() {
     );
     println!("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |");
     for k in [1, 4, 16] {
-        let cells = if k == 4 {
-            measure(&material, &index, 4)
-        } else {
-            measure(&material, &index, k)
-        };
+        let cells = measure(&material, &index, k);
         for a in angles() {
             let w = worst(&cells, a);
             println!(

@@ -26,21 +26,20 @@ fn planck_per_um(wavelength_um: f64, t_k: f64) -> f64 {
     C1_W_M2_SR / (l.powi(5) * ((C2_M_K / (l * t_k)).exp() - 1.0)) * 1e-6
 }
 
-/// ∫ B dλ over 8–14 µm, W m⁻² sr⁻¹: composite Simpson, 6000 intervals (relative error far
-/// below 1e-9 for these temperatures).
-fn band_radiance(t_k: f64) -> f64 {
-    let n = 6000;
-    let h = 6.0 / f64::from(n);
-    let mut s = planck_per_um(8.0, t_k) + planck_per_um(14.0, t_k);
+/// ∫ f over [lo, hi] by composite Simpson with `n` (even) intervals.
+fn simpson(lo: f64, hi: f64, n: u32, f: impl Fn(f64) -> f64) -> f64 {
+    let h = (hi - lo) / f64::from(n);
+    let mut s = f(lo) + f(hi);
     for i in 1..n {
         let w = if i % 2 == 1 { 4.0 } else { 2.0 };
-        s += w * planck_per_um(8.0 + h * f64::from(i), t_k);
+        s += w * f(lo + h * f64::from(i));
     }
     s * h / 3.0
 }
 
-/// The apparent temperature of an 8–14 µm radiance, K, by bisection.
-fn apparent_k(radiance: f64) -> f64 {
+/// The temperature, K, whose radiance by `band_radiance` is `radiance`, by bisection over
+/// 150–400 K.
+fn invert(radiance: f64, band_radiance: impl Fn(f64) -> f64) -> f64 {
     let (mut lo, mut hi) = (150.0, 400.0);
     for _ in 0..80 {
         let mid = 0.5 * (lo + hi);
@@ -51,6 +50,17 @@ fn apparent_k(radiance: f64) -> f64 {
         }
     }
     0.5 * (lo + hi)
+}
+
+/// ∫ B dλ over 8–14 µm, W m⁻² sr⁻¹: composite Simpson, 6000 intervals (relative error far
+/// below 1e-9 for these temperatures).
+fn band_radiance(t_k: f64) -> f64 {
+    simpson(8.0, 14.0, 6000, |l| planck_per_um(l, t_k))
+}
+
+/// The apparent temperature of an 8–14 µm radiance, K.
+fn apparent_k(radiance: f64) -> f64 {
+    invert(radiance, band_radiance)
 }
 
 /// LOWTRAN7's own integral for the slant path of table node (`altitude`, `angle`) to a
@@ -631,16 +641,11 @@ fn a_spectral_material_is_averaged_per_sub_band_and_over_the_band() {
     // The band model: the band average over 8-14 µm, Planck-weighted at 300 K,
     // (0.5 ∫₈¹⁰ B + 0.9 ∫₁₀¹⁴ B) / ∫₈¹⁴ B by the test's own Simpson sums, traced as a grey
     // material of that emissivity gives the same radiance.
-    let simpson = |lo: f64, hi: f64| {
-        let n = 4000;
-        let h = (hi - lo) / f64::from(n);
-        let mut sum = planck_per_um(lo, 300.0) + planck_per_um(hi, 300.0);
-        for i in 1..n {
-            sum += if i % 2 == 1 { 4.0 } else { 2.0 } * planck_per_um(lo + h * f64::from(i), 300.0);
-        }
-        sum * h / 3.0
-    };
-    let (low, high) = (simpson(8.0, 10.0), simpson(10.0, 14.0));
+    let planck_300 = |l: f64| planck_per_um(l, 300.0);
+    let (low, high) = (
+        simpson(8.0, 10.0, 4000, planck_300),
+        simpson(10.0, 14.0, 4000, planck_300),
+    );
     let mean = (0.5 * low + 0.9 * high) / (low + high);
     // 300 K: 19.44 of the 54.93 W m-2 sr-1 lie below 10 um (a midpoint sum of 20 000
     // intervals, separately), so ε̄ = 0.5 + 0.4 · 35.49 / 54.93 = 0.7584.
@@ -817,31 +822,13 @@ fn response_band_radiance(t_k: f64) -> f64 {
     let corners = [8.0, 10.0, 1e4 / 900.0, 12.5, 14.0];
     corners
         .windows(2)
-        .map(|w| {
-            let n = 600;
-            let h = (w[1] - w[0]) / f64::from(n);
-            let f = |l: f64| response(l) * planck_per_um(l, t_k);
-            let mut s = f(w[0]) + f(w[1]);
-            for i in 1..n {
-                s += if i % 2 == 1 { 4.0 } else { 2.0 } * f(w[0] + h * f64::from(i));
-            }
-            s * h / 3.0
-        })
+        .map(|w| simpson(w[0], w[1], 600, |l| response(l) * planck_per_um(l, t_k)))
         .sum()
 }
 
-/// The apparent temperature of a radiance in the response's band, K, by bisection.
+/// The apparent temperature of a radiance in the response's band, K.
 fn response_apparent_k(radiance: f64) -> f64 {
-    let (mut lo, mut hi) = (150.0, 400.0);
-    for _ in 0..80 {
-        let mid = 0.5 * (lo + hi);
-        if response_band_radiance(mid) < radiance {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
+    invert(radiance, response_band_radiance)
 }
 
 #[test]
