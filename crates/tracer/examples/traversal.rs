@@ -33,7 +33,7 @@ fn main() {
     let rounds: u32 = args.get(4).and_then(|a| a.parse().ok()).unwrap_or(5);
     let mesh = bench_scene(size);
     let tris = triangles(&mesh);
-    let geometry = Geometry::with_data(|i| tris[i], &vec![(); tris.len()]);
+    let geometry = Geometry::new(&tris);
     let centre = geometry.centre_m();
     let camera = bench_camera(pixels);
     let bare = BareObvhs::new(&mesh, centre);

@@ -25,12 +25,14 @@
 //! geometric normal turned to face the incoming ray; [`Hit::back_face`] says when that
 //! needed a flip, so a tool can report inconsistent winding.
 
-use glam::Vec3A;
+use glam::{UVec2, Vec3A};
 use obvhs::{
     BvhBuildParams,
-    cwbvh::{CwBvh, builder::build_cwbvh_from_tris},
-    ray::{Ray, RayHit},
-    triangle::Triangle,
+    aabb::Aabb,
+    bvh2::reinsertion::ReinsertionOptimizer,
+    cwbvh::{CwBvh, Traversal, builder::build_cwbvh, bvh2_to_cwbvh::bvh2_to_cwbvh},
+    ploc::PlocBuilder,
+    ray::Ray,
 };
 use rayon::prelude::*;
 
@@ -39,6 +41,15 @@ use crate::vec::{V3, add, cross, dot, normalize, scale, sub};
 /// How far before the first admissible distance a ray handed to obvhs starts, in metres:
 /// twice the CWBVH's fixed 1e-4 entry clamp.
 pub const ORIGIN_BACKOFF_M: f64 = 2e-4;
+
+/// The most triangles one chunk of the BVH build holds (see [`Bvh`]).
+pub const CHUNK_TRIANGLES: usize = 1 << 14;
+
+/// obvhs's build preset for every chunk. BENCHMARKS.md, "what obvhs's build presets
+/// trade": at 1M triangles the very fast preset built in 0.62 s against the medium one's
+/// 0.81 s and its primary rays were faster too (212 against 235 ns); at 100k they were 6 %
+/// slower.
+const BUILD: BvhBuildParams = BvhBuildParams::very_fast_build();
 
 /// A closest hit, in world-relative f64 terms, with the caller's data for the facet hit.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -59,52 +70,389 @@ pub struct Hit<P = ()> {
     pub data: P,
 }
 
-/// Triangles in a CWBVH, re-centred, with each facet's f64 plane for refinement and the
+/// Triangles in obvhs BVHs, re-centred, with each facet's f64 plane for refinement and the
 /// caller's per-facet data `P` (the tracer keeps its radiometry there).
 #[derive(Debug)]
 pub struct Geometry<P = ()> {
     centre_m: V3,
-    bvh: CwBvh,
-    /// Per triangle, in BVH order (obvhs's `primitive_indices` applied): what the
-    /// traversal reads, then what a hit reads.
-    tris: Vec<FacetLines<P>>,
+    bvh: Bvh,
+    /// Per triangle, in BVH order (chunk after chunk, each in its BVH's primitive order):
+    /// what the traversal reads, then what a hit reads.
+    tris: Vec<FacetRecord<P>>,
     bounds_local: [V3; 2],
     /// `bounds_local` grown by a margin for f32 rounding: the box rays are clipped to.
     padded_bounds_local: [V3; 2],
     radius_m: f64,
+    /// How far past the nearest hit so far a ray's traversal goes on, metres: a few f32
+    /// roundings at the scene's size.
+    tie_slack: f32,
 }
 
-/// A triangle as the traversal callback reads it: its three f32 local vertices and its
-/// input facet index in one 64-byte, cache-line-aligned record, so a candidate costs one
-/// memory line (a separate BVH-order → facet table was a second random access per
-/// candidate, which showed at 1M triangles).
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
-struct BvhTriangle {
-    v: [Vec3A; 3],
-    facet: u32,
+/// The scene's BVH, built by obvhs in chunks: the triangles are split by centroid into
+/// spatially compact chunks of at most [`CHUNK_TRIANGLES`] (median splits across the
+/// longest axis), each chunk gets a CWBVH of its own (obvhs's PLOC, reinsertion and
+/// conversion, the chunks in parallel), and when there are several, a top-level CWBVH over
+/// the chunks' boxes, one chunk per leaf, which obvhs's traversal descends into (its
+/// `traverse!`, nested). A build whole held obvhs's binary BVH and conversion table for
+/// every triangle at once (208 bytes each, the frame's peak memory at 1M triangles), and
+/// its conversion ran on one thread; chunks hold that only for the chunks being built, and
+/// build faster on one thread too, because a chunk's build stays in cache. At 1M
+/// triangles rays were as fast or faster through the chunks (BENCHMARKS.md, "tracer: the
+/// BVH in chunks").
+#[derive(Debug)]
+struct Bvh {
+    /// One CWBVH per chunk; its `primitive_indices` are emptied once the records hold the
+    /// facets (a primitive id is the triangle's place in its chunk).
+    chunks: Vec<CwBvh>,
+    /// Where each chunk's triangles start in the records.
+    first: Vec<u32>,
+    /// Over the chunks' boxes, a chunk per leaf, when there are several chunks.
+    top: Option<CwBvh>,
 }
 
-/// A triangle's two cache lines, side by side: the first is all the traversal reads of a
-/// candidate; the second, the plane and data, only a hit reads. Separate normal, vertex
-/// and radiometry tables in input order cost three or four cache misses per hit at 1M
-/// triangles, where a miss is as dear as the rest of the shading; a separate table in BVH
-/// order still cost one. Side by side, the second line usually arrives with the first
-/// (the adjacent-line prefetcher fetches 128-byte-aligned pairs): at 1M triangles it
-/// measured a few per cent faster than a separate BVH-order table, never slower.
-#[derive(Debug, Clone, Copy)]
-#[repr(C, align(128))]
-struct FacetLines<P> {
-    tri: BvhTriangle,
-    rec: FacetRecord<P>,
+impl Bvh {
+    /// Builds the chunks' BVHs, of at most `chunk_max` triangles each, over the triangles
+    /// `triangle(i)` (local metres, f32) for `i` below `count`; returns it and the facet of
+    /// every record slot, in BVH order.
+    fn build(
+        count: usize,
+        triangle: &(impl Fn(usize) -> [Vec3A; 3] + Sync),
+        chunk_max: usize,
+    ) -> (Self, Vec<u32>) {
+        debug_assert!(count > 0, "the caller has checked that there is a triangle");
+        let boxes: Vec<Aabb> = (0..count)
+            .into_par_iter()
+            .map(|i| {
+                let [a, b, c] = triangle(i);
+                Aabb::new(a.min(b).min(c), a.max(b).max(c))
+            })
+            .collect();
+        let mut facets: Vec<u32> = (0..count as u32).collect();
+        let mut sizes = Vec::new();
+        partition(&boxes, &mut facets, chunk_max, &mut sizes);
+        let mut first = Vec::with_capacity(sizes.len());
+        let mut at = 0;
+        for len in sizes {
+            first.push(at as u32);
+            at += len;
+        }
+        let ranges: Vec<std::ops::Range<usize>> = first
+            .iter()
+            .zip(first.iter().skip(1).map(|&f| f as usize).chain([count]))
+            .map(|(&a, b)| a as usize..b)
+            .collect();
+        let mut chunks: Vec<CwBvh> = ranges
+            .par_iter()
+            .map(|r| chunk(&boxes, &facets[r.clone()]))
+            .collect();
+        drop(boxes);
+        drop(facets);
+        // The record slots in BVH order: each chunk's primitive order, as facets.
+        let mut order = Vec::with_capacity(count);
+        for c in &mut chunks {
+            order.extend(c.primitive_indices.iter().copied());
+            c.primitive_indices = Vec::new();
+        }
+        let top = (chunks.len() > 1).then(|| {
+            let boxes: Vec<Aabb> = chunks.iter().map(|c| c.total_aabb).collect();
+            build_cwbvh(
+                &boxes,
+                BvhBuildParams {
+                    max_prims_per_leaf: 1,
+                    ..BUILD
+                },
+                &mut std::time::Duration::default(),
+            )
+        });
+        (Self { chunks, first, top }, order)
+    }
+
+    /// Runs `f(ray, slot)` on every record slot whose triangle the ray may hit, nearest
+    /// boxes first; `f` returns the triangle's distance (+∞: missed), which shortens the ray
+    /// to that distance plus `slack`, so that a triangle at the same distance (a tie) in a
+    /// box the ray's rounding puts just beyond it is still tried.
+    #[inline(always)]
+    fn closest(&self, mut ray: Ray, slack: f32, mut f: impl FnMut(&Ray, usize) -> f32) {
+        // One traversal state for every chunk the ray enters (a new one zeroes its stack).
+        let mut inner = self.chunks[0].new_traversal(ray.direction);
+        let Some(top) = &self.top else {
+            self.chunk_closest(0, &mut inner, &mut ray, slack, &mut f);
+            return;
+        };
+        // The chunks the top level finds are visited nearest first, by where the ray
+        // enters each chunk's exact box: obvhs orders a node's children by octant, which
+        // for chunks' large, overlapping boxes often put a farther chunk first.
+        let mut pending = [(0.0_f32, 0_u32); PENDING];
+        let mut n = 0;
+        let mut state = top.new_traversal(ray.direction);
+        let mut node;
+        obvhs::traverse!(
+            top,
+            node,
+            state,
+            node.intersect_ray(&ray, state.oct_inv4),
+            {
+                let chunk = top.primitive_indices[state.primitive_id as usize];
+                pending[n] = (entry(&self.chunks[chunk as usize].total_aabb, &ray), chunk);
+                n += 1;
+                if n == PENDING {
+                    self.visit(&mut pending[..n], &mut inner, &mut ray, slack, &mut f);
+                    n = 0;
+                }
+            }
+        );
+        self.visit(&mut pending[..n], &mut inner, &mut ray, slack, &mut f);
+    }
+
+    /// Traverses the chunks `pending` (entry distance, chunk) nearest first, while they
+    /// start before the ray ends.
+    #[inline(always)]
+    fn visit(
+        &self,
+        pending: &mut [(f32, u32)],
+        inner: &mut Traversal,
+        ray: &mut Ray,
+        slack: f32,
+        f: &mut impl FnMut(&Ray, usize) -> f32,
+    ) {
+        pending.sort_unstable_by(|a, b| a.0.total_cmp(&b.0));
+        for &(entry, chunk) in pending.iter() {
+            if entry > ray.tmax {
+                break;
+            }
+            inner.reinit(ray.direction);
+            self.chunk_closest(chunk as usize, inner, ray, slack, f);
+        }
+    }
+
+    #[inline(always)]
+    fn chunk_closest(
+        &self,
+        chunk: usize,
+        state: &mut Traversal,
+        ray: &mut Ray,
+        slack: f32,
+        f: &mut impl FnMut(&Ray, usize) -> f32,
+    ) {
+        let bvh = &self.chunks[chunk];
+        let first = self.first[chunk] as usize;
+        let mut node;
+        obvhs::traverse!(bvh, node, state, node.intersect_ray(ray, state.oct_inv4), {
+            let t = f(ray, first + state.primitive_id as usize) + slack;
+            if t < ray.tmax {
+                ray.tmax = t;
+            }
+        });
+    }
+
+    /// True when `f(ray, slot)` is true for any record slot whose triangle the ray may hit;
+    /// stops at the first.
+    #[inline(always)]
+    fn any(&self, ray: &Ray, mut f: impl FnMut(&Ray, usize) -> bool) -> bool {
+        let mut inner = self.chunks[0].new_traversal(ray.direction);
+        let Some(top) = &self.top else {
+            return self.chunk_any(0, &mut inner, ray, &mut f);
+        };
+        let mut state = top.new_traversal(ray.direction);
+        let mut node;
+        let mut found = false;
+        'found: {
+            obvhs::traverse!(top, node, state, node.intersect_ray(ray, state.oct_inv4), {
+                let chunk = top.primitive_indices[state.primitive_id as usize] as usize;
+                inner.reinit(ray.direction);
+                if self.chunk_any(chunk, &mut inner, ray, &mut f) {
+                    found = true;
+                    break 'found;
+                }
+            });
+        }
+        found
+    }
+
+    #[inline(always)]
+    fn chunk_any(
+        &self,
+        chunk: usize,
+        state: &mut Traversal,
+        ray: &Ray,
+        f: &mut impl FnMut(&Ray, usize) -> bool,
+    ) -> bool {
+        let bvh = &self.chunks[chunk];
+        let first = self.first[chunk] as usize;
+        let mut node;
+        let mut found = false;
+        'found: {
+            obvhs::traverse!(bvh, node, state, node.intersect_ray(ray, state.oct_inv4), {
+                if f(ray, first + state.primitive_id as usize) {
+                    found = true;
+                    break 'found;
+                }
+            });
+        }
+        found
+    }
 }
 
-/// A facet's plane in local f64 coordinates, unit winding normal `n` and `offset = n·a` for
-/// any vertex `a` (a point `p` lies on it when `n·p = offset`), and the caller's data: one
-/// cache line for the 24-byte data of the tracer.
+/// How many chunks the top level gathers before visiting them nearest first.
+const PENDING: usize = 16;
+
+/// Where `ray` enters `aabb`, or 0 where that is not a number (a direction component of 0
+/// from an origin on one of the box's planes); never later than the true entry, to within
+/// rounding.
+#[inline(always)]
+fn entry(aabb: &Aabb, ray: &Ray) -> f32 {
+    let a = (aabb.min - ray.origin) * ray.inv_direction;
+    let b = (aabb.max - ray.origin) * ray.inv_direction;
+    let near = a.min(b);
+    let t = near.x.max(near.y).max(near.z);
+    if t.is_nan() { 0.0 } else { t }
+}
+
+/// Bins per axis of [`partition`]'s surface-area heuristic.
+const BINS: usize = 32;
+
+/// Per bin of each axis: how many centroids fall in it and their triangles' box.
+type Bins = [[(u32, Aabb); BINS]; 3];
+
+/// Orders `facets` into chunks of at most `max` triangles and appends their sizes to
+/// `sizes`, in order: a group larger than `max` is split in two at the plane that the
+/// surface-area heuristic prefers among [`BINS`] bins of its centroids per axis (the cost
+/// of the two halves, each its triangle count times its box's area), recursively, the two
+/// halves in parallel. A median split would bind far-apart triangles into one chunk (two
+/// ground triangles under an object gave every chunk they fell in the ground's box, and
+/// rays through a sphere over it 1.6 times the time); the heuristic gives large triangles
+/// chunks of their own. Deterministic: bins are counts and box unions, exact whatever
+/// order threads merge them in, so the chunks do not depend on the thread count.
+fn partition(boxes: &[Aabb], facets: &mut [u32], max: usize, sizes: &mut Vec<usize>) {
+    if facets.len() <= max {
+        sizes.push(facets.len());
+        return;
+    }
+    let centre = |f: u32| boxes[f as usize].center();
+    let (lo, hi) = facets
+        .par_iter()
+        .fold(
+            || (Vec3A::INFINITY, Vec3A::NEG_INFINITY),
+            |(lo, hi), &f| (lo.min(centre(f)), hi.max(centre(f))),
+        )
+        .reduce(
+            || (Vec3A::INFINITY, Vec3A::NEG_INFINITY),
+            |a, b| (a.0.min(b.0), a.1.max(b.1)),
+        );
+    let extent = hi - lo;
+    let scale = Vec3A::splat(BINS as f32) / extent;
+    let bin = |f: u32, axis: usize| {
+        // NaN (a flat axis) and anything past the last bin land in the last; a flat axis
+        // is never split.
+        (((centre(f)[axis] - lo[axis]) * scale[axis]) as usize).min(BINS - 1)
+    };
+    // Each block of facets binned in place (a fold would move the 3.5 kB of bins by value
+    // at every facet), then the blocks' bins merged.
+    let bins = facets
+        .par_chunks(1 << 14)
+        .map(|block| {
+            let mut bins: Box<Bins> = Box::new([[(0, Aabb::empty()); BINS]; 3]);
+            for &f in block {
+                for (axis, axis_bins) in bins.iter_mut().enumerate() {
+                    let b = &mut axis_bins[bin(f, axis)];
+                    b.0 += 1;
+                    b.1 = b.1.union(&boxes[f as usize]);
+                }
+            }
+            bins
+        })
+        .reduce_with(|mut a, b| {
+            for (x, y) in a.iter_mut().flatten().zip(b.iter().flatten()) {
+                x.0 += y.0;
+                x.1 = x.1.union(&y.1);
+            }
+            a
+        })
+        .unwrap_or_else(|| Box::new([[(0, Aabb::empty()); BINS]; 3]));
+    // The cheapest plane: (cost, axis, first bin of the right half).
+    let mut best = (f32::INFINITY, 0, 0);
+    for (axis, axis_bins) in bins.iter().enumerate() {
+        if extent[axis] <= 0.0 {
+            continue;
+        }
+        let mut right = [0.0_f32; BINS];
+        let mut acc = Aabb::empty();
+        for b in (1..BINS).rev() {
+            acc = acc.union(&axis_bins[b].1);
+            right[b] = acc.half_area();
+        }
+        let (mut acc, mut left_count) = (Aabb::empty(), 0);
+        for b in 1..BINS {
+            acc = acc.union(&axis_bins[b - 1].1);
+            left_count += axis_bins[b - 1].0 as usize;
+            let right_count = facets.len() - left_count;
+            if left_count == 0 || right_count == 0 {
+                continue;
+            }
+            let cost = acc.half_area() * left_count as f32 + right[b] * right_count as f32;
+            if cost < best.0 {
+                best = (cost, axis, b);
+            }
+        }
+    }
+    let mid = if best.0.is_finite() {
+        let (_, axis, first_right) = best;
+        let mut left = 0;
+        for k in 0..facets.len() {
+            if bin(facets[k], axis) < first_right {
+                facets.swap(left, k);
+                left += 1;
+            }
+        }
+        left
+    } else {
+        // Every centroid in one place: any halves will do.
+        facets.len() / 2
+    };
+    let (a, b) = facets.split_at_mut(mid);
+    let mut right_sizes = Vec::new();
+    rayon::join(
+        || partition(boxes, a, max, sizes),
+        || partition(boxes, b, max, &mut right_sizes),
+    );
+    sizes.extend(right_sizes);
+}
+
+/// One chunk's CWBVH over the triangles `facets` (their boxes in `boxes`), its primitive
+/// indices the facets.
+fn chunk(boxes: &[Aabb], facets: &[u32]) -> CwBvh {
+    let own: Vec<Aabb> = facets.iter().map(|&f| boxes[f as usize]).collect();
+    // obvhs numbers a build's primitives 0..n (its conversion looks them up by that number).
+    let mut bvh2 = PlocBuilder::with_capacity(own.len()).build(
+        BUILD.ploc_search_distance,
+        &own,
+        (0..own.len() as u32).collect(),
+        BUILD.sort_precision,
+        BUILD.search_depth_threshold,
+    );
+    drop(own);
+    ReinsertionOptimizer::default().run(&mut bvh2, BUILD.reinsertion_batch_ratio, None);
+    let mut bvh = bvh2_to_cwbvh(&bvh2, BUILD.max_prims_per_leaf.clamp(1, 3), true, false);
+    drop(bvh2);
+    // obvhs reserves a node per primitive; a chunk uses about a tenth of them.
+    bvh.nodes.shrink_to_fit();
+    for p in &mut bvh.primitive_indices {
+        *p = facets[*p as usize];
+    }
+    bvh
+}
+
+/// A triangle as the traversal and a hit read it: first its three f32 local vertices and
+/// its input facet index (all a candidate reads: 40 bytes), then its plane in local f64
+/// coordinates, unit winding normal `n` and `offset = n·a` for any vertex `a` (a point `p`
+/// lies on it when `n·p = offset`), and the caller's data, which only a hit reads. Side by
+/// side, so that a hit's plane usually arrives with its vertices: 96 bytes for the tracer's
+/// 24-byte data, where a 64-byte line of vertices and another of plane and data were 128.
 #[derive(Debug, Clone, Copy)]
-#[repr(C, align(64))]
+#[repr(C)]
 struct FacetRecord<P> {
+    v: [[f32; 3]; 3],
+    facet: u32,
     normal: V3,
     offset: f64,
     data: P,
@@ -151,12 +499,12 @@ impl Shear {
     #[inline(always)]
     fn intersect<const KX: usize, const KY: usize, const KZ: usize>(
         &self,
-        v: &[Vec3A; 3],
+        v: &[[f32; 3]; 3],
         tmin: f32,
         tmax: f32,
     ) -> f32 {
-        let shear = |p: Vec3A| {
-            let d = p - self.org;
+        let shear = |p: [f32; 3]| {
+            let d = Vec3A::from_array(p) - self.org;
             Vec3A::new(d[KX], d[KY], 0.0) - Vec3A::splat(d[KZ]) * self.s
         };
         let (a, b, c) = (shear(v[0]), shear(v[1]), shear(v[2]));
@@ -213,72 +561,78 @@ impl Geometry {
     /// and that no triangle is degenerate.
     #[must_use]
     pub fn new(triangles: &[[V3; 3]]) -> Self {
-        Self::with_data(|i| triangles[i], &vec![(); triangles.len()])
+        Self::with_data(triangles.len(), |i| triangles[i], |_| ())
     }
 }
 
 impl<P: Copy + Send + Sync> Geometry<P> {
     /// Builds the BVH over the triangles `triangle(i)` (world metres, f64) for `i` below
-    /// `data.len()`, attaching `data[i]` to facet `i` (each [`Hit`] carries a copy). The
-    /// triangles are read through a function, twice, rather than from a slice, so that a
-    /// caller holding them as indexed vertices (a raw scene) need not make a 72-byte copy of
-    /// every facet that would live through the BVH build, the peak of a frame's memory. The
-    /// caller has checked that there is at least one triangle, that every number is
-    /// finite and that no triangle is degenerate.
+    /// `count`, attaching `data(i)` to facet `i` (each [`Hit`] carries a copy). Both are
+    /// read through functions rather than slices, so that a caller holding its triangles as
+    /// indexed vertices (a raw scene) makes no copy of every facet that would live through
+    /// the build. The caller has checked that there is at least one triangle, that every
+    /// number is finite and that no triangle is degenerate.
     #[must_use]
-    pub fn with_data(triangle: impl Fn(usize) -> [V3; 3] + Sync, data: &[P]) -> Self {
-        let count = data.len();
-        let mut lo = [f64::INFINITY; 3];
-        let mut hi = [f64::NEG_INFINITY; 3];
-        for t in (0..count).map(&triangle) {
-            for p in t {
-                for k in 0..3 {
-                    lo[k] = lo[k].min(p[k]);
-                    hi[k] = hi[k].max(p[k]);
-                }
-            }
-        }
-        let centre_m = scale(add(lo, hi), 0.5);
-        let to32 = |p: V3| Vec3A::new(p[0] as f32, p[1] as f32, p[2] as f32);
-        let obvhs_tris: Vec<Triangle> = (0..count)
+    pub fn with_data(
+        count: usize,
+        triangle: impl Fn(usize) -> [V3; 3] + Sync,
+        data: impl Fn(usize) -> P + Sync,
+    ) -> Self {
+        Self::with_chunks(count, triangle, data, CHUNK_TRIANGLES)
+    }
+
+    /// [`Self::with_data`] with chunks of at most `chunk_max` triangles (`usize::MAX`: one
+    /// BVH over every triangle), for measuring what the chunk size trades.
+    #[must_use]
+    pub fn with_chunks(
+        count: usize,
+        triangle: impl Fn(usize) -> [V3; 3] + Sync,
+        data: impl Fn(usize) -> P + Sync,
+        chunk_max: usize,
+    ) -> Self {
+        // Exact whatever the order of the reduction: the same box at any thread count.
+        let (lo, hi) = (0..count)
             .into_par_iter()
             .map(|i| {
-                let [a, b, c] = triangle(i).map(|p| to32(sub(p, centre_m)));
-                Triangle {
-                    v0: a,
-                    v1: b,
-                    v2: c,
+                let [a, b, c] = triangle(i);
+                let mut lo = a;
+                let mut hi = a;
+                for p in [b, c] {
+                    for k in 0..3 {
+                        lo[k] = lo[k].min(p[k]);
+                        hi[k] = hi[k].max(p[k]);
+                    }
                 }
+                (lo, hi)
             })
-            .collect();
-        let bvh = build_cwbvh_from_tris(
-            &obvhs_tris,
-            // BENCHMARKS.md, "what obvhs's build presets trade": at 1M triangles the
-            // very fast preset builds in 0.62 s against the medium one's 0.81 s and its
-            // primary rays are faster too (212 against 235 ns); at 100k they are 6 % slower.
-            BvhBuildParams::very_fast_build(),
-            &mut std::time::Duration::default(),
+            .reduce(
+                || ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                |(a_lo, a_hi), (b_lo, b_hi)| {
+                    (
+                        std::array::from_fn(|k| a_lo[k].min(b_lo[k])),
+                        std::array::from_fn(|k| a_hi[k].max(b_hi[k])),
+                    )
+                },
+            );
+        let centre_m = scale(add(lo, hi), 0.5);
+        let to32 = |p: V3| [p[0] as f32, p[1] as f32, p[2] as f32];
+        let local = |i: usize| triangle(i).map(|p| sub(p, centre_m));
+        let (bvh, order) = Bvh::build(
+            count,
+            &|i| local(i).map(|p| Vec3A::from_array(to32(p))),
+            chunk_max,
         );
-        // The build's f32 triangles go before the 128-byte records are made, which
-        // round the same f64 vertices again (the same bits): both at once were 48 MB more
-        // at 1M triangles, at a moment of the frame's peak memory.
-        drop(obvhs_tris);
-        let tris = bvh
-            .primitive_indices
+        let tris = order
             .par_iter()
             .map(|&i| {
-                let [a, b, c] = triangle(i as usize).map(|p| sub(p, centre_m));
+                let [a, b, c] = local(i as usize);
                 let normal = normalize(cross(sub(b, a), sub(c, a)));
-                FacetLines {
-                    tri: BvhTriangle {
-                        v: [to32(a), to32(b), to32(c)],
-                        facet: i,
-                    },
-                    rec: FacetRecord {
-                        normal,
-                        offset: dot(normal, a),
-                        data: data[i as usize],
-                    },
+                FacetRecord {
+                    v: [to32(a), to32(b), to32(c)],
+                    facet: i,
+                    normal,
+                    offset: dot(normal, a),
+                    data: data(i as usize),
                 }
             })
             .collect();
@@ -292,6 +646,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             bounds_local,
             padded_bounds_local: [sub(bounds_local[0], pad), add(bounds_local[1], pad)],
             radius_m,
+            tie_slack: (1e-6 * radius_m) as f32,
         }
     }
 
@@ -403,13 +758,14 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         exclude: u32,
     ) -> (f32, u32, usize) {
         let shear = Shear::new::<KX, KY, KZ>(ray.origin, ray.direction);
-        let mut hit = RayHit::none();
-        // Ties (a ray through an edge shared by two facets) go to the lower facet index, so
-        // the answer does not depend on the BVH's layout or traversal order.
+        // Ties (a ray through an edge shared by two facets, or two facets in one plane) go
+        // to the lower facet index, so the answer does not depend on the BVH's layout or
+        // traversal order: the traversal goes on a little past the best distance so far
+        // (the slack of f32 rounding at the scene's size), so that no box is passed over
+        // for its rounding.
         let mut best = (f32::INFINITY, u32::MAX, 0);
-        self.bvh.ray_traverse(ray, &mut hit, |r, id| {
-            // `id` is in BVH order; `tris` is stored in that order.
-            let tri = &self.tris[id].tri;
+        self.bvh.closest(ray, self.tie_slack, |r, id| {
+            let tri = &self.tris[id];
             let facet = tri.facet;
             if facet == exclude {
                 return f32::INFINITY;
@@ -421,6 +777,12 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             t
         });
         best
+    }
+
+    /// How many chunks the BVH was built in.
+    #[must_use]
+    pub fn chunks(&self) -> usize {
+        self.bvh.chunks.len()
     }
 
     /// True when any facet lies along the ray with `t_min < t < t_max`, skipping
@@ -451,12 +813,9 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         exclude: u32,
     ) -> bool {
         let shear = Shear::new::<KX, KY, KZ>(ray.origin, ray.direction);
-        !self.bvh.ray_traverse_miss(ray, |_, id| {
-            let tri = &self.tris[id].tri;
-            if tri.facet == exclude {
-                return f32::INFINITY;
-            }
-            shear.intersect::<KX, KY, KZ>(&tri.v, tmin, tmax)
+        self.bvh.any(&ray, |_, id| {
+            let tri = &self.tris[id];
+            tri.facet != exclude && shear.intersect::<KX, KY, KZ>(&tri.v, tmin, tmax) < tmax
         })
     }
 
@@ -466,7 +825,8 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             normal: n,
             offset,
             data,
-        } = self.tris[slot].rec;
+            ..
+        } = self.tris[slot];
         let dn = dot(dir, n);
         // The f64 plane distance, unless the ray runs so close to parallel to the plane
         // that it is worse conditioned than the f32 distance from the watertight test.
@@ -584,6 +944,49 @@ mod tests {
             }
         }
         assert_eq!(leaks, 0, "rays leaked through the box's shared edges");
+    }
+
+    #[test]
+    fn chunks_find_the_hits_one_bvh_finds() {
+        // A sphere over two ground triangles far larger than its facets, and a box: chunks
+        // of 16 triangles make hundreds, more than a ray gathers before it visits them.
+        let sphere = uv_sphere([0.0, 0.0, 3.0], 2.0, 24, 48);
+        let mut t = tris(&sphere);
+        t.extend(tris(&box_mesh([3.0, -1.0, 0.0], [4.0, 1.0, 2.5])));
+        t.push([[-50.0, -50.0, 0.0], [50.0, -50.0, 0.0], [50.0, 50.0, 0.0]]);
+        t.push([[-50.0, -50.0, 0.0], [50.0, 50.0, 0.0], [-50.0, 50.0, 0.0]]);
+        let whole = Geometry::with_chunks(t.len(), |i| t[i], |i| i, usize::MAX);
+        let chunked = Geometry::with_chunks(t.len(), |i| t[i], |i| i, 16);
+        assert_eq!(whole.bvh.chunks.len(), 1);
+        assert!(
+            chunked.bvh.chunks.len() > 2 * PENDING,
+            "{}",
+            chunked.bvh.chunks.len()
+        );
+        assert_eq!(chunked.bvh.first.len(), chunked.bvh.chunks.len());
+        let mut hits = 0;
+        for origin in [
+            [12.0, -9.0, 7.0],
+            [0.0, 0.0, 3.0],
+            [-6.0, 1.0, 0.5],
+            [3.5, 0.0, 1.0],
+        ] {
+            for d in directions(2000) {
+                let o = whole.to_local(origin);
+                let a = whole.closest_hit(o, d, 0.0, f64::INFINITY, None);
+                let b = chunked.closest_hit(o, d, 0.0, f64::INFINITY, None);
+                assert_eq!(a, b, "from {origin:?} along {d:?}");
+                hits += usize::from(a.is_some());
+                for t_max in [1.0, 4.0, 30.0] {
+                    assert_eq!(
+                        whole.occluded(o, d, 0.0, t_max, None),
+                        chunked.occluded(o, d, 0.0, t_max, None),
+                        "from {origin:?} along {d:?} to {t_max}"
+                    );
+                }
+            }
+        }
+        assert!(hits > 4000, "{hits} hits");
     }
 
     #[test]

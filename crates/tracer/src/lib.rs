@@ -81,6 +81,6 @@ pub use path_table::{
 pub use tile::{Tile, TileError};
 pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, TraceOptions, Tracer,
-    TruthPixel,
+    TruthPixel, inverse_table,
 };
 pub use vec::V3;

@@ -141,6 +141,58 @@ pub fn bench_camera(pixels: u32) -> Camera {
     .expect("the bench view is valid")
 }
 
+/// The terrain and box of `scripts/bench/thrend-scene.py` (the side-by-side with ThRend):
+/// 2 × 707² = 999,698 triangles of a bumpy 800 m square (heights 5 m ± 4.5 m), and a
+/// 40 × 40 × 30 m box standing on the ground beneath it, its 12 triangles after the
+/// terrain's.
+#[must_use]
+pub fn bench_terrain() -> Mesh {
+    const N: u32 = 707;
+    const SIDE_M: f64 = 800.0;
+    let height = |x: f64, y: f64| {
+        5.0 + 3.0 * (x / 23.0).sin() * (y / 17.0).cos() + 1.5 * ((x + y) / 7.0).sin()
+    };
+    let step = SIDE_M / f64::from(N);
+    let mut v = Vec::with_capacity(((N + 1) * (N + 1)) as usize);
+    for i in 0..=N {
+        let y = -SIDE_M / 2.0 + f64::from(i) * step;
+        for j in 0..=N {
+            let x = -SIDE_M / 2.0 + f64::from(j) * step;
+            v.push([x, y, height(x, y)]);
+        }
+    }
+    let mut t = Vec::with_capacity((2 * N * N) as usize);
+    for i in 0..N {
+        for j in 0..N {
+            let a = i * (N + 1) + j;
+            let (b, c, d) = (a + 1, a + N + 2, a + N + 1);
+            t.push([a, b, c]);
+            t.push([a, c, d]);
+        }
+    }
+    let mut mesh = (v, t);
+    let cube = box_mesh([30.0, -20.0, 0.0], [70.0, 20.0, 30.0]);
+    let offset = mesh.0.len() as u32;
+    mesh.0.extend(&cube.0);
+    mesh.1.extend(cube.1.iter().map(|f| f.map(|i| i + offset)));
+    mesh
+}
+
+/// The camera of `scripts/bench/thrend-scene.py` on [`bench_terrain`]: from (−300, 0, 40) m
+/// towards (150, 0, −40) m, a 40° square field of `pixels` × `pixels`.
+#[must_use]
+pub fn bench_terrain_camera(pixels: u32) -> Camera {
+    Camera::from_view(&View::LookAt {
+        position_m: [-300.0, 0.0, 40.0],
+        target_m: [150.0, 0.0, -40.0],
+        up: [0.0, 0.0, 1.0],
+        pixels: [pixels, pixels],
+        fov_deg: [40.0, 40.0],
+        gain_dc_per_k: None,
+    })
+    .expect("the bench view is valid")
+}
+
 /// The triangles of a mesh as vertex triples.
 #[must_use]
 pub fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {

@@ -607,6 +607,14 @@ pub struct Tracer<B, A> {
 /// scenes and of the clear sky in the thermal infrared.
 pub const INVERSE_TABLE_K: [f64; 2] = [150.0, 500.0];
 
+/// The inverse table of `band` over the radiances of [`INVERSE_TABLE_K`]: what
+/// [`Tracer::inverse_table`] gives, for a tool that has let its tracer go.
+#[must_use]
+pub fn inverse_table<B: BandModel>(band: &B) -> InverseTable<'_, B> {
+    let [lo, hi] = INVERSE_TABLE_K.map(|t| band.radiance(t));
+    InverseTable::new(band, &[lo, hi])
+}
+
 /// Per-ray state shared by the events.
 pub(crate) struct Ctx<'a> {
     pub(crate) options: &'a TraceOptions,
@@ -731,22 +739,21 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             });
         }
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets
-        // usually share one), so K sub-bands cost K small tables, not K × facets.
+        // usually share one), so K sub-bands cost K small tables, not K × facets; the
+        // records' L_T is read from the first sub-band's.
         let mut temperatures: Vec<f64> = Vec::new();
         let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
         let mut last: Option<(u64, u32)> = None;
-        let mut facets = Vec::with_capacity(scene.facets.len());
-        let first = &sub_bands[0].band;
+        let mut temperature_index = Vec::with_capacity(scene.facets.len());
         for (i, f) in scene.facets.iter().enumerate() {
-            let slot = slot_of[usize::from(f.material.0)];
-            if slot == u16::MAX {
+            if slot_of[usize::from(f.material.0)] == u16::MAX {
                 return Err(TraceError::new(TraceErrorKind::UnknownMaterial {
                     facet: i,
                     material: f.material.0,
                 }));
             }
             let bits = f.temperature_k.to_bits();
-            let temperature_index = match last {
+            temperature_index.push(match last {
                 Some((b, index)) if b == bits => index,
                 _ => {
                     let index = *index_of.entry(bits).or_insert_with(|| {
@@ -756,22 +763,30 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     last = Some((bits, index));
                     index
                 }
-            };
-            facets.push(FacetRadiometry {
-                material: slot,
-                temperature_index,
-                temperature_k: f.temperature_k,
-                blackbody: first.radiance(f.temperature_k),
             });
         }
+        drop(index_of);
+        let first = &sub_bands[0].band;
+        let blackbody: Vec<f64> = temperatures.iter().map(|&t| first.radiance(t)).collect();
+        let radiometry = |i: usize| {
+            let t = temperature_index[i] as usize;
+            FacetRadiometry {
+                material: slot_of[usize::from(scene.facets[i].material.0)],
+                temperature_index: t as u32,
+                temperature_k: temperatures[t],
+                blackbody: blackbody[t],
+            }
+        };
         // Indices were checked by validate().
         let triangle = |i: usize| {
             scene.facets[i]
                 .vertices
                 .map(|v| scene.positions_m[v as usize])
         };
+        let geometry = Geometry::with_data(scene.facets.len(), triangle, radiometry);
+        drop(temperature_index);
         let mut tracer = Self {
-            geometry: Geometry::with_data(triangle, &facets),
+            geometry,
             materials: mats,
             terrain: scene.terrain,
             band,
@@ -952,8 +967,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// differ. Radiances outside the span are solved cold, to the same precision.
     #[must_use]
     pub fn inverse_table(&self) -> InverseTable<'_, B> {
-        let [lo, hi] = INVERSE_TABLE_K.map(|t| self.band.radiance(t));
-        InverseTable::new(&self.band, &[lo, hi])
+        inverse_table(&self.band)
     }
 
     /// Renders every pixel of `camera`'s image, rows in parallel (rayon): the whole image as
