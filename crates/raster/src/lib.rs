@@ -281,27 +281,30 @@ const RUN_ATTRIBUTE: &str = "irsig.run";
 /// # Errors
 /// An empty or inconsistent raster, or an I/O error.
 pub fn write_exr(out: &mut (impl Write + Seek), raster: &Raster) -> Result<(), RasterError> {
-    write_exr_threads(out, raster, true)
+    write_exr_threads(out, raster.clone(), true)
 }
 
 /// [`write_exr`], its blocks compressed on exr's own threads (`parallel`) or on this one:
-/// the bytes are the same either way (a test holds it).
+/// the bytes are the same either way (a test holds it). Takes the raster, whose layers
+/// become the image's channels without a copy.
 fn write_exr_threads(
     out: &mut (impl Write + Seek),
-    raster: &Raster,
+    raster: Raster,
     parallel: bool,
 ) -> Result<(), RasterError> {
     raster.check()?;
-    let channels: x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> = raster
-        .layers
-        .iter()
-        .map(|l| x::AnyChannel::new(l.name.as_str(), x::FlatSamples::F32(l.data.clone())))
-        .collect();
     let mut attributes = x::LayerAttributes::named("irsig");
     let units: String = raster
         .layers
         .iter()
         .map(|l| format!("{}={}\n", l.name, l.unit))
+        .collect();
+    let (width, height) = (raster.width, raster.height);
+    let part = raster.part;
+    let channels: x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> = raster
+        .layers
+        .into_iter()
+        .map(|l| x::AnyChannel::new(l.name.as_str(), x::FlatSamples::F32(l.data)))
         .collect();
     attributes.other.insert(
         x::Text::from(UNITS_ATTRIBUTE),
@@ -312,11 +315,9 @@ fn write_exr_threads(
         blocks: x::Blocks::ScanLines,
         line_order: x::LineOrder::Increasing,
     };
-    let mut image_attributes = x::ImageAttributes::new(x::IntegerBounds::from_dimensions((
-        raster.width,
-        raster.height,
-    )));
-    if let Some(p) = &raster.part {
+    let mut image_attributes =
+        x::ImageAttributes::new(x::IntegerBounds::from_dimensions((width, height)));
+    if let Some(p) = &part {
         // Checked by `check`: every coordinate fits an i32.
         let at = |v: usize| i32::try_from(v).unwrap_or(i32::MAX);
         attributes.layer_position = x::Vec2(at(p.x), at(p.y));
@@ -330,7 +331,7 @@ fn write_exr_threads(
         );
     }
     let layer = x::Layer::new(
-        (raster.width, raster.height),
+        (width, height),
         attributes,
         encoding,
         x::AnyChannels::sort(channels),
@@ -352,8 +353,17 @@ fn write_exr_threads(
 /// # Errors
 /// As [`write_exr`].
 pub fn exr_bytes(raster: &Raster) -> Result<Vec<u8>, RasterError> {
+    into_exr_bytes(raster.clone())
+}
+
+/// [`exr_bytes`] of a raster no longer needed: its layers are encoded where they lie, not
+/// copied first (a frame's truth layers are 48 bytes a pixel).
+///
+/// # Errors
+/// As [`write_exr`].
+pub fn into_exr_bytes(raster: Raster) -> Result<Vec<u8>, RasterError> {
     let mut bytes = Vec::new();
-    write_exr(&mut Cursor::new(&mut bytes), raster)?;
+    write_exr_threads(&mut Cursor::new(&mut bytes), raster, true)?;
     Ok(bytes)
 }
 
@@ -787,7 +797,8 @@ mod tests {
         }
         let write = |parallel| {
             let mut bytes = Vec::new();
-            super::write_exr_threads(&mut std::io::Cursor::new(&mut bytes), &r, parallel).unwrap();
+            super::write_exr_threads(&mut std::io::Cursor::new(&mut bytes), r.clone(), parallel)
+                .unwrap();
             bytes
         };
         let one = write(false);

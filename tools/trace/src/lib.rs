@@ -47,7 +47,7 @@ use irsig_model::truth::Layer;
 use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{LengthUnit, MaterialLibrary, RawScene, SpectralAtmosphere, View};
 use irsig_radiometry::{Band, BandModel, TotalRadiance, spectral_radiance_per_um};
-use irsig_raster::{FramePart, Raster, counts_png, exr_bytes, write_png_gray8};
+use irsig_raster::{FramePart, Raster, counts_png, into_exr_bytes, write_png_gray8};
 use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{
     Atmosphere, Camera, Frame, PathTermsMode, SubBand, Tile, TraceOptions, Tracer, Vacuum,
@@ -1506,38 +1506,36 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             y: tile.y as usize,
             run: frame_run(run, &views[i], &settings),
         };
-        let radiance = frame.radiance_f32();
-        let (w, h) = (frame.width as usize, frame.height as usize);
-        if let Some(path) = out.radiance_exr {
-            let mut r = Raster::new(w, h).with_part(part.clone());
-            push(&mut r, Layer::Radiance, radiance.clone())?;
-            staged.stage(&path, &exr_bytes(&r).into_diagnostic()?)?;
+        let radiometry = FrameRadiometry {
+            band: tracer.band().clone(),
+            sub_bands: tracer.sub_bands(),
+            view_gain: views.get(i).and_then(View::gain_dc_per_k),
+        };
+        if i + 1 == cameras.len() {
+            // The last frame's outputs need the band, not the scene: the BVH and the facet
+            // records (about 100 bytes a facet) go before the outputs are made, which hold
+            // the frame's layers and encoded files (the frame's peak memory was there).
+            drop(tracer);
+            write_frame(
+                cli,
+                &radiometry,
+                frame,
+                out,
+                &part,
+                budget.as_ref(),
+                &mut staged,
+            )?;
+            break;
         }
-        if let Some(path) = out.truth_exr {
-            let r = truth_raster(&tracer, &frame, budget.as_ref())?.with_part(part.clone());
-            staged.stage(&path, &exr_bytes(&r).into_diagnostic()?)?;
-        }
-        if let Some(path) = out.map_png {
-            staged.stage(&path, &interaction_map(&frame)?)?;
-        }
-        if out.dc_png.is_some() || out.lut.is_some() {
-            let view_gain = views.get(i).and_then(View::gain_dc_per_k);
-            let q = cli
-                .dc
-                .tracer_quantiser(view_gain, &radiance, tracer.band())?;
-            if let Some(path) = out.dc_png {
-                let counts = q
-                    .quantise(&radiance, w)
-                    .map_err(|e| miette!("digital counts: {e}"))?;
-                staged.stage(
-                    &path,
-                    &counts_png(&counts, w, h, cli.dc.dc_bits).into_diagnostic()?,
-                )?;
-            }
-            if let Some(path) = out.lut {
-                staged.stage(&path, &q.lut(tracer.band()).to_string().into_bytes())?;
-            }
-        }
+        write_frame(
+            cli,
+            &radiometry,
+            frame,
+            out,
+            &part,
+            budget.as_ref(),
+            &mut staged,
+        )?;
     }
     bar.finish_and_clear();
     if !map_fits && cli.output.is_some() && cli.tile.is_none() {
@@ -1548,6 +1546,62 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
         );
     }
     staged.commit()
+}
+
+/// What a frame's outputs need besides its pixels: the band its radiances are in, how many
+/// sub-bands they were summed over, and the view's gain (DC/K) if it has one.
+struct FrameRadiometry<R> {
+    band: R,
+    sub_bands: usize,
+    view_gain: Option<f64>,
+}
+
+/// Encodes and stages the files `out` names of one traced frame (or tile). The truth EXR
+/// comes last: its layers are made from the frame's per-pixel records, which are dropped
+/// before the layers are encoded.
+fn write_frame<R: BandModel>(
+    cli: &Cli,
+    radiometry: &FrameRadiometry<R>,
+    mut frame: Frame,
+    out: Outputs,
+    part: &FramePart,
+    budget: Option<&Budget<'_>>,
+    staged: &mut irsig_cli::Staged,
+) -> miette::Result<()> {
+    let radiance = frame.radiance_f32();
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    if let Some(path) = out.map_png {
+        staged.stage(&path, &interaction_map(&frame)?)?;
+    }
+    if out.dc_png.is_some() || out.lut.is_some() {
+        let band = &radiometry.band;
+        let q = cli
+            .dc
+            .tracer_quantiser(radiometry.view_gain, &radiance, band)?;
+        if let Some(path) = out.dc_png {
+            let counts = q
+                .quantise(&radiance, w)
+                .map_err(|e| miette!("digital counts: {e}"))?;
+            staged.stage(
+                &path,
+                &counts_png(&counts, w, h, cli.dc.dc_bits).into_diagnostic()?,
+            )?;
+        }
+        if let Some(path) = out.lut {
+            staged.stage(&path, &q.lut(band).to_string().into_bytes())?;
+        }
+    }
+    if let Some(path) = out.radiance_exr {
+        let mut r = Raster::new(w, h).with_part(part.clone());
+        push(&mut r, Layer::Radiance, radiance)?;
+        staged.stage(&path, &into_exr_bytes(r).into_diagnostic()?)?;
+    }
+    if let Some(path) = out.truth_exr {
+        let r = truth_raster(radiometry, &frame, budget)?.with_part(part.clone());
+        frame.truth = Vec::new();
+        staged.stage(&path, &into_exr_bytes(r).into_diagnostic()?)?;
+    }
+    Ok(())
 }
 
 /// `path` with its `suffix` replaced by `with` (`f.0001.radiance.exr` → `f.0001.decision.ron`).
@@ -1581,14 +1635,14 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
 /// The truth layers (`irsig_model::truth::Layer::TRUTH`, in order): the terms of each
 /// pixel's centre ray, and the apparent temperature of its radiance. NaN where a term does
 /// not apply (no facet hit).
-fn truth_raster<R: BandModel, A: Atmosphere>(
-    tracer: &Tracer<R, A>,
+fn truth_raster<R: BandModel>(
+    radiometry: &FrameRadiometry<R>,
     frame: &Frame,
     budget: Option<&Budget<'_>>,
 ) -> miette::Result<Raster> {
     let mut r = Raster::new(frame.width as usize, frame.height as usize);
     // The tracer's table, the same for a frame and its tiles.
-    let inverse = tracer.inverse_table();
+    let inverse = irsig_tracer::inverse_table(&radiometry.band);
     let apparent: Vec<f64> = frame
         .radiance_w_m2_sr
         .par_iter()
@@ -1600,13 +1654,15 @@ fn truth_raster<R: BandModel, A: Atmosphere>(
             None if layer == Layer::ApparentTemperature => {
                 apparent.iter().map(|&t| t as f32).collect()
             }
-            None if layer == Layer::SubBands => vec![tracer.sub_bands() as f32; apparent.len()],
+            None if layer == Layer::SubBands => {
+                vec![radiometry.sub_bands as f32; apparent.len()]
+            }
             None => return Err(miette!("the frame holds no `{layer}` layer")),
         };
         push(&mut r, layer, data)?;
     }
     if let Some(budget) = budget {
-        for (layer, data) in budget.layers(tracer.band(), frame, &apparent) {
+        for (layer, data) in budget.layers(&radiometry.band, frame, &apparent) {
             push(&mut r, layer, data)?;
         }
     }
