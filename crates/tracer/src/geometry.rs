@@ -120,16 +120,19 @@ impl Bvh {
         chunk_max: usize,
     ) -> (Self, Vec<u32>) {
         debug_assert!(count > 0, "the caller has checked that there is a triangle");
-        let boxes: Vec<Aabb> = (0..count)
+        let mut items: Vec<Item> = (0..count)
             .into_par_iter()
             .map(|i| {
                 let [a, b, c] = triangle(i);
-                Aabb::new(a.min(b).min(c), a.max(b).max(c))
+                Item {
+                    lo: a.min(b).min(c).to_array(),
+                    hi: a.max(b).max(c).to_array(),
+                    facet: i as u32,
+                }
             })
             .collect();
-        let mut facets: Vec<u32> = (0..count as u32).collect();
         let mut sizes = Vec::new();
-        partition(&boxes, &mut facets, chunk_max, &mut sizes);
+        partition(&mut items, chunk_max, &mut sizes);
         let mut first = Vec::with_capacity(sizes.len());
         let mut at = 0;
         for len in sizes {
@@ -143,10 +146,9 @@ impl Bvh {
             .collect();
         let mut chunks: Vec<CwBvh> = ranges
             .par_iter()
-            .map(|r| chunk(&boxes, &facets[r.clone()]))
+            .map(|r| chunk(&items[r.clone()]))
             .collect();
-        drop(boxes);
-        drop(facets);
+        drop(items);
         // The record slots in BVH order: each chunk's primitive order, as facets.
         let mut order = Vec::with_capacity(count);
         for c in &mut chunks {
@@ -308,136 +310,158 @@ fn entry(aabb: &Aabb, ray: &Ray) -> f32 {
     if t.is_nan() { 0.0 } else { t }
 }
 
-/// Bins per axis of [`partition`]'s surface-area heuristic.
+/// A triangle as the partition moves it: its f32 box and its facet (28 bytes).
+#[derive(Debug, Clone, Copy)]
+struct Item {
+    lo: [f32; 3],
+    hi: [f32; 3],
+    facet: u32,
+}
+
+impl Item {
+    fn aabb(&self) -> Aabb {
+        Aabb::new(Vec3A::from_array(self.lo), Vec3A::from_array(self.hi))
+    }
+
+    fn centre(&self, axis: usize) -> f32 {
+        0.5 * (self.lo[axis] + self.hi[axis])
+    }
+}
+
+/// Bins of [`partition`]'s surface-area heuristic.
 const BINS: usize = 32;
 
-/// Per bin of each axis: how many centroids fall in it and their triangles' box.
-type Bins = [[(u32, Aabb); BINS]; 3];
-
-/// Orders `facets` into chunks of at most `max` triangles and appends their sizes to
-/// `sizes`, in order: a group larger than `max` is split in two at the plane that the
-/// surface-area heuristic prefers among [`BINS`] bins of its centroids per axis (the cost
-/// of the two halves, each its triangle count times its box's area), recursively, the two
-/// halves in parallel. A median split would bind far-apart triangles into one chunk (two
-/// ground triangles under an object gave every chunk they fell in the ground's box, and
-/// rays through a sphere over it 1.6 times the time); the heuristic gives large triangles
-/// chunks of their own. Deterministic: bins are counts and box unions, exact whatever
-/// order threads merge them in, so the chunks do not depend on the thread count.
-fn partition(boxes: &[Aabb], facets: &mut [u32], max: usize, sizes: &mut Vec<usize>) {
-    if facets.len() <= max {
-        sizes.push(facets.len());
+/// Orders `items` into chunks of at most `max` triangles and appends their sizes to
+/// `sizes`, in order: a group larger than `max` is split in two at the plane across the
+/// longest axis of its centroids that the surface-area heuristic prefers among [`BINS`]
+/// bins (the cost of the two halves, each its triangle count times its box's area),
+/// recursively, the two halves in parallel. A median split would bind far-apart triangles
+/// into one chunk (two ground triangles under an object gave every chunk they fell in the
+/// ground's box, and rays through a sphere over it 1.6 times the time); the heuristic
+/// gives large triangles chunks of their own. (Binning all three axes gave the same rays
+/// on the sphere and the terrain of BENCHMARKS.md and cost 20 % more.) Deterministic:
+/// bins are counts and box unions, exact whatever order threads merge them in, so the
+/// chunks do not depend on the thread count.
+fn partition(items: &mut [Item], max: usize, sizes: &mut Vec<usize>) {
+    if items.len() <= max {
+        sizes.push(items.len());
         return;
     }
-    let centre = |f: u32| boxes[f as usize].center();
-    let (lo, hi) = facets
-        .par_iter()
-        .fold(
-            || (Vec3A::INFINITY, Vec3A::NEG_INFINITY),
-            |(lo, hi), &f| (lo.min(centre(f)), hi.max(centre(f))),
+    let bounds = |(lo, hi): ([f32; 3], [f32; 3]), item: &Item| {
+        (
+            std::array::from_fn(|k| lo[k].min(item.centre(k))),
+            std::array::from_fn(|k| hi[k].max(item.centre(k))),
         )
-        .reduce(
-            || (Vec3A::INFINITY, Vec3A::NEG_INFINITY),
-            |a, b| (a.0.min(b.0), a.1.max(b.1)),
-        );
-    let extent = hi - lo;
-    let scale = Vec3A::splat(BINS as f32) / extent;
-    let bin = |f: u32, axis: usize| {
-        // NaN (a flat axis) and anything past the last bin land in the last; a flat axis
-        // is never split.
-        (((centre(f)[axis] - lo[axis]) * scale[axis]) as usize).min(BINS - 1)
     };
-    // Each block of facets binned in place (a fold would move the 3.5 kB of bins by value
-    // at every facet), then the blocks' bins merged.
-    let bins = facets
+    let none = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+    let (lo, hi): ([f32; 3], [f32; 3]) = items
+        .par_chunks(1 << 14)
+        .map(|block| block.iter().fold(none, bounds))
+        .reduce(
+            || none,
+            |a, b| {
+                (
+                    std::array::from_fn(|k| a.0[k].min(b.0[k])),
+                    std::array::from_fn(|k| a.1[k].max(b.1[k])),
+                )
+            },
+        );
+    let extent: [f32; 3] = std::array::from_fn(|k| hi[k] - lo[k]);
+    let axis = if extent[0] >= extent[1] && extent[0] >= extent[2] {
+        0
+    } else if extent[1] >= extent[2] {
+        1
+    } else {
+        2
+    };
+    let scale = BINS as f32 / extent[axis];
+    // Past the last bin (the largest centroid) lands in the last.
+    let bin = |item: &Item| (((item.centre(axis) - lo[axis]) * scale) as usize).min(BINS - 1);
+    // Per bin, how many centroids fall in it and their triangles' box.
+    let empty = [(0_usize, Aabb::empty()); BINS];
+    let bins = items
         .par_chunks(1 << 14)
         .map(|block| {
-            let mut bins: Box<Bins> = Box::new([[(0, Aabb::empty()); BINS]; 3]);
-            for &f in block {
-                for (axis, axis_bins) in bins.iter_mut().enumerate() {
-                    let b = &mut axis_bins[bin(f, axis)];
-                    b.0 += 1;
-                    b.1 = b.1.union(&boxes[f as usize]);
-                }
+            let mut bins = empty;
+            for item in block {
+                let b = &mut bins[bin(item)];
+                b.0 += 1;
+                b.1 = b.1.union(&item.aabb());
             }
             bins
         })
-        .reduce_with(|mut a, b| {
-            for (x, y) in a.iter_mut().flatten().zip(b.iter().flatten()) {
-                x.0 += y.0;
-                x.1 = x.1.union(&y.1);
-            }
-            a
-        })
-        .unwrap_or_else(|| Box::new([[(0, Aabb::empty()); BINS]; 3]));
-    // The cheapest plane: (cost, axis, first bin of the right half).
-    let mut best = (f32::INFINITY, 0, 0);
-    for (axis, axis_bins) in bins.iter().enumerate() {
-        if extent[axis] <= 0.0 {
+        .reduce(
+            || empty,
+            |mut a, b| {
+                for (x, y) in a.iter_mut().zip(&b) {
+                    x.0 += y.0;
+                    x.1 = x.1.union(&y.1);
+                }
+                a
+            },
+        );
+    // The cheapest plane: (cost, first bin of the right half).
+    let mut best = (f32::INFINITY, 0);
+    let mut right = [0.0_f32; BINS];
+    let mut acc = Aabb::empty();
+    for b in (1..BINS).rev() {
+        acc = acc.union(&bins[b].1);
+        right[b] = acc.half_area();
+    }
+    let (mut acc, mut left_count) = (Aabb::empty(), 0);
+    for b in 1..BINS {
+        acc = acc.union(&bins[b - 1].1);
+        left_count += bins[b - 1].0;
+        let right_count = items.len() - left_count;
+        if left_count == 0 || right_count == 0 {
             continue;
         }
-        let mut right = [0.0_f32; BINS];
-        let mut acc = Aabb::empty();
-        for b in (1..BINS).rev() {
-            acc = acc.union(&axis_bins[b].1);
-            right[b] = acc.half_area();
-        }
-        let (mut acc, mut left_count) = (Aabb::empty(), 0);
-        for b in 1..BINS {
-            acc = acc.union(&axis_bins[b - 1].1);
-            left_count += axis_bins[b - 1].0 as usize;
-            let right_count = facets.len() - left_count;
-            if left_count == 0 || right_count == 0 {
-                continue;
-            }
-            let cost = acc.half_area() * left_count as f32 + right[b] * right_count as f32;
-            if cost < best.0 {
-                best = (cost, axis, b);
-            }
+        let cost = acc.half_area() * left_count as f32 + right[b] * right_count as f32;
+        if cost < best.0 {
+            best = (cost, b);
         }
     }
     let mid = if best.0.is_finite() {
-        let (_, axis, first_right) = best;
         let mut left = 0;
-        for k in 0..facets.len() {
-            if bin(facets[k], axis) < first_right {
-                facets.swap(left, k);
+        for k in 0..items.len() {
+            if bin(&items[k]) < best.1 {
+                items.swap(left, k);
                 left += 1;
             }
         }
         left
     } else {
         // Every centroid in one place: any halves will do.
-        facets.len() / 2
+        items.len() / 2
     };
-    let (a, b) = facets.split_at_mut(mid);
+    let (a, b) = items.split_at_mut(mid);
     let mut right_sizes = Vec::new();
     rayon::join(
-        || partition(boxes, a, max, sizes),
-        || partition(boxes, b, max, &mut right_sizes),
+        || partition(a, max, sizes),
+        || partition(b, max, &mut right_sizes),
     );
     sizes.extend(right_sizes);
 }
 
-/// One chunk's CWBVH over the triangles `facets` (their boxes in `boxes`), its primitive
-/// indices the facets.
-fn chunk(boxes: &[Aabb], facets: &[u32]) -> CwBvh {
-    let own: Vec<Aabb> = facets.iter().map(|&f| boxes[f as usize]).collect();
+/// One chunk's CWBVH over `items`, its primitive indices their facets.
+fn chunk(items: &[Item]) -> CwBvh {
+    let boxes: Vec<Aabb> = items.iter().map(Item::aabb).collect();
     // obvhs numbers a build's primitives 0..n (its conversion looks them up by that number).
-    let mut bvh2 = PlocBuilder::with_capacity(own.len()).build(
+    let mut bvh2 = PlocBuilder::with_capacity(boxes.len()).build(
         BUILD.ploc_search_distance,
-        &own,
-        (0..own.len() as u32).collect(),
+        &boxes,
+        (0..boxes.len() as u32).collect(),
         BUILD.sort_precision,
         BUILD.search_depth_threshold,
     );
-    drop(own);
+    drop(boxes);
     ReinsertionOptimizer::default().run(&mut bvh2, BUILD.reinsertion_batch_ratio, None);
     let mut bvh = bvh2_to_cwbvh(&bvh2, BUILD.max_prims_per_leaf.clamp(1, 3), true, false);
     drop(bvh2);
     // obvhs reserves a node per primitive; a chunk uses about a tenth of them.
     bvh.nodes.shrink_to_fit();
     for p in &mut bvh.primitive_indices {
-        *p = facets[*p as usize];
+        *p = items[*p as usize].facet;
     }
     bvh
 }
