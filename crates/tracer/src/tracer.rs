@@ -353,17 +353,24 @@ impl TruthPixel {
     /// the frame's sub-band count ([`Layer::SubBands`], the tracer's).
     #[must_use]
     pub fn layer(&self, layer: Layer) -> Option<f32> {
+        Self::layer_of(layer).map(|value| value(self))
+    }
+
+    /// What [`Self::layer`] reads for `layer`, as a function: a whole layer is then one
+    /// pass over the pixels with no test of the layer at each.
+    #[must_use]
+    pub fn layer_of(layer: Layer) -> Option<fn(&Self) -> f32> {
         Some(match layer {
-            Layer::MaterialPrimary => f32::from(self.primary_material),
-            Layer::MaterialSecondary => f32::from(self.secondary_material),
-            Layer::Event => f32::from(self.event.number()),
-            Layer::Range => self.range_m,
-            Layer::Incidence => self.incidence_deg(),
-            Layer::KineticTemperature => self.temperature_k,
-            Layer::Emissivity => self.emissivity,
-            Layer::Transmission => self.transmission,
-            Layer::PathRadiance => self.path_radiance_w_m2_sr,
-            Layer::SkyViewFactor => self.sky_view_factor,
+            Layer::MaterialPrimary => |p| f32::from(p.primary_material),
+            Layer::MaterialSecondary => |p| f32::from(p.secondary_material),
+            Layer::Event => |p| f32::from(p.event.number()),
+            Layer::Range => |p| p.range_m,
+            Layer::Incidence => Self::incidence_deg,
+            Layer::KineticTemperature => |p| p.temperature_k,
+            Layer::Emissivity => |p| p.emissivity,
+            Layer::Transmission => |p| p.transmission,
+            Layer::PathRadiance => |p| p.path_radiance_w_m2_sr,
+            Layer::SkyViewFactor => |p| p.sky_view_factor,
             Layer::Radiance
             | Layer::ApparentTemperature
             | Layer::SubBands
@@ -421,7 +428,8 @@ impl Frame {
         if self.truth.is_empty() {
             return None;
         }
-        self.truth.iter().map(|p| p.layer(layer)).collect()
+        let value = TruthPixel::layer_of(layer)?;
+        Some(self.truth.iter().map(value).collect())
     }
 
     /// The radiance of every pixel rounded to f32, as the radiance EXR stores it.

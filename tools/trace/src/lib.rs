@@ -1648,18 +1648,22 @@ fn truth_raster<R: BandModel>(
         .par_iter()
         .map(|&l| inverse.temperature(l))
         .collect();
-    for layer in Layer::TRUTH {
-        let data = match frame.truth_layer(layer) {
-            Some(data) => data,
+    // The layers in parallel, each one pass over the pixels.
+    let layers: Vec<miette::Result<Vec<f32>>> = Layer::TRUTH
+        .par_iter()
+        .map(|&layer| match frame.truth_layer(layer) {
+            Some(data) => Ok(data),
             None if layer == Layer::ApparentTemperature => {
-                apparent.iter().map(|&t| t as f32).collect()
+                Ok(apparent.iter().map(|&t| t as f32).collect())
             }
             None if layer == Layer::SubBands => {
-                vec![radiometry.sub_bands as f32; apparent.len()]
+                Ok(vec![radiometry.sub_bands as f32; apparent.len()])
             }
-            None => return Err(miette!("the frame holds no `{layer}` layer")),
-        };
-        push(&mut r, layer, data)?;
+            None => Err(miette!("the frame holds no `{layer}` layer")),
+        })
+        .collect();
+    for (layer, data) in Layer::TRUTH.into_iter().zip(layers) {
+        push(&mut r, layer, data?)?;
     }
     if let Some(budget) = budget {
         for (layer, data) in budget.layers(&radiometry.band, frame, &apparent) {
