@@ -2,10 +2,12 @@
 # Single-ray traversal against Intel Embree on the same triangles and the same rays: the
 # 1M-triangle scene of the tracer's shade profile (a UV sphere over a ground quad) seen by
 # a 1024 x 1024 camera. crates/tracer/examples/traversal.rs writes the triangles and rays
-# and times obvhs's bare traversal and the tracer's geometry (f64 clip, watertight test, f64
-# refinement) on one thread; scripts/bench/embree_rays.cpp times rtcIntersect1 on the same
-# files, one thread. RUNS rounds, the three interleaved, each round a fresh process; prints
-# the median ns per ray of each, per ray order (scanline, 8 x 8 tiles), and the ratios.
+# and times, on one thread, obvhs's bare traversal, the tracer's geometry (f64 clip,
+# watertight test, f64 refinement) and bare obvhs with the rays in packets of 64
+# consecutive ones (a route measured, not the tracer's: testing::BareObvhs::packet_pass);
+# scripts/bench/embree_rays.cpp times rtcIntersect1 on the same files, one thread. RUNS
+# rounds, the programs interleaved, each round a fresh process; prints the median ns per ray
+# of each, per ray order (scanline, 8 x 8 tiles), and the ratios.
 # With V3=1 a second irsig build with -C target-cpu=x86-64-v3 runs in the rounds too.
 # BENCHMARKS.md ("traversal against Embree") reports its output.
 #
@@ -31,7 +33,7 @@ echo "machine: $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')); load ave
 for _ in $(seq "$runs"); do
   for t in "${tools[@]}"; do
     name=${t%%:*}
-    "${t#*:}" "$work/rays" 2 1024 1 | awk -v n="$name" -F'|' '/^\| (scanline|tiles) /{gsub(/ /,"",$2); print n, $2, "bare", $3; print n, $2, "geometry", $4}'
+    "${t#*:}" "$work/rays" 2 1024 1 | awk -v n="$name" -F'|' '/^\| (scanline|tiles) /{gsub(/ /,"",$2); print n, $2, "bare", $3; print n, $2, "geometry", $4; print n, $2, "packets", $5}'
   done
   "$work/embree_rays" "$work/rays" 1 | awk -F'|' '/^\| (scanline|tiles) /{gsub(/ /,"",$2); print "embree", $2, "rtcIntersect1", $3}'
 done > "$work/all.txt"
