@@ -15,8 +15,8 @@ use std::time::Instant;
 
 use irsig_tracer::geometry::Geometry;
 use irsig_tracer::testing::{
-    bench_camera, bench_scene, bench_terrain, bench_terrain_camera, geometry_packet_pass,
-    geometry_pass, primary_directions,
+    bench_camera, bench_scene, bench_terrain, bench_terrain_camera, geometry_pass,
+    primary_directions,
 };
 
 fn main() {
@@ -41,7 +41,6 @@ fn main() {
     let triangle = |i: usize| mesh.1[i].map(|v| mesh.0[v as usize]);
     let directions = primary_directions(&camera);
     let (mut build, mut ray, mut hits, mut chunks) = (f64::INFINITY, f64::INFINITY, 0, 0);
-    let mut packet_ray = f64::INFINITY;
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
@@ -56,16 +55,11 @@ fn main() {
             let t = Instant::now();
             hits = geometry_pass(&geometry, camera.position_m, &directions);
             ray = ray.min(t.elapsed().as_secs_f64() * 1e9 / directions.len() as f64);
-            let _ = geometry_packet_pass(&geometry, camera.position_m, &directions);
-            let t = Instant::now();
-            let p = geometry_packet_pass(&geometry, camera.position_m, &directions);
-            packet_ray = packet_ray.min(t.elapsed().as_secs_f64() * 1e9 / directions.len() as f64);
-            assert_eq!(p, hits, "packets and single rays hit alike");
         });
     }
     println!(
         "{scene} {chunk}: {} triangles, {chunks} chunks, build {build:.3} s on {} threads, \
-         rays {ray:.0} ns, in packets {packet_ray:.0} ns, {hits} hits",
+         rays {ray:.0} ns, {hits} hits",
         mesh.1.len(),
         rayon::current_num_threads()
     );

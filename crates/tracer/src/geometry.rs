@@ -579,10 +579,6 @@ macro_rules! with_axes {
     };
 }
 
-mod packet;
-
-pub use packet::PACKET;
-
 impl Geometry {
     /// Builds the BVH over `triangles` (world metres, f64), with no data attached. The
     /// caller has checked that there is at least one triangle, that every number is finite
@@ -1015,50 +1011,6 @@ mod tests {
             }
         }
         assert!(hits > 4000, "{hits} hits");
-    }
-
-    #[test]
-    fn packets_find_every_rays_own_hit() {
-        let sphere = uv_sphere([0.0, 0.0, 3.0], 2.0, 24, 48);
-        let mut t = tris(&sphere);
-        t.extend(tris(&box_mesh([3.0, -1.0, 0.0], [4.0, 1.0, 2.5])));
-        t.push([[-50.0, -50.0, 0.0], [50.0, -50.0, 0.0], [50.0, 50.0, 0.0]]);
-        t.push([[-50.0, -50.0, 0.0], [50.0, 50.0, 0.0], [-50.0, 50.0, 0.0]]);
-        // A camera's rays: a 40 x 40 grid across a 60 degree field (coherent, each packet
-        // one dominant axis or two), then directions all round (incoherent, mixed axes).
-        let mut dirs: Vec<V3> = Vec::new();
-        for r in 0..40 {
-            for c in 0..40 {
-                let (x, y) = (f64::from(c) / 39.0 - 0.5, f64::from(r) / 39.0 - 0.5);
-                dirs.push(normalize([-1.0 + 0.2 * y, 0.6 * x, -0.4 + 0.6 * y]));
-            }
-        }
-        dirs.extend(directions(1000));
-        for chunk in [usize::MAX, 16] {
-            let g = Geometry::with_chunks(t.len(), |i| t[i], |i| i, chunk);
-            let mut found = 0;
-            // Outside, inside the sphere, inside the box, and far (the rays start just
-            // before the scene's box, each at its own point).
-            for origin in [
-                [12.0, -1.0, 7.0],
-                [0.0, 0.0, 3.0],
-                [3.5, 0.0, 1.0],
-                [900.0, 30.0, 500.0],
-            ] {
-                let o = g.to_local(origin);
-                let mut hits = vec![None; dirs.len()];
-                g.closest_hits(o, &dirs, &mut hits);
-                for (d, hit) in dirs.iter().zip(&hits) {
-                    let alone = g.closest_hit(o, *d, 0.0, f64::INFINITY, None);
-                    assert_eq!(
-                        *hit, alone,
-                        "chunks of {chunk}, from {origin:?} along {d:?}"
-                    );
-                    found += usize::from(hit.is_some());
-                }
-            }
-            assert!(found > 4000, "{found} hits");
-        }
     }
 
     #[test]

@@ -615,25 +615,6 @@ impl BareObvhs {
     }
 }
 
-/// [`geometry_pass`] with the rays in packets ([`Geometry::closest_hits`]): the same hits.
-#[must_use]
-pub fn geometry_packet_pass<P: Copy + Send + Sync>(
-    geometry: &Geometry<P>,
-    position_m: V3,
-    directions: &[V3],
-) -> u64 {
-    let origin = geometry.to_local(position_m);
-    let mut hits = [None; crate::geometry::PACKET];
-    directions
-        .chunks(crate::geometry::PACKET)
-        .map(|dirs| {
-            let hits = &mut hits[..dirs.len()];
-            geometry.closest_hits(origin, dirs, hits);
-            hits.iter().filter(|h| h.is_some()).count() as u64
-        })
-        .sum()
-}
-
 /// Rays per packet of [`BareObvhs::packet_pass`].
 pub const PACKET: usize = 64;
 
