@@ -618,6 +618,17 @@ impl BareObvhs {
 /// Rays per packet of [`BareObvhs::packet_pass`].
 pub const PACKET: usize = 64;
 
+/// The lanes whose bits are set in `mask`, lowest first.
+fn lanes_of(mut mask: u64) -> impl Iterator<Item = usize> {
+    std::iter::from_fn(move || {
+        (mask != 0).then(|| {
+            let k = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            k
+        })
+    })
+}
+
 /// A packet's rays, lane by lane: reciprocal direction and how far each may still go
 /// (shortened by its hits).
 struct Lanes {
@@ -659,10 +670,7 @@ impl BareObvhs {
             stack.push((0, live));
             while let Some((index, mask)) = stack.pop() {
                 if mask.count_ones() <= threshold {
-                    let mut m = mask;
-                    while m != 0 {
-                        let k = m.trailing_zeros() as usize;
-                        m &= m - 1;
+                    for k in lanes_of(mask) {
                         let mut ray = packet[k];
                         ray.tmax = lanes.t_max[k];
                         let mut state = self.bvh.new_traversal(ray.direction);
@@ -745,10 +753,7 @@ impl BareObvhs {
                         let (first, count) = node.child_primitives(child);
                         for prim in first..first + count {
                             let tri = &self.tris[prim as usize].0;
-                            let mut m = enter;
-                            while m != 0 {
-                                let k = m.trailing_zeros() as usize;
-                                m &= m - 1;
+                            for k in lanes_of(enter) {
                                 let mut ray = packet[k];
                                 ray.tmax = lanes.t_max[k];
                                 let t = tri.intersect(&ray);

@@ -1511,31 +1511,18 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             sub_bands: tracer.sub_bands(),
             view_gain: views.get(i).and_then(View::gain_dc_per_k),
         };
+        let write = |staged: &mut irsig_cli::Staged| {
+            write_frame(cli, &radiometry, frame, out, &part, budget.as_ref(), staged)
+        };
         if i + 1 == cameras.len() {
             // The last frame's outputs need the band, not the scene: the BVH and the facet
             // records (about 100 bytes a facet) go before the outputs are made, which hold
             // the frame's layers and encoded files (the frame's peak memory was there).
             drop(tracer);
-            write_frame(
-                cli,
-                &radiometry,
-                frame,
-                out,
-                &part,
-                budget.as_ref(),
-                &mut staged,
-            )?;
+            write(&mut staged)?;
             break;
         }
-        write_frame(
-            cli,
-            &radiometry,
-            frame,
-            out,
-            &part,
-            budget.as_ref(),
-            &mut staged,
-        )?;
+        write(&mut staged)?;
     }
     bar.finish_and_clear();
     if !map_fits && cli.output.is_some() && cli.tile.is_none() {
