@@ -88,16 +88,16 @@ pub struct Geometry<P = ()> {
     tie_slack: f32,
 }
 
-/// The scene's BVH, built by obvhs in chunks: the triangles are split by centroid into
-/// spatially compact chunks of at most [`CHUNK_TRIANGLES`] (median splits across the
-/// longest axis), each chunk gets a CWBVH of its own (obvhs's PLOC, reinsertion and
-/// conversion, the chunks in parallel), and when there are several, a top-level CWBVH over
-/// the chunks' boxes, one chunk per leaf, which obvhs's traversal descends into (its
-/// `traverse!`, nested). A build whole held obvhs's binary BVH and conversion table for
-/// every triangle at once (208 bytes each, the frame's peak memory at 1M triangles), and
-/// its conversion ran on one thread; chunks hold that only for the chunks being built, and
-/// build faster on one thread too, because a chunk's build stays in cache. At 1M
-/// triangles rays were as fast or faster through the chunks (BENCHMARKS.md, "tracer: the
+/// The scene's BVH, built by obvhs in chunks: the triangles are split into spatially
+/// compact chunks of at most [`CHUNK_TRIANGLES`] ([`partition`]), each chunk gets a CWBVH
+/// of its own (obvhs's PLOC, reinsertion and conversion, the chunks in parallel), and when
+/// there are several, a top-level CWBVH over the chunks' boxes, one chunk per leaf, which
+/// obvhs's traversal descends into (its `traverse!`, nested). A build whole held obvhs's
+/// binary BVH and conversion table for every triangle at once (208 bytes each, the frame's
+/// peak memory at 1M triangles), and its conversion ran on one thread; chunks hold that only
+/// for the chunks being built, and build faster on one thread too, because a chunk's build
+/// stays in cache. At 1M triangles rays through the chunks were 16 % faster on a terrain
+/// and 13 % slower on a hollow sphere than through one BVH (BENCHMARKS.md, "tracer: the
 /// BVH in chunks").
 #[derive(Debug)]
 struct Bvh {
