@@ -30,7 +30,7 @@ use irsig_model::LengthUnit;
 use irsig_model::truth::Layer;
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_raster::merge::Layout;
-use irsig_raster::{Raster, RasterInfo, counts_png, exr_bytes};
+use irsig_raster::{Raster, RasterInfo, counts_png, into_exr_bytes};
 use miette::{IntoDiagnostic, miette};
 
 const EXAMPLE: &str = "\
@@ -304,9 +304,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     if out.radiance_exr.is_some() || out.dc_png.is_some() || out.lut.is_some() {
         let frame = merge(&tiles.radiance)?;
-        if let Some(path) = &out.radiance_exr {
-            files.push((path.clone(), exr_bytes(&frame).into_diagnostic()?));
-        }
         if out.dc_png.is_some() || out.lut.is_some() {
             match &cli.band {
                 TraceBand::Total => counts(&cli, &out, &frame, gain, &TotalRadiance, &mut files)?,
@@ -314,6 +311,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                     counts(&cli, &out, &frame, gain, &arg.load()?, &mut files)?;
                 }
             }
+        }
+        // The merged frame's layers go into the encoder, not a copy of them.
+        if let Some(path) = &out.radiance_exr {
+            files.push((path.clone(), into_exr_bytes(frame).into_diagnostic()?));
         }
     }
     if out.truth_exr.is_some() || out.map_png.is_some() {
@@ -337,7 +338,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             }
         }
         if let Some(path) = &out.truth_exr {
-            files.push((path.clone(), exr_bytes(&frame).into_diagnostic()?));
+            files.push((path.clone(), into_exr_bytes(frame).into_diagnostic()?));
         }
     }
     irsig_cli::write_files_atomic(&files)

@@ -30,7 +30,7 @@ use clap::{Parser, ValueEnum};
 use irsig_cli::args::{BandArg, DcArgs};
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
-use irsig_raster::{Raster, counts_png, exr_bytes};
+use irsig_raster::{Raster, counts_png, into_exr_bytes};
 use irsig_sensor_model::blur::{EdgeMode, blur};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
@@ -328,7 +328,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         let layer = Layer::ApparentTemperature;
         r.push_layer(layer.name(), layer.unit(), t.clone())
             .into_diagnostic()?;
-        files.push((path.clone(), exr_bytes(&r).into_diagnostic()?));
+        files.push((path.clone(), into_exr_bytes(r).into_diagnostic()?));
     }
     if let Some(cal) = calibration.filter(|_| wants_counts) {
         let bits = cli.dc.dc_bits;
@@ -351,7 +351,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     if let (Some(path), Some(t)) = (&cli.colour_preview, &temperature) {
         files.push((path.clone(), preview::colour_with_bar(t, w, h)?));
     }
-    let exr = exr_bytes(&out.raster).into_diagnostic()?;
+    // The sensed image's layers go into the encoder, not a copy of them.
+    let exr = into_exr_bytes(out.raster).into_diagnostic()?;
     match &cli.output {
         Some(p) if p.as_os_str() != "-" => {
             files.push((p.clone(), exr));
