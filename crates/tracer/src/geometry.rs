@@ -133,17 +133,13 @@ impl Bvh {
             .collect();
         let mut sizes = Vec::new();
         partition(&mut items, chunk_max, &mut sizes);
-        let mut first = Vec::with_capacity(sizes.len());
+        let (mut first, mut ranges) = (Vec::with_capacity(sizes.len()), Vec::new());
         let mut at = 0;
         for len in sizes {
             first.push(at as u32);
+            ranges.push(at..at + len);
             at += len;
         }
-        let ranges: Vec<std::ops::Range<usize>> = first
-            .iter()
-            .zip(first.iter().skip(1).map(|&f| f as usize).chain([count]))
-            .map(|(&a, b)| a as usize..b)
-            .collect();
         let mut chunks: Vec<CwBvh> = ranges
             .par_iter()
             .map(|r| chunk(&items[r.clone()]))

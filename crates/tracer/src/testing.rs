@@ -647,7 +647,7 @@ impl BareObvhs {
     /// mostly dead lanes. The number of rays that hit.
     #[must_use]
     pub fn packet_pass(&self, rays: &[obvhs::ray::Ray], threshold: u32) -> u64 {
-        use glam::{UVec2, Vec3A};
+        use glam::UVec2;
         let mut hits = 0;
         let mut stack: Vec<(u32, u64)> = Vec::with_capacity(64);
         for packet in rays.chunks(PACKET) {
@@ -693,26 +693,14 @@ impl BareObvhs {
                     continue;
                 }
                 let node = &self.bvh.nodes[index as usize];
-                let (extent, base) = (node.compute_extent(), Vec3A::from(node.p));
                 // Per child: the packet's nearest entry, which lanes enter, the child.
                 let mut children = [(0.0_f32, 0_u64, 0_usize); 8];
                 let mut n = 0;
                 for child in (0..8).filter(|&c| !node.is_child_empty(c)) {
-                    let lo = Vec3A::new(
-                        f32::from(node.child_min_x[child]),
-                        f32::from(node.child_min_y[child]),
-                        f32::from(node.child_min_z[child]),
-                    ) * extent
-                        + base;
-                    let hi = Vec3A::new(
-                        f32::from(node.child_max_x[child]),
-                        f32::from(node.child_max_y[child]),
-                        f32::from(node.child_max_z[child]),
-                    ) * extent
-                        + base;
+                    let aabb = node.child_aabb(child);
                     let (mut enter, mut nearest) = (0_u64, f32::INFINITY);
-                    let near = lo - packet_origin;
-                    let far = hi - packet_origin;
+                    let near = aabb.min - packet_origin;
+                    let far = aabb.max - packet_origin;
                     for group in 0..PACKET / 8 {
                         if (mask >> (group * 8)) & 0xff == 0 {
                             continue;
