@@ -113,6 +113,26 @@ impl<'a, B: BandModel + ?Sized> InverseTable<'a, B> {
         }
         self.band.temperature(target)
     }
+
+    /// [`Self::temperature`] of each radiance in turn, W m⁻² sr⁻¹ → K, looking up a run of
+    /// equal radiances once: neighbouring pixels of one facet often share their radiance
+    /// (every pixel of a uniform, grey facet seen through no atmosphere does), and the
+    /// lookup is a function of the radiance alone, so the result is the same as one
+    /// lookup per pixel.
+    pub fn temperatures(
+        &self,
+        radiance_w_m2_sr: impl IntoIterator<Item = f64>,
+    ) -> impl Iterator<Item = f64> {
+        let mut last: Option<(u64, f64)> = None;
+        radiance_w_m2_sr.into_iter().map(move |l| match last {
+            Some((bits, t)) if bits == l.to_bits() => t,
+            _ => {
+                let t = self.temperature(l);
+                last = Some((l.to_bits(), t));
+                t
+            }
+        })
+    }
 }
 
 #[cfg(test)]
@@ -159,6 +179,38 @@ mod tests {
         }
         // 6.8e-8 K measured; a step under 1e-8 T (1.5 µK at 150 K) stops Newton after one.
         assert!(worst < 2e-7, "worst start {worst} K");
+    }
+
+    #[test]
+    fn a_run_of_lookups_gives_each_radiance_its_own_temperature() {
+        // Runs of one radiance, alternations, values outside the table and NaN: the same
+        // bits as one lookup each.
+        let band = Band::default();
+        let (a, b) = (band.radiance(280.0), band.radiance(320.0));
+        let image = [
+            a,
+            a,
+            a,
+            b,
+            a,
+            b,
+            b,
+            0.0,
+            -0.0,
+            0.0,
+            f64::NAN,
+            f64::NAN,
+            a,
+            band.radiance(900.0),
+        ];
+        let table = InverseTable::new(&band, &[a, b]);
+        let each: Vec<u64> = image
+            .iter()
+            .map(|&l| table.temperature(l).to_bits())
+            .collect();
+        let run: Vec<u64> = table.temperatures(image).map(f64::to_bits).collect();
+        assert_eq!(run, each);
+        assert!((f64::from_bits(run[3]) - 320.0).abs() < 1e-9);
     }
 
     #[test]

@@ -372,8 +372,8 @@ pub fn apparent_temperature(
     let radiance: Vec<f64> = radiance_w_m2_sr.iter().map(|&l| f64::from(l)).collect();
     let inverse = InverseTable::new(band, &radiance);
     Ok(radiance
-        .par_iter()
-        .map(|&l| inverse.temperature(l) as f32)
+        .par_chunks(4096)
+        .flat_map_iter(|run| inverse.temperatures(run.iter().copied()).map(|t| t as f32))
         .collect())
 }
 

@@ -1001,8 +1001,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let inverse = self.inverse_table();
         let t: Vec<f64> = frame
             .radiance_w_m2_sr
-            .par_iter()
-            .map(|&l| inverse.temperature(l))
+            .par_chunks(4096)
+            .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
             .collect();
         let (w, h) = (frame.width as usize, frame.height as usize);
         (0..w * h)

@@ -1632,8 +1632,8 @@ fn truth_raster<R: BandModel>(
     let inverse = irsig_tracer::inverse_table(&radiometry.band);
     let apparent: Vec<f64> = frame
         .radiance_w_m2_sr
-        .par_iter()
-        .map(|&l| inverse.temperature(l))
+        .par_chunks(4096)
+        .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
         .collect();
     // The layers in parallel, each one pass over the pixels.
     let layers: Vec<miette::Result<Vec<f32>>> = Layer::TRUTH
