@@ -357,13 +357,16 @@ pub fn exr_bytes(raster: &Raster) -> Result<Vec<u8>, RasterError> {
 }
 
 /// [`exr_bytes`] of a raster no longer needed: its layers are encoded where they lie, not
-/// copied first (a frame's truth layers are 48 bytes a pixel).
+/// copied first (a frame's truth layers are 48 bytes a pixel). Its blocks are compressed
+/// on exr's threads only when the caller's rayon pool has more than one: a tool run on one
+/// thread then compresses on one.
 ///
 /// # Errors
 /// As [`write_exr`].
 pub fn into_exr_bytes(raster: Raster) -> Result<Vec<u8>, RasterError> {
     let mut bytes = Vec::new();
-    write_exr_threads(&mut Cursor::new(&mut bytes), raster, true)?;
+    let parallel = rayon::current_num_threads() > 1;
+    write_exr_threads(&mut Cursor::new(&mut bytes), raster, parallel)?;
     Ok(bytes)
 }
 
