@@ -435,6 +435,91 @@ mod tests {
         assert_eq!(names(dir.path()), ["adir"]);
     }
 
+    #[cfg(unix)]
+    #[test]
+    fn a_device_named_as_output_is_written_not_replaced() {
+        // Run as root, `-o /dev/null` used to rename a staged file onto /dev/null, leaving a
+        // regular file in its place for every later process.
+        use std::os::unix::fs::FileTypeExt;
+        let is_device =
+            |p: &str| std::fs::symlink_metadata(p).is_ok_and(|m| m.file_type().is_char_device());
+        assert!(is_device("/dev/null"), "/dev/null is not a device here");
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a");
+        write_files_atomic(&[
+            (a.clone(), b"1".to_vec()),
+            ("/dev/null".into(), b"x".to_vec()),
+            ("/dev/null".into(), b"y".to_vec()),
+        ])
+        .unwrap();
+        write_output(Some(Path::new("/dev/null")), |w| w.write_all(b"z")).unwrap();
+        assert!(is_device("/dev/null"), "/dev/null was replaced");
+        assert_eq!(std::fs::read(&a).unwrap(), b"1");
+        assert_eq!(names(dir.path()), ["a"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_device_that_cannot_be_written_leaves_every_file_as_it_was() {
+        // /dev/full refuses every write (ENOSPC): the files staged with it are not placed.
+        let dir = tempfile::tempdir().unwrap();
+        let (old, new) = (dir.path().join("old"), dir.path().join("new"));
+        std::fs::write(&old, b"before").unwrap();
+        let err = write_files_atomic(&[
+            (old.clone(), b"after".to_vec()),
+            (new, b"n".to_vec()),
+            ("/dev/full".into(), b"x".to_vec()),
+        ])
+        .unwrap_err();
+        assert!(format!("{err:?}").contains("/dev/full"), "{err:?}");
+        assert_eq!(std::fs::read(&old).unwrap(), b"before");
+        assert_eq!(names(dir.path()), ["old"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_named_pipe_gets_the_bytes_and_stays_a_pipe() {
+        use std::os::unix::fs::FileTypeExt;
+        let dir = tempfile::tempdir().unwrap();
+        let fifo = dir.path().join("fifo");
+        let made = std::process::Command::new("mkfifo")
+            .arg(&fifo)
+            .status()
+            .expect("mkfifo (coreutils) must run");
+        assert!(made.success());
+        let reader = {
+            let fifo = fifo.clone();
+            std::thread::spawn(move || std::fs::read(fifo).unwrap())
+        };
+        write_output(Some(&fifo), |w| w.write_all(b"through the pipe")).unwrap();
+        // Checked before waiting for the reader, which waits for ever on a replaced pipe.
+        let kind = std::fs::symlink_metadata(&fifo).unwrap().file_type();
+        assert!(kind.is_fifo(), "{kind:?}");
+        assert_eq!(reader.join().unwrap(), b"through the pipe");
+        assert_eq!(names(dir.path()), ["fifo"]);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_symbolic_link_keeps_its_link_and_its_target_is_replaced() {
+        let dir = tempfile::tempdir().unwrap();
+        let (real, link) = (dir.path().join("real"), dir.path().join("link"));
+        std::fs::write(&real, b"old").unwrap();
+        std::os::unix::fs::symlink("real", &link).unwrap();
+        write_output(Some(&link), |w| w.write_all(b"new")).unwrap();
+        assert!(
+            std::fs::symlink_metadata(&link)
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        assert_eq!(std::fs::read(&real).unwrap(), b"new");
+        assert_eq!(names(dir.path()), ["link", "real"]);
+        // The link and its target named together are one output.
+        let err = write_files_atomic(&[(link, b"1".to_vec()), (real, b"2".to_vec())]).unwrap_err();
+        assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+    }
+
     #[test]
     fn the_same_output_twice_is_refused() {
         let dir = tempfile::tempdir().unwrap();

@@ -8,6 +8,13 @@
 //!   turn, and when a later rename fails it undoes the earlier ones: a replaced file is put
 //!   back from the copy it was moved to, a new one is removed.
 //! - The same destination named twice is refused, as is a destination that is a directory.
+//! - A destination that is a symbolic link to a file keeps its link: the file it points to is
+//!   replaced.
+//! - A destination that exists and is neither a file nor a directory (a device such as
+//!   `/dev/null`, a named pipe, a socket) cannot be replaced by a rename without destroying
+//!   it, and its writes cannot be undone: its bytes are kept in memory and written to it in
+//!   place at commit, before the first rename, so that a failed write leaves every file as
+//!   it was. It may be named more than once.
 //! - Staged files are named `.irsig-*.tmp`; an interrupted run (SIGINT, SIGTERM) removes
 //!   them ([`remove_staged_files`], called from [`crate::run`]'s signal handler), and a
 //!   commit under way is finished before they are.
@@ -61,7 +68,42 @@ struct Entry {
     /// `None` once renamed into place. Dropped (the file removed) before `_registration`.
     staged: Option<TempPath>,
     _registration: Registration,
+    /// The file the staged copy is renamed onto (a symbolic link's target).
     dest: PathBuf,
+    /// The destination as the caller named it, for messages.
+    named: PathBuf,
+}
+
+/// What a destination is, and so how its output is placed.
+enum Destination {
+    /// A regular file, or a name not yet in use: staged beside `0` and renamed onto it.
+    File(PathBuf),
+    /// An existing device, named pipe or socket: written in place at commit.
+    Stream,
+}
+
+/// Sorts `dest` (which is not `-`) by what it is now, following a symbolic link.
+fn destination(dest: &Path) -> io::Result<Destination> {
+    let here = match std::fs::symlink_metadata(dest) {
+        Err(e) if e.kind() == io::ErrorKind::NotFound => return Ok(Destination::File(dest.into())),
+        Err(e) => return Err(e),
+        Ok(m) => m,
+    };
+    if !here.file_type().is_symlink() {
+        return Ok(if here.is_file() || here.is_dir() {
+            Destination::File(dest.into())
+        } else {
+            Destination::Stream
+        });
+    }
+    match std::fs::metadata(dest) {
+        Ok(target) if target.is_file() => Ok(Destination::File(std::fs::canonicalize(dest)?)),
+        Ok(target) if target.is_dir() => Ok(Destination::File(dest.into())),
+        Ok(_) => Ok(Destination::Stream),
+        // A link to nothing: the link itself is replaced.
+        Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(Destination::File(dest.into())),
+        Err(e) => Err(e),
+    }
 }
 
 impl std::fmt::Debug for Staged {
@@ -69,6 +111,7 @@ impl std::fmt::Debug for Staged {
         let dests: Vec<_> = self.entries.iter().map(|e| &e.dest).collect();
         f.debug_struct("Staged")
             .field("files", &dests)
+            .field("streams", &self.streams.len())
             .field("stdout", &self.stdout.is_some())
             .finish()
     }
@@ -80,6 +123,8 @@ impl std::fmt::Debug for Staged {
 pub struct Staged {
     entries: Vec<Entry>,
     keys: HashSet<PathBuf>,
+    /// Devices, named pipes and sockets, and the bytes each gets, in staging order.
+    streams: Vec<(PathBuf, Vec<u8>)>,
     stdout: Option<Vec<u8>>,
 }
 
@@ -119,7 +164,16 @@ impl Staged {
     ) -> miette::Result<()> {
         let ctx = || format!("cannot write output file `{}`", dest.display());
         check_destination(dest).wrap_err_with(ctx)?;
-        let mut tmp = staged_file(dest).into_diagnostic().wrap_err_with(ctx)?;
+        let file = match destination(dest).into_diagnostic().wrap_err_with(ctx)? {
+            Destination::File(file) => file,
+            Destination::Stream => {
+                let mut bytes = Vec::new();
+                write(&mut bytes).into_diagnostic().wrap_err_with(ctx)?;
+                self.streams.push((dest.to_path_buf(), bytes));
+                return Ok(());
+            }
+        };
+        let mut tmp = staged_file(&file).into_diagnostic().wrap_err_with(ctx)?;
         let registration = Registration::new(tmp.path());
         {
             let mut w = io::BufWriter::new(tmp.as_file_mut());
@@ -134,9 +188,9 @@ impl Staged {
             .wrap_err_with(ctx)?;
         // The key is the destination in its real directory, so `d/a` and `./d/../d/a` are
         // one output. The directory exists: the temporary was just made in it.
-        let key = std::fs::canonicalize(parent_dir(dest))
-            .map(|d| d.join(dest.file_name().unwrap_or_default()))
-            .unwrap_or_else(|_| dest.to_path_buf());
+        let key = std::fs::canonicalize(parent_dir(&file))
+            .map(|d| d.join(file.file_name().unwrap_or_default()))
+            .unwrap_or_else(|_| file.clone());
         if !self.keys.insert(key) {
             return Err(crate::usage_error(format!(
                 "`{}` is named as more than one output",
@@ -146,22 +200,34 @@ impl Staged {
         self.entries.push(Entry {
             staged: Some(tmp.into_temp_path()),
             _registration: registration,
-            dest: dest.to_path_buf(),
+            dest: file,
+            named: dest.to_path_buf(),
         });
         Ok(())
     }
 
-    /// Renames every staged file into place, then writes standard output.
+    /// Writes the devices and named pipes among the destinations, renames every staged file
+    /// into place, then writes standard output.
     ///
     /// # Errors
-    /// A destination that became a directory, or a rename that fails; every destination is
-    /// then as it was before the commit.
+    /// A destination that became a directory, a device or pipe that cannot be written (every
+    /// file is then as it was), or a rename that fails (every file is then as it was before
+    /// the commit).
     pub fn commit(mut self) -> miette::Result<()> {
         {
             let mut list = pending();
             for e in &self.entries {
-                check_destination(&e.dest)
-                    .wrap_err_with(|| format!("cannot write output file `{}`", e.dest.display()))?;
+                check_destination(&e.dest).wrap_err_with(|| {
+                    format!("cannot write output file `{}`", e.named.display())
+                })?;
+            }
+            for (dest, bytes) in &self.streams {
+                std::fs::OpenOptions::new()
+                    .write(true)
+                    .open(dest)
+                    .and_then(|mut f| f.write_all(bytes))
+                    .into_diagnostic()
+                    .wrap_err_with(|| format!("cannot write output `{}`", dest.display()))?;
             }
             let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
             for e in &mut self.entries {
@@ -172,7 +238,7 @@ impl Staged {
                             undo(&dest, backup);
                         }
                         return Err(err).into_diagnostic().wrap_err_with(|| {
-                            format!("cannot write output file `{}`", e.dest.display())
+                            format!("cannot write output file `{}`", e.named.display())
                         });
                     }
                 }
