@@ -214,21 +214,21 @@ impl Staged {
     /// file is then as it was), or a rename that fails (every file is then as it was before
     /// the commit).
     pub fn commit(mut self) -> miette::Result<()> {
+        for e in &self.entries {
+            check_destination(&e.dest)
+                .wrap_err_with(|| format!("cannot write output file `{}`", e.named.display()))?;
+        }
+        // Before the lock an interrupt takes: opening a named pipe waits for its reader.
+        for (dest, bytes) in &self.streams {
+            std::fs::OpenOptions::new()
+                .write(true)
+                .open(dest)
+                .and_then(|mut f| f.write_all(bytes))
+                .into_diagnostic()
+                .wrap_err_with(|| format!("cannot write output `{}`", dest.display()))?;
+        }
         {
             let mut list = pending();
-            for e in &self.entries {
-                check_destination(&e.dest).wrap_err_with(|| {
-                    format!("cannot write output file `{}`", e.named.display())
-                })?;
-            }
-            for (dest, bytes) in &self.streams {
-                std::fs::OpenOptions::new()
-                    .write(true)
-                    .open(dest)
-                    .and_then(|mut f| f.write_all(bytes))
-                    .into_diagnostic()
-                    .wrap_err_with(|| format!("cannot write output `{}`", dest.display()))?;
-            }
             let mut done: Vec<(PathBuf, Option<TempPath>)> = Vec::new();
             for e in &mut self.entries {
                 match place(&mut e.staged, &e.dest, &mut list) {
