@@ -31,7 +31,7 @@
 pub mod args;
 mod staged;
 
-pub use staged::{Staged, remove_staged_files};
+pub use staged::{Staged, check_output, remove_staged_files};
 
 use std::fs::File;
 use std::io::{self, IsTerminal, Write};
@@ -518,6 +518,23 @@ mod tests {
         // The link and its target named together are one output.
         let err = write_files_atomic(&[(link, b"1".to_vec()), (real, b"2".to_vec())]).unwrap_err();
         assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+    }
+
+    #[test]
+    fn an_output_is_checked_without_leaving_a_file() {
+        let dir = tempfile::tempdir().unwrap();
+        check_output(Path::new("-")).unwrap();
+        check_output(&dir.path().join("new.exr")).unwrap();
+        #[cfg(unix)]
+        check_output(Path::new("/dev/null")).unwrap();
+        assert!(names(dir.path()).is_empty(), "{:?}", names(dir.path()));
+        let err = check_output(dir.path()).unwrap_err();
+        assert!(format!("{err:?}").contains("is a directory"), "{err:?}");
+        let err = check_output(&dir.path().join("gone").join("f.exr")).unwrap_err();
+        assert!(
+            format!("{err:?}").contains("is not an existing directory"),
+            "{err:?}"
+        );
     }
 
     #[test]

@@ -304,6 +304,39 @@ fn undo(dest: &Path, backup: Option<TempPath>) {
     }
 }
 
+/// Checks that `dest` can take an output before the work that makes it starts: `-`; a
+/// device, named pipe or socket; or a name that is not a directory, in an existing
+/// directory where a file can be created (a staged file is made there and removed). A long
+/// run (a fly-by, a frame of hours) then fails at once, not when its first output is
+/// written.
+///
+/// # Errors
+/// A destination that is a directory, a directory that does not exist, or one where no file
+/// can be created, naming them.
+pub fn check_output(dest: &Path) -> miette::Result<()> {
+    if dest.as_os_str() == "-" {
+        return Ok(());
+    }
+    let ctx = || format!("cannot write output file `{}`", dest.display());
+    check_destination(dest).wrap_err_with(ctx)?;
+    let Destination::File(file) = destination(dest).into_diagnostic().wrap_err_with(ctx)? else {
+        return Ok(());
+    };
+    let dir = parent_dir(&file);
+    if !dir.is_dir() {
+        return Err(miette::miette!(
+            "`{}` is not an existing directory",
+            dir.display()
+        ))
+        .wrap_err_with(ctx);
+    }
+    staged_file(&file)
+        .map(drop)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("no file can be created in `{}`", dir.display()))
+        .wrap_err_with(ctx)
+}
+
 /// An output destination must not be an existing directory.
 fn check_destination(dest: &Path) -> miette::Result<()> {
     if dest.is_dir() {

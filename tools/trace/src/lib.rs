@@ -309,6 +309,21 @@ struct Outputs {
     lut: Option<PathBuf>,
 }
 
+impl Outputs {
+    /// The files named.
+    fn paths(&self) -> impl Iterator<Item = &PathBuf> {
+        [
+            &self.radiance_exr,
+            &self.truth_exr,
+            &self.map_png,
+            &self.dc_png,
+            &self.lut,
+        ]
+        .into_iter()
+        .flatten()
+    }
+}
+
 fn parse_unit(s: &str) -> Result<LengthUnit, String> {
     s.parse()
 }
@@ -1434,16 +1449,27 @@ fn trace_all<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
             }
         })
         .collect::<miette::Result<Vec<_>>>()?;
+    let outputs: Vec<Outputs> = (0..cameras.len())
+        .map(|i| match &job.outputs {
+            Some(all) => all.get(i).cloned().unwrap_or_default(),
+            None => cli.outputs(i, cameras.len(), map_fits),
+        })
+        .collect();
+    // Every output's place, checked before anything is traced: a fly-by would otherwise
+    // fail only when its first frame is written.
+    for path in outputs
+        .iter()
+        .flat_map(Outputs::paths)
+        .chain(&cli.decision_out)
+    {
+        irsig_cli::check_output(path)?;
+    }
     // Each frame is staged as soon as it is traced (memory and descriptors bounded by one
     // frame); all of them are renamed into place together when every frame succeeded.
     let mut staged = irsig_cli::Staged::new();
     let total_rows: u64 = tiles.iter().map(|t| u64::from(t.height)).sum();
     let bar = irsig_cli::progress_bar(total_rows, "tracing");
-    for (i, cam) in cameras.iter().enumerate() {
-        let out = match &job.outputs {
-            Some(all) => all.get(i).cloned().unwrap_or_default(),
-            None => cli.outputs(i, cameras.len(), map_fits),
-        };
+    for ((i, cam), out) in cameras.iter().enumerate().zip(outputs) {
         let (settings, model_k) = match cli.tolerance {
             Some(tolerance_k) => {
                 let d = decide(cli, &tracer, materials, air, cam, tolerance_k)?;

@@ -317,6 +317,50 @@ fn bad_input_exits_1_with_file_line_and_column_and_writes_nothing() {
 }
 
 #[test]
+fn an_output_in_a_missing_directory_is_refused_before_tracing_and_dev_null_is_kept() {
+    use std::os::unix::fs::FileTypeExt;
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let ok = dir.path().join("ok.exr");
+    let missing = dir.path().join("no-such-dir");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .arg("--radiance-exr")
+        .arg(&ok)
+        .arg("--truth-exr")
+        .arg(missing.join("t.exr"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    // The check's own words, which name the directory; a late failure named the staged
+    // temporary (`.irsig-….tmp`) it could not create there.
+    assert!(
+        err.contains("is not an existing directory") && err.contains("no-such-dir"),
+        "{err}"
+    );
+    assert!(!err.contains(".irsig-"), "{err}");
+    assert!(!ok.exists());
+    // A device is an output like any other, written in place (run as root, a rename
+    // would have replaced /dev/null with a file).
+    let lut = dir.path().join("lut.txt");
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--radiance-exr", "/dev/null", "--lut"])
+        .arg(&lut)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(lut.exists());
+    let kind = std::fs::symlink_metadata("/dev/null").unwrap().file_type();
+    assert!(kind.is_char_device(), "{kind:?}");
+}
+
+#[test]
 fn a_tolerance_runs_the_pilot_prints_and_writes_its_decision() {
     let dir = tempfile::tempdir().unwrap();
     let (scene, mats, view) = inputs(dir.path(), 2);
