@@ -855,6 +855,7 @@ impl Walk<'_> {
             line: 0,
             column: 0,
             part: u32::try_from(self.mesh.parts.len() - 1).ok(),
+            lines_follow: false,
         });
         self.mesh.positions.extend(new_positions);
         self.mesh

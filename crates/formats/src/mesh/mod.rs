@@ -96,13 +96,16 @@ impl fmt::Display for Location {
 }
 
 /// Where a run of triangles came from: triangles from `first_triangle` on, until the next
-/// run, came from `line` and `column` (0 when unknown) and `part`.
+/// run, came from `line` and `column` (0 when unknown) and `part`; or, when `lines_follow`,
+/// triangle `first_triangle + k` from line `line + k` (an OBJ's triangles one per line, as
+/// most are written: a million of them make one run, not a million).
 #[derive(Debug, Clone, PartialEq)]
 struct Origin {
     first_triangle: u32,
     line: u32,
     column: u32,
     part: Option<u32>,
+    lines_follow: bool,
 }
 
 /// A triangle mesh as read from a file, in the file's length unit.
@@ -170,6 +173,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
             line: u32::try_from(f.position.line).unwrap_or(u32::MAX),
             column: u32::try_from(f.position.column).unwrap_or(u32::MAX),
             part: None,
+            lines_follow: false,
         });
     }
     Ok(mesh)
@@ -186,7 +190,16 @@ impl Mesh {
         let origin = i.checked_sub(1).and_then(|i| self.origins.get(i));
         Location {
             file: self.file.clone(),
-            line: origin.map(|o| o.line as usize).filter(|&l| l > 0),
+            line: origin
+                .map(|o| {
+                    let step = if o.lines_follow {
+                        index - o.first_triangle as usize
+                    } else {
+                        0
+                    };
+                    o.line as usize + step
+                })
+                .filter(|&l| l > 0),
             column: origin.map(|o| o.column as usize).filter(|&c| c > 0),
             part: origin
                 .and_then(|o| o.part)

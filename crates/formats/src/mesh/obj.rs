@@ -422,13 +422,27 @@ fn scan(
                     run_started = true;
                 }
                 // The face's column: where its `f` is (past any indentation).
-                let column = line.len() - line.trim_start().len() + 1;
-                out.origins.push(Origin {
-                    first_triangle: first,
-                    line: u32::try_from(line_index + 1).unwrap_or(u32::MAX),
-                    column: u32::try_from(column).unwrap_or(u32::MAX),
-                    part: None,
-                });
+                let column =
+                    u32::try_from(line.len() - line.trim_start().len() + 1).unwrap_or(u32::MAX);
+                let line_no = u32::try_from(line_index + 1).unwrap_or(u32::MAX);
+                // A triangle on the line after the last one of a run of triangles, at the
+                // same column, continues that run.
+                let follows = n == 3
+                    && out.origins.last().is_some_and(|o| {
+                        o.lines_follow
+                            && o.column == column
+                            && u64::from(o.line) + u64::from(first - o.first_triangle)
+                                == u64::from(line_no)
+                    });
+                if !follows {
+                    out.origins.push(Origin {
+                        first_triangle: first,
+                        line: line_no,
+                        column,
+                        part: None,
+                        lines_follow: n == 3,
+                    });
+                }
                 out.triangles += n - 2;
             }
             Some("usemtl") => {
@@ -662,6 +676,38 @@ mod tests {
         // A tab and two spaces before the `f`: its third character.
         assert_eq!(m.triangle_location(1).to_string(), "c.obj:6:4");
         assert_eq!(m.triangle_location(2).to_string(), "c.obj:6:4");
+    }
+
+    #[test]
+    fn every_triangle_of_a_run_of_faces_keeps_its_own_line() {
+        // Triangles one per line are stored as one run; a comment, an indented face, a quad
+        // and a `usemtl` line each break it, and every triangle still names its face.
+        let text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n\
+                    f 1 2 3\nf 2 4 3\nf 1 2 4\n# note\nf 1 3 4\n  f 1 2 3\nf 2 4 3\n\
+                    f 1 2 4 3\nf 1 2 3\nusemtl m\nf 2 4 3\nf 1 2 4\n";
+        let m = read_obj("r.obj", text.as_bytes(), None).unwrap();
+        let at: Vec<String> = (0..m.triangles.len())
+            .map(|i| m.triangle_location(i).to_string())
+            .collect();
+        let line = |l: usize, c: usize| format!("r.obj:{l}:{c}");
+        assert_eq!(
+            at,
+            [
+                line(5, 1),
+                line(6, 1),
+                line(7, 1),
+                line(9, 1),
+                line(10, 3),
+                line(11, 1),
+                line(12, 1),
+                line(12, 1),
+                line(13, 1),
+                line(15, 1),
+                line(16, 1),
+            ]
+        );
+        // The first three make one run, not three.
+        assert!(m.origins.len() < m.triangles.len(), "{}", m.origins.len());
     }
 
     #[test]
