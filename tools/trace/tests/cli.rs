@@ -316,6 +316,7 @@ fn bad_input_exits_1_with_file_line_and_column_and_writes_nothing() {
     assert_eq!(out.status.code(), Some(2));
 }
 
+#[cfg(unix)]
 #[test]
 fn an_output_in_a_missing_directory_is_refused_before_tracing_and_dev_null_is_kept() {
     use std::os::unix::fs::FileTypeExt;
