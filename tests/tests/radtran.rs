@@ -20,6 +20,7 @@ use irsig_formats::canonical;
 use irsig_formats::radtran::lowtran_tape6;
 use irsig_model::SpectralAtmosphere;
 use irsig_tests::{bin, repo_root};
+use predicates::prelude::PredicateBooleanExt;
 
 fn lowtran() -> PathBuf {
     if let Some(p) = std::env::var_os("IRSIG_LOWTRAN").filter(|p| !p.is_empty()) {
@@ -342,6 +343,18 @@ fn malformed_radiative_transfer_inputs_fail_at_their_place_and_write_nothing() {
         .stderr(predicates::str::contains("0000.tape5:3:1"))
         .stderr(predicates::str::contains("CANNOT BE REACHED"));
     assert!(!out.exists());
+    // An output in a directory that does not exist is refused before LOWTRAN7 runs: the
+    // message is the directory's, not the deck's.
+    bin("irsig-atmos")
+        .env("IRSIG_LOWTRAN", lowtran())
+        .arg("build")
+        .arg(m.join("rejected-by-lowtran"))
+        .arg("-o")
+        .arg(dir.path().join("no-such-dir").join("x.spa"))
+        .assert()
+        .code(1)
+        .stderr(predicates::str::contains("is not an existing directory"))
+        .stderr(predicates::str::contains("CANNOT BE REACHED").not());
 }
 
 /// LOWTRAN7's sky radiance over 8–14 µm, W m⁻² sr⁻¹, from the ground at `zenith_deg`

@@ -358,5 +358,13 @@ fn bad_tiles_are_refused_and_nothing_is_written() {
         .assert()
         .code(2)
         .stderr(says("--truth-exr is made from truth tiles"));
+    // An output in a directory that does not exist, refused before the tiles are pasted.
+    bin("irsig-merge")
+        .args(&all)
+        .arg("-o")
+        .arg(d.join("no-such-dir").join("frame"))
+        .assert()
+        .code(1)
+        .stderr(says("is not an existing directory").and(says("no-such-dir")));
     assert!(names(&out).is_empty(), "nothing written: {:?}", names(&out));
 }

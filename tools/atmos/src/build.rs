@@ -330,6 +330,8 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 /// output, runs on different grids; nothing is written then.
 #[allow(clippy::too_many_lines)]
 pub fn run(a: &BuildArgs) -> miette::Result<()> {
+    // Checked before LOWTRAN7 runs (minutes for a large plan).
+    irsig_cli::check_output(Path::new(&a.output))?;
     let plan_file = a.plan.join("plan.ron");
     let input = irsig_cli::read_input(&plan_file.to_string_lossy())?;
     let mut plan: AtmospherePlan = canonical::from_ron_bytes(&input.name, &input.bytes)?;

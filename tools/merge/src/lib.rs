@@ -282,6 +282,19 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
     let tiles = read_tiles(&cli.tiles)?;
     let out = cli.outputs(&tiles)?;
+    // Checked before the tiles are pasted (tens of seconds at 4096²).
+    for path in [
+        &out.radiance_exr,
+        &out.truth_exr,
+        &out.map_png,
+        &out.dc_png,
+        &out.lut,
+    ]
+    .into_iter()
+    .flatten()
+    {
+        irsig_cli::check_output(path)?;
+    }
     let gain = view_gain(&cli)?;
     // Radiance and truth tiles of one frame: one run, one frame.
     if let (Some(r), Some(t)) = (tiles.radiance.first(), tiles.truth.first())
