@@ -281,7 +281,14 @@ const RUN_ATTRIBUTE: &str = "irsig.run";
 /// # Errors
 /// An empty or inconsistent raster, or an I/O error.
 pub fn write_exr(out: &mut (impl Write + Seek), raster: &Raster) -> Result<(), RasterError> {
-    write_exr_threads(out, raster.clone(), true)
+    write_exr_threads(out, raster.clone(), several_threads())
+}
+
+/// Whether to compress an EXR's blocks on exr's own threads: only when the caller's rayon
+/// pool has more than one, so that a tool run on one thread compresses on one (exr's pool
+/// has a thread per CPU whatever the caller's has).
+fn several_threads() -> bool {
+    rayon::current_num_threads() > 1
 }
 
 /// [`write_exr`], its blocks compressed on exr's own threads (`parallel`) or on this one:
@@ -357,16 +364,13 @@ pub fn exr_bytes(raster: &Raster) -> Result<Vec<u8>, RasterError> {
 }
 
 /// [`exr_bytes`] of a raster no longer needed: its layers are encoded where they lie, not
-/// copied first (a frame's truth layers are 48 bytes a pixel). Its blocks are compressed
-/// on exr's threads only when the caller's rayon pool has more than one: a tool run on one
-/// thread then compresses on one.
+/// copied first (a frame's truth layers are 48 bytes a pixel).
 ///
 /// # Errors
 /// As [`write_exr`].
 pub fn into_exr_bytes(raster: Raster) -> Result<Vec<u8>, RasterError> {
     let mut bytes = Vec::new();
-    let parallel = rayon::current_num_threads() > 1;
-    write_exr_threads(&mut Cursor::new(&mut bytes), raster, parallel)?;
+    write_exr_threads(&mut Cursor::new(&mut bytes), raster, several_threads())?;
     Ok(bytes)
 }
 
