@@ -253,6 +253,54 @@ pub fn read_spectral_atmosphere(
     }
 }
 
+/// An error at a model path (`grid.points`) of a spectral atmosphere in either form: in
+/// the RON, or in the binary form's RON header, at its byte offset.
+#[must_use]
+pub fn spectral_atmosphere_error_at_path(
+    file: &str,
+    bytes: &[u8],
+    path: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    if binary_spectral::is_binary(bytes) {
+        let (offset, header) = binary_spectral::header(bytes).unwrap_or((16, ""));
+        let (start, _) = crate::ron_tree::locate(header, path);
+        ParseError::in_binary(file, offset + start, message)
+    } else {
+        error_at_path(file, &String::from_utf8_lossy(bytes), path, message)
+    }
+}
+
+/// An atmosphere file in any canonical form: a band atmosphere (RON), or a spectral one
+/// (binary or RON).
+#[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per file read
+pub enum AnyAtmosphere {
+    /// Band tables.
+    Band(Atmosphere),
+    /// Spectra.
+    Spectral(SpectralAtmosphere),
+}
+
+/// Reads an atmosphere file of either kind: binary spectral by its magic; in RON, a
+/// spectral atmosphere by its top-level `grid` field (a band atmosphere has none), else a
+/// band one.
+///
+/// # Errors
+/// As [`read_spectral_atmosphere`] or [`from_ron_bytes`]: the band atmosphere's errors for
+/// a RON file without a `grid`.
+pub fn read_any_atmosphere(file: &str, bytes: &[u8]) -> Result<AnyAtmosphere, ParseError> {
+    if binary_spectral::is_binary(bytes) {
+        return binary_spectral::decode(file, bytes).map(AnyAtmosphere::Spectral);
+    }
+    let text = utf8(file, bytes)?;
+    if crate::ron_tree::has_top_level_field(text, "grid") {
+        from_ron(file, text).map(AnyAtmosphere::Spectral)
+    } else {
+        from_ron(file, text).map(AnyAtmosphere::Band)
+    }
+}
+
 /// Reads an object in either form: binary when the bytes start with
 /// [`binary_object::MAGIC`] or `file` ends in `.bin` (so that a damaged binary file is
 /// reported as one), RON otherwise. Validates it; a rule broken in a binary object is
