@@ -16,6 +16,7 @@
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
+//! | [`frame::FrameFile`] kinds | `irsig-trace`, `irsig-merge` | `irsig-cli` (naming) |
 //!
 //! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
 //! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
@@ -40,6 +41,7 @@
 mod atmosphere;
 pub mod decision;
 mod error;
+pub mod frame;
 pub mod limits;
 mod material;
 mod object;
