@@ -67,7 +67,7 @@ pub struct Cli {
     pub scene_format: Option<SceneFormat>,
     /// Length unit of legacy files: the legacy scene's translations and legacy facet
     /// files' coordinates (km for the 1990 data). RON files are always in metres.
-    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
     pub unit: LengthUnit,
     /// Check that every facet's material id is in this material library.
     #[arg(long, value_name = "LIBRARY")]
@@ -78,10 +78,6 @@ pub struct Cli {
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-}
-
-fn parse_unit(s: &str) -> Result<LengthUnit, String> {
-    s.parse()
 }
 
 /// Runs `irsig-flatten`.

@@ -73,7 +73,7 @@ pub struct Cli {
     #[arg(long, value_name = "NAME")]
     pub default_material: Option<String>,
     /// The length unit of the file's coordinates.
-    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
     pub unit: LengthUnit,
     /// An extra factor applied after the unit conversion.
     #[arg(long, default_value_t = 1.0)]
@@ -114,10 +114,6 @@ pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
             .is_some_and(|e| e.eq_ignore_ascii_case("bin")),
         _ => stdout_is_pipe,
     }
-}
-
-fn parse_unit(s: &str) -> Result<LengthUnit, String> {
-    s.parse()
 }
 
 /// Runs `irsig-import`.

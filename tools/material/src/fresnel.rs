@@ -125,7 +125,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
             })?;
             let srf = match &band_arg {
                 BandArg::Response(path) => format!(" weighted by the response {path}"),
-                BandArg::Flat { .. } => String::new(),
+                BandArg::Flat { .. } | BandArg::Total => String::new(),
             };
             // The spectrum: the Fresnel equations at normal incidence on every row. With it
             // a tracer takes ε(λ, θ) = ε(λ) · table(θ) / table(0°), the band's angular shape

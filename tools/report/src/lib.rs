@@ -75,8 +75,8 @@ pub struct Cli {
     pub radiance: Option<String>,
     /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres or a sensor
     /// response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
     /// Per-region statistics from this regions file (canonical RON); needs the truth EXR.
     #[arg(long, value_name = "FILE", requires = "truth")]
     pub regions: Option<String>,
@@ -287,7 +287,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
     let radiance = match &cli.radiance {
         Some(path) => {
-            let band = cli.band.load()?;
+            let band = BandArg::or_default(cli.band.as_ref()).load()?;
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("radiance EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
@@ -330,7 +330,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                     image.height,
                     format!(
                         "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {} um",
-                        cli.band
+                        BandArg::or_default(cli.band.as_ref())
                     ),
                 )
             }

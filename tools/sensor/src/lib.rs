@@ -99,8 +99,8 @@ pub struct Cli {
 
     /// The band, as the tracer's: `MIN-MAX` in micrometres (flat response) or a sensor
     /// response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
 
     /// Noise-equivalent temperature difference, kelvin: adds Gaussian noise of
     /// σ = NEdT·dL/dT(reference) to the radiance.
@@ -290,7 +290,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
              --dc-per-kelvin with --reference-k (fixed), or --gain-dc-per-radiance",
         ));
     }
-    let band = cli.band.load()?;
+    let band = BandArg::or_default(cli.band.as_ref()).load()?;
 
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;

@@ -81,8 +81,8 @@ pub struct Cli {
     pub layer: String,
     /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres (flat response) or
     /// a sensor response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
@@ -149,7 +149,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
     let band = if cli.radiance.is_some() {
-        Some(cli.band.load()?)
+        Some(BandArg::or_default(cli.band.as_ref()).load()?)
     } else {
         None
     };
@@ -189,7 +189,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 temperatures,
                 format!(
                     "apparent temperature of the `radiance` layer of {} in {} um",
-                    input.name, cli.band
+                    input.name,
+                    BandArg::or_default(cli.band.as_ref())
                 ),
             )
         }

@@ -1,0 +1,343 @@
+//! The tolerance pilot's side of a frame: what the pilot may choose from for a scene
+//! ([`offer`]), the pins that fix a model ([`Pin`]), and the decision as a table.
+
+use std::fmt::Write as _;
+use std::str::FromStr;
+
+use irsig_atmosphere::{ModelKind, SubBandCount};
+use irsig_model::MaterialLibrary;
+use irsig_model::decision::{Decision, SwitchableModel};
+use irsig_tracer::PathTermsMode;
+use irsig_tracer::pilot::Supersample;
+
+/// The most bounces, sky-view rays and rays per pixel the pilot compares against. Four
+/// bounces: Appendix A finds one enough at earth-ambient temperatures, so four leave only
+/// hot-background scenes for more. 64 sky-view rays: the stratified estimate of F is then
+/// good to about 1/64 (docs/accuracy.md). 4 × 4 rays: an edge's area to 1/16 of a pixel.
+pub const REFERENCE_BOUNCES: u32 = 4;
+const REFERENCE_SKY_VIEW_RAYS: u32 = 64;
+const REFERENCE_SUPERSAMPLING: u32 = 4;
+
+/// A model fixed by hand (`MODEL=SETTING`): the pilot measures it but does not choose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pin {
+    /// `atmosphere=table|layered|thesis|none`.
+    Atmosphere(ModelKind),
+    /// `bounces=N`, 0 to 64.
+    Bounces(u32),
+    /// `sky-view=N` rays (0: off).
+    SkyView(u32),
+    /// `supersampling=N` or `adaptive-N`.
+    Supersampling(Supersample),
+    /// `path-terms=exact|tabulated`.
+    PathTerms(PathTermsMode),
+    /// `sub-bands=1|K|full`.
+    SubBands(SubBandCount),
+}
+
+impl Pin {
+    /// The model pinned.
+    #[must_use]
+    pub fn model(self) -> SwitchableModel {
+        match self {
+            Self::Atmosphere(_) => SwitchableModel::Atmosphere,
+            Self::Bounces(_) => SwitchableModel::Bounces,
+            Self::SkyView(_) => SwitchableModel::SkyView,
+            Self::Supersampling(_) => SwitchableModel::Supersampling,
+            Self::PathTerms(_) => SwitchableModel::PathTerms,
+            Self::SubBands(_) => SwitchableModel::SubBands,
+        }
+    }
+}
+
+impl std::fmt::Display for Pin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let model = self.model();
+        match self {
+            Self::Atmosphere(k) => write!(f, "{model}={k}"),
+            Self::Bounces(n) | Self::SkyView(n) => write!(f, "{model}={n}"),
+            Self::Supersampling(s) => write!(f, "{model}={s}"),
+            Self::PathTerms(p) => write!(f, "{model}={}", p.name()),
+            Self::SubBands(k) => write!(f, "{model}={k}"),
+        }
+    }
+}
+
+impl FromStr for Pin {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let (model, setting) = s
+            .split_once('=')
+            .ok_or_else(|| format!("expected MODEL=SETTING such as bounces=2, found `{s}`"))?;
+        let model: SwitchableModel = model.trim().parse().map_err(|e| format!("{e}"))?;
+        let setting = setting.trim();
+        let pin = match model {
+            SwitchableModel::Atmosphere => setting.parse().ok().map(Self::Atmosphere),
+            SwitchableModel::Bounces => setting
+                .parse::<u32>()
+                .ok()
+                .filter(|&b| b <= 64)
+                .map(Self::Bounces),
+            SwitchableModel::SkyView => setting
+                .parse::<u32>()
+                .ok()
+                .filter(|&n| n <= 1 << 20)
+                .map(Self::SkyView),
+            SwitchableModel::Supersampling => setting.parse().ok().map(Self::Supersampling),
+            SwitchableModel::PathTerms => setting.parse().ok().map(Self::PathTerms),
+            SwitchableModel::SubBands => setting.parse().ok().map(Self::SubBands),
+        };
+        pin.ok_or_else(|| {
+            let expected = match model {
+                SwitchableModel::Atmosphere => "table, layered, thesis or none",
+                SwitchableModel::Bounces => "a number of bounces, 0 to 64",
+                SwitchableModel::SkyView => "a number of rays (0: off)",
+                SwitchableModel::Supersampling => "N (N x N rays per pixel) or adaptive-N",
+                SwitchableModel::PathTerms => "exact or tabulated",
+                SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
+            };
+            format!("{model}={setting}: expected {expected}")
+        })
+    }
+}
+
+/// The settings on offer for each model, most accurate first, and why a model has one.
+#[derive(Debug)]
+pub struct Offer {
+    pub atmospheres: Vec<ModelKind>,
+    pub bounces: Vec<u32>,
+    pub sky_view_rays: Vec<u32>,
+    pub supersampling: Vec<Supersample>,
+    pub path_terms: Vec<PathTermsMode>,
+    pub sub_bands: Vec<SubBandCount>,
+    pub reasons: Vec<(SwitchableModel, String)>,
+    pub pinned: Vec<SwitchableModel>,
+}
+
+/// The sub-band counts offered with a spectral atmosphere, most accurate first: the
+/// atmosphere's full grid, then 16 and 4 sub-bands of equal shares, then the band model.
+pub const SPECTRAL_SUB_BANDS: [SubBandCount; 4] = [
+    SubBandCount::Full,
+    SubBandCount::Count(16),
+    SubBandCount::Count(4),
+    SubBandCount::BAND,
+];
+
+/// What the pilot may choose for a scene with `materials` under `atmosphere` (the kinds
+/// its tables allow, or `None` for a vacuum; `spectral` when it has spectra, so that
+/// sub-band counts are on offer), with `pins` fixing models.
+///
+/// # Errors
+/// A pin the scene cannot honour (an atmosphere model whose table is missing).
+pub fn offer(
+    materials: &MaterialLibrary,
+    kinds: Option<&[ModelKind]>,
+    spectral: bool,
+    pins: &[Pin],
+) -> Result<Offer, String> {
+    let mut reasons = Vec::new();
+    let specular = materials
+        .materials
+        .iter()
+        .any(|m| m.specular_fraction > 0.0);
+    let diffuse = materials
+        .materials
+        .iter()
+        .any(|m| m.specular_fraction < 1.0);
+    // Sub-bands pinned to the band model: every atmosphere model costs one sky, as without
+    // spectra.
+    let band_pinned = pins
+        .iter()
+        .any(|p| matches!(p, Pin::SubBands(c) if c.is_band()));
+    let mut atmospheres = match kinds {
+        // Spectra with slant tables: the table model, LOWTRAN's own paths in every
+        // sub-band; the layered and thesis models, approximations for atmospheres without
+        // slant tables, would each cost a sky precomputation per sub-band of the pilot's
+        // full grid (BENCHMARKS.md: 88 and 121 ms).
+        Some(k) if spectral && !band_pinned && k.contains(&ModelKind::Table) => {
+            reasons.push((
+                SwitchableModel::Atmosphere,
+                "a spectral atmosphere with slant tables: the table model".to_owned(),
+            ));
+            vec![ModelKind::Table]
+        }
+        Some(k) => k.to_vec(),
+        None => {
+            reasons.push((
+                SwitchableModel::Atmosphere,
+                "no atmosphere (--atmosphere none)".to_owned(),
+            ));
+            vec![ModelKind::None]
+        }
+    };
+    let mut bounces = if specular {
+        vec![REFERENCE_BOUNCES, 2, 1, 0]
+    } else {
+        reasons.push((
+            SwitchableModel::Bounces,
+            "no specular material: bounces cannot matter".to_owned(),
+        ));
+        vec![0]
+    };
+    let mut sky_view_rays = if diffuse {
+        vec![REFERENCE_SKY_VIEW_RAYS, 16, 0]
+    } else {
+        reasons.push((
+            SwitchableModel::SkyView,
+            "no diffuse material: the sky-view factor cannot matter".to_owned(),
+        ));
+        vec![0]
+    };
+    let r = REFERENCE_SUPERSAMPLING;
+    let mut supersampling = vec![
+        Supersample::Every(r),
+        Supersample::Adaptive(r),
+        Supersample::Every(2),
+        Supersample::Adaptive(2),
+        Supersample::Every(1),
+    ];
+    let mut path_terms = if kinds.is_some() {
+        vec![PathTermsMode::Exact, PathTermsMode::Tabulated]
+    } else {
+        reasons.push((
+            SwitchableModel::PathTerms,
+            "no atmosphere: path terms are exact and free".to_owned(),
+        ));
+        vec![PathTermsMode::Exact]
+    };
+    let mut sub_bands = if spectral {
+        SPECTRAL_SUB_BANDS.to_vec()
+    } else {
+        reasons.push((
+            SwitchableModel::SubBands,
+            "the atmosphere has no spectra: the band model".to_owned(),
+        ));
+        vec![SubBandCount::BAND]
+    };
+    let mut pinned = Vec::new();
+    for &pin in pins {
+        let model = pin.model();
+        let why = format!("pinned by --pin {pin}");
+        reasons.retain(|(m, _)| *m != model);
+        reasons.push((model, why));
+        pinned.push(model);
+        match pin {
+            Pin::Atmosphere(kind) => {
+                if !atmospheres.contains(&kind) {
+                    return Err(format!(
+                        "--pin atmosphere={kind}: this atmosphere offers {}",
+                        atmospheres
+                            .iter()
+                            .map(ToString::to_string)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ));
+                }
+                atmospheres = vec![kind];
+            }
+            Pin::Bounces(n) => bounces = vec![n],
+            Pin::SkyView(n) => sky_view_rays = vec![n],
+            Pin::Supersampling(s) => supersampling = vec![s],
+            Pin::PathTerms(p) => path_terms = vec![p],
+            Pin::SubBands(count) => {
+                if !spectral && !count.is_band() {
+                    return Err(format!(
+                        "--pin sub-bands={count}: this atmosphere has no spectra; only 1 (the \
+                         band model) is on offer"
+                    ));
+                }
+                sub_bands = vec![count];
+            }
+        }
+    }
+    Ok(Offer {
+        atmospheres,
+        bounces,
+        sky_view_rays,
+        supersampling,
+        path_terms,
+        sub_bands,
+        reasons,
+        pinned,
+    })
+}
+
+/// The decision as a table for people: model, choice, error at the percentile and at worst
+/// (K), relative cost, why. The first line says the tolerance; the rest are indented.
+#[must_use]
+pub fn table(d: &Decision) -> String {
+    let mut out = String::new();
+    let p = d.percentile;
+    let _ = writeln!(
+        out,
+        "tolerance {} K at the {p}th percentile, from {} pilot pixels:",
+        d.tolerance_k, d.pilot_pixels
+    );
+    let _ = writeln!(
+        out,
+        "  {:<14} {:<12} {:<12} {:>9} {:>9} {:>7}  why",
+        "model", "choice", "reference", "p(K)", "worst(K)", "cost"
+    );
+    for c in &d.choices {
+        let _ = writeln!(
+            out,
+            "  {:<14} {:<12} {:<12} {:>9.4} {:>9.4} {:>7.3}  {}",
+            c.model.name(),
+            c.setting,
+            c.reference,
+            c.error.percentile_k,
+            c.error.max_k,
+            c.relative_cost,
+            c.reason
+        );
+    }
+    let _ = writeln!(
+        out,
+        "  predicted error of the combination: {:.4} K at the {p}th percentile, {:.4} K at \
+         worst; cost {:.3} of the most accurate rendering",
+        d.predicted.percentile_k, d.predicted.max_k, d.relative_cost
+    );
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pins_name_a_model_and_one_of_its_settings() {
+        assert_eq!("bounces=2".parse::<Pin>(), Ok(Pin::Bounces(2)));
+        assert_eq!(
+            "supersampling=adaptive-4"
+                .parse::<Pin>()
+                .map(|p| p.to_string()),
+            Ok("supersampling=adaptive-4".to_owned())
+        );
+        assert!("supersampling=adaptive-4".parse::<Pin>().is_ok());
+        let e = "bounce=2".parse::<Pin>().unwrap_err();
+        assert!(e.contains("unknown model `bounce`"), "{e}");
+        assert!("bounces".parse::<Pin>().is_err());
+        assert!("atmosphere=lowtran".parse::<Pin>().is_err());
+        assert!("supersampling=0".parse::<Pin>().is_err());
+        assert!("sub-bands=0".parse::<Pin>().is_err());
+    }
+
+    #[test]
+    fn a_spectral_atmosphere_offers_sub_bands_over_the_table_model() {
+        let materials = MaterialLibrary::default();
+        let kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis];
+        let o = offer(&materials, Some(&kinds), true, &[]).unwrap();
+        assert_eq!(o.sub_bands, SPECTRAL_SUB_BANDS.to_vec());
+        assert_eq!(o.atmospheres, vec![ModelKind::Table]);
+        // The band model pinned: every atmosphere model again, as without spectra.
+        let pin: Pin = "sub-bands=1".parse().unwrap();
+        let o = offer(&materials, Some(&kinds), true, &[pin]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        assert_eq!(o.atmospheres, kinds.to_vec());
+        // Without spectra only the band model; a count above 1 cannot be pinned.
+        let o = offer(&materials, Some(&kinds), false, &[]).unwrap();
+        assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
+        let pin: Pin = "sub-bands=16".parse().unwrap();
+        assert!(offer(&materials, Some(&kinds), false, &[pin]).is_err());
+    }
+}
