@@ -277,6 +277,21 @@ impl FrameOutputArgs {
         self.named().any()
     }
 
+    /// `PREFIX.SUFFIX` of frame `index` (from 0) of `frames` (`PREFIX.NNNN.SUFFIX` for
+    /// more than one); `None` without -o.
+    #[must_use]
+    pub fn prefixed_file(&self, index: usize, frames: usize, suffix: &str) -> Option<PathBuf> {
+        let prefix = self.output.as_ref()?;
+        let stem = if frames == 1 {
+            prefix.clone()
+        } else {
+            let mut s = prefix.as_os_str().to_owned();
+            s.push(format!(".{:04}", index + 1));
+            PathBuf::from(s)
+        };
+        Some(with_suffix(&stem, suffix))
+    }
+
     /// The files of frame `index` (from 0) of `frames` under the prefix, those of `kinds`
     /// (with `--no-dc`, no counts or LUT); `None` without -o.
     #[must_use]
@@ -286,22 +301,39 @@ impl FrameOutputArgs {
         frames: usize,
         kinds: &[FrameFile],
     ) -> Option<FrameFiles<PathBuf>> {
-        let prefix = self.output.as_ref()?;
-        let stem = if frames == 1 {
-            prefix.clone()
-        } else {
-            let mut s = prefix.as_os_str().to_owned();
-            s.push(format!(".{:04}", index + 1));
-            PathBuf::from(s)
-        };
+        self.output.as_ref()?;
         let mut files = FrameFiles::default();
         for &kind in kinds {
             let counts = matches!(kind, FrameFile::DcPng | FrameFile::Lut);
             if !(counts && self.no_dc) {
-                files.set(kind, with_suffix(&stem, kind.suffix()));
+                files.set(kind, self.prefixed_file(index, frames, kind.suffix())?);
             }
         }
         Some(files)
+    }
+
+    /// The files of each of `frames` frames: under the prefix, those of `kinds`; else, for
+    /// one frame, those the flags name.
+    ///
+    /// # Errors
+    /// Per-output flags for more than one frame (bad usage).
+    pub fn frames(
+        &self,
+        frames: usize,
+        kinds: &[FrameFile],
+    ) -> miette::Result<Vec<FrameFiles<PathBuf>>> {
+        if self.output.is_none() && frames > 1 {
+            return Err(crate::usage_error(format!(
+                "the per-output flags name one file each, but {frames} views were given: \
+                 give one view per run, or -o PREFIX for numbered outputs"
+            )));
+        }
+        Ok((0..frames)
+            .map(|i| {
+                self.prefixed(i, frames, kinds)
+                    .unwrap_or_else(|| self.named())
+            })
+            .collect())
     }
 
     /// At most one file goes to standard output (`-`).

@@ -29,8 +29,10 @@
 //! ```
 
 pub mod args;
+mod frames;
 mod staged;
 
+pub use frames::StagedFrames;
 pub use staged::{Staged, check_output, remove_staged_files};
 
 use std::fs::File;

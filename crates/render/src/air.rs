@@ -28,6 +28,39 @@ pub enum AtmosphereRequest {
 }
 
 impl AtmosphereRequest {
+    /// The atmosphere `name` names: `none`, a vacuum whose sky has radiance `sky`; a
+    /// built-in; else the file `read` reads (`None`: there is no file of that name).
+    ///
+    /// # Errors
+    /// No built-in or file of that name (a request error listing the built-ins), or the
+    /// file's own error.
+    pub fn named(
+        name: &str,
+        sky_radiance_w_m2_sr: f64,
+        read: impl FnOnce(&str) -> miette::Result<Option<(String, Vec<u8>)>>,
+    ) -> miette::Result<Self> {
+        if name == "none" {
+            return Ok(Self::Vacuum {
+                sky_radiance_w_m2_sr,
+            });
+        }
+        if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
+            return Ok(Self::Builtin(name.to_owned()));
+        }
+        match read(name)? {
+            Some((name, bytes)) => Ok(Self::File { name, bytes }),
+            None => Err(RequestError::of_value(
+                Setting::Atmosphere,
+                format!("`{name}`"),
+                format!(
+                    "no built-in atmosphere or file of that name; built-ins are: {}, or \
+                     `none` for a vacuum",
+                    irsig_atmosphere::BUILTIN_NAMES.join(", ")
+                ),
+            )),
+        }
+    }
+
     /// The name messages give the atmosphere: `none`, the built-in's, the file's.
     #[must_use]
     pub fn name(&self) -> &str {
@@ -102,12 +135,12 @@ pub(crate) fn check_spectral_range(
 
 /// The error of sub-bands asked of an atmosphere without spectra.
 pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> miette::Report {
-    RequestError::report(
+    RequestError::of_value(
         Setting::SubBands,
+        count,
         format!(
-            "{count}: the atmosphere `{name}` has no spectra; sub-bands need a spectral \
-             atmosphere (a built-in, or a file irsig-atmos build wrote), and the `total` band \
-             has none"
+            "the atmosphere `{name}` has no spectra; sub-bands need a spectral atmosphere (a \
+             built-in, or a file irsig-atmos build wrote), and the `total` band has none"
         ),
     )
 }

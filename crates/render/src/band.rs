@@ -105,7 +105,7 @@ impl<'a> Split<'a> {
             Err(_) => f64::NAN,
         };
         let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
-            .map_err(|e| RequestError::report(Setting::SubBands, format!("{count}: {e}")))?;
+            .map_err(|e| RequestError::of_value(Setting::SubBands, count, e.to_string()))?;
         let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
         edges
             .par_windows(2)

@@ -31,13 +31,36 @@ pub enum Setting {
     Outputs,
 }
 
-/// A request that cannot be carried out as made.
+impl Setting {
+    /// The setting's name, as the tools spell it (kebab-case): `sub-bands`, `sky-radiance`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Band => "band",
+            Self::Atmosphere => "atmosphere",
+            Self::SkyRadiance => "sky-radiance",
+            Self::SubBands => "sub-bands",
+            Self::Tolerance => "tolerance",
+            Self::TolerancePercentile => "tolerance-percentile",
+            Self::Pin => "pin",
+            Self::Materials => "materials",
+            Self::Tile => "tile",
+            Self::Probe => "probe",
+            Self::Outputs => "outputs",
+        }
+    }
+}
+
+/// A request that cannot be carried out as made: `VALUE: MESSAGE`, or `MESSAGE` alone,
+/// which the tool prefixes with the flag of [`RequestError::setting`].
 #[derive(Debug, Clone, PartialEq, thiserror::Error, miette::Diagnostic)]
-#[error("{message}")]
+#[error("{}{message}", value.as_ref().map(|v| format!("{v}: ")).unwrap_or_default())]
 #[diagnostic(code(irsig::render::request))]
 pub struct RequestError {
     /// What the request got wrong.
     pub setting: Setting,
+    /// The value at fault, as the user would write it, if one is.
+    pub value: Option<String>,
     /// Why, without the flag's name (the tool adds it).
     pub message: String,
 }
@@ -48,6 +71,21 @@ impl RequestError {
     pub fn report(setting: Setting, message: impl Into<String>) -> miette::Report {
         miette::Report::new(Self {
             setting,
+            value: None,
+            message: message.into(),
+        })
+    }
+
+    /// A report of a request error about `setting`'s `value`.
+    #[must_use]
+    pub fn of_value(
+        setting: Setting,
+        value: impl std::fmt::Display,
+        message: impl Into<String>,
+    ) -> miette::Report {
+        miette::Report::new(Self {
+            setting,
+            value: Some(value.to_string()),
             message: message.into(),
         })
     }

@@ -211,9 +211,10 @@ impl Plan {
         } = request.atmosphere
             && (!sky.is_finite() || sky < 0.0)
         {
-            return Err(RequestError::report(
+            return Err(RequestError::of_value(
                 Setting::SkyRadiance,
-                format!("{sky} is out of range: expected a finite radiance of 0 or more"),
+                sky,
+                "out of range: expected a finite radiance of 0 or more",
             ));
         }
         if let Some(t) = &request.tolerance {
@@ -271,11 +272,12 @@ impl Plan {
                 crate::materials::band_library(&lib, band, name, &String::from_utf8_lossy(bytes))?
             }
             BandRequest::Total => {
-                return Err(RequestError::report(
+                return Err(RequestError::of_value(
                     Setting::Band,
+                    "total",
                     format!(
-                        "`{name}` has spectral materials, which the `total` band (the whole \
-                         spectrum) cannot average: give a band of wavelengths"
+                        "`{name}` has spectral materials, which the whole spectrum cannot \
+                         average: give a band of wavelengths"
                     ),
                 ));
             }
@@ -410,6 +412,27 @@ impl Plan {
             .map(|m| u32::from(m.id.0))
             .max()
             .unwrap_or(0)
+    }
+
+    /// Whether every material id fits the interaction map's nibble (1 to 15).
+    #[must_use]
+    pub fn map_fits(&self) -> bool {
+        self.max_material_id() <= u32::from(irsig_formats::legacy::map::MAX_ID)
+    }
+
+    /// The files a frame can make: the interaction map only when the ids fit it, and the
+    /// map, counts and LUT only of a whole frame (a tile's are the merge's: they need the
+    /// whole frame).
+    #[must_use]
+    pub fn file_kinds(&self, whole: bool) -> Vec<FrameFile> {
+        FrameFile::ALL
+            .into_iter()
+            .filter(|k| match k {
+                FrameFile::MapPng => self.map_fits() && whole,
+                FrameFile::DcPng | FrameFile::Lut => whole,
+                FrameFile::RadianceExr | FrameFile::TruthExr => true,
+            })
+            .collect()
     }
 
     /// Every frame's tile: the whole image, or `tile` of it.
@@ -732,8 +755,7 @@ impl Plan {
             air.kinds.as_deref(),
             air.spectral,
             &tolerance.pins,
-        )
-        .map_err(|e| RequestError::report(Setting::Pin, e))?;
+        )?;
         let (Some(&ref_kind), Some(&ref_count)) =
             (offer.atmospheres.first(), offer.sub_bands.first())
         else {

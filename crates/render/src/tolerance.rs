@@ -10,6 +10,7 @@ use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
 use irsig_tracer::pilot::Supersample;
 
+use crate::error::{RequestError, Setting};
 /// The most bounces, sky-view rays and rays per pixel the pilot compares against. Four
 /// bounces: Appendix A finds one enough at earth-ambient temperatures, so four leave only
 /// hot-background scenes for more. 64 sky-view rays: the stratified estimate of F is then
@@ -128,13 +129,14 @@ pub const SPECTRAL_SUB_BANDS: [SubBandCount; 4] = [
 /// sub-band counts are on offer), with `pins` fixing models.
 ///
 /// # Errors
-/// A pin the scene cannot honour (an atmosphere model whose table is missing).
+/// A pin the scene cannot honour (an atmosphere model whose table is missing, sub-bands of
+/// an atmosphere without spectra): a request error naming the pin.
 pub fn offer(
     materials: &MaterialLibrary,
     kinds: Option<&[ModelKind]>,
     spectral: bool,
     pins: &[Pin],
-) -> Result<Offer, String> {
+) -> miette::Result<Offer> {
     let mut reasons = Vec::new();
     let specular = materials
         .materials
@@ -224,13 +226,17 @@ pub fn offer(
         match pin {
             Pin::Atmosphere(kind) => {
                 if !atmospheres.contains(&kind) {
-                    return Err(format!(
-                        "--pin atmosphere={kind}: this atmosphere offers {}",
-                        atmospheres
-                            .iter()
-                            .map(ToString::to_string)
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                    return Err(RequestError::of_value(
+                        Setting::Pin,
+                        pin,
+                        format!(
+                            "this atmosphere offers {}",
+                            atmospheres
+                                .iter()
+                                .map(ToString::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
                     ));
                 }
                 atmospheres = vec![kind];
@@ -241,9 +247,10 @@ pub fn offer(
             Pin::PathTerms(p) => path_terms = vec![p],
             Pin::SubBands(count) => {
                 if !spectral && !count.is_band() {
-                    return Err(format!(
-                        "--pin sub-bands={count}: this atmosphere has no spectra; only 1 (the \
-                         band model) is on offer"
+                    return Err(RequestError::of_value(
+                        Setting::Pin,
+                        pin,
+                        "this atmosphere has no spectra; only 1 (the band model) is on offer",
                     ));
                 }
                 sub_bands = vec![count];

@@ -1,34 +1,8 @@
-//! `irsig-trace`: renders a raw scene through an atmosphere for one or more views and writes,
-//! per view, the radiance image (f32 EXR), the truth layers (multi-layer f32 EXR), the
-//! legacy interaction map (8-bit nibble PNG) when the material ids fit in four bits, and
-//! the digital-count image (8- or 16-bit PNG) with its LUT.
-//!
-//! This crate is the command line only: it turns its flags into an `irsig_render::Request`,
-//! reads the input files, hands their bytes to an `irsig_render::Plan`, which does the
-//! frame's work, and stages the files it gets back (`irsig_cli::Staged`), all or none of
-//! them.
-//!
-//! ```text
-//! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
-//! # -> out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, out/frame.dc.png,
-//! #    out/frame.lut.txt
-//! irsig-trace --scene world.raw --materials materials.ron --view view.ron \
-//!     --radiance-exr out/frame.exr --dc-png out/frame.png   # only these two
-//! irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,128
-//! irsig-trace --scene world.raw --materials materials.ron --view frame1.view -o out/f1
-//! irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
-//! irsig-trace --scene world.raw --materials materials.ron --view view.ron --tile 6/4x4 \
-//!     -o tiles/t06      # tile 6 of a 4 x 4 grid; irsig-merge puts the frame together
-//! ```
-//!
-//! `-o PREFIX` writes every output under one prefix; the per-output flags write only the
-//! files named, for one view, so that `irsig-run` and Makefiles see each file a stage
-//! writes.
-//!
-//! Every EXR says which frame it is part of and which run made it (`irsig.run`, a SHA-256
-//! of the inputs and of the settings the pixels depend on; formats/images.md): a tile
-//! (`--tile`) is a rectangle of its frame, and the tiles of a frame merge (irsig-merge)
-//! into the bytes the frame traced whole writes.
+//! `irsig-trace`: a raw scene through an atmosphere, per view: the radiance and truth EXRs,
+//! the 1990 interaction map, the digital counts and their LUT (`--help` shows examples).
+//! The command line only: the flags become an `irsig_render::Request`, the inputs' bytes go
+//! to an `irsig_render::Plan`, which does the frame's work, and the files it gives back are
+//! staged (`irsig_cli::StagedFrames`) and renamed into place together, or none of them.
 
 use std::path::{Path, PathBuf};
 
@@ -42,7 +16,7 @@ use irsig_model::decision::Decision;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_render::tolerance::Pin;
 use irsig_render::{
-    AtmosphereRequest, BandRequest, Plan, Request, RequestError, Setting, Sink, TileRequest,
+    AtmosphereRequest, BandRequest, Plan, Request, RequestError, Sink, TileRequest,
     ToleranceRequest,
 };
 use irsig_tracer::PathTermsMode;
@@ -231,26 +205,12 @@ fn request(cli: &Cli) -> miette::Result<Request> {
         BandArg::Total => BandRequest::Total,
         band => BandRequest::Band(band.load()?),
     };
-    let name = cli.atmosphere.as_str();
-    let atmosphere = if name == "none" {
-        AtmosphereRequest::Vacuum {
-            sky_radiance_w_m2_sr: cli.sky_radiance,
+    let atmosphere = AtmosphereRequest::named(&cli.atmosphere, cli.sky_radiance, |name| {
+        if name != "-" && !Path::new(name).exists() {
+            return Ok(None);
         }
-    } else if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
-        AtmosphereRequest::Builtin(name.to_owned())
-    } else if name == "-" || Path::new(name).exists() {
-        let input = irsig_cli::read_input(name)?;
-        AtmosphereRequest::File {
-            name: input.name,
-            bytes: input.bytes,
-        }
-    } else {
-        return Err(irsig_cli::usage_error(format!(
-            "--atmosphere `{name}`: no built-in atmosphere or file of that name; built-ins \
-             are: {}, or `none` for a vacuum",
-            irsig_atmosphere::BUILTIN_NAMES.join(", ")
-        )));
-    };
+        irsig_cli::read_input(name).map(|i| Some((i.name, i.bytes)))
+    })?;
     Ok(Request {
         band,
         atmosphere,
@@ -278,25 +238,12 @@ fn as_usage(report: miette::Report) -> miette::Report {
     let Some(e) = report.downcast_ref::<RequestError>() else {
         return report;
     };
-    let flag = match e.setting {
-        Setting::Band => "--band",
-        Setting::Atmosphere => "--atmosphere",
-        Setting::SkyRadiance => "--sky-radiance",
-        Setting::SubBands => "--sub-bands",
-        Setting::Tolerance => "--tolerance",
-        Setting::TolerancePercentile => "--tolerance-percentile",
-        Setting::Pin => "--pin",
-        Setting::Materials => "--materials",
-        Setting::Tile => "--tile",
-        Setting::Probe => "--probe",
-        _ => "the outputs",
-    };
-    let joint = if e.setting == Setting::SubBands {
-        " "
-    } else {
-        ": "
-    };
-    irsig_cli::usage_error(format!("{flag}{joint}{}", e.message))
+    let value = e
+        .value
+        .as_ref()
+        .map(|v| format!(" {v}"))
+        .unwrap_or_default();
+    irsig_cli::usage_error(format!("--{}{value}: {}", e.setting.name(), e.message))
 }
 
 /// Reads the inputs into a plan: the scene, the materials, the views (of --view or
@@ -313,17 +260,14 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
         let input = irsig_cli::read_input(path)?;
         let text = decode(&input.name, &input.bytes)?;
         let frames = read_execute(&input.name, text, &input.base_dir(), cli.view_unit)?;
-        let mut files = Vec::new();
-        for f in frames {
-            files.push(FrameFiles {
-                map_png: Some(f.map_png),
-                dc_png: Some(f.dc_png),
-                lut: Some(f.lut),
-                ..FrameFiles::default()
-            });
-            plan.add_views([f.view]);
-        }
-        execute_files = Some(files);
+        let files = frames.iter().map(|f| FrameFiles {
+            map_png: Some(f.map_png.clone()),
+            dc_png: Some(f.dc_png.clone()),
+            lut: Some(f.lut.clone()),
+            ..FrameFiles::default()
+        });
+        execute_files = Some(files.collect());
+        plan.add_views(frames.into_iter().map(|f| f.view));
     }
     for path in &cli.view {
         let input = irsig_cli::read_input(path)?;
@@ -372,14 +316,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
         return Ok(());
     }
     let frames = plan.views().len();
-    if out.output.is_none() && execute_files.is_none() && frames > 1 {
-        return Err(irsig_cli::usage_error(format!(
-            "the per-output flags name one file each, but {frames} views were given: trace \
-             one view per run, or use -o PREFIX for numbered outputs"
-        )));
-    }
-    let max_id = plan.max_material_id();
-    let map_fits = max_id <= u32::from(irsig_formats::legacy::map::MAX_ID);
+    let (max_id, map_fits) = (plan.max_material_id(), plan.map_fits());
     let asked_map = execute_files
         .as_ref()
         .and_then(|f| f.first()?.map_png.clone());
@@ -391,68 +328,44 @@ fn trace(cli: &Cli) -> miette::Result<()> {
             cli.materials
         ));
     }
-    // Every frame's tile and files, checked before anything is traced: a fly-by would
+    // Every frame's tile and files are checked before anything is traced: a fly-by would
     // otherwise fail only when its first frame is written.
     let rows = plan.rows(cli.tile)?;
-    let whole = cli.tile.is_none();
-    // A tile's map and counts are the merge's: they need the whole frame.
-    let kinds: Vec<FrameFile> = FrameFile::ALL
-        .into_iter()
-        .filter(|k| match k {
-            FrameFile::MapPng => map_fits && whole,
-            FrameFile::DcPng | FrameFile::Lut => whole,
-            _ => true,
+    let (whole, kinds) = (cli.tile.is_none(), plan.file_kinds(cli.tile.is_none()));
+    let files = match execute_files {
+        Some(files) => files,
+        None => out.frames(frames, &kinds)?,
+    };
+    // Each frame's decision (with --tolerance) goes beside its files, or to --decision-out.
+    let decisions: Vec<Option<PathBuf>> = (0..frames)
+        .map(|i| match (&cli.tolerance, &cli.decision_out) {
+            (None, _) => None,
+            (Some(_), Some(path)) => Some(path.clone()),
+            (Some(_), None) => out.prefixed_file(i, frames, "decision.ron"),
         })
         .collect();
-    let files: Vec<FrameFiles<PathBuf>> = match execute_files {
-        Some(files) => files,
-        None => (0..frames)
-            .map(|i| {
-                out.prefixed(i, frames, &kinds)
-                    .unwrap_or_else(|| out.named())
-            })
-            .collect(),
-    };
-    for path in files
-        .iter()
-        .flat_map(|f| f.iter().map(|(_, p)| p))
-        .chain(&cli.decision_out)
-    {
-        irsig_cli::check_output(path)?;
-    }
+    let more: Vec<&Path> = decisions.iter().flatten().map(PathBuf::as_path).collect();
+    let frames = irsig_cli::StagedFrames::new(files, &more)?;
+    let mut sink = Staging { frames, decisions };
     let bar = irsig_cli::progress_bar(rows, "tracing");
-    let mut sink = Staging {
-        files,
-        decision_out: cli.decision_out.clone(),
-        prefixed: out.output.is_some(),
-        staged: irsig_cli::Staged::new(),
-    };
     pool.install(|| plan.render(cli.tile, &|n| bar.inc(n), &mut sink))?;
     bar.finish_and_clear();
     if !map_fits && out.output.is_some() && whole {
-        eprintln!(
-            "irsig-trace: {}",
-            irsig_render::products::map_refusal(max_id)
-        );
+        let refusal = irsig_render::products::map_refusal(max_id);
+        eprintln!("irsig-trace: {refusal}");
     }
-    sink.staged.commit()
+    sink.frames.commit()
 }
 
-/// The frames' files, staged as they come and renamed into place together at the end.
+/// The frames' files, staged as they come, and each frame's decision beside them.
 struct Staging {
-    files: Vec<FrameFiles<PathBuf>>,
-    decision_out: Option<PathBuf>,
-    /// -o PREFIX: each frame's decision goes beside its radiance EXR.
-    prefixed: bool,
-    staged: irsig_cli::Staged,
+    frames: irsig_cli::StagedFrames,
+    decisions: Vec<Option<PathBuf>>,
 }
 
 impl Sink for Staging {
     fn files(&self, index: usize) -> FrameFiles<()> {
-        self.files
-            .get(index)
-            .map(FrameFiles::wanted)
-            .unwrap_or_default()
+        self.frames.wanted(index)
     }
 
     fn decision(&mut self, index: usize, d: &Decision, seconds: f64) -> miette::Result<()> {
@@ -460,38 +373,20 @@ impl Sink for Staging {
         // What the pilot cost, for comparing with the rendering it chose (the decision file
         // holds no time: it must be the same on every run).
         eprintln!("  pilot: {} pixels in {seconds:.3} s", d.pilot_pixels);
-        let path = if self.prefixed {
-            self.files
-                .get(index)
-                .and_then(|f| f.radiance_exr.as_ref())
-                .map(|p| sibling(p, "radiance.exr", "decision.ron"))
-        } else {
-            self.decision_out.clone()
-        };
-        if let Some(path) = path {
-            let text = irsig_formats::canonical::to_ron(d).into_diagnostic()?;
-            self.staged.stage(&path, text.as_bytes())?;
+        match self.decisions.get(index).cloned().flatten() {
+            Some(path) => {
+                let text = irsig_formats::canonical::to_ron(d).into_diagnostic()?;
+                self.frames.stage_other(&path, text.as_bytes())
+            }
+            None => Ok(()),
         }
-        Ok(())
     }
 
     fn file(&mut self, index: usize, kind: FrameFile, bytes: Vec<u8>) -> miette::Result<()> {
-        match self.files.get(index).and_then(|f| f.get(kind)) {
-            Some(path) => self.staged.stage(path, &bytes),
-            None => Ok(()),
-        }
+        self.frames.stage(index, kind, &bytes)
     }
 
     fn warning(&mut self, text: &str) {
         eprintln!("irsig-trace: warning: {text}");
     }
-}
-
-/// `path` with its `suffix` replaced by `with` (`f.0001.radiance.exr` → `f.0001.decision.ron`).
-fn sibling(path: &Path, suffix: &str, with: &str) -> PathBuf {
-    let s = path.to_string_lossy();
-    PathBuf::from(match s.strip_suffix(suffix) {
-        Some(stem) => format!("{stem}{with}"),
-        None => format!("{s}.{with}"),
-    })
 }
