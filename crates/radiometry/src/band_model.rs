@@ -26,6 +26,23 @@ pub trait BandModel: Sync {
     }
 }
 
+/// The apparent temperature, K, of each radiance of an image layer (W m⁻² sr⁻¹, f32), in
+/// `band`; NaN where the radiance is not finite. Each pixel solved exactly
+/// ([`BandModel::temperature`]), not through a table.
+#[must_use]
+pub fn apparent_temperatures(band: &impl BandModel, radiance_w_m2_sr: &[f32]) -> Vec<f32> {
+    radiance_w_m2_sr
+        .iter()
+        .map(|&l| {
+            if l.is_finite() {
+                band.temperature(f64::from(l)) as f32
+            } else {
+                f32::NAN
+            }
+        })
+        .collect()
+}
+
 impl BandModel for Band {
     fn radiance(&self, temperature_k: f64) -> f64 {
         Band::radiance(self, temperature_k)

@@ -314,16 +314,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         match (&radiance, &truth) {
             (Some((name, image, band)), _) => {
                 let l = layer(image, name, RADIANCE_LAYER)?;
-                let t = l
-                    .iter()
-                    .map(|&l| {
-                        if l.is_finite() {
-                            band.temperature(f64::from(l)) as f32
-                        } else {
-                            f32::NAN
-                        }
-                    })
-                    .collect();
+                let t = irsig_radiometry::apparent_temperatures(band, l);
                 (
                     t,
                     image.width,
@@ -383,7 +374,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let set: RegionSet = irsig_formats::canonical::from_ron(&input.name, text)?;
             let ids = layer(image, truth_name, MATERIAL_LAYER)?;
-            Some(irsig_stats::tabulate(&irsig_stats::Inputs {
+            Some(irsig_regions::tabulate(&irsig_regions::Inputs {
                 regions_name: &input.name,
                 regions_text: text,
                 set: &set,
@@ -681,7 +672,7 @@ td.num,.num{font-variant-numeric:tabular-nums}td.num{text-align:right}\
 img{image-rendering:pixelated}.absent{color:#777}pre{white-space:pre-wrap}";
 
 /// The `irsig-stats` table as HTML, three decimals.
-fn stats_table(w: &mut String, table: &irsig_stats::Table) {
+fn stats_table(w: &mut String, table: &irsig_regions::Table) {
     let _ = write!(
         w,
         "<p>Values: {} ({}).</p>\n<table id=\"stats\">\n<thead><tr><th>region</th>\

@@ -21,8 +21,6 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
-pub mod stats;
-
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
@@ -32,9 +30,8 @@ use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::Raster;
 use miette::miette;
-use serde::Serialize;
 
-use crate::stats::{RegionProblem, RegionStats, region_stats};
+use irsig_regions::{Inputs, Row, Table, tabulate};
 
 /// The truth layer regions select by.
 const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
@@ -42,9 +39,6 @@ const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
 const APPARENT_LAYER: &str = Layer::ApparentTemperature.name();
 /// The layer `--radiance` reads, W m⁻² sr⁻¹.
 const RADIANCE_LAYER: &str = Layer::Radiance.name();
-
-/// 0 °C in kelvin.
-const ZERO_CELSIUS_K: f64 = 273.15;
 
 const EXAMPLE: &str = "\
 Examples:
@@ -96,48 +90,6 @@ pub struct Cli {
     pub output: Option<PathBuf>,
 }
 
-/// One region's row of the table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Row {
-    /// The region's name.
-    pub region: String,
-    /// Pixels selected.
-    pub pixels: usize,
-    /// Mean, in the table's unit.
-    pub mean: f64,
-    /// Population standard deviation, K.
-    pub std_dev: f64,
-    /// Minimum, in the table's unit.
-    pub min: f64,
-    /// Maximum, in the table's unit.
-    pub max: f64,
-    /// Per reference column (in the file's order): the reference and mean − reference;
-    /// `None` where the region gives no value for that column.
-    pub references: Vec<Option<Compared>>,
-}
-
-/// A reference value and our mean's difference from it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Compared {
-    /// The reference, in the table's unit.
-    pub reference: f64,
-    /// Mean − reference, K.
-    pub difference: f64,
-}
-
-/// Everything the output shows.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Table {
-    /// Where the values come from (`apparent_temperature of out/f.truth.exr`).
-    pub values: String,
-    /// `K` or `degC`.
-    pub unit: String,
-    /// Reference columns: name and source.
-    pub references: Vec<(String, String)>,
-    /// One row per region, in the regions file's order.
-    pub regions: Vec<Row>,
-}
-
 /// Runs the tool.
 ///
 /// # Errors
@@ -175,16 +127,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 ));
             }
             let radiance = layer(&image, &input.name, RADIANCE_LAYER)?;
-            let temperatures = radiance
-                .iter()
-                .map(|&l| {
-                    if l.is_finite() {
-                        band.temperature(f64::from(l)) as f32
-                    } else {
-                        f32::NAN
-                    }
-                })
-                .collect();
+            let temperatures = irsig_radiometry::apparent_temperatures(&band, radiance);
             (
                 temperatures,
                 format!(
@@ -213,129 +156,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     })?;
     let text = render(&table, cli.format)?;
     irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
-}
-
-/// What [`tabulate`] reads: the regions (their file's name and text, for messages at the
-/// offending line), the image's material ids and values, pixel by pixel.
-#[derive(Debug)]
-pub struct Inputs<'a> {
-    /// The regions file's name, for messages.
-    pub regions_name: &'a str,
-    /// Its text, for the line and column of a region that does not fit the image.
-    pub regions_text: &'a str,
-    /// The regions, as read from that text.
-    pub set: &'a RegionSet,
-    /// The image's name, for messages.
-    pub image_name: &'a str,
-    /// The `material_primary` layer, row by row.
-    pub material_ids: &'a [f32],
-    /// The image's width, pixels.
-    pub width: usize,
-    /// The values, K, one per pixel in the same order.
-    pub values: &'a [f32],
-    /// Where the values come from, in words (the table's `values`).
-    pub source: String,
-    /// Show temperatures in degC rather than K.
-    pub celsius: bool,
-}
-
-/// The table of per-region statistics of `inputs.values`: what `irsig-stats` prints, for a
-/// caller that has read the images itself (the run report).
-///
-/// # Errors
-/// A region that reaches beyond the image, selects no pixel or meets a non-finite value,
-/// at the region's line in the regions file.
-pub fn tabulate(inputs: &Inputs<'_>) -> miette::Result<Table> {
-    let offset = if inputs.celsius { ZERO_CELSIUS_K } else { 0.0 };
-    let mut rows = Vec::with_capacity(inputs.set.regions.len());
-    for (i, region) in inputs.set.regions.iter().enumerate() {
-        let s: RegionStats = region_stats(region, inputs.material_ids, inputs.values, inputs.width)
-            .map_err(|p| {
-                let (path, message) = match p {
-                    RegionProblem::BoxOutside { width, height } => (
-                        format!("regions[{i}].pixels"),
-                        format!(
-                            "region `{}`: the box reaches beyond the image {} ({width} x {height} \
-                         pixels: columns 0-{}, rows 0-{})",
-                            region.name,
-                            inputs.image_name,
-                            width.saturating_sub(1),
-                            height.saturating_sub(1)
-                        ),
-                    ),
-                    RegionProblem::Empty => (
-                        format!("regions[{i}]"),
-                        format!(
-                            "region `{}` selects no pixel of {}: expected at least one pixel \
-                         {}",
-                            region.name,
-                            inputs.image_name,
-                            selection(region)
-                        ),
-                    ),
-                    RegionProblem::NotFinite { column, row } => (
-                        format!("regions[{i}]"),
-                        format!(
-                            "region `{}`: pixel ({column}, {row}) has no finite value ({})",
-                            region.name, inputs.source
-                        ),
-                    ),
-                };
-                irsig_formats::canonical::error_at_path(
-                    inputs.regions_name,
-                    inputs.regions_text,
-                    &path,
-                    message,
-                )
-            })?;
-        let references = inputs
-            .set
-            .references
-            .iter()
-            .map(|c| {
-                RegionSet::reference(region, &c.name).map(|r| Compared {
-                    reference: r - offset,
-                    difference: s.mean - r,
-                })
-            })
-            .collect();
-        rows.push(Row {
-            region: region.name.clone(),
-            pixels: s.pixels,
-            mean: s.mean - offset,
-            std_dev: s.std_dev,
-            min: s.min - offset,
-            max: s.max - offset,
-            references,
-        });
-    }
-    Ok(Table {
-        values: inputs.source.clone(),
-        unit: if inputs.celsius { "degC" } else { "K" }.into(),
-        references: inputs
-            .set
-            .references
-            .iter()
-            .map(|c| (c.name.clone(), c.source.clone()))
-            .collect(),
-        regions: rows,
-    })
-}
-
-/// What a region asks for, in words.
-fn selection(region: &irsig_model::Region) -> String {
-    let material = region.material.map(|m| format!("of material {}", m.0));
-    let pixels = region.pixels.map(|b| {
-        format!(
-            "in columns {}-{}, rows {}-{}",
-            b.columns.0, b.columns.1, b.rows.0, b.rows.1
-        )
-    });
-    [material, pixels]
-        .into_iter()
-        .flatten()
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
@@ -477,6 +297,7 @@ fn csv_field(s: String) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use irsig_regions::Compared;
 
     fn table() -> Table {
         Table {
