@@ -202,6 +202,50 @@ pub fn open(path: &Path) -> miette::Result<File> {
         .wrap_err_with(|| format!("cannot open `{}`", path.display()))
 }
 
+/// The hidden first argument with which `irsig-run` asks a tool only to check its command
+/// line ([`parse`]): exit 0 when clap accepts the rest, else clap's message and exit 2.
+pub const CHECK_ARGS: &str = "--irsig-check-args";
+
+/// The tool's command line, parsed by its clap `Cli` (exit 2 and clap's message when it is
+/// malformed). With [`CHECK_ARGS`] first, only that: the process ends after the check, so
+/// that the pipeline runner checks a stage's parameters with the tool's own definition
+/// without depending on the tool's crate.
+#[must_use]
+pub fn parse<C: clap::Parser>() -> C {
+    let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    if args.get(1).is_some_and(|a| a == CHECK_ARGS) {
+        args.remove(1);
+        match C::try_parse_from(args) {
+            Ok(_) => std::process::exit(i32::from(EXIT_OK)),
+            Err(e) => e.exit(),
+        }
+    }
+    C::parse()
+}
+
+/// Checks `argv` (the program's name first) with the tool at `program`, as [`parse`] does:
+/// `Ok` when the tool accepts it, else clap's message. A program that does not know
+/// [`CHECK_ARGS`] cannot be asked, and is checked only when it runs (`Ok`).
+///
+/// # Errors
+/// The tool's complaint, or a program that cannot be started.
+pub fn check_args(program: &Path, argv: &[String]) -> Result<(), String> {
+    let out = std::process::Command::new(program)
+        .arg(CHECK_ARGS)
+        .args(argv.iter().skip(1))
+        .stdin(std::process::Stdio::null())
+        .output()
+        .map_err(|e| format!("cannot start `{}`: {e}", program.display()))?;
+    if out.status.success() {
+        return Ok(());
+    }
+    let message = String::from_utf8_lossy(&out.stderr).into_owned();
+    if message.contains(&format!("'{CHECK_ARGS}'")) {
+        return Ok(());
+    }
+    Err(message)
+}
+
 /// A command line that is well formed but cannot be carried out as written (exit code 2).
 #[derive(Debug, thiserror::Error, Diagnostic)]
 #[error("{0}")]
