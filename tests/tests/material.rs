@@ -30,7 +30,7 @@ fn fresnel_water_from_the_hale_querry_table_matches_the_reference_ems() {
         "formats/samples/water-hale-querry-nk.txt",
         "--band",
         "8-14",
-        "--temperature",
+        "--planck-temperature",
         "300",
         "--angles",
         "0:90:5",
@@ -151,7 +151,7 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             "covers 8–14 µm",
         ),
         (
-            &["--nk-table", water, "--temperature", "-5"],
+            &["--nk-table", water, "--planck-temperature", "-5"],
             1,
             "temperature",
         ),
@@ -161,7 +161,11 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             "cannot be used with",
         ),
         (&["--k", "0.1"], 2, "required"),
-        (&["--n", "1.2", "--temperature", "300"], 2, "--nk-table"),
+        (
+            &["--n", "1.2", "--planck-temperature", "300"],
+            2,
+            "--nk-table",
+        ),
     ];
     for (args, code, message) in cases {
         let out_file = dir.path().join("out.ron");

@@ -36,6 +36,8 @@
 //! # Ok::<(), irsig_atmosphere::AtmosphereError>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod builtin;
 mod earth;
 mod error;

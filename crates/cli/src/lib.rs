@@ -28,6 +28,8 @@
 //! # use std::io::Write;
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod args;
 mod frames;
 mod staged;
@@ -81,8 +83,9 @@ impl Input {
 /// # Errors
 /// A missing or unreadable file, a device or directory, or an input longer than the limit,
 /// reported with its name.
-pub fn read_input(path: &str) -> miette::Result<Input> {
-    if path == "-" {
+pub fn read_input(path: impl AsRef<Path>) -> miette::Result<Input> {
+    let path = path.as_ref();
+    if path.as_os_str() == "-" {
         let bytes = irsig_formats::file::read_bounded(io::stdin().lock())
             .into_diagnostic()
             .wrap_err("cannot read standard input")?;
@@ -92,12 +95,12 @@ pub fn read_input(path: &str) -> miette::Result<Input> {
             bytes,
         });
     }
-    let bytes = irsig_formats::file::read_file(Path::new(path))
+    let bytes = irsig_formats::file::read_file(path)
         .into_diagnostic()
-        .wrap_err_with(|| format!("cannot read input file `{path}`"))?;
+        .wrap_err_with(|| format!("cannot read input file `{}`", path.display()))?;
     Ok(Input {
-        name: path.to_owned(),
-        path: Some(PathBuf::from(path)),
+        name: path.display().to_string(),
+        path: Some(path.to_path_buf()),
         bytes,
     })
 }
@@ -262,6 +265,8 @@ pub fn usage_error(message: impl Into<String>) -> Report {
 ///
 /// Errors are printed to stderr with miette (source snippets with file, line and column
 /// where the error carries them). A broken pipe on stdout is success.
+// The one place a tool's error reaches the terminal.
+#[allow(clippy::print_stderr)]
 pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
     // An interrupted run leaves no staged `.irsig-*.tmp` file behind. Setting the handler
     // fails only when one is already set (a tool that runs another tool's body in-process).

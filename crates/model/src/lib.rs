@@ -38,6 +38,8 @@
 //! assert_eq!(lib.by_name("asphalt").map(|m| m.id), Some(MaterialId(1)));
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod atmosphere;
 pub mod decision;
 mod error;

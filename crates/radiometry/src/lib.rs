@@ -18,6 +18,8 @@
 //! assert!(apparent < 300.0 && apparent > 298.0);
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod band;
 mod band_model;
 pub mod calculators;

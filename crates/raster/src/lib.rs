@@ -27,6 +27,8 @@
 //! assert_eq!(back.layer("radiance").unwrap().unit, "W m^-2 sr^-1");
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 use std::io::{Cursor, Seek, Write};
 
 use exr::prelude::{self as x, ReadChannels, ReadLayers, WritableImage};

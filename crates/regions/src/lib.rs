@@ -32,6 +32,8 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod stats;
 
 use irsig_model::RegionSet;

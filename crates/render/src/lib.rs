@@ -28,6 +28,8 @@
 //! assert!(e.to_string().contains("out of range"));
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod air;
 pub mod band;
 pub mod budget;

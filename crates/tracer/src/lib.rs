@@ -57,6 +57,8 @@
 //! # Ok::<(), irsig_tracer::TraceError>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod camera;
 pub mod env;
 mod error;

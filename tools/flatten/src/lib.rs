@@ -71,7 +71,7 @@ pub struct Cli {
     pub unit: LengthUnit,
     /// Check that every facet's material id is in this material library.
     #[arg(long, value_name = "LIBRARY")]
-    pub materials: Option<PathBuf>,
+    pub materials: Option<String>,
     /// Write RON instead of the binary raw scene.
     #[arg(long)]
     pub ron: bool,
@@ -252,7 +252,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         at(e.placement, path.as_deref(), e.to_string())
     })?;
     if let Some(path) = &cli.materials {
-        check_materials(path, &raw, |r, message| {
+        check_materials(Path::new(path), &raw, |r, message| {
             // The facet's material came from its object file unless an override of the
             // placement changed it: point at whichever gave it.
             let i = raw.facets[r].object as usize;
@@ -334,7 +334,7 @@ fn check_materials(
     raw: &irsig_model::RawScene,
     at: impl Fn(usize, String) -> miette::Report,
 ) -> miette::Result<()> {
-    let input = irsig_cli::read_input(&path.to_string_lossy())?;
+    let input = irsig_cli::read_input(path)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
     for (i, f) in raw.facets.iter().enumerate() {

@@ -32,7 +32,7 @@ pub struct Args {
     )]
     pub k: f64,
     /// A table of `wavelength_um n k` rows (formats/nk.md); `-` for stdin. The angular
-    /// table is then averaged over the band with Planck weighting at `--temperature`, and
+    /// table is then averaged over the band with Planck weighting at `--planck-temperature`, and
     /// the library entry keeps the spectrum too: ε(λ) at normal incidence at the table's
     /// wavelengths (`spectral`), which a tracer averages over its own band or sub-bands.
     #[arg(long, value_name = "FILE")]
@@ -48,8 +48,8 @@ pub struct Args {
     pub band: Option<BandArg>,
     /// Temperature of the Planck weighting, K: the surface temperature the table is made
     /// for [default: 300].
-    #[arg(long, allow_hyphen_values = true)]
-    pub temperature: Option<f64>,
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub planck_temperature: Option<f64>,
     /// Angles from the surface normal, deg: a list `a,b,c` or a range `from:to:step`,
     /// 0–90, increasing. Include 90 (ε = 0) so interpolation reaches grazing.
     #[arg(long, default_value = "0:90:1", allow_hyphen_values = true)]
@@ -89,16 +89,16 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
 pub fn run(args: &Args) -> miette::Result<()> {
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
-    if args.nk_table.is_none() && (args.band.is_some() || args.temperature.is_some()) {
+    if args.nk_table.is_none() && (args.band.is_some() || args.planck_temperature.is_some()) {
         return Err(irsig_cli::usage_error(
-            "--band and --temperature weight the spectral average of --nk-table; \
+            "--band and --planck-temperature weight the spectral average of --nk-table; \
              a constant --n/--k has none",
         ));
     }
     let angles = values("--angles", &args.angles)?;
     let (table, spectral, source, default_name) = match (&args.nk_table, args.n) {
         (Some(path), _) => {
-            let input = irsig_cli::read_input(&path.to_string_lossy())?;
+            let input = irsig_cli::read_input(path)?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let nk = irsig_formats::nk::parse(&input.name, text)?;
             let first_um = nk.wavelength_um.first().copied().unwrap_or(f64::NAN);
@@ -106,7 +106,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 .map_err(|e| miette!("{}: {e}", input.name))?;
             let band_arg = args.band.clone().unwrap_or_default();
             let band = band_arg.load()?;
-            let t = args.temperature.unwrap_or(300.0);
+            let t = args.planck_temperature.unwrap_or(300.0);
             let table = band_emissivity_table(&index, &band, t, &angles).map_err(|e| {
                 // A table that does not cover the band ends too early or starts too late:
                 // point at its first or its last row.

@@ -85,11 +85,11 @@ pub struct Cli {
     pub decision: Option<String>,
     /// The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin.
     #[arg(long, value_name = "FILE")]
-    pub lut: Option<String>,
+    pub lut: Option<PathBuf>,
     /// The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`), shown as
     /// it is.
     #[arg(long, value_name = "FILE")]
-    pub colour_preview: Option<String>,
+    pub colour_preview: Option<PathBuf>,
     /// A line profile of apparent temperature from pixel (X0, Y0) to (X1, Y1), columns and
     /// rows from the top-left pixel (0, 0).
     #[arg(long, value_name = "X0,Y0:X1,Y1")]
