@@ -363,3 +363,28 @@ fn a_flag_of_one_name_has_one_type_and_one_default_in_every_tool() {
         "a flag is spelt, typed and defaulted alike in every tool",
     );
 }
+
+#[test]
+fn test_helpers_are_not_compiled_into_the_tools() {
+    // A library's test meshes and experiments (`testing` modules, with their unwraps) sit
+    // behind `cfg(test)` or a feature that only dev-dependencies turn on.
+    let mut seen = 0;
+    let mut broken = Vec::new();
+    for (path, text) in sources("crates") {
+        let lines: Vec<&str> = text.lines().collect();
+        for (i, line) in lines.iter().enumerate() {
+            if line.trim() == "pub mod testing;" {
+                seen += 1;
+                let gated = i > 0 && lines[i - 1].trim_start().starts_with("#[cfg(");
+                if !gated {
+                    broken.push(format!("{}:{}", path.display(), i + 1));
+                }
+            }
+        }
+    }
+    assert!(
+        seen >= 1,
+        "no testing module found: the check reads nothing"
+    );
+    assert_none(&broken, "testing modules are behind cfg(test) or a feature");
+}

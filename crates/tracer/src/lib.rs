@@ -67,6 +67,7 @@ mod path;
 mod path_table;
 pub mod pilot;
 mod shade;
+#[cfg(any(test, feature = "testing"))]
 pub mod testing;
 pub mod tile;
 mod tracer;

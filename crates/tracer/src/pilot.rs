@@ -393,18 +393,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 eval(band_model, None, &path, &mut scratch)
             } else {
                 let mut sum = 0.0;
-                for j in 0..n {
-                    for i in 0..n {
-                        let (jx, jy): (f64, f64) = {
-                            let rng = ctx.rng();
-                            (rng.random(), rng.random())
-                        };
-                        let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
-                        let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                        self.follow(fc, camera.direction_at(x, y), &mut ctx, &mut path);
-                        sum += eval(band_model, None, &path, &mut scratch);
-                    }
-                }
+                ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
+                    self.follow(fc, camera.direction_at(x, y), ctx, &mut path);
+                    sum += eval(band_model, None, &path, &mut scratch);
+                });
                 sum / f64::from(n * n)
             };
             densities.push((n, mean));

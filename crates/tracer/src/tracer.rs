@@ -647,6 +647,30 @@ impl<'a> Ctx<'a> {
         self.rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
+
+    /// Visits the `n × n` stratified sub-pixel positions of pixel (`col`, `row`), row by
+    /// row, each jittered in its cell by two draws of the pixel's stream made just before
+    /// it is visited (so that what a visit draws, sky-view rays say, comes between). The
+    /// one routine of the renderer's supersampling and of the pilot's, which must replay
+    /// the renderer's rays exactly.
+    pub(crate) fn for_each_subpixel(
+        &mut self,
+        (col, row): (u32, u32),
+        n: u32,
+        mut visit: impl FnMut(&mut Self, f64, f64),
+    ) {
+        for j in 0..n {
+            for i in 0..n {
+                let (jx, jy): (f64, f64) = {
+                    let rng = self.rng();
+                    (rng.random(), rng.random())
+                };
+                let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
+                let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
+                visit(self, x, y);
+            }
+        }
+    }
 }
 
 /// What every ray of one frame shares, computed once per frame rather than per ray.
@@ -1237,19 +1261,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             return centre_radiance;
         }
         let mut sum = 0.0;
-        for j in 0..n {
-            for i in 0..n {
-                let (jx, jy): (f64, f64) = {
-                    let rng = ctx.rng();
-                    (rng.random(), rng.random())
-                };
-                let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
-                let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
-                self.follow(fc, camera.direction_at(x, y), &mut ctx, path);
-                sum += self.radiance::<false>(fc, path, centre);
-            }
-        }
+        ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
+            // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
+            self.follow(fc, camera.direction_at(x, y), ctx, path);
+            sum += self.radiance::<false>(fc, path, centre);
+        });
         sum / f64::from(n * n)
     }
 }
