@@ -13,7 +13,8 @@ use std::str::FromStr;
 use clap::builder::{PossibleValuesParser, TypedValueParser};
 use irsig_model::LengthUnit;
 use irsig_model::frame::{FrameFile, FrameFiles};
-use irsig_radiometry::{Band, SensorResponse};
+use irsig_model::provenance::BandRecord;
+use irsig_radiometry::{AnyBand, Band, SensorResponse, TotalRadiance};
 use irsig_sensor_model::quantise::{Calibration, CountRequest};
 use miette::miette;
 
@@ -104,27 +105,158 @@ impl BandArg {
     /// Limits that are not `0 < MIN < MAX` (bad usage), a response file that cannot be
     /// read or parsed (at its line and column), or `total`, which has no wavelengths.
     pub fn load(&self) -> miette::Result<Band> {
-        match self {
-            Self::Total => Err(crate::usage_error(
+        match self.load_recorded()? {
+            (AnyBand::Band(band), _) => Ok(band),
+            (AnyBand::Total(_), _) => Err(crate::usage_error(
                 "--band total (the whole spectrum, σT⁴/π) has no wavelengths: this needs \
                  MIN-MAX in micrometres or a sensor response file",
             )),
-            Self::Flat { min_um, max_um } => Band::new(*min_um, *max_um)
-                .map_err(|e| crate::usage_error(format!("--band {self}: {e}"))),
+        }
+    }
+
+    /// The band, and its record as an image traced in it keeps it (a response file's
+    /// table itself, with the file's name and SHA-256).
+    ///
+    /// # Errors
+    /// As [`BandArg::load`], `total` excepted.
+    pub fn load_recorded(&self) -> miette::Result<(AnyBand, BandRecord)> {
+        match self {
+            Self::Total => Ok((AnyBand::Total(TotalRadiance), BandRecord::Total)),
+            Self::Flat { min_um, max_um } => {
+                let record = BandRecord::Flat {
+                    min_um: *min_um,
+                    max_um: *max_um,
+                };
+                let band = band_of(&record)
+                    .map_err(|e| crate::usage_error(format!("--band {self}: {e}")))?;
+                Ok((band, record))
+            }
             Self::Response(path) => {
                 let input = crate::read_input(path)?;
                 let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
                 let table = irsig_formats::srf::parse(&input.name, text)?;
-                let (Some(&lo), Some(&hi)) =
-                    (table.wavelength_um.first(), table.wavelength_um.last())
-                else {
-                    return Err(miette!("{}: the response table is empty", input.name));
+                let record = BandRecord::Response {
+                    name: input.name.clone(),
+                    sha256: input.sha256(),
+                    wavelength_um: table.wavelength_um,
+                    response: table.response,
                 };
-                let srf = SensorResponse::new(table.wavelength_um, table.response)
-                    .map_err(|e| miette!("{}: {e}", input.name))?;
-                Band::new(lo, hi)
-                    .and_then(|b| b.with_response(&srf))
-                    .map_err(|e| miette!("{}: {e}", input.name))
+                let band = band_of(&record).map_err(|e| miette!("{}: {e}", input.name))?;
+                Ok((band, record))
+            }
+        }
+    }
+}
+
+/// The band a record describes, built as from its file.
+///
+/// # Errors
+/// Limits or a table the band cannot be made of, in words.
+pub fn band_of(record: &BandRecord) -> Result<AnyBand, String> {
+    match record {
+        BandRecord::Total => Ok(AnyBand::Total(TotalRadiance)),
+        BandRecord::Flat { min_um, max_um } => Band::new(*min_um, *max_um)
+            .map(AnyBand::Band)
+            .map_err(|e| e.to_string()),
+        BandRecord::Response {
+            wavelength_um,
+            response,
+            ..
+        } => {
+            let (Some(&lo), Some(&hi)) = (wavelength_um.first(), wavelength_um.last()) else {
+                return Err("the response table is empty".to_owned());
+            };
+            let srf = SensorResponse::new(wavelength_um.clone(), response.clone())
+                .map_err(|e| e.to_string())?;
+            Band::new(lo, hi)
+                .and_then(|b| b.with_response(&srf))
+                .map(AnyBand::Band)
+                .map_err(|e| e.to_string())
+        }
+    }
+}
+
+/// `--band` of a tool that reads a traced image (sensor, stats, report, merge): the band the
+/// image records by default, since irsig-trace records it; a `--band` that is another band
+/// is refused, naming both, unless `--override-band`, which warns.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ImageBandArgs {
+    /// The band of the image's radiances: `MIN-MAX` in micrometres, a sensor response file
+    /// (formats/srf.md) or `total`. By default the band the image records (irsig-trace
+    /// writes it into its EXRs); given, it must be that band.
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
+    /// Use --band even where the image records another band (a warning says so).
+    #[arg(long, requires = "band")]
+    pub override_band: bool,
+}
+
+/// The band a stage converts an image's radiances with, and what it has to say about it.
+#[derive(Debug, Clone)]
+pub struct ResolvedBand {
+    /// The band.
+    pub band: AnyBand,
+    /// Its record, for the stage's own outputs.
+    pub record: BandRecord,
+    /// A warning for stderr: a band assumed, or overridden.
+    pub warning: Option<String>,
+}
+
+impl ImageBandArgs {
+    /// The band of the image `image` (its name, for messages), which records `recorded`.
+    ///
+    /// # Errors
+    /// A --band that is not the recorded band (bad usage, naming both) without
+    /// --override-band, or a band that cannot be loaded.
+    pub fn resolve(
+        &self,
+        image: &str,
+        recorded: Option<&BandRecord>,
+    ) -> miette::Result<ResolvedBand> {
+        let given = self.band.as_ref().map(BandArg::load_recorded).transpose()?;
+        match (given, recorded) {
+            (None, Some(record)) => Ok(ResolvedBand {
+                band: band_of(record)
+                    .map_err(|e| miette!("{image}: its recorded band {record}: {e}"))?,
+                record: record.clone(),
+                warning: None,
+            }),
+            (Some((band, record)), Some(recorded)) if record.same_band(recorded) => {
+                Ok(ResolvedBand {
+                    band,
+                    record,
+                    warning: None,
+                })
+            }
+            (Some((band, record)), Some(recorded)) if self.override_band => Ok(ResolvedBand {
+                warning: Some(format!(
+                    "--band {record} overrides the band `{image}` records, {recorded}: its \
+                     apparent temperatures are not those of the radiance it was traced in"
+                )),
+                band,
+                record,
+            }),
+            (Some((_, record)), Some(recorded)) => Err(crate::usage_error(format!(
+                "--band {record} is not the band `{image}` records, {recorded}: leave --band \
+                 out to use the recorded band, or add --override-band to convert with \
+                 --band anyway"
+            ))),
+            (Some((band, record)), None) => Ok(ResolvedBand {
+                band,
+                record,
+                warning: None,
+            }),
+            (None, None) => {
+                let (band, record) = BandArg::default().load_recorded()?;
+                Ok(ResolvedBand {
+                    warning: Some(format!(
+                        "`{image}` records no band (not written by irsig-trace, or by an \
+                         older one): its radiances are taken as {record}; give --band to say \
+                         which band they are in"
+                    )),
+                    band,
+                    record,
+                })
             }
         }
     }

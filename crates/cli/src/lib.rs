@@ -64,6 +64,13 @@ pub struct Input {
 }
 
 impl Input {
+    /// `sha256:` and the 64 hex digits of the input's bytes: how a record of provenance
+    /// names its content.
+    #[must_use]
+    pub fn sha256(&self) -> String {
+        sha256_hex(&self.bytes)
+    }
+
     /// The directory relative references inside this input resolve against: the file's
     /// parent directory, or the working directory for stdin.
     #[must_use]
@@ -72,6 +79,39 @@ impl Input {
             .as_deref()
             .and_then(Path::parent)
             .map_or_else(|| PathBuf::from("."), Path::to_path_buf)
+    }
+}
+
+/// `sha256:` and the 64 hex digits of `bytes`.
+#[must_use]
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest as _;
+    let digest = sha2::Sha256::digest(bytes);
+    let mut hex = String::with_capacity(7 + 64);
+    hex.push_str("sha256:");
+    for b in digest {
+        hex.push_str(&format!("{b:02x}"));
+    }
+    hex
+}
+
+/// The provenance an image records (`irsig_formats::canonical::provenance_of` of its
+/// comments), `name` naming it in messages; `None` for an image that records none.
+///
+/// # Errors
+/// Comments that claim to be a provenance and are not one.
+pub fn provenance(
+    name: &str,
+    raster: &irsig_raster::Raster,
+) -> miette::Result<Option<irsig_model::provenance::Provenance>> {
+    match raster
+        .comments
+        .as_deref()
+        .and_then(|c| irsig_formats::canonical::provenance_of(name, c))
+    {
+        Some(Ok(p)) => Ok(Some(p)),
+        Some(Err(e)) => Err(miette::Report::new(e)),
+        None => Ok(None),
     }
 }
 

@@ -48,6 +48,7 @@ pub mod limits;
 mod material;
 mod object;
 mod plan;
+pub mod provenance;
 mod raw;
 mod regions;
 mod scene;

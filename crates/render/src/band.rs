@@ -3,20 +3,44 @@
 //! atmosphere over it.
 
 use irsig_atmosphere::SubBandCount;
-use irsig_radiometry::{Band, BandModel, TotalRadiance, spectral_radiance_per_um};
+use irsig_model::provenance::BandRecord;
+use irsig_radiometry::{AnyBand, Band, BandModel, TotalRadiance, spectral_radiance_per_um};
 use miette::miette;
 use rayon::prelude::*;
 
 use crate::error::{RequestError, Setting};
 
-/// The band of a request: wavelengths (flat or with a sensor response), or the whole
-/// spectrum.
+/// The band of a request: wavelengths (flat or with a sensor response) or the whole
+/// spectrum (σT⁴/π: exact, for checking by hand), and its record, which every image of the
+/// run carries (`irsig_model::provenance`).
 #[derive(Debug, Clone, PartialEq)]
-pub enum BandRequest {
-    /// A band of wavelengths.
-    Band(Band),
-    /// The whole spectrum, σT⁴/π: exact, for checking by hand.
-    Total,
+pub struct BandRequest {
+    /// The band.
+    pub band: AnyBand,
+    /// What the images record of it.
+    pub record: BandRecord,
+}
+
+impl BandRequest {
+    /// The whole spectrum.
+    #[must_use]
+    pub fn total() -> Self {
+        Self {
+            band: AnyBand::Total(TotalRadiance),
+            record: BandRecord::Total,
+        }
+    }
+
+    /// A flat band of `[min, max]` µm.
+    ///
+    /// # Errors
+    /// Limits that are not `0 < min < max`.
+    pub fn flat(min_um: f64, max_um: f64) -> Result<Self, irsig_radiometry::RadiometryError> {
+        Ok(Self {
+            band: AnyBand::Band(Band::new(min_um, max_um)?),
+            record: BandRecord::Flat { min_um, max_um },
+        })
+    }
 }
 
 /// The reference temperature of the sub-bands' equal shares, K: about the scenes'

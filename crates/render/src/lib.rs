@@ -17,7 +17,7 @@
 //! ```
 //! use irsig_render::{AtmosphereRequest, BandRequest, Plan, Request};
 //! let request = Request {
-//!     band: BandRequest::Total,
+//!     band: BandRequest::total(),
 //!     atmosphere: AtmosphereRequest::Vacuum { sky_radiance_w_m2_sr: -1.0 },
 //!     settings: Default::default(),
 //!     tolerance: None,

@@ -12,9 +12,10 @@ use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBan
 use irsig_formats::canonical::{error_at_path, from_ron_bytes, raw_scene_error_at_path};
 use irsig_model::decision::Decision;
 use irsig_model::frame::{FrameFile, FrameFiles};
+use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::uncertainty::{Facets, Uncertainties};
 use irsig_model::{MaterialLibrary, RawScene, View};
-use irsig_radiometry::{Band, BandModel, TotalRadiance};
+use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
 use irsig_raster::FramePart;
 use irsig_sensor_model::quantise::CountRequest;
 use irsig_tracer::pilot::{BandChoice, PilotSpace};
@@ -160,6 +161,8 @@ pub struct Plan {
     views: Vec<View>,
     uncertainties: Option<Uncertainties>,
     decision: Option<Decision>,
+    /// Every input read, in order: what each image's provenance lists.
+    inputs: Vec<InputRecord>,
     warnings: Mutex<Vec<String>>,
 }
 
@@ -224,6 +227,25 @@ impl Plan {
                 RequestError::report(Setting::TolerancePercentile, e.kind.to_string())
             })?;
         }
+        let mut inputs = Vec::new();
+        match &request.atmosphere {
+            AtmosphereRequest::File { name, bytes } => inputs.push(InputRecord {
+                stage: "trace".into(),
+                role: "atmosphere".into(),
+                name: name.clone(),
+                sha256: sha256_hex(bytes),
+            }),
+            AtmosphereRequest::Builtin(name) => {
+                let data = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+                inputs.push(InputRecord {
+                    stage: "trace".into(),
+                    role: "atmosphere (built-in, its spectra)".into(),
+                    name: name.clone(),
+                    sha256: sha256_hex(data),
+                });
+            }
+            AtmosphereRequest::Vacuum { .. } => {}
+        }
         Ok(Self {
             request,
             run: RunHash::default(),
@@ -234,6 +256,7 @@ impl Plan {
             views: Vec::new(),
             uncertainties: None,
             decision: None,
+            inputs,
             warnings: Mutex::default(),
         })
     }
@@ -245,6 +268,7 @@ impl Plan {
     /// A malformed scene, at its place in the file.
     pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
         self.run.field("scene", bytes);
+        self.record_input("scene", name, bytes);
         let scene = irsig_formats::canonical::read_raw_scene(name, bytes)?;
         *self.scene.get_mut().map_err(|_| poisoned())? = Some(scene);
         name.clone_into(&mut self.scene_name);
@@ -266,12 +290,13 @@ impl Plan {
         scene_bytes: &[u8],
     ) -> miette::Result<()> {
         let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
-        let lib = match &self.request.band {
+        self.record_input("materials", name, bytes);
+        let lib = match &self.request.band.band {
             _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
-            BandRequest::Band(band) => {
+            AnyBand::Band(band) => {
                 crate::materials::band_library(&lib, band, name, &String::from_utf8_lossy(bytes))?
             }
-            BandRequest::Total => {
+            AnyBand::Total(_) => {
                 return Err(RequestError::of_value(
                     Setting::Band,
                     "total",
@@ -311,6 +336,30 @@ impl Plan {
         Ok(())
     }
 
+    /// Records an input the run read that the plan does not read itself (a view file, an
+    /// execute file, a response file): its role, name and bytes' SHA-256, for the images'
+    /// provenance.
+    pub fn record_input(&mut self, role: &str, name: &str, bytes: &[u8]) {
+        self.inputs.push(InputRecord {
+            stage: "trace".into(),
+            role: role.into(),
+            name: name.into(),
+            sha256: sha256_hex(bytes),
+        });
+    }
+
+    /// What frame images rendered with `settings` record of their making.
+    fn provenance(&self, settings: &Settings) -> Provenance {
+        let vacuum = matches!(self.request.atmosphere, AtmosphereRequest::Vacuum { .. });
+        Provenance {
+            band: self.request.band.record.clone(),
+            sub_bands: settings.sub_bands.to_string(),
+            atmosphere: self.request.atmosphere.name().to_owned(),
+            atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
+            inputs: self.inputs.clone(),
+        }
+    }
+
     /// Adds frames, one per view, in order.
     pub fn add_views(&mut self, views: impl IntoIterator<Item = View>) {
         self.views.extend(views);
@@ -331,6 +380,7 @@ impl Plan {
     pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
         let text = irsig_formats::canonical::utf8(name, bytes)?;
         let u: Uncertainties = from_ron_bytes(name, bytes)?;
+        self.record_input("uncertainties", name, bytes);
         let guard = self.scene.get_mut().map_err(|_| poisoned())?;
         let objects = &guard
             .as_ref()
@@ -390,6 +440,7 @@ impl Plan {
     /// choice).
     pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
         let d: Decision = from_ron_bytes(name, bytes)?;
+        self.record_input("decision", name, bytes);
         if let Err((i, message)) = Settings::of(&self.request.settings).with_decision(&d) {
             return Err(miette::Report::new(error_at_path(
                 name,
@@ -519,13 +570,13 @@ impl Plan {
 
     /// The band's model, then the atmosphere over it.
     fn dispatch(self, job: &mut Job<'_>) -> miette::Result<()> {
-        match self.request.band.clone() {
-            BandRequest::Total => {
+        match self.request.band.band.clone() {
+            AnyBand::Total(_) => {
                 let mut run = self.run.clone();
                 run.field("band", format!("{TotalRadiance:?}").as_bytes());
                 self.with_atmosphere(run, TotalRadiance, None, job)
             }
-            BandRequest::Band(band) => {
+            AnyBand::Band(band) => {
                 let mut run = self.run.clone();
                 run.field("band", format!("{band:?}").as_bytes());
                 let split = Split::of(&band);
@@ -629,7 +680,7 @@ impl Plan {
                 run.field("top", &top.to_bits().to_le_bytes());
             }
         }
-        if matches!(self.request.band, BandRequest::Total) {
+        if matches!(self.request.band.band, AnyBand::Total(_)) {
             let band_um = match &data {
                 AirData::Band(a) => format!("{:?}", a.band_um),
                 AirData::Spectral(..) => "its spectral range".to_owned(),
@@ -977,6 +1028,7 @@ impl Plan {
                 sub_bands: tracer.sub_bands(),
                 view_gain: self.views.get(i).and_then(View::gain_dc_per_k),
                 counts: self.request.counts,
+                provenance: Some(self.provenance(&settings)),
             };
             let mut emit = |kind, bytes| sink.file(i, kind, bytes);
             if i + 1 == cameras.len() {
@@ -1039,15 +1091,18 @@ fn whole<R: Clone, T>(
     }])
 }
 
-fn poisoned() -> miette::Report {
-    miette!("a lock of the run was poisoned by a panic")
+/// `sha256:` and the 64 hex digits of `bytes`.
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest as _;
+    let mut hex = String::from("sha256:");
+    for b in sha2::Sha256::digest(bytes) {
+        hex.push_str(&format!("{b:02x}"));
+    }
+    hex
 }
 
-/// `band` as the request's band (for tests and callers that hold a [`Band`]).
-impl From<Band> for BandRequest {
-    fn from(band: Band) -> Self {
-        Self::Band(band)
-    }
+fn poisoned() -> miette::Report {
+    miette!("a lock of the run was poisoned by a panic")
 }
 
 #[cfg(test)]

@@ -7,6 +7,7 @@
 
 use irsig_formats::legacy::map;
 use irsig_model::frame::{FrameFile, FrameFiles};
+use irsig_model::provenance::Provenance;
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
 use irsig_raster::{FramePart, Raster, counts_png, into_exr_bytes, write_png_gray8};
@@ -37,6 +38,9 @@ pub struct FrameRadiometry<R> {
     pub view_gain: Option<f64>,
     /// The counts' calibration.
     pub counts: CountRequest,
+    /// What made the frame: recorded in its EXRs (their comments) and, its band, in the
+    /// LUT.
+    pub provenance: Option<Provenance>,
 }
 
 impl<R: BandModel> FrameRadiometry<R> {
@@ -79,9 +83,22 @@ impl<R: BandModel> FrameRadiometry<R> {
             )?;
         }
         if wanted.wants(FrameFile::Lut) {
-            emit(FrameFile::Lut, q.lut(&self.band).to_string().into_bytes())?;
+            let lut = q.lut(&self.band);
+            let text = match &self.provenance {
+                Some(p) => lut.text_in_band(&p.band.to_string()),
+                None => lut.to_string(),
+            };
+            emit(FrameFile::Lut, text.into_bytes())?;
         }
         Ok(())
+    }
+
+    /// The EXRs' comments: the provenance as canonical RON.
+    fn comments(&self) -> miette::Result<Option<String>> {
+        self.provenance
+            .as_ref()
+            .map(|p| irsig_formats::canonical::provenance_comments(p).map_err(|e| miette!("{e}")))
+            .transpose()
     }
 }
 
@@ -163,12 +180,16 @@ pub fn traced<R: BandModel + Sync>(
     }
     radiometry.counts(&radiance, w, h, wanted, emit)?;
     if wanted.wants(FrameFile::RadianceExr) {
-        let mut r = Raster::new(w, h).with_part(part.clone());
+        let mut r = Raster::new(w, h)
+            .with_part(part.clone())
+            .with_comments(radiometry.comments()?);
         push(&mut r, Layer::Radiance, radiance)?;
         emit(FrameFile::RadianceExr, into_exr_bytes(r).into_diagnostic()?)?;
     }
     if wanted.wants(FrameFile::TruthExr) {
-        let r = truth_raster(radiometry, &frame, budget)?.with_part(part.clone());
+        let r = truth_raster(radiometry, &frame, budget)?
+            .with_part(part.clone())
+            .with_comments(radiometry.comments()?);
         frame.truth = Vec::new();
         emit(FrameFile::TruthExr, into_exr_bytes(r).into_diagnostic()?)?;
     }
@@ -331,6 +352,7 @@ mod tests {
                     bits: 12,
                     ..CountRequest::default()
                 },
+                provenance: None,
             };
             let q = r.quantiser(&radiance).unwrap();
             // Counts per kelvin at 300 K, by a centred difference.

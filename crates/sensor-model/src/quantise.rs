@@ -382,6 +382,23 @@ pub struct Lut {
     pub entries: Vec<LutEntry>,
 }
 
+impl Lut {
+    /// The table's text ([`fmt::Display`]) with a second comment line naming the band its
+    /// radiances and temperatures are in (`# band: …`), so that the file says it too.
+    #[must_use]
+    pub fn text_in_band(&self, band: &str) -> String {
+        let text = self.to_string();
+        let band: String = band
+            .chars()
+            .map(|c| if c.is_control() { ' ' } else { c })
+            .collect();
+        match text.split_once('\n') {
+            Some((header, rows)) => format!("{header}\n# band: {band}\n{rows}"),
+            None => text,
+        }
+    }
+}
+
 /// The LUT's text form (`formats/sensor.md`): a `#` header line naming the columns and
 /// units, then one line per count: `dc radiance_w_m2_sr temperature_k temperature_c`,
 /// whitespace-separated, radiance with 9 significant digits, temperatures to 1e-4 K.

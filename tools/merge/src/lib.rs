@@ -24,17 +24,15 @@
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{BandArg, DcArgs, FrameOutputArgs, VIEW_UNIT_DEFAULT, length_unit};
+use irsig_cli::args::{DcArgs, FrameOutputArgs, ImageBandArgs, VIEW_UNIT_DEFAULT, length_unit};
 use irsig_formats::legacy::decode;
 use irsig_formats::views::parse_views;
 use irsig_model::LengthUnit;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_model::truth::Layer;
-use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_raster::merge::Layout;
 use irsig_raster::{Raster, RasterInfo};
 use irsig_render::products::{self, FrameRadiometry, MapRefused};
-use irsig_sensor_model::quantise::CountRequest;
 use miette::miette;
 
 const EXAMPLE: &str = "\
@@ -72,11 +70,10 @@ pub struct Cli {
     /// Length unit of the position in a 1990 viewing file (km in the thesis's files).
     #[arg(long, default_value = VIEW_UNIT_DEFAULT, value_name = "UNIT", value_parser = length_unit)]
     pub view_unit: LengthUnit,
-    /// The band the tiles were traced in: `MIN-MAX` in micrometres, a sensor response
-    /// file, or `total` [default: 8-14]. The counts' calibration and the LUT's temperatures
-    /// use it.
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<BandArg>,
+    /// The band the tiles were traced in, which they record (the counts' calibration and the
+    /// LUT's temperatures use it).
+    #[command(flatten)]
+    pub band: ImageBandArgs,
     /// How radiance becomes digital counts, as for irsig-trace: without a gain, the view's
     /// DC/K, else 2 counts per kelvin (the thesis's auto-bias).
     #[command(flatten)]
@@ -269,29 +266,26 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         MapRefused::Fail
     };
     let mut note = |text: String| eprintln!("irsig-merge: {text}");
-    let counts = cli.dc.request();
-    match BandArg::or_default(cli.band.as_ref()) {
-        BandArg::Total => {
-            let r = radiometry(TotalRadiance, gain, counts);
-            products::merged(&r, radiance, truth, &wanted, refused, &mut note, &mut emit)?;
-        }
-        band => {
-            let r = radiometry(band.load()?, gain, counts);
-            products::merged(&r, radiance, truth, &wanted, refused, &mut note, &mut emit)?;
-        }
+    // The band and the rest of what made the frame, as the tiles record it.
+    let first = tiles.radiance.first().or(tiles.truth.first());
+    let provenance = match first.and_then(|t| t.info.comments.as_deref().map(|c| (t, c))) {
+        Some((t, c)) => irsig_formats::canonical::provenance_of(&t.name, c).transpose()?,
+        None => None,
+    };
+    let name = first.map_or("the tiles", |t| t.name.as_str());
+    let band = cli
+        .band
+        .resolve(name, provenance.as_ref().map(|p| &p.band))?;
+    if let Some(w) = &band.warning {
+        eprintln!("irsig-merge: warning: {w}");
     }
-    irsig_cli::write_files_atomic(&files)
-}
-
-fn radiometry<R: BandModel>(
-    band: R,
-    view_gain: Option<f64>,
-    counts: CountRequest,
-) -> FrameRadiometry<R> {
-    FrameRadiometry {
-        band,
+    let r = FrameRadiometry {
+        band: band.band,
         sub_bands: 1,
-        view_gain,
-        counts,
-    }
+        view_gain: gain,
+        counts: cli.dc.request(),
+        provenance,
+    };
+    products::merged(&r, radiance, truth, &wanted, refused, &mut note, &mut emit)?;
+    irsig_cli::write_files_atomic(&files)
 }

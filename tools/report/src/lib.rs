@@ -28,7 +28,7 @@ use std::str::FromStr;
 use base64::Engine as _;
 use clap::Parser;
 use irsig_cli::Input;
-use irsig_cli::args::BandArg;
+use irsig_cli::args::ImageBandArgs;
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
@@ -73,10 +73,10 @@ pub struct Cli {
     /// --band instead (the sensor stage's EXR, say); the same size as the truth EXR.
     #[arg(long, value_name = "FILE")]
     pub radiance: Option<String>,
-    /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres or a sensor
-    /// response file (formats/srf.md).
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<BandArg>,
+    /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
+    /// write it); --band must be that band unless --override-band.
+    #[command(flatten)]
+    pub band: ImageBandArgs,
     /// Per-region statistics from this regions file (canonical RON); needs the truth EXR.
     #[arg(long, value_name = "FILE", requires = "truth")]
     pub regions: Option<String>,
@@ -287,10 +287,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
     let radiance = match &cli.radiance {
         Some(path) => {
-            let band = BandArg::or_default(cli.band.as_ref()).load()?;
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("radiance EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
+            let recorded = irsig_cli::provenance(&input.name, &image)?;
+            let band = cli
+                .band
+                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+            if let Some(w) = &band.warning {
+                eprintln!("irsig-report: warning: {w}");
+            }
             if let Some((name, t)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
             {
@@ -314,14 +320,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         match (&radiance, &truth) {
             (Some((name, image, band)), _) => {
                 let l = layer(image, name, RADIANCE_LAYER)?;
-                let t = irsig_radiometry::apparent_temperatures(band, l);
+                let t = irsig_radiometry::apparent_temperatures(&band.band, l);
                 (
                     t,
                     image.width,
                     image.height,
                     format!(
-                        "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {} um",
-                        BandArg::or_default(cli.band.as_ref())
+                        "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {}",
+                        band.record
                     ),
                 )
             }

@@ -25,7 +25,7 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{BandArg, TableFormat};
+use irsig_cli::args::{ImageBandArgs, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::Raster;
@@ -73,10 +73,10 @@ pub struct Cli {
     /// The truth EXR's layer to take the values from, in kelvin.
     #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
     pub layer: String,
-    /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres (flat response) or
-    /// a sensor response file (formats/srf.md).
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<BandArg>,
+    /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
+    /// write it); --band must be that band unless --override-band.
+    #[command(flatten)]
+    pub band: ImageBandArgs,
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
@@ -100,19 +100,20 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let regions_input = irsig_cli::read_input(&cli.regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
-    let band = if cli.radiance.is_some() {
-        Some(BandArg::or_default(cli.band.as_ref()).load()?)
-    } else {
-        None
-    };
-
     let truth_input = irsig_cli::read_input(&cli.truth)?;
     let truth = irsig_cli::read_exr(&truth_input.name, &truth_input.bytes)?;
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
-    let (values, source): (Vec<f32>, String) = match (&cli.radiance, band) {
-        (Some(path), Some(band)) => {
+    let (values, source): (Vec<f32>, String) = match &cli.radiance {
+        Some(path) => {
             let input = irsig_cli::read_input(path)?;
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
+            let recorded = irsig_cli::provenance(&input.name, &image)?;
+            let band = cli
+                .band
+                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+            if let Some(w) = &band.warning {
+                eprintln!("irsig-stats: warning: {w}");
+            }
             if (image.width, image.height) != (truth.width, truth.height) {
                 return Err(miette!(
                     "{}: the image is {} x {} pixels but the truth EXR {} is {} x {}: \
@@ -127,17 +128,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 ));
             }
             let radiance = layer(&image, &input.name, RADIANCE_LAYER)?;
-            let temperatures = irsig_radiometry::apparent_temperatures(&band, radiance);
+            let temperatures = irsig_radiometry::apparent_temperatures(&band.band, radiance);
             (
                 temperatures,
                 format!(
-                    "apparent temperature of the `radiance` layer of {} in {} um",
-                    input.name,
-                    BandArg::or_default(cli.band.as_ref())
+                    "apparent temperature of the `radiance` layer of {} in {}",
+                    input.name, band.record
                 ),
             )
         }
-        _ => (
+        None => (
             layer(&truth, &truth_input.name, &cli.layer)?.to_vec(),
             format!("`{}` layer of {}", cli.layer, truth_input.name),
         ),

@@ -201,10 +201,8 @@ pub struct Cli {
 
 /// The request the flags make.
 fn request(cli: &Cli) -> miette::Result<Request> {
-    let band = match BandArg::or_default(cli.band.as_ref()) {
-        BandArg::Total => BandRequest::Total,
-        band => BandRequest::Band(band.load()?),
-    };
+    let (band, record) = BandArg::or_default(cli.band.as_ref()).load_recorded()?;
+    let band = BandRequest { band, record };
     let atmosphere = AtmosphereRequest::named(&cli.atmosphere, cli.sky_radiance, |name| {
         if name != "-" && !Path::new(name).exists() {
             return Ok(None);
@@ -258,6 +256,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     let mut execute_files = None;
     if let Some(path) = &cli.execute {
         let input = irsig_cli::read_input(path)?;
+        plan.record_input("execute file", &input.name, &input.bytes);
         let text = decode(&input.name, &input.bytes)?;
         let frames = read_execute(&input.name, text, &input.base_dir(), cli.view_unit)?;
         let files = frames.iter().map(|f| FrameFiles {
@@ -271,6 +270,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     }
     for path in &cli.view {
         let input = irsig_cli::read_input(path)?;
+        plan.record_input("view", &input.name, &input.bytes);
         let text = decode(&input.name, &input.bytes)?;
         plan.add_views(parse_views(&input.name, text, cli.view_unit)?);
     }

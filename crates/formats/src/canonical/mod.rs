@@ -21,6 +21,7 @@ pub mod binary_spectral;
 mod layout;
 
 use irsig_model::decision::Decision;
+use irsig_model::provenance::Provenance;
 use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
     Atmosphere, AtmospherePlan, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
@@ -69,6 +70,29 @@ canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
 canonical!(AtmospherePlan, "atmosphere plan", 2);
 canonical!(Decision, "decision", 3);
 canonical!(Uncertainties, "uncertainties file", 3);
+canonical!(Provenance, "provenance", 3);
+
+/// The first line of an image's comments that hold its provenance, which follows as
+/// canonical RON (formats/images.md): an image of another program has other comments.
+const PROVENANCE_HEADER: &str = "irsig provenance (canonical RON)\n";
+
+/// `provenance` as the text of an image's comments.
+///
+/// # Errors
+/// Only if RON serialisation fails, which it does not for finite numbers.
+pub fn provenance_comments(provenance: &Provenance) -> Result<String, ron::Error> {
+    Ok(format!("{PROVENANCE_HEADER}{}", to_ron(provenance)?))
+}
+
+/// The provenance an image's comments hold (`file` names the image in messages): `None`
+/// for comments that are not irsig's provenance.
+///
+/// # Errors
+/// irsig's header followed by RON that is not a valid provenance.
+pub fn provenance_of(file: &str, comments: &str) -> Option<Result<Provenance, ParseError>> {
+    let ron = comments.strip_prefix(PROVENANCE_HEADER)?;
+    Some(from_ron(&format!("{file} (its provenance)"), ron))
+}
 
 /// Parses RON text into `T` without validating it.
 ///
