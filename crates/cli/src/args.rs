@@ -136,7 +136,6 @@ impl BandArg {
                 let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
                 let table = irsig_formats::srf::parse(&input.name, text)?;
                 let record = BandRecord::Response {
-                    name: input.name.clone(),
                     sha256: input.sha256(),
                     wavelength_um: table.wavelength_um,
                     response: table.response,
@@ -230,16 +229,24 @@ impl ImageBandArgs {
             }
             (Some((band, record)), Some(recorded)) if self.override_band => Ok(ResolvedBand {
                 warning: Some(format!(
-                    "--band {record} overrides the band `{image}` records, {recorded}: its \
-                     apparent temperatures are not those of the radiance it was traced in"
+                    "--band {} ({record}) overrides the band `{image}` records, {recorded}: \
+                     its apparent temperatures are not those of the radiance it was traced in",
+                    self.band
+                        .as_ref()
+                        .map(ToString::to_string)
+                        .unwrap_or_default()
                 )),
                 band,
                 record,
             }),
             (Some((_, record)), Some(recorded)) => Err(crate::usage_error(format!(
-                "--band {record} is not the band `{image}` records, {recorded}: leave --band \
-                 out to use the recorded band, or add --override-band to convert with \
-                 --band anyway"
+                "--band {} ({record}) is not the band `{image}` records, {recorded}: leave \
+                 --band out to use the recorded band, or add --override-band to convert with \
+                 --band anyway",
+                self.band
+                    .as_ref()
+                    .map(ToString::to_string)
+                    .unwrap_or_default()
             ))),
             (Some((band, record)), None) => Ok(ResolvedBand {
                 band,

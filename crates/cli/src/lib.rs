@@ -145,6 +145,20 @@ pub fn read_input(path: impl AsRef<Path>) -> miette::Result<Input> {
     })
 }
 
+/// [`read_input`] of `path` when it is `-` or names something that exists; `None` when no
+/// file of that name exists (a caller that also takes names of other things, such as a
+/// built-in atmosphere's, says what it expected).
+///
+/// # Errors
+/// As [`read_input`].
+pub fn read_input_if_any(path: impl AsRef<Path>) -> miette::Result<Option<Input>> {
+    let path = path.as_ref();
+    if path.as_os_str() != "-" && !path.exists() {
+        return Ok(None);
+    }
+    read_input(path).map(Some)
+}
+
 /// Decodes an EXR input (`name` for messages), or an error at its byte offset: the
 /// reader every tool that takes an image shares.
 ///

@@ -1,7 +1,9 @@
 //! What an image was made from, recorded in the image itself so that the stages after the
 //! tracer need not be told again: the band its radiances are in (its limits, and a sensor
-//! response's table itself with the file's name and SHA-256), the sub-bands, the atmosphere
-//! and its model, and every input the chain read (stage, role, name, SHA-256). irsig-trace
+//! response's table itself with the file's SHA-256), the sub-bands, the atmosphere and its
+//! model, and every input the chain read (stage, role, SHA-256). Contents, not names: the
+//! same inputs read from a pipe, another folder or another spelling of a path make the same
+//! record, so a run gives the same bytes however its stages are chained. irsig-trace
 //! writes it into its EXRs, irsig-merge keeps it, irsig-sensor adds its own input, and the
 //! sensor, the statistics and the report take the band from it by default (a `--band` that
 //! disagrees is refused). `irsig-formats` reads and writes it as canonical RON;
@@ -32,8 +34,6 @@ pub enum BandRecord {
     },
     /// A sensor response table, as read from its file.
     Response {
-        /// The file's name as it was given.
-        name: String,
         /// The file's SHA-256 (`sha256:` and 64 hex digits).
         sha256: String,
         /// Wavelengths, µm, increasing.
@@ -45,8 +45,7 @@ pub enum BandRecord {
 
 impl BandRecord {
     /// Whether `other` is the same band: the same kind and the same numbers (a response
-    /// file's name and hash may differ: the same table read from another copy is the same
-    /// band).
+    /// file's hash may differ: the same table written out again is the same band).
     #[must_use]
     pub fn same_band(&self, other: &Self) -> bool {
         match (self, other) {
@@ -126,7 +125,6 @@ impl std::fmt::Display for BandRecord {
             Self::Total => f.write_str("the whole spectrum (total)"),
             Self::Flat { min_um, max_um } => write!(f, "{min_um}-{max_um} um, flat"),
             Self::Response {
-                name,
                 sha256,
                 wavelength_um,
                 ..
@@ -135,7 +133,8 @@ impl std::fmt::Display for BandRecord {
                     wavelength_um.first().copied().unwrap_or(f64::NAN),
                     wavelength_um.last().copied().unwrap_or(f64::NAN),
                 );
-                write!(f, "{lo}-{hi} um with the response {name} ({sha256})")
+                let short = sha256.get(..19).unwrap_or(sha256);
+                write!(f, "{lo}-{hi} um with a response ({short}…)")
             }
         }
     }
@@ -149,8 +148,6 @@ pub struct InputRecord {
     pub stage: String,
     /// What it was to that stage (`scene`, `materials`, `view`, `atmosphere`).
     pub role: String,
-    /// Its name as given (a path, `<stdin>`, or a built-in's name).
-    pub name: String,
     /// `sha256:` and 64 hex digits of its bytes.
     pub sha256: String,
 }
@@ -164,7 +161,8 @@ pub struct Provenance {
     /// The sub-bands the radiance equation was summed over: `1` (the band model), `K` or
     /// `full`.
     pub sub_bands: String,
-    /// The atmosphere: `none` (a vacuum), a built-in's name or a file's.
+    /// The atmosphere: `none` (a vacuum), a built-in's name, or `file` (its hash is among
+    /// the inputs).
     pub atmosphere: String,
     /// Its model (`table`, `layered`, `thesis`, `none`).
     pub atmosphere_model: String,
@@ -188,7 +186,6 @@ mod tests {
 
     fn response(name: &str, r: f64) -> BandRecord {
         BandRecord::Response {
-            name: name.into(),
             sha256: format!("sha256:{name}"),
             wavelength_um: vec![8.0, 10.0, 12.0],
             response: vec![0.0, r, 0.0],
@@ -221,7 +218,6 @@ mod tests {
         .unwrap_err();
         assert_eq!(e.path, "band.max_um");
         let short = BandRecord::Response {
-            name: String::new(),
             sha256: String::new(),
             wavelength_um: vec![8.0],
             response: vec![1.0],

@@ -108,15 +108,8 @@ pub(crate) fn check_spectral_range(
     bytes: &[u8],
     [lo, hi]: [f64; 2],
 ) -> miette::Result<()> {
-    let wavelengths = a.grid.points.iter().map(|&p| match a.grid.axis {
-        irsig_model::SpectralAxis::WavenumberPerCm => 1e4 / p,
-        irsig_model::SpectralAxis::WavelengthUm => p,
-    });
-    let (min, max) = wavelengths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
-        (lo.min(w), hi.max(w))
-    });
-    let slack = 1e-9 * max;
-    if lo >= min - slack && hi <= max + slack {
+    let [min, max] = spectral_range_um(a);
+    if covers([min, max], [lo, hi]) {
         return Ok(());
     }
     let message = format!(
@@ -129,6 +122,49 @@ pub(crate) fn check_spectral_range(
             bytes,
             "grid.points",
             message,
+        ),
+    ))
+}
+
+/// The wavelengths a spectral atmosphere's grid spans, µm.
+pub(crate) fn spectral_range_um(a: &SpectralAtmosphere) -> [f64; 2] {
+    let wavelengths = a.grid.points.iter().map(|&p| match a.grid.axis {
+        irsig_model::SpectralAxis::WavenumberPerCm => 1e4 / p,
+        irsig_model::SpectralAxis::WavelengthUm => p,
+    });
+    let (min, max) = wavelengths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+        (lo.min(w), hi.max(w))
+    });
+    [min, max]
+}
+
+/// Whether `[min, max]` covers `[lo, hi]`, to rounding.
+pub(crate) fn covers([min, max]: [f64; 2], [lo, hi]: [f64; 2]) -> bool {
+    let slack = 1e-9 * max;
+    lo >= min - slack && hi <= max + slack
+}
+
+/// A built-in's spectra must cover the band: else a request error about the band, which
+/// names both ranges and how to get an atmosphere over the band.
+pub(crate) fn check_builtin_range(
+    name: &str,
+    a: &SpectralAtmosphere,
+    band: &crate::BandRequest,
+    range_um: [f64; 2],
+) -> miette::Result<()> {
+    let [min, max] = spectral_range_um(a);
+    if covers([min, max], range_um) {
+        return Ok(());
+    }
+    Err(RequestError::of_value(
+        Setting::Band,
+        &band.label,
+        format!(
+            "the band, {}, reaches outside the spectra of the built-in atmosphere `{name}`, \
+             {min:.3}-{max:.3} um: trace a band inside them, or build an atmosphere over the \
+             band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
+             (LOWTRAN7) and give its file to --atmosphere",
+            band.record, range_um[0], range_um[1]
         ),
     ))
 }

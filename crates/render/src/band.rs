@@ -19,15 +19,28 @@ pub struct BandRequest {
     pub band: AnyBand,
     /// What the images record of it.
     pub record: BandRecord,
+    /// How the user named it (`8-14`, a response file's path), for messages.
+    pub label: String,
 }
 
 impl BandRequest {
+    /// The band `band`, recorded as `record`, which the user called `label`.
+    #[must_use]
+    pub fn new(band: AnyBand, record: BandRecord, label: impl Into<String>) -> Self {
+        Self {
+            band,
+            record,
+            label: label.into(),
+        }
+    }
+
     /// The whole spectrum.
     #[must_use]
     pub fn total() -> Self {
         Self {
             band: AnyBand::Total(TotalRadiance),
             record: BandRecord::Total,
+            label: "total".into(),
         }
     }
 
@@ -39,6 +52,7 @@ impl BandRequest {
         Ok(Self {
             band: AnyBand::Band(Band::new(min_um, max_um)?),
             record: BandRecord::Flat { min_um, max_um },
+            label: format!("{min_um}-{max_um}"),
         })
     }
 }

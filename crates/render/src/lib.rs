@@ -22,6 +22,7 @@
 //!     settings: Default::default(),
 //!     tolerance: None,
 //!     counts: Default::default(),
+//!     defaulted: vec![],
 //! };
 //! // A sky radiance below 0 is refused before anything is read.
 //! let e = Plan::new(request).unwrap_err();

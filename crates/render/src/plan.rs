@@ -55,6 +55,9 @@ pub struct Request {
     pub tolerance: Option<ToleranceRequest>,
     /// How radiance becomes digital counts.
     pub counts: CountRequest,
+    /// The settings the user left at their defaults, where a default changes the physics
+    /// (the band, the atmosphere): the plan says what it took, through the sink's notes.
+    pub defaulted: Vec<Setting>,
 }
 
 /// A tile of every frame: a rectangle `X,Y,W,H` or tile `I/CxR` of a grid, resolved
@@ -229,18 +232,16 @@ impl Plan {
         }
         let mut inputs = Vec::new();
         match &request.atmosphere {
-            AtmosphereRequest::File { name, bytes } => inputs.push(InputRecord {
+            AtmosphereRequest::File { bytes, .. } => inputs.push(InputRecord {
                 stage: "trace".into(),
                 role: "atmosphere".into(),
-                name: name.clone(),
                 sha256: sha256_hex(bytes),
             }),
             AtmosphereRequest::Builtin(name) => {
                 let data = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
                 inputs.push(InputRecord {
                     stage: "trace".into(),
-                    role: "atmosphere (built-in, its spectra)".into(),
-                    name: name.clone(),
+                    role: "atmosphere (a built-in's spectra)".into(),
                     sha256: sha256_hex(data),
                 });
             }
@@ -268,7 +269,7 @@ impl Plan {
     /// A malformed scene, at its place in the file.
     pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
         self.run.field("scene", bytes);
-        self.record_input("scene", name, bytes);
+        self.record_input("scene", bytes);
         let scene = irsig_formats::canonical::read_raw_scene(name, bytes)?;
         *self.scene.get_mut().map_err(|_| poisoned())? = Some(scene);
         name.clone_into(&mut self.scene_name);
@@ -290,7 +291,7 @@ impl Plan {
         scene_bytes: &[u8],
     ) -> miette::Result<()> {
         let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
-        self.record_input("materials", name, bytes);
+        self.record_input("materials", bytes);
         let lib = match &self.request.band.band {
             _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
             AnyBand::Band(band) => {
@@ -336,14 +337,40 @@ impl Plan {
         Ok(())
     }
 
+    /// What the run takes where the request said nothing and the default changes the
+    /// physics (`Request::defaulted`), one line each, for the user.
+    #[must_use]
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        for setting in &self.request.defaulted {
+            match (setting, &self.request.atmosphere) {
+                (Setting::Band, _) => notes.push(format!(
+                    "no band given: tracing {} (the thesis's band)",
+                    self.request.band.record
+                )),
+                (
+                    Setting::Atmosphere,
+                    AtmosphereRequest::Vacuum {
+                        sky_radiance_w_m2_sr,
+                    },
+                ) => notes.push(format!(
+                    "no atmosphere given: a vacuum (τ = 1, no path radiance) under a sky of \
+                     {sky_radiance_w_m2_sr} W m^-2 sr^-1; name a built-in ({}), a file, or \
+                     `none` to say so",
+                    irsig_atmosphere::BUILTIN_NAMES.join(", ")
+                )),
+                _ => {}
+            }
+        }
+        notes
+    }
+
     /// Records an input the run read that the plan does not read itself (a view file, an
-    /// execute file, a response file): its role, name and bytes' SHA-256, for the images'
-    /// provenance.
-    pub fn record_input(&mut self, role: &str, name: &str, bytes: &[u8]) {
+    /// execute file): its role and its bytes' SHA-256, for the images' provenance.
+    pub fn record_input(&mut self, role: &str, bytes: &[u8]) {
         self.inputs.push(InputRecord {
             stage: "trace".into(),
             role: role.into(),
-            name: name.into(),
             sha256: sha256_hex(bytes),
         });
     }
@@ -354,7 +381,10 @@ impl Plan {
         Provenance {
             band: self.request.band.record.clone(),
             sub_bands: settings.sub_bands.to_string(),
-            atmosphere: self.request.atmosphere.name().to_owned(),
+            atmosphere: match &self.request.atmosphere {
+                AtmosphereRequest::File { .. } => "file".to_owned(),
+                other => other.name().to_owned(),
+            },
             atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
             inputs: self.inputs.clone(),
         }
@@ -380,7 +410,7 @@ impl Plan {
     pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
         let text = irsig_formats::canonical::utf8(name, bytes)?;
         let u: Uncertainties = from_ron_bytes(name, bytes)?;
-        self.record_input("uncertainties", name, bytes);
+        self.record_input("uncertainties", bytes);
         let guard = self.scene.get_mut().map_err(|_| poisoned())?;
         let objects = &guard
             .as_ref()
@@ -439,8 +469,9 @@ impl Plan {
     /// A malformed decision, or a choice that is not a setting of its model (at the
     /// choice).
     pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+        // Not an input of the record: its choices are the frame's settings, which a frame
+        // piloted anew and a tile given its decision share, and so do their images.
         let d: Decision = from_ron_bytes(name, bytes)?;
-        self.record_input("decision", name, bytes);
         if let Err((i, message)) = Settings::of(&self.request.settings).with_decision(&d) {
             return Err(miette::Report::new(error_at_path(
                 name,
@@ -658,10 +689,14 @@ impl Plan {
                 ));
             }
         }
-        if let (AirData::Spectral(a, bytes), Some(sp), AtmosphereRequest::File { name, .. }) =
-            (&data, &split, request)
-        {
-            air::check_spectral_range(name, a, bytes, sp.range_um)?;
+        match (&data, &split, request) {
+            (AirData::Spectral(a, bytes), Some(sp), AtmosphereRequest::File { name, .. }) => {
+                air::check_spectral_range(name, a, bytes, sp.range_um)?;
+            }
+            (AirData::Spectral(a, _), Some(sp), AtmosphereRequest::Builtin(name)) => {
+                air::check_builtin_range(name, a, &self.request.band, sp.range_um)?;
+            }
+            _ => {}
         }
         // The sky is precomputed up to the highest sensor or scene point.
         let top = self

@@ -312,7 +312,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     provenance.inputs.push(InputRecord {
         stage: "sensor".into(),
         role: "radiance EXR".into(),
-        name: input.name.clone(),
         sha256: input.sha256(),
     });
     let comments = Some(

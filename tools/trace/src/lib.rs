@@ -16,7 +16,7 @@ use irsig_model::decision::Decision;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_render::tolerance::Pin;
 use irsig_render::{
-    AtmosphereRequest, BandRequest, Plan, Request, RequestError, Sink, TileRequest,
+    AtmosphereRequest, BandRequest, Plan, Request, RequestError, Setting, Sink, TileRequest,
     ToleranceRequest,
 };
 use irsig_tracer::PathTermsMode;
@@ -87,9 +87,9 @@ pub struct Cli {
     /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`; both also in
     /// spectral form), a canonical atmosphere file (RON), a spectral atmosphere file (what
     /// `irsig-atmos build` writes), or `none` (a vacuum whose sky has radiance
-    /// --sky-radiance).
-    #[arg(long, default_value = "none", value_name = "NAME|FILE")]
-    pub atmosphere: String,
+    /// --sky-radiance) [default: none, with a note on stderr].
+    #[arg(long, value_name = "NAME|FILE")]
+    pub atmosphere: Option<String>,
     /// Sum the radiance equation over sub-bands of the band (the spectral model), each
     /// with its own τ, path and sky radiance collapsed from a spectral atmosphere: K
     /// sub-bands, each holding an equal share of the band's response-weighted blackbody
@@ -201,14 +201,16 @@ pub struct Cli {
 
 /// The request the flags make.
 fn request(cli: &Cli) -> miette::Result<Request> {
-    let (band, record) = BandArg::or_default(cli.band.as_ref()).load_recorded()?;
-    let band = BandRequest { band, record };
-    let atmosphere = AtmosphereRequest::named(&cli.atmosphere, cli.sky_radiance, |name| {
-        if name != "-" && !Path::new(name).exists() {
-            return Ok(None);
-        }
-        irsig_cli::read_input(name).map(|i| Some((i.name, i.bytes)))
+    let arg = BandArg::or_default(cli.band.as_ref());
+    let (band, record) = arg.load_recorded()?;
+    let band = BandRequest::new(band, record, arg.to_string());
+    let name = cli.atmosphere.as_deref().unwrap_or("none");
+    let atmosphere = AtmosphereRequest::named(name, cli.sky_radiance, |name| {
+        Ok(irsig_cli::read_input_if_any(name)?.map(|i| (i.name, i.bytes)))
     })?;
+    let mut defaulted = Vec::new();
+    defaulted.extend(cli.band.is_none().then_some(Setting::Band));
+    defaulted.extend(cli.atmosphere.is_none().then_some(Setting::Atmosphere));
     Ok(Request {
         band,
         atmosphere,
@@ -228,6 +230,7 @@ fn request(cli: &Cli) -> miette::Result<Request> {
             pins: cli.pin.clone(),
         }),
         counts: cli.dc.request(),
+        defaulted,
     })
 }
 
@@ -236,12 +239,8 @@ fn as_usage(report: miette::Report) -> miette::Report {
     let Some(e) = report.downcast_ref::<RequestError>() else {
         return report;
     };
-    let value = e
-        .value
-        .as_ref()
-        .map(|v| format!(" {v}"))
-        .unwrap_or_default();
-    irsig_cli::usage_error(format!("--{}{value}: {}", e.setting.name(), e.message))
+    let joint = if e.value.is_some() { " " } else { ": " };
+    irsig_cli::usage_error(format!("--{}{joint}{e}", e.setting.name()))
 }
 
 /// Reads the inputs into a plan: the scene, the materials, the views (of --view or
@@ -256,7 +255,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     let mut execute_files = None;
     if let Some(path) = &cli.execute {
         let input = irsig_cli::read_input(path)?;
-        plan.record_input("execute file", &input.name, &input.bytes);
+        plan.record_input("execute file", &input.bytes);
         let text = decode(&input.name, &input.bytes)?;
         let frames = read_execute(&input.name, text, &input.base_dir(), cli.view_unit)?;
         let files = frames.iter().map(|f| FrameFiles {
@@ -270,7 +269,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     }
     for path in &cli.view {
         let input = irsig_cli::read_input(path)?;
-        plan.record_input("view", &input.name, &input.bytes);
+        plan.record_input("view", &input.bytes);
         let text = decode(&input.name, &input.bytes)?;
         plan.add_views(parse_views(&input.name, text, cli.view_unit)?);
     }
@@ -304,6 +303,9 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     }
     out.check_stdout()?;
     let (plan, execute_files) = plan(cli)?;
+    plan.notes()
+        .iter()
+        .for_each(|n| eprintln!("irsig-trace: note: {n}"));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()

@@ -114,11 +114,32 @@ pub fn from_ron_as<T: DeserializeOwned>(
 ) -> Result<T, ParseError> {
     ron::from_str::<T>(text).map_err(|e| {
         let offset = crate::offset_of(text, e.span.start.line, e.span.start.col);
+        let message = match e.code {
+            // ron says "Expected option"; the user wrote a plain value where the model has
+            // an optional one.
+            ron::Error::ExpectedOption => {
+                let rest = text.get(offset..).unwrap_or("");
+                let value = rest
+                    .split([',', ')', ']', '\n'])
+                    .next()
+                    .unwrap_or("")
+                    .trim();
+                if value.is_empty() || value.starts_with("Some") || value == "None" {
+                    "expected an optional value: write `Some(value)`, or `None`".to_owned()
+                } else {
+                    format!(
+                        "expected an optional value: write `Some({value})` for `{value}` (or \
+                         `None` for none)"
+                    )
+                }
+            }
+            ref code => ron_message(code),
+        };
         ParseError::at_offset(
             file,
             text,
             offset,
-            format!("malformed {what} (RON): {}", ron_message(&e.code)),
+            format!("malformed {what} (RON): {message}"),
         )
     })
 }
@@ -417,6 +438,15 @@ mod tests {
         let e = from_ron_as::<ron::Value>("deep.ron", &text, "table").unwrap_err();
         assert!(e.message.contains("nested too deeply"), "{e}");
         assert!(!e.message.contains("serde_stacker"), "{e}");
+    }
+
+    #[test]
+    fn a_plain_value_where_an_option_goes_is_told_how_to_write_it() {
+        let text = "(regions: [(name: \"panel\", material: 3)])";
+        let e = from_ron::<RegionSet>("r.ron", text).unwrap_err();
+        assert!(e.message.contains("write `Some(3)` for `3`"), "{e}");
+        // At the value (ron points at the space before it).
+        assert_eq!((e.line, e.column), (1, 37), "{e}");
     }
 
     #[test]
