@@ -756,7 +756,7 @@ fn choose<S>(
 
 impl Path {
     /// This path with at most `bounces` specular bounces, into `out`: what a rendering with
-    /// that limit records (the last facet reflects the hemispheric sky).
+    /// that limit records (the last facet reflects its untraced environment).
     pub(crate) fn truncated(&self, bounces: u32, out: &mut Path) {
         out.primary = self.primary;
         out.rays.clone_from(&self.rays);
@@ -767,7 +767,7 @@ impl Path {
             && keep == bounces as usize + 1
             && last.mirror.is_some()
         {
-            last.mirror = Some(Mirror::Hemispheric);
+            last.mirror = Some(Mirror::Untraced(last.environment));
         }
     }
 

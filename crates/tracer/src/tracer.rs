@@ -52,9 +52,9 @@ impl Event {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TraceOptions {
     /// Specular reflection rays along one path (default 1; Appendix A: one is enough at
-    /// earth-ambient temperatures). 0 makes specular facets reflect the sky at the mirror
-    /// angle without tracing. At the last bounce a facet's specular part reflects the
-    /// hemispheric sky.
+    /// earth-ambient temperatures). Where the bounces run out (at once with 0), a specular
+    /// part reflects the environment along its mirror direction without tracing: the sky at
+    /// the mirror angle, or the terrain where the direction points below the horizon.
     pub specular_bounces: u32,
     /// Cosine-weighted hemisphere rays per diffuse primary hit for the sky-view factor F;
     /// 0 (default) switches the model off (F = 1, no rays cast).
