@@ -57,7 +57,9 @@ pub mod truth;
 pub mod uncertainty;
 mod view;
 
-pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
+pub use atmosphere::{
+    Atmosphere, AtmosphereLevel, InterpolationResidual, RadiosondeLevel, SlantTables,
+};
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};
