@@ -240,7 +240,11 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             "cannot be used with",
         ),
         (&["--k", "0.1"], 2, "required"),
-        (&["--n", "1.2", "--planck-temperature", "300"], 2, "--nk-table"),
+        (
+            &["--n", "1.2", "--planck-temperature", "300"],
+            2,
+            "--nk-table",
+        ),
         (
             &["--n", "1.2", "--roughness", "-0.1"],
             1,

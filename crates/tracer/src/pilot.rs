@@ -35,8 +35,8 @@ const RAY_NS: f64 = 300.0;
 const NODE_EVAL_NS: f64 = 25.0;
 const HEMI_EVAL_NS: f64 = 12.0;
 const TABLE_LOOKUP_NS: f64 = 15.0;
-/// Nodes of a path table (65 altitudes × 513 ranges): what building one costs in path calls.
-const TABLE_NODES: f64 = 65.0 * 513.0;
+/// Nodes of a path table (altitudes × ranges): what building one costs in path calls.
+const TABLE_NODES: f64 = (crate::PATH_TABLE_ALTITUDES * crate::PATH_TABLE_RANGES) as f64;
 
 /// How many rays a pixel gets.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -84,10 +84,10 @@ pub struct Cli {
     /// its tables were integrated over.
     #[arg(long, value_name = "MIN-MAX|FILE|total")]
     pub band: Option<BandArg>,
-    /// The atmosphere: a built-in name (`us-std-1976`, `midlat-winter`; both also in
-    /// spectral form), a canonical atmosphere file (RON), a spectral atmosphere file (what
-    /// `irsig-atmos build` writes), or `none` (a vacuum whose sky has radiance
-    /// --sky-radiance) [default: none, with a note on stderr].
+    /// The atmosphere: a built-in LOWTRAN7 model (us-std-1976, tropical, midlat-summer,
+    /// midlat-winter, subarctic-summer, subarctic-winter; spectra 7.41-14.08 um), a canonical
+    /// or spectral atmosphere file (`irsig-atmos build` writes one), or `none` (a vacuum
+    /// under --sky-radiance) [default: none, with a note on stderr].
     #[arg(long, value_name = "NAME|FILE")]
     pub atmosphere: Option<String>,
     /// Sum the radiance equation over sub-bands of the band (the spectral model), each
@@ -129,7 +129,7 @@ pub struct Cli {
     #[arg(long, default_value_t = 0)]
     pub seed: u64,
     /// Path terms (τ, L_u) of facet hits: `exact` (one atmosphere call per hit) or
-    /// `tabulated` (a per-frame altitude × range table; worst error 15 mK, see
+    /// `tabulated` (a per-frame altitude × range table; worst error 7 mK, see
     /// docs/accuracy.md; faster from about 200 × 200 pixels up) [default: exact].
     #[arg(long, value_name = "MODE", value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
     pub path_terms: Option<PathTermsMode>,

@@ -578,11 +578,11 @@ fn defaults_that_change_the_physics_are_said_and_given_values_are_not() {
 fn a_response_outside_a_builtins_spectra_names_the_band_file_both_ranges_and_the_fix() {
     let dir = tempfile::tempdir().unwrap();
     let (scene, mats, view) = inputs(dir.path(), 2);
-    // A microbolometer-like 7.5-14 um response: the built-ins' spectra start at 8 um.
+    // A 7-14 um response: the built-ins' spectra start at 7.41 um.
     let srf = write(
         dir.path(),
         "bolometer.srf",
-        "7.5 0.0\n8.0 0.5\n10.0 1.0\n14.0 0.2\n",
+        "7.0 0.0\n8.0 0.5\n10.0 1.0\n14.0 0.2\n",
     );
     let out = trace()
         .args(["--scene", &scene, "--materials", &mats, "--view", &view])
@@ -593,8 +593,8 @@ fn a_response_outside_a_builtins_spectra_names_the_band_file_both_ranges_and_the
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr).replace('\n', " ");
     for needed in [
-        "bolometer.srf: the band, 7.5-14 um with a response",
-        "8.000-14.085 um",
+        "bolometer.srf: the band, 7-14 um with a response",
+        "7.407-14.085 um",
         "irsig-atmos plan",
     ] {
         assert!(err.contains(needed), "`{needed}` missing from: {err}");
