@@ -419,7 +419,9 @@ fn the_tolerance_pilot_offers_sub_bands_of_a_spectral_atmosphere_and_the_decisio
     };
     let prefix = dir.path().join("t");
     let prefix_s = prefix.to_str().unwrap();
-    trace(&["--tolerance", "0.05", "-o", prefix_s])
+    // 0.1 K: within this scene's reach (the sky-view sampling leaves about 0.06 K on its
+    // concrete at the most accurate settings on offer, so 0.05 K is refused).
+    trace(&["--tolerance", "0.1", "-o", prefix_s])
         .assert()
         .success();
     let text = std::fs::read_to_string(dir.path().join("t.decision.ron")).unwrap();
@@ -461,7 +463,7 @@ fn the_tolerance_pilot_offers_sub_bands_of_a_spectral_atmosphere_and_the_decisio
         std::fs::read(dir.path().join("t.radiance.exr")).unwrap()
     );
     // Pinned, the count is used as given.
-    trace(&["--tolerance", "0.05", "--pin", "sub-bands=4", "--truth-exr"])
+    trace(&["--tolerance", "0.1", "--pin", "sub-bands=4", "--truth-exr"])
         .arg(dir.path().join("four.exr"))
         .arg("--decision-out")
         .arg(dir.path().join("four.ron"))

@@ -112,8 +112,67 @@ pub struct ModelChoice {
     pub reason: String,
 }
 
-/// What the pilot chose for a frame, with what it predicts and what it cost.
+/// One population of the frame's pixels as the pilot sampled it (its class: what the
+/// centre ray met first, the material, a grazing angle, the horizon), the error of the
+/// chosen settings in it, and whether the decision holds there.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClassReport {
+    /// What the ray met first: `sky`, `terrain`, `diffuse`, `specular-escapes`,
+    /// `specular-hits-facet`.
+    pub event: String,
+    /// The material id of the facet met (0: none).
+    pub material: u16,
+    /// The material's name, or `sky` or `terrain`.
+    pub name: String,
+    /// The facet is met more than 75° from its normal.
+    pub grazing: bool,
+    /// The ray looks within 5° of the horizon.
+    pub horizon: bool,
+    /// Only a sub-pixel probe found it: no pixel's centre ray meets it.
+    pub sub_pixel: bool,
+    /// Its share of the frame's pixels, 0 to 1.
+    pub share: f64,
+    /// Points the pilot measured in it.
+    pub samples: u32,
+    /// The chosen settings' error in it against the most accurate, K: at its 90th
+    /// percentile (an upper bound with 95 % confidence), and at worst.
+    pub error: ErrorEstimate,
+    /// The root-mean-square of that error and of the most accurate settings' own residual,
+    /// K: the error budget's σ of the model for its pixels.
+    pub rms_k: f64,
+    /// How far the most accurate settings on offer are from converged here (the last
+    /// step of each convergence sequence), K, at its 90th percentile.
+    pub residual_k: f64,
+    /// The decision holds for its pixels.
+    pub guaranteed: bool,
+    /// Why it does or does not.
+    pub why: String,
+}
+
+/// What refinement of pixels to a standard error is predicted to do in a frame.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SamplingReport {
+    /// The standard error a refined pixel is refined to, K.
+    pub target_k: f64,
+    /// A pixel whose centre differs from a neighbour's by more than this is refined, K.
+    pub edge_k: f64,
+    /// The largest side of a level (rays per round: its square).
+    pub max_side: u32,
+    /// The share of the frame's pixels refined (edges and thin facets), 0 to 1.
+    pub candidates_share: f64,
+    /// Paths traced per refined pixel, from the trial.
+    pub paths_per_candidate: f64,
+    /// The share of the refined pixels predicted to reach the largest side above the
+    /// target, 0 to 1 (marked as not guaranteed).
+    pub capped_share: f64,
+    /// Pixels refined in the trial.
+    pub trial_pixels: u32,
+}
+
+/// What the pilot chose for a frame, with what it predicts and what it cost.
+#[derive(Debug, Clone, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Decision {
     /// The tolerance asked for, K.
@@ -129,6 +188,25 @@ pub struct Decision {
     pub relative_cost: f64,
     /// Pixels the pilot traced.
     pub pilot_pixels: u32,
+    /// What the tolerance is measured against: irsig's most accurate settings on offer,
+    /// with the given inputs.
+    #[serde(default)]
+    pub relative_to: String,
+    /// The populations of pixels sampled, and whether the decision holds for each.
+    #[serde(default)]
+    pub classes: Vec<ClassReport>,
+    /// Refinement to a standard error, when the frame is refined.
+    #[serde(default)]
+    pub sampling: Option<SamplingReport>,
+    /// The share of the frame's pixels the decision does not guarantee (classes it cannot
+    /// afford, pixels predicted to cap), 0 to 1.
+    #[serde(default)]
+    pub not_guaranteed_share: f64,
+    /// The inputs' own error that no setting removes, K (σ): the atmosphere data's
+    /// interpolation between its rows, when known. It belongs to the error budget, not to
+    /// the tolerance.
+    #[serde(default)]
+    pub data_sigma_k: Option<f64>,
 }
 
 impl Decision {
@@ -175,6 +253,61 @@ impl Decision {
             0.0,
             f64::MAX,
         )?;
+        for (i, c) in self.classes.iter().enumerate() {
+            let p = |f: &str| format!("classes[{i}].{f}");
+            check_range(|| p("share"), c.share, 0.0, 1.0)?;
+            check_range(
+                || p("error.percentile_k"),
+                c.error.percentile_k,
+                0.0,
+                f64::MAX,
+            )?;
+            check_range(|| p("error.max_k"), c.error.max_k, 0.0, f64::MAX)?;
+            check_range(|| p("rms_k"), c.rms_k, 0.0, f64::MAX)?;
+            check_range(|| p("residual_k"), c.residual_k, 0.0, f64::MAX)?;
+        }
+        if let Some(s) = &self.sampling {
+            check_range(
+                || "sampling.target_k".into(),
+                s.target_k,
+                f64::MIN_POSITIVE,
+                f64::MAX,
+            )?;
+            check_range(
+                || "sampling.edge_k".into(),
+                s.edge_k,
+                f64::MIN_POSITIVE,
+                f64::MAX,
+            )?;
+            check_range(
+                || "sampling.max_side".into(),
+                f64::from(s.max_side),
+                1.0,
+                128.0,
+            )?;
+            check_range(
+                || "sampling.candidates_share".into(),
+                s.candidates_share,
+                0.0,
+                1.0,
+            )?;
+            check_range(|| "sampling.capped_share".into(), s.capped_share, 0.0, 1.0)?;
+            check_range(
+                || "sampling.paths_per_candidate".into(),
+                s.paths_per_candidate,
+                0.0,
+                f64::MAX,
+            )?;
+        }
+        check_range(
+            || "not_guaranteed_share".into(),
+            self.not_guaranteed_share,
+            0.0,
+            1.0,
+        )?;
+        if let Some(sigma) = self.data_sigma_k {
+            check_range(|| "data_sigma_k".into(), sigma, 0.0, f64::MAX)?;
+        }
         check_range(|| "relative_cost".into(), self.relative_cost, 0.0, f64::MAX)
     }
 }

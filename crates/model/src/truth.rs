@@ -52,11 +52,15 @@ pub enum Layer {
     SigmaTransmission,
     /// σ of the apparent temperature from the atmosphere's path (and sky) radiance, K.
     SigmaPathRadiance,
-    /// The residual of the models the tolerance pilot chose (its predicted error at its
-    /// percentile), K.
+    /// The residual of the models the tolerance pilot chose, K: its class's root-mean-square
+    /// error (against the most accurate settings, their own residual included) and the
+    /// pixel's own sampling error when it was refined, added in quadrature.
     SigmaModel,
     /// The root-sum-square of the σ layers, K.
     SigmaTotal,
+    /// With a tolerance: 1 where the decision does not guarantee the pixel (its class
+    /// cannot be afforded, or its refinement reached the cap), 0 elsewhere.
+    NotGuaranteed,
 }
 
 impl Layer {
@@ -87,8 +91,12 @@ impl Layer {
         Self::SigmaTotal,
     ];
 
-    /// Every layer: the radiance, the truth layers, the error budget.
-    pub const ALL: [Self; 19] = [
+    /// The tolerance's layers, written after the others when a frame is rendered to a
+    /// tolerance (piloted or with a decision applied).
+    pub const TOLERANCE: [Self; 1] = [Self::NotGuaranteed];
+
+    /// Every layer: the radiance, the truth layers, the error budget, the tolerance.
+    pub const ALL: [Self; 20] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -108,6 +116,7 @@ impl Layer {
         Self::SigmaPathRadiance,
         Self::SigmaModel,
         Self::SigmaTotal,
+        Self::NotGuaranteed,
     ];
 
     /// The layer's name in the EXR.
@@ -133,6 +142,7 @@ impl Layer {
             Self::SigmaPathRadiance => "sigma_path_radiance",
             Self::SigmaModel => "sigma_model",
             Self::SigmaTotal => "sigma_total",
+            Self::NotGuaranteed => "not_guaranteed",
         }
     }
 
@@ -157,7 +167,8 @@ impl Layer {
             | Self::SubBands
             | Self::Emissivity
             | Self::Transmission
-            | Self::SkyViewFactor => "",
+            | Self::SkyViewFactor
+            | Self::NotGuaranteed => "",
         }
     }
 
@@ -167,7 +178,11 @@ impl Layer {
     pub const fn is_label(self) -> bool {
         matches!(
             self,
-            Self::MaterialPrimary | Self::MaterialSecondary | Self::Event | Self::SubBands
+            Self::MaterialPrimary
+                | Self::MaterialSecondary
+                | Self::Event
+                | Self::SubBands
+                | Self::NotGuaranteed
         )
     }
 
@@ -197,7 +212,8 @@ mod tests {
             }
         }
         assert_eq!(Layer::ALL[1..13], Layer::TRUTH);
-        assert_eq!(Layer::ALL[13..], Layer::BUDGET);
+        assert_eq!(Layer::ALL[13..19], Layer::BUDGET);
+        assert_eq!(Layer::ALL[19..], Layer::TOLERANCE);
         assert_eq!(Layer::from_name("Radiance"), None);
     }
 }

@@ -35,6 +35,7 @@ mod air;
 pub mod band;
 pub mod budget;
 mod error;
+pub mod guarantee;
 pub mod materials;
 mod plan;
 pub mod products;

@@ -18,7 +18,7 @@ use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
 use irsig_raster::FramePart;
 use irsig_sensor_model::quantise::CountRequest;
-use irsig_tracer::pilot::{BandChoice, PilotSpace};
+use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
 use miette::{WrapErr, miette};
 
@@ -26,6 +26,7 @@ use crate::air::{self, AirData, AtmosphereRequest};
 use crate::band::{BandRequest, Collapsed, Split, SubBandModel};
 use crate::budget::Budget;
 use crate::error::{RequestError, Setting};
+use crate::guarantee::Guarantee;
 use crate::products::{self, FrameRadiometry};
 use crate::run_hash::RunHash;
 use crate::settings::{Settings, SettingsRequest};
@@ -987,9 +988,11 @@ impl Plan {
         let tiles = self.tiles(tile)?;
         self.flush_warnings(sink);
         for (i, cam) in cameras.iter().enumerate() {
-            let (settings, model_k) = match &self.request.tolerance {
+            let piloted;
+            let (settings, decision) = match &self.request.tolerance {
                 Some(tolerance) => {
-                    let (piloted, seconds) = self.decide(tolerance, &tracer, air, cam)?;
+                    let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
+                    piloted = p;
                     self.flush_warnings(sink);
                     sink.decision(i, &piloted.decision, seconds)?;
                     let c = piloted.chosen;
@@ -999,24 +1002,19 @@ impl Plan {
                     settings.path_terms = c.path_terms;
                     settings.options.specular_bounces = c.bounces;
                     settings.options.sky_view_rays = c.sky_view_rays;
+                    settings.refinement = c.refinement;
                     (
                         settings.options.supersampling,
                         settings.options.adaptive_threshold_k,
                     ) = match c.supersampling {
-                        irsig_tracer::pilot::Supersample::Every(n) => (n, None),
-                        irsig_tracer::pilot::Supersample::Adaptive(n) => {
-                            (n, Some(tolerance.tolerance_k))
-                        }
+                        Supersample::Every(n) => (n, None),
+                        Supersample::Adaptive(n) => (n, Some(tolerance.tolerance_k)),
+                        Supersample::Refine(_) => (1, None),
                     };
                     settings.options.validate().map_err(|e| miette!("{e}"))?;
-                    (settings, piloted.decision.predicted.percentile_k)
+                    (settings, Some(&piloted.decision))
                 }
-                None => (
-                    base,
-                    self.decision
-                        .as_ref()
-                        .map_or(0.0, |d| d.predicted.percentile_k),
-                ),
+                None => (base, self.decision.as_ref()),
             };
             let budget = self
                 .uncertainties
@@ -1025,8 +1023,12 @@ impl Plan {
                 .map(|(u, scene)| Budget {
                     uncertainties: u,
                     scene,
-                    model_k,
                 });
+            let guarantee = decision.map(|decision| Guarantee {
+                decision,
+                camera: cam,
+                origin: [tiles[i].x, tiles[i].y],
+            });
             if settings.kind != kind || settings.sub_bands != count {
                 tracer = tracer
                     .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
@@ -1039,7 +1041,10 @@ impl Plan {
                 // Only the pilot's decision was asked for.
                 continue;
             }
-            tracer = tracer.with_path_terms(settings.path_terms);
+            tracer = tracer
+                .with_path_terms(settings.path_terms)
+                .with_refinement(settings.refinement)
+                .map_err(|e| miette!("{e}"))?;
             // The per-pixel terms are kept only when a file of this frame reads them.
             let options = TraceOptions {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
@@ -1077,6 +1082,7 @@ impl Plan {
                     &wanted,
                     &part,
                     budget.as_ref(),
+                    guarantee.as_ref(),
                     &mut emit,
                 );
             }
@@ -1086,6 +1092,7 @@ impl Plan {
                 &wanted,
                 &part,
                 budget.as_ref(),
+                guarantee.as_ref(),
                 &mut emit,
             )?;
         }

@@ -17,6 +17,7 @@ use miette::{IntoDiagnostic, miette};
 use rayon::prelude::*;
 
 use crate::budget::Budget;
+use crate::guarantee::Guarantee;
 
 /// The gain of the tracer's digital counts when neither the request nor the view gives
 /// one, counts per kelvin (the thesis experiment's viewing files say 2).
@@ -141,12 +142,15 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
 }
 
 /// The layers a truth EXR holds: [`Layer::TRUTH`], then [`Layer::BUDGET`] with declared
-/// uncertainties.
+/// uncertainties, then [`Layer::TOLERANCE`] when rendered to a tolerance.
 #[must_use]
-pub fn truth_layers(budget: bool) -> Vec<Layer> {
+pub fn truth_layers(budget: bool, tolerance: bool) -> Vec<Layer> {
     let mut layers = Layer::TRUTH.to_vec();
     if budget {
         layers.extend(Layer::BUDGET);
+    }
+    if tolerance {
+        layers.extend(Layer::TOLERANCE);
     }
     layers
 }
@@ -165,6 +169,7 @@ pub fn traced<R: BandModel + Sync>(
     wanted: &FrameFiles<()>,
     part: &FramePart,
     budget: Option<&Budget<'_>>,
+    guarantee: Option<&Guarantee<'_>>,
     emit: &mut Emit<'_>,
 ) -> miette::Result<()> {
     let radiance = frame.radiance_f32();
@@ -187,7 +192,7 @@ pub fn traced<R: BandModel + Sync>(
         emit(FrameFile::RadianceExr, into_exr_bytes(r).into_diagnostic()?)?;
     }
     if wanted.wants(FrameFile::TruthExr) {
-        let r = truth_raster(radiometry, &frame, budget)?
+        let r = truth_raster(radiometry, &frame, budget, guarantee)?
             .with_part(part.clone())
             .with_comments(radiometry.comments()?);
         frame.truth = Vec::new();
@@ -196,13 +201,14 @@ pub fn traced<R: BandModel + Sync>(
     Ok(())
 }
 
-/// The truth layers ([`truth_layers`], in order): the terms of each pixel's centre ray, and
-/// the apparent temperature of its radiance. NaN where a term does not apply (no facet
+/// The truth layers ([`truth_layers`], in order): the terms of each pixel's centre ray, the
+/// apparent temperature of its radiance, the error budget's and the tolerance's layers. NaN where a term does not apply (no facet
 /// hit).
 fn truth_raster<R: BandModel + Sync>(
     radiometry: &FrameRadiometry<R>,
     frame: &Frame,
     budget: Option<&Budget<'_>>,
+    guarantee: Option<&Guarantee<'_>>,
 ) -> miette::Result<Raster> {
     let mut r = Raster::new(frame.width as usize, frame.height as usize);
     // The tracer's table, the same for a frame and its tiles.
@@ -230,9 +236,13 @@ fn truth_raster<R: BandModel + Sync>(
         push(&mut r, layer, data?)?;
     }
     if let Some(budget) = budget {
-        for (layer, data) in budget.layers(&radiometry.band, frame, &apparent) {
+        let model_k = guarantee.map(|g| g.model_sigma_k(frame));
+        for (layer, data) in budget.layers(&radiometry.band, frame, &apparent, model_k.as_deref()) {
             push(&mut r, layer, data)?;
         }
+    }
+    if let Some(g) = guarantee {
+        push(&mut r, Layer::NotGuaranteed, g.not_guaranteed(frame))?;
     }
     Ok(r)
 }

@@ -50,6 +50,9 @@ impl RunHash {
         if !sub_bands.is_band() {
             text.push_str(&format!(" sub-bands {sub_bands}"));
         }
+        if let Some(r) = &settings.refinement {
+            text.push_str(&format!(" {r:?}"));
+        }
         h.field("settings", text.as_bytes());
         let digest = h.0.finalize();
         let mut hex = String::with_capacity(7 + 64);

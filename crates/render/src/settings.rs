@@ -4,8 +4,8 @@
 
 use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::decision::{Decision, SwitchableModel};
-use irsig_tracer::pilot::Supersample;
-use irsig_tracer::{PathTermsMode, TraceOptions};
+use irsig_tracer::pilot::{Supersample, refinement_of};
+use irsig_tracer::{PathTermsMode, Refinement, TraceOptions};
 
 /// The models asked for, `None` where the default applies.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -39,6 +39,9 @@ pub struct Settings {
     pub path_terms: PathTermsMode,
     /// Sub-bands the radiance is summed over.
     pub sub_bands: SubBandCount,
+    /// Pixels refined to a standard error (a tolerance's sampling), instead of the options'
+    /// supersampling.
+    pub refinement: Option<Refinement>,
 }
 
 impl Settings {
@@ -57,6 +60,7 @@ impl Settings {
             kind: request.atmosphere_model.unwrap_or(ModelKind::Table),
             path_terms: request.path_terms.unwrap_or_default(),
             sub_bands: request.sub_bands.unwrap_or(SubBandCount::BAND),
+            refinement: None,
         }
     }
 
@@ -87,9 +91,31 @@ impl Settings {
                     self.options.sky_view_rays = c.setting.parse().map_err(|_| bad())?;
                 }
                 SwitchableModel::Supersampling => {
+                    self.refinement = None;
                     let (n, adaptive) = match c.setting.parse::<Supersample>() {
                         Ok(Supersample::Every(n)) => (n, None),
                         Ok(Supersample::Adaptive(n)) => (n, Some(decision.tolerance_k)),
+                        Ok(Supersample::Refine(n)) => {
+                            let report = decision.sampling.as_ref().ok_or_else(|| {
+                                (
+                                    i,
+                                    format!(
+                                        "the decision's {}={} needs its `sampling` record \
+                                         (the refinement's target)",
+                                        c.model, c.setting
+                                    ),
+                                )
+                            })?;
+                            let r = Refinement {
+                                max_side: n,
+                                ..refinement_of(report)
+                            };
+                            r.validate().map_err(|e| {
+                                (i, format!("the decision's {}={}: {e}", c.model, c.setting))
+                            })?;
+                            self.refinement = Some(r);
+                            (1, None)
+                        }
                         Err(_) => return Err(bad()),
                     };
                     self.options.supersampling = n;
@@ -134,6 +160,7 @@ mod tests {
             predicted: ErrorEstimate::default(),
             relative_cost: 1.0,
             pilot_pixels: 1024,
+            ..Decision::default()
         }
     }
 
@@ -168,6 +195,32 @@ mod tests {
         assert_eq!(s.options.adaptive_threshold_k, Some(0.25));
         assert_eq!(s.path_terms, PathTermsMode::Tabulated);
         assert_eq!(s.sub_bands, SubBandCount::Full);
+        assert_eq!(s.refinement, None);
+    }
+
+    #[test]
+    fn refinement_takes_its_target_from_the_decisions_sampling_record() {
+        let mut d = decision(&[(SwitchableModel::Supersampling, "refine-16")]);
+        let (i, why) = Settings::of(&SettingsRequest::default())
+            .with_decision(&d)
+            .unwrap_err();
+        assert_eq!(i, 0);
+        assert!(why.contains("`sampling` record"), "{why}");
+        d.sampling = Some(irsig_model::decision::SamplingReport {
+            target_k: 0.05,
+            edge_k: 0.125,
+            max_side: 32,
+            candidates_share: 0.1,
+            paths_per_candidate: 300.0,
+            capped_share: 0.0,
+            trial_pixels: 48,
+        });
+        let s = Settings::of(&SettingsRequest::default())
+            .with_decision(&d)
+            .unwrap();
+        let r = s.refinement.unwrap();
+        assert_eq!((r.target_k, r.edge_k, r.max_side), (0.05, 0.125, 16));
+        assert_eq!(s.options.supersampling, 1);
     }
 
     #[test]

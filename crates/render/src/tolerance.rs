@@ -8,16 +8,16 @@ use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::MaterialLibrary;
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
-use irsig_tracer::pilot::Supersample;
+use irsig_tracer::pilot::{REFINE_MAX_SIDE, Supersample};
 
 use crate::error::{RequestError, Setting};
-/// The most bounces, sky-view rays and rays per pixel the pilot compares against. Four
-/// bounces: Appendix A finds one enough at earth-ambient temperatures, so four leave only
-/// hot-background scenes for more. 64 sky-view rays: the stratified estimate of F is then
-/// good to about 1/64 (docs/accuracy.md). 4 × 4 rays: an edge's area to 1/16 of a pixel.
-pub const REFERENCE_BOUNCES: u32 = 4;
-const REFERENCE_SKY_VIEW_RAYS: u32 = 64;
-const REFERENCE_SUPERSAMPLING: u32 = 4;
+/// The bounces on offer, a convergence sequence from the most: Appendix A finds one enough
+/// at earth-ambient temperatures; the step from 4 to 8 measures what 8 leave (a hall of
+/// mirrors that still changes there is not guaranteed).
+pub const BOUNCES: [u32; 5] = [8, 4, 2, 1, 0];
+/// The sky-view rays on offer, from the most: each step of four halves a Monte Carlo
+/// estimate's error, and the step from 64 to 256 measures what 256 leave.
+pub const SKY_VIEW_RAYS: [u32; 4] = [256, 64, 16, 0];
 
 /// A model fixed by hand (`MODEL=SETTING`): the pilot measures it but does not choose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -93,7 +93,9 @@ impl FromStr for Pin {
                 SwitchableModel::Atmosphere => "table, layered, thesis or none",
                 SwitchableModel::Bounces => "a number of bounces, 0 to 64",
                 SwitchableModel::SkyView => "a number of rays (0: off)",
-                SwitchableModel::Supersampling => "N (N x N rays per pixel) or adaptive-N",
+                SwitchableModel::Supersampling => {
+                    "N (N x N rays per pixel), adaptive-N or refine-N (N from 1 to 64)"
+                }
                 SwitchableModel::PathTerms => "exact or tabulated",
                 SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
             };
@@ -173,7 +175,7 @@ pub fn offer(
         }
     };
     let mut bounces = if specular {
-        vec![REFERENCE_BOUNCES, 2, 1, 0]
+        BOUNCES.to_vec()
     } else {
         reasons.push((
             SwitchableModel::Bounces,
@@ -182,7 +184,7 @@ pub fn offer(
         vec![0]
     };
     let mut sky_view_rays = if diffuse {
-        vec![REFERENCE_SKY_VIEW_RAYS, 16, 0]
+        SKY_VIEW_RAYS.to_vec()
     } else {
         reasons.push((
             SwitchableModel::SkyView,
@@ -190,14 +192,9 @@ pub fn offer(
         ));
         vec![0]
     };
-    let r = REFERENCE_SUPERSAMPLING;
-    let mut supersampling = vec![
-        Supersample::Every(r),
-        Supersample::Adaptive(r),
-        Supersample::Every(2),
-        Supersample::Adaptive(2),
-        Supersample::Every(1),
-    ];
+    // Refinement to a standard error: each pixel gets the rays it needs, and no fixed grid
+    // can do better at the same cost (a pin may still ask for one).
+    let mut supersampling = vec![Supersample::Refine(REFINE_MAX_SIDE)];
     let mut path_terms = if kinds.is_some() {
         vec![PathTermsMode::Exact, PathTermsMode::Tabulated]
     } else {
@@ -277,9 +274,13 @@ pub fn table(d: &Decision) -> String {
     let p = d.percentile;
     let _ = writeln!(
         out,
-        "tolerance {} K at the {p}th percentile, from {} pilot pixels:",
+        "tolerance {} K at the {p}th percentile of the frame and the 90th of every class, \
+         from {} pilot points:",
         d.tolerance_k, d.pilot_pixels
     );
+    if !d.relative_to.is_empty() {
+        let _ = writeln!(out, "  relative to {}", d.relative_to);
+    }
     let _ = writeln!(
         out,
         "  {:<14} {:<12} {:<12} {:>9} {:>9} {:>7}  why",
@@ -304,6 +305,65 @@ pub fn table(d: &Decision) -> String {
          worst; cost {:.3} of the most accurate rendering",
         d.predicted.percentile_k, d.predicted.max_k, d.relative_cost
     );
+    if let Some(s) = &d.sampling {
+        let _ = writeln!(
+            out,
+            "  refinement: {:.2} % of the pixels (edges over {:.4} K, thin facets) to a \
+             standard error of {:.4} K, about {:.0} rays each, {:.1} % of them predicted to \
+             reach the cap of {} x {} rays ({} tried)",
+            100.0 * s.candidates_share,
+            s.edge_k,
+            s.target_k,
+            s.paths_per_candidate,
+            100.0 * s.capped_share,
+            s.max_side,
+            s.max_side,
+            s.trial_pixels
+        );
+    }
+    let _ = writeln!(
+        out,
+        "  {:<44} {:>7} {:>7} {:>9} {:>9}  held",
+        "class", "share%", "points", "p90(K)", "worst(K)"
+    );
+    for c in &d.classes {
+        let mut name = format!("{} ({}", c.name, c.event);
+        for (flag, word) in [
+            (c.grazing, ", grazing"),
+            (c.horizon, ", horizon"),
+            (c.sub_pixel, ", sub-pixel"),
+        ] {
+            if flag {
+                name.push_str(word);
+            }
+        }
+        name.push(')');
+        let _ = writeln!(
+            out,
+            "  {:<44} {:>7.3} {:>7} {:>9.4} {:>9.4}  {}",
+            name,
+            100.0 * c.share,
+            c.samples,
+            c.error.percentile_k,
+            c.error.max_k,
+            if c.guaranteed { "yes" } else { "NO" }
+        );
+    }
+    if d.not_guaranteed_share > 0.0 {
+        let _ = writeln!(
+            out,
+            "  not guaranteed: {:.3} % of the pixels, marked in the truth EXR's `not_guaranteed` \
+             layer",
+            100.0 * d.not_guaranteed_share
+        );
+    }
+    if let Some(sigma) = d.data_sigma_k {
+        let _ = writeln!(
+            out,
+            "  the inputs' own error, outside the tolerance (the error budget's): the \
+             atmosphere data's interpolation, σ ≈ {sigma:.4} K"
+        );
+    }
     out
 }
 

@@ -50,6 +50,10 @@ pub enum TraceErrorKind {
     /// A trace option is out of range.
     #[error("trace options: {0}")]
     InvalidOptions(String),
+    /// A tolerance the models on offer cannot reach in this frame: why, the reachable
+    /// floor, and what it would cost.
+    #[error("{0}")]
+    Unreachable(String),
     /// A tile asked for is empty or reaches beyond the image.
     #[error("{0}")]
     InvalidTile(crate::tile::TileError),

@@ -670,6 +670,12 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         }
     }
 
+    /// The number of triangles.
+    #[must_use]
+    pub fn triangles(&self) -> usize {
+        self.tris.len()
+    }
+
     /// Calls `f` with every triangle's vertices in world metres (as the BVH holds them,
     /// rounded to f32 about the scene's centre), in no particular order.
     pub fn for_each_triangle(&self, mut f: impl FnMut([V3; 3])) {

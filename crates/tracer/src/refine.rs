@@ -10,7 +10,9 @@
 //! error, `σ = std(round means)/√ROUNDS`, an estimate from the pixel's own samples as a Monte
 //! Carlo renderer reports it. A level whose σ (in kelvin of apparent temperature, through
 //! the band's slope at the mean) is above the target is replaced by the next, at twice the
-//! side, up to [`Refinement::max_side`]. A level whose rounds all agree may have missed a
+//! side, up to [`Refinement::max_side`]. The test reads the rounds' means with the
+//! hemispheric sky in place of the sky-view rays: edges are found and refined by geometry,
+//! while the sky-view rays' noise is the sky-view model's error, which the pilot bounds. A level whose rounds all agree may have missed a
 //! sliver of the edge that made the pixel a candidate: its border is then walked, densely
 //! enough that a corner between two border rays costs less than the target, and a border
 //! that differs sends the pixel on to the next level; a pixel that ends there above the target is
@@ -26,12 +28,23 @@ use irsig_radiometry::{BandModel, InverseTable};
 use crate::camera::Camera;
 use crate::env::Atmosphere;
 use crate::path::Path;
-use crate::tracer::{Ctx, Event, FrameConsts, Sample, TraceOptions, Tracer, TruthPixel};
+use rayon::prelude::*;
+
+use crate::tile::Tile;
+use crate::tracer::{
+    Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, TraceOptions, Tracer,
+    TruthPixel,
+};
 use crate::vec::{dot, sub};
 
 /// The independent stratified rounds of a level: their means give its standard error with
 /// 7 degrees of freedom (3σ holds a mean with 98 % confidence; 4 rounds' 3 left 6 % out).
 pub const ROUNDS: usize = 8;
+
+/// The largest side a level may have: 8 rounds of 128 × 128 rays. An edge's stratified
+/// estimate converges as the −3/4 power of its rays, so a 200 K edge (a 300 K object
+/// against a clear sky) needs this side for a standard error of 0.05 K.
+pub const MAX_SIDE: u32 = 128;
 
 /// How pixels are refined to a standard error.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -47,7 +60,7 @@ pub struct Refinement {
 }
 
 impl Refinement {
-    /// Checks the numbers: positive finite kelvins, sides from 1 to 64 with the thin
+    /// Checks the numbers: positive finite kelvins, sides from 1 to [`MAX_SIDE`] with the thin
     /// side at most the largest.
     ///
     /// # Errors
@@ -61,10 +74,12 @@ impl Refinement {
                 ));
             }
         }
-        if !(1..=64).contains(&self.max_side) || !(1..=self.max_side).contains(&self.thin_side) {
+        if !(1..=MAX_SIDE).contains(&self.max_side)
+            || !(1..=self.max_side).contains(&self.thin_side)
+        {
             return Err(format!(
                 "refinement sides {} (thin) and {} (largest) are out of range: expected 1 to \
-                 64, the thin one at most the largest",
+                 {MAX_SIDE}, the thin one at most the largest",
                 self.thin_side, self.max_side
             ));
         }
@@ -90,7 +105,8 @@ impl Refinement {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct PixelSampling {
     /// The standard error of the pixel's apparent temperature, K: the last level's, from
-    /// its four rounds; 0 for a pixel that kept its centre ray.
+    /// its rounds (the sky-view rays' noise included); 0 for a pixel that kept its centre
+    /// ray.
     pub sigma_k: f32,
     /// Rays traced for the pixel, its centre ray included.
     pub rays: u32,
@@ -117,6 +133,16 @@ impl PixelSampling {
             path_radiance_w_m2_sr: if path.is_finite() { path } else { 0.0 },
         }
     }
+}
+
+/// The centre pass of a refined tile: each centre's radiance and terms, and its radiance
+/// with the hemispheric sky in place of its sky-view rays (the candidates are found on it:
+/// the sky-view rays' noise is the sky-view model's error, which the pilot bounds, not an
+/// edge).
+pub(crate) struct Centres {
+    pub(crate) radiance_w_m2_sr: Vec<f64>,
+    pub(crate) truth: Vec<TruthPixel>,
+    pub(crate) calm_w_m2_sr: Vec<f64>,
 }
 
 /// Sums over a round's rays.
@@ -183,10 +209,76 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         mask
     }
 
+    /// The centre pass over `tile` ([`Centres`]), rows in parallel.
+    pub(crate) fn refinement_centres(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        tile: Tile,
+    ) -> Centres {
+        let camera = fc.camera();
+        let n = tile.pixels();
+        let row_len = tile.width.max(1) as usize;
+        let mut out = Centres {
+            radiance_w_m2_sr: vec![0.0; n],
+            truth: vec![TruthPixel::from(&Sample::miss(Event::Sky)); n],
+            calm_w_m2_sr: vec![0.0; n],
+        };
+        out.radiance_w_m2_sr
+            .par_chunks_mut(row_len)
+            .zip(out.truth.par_chunks_mut(row_len))
+            .zip(out.calm_w_m2_sr.par_chunks_mut(row_len))
+            .enumerate()
+            .for_each(|(r, ((rad, tru), calm))| {
+                let mut path = Path::default();
+                let mut hemispheric = Path::default();
+                let mut centre = Sample::miss(Event::Sky);
+                let row = tile.y + r as u32;
+                for (c, ((l_out, t_out), calm_out)) in
+                    rad.iter_mut().zip(tru.iter_mut()).zip(calm).enumerate()
+                {
+                    let col = tile.x + c as u32;
+                    let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
+                    let mut ctx = Ctx::for_pixel(options, index);
+                    self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
+                    *l_out = self.radiance::<true>(fc, &path, &mut centre);
+                    *t_out = TruthPixel::from(&centre);
+                    *calm_out = if path.has_sky_view_rays() {
+                        path.with_sky_rays(0, &mut hemispheric);
+                        self.radiance::<false>(fc, &hemispheric, &mut centre)
+                    } else {
+                        *l_out
+                    };
+                }
+            });
+        out
+    }
+
+    /// The largest contrast of apparent temperature the scene can show, K: from the coldest
+    /// of its facets, its terrain and the clear sky (the floor of [`INVERSE_TABLE_K`]) to
+    /// the hottest of its facets and terrain. What a thin facet may hide from every centre
+    /// ray, the same for a tile as for its frame.
+    pub(crate) fn contrast_bound_k(&self) -> f64 {
+        let t = self.terrain.temperature_k;
+        let hi = self.temperatures.iter().copied().fold(t, f64::max);
+        let lo = self
+            .temperatures
+            .iter()
+            .copied()
+            .fold(t.min(INVERSE_TABLE_K[0]), f64::min);
+        (hi - lo).max(0.0)
+    }
+
     /// A candidate pixel refined to `refinement`'s target from side `start`: its radiance
     /// and what the refinement did. `contrast_k` is the largest difference of apparent
-    /// temperature the pixel may hide (against its neighbours' centres, or the frame's range
-    /// for a thin candidate): what a sliver no ray met could cost.
+    /// temperature the pixel may hide (against its neighbours' centres, or the scene's
+    /// bound for a thin candidate): what a sliver no ray met could cost.
+    ///
+    /// A level stops on its *geometric* standard error: that of its rounds' means with
+    /// the hemispheric sky in place of the sky-view rays. The sky-view rays' own noise is
+    /// the sky-view model's error, which the pilot bounds (a refined pixel, with at least
+    /// as many sky-view rays in each round as its centre had, has less of it than a pixel
+    /// that kept its centre ray); the σ the pixel reports is its whole standard error.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn refine_pixel<const TRUTH: bool>(
         &self,
@@ -201,16 +293,25 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     ) -> (f64, PixelSampling) {
         let camera = fc.camera();
         let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
-        // A stream of its own: the centre ray's draws are the centre pass's.
-        let mut ctx = Ctx::for_pixel(options, index).refinement_stream();
         let mut scratch = Sample::miss(Event::Sky);
+        let mut hemispheric = Path::default();
         let mut rays = 1;
         let mut side = start.clamp(1, refinement.max_side);
         loop {
+            // Each level draws from a stream of its own (the centre ray's draws are the
+            // centre pass's), and shares the centre's sky-view rays out among its paths
+            // ([`level_sky_view_rays`]).
+            let level = TraceOptions {
+                sky_view_rays: level_sky_view_rays(options.sky_view_rays, side),
+                ..*options
+            };
+            let mut ctx = Ctx::for_pixel(&level, index).stream(REFINEMENT_STREAM ^ u64::from(side));
             let mut means = [0.0; ROUNDS];
+            let mut calm_means = [0.0; ROUNDS];
             let mut sums = Sums::default();
-            for mean in &mut means {
+            for (mean, calm_mean) in means.iter_mut().zip(&mut calm_means) {
                 let mut round = 0.0;
+                let mut calm = 0.0;
                 ctx.for_each_subpixel((col, row), side, |ctx, x, y| {
                     self.follow(fc, camera.direction_at(x, y), ctx, path);
                     let l = self.radiance::<TRUTH>(fc, path, &mut scratch);
@@ -221,27 +322,44 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         let lu = scratch.path_radiance_w_m2_sr;
                         sums.path_radiance += if lu.is_finite() { lu } else { 0.0 };
                     }
+                    calm += if path.has_sky_view_rays() {
+                        path.with_sky_rays(0, &mut hemispheric);
+                        self.radiance::<false>(fc, &hemispheric, &mut scratch)
+                    } else {
+                        l
+                    };
                 });
-                *mean = round / f64::from(side * side);
+                let n = f64::from(side * side);
+                *mean = round / n;
+                *calm_mean = calm / n;
                 sums.radiance += round;
             }
             rays += ROUNDS as u32 * side * side;
             let n_rounds = ROUNDS as f64;
-            let mean = means.iter().sum::<f64>() / n_rounds;
-            let variance = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (n_rounds - 1.0);
+            let moments = |m: &[f64; ROUNDS]| {
+                let mean = m.iter().sum::<f64>() / n_rounds;
+                let variance = m.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n_rounds - 1.0);
+                (mean, variance)
+            };
+            let (mean, variance) = moments(&means);
+            let (calm_mean, calm_variance) = moments(&calm_means);
             let t_mean = inverse.temperature(mean);
             let slope = self.band.radiance_derivative(t_mean);
-            let sigma_k = if slope > 0.0 {
-                (variance / n_rounds).sqrt() / slope
-            } else {
-                0.0
+            let in_k = |variance: f64| {
+                if slope > 0.0 {
+                    (variance / n_rounds).sqrt() / slope
+                } else {
+                    0.0
+                }
             };
+            let sigma_k = in_k(variance);
+            let calm_sigma_k = in_k(calm_variance);
             // Rounds that all agree (to rounding) may all have missed a sliver of the edge
             // that made the pixel a candidate: the pixel's border is walked, densely enough
             // that a corner no ray of it met costs less than the target. An edge that
             // crosses the pixel crosses its border; a feature wholly inside it is a thin
             // candidate's, and was started dense.
-            let agree = variance.sqrt() <= 1e-12 * mean.abs().max(1e-300);
+            let agree = calm_variance.sqrt() <= 1e-12 * calm_mean.abs().max(1e-300);
             let mut border_differs = false;
             if agree {
                 let per_side = border_rays_per_side(contrast_k, refinement.target_k);
@@ -251,14 +369,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     &mut ctx,
                     (col, row),
                     per_side,
-                    t_mean,
+                    inverse.temperature(calm_mean),
                     refinement.target_k,
                     inverse,
                     path,
                     &mut scratch,
                 );
             }
-            let reached = sigma_k <= refinement.target_k && !border_differs;
+            let reached = calm_sigma_k <= refinement.target_k && !border_differs;
             if reached || side >= refinement.max_side {
                 let n = n_rounds * f64::from(side * side);
                 return (
@@ -273,12 +391,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     },
                 );
             }
-            side = (side * 2).min(refinement.max_side);
+            side = next_side(side, calm_sigma_k, refinement);
         }
     }
 
     /// Whether a ray through the border of pixel (`col`, `row`), `per_side` jittered rays a
-    /// side, sees an apparent temperature more than `target_k` from `t_mean`.
+    /// side, sees an apparent temperature (with the hemispheric sky) more than `target_k`
+    /// from `t_mean`.
     #[allow(clippy::too_many_arguments)]
     fn border_differs(
         &self,
@@ -305,12 +424,41 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     _ => (x0, y0 + 1.0 - along),
                 };
                 self.follow(fc, camera.direction_at(x, y), ctx, path);
-                let l = self.radiance::<false>(fc, path, scratch);
+                let l = if path.has_sky_view_rays() {
+                    let mut hemispheric = Path::default();
+                    path.with_sky_rays(0, &mut hemispheric);
+                    self.radiance::<false>(fc, &hemispheric, scratch)
+                } else {
+                    self.radiance::<false>(fc, path, scratch)
+                };
                 differs |= (inverse.temperature(l) - t_mean).abs() > target_k;
             }
         }
         differs
     }
+}
+
+/// The side of the level after one of side `side` whose geometric standard error was
+/// `sigma_k`: a stratified estimate of an edge converges as the −3/2 power of the side, so
+/// the side that reaches the target is `side · (σ/target)^(2/3)`; the next power of two
+/// from there, at least twice `side`, at most the largest.
+fn next_side(side: u32, sigma_k: f64, refinement: &Refinement) -> u32 {
+    let wanted = f64::from(side) * (sigma_k / refinement.target_k).powf(2.0 / 3.0);
+    let mut next = side.saturating_mul(2);
+    while f64::from(next) < wanted && next < refinement.max_side {
+        next = next.saturating_mul(2);
+    }
+    next.min(refinement.max_side)
+}
+
+/// The sky-view rays of each path of a level of side `side`, from the centre's `n`: `n`
+/// shared out among the `side²` paths of a round, so that a round samples the hemisphere
+/// with at least as many rays as the centre did; at least 4 each (a 2 × 2 stratified set),
+/// or `n` when fewer; none when `n` is 0.
+#[must_use]
+pub fn level_sky_view_rays(n: u32, side: u32) -> u32 {
+    n.div_ceil(side.max(1).saturating_mul(side.max(1)))
+        .max(n.min(4))
 }
 
 /// Rays along each side of a pixel's border so that a corner cut off by an edge between
@@ -367,6 +515,22 @@ mod tests {
         // Wound the other way, the same.
         let r = [t[0], t[2], t[1]];
         assert!((distance_to_triangle([2.0, -3.0], r) - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_level_jumps_to_the_side_its_error_asks_for() {
+        let r = Refinement {
+            target_k: 0.1,
+            edge_k: 0.05,
+            max_side: 128,
+            thin_side: 8,
+        };
+        // Twice the target: 2^(2/3) = 1.59 times the side, so the next power of two.
+        assert_eq!(next_side(4, 0.2, &r), 8);
+        // 20 times: 7.4 times the side, 4 → 29.5 → 32.
+        assert_eq!(next_side(4, 2.0, &r), 32);
+        assert_eq!(next_side(64, 100.0, &r), 128);
+        assert_eq!(next_side(128, 100.0, &r), 128);
     }
 
     #[test]

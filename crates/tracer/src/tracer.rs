@@ -21,7 +21,7 @@ use crate::tile::Tile;
 use crate::vec::V3;
 
 /// What a ray met (thesis Figure 6, with the two kinds of miss told apart).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum Event {
     /// Event 1, above the horizon: the ray sees the sky path from the sensor to space.
     Sky,
@@ -45,6 +45,34 @@ impl Event {
             Self::SpecularEscapes => 3,
             Self::SpecularHitsFacet => 4,
         }
+    }
+
+    /// Every event, in the order of [`Self::name`]'s.
+    pub const ALL: [Self; 5] = [
+        Self::Sky,
+        Self::Terrain,
+        Self::Diffuse,
+        Self::SpecularEscapes,
+        Self::SpecularHitsFacet,
+    ];
+
+    /// The event's name in files: `sky`, `terrain`, `diffuse`, `specular-escapes`,
+    /// `specular-hits-facet`.
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Sky => "sky",
+            Self::Terrain => "terrain",
+            Self::Diffuse => "diffuse",
+            Self::SpecularEscapes => "specular-escapes",
+            Self::SpecularHitsFacet => "specular-hits-facet",
+        }
+    }
+
+    /// The event named `name` ([`Self::name`]).
+    #[must_use]
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|e| e.name() == name)
     }
 }
 
@@ -380,7 +408,8 @@ impl TruthPixel {
             | Layer::SigmaTransmission
             | Layer::SigmaPathRadiance
             | Layer::SigmaModel
-            | Layer::SigmaTotal => return None,
+            | Layer::SigmaTotal
+            | Layer::NotGuaranteed => return None,
         })
     }
 }
@@ -461,6 +490,7 @@ pub struct SubBand<B, A> {
 #[derive(Debug, Clone)]
 pub(crate) struct MaterialData {
     pub(crate) id: u16,
+    pub(crate) name: String,
     pub(crate) specular_fraction: f64,
 }
 
@@ -632,6 +662,13 @@ pub fn inverse_table<B: BandModel>(band: &B) -> InverseTable<'_, B> {
     InverseTable::new(band, &[lo, hi])
 }
 
+/// The stream of a pixel's refinement rays (its centre ray's is 0).
+pub(crate) const REFINEMENT_STREAM: u64 = 0x7265_6669_6e65_6d74;
+/// The stream of the pilot's sub-pixel probe of a pixel.
+pub(crate) const PROBE_STREAM: u64 = 0x7072_6f62_6500_0000;
+/// The stream of the pilot's re-traced sky-view rays of a pixel (plus the ray count).
+pub(crate) const SKY_VIEW_STREAM: u64 = 0x736b_7976_6965_7700;
+
 /// Per-ray state shared by the events.
 pub(crate) struct Ctx<'a> {
     pub(crate) options: &'a TraceOptions,
@@ -653,10 +690,9 @@ impl<'a> Ctx<'a> {
         }
     }
 
-    /// The same pixel with a stream of its own for its refinement's rays
-    /// ([`crate::refine`]), apart from its centre ray's.
-    pub(crate) fn refinement_stream(mut self) -> Self {
-        self.stream = 0x7265_6669_6e65_6d74;
+    /// The same pixel with stream `stream` of its own (see [`REFINEMENT_STREAM`]).
+    pub(crate) fn stream(mut self, stream: u64) -> Self {
+        self.stream = stream;
         self.rng = None;
         self
     }
@@ -723,16 +759,10 @@ impl FrameConsts<'_> {
     }
 }
 
-/// For every pixel of `frame`, the largest difference of apparent temperature between its
-/// centre and one of its 8 neighbours', K; and the frame's range of apparent temperature.
-fn contrasts<B: BandModel>(frame: &Frame, inverse: &InverseTable<'_, B>) -> (Vec<f64>, f64) {
-    let t: Vec<f64> = frame
-        .radiance_w_m2_sr
-        .par_chunks(4096)
-        .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
-        .collect();
-    let (w, h) = (frame.width as usize, frame.height as usize);
-    let contrast = (0..w * h)
+/// For every pixel of a `w × h` image of apparent temperatures `t` (row-major), the largest
+/// difference between it and one of its 8 neighbours, K.
+pub(crate) fn contrast_of(t: &[f64], w: usize, h: usize) -> Vec<f64> {
+    (0..w * h)
         .into_par_iter()
         .map(|i| {
             let (col, row) = (i % w, i / w);
@@ -741,10 +771,7 @@ fn contrasts<B: BandModel>(frame: &Frame, inverse: &InverseTable<'_, B>) -> (Vec
                 .map(|j| (t[i] - t[j]).abs())
                 .fold(0.0, f64::max)
         })
-        .collect();
-    let lo = t.iter().copied().fold(f64::INFINITY, f64::min);
-    let hi = t.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-    (contrast, (hi - lo).max(0.0))
+        .collect()
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -816,6 +843,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             tables.push(table);
             mats.push(MaterialData {
                 id: m.id.0,
+                name: m.name.clone(),
                 specular_fraction: m.specular_fraction,
             });
         }
@@ -1231,14 +1259,18 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let halo = tile.grown(1, w, h);
         // The centre pass keeps every centre's terms: a pixel that stays with its centre
         // ray gives the budget its sensitivities.
-        let truth_options = TraceOptions {
-            truth: true,
-            ..*options
-        };
-        let centres = self.render_rect(fc, &truth_options, halo, &|_| {});
+        let centres = self.refinement_centres(fc, options, halo);
         let inverse = self.inverse_table();
-        let (contrast, frame_range) = contrasts(&centres, &inverse);
+        let calm: Vec<f64> = centres
+            .calm_w_m2_sr
+            .par_chunks(4096)
+            .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
+            .collect();
+        let contrast = contrast_of(&calm, halo.width as usize, halo.height as usize);
         let thin = self.thin_pixels(camera);
+        // What a thin facet, which no centre may have seen, could hide: the same for a tile
+        // as for its frame.
+        let thin_contrast_k = self.contrast_bound_k();
         let (hw, tw) = (halo.width as usize, tile.width as usize);
         let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
         let mut radiance = vec![0.0; tile.pixels()];
@@ -1263,7 +1295,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         let one = (col, row);
                         // What a sliver could hide: the neighbours' contrast, or for a thin
                         // facet, which no centre may have seen, the frame's.
-                        let hide = if is_thin { frame_range } else { contrast[at] };
+                        let hide = if is_thin {
+                            thin_contrast_k
+                        } else {
+                            contrast[at]
+                        };
                         (*l_out, *s_out) = if options.truth {
                             self.refine_pixel::<true>(
                                 fc, options, refinement, &inverse, one, start, hide, &mut path,

@@ -1,0 +1,243 @@
+//! The choice: the cheapest combination of settings whose error holds in every class and
+//! over the frame, and what a rendering with it costs.
+//!
+//! The error of a combination at a point is bounded by the sum of its models' errors there.
+//! A combination is allowed when, with `T_det` the share of the tolerance left to the
+//! deterministic models (half; refinement has the other half):
+//! - in every class the decision guarantees, the 90th percentile of that bound (an upper
+//!   bound with 95 % confidence from the class's points) is within `T_det`, and no model
+//!   alone changes any of its points by more than the tolerance;
+//! - over the frame, the bound's percentile (each point weighted by the pixels it stands
+//!   for, at a percentile halfway to 100 for the sample's own uncertainty) is within
+//!   `T_det`.
+//!
+//! A class whose most accurate settings are themselves further than `T_det` from converged
+//! cannot be guaranteed: it is listed, and its pixels marked.
+//!
+//! Costs are counts (rays, path evaluations and path-term calls per sub-band, sky and
+//! table precomputations) times unit costs measured once on the reference machine
+//! ([`UNIT_COSTS`], BENCHMARKS.md), so the choice is the same on every run of the same
+//! inputs; the BVH's cost per ray grows with the logarithm of its triangles.
+
+use irsig_atmosphere::SubBandCount;
+
+use crate::path_table::PathTermsMode;
+use crate::pilot::classes::Census;
+use crate::pilot::measure::Measured;
+use crate::pilot::stats::{confident_rank, order_statistic, weighted_percentile};
+use crate::pilot::{PilotSpace, Supersample};
+
+/// Unit costs of the cost model, ns of one core's time (BENCHMARKS.md "Unit costs of the
+/// pilot's cost model"): a ray through a BVH of `t` triangles costs
+/// `ray_base + ray_per_log2 · log2(t)`; a node and a hemisphere ray evaluated in one
+/// sub-band; a path-table lookup in one sub-band.
+pub(crate) struct UnitCosts {
+    pub(crate) ray_base_ns: f64,
+    pub(crate) ray_per_log2_ns: f64,
+    pub(crate) node_eval_ns: f64,
+    pub(crate) hemi_eval_ns: f64,
+    pub(crate) table_lookup_ns: f64,
+}
+
+/// The measured unit costs.
+pub(crate) const UNIT_COSTS: UnitCosts = UnitCosts {
+    ray_base_ns: 60.0,
+    ray_per_log2_ns: 14.0,
+    node_eval_ns: 25.0,
+    hemi_eval_ns: 12.0,
+    table_lookup_ns: 15.0,
+};
+
+/// Paths a refined pixel is assumed to cost while combinations are compared (before the
+/// trial measures it): two levels from the edge side, 8 × (16 + 64).
+const PRIOR_PATHS_PER_CANDIDATE: f64 = 640.0;
+
+/// A combination: one index per model ([`irsig_model::decision::SwitchableModel::ALL`]
+/// order), into its list.
+pub(crate) type Combo = [usize; 6];
+
+/// The frame's counts the cost model reads, each point weighted by what it stands for.
+#[derive(Debug, Clone)]
+pub(crate) struct Counts {
+    pub(crate) pixels: f64,
+    pub(crate) hit: f64,
+    pub(crate) diffuse: f64,
+    pub(crate) nodes: f64,
+    /// Reflection rays per path at each bounce limit.
+    pub(crate) reflections: Vec<f64>,
+    /// Refinement candidates (pixels).
+    pub(crate) candidates: f64,
+    /// Paths per refined pixel.
+    pub(crate) paths_per_candidate: f64,
+    /// Triangles in the BVH.
+    pub(crate) triangles: f64,
+}
+
+impl Counts {
+    pub(crate) fn of(
+        census: &Census,
+        measured: &[Measured],
+        triangles: usize,
+        bounces: usize,
+    ) -> Self {
+        let mut total = 0.0;
+        let (mut hit, mut diffuse, mut nodes) = (0.0, 0.0, 0.0);
+        let mut reflections = vec![0.0; bounces];
+        for (p, m) in census.points.iter().zip(measured) {
+            let w = census.classes[p.class].weight();
+            total += w;
+            hit += w * f64::from(u8::from(m.hit));
+            diffuse += w * f64::from(u8::from(m.diffuse));
+            nodes += w * f64::from(m.nodes);
+            for (r, &n) in reflections.iter_mut().zip(&m.reflection_rays) {
+                *r += w * f64::from(n);
+            }
+        }
+        let total = if total > 0.0 { total } else { 1.0 };
+        let pixels = census.candidate.len() as f64;
+        Self {
+            pixels,
+            hit: hit / total,
+            diffuse: diffuse / total,
+            nodes: nodes / total,
+            reflections: reflections.into_iter().map(|r| r / total).collect(),
+            candidates: census.candidate_share() * pixels,
+            paths_per_candidate: PRIOR_PATHS_PER_CANDIDATE,
+            triangles: triangles.max(1) as f64,
+        }
+    }
+}
+
+/// The estimated cost of rendering a frame with `combo`, ns of one core's time.
+pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 {
+    let u = &UNIT_COSTS;
+    let ray_ns = u.ray_base_ns + u.ray_per_log2_ns * counts.triangles.log2();
+    let atm = space.atmospheres[c[0]];
+    let count = space.sub_bands[c[5]];
+    let band_of = |k: SubBandCount| {
+        space
+            .bands
+            .iter()
+            .find(|b| b.atmosphere == atm && b.sub_bands == k)
+            .or_else(|| {
+                space
+                    .bands
+                    .iter()
+                    .find(|b| b.atmosphere == space.atmospheres[0] && b.sub_bands == k)
+            })
+    };
+    let choice = band_of(count);
+    let k = choice.map_or(1.0, |b| b.set.len() as f64);
+    let (path_call_ns, sky_ns) = choice.map_or((880.0, 2e6), |b| (b.path_call_ns, b.sky_ns));
+    let sky_rays = f64::from(space.sky_view_rays[c[2]]);
+    let reflections = counts.reflections.get(c[1]).copied().unwrap_or(0.0);
+    // One path: its rays, its nodes and hemisphere rays evaluated in every sub-band, and
+    // its path terms.
+    let path_ns = |hemi_rays: f64, table: bool| {
+        let rays = 1.0 + reflections + counts.diffuse * hemi_rays;
+        let evals =
+            k * (counts.nodes * u.node_eval_ns + counts.diffuse * hemi_rays * u.hemi_eval_ns);
+        let terms = counts.hit
+            * k
+            * if table {
+                u.table_lookup_ns
+            } else {
+                path_call_ns
+            };
+        rays * ray_ns + evals + terms
+    };
+    let table = space.path_terms[c[4]] == PathTermsMode::Tabulated;
+    let centre = path_ns(sky_rays, table);
+    // A refined pixel's paths share the centre's sky-view rays out (about a 4 × 4 level's
+    // share each).
+    let refined = path_ns(
+        if sky_rays > 0.0 {
+            (sky_rays / 16.0).max(1.0)
+        } else {
+            0.0
+        },
+        table,
+    );
+    let sampling = match space.supersampling[c[3]] {
+        Supersample::Every(1) | Supersample::Adaptive(1) => counts.pixels * centre,
+        Supersample::Every(n) => counts.pixels * f64::from(1 + n * n) * centre,
+        Supersample::Adaptive(n) => {
+            counts.pixels * centre + counts.candidates * f64::from(1 + n * n) * centre
+        }
+        Supersample::Refine(_) => {
+            counts.pixels * centre + counts.candidates * counts.paths_per_candidate * refined
+        }
+    };
+    let fixed = k * sky_ns
+        + if table {
+            k * (crate::PATH_TABLE_ALTITUDES * crate::PATH_TABLE_RANGES) as f64 * path_call_ns
+        } else {
+            0.0
+        };
+    sampling + fixed
+}
+
+/// What the rule found for a combination.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Verdict {
+    /// The bound's weighted percentile over the guaranteed points, K.
+    pub(crate) frame_k: f64,
+    /// The largest bound over them, K.
+    pub(crate) worst_k: f64,
+}
+
+/// The per-point bound of `combo`: the sum of its models' errors.
+pub(crate) fn bound(m: &Measured, combo: &Combo) -> f64 {
+    (0..6)
+        .map(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0))
+        .sum()
+}
+
+/// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn holds(
+    census: &Census,
+    measured: &[Measured],
+    by_class: &[Vec<usize>],
+    guaranteed: &[bool],
+    combo: &Combo,
+    tolerance_k: f64,
+    det_k: f64,
+    percentile: f64,
+) -> Option<Verdict> {
+    let mut scratch = Vec::new();
+    for (c, points) in by_class.iter().enumerate() {
+        if !guaranteed[c] || points.is_empty() {
+            continue;
+        }
+        scratch.clear();
+        for &i in points {
+            let m = &measured[i];
+            scratch.push(bound(m, combo));
+            // No model alone may change a point by more than the tolerance.
+            if (0..6).any(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0) > tolerance_k) {
+                return None;
+            }
+        }
+        let rank = confident_rank(scratch.len(), 90.0);
+        if order_statistic(&mut scratch, rank) > det_k {
+            return None;
+        }
+    }
+    let mut weighted: Vec<(f64, f64)> = census
+        .points
+        .iter()
+        .zip(measured)
+        .filter(|(p, _)| guaranteed[p.class])
+        .map(|(p, m)| (bound(m, combo), census.classes[p.class].weight()))
+        .collect();
+    let worst_k = weighted.iter().map(|v| v.0).fold(0.0, f64::max);
+    let frame_k = weighted_percentile(&mut weighted, stricter(percentile));
+    (frame_k <= det_k).then_some(Verdict { frame_k, worst_k })
+}
+
+/// The percentile the frame's sample is held to: halfway from `percentile` to 100, for
+/// the sample's own uncertainty (99 → 99.5).
+pub(crate) fn stricter(percentile: f64) -> f64 {
+    100.0 - (100.0 - percentile) / 2.0
+}
