@@ -477,7 +477,9 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
         .map(|(_, d)| d.0.clone())
         .collect();
     for n in &nudged {
-        eprintln!("{n}: LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir");
+        irsig_cli::note!(
+            "{n}: LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir"
+        );
     }
     let nudge_note = if nudged.is_empty() {
         String::new()

@@ -202,7 +202,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         files.push((deck_name(i), text.into_bytes()));
     }
     write_dir_atomic(&a.output, &files)?;
-    eprintln!(
+    irsig_cli::note!(
         "{}: {} paths for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
         all.len(),

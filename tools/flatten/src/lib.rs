@@ -25,6 +25,9 @@
 //! In that pipe `irsig-import` writes the binary object, which is what makes a
 //! million-triangle import and flatten take about a second instead of six.
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use std::collections::HashMap;
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};

@@ -23,6 +23,9 @@
 //! irsig-import hand.glb --materials materials.ron --default-material skin | irsig-flatten scene.ron --object hand.ron=-
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
@@ -171,7 +174,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         mesh.y_up_to_z_up();
     }
     for w in &mesh.warnings {
-        eprintln!("warning: {w}");
+        irsig_cli::note!("warning: {w}");
     }
     let name = cli.name.clone().unwrap_or_else(|| {
         std::path::Path::new(&input.name)
@@ -338,7 +341,7 @@ fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
         .take(3)
         .map(|&i| mesh.triangle_location(i).to_string())
         .collect();
-    eprintln!(
+    irsig_cli::note!(
         "warning: dropped {} zero-area triangle{} of {} (no ray can hit them), the first at {}; \
          --strict refuses them",
         dropped.len(),

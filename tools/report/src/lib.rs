@@ -19,6 +19,9 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 pub mod plots;
 
 use std::fmt::Write as _;

@@ -20,6 +20,9 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 pub mod contact_sheet;
 mod preview;
 pub mod spec;

@@ -21,6 +21,9 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 pub mod stats;
 
 use std::fmt::Write as _;
