@@ -65,6 +65,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
     };
     let thesis_band = Band::new(8.0, 14.0).map_err(|e| miette::miette!("{e}"))?;
     let mut materials = Vec::with_capacity(entries.len());
+    let mut ems_files: Vec<PathBuf> = Vec::new();
     for entry in &entries {
         let id = u16::try_from(entry.id.value)
             .ok()
@@ -103,7 +104,9 @@ pub fn run(args: &Args) -> miette::Result<()> {
             continue;
         };
         let path = dir.join(&file.value);
-        let bytes = std::fs::read(&path).map_err(|e| {
+        // Through the bounded reader, as every file: `FILENAME = /dev/zero` used to be
+        // read until memory ran out.
+        let bytes = irsig_formats::file::read_file(&path).map_err(|e| {
             at_span(
                 file.span,
                 format!(
@@ -113,6 +116,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 ),
             )
         })?;
+        ems_files.push(path.clone());
         let ems_name = path.display().to_string();
         let ems_text = irsig_formats::canonical::utf8(&ems_name, &bytes).map_err(Report::new)?;
         let curves = ems::parse(&ems_name, ems_text).map_err(Report::new)?;
@@ -173,5 +177,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
     let ron = irsig_formats::canonical::to_ron(&library)
         .into_diagnostic()
         .wrap_err("cannot write RON")?;
+    let inputs = std::iter::once(PathBuf::from(&args.mat)).chain(ems_files);
+    irsig_cli::refuse_output_is_input(inputs, args.output.iter())?;
     irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
 }
