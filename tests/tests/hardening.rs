@@ -269,6 +269,218 @@ fn a_closed_stderr_loses_the_message_not_the_exit_status() {
 }
 
 #[test]
+fn no_tool_writes_over_one_of_its_inputs() {
+    // `irsig-merge t0*.exr --radiance-exr t01.radiance.exr` replaced an input tile, rc 0;
+    // every tool could do the same. Each command below names one of its inputs as an
+    // output (by the same name, another spelling or a link): bad usage, exit 2, naming it,
+    // and the input as it was.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let root = irsig_tests::repo_root();
+    let copy = |from: &str, to: &str| {
+        std::fs::copy(root.join(from), d.join(to)).unwrap();
+    };
+    copy("tests/data/malformed/base/truth.exr", "truth.exr");
+    copy("formats/canonical/samples/regions.ron", "regions.ron");
+    copy("formats/canonical/samples/materials.ron", "materials.ron");
+    copy("formats/canonical/samples/box.obj", "box.obj");
+    copy("formats/canonical/samples/box.mtl", "box.mtl");
+    copy("formats/canonical/samples/box.ron", "box.ron");
+    copy("formats/canonical/samples/scene.ron", "scene.ron");
+    copy("tests/data/malformed/base/good.atm", "good.atm");
+    copy("tests/data/malformed/base/good.dwr", "good.dwr");
+    copy("formats/samples/srf-8-12um.txt", "band.srf");
+    copy("formats/samples/water-hale-querry-nk.txt", "water.nk");
+    copy(
+        "tests/data/third-party/dirsig-channel/anadirsig.mat",
+        "a.mat",
+    );
+    std::fs::create_dir(d.join("emissivity")).unwrap();
+    for entry in
+        std::fs::read_dir(root.join("tests/data/third-party/dirsig-channel/emissivity")).unwrap()
+    {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, d.join("emissivity").join(path.file_name().unwrap())).unwrap();
+    }
+    std::fs::write(
+        d.join("p.ron"),
+        r#"(stages: [(tool: "testcat", args: ["box.obj"], outputs: {"o": "x.txt"})])"#,
+    )
+    .unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("truth.exr", d.join("alias.exr")).unwrap();
+    let ems = std::fs::read_dir(d.join("emissivity"))
+        .unwrap()
+        .map(|e| format!("emissivity/{}", e.unwrap().file_name().to_string_lossy()))
+        .next()
+        .unwrap();
+    let cases: Vec<(&str, Vec<&str>, &str)> = vec![
+        (
+            "irsig-sensor",
+            vec!["truth.exr", "--mtf", "box:1x1", "-o", "truth.exr"],
+            "truth.exr",
+        ),
+        (
+            "irsig-sensor",
+            vec![
+                "truth.exr",
+                "-o",
+                "s.exr",
+                "--dc-per-kelvin",
+                "2",
+                "--dc-png",
+                "./truth.exr",
+            ],
+            "truth.exr",
+        ),
+        (
+            "irsig-sensor",
+            vec![
+                "truth.exr",
+                "-o",
+                "s.exr",
+                "--band",
+                "band.srf",
+                "--lut",
+                "band.srf",
+                "--dc-per-kelvin",
+                "2",
+            ],
+            "band.srf",
+        ),
+        (
+            "irsig-stats",
+            vec!["truth.exr", "--regions", "regions.ron", "-o", "regions.ron"],
+            "regions.ron",
+        ),
+        (
+            "irsig-report",
+            vec!["truth.exr", "-o", "truth.exr"],
+            "truth.exr",
+        ),
+        (
+            "irsig-import",
+            vec![
+                "box.obj",
+                "--materials",
+                "materials.ron",
+                "-o",
+                "materials.ron",
+            ],
+            "materials.ron",
+        ),
+        (
+            "irsig-flatten",
+            vec!["scene.ron", "--materials", "materials.ron", "-o", "box.ron"],
+            "box.ron",
+        ),
+        (
+            "irsig-atmos",
+            vec![
+                "convert",
+                "--altitude-unit",
+                "km",
+                "--radiance-unit",
+                "W/cm2/sr",
+                "--name",
+                "a",
+                "--atm",
+                "good.atm",
+                "--dwr",
+                "good.dwr",
+                "-o",
+                "good.dwr",
+            ],
+            "good.dwr",
+        ),
+        (
+            "irsig-atmos",
+            vec![
+                "rtt", "--from", "200", "--to", "210", "--band", "band.srf", "-o", "band.srf",
+            ],
+            "band.srf",
+        ),
+        (
+            "irsig-material",
+            vec![
+                "fresnel",
+                "--nk-table",
+                "water.nk",
+                "--temperature",
+                "300",
+                "--angles",
+                "0:90:30",
+                "-o",
+                "water.nk",
+            ],
+            "water.nk",
+        ),
+        (
+            "irsig-material",
+            vec!["dirsig", "a.mat", "--default-emissivity", "0.9", "-o", &ems],
+            &ems,
+        ),
+        (
+            "irsig-run",
+            vec!["--emit-makefile", "p.ron", "p.ron"],
+            "p.ron",
+        ),
+    ];
+    #[cfg(unix)]
+    let cases = {
+        let mut c = cases;
+        c.push((
+            "irsig-sensor",
+            vec!["truth.exr", "--mtf", "box:1x1", "-o", "alias.exr"],
+            "alias.exr",
+        ));
+        c
+    };
+    let snapshot = || -> Vec<(String, Vec<u8>)> {
+        let mut v = Vec::new();
+        for sub in ["", "emissivity"] {
+            for e in std::fs::read_dir(d.join(sub)).unwrap() {
+                let e = e.unwrap();
+                if e.file_type().unwrap().is_file() {
+                    v.push((
+                        format!("{sub}/{}", e.file_name().to_string_lossy()),
+                        std::fs::read(e.path()).unwrap(),
+                    ));
+                }
+            }
+        }
+        v.sort();
+        v
+    };
+    let before = snapshot();
+    let mut wrong = Vec::new();
+    for (tool, args, named) in &cases {
+        let out = Command::new(bin_path(tool))
+            .args(args)
+            .current_dir(d)
+            .stdin(Stdio::null())
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        if out.status.code() != Some(2)
+            || !stderr.contains("both an output and an input")
+            || !stderr.contains(named)
+        {
+            wrong.push(format!(
+                "{tool} {}: {:?}\n{stderr}",
+                args.join(" "),
+                out.status
+            ));
+        }
+        if snapshot() != before {
+            wrong.push(format!("{tool} {}: changed the folder", args.join(" ")));
+            break;
+        }
+    }
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
+#[test]
 fn the_same_output_twice_is_refused_and_nothing_is_written() {
     let dir = tempfile::tempdir().unwrap();
     let raw = dir.path().join("scene.raw");

@@ -46,6 +46,9 @@ fn c_exponential(v: f64) -> String {
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
+    if let irsig_cli::args::BandArg::Response(file) = &args.band.band {
+        irsig_cli::refuse_output_is_input([file], args.output.iter())?;
+    }
     let band = args.band.band()?;
     let range = format!("{}:{}:{}", args.from, args.to, args.step);
     let temps = crate::common::temperatures("--from/--to/--step", &range)?;

@@ -215,6 +215,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             None => resolve(&base, &p.object),
         })
         .collect();
+    // The scene, the library and every object file the scene names are inputs.
+    let inputs = [cli.scene.as_str()]
+        .into_iter()
+        .map(PathBuf::from)
+        .chain(cli.materials.iter().cloned())
+        .chain(sources.iter().map(PathBuf::from));
+    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
     for (i, placement) in scene.objects.iter().enumerate() {
         if loaded.contains_key(&placement.object) {
             continue;

@@ -26,7 +26,7 @@
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, ValueEnum};
 use irsig_formats::mesh::{self, Mesh};
@@ -128,6 +128,10 @@ fn parse_unit(s: &str) -> Result<LengthUnit, String> {
 /// # Errors
 /// Bad usage (exit 2), or an unreadable, malformed or inconsistent input (exit 1).
 pub fn run(cli: Cli) -> miette::Result<()> {
+    irsig_cli::refuse_output_is_input(
+        [Path::new(&cli.input), cli.materials.as_path()],
+        cli.output.iter(),
+    )?;
     if !(cli.scale.is_finite() && cli.scale > 0.0) {
         return Err(irsig_cli::usage_error(format!(
             "--scale must be a positive finite number, found {}",

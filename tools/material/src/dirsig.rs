@@ -54,6 +54,15 @@ pub fn run(args: &Args) -> miette::Result<()> {
     let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
     let entries = mat::parse(&input.name, text).map_err(Report::new)?;
     let dir = input.base_dir();
+    // The .mat and every .ems it names are inputs: none may be the output.
+    let ems_files = entries
+        .iter()
+        .filter_map(|e| e.emissivity_file.as_ref())
+        .map(|f| dir.join(&f.value));
+    irsig_cli::refuse_output_is_input(
+        std::iter::once(PathBuf::from(&args.mat)).chain(ems_files),
+        args.output.iter(),
+    )?;
     let at_span = |span: (usize, usize), message: String| {
         Report::new(ParseError::at_span(
             &input.name,
@@ -65,7 +74,6 @@ pub fn run(args: &Args) -> miette::Result<()> {
     };
     let thesis_band = Band::new(8.0, 14.0).map_err(|e| miette::miette!("{e}"))?;
     let mut materials = Vec::with_capacity(entries.len());
-    let mut ems_files: Vec<PathBuf> = Vec::new();
     for entry in &entries {
         let id = u16::try_from(entry.id.value)
             .ok()
@@ -116,7 +124,6 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 ),
             )
         })?;
-        ems_files.push(path.clone());
         let ems_name = path.display().to_string();
         let ems_text = irsig_formats::canonical::utf8(&ems_name, &bytes).map_err(Report::new)?;
         let curves = ems::parse(&ems_name, ems_text).map_err(Report::new)?;
@@ -177,7 +184,5 @@ pub fn run(args: &Args) -> miette::Result<()> {
     let ron = irsig_formats::canonical::to_ron(&library)
         .into_diagnostic()
         .wrap_err("cannot write RON")?;
-    let inputs = std::iter::once(PathBuf::from(&args.mat)).chain(ems_files);
-    irsig_cli::refuse_output_is_input(inputs, args.output.iter())?;
     irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
 }

@@ -277,6 +277,25 @@ fn finite_mean(values: &[f32]) -> f64 {
 /// column), a missing layer, images of different sizes, a profile outside the image, a
 /// region that selects nothing, or an unwritable output; nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = match &cli.band {
+        BandArg::Response(path) => Some(path.as_str()),
+        BandArg::Flat { .. } => None,
+    };
+    let named = [
+        &cli.truth,
+        &cli.radiance,
+        &cli.regions,
+        &cli.decision,
+        &cli.lut,
+        &cli.colour_preview,
+        &cli.pipeline,
+    ];
+    let named = named
+        .into_iter()
+        .flatten()
+        .map(String::as_str)
+        .chain(band_file);
+    irsig_cli::refuse_output_is_input(named, cli.output.iter())?;
     let mut inputs: Vec<Provenance> = Vec::new();
 
     let truth = match &cli.truth {

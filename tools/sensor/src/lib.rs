@@ -276,6 +276,23 @@ fn sensor(e: SensorError) -> miette::Report {
 /// # Errors
 /// Bad input (named), bad usage (exit 2), or an output that cannot be written.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = match &cli.band {
+        BandArg::Response(path) => Some(path.as_str()),
+        BandArg::Flat { .. } => None,
+    };
+    let inputs = std::iter::once(cli.input.as_str())
+        .chain(cli.more_inputs.iter().map(String::as_str))
+        .chain(band_file);
+    let outputs = [
+        &cli.output,
+        &cli.contact_sheet,
+        &cli.dc_png,
+        &cli.lut,
+        &cli.temperature_exr,
+        &cli.preview,
+        &cli.colour_preview,
+    ];
+    irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())?;
     if let Some(sheet) = &cli.contact_sheet {
         let mut inputs = Vec::with_capacity(1 + cli.more_inputs.len());
         for name in std::iter::once(&cli.input).chain(&cli.more_inputs) {

@@ -148,6 +148,15 @@ pub struct Table {
 /// layer, images of different sizes, a region that selects nothing, or an unwritable
 /// output; nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = match &cli.band {
+        BandArg::Response(path) => Some(path.as_str()),
+        BandArg::Flat { .. } => None,
+    };
+    let inputs = [cli.truth.as_str(), cli.regions.as_str()]
+        .into_iter()
+        .chain(cli.radiance.as_deref())
+        .chain(band_file);
+    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
     let regions_input = irsig_cli::read_input(&cli.regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
