@@ -1109,6 +1109,15 @@ mod plan_tests {
     }
 
     #[test]
+    fn a_pipeline_of_no_stage_is_refused() {
+        // `(stages: [])` ran nothing, rc 0.
+        let e = plan("(\n  stages: [],\n)", &tools()).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Structure);
+        assert_eq!(e.line_column(), Some((2, 11)), "{e}");
+        assert!(e.to_string().contains("no stages"), "{e}");
+    }
+
+    #[test]
     fn an_unknown_tool_is_located() {
         let t = Tools::new(|_| None);
         let e = plan("(stages: [(tool: \"nope\")])", &t).unwrap_err();

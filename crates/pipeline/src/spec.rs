@@ -144,6 +144,12 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
             ),
         ));
     };
+    if items.is_empty() {
+        return Err(src.structure(
+            stages_node,
+            "the pipeline has no stages: `stages: []` would run nothing and succeed",
+        ));
+    }
     let stages = items
         .iter()
         .map(|n| stage(src, n))
