@@ -331,43 +331,35 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    // The values every section shows: apparent temperature, K.
-    let (values, width, height, source): (Vec<f32>, usize, usize, String) =
-        match (&radiance, &truth) {
-            (Some((name, image, band)), _) => {
-                let l = layer(image, name, RADIANCE_LAYER)?;
-                let t = l
-                    .iter()
-                    .map(|&l| {
-                        if l.is_finite() {
-                            band.temperature(f64::from(l)) as f32
-                        } else {
-                            f32::NAN
-                        }
-                    })
-                    .collect();
-                (
-                    t,
-                    image.width,
-                    image.height,
-                    format!(
-                        "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {} um",
-                        cli.band
-                    ),
-                )
-            }
-            (None, Some((name, image))) => (
-                layer(image, name, APPARENT_LAYER)?.to_vec(),
+    // The values every section shows: apparent temperature, K. The radiance image is not
+    // needed past them: it goes, so that the page is made in the memory of one image.
+    let (values, width, height, source): (Vec<f32>, usize, usize, String) = match (radiance, &truth)
+    {
+        (Some((name, image, band)), _) => {
+            let l = layer(&image, &name, RADIANCE_LAYER)?;
+            let t = irsig_stats::apparent_temperatures(l, &band);
+            (
+                t,
                 image.width,
                 image.height,
-                format!("`{APPARENT_LAYER}` layer of {name}"),
-            ),
-            (None, None) => {
-                return Err(irsig_cli::usage_error(
-                    "expected a truth EXR or --radiance FILE: the report shows an image",
-                ));
-            }
-        };
+                format!(
+                    "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {} um",
+                    cli.band
+                ),
+            )
+        }
+        (None, Some((name, image))) => (
+            layer(image, name, APPARENT_LAYER)?.to_vec(),
+            image.width,
+            image.height,
+            format!("`{APPARENT_LAYER}` layer of {name}"),
+        ),
+        (None, None) => {
+            return Err(irsig_cli::usage_error(
+                "expected a truth EXR or --radiance FILE: the report shows an image",
+            ));
+        }
+    };
     let Some(range) = plots::finite_range(&values) else {
         return Err(miette!(
             "{source}: no pixel has a finite apparent temperature: expected an image with \
@@ -479,10 +471,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => cli.command.clone(),
     };
 
-    let sigma = match &truth {
-        Some((name, image)) => image
-            .layer(SIGMA_LAYER)
-            .map(|l| (name.clone(), l.data.clone())),
+    // The truth EXR's other layers are not needed past the statistics: only σ is kept,
+    // moved out of the image, not copied.
+    let sigma = match truth {
+        Some((name, mut image)) => {
+            let i = image.layers.iter().position(|l| l.name == SIGMA_LAYER);
+            i.map(|i| (name, image.layers.swap_remove(i).data))
+        }
         None => None,
     };
 
