@@ -221,11 +221,7 @@ fn a_closed_stderr_loses_the_message_not_the_exit_status() {
     let dir = tempfile::tempdir().unwrap();
     let bad = dir.path().join("bad.ron");
     std::fs::write(&bad, "(objects: [Objekt()])").unwrap();
-    let closed_stderr = || {
-        let (reader, writer) = std::io::pipe().unwrap();
-        drop(reader);
-        Stdio::from(writer)
-    };
+    let closed_stderr = irsig_tests::closed_pipe;
     let root = irsig_tests::repo_root();
     let status = Command::new(bin_path("irsig-flatten"))
         .arg(&bad)

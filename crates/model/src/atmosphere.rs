@@ -269,7 +269,8 @@ impl SlantTables {
         };
         for (name, axis, max) in [
             ("altitude_m", &self.altitude_m, f64::MAX),
-            ("nadir_deg", &self.nadir_deg, 90.0),
+            // Below 90°: a horizontal slant path never reaches the paths' lower end.
+            ("nadir_deg", &self.nadir_deg, 89.999),
             ("sky_altitude_m", &self.sky_altitude_m, f64::MAX),
             ("sky_zenith_deg", &self.sky_zenith_deg, 90.0),
         ] {

@@ -441,11 +441,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("colour preview", &input));
             if !input.bytes.starts_with(PNG_SIGNATURE) {
-                return Err(miette!(
-                    "{}: expected a PNG (the sensor stage's --colour-preview), found no PNG \
+                return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
+                    input.name.clone(),
+                    0,
+                    "expected a PNG (the sensor stage's --colour-preview), found no PNG \
                      signature",
-                    input.name
-                ));
+                )));
             }
             Some(input)
         }
