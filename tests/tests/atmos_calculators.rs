@@ -37,7 +37,7 @@ fn legacy_rtt_matches_the_reference_file() {
     let reference =
         irsig_tests::repo_root().join("crates/atmosphere/data/lowtran/us-std-1976/us-std-1976.rtt");
     let out = stdout_of(&[
-        "rtt", "--from", "200", "--to", "350", "--step", "1", "--legacy",
+        "rtt", "--from", "200", "--to", "350", "--step-k", "1", "--legacy",
     ]);
     let expected = std::fs::read_to_string(reference).unwrap();
     // Same layout; digits may differ only in the last place from rounding.

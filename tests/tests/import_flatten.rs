@@ -417,7 +417,7 @@ fn obj_from_stdin_with_format() {
         .current_dir(repo_root())
         .args([
             "-",
-            "--format",
+            "--mesh-format",
             "obj",
             "--materials",
             LIBRARY,

@@ -30,7 +30,7 @@ fn fresnel_water_from_the_hale_querry_table_matches_the_reference_ems() {
         "formats/samples/water-hale-querry-nk.txt",
         "--band",
         "8-14",
-        "--temperature",
+        "--planck-temperature",
         "300",
         "--angles",
         "0:90:5",
@@ -126,6 +126,85 @@ fn fresnel_constant_index_writes_a_material_library_entry() {
 }
 
 #[test]
+fn fresnel_roughness_keeps_the_emissivity_up_at_grazing_and_is_diffuse_by_default() {
+    // A smooth dielectric of normal emissivity 0.95 falls to 0 at 90°; the same facets
+    // rough (RMS slope 0.8) over a diffuse body stay above 0.87, the reflection diffuse.
+    let smooth = stdout_of(&["fresnel", "--n", "1.576", "--angles", "0,60,88,90"]);
+    let rough = stdout_of(&[
+        "fresnel",
+        "--n",
+        "1.36",
+        "--roughness",
+        "0.8",
+        "--diffuse-reflectance",
+        "0.0347",
+        "--angles",
+        "0,60,88,90",
+    ]);
+    let read = |t: &str| -> irsig_model::Material {
+        irsig_formats::canonical::from_ron::<irsig_model::MaterialLibrary>("m.ron", t)
+            .unwrap()
+            .materials
+            .remove(0)
+    };
+    let (s, r) = (read(&smooth), read(&rough));
+    assert_eq!((s.specular_fraction, r.specular_fraction), (1.0, 0.0));
+    assert!(
+        s.emissivity[2].1 < 0.19 && s.emissivity[3].1 == 0.0,
+        "{s:?}"
+    );
+    assert!((r.emissivity[0].1 - 0.95).abs() < 5e-4, "{r:?}");
+    assert!(
+        r.emissivity[2].1 > 0.87 && r.emissivity[3].1 > 0.87,
+        "{r:?}"
+    );
+    assert!(r.source.contains("RMS slope 0.8"), "{}", r.source);
+}
+
+#[test]
+fn the_rough_surface_library_is_what_its_generator_makes() {
+    // pipelines/materials/rough-surfaces.ron, remade by its script with this build's tool:
+    // the same bytes, and a valid library.
+    let root = irsig_tests::repo_root();
+    let out = std::process::Command::new("sh")
+        .arg("pipelines/materials/generate.sh")
+        .env("IRSIG_MATERIAL", irsig_tests::bin_path("irsig-material"))
+        .current_dir(&root)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let made = String::from_utf8(out.stdout).unwrap();
+    let committed =
+        std::fs::read_to_string(root.join("pipelines/materials/rough-surfaces.ron")).unwrap();
+    assert!(
+        made == committed,
+        "rough-surfaces.ron is not what generate.sh makes"
+    );
+    let lib: irsig_model::MaterialLibrary =
+        irsig_formats::canonical::from_ron("rough-surfaces.ron", &committed).unwrap();
+    let names: Vec<&str> = lib.materials.iter().map(|m| m.name.as_str()).collect();
+    for want in [
+        "grass",
+        "water",
+        "asphalt",
+        "concrete",
+        "soil (clay)",
+        "sand",
+    ] {
+        assert!(names.contains(&want), "{names:?}");
+    }
+    assert!(
+        lib.materials
+            .iter()
+            .all(|m| m.source.contains("rough-surfaces.csv"))
+    );
+}
+
+#[test]
 fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
     let dir = tempfile::tempdir().unwrap();
     let bad_nk = dir.path().join("bad.nk");
@@ -151,7 +230,7 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             "covers 8–14 µm",
         ),
         (
-            &["--nk-table", water, "--temperature", "-5"],
+            &["--nk-table", water, "--planck-temperature", "-5"],
             1,
             "temperature",
         ),
@@ -161,7 +240,24 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             "cannot be used with",
         ),
         (&["--k", "0.1"], 2, "required"),
-        (&["--n", "1.2", "--temperature", "300"], 2, "--nk-table"),
+        (
+            &["--n", "1.2", "--planck-temperature", "300"],
+            2,
+            "--nk-table",
+        ),
+        (
+            &["--n", "1.2", "--roughness", "-0.1"],
+            1,
+            "RMS slope must be a number from 0 (smooth) to 10, found -0.1",
+        ),
+        (&["--n", "1.2", "--roughness", "NaN"], 1, "found NaN"),
+        (&["--n", "1.2", "--roughness", "11"], 1, "found 11"),
+        (
+            &["--n", "1.2", "--diffuse-reflectance", "1"],
+            1,
+            "diffuse reflectance must be a number from 0 to below 1, found 1",
+        ),
+        (&["--n", "1.2", "--roughness", "x"], 2, "--roughness"),
     ];
     for (args, code, message) in cases {
         let out_file = dir.path().join("out.ron");

@@ -86,10 +86,12 @@ fn box_blur_matches_the_thesis_by_hand_and_every_output_is_written() {
         r.layer("material_primary").unwrap().data,
         scene().layer("material_primary").unwrap().data
     );
-    // The LUT has a header and one line per 8-bit count.
+    // The LUT has a header, its band (none recorded here: the default's) and one line per
+    // 8-bit count.
     let lut_text = std::fs::read_to_string(&lut).unwrap();
-    assert_eq!(lut_text.lines().count(), 257);
+    assert_eq!(lut_text.lines().count(), 258);
     assert!(lut_text.starts_with("# dc radiance_w_m2_sr temperature_k temperature_c"));
+    assert_eq!(lut_text.lines().nth(1), Some("# band: 8-14 um, flat"));
     let t_exr = read_exr(&std::fs::read(&t).unwrap()).unwrap();
     let temperature = &t_exr.layer("apparent_temperature").unwrap().data;
     // 40 and 60 W m^-2 sr^-1 in 8-14 um are blackbodies of 280.451 K and 305.889 K

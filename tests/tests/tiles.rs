@@ -1,7 +1,7 @@
 //! A frame traced in tiles (`irsig-trace --tile`) and merged (`irsig-merge`): the merged
 //! radiance EXR, truth EXR, interaction map, digital counts and LUT are byte for byte those
-//! of the frame traced whole, with supersampling, sky-view rays, adaptive supersampling and
-//! the tolerance pilot's decision; and every bad request — a tile outside the image, a
+//! of the frame traced whole, with supersampling, sky-view rays, adaptive supersampling,
+//! the tolerance pilot's decision and the error budget's layers; and every bad request — a tile outside the image, a
 //! missing or overlapping tile, tiles of different runs, a file that is no tile — is
 //! refused with a message naming it, writing nothing.
 
@@ -219,6 +219,59 @@ fn tiles_share_the_whole_frames_tolerance_decision() {
         .assert()
         .success();
     std::fs::remove_file(&decision).unwrap();
+    assert_same_files(&d.join("whole"), &d.join("merged"));
+}
+
+#[test]
+fn tiles_with_the_error_budget_merge_into_the_whole_frames_bytes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path();
+    let (raw, view) = inputs(d);
+    let pilot = d.join("pilot.decision.ron");
+    trace(&raw, &view, &["--tolerance", "0.3", "--decision-out"])
+        .arg(&pilot)
+        .assert()
+        .success();
+    let uncertainties = d.join("u.ron");
+    std::fs::write(
+        &uncertainties,
+        "(temperature: [(facets: All, sigma_k: 0.2)], emissivity: [(material: 1, sigma: 0.01)], \
+         transmission_relative: 0.02, path_radiance_relative: 0.05)",
+    )
+    .unwrap();
+    let extra = [
+        "--decision",
+        pilot.to_str().unwrap(),
+        "--uncertainties",
+        uncertainties.to_str().unwrap(),
+    ];
+    std::fs::create_dir(d.join("whole")).unwrap();
+    trace(&raw, &view, &extra)
+        .arg("-o")
+        .arg(d.join("whole/frame"))
+        .assert()
+        .success();
+    // The truth EXR holds the budget's σ layers, σ_model the decision's predicted error.
+    let truth =
+        irsig_raster::read_exr(&std::fs::read(d.join("whole/frame.truth.exr")).unwrap()).unwrap();
+    let model = truth.layer("sigma_model").expect("a sigma_model layer");
+    assert!(
+        model.data.iter().all(|&s| s > 0.0 && s <= 0.3),
+        "{:?}",
+        &model.data[..4]
+    );
+    assert!(truth.layer("sigma_total").is_some());
+    let tiles = d.join("tiles");
+    trace_grid(&raw, &view, &tiles, &extra);
+    std::fs::create_dir(d.join("merged")).unwrap();
+    bin("irsig-merge")
+        .args(tile_files(&tiles))
+        .arg("-o")
+        .arg(d.join("merged/frame"))
+        .arg("--view")
+        .arg(&view)
+        .assert()
+        .success();
     assert_same_files(&d.join("whole"), &d.join("merged"));
 }
 

@@ -49,6 +49,19 @@ pub(crate) fn monotone_cubic(xs: &[f64], ys: &[f64], x: f64) -> f64 {
         return linear(xs, ys, x);
     }
     let (i, f) = locate(&xs[..n], x);
+    monotone_cubic_located(xs, ys, i, f)
+}
+
+/// [`monotone_cubic`] at a point already located in `xs` (`(i, f)` of [`locate`]).
+pub(crate) fn monotone_cubic_located(xs: &[f64], ys: &[f64], i: usize, f: f64) -> f64 {
+    let n = xs.len().min(ys.len());
+    if n < 3 {
+        return match (ys.get(i), ys.get(i + 1)) {
+            (Some(&a), Some(&b)) => a + f * (b - a),
+            (Some(&a), None) => a,
+            _ => f64::NAN,
+        };
+    }
     if f.is_nan() {
         return f64::NAN;
     }
@@ -77,25 +90,6 @@ pub(crate) fn monotone_cubic(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     h00 * ys[i] + h10 * h * slope(i) + h01 * ys[i + 1] + h11 * h * slope(i + 1)
 }
 
-/// Interpolation of the grid `zs[row][col]`: monotone cubic along each row (columns
-/// `ys`, [`monotone_cubic`]), then linear between the rows `xs`; clamped at the edges.
-pub(crate) fn linear_by_monotone_cubic(
-    xs: &[f64],
-    ys: &[f64],
-    zs: &[Vec<f64>],
-    x: f64,
-    y: f64,
-) -> f64 {
-    let (i, fx) = locate(xs, x);
-    let row = |k: usize| zs.get(k).map_or(f64::NAN, |r| monotone_cubic(ys, r, y));
-    if xs.len() < 2 {
-        return row(0);
-    }
-    let a = row(i);
-    let b = row(i + 1);
-    a + fx * (b - a)
-}
-
 /// Where a point lies in a grid of rows `xs` and columns `ys`: located once, for the
 /// bilinear interpolation of several tables on that grid, clamped at the edges.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,15 +114,12 @@ impl Cell {
         }
     }
 
-    /// The table `zs[row][col]` at the cell, interpolated bilinearly.
-    pub(crate) fn of(&self, zs: &[Vec<f64>]) -> f64 {
+    /// The table `zs[row][col]` at the cell: a monotone cubic along each row (across the
+    /// columns `ys` the cell was located in), then linear between the two rows.
+    pub(crate) fn cubic_in_columns(&self, ys: &[f64], zs: &[Vec<f64>]) -> f64 {
         let row = |k: usize| {
             zs.get(k)
-                .map_or(f64::NAN, |r| match (r.get(self.j), r.get(self.j + 1)) {
-                    (Some(&a), Some(&b)) => a + self.fy * (b - a),
-                    (Some(&a), None) => a,
-                    _ => f64::NAN,
-                })
+                .map_or(f64::NAN, |r| monotone_cubic_located(ys, r, self.j, self.fy))
         };
         if self.rows < 2 {
             return row(0);

@@ -36,6 +36,8 @@
 //! # Ok::<(), irsig_atmosphere::AtmosphereError>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod builtin;
 mod earth;
 mod error;
@@ -167,7 +169,8 @@ enum Inner {
     None,
     Thesis(thesis::Thesis),
     Layered(Profile),
-    Table(table::Table),
+    /// Boxed: its slant tables make it several times the size of the others.
+    Table(Box<table::Table>),
 }
 
 /// An atmosphere model the tracer asks for path terms and sky radiance. Cheap to query;
@@ -194,7 +197,7 @@ impl AtmosphereModel {
             ModelKind::None => Inner::None,
             ModelKind::Thesis => Inner::Thesis(thesis::Thesis::new(atmosphere)?),
             ModelKind::Layered => Inner::Layered(Profile::new(atmosphere)?),
-            ModelKind::Table => Inner::Table(table::Table::new(atmosphere)?),
+            ModelKind::Table => Inner::Table(Box::new(table::Table::new(atmosphere)?)),
         };
         let ground_sky = GroundSky {
             zenith_deg: atmosphere.sky.iter().map(|r| r.0).collect(),
@@ -246,7 +249,9 @@ impl AtmosphereModel {
                 t.profile = profile;
                 Inner::Thesis(t)
             }
-            Inner::Table(_) => Inner::Table(table::Table::with_profile(atmosphere, profile)?),
+            Inner::Table(_) => {
+                Inner::Table(Box::new(table::Table::with_profile(atmosphere, profile)?))
+            }
         };
         Ok(Self { inner, ..self })
     }

@@ -557,6 +557,9 @@ pub fn assemble(
             sky_altitude_m: plan.sky_altitude_m.clone(),
             sky_zenith_deg: plan.sky_zenith_deg.clone(),
             sky_radiance_w_m2_sr_per_unit: flat(sky_paths, &rad),
+            // The plan's rows are the scene's own paths: nothing lies between them that
+            // was measured.
+            interpolation_residual: None,
         }),
     };
     atmosphere.validate()?;

@@ -507,6 +507,7 @@ fn collapse_valid(
                 s.sky_altitude_m.len(),
                 &|x| q.radiance(x),
             ),
+            interpolation_residual: s.interpolation_residual,
         }
     });
     let atmosphere = Atmosphere {

@@ -18,7 +18,7 @@ use irsig_model::{Atmosphere, SlantTables};
 
 use crate::PathTerms;
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
-use crate::interp::{Cell, linear_by_monotone_cubic};
+use crate::interp::Cell;
 use crate::layered::{Profile, Slant, Walk};
 
 /// A slant path located in a table's grids ([`Table::walk`]).
@@ -122,8 +122,14 @@ impl Table {
     /// The path terms along a located path.
     pub(crate) fn along(&self, walk: &TableWalk) -> PathTerms {
         let (layered, layered_depth) = self.profile.along_with_depth(&walk.layered);
-        let mut dr = walk.cell.of(&self.depth_ratio);
-        let mut lr = walk.cell.of(&self.radiance_ratio);
+        // A monotone cubic in angle (linear, the corrections erred between rows 2.5-5°
+        // apart by up to 0.6 K near the horizon), linear in altitude: LOWTRAN7's paths
+        // change their slope in altitude just above each of its profile's levels (1, 2,
+        // 3 km), where a cubic through the rows overshoots; the rows are dense instead
+        // (docs/accuracy.md).
+        let angles = &self.slant.nadir_deg;
+        let mut dr = walk.cell.cubic_in_columns(angles, &self.depth_ratio);
+        let mut lr = walk.cell.cubic_in_columns(angles, &self.radiance_ratio);
         if let Some(keep) = walk.keep {
             dr = 1.0 + keep * (dr - 1.0);
             lr = 1.0 + keep * (lr - 1.0);
@@ -146,17 +152,13 @@ impl Table {
     /// Sky radiance from the sky table, clamped to it: a monotone cubic in zenith angle
     /// along each altitude row, linear between rows. (Linear in angle, the ground sky was
     /// up to 0.48 K too warm between the 5° rows: the radiance is convex in angle;
-    /// docs/accuracy.md.)
+    /// docs/accuracy.md. A cubic in altitude too was 0.1 K off at 30° from 1.7 km: the sky
+    /// changes its slope at 2 km, a level of LOWTRAN7's profile, and the rows are dense.)
     pub(crate) fn sky(&self, observer_m: f64, zenith_deg: f64) -> f64 {
         let t = &self.slant;
-        linear_by_monotone_cubic(
-            &t.sky_altitude_m,
-            &t.sky_zenith_deg,
-            &t.sky_radiance_w_m2_sr,
-            observer_m,
-            zenith_deg,
-        )
-        .max(0.0)
+        Cell::locate(&t.sky_altitude_m, &t.sky_zenith_deg, observer_m, zenith_deg)
+            .cubic_in_columns(&t.sky_zenith_deg, &t.sky_radiance_w_m2_sr)
+            .max(0.0)
     }
 }
 

@@ -14,7 +14,12 @@
 //! by up to 5e-7 µm, which moves the trapezoid's weights by up to 1e-5), and the spectra
 //! are stored as `f32`. Measured: the slant tables agree within 3.5e-7 relative, the
 //! printed tables within 7.7e-7 (their printing included); the slant
-//! tables, printed in full, must agree within 1e-6 relative.
+//! tables, printed in full, must agree within 1e-6 relative. The spectral built-ins were
+//! since rerun over 7.41–14.08 µm (LOWTRAN7's spectra to 1350 cm⁻¹), which moves
+//! single-precision LOWTRAN's values by up to 2.1e-6 relative (the sky at 90°) against
+//! the printed us-std-1976 and midlat-winter tables, copies of the shared reference: the
+//! printed tables are held to 1.5 units of their last digit plus 3e-6 relative, the `.cor`
+//! to 5e-6.
 
 // Grids and angles are copied, not computed: they must be equal.
 #![allow(clippy::float_cmp)]
@@ -30,7 +35,7 @@ fn check(what: &str, got: f64, want: f64, unit: f64, worst: &mut f64) {
     let rel = (got - want).abs() / want.abs();
     *worst = worst.max(rel);
     assert!(
-        (got - want).abs() <= 1.5 * unit + 5e-7 * want.abs(),
+        (got - want).abs() <= 1.5 * unit + 3e-6 * want.abs(),
         "{what}: collapsed {got}, printed {want} ({:.2} units of the last digit, {rel:.1e} relative)",
         (got - want).abs() / unit
     );
@@ -74,12 +79,16 @@ fn collapsing_the_spectral_builtins_gives_the_band_builtins() {
             band.transmission_correction.unwrap(),
         );
         for k in 0..3 {
-            check(
-                &format!("{name} .cor a{}", k + 1),
-                gc[k],
-                wc[k],
-                1e-8,
-                &mut worst,
+            // The spectral built-ins were rerun over 7.41-14.08 um, which moves
+            // single-precision LOWTRAN's transmittances by up to 1e-6 relative; the
+            // least-squares fit of the `.cor` (three nearly collinear columns) amplifies
+            // that to 2.7e-6 in the printed us-std-1976 a2 (measured). So the `.cor` is
+            // held to 5e-6, not its printed digits: τ(80°)/τ(0) moves by 2e-4 at most.
+            let (got, want) = (gc[k], wc[k]);
+            assert!(
+                (got - want).abs() <= 5e-6,
+                "{name} .cor a{}: collapsed {got}, printed {want}",
+                k + 1
             );
         }
         assert_eq!(

@@ -1,19 +1,27 @@
 //! The command-line vocabulary the tools share, defined once so that every tool spells a
-//! setting the same way: the band (`--band MIN-MAX` or `--band RESPONSE-FILE`), the
-//! digital-count calibration (`--dc-per-kelvin`, `--reference-k`, `--dc-at-reference`,
-//! `--gain-dc-per-radiance`, `--offset-dc`, `--dc-bits`), library enums offered by name,
-//! a table's `--format` and lists or ranges of numbers (`--angles 0:90:5`).
+//! setting the same way: the band (`--band MIN-MAX`, `--band RESPONSE-FILE` or `--band
+//! total`), lengths' units (`--view-unit km`), the digital-count calibration
+//! (`--dc-per-kelvin`, `--reference-k`, `--dc-at-reference`, `--gain-dc-per-radiance`,
+//! `--offset-dc`, `--dc-bits`), a frame's output files (`-o PREFIX` or one flag per file,
+//! [`FrameOutputArgs`]), library enums offered by name, a table's `--format` and lists or
+//! ranges of numbers (`--angles 0:90:5`). A flag of one name has one type and one default in
+//! every tool (`tests/tests/architecture.rs` holds it).
 
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 
 use clap::builder::{PossibleValuesParser, TypedValueParser};
-use irsig_radiometry::{Band, SensorResponse};
-use irsig_sensor_model::quantise::Calibration;
+use irsig_model::LengthUnit;
+use irsig_model::frame::{FrameFile, FrameFiles};
+use irsig_model::provenance::BandRecord;
+use irsig_radiometry::{AnyBand, Band, SensorResponse, TotalRadiance};
+use irsig_sensor_model::quantise::{Calibration, CountRequest};
 use miette::miette;
 
-/// A spectral band as given on a command line: `MIN-MAX` in micrometres (a flat response),
-/// or the path of a sensor response file (`formats/srf.md`), whose first and last
-/// wavelengths bound the band. Resolve it with [`BandArg::load`].
+/// A spectral band as given on a command line (`--band`, in every tool): `MIN-MAX` in
+/// micrometres (a flat response), the path of a sensor response file (`formats/srf.md`),
+/// whose first and last wavelengths bound the band, or `total`, the whole spectrum (σT⁴/π),
+/// exact and for checking by hand. Resolve it with [`BandArg::load`].
 #[derive(Debug, Clone, PartialEq)]
 pub enum BandArg {
     /// A flat band between two wavelengths, µm.
@@ -25,6 +33,8 @@ pub enum BandArg {
     },
     /// A sensor response file.
     Response(String),
+    /// `total`: the whole spectrum, σT⁴/π.
+    Total,
 }
 
 impl Default for BandArg {
@@ -43,6 +53,9 @@ impl FromStr for BandArg {
     /// `MIN-MAX` (two positive numbers of µm joined by `-`), else a file name. `8:14`, the
     /// old spelling of some tools, is refused with the new one.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
+        if s == "total" {
+            return Ok(Self::Total);
+        }
         let number = |t: &str| t.trim().parse::<f64>().ok().filter(|v| v.is_finite());
         // The `-` that splits two numbers (an exponent such as `8e-1` holds one too).
         for (i, _) in s.match_indices('-') {
@@ -74,77 +87,222 @@ impl std::fmt::Display for BandArg {
         match self {
             Self::Flat { min_um, max_um } => write!(f, "{min_um}-{max_um}"),
             Self::Response(path) => f.write_str(path),
+            Self::Total => f.write_str("total"),
         }
     }
 }
 
 impl BandArg {
+    /// `--band`'s value, or the default band (8–14 µm, flat) when it was not given.
+    #[must_use]
+    pub fn or_default(band: Option<&Self>) -> Self {
+        band.cloned().unwrap_or_default()
+    }
+
     /// The band: flat, or weighted by the response file read from disk.
     ///
     /// # Errors
-    /// Limits that are not `0 < MIN < MAX` (bad usage), or a response file that cannot be
-    /// read or parsed (at its line and column).
+    /// Limits that are not `0 < MIN < MAX` (bad usage), a response file that cannot be
+    /// read or parsed (at its line and column), or `total`, which has no wavelengths.
     pub fn load(&self) -> miette::Result<Band> {
+        match self.load_recorded()? {
+            (AnyBand::Band(band), _) => Ok(band),
+            (AnyBand::Total(_), _) => Err(crate::usage_error(
+                "--band total (the whole spectrum, σT⁴/π) has no wavelengths: this needs \
+                 MIN-MAX in micrometres or a sensor response file",
+            )),
+        }
+    }
+
+    /// The band, and its record as an image traced in it keeps it (a response file's
+    /// table itself, with the file's name and SHA-256).
+    ///
+    /// # Errors
+    /// As [`BandArg::load`], `total` excepted.
+    pub fn load_recorded(&self) -> miette::Result<(AnyBand, BandRecord)> {
         match self {
-            Self::Flat { min_um, max_um } => Band::new(*min_um, *max_um)
-                .map_err(|e| crate::usage_error(format!("--band {self}: {e}"))),
+            Self::Total => Ok((AnyBand::Total(TotalRadiance), BandRecord::Total)),
+            Self::Flat { min_um, max_um } => {
+                let record = BandRecord::Flat {
+                    min_um: *min_um,
+                    max_um: *max_um,
+                };
+                let band = band_of(&record)
+                    .map_err(|e| crate::usage_error(format!("--band {self}: {e}")))?;
+                Ok((band, record))
+            }
             Self::Response(path) => {
                 let input = crate::read_input(path)?;
                 let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
                 let table = irsig_formats::srf::parse(&input.name, text)?;
-                let (Some(&lo), Some(&hi)) =
-                    (table.wavelength_um.first(), table.wavelength_um.last())
-                else {
-                    return Err(miette!("{}: the response table is empty", input.name));
+                let record = BandRecord::Response {
+                    sha256: input.sha256(),
+                    wavelength_um: table.wavelength_um,
+                    response: table.response,
                 };
-                let srf = SensorResponse::new(table.wavelength_um, table.response)
-                    .map_err(|e| miette!("{}: {e}", input.name))?;
-                Band::new(lo, hi)
-                    .and_then(|b| b.with_response(&srf))
-                    .map_err(|e| miette!("{}: {e}", input.name))
+                let band = band_of(&record).map_err(|e| miette!("{}: {e}", input.name))?;
+                Ok((band, record))
             }
         }
     }
 }
 
-/// `--band` of the tools that render or re-render a frame (irsig-trace, irsig-merge): the
-/// shared band of every tool, or `total`, the whole spectrum (σT⁴/π), exact and for checking
-/// by hand.
-#[derive(Debug, Clone, PartialEq)]
-pub enum TraceBand {
-    /// `total`: σT⁴/π.
-    Total,
-    /// A band as every tool takes it.
-    Band(BandArg),
-}
-
-impl FromStr for TraceBand {
-    type Err = String;
-    fn from_str(s: &str) -> Result<Self, Self::Err> {
-        if s == "total" {
-            Ok(Self::Total)
-        } else {
-            s.parse().map(Self::Band)
+/// The band a record describes, built as from its file.
+///
+/// # Errors
+/// Limits or a table the band cannot be made of, in words.
+pub fn band_of(record: &BandRecord) -> Result<AnyBand, String> {
+    match record {
+        BandRecord::Total => Ok(AnyBand::Total(TotalRadiance)),
+        BandRecord::Flat { min_um, max_um } => Band::new(*min_um, *max_um)
+            .map(AnyBand::Band)
+            .map_err(|e| e.to_string()),
+        BandRecord::Response {
+            wavelength_um,
+            response,
+            ..
+        } => {
+            let (Some(&lo), Some(&hi)) = (wavelength_um.first(), wavelength_um.last()) else {
+                return Err("the response table is empty".to_owned());
+            };
+            let srf = SensorResponse::new(wavelength_um.clone(), response.clone())
+                .map_err(|e| e.to_string())?;
+            Band::new(lo, hi)
+                .and_then(|b| b.with_response(&srf))
+                .map(AnyBand::Band)
+                .map_err(|e| e.to_string())
         }
     }
 }
 
-/// A flat band `MIN-MAX` in micrometres as `[min, max]`, for settings that cannot take a
-/// response file (the band a DIRTRAN table was integrated over): a clap value parser.
-///
-/// # Errors
-/// Anything but two numbers with `0 < MIN < MAX`.
-pub fn flat_band(s: &str) -> Result<[f64; 2], String> {
-    match s.parse::<BandArg>()? {
-        BandArg::Flat { min_um, max_um } if min_um > 0.0 && max_um > min_um => Ok([min_um, max_um]),
-        BandArg::Flat { min_um, max_um } => Err(format!(
-            "expected 0 < MIN < MAX in micrometres, found {min_um}-{max_um}"
-        )),
-        BandArg::Response(_) => Err(format!(
-            "expected MIN-MAX in micrometres, such as 8-14, found `{s}`"
-        )),
+/// `--band` of a tool that reads a traced image (sensor, stats, report, merge): the band the
+/// image records by default, since irsig-trace records it; a `--band` that is another band
+/// is refused, naming both, unless `--override-band`, which warns.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct ImageBandArgs {
+    /// The band of the image's radiances: `MIN-MAX` in micrometres, a sensor response file
+    /// (formats/srf.md) or `total`. By default the band the image records (irsig-trace
+    /// writes it into its EXRs); given, it must be that band.
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
+    /// Use --band even where the image records another band (a warning says so).
+    #[arg(long, requires = "band")]
+    pub override_band: bool,
+}
+
+/// The band a stage converts an image's radiances with, and what it has to say about it.
+#[derive(Debug, Clone)]
+pub struct ResolvedBand {
+    /// The band.
+    pub band: AnyBand,
+    /// Its record, for the stage's own outputs.
+    pub record: BandRecord,
+    /// A warning for stderr: a band assumed, or overridden.
+    pub warning: Option<String>,
+}
+
+impl ImageBandArgs {
+    /// The band of the image `image` (its name, for messages), which records `recorded`.
+    ///
+    /// # Errors
+    /// A --band that is not the recorded band (bad usage, naming both) without
+    /// --override-band, or a band that cannot be loaded.
+    pub fn resolve(
+        &self,
+        image: &str,
+        recorded: Option<&BandRecord>,
+    ) -> miette::Result<ResolvedBand> {
+        let given = self.band.as_ref().map(BandArg::load_recorded).transpose()?;
+        match (given, recorded) {
+            (None, Some(record)) => Ok(ResolvedBand {
+                band: band_of(record)
+                    .map_err(|e| miette!("{image}: its recorded band {record}: {e}"))?,
+                record: record.clone(),
+                warning: None,
+            }),
+            (Some((band, record)), Some(recorded)) if record.same_band(recorded) => {
+                Ok(ResolvedBand {
+                    band,
+                    record,
+                    warning: None,
+                })
+            }
+            (Some((band, record)), Some(recorded)) if self.override_band => Ok(ResolvedBand {
+                warning: Some(format!(
+                    "--band {} ({record}) overrides the band `{image}` records, {recorded}: \
+                     its apparent temperatures are not those of the radiance it was traced in",
+                    self.band
+                        .as_ref()
+                        .map(ToString::to_string)
+                        .unwrap_or_default()
+                )),
+                band,
+                record,
+            }),
+            (Some((_, record)), Some(recorded)) => Err(crate::usage_error(format!(
+                "--band {} ({record}) is not the band `{image}` records, {recorded}: leave \
+                 --band out to use the recorded band, or add --override-band to convert with \
+                 --band anyway",
+                self.band
+                    .as_ref()
+                    .map(ToString::to_string)
+                    .unwrap_or_default()
+            ))),
+            (Some((band, record)), None) => Ok(ResolvedBand {
+                band,
+                record,
+                warning: None,
+            }),
+            (None, None) => {
+                let (band, record) = BandArg::default().load_recorded()?;
+                Ok(ResolvedBand {
+                    warning: Some(format!(
+                        "`{image}` records no band (not written by irsig-trace, or by an \
+                         older one): its radiances are taken as {record}; give --band to say \
+                         which band they are in"
+                    )),
+                    band,
+                    record,
+                })
+            }
+        }
     }
 }
+
+impl BandArg {
+    /// A flat band's limits `[min, max]`, µm, for settings that cannot take a response
+    /// file (the band a DIRTRAN table was integrated over).
+    ///
+    /// # Errors
+    /// A response file or `total` (bad usage), or limits that are not `0 < MIN < MAX`.
+    pub fn flat_limits_um(&self) -> miette::Result<[f64; 2]> {
+        match *self {
+            Self::Flat { min_um, max_um } if min_um > 0.0 && max_um > min_um => {
+                Ok([min_um, max_um])
+            }
+            Self::Flat { min_um, max_um } => Err(crate::usage_error(format!(
+                "--band {self}: expected 0 < MIN < MAX in micrometres, found {min_um}-{max_um}"
+            ))),
+            Self::Response(_) | Self::Total => Err(crate::usage_error(format!(
+                "--band {self}: expected MIN-MAX in micrometres, such as 8-14 (these tables \
+                 were integrated over a flat band)"
+            ))),
+        }
+    }
+}
+
+/// `--view-unit` and `--unit`: a length unit by name (m, km, cm, mm, ft, in), as a clap value
+/// parser.
+///
+/// # Errors
+/// Any other word, naming the units.
+pub fn length_unit(s: &str) -> Result<LengthUnit, String> {
+    s.parse()
+}
+
+/// The unit of a 1990 viewing file's position when `--view-unit` is not given, in every
+/// tool that reads one: km, the unit of the thesis's files.
+pub const VIEW_UNIT_DEFAULT: &str = "km";
 
 /// How a tool turns radiance into digital counts: one set of flags for every tool that
 /// writes a DC image and its LUT.
@@ -175,58 +333,186 @@ pub struct DcArgs {
 }
 
 impl DcArgs {
+    /// The calibration the flags ask for, before a missing gain is filled in.
+    #[must_use]
+    pub fn request(&self) -> CountRequest {
+        CountRequest {
+            dc_per_kelvin: self.dc_per_kelvin,
+            reference_k: self.reference_k,
+            dc_at_reference: self.dc_at_reference,
+            gain_dc_per_w_m2_sr: self.gain_dc_per_radiance,
+            offset_dc: self.offset_dc,
+            bits: self.dc_bits,
+        }
+    }
+
     /// The calibration the flags ask for; `default_dc_per_kelvin` stands in for a missing
-    /// --dc-per-kelvin (the tracer's view gain). `None` when no gain is known.
+    /// --dc-per-kelvin. `None` when no gain is known.
     #[must_use]
     pub fn calibration(&self, default_dc_per_kelvin: Option<f64>) -> Option<Calibration> {
-        if let Some(gain) = self.gain_dc_per_radiance {
-            return Some(Calibration::GainOffset {
-                gain_dc_per_w_m2_sr: gain,
-                offset_dc: self.offset_dc.unwrap_or(0.0),
-            });
-        }
-        let dc_per_kelvin = self.dc_per_kelvin.or(default_dc_per_kelvin)?;
-        Some(match self.reference_k {
-            Some(reference_k) => Calibration::Fixed {
-                dc_per_kelvin,
-                reference_k,
-                dc_at_reference: self.dc_at_reference,
-            },
-            None => Calibration::AutoBias { dc_per_kelvin },
-        })
+        self.request().calibration(default_dc_per_kelvin)
     }
 }
 
-/// The gain of the tracer's digital counts when neither the command line nor the view
-/// gives one, counts per kelvin (the thesis experiment's viewing files say 2).
-pub const TRACER_DC_PER_KELVIN: f64 = 2.0;
+/// Where a frame's files go (`irsig-trace`, `irsig-merge`): one prefix for all of them, or a
+/// flag per file, so that `irsig-run` and Makefiles see every file a stage writes.
+#[derive(Debug, Clone, Default, clap::Args)]
+pub struct FrameOutputArgs {
+    /// Output path prefix; files are PREFIX.radiance.exr, PREFIX.truth.exr, PREFIX.map.png,
+    /// PREFIX.dc.png and PREFIX.lut.txt (PREFIX.NNNN.* for several views).
+    #[arg(short = 'o', long, value_name = "PREFIX")]
+    pub output: Option<PathBuf>,
+    /// Write the radiance image (f32 EXR, W m^-2 sr^-1) to FILE. The per-output flags write
+    /// only the files named, for one frame; any one of them may be `-`, standard output
+    /// (e.g. piped into `irsig-sensor -`).
+    #[arg(long, value_name = "FILE", conflicts_with = "output")]
+    pub radiance_exr: Option<PathBuf>,
+    /// Write the truth layers (multi-layer f32 EXR) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with = "output")]
+    pub truth_exr: Option<PathBuf>,
+    /// Write the legacy interaction map (8-bit nibble PNG) to FILE; an error when a
+    /// material id does not fit in four bits.
+    #[arg(long, value_name = "FILE", conflicts_with = "output")]
+    pub map_png: Option<PathBuf>,
+    /// Write the digital-count image (PNG, --dc-bits deep) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["output", "no_dc"])]
+    pub dc_png: Option<PathBuf>,
+    /// Write the digital-count LUT (text: DC, radiance, K, degC) to FILE.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["output", "no_dc"])]
+    pub lut: Option<PathBuf>,
+    /// With -o, write no DC image or LUT.
+    #[arg(long)]
+    pub no_dc: bool,
+}
 
-impl DcArgs {
-    /// The quantiser of the tracer's digital-count image (irsig-trace, and irsig-merge for
-    /// a frame traced in tiles), over the whole frame's radiance (f32, W m⁻² sr⁻¹): the
-    /// flags' calibration, with the view's DC/K (`view_dc_per_kelvin`), else
-    /// [`TRACER_DC_PER_KELVIN`], for a missing gain. One function, so that a merged frame's
-    /// counts and LUT are those of the frame traced whole.
+impl FrameOutputArgs {
+    /// The flag that names `kind`'s file.
+    #[must_use]
+    pub fn flag(kind: FrameFile) -> &'static str {
+        match kind {
+            FrameFile::RadianceExr => "--radiance-exr",
+            FrameFile::TruthExr => "--truth-exr",
+            FrameFile::MapPng => "--map-png",
+            FrameFile::DcPng => "--dc-png",
+            FrameFile::Lut => "--lut",
+        }
+    }
+
+    /// The files the per-output flags name.
+    #[must_use]
+    pub fn named(&self) -> FrameFiles<PathBuf> {
+        FrameFiles {
+            radiance_exr: self.radiance_exr.clone(),
+            truth_exr: self.truth_exr.clone(),
+            map_png: self.map_png.clone(),
+            dc_png: self.dc_png.clone(),
+            lut: self.lut.clone(),
+        }
+    }
+
+    /// Whether any per-output flag was given.
+    #[must_use]
+    pub fn has_files(&self) -> bool {
+        self.named().any()
+    }
+
+    /// `PREFIX.SUFFIX` of frame `index` (from 0) of `frames` (`PREFIX.NNNN.SUFFIX` for
+    /// more than one); `None` without -o.
+    #[must_use]
+    pub fn prefixed_file(&self, index: usize, frames: usize, suffix: &str) -> Option<PathBuf> {
+        let prefix = self.output.as_ref()?;
+        let stem = if frames == 1 {
+            prefix.clone()
+        } else {
+            let mut s = prefix.as_os_str().to_owned();
+            s.push(format!(".{:04}", index + 1));
+            PathBuf::from(s)
+        };
+        Some(with_suffix(&stem, suffix))
+    }
+
+    /// The files of frame `index` (from 0) of `frames` under the prefix, those of `kinds`
+    /// (with `--no-dc`, no counts or LUT); `None` without -o.
+    #[must_use]
+    pub fn prefixed(
+        &self,
+        index: usize,
+        frames: usize,
+        kinds: &[FrameFile],
+    ) -> Option<FrameFiles<PathBuf>> {
+        self.output.as_ref()?;
+        let mut files = FrameFiles::default();
+        for &kind in kinds {
+            let counts = matches!(kind, FrameFile::DcPng | FrameFile::Lut);
+            if !(counts && self.no_dc) {
+                files.set(kind, self.prefixed_file(index, frames, kind.suffix())?);
+            }
+        }
+        Some(files)
+    }
+
+    /// The files of each of `frames` frames: under the prefix, those of `kinds`; else, for
+    /// one frame, those the flags name.
     ///
     /// # Errors
-    /// A calibration the quantiser refuses (no finite radiance, a gain of 0), as a message.
-    pub fn tracer_quantiser(
+    /// Per-output flags for more than one frame (bad usage).
+    pub fn frames(
         &self,
-        view_dc_per_kelvin: Option<f64>,
-        radiance_w_m2_sr: &[f32],
-        band: &impl irsig_radiometry::BandModel,
-    ) -> miette::Result<irsig_sensor_model::quantise::Quantiser> {
-        let calibration = self
-            .calibration(view_dc_per_kelvin.or(Some(TRACER_DC_PER_KELVIN)))
-            .ok_or_else(|| miette!("digital counts: no gain"))?;
-        irsig_sensor_model::quantise::Quantiser::calibrate(
-            self.dc_bits,
-            &calibration,
-            radiance_w_m2_sr,
-            band,
-        )
-        .map_err(|e| miette!("digital counts: {e}"))
+        frames: usize,
+        kinds: &[FrameFile],
+    ) -> miette::Result<Vec<FrameFiles<PathBuf>>> {
+        if self.output.is_none() && frames > 1 {
+            return Err(crate::usage_error(format!(
+                "the per-output flags name one file each, but {frames} views were given: \
+                 give one view per run, or -o PREFIX for numbered outputs"
+            )));
+        }
+        Ok((0..frames)
+            .map(|i| {
+                self.prefixed(i, frames, kinds)
+                    .unwrap_or_else(|| self.named())
+            })
+            .collect())
     }
+
+    /// At most one file goes to standard output (`-`).
+    ///
+    /// # Errors
+    /// Two or more of them do (bad usage).
+    pub fn check_stdout(&self) -> miette::Result<()> {
+        let named = self.named();
+        if named.iter().filter(|(_, p)| p.as_os_str() == "-").count() > 1 {
+            return Err(crate::usage_error(
+                "only one output can go to standard output (`-`)",
+            ));
+        }
+        Ok(())
+    }
+}
+
+/// `STEM.SUFFIX`.
+#[must_use]
+pub fn with_suffix(stem: &Path, suffix: &str) -> PathBuf {
+    let mut s = stem.as_os_str().to_owned();
+    s.push(".");
+    s.push(suffix);
+    PathBuf::from(s)
+}
+
+/// `--probe COLUMN,ROW`: a pixel, as a clap value parser.
+///
+/// # Errors
+/// Anything but two whole numbers of 0 or more split by a comma.
+pub fn pixel(s: &str) -> Result<(u32, u32), String> {
+    let (a, b) = s
+        .split_once(',')
+        .ok_or_else(|| format!("expected COLUMN,ROW such as 128,64, found `{s}`"))?;
+    let p = |t: &str| {
+        t.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("expected a pixel index (0 or more), found `{t}`"))
+    };
+    Ok((p(a)?, p(b)?))
 }
 
 /// A clap value parser for a library enum known by name: the names are listed in `--help`
@@ -327,10 +613,49 @@ mod tests {
 
     #[test]
     fn a_flat_band_is_two_increasing_positive_numbers() {
-        assert_eq!(flat_band("8-14"), Ok([8.0, 14.0]));
-        for bad in ["14-8", "0-14", "cam.srf", "8:14"] {
-            assert!(flat_band(bad).is_err(), "{bad}");
+        let limits = |s: &str| s.parse::<BandArg>().map(|b| b.flat_limits_um().ok());
+        assert_eq!(limits("8-14"), Ok(Some([8.0, 14.0])));
+        for bad in ["14-8", "0-14", "cam.srf", "total"] {
+            assert_eq!(limits(bad), Ok(None), "{bad}");
         }
+        assert!("8:14".parse::<BandArg>().is_err());
+    }
+
+    #[test]
+    fn total_is_a_band_without_wavelengths() {
+        assert_eq!("total".parse::<BandArg>(), Ok(BandArg::Total));
+        assert_eq!(BandArg::Total.to_string(), "total");
+        assert!(BandArg::Total.load().is_err());
+        assert_eq!(BandArg::or_default(None), BandArg::default());
+    }
+
+    #[test]
+    fn frame_outputs_are_a_prefix_or_one_flag_per_file() {
+        let args = FrameOutputArgs {
+            output: Some(PathBuf::from("out/f")),
+            no_dc: true,
+            ..FrameOutputArgs::default()
+        };
+        let files = args.prefixed(6, 12, &FrameFile::ALL).unwrap();
+        assert_eq!(files.truth_exr, Some(PathBuf::from("out/f.0007.truth.exr")));
+        assert!(files.dc_png.is_none() && files.lut.is_none());
+        let one = args.prefixed(0, 1, &[FrameFile::MapPng]).unwrap();
+        assert_eq!(one.iter().count(), 1);
+        assert_eq!(one.map_png, Some(PathBuf::from("out/f.map.png")));
+        let flags = FrameOutputArgs {
+            radiance_exr: Some(PathBuf::from("-")),
+            lut: Some(PathBuf::from("-")),
+            ..FrameOutputArgs::default()
+        };
+        assert!(flags.has_files() && flags.prefixed(0, 1, &FrameFile::ALL).is_none());
+        assert!(flags.check_stdout().is_err());
+    }
+
+    #[test]
+    fn a_pixel_is_column_comma_row() {
+        assert_eq!(pixel("128,64"), Ok((128, 64)));
+        assert!(pixel("128").is_err());
+        assert!(pixel("-1,3").is_err());
     }
 
     #[test]

@@ -32,11 +32,13 @@
 //! ```
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
-#![warn(clippy::print_stderr)]
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod args;
+mod frames;
 mod staged;
 
+pub use frames::StagedFrames;
 pub use staged::{Staged, check_output, remove_staged_files, remove_staged_files_and_exit};
 
 use std::fs::File;
@@ -191,6 +193,13 @@ pub struct Input {
 }
 
 impl Input {
+    /// `sha256:` and the 64 hex digits of the input's bytes: how a record of provenance
+    /// names its content.
+    #[must_use]
+    pub fn sha256(&self) -> String {
+        sha256_hex(&self.bytes)
+    }
+
     /// The directory relative references inside this input resolve against: the file's
     /// parent directory, or the working directory for stdin.
     #[must_use]
@@ -202,6 +211,39 @@ impl Input {
     }
 }
 
+/// `sha256:` and the 64 hex digits of `bytes`.
+#[must_use]
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest as _;
+    let digest = sha2::Sha256::digest(bytes);
+    let mut hex = String::with_capacity(7 + 64);
+    hex.push_str("sha256:");
+    for b in digest {
+        hex.push_str(&format!("{b:02x}"));
+    }
+    hex
+}
+
+/// The provenance an image records (`irsig_formats::canonical::provenance_of` of its
+/// comments), `name` naming it in messages; `None` for an image that records none.
+///
+/// # Errors
+/// Comments that claim to be a provenance and are not one.
+pub fn provenance(
+    name: &str,
+    raster: &irsig_raster::Raster,
+) -> miette::Result<Option<irsig_model::provenance::Provenance>> {
+    match raster
+        .comments
+        .as_deref()
+        .and_then(|c| irsig_formats::canonical::provenance_of(name, c))
+    {
+        Some(Ok(p)) => Ok(Some(p)),
+        Some(Err(e)) => Err(miette::Report::new(e)),
+        None => Ok(None),
+    }
+}
+
 /// Reads a whole input: the file at `path`, or stdin when `path` is `-`.
 ///
 /// Reads through [`irsig_formats::file`]: only a regular file or a pipe, at most
@@ -210,8 +252,9 @@ impl Input {
 /// # Errors
 /// A missing or unreadable file, a device or directory, or an input longer than the limit,
 /// reported with its name.
-pub fn read_input(path: &str) -> miette::Result<Input> {
-    if path == "-" {
+pub fn read_input(path: impl AsRef<Path>) -> miette::Result<Input> {
+    let path = path.as_ref();
+    if path.as_os_str() == "-" {
         let bytes = irsig_formats::file::read_bounded(io::stdin().lock())
             .into_diagnostic()
             .wrap_err("cannot read standard input")?;
@@ -221,14 +264,28 @@ pub fn read_input(path: &str) -> miette::Result<Input> {
             bytes,
         });
     }
-    let bytes = irsig_formats::file::read_file(Path::new(path))
+    let bytes = irsig_formats::file::read_file(path)
         .into_diagnostic()
-        .wrap_err_with(|| format!("cannot read input file `{path}`"))?;
+        .wrap_err_with(|| format!("cannot read input file `{}`", path.display()))?;
     Ok(Input {
-        name: path.to_owned(),
-        path: Some(PathBuf::from(path)),
+        name: path.display().to_string(),
+        path: Some(path.to_path_buf()),
         bytes,
     })
+}
+
+/// [`read_input`] of `path` when it is `-` or names something that exists; `None` when no
+/// file of that name exists (a caller that also takes names of other things, such as a
+/// built-in atmosphere's, says what it expected).
+///
+/// # Errors
+/// As [`read_input`].
+pub fn read_input_if_any(path: impl AsRef<Path>) -> miette::Result<Option<Input>> {
+    let path = path.as_ref();
+    if path.as_os_str() != "-" && !path.exists() {
+        return Ok(None);
+    }
+    read_input(path).map(Some)
 }
 
 /// Decodes an EXR input (`name` for messages), or an error at its byte offset: the
@@ -331,6 +388,50 @@ pub fn open(path: &Path) -> miette::Result<File> {
         .wrap_err_with(|| format!("cannot open `{}`", path.display()))
 }
 
+/// The hidden first argument with which `irsig-run` asks a tool only to check its command
+/// line ([`parse`]): exit 0 when clap accepts the rest, else clap's message and exit 2.
+pub const CHECK_ARGS: &str = "--irsig-check-args";
+
+/// The tool's command line, parsed by its clap `Cli` (exit 2 and clap's message when it is
+/// malformed). With [`CHECK_ARGS`] first, only that: the process ends after the check, so
+/// that the pipeline runner checks a stage's parameters with the tool's own definition
+/// without depending on the tool's crate.
+#[must_use]
+pub fn parse<C: clap::Parser>() -> C {
+    let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    if args.get(1).is_some_and(|a| a == CHECK_ARGS) {
+        args.remove(1);
+        match C::try_parse_from(args) {
+            Ok(_) => std::process::exit(i32::from(EXIT_OK)),
+            Err(e) => e.exit(),
+        }
+    }
+    C::parse()
+}
+
+/// Checks `argv` (the program's name first) with the tool at `program`, as [`parse`] does:
+/// `Ok` when the tool accepts it, else clap's message. A program that does not know
+/// [`CHECK_ARGS`] cannot be asked, and is checked only when it runs (`Ok`).
+///
+/// # Errors
+/// The tool's complaint, or a program that cannot be started.
+pub fn check_args(program: &Path, argv: &[String]) -> Result<(), String> {
+    let out = std::process::Command::new(program)
+        .arg(CHECK_ARGS)
+        .args(argv.iter().skip(1))
+        .stdin(std::process::Stdio::null())
+        .output()
+        .map_err(|e| format!("cannot start `{}`: {e}", program.display()))?;
+    if out.status.success() {
+        return Ok(());
+    }
+    let message = String::from_utf8_lossy(&out.stderr).into_owned();
+    if message.contains(&format!("'{CHECK_ARGS}'")) {
+        return Ok(());
+    }
+    Err(message)
+}
+
 /// A command line that is well formed but cannot be carried out as written (exit code 2).
 #[derive(Debug, thiserror::Error, Diagnostic)]
 #[error("{0}")]
@@ -347,6 +448,8 @@ pub fn usage_error(message: impl Into<String>) -> Report {
 ///
 /// Errors are printed to stderr with miette (source snippets with file, line and column
 /// where the error carries them). A broken pipe on stdout is success.
+// The one place a tool's error reaches the terminal.
+#[allow(clippy::print_stderr)]
 pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
     // An interrupted run leaves no staged `.irsig-*.tmp` file behind. Setting the handler
     // fails only when one is already set (a tool that runs another tool's body in-process).

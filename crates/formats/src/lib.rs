@@ -16,6 +16,7 @@
 //! assert_eq!(err.to_string(), "car.obj:3:9: expected a number, found `zero`");
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 // A ParseError carries its source text for the miette snippet; it is built once, on the
 // cold path, so returning it unboxed costs nothing that matters.
 #![allow(clippy::result_large_err)]

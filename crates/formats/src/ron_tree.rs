@@ -88,6 +88,15 @@ struct SyntaxError {
     message: String,
 }
 
+/// Whether `text` is a struct with a field `name` at its top level: false for anything
+/// else, text that is not RON included (its reader reports that).
+#[must_use]
+pub fn has_top_level_field(text: &str, name: &str) -> bool {
+    parse("", text, "document").is_ok_and(|root| {
+        matches!(&root.kind, Kind::Struct(_, fields) if fields.iter().any(|(k, _)| k.name == name))
+    })
+}
+
 /// Parses one RON document into a located tree. `what` names the document in messages
 /// ("pipeline", "material library").
 ///

@@ -90,6 +90,28 @@ pub struct SlantTables {
     pub sky_zenith_deg: Vec<f64>,
     /// Band path radiance from the observer to space, W m⁻² sr⁻¹, `[altitude][angle]`.
     pub sky_radiance_w_m2_sr: Vec<Vec<f64>>,
+    /// How far the `table` model's interpolation between these rows is from the
+    /// atmospheric model itself, as measured when the rows were placed, if known.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interpolation_residual: Option<InterpolationResidual>,
+}
+
+/// The largest error the `table` model's interpolation between its rows was found to
+/// make against the atmospheric model it was built from, at paths that are not rows (the
+/// midpoints between neighbouring rows and the cells' centres), when the rows were placed
+/// (`scripts/atmosphere/regen.py`). Errors are apparent temperatures, K: of blackbodies at
+/// 260, 290 and 320 K seen through a path to the ground, or the sky's brightness
+/// temperature, each summed over 16 sub-bands of flat 8–14 µm. A σ term of the data: what
+/// a rendering's atmosphere may be off by between rows, beyond the models' own errors.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InterpolationResidual {
+    /// Paths to the ground at nadir angles up to 80°, K.
+    pub slant_k: f64,
+    /// Paths to the ground beyond 80° up to the table's last angle, K.
+    pub grazing_k: f64,
+    /// The sky from every altitude of the sky table, 0–90° from the zenith, K.
+    pub sky_k: f64,
 }
 
 /// Everything the DIRTRAN tables say about one atmosphere, in SI units: the canonical
@@ -284,6 +306,20 @@ impl SlantTables {
                 check_range(|| format!("slant.{name}[{i}]"), v, 0.0, max)?;
             }
             check_increasing(|i| format!("slant.{name}[{i}]"), axis.iter().copied())?;
+        }
+        if let Some(r) = &self.interpolation_residual {
+            for (name, v) in [
+                ("slant_k", r.slant_k),
+                ("grazing_k", r.grazing_k),
+                ("sky_k", r.sky_k),
+            ] {
+                check_range(
+                    || format!("slant.interpolation_residual.{name}"),
+                    v,
+                    0.0,
+                    f64::MAX,
+                )?;
+            }
         }
         if let Some(g) = self.ground_m {
             // Below the lowest observer altitude, so that every path has some air.

@@ -16,6 +16,7 @@
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
+//! | [`frame::FrameFile`] kinds | `irsig-trace`, `irsig-merge` | `irsig-cli` (naming) |
 //!
 //! This crate knows no file syntax (the `irsig-formats` crate reads and writes these types
 //! as RON, binary and the legacy formats), no physics and no geometry beyond the shapes of
@@ -37,13 +38,17 @@
 //! assert_eq!(lib.by_name("asphalt").map(|m| m.id), Some(MaterialId(1)));
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod atmosphere;
 pub mod decision;
 mod error;
+pub mod frame;
 pub mod limits;
 mod material;
 mod object;
 mod plan;
+pub mod provenance;
 mod raw;
 mod regions;
 mod scene;
@@ -52,7 +57,9 @@ pub mod truth;
 pub mod uncertainty;
 mod view;
 
-pub use atmosphere::{Atmosphere, AtmosphereLevel, RadiosondeLevel, SlantTables};
+pub use atmosphere::{
+    Atmosphere, AtmosphereLevel, InterpolationResidual, RadiosondeLevel, SlantTables,
+};
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};

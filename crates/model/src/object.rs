@@ -41,43 +41,62 @@ impl Object {
     /// # Errors
     /// The first rule broken.
     pub fn validate(&self) -> Result<(), ModelError> {
-        if self.facets.is_empty() {
-            return Err(ModelError::new("facets", ModelErrorKind::Empty));
-        }
-        for (i, p) in self.positions_m.iter().enumerate() {
-            check_finite(|| format!("positions_m[{i}]"), p)?;
-            for (k, &x) in p.iter().enumerate() {
-                let m = crate::limits::MAX_COORDINATE_M;
-                check_range(|| format!("positions_m[{i}][{k}]"), x, -m, m)?;
-            }
-        }
-        let len = self.positions_m.len();
-        for (i, f) in self.facets.iter().enumerate() {
-            for (k, &v) in f.vertices.iter().enumerate() {
-                if v as usize >= len {
-                    return Err(ModelError::new(
-                        format!("facets[{i}].vertices[{k}]"),
-                        ModelErrorKind::IndexOutOfRange {
-                            index: u64::from(v),
-                            len: len as u64,
-                        },
-                    ));
-                }
-            }
+        let vertices = self.facets.iter().map(|f| f.vertices);
+        check_mesh(&self.positions_m, vertices, |i| {
+            let f = &self.facets[i];
             f.material.check_facet(|| format!("facets[{i}].material"))?;
             if let Some(t) = f.temperature_k {
                 check_range(|| format!("facets[{i}].temperature_k"), t, 0.0, f64::MAX)?;
             }
-            let [a, b, c] = f.vertices.map(|v| self.positions_m[v as usize]);
-            if triangle_is_degenerate(a, b, c) {
+            Ok(())
+        })
+    }
+}
+
+/// The rules every mesh of the model keeps (an object's, a raw scene's): at least one
+/// facet, finite positions within [`crate::limits::MAX_COORDINATE_M`], vertex indices in
+/// range, and, after `facet(i)`'s own rules for facet `i`, no degenerate triangle.
+///
+/// # Errors
+/// The first rule broken, at its path (`positions_m[3][2]`, `facets[7]`).
+pub(crate) fn check_mesh(
+    positions_m: &[[f64; 3]],
+    facets: impl ExactSizeIterator<Item = [u32; 3]>,
+    mut facet: impl FnMut(usize) -> Result<(), ModelError>,
+) -> Result<(), ModelError> {
+    if facets.len() == 0 {
+        return Err(ModelError::new("facets", ModelErrorKind::Empty));
+    }
+    for (i, p) in positions_m.iter().enumerate() {
+        check_finite(|| format!("positions_m[{i}]"), p)?;
+        for (k, &x) in p.iter().enumerate() {
+            let m = crate::limits::MAX_COORDINATE_M;
+            check_range(|| format!("positions_m[{i}][{k}]"), x, -m, m)?;
+        }
+    }
+    let len = positions_m.len();
+    for (i, vertices) in facets.enumerate() {
+        for (k, &v) in vertices.iter().enumerate() {
+            if v as usize >= len {
                 return Err(ModelError::new(
-                    format!("facets[{i}]"),
-                    ModelErrorKind::DegenerateTriangle,
+                    format!("facets[{i}].vertices[{k}]"),
+                    ModelErrorKind::IndexOutOfRange {
+                        index: u64::from(v),
+                        len: len as u64,
+                    },
                 ));
             }
         }
-        Ok(())
+        facet(i)?;
+        let [a, b, c] = vertices.map(|v| positions_m[v as usize]);
+        if triangle_is_degenerate(a, b, c) {
+            return Err(ModelError::new(
+                format!("facets[{i}]"),
+                ModelErrorKind::DegenerateTriangle,
+            ));
+        }
     }
+    Ok(())
 }
 
 /// True when the triangle has no area relative to its size: its vertices coincide or are

@@ -1,8 +1,7 @@
 use serde::{Deserialize, Serialize};
 
-use crate::error::{ModelError, ModelErrorKind, check_finite, check_range};
+use crate::error::{ModelError, ModelErrorKind, check_range};
 use crate::material::MaterialId;
-use crate::object::triangle_is_degenerate;
 use crate::scene::Terrain;
 
 /// One world-space triangle of a [`RawScene`]: every property resolved.
@@ -42,29 +41,9 @@ impl RawScene {
     /// The first rule broken.
     pub fn validate(&self) -> Result<(), ModelError> {
         self.terrain.validate("terrain")?;
-        if self.facets.is_empty() {
-            return Err(ModelError::new("facets", ModelErrorKind::Empty));
-        }
-        for (i, p) in self.positions_m.iter().enumerate() {
-            check_finite(|| format!("positions_m[{i}]"), p)?;
-            for (k, &x) in p.iter().enumerate() {
-                let m = crate::limits::MAX_COORDINATE_M;
-                check_range(|| format!("positions_m[{i}][{k}]"), x, -m, m)?;
-            }
-        }
-        let len = self.positions_m.len();
-        for (i, f) in self.facets.iter().enumerate() {
-            for (k, &v) in f.vertices.iter().enumerate() {
-                if v as usize >= len {
-                    return Err(ModelError::new(
-                        format!("facets[{i}].vertices[{k}]"),
-                        ModelErrorKind::IndexOutOfRange {
-                            index: u64::from(v),
-                            len: len as u64,
-                        },
-                    ));
-                }
-            }
+        let vertices = self.facets.iter().map(|f| f.vertices);
+        crate::object::check_mesh(&self.positions_m, vertices, |i| {
+            let f = &self.facets[i];
             if f.object as usize >= self.objects.len() {
                 return Err(ModelError::new(
                     format!("facets[{i}].object"),
@@ -80,15 +59,7 @@ impl RawScene {
                 f.temperature_k,
                 0.0,
                 f64::MAX,
-            )?;
-            let [a, b, c] = f.vertices.map(|v| self.positions_m[v as usize]);
-            if triangle_is_degenerate(a, b, c) {
-                return Err(ModelError::new(
-                    format!("facets[{i}]"),
-                    ModelErrorKind::DegenerateTriangle,
-                ));
-            }
-        }
-        Ok(())
+            )
+        })
     }
 }

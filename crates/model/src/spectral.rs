@@ -104,6 +104,9 @@ pub struct SpectralSlantTables {
     /// Sky radiance (observer to space), W m⁻² sr⁻¹ per grid unit, `[altitude][angle]`
     /// spectra.
     pub sky_radiance_w_m2_sr_per_unit: Vec<f32>,
+    /// The interpolation error between these rows, as measured when they were placed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub interpolation_residual: Option<crate::InterpolationResidual>,
 }
 
 /// An atmosphere on a spectral grid: the canonical spectral atmosphere file.

@@ -40,7 +40,7 @@
 //! ```
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
-#![warn(clippy::print_stderr)]
+#![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod emit;
 mod error;

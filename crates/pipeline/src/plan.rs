@@ -11,7 +11,7 @@ use crate::spec::{self, Param, PipelineSpec, Source, Spanned, StageSpec};
 /// Checks a stage's command line (program name first, as `std::env::args` gives it) the way
 /// the tool itself would parse it, without running anything. The message is shown to the
 /// user at the offending parameter.
-pub type Validator = fn(argv: &[String]) -> Result<(), String>;
+pub type Validator = Box<dyn Fn(&[String]) -> Result<(), String> + Send + Sync>;
 
 /// Finds a tool's program by the tool's name.
 type Lookup = dyn Fn(&str) -> Option<PathBuf> + Send + Sync;
@@ -952,7 +952,7 @@ mod plan_tests {
     #[test]
     fn validator_complaints_point_at_the_flag_or_the_value() {
         let mut t = tools();
-        t.register("gen", reject_size);
+        t.register("gen", Box::new(reject_size));
         let text = "(stages: [\n (tool: \"gen\", params: {\"size\": \"big\"}),\n])";
         let e = plan(text, &t).unwrap_err();
         assert_eq!(e.kind(), ErrorKind::BadParameter);

@@ -26,6 +26,60 @@ pub trait BandModel: Sync {
     }
 }
 
+/// A band of wavelengths or the whole spectrum, chosen at run time: what a stage reads
+/// from an image's record of its band.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AnyBand {
+    /// A band of wavelengths.
+    Band(Band),
+    /// The whole spectrum.
+    Total(TotalRadiance),
+}
+
+impl BandModel for AnyBand {
+    fn radiance(&self, temperature_k: f64) -> f64 {
+        match self {
+            Self::Band(b) => b.radiance(temperature_k),
+            Self::Total(t) => t.radiance(temperature_k),
+        }
+    }
+    fn radiance_derivative(&self, temperature_k: f64) -> f64 {
+        match self {
+            Self::Band(b) => b.radiance_derivative(temperature_k),
+            Self::Total(t) => t.radiance_derivative(temperature_k),
+        }
+    }
+    fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
+        match self {
+            Self::Band(b) => b.temperature(radiance_w_m2_sr),
+            Self::Total(t) => t.temperature(radiance_w_m2_sr),
+        }
+    }
+    fn radiance_and_derivative(&self, temperature_k: f64) -> (f64, f64) {
+        match self {
+            Self::Band(b) => b.radiance_and_derivative(temperature_k),
+            Self::Total(t) => t.radiance_and_derivative(temperature_k),
+        }
+    }
+}
+
+/// The apparent temperature, K, of each radiance of an image layer (W m⁻² sr⁻¹, f32), in
+/// `band`; NaN where the radiance is not finite. Each pixel solved exactly
+/// ([`BandModel::temperature`]), not through a table.
+#[must_use]
+pub fn apparent_temperatures(band: &impl BandModel, radiance_w_m2_sr: &[f32]) -> Vec<f32> {
+    radiance_w_m2_sr
+        .iter()
+        .map(|&l| {
+            if l.is_finite() {
+                band.temperature(f64::from(l)) as f32
+            } else {
+                f32::NAN
+            }
+        })
+        .collect()
+}
+
 impl BandModel for Band {
     fn radiance(&self, temperature_k: f64) -> f64 {
         Band::radiance(self, temperature_k)

@@ -23,8 +23,18 @@
 //! same ratios are rewritten with `u = r/N = sqrt(1 − (s/N)²)` (`r_s = (c/N − u)/(c/N + u)`,
 //! `r_p = (N c − u)/(N c + u)`), so `N²` is never formed; magnitudes go through `hypot`.
 //! Hence: no overflow, no NaN, `0 ≤ R ≤ 1`, for every finite valid `n`, `k` and angle.
+//!
+//! # Rough surfaces
+//! [`RoughSurface`] averages these facet emissivities over Gaussian slopes of a given RMS
+//! slope, with Smith's shadowing (Masuda et al. 1988; Wu & Smith 1997): a smooth
+//! dielectric's emissivity falls to 0 at grazing, a rough one's stays near its normal
+//! value to much larger angles, as field measurements of soils, sand and grass show
+//! (`data/rough-surfaces.csv`, held by `tests/rough.rs`).
 
 use num_complex::Complex64;
+
+mod rough;
+pub use rough::{MAX_RMS_SLOPE, RoughSurface, rough_band_emissivity_table, rough_emissivity_table};
 
 use crate::band::Band;
 use crate::emissivity::EmissivityTable;

@@ -18,6 +18,8 @@
 //! assert!(apparent < 300.0 && apparent > 298.0);
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod band;
 mod band_model;
 pub mod calculators;
@@ -32,7 +34,9 @@ mod spectral_emissivity;
 mod table;
 
 pub use band::{Band, SensorResponse};
-pub use band_model::{BandModel, STEFAN_BOLTZMANN_W_M2_K4, TotalRadiance};
+pub use band_model::{
+    AnyBand, BandModel, STEFAN_BOLTZMANN_W_M2_K4, TotalRadiance, apparent_temperatures,
+};
 pub use calculators::{
     Surface, bounce_radiances, bounce_temperatures, shape_factor_radiance, shape_factor_temperature,
 };

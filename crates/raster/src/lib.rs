@@ -27,6 +27,8 @@
 //! assert_eq!(back.layer("radiance").unwrap().unit, "W m^-2 sr^-1");
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 use std::io::{Cursor, Seek, Write};
 
 use exr::prelude::{self as x, ReadChannels, ReadLayers, WritableImage};
@@ -56,6 +58,9 @@ pub struct Raster {
     /// The frame these pixels are part of, and the run that made them; `None` for an image
     /// that says nothing of either.
     pub part: Option<FramePart>,
+    /// Free text about the image, in the EXR's standard `comments` attribute (UTF-8; what
+    /// it says is the writer's business: irsig-trace records the image's provenance there).
+    pub comments: Option<String>,
 }
 
 /// Where a raster's pixels lie in the frame they belong to, and which run made them: a
@@ -132,7 +137,15 @@ impl Raster {
             height,
             layers: Vec::new(),
             part: None,
+            comments: None,
         }
+    }
+
+    /// This raster with `comments`.
+    #[must_use]
+    pub fn with_comments(mut self, comments: Option<String>) -> Self {
+        self.comments = comments;
+        self
     }
 
     /// This raster, as `part` of a frame.
@@ -308,6 +321,12 @@ fn write_exr_threads(
         .collect();
     let (width, height) = (raster.width, raster.height);
     let part = raster.part;
+    // A typed attribute, written in its fixed place (not the hash map of `other`), as the
+    // UTF-8 bytes of the text: exr's `Text` is one byte a character.
+    attributes.comments = raster
+        .comments
+        .as_deref()
+        .map(|c| x::Text::from_slice_unchecked(c.as_bytes()));
     let channels: x::SmallVec<[x::AnyChannel<x::FlatSamples>; 4]> = raster
         .layers
         .into_iter()
@@ -406,6 +425,11 @@ pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
         .map(|run| frame_part(run, display, part.attributes.layer_position))
         .transpose()?;
     let mut raster = Raster::new(width, height);
+    raster.comments = part
+        .attributes
+        .comments
+        .as_ref()
+        .map(|t| String::from_utf8_lossy(t.bytes()).into_owned());
     for channel in part.channel_data.list {
         let name = channel.name.to_string();
         let unit = unit_of(&units, &name).unwrap_or_default().to_owned();
@@ -555,6 +579,8 @@ pub struct RasterInfo {
     pub layers: Vec<(String, String)>,
     /// The frame the image is part of, if the file says.
     pub part: Option<FramePart>,
+    /// The image's comments ([`Raster::comments`]).
+    pub comments: Option<String>,
 }
 
 /// Reads an EXR's header only (its first part): what [`read_exr`] would give, without
@@ -607,11 +633,17 @@ pub fn read_exr_info(bytes: &[u8]) -> Result<RasterInfo, RasterError> {
     if let Some(p) = &part {
         p.check(width, height)?;
     }
+    let comments = header
+        .own_attributes
+        .comments
+        .as_ref()
+        .map(|t| String::from_utf8_lossy(t.bytes()).into_owned());
     Ok(RasterInfo {
         width,
         height,
         layers,
         part,
+        comments,
     })
 }
 
@@ -889,6 +921,32 @@ mod tests {
         let mut plain = r.clone();
         plain.part = None;
         assert_eq!(read_exr(&exr_bytes(&plain).unwrap()).unwrap().part, None);
+    }
+
+    #[test]
+    fn comments_in_any_script_round_trip_beside_a_part_and_keep_the_bytes_steady() {
+        let part = FramePart::whole(3, 2, "sha256:abc");
+        let comments = "irsig provenance\n(name: \"Ω/北/µm.srf\", lines: [\"a\"])\n";
+        let r = sample()
+            .with_part(part.clone())
+            .with_comments(Some(comments.into()));
+        let bytes = exr_bytes(&r).unwrap();
+        // Three attributes of irsig's (units, run, comments): the bytes are the same on
+        // every run of the writer.
+        for _ in 0..4 {
+            assert_eq!(exr_bytes(&r).unwrap(), bytes);
+        }
+        let back = read_exr(&bytes).unwrap();
+        assert_eq!(back.comments.as_deref(), Some(comments));
+        assert_eq!(back.part, Some(part));
+        assert_eq!(
+            read_exr_info(&bytes).unwrap().comments.as_deref(),
+            Some(comments)
+        );
+        assert_eq!(
+            read_exr(&exr_bytes(&sample()).unwrap()).unwrap().comments,
+            None
+        );
     }
 
     #[test]

@@ -86,6 +86,17 @@ pub enum MergeError {
         /// The first tile's layers.
         first_layers: String,
     },
+    /// Two tiles of one run whose comments (their provenance) differ.
+    #[error(
+        "`{name}` and `{first}` are of one run but say different things of what made them \
+         (their comments: the inputs' names, or the sensor stage's)"
+    )]
+    DifferentComments {
+        /// The tile.
+        name: String,
+        /// The first tile.
+        first: String,
+    },
     /// Two tiles cover the same pixel.
     #[error(
         "`{name}` ({rect}) and `{other}` ({other_rect}) overlap: both hold pixel (column \
@@ -141,6 +152,8 @@ pub struct Layout {
     pub layers: Vec<(String, String)>,
     /// The run every tile names.
     pub run: String,
+    /// The comments every tile holds (what made it: irsig-trace's provenance).
+    pub comments: Option<String>,
     /// Each tile's name and header, in the order given.
     tiles: Vec<(String, RasterInfo)>,
 }
@@ -189,6 +202,12 @@ impl Layout {
                     first_height: first_part.frame_height,
                 });
             }
+            if info.comments != first_info.comments {
+                return Err(MergeError::DifferentComments {
+                    name: name.clone(),
+                    first: first.clone(),
+                });
+            }
             if info.layers != first_info.layers {
                 return Err(MergeError::DifferentLayers {
                     name: name.clone(),
@@ -203,6 +222,7 @@ impl Layout {
             height: first_part.frame_height,
             layers: first_info.layers.clone(),
             run: first_part.run,
+            comments: first_info.comments.clone(),
             tiles: tiles.to_vec(),
         };
         layout.check_coverage()?;
@@ -304,6 +324,7 @@ impl Layout {
                 })
                 .collect(),
             part: Some(FramePart::whole(self.width, self.height, self.run.clone())),
+            comments: self.comments.clone(),
         }
     }
 
@@ -351,6 +372,7 @@ impl Raster {
                 .map(|l| (l.name.clone(), l.unit.clone()))
                 .collect(),
             part: self.part.clone(),
+            comments: self.comments.clone(),
         }
     }
 }

@@ -39,6 +39,8 @@
 //! assert!(raw.facets.iter().all(|f| f.temperature_k == 300.0));
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 mod generate;
 
 pub use generate::{terrain, uv_sphere};

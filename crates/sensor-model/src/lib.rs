@@ -40,6 +40,8 @@
 //! # Ok::<(), irsig_sensor_model::SensorError>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod blur;
 mod error;
 pub mod mtf;

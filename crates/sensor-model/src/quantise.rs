@@ -51,6 +51,47 @@ pub enum Calibration {
     },
 }
 
+/// A calibration as a user asks for it, before a missing gain is filled in: what the
+/// digital-count flags of every tool say (`irsig_cli::args::DcArgs`), as data.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct CountRequest {
+    /// Counts per kelvin, if given.
+    pub dc_per_kelvin: Option<f64>,
+    /// A fixed calibration's reference temperature, K.
+    pub reference_k: Option<f64>,
+    /// The count of a blackbody at the reference (default mid-scale).
+    pub dc_at_reference: Option<f64>,
+    /// A straight line instead: counts per W m⁻² sr⁻¹.
+    pub gain_dc_per_w_m2_sr: Option<f64>,
+    /// The count of zero radiance, with the straight line (default 0).
+    pub offset_dc: Option<f64>,
+    /// Bits per count.
+    pub bits: u8,
+}
+
+impl CountRequest {
+    /// The calibration asked for; `default_dc_per_kelvin` stands in for a missing counts
+    /// per kelvin (a view's gain). `None` when no gain is known.
+    #[must_use]
+    pub fn calibration(&self, default_dc_per_kelvin: Option<f64>) -> Option<Calibration> {
+        if let Some(gain) = self.gain_dc_per_w_m2_sr {
+            return Some(Calibration::GainOffset {
+                gain_dc_per_w_m2_sr: gain,
+                offset_dc: self.offset_dc.unwrap_or(0.0),
+            });
+        }
+        let dc_per_kelvin = self.dc_per_kelvin.or(default_dc_per_kelvin)?;
+        Some(match self.reference_k {
+            Some(reference_k) => Calibration::Fixed {
+                dc_per_kelvin,
+                reference_k,
+                dc_at_reference: self.dc_at_reference,
+            },
+            None => Calibration::AutoBias { dc_per_kelvin },
+        })
+    }
+}
+
 /// Highest supported number of bits per count.
 pub const MAX_BITS: u8 = 16;
 
@@ -339,6 +380,23 @@ pub struct LutEntry {
 pub struct Lut {
     /// One entry per count, in order.
     pub entries: Vec<LutEntry>,
+}
+
+impl Lut {
+    /// The table's text ([`fmt::Display`]) with a second comment line naming the band its
+    /// radiances and temperatures are in (`# band: …`), so that the file says it too.
+    #[must_use]
+    pub fn text_in_band(&self, band: &str) -> String {
+        let text = self.to_string();
+        let band: String = band
+            .chars()
+            .map(|c| if c.is_control() { ' ' } else { c })
+            .collect();
+        match text.split_once('\n') {
+            Some((header, rows)) => format!("{header}\n# band: {band}\n{rows}"),
+            None => text,
+        }
+    }
 }
 
 /// The LUT's text form (`formats/sensor.md`): a `#` header line naming the columns and

@@ -670,6 +670,14 @@ impl<P: Copy + Send + Sync> Geometry<P> {
         }
     }
 
+    /// Calls `f` with every triangle's vertices in world metres (as the BVH holds them,
+    /// rounded to f32 about the scene's centre), in no particular order.
+    pub fn for_each_triangle(&self, mut f: impl FnMut([V3; 3])) {
+        for r in &self.tris {
+            f(r.v.map(|p| self.to_world(p.map(f64::from))));
+        }
+    }
+
     /// The world point (metres) the local coordinates are measured from.
     #[must_use]
     pub fn centre_m(&self) -> V3 {

@@ -57,6 +57,8 @@
 //! # Ok::<(), irsig_tracer::TraceError>(())
 //! ```
 
+#![deny(clippy::print_stdout, clippy::print_stderr)]
+
 pub mod camera;
 pub mod env;
 mod error;
@@ -64,7 +66,9 @@ pub mod geometry;
 mod path;
 mod path_table;
 pub mod pilot;
+pub mod refine;
 mod shade;
+#[cfg(any(test, feature = "testing"))]
 pub mod testing;
 pub mod tile;
 mod tracer;
@@ -78,6 +82,7 @@ pub use error::{TraceError, TraceErrorKind};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
+pub use refine::{PixelSampling, Refinement};
 pub use tile::{Tile, TileError};
 pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, TraceOptions, Tracer,

@@ -46,8 +46,11 @@ pub(crate) enum Mirror {
     Next,
     /// The reflection ray left the scene (event 3).
     Escaped(Escape),
-    /// No bounce left: the hemispheric sky.
-    Hemispheric,
+    /// No bounce left: the environment along the mirror direction, not traced (the sky at
+    /// the mirror angle from the facet's altitude, or the terrain below the horizon), as if
+    /// nothing stood in the way. The named model of a chain cut short: a mirror whose
+    /// reflection points at the ground sees the ground, not the hemispheric sky.
+    Untraced(Escape),
 }
 
 /// What arrives diffusely at a facet.
@@ -69,6 +72,9 @@ pub(crate) struct Node {
     pub(crate) diffuse: Option<Diffuse>,
     /// z of the unit reflection direction (its zenith angle is shown in the probe).
     pub(crate) reflected_z: f64,
+    /// Where the mirror direction leaves the scene if nothing stood in the way: what a chain
+    /// cut at this node reflects ([`Mirror::Untraced`]).
+    pub(crate) environment: Escape,
 }
 
 /// A sky-view ray from a facet.
@@ -188,11 +194,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             mirror: None,
             diffuse: None,
             reflected_z: f64::NAN,
+            environment: Escape::Terrain,
         });
         if sfrac > 0.0 {
             // Mirror direction about the normal facing the ray.
             let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
             path.nodes[index].reflected_z = refl[2];
+            let environment = self.escape(refl, alt);
+            path.nodes[index].environment = environment;
             let mirror = if depth < ctx.options.specular_bounces {
                 let eps_m = self.geometry.surface_epsilon_m();
                 match self.geometry.closest_hit(
@@ -210,7 +219,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     None => Mirror::Escaped(self.escape(refl, alt)),
                 }
             } else {
-                Mirror::Hemispheric
+                Mirror::Untraced(environment)
             };
             path.nodes[index].mirror = Some(mirror);
         }

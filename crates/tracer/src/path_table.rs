@@ -8,9 +8,10 @@
 //! Nodes where the range is shorter than the altitude difference (no such hit exists)
 //! are evaluated at the vertical path, so the table stays continuous. Its error against
 //! the exact terms, in kelvin, is measured in `tests/path_table.rs` and docs/accuracy.md
-//! (worst 15 mK, 99th percentile under 7 mK, median under 3 µK). Building it costs
-//! 65 × 513 `path` calls (about 28 ms on one core, rows in parallel): worth it when a
-//! frame has more than about 35 000 facet hits (e.g. 200 × 200 pixels and up).
+//! (worst 6.3 mK, 99th percentile under 5 mK, median under 7 µK). Building it costs
+//! 129 × 513 `path` calls (about 56 ms on one core at 0.85 µs a call, rows in parallel):
+//! worth it when a frame has more than about 70 000 facet hits (e.g. 280 × 280 pixels and
+//! up).
 
 use rayon::prelude::*;
 
@@ -69,7 +70,7 @@ impl std::str::FromStr for PathTermsMode {
 }
 
 /// Altitude nodes of the path table.
-pub const PATH_TABLE_ALTITUDES: usize = 65;
+pub const PATH_TABLE_ALTITUDES: usize = 129;
 /// Range nodes of the path table.
 pub const PATH_TABLE_RANGES: usize = 513;
 

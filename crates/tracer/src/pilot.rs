@@ -14,6 +14,7 @@
 //! per sub-band) times fixed unit costs measured once (BENCHMARKS.md), so the choice is the
 //! same on every run of the same inputs.
 
+use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::decision::{Decision, ErrorEstimate, ModelChoice, SwitchableModel};
 use irsig_radiometry::{BandModel, InverseTable};
 use rand::{Rng, SeedableRng};
@@ -34,8 +35,8 @@ const RAY_NS: f64 = 300.0;
 const NODE_EVAL_NS: f64 = 25.0;
 const HEMI_EVAL_NS: f64 = 12.0;
 const TABLE_LOOKUP_NS: f64 = 15.0;
-/// Nodes of a path table (65 altitudes × 513 ranges): what building one costs in path calls.
-const TABLE_NODES: f64 = 65.0 * 513.0;
+/// Nodes of a path table (altitudes × ranges): what building one costs in path calls.
+const TABLE_NODES: f64 = (crate::PATH_TABLE_ALTITUDES * crate::PATH_TABLE_RANGES) as f64;
 
 /// How many rays a pixel gets.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -64,13 +65,43 @@ impl Supersample {
     }
 }
 
+impl std::fmt::Display for Supersample {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.name())
+    }
+}
+
+impl std::str::FromStr for Supersample {
+    type Err = String;
+
+    /// `N` or `adaptive-N`, N from 1 to 64.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let (adaptive, n) = match s.strip_prefix("adaptive-") {
+            Some(n) => (true, n),
+            None => (false, s),
+        };
+        let n: u32 = n
+            .parse()
+            .ok()
+            .filter(|n| (1..=64).contains(n))
+            .ok_or_else(|| {
+                format!("expected N (N x N rays per pixel, 1 to 64) or adaptive-N, found `{s}`")
+            })?;
+        Ok(if adaptive {
+            Self::Adaptive(n)
+        } else {
+            Self::Every(n)
+        })
+    }
+}
+
 /// A band set the pilot may choose: an atmosphere model over some sub-bands.
 #[derive(Debug)]
 pub struct BandChoice<S> {
-    /// The atmosphere model's name (`table`, `layered`, `thesis`, `none`).
-    pub atmosphere: String,
-    /// The sub-bands' name (`1` for the band model, `16`, `full`).
-    pub sub_bands: String,
+    /// The atmosphere model.
+    pub atmosphere: ModelKind,
+    /// The sub-bands (1 for the band model).
+    pub sub_bands: SubBandCount,
     /// The set, built for the tracer's scene ([`Tracer::band_set`]).
     pub set: BandSet<S>,
     /// What one exact path-terms call costs in one of its sub-bands, ns (BENCHMARKS.md:
@@ -92,9 +123,9 @@ pub struct PilotSpace<S> {
     /// model here, it is measured at the reference sub-bands.
     pub bands: Vec<BandChoice<S>>,
     /// Atmosphere models, reference first.
-    pub atmospheres: Vec<String>,
+    pub atmospheres: Vec<ModelKind>,
     /// Sub-band counts, reference first.
-    pub sub_bands: Vec<String>,
+    pub sub_bands: Vec<SubBandCount>,
     /// Specular bounces, reference (most) first.
     pub bounces: Vec<u32>,
     /// Sky-view rays per diffuse hit, reference first; 0 is the thesis's F = 1.
@@ -146,19 +177,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         percentile: f64,
         pixels: u32,
         seed: u64,
-    ) -> Result<Decision, TraceError> {
+    ) -> Result<Piloted, TraceError> {
         let bad = |m: String| TraceError::new(TraceErrorKind::InvalidOptions(m));
         irsig_model::decision::check_tolerance(tolerance_k, "tolerance")
             .map_err(|e| bad(e.to_string()))?;
         irsig_model::decision::check_percentile(percentile, "percentile")
             .map_err(|e| bad(e.to_string()))?;
-        let find = |atmosphere: &str, sub_bands: &str| {
+        let find = |atmosphere: ModelKind, sub_bands: SubBandCount| {
             space
                 .bands
                 .iter()
                 .position(|b| b.atmosphere == atmosphere && b.sub_bands == sub_bands)
         };
-        let (Some(ref_atm), Some(ref_sb)) = (space.atmospheres.first(), space.sub_bands.first())
+        let (Some(&ref_atm), Some(&ref_sb)) = (space.atmospheres.first(), space.sub_bands.first())
         else {
             return Err(bad(
                 "the pilot needs at least one atmosphere and one sub-band count".into(),
@@ -170,12 +201,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ))
         })?;
         // Every model but the sub-bands is measured in the band model (see `pilot_pixel`).
-        let band_model = find(ref_atm, "1").unwrap_or(reference);
+        let band_model = find(ref_atm, SubBandCount::BAND).unwrap_or(reference);
         let atm_sets = space
             .atmospheres
             .iter()
-            .map(|a| {
-                find(a, "1")
+            .map(|&a| {
+                find(a, SubBandCount::BAND)
                     .or_else(|| find(a, ref_sb))
                     .ok_or_else(|| bad(format!("no band set for {a}")))
             })
@@ -183,7 +214,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let sb_sets = space
             .sub_bands
             .iter()
-            .map(|k| find(ref_atm, k).ok_or_else(|| bad(format!("no band set for {ref_atm}, {k}"))))
+            .map(|&k| {
+                find(ref_atm, k).ok_or_else(|| bad(format!("no band set for {ref_atm}, {k}")))
+            })
             .collect::<Result<Vec<_>, _>>()?;
         for list_empty in [
             space.bounces.is_empty(),
@@ -360,18 +393,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 eval(band_model, None, &path, &mut scratch)
             } else {
                 let mut sum = 0.0;
-                for j in 0..n {
-                    for i in 0..n {
-                        let (jx, jy): (f64, f64) = {
-                            let rng = ctx.rng();
-                            (rng.random(), rng.random())
-                        };
-                        let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
-                        let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                        self.follow(fc, camera.direction_at(x, y), &mut ctx, &mut path);
-                        sum += eval(band_model, None, &path, &mut scratch);
-                    }
-                }
+                ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
+                    self.follow(fc, camera.direction_at(x, y), ctx, &mut path);
+                    sum += eval(band_model, None, &path, &mut scratch);
+                });
                 sum / f64::from(n * n)
             };
             densities.push((n, mean));
@@ -503,13 +528,40 @@ fn order_statistic(values: &mut [f64], rank: usize) -> f64 {
 /// A combination: one index per model, into its list.
 type Combo = [usize; 6];
 
+/// The setting the pilot chose for each model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Chosen {
+    /// The atmosphere model.
+    pub atmosphere: ModelKind,
+    /// Specular bounces per path.
+    pub bounces: u32,
+    /// Sky-view rays per diffuse hit.
+    pub sky_view_rays: u32,
+    /// Rays per pixel.
+    pub supersampling: Supersample,
+    /// Path terms of facet hits.
+    pub path_terms: PathTermsMode,
+    /// Sub-bands.
+    pub sub_bands: SubBandCount,
+}
+
+/// What the pilot decided: the settings, and the decision that records them with their
+/// errors, costs and reasons (what is written beside the outputs).
+#[derive(Debug, Clone)]
+pub struct Piloted {
+    /// The settings chosen.
+    pub chosen: Chosen,
+    /// Their record.
+    pub decision: Decision,
+}
+
 fn choose<S>(
     space: &PilotSpace<S>,
     samples: &[PixelSample],
     tolerance_k: f64,
     percentile: f64,
     [w, h]: [u32; 2],
-) -> Decision {
+) -> Piloted {
     let lens = [
         space.atmospheres.len(),
         space.bounces.len(),
@@ -525,18 +577,18 @@ fn choose<S>(
     let diffuse_fraction = mean(&|s| f64::from(u8::from(s.diffuse)));
     let edge_fraction = mean(&|s| f64::from(u8::from(s.edge)));
     let nodes = mean(&|s| f64::from(s.nodes));
-    let band_of = |atm: &str, k: &str| {
+    let band_of = |atm: ModelKind, k: SubBandCount| {
         space
             .bands
             .iter()
             .find(|b| b.atmosphere == atm && b.sub_bands == k)
     };
     let k_of =
-        |name: &str| band_of(&space.atmospheres[0], name).map_or(1.0, |b| b.set.len() as f64);
+        |k: SubBandCount| band_of(space.atmospheres[0], k).map_or(1.0, |b| b.set.len() as f64);
     // The estimated cost of a rendering, ns.
     let cost = |c: &Combo| -> f64 {
-        let atm = &space.atmospheres[c[0]];
-        let k = k_of(&space.sub_bands[c[5]]);
+        let atm = space.atmospheres[c[0]];
+        let k = k_of(space.sub_bands[c[5]]);
         let sky_rays = f64::from(space.sky_view_rays[c[2]]);
         let reflections = mean(&|s| f64::from(s.reflection_rays[c[1]]));
         let rays_per_path = 1.0 + reflections + diffuse_fraction * sky_rays;
@@ -547,7 +599,7 @@ fn choose<S>(
             // the refined pixels again from their centre.
             Supersample::Adaptive(n) => 1.0 + edge_fraction * (1.0 + f64::from(n * n)),
         };
-        let choice = band_of(atm, &space.sub_bands[c[5]]);
+        let choice = band_of(atm, space.sub_bands[c[5]]);
         let (path_call_ns, sky_ns) = choice.map_or((880.0, 2e6), |b| (b.path_call_ns, b.sky_ns));
         let evals = paths_per_pixel
             * k
@@ -612,12 +664,12 @@ fn choose<S>(
     let (chosen_cost, chosen, p, worst) = best.unwrap_or((reference_cost, reference, 0.0, 0.0));
     let settings = |m: usize, i: usize| -> String {
         match m {
-            0 => space.atmospheres[i].clone(),
+            0 => space.atmospheres[i].name().to_owned(),
             1 => space.bounces[i].to_string(),
             2 => space.sky_view_rays[i].to_string(),
             3 => space.supersampling[i].name(),
             4 => space.path_terms[i].name().to_owned(),
-            _ => space.sub_bands[i].clone(),
+            _ => space.sub_bands[i].to_string(),
         }
     };
     let choices = SwitchableModel::ALL
@@ -679,22 +731,32 @@ fn choose<S>(
             }
         })
         .collect();
-    Decision {
-        tolerance_k,
-        percentile,
-        choices,
-        predicted: ErrorEstimate {
-            percentile_k: p,
-            max_k: worst,
+    Piloted {
+        chosen: Chosen {
+            atmosphere: space.atmospheres[chosen[0]],
+            bounces: space.bounces[chosen[1]],
+            sky_view_rays: space.sky_view_rays[chosen[2]],
+            supersampling: space.supersampling[chosen[3]],
+            path_terms: space.path_terms[chosen[4]],
+            sub_bands: space.sub_bands[chosen[5]],
         },
-        relative_cost: chosen_cost / reference_cost,
-        pilot_pixels: samples.len() as u32,
+        decision: Decision {
+            tolerance_k,
+            percentile,
+            choices,
+            predicted: ErrorEstimate {
+                percentile_k: p,
+                max_k: worst,
+            },
+            relative_cost: chosen_cost / reference_cost,
+            pilot_pixels: samples.len() as u32,
+        },
     }
 }
 
 impl Path {
     /// This path with at most `bounces` specular bounces, into `out`: what a rendering with
-    /// that limit records (the last facet reflects the hemispheric sky).
+    /// that limit records (the last facet reflects its untraced environment).
     pub(crate) fn truncated(&self, bounces: u32, out: &mut Path) {
         out.primary = self.primary;
         out.rays.clone_from(&self.rays);
@@ -705,7 +767,7 @@ impl Path {
             && keep == bounces as usize + 1
             && last.mirror.is_some()
         {
-            last.mirror = Some(Mirror::Hemispheric);
+            last.mirror = Some(Mirror::Untraced(last.environment));
         }
     }
 

@@ -207,7 +207,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     s.secondary_material = self.materials[usize::from(second.data.material)].id;
                     Event::SpecularHitsFacet
                 }
-                Mirror::Escaped(_) | Mirror::Hemispheric => Event::SpecularEscapes,
+                Mirror::Escaped(_) | Mirror::Untraced(_) => Event::SpecularEscapes,
             };
             s.specular_incident_w_m2_sr = sums.specular_incident;
         }
@@ -257,7 +257,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             None => 0.0,
             Some(Mirror::Next) => next,
             Some(Mirror::Escaped(e)) => escaped(b, e),
-            Some(Mirror::Hemispheric) => sky_hemi,
+            Some(Mirror::Untraced(e)) => escaped(b, e),
         };
         let diffuse_incident = match node.diffuse {
             None => 0.0,

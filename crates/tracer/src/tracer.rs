@@ -16,6 +16,7 @@ use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::Geometry;
 use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
+use crate::refine::{PixelSampling, Refinement};
 use crate::tile::Tile;
 use crate::vec::V3;
 
@@ -52,9 +53,9 @@ impl Event {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TraceOptions {
     /// Specular reflection rays along one path (default 1; Appendix A: one is enough at
-    /// earth-ambient temperatures). 0 makes specular facets reflect the sky at the mirror
-    /// angle without tracing. At the last bounce a facet's specular part reflects the
-    /// hemispheric sky.
+    /// earth-ambient temperatures). Where the bounces run out (at once with 0), a specular
+    /// part reflects the environment along its mirror direction without tracing: the sky at
+    /// the mirror angle, or the terrain where the direction points below the horizon.
     pub specular_bounces: u32,
     /// Cosine-weighted hemisphere rays per diffuse primary hit for the sky-view factor F;
     /// 0 (default) switches the model off (F = 1, no rays cast).
@@ -417,6 +418,8 @@ pub struct Frame {
     /// The truth layers of each pixel's centre ray; empty when [`TraceOptions::truth`] is
     /// off.
     pub truth: Vec<TruthPixel>,
+    /// What refinement did to each pixel ([`Tracer::with_refinement`]); empty without it.
+    pub sampling: Vec<PixelSampling>,
 }
 
 impl Frame {
@@ -609,7 +612,13 @@ pub struct Tracer<B, A> {
     /// Each material's band emissivity, by slot.
     pub(crate) emissivity: Vec<EmissivityTable>,
     pub(crate) path_terms: PathTermsMode,
+    /// Pixels refined to a standard-error target ([`crate::refine`]); `None`: the options'
+    /// supersampling.
+    pub(crate) refinement: Option<Refinement>,
 }
+
+/// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.
+pub const EDGE_SIDE: u32 = 4;
 
 /// The span of [`Tracer::inverse_table`], K: the apparent temperatures of earth-ambient
 /// scenes and of the clear sky in the thermal infrared.
@@ -629,6 +638,8 @@ pub(crate) struct Ctx<'a> {
     rng: Option<ChaCha8Rng>,
     /// The pixel's index in the image, from which its random stream is seeded.
     pixel_index: u64,
+    /// Which of the pixel's streams (0: its centre ray's and supersampling's).
+    stream: u64,
 }
 
 impl<'a> Ctx<'a> {
@@ -638,14 +649,52 @@ impl<'a> Ctx<'a> {
             options,
             rng: None,
             pixel_index,
+            stream: 0,
         }
+    }
+
+    /// The same pixel with a stream of its own for its refinement's rays
+    /// ([`crate::refine`]), apart from its centre ray's.
+    pub(crate) fn refinement_stream(mut self) -> Self {
+        self.stream = 0x7265_6669_6e65_6d74;
+        self.rng = None;
+        self
+    }
+
+    /// A uniform draw in [0, 1) from the pixel's stream.
+    pub(crate) fn jitter(&mut self) -> f64 {
+        self.rng().random()
     }
 
     /// The pixel's random stream, seeded on first use (most pixels never draw).
     pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
-        let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index));
+        let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index) ^ self.stream);
         self.rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
+    }
+
+    /// Visits the `n × n` stratified sub-pixel positions of pixel (`col`, `row`), row by
+    /// row, each jittered in its cell by two draws of the pixel's stream made just before
+    /// it is visited (so that what a visit draws, sky-view rays say, comes between). The
+    /// one routine of the renderer's supersampling and of the pilot's, which must replay
+    /// the renderer's rays exactly.
+    pub(crate) fn for_each_subpixel(
+        &mut self,
+        (col, row): (u32, u32),
+        n: u32,
+        mut visit: impl FnMut(&mut Self, f64, f64),
+    ) {
+        for j in 0..n {
+            for i in 0..n {
+                let (jx, jy): (f64, f64) = {
+                    let rng = self.rng();
+                    (rng.random(), rng.random())
+                };
+                let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
+                let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
+                visit(self, x, y);
+            }
+        }
     }
 }
 
@@ -672,6 +721,30 @@ impl FrameConsts<'_> {
     pub(crate) fn camera(&self) -> &Camera {
         self.camera
     }
+}
+
+/// For every pixel of `frame`, the largest difference of apparent temperature between its
+/// centre and one of its 8 neighbours', K; and the frame's range of apparent temperature.
+fn contrasts<B: BandModel>(frame: &Frame, inverse: &InverseTable<'_, B>) -> (Vec<f64>, f64) {
+    let t: Vec<f64> = frame
+        .radiance_w_m2_sr
+        .par_chunks(4096)
+        .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
+        .collect();
+    let (w, h) = (frame.width as usize, frame.height as usize);
+    let contrast = (0..w * h)
+        .into_par_iter()
+        .map(|i| {
+            let (col, row) = (i % w, i / w);
+            let rows = row.saturating_sub(1)..(row + 2).min(h);
+            rows.flat_map(|r| (col.saturating_sub(1)..(col + 2).min(w)).map(move |c| r * w + c))
+                .map(|j| (t[i] - t[j]).abs())
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let lo = t.iter().copied().fold(f64::INFINITY, f64::min);
+    let hi = t.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (contrast, (hi - lo).max(0.0))
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -805,6 +878,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             temperatures,
             emissivity: tables,
             path_terms: PathTermsMode::Exact,
+            refinement: None,
         };
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records.
@@ -960,6 +1034,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         self.path_terms
     }
 
+    /// Refines every frame's pixels to a standard-error target ([`crate::refine`]), or not
+    /// (`None`, the default: the options' supersampling).
+    ///
+    /// # Errors
+    /// A refinement out of range.
+    pub fn with_refinement(mut self, refinement: Option<Refinement>) -> Result<Self, TraceError> {
+        if let Some(r) = &refinement {
+            r.validate()
+                .map_err(|m| TraceError::new(TraceErrorKind::InvalidOptions(m)))?;
+        }
+        self.refinement = refinement;
+        Ok(self)
+    }
+
+    /// The refinement frames are rendered with.
+    #[must_use]
+    pub fn refinement(&self) -> Option<Refinement> {
+        self.refinement
+    }
+
     /// Apparent (blackbody) temperature of a radiance in the whole band, K.
     #[must_use]
     pub fn apparent_temperature_k(&self, radiance_w_m2_sr: f64) -> f64 {
@@ -1039,6 +1133,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         tile.check(w, h)
             .map_err(|e| TraceError::new(TraceErrorKind::InvalidTile(e)))?;
         let fc = self.frame_consts(camera);
+        if let Some(refinement) = self.refinement {
+            if options.supersampling != 1 || options.adaptive_threshold_k.is_some() {
+                return Err(TraceError::new(TraceErrorKind::InvalidOptions(
+                    "refinement replaces supersampling: give one ray per pixel (supersampling \
+                     1, no adaptive threshold) with it"
+                        .into(),
+                )));
+            }
+            return Ok(self.render_refined(&fc, options, &refinement, tile, progress));
+        }
         let adaptive = options
             .adaptive_threshold_k
             .filter(|_| options.supersampling > 1);
@@ -1107,7 +1211,92 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             height: tile.height,
             radiance_w_m2_sr: radiance,
             truth,
+            sampling: Vec::new(),
         })
+    }
+
+    /// [`Self::render_tile`] with refinement: the centre rays of the tile and a one-pixel
+    /// margin, the candidates among the tile's pixels (an edge against a neighbour, or a
+    /// thin facet near), and each candidate refined to the target.
+    fn render_refined(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        refinement: &Refinement,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Frame {
+        let camera = fc.camera();
+        let [w, h] = camera.pixels;
+        let halo = tile.grown(1, w, h);
+        // The centre pass keeps every centre's terms: a pixel that stays with its centre
+        // ray gives the budget its sensitivities.
+        let truth_options = TraceOptions {
+            truth: true,
+            ..*options
+        };
+        let centres = self.render_rect(fc, &truth_options, halo, &|_| {});
+        let inverse = self.inverse_table();
+        let (contrast, frame_range) = contrasts(&centres, &inverse);
+        let thin = self.thin_pixels(camera);
+        let (hw, tw) = (halo.width as usize, tile.width as usize);
+        let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+        let mut radiance = vec![0.0; tile.pixels()];
+        let mut sampling = vec![PixelSampling::default(); tile.pixels()];
+        radiance
+            .par_chunks_mut(tw)
+            .zip(sampling.par_chunks_mut(tw))
+            .enumerate()
+            .for_each(|(r, (rad, smp))| {
+                let mut path = Path::default();
+                let row = tile.y + r as u32;
+                for (c, (l_out, s_out)) in rad.iter_mut().zip(smp.iter_mut()).enumerate() {
+                    let col = tile.x + c as u32;
+                    let at = (r + dy) * hw + c + dx;
+                    let is_thin = thin[(row * w + col) as usize];
+                    if contrast[at] > refinement.edge_k || is_thin {
+                        let start = if is_thin {
+                            refinement.thin_side
+                        } else {
+                            EDGE_SIDE.min(refinement.max_side)
+                        };
+                        let one = (col, row);
+                        // What a sliver could hide: the neighbours' contrast, or for a thin
+                        // facet, which no centre may have seen, the frame's.
+                        let hide = if is_thin { frame_range } else { contrast[at] };
+                        (*l_out, *s_out) = if options.truth {
+                            self.refine_pixel::<true>(
+                                fc, options, refinement, &inverse, one, start, hide, &mut path,
+                            )
+                        } else {
+                            self.refine_pixel::<false>(
+                                fc, options, refinement, &inverse, one, start, hide, &mut path,
+                            )
+                        };
+                    } else {
+                        *l_out = centres.radiance_w_m2_sr[at];
+                        *s_out = PixelSampling::from_truth(&centres.truth[at]);
+                    }
+                }
+                progress(1);
+            });
+        let truth = if options.truth {
+            (0..tile.height as usize)
+                .flat_map(|r| {
+                    let start = (r + dy) * hw + dx;
+                    centres.truth[start..start + tw].iter().copied()
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+            sampling,
+        }
     }
 
     /// The pixels of `tile` (checked to lie in the image), rows in parallel: a frame of the
@@ -1172,6 +1361,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             height: tile.height,
             radiance_w_m2_sr: radiance,
             truth,
+            sampling: Vec::new(),
         }
     }
 
@@ -1237,19 +1427,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             return centre_radiance;
         }
         let mut sum = 0.0;
-        for j in 0..n {
-            for i in 0..n {
-                let (jx, jy): (f64, f64) = {
-                    let rng = ctx.rng();
-                    (rng.random(), rng.random())
-                };
-                let x = f64::from(col) + (f64::from(i) + jx) / f64::from(n);
-                let y = f64::from(row) + (f64::from(j) + jy) / f64::from(n);
-                // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
-                self.follow(fc, camera.direction_at(x, y), &mut ctx, path);
-                sum += self.radiance::<false>(fc, path, centre);
-            }
-        }
+        ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
+            // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
+            self.follow(fc, camera.direction_at(x, y), ctx, path);
+            sum += self.radiance::<false>(fc, path, centre);
+        });
         sum / f64::from(n * n)
     }
 }

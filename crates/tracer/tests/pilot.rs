@@ -4,6 +4,7 @@
 //! 5 % reflectance); nothing is specular, so bounces cannot matter; the wall's outline is
 //! a 100 K edge.
 
+use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::View;
 use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
@@ -51,14 +52,14 @@ fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
         .unwrap();
     PilotSpace {
         bands: vec![BandChoice {
-            atmosphere: "none".into(),
-            sub_bands: "1".into(),
+            atmosphere: ModelKind::None,
+            sub_bands: SubBandCount::BAND,
             set,
             path_call_ns: 5.0,
             sky_ns: 0.0,
         }],
-        atmospheres: vec!["none".into()],
-        sub_bands: vec!["1".into()],
+        atmospheres: vec![ModelKind::None],
+        sub_bands: vec![SubBandCount::BAND],
         bounces: vec![2, 1, 0],
         sky_view_rays: vec![64, 0],
         supersampling: vec![
@@ -75,7 +76,16 @@ fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
 #[test]
 fn a_loose_tolerance_takes_the_cheapest_of_everything() {
     let t = tracer();
-    let d = t.pilot(&camera(), &space(&t), 100.0, 99.0, 256, 1).unwrap();
+    let piloted = t.pilot(&camera(), &space(&t), 100.0, 99.0, 256, 1).unwrap();
+    // The settings, typed, are those the decision records.
+    let c = piloted.chosen;
+    assert_eq!((c.bounces, c.sky_view_rays), (0, 0));
+    assert_eq!(c.supersampling, Supersample::Every(1));
+    assert_eq!(
+        (c.atmosphere, c.sub_bands),
+        (ModelKind::None, SubBandCount::BAND)
+    );
+    let d = piloted.decision;
     let setting = |m| d.choice(m).unwrap().setting.clone();
     assert_eq!(setting(SwitchableModel::Bounces), "0");
     assert_eq!(setting(SwitchableModel::SkyView), "0");
@@ -92,13 +102,19 @@ fn near_the_hot_wall_the_sky_view_factor_is_switched_on() {
     let t = tracer();
     // A sample dense enough (1 pixel in 7) that the wall's outline, 2 % of the image,
     // weighs in the 99th percentile.
-    let d = t.pilot(&camera(), &space(&t), 0.5, 99.0, 1024, 1).unwrap();
+    let d = t
+        .pilot(&camera(), &space(&t), 0.5, 99.0, 1024, 1)
+        .unwrap()
+        .decision;
     let sky = d.choice(SwitchableModel::SkyView).unwrap();
     assert_eq!(sky.setting, "64", "{d:#?}");
     // What F = 1 would cost: the ground beside the wall reads colder, by up to about 5 K
     // at its foot: (1 − F)·(L_wall − L_sky)·(1 − ε) = 0.5 × 400 × 0.05 W m⁻² sr⁻¹ over
     // dL/dT = 4σT³/π = 1.95 W m⁻² sr⁻¹ K⁻¹ at 300 K.
-    let off = t.pilot(&camera(), &space(&t), 100.0, 99.0, 256, 1).unwrap();
+    let off = t
+        .pilot(&camera(), &space(&t), 100.0, 99.0, 256, 1)
+        .unwrap()
+        .decision;
     let off = off.choice(SwitchableModel::SkyView).unwrap();
     assert!(off.error.max_k > 2.0 && off.error.max_k < 6.0, "{off:?}");
     // The chosen combination meets the tolerance at the percentile, by its own bound.
@@ -107,7 +123,10 @@ fn near_the_hot_wall_the_sky_view_factor_is_switched_on() {
     // pixel will do, but not for every pixel, where the centre ray misses by up to 17 K.
     let centre = d.choice(SwitchableModel::Supersampling).unwrap();
     assert_eq!(centre.setting, "1", "{centre:?}");
-    let every = t.pilot(&camera(), &space(&t), 0.5, 100.0, 1024, 1).unwrap();
+    let every = t
+        .pilot(&camera(), &space(&t), 0.5, 100.0, 1024, 1)
+        .unwrap()
+        .decision;
     let ss = every.choice(SwitchableModel::Supersampling).unwrap();
     assert_ne!(ss.setting, "1", "{every:#?}");
     assert!(every.predicted.max_k <= 0.5, "{every:#?}");
@@ -116,7 +135,10 @@ fn near_the_hot_wall_the_sky_view_factor_is_switched_on() {
 #[test]
 fn a_tiny_tolerance_keeps_the_most_accurate_settings_of_the_models_that_matter() {
     let t = tracer();
-    let d = t.pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1).unwrap();
+    let d = t
+        .pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1)
+        .unwrap()
+        .decision;
     let setting = |m| d.choice(m).unwrap().setting.clone();
     assert_eq!(setting(SwitchableModel::SkyView), "64", "{d:#?}");
     // Bounces change nothing here: the cheapest, whatever the tolerance.
@@ -145,7 +167,10 @@ fn a_model_that_cannot_matter_in_the_view_says_so() {
         },
     )
     .unwrap();
-    let d = t.pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1).unwrap();
+    let d = t
+        .pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1)
+        .unwrap()
+        .decision;
     let sky = d.choice(SwitchableModel::SkyView).unwrap();
     assert_eq!(sky.setting, "0", "{d:#?}");
     assert!(sky.reason.contains("met no facet"), "{sky:?}");
@@ -154,7 +179,10 @@ fn a_model_that_cannot_matter_in_the_view_says_so() {
     assert!(bounces.reason.contains("same temperatures"), "{bounces:?}");
     // Beside the wall, the sky-view factor matters and says nothing of the kind.
     let t = tracer();
-    let d = t.pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1).unwrap();
+    let d = t
+        .pilot(&camera(), &space(&t), 1e-6, 99.0, 256, 1)
+        .unwrap()
+        .decision;
     let sky = d.choice(SwitchableModel::SkyView).unwrap();
     assert!(!sky.reason.contains("met no facet"), "{sky:?}");
 }

@@ -209,7 +209,8 @@ fn a_specular_pool_reflects_the_hot_panel_and_then_the_sky_without_it() {
     assert!((s.reflected_zenith_deg - zenith).abs() < 1e-6);
     assert!(close(s.radiance_w_m2_sr, expected, 1e-9), "{s}");
 
-    // Zero bounces: the pool reflects the hemispheric sky without tracing.
+    // Zero bounces: the pool reflects its environment at the mirror angle without tracing,
+    // the sky at 63.43° as if the panel were not there.
     let (sc, mats) = pool_scene(true);
     let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
     let opts = TraceOptions {
@@ -217,31 +218,37 @@ fn a_specular_pool_reflects_the_hot_panel_and_then_the_sky_without_it() {
         ..TraceOptions::default()
     };
     let s = tracer.probe(&cam, &opts, 0, 0).unwrap();
-    let expected = t * (0.98 * lt(288.0) + 0.02 * SKY_HEMI) + (1.0 - t) * L_AIR;
+    let expected = t * (0.98 * lt(288.0) + 0.02 * sky(zenith)) + (1.0 - t) * L_AIR;
     assert!(close(s.radiance_w_m2_sr, expected, 1e-9), "{s}");
 }
 
 #[test]
 fn two_mirrors_need_two_bounces() {
-    // Pool below, a specular (mirror, ε = 0.1) panel, its reflection climbs to the sky.
+    // Pool below, a specular (mirror, ε = 0.1) panel; the panel's reflection climbs
+    // towards the sky, and a hot wall (ε = 0.9, 400 K) high behind the camera stands in
+    // its way.
     let mats = MaterialLibrary {
         materials: vec![
             material(1, vec![(0.0, 0.98), (90.0, 0.98)], 1.0),
             material(2, vec![(0.0, 0.1), (90.0, 0.1)], 1.0),
+            material(3, vec![(0.0, 0.9), (90.0, 0.9)], 0.0),
         ],
     };
     let sc = scene(&[
         (ground_quad([-5.0, -5.0], [5.0, 4.9], 0.0), 1, 288.0),
         (box_mesh([-5.0, 5.0, 0.0], [5.0, 5.2, 5.0]), 2, 350.0),
+        (box_mesh([-5.0, -6.0, 6.0], [5.0, -5.8, 12.0]), 3, 400.0),
     ]);
     let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
     let cam = one_pixel([0.3, -10.0, 5.0], [0.3, 0.0, 0.0]);
     let t = tau(5.0, 0.0, 125.0_f64.sqrt());
     let zenith = (5.0 / 125.0_f64.sqrt()).acos().to_degrees();
-    // The mirror ray (0, 2, 1)/√5 meets the panel's −y face; its reflection
-    // (0, −2, 1)/√5 climbs away and escapes to the sky at zenith acos(1/√5) = 63.43°.
+    // The mirror ray (0, 2, 1)/√5 meets the panel's −y face at z = 2.5; its reflection
+    // (0, −2, 1)/√5 climbs back over the camera (passing y = −5.8 at z = 7.9). With one
+    // bounce the panel reflects its untraced environment there, the sky at zenith
+    // acos(1/√5) = 63.43°, as if the wall were not there.
     let one = tracer.probe(&cam, &TraceOptions::default(), 0, 0).unwrap();
-    let lb1 = 0.1 * lt(350.0) + 0.9 * SKY_HEMI;
+    let lb1 = 0.1 * lt(350.0) + 0.9 * sky(zenith);
     assert!(close(one.specular_incident_w_m2_sr, lb1, 1e-12), "{one}");
     let two = tracer
         .probe(
@@ -254,7 +261,9 @@ fn two_mirrors_need_two_bounces() {
             0,
         )
         .unwrap();
-    let lb2 = 0.1 * lt(350.0) + 0.9 * sky(zenith);
+    // The second bounce finds the wall: its leaving radiance, 0.9·L_T(400 K) + 0.1·L_d.
+    let wall = 0.9 * lt(400.0) + 0.1 * SKY_HEMI;
+    let lb2 = 0.1 * lt(350.0) + 0.9 * wall;
     assert!(close(two.specular_incident_w_m2_sr, lb2, 1e-12), "{two}");
     let expected = t * (0.98 * lt(288.0) + 0.02 * lb2) + (1.0 - t) * L_AIR;
     assert!(close(two.radiance_w_m2_sr, expected, 1e-9));
@@ -637,4 +646,46 @@ fn bad_input_is_refused_with_a_reason() {
         ..TraceOptions::default()
     };
     assert!(tracer.render(&cam, &opts, &|_| {}).is_err());
+}
+
+#[test]
+fn a_mirror_out_of_bounces_reflects_the_ground_it_points_at_not_the_hemispheric_sky() {
+    // A perfect mirror (ε = 0) leaning 30° forward from vertical at y = 10, seen level from
+    // 5 m up: its reflection points 60° below the horizon, at the terrain (290 K,
+    // ε = 0.9). Traced (1 bounce) and untraced (0 bounces) it must see the terrain, whose
+    // leaving radiance is 0.9·L_T(290 K) + 0.1·L_d (the test air's hemispheric sky).
+    let mats = MaterialLibrary {
+        materials: vec![material(1, vec![(0.0, 0.0), (90.0, 0.0)], 1.0)],
+    };
+    let (s30, c30) = (30_f64.to_radians().sin(), 30_f64.to_radians().cos());
+    // The mirror's corners: bottom edge at y = 10, z = 0; top edge leaning towards the
+    // camera (−y).
+    let corner = |x: f64, up: f64| [x, 10.0 - up * s30, up * c30];
+    let mesh: Mesh = (
+        vec![
+            corner(-20.0, 0.0),
+            corner(20.0, 0.0),
+            corner(20.0, 20.0),
+            corner(-20.0, 20.0),
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    let sc = scene(&[(mesh, 1, 300.0)]);
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let cam = one_pixel([0.3, 0.0, 5.0], [0.3, 10.0, 5.0]);
+    let terrain = 0.9 * lt(290.0) + 0.1 * SKY_HEMI;
+    for bounces in [0, 1] {
+        let options = TraceOptions {
+            specular_bounces: bounces,
+            ..TraceOptions::default()
+        };
+        let s = tracer.probe(&cam, &options, 0, 0).unwrap();
+        assert_eq!(s.event, Event::SpecularEscapes, "{bounces}: {s}");
+        // The reflected ray: incidence 30° off the tilted normal, 60° below the horizon.
+        assert!((s.reflected_zenith_deg - 150.0).abs() < 1e-6, "{s}");
+        assert!(
+            close(s.specular_incident_w_m2_sr, terrain, 1e-12),
+            "{bounces}: {s}"
+        );
+    }
 }

@@ -639,7 +639,7 @@ folder(
 # ---------------------------------------------------------------- SRF and n, k tables
 SRF = "# a response\n8.0 0.5\n10.0 1.0\n12.0 0.5\n"
 NK = "# wavelength_um n k\n8.0 1.291 0.0343\n11.0 1.2 0.05\n14.0 1.3 0.4\n"
-FRESNEL = "fresnel --temperature 300 --angles 0:90:30 -o {out}/m.ron"
+FRESNEL = "fresnel --planck-temperature 300 --angles 0:90:30 -o {out}/m.ron"
 folder(
     "srf",
     "Malformed sensor response files (formats/srf.md), read by `irsig-material fresnel "

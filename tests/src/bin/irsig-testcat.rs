@@ -51,7 +51,7 @@ struct Cli {
 }
 
 fn main() -> ExitCode {
-    irsig_cli::run(|| run(Cli::parse()))
+    irsig_cli::run(|| run(irsig_cli::parse()))
 }
 
 fn run(cli: Cli) -> miette::Result<()> {

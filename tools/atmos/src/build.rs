@@ -41,7 +41,7 @@ pub struct BuildArgs {
     /// The spectral atmosphere to write (binary; RON if the name ends in `.ron`; `-` for
     /// standard output).
     #[arg(short = 'o', long, value_name = "FILE")]
-    pub output: String,
+    pub output: PathBuf,
     /// Run every path with this standard model instead of the plan's (writes its own decks).
     #[arg(long, value_name = "MODEL", conflicts_with = "radiosonde")]
     pub model: Option<String>,
@@ -50,8 +50,8 @@ pub struct BuildArgs {
     #[arg(long, value_name = "FILE.rsd")]
     pub radiosonde: Option<String>,
     /// LOWTRAN7 processes at once (default: the number of CPUs).
-    #[arg(long, value_name = "N")]
-    pub jobs: Option<usize>,
+    #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub jobs: Option<u32>,
 }
 
 /// One run's result.
@@ -168,7 +168,7 @@ fn check_grids(runs: &[RunResult], given: &[Option<PathBuf>]) -> Result<(), Repo
         let Some(Some(file)) = given.get(i) else {
             return Err(miette!("run {i}: {message}"));
         };
-        let input = irsig_cli::read_input(&file.to_string_lossy())?;
+        let input = irsig_cli::read_input(file)?;
         let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
         // The first row whose wavenumber is not the common grid's (or the end of the rows).
         let k = grid
@@ -208,7 +208,7 @@ fn row_offset(text: &str, w: f64) -> usize {
 
 /// Reads a run's given outputs.
 fn read_given(tape7: &Path) -> Result<RunResult, Report> {
-    let input = irsig_cli::read_input(&tape7.to_string_lossy())?;
+    let input = irsig_cli::read_input(tape7)?;
     let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
     let modtran = text
         .trim_start()
@@ -221,7 +221,7 @@ fn read_given(tape7: &Path) -> Result<RunResult, Report> {
     let t6 = tape7.with_extension("tape6");
     let mut profile = Vec::new();
     if t6.is_file() {
-        let input = irsig_cli::read_input(&t6.to_string_lossy())?;
+        let input = irsig_cli::read_input(&t6)?;
         let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
         let tape6 = lowtran_tape6::parse(&input.name, text)?;
         profile = tape6
@@ -338,9 +338,9 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     }
     inputs.extend(a.radiosonde.iter().map(PathBuf::from));
     irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
-    irsig_cli::check_output(Path::new(&a.output))?;
+    irsig_cli::check_output(&a.output)?;
     let plan_file = a.plan.join("plan.ron");
-    let input = irsig_cli::read_input(&plan_file.to_string_lossy())?;
+    let input = irsig_cli::read_input(plan_file)?;
     let mut plan: AtmospherePlan = canonical::from_ron_bytes(&input.name, &input.bytes)?;
     let own_decks = a.model.is_some() || a.radiosonde.is_some();
     if own_decks {
@@ -388,10 +388,10 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     } else {
         Some(lowtran::find().map_err(|m| miette!("{m}"))?)
     };
-    let jobs = a
-        .jobs
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, std::num::NonZero::get))
-        .max(1);
+    let jobs = a.jobs.map_or_else(
+        || std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
+        |j| j as usize,
+    );
     let bar = irsig_cli::progress_bar(all.len() as u64, "LOWTRAN7");
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<RunResult, Report>>>> =
@@ -508,12 +508,12 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     let spectra: Vec<PathSpectra> = ok.into_iter().map(|r| r.spectra).collect();
     let atmosphere = assemble(&plan, &spectra, &*temperature, ground_asl_m, &source)
         .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
-    let bytes = if a.output.ends_with(".ron") {
+    let bytes = if a.output.extension().is_some_and(|e| e == "ron") {
         canonical::to_ron(&atmosphere)
             .into_diagnostic()?
             .into_bytes()
     } else {
         canonical::binary_spectral::encode(&atmosphere).into_diagnostic()?
     };
-    irsig_cli::write_output(Some(Path::new(&a.output)), |w| w.write_all(&bytes))
+    irsig_cli::write_output(Some(&a.output), |w| w.write_all(&bytes))
 }

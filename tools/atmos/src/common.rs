@@ -7,18 +7,18 @@ use irsig_cli::args::{BandArg, TableFormat, values};
 use irsig_radiometry::Band;
 use miette::miette;
 
-/// `--band`, as every tool takes it.
+/// `--band` of the calculators (`irsig_cli::args::BandArg`, spelt as in every tool).
 #[derive(Debug, clap::Args)]
 pub struct BandArgs {
     /// The band: `MIN-MAX` in micrometres (flat response) or a sensor response file
-    /// (formats/srf.md), whose first and last wavelengths bound it.
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    /// (formats/srf.md), whose first and last wavelengths bound it [default: 8-14].
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<BandArg>,
 }
 
 impl BandArgs {
     pub fn band(&self) -> miette::Result<Band> {
-        self.band.load()
+        BandArg::or_default(self.band.as_ref()).load()
     }
 }
 

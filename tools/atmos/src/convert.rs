@@ -67,9 +67,10 @@ pub struct ConvertArgs {
         default_value = "DIRTRAN tables converted by irsig-atmos convert"
     )]
     pub source: String,
-    /// The band the tables were integrated over: `MIN-MAX` in micrometres.
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX", value_parser = irsig_cli::args::flat_band)]
-    pub band: [f64; 2],
+    /// The band the tables were integrated over: `MIN-MAX` in micrometres (a flat band)
+    /// [default: 8-14].
+    #[arg(long, value_name = "MIN-MAX|FILE|total")]
+    pub band: Option<irsig_cli::args::BandArg>,
     /// Output canonical atmosphere (stdout when absent or `-`).
     #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub output: Option<PathBuf>,
@@ -199,7 +200,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let options = ConvertOptions {
         name: name.clone(),
         source: args.source.clone(),
-        band_um: args.band,
+        band_um: irsig_cli::args::BandArg::or_default(args.band.as_ref()).flat_limits_um()?,
         units: args.units(),
         cor_altitude_m: args.cor_altitude_m,
         slant,

@@ -20,7 +20,7 @@
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
 //! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
 //! irsig-atmos temperature --radiance 54.93
-//! irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us.rtt
+//! irsig-atmos rtt --from 200 --to 350 --step-k 1 --legacy -o us.rtt
 //! irsig-atmos bounces --target-temperature 260:400:10 --max 4
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
@@ -53,7 +53,7 @@ mod temperature;
       --radiance-unit W/cm2/sr --out-dir /tmp
   irsig-atmos radiance --temperature 300
   irsig-atmos temperature --radiance 54.93 --band 8-14
-  irsig-atmos rtt --from 200 --to 350 --step 1 --legacy -o us-std.rtt
+  irsig-atmos rtt --from 200 --to 350 --step-k 1 --legacy -o us-std.rtt
   irsig-atmos bounces --target-emissivity 0.98 --target-temperature 260:400:10 \\
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\

@@ -30,10 +30,11 @@ pub struct PlanArgs {
     /// for more.
     #[arg(long, value_name = "FILE", required = true)]
     pub view: Vec<String>,
-    /// The length unit of a 1990 viewing file's position: `m` or `km` (the thesis's files
-    /// are in km). RON views are always metres.
-    #[arg(long, value_name = "UNIT", default_value = "m", value_parser = ["m", "km"])]
-    pub view_unit: String,
+    /// Length unit of the positions in 1990 viewing files (km in the thesis's files),
+    /// converted to metres on reading. Canonical views are always in metres.
+    #[arg(long, default_value = irsig_cli::args::VIEW_UNIT_DEFAULT, value_name = "UNIT",
+          value_parser = irsig_cli::args::length_unit)]
+    pub view_unit: LengthUnit,
     /// A LOWTRAN7 standard model: tropical, midlat-summer, midlat-winter,
     /// subarctic-summer, subarctic-winter, us-std-1976 (or its number 1-6).
     #[arg(
@@ -182,12 +183,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     let ground_z = lowest.min(0.0);
     let mut observers = Vec::new();
     for v in &a.view {
-        let unit = if a.view_unit == "km" {
-            LengthUnit::Km
-        } else {
-            LengthUnit::M
-        };
-        for view in read_views(v, unit)? {
+        for view in read_views(v, a.view_unit)? {
             observers.push(view.position_m()[2] - ground_z);
         }
     }

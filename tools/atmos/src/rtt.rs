@@ -22,7 +22,7 @@ pub struct Args {
     pub to: f64,
     /// Temperature step, K.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub step: f64,
+    pub step_k: f64,
     /// The 1990 layout: W cm^-2 sr^-1, no header.
     #[arg(long)]
     pub legacy: bool,
@@ -50,7 +50,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         irsig_cli::refuse_output_is_input([file], args.output.iter())?;
     }
     let band = args.band.band()?;
-    let range = format!("{}:{}:{}", args.from, args.to, args.step);
+    let range = format!("{}:{}:{}", args.from, args.to, args.step_k);
     let temps = crate::common::temperatures("--from/--to/--step", &range)?;
     if temps.is_empty() {
         return Err(miette!("--from/--to/--step: the range is empty"));

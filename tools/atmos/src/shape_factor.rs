@@ -30,7 +30,7 @@ pub struct Args {
     #[arg(long, allow_hyphen_values = true)]
     pub object_temperature: String,
     /// Background (blackbody) temperature, K.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, default_value = "300", allow_hyphen_values = true)]
     pub background_temperature: String,
     /// Hemispheric sky radiance L_d, in the unit `--ld-unit` names.
     #[arg(long, allow_hyphen_values = true, requires = "ld_unit")]

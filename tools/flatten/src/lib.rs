@@ -70,21 +70,17 @@ pub struct Cli {
     pub scene_format: Option<SceneFormat>,
     /// Length unit of legacy files: the legacy scene's translations and legacy facet
     /// files' coordinates (km for the 1990 data). RON files are always in metres.
-    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
     pub unit: LengthUnit,
     /// Check that every facet's material id is in this material library.
     #[arg(long, value_name = "LIBRARY")]
-    pub materials: Option<PathBuf>,
+    pub materials: Option<String>,
     /// Write RON instead of the binary raw scene.
     #[arg(long)]
     pub ron: bool,
     /// Output file (default: standard output).
     #[arg(short, long)]
     pub output: Option<PathBuf>,
-}
-
-fn parse_unit(s: &str) -> Result<LengthUnit, String> {
-    s.parse()
 }
 
 /// Runs `irsig-flatten`.
@@ -266,7 +262,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         at(e.placement, path.as_deref(), e.to_string())
     })?;
     if let Some(path) = &cli.materials {
-        check_materials(path, &raw, |r, message| {
+        check_materials(Path::new(path), &raw, |r, message| {
             // The facet's material came from its object file unless an override of the
             // placement changed it: point at whichever gave it.
             let i = raw.facets[r].object as usize;
@@ -348,7 +344,7 @@ fn check_materials(
     raw: &irsig_model::RawScene,
     at: impl Fn(usize, String) -> miette::Report,
 ) -> miette::Result<()> {
-    let input = irsig_cli::read_input(&path.to_string_lossy())?;
+    let input = irsig_cli::read_input(path)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
     for (i, f) in raw.facets.iter().enumerate() {

@@ -52,7 +52,7 @@ pub enum Format {
     name = "irsig-import",
     version,
     about = "Mesh file (Intergraph facet file, OBJ + MTL, glTF/GLB) -> canonical irsig object (RON, or binary into a pipe)",
-    after_help = "Examples:\n  irsig-import vehicle.fac --unit km --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --format obj --materials materials.ron > car.ron\n\n\
+    after_help = "Examples:\n  irsig-import vehicle.fac --unit km --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --mesh-format obj --materials materials.ron > car.ron\n\n\
 Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
 unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: --unit\n\
 gives the file's unit (1990 data are in km), --scale multiplies on top.\n\n\
@@ -63,20 +63,20 @@ Output form: binary (IRSIGOBJ) into a pipe or to a file ending in .bin, RON othe
 (irsig-flatten) take either form."
 )]
 pub struct Cli {
-    /// The mesh file, or `-` for standard input (then --format is required).
+    /// The mesh file, or `-` for standard input (then --mesh-format is required).
     pub input: String,
     /// The format; by default from the file extension (.fac, .obj, .gltf, .glb).
     #[arg(long, value_enum)]
-    pub format: Option<Format>,
+    pub mesh_format: Option<Format>,
     /// The material library (canonical RON) that maps material names to ids.
     #[arg(long, value_name = "LIBRARY")]
-    pub materials: PathBuf,
+    pub materials: String,
     /// The material for facets whose material the library does not know or that have
     /// none. Without it those facets are an error.
     #[arg(long, value_name = "NAME")]
     pub default_material: Option<String>,
     /// The length unit of the file's coordinates.
-    #[arg(long, default_value = "m", value_parser = parse_unit)]
+    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
     pub unit: LengthUnit,
     /// An extra factor applied after the unit conversion.
     #[arg(long, default_value_t = 1.0)]
@@ -119,10 +119,6 @@ pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
     }
 }
 
-fn parse_unit(s: &str) -> Result<LengthUnit, String> {
-    s.parse()
-}
-
 /// Runs `irsig-import`.
 ///
 /// # Errors
@@ -138,11 +134,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             cli.scale
         )));
     }
-    let format = match (cli.format, cli.input.as_str()) {
+    let format = match (cli.mesh_format, cli.input.as_str()) {
         (Some(f), _) => f,
         (None, "-") => {
             return Err(irsig_cli::usage_error(
-                "reading standard input needs --format (intergraph, obj, gltf or glb)",
+                "reading standard input needs --mesh-format (intergraph, obj, gltf or glb)",
             ));
         }
         (None, path) => format_of(path)?,
@@ -159,7 +155,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Some(name) => Some(library.by_name(name).map(|m| m.id).ok_or_else(|| {
             irsig_cli::usage_error(format!(
                 "--default-material `{name}` is not in {}; it has: {}",
-                cli.materials.display(),
+                cli.materials,
                 known_names(&library)
             ))
         })?),
@@ -209,13 +205,13 @@ fn format_of(path: &str) -> miette::Result<Format> {
         Some("gltf") => Ok(Format::Gltf),
         Some("glb") => Ok(Format::Glb),
         _ => Err(irsig_cli::usage_error(format!(
-            "cannot tell the format of `{path}` from its extension; give --format intergraph, obj, gltf or glb"
+            "cannot tell the format of `{path}` from its extension; give --mesh-format intergraph, obj, gltf or glb"
         ))),
     }
 }
 
-fn read_library(path: &std::path::Path) -> miette::Result<MaterialLibrary> {
-    let input = irsig_cli::read_input(&path.to_string_lossy())?;
+fn read_library(path: &str) -> miette::Result<MaterialLibrary> {
+    let input = irsig_cli::read_input(path)?;
     Ok(irsig_formats::canonical::from_ron_bytes(
         &input.name,
         &input.bytes,
@@ -243,7 +239,7 @@ fn to_object(
     name: String,
     format: Format,
 ) -> miette::Result<Object> {
-    let library_name = cli.materials.display();
+    let library_name = &cli.materials;
     // Map each material name once.
     let mut ids = Vec::with_capacity(mesh.materials.len());
     for m in &mesh.materials {

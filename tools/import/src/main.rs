@@ -1,6 +1,5 @@
-use clap::Parser as _;
 use std::process::ExitCode;
 
 fn main() -> ExitCode {
-    irsig_cli::run(|| irsig_import::run(irsig_import::Cli::parse()))
+    irsig_cli::run(|| irsig_import::run(irsig_cli::parse()))
 }

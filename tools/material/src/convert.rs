@@ -55,9 +55,9 @@ pub struct ConvertArgs {
     /// Directory for the legacy files written by `--to-legacy`.
     #[arg(long, value_name = "DIR", requires = "to_legacy", default_value = ".")]
     pub out_dir: PathBuf,
-    /// File stem of the material index written by `--to-legacy`.
-    #[arg(long, requires = "to_legacy", default_value = "materials")]
-    pub stem: String,
+    /// File stem of the material index written by `--to-legacy` [default: materials].
+    #[arg(long, requires = "to_legacy")]
+    pub stem: Option<String>,
 }
 
 /// Runs `irsig-material convert`.
@@ -106,7 +106,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
         let (emissivity, source) = match (&entry.ems_file, default) {
             (Some(file), _) => {
                 let path = ems_dir.join(file);
-                let ems_input = irsig_cli::read_input(&path.to_string_lossy()).map_err(|e| {
+                let ems_input = irsig_cli::read_input(&path).map_err(|e| {
                     e.wrap_err(format!(
                         "{}:{}: material `{}` names the .ems file {}, which cannot be read",
                         input.name,
@@ -198,7 +198,7 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
     let input = irsig_cli::read_input(input)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes).map_err(Report::new)?;
-    let stem = &args.stem;
+    let stem = args.stem.as_deref().unwrap_or("materials");
     if stem.is_empty() || stem.contains(['/', '\\']) {
         return Err(irsig_cli::usage_error(format!(
             "--stem must be a plain file stem, found `{stem}`"

@@ -1,5 +1,6 @@
-//! `irsig-material fresnel`: an angular emissivity table of a smooth opaque surface from its
-//! complex refractive index, as a canonical material library entry or a legacy `.ems`.
+//! `irsig-material fresnel`: an angular emissivity table of an opaque surface, smooth or
+//! rough (`--roughness`), from its complex refractive index, as a canonical material
+//! library entry or a legacy `.ems`.
 
 use std::io::Write;
 use std::path::{Path, PathBuf};
@@ -8,7 +9,7 @@ use irsig_cli::args::{BandArg, values};
 use irsig_model::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 use irsig_radiometry::EmissivityTable;
 use irsig_radiometry::fresnel::{
-    ComplexIndex, IndexTable, band_emissivity_table, emissivity_table,
+    ComplexIndex, IndexTable, RoughSurface, rough_band_emissivity_table, rough_emissivity_table,
 };
 use miette::miette;
 
@@ -32,7 +33,7 @@ pub struct Args {
     )]
     pub k: f64,
     /// A table of `wavelength_um n k` rows (formats/nk.md); `-` for stdin. The angular
-    /// table is then averaged over the band with Planck weighting at `--temperature`, and
+    /// table is then averaged over the band with Planck weighting at `--planck-temperature`, and
     /// the library entry keeps the spectrum too: ε(λ) at normal incidence at the table's
     /// wavelengths (`spectral`), which a tracer averages over its own band or sub-bands.
     #[arg(long, value_name = "FILE")]
@@ -48,8 +49,8 @@ pub struct Args {
     pub band: Option<BandArg>,
     /// Temperature of the Planck weighting, K: the surface temperature the table is made
     /// for [default: 300].
-    #[arg(long, allow_hyphen_values = true)]
-    pub temperature: Option<f64>,
+    #[arg(long, value_name = "K", allow_hyphen_values = true)]
+    pub planck_temperature: Option<f64>,
     /// Angles from the surface normal, deg: a list `a,b,c` or a range `from:to:step`,
     /// 0–90, increasing. Include 90 (ε = 0) so interpolation reaches grazing.
     #[arg(long, default_value = "0:90:1", allow_hyphen_values = true)]
@@ -66,10 +67,31 @@ pub struct Args {
     /// Material id in the library entry (1–65535).
     #[arg(long, default_value_t = 1)]
     pub id: u16,
-    /// Fraction of the reflection that is specular (0 diffuse – 1 mirror). Fresnel's
-    /// equations describe a smooth surface, hence 1.
-    #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
-    pub specular_fraction: f64,
+    /// RMS slope of the surface's facets: dimensionless, the tangent of their tilt
+    /// (σ² = <z_x² + z_y²>, Cox & Munk's parameter; 0 is smooth, 0.1 a lightly rippled
+    /// pool, 0.6-1.5 soils and canopies). Fresnel facets with Gaussian slopes, Smith's
+    /// shadowing and one reflection (Masuda et al. 1988; Wu & Smith 1997).
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_hyphen_values = true,
+        value_name = "SLOPE"
+    )]
+    pub roughness: f64,
+    /// Share (0 to below 1) of what enters the surface that its body (grains, leaves,
+    /// pigment) returns diffusely; the emissivity is 1 − this times the facets'.
+    #[arg(
+        long,
+        default_value_t = 0.0,
+        allow_hyphen_values = true,
+        value_name = "SHARE"
+    )]
+    pub diffuse_reflectance: f64,
+    /// Fraction of the reflection that is specular (0 diffuse – 1 mirror) [default: 1
+    /// for a smooth surface (Fresnel's equations describe a mirror), 0 with --roughness
+    /// above 0 or a diffuse body].
+    #[arg(long, allow_hyphen_values = true)]
+    pub specular_fraction: Option<f64>,
     /// Output file (stdout when absent or `-`).
     #[arg(short, long, value_name = "FILE")]
     pub output: Option<PathBuf>,
@@ -97,16 +119,31 @@ pub fn run(args: &Args) -> miette::Result<()> {
     )?;
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
-    if args.nk_table.is_none() && (args.band.is_some() || args.temperature.is_some()) {
+    if args.nk_table.is_none() && (args.band.is_some() || args.planck_temperature.is_some()) {
         return Err(irsig_cli::usage_error(
-            "--band and --temperature weight the spectral average of --nk-table; \
+            "--band and --planck-temperature weight the spectral average of --nk-table; \
              a constant --n/--k has none",
         ));
     }
     let angles = values("--angles", &args.angles)?;
+    let surface = RoughSurface::new(args.roughness)
+        .and_then(|s| s.with_diffuse_reflectance(args.diffuse_reflectance))
+        .map_err(|e| miette!("--roughness/--diffuse-reflectance: {e}"))?;
+    let rough = surface.rms_slope() > 0.0 || surface.diffuse_reflectance() > 0.0;
+    let kind = if rough {
+        format!(
+            "rough opaque surface, RMS slope {} with diffuse reflectance {} (Fresnel facets, \
+             Gaussian slopes, Smith shadowing, one reflection: Masuda et al. 1988, Wu & Smith \
+             1997; diffuse body: Torrance & Sparrow 1967)",
+            surface.rms_slope(),
+            surface.diffuse_reflectance()
+        )
+    } else {
+        "smooth opaque surface".to_owned()
+    };
     let (table, spectral, source, default_name) = match (&args.nk_table, args.n) {
         (Some(path), _) => {
-            let input = irsig_cli::read_input(&path.to_string_lossy())?;
+            let input = irsig_cli::read_input(path)?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let nk = irsig_formats::nk::parse(&input.name, text)?;
             let first_um = nk.wavelength_um.first().copied().unwrap_or(f64::NAN);
@@ -114,33 +151,38 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 .map_err(|e| miette!("{}: {e}", input.name))?;
             let band_arg = args.band.clone().unwrap_or_default();
             let band = band_arg.load()?;
-            let t = args.temperature.unwrap_or(300.0);
-            let table = band_emissivity_table(&index, &band, t, &angles).map_err(|e| {
-                // A table that does not cover the band ends too early or starts too late:
-                // point at its first or its last row.
-                let rows: Vec<usize> = data_rows(text).collect();
-                let row = if first_um > band.lambda_min_um() {
-                    rows.first()
-                } else {
-                    rows.last()
-                };
-                miette::Report::new(irsig_formats::ParseError::at_offset(
-                    input.name.clone(),
-                    text,
-                    row.copied().unwrap_or(0),
-                    e.to_string(),
-                ))
-            })?;
+            let t = args.planck_temperature.unwrap_or(300.0);
+            let table =
+                rough_band_emissivity_table(&index, &band, t, surface, &angles).map_err(|e| {
+                    // A table that does not cover the band ends too early or starts too late:
+                    // point at its first or its last row.
+                    let rows: Vec<usize> = data_rows(text).collect();
+                    let row = if first_um > band.lambda_min_um() {
+                        rows.first()
+                    } else {
+                        rows.last()
+                    };
+                    miette::Report::new(irsig_formats::ParseError::at_offset(
+                        input.name.clone(),
+                        text,
+                        row.copied().unwrap_or(0),
+                        e.to_string(),
+                    ))
+                })?;
             let srf = match &band_arg {
                 BandArg::Response(path) => format!(" weighted by the response {path}"),
-                BandArg::Flat { .. } => String::new(),
+                BandArg::Flat { .. } | BandArg::Total => String::new(),
             };
             // The spectrum: the Fresnel equations at normal incidence on every row. With it
             // a tracer takes ε(λ, θ) = ε(λ) · table(θ) / table(0°), the band's angular shape
             // at every wavelength (its error: docs/accuracy.md, "Fresnel emissivity").
             let spectral = (!args.band_only).then(|| SpectralEmissivity {
                 wavelength_um: index.wavelength_um().to_vec(),
-                emissivity: index.index().iter().map(|i| i.emissivity(0.0)).collect(),
+                emissivity: index
+                    .index()
+                    .iter()
+                    .map(|&i| surface.emissivity(i, 0.0))
+                    .collect(),
                 // And at every angle of `--angles`: a Fresnel surface's angular shape
                 // changes with wavelength, which the separable form misses by up to 0.08
                 // in ε at 80° in one sixteenth of 8–14 µm (docs/accuracy.md).
@@ -149,7 +191,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                     emissivity: index
                         .index()
                         .iter()
-                        .map(|i| angles.iter().map(|&a| i.emissivity(a)).collect())
+                        .map(|&i| angles.iter().map(|&a| surface.emissivity(i, a)).collect())
                         .collect(),
                 }),
             });
@@ -160,7 +202,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 ""
             };
             let source = format!(
-                "Fresnel, smooth opaque surface (irsig-material fresnel): n, k from {} linearly \
+                "Fresnel, {kind} (irsig-material fresnel): n, k from {} linearly \
                  interpolated, averaged over {}-{} um{srf} with Planck weighting at {t} K{kept}",
                 input.name,
                 band.lambda_min_um(),
@@ -175,9 +217,10 @@ pub fn run(args: &Args) -> miette::Result<()> {
         }
         (None, Some(n)) => {
             let index = ComplexIndex::new(n, args.k).map_err(|e| miette!("{e}"))?;
-            let table = emissivity_table(index, &angles).map_err(|e| miette!("--angles: {e}"))?;
+            let table = rough_emissivity_table(index, surface, &angles)
+                .map_err(|e| miette!("--angles: {e}"))?;
             let source = format!(
-                "Fresnel, smooth opaque surface (irsig-material fresnel): constant index n = {n}, k = {}",
+                "Fresnel, {kind} (irsig-material fresnel): constant index n = {n}, k = {}",
                 args.k
             );
             (table, None, source, None)
@@ -193,7 +236,10 @@ pub fn run(args: &Args) -> miette::Result<()> {
             .clone()
             .or(default_name)
             .unwrap_or_else(|| "fresnel".to_owned());
-        write_library(&table, spectral, name, args, source, output)
+        let specular = args
+            .specular_fraction
+            .unwrap_or(if rough { 0.0 } else { 1.0 });
+        write_library(&table, spectral, name, args, specular, source, output)
     }
 }
 
@@ -217,6 +263,7 @@ fn write_library(
     spectral: Option<SpectralEmissivity>,
     name: String,
     args: &Args,
+    specular_fraction: f64,
     source: String,
     output: Option<&Path>,
 ) -> miette::Result<()> {
@@ -225,7 +272,7 @@ fn write_library(
             id: MaterialId(args.id),
             name,
             emissivity: pairs(table),
-            specular_fraction: args.specular_fraction,
+            specular_fraction,
             source,
             spectral,
         }],

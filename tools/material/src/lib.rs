@@ -3,14 +3,16 @@
 //! - `convert` ([`convert`]): the 1990 material index file with the `.ems` tables it names
 //!   to a canonical material library (formats/canonical/material-library.md), and back
 //!   (`--to-legacy`).
-//! - `fresnel` ([`fresnel`]): an angular emissivity table of a smooth opaque surface from
-//!   its complex refractive index (constant, or a `wavelength_um n k` table averaged over
-//!   the band), as a canonical material library entry or a legacy `.ems`.
+//! - `fresnel` ([`fresnel`]): an angular emissivity table of an opaque surface, smooth or
+//!   rough (`--roughness`, an RMS facet slope), from its complex refractive index
+//!   (constant, or a `wavelength_um n k` table averaged over the band), as a canonical
+//!   material library entry or a legacy `.ems`.
 //!
 //! ```text
 //! irsig-material convert materials.mat --default-emissivity 0.9 -o lib.ron
 //! irsig-material convert --to-legacy lib.ron --out-dir legacy/
 //! irsig-material fresnel --n 1.2 --k 0.05 -o glassy.ron
+//! irsig-material fresnel --n 1.36 --roughness 0.8 --diffuse-reflectance 0.0347 -o asphalt.ron
 //! irsig-material fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
 //! ```
 
@@ -48,10 +50,11 @@ pub struct Cli {
 pub enum Command {
     /// Material index + .ems tables <-> canonical material library, validated.
     Convert(convert::ConvertArgs),
-    /// Angular emissivity of a smooth opaque surface from its complex refractive index
-    /// (Fresnel), as a material library entry (RON) or a legacy `.ems`.
+    /// Angular emissivity of an opaque surface, smooth or rough, from its complex refractive
+    /// index (Fresnel), as a material library entry (RON) or a legacy `.ems`.
     #[command(after_help = "Examples:
   irsig-material fresnel --n 1.2 --k 0.05 --angles 0:90:5
+  irsig-material fresnel --n 1.36 --roughness 0.8 --diffuse-reflectance 0.0347 --name asphalt
   irsig-material fresnel --n 25 --k 90 --name aluminium --id 7 -o aluminium.ron
   irsig-material fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
       --temperature 300 --angles 0:90:5 --legacy -o water.ems
@@ -68,7 +71,14 @@ over its own band or each of its --sub-bands, taking the angular table above as 
 shape, eps(lambda, theta) = eps(lambda) table(theta) / table(0). A Fresnel surface's shape
 changes with wavelength, so this is an approximation whose error docs/accuracy.md
 measures (\"Fresnel emissivity\"). --band-only drops the spectrum; a legacy .ems cannot
-carry it.")]
+carry it.
+
+--roughness SLOPE makes the surface rough: smooth Fresnel facets whose slopes are Gaussian
+with RMS slope SLOPE (dimensionless, the tangent of the facets' tilt; 0 is smooth), seen
+through Smith's shadowing, with one reflection (Masuda et al. 1988; Wu & Smith 1997).
+--diffuse-reflectance SHARE puts a body that returns SHARE of what enters it diffusely
+under the facets (eps = (1 - SHARE) times the facets'). Field-measured soils, sand, grass
+and paint fitted this way: pipelines/materials/rough-surfaces.ron, docs/accuracy.md.")]
     Fresnel(fresnel::Args),
     /// A DIRSIG classic .mat and the spectral .ems curves it names -> a canonical material
     /// library of spectral materials (ε(λ) with an angular shape).

@@ -31,7 +31,7 @@ use std::str::FromStr;
 use base64::Engine as _;
 use clap::Parser;
 use irsig_cli::Input;
-use irsig_cli::args::BandArg;
+use irsig_cli::args::ImageBandArgs;
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
@@ -76,10 +76,10 @@ pub struct Cli {
     /// --band instead (the sensor stage's EXR, say); the same size as the truth EXR.
     #[arg(long, value_name = "FILE")]
     pub radiance: Option<String>,
-    /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres or a sensor
-    /// response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
+    /// write it); --band must be that band unless --override-band.
+    #[command(flatten)]
+    pub band: ImageBandArgs,
     /// Per-region statistics from this regions file (canonical RON); needs the truth EXR.
     #[arg(long, value_name = "FILE", requires = "truth")]
     pub regions: Option<String>,
@@ -88,11 +88,11 @@ pub struct Cli {
     pub decision: Option<String>,
     /// The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin.
     #[arg(long, value_name = "FILE")]
-    pub lut: Option<String>,
+    pub lut: Option<PathBuf>,
     /// The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`), shown as
     /// it is.
     #[arg(long, value_name = "FILE")]
-    pub colour_preview: Option<String>,
+    pub colour_preview: Option<PathBuf>,
     /// A line profile of apparent temperature from pixel (X0, Y0) to (X1, Y1), columns and
     /// rows from the top-left pixel (0, 0).
     #[arg(long, value_name = "X0,Y0:X1,Y1")]
@@ -309,10 +309,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
     let radiance = match &cli.radiance {
         Some(path) => {
-            let band = cli.band.load()?;
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("radiance EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
+            let recorded = irsig_cli::provenance(&input.name, &image)?;
+            let band = cli
+                .band
+                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+            if let Some(w) = &band.warning {
+                eprintln!("irsig-report: warning: {w}");
+            }
             if let Some((name, t)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
             {
@@ -337,14 +343,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     {
         (Some((name, image, band)), _) => {
             let l = layer(&image, &name, RADIANCE_LAYER)?;
-            let t = irsig_stats::apparent_temperatures(l, &band);
+            let t = irsig_radiometry::apparent_temperatures(&band.band, l);
             (
                 t,
                 image.width,
                 image.height,
                 format!(
-                    "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {} um",
-                    cli.band
+                    "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {}",
+                    band.record
                 ),
             )
         }
@@ -397,7 +403,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let set: RegionSet = irsig_formats::canonical::from_ron(&input.name, text)?;
             let ids = layer(image, truth_name, MATERIAL_LAYER)?;
-            Some(irsig_stats::tabulate(&irsig_stats::Inputs {
+            Some(irsig_regions::tabulate(&irsig_regions::Inputs {
                 regions_name: &input.name,
                 regions_text: text,
                 set: &set,
@@ -699,7 +705,7 @@ td.num,.num{font-variant-numeric:tabular-nums}td.num{text-align:right}\
 img{image-rendering:pixelated}.absent{color:#777}pre{white-space:pre-wrap}";
 
 /// The `irsig-stats` table as HTML, three decimals.
-fn stats_table(w: &mut String, table: &irsig_stats::Table) {
+fn stats_table(w: &mut String, table: &irsig_regions::Table) {
     let _ = write!(
         w,
         "<p>Values: {} ({}).</p>\n<table id=\"stats\">\n<thead><tr><th>region</th>\

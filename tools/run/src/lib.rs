@@ -10,9 +10,9 @@
 //! irsig-run --step 'trace[3]' p.ron             # one step (what a Slurm task runs)
 //! ```
 //!
-//! Before anything runs, every stage's parameters are checked by the tool's own clap `Cli`
-//! ([`tools`]), so an unknown or mistyped parameter is reported at its line and column in
-//! the pipeline file.
+//! Before anything runs, every stage's parameters are checked by the tool's own clap `Cli`,
+//! asked of the tool's program ([`tools`]), so an unknown or mistyped parameter is reported
+//! at its line and column in the pipeline file.
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
@@ -98,39 +98,28 @@ pub struct Cli {
     pub quiet: bool,
 }
 
-/// The tools the runner knows, with the parameter validators of those whose `Cli` is
-/// available to it. A tool without a validator still runs; its parameters are then checked
-/// only when it starts.
-///
-/// Every stage tool exposes `pub struct Cli` (clap) in its library; registering
-/// `check::<irsig_<tool>::Cli>` here is all it takes. Registered: every stage tool (import,
-/// flatten, atmos, material, trace, merge, sensor, stats, report) and run itself (a pipeline may run
-/// a sub-pipeline).
+/// The stage tools whose parameters the runner checks before anything runs.
+pub const STAGE_TOOLS: [&str; 10] = [
+    "import", "flatten", "atmos", "material", "trace", "merge", "sensor", "stats", "report", "run",
+];
+
+/// The tools the runner knows, each found program registered with a validator that asks
+/// the program itself to check a stage's parameters (`irsig_cli::check_args`: its own clap
+/// definition, nothing run), so that an unknown or mistyped parameter is reported at its
+/// line and column before any stage runs, and the runner depends on no tool's crate. A tool
+/// without a validator still runs; its parameters are then checked only when it starts.
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
-    tools
-        .register("import", check::<irsig_import::Cli>)
-        .register("flatten", check::<irsig_flatten::Cli>)
-        .register("atmos", check::<irsig_atmos::Cli>)
-        .register("material", check::<irsig_material::Cli>)
-        .register("trace", check::<irsig_trace::Cli>)
-        .register("merge", check::<irsig_merge::Cli>)
-        .register("sensor", check::<irsig_sensor::Cli>)
-        .register("stats", check::<irsig_stats::Cli>)
-        .register("report", check::<irsig_report::Cli>)
-        .register("run", check::<Cli>);
-    tools
-}
-
-/// Parses `argv` with the tool's own `Cli`, as the tool will.
-fn check<C: Parser>(argv: &[String]) -> Result<(), String> {
-    match C::try_parse_from(argv) {
-        Ok(_) => Ok(()),
-        // `--help` and `--version` are valid command lines that print and exit.
-        Err(e) if !e.use_stderr() => Ok(()),
-        Err(e) => Err(e.render().to_string()),
+    for tool in STAGE_TOOLS {
+        if let Some(program) = irsig_cli::find_tool(tool) {
+            tools.register(
+                tool,
+                Box::new(move |argv| irsig_cli::check_args(&program, argv)),
+            );
+        }
     }
+    tools
 }
 
 /// Runs `irsig-run`.

@@ -30,8 +30,9 @@ pub mod spec;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
-use irsig_cli::args::{BandArg, DcArgs};
+use irsig_cli::args::{DcArgs, ImageBandArgs};
 use irsig_model::limits::MEMORY_BUDGET_BYTES;
+use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
 use irsig_raster::{Raster, counts_png, into_exr_bytes};
@@ -101,10 +102,10 @@ pub struct Cli {
     #[arg(long = "categorical", value_name = "LAYER")]
     pub categorical: Vec<String>,
 
-    /// The band, as the tracer's: `MIN-MAX` in micrometres (flat response) or a sensor
-    /// response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    /// The band of the radiance, which the input records (irsig-trace writes it); --band
+    /// must be that band unless --override-band.
+    #[command(flatten)]
+    pub band: ImageBandArgs,
 
     /// Noise-equivalent temperature difference, kelvin: adds Gaussian noise of
     /// σ = NEdT·dL/dT(reference) to the radiance.
@@ -393,11 +394,34 @@ pub fn run(cli: Cli) -> miette::Result<()> {
              --dc-per-kelvin with --reference-k (fixed), or --gain-dc-per-radiance",
         ));
     }
-    let band = cli.band.load()?;
-
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;
     let name = input.name.clone();
+    // The band is the one the radiance records; what the outputs record adds this stage.
+    let recorded = irsig_cli::provenance(&input.name, &raster)?;
+    let resolved = cli
+        .band
+        .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+    if let Some(w) = &resolved.warning {
+        eprintln!("irsig-sensor: warning: {w}");
+    }
+    let mut provenance = recorded.unwrap_or_else(|| Provenance {
+        band: resolved.record.clone(),
+        sub_bands: "not recorded".into(),
+        atmosphere: "not recorded".into(),
+        atmosphere_model: "not recorded".into(),
+        inputs: Vec::new(),
+    });
+    provenance.band = resolved.record.clone();
+    provenance.inputs.push(InputRecord {
+        stage: "sensor".into(),
+        role: "radiance EXR".into(),
+        sha256: input.sha256(),
+    });
+    let comments = Some(
+        irsig_formats::canonical::provenance_comments(&provenance).map_err(|e| miette!("{e}"))?,
+    );
+    let band = resolved.band;
     if raster.layer(RADIANCE_LAYER).is_none() {
         let names: Vec<&str> = raster.layers.iter().map(|l| l.name.as_str()).collect();
         return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
@@ -450,7 +474,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             None
         };
     if let (Some(path), Some(t)) = (&cli.temperature_exr, &temperature) {
-        let mut r = Raster::new(w, h);
+        let mut r = Raster::new(w, h).with_comments(comments.clone());
         let layer = Layer::ApparentTemperature;
         r.push_layer(layer.name(), layer.unit(), t.clone())
             .into_diagnostic()?;
@@ -462,13 +486,30 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             .map_err(|e| miette!("quantisation: {e}"))?;
         if let Some(path) = &cli.dc_png {
             let counts = q.quantise(out.radiance(), w).map_err(sensor)?;
+            let full = (1u32 << bits) - 1;
+            let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
+            let high = counts.iter().filter(|&&c| u32::from(c) == full).count();
+            if low + high > 0 {
+                let lut = q.lut(&band);
+                let t = |e: Option<&irsig_sensor_model::quantise::LutEntry>| {
+                    e.map_or(f64::NAN, |e| e.temperature_k)
+                };
+                eprintln!(
+                    "irsig-sensor: {high} pixel(s) saturate at count {full} and {low} at count 0 \
+                     of {} (the LUT spans {:.2}-{:.2} K): their temperatures are clipped",
+                    counts.len(),
+                    t(lut.entries.first()),
+                    t(lut.entries.last())
+                );
+            }
             files.push((
                 path.clone(),
                 counts_png(&counts, w, h, bits).into_diagnostic()?,
             ));
         }
         if let Some(path) = &cli.lut {
-            files.push((path.clone(), q.lut(&band).to_string().into_bytes()));
+            let text = q.lut(&band).text_in_band(&provenance.band.to_string());
+            files.push((path.clone(), text.into_bytes()));
         }
     }
     if let (Some(path), Some(t)) = (&cli.preview, &temperature) {
@@ -478,7 +519,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         files.push((path.clone(), preview::colour_with_bar(t, w, h)?));
     }
     // The sensed image's layers go into the encoder, not a copy of them.
-    let exr = into_exr_bytes(out.raster).into_diagnostic()?;
+    let exr = into_exr_bytes(out.raster.with_comments(comments)).into_diagnostic()?;
     match &cli.output {
         Some(p) if p.as_os_str() != "-" => {
             files.push((p.clone(), exr));

@@ -1,7 +1,5 @@
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
-    irsig_cli::run(|| irsig_sensor::run(irsig_sensor::Cli::parse()))
+    irsig_cli::run(|| irsig_sensor::run(irsig_cli::parse()))
 }

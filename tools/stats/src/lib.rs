@@ -24,50 +24,17 @@
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
 
-pub mod stats;
-
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{BandArg, TableFormat};
+use irsig_cli::args::{ImageBandArgs, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::Raster;
 use miette::miette;
-use serde::Serialize;
 
-use crate::stats::{RegionProblem, RegionStats, region_stats};
-
-/// The apparent temperature (K) of every radiance (W m⁻² sr⁻¹) of an image, NaN where the
-/// radiance is not finite: through the band's inverse table (a table start and a Newton
-/// step, within 1e-9 K of the cold solve), in parallel, the same at any thread count, and
-/// holding nothing but the result (4 bytes per pixel). irsig-stats and irsig-report take
-/// their values from it, so that the report shows the tool's numbers.
-#[must_use]
-pub fn apparent_temperatures(
-    radiance_w_m2_sr: &[f32],
-    band: &impl irsig_radiometry::BandModel,
-) -> Vec<f32> {
-    use rayon::prelude::*;
-    let (lo, hi) = radiance_w_m2_sr
-        .iter()
-        .filter(|l| l.is_finite() && **l > 0.0)
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &l| {
-            (lo.min(f64::from(l)), hi.max(f64::from(l)))
-        });
-    let inverse = irsig_radiometry::InverseTable::new(band, &[lo, hi]);
-    radiance_w_m2_sr
-        .par_chunks(4096)
-        .flat_map_iter(|run| {
-            let finite = run.iter().map(|&l| f64::from(l));
-            inverse
-                .temperatures(finite)
-                .zip(run)
-                .map(|(t, l)| if l.is_finite() { t as f32 } else { f32::NAN })
-        })
-        .collect()
-}
+use irsig_regions::{Inputs, Row, Table, tabulate};
 
 /// The truth layer regions select by.
 const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
@@ -75,9 +42,6 @@ const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
 const APPARENT_LAYER: &str = Layer::ApparentTemperature.name();
 /// The layer `--radiance` reads, W m⁻² sr⁻¹.
 const RADIANCE_LAYER: &str = Layer::Radiance.name();
-
-/// 0 °C in kelvin.
-const ZERO_CELSIUS_K: f64 = 273.15;
 
 const EXAMPLE: &str = "\
 Examples:
@@ -112,10 +76,10 @@ pub struct Cli {
     /// The truth EXR's layer to take the values from, in kelvin.
     #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
     pub layer: String,
-    /// The band of --radiance, as the tracer's: `MIN-MAX` in micrometres (flat response) or
-    /// a sensor response file (formats/srf.md).
-    #[arg(long, default_value = "8-14", value_name = "MIN-MAX|FILE")]
-    pub band: BandArg,
+    /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
+    /// write it); --band must be that band unless --override-band.
+    #[command(flatten)]
+    pub band: ImageBandArgs,
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
@@ -127,48 +91,6 @@ pub struct Cli {
     /// Output file (`-` or absent: stdout); written atomically.
     #[arg(short = 'o', long, value_name = "FILE")]
     pub output: Option<PathBuf>,
-}
-
-/// One region's row of the table.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Row {
-    /// The region's name.
-    pub region: String,
-    /// Pixels selected.
-    pub pixels: usize,
-    /// Mean, in the table's unit.
-    pub mean: f64,
-    /// Population standard deviation, K.
-    pub std_dev: f64,
-    /// Minimum, in the table's unit.
-    pub min: f64,
-    /// Maximum, in the table's unit.
-    pub max: f64,
-    /// Per reference column (in the file's order): the reference and mean − reference;
-    /// `None` where the region gives no value for that column.
-    pub references: Vec<Option<Compared>>,
-}
-
-/// A reference value and our mean's difference from it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Compared {
-    /// The reference, in the table's unit.
-    pub reference: f64,
-    /// Mean − reference, K.
-    pub difference: f64,
-}
-
-/// Everything the output shows.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Table {
-    /// Where the values come from (`apparent_temperature of out/f.truth.exr`).
-    pub values: String,
-    /// `K` or `degC`.
-    pub unit: String,
-    /// Reference columns: name and source.
-    pub references: Vec<(String, String)>,
-    /// One row per region, in the regions file's order.
-    pub regions: Vec<Row>,
 }
 
 /// Runs the tool.
@@ -190,19 +112,20 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let regions_input = irsig_cli::read_input(&cli.regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
-    let band = if cli.radiance.is_some() {
-        Some(cli.band.load()?)
-    } else {
-        None
-    };
-
     let truth_input = irsig_cli::read_input(&cli.truth)?;
     let truth = irsig_cli::read_exr(&truth_input.name, &truth_input.bytes)?;
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
-    let (values, source): (Vec<f32>, String) = match (&cli.radiance, band) {
-        (Some(path), Some(band)) => {
+    let (values, source): (Vec<f32>, String) = match &cli.radiance {
+        Some(path) => {
             let input = irsig_cli::read_input(path)?;
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
+            let recorded = irsig_cli::provenance(&input.name, &image)?;
+            let band = cli
+                .band
+                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+            if let Some(w) = &band.warning {
+                eprintln!("irsig-stats: warning: {w}");
+            }
             if (image.width, image.height) != (truth.width, truth.height) {
                 return Err(miette!(
                     "{}: the image is {} x {} pixels but the truth EXR {} is {} x {}: \
@@ -217,16 +140,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 ));
             }
             let radiance = layer(&image, &input.name, RADIANCE_LAYER)?;
-            let temperatures = apparent_temperatures(radiance, &band);
+            let temperatures = irsig_radiometry::apparent_temperatures(&band.band, radiance);
             (
                 temperatures,
                 format!(
-                    "apparent temperature of the `radiance` layer of {} in {} um",
-                    input.name, cli.band
+                    "apparent temperature of the `radiance` layer of {} in {}",
+                    input.name, band.record
                 ),
             )
         }
-        _ => (
+        None => (
             layer(&truth, &truth_input.name, &cli.layer)?.to_vec(),
             format!("`{}` layer of {}", cli.layer, truth_input.name),
         ),
@@ -245,129 +168,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     })?;
     let text = render(&table, cli.format)?;
     irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
-}
-
-/// What [`tabulate`] reads: the regions (their file's name and text, for messages at the
-/// offending line), the image's material ids and values, pixel by pixel.
-#[derive(Debug)]
-pub struct Inputs<'a> {
-    /// The regions file's name, for messages.
-    pub regions_name: &'a str,
-    /// Its text, for the line and column of a region that does not fit the image.
-    pub regions_text: &'a str,
-    /// The regions, as read from that text.
-    pub set: &'a RegionSet,
-    /// The image's name, for messages.
-    pub image_name: &'a str,
-    /// The `material_primary` layer, row by row.
-    pub material_ids: &'a [f32],
-    /// The image's width, pixels.
-    pub width: usize,
-    /// The values, K, one per pixel in the same order.
-    pub values: &'a [f32],
-    /// Where the values come from, in words (the table's `values`).
-    pub source: String,
-    /// Show temperatures in degC rather than K.
-    pub celsius: bool,
-}
-
-/// The table of per-region statistics of `inputs.values`: what `irsig-stats` prints, for a
-/// caller that has read the images itself (the run report).
-///
-/// # Errors
-/// A region that reaches beyond the image, selects no pixel or meets a non-finite value,
-/// at the region's line in the regions file.
-pub fn tabulate(inputs: &Inputs<'_>) -> miette::Result<Table> {
-    let offset = if inputs.celsius { ZERO_CELSIUS_K } else { 0.0 };
-    let mut rows = Vec::with_capacity(inputs.set.regions.len());
-    for (i, region) in inputs.set.regions.iter().enumerate() {
-        let s: RegionStats = region_stats(region, inputs.material_ids, inputs.values, inputs.width)
-            .map_err(|p| {
-                let (path, message) = match p {
-                    RegionProblem::BoxOutside { width, height } => (
-                        format!("regions[{i}].pixels"),
-                        format!(
-                            "region `{}`: the box reaches beyond the image {} ({width} x {height} \
-                         pixels: columns 0-{}, rows 0-{})",
-                            region.name,
-                            inputs.image_name,
-                            width.saturating_sub(1),
-                            height.saturating_sub(1)
-                        ),
-                    ),
-                    RegionProblem::Empty => (
-                        format!("regions[{i}]"),
-                        format!(
-                            "region `{}` selects no pixel of {}: expected at least one pixel \
-                         {}",
-                            region.name,
-                            inputs.image_name,
-                            selection(region)
-                        ),
-                    ),
-                    RegionProblem::NotFinite { column, row } => (
-                        format!("regions[{i}]"),
-                        format!(
-                            "region `{}`: pixel ({column}, {row}) has no finite value ({})",
-                            region.name, inputs.source
-                        ),
-                    ),
-                };
-                irsig_formats::canonical::error_at_path(
-                    inputs.regions_name,
-                    inputs.regions_text,
-                    &path,
-                    message,
-                )
-            })?;
-        let references = inputs
-            .set
-            .references
-            .iter()
-            .map(|c| {
-                RegionSet::reference(region, &c.name).map(|r| Compared {
-                    reference: r - offset,
-                    difference: s.mean - r,
-                })
-            })
-            .collect();
-        rows.push(Row {
-            region: region.name.clone(),
-            pixels: s.pixels,
-            mean: s.mean - offset,
-            std_dev: s.std_dev,
-            min: s.min - offset,
-            max: s.max - offset,
-            references,
-        });
-    }
-    Ok(Table {
-        values: inputs.source.clone(),
-        unit: if inputs.celsius { "degC" } else { "K" }.into(),
-        references: inputs
-            .set
-            .references
-            .iter()
-            .map(|c| (c.name.clone(), c.source.clone()))
-            .collect(),
-        regions: rows,
-    })
-}
-
-/// What a region asks for, in words.
-fn selection(region: &irsig_model::Region) -> String {
-    let material = region.material.map(|m| format!("of material {}", m.0));
-    let pixels = region.pixels.map(|b| {
-        format!(
-            "in columns {}-{}, rows {}-{}",
-            b.columns.0, b.columns.1, b.rows.0, b.rows.1
-        )
-    });
-    [material, pixels]
-        .into_iter()
-        .flatten()
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
@@ -509,6 +309,7 @@ fn csv_field(s: String) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use irsig_regions::Compared;
 
     fn table() -> Table {
         Table {

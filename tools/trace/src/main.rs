@@ -1,7 +1,5 @@
 use std::process::ExitCode;
 
-use clap::Parser;
-
 fn main() -> ExitCode {
-    irsig_cli::run(|| irsig_trace::run(irsig_trace::Cli::parse()))
+    irsig_cli::run(|| irsig_trace::run(irsig_cli::parse()))
 }

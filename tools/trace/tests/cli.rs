@@ -88,9 +88,13 @@ fn a_plate_seen_straight_down_gives_the_hand_computed_images() {
     assert!((f64::from(t_app[0]) - 320.0).abs() < 1e-3);
     // The nibble map: material 1 → 0x10, material 2 → 0x20; PNG written.
     assert!(dir.path().join("f.map.png").exists());
-    // DC image and LUT: auto-bias, 256 entries plus a header.
+    // DC image and LUT: auto-bias, 256 entries after a header and the band's line.
     let lut = std::fs::read_to_string(dir.path().join("f.lut.txt")).unwrap();
-    assert_eq!(lut.lines().count(), 257);
+    assert_eq!(lut.lines().count(), 258);
+    assert_eq!(
+        lut.lines().nth(1),
+        Some("# band: the whole spectrum (total)")
+    );
     assert!(dir.path().join("f.dc.png").exists());
 }
 
@@ -543,4 +547,58 @@ fn declared_uncertainties_give_the_error_budget_layers() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("bad.ron:2:"), "{stderr}");
     assert!(!dir.path().join("x.radiance.exr").exists());
+}
+
+#[test]
+fn defaults_that_change_the_physics_are_said_and_given_values_are_not() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let run = |extra: &[&str]| {
+        let out = trace()
+            .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+            .args(["--probe", "0,0"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(out.status.success());
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let silent = run(&[]);
+    assert!(
+        silent.contains("note: no band given: tracing 8-14 um, flat")
+            && silent.contains("note: no atmosphere given: a vacuum")
+            && silent.contains("under a sky of 0 W m^-2 sr^-1"),
+        "{silent}"
+    );
+    let said = run(&["--band", "8-14", "--atmosphere", "none"]);
+    assert!(!said.contains("note:"), "{said}");
+}
+
+#[test]
+fn a_response_outside_a_builtins_spectra_names_the_band_file_both_ranges_and_the_fix() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    // A 7-14 um response: the built-ins' spectra start at 7.41 um.
+    let srf = write(
+        dir.path(),
+        "bolometer.srf",
+        "7.0 0.0\n8.0 0.5\n10.0 1.0\n14.0 0.2\n",
+    );
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "--band", &srf, "-o"])
+        .arg(dir.path().join("f"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr).replace('\n', " ");
+    for needed in [
+        "bolometer.srf: the band, 7-14 um with a response",
+        "7.407-14.085 um",
+        "irsig-atmos plan",
+    ] {
+        assert!(err.contains(needed), "`{needed}` missing from: {err}");
+    }
+    assert!(!err.contains("--sub-bands"), "{err}");
+    assert!(!dir.path().join("f.radiance.exr").exists());
 }

@@ -112,6 +112,18 @@ pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error
     Ok(out)
 }
 
+/// The header's RON text and its byte offset in the file, if `bytes` hold a well-formed
+/// header (what [`decode`] reads first).
+#[must_use]
+pub fn header(bytes: &[u8]) -> Option<(usize, &str)> {
+    if !is_binary(bytes) {
+        return None;
+    }
+    let h = u32::from_le_bytes(bytes.get(12..16)?.try_into().ok()?) as usize;
+    let text = std::str::from_utf8(bytes.get(16..16usize.checked_add(h)?)?).ok()?;
+    Some((16, text))
+}
+
 fn u32_at(file: &str, bytes: &[u8], at: usize, what: &str) -> Result<u32, ParseError> {
     bytes
         .get(at..at + 4)
@@ -286,6 +298,47 @@ mod tests {
             radiosonde: vec![],
             slant: None,
         }
+    }
+
+    #[test]
+    fn either_form_is_read_as_its_kind_and_errors_point_into_its_header() {
+        use crate::canonical::{AnyAtmosphere, read_any_atmosphere};
+        let a = small();
+        let bytes = encode(&a).unwrap();
+        assert_eq!(
+            read_any_atmosphere("a.bin", &bytes).unwrap(),
+            AnyAtmosphere::Spectral(a.clone())
+        );
+        let ron = crate::canonical::to_ron(&a).unwrap();
+        assert_eq!(
+            read_any_atmosphere("a.ron", ron.as_bytes()).unwrap(),
+            AnyAtmosphere::Spectral(a.clone())
+        );
+        // A band atmosphere that merely says "grid" in a string is still one.
+        let band = crate::canonical::from_ron_bytes::<irsig_model::Atmosphere>(
+            "b.ron",
+            include_bytes!("../../../../formats/canonical/samples/atmosphere.ron"),
+        )
+        .unwrap();
+        let mut band_named = band.clone();
+        band_named.source = "a grid of nodes".into();
+        let text = crate::canonical::to_ron(&band_named).unwrap();
+        assert_eq!(
+            read_any_atmosphere("b.ron", text.as_bytes()).unwrap(),
+            AnyAtmosphere::Band(band_named)
+        );
+        // In the binary form the error is at the grid's points inside the RON header.
+        let (offset, header) = header(&bytes).unwrap();
+        let e = crate::canonical::spectral_atmosphere_error_at_path(
+            "a.bin",
+            &bytes,
+            "grid.points",
+            "outside",
+        );
+        let (start, _) = crate::ron_tree::locate(header, "grid.points");
+        assert!(header[start..].starts_with('['), "{}", &header[start..]);
+        assert_eq!((e.line, e.column), (1, offset + start + 1), "{e}");
+        assert!(e.to_string().contains("outside"), "{e}");
     }
 
     #[test]

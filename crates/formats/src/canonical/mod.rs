@@ -21,6 +21,7 @@ pub mod binary_spectral;
 mod layout;
 
 use irsig_model::decision::Decision;
+use irsig_model::provenance::Provenance;
 use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
     Atmosphere, AtmospherePlan, MaterialLibrary, ModelError, Object, RawScene, RegionSet, Scene,
@@ -69,6 +70,29 @@ canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
 canonical!(AtmospherePlan, "atmosphere plan", 2);
 canonical!(Decision, "decision", 3);
 canonical!(Uncertainties, "uncertainties file", 3);
+canonical!(Provenance, "provenance", 3);
+
+/// The first line of an image's comments that hold its provenance, which follows as
+/// canonical RON (formats/images.md): an image of another program has other comments.
+const PROVENANCE_HEADER: &str = "irsig provenance (canonical RON)\n";
+
+/// `provenance` as the text of an image's comments.
+///
+/// # Errors
+/// Only if RON serialisation fails, which it does not for finite numbers.
+pub fn provenance_comments(provenance: &Provenance) -> Result<String, ron::Error> {
+    Ok(format!("{PROVENANCE_HEADER}{}", to_ron(provenance)?))
+}
+
+/// The provenance an image's comments hold (`file` names the image in messages): `None`
+/// for comments that are not irsig's provenance.
+///
+/// # Errors
+/// irsig's header followed by RON that is not a valid provenance.
+pub fn provenance_of(file: &str, comments: &str) -> Option<Result<Provenance, ParseError>> {
+    let ron = comments.strip_prefix(PROVENANCE_HEADER)?;
+    Some(from_ron(&format!("{file} (its provenance)"), ron))
+}
 
 /// Parses RON text into `T` without validating it.
 ///
@@ -90,11 +114,32 @@ pub fn from_ron_as<T: DeserializeOwned>(
 ) -> Result<T, ParseError> {
     ron::from_str::<T>(text).map_err(|e| {
         let offset = crate::offset_of(text, e.span.start.line, e.span.start.col);
+        let message = match e.code {
+            // ron says "Expected option"; the user wrote a plain value where the model has
+            // an optional one.
+            ron::Error::ExpectedOption => {
+                let rest = text.get(offset..).unwrap_or("");
+                let value = rest
+                    .split([',', ')', ']', '\n'])
+                    .next()
+                    .unwrap_or("")
+                    .trim();
+                if value.is_empty() || value.starts_with("Some") || value == "None" {
+                    "expected an optional value: write `Some(value)`, or `None`".to_owned()
+                } else {
+                    format!(
+                        "expected an optional value: write `Some({value})` for `{value}` (or \
+                         `None` for none)"
+                    )
+                }
+            }
+            ref code => ron_message(code),
+        };
         ParseError::at_offset(
             file,
             text,
             offset,
-            format!("malformed {what} (RON): {}", ron_message(&e.code)),
+            format!("malformed {what} (RON): {message}"),
         )
     })
 }
@@ -253,6 +298,54 @@ pub fn read_spectral_atmosphere(
     }
 }
 
+/// An error at a model path (`grid.points`) of a spectral atmosphere in either form: in
+/// the RON, or in the binary form's RON header, at its byte offset.
+#[must_use]
+pub fn spectral_atmosphere_error_at_path(
+    file: &str,
+    bytes: &[u8],
+    path: &str,
+    message: impl Into<String>,
+) -> ParseError {
+    if binary_spectral::is_binary(bytes) {
+        let (offset, header) = binary_spectral::header(bytes).unwrap_or((16, ""));
+        let (start, _) = crate::ron_tree::locate(header, path);
+        ParseError::in_binary(file, offset + start, message)
+    } else {
+        error_at_path(file, &String::from_utf8_lossy(bytes), path, message)
+    }
+}
+
+/// An atmosphere file in any canonical form: a band atmosphere (RON), or a spectral one
+/// (binary or RON).
+#[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per file read
+pub enum AnyAtmosphere {
+    /// Band tables.
+    Band(Atmosphere),
+    /// Spectra.
+    Spectral(SpectralAtmosphere),
+}
+
+/// Reads an atmosphere file of either kind: binary spectral by its magic; in RON, a
+/// spectral atmosphere by its top-level `grid` field (a band atmosphere has none), else a
+/// band one.
+///
+/// # Errors
+/// As [`read_spectral_atmosphere`] or [`from_ron_bytes`]: the band atmosphere's errors for
+/// a RON file without a `grid`.
+pub fn read_any_atmosphere(file: &str, bytes: &[u8]) -> Result<AnyAtmosphere, ParseError> {
+    if binary_spectral::is_binary(bytes) {
+        return binary_spectral::decode(file, bytes).map(AnyAtmosphere::Spectral);
+    }
+    let text = utf8(file, bytes)?;
+    if crate::ron_tree::has_top_level_field(text, "grid") {
+        from_ron(file, text).map(AnyAtmosphere::Spectral)
+    } else {
+        from_ron(file, text).map(AnyAtmosphere::Band)
+    }
+}
+
 /// Reads an object in either form: binary when the bytes start with
 /// [`binary_object::MAGIC`] or `file` ends in `.bin` (so that a damaged binary file is
 /// reported as one), RON otherwise. Validates it; a rule broken in a binary object is
@@ -345,6 +438,15 @@ mod tests {
         let e = from_ron_as::<ron::Value>("deep.ron", &text, "table").unwrap_err();
         assert!(e.message.contains("nested too deeply"), "{e}");
         assert!(!e.message.contains("serde_stacker"), "{e}");
+    }
+
+    #[test]
+    fn a_plain_value_where_an_option_goes_is_told_how_to_write_it() {
+        let text = "(regions: [(name: \"panel\", material: 3)])";
+        let e = from_ron::<RegionSet>("r.ron", text).unwrap_err();
+        assert!(e.message.contains("write `Some(3)` for `3`"), "{e}");
+        // At the value (ron points at the space before it).
+        assert_eq!((e.line, e.column), (1, 37), "{e}");
     }
 
     #[test]

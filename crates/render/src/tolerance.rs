@@ -1,5 +1,5 @@
-//! `--tolerance`: what the pilot may choose from for this scene, the pins that fix a model,
-//! the decision printed and applied.
+//! The tolerance pilot's side of a frame: what the pilot may choose from for a scene
+//! ([`offer`]), the pins that fix a model ([`Pin`]), and the decision as a table.
 
 use std::fmt::Write as _;
 use std::str::FromStr;
@@ -10,6 +10,7 @@ use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
 use irsig_tracer::pilot::Supersample;
 
+use crate::error::{RequestError, Setting};
 /// The most bounces, sky-view rays and rays per pixel the pilot compares against. Four
 /// bounces: Appendix A finds one enough at earth-ambient temperatures, so four leave only
 /// hot-background scenes for more. 64 sky-view rays: the stratified estimate of F is then
@@ -18,13 +19,49 @@ pub const REFERENCE_BOUNCES: u32 = 4;
 const REFERENCE_SKY_VIEW_RAYS: u32 = 64;
 const REFERENCE_SUPERSAMPLING: u32 = 4;
 
-/// A model fixed by hand: `--pin MODEL=SETTING`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Pin {
-    /// The model.
-    pub model: SwitchableModel,
-    /// Its setting, checked against the model's settings.
-    pub setting: String,
+/// A model fixed by hand (`MODEL=SETTING`): the pilot measures it but does not choose.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Pin {
+    /// `atmosphere=table|layered|thesis|none`.
+    Atmosphere(ModelKind),
+    /// `bounces=N`, 0 to 64.
+    Bounces(u32),
+    /// `sky-view=N` rays (0: off).
+    SkyView(u32),
+    /// `supersampling=N` or `adaptive-N`.
+    Supersampling(Supersample),
+    /// `path-terms=exact|tabulated`.
+    PathTerms(PathTermsMode),
+    /// `sub-bands=1|K|full`.
+    SubBands(SubBandCount),
+}
+
+impl Pin {
+    /// The model pinned.
+    #[must_use]
+    pub fn model(self) -> SwitchableModel {
+        match self {
+            Self::Atmosphere(_) => SwitchableModel::Atmosphere,
+            Self::Bounces(_) => SwitchableModel::Bounces,
+            Self::SkyView(_) => SwitchableModel::SkyView,
+            Self::Supersampling(_) => SwitchableModel::Supersampling,
+            Self::PathTerms(_) => SwitchableModel::PathTerms,
+            Self::SubBands(_) => SwitchableModel::SubBands,
+        }
+    }
+}
+
+impl std::fmt::Display for Pin {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let model = self.model();
+        match self {
+            Self::Atmosphere(k) => write!(f, "{model}={k}"),
+            Self::Bounces(n) | Self::SkyView(n) => write!(f, "{model}={n}"),
+            Self::Supersampling(s) => write!(f, "{model}={s}"),
+            Self::PathTerms(p) => write!(f, "{model}={}", p.name()),
+            Self::SubBands(k) => write!(f, "{model}={k}"),
+        }
+    }
 }
 
 impl FromStr for Pin {
@@ -34,49 +71,35 @@ impl FromStr for Pin {
             .split_once('=')
             .ok_or_else(|| format!("expected MODEL=SETTING such as bounces=2, found `{s}`"))?;
         let model: SwitchableModel = model.trim().parse().map_err(|e| format!("{e}"))?;
-        let setting = setting.trim().to_owned();
-        check_setting(model, &setting)?;
-        Ok(Self { model, setting })
-    }
-}
-
-/// Whether `setting` is one `model` has.
-fn check_setting(model: SwitchableModel, setting: &str) -> Result<(), String> {
-    let ok = match model {
-        SwitchableModel::Atmosphere => setting.parse::<ModelKind>().is_ok(),
-        SwitchableModel::Bounces => setting.parse::<u32>().is_ok_and(|b| b <= 64),
-        SwitchableModel::SkyView => setting.parse::<u32>().is_ok_and(|n| n <= 1 << 20),
-        SwitchableModel::Supersampling => parse_supersample(setting).is_some(),
-        SwitchableModel::PathTerms => setting.parse::<PathTermsMode>().is_ok(),
-        SwitchableModel::SubBands => setting.parse::<SubBandCount>().is_ok(),
-    };
-    if ok {
-        Ok(())
-    } else {
-        let expected = match model {
-            SwitchableModel::Atmosphere => "table, layered, thesis or none",
-            SwitchableModel::Bounces => "a number of bounces, 0 to 64",
-            SwitchableModel::SkyView => "a number of rays (0: off)",
-            SwitchableModel::Supersampling => "N (N x N rays per pixel) or adaptive-N",
-            SwitchableModel::PathTerms => "exact or tabulated",
-            SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
+        let setting = setting.trim();
+        let pin = match model {
+            SwitchableModel::Atmosphere => setting.parse().ok().map(Self::Atmosphere),
+            SwitchableModel::Bounces => setting
+                .parse::<u32>()
+                .ok()
+                .filter(|&b| b <= 64)
+                .map(Self::Bounces),
+            SwitchableModel::SkyView => setting
+                .parse::<u32>()
+                .ok()
+                .filter(|&n| n <= 1 << 20)
+                .map(Self::SkyView),
+            SwitchableModel::Supersampling => setting.parse().ok().map(Self::Supersampling),
+            SwitchableModel::PathTerms => setting.parse().ok().map(Self::PathTerms),
+            SwitchableModel::SubBands => setting.parse().ok().map(Self::SubBands),
         };
-        Err(format!("{model}={setting}: expected {expected}"))
+        pin.ok_or_else(|| {
+            let expected = match model {
+                SwitchableModel::Atmosphere => "table, layered, thesis or none",
+                SwitchableModel::Bounces => "a number of bounces, 0 to 64",
+                SwitchableModel::SkyView => "a number of rays (0: off)",
+                SwitchableModel::Supersampling => "N (N x N rays per pixel) or adaptive-N",
+                SwitchableModel::PathTerms => "exact or tabulated",
+                SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
+            };
+            format!("{model}={setting}: expected {expected}")
+        })
     }
-}
-
-/// `N` or `adaptive-N`, N from 1 to 64.
-pub fn parse_supersample(s: &str) -> Option<Supersample> {
-    let (adaptive, n) = match s.strip_prefix("adaptive-") {
-        Some(n) => (true, n),
-        None => (false, s),
-    };
-    let n: u32 = n.parse().ok().filter(|n| (1..=64).contains(n))?;
-    Some(if adaptive {
-        Supersample::Adaptive(n)
-    } else {
-        Supersample::Every(n)
-    })
 }
 
 /// The settings on offer for each model, most accurate first, and why a model has one.
@@ -106,13 +129,14 @@ pub const SPECTRAL_SUB_BANDS: [SubBandCount; 4] = [
 /// sub-band counts are on offer), with `pins` fixing models.
 ///
 /// # Errors
-/// A pin the scene cannot honour (an atmosphere model whose table is missing).
+/// A pin the scene cannot honour (an atmosphere model whose table is missing, sub-bands of
+/// an atmosphere without spectra): a request error naming the pin.
 pub fn offer(
     materials: &MaterialLibrary,
     kinds: Option<&[ModelKind]>,
     spectral: bool,
     pins: &[Pin],
-) -> Result<Offer, String> {
+) -> miette::Result<Offer> {
     let mut reasons = Vec::new();
     let specular = materials
         .materials
@@ -126,7 +150,7 @@ pub fn offer(
     // spectra.
     let band_pinned = pins
         .iter()
-        .any(|p| p.model == SwitchableModel::SubBands && p.setting == "1");
+        .any(|p| matches!(p, Pin::SubBands(c) if c.is_band()));
     let mut atmospheres = match kinds {
         // Spectra with slant tables: the table model, LOWTRAN's own paths in every
         // sub-band; the layered and thesis models, approximations for atmospheres without
@@ -193,41 +217,40 @@ pub fn offer(
         vec![SubBandCount::BAND]
     };
     let mut pinned = Vec::new();
-    for pin in pins {
-        let why = format!("pinned by --pin {}={}", pin.model, pin.setting);
-        reasons.retain(|(m, _)| *m != pin.model);
-        reasons.push((pin.model, why));
-        pinned.push(pin.model);
-        match pin.model {
-            SwitchableModel::Atmosphere => {
-                let kind: ModelKind = pin.setting.parse().map_err(|e| format!("{e}"))?;
+    for &pin in pins {
+        let model = pin.model();
+        let why = format!("pinned by --pin {pin}");
+        reasons.retain(|(m, _)| *m != model);
+        reasons.push((model, why));
+        pinned.push(model);
+        match pin {
+            Pin::Atmosphere(kind) => {
                 if !atmospheres.contains(&kind) {
-                    return Err(format!(
-                        "--pin atmosphere={kind}: this atmosphere offers {}",
-                        atmospheres
-                            .iter()
-                            .map(ToString::to_string)
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                    return Err(RequestError::of_value(
+                        Setting::Pin,
+                        pin,
+                        format!(
+                            "this atmosphere offers {}",
+                            atmospheres
+                                .iter()
+                                .map(ToString::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
                     ));
                 }
                 atmospheres = vec![kind];
             }
-            SwitchableModel::Bounces => bounces = vec![parse_u32(&pin.setting)?],
-            SwitchableModel::SkyView => sky_view_rays = vec![parse_u32(&pin.setting)?],
-            SwitchableModel::Supersampling => {
-                supersampling = vec![parse_supersample(&pin.setting).ok_or("bad pin")?];
-            }
-            SwitchableModel::PathTerms => {
-                path_terms = vec![pin.setting.parse().map_err(|e| format!("{e}"))?];
-            }
-            SwitchableModel::SubBands => {
-                let count: SubBandCount = pin.setting.parse()?;
+            Pin::Bounces(n) => bounces = vec![n],
+            Pin::SkyView(n) => sky_view_rays = vec![n],
+            Pin::Supersampling(s) => supersampling = vec![s],
+            Pin::PathTerms(p) => path_terms = vec![p],
+            Pin::SubBands(count) => {
                 if !spectral && !count.is_band() {
-                    return Err(format!(
-                        "--pin sub-bands={}: this atmosphere has no spectra; only 1 (the band \
-                         model) is on offer",
-                        pin.setting
+                    return Err(RequestError::of_value(
+                        Setting::Pin,
+                        pin,
+                        "this atmosphere has no spectra; only 1 (the band model) is on offer",
                     ));
                 }
                 sub_bands = vec![count];
@@ -246,20 +269,15 @@ pub fn offer(
     })
 }
 
-fn parse_u32(s: &str) -> Result<u32, String> {
-    s.parse()
-        .map_err(|_| format!("expected a whole number, found `{s}`"))
-}
-
-/// The decision as the table printed on stderr: model, choice, error at the percentile and
-/// at worst (K), relative cost, why.
+/// The decision as a table for people: model, choice, error at the percentile and at worst
+/// (K), relative cost, why. The first line says the tolerance; the rest are indented.
 #[must_use]
 pub fn table(d: &Decision) -> String {
     let mut out = String::new();
     let p = d.percentile;
     let _ = writeln!(
         out,
-        "irsig-trace: --tolerance {} K at the {p}th percentile, from {} pilot pixels:",
+        "tolerance {} K at the {p}th percentile, from {} pilot pixels:",
         d.tolerance_k, d.pilot_pixels
     );
     let _ = writeln!(
@@ -295,12 +313,12 @@ mod tests {
 
     #[test]
     fn pins_name_a_model_and_one_of_its_settings() {
+        assert_eq!("bounces=2".parse::<Pin>(), Ok(Pin::Bounces(2)));
         assert_eq!(
-            "bounces=2".parse::<Pin>(),
-            Ok(Pin {
-                model: SwitchableModel::Bounces,
-                setting: "2".into()
-            })
+            "supersampling=adaptive-4"
+                .parse::<Pin>()
+                .map(|p| p.to_string()),
+            Ok("supersampling=adaptive-4".to_owned())
         );
         assert!("supersampling=adaptive-4".parse::<Pin>().is_ok());
         let e = "bounce=2".parse::<Pin>().unwrap_err();

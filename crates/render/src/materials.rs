@@ -9,12 +9,12 @@ use irsig_radiometry::{Band, EmissivityTable, band_average_emissivity};
 use miette::miette;
 
 /// The Planck weighting temperature, K: the sub-bands' reference (`SHARE_REFERENCE_K`).
-const WEIGHT_K: f64 = super::SHARE_REFERENCE_K;
+const WEIGHT_K: f64 = crate::band::SHARE_REFERENCE_K;
 
 /// `lib` with every spectral material's angular table replaced by its average over `band`
 /// (the `spectral` curve kept, for the sub-bands). A curve that does not cover the band is
 /// an error at its wavelengths in `file`.
-pub(crate) fn band_library(
+pub fn band_library(
     lib: &MaterialLibrary,
     band: &Band,
     file: &str,
@@ -50,7 +50,7 @@ pub(crate) fn band_library(
 
 /// Each material's angular emissivity over the sub-band `band`, in the library's order;
 /// `None` when no material is spectral (the tracer then keeps the band tables).
-pub(crate) fn sub_band_tables(
+pub fn sub_band_tables(
     lib: &MaterialLibrary,
     band: &Band,
 ) -> miette::Result<Option<Vec<EmissivityTable>>> {

@@ -1,0 +1,182 @@
+//! The atmosphere of a request: a vacuum, a built-in (in band or spectral form) or a file
+//! (a band atmosphere, or a spectral one in either form), read and checked against the
+//! band.
+
+use irsig_formats::canonical::{AnyAtmosphere, read_any_atmosphere};
+use irsig_model::SpectralAtmosphere;
+use miette::miette;
+
+use crate::error::{RequestError, Setting};
+
+/// Where the atmosphere comes from, as asked.
+#[derive(Debug, Clone, PartialEq)]
+pub enum AtmosphereRequest {
+    /// A vacuum whose sky has this radiance, W m⁻² sr⁻¹ (0: cold space).
+    Vacuum {
+        /// The sky's radiance, W m⁻² sr⁻¹.
+        sky_radiance_w_m2_sr: f64,
+    },
+    /// A built-in by name (`irsig_atmosphere::BUILTIN_NAMES`).
+    Builtin(String),
+    /// A file's bytes: a band atmosphere (RON) or a spectral one (binary or RON).
+    File {
+        /// The name errors give it.
+        name: String,
+        /// Its content.
+        bytes: Vec<u8>,
+    },
+}
+
+impl AtmosphereRequest {
+    /// The atmosphere `name` names: `none`, a vacuum whose sky has radiance `sky`; a
+    /// built-in; else the file `read` reads (`None`: there is no file of that name).
+    ///
+    /// # Errors
+    /// No built-in or file of that name (a request error listing the built-ins), or the
+    /// file's own error.
+    pub fn named(
+        name: &str,
+        sky_radiance_w_m2_sr: f64,
+        read: impl FnOnce(&str) -> miette::Result<Option<(String, Vec<u8>)>>,
+    ) -> miette::Result<Self> {
+        if name == "none" {
+            return Ok(Self::Vacuum {
+                sky_radiance_w_m2_sr,
+            });
+        }
+        if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
+            return Ok(Self::Builtin(name.to_owned()));
+        }
+        match read(name)? {
+            Some((name, bytes)) => Ok(Self::File { name, bytes }),
+            None => Err(RequestError::of_value(
+                Setting::Atmosphere,
+                format!("`{name}`"),
+                format!(
+                    "no built-in atmosphere or file of that name; built-ins are: {}, or \
+                     `none` for a vacuum",
+                    irsig_atmosphere::BUILTIN_NAMES.join(", ")
+                ),
+            )),
+        }
+    }
+
+    /// The name messages give the atmosphere: `none`, the built-in's, the file's.
+    #[must_use]
+    pub fn name(&self) -> &str {
+        match self {
+            Self::Vacuum { .. } => "none",
+            Self::Builtin(name) | Self::File { name, .. } => name,
+        }
+    }
+}
+
+/// An atmosphere read: band tables, or spectra and the bytes they were read from (what the
+/// run hash covers).
+#[allow(clippy::large_enum_variant)] // one per run
+pub(crate) enum AirData {
+    Band(irsig_model::Atmosphere),
+    Spectral(SpectralAtmosphere, Vec<u8>),
+}
+
+/// The atmosphere of a built-in or a file request: a built-in in spectral form when
+/// `spectral`, a file in whatever form it holds.
+pub(crate) fn read(request: &AtmosphereRequest, spectral: bool) -> miette::Result<AirData> {
+    match request {
+        AtmosphereRequest::Vacuum { .. } => Err(miette!("a vacuum has no tables")),
+        AtmosphereRequest::Builtin(name) if spectral => {
+            let a = irsig_atmosphere::builtin_spectral(name).map_err(|e| miette!("{e}"))?;
+            let bytes = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+            Ok(AirData::Spectral(a, bytes.to_vec()))
+        }
+        AtmosphereRequest::Builtin(name) => irsig_atmosphere::builtin(name)
+            .map(AirData::Band)
+            .map_err(|e| miette!("{e}")),
+        AtmosphereRequest::File { name, bytes } => Ok(match read_any_atmosphere(name, bytes)? {
+            AnyAtmosphere::Band(a) => AirData::Band(a),
+            AnyAtmosphere::Spectral(a) => AirData::Spectral(a, bytes.clone()),
+        }),
+    }
+}
+
+/// A spectral atmosphere file must cover the band `[lo, hi]` µm: else an error at its grid
+/// (`grid.points`, in the RON or in the binary form's RON header), before anything is
+/// traced.
+pub(crate) fn check_spectral_range(
+    name: &str,
+    a: &SpectralAtmosphere,
+    bytes: &[u8],
+    [lo, hi]: [f64; 2],
+) -> miette::Result<()> {
+    let [min, max] = spectral_range_um(a);
+    if covers([min, max], [lo, hi]) {
+        return Ok(());
+    }
+    let message = format!(
+        "the band {lo}-{hi} um reaches outside this atmosphere's spectral grid, {min:.6}-{max:.6} \
+         um: trace a band inside the grid, or build the atmosphere over the band"
+    );
+    Err(miette::Report::new(
+        irsig_formats::canonical::spectral_atmosphere_error_at_path(
+            name,
+            bytes,
+            "grid.points",
+            message,
+        ),
+    ))
+}
+
+/// The wavelengths a spectral atmosphere's grid spans, µm.
+pub(crate) fn spectral_range_um(a: &SpectralAtmosphere) -> [f64; 2] {
+    let wavelengths = a.grid.points.iter().map(|&p| match a.grid.axis {
+        irsig_model::SpectralAxis::WavenumberPerCm => 1e4 / p,
+        irsig_model::SpectralAxis::WavelengthUm => p,
+    });
+    let (min, max) = wavelengths.fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), w| {
+        (lo.min(w), hi.max(w))
+    });
+    [min, max]
+}
+
+/// Whether `[min, max]` covers `[lo, hi]`, to rounding.
+pub(crate) fn covers([min, max]: [f64; 2], [lo, hi]: [f64; 2]) -> bool {
+    let slack = 1e-9 * max;
+    lo >= min - slack && hi <= max + slack
+}
+
+/// A built-in's spectra must cover the band: else a request error about the band, which
+/// names both ranges and how to get an atmosphere over the band.
+pub(crate) fn check_builtin_range(
+    name: &str,
+    a: &SpectralAtmosphere,
+    band: &crate::BandRequest,
+    range_um: [f64; 2],
+) -> miette::Result<()> {
+    let [min, max] = spectral_range_um(a);
+    if covers([min, max], range_um) {
+        return Ok(());
+    }
+    Err(RequestError::of_value(
+        Setting::Band,
+        &band.label,
+        format!(
+            "the band, {}, reaches outside the spectra of the built-in atmosphere `{name}`, \
+             {min:.3}-{max:.3} um: trace a band inside them, or build an atmosphere over the \
+             band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
+             (LOWTRAN7) and give its file to --atmosphere",
+            band.record, range_um[0], range_um[1]
+        ),
+    ))
+}
+
+/// The error of sub-bands asked of an atmosphere without spectra.
+pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> miette::Report {
+    RequestError::of_value(
+        Setting::SubBands,
+        count,
+        format!(
+            "the atmosphere `{name}` has no spectra; sub-bands need a spectral atmosphere (a \
+             built-in, or a file irsig-atmos build wrote), and the `total` band has none"
+        ),
+    )
+}

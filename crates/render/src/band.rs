@@ -1,0 +1,226 @@
+//! The band a frame is rendered in and how it divides into sub-bands (the spectral model):
+//! each sub-band its own band model and its own atmosphere, collapsed from a spectral
+//! atmosphere over it.
+
+use irsig_atmosphere::SubBandCount;
+use irsig_model::provenance::BandRecord;
+use irsig_radiometry::{AnyBand, Band, BandModel, TotalRadiance, spectral_radiance_per_um};
+use miette::miette;
+use rayon::prelude::*;
+
+use crate::error::{RequestError, Setting};
+
+/// The band of a request: wavelengths (flat or with a sensor response) or the whole
+/// spectrum (σT⁴/π: exact, for checking by hand), and its record, which every image of the
+/// run carries (`irsig_model::provenance`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BandRequest {
+    /// The band.
+    pub band: AnyBand,
+    /// What the images record of it.
+    pub record: BandRecord,
+    /// How the user named it (`8-14`, a response file's path), for messages.
+    pub label: String,
+}
+
+impl BandRequest {
+    /// The band `band`, recorded as `record`, which the user called `label`.
+    #[must_use]
+    pub fn new(band: AnyBand, record: BandRecord, label: impl Into<String>) -> Self {
+        Self {
+            band,
+            record,
+            label: label.into(),
+        }
+    }
+
+    /// The whole spectrum.
+    #[must_use]
+    pub fn total() -> Self {
+        Self {
+            band: AnyBand::Total(TotalRadiance),
+            record: BandRecord::Total,
+            label: "total".into(),
+        }
+    }
+
+    /// A flat band of `[min, max]` µm.
+    ///
+    /// # Errors
+    /// Limits that are not `0 < min < max`.
+    pub fn flat(min_um: f64, max_um: f64) -> Result<Self, irsig_radiometry::RadiometryError> {
+        Ok(Self {
+            band: AnyBand::Band(Band::new(min_um, max_um)?),
+            record: BandRecord::Flat { min_um, max_um },
+            label: format!("{min_um}-{max_um}"),
+        })
+    }
+}
+
+/// The reference temperature of the sub-bands' equal shares, K: about the scenes'
+/// (earth-ambient) temperatures, where the band's radiance is what the sensor sees. The
+/// spectral materials and τ are Planck-weighted at it too.
+pub const SHARE_REFERENCE_K: f64 = 300.0;
+
+/// A band model that sub-bands of a band can be: [`Band`], not the whole spectrum.
+pub trait SubBandModel: BandModel + Clone + std::fmt::Debug + Send + Sync {
+    /// The model of the sub-band `band`.
+    ///
+    /// # Errors
+    /// The whole spectrum has no sub-bands.
+    fn of_band(band: &Band) -> miette::Result<Self>;
+}
+
+impl SubBandModel for Band {
+    fn of_band(band: &Band) -> miette::Result<Self> {
+        Ok(band.clone())
+    }
+}
+
+impl SubBandModel for TotalRadiance {
+    fn of_band(_: &Band) -> miette::Result<Self> {
+        Err(RequestError::report(
+            Setting::SubBands,
+            "the whole spectrum (`total`) has no sub-bands",
+        ))
+    }
+}
+
+/// A sub-band count's sub-bands: their band models and collapsed atmospheres.
+pub type Collapsed = Vec<(Band, irsig_model::Atmosphere)>;
+
+/// How the band divides into sub-bands: its range and its response (the weight of
+/// [`irsig_atmosphere::collapse`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Split<'a> {
+    /// The band's limits, µm.
+    pub range_um: [f64; 2],
+    /// Its response, if not flat.
+    pub response: Option<&'a irsig_radiometry::SensorResponse>,
+}
+
+impl<'a> Split<'a> {
+    /// The split of `band`.
+    #[must_use]
+    pub fn of(band: &'a Band) -> Self {
+        Self {
+            range_um: [band.lambda_min_um(), band.lambda_max_um()],
+            response: band.response(),
+        }
+    }
+
+    /// The band model of `[a, b]` µm with the band's response; `None` where the response
+    /// is 0 throughout.
+    fn sub_band(&self, a: f64, b: f64) -> miette::Result<Option<Band>> {
+        let flat = Band::new(a, b).map_err(|e| miette!("sub-band {a}-{b} um: {e}"))?;
+        match self.response {
+            None => Ok(Some(flat)),
+            Some(r) => Ok(flat.with_response(r).ok()),
+        }
+    }
+
+    fn weight(&self, wavelength_um: f64) -> f64 {
+        self.response.map_or(1.0, |r| r.at(wavelength_um))
+    }
+
+    /// The sub-bands of `count`: their band models (those the response reaches), each with
+    /// the atmosphere collapsed over it. With more than one sub-band, τ is weighted by the
+    /// response times the blackbody at [`SHARE_REFERENCE_K`], so that τ·L_T is the
+    /// sub-band's ∫τB dλ; radiances by the response alone.
+    ///
+    /// # Errors
+    /// A count the grid cannot make over the band (a request error), or a sub-band the
+    /// atmosphere cannot be collapsed over.
+    pub fn collapse(
+        &self,
+        spectral: &irsig_model::SpectralAtmosphere,
+        count: SubBandCount,
+    ) -> miette::Result<Collapsed> {
+        let [lo, hi] = self.range_um;
+        let share = |a: f64, b: f64| match self.sub_band(a, b) {
+            Ok(Some(band)) => band.radiance(SHARE_REFERENCE_K),
+            Ok(None) => 0.0,
+            Err(_) => f64::NAN,
+        };
+        let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
+            .map_err(|e| RequestError::of_value(Setting::SubBands, count, e.to_string()))?;
+        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
+        edges
+            .par_windows(2)
+            .map(|w| {
+                let Some(band) = self.sub_band(w[0], w[1])? else {
+                    return Ok(None);
+                };
+                let at = |e: irsig_atmosphere::AtmosphereError| {
+                    miette!("sub-band {}-{} um: {e}", w[0], w[1])
+                };
+                let mut atmosphere = collapser
+                    .collapse(w[0], w[1], |l| self.weight(l))
+                    .map_err(at)?;
+                if !count.is_band() {
+                    // τ as the target sees it (without it the full grid reads up to 0.024 K
+                    // warm in a tropical atmosphere; docs/accuracy.md).
+                    let seen = collapser
+                        .collapse(w[0], w[1], |l| {
+                            self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
+                        })
+                        .map_err(at)?;
+                    with_transmission(&mut atmosphere, &seen);
+                }
+                Ok(Some((band, atmosphere)))
+            })
+            .filter_map(Result::transpose)
+            .collect()
+    }
+}
+
+/// `atmosphere` with the transmittances of `seen`, the same atmosphere collapsed with
+/// another weight: the profile's, the `.cor` fit's and the slant tables'.
+pub fn with_transmission(atmosphere: &mut irsig_model::Atmosphere, seen: &irsig_model::Atmosphere) {
+    for (level, s) in atmosphere.levels.iter_mut().zip(&seen.levels) {
+        level.transmission = s.transmission;
+    }
+    atmosphere.transmission_correction = seen.transmission_correction;
+    if let (Some(slant), Some(s)) = (atmosphere.slant.as_mut(), seen.slant.as_ref()) {
+        slant.transmission.clone_from(&s.transmission);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sub_bands_of_a_builtin_share_the_band_radiance_and_keep_its_transmission_bounds() {
+        let spectral = irsig_atmosphere::builtin_spectral("us-std-1976").unwrap();
+        let band = Band::new(8.0, 14.0).unwrap();
+        let split = Split::of(&band);
+        let four = split.collapse(&spectral, SubBandCount::Count(4)).unwrap();
+        assert_eq!(four.len(), 4);
+        // The sub-bands tile the band: their blackbody radiances add up to the band's.
+        let sum: f64 = four.iter().map(|(b, _)| b.radiance(300.0)).sum();
+        let whole = band.radiance(300.0);
+        assert!((sum - whole).abs() < 1e-9 * whole, "{sum} vs {whole}");
+        // Equal shares at the reference temperature, to the grid's resolution.
+        for (b, _) in &four {
+            let share = b.radiance(SHARE_REFERENCE_K) / whole;
+            assert!((share - 0.25).abs() < 0.02, "{share}");
+        }
+        for (_, a) in &four {
+            assert!(
+                a.levels
+                    .iter()
+                    .all(|l| (0.0..=1.0).contains(&l.transmission))
+            );
+        }
+    }
+
+    #[test]
+    fn the_whole_spectrum_has_no_sub_bands() {
+        let e = TotalRadiance::of_band(&Band::new(8.0, 14.0).unwrap()).unwrap_err();
+        assert_eq!(
+            e.downcast_ref::<RequestError>().map(|r| r.setting),
+            Some(Setting::SubBands)
+        );
+    }
+}

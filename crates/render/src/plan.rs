@@ -1,0 +1,1164 @@
+//! A run of frames: its inputs read and checked ([`Plan`]), the atmosphere resolved for the
+//! band (a vacuum, band tables, or spectra collapsed over the band or each sub-band), the
+//! tracer built once, each frame's settings (as asked, from a decision, or chosen by the
+//! tolerance pilot), and each frame traced and turned into its files, which go to the
+//! caller's [`Sink`].
+
+use std::collections::HashMap;
+use std::str::FromStr;
+use std::sync::{Arc, Mutex};
+
+use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBandCount};
+use irsig_formats::canonical::{error_at_path, from_ron_bytes, raw_scene_error_at_path};
+use irsig_model::decision::Decision;
+use irsig_model::frame::{FrameFile, FrameFiles};
+use irsig_model::provenance::{InputRecord, Provenance};
+use irsig_model::uncertainty::{Facets, Uncertainties};
+use irsig_model::{MaterialLibrary, RawScene, View};
+use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
+use irsig_raster::FramePart;
+use irsig_sensor_model::quantise::CountRequest;
+use irsig_tracer::pilot::{BandChoice, PilotSpace};
+use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
+use miette::{WrapErr, miette};
+
+use crate::air::{self, AirData, AtmosphereRequest};
+use crate::band::{BandRequest, Collapsed, Split, SubBandModel};
+use crate::budget::Budget;
+use crate::error::{RequestError, Setting};
+use crate::products::{self, FrameRadiometry};
+use crate::run_hash::RunHash;
+use crate::settings::{Settings, SettingsRequest};
+use crate::tolerance::{self, Pin};
+
+/// A tolerance to pilot each frame to.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToleranceRequest {
+    /// The tolerance, K.
+    pub tolerance_k: f64,
+    /// The percentile of pixels it applies to, (0, 100].
+    pub percentile: f64,
+    /// Models fixed by hand.
+    pub pins: Vec<Pin>,
+}
+
+/// What to render, as typed data (a tool turns its flags into this once).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Request {
+    /// The band.
+    pub band: BandRequest,
+    /// The atmosphere.
+    pub atmosphere: AtmosphereRequest,
+    /// The models, where not the defaults.
+    pub settings: SettingsRequest,
+    /// A tolerance the pilot chooses the models for (instead of `settings`).
+    pub tolerance: Option<ToleranceRequest>,
+    /// How radiance becomes digital counts.
+    pub counts: CountRequest,
+    /// The settings the user left at their defaults, where a default changes the physics
+    /// (the band, the atmosphere): the plan says what it took, through the sink's notes.
+    pub defaulted: Vec<Setting>,
+}
+
+/// A tile of every frame: a rectangle `X,Y,W,H` or tile `I/CxR` of a grid, resolved
+/// against each view's image.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TileRequest {
+    /// `X,Y,W,H`.
+    Rect(Tile),
+    /// `I/CxR`: tile `index` (from 1, row by row from the top-left) of `columns × rows`.
+    Grid {
+        /// The tile, from 1.
+        index: u32,
+        /// Grid columns.
+        columns: u32,
+        /// Grid rows.
+        rows: u32,
+    },
+}
+
+impl TileRequest {
+    /// The tile of a `width × height` image.
+    ///
+    /// # Errors
+    /// A grid that does not fit the image, or a tile outside it.
+    pub fn of(self, width: u32, height: u32) -> Result<Tile, String> {
+        let tile = match self {
+            Self::Rect(t) => t,
+            Self::Grid {
+                index,
+                columns,
+                rows,
+            } => Tile::of_grid(index, columns, rows, width, height).map_err(|e| e.to_string())?,
+        };
+        tile.check(width, height).map_err(|e| e.to_string())?;
+        Ok(tile)
+    }
+}
+
+impl FromStr for TileRequest {
+    type Err = String;
+
+    /// `X,Y,W,H` (pixels) or `I/CxR`.
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        let number = |t: &str, what: &str| {
+            t.trim()
+                .parse::<u32>()
+                .map_err(|_| format!("expected {what} (a whole number), found `{t}` in `{s}`"))
+        };
+        if let Some((index, grid)) = s.split_once('/') {
+            let (columns, rows) = grid
+                .split_once(['x', 'X'])
+                .ok_or_else(|| format!("expected I/CxR such as 6/4x4, found `{s}`"))?;
+            return Ok(Self::Grid {
+                index: number(index, "a tile number I")?,
+                columns: number(columns, "a number of columns C")?,
+                rows: number(rows, "a number of rows R")?,
+            });
+        }
+        let parts: Vec<&str> = s.split(',').collect();
+        let [x, y, w, h] = parts[..] else {
+            return Err(format!(
+                "expected X,Y,W,H (pixels) such as 0,0,256,256, or I/CxR such as 6/4x4; \
+                 found `{s}`"
+            ));
+        };
+        Ok(Self::Rect(Tile {
+            x: number(x, "a column X")?,
+            y: number(y, "a row Y")?,
+            width: number(w, "a width W")?,
+            height: number(h, "a height H")?,
+        }))
+    }
+}
+
+/// Where a run's frames go.
+pub trait Sink {
+    /// The files frame `index` makes; none at all: only its decision (with a tolerance).
+    fn files(&self, index: usize) -> FrameFiles<()>;
+    /// The pilot's decision for frame `index`, and the seconds the pilot took.
+    ///
+    /// # Errors
+    /// The caller's, when it cannot keep the decision.
+    fn decision(&mut self, index: usize, decision: &Decision, seconds: f64) -> miette::Result<()>;
+    /// One encoded file of frame `index`.
+    ///
+    /// # Errors
+    /// The caller's, when it cannot keep the file.
+    fn file(&mut self, index: usize, kind: FrameFile, bytes: Vec<u8>) -> miette::Result<()>;
+    /// Something the user should know that is not an error.
+    fn warning(&mut self, text: &str);
+}
+
+/// A run: its request and inputs, read and checked as they come.
+#[derive(Debug)]
+pub struct Plan {
+    request: Request,
+    run: RunHash,
+    /// Taken by the rendering, which drops it once the tracer is built unless the error
+    /// budget reads it (its facets' temperatures and emissivities).
+    scene: Mutex<Option<RawScene>>,
+    scene_name: String,
+    materials: MaterialLibrary,
+    materials_name: String,
+    views: Vec<View>,
+    uncertainties: Option<Uncertainties>,
+    decision: Option<Decision>,
+    /// Every input read, in order: what each image's provenance lists.
+    inputs: Vec<InputRecord>,
+    warnings: Mutex<Vec<String>>,
+}
+
+/// The atmosphere of the run, for any model kind its tables allow, over the band or over
+/// sub-bands of it: for rendering (`A`), and for the pilot's band sets (`S`), which
+/// evaluate each kind as a rendering with it would (its sky precomputed: computing the
+/// hemispheric sky afresh at every pilot facet cost more than the whole pilot otherwise
+/// does, and with K sub-bands K times more).
+struct Air<'a, R, A, S> {
+    /// The kinds on offer, most accurate first (`None`: a vacuum).
+    kinds: Option<Vec<ModelKind>>,
+    /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
+    spectral: bool,
+    precomputed: SubBandsOf<'a, R, A>,
+    pilot: SubBandsOf<'a, R, S>,
+}
+
+/// The sub-bands of a model kind and a count.
+type SubBandsOf<'a, R, T> =
+    Box<dyn Fn(ModelKind, SubBandCount) -> miette::Result<Vec<SubBand<R, T>>> + 'a>;
+
+/// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
+/// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with
+/// summing sub-bands, so coarser levels change every count's sky alike and leave the
+/// sub-band error the pilot measures: on the quickstart and the thesis experiment its
+/// choices and errors are those of 33 levels (docs/accuracy.md).
+const PILOT_SKY_LEVELS: usize = 5;
+
+/// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md):
+/// one `path` call, and precomputing the sky of one sub-band up to a few km.
+fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
+    match kind {
+        ModelKind::Table => (880.0, 5e6),
+        ModelKind::Layered => (830.0, 88e6),
+        ModelKind::Thesis => (92.0, 121e6),
+        ModelKind::None => (5.0, 0.0),
+    }
+}
+
+impl Plan {
+    /// A plan of `request`, checked: a vacuum's sky radiance finite and not negative, a
+    /// tolerance above 0 K at a percentile in (0, 100].
+    ///
+    /// # Errors
+    /// A request error naming the setting.
+    pub fn new(request: Request) -> miette::Result<Self> {
+        if let AtmosphereRequest::Vacuum {
+            sky_radiance_w_m2_sr: sky,
+        } = request.atmosphere
+            && (!sky.is_finite() || sky < 0.0)
+        {
+            return Err(RequestError::of_value(
+                Setting::SkyRadiance,
+                sky,
+                "out of range: expected a finite radiance of 0 or more",
+            ));
+        }
+        if let Some(t) = &request.tolerance {
+            irsig_model::decision::check_tolerance(t.tolerance_k, "tolerance")
+                .map_err(|e| RequestError::report(Setting::Tolerance, e.kind.to_string()))?;
+            irsig_model::decision::check_percentile(t.percentile, "percentile").map_err(|e| {
+                RequestError::report(Setting::TolerancePercentile, e.kind.to_string())
+            })?;
+        }
+        let mut inputs = Vec::new();
+        match &request.atmosphere {
+            AtmosphereRequest::File { bytes, .. } => inputs.push(InputRecord {
+                stage: "trace".into(),
+                role: "atmosphere".into(),
+                sha256: sha256_hex(bytes),
+            }),
+            AtmosphereRequest::Builtin(name) => {
+                let data = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+                inputs.push(InputRecord {
+                    stage: "trace".into(),
+                    role: "atmosphere (a built-in's spectra)".into(),
+                    sha256: sha256_hex(data),
+                });
+            }
+            AtmosphereRequest::Vacuum { .. } => {}
+        }
+        Ok(Self {
+            request,
+            run: RunHash::default(),
+            scene: Mutex::new(None),
+            scene_name: String::new(),
+            materials: MaterialLibrary::default(),
+            materials_name: String::new(),
+            views: Vec::new(),
+            uncertainties: None,
+            decision: None,
+            inputs,
+            warnings: Mutex::default(),
+        })
+    }
+
+    /// Reads the raw scene (canonical RON or binary) from `bytes` of the file `name`. The
+    /// first input read: the run hash starts with it.
+    ///
+    /// # Errors
+    /// A malformed scene, at its place in the file.
+    pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+        self.run.field("scene", bytes);
+        self.record_input("scene", bytes);
+        let scene = irsig_formats::canonical::read_raw_scene(name, bytes)?;
+        *self.scene.get_mut().map_err(|_| poisoned())? = Some(scene);
+        name.clone_into(&mut self.scene_name);
+        Ok(())
+    }
+
+    /// Reads the material library after the scene: spectral materials' band tables become
+    /// their curves averaged over the band (the curves stay, for the sub-bands), and every
+    /// facet's material must be in it.
+    ///
+    /// # Errors
+    /// A malformed library, a spectral curve short of the band (at its wavelengths), a
+    /// facet whose material the library lacks (at the facet in the scene file, `scene` its
+    /// bytes), spectral materials with the whole spectrum as band.
+    pub fn read_materials(
+        &mut self,
+        name: &str,
+        bytes: &[u8],
+        scene_bytes: &[u8],
+    ) -> miette::Result<()> {
+        let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
+        self.record_input("materials", bytes);
+        let lib = match &self.request.band.band {
+            _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
+            AnyBand::Band(band) => {
+                crate::materials::band_library(&lib, band, name, &String::from_utf8_lossy(bytes))?
+            }
+            AnyBand::Total(_) => {
+                return Err(RequestError::of_value(
+                    Setting::Band,
+                    "total",
+                    format!(
+                        "`{name}` has spectral materials, which the whole spectrum cannot \
+                         average: give a band of wavelengths"
+                    ),
+                ));
+            }
+        };
+        let guard = self.scene.get_mut().map_err(|_| poisoned())?;
+        let scene = guard
+            .as_ref()
+            .ok_or_else(|| miette!("the scene is read before the materials"))?;
+        // A facet whose material the library lacks, at its place in the scene file.
+        if let Some((i, f)) = scene
+            .facets
+            .iter()
+            .enumerate()
+            .find(|(_, f)| lib.by_id(f.material).is_none())
+        {
+            return Err(miette::Report::new(raw_scene_error_at_path(
+                &self.scene_name,
+                scene_bytes,
+                scene,
+                &format!("facets[{i}].material"),
+                format!(
+                    "facets[{i}] uses material {}, which the material library {name} does not \
+                     define",
+                    f.material.0
+                ),
+            )));
+        }
+        self.run.field("materials", format!("{lib:?}").as_bytes());
+        self.materials = lib;
+        name.clone_into(&mut self.materials_name);
+        Ok(())
+    }
+
+    /// What the run takes where the request said nothing and the default changes the
+    /// physics (`Request::defaulted`), one line each, for the user.
+    #[must_use]
+    pub fn notes(&self) -> Vec<String> {
+        let mut notes = Vec::new();
+        for setting in &self.request.defaulted {
+            match (setting, &self.request.atmosphere) {
+                (Setting::Band, _) => notes.push(format!(
+                    "no band given: tracing {} (the thesis's band)",
+                    self.request.band.record
+                )),
+                (
+                    Setting::Atmosphere,
+                    AtmosphereRequest::Vacuum {
+                        sky_radiance_w_m2_sr,
+                    },
+                ) => notes.push(format!(
+                    "no atmosphere given: a vacuum (τ = 1, no path radiance) under a sky of \
+                     {sky_radiance_w_m2_sr} W m^-2 sr^-1; name a built-in ({}), a file, or \
+                     `none` to say so",
+                    irsig_atmosphere::BUILTIN_NAMES.join(", ")
+                )),
+                _ => {}
+            }
+        }
+        notes
+    }
+
+    /// Records an input the run read that the plan does not read itself (a view file, an
+    /// execute file): its role and its bytes' SHA-256, for the images' provenance.
+    pub fn record_input(&mut self, role: &str, bytes: &[u8]) {
+        self.inputs.push(InputRecord {
+            stage: "trace".into(),
+            role: role.into(),
+            sha256: sha256_hex(bytes),
+        });
+    }
+
+    /// What frame images rendered with `settings` record of their making.
+    fn provenance(&self, settings: &Settings) -> Provenance {
+        let vacuum = matches!(self.request.atmosphere, AtmosphereRequest::Vacuum { .. });
+        Provenance {
+            band: self.request.band.record.clone(),
+            sub_bands: settings.sub_bands.to_string(),
+            atmosphere: match &self.request.atmosphere {
+                AtmosphereRequest::File { .. } => "file".to_owned(),
+                other => other.name().to_owned(),
+            },
+            atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
+            inputs: self.inputs.clone(),
+        }
+    }
+
+    /// Adds frames, one per view, in order.
+    pub fn add_views(&mut self, views: impl IntoIterator<Item = View>) {
+        self.views.extend(views);
+    }
+
+    /// The views, one per frame.
+    #[must_use]
+    pub fn views(&self) -> &[View] {
+        &self.views
+    }
+
+    /// Reads the declared uncertainties (canonical RON) after the scene and the materials:
+    /// an object the scene does not have, or an emissivity ± that would leave [0, 1], is an
+    /// error at its line and column.
+    ///
+    /// # Errors
+    /// As said, or a malformed file.
+    pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+        let text = irsig_formats::canonical::utf8(name, bytes)?;
+        let u: Uncertainties = from_ron_bytes(name, bytes)?;
+        self.record_input("uncertainties", bytes);
+        let guard = self.scene.get_mut().map_err(|_| poisoned())?;
+        let objects = &guard
+            .as_ref()
+            .ok_or_else(|| miette!("the scene is read before the uncertainties"))?
+            .objects;
+        // An object the raw scene does not have (a misspelt name) would select no facet and
+        // silently declare nothing.
+        for (i, t) in u.temperature.iter().enumerate() {
+            if let Facets::Object(object) = &t.facets
+                && !objects.iter().any(|o| o == object)
+            {
+                return Err(miette::Report::new(error_at_path(
+                    name,
+                    text,
+                    &format!("temperature[{i}].facets"),
+                    format!(
+                        "invalid uncertainties file: `temperature[{i}].facets`: the raw scene \
+                         has no object `{object}`; its objects include {}",
+                        // A few, not a million names.
+                        objects
+                            .iter()
+                            .take(8)
+                            .map(|o| format!("`{o}`"))
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )));
+            }
+        }
+        let materials = &self.materials;
+        u.check_emissivity(|id| {
+            let m = materials.materials.iter().find(|m| m.id == id)?;
+            let normal = m.emissivity.first().map(|r| r.1)?;
+            let most = m.emissivity.iter().map(|r| r.1).fold(0.0, f64::max);
+            Some((normal, most))
+        })
+        .map_err(|e| {
+            error_at_path(
+                name,
+                text,
+                &e.path,
+                format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
+            )
+        })?;
+        // The budget's layers are pixels of the truth EXR: tiles of other uncertainties
+        // differ.
+        self.run.field("uncertainties", format!("{u:?}").as_bytes());
+        self.uncertainties = Some(u);
+        Ok(())
+    }
+
+    /// Reads a decision an earlier run wrote, to apply to every frame: each choice is
+    /// checked here, where the file's text can point at it.
+    ///
+    /// # Errors
+    /// A malformed decision, or a choice that is not a setting of its model (at the
+    /// choice).
+    pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+        // Not an input of the record: its choices are the frame's settings, which a frame
+        // piloted anew and a tile given its decision share, and so do their images.
+        let d: Decision = from_ron_bytes(name, bytes)?;
+        if let Err((i, message)) = Settings::of(&self.request.settings).with_decision(&d) {
+            return Err(miette::Report::new(error_at_path(
+                name,
+                &String::from_utf8_lossy(bytes),
+                &format!("choices[{i}].setting"),
+                message,
+            )));
+        }
+        self.decision = Some(d);
+        Ok(())
+    }
+
+    /// The largest material id of the library (0 for none): the interaction map holds ids
+    /// up to 15.
+    #[must_use]
+    pub fn max_material_id(&self) -> u32 {
+        self.materials
+            .materials
+            .iter()
+            .map(|m| u32::from(m.id.0))
+            .max()
+            .unwrap_or(0)
+    }
+
+    /// Whether every material id fits the interaction map's nibble (1 to 15).
+    #[must_use]
+    pub fn map_fits(&self) -> bool {
+        self.max_material_id() <= u32::from(irsig_formats::legacy::map::MAX_ID)
+    }
+
+    /// The files a frame can make: the interaction map only when the ids fit it, and the
+    /// map, counts and LUT only of a whole frame (a tile's are the merge's: they need the
+    /// whole frame).
+    #[must_use]
+    pub fn file_kinds(&self, whole: bool) -> Vec<FrameFile> {
+        FrameFile::ALL
+            .into_iter()
+            .filter(|k| match k {
+                FrameFile::MapPng => self.map_fits() && whole,
+                FrameFile::DcPng | FrameFile::Lut => whole,
+                FrameFile::RadianceExr | FrameFile::TruthExr => true,
+            })
+            .collect()
+    }
+
+    /// Every frame's tile: the whole image, or `tile` of it.
+    ///
+    /// # Errors
+    /// A view that is not a camera, or a tile that does not fit a view's image (a request
+    /// error).
+    pub fn tiles(&self, tile: Option<TileRequest>) -> miette::Result<Vec<Tile>> {
+        self.views
+            .iter()
+            .map(|v| {
+                let [w, h] = Camera::from_view(v).map_err(|e| miette!("{e}"))?.pixels;
+                match tile {
+                    None => Ok(Tile::whole(w, h)),
+                    Some(t) => t
+                        .of(w, h)
+                        .map_err(|e| RequestError::report(Setting::Tile, e)),
+                }
+            })
+            .collect()
+    }
+
+    /// Every term of the radiance equation for pixel `(column, row)` of the first view,
+    /// as text.
+    ///
+    /// # Errors
+    /// As [`Plan::render`], or a pixel outside the image.
+    pub fn probe(self, column: u32, row: u32) -> miette::Result<String> {
+        let mut out = None;
+        self.dispatch(&mut Job::Probe {
+            column,
+            row,
+            text: &mut out,
+        })?;
+        out.ok_or_else(|| miette!("the probe printed nothing"))
+    }
+
+    /// Traces every frame (or its `tile`) and gives its files to `sink`; `progress` is
+    /// called with the number of rows traced as they are.
+    ///
+    /// # Errors
+    /// An atmosphere or settings the scene cannot be traced with, a failed pilot, or the
+    /// sink's own errors.
+    pub fn render(
+        self,
+        tile: Option<TileRequest>,
+        progress: &(dyn Fn(u64) + Sync),
+        sink: &mut dyn Sink,
+    ) -> miette::Result<()> {
+        self.dispatch(&mut Job::Render {
+            tile,
+            progress,
+            sink,
+        })
+    }
+
+    /// The rows a rendering traces: the tiles' heights summed over the frames.
+    ///
+    /// # Errors
+    /// As [`Plan::tiles`].
+    pub fn rows(&self, tile: Option<TileRequest>) -> miette::Result<u64> {
+        Ok(self.tiles(tile)?.iter().map(|t| u64::from(t.height)).sum())
+    }
+
+    /// Takes the warnings gathered so far to `sink`.
+    fn flush_warnings(&self, sink: &mut dyn Sink) {
+        let taken = std::mem::take(
+            &mut *self
+                .warnings
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner),
+        );
+        for w in taken {
+            sink.warning(&w);
+        }
+    }
+
+    fn warn(&self, text: String) {
+        self.warnings
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .push(text);
+    }
+
+    /// The band's model, then the atmosphere over it.
+    fn dispatch(self, job: &mut Job<'_>) -> miette::Result<()> {
+        match self.request.band.band.clone() {
+            AnyBand::Total(_) => {
+                let mut run = self.run.clone();
+                run.field("band", format!("{TotalRadiance:?}").as_bytes());
+                self.with_atmosphere(run, TotalRadiance, None, job)
+            }
+            AnyBand::Band(band) => {
+                let mut run = self.run.clone();
+                run.field("band", format!("{band:?}").as_bytes());
+                let split = Split::of(&band);
+                self.with_atmosphere(run, band.clone(), Some(&split), job)
+            }
+        }
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn with_atmosphere<R: SubBandModel>(
+        &self,
+        mut run: RunHash,
+        band: R,
+        split: Option<&Split<'_>>,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        let top_scene = self
+            .scene
+            .lock()
+            .map_err(|_| poisoned())?
+            .as_ref()
+            .ok_or_else(|| miette!("the raw scene was already traced"))?
+            .positions_m
+            .iter()
+            .map(|p| p[2])
+            .fold(0.0_f64, f64::max);
+        let request = &self.request.atmosphere;
+        let name = request.name().to_owned();
+        if let AtmosphereRequest::Vacuum {
+            sky_radiance_w_m2_sr,
+        } = *request
+        {
+            let vacuum = Vacuum {
+                sky_radiance_w_m2_sr,
+            };
+            run.field("atmosphere", format!("{vacuum:?}").as_bytes());
+            let (b1, b2) = (band.clone(), band.clone());
+            let air = Air {
+                kinds: None,
+                spectral: false,
+                precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
+                pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
+            };
+            return self.trace_all(&run, band, &air, job);
+        }
+        // A built-in is read in spectral form when sub-bands may be asked for.
+        let settings = &self.request.settings;
+        let wants_spectra = split.is_some()
+            && (settings.sub_bands.is_some_and(|c| !c.is_band())
+                || self.request.tolerance.is_some()
+                || self.decision.is_some());
+        let mut data = air::read(request, wants_spectra)?;
+        // A built-in's band tables are for the flat band they were made for (8-14 um): any
+        // other band, or a sensor response, collapses its spectra instead (else the band
+        // model would add the flat band's path and sky radiance to a response-weighted
+        // emission).
+        if let (AirData::Band(a), Some(sp)) = (&data, &split) {
+            let other_band = sp.response.is_some()
+                || sp
+                    .range_um
+                    .iter()
+                    .zip(a.band_um)
+                    .any(|(x, y)| (x - y).abs() > 1e-9 * y);
+            if other_band && matches!(request, AtmosphereRequest::Builtin(_)) {
+                data = air::read(request, true)?;
+            } else if other_band {
+                self.warn(format!(
+                    "`{name}` holds band tables for {}-{} um, flat; the band traced is {}-{} \
+                     um{}: its path and sky radiances are the tables' band's",
+                    a.band_um[0],
+                    a.band_um[1],
+                    sp.range_um[0],
+                    sp.range_um[1],
+                    if sp.response.is_some() {
+                        " with a sensor response"
+                    } else {
+                        ""
+                    }
+                ));
+            }
+        }
+        match (&data, &split, request) {
+            (AirData::Spectral(a, bytes), Some(sp), AtmosphereRequest::File { name, .. }) => {
+                air::check_spectral_range(name, a, bytes, sp.range_um)?;
+            }
+            (AirData::Spectral(a, _), Some(sp), AtmosphereRequest::Builtin(name)) => {
+                air::check_builtin_range(name, a, &self.request.band, sp.range_um)?;
+            }
+            _ => {}
+        }
+        // The sky is precomputed up to the highest sensor or scene point.
+        let top = self
+            .views
+            .iter()
+            .map(|v| v.position_m()[2])
+            .fold(top_scene, f64::max);
+        // The sky's precomputed levels depend on the top: so do the pixels.
+        match &data {
+            AirData::Band(atmosphere) => run.field(
+                "atmosphere",
+                format!("{atmosphere:?} top {:x}", top.to_bits()).as_bytes(),
+            ),
+            AirData::Spectral(_, bytes) => {
+                run.field("spectral atmosphere", bytes);
+                run.field("top", &top.to_bits().to_le_bytes());
+            }
+        }
+        if matches!(self.request.band.band, AnyBand::Total(_)) {
+            let band_um = match &data {
+                AirData::Band(a) => format!("{:?}", a.band_um),
+                AirData::Spectral(..) => "its spectral range".to_owned(),
+            };
+            self.warn(format!(
+                "the `total` band (whole spectrum) is combined with `{name}`, whose tables \
+                 cover {band_um} um: facet radiances and path terms are in different bands; \
+                 use this only to check the geometry and the event logic"
+            ));
+        }
+        let model_name = name.clone();
+        let model = move |atmosphere: &irsig_model::Atmosphere, kind: ModelKind| {
+            AtmosphereModel::new(atmosphere, kind)
+                .map_err(|e| miette!("{e}"))
+                .wrap_err_with(|| format!("cannot build the {kind} model of `{model_name}`"))
+        };
+        let warned = std::sync::Once::new();
+        let precompute = |model: AtmosphereModel| {
+            let air = PrecomputedAtmosphere::new(model, top);
+            warned.call_once(|| {
+                for w in air.warnings() {
+                    self.warn(format!("{name}: {w}"));
+                }
+            });
+            air
+        };
+        match data {
+            AirData::Band(atmosphere) => {
+                let kinds: Vec<ModelKind> =
+                    [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+                        .into_iter()
+                        .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
+                        .collect();
+                let (a1, a2) = (atmosphere.clone(), atmosphere);
+                let (m1, m2) = (model.clone(), model);
+                let (b1, b2) = (band.clone(), band.clone());
+                let (n1, n2) = (name.clone(), name.clone());
+                let precompute = &precompute;
+                let air = Air {
+                    kinds: Some(kinds),
+                    spectral: false,
+                    precomputed: Box::new(move |kind, count| {
+                        whole(&b1, &n1, count, || Ok(precompute(m1(&a1, kind)?)))
+                    }),
+                    pilot: Box::new(move |kind, count| {
+                        whole(&b2, &n2, count, || {
+                            Ok(PrecomputedAtmosphere::new(m2(&a2, kind)?, top))
+                        })
+                    }),
+                };
+                self.trace_all(&run, band, &air, job)
+            }
+            AirData::Spectral(spectral, _) => {
+                let Some(split) = split else {
+                    return Err(air::no_spectra(&name, SubBandCount::Full));
+                };
+                // Each count's collapsed sub-bands, made once.
+                let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
+                let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
+                    if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
+                        return Ok(c.clone());
+                    }
+                    let c = Arc::new(split.collapse(&spectral, count)?);
+                    cache
+                        .lock()
+                        .map_err(|_| poisoned())?
+                        .insert(count, c.clone());
+                    Ok(c)
+                };
+                let one = collapsed(SubBandCount::BAND)?;
+                let kinds: Vec<ModelKind> =
+                    [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+                        .into_iter()
+                        .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
+                        .collect();
+                let collapsed = &collapsed;
+                let precompute = &precompute;
+                let materials = &self.materials;
+                // The pilot evaluates its paths in every sub-band: the precomputed sky costs
+                // a few ms per sub-band (table model) and saves a slant integration per ray,
+                // so the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
+                // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its
+                // cost).
+                let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
+                    collapsed(count)?
+                        .iter()
+                        .map(|(b, a)| {
+                            let m = model(a, kind)?;
+                            Ok(SubBand {
+                                band: R::of_band(b)?,
+                                atmosphere: if pilot && !count.is_band() {
+                                    PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
+                                } else {
+                                    precompute(m)
+                                },
+                                emissivity: crate::materials::sub_band_tables(materials, b)?,
+                            })
+                        })
+                        .collect()
+                };
+                let sub_bands = &sub_bands;
+                let air = Air {
+                    kinds: Some(kinds),
+                    spectral: true,
+                    precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
+                    pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
+                };
+                self.trace_all(&run, band, &air, job)
+            }
+        }
+    }
+
+    /// The pilot's decision for `camera`'s frame, with the seconds it took.
+    fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
+        &self,
+        tolerance: &ToleranceRequest,
+        tracer: &Tracer<R, A>,
+        air: &Air<'_, R, A, S>,
+        camera: &Camera,
+    ) -> miette::Result<(irsig_tracer::pilot::Piloted, f64)> {
+        let mut offer = tolerance::offer(
+            &self.materials,
+            air.kinds.as_deref(),
+            air.spectral,
+            &tolerance.pins,
+        )?;
+        let (Some(&ref_kind), Some(&ref_count)) =
+            (offer.atmospheres.first(), offer.sub_bands.first())
+        else {
+            return Err(miette!(
+                "the pilot has no atmosphere or sub-band count to offer"
+            ));
+        };
+        // A count the band's grid cannot make (more sub-bands than grid intervals in a
+        // narrow band) is not on offer, unless it is the one pinned.
+        let pinned_count = offer.sub_bands.len() == 1;
+        // The sub-band counts at the reference atmosphere; every other model is measured in
+        // the band model (`Tracer::pilot` says why), so each atmosphere in it.
+        let mut pairs: Vec<(ModelKind, SubBandCount)> = Vec::new();
+        for &count in &offer.sub_bands {
+            pairs.push((ref_kind, count));
+        }
+        pairs.push((ref_kind, SubBandCount::BAND));
+        for &kind in &offer.atmospheres {
+            pairs.push((kind, SubBandCount::BAND));
+        }
+        // The pilot's time includes making its band sets (each sub-band's sky).
+        let started = std::time::Instant::now();
+        let mut bands: Vec<BandChoice<S>> = Vec::new();
+        let mut unavailable = Vec::new();
+        for (kind, count) in pairs {
+            if bands
+                .iter()
+                .any(|b| b.atmosphere == kind && b.sub_bands == count)
+            {
+                continue;
+            }
+            let sub = match (air.pilot)(kind, count) {
+                Ok(sub) => sub,
+                Err(e) if count == ref_count || count.is_band() || pinned_count => return Err(e),
+                Err(_) => {
+                    unavailable.push(count);
+                    continue;
+                }
+            };
+            let set = tracer.band_set(sub).map_err(|e| miette!("{e}"))?;
+            let (path_call_ns, sky_ns) = atmosphere_costs(kind);
+            bands.push(BandChoice {
+                atmosphere: kind,
+                sub_bands: count,
+                set,
+                path_call_ns,
+                sky_ns,
+            });
+        }
+        offer.sub_bands.retain(|c| !unavailable.contains(c));
+        let space = PilotSpace {
+            bands,
+            atmospheres: offer.atmospheres,
+            sub_bands: offer.sub_bands,
+            bounces: offer.bounces,
+            sky_view_rays: offer.sky_view_rays,
+            supersampling: offer.supersampling,
+            path_terms: offer.path_terms,
+            reasons: offer.reasons,
+            pinned: offer.pinned,
+        };
+        // About one pixel in 192 (1024 at 512 x 384), at least 1024 (every pixel of a
+        // smaller image) and at most 4096: a thin population of pixels (edges, a small hot
+        // object) of 1 % needs several hundred samples to be seen at all.
+        let pixels =
+            (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
+        let piloted = tracer
+            .pilot(
+                camera,
+                &space,
+                tolerance.tolerance_k,
+                tolerance.percentile,
+                pixels as u32,
+                self.request.settings.seed,
+            )
+            .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
+        Ok((piloted, started.elapsed().as_secs_f64()))
+    }
+
+    #[allow(clippy::too_many_lines)]
+    fn trace_all<R: BandModel + Clone + Sync, A: Atmosphere, S: Atmosphere>(
+        &self,
+        run: &RunHash,
+        band: R,
+        air: &Air<'_, R, A, S>,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        let scene = self
+            .scene
+            .lock()
+            .map_err(|_| poisoned())?
+            .take()
+            .ok_or_else(|| miette!("the raw scene was already traced"))?;
+        let asked = Settings::of(&self.request.settings);
+        let base = match &self.decision {
+            Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
+            None => asked,
+        };
+        let (mut kind, mut count) = (base.kind, base.sub_bands);
+        let mut tracer = Tracer::with_sub_bands(
+            &scene,
+            &self.materials,
+            band,
+            (air.precomputed)(kind, count)?,
+        )
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| {
+            format!(
+                "cannot trace `{}` with `{}`",
+                self.scene_name, self.materials_name
+            )
+        })?
+        .with_path_terms(base.path_terms);
+        let scene = self.uncertainties.is_some().then_some(scene);
+        let cameras = self
+            .views
+            .iter()
+            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
+            .collect::<miette::Result<Vec<_>>>()?;
+        let (tile, sink) = match job {
+            Job::Probe { column, row, text } => {
+                let cam = cameras
+                    .first()
+                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
+                let s = tracer
+                    .probe(cam, &base.options, *column, *row)
+                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
+                let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+                let sub_bands = tracer.sub_bands();
+                **text = Some(format!(
+                    "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)\n{s}\n\
+                     apparent temperature_k     {t}\n"
+                ));
+                return Ok(());
+            }
+            Job::Render {
+                tile,
+                progress,
+                sink,
+            } => (*tile, (*progress, &mut **sink)),
+        };
+        let (progress, sink) = sink;
+        let tiles = self.tiles(tile)?;
+        self.flush_warnings(sink);
+        for (i, cam) in cameras.iter().enumerate() {
+            let (settings, model_k) = match &self.request.tolerance {
+                Some(tolerance) => {
+                    let (piloted, seconds) = self.decide(tolerance, &tracer, air, cam)?;
+                    self.flush_warnings(sink);
+                    sink.decision(i, &piloted.decision, seconds)?;
+                    let c = piloted.chosen;
+                    let mut settings = base;
+                    settings.kind = c.atmosphere;
+                    settings.sub_bands = c.sub_bands;
+                    settings.path_terms = c.path_terms;
+                    settings.options.specular_bounces = c.bounces;
+                    settings.options.sky_view_rays = c.sky_view_rays;
+                    (
+                        settings.options.supersampling,
+                        settings.options.adaptive_threshold_k,
+                    ) = match c.supersampling {
+                        irsig_tracer::pilot::Supersample::Every(n) => (n, None),
+                        irsig_tracer::pilot::Supersample::Adaptive(n) => {
+                            (n, Some(tolerance.tolerance_k))
+                        }
+                    };
+                    settings.options.validate().map_err(|e| miette!("{e}"))?;
+                    (settings, piloted.decision.predicted.percentile_k)
+                }
+                None => (
+                    base,
+                    self.decision
+                        .as_ref()
+                        .map_or(0.0, |d| d.predicted.percentile_k),
+                ),
+            };
+            let budget = self
+                .uncertainties
+                .as_ref()
+                .zip(scene.as_ref())
+                .map(|(u, scene)| Budget {
+                    uncertainties: u,
+                    scene,
+                    model_k,
+                });
+            if settings.kind != kind || settings.sub_bands != count {
+                tracer = tracer
+                    .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
+                    .map_err(|e| miette!("{e}"))?;
+                (kind, count) = (settings.kind, settings.sub_bands);
+            }
+            self.flush_warnings(sink);
+            let wanted = sink.files(i);
+            if !wanted.any() {
+                // Only the pilot's decision was asked for.
+                continue;
+            }
+            tracer = tracer.with_path_terms(settings.path_terms);
+            // The per-pixel terms are kept only when a file of this frame reads them.
+            let options = TraceOptions {
+                truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
+                ..settings.options
+            };
+            let frame = if tile.is_some() {
+                tracer.render_tile(cam, &options, tiles[i], progress)
+            } else {
+                tracer.render(cam, &options, progress)
+            }
+            .map_err(|e| miette!("{e}"))?;
+            let part = FramePart {
+                frame_width: cam.pixels[0] as usize,
+                frame_height: cam.pixels[1] as usize,
+                x: tiles[i].x as usize,
+                y: tiles[i].y as usize,
+                run: run.frame(&self.views[i], &settings),
+            };
+            let radiometry = FrameRadiometry {
+                band: tracer.band().clone(),
+                sub_bands: tracer.sub_bands(),
+                view_gain: self.views.get(i).and_then(View::gain_dc_per_k),
+                counts: self.request.counts,
+                provenance: Some(self.provenance(&settings)),
+            };
+            let mut emit = |kind, bytes| sink.file(i, kind, bytes);
+            if i + 1 == cameras.len() {
+                // The last frame's files need the band, not the scene: the BVH and the facet
+                // records (about 100 bytes a facet) go before the files are made, which hold
+                // the frame's layers and encoded files (the frame's peak memory was there).
+                drop(tracer);
+                return products::traced(
+                    &radiometry,
+                    frame,
+                    &wanted,
+                    &part,
+                    budget.as_ref(),
+                    &mut emit,
+                );
+            }
+            products::traced(
+                &radiometry,
+                frame,
+                &wanted,
+                &part,
+                budget.as_ref(),
+                &mut emit,
+            )?;
+        }
+        Ok(())
+    }
+}
+
+/// What a run does once its atmosphere is ready.
+enum Job<'a> {
+    /// Prints one pixel's terms.
+    Probe {
+        column: u32,
+        row: u32,
+        text: &'a mut Option<String>,
+    },
+    /// Traces every frame.
+    Render {
+        tile: Option<TileRequest>,
+        progress: &'a (dyn Fn(u64) + Sync),
+        sink: &'a mut dyn Sink,
+    },
+}
+
+/// One sub-band, the whole band, for the band model.
+fn whole<R: Clone, T>(
+    band: &R,
+    name: &str,
+    count: SubBandCount,
+    atmosphere: impl FnOnce() -> miette::Result<T>,
+) -> miette::Result<Vec<SubBand<R, T>>> {
+    if !count.is_band() {
+        return Err(air::no_spectra(name, count));
+    }
+    Ok(vec![SubBand {
+        band: band.clone(),
+        atmosphere: atmosphere()?,
+        emissivity: None,
+    }])
+}
+
+/// `sha256:` and the 64 hex digits of `bytes`.
+fn sha256_hex(bytes: &[u8]) -> String {
+    use sha2::Digest as _;
+    let mut hex = String::from("sha256:");
+    for b in sha2::Sha256::digest(bytes) {
+        hex.push_str(&format!("{b:02x}"));
+    }
+    hex
+}
+
+fn poisoned() -> miette::Report {
+    miette!("a lock of the run was poisoned by a panic")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tiles_are_a_rectangle_or_a_grid_cell() {
+        assert_eq!(
+            "6/4x4".parse::<TileRequest>(),
+            Ok(TileRequest::Grid {
+                index: 6,
+                columns: 4,
+                rows: 4
+            })
+        );
+        let t: TileRequest = "0,0,256,128".parse().unwrap();
+        assert_eq!(t.of(512, 384).unwrap().width, 256);
+        assert!(t.of(128, 128).is_err());
+        assert!("6/4".parse::<TileRequest>().is_err());
+        assert!("1,2,3".parse::<TileRequest>().is_err());
+        assert!("-1,0,4,4".parse::<TileRequest>().is_err());
+    }
+}

@@ -1,0 +1,385 @@
+//! Refinement of each pixel to a standard-error target: the sampling model of a tolerance.
+//!
+//! Every pixel gets its centre ray. A pixel becomes a candidate when its centre's apparent
+//! temperature differs from one of its 8 neighbours' by more than [`Refinement::edge_k`] (an
+//! edge passes near it), or when a facet that projects thinner than a pixel lies within a
+//! pixel of it (a wire, a pole, a far spire: [`Tracer::thin_pixels`], found from the
+//! geometry, so that no thin feature is missed because no centre ray happened to hit it).
+//! A candidate is traced in levels: at side `n`, [`ROUNDS`] independent stratified rounds
+//! of `n × n` jittered rays each; the round means give the level's mean and its standard
+//! error, `σ = std(round means)/√ROUNDS`, an estimate from the pixel's own samples as a Monte
+//! Carlo renderer reports it. A level whose σ (in kelvin of apparent temperature, through
+//! the band's slope at the mean) is above the target is replaced by the next, at twice the
+//! side, up to [`Refinement::max_side`]. A level whose rounds all agree may have missed a
+//! sliver of the edge that made the pixel a candidate: its border is then walked, densely
+//! enough that a corner between two border rays costs less than the target, and a border
+//! that differs sends the pixel on to the next level; a pixel that ends there above the target is
+//! *capped*, and the frame says so ([`PixelSampling::capped`]). Thin candidates start at
+//! [`Refinement::thin_side`], so that a feature a quarter of a pixel wide cannot slip
+//! between the rays of a first level.
+//!
+//! Each pixel draws from its own stream (the seed and its index), so a tile's pixels are
+//! the whole frame's, bit for bit, at any thread count.
+
+use irsig_radiometry::{BandModel, InverseTable};
+
+use crate::camera::Camera;
+use crate::env::Atmosphere;
+use crate::path::Path;
+use crate::tracer::{Ctx, Event, FrameConsts, Sample, TraceOptions, Tracer, TruthPixel};
+use crate::vec::{dot, sub};
+
+/// The independent stratified rounds of a level: their means give its standard error with
+/// 7 degrees of freedom (3σ holds a mean with 98 % confidence; 4 rounds' 3 left 6 % out).
+pub const ROUNDS: usize = 8;
+
+/// How pixels are refined to a standard error.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Refinement {
+    /// The standard error of a refined pixel's apparent temperature to reach, K.
+    pub target_k: f64,
+    /// A pixel whose centre differs from a neighbour's by more than this is a candidate, K.
+    pub edge_k: f64,
+    /// The largest side of a level (`max_side²` rays a round, [`ROUNDS`] rounds).
+    pub max_side: u32,
+    /// The side a thin candidate starts at.
+    pub thin_side: u32,
+}
+
+impl Refinement {
+    /// Checks the numbers: positive finite kelvins, sides from 1 to 64 with the thin
+    /// side at most the largest.
+    ///
+    /// # Errors
+    /// The first out of range, in words.
+    pub fn validate(&self) -> Result<(), String> {
+        for (what, v) in [("target_k", self.target_k), ("edge_k", self.edge_k)] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(format!(
+                    "refinement {what} {v} is out of range: expected a finite number of \
+                     kelvin above 0"
+                ));
+            }
+        }
+        if !(1..=64).contains(&self.max_side) || !(1..=self.max_side).contains(&self.thin_side) {
+            return Err(format!(
+                "refinement sides {} (thin) and {} (largest) are out of range: expected 1 to \
+                 64, the thin one at most the largest",
+                self.thin_side, self.max_side
+            ));
+        }
+        Ok(())
+    }
+
+    /// The rays a capped pixel costs: [`ROUNDS`] rounds at every level from `start` up.
+    #[must_use]
+    pub fn rays_to_cap(&self, start: u32) -> u64 {
+        let mut side = start.max(1);
+        let mut rays = 0;
+        loop {
+            rays += ROUNDS as u64 * u64::from(side) * u64::from(side);
+            if side >= self.max_side {
+                return rays;
+            }
+            side = (side * 2).min(self.max_side);
+        }
+    }
+}
+
+/// What refinement did to one pixel, and what the error budget reads of its rays.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct PixelSampling {
+    /// The standard error of the pixel's apparent temperature, K: the last level's, from
+    /// its four rounds; 0 for a pixel that kept its centre ray.
+    pub sigma_k: f32,
+    /// Rays traced for the pixel, its centre ray included.
+    pub rays: u32,
+    /// Refinement ended at the largest side with σ above the target.
+    pub capped: bool,
+    /// The mean over the pixel's value's rays of ∂L/∂T (`Sample::temperature_sensitivity`).
+    pub temperature_sensitivity: f32,
+    /// The mean of ∂L/∂ε.
+    pub emissivity_sensitivity: f32,
+    /// The mean path radiance, W m⁻² sr⁻¹ (0 where it does not apply).
+    pub path_radiance_w_m2_sr: f32,
+}
+
+impl PixelSampling {
+    /// A pixel that kept its centre ray, whose terms are `t`.
+    pub(crate) fn from_truth(t: &TruthPixel) -> Self {
+        let path = t.path_radiance_w_m2_sr;
+        Self {
+            sigma_k: 0.0,
+            rays: 1,
+            capped: false,
+            temperature_sensitivity: t.temperature_sensitivity,
+            emissivity_sensitivity: t.emissivity_sensitivity,
+            path_radiance_w_m2_sr: if path.is_finite() { path } else { 0.0 },
+        }
+    }
+}
+
+/// Sums over a round's rays.
+#[derive(Default)]
+struct Sums {
+    radiance: f64,
+    temperature_sensitivity: f64,
+    emissivity_sensitivity: f64,
+    path_radiance: f64,
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// The pixels of `camera`'s image that lie within a pixel of a facet that projects
+    /// thinner than a pixel (its smallest height on the image under one pixel), row-major:
+    /// where a feature can hide between centre rays. Found by projecting every facet, not
+    /// by tracing: whether the facet is hidden behind another does not matter (a candidate
+    /// too many costs rays, one too few an error).
+    #[must_use]
+    pub fn thin_pixels(&self, camera: &Camera) -> Vec<bool> {
+        let [w, h] = camera.pixels;
+        let (wf, hf) = (f64::from(w), f64::from(h));
+        let mut mask = vec![false; w as usize * h as usize];
+        let project = |p: [f64; 3]| -> Option<[f64; 2]> {
+            let d = sub(p, camera.position_m);
+            let z = dot(d, camera.forward);
+            if z <= 0.0 {
+                return None;
+            }
+            let u = dot(d, camera.right) / z;
+            let v = dot(d, camera.up) / z;
+            Some([
+                (u / camera.tan_half_fov[0] + 1.0) * wf / 2.0,
+                (1.0 - v / camera.tan_half_fov[1]) * hf / 2.0,
+            ])
+        };
+        self.geometry.for_each_triangle(|tri| {
+            let (Some(a), Some(b), Some(c)) = (project(tri[0]), project(tri[1]), project(tri[2]))
+            else {
+                return;
+            };
+            let edge =
+                |p: [f64; 2], q: [f64; 2]| ((q[0] - p[0]).powi(2) + (q[1] - p[1]).powi(2)).sqrt();
+            let longest = edge(a, b).max(edge(b, c)).max(edge(c, a));
+            let twice_area = ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1])).abs();
+            // The smallest height of the projected triangle, pixels.
+            if longest.is_nan() || longest <= 0.0 || twice_area / longest >= 1.0 {
+                return;
+            }
+            let lo = |k: usize| (a[k].min(b[k]).min(c[k]) - 1.0).floor().max(0.0);
+            let hi = |k: usize, size: f64| (a[k].max(b[k]).max(c[k]) + 1.0).ceil().min(size - 1.0);
+            let (x0, x1, y0, y1) = (lo(0), hi(0, wf), lo(1), hi(1, hf));
+            if x0 > x1 || y0 > y1 {
+                return;
+            }
+            for y in y0 as u32..=y1 as u32 {
+                for x in x0 as u32..=x1 as u32 {
+                    let centre = [f64::from(x) + 0.5, f64::from(y) + 0.5];
+                    if distance_to_triangle(centre, [a, b, c]) <= 1.0 {
+                        mask[(y * w + x) as usize] = true;
+                    }
+                }
+            }
+        });
+        mask
+    }
+
+    /// A candidate pixel refined to `refinement`'s target from side `start`: its radiance
+    /// and what the refinement did. `contrast_k` is the largest difference of apparent
+    /// temperature the pixel may hide (against its neighbours' centres, or the frame's range
+    /// for a thin candidate): what a sliver no ray met could cost.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn refine_pixel<const TRUTH: bool>(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        refinement: &Refinement,
+        inverse: &InverseTable<'_, B>,
+        (col, row): (u32, u32),
+        start: u32,
+        contrast_k: f64,
+        path: &mut Path,
+    ) -> (f64, PixelSampling) {
+        let camera = fc.camera();
+        let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
+        // A stream of its own: the centre ray's draws are the centre pass's.
+        let mut ctx = Ctx::for_pixel(options, index).refinement_stream();
+        let mut scratch = Sample::miss(Event::Sky);
+        let mut rays = 1;
+        let mut side = start.clamp(1, refinement.max_side);
+        loop {
+            let mut means = [0.0; ROUNDS];
+            let mut sums = Sums::default();
+            for mean in &mut means {
+                let mut round = 0.0;
+                ctx.for_each_subpixel((col, row), side, |ctx, x, y| {
+                    self.follow(fc, camera.direction_at(x, y), ctx, path);
+                    let l = self.radiance::<TRUTH>(fc, path, &mut scratch);
+                    round += l;
+                    if TRUTH {
+                        sums.temperature_sensitivity += scratch.temperature_sensitivity;
+                        sums.emissivity_sensitivity += scratch.emissivity_sensitivity;
+                        let lu = scratch.path_radiance_w_m2_sr;
+                        sums.path_radiance += if lu.is_finite() { lu } else { 0.0 };
+                    }
+                });
+                *mean = round / f64::from(side * side);
+                sums.radiance += round;
+            }
+            rays += ROUNDS as u32 * side * side;
+            let n_rounds = ROUNDS as f64;
+            let mean = means.iter().sum::<f64>() / n_rounds;
+            let variance = means.iter().map(|m| (m - mean).powi(2)).sum::<f64>() / (n_rounds - 1.0);
+            let t_mean = inverse.temperature(mean);
+            let slope = self.band.radiance_derivative(t_mean);
+            let sigma_k = if slope > 0.0 {
+                (variance / n_rounds).sqrt() / slope
+            } else {
+                0.0
+            };
+            // Rounds that all agree (to rounding) may all have missed a sliver of the edge
+            // that made the pixel a candidate: the pixel's border is walked, densely enough
+            // that a corner no ray of it met costs less than the target. An edge that
+            // crosses the pixel crosses its border; a feature wholly inside it is a thin
+            // candidate's, and was started dense.
+            let agree = variance.sqrt() <= 1e-12 * mean.abs().max(1e-300);
+            let mut border_differs = false;
+            if agree {
+                let per_side = border_rays_per_side(contrast_k, refinement.target_k);
+                rays += 4 * per_side;
+                border_differs = self.border_differs(
+                    fc,
+                    &mut ctx,
+                    (col, row),
+                    per_side,
+                    t_mean,
+                    refinement.target_k,
+                    inverse,
+                    path,
+                    &mut scratch,
+                );
+            }
+            let reached = sigma_k <= refinement.target_k && !border_differs;
+            if reached || side >= refinement.max_side {
+                let n = n_rounds * f64::from(side * side);
+                return (
+                    mean,
+                    PixelSampling {
+                        sigma_k: sigma_k as f32,
+                        rays,
+                        capped: !reached,
+                        temperature_sensitivity: (sums.temperature_sensitivity / n) as f32,
+                        emissivity_sensitivity: (sums.emissivity_sensitivity / n) as f32,
+                        path_radiance_w_m2_sr: (sums.path_radiance / n) as f32,
+                    },
+                );
+            }
+            side = (side * 2).min(refinement.max_side);
+        }
+    }
+
+    /// Whether a ray through the border of pixel (`col`, `row`), `per_side` jittered rays a
+    /// side, sees an apparent temperature more than `target_k` from `t_mean`.
+    #[allow(clippy::too_many_arguments)]
+    fn border_differs(
+        &self,
+        fc: &FrameConsts<'_>,
+        ctx: &mut Ctx<'_>,
+        (col, row): (u32, u32),
+        per_side: u32,
+        t_mean: f64,
+        target_k: f64,
+        inverse: &InverseTable<'_, B>,
+        path: &mut Path,
+        scratch: &mut Sample,
+    ) -> bool {
+        let camera = fc.camera();
+        let (x0, y0) = (f64::from(col), f64::from(row));
+        let mut differs = false;
+        for side in 0..4 {
+            for k in 0..per_side {
+                let along = (f64::from(k) + ctx.jitter()) / f64::from(per_side);
+                let (x, y) = match side {
+                    0 => (x0 + along, y0),
+                    1 => (x0 + 1.0, y0 + along),
+                    2 => (x0 + 1.0 - along, y0 + 1.0),
+                    _ => (x0, y0 + 1.0 - along),
+                };
+                self.follow(fc, camera.direction_at(x, y), ctx, path);
+                let l = self.radiance::<false>(fc, path, scratch);
+                differs |= (inverse.temperature(l) - t_mean).abs() > target_k;
+            }
+        }
+        differs
+    }
+}
+
+/// Rays along each side of a pixel's border so that a corner cut off by an edge between
+/// them, whose legs are under `1/n`, is at most `1/(2n²)` of the pixel and costs at most
+/// `contrast_k/(2n²)`: at or under `target_k`. From 4 to 256.
+fn border_rays_per_side(contrast_k: f64, target_k: f64) -> u32 {
+    let n = (contrast_k.max(0.0) / (2.0 * target_k)).sqrt().ceil();
+    if n.is_finite() {
+        n.clamp(4.0, 256.0) as u32
+    } else {
+        256
+    }
+}
+
+/// The distance from point `p` to the triangle `t` (0 inside), in the plane.
+fn distance_to_triangle(p: [f64; 2], t: [[f64; 2]; 3]) -> f64 {
+    let cross = |a: [f64; 2], b: [f64; 2], c: [f64; 2]| {
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let (d0, d1, d2) = (
+        cross(t[0], t[1], p),
+        cross(t[1], t[2], p),
+        cross(t[2], t[0], p),
+    );
+    let inside = (d0 >= 0.0 && d1 >= 0.0 && d2 >= 0.0) || (d0 <= 0.0 && d1 <= 0.0 && d2 <= 0.0);
+    if inside {
+        return 0.0;
+    }
+    let segment = |a: [f64; 2], b: [f64; 2]| {
+        let ab = [b[0] - a[0], b[1] - a[1]];
+        let len2 = ab[0] * ab[0] + ab[1] * ab[1];
+        let s = if len2 > 0.0 {
+            (((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1]) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        ((p[0] - a[0] - s * ab[0]).powi(2) + (p[1] - a[1] - s * ab[1]).powi(2)).sqrt()
+    };
+    segment(t[0], t[1])
+        .min(segment(t[1], t[2]))
+        .min(segment(t[2], t[0]))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn distances_to_a_triangle_are_zero_inside_and_to_the_nearest_side_outside() {
+        let t = [[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]];
+        assert!(distance_to_triangle([1.0, 1.0], t).abs() < 1e-12);
+        assert!((distance_to_triangle([2.0, -3.0], t) - 3.0).abs() < 1e-12);
+        assert!((distance_to_triangle([-3.0, -4.0], t) - 5.0).abs() < 1e-12);
+        // Wound the other way, the same.
+        let r = [t[0], t[2], t[1]];
+        assert!((distance_to_triangle([2.0, -3.0], r) - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_capped_pixel_costs_every_level() {
+        let r = Refinement {
+            target_k: 0.1,
+            edge_k: 0.05,
+            max_side: 16,
+            thin_side: 8,
+        };
+        assert_eq!(r.rays_to_cap(2), 8 * (4 + 16 + 64 + 256));
+        assert_eq!(r.rays_to_cap(8), 8 * (64 + 256));
+        assert!(r.validate().is_ok());
+        assert!(Refinement { thin_side: 32, ..r }.validate().is_err());
+    }
+}
