@@ -62,3 +62,8 @@ cp $m/base/truth.exr $m/exr-sensor/*.exr "$c/exr_sensor/"
 mkdir -p "$c/dirsig_mat" "$c/dirsig_ems"
 cp $root/tests/data/third-party/dirsig-channel/anadirsig.mat "$c/dirsig_mat/"
 cp $root/tests/data/third-party/dirsig-channel/emissivity/*.ems "$c/dirsig_ems/"
+# Pipeline files: the sample, the runnable pipelines and the malformed cases (the reader
+# target); the back-end targets start empty (their input is six arbitrary strings).
+mkdir -p "$c/pipeline_reader" "$c/emit_dry_run" "$c/emit_makefile" "$c/emit_slurm"
+cp $root/formats/samples/pipeline.ron $root/pipelines/*.ron "$c/pipeline_reader/"
+for f in $m/pipeline/*.ron; do cp "$f" "$c/pipeline_reader/bad-$(basename "$f")"; done

@@ -105,3 +105,20 @@ pub fn stats_csv(
         })
         .collect()
 }
+
+/// A pipe whose reader has gone, as a child's stdout or stderr: every write to it fails
+/// (`EPIPE`), as `tool 2>&1 | head -c1` leaves the tool's stderr once `head` has exited.
+/// Made from the stdin of a `true` that has already ended.
+///
+/// # Panics
+/// When `true` cannot run.
+#[must_use]
+pub fn closed_pipe() -> std::process::Stdio {
+    let mut reader = Command::new("true")
+        .stdin(std::process::Stdio::piped())
+        .spawn()
+        .expect("`true` must run");
+    let writer = reader.stdin.take().expect("a piped stdin");
+    reader.wait().expect("`true` ends");
+    std::process::Stdio::from(writer)
+}

@@ -1,15 +1,20 @@
 //! The malformed corpus, end to end and data-driven: every case listed in a
-//! `tests/data/malformed/*/cases.tsv` manifest runs through its tool, which must exit 1
-//! within a time and memory bound, name the case's file with a line and column (a binary
+//! `tests/data/malformed/*/cases.tsv` manifest runs through its tool, which must (unless
+//! the case expects otherwise, below) exit 1 within a time and memory bound, name the case's file with a line and column (a binary
 //! file's byte offset is given as line 1, column offset + 1; an OBJ face is located by its
 //! line; a bad sample of an image by its pixel, `pixel (x X, y Y)`), hold the manifest's
 //! message
 //! fragment, and leave its output folder empty and its own folder as it was (outputs an
 //! execute file names lie beside it): no output and no staged temporary file.
 //!
-//! A manifest line is `file<TAB>tool<TAB>arguments<TAB>fragment`; in the arguments `{in}`
-//! is the case's path and `{out}` an empty folder for outputs. Lines starting with `#` are
-//! comments.
+//! A manifest line is `file<TAB>tool<TAB>arguments<TAB>fragment[<TAB>expected]`; in the
+//! arguments `{in}` is the case's path and `{out}` an empty folder for outputs. Lines
+//! starting with `#` are comments. `expected` is the outcome when it is not the one above
+//! (`1`): `2`, bad usage (exit 2, the fragment in the message, nothing written: an output
+//! that is an input, say); `0`, success within the same time and memory bounds (a small
+//! file that asks for a large cost); `stderr-closed`, exit 1 with the reader of stderr
+//! closed before the tool starts (no panic, nothing written). In every case the case's own
+//! file is left as it was, byte for byte.
 
 use std::path::Path;
 use std::process::{Command, Stdio};
@@ -65,11 +70,44 @@ fn listing(dir: &Path) -> Vec<std::ffi::OsString> {
     names
 }
 
+/// A case's expected outcome.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Expected {
+    /// Exit 1, located, the fragment, nothing written.
+    Located,
+    /// Exit 2, the fragment, nothing written.
+    Usage,
+    /// Exit 0.
+    Success,
+    /// Exit 1 with stderr closed, nothing written.
+    StderrClosed,
+}
+
+impl Expected {
+    fn parse(text: Option<&str>) -> Self {
+        match text {
+            None | Some("1") => Self::Located,
+            Some("2") => Self::Usage,
+            Some("0") => Self::Success,
+            Some("stderr-closed") => Self::StderrClosed,
+            Some(other) => panic!("unknown expected outcome `{other}`"),
+        }
+    }
+}
+
 /// Runs one case; returns what is wrong with its outcome, if anything.
-fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -> Option<String> {
+fn run_case(
+    folder: &Path,
+    file: &str,
+    tool: &str,
+    args: &str,
+    fragment: &str,
+    expected: Expected,
+) -> Option<String> {
     let out = tempfile::tempdir().unwrap();
     let before = listing(folder);
     let case = folder.join(file);
+    let case_bytes = std::fs::read(&case).unwrap();
     let args: Vec<String> = args
         .split_whitespace()
         .map(|a| {
@@ -77,6 +115,11 @@ fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -
                 .replace("{out}", &out.path().to_string_lossy())
         })
         .collect();
+    let stderr = if expected == Expected::StderrClosed {
+        irsig_tests::closed_pipe()
+    } else {
+        Stdio::piped()
+    };
     let mut child = Command::new("sh")
         .arg("-c")
         .arg(format!("ulimit -v {MEMORY_LIMIT_KIB}; exec \"$@\""))
@@ -86,7 +129,7 @@ fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -
         .current_dir(repo_root())
         .stdin(Stdio::null())
         .stdout(Stdio::null())
-        .stderr(Stdio::piped())
+        .stderr(stderr)
         .spawn()
         .unwrap();
     let start = Instant::now();
@@ -102,28 +145,38 @@ fn run_case(folder: &Path, file: &str, tool: &str, args: &str, fragment: &str) -
         std::thread::sleep(Duration::from_millis(10));
     };
     let mut stderr = String::new();
-    std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut stderr).unwrap();
+    if let Some(mut pipe) = child.stderr.take() {
+        std::io::Read::read_to_string(&mut pipe, &mut stderr).unwrap();
+    }
     let text = unwrap_report(&stderr);
     let left: Vec<_> = std::fs::read_dir(out.path())
         .unwrap()
         .map(|e| e.unwrap().file_name())
         .collect();
     let mut wrong = Vec::new();
-    if status.code() != Some(1) {
-        wrong.push(format!("exit {status}, expected 1"));
+    let code = match expected {
+        Expected::Located | Expected::StderrClosed => 1,
+        Expected::Usage => 2,
+        Expected::Success => 0,
+    };
+    if status.code() != Some(code) {
+        wrong.push(format!("exit {status}, expected {code}"));
     }
-    if !has_location(&text, file) {
+    if expected == Expected::Located && !has_location(&text, file) {
         wrong.push(format!("no `{file}:LINE`"));
     }
-    if !text.contains(fragment) {
+    if matches!(expected, Expected::Located | Expected::Usage) && !text.contains(fragment) {
         wrong.push(format!("no `{fragment}`"));
     }
-    if !left.is_empty() {
+    if expected != Expected::Success && !left.is_empty() {
         wrong.push(format!("left {left:?}"));
     }
     let after = listing(folder);
     if after != before {
         wrong.push(format!("changed its own folder: {before:?} -> {after:?}"));
+    }
+    if std::fs::read(&case).ok().as_deref() != Some(case_bytes.as_slice()) {
+        wrong.push("changed the case's own file".to_owned());
     }
     (!wrong.is_empty()).then(|| format!("{}: {}\n{stderr}", wrong.join("; "), args.join(" ")))
 }
@@ -147,12 +200,17 @@ fn every_malformed_case_fails_cleanly_with_a_location() {
             .filter(|l| !l.starts_with('#') && !l.trim().is_empty())
         {
             let cols: Vec<&str> = line.split('\t').collect();
-            let [file, tool, args, fragment] = cols[..] else {
-                panic!("{}: malformed manifest line `{line}`", folder.display());
+            let (file, tool, args, fragment, expected) = match cols[..] {
+                [file, tool, args, fragment] => (file, tool, args, fragment, None),
+                [file, tool, args, fragment, expected] => {
+                    (file, tool, args, fragment, Some(expected))
+                }
+                _ => panic!("{}: malformed manifest line `{line}`", folder.display()),
             };
             assert!(folder.join(file).is_file(), "{file} is listed but missing");
             count += 1;
-            if let Some(w) = run_case(folder, file, tool, args, fragment) {
+            let expected = Expected::parse(expected);
+            if let Some(w) = run_case(folder, file, tool, args, fragment, expected) {
                 failures.push(format!("{}/{file}: {w}", folder.display()));
             }
         }

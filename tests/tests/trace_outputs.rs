@@ -210,3 +210,34 @@ fn an_interaction_map_that_cannot_hold_the_ids_is_an_error_and_nothing_is_writte
     assert!(!dir.path().join("r.exr").exists());
     assert!(!dir.path().join("m.png").exists());
 }
+
+#[test]
+fn with_a_tolerance_the_decision_is_written_beside_the_outputs_and_says_where() {
+    // `--tolerance` with per-output flags and no --decision-out used to print the decision
+    // and keep no file, saying nothing.
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    let radiance = dir.path().join("r.exr");
+    let decision = dir.path().join("r.decision.ron");
+    trace(&raw, &view)
+        .args(["--tolerance", "1", "--radiance-exr"])
+        .arg(&radiance)
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(format!(
+            "the decision goes to {}",
+            decision.display()
+        )));
+    let text = std::fs::read_to_string(&decision).unwrap();
+    let d: irsig_model::decision::Decision =
+        irsig_formats::canonical::from_ron("decision", &text).unwrap();
+    assert!((d.tolerance_k - 1.0).abs() < 1e-12, "{text}");
+    // Every output to standard output: no file to put it beside, and the note says so.
+    trace(&raw, &view)
+        .args(["--tolerance", "1", "--radiance-exr", "-"])
+        .assert()
+        .success()
+        .stderr(predicate::str::contains(
+            "the decision is not written (every output goes to standard output)",
+        ));
+}

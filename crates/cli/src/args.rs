@@ -93,6 +93,16 @@ impl std::fmt::Display for BandArg {
 }
 
 impl BandArg {
+    /// The response file `--band` names, which the tool reads (`None` for a flat band or
+    /// `total`).
+    #[must_use]
+    pub fn response_file(band: Option<&Self>) -> Option<&str> {
+        match band {
+            Some(Self::Response(path)) => Some(path),
+            _ => None,
+        }
+    }
+
     /// `--band`'s value, or the default band (8–14 µm, flat) when it was not given.
     #[must_use]
     pub fn or_default(band: Option<&Self>) -> Self {
@@ -414,6 +424,23 @@ impl FrameOutputArgs {
     #[must_use]
     pub fn has_files(&self) -> bool {
         self.named().any()
+    }
+
+    /// Where frame `index`'s decision goes without `--decision-out`: `PREFIX.decision.ron`
+    /// with -o, else beside the first of `files` written to a file (`out.radiance.exr`
+    /// gives `out.radiance.decision.ron`); `None` when every output goes to stdout.
+    #[must_use]
+    pub fn decision_file(
+        &self,
+        index: usize,
+        frames: usize,
+        files: &FrameFiles<PathBuf>,
+    ) -> Option<PathBuf> {
+        self.prefixed_file(index, frames, "decision.ron")
+            .or_else(|| {
+                let (_, first) = files.iter().find(|(_, p)| p.as_os_str() != "-")?;
+                Some(first.with_extension("decision.ron"))
+            })
     }
 
     /// `PREFIX.SUFFIX` of frame `index` (from 0) of `frames` (`PREFIX.NNNN.SUFFIX` for

@@ -9,7 +9,10 @@
 //!   exits with 2 on a malformed command line; a tool signals a semantic usage error (two
 //!   options that contradict each other) with [`usage_error`]. A closed pipe on stdout counts
 //!   as success, as it does for `head` and ripgrep.
-//! - **Progress** ([`progress_bar`]) is drawn on stderr only when stderr is a terminal.
+//! - **Progress** ([`progress_bar`]) is drawn on stderr only when stderr is a terminal;
+//!   notes and warnings go through [`note!`], which never panics on a closed stderr.
+//! - **No output is an input** ([`refuse_output_is_input`]): one check every tool makes
+//!   before any work.
 //!
 //! - **Shared flags** ([`args`]): the band, the digital-count calibration and library enums
 //!   named on the command line, spelt the same in every tool.
@@ -28,6 +31,7 @@
 //! # use std::io::Write;
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod args;
@@ -35,7 +39,7 @@ mod frames;
 mod staged;
 
 pub use frames::StagedFrames;
-pub use staged::{Staged, check_output, remove_staged_files};
+pub use staged::{Staged, check_output, remove_staged_files, remove_staged_files_and_exit};
 
 use std::fs::File;
 use std::io::{self, IsTerminal, Write};
@@ -43,6 +47,131 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use miette::{Diagnostic, IntoDiagnostic, Report, WrapErr};
+
+/// Writes one line to standard error, as `eprintln!` does, but never panics: a closed or
+/// broken stderr (`tool 2>&1 | head -c1`) loses the line, and the tool goes on and exits
+/// with its own status. Every tool prints its notes and warnings through it.
+///
+/// ```
+/// irsig_cli::note!("irsig-demo: warning: {} facets have no material", 3);
+/// ```
+#[macro_export]
+macro_rules! note {
+    ($($arg:tt)*) => {
+        $crate::write_stderr_line(::std::format_args!($($arg)*))
+    };
+}
+
+/// What [`note!`] calls: the line, then a newline, in one write; errors ignored.
+#[doc(hidden)]
+pub fn write_stderr_line(args: std::fmt::Arguments<'_>) {
+    let mut line = args.to_string();
+    line.push('\n');
+    let _ = io::stderr().lock().write_all(line.as_bytes());
+}
+
+/// Refuses a command line that names one of its inputs as an output: writing the output
+/// would replace the file being read (`irsig-sensor a.exr -o a.exr`), and the input would
+/// be lost whatever the outcome. Every tool calls it with all the files it reads (those
+/// named on its command line and those it finds named inside them) and all the files it
+/// writes, before any work.
+///
+/// Two names are one file when both exist and are the same file (device and inode on
+/// Unix, so a symbolic or hard link, `./a` and `d/../a` are all caught; the canonical path
+/// elsewhere). `-` (standard input or output) is never compared, nor is an output that is
+/// a device or a socket (`-o /dev/null`): it is written in place, never replaced. A name
+/// that does not exist yet is no input of the run.
+///
+/// ```no_run
+/// # fn main() -> miette::Result<()> {
+/// irsig_cli::refuse_output_is_input(["radiance.exr", "band.srf"], ["sensor.exr", "-"])?;
+/// # Ok(()) }
+/// ```
+///
+/// # Errors
+/// A usage error (exit code 2) naming the output and the input it is.
+pub fn refuse_output_is_input<I, O>(inputs: I, outputs: O) -> miette::Result<()>
+where
+    I: IntoIterator,
+    I::Item: AsRef<Path>,
+    O: IntoIterator,
+    O::Item: AsRef<Path>,
+{
+    let inputs: Vec<(PathBuf, FileIdentity)> = inputs
+        .into_iter()
+        .filter(|p| p.as_ref().as_os_str() != "-")
+        .filter_map(|p| Some((p.as_ref().to_path_buf(), FileIdentity::of(p.as_ref())?)))
+        .collect();
+    for output in outputs {
+        let output = output.as_ref();
+        if output.as_os_str() == "-" {
+            continue;
+        }
+        let Some(id) = FileIdentity::of(output).filter(|id| !id.written_in_place) else {
+            continue;
+        };
+        if let Some((input, _)) = inputs.iter().find(|(_, i)| i.same_file(&id)) {
+            let alias = if input == output {
+                String::new()
+            } else {
+                format!(" (`{}` is `{}`)", output.display(), input.display())
+            };
+            return Err(usage_error(format!(
+                "`{}` is both an output and an input{alias}: writing it would replace the \
+                 file being read; name another output",
+                output.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// What makes two names one file.
+#[derive(Debug)]
+struct FileIdentity {
+    #[cfg(unix)]
+    dev_ino: (u64, u64),
+    #[cfg(not(unix))]
+    canonical: PathBuf,
+    /// A device or socket: an output there is written in place.
+    written_in_place: bool,
+}
+
+impl FileIdentity {
+    /// The file `path` names (following symbolic links), or `None` when there is none.
+    fn of(path: &Path) -> Option<Self> {
+        let meta = std::fs::metadata(path).ok()?;
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::{FileTypeExt as _, MetadataExt as _};
+            let kind = meta.file_type();
+            Some(Self {
+                dev_ino: (meta.dev(), meta.ino()),
+                written_in_place: kind.is_char_device()
+                    || kind.is_block_device()
+                    || kind.is_socket(),
+            })
+        }
+        #[cfg(not(unix))]
+        {
+            Some(Self {
+                canonical: std::fs::canonicalize(path).ok()?,
+                written_in_place: !meta.is_file() && !meta.is_dir(),
+            })
+        }
+    }
+
+    fn same_file(&self, other: &Self) -> bool {
+        #[cfg(unix)]
+        {
+            self.dev_ino == other.dev_ino
+        }
+        #[cfg(not(unix))]
+        {
+            self.canonical == other.canonical
+        }
+    }
+}
 
 /// Exit code for success.
 pub const EXIT_OK: u8 = 0;
@@ -324,10 +453,7 @@ pub fn usage_error(message: impl Into<String>) -> Report {
 pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
     // An interrupted run leaves no staged `.irsig-*.tmp` file behind. Setting the handler
     // fails only when one is already set (a tool that runs another tool's body in-process).
-    let _ = ctrlc::set_handler(|| {
-        remove_staged_files();
-        std::process::exit(130);
-    });
+    let _ = ctrlc::set_handler(|| remove_staged_files_and_exit(130));
     // In a log or a pipe a message stays on one line, whatever the length of its path, so
     // that `grep` finds it; on a terminal miette wraps it to the window.
     let wrap = io::stderr().is_terminal();
@@ -345,7 +471,8 @@ pub fn run(body: impl FnOnce() -> miette::Result<()>) -> ExitCode {
             } else {
                 EXIT_BAD_INPUT
             };
-            eprintln!("{report:?}");
+            // A closed or broken stderr loses the message, not the exit status.
+            note!("{report:?}");
             ExitCode::from(code)
         }
     }
@@ -483,6 +610,43 @@ mod tests {
             .into_diagnostic()
             .unwrap_err();
         assert!(!is_broken_pipe(&hidden), "why write_stdout marks it itself");
+    }
+
+    #[test]
+    fn an_output_that_is_an_input_is_refused_by_any_name() {
+        let dir = tempfile::tempdir().unwrap();
+        let a = dir.path().join("a.exr");
+        std::fs::write(&a, b"tile").unwrap();
+        let new = dir.path().join("new.exr");
+        // Other names of the same file: `d/./a`, a symbolic link, a hard link.
+        let dotted = dir.path().join(".").join("a.exr");
+        let mut names = vec![a.clone(), dotted];
+        #[cfg(unix)]
+        {
+            let link = dir.path().join("link.exr");
+            std::os::unix::fs::symlink("a.exr", &link).unwrap();
+            let hard = dir.path().join("hard.exr");
+            std::fs::hard_link(&a, &hard).unwrap();
+            names.extend([link, hard]);
+        }
+        for name in &names {
+            let err = refuse_output_is_input([&a], [&new, name]).unwrap_err();
+            assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+            let text = format!("{err:?}");
+            assert!(
+                text.contains(&name.display().to_string())
+                    && text.contains("both an output and an input"),
+                "{text}"
+            );
+            if name != &a {
+                assert!(text.contains(&a.display().to_string()), "{text}");
+            }
+        }
+        assert_eq!(std::fs::read(&a).unwrap(), b"tile");
+        // `-`, a name not yet made and a device are no input.
+        refuse_output_is_input([a.as_path(), Path::new("-")], [Path::new("-"), &new]).unwrap();
+        #[cfg(unix)]
+        refuse_output_is_input(["/dev/null"], ["/dev/null"]).unwrap();
     }
 
     #[test]

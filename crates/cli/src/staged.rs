@@ -16,8 +16,11 @@
 //!   place at commit, before the first rename, so that a failed write leaves every file as
 //!   it was. It may be named more than once.
 //! - Staged files are named `.irsig-*.tmp`; an interrupted run (SIGINT, SIGTERM) removes
-//!   them ([`remove_staged_files`], called from [`crate::run`]'s signal handler), and a
-//!   commit under way is finished before they are.
+//!   them ([`remove_staged_files_and_exit`], called from [`crate::run`]'s signal handler),
+//!   and a commit under way is finished before they are. A staged file is created and
+//!   registered under one lock, and the handler keeps that lock until the process has
+//!   exited, so no thread can stage a file the handler does not see: an interrupt at any
+//!   moment, during the renames too, leaves no staged file.
 
 use std::collections::HashSet;
 use std::io::{self, Write};
@@ -36,12 +39,25 @@ fn pending() -> MutexGuard<'static, Vec<PathBuf>> {
 }
 
 /// Removes every staged file this process still holds (an interrupted run). Returns how many
-/// were removed.
+/// were removed. Files staged after it returns are not removed: an interrupt handler calls
+/// [`remove_staged_files_and_exit`] instead.
 pub fn remove_staged_files() -> usize {
-    pending()
-        .drain(..)
+    remove_all(&mut pending())
+}
+
+fn remove_all(list: &mut Vec<PathBuf>) -> usize {
+    list.drain(..)
         .filter(|p| std::fs::remove_file(p).is_ok())
         .count()
+}
+
+/// Removes every staged file and ends the process with `code`, holding the list of staged
+/// files locked until the end: a commit under way finishes first (its renames are not cut
+/// in half), and no other thread can stage a new file between the removal and the exit.
+pub fn remove_staged_files_and_exit(code: i32) -> ! {
+    let mut list = pending();
+    remove_all(&mut list);
+    std::process::exit(code)
 }
 
 /// A staged file's place in [`PENDING`], from its creation (before a byte is written) until
@@ -49,9 +65,14 @@ pub fn remove_staged_files() -> usize {
 struct Registration(PathBuf);
 
 impl Registration {
-    fn new(path: &Path) -> Self {
-        pending().push(path.to_path_buf());
-        Self(path.to_path_buf())
+    /// A new staged file beside `dest`, created and registered under one lock, so that an
+    /// interrupt sees every staged file that exists.
+    fn create(dest: &Path) -> io::Result<(tempfile::NamedTempFile, Self)> {
+        let mut list = pending();
+        let tmp = staged_file(dest)?;
+        list.push(tmp.path().to_path_buf());
+        let registration = Self(tmp.path().to_path_buf());
+        Ok((tmp, registration))
     }
 }
 
@@ -173,8 +194,9 @@ impl Staged {
                 return Ok(());
             }
         };
-        let mut tmp = staged_file(&file).into_diagnostic().wrap_err_with(ctx)?;
-        let registration = Registration::new(tmp.path());
+        let (mut tmp, registration) = Registration::create(&file)
+            .into_diagnostic()
+            .wrap_err_with(ctx)?;
         {
             let mut w = io::BufWriter::new(tmp.as_file_mut());
             write(&mut w)
@@ -330,7 +352,7 @@ pub fn check_output(dest: &Path) -> miette::Result<()> {
         ))
         .wrap_err_with(ctx);
     }
-    staged_file(&file)
+    Registration::create(&file)
         .map(drop)
         .into_diagnostic()
         .wrap_err_with(|| format!("no file can be created in `{}`", dir.display()))

@@ -34,12 +34,15 @@ pub struct LutRow {
 
 const COLUMNS: &str = "dc radiance_w_m2_sr temperature_k temperature_c";
 
+/// The largest count a LUT holds: counts are at most 16 bits (`--dc-bits` 1–16).
+pub const MAX_COUNT: u32 = (1 << 16) - 1;
+
 /// Parses the text of a LUT file named `file` (for messages).
 ///
 /// # Errors
 /// A [`ParseError`] at the offending line and column: a row without exactly four fields, a
-/// count that is not the next integer (0 first), a field that is not a finite number, or a
-/// file without rows.
+/// count that is not the next integer (0 first) or is past 16 bits (65,535), a field that
+/// is not a finite number, or a file without rows.
 pub fn parse(file: &str, text: &str) -> Result<Vec<LutRow>, ParseError> {
     let mut rows: Vec<LutRow> = Vec::new();
     let mut offset = 0;
@@ -77,6 +80,18 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<LutRow>, ParseError> {
                 format!("expected the digital count {expected}, found `{dc_text}`"),
             )
         })?;
+        if dc > MAX_COUNT {
+            return Err(ParseError::at_span(
+                file,
+                text,
+                at,
+                dc_text.len(),
+                format!(
+                    "expected at most {} rows: counts are at most 16 bits (0 to {MAX_COUNT}), found {dc}",
+                    MAX_COUNT + 1
+                ),
+            ));
+        }
         if dc != expected {
             return Err(ParseError::at_span(
                 file,
@@ -158,5 +173,19 @@ mod tests {
             let (l, c) = crate::line_column(text, e.span().0);
             assert_eq!((l, c), (line, column), "{text:?}: {shown}");
         }
+    }
+
+    #[test]
+    fn counts_stop_at_16_bits() {
+        // A LUT holds one row per count of at most 16 bits: a longer one is no sensor's.
+        let mut text = String::new();
+        for dc in 0..=65_536 {
+            text.push_str(&format!("{dc} 1 2 3\n"));
+        }
+        let e = parse("c.lut", &text).unwrap_err();
+        assert!(e.message.contains("at most 65536 rows"), "{e}");
+        assert_eq!(crate::line_column(&text, e.span().0).0, 65_537);
+        text.truncate(text.rfind("65536").unwrap());
+        assert_eq!(parse("c.lut", &text).unwrap().len(), 65_536);
     }
 }

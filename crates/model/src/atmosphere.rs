@@ -33,17 +33,30 @@ pub struct RadiosondeLevel {
     pub dew_point_depression_k: f64,
 }
 
-/// A radiosonde profile's rules (both atmosphere forms carry one): finite altitudes and
-/// dew-point depressions, pressures and temperatures ≥ 0, altitudes increasing.
+/// A radiosonde profile's rules (both atmosphere forms carry one): finite altitudes,
+/// pressures and temperatures ≥ 0, dew-point depressions from 0 to below the temperature
+/// (a dew point above absolute zero), altitudes increasing.
 pub(crate) fn check_radiosonde(levels: &[RadiosondeLevel]) -> Result<(), ModelError> {
     for (i, r) in levels.iter().enumerate() {
         let p = |f: &str| format!("radiosonde[{i}].{f}");
-        check_finite(
-            || p("altitude_m"),
-            &[r.altitude_m, r.dew_point_depression_k],
-        )?;
+        check_finite(|| p("altitude_m"), &[r.altitude_m])?;
         check_range(|| p("pressure_hpa"), r.pressure_hpa, 0.0, f64::MAX)?;
         check_range(|| p("temperature_k"), r.temperature_k, 0.0, f64::MAX)?;
+        check_range(
+            || p("dew_point_depression_k"),
+            r.dew_point_depression_k,
+            0.0,
+            f64::MAX,
+        )?;
+        if r.dew_point_depression_k >= r.temperature_k {
+            return Err(ModelError::new(
+                p("dew_point_depression_k"),
+                ModelErrorKind::Other(format!(
+                    "a depression of {} K at {} K puts the dew point at or below absolute zero",
+                    r.dew_point_depression_k, r.temperature_k
+                )),
+            ));
+        }
     }
     check_increasing(
         |i| format!("radiosonde[{i}].altitude_m"),
@@ -278,7 +291,8 @@ impl SlantTables {
         };
         for (name, axis, max) in [
             ("altitude_m", &self.altitude_m, f64::MAX),
-            ("nadir_deg", &self.nadir_deg, 90.0),
+            // Below 90°: a horizontal slant path never reaches the paths' lower end.
+            ("nadir_deg", &self.nadir_deg, 89.999),
             ("sky_altitude_m", &self.sky_altitude_m, f64::MAX),
             ("sky_zenith_deg", &self.sky_zenith_deg, 90.0),
         ] {

@@ -22,3 +22,13 @@ pub const MAX_INPUT_BYTES: u64 = 4 << 30;
 /// Moon's distance. Beyond it a triangle's area overflows and it could not be told from a
 /// degenerate one.
 pub const MAX_COORDINATE_M: f64 = 1e9;
+
+/// The wavelengths a sensor response table may hold, µm: from 0.2 (the ultraviolet edge of
+/// what reaches the ground) to 1000 (the far infrared's end). A wider table is no sensor's;
+/// the quadrature of a band is then bounded by the table's rows, not by its span.
+pub const RESPONSE_WAVELENGTH_UM: [f64; 2] = [0.2, 1000.0];
+
+/// The largest value a sensor response table may hold: 10⁶ (relative responses, per cents
+/// and counts all fit). A band radiance weighted by it stays finite at any temperature a
+/// scene holds.
+pub const MAX_RESPONSE: f64 = 1e6;

@@ -59,7 +59,10 @@ pub struct AtmospherePlan {
 
 impl AtmospherePlan {
     /// Checks the node lists: altitudes not negative and increasing, angles within their
-    /// ranges and increasing, a sensible spectral range, a known model.
+    /// ranges and increasing, every observer above the paths' end, altitudes whole metres
+    /// and angles multiples of 0.001° (what the decks' `F10.3` fields of km and degrees
+    /// hold exactly: a plan's node and its deck's path are then the same), a sensible
+    /// spectral range, a known model.
     ///
     /// # Errors
     /// The first rule broken.
@@ -125,6 +128,123 @@ impl AtmospherePlan {
             check_range(|| format!("hemispheric[{i}].zenith_deg"), z, 0.0, 90.0)?;
             check_range(|| format!("hemispheric[{i}].weight"), w, 0.0, f64::MAX)?;
         }
+        check_range(
+            || "correction_altitude_m".into(),
+            self.correction_altitude_m,
+            0.0,
+            f64::MAX,
+        )?;
+        for (i, &h) in self.observers_m.iter().enumerate() {
+            check_range(|| format!("observers_m[{i}]"), h, 0.0, f64::MAX)?;
+            if h <= self.path_end_m {
+                return Err(ModelError::new(
+                    format!("observers_m[{i}]"),
+                    ModelErrorKind::Other(format!(
+                        "an observer at {h} m is not above the paths' end ({} m): its slant \
+                         paths would run up, or nowhere",
+                        self.path_end_m
+                    )),
+                ));
+            }
+        }
+        let whole = |path: String, v: f64| -> Result<(), ModelError> {
+            if (v - v.round()).abs() > 1e-6 {
+                return Err(ModelError::new(
+                    path,
+                    ModelErrorKind::Other(format!(
+                        "expected a whole number of metres (a deck holds km to 3 decimals), found {v}"
+                    )),
+                ));
+            }
+            Ok(())
+        };
+        whole("path_end_m".into(), self.path_end_m)?;
+        whole("correction_altitude_m".into(), self.correction_altitude_m)?;
+        for (name, axis) in [
+            ("observers_m", &self.observers_m),
+            ("levels_m", &self.levels_m),
+            ("slant_altitude_m", &self.slant_altitude_m),
+            ("sky_altitude_m", &self.sky_altitude_m),
+        ] {
+            for (i, &v) in axis.iter().enumerate() {
+                whole(format!("{name}[{i}]"), v)?;
+            }
+        }
+        let thousandths = |path: String, v: f64| -> Result<(), ModelError> {
+            if (v * 1000.0 - (v * 1000.0).round()).abs() > 1e-6 {
+                return Err(ModelError::new(
+                    path,
+                    ModelErrorKind::Other(format!(
+                        "expected an angle in multiples of 0.001 deg (a deck holds 3 decimals), found {v}"
+                    )),
+                ));
+            }
+            Ok(())
+        };
+        for (name, axis) in [
+            ("correction_nadir_deg", &self.correction_nadir_deg),
+            ("ground_sky_zenith_deg", &self.ground_sky_zenith_deg),
+            ("slant_nadir_deg", &self.slant_nadir_deg),
+            ("sky_zenith_deg", &self.sky_zenith_deg),
+        ] {
+            for (i, &v) in axis.iter().enumerate() {
+                thousandths(format!("{name}[{i}]"), v)?;
+            }
+        }
+        for (i, &(z, _)) in self.hemispheric.iter().enumerate() {
+            thousandths(format!("hemispheric[{i}].zenith_deg"), z)?;
+        }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The base plan of the malformed corpus (`tests/data/malformed/base/plan/plan.ron`).
+    fn plan() -> AtmospherePlan {
+        AtmospherePlan {
+            name: "case".into(),
+            model: PlanModel::Standard(1),
+            wavenumber_per_cm: [710.0, 1250.0, 90.0],
+            path_end_m: 1.0,
+            observers_m: vec![1000.0],
+            levels_m: vec![1000.0],
+            correction_altitude_m: 1000.0,
+            correction_nadir_deg: vec![0.0, 5.0, 10.0],
+            ground_sky_zenith_deg: vec![0.0],
+            hemispheric: vec![(41.234, 0.5)],
+            slant_altitude_m: vec![1000.0],
+            slant_nadir_deg: vec![0.0],
+            sky_altitude_m: vec![0.0],
+            sky_zenith_deg: vec![0.0],
+        }
+    }
+
+    #[test]
+    fn every_rule_of_the_plan_page_is_checked() {
+        plan().validate().unwrap();
+        // An observer below the paths' end was built: its page says it is refused.
+        let mut p = plan();
+        p.observers_m = vec![0.5];
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.path, "observers_m[0]", "{e}");
+        p.observers_m = vec![1.0];
+        assert_eq!(p.validate().unwrap_err().path, "observers_m[0]");
+        // A deck holds km and degrees to 3 decimals: 12.5 m or 0.0005° would be run at
+        // another node than the plan names.
+        let mut p = plan();
+        p.slant_altitude_m = vec![12.5];
+        assert_eq!(p.validate().unwrap_err().path, "slant_altitude_m[0]");
+        let mut p = plan();
+        p.sky_zenith_deg = vec![0.0, 10.0005];
+        assert_eq!(p.validate().unwrap_err().path, "sky_zenith_deg[1]");
+        let mut p = plan();
+        p.hemispheric = vec![(41.2345, 0.5)];
+        assert_eq!(p.validate().unwrap_err().path, "hemispheric[0].zenith_deg");
+        let mut p = plan();
+        p.correction_altitude_m = f64::NAN;
+        assert_eq!(p.validate().unwrap_err().path, "correction_altitude_m");
     }
 }

@@ -93,6 +93,7 @@ impl RegionSet {
                     ModelErrorKind::Other("a reference column needs a name".into()),
                 ));
             }
+            printable(format!("references[{i}].name"), &c.name)?;
             if !columns.insert(c.name.as_str()) {
                 return Err(ModelError::new(
                     format!("references[{i}].name"),
@@ -112,6 +113,7 @@ impl RegionSet {
                     ModelErrorKind::Other("a region needs a name".into()),
                 ));
             }
+            printable(format!("{prefix}.name"), &r.name)?;
             if !names.insert(r.name.as_str()) {
                 return Err(ModelError::new(
                     format!("{prefix}.name"),
@@ -198,6 +200,22 @@ fn declared(columns: &[ReferenceColumn]) -> String {
         .join(", ")
 }
 
+/// A name printed in tables, CSV, RON and the run report holds no control character (a
+/// NUL, a newline ...), which would cut or forge a row of them.
+fn printable(path: String, name: &str) -> Result<(), ModelError> {
+    match name.chars().find(|c| c.is_control()) {
+        None => Ok(()),
+        Some(c) => Err(ModelError::new(
+            path,
+            ModelErrorKind::Other(format!(
+                "a name holds the control character U+{:04X}: it is printed in tables, CSV \
+                 and the report",
+                u32::from(c)
+            )),
+        )),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -239,6 +257,20 @@ mod tests {
         assert!(!b.contains(5, 7) && !b.contains(3, 6) && !b.contains(1, 7));
         assert_eq!(RegionSet::reference(&r, "thesis"), Some(273.15));
         assert_eq!(RegionSet::reference(&r, "other"), None);
+    }
+
+    #[test]
+    fn a_control_character_in_a_name_is_refused() {
+        // A NUL inside a region name went into the tables, the CSV and the report.
+        let e = set(vec![region("Left\0Pool")]).validate().unwrap_err();
+        assert_eq!(e.path, "regions[0].name", "{e}");
+        let e = set(vec![region("a"), region("b\nc")])
+            .validate()
+            .unwrap_err();
+        assert_eq!(e.path, "regions[1].name", "{e}");
+        let mut s = set(vec![region("a")]);
+        s.references[0].name = "thesis\r".into();
+        assert_eq!(s.validate().unwrap_err().path, "references[0].name");
     }
 
     #[test]

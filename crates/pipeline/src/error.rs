@@ -41,6 +41,9 @@ pub enum ErrorKind {
     UnknownStep,
     /// A stage asks Slurm for more CPUs or memory than any node of the cluster declares.
     ExceedsNode,
+    /// Text holds a control character (newline, carriage return, NUL, tab, ...), which
+    /// nothing the runner writes for a shell, make or Slurm may carry.
+    ControlCharacter,
 }
 
 #[derive(Debug)]
@@ -161,6 +164,7 @@ impl Diagnostic for PipelineError {
             ErrorKind::Io => "irsig::pipeline::io",
             ErrorKind::UnknownStep => "irsig::pipeline::unknown_step",
             ErrorKind::ExceedsNode => "irsig::pipeline::exceeds_node",
+            ErrorKind::ControlCharacter => "irsig::pipeline::control_character",
         }))
     }
 

@@ -39,6 +39,7 @@
 //! ]);
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod emit;
@@ -56,8 +57,34 @@ pub use slurm::{
     SlurmScripts, estimate_memory_mib,
 };
 
-/// `word` quoted for a POSIX shell when it needs quoting, as dry runs and Makefiles print it.
-#[must_use]
-pub fn shell_quote(word: &str) -> String {
-    shlex::try_quote(word).map_or_else(|_| word.to_owned(), std::borrow::Cow::into_owned)
+/// `word` quoted for a POSIX shell when it needs quoting, as dry runs, Makefiles and Slurm
+/// scripts print it: as it is when it holds only letters, digits and `+ - . / : @ ] _`,
+/// else in single quotes (a backslash in double quotes), by shlex's rules. Never the raw
+/// word: a word no quoting can carry is an error.
+///
+/// ```
+/// assert_eq!(irsig_pipeline::shell_quote("8-14").unwrap(), "8-14");
+/// assert_eq!(irsig_pipeline::shell_quote("scene: $(x)").unwrap(), "'scene: $(x)'");
+/// assert!(irsig_pipeline::shell_quote("a\0b").is_err());
+/// ```
+///
+/// # Errors
+/// [`ErrorKind::ControlCharacter`] for a word holding a control character: a NUL has no
+/// shell spelling, and the rest (a newline, a carriage return, a tab ...) would end or
+/// split a line of a Makefile or a Slurm script; the pipeline file refuses them where it
+/// is read.
+pub fn shell_quote(word: &str) -> Result<String, PipelineError> {
+    if let Some(c) = word.chars().find(|c| c.is_control()) {
+        return Err(PipelineError::plain(
+            ErrorKind::ControlCharacter,
+            format!(
+                "{word:?} holds the control character U+{:04X}, which no line of a shell, \
+                 make or Slurm script may carry",
+                u32::from(c)
+            ),
+        ));
+    }
+    shlex::try_quote(word)
+        .map(std::borrow::Cow::into_owned)
+        .map_err(|e| PipelineError::plain(ErrorKind::ControlCharacter, format!("{word:?}: {e}")))
 }

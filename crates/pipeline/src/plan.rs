@@ -77,7 +77,7 @@ impl Pipeline {
     /// # Errors
     /// An unreadable file, or any error of [`Pipeline::parse`].
     pub fn load(path: &Path) -> Result<Self, PipelineError> {
-        let bytes = std::fs::read(path).map_err(|e| {
+        let bytes = irsig_formats::file::read_file(path).map_err(|e| {
             PipelineError::io(format!("cannot read pipeline file `{}`", path.display()), e)
         })?;
         // Not UTF-8: an error at the first bad byte, as every reader of text gives.
@@ -470,14 +470,46 @@ pub struct Step {
 }
 
 impl Step {
-    /// The command line, shell-quoted so that it can be pasted into a shell.
+    /// The command line for messages, shell-quoted so that it can be pasted into a shell.
+    /// A planned step's words hold no control character (the pipeline file refuses them);
+    /// should a word hold one, it is shown escaped (`\n`) inside quotes, inert, never raw.
+    /// Scripts use [`Step::shell_line`], which refuses it.
     #[must_use]
     pub fn command_line(&self) -> String {
         self.argv
             .iter()
-            .map(|w| crate::shell_quote(w))
+            .map(|w| {
+                crate::shell_quote(w).unwrap_or_else(|_| {
+                    let shown: String = w
+                        .chars()
+                        .flat_map(|c| {
+                            let escaped: Vec<char> = if c.is_control() {
+                                c.escape_debug().collect()
+                            } else {
+                                vec![c]
+                            };
+                            escaped
+                        })
+                        .collect();
+                    crate::shell_quote(&shown).unwrap_or_default()
+                })
+            })
             .collect::<Vec<_>>()
             .join(" ")
+    }
+
+    /// The command line as one line of a shell script: every word quoted so that `sh` runs
+    /// exactly [`Step::argv`].
+    ///
+    /// # Errors
+    /// [`ErrorKind::ControlCharacter`] for a word no shell line can carry.
+    pub fn shell_line(&self) -> Result<String, PipelineError> {
+        Ok(self
+            .argv
+            .iter()
+            .map(|w| crate::shell_quote(w))
+            .collect::<Result<Vec<_>, _>>()?
+            .join(" "))
     }
 }
 
@@ -999,6 +1031,90 @@ mod plan_tests {
             let e = plan(&text, &tools()).unwrap_err();
             assert!(e.to_string().contains(says), "{bad}: {e}");
         }
+    }
+
+    /// Line and column (from 1) of the `n`th (from 0) occurrence of `needle` in `text`.
+    fn place_of(text: &str, needle: &str, n: usize) -> (usize, usize) {
+        let at = text.match_indices(needle).nth(n).unwrap().0;
+        irsig_formats::line_column(text, at)
+    }
+
+    #[test]
+    fn control_characters_are_refused_where_they_are_written() {
+        // A newline in a parameter (escaped or raw), a stage name, a path, a flag, a tool's
+        // word or a sweep variable would reach a Makefile, a Slurm script or a dry run.
+        let cases = [
+            (
+                r#"(stages: [(tool: "a", params: {"command": "a\nr.html: ; touch X #"})])"#,
+                r"\n",
+            ),
+            (r#"(stages: [(name: "x\ntouch X", tool: "a")])"#, r"\n"),
+            (
+                r#"(stages: [(tool: "a", outputs: {"o": "o\u{0}"})])"#,
+                r"\u{0}",
+            ),
+            (
+                r#"(stages: [(tool: "a", params: {"k": r"tab	here"})])"#,
+                "\t",
+            ),
+            (
+                r#"(stages: [(tool: "a", params: {"k": ["ok", "cr\r"]})])"#,
+                r"\r",
+            ),
+            (
+                r#"(stages: [(tool: "a", params: {"k\x07": true})])"#,
+                r"\x07",
+            ),
+            (r#"(stages: [(tool: "a b\x7f")])"#, r"\x7f"),
+            (
+                r#"(stages: [(tool: "a", params: {"k": "\\n is fine", "j": "\u{9b}"})])"#,
+                r"\u{9b}",
+            ),
+            (
+                r#"(sweeps: {"s": Frames([{"v": "x\ny"}])}, stages: [(tool: "a", sweep: "s")])"#,
+                r"\n",
+            ),
+        ];
+        for (text, bad) in cases {
+            let e = plan(text, &tools()).unwrap_err();
+            assert_eq!(e.kind(), ErrorKind::ControlCharacter, "{text}: {e}");
+            assert_eq!(e.line_column(), Some(place_of(text, bad, 0)), "{text}: {e}");
+            assert!(e.to_string().contains("control character U+00"), "{e}");
+        }
+        // An escaped backslash before an `n` is no newline.
+        let p = plan(r#"(stages: [(tool: "a", params: {"k": "\\n"})])"#, &tools()).unwrap();
+        assert_eq!(p.steps[0].argv, ["irsig-a", "-k", "\\n"]);
+    }
+
+    #[test]
+    fn scripts_never_carry_a_word_no_shell_can_read() {
+        // `--dry-run` used to print a word holding a NUL raw (shlex refuses it), so that a
+        // `$(...)` in it ran. A plan built by hand, past the reader, is refused too.
+        // A tool program that exists, to be hashed by the dry run.
+        let this = Tools::new(|_| std::env::current_exe().ok());
+        let mut p = plan(r#"(stages: [(tool: "a", outputs: {"o": "out"})])"#, &this).unwrap();
+        p.steps[0].argv.push("$(touch X)\0".to_owned());
+        let e = p.dry_run_script(true).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::ControlCharacter, "{e}");
+        let e = p.makefile().unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::ControlCharacter, "{e}");
+        // For messages the word is shown escaped and quoted: inert.
+        assert_eq!(
+            p.steps[0].command_line(),
+            format!(
+                "irsig-a -o out {}",
+                crate::shell_quote(r"$(touch X)\0").unwrap()
+            )
+        );
+    }
+
+    #[test]
+    fn a_pipeline_of_no_stage_is_refused() {
+        // `(stages: [])` ran nothing, rc 0.
+        let e = plan("(\n  stages: [],\n)", &tools()).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::Structure);
+        assert_eq!(e.line_column(), Some((2, 11)), "{e}");
+        assert!(e.to_string().contains("no stages"), "{e}");
     }
 
     #[test]

@@ -99,11 +99,12 @@ impl Plan {
     /// is a cache, and the worst a lost one costs is a re-run.
     fn load_state(&self) -> State {
         let path = self.state_path();
-        std::fs::read_to_string(&path)
+        irsig_formats::file::read_file(&path)
             .ok()
-            .and_then(|t| {
+            .and_then(|bytes| {
                 let file = path.display().to_string();
-                irsig_formats::canonical::from_ron_as(&file, &t, "run state").ok()
+                let text = String::from_utf8(bytes).ok()?;
+                irsig_formats::canonical::from_ron_as(&file, &text, "run state").ok()
             })
             .unwrap_or_default()
     }
@@ -180,7 +181,7 @@ impl Plan {
         programs
             .into_iter()
             .map(|p| {
-                let bytes = std::fs::read(p).map_err(|e| {
+                let bytes = irsig_formats::file::read_file(p).map_err(|e| {
                     PipelineError::io(format!("cannot read tool program `{}`", p.display()), e)
                 })?;
                 Ok((p.clone(), hex(&Sha256::digest(bytes))))
@@ -197,7 +198,7 @@ impl Plan {
             h.update(word.as_bytes());
         }
         for input in &step.inputs {
-            let bytes = std::fs::read(self.base_dir.join(&input.path)).ok()?;
+            let bytes = irsig_formats::file::read_file(&self.base_dir.join(&input.path)).ok()?;
             h.update(Sha256::digest(bytes));
         }
         Some(hex(&h.finalize()))
@@ -207,7 +208,7 @@ impl Plan {
     fn outputs_hash(&self, step: &Step) -> Option<String> {
         let mut h = Sha256::new();
         for out in &step.outputs {
-            let bytes = std::fs::read(self.base_dir.join(&out.path)).ok()?;
+            let bytes = irsig_formats::file::read_file(&self.base_dir.join(&out.path)).ok()?;
             let name = out.path.to_string_lossy();
             h.update((name.len() as u64).to_le_bytes());
             h.update(name.as_bytes());
@@ -358,7 +359,7 @@ impl Plan {
                 ),
             ));
         };
-        let bytes = std::fs::read(&step.program).map_err(|e| {
+        let bytes = irsig_formats::file::read_file(&step.program).map_err(|e| {
             PipelineError::io(
                 format!("cannot read tool program `{}`", step.program.display()),
                 e,

@@ -144,6 +144,12 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
             ),
         ));
     };
+    if items.is_empty() {
+        return Err(src.structure(
+            stages_node,
+            "the pipeline has no stages: `stages: []` would run nothing and succeed",
+        ));
+    }
     let stages = items
         .iter()
         .map(|n| stage(src, n))
@@ -314,7 +320,10 @@ fn flag_name(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineEr
 /// A string or number parameter value, as one command-line word.
 fn scalar(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineError> {
     match &node.kind {
-        Kind::Str(s) => Ok(Spanned::new(s.clone(), node)),
+        Kind::Str(s) => {
+            refuse_control(src, node, s)?;
+            Ok(Spanned::new(s.clone(), node))
+        }
         Kind::Number(n) => Ok(Spanned::new(n.replace('_', ""), node)),
         other => Err(src.structure(
             node,
@@ -325,12 +334,101 @@ fn scalar(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineError
 
 fn string(src: Source<'_>, node: &Node, what: &str) -> Result<Spanned<String>, PipelineError> {
     match &node.kind {
-        Kind::Str(s) => Ok(Spanned::new(s.clone(), node)),
+        Kind::Str(s) => {
+            refuse_control(src, node, s)?;
+            Ok(Spanned::new(s.clone(), node))
+        }
         other => Err(src.structure(
             node,
             format!("expected {what} in quotes, found {}", other.describe()),
         )),
     }
+}
+
+/// Every string of a pipeline file becomes words of a command line, lines of a Makefile or
+/// of a Slurm script: one holding a control character (newline, carriage return, NUL, tab,
+/// any of U+0000-U+001F and U+007F-U+009F) is refused here, at the character, written
+/// as it is or as an escape (`\n`, `\u{0}`).
+fn refuse_control(src: Source<'_>, node: &Node, value: &str) -> Result<(), PipelineError> {
+    let Some(bad) = value.chars().find(|c| c.is_control()) else {
+        return Ok(());
+    };
+    let (at, len) = control_in_literal(src.text.get(node.start..node.end).unwrap_or(""))
+        .map_or((node.start, node.end - node.start), |(i, n)| {
+            (node.start + i, n)
+        });
+    Err(src.error(
+        ErrorKind::ControlCharacter,
+        at,
+        at + len,
+        format!(
+            "this string holds the control character {}: a pipeline's names, paths and \
+             parameters become words of shell, make and Slurm scripts, where a control \
+             character could end a line and start a command",
+            describe_control(bad)
+        ),
+    ))
+}
+
+/// The name of a control character for a message: `U+000A (newline)`.
+fn describe_control(c: char) -> String {
+    let name = match c {
+        '\n' => " (newline)",
+        '\r' => " (carriage return)",
+        '\t' => " (tab)",
+        '\0' => " (NUL)",
+        _ => "",
+    };
+    format!("U+{:04X}{name}", u32::from(c))
+}
+
+/// The byte offset and length, in a string literal's source text (`"..."`, `r#"..."#` or
+/// `'.'`), of its first control character, written as it is or as an escape.
+fn control_in_literal(literal: &str) -> Option<(usize, usize)> {
+    let raw = literal.starts_with('r');
+    let mut chars = literal.char_indices().peekable();
+    while let Some((i, c)) = chars.next() {
+        if c.is_control() {
+            return Some((i, c.len_utf8()));
+        }
+        if raw || c != '\\' {
+            continue;
+        }
+        let &(_, e) = chars.peek()?;
+        let rest = &literal[i + 1..];
+        let (value, len) = match e {
+            'n' => (Some('\n'), 2),
+            't' => (Some('\t'), 2),
+            'r' => (Some('\r'), 2),
+            '0' => (Some('\0'), 2),
+            'x' => (
+                rest.get(1..3)
+                    .and_then(|h| u32::from_str_radix(h, 16).ok())
+                    .and_then(char::from_u32),
+                4,
+            ),
+            'u' => match rest.find('}') {
+                Some(close) => (
+                    rest.get(2..close)
+                        .and_then(|h| u32::from_str_radix(&h.replace('_', ""), 16).ok())
+                        .and_then(char::from_u32),
+                    close + 2,
+                ),
+                None => (None, 2),
+            },
+            _ => (None, 2),
+        };
+        if value.is_some_and(char::is_control) {
+            return Some((i, len));
+        }
+        // Past the escape: `\\` must not start another.
+        for _ in 1..len {
+            if chars.next().is_none() {
+                break;
+            }
+        }
+    }
+    None
 }
 
 /// The fields of a struct value `Name(field: ...)` or `(field: ...)`, refusing unknown ones.

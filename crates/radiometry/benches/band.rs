@@ -36,6 +36,39 @@ fn radiance_with_srf(b: Bencher) {
         .bench(|| t.iter().map(|&t| band.radiance(black_box(t))).sum::<f64>());
 }
 
+/// A finely tabulated 8-14 um response of `rows` rows, jagged as a measured one.
+fn fine_srf(rows: usize) -> (Vec<f64>, Vec<f64>) {
+    let w = (0..rows)
+        .map(|i| 7.9 + 6.2 * i as f64 / (rows - 1) as f64)
+        .collect();
+    let r = (0..rows)
+        .map(|i| 0.5 + 0.4 * (i as f64 * 0.37).sin())
+        .collect();
+    (w, r)
+}
+
+/// Setting a band up from a response table of many rows, what `--band FILE` does once the
+/// file is parsed: the table checked, the quadrature made (linear in the rows).
+#[divan::bench(args = [10_000, 100_000])]
+fn band_setup_from_rows(b: Bencher, rows: usize) {
+    let (w, r) = fine_srf(rows);
+    b.counter(divan::counter::ItemsCount::new(rows)).bench(|| {
+        let srf = SensorResponse::new(w.clone(), r.clone()).unwrap();
+        Band::new(7.9, 14.1).unwrap().with_response(&srf).unwrap()
+    });
+}
+
+/// L(T) with a 100,000-row response: as cheap as with a coarse one.
+#[divan::bench]
+fn radiance_with_100k_row_srf(b: Bencher) {
+    let (w, r) = fine_srf(100_000);
+    let srf = SensorResponse::new(w, r).unwrap();
+    let band = Band::new(7.9, 14.1).unwrap().with_response(&srf).unwrap();
+    let t = temps();
+    b.counter(divan::counter::ItemsCount::new(t.len()))
+        .bench(|| t.iter().map(|&t| band.radiance(black_box(t))).sum::<f64>());
+}
+
 #[divan::bench]
 fn temperature_flat_8_14(b: Bencher) {
     let band = Band::default();

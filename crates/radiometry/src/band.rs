@@ -1,5 +1,7 @@
 //! [`Band`]: blackbody band radiance `L(T)`, its derivative and its inverse `T(L)`.
 
+pub use irsig_model::limits::{MAX_RESPONSE, RESPONSE_WAVELENGTH_UM};
+
 use crate::constants::{C1L_W_M2_SR, C2_M_K};
 use crate::error::{RadiometryError, RadiometryErrorKind};
 use crate::planck;
@@ -19,8 +21,10 @@ impl SensorResponse {
     ///
     /// # Errors
     /// [`RadiometryErrorKind::InvalidResponse`] when there are fewer than two points, the
-    /// columns differ in length, a wavelength is not finite and positive, the wavelengths do
-    /// not strictly increase, a response is negative or not finite, or all responses are 0.
+    /// columns differ in length, a wavelength is not finite or outside
+    /// [`RESPONSE_WAVELENGTH_UM`] (0.2–1000 µm), the wavelengths do not strictly increase,
+    /// a response is negative, not finite or above [`MAX_RESPONSE`] (10⁶), or all responses
+    /// are 0.
     pub fn new(wavelength_um: Vec<f64>, response: Vec<f64>) -> Result<Self, RadiometryError> {
         let bad = |m: String| {
             Err(RadiometryError::new(
@@ -41,16 +45,17 @@ impl SensorResponse {
                 wavelength_um.len()
             ));
         }
+        let [shortest, longest] = RESPONSE_WAVELENGTH_UM;
         for (i, (&w, &r)) in wavelength_um.iter().zip(&response).enumerate() {
-            if !(w.is_finite() && w > 0.0) {
+            if !(shortest..=longest).contains(&w) {
                 return bad(format!(
-                    "point {}: wavelength must be a positive number of µm, found {w}",
+                    "point {}: wavelength must be {shortest}–{longest} µm, found {w}",
                     i + 1
                 ));
             }
-            if !(r.is_finite() && r >= 0.0) {
+            if !(0.0..=MAX_RESPONSE).contains(&r) {
                 return bad(format!(
-                    "point {}: response must be finite and ≥ 0, found {r}",
+                    "point {}: response must be 0–{MAX_RESPONSE:e}, found {r}",
                     i + 1
                 ));
             }
@@ -137,6 +142,14 @@ struct Node {
 ///   Planck function is so steep across a piece that the relative error can grow (a flat
 ///   8–14 µm table measured 2.0e-11 at 10 K; docs/accuracy.md); the result stays positive
 ///   and strictly increasing in T, so [`Band::temperature`] still inverts it exactly.
+///
+/// # Cost
+/// A table of many rows would give as many nodes, and every `L(T)` would cost one
+/// exponential per node. The nodes of each stretch of at most 1 µm are therefore replaced,
+/// when there are more than 8, by the 8-point Gauss rule of the response-weighted measure
+/// they make (positive weights, exact for polynomials of degree 15 against it, the degree
+/// the 8-point rule of a flat piece has): at most 8 nodes per 0.5 µm of the band, whatever
+/// the rows. Setting a band up costs time linear in the rows inside it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Band {
     lambda_min_um: f64,
@@ -208,70 +221,81 @@ impl Band {
     /// `max_piece_um` µm. `with_response` uses 8 nodes and 1 µm (4 nodes, uncut, for
     /// pieces of 0.1 µm or less); `docs/accuracy.md` tabulates the error against both.
     ///
+    /// The pieces are gathered into cells of at most `max_piece_um`; a cell holding more
+    /// than `nodes_per_piece` nodes has them replaced by the `nodes_per_piece`-point Gauss
+    /// rule of the measure they make (the response times the pieces' weights): the rule has
+    /// at most `nodes_per_piece` nodes per cell, whatever the number of rows.
+    ///
     /// # Errors
     /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero everywhere
     /// inside the band, or `nodes_per_piece` is 0 or above 64, or `max_piece_um` is not
-    /// finite and positive.
+    /// finite and at least 0.01 µm.
     pub fn with_response_quadrature(
         self,
         srf: &SensorResponse,
         nodes_per_piece: usize,
         max_piece_um: f64,
     ) -> Result<Self, RadiometryError> {
-        if !((1..=64).contains(&nodes_per_piece) && max_piece_um.is_finite() && max_piece_um > 0.0)
+        if !((1..=64).contains(&nodes_per_piece)
+            && max_piece_um.is_finite()
+            && max_piece_um >= 0.01)
         {
             return Err(RadiometryError::new(
                 RadiometryErrorKind::InvalidResponse,
                 format!(
-                    "quadrature needs 1–64 nodes per piece and a positive piece length, found {nodes_per_piece} nodes per {max_piece_um} µm"
+                    "quadrature needs 1–64 nodes per piece and pieces of at least 0.01 µm, found {nodes_per_piece} nodes per {max_piece_um} µm"
                 ),
             ));
         }
         let lo = self.lambda_min_um;
         let hi = self.lambda_max_um;
-        let mut nodes = Vec::new();
+        #[allow(clippy::float_cmp)] // the default rule, chosen by its exact parameters
+        let default_rule = nodes_per_piece == 8 && max_piece_um == 1.0;
+        let long_rule = gauss_legendre(nodes_per_piece);
+        let short_rule = gauss_legendre(4);
+        let (w, r) = (&srf.wavelength_um, &srf.response);
+        let mut cells = Cells::new(nodes_per_piece, max_piece_um);
         let mut width_m = 0.0;
         let mut moment = 0.0;
-        for pair in srf.wavelength_um.windows(2) {
-            let &[w0, w1] = pair else { continue };
+        // Only the rows that reach into the band are visited.
+        let first = w.partition_point(|&x| x <= lo).saturating_sub(1);
+        for i in first..w.len().saturating_sub(1) {
+            let (w0, w1, r0, r1) = (w[i], w[i + 1], r[i], r[i + 1]);
+            if w0 >= hi {
+                break;
+            }
             let a = w0.max(lo);
             let b = w1.min(hi);
             if b <= a {
                 continue;
             }
             let length = b - a;
-            #[allow(clippy::float_cmp)] // the default rule, chosen by its exact parameters
-            let default_rule = nodes_per_piece == 8 && max_piece_um == 1.0;
-            let (order, pieces) = if default_rule && length <= 0.1 {
-                (4, 1)
+            let (rule, pieces) = if default_rule && length <= 0.1 {
+                (&short_rule, 1)
             } else {
-                (
-                    nodes_per_piece,
-                    (length / max_piece_um).ceil().max(1.0) as usize,
-                )
+                // At most 1000 µm / 0.01 µm pieces: the table's span is bounded.
+                (&long_rule, (length / max_piece_um).ceil().max(1.0) as usize)
             };
-            let rule = gauss_legendre(order);
             let piece = length / pieces as f64;
             for p in 0..pieces {
                 let start = a + piece * p as f64;
-                for &(t, w) in &rule {
+                cells.start_piece(start, start + piece);
+                for &(t, weight) in rule {
                     let lambda_um = start + 0.5 * piece * (t + 1.0);
-                    let response = srf.at(lambda_um);
+                    // The response is linear on this row's interval (`SensorResponse::at`).
+                    let response = r0 + (r1 - r0) * (lambda_um - w0) / (w1 - w0);
                     if response <= 0.0 {
                         continue;
                     }
                     let lambda_m = lambda_um * METRES_PER_UM;
-                    let dl_m = 0.5 * piece * w * METRES_PER_UM;
+                    let dl_m = 0.5 * piece * weight * METRES_PER_UM;
                     width_m += dl_m * response;
                     moment += dl_m * response * lambda_m;
-                    let l5 = lambda_m * lambda_m * lambda_m * lambda_m * lambda_m;
-                    nodes.push(Node {
-                        weight: dl_m * response * C1L_W_M2_SR / l5,
-                        c2_over_lambda: C2_M_K / lambda_m,
-                    });
+                    cells.push(lambda_um, dl_m * response);
                 }
             }
         }
+        let nodes = cells.finish();
         if nodes.is_empty() || width_m <= 0.0 {
             return Err(RadiometryError::new(
                 RadiometryErrorKind::InvalidResponse,
@@ -425,6 +449,177 @@ impl Band {
         }
         t
     }
+}
+
+/// The quadrature's nodes, gathered cell by cell: a cell spans at most `max_um` of
+/// wavelength; one holding more than `order` nodes is replaced by the `order`-point Gauss
+/// rule of the measure its nodes make.
+struct Cells {
+    order: usize,
+    max_um: f64,
+    /// Where the open cell starts, µm.
+    start_um: f64,
+    /// The open cell's nodes: wavelength (µm) and weight (response times length, m).
+    open: Vec<(f64, f64)>,
+    nodes: Vec<Node>,
+}
+
+impl Cells {
+    fn new(order: usize, max_um: f64) -> Self {
+        Self {
+            order,
+            max_um,
+            start_um: f64::NAN,
+            open: Vec::new(),
+            nodes: Vec::new(),
+        }
+    }
+
+    /// A piece `[start, end]` begins: the open cell is closed first when the piece would
+    /// take it past its length.
+    fn start_piece(&mut self, start_um: f64, end_um: f64) {
+        // A NaN start (no cell open yet) closes nothing and opens the first.
+        let fits = end_um - self.start_um <= self.max_um * (1.0 + 1e-9);
+        if !fits {
+            self.close();
+            self.start_um = start_um;
+        }
+    }
+
+    fn push(&mut self, lambda_um: f64, weight_m: f64) {
+        self.open.push((lambda_um, weight_m));
+    }
+
+    fn close(&mut self) {
+        let rule = if self.open.len() > self.order {
+            gauss_rule_of_measure(&self.open, self.order)
+        } else {
+            None
+        };
+        for &(lambda_um, weight_m) in rule.as_deref().unwrap_or(&self.open) {
+            let lambda_m = lambda_um * METRES_PER_UM;
+            let l5 = lambda_m * lambda_m * lambda_m * lambda_m * lambda_m;
+            self.nodes.push(Node {
+                weight: weight_m * C1L_W_M2_SR / l5,
+                c2_over_lambda: C2_M_K / lambda_m,
+            });
+        }
+        self.open.clear();
+    }
+
+    fn finish(mut self) -> Vec<Node> {
+        self.close();
+        self.nodes
+    }
+}
+
+/// The `order`-point Gauss rule of the discrete measure `points` (position, positive
+/// weight): `order` positions inside the points' span with positive weights, exact for
+/// every polynomial of degree up to `2 order - 1` against the measure. The three-term
+/// recurrence of the measure's orthogonal polynomials comes from the discretised Stieltjes
+/// procedure (on positions mapped to [-1, 1]); the rule's positions are the zeros of the
+/// `order`-th polynomial (the eigenvalues of the Jacobi matrix, found by bisection on its
+/// Sturm sequence) and its weights the Christoffel numbers. `None` when the measure holds
+/// too few distinct points or rounding spoils the rule: the caller keeps the points.
+fn gauss_rule_of_measure(points: &[(f64, f64)], order: usize) -> Option<Vec<(f64, f64)>> {
+    let (lo, hi) = points
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &(x, _)| {
+            (lo.min(x), hi.max(x))
+        });
+    let (centre, half) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+    if !(half > 0.0 && half.is_finite()) {
+        return None;
+    }
+    let x: Vec<f64> = points.iter().map(|&(p, _)| (p - centre) / half).collect();
+    let w: Vec<f64> = points.iter().map(|&(_, w)| w).collect();
+    // Stieltjes: p_{k+1} = (x - α_k) p_k - β_k p_{k-1}, α_k = <x p_k, p_k> / <p_k, p_k>,
+    // β_k = <p_k, p_k> / <p_{k-1}, p_{k-1}>, β_0 = <1, 1>.
+    let mut alpha = Vec::with_capacity(order);
+    let mut beta = Vec::with_capacity(order);
+    let mut previous = vec![0.0; x.len()];
+    let mut current = vec![1.0; x.len()];
+    let mut norm: f64 = w.iter().sum();
+    beta.push(norm);
+    for k in 0..order {
+        let xpp: f64 = (0..x.len())
+            .map(|i| w[i] * x[i] * current[i] * current[i])
+            .sum();
+        let a = xpp / norm;
+        alpha.push(a);
+        if k + 1 == order {
+            break;
+        }
+        let b = if k == 0 { 0.0 } else { beta[k] };
+        for i in 0..x.len() {
+            let next = (x[i] - a) * current[i] - b * previous[i];
+            previous[i] = current[i];
+            current[i] = next;
+        }
+        let next_norm: f64 = (0..x.len()).map(|i| w[i] * current[i] * current[i]).sum();
+        let ratio = next_norm / norm;
+        if !(ratio.is_finite() && ratio > 1e-30 && a.is_finite()) {
+            return None;
+        }
+        beta.push(ratio);
+        norm = next_norm;
+    }
+    // The zeros of p_order: the eigenvalues of the Jacobi matrix, each by bisection on the
+    // count of eigenvalues below a point (negative terms of its Sturm sequence).
+    let below = |t: f64| -> usize {
+        let mut count = 0;
+        let mut q = 1.0;
+        for k in 0..order {
+            q = (alpha[k] - t) - if k == 0 { 0.0 } else { beta[k] / q };
+            if q == 0.0 {
+                q = -1e-300;
+            }
+            if q < 0.0 {
+                count += 1;
+            }
+        }
+        count
+    };
+    let mut rule = Vec::with_capacity(order);
+    for j in 0..order {
+        let (mut a, mut b) = (-1.0 - 1e-9, 1.0 + 1e-9);
+        for _ in 0..200 {
+            let mid = 0.5 * (a + b);
+            if mid <= a || mid >= b {
+                break;
+            }
+            if below(mid) > j {
+                b = mid;
+            } else {
+                a = mid;
+            }
+        }
+        let t = 0.5 * (a + b);
+        // Christoffel number: 1 / Σ p̂_k(t)², p̂ the orthonormal polynomials.
+        let mut sum = 0.0;
+        let (mut p_prev, mut p) = (0.0, 1.0 / beta[0].sqrt());
+        for k in 0..order {
+            sum += p * p;
+            if k + 1 == order {
+                break;
+            }
+            let next = ((t - alpha[k]) * p - if k == 0 { 0.0 } else { beta[k].sqrt() * p_prev })
+                / beta[k + 1].sqrt();
+            p_prev = p;
+            p = next;
+        }
+        let weight = 1.0 / sum;
+        rule.push((centre + half * t.clamp(-1.0, 1.0), weight));
+    }
+    // A sound rule has positive weights summing to the measure's mass, and distinct
+    // positions inside its span.
+    let mass: f64 = rule.iter().map(|&(_, w)| w).sum();
+    let sound = rule
+        .iter()
+        .all(|&(p, w)| w > 0.0 && w.is_finite() && p >= lo && p <= hi)
+        && rule.windows(2).all(|r| r[1].0 > r[0].0)
+        && (mass / beta[0] - 1.0).abs() <= 1e-9;
+    sound.then_some(rule)
 }
 
 fn nodes_radiance(nodes: &[Node], t_k: f64) -> (f64, f64) {

@@ -133,6 +133,117 @@ fn a_response_table_matches_quadrature_from_50_k() {
     }
 }
 
+/// The 15-point Kronrod rule on `[a, b]` (its nodes and weights above), once.
+fn kronrod_15(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
+    adaptive_kronrod(f, a, b, f64::INFINITY, 0)
+}
+
+/// A measured-looking response of `rows` rows from `from` to `to` µm: jagged, every value
+/// from a linear congruential sequence in [0, 1).
+fn jagged_response(rows: usize, from: f64, to: f64) -> (Vec<f64>, Vec<f64>) {
+    let mut state: u64 = 12_345;
+    let wavelength_um = (0..rows)
+        .map(|i| from + (to - from) * i as f64 / (rows - 1) as f64)
+        .collect();
+    let response = (0..rows)
+        .map(|_| {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1);
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        })
+        .collect();
+    (wavelength_um, response)
+}
+
+/// ∫ SRF·B over [lo, hi], row by row: the response is linear across each row's interval,
+/// which is short enough for one Kronrod rule to be exact to rounding.
+fn per_row_reference(w: &[f64], r: &[f64], lo: f64, hi: f64, t_k: f64) -> f64 {
+    let mut sum = 0.0;
+    for i in 0..w.len() - 1 {
+        let (a, b) = (w[i].max(lo), w[i + 1].min(hi));
+        if b <= a {
+            continue;
+        }
+        let (w0, w1, r0, r1) = (w[i], w[i + 1], r[i], r[i + 1]);
+        let f = |l: f64| {
+            let um = l * 1e6;
+            (r0 + (r1 - r0) * (um - w0) / (w1 - w0)) * planck(l, t_k)
+        };
+        sum += kronrod_15(&f, a * 1e-6, b * 1e-6);
+    }
+    sum
+}
+
+#[test]
+fn a_response_of_many_rows_costs_few_nodes_and_keeps_its_accuracy() {
+    // A 100,000-row response gave 400,000 nodes: every L(T) cost as many exponentials, and
+    // the tracer's --tolerance pilot took 81 s on a 16 × 12 image. The nodes of each 1 µm
+    // are now the 8-point Gauss rule of the measure they make.
+    for rows in [10_000, 100_000] {
+        let (w, r) = jagged_response(rows, 7.9, 14.1);
+        let srf = SensorResponse::new(w.clone(), r.clone()).unwrap();
+        let band = Band::default().with_response(&srf).unwrap();
+        // Cells of at most 1 µm, two of them longer than 1 µm together: 13 over 6 µm.
+        assert!(
+            band.quadrature_nodes() <= 8 * 13,
+            "{rows} rows: {} nodes",
+            band.quadrature_nodes()
+        );
+        for t in [50.0, 100.0, 200.0, 300.0, 1000.0, 5000.0] {
+            let reference = per_row_reference(&w, &r, 8.0, 14.0, t);
+            let rel = (band.radiance(t) / reference - 1.0).abs();
+            assert!(rel <= 1e-10, "{rows} rows, T = {t}: rel {rel:e}");
+        }
+        // Still strictly increasing, so the inverse is exact.
+        for t in [60.0, 250.0, 3000.0] {
+            assert!((band.temperature(band.radiance(t)) - t).abs() < 1e-6);
+        }
+    }
+}
+
+#[test]
+fn a_response_is_refused_outside_the_physical_range() {
+    // `1e-300 1` / `1e300 1` cut into 1 µm pieces allocated until the kernel ended the
+    // process; responses of 1e308 gave a band radiance of 1.797693e308.
+    for (w, r, says) in [
+        (
+            vec![1e-300, 1e300],
+            vec![1.0, 1.0],
+            "wavelength must be 0.2–1000 µm",
+        ),
+        (
+            vec![1e-10, 1e10],
+            vec![1.0, 1.0],
+            "wavelength must be 0.2–1000 µm",
+        ),
+        (vec![0.1, 8.0], vec![1.0, 1.0], "found 0.1"),
+        (vec![8.0, 1001.0], vec![1.0, 1.0], "found 1001"),
+        (
+            vec![8.0, 14.0],
+            vec![1e308, 1e308],
+            "response must be 0–1e6",
+        ),
+        (
+            vec![8.0, 14.0],
+            vec![1.0, f64::NAN],
+            "response must be 0–1e6",
+        ),
+    ] {
+        let e = SensorResponse::new(w, r).unwrap_err();
+        assert!(e.to_string().contains(says), "{e}");
+    }
+    // The ends of the range, and the largest response, are accepted.
+    let srf = SensorResponse::new(vec![0.2, 1000.0], vec![1e6, 1e6]).unwrap();
+    let band = Band::new(0.2, 1000.0).unwrap().with_response(&srf).unwrap();
+    assert!(band.quadrature_nodes() <= 8 * 2000);
+    assert!(band.radiance(300.0).is_finite() && band.radiance(1e4).is_finite());
+    let e = Band::default()
+        .with_response_quadrature(&srf, 8, 1e-300)
+        .unwrap_err();
+    assert!(e.to_string().contains("at least 0.01"), "{e}");
+}
+
 #[test]
 fn a_flat_response_table_reproduces_the_series() {
     // Quadrature path against the closed-form path: two independent methods in the library.

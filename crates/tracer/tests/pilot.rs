@@ -105,7 +105,10 @@ fn a_loose_tolerance_takes_the_cheapest_of_everything() {
     // Nothing is specular: cutting bounces costs nothing anywhere.
     let b = d.choice(SwitchableModel::Bounces).unwrap();
     assert!(b.error.max_k < 1e-9, "{b:?}");
-    assert!(d.not_guaranteed_share.to_bits() == 0.0_f64.to_bits(), "{d:?}");
+    assert!(
+        d.not_guaranteed_share.to_bits() == 0.0_f64.to_bits(),
+        "{d:?}"
+    );
 }
 
 #[test]

@@ -3,7 +3,10 @@
 manifest (cases.tsv, run by tests/tests/malformed_corpus.rs) and a README listing what
 each case breaks. (materials/ and mesh/ have their own generators or hand-written files.)
 
-Each case is (file name, contents, message fragment, what is wrong). Contents are text
+Each case is (file name, contents, message fragment, what is wrong), optionally followed
+by its own arguments (None: the folder's) and its expected outcome (`1`, the default: an
+error at a line and column; `2`: bad usage; `0`: success, within the time and memory
+bounds; `stderr-closed`: exit 1 with the reader of stderr gone). Contents are text
 (written as UTF-8) or bytes (written as they are). Run from anywhere:
 python3 tests/data/malformed/generate.py
 """
@@ -258,6 +261,28 @@ def table_cases(ext, base, first_value, row_values):
     ] + row_values
 
 
+LEGACY_EMS_CASES = table_cases("ems", EMS, "0.94", [
+    ("angle-above-90.ems", edit(EMS, "90 0", "95 0"), "", "an angle of 95°"),
+    ("angle-negative.ems", edit(EMS, "0 0.95", "-5 0.95"), "", "an angle of −5°"),
+    ("angle-falling.ems", edit(EMS, "45 0.94", "0 0.94"), "", "angles repeated"),
+    ("emissivity-above-one.ems", edit(EMS, "45 0.94", "45 1.3"), "", "an emissivity of 1.3"),
+    ("emissivity-negative.ems", edit(EMS, "45 0.94", "45 -0.1"), "", "a negative emissivity"),
+])
+folder(
+    "legacy-ems",
+    "Malformed `.ems` angular emissivity tables (formats/legacy/ems.md), read by "
+    "`irsig-material convert` through `NAME.mat`, a valid material index beside each case "
+    "naming it.",
+    "irsig-material",
+    "",
+    [
+        (name, contents, fragment, what, f"convert tests/data/malformed/legacy-ems/{name[:-4]}.mat -o {{out}}/lib.ron")
+        for name, contents, fragment, what in LEGACY_EMS_CASES
+    ],
+    extra={name[:-4] + ".mat": f"1\n1 concrete {name} 0\n" for name, *_ in LEGACY_EMS_CASES},
+)
+
+
 folder(
     "dirtran-atm",
     "Malformed `.atm` tables (formats/legacy/atm.md), read by `irsig-atmos convert --atm`.",
@@ -272,6 +297,7 @@ folder(
         ("temperature-zero.atm", edit(ATM, "287.500", "0"), "", "T = 0 K"),
         ("temperature-negative.atm", edit(ATM, "287.500", "-5"), "", "T < 0 K"),
         ("ground-altitude-negative.atm", edit(ATM, "0.050 287.825 0.050", "0.050 287.825 -0.050"), "", "a negative altitude above the ground"),
+        ("ground-altitude-repeated.atm", edit(ATM, "0.100 287.500 0.100", "0.100 287.500 0.050"), "above ground", "the altitude above the ground (column 3) repeated, while column 1 increases"),
     ]),
 )
 folder(
@@ -336,6 +362,7 @@ folder(
         ("dewpoint-negative.rsd", edit(RSD, "11.75 5.00", "11.75 -5.00"), "", "a negative dew-point depression"),
         ("pressure-negative.rsd", edit(RSD, "954.61", "-954.61"), "", "a negative pressure"),
         ("altitude-inf.rsd", edit(RSD, "1.000 898", "inf 898"), "", "an infinite altitude"),
+        ("dewpoint-below-zero-k.rsd", edit(RSD, "11.75 5.00", "11.75 300.00"), "absolute zero", "a depression of 300 °C at 11.75 °C: a dew point below 0 K (finding 13 of the third hardening pass)"),
     ]),
 )
 
@@ -482,6 +509,23 @@ folder(
 )
 
 ATMOS = sample("canonical/samples/atmosphere.ron")
+ATMOS_TAIL = "  band_radiance: [(200.0, 6.0), (201.0, 6.2)],\n"
+ATMOS_RADIOSONDE = ATMOS_TAIL + """  radiosonde: [
+    (altitude_m: 0.0, pressure_hpa: 1013.0, temperature_k: 288.0, dew_point_depression_k: 5.0),
+    (altitude_m: 500.0, pressure_hpa: 955.0, temperature_k: 285.0, dew_point_depression_k: 5.0),
+  ],
+"""
+ATMOS_SLANT = ATMOS_TAIL + """  slant: Some((
+    altitude_m: [2.0, 1000.0],
+    nadir_deg: [0.0, 60.0],
+    ground_m: Some(1.0),
+    transmission: [[0.95, 0.9], [0.8, 0.7]],
+    path_radiance_w_m2_sr: [[0.5, 1.0], [5.0, 7.0]],
+    sky_altitude_m: [0.0, 1000.0],
+    sky_zenith_deg: [0.0, 90.0],
+    sky_radiance_w_m2_sr: [[10.0, 40.0], [8.0, 38.0]],
+  )),
+"""
 folder(
     "atmosphere",
     "Malformed canonical atmospheres (formats/canonical/atmosphere.md), read by "
@@ -506,6 +550,15 @@ folder(
         ("correction-nan.ron", edit(ATMOS, "(1.1, -0.11, 0.007)", "(1.1, NaN, 0.007)"), "", "a NaN `.cor` coefficient"),
         ("missing-levels.ron", edit(ATMOS, ATMOS[ATMOS.index("  levels: [") : ATMOS.index("  transmission_correction")], ""), "levels", "no `levels` field"),
         ("temperature-zero.ron", edit(ATMOS, "temperature_k: 287.8", "temperature_k: 0.0"), "temperature", "a level at 0 K"),
+        # The page's radiosonde and slant-table rules, each on a valid table.
+        ("radiosonde-dewpoint-below-zero-k.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_RADIOSONDE.replace("dew_point_depression_k: 5.0)", "dew_point_depression_k: 300.0)")), "absolute zero", "a dew-point depression of 300 K at 288 K"),
+        ("radiosonde-falling.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_RADIOSONDE.replace("altitude_m: 500.0", "altitude_m: -5.0")), "radiosonde", "radiosonde altitudes falling"),
+        ("radiosonde-depression-negative.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_RADIOSONDE.replace("dew_point_depression_k: 5.0)", "dew_point_depression_k: -5.0)")), "radiosonde", "a negative dew-point depression"),
+        ("slant-ground-above-observer.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_SLANT.replace("ground_m: Some(1.0)", "ground_m: Some(3000.0)")), "ground_m", "the paths' lower end above the lowest observer"),
+        ("slant-nadir-90.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_SLANT.replace("nadir_deg: [0.0, 60.0]", "nadir_deg: [0.0, 90.0]")), "nadir_deg", "a slant path at 90° from nadir (horizontal)"),
+        ("slant-transmission-above-one.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_SLANT.replace("[[0.95, 0.9], [0.8, 0.7]]", "[[0.95, 1.5], [0.8, 0.7]]")), "transmission", "a slant τ of 1.5"),
+        ("slant-table-short.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_SLANT.replace("[[0.95, 0.9], [0.8, 0.7]]", "[[0.95, 0.9]]")), "transmission", "one row of τ for two altitudes"),
+        ("slant-sky-zenith-above-90.ron", edit(ATMOS, ATMOS_TAIL, ATMOS_SLANT.replace("sky_zenith_deg: [0.0, 90.0]", "sky_zenith_deg: [0.0, 95.0]")), "sky_zenith_deg", "a sky zenith angle of 95°"),
     ],
 )
 
@@ -576,6 +629,8 @@ folder(
         ("temperature-negative.ron", edit(REG, "temperature_k: 297.4", "temperature_k: -297.4"), "", "a negative reference temperature"),
         ("box-outside-image.ron", edit(REG, "columns: (0, 1), rows: (0, 1)", "columns: (0, 4), rows: (0, 1)"), "top left", "a box past the 4 × 4 image"),
         ("material-absent.ron", edit(REG, '(name: "all concrete", material: Some(1))', '(name: "no such material here", material: Some(3))'), "no such material here", "a region whose material no pixel shows"),
+        ("name-nul.ron", edit(REG, '"top left corner"', '"top left\\u{0}corner"'), "control character", "a NUL inside a region name (finding 13 of the third hardening pass)"),
+        ("name-newline.ron", edit(REG, '"top left corner"', '"top left\\ncorner"'), "control character", "a newline inside a region name"),
     ],
 )
 
@@ -600,6 +655,11 @@ folder(
         ("wavelength-negative.srf", edit(SRF, "8.0 0.5", "-8.0 0.5"), "", "a negative wavelength"),
         ("response-negative.srf", edit(SRF, "10.0 1.0", "10.0 -1.0"), "", "a negative response"),
         ("comments-only.srf", "# a response\n# with no samples\n", "", "comments and no sample"),
+        ("span-1e-300-1e300.srf", "1e-300 1\n1e300 1\n", "0.2–1000", "wavelengths from 1e-300 to 1e300 µm: the quadrature filled memory (finding 6 of the third hardening pass)"),
+        ("span-1e-10-1e10.srf", "1e-10 1\n1e10 1\n", "0.2–1000", "wavelengths from 1e-10 to 1e10 µm"),
+        ("wavelength-far.srf", edit(SRF, "12.0 0.5", "1001 0.5"), "0.2–1000", "a wavelength past 1000 µm"),
+        ("response-huge.srf", "8.0 1e308\n12.0 1e308\n", "0–1e6", "responses of 1e308: a band radiance of 1.797693e308 (finding 15)"),
+        ("many-rows.srf", "# 20,001 rows, 8-12 um every 0.2 nm\n" + "".join(f"{8 + i * 2e-4:.4f} {0.5 + 0.5 * ((i * 37) % 101) / 101:.3f}\n" for i in range(20001)), "", "20,001 rows: the band's quadrature is set up once, in time linear in them, and costs no more nodes than a coarse table (finding 11)", None, "0"),
     ]),
 )
 folder(
@@ -668,6 +728,53 @@ def exr(width, height, channels=("radiance",), value=10.0, claim=None, units=Tru
     return data[:cut] if cut is not None else data
 
 
+def zip_exr(width, height, channels=("radiance",), value=10.0):
+    """A ZIP-compressed OpenEXR (16 scanlines a block) of f32 channels, every sample
+    `value`: an 8,192 × 8,192 image in a few hundred kilobytes."""
+    import zlib
+
+    def attr(name, kind, data):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(data)) + data
+
+    def block(rows):
+        raw = b"".join(struct.pack("<f", value) * width for _ in range(rows) for _c in channels)
+        half = (len(raw) + 1) // 2
+        inter = bytearray(len(raw))
+        inter[:half] = raw[0::2]
+        inter[half:] = raw[1::2]
+        delta = bytearray(inter)
+        for i in range(len(delta) - 1, 0, -1):
+            delta[i] = (inter[i] - inter[i - 1] + 128 + 256) % 256
+        return zlib.compress(bytes(delta), 9)
+
+    chl = b"".join(c.encode() + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in sorted(channels)) + b"\0"
+    box = struct.pack("<iiii", 0, 0, width - 1, height - 1)
+    header = (
+        attr("channels", "chlist", chl)
+        + attr("compression", "compression", b"\3")
+        + attr("dataWindow", "box2i", box)
+        + attr("displayWindow", "box2i", box)
+        + attr("lineOrder", "lineOrder", b"\0")
+        + attr("pixelAspectRatio", "float", struct.pack("<f", 1.0))
+        + attr("screenWindowCenter", "v2f", struct.pack("<ff", 0, 0))
+        + attr("screenWindowWidth", "float", struct.pack("<f", 1.0))
+        + attr("irsig.units", "string", ";".join(f"{c}=W m-2 sr-1" for c in channels).encode())
+        + b"\0"
+    )
+    start = b"\x76\x2f\x31\x01" + struct.pack("<I", 2) + header
+    blocks = (height + 15) // 16
+    full = block(16)
+    offset = len(start) + 8 * blocks
+    table = b""
+    chunks = b""
+    for b in range(blocks):
+        rows = min(16, height - 16 * b)
+        data = full if rows == 16 else block(rows)
+        table += struct.pack("<Q", offset + len(chunks))
+        chunks += struct.pack("<ii", 16 * b, len(data)) + data
+    return start + table + chunks
+
+
 GOOD_EXR = exr(4, 4)
 folder(
     "exr-sensor",
@@ -698,6 +805,9 @@ folder(
         ("offset-into-header.exr", GOOD_EXR[: len(GOOD_EXR) - 4 * 24 - 8 * 4] + struct.pack("<Q", 10) + GOOD_EXR[len(GOOD_EXR) - 4 * 24 - 8 * 3 :], "", "a scanline offset pointing into the header"),
         ("directory-name.exr", b"\x76\x2f\x31\x01", "", "four bytes: the magic only, version missing"),
         ("half-channel.exr", GOOD_EXR.replace(struct.pack("<iB3xii", 2, 0, 1, 1), struct.pack("<iB3xii", 7, 0, 1, 1)), "", "a channel of pixel type 7 (not half, float or uint)"),
+        ("declares-8192-squared.exr", zip_exr(8192, 8192), "", "284 KB that decode to 8,192 × 8,192 pixels: the sensor holds its stated bytes per pixel (it used 2.3 GB; finding 16 of the third hardening pass; tests/tests/memory.rs measures it)", "{in} --mtf box:1x1 -o {out}/s.exr", "0"),
+        ("output-is-input.exr", GOOD_EXR, "both an output and an input", "a valid radiance image named as the sensor's output too: it would be replaced (finding 4)", "{in} --mtf box:1x1 -o {in}", "2"),
+        ("dc-png-is-input.exr", GOOD_EXR, "both an output and an input", "the input named as the counts PNG", "{in} --mtf box:1x1 --dc-per-kelvin 2 -o {out}/s.exr --dc-png {in}", "2"),
     ],
 )
 
@@ -742,6 +852,14 @@ folder(
         ("slurm-negative.ron", edit(PIPE, "slurm: (cpus: 1)", "slurm: (cpus: -1)"), "", "a negative Slurm CPU count"),
         ("frames-zero.ron", edit(PIPE, 'Frames([{"label": "a"}, {"label": "b"}])', "FlyBy(frames: 0, path: [(0, 0, 300), (0, 10, 300)], look_at: (0, 0, 0))"), "", "a fly-by of 0 frames"),
         ("output-is-input.ron", edit(edit(PIPE, '"build/copy.txt"}, slurm', '"input.txt"}, slurm'), 'args: ["build/copy.txt"]', 'args: ["input.txt"]'), "input.txt", "a stage writes the file it reads"),
+        ("newline-in-parameter.ron", edit(PIPE, '{"prefix": "{label} "}', '{"prefix": "a\\nr.html: ; touch X #"}'), "control character", "a newline in a parameter: a rule make would run (finding 1 of the third hardening pass)", "--emit-makefile {out}/Makefile {in}"),
+        ("newline-in-name.ron", edit(PIPE, 'name: "copy"', 'name: "copy\\ntouch X"'), "control character", "a newline in a stage name: a line of the Makefile's comment (finding 1)", "--emit-makefile {out}/Makefile {in}"),
+        ("newline-in-name-slurm.ron", edit(PIPE, 'name: "copy"', 'name: "copy\\ntouch X"'), "control character", "a newline in a stage name: a command line of the Slurm script (finding 2)", "--emit-slurm {out}/slurm {in}"),
+        ("nul-in-parameter.ron", edit(PIPE, '{"prefix": "{label} "}', '{"prefix": "$(touch X)\\u{0}"}'), "control character", "a NUL in a parameter: printed raw by --dry-run (finding 3)", "--dry-run {in}"),
+        ("raw-newline.ron", edit(PIPE, '{"prefix": "{label} "}', '{"prefix": r"a\nb"}'), "control character", "a newline written as it is in a raw string"),
+        ("tab-in-path.ron", edit(PIPE, '"build/copy.txt"}, slurm', '"build/co\\tpy.txt"}, slurm'), "control character", "a tab in an output path"),
+        ("no-stages.ron", "(stages: [])\n", "no stages", "`(stages: [])`: ran nothing, rc 0 (finding 13)"),
+        ("makefile-is-pipeline.ron", PIPE, "both an output and an input", "--emit-makefile over the pipeline file itself (finding 4)", "--emit-makefile {in} {in}", "2"),
     ],
     extra={"input.txt": "a line\n"},
 )
@@ -855,6 +973,9 @@ folder(
         ("levels-decreasing.ron", edit(SPA, "altitude_asl_m: 1000.0, temperature_k: 282.0, altitude_m: 1000.0", "altitude_asl_m: 50.0, temperature_k: 282.0, altitude_m: 50.0"), "", "levels falling"),
         ("sky-angle-above-90.ron", edit(SPA, "[0.0, 45.0, 90.0]", "[0.0, 45.0, 95.0]"), "", "a sky angle of 95°"),
         ("band-outside-grid.ron", edit(SPA, "points: [8.0, 11.0, 14.0]", "points: [3.0, 4.0, 5.0]"), "", "a 3–5 µm grid for the 8–14 µm band"),
+        # The page's `.cor` path rule: from 0°, at least 3 angles.
+        ("correction-two-angles.ron", edit(SPA, "  sky_zenith_deg:", "  transmission_correction: Some((altitude_m: 1000.0, nadir_deg: [0.0, 45.0], transmission: [0.9, 0.8, 0.9, 0.8, 0.7, 0.8])),\n  sky_zenith_deg:"), "at least 3", "correction paths at two angles"),
+        ("correction-not-from-zero.ron", edit(SPA, "  sky_zenith_deg:", "  transmission_correction: Some((altitude_m: 1000.0, nadir_deg: [5.0, 30.0, 45.0], transmission: [0.9, 0.8, 0.9, 0.8, 0.7, 0.8, 0.7, 0.6, 0.7])),\n  sky_zenith_deg:"), "starting at 0", "correction paths from 5°"),
     ],
 )
 
@@ -1196,7 +1317,149 @@ folder(
         ("spectral-nan", edit(T6, "0.7023", "   NaN"), "", "τ is NaN"),
         ("spectral-word", edit(T6, "6.71E-06", "lots-of-"), "", "a word for a radiance"),
         ("crlf-truncated", T6.replace("\n", "\r\n")[:400], "", "CRLF, cut after the card echoes"),
+        ("profile-z-blank", edit(T6, next(l for l in T6_LINES if l.startswith("   2     1.00")), "   2         " + next(l for l in T6_LINES if l.startswith("   2     1.00"))[13:]), "blank field", "row 2's Z left blank: read by words, P became Z and T became P (finding 7 of the third hardening pass)"),
+        ("profile-shifted", edit(T6, next(l for l in T6_LINES if l.startswith("   2     1.00")), "   2  1.00   " + next(l for l in T6_LINES if l.startswith("   2     1.00"))[13:]), "right-aligned", "row 2's Z out of its columns (F9.2, 5-13)"),
+        ("spectral-extra-field", edit(T6, "    800.  12.500  6.71E-06  4.29E-04  1.21E-03   0.4790", "    800.  12.500  6.71E-06  4.29E-04  1.21E-03   0.4790 7"), "end of", "a seventh number after a row's last column"),
+        ("card1-iemsct-blank", edit(T6, "0 CARD 1  *****    1    2    1", "0 CARD 1  *****    1    2     "), "IEMSCT", "the echo of card 1 without its IEMSCT"),
     ]),
+)
+
+
+PLAN_RON = (PLAN / "plan.ron").read_text()
+
+
+def plan_ron_cases(folder_name, cases):
+    """(case, contents of plan.ron, fragment, what) -> cases whose file is `case/plan.ron`
+    beside the base plan's runs."""
+    out = []
+    for case, contents, fragment, what in cases:
+        files = {f"{case}/plan.ron": contents}
+        for f in sorted((PLAN / "runs").iterdir()):
+            files[f"{case}/runs/{f.name}"] = f.read_text()
+        args = f"build tests/data/malformed/{folder_name}/{case} -o {{out}}/a.spa"
+        out.append((f"{case}/plan.ron", files, fragment, what, args))
+    return out
+
+
+folder(
+    "atmosphere-plan",
+    "Atmosphere plans (formats/canonical/atmosphere-plan.md) that break a rule of their page, "
+    "read by `irsig-atmos build` (each case is a copy of `base/plan` with its `plan.ron` "
+    "broken).",
+    "irsig-atmos",
+    "",
+    plan_ron_cases("atmosphere-plan", [
+        ("observer-below-path-end", edit(PLAN_RON, "observers_m: [1000.0]", "observers_m: [0.5]"), "paths' end", "an observer below the paths' end (1 m), which the page refuses and build used to accept (finding 8 of the third hardening pass)"),
+        ("observer-at-path-end", edit(PLAN_RON, "observers_m: [1000.0]", "observers_m: [1.0]"), "paths' end", "an observer at the paths' end"),
+        ("altitude-not-whole", edit(PLAN_RON, "slant_altitude_m: [1000.0]", "slant_altitude_m: [1000.5]"), "whole number of metres", "an altitude of 1000.5 m: its deck's F10.3 km runs 1001 m"),
+        ("angle-not-thousandths", edit(PLAN_RON, "correction_nadir_deg: [0.0, 5.0, 10.0]", "correction_nadir_deg: [0.0, 5.0, 10.0005]"), "0.001", "a nadir angle of 10.0005°: its deck's F10.3 runs 10.001°"),
+    ]),
+)
+
+DIRSIG_MAT = """MATERIAL_ENTRY {
+    ID = 4
+    NAME = water
+    SURFACE_PROPERTIES {
+        EMISSIVITY_PROP_NAME = ClassicEmissivity
+        EMISSIVITY_PROP {
+            FILENAME = good.ems
+            SPECULAR_FRACTION = 0.9
+        }
+    }
+}
+"""
+folder(
+    "dirsig-mat",
+    "Malformed DIRSIG `.mat` files (formats/dirsig.md), read by `irsig-material dirsig`; "
+    "`good.ems` is a valid curve file they name (DIRSIG's `muddy_water.ems`, see "
+    "`../../third-party/dirsig-channel`).",
+    "irsig-material",
+    "dirsig {in} --default-emissivity 0.9 -o {out}/lib.ron",
+    [
+        ("filename-device.mat", edit(DIRSIG_MAT, "good.ems", "/dev/zero"), "not a regular file", "`FILENAME = /dev/zero`: read until memory ran out (2.1 GB; finding 5 of the third hardening pass)"),
+        ("filename-twice.mat", edit(DIRSIG_MAT, "            SPECULAR_FRACTION", "            FILENAME = other.ems\n            SPECULAR_FRACTION"), "given twice", "a second FILENAME, which won silently (finding 13)"),
+        ("name-empty.mat", edit(DIRSIG_MAT, "NAME = water", "NAME ="), "material name", "an empty NAME (finding 13)"),
+        ("empty.mat", "", "MATERIAL_ENTRY", "an empty file: an empty library, rc 0 (finding 13)"),
+        ("comment-only.mat", "# no entry here\n", "MATERIAL_ENTRY", "only a comment"),
+        ("id-twice.mat", edit(DIRSIG_MAT, "    ID = 4\n", "    ID = 4\n    ID = 5\n"), "given twice", "ID twice in one entry"),
+        ("output-is-ems.mat", DIRSIG_MAT, "both an output and an input", "the .ems it names given as the output (finding 4)", "dirsig {in} --default-emissivity 0.9 -o tests/data/malformed/dirsig-mat/good.ems", "2"),
+    ],
+    extra={"good.ems": (ROOT / "tests/data/third-party/dirsig-channel/emissivity/muddy_water.ems").read_bytes()},
+)
+
+LUT = "# dc radiance_w_m2_sr temperature_k temperature_c\n0 4.77201355e1 288.4512 15.3012\n1 4.78439209e1 288.6163 15.4663\n2 4.79678955e1 288.7813 15.6313\n"
+folder(
+    "lut",
+    "Malformed LUTs (formats/sensor.md), read by `irsig-report --lut` beside `base/truth.exr`.",
+    "irsig-report",
+    BASE + "/truth.exr --lut {in} -o {out}/r.html",
+    [
+        ("empty.lut", "", "none", "an empty file"),
+        ("header-only.lut", "# dc radiance_w_m2_sr temperature_k temperature_c\n", "none", "the header and no row"),
+        ("count-skips.lut", edit(LUT, "\n2 4.79", "\n3 4.79"), "digital count 2", "count 3 after 1"),
+        ("count-from-one.lut", edit(edit(edit(LUT, "\n2 4.79", "\n3 4.79"), "\n1 4.78", "\n2 4.78"), "\n0 4.77", "\n1 4.77"), "digital count 0", "counts from 1"),
+        ("three-columns.lut", edit(LUT, "288.6163 15.4663", "288.6163"), "4 columns", "a row of three fields"),
+        ("nan.lut", edit(LUT, "288.6163", "NaN"), "temperature in K", "a NaN temperature"),
+        ("word.lut", edit(LUT, "4.78439209e1", "lots"), "radiance", "a word for a radiance"),
+        ("past-16-bits.lut", "# dc radiance_w_m2_sr temperature_k temperature_c\n" + "".join(f"{dc} 1 2 3\n" for dc in range(65537)), "65536 rows", "65,537 rows: counts of more than 16 bits"),
+        ("non-utf8.lut", (LUT + "# \xb5\n").encode("latin-1"), "UTF-8", "a Latin-1 byte in a comment"),
+    ],
+)
+
+folder(
+    "report",
+    "Inputs `irsig-report` refuses (formats/report.md, \"Inputs\"), beside `base/truth.exr`.",
+    "irsig-report",
+    BASE + "/truth.exr --colour-preview {in} -o {out}/r.html",
+    [
+        ("not-png.png", "P6\n4 4\n255\n", "PNG", "a PPM image named .png as the colour preview"),
+        ("empty.png", b"", "PNG", "an empty colour preview"),
+        ("profile-outside.png", b"\x89PNG\r\n\x1a\n", "outside the image", "a profile ending at pixel (4, 0) of the 4 × 4 image (bad usage)", BASE + "/truth.exr --colour-preview {in} --profile 0,0:4,0 -o {out}/r.html", "2"),
+        ("report-is-preview.png", b"\x89PNG\r\n\x1a\n", "both an output and an input", "the colour preview named as the report too (finding 4)", BASE + "/truth.exr --colour-preview {in} -o {in}", "2"),
+    ],
+)
+
+DIRSIG_EMS = "1\n" + "1.0\n" * 91 + "CURVE_BEGIN\n8.0 0.95\n11.0 0.96\n14.0 0.97\nCURVE_END\n"
+DIRSIG_EMS_INDEX = "1\n" + "1.0\n" * 91 + "0\n1250 0.97\n909 0.96\n714 0.95\n"
+EMS_CASES = [
+    ("count-zero.ems", edit(DIRSIG_EMS, "1\n1.0\n", "0\n1.0\n"), "", "a count of 0 curves"),
+    ("count-word.ems", edit(DIRSIG_EMS, "1\n1.0\n", "one\n1.0\n"), "", "the count a word"),
+    ("count-above-curves.ems", edit(DIRSIG_EMS, "1\n1.0\n", "2\n1.0\n"), "", "2 curves declared, 1 given"),
+    ("factors-short.ems", "1\n" + "1.0\n" * 90 + "CURVE_BEGIN\n8.0 0.95\n14.0 0.97\nCURVE_END\n", "", "90 angular factors of 91"),
+    ("factor-above-one.ems", "1\n1.2\n" + "1.0\n" * 90 + "CURVE_BEGIN\n8.0 0.95\n14.0 0.97\nCURVE_END\n", "", "an angular factor of 1.2"),
+    ("emissivity-above-one.ems", edit(DIRSIG_EMS, "11.0 0.96", "11.0 1.5"), "", "an emissivity of 1.5"),
+    ("wavelengths-falling.ems", edit(DIRSIG_EMS, "11.0 0.96", "7.0 0.96"), "", "wavelengths falling in a CURVE_BEGIN curve"),
+    ("wavenumbers-rising.ems", edit(DIRSIG_EMS_INDEX, "909 0.96", "1300 0.96"), "", "wavenumbers rising in an indexed curve (they decrease)"),
+    ("index-wrong.ems", edit(DIRSIG_EMS_INDEX, "\n0\n1250", "\n1\n1250"), "", "a first curve indexed 1"),
+    ("curve-one-row.ems", "1\n" + "1.0\n" * 91 + "CURVE_BEGIN\n8.0 0.95\nCURVE_END\n", "", "a curve of one row"),
+    ("row-three-values.ems", edit(DIRSIG_EMS, "11.0 0.96", "11.0 0.96 3"), "", "a row of three numbers"),
+    ("nan.ems", edit(DIRSIG_EMS, "11.0 0.96", "11.0 NaN"), "", "a NaN emissivity"),
+    ("non-utf8.ems", edit(DIRSIG_EMS, "CURVE_BEGIN", "CURVE_BEGIN # caf\xe9").encode("latin-1"), "UTF-8", "a Latin-1 byte"),
+]
+folder(
+    "dirsig-ems",
+    "Malformed DIRSIG `.ems` curve files (formats/dirsig.md), read by `irsig-material dirsig` "
+    "through `NAME.mat`, a valid `.mat` beside each case naming it.",
+    "irsig-material",
+    "",
+    [
+        (name, contents, fragment, what, f"dirsig tests/data/malformed/dirsig-ems/{name[:-4]}.mat -o {{out}}/lib.ron")
+        for name, contents, fragment, what in EMS_CASES
+    ],
+    extra={name[:-4] + ".mat": edit(DIRSIG_MAT, "good.ems", name) for name, *_ in EMS_CASES},
+)
+
+folder(
+    "stderr-closed",
+    "Errors reported to a stderr whose reader is gone (`tool 2>&1 | head -c1`): the tool "
+    "exits with its own status, 1, never a panic (101; finding 9 of the third hardening "
+    "pass). Run with stderr closed, so no message is checked.",
+    "irsig-flatten",
+    "{in} --materials " + MATERIALS + " -o {out}/scene.raw",
+    [
+        ("unknown-field.ron", "(objects: [Objekt()])\n", "", "an unknown struct name", None, "stderr-closed"),
+        ("missing-object.ron", "(objects: [(object: \"absent.ron\")])\n", "", "an object that does not exist", None, "stderr-closed"),
+    ],
 )
 
 
@@ -1215,7 +1478,7 @@ def main():
             shutil.rmtree(d)
         d.mkdir()
         seen = set()
-        lines = ["# file\ttool\targuments ({in}: the case, {out}: an empty folder)\tmessage fragment"]
+        lines = ["# file\ttool\targuments ({in}: the case, {out}: an empty folder)\tmessage fragment\t[expected: 1 by default, 2, 0 or stderr-closed]"]
         table = ["| file | what is wrong |", "| --- | --- |"]
         for file, contents, fragment, what, *case_args in cases:
             assert file not in seen, file
@@ -1225,8 +1488,14 @@ def main():
                     write(d / f, c)
             else:
                 write(d / file, contents)
-            lines.append(f"{file}\t{tool}\t{case_args[0] if case_args else args}\t{fragment}")
-            table.append(f"| `{file}` | {what} |")
+            case_args = list(case_args) + [None, None]
+            expect = case_args[1] or "1"
+            line = f"{file}\t{tool}\t{case_args[0] or args}\t{fragment}"
+            if expect != "1":
+                line += f"\t{expect}"
+            lines.append(line)
+            outcome = {"1": "", "2": " (expected: bad usage, exit 2)", "0": " (expected: success, exit 0)", "stderr-closed": " (expected: exit 1 with stderr closed)"}[expect]
+            table.append(f"| `{file}` | {what}{outcome} |")
         for file, contents in extra.items():
             write(d / file, contents)
         write(d / "cases.tsv", "\n".join(lines) + "\n")
@@ -1237,7 +1506,9 @@ def main():
             "",
             "Written by `../generate.py`, which also writes `cases.tsv`, the manifest that",
             "`tests/tests/malformed_corpus.rs` runs: exit 1, the file named with a line and",
-            "column, the fragment in the message, nothing written.",
+            "column, the fragment in the message, nothing written (unless a case says",
+            "otherwise: bad usage, exit 2, nothing written; success, exit 0; or exit 1 with",
+            "stderr closed), and the case's own file as it was.",
             "",
         ] + table
         write(d / "README.md", "\n".join(readme) + "\n")

@@ -7,7 +7,9 @@
 //! FILE each run (to count runs); `--touch FILE` creates FILE on start and `--wait-for FILE`
 //! waits up to 20 s for FILE to appear (two stages that wait for each other prove they run
 //! at the same time); `--copy-stdin` copies standard input into the output as it comes, so
-//! the output is being written for as long as stdin stays open (an interrupt test).
+//! the output is being written for as long as stdin stays open (an interrupt test);
+//! `--stage-many N` writes the output N times more, to `OUT.1` … `OUT.N`, all staged
+//! together and committed at once (an interrupt at any moment of staging or renaming).
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -43,6 +45,9 @@ struct Cli {
     /// Copies standard input into the output after the inputs, while the output is staged.
     #[arg(long)]
     copy_stdin: bool,
+    /// Also writes the output to OUT.1 … OUT.N, all in one all-or-nothing commit.
+    #[arg(long, value_name = "N", requires = "o")]
+    stage_many: Option<usize>,
 }
 
 fn main() -> ExitCode {
@@ -81,6 +86,16 @@ fn run(cli: Cli) -> miette::Result<()> {
             .as_ref()
             .map_or_else(|| "-".to_owned(), |p| p.display().to_string());
         writeln!(f, "{name}").into_diagnostic()?;
+    }
+    if let (Some(n), Some(o)) = (cli.stage_many, &cli.o) {
+        let mut staged = irsig_cli::Staged::new();
+        staged.stage(o, &bytes)?;
+        for i in 1..=n {
+            let mut name = o.clone().into_os_string();
+            name.push(format!(".{i}"));
+            staged.stage(std::path::Path::new(&name), &bytes)?;
+        }
+        return staged.commit();
     }
     irsig_cli::write_output(cli.o.as_deref(), |w| {
         w.write_all(&bytes)?;

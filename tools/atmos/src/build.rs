@@ -330,7 +330,14 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 /// output, runs on different grids; nothing is written then.
 #[allow(clippy::too_many_lines)]
 pub fn run(a: &BuildArgs) -> miette::Result<()> {
-    // Checked before LOWTRAN7 runs (minutes for a large plan).
+    // Checked before LOWTRAN7 runs (minutes for a large plan): the plan's own files (its
+    // decks and given outputs) and the radiosonde are inputs.
+    let mut inputs: Vec<PathBuf> = vec![a.plan.join("plan.ron")];
+    if let Ok(runs) = std::fs::read_dir(a.plan.join("runs")) {
+        inputs.extend(runs.flatten().map(|e| e.path()));
+    }
+    inputs.extend(a.radiosonde.iter().map(PathBuf::from));
+    irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
     irsig_cli::check_output(&a.output)?;
     let plan_file = a.plan.join("plan.ron");
     let input = irsig_cli::read_input(plan_file)?;
@@ -477,7 +484,9 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
         .map(|(_, d)| d.0.clone())
         .collect();
     for n in &nudged {
-        eprintln!("{n}: LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir");
+        irsig_cli::note!(
+            "{n}: LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir"
+        );
     }
     let nudge_note = if nudged.is_empty() {
         String::new()

@@ -147,6 +147,15 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
             "--atm, --dwr and --name are required unless --to-legacy is given",
         ));
     };
+    let inputs = [
+        &args.atm,
+        &args.cor,
+        &args.dwr,
+        &args.rtt,
+        &args.rsd,
+        &args.slant,
+    ];
+    irsig_cli::refuse_output_is_input(inputs.into_iter().flatten(), args.output.iter())?;
     let (file, text) = read_text(atm_path)?;
     let atm_table = atm::parse(&file, &text).map_err(Report::new)?;
     let (file, text) = read_text(dwr_path)?;
@@ -300,5 +309,6 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
             args.out_dir.display()
         ));
     }
+    irsig_cli::refuse_output_is_input([input], files.iter().map(|(p, _)| p))?;
     irsig_cli::write_files_atomic(&files)
 }

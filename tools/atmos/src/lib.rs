@@ -26,6 +26,9 @@
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use clap::{Parser, Subcommand};
 
 mod bounces;

@@ -74,8 +74,13 @@ pub fn run(exe: &Path, deck: &str) -> Result<Output, String> {
         .stdin(Stdio::null())
         .output()
         .map_err(|e| format!("cannot run LOWTRAN7 `{}`: {e}", exe.display()))?;
-    let read =
-        |t: &str| std::fs::read_to_string(dir.path().join("out").join(t)).unwrap_or_default();
+    // LOWTRAN's own outputs, read as every file is (bounded, a regular file).
+    let read = |t: &str| {
+        irsig_formats::file::read_file(&dir.path().join("out").join(t))
+            .ok()
+            .and_then(|b| String::from_utf8(b).ok())
+            .unwrap_or_default()
+    };
     if !out.status.success() {
         let said = [
             String::from_utf8_lossy(&out.stderr).trim().to_owned(),

@@ -168,6 +168,10 @@ pub(crate) fn deck_name(i: usize) -> PathBuf {
 /// scene's lowest point; an unknown model; an output directory that exists and is not
 /// empty.
 pub fn run(a: &PlanArgs) -> miette::Result<()> {
+    let inputs = std::iter::once(&a.scene)
+        .chain(&a.view)
+        .chain(&a.radiosonde);
+    irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
     let input = irsig_cli::read_input(&a.scene)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
@@ -198,7 +202,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         files.push((deck_name(i), text.into_bytes()));
     }
     write_dir_atomic(&a.output, &files)?;
-    eprintln!(
+    irsig_cli::note!(
         "{}: {} paths for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
         all.len(),

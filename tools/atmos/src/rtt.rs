@@ -46,6 +46,8 @@ fn c_exponential(v: f64) -> String {
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
+    let band_file = irsig_cli::args::BandArg::response_file(args.band.band.as_ref());
+    irsig_cli::refuse_output_is_input(band_file, args.output.iter())?;
     let band = args.band.band()?;
     let range = format!("{}:{}:{}", args.from, args.to, args.step_k);
     let temps = crate::common::temperatures("--from/--to/--step", &range)?;

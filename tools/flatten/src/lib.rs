@@ -25,6 +25,9 @@
 //! In that pipe `irsig-import` writes the binary object, which is what makes a
 //! million-triangle import and flatten take about a second instead of six.
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use std::collections::HashMap;
 use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
@@ -208,6 +211,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             None => resolve(&base, &p.object),
         })
         .collect();
+    // The scene, the library and every object file the scene names are inputs.
+    let inputs = [cli.scene.as_str()]
+        .into_iter()
+        .map(PathBuf::from)
+        .chain(cli.materials.iter().map(PathBuf::from))
+        .chain(sources.iter().map(PathBuf::from));
+    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
     for (i, placement) in scene.objects.iter().enumerate() {
         if loaded.contains_key(&placement.object) {
             continue;

@@ -23,7 +23,10 @@
 //! irsig-import hand.glb --materials materials.ron --default-material skin | irsig-flatten scene.ron --object hand.ron=-
 //! ```
 
-use std::path::PathBuf;
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
+use std::path::{Path, PathBuf};
 
 use clap::{Parser, ValueEnum};
 use irsig_formats::mesh::{self, Mesh};
@@ -121,6 +124,10 @@ pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
 /// # Errors
 /// Bad usage (exit 2), or an unreadable, malformed or inconsistent input (exit 1).
 pub fn run(cli: Cli) -> miette::Result<()> {
+    irsig_cli::refuse_output_is_input(
+        [Path::new(&cli.input), Path::new(&cli.materials)],
+        cli.output.iter(),
+    )?;
     if !(cli.scale.is_finite() && cli.scale > 0.0) {
         return Err(irsig_cli::usage_error(format!(
             "--scale must be a positive finite number, found {}",
@@ -167,7 +174,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         mesh.y_up_to_z_up();
     }
     for w in &mesh.warnings {
-        eprintln!("warning: {w}");
+        irsig_cli::note!("warning: {w}");
     }
     let name = cli.name.clone().unwrap_or_else(|| {
         std::path::Path::new(&input.name)
@@ -334,7 +341,7 @@ fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
         .take(3)
         .map(|&i| mesh.triangle_location(i).to_string())
         .collect();
-    eprintln!(
+    irsig_cli::note!(
         "warning: dropped {} zero-area triangle{} of {} (no ray can hit them), the first at {}; \
          --strict refuses them",
         dropped.len(),

@@ -177,6 +177,14 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
     let ron = irsig_formats::canonical::to_ron(&library)
         .into_diagnostic()
         .wrap_err("cannot write RON")?;
+    let inputs = std::iter::once(PathBuf::from(index_path)).chain(
+        index
+            .materials
+            .iter()
+            .filter_map(|m| m.ems_file.as_ref())
+            .map(|f| ems_dir.join(f)),
+    );
+    irsig_cli::refuse_output_is_input(inputs, args.output.iter())?;
     irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
 }
 
@@ -244,5 +252,6 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
             args.out_dir.display()
         ));
     }
+    irsig_cli::refuse_output_is_input([&input.name], files.iter().map(|(p, _)| p))?;
     irsig_cli::write_files_atomic(&files)
 }

@@ -54,6 +54,15 @@ pub fn run(args: &Args) -> miette::Result<()> {
     let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
     let entries = mat::parse(&input.name, text).map_err(Report::new)?;
     let dir = input.base_dir();
+    // The .mat and every .ems it names are inputs: none may be the output.
+    let ems_files = entries
+        .iter()
+        .filter_map(|e| e.emissivity_file.as_ref())
+        .map(|f| dir.join(&f.value));
+    irsig_cli::refuse_output_is_input(
+        std::iter::once(PathBuf::from(&args.mat)).chain(ems_files),
+        args.output.iter(),
+    )?;
     let at_span = |span: (usize, usize), message: String| {
         Report::new(ParseError::at_span(
             &input.name,
@@ -103,7 +112,9 @@ pub fn run(args: &Args) -> miette::Result<()> {
             continue;
         };
         let path = dir.join(&file.value);
-        let bytes = std::fs::read(&path).map_err(|e| {
+        // Through the bounded reader, as every file: `FILENAME = /dev/zero` used to be
+        // read until memory ran out.
+        let bytes = irsig_formats::file::read_file(&path).map_err(|e| {
             at_span(
                 file.span,
                 format!(

@@ -109,6 +109,14 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
 /// band the table does not cover, an invalid library entry, or an I/O error; nothing is
 /// written then.
 pub fn run(args: &Args) -> miette::Result<()> {
+    let band_file = match &args.band {
+        Some(BandArg::Response(path)) => Some(PathBuf::from(path)),
+        _ => None,
+    };
+    irsig_cli::refuse_output_is_input(
+        args.nk_table.iter().cloned().chain(band_file),
+        args.output.iter(),
+    )?;
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
     if args.nk_table.is_none() && (args.band.is_some() || args.planck_temperature.is_some()) {

@@ -16,6 +16,9 @@
 //! irsig-material fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use clap::{Parser, Subcommand};
 
 pub mod convert;

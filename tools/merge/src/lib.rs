@@ -222,6 +222,15 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
     let tiles = read_tiles(&cli.tiles)?;
     let out = outputs(&cli, &tiles)?;
+    let band_file = irsig_cli::args::BandArg::response_file(cli.band.band.as_ref());
+    irsig_cli::refuse_output_is_input(
+        cli.tiles
+            .iter()
+            .map(String::as_str)
+            .chain(cli.view.as_deref())
+            .chain(band_file),
+        out.iter().map(|(_, p)| p),
+    )?;
     // Checked before the tiles are pasted (tens of seconds at 4096²).
     for (_, path) in out.iter() {
         irsig_cli::check_output(path)?;
@@ -270,7 +279,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     } else {
         MapRefused::Fail
     };
-    let mut note = |text: String| eprintln!("irsig-merge: {text}");
+    let mut note = |text: String| irsig_cli::note!("irsig-merge: {text}");
     // The band and the rest of what made the frame, as the tiles record it.
     let first = tiles.radiance.first().or(tiles.truth.first());
     let provenance = match first.and_then(|t| t.info.comments.as_deref().map(|c| (t, c))) {
@@ -282,7 +291,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .band
         .resolve(name, provenance.as_ref().map(|p| &p.band))?;
     if let Some(w) = &band.warning {
-        eprintln!("irsig-merge: warning: {w}");
+        irsig_cli::note!("irsig-merge: warning: {w}");
     }
     let r = FrameRadiometry {
         band: band.band,

@@ -19,6 +19,9 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 pub mod plots;
 
 use std::fmt::Write as _;
@@ -28,7 +31,7 @@ use std::str::FromStr;
 use base64::Engine as _;
 use clap::Parser;
 use irsig_cli::Input;
-use irsig_cli::args::ImageBandArgs;
+use irsig_cli::args::{BandArg, ImageBandArgs};
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
@@ -274,6 +277,21 @@ fn finite_mean(values: &[f32]) -> f64 {
 /// column), a missing layer, images of different sizes, a profile outside the image, a
 /// region that selects nothing, or an unwritable output; nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = BandArg::response_file(cli.band.band.as_ref()).map(PathBuf::from);
+    let named = [
+        &cli.truth,
+        &cli.radiance,
+        &cli.regions,
+        &cli.decision,
+        &cli.pipeline,
+    ]
+    .into_iter()
+    .flatten()
+    .map(PathBuf::from)
+    .chain(cli.lut.iter().cloned())
+    .chain(cli.colour_preview.iter().cloned())
+    .chain(band_file);
+    irsig_cli::refuse_output_is_input(named, cli.output.iter())?;
     let mut inputs: Vec<Provenance> = Vec::new();
 
     let truth = match &cli.truth {
@@ -295,7 +313,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 .band
                 .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
             if let Some(w) = &band.warning {
-                eprintln!("irsig-report: warning: {w}");
+                irsig_cli::note!("irsig-report: warning: {w}");
             }
             if let Some((name, t)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
@@ -315,34 +333,35 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    // The values every section shows: apparent temperature, K.
-    let (values, width, height, source): (Vec<f32>, usize, usize, String) =
-        match (&radiance, &truth) {
-            (Some((name, image, band)), _) => {
-                let l = layer(image, name, RADIANCE_LAYER)?;
-                let t = irsig_radiometry::apparent_temperatures(&band.band, l);
-                (
-                    t,
-                    image.width,
-                    image.height,
-                    format!(
-                        "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {}",
-                        band.record
-                    ),
-                )
-            }
-            (None, Some((name, image))) => (
-                layer(image, name, APPARENT_LAYER)?.to_vec(),
+    // The values every section shows: apparent temperature, K. The radiance image is not
+    // needed past them: it goes, so that the page is made in the memory of one image.
+    let (values, width, height, source): (Vec<f32>, usize, usize, String) = match (radiance, &truth)
+    {
+        (Some((name, image, band)), _) => {
+            let l = layer(&image, &name, RADIANCE_LAYER)?;
+            let t = irsig_radiometry::apparent_temperatures(&band.band, l);
+            (
+                t,
                 image.width,
                 image.height,
-                format!("`{APPARENT_LAYER}` layer of {name}"),
-            ),
-            (None, None) => {
-                return Err(irsig_cli::usage_error(
-                    "expected a truth EXR or --radiance FILE: the report shows an image",
-                ));
-            }
-        };
+                format!(
+                    "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {}",
+                    band.record
+                ),
+            )
+        }
+        (None, Some((name, image))) => (
+            layer(image, name, APPARENT_LAYER)?.to_vec(),
+            image.width,
+            image.height,
+            format!("`{APPARENT_LAYER}` layer of {name}"),
+        ),
+        (None, None) => {
+            return Err(irsig_cli::usage_error(
+                "expected a truth EXR or --radiance FILE: the report shows an image",
+            ));
+        }
+    };
     let Some(range) = plots::finite_range(&values) else {
         return Err(miette!(
             "{source}: no pixel has a finite apparent temperature: expected an image with \
@@ -424,11 +443,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let input = irsig_cli::read_input(path)?;
             inputs.push(provenance("colour preview", &input));
             if !input.bytes.starts_with(PNG_SIGNATURE) {
-                return Err(miette!(
-                    "{}: expected a PNG (the sensor stage's --colour-preview), found no PNG \
+                return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
+                    input.name.clone(),
+                    0,
+                    "expected a PNG (the sensor stage's --colour-preview), found no PNG \
                      signature",
-                    input.name
-                ));
+                )));
             }
             Some(input)
         }
@@ -454,10 +474,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => cli.command.clone(),
     };
 
-    let sigma = match &truth {
-        Some((name, image)) => image
-            .layer(SIGMA_LAYER)
-            .map(|l| (name.clone(), l.data.clone())),
+    // The truth EXR's other layers are not needed past the statistics: only σ is kept,
+    // moved out of the image, not copied.
+    let sigma = match truth {
+        Some((name, mut image)) => {
+            let i = image.layers.iter().position(|l| l.name == SIGMA_LAYER);
+            i.map(|i| (name, image.layers.swap_remove(i).data))
+        }
         None => None,
     };
 

@@ -14,6 +14,9 @@
 //! asked of the tool's program ([`tools`]), so an unknown or mistyped parameter is reported
 //! at its line and column in the pipeline file.
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 mod slurm;
 
 use std::path::PathBuf;
@@ -135,26 +138,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         pipeline.plan(&tools())?
     };
     if let Some(path) = &cli.emit_makefile {
+        irsig_cli::refuse_output_is_input([&cli.pipeline], [path])?;
         let text = plan.makefile()?;
         return irsig_cli::write_output(Some(path), |w| w.write_all(text.as_bytes()));
     }
     if cli.dry_run {
-        let steps = plan.dry_run(cli.force)?;
-        let mut text = String::new();
-        let dir = plan.base_dir();
-        if dir != std::path::Path::new(".") && !steps.is_empty() {
-            let d = dir.display().to_string();
-            text.push_str(&format!("cd {}\n", irsig_pipeline::shell_quote(&d)));
-        }
-        // A step that is up to date is still listed, as a comment, so that the output says
-        // what the pipeline is and still pastes into a shell that runs only what is stale.
-        for (step, run) in steps {
-            if !run {
-                text.push_str("# up to date: ");
-            }
-            text.push_str(&step.command_line());
-            text.push('\n');
-        }
+        let text = plan.dry_run_script(cli.force)?;
         return irsig_cli::write_output(None, |w| w.write_all(text.as_bytes()));
     }
     let jobs = cli.jobs.map_or_else(
@@ -167,9 +156,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             return;
         }
         match event {
-            Event::UpToDate(step) => eprintln!("  up to date  {}", step.name),
+            Event::UpToDate(step) => irsig_cli::note!("  up to date  {}", step.name),
             Event::Started(step) => {
-                eprintln!("     running  {}: {}", step.name, step.command_line());
+                irsig_cli::note!("     running  {}: {}", step.name, step.command_line());
             }
             _ => {}
         }
@@ -185,9 +174,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         )?,
     };
     if !quiet {
-        eprintln!(
+        irsig_cli::note!(
             "irsig-run: {} stage(s) ran, {} up to date",
-            summary.ran, summary.up_to_date
+            summary.ran,
+            summary.up_to_date
         );
     }
     Ok(())

@@ -20,6 +20,9 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 pub mod contact_sheet;
 mod preview;
 pub mod spec;
@@ -27,7 +30,8 @@ pub mod spec;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
-use irsig_cli::args::{DcArgs, ImageBandArgs};
+use irsig_cli::args::{BandArg, DcArgs, ImageBandArgs};
+use irsig_model::limits::MEMORY_BUDGET_BYTES;
 use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
@@ -35,7 +39,7 @@ use irsig_raster::{Raster, counts_png, into_exr_bytes};
 use irsig_sensor_model::blur::{EdgeMode, blur};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
-use irsig_sensor_model::quantise::{Quantiser, apparent_temperature};
+use irsig_sensor_model::quantise::Quantiser;
 use irsig_sensor_model::sample::{reduce_majority, reduce_mean, reduce_mean_ignoring_nan};
 use irsig_sensor_model::{Plane, SensorError};
 use miette::{IntoDiagnostic, WrapErr, miette};
@@ -191,8 +195,16 @@ pub fn is_categorical(name: &str, extra: &[String]) -> bool {
 pub struct SensorOutput {
     /// The input's layers with `radiance` replaced by the sensor's, at the sensor grid.
     pub raster: Raster,
-    /// The sensor's radiance, W m^-2 sr^-1.
-    pub radiance: Vec<f32>,
+}
+
+impl SensorOutput {
+    /// The sensor's radiance, W m^-2 sr^-1 (the raster's `radiance` layer).
+    #[must_use]
+    pub fn radiance(&self) -> &[f32] {
+        self.raster
+            .layer(RADIANCE_LAYER)
+            .map_or(&[][..], |l| l.data.as_slice())
+    }
 }
 
 /// Everything `process` needs besides the image.
@@ -214,23 +226,32 @@ pub struct Settings {
 
 /// Blur, reduce and add noise: the sensor's radiance and the consistent truth layers.
 ///
+/// The input is consumed, so that every image is freed as soon as the next is made: the
+/// radiance layer once it is in f64, that once it is blurred, and each other layer moved
+/// into the output, not copied (at most 28 bytes per pixel besides the other layers;
+/// README, "budget").
+///
 /// # Errors
 /// A missing `radiance` layer, a non-finite radiance, a size that does not divide by k,
 /// or invalid settings.
 pub fn process(
-    input: &Raster,
+    mut input: Raster,
     settings: &Settings,
     band: &impl BandModel,
 ) -> miette::Result<SensorOutput> {
-    let layer = input.layer(RADIANCE_LAYER).ok_or_else(|| {
+    let Some(at) = input.layers.iter().position(|l| l.name == RADIANCE_LAYER) else {
         let names: Vec<&str> = input.layers.iter().map(|l| l.name.as_str()).collect();
-        miette!(
+        return Err(miette!(
             "no `{RADIANCE_LAYER}` layer (W m^-2 sr^-1) in the input; it has: {}",
             names.join(", ")
-        )
-    })?;
+        ));
+    };
     let k = settings.samples_per_pixel as usize;
-    let plane = Plane::from_f32(input.width, input.height, &layer.data).map_err(sensor)?;
+    let (width, height) = (input.width, input.height);
+    let plane = {
+        let radiance = std::mem::take(&mut input.layers[at].data);
+        Plane::from_f32(width, height, &radiance).map_err(sensor)?
+    };
     plane
         .check_finite()
         .map_err(|e| miette!("layer `{RADIANCE_LAYER}`: {e}"))?;
@@ -241,28 +262,93 @@ pub fn process(
         settings.samples_per_pixel,
     )
     .map_err(sensor)?;
-    let mut sensor_plane = reduce_mean(&blurred, k).map_err(sensor)?;
+    drop(plane);
+    let mut sensor_plane = if k == 1 {
+        blurred
+    } else {
+        reduce_mean(&blurred, k).map_err(sensor)?
+    };
     if let Some((nedt_k, reference_k)) = settings.nedt {
         let sigma = nedt_radiance_sigma(nedt_k, reference_k, band).map_err(sensor)?;
         add_gaussian_noise(&mut sensor_plane, sigma, settings.seed).map_err(sensor)?;
     }
-    let radiance = sensor_plane.to_f32();
     let mut raster = Raster::new(sensor_plane.width, sensor_plane.height);
-    for l in &input.layers {
+    let mut radiance = Some(sensor_plane.to_f32());
+    drop(sensor_plane);
+    for l in std::mem::take(&mut input.layers) {
         let data = if l.name == RADIANCE_LAYER {
-            radiance.clone()
+            radiance.take().unwrap_or_default()
         } else if k == 1 {
-            l.data.clone()
+            l.data
         } else if is_categorical(&l.name, &settings.categorical) {
-            reduce_majority(&l.data, input.width, input.height, k).map_err(sensor)?
+            reduce_majority(&l.data, width, height, k).map_err(sensor)?
         } else {
-            reduce_mean_ignoring_nan(&l.data, input.width, input.height, k).map_err(sensor)?
+            reduce_mean_ignoring_nan(&l.data, width, height, k).map_err(sensor)?
         };
-        raster
-            .push_layer(l.name.clone(), l.unit.clone(), data)
-            .into_diagnostic()?;
+        raster.push_layer(l.name, l.unit, data).into_diagnostic()?;
     }
-    Ok(SensorOutput { raster, radiance })
+    Ok(SensorOutput { raster })
+}
+
+/// The apparent temperature (K) of every pixel of the sensor's radiance, through the band's
+/// inverse table, in parallel (the same at any thread count), holding only the result.
+fn apparent_temperatures(radiance_w_m2_sr: &[f32], band: &impl BandModel) -> Vec<f32> {
+    use rayon::prelude::*;
+    let (lo, hi) = radiance_w_m2_sr
+        .iter()
+        .filter(|l| **l > 0.0)
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &l| {
+            (lo.min(f64::from(l)), hi.max(f64::from(l)))
+        });
+    let inverse = irsig_radiometry::InverseTable::new(band, &[lo, hi]);
+    radiance_w_m2_sr
+        .par_chunks(4096)
+        .flat_map_iter(|run| {
+            inverse
+                .temperatures(run.iter().map(|&l| f64::from(l)))
+                .map(|t| t as f32)
+        })
+        .collect()
+}
+
+/// The most bytes `process` holds for an image of `width` × `height` pixels and `layers`
+/// layers: 4 per pixel for each layer but the radiance, 8 for the radiance in f64 and 16 per
+/// pixel of the image the blur transforms (a complex half spectrum, and its transpose while
+/// it is made), which is the image widened on each side by the MTF chain's reach (at most
+/// twice the image, as `irsig_sensor_model::blur` pads it) and rounded up to a length with
+/// no prime factor above 5 (at most 1.11 times longer from 64 up). Decoding the input
+/// costs 8 bytes per pixel per layer for a moment, before this.
+#[must_use]
+pub fn peak_bytes(
+    width: usize,
+    height: usize,
+    layers: usize,
+    chain: &MtfChain,
+    edge: EdgeMode,
+    samples_per_pixel: u32,
+) -> u64 {
+    let (w, h) = (width as f64, height as f64);
+    let padded = if chain.components.is_empty() {
+        0.0
+    } else {
+        let (rx, ry) = chain.support_radius_px(samples_per_pixel);
+        let s = f64::from(samples_per_pixel.max(1));
+        let side = |n: f64, r: f64| -> f64 {
+            let margin = match edge {
+                EdgeMode::Wrap => 0.0,
+                _ => (r * s).ceil().min(2.0 * n),
+            };
+            ((n + 2.0 * margin) * 1.11).ceil() + 64.0
+        };
+        side(w, rx) * side(h, ry)
+    };
+    let pixels = w * h;
+    let bytes = 4.0 * pixels * layers.saturating_sub(1) as f64 + 8.0 * pixels + 16.0 * padded;
+    if bytes.is_finite() && bytes < u64::MAX as f64 {
+        bytes as u64
+    } else {
+        u64::MAX
+    }
 }
 
 fn sensor(e: SensorError) -> miette::Report {
@@ -274,6 +360,20 @@ fn sensor(e: SensorError) -> miette::Report {
 /// # Errors
 /// Bad input (named), bad usage (exit 2), or an output that cannot be written.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = BandArg::response_file(cli.band.band.as_ref());
+    let inputs = std::iter::once(cli.input.as_str())
+        .chain(cli.more_inputs.iter().map(String::as_str))
+        .chain(band_file);
+    let outputs = [
+        &cli.output,
+        &cli.contact_sheet,
+        &cli.dc_png,
+        &cli.lut,
+        &cli.temperature_exr,
+        &cli.preview,
+        &cli.colour_preview,
+    ];
+    irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())?;
     if let Some(sheet) = &cli.contact_sheet {
         let mut inputs = Vec::with_capacity(1 + cli.more_inputs.len());
         for name in std::iter::once(&cli.input).chain(&cli.more_inputs) {
@@ -293,13 +393,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;
+    let name = input.name.clone();
     // The band is the one the radiance records; what the outputs record adds this stage.
     let recorded = irsig_cli::provenance(&input.name, &raster)?;
     let resolved = cli
         .band
         .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
     if let Some(w) = &resolved.warning {
-        eprintln!("irsig-sensor: warning: {w}");
+        irsig_cli::note!("irsig-sensor: warning: {w}");
     }
     let mut provenance = recorded.unwrap_or_else(|| Provenance {
         band: resolved.record.clone(),
@@ -329,21 +430,43 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             ),
         )));
     }
+    // The file's bytes are not needed past the decoding.
+    drop(input);
+    let chain = MtfChain::new(cli.mtf.clone());
+    let edge: EdgeMode = cli.edge.into();
+    let peak = peak_bytes(
+        raster.width,
+        raster.height,
+        raster.layers.len(),
+        &chain,
+        edge,
+        cli.samples_per_pixel,
+    );
+    if peak > MEMORY_BUDGET_BYTES {
+        return Err(irsig_cli::usage_error(format!(
+            "{name}: blurring its {} x {} pixels with this MTF would hold {:.1} GiB, more \
+             than the {} GiB budget: the MTF reaches too far for an image this large",
+            raster.width,
+            raster.height,
+            peak as f64 / f64::from(1u32 << 30),
+            MEMORY_BUDGET_BYTES >> 30
+        )));
+    }
     let settings = Settings {
-        chain: MtfChain::new(cli.mtf.clone()),
-        edge: cli.edge.into(),
+        chain,
+        edge,
         samples_per_pixel: cli.samples_per_pixel,
         categorical: cli.categorical.clone(),
         nedt: cli.nedt_k.map(|n| (n, cli.nedt_reference_k)),
         seed: cli.seed,
     };
-    let out = process(&raster, &settings, &band).wrap_err_with(|| format!("`{}`", input.name))?;
+    let out = process(raster, &settings, &band).wrap_err_with(|| format!("`{name}`"))?;
     let (w, h) = (out.raster.width, out.raster.height);
 
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     let temperature =
         if cli.temperature_exr.is_some() || cli.preview.is_some() || cli.colour_preview.is_some() {
-            Some(apparent_temperature(&out.radiance, w, &band).map_err(sensor)?)
+            Some(apparent_temperatures(out.radiance(), &band))
         } else {
             None
         };
@@ -356,10 +479,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     }
     if let Some(cal) = calibration.filter(|_| wants_counts) {
         let bits = cli.dc.dc_bits;
-        let q = Quantiser::calibrate(bits, &cal, &out.radiance, &band)
+        let q = Quantiser::calibrate(bits, &cal, out.radiance(), &band)
             .map_err(|e| miette!("quantisation: {e}"))?;
         if let Some(path) = &cli.dc_png {
-            let counts = q.quantise(&out.radiance, w).map_err(sensor)?;
+            let counts = q.quantise(out.radiance(), w).map_err(sensor)?;
             let full = (1u32 << bits) - 1;
             let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
             let high = counts.iter().filter(|&&c| u32::from(c) == full).count();
@@ -368,7 +491,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 let t = |e: Option<&irsig_sensor_model::quantise::LutEntry>| {
                     e.map_or(f64::NAN, |e| e.temperature_k)
                 };
-                eprintln!(
+                irsig_cli::note!(
                     "irsig-sensor: {high} pixel(s) saturate at count {full} and {low} at count 0 \
                      of {} (the LUT spans {:.2}-{:.2} K): their temperatures are clipped",
                     counts.len(),

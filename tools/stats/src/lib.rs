@@ -21,11 +21,14 @@
 //! # Ok::<(), miette::Report>(())
 //! ```
 
+// A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
+#![warn(clippy::print_stderr)]
+
 use std::fmt::Write as _;
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{ImageBandArgs, TableFormat};
+use irsig_cli::args::{BandArg, ImageBandArgs, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::Raster;
@@ -97,6 +100,12 @@ pub struct Cli {
 /// layer, images of different sizes, a region that selects nothing, or an unwritable
 /// output; nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
+    let band_file = BandArg::response_file(cli.band.band.as_ref());
+    let inputs = [cli.truth.as_str(), cli.regions.as_str()]
+        .into_iter()
+        .chain(cli.radiance.as_deref())
+        .chain(band_file);
+    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
     let regions_input = irsig_cli::read_input(&cli.regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
@@ -112,7 +121,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 .band
                 .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
             if let Some(w) = &band.warning {
-                eprintln!("irsig-stats: warning: {w}");
+                irsig_cli::note!("irsig-stats: warning: {w}");
             }
             if (image.width, image.height) != (truth.width, truth.height) {
                 return Err(miette!(

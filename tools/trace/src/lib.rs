@@ -305,7 +305,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     let (plan, execute_files) = plan(cli)?;
     plan.notes()
         .iter()
-        .for_each(|n| eprintln!("irsig-trace: note: {n}"));
+        .for_each(|n| irsig_cli::note!("irsig-trace: note: {n}"));
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(cli.threads.unwrap_or(0))
         .build()
@@ -343,10 +343,25 @@ fn trace(cli: &Cli) -> miette::Result<()> {
         .map(|i| match (&cli.tolerance, &cli.decision_out) {
             (None, _) => None,
             (Some(_), Some(path)) => Some(path.clone()),
-            (Some(_), None) => out.prefixed_file(i, frames, "decision.ron"),
+            (Some(_), None) => out.decision_file(i, frames, &files[i]),
         })
         .collect();
     let more: Vec<&Path> = decisions.iter().flatten().map(PathBuf::as_path).collect();
+    let named = [&cli.scene, &cli.materials].into_iter().chain(&cli.view);
+    let named = named.chain(
+        cli.atmosphere
+            .iter()
+            .chain(&cli.execute)
+            .chain(&cli.decision),
+    );
+    let named = named.chain(&cli.uncertainties).map(String::as_str);
+    let written = files
+        .iter()
+        .flat_map(|f| f.iter().map(|(_, p)| p.as_path()));
+    irsig_cli::refuse_output_is_input(
+        named.chain(BandArg::response_file(cli.band.as_ref())),
+        written.chain(more.iter().copied()),
+    )?;
     let frames = irsig_cli::StagedFrames::new(files, &more)?;
     let mut sink = Staging { frames, decisions };
     let bar = irsig_cli::progress_bar(rows, "tracing");
@@ -354,7 +369,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     bar.finish_and_clear();
     if !map_fits && out.output.is_some() && whole {
         let refusal = irsig_render::products::map_refusal(max_id);
-        eprintln!("irsig-trace: {refusal}");
+        irsig_cli::note!("irsig-trace: {refusal}");
     }
     sink.frames.commit()
 }
@@ -371,16 +386,24 @@ impl Sink for Staging {
     }
 
     fn decision(&mut self, index: usize, d: &Decision, seconds: f64) -> miette::Result<()> {
-        eprint!("irsig-trace: --{}", irsig_render::tolerance::table(d));
+        let table = irsig_render::tolerance::table(d);
+        irsig_cli::note!("irsig-trace: --{}", table.trim_end());
         // What the pilot cost, for comparing with the rendering it chose (the decision file
         // holds no time: it must be the same on every run).
-        eprintln!("  pilot: {} pixels in {seconds:.3} s", d.pilot_pixels);
+        irsig_cli::note!("  pilot: {} pixels in {seconds:.3} s", d.pilot_pixels);
         match self.decisions.get(index).cloned().flatten() {
             Some(path) => {
                 let text = irsig_formats::canonical::to_ron(d).into_diagnostic()?;
+                irsig_cli::note!("irsig-trace: the decision goes to {}", path.display());
                 self.frames.stage_other(&path, text.as_bytes())
             }
-            None => Ok(()),
+            None => {
+                irsig_cli::note!(
+                    "irsig-trace: note: the decision is not written (every output goes to \
+                     standard output): give --decision-out FILE to keep it"
+                );
+                Ok(())
+            }
         }
     }
 
@@ -389,6 +412,6 @@ impl Sink for Staging {
     }
 
     fn warning(&mut self, text: &str) {
-        eprintln!("irsig-trace: warning: {text}");
+        irsig_cli::note!("irsig-trace: warning: {text}");
     }
 }

@@ -62,14 +62,18 @@ type Partial = (
 ///
 /// # Errors
 /// A [`ParseError`] at the place: a line that is neither `KEY = VALUE`, `NAME {` nor `}`,
-/// an unbalanced brace, an entry without `ID` or `NAME`, an `ID` that is not a whole
-/// number, or a `SPECULAR_FRACTION` that is not a number 0 to 1.
+/// an unbalanced brace, an entry without `ID` or `NAME`, an empty `NAME`, an `ID` that is
+/// not a whole number, a `SPECULAR_FRACTION` that is not a number 0 to 1, a key irsig
+/// reads given twice in one entry (the second, which would otherwise win silently), or a
+/// file with no `MATERIAL_ENTRY` (an empty library).
 pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
     let mut lines = Lines::new(file, text);
     let mut entries = Vec::new();
     let mut stack: Vec<String> = Vec::new();
     let mut current: Option<Partial> = None;
     let mut entry_span = None;
+    // The keys irsig reads that the open entry has given, with their lines.
+    let mut seen: Vec<(String, usize)> = Vec::new();
     while let Some(line) = lines.next_line() {
         let body = *line.span.fragment();
         if body == "}" {
@@ -111,6 +115,7 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                 }
                 current = Some((position(line.span), None, None, None, None));
                 entry_span = Some(line.span);
+                seen.clear();
             }
             stack.push(block.to_owned());
             continue;
@@ -136,6 +141,28 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         let Some(entry) = current.as_mut() else {
             continue;
         };
+        let read = matches!(
+            (path.as_slice(), key),
+            (["MATERIAL_ENTRY"], "ID" | "NAME")
+                | (
+                    ["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"],
+                    "FILENAME" | "SPECULAR_FRACTION"
+                )
+        );
+        if read {
+            let full = format!("{}.{key}", path.join("."));
+            if let Some(first) = seen.iter().find(|(k, _)| *k == full) {
+                return Err(lines.error(
+                    line.span,
+                    format!(
+                        "{key} is given twice in this MATERIAL_ENTRY (first on line {}): \
+                         which one is meant?",
+                        first.1
+                    ),
+                ));
+            }
+            seen.push((full, position(line.span).line));
+        }
         match (path.as_slice(), key) {
             (["MATERIAL_ENTRY"], "ID") => {
                 let id = lines.unsigned(vspan, "a material ID")?;
@@ -145,7 +172,15 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                     span: vrange,
                 });
             }
-            (["MATERIAL_ENTRY"], "NAME") => entry.2 = Some(raw.to_owned()),
+            (["MATERIAL_ENTRY"], "NAME") => {
+                if raw.is_empty() {
+                    return Err(lines.error(
+                        line.span,
+                        "expected a material name after `NAME =`, found nothing",
+                    ));
+                }
+                entry.2 = Some(raw.to_owned());
+            }
             (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
                 entry.3 = Some(Located {
                     value: raw.to_owned(),
@@ -168,6 +203,11 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
     }
     if let Some(open) = stack.last() {
         return Err(lines.eof_error(&format!("expected `}}` closing {open}, found end of file")));
+    }
+    if entries.is_empty() {
+        return Err(lines.eof_error(
+            "expected at least one MATERIAL_ENTRY { ... }, found none: the library would be empty",
+        ));
     }
     Ok(entries)
 }
@@ -201,5 +241,34 @@ mod tests {
         assert!(e.message.contains("no ID"), "{e}");
         let e = parse("b.mat", "}\n").unwrap_err();
         assert_eq!(e.line, 1);
+    }
+
+    #[test]
+    fn what_would_be_accepted_silently_is_refused() {
+        // A second FILENAME won over the first; an empty NAME, or a file of no entry (an
+        // empty library), went through with exit 0.
+        let twice = "MATERIAL_ENTRY {\n  ID = 4\n  NAME = grass\n  SURFACE_PROPERTIES {\n    EMISSIVITY_PROP {\n      FILENAME = a.ems\n      FILENAME = b.ems\n    }\n  }\n}\n";
+        let e = parse("c.mat", twice).unwrap_err();
+        assert_eq!((e.line, e.column), (7, 7), "{e}");
+        assert!(
+            e.message.contains("FILENAME is given twice") && e.message.contains("line 6"),
+            "{e}"
+        );
+        let e = parse(
+            "c.mat",
+            "MATERIAL_ENTRY {\n  ID = 4\n  ID = 5\n  NAME = x\n}\n",
+        )
+        .unwrap_err();
+        assert_eq!(e.line, 3, "{e}");
+        let e = parse("c.mat", "MATERIAL_ENTRY {\n  ID = 4\n  NAME =\n}\n").unwrap_err();
+        assert_eq!(e.line, 3, "{e}");
+        assert!(e.message.contains("material name"), "{e}");
+        for empty in ["", "# nothing\n", "\n\n"] {
+            let e = parse("c.mat", empty).unwrap_err();
+            assert!(e.message.contains("at least one MATERIAL_ENTRY"), "{e}");
+        }
+        // One key of the same name in two entries is no repeat.
+        let two = "MATERIAL_ENTRY {\n  ID = 1\n  NAME = a\n}\nMATERIAL_ENTRY {\n  ID = 2\n  NAME = b\n}\n";
+        assert_eq!(parse("c.mat", two).unwrap().len(), 2);
     }
 }

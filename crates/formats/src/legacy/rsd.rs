@@ -106,6 +106,19 @@ fn check(rows: &[[f64; 4]]) -> Result<(), Violation> {
             ));
         }
         non_negative(i, 3, r[3], "a dew-point depression in degC")?;
+        // The dew point itself, temperature minus depression, is a temperature too.
+        if r[2] - r[3] <= -273.15 {
+            return Err(Violation::new(
+                i,
+                3,
+                format!(
+                    "expected a dew-point depression below {} degC, which would put the dew \
+                     point at or below absolute zero, found {}",
+                    r[2] + 273.15,
+                    r[3]
+                ),
+            ));
+        }
     }
     increasing(rows, 0, "the altitude")
 }
@@ -115,7 +128,8 @@ fn check(rows: &[[f64; 4]]) -> Result<(), Violation> {
 /// # Errors
 /// A [`ParseError`] for an empty file, a row without exactly four finite numbers, a
 /// pressure not above 0, a temperature at or below absolute zero, a negative dew-point
-/// depression, or altitudes that do not strictly increase.
+/// depression or one that puts the dew point at or below absolute zero, or altitudes that
+/// do not strictly increase.
 pub fn parse(file: &str, text: &str) -> Result<RsdTable, ParseError> {
     let mut lines = Lines::new(file, text);
     let raw: Vec<RawRow<'_, 4>> = read_rows(&mut lines, COLUMNS)?;
@@ -153,6 +167,9 @@ mod tests {
             ("0 1000 -273.15 1\n", 1, 8),
             ("0 1000 10 -1\n", 1, 11),
             ("1 1000 10 1\n1 900 5 1\n", 2, 1),
+            // A depression of 300 degC at 10 degC: a dew point of -290 degC, below 0 K.
+            ("0 1000 10 300\n", 1, 11),
+            ("0 1000 10 283.15\n", 1, 11),
         ] {
             let e = parse("s.rsd", text).unwrap_err();
             assert_eq!((e.line, e.column), (line, col), "{text:?}: {e}");

@@ -20,8 +20,22 @@
 //! Each calculation ends with the echo of card 5 (`0 CARD 5 *****`), so that line splits
 //! the file into runs, in the deck's order. A run whose path LOWTRAN cannot make says
 //! `GEO:  IERROR NE 0` and has no table.
+//!
+//! Numbers are read by column, with the Fortran formats LOWTRAN7 prints them with (as the
+//! card deck's reader reads its cards), never by splitting words: a blank field is an
+//! error, not the next field moved left.
+//!
+//! | line | LOWTRAN7 format | read |
+//! | --- | --- | --- |
+//! | card 1 echo | `'0 CARD 1  *****',13I5,…` (1111) | IEMSCT, columns 26-30 |
+//! | profile row | `I4,F9.2,F9.3,F7.1,…` (905, 906) | I 1-4, Z 5-13, P 14-22, T 23-29 |
+//! | IEMSCT 1 row | `1X,F7.0,F8.3,3E10.2,F9.4` (916) | columns 2-8, 9-16, 17-26, 27-36, 37-46, 47-55 |
+//! | IEMSCT 0 row | `1X,F7.0,F8.3,11F9.4,F12.3` (906) | columns 2-8, 9-16, 11 × 9 from 17, 116-127 |
+//! | integrated absorption | `'0INTEGRATED ABSORPTION FROM',I5,' TO',I5,' CM-1 =',F10.2` (740) | columns 48-57 |
+//! | average transmittance | `' AVERAGE TRANSMITTANCE =',F6.4` (740) | columns 25-30 |
+//! | integrated radiance | `'0INTEGRATED RADIANCE = ',E10.3` (750) | columns 24-33 |
 
-use super::{Source, TextLine, number, text_lines};
+use super::{Source, TextLine, read_int, read_real, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
 
@@ -99,6 +113,135 @@ const TRANSMITTANCE: [&str; 14] = [
     "INTEGRATED ABSORPTION",
 ];
 
+/// A numeric field of a printed line: its first column (0-based), its width, the decimals
+/// of its edit descriptor (for a field printed without a point) and what it holds.
+#[derive(Debug, Clone, Copy)]
+struct Field {
+    start: usize,
+    width: usize,
+    decimals: u32,
+    edit: &'static str,
+}
+
+const fn field(start: usize, width: usize, decimals: u32, edit: &'static str) -> Field {
+    Field {
+        start,
+        width,
+        decimals,
+        edit,
+    }
+}
+
+/// FORMAT 916 of LOWTRAN7's `TRANS` (IEMSCT 1): `1X,F7.0,F8.3,1P3E10.2,0PF9.4`.
+const RADIANCE_ROW: [Field; 6] = [
+    field(1, 7, 0, "F7.0"),
+    field(8, 8, 3, "F8.3"),
+    field(16, 10, 2, "E10.2"),
+    field(26, 10, 2, "E10.2"),
+    field(36, 10, 2, "E10.2"),
+    field(46, 9, 4, "F9.4"),
+];
+
+/// FORMAT 906 of LOWTRAN7's `TRANS` (IEMSCT 0): `1X,F7.0,F8.3,11F9.4,F12.3`.
+const TRANSMITTANCE_ROW: [Field; 14] = [
+    field(1, 7, 0, "F7.0"),
+    field(8, 8, 3, "F8.3"),
+    field(16, 9, 4, "F9.4"),
+    field(25, 9, 4, "F9.4"),
+    field(34, 9, 4, "F9.4"),
+    field(43, 9, 4, "F9.4"),
+    field(52, 9, 4, "F9.4"),
+    field(61, 9, 4, "F9.4"),
+    field(70, 9, 4, "F9.4"),
+    field(79, 9, 4, "F9.4"),
+    field(88, 9, 4, "F9.4"),
+    field(97, 9, 4, "F9.4"),
+    field(106, 9, 4, "F9.4"),
+    field(115, 12, 3, "F12.3"),
+];
+
+/// FORMATs 905 and 906 of LOWTRAN7's `STDMDL`: `I4,0PF9.2,F9.3,F7.1,…`, the level's
+/// number, then Z (km), P (mb) and T (K).
+const PROFILE_Z_P_T: [Field; 3] = [
+    field(4, 9, 2, "F9.2"),
+    field(13, 9, 3, "F9.3"),
+    field(22, 7, 1, "F7.1"),
+];
+
+/// FORMAT 1111 of `DRIVER`, the echo of card 1: `'0 CARD 1  *****',13I5,…`; IEMSCT is the
+/// third number.
+const CARD1_ECHO: &str = "0 CARD 1  *****";
+const IEMSCT_COLUMN: usize = 25;
+
+/// FORMAT 740: `'0INTEGRATED ABSORPTION FROM',I5,' TO',I5,' CM-1 =',F10.2,' CM-1'`.
+const ABSORPTION: Field = field(47, 10, 2, "F10.2");
+/// FORMAT 740: `' AVERAGE TRANSMITTANCE =',F6.4`.
+const AVERAGE: Field = field(24, 6, 4, "F6.4");
+/// FORMAT 750: `'0INTEGRATED RADIANCE = ',1PE10.3,' WATTS CM-2 STER-1'`.
+const RADIANCE_SUM: Field = field(23, 10, 3, "E10.3");
+
+/// Reads `f` of `line` as a Fortran formatted read does, but a blank field, which LOWTRAN
+/// never prints, is an error rather than 0; so is a value that is not a finite number.
+fn read_field(
+    src: Source<'_>,
+    line: &TextLine<'_>,
+    f: Field,
+    what: &str,
+) -> Result<f64, ParseError> {
+    let text = line.field(f.start, f.width);
+    let trimmed = text.trim();
+    let (first, last) = (f.start + 1, f.start + f.width);
+    if trimmed.is_empty() {
+        return Err(src.error(
+            line.offset_of_column(f.start.min(line.text.chars().count())),
+            f.width,
+            format!(
+                "expected {what} ({} in columns {first}-{last}), found a blank field: LOWTRAN7 \
+                 prints every field of this line",
+                f.edit
+            ),
+        ));
+    }
+    let lead = text.chars().take_while(|c| *c == ' ').count();
+    // A printed field is right-aligned, a number without blanks: a formatted read would
+    // skip inner blanks, and so take the halves of two shifted numbers for one.
+    let printed = !text.trim_start().contains(' ') && text.chars().count() == f.width;
+    let value = read_real(text, f.decimals).filter(|_| printed);
+    value.ok_or_else(|| {
+        src.error(
+            line.offset_of_column(f.start + lead),
+            trimmed.len(),
+            format!(
+                "expected {what} (a finite number, {} right-aligned in columns {first}-{last}), \
+                 found `{trimmed}`",
+                f.edit
+            ),
+        )
+    })
+}
+
+/// Nothing may follow a row's last field: a longer row is not the table's.
+fn end_of_row(
+    src: Source<'_>,
+    line: &TextLine<'_>,
+    after: usize,
+    what: &str,
+) -> Result<(), ParseError> {
+    let rest: String = line.text.chars().skip(after).collect();
+    let lead = rest.chars().take_while(|c| c.is_whitespace()).count();
+    if rest.trim().is_empty() {
+        return Ok(());
+    }
+    Err(src.error(
+        line.offset_of_column(after + lead),
+        rest.trim().len(),
+        format!(
+            "expected the end of {what} after column {after}, found `{}`",
+            rest.trim()
+        ),
+    ))
+}
+
 const MESSAGE_WORDS: [&str; 7] = [
     "ERROR",
     "CANNOT",
@@ -114,15 +257,10 @@ fn body<'a>(line: &TextLine<'a>) -> &'a str {
     line.text.get(1..).unwrap_or("")
 }
 
-/// The number after the first `=` of `text`.
-fn value_after_equals(text: &str) -> Option<&str> {
-    text.split_once('=')?.1.split_whitespace().next()
-}
-
-fn table_names(iemsct: i64) -> Option<&'static [&'static str]> {
+fn table_layout(iemsct: i64) -> Option<(&'static [&'static str], &'static [Field])> {
     match iemsct {
-        0 => Some(&TRANSMITTANCE),
-        1 => Some(&RADIANCE),
+        0 => Some((&TRANSMITTANCE, &TRANSMITTANCE_ROW)),
+        1 => Some((&RADIANCE, &RADIANCE_ROW)),
         _ => None,
     }
 }
@@ -164,9 +302,20 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             run.position = line.position();
             started = true;
         }
-        if let Some(rest) = t.strip_prefix("CARD 1  *****") {
-            let f: Vec<&str> = rest.split_whitespace().collect();
-            iemsct = f.get(2).and_then(|s| s.parse().ok());
+        if line.text.get(1..CARD1_ECHO.len()) == Some(&CARD1_ECHO[1..]) {
+            let text = line.field(IEMSCT_COLUMN, 5);
+            let value = read_int(text).filter(|_| !text.trim().is_empty());
+            let Some(value) = value else {
+                return Err(src.error(
+                    line.offset_of_column(IEMSCT_COLUMN),
+                    5,
+                    format!(
+                        "expected IEMSCT (I5 in columns 26-30 of the echo of card 1), found `{}`",
+                        text.trim()
+                    ),
+                ));
+            };
+            iemsct = Some(value);
         }
         if t.starts_with("ATMOSPHERIC PROFILES") && run.profile.is_empty() {
             profile_state = 1;
@@ -177,38 +326,24 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             continue;
         }
         if profile_state == 2 {
-            let row_line = TextLine {
-                text: b,
-                offset: line.offset + (line.text.len() - b.len()),
-                number: line.number,
-            };
-            let tokens = row_line.tokens();
-            // A row starts with its level number I; anything else (the units line, a blank
-            // line, the next table) is not a row.
-            let is_row = tokens
-                .first()
-                .is_some_and(|&(_, i)| i.bytes().all(|c| c.is_ascii_digit()));
-            if is_row {
-                let value = |k: usize| tokens.get(k).and_then(|&(_, v)| number(v));
-                if let (Some(z), Some(p), Some(tk)) = (value(1), value(2), value(3)) {
-                    run.profile.push([z, p, tk]);
-                    continue;
+            // A row starts with its level number I (I4, columns 1-4, whose first column is
+            // also the printer's carriage control, a blank); anything else (the units line,
+            // a blank line, a page break `1`, the next table) is not a row.
+            let level = line.field(0, 4).trim();
+            if line.text.starts_with(' ')
+                && !level.is_empty()
+                && level.bytes().all(|c| c.is_ascii_digit())
+            {
+                let mut zpt = [0.0; 3];
+                for ((slot, f), what) in zpt
+                    .iter_mut()
+                    .zip(PROFILE_Z_P_T)
+                    .zip(["Z in km", "P in mb", "T in K"])
+                {
+                    *slot = read_field(src, line, f, &format!("level {level}'s {what}"))?;
                 }
-                let (at, found) = (1..4)
-                    .find_map(|k| match tokens.get(k) {
-                        Some(&(at, v)) if number(v).is_none() => Some((at, v)),
-                        None => Some((line.offset + line.text.len(), "the end of the line")),
-                        _ => None,
-                    })
-                    .unwrap_or((line.offset, ""));
-                return Err(src.error(
-                    at,
-                    found.len(),
-                    format!(
-                        "expected a profile row (I, then Z in km, P in mb and T in K as finite \
-                         numbers), found `{found}`"
-                    ),
-                ));
+                run.profile.push(zpt);
+                continue;
             }
             if !run.profile.is_empty() {
                 profile_state = 0;
@@ -231,34 +366,29 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
                 run.rejected = true;
             }
         }
-        let integrated = |what: &str| -> Result<Option<f64>, ParseError> {
-            let v = value_after_equals(t).unwrap_or("");
-            match number(v) {
-                Some(x) => Ok(Some(x)),
-                None => {
-                    let at =
-                        line.offset + b.len() - b.trim_start().len() + 1 + t.find('=').unwrap_or(0);
-                    Err(src.error(
-                        at,
-                        1,
-                        format!("expected {what} (a number) after `=`, found `{v}`"),
-                    ))
-                }
-            }
-        };
         if t.starts_with("INTEGRATED ABSORPTION") {
             in_table = false;
-            run.integrated_absorption_per_cm = integrated("the integrated absorption in cm-1")?;
+            run.integrated_absorption_per_cm = Some(read_field(
+                src,
+                line,
+                ABSORPTION,
+                "the integrated absorption in cm-1",
+            )?);
             continue;
         }
         if t.starts_with("AVERAGE TRANSMITTANCE") {
-            run.average_transmittance = integrated("the average transmittance")?;
+            run.average_transmittance =
+                Some(read_field(src, line, AVERAGE, "the average transmittance")?);
             continue;
         }
         if t.starts_with("INTEGRATED RADIANCE") {
             in_table = false;
-            run.integrated_radiance_w_cm2_sr =
-                integrated("the integrated radiance in W cm-2 sr-1")?;
+            run.integrated_radiance_w_cm2_sr = Some(read_field(
+                src,
+                line,
+                RADIANCE_SUM,
+                "the integrated radiance in W cm-2 sr-1",
+            )?);
             continue;
         }
         if t.starts_with("FREQ WAVLEN") || t.starts_with("FREQ WAVELENGTH") {
@@ -268,64 +398,40 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
         if !in_table {
             continue;
         }
-        let Some(names) = iemsct.and_then(table_names) else {
+        let Some((names, layout)) = iemsct.and_then(table_layout) else {
             continue;
         };
-        // Tokens after the carriage-control column.
-        let body_line = TextLine {
-            text: b,
-            offset: line.offset + (line.text.len() - b.len()),
-            number: line.number,
-        };
-        let tokens = body_line.tokens();
-        let Some(&(_, first)) = tokens.first() else {
-            continue;
-        };
-        // Page headers and unit lines (`1/CM  MICRONS …`) inside the table: not a row.
-        // A row starts with its wavenumber, which LOWTRAN prints `F7.0` (`710.`).
-        if number(first).is_none() || !first.ends_with('.') {
+        // Page headers and unit lines (`1/CM  MICRONS …`) inside the table: not a row. A
+        // row starts with its wavenumber, which LOWTRAN prints `F7.0` in columns 2-8
+        // (`   710.`).
+        let first = line.field(1, 7).trim();
+        let is_row = first.ends_with('.')
+            && first.len() > 1
+            && first[..first.len() - 1].bytes().all(|c| c.is_ascii_digit());
+        if !is_row {
             continue;
         }
-        if tokens.len() != names.len() {
-            let at = tokens
-                .get(names.len())
-                .map_or(line.offset + line.text.len(), |t| t.0);
-            return Err(src.error(
-                at,
-                1,
-                format!(
-                    "expected {} numbers in a row of the IEMSCT = {} table ({}), found {}",
-                    names.len(),
-                    iemsct.unwrap_or(0),
-                    names.join(", "),
-                    tokens.len()
-                ),
-            ));
-        }
+        let what = format!("a row of the IEMSCT = {} table", iemsct.unwrap_or(0));
         let table = run.table.get_or_insert_with(|| Tape6Table {
             names: names.to_vec(),
             columns: vec![Vec::new(); names.len()],
         });
-        for (c, &(at, tok)) in tokens.iter().enumerate() {
-            let Some(v) = number(tok) else {
-                return Err(src.error(
-                    at,
-                    tok.len(),
-                    format!("expected {} (a finite number), found `{tok}`", names[c]),
-                ));
-            };
+        for (c, (&f, name)) in layout.iter().zip(names).enumerate() {
+            let v = read_field(src, line, f, name)?;
             if c == 0
                 && let Some(&last) = table.columns[0].last()
                 && v <= last
             {
                 return Err(src.error(
-                    at,
-                    tok.len(),
+                    line.offset_of_column(f.start),
+                    f.width,
                     format!("wavenumbers must strictly increase: {v} cm-1 follows {last} cm-1"),
                 ));
             }
             table.columns[c].push(v);
         }
+        let end = layout.last().map_or(0, |f| f.start + f.width);
+        end_of_row(src, line, end, &what)?;
     }
     if started && (run.table.is_some() || !run.messages.is_empty()) {
         // A file cut before its last `CARD 5` echo: keep what it says.
@@ -391,11 +497,86 @@ mod tests {
         assert_eq!((e.line, e.column), (8, 50));
         assert!(parse("TAPE6", "hello\n").is_err());
         let short = TEXT.replace("  2.66E-05   0.1245", "");
+        let e = parse("TAPE6", &short).unwrap_err();
+        assert!(e.message.contains("found a blank field"), "{e}");
+        assert_eq!((e.line, e.column), (7, 37));
+    }
+
+    /// The head of a TAPE6 with a profile table, as LOWTRAN7 prints it (FORMAT 910, 905).
+    const PROFILE: &str = "1                    ***** LOWTRAN 7 *****
+0 CARD 1  *****    6    2    1    0    0    0    0    0    0    0    0    0    0   0.000   0.00
+1
+  ATMOSPHERIC PROFILES
+
+   I     Z       P       T        N2       CNTMSLF MOL SCAT     N-1     O3 (UV)  O2 (UV)
+        (KM)    (MB)    (K)            (MOL/CM2 KM)   (-)       (-)  (ATM CM/KM) (ATM CM/KM)
+
+   1     0.00 1013.000  288.2  7.203E-01 1.566E+20 9.475E-01 2.722E-04 2.519E-03 3.535E+04
+   2     1.00  898.800  281.7  5.868E-01 7.926E+19 8.601E-01 2.471E-04 2.519E-03 3.079E+04
+   3     2.00  795.000  275.2  4.754E-01 3.781E+19 7.788E-01 2.238E-04 2.519E-03 2.678E+04
+
+0 CARD 5 *****    0
+";
+
+    #[test]
+    fn the_profile_is_read_by_column() {
+        let t = parse("TAPE6", PROFILE).unwrap();
+        assert_eq!(
+            t.runs[0].profile,
+            [
+                [0.0, 1013.0, 288.2],
+                [1.0, 898.8, 281.7],
+                [2.0, 795.0, 275.2]
+            ]
+        );
+        // A blank Z in row 2 used to shift P into Z and T into P: an atmosphere at 281.7 K
+        // and 898.8 km.
+        let blank_z = PROFILE.replace("   2     1.00  898.800", "   2           898.800");
+        let e = parse("TAPE6", &blank_z).unwrap_err();
+        assert_eq!((e.line, e.column), (10, 5), "{e}");
         assert!(
-            parse("TAPE6", &short)
-                .unwrap_err()
-                .message
-                .contains("expected 6 numbers")
+            e.message
+                .contains("level 2's Z in km (F9.2 in columns 5-13), found a blank field"),
+            "{e}"
+        );
+        // Numbers out of their columns are no row of LOWTRAN's either.
+        let shifted = PROFILE.replace(
+            "   2     1.00  898.800  281.7",
+            "   2  1.00  898.800  281.7   ",
+        );
+        let e = parse("TAPE6", &shifted).unwrap_err();
+        assert_eq!((e.line, e.column), (10, 7), "{e}");
+        let missing_t = PROFILE.replace("  281.7  5.868E-01", "         5.868E-01");
+        let e = parse("TAPE6", &missing_t).unwrap_err();
+        assert!(e.message.contains("T in K (F7.1 in columns 23-29)"), "{e}");
+        let blank_iemsct = PROFILE.replace("*****    6    2    1", "*****    6    2     ");
+        let e = parse("TAPE6", &blank_iemsct).unwrap_err();
+        assert_eq!((e.line, e.column), (2, 26), "{e}");
+    }
+
+    #[test]
+    fn every_table_row_field_and_integral_has_its_columns() {
+        // A seventh number after the TRANS column, and integrals out of their columns.
+        let long = TEXT.replace("   0.1245\n", "   0.1245 7\n");
+        let e = parse("TAPE6", &long).unwrap_err();
+        assert_eq!((e.line, e.column), (7, 57), "{e}");
+        let moved = TEXT.replace("=     87.10 CM-1", "= 87.10      CM-1");
+        let e = parse("TAPE6", &moved).unwrap_err();
+        assert_eq!(e.line, 9, "{e}");
+        // The sample's transmittance table (IEMSCT 0): 14 columns of FORMAT 906.
+        let sample = include_str!("../../../../formats/radtran/samples/us-std-1976.tape6");
+        let t = parse("us-std-1976.tape6", sample).unwrap();
+        let run = t.runs.iter().find(|r| r.iemsct == Some(0)).unwrap();
+        let table = run.table.as_ref().unwrap();
+        assert_eq!(table.columns.len(), 14);
+        // `    710.  14.085   0.1245   0.8177 ...   0.0000       2.189`, as printed.
+        let first: Vec<f64> = table.columns.iter().map(|c| c[0]).collect();
+        assert_eq!(
+            first,
+            [
+                710.0, 14.085, 0.1245, 0.8177, 0.1719, 0.9977, 0.9999, 1.0, 0.8882, 1.0, 1.0, 1.0,
+                0.0, 2.189
+            ]
         );
     }
 }

@@ -10,6 +10,15 @@ import pathlib
 HERE = pathlib.Path(__file__).resolve().parent
 SAMPLE = (HERE / "../../../../formats/canonical/samples/materials.ron").resolve().read_text()
 
+# The sample's skin, and the same with a spectral curve (a valid one; the cases break it).
+SKIN = """      name: "skin",
+      emissivity: [(0.0, 0.98), (90.0, 0.0)],
+      specular_fraction: 0.0,"""
+SKIN_SPECTRAL = """      name: "skin",
+      emissivity: [(0.0, 0.98), (90.0, 0.0)],
+      specular_fraction: 0.0,
+      spectral: Some((wavelength_um: [8.0, 14.0], emissivity: [0.97, 0.98], angular: None)),"""
+
 CASES = [
     ("emissivity-above-one", "(40.0, 0.95)", "(40.0, 1.3)", "out of range"),
     ("emissivity-negative", "(60.0, 0.93)", "(60.0, -0.1)", "out of range"),
@@ -35,6 +44,14 @@ CASES = [
     ("empty-emissivity", "[(0.0, 0.98), (90.0, 0.0)]", "[]", "emissivity"),
     ("specular-negative", "specular_fraction: 1.0", "specular_fraction: -0.5", "out of range"),
     ("trailing-garbage", "  ],\n)", "  ],\n) )", ""),
+    # Spectral materials (the page's `.spectral` rules): skin given a curve.
+    ("spectral-one-sample", SKIN, SKIN_SPECTRAL.replace("[8.0, 14.0]", "[8.0]").replace("[0.97, 0.98]", "[0.97]"), "at least two"),
+    ("spectral-not-increasing", SKIN, SKIN_SPECTRAL.replace("[8.0, 14.0]", "[14.0, 8.0]"), "increas"),
+    ("spectral-above-one", SKIN, SKIN_SPECTRAL.replace("[0.97, 0.98]", "[0.97, 1.2]"), "out of range"),
+    ("spectral-wavelength-nan", SKIN, SKIN_SPECTRAL.replace("[8.0, 14.0]", "[8.0, NaN]"), "wavelength"),
+    ("spectral-shape-zero-at-normal", SKIN, SKIN_SPECTRAL.replace("emissivity: [(0.0, 0.98), (90.0, 0.0)]", "emissivity: [(0.0, 0.0), (90.0, 0.0)]"), "0°"),
+    ("spectral-grid-short", SKIN, SKIN_SPECTRAL.replace("angular: None", "angular: Some((angle_deg: [0.0, 90.0], emissivity: [[0.97, 0.0]]))"), "emissivity"),
+    ("spectral-grid-angles-falling", SKIN, SKIN_SPECTRAL.replace("angular: None", "angular: Some((angle_deg: [90.0, 0.0], emissivity: [[0.0, 0.97], [0.0, 0.98]]))"), "increas"),
     ("non-utf8", "illustrative values for the sample; not a measurement\",\n    ),\n  ],",
      "illustrative values for the sample; not a measurement\xff\",\n    ),\n  ],", "UTF-8"),
 ]
