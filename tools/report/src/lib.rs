@@ -1,12 +1,17 @@
 //! `irsig-report`: one self-contained HTML page per run (`formats/report.md`). It reads a
 //! run's outputs — the tracer's truth EXR and/or a radiance EXR, and optionally the regions
-//! file, the tolerance pilot's decision, the sensor stage's LUT and colour preview and the
-//! pipeline file — and writes a page that shows the apparent temperature in false colour with
-//! its scale in kelvin, its histogram, a line profile, per-region statistics (the
-//! `irsig-stats` table, computed by its library), the decision table, the error budget
-//! (`sigma_total`) with its scale, the LUT curve, and provenance: every input's SHA-256, the
-//! run's command lines and irsig's version. Images are `data:` URIs and plots inline SVG
-//! (drawn by plotters): the page needs no other file and no network.
+//! file, the tolerance pilot's decision, the declared uncertainties, the sensor stage's LUT
+//! and colour preview and the pipeline file — and writes a page that shows the apparent
+//! temperature in false colour with its scale in kelvin and the profile's line drawn on it,
+//! the pixels the counts clip (with a warning at the top of the page), its histogram, a line
+//! profile, per-region statistics (the `irsig-stats` table, computed by its library), the
+//! decision table, the error budget (`sigma_total`, its sources and what was declared), the
+//! LUT curve, and provenance along the whole chain: every input the images record (the
+//! trace's and the sensor's, by SHA-256), the report's own, the pipeline's files as they
+//! are, the run's command lines and irsig's version. Files are named relative to the page.
+//! Images are `data:` URIs and plots inline SVG (drawn by plotters): the page needs no
+//! other file and no network. A section that does not apply is left out, and one line says
+//! which flag would fill it.
 //!
 //! ```no_run
 //! use clap::Parser;
@@ -22,7 +27,10 @@
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
 
+pub mod chain;
+pub mod names;
 pub mod plots;
+pub mod saturation;
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -35,14 +43,27 @@ use irsig_cli::args::{BandArg, ImageBandArgs};
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
+use irsig_model::uncertainty::{Facets, Uncertainties};
 use irsig_raster::Raster;
 use miette::miette;
-use sha2::{Digest, Sha256};
+
+use crate::chain::Known;
+use crate::names::Names;
 
 const APPARENT_LAYER: &str = Layer::ApparentTemperature.name();
 const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
 const RADIANCE_LAYER: &str = Layer::Radiance.name();
 const SIGMA_LAYER: &str = Layer::SigmaTotal.name();
+
+/// The error budget's sources, each a σ layer of the truth EXR, with what it is in words.
+const BUDGET_SOURCES: [(Layer, &str); 6] = [
+    (Layer::SigmaKineticTemperature, "kinetic temperature"),
+    (Layer::SigmaEmissivity, "emissivity"),
+    (Layer::SigmaTransmission, "atmospheric transmission"),
+    (Layer::SigmaPathRadiance, "path and sky radiance"),
+    (Layer::SigmaModel, "the pilot's chosen models"),
+    (Layer::SigmaTotal, "root-sum-square of the above"),
+];
 
 /// Bins of the histogram of apparent temperature.
 const HISTOGRAM_BINS: usize = 64;
@@ -55,10 +76,12 @@ Examples:
   irsig-report out/truth.exr -o out/report.html
       the colour image, histogram and provenance of the tracer's apparent temperature
   irsig-report out/truth.exr --radiance out/sensor.exr --regions regions.ron \\
-      --decision out/frame.decision.ron --lut out/lut.txt --colour-preview out/colour.png \\
-      --profile 0,200:511,200 --pipeline pipelines/quickstart.ron -o out/report.html
-      everything: the sensor's apparent temperature, statistics per region, the pilot's
-      decision, the error budget (when the truth EXR has sigma_total), the LUT curve and
+      --decision out/frame.decision.ron --uncertainties u.ron --lut out/lut.txt \\
+      --colour-preview out/colour.png --profile 0,200:511,200 \\
+      --pipeline pipelines/quickstart.ron -o out/report.html
+      everything: the sensor's apparent temperature, the pixels its counts clip,
+      statistics per region, the pilot's decision, the error budget (when the truth EXR
+      has sigma_total) with what was declared, the LUT curve, the pipeline's files and
       the run's command lines
 
 What the page holds: formats/report.md.";
@@ -86,19 +109,25 @@ pub struct Cli {
     /// The tolerance pilot's decision (`irsig-trace --tolerance`, `*.decision.ron`).
     #[arg(long, value_name = "FILE")]
     pub decision: Option<String>,
-    /// The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin.
+    /// The declared uncertainties the truth EXR was traced with (`irsig-trace
+    /// --uncertainties`), listed in the error budget; must be the file the truth EXR
+    /// records.
+    #[arg(long, value_name = "FILE", requires = "truth")]
+    pub uncertainties: Option<String>,
+    /// The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin, and
+    /// the pixels at count 0 and at full scale.
     #[arg(long, value_name = "FILE")]
     pub lut: Option<PathBuf>,
-    /// The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`), shown as
-    /// it is.
+    /// The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`): checked
+    /// and listed with its SHA-256 (the page shows the image once, in its own colours).
     #[arg(long, value_name = "FILE")]
     pub colour_preview: Option<PathBuf>,
     /// A line profile of apparent temperature from pixel (X0, Y0) to (X1, Y1), columns and
-    /// rows from the top-left pixel (0, 0).
+    /// rows from the top-left pixel (0, 0); the line is drawn on the image.
     #[arg(long, value_name = "X0,Y0:X1,Y1")]
     pub profile: Option<ProfileLine>,
-    /// The pipeline file of the run: its stages' command lines are listed (and the file
-    /// hashed like every input).
+    /// The pipeline file of the run: its stages' command lines are listed, and its files
+    /// as they are now (hashed like every input).
     #[arg(long, value_name = "FILE")]
     pub pipeline: Option<String>,
     /// A command line of the run, listed as given (repeatable, in order).
@@ -107,7 +136,8 @@ pub struct Cli {
     /// The page's title (default: the image's file name).
     #[arg(long, value_name = "TEXT")]
     pub title: Option<String>,
-    /// Output HTML file (`-` or absent: stdout); written atomically.
+    /// Output HTML file (`-` or absent: stdout); written atomically. Files are named on
+    /// the page relative to its directory.
     #[arg(short = 'o', long, value_name = "FILE")]
     pub output: Option<PathBuf>,
 }
@@ -176,23 +206,6 @@ impl ProfileLine {
     }
 }
 
-/// An input as the provenance lists it.
-struct Provenance {
-    role: &'static str,
-    name: String,
-    bytes: usize,
-    sha256: String,
-}
-
-fn provenance(role: &'static str, input: &Input) -> Provenance {
-    Provenance {
-        role,
-        name: input.name.clone(),
-        bytes: input.bytes.len(),
-        sha256: format!("{:x}", Sha256::digest(&input.bytes)),
-    }
-}
-
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {
     image
         .layer(layer)
@@ -222,7 +235,7 @@ const DISPLAY_HEIGHT: usize = 360;
 
 /// A PNG as an `<img>` with a `data:` URI, shown enlarged by a whole factor.
 fn img(id: &str, png: &[u8], width: usize, height: usize, alt: &str) -> String {
-    let scale = DISPLAY_HEIGHT.div_ceil(height.max(1)).max(1);
+    let scale = display_scale(height);
     format!(
         "<img id=\"{id}\" width=\"{}\" height=\"{}\" alt=\"{}\" \
          src=\"data:image/png;base64,{}\">",
@@ -270,12 +283,191 @@ fn finite_mean(values: &[f32]) -> f64 {
     if n == 0 { f64::NAN } else { sum / n as f64 }
 }
 
+/// The whole factor a displayed image is enlarged by.
+fn display_scale(height: usize) -> usize {
+    DISPLAY_HEIGHT.div_ceil(height.max(1)).max(1)
+}
+
+/// The profile's line drawn over an image of `width` × `height` pixels shown at `scale`:
+/// an SVG of the image's displayed size laid on it, its user units the image's pixels, the
+/// line from the centre of the start pixel to the centre of the end pixel, dark under light
+/// so that it shows on every colour of the map, a ring at the start.
+fn profile_overlay(line: &ProfileLine, width: usize, height: usize, scale: usize) -> String {
+    let (x0, y0) = (line.from.0 as f64 + 0.5, line.from.1 as f64 + 0.5);
+    let (x1, y1) = (line.to.0 as f64 + 0.5, line.to.1 as f64 + 0.5);
+    // Strokes in display pixels, whatever the enlargement.
+    let px = 1.0 / scale as f64;
+    format!(
+        "<svg id=\"profile-overlay\" class=\"overlay\" width=\"{w}\" height=\"{h}\" \
+         viewBox=\"0 0 {width} {height}\" xmlns=\"http://www.w3.org/2000/svg\">\
+         <title>the line profile, from ({a}, {b}) to ({c}, {d})</title>\
+         <line x1=\"{x0}\" y1=\"{y0}\" x2=\"{x1}\" y2=\"{y1}\" stroke=\"#000000\" \
+         stroke-width=\"{outer}\" stroke-linecap=\"round\"/>\
+         <line id=\"profile-line\" x1=\"{x0}\" y1=\"{y0}\" x2=\"{x1}\" y2=\"{y1}\" \
+         stroke=\"#00e5ff\" stroke-width=\"{inner}\" stroke-linecap=\"round\"/>\
+         <circle cx=\"{x0}\" cy=\"{y0}\" r=\"{ring}\" fill=\"none\" stroke=\"#00e5ff\" \
+         stroke-width=\"{inner}\"/></svg>",
+        w = width * scale,
+        h = height * scale,
+        a = line.from.0,
+        b = line.from.1,
+        c = line.to.0,
+        d = line.to.1,
+        outer = 4.0 * px,
+        inner = 2.0 * px,
+        ring = 5.0 * px,
+    )
+}
+
+/// A share as a percentage with enough decimals to tell a few pixels from none.
+fn percent(part: usize, whole: usize) -> String {
+    if whole == 0 {
+        return "0".into();
+    }
+    let p = 100.0 * part as f64 / whole as f64;
+    if part == 0 || p >= 1.0 {
+        format!("{p:.2}")
+    } else {
+        format!("{p:.4}")
+    }
+}
+
+/// Who a declared temperature uncertainty is about, in words.
+fn facets(f: &Facets) -> String {
+    match f {
+        Facets::All => "every facet".into(),
+        Facets::Material(m) => format!("facets of material {}", m.0),
+        Facets::Object(o) => format!("facets of object `{o}`"),
+    }
+}
+
+/// The declared uncertainties as a table: what, of whom, one σ.
+fn declared_table(w: &mut String, u: &Uncertainties) {
+    w.push_str(
+        "<table id=\"declared\">\n<thead><tr><th>quantity</th><th>of</th><th>σ</th></tr>\
+         </thead>\n<tbody>\n",
+    );
+    for t in &u.temperature {
+        let _ = writeln!(
+            w,
+            "<tr><td>kinetic temperature</td><td>{}</td><td class=\"num\">{} K</td></tr>",
+            escape(&facets(&t.facets)),
+            short(t.sigma_k)
+        );
+    }
+    if u.temperature.is_empty() {
+        w.push_str("<tr><td>kinetic temperature</td><td>none declared</td><td></td></tr>\n");
+    }
+    for e in &u.emissivity {
+        let _ = writeln!(
+            w,
+            "<tr><td>emissivity</td><td>material {}</td><td class=\"num\">{}</td></tr>",
+            e.material.0,
+            short(e.sigma)
+        );
+    }
+    if u.emissivity.is_empty() {
+        w.push_str("<tr><td>emissivity</td><td>none declared</td><td></td></tr>\n");
+    }
+    let _ = writeln!(
+        w,
+        "<tr><td>atmospheric transmission</td><td>relative</td><td class=\"num\">{} %</td>\
+         </tr>\n<tr><td>path and sky radiance</td><td>relative</td><td class=\"num\">{} %\
+         </td></tr>\n</tbody>\n</table>",
+        short(100.0 * u.transmission_relative),
+        short(100.0 * u.path_radiance_relative)
+    );
+}
+
+/// A number with at most six decimals, trailing zeros dropped (`100 × 0.05` is 5, not
+/// 5.000000000000001).
+fn short(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s.is_empty() || s == "-" || s == "-0" {
+        "0".into()
+    } else {
+        s.to_owned()
+    }
+}
+
+/// An input the report itself read, as provenance lists it.
+fn own(names: &Names, role: &str, input: &Input) -> (String, Known) {
+    (
+        role.to_owned(),
+        Known {
+            shown: names.show_name(&input.name),
+            sha256: input.sha256(),
+        },
+    )
+}
+
+/// One file the pipeline names, as it is now.
+struct PipelineFile {
+    shown: String,
+    /// `sha256:` and hex, or `None` when the file is missing.
+    sha256: Option<String>,
+    written_by: Vec<String>,
+    read_by: Vec<String>,
+}
+
+/// Every file the pipeline's steps read or write, once each, hashed as it is now; the
+/// report's own output is left out (it is being written).
+fn pipeline_files(
+    plan: &irsig_pipeline::Plan,
+    names: &Names,
+    output: Option<&Path>,
+) -> miette::Result<Vec<PipelineFile>> {
+    let this_page = output
+        .filter(|o| o.as_os_str() != "-")
+        .map(|o| names.show(o));
+    let mut files: Vec<PipelineFile> = Vec::new();
+    for step in &plan.steps {
+        let refs = step
+            .inputs
+            .iter()
+            .map(|f| (f, false))
+            .chain(step.outputs.iter().map(|f| (f, true)));
+        for (file, written) in refs {
+            let path = plan.base_dir().join(&file.path);
+            let shown = names.show(&path);
+            if this_page.as_deref() == Some(shown.as_str()) {
+                continue;
+            }
+            let i = match files.iter().position(|f| f.shown == shown) {
+                Some(i) => i,
+                None => {
+                    let sha256 = irsig_cli::read_input_if_any(&path)?.map(|i| i.sha256());
+                    files.push(PipelineFile {
+                        shown,
+                        sha256,
+                        written_by: Vec::new(),
+                        read_by: Vec::new(),
+                    });
+                    files.len() - 1
+                }
+            };
+            let list = if written {
+                &mut files[i].written_by
+            } else {
+                &mut files[i].read_by
+            };
+            if !list.contains(&step.name) {
+                list.push(step.name.clone());
+            }
+        }
+    }
+    Ok(files)
+}
+
 /// Runs the tool.
 ///
 /// # Errors
-/// Unreadable or malformed input (the regions, decision and LUT files with line and
-/// column), a missing layer, images of different sizes, a profile outside the image, a
-/// region that selects nothing, or an unwritable output; nothing is written then.
+/// Unreadable or malformed input (the regions, decision, uncertainties and LUT files with
+/// line and column), a missing layer, images of different sizes, a profile outside the
+/// image, a region that selects nothing, uncertainties other than those the truth EXR
+/// records, or an unwritable output; nothing is written then.
+#[allow(clippy::too_many_lines)] // one page, section by section
 pub fn run(cli: Cli) -> miette::Result<()> {
     let band_file = BandArg::response_file(cli.band.band.as_ref()).map(PathBuf::from);
     let named = [
@@ -292,21 +484,23 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     .chain(cli.colour_preview.iter().cloned())
     .chain(band_file);
     irsig_cli::refuse_output_is_input(named, cli.output.iter())?;
-    let mut inputs: Vec<Provenance> = Vec::new();
+    let names = Names::for_output(cli.output.as_deref());
+    let mut inputs: Vec<(String, Known)> = Vec::new();
 
     let truth = match &cli.truth {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("truth EXR", &input));
+            inputs.push(own(&names, "truth EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
-            Some((input.name, image))
+            let recorded = irsig_cli::provenance(&input.name, &image)?;
+            Some((input.name, image, recorded))
         }
         None => None,
     };
     let radiance = match &cli.radiance {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("radiance EXR", &input));
+            inputs.push(own(&names, "radiance EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             let recorded = irsig_cli::provenance(&input.name, &image)?;
             let band = cli
@@ -315,7 +509,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             if let Some(w) = &band.warning {
                 irsig_cli::note!("irsig-report: warning: {w}");
             }
-            if let Some((name, t)) = &truth
+            if let Some((name, t, _)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
             {
                 return Err(miette!(
@@ -328,40 +522,57 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                     t.height
                 ));
             }
-            Some((input.name, image, band))
+            Some((input.name, image, band, recorded))
         }
         None => None,
     };
 
-    // The values every section shows: apparent temperature, K. The radiance image is not
-    // needed past them: it goes, so that the page is made in the memory of one image.
-    let (values, width, height, source): (Vec<f32>, usize, usize, String) = match (radiance, &truth)
-    {
-        (Some((name, image, band)), _) => {
-            let l = layer(&image, &name, RADIANCE_LAYER)?;
-            let t = irsig_radiometry::apparent_temperatures(&band.band, l);
-            (
-                t,
+    // The values every section shows: apparent temperature, K; `source` names them as
+    // messages do, `shown` as the page does.
+    let (values, width, height, source, shown_source): (Vec<f32>, usize, usize, String, String) =
+        match (&radiance, &truth) {
+            (Some((name, image, band, _)), _) => {
+                let l = layer(image, name, RADIANCE_LAYER)?;
+                let t = irsig_radiometry::apparent_temperatures(&band.band, l);
+                let say = |n: &str| {
+                    format!(
+                        "apparent temperature of the `{RADIANCE_LAYER}` layer of {n} in {}",
+                        band.record
+                    )
+                };
+                (
+                    t,
+                    image.width,
+                    image.height,
+                    say(name),
+                    say(&names.show_name(name)),
+                )
+            }
+            (None, Some((name, image, _))) => (
+                layer(image, name, APPARENT_LAYER)?.to_vec(),
                 image.width,
                 image.height,
-                format!(
-                    "apparent temperature of the `{RADIANCE_LAYER}` layer of {name} in {}",
-                    band.record
-                ),
-            )
-        }
-        (None, Some((name, image))) => (
-            layer(image, name, APPARENT_LAYER)?.to_vec(),
-            image.width,
-            image.height,
-            format!("`{APPARENT_LAYER}` layer of {name}"),
-        ),
-        (None, None) => {
-            return Err(irsig_cli::usage_error(
-                "expected a truth EXR or --radiance FILE: the report shows an image",
-            ));
-        }
-    };
+                format!("`{APPARENT_LAYER}` layer of {name}"),
+                format!("`{APPARENT_LAYER}` layer of {}", names.show_name(name)),
+            ),
+            (None, None) => {
+                return Err(irsig_cli::usage_error(
+                    "expected a truth EXR or --radiance FILE: the report shows an image",
+                ));
+            }
+        };
+    // Past the values, of the radiance image only its radiances are kept, and only to
+    // compare with a LUT's (saturation): the page is made in the memory per pixel the
+    // README states.
+    let mut radiance = radiance;
+    let radiance_values: Option<Vec<f32>> = radiance.as_mut().and_then(|(_, image, _, _)| {
+        let i = image.layers.iter().position(|l| l.name == RADIANCE_LAYER);
+        let kept = i
+            .filter(|_| cli.lut.is_some())
+            .map(|i| image.layers.swap_remove(i).data);
+        image.layers = Vec::new();
+        kept
+    });
     let Some(range) = plots::finite_range(&values) else {
         return Err(miette!(
             "{source}: no pixel has a finite apparent temperature: expected an image with \
@@ -392,14 +603,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    let stats = match (&cli.regions, &truth) {
-        (Some(path), Some((truth_name, image))) => {
+    let regions = match (&cli.regions, &truth) {
+        (Some(path), Some((truth_name, image, _))) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("regions", &input));
+            inputs.push(own(&names, "regions", &input));
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let set: RegionSet = irsig_formats::canonical::from_ron(&input.name, text)?;
             let ids = layer(image, truth_name, MATERIAL_LAYER)?;
-            Some(irsig_regions::tabulate(&irsig_regions::Inputs {
+            let mut table = irsig_regions::tabulate(&irsig_regions::Inputs {
                 regions_name: &input.name,
                 regions_text: text,
                 set: &set,
@@ -409,7 +620,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 values: &values,
                 source: source.clone(),
                 celsius: false,
-            })?)
+            })?;
+            table.values.clone_from(&shown_source);
+            Some((table, set, ids))
         }
         _ => None,
     };
@@ -417,7 +630,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let decision = match &cli.decision {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("decision", &input));
+            inputs.push(own(&names, "decision", &input));
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let d: Decision = irsig_formats::canonical::from_ron(&input.name, text)?;
             Some(d)
@@ -425,64 +638,121 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
+    // What the truth EXR records of the uncertainties it was traced with.
+    let recorded_uncertainties = truth.as_ref().and_then(|(_, _, p)| p.as_ref()).map(|p| {
+        p.inputs
+            .iter()
+            .find(|i| i.stage == "trace" && i.role == "uncertainties")
+            .map(|i| i.sha256.clone())
+    });
+    let uncertainties = match &cli.uncertainties {
+        Some(path) => {
+            let input = irsig_cli::read_input(path)?;
+            let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+            let u: Uncertainties = irsig_formats::canonical::from_ron(&input.name, text)?;
+            let truth_name = truth.as_ref().map_or("", |(n, _, _)| n.as_str());
+            match &recorded_uncertainties {
+                Some(Some(sha)) if *sha != input.sha256() => {
+                    return Err(irsig_cli::usage_error(format!(
+                        "--uncertainties {}: its SHA-256 is {}, but {truth_name} was traced \
+                         with uncertainties of SHA-256 {}: give the file the truth EXR was \
+                         traced with",
+                        input.name,
+                        chain::hex(&input.sha256()),
+                        chain::hex(sha)
+                    )));
+                }
+                Some(None) => {
+                    return Err(irsig_cli::usage_error(format!(
+                        "--uncertainties {}: {truth_name} was traced without declared \
+                         uncertainties (it records none): trace with --uncertainties FILE \
+                         for an error budget",
+                        input.name
+                    )));
+                }
+                _ => {}
+            }
+            inputs.push(own(&names, "uncertainties", &input));
+            Some(u)
+        }
+        None => None,
+    };
+
     let lut = match &cli.lut {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("LUT", &input));
+            inputs.push(own(&names, "LUT", &input));
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             Some((
-                input.name.clone(),
+                names.show_name(&input.name),
                 irsig_formats::lut::parse(&input.name, text)?,
             ))
         }
         None => None,
     };
 
-    let preview = match &cli.colour_preview {
-        Some(path) => {
-            let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("colour preview", &input));
-            if !input.bytes.starts_with(PNG_SIGNATURE) {
-                return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
-                    input.name.clone(),
-                    0,
-                    "expected a PNG (the sensor stage's --colour-preview), found no PNG \
-                     signature",
-                )));
-            }
-            Some(input)
+    if let Some(path) = &cli.colour_preview {
+        let input = irsig_cli::read_input(path)?;
+        if !input.bytes.starts_with(PNG_SIGNATURE) {
+            return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
+                input.name.clone(),
+                0,
+                "expected a PNG (the sensor stage's --colour-preview), found no PNG signature",
+            )));
         }
-        None => None,
-    };
+        inputs.push(own(&names, "colour preview", &input));
+    }
 
-    let commands: Vec<String> = match &cli.pipeline {
+    let (commands, pipeline): (Vec<String>, Option<(String, Vec<PipelineFile>)>) = match &cli
+        .pipeline
+    {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
-            inputs.push(provenance("pipeline", &input));
+            inputs.push(own(&names, "pipeline", &input));
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
             let base = input.base_dir();
             let pipeline = irsig_pipeline::Pipeline::parse(&input.name, text, &base)
                 .map_err(miette::Report::new)?;
             let tools = irsig_pipeline::Tools::new(|t| Some(PathBuf::from(format!("irsig-{t}"))));
             let plan = pipeline.plan(&tools).map_err(miette::Report::new)?;
-            plan.steps
-                .iter()
-                .map(irsig_pipeline::Step::command_line)
-                .chain(cli.command.iter().cloned())
-                .collect()
+            let files = pipeline_files(&plan, &names, cli.output.as_deref())?;
+            (
+                plan.steps
+                    .iter()
+                    .map(irsig_pipeline::Step::command_line)
+                    .chain(cli.command.iter().cloned())
+                    .collect(),
+                Some((names.show(plan.base_dir()), files)),
+            )
         }
-        None => cli.command.clone(),
+        None => (cli.command.clone(), None),
     };
 
-    // The truth EXR's other layers are not needed past the statistics: only σ is kept,
-    // moved out of the image, not copied.
-    let sigma = match truth {
-        Some((name, mut image)) => {
-            let i = image.layers.iter().position(|l| l.name == SIGMA_LAYER);
-            i.map(|i| (name, image.layers.swap_remove(i).data))
-        }
+    let sigma = match &truth {
+        Some((name, image, _)) => image.layer(SIGMA_LAYER).map(|_| (name.clone(), image)),
         None => None,
     };
+
+    // Provenance along the chain: what the images record, matched to the files known here.
+    let recorded = chain::merge(
+        truth.as_ref().and_then(|(_, _, p)| p.as_ref()),
+        radiance.as_ref().and_then(|(_, _, _, p)| p.as_ref()),
+    );
+    let known: Vec<Known> = pipeline
+        .iter()
+        .flat_map(|(_, files)| files)
+        .filter_map(|f| {
+            f.sha256.as_ref().map(|s| Known {
+                shown: f.shown.clone(),
+                sha256: s.clone(),
+            })
+        })
+        .collect();
+    let chain_rows = chain::rows(&recorded, &known, &inputs);
+
+    let saturated = lut
+        .as_ref()
+        .and_then(|(_, rows)| saturation::saturation(rows, radiance_values.as_deref(), &values));
 
     // Everything is read and checked; now the page.
     let title = cli.title.clone().unwrap_or_else(|| {
@@ -495,6 +765,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             .file_name()
             .map_or_else(|| name.to_owned(), |n| n.to_string_lossy().into_owned())
     });
+    let (lo, hi) = extremes(&values);
     let mut page = String::new();
     let w = &mut page;
     let _ = write!(
@@ -505,17 +776,75 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         t = escape(&title)
     );
 
-    // The colour image and its scale.
+    // Warnings first, where nobody can miss them.
+    let mut warnings: Vec<(&str, String)> = Vec::new();
+    if let (Some(s), Some((_, rows))) = (&saturated, &lut)
+        && s.at_zero + s.at_full > 0
+    {
+        warnings.push((
+            "saturation-warning",
+            format!(
+                "Saturated counts: {} pixels ({} %) are at full scale, count {}, and {} ({} %) \
+                 at count 0; their counts do not tell their temperatures. The LUT spans \
+                 {:.2}-{:.2} K, the image {lo:.2}-{hi:.2} K: give the sensor fewer counts per \
+                 kelvin (--dc-per-kelvin), more bits (--dc-bits) or a fixed calibration \
+                 (--reference-k) whose counts cover the scene.",
+                s.at_full,
+                percent(s.at_full, s.pixels),
+                s.full_count,
+                s.at_zero,
+                percent(s.at_zero, s.pixels),
+                rows[0].temperature_k,
+                rows[rows.len() - 1].temperature_k,
+            ),
+        ));
+    }
+    if let Some(roles) = &recorded.disagree {
+        warnings.push((
+            "chain-warning",
+            format!(
+                "The truth EXR and the radiance image record different inputs of the trace \
+                 ({roles}): they are not from one run, and statistics that pair the one's \
+                 materials with the other's values mean nothing."
+            ),
+        ));
+    }
+    if pipeline.is_some() {
+        let stale = chain::unmatched(&chain_rows);
+        if !stale.is_empty() {
+            warnings.push((
+                "stale-warning",
+                format!(
+                    "The images were made from inputs that no file of the pipeline holds now \
+                     ({}): the pipeline's files changed since; run it again.",
+                    stale.join(", ")
+                ),
+            ));
+        }
+    }
+    if !warnings.is_empty() {
+        w.push_str("<div id=\"warnings\">\n");
+        for (id, text) in &warnings {
+            let _ = writeln!(
+                w,
+                "<p class=\"warning\" id=\"{id}\" role=\"alert\">{}</p>",
+                escape(text)
+            );
+        }
+        w.push_str("</div>\n");
+    }
+
+    // The colour image, the profile's line on it, and its scale.
+    let scale = display_scale(height);
     let _ = write!(
         w,
         "<section id=\"image\">\n<h2>Apparent temperature</h2>\n<p>{} ({width} x {height} \
-         pixels): minimum <span class=\"num\" id=\"t-min\">{:.3}</span> K, mean <span \
+         pixels): minimum <span class=\"num\" id=\"t-min\">{lo:.3}</span> K, mean <span \
          class=\"num\" id=\"t-mean\">{:.3}</span> K, maximum <span class=\"num\" \
-         id=\"t-max\">{:.3}</span> K.</p>\n<div class=\"figure\">{}{}</div>\n",
-        escape(&source),
-        extremes(&values).0,
+         id=\"t-max\">{hi:.3}</span> K.</p>\n<div class=\"figure\"><div class=\"holder\">{}{}\
+         </div>{}</div>\n",
+        escape(&shown_source),
         finite_mean(&values),
-        extremes(&values).1,
         img(
             "colour",
             &false_colour(&values, width, height, range),
@@ -523,19 +852,70 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             height,
             "apparent temperature in the inferno colour map"
         ),
+        profile
+            .as_ref()
+            .map(|(line, _)| profile_overlay(line, width, height, scale))
+            .unwrap_or_default(),
         plots::colour_bar(range, "apparent temperature (K)")?
     );
-    if let Some(input) = &preview {
-        let _ = write!(
+    if let Some((line, _)) = &profile {
+        let _ = writeln!(
             w,
-            "<h3>The sensor stage's colour preview</h3>\n<p>{}</p>\n<div class=\"figure\">\
-             <img id=\"colour-preview\" alt=\"the sensor stage's colour preview\" \
-             src=\"data:image/png;base64,{}\"></div>\n",
-            escape(&input.name),
-            base64::engine::general_purpose::STANDARD.encode(&input.bytes)
+            "<p>The line profile's pixels are drawn on the image in cyan, from the ring at \
+             ({}, {}) to ({}, {}).</p>",
+            line.from.0, line.from.1, line.to.0, line.to.1
         );
     }
     w.push_str("</section>\n");
+
+    // The pixels the counts clip.
+    if let (Some(s), Some((name, rows))) = (&saturated, &lut) {
+        let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+        let _ = write!(
+            w,
+            "<section id=\"saturation\">\n<h2>Saturation</h2>\n<p>Of the <span class=\"num\" \
+             id=\"sat-pixels\">{}</span> pixels, <span class=\"num\" id=\"sat-zero\">{}</span> \
+             ({} %) are at count 0 and <span class=\"num\" id=\"sat-full\">{}</span> ({} %) at \
+             full scale, count {}: the counts of {} ({:.4}-{:.4} K) against the image's \
+             {lo:.3}-{hi:.3} K ({}).</p>\n",
+            s.pixels,
+            s.at_zero,
+            percent(s.at_zero, s.pixels),
+            s.at_full,
+            percent(s.at_full, s.pixels),
+            s.full_count,
+            escape(name),
+            first.temperature_k,
+            last.temperature_k,
+            s.compared
+        );
+        if let Some((table, set, ids)) = &regions
+            && s.at_zero + s.at_full > 0
+        {
+            w.push_str(
+                "<table id=\"saturation-regions\">\n<thead><tr><th>region</th><th>pixels</th>\
+                 <th>at count 0</th><th>at full scale</th><th>saturated (%)</th></tr></thead>\
+                 \n<tbody>\n",
+            );
+            for (region, row) in set.regions.iter().zip(&table.regions) {
+                let count = |mask: &[f32]| {
+                    irsig_regions::stats::region_stats(region, ids, mask, width)
+                        .map_or(0, |r| (r.mean * r.pixels as f64).round() as usize)
+                };
+                let (zero, full) = (count(&s.zero_mask), count(&s.full_mask));
+                let _ = writeln!(
+                    w,
+                    "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{zero}</td>\
+                     <td class=\"num\">{full}</td><td class=\"num\">{}</td></tr>",
+                    escape(&row.region),
+                    row.pixels,
+                    percent(zero + full, row.pixels)
+                );
+            }
+            w.push_str("</tbody>\n</table>\n");
+        }
+        w.push_str("</section>\n");
+    }
 
     // Histogram.
     let _ = write!(
@@ -547,14 +927,17 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         plots::histogram(&values, range, HISTOGRAM_BINS)?
     );
 
+    // What is left out, and the flag that would put it in: one line.
+    let mut not_shown: Vec<&str> = Vec::new();
+
     // Line profile.
-    w.push_str("<section id=\"profile\">\n<h2>Line profile</h2>\n");
     match &profile {
         Some((line, points)) => {
             let _ = write!(
                 w,
-                "<p>From pixel ({}, {}) to ({}, {}), {} pixels.</p>\n<div class=\"figure\">{}\
-                 </div>\n",
+                "<section id=\"profile\">\n<h2>Line profile</h2>\n<p>From pixel ({}, {}) to \
+                 ({}, {}), {} pixels (the line on the image above).</p>\n<div class=\"figure\">\
+                 {}</div>\n</section>\n",
                 line.from.0,
                 line.from.1,
                 line.to.0,
@@ -568,73 +951,109 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 )?
             );
         }
-        None => w.push_str("<p class=\"absent\">No profile: give --profile X0,Y0:X1,Y1.</p>\n"),
+        None => not_shown.push("a line profile (--profile X0,Y0:X1,Y1)"),
     }
-    w.push_str("</section>\n");
 
     // Per-region statistics.
-    w.push_str("<section id=\"regions\">\n<h2>Per-region statistics</h2>\n");
-    match &stats {
-        Some(table) => stats_table(w, table),
-        None => w.push_str(
-            "<p class=\"absent\">No regions: give the truth EXR and --regions FILE.</p>\n",
-        ),
+    match &regions {
+        Some((table, _, _)) => {
+            w.push_str("<section id=\"regions\">\n<h2>Per-region statistics</h2>\n");
+            stats_table(w, table);
+            w.push_str("</section>\n");
+        }
+        None => not_shown.push("per-region statistics (the truth EXR and --regions FILE)"),
     }
-    w.push_str("</section>\n");
 
     // The decision.
-    w.push_str("<section id=\"decision\">\n<h2>The tolerance pilot's decision</h2>\n");
     match &decision {
-        Some(d) => decision_table(w, d),
-        None => w.push_str(
-            "<p class=\"absent\">No decision: trace with --tolerance K and give --decision \
-             FILE.</p>\n",
+        Some(d) => {
+            w.push_str("<section id=\"decision\">\n<h2>The tolerance pilot's decision</h2>\n");
+            decision_table(w, d);
+            w.push_str("</section>\n");
+        }
+        None => not_shown.push(
+            "the tolerance pilot's decision (trace with --tolerance K, then --decision FILE)",
         ),
     }
-    w.push_str("</section>\n");
 
     // The error budget.
-    w.push_str("<section id=\"budget\">\n<h2>Error budget</h2>\n");
     match &sigma {
-        Some((name, s)) => match plots::finite_range(s) {
-            Some(r) => {
-                let _ = write!(
-                    w,
-                    "<p>The `{SIGMA_LAYER}` layer of {}: σ of apparent temperature from the \
-                     declared uncertainties, root-sum-square of its sources, from <span \
-                     class=\"num\" id=\"sigma-min\">{:.4}</span> K to <span class=\"num\" \
-                     id=\"sigma-max\">{:.4}</span> K.</p>\n<div class=\"figure\">{}{}</div>\n",
-                    escape(name),
-                    extremes(s).0,
-                    extremes(s).1,
-                    img(
-                        "sigma",
-                        &false_colour(s, width, height, r),
-                        width,
-                        height,
-                        "sigma_total in the inferno colour map"
-                    ),
-                    plots::colour_bar(r, "σ total (K)")?
-                );
+        Some((name, image)) => {
+            let s = image
+                .layer(SIGMA_LAYER)
+                .map_or(&[][..], |l| l.data.as_slice());
+            w.push_str("<section id=\"budget\">\n<h2>Error budget</h2>\n");
+            match plots::finite_range(s) {
+                Some(r) => {
+                    let _ = write!(
+                        w,
+                        "<p>The `{SIGMA_LAYER}` layer of {}: σ of apparent temperature from \
+                         the declared uncertainties, root-sum-square of its sources, from \
+                         <span class=\"num\" id=\"sigma-min\">{:.4}</span> K to <span \
+                         class=\"num\" id=\"sigma-max\">{:.4}</span> K.</p>\n<div \
+                         class=\"figure\">{}{}</div>\n",
+                        escape(&names.show_name(name)),
+                        extremes(s).0,
+                        extremes(s).1,
+                        img(
+                            "sigma",
+                            &false_colour(s, width, height, r),
+                            width,
+                            height,
+                            "sigma_total in the inferno colour map"
+                        ),
+                        plots::colour_bar(r, "σ total (K)")?
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        w,
+                        "<p>The `{SIGMA_LAYER}` layer of {} has no finite value.</p>",
+                        escape(&names.show_name(name))
+                    );
+                }
             }
-            None => {
-                let _ = writeln!(
-                    w,
-                    "<p class=\"absent\">The `{SIGMA_LAYER}` layer of {} has no finite \
-                     value.</p>",
-                    escape(name)
-                );
+            w.push_str(
+                "<table id=\"budget-sources\">\n<thead><tr><th>source</th><th>layer</th>\
+                 <th>mean σ (K)</th><th>largest σ (K)</th></tr></thead>\n<tbody>\n",
+            );
+            for (layer, what) in BUDGET_SOURCES {
+                if let Some(l) = image.layer(layer.name()) {
+                    let _ = writeln!(
+                        w,
+                        "<tr><td>{what}</td><td><code>{}</code></td><td class=\"num\">{:.4}</td>\
+                         <td class=\"num\">{:.4}</td></tr>",
+                        layer.name(),
+                        finite_mean(&l.data),
+                        extremes(&l.data).1
+                    );
+                }
             }
-        },
-        None => w.push_str(
-            "<p class=\"absent\">No error budget: trace with --uncertainties FILE and give \
-             its truth EXR.</p>\n",
-        ),
+            w.push_str("</tbody>\n</table>\n<h3>What was declared</h3>\n");
+            match (&uncertainties, &recorded_uncertainties) {
+                (Some(u), _) => declared_table(w, u),
+                (None, Some(Some(sha))) => {
+                    let _ = writeln!(
+                        w,
+                        "<p id=\"declared-absent\">The truth EXR was traced with declared \
+                         uncertainties of SHA-256 <code>{}</code>; give that file as \
+                         --uncertainties FILE to list them here.</p>",
+                        chain::hex(sha)
+                    );
+                }
+                (None, _) => w.push_str(
+                    "<p id=\"declared-absent\">The truth EXR does not record its declared \
+                     uncertainties' file; give it as --uncertainties FILE to list them \
+                     here.</p>\n",
+                ),
+            }
+            w.push_str("</section>\n");
+        }
+        None => not_shown
+            .push("the error budget (trace with --uncertainties FILE, then give its truth EXR)"),
     }
-    w.push_str("</section>\n");
 
     // The LUT.
-    w.push_str("<section id=\"lut\">\n<h2>LUT: digital count against temperature</h2>\n");
     match &lut {
         Some((name, rows)) => {
             let points: Vec<(f64, f64)> = rows
@@ -643,9 +1062,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 .collect();
             let _ = write!(
                 w,
-                "<p>{}: {} counts, <span class=\"num\" id=\"lut-first\">{:.4}</span> K at \
-                 count 0 to <span class=\"num\" id=\"lut-last\">{:.4}</span> K at count {}.\
-                 </p>\n<div class=\"figure\">{}</div>\n",
+                "<section id=\"lut\">\n<h2>LUT: digital count against temperature</h2>\n<p>{}: \
+                 {} counts, <span class=\"num\" id=\"lut-first\">{:.4}</span> K at count 0 to \
+                 <span class=\"num\" id=\"lut-last\">{:.4}</span> K at count {}.</p>\n<div \
+                 class=\"figure\">{}</div>\n</section>\n",
                 escape(name),
                 rows.len(),
                 rows[0].temperature_k,
@@ -654,43 +1074,109 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 plots::line_chart("LUT curve", &points, "temperature (K)", "digital count")?
             );
         }
-        None => w.push_str("<p class=\"absent\">No LUT: give --lut FILE.</p>\n"),
+        None => not_shown.push("the LUT and the counts it clips (--lut FILE)"),
     }
-    w.push_str("</section>\n");
 
-    // Provenance.
+    if !not_shown.is_empty() {
+        let _ = writeln!(
+            w,
+            "<p class=\"absent\" id=\"not-shown\">Not shown: {}.</p>",
+            escape(&not_shown.join("; "))
+        );
+    }
+
+    // Provenance along the chain.
+    provenance_section(w, &recorded, &chain_rows, pipeline.as_ref(), &commands);
+    w.push_str("</body>\n</html>\n");
+
+    irsig_cli::write_output(cli.output.as_deref(), |out| out.write_all(page.as_bytes()))
+}
+
+/// The provenance section: the images' record, every input with its file and SHA-256, the
+/// pipeline's files, the command lines and irsig's version.
+fn provenance_section(
+    w: &mut String,
+    recorded: &chain::Recorded,
+    rows: &[chain::Row],
+    pipeline: Option<&(String, Vec<PipelineFile>)>,
+    commands: &[String],
+) {
     let _ = write!(
         w,
         "<section id=\"provenance\">\n<h2>Provenance</h2>\n<p>irsig <span \
-         id=\"version\">{}</span>.</p>\n<table id=\"inputs\">\n<thead><tr><th>input</th>\
-         <th>file</th><th>bytes</th><th>SHA-256</th></tr></thead>\n<tbody>\n",
+         id=\"version\">{}</span>. Files are named relative to this page.</p>\n",
         env!("CARGO_PKG_VERSION")
     );
-    for p in &inputs {
+    match &recorded.summary {
+        Some(p) => {
+            let _ = writeln!(
+                w,
+                "<p id=\"recorded\">The images record their band, <span \
+                 id=\"recorded-band\">{}</span> (sub-bands: {}), their atmosphere, {} (model \
+                 {}), and every input the trace and the sensor read, listed below by SHA-256 \
+                 with the file that holds it now.</p>",
+                escape(&p.band.to_string()),
+                escape(&p.sub_bands),
+                escape(&p.atmosphere),
+                escape(&p.atmosphere_model)
+            );
+        }
+        None => w.push_str(
+            "<p id=\"recorded\">The images record no provenance (made before irsig recorded \
+             it, or by another program): only the report's own inputs are listed.</p>\n",
+        ),
+    }
+    w.push_str(
+        "<table id=\"inputs\">\n<thead><tr><th>stage</th><th>role</th><th>file</th>\
+         <th>SHA-256</th><th>recorded in</th></tr></thead>\n<tbody>\n",
+    );
+    for r in rows {
         let _ = writeln!(
             w,
-            "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td><code>{}</code></td></tr>",
-            p.role,
-            escape(&p.name),
-            p.bytes,
-            p.sha256
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td><td>{}</td></tr>",
+            escape(&r.stage),
+            escape(&r.role),
+            r.file.as_deref().map_or_else(
+                || "<span class=\"absent\">no file known here holds it</span>".to_owned(),
+                escape
+            ),
+            escape(&r.sha256_hex),
+            escape(&r.recorded_in)
         );
     }
     w.push_str("</tbody>\n</table>\n");
-    if commands.is_empty() {
-        w.push_str(
-            "<p class=\"absent\">No command lines: give --pipeline FILE or --command TEXT.</p>\n",
+    if let Some((base, files)) = pipeline {
+        let _ = write!(
+            w,
+            "<h3>The pipeline's files</h3>\n<p>Every file the pipeline's steps read or write, \
+             as it is now (its steps run in {}).</p>\n<table id=\"pipeline-files\">\n<thead>\
+             <tr><th>file</th><th>SHA-256</th><th>written by</th><th>read by</th></tr></thead>\
+             \n<tbody>\n",
+            escape(base)
         );
-    } else {
+        for f in files {
+            let _ = writeln!(
+                w,
+                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+                escape(&f.shown),
+                f.sha256.as_deref().map_or_else(
+                    || "<span class=\"absent\">missing</span>".to_owned(),
+                    |s| format!("<code>{}</code>", chain::hex(s))
+                ),
+                escape(&f.written_by.join(", ")),
+                escape(&f.read_by.join(", "))
+            );
+        }
+        w.push_str("</tbody>\n</table>\n");
+    }
+    if !commands.is_empty() {
         w.push_str("<h3>Command lines</h3>\n<pre id=\"commands\">");
-        for c in &commands {
+        for c in commands {
             let _ = writeln!(w, "{}", escape(c));
         }
         w.push_str("</pre>\n");
     }
-    w.push_str("</section>\n</body>\n</html>\n");
-
-    irsig_cli::write_output(cli.output.as_deref(), |out| out.write_all(page.as_bytes()))
+    w.push_str("</section>\n");
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:2em;max-width:80em}\
@@ -698,7 +1184,11 @@ table{border-collapse:collapse;margin:0.5em 0}\
 td,th{border:1px solid #bbb;padding:0.2em 0.5em}\
 td.num,.num{font-variant-numeric:tabular-nums}td.num{text-align:right}\
 .figure{display:flex;align-items:flex-start;gap:1em;flex-wrap:wrap}\
-img{image-rendering:pixelated}.absent{color:#777}pre{white-space:pre-wrap}";
+img{image-rendering:pixelated;display:block}.absent{color:#777}pre{white-space:pre-wrap}\
+.holder{position:relative;line-height:0}\
+.overlay{position:absolute;left:0;top:0;overflow:visible}\
+.warning{border:2px solid #b00;background:#fdecea;color:#600;padding:0.5em 0.8em;\
+font-weight:bold}";
 
 /// The `irsig-stats` table as HTML, three decimals.
 fn stats_table(w: &mut String, table: &irsig_regions::Table) {

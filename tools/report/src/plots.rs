@@ -10,6 +10,10 @@ const CHART: (u32, u32) = (640, 360);
 const BAR: (u32, u32) = (130, 384);
 /// Colour steps drawn in a colour bar.
 const BAR_STEPS: usize = 128;
+/// Length of an axis's tick marks, SVG pixels. A label sits twice this far from its axis
+/// (plotters' rule), so it stands clear of the tick and the axis line instead of touching
+/// them, which plotters' default (a tick of a pixel or two) lets it do.
+const TICK: i32 = 5;
 
 fn failed(what: &str) -> impl Fn(String) -> miette::Report + '_ {
     move |e| miette::miette!("cannot draw the {what}: {e}")
@@ -79,6 +83,7 @@ pub fn histogram(values: &[f32], range: (f64, f64), bins: usize) -> miette::Resu
             .map_err(|e| failed("histogram")(e.to_string()))?;
         chart
             .configure_mesh()
+            .set_all_tick_mark_size(TICK)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .disable_x_mesh()
@@ -143,6 +148,7 @@ pub fn line_chart(
             .map_err(|e| err(e.to_string()))?;
         chart
             .configure_mesh()
+            .set_all_tick_mark_size(TICK)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .x_desc(x_desc)
@@ -190,6 +196,7 @@ pub fn colour_bar(range: (f64, f64), unit: &str) -> miette::Result<String> {
             .unwrap_or(4) as usize;
         chart
             .configure_mesh()
+            .set_tick_mark_size(LabelAreaPosition::Left, TICK)
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .disable_mesh()
