@@ -35,7 +35,7 @@
 //! up with the deck's calculations (TAPE6 says why). Transmittances up to 1.01 are read:
 //! LOWTRAN prints 1.0002 on metre-long humid paths (a slightly negative optical depth).
 
-use super::{Edit, Source, TextLine, number, read_card, text_lines};
+use super::{Edit, Source, TextLine, push_row, read_card, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
 
@@ -272,64 +272,25 @@ fn read_rows(
     let mut columns = vec![Vec::with_capacity(rows.len()); n];
     let mut positions = Vec::with_capacity(rows.len());
     for row in rows {
-        let tokens = row.tokens();
-        if tokens.len() != n {
-            let at = tokens.get(n).map_or(row.offset + row.text.len(), |t| t.0);
-            return Err(src.error(
-                at,
-                1,
-                format!(
-                    "expected {n} columns ({}), as the header and IEMSCT = {iemsct} say, found {}",
-                    names.join(", "),
-                    tokens.len()
-                ),
-            ));
-        }
-        for (c, &(at, tok)) in tokens.iter().enumerate() {
-            let Some(v) = number(tok) else {
-                return Err(src.error(
-                    at,
-                    tok.len(),
-                    format!("expected {} (a number), found `{tok}`", names[c]),
-                ));
-            };
-            let bad = match c {
-                0 => {
-                    if let Some(&last) = columns[0].last()
-                        && v <= last
-                    {
-                        Some(if v.total_cmp(&last).is_eq() {
-                            format!(
-                                "wavenumber {v} cm-1 is repeated: wavenumbers must strictly increase"
-                            )
-                        } else {
-                            format!(
-                                "wavenumbers must strictly increase: {v} cm-1 follows {last} cm-1"
-                            )
-                        })
-                    } else if v < 0.0 {
-                        Some(format!(
-                            "expected a wavenumber of 0 cm-1 or more, found {v}"
-                        ))
-                    } else {
-                        None
-                    }
-                }
-                // LOWTRAN7 prints transmittances a little above 1 (1.0002) on paths of a
-                // few metres, where its continuum gives a slightly negative optical depth.
-                1 if !(0.0..=TRANSMITTANCE_MAX).contains(&v) => Some(format!(
+        let count = |found| {
+            format!(
+                "expected {n} columns ({}), as the header and IEMSCT = {iemsct} say, found {found}",
+                names.join(", ")
+            )
+        };
+        push_row(src, row, names, &mut columns, count, |c, name, v| {
+            // LOWTRAN7 prints transmittances a little above 1 (1.0002) on paths of a few
+            // metres, where its continuum gives a slightly negative optical depth.
+            if c == 1 && !(0.0..=TRANSMITTANCE_MAX).contains(&v) {
+                Some(format!(
                     "expected a transmittance from 0 to 1 (LOWTRAN prints up to {TRANSMITTANCE_MAX}), found {v}"
-                )),
-                c if c + 1 < n && names[c].contains("RADIANCE") && v < 0.0 => {
-                    Some(format!("expected a radiance of 0 or more, found {v}"))
-                }
-                _ => None,
-            };
-            if let Some(message) = bad {
-                return Err(src.error(at, tok.len(), message));
+                ))
+            } else if c + 1 < n && name.contains("RADIANCE") && v < 0.0 {
+                Some(format!("expected a radiance of 0 or more, found {v}"))
+            } else {
+                None
             }
-            columns[c].push(v);
-        }
+        })?;
         positions.push(row.position());
     }
     Ok(SpectralTable {

@@ -280,6 +280,58 @@ pub(crate) fn read_card(
     Ok(out)
 }
 
+/// Reads one row of a printed spectral table (LOWTRAN's TAPE7, MODTRAN's tape7) onto
+/// `columns`: exactly `names.len()` fields (`count(found)` says what was expected when the
+/// row has another number), each a finite number that `check(column, name, value)` finds
+/// no fault with (its message otherwise), the first a wavenumber of 0 cm⁻¹ or more above
+/// the previous row's. Nothing is pushed from a row with a fault.
+pub(crate) fn push_row<N: AsRef<str>>(
+    src: Source<'_>,
+    row: &TextLine<'_>,
+    names: &[N],
+    columns: &mut [Vec<f64>],
+    count: impl FnOnce(usize) -> String,
+    check: impl Fn(usize, &str, f64) -> Option<String>,
+) -> Result<(), ParseError> {
+    let n = names.len();
+    let tokens = row.tokens();
+    if tokens.len() != n {
+        let at = tokens.get(n).map_or(row.offset + row.text.len(), |t| t.0);
+        return Err(src.error(at, 1, count(tokens.len())));
+    }
+    let mut values = Vec::with_capacity(n);
+    for (c, &(at, tok)) in tokens.iter().enumerate() {
+        let name = names[c].as_ref();
+        let Some(v) = number(tok) else {
+            return Err(src.error(
+                at,
+                tok.len(),
+                format!("expected {name} (a finite number), found `{tok}`"),
+            ));
+        };
+        let previous = columns[0].last().copied().filter(|_| c == 0);
+        let fault = match previous {
+            Some(last) if v <= last => Some(if v.total_cmp(&last).is_eq() {
+                format!("wavenumber {v} cm-1 is repeated: wavenumbers must strictly increase")
+            } else {
+                format!("wavenumbers must strictly increase: {v} cm-1 follows {last} cm-1")
+            }),
+            _ if c == 0 && v < 0.0 => Some(format!(
+                "expected a wavenumber of 0 cm-1 or more, found {v}"
+            )),
+            _ => check(c, name, v),
+        };
+        if let Some(message) = fault {
+            return Err(src.error(at, tok.len(), message));
+        }
+        values.push(v);
+    }
+    for (column, v) in columns.iter_mut().zip(values) {
+        column.push(v);
+    }
+    Ok(())
+}
+
 /// Parses a free-format number (a token of a printed table): a decimal literal, `710.`
 /// included; never `NaN` or `inf`.
 pub(crate) fn number(token: &str) -> Option<f64> {

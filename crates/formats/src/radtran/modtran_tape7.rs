@@ -24,7 +24,7 @@
 //! data. A file cut down after MODTRAN wrote it (as pyradi's `tape7-01b`, whose card 4
 //! says 655–33665 cm⁻¹ and whose rows stop at 750) reads as its rows.
 
-use super::{Source, TextLine, number, text_lines};
+use super::{Source, TextLine, number, push_row, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
 
@@ -200,68 +200,25 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
         if line.text.trim().is_empty() {
             continue;
         }
-        let tokens = line.tokens();
-        if tokens.len() != n {
-            let at = tokens.get(n).map_or(line.offset + line.text.len(), |t| t.0);
-            return Err(src.error(
-                at,
-                1,
-                format!(
-                    "expected {n} columns as the header (line {}) has, found {}",
-                    last.number,
-                    tokens.len()
-                ),
-            ));
-        }
-        for (c, &(at, tok)) in tokens.iter().enumerate() {
-            let Some(v) = number(tok) else {
-                return Err(src.error(
-                    at,
-                    tok.len(),
-                    format!("expected {} (a finite number), found `{tok}`", names[c]),
-                ));
-            };
+        let count = |found| {
+            format!(
+                "expected {n} columns as the header (line {}) has, found {found}",
+                last.number
+            )
+        };
+        push_row(src, line, &names, &mut columns, count, |_, name, v| {
             // As for LOWTRAN's TAPE7: τ within 0-1.01 (printed slightly above 1 on short
             // humid paths), radiances not negative.
-            let name = names[c].as_str();
             if TRANSMITTANCES.contains(&name) && !(0.0..=1.01).contains(&v) {
-                return Err(src.error(
-                    at,
-                    tok.len(),
-                    format!("expected {name} from 0 to 1.01, found {v}"),
-                ));
+                Some(format!("expected {name} from 0 to 1.01, found {v}"))
+            } else if RADIANCES.contains(&name) && v < 0.0 {
+                Some(format!(
+                    "expected {name} of 0 or more (a radiance), found {v}"
+                ))
+            } else {
+                None
             }
-            if RADIANCES.contains(&name) && v < 0.0 {
-                return Err(src.error(
-                    at,
-                    tok.len(),
-                    format!("expected {name} of 0 or more (a radiance), found {v}"),
-                ));
-            }
-            if c == 0 {
-                if let Some(&prev) = columns[0].last()
-                    && v <= prev
-                {
-                    return Err(src.error(
-                        at,
-                        tok.len(),
-                        if v.total_cmp(&prev).is_eq() {
-                            format!("wavenumber {v} cm-1 is repeated: wavenumbers must strictly increase")
-                        } else {
-                            format!("wavenumbers must strictly increase: {v} cm-1 follows {prev} cm-1")
-                        },
-                    ));
-                }
-                if v < 0.0 {
-                    return Err(src.error(
-                        at,
-                        tok.len(),
-                        format!("expected a wavenumber of 0 cm-1 or more, found {v}"),
-                    ));
-                }
-            }
-            columns[c].push(v);
-        }
+        })?;
         positions.push(line.position());
     }
     if !ended {
