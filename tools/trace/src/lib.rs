@@ -22,31 +22,8 @@ use irsig_render::{
 use irsig_tracer::PathTermsMode;
 use miette::IntoDiagnostic;
 
-const EXAMPLE: &str = "\
-Examples:
-  irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron -o out/frame
-      writes out/frame.radiance.exr, out/frame.truth.exr, out/frame.map.png, and the
-      digital counts out/frame.dc.png with out/frame.lut.txt
-  irsig-trace --scene world.raw.ron --materials materials.ron --view flyby.ron -o out/f
-      flyby.ron holds a list of views: writes out/f.0001.radiance.exr, out/f.0002..., with
-      the BVH built once
-  irsig-trace --scene world.raw --materials materials.ron --view view.ron \\
-      --radiance-exr frame.exr --dc-png frame.png --lut frame.lut
-      writes only the outputs named (one view), as a pipeline stage or a Makefile rule does
-  irsig-trace --scene world.raw.ron --materials materials.ron --view view.ron --probe 128,64
-      prints every term of the radiance equation for pixel column 128, row 64
-  irsig-trace --scene world.raw --materials materials.ron --view frame1.view -o out/f1
-      frame1.view is a 1990 viewing file (numbers; position in km, see --view-unit)
-  irsig-trace --scene world.raw --materials materials.ron --execute flyby.exec
-      a 1990 execute file: per frame a viewing file and the map image, DC image and LUT
-      to write (names relative to flyby.exec); the BVH is built once
-  irsig-trace --scene world.raw --materials materials.ron --view view.ron --tile 6/4x4 \\
-      -o tiles/t06
-      tile 6 of a 4 x 4 grid (row by row from the top-left): tiles/t06.radiance.exr and
-      tiles/t06.truth.exr, its pixels bit for bit the whole frame's; irsig-merge
-      tiles/*.exr -o out/frame writes the frame's files
-
-Pixel (0, 0) is the top-left; rows run downwards.";
+/// `--help`'s examples.
+const EXAMPLE: &str = include_str!("examples.txt");
 
 /// Render a raw scene: radiance EXR, truth EXR and the legacy interaction map per view.
 #[derive(Debug, Parser)]
@@ -134,11 +111,12 @@ pub struct Cli {
     #[arg(long, value_name = "MODE", value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
     pub path_terms: Option<PathTermsMode>,
     /// Let the tool choose the models (atmosphere, bounces, sky-view rays, supersampling,
-    /// path terms, sub-bands) for this scene and view: the cheapest whose predicted error
-    /// against the most accurate settings stays within K kelvin at --tolerance-percentile
-    /// of the pixels. A pilot over a sample of pixels decides per frame; the decision is
-    /// printed on stderr and written beside the outputs (PREFIX.decision.ron with -o, else
-    /// --decision-out). Pin a model by hand with --pin.
+    /// path terms, sub-bands) for this scene and view: the cheapest whose error against a
+    /// converged rendering stays within K kelvin at --tolerance-percentile of the pixels and
+    /// in every population of them (materials, mirrors, grazing, thin features); refused
+    /// when no setting on offer can keep it. A pilot decides per frame; the decision is
+    /// printed on stderr and written beside the outputs (PREFIX.decision.ron with -o,
+    /// --decision-out, else beside the first output file). Pin a model with --pin.
     #[arg(long, value_name = "K", allow_negative_numbers = true, conflicts_with_all = [
         "atmosphere_model", "bounces", "sky_view_rays", "supersample", "path_terms",
         "adaptive_supersampling", "decision", "sub_bands",
@@ -169,7 +147,7 @@ pub struct Cli {
     #[arg(long, value_name = "FILE")]
     pub uncertainties: Option<String>,
     /// With --tolerance and the per-output flags, write the decision (canonical RON) to
-    /// FILE.
+    /// FILE instead of beside the first output.
     #[arg(
         long,
         value_name = "FILE",
