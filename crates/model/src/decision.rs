@@ -202,11 +202,11 @@ pub struct Decision {
     /// afford, pixels predicted to cap), 0 to 1.
     #[serde(default)]
     pub not_guaranteed_share: f64,
-    /// The inputs' own error that no setting removes, K (σ): the atmosphere data's
-    /// interpolation between its rows, when known. It belongs to the error budget, not to
-    /// the tolerance.
+    /// The inputs' own error that no setting removes, K: the largest error the atmosphere
+    /// data's interpolation between its rows was measured to make (slant paths and sky),
+    /// when its tables record it. It belongs to the error budget, not to the tolerance.
     #[serde(default)]
-    pub data_sigma_k: Option<f64>,
+    pub data_error_k: Option<f64>,
 }
 
 impl Decision {
@@ -305,8 +305,8 @@ impl Decision {
             0.0,
             1.0,
         )?;
-        if let Some(sigma) = self.data_sigma_k {
-            check_range(|| "data_sigma_k".into(), sigma, 0.0, f64::MAX)?;
+        if let Some(sigma) = self.data_error_k {
+            check_range(|| "data_error_k".into(), sigma, 0.0, f64::MAX)?;
         }
         check_range(|| "relative_cost".into(), self.relative_cost, 0.0, f64::MAX)
     }

@@ -182,6 +182,15 @@ struct Air<'a, R, A, S> {
     spectral: bool,
     precomputed: SubBandsOf<'a, R, A>,
     pilot: SubBandsOf<'a, R, S>,
+    /// The atmosphere data's own interpolation error between its rows, K, where its
+    /// slant tables record it: the largest of the slant paths' and the sky's (grazing
+    /// paths beyond 80° are the horizon classes' own).
+    data_error_k: Option<f64>,
+}
+
+/// The interpolation error a slant table records, K (see [`Air::data_error_k`]).
+fn data_error_k(residual: Option<&irsig_model::InterpolationResidual>) -> Option<f64> {
+    residual.map(|r| r.slant_k.max(r.sky_k))
 }
 
 /// The sub-bands of a model kind and a count.
@@ -651,6 +660,7 @@ impl Plan {
                 spectral: false,
                 precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
                 pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
+                data_error_k: None,
             };
             return self.trace_all(&run, band, &air, job);
         }
@@ -745,6 +755,12 @@ impl Plan {
         };
         match data {
             AirData::Band(atmosphere) => {
+                let data_error_k = data_error_k(
+                    atmosphere
+                        .slant
+                        .as_ref()
+                        .and_then(|s| s.interpolation_residual.as_ref()),
+                );
                 let kinds: Vec<ModelKind> =
                     [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
                         .into_iter()
@@ -766,6 +782,7 @@ impl Plan {
                             Ok(PrecomputedAtmosphere::new(m2(&a2, kind)?, top))
                         })
                     }),
+                    data_error_k,
                 };
                 self.trace_all(&run, band, &air, job)
             }
@@ -786,6 +803,12 @@ impl Plan {
                         .insert(count, c.clone());
                     Ok(c)
                 };
+                let data_error_k = data_error_k(
+                    spectral
+                        .slant
+                        .as_ref()
+                        .and_then(|s| s.interpolation_residual.as_ref()),
+                );
                 let one = collapsed(SubBandCount::BAND)?;
                 let kinds: Vec<ModelKind> =
                     [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
@@ -823,6 +846,7 @@ impl Plan {
                     spectral: true,
                     precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
                     pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
+                    data_error_k,
                 };
                 self.trace_all(&run, band, &air, job)
             }
@@ -909,7 +933,7 @@ impl Plan {
         // object) of 1 % needs several hundred samples to be seen at all.
         let pixels =
             (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
-        let piloted = tracer
+        let mut piloted = tracer
             .pilot(
                 camera,
                 &space,
@@ -919,6 +943,8 @@ impl Plan {
                 self.request.settings.seed,
             )
             .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
+        // What no setting removes: said beside the decision, and left to the error budget.
+        piloted.decision.data_error_k = air.data_error_k;
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 

@@ -357,11 +357,11 @@ pub fn table(d: &Decision) -> String {
             100.0 * d.not_guaranteed_share
         );
     }
-    if let Some(sigma) = d.data_sigma_k {
+    if let Some(sigma) = d.data_error_k {
         let _ = writeln!(
             out,
             "  the inputs' own error, outside the tolerance (the error budget's): the \
-             atmosphere data's interpolation, σ ≈ {sigma:.4} K"
+             atmosphere data's interpolation between its rows, up to {sigma:.4} K"
         );
     }
     out

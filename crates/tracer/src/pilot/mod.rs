@@ -570,7 +570,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             classes,
             sampling,
             not_guaranteed_share: not_guaranteed,
-            data_sigma_k: None,
+            data_error_k: None,
         };
         Ok(Piloted {
             chosen: Chosen {
