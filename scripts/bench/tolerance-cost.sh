@@ -70,7 +70,7 @@ t=$repo/pipelines/thesis-experiment
 "$bin/irsig-flatten" "$t/scene.ron" --materials "$t/materials.ron" -o "$work/thesis.raw"
 scaled_view "$t/view.ron" "$work/thesis.view.ron"
 
-printf '%-12s %6s %10s %10s %9s %10s %10s\n' case T predicted measured ratio pilot_s chosen_s
+printf '%-12s %6s %10s %10s %9s %10s %10s\n' case T predicted measured meas/pred pilot_s chosen_s
 for case in quickstart:"$q/materials.ron" thesis:"$t/materials.ron"; do
   name=${case%%:*}
   materials=${case#*:}
@@ -89,7 +89,7 @@ import sys
 name, tol, predicted, chosen, reference, pilot = sys.argv[1:]
 measured = float(chosen) / float(reference)
 print(f"{name:<12} {tol:>6} {float(predicted):10.3f} {measured:10.3f} "
-      f"{float(predicted) / measured:9.2f} {float(pilot):10.2f} {float(chosen):10.2f}")
+      f"{measured / float(predicted):9.2f} {float(pilot):10.2f} {float(chosen):10.2f}")
 EOF
   done
 done

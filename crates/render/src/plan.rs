@@ -208,9 +208,9 @@ const PILOT_SKY_LEVELS: usize = 5;
 /// one `path` call, and precomputing the sky of one sub-band up to a few km.
 fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
     match kind {
-        ModelKind::Table => (880.0, 5e6),
-        ModelKind::Layered => (830.0, 88e6),
-        ModelKind::Thesis => (92.0, 121e6),
+        ModelKind::Table => (330.0, 5e6),
+        ModelKind::Layered => (280.0, 88e6),
+        ModelKind::Thesis => (110.0, 121e6),
         ModelKind::None => (5.0, 0.0),
     }
 }

@@ -39,14 +39,22 @@ pub(crate) struct UnitCosts {
     pub(crate) table_lookup_ns: f64,
 }
 
-/// The measured unit costs.
+/// The measured unit costs: node, hemisphere-ray and table figures fitted to single-thread
+/// renderings of the quickstart at 512 × 384 with 0 and 16 sky-view rays, the band model
+/// and the full grid, exact and tabulated path terms (BENCHMARKS.md "The tolerance pilot's
+/// cost model").
 pub(crate) const UNIT_COSTS: UnitCosts = UnitCosts {
     ray_base_ns: 60.0,
     ray_per_log2_ns: 14.0,
-    node_eval_ns: 25.0,
-    hemi_eval_ns: 12.0,
+    node_eval_ns: 125.0,
+    hemi_eval_ns: 33.0,
     table_lookup_ns: 15.0,
 };
+
+/// A path-term call for a further sub-band of a path already located, as a share of the
+/// first call's cost (the sub-bands share the path's grid search): 50 ns against 330 in
+/// the same renderings.
+const PATH_ALONG_SHARE: f64 = 0.15;
 
 /// Paths a refined pixel is assumed to cost while combinations are compared (before the
 /// trial measures it): two levels from the edge side, 8 × (16 + 64).
@@ -138,11 +146,10 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
         let evals =
             k * (counts.nodes * u.node_eval_ns + counts.diffuse * hemi_rays * u.hemi_eval_ns);
         let terms = counts.hit
-            * k
             * if table {
-                u.table_lookup_ns
+                k * u.table_lookup_ns
             } else {
-                path_call_ns
+                path_call_ns * (1.0 + (k - 1.0) * PATH_ALONG_SHARE)
             };
         rays * ray_ns + evals + terms
     };
