@@ -135,3 +135,67 @@ fn a_blur_past_the_budget_is_refused_before_it_starts() {
     assert!(peak <= 8 * SIDE * SIDE + ALLOWANCE_BYTES, "{peak}");
     assert!(!dir.path().join("s.exr").exists());
 }
+
+/// What a tile may hold per pixel of itself and its one-pixel margin: the README's 150
+/// bytes per pixel of a frame with every truth layer, and the camera's two 8-byte
+/// direction coordinates per column and per row.
+const TRACER_BYTES_PER_PIXEL: u64 = 150;
+
+#[test]
+fn a_tile_of_a_very_wide_or_tall_view_holds_memory_for_its_own_pixels() {
+    // A 4,096-pixel tile of a 2²⁶ × 1 view (and of a 1 × 2²⁶ one) held 519 MB: 8 bytes per
+    // column (or row) of the whole frame, 2²⁶ · 8 = 512 MiB, for the camera's directions.
+    // The tile and its margin are at most (4,096 + 2) × 3 pixels; with the truth layers
+    // and both direction tables that is under 2 MB, so the process holds its allowance
+    // and little more, far below the frame's 512 MiB.
+    let dir = tempfile::tempdir().unwrap();
+    let root = repo_root();
+    let scene = root.join("tests/data/malformed/base/scene.raw.ron");
+    let materials = root.join("formats/canonical/samples/materials.ron");
+    let long = SIDE * SIDE;
+    for (pixels, tile) in [
+        (format!("({long}, 1)"), "33550000,0,4096,1"),
+        (format!("(1, {long})"), "0,33550000,1,4096"),
+    ] {
+        let view = dir.path().join("view.ron");
+        std::fs::write(
+            &view,
+            format!(
+                "LookAt(position_m: (0.0, 0.0, 50.0), target_m: (0.0, 0.0, 0.0), \
+                 up: (0.0, 1.0, 0.0), pixels: {pixels}, fov_deg: (10.0, 10.0))"
+            ),
+        )
+        .unwrap();
+        let (code, peak, stderr) = run_measured(
+            "irsig-trace",
+            &[
+                "--scene",
+                &scene.to_string_lossy(),
+                "--materials",
+                &materials.to_string_lossy(),
+                "--view",
+                "view.ron",
+                "--atmosphere",
+                "none",
+                "--tile",
+                tile,
+                "-o",
+                "t",
+            ],
+            dir.path(),
+        );
+        assert_eq!(code, Some(0), "{pixels}: {stderr}");
+        let margin = (4096 + 2) * 3;
+        let bound = TRACER_BYTES_PER_PIXEL * margin + 2 * 8 * (4096 + 2 + 3) + ALLOWANCE_BYTES;
+        assert!(
+            peak <= bound,
+            "one 4,096-pixel tile of a {pixels} view held {peak} bytes, more than the stated \
+             {bound}"
+        );
+        assert!(dir.path().join("t.radiance.exr").is_file());
+        assert!(dir.path().join("t.truth.exr").is_file());
+        for f in ["t.radiance.exr", "t.truth.exr"] {
+            std::fs::remove_file(dir.path().join(f)).unwrap();
+        }
+    }
+}

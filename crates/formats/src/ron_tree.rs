@@ -322,13 +322,17 @@ impl Parser<'_> {
     }
 
     /// Moves past an identifier (`r#` raw ones too) and returns the byte range of its name.
+    /// A raw identifier may hold `.`, `+` and `-` as well (`r#sky-view`), as `ron` reads it.
     fn scan_identifier(&mut self) -> (usize, usize) {
-        if self.rest().starts_with("r#") {
+        let raw = self.rest().starts_with("r#");
+        if raw {
             self.pos += 2;
         }
         let rest = self.rest();
         let len = rest
-            .find(|c: char| !(c.is_alphanumeric() || c == '_'))
+            .find(|c: char| {
+                !(c.is_alphanumeric() || c == '_' || (raw && matches!(c, '.' | '+' | '-')))
+            })
             .unwrap_or(rest.len());
         let start = self.pos;
         self.pos += len;
@@ -809,6 +813,34 @@ mod tests {
         assert_eq!(at(text, "w"), "9");
         // A field of a tuple cannot be followed: the tuple is where it stops.
         assert_eq!(at(text, "c.x"), "Some((1.0, 2.0, 3.5))");
+    }
+
+    #[test]
+    fn locate_passes_raw_identifiers_that_hold_a_hyphen() {
+        // A decision's models are written `r#sky-view`, `r#path-terms`, `r#sub-bands`: the
+        // entries after one are reached, not the list that holds them.
+        let text = "(choices: [\n  (model: r#sky-view, setting: \"0\"),\n  \
+                    (model: r#path-terms, setting: \"exakt\"),\n  \
+                    (model: r#sub.bands+x, setting: \"x\"),\n])";
+        assert_eq!(at(text, "choices[1].setting"), "\"exakt\"");
+        assert_eq!(at(text, "choices[2].setting"), "\"x\"");
+        // Line 3, column 34: the setting of the second entry, as an error reports it.
+        let (start, _) = locate(text, "choices[1].setting");
+        let line_start = text[..start].rfind('\n').map_or(0, |i| i + 1);
+        assert_eq!(text[..start].matches('\n').count() + 1, 3);
+        assert_eq!(start - line_start + 1, 34);
+        // The tree reads the name whole.
+        let root = parse_tree(text).unwrap();
+        let Kind::Struct(None, fields) = &root.kind else {
+            panic!("{root:?}")
+        };
+        let Kind::List(items) = &fields[0].1.kind else {
+            panic!()
+        };
+        let Kind::Struct(None, entry) = &items[1].kind else {
+            panic!()
+        };
+        assert_eq!(entry[0].1.kind, Kind::Ident("path-terms".into()));
     }
 
     /// Every path into the tree of `text`, with the range the tree gives its value.

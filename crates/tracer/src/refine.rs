@@ -163,8 +163,20 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     #[must_use]
     pub fn thin_pixels(&self, camera: &Camera) -> Vec<bool> {
         let [w, h] = camera.pixels;
+        self.thin_pixels_in(camera, Tile::whole(w, h))
+    }
+
+    /// [`Self::thin_pixels`] over the pixels of `tile` only (row-major, row 0 the tile's
+    /// top row): each pixel's flag is the whole image's, and the mask is the tile's size.
+    pub(crate) fn thin_pixels_in(&self, camera: &Camera, tile: Tile) -> Vec<bool> {
+        let [w, h] = camera.pixels;
         let (wf, hf) = (f64::from(w), f64::from(h));
-        let mut mask = vec![false; w as usize * h as usize];
+        let tw = tile.width as usize;
+        let mut mask = vec![false; tile.pixels()];
+        // The tile's first and last column and row, in the image.
+        let (tx0, ty0) = (f64::from(tile.x), f64::from(tile.y));
+        let tx1 = f64::from(tile.x + tile.width) - 1.0;
+        let ty1 = f64::from(tile.y + tile.height) - 1.0;
         let project = |p: [f64; 3]| -> Option<[f64; 2]> {
             let d = sub(p, camera.position_m);
             let z = dot(d, camera.forward);
@@ -193,7 +205,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             }
             let lo = |k: usize| (a[k].min(b[k]).min(c[k]) - 1.0).floor().max(0.0);
             let hi = |k: usize, size: f64| (a[k].max(b[k]).max(c[k]) + 1.0).ceil().min(size - 1.0);
-            let (x0, x1, y0, y1) = (lo(0), hi(0, wf), lo(1), hi(1, hf));
+            let (x0, x1) = (lo(0).max(tx0), hi(0, wf).min(tx1));
+            let (y0, y1) = (lo(1).max(ty0), hi(1, hf).min(ty1));
             if x0 > x1 || y0 > y1 {
                 return;
             }
@@ -201,7 +214,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 for x in x0 as u32..=x1 as u32 {
                     let centre = [f64::from(x) + 0.5, f64::from(y) + 0.5];
                     if distance_to_triangle(centre, [a, b, c]) <= 1.0 {
-                        mask[(y * w + x) as usize] = true;
+                        mask[(y - tile.y) as usize * tw + (x - tile.x) as usize] = true;
                     }
                 }
             }

@@ -737,9 +737,12 @@ impl<'a> Ctx<'a> {
 /// What every ray of one frame shares, computed once per frame rather than per ray.
 pub(crate) struct FrameConsts<'a> {
     camera: &'a Camera,
-    /// Image-plane u of each column's centre.
+    /// The pixels whose centre rays [`Tracer::pixel`] may be asked for: a tile and its
+    /// margin, so that a tile of a very wide or tall image holds tables of its own size.
+    window: Tile,
+    /// Image-plane u of the centre of each of the window's columns, from its first.
     us: Vec<f64>,
-    /// Image-plane v of each row's centre.
+    /// Image-plane v of the centre of each of the window's rows, from its first.
     vs: Vec<f64>,
     /// The sensor in local coordinates.
     pub(crate) origin: V3,
@@ -1002,18 +1005,28 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         self.bands.len()
     }
 
-    fn frame_consts<'a>(&self, camera: &'a Camera) -> FrameConsts<'a> {
-        self.frame_consts_with(camera, self.path_terms == PathTermsMode::Tabulated)
+    fn frame_consts<'a>(&self, camera: &'a Camera, window: Tile) -> FrameConsts<'a> {
+        self.frame_consts_with(camera, self.path_terms == PathTermsMode::Tabulated, window)
     }
 
-    /// What a frame's rays share, with this tracer's path-term table when `table`.
-    pub(crate) fn frame_consts_with<'a>(&self, camera: &'a Camera, table: bool) -> FrameConsts<'a> {
-        let [w, h] = camera.pixels;
+    /// What a frame's rays share, with this tracer's path-term table when `table`, for
+    /// the centre rays of the pixels of `window` (a rectangle of the image).
+    pub(crate) fn frame_consts_with<'a>(
+        &self,
+        camera: &'a Camera,
+        table: bool,
+        window: Tile,
+    ) -> FrameConsts<'a> {
         let sensor_alt = camera.position_m[2].max(0.0);
+        let (columns, rows) = (
+            window.x..window.x + window.width,
+            window.y..window.y + window.height,
+        );
         FrameConsts {
             camera,
-            us: (0..w).map(|c| camera.u_at(f64::from(c) + 0.5)).collect(),
-            vs: (0..h).map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
+            window,
+            us: columns.map(|c| camera.u_at(f64::from(c) + 0.5)).collect(),
+            vs: rows.map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
             cos_critical_nadir: self.bands.bands[0]
@@ -1144,8 +1157,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// supersampling compares the tile's pixels with their neighbours' centre rays over a
     /// one-pixel margin, so every pixel is bit for bit the whole frame's. The frame returned
     /// is the tile's: `tile.width × tile.height`, row 0 the tile's top row. What it holds
-    /// beyond its pixels: the camera's per-column and per-row directions and, with adaptive
-    /// supersampling, the centre radiance of the margin.
+    /// beyond its pixels is of the tile's size too, never the image's: the camera's
+    /// per-column and per-row directions over the tile's columns and rows and its margin,
+    /// and, with adaptive supersampling or refinement, the centre rays of the margin.
     ///
     /// # Errors
     /// The options are out of range, or the tile is empty or reaches beyond the image.
@@ -1160,7 +1174,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let [w, h] = camera.pixels;
         tile.check(w, h)
             .map_err(|e| TraceError::new(TraceErrorKind::InvalidTile(e)))?;
-        let fc = self.frame_consts(camera);
+        // Every pixel a tile traces lies in it or in its one-pixel margin.
+        let fc = self.frame_consts(camera, tile.grown(1, w, h));
         if let Some(refinement) = self.refinement {
             if options.supersampling != 1 || options.adaptive_threshold_k.is_some() {
                 return Err(TraceError::new(TraceErrorKind::InvalidOptions(
@@ -1267,7 +1282,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
             .collect();
         let contrast = contrast_of(&calm, halo.width as usize, halo.height as usize);
-        let thin = self.thin_pixels(camera);
+        let thin = self.thin_pixels_in(camera, tile);
         // What a thin facet, which no centre may have seen, could hide: the same for a tile
         // as for its frame.
         let thin_contrast_k = self.contrast_bound_k();
@@ -1285,7 +1300,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 for (c, (l_out, s_out)) in rad.iter_mut().zip(smp.iter_mut()).enumerate() {
                     let col = tile.x + c as u32;
                     let at = (r + dy) * hw + c + dx;
-                    let is_thin = thin[(row * w + col) as usize];
+                    let is_thin = thin[r * tw + c];
                     if contrast[at] > refinement.edge_k || is_thin {
                         let start = if is_thin {
                             refinement.thin_side
@@ -1426,7 +1441,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut s = Sample::miss(Event::Sky);
         let mut path = Path::default();
         self.pixel::<true>(
-            &self.frame_consts(camera),
+            &self.frame_consts(
+                camera,
+                Tile {
+                    x: column,
+                    y: row,
+                    width: 1,
+                    height: 1,
+                },
+            ),
             options,
             column,
             row,
@@ -1454,8 +1477,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             options,
             u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
         );
-        // Bit for bit `camera.pixel_direction(col, row)`, without its divisions.
-        let dir = camera.direction_uv(fc.us[col as usize], fc.vs[row as usize]);
+        // Bit for bit `camera.pixel_direction(col, row)`, without its divisions; the pixel
+        // lies in the window (`frame_consts`'s callers make it so).
+        let dir = camera.direction_uv(
+            fc.us[(col - fc.window.x) as usize],
+            fc.vs[(row - fc.window.y) as usize],
+        );
         self.follow(fc, dir, &mut ctx, path);
         let centre_radiance = self.radiance::<TRUTH>(fc, path, centre);
         let n = options.supersampling;

@@ -112,6 +112,38 @@ fn a_pole_thinner_than_a_pixel_between_the_centre_rays_is_found_and_measured() {
             "row {row}: {l} against {expected}, {error} K, {s:?}"
         );
     }
+    // A tile finds the pole's thin pixels among its own, as the frame does: column 10 in
+    // a tile that starts beside it, and in one that starts on it.
+    for tile in [
+        Tile {
+            x: 9,
+            y: 3,
+            width: 3,
+            height: 4,
+        },
+        Tile {
+            x: 10,
+            y: 0,
+            width: 11,
+            height: 11,
+        },
+    ] {
+        let part = tracer
+            .render_tile(&camera, &TraceOptions::default(), tile, &|_| {})
+            .unwrap();
+        for r in 0..tile.height {
+            for c in 0..tile.width {
+                let i = at(tile.x + c, tile.y + r);
+                let j = (r * tile.width + c) as usize;
+                assert_eq!(
+                    part.radiance_w_m2_sr[j].to_bits(),
+                    frame.radiance_w_m2_sr[i].to_bits(),
+                    "{tile} ({c}, {r})"
+                );
+                assert_eq!(part.sampling[j], frame.sampling[i], "{tile} ({c}, {r})");
+            }
+        }
+    }
 }
 
 #[test]

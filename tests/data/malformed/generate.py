@@ -902,7 +902,13 @@ folder(
         ("model-twice.ron", edit(DECISION, "model: r#sky-view", "model: bounces"), "bounces", "a model chosen twice"),
         ("pinned-word.ron", edit(DECISION, "pinned: false", 'pinned: "no"'), "pinned", "`pinned` a string"),
         ("bounces-huge.ron", edit(DECISION, 'setting: "1", reference: "1", pinned: false,\n      error: (percentile_k: 0.0, max_k: 0.0), relative_cost: 1.0, reason: "cheapest"),\n    (model: r#sky-view', 'setting: "4000000000", reference: "1", pinned: false,\n      error: (percentile_k: 0.0, max_k: 0.0), relative_cost: 1.0, reason: "cheapest"),\n    (model: r#sky-view'), "", "4,000,000,000 bounces"),
-        ("supersampling-huge.ron", edit(DECISION, '(model: supersampling, setting: "1"', '(model: supersampling, setting: "100000"'), "", "100,000 × 100,000 rays per pixel"),
+        # The settings of the entries after `r#sky-view` (line 9), at their own line and
+        # column: 11:37, 13:36, 15:35 (finding 14: they were reported at `choices`, 4:12).
+        ("supersampling-huge.ron", edit(DECISION, '(model: supersampling, setting: "1"', '(model: supersampling, setting: "100000"'), "supersampling-huge.ron:11:37", "100,000 × 100,000 rays per pixel"),
+        ("supersampling-word.ron", edit(DECISION, '(model: supersampling, setting: "1"', '(model: supersampling, setting: "two"'), "supersampling-word.ron:11:37", "supersampling `two`, at its entry's setting (finding 14)"),
+        ("supersampling-refine-no-record.ron", edit(DECISION, '(model: supersampling, setting: "1"', '(model: supersampling, setting: "refine-8"'), "supersampling-refine-no-record.ron:11:37", "supersampling `refine-8` without the `sampling` record it needs, at its entry's setting (finding 14)"),
+        ("path-terms-unknown.ron", edit(DECISION, '(model: r#path-terms, setting: "exact"', '(model: r#path-terms, setting: "exakt"'), "path-terms-unknown.ron:13:36", "path terms `exakt`, at its entry's setting (finding 14)"),
+        ("sub-bands-word.ron", edit(DECISION, '(model: r#sub-bands, setting: "1"', '(model: r#sub-bands, setting: "two"'), "sub-bands-word.ron:15:35", "sub-bands `two`, at its entry's setting (finding 14)"),
         ("error-negative.ron", edit(DECISION, "predicted: (percentile_k: 0.12", "predicted: (percentile_k: -0.12"), "", "a negative error"),
     ],
 )

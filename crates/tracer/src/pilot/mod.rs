@@ -47,6 +47,7 @@ use crate::error::{TraceError, TraceErrorKind};
 use crate::path::{Diffuse, Escape, HemiRay, Mirror, Path};
 use crate::path_table::PathTermsMode;
 use crate::refine::Refinement;
+use crate::tile::Tile;
 use crate::tracer::{BandSet, EDGE_SIDE, TraceOptions, Tracer};
 use choose::{Combo, Counts};
 use classes::Census;
@@ -296,7 +297,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         {
             return Err(bad("every model needs at least one setting".into()));
         }
-        let fc = self.frame_consts_with(camera, false);
+        let fc = self.frame_consts_with(
+            camera,
+            false,
+            Tile::whole(camera.pixels[0], camera.pixels[1]),
+        );
         let table = space
             .path_terms
             .contains(&PathTermsMode::Tabulated)
