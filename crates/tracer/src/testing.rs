@@ -810,3 +810,42 @@ fn f32_local(p: V3, centre_m: V3) -> glam::Vec3A {
         (p[2] - centre_m[2]) as f32,
     )
 }
+
+/// The pilot's space for a whole-spectrum tracer under a uniform `sky`: no atmosphere, the
+/// band model, the tool's offer of bounces (8, 4, 2, 1, 0), sky-view rays (256, 64, 16, 0)
+/// and refinement, exact path terms.
+///
+/// # Panics
+/// If the tracer refuses the band set (it cannot: one sub-band, no emissivity table).
+#[must_use]
+pub fn vacuum_pilot_space(
+    tracer: &Tracer<TotalRadiance, Vacuum>,
+    sky: Vacuum,
+) -> crate::pilot::PilotSpace<Vacuum> {
+    use crate::pilot::{BandChoice, PilotSpace, REFINE_MAX_SIDE, Supersample};
+    use irsig_atmosphere::{ModelKind, SubBandCount};
+    let set = tracer
+        .band_set(vec![crate::SubBand {
+            band: TotalRadiance,
+            atmosphere: sky,
+            emissivity: None,
+        }])
+        .expect("one sub-band without emissivity tables");
+    PilotSpace {
+        bands: vec![BandChoice {
+            atmosphere: ModelKind::None,
+            sub_bands: SubBandCount::BAND,
+            set,
+            path_call_ns: 5.0,
+            sky_ns: 0.0,
+        }],
+        atmospheres: vec![ModelKind::None],
+        sub_bands: vec![SubBandCount::BAND],
+        bounces: vec![8, 4, 2, 1, 0],
+        sky_view_rays: vec![256, 64, 16, 0],
+        supersampling: vec![Supersample::Refine(REFINE_MAX_SIDE)],
+        path_terms: vec![crate::PathTermsMode::Exact],
+        reasons: Vec::new(),
+        pinned: Vec::new(),
+    }
+}

@@ -1140,14 +1140,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
             .collect();
         let (w, h) = (frame.width as usize, frame.height as usize);
-        (0..w * h)
-            .into_par_iter()
-            .map(|i| {
-                let (col, row) = (i % w, i / w);
-                let rows = row.saturating_sub(1)..(row + 2).min(h);
-                rows.flat_map(|r| (col.saturating_sub(1)..(col + 2).min(w)).map(move |c| r * w + c))
-                    .any(|j| (t[i] - t[j]).abs() > threshold_k)
-            })
+        contrast_of(&t, w, h)
+            .into_iter()
+            .map(|c| c > threshold_k)
             .collect()
     }
 

@@ -19,12 +19,11 @@
 //! `IRSIG_GUARANTEE_DEBUG=1` adds every pixel off by more than a quarter of the
 //! tolerance); CI runs scene 0's low view and scene 1's mast view at 0.5 K.
 
-use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::View;
 use irsig_radiometry::{BandModel, TotalRadiance};
-use irsig_tracer::pilot::{BandChoice, PilotSpace, REFINE_MAX_SIDE, Supersample};
-use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Camera, Frame, PathTermsMode, SubBand, Tile, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::pilot::PilotSpace;
+use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene, vacuum_pilot_space};
+use irsig_tracer::{Camera, Frame, Tile, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -103,30 +102,7 @@ fn generated(seed: u64, view: usize) -> (Tracer<TotalRadiance, Vacuum>, Camera) 
 }
 
 fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
-    let set = tracer
-        .band_set(vec![SubBand {
-            band: TotalRadiance,
-            atmosphere: SKY,
-            emissivity: None,
-        }])
-        .unwrap();
-    PilotSpace {
-        bands: vec![BandChoice {
-            atmosphere: ModelKind::None,
-            sub_bands: SubBandCount::BAND,
-            set,
-            path_call_ns: 5.0,
-            sky_ns: 0.0,
-        }],
-        atmospheres: vec![ModelKind::None],
-        sub_bands: vec![SubBandCount::BAND],
-        bounces: vec![8, 4, 2, 1, 0],
-        sky_view_rays: vec![256, 64, 16, 0],
-        supersampling: vec![Supersample::Refine(REFINE_MAX_SIDE)],
-        path_terms: vec![PathTermsMode::Exact],
-        reasons: Vec::new(),
-        pinned: Vec::new(),
-    }
+    vacuum_pilot_space(tracer, SKY)
 }
 
 fn temperatures(frame: &Frame) -> Vec<f64> {

@@ -4,13 +4,12 @@
 //! its 5 % reflectance; the wall's outline is a 100 K edge), a small mirror that reflects
 //! the wall, and a wire thinner than a pixel.
 
-use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::View;
 use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
-use irsig_tracer::pilot::{BandChoice, PilotSpace, REFINE_MAX_SIDE, Supersample};
-use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Camera, PathTermsMode, SubBand, TraceErrorKind, Tracer, Vacuum};
+use irsig_tracer::pilot::{PilotSpace, REFINE_MAX_SIDE, Supersample};
+use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene, vacuum_pilot_space};
+use irsig_tracer::{Camera, TraceErrorKind, Tracer, Vacuum};
 
 const SKY: Vacuum = Vacuum {
     sky_radiance_w_m2_sr: 20.0,
@@ -55,30 +54,7 @@ fn camera() -> Camera {
 }
 
 fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
-    let set = tracer
-        .band_set(vec![SubBand {
-            band: TotalRadiance,
-            atmosphere: SKY,
-            emissivity: None,
-        }])
-        .unwrap();
-    PilotSpace {
-        bands: vec![BandChoice {
-            atmosphere: ModelKind::None,
-            sub_bands: SubBandCount::BAND,
-            set,
-            path_call_ns: 5.0,
-            sky_ns: 0.0,
-        }],
-        atmospheres: vec![ModelKind::None],
-        sub_bands: vec![SubBandCount::BAND],
-        bounces: vec![8, 4, 2, 1, 0],
-        sky_view_rays: vec![256, 64, 16, 0],
-        supersampling: vec![Supersample::Refine(REFINE_MAX_SIDE)],
-        path_terms: vec![PathTermsMode::Exact],
-        reasons: Vec::new(),
-        pinned: Vec::new(),
-    }
+    vacuum_pilot_space(tracer, SKY)
 }
 
 #[test]
