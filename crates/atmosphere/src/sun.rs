@@ -656,6 +656,49 @@ mod tests {
     }
 
     #[test]
+    #[ignore = "prints the almanac table of docs/accuracy.md; run with --ignored --nocapture"]
+    #[allow(clippy::print_stderr)]
+    fn almanac_table() {
+        let rows = [
+            (
+                "2026-06-21T08:24:00Z",
+                43.08,
+                true,
+                43.08 - OBLIQUITY_2026_DEG,
+            ),
+            ("2026-06-21T08:24:00Z", OBLIQUITY_2026_DEG, true, 0.0),
+            (
+                "2026-06-21T08:24:00Z",
+                -33.87,
+                true,
+                33.87 + OBLIQUITY_2026_DEG,
+            ),
+            (
+                "2026-06-21T08:24:00Z",
+                43.08,
+                false,
+                180.0 - 43.08 - OBLIQUITY_2026_DEG,
+            ),
+            (
+                "2026-12-21T20:50:00Z",
+                43.08,
+                true,
+                43.08 + OBLIQUITY_2026_DEG,
+            ),
+            ("2026-03-20T14:46:00Z", 43.08, true, 43.08),
+            ("2026-03-20T14:46:00Z", 0.0, true, 0.0),
+        ];
+        for (utc, latitude, upper, almanac) in rows {
+            let (z, _) = culmination(utc, latitude, upper);
+            let parallax = 8.8 / 3600.0 * z.to_radians().sin();
+            eprintln!(
+                "| {utc} | {latitude}° | {almanac:.4} | {z:.4} | {:+.4} | {parallax:.4} |",
+                z - almanac
+            );
+        }
+    }
+
+    #[test]
     fn the_default_delta_t_is_the_estimate() {
         // ΔT was 69.1 s in 2026 (IERS Bulletin A: TT − UTC = 69.184 s, UT1 − UTC ≈ 0);
         // the sun's ecliptic longitude moves 0.041° an hour, so a few seconds of ΔT are
