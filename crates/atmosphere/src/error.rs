@@ -55,6 +55,16 @@ pub enum AtmosphereErrorKind {
     /// An atmosphere build's plan that cannot be made or assembled.
     #[error("{0}")]
     Plan(String),
+    /// A sun's position that cannot be computed: a field out of its range or not a
+    /// number, a time that does not parse or that SPA does not cover, no ΔT for its year.
+    #[error("sun `{field}`: {message}")]
+    Sun {
+        /// The field of [`crate::sun::SunSpec`] (`latitude_deg`, `utc`,
+        /// `refraction.pressure_hpa`, …); a command line spells it as a flag.
+        field: &'static str,
+        /// What is wrong, with the accepted range and the value found.
+        message: String,
+    },
     /// A built-in atmosphere failed to decode (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {

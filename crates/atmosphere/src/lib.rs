@@ -15,6 +15,10 @@
 //! `docs/accuracy.md` measures each against LOWTRAN7's own slant paths; `table` is the
 //! accurate default where the atmosphere has slant tables (the built-ins do).
 //!
+//! The sun is part of the sky: [`sun`] gives its position from a UTC time and a place
+//! (NREL's SPA, ±0.0003°) or from a given direction, as angles and as a unit vector in the
+//! scene frame (its altitudes are above sea level, not above the tables' ground).
+//!
 //! Conventions: altitudes in metres above the ground of the tables (scene z = 0), ranges in
 //! metres, angles in degrees (nadir angle 0 = straight down, zenith angle 0 = straight up),
 //! radiance in W m⁻² sr⁻¹. The Earth is flat for paths (plane-parallel layers, as the
@@ -48,6 +52,7 @@ pub mod plan;
 mod precomputed;
 mod sky;
 mod spectral;
+pub mod sun;
 mod table;
 mod thesis;
 

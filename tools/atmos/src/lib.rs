@@ -3,8 +3,9 @@
 //! - `convert` ([`convert`]): legacy DIRTRAN tables (`.atm .cor .dwr .rtt .rsd`) to and
 //!   from the canonical atmosphere file, units stated, every table validated.
 //! - Calculators a user decides a scene's models with (band radiance, apparent
-//!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors).
-//!   Each prints a plain aligned table by default, or `--format csv` / `--format ron`.
+//!   temperature, `.rtt` tables, thesis Appendix A bounces and Appendix B shape factors,
+//!   the sun's position by NREL's SPA). Each prints a plain aligned table by default,
+//!   or `--format csv` / `--format ron`.
 //!
 //! Material files (the 1990 index and its `.ems` tables, Fresnel emissivity) are
 //! `irsig-material`'s.
@@ -24,6 +25,7 @@
 //! irsig-atmos bounces --target-temperature 260:400:10 --max 4
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
+//! irsig-atmos sun --utc 2026-06-21T12:00:00Z --latitude-deg 43.08 --longitude-deg -77.67
 //! ```
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
@@ -40,6 +42,7 @@ pub mod plan;
 mod radiance;
 mod rtt;
 mod shape_factor;
+mod sun;
 mod temperature;
 
 /// Atmosphere tables, and band radiance calculators (8–14 µm unless `--band` says
@@ -58,6 +61,8 @@ mod temperature;
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
       --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
+  irsig-atmos sun --utc 2026-06-21T12:00:00Z --latitude-deg 43.08 \\
+      --longitude-deg -77.67 --altitude-m 170
 
 Material libraries (the 1990 index and .ems tables, Fresnel emissivity): irsig-material."
 )]
@@ -82,6 +87,9 @@ pub enum Command {
     Bounces(bounces::Args),
     /// Apparent temperature of a diffuse object against shape factor (thesis Appendix B).
     ShapeFactor(shape_factor::Args),
+    /// The sun's zenith, azimuth (degrees) and scene-frame direction at a UTC time and
+    /// place (NREL's SPA, ±0.0003°).
+    Sun(sun::Args),
     /// The radiative-transfer paths a scene needs: a plan and one LOWTRAN7 card deck per
     /// path.
     Plan(plan::PlanArgs),
@@ -94,7 +102,8 @@ pub enum Command {
 ///
 /// # Errors
 /// Bad input (exit 1): a malformed table or SRF file, a bad value (negative temperature,
-/// emissivity outside 0–1, malformed list or range); or bad usage (exit 2).
+/// emissivity outside 0–1, malformed list or range, a latitude or time out of range); or
+/// bad usage (exit 2).
 pub fn run(cli: Cli) -> miette::Result<()> {
     match cli.command {
         Command::Convert(args) => convert::run(&args),
@@ -103,6 +112,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Command::Rtt(a) => rtt::run(&a),
         Command::Bounces(a) => bounces::run(&a),
         Command::ShapeFactor(a) => shape_factor::run(&a),
+        Command::Sun(a) => sun::run(&a),
         Command::Plan(a) => plan::run(&a),
         Command::Build(a) => build::run(&a),
     }
