@@ -527,6 +527,76 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
 }
 
 #[test]
+fn legacy_facet_file_with_4_vertex_facets_imports_as_triangles() {
+    // formats/legacy/samples/quads.fac, in km: a unit square, a trapezoid at 300.5 K,
+    // a tilted 10 m square and a triangle; the three 4-vertex facets become two
+    // triangles each, 7 in all, each half with its facet's material and temperature.
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("lib.ron"), LIBRARY_6).unwrap();
+    let out = bin("irsig-import")
+        .args([
+            "formats/legacy/samples/quads.fac",
+            "--unit",
+            "km",
+            "--ron",
+            "--materials",
+        ])
+        .arg(dir.path().join("lib.ron"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let object: irsig_model::Object =
+        irsig_formats::canonical::read_object("quads", &out.stdout).unwrap();
+    assert_eq!(object.facets.len(), 7);
+    assert_eq!(object.positions_m.len(), 4 + 4 + 4 + 3);
+    assert!(object.facets.iter().all(|f| f.material.0 == 6));
+    let temperatures: Vec<Option<f64>> = object.facets.iter().map(|f| f.temperature_k).collect();
+    assert_eq!(
+        temperatures,
+        [None, None, Some(300.5), Some(300.5), None, None, None]
+    );
+    // The trapezoid (6,0) (4,1) (2,1) (2,0) km, vertices 4 to 7: cut along its shorter
+    // diagonal v2–v4 into (v1 v2 v4) and (v2 v3 v4).
+    assert_eq!(object.facets[2].vertices, [4, 5, 7]);
+    assert_eq!(object.facets[3].vertices, [5, 6, 7]);
+    // Twice the area, along the normal, of each triangle, in km².
+    let doubled = |i: usize| {
+        let [a, b, c] = object.facets[i]
+            .vertices
+            .map(|v| object.positions_m[v as usize]);
+        let (u, w) = (
+            [0, 1, 2].map(|k| b[k] - a[k]),
+            [0, 1, 2].map(|k| c[k] - a[k]),
+        );
+        [
+            u[1] * w[2] - u[2] * w[1],
+            u[2] * w[0] - u[0] * w[2],
+            u[0] * w[1] - u[1] * w[0],
+        ]
+        .map(|x| x / 1e6)
+    };
+    // The square's halves 1/2 + 1/2 km², the trapezoid's 2 + 1 (its area (4 + 2) / 2 ×
+    // 1), all facing +z as the facets do.
+    let halves: Vec<[f64; 3]> = (0..4).map(doubled).collect();
+    let want = [
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 1.0],
+        [0.0, 0.0, 4.0],
+        [0.0, 0.0, 2.0],
+    ];
+    for (h, w) in halves.iter().zip(want) {
+        assert!((0..3).all(|k| (h[k] - w[k]).abs() < 1e-9), "{halves:?}");
+    }
+    // The triangle (0,0,0) (0,0,1) (1,0,0) faces +y, 1/2 km².
+    let t = doubled(6);
+    assert!(
+        (t[1] - 1.0).abs() < 1e-9 && t[0].abs() < 1e-12 && t[2].abs() < 1e-12,
+        "{t:?}"
+    );
+}
+
+#[test]
 fn import_writes_binary_into_pipes_and_bin_files_and_ron_to_redirections() {
     let dir = tempfile::tempdir().unwrap();
     let root = repo_root();

@@ -92,6 +92,7 @@ static FAC: LazyLock<Vec<u8>> = LazyLock::new(|| {
                 vertices: f
                     .vertices
                     .map(|v| SPHERE.positions_m[v as usize].map(round)),
+                fourth_vertex: None,
                 position: Default::default(),
             })
             .collect(),

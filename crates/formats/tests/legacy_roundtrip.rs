@@ -33,9 +33,75 @@ fn facet() -> impl Strategy<Value = object::LegacyFacet> {
             material_index,
             temperature_k,
             vertices,
+            fourth_vertex: None,
             position: Position::default(),
         },
     )
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+/// A planar, convex 4-vertex facet: from a corner `p`, along edge directions `u` and `v`
+/// (at least 30° apart), the corners (0, 0), (a, 0), (b, c), (0, d) of the `u`, `v`
+/// frame, in either winding. The first, second and fourth corners are convex for any
+/// positive a, b, c, d; the third is when it lies beyond the diagonal from (a, 0) to
+/// (0, d), that is when b / a + c / d > 1 (asked with a margin).
+fn quad() -> impl Strategy<Value = object::LegacyFacet> {
+    let coord = || -1e3..1e3f64;
+    let edge = || -10.0..10.0f64;
+    let k = || 0.5..2.0f64;
+    (
+        (1u16.., temperature()),
+        [coord(), coord(), coord()],
+        [edge(), edge(), edge()],
+        [edge(), edge(), edge()],
+        [k(), k(), k(), k()],
+        any::<bool>(),
+    )
+        .prop_filter(
+            "edges long and apart, third corner convex",
+            |(_, _, u, v, [a, b, c, d], _)| {
+                norm(*u) > 0.1
+                    && norm(*v) > 0.1
+                    && norm(cross(*u, *v)) > 0.5 * norm(*u) * norm(*v)
+                    && b / a + c / d > 1.2
+            },
+        )
+        .prop_map(
+            |((material_index, temperature_k), p, u, v, [a, b, c, d], reverse)| {
+                let at = |s: f64, t: f64| [0, 1, 2].map(|i| p[i] + s * u[i] + t * v[i]);
+                let mut corners = [at(0.0, 0.0), at(a, 0.0), at(b, c), at(0.0, d)];
+                if reverse {
+                    corners.reverse();
+                }
+                let [v1, v2, v3, v4] = corners;
+                object::LegacyFacet {
+                    material_index,
+                    temperature_k,
+                    vertices: [v1, v2, v3],
+                    fourth_vertex: Some(v4),
+                    position: Position::default(),
+                }
+            },
+        )
 }
 
 fn entry() -> impl Strategy<Value = scene::SceneEntry> {
@@ -74,6 +140,56 @@ proptest! {
             prop_assert_eq!(a.temperature_k.map(f64::to_bits), b.temperature_k.map(f64::to_bits));
             prop_assert_eq!(bits(a.vertices.as_flattened()), bits(b.vertices.as_flattened()));
         }
+    }
+
+    #[test]
+    fn object_files_with_quads_round_trip(
+        facets in proptest::collection::vec(prop_oneof![facet(), quad()], 1..20),
+    ) {
+        let file = object::ObjectFile { facets, count_position: Position::default() };
+        let text = object::write(&file).unwrap();
+        let back = object::parse("rt.fac", &text).unwrap();
+        prop_assert_eq!(back.facets.len(), file.facets.len());
+        for (a, b) in file.facets.iter().zip(&back.facets) {
+            prop_assert_eq!(bits(a.vertices.as_flattened()), bits(b.vertices.as_flattened()));
+            prop_assert_eq!(
+                a.fourth_vertex.map(|v| bits(&v)),
+                b.fourth_vertex.map(|v| bits(&v))
+            );
+        }
+    }
+
+    /// Both halves of a 4-vertex facet face the way the facet does (the 1990 normal
+    /// (v2 − v1) × (v3 − v1)), and their areas add up to the facet's, half the length of
+    /// the cross product of its diagonals.
+    #[test]
+    fn quads_split_into_two_halves_of_their_normal_and_area(f in quad()) {
+        prop_assert!(f.check_quad().is_ok(), "{:?}", f.check_quad());
+        let corners: Vec<[f64; 3]> = f.corners().collect();
+        let [v1, v2, v3] = f.vertices;
+        let v4 = corners[3];
+        let facet_normal = cross(sub(v2, v1), sub(v3, v1));
+        let area = norm(cross(sub(v3, v1), sub(v4, v2))) / 2.0;
+        let mut halves = 0.0;
+        prop_assert_eq!(f.triangles().len(), 2);
+        for t in f.triangles() {
+            let [a, b, c] = t.map(|k| corners[k]);
+            let n = cross(sub(b, a), sub(c, a));
+            // Same direction: the angle between them is below 1e-6 rad.
+            prop_assert!(dot(n, facet_normal) > 0.0);
+            prop_assert!(norm(cross(n, facet_normal)) < 1e-6 * norm(n) * norm(facet_normal));
+            halves += norm(n) / 2.0;
+        }
+        prop_assert!((halves - area).abs() < 1e-9 * area, "{} vs {}", halves, area);
+        // The cut is along the shorter diagonal.
+        let shared: Vec<usize> = f.triangles()[0]
+            .iter()
+            .copied()
+            .filter(|k| f.triangles()[1].contains(k))
+            .collect();
+        let cut = norm(sub(corners[shared[1]], corners[shared[0]]));
+        let other = if shared == [0, 2] { norm(sub(v4, v2)) } else { norm(sub(v3, v1)) };
+        prop_assert!(cut <= other);
     }
 
     #[test]

@@ -41,6 +41,40 @@ fn thesis_object_sample() {
 }
 
 #[test]
+fn quads_object_sample() {
+    let (name, text) = sample("quads.fac");
+    let obj = object::parse(&name, &text).unwrap();
+    // Four facets: three of them 4-vertex facets, each counted once.
+    assert_eq!(obj.facets.len(), 4);
+    let quads: Vec<bool> = obj
+        .facets
+        .iter()
+        .map(|f| f.fourth_vertex.is_some())
+        .collect();
+    assert_eq!(quads, [true, true, true, false]);
+    // The unit square: equal diagonals, cut along v1–v3.
+    assert_eq!(obj.facets[0].fourth_vertex, Some([0.0, 1.0, 0.0]));
+    assert_eq!(obj.facets[0].triangles(), [[0, 1, 2], [0, 2, 3]]);
+    // The trapezoid (6,0) (4,1) (2,1) (2,0): v1–v3 = (−4, 1) is longer than v2–v4 =
+    // (−2, −1), so the cut is v2–v4. It carries 300.5 K, on line 9.
+    assert_eq!(obj.facets[1].triangles(), [[0, 1, 3], [1, 2, 3]]);
+    assert_eq!(obj.facets[1].temperature_k, Some(300.5));
+    assert_eq!(obj.facets[1].position, Position { line: 9, column: 1 });
+    // The 10 m square in the plane z = (x − 8 + y) / 3, its z rounded to six decimals:
+    // accepted (see `object::quad_tolerance`).
+    assert_eq!(obj.facets[2].vertices[2], [8.01, 0.01, 0.006_667]);
+    assert_eq!(obj.facets[2].fourth_vertex, Some([8.0, 0.01, 0.003_333]));
+    assert_eq!(obj.facets[3].triangles(), [[0, 1, 2]]);
+    assert_eq!(
+        obj.facets[3].position,
+        Position {
+            line: 21,
+            column: 1
+        }
+    );
+}
+
+#[test]
 fn scene_sample() {
     let (name, text) = sample("two-patches.scn");
     let s = scene::parse(&name, &text).unwrap();

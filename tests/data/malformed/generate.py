@@ -78,6 +78,10 @@ folder(
         ("temperature-zero.fac", edit(FAC, "2 300.5", "2 0"), "temperature", "a temperature of 0 K"),
         ("extra-value.fac", edit(FAC, "1 0 0\n", "1 0 0 7\n"), "", "four values on a vertex line"),
         ("non-utf8.fac", edit(FAC, "2\n1\n", "2\n1 # caf\xe9\n").encode("latin-1"), "UTF-8", "a Latin-1 byte in a comment"),
+        ("quad-bent.fac", edit(FAC, "1 0 0\n0 1 0\n\n", "1 0 0\n1 1 0\n0 1 0.5\n\n"), "planar", "a 4-vertex facet (irsig extension) bent: its fourth vertex 0.5 off the plane"),
+        ("quad-dart.fac", edit(FAC, "1 0 0\n0 1 0\n\n", "3 1 0\n0 2 0\n1 1 0\n\n"), "convex", "a 4-vertex facet with a reflex corner (a dart)"),
+        ("quad-bow-tie.fac", edit(FAC, "1 0 0\n0 1 0\n\n", "2 1 0\n2 0 0\n0 2 0\n\n"), "convex", "a 4-vertex facet whose edges cross (a bow-tie)"),
+        ("quad-truncated.fac", edit(FAC, "1 0 0\n0 1 0\n\n", "1 0 0\n1 1 0\n0.5 1.0\n\n"), "vertex 4 of facet 1", "a fourth vertex line with two numbers"),
         ("all-degenerate.fac", edit(edit(FAC, "0 1 0\n\n", "2 0 0\n\n"), "0 1 1\n", "2 0 1\n"), "", "every triangle has zero area: nothing is left"),
     ],
 )

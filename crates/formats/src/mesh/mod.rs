@@ -28,7 +28,10 @@
 //!   [`Mesh::y_up_to_z_up`] turns them into irsig's.
 //! - **Legacy facet files** ([`crate::legacy::object`]) become meshes too
 //!   ([`read_legacy_object`]): three vertices of their own per facet, the material index
-//!   kept as a number ([`MaterialUse::id`]), the optional facet temperature kept.
+//!   kept as a number ([`MaterialUse::id`]), the optional facet temperature kept. A
+//!   4-vertex facet (irsig extension) is split here, along its shorter diagonal, into two
+//!   triangles that share its four vertices and its material, temperature and line: from
+//!   the mesh on, the pipeline sees triangles only.
 
 mod gltf_read;
 mod json_path;
@@ -136,10 +139,15 @@ pub fn read_legacy_object(file: &str, bytes: &[u8]) -> Result<Mesh, ParseError> 
 }
 
 /// Converts a parsed legacy facet file into a [`Mesh`]: each facet keeps its own three
-/// vertices, its material index (as [`MaterialUse::id`]) and its temperature.
+/// vertices, its material index (as [`MaterialUse::id`]) and its temperature. A 4-vertex
+/// facet keeps its own four vertices and becomes the two triangles of
+/// [`crate::legacy::object::LegacyFacet::triangles`] (split along its shorter diagonal,
+/// wound as the facet), both located at the facet's line.
 ///
 /// # Errors
-/// More than 2^32 / 3 facets.
+/// More than 2^32 vertices or triangles, or a 4-vertex facet that is not planar and convex
+/// (the parser refuses those; an `ObjectFile` built in code is checked again here), at the
+/// facet's line.
 pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, ParseError> {
     let too_big = || ParseError::at_offset(file, "", 0, "too many facets for one object");
     let mut mesh = Mesh {
@@ -148,6 +156,17 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
     };
     let mut by_index = std::collections::HashMap::new();
     for (i, f) in object.facets.iter().enumerate() {
+        if let Err(e) = f.check_quad() {
+            let mut error = ParseError::at_offset(
+                file,
+                "",
+                0,
+                format!("facet {} (vertex {}): {e}", i + 1, e.vertex),
+            );
+            error.line = f.position.line;
+            error.column = f.position.column;
+            return Err(error);
+        }
         let material = *by_index.entry(f.material_index).or_insert_with(|| {
             mesh.materials.push(MaterialUse {
                 name: format!("material index {}", f.material_index),
@@ -162,14 +181,19 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
             u32::try_from(mesh.materials.len() - 1).unwrap_or(u32::MAX)
         });
         let base = u32::try_from(mesh.positions.len()).map_err(|_| too_big())?;
-        mesh.positions.extend(f.vertices);
-        mesh.triangles.push(Triangle {
-            vertices: [base, base + 1, base + 2],
-            material: Some(material),
-            temperature_k: f.temperature_k,
-        });
+        base.checked_add(3).ok_or_else(too_big)?;
+        let first_triangle = u32::try_from(mesh.triangles.len()).map_err(|_| too_big())?;
+        mesh.positions.extend(f.corners());
+        for corners in f.triangles() {
+            mesh.triangles.push(Triangle {
+                // `corners` are 0 to 3, and `base + 3` fits (checked above).
+                vertices: corners.map(|k| base + u32::try_from(k).unwrap_or(0)),
+                material: Some(material),
+                temperature_k: f.temperature_k,
+            });
+        }
         mesh.origins.push(Origin {
-            first_triangle: u32::try_from(i).map_err(|_| too_big())?,
+            first_triangle,
             line: u32::try_from(f.position.line).unwrap_or(u32::MAX),
             column: u32::try_from(f.position.column).unwrap_or(u32::MAX),
             part: None,
