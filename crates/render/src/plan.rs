@@ -21,6 +21,7 @@ use irsig_sensor_model::quantise::CountRequest;
 use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
 use miette::{WrapErr, miette};
+use rayon::prelude::*;
 
 use crate::air::{self, AirData, AtmosphereRequest};
 use crate::band::{BandRequest, Collapsed, Split, SubBandModel};
@@ -822,10 +823,10 @@ impl Plan {
                 // a few ms per sub-band (table model) and saves a slant integration per ray,
                 // so the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
                 // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its
-                // cost).
+                // cost). Sub-bands are precomputed in parallel; `collect` keeps their order.
                 let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
                     collapsed(count)?
-                        .iter()
+                        .par_iter()
                         .map(|(b, a)| {
                             let m = model(a, kind)?;
                             Ok(SubBand {
