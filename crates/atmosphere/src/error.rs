@@ -55,6 +55,10 @@ pub enum AtmosphereErrorKind {
     /// An atmosphere build's plan that cannot be made or assembled.
     #[error("{0}")]
     Plan(String),
+    /// Direct sunlight asked for in a way the `solar` table cannot answer (a direction
+    /// that is not one, a sun other than the table's).
+    #[error("{0}")]
+    Sun(String),
     /// A built-in atmosphere failed to decode (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {

@@ -47,6 +47,7 @@ pub mod legacy;
 pub mod plan;
 mod precomputed;
 mod sky;
+pub mod solar;
 mod spectral;
 mod table;
 mod thesis;
