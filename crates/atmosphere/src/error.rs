@@ -65,6 +65,10 @@ pub enum AtmosphereErrorKind {
         /// What is wrong, with the accepted range and the value found.
         message: String,
     },
+    /// Direct sunlight asked for in a way the `solar` table cannot answer (a direction
+    /// that is not one, a sun other than the table's).
+    #[error("{0}")]
+    Solar(String),
     /// A built-in atmosphere failed to decode (a bug in the shipped data).
     #[error("built-in atmosphere `{name}` is corrupt: {message}")]
     CorruptBuiltin {

@@ -51,6 +51,7 @@ pub mod legacy;
 pub mod plan;
 mod precomputed;
 mod sky;
+pub mod solar;
 mod spectral;
 pub mod sun;
 mod table;

@@ -12,7 +12,8 @@
 //! observers at 2 m–3 km plus every observer of the scene, nadir angles 0–88° up to the
 //! horizon of the highest observer, sky observers 0–10 km plus the scene's, the `.cor`
 //! fit at 1 km, the ground sky every 5°, and the hemispheric sky by 32-point
-//! Gauss–Legendre quadrature in cos θ.
+//! Gauss–Legendre quadrature in cos θ. A plan with a sun ([`add_sun`]) adds one direct
+//! solar irradiance run (IEMSCT = 3) per sky altitude, after every other path.
 
 use std::collections::BTreeMap;
 
@@ -21,8 +22,8 @@ use irsig_formats::radtran::tape5::{
     UserProfile,
 };
 use irsig_model::{
-    AtmospherePlan, CorrectionPaths, PlanModel, ProfileLevel, SpectralAtmosphere, SpectralAxis,
-    SpectralGrid, SpectralSlantTables,
+    AtmospherePlan, CorrectionPaths, PlanModel, PlanSun, ProfileLevel, SpectralAtmosphere,
+    SpectralAxis, SpectralGrid, SpectralSlantTables, SpectralSolar,
 };
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
@@ -169,7 +170,35 @@ pub fn make_plan(
         slant_nadir_deg: nadir,
         sky_altitude_m: sky,
         sky_zenith_deg: sky_zenith_deg(),
+        sun: None,
     })
+}
+
+/// Puts a sun at `zenith_deg` (rounded to the 0.001° a deck holds) on day `day_of_year` in
+/// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the ground,
+/// 300 m to 10 km and every observer; the sky table's rows, which the scattered sunlight
+/// of a later step shares). Linear in altitude between the 0 and 300 m rows, the 3–5 µm
+/// direct irradiance at 150 m is 6e-6 from LOWTRAN7's there, relative (US Standard 1976,
+/// sun at 30°; tests/tests/solar.rs).
+///
+/// # Errors
+/// A zenith angle that is not finite or not within 0 to below 90° (a sun at or below the
+/// horizon gives no direct light), or a day outside 1–366; the message names the value.
+pub fn add_sun(
+    plan: &mut AtmospherePlan,
+    zenith_deg: f64,
+    day_of_year: u16,
+) -> Result<(), AtmosphereError> {
+    let sun = PlanSun {
+        zenith_deg: round3(zenith_deg),
+        day_of_year,
+        altitude_m: plan.sky_altitude_m.clone(),
+    };
+    // The rounding may carry 89.9996 to 90: checked after it.
+    sun.validate()
+        .map_err(|e| AtmosphereError::from(AtmosphereErrorKind::Plan(e.kind.to_string())))?;
+    plan.sun = Some(sun);
+    Ok(())
 }
 
 /// One radiative-transfer path.
@@ -189,6 +218,16 @@ pub enum Path {
         /// Zenith angle, degrees.
         zenith_deg: f64,
     },
+    /// The sun's direct beam from the top of the atmosphere down to `altitude_m`, the sun
+    /// `zenith_deg` from straight up, on day `day_of_year` (a direct solar irradiance run).
+    Sun {
+        /// Altitude the beam reaches, metres.
+        altitude_m: f64,
+        /// The sun's zenith angle, degrees.
+        zenith_deg: f64,
+        /// Day of the year, 1–366.
+        day_of_year: u16,
+    },
 }
 
 type Key = (u8, i64, i64);
@@ -205,7 +244,21 @@ fn key(p: &Path) -> Key {
             altitude_m,
             zenith_deg,
         } => (1, q(altitude_m), q(zenith_deg)),
+        // After every thermal path: a plan's runs without a sun keep their numbers.
+        Path::Sun {
+            altitude_m,
+            zenith_deg,
+            ..
+        } => (2, q(altitude_m), q(zenith_deg)),
     }
+}
+
+fn sun_paths(sun: &PlanSun) -> impl Iterator<Item = Path> + '_ {
+    sun.altitude_m.iter().map(|&a| Path::Sun {
+        altitude_m: a,
+        zenith_deg: sun.zenith_deg,
+        day_of_year: sun.day_of_year,
+    })
 }
 
 fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
@@ -232,11 +285,14 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
     for &a in &plan.sky_altitude_m {
         out.extend(plan.sky_zenith_deg.iter().map(|&z| up(a, z)));
     }
+    if let Some(sun) = &plan.sun {
+        out.extend(sun_paths(sun));
+    }
     out
 }
 
 /// The plan's unique paths, in a fixed order (slant paths by altitude and angle, then sky
-/// paths): run `i` of a build is path `i`.
+/// paths, then the sun's by altitude): run `i` of a build is path `i`.
 #[must_use]
 pub fn paths(plan: &AtmospherePlan) -> Vec<Path> {
     let mut map: BTreeMap<Key, Path> = BTreeMap::new();
@@ -358,17 +414,20 @@ pub fn radiosonde_profile(
 
 /// The LOWTRAN7 card deck of one path: thermal radiance (IEMSCT = 1), no aerosol, no
 /// multiple scattering, the plan's spectral range; case 2A (ITYPE 2, H1, H2, ANGLE =
-/// 180 − nadir) down, case 3A (ITYPE 3, H1, ANGLE = zenith) up.
+/// 180 − nadir) down, case 3A (ITYPE 3, H1, ANGLE = zenith) up. The sun's paths are
+/// direct solar irradiance runs (IEMSCT = 3, ITYPE 3; card 3's alternate form: H1, ANGLE =
+/// the sun's zenith angle, IDAY, ISOURC = 0, the sun).
 ///
 /// # Errors
 /// As [`radiosonde_profile`].
 pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereError> {
-    let (itype, card3) = match *path {
+    let (itype, iemsct, card3) = match *path {
         Path::Down {
             altitude_m,
             nadir_deg,
         } => (
             2,
+            1,
             Card3::Path {
                 h1_km: round3(altitude_m / 1000.0),
                 h2_km: round3(plan.path_end_m / 1000.0),
@@ -384,6 +443,7 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
             zenith_deg,
         } => (
             3,
+            1,
             Card3::Path {
                 h1_km: round3(altitude_m / 1000.0),
                 h2_km: 0.0,
@@ -392,6 +452,23 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
                 beta_deg: 0.0,
                 ro_km: 0.0,
                 len: 0,
+            },
+        ),
+        Path::Sun {
+            altitude_m,
+            zenith_deg,
+            day_of_year,
+        } => (
+            3,
+            3,
+            Card3::DirectSolar {
+                h1_km: round3(altitude_m / 1000.0),
+                h2_km: 0.0,
+                angle_deg: round3(zenith_deg),
+                iday: i64::from(day_of_year),
+                ro_km: 0.0,
+                isourc: 0,
+                anglem_deg: 0.0,
             },
         ),
     };
@@ -406,6 +483,7 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
         }
     };
     cards.card1.mdef = i64::from(matches!(plan.model, PlanModel::Radiosonde(_)));
+    cards.card1.iemsct = iemsct;
     Ok(CardDeck {
         steps: vec![Step::Full(Box::new(cards))],
     })
@@ -419,8 +497,11 @@ pub struct PathSpectra {
     /// Transmittance, 0–1 (values a little above 1, as LOWTRAN prints them on short paths,
     /// are clamped to 1 by [`assemble`]).
     pub transmission: Vec<f64>,
-    /// Path (or sky) radiance, W m⁻² sr⁻¹ per cm⁻¹.
+    /// Path (or sky) radiance, W m⁻² sr⁻¹ per cm⁻¹; empty for the sun's paths.
     pub radiance_w_m2_sr_per_cm: Vec<f64>,
+    /// The sun's paths (direct solar irradiance runs): the extraterrestrial solar
+    /// irradiance on a surface normal to the beam, W m⁻² per cm⁻¹; empty for the others.
+    pub extraterrestrial_w_m2_per_cm: Vec<f64>,
 }
 
 /// The spectral atmosphere from the spectra of every path of [`paths`] (same order),
@@ -455,6 +536,25 @@ pub fn assemble(
                 s.wavenumber_per_cm.first().copied().unwrap_or(f64::NAN),
                 grid.len(),
                 grid.first().copied().unwrap_or(f64::NAN)
+            )));
+        }
+    }
+    for (i, (p, s)) in all.iter().zip(spectra).enumerate() {
+        let (what, found) = match p {
+            Path::Sun { .. } => (
+                "an extraterrestrial solar irradiance (a direct solar irradiance run, IEMSCT = 3)",
+                s.extraterrestrial_w_m2_per_cm.len(),
+            ),
+            _ => (
+                "a path radiance (a thermal radiance run)",
+                s.radiance_w_m2_sr_per_cm.len(),
+            ),
+        };
+        if found != grid.len() || s.transmission.len() != grid.len() {
+            return Err(bad(format!(
+                "run {i} ({p:?}): expected {what} and a transmittance at each of the {} grid points, found {found} and {}",
+                grid.len(),
+                s.transmission.len()
             )));
         }
     }
@@ -511,6 +611,37 @@ pub fn assemble(
         .iter()
         .flat_map(|&a| plan.sky_zenith_deg.iter().map(move |&z| up(a, z)))
         .collect();
+    let solar = match &plan.sun {
+        None => None,
+        Some(sun) => {
+            let runs: Vec<Path> = sun_paths(sun).collect();
+            // Every run of one day has one extraterrestrial spectrum: the lowest's is kept,
+            // the others must agree with it to the printed digits.
+            let etoa = &get(runs[0]).extraterrestrial_w_m2_per_cm;
+            for &p in &runs[1..] {
+                let other = &get(p).extraterrestrial_w_m2_per_cm;
+                if let Some(k) = (0..grid.len())
+                    .find(|&k| (other[k] - etoa[k]).abs() > 1e-6 * etoa[k].abs().max(1e-30))
+                {
+                    return Err(bad(format!(
+                        "run {} ({p:?}) has another extraterrestrial solar irradiance than run {} at {} cm-1 ({} against {} W m-2 per cm-1): the sun's runs must be of one day",
+                        index[&key(&p)],
+                        index[&key(&runs[0])],
+                        grid[k],
+                        other[k],
+                        etoa[k]
+                    )));
+                }
+            }
+            Some(SpectralSolar {
+                zenith_deg: sun.zenith_deg,
+                day_of_year: sun.day_of_year,
+                altitude_m: sun.altitude_m.clone(),
+                extraterrestrial_w_m2_per_unit: f32s(etoa),
+                transmission: flat(runs, &tau),
+            })
+        }
+    };
     let atmosphere = SpectralAtmosphere {
         name: plan.name.clone(),
         source: source.to_owned(),
@@ -561,6 +692,7 @@ pub fn assemble(
             // was measured.
             interpolation_residual: None,
         }),
+        solar,
     };
     atmosphere.validate()?;
     Ok(atmosphere)
@@ -601,6 +733,103 @@ mod tests {
         let high = make_plan("t", PlanModel::Standard(6), &[9000.0]).unwrap();
         assert!(high.slant_nadir_deg.last().unwrap() < &88.0);
         assert!(make_plan("t", PlanModel::Standard(6), &[1.0]).is_err());
+    }
+
+    #[test]
+    fn a_sun_adds_one_direct_solar_run_per_sky_altitude_after_the_others() {
+        let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
+        let mut day = night.clone();
+        add_sun(&mut day, 30.00004, 172).unwrap();
+        day.validate().unwrap();
+        let sun = day.sun.as_ref().unwrap();
+        assert_eq!(sun.zenith_deg, 30.0);
+        assert_eq!(sun.altitude_m, day.sky_altitude_m);
+        let (before, after) = (paths(&night), paths(&day));
+        // The night's runs keep their numbers; the sun's follow, lowest first.
+        assert_eq!(after[..before.len()], before[..]);
+        assert_eq!(after.len(), before.len() + day.sky_altitude_m.len());
+        assert_eq!(
+            after[before.len()],
+            Path::Sun {
+                altitude_m: 0.0,
+                zenith_deg: 30.0,
+                day_of_year: 172
+            }
+        );
+        let d = deck(&day, &after[before.len() + 1]).unwrap();
+        let text = irsig_formats::radtran::tape5::write(&d).unwrap();
+        let back = irsig_formats::radtran::tape5::parse("d", &text).unwrap();
+        let c = &back.calculations()[0];
+        assert_eq!((c.card1.itype, c.card1.iemsct), (3, 3), "{text}");
+        assert_eq!(
+            c.card3,
+            Card3::DirectSolar {
+                h1_km: day.sky_altitude_m[1] / 1000.0,
+                h2_km: 0.0,
+                angle_deg: 30.0,
+                iday: 172,
+                ro_km: 0.0,
+                isourc: 0,
+                anglem_deg: 0.0,
+            }
+        );
+        for (z, d) in [
+            (90.0, 172),
+            (89.9996, 172),
+            (f64::NAN, 172),
+            (-0.5, 172),
+            (30.0, 0),
+            (30.0, 367),
+        ] {
+            let mut p = night.clone();
+            assert!(add_sun(&mut p, z, d).is_err(), "{z} {d}");
+            assert!(p.sun.is_none());
+        }
+    }
+
+    #[test]
+    fn assemble_puts_the_suns_runs_in_the_solar_table() {
+        let mut p = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
+        add_sun(&mut p, 30.0, 172).unwrap();
+        let nu = vec![2000.0, 2020.0];
+        let all = paths(&p);
+        let spectra: Vec<PathSpectra> = all
+            .iter()
+            .map(|q| match *q {
+                Path::Sun { altitude_m, .. } => PathSpectra {
+                    wavenumber_per_cm: nu.clone(),
+                    transmission: vec![0.5 + altitude_m / 1e5, 0.25],
+                    radiance_w_m2_sr_per_cm: vec![],
+                    extraterrestrial_w_m2_per_cm: vec![0.0092, 0.0094],
+                },
+                _ => PathSpectra {
+                    wavenumber_per_cm: nu.clone(),
+                    transmission: vec![0.9, 0.8],
+                    radiance_w_m2_sr_per_cm: vec![0.01, 0.02],
+                    extraterrestrial_w_m2_per_cm: vec![],
+                },
+            })
+            .collect();
+        let a = assemble(&p, &spectra, &|_| 288.0, 0.0, "test").unwrap();
+        let s = a.solar.as_ref().unwrap();
+        assert_eq!((s.zenith_deg, s.day_of_year), (30.0, 172));
+        assert_eq!(s.altitude_m, p.sky_altitude_m);
+        assert_eq!(s.extraterrestrial_w_m2_per_unit, [0.0092_f32, 0.0094]);
+        // Row k is the run at altitude k.
+        for (k, h) in s.altitude_m.iter().enumerate() {
+            assert_eq!(s.transmission[2 * k], (0.5 + h / 1e5) as f32);
+        }
+        // A thermal run where a solar one belongs, and runs of two days, are refused.
+        let last = spectra.len() - 1;
+        let mut wrong = spectra.clone();
+        wrong[last].extraterrestrial_w_m2_per_cm.clear();
+        wrong[last].radiance_w_m2_sr_per_cm = vec![0.01, 0.02];
+        let e = assemble(&p, &wrong, &|_| 288.0, 0.0, "test").unwrap_err();
+        assert!(e.to_string().contains(&format!("run {last}")), "{e}");
+        let mut two_days = spectra;
+        two_days[last].extraterrestrial_w_m2_per_cm = vec![0.0095, 0.0094];
+        let e = assemble(&p, &two_days, &|_| 288.0, 0.0, "test").unwrap_err();
+        assert!(e.to_string().contains("one day"), "{e}");
     }
 
     #[test]

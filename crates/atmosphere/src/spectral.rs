@@ -202,6 +202,19 @@ impl BandQuadrature {
         Self::dot(&self.radiance, self.start, spectrum)
     }
 
+    /// The band integral `∫ w y_λ dλ` of any spectral density `y` on the grid (W m⁻² sr⁻¹
+    /// or W m⁻² per grid unit; `value(i)` its value at grid point `i`), by the rule of
+    /// [`BandQuadrature::radiance`], in double precision: for products of spectra such as
+    /// `E_toa τ_sun`.
+    #[must_use]
+    pub fn integral(&self, value: impl Fn(usize) -> f64) -> f64 {
+        self.radiance
+            .iter()
+            .enumerate()
+            .map(|(k, a)| a * value(self.start + k))
+            .sum()
+    }
+
     /// The band-mean transmittance `∫ w τ dλ / ∫ w dλ` of a spectral transmittance.
     ///
     /// # Panics

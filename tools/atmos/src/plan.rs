@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use irsig_atmosphere::plan::{deck, make_plan, paths};
+use irsig_atmosphere::plan::{add_sun, deck, make_plan, paths};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
 use irsig_model::{LengthUnit, PlanModel, RadiosondeLevel, View};
@@ -20,6 +20,8 @@ Examples:
   irsig-flatten pipelines/quickstart/scene.ron --materials pipelines/quickstart/materials.ron -o scene.raw
   irsig-atmos plan --scene scene.raw --view pipelines/quickstart/view.ron --model tropical -o tropical-plan
   irsig-atmos plan --scene scene.raw --view view.ron --radiosonde site.rsd -o site-plan
+  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
+      --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
   irsig-atmos build tropical-plan -o tropical.spa")]
 pub struct PlanArgs {
     /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
@@ -48,12 +50,47 @@ pub struct PlanArgs {
     /// user-defined model; its first level is the ground.
     #[arg(long, value_name = "FILE.rsd")]
     pub radiosonde: Option<String>,
+    /// The sun's zenith angle at the scene, degrees, 0 to below 90: adds LOWTRAN7's direct
+    /// solar irradiance runs (IEMSCT = 3) at the sky altitudes. Without it the plan is for
+    /// night (no solar runs).
+    #[arg(long, value_name = "DEG", requires = "day_of_year", value_parser = sun_zenith)]
+    pub sun_zenith_deg: Option<f64>,
+    /// The day of the year, 1-366, for the Earth-Sun distance (LOWTRAN7's IDAY); with
+    /// --sun-zenith-deg.
+    #[arg(long, value_name = "DAY", requires = "sun_zenith_deg",
+          value_parser = clap::value_parser!(u16).range(1..=366))]
+    pub day_of_year: Option<u16>,
     /// The atmosphere's name (default: the model's or the radiosonde file's).
     #[arg(long)]
     pub name: Option<String>,
     /// The plan directory to write (must not exist, or be empty).
     #[arg(short = 'o', long, value_name = "DIR")]
     pub output: PathBuf,
+}
+
+/// `--sun-zenith-deg`: a finite angle from 0 to below 90 degrees.
+fn sun_zenith(s: &str) -> Result<f64, String> {
+    let z: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected the sun's zenith angle in degrees, found `{s}`"))?;
+    if !z.is_finite() || z < 0.0 {
+        return Err(format!(
+            "expected the sun's zenith angle from 0 to below 90 degrees, found {z}"
+        ));
+    }
+    if z >= 90.0 {
+        return Err(format!(
+            "the sun at {z} deg from the zenith is at or below the horizon and gives no direct light: expected 0 to below 90 degrees (leave out --sun-zenith-deg for night)"
+        ));
+    }
+    // A deck holds 0.001 deg: the plan keeps the angle rounded so.
+    if (z * 1000.0).round() / 1000.0 >= 90.0 {
+        return Err(format!(
+            "{z} deg rounds to 90 at the 0.001 deg a LOWTRAN7 deck holds: the sun on the horizon gives no direct light; expected at most 89.999 degrees"
+        ));
+    }
+    Ok(z)
 }
 
 /// The standard models by name and number.
@@ -189,8 +226,13 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     }
     let (model, default_name) = model_of(a.model.as_deref(), a.radiosonde.as_deref())?;
     let name = a.name.clone().unwrap_or(default_name);
-    let plan =
+    let mut plan =
         make_plan(&name, model, &observers).map_err(|e| miette!("{}: {e}", a.view.join(", ")))?;
+    if let (Some(z), Some(day)) = (a.sun_zenith_deg, a.day_of_year) {
+        // Rounded to the 0.001 deg a deck holds (`sun_zenith` refused what rounds to 90).
+        add_sun(&mut plan, z, day)
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
+    }
     let mut files = vec![(
         PathBuf::from("plan.ron"),
         canonical::to_ron(&plan).into_diagnostic()?.into_bytes(),
@@ -202,8 +244,16 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         files.push((deck_name(i), text.into_bytes()));
     }
     write_dir_atomic(&a.output, &files)?;
+    let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
+        format!(
+            " ({} of them the sun's, at {} deg from the zenith on day {})",
+            s.altitude_m.len(),
+            s.zenith_deg,
+            s.day_of_year
+        )
+    });
     irsig_cli::note!(
-        "{}: {} paths for {} observer(s) at {} m above the scene's lowest point ({} m)",
+        "{}: {} paths{sun} for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
         all.len(),
         plan.observers_m.len(),

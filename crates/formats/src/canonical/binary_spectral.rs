@@ -18,7 +18,9 @@
 //! `level_transmission`, `level_path_radiance_w_m2_sr_per_unit`,
 //! `transmission_correction.transmission`, `sky_radiance_w_m2_sr_per_unit`,
 //! `sky_hemispheric_w_m2_sr_per_unit`, `slant.transmission`,
-//! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`.
+//! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`,
+//! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`. (A file without a
+//! `solar` table is what version 1 always was: its bytes do not change.)
 //! Each count is checked against the bytes left before anything is allocated; the file
 //! must end after the last table; the result is validated.
 
@@ -56,6 +58,9 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
             &s.sky_radiance_w_m2_sr_per_unit,
         ]);
     }
+    if let Some(s) = &a.solar {
+        t.extend([&s.extraterrestrial_w_m2_per_unit, &s.transmission]);
+    }
     t
 }
 
@@ -77,6 +82,9 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
             &mut s.path_radiance_w_m2_sr_per_unit,
             &mut s.sky_radiance_w_m2_sr_per_unit,
         ]);
+    }
+    if let Some(s) = &mut a.solar {
+        t.extend([&mut s.extraterrestrial_w_m2_per_unit, &mut s.transmission]);
     }
     t
 }
@@ -189,6 +197,7 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
     // be silently replaced.
     let c = atm.transmission_correction.as_ref();
     let sl = atm.slant.as_ref();
+    let so = atm.solar.as_ref();
     let in_header = [
         ("level_transmission", atm.level_transmission.len()),
         (
@@ -218,6 +227,11 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             "slant.sky_radiance_w_m2_sr_per_unit",
             sl.map_or(0, |s| s.sky_radiance_w_m2_sr_per_unit.len()),
         ),
+        (
+            "solar.extraterrestrial_w_m2_per_unit",
+            so.map_or(0, |s| s.extraterrestrial_w_m2_per_unit.len()),
+        ),
+        ("solar.transmission", so.map_or(0, |s| s.transmission.len())),
     ];
     if let Some((path, n)) = in_header.into_iter().find(|&(_, n)| n > 0) {
         let (start, _) = crate::ron_tree::locate(text, path);
@@ -297,6 +311,7 @@ mod tests {
             sky_hemispheric_w_m2_sr_per_unit: Some(vec![0.3, 0.4]),
             radiosonde: vec![],
             slant: None,
+            solar: None,
         }
     }
 
@@ -347,6 +362,32 @@ mod tests {
         let bytes = encode(&a).unwrap();
         assert_eq!(decode("a.spa", &bytes).unwrap(), a);
         assert_eq!(encode(&decode("a.spa", &bytes).unwrap()).unwrap(), bytes);
+    }
+
+    #[test]
+    fn a_solar_table_follows_the_others_and_round_trips() {
+        let night = encode(&small()).unwrap();
+        let mut a = small();
+        a.solar = Some(irsig_model::SpectralSolar {
+            zenith_deg: 30.0,
+            day_of_year: 172,
+            altitude_m: vec![0.0, 300.0],
+            extraterrestrial_w_m2_per_unit: vec![0.0092, 0.0094],
+            transmission: vec![0.25, 0.5, 0.3, 0.55],
+        });
+        let bytes = encode(&a).unwrap();
+        assert_eq!(decode("a.spa", &bytes).unwrap(), a);
+        // The last two tables are the solar ones, in the page's order: 2 then 4 values.
+        let tail = &bytes[bytes.len() - (4 + 8 + 4 + 16)..];
+        assert_eq!(u32::from_le_bytes(tail[..4].try_into().unwrap()), 2);
+        assert_eq!(tail[4..8], 0.0092_f32.to_le_bytes());
+        assert_eq!(u32::from_le_bytes(tail[12..16].try_into().unwrap()), 4);
+        assert_eq!(tail[28..32], 0.55_f32.to_le_bytes());
+        // Cut off its last table: the reader says the file is truncated.
+        let e = decode("a", &bytes[..bytes.len() - 20]).unwrap_err();
+        assert!(e.message.contains("truncated"), "{}", e.message);
+        // A night atmosphere is written as before.
+        assert_eq!(encode(&small()).unwrap(), night);
     }
 
     #[test]

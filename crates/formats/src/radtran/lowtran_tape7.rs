@@ -82,6 +82,14 @@ impl SpectralTable {
         &self.columns[1]
     }
 
+    /// The extraterrestrial solar (or lunar) irradiance on a surface normal to the beam,
+    /// W cm⁻² per cm⁻¹: IEMSCT 3's `SOLAR IRRADIANCE` column. (Its `TRANSMITTED SOLAR
+    /// IRRADIANCE` is this times [`SpectralTable::transmission`], to the printed digits.)
+    #[must_use]
+    pub fn extraterrestrial_irradiance(&self) -> Option<&[f64]> {
+        (self.names.get(3) == Some(&"SOLAR IRRADIANCE")).then(|| self.columns[3].as_slice())
+    }
+
     /// The thermal (atmospheric) radiance of the path, W cm⁻² sr⁻¹ per cm⁻¹: IEMSCT 1 and 2.
     #[must_use]
     pub fn thermal_radiance(&self) -> Option<&[f64]> {
@@ -436,6 +444,48 @@ mod tests {
         assert_eq!(tab.positions[1].line, 13);
         assert!(t.runs[1].failed());
         assert_eq!(t.runs[1].position.line, 15);
+    }
+
+    #[test]
+    fn a_direct_solar_run_gives_its_transmittance_and_the_extraterrestrial_irradiance() {
+        // LOWTRAN7's TAPE7 of a deck with IEMSCT = 3: US Standard 1976, from 1 m up toward
+        // a sun 30 deg from the zenith on day 172 (its first and a middle row).
+        let text = "    6    3    3    0    6    6    6    6    6    6    1    0    0   0.000   0.00
+    0    1    1    0    0    0     0.000     0.000     0.000     0.000     0.000
+   -99.000   -99.000   -99.000       -99
+   -99.000   -99.000   -99.000
+   331976 U S STANDARD   
+     0.001   100.000    30.000   115.182     0.510     0.000    0
+  -99  -99  172    0
+   -99.000   -99.000   -99.000   -99.000   -99.000   -99.000     0.000   -99.000
+  2000.000  3340.000    20.000
+    0
+  FREQ   TRANS     SOL TR  SOLAR    
+  2000.  0.2657 2.44E-07 9.18E-07                                                               1.325E+00
+  2300.  0.0000 4.96E-17 1.25E-06                                                               2.395E+01
+ -9999.
+";
+        let t = parse("TAPE7", text).unwrap();
+        let r = &t.runs[0];
+        assert_eq!(r.header.as_ref().unwrap().iemsct, 3);
+        let tab = r.table.as_ref().unwrap();
+        assert_eq!(tab.names[2], "TRANSMITTED SOLAR IRRADIANCE");
+        assert_eq!(tab.transmission(), [0.2657, 0.0]);
+        assert_eq!(
+            tab.extraterrestrial_irradiance().unwrap(),
+            [9.18e-7, 1.25e-6]
+        );
+        assert_eq!(tab.columns[2], [2.44e-7, 4.96e-17]);
+        assert!(tab.thermal_radiance().is_none());
+        let thermal = parse("TAPE7", &format!("{HEAD}{ROWS}")).unwrap();
+        assert!(
+            thermal.runs[0]
+                .table
+                .as_ref()
+                .unwrap()
+                .extraterrestrial_irradiance()
+                .is_none()
+        );
     }
 
     #[test]

@@ -187,7 +187,7 @@ pub enum Card3 {
         iday: i64,
         /// Earth radius, km.
         ro_km: f64,
-        /// 1 sun, 2 moon.
+        /// 0 sun, 1 moon (LOWTRAN7 prints `LUNAR SOURCE ONLY` for 1).
         isourc: i64,
         /// Moon phase angle, degrees.
         anglem_deg: f64,
