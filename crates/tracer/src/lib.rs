@@ -68,6 +68,7 @@ mod path_table;
 pub mod pilot;
 pub mod refine;
 mod shade;
+pub mod sun;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
 pub mod tile;
@@ -83,6 +84,7 @@ pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
 pub use refine::{PixelSampling, Refinement};
+pub use sun::{SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam};
 pub use tile::{Tile, TileError};
 pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, TraceOptions, Tracer,
