@@ -17,6 +17,10 @@
 //! atmosphere for the path between the hit point and the sensor (both altitudes). Facets
 //! are two-sided ([`geometry`] explains why).
 //!
+//! With a sun ([`Tracer::with_sun`], [`sun`]), each facet of a path casts shadow rays
+//! toward it and reflects its beam: Lambertian for the diffuse share, a glint from the
+//! disk for the specular share.
+//!
 //! The tracer knows no file syntax; `irsig-trace` reads files and writes images.
 //!
 //! ```
