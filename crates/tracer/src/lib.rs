@@ -17,6 +17,10 @@
 //! atmosphere for the path between the hit point and the sensor (both altitudes). Facets
 //! are two-sided ([`geometry`] explains why).
 //!
+//! With a sun ([`Tracer::with_sun`], [`sun`]), each facet of a path casts shadow rays
+//! toward it and reflects its beam: Lambertian for the diffuse share, a glint from the
+//! disk for the specular share.
+//!
 //! The tracer knows no file syntax; `irsig-trace` reads files and writes images.
 //!
 //! ```
@@ -68,6 +72,7 @@ mod path_table;
 pub mod pilot;
 pub mod refine;
 mod shade;
+pub mod sun;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
 pub mod tile;
@@ -83,6 +88,7 @@ pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };
 pub use refine::{PixelSampling, Refinement};
+pub use sun::{SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam};
 pub use tile::{Tile, TileError};
 pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, TraceOptions, Tracer,

@@ -11,6 +11,7 @@ use irsig_radiometry::BandModel;
 
 use crate::env::Atmosphere;
 use crate::geometry::Hit;
+use crate::sun::SunGeometry;
 use crate::tracer::{Ctx, FacetRadiometry, FrameConsts, Tracer};
 use crate::vec::{V3, add, basis, dot, scale, sub};
 
@@ -75,6 +76,29 @@ pub(crate) struct Node {
     /// Where the mirror direction leaves the scene if nothing stood in the way: what a chain
     /// cut at this node reflects ([`Mirror::Untraced`]).
     pub(crate) environment: Escape,
+    /// The sun's diffuse light at this facet per unit of the beam's normal irradiance,
+    /// `cos θ_i·V/π`, sr⁻¹ ([`crate::sun`]): 0 without a sun, without a diffuse part, in
+    /// shadow or with the sun behind the facet.
+    pub(crate) sun_diffuse_per_sr: f64,
+    /// The sun's radiance along the mirror direction per unit of the beam's normal
+    /// irradiance, sr⁻¹: `1/Ω_sun` when the reflection leaves toward the sky inside the
+    /// disk (the glint), else 0.
+    pub(crate) sun_glint_per_sr: f64,
+}
+
+/// The glint of a mirror whose reflection ray `refl` (unit) went as `mirror`, per unit of
+/// the beam's normal irradiance, sr⁻¹: the disk's `1/Ω_sun` when the ray leaves toward the
+/// sky (or would, its bounces spent) inside the disk, else 0.
+fn glint_per_sr(sun: &SunGeometry, refl: V3, mirror: Mirror) -> f64 {
+    let to_sky = matches!(
+        mirror,
+        Mirror::Escaped(Escape::Sky { .. }) | Mirror::Untraced(Escape::Sky { .. })
+    );
+    if to_sky && refl[2] > 0.0 && dot(refl, sun.to_sun) >= sun.cos_radius {
+        sun.inverse_solid_angle_per_sr
+    } else {
+        0.0
+    }
 }
 
 /// A sky-view ray from a facet.
@@ -195,6 +219,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             diffuse: None,
             reflected_z: f64::NAN,
             environment: Escape::Terrain,
+            sun_diffuse_per_sr: 0.0,
+            sun_glint_per_sr: 0.0,
         });
         if sfrac > 0.0 {
             // Mirror direction about the normal facing the ray.
@@ -222,6 +248,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 Mirror::Untraced(environment)
             };
             path.nodes[index].mirror = Some(mirror);
+            if let Some(sun) = &self.sun {
+                path.nodes[index].sun_glint_per_sr = glint_per_sr(sun, refl, mirror);
+            }
         }
         if sfrac < 1.0 {
             let diffuse = if depth == 0 && ctx.options.sky_view_rays > 0 {
@@ -230,7 +259,61 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 Diffuse::Hemispheric
             };
             path.nodes[index].diffuse = Some(diffuse);
+            if let Some(sun) = &self.sun {
+                path.nodes[index].sun_diffuse_per_sr = self.sun_diffuse_per_sr(sun, hit, ctx);
+            }
         }
+    }
+
+    /// `cos θ_i·V/π` of the hit's seen side, sr⁻¹: one shadow ray to the disk's centre, or
+    /// the disk sampled uniformly by solid angle (stratified, from the pixel's sun stream),
+    /// each ray weighted by its own cosine. A ray below the horizontal meets the ground.
+    fn sun_diffuse_per_sr(
+        &self,
+        sun: &SunGeometry,
+        hit: &Hit<FacetRadiometry>,
+        ctx: &mut Ctx<'_>,
+    ) -> f64 {
+        let eps_m = self.geometry.surface_epsilon_m();
+        let lit = |d: V3| {
+            let c = dot(hit.normal, d);
+            if c <= 0.0
+                || d[2] <= 0.0
+                || self
+                    .geometry
+                    .occluded(hit.point_local, d, eps_m, f64::INFINITY, Some(hit.facet))
+            {
+                0.0
+            } else {
+                c
+            }
+        };
+        let n = sun.shadow_rays;
+        if n == 1 {
+            return lit(sun.to_sun) * std::f64::consts::FRAC_1_PI;
+        }
+        // Nothing of the disk in front of the facet: no ray to cast.
+        if dot(hit.normal, sun.to_sun) <= -sun.sin_radius {
+            return 0.0;
+        }
+        let m = (f64::from(n).sqrt()) as u32;
+        let mut sum = 0.0;
+        for k in 0..n {
+            let (xi1, xi2): (f64, f64) = {
+                let rng = ctx.sun_rng();
+                (rng.random(), rng.random())
+            };
+            let (u1, u2) = if k < m * m {
+                (
+                    (f64::from(k % m) + xi1) / f64::from(m),
+                    (f64::from(k / m) + xi2) / f64::from(m),
+                )
+            } else {
+                (xi1, xi2)
+            };
+            sum += lit(sun.disk_direction(u1, u2));
+        }
+        sum / f64::from(n) * std::f64::consts::FRAC_1_PI
     }
 
     /// The record of a hit at altitude `alt`.

@@ -5,6 +5,10 @@
 //! L = Σ_k τ_k·[ε_k·L_T,k + r_k·(s·L_spec,k + (1 − s)·(F·L_d,k + (1 − F)·L_b,k))] + L_u,k
 //! ```
 //!
+//! With a sun ([`crate::sun`]), `L_spec,k` takes the disk's radiance `E_n,k/Ω_sun` where the
+//! mirror direction leaves inside it, and `L_d,k` the sunlit share `E_n,k·cos θ_i·V/π` as
+//! a radiance, both at the facet's altitude.
+//!
 //! With one sub-band this is the band model. With several, the truth terms are the
 //! band-integrated ones: radiances add over sub-bands; the emissivity is the emitted-
 //! radiance-weighted mean `Σ ε_k L_T,k / Σ L_T,k`, and the transmission the one that keeps
@@ -277,6 +281,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .sum();
                 sum / f64::from(count)
             }
+        };
+        // The sun's beam at the facet's altitude: its glint joins what arrives along the
+        // mirror direction, its diffuse light the diffuse incident radiance (as the radiance
+        // of a uniform sky giving the same irradiance). Without a sun nothing is added.
+        let (specular_incident, diffuse_incident) = match &b.sun {
+            Some(beam) if node.sun_glint_per_sr > 0.0 || node.sun_diffuse_per_sr > 0.0 => {
+                let e = beam.normal_w_m2(surface.alt_m);
+                (
+                    specular_incident + e * node.sun_glint_per_sr,
+                    diffuse_incident + e * node.sun_diffuse_per_sr,
+                )
+            }
+            _ => (specular_incident, diffuse_incident),
         };
         let reflected = sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident;
         let leaving = eps * blackbody + (1.0 - eps) * reflected;

@@ -17,6 +17,7 @@ use crate::geometry::Geometry;
 use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
 use crate::refine::{PixelSampling, Refinement};
+use crate::sun::{Sun, SunBeam, SunGeometry};
 use crate::tile::Tile;
 use crate::vec::V3;
 
@@ -189,7 +190,8 @@ pub struct Sample {
     /// `L_T`, blackbody band radiance at the kinetic temperature, W m⁻² sr⁻¹.
     pub blackbody_w_m2_sr: f64,
     /// Radiance arriving along the mirror direction, W m⁻² sr⁻¹: `L_b` of event 4 (the
-    /// surface-leaving radiance of the second facet) or `L_d(θ_r)` of event 3.
+    /// surface-leaving radiance of the second facet) or `L_d(θ_r)` of event 3, plus the sun's
+    /// disk where the reflection leaves inside it ([`crate::sun`]).
     pub specular_incident_w_m2_sr: f64,
     /// Zenith angle of the reflection ray, degrees.
     pub reflected_zenith_deg: f64,
@@ -197,7 +199,8 @@ pub struct Sample {
     pub sky_hemispheric_w_m2_sr: f64,
     /// Sky-view (shape) factor F (1 when the model is off).
     pub sky_view_factor: f64,
-    /// Diffuse incident radiance `F·L_d + (1 − F)·L_b`, W m⁻² sr⁻¹.
+    /// Diffuse incident radiance `F·L_d + (1 − F)·L_b`, W m⁻² sr⁻¹, plus with a sun its
+    /// `E_n·cos θ_i·V/π` ([`crate::sun`]).
     pub diffuse_incident_w_m2_sr: f64,
     /// Surface-leaving radiance towards the sensor, W m⁻² sr⁻¹.
     pub surface_leaving_w_m2_sr: f64,
@@ -528,6 +531,8 @@ pub(crate) struct BandData<A> {
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
     pub(crate) terrain_blackbody: f64,
     pub(crate) terrain_leaving: f64,
+    /// The sun's direct beam in this sub-band ([`Tracer::with_sun`]); `None`: no sun.
+    pub(crate) sun: Option<SunBeam>,
 }
 
 impl<A> BandData<A> {
@@ -645,6 +650,9 @@ pub struct Tracer<B, A> {
     /// Pixels refined to a standard-error target ([`crate::refine`]); `None`: the options'
     /// supersampling.
     pub(crate) refinement: Option<Refinement>,
+    /// The sun's geometry when it shines ([`Tracer::with_sun`]): each facet hit then casts
+    /// shadow rays toward it. Its beam, per sub-band, is in [`BandData::sun`].
+    pub(crate) sun: Option<SunGeometry>,
 }
 
 /// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.
@@ -668,11 +676,16 @@ pub(crate) const REFINEMENT_STREAM: u64 = 0x7265_6669_6e65_6d74;
 pub(crate) const PROBE_STREAM: u64 = 0x7072_6f62_6500_0000;
 /// The stream of the pilot's re-traced sky-view rays of a pixel (plus the ray count).
 pub(crate) const SKY_VIEW_STREAM: u64 = 0x736b_7976_6965_7700;
+/// Mixed into a stream's seed for its shadow rays' points on the sun's disk: their own
+/// stream, so that a sun leaves every other draw of the pixel as it was.
+pub(crate) const SUN_STREAM: u64 = 0x7375_6e64_6973_6b00;
 
 /// Per-ray state shared by the events.
 pub(crate) struct Ctx<'a> {
     pub(crate) options: &'a TraceOptions,
     rng: Option<ChaCha8Rng>,
+    /// The stream's points on the sun's disk ([`SUN_STREAM`]).
+    sun_rng: Option<ChaCha8Rng>,
     /// The pixel's index in the image, from which its random stream is seeded.
     pixel_index: u64,
     /// Which of the pixel's streams (0: its centre ray's and supersampling's).
@@ -685,6 +698,7 @@ impl<'a> Ctx<'a> {
         Self {
             options,
             rng: None,
+            sun_rng: None,
             pixel_index,
             stream: 0,
         }
@@ -694,6 +708,7 @@ impl<'a> Ctx<'a> {
     pub(crate) fn stream(mut self, stream: u64) -> Self {
         self.stream = stream;
         self.rng = None;
+        self.sun_rng = None;
         self
     }
 
@@ -706,6 +721,15 @@ impl<'a> Ctx<'a> {
     pub(crate) fn rng(&mut self) -> &mut ChaCha8Rng {
         let seed = splitmix64(self.options.seed ^ splitmix64(self.pixel_index) ^ self.stream);
         self.rng
+            .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
+    }
+
+    /// The stream's own random numbers for points on the sun's disk, seeded on first use.
+    pub(crate) fn sun_rng(&mut self) -> &mut ChaCha8Rng {
+        let seed = splitmix64(
+            self.options.seed ^ splitmix64(self.pixel_index) ^ splitmix64(self.stream ^ SUN_STREAM),
+        );
+        self.sun_rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
 
@@ -775,6 +799,25 @@ pub(crate) fn contrast_of(t: &[f64], w: usize, h: usize) -> Vec<f64> {
                 .fold(0.0, f64::max)
         })
         .collect()
+}
+
+/// The terrain background's surface-leaving radiance in sub-band `b`, W m⁻² sr⁻¹:
+/// `ε·L_T + (1 − ε)·L_d(0)`, and with a sun `(1 − ε)·E_n(0)·cos θ_sun/π` more (the terrain
+/// is flat and unshadowed).
+fn terrain_leaving<A: Atmosphere>(
+    terrain: &Terrain,
+    b: &BandData<A>,
+    sun: Option<(&SunBeam, &SunGeometry)>,
+) -> f64 {
+    let eps = terrain.emissivity;
+    let night = eps * b.terrain_blackbody + (1.0 - eps) * b.atmosphere.sky_hemispheric(0.0);
+    match sun {
+        None => night,
+        Some((beam, geometry)) => {
+            let cos_zenith = geometry.to_sun[2].max(0.0);
+            night + (1.0 - eps) * beam.normal_w_m2(0.0) * cos_zenith * std::f64::consts::FRAC_1_PI
+        }
+    }
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -910,6 +953,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             emissivity: tables,
             path_terms: PathTermsMode::Exact,
             refinement: None,
+            sun: None,
         };
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records.
@@ -920,13 +964,65 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// This tracer with its sub-bands replaced by `sub_bands` (another atmosphere or
-    /// another partition of the band), the BVH kept.
+    /// another partition of the band), the BVH kept. The sun, whose beam is given per
+    /// sub-band, goes with the old sub-bands: give it again ([`Self::with_sun`]).
     ///
     /// # Errors
     /// As [`Tracer::band_set`].
     pub fn with_bands(mut self, sub_bands: Vec<SubBand<B, A>>) -> Result<Self, TraceError> {
         self.bands = self.band_set(sub_bands)?;
+        self.sun = None;
         Ok(self)
+    }
+
+    /// This tracer lit by `sun` (`None`: no sun, the default), whose beam list holds one
+    /// beam per sub-band of the tracer's own ([`crate::sun`] says what the sun adds). Band
+    /// sets made for other sub-bands ([`Self::band_set`]) have no sun. Setting a sun again
+    /// replaces the previous one.
+    ///
+    /// # Errors
+    /// A sun direction that is not a finite non-zero vector, an angular radius outside
+    /// (0°, 10°], a shadow-ray count outside 1 to [`crate::sun::MAX_SHADOW_RAYS`], or not
+    /// one beam per sub-band.
+    pub fn with_sun(mut self, sun: Option<Sun>) -> Result<Self, TraceError> {
+        let Some(sun) = sun else {
+            self.remove_sun();
+            return Ok(self);
+        };
+        let geometry = sun.geometry()?;
+        if sun.beams.len() != self.bands.len() {
+            return Err(TraceError::new(TraceErrorKind::InvalidOptions(format!(
+                "sun: {} beams for {} sub-bands: expected one per sub-band",
+                sun.beams.len(),
+                self.bands.len()
+            ))));
+        }
+        self.remove_sun();
+        let terrain = self.terrain;
+        for (b, beam) in self.bands.bands.iter_mut().zip(sun.beams) {
+            b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, &geometry)));
+            b.sun = Some(beam);
+        }
+        self.sun = Some(geometry);
+        Ok(self)
+    }
+
+    /// Takes the sun away, its terrain term with it.
+    fn remove_sun(&mut self) {
+        if self.sun.take().is_none() {
+            return;
+        }
+        let terrain = self.terrain;
+        for b in &mut self.bands.bands {
+            b.sun = None;
+            b.terrain_leaving = terrain_leaving(&terrain, b, None);
+        }
+    }
+
+    /// Whether the sun shines on this tracer's scene ([`Self::with_sun`]).
+    #[must_use]
+    pub fn has_sun(&self) -> bool {
+        self.sun.is_some()
     }
 
     /// The sub-bands `sub_bands` prepared for this tracer's scene: every facet temperature's
@@ -966,8 +1062,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .map(|&t| sb.band.radiance_and_derivative(t))
                 .unzip();
             let terrain_blackbody = sb.band.radiance(terrain.temperature_k);
-            let terrain_leaving = terrain.emissivity * terrain_blackbody
-                + (1.0 - terrain.emissivity) * sb.atmosphere.sky_hemispheric(0.0);
             let own_emissivity = emissivity
                 .iter()
                 .zip(&self.emissivity)
@@ -981,8 +1075,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 derivative,
                 inline: false,
                 terrain_blackbody,
-                terrain_leaving,
+                terrain_leaving: 0.0,
+                sun: None,
             });
+            let b = bands.last_mut().expect("just pushed");
+            b.terrain_leaving = terrain_leaving(&terrain, b, None);
         }
         Ok(BandSet::new(bands))
     }
