@@ -196,7 +196,7 @@ fn data_error_k(residual: Option<&irsig_model::InterpolationResidual>) -> Option
 
 /// The sub-bands of a model kind and a count.
 type SubBandsOf<'a, R, T> =
-    Box<dyn Fn(ModelKind, SubBandCount) -> miette::Result<Vec<SubBand<R, T>>> + 'a>;
+    Box<dyn Fn(ModelKind, SubBandCount) -> miette::Result<Vec<SubBand<R, T>>> + Sync + 'a>;
 
 /// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
 /// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with
@@ -855,7 +855,7 @@ impl Plan {
     }
 
     /// The pilot's decision for `camera`'s frame, with the seconds it took.
-    fn decide<R: BandModel + Clone, A: Atmosphere, S: Atmosphere>(
+    fn decide<R: BandModel + Clone + Send, A: Atmosphere, S: Atmosphere + Send>(
         &self,
         tolerance: &ToleranceRequest,
         tracer: &Tracer<R, A>,
@@ -892,14 +892,19 @@ impl Plan {
         let started = std::time::Instant::now();
         let mut bands: Vec<BandChoice<S>> = Vec::new();
         let mut unavailable = Vec::new();
-        for (kind, count) in pairs {
-            if bands
-                .iter()
-                .any(|b| b.atmosphere == kind && b.sub_bands == count)
-            {
-                continue;
+        let mut unique: Vec<(ModelKind, SubBandCount)> = Vec::new();
+        for pair in pairs {
+            if !unique.contains(&pair) {
+                unique.push(pair);
             }
-            let sub = match (air.pilot)(kind, count) {
+        }
+        // Made side by side (the full grid's set is most of the time), then taken in order.
+        let made: Vec<_> = unique
+            .par_iter()
+            .map(|&(kind, count)| (air.pilot)(kind, count))
+            .collect();
+        for ((kind, count), made) in unique.into_iter().zip(made) {
+            let sub = match made {
                 Ok(sub) => sub,
                 Err(e) if count == ref_count || count.is_band() || pinned_count => return Err(e),
                 Err(_) => {
@@ -950,7 +955,7 @@ impl Plan {
     }
 
     #[allow(clippy::too_many_lines)]
-    fn trace_all<R: BandModel + Clone + Sync, A: Atmosphere, S: Atmosphere>(
+    fn trace_all<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
         &self,
         run: &RunHash,
         band: R,
