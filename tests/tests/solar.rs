@@ -4,8 +4,11 @@
 //! altitudes is checked against hand integrals over the TAPE7 of LOWTRAN7 runs made here
 //! from decks written by hand; LOWTRAN7's extraterrestrial spectrum against the solar
 //! constant; `irsig-atmos plan --sun-zenith-deg/--day-of-year` against the deck format;
-//! and a sun at or below the horizon, or a day that is none, refused at the flag or at its
-//! line and column in the plan.
+//! a sun at or below the horizon, or a day that is none, refused at the flag or at its
+//! line and column in the plan. Then `irsig-trace --sun-…` end to end: the sunlight a grey
+//! diffuse plate adds to its pixels against τ·(1 − ε)·E·cos θ/π by hand from the built
+//! atmosphere's solar spectra, and every sun the atmosphere cannot light refused naming its
+//! flag, with no file written.
 //!
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH
 //! (`sh scripts/atmosphere/install-lowtran.sh` builds it). When it is missing these tests
@@ -53,11 +56,16 @@ const DV: f64 = 20.0;
 
 /// A plan of a few thermal paths and the sun's beam at 0, 300 and 1000 m, as RON.
 fn plan_ron(zenith: &str, day: &str) -> String {
+    plan_ron_over(zenith, day, [V1, V2, DV])
+}
+
+/// [`plan_ron`] over wavenumbers `[v1, v2]` every `dv`, cm⁻¹.
+fn plan_ron_over(zenith: &str, day: &str, [v1, v2, dv]: [f64; 3]) -> String {
     format!(
         "(
   name: \"sunny\",
   model: Standard(6),
-  wavenumber_per_cm: ({V1:.1}, {V2:.1}, {DV:.1}),
+  wavenumber_per_cm: ({v1:.1}, {v2:.1}, {dv:.1}),
   path_end_m: 1.0,
   observers_m: [1000.0],
   levels_m: [1000.0],
@@ -443,5 +451,327 @@ fn a_sun_at_or_below_the_horizon_or_a_day_that_is_none_is_refused() {
                 "day of the year"
             }));
         assert!(!out.exists());
+    }
+}
+
+/// A grey, fully diffuse plate of emissivity `EPSILON` at 300 K, 200 km across, horizontal
+/// at `PLATE_M` above the ground, and a 4 × 4-pixel view straight down on it from 1000 m.
+/// Returns the raw scene, the materials and the view.
+fn plate(dir: &Path) -> [PathBuf; 3] {
+    let scene = dir.join("plate.raw.ron");
+    std::fs::write(
+        &scene,
+        format!(
+            "(objects: [\"plate\"], \
+             positions_m: [(-1e5, -1e5, {PLATE_M:?}), (1e5, -1e5, {PLATE_M:?}), \
+                           (1e5, 1e5, {PLATE_M:?}), (-1e5, 1e5, {PLATE_M:?})], \
+             facets: [(vertices: (0, 1, 2), material: 1, temperature_k: 300.0, object: 0), \
+                      (vertices: (0, 2, 3), material: 1, temperature_k: 300.0, object: 0)])"
+        ),
+    )
+    .unwrap();
+    let materials = dir.join("grey.ron");
+    std::fs::write(
+        &materials,
+        format!(
+            "(materials: [(id: 1, name: \"grey\", emissivity: [(0.0, {EPSILON:?}), \
+             (90.0, {EPSILON:?})], specular_fraction: 0.0, source: \"a test\")])"
+        ),
+    )
+    .unwrap();
+    let view = dir.join("down.ron");
+    std::fs::write(
+        &view,
+        "LookAt(position_m: (0.0, 0.0, 1000.0), target_m: (0.0, 0.0, 0.0), \
+         up: (0.0, 1.0, 0.0), pixels: (4, 4), fov_deg: (1.0, 1.0))",
+    )
+    .unwrap();
+    [scene, materials, view]
+}
+
+/// The plate's emissivity and height above the ground, m: half-way between the solar
+/// table's rows at 0 and 300 m, so that the beam is interpolated in altitude.
+const EPSILON: f64 = 0.6;
+const PLATE_M: f64 = 150.0;
+
+/// `irsig-trace` of the plate through `atmosphere` in 4-5 µm (8-14 µm, the built-ins'
+/// spectra, when `atmosphere` names no file) with `extra` flags, writing `dir/PREFIX.*`.
+fn trace_plate(
+    dir: &Path,
+    atmosphere: &Path,
+    prefix: &str,
+    extra: &[&str],
+) -> assert_cmd::assert::Assert {
+    let [scene, materials, view] = plate(dir);
+    bin("irsig-trace")
+        .arg("--scene")
+        .arg(scene)
+        .arg("--materials")
+        .arg(materials)
+        .arg("--view")
+        .arg(view)
+        .arg("--atmosphere")
+        .arg(atmosphere)
+        .args(["--band", if atmosphere.is_file() { "4-5" } else { "8-14" }])
+        .args(extra)
+        .arg("-o")
+        .arg(dir.join(prefix))
+        .assert()
+}
+
+fn layer(path: &Path, name: &str) -> Vec<f32> {
+    let r = irsig_raster::read_exr(&std::fs::read(path).unwrap()).unwrap();
+    r.layer(name)
+        .unwrap_or_else(|| panic!("no layer `{name}` in {}", path.display()))
+        .data
+        .clone()
+}
+
+/// `∫ E_toa(λ) τ_sun(λ, h) dλ` over `[lo_um, hi_um]`, W m⁻², from the atmosphere file's
+/// solar spectra (a wavenumber grid whose points include both edges): each spectrum per
+/// cm⁻¹ converted to per µm at the points, the trapezoid in wavelength, τ linear in
+/// altitude between the table's rows.
+fn direct_by_hand(a: &SpectralAtmosphere, lo_um: f64, hi_um: f64, h_m: f64) -> f64 {
+    let solar = a.solar.as_ref().unwrap();
+    let n = a.grid.points.len();
+    let k = solar
+        .altitude_m
+        .iter()
+        .position(|&x| x >= h_m)
+        .unwrap()
+        .max(1);
+    let (h0, h1) = (solar.altitude_m[k - 1], solar.altitude_m[k]);
+    let t = (h_m - h0) / (h1 - h0);
+    let mut points: Vec<(f64, f64)> = (0..n)
+        .filter_map(|i| {
+            let nu = a.grid.points[i];
+            let um = 1e4 / nu;
+            if um < lo_um - 1e-9 || um > hi_um + 1e-9 {
+                return None;
+            }
+            let tau = |row: usize| f64::from(solar.transmission[row * n + i]);
+            let tau_h = tau(k - 1) * (1.0 - t) + tau(k) * t;
+            let e_per_um = f64::from(solar.extraterrestrial_w_m2_per_unit[i]) * nu * nu / 1e4;
+            Some((um, e_per_um * tau_h))
+        })
+        .collect();
+    points.sort_by(|x, y| x.0.total_cmp(&y.0));
+    assert!(
+        (points[0].0 - lo_um).abs() < 1e-9 && (points[points.len() - 1].0 - hi_um).abs() < 1e-9
+    );
+    points
+        .windows(2)
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum()
+}
+
+/// Exit code 2, the flag named on stderr, and no file written.
+fn refused(
+    assert: assert_cmd::assert::Assert,
+    dir: &Path,
+    prefix: &str,
+    flag: &str,
+    also: &[&str],
+) {
+    let assert = assert.code(2);
+    let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+    assert!(stderr.contains(flag), "expected {flag} in: {stderr}");
+    for a in also {
+        assert!(stderr.contains(a), "expected `{a}` in: {stderr}");
+    }
+    let left: Vec<_> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with(prefix) || n.contains(".irsig-"))
+        .collect();
+    assert!(left.is_empty(), "{flag}: files left: {left:?}");
+    eprintln!("refused: {}", stderr.trim());
+}
+
+#[test]
+fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_not_for() {
+    let start = Instant::now();
+    let dir = tempfile::tempdir().unwrap();
+    let plan_dir = dir.path().join("plan");
+    std::fs::create_dir(&plan_dir).unwrap();
+    // 4-5 um is 2000-2500 cm-1: both edges on the grid.
+    std::fs::write(
+        plan_dir.join("plan.ron"),
+        plan_ron_over(
+            &format!("{ZENITH_DEG:.1}"),
+            &DAY.to_string(),
+            [1980.0, 2520.0, 20.0],
+        ),
+    )
+    .unwrap();
+    let spa = dir.path().join("sunny.spa");
+    let a = build(&plan_dir, &spa);
+    let out = dir.path().join("out");
+    std::fs::create_dir(&out).unwrap();
+
+    trace_plate(&out, &spa, "night", &[]).success();
+    trace_plate(
+        &out,
+        &spa,
+        "day",
+        &["--sun-zenith-deg", "30", "--sun-azimuth-deg", "120"],
+    )
+    .success();
+    let night = layer(&out.join("night.radiance.exr"), "radiance");
+    let day = layer(&out.join("day.radiance.exr"), "radiance");
+    let truth = out.join("day.truth.exr");
+    let tau = layer(&truth, "transmission");
+    let eps = layer(&truth, "emissivity");
+    assert_eq!(tau, layer(&out.join("night.truth.exr"), "transmission"));
+    // The beam on the plate, by hand from the file's spectra: half-way between the rows.
+    let e = direct_by_hand(&a, 4.0, 5.0, PLATE_M);
+    let cos = ZENITH_DEG.to_radians().cos();
+    let mut worst = 0.0_f64;
+    for p in 0..day.len() {
+        assert_eq!(
+            f64::from(eps[p]),
+            f64::from(EPSILON as f32),
+            "pixel {p} is not the plate"
+        );
+        let added = f64::from(day[p]) - f64::from(night[p]);
+        let expected = f64::from(tau[p]) * (1.0 - EPSILON) * e * cos / std::f64::consts::PI;
+        let error = added / expected - 1.0;
+        worst = worst.max(error.abs());
+        // f32 images: each radiance holds 6e-8 of itself, τ 6e-8; the sunlight is a
+        // sizeable part of the radiance here, so 1e-5 leaves a margin of 50.
+        assert!(
+            error.abs() < 1e-5,
+            "pixel {p}: the sun adds {added} W m-2 sr-1, by hand {expected} ({error:+.2e})"
+        );
+    }
+    eprintln!(
+        "4-5 um, sun at {ZENITH_DEG} deg, plate eps {EPSILON} at {PLATE_M} m: E {e:.6} W m-2, \
+         tau {:.6}, the sun adds {:.6} W m-2 sr-1 to {:.6}; worst relative error {worst:.2e}",
+        tau[0],
+        f64::from(day[0]) - f64::from(night[0]),
+        night[0]
+    );
+    assert!(day[0] > night[0]);
+
+    // A sun other than the table's, by direction or by time and place (London at noon on
+    // the solstice, about 28 deg from the zenith), and a sun below the horizon.
+    refused(
+        trace_plate(
+            &out,
+            &spa,
+            "other",
+            &["--sun-zenith-deg", "31", "--sun-azimuth-deg", "0"],
+        ),
+        &out,
+        "other",
+        "--sun-zenith-deg",
+        &["31.0000", "30 deg"],
+    );
+    refused(
+        trace_plate(
+            &out,
+            &spa,
+            "london",
+            &[
+                "--sun-utc",
+                "2024-06-21T12:00:00Z",
+                "--latitude-deg",
+                "51.5",
+                "--longitude-deg",
+                "0",
+            ],
+        ),
+        &out,
+        "london",
+        "--sun-utc",
+        &["30 deg"],
+    );
+    refused(
+        trace_plate(
+            &out,
+            &spa,
+            "low",
+            &["--sun-zenith-deg", "95", "--sun-azimuth-deg", "0"],
+        ),
+        &out,
+        "low",
+        "--sun-zenith-deg",
+        &["horizon"],
+    );
+    refused(
+        trace_plate(
+            &out,
+            &spa,
+            "midnight",
+            &[
+                "--sun-utc",
+                "2024-06-21T00:00:00Z",
+                "--latitude-deg",
+                "51.5",
+                "--longitude-deg",
+                "0",
+            ],
+        ),
+        &out,
+        "midnight",
+        "--sun-utc",
+        &["horizon"],
+    );
+    // The pilot does not know the sun.
+    refused(
+        trace_plate(
+            &out,
+            &spa,
+            "piloted",
+            &[
+                "--sun-zenith-deg",
+                "30",
+                "--sun-azimuth-deg",
+                "0",
+                "--tolerance",
+                "0.5",
+            ],
+        ),
+        &out,
+        "piloted",
+        "--tolerance",
+        &["sun"],
+    );
+    let secs = start.elapsed().as_secs_f64();
+    eprintln!("build, two traces and five refusals: {secs:.1} s");
+    assert!(secs < 60.0, "{secs} s");
+}
+
+#[test]
+fn a_sun_needs_an_atmosphere_with_a_solar_table() {
+    let dir = tempfile::tempdir().unwrap();
+    let sun = ["--sun-zenith-deg", "30", "--sun-azimuth-deg", "0"];
+    // A vacuum, a built-in's band tables, a built-in's spectra (a night atmosphere).
+    for (atmosphere, extra, what) in [
+        ("none", &[][..], "a vacuum"),
+        ("us-std-1976", &[][..], "band atmosphere"),
+        ("us-std-1976", &["--sub-bands", "2"][..], "night atmosphere"),
+    ] {
+        let mut flags = sun.to_vec();
+        flags.extend(extra);
+        refused(
+            trace_plate(dir.path(), Path::new(atmosphere), "lit", &flags).stderr(
+                predicates::str::contains("irsig-atmos plan --sun-zenith-deg"),
+            ),
+            dir.path(),
+            "lit",
+            "--sun-zenith-deg",
+            &[what],
+        );
+    }
+    // Half a sun, or shadow rays without one: clap's usage errors.
+    for flags in [
+        &["--sun-zenith-deg", "30"][..],
+        &["--sun-utc", "2024-06-21T12:00:00Z"][..],
+        &["--sun-shadow-rays", "4"][..],
+        &["--latitude-deg", "51.5"][..],
+        &["--altitude-m", "20"][..],
+    ] {
+        trace_plate(dir.path(), Path::new("none"), "half", flags).code(2);
     }
 }

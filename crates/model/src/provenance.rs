@@ -168,6 +168,21 @@ pub struct Provenance {
     pub atmosphere_model: String,
     /// Every input the chain read, in the order read.
     pub inputs: Vec<InputRecord>,
+    /// The sun that lit the scene, if one did (absent: no sun, a night).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sun: Option<SunRecord>,
+}
+
+/// The sun an image was lit by: where it was and how its shadows were sampled.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SunRecord {
+    /// Zenith angle of the sun's centre, degrees.
+    pub zenith_deg: f64,
+    /// Azimuth, degrees clockwise from north (the scene's +y; 90 = east, +x).
+    pub azimuth_deg: f64,
+    /// Shadow rays per facet hit.
+    pub shadow_rays: u32,
 }
 
 impl Provenance {

@@ -119,7 +119,9 @@ impl<'a> Split<'a> {
         }
     }
 
-    fn weight(&self, wavelength_um: f64) -> f64 {
+    /// The response at `wavelength_um` (1 for a flat band): the weight of the sub-bands'
+    /// radiances and of the sun's beam in them.
+    pub(crate) fn weight(&self, wavelength_um: f64) -> f64 {
         self.response.map_or(1.0, |r| r.at(wavelength_um))
     }
 

@@ -29,6 +29,20 @@ pub enum Setting {
     Probe,
     /// The outputs asked for.
     Outputs,
+    /// The sun's zenith angle (a sun given as a direction).
+    SunZenith,
+    /// The sun's azimuth (a sun given as a direction).
+    SunAzimuth,
+    /// The time the sun is seen at (a sun given by a time and a place).
+    SunUtc,
+    /// The latitude of the place the sun is seen from.
+    Latitude,
+    /// The longitude of the place the sun is seen from.
+    Longitude,
+    /// The altitude above sea level of the place the sun is seen from.
+    SiteAltitude,
+    /// The sun's shadow rays per hit.
+    SunShadowRays,
 }
 
 impl Setting {
@@ -47,6 +61,13 @@ impl Setting {
             Self::Tile => "tile",
             Self::Probe => "probe",
             Self::Outputs => "outputs",
+            Self::SunZenith => "sun-zenith-deg",
+            Self::SunAzimuth => "sun-azimuth-deg",
+            Self::SunUtc => "sun-utc",
+            Self::Latitude => "latitude-deg",
+            Self::Longitude => "longitude-deg",
+            Self::SiteAltitude => "altitude-m",
+            Self::SunShadowRays => "sun-shadow-rays",
         }
     }
 }

@@ -21,6 +21,7 @@
 //!     atmosphere: AtmosphereRequest::Vacuum { sky_radiance_w_m2_sr: -1.0 },
 //!     settings: Default::default(),
 //!     tolerance: None,
+//!     sun: None,
 //!     counts: Default::default(),
 //!     defaulted: vec![],
 //! };
@@ -41,6 +42,7 @@ mod plan;
 pub mod products;
 mod run_hash;
 pub mod settings;
+pub mod sun;
 pub mod tolerance;
 
 pub use air::AtmosphereRequest;
@@ -48,3 +50,4 @@ pub use band::BandRequest;
 pub use error::{RequestError, Setting};
 pub use plan::{Plan, Request, Sink, TileRequest, ToleranceRequest};
 pub use run_hash::RunHash;
+pub use sun::SunRequest;

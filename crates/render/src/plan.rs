@@ -31,6 +31,7 @@ use crate::guarantee::Guarantee;
 use crate::products::{self, FrameRadiometry};
 use crate::run_hash::RunHash;
 use crate::settings::{Settings, SettingsRequest};
+use crate::sun::{self as sunlight, SunRequest};
 use crate::tolerance::{self, Pin};
 
 /// A tolerance to pilot each frame to.
@@ -55,6 +56,8 @@ pub struct Request {
     pub settings: SettingsRequest,
     /// A tolerance the pilot chooses the models for (instead of `settings`).
     pub tolerance: Option<ToleranceRequest>,
+    /// A sun lighting the scene (`None`: no sun, a night).
+    pub sun: Option<SunRequest>,
     /// How radiance becomes digital counts.
     pub counts: CountRequest,
     /// The settings the user left at their defaults, where a default changes the physics
@@ -166,6 +169,8 @@ pub struct Plan {
     views: Vec<View>,
     uncertainties: Option<Uncertainties>,
     decision: Option<Decision>,
+    /// The sun's position, checked, when the request has a sun.
+    sun: Option<irsig_atmosphere::sun::SunPosition>,
     /// Every input read, in order: what each image's provenance lists.
     inputs: Vec<InputRecord>,
     warnings: Mutex<Vec<String>>,
@@ -187,6 +192,16 @@ struct Air<'a, R, A, S> {
     /// slant tables record it: the largest of the slant paths' and the sky's (grazing
     /// paths beyond 80° are the horizon classes' own).
     data_error_k: Option<f64>,
+    /// The sun over the sub-bands of a count (`None`: no sun asked for).
+    sun: SunOf<'a>,
+}
+
+/// The sun over the sub-bands of a count.
+type SunOf<'a> = Box<dyn Fn(SubBandCount) -> miette::Result<Option<irsig_tracer::Sun>> + 'a>;
+
+/// No sun, for any count.
+fn no_sun<'a>() -> SunOf<'a> {
+    Box::new(|_| Ok(None))
 }
 
 /// The interpolation error a slant table records, K (see [`Air::data_error_k`]).
@@ -218,7 +233,8 @@ fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
 
 impl Plan {
     /// A plan of `request`, checked: a vacuum's sky radiance finite and not negative, a
-    /// tolerance above 0 K at a percentile in (0, 100].
+    /// tolerance above 0 K at a percentile in (0, 100], a sun above the horizon and not
+    /// with a tolerance (the pilot does not model the sun yet).
     ///
     /// # Errors
     /// A request error naming the setting.
@@ -241,6 +257,22 @@ impl Plan {
                 RequestError::report(Setting::TolerancePercentile, e.kind.to_string())
             })?;
         }
+        let sun = match &request.sun {
+            None => None,
+            Some(s) if request.tolerance.is_some() => {
+                return Err(RequestError::report(
+                    Setting::Tolerance,
+                    format!(
+                        "the pilot does not model the sun yet, so it cannot choose the models \
+                         of a sunlit frame: with --{} set the models by hand \
+                         (--atmosphere-model, --bounces, --sky-view-rays, --supersample, \
+                         --sub-bands)",
+                        s.setting().name()
+                    ),
+                ));
+            }
+            Some(s) => Some(s.position()?),
+        };
         let mut inputs = Vec::new();
         match &request.atmosphere {
             AtmosphereRequest::File { bytes, .. } => inputs.push(InputRecord {
@@ -268,6 +300,7 @@ impl Plan {
             views: Vec::new(),
             uncertainties: None,
             decision: None,
+            sun,
             inputs,
             warnings: Mutex::default(),
         })
@@ -398,6 +431,15 @@ impl Plan {
             },
             atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
             inputs: self.inputs.clone(),
+            sun: self
+                .sun
+                .as_ref()
+                .zip(self.request.sun.as_ref())
+                .map(|(p, s)| irsig_model::provenance::SunRecord {
+                    zenith_deg: p.zenith_deg,
+                    azimuth_deg: p.azimuth_deg,
+                    shadow_rays: s.shadow_rays,
+                }),
         }
     }
 
@@ -651,6 +693,9 @@ impl Plan {
             sky_radiance_w_m2_sr,
         } = *request
         {
+            if let Some(s) = &self.request.sun {
+                return Err(sunlight::no_solar_table(s, "none", "a vacuum"));
+            }
             let vacuum = Vacuum {
                 sky_radiance_w_m2_sr,
             };
@@ -662,6 +707,7 @@ impl Plan {
                 precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
                 pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
                 data_error_k: None,
+                sun: no_sun(),
             };
             return self.trace_all(&run, band, &air, job);
         }
@@ -727,6 +773,20 @@ impl Plan {
                 run.field("top", &top.to_bits().to_le_bytes());
             }
         }
+        // Tiles of frames lit by different suns must not merge; without a sun the hash is
+        // what it always was.
+        if let (Some(p), Some(s)) = (&self.sun, &self.request.sun) {
+            run.field(
+                "sun",
+                format!(
+                    "{:x} {:x} {}",
+                    p.zenith_deg.to_bits(),
+                    p.azimuth_deg.to_bits(),
+                    s.shadow_rays
+                )
+                .as_bytes(),
+            );
+        }
         if matches!(self.request.band.band, AnyBand::Total(_)) {
             let band_um = match &data {
                 AirData::Band(a) => format!("{:?}", a.band_um),
@@ -756,6 +816,13 @@ impl Plan {
         };
         match data {
             AirData::Band(atmosphere) => {
+                if let Some(s) = &self.request.sun {
+                    return Err(sunlight::no_solar_table(
+                        s,
+                        &name,
+                        "a band atmosphere (tables integrated over a band, without spectra)",
+                    ));
+                }
                 let data_error_k = data_error_k(
                     atmosphere
                         .slant
@@ -784,6 +851,7 @@ impl Plan {
                         })
                     }),
                     data_error_k,
+                    sun: no_sun(),
                 };
                 self.trace_all(&run, band, &air, job)
             }
@@ -842,12 +910,24 @@ impl Plan {
                         .collect()
                 };
                 let sub_bands = &sub_bands;
+                // The sun's beams over the same sub-bands; the table is checked now, before
+                // anything is traced.
+                let spectral = &spectral;
+                let lit = |count: SubBandCount| -> miette::Result<Option<irsig_tracer::Sun>> {
+                    let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
+                        return Ok(None);
+                    };
+                    let c = collapsed(count)?;
+                    sunlight::sun(request, position, &name, spectral, split, &c).map(Some)
+                };
+                lit(SubBandCount::BAND)?;
                 let air = Air {
                     kinds: Some(kinds),
                     spectral: true,
                     precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
                     pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
                     data_error_k,
+                    sun: Box::new(lit),
                 };
                 self.trace_all(&run, band, &air, job)
             }
@@ -974,12 +1054,14 @@ impl Plan {
             None => asked,
         };
         let (mut kind, mut count) = (base.kind, base.sub_bands);
+        let sun = (air.sun)(count)?;
         let mut tracer = Tracer::with_sub_bands(
             &scene,
             &self.materials,
             band,
             (air.precomputed)(kind, count)?,
         )
+        .and_then(|t| t.with_sun(sun))
         .map_err(|e| miette!("{e}"))
         .wrap_err_with(|| {
             format!(
@@ -1062,8 +1144,11 @@ impl Plan {
                 origin: [tiles[i].x, tiles[i].y],
             });
             if settings.kind != kind || settings.sub_bands != count {
+                // New sub-bands drop the sun, whose beams are per sub-band: lit again.
+                let sun = (air.sun)(settings.sub_bands)?;
                 tracer = tracer
                     .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
+                    .and_then(|t| t.with_sun(sun))
                     .map_err(|e| miette!("{e}"))?;
                 (kind, count) = (settings.kind, settings.sub_bands);
             }

@@ -167,6 +167,7 @@ mod tests {
             atmosphere: "us-std-1976".into(),
             atmosphere_model: "table".into(),
             inputs,
+            sun: None,
         }
     }
 

@@ -408,6 +408,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         atmosphere: "not recorded".into(),
         atmosphere_model: "not recorded".into(),
         inputs: Vec::new(),
+        sun: None,
     });
     provenance.band = resolved.record.clone();
     provenance.inputs.push(InputRecord {

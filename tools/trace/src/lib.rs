@@ -21,6 +21,7 @@ use irsig_render::{
 };
 use irsig_tracer::PathTermsMode;
 use miette::IntoDiagnostic;
+pub mod sun;
 
 /// `--help`'s examples.
 const EXAMPLE: &str = include_str!("examples.txt");
@@ -172,6 +173,8 @@ pub struct Cli {
     /// 2 counts per kelvin (the thesis's auto-bias).
     #[command(flatten)]
     pub dc: DcArgs,
+    #[command(flatten)]
+    pub sun: sun::SunArgs,
     /// Worker threads (default: all cores). The images do not depend on it.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -207,6 +210,7 @@ fn request(cli: &Cli) -> miette::Result<Request> {
             percentile: cli.tolerance_percentile,
             pins: cli.pin.clone(),
         }),
+        sun: cli.sun.request(),
         counts: cli.dc.request(),
         defaulted,
     })

@@ -1,0 +1,156 @@
+//! The sun of a request (issue 30): where it is, checked before anything is read, and its
+//! direct beam in each sub-band, from the `solar` table of the spectral atmosphere the
+//! frame is traced through.
+//!
+//! The table holds the beam for one sun zenith angle (the one its plan was made for), so
+//! the sun asked for must be that sun, within
+//! [`irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG`]. Each sub-band's beam is
+//! [`DirectSun`] over the sub-band's wavelengths with the band's response, the weight its
+//! radiances are collapsed with, so that the sunlight and the path radiance of a sub-band
+//! are integrated alike. The table's altitudes are metres above the ground, as the
+//! tracer's are (a hit's altitude is its scene `z`, the ground at `z = 0`).
+
+use irsig_atmosphere::AtmosphereErrorKind;
+use irsig_atmosphere::solar::{DirectSun, ZENITH_TOLERANCE_DEG};
+use irsig_atmosphere::sun::{SunPosition, SunSpec};
+use irsig_model::SpectralAtmosphere;
+use irsig_tracer::{Sun, SunBeam};
+use miette::miette;
+
+use crate::band::{Collapsed, Split};
+use crate::error::{RequestError, Setting};
+
+/// A sun to light the scene with.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SunRequest {
+    /// Where it is: a direction, or a UTC time and a place (NREL's SPA).
+    pub spec: SunSpec,
+    /// Shadow rays per facet hit: 1 aims at the disk's centre; more sample the disk for
+    /// soft shadow edges.
+    pub shadow_rays: u32,
+}
+
+impl SunRequest {
+    /// The setting that says where the sun is: its zenith angle for a direction, its time
+    /// for a time and a place.
+    #[must_use]
+    pub fn setting(&self) -> Setting {
+        match self.spec {
+            SunSpec::Direction { .. } => Setting::SunZenith,
+            SunSpec::At { .. } => Setting::SunUtc,
+        }
+    }
+
+    /// The sun's position, checked: every field in its range, the sun above the horizon,
+    /// 1 to [`irsig_tracer::sun::MAX_SHADOW_RAYS`] shadow rays.
+    ///
+    /// # Errors
+    /// A request error naming the setting at fault.
+    pub fn position(&self) -> miette::Result<SunPosition> {
+        let max = irsig_tracer::sun::MAX_SHADOW_RAYS;
+        if !(1..=max).contains(&self.shadow_rays) {
+            return Err(RequestError::of_value(
+                Setting::SunShadowRays,
+                self.shadow_rays,
+                format!("out of range: expected 1 to {max} shadow rays per hit"),
+            ));
+        }
+        let position = self.spec.position().map_err(|e| match e.kind {
+            AtmosphereErrorKind::Sun { field, message } => {
+                RequestError::report(field_setting(field), message)
+            }
+            _ => RequestError::report(self.setting(), e.to_string()),
+        })?;
+        if !position.is_above_horizon() {
+            return Err(RequestError::report(
+                self.setting(),
+                format!(
+                    "the sun is {:.4} deg from the zenith, at or below the horizon: a sun \
+                     below 90 deg lights the scene; trace a night without the sun's flags",
+                    position.zenith_deg
+                ),
+            ));
+        }
+        Ok(position)
+    }
+}
+
+/// The setting of a field of [`SunSpec`].
+fn field_setting(field: &str) -> Setting {
+    match field {
+        "zenith_deg" => Setting::SunZenith,
+        "azimuth_deg" => Setting::SunAzimuth,
+        "latitude_deg" => Setting::Latitude,
+        "longitude_deg" => Setting::Longitude,
+        "altitude_m" => Setting::SiteAltitude,
+        _ => Setting::SunUtc,
+    }
+}
+
+/// How to make an atmosphere with a `solar` table, for messages.
+const HOW_TO_BUILD: &str = "build one for this sun with `irsig-atmos plan --sun-zenith-deg Z \
+                            --day-of-year D` and `irsig-atmos build`, and give its file to \
+                            --atmosphere";
+
+/// The refusal of a sun with an atmosphere `name` that has no `solar` table (`what` says
+/// what it is instead).
+pub(crate) fn no_solar_table(sun: &SunRequest, name: &str, what: &str) -> miette::Report {
+    RequestError::report(
+        sun.setting(),
+        format!(
+            "the sun's beam needs a spectral atmosphere with a solar table, and `{name}` is \
+             {what}: {HOW_TO_BUILD}"
+        ),
+    )
+}
+
+/// The sun of `position` over the sub-bands `collapsed` of `split`, its beams from
+/// `spectral`'s `solar` table.
+///
+/// # Errors
+/// An atmosphere without a `solar` table, or one made for another zenith angle (a request
+/// error naming the sun's setting, with both angles), or a sub-band the table cannot be
+/// integrated over.
+pub(crate) fn sun(
+    request: &SunRequest,
+    position: &SunPosition,
+    name: &str,
+    spectral: &SpectralAtmosphere,
+    split: &Split<'_>,
+    collapsed: &Collapsed,
+) -> miette::Result<Sun> {
+    let Some(solar) = spectral.solar.as_ref() else {
+        return Err(no_solar_table(
+            request,
+            name,
+            "a night atmosphere (its plan had no sun)",
+        ));
+    };
+    if (position.zenith_deg - solar.zenith_deg).abs() > ZENITH_TOLERANCE_DEG {
+        return Err(RequestError::report(
+            request.setting(),
+            format!(
+                "the sun is {:.4} deg from the zenith, but the solar table of `{name}` is for \
+                 a sun at {} deg (the two must agree within {ZENITH_TOLERANCE_DEG} deg): {HOW_TO_BUILD}",
+                position.zenith_deg, solar.zenith_deg
+            ),
+        ));
+    }
+    let beams = collapsed
+        .iter()
+        .map(|(band, _)| {
+            let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
+            let direct = DirectSun::new(spectral, lo, hi, |l| split.weight(l))
+                .map_err(|e| miette!("the sun's beam over {lo}-{hi} um: {e}"))?;
+            let normal = solar
+                .altitude_m
+                .iter()
+                .map(|&h| direct.normal_w_m2(h))
+                .collect();
+            SunBeam::new(solar.altitude_m.clone(), normal).map_err(|e| miette!("{e}"))
+        })
+        .collect::<miette::Result<Vec<_>>>()?;
+    let mut sun = Sun::new(position.to_scene_direction(), beams);
+    sun.shadow_rays = request.shadow_rays;
+    Ok(sun)
+}
