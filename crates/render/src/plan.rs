@@ -979,9 +979,10 @@ impl Plan {
             }
         }
         // Made side by side (the full grid's set is most of the time), then taken in order.
+        let pilot = &air.pilot;
         let made: Vec<_> = unique
             .par_iter()
-            .map(|&(kind, count)| (air.pilot)(kind, count))
+            .map(|&(kind, count)| pilot(kind, count))
             .collect();
         for ((kind, count), made) in unique.into_iter().zip(made) {
             let sub = match made {
