@@ -15,6 +15,35 @@ pub fn repo_root() -> PathBuf {
         .map_or_else(|| PathBuf::from("."), std::path::Path::to_path_buf)
 }
 
+/// LOWTRAN7: `$IRSIG_LOWTRAN`, else `lowtran7` on `PATH`.
+///
+/// # Panics
+/// When `$IRSIG_LOWTRAN` is not a file or LOWTRAN7 is not found: the tests that need it
+/// fail, saying how to install it; they never skip.
+#[must_use]
+pub fn lowtran() -> PathBuf {
+    if let Some(p) = std::env::var_os("IRSIG_LOWTRAN").filter(|p| !p.is_empty()) {
+        let p = PathBuf::from(p);
+        assert!(
+            p.is_file(),
+            "IRSIG_LOWTRAN={} is not a file: run sh scripts/atmosphere/install-lowtran.sh",
+            p.display()
+        );
+        return p;
+    }
+    std::env::var_os("PATH")
+        .and_then(|path| {
+            std::env::split_paths(&path)
+                .map(|d| d.join("lowtran7"))
+                .find(|p| p.is_file())
+        })
+        .unwrap_or_else(|| {
+            panic!(
+                "LOWTRAN7 is needed by this test and was not found: run `sh scripts/atmosphere/install-lowtran.sh` and set IRSIG_LOWTRAN to the path it prints"
+            )
+        })
+}
+
 /// The path of an irsig binary, built by this test run.
 ///
 /// `cargo test` does not build other packages' binaries, so the first call builds every

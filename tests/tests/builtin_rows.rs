@@ -10,7 +10,6 @@
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH (`sh
 //! scripts/atmosphere/install-lowtran.sh`); without it this test fails, saying so.
 
-use std::path::PathBuf;
 use std::process::Command;
 
 use irsig_atmosphere::{
@@ -19,23 +18,7 @@ use irsig_atmosphere::{
 };
 use irsig_formats::radtran::lowtran_tape7;
 use irsig_radiometry::Band;
-
-fn lowtran() -> PathBuf {
-    if let Some(p) = std::env::var_os("IRSIG_LOWTRAN").filter(|p| !p.is_empty()) {
-        return PathBuf::from(p);
-    }
-    std::env::var_os("PATH")
-        .and_then(|path| {
-            std::env::split_paths(&path)
-                .map(|d| d.join("lowtran7"))
-                .find(|p| p.is_file())
-        })
-        .unwrap_or_else(|| {
-            panic!(
-                "LOWTRAN7 is needed by this test and was not found: run `sh scripts/atmosphere/install-lowtran.sh` and set IRSIG_LOWTRAN to the path it prints"
-            )
-        })
-}
+use irsig_tests::lowtran;
 
 /// LOWTRAN7's model number of a built-in.
 fn model_number(name: &str) -> u32 {

@@ -19,27 +19,8 @@ use irsig_atmosphere::{AtmosphereModel, ModelKind, builtin, collapse};
 use irsig_formats::canonical;
 use irsig_formats::radtran::lowtran_tape6;
 use irsig_model::SpectralAtmosphere;
-use irsig_tests::{bin, repo_root};
+use irsig_tests::{bin, lowtran, repo_root};
 use predicates::prelude::PredicateBooleanExt;
-
-fn lowtran() -> PathBuf {
-    if let Some(p) = std::env::var_os("IRSIG_LOWTRAN").filter(|p| !p.is_empty()) {
-        let p = PathBuf::from(p);
-        assert!(
-            p.is_file(),
-            "IRSIG_LOWTRAN={} is not a file: run sh scripts/atmosphere/install-lowtran.sh",
-            p.display()
-        );
-        return p;
-    }
-    std::env::var_os("PATH")
-        .and_then(|path| std::env::split_paths(&path).map(|d| d.join("lowtran7")).find(|p| p.is_file()))
-        .unwrap_or_else(|| {
-            panic!(
-                "LOWTRAN7 is needed by this test and was not found: run `sh scripts/atmosphere/install-lowtran.sh` and set IRSIG_LOWTRAN to the path it prints"
-            )
-        })
-}
 
 /// flatten + plan for the quickstart scene into `dir`, model `model`.
 fn plan(dir: &Path, model: &str) -> PathBuf {

@@ -24,26 +24,7 @@ use std::time::Instant;
 use irsig_atmosphere::solar::DirectSun;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
-use irsig_tests::bin;
-
-fn lowtran() -> PathBuf {
-    if let Some(p) = std::env::var_os("IRSIG_LOWTRAN").filter(|p| !p.is_empty()) {
-        let p = PathBuf::from(p);
-        assert!(
-            p.is_file(),
-            "IRSIG_LOWTRAN={} is not a file: run sh scripts/atmosphere/install-lowtran.sh",
-            p.display()
-        );
-        return p;
-    }
-    std::env::var_os("PATH")
-        .and_then(|path| std::env::split_paths(&path).map(|d| d.join("lowtran7")).find(|p| p.is_file()))
-        .unwrap_or_else(|| {
-            panic!(
-                "LOWTRAN7 is needed by this test and was not found: run `sh scripts/atmosphere/install-lowtran.sh` and set IRSIG_LOWTRAN to the path it prints"
-            )
-        })
-}
+use irsig_tests::{bin, lowtran};
 
 /// The sun of these tests: 30° from the zenith on 5 April (day 95), when the Earth is at
 /// about its mean distance from the Sun.

@@ -101,6 +101,19 @@ fn glint_per_sr(sun: &SunGeometry, refl: V3, mirror: Mirror) -> f64 {
     }
 }
 
+/// Sample `k`'s point in the unit square: an `m × m` grid of strata, each jittered by
+/// `(xi1, xi2)`, then any remainder unstratified.
+fn stratified(k: u32, m: u32, xi1: f64, xi2: f64) -> (f64, f64) {
+    if k < m * m {
+        (
+            (f64::from(k % m) + xi1) / f64::from(m),
+            (f64::from(k / m) + xi2) / f64::from(m),
+        )
+    } else {
+        (xi1, xi2)
+    }
+}
+
 /// A sky-view ray from a facet.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum HemiRay {
@@ -303,14 +316,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let rng = ctx.sun_rng();
                 (rng.random(), rng.random())
             };
-            let (u1, u2) = if k < m * m {
-                (
-                    (f64::from(k % m) + xi1) / f64::from(m),
-                    (f64::from(k / m) + xi2) / f64::from(m),
-                )
-            } else {
-                (xi1, xi2)
-            };
+            let (u1, u2) = stratified(k, m, xi1, xi2);
             sum += lit(sun.disk_direction(u1, u2));
         }
         sum / f64::from(n) * std::f64::consts::FRAC_1_PI
@@ -349,15 +355,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let rng = ctx.rng();
                 (rng.random(), rng.random())
             };
-            // An m × m grid of strata, then any remainder unstratified.
-            let (u1, u2) = if k < m * m {
-                (
-                    (f64::from(k % m) + xi1) / f64::from(m),
-                    (f64::from(k / m) + xi2) / f64::from(m),
-                )
-            } else {
-                (xi1, xi2)
-            };
+            let (u1, u2) = stratified(k, m, xi1, xi2);
             // Malley's method: uniform on the disc, projected up.
             let rad = u1.sqrt();
             let phi = std::f64::consts::TAU * u2;
