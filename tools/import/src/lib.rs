@@ -302,19 +302,45 @@ fn to_object(
     for p in &mut object.positions_m {
         *p = p.map(|c| c * factor);
     }
-    if !cli.strict {
-        drop_zero_area(&mut object, &mesh);
-    }
-    object
-        .validate()
-        .map_err(|e| miette!("{}: {}: {}", mesh.locate(&e.path), e.path, e.kind))?;
+    let dropped = if cli.strict {
+        Vec::new()
+    } else {
+        drop_zero_area(&mut object, &mesh)
+    };
+    object.validate().map_err(|e| {
+        let at = mesh.locate(&mesh_path(&e.path, &dropped));
+        miette!("{at}: {}: {}", e.path, e.kind)
+    })?;
     Ok(object)
+}
+
+/// The model path `path` of an object whose facets `dropped` (the mesh's triangle indices,
+/// ascending) were removed, spelled with the mesh's triangle index, so that an error is
+/// located at the triangle's own line: facet `k` of the object is the mesh's `k`-th kept
+/// triangle. Paths that name no facet are returned as they are.
+fn mesh_path(path: &str, dropped: &[usize]) -> String {
+    let Some((index, rest)) = path
+        .strip_prefix("facets[")
+        .and_then(|r| r.split_once(']'))
+        .and_then(|(i, rest)| Some((i.parse::<usize>().ok()?, rest)))
+    else {
+        return path.to_owned();
+    };
+    let mut triangle = index;
+    for &d in dropped {
+        if d > triangle {
+            break;
+        }
+        triangle += 1;
+    }
+    format!("facets[{triangle}]{rest}")
 }
 
 /// Removes the facets whose triangle has no area (what `Object::validate` calls degenerate)
 /// and says on stderr how many and where the first few are. Facets with a non-finite
-/// coordinate or a vertex index out of range are kept, for `validate` to refuse.
-fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
+/// coordinate or a vertex index out of range are kept, for `validate` to refuse. Returns
+/// the mesh's indices of the triangles dropped, ascending.
+fn drop_zero_area(object: &mut Object, mesh: &Mesh) -> Vec<usize> {
     let positions = &object.positions_m;
     let mut dropped = Vec::new();
     let mut i = 0;
@@ -334,7 +360,7 @@ fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
         !zero
     });
     if dropped.is_empty() {
-        return;
+        return dropped;
     }
     let first: Vec<String> = dropped
         .iter()
@@ -349,11 +375,33 @@ fn drop_zero_area(object: &mut Object, mesh: &Mesh) {
         dropped.len() + object.facets.len(),
         first.join(", ")
     );
+    dropped
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_error_after_a_drop_names_the_meshs_triangle() {
+        // Triangles 1 and 2 dropped: the object's facets 0, 1, 2 are the mesh's 0, 3, 4.
+        let dropped = [1, 2];
+        assert_eq!(
+            mesh_path("facets[0].material", &dropped),
+            "facets[0].material"
+        );
+        assert_eq!(mesh_path("facets[1]", &dropped), "facets[3]");
+        assert_eq!(
+            mesh_path("facets[2].vertices[1]", &dropped),
+            "facets[4].vertices[1]"
+        );
+        assert_eq!(mesh_path("facets[1]", &[0, 1, 5]), "facets[3]");
+        assert_eq!(
+            mesh_path("positions_m[3][2]", &dropped),
+            "positions_m[3][2]"
+        );
+        assert_eq!(mesh_path("facets[x]", &dropped), "facets[x]");
+    }
 
     #[test]
     fn formats_come_from_extensions() {
