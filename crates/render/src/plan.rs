@@ -1302,7 +1302,7 @@ fn check_material_bands(
             format!(
                 "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
                  {asked}: give it a `spectral` curve over that band (irsig-material fresnel \
-                 --nk-table, or a DIRSIG .ems through irsig-material convert) rather than \
+                 --nk-table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
                  use its {}-{} um values there",
                 m.name, table_band.0, table_band.1, table_band.0, table_band.1
             ),
