@@ -11,7 +11,9 @@ tool=${IRSIG_MATERIAL:-irsig-material}
 measured="crates/radiometry/data/rough-surfaces.csv"
 
 # entry ID NAME SOURCE ARGS...: one library entry, its source the measurement's citation
-# followed by what the tool says it computed.
+# followed by what the tool says it computed. Every table is fitted to 8-14 um
+# measurements, and its `band_um` says so, which keeps a tracer from using it in another
+# band (the tool writes it itself for an n, k table averaged over its --band).
 entry() {
     id=$1 name=$2
     # The citation as a sed replacement: `&`, `|` and `\` taken literally.
@@ -19,7 +21,10 @@ entry() {
     shift 3
     "$tool" fresnel --id "$id" --name "$name" --angles 0:90:1 "$@" |
         sed -n '/^    ($/,/^    ),$/p' |
-        sed "s|^      source: \"|      source: \"$cite; |"
+        sed "s|^      source: \"|      source: \"$cite; |" |
+        awk '{ line[NR] = $0 } /^      band_um: /{ has = 1 }
+             END { for (i = 1; i <= NR; i++) { print line[i]
+                   if (!has && line[i] ~ /^      source: /) print "      band_um: Some((8.0, 14.0))," } }'
 }
 
 cat <<'HEAD'
@@ -28,8 +33,9 @@ cat <<'HEAD'
 // their sources and stated uncertainties are crates/radiometry/data/rough-surfaces.csv,
 // the fit crates/radiometry/examples/fit_rough.rs, and crates/radiometry/tests/rough.rs
 // holds every entry within every measured interval. Emissivity tables are (angle from the
-// surface normal in degrees, band emissivity), interpolated linearly; docs/accuracy.md
-// ("Rough surfaces") says what each rests on.
+// surface normal in degrees, band emissivity), interpolated linearly; `band_um` is their
+// band, 8-14 um, and a tracer refuses them in another; docs/accuracy.md ("Rough
+// surfaces") says what each rests on.
 (
   materials: [
 HEAD

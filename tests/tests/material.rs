@@ -2,7 +2,8 @@
 //! reference `.ems` and a hand computation, bad input refused with exit 1 or 2 and no
 //! output; the stage's place (`irsig material`, the pipeline runner checking its
 //! parameters, and no material subcommands left in `irsig-atmos`). Material-library
-//! conversion is tested beside the tool (`tools/material/tests/convert.rs`).
+//! conversion is tested beside the tool (`tools/material/tests/convert.rs`). A table that
+//! is one band's (`band_um`) is refused by `irsig-trace` in another band.
 
 use irsig_tests::bin;
 use predicates::prelude::*;
@@ -439,4 +440,86 @@ fn dirsig_materials_become_spectral_materials_and_a_missing_ems_is_refused_at_it
     assert!(s.emissivity.iter().all(|&e| e == 0.98));
     assert!(bg.emissivity.iter().all(|&(_, e)| (e - 0.98).abs() < 1e-12));
     assert_eq!(bg.specular_fraction, 0.0);
+}
+
+/// A band table for 8–14 µm (`band_um`) is refused in 3–5 µm and for the whole spectrum,
+/// at its place in the library, naming both bands, and nothing is written: the tracer
+/// never uses one band's values in another.
+#[test]
+fn an_8_14_um_band_table_is_refused_in_3_5_um() {
+    let dir = tempfile::tempdir().unwrap();
+    let lib = dir.path().join("lwir.ron");
+    std::fs::write(
+        &lib,
+        "(materials: [\n  (id: 1, name: \"lwir paint\", emissivity: [(0.0, 0.9), (90.0, 0.9)],\n   \
+         specular_fraction: 0.0, source: \"a test\", band_um: Some((8.0, 14.0))),\n])\n",
+    )
+    .unwrap();
+    let scene = dir.path().join("plate.raw.ron");
+    std::fs::write(
+        &scene,
+        "(objects: [\"plate\"], positions_m: [(-1.0, -1.0, 0.0), (1.0, -1.0, 0.0), \
+         (1.0, 1.0, 0.0), (-1.0, 1.0, 0.0)], facets: [(vertices: (0, 1, 2), material: 1, \
+         temperature_k: 300.0, object: 0), (vertices: (0, 2, 3), material: 1, \
+         temperature_k: 300.0, object: 0)])",
+    )
+    .unwrap();
+    let view = dir.path().join("down.ron");
+    std::fs::write(
+        &view,
+        "LookAt(position_m: (0.0, 0.0, 10.0), target_m: (0.0, 0.0, 0.0), \
+         up: (0.0, 1.0, 0.0), pixels: (2, 2), fov_deg: (1.0, 1.0))",
+    )
+    .unwrap();
+    for (band, asked) in [("3-5", "--band 3-5 um"), ("total", "--band total")] {
+        let out = bin("irsig-trace")
+            .arg("--scene")
+            .arg(&scene)
+            .arg("--materials")
+            .arg(&lib)
+            .arg("--view")
+            .arg(&view)
+            .args([
+                "--atmosphere",
+                "none",
+                "--sky-radiance",
+                "1",
+                "--band",
+                band,
+                "-o",
+            ])
+            .arg(dir.path().join("refused"))
+            .assert()
+            .code(1);
+        let stderr = String::from_utf8_lossy(&out.get_output().stderr).into_owned();
+        for want in ["lwir.ron:3:", "lwir paint", "8-14 um", asked, "spectral"] {
+            assert!(stderr.contains(want), "expected `{want}` in: {stderr}");
+        }
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .filter(|n| n.starts_with("refused"))
+            .collect();
+        assert!(left.is_empty(), "{left:?}");
+    }
+    // Within its band it is used.
+    bin("irsig-trace")
+        .arg("--scene")
+        .arg(&scene)
+        .arg("--materials")
+        .arg(&lib)
+        .arg("--view")
+        .arg(&view)
+        .args([
+            "--atmosphere",
+            "none",
+            "--sky-radiance",
+            "1",
+            "--band",
+            "8-12",
+            "-o",
+        ])
+        .arg(dir.path().join("used"))
+        .assert()
+        .success();
 }

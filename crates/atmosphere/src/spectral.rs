@@ -480,14 +480,21 @@ fn collapse_valid(
             let tau: Vec<f64> = spectra(&c.transmission, n)
                 .map(|s| q.transmission(s))
                 .collect();
-            if tau[0] <= 0.0 {
+            if tau.iter().all(|&t| t <= 0.0) {
+                // Opaque at every angle (the 4.3 µm CO2 band over the 1 km .cor paths, a
+                // sub-band of 3-5 µm): τ(θ) = τ(0) = 0 whatever the polynomial, and the
+                // identity says so. (Refused, this sub-band stopped every spectral trace
+                // of 3-5 µm through a plan's atmosphere.)
+                Some([1.0, 0.0, 0.0])
+            } else if tau[0] <= 0.0 {
                 return Err(AtmosphereErrorKind::Band(format!(
                     "the .cor paths have no transmittance at nadir in {lo_um}-{hi_um} um"
                 ))
                 .into());
+            } else {
+                let ratio: Vec<f64> = tau.iter().map(|t| t / tau[0]).collect();
+                fit_correction(&c.nadir_deg, &ratio)
             }
-            let ratio: Vec<f64> = tau.iter().map(|t| t / tau[0]).collect();
-            fit_correction(&c.nadir_deg, &ratio)
         }
     };
     let sky = spectral

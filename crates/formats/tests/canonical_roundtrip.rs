@@ -112,6 +112,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
                     emissivity,
                     specular_fraction,
                     source,
+                    band_um: None,
                     spectral: None,
                 }
             })

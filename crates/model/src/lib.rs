@@ -31,6 +31,7 @@
 //!         emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
 //!         specular_fraction: 0.0,
 //!         source: "example".into(),
+//!         band_um: None,
 //!         spectral: None,
 //!     }],
 //! };

@@ -33,6 +33,13 @@ pub struct Material {
     pub specular_fraction: f64,
     /// Where the numbers come from (a measurement, a paper, a legacy `.ems` file).
     pub source: String,
+    /// The band, µm (shortest and longest wavelength), whose values the angular
+    /// `emissivity` table gives, when they are one band's (a library fitted to 8–14 µm
+    /// measurements). A tracer refuses to use the table in a band that is not within it:
+    /// a material needs a `spectral` curve over any other band (its 3–5 µm values are not
+    /// its 8–14 µm ones). `None`: the table holds in every band (a grey body).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub band_um: Option<(f64, f64)>,
     /// The emissivity against wavelength, if known (DIRSIG `.ems` curves, the Fresnel
     /// equations over an n, k table). Then ε(λ, θ) = ε(λ) · `emissivity`(θ) /
     /// `emissivity`(0°): the angular table gives the shape, this curve the spectrum, and a
@@ -209,6 +216,19 @@ impl Material {
             0.0,
             1.0,
         )?;
+        if let Some((shortest, longest)) = self.band_um {
+            check_range(|| format!("{prefix}.band_um.0"), shortest, 1e-3, 1e4)?;
+            check_range(|| format!("{prefix}.band_um.1"), longest, 1e-3, 1e4)?;
+            if longest <= shortest {
+                return Err(ModelError::new(
+                    format!("{prefix}.band_um.1"),
+                    ModelErrorKind::Other(format!(
+                        "the band's longest wavelength {longest} um is not above its \
+                         shortest {shortest} um"
+                    )),
+                ));
+            }
+        }
         if let Some(s) = &self.spectral {
             s.validate(&format!("{prefix}.spectral"))?;
             if self.emissivity.first().is_some_and(|r| r.1 <= 0.0) {
@@ -277,6 +297,7 @@ mod tests {
             emissivity: eps,
             specular_fraction: 1.0,
             source: "test".into(),
+            band_um: None,
             spectral: None,
         }
     }

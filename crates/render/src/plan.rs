@@ -336,6 +336,7 @@ impl Plan {
     ) -> miette::Result<()> {
         let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
         self.record_input("materials", bytes);
+        check_material_bands(&lib, &self.request.band.band, name, bytes)?;
         let lib = match &self.request.band.band {
             _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
             AnyBand::Band(band) => {
@@ -1263,6 +1264,52 @@ fn sha256_hex(bytes: &[u8]) -> String {
 
 fn poisoned() -> miette::Report {
     miette!("a lock of the run was poisoned by a panic")
+}
+
+/// Refuses a material whose angular table is one band's (`band_um`) and that has no
+/// spectral curve, when the trace's band is not within that band: its 8–14 µm values are
+/// not its 3–5 µm ones, and using them there would be silently wrong. The error points at
+/// the material's `band_um` in `file` and names the band asked for.
+///
+/// # Errors
+/// The first such material.
+fn check_material_bands(
+    lib: &MaterialLibrary,
+    band: &AnyBand,
+    file: &str,
+    bytes: &[u8],
+) -> miette::Result<()> {
+    // A band is within the table's when its edges are, to a part in 1e9 (the band's edges
+    // are parsed from the same decimals the library writes).
+    let within = |(shortest, longest): (f64, f64), lo: f64, hi: f64| {
+        lo >= shortest * (1.0 - 1e-9) && hi <= longest * (1.0 + 1e-9)
+    };
+    for (i, m) in lib.materials.iter().enumerate() {
+        let (Some(table_band), None) = (m.band_um, &m.spectral) else {
+            continue;
+        };
+        let asked = match band {
+            AnyBand::Band(b) if within(table_band, b.lambda_min_um(), b.lambda_max_um()) => {
+                continue;
+            }
+            AnyBand::Band(b) => format!("--band {}-{} um", b.lambda_min_um(), b.lambda_max_um()),
+            AnyBand::Total(_) => "--band total (the whole spectrum)".to_owned(),
+        };
+        return Err(error_at_path(
+            file,
+            &String::from_utf8_lossy(bytes),
+            &format!("materials[{i}].band_um"),
+            format!(
+                "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
+                 {asked}: give it a `spectral` curve over that band (irsig-material fresnel \
+                 --nk-table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
+                 use its {}-{} um values there",
+                m.name, table_band.0, table_band.1, table_band.0, table_band.1
+            ),
+        )
+        .into());
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -54,6 +54,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         emissivity: BENCH_EMISSIVITY.to_vec(),
         specular_fraction: s,
         source: "bench".into(),
+        band_um: None,
         spectral: None,
     };
     MaterialLibrary {

@@ -44,6 +44,7 @@
 //!         emissivity: vec![(0.0, 1.0), (90.0, 1.0)],
 //!         specular_fraction: 0.0,
 //!         source: "example".into(),
+//!         band_um: None,
 //!         spectral: None,
 //!     }],
 //! };

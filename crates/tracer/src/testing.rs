@@ -315,6 +315,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
                 emissivity: vec![(0.0, emissivity)],
                 specular_fraction,
                 source: "irsig_tracer::testing".into(),
+                band_um: None,
                 spectral: None,
             })
             .collect(),

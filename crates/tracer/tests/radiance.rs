@@ -49,6 +49,7 @@ fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Mat
         emissivity,
         specular_fraction,
         source: "test".into(),
+        band_um: None,
         spectral: None,
     }
 }

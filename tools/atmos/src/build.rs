@@ -38,7 +38,8 @@ LOWTRAN7 is $IRSIG_LOWTRAN, else `lowtran7` on PATH
 plan directory it is used instead of running LOWTRAN7 (a LOWTRAN7 or MODTRAN tape7).
 The output is a binary spectral atmosphere, RON if its name ends in .ron.")]
 pub struct BuildArgs {
-    /// The plan directory `irsig-atmos plan` wrote (plan.ron and runs/).
+    /// The plan directory `irsig-atmos plan` wrote (plan.ron and runs/), or a plan file
+    /// (`plan -o FILE.ron`), whose decks are then written here from it.
     pub plan: PathBuf,
     /// The spectral atmosphere to write (binary; RON if the name ends in `.ron`; `-` for
     /// standard output).
@@ -383,18 +384,24 @@ fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
 pub fn run(a: &BuildArgs) -> miette::Result<()> {
     // Checked before LOWTRAN7 runs (minutes for a large plan): the plan's own files (its
     // decks and given outputs) and the radiosonde are inputs.
-    let mut inputs: Vec<PathBuf> = vec![a.plan.join("plan.ron")];
-    if let Ok(runs) = std::fs::read_dir(a.plan.join("runs")) {
+    // A plan file alone (`plan -o FILE.ron`): no decks or given outputs beside it; ours.
+    let plan_is_file = a.plan.is_file();
+    let (plan_file, plan_dir) = if plan_is_file {
+        (a.plan.clone(), PathBuf::new())
+    } else {
+        (a.plan.join("plan.ron"), a.plan.clone())
+    };
+    let mut inputs: Vec<PathBuf> = vec![plan_file.clone()];
+    if !plan_is_file && let Ok(runs) = std::fs::read_dir(a.plan.join("runs")) {
         inputs.extend(runs.flatten().map(|e| e.path()));
     }
     inputs.extend(a.radiosonde.iter().map(PathBuf::from));
     irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
     irsig_cli::check_output(&a.output)?;
-    let plan_file = a.plan.join("plan.ron");
     let input = irsig_cli::read_input(plan_file)?;
     let mut plan: AtmospherePlan = canonical::from_ron_bytes(&input.name, &input.bytes)?;
-    let own_decks = a.model.is_some() || a.radiosonde.is_some();
-    if own_decks {
+    let own_decks = plan_is_file || a.model.is_some() || a.radiosonde.is_some();
+    if a.model.is_some() || a.radiosonde.is_some() {
         plan.model = model_of(a.model.as_deref(), a.radiosonde.as_deref())?.0;
     }
     let all = paths(&plan);
@@ -402,7 +409,7 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     let mut decks: Vec<(String, String, irsig_formats::legacy::Position)> =
         Vec::with_capacity(all.len());
     for (i, p) in all.iter().enumerate() {
-        let file = a.plan.join(deck_name(i));
+        let file = plan_dir.join(deck_name(i));
         let name = file.to_string_lossy().into_owned();
         let ours = deck(&plan, p).map_err(|e| miette!("{e}"))?;
         let text = if own_decks {
@@ -430,7 +437,7 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     }
     let given: Vec<Option<PathBuf>> = (0..all.len())
         .map(|i| {
-            let t7 = a.plan.join(deck_name(i)).with_extension("tape7");
+            let t7 = plan_dir.join(deck_name(i)).with_extension("tape7");
             (!own_decks && t7.is_file()).then_some(t7)
         })
         .collect();

@@ -22,6 +22,8 @@ Examples:
   irsig-atmos plan --scene scene.raw --view view.ron --radiosonde site.rsd -o site-plan
   irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
       --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
+  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-winter \
+      --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
   irsig-atmos build tropical-plan -o tropical.spa")]
 pub struct PlanArgs {
     /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
@@ -60,11 +62,18 @@ pub struct PlanArgs {
     #[arg(long, value_name = "DAY", requires = "sun_zenith_deg",
           value_parser = clap::value_parser!(u16).range(1..=366))]
     pub day_of_year: Option<u16>,
+    /// The spectral range and step of every run, cm⁻¹: `V1,V2,DV` (LOWTRAN7's card 4).
+    /// The default, 710,1250,5, covers 8–14 µm; 710,3335,5 covers 3–5 µm as well (3 µm is
+    /// 3333.3 cm⁻¹), for a scene traced in both bands. Runs take longer the wider it is.
+    #[arg(long, value_name = "V1,V2,DV", value_parser = wavenumber_range)]
+    pub wavenumber_per_cm: Option<[f64; 3]>,
     /// The atmosphere's name (default: the model's or the radiosonde file's).
     #[arg(long)]
     pub name: Option<String>,
-    /// The plan directory to write (must not exist, or be empty).
-    #[arg(short = 'o', long, value_name = "DIR")]
+    /// The plan directory to write (must not exist, or be empty); or, for a name ending in
+    /// `.ron`, the plan file alone, without decks: `irsig-atmos build FILE.ron` writes them
+    /// from it (a pipeline's stages pass files, not directories).
+    #[arg(short = 'o', long, value_name = "DIR|FILE.ron")]
     pub output: PathBuf,
 }
 
@@ -91,6 +100,42 @@ fn sun_zenith(s: &str) -> Result<f64, String> {
         ));
     }
     Ok(z)
+}
+
+/// Whether `-o` names a plan file (`….ron`) rather than a plan directory.
+pub(crate) fn plan_file_only(output: &Path) -> bool {
+    output.extension().is_some_and(|e| e == "ron")
+}
+
+/// `--wavenumber-per-cm`: three numbers `V1,V2,DV`, cm⁻¹, with 0 < V1 < V2 ≤ 50000 (the
+/// range of LOWTRAN7's spectra) and a step DV from 1 (its finest) to V2 − V1.
+fn wavenumber_range(s: &str) -> Result<[f64; 3], String> {
+    let values: Vec<f64> = s
+        .split(',')
+        .map(|v| v.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected three numbers V1,V2,DV in cm-1, found `{s}`"))?;
+    let [v1, v2, dv] = values[..] else {
+        return Err(format!(
+            "expected three numbers V1,V2,DV in cm-1, found {} in `{s}`",
+            values.len()
+        ));
+    };
+    if !(v1.is_finite() && v2.is_finite() && dv.is_finite()) {
+        return Err(format!("expected finite numbers, found `{s}`"));
+    }
+    if !(v1 > 0.0 && v2 > v1 && v2 <= 50_000.0) {
+        return Err(format!(
+            "expected 0 < V1 < V2 <= 50000 cm-1 (LOWTRAN7's spectra), found V1 = {v1}, V2 = {v2}"
+        ));
+    }
+    if !(1.0..=v2 - v1).contains(&dv) {
+        return Err(format!(
+            "expected a step DV from 1 cm-1 (LOWTRAN7's finest) to V2 - V1 = {}, found {dv}",
+            v2 - v1
+        ));
+    }
+    Ok([v1, v2, dv])
 }
 
 /// The standard models by name and number.
@@ -228,22 +273,34 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     let name = a.name.clone().unwrap_or(default_name);
     let mut plan =
         make_plan(&name, model, &observers).map_err(|e| miette!("{}: {e}", a.view.join(", ")))?;
+    if let Some(range) = a.wavenumber_per_cm {
+        plan.wavenumber_per_cm = range;
+    }
     if let (Some(z), Some(day)) = (a.sun_zenith_deg, a.day_of_year) {
         // Rounded to the 0.001 deg a deck holds (`sun_zenith` refused what rounds to 90).
         add_sun(&mut plan, z, day)
             .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
     }
-    let mut files = vec![(
-        PathBuf::from("plan.ron"),
-        canonical::to_ron(&plan).into_diagnostic()?.into_bytes(),
-    )];
+    let plan_text = canonical::to_ron(&plan).into_diagnostic()?;
     let all = paths(&plan);
-    for (i, p) in all.iter().enumerate() {
-        let d = deck(&plan, p).map_err(|e| miette!("{e}"))?;
-        let text = tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
-        files.push((deck_name(i), text.into_bytes()));
+    if plan_file_only(&a.output) {
+        // Every deck is checked as the directory's would be, then left to `build`.
+        for (i, p) in all.iter().enumerate() {
+            let d = deck(&plan, p).map_err(|e| miette!("{e}"))?;
+            tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
+        }
+        irsig_cli::write_output(Some(&a.output), |w: &mut dyn std::io::Write| {
+            w.write_all(plan_text.as_bytes())
+        })?;
+    } else {
+        let mut files = vec![(PathBuf::from("plan.ron"), plan_text.into_bytes())];
+        for (i, p) in all.iter().enumerate() {
+            let d = deck(&plan, p).map_err(|e| miette!("{e}"))?;
+            let text = tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
+            files.push((deck_name(i), text.into_bytes()));
+        }
+        write_dir_atomic(&a.output, &files)?;
     }
-    write_dir_atomic(&a.output, &files)?;
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         format!(
             " ({} of them the sun's, at {} deg from the zenith on day {})",

@@ -152,6 +152,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             emissivity,
             specular_fraction: if entry.specular { 1.0 } else { 0.0 },
             source,
+            band_um: None,
             spectral: None,
         });
     }

@@ -107,6 +107,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                     "DIRSIG {} ID {id}: no emissivity file, constant {e} from --default-emissivity",
                     input.name
                 ),
+                band_um: None,
                 spectral: None,
             });
             continue;
@@ -164,6 +165,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 file.value,
                 curves.curves.len()
             ),
+            band_um: None,
             spectral: Some(SpectralEmissivity {
                 wavelength_um: first.wavelength_um.clone(),
                 emissivity: mean,

@@ -141,7 +141,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
     } else {
         "smooth opaque surface".to_owned()
     };
-    let (table, spectral, source, default_name) = match (&args.nk_table, args.n) {
+    let (table, spectral, band_um, source, default_name) = match (&args.nk_table, args.n) {
         (Some(path), _) => {
             let input = irsig_cli::read_input(path)?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
@@ -213,7 +213,10 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 .as_deref()
                 .and_then(Path::file_stem)
                 .map(|s| s.to_string_lossy().into_owned());
-            (table, spectral, source, stem)
+            // The angular table is this band's: a tracer refuses it in another band when
+            // there is no spectrum to average (`--band-only`).
+            let band_um = Some((band.lambda_min_um(), band.lambda_max_um()));
+            (table, spectral, band_um, source, stem)
         }
         (None, Some(n)) => {
             let index = ComplexIndex::new(n, args.k).map_err(|e| miette!("{e}"))?;
@@ -223,7 +226,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 "Fresnel, {kind} (irsig-material fresnel): constant index n = {n}, k = {}",
                 args.k
             );
-            (table, None, source, None)
+            (table, None, None, source, None)
         }
         (None, None) => return Err(irsig_cli::usage_error("give --n (and --k) or --nk-table")),
     };
@@ -239,7 +242,14 @@ pub fn run(args: &Args) -> miette::Result<()> {
         let specular = args
             .specular_fraction
             .unwrap_or(if rough { 0.0 } else { 1.0 });
-        write_library(&table, spectral, name, args, specular, source, output)
+        let entry = Entry {
+            spectral,
+            band_um,
+            name,
+            specular_fraction: specular,
+            source,
+        };
+        write_library(&table, entry, args, output)
     }
 }
 
@@ -258,23 +268,30 @@ fn write_ems(table: &EmissivityTable, output: Option<&Path>) -> miette::Result<(
     irsig_cli::write_output(output, |w: &mut dyn Write| w.write_all(text.as_bytes()))
 }
 
-fn write_library(
-    table: &EmissivityTable,
+/// What a library entry carries beside its angular table.
+struct Entry {
     spectral: Option<SpectralEmissivity>,
+    band_um: Option<(f64, f64)>,
     name: String,
-    args: &Args,
     specular_fraction: f64,
     source: String,
+}
+
+fn write_library(
+    table: &EmissivityTable,
+    entry: Entry,
+    args: &Args,
     output: Option<&Path>,
 ) -> miette::Result<()> {
     let library = MaterialLibrary {
         materials: vec![Material {
             id: MaterialId(args.id),
-            name,
+            name: entry.name,
             emissivity: pairs(table),
-            specular_fraction,
-            source,
-            spectral,
+            specular_fraction: entry.specular_fraction,
+            source: entry.source,
+            band_um: entry.band_um,
+            spectral: entry.spectral,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

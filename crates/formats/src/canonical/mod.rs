@@ -418,6 +418,7 @@ mod tests {
                     emissivity: vec![(0.0, 0.96), (90.0, 0.0)],
                     specular_fraction: 0.0,
                     source: "test".into(),
+                    band_um: None,
                     spectral: None,
                 },
                 Material {
@@ -426,6 +427,7 @@ mod tests {
                     emissivity: vec![(0.0, 0.3), (60.0, 0.25)],
                     specular_fraction: 1.0,
                     source: "test".into(),
+                    band_um: None,
                     spectral: None,
                 },
             ],
