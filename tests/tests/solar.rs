@@ -24,6 +24,7 @@ use std::time::Instant;
 use irsig_atmosphere::solar::DirectSun;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
+use irsig_model::truth::Layer;
 use irsig_tests::{bin, lowtran};
 
 /// The sun of these tests: 30° from the zenith on 5 April (day 95), when the Earth is at
@@ -634,6 +635,81 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     );
     assert!(day[0] > night[0]);
 
+    // The sun's truth layers (item 5), by hand from the same E: the plate gets E·cos θ, sees
+    // the whole disk, reflects (1 − ε)·E·cos θ/π, which is τ·(1 − ε)·E·cos θ/π of the
+    // pixel's radiance. A night truth EXR keeps exactly the night's layers.
+    let names = |path: &Path| -> Vec<String> {
+        irsig_raster::read_exr(&std::fs::read(path).unwrap())
+            .unwrap()
+            .layers
+            .iter()
+            .map(|l| l.name.clone())
+            .collect()
+    };
+    let night_layers: Vec<String> = Layer::TRUTH.iter().map(|l| l.name().to_owned()).collect();
+    assert_eq!(names(&out.join("night.truth.exr")), night_layers);
+    let mut day_layers = night_layers.clone();
+    day_layers.extend(Layer::SUN.iter().map(|l| l.name().to_owned()));
+    assert_eq!(names(&truth), day_layers);
+    let irradiance = layer(&truth, Layer::SolarIrradiance.name());
+    let visible = layer(&truth, Layer::SunVisibleFraction.name());
+    let reflected = layer(&truth, Layer::ReflectedSolarRadiance.name());
+    let share = layer(&truth, Layer::SunShare.name());
+    for p in 0..day.len() {
+        let close = |got: f32, expected: f64, what: &str| {
+            let error = f64::from(got) / expected - 1.0;
+            // f32 layers and the same quadrature margin as above.
+            assert!(
+                error.abs() < 1e-5,
+                "pixel {p}: {what} {got}, by hand {expected}"
+            );
+        };
+        close(irradiance[p], e * cos, "solar irradiance");
+        assert_eq!(visible[p], 1.0);
+        let r = (1.0 - EPSILON) * e * cos / std::f64::consts::PI;
+        close(reflected[p], r, "reflected solar radiance");
+        close(
+            share[p],
+            f64::from(tau[p]) * r / f64::from(day[p]),
+            "sun share",
+        );
+    }
+    eprintln!(
+        "sun layers: E {:.6} W m-2, reflected {:.6} W m-2 sr-1, share {:.6}",
+        irradiance[0], reflected[0], share[0]
+    );
+    // Traced in two tiles and merged, the day's truth is the whole frame's, byte for byte.
+    for i in 1..=2 {
+        trace_plate(
+            &out,
+            &spa,
+            &format!("tile{i}"),
+            &[
+                "--sun-zenith-deg",
+                "30",
+                "--sun-azimuth-deg",
+                "120",
+                "--tile",
+                &format!("{i}/2x1"),
+            ],
+        )
+        .success();
+    }
+    bin("irsig-merge")
+        .arg(out.join("tile1.truth.exr"))
+        .arg(out.join("tile2.truth.exr"))
+        .arg("--view")
+        .arg(out.join("down.ron"))
+        .arg("--truth-exr")
+        .arg(out.join("merged.truth.exr"))
+        .assert()
+        .success();
+    assert_eq!(
+        std::fs::read(out.join("merged.truth.exr")).unwrap(),
+        std::fs::read(&truth).unwrap(),
+        "merged tiles' truth differs from the whole frame's"
+    );
+
     // A sun other than the table's, by direction or by time and place (London at noon on
     // the solstice, about 28 deg from the zenith), and a sun below the horizon.
     refused(
@@ -719,7 +795,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         &["sun"],
     );
     let secs = start.elapsed().as_secs_f64();
-    eprintln!("build, two traces and five refusals: {secs:.1} s");
+    eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
     assert!(secs < 60.0, "{secs} s");
 }
 
