@@ -484,7 +484,31 @@ fn trace_plate(
     prefix: &str,
     extra: &[&str],
 ) -> assert_cmd::assert::Assert {
-    let [scene, materials, view] = plate(dir);
+    trace_plate_lit(dir, atmosphere, prefix, extra, None)
+}
+
+/// The plate's view straight down, as [`plate`] writes it, with `sun` (RON) added as its
+/// last field on a line of its own (line 3, column 8).
+fn view_with_sun(sun: &str) -> String {
+    format!(
+        "LookAt(position_m: (0.0, 0.0, 1000.0), target_m: (0.0, 0.0, 0.0),\n\
+         up: (0.0, 1.0, 0.0), pixels: (4, 4), fov_deg: (1.0, 1.0),\n  sun: {sun},\n)\n"
+    )
+}
+
+/// [`trace_plate`], with the view's text replaced by `view` when given.
+fn trace_plate_lit(
+    dir: &Path,
+    atmosphere: &Path,
+    prefix: &str,
+    extra: &[&str],
+    view_text: Option<&str>,
+) -> assert_cmd::assert::Assert {
+    let [scene, materials, mut view] = plate(dir);
+    if let Some(text) = view_text {
+        view = dir.join(format!("sun-view-{prefix}.ron"));
+        std::fs::write(&view, text).unwrap();
+    }
     bin("irsig-trace")
         .arg("--scene")
         .arg(scene)
@@ -710,6 +734,62 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "merged tiles' truth differs from the whole frame's"
     );
 
+    // The same sun from the view file: the same pixels, bit for bit, in every layer (the
+    // files' headers differ only by the view file's checksum in the provenance).
+    let lit = "Some(Direction(zenith_deg: 30.0, azimuth_deg: 120.0))";
+    trace_plate_lit(&out, &spa, "viewsun", &[], Some(&view_with_sun(lit))).success();
+    let pixels = |path: &Path| -> Vec<(String, Vec<u32>)> {
+        irsig_raster::read_exr(&std::fs::read(path).unwrap())
+            .unwrap()
+            .layers
+            .iter()
+            .map(|l| (l.name.clone(), l.data.iter().map(|v| v.to_bits()).collect()))
+            .collect()
+    };
+    for file in ["radiance.exr", "truth.exr"] {
+        let (a, b) = (
+            out.join(format!("day.{file}")),
+            out.join(format!("viewsun.{file}")),
+        );
+        assert_eq!(
+            pixels(&a),
+            pixels(&b),
+            "{file}: the view's sun differs from the flags'"
+        );
+    }
+    // Given twice, by the view and by the flags: refused, naming both (the sun's value,
+    // inside `Some(`, at column 13).
+    refused(
+        trace_plate_lit(
+            &out,
+            &spa,
+            "twice",
+            &["--sun-zenith-deg", "30", "--sun-azimuth-deg", "120"],
+            Some(&view_with_sun(lit)),
+        ),
+        &out,
+        "twice",
+        "--sun-zenith-deg",
+        &["sun-view-twice.ron:3:13", "both give a sun"],
+    );
+    // A view's sun other than the table's: refused at its place in the file.
+    let other = trace_plate_lit(
+        &out,
+        &spa,
+        "viewother",
+        &[],
+        Some(&view_with_sun(
+            "Direction(zenith_deg: 31.0, azimuth_deg: 0.0)",
+        )),
+    )
+    .failure();
+    let stderr = String::from_utf8_lossy(&other.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("sun-view-viewother.ron:3:8") && stderr.contains("30 deg"),
+        "{stderr}"
+    );
+    assert!(!out.join("viewother.radiance.exr").exists());
+
     // A sun other than the table's, by direction or by time and place (London at noon on
     // the solstice, about 28 deg from the zenith), and a sun below the horizon.
     refused(
@@ -821,6 +901,78 @@ fn a_sun_needs_an_atmosphere_with_a_solar_table() {
             &[what],
         );
     }
+    // A view's sun with a value out of range, an unknown field or no form: refused at the
+    // value's line and column (line 3: `  sun: ` takes columns 1-7), nothing written.
+    for (sun, column, says) in [
+        (
+            "Direction(zenith_deg: 95.0, azimuth_deg: 0.0)",
+            30,
+            "horizon",
+        ),
+        (
+            "Direction(zenith_deg: 30.0, azimuth_deg: 400.0)",
+            49,
+            "azimuth_deg",
+        ),
+        (
+            "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 95.0, longitude_deg: 0.0)",
+            54,
+            "latitude_deg",
+        ),
+        (
+            "At(utc: \"2024-13-21T12:00:00Z\", latitude_deg: 51.5, longitude_deg: 0.0)",
+            16,
+            "utc",
+        ),
+        (
+            "Direction(zenith_deg: 30.0, azimuth_deg: 0.0, hour: 12)",
+            54,
+            "hour",
+        ),
+        ("Noon", 8, "expected Direction"),
+    ] {
+        let bad = trace_plate_lit(
+            dir.path(),
+            Path::new("none"),
+            "bad",
+            &[],
+            Some(&view_with_sun(sun)),
+        )
+        .failure();
+        let stderr = String::from_utf8_lossy(&bad.get_output().stderr).into_owned();
+        let at = format!("sun-view-bad.ron:3:{column}");
+        assert!(
+            stderr.contains(&at) && stderr.contains(says),
+            "{sun}: expected {at}, {says}: {stderr}"
+        );
+        assert!(!dir.path().join("bad.radiance.exr").exists());
+    }
+    // A good view sun with no solar table: refused at the sun's place, not at a flag.
+    let lit = trace_plate_lit(
+        dir.path(),
+        Path::new("none"),
+        "vacuum",
+        &[],
+        Some(&view_with_sun(
+            "Direction(zenith_deg: 30.0, azimuth_deg: 0.0)",
+        )),
+    )
+    .failure();
+    let stderr = String::from_utf8_lossy(&lit.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("sun-view-vacuum.ron:3:8") && stderr.contains("a vacuum"),
+        "{stderr}"
+    );
+    // Shadow rays for a view's sun are the flag's; without any sun they are refused.
+    trace_plate(
+        dir.path(),
+        Path::new("none"),
+        "rays",
+        &["--sun-shadow-rays", "4"],
+    )
+    .code(2)
+    .stderr(predicates::str::contains("without a sun"));
+
     // Half a sun, or shadow rays without one: clap's usage errors.
     for flags in [
         &["--sun-zenith-deg", "30"][..],
