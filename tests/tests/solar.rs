@@ -8,7 +8,9 @@
 //! line and column in the plan. Then `irsig-trace --sun-…` end to end: the sunlight a grey
 //! diffuse plate adds to its pixels against τ·(1 − ε)·E·cos θ/π by hand from the built
 //! atmosphere's solar spectra, and every sun the atmosphere cannot light refused naming its
-//! flag, with no file written.
+//! flag, with no file written. The sun also comes from a view file and from a pipeline's
+//! `sun` block, each making the flags' pixels bit for bit; the sun's truth layers are checked
+//! against the same hand values, and a sunlit frame in tiles merges into the whole.
 //!
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH
 //! (`sh scripts/atmosphere/install-lowtran.sh` builds it). When it is missing these tests
@@ -755,6 +757,41 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
             pixels(&a),
             pixels(&b),
             "{file}: the view's sun differs from the flags'"
+        );
+    }
+    // The same sun from a pipeline's `sun` block, run by irsig-run: the same pixels again.
+    // (In a folder of its own: the runner keeps its state beside the pipeline file.)
+    let pipe = out.join("pipe");
+    std::fs::create_dir(&pipe).unwrap();
+    std::fs::copy(&spa, pipe.join("sunny.spa")).unwrap();
+    plate(&pipe);
+    std::fs::write(
+        pipe.join("lit.ron"),
+        "(\n  sun: Direction(zenith_deg: 30.0, azimuth_deg: 120.0),\n  stages: [Stage(tool: \
+         \"trace\", inputs: {\"scene\": \"plate.raw.ron\", \"materials\": \"grey.ron\", \
+         \"view\": \"down.ron\", \"atmosphere\": \"sunny.spa\"}, params: {\"band\": \"4-5\"}, \
+         outputs: {\"radiance-exr\": \"piped/frame.radiance.exr\", \"truth-exr\": \
+         \"piped/frame.truth.exr\"})],\n)\n",
+    )
+    .unwrap();
+    let run = bin("irsig-run")
+        .arg("lit.ron")
+        .current_dir(&pipe)
+        .assert()
+        .success();
+    eprintln!(
+        "{}",
+        String::from_utf8_lossy(&run.get_output().stderr).trim()
+    );
+    for file in ["radiance.exr", "truth.exr"] {
+        let (a, b) = (
+            out.join(format!("day.{file}")),
+            pipe.join(format!("piped/frame.{file}")),
+        );
+        assert_eq!(
+            pixels(&a),
+            pixels(&b),
+            "{file}: the pipeline's sun differs from the flags'"
         );
     }
     // Given twice, by the view and by the flags: refused, naming both (the sun's value,
