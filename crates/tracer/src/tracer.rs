@@ -369,9 +369,9 @@ impl fmt::Display for Sample {
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
 /// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
-/// [`Sample`] is 192 (160 when measured; the sun's four terms are in [`SunPixel`]). (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
-/// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
-/// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
+/// [`Sample`] is 192 (160 when measured; the sun's four terms are kept in [`SunPixel`]).
+/// (Keeping a whole sample per pixel cost 10-45 ns per primary ray at 1k-1M triangles;
+/// this record, with the angle derived later, costs 2-4 ns: BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TruthPixel {
