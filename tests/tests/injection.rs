@@ -126,6 +126,42 @@ fn a_newline_in_a_stage_name_adds_no_line_to_a_slurm_script() {
 }
 
 #[test]
+fn a_pipelines_sun_adds_no_rule_and_no_command() {
+    // The sun's time becomes a word of every trace stage's command line: a newline in it
+    // is refused where it stands, as in any parameter.
+    let stage = "stages: [(tool: \"testcat\", args: [\"a.txt\"], outputs: {\"o\": \"b.txt\"})]";
+    let text = format!(
+        "(sun: At(utc: \"2024-06-21T12:00:00Z\\nb.txt: ; touch CANARY #\", latitude_deg: 0, \
+         longitude_deg: 0),\n {stage})"
+    );
+    refused_and_inert(
+        &text,
+        "1:36",
+        &["--emit-makefile", "Makefile"],
+        &["make", "-f", "Makefile", "all"],
+    );
+    // Text that is no time, `$(...)` or a flag: refused at the value by the sun's model
+    // before anything is planned, printed or run.
+    for utc in ["$(touch CANARY)", "--o=CANARY"] {
+        let text =
+            format!("(sun: At(utc: \"{utc}\", latitude_deg: 0, longitude_deg: 0),\n {stage})");
+        let dir = pipeline(&text);
+        let out = irsig_run(dir.path(), &["--dry-run"]);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        if out.status.success() {
+            std::fs::write(dir.path().join("dry-run.sh"), &out.stdout).unwrap();
+            run_in(dir.path(), "sh", &["dry-run.sh"]);
+        }
+        assert!(!dir.path().join("CANARY").exists(), "{utc}: ran");
+        assert_eq!(out.status.code(), Some(1), "{utc}: {stderr}");
+        assert!(
+            stderr.contains("p.ron:1:15") && stderr.contains("utc"),
+            "{stderr}"
+        );
+    }
+}
+
+#[test]
 fn the_dry_run_never_prints_a_raw_word() {
     // A word holding a NUL was printed raw (shlex refuses to quote it); run as a script,
     // the `$(...)` in it ran.

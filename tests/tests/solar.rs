@@ -8,7 +8,9 @@
 //! line and column in the plan. Then `irsig-trace --sun-…` end to end: the sunlight a grey
 //! diffuse plate adds to its pixels against τ·(1 − ε)·E·cos θ/π by hand from the built
 //! atmosphere's solar spectra, and every sun the atmosphere cannot light refused naming its
-//! flag, with no file written.
+//! flag, with no file written. The sun also comes from a view file and from a pipeline's
+//! `sun` block, each making the flags' pixels bit for bit; the sun's truth layers are checked
+//! against the same hand values, and a sunlit frame in tiles merges into the whole.
 //!
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH
 //! (`sh scripts/atmosphere/install-lowtran.sh` builds it). When it is missing these tests
@@ -24,6 +26,7 @@ use std::time::Instant;
 use irsig_atmosphere::solar::DirectSun;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
+use irsig_model::truth::Layer;
 use irsig_tests::{bin, lowtran};
 
 /// The sun of these tests: 30° from the zenith on 5 April (day 95), when the Earth is at
@@ -483,7 +486,31 @@ fn trace_plate(
     prefix: &str,
     extra: &[&str],
 ) -> assert_cmd::assert::Assert {
-    let [scene, materials, view] = plate(dir);
+    trace_plate_lit(dir, atmosphere, prefix, extra, None)
+}
+
+/// The plate's view straight down, as [`plate`] writes it, with `sun` (RON) added as its
+/// last field on a line of its own (line 3, column 8).
+fn view_with_sun(sun: &str) -> String {
+    format!(
+        "LookAt(position_m: (0.0, 0.0, 1000.0), target_m: (0.0, 0.0, 0.0),\n\
+         up: (0.0, 1.0, 0.0), pixels: (4, 4), fov_deg: (1.0, 1.0),\n  sun: {sun},\n)\n"
+    )
+}
+
+/// [`trace_plate`], with the view's text replaced by `view` when given.
+fn trace_plate_lit(
+    dir: &Path,
+    atmosphere: &Path,
+    prefix: &str,
+    extra: &[&str],
+    view_text: Option<&str>,
+) -> assert_cmd::assert::Assert {
+    let [scene, materials, mut view] = plate(dir);
+    if let Some(text) = view_text {
+        view = dir.join(format!("sun-view-{prefix}.ron"));
+        std::fs::write(&view, text).unwrap();
+    }
     bin("irsig-trace")
         .arg("--scene")
         .arg(scene)
@@ -650,6 +677,172 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     );
     assert!(day[0] > night[0]);
 
+    // The sun's truth layers (item 5), by hand from the same E: the plate gets E·cos θ, sees
+    // the whole disk, reflects (1 − ε)·E·cos θ/π, which is τ·(1 − ε)·E·cos θ/π of the
+    // pixel's radiance. A night truth EXR keeps exactly the night's layers.
+    let names = |path: &Path| -> Vec<String> {
+        irsig_raster::read_exr(&std::fs::read(path).unwrap())
+            .unwrap()
+            .layers
+            .iter()
+            .map(|l| l.name.clone())
+            .collect()
+    };
+    let night_layers: Vec<String> = Layer::TRUTH.iter().map(|l| l.name().to_owned()).collect();
+    assert_eq!(names(&out.join("night.truth.exr")), night_layers);
+    let mut day_layers = night_layers.clone();
+    day_layers.extend(Layer::SUN.iter().map(|l| l.name().to_owned()));
+    assert_eq!(names(&truth), day_layers);
+    let irradiance = layer(&truth, Layer::SolarIrradiance.name());
+    let visible = layer(&truth, Layer::SunVisibleFraction.name());
+    let reflected = layer(&truth, Layer::ReflectedSolarRadiance.name());
+    let share = layer(&truth, Layer::SunShare.name());
+    for p in 0..day.len() {
+        let close = |got: f32, expected: f64, what: &str| {
+            let error = f64::from(got) / expected - 1.0;
+            // f32 layers and the same quadrature margin as above.
+            assert!(
+                error.abs() < 1e-5,
+                "pixel {p}: {what} {got}, by hand {expected}"
+            );
+        };
+        close(irradiance[p], e * cos, "solar irradiance");
+        assert_eq!(visible[p], 1.0);
+        let r = (1.0 - EPSILON) * e * cos / std::f64::consts::PI;
+        close(reflected[p], r, "reflected solar radiance");
+        close(
+            share[p],
+            f64::from(tau[p]) * r / f64::from(day[p]),
+            "sun share",
+        );
+    }
+    eprintln!(
+        "sun layers: E {:.6} W m-2, reflected {:.6} W m-2 sr-1, share {:.6}",
+        irradiance[0], reflected[0], share[0]
+    );
+    // Traced in two tiles and merged, the day's truth is the whole frame's, byte for byte.
+    for i in 1..=2 {
+        trace_plate(
+            &out,
+            &spa,
+            &format!("tile{i}"),
+            &[
+                "--sun-zenith-deg",
+                "30",
+                "--sun-azimuth-deg",
+                "120",
+                "--tile",
+                &format!("{i}/2x1"),
+            ],
+        )
+        .success();
+    }
+    bin("irsig-merge")
+        .arg(out.join("tile1.truth.exr"))
+        .arg(out.join("tile2.truth.exr"))
+        .arg("--view")
+        .arg(out.join("down.ron"))
+        .arg("--truth-exr")
+        .arg(out.join("merged.truth.exr"))
+        .assert()
+        .success();
+    assert_eq!(
+        std::fs::read(out.join("merged.truth.exr")).unwrap(),
+        std::fs::read(&truth).unwrap(),
+        "merged tiles' truth differs from the whole frame's"
+    );
+
+    // The same sun from the view file: the same pixels, bit for bit, in every layer (the
+    // files' headers differ only by the view file's checksum in the provenance).
+    let lit = "Some(Direction(zenith_deg: 30.0, azimuth_deg: 120.0))";
+    trace_plate_lit(&out, &spa, "viewsun", &[], Some(&view_with_sun(lit))).success();
+    let pixels = |path: &Path| -> Vec<(String, Vec<u32>)> {
+        irsig_raster::read_exr(&std::fs::read(path).unwrap())
+            .unwrap()
+            .layers
+            .iter()
+            .map(|l| (l.name.clone(), l.data.iter().map(|v| v.to_bits()).collect()))
+            .collect()
+    };
+    for file in ["radiance.exr", "truth.exr"] {
+        let (a, b) = (
+            out.join(format!("day.{file}")),
+            out.join(format!("viewsun.{file}")),
+        );
+        assert_eq!(
+            pixels(&a),
+            pixels(&b),
+            "{file}: the view's sun differs from the flags'"
+        );
+    }
+    // The same sun from a pipeline's `sun` block, run by irsig-run: the same pixels again.
+    // (In a folder of its own: the runner keeps its state beside the pipeline file.)
+    let pipe = out.join("pipe");
+    std::fs::create_dir(&pipe).unwrap();
+    std::fs::copy(&spa, pipe.join("sunny.spa")).unwrap();
+    plate(&pipe);
+    std::fs::write(
+        pipe.join("lit.ron"),
+        "(\n  sun: Direction(zenith_deg: 30.0, azimuth_deg: 120.0),\n  stages: [Stage(tool: \
+         \"trace\", inputs: {\"scene\": \"plate.raw.ron\", \"materials\": \"grey.ron\", \
+         \"view\": \"down.ron\", \"atmosphere\": \"sunny.spa\"}, params: {\"band\": \"4-5\"}, \
+         outputs: {\"radiance-exr\": \"piped/frame.radiance.exr\", \"truth-exr\": \
+         \"piped/frame.truth.exr\"})],\n)\n",
+    )
+    .unwrap();
+    let run = bin("irsig-run")
+        .arg("lit.ron")
+        .current_dir(&pipe)
+        .assert()
+        .success();
+    eprintln!(
+        "{}",
+        String::from_utf8_lossy(&run.get_output().stderr).trim()
+    );
+    for file in ["radiance.exr", "truth.exr"] {
+        let (a, b) = (
+            out.join(format!("day.{file}")),
+            pipe.join(format!("piped/frame.{file}")),
+        );
+        assert_eq!(
+            pixels(&a),
+            pixels(&b),
+            "{file}: the pipeline's sun differs from the flags'"
+        );
+    }
+    // Given twice, by the view and by the flags: refused, naming both (the sun's value,
+    // inside `Some(`, at column 13).
+    refused(
+        trace_plate_lit(
+            &out,
+            &spa,
+            "twice",
+            &["--sun-zenith-deg", "30", "--sun-azimuth-deg", "120"],
+            Some(&view_with_sun(lit)),
+        ),
+        &out,
+        "twice",
+        "--sun-zenith-deg",
+        &["sun-view-twice.ron:3:13", "both give a sun"],
+    );
+    // A view's sun other than the table's: refused at its place in the file.
+    let other = trace_plate_lit(
+        &out,
+        &spa,
+        "viewother",
+        &[],
+        Some(&view_with_sun(
+            "Direction(zenith_deg: 31.0, azimuth_deg: 0.0)",
+        )),
+    )
+    .failure();
+    let stderr = String::from_utf8_lossy(&other.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("sun-view-viewother.ron:3:8") && stderr.contains("30 deg"),
+        "{stderr}"
+    );
+    assert!(!out.join("viewother.radiance.exr").exists());
+
     // A sun other than the table's, by direction or by time and place (London at noon on
     // the solstice, about 28 deg from the zenith), and a sun below the horizon.
     refused(
@@ -735,7 +928,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         &["sun"],
     );
     let secs = start.elapsed().as_secs_f64();
-    eprintln!("build, two traces and five refusals: {secs:.1} s");
+    eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
     assert!(secs < 60.0, "{secs} s");
 }
 
@@ -761,6 +954,78 @@ fn a_sun_needs_an_atmosphere_with_a_solar_table() {
             &[what],
         );
     }
+    // A view's sun with a value out of range, an unknown field or no form: refused at the
+    // value's line and column (line 3: `  sun: ` takes columns 1-7), nothing written.
+    for (sun, column, says) in [
+        (
+            "Direction(zenith_deg: 95.0, azimuth_deg: 0.0)",
+            30,
+            "horizon",
+        ),
+        (
+            "Direction(zenith_deg: 30.0, azimuth_deg: 400.0)",
+            49,
+            "azimuth_deg",
+        ),
+        (
+            "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 95.0, longitude_deg: 0.0)",
+            54,
+            "latitude_deg",
+        ),
+        (
+            "At(utc: \"2024-13-21T12:00:00Z\", latitude_deg: 51.5, longitude_deg: 0.0)",
+            16,
+            "utc",
+        ),
+        (
+            "Direction(zenith_deg: 30.0, azimuth_deg: 0.0, hour: 12)",
+            54,
+            "hour",
+        ),
+        ("Noon", 8, "expected Direction"),
+    ] {
+        let bad = trace_plate_lit(
+            dir.path(),
+            Path::new("none"),
+            "bad",
+            &[],
+            Some(&view_with_sun(sun)),
+        )
+        .failure();
+        let stderr = String::from_utf8_lossy(&bad.get_output().stderr).into_owned();
+        let at = format!("sun-view-bad.ron:3:{column}");
+        assert!(
+            stderr.contains(&at) && stderr.contains(says),
+            "{sun}: expected {at}, {says}: {stderr}"
+        );
+        assert!(!dir.path().join("bad.radiance.exr").exists());
+    }
+    // A good view sun with no solar table: refused at the sun's place, not at a flag.
+    let lit = trace_plate_lit(
+        dir.path(),
+        Path::new("none"),
+        "vacuum",
+        &[],
+        Some(&view_with_sun(
+            "Direction(zenith_deg: 30.0, azimuth_deg: 0.0)",
+        )),
+    )
+    .failure();
+    let stderr = String::from_utf8_lossy(&lit.get_output().stderr).into_owned();
+    assert!(
+        stderr.contains("sun-view-vacuum.ron:3:8") && stderr.contains("a vacuum"),
+        "{stderr}"
+    );
+    // Shadow rays for a view's sun are the flag's; without any sun they are refused.
+    trace_plate(
+        dir.path(),
+        Path::new("none"),
+        "rays",
+        &["--sun-shadow-rays", "4"],
+    )
+    .code(2)
+    .stderr(predicates::str::contains("without a sun"));
+
     // Half a sun, or shadow rays without one: clap's usage errors.
     for flags in [
         &["--sun-zenith-deg", "30"][..],

@@ -59,13 +59,158 @@ fn starts_as_list(text: &str) -> bool {
     }
 }
 
+/// A single RON view's optional `sun` entry, as the file gives it: the sun lighting the
+/// frame ([`parse_views_and_sun`]). Its type is the caller's (the sun's model is
+/// `irsig-atmosphere`'s, which this crate does not know).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ViewSun<S> {
+    /// The sun, as read.
+    pub sun: S,
+    /// `file:line:column` of the sun's value, for messages that must say where it came from.
+    pub location: String,
+}
+
+/// [`parse_views`], and the `sun` entry of a single RON view, if it has one: `sun:
+/// Direction(...)` or `sun: Some(Direction(...))`, read as `S` (its unknown fields refused
+/// at their line and column), then checked by `check`, which names the field at fault and
+/// why: a field is reported at its value's line and column. A sun in a list of views, or in
+/// anything but the view's own fields, is refused where it stands: one sun lights a run.
+///
+/// # Errors
+/// As [`parse_views`]; also a `sun` that is not an `S` or that `check` refuses, or a `sun`
+/// in a list of views.
+pub fn parse_views_and_sun<S: serde::de::DeserializeOwned>(
+    file: &str,
+    text: &str,
+    unit: LengthUnit,
+    check: impl Fn(&S) -> Result<(), (String, String)>,
+) -> Result<(Vec<View>, Option<ViewSun<S>>), ParseError> {
+    let (rest, entry) = split_sun(file, text)?;
+    let views = parse_views_blanked(file, text, &rest, unit)?;
+    let Some((start, end)) = entry else {
+        return Ok((views, None));
+    };
+    let value = &text[start..end];
+    let sun: S = ron::from_str(value).map_err(|e| {
+        let offset = start + offset_of(value, e.span.start.line, e.span.start.col);
+        ParseError::at_offset(
+            file,
+            text,
+            offset,
+            format!(
+                "invalid sun: {}; expected Direction(zenith_deg: DEG, azimuth_deg: DEG) or \
+                 At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: DEG, ...)",
+                crate::canonical::ron_message(&e.code)
+            ),
+        )
+    })?;
+    check(&sun).map_err(|(field, message)| {
+        let (from, _) = crate::ron_tree::locate(value, &field);
+        ParseError::at_offset(
+            file,
+            text,
+            start + from,
+            format!("invalid sun: `{field}`: {message}"),
+        )
+    })?;
+    let (line, column) = crate::error::line_column(text, start);
+    Ok((
+        views,
+        Some(ViewSun {
+            sun,
+            location: format!("{file}:{line}:{column}"),
+        }),
+    ))
+}
+
+/// `text` with a single RON view's `sun` entry blanked (every byte of `sun: value,` a space,
+/// newlines kept, so that every other value keeps its line, column and byte offset), and the
+/// byte range of the sun's value with a `Some(...)` around it looked through. A 1990
+/// viewing file, or RON with no `sun`, comes back as it is.
+fn split_sun(file: &str, text: &str) -> Result<(String, Option<(usize, usize)>), ParseError> {
+    use crate::ron_tree::Kind;
+    if is_legacy_viewing_file(text) || !text.contains("sun") {
+        return Ok((text.to_owned(), None));
+    }
+    // Text that is not RON is left to the view reader, whose message says what a view is.
+    let Ok(root) = crate::ron_tree::parse(file, text, "view") else {
+        return Ok((text.to_owned(), None));
+    };
+    if let Kind::List(items) = &root.kind {
+        for item in items {
+            if let Kind::Struct(_, fields) = &item.kind
+                && let Some((key, _)) = fields.iter().find(|(k, _)| k.name == "sun")
+            {
+                return Err(ParseError::at_offset(
+                    file,
+                    text,
+                    key.start,
+                    "a sun in a list of views: one sun lights a run; give it in a single \
+                     view's file, with irsig-trace's --sun-... flags or in a pipeline's `sun`",
+                ));
+            }
+        }
+        return Ok((text.to_owned(), None));
+    }
+    let Kind::Struct(_, fields) = &root.kind else {
+        return Ok((text.to_owned(), None));
+    };
+    let Some(at) = fields.iter().position(|(k, _)| k.name == "sun") else {
+        return Ok((text.to_owned(), None));
+    };
+    let (key, value) = &fields[at];
+    // The entry runs to the next field's key, or past its own comma to the closing bracket.
+    let bytes = text.as_bytes();
+    let mut end = value.end;
+    while end < text.len() && bytes[end].is_ascii_whitespace() {
+        end += 1;
+    }
+    if bytes.get(end) == Some(&b',') {
+        end += 1;
+    }
+    let mut rest = text.as_bytes().to_vec();
+    for b in &mut rest[key.start..end] {
+        if *b != b'\n' {
+            *b = b' ';
+        }
+    }
+    let rest = String::from_utf8(rest).expect("ASCII spaces in place of whole entries");
+    let inner = match &value.kind {
+        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
+        _ => value,
+    };
+    Ok((rest, Some((inner.start, inner.end))))
+}
+
 /// The views of one file's text: a RON view, a RON list of views, or a 1990 viewing file
 /// whose position is in `unit`. Every view is validated; a broken rule is reported at its
-/// value's line and column.
+/// value's line and column. A single view's `sun` entry is passed over (it lights the frame,
+/// it does not place the camera: [`parse_views_and_sun`] reads it).
 ///
 /// # Errors
 /// A syntax error, an empty list, or a view that breaks a model rule.
 pub fn parse_views(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>, ParseError> {
+    let (rest, _) = split_sun(file, text)?;
+    parse_views_blanked(file, text, &rest, unit)
+}
+
+/// [`parse_views`] of `text` whose `sun` entry is blanked in `rest`: errors are placed and
+/// shown in `text`.
+fn parse_views_blanked(
+    file: &str,
+    text: &str,
+    rest: &str,
+    unit: LengthUnit,
+) -> Result<Vec<View>, ParseError> {
+    if rest == text {
+        return parse_views_of(file, text, unit);
+    }
+    parse_views_of(file, rest, unit).map_err(|e| {
+        ParseError::at_offset(file, text, offset_of(rest, e.line, e.column), e.message)
+    })
+}
+
+fn parse_views_of(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>, ParseError> {
     if is_legacy_viewing_file(text) {
         let parsed = legacy_view::parse(file, text)?;
         let v = parsed.to_view(unit);
@@ -338,6 +483,118 @@ fn resolve(base: &Path, name: &str) -> Result<PathBuf, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A stand-in for the sun's model (`irsig_atmosphere::sun::SunSpec` is not this crate's):
+    /// the same two forms, its unknown fields refused.
+    #[derive(Debug, Clone, PartialEq, serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    enum TestSun {
+        Direction { zenith_deg: f64, azimuth_deg: f64 },
+        At { utc: String, latitude_deg: f64 },
+    }
+
+    fn check(s: &TestSun) -> Result<(), (String, String)> {
+        match s {
+            TestSun::Direction { zenith_deg, .. } if !(0.0..=180.0).contains(zenith_deg) => Err((
+                "zenith_deg".into(),
+                format!("{zenith_deg} is out of range: expected 0 to 180"),
+            )),
+            TestSun::At { latitude_deg, .. } if !(-90.0..=90.0).contains(latitude_deg) => Err((
+                "latitude_deg".into(),
+                format!("{latitude_deg} is out of range: expected -90 to 90"),
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    const VIEW: &str = "LookAt(\n  position_m: (0, -10, 5),\n  target_m: (0, 0, 0),\n  \
+                        pixels: (4, 3),\n  fov_deg: (10, 8),\n";
+
+    fn with_sun(sun: &str) -> String {
+        format!("{VIEW}  sun: {sun},\n)\n")
+    }
+
+    fn read(text: &str) -> Result<(Vec<View>, Option<ViewSun<TestSun>>), ParseError> {
+        parse_views_and_sun("v.ron", text, LengthUnit::M, check)
+    }
+
+    #[test]
+    fn a_views_sun_is_read_in_either_form_and_the_view_is_the_same_without_it() {
+        let plain = parse_views("v.ron", &format!("{VIEW})"), LengthUnit::M).unwrap();
+        let direction = TestSun::Direction {
+            zenith_deg: 30.0,
+            azimuth_deg: 120.0,
+        };
+        // The sun's value starts at line 6, column 8 (after `  sun: `), 13 inside `Some(`.
+        for (sun, column) in [
+            ("Direction(zenith_deg: 30, azimuth_deg: 120)", 8),
+            ("Some(Direction(zenith_deg: 30.0, azimuth_deg: 120.0))", 13),
+        ] {
+            let text = with_sun(sun);
+            let (views, got) = read(&text).unwrap();
+            assert_eq!(views, plain);
+            let got = got.unwrap();
+            assert_eq!(got.sun, direction);
+            assert_eq!(got.location, format!("v.ron:6:{column}"));
+            // The other readers pass the sun over.
+            assert_eq!(parse_views("v.ron", &text, LengthUnit::M).unwrap(), plain);
+        }
+        let (_, at) = read(&with_sun(
+            "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 51.5)",
+        ))
+        .unwrap();
+        assert_eq!(
+            at.unwrap().sun,
+            TestSun::At {
+                utc: "2024-06-21T12:00:00Z".into(),
+                latitude_deg: 51.5
+            }
+        );
+        // No sun: none, and the views as ever.
+        let (views, none) = read(&format!("{VIEW})")).unwrap();
+        assert_eq!((views, none), (plain, None));
+    }
+
+    #[test]
+    fn a_bad_sun_is_refused_at_its_line_and_column() {
+        let cases = [
+            // Out of range: at the field's value.
+            (
+                with_sun("Direction(zenith_deg: 200, azimuth_deg: 0)"),
+                (6, 30),
+                "`zenith_deg`: 200 is out of range",
+            ),
+            (
+                with_sun("At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 95)"),
+                (6, 54),
+                "`latitude_deg`: 95 is out of range",
+            ),
+            // An unknown field, and a form that is none.
+            (
+                with_sun("Direction(zenith_deg: 20, azimuth_deg: 0, elevation_deg: 70)"),
+                (6, 50),
+                "elevation_deg",
+            ),
+            (with_sun("Overhead"), (6, 8), "invalid sun"),
+        ];
+        for (text, (line, column), says) in cases {
+            let e = read(&text).unwrap_err();
+            assert_eq!((e.line, e.column), (line, column), "{e}");
+            assert!(e.message.contains(says), "{e}");
+        }
+        // A view error after a sun keeps its own place.
+        let text = format!(
+            "{VIEW}  sun: Direction(zenith_deg: 20, azimuth_deg: 0),\n  upp: (0, 0, 1),\n)"
+        );
+        let e = read(&text).unwrap_err();
+        assert_eq!((e.line, e.column), (7, 3), "{e}");
+        // A sun in a list of views: refused at its key.
+        let list = format!("[{VIEW}  sun: Direction(zenith_deg: 20, azimuth_deg: 0),\n)]");
+        let e = read(&list).unwrap_err();
+        assert_eq!((e.line, e.column), (6, 3), "{e}");
+        assert!(e.message.contains("list of views"), "{e}");
+        assert!(parse_views("v.ron", &list, LengthUnit::M).is_err());
+    }
 
     #[test]
     fn misspelt_fields_are_errors_at_their_place() {

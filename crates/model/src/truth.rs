@@ -61,6 +61,22 @@ pub enum Layer {
     /// With a tolerance: 1 where the decision does not guarantee the pixel (its class
     /// cannot be afforded, or its refinement reached the cap), 0 elsewhere.
     NotGuaranteed,
+    /// With a sun: the sun's direct irradiance on the surface hit, W m⁻², integrated over
+    /// the band with its response as the beam is (`E_n·cos θ_i·V`, summed over the
+    /// sub-bands; the terrain's flat, unshadowed `E_n·cos θ_sun` for a terrain miss).
+    SolarIrradiance,
+    /// With a sun: the shadow, as the fraction of the sun's disk the surface hit sees, 0
+    /// (in full shadow, or the sun behind the facet) to 1 (in full sun). Unweighted by the
+    /// cosine: the share of the shadow rays that reach the sun.
+    SunVisibleFraction,
+    /// With a sun: the sunlight in the surface-leaving radiance toward the sensor,
+    /// W m⁻² sr⁻¹, before the path to the sensor (its diffuse share's `r·E·cos θ_i·V/π`,
+    /// its glint, and the sunlight its mirror and sky-view rays bring from what they meet).
+    ReflectedSolarRadiance,
+    /// With a sun: the sun's share of the radiance at the sensor, 0 to 1: the reflected
+    /// solar radiance times the path's τ over the pixel's centre-ray radiance (0 for a sky
+    /// pixel, whose sky holds no sunlight in this model).
+    SunShare,
 }
 
 impl Layer {
@@ -95,8 +111,18 @@ impl Layer {
     /// tolerance (piloted or with a decision applied).
     pub const TOLERANCE: [Self; 1] = [Self::NotGuaranteed];
 
-    /// Every layer: the radiance, the truth layers, the error budget, the tolerance.
-    pub const ALL: [Self; 20] = [
+    /// The sun's layers, written after [`Layer::TRUTH`] (before the error budget's) when
+    /// the frame was traced with a sun; a night truth EXR holds none of them.
+    pub const SUN: [Self; 4] = [
+        Self::SolarIrradiance,
+        Self::SunVisibleFraction,
+        Self::ReflectedSolarRadiance,
+        Self::SunShare,
+    ];
+
+    /// Every layer: the radiance, the truth layers, the error budget, the tolerance, the
+    /// sun's.
+    pub const ALL: [Self; 24] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -117,6 +143,10 @@ impl Layer {
         Self::SigmaModel,
         Self::SigmaTotal,
         Self::NotGuaranteed,
+        Self::SolarIrradiance,
+        Self::SunVisibleFraction,
+        Self::ReflectedSolarRadiance,
+        Self::SunShare,
     ];
 
     /// The layer's name in the EXR.
@@ -143,6 +173,10 @@ impl Layer {
             Self::SigmaModel => "sigma_model",
             Self::SigmaTotal => "sigma_total",
             Self::NotGuaranteed => "not_guaranteed",
+            Self::SolarIrradiance => "solar_irradiance",
+            Self::SunVisibleFraction => "sun_visible_fraction",
+            Self::ReflectedSolarRadiance => "reflected_solar_radiance",
+            Self::SunShare => "sun_share",
         }
     }
 
@@ -150,7 +184,8 @@ impl Layer {
     #[must_use]
     pub const fn unit(self) -> &'static str {
         match self {
-            Self::Radiance | Self::PathRadiance => "W m^-2 sr^-1",
+            Self::Radiance | Self::PathRadiance | Self::ReflectedSolarRadiance => "W m^-2 sr^-1",
+            Self::SolarIrradiance => "W m^-2",
             Self::Range => "m",
             Self::Incidence => "deg",
             Self::KineticTemperature
@@ -168,7 +203,9 @@ impl Layer {
             | Self::Emissivity
             | Self::Transmission
             | Self::SkyViewFactor
-            | Self::NotGuaranteed => "",
+            | Self::NotGuaranteed
+            | Self::SunVisibleFraction
+            | Self::SunShare => "",
         }
     }
 
@@ -213,7 +250,9 @@ mod tests {
         }
         assert_eq!(Layer::ALL[1..13], Layer::TRUTH);
         assert_eq!(Layer::ALL[13..19], Layer::BUDGET);
-        assert_eq!(Layer::ALL[19..], Layer::TOLERANCE);
+        assert_eq!(Layer::ALL[19..20], Layer::TOLERANCE);
+        assert_eq!(Layer::ALL[20..], Layer::SUN);
+        assert!(Layer::SUN.iter().all(|l| !l.is_label()));
         assert_eq!(Layer::from_name("Radiance"), None);
     }
 }

@@ -48,6 +48,7 @@ mod plan;
 mod run;
 mod slurm;
 mod spec;
+mod sun;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};

@@ -112,7 +112,7 @@ pub(crate) struct SweepSpec {
 }
 
 pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, PipelineError> {
-    let fields = fields_of(src, root, "Pipeline", &["stages", "sweeps"])?;
+    let fields = fields_of(src, root, "Pipeline", &["stages", "sweeps", "sun"])?;
     let mut sweeps = BTreeMap::new();
     if let Some(node) = fields.get("sweeps") {
         let Kind::Map(entries) = &node.kind else {
@@ -150,10 +150,14 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
             "the pipeline has no stages: `stages: []` would run nothing and succeed",
         ));
     }
-    let stages = items
+    let mut stages = items
         .iter()
         .map(|n| stage(src, n))
         .collect::<Result<Vec<_>, _>>()?;
+    if let Some(node) = fields.get("sun") {
+        let sun = crate::sun::read(src, node)?;
+        crate::sun::apply(src, &sun, &mut stages)?;
+    }
     Ok(PipelineSpec { stages, sweeps })
 }
 
@@ -318,7 +322,7 @@ fn flag_name(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineEr
 }
 
 /// A string or number parameter value, as one command-line word.
-fn scalar(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineError> {
+pub(crate) fn scalar(src: Source<'_>, node: &Node) -> Result<Spanned<String>, PipelineError> {
     match &node.kind {
         Kind::Str(s) => {
             refuse_control(src, node, s)?;

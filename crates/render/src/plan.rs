@@ -260,14 +260,17 @@ impl Plan {
         let sun = match &request.sun {
             None => None,
             Some(s) if request.tolerance.is_some() => {
+                let lit = s.origin.as_ref().map_or_else(
+                    || format!("--{}", s.setting().name()),
+                    |at| format!("the sun of {at}"),
+                );
                 return Err(RequestError::report(
                     Setting::Tolerance,
                     format!(
                         "the pilot does not model the sun yet, so it cannot choose the models \
-                         of a sunlit frame: with --{} set the models by hand \
+                         of a sunlit frame: with {lit} set the models by hand \
                          (--atmosphere-model, --bounces, --sky-view-rays, --supersample, \
-                         --sub-bands)",
-                        s.setting().name()
+                         --sub-bands)"
                     ),
                 ));
             }

@@ -141,11 +141,15 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
         .into_diagnostic()
 }
 
-/// The layers a truth EXR holds: [`Layer::TRUTH`], then [`Layer::BUDGET`] with declared
-/// uncertainties, then [`Layer::TOLERANCE`] when rendered to a tolerance.
+/// The layers a truth EXR holds: [`Layer::TRUTH`], then [`Layer::SUN`] when traced with a
+/// sun, then [`Layer::BUDGET`] with declared uncertainties, then [`Layer::TOLERANCE`] when
+/// rendered to a tolerance.
 #[must_use]
-pub fn truth_layers(budget: bool, tolerance: bool) -> Vec<Layer> {
+pub fn truth_layers(sun: bool, budget: bool, tolerance: bool) -> Vec<Layer> {
     let mut layers = Layer::TRUTH.to_vec();
+    if sun {
+        layers.extend(Layer::SUN);
+    }
     if budget {
         layers.extend(Layer::BUDGET);
     }
@@ -196,14 +200,15 @@ pub fn traced<R: BandModel + Sync>(
             .with_part(part.clone())
             .with_comments(radiometry.comments()?);
         frame.truth = Vec::new();
+        frame.sun = Vec::new();
         emit(FrameFile::TruthExr, into_exr_bytes(r).into_diagnostic()?)?;
     }
     Ok(())
 }
 
 /// The truth layers ([`truth_layers`], in order): the terms of each pixel's centre ray, the
-/// apparent temperature of its radiance, the error budget's and the tolerance's layers. NaN where a term does not apply (no facet
-/// hit).
+/// apparent temperature of its radiance, the sun's (when the frame kept them), the error
+/// budget's and the tolerance's layers. NaN where a term does not apply (no facet hit).
 fn truth_raster<R: BandModel + Sync>(
     radiometry: &FrameRadiometry<R>,
     frame: &Frame,
@@ -234,6 +239,14 @@ fn truth_raster<R: BandModel + Sync>(
         .collect();
     for (layer, data) in Layer::TRUTH.into_iter().zip(layers) {
         push(&mut r, layer, data?)?;
+    }
+    if !frame.sun.is_empty() {
+        for layer in Layer::SUN {
+            let data = frame
+                .truth_layer(layer)
+                .ok_or_else(|| miette!("the frame holds no `{layer}` layer"))?;
+            push(&mut r, layer, data)?;
+        }
     }
     if let Some(budget) = budget {
         let model_k = guarantee.map(|g| g.model_sigma_k(frame));

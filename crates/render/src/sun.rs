@@ -28,6 +28,9 @@ pub struct SunRequest {
     /// Shadow rays per facet hit: 1 aims at the disk's centre; more sample the disk for
     /// soft shadow edges.
     pub shadow_rays: u32,
+    /// Where the sun was given when not by the tool's own settings: a view file's
+    /// `file:line:column`. Errors about the sun then name that place instead of a setting.
+    pub origin: Option<String>,
 }
 
 impl SunRequest {
@@ -56,13 +59,16 @@ impl SunRequest {
             ));
         }
         let position = self.spec.position().map_err(|e| match e.kind {
+            AtmosphereErrorKind::Sun { field, message } if self.origin.is_some() => {
+                self.refuse(field_setting(field), format!("`{field}`: {message}"))
+            }
             AtmosphereErrorKind::Sun { field, message } => {
                 RequestError::report(field_setting(field), message)
             }
-            _ => RequestError::report(self.setting(), e.to_string()),
+            _ => self.refuse(self.setting(), e.to_string()),
         })?;
         if !position.is_above_horizon() {
-            return Err(RequestError::report(
+            return Err(self.refuse(
                 self.setting(),
                 format!(
                     "the sun is {:.4} deg from the zenith, at or below the horizon: a sun \
@@ -72,6 +78,17 @@ impl SunRequest {
             ));
         }
         Ok(position)
+    }
+}
+
+impl SunRequest {
+    /// A refusal of this sun about `setting`: a request error naming the setting, or, for a
+    /// sun given in a file ([`Self::origin`]), an error at that place.
+    pub(crate) fn refuse(&self, setting: Setting, message: String) -> miette::Report {
+        match &self.origin {
+            Some(at) => miette!("{at}: the sun: {message}"),
+            None => RequestError::report(setting, message),
+        }
     }
 }
 
@@ -95,7 +112,7 @@ const HOW_TO_BUILD: &str = "build one for this sun with `irsig-atmos plan --sun-
 /// The refusal of a sun with an atmosphere `name` that has no `solar` table (`what` says
 /// what it is instead).
 pub(crate) fn no_solar_table(sun: &SunRequest, name: &str, what: &str) -> miette::Report {
-    RequestError::report(
+    sun.refuse(
         sun.setting(),
         format!(
             "the sun's beam needs a spectral atmosphere with a solar table, and `{name}` is \
@@ -127,7 +144,7 @@ pub(crate) fn sun(
         ));
     };
     if (position.zenith_deg - solar.zenith_deg).abs() > ZENITH_TOLERANCE_DEG {
-        return Err(RequestError::report(
+        return Err(request.refuse(
             request.setting(),
             format!(
                 "the sun is {:.4} deg from the zenith, but the solar table of `{name}` is for \

@@ -84,6 +84,22 @@ pub(crate) struct Node {
     /// irradiance, sr⁻¹: `1/Ω_sun` when the reflection leaves toward the sky inside the
     /// disk (the glint), else 0.
     pub(crate) sun_glint_per_sr: f64,
+    /// The sun's irradiance at this facet per unit of the beam's normal irradiance,
+    /// `cos θ_i·V` (what `sun_diffuse_per_sr` is `1/π` of), for the truth layers: 0 without a
+    /// sun. Found where the facet has a diffuse part, and at a primary facet without one
+    /// when the centre ray's truth is kept ([`crate::tracer::Ctx::sun_truth`]).
+    pub(crate) sun_cos_visible: f64,
+    /// The fraction of the facet's shadow rays that reached the sun, 0 to 1 (NaN where not
+    /// found: no sun, or a facet with no diffuse part whose truth is not kept).
+    pub(crate) sun_visible: f64,
+}
+
+/// What a facet's shadow rays found: `cos θ_i·V` (each ray weighted by its own cosine)
+/// and the unweighted fraction of rays that reached the sun.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct SunLight {
+    cos_visible: f64,
+    visible: f64,
 }
 
 /// The glint of a mirror whose reflection ray `refl` (unit) went as `mirror`, per unit of
@@ -234,6 +250,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             environment: Escape::Terrain,
             sun_diffuse_per_sr: 0.0,
             sun_glint_per_sr: 0.0,
+            sun_cos_visible: 0.0,
+            sun_visible: f64::NAN,
         });
         if sfrac > 0.0 {
             // Mirror direction about the normal facing the ray.
@@ -273,20 +291,38 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             };
             path.nodes[index].diffuse = Some(diffuse);
             if let Some(sun) = &self.sun {
-                path.nodes[index].sun_diffuse_per_sr = self.sun_diffuse_per_sr(sun, hit, ctx);
+                let light = self.sun_light(sun, hit, ctx, false);
+                let node = &mut path.nodes[index];
+                node.sun_diffuse_per_sr = light.cos_visible * std::f64::consts::FRAC_1_PI;
+                node.sun_cos_visible = light.cos_visible;
+                node.sun_visible = light.visible;
             }
+        } else if depth == 0
+            && ctx.sun_truth
+            && let Some(sun) = &self.sun
+        {
+            // A pure mirror reflects no direct sunlight diffusely, but its truth layers
+            // still say how much reaches it: its shadow rays draw from a stream of their
+            // own, so that the rendered radiance is the same with and without truth.
+            let light = self.sun_light(sun, hit, ctx, true);
+            let node = &mut path.nodes[index];
+            node.sun_cos_visible = light.cos_visible;
+            node.sun_visible = light.visible;
         }
     }
 
-    /// `cos θ_i·V/π` of the hit's seen side, sr⁻¹: one shadow ray to the disk's centre, or
-    /// the disk sampled uniformly by solid angle (stratified, from the pixel's sun stream),
-    /// each ray weighted by its own cosine. A ray below the horizontal meets the ground.
-    fn sun_diffuse_per_sr(
+    /// What the shadow rays of the hit's seen side find: `cos θ_i·V` and the fraction that
+    /// reach the sun. One shadow ray to the disk's centre, or the disk sampled uniformly by
+    /// solid angle (stratified, from the pixel's sun stream, or with `truth_stream` its
+    /// truth-only sun stream), each ray weighted by its own cosine. A ray below the
+    /// horizontal meets the ground; a ray behind the facet is not visible.
+    fn sun_light(
         &self,
         sun: &SunGeometry,
         hit: &Hit<FacetRadiometry>,
         ctx: &mut Ctx<'_>,
-    ) -> f64 {
+        truth_stream: bool,
+    ) -> SunLight {
         let eps_m = self.geometry.surface_epsilon_m();
         let lit = |d: V3| {
             let c = dot(hit.normal, d);
@@ -303,23 +339,39 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         let n = sun.shadow_rays;
         if n == 1 {
-            return lit(sun.to_sun) * std::f64::consts::FRAC_1_PI;
+            let c = lit(sun.to_sun);
+            return SunLight {
+                cos_visible: c,
+                visible: if c > 0.0 { 1.0 } else { 0.0 },
+            };
         }
         // Nothing of the disk in front of the facet: no ray to cast.
         if dot(hit.normal, sun.to_sun) <= -sun.sin_radius {
-            return 0.0;
+            return SunLight {
+                cos_visible: 0.0,
+                visible: 0.0,
+            };
         }
         let m = (f64::from(n).sqrt()) as u32;
-        let mut sum = 0.0;
+        let (mut sum, mut seen) = (0.0, 0u32);
         for k in 0..n {
             let (xi1, xi2): (f64, f64) = {
-                let rng = ctx.sun_rng();
+                let rng = if truth_stream {
+                    ctx.sun_truth_rng()
+                } else {
+                    ctx.sun_rng()
+                };
                 (rng.random(), rng.random())
             };
             let (u1, u2) = stratified(k, m, xi1, xi2);
-            sum += lit(sun.disk_direction(u1, u2));
+            let c = lit(sun.disk_direction(u1, u2));
+            sum += c;
+            seen += u32::from(c > 0.0);
         }
-        sum / f64::from(n) * std::f64::consts::FRAC_1_PI
+        SunLight {
+            cos_visible: sum / f64::from(n),
+            visible: f64::from(seen) / f64::from(n),
+        }
     }
 
     /// The record of a hit at altitude `alt`.

@@ -32,8 +32,8 @@ use rayon::prelude::*;
 
 use crate::tile::Tile;
 use crate::tracer::{
-    Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, TraceOptions, Tracer,
-    TruthPixel,
+    Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, SunPixel, TraceOptions,
+    Tracer, TruthPixel,
 };
 use crate::vec::{dot, sub};
 
@@ -142,6 +142,8 @@ impl PixelSampling {
 pub(crate) struct Centres {
     pub(crate) radiance_w_m2_sr: Vec<f64>,
     pub(crate) truth: Vec<TruthPixel>,
+    /// The sun's truth of each centre; empty without a sun.
+    pub(crate) sun: Vec<SunPixel>,
     pub(crate) calm_w_m2_sr: Vec<f64>,
 }
 
@@ -235,14 +237,27 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut out = Centres {
             radiance_w_m2_sr: vec![0.0; n],
             truth: vec![TruthPixel::from(&Sample::miss(Event::Sky)); n],
+            sun: Vec::new(),
             calm_w_m2_sr: vec![0.0; n],
+        };
+        let lit = self.sun.is_some();
+        if lit {
+            out.sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
+        }
+        // Without a sun, each row's sun slice is empty and nothing is written to it.
+        let rows = n.div_ceil(row_len);
+        let sun_rows: Vec<&mut [SunPixel]> = if lit {
+            out.sun.chunks_mut(row_len).collect()
+        } else {
+            (0..rows).map(|_| <&mut [SunPixel]>::default()).collect()
         };
         out.radiance_w_m2_sr
             .par_chunks_mut(row_len)
             .zip(out.truth.par_chunks_mut(row_len))
             .zip(out.calm_w_m2_sr.par_chunks_mut(row_len))
+            .zip(sun_rows)
             .enumerate()
-            .for_each(|(r, ((rad, tru), calm))| {
+            .for_each(|(r, (((rad, tru), calm), sun))| {
                 let mut path = Path::default();
                 let mut hemispheric = Path::default();
                 let mut centre = Sample::miss(Event::Sky);
@@ -253,9 +268,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     let col = tile.x + c as u32;
                     let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
                     let mut ctx = Ctx::for_pixel(options, index);
+                    ctx.sun_truth = true;
                     self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
                     *l_out = self.radiance::<true>(fc, &path, &mut centre);
                     *t_out = TruthPixel::from(&centre);
+                    if let Some(s_out) = sun.get_mut(c) {
+                        *s_out = SunPixel::from(&centre);
+                    }
                     *calm_out = if path.has_sky_view_rays() {
                         path.with_sky_rays(0, &mut hemispheric);
                         self.radiance::<false>(fc, &hemispheric, &mut centre)

@@ -33,6 +33,10 @@ struct SurfaceTerms {
     sky_hemispheric: f64,
     diffuse_incident: f64,
     leaving: f64,
+    /// The sunlight in `leaving` (0 without a sun, or when not asked for).
+    solar: f64,
+    /// The beam's irradiance on the facet, W m⁻² (0 without a sun, or when not asked for).
+    irradiance: f64,
 }
 
 /// Band-integrated terms of the first facet, summed over sub-bands.
@@ -51,6 +55,9 @@ struct Sums {
     temperature_sensitivity: f64,
     /// `Σ τ·(L_T − L_reflected)`.
     emissivity_sensitivity: f64,
+    solar: f64,
+    transmitted_solar: f64,
+    irradiance: f64,
 }
 
 impl Sums {
@@ -67,6 +74,9 @@ impl Sums {
         self.radiance += transmission * t.leaving + path_radiance;
         self.temperature_sensitivity += transmission * t.emissivity * derivative;
         self.emissivity_sensitivity += transmission * (t.blackbody - t.reflected);
+        self.solar += t.solar;
+        self.transmitted_solar += transmission * t.solar;
+        self.irradiance += t.irradiance;
     }
 }
 
@@ -94,6 +104,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         s: &mut Sample,
     ) -> f64 {
         let one = set.bands.len() == 1;
+        // The sun's truth terms, when this set of sub-bands carries its beam.
+        let lit = TRUTH && set.bands[0].sun.is_some();
         match path.primary {
             Primary::Sky { zenith_deg } => {
                 let radiance: f64 = set
@@ -106,6 +118,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     s.transmission = 0.0;
                     s.path_radiance_w_m2_sr = radiance;
                     s.radiance_w_m2_sr = radiance;
+                    if lit {
+                        // The sky's radiance holds no sunlight in this model.
+                        s.sun_share = 0.0;
+                    }
                 }
                 radiance
             }
@@ -115,6 +131,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             } => {
                 let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
                 let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
+                let (mut solar, mut transmitted_solar, mut irradiance) = (0.0, 0.0, 0.0);
+                let cos_sun_zenith = self.sun.as_ref().map_or(0.0, |g| g.to_sun[2].max(0.0));
                 set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
                     radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
@@ -123,6 +141,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         blackbody += b.terrain_blackbody;
                         leaving += b.terrain_leaving;
                         single_tau = p.transmission;
+                        if let Some(beam) = &b.sun {
+                            solar += b.terrain_solar;
+                            transmitted_solar += p.transmission * b.terrain_solar;
+                            irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
+                        }
                     }
                 });
                 if TRUTH {
@@ -136,6 +159,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     s.transmission = effective_transmission(one, single_tau, transmitted, leaving);
                     s.path_radiance_w_m2_sr = path_radiance;
                     s.radiance_w_m2_sr = radiance;
+                    if lit {
+                        // The terrain beyond the scene is flat and unshadowed.
+                        s.solar_irradiance_w_m2 = irradiance;
+                        s.sun_visible_fraction = if cos_sun_zenith > 0.0 { 1.0 } else { 0.0 };
+                        s.reflected_solar_w_m2_sr = solar;
+                        s.sun_share = share(transmitted_solar, radiance);
+                    }
                 }
                 radiance
             }
@@ -145,7 +175,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
                 let mut radiance = 0.0;
                 let mut add = |b: &BandData<S>, p: PathTerms| {
-                    let first = self.leaving_chain(b, path);
+                    let first = self.leaving_chain::<TRUTH, S>(b, path);
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
                         let facet = &path.nodes[0].surface.data;
@@ -166,6 +196,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 if TRUTH {
                     self.facet_truth(one, path, range_m, &sums, &single, single_tau, s);
                     s.radiance_w_m2_sr = radiance;
+                    if lit {
+                        s.solar_irradiance_w_m2 = sums.irradiance;
+                        s.sun_visible_fraction = path.nodes[0].sun_visible;
+                        s.reflected_solar_w_m2_sr = sums.solar;
+                        s.sun_share = share(sums.transmitted_solar, radiance);
+                    }
                 }
                 radiance
             }
@@ -230,25 +266,33 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// The surface-leaving terms of the path's first facet in sub-band `b`: the chain of
-    /// specular bounces evaluated from its far end back.
-    fn leaving_chain<S: Atmosphere>(&self, b: &BandData<S>, path: &Path) -> SurfaceTerms {
-        let mut next = 0.0;
+    /// specular bounces evaluated from its far end back. With `SOLAR`, the sunlight in each
+    /// leaving radiance too.
+    fn leaving_chain<const SOLAR: bool, S: Atmosphere>(
+        &self,
+        b: &BandData<S>,
+        path: &Path,
+    ) -> SurfaceTerms {
+        let (mut next, mut next_solar) = (0.0, 0.0);
         let mut terms = SurfaceTerms::default();
         for node in path.nodes.iter().rev() {
-            terms = self.surface_terms(b, node, next, path);
+            terms = self.surface_terms::<SOLAR, S>(b, node, next, next_solar, path);
             next = terms.leaving;
+            next_solar = terms.solar;
         }
         terms
     }
 
     /// `ε·L_T + r·(s·L_spec + (1 − s)·L_diffuse)` of one node in sub-band `b`, given the
-    /// surface-leaving radiance `next` of the node its reflection ray hit.
+    /// surface-leaving radiance `next` of the node its reflection ray hit; with `SOLAR`,
+    /// also the sunlight in it, given the sunlight `next_solar` in `next`.
     #[inline]
-    fn surface_terms<S: Atmosphere>(
+    fn surface_terms<const SOLAR: bool, S: Atmosphere>(
         &self,
         b: &BandData<S>,
         node: &Node,
         next: f64,
+        next_solar: f64,
         path: &Path,
     ) -> SurfaceTerms {
         let surface = &node.surface;
@@ -297,6 +341,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         let reflected = sfrac * specular_incident + (1.0 - sfrac) * diffuse_incident;
         let leaving = eps * blackbody + (1.0 - eps) * reflected;
+        let (solar, irradiance) = match &b.sun {
+            Some(beam) if SOLAR => self.solar_terms(b, beam, node, eps, sfrac, next_solar, path),
+            _ => (0.0, 0.0),
+        };
         SurfaceTerms {
             emissivity: eps,
             blackbody,
@@ -305,7 +353,60 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sky_hemispheric: sky_hemi,
             diffuse_incident,
             leaving,
+            solar,
+            irradiance,
         }
+    }
+
+    /// The sunlight in one node's surface-leaving radiance in sub-band `b`, and the beam's
+    /// irradiance on it, W m⁻²: the same terms as [`Self::surface_terms`] with everything
+    /// that holds no sunlight left out. Sunlight arrives along the mirror direction as the
+    /// glint, as what the next node reflects of it (`next_solar`) or from the sunlit
+    /// terrain; diffusely as the direct beam and from the sunlit terrain that sky-view rays
+    /// reach (the facets they meet reflect the hemispheric sky only).
+    #[allow(clippy::too_many_arguments)]
+    fn solar_terms<S: Atmosphere>(
+        &self,
+        b: &BandData<S>,
+        beam: &crate::sun::SunBeam,
+        node: &Node,
+        eps: f64,
+        sfrac: f64,
+        next_solar: f64,
+        path: &Path,
+    ) -> (f64, f64) {
+        let e = beam.normal_w_m2(node.surface.alt_m);
+        let specular = match node.mirror {
+            None => 0.0,
+            Some(Mirror::Next) => next_solar,
+            Some(Mirror::Escaped(Escape::Terrain) | Mirror::Untraced(Escape::Terrain)) => {
+                b.terrain_solar
+            }
+            Some(Mirror::Escaped(Escape::Sky { .. }) | Mirror::Untraced(Escape::Sky { .. })) => 0.0,
+        } + e * node.sun_glint_per_sr;
+        let diffuse = match node.diffuse {
+            None | Some(Diffuse::Hemispheric) => 0.0,
+            Some(Diffuse::Rays { start, count, .. }) => {
+                let rays = &path.rays[start as usize..(start + count) as usize];
+                let terrain = rays
+                    .iter()
+                    .filter(|r| matches!(r, HemiRay::Escaped(Escape::Terrain)))
+                    .count();
+                terrain as f64 * b.terrain_solar / f64::from(count)
+            }
+        } + e * node.sun_diffuse_per_sr;
+        let solar = (1.0 - eps) * (sfrac * specular + (1.0 - sfrac) * diffuse);
+        (solar, e * node.sun_cos_visible)
+    }
+}
+
+/// The sun's share of a radiance at the sensor: its transmitted sunlight over the whole
+/// (0 where the radiance is not positive).
+fn share(transmitted_solar: f64, radiance: f64) -> f64 {
+    if radiance > 0.0 {
+        transmitted_solar / radiance
+    } else {
+        0.0
     }
 }
 

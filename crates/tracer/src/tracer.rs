@@ -217,6 +217,22 @@ pub struct Sample {
     pub temperature_sensitivity: f64,
     /// ∂L/∂ε of the facet hit, `Σ τ·(L_T − L_reflected)`, W m⁻² sr⁻¹ (0 for a miss).
     pub emissivity_sensitivity: f64,
+    /// With a sun ([`crate::sun`]): the beam's irradiance on the surface hit, W m⁻², summed
+    /// over the sub-bands, `Σ E_n·cos θ_i·V` (the terrain's `Σ E_n(0)·cos θ_sun`). NaN
+    /// without a sun or for a sky miss.
+    pub solar_irradiance_w_m2: f64,
+    /// With a sun: the fraction of the shadow rays from the surface hit that reach the sun,
+    /// 0 to 1 (1 on the unshadowed terrain with the sun above the horizon). NaN without a
+    /// sun or for a sky miss.
+    pub sun_visible_fraction: f64,
+    /// With a sun: the sunlight in the surface-leaving radiance, W m⁻² sr⁻¹, summed over
+    /// the sub-bands: `r·[(1 − s)·(E_n·cos θ_i·V/π + what sky-view rays bring from the
+    /// sunlit terrain) + s·(glint + what the mirror brings of sunlight)]`. NaN without a sun
+    /// or for a sky miss.
+    pub reflected_solar_w_m2_sr: f64,
+    /// With a sun: the sun's share of the radiance at the sensor, `Σ τ·L_solar / L`, 0 to 1
+    /// (0 for a sky miss). NaN without a sun.
+    pub sun_share: f64,
 }
 
 impl Sample {
@@ -252,6 +268,10 @@ impl Sample {
             radiance_w_m2_sr: f64::NAN,
             temperature_sensitivity: 0.0,
             emissivity_sensitivity: 0.0,
+            solar_irradiance_w_m2: f64::NAN,
+            sun_visible_fraction: f64::NAN,
+            reflected_solar_w_m2_sr: f64::NAN,
+            sun_share: f64::NAN,
         }
     }
 }
@@ -323,15 +343,35 @@ impl fmt::Display for Sample {
             f,
             "dL/dε                      {}",
             self.emissivity_sensitivity
-        )
+        )?;
+        if self.sun_share.is_nan() {
+            return Ok(());
+        }
+        writeln!(f)?;
+        writeln!(
+            f,
+            "sun: E (W m-2)             {}",
+            self.solar_irradiance_w_m2
+        )?;
+        writeln!(
+            f,
+            "sun: visible fraction V    {}",
+            self.sun_visible_fraction
+        )?;
+        writeln!(
+            f,
+            "sun: reflected (W m-2 sr-1) {}",
+            self.reflected_solar_w_m2_sr
+        )?;
+        write!(f, "sun: share of L            {}", self.sun_share)
     }
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
 /// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
-/// [`Sample`] is 160. (Keeping a whole sample per pixel cost 10-45 ns per primary ray at
-/// 1k-1M triangles; this record, with the angle derived later, costs 2-4 ns:
-/// BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
+/// [`Sample`] is 192 (160 when measured; the sun's four terms are kept in [`SunPixel`]).
+/// (Keeping a whole sample per pixel cost 10-45 ns per primary ray at 1k-1M triangles;
+/// this record, with the angle derived later, costs 2-4 ns: BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TruthPixel {
@@ -369,7 +409,8 @@ pub struct TruthPixel {
 
 // The sizes the frame's memory traffic was measured at (the doc above).
 const _: () = assert!(std::mem::size_of::<TruthPixel>() == 56);
-const _: () = assert!(std::mem::size_of::<Sample>() == 160);
+const _: () = assert!(std::mem::size_of::<Sample>() == 192);
+const _: () = assert!(std::mem::size_of::<SunPixel>() == 16);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -412,8 +453,52 @@ impl TruthPixel {
             | Layer::SigmaPathRadiance
             | Layer::SigmaModel
             | Layer::SigmaTotal
-            | Layer::NotGuaranteed => return None,
+            | Layer::NotGuaranteed
+            | Layer::SolarIrradiance
+            | Layer::SunVisibleFraction
+            | Layer::ReflectedSolarRadiance
+            | Layer::SunShare => return None,
         })
+    }
+}
+
+/// The sun's truth layers of one pixel ([`Layer::SUN`]), rounded to f32 as the truth EXR
+/// stores them: kept apart from [`TruthPixel`], in [`Frame::sun`], and only when the frame
+/// is traced with a sun, so that a night frame pays nothing for them.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SunPixel {
+    /// [`Sample::solar_irradiance_w_m2`], W m⁻².
+    pub solar_irradiance_w_m2: f32,
+    /// [`Sample::sun_visible_fraction`].
+    pub sun_visible_fraction: f32,
+    /// [`Sample::reflected_solar_w_m2_sr`], W m⁻² sr⁻¹.
+    pub reflected_solar_w_m2_sr: f32,
+    /// [`Sample::sun_share`].
+    pub sun_share: f32,
+}
+
+impl SunPixel {
+    /// What the sun's truth layer `layer` reads, as a function; `None` for the other layers.
+    #[must_use]
+    pub fn layer_of(layer: Layer) -> Option<fn(&Self) -> f32> {
+        Some(match layer {
+            Layer::SolarIrradiance => |p| p.solar_irradiance_w_m2,
+            Layer::SunVisibleFraction => |p| p.sun_visible_fraction,
+            Layer::ReflectedSolarRadiance => |p| p.reflected_solar_w_m2_sr,
+            Layer::SunShare => |p| p.sun_share,
+            _ => return None,
+        })
+    }
+}
+
+impl From<&Sample> for SunPixel {
+    fn from(s: &Sample) -> Self {
+        Self {
+            solar_irradiance_w_m2: s.solar_irradiance_w_m2 as f32,
+            sun_visible_fraction: s.sun_visible_fraction as f32,
+            reflected_solar_w_m2_sr: s.reflected_solar_w_m2_sr as f32,
+            sun_share: s.sun_share as f32,
+        }
     }
 }
 
@@ -452,6 +537,9 @@ pub struct Frame {
     pub truth: Vec<TruthPixel>,
     /// What refinement did to each pixel ([`Tracer::with_refinement`]); empty without it.
     pub sampling: Vec<PixelSampling>,
+    /// The sun's truth layers of each pixel's centre ray; empty without a sun
+    /// ([`Tracer::with_sun`]) or when [`TraceOptions::truth`] is off.
+    pub sun: Vec<SunPixel>,
 }
 
 impl Frame {
@@ -460,6 +548,12 @@ impl Frame {
     /// comes from the radiance ([`TruthPixel::layer`]).
     #[must_use]
     pub fn truth_layer(&self, layer: Layer) -> Option<Vec<f32>> {
+        if let Some(value) = SunPixel::layer_of(layer) {
+            if self.sun.is_empty() {
+                return None;
+            }
+            return Some(self.sun.iter().map(value).collect());
+        }
         if self.truth.is_empty() {
             return None;
         }
@@ -531,6 +625,8 @@ pub(crate) struct BandData<A> {
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
     pub(crate) terrain_blackbody: f64,
     pub(crate) terrain_leaving: f64,
+    /// The sunlight in `terrain_leaving`, W m⁻² sr⁻¹ (0 without a sun).
+    pub(crate) terrain_solar: f64,
     /// The sun's direct beam in this sub-band ([`Tracer::with_sun`]); `None`: no sun.
     pub(crate) sun: Option<SunBeam>,
 }
@@ -679,6 +775,8 @@ pub(crate) const SKY_VIEW_STREAM: u64 = 0x736b_7976_6965_7700;
 /// Mixed into a stream's seed for its shadow rays' points on the sun's disk: their own
 /// stream, so that a sun leaves every other draw of the pixel as it was.
 pub(crate) const SUN_STREAM: u64 = 0x7375_6e64_6973_6b00;
+/// Mixed in like [`SUN_STREAM`] for the shadow rays only the sun's truth layers read.
+pub(crate) const SUN_TRUTH_STREAM: u64 = 0x7375_6e74_7275_7468;
 
 /// Per-ray state shared by the events.
 pub(crate) struct Ctx<'a> {
@@ -686,6 +784,12 @@ pub(crate) struct Ctx<'a> {
     rng: Option<ChaCha8Rng>,
     /// The stream's points on the sun's disk ([`SUN_STREAM`]).
     sun_rng: Option<ChaCha8Rng>,
+    /// The points on the disk of a ray whose sun truth alone needs shadow rays
+    /// ([`SUN_TRUTH_STREAM`]).
+    sun_truth_rng: Option<ChaCha8Rng>,
+    /// This ray's truth is kept: a primary facet with no diffuse part then casts shadow
+    /// rays too, for the sun's truth layers only.
+    pub(crate) sun_truth: bool,
     /// The pixel's index in the image, from which its random stream is seeded.
     pixel_index: u64,
     /// Which of the pixel's streams (0: its centre ray's and supersampling's).
@@ -699,6 +803,8 @@ impl<'a> Ctx<'a> {
             options,
             rng: None,
             sun_rng: None,
+            sun_truth_rng: None,
+            sun_truth: false,
             pixel_index,
             stream: 0,
         }
@@ -709,6 +815,7 @@ impl<'a> Ctx<'a> {
         self.stream = stream;
         self.rng = None;
         self.sun_rng = None;
+        self.sun_truth_rng = None;
         self
     }
 
@@ -730,6 +837,19 @@ impl<'a> Ctx<'a> {
             self.options.seed ^ splitmix64(self.pixel_index) ^ splitmix64(self.stream ^ SUN_STREAM),
         );
         self.sun_rng
+            .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
+    }
+
+    /// The stream's random numbers for the shadow rays that only the sun's truth layers
+    /// read (a primary mirror's), seeded on first use: apart from [`Self::sun_rng`], so that
+    /// keeping the truth leaves the rendered radiance as it is.
+    pub(crate) fn sun_truth_rng(&mut self) -> &mut ChaCha8Rng {
+        let seed = splitmix64(
+            self.options.seed
+                ^ splitmix64(self.pixel_index)
+                ^ splitmix64(self.stream ^ SUN_TRUTH_STREAM),
+        );
+        self.sun_truth_rng
             .get_or_insert_with(|| ChaCha8Rng::seed_from_u64(seed))
     }
 
@@ -813,11 +933,15 @@ fn terrain_leaving<A: Atmosphere>(
     let night = eps * b.terrain_blackbody + (1.0 - eps) * b.atmosphere.sky_hemispheric(0.0);
     match sun {
         None => night,
-        Some((beam, geometry)) => {
-            let cos_zenith = geometry.to_sun[2].max(0.0);
-            night + (1.0 - eps) * beam.normal_w_m2(0.0) * cos_zenith * std::f64::consts::FRAC_1_PI
-        }
+        Some(sun) => night + terrain_solar(terrain, sun),
     }
+}
+
+/// The sunlight in the terrain background's surface-leaving radiance in one sub-band,
+/// W m⁻² sr⁻¹: `(1 − ε)·E_n(0)·cos θ_sun/π`.
+fn terrain_solar(terrain: &Terrain, (beam, geometry): (&SunBeam, &SunGeometry)) -> f64 {
+    let cos_zenith = geometry.to_sun[2].max(0.0);
+    (1.0 - terrain.emissivity) * beam.normal_w_m2(0.0) * cos_zenith * std::f64::consts::FRAC_1_PI
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -1001,6 +1125,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let terrain = self.terrain;
         for (b, beam) in self.bands.bands.iter_mut().zip(sun.beams) {
             b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, &geometry)));
+            b.terrain_solar = terrain_solar(&terrain, (&beam, &geometry));
             b.sun = Some(beam);
         }
         self.sun = Some(geometry);
@@ -1016,6 +1141,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         for b in &mut self.bands.bands {
             b.sun = None;
             b.terrain_leaving = terrain_leaving(&terrain, b, None);
+            b.terrain_solar = 0.0;
         }
     }
 
@@ -1076,6 +1202,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 inline: false,
                 terrain_blackbody,
                 terrain_leaving: 0.0,
+                terrain_solar: 0.0,
                 sun: None,
             });
             let b = bands.last_mut().expect("just pushed");
@@ -1296,9 +1423,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let centres = self.render_rect(&fc, &centre_options, halo, &|_| {});
         let refine = self.edges(&centres, threshold_k);
         let tw = tile.width as usize;
-        let (mut radiance, flags, truth) = if halo == tile {
+        let (mut radiance, flags, truth, sun) = if halo == tile {
             // The whole image: the margin is empty, nothing to crop.
-            (centres.radiance_w_m2_sr, refine, centres.truth)
+            (centres.radiance_w_m2_sr, refine, centres.truth, centres.sun)
         } else {
             let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
             let hw = halo.width as usize;
@@ -1306,14 +1433,18 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let mut radiance = Vec::with_capacity(tile.pixels());
             let mut flags = Vec::with_capacity(tile.pixels());
             let mut truth = Vec::new();
+            let mut sun = Vec::new();
             for r in 0..tile.height as usize {
                 radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
                 flags.extend_from_slice(&refine[crop(r)]);
                 if !centres.truth.is_empty() {
                     truth.extend_from_slice(&centres.truth[crop(r)]);
                 }
+                if !centres.sun.is_empty() {
+                    sun.extend_from_slice(&centres.sun[crop(r)]);
+                }
             }
-            (radiance, flags, truth)
+            (radiance, flags, truth, sun)
         };
         let full = TraceOptions {
             adaptive_threshold_k: None,
@@ -1347,6 +1478,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             radiance_w_m2_sr: radiance,
             truth,
             sampling: Vec::new(),
+            sun,
         })
     }
 
@@ -1423,15 +1555,29 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 }
                 progress(1);
             });
-        let truth = if options.truth {
+        let crop = |all: &[SunPixel]| -> Vec<SunPixel> {
             (0..tile.height as usize)
+                .flat_map(|r| {
+                    let start = (r + dy) * hw + dx;
+                    all[start..start + tw].iter().copied()
+                })
+                .collect()
+        };
+        let (truth, sun) = if options.truth {
+            let truth = (0..tile.height as usize)
                 .flat_map(|r| {
                     let start = (r + dy) * hw + dx;
                     centres.truth[start..start + tw].iter().copied()
                 })
-                .collect()
+                .collect();
+            let sun = if self.sun.is_some() {
+                crop(&centres.sun)
+            } else {
+                Vec::new()
+            };
+            (truth, sun)
         } else {
-            Vec::new()
+            (Vec::new(), Vec::new())
         };
         Frame {
             width: tile.width,
@@ -1439,6 +1585,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             radiance_w_m2_sr: radiance,
             truth,
             sampling,
+            sun,
         }
     }
 
@@ -1455,7 +1602,41 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let row_len = tile.width.max(1) as usize;
         let mut radiance = vec![0.0; n];
         let mut truth = Vec::new();
-        if options.truth {
+        let mut sun = Vec::new();
+        if options.truth && self.sun.is_some() {
+            // The sun's layers in a vector of their own, so that a night frame's loop
+            // below stays as it was.
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+            sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
+            radiance
+                .par_chunks_mut(row_len)
+                .zip(truth.par_chunks_mut(row_len))
+                .zip(sun.par_chunks_mut(row_len))
+                .enumerate()
+                .for_each(|(r, ((rad, tru), sun))| {
+                    let mut path = Path::default();
+                    let mut centre = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, ((l_out, t_out), s_out)) in rad
+                        .iter_mut()
+                        .zip(tru.iter_mut())
+                        .zip(sun.iter_mut())
+                        .enumerate()
+                    {
+                        *l_out = self.pixel::<true>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut centre,
+                        );
+                        *t_out = TruthPixel::from(&centre);
+                        *s_out = SunPixel::from(&centre);
+                    }
+                    progress(1);
+                });
+        } else if options.truth {
             truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
             radiance
                 .par_chunks_mut(row_len)
@@ -1505,6 +1686,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             radiance_w_m2_sr: radiance,
             truth,
             sampling: Vec::new(),
+            sun,
         }
     }
 
@@ -1575,7 +1757,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             fc.us[(col - fc.window.x) as usize],
             fc.vs[(row - fc.window.y) as usize],
         );
+        ctx.sun_truth = TRUTH;
         self.follow(fc, dir, &mut ctx, path);
+        ctx.sun_truth = false;
         let centre_radiance = self.radiance::<TRUTH>(fc, path, centre);
         let n = options.supersampling;
         if n <= 1 {

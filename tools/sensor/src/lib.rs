@@ -529,3 +529,47 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use irsig_radiometry::Band;
+
+    #[test]
+    fn the_suns_layers_are_sampled_by_mean_and_labels_by_majority() {
+        // A 2 × 2 render pixel block into one sensor pixel, no blur: the sun's quantities
+        // are the mean of the four (a sky pixel's NaN left out), the material the majority.
+        let mut input = Raster::new(2, 2);
+        let push = |r: &mut Raster, layer: Layer, data: Vec<f32>| {
+            r.push_layer(layer.name(), layer.unit(), data).unwrap();
+        };
+        push(&mut input, Layer::Radiance, vec![5.0; 4]);
+        push(&mut input, Layer::MaterialPrimary, vec![2.0, 2.0, 7.0, 2.0]);
+        push(
+            &mut input,
+            Layer::SolarIrradiance,
+            vec![100.0, 200.0, 300.0, f32::NAN],
+        );
+        push(
+            &mut input,
+            Layer::SunVisibleFraction,
+            vec![1.0, 0.0, 0.5, f32::NAN],
+        );
+        push(&mut input, Layer::SunShare, vec![0.1, 0.2, 0.3, 0.0]);
+        let settings = Settings {
+            chain: MtfChain::new(Vec::new()),
+            edge: EdgeMode::Reflect,
+            samples_per_pixel: 2,
+            categorical: Vec::new(),
+            nedt: None,
+            seed: 0,
+        };
+        let out = process(input, &settings, &Band::new(8.0, 14.0).unwrap()).unwrap();
+        let at = |layer: Layer| out.raster.layer(layer.name()).unwrap().data[0];
+        assert_eq!(at(Layer::MaterialPrimary).to_bits(), 2.0f32.to_bits());
+        assert!((at(Layer::SolarIrradiance) - 200.0).abs() < 1e-4);
+        assert!((at(Layer::SunVisibleFraction) - 0.5).abs() < 1e-6);
+        assert!((at(Layer::SunShare) - 0.15).abs() < 1e-6);
+        assert!(Layer::SUN.iter().all(|l| !is_categorical(l.name(), &[])));
+    }
+}

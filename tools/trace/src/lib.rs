@@ -7,10 +7,11 @@
 use std::path::{Path, PathBuf};
 
 use clap::Parser;
+use irsig_atmosphere::sun::SunSpec;
 use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_cli::args::{BandArg, DcArgs, FrameOutputArgs, VIEW_UNIT_DEFAULT, length_unit, named};
 use irsig_formats::legacy::decode;
-use irsig_formats::views::{parse_views, read_execute};
+use irsig_formats::views::{ViewSun, read_execute};
 use irsig_model::LengthUnit;
 use irsig_model::decision::Decision;
 use irsig_model::frame::{FrameFile, FrameFiles};
@@ -180,8 +181,8 @@ pub struct Cli {
     pub threads: Option<usize>,
 }
 
-/// The request the flags make.
-fn request(cli: &Cli) -> miette::Result<Request> {
+/// The request the flags make, lit by their sun or `view_sun`, a view file's.
+fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Request> {
     let arg = BandArg::or_default(cli.band.as_ref());
     let (band, record) = arg.load_recorded()?;
     let band = BandRequest::new(band, record, arg.to_string());
@@ -210,7 +211,7 @@ fn request(cli: &Cli) -> miette::Result<Request> {
             percentile: cli.tolerance_percentile,
             pins: cli.pin.clone(),
         }),
-        sun: cli.sun.request(),
+        sun: cli.sun.request_with(view_sun)?,
         counts: cli.dc.request(),
         defaulted,
     })
@@ -228,7 +229,8 @@ fn as_usage(report: miette::Report) -> miette::Report {
 /// Reads the inputs into a plan: the scene, the materials, the views (of --view or
 /// --execute), the uncertainties and a decision. With --execute, also each frame's files.
 fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
-    let mut plan = Plan::new(request(cli)?)?;
+    let (view_files, view_sun) = sun::read_views(&cli.view, cli.view_unit)?;
+    let mut plan = Plan::new(request(cli, view_sun)?)?;
     let scene = irsig_cli::read_input(&cli.scene)?;
     plan.read_scene(&scene.name, &scene.bytes)?;
     let materials = irsig_cli::read_input(&cli.materials)?;
@@ -249,11 +251,9 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
         execute_files = Some(files.collect());
         plan.add_views(frames.into_iter().map(|f| f.view));
     }
-    for path in &cli.view {
-        let input = irsig_cli::read_input(path)?;
+    for (input, views) in view_files {
         plan.record_input("view", &input.bytes);
-        let text = decode(&input.name, &input.bytes)?;
-        plan.add_views(parse_views(&input.name, text, cli.view_unit)?);
+        plan.add_views(views);
     }
     if let Some(path) = &cli.uncertainties {
         let input = irsig_cli::read_input(path)?;

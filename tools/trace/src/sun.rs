@@ -1,9 +1,16 @@
 //! The sun's flags: a direction (`--sun-zenith-deg`, `--sun-azimuth-deg`) or a UTC time and
 //! a place (`--sun-utc`, `--latitude-deg`, `--longitude-deg`, `--altitude-m`, spelt as
-//! `irsig-atmos sun` spells them), and `--sun-shadow-rays`. What they mean physically is
-//! `irsig_render::sun`'s.
+//! `irsig-atmos sun` spells them), and `--sun-shadow-rays`; or a view file's `sun`
+//! (`formats/canonical/view.md`), which is read here with the views. A sun given both ways
+//! is refused, naming the flag and the file's line and column: neither wins silently. What
+//! they mean physically is `irsig_render::sun`'s.
 
+use irsig_atmosphere::AtmosphereErrorKind;
 use irsig_atmosphere::sun::SunSpec;
+use irsig_cli::Input;
+use irsig_formats::legacy::decode;
+use irsig_formats::views::{ViewSun, parse_views_and_sun};
+use irsig_model::{LengthUnit, View};
 use irsig_render::SunRequest;
 
 /// The sun lighting the scene (issue 30). Without these flags, no sun: a night.
@@ -64,12 +71,48 @@ pub struct SunArgs {
     )]
     pub altitude_m: f64,
     /// Shadow rays per facet hit toward the sun: 1 aims at the disk's centre (hard
-    /// shadows); more sample the disk (soft edges).
-    #[arg(long, default_value_t = 1, value_name = "N", requires = "sun")]
-    pub sun_shadow_rays: u32,
+    /// shadows); more sample the disk (soft edges). With a sun of these flags or of the
+    /// view file; default 1.
+    #[arg(long, value_name = "N")]
+    pub sun_shadow_rays: Option<u32>,
 }
 
 impl SunArgs {
+    /// The sun of the flags or of a view file (`view`), if any.
+    ///
+    /// # Errors
+    /// A sun given by both (naming the flag and the file's place), or shadow rays without a
+    /// sun: usage errors.
+    pub fn request_with(
+        &self,
+        view: Option<ViewSun<SunSpec>>,
+    ) -> miette::Result<Option<SunRequest>> {
+        let flags = self.request();
+        let flag = if self.sun_utc.is_some() {
+            "--sun-utc"
+        } else {
+            "--sun-zenith-deg"
+        };
+        match (flags, view) {
+            (Some(_), Some(v)) => Err(irsig_cli::usage_error(format!(
+                "{flag} and the `sun` of the view file at {} both give a sun: give it once, \
+                 by the flags or in the view file",
+                v.location
+            ))),
+            (Some(r), None) => Ok(Some(r)),
+            (None, Some(v)) => Ok(Some(SunRequest {
+                spec: v.sun,
+                shadow_rays: self.sun_shadow_rays.unwrap_or(1),
+                origin: Some(v.location),
+            })),
+            (None, None) if self.sun_shadow_rays.is_some() => Err(irsig_cli::usage_error(
+                "--sun-shadow-rays without a sun: give --sun-zenith-deg and --sun-azimuth-deg, \
+                 --sun-utc with the place, or a view file with a `sun`",
+            )),
+            (None, None) => Ok(None),
+        }
+    }
+
     /// The sun the flags ask for, if any.
     #[must_use]
     pub fn request(&self) -> Option<SunRequest> {
@@ -98,7 +141,66 @@ impl SunArgs {
         };
         Some(SunRequest {
             spec,
-            shadow_rays: self.sun_shadow_rays,
+            shadow_rays: self.sun_shadow_rays.unwrap_or(1),
+            origin: None,
         })
     }
+}
+
+/// A view file read: its input (bytes and name) and its views.
+pub type ViewFile = (Input, Vec<View>);
+
+/// The views of the view files `paths`, each with its file (its bytes are recorded in the
+/// run), and the one `sun` they may give: a second file with a sun is refused at its place.
+///
+/// # Errors
+/// A file that cannot be read or parsed, a bad sun at its line and column, two suns.
+pub fn read_views(
+    paths: &[String],
+    unit: LengthUnit,
+) -> miette::Result<(Vec<ViewFile>, Option<ViewSun<SunSpec>>)> {
+    let mut files = Vec::new();
+    let mut sun: Option<ViewSun<SunSpec>> = None;
+    for path in paths {
+        let input = irsig_cli::read_input(path)?;
+        let text = decode(&input.name, &input.bytes)?;
+        let (views, this) = parse_views_and_sun(&input.name, text, unit, check)?;
+        if let Some(this) = this {
+            if let Some(first) = &sun {
+                return Err(miette::miette!(
+                    "{}: a second sun: the view file at {} gives one already; one sun lights a \
+                     run",
+                    this.location,
+                    first.location
+                ));
+            }
+            sun = Some(this);
+        }
+        files.push((input, views));
+    }
+    Ok((files, sun))
+}
+
+/// A view file's sun checked as the flags' are: each field in its range and the sun above
+/// the horizon, the field at fault named.
+fn check(spec: &SunSpec) -> Result<(), (String, String)> {
+    let position = spec.position().map_err(|e| match e.kind {
+        AtmosphereErrorKind::Sun { field, message } => (field.to_owned(), message),
+        _ => (String::new(), e.to_string()),
+    })?;
+    if position.is_above_horizon() {
+        return Ok(());
+    }
+    let field = match spec {
+        SunSpec::Direction { .. } => "zenith_deg",
+        SunSpec::At { .. } => "utc",
+    };
+    Err((
+        field.to_owned(),
+        format!(
+            "the sun is {:.4} deg from the zenith, at or below the horizon: a sun below 90 deg \
+             lights the scene; leave the sun out for a night",
+            position.zenith_deg
+        ),
+    ))
 }

@@ -1,0 +1,544 @@
+//! The pipeline's `sun` (issue 30): one sun for the whole job, written once and given to
+//! every `trace` stage as irsig-trace's own sun flags, so that what runs is still exactly a
+//! command line a user could type. An `atmos plan` stage in the same file must be planned
+//! for that sun: its `sun-zenith-deg` must agree with the sun's zenith angle within the
+//! solar table's tolerance (the check irsig-trace makes later against the built table, made
+//! here before anything runs), and with a sun given by time its `day-of-year` with the
+//! date. A trace stage that gives sun flags of its own is refused: the sun is given once.
+
+use irsig_atmosphere::AtmosphereErrorKind;
+use irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG;
+use irsig_atmosphere::sun::SunSpec;
+use irsig_formats::ron_tree::{Kind, Node};
+
+use crate::error::{ErrorKind, PipelineError};
+use crate::spec::{Param, Source, Spanned, StageSpec, fields_of, scalar};
+
+/// The flags of irsig-trace that say where the sun is: a stage may not give them when the
+/// pipeline has a `sun`.
+const TRACE_SUN_FLAGS: [&str; 6] = [
+    "sun-zenith-deg",
+    "sun-azimuth-deg",
+    "sun-utc",
+    "latitude-deg",
+    "longitude-deg",
+    "altitude-m",
+];
+
+/// The pipeline's sun as read: the trace flags it makes, and its position.
+#[derive(Debug, Clone)]
+pub(crate) struct PipelineSun {
+    /// `(flag, value)` in the order irsig-trace documents them, each spanned at the value
+    /// it came from.
+    flags: Vec<(Spanned<String>, Param)>,
+    /// The day of the year of a sun given by time (1–366).
+    day_of_year: Option<u32>,
+    zenith_deg: f64,
+    /// Where the `sun` value starts in the file.
+    start: usize,
+}
+
+/// Reads the `sun` field: `Direction(zenith_deg: Z, azimuth_deg: A)` or `At(utc: "...",
+/// latitude_deg: LAT, longitude_deg: LON[, altitude_m: H])`, optionally in `Some(...)`,
+/// every number checked by the sun's own model and the sun above the horizon.
+pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, PipelineError> {
+    let inner = match &node.kind {
+        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
+        _ => node,
+    };
+    let expected = "expected `sun: Direction(zenith_deg: DEG, azimuth_deg: DEG)` or `sun: \
+                    At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: DEG, \
+                    altitude_m: M)`";
+    let form = match &inner.kind {
+        Kind::Struct(Some(name), _) => name.as_str(),
+        other => {
+            return Err(src.error(
+                ErrorKind::Structure,
+                inner.start,
+                inner.end,
+                format!("{expected}, found {}", other.describe()),
+            ));
+        }
+    };
+    let (names, flags): (&[&str], &[&str]) = match form {
+        "Direction" => (
+            &["zenith_deg", "azimuth_deg"],
+            &["sun-zenith-deg", "sun-azimuth-deg"],
+        ),
+        "At" => (
+            &["utc", "latitude_deg", "longitude_deg", "altitude_m"],
+            &["sun-utc", "latitude-deg", "longitude-deg", "altitude-m"],
+        ),
+        _ => {
+            return Err(src.error(
+                ErrorKind::Structure,
+                inner.start,
+                inner.end,
+                format!("{expected}, found `{form}(...)`"),
+            ));
+        }
+    };
+    let fields = fields_of(src, inner, form, names)?;
+    let mut values: Vec<Option<(Spanned<String>, &Node)>> = Vec::new();
+    for name in names {
+        let value = match fields.get(name) {
+            Some(n) => Some((scalar(src, n)?, *n)),
+            None if *name == "altitude_m" => None,
+            None => {
+                return Err(src.error(
+                    ErrorKind::Structure,
+                    inner.start,
+                    inner.end,
+                    format!("the sun has no `{name}`: {expected}"),
+                ));
+            }
+        };
+        values.push(value);
+    }
+    // Every number as a number; the time as a string.
+    let number = |i: usize| -> Result<f64, PipelineError> {
+        let (v, n) = values[i].as_ref().expect("required fields are present");
+        match (&n.kind, v.value.parse::<f64>()) {
+            (Kind::Number(_), Ok(x)) => Ok(x),
+            _ => Err(src.error(
+                ErrorKind::Structure,
+                n.start,
+                n.end,
+                format!(
+                    "expected a number of degrees or metres, found {}",
+                    n.kind.describe()
+                ),
+            )),
+        }
+    };
+    let spec = if form == "Direction" {
+        SunSpec::Direction {
+            zenith_deg: number(0)?,
+            azimuth_deg: number(1)?,
+        }
+    } else {
+        let (utc, utc_node) = values[0].as_ref().expect("required");
+        if !matches!(utc_node.kind, Kind::Str(_)) {
+            return Err(src.error(
+                ErrorKind::Structure,
+                utc_node.start,
+                utc_node.end,
+                "expected the time as a string, \"YYYY-MM-DDTHH:MM:SSZ\"",
+            ));
+        }
+        SunSpec::At {
+            utc: utc.value.clone(),
+            latitude_deg: number(1)?,
+            longitude_deg: number(2)?,
+            altitude_m: if values[3].is_some() { number(3)? } else { 0.0 },
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        }
+    };
+    let at_field = |field: &str| -> &Node {
+        names
+            .iter()
+            .position(|n| *n == field)
+            .and_then(|i| values[i].as_ref().map(|(_, n)| *n))
+            .unwrap_or(inner)
+    };
+    let position = spec.position().map_err(|e| {
+        let (n, message) = match e.kind {
+            AtmosphereErrorKind::Sun { field, message } => {
+                (at_field(field), format!("`{field}`: {message}"))
+            }
+            _ => (inner, e.to_string()),
+        };
+        src.error(
+            ErrorKind::Structure,
+            n.start,
+            n.end,
+            format!("the sun: {message}"),
+        )
+    })?;
+    if !position.is_above_horizon() {
+        let n = at_field(if form == "Direction" {
+            "zenith_deg"
+        } else {
+            "utc"
+        });
+        return Err(src.error(
+            ErrorKind::Structure,
+            n.start,
+            n.end,
+            format!(
+                "the sun is {:.4} deg from the zenith, at or below the horizon: a sun below 90 \
+                 deg lights the scene; leave `sun` out for a night",
+                position.zenith_deg
+            ),
+        ));
+    }
+    let day_of_year = match &spec {
+        SunSpec::At { utc, .. } => day_of_year(utc),
+        SunSpec::Direction { .. } => None,
+    };
+    let flags = values
+        .into_iter()
+        .zip(flags)
+        .filter_map(|(v, flag)| {
+            v.map(|(value, n)| {
+                let key = Spanned {
+                    value: (*flag).to_owned(),
+                    start: n.start,
+                    end: n.end,
+                };
+                (key, Param::One(value))
+            })
+        })
+        .collect();
+    Ok(PipelineSun {
+        flags,
+        day_of_year,
+        zenith_deg: position.zenith_deg,
+        start: node.start,
+    })
+}
+
+/// The day of the year of a UTC time `YYYY-MM-DDT...` (already accepted by the sun's
+/// model), 1–366.
+fn day_of_year(utc: &str) -> Option<u32> {
+    let date = utc.strip_prefix('-').unwrap_or(utc);
+    let mut parts = date.get(..10)?.split('-');
+    let year: i64 = parts.next()?.parse().ok()?;
+    let year = if utc.starts_with('-') { -year } else { year };
+    let month: usize = parts.next()?.parse().ok()?;
+    let day: u32 = parts.next()?.parse().ok()?;
+    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+    let before: [u32; 12] = [0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334];
+    let extra = u32::from(leap && month > 2);
+    Some(before.get(month.checked_sub(1)?)? + day + extra)
+}
+
+/// The first word and the rest of a stage's tool.
+fn tool_words(stage: &StageSpec) -> Vec<&str> {
+    stage.tool.value.split_whitespace().collect()
+}
+
+/// The value of a stage's parameter `flag` (`"sun-zenith-deg"`), with its span.
+fn param<'a>(
+    stage: &'a StageSpec,
+    flag: &str,
+) -> Option<(&'a Spanned<String>, Option<&'a Spanned<String>>)> {
+    stage
+        .params
+        .iter()
+        .find(|(k, _)| k.value.trim_start_matches('-') == flag)
+        .map(|(k, v)| {
+            let value = match v {
+                Param::One(v) => Some(v),
+                _ => None,
+            };
+            (k, value)
+        })
+}
+
+/// Gives the sun's flags to every `trace` stage, and checks every `atmos plan` stage
+/// against it.
+pub(crate) fn apply(
+    src: Source<'_>,
+    sun: &PipelineSun,
+    stages: &mut [StageSpec],
+) -> Result<(), PipelineError> {
+    let sun_line = src.line(sun.start);
+    for stage in stages.iter_mut() {
+        let words = tool_words(stage);
+        if words.first() == Some(&"trace") {
+            if let Some((key, _)) = TRACE_SUN_FLAGS.iter().find_map(|f| param(stage, f)) {
+                return Err(src.error(
+                    ErrorKind::Structure,
+                    key.start,
+                    key.end,
+                    format!(
+                        "the pipeline's `sun` (line {sun_line}) lights every trace stage: this \
+                         stage's own `{}` would give a second sun; give the sun once",
+                        key.value
+                    ),
+                ));
+            }
+            stage.params.extend(sun.flags.iter().cloned());
+        } else if words.starts_with(&["atmos", "plan"]) {
+            check_plan(src, sun, sun_line, stage)?;
+        }
+    }
+    Ok(())
+}
+
+/// An `atmos plan` stage planned for the pipeline's sun: its zenith within the solar
+/// table's tolerance, its day the date's when the sun is given by time.
+fn check_plan(
+    src: Source<'_>,
+    sun: &PipelineSun,
+    sun_line: usize,
+    stage: &StageSpec,
+) -> Result<(), PipelineError> {
+    let Some((key, value)) = param(stage, "sun-zenith-deg") else {
+        return Err(src.error(
+            ErrorKind::Structure,
+            stage.tool.start,
+            stage.tool.end,
+            format!(
+                "this atmosphere plan is for a night (no `sun-zenith-deg`), but the pipeline's \
+                 `sun` (line {sun_line}) lights the trace stages at {:.4} deg from the zenith: \
+                 give the plan `params: {{\"sun-zenith-deg\": {:.3}, \"day-of-year\": D}}`",
+                sun.zenith_deg, sun.zenith_deg
+            ),
+        ));
+    };
+    let (start, end) = value.map_or((key.start, key.end), |v| (v.start, v.end));
+    let planned: Option<f64> = value.and_then(|v| v.value.parse().ok());
+    match planned {
+        Some(z) if (z - sun.zenith_deg).abs() <= ZENITH_TOLERANCE_DEG => {}
+        _ => {
+            return Err(src.error(
+                ErrorKind::Structure,
+                start,
+                end,
+                format!(
+                    "this atmosphere plan's sun is not the pipeline's: the `sun` (line \
+                     {sun_line}) is {:.4} deg from the zenith, and the two must agree within \
+                     {ZENITH_TOLERANCE_DEG} deg for its solar table to light the trace stages",
+                    sun.zenith_deg
+                ),
+            ));
+        }
+    }
+    if let (Some(day), Some((key, value))) = (sun.day_of_year, param(stage, "day-of-year")) {
+        let (start, end) = value.map_or((key.start, key.end), |v| (v.start, v.end));
+        if value.and_then(|v| v.value.parse::<u32>().ok()) != Some(day) {
+            return Err(src.error(
+                ErrorKind::Structure,
+                start,
+                end,
+                format!(
+                    "this atmosphere plan's day is not the pipeline's: the `sun` (line \
+                     {sun_line}) is seen on day {day} of its year"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Pipeline, Plan, Tools};
+    use std::path::{Path, PathBuf};
+
+    fn plan(text: &str) -> Result<Plan, PipelineError> {
+        let tools = Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))));
+        Pipeline::parse("p.ron", text, Path::new("/nonexistent"))?.plan(&tools)
+    }
+
+    /// A pipeline of a plan, a trace and a sensor stage under `sun`, the plan with
+    /// `plan_params`, the trace with `trace_params`.
+    fn lit(sun: &str, plan_params: &str, trace_params: &str) -> String {
+        format!(
+            "(\n  sun: {sun},\n  stages: [\n    (tool: \"atmos plan\", params: {{{plan_params}}}, \
+             outputs: {{\"o\": \"plan\"}}),\n    (tool: \"trace\", inputs: {{\"view\": \"plan\"}}, \
+             params: {{{trace_params}}}, outputs: {{\"o\": \"frame\"}}),\n    (tool: \"sensor\", \
+             args: [\"frame\"], outputs: {{\"o\": \"s.exr\"}}),\n  ],\n)"
+        )
+    }
+
+    fn argv(p: &Plan, tool: &str) -> Vec<String> {
+        p.steps
+            .iter()
+            .find(|s| s.tool == tool)
+            .unwrap()
+            .argv
+            .clone()
+    }
+
+    #[test]
+    fn the_pipelines_sun_becomes_every_trace_stages_flags() {
+        let p = plan(&lit(
+            "Direction(zenith_deg: 30.0, azimuth_deg: 120)",
+            "\"sun-zenith-deg\": 30.0, \"day-of-year\": 95",
+            "\"band\": \"4-5\"",
+        ))
+        .unwrap();
+        assert_eq!(
+            argv(&p, "trace"),
+            [
+                "irsig-trace",
+                "--view",
+                "plan",
+                "--band",
+                "4-5",
+                "--sun-zenith-deg",
+                "30.0",
+                "--sun-azimuth-deg",
+                "120",
+                "-o",
+                "frame"
+            ]
+        );
+        // Other stages are as written.
+        assert_eq!(argv(&p, "sensor"), ["irsig-sensor", "frame", "-o", "s.exr"]);
+        // By time and place, `Some(...)` around it; the plan at the sun's zenith and day.
+        let spec = SunSpec::At {
+            utc: "2024-06-21T12:00:00Z".into(),
+            latitude_deg: 51.5,
+            longitude_deg: -0.1,
+            altitude_m: 20.0,
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        };
+        let z = spec.position().unwrap().zenith_deg;
+        let sun = "Some(At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 51.5, \
+                   longitude_deg: -0.1, altitude_m: 20))";
+        let p = plan(&lit(
+            sun,
+            &format!("\"sun-zenith-deg\": {z:.3}, \"day-of-year\": 173"),
+            "",
+        ))
+        .unwrap();
+        assert_eq!(
+            argv(&p, "trace"),
+            [
+                "irsig-trace",
+                "--view",
+                "plan",
+                "--sun-utc",
+                "2024-06-21T12:00:00Z",
+                "--latitude-deg",
+                "51.5",
+                "--longitude-deg",
+                "-0.1",
+                "--altitude-m",
+                "20",
+                "-o",
+                "frame"
+            ]
+        );
+    }
+
+    /// The error of `text`, its line and column, and whether its message says `says`.
+    fn refused(text: &str, line: usize, column: usize, says: &str) {
+        let e = plan(text).unwrap_err();
+        let shown = e.to_string();
+        assert!(shown.contains(says), "expected `{says}`: {shown}");
+        let at = format!("p.ron:{line}:{column}");
+        assert!(shown.contains(&at), "expected {at}: {shown}");
+    }
+
+    #[test]
+    fn a_sun_the_plan_is_not_for_or_given_twice_is_refused_at_its_place() {
+        let good = "\"sun-zenith-deg\": 30.0, \"day-of-year\": 95";
+        let sun = "Direction(zenith_deg: 30.0, azimuth_deg: 120)";
+        // The plan at 30.5 deg: at its value (line 4; `params: {"sun-zenith-deg": ` ends at
+        // column 52, after `    (tool: "atmos plan", `).
+        refused(
+            &lit(sun, "\"sun-zenith-deg\": 30.5", ""),
+            4,
+            53,
+            "not the pipeline's",
+        );
+        // A plan for a night.
+        refused(&lit(sun, "\"day-of-year\": 95", ""), 4, 12, "for a night");
+        // A trace stage's own sun: at its key.
+        refused(
+            &lit(sun, good, "\"sun-azimuth-deg\": 10"),
+            5,
+            56,
+            "second sun",
+        );
+        // A day other than the date's.
+        let london = "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 51.5, longitude_deg: 0)";
+        let z = SunSpec::At {
+            utc: "2024-06-21T12:00:00Z".into(),
+            latitude_deg: 51.5,
+            longitude_deg: 0.0,
+            altitude_m: 0.0,
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        }
+        .position()
+        .unwrap()
+        .zenith_deg;
+        refused(
+            &lit(
+                london,
+                &format!("\"sun-zenith-deg\": {z:.3}, \"day-of-year\": 172"),
+                "",
+            ),
+            4,
+            76,
+            "day 173",
+        );
+    }
+
+    #[test]
+    fn bad_sun_values_are_refused_at_their_line_and_column() {
+        // Line 2 is `  sun: ...`; the value starts at column 8.
+        for (sun, column, says) in [
+            ("Direction(zenith_deg: 95.0, azimuth_deg: 0)", 30, "horizon"),
+            (
+                "Direction(zenith_deg: 30.0, azimuth_deg: 360)",
+                49,
+                "azimuth",
+            ),
+            ("Direction(zenith_deg: 30.0)", 8, "no `azimuth_deg`"),
+            (
+                "Direction(zenith_deg: 30.0, azimuth_deg: 0, hour: 12)",
+                52,
+                "hour",
+            ),
+            (
+                "Direction(zenith_deg: \"30\", azimuth_deg: 0)",
+                30,
+                "expected a number",
+            ),
+            (
+                "At(utc: \"2024-13-01T12:00:00Z\", latitude_deg: 0, longitude_deg: 0)",
+                16,
+                "utc",
+            ),
+            (
+                "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 95, longitude_deg: 0)",
+                54,
+                "latitude",
+            ),
+            (
+                "At(utc: \"2024-06-21T12:00:00Z\", latitude_deg: 0, longitude_deg: 0, delta_t_s: 69)",
+                75,
+                "delta_t_s",
+            ),
+            // A flag hidden in the time is one word, the time, and no time at that.
+            (
+                "At(utc: \"--o=/etc/passwd\", latitude_deg: 0, longitude_deg: 0)",
+                16,
+                "utc",
+            ),
+            (
+                "At(utc: \"2024-06-21T12:00:00Z\\n-o x\", latitude_deg: 0, longitude_deg: 0)",
+                37,
+                "control",
+            ),
+            ("Noon", 8, "expected `sun: Direction"),
+        ] {
+            refused(&lit(sun, "", ""), 2, column, says);
+        }
+    }
+
+    #[test]
+    fn days_of_the_year_by_hand() {
+        assert_eq!(day_of_year("2024-01-01T00:00:00Z"), Some(1));
+        assert_eq!(day_of_year("2023-03-01T12:00:00Z"), Some(60));
+        // 2024 is a leap year: 31 + 29 + 1.
+        assert_eq!(day_of_year("2024-03-01T12:00:00Z"), Some(61));
+        assert_eq!(day_of_year("2024-06-21T12:00:00Z"), Some(173));
+        assert_eq!(day_of_year("2024-12-31T12:00:00Z"), Some(366));
+        assert_eq!(day_of_year("1900-12-31T12:00:00Z"), Some(365));
+        assert_eq!(day_of_year("2000-12-31T12:00:00Z"), Some(366));
+    }
+}
