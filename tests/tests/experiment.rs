@@ -109,6 +109,60 @@ fn temperature_8_14(l: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// `irsig-stats --layer` of a layer that is not a temperature: its columns carry the
+/// layer's unit (metres for `range`, none for `emissivity`), and what only a temperature
+/// can take (`--celsius`, the regions file's reference temperatures) is refused, as is a
+/// layer of labels.
+fn layers_other_than_temperatures_keep_their_units(data: &Path) {
+    let truth = data.join("out/experiment.truth.exr");
+    let text = std::fs::read_to_string(data.join("regions.ron")).unwrap();
+    let mut set: irsig_model::RegionSet =
+        irsig_formats::canonical::from_ron("regions.ron", &text).unwrap();
+    assert!(!set.references.is_empty());
+    set.references.clear();
+    for r in &mut set.regions {
+        r.references.clear();
+    }
+    let bare = data.join("out/regions-without-references.ron");
+    std::fs::write(&bare, ron::to_string(&set).unwrap()).unwrap();
+    let range = irsig_tests::stats_csv(&truth, &bare, &["--layer", "range"]);
+    let emissivity = irsig_tests::stats_csv(&truth, &bare, &["--layer", "emissivity"]);
+    for region in TABLE_7 {
+        let (r, e) = (&range[region], &emissivity[region]);
+        // The camera is metres from every object, and every emissivity a fraction.
+        assert!(
+            r["min_m"] > 0.0 && r["max_m"] < 100.0 && !r.contains_key("mean_k"),
+            "{r:?}"
+        );
+        assert!(
+            e["min"] > 0.0 && e["max"] <= 1.0 && !e.contains_key("mean_k"),
+            "{e:?}"
+        );
+    }
+    let refused = |regions: &Path, extra: &[&str], want: &str| {
+        let out = irsig_tests::bin("irsig-stats")
+            .arg(&truth)
+            .arg("--regions")
+            .arg(regions)
+            .args(extra)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success() && stderr.contains(want),
+            "{extra:?}: expected a refusal naming `{want}`: {stderr}"
+        );
+    };
+    refused(&bare, &["--layer", "range", "--celsius"], "--celsius");
+    refused(
+        &data.join("regions.ron"),
+        &["--layer", "range"],
+        "references",
+    );
+    refused(&bare, &["--layer", "event"], "labels");
+    refused(&bare, &["--layer", "no_such_layer"], "no_such_layer");
+}
+
 #[test]
 fn the_pipeline_writes_every_table_7_region_and_the_regions_rank_as_physics_predicts() {
     let (_dir, pipeline) = copy_pipeline();
@@ -166,6 +220,8 @@ fn the_pipeline_writes_every_table_7_region_and_the_regions_rank_as_physics_pred
             r["pixels"]
         );
     }
+
+    layers_other_than_temperatures_keep_their_units(&data);
 
     // The ranking. Each region's sensor-reaching radiance is ε·L(T) + (1 − ε)·L_bg (path
     // effects over 10 m are ~0.5 % and shift every region alike). Over the angles the

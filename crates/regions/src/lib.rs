@@ -26,6 +26,7 @@
 //!     width: 2,
 //!     values: &[300.0, 302.0, 400.0, 250.0],
 //!     source: "apparent temperature".into(),
+//!     unit: "K",
 //!     celsius: false,
 //! })?;
 //! assert_eq!((table.regions[0].pixels, table.regions[0].mean), (2, 301.0));
@@ -78,7 +79,8 @@ pub struct Compared {
 pub struct Table {
     /// Where the values come from (`apparent_temperature of out/f.truth.exr`).
     pub values: String,
-    /// `K` or `degC`.
+    /// The values' unit: `K` or `degC` for temperatures, else the layer's own
+    /// ([`irsig_model::truth::Layer::unit`]: `W m^-2`, `m`, empty for a ratio).
     pub unit: String,
     /// Reference columns: name and source.
     pub references: Vec<(String, String)>,
@@ -102,20 +104,50 @@ pub struct Inputs<'a> {
     pub material_ids: &'a [f32],
     /// The image's width, pixels.
     pub width: usize,
-    /// The values, K, one per pixel in the same order.
+    /// The values, in `unit`, one per pixel in the same order.
     pub values: &'a [f32],
     /// Where the values come from, in words (the table's `values`).
     pub source: String,
+    /// The values' unit: `K` for temperatures (the only values a regions file's references
+    /// are compared with and `celsius` applies to), else the layer's own.
+    pub unit: &'a str,
     /// Show temperatures in degC rather than K.
     pub celsius: bool,
+}
+
+/// A unit in words, for messages: `a ratio` when it has none.
+fn unit_words(unit: &str) -> String {
+    if unit.is_empty() {
+        "a ratio, no unit".into()
+    } else {
+        format!("in {unit}")
+    }
 }
 
 /// The table of per-region statistics of `inputs.values`, from images the caller has read.
 ///
 /// # Errors
 /// A region that reaches beyond the image, selects no pixel or meets a non-finite value,
-/// at the region's line in the regions file.
+/// at the region's line in the regions file; degC or references for values that are not
+/// temperatures.
 pub fn tabulate(inputs: &Inputs<'_>) -> miette::Result<Table> {
+    let temperature = inputs.unit == "K";
+    if !temperature && inputs.celsius {
+        miette::bail!(
+            "{} is not a temperature ({}): degC applies to temperatures only",
+            inputs.source,
+            unit_words(inputs.unit)
+        );
+    }
+    if !temperature && !inputs.set.references.is_empty() {
+        miette::bail!(
+            "{}: the references of {} are temperatures (K) and the values are not ({}): \
+             compare a temperature layer, or use a regions file without references",
+            inputs.regions_name,
+            inputs.source,
+            unit_words(inputs.unit)
+        );
+    }
     let offset = if inputs.celsius { ZERO_CELSIUS_K } else { 0.0 };
     let mut rows = Vec::with_capacity(inputs.set.regions.len());
     for (i, region) in inputs.set.regions.iter().enumerate() {
@@ -181,7 +213,7 @@ pub fn tabulate(inputs: &Inputs<'_>) -> miette::Result<Table> {
     }
     Ok(Table {
         values: inputs.source.clone(),
-        unit: if inputs.celsius { "degC" } else { "K" }.into(),
+        unit: if inputs.celsius { "degC" } else { inputs.unit }.into(),
         references: inputs
             .set
             .references

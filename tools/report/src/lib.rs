@@ -619,6 +619,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 width,
                 values: &values,
                 source: source.clone(),
+                unit: "K",
                 celsius: false,
             })?;
             table.values.clone_from(&shown_source);

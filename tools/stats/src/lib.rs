@@ -73,7 +73,8 @@ pub struct Cli {
     /// the truth EXR.
     #[arg(long, value_name = "FILE", conflicts_with = "layer")]
     pub radiance: Option<String>,
-    /// The truth EXR's layer to take the values from, in kelvin.
+    /// The truth EXR's layer to take the values from, in its own unit (K for the
+    /// temperatures, W m^-2 for `solar_irradiance`, none for a fraction).
     #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
     pub layer: String,
     /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
@@ -151,6 +152,31 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             format!("`{}` layer of {}", cli.layer, truth_input.name),
         ),
     };
+    // The values' unit is the layer's: a temperature, a radiance, a ratio.
+    let unit = match (&cli.radiance, Layer::from_name(&cli.layer)) {
+        (Some(_), _) => "K",
+        (None, Some(l)) if l.is_label() => {
+            return Err(irsig_cli::usage_error(format!(
+                "--layer {}: the layer holds labels, not quantities: expected a layer of \
+                 values (a temperature, a radiance, a fraction)",
+                cli.layer
+            )));
+        }
+        (None, Some(l)) => l.unit(),
+        (None, None) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--layer {}: not a layer irsig-trace writes, so its unit is unknown",
+                cli.layer
+            )));
+        }
+    };
+    if cli.celsius && unit != "K" {
+        return Err(irsig_cli::usage_error(format!(
+            "--celsius with --layer {}: the layer is not a temperature ({}): leave out --celsius",
+            cli.layer,
+            if unit.is_empty() { "a ratio" } else { unit }
+        )));
+    }
 
     let table = tabulate(&Inputs {
         regions_name: &regions_input.name,
@@ -161,6 +187,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         width: truth.width,
         values: &values,
         source,
+        unit,
         celsius: cli.celsius,
     })?;
     let text = render(&table, cli.format)?;
@@ -182,12 +209,29 @@ fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [
         })
 }
 
+/// A column name's unit suffix: `_k` for K, `_c` for degC, `_w_m-2` for `W m^-2`, none for
+/// a ratio.
+fn column_suffix(unit: &str) -> String {
+    match unit {
+        "K" => "_k".into(),
+        "degC" => "_c".into(),
+        "" => String::new(),
+        u => format!("_{}", u.replace('^', "").replace(' ', "_").to_lowercase()),
+    }
+}
+
 /// The table as text, CSV or RON.
 ///
 /// # Errors
 /// Only if RON serialisation fails, which it does not for finite numbers.
 pub fn render(table: &Table, format: TableFormat) -> miette::Result<String> {
-    let unit = if table.unit == "K" { "k" } else { "c" };
+    let unit = column_suffix(&table.unit);
+    // The spread and the differences are differences: kelvin for degC too.
+    let spread = if table.unit == "degC" {
+        "_k".to_owned()
+    } else {
+        unit.clone()
+    };
     let mut header: Vec<String> = ["region", "pixels"]
         .into_iter()
         .map(String::from)
@@ -196,18 +240,17 @@ pub fn render(table: &Table, format: TableFormat) -> miette::Result<String> {
                 .iter()
                 .enumerate()
                 .map(|(i, h)| {
-                    // The spread is a difference: kelvin whatever the unit.
                     if i == 1 {
-                        format!("{h}_k")
+                        format!("{h}{spread}")
                     } else {
-                        format!("{h}_{unit}")
+                        format!("{h}{unit}")
                     }
                 }),
         )
         .collect();
     for (name, _) in &table.references {
-        header.push(format!("{name}_{unit}"));
-        header.push(format!("mean_minus_{name}_k"));
+        header.push(format!("{name}{unit}"));
+        header.push(format!("mean_minus_{name}{spread}"));
     }
     let cells = |row: &Row, full: bool| -> Vec<String> {
         let num = |v: f64| {
