@@ -474,11 +474,18 @@ impl AtmosphereModel {
         let computed = here.map_or(computed_ground, SkyView::hemispheric);
         let given = self.ground_sky.given_hemispheric;
         let warning = given.and_then(|g| {
-            let rel = (computed_ground - g).abs() / g.abs().max(1e-300);
+            let difference = (computed_ground - g).abs();
+            let rel = difference / g.abs().max(1e-300);
             (rel > HEMISPHERIC_TOLERANCE).then(|| {
+                // A given 0 makes any difference infinitely many per cent: say it in
+                // radiance instead.
+                let by = if g == 0.0 {
+                    format!("{difference:.4e} W m^-2 sr^-1 (the given value is 0)")
+                } else {
+                    format!("{:.1} %", rel * 100.0)
+                };
                 format!(
-                    "the hemispheric sky radiance given ({g:.4} W m^-2 sr^-1) and eq. 5 applied to the angular sky table ({computed_ground:.4}) differ by {:.1} %; using the given value",
-                    rel * 100.0
+                    "the hemispheric sky radiance given ({g:.4} W m^-2 sr^-1) and eq. 5 applied to the angular sky table ({computed_ground:.4}) differ by {by}; using the given value"
                 )
             })
         });

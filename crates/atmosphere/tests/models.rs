@@ -225,7 +225,21 @@ fn hemispheric_sky_agrees_with_eq_5_and_warns_when_it_does_not() {
     let h = AtmosphereModel::new(&atm, ModelKind::Layered)
         .unwrap()
         .sky_hemispheric(0.0);
-    assert!(h.warning.is_some_and(|w| w.contains("differ")));
+    assert!(
+        h.warning
+            .is_some_and(|w| w.contains("differ") && w.contains(" %"))
+    );
+    // A given 0: the difference is said in radiance, not in infinitely many per cent.
+    atm.sky_hemispheric_w_m2_sr = Some(0.0);
+    let w = AtmosphereModel::new(&atm, ModelKind::Layered)
+        .unwrap()
+        .sky_hemispheric(0.0)
+        .warning
+        .expect("a warning");
+    assert!(
+        w.contains("W m^-2 sr^-1 (the given value is 0)") && !w.contains('%'),
+        "{w}"
+    );
     atm.sky_hemispheric_w_m2_sr = None;
     let h = AtmosphereModel::new(&atm, ModelKind::Layered)
         .unwrap()
