@@ -1734,7 +1734,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
-    /// terms go to `centre` (written in place: a sample is 160 bytes, and moving it
+    /// terms go to `centre` (written in place: a sample is 192 bytes, and moving it
     /// through every call level showed as memory copies in the profile); without, `centre`
     /// is not touched. `path` is scratch space reused from pixel to pixel.
     fn pixel<const TRUTH: bool>(
