@@ -347,7 +347,12 @@ fn plan_puts_the_suns_runs_after_the_nights() {
     assert_eq!((sun.zenith_deg, sun.day_of_year), (41.25, 200));
     assert_eq!(sun.altitude_m, n.sky_altitude_m);
     let (nd, dd) = (decks(&night), decks(&day));
-    assert_eq!(dd.len(), nd.len() + n.sky_altitude_m.len());
+    // The direct beam's runs, then each slant and sky path once per azimuth from the sun
+    // (IEMSCT = 2, tests/tests/sunlit.rs).
+    let sunlit = (n.slant_altitude_m.len() * n.slant_nadir_deg.len()
+        + n.sky_altitude_m.len() * n.sky_zenith_deg.len())
+        * sun.relative_azimuth_deg.len();
+    assert_eq!(dd.len(), nd.len() + n.sky_altitude_m.len() + sunlit);
     assert_eq!(
         dd[..nd.len()],
         nd[..],
