@@ -195,15 +195,23 @@ pub fn add_aerosol(plan: &mut AtmospherePlan, aerosol: PlanAerosol) -> Result<()
 
 /// The azimuths of a line of sight from the sun's vertical plane at which a plan with a
 /// sun runs every slant and sky path for its scattered sunlight, degrees. Closer toward
-/// the sun, where the aerosols' forward peak makes the scattered light change fastest;
-/// the interpolation error between them is in `docs/accuracy.md`.
-pub const RELATIVE_AZIMUTH_DEG: [f64; 9] = [0.0, 15.0, 30.0, 45.0, 60.0, 90.0, 120.0, 150.0, 180.0];
+/// the sun, where the aerosols' forward peak makes the scattered light change fastest
+/// (with rows 15° apart there, a hazy 3.4-4.1 um sky 12° from the sun was 2.2 % off
+/// LOWTRAN7 between them; 10° apart, 0.2 %); the interpolation error between them is in
+/// `docs/accuracy.md`.
+pub const RELATIVE_AZIMUTH_DEG: [f64; 10] =
+    [0.0, 10.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 150.0, 180.0];
+
+/// Sky observer altitudes a plan with a sun adds to the night's, metres.
+pub const DAY_SKY_ALTITUDE_M: [f64; 3] = [500.0, 700.0, 1500.0];
 
 /// Puts a sun at `zenith_deg` (rounded to the 0.001° a deck holds) on day `day_of_year` in
-/// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the ground,
-/// 300 m to 10 km and every observer; the sky table's rows), and the sunlight scattered
+/// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the
+/// ground, 300 m to 10 km and every observer) and [`DAY_SKY_ALTITUDE_M`] below the
+/// highest, and the sunlight scattered
 /// into every slant and sky path at each of [`RELATIVE_AZIMUTH_DEG`] (LOWTRAN7's
-/// IEMSCT = 2). Linear in altitude between the 0 and 300 m rows, the 3–5 µm
+/// IEMSCT = 2), slant paths on the slant table's nodes, sky paths on the sky table's
+/// zenith angles and the sun's altitudes. Linear in altitude between the 0 and 300 m rows, the 3–5 µm
 /// direct irradiance at 150 m is 6e-6 from LOWTRAN7's there, relative (US Standard 1976,
 /// sun at 30°; tests/tests/solar.rs).
 ///
@@ -215,10 +223,20 @@ pub fn add_sun(
     zenith_deg: f64,
     day_of_year: u16,
 ) -> Result<(), AtmosphereError> {
+    // The scattered sky changes faster with the observer's altitude than the thermal one
+    // (the aerosol is mixed through the lowest km or two): the sun's rows, on which the
+    // scattered sky is run too, add the slant grid's 500, 700 and 1500 m below the
+    // highest sky row, where the night's 300 m-1 km gap made the interpolated
+    // 3.4-4.1 um hazy sky 6 % low at 650 m (docs/accuracy.md).
+    let top = plan.sky_altitude_m.last().copied().unwrap_or(0.0);
+    let mut sky = plan.sky_altitude_m.clone();
+    sky.extend(DAY_SKY_ALTITUDE_M.iter().filter(|&&h| h < top));
+    sky.sort_by(f64::total_cmp);
+    sky.dedup();
     let sun = PlanSun {
         zenith_deg: round3(zenith_deg),
         day_of_year,
-        altitude_m: plan.sky_altitude_m.clone(),
+        altitude_m: sky.clone(),
         relative_azimuth_deg: RELATIVE_AZIMUTH_DEG.to_vec(),
     };
     // The rounding may carry 89.9996 to 90: checked after it.
@@ -365,10 +383,10 @@ fn sunlit_slant_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
     out
 }
 
-/// The sunlit sky paths, `[altitude][zenith][azimuth]`.
+/// The sunlit sky paths, `[altitude][zenith][azimuth]`, on the sun's altitudes.
 fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
     let mut out = Vec::new();
-    for &a in &plan.sky_altitude_m {
+    for &a in &sun.altitude_m {
         for &z in &plan.sky_zenith_deg {
             out.extend(sun.relative_azimuth_deg.iter().map(|&az| Path::UpSunlit {
                 altitude_m: a,
@@ -881,19 +899,22 @@ mod tests {
         day.validate().unwrap();
         let sun = day.sun.as_ref().unwrap();
         assert_eq!(sun.zenith_deg, 30.0);
-        assert_eq!(sun.altitude_m, day.sky_altitude_m);
+        let mut rows = day.sky_altitude_m.clone();
+        rows.extend(DAY_SKY_ALTITUDE_M);
+        rows.sort_by(f64::total_cmp);
+        assert_eq!(sun.altitude_m, rows);
         let (before, after) = (paths(&night), paths(&day));
         // The night's runs keep their numbers; the sun's follow, lowest first.
         assert_eq!(after[..before.len()], before[..]);
         let slant = day.slant_altitude_m.len() * day.slant_nadir_deg.len();
-        let sky = day.sky_altitude_m.len() * day.sky_zenith_deg.len();
+        let sky = sun.altitude_m.len() * day.sky_zenith_deg.len();
         assert_eq!(
             after.len(),
-            before.len() + day.sky_altitude_m.len() + (slant + sky) * RELATIVE_AZIMUTH_DEG.len()
+            before.len() + sun.altitude_m.len() + (slant + sky) * RELATIVE_AZIMUTH_DEG.len()
         );
         // Each sunlit path is a thermal path's deck in IEMSCT 2 with its azimuth and the
         // sun on cards 3A1-3A2.
-        let sunlit = after[before.len() + day.sky_altitude_m.len() + 1];
+        let sunlit = after[before.len() + sun.altitude_m.len() + 1];
         let Path::DownSunlit {
             altitude_m,
             nadir_deg,
@@ -999,7 +1020,7 @@ mod tests {
         let a = assemble(&p, &spectra, &|_| 288.0, 0.0, "test").unwrap();
         let s = a.solar.as_ref().unwrap();
         assert_eq!((s.zenith_deg, s.day_of_year), (30.0, 172));
-        assert_eq!(s.altitude_m, p.sky_altitude_m);
+        assert_eq!(s.altitude_m, p.sun.as_ref().unwrap().altitude_m);
         assert_eq!(s.extraterrestrial_w_m2_per_unit, [0.0092_f32, 0.0094]);
         // Row k is the run at altitude k.
         for (k, h) in s.altitude_m.iter().enumerate() {
@@ -1010,7 +1031,7 @@ mod tests {
         let sl = a.slant.as_ref().unwrap();
         assert_eq!(
             s.sky_scattered_w_m2_sr_per_unit.len(),
-            sl.sky_altitude_m.len() * sl.sky_zenith_deg.len() * na * 2
+            s.altitude_m.len() * sl.sky_zenith_deg.len() * na * 2
         );
         for (k, az) in s.relative_azimuth_deg.iter().enumerate() {
             let want = (1e-4 * (1.0 + az)) as f32;

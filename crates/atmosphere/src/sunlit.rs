@@ -13,11 +13,12 @@
 //! Each term is integrated over the band first, by [`BandQuadrature`]'s rule (as every
 //! band value of a spectral atmosphere), then interpolated: by a monotone cubic in
 //! azimuth and in angle (the scattered light's rise toward the sun and the horizon bends
-//! between rows), linearly in altitude for slant paths and geometrically in altitude for
-//! sky paths (the sky above an observer dims roughly exponentially as the observer
-//! rises: between the 300 m and 1 km rows a monotone cubic was 1.8 % off LOWTRAN7's
-//! 3–5 µm sky at 650 m, the geometric mean 0.2 %); outside the tables the nearest row is
-//! used.
+//! between rows) and linearly in altitude, for slant and sky paths alike (within the
+//! boundary layer, where the aerosol is mixed, the scattered sky above an observer falls
+//! almost linearly as the observer rises: LOWTRAN7's 3.4–4.1 µm rural 10 km sky at 650 m
+//! is 1.5 % above the line between 300 m and 1 km, and 7.8 % above their geometric mean;
+//! a monotone cubic through 0, 300 m and 1 km was 1.8 % off the thermal sky there);
+//! outside the tables the nearest row is used.
 //! The error of this interpolation against LOWTRAN7 at paths between the rows is measured
 //! in `tests/tests/sunlit.rs` and tabled in `docs/accuracy.md`.
 
@@ -73,14 +74,7 @@ impl Table {
         interp::monotone_cubic(&self.angle_deg, &row, angle_deg)
     }
 
-    fn value(
-        &self,
-        azimuth_deg: &[f64],
-        altitude_m: f64,
-        angle_deg: f64,
-        az: f64,
-        geometric_in_altitude: bool,
-    ) -> f64 {
+    fn value(&self, azimuth_deg: &[f64], altitude_m: f64, angle_deg: f64, az: f64) -> f64 {
         let nh = self.altitude_m.len();
         let (k, f) = interp::locate(&self.altitude_m, altitude_m);
         let a = self.at_altitude_row(k, azimuth_deg, angle_deg, az);
@@ -88,9 +82,6 @@ impl Table {
             return a;
         }
         let b = self.at_altitude_row(k + 1, azimuth_deg, angle_deg, az);
-        if geometric_in_altitude && a > 0.0 && b > 0.0 {
-            return a * (b / a).powf(f);
-        }
         a + f * (b - a)
     }
 }
@@ -192,7 +183,7 @@ impl SunlitPaths {
                 1,
             ),
             sky_scattered: table(
-                &slant.sky_altitude_m,
+                &solar.altitude_m,
                 &slant.sky_zenith_deg,
                 &solar.sky_scattered_w_m2_sr_per_unit,
                 na,
@@ -217,15 +208,12 @@ impl SunlitPaths {
     ) -> SunlitRadiance {
         let az = fold_azimuth_deg(azimuth_deg);
         SunlitRadiance {
-            thermal_w_m2_sr: self
-                .path_thermal
-                .value(&[0.0], altitude_m, nadir_deg, 0.0, false),
+            thermal_w_m2_sr: self.path_thermal.value(&[0.0], altitude_m, nadir_deg, 0.0),
             scattered_w_m2_sr: self.path_scattered.value(
                 &self.azimuth_deg,
                 altitude_m,
                 nadir_deg,
                 az,
-                false,
             ),
         }
     }
@@ -241,15 +229,12 @@ impl SunlitPaths {
     ) -> SunlitRadiance {
         let az = fold_azimuth_deg(azimuth_deg);
         SunlitRadiance {
-            thermal_w_m2_sr: self
-                .sky_thermal
-                .value(&[0.0], altitude_m, zenith_deg, 0.0, true),
+            thermal_w_m2_sr: self.sky_thermal.value(&[0.0], altitude_m, zenith_deg, 0.0),
             scattered_w_m2_sr: self.sky_scattered.value(
                 &self.azimuth_deg,
                 altitude_m,
                 zenith_deg,
                 az,
-                true,
             ),
         }
     }
@@ -299,20 +284,11 @@ mod tests {
             values,
             azimuths: az.len(),
         };
-        assert!((t.value(&az, 100.0, 10.0, 45.0, false) - (200.0 + 30.0 + 225.0)).abs() < 1e-9);
-        let v = t.value(&az, 150.0, 17.0, 60.0, false);
+        assert!((t.value(&az, 100.0, 10.0, 45.0) - (200.0 + 30.0 + 225.0)).abs() < 1e-9);
+        let v = t.value(&az, 150.0, 17.0, 60.0);
         assert!((v - (300.0 + 51.0 + 300.0)).abs() < 1e-9, "{v}");
-        // Geometric in altitude: halfway between rows, the geometric mean of the two.
-        let (lo, hi) = (
-            t.value(&az, 100.0, 17.0, 60.0, true),
-            t.value(&az, 300.0, 17.0, 60.0, true),
-        );
-        let v = t.value(&az, 200.0, 17.0, 60.0, true);
-        assert!((v - (lo * hi).sqrt()).abs() < 1e-9, "{v}");
-        for geometric in [false, true] {
-            // Outside: the nearest row.
-            let v = t.value(&az, 400.0, 50.0, 60.0, geometric);
-            assert!((v - (600.0 + 120.0 + 300.0)).abs() < 1e-9, "{v}");
-        }
+        // Outside: the nearest row.
+        let v = t.value(&az, 400.0, 50.0, 60.0);
+        assert!((v - (600.0 + 120.0 + 300.0)).abs() < 1e-9, "{v}");
     }
 }

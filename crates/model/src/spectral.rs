@@ -142,8 +142,9 @@ pub struct SpectralSolar {
     /// to the slant table's thermal path radiance by day.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub path_scattered_w_m2_sr_per_unit: Vec<f32>,
-    /// Sunlight single-scattered into each sky path of `slant`, W m⁻² sr⁻¹ per grid unit,
-    /// `[altitude][zenith][azimuth]` spectra on `slant.sky_altitude_m`,
+    /// Sunlight single-scattered into the sky paths, W m⁻² sr⁻¹ per grid unit,
+    /// `[altitude][zenith][azimuth]` spectra on this table's `altitude_m` (finer than the
+    /// thermal sky's: the scattered sky changes faster with altitude),
     /// `slant.sky_zenith_deg` and `relative_azimuth_deg`; added to the sky table's thermal
     /// radiance by day.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -415,7 +416,7 @@ impl SpectralAtmosphere {
                 check_spectra(
                     "solar.sky_scattered_w_m2_sr_per_unit",
                     &s.sky_scattered_w_m2_sr_per_unit,
-                    sl.sky_altitude_m.len() * sl.sky_zenith_deg.len() * na,
+                    s.altitude_m.len() * sl.sky_zenith_deg.len() * na,
                     n,
                     f64::MAX,
                 )?;
