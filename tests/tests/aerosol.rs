@@ -179,6 +179,10 @@ fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
         let tau = first_total_transmittance(&run_lowtran(&horizontal_at_550nm(deck, range_km)));
         let k_lowtran = -tau.ln() / range_km;
         let k_koschmieder = 3.912 / vis_km;
+        eprintln!(
+            "{model} {vis_km} km: LOWTRAN7 {k_lowtran:.5} per km at 0.55 um, Koschmieder {k_koschmieder:.5}: {:+.2} %",
+            100.0 * (k_lowtran / k_koschmieder - 1.0)
+        );
         assert!(
             (k_lowtran / k_koschmieder - 1.0).abs() < 0.01,
             "{model} at {vis_km} km: LOWTRAN7's extinction at 0.55 um is {k_lowtran} per km, Koschmieder's {k_koschmieder}"
