@@ -20,8 +20,13 @@ use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
 use irsig_tests::{bin, lowtran};
 
-/// flatten + plan for the quickstart scene into `dir`, with `extra` flags.
+/// flatten + plan for the quickstart scene into `dir`, US Standard 1976, with `extra` flags.
 fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
+    quickstart_plan_with(dir, name, &["--model", "us-std-1976"], extra)
+}
+
+/// [`quickstart_plan`] with the model's flags `model`.
+fn quickstart_plan_with(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -> PathBuf {
     let raw = dir.join("scene.raw");
     if !raw.exists() {
         bin("irsig-flatten")
@@ -39,12 +44,8 @@ fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
     bin("irsig-atmos")
         .args(["plan", "--scene"])
         .arg(&raw)
-        .args([
-            "--view",
-            "pipelines/quickstart/view.ron",
-            "--model",
-            "us-std-1976",
-        ])
+        .args(["--view", "pipelines/quickstart/view.ron"])
+        .args(model)
         .args(extra)
         .arg("-o")
         .arg(&plan)
@@ -129,17 +130,27 @@ fn first_total_transmittance(tape7: &str) -> f64 {
 fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
     let dir = tempfile::tempdir().unwrap();
     let range_km = 5.0;
+    let radiosonde = [
+        "--radiosonde",
+        "formats/legacy/samples/us-std-1976-illustrative.rsd",
+    ];
     for (model, vis_km, extra) in [
         ("rural", 10.0, None),
+        // LOWTRAN7's user model (MODEL 7) takes card 2's aerosol through its levels.
+        ("rural-radiosonde", 10.0, None),
         ("rural", 23.0, None),
         ("urban", 5.0, None),
         ("maritime", 15.0, None),
         ("tropospheric", 50.0, None),
         ("desert", 8.0, Some("7")),
     ] {
+        let (aerosol, model_flags): (&str, &[&str]) = match model.strip_suffix("-radiosonde") {
+            Some(a) => (a, &radiosonde),
+            None => (model, &["--model", "us-std-1976"]),
+        };
         let mut flags = vec![
             "--aerosol".to_owned(),
-            model.to_owned(),
+            aerosol.to_owned(),
             "--visibility-km".to_owned(),
             vis_km.to_string(),
         ];
@@ -147,11 +158,16 @@ fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
             flags.extend(["--wind-speed-m-s".to_owned(), w.to_owned()]);
         }
         let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
-        let plan = quickstart_plan(dir.path(), &format!("{model}-{vis_km}"), &flags);
+        let plan = quickstart_plan_with(
+            dir.path(),
+            &format!("{model}-{vis_km}"),
+            model_flags,
+            &flags,
+        );
         let all = files(&plan);
         // Every deck carries the aerosol (card 2, `6I5,5F10.3`: IHAZE in columns 1-5,
         // VIS in 31-40, WSS in 41-50).
-        let ihaze = match model {
+        let ihaze = match aerosol {
             "rural" => 1,
             "urban" => 5,
             "maritime" => 4,
@@ -176,6 +192,9 @@ fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
         // per km its visibility assumes (about 1 %% of the air's share), the Chappuis
         // ozone band (2e-4 per km) and τ's 4 printed digits.
         let deck = std::str::from_utf8(&all[1].1).unwrap();
+        // Card 1's MODEL: 7, the user model, for the radiosonde.
+        let want_model = if model_flags == radiosonde { "7" } else { "6" };
+        assert_eq!(deck[..5].trim(), want_model, "{deck}");
         let tau = first_total_transmittance(&run_lowtran(&horizontal_at_550nm(deck, range_km)));
         let k_lowtran = -tau.ln() / range_km;
         let k_koschmieder = 3.912 / vis_km;
