@@ -24,6 +24,8 @@ Examples:
       --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
   irsig-atmos plan --scene scene.raw --view view.ron --model midlat-winter \
       --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
+  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
+      --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
   irsig-atmos build tropical-plan -o tropical.spa")]
 pub struct PlanArgs {
     /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
