@@ -348,15 +348,24 @@ fn plan_puts_the_suns_runs_after_the_nights() {
     let sun = d.sun.take().expect("a sun");
     assert_eq!(d, n, "the sun changes nothing else");
     assert_eq!((sun.zenith_deg, sun.day_of_year), (41.25, 200));
-    assert_eq!(sun.altitude_m, n.sky_altitude_m);
+    // The night's sky rows and the finer rows of the scattered sky (500, 700, 1500 m).
+    let mut rows = n.sky_altitude_m.clone();
+    rows.extend(irsig_atmosphere::plan::DAY_SKY_ALTITUDE_M);
+    rows.sort_by(f64::total_cmp);
+    assert_eq!(sun.altitude_m, rows);
     let (nd, dd) = (decks(&night), decks(&day));
-    assert_eq!(dd.len(), nd.len() + n.sky_altitude_m.len());
+    // The direct beam's runs, then each slant and sky path once per azimuth from the sun
+    // (IEMSCT = 2, tests/tests/sunlit.rs).
+    let sunlit = (n.slant_altitude_m.len() * n.slant_nadir_deg.len()
+        + sun.altitude_m.len() * n.sky_zenith_deg.len())
+        * sun.relative_azimuth_deg.len();
+    assert_eq!(dd.len(), nd.len() + sun.altitude_m.len() + sunlit);
     assert_eq!(
         dd[..nd.len()],
         nd[..],
         "the night's decks keep their numbers"
     );
-    for (deck, h_m) in dd[nd.len()..].iter().zip(&n.sky_altitude_m) {
+    for (deck, h_m) in dd[nd.len()..].iter().zip(&sun.altitude_m) {
         let cards: Vec<&str> = deck.lines().collect();
         // Card 1 (13I5): MODEL 6, ITYPE 3, IEMSCT 3.
         assert_eq!(&cards[0][..15], "    6    3    3", "{deck}");

@@ -54,6 +54,7 @@ mod sky;
 pub mod solar;
 mod spectral;
 pub mod sun;
+pub mod sunlit;
 mod table;
 mod thesis;
 

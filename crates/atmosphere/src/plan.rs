@@ -18,12 +18,12 @@
 use std::collections::BTreeMap;
 
 use irsig_formats::radtran::tape5::{
-    Card1, Card2, Card3, Card4, CardDeck, Cards, Geometry, ProfileLevel as DeckLevel, Step,
-    UserProfile,
+    Card1, Card2, Card3, Card4, CardDeck, Cards, Geometry, ProfileLevel as DeckLevel, Scattering,
+    Step, UserProfile,
 };
 use irsig_model::{
-    AtmospherePlan, CorrectionPaths, PlanModel, PlanSun, ProfileLevel, SpectralAtmosphere,
-    SpectralAxis, SpectralGrid, SpectralSlantTables, SpectralSolar,
+    AtmospherePlan, CorrectionPaths, PlanAerosol, PlanModel, PlanSun, ProfileLevel,
+    SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlantTables, SpectralSolar,
 };
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
@@ -171,13 +171,47 @@ pub fn make_plan(
         sky_altitude_m: sky,
         sky_zenith_deg: sky_zenith_deg(),
         sun: None,
+        aerosol: None,
     })
 }
 
+/// Puts `aerosol` in every path of `plan` (LOWTRAN7's card 2: IHAZE, VIS and, for the
+/// desert model, WSS), its visibility rounded to the whole metres a deck holds.
+///
+/// # Errors
+/// What [`PlanAerosol::validate`] refuses; the message names the field.
+pub fn add_aerosol(plan: &mut AtmospherePlan, aerosol: PlanAerosol) -> Result<(), AtmosphereError> {
+    let aerosol = PlanAerosol {
+        visibility_m: aerosol.visibility_m.round(),
+        wind_speed_m_s: aerosol.wind_speed_m_s.map(round3),
+        ..aerosol
+    };
+    aerosol
+        .validate()
+        .map_err(|e| AtmosphereError::from(AtmosphereErrorKind::Plan(e.to_string())))?;
+    plan.aerosol = Some(aerosol);
+    Ok(())
+}
+
+/// The azimuths of a line of sight from the sun's vertical plane at which a plan with a
+/// sun runs every slant and sky path for its scattered sunlight, degrees. Closer toward
+/// the sun, where the aerosols' forward peak makes the scattered light change fastest
+/// (with rows 15° apart there, a hazy 3.4-4.1 um sky 12° from the sun was 2.2 % off
+/// LOWTRAN7 between them; 10° apart, 0.2 %); the interpolation error between them is in
+/// `docs/accuracy.md`.
+pub const RELATIVE_AZIMUTH_DEG: [f64; 10] =
+    [0.0, 10.0, 20.0, 30.0, 45.0, 60.0, 90.0, 120.0, 150.0, 180.0];
+
+/// Sky observer altitudes a plan with a sun adds to the night's, metres.
+pub const DAY_SKY_ALTITUDE_M: [f64; 3] = [500.0, 700.0, 1500.0];
+
 /// Puts a sun at `zenith_deg` (rounded to the 0.001° a deck holds) on day `day_of_year` in
-/// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the ground,
-/// 300 m to 10 km and every observer; the sky table's rows, which the scattered sunlight
-/// of a later step shares). Linear in altitude between the 0 and 300 m rows, the 3–5 µm
+/// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the
+/// ground, 300 m to 10 km and every observer) and [`DAY_SKY_ALTITUDE_M`] below the
+/// highest, and the sunlight scattered
+/// into every slant and sky path at each of [`RELATIVE_AZIMUTH_DEG`] (LOWTRAN7's
+/// IEMSCT = 2), slant paths on the slant table's nodes, sky paths on the sky table's
+/// zenith angles and the sun's altitudes. Linear in altitude between the 0 and 300 m rows, the 3–5 µm
 /// direct irradiance at 150 m is 6e-6 from LOWTRAN7's there, relative (US Standard 1976,
 /// sun at 30°; tests/tests/solar.rs).
 ///
@@ -189,10 +223,21 @@ pub fn add_sun(
     zenith_deg: f64,
     day_of_year: u16,
 ) -> Result<(), AtmosphereError> {
+    // The scattered sky changes faster with the observer's altitude than the thermal one
+    // (the aerosol is mixed through the lowest km or two): the sun's rows, on which the
+    // scattered sky is run too, add the slant grid's 500, 700 and 1500 m below the
+    // highest sky row, where the night's 300 m-1 km gap made the interpolated
+    // 3.4-4.1 um hazy sky 6 % low at 650 m (docs/accuracy.md).
+    let top = plan.sky_altitude_m.last().copied().unwrap_or(0.0);
+    let mut sky = plan.sky_altitude_m.clone();
+    sky.extend(DAY_SKY_ALTITUDE_M.iter().filter(|&&h| h < top));
+    sky.sort_by(f64::total_cmp);
+    sky.dedup();
     let sun = PlanSun {
         zenith_deg: round3(zenith_deg),
         day_of_year,
-        altitude_m: plan.sky_altitude_m.clone(),
+        altitude_m: sky.clone(),
+        relative_azimuth_deg: RELATIVE_AZIMUTH_DEG.to_vec(),
     };
     // The rounding may carry 89.9996 to 90: checked after it.
     sun.validate()
@@ -218,6 +263,25 @@ pub enum Path {
         /// Zenith angle, degrees.
         zenith_deg: f64,
     },
+    /// A slant path of the sunlit tables: [`Path::Down`] with the sunlight it scatters,
+    /// the line of sight `azimuth_deg` from the sun's vertical plane.
+    DownSunlit {
+        /// Observer altitude, metres.
+        altitude_m: f64,
+        /// Nadir angle, degrees.
+        nadir_deg: f64,
+        /// Azimuth from the sun's, degrees, 0–180.
+        azimuth_deg: f64,
+    },
+    /// A sky path of the sunlit tables: [`Path::Up`] with the sunlight it scatters.
+    UpSunlit {
+        /// Observer altitude, metres.
+        altitude_m: f64,
+        /// Zenith angle, degrees.
+        zenith_deg: f64,
+        /// Azimuth from the sun's, degrees, 0–180.
+        azimuth_deg: f64,
+    },
     /// The sun's direct beam from the top of the atmosphere down to `altitude_m`, the sun
     /// `zenith_deg` from straight up, on day `day_of_year` (a direct solar irradiance run).
     Sun {
@@ -230,7 +294,7 @@ pub enum Path {
     },
 }
 
-type Key = (u8, i64, i64);
+type Key = (u8, i64, i64, i64);
 
 fn key(p: &Path) -> Key {
     #[allow(clippy::cast_possible_truncation)]
@@ -239,17 +303,28 @@ fn key(p: &Path) -> Key {
         Path::Down {
             altitude_m,
             nadir_deg,
-        } => (0, q(altitude_m), q(nadir_deg)),
+        } => (0, q(altitude_m), q(nadir_deg), 0),
         Path::Up {
             altitude_m,
             zenith_deg,
-        } => (1, q(altitude_m), q(zenith_deg)),
+        } => (1, q(altitude_m), q(zenith_deg), 0),
         // After every thermal path: a plan's runs without a sun keep their numbers.
         Path::Sun {
             altitude_m,
             zenith_deg,
             ..
-        } => (2, q(altitude_m), q(zenith_deg)),
+        } => (2, q(altitude_m), q(zenith_deg), 0),
+        // After the direct beam's: a plan with a sun but no azimuths numbers as before.
+        Path::DownSunlit {
+            altitude_m,
+            nadir_deg,
+            azimuth_deg,
+        } => (3, q(altitude_m), q(nadir_deg), q(azimuth_deg)),
+        Path::UpSunlit {
+            altitude_m,
+            zenith_deg,
+            azimuth_deg,
+        } => (4, q(altitude_m), q(zenith_deg), q(azimuth_deg)),
     }
 }
 
@@ -287,6 +362,38 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
     }
     if let Some(sun) = &plan.sun {
         out.extend(sun_paths(sun));
+        out.extend(sunlit_slant_paths(plan, sun));
+        out.extend(sunlit_sky_paths(plan, sun));
+    }
+    out
+}
+
+/// The sunlit slant paths, `[altitude][nadir][azimuth]`.
+fn sunlit_slant_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
+    let mut out = Vec::new();
+    for &a in &plan.slant_altitude_m {
+        for &n in &plan.slant_nadir_deg {
+            out.extend(sun.relative_azimuth_deg.iter().map(|&az| Path::DownSunlit {
+                altitude_m: a,
+                nadir_deg: n,
+                azimuth_deg: az,
+            }));
+        }
+    }
+    out
+}
+
+/// The sunlit sky paths, `[altitude][zenith][azimuth]`, on the sun's altitudes.
+fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
+    let mut out = Vec::new();
+    for &a in &sun.altitude_m {
+        for &z in &plan.sky_zenith_deg {
+            out.extend(sun.relative_azimuth_deg.iter().map(|&az| Path::UpSunlit {
+                altitude_m: a,
+                zenith_deg: z,
+                azimuth_deg: az,
+            }));
+        }
     }
     out
 }
@@ -412,8 +519,8 @@ pub fn radiosonde_profile(
     })
 }
 
-/// The LOWTRAN7 card deck of one path: thermal radiance (IEMSCT = 1), no aerosol, no
-/// multiple scattering, the plan's spectral range; case 2A (ITYPE 2, H1, H2, ANGLE =
+/// The LOWTRAN7 card deck of one path: thermal radiance (IEMSCT = 1), the plan's aerosol
+/// (none without one: IHAZE 0), no multiple scattering, the plan's spectral range; case 2A (ITYPE 2, H1, H2, ANGLE =
 /// 180 − nadir) down, case 3A (ITYPE 3, H1, ANGLE = zenith) up. The sun's paths are
 /// direct solar irradiance runs (IEMSCT = 3, ITYPE 3; card 3's alternate form: H1, ANGLE =
 /// the sun's zenith angle, IDAY, ISOURC = 0, the sun).
@@ -425,6 +532,11 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
         Path::Down {
             altitude_m,
             nadir_deg,
+        }
+        | Path::DownSunlit {
+            altitude_m,
+            nadir_deg,
+            ..
         } => (
             2,
             1,
@@ -441,6 +553,11 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
         Path::Up {
             altitude_m,
             zenith_deg,
+        }
+        | Path::UpSunlit {
+            altitude_m,
+            zenith_deg,
+            ..
         } => (
             3,
             1,
@@ -484,6 +601,34 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
     };
     cards.card1.mdef = i64::from(matches!(plan.model, PlanModel::Radiosonde(_)));
     cards.card1.iemsct = iemsct;
+    if let (Path::DownSunlit { azimuth_deg, .. } | Path::UpSunlit { azimuth_deg, .. }, Some(sun)) =
+        (*path, &plan.sun)
+    {
+        // IEMSCT 2, single scattering; card 3A1: IPARM 2 (the geometry given as angles),
+        // IPH 2 (LOWTRAN's Mie phase functions of its aerosol models), IDAY, ISOURC 0
+        // (the sun); card 3A2: PARM1 the azimuth of the sun from the line of sight,
+        // PARM2 the sun's zenith angle.
+        cards.card1.iemsct = 2;
+        cards.geometry.scattering = Some(Scattering {
+            card3a1: [2, 2, i64::from(sun.day_of_year), 0],
+            card3a2: [
+                round3(azimuth_deg),
+                round3(sun.zenith_deg),
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+                0.0,
+            ],
+            phase_function: Vec::new(),
+        });
+    }
+    if let Some(a) = &plan.aerosol {
+        cards.card2.ihaze = a.model.ihaze();
+        cards.card2.vis_km = round3(a.visibility_m / 1000.0);
+        cards.card2.wss_m_s = a.wind_speed_m_s.unwrap_or(0.0);
+    }
     Ok(CardDeck {
         steps: vec![Step::Full(Box::new(cards))],
     })
@@ -502,6 +647,9 @@ pub struct PathSpectra {
     /// The sun's paths (direct solar irradiance runs): the extraterrestrial solar
     /// irradiance on a surface normal to the beam, W m⁻² per cm⁻¹; empty for the others.
     pub extraterrestrial_w_m2_per_cm: Vec<f64>,
+    /// The sunlit paths (IEMSCT = 2 runs): the sunlight scattered into the path, W m⁻²
+    /// sr⁻¹ per cm⁻¹; empty for the others.
+    pub scattered_w_m2_sr_per_cm: Vec<f64>,
 }
 
 /// The spectral atmosphere from the spectra of every path of [`paths`] (same order),
@@ -544,6 +692,10 @@ pub fn assemble(
             Path::Sun { .. } => (
                 "an extraterrestrial solar irradiance (a direct solar irradiance run, IEMSCT = 3)",
                 s.extraterrestrial_w_m2_per_cm.len(),
+            ),
+            Path::DownSunlit { .. } | Path::UpSunlit { .. } => (
+                "a scattered solar radiance (a solar scattering run, IEMSCT = 2)",
+                s.scattered_w_m2_sr_per_cm.len(),
             ),
             _ => (
                 "a path radiance (a thermal radiance run)",
@@ -633,12 +785,16 @@ pub fn assemble(
                     )));
                 }
             }
+            let scattered = |p: Path| f32s(&get(p).scattered_w_m2_sr_per_cm);
             Some(SpectralSolar {
                 zenith_deg: sun.zenith_deg,
                 day_of_year: sun.day_of_year,
                 altitude_m: sun.altitude_m.clone(),
                 extraterrestrial_w_m2_per_unit: f32s(etoa),
                 transmission: flat(runs, &tau),
+                relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
+                path_scattered_w_m2_sr_per_unit: flat(sunlit_slant_paths(plan, sun), &scattered),
+                sky_scattered_w_m2_sr_per_unit: flat(sunlit_sky_paths(plan, sun), &scattered),
             })
         }
     };
@@ -743,11 +899,51 @@ mod tests {
         day.validate().unwrap();
         let sun = day.sun.as_ref().unwrap();
         assert_eq!(sun.zenith_deg, 30.0);
-        assert_eq!(sun.altitude_m, day.sky_altitude_m);
+        let mut rows = day.sky_altitude_m.clone();
+        rows.extend(DAY_SKY_ALTITUDE_M);
+        rows.sort_by(f64::total_cmp);
+        assert_eq!(sun.altitude_m, rows);
         let (before, after) = (paths(&night), paths(&day));
         // The night's runs keep their numbers; the sun's follow, lowest first.
         assert_eq!(after[..before.len()], before[..]);
-        assert_eq!(after.len(), before.len() + day.sky_altitude_m.len());
+        let slant = day.slant_altitude_m.len() * day.slant_nadir_deg.len();
+        let sky = sun.altitude_m.len() * day.sky_zenith_deg.len();
+        assert_eq!(
+            after.len(),
+            before.len() + sun.altitude_m.len() + (slant + sky) * RELATIVE_AZIMUTH_DEG.len()
+        );
+        // Each sunlit path is a thermal path's deck in IEMSCT 2 with its azimuth and the
+        // sun on cards 3A1-3A2.
+        let sunlit = after[before.len() + sun.altitude_m.len() + 1];
+        let Path::DownSunlit {
+            altitude_m,
+            nadir_deg,
+            azimuth_deg,
+        } = sunlit
+        else {
+            panic!("{sunlit:?}")
+        };
+        assert_eq!(azimuth_deg, RELATIVE_AZIMUTH_DEG[1]);
+        let lit = deck(&day, &sunlit).unwrap();
+        let dark = deck(
+            &day,
+            &Path::Down {
+                altitude_m,
+                nadir_deg,
+            },
+        )
+        .unwrap();
+        let (Step::Full(l), Step::Full(d)) = (&lit.steps[0], &dark.steps[0]) else {
+            panic!("full decks")
+        };
+        assert_eq!((l.card1.iemsct, d.card1.iemsct), (2, 1));
+        assert_eq!(l.geometry.card3, d.geometry.card3);
+        let sc = l.geometry.scattering.as_ref().unwrap();
+        assert_eq!(sc.card3a1, [2, 2, 172, 0]);
+        assert_eq!(sc.card3a2[..2], [RELATIVE_AZIMUTH_DEG[1], 30.0]);
+        let text = irsig_formats::radtran::tape5::write(&lit).unwrap();
+        let back = irsig_formats::radtran::tape5::parse("d", &text).unwrap();
+        assert_eq!(irsig_formats::radtran::tape5::write(&back).unwrap(), text);
         assert_eq!(
             after[before.len()],
             Path::Sun {
@@ -801,26 +997,58 @@ mod tests {
                     transmission: vec![0.5 + altitude_m / 1e5, 0.25],
                     radiance_w_m2_sr_per_cm: vec![],
                     extraterrestrial_w_m2_per_cm: vec![0.0092, 0.0094],
+                    scattered_w_m2_sr_per_cm: vec![],
                 },
+                Path::DownSunlit { azimuth_deg, .. } | Path::UpSunlit { azimuth_deg, .. } => {
+                    PathSpectra {
+                        wavenumber_per_cm: nu.clone(),
+                        transmission: vec![0.9, 0.8],
+                        radiance_w_m2_sr_per_cm: vec![0.01, 0.02],
+                        extraterrestrial_w_m2_per_cm: vec![],
+                        scattered_w_m2_sr_per_cm: vec![1e-4 * (1.0 + azimuth_deg), 0.0],
+                    }
+                }
                 _ => PathSpectra {
                     wavenumber_per_cm: nu.clone(),
                     transmission: vec![0.9, 0.8],
                     radiance_w_m2_sr_per_cm: vec![0.01, 0.02],
                     extraterrestrial_w_m2_per_cm: vec![],
+                    scattered_w_m2_sr_per_cm: vec![],
                 },
             })
             .collect();
         let a = assemble(&p, &spectra, &|_| 288.0, 0.0, "test").unwrap();
         let s = a.solar.as_ref().unwrap();
         assert_eq!((s.zenith_deg, s.day_of_year), (30.0, 172));
-        assert_eq!(s.altitude_m, p.sky_altitude_m);
+        assert_eq!(s.altitude_m, p.sun.as_ref().unwrap().altitude_m);
         assert_eq!(s.extraterrestrial_w_m2_per_unit, [0.0092_f32, 0.0094]);
         // Row k is the run at altitude k.
         for (k, h) in s.altitude_m.iter().enumerate() {
             assert_eq!(s.transmission[2 * k], (0.5 + h / 1e5) as f32);
         }
+        // The scattered tables, [altitude][angle][azimuth]: azimuth k's spectrum is its own.
+        let na = s.relative_azimuth_deg.len();
+        let sl = a.slant.as_ref().unwrap();
+        assert_eq!(
+            s.sky_scattered_w_m2_sr_per_unit.len(),
+            s.altitude_m.len() * sl.sky_zenith_deg.len() * na * 2
+        );
+        for (k, az) in s.relative_azimuth_deg.iter().enumerate() {
+            let want = (1e-4 * (1.0 + az)) as f32;
+            assert_eq!(s.path_scattered_w_m2_sr_per_unit[2 * (na + k)], want);
+            assert_eq!(s.sky_scattered_w_m2_sr_per_unit[2 * k], want);
+        }
         // A thermal run where a solar one belongs, and runs of two days, are refused.
+        let sun_last = all
+            .iter()
+            .rposition(|q| matches!(q, Path::Sun { .. }))
+            .unwrap();
         let last = spectra.len() - 1;
+        let mut thermal = spectra.clone();
+        thermal[last].scattered_w_m2_sr_per_cm.clear();
+        let e = assemble(&p, &thermal, &|_| 288.0, 0.0, "test").unwrap_err();
+        assert!(e.to_string().contains(&format!("run {last}")), "{e}");
+        let last = sun_last;
         let mut wrong = spectra.clone();
         wrong[last].extraterrestrial_w_m2_per_cm.clear();
         wrong[last].radiance_w_m2_sr_per_cm = vec![0.01, 0.02];

@@ -191,6 +191,9 @@ mod tests {
                 altitude_m: vec![0.0, 300.0],
                 extraterrestrial_w_m2_per_unit: vec![10.0; n],
                 transmission: [vec![0.5_f32; n], vec![0.75; n]].concat(),
+                relative_azimuth_deg: Vec::new(),
+                path_scattered_w_m2_sr_per_unit: Vec::new(),
+                sky_scattered_w_m2_sr_per_unit: Vec::new(),
             }),
         }
     }
@@ -252,6 +255,9 @@ mod tests {
             altitude_m: vec![0.0],
             extraterrestrial_w_m2_per_unit: vec![1.0; n],
             transmission: vec![1.0; n],
+            relative_azimuth_deg: Vec::new(),
+            path_scattered_w_m2_sr_per_unit: Vec::new(),
+            sky_scattered_w_m2_sr_per_unit: Vec::new(),
         });
         atm.validate().unwrap();
         let sun = DirectSun::new(&atm, 4.0, 5.0, |_| 1.0).unwrap();

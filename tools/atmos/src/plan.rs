@@ -7,10 +7,10 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use irsig_atmosphere::plan::{add_sun, deck, make_plan, paths};
+use irsig_atmosphere::plan::{add_aerosol, add_sun, deck, make_plan, paths};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
-use irsig_model::{LengthUnit, PlanModel, RadiosondeLevel, View};
+use irsig_model::{AerosolModel, LengthUnit, PlanAerosol, PlanModel, RadiosondeLevel, View};
 use miette::{IntoDiagnostic, WrapErr, miette};
 
 /// Arguments of `irsig-atmos plan`.
@@ -24,6 +24,8 @@ Examples:
       --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
   irsig-atmos plan --scene scene.raw --view view.ron --model midlat-winter \
       --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
+  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
+      --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
   irsig-atmos build tropical-plan -o tropical.spa")]
 pub struct PlanArgs {
     /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
@@ -67,6 +69,20 @@ pub struct PlanArgs {
     /// 3333.3 cm⁻¹), for a scene traced in both bands. Runs take longer the wider it is.
     #[arg(long, value_name = "V1,V2,DV", value_parser = wavenumber_range)]
     pub wavenumber_per_cm: Option<[f64; 3]>,
+    /// LOWTRAN7's boundary-layer aerosol in every path: rural, urban, maritime,
+    /// tropospheric or desert, each with --visibility-km (desert also with
+    /// --wind-speed-m-s); or none. Without it the paths have no aerosol (IHAZE 0).
+    #[arg(long, value_name = "MODEL")]
+    pub aerosol: Option<String>,
+    /// The meteorological range (visibility) at the ground, km, above 0 and at most 337
+    /// (LOWTRAN7's VIS: the ground's extinction at 0.55 um, aerosol and air, is 3.912/VIS
+    /// per km); with --aerosol.
+    #[arg(long, value_name = "KM", value_parser = visibility_km)]
+    pub visibility_km: Option<f64>,
+    /// The desert aerosol's wind speed at 10 m, m/s, 0-30 (LOWTRAN7's WSS); with
+    /// --aerosol desert.
+    #[arg(long, value_name = "M/S", value_parser = wind_speed)]
+    pub wind_speed_m_s: Option<f64>,
     /// The atmosphere's name (default: the model's or the radiosonde file's).
     #[arg(long)]
     pub name: Option<String>,
@@ -136,6 +152,120 @@ fn wavenumber_range(s: &str) -> Result<[f64; 3], String> {
         ));
     }
     Ok([v1, v2, dv])
+}
+
+/// `--visibility-km`: a finite range above 0 and at most 337 km.
+fn visibility_km(s: &str) -> Result<f64, String> {
+    let v: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a meteorological range in km, found `{s}`"))?;
+    let max_km = irsig_model::MAX_VISIBILITY_M / 1000.0;
+    if !(v.is_finite() && v > 0.0) {
+        return Err(format!(
+            "expected a meteorological range above 0 km, found {v}"
+        ));
+    }
+    if v > max_km {
+        return Err(format!(
+            "{v} km is clearer than the air itself allows LOWTRAN7's aerosol (its visibility counts the air's 0.01159 per km at 0.55 um): expected at most {max_km} km"
+        ));
+    }
+    if (v * 1000.0).round() <= 0.0 {
+        return Err(format!(
+            "{v} km rounds to 0 at the 1 m a LOWTRAN7 deck holds: expected at least 0.001 km"
+        ));
+    }
+    Ok(v)
+}
+
+/// `--wind-speed-m-s`: a finite speed from 0 to 30 m/s (the desert model's tables).
+fn wind_speed(s: &str) -> Result<f64, String> {
+    let w: f64 = s
+        .trim()
+        .parse()
+        .map_err(|_| format!("expected a wind speed in m/s, found `{s}`"))?;
+    if !(w.is_finite() && (0.0..=30.0).contains(&w)) {
+        return Err(format!(
+            "expected a wind speed from 0 to 30 m/s (LOWTRAN7's desert aerosol tables), found {w}"
+        ));
+    }
+    Ok(w)
+}
+
+/// The aerosol the flags ask for: none without `--aerosol` (or with `--aerosol none`).
+///
+/// # Errors
+/// An unknown model, a model without `--visibility-km`, a visibility or wind speed with
+/// no model that uses it; each names its flag.
+pub(crate) fn aerosol_of(
+    model: Option<&str>,
+    visibility_km: Option<f64>,
+    wind_speed_m_s: Option<f64>,
+) -> miette::Result<Option<PlanAerosol>> {
+    let names = || {
+        AerosolModel::ALL
+            .map(|m| m.1)
+            .iter()
+            .chain(&["none"])
+            .copied()
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let model = match model {
+        None | Some("none") => None,
+        Some(m) => Some(
+            AerosolModel::ALL
+                .iter()
+                .find(|(_, n)| *n == m)
+                .map(|&(k, _)| k)
+                .ok_or_else(|| {
+                    irsig_cli::usage_error(format!(
+                        "--aerosol {m}: unknown aerosol model, expected one of {}",
+                        names()
+                    ))
+                })?,
+        ),
+    };
+    let Some(model) = model else {
+        if let Some(v) = visibility_km {
+            return Err(irsig_cli::usage_error(format!(
+                "--visibility-km {v}: a visibility is the aerosol's; give --aerosol MODEL ({}) with it",
+                names()
+            )));
+        }
+        if let Some(w) = wind_speed_m_s {
+            return Err(irsig_cli::usage_error(format!(
+                "--wind-speed-m-s {w}: the wind speed is the desert aerosol's; give --aerosol desert with it"
+            )));
+        }
+        return Ok(None);
+    };
+    let Some(v) = visibility_km else {
+        return Err(irsig_cli::usage_error(format!(
+            "--aerosol {}: expected --visibility-km KM with it (LOWTRAN7's meteorological range at the ground; irsig takes no default)",
+            model.name()
+        )));
+    };
+    match (model, wind_speed_m_s) {
+        (AerosolModel::Desert, None) => {
+            return Err(irsig_cli::usage_error(
+                "--aerosol desert: expected --wind-speed-m-s M/S with it (the desert aerosol's extinction depends on the wind speed at 10 m, 0-30 m/s)",
+            ));
+        }
+        (AerosolModel::Desert, Some(_)) | (_, None) => {}
+        (m, Some(w)) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--wind-speed-m-s {w}: the wind speed is the desert aerosol's, not `{}`'s",
+                m.name()
+            )));
+        }
+    }
+    Ok(Some(PlanAerosol {
+        model,
+        visibility_m: v * 1000.0,
+        wind_speed_m_s,
+    }))
 }
 
 /// The standard models by name and number.
@@ -254,6 +384,8 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         .chain(&a.view)
         .chain(&a.radiosonde);
     irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
+    // The flags first: a wrong one is refused before any file is read.
+    let aerosol = aerosol_of(a.aerosol.as_deref(), a.visibility_km, a.wind_speed_m_s)?;
     let input = irsig_cli::read_input(&a.scene)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
@@ -280,6 +412,10 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         // Rounded to the 0.001 deg a deck holds (`sun_zenith` refused what rounds to 90).
         add_sun(&mut plan, z, day)
             .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
+    }
+    if let Some(aer) = aerosol {
+        add_aerosol(&mut plan, aer)
+            .map_err(|e| irsig_cli::usage_error(format!("--aerosol: {e}")))?;
     }
     let plan_text = canonical::to_ron(&plan).into_diagnostic()?;
     let all = paths(&plan);
@@ -309,8 +445,21 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             s.day_of_year
         )
     });
+    // Said either way: a plan's aerosol is never a silent default.
+    let aerosol_text = plan.aerosol.as_ref().map_or_else(
+        || "no aerosol".to_owned(),
+        |x| {
+            format!(
+                "{} aerosol, visibility {} km{}",
+                x.model.name(),
+                x.visibility_m / 1000.0,
+                x.wind_speed_m_s
+                    .map_or_else(String::new, |w| format!(", wind {w} m/s"))
+            )
+        },
+    );
     irsig_cli::note!(
-        "{}: {} paths{sun} for {} observer(s) at {} m above the scene's lowest point ({} m)",
+        "{}: {} paths{sun}, {aerosol_text}, for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
         all.len(),
         plan.observers_m.len(),

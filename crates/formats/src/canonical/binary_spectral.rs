@@ -19,8 +19,11 @@
 //! `transmission_correction.transmission`, `sky_radiance_w_m2_sr_per_unit`,
 //! `sky_hemispheric_w_m2_sr_per_unit`, `slant.transmission`,
 //! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`,
-//! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`. (A file without a
-//! `solar` table is what version 1 always was: its bytes do not change.)
+//! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`, and when
+//! `solar.relative_azimuth_deg` is not empty `solar.path_scattered_w_m2_sr_per_unit`,
+//! `solar.sky_scattered_w_m2_sr_per_unit`. (A file without a `solar` table is what
+//! version 1 always was: its bytes do not change; nor does one whose sun has no
+//! scattered-sunlight tables.)
 //! Each count is checked against the bytes left before anything is allocated; the file
 //! must end after the last table; the result is validated.
 
@@ -60,6 +63,12 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
     }
     if let Some(s) = &a.solar {
         t.extend([&s.extraterrestrial_w_m2_per_unit, &s.transmission]);
+        if !s.relative_azimuth_deg.is_empty() {
+            t.extend([
+                &s.path_scattered_w_m2_sr_per_unit,
+                &s.sky_scattered_w_m2_sr_per_unit,
+            ]);
+        }
     }
     t
 }
@@ -84,7 +93,14 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
         ]);
     }
     if let Some(s) = &mut a.solar {
+        let scattered = !s.relative_azimuth_deg.is_empty();
         t.extend([&mut s.extraterrestrial_w_m2_per_unit, &mut s.transmission]);
+        if scattered {
+            t.extend([
+                &mut s.path_scattered_w_m2_sr_per_unit,
+                &mut s.sky_scattered_w_m2_sr_per_unit,
+            ]);
+        }
     }
     t
 }
@@ -232,6 +248,14 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             so.map_or(0, |s| s.extraterrestrial_w_m2_per_unit.len()),
         ),
         ("solar.transmission", so.map_or(0, |s| s.transmission.len())),
+        (
+            "solar.path_scattered_w_m2_sr_per_unit",
+            so.map_or(0, |s| s.path_scattered_w_m2_sr_per_unit.len()),
+        ),
+        (
+            "solar.sky_scattered_w_m2_sr_per_unit",
+            so.map_or(0, |s| s.sky_scattered_w_m2_sr_per_unit.len()),
+        ),
     ];
     if let Some((path, n)) = in_header.into_iter().find(|&(_, n)| n > 0) {
         let (start, _) = crate::ron_tree::locate(text, path);
@@ -374,6 +398,9 @@ mod tests {
             altitude_m: vec![0.0, 300.0],
             extraterrestrial_w_m2_per_unit: vec![0.0092, 0.0094],
             transmission: vec![0.25, 0.5, 0.3, 0.55],
+            relative_azimuth_deg: Vec::new(),
+            path_scattered_w_m2_sr_per_unit: Vec::new(),
+            sky_scattered_w_m2_sr_per_unit: Vec::new(),
         });
         let bytes = encode(&a).unwrap();
         assert_eq!(decode("a.spa", &bytes).unwrap(), a);

@@ -90,6 +90,13 @@ impl SpectralTable {
         (self.names.get(3) == Some(&"SOLAR IRRADIANCE")).then(|| self.columns[3].as_slice())
     }
 
+    /// The solar (or lunar) radiance scattered into the path, W cm⁻² sr⁻¹ per cm⁻¹:
+    /// IEMSCT 2's `SCATTERED RADIANCE` (single scattering unless IMULT = 1).
+    #[must_use]
+    pub fn scattered_radiance(&self) -> Option<&[f64]> {
+        (self.names.get(3) == Some(&"SCATTERED RADIANCE")).then(|| self.columns[3].as_slice())
+    }
+
     /// The thermal (atmospheric) radiance of the path, W cm⁻² sr⁻¹ per cm⁻¹: IEMSCT 1 and 2.
     #[must_use]
     pub fn thermal_radiance(&self) -> Option<&[f64]> {
