@@ -330,15 +330,30 @@ fn decks(plan: &Path) -> Vec<String> {
 fn plan_puts_the_suns_runs_after_the_nights() {
     let dir = tempfile::tempdir().unwrap();
     let night = quickstart_plan(dir.path(), "night", &[]);
+    let sun_flags = ["--sun-zenith-deg", "41.25", "--day-of-year", "200"];
+    let direct = quickstart_plan(dir.path(), "direct", &sun_flags);
     let day = quickstart_plan(
         dir.path(),
         "day",
-        &["--sun-zenith-deg", "41.25", "--day-of-year", "200"],
+        &[&sun_flags[..], &["--sun-scattering"]].concat(),
     );
     let read = |p: &Path| -> irsig_model::AtmospherePlan {
         canonical::from_ron_bytes("plan.ron", &std::fs::read(p.join("plan.ron")).unwrap()).unwrap()
     };
-    let (n, mut d) = (read(&night), read(&day));
+    // By default a day plan adds the direct beam's runs only, one per sky row of the
+    // night's, after the night's decks.
+    let (n, mut b) = (read(&night), read(&direct));
+    let beam = b.sun.take().expect("a sun");
+    assert_eq!(b, n, "the sun changes nothing else");
+    assert!(beam.relative_azimuth_deg.is_empty(), "{beam:?}");
+    assert_eq!(beam.altitude_m, n.sky_altitude_m);
+    let (nd, bd) = (decks(&night), decks(&direct));
+    assert_eq!(bd.len(), nd.len() + n.sky_altitude_m.len());
+    assert_eq!(bd[..nd.len()], nd[..]);
+    // Card 1 (13I5): the third field is IEMSCT, 3 for a direct solar irradiance run.
+    let iemsct = |deck: &str| deck.lines().next().unwrap()[10..15].trim().to_owned();
+    assert!(bd[nd.len()..].iter().all(|d| iemsct(d) == "3"));
+    let mut d = read(&day);
     assert!(
         !std::fs::read_to_string(night.join("plan.ron"))
             .unwrap()
@@ -348,7 +363,8 @@ fn plan_puts_the_suns_runs_after_the_nights() {
     let sun = d.sun.take().expect("a sun");
     assert_eq!(d, n, "the sun changes nothing else");
     assert_eq!((sun.zenith_deg, sun.day_of_year), (41.25, 200));
-    // The night's sky rows and the finer rows of the scattered sky (500, 700, 1500 m).
+    // With --sun-scattering: the night's sky rows and the finer rows of the scattered sky
+    // (500, 700, 1500 m).
     let mut rows = n.sky_altitude_m.clone();
     rows.extend(irsig_atmosphere::plan::DAY_SKY_ALTITUDE_M);
     rows.sort_by(f64::total_cmp);

@@ -207,11 +207,12 @@ pub const DAY_SKY_ALTITUDE_M: [f64; 3] = [500.0, 700.0, 1500.0];
 
 /// Puts a sun at `zenith_deg` (rounded to the 0.001° a deck holds) on day `day_of_year` in
 /// `plan`: its direct irradiance is then computed at the plan's sky altitudes (the
-/// ground, 300 m to 10 km and every observer) and [`DAY_SKY_ALTITUDE_M`] below the
-/// highest, and the sunlight scattered
-/// into every slant and sky path at each of [`RELATIVE_AZIMUTH_DEG`] (LOWTRAN7's
-/// IEMSCT = 2), slant paths on the slant table's nodes, sky paths on the sky table's
-/// zenith angles and the sun's altitudes. Linear in altitude between the 0 and 300 m rows, the 3–5 µm
+/// ground, 300 m to 10 km and every observer). With `scattered`, also at
+/// [`DAY_SKY_ALTITUDE_M`] below the highest, and the sunlight scattered into every slant
+/// and sky path at each of [`RELATIVE_AZIMUTH_DEG`] (LOWTRAN7's IEMSCT = 2), slant paths on
+/// the slant table's nodes, sky paths on the sky table's zenith angles and the sun's
+/// altitudes: about ten times the plan's runs, for tables the tracer does not read yet, so
+/// asked for by name (`irsig-atmos plan --sun-scattering`). Linear in altitude between the 0 and 300 m rows, the 3–5 µm
 /// direct irradiance at 150 m is 6e-6 from LOWTRAN7's there, relative (US Standard 1976,
 /// sun at 30°; tests/tests/solar.rs).
 ///
@@ -222,6 +223,7 @@ pub fn add_sun(
     plan: &mut AtmospherePlan,
     zenith_deg: f64,
     day_of_year: u16,
+    scattered: bool,
 ) -> Result<(), AtmosphereError> {
     // The scattered sky changes faster with the observer's altitude than the thermal one
     // (the aerosol is mixed through the lowest km or two): the sun's rows, on which the
@@ -230,14 +232,20 @@ pub fn add_sun(
     // 3.4-4.1 um hazy sky 6 % low at 650 m (docs/accuracy.md).
     let top = plan.sky_altitude_m.last().copied().unwrap_or(0.0);
     let mut sky = plan.sky_altitude_m.clone();
-    sky.extend(DAY_SKY_ALTITUDE_M.iter().filter(|&&h| h < top));
-    sky.sort_by(f64::total_cmp);
-    sky.dedup();
+    if scattered {
+        sky.extend(DAY_SKY_ALTITUDE_M.iter().filter(|&&h| h < top));
+        sky.sort_by(f64::total_cmp);
+        sky.dedup();
+    }
     let sun = PlanSun {
         zenith_deg: round3(zenith_deg),
         day_of_year,
-        altitude_m: sky.clone(),
-        relative_azimuth_deg: RELATIVE_AZIMUTH_DEG.to_vec(),
+        altitude_m: sky,
+        relative_azimuth_deg: if scattered {
+            RELATIVE_AZIMUTH_DEG.to_vec()
+        } else {
+            Vec::new()
+        },
     };
     // The rounding may carry 89.9996 to 90: checked after it.
     sun.validate()
@@ -895,7 +903,7 @@ mod tests {
     fn a_sun_adds_one_direct_solar_run_per_sky_altitude_after_the_others() {
         let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
         let mut day = night.clone();
-        add_sun(&mut day, 30.00004, 172).unwrap();
+        add_sun(&mut day, 30.00004, 172, true).unwrap();
         day.validate().unwrap();
         let sun = day.sun.as_ref().unwrap();
         assert_eq!(sun.zenith_deg, 30.0);
@@ -978,7 +986,7 @@ mod tests {
             (30.0, 367),
         ] {
             let mut p = night.clone();
-            assert!(add_sun(&mut p, z, d).is_err(), "{z} {d}");
+            assert!(add_sun(&mut p, z, d, true).is_err(), "{z} {d}");
             assert!(p.sun.is_none());
         }
     }
@@ -986,7 +994,7 @@ mod tests {
     #[test]
     fn assemble_puts_the_suns_runs_in_the_solar_table() {
         let mut p = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
-        add_sun(&mut p, 30.0, 172).unwrap();
+        add_sun(&mut p, 30.0, 172, true).unwrap();
         let nu = vec![2000.0, 2020.0];
         let all = paths(&p);
         let spectra: Vec<PathSpectra> = all

@@ -64,6 +64,12 @@ pub struct PlanArgs {
     #[arg(long, value_name = "DAY", requires = "sun_zenith_deg",
           value_parser = clap::value_parser!(u16).range(1..=366))]
     pub day_of_year: Option<u16>,
+    /// With --sun-zenith-deg, also run every slant and sky path for the sunlight it
+    /// scatters (LOWTRAN7's IEMSCT = 2) at 10 azimuths from the sun, and the direct beam at
+    /// 3 more altitudes: about ten times the runs. irsig-trace does not use these tables
+    /// yet; a hazy 3-5 um sky is where they matter (docs/accuracy.md).
+    #[arg(long, requires = "sun_zenith_deg")]
+    pub sun_scattering: bool,
     /// The spectral range and step of every run, cm⁻¹: `V1,V2,DV` (LOWTRAN7's card 4).
     /// The default, 710,1250,5, covers 8–14 µm; 710,3335,5 covers 3–5 µm as well (3 µm is
     /// 3333.3 cm⁻¹), for a scene traced in both bands. Runs take longer the wider it is.
@@ -410,7 +416,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     }
     if let (Some(z), Some(day)) = (a.sun_zenith_deg, a.day_of_year) {
         // Rounded to the 0.001 deg a deck holds (`sun_zenith` refused what rounds to 90).
-        add_sun(&mut plan, z, day)
+        add_sun(&mut plan, z, day, a.sun_scattering)
             .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
     }
     if let Some(aer) = aerosol {
@@ -438,11 +444,20 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         write_dir_atomic(&a.output, &files)?;
     }
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
+        // Said either way: whether the sunlight scattered into the paths is in the plan.
+        let scattered = if s.relative_azimuth_deg.is_empty() {
+            "; the direct beam only, no scattered sunlight (--sun-scattering adds it)".to_owned()
+        } else {
+            format!(
+                ", and the sunlight scattered into every slant and sky path at {} azimuths",
+                s.relative_azimuth_deg.len()
+            )
+        };
         format!(
-            " ({} of them the sun's, at {} deg from the zenith on day {})",
-            s.altitude_m.len(),
+            " (the sun at {} deg from the zenith on day {}: its direct beam at {} altitudes{scattered})",
             s.zenith_deg,
-            s.day_of_year
+            s.day_of_year,
+            s.altitude_m.len(),
         )
     });
     // Said either way: a plan's aerosol is never a silent default.
