@@ -138,13 +138,13 @@ impl SunlitPaths {
         let solar = spectral.solar.as_ref().ok_or_else(|| {
             missing(
                 "solar",
-                "build the atmosphere from a plan with a sun (irsig-atmos plan --sun-zenith-deg Z --day-of-year D)",
+                "build the atmosphere from a plan with a sun and its scattered light (irsig-atmos plan --sun-zenith-deg Z --day-of-year D --sun-scattering)",
             )
         })?;
         if solar.relative_azimuth_deg.is_empty() {
             return Err(missing(
                 "solar.relative_azimuth_deg",
-                "build the atmosphere from a plan whose sun has relative azimuths (irsig-atmos plan --sun-zenith-deg Z --day-of-year D writes them)",
+                "build the atmosphere from a plan whose sun has relative azimuths (irsig-atmos plan --sun-zenith-deg Z --day-of-year D --sun-scattering writes them)",
             ));
         }
         spectral.validate()?;
