@@ -44,6 +44,39 @@ pub fn lowtran() -> PathBuf {
         })
 }
 
+/// What one LOWTRAN7 run printed: its TAPE6 (the listing) and TAPE7 (the spectral table).
+#[derive(Debug, Clone)]
+pub struct LowtranRun {
+    /// TAPE6's text.
+    pub tape6: String,
+    /// TAPE7's text.
+    pub tape7: String,
+}
+
+/// Runs [`lowtran`] on the card deck `deck` (TAPE5's text) in a directory of its own, as
+/// `irsig-atmos build` runs it (its `out/` holding empty TAPE6-8), and returns what it
+/// printed; panics, naming the deck, when LOWTRAN7 fails.
+#[must_use]
+pub fn run_lowtran(deck: &str) -> LowtranRun {
+    let dir = tempfile::tempdir().expect("a scratch directory");
+    std::fs::write(dir.path().join("TAPE5"), deck).expect("write TAPE5");
+    std::fs::create_dir(dir.path().join("out")).expect("make out/");
+    for t in ["TAPE6", "TAPE7", "TAPE8"] {
+        std::fs::write(dir.path().join("out").join(t), "").expect("make out/TAPEn");
+    }
+    let status = std::process::Command::new(lowtran())
+        .current_dir(dir.path())
+        .stdout(std::process::Stdio::null())
+        .status()
+        .expect("start LOWTRAN7");
+    assert!(status.success(), "LOWTRAN7 failed on\n{deck}");
+    let read = |t: &str| std::fs::read_to_string(dir.path().join("out").join(t)).expect(t);
+    LowtranRun {
+        tape6: read("TAPE6"),
+        tape7: read("TAPE7"),
+    }
+}
+
 /// The path of an irsig binary, built by this test run.
 ///
 /// `cargo test` does not build other packages' binaries, so the first call builds every

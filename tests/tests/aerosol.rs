@@ -14,7 +14,6 @@
 #![allow(clippy::float_cmp)]
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
@@ -76,19 +75,7 @@ fn files(plan: &Path) -> Vec<(String, Vec<u8>)> {
 
 /// Runs LOWTRAN7 on `deck` and returns TAPE7.
 fn run_lowtran(deck: &str) -> String {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("TAPE5"), deck).unwrap();
-    std::fs::create_dir(dir.path().join("out")).unwrap();
-    for t in ["TAPE6", "TAPE7", "TAPE8"] {
-        std::fs::write(dir.path().join("out").join(t), "").unwrap();
-    }
-    let st = Command::new(lowtran())
-        .current_dir(dir.path())
-        .stdout(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert!(st.success(), "LOWTRAN7 failed on\n{deck}");
-    std::fs::read_to_string(dir.path().join("out/TAPE7")).unwrap()
+    irsig_tests::run_lowtran(deck).tape7
 }
 
 /// The plan's deck `deck` with card 3 replaced by a horizontal path of `range_km` at the

@@ -10,15 +10,12 @@
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH (`sh
 //! scripts/atmosphere/install-lowtran.sh`); without it this test fails, saying so.
 
-use std::process::Command;
-
 use irsig_atmosphere::{
     AtmosphereModel, BUILTIN_NAMES, BandQuadrature, Collapser, ModelKind, SubBandCount,
     builtin_spectral, sub_band_edges,
 };
 use irsig_formats::radtran::lowtran_tape7;
 use irsig_radiometry::Band;
-use irsig_tests::lowtran;
 
 /// LOWTRAN7's model number of a built-in.
 fn model_number(name: &str) -> u32 {
@@ -45,18 +42,7 @@ fn run(
     let deck = format!(
         "{model:5}{itype:5}    1    0    0    0    0    0    0    0    0    0    0   0.000   0.00\n    0    0    0    0    0    0     0.000     0.000     0.000     0.000     0.000\n{h1_km:10.3}{h2_km:10.3}{angle_deg:10.3}     0.000     0.000     0.000    0\n   710.000  1350.000     5.000\n    0\n"
     );
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("TAPE5"), &deck).unwrap();
-    std::fs::create_dir(dir.path().join("out")).unwrap();
-    for t in ["TAPE6", "TAPE7", "TAPE8"] {
-        std::fs::write(dir.path().join("out").join(t), "").unwrap();
-    }
-    let st = Command::new(lowtran())
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
-    assert!(st.status.success(), "LOWTRAN7 failed on\n{deck}");
-    let t7 = std::fs::read_to_string(dir.path().join("out/TAPE7")).unwrap();
+    let t7 = irsig_tests::run_lowtran(&deck).tape7;
     let parsed = lowtran_tape7::parse("TAPE7", &t7).unwrap();
     let table = parsed.runs[0].table.as_ref().expect("a spectral table");
     (

@@ -13,7 +13,6 @@
 #![allow(clippy::float_cmp)]
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 
 use irsig_atmosphere::{AtmosphereModel, ModelKind, builtin, collapse};
 use irsig_formats::canonical;
@@ -68,18 +67,7 @@ fn build(plan: &Path, out: &Path, extra: &[&str]) -> SpectralAtmosphere {
 
 /// Runs LOWTRAN7 on `deck` and returns its TAPE6.
 fn run_lowtran(deck: &str) -> lowtran_tape6::LowtranTape6 {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("TAPE5"), deck).unwrap();
-    std::fs::create_dir(dir.path().join("out")).unwrap();
-    for t in ["TAPE6", "TAPE7", "TAPE8"] {
-        std::fs::write(dir.path().join("out").join(t), "").unwrap();
-    }
-    let st = Command::new(lowtran())
-        .current_dir(dir.path())
-        .status()
-        .unwrap();
-    assert!(st.success());
-    let t6 = std::fs::read_to_string(dir.path().join("out/TAPE6")).unwrap();
+    let t6 = irsig_tests::run_lowtran(deck).tape6;
     lowtran_tape6::parse("TAPE6", &t6).unwrap()
 }
 

@@ -20,7 +20,6 @@
 #![allow(clippy::float_cmp)]
 
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::time::Instant;
 
 use irsig_atmosphere::solar::DirectSun;
@@ -94,19 +93,7 @@ fn lowtran_solar(h_km: f64) -> Vec<SolarRow> {
          \x20   0\n",
         0.0, 0.0, 0, 0.0
     );
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("TAPE5"), &deck).unwrap();
-    std::fs::create_dir(dir.path().join("out")).unwrap();
-    for t in ["TAPE6", "TAPE7", "TAPE8"] {
-        std::fs::write(dir.path().join("out").join(t), "").unwrap();
-    }
-    let st = Command::new(lowtran())
-        .current_dir(dir.path())
-        .stdout(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert!(st.success(), "LOWTRAN7 failed on\n{deck}");
-    let t7 = std::fs::read_to_string(dir.path().join("out/TAPE7")).unwrap();
+    let t7 = irsig_tests::run_lowtran(&deck).tape7;
     let mut lines = t7
         .lines()
         .skip_while(|l| !l.trim_start().starts_with("FREQ"));

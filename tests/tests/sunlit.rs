@@ -11,7 +11,6 @@
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH; these tests never skip.
 
 use std::path::Path;
-use std::process::Command;
 
 use irsig_atmosphere::plan::RELATIVE_AZIMUTH_DEG;
 use irsig_atmosphere::sunlit::SunlitPaths;
@@ -109,19 +108,7 @@ fn lowtran_sunlit(
          \x20   0\n",
         0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     );
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("TAPE5"), &deck).unwrap();
-    std::fs::create_dir(dir.path().join("out")).unwrap();
-    for t in ["TAPE6", "TAPE7", "TAPE8"] {
-        std::fs::write(dir.path().join("out").join(t), "").unwrap();
-    }
-    let st = Command::new(lowtran())
-        .current_dir(dir.path())
-        .stdout(std::process::Stdio::null())
-        .status()
-        .unwrap();
-    assert!(st.success(), "LOWTRAN7 failed on\n{deck}");
-    let t7 = std::fs::read_to_string(dir.path().join("out/TAPE7")).unwrap();
+    let t7 = irsig_tests::run_lowtran(&deck).tape7;
     let mut lines = t7
         .lines()
         .skip_while(|l| !l.trim_start().starts_with("FREQ"));
