@@ -4,7 +4,7 @@
 //!
 //! The binaries are those cargo builds beside the test executable ([`bin_path`]).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 
 /// The repository root.
@@ -75,6 +75,38 @@ pub fn run_lowtran(deck: &str) -> LowtranRun {
         tape6: read("TAPE6"),
         tape7: read("TAPE7"),
     }
+}
+
+/// `irsig-flatten` of the quickstart scene into `dir/scene.raw` (once), then `irsig-atmos
+/// plan` of it from the quickstart's view into the plan directory `dir/name`, with the
+/// model's flags `model` (`--model us-std-1976`, or a radiosonde) and `extra`.
+#[must_use]
+pub fn quickstart_plan(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -> PathBuf {
+    let raw = dir.join("scene.raw");
+    if !raw.exists() {
+        bin("irsig-flatten")
+            .args([
+                "pipelines/quickstart/scene.ron",
+                "--materials",
+                "pipelines/quickstart/materials.ron",
+                "-o",
+            ])
+            .arg(&raw)
+            .assert()
+            .success();
+    }
+    let plan = dir.join(name);
+    bin("irsig-atmos")
+        .args(["plan", "--scene"])
+        .arg(&raw)
+        .args(["--view", "pipelines/quickstart/view.ron"])
+        .args(model)
+        .args(extra)
+        .arg("-o")
+        .arg(&plan)
+        .assert()
+        .success();
+    plan
 }
 
 /// The path of an irsig binary, built by this test run.

@@ -21,36 +21,7 @@ use irsig_tests::{bin, lowtran};
 
 /// flatten + plan for the quickstart scene into `dir`, US Standard 1976, with `extra` flags.
 fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
-    quickstart_plan_with(dir, name, &["--model", "us-std-1976"], extra)
-}
-
-/// [`quickstart_plan`] with the model's flags `model`.
-fn quickstart_plan_with(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -> PathBuf {
-    let raw = dir.join("scene.raw");
-    if !raw.exists() {
-        bin("irsig-flatten")
-            .args([
-                "pipelines/quickstart/scene.ron",
-                "--materials",
-                "pipelines/quickstart/materials.ron",
-                "-o",
-            ])
-            .arg(&raw)
-            .assert()
-            .success();
-    }
-    let plan = dir.join(name);
-    bin("irsig-atmos")
-        .args(["plan", "--scene"])
-        .arg(&raw)
-        .args(["--view", "pipelines/quickstart/view.ron"])
-        .args(model)
-        .args(extra)
-        .arg("-o")
-        .arg(&plan)
-        .assert()
-        .success();
-    plan
+    irsig_tests::quickstart_plan(dir, name, &["--model", "us-std-1976"], extra)
 }
 
 /// Every file of a plan directory, by relative path.
@@ -145,7 +116,7 @@ fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
             flags.extend(["--wind-speed-m-s".to_owned(), w.to_owned()]);
         }
         let flags: Vec<&str> = flags.iter().map(String::as_str).collect();
-        let plan = quickstart_plan_with(
+        let plan = irsig_tests::quickstart_plan(
             dir.path(),
             &format!("{model}-{vis_km}"),
             model_flags,

@@ -270,35 +270,7 @@ fn direct_sunlight_is_lowtran7s_transmitted_irradiance_times_the_cosine() {
 
 /// flatten + plan for the quickstart scene into `dir`, with `extra` flags.
 fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
-    let raw = dir.join("scene.raw");
-    if !raw.exists() {
-        bin("irsig-flatten")
-            .args([
-                "pipelines/quickstart/scene.ron",
-                "--materials",
-                "pipelines/quickstart/materials.ron",
-                "-o",
-            ])
-            .arg(&raw)
-            .assert()
-            .success();
-    }
-    let plan = dir.join(name);
-    bin("irsig-atmos")
-        .args(["plan", "--scene"])
-        .arg(&raw)
-        .args([
-            "--view",
-            "pipelines/quickstart/view.ron",
-            "--model",
-            "us-std-1976",
-        ])
-        .args(extra)
-        .arg("-o")
-        .arg(&plan)
-        .assert()
-        .success();
-    plan
+    irsig_tests::quickstart_plan(dir, name, &["--model", "us-std-1976"], extra)
 }
 
 fn decks(plan: &Path) -> Vec<String> {
