@@ -368,7 +368,6 @@ fn a_sun_at_or_below_the_horizon_or_a_day_that_is_none_is_refused() {
         (Some("30"), Some("0"), "--day-of-year"),
         (Some("30"), Some("367"), "--day-of-year"),
         (Some("30"), None, "--day-of-year"),
-        (None, Some("172"), "--sun-zenith-deg"),
     ] {
         let out = dir.path().join("never");
         let mut cmd = bin("irsig-atmos");
@@ -455,6 +454,113 @@ fn plate(dir: &Path) -> [PathBuf; 3] {
     )
     .unwrap();
     [scene, materials, view]
+}
+
+/// `irsig-atmos plan` of the plate's scene and `view` (text) with `flags`, into
+/// `dir/NAME`.
+fn plan_plate(dir: &Path, name: &str, view: &str, flags: &[&str]) -> assert_cmd::assert::Assert {
+    let [scene, ..] = plate(dir);
+    let view_file = dir.join(format!("{name}-view.ron"));
+    std::fs::write(&view_file, view).unwrap();
+    bin("irsig-atmos")
+        .args(["plan", "--model", "us-std-1976", "--scene"])
+        .arg(scene)
+        .arg("--view")
+        .arg(view_file)
+        .args(flags)
+        .arg("-o")
+        .arg(dir.join(name))
+        .assert()
+}
+
+#[test]
+fn plan_takes_the_sun_of_a_view_file_as_trace_does() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let plain = std::fs::read_to_string(plate(d)[2].clone()).unwrap();
+    // A direction and the day by flag: the same plan, deck for deck, as the flags make.
+    plan_plate(
+        d,
+        "flags",
+        &plain,
+        &["--sun-zenith-deg", "41.25", "--day-of-year", "200"],
+    )
+    .success();
+    let direction = view_with_sun("Direction(zenith_deg: 41.25, azimuth_deg: 200.0)");
+    plan_plate(
+        d,
+        "view",
+        &direction,
+        &["--day-of-year", "200", "--sun-scattering"],
+    )
+    .success();
+    plan_plate(d, "view-direct", &direction, &["--day-of-year", "200"]).success();
+    assert_eq!(
+        std::fs::read(d.join("flags/plan.ron")).unwrap(),
+        std::fs::read(d.join("view-direct/plan.ron")).unwrap()
+    );
+    assert_eq!(decks(&d.join("flags")), decks(&d.join("view-direct")));
+    assert!(decks(&d.join("view")).len() > decks(&d.join("flags")).len());
+    // A time and a place: the day is the time's (1 August 2026 is day 31 + 28 + 31 + 30 +
+    // 31 + 30 + 31 + 1 = 213), the zenith the position SPA gives there, as irsig-trace
+    // computes it, rounded to the 0.001 deg of a deck.
+    let at = "At(utc: \"2026-08-01T15:00:00Z\", latitude_deg: 43.08, longitude_deg: -77.67)";
+    plan_plate(d, "at", &view_with_sun(at), &[]).success();
+    let plan: irsig_model::AtmospherePlan =
+        canonical::from_ron_bytes("plan.ron", &std::fs::read(d.join("at/plan.ron")).unwrap())
+            .unwrap();
+    let sun = plan.sun.expect("a plan with the view's sun");
+    assert_eq!(sun.day_of_year, 213);
+    let spec: irsig_atmosphere::sun::SunSpec = ron::from_str(at).unwrap();
+    let zenith = spec.position().unwrap().zenith_deg;
+    assert!(
+        (sun.zenith_deg - zenith).abs() <= 0.0005,
+        "{} {zenith}",
+        sun.zenith_deg
+    );
+    // Refused, exit 2, nothing written: a sun given twice (naming the flag and the view's
+    // line and column), a direction without a day, a day that is not the time's, a day or
+    // scattering without any sun.
+    for (name, view, flags, says) in [
+        (
+            "twice",
+            &direction,
+            &["--sun-zenith-deg", "41.25", "--day-of-year", "200"][..],
+            "--sun-zenith-deg 41.25 and the `sun` of the view file at ",
+        ),
+        (
+            "no-day",
+            &direction,
+            &[][..],
+            "is a direction, which has no date",
+        ),
+        (
+            "other-day",
+            &view_with_sun(at),
+            &["--day-of-year", "212"][..],
+            "is seen on day 213 of its year",
+        ),
+        (
+            "night-day",
+            &plain,
+            &["--day-of-year", "212"][..],
+            "--day-of-year 212 without a sun",
+        ),
+        (
+            "night-scatter",
+            &plain,
+            &["--sun-scattering"][..],
+            "--sun-scattering without a sun",
+        ),
+    ] {
+        let assert = plan_plate(d, name, view, flags).code(2);
+        let stderr = String::from_utf8_lossy(&assert.get_output().stderr).into_owned();
+        assert!(stderr.contains(says), "{name}: {stderr}");
+        if name == "twice" {
+            assert!(stderr.contains(&format!("{name}-view.ron:3:8")), "{stderr}");
+        }
+        assert!(!d.join(name).exists(), "{name}");
+    }
 }
 
 /// The plate's emissivity and height above the ground, m: half-way between the solar

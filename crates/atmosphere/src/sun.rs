@@ -45,6 +45,9 @@
 //! # Ok::<(), irsig_atmosphere::AtmosphereError>(())
 //! ```
 
+use irsig_formats::ParseError;
+use irsig_formats::views::ViewSun;
+use irsig_model::{LengthUnit, View};
 use serde::{Deserialize, Serialize};
 use solar_positioning::time::JulianDate;
 use solar_positioning::{Location, RefractionCorrection, SolarPositions, delta_t};
@@ -210,6 +213,22 @@ impl SunSpec {
                 refracted: false,
             }),
         }
+    }
+
+    /// The day of the year of a [`SunSpec::At`]'s time, 1–366 (1 January is 1; the
+    /// Gregorian leap rule), what LOWTRAN7's IDAY wants for the Sun–Earth distance. `None`
+    /// for a [`SunSpec::Direction`], which has no date, or a time that does not parse.
+    #[must_use]
+    pub fn day_of_year(&self) -> Option<u16> {
+        let Self::At { utc, .. } = self else {
+            return None;
+        };
+        let when = parse_utc(utc).ok()?;
+        let leap = (when.year % 4 == 0 && when.year % 100 != 0) || when.year % 400 == 0;
+        const BEFORE: [u32; 12] = [0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334];
+        let before = BEFORE.get(usize::try_from(when.month.checked_sub(1)?).ok()?)?;
+        let day = before + when.day + u32::from(leap && when.month > 2);
+        u16::try_from(day).ok()
     }
 
     /// The spec checked and turned into the algorithm's inputs.
@@ -396,6 +415,68 @@ fn from_spa(e: &solar_positioning::Error) -> AtmosphereError {
     sun_error(field, e.to_string())
 }
 
+/// A view file's views and its `sun`, if it has one
+/// ([`irsig_formats::views::parse_views_and_sun`]), the sun checked as a flag's is: every
+/// field in its range and the sun above the horizon, the field at fault reported at its
+/// line and column.
+///
+/// # Errors
+/// The views' own errors; a sun that is not a [`SunSpec`], has a field out of range or is
+/// at or below the horizon; a sun in a list of views.
+pub fn parse_views_and_sun(
+    file: &str,
+    text: &str,
+    unit: LengthUnit,
+) -> Result<(Vec<View>, Option<ViewSun<SunSpec>>), ParseError> {
+    irsig_formats::views::parse_views_and_sun(file, text, unit, check_view_sun)
+}
+
+/// Keeps the one sun of a run's view files: `this` file's sun becomes `sun`, unless an
+/// earlier file gave one already.
+///
+/// # Errors
+/// A second sun, as a message naming both places.
+pub fn keep_one_sun(
+    sun: &mut Option<ViewSun<SunSpec>>,
+    this: Option<ViewSun<SunSpec>>,
+) -> Result<(), String> {
+    match (sun.as_ref(), this) {
+        (Some(first), Some(this)) => Err(format!(
+            "{}: a second sun: the view file at {} gives one already; one sun lights a run",
+            this.location, first.location
+        )),
+        (None, this @ Some(_)) => {
+            *sun = this;
+            Ok(())
+        }
+        (_, None) => Ok(()),
+    }
+}
+
+/// A view file's sun checked as the flags' are: each field in its range and the sun above
+/// the horizon, the field at fault named.
+fn check_view_sun(spec: &SunSpec) -> Result<(), (String, String)> {
+    let position = spec.position().map_err(|e| match e.kind {
+        AtmosphereErrorKind::Sun { field, message } => (field.to_owned(), message),
+        _ => (String::new(), e.to_string()),
+    })?;
+    if position.is_above_horizon() {
+        return Ok(());
+    }
+    let field = match spec {
+        SunSpec::Direction { .. } => "zenith_deg",
+        SunSpec::At { .. } => "utc",
+    };
+    Err((
+        field.to_owned(),
+        format!(
+            "the sun is {:.4} deg from the zenith, at or below the horizon: a sun below 90 deg \
+             lights the scene; leave the sun out for a night",
+            position.zenith_deg
+        ),
+    ))
+}
+
 /// The calendar fields of a UTC time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct UtcTime {
@@ -466,6 +547,39 @@ fn parse_utc(text: &str) -> Result<UtcTime, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn days_of_the_year_by_hand() {
+        let day = |utc: &str| {
+            SunSpec::At {
+                utc: utc.to_owned(),
+                latitude_deg: 0.0,
+                longitude_deg: 0.0,
+                altitude_m: 0.0,
+                refraction: None,
+                delta_t_s: None,
+                delta_ut1_s: None,
+            }
+            .day_of_year()
+        };
+        assert_eq!(day("2024-01-01T00:00:00Z"), Some(1));
+        assert_eq!(day("2023-03-01T12:00:00Z"), Some(60));
+        // 2024 is a leap year: 31 + 29 + 1.
+        assert_eq!(day("2024-03-01T12:00:00Z"), Some(61));
+        assert_eq!(day("2024-06-21T12:00:00Z"), Some(173));
+        assert_eq!(day("2024-12-31T12:00:00Z"), Some(366));
+        // 1900 is not a leap year (divisible by 100), 2000 is (by 400).
+        assert_eq!(day("1900-12-31T12:00:00Z"), Some(365));
+        assert_eq!(day("2000-12-31T12:00:00Z"), Some(366));
+        // Astronomical year 0 (1 BC) is a leap year; a time that does not parse has none.
+        assert_eq!(day("-0000-12-31T00:00:00Z"), Some(366));
+        assert_eq!(day("2024-06-21 12:00"), None);
+        let direction = SunSpec::Direction {
+            zenith_deg: 30.0,
+            azimuth_deg: 180.0,
+        };
+        assert_eq!(direction.day_of_year(), None);
+    }
 
     /// A [`SunSpec::At`] in short.
     #[derive(Clone, Copy)]

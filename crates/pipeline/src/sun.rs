@@ -174,10 +174,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
             ),
         ));
     }
-    let day_of_year = match &spec {
-        SunSpec::At { utc, .. } => day_of_year(utc),
-        SunSpec::Direction { .. } => None,
-    };
+    let day_of_year = spec.day_of_year().map(u32::from);
     let flags = values
         .into_iter()
         .zip(flags)
@@ -198,21 +195,6 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
         zenith_deg: position.zenith_deg,
         start: node.start,
     })
-}
-
-/// The day of the year of a UTC time `YYYY-MM-DDT...` (already accepted by the sun's
-/// model), 1–366.
-fn day_of_year(utc: &str) -> Option<u32> {
-    let date = utc.strip_prefix('-').unwrap_or(utc);
-    let mut parts = date.get(..10)?.split('-');
-    let year: i64 = parts.next()?.parse().ok()?;
-    let year = if utc.starts_with('-') { -year } else { year };
-    let month: usize = parts.next()?.parse().ok()?;
-    let day: u32 = parts.next()?.parse().ok()?;
-    let leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
-    let before: [u32; 12] = [0, 31, 59, 90, 120, 151, 181, 212, 243, 273, 304, 334];
-    let extra = u32::from(leap && month > 2);
-    Some(before.get(month.checked_sub(1)?)? + day + extra)
 }
 
 /// The first word and the rest of a stage's tool.
@@ -528,17 +510,5 @@ mod tests {
         ] {
             refused(&lit(sun, "", ""), 2, column, says);
         }
-    }
-
-    #[test]
-    fn days_of_the_year_by_hand() {
-        assert_eq!(day_of_year("2024-01-01T00:00:00Z"), Some(1));
-        assert_eq!(day_of_year("2023-03-01T12:00:00Z"), Some(60));
-        // 2024 is a leap year: 31 + 29 + 1.
-        assert_eq!(day_of_year("2024-03-01T12:00:00Z"), Some(61));
-        assert_eq!(day_of_year("2024-06-21T12:00:00Z"), Some(173));
-        assert_eq!(day_of_year("2024-12-31T12:00:00Z"), Some(366));
-        assert_eq!(day_of_year("1900-12-31T12:00:00Z"), Some(365));
-        assert_eq!(day_of_year("2000-12-31T12:00:00Z"), Some(366));
     }
 }

@@ -39,6 +39,7 @@ mod common;
 pub mod convert;
 pub mod lowtran;
 pub mod plan;
+mod plan_sun;
 mod radiance;
 mod rtt;
 mod shape_factor;

@@ -8,10 +8,13 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use irsig_atmosphere::plan::{add_aerosol, add_sun, deck, make_plan, paths};
+use irsig_atmosphere::sun::{keep_one_sun, parse_views_and_sun};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
-use irsig_model::{AerosolModel, LengthUnit, PlanAerosol, PlanModel, RadiosondeLevel, View};
+use irsig_model::{AerosolModel, LengthUnit, PlanAerosol, PlanModel, RadiosondeLevel};
 use miette::{IntoDiagnostic, WrapErr, miette};
+
+use crate::plan_sun::{self, sun_zenith};
 
 /// Arguments of `irsig-atmos plan`.
 #[derive(Debug, Clone, Args)]
@@ -55,20 +58,20 @@ pub struct PlanArgs {
     #[arg(long, value_name = "FILE.rsd")]
     pub radiosonde: Option<String>,
     /// The sun's zenith angle at the scene, degrees, 0 to below 90: adds LOWTRAN7's direct
-    /// solar irradiance runs (IEMSCT = 3) at the sky altitudes. Without it the plan is for
-    /// night (no solar runs).
+    /// solar irradiance runs (IEMSCT = 3) at the sky altitudes. A view file's `sun` does
+    /// the same (not both). Without either the plan is for night (no solar runs).
     #[arg(long, value_name = "DEG", requires = "day_of_year", value_parser = sun_zenith)]
     pub sun_zenith_deg: Option<f64>,
     /// The day of the year, 1-366, for the Earth-Sun distance (LOWTRAN7's IDAY); with
-    /// --sun-zenith-deg.
-    #[arg(long, value_name = "DAY", requires = "sun_zenith_deg",
-          value_parser = clap::value_parser!(u16).range(1..=366))]
+    /// --sun-zenith-deg, or with a view file's sun given as a direction (a sun given by
+    /// time has its own day).
+    #[arg(long, value_name = "DAY", value_parser = clap::value_parser!(u16).range(1..=366))]
     pub day_of_year: Option<u16>,
-    /// With --sun-zenith-deg, also run every slant and sky path for the sunlight it
+    /// With a sun, also run every slant and sky path for the sunlight it
     /// scatters (LOWTRAN7's IEMSCT = 2) at 10 azimuths from the sun, and the direct beam at
     /// 3 more altitudes: about ten times the runs. irsig-trace does not use these tables
     /// yet; a hazy 3-5 um sky is where they matter (docs/accuracy.md).
-    #[arg(long, requires = "sun_zenith_deg")]
+    #[arg(long)]
     pub sun_scattering: bool,
     /// The spectral range and step of every run, cm⁻¹: `V1,V2,DV` (LOWTRAN7's card 4).
     /// The default, 710,1250,5, covers 8–14 µm; 710,3335,5 covers 3–5 µm as well (3 µm is
@@ -97,31 +100,6 @@ pub struct PlanArgs {
     /// from it (a pipeline's stages pass files, not directories).
     #[arg(short = 'o', long, value_name = "DIR|FILE.ron")]
     pub output: PathBuf,
-}
-
-/// `--sun-zenith-deg`: a finite angle from 0 to below 90 degrees.
-fn sun_zenith(s: &str) -> Result<f64, String> {
-    let z: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected the sun's zenith angle in degrees, found `{s}`"))?;
-    if !z.is_finite() || z < 0.0 {
-        return Err(format!(
-            "expected the sun's zenith angle from 0 to below 90 degrees, found {z}"
-        ));
-    }
-    if z >= 90.0 {
-        return Err(format!(
-            "the sun at {z} deg from the zenith is at or below the horizon and gives no direct light: expected 0 to below 90 degrees (leave out --sun-zenith-deg for night)"
-        ));
-    }
-    // A deck holds 0.001 deg: the plan keeps the angle rounded so.
-    if (z * 1000.0).round() / 1000.0 >= 90.0 {
-        return Err(format!(
-            "{z} deg rounds to 90 at the 0.001 deg a LOWTRAN7 deck holds: the sun on the horizon gives no direct light; expected at most 89.999 degrees"
-        ));
-    }
-    Ok(z)
 }
 
 /// Whether `-o` names a plan file (`….ron`) rather than a plan directory.
@@ -322,12 +300,6 @@ pub(crate) fn model_of(
         })
 }
 
-fn read_views(path: &str, unit: LengthUnit) -> miette::Result<Vec<View>> {
-    let input = irsig_cli::read_input(path)?;
-    let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
-    Ok(irsig_formats::views::parse_views(&input.name, text, unit)?)
-}
-
 /// Writes `files` (relative paths and contents) as the directory `dir`, all or nothing:
 /// into a fresh sibling directory first, renamed into place at the end.
 pub(crate) fn write_dir_atomic(dir: &Path, files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
@@ -402,11 +374,20 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     // The terrain beyond the objects is the plane z = 0.
     let ground_z = lowest.min(0.0);
     let mut observers = Vec::new();
+    let mut view_sun = None;
     for v in &a.view {
-        for view in read_views(v, a.view_unit)? {
-            observers.push(view.position_m()[2] - ground_z);
-        }
+        let input = irsig_cli::read_input(v)?;
+        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+        let (views, this) = parse_views_and_sun(&input.name, text, a.view_unit)?;
+        keep_one_sun(&mut view_sun, this).map_err(|e| miette!("{e}"))?;
+        observers.extend(views.iter().map(|view| view.position_m()[2] - ground_z));
     }
+    let sun = plan_sun::choose(
+        a.sun_zenith_deg,
+        a.day_of_year,
+        a.sun_scattering,
+        view_sun.as_ref(),
+    )?;
     let (model, default_name) = model_of(a.model.as_deref(), a.radiosonde.as_deref())?;
     let name = a.name.clone().unwrap_or(default_name);
     let mut plan =
@@ -414,10 +395,11 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     if let Some(range) = a.wavenumber_per_cm {
         plan.wavenumber_per_cm = range;
     }
-    if let (Some(z), Some(day)) = (a.sun_zenith_deg, a.day_of_year) {
-        // Rounded to the 0.001 deg a deck holds (`sun_zenith` refused what rounds to 90).
-        add_sun(&mut plan, z, day, a.sun_scattering)
-            .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
+    if let Some(sun) = sun {
+        // Rounded to the 0.001 deg a deck holds (`plan_sun` refused what rounds to 90).
+        let z = sun.zenith_deg;
+        add_sun(&mut plan, z, sun.day_of_year, a.sun_scattering)
+            .map_err(|e| irsig_cli::usage_error(format!("the sun at {z} deg: {e}")))?;
     }
     if let Some(aer) = aerosol {
         add_aerosol(&mut plan, aer)

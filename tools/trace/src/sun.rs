@@ -5,11 +5,10 @@
 //! is refused, naming the flag and the file's line and column: neither wins silently. What
 //! they mean physically is `irsig_render::sun`'s.
 
-use irsig_atmosphere::AtmosphereErrorKind;
-use irsig_atmosphere::sun::SunSpec;
+use irsig_atmosphere::sun::{SunSpec, keep_one_sun, parse_views_and_sun};
 use irsig_cli::Input;
 use irsig_formats::legacy::decode;
-use irsig_formats::views::{ViewSun, parse_views_and_sun};
+use irsig_formats::views::ViewSun;
 use irsig_model::{LengthUnit, View};
 use irsig_render::SunRequest;
 
@@ -164,43 +163,9 @@ pub fn read_views(
     for path in paths {
         let input = irsig_cli::read_input(path)?;
         let text = decode(&input.name, &input.bytes)?;
-        let (views, this) = parse_views_and_sun(&input.name, text, unit, check)?;
-        if let Some(this) = this {
-            if let Some(first) = &sun {
-                return Err(miette::miette!(
-                    "{}: a second sun: the view file at {} gives one already; one sun lights a \
-                     run",
-                    this.location,
-                    first.location
-                ));
-            }
-            sun = Some(this);
-        }
+        let (views, this) = parse_views_and_sun(&input.name, text, unit)?;
+        keep_one_sun(&mut sun, this).map_err(|e| miette::miette!("{e}"))?;
         files.push((input, views));
     }
     Ok((files, sun))
-}
-
-/// A view file's sun checked as the flags' are: each field in its range and the sun above
-/// the horizon, the field at fault named.
-fn check(spec: &SunSpec) -> Result<(), (String, String)> {
-    let position = spec.position().map_err(|e| match e.kind {
-        AtmosphereErrorKind::Sun { field, message } => (field.to_owned(), message),
-        _ => (String::new(), e.to_string()),
-    })?;
-    if position.is_above_horizon() {
-        return Ok(());
-    }
-    let field = match spec {
-        SunSpec::Direction { .. } => "zenith_deg",
-        SunSpec::At { .. } => "utc",
-    };
-    Err((
-        field.to_owned(),
-        format!(
-            "the sun is {:.4} deg from the zenith, at or below the horizon: a sun below 90 deg \
-             lights the scene; leave the sun out for a night",
-            position.zenith_deg
-        ),
-    ))
 }
