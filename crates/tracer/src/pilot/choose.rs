@@ -64,15 +64,68 @@ const PRIOR_PATHS_PER_CANDIDATE: f64 = 640.0;
 /// order), into its list.
 pub(crate) type Combo = [usize; 6];
 
+/// What a path meets on average, each point weighted by what it stands for.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct PathMix {
+    /// Share of paths whose primary ray hits a facet.
+    pub(crate) hit: f64,
+    /// Share whose first facet casts sky-view rays.
+    pub(crate) diffuse: f64,
+    /// Facets evaluated per path.
+    pub(crate) nodes: f64,
+    /// Reflection rays per path at each bounce limit.
+    pub(crate) reflections: Vec<f64>,
+}
+
+impl PathMix {
+    /// The mix of the points `keep` accepts.
+    fn of(
+        census: &Census,
+        measured: &[Measured],
+        bounces: usize,
+        keep: impl Fn(&super::classes::SamplePoint) -> bool,
+    ) -> Option<Self> {
+        let mut total = 0.0;
+        let mut mix = Self {
+            reflections: vec![0.0; bounces],
+            ..Self::default()
+        };
+        for (p, m) in census.points.iter().zip(measured) {
+            if !keep(p) {
+                continue;
+            }
+            let w = census.classes[p.class].weight();
+            total += w;
+            mix.hit += w * f64::from(u8::from(m.hit));
+            mix.diffuse += w * f64::from(u8::from(m.diffuse));
+            mix.nodes += w * f64::from(m.nodes);
+            for (r, &n) in mix.reflections.iter_mut().zip(&m.reflection_rays) {
+                *r += w * f64::from(n);
+            }
+        }
+        if total <= 0.0 {
+            return None;
+        }
+        mix.hit /= total;
+        mix.diffuse /= total;
+        mix.nodes /= total;
+        for r in &mut mix.reflections {
+            *r /= total;
+        }
+        Some(mix)
+    }
+}
+
 /// The frame's counts the cost model reads, each point weighted by what it stands for.
 #[derive(Debug, Clone)]
 pub(crate) struct Counts {
     pub(crate) pixels: f64,
-    pub(crate) hit: f64,
-    pub(crate) diffuse: f64,
-    pub(crate) nodes: f64,
-    /// Reflection rays per path at each bounce limit.
-    pub(crate) reflections: Vec<f64>,
+    /// What a centre ray's path meets, over the frame.
+    pub(crate) frame: PathMix,
+    /// What a refined pixel's paths meet: the mix of the sample's points on refinement
+    /// candidates (edges are mostly sky against an object, so their paths are cheaper
+    /// than the frame's), the frame's when no point lies on one.
+    pub(crate) refined: PathMix,
     /// Refinement candidates (pixels).
     pub(crate) candidates: f64,
     /// Paths per refined pixel.
@@ -88,27 +141,24 @@ impl Counts {
         triangles: usize,
         bounces: usize,
     ) -> Self {
-        let mut total = 0.0;
-        let (mut hit, mut diffuse, mut nodes) = (0.0, 0.0, 0.0);
-        let mut reflections = vec![0.0; bounces];
-        for (p, m) in census.points.iter().zip(measured) {
-            let w = census.classes[p.class].weight();
-            total += w;
-            hit += w * f64::from(u8::from(m.hit));
-            diffuse += w * f64::from(u8::from(m.diffuse));
-            nodes += w * f64::from(m.nodes);
-            for (r, &n) in reflections.iter_mut().zip(&m.reflection_rays) {
-                *r += w * f64::from(n);
-            }
-        }
-        let total = if total > 0.0 { total } else { 1.0 };
+        let frame = PathMix::of(census, measured, bounces, |_| true).unwrap_or(PathMix {
+            reflections: vec![0.0; bounces],
+            ..PathMix::default()
+        });
+        let on_candidate = |p: &super::classes::SamplePoint| {
+            usize::try_from(p.pixel)
+                .ok()
+                .and_then(|i| census.candidate.get(i))
+                .copied()
+                .unwrap_or(false)
+        };
+        let refined =
+            PathMix::of(census, measured, bounces, on_candidate).unwrap_or_else(|| frame.clone());
         let pixels = census.candidate.len() as f64;
         Self {
             pixels,
-            hit: hit / total,
-            diffuse: diffuse / total,
-            nodes: nodes / total,
-            reflections: reflections.into_iter().map(|r| r / total).collect(),
+            frame,
+            refined,
             candidates: census.candidate_share() * pixels,
             paths_per_candidate: PRIOR_PATHS_PER_CANDIDATE,
             triangles: triangles.max(1) as f64,
@@ -137,34 +187,34 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
     let choice = band_of(count);
     let k = choice.map_or(1.0, |b| b.set.len() as f64);
     let (path_call_ns, sky_ns) = choice.map_or((880.0, 2e6), |b| (b.path_call_ns, b.sky_ns));
-    let sky_rays = f64::from(space.sky_view_rays[c[2]]);
-    let reflections = counts.reflections.get(c[1]).copied().unwrap_or(0.0);
-    // One path: its rays, its nodes and hemisphere rays evaluated in every sub-band, and
-    // its path terms.
-    let path_ns = |hemi_rays: f64, table: bool| {
-        let rays = 1.0 + reflections + counts.diffuse * hemi_rays;
-        let evals =
-            k * (counts.nodes * u.node_eval_ns + counts.diffuse * hemi_rays * u.hemi_eval_ns);
-        let terms = counts.hit
+    let n_sky = space.sky_view_rays[c[2]];
+    let sky_rays = f64::from(n_sky);
+    // One path of the mix `mix`: its rays, its nodes and hemisphere rays evaluated in
+    // every sub-band, and its path terms; `calm`: evaluated a second time with the
+    // hemispheric sky in place of its sky-view rays, as refinement's stopping test does.
+    let path_ns = |mix: &PathMix, hemi_rays: f64, table: bool, calm: bool| {
+        let reflections = mix.reflections.get(c[1]).copied().unwrap_or(0.0);
+        let rays = 1.0 + reflections + mix.diffuse * hemi_rays;
+        let node_ns = k * mix.nodes * u.node_eval_ns;
+        let evals = node_ns + k * mix.diffuse * hemi_rays * u.hemi_eval_ns;
+        let terms = mix.hit
             * if table {
                 k * u.table_lookup_ns
             } else {
                 path_call_ns * (1.0 + (k - 1.0) * PATH_ALONG_SHARE)
             };
-        rays * ray_ns + evals + terms
+        let again = if calm { node_ns + terms } else { 0.0 };
+        rays * ray_ns + evals + terms + again
     };
     let table = space.path_terms[c[4]] == PathTermsMode::Tabulated;
-    let centre = path_ns(sky_rays, table);
-    // A refined pixel's paths share the centre's sky-view rays out (about a 4 × 4 level's
-    // share each).
-    let refined = path_ns(
-        if sky_rays > 0.0 {
-            (sky_rays / 16.0).max(1.0)
-        } else {
-            0.0
-        },
-        table,
-    );
+    let centre = path_ns(&counts.frame, sky_rays, table, false);
+    // A refined pixel's paths share the centre's sky-view rays out by level
+    // (`level_sky_view_rays`); most of its paths are in the levels of side 4 and 8
+    // (8 rounds of 16 and of 64 paths), and each is also evaluated once more with the
+    // hemispheric sky when it has sky-view rays.
+    let level = |side: u32| f64::from(crate::refine::level_sky_view_rays(n_sky, side));
+    let refined_hemi = (16.0 * level(4) + 64.0 * level(8)) / 80.0;
+    let refined = path_ns(&counts.refined, refined_hemi, table, n_sky > 0);
     let sampling = match space.supersampling[c[3]] {
         Supersample::Every(1) | Supersample::Adaptive(1) => counts.pixels * centre,
         Supersample::Every(n) => counts.pixels * f64::from(1 + n * n) * centre,
