@@ -408,15 +408,24 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             Some(Diffuse::Hemispheric) => scattered_hemispheric(b, node.surface.alt_m),
             Some(Diffuse::Rays { start, count, .. }) => {
                 let rays = &path.rays[start as usize..(start + count) as usize];
-                let sum: f64 = rays
+                let terrain = rays
                     .iter()
-                    .map(|ray| match *ray {
-                        HemiRay::Facet(h) => {
-                            (1.0 - b.emissivity_of(&h)) * scattered_hemispheric(b, h.alt_m)
-                        }
-                        HemiRay::Escaped(e) => escaped_sunlight(b, e),
-                    })
-                    .sum();
+                    .filter(|r| matches!(r, HemiRay::Escaped(Escape::Terrain)))
+                    .count();
+                let mut sum = terrain as f64 * b.terrain_solar;
+                if b.atmosphere.scattered().is_some() {
+                    // The scattered sky's sunlight, escaped or reflected by a facet met.
+                    sum += rays
+                        .iter()
+                        .map(|ray| match *ray {
+                            HemiRay::Facet(h) => {
+                                (1.0 - b.emissivity_of(&h)) * scattered_hemispheric(b, h.alt_m)
+                            }
+                            HemiRay::Escaped(Escape::Terrain) => 0.0,
+                            HemiRay::Escaped(e) => escaped_sunlight(b, e),
+                        })
+                        .sum::<f64>();
+                }
                 sum / f64::from(count)
             }
         } + e * node.sun_diffuse_per_sr;
