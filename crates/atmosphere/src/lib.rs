@@ -50,6 +50,7 @@ mod layered;
 pub mod legacy;
 pub mod plan;
 mod precomputed;
+pub mod scattered;
 mod sky;
 pub mod solar;
 mod spectral;

@@ -211,7 +211,7 @@ pub const DAY_SKY_ALTITUDE_M: [f64; 3] = [500.0, 700.0, 1500.0];
 /// [`DAY_SKY_ALTITUDE_M`] below the highest, and the sunlight scattered into every slant
 /// and sky path at each of [`RELATIVE_AZIMUTH_DEG`] (LOWTRAN7's IEMSCT = 2), slant paths on
 /// the slant table's nodes, sky paths on the sky table's zenith angles and the sun's
-/// altitudes: about ten times the plan's runs, for tables the tracer does not read yet, so
+/// altitudes: about ten times the plan's runs, for the sunlight the tracer adds to its sky and paths by day, so
 /// asked for by name (`irsig-atmos plan --sun-scattering`). Linear in altitude between the 0 and 300 m rows, the 3–5 µm
 /// direct irradiance at 150 m is 6e-6 from LOWTRAN7's there, relative (US Standard 1976,
 /// sun at 30°; tests/tests/solar.rs).

@@ -2,6 +2,7 @@
 //! renderer's hot path: a sky ray costs two table lookups instead of an integration, and
 //! the hemispheric sky (eq. 5, an integral) is read rather than recomputed.
 
+use crate::scattered::ScatteredSunlight;
 use crate::sky::SkyView;
 use crate::{AtmosphereModel, PathTerms};
 use rayon::prelude::*;
@@ -18,6 +19,8 @@ pub struct PrecomputedAtmosphere {
     /// `(altitude_m, sky view, hemispheric radiance)`, altitudes increasing.
     levels: Vec<(f64, SkyView, f64)>,
     warnings: Vec<String>,
+    /// By day, the sunlight scattered into its paths ([`Self::with_scattered`]).
+    scattered: Option<ScatteredSunlight>,
 }
 
 impl PrecomputedAtmosphere {
@@ -70,7 +73,22 @@ impl PrecomputedAtmosphere {
             model,
             levels,
             warnings,
+            scattered: None,
         }
+    }
+
+    /// This atmosphere by day: `scattered` is the sunlight its paths and sky gain, which a
+    /// renderer adds to the thermal terms ([`Self::scattered`]). Nothing else changes.
+    #[must_use]
+    pub fn with_scattered(mut self, scattered: ScatteredSunlight) -> Self {
+        self.scattered = Some(scattered);
+        self
+    }
+
+    /// The scattered sunlight, by day with scattered tables; `None` at night or without.
+    #[must_use]
+    pub fn scattered(&self) -> Option<&ScatteredSunlight> {
+        self.scattered.as_ref()
     }
 
     /// The model underneath.

@@ -47,34 +47,50 @@ impl SunlitRadiance {
 
 /// One table of band values on altitude × angle × azimuth.
 #[derive(Debug, Clone, PartialEq)]
-struct Table {
-    altitude_m: Vec<f64>,
-    angle_deg: Vec<f64>,
+pub(crate) struct Table {
+    pub(crate) altitude_m: Vec<f64>,
+    pub(crate) angle_deg: Vec<f64>,
     /// `[altitude][angle][azimuth]`; one azimuth for the thermal tables.
-    values: Vec<f64>,
-    azimuths: usize,
+    pub(crate) values: Vec<f64>,
+    pub(crate) azimuths: usize,
 }
 
 impl Table {
     /// The value at `(altitude, angle)` row `k` of altitude, interpolated in azimuth and
-    /// angle.
+    /// angle. Only the (at most four) angle rows the monotone cubic reads are interpolated
+    /// in azimuth: the slopes at the two nodes around the angle depend on their neighbours
+    /// alone, so the window gives the whole row's value, bit for bit, without allocating.
     fn at_altitude_row(&self, k: usize, azimuth_deg: &[f64], angle_deg: f64, az: f64) -> f64 {
         let na = self.angle_deg.len();
-        let row: Vec<f64> = (0..na)
-            .map(|j| {
-                let start = (k * na + j) * self.azimuths;
-                let ys = &self.values[start..start + self.azimuths];
-                if self.azimuths == 1 {
-                    ys[0]
-                } else {
-                    interp::monotone_cubic(azimuth_deg, ys, az)
-                }
-            })
-            .collect();
-        interp::monotone_cubic(&self.angle_deg, &row, angle_deg)
+        let at = |j: usize| {
+            let start = (k * na + j) * self.azimuths;
+            let ys = &self.values[start..start + self.azimuths];
+            if self.azimuths == 1 {
+                ys[0]
+            } else {
+                interp::monotone_cubic(azimuth_deg, ys, az)
+            }
+        };
+        if na < 3 {
+            let row = [at(0), if na > 1 { at(1) } else { 0.0 }];
+            return interp::monotone_cubic(&self.angle_deg, &row[..na], angle_deg);
+        }
+        let (i, f) = interp::locate(&self.angle_deg, angle_deg);
+        let (lo, hi) = (i.saturating_sub(1), (i + 3).min(na));
+        let mut row = [0.0; 4];
+        for (slot, j) in row.iter_mut().zip(lo..hi) {
+            *slot = at(j);
+        }
+        interp::monotone_cubic_located(&self.angle_deg[lo..hi], &row[..hi - lo], i - lo, f)
     }
 
-    fn value(&self, azimuth_deg: &[f64], altitude_m: f64, angle_deg: f64, az: f64) -> f64 {
+    pub(crate) fn value(
+        &self,
+        azimuth_deg: &[f64],
+        altitude_m: f64,
+        angle_deg: f64,
+        az: f64,
+    ) -> f64 {
         let nh = self.altitude_m.len();
         let (k, f) = interp::locate(&self.altitude_m, altitude_m);
         let a = self.at_altitude_row(k, azimuth_deg, angle_deg, az);
@@ -98,7 +114,7 @@ pub struct SunlitPaths {
     sky_scattered: Table,
 }
 
-fn missing(table: &'static str, instead: &'static str) -> AtmosphereError {
+pub(crate) fn missing(table: &'static str, instead: &'static str) -> AtmosphereError {
     AtmosphereErrorKind::MissingTable {
         model: "sunlit paths",
         table,

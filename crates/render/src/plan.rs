@@ -897,6 +897,14 @@ impl Plan {
                 let collapsed = &collapsed;
                 let precompute = &precompute;
                 let materials = &self.materials;
+                let scatter = crate::sun::scattering(
+                    self.request.sun.as_ref(),
+                    self.sun.as_ref(),
+                    &spectral,
+                    &name,
+                    |w| self.warn(w),
+                );
+                let spectral_ref = &spectral;
                 // The pilot evaluates its paths in every sub-band: the precomputed sky costs
                 // a few ms per sub-band (table model) and saves a slant integration per ray,
                 // so the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
@@ -907,13 +915,20 @@ impl Plan {
                         .par_iter()
                         .map(|(b, a)| {
                             let m = model(a, kind)?;
+                            let atmosphere = if pilot && !count.is_band() {
+                                PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
+                            } else {
+                                precompute(m)
+                            };
                             Ok(SubBand {
                                 band: R::of_band(b)?,
-                                atmosphere: if pilot && !count.is_band() {
-                                    PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
-                                } else {
-                                    precompute(m)
-                                },
+                                atmosphere: crate::sun::scattered(
+                                    atmosphere,
+                                    scatter,
+                                    spectral_ref,
+                                    *split,
+                                    b,
+                                )?,
                                 emissivity: crate::materials::sub_band_tables(materials, b)?,
                             })
                         })

@@ -6,6 +6,7 @@
 //! computed afresh). [`Vacuum`] is an exact closed form for tests and quick looks (no
 //! atmosphere, a uniform sky).
 
+use irsig_atmosphere::scattered::ScatteredSunlight;
 use irsig_atmosphere::{
     AtmosphereModel, PathTerms, PrecomputedAtmosphere, critical_nadir_angle_deg,
 };
@@ -33,6 +34,14 @@ pub trait Atmosphere: Sync {
     fn model(&self) -> Option<&AtmosphereModel> {
         None
     }
+    /// By day, the sunlight scattered into the paths and the sky, which depends on a
+    /// line of sight's azimuth from the sun as well as its angle: added to `path`,
+    /// `sky_radiance` and `sky_hemispheric` (which hold the air's own emission) wherever
+    /// the tracer has the direction ([`crate::shade`]). `None`, the default, at night and
+    /// without scattered tables: then nothing is computed or added.
+    fn scattered(&self) -> Option<&ScatteredSunlight> {
+        None
+    }
 }
 
 impl Atmosphere for PrecomputedAtmosphere {
@@ -47,6 +56,9 @@ impl Atmosphere for PrecomputedAtmosphere {
     }
     fn model(&self) -> Option<&AtmosphereModel> {
         Some(PrecomputedAtmosphere::model(self))
+    }
+    fn scattered(&self) -> Option<&ScatteredSunlight> {
+        PrecomputedAtmosphere::scattered(self)
     }
 }
 

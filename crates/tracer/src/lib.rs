@@ -65,6 +65,7 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod camera;
+mod day;
 pub mod env;
 mod error;
 pub mod geometry;

@@ -18,8 +18,13 @@ use crate::vec::{V3, add, basis, dot, scale, sub};
 /// Where a ray that left the scene ends.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Escape {
-    /// Above the horizon: the sky seen from `alt_m` at `zenith_deg`.
-    Sky { alt_m: f64, zenith_deg: f64 },
+    /// Above the horizon: the sky seen from `alt_m` at `zenith_deg`, along `dir` (unit: by
+    /// day the scattered sunlight depends on its azimuth from the sun too).
+    Sky {
+        alt_m: f64,
+        zenith_deg: f64,
+        dir: V3,
+    },
     /// Below it: the terrain background.
     Terrain,
 }
@@ -161,6 +166,9 @@ pub(crate) enum Primary {
 #[derive(Debug, Clone)]
 pub(crate) struct Path {
     pub(crate) primary: Primary,
+    /// The ray's direction from the sensor, unit: by day the sunlight scattered into the
+    /// view path depends on its azimuth from the sun.
+    pub(crate) dir: V3,
     pub(crate) nodes: Vec<Node>,
     pub(crate) rays: Vec<HemiRay>,
 }
@@ -169,6 +177,7 @@ impl Default for Path {
     fn default() -> Self {
         Self {
             primary: Primary::Sky { zenith_deg: 0.0 },
+            dir: [0.0, 0.0, 1.0],
             nodes: Vec::new(),
             rays: Vec::new(),
         }
@@ -180,6 +189,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     pub(crate) fn follow(&self, fc: &FrameConsts<'_>, dir: V3, ctx: &mut Ctx<'_>, path: &mut Path) {
         path.nodes.clear();
         path.rays.clear();
+        path.dir = dir;
         match self
             .geometry
             .closest_hit(fc.origin, dir, 0.0, f64::INFINITY, None)
@@ -223,6 +233,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             Escape::Sky {
                 alt_m: alt,
                 zenith_deg: 180.0 - nadir,
+                dir,
             }
         }
     }

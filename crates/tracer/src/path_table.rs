@@ -12,6 +12,11 @@
 //! 129 × 513 `path` calls (about 56 ms on one core at 0.85 µs a call, rows in parallel):
 //! worth it when a frame has more than about 70 000 facet hits (e.g. 280 × 280 pixels and
 //! up).
+//!
+//! By day the sunlight scattered into a path depends on its direction from the sun as well,
+//! which an altitude × range table cannot hold: the table keeps the air's own terms, and
+//! the scattered light ([`Atmosphere::scattered`]) is added at each hit for the ray's
+//! direction, from the table's τ, as with exact terms (`day::lit_path`).
 
 use rayon::prelude::*;
 

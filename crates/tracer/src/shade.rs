@@ -7,7 +7,10 @@
 //!
 //! With a sun ([`crate::sun`]), `L_spec,k` takes the disk's radiance `E_n,k/Ω_sun` where the
 //! mirror direction leaves inside it, and `L_d,k` the sunlit share `E_n,k·cos θ_i·V/π` as
-//! a radiance, both at the facet's altitude.
+//! a radiance, both at the facet's altitude. By day, with the atmosphere's scattered
+//! sunlight ([`Atmosphere::scattered`]), the sky along a ray, the hemispheric sky and each
+//! view path's `L_u` gain it for their direction (`crate::day`);
+//! it counts as the sun's in the sun's truth terms.
 //!
 //! With one sub-band this is the band model. With several, the truth terms are the
 //! band-integrated ones: radiances add over sub-bands; the emissivity is the emitted-
@@ -17,6 +20,9 @@
 use irsig_atmosphere::PathTerms;
 use irsig_radiometry::BandModel;
 
+use crate::day::{
+    escaped_sunlight, lit_path, scattered_hemispheric, scattered_sky, sky, sky_hemispheric,
+};
 use crate::env::Atmosphere;
 use crate::path::{Diffuse, Escape, HemiRay, Mirror, Node, Path, Primary};
 use crate::path_table::PathTable;
@@ -111,7 +117,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let radiance: f64 = set
                     .bands
                     .iter()
-                    .map(|b| b.atmosphere.sky_radiance(fc.sensor_alt, zenith_deg))
+                    .map(|b| sky(b, fc.sensor_alt, zenith_deg, path.dir))
                     .sum();
                 if TRUTH {
                     *s = Sample::miss(Event::Sky);
@@ -119,8 +125,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     s.path_radiance_w_m2_sr = radiance;
                     s.radiance_w_m2_sr = radiance;
                     if lit {
-                        // The sky's radiance holds no sunlight in this model.
-                        s.sun_share = 0.0;
+                        // The sky's sunlight is what it scatters (none without scattered
+                        // tables).
+                        let scattered: f64 = set
+                            .bands
+                            .iter()
+                            .map(|b| scattered_sky(b, fc.sensor_alt, zenith_deg, path.dir))
+                            .sum();
+                        s.sun_share = share(scattered, radiance);
                     }
                 }
                 radiance
@@ -134,6 +146,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let (mut solar, mut transmitted_solar, mut irradiance) = (0.0, 0.0, 0.0);
                 let cos_sun_zenith = self.sun.as_ref().map_or(0.0, |g| g.to_sun[2].max(0.0));
                 set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
+                    let (p, scattered) = lit_path(b, p, fc.sensor_alt, 0.0, path.dir);
                     radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
                         transmitted += p.transmission * b.terrain_leaving;
@@ -143,7 +156,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         single_tau = p.transmission;
                         if let Some(beam) = &b.sun {
                             solar += b.terrain_solar;
-                            transmitted_solar += p.transmission * b.terrain_solar;
+                            transmitted_solar += p.transmission * b.terrain_solar + scattered;
                             irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
                         }
                     }
@@ -175,12 +188,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
                 let mut radiance = 0.0;
                 let mut add = |b: &BandData<S>, p: PathTerms| {
+                    // The path table's terms are the air's own: by day the scattered
+                    // sunlight is added here for the path's direction, table or not.
+                    let (p, scattered) = lit_path(b, p, fc.sensor_alt, alt_m, path.dir);
                     let first = self.leaving_chain::<TRUTH, S>(b, path);
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
                         let facet = &path.nodes[0].surface.data;
                         let derivative = b.derivative[facet.temperature_index as usize];
                         sums.add(&first, p.transmission, p.path_radiance_w_m2_sr, derivative);
+                        sums.transmitted_solar += scattered;
                         single = first;
                         single_tau = p.transmission;
                     }
@@ -300,7 +317,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let sfrac = self.materials[slot].specular_fraction;
         let eps = b.emissivity_of(surface);
         let blackbody = b.blackbody_of(&surface.data);
-        let sky_hemi = b.atmosphere.sky_hemispheric(surface.alt_m);
+        let sky_hemi = sky_hemispheric(b, surface.alt_m);
         let specular_incident = match node.mirror {
             None => 0.0,
             Some(Mirror::Next) => next,
@@ -317,8 +334,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .map(|ray| match *ray {
                         HemiRay::Facet(h) => {
                             let e2 = b.emissivity_of(&h);
-                            e2 * b.blackbody_of(&h.data)
-                                + (1.0 - e2) * b.atmosphere.sky_hemispheric(h.alt_m)
+                            e2 * b.blackbody_of(&h.data) + (1.0 - e2) * sky_hemispheric(b, h.alt_m)
                         }
                         HemiRay::Escaped(e) => escaped(b, e),
                     })
@@ -382,17 +398,35 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             Some(Mirror::Escaped(Escape::Terrain) | Mirror::Untraced(Escape::Terrain)) => {
                 b.terrain_solar
             }
-            Some(Mirror::Escaped(Escape::Sky { .. }) | Mirror::Untraced(Escape::Sky { .. })) => 0.0,
+            Some(
+                Mirror::Escaped(sky @ Escape::Sky { .. })
+                | Mirror::Untraced(sky @ Escape::Sky { .. }),
+            ) => escaped_sunlight(b, sky),
         } + e * node.sun_glint_per_sr;
         let diffuse = match node.diffuse {
-            None | Some(Diffuse::Hemispheric) => 0.0,
+            None => 0.0,
+            Some(Diffuse::Hemispheric) => scattered_hemispheric(b, node.surface.alt_m),
             Some(Diffuse::Rays { start, count, .. }) => {
                 let rays = &path.rays[start as usize..(start + count) as usize];
                 let terrain = rays
                     .iter()
                     .filter(|r| matches!(r, HemiRay::Escaped(Escape::Terrain)))
                     .count();
-                terrain as f64 * b.terrain_solar / f64::from(count)
+                let mut sum = terrain as f64 * b.terrain_solar;
+                if b.atmosphere.scattered().is_some() {
+                    // The scattered sky's sunlight, escaped or reflected by a facet met.
+                    sum += rays
+                        .iter()
+                        .map(|ray| match *ray {
+                            HemiRay::Facet(h) => {
+                                (1.0 - b.emissivity_of(&h)) * scattered_hemispheric(b, h.alt_m)
+                            }
+                            HemiRay::Escaped(Escape::Terrain) => 0.0,
+                            HemiRay::Escaped(e) => escaped_sunlight(b, e),
+                        })
+                        .sum::<f64>();
+                }
+                sum / f64::from(count)
             }
         } + e * node.sun_diffuse_per_sr;
         let solar = (1.0 - eps) * (sfrac * specular + (1.0 - sfrac) * diffuse);
@@ -420,7 +454,11 @@ fn effective_transmission(one: bool, single: f64, transmitted: f64, leaving: f64
 #[inline]
 fn escaped<A: Atmosphere>(b: &BandData<A>, e: Escape) -> f64 {
     match e {
-        Escape::Sky { alt_m, zenith_deg } => b.atmosphere.sky_radiance(alt_m, zenith_deg),
+        Escape::Sky {
+            alt_m,
+            zenith_deg,
+            dir,
+        } => sky(b, alt_m, zenith_deg, dir),
         Escape::Terrain => b.terrain_leaving,
     }
 }

@@ -625,7 +625,8 @@ pub(crate) struct BandData<A> {
     /// The terrain's L_T and surface-leaving radiance, W m⁻² sr⁻¹.
     pub(crate) terrain_blackbody: f64,
     pub(crate) terrain_leaving: f64,
-    /// The sunlight in `terrain_leaving`, W m⁻² sr⁻¹ (0 without a sun).
+    /// The sunlight in `terrain_leaving`, W m⁻² sr⁻¹: the beam's and the scattered sky's
+    /// (0 at night).
     pub(crate) terrain_solar: f64,
     /// The sun's direct beam in this sub-band ([`Tracer::with_sun`]); `None`: no sun.
     pub(crate) sun: Option<SunBeam>,
@@ -922,8 +923,8 @@ pub(crate) fn contrast_of(t: &[f64], w: usize, h: usize) -> Vec<f64> {
 }
 
 /// The terrain background's surface-leaving radiance in sub-band `b`, W m⁻² sr⁻¹:
-/// `ε·L_T + (1 − ε)·L_d(0)`, and with a sun `(1 − ε)·E_n(0)·cos θ_sun/π` more (the terrain
-/// is flat and unshadowed).
+/// `ε·L_T + (1 − ε)·L_d(0)`, and with a sun or by day its sunlight ([`terrain_solar`])
+/// more (the terrain is flat and unshadowed).
 fn terrain_leaving<A: Atmosphere>(
     terrain: &Terrain,
     b: &BandData<A>,
@@ -931,17 +932,31 @@ fn terrain_leaving<A: Atmosphere>(
 ) -> f64 {
     let eps = terrain.emissivity;
     let night = eps * b.terrain_blackbody + (1.0 - eps) * b.atmosphere.sky_hemispheric(0.0);
-    match sun {
-        None => night,
-        Some(sun) => night + terrain_solar(terrain, sun),
+    if sun.is_none() && b.atmosphere.scattered().is_none() {
+        return night;
     }
+    night + terrain_solar(terrain, b, sun)
 }
 
 /// The sunlight in the terrain background's surface-leaving radiance in one sub-band,
-/// W m⁻² sr⁻¹: `(1 − ε)·E_n(0)·cos θ_sun/π`.
-fn terrain_solar(terrain: &Terrain, (beam, geometry): (&SunBeam, &SunGeometry)) -> f64 {
-    let cos_zenith = geometry.to_sun[2].max(0.0);
-    (1.0 - terrain.emissivity) * beam.normal_w_m2(0.0) * cos_zenith * std::f64::consts::FRAC_1_PI
+/// W m⁻² sr⁻¹: the beam's `(1 − ε)·E_n(0)·cos θ_sun/π`, and by day the scattered sky's
+/// `(1 − ε)·L_d,scattered(0)` (0 without either).
+fn terrain_solar<A: Atmosphere>(
+    terrain: &Terrain,
+    b: &BandData<A>,
+    sun: Option<(&SunBeam, &SunGeometry)>,
+) -> f64 {
+    let direct = sun.map_or(0.0, |(beam, geometry)| {
+        let cos_zenith = geometry.to_sun[2].max(0.0);
+        (1.0 - terrain.emissivity)
+            * beam.normal_w_m2(0.0)
+            * cos_zenith
+            * std::f64::consts::FRAC_1_PI
+    });
+    match b.atmosphere.scattered() {
+        None => direct,
+        Some(s) => direct + (1.0 - terrain.emissivity) * s.sky_hemispheric(0.0),
+    }
 }
 
 fn splitmix64(mut x: u64) -> u64 {
@@ -1125,7 +1140,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let terrain = self.terrain;
         for (b, beam) in self.bands.bands.iter_mut().zip(sun.beams) {
             b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, &geometry)));
-            b.terrain_solar = terrain_solar(&terrain, (&beam, &geometry));
+            b.terrain_solar = terrain_solar(&terrain, b, Some((&beam, &geometry)));
             b.sun = Some(beam);
         }
         self.sun = Some(geometry);
@@ -1141,7 +1156,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         for b in &mut self.bands.bands {
             b.sun = None;
             b.terrain_leaving = terrain_leaving(&terrain, b, None);
-            b.terrain_solar = 0.0;
+            b.terrain_solar = terrain_solar(&terrain, b, None);
         }
     }
 
@@ -1207,6 +1222,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             });
             let b = bands.last_mut().expect("just pushed");
             b.terrain_leaving = terrain_leaving(&terrain, b, None);
+            b.terrain_solar = terrain_solar(&terrain, b, None);
         }
         Ok(BandSet::new(bands))
     }
