@@ -60,9 +60,17 @@ const PATH_ALONG_SHARE: f64 = 0.15;
 /// trial measures it): two levels from the edge side, 8 × (16 + 64).
 const PRIOR_PATHS_PER_CANDIDATE: f64 = 640.0;
 
+/// The models a combination sets ([`irsig_model::decision::SwitchableModel::ALL`]).
+pub(crate) const MODELS: usize = 8;
+/// The sun's index in a combination (`lit`, [`crate::pilot::SunOffer`]).
+pub(crate) const SUN_MODEL: usize = 6;
+/// The shadow rays' index in a combination.
+pub(crate) const SHADOW_RAYS_MODEL: usize = 7;
+
 /// A combination: one index per model ([`irsig_model::decision::SwitchableModel::ALL`]
-/// order), into its list.
-pub(crate) type Combo = [usize; 6];
+/// order), into its list (without a sun, the sun's two models have one setting each, and
+/// no error).
+pub(crate) type Combo = [usize; MODELS];
 
 /// The frame's counts the cost model reads, each point weighted by what it stands for.
 #[derive(Debug, Clone)]
@@ -71,6 +79,8 @@ pub(crate) struct Counts {
     pub(crate) hit: f64,
     pub(crate) diffuse: f64,
     pub(crate) nodes: f64,
+    /// Nodes with a diffuse part: each casts the shadow rays of a sunlit path.
+    pub(crate) lit_nodes: f64,
     /// Reflection rays per path at each bounce limit.
     pub(crate) reflections: Vec<f64>,
     /// Refinement candidates (pixels).
@@ -89,7 +99,7 @@ impl Counts {
         bounces: usize,
     ) -> Self {
         let mut total = 0.0;
-        let (mut hit, mut diffuse, mut nodes) = (0.0, 0.0, 0.0);
+        let (mut hit, mut diffuse, mut nodes, mut lit_nodes) = (0.0, 0.0, 0.0, 0.0);
         let mut reflections = vec![0.0; bounces];
         for (p, m) in census.points.iter().zip(measured) {
             let w = census.classes[p.class].weight();
@@ -97,6 +107,7 @@ impl Counts {
             hit += w * f64::from(u8::from(m.hit));
             diffuse += w * f64::from(u8::from(m.diffuse));
             nodes += w * f64::from(m.nodes);
+            lit_nodes += w * f64::from(m.lit_nodes);
             for (r, &n) in reflections.iter_mut().zip(&m.reflection_rays) {
                 *r += w * f64::from(n);
             }
@@ -108,6 +119,7 @@ impl Counts {
             hit: hit / total,
             diffuse: diffuse / total,
             nodes: nodes / total,
+            lit_nodes: lit_nodes / total,
             reflections: reflections.into_iter().map(|r| r / total).collect(),
             candidates: census.candidate_share() * pixels,
             paths_per_candidate: PRIOR_PATHS_PER_CANDIDATE,
@@ -139,10 +151,18 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
     let (path_call_ns, sky_ns) = choice.map_or((880.0, 2e6), |b| (b.path_call_ns, b.sky_ns));
     let sky_rays = f64::from(space.sky_view_rays[c[2]]);
     let reflections = counts.reflections.get(c[1]).copied().unwrap_or(0.0);
+    // A sunlit path's shadow rays (any-hit queries, priced as rays): its nodes with a
+    // diffuse part, each casting the count chosen.
+    let shadow_rays = match &space.sun {
+        Some(sun) if sun.lit[c[SUN_MODEL]] => {
+            counts.lit_nodes * f64::from(sun.shadow_rays[c[SHADOW_RAYS_MODEL]])
+        }
+        _ => 0.0,
+    };
     // One path: its rays, its nodes and hemisphere rays evaluated in every sub-band, and
     // its path terms.
     let path_ns = |hemi_rays: f64, table: bool| {
-        let rays = 1.0 + reflections + counts.diffuse * hemi_rays;
+        let rays = 1.0 + reflections + counts.diffuse * hemi_rays + shadow_rays;
         let evals =
             k * (counts.nodes * u.node_eval_ns + counts.diffuse * hemi_rays * u.hemi_eval_ns);
         let terms = counts.hit
@@ -193,11 +213,18 @@ pub(crate) struct Verdict {
     pub(crate) worst_k: f64,
 }
 
+/// The error of model `k` at setting `combo[k]` at a point, K: a shadow-ray count is
+/// none of a frame whose sun is off.
+pub(crate) fn error_of(m: &Measured, combo: &Combo, k: usize) -> f64 {
+    if k == SHADOW_RAYS_MODEL && m.sun_off == Some(combo[SUN_MODEL]) {
+        return 0.0;
+    }
+    m.errors[k].get(combo[k]).copied().unwrap_or(0.0)
+}
+
 /// The per-point bound of `combo`: the sum of its models' errors.
 pub(crate) fn bound(m: &Measured, combo: &Combo) -> f64 {
-    (0..6)
-        .map(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0))
-        .sum()
+    (0..MODELS).map(|k| error_of(m, combo, k)).sum()
 }
 
 /// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]).
@@ -222,7 +249,7 @@ pub(crate) fn holds(
             let m = &measured[i];
             scratch.push(bound(m, combo));
             // No model alone may change a point by more than the tolerance.
-            if (0..6).any(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0) > tolerance_k) {
+            if (0..MODELS).any(|k| error_of(m, combo, k) > tolerance_k) {
                 return None;
             }
         }
