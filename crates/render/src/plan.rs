@@ -429,14 +429,17 @@ impl Plan {
             },
             atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
             inputs: self.inputs.clone(),
+            // The sun that lit the image: none where a decision left it out, with the
+            // shadow rays a decision chose.
             sun: self
                 .sun
                 .as_ref()
                 .zip(self.request.sun.as_ref())
+                .filter(|_| settings.sun_lit)
                 .map(|(p, s)| irsig_model::provenance::SunRecord {
                     zenith_deg: p.zenith_deg,
                     azimuth_deg: p.azimuth_deg,
-                    shadow_rays: s.shadow_rays,
+                    shadow_rays: settings.shadow_rays.unwrap_or(s.shadow_rays),
                 }),
         }
     }
