@@ -28,26 +28,36 @@ pub enum SwitchableModel {
     PathTerms,
     /// Sub-bands the radiance is summed over: 1 (the band model), K, or `full`.
     SubBands,
+    /// The sun's direct beam (shadow rays, diffuse reflection, glint): `on` or `off`.
+    /// Only a sunlit frame's decision has it.
+    Sun,
+    /// Shadow rays per facet hit toward the sun's disk: 1 (its centre), 4, 16, 64. Only a
+    /// sunlit frame's decision has it.
+    ShadowRays,
 }
 
 impl SwitchableModel {
     /// Every model, in the order they are listed to users.
-    pub const ALL: [Self; 6] = [
+    pub const ALL: [Self; 8] = [
         Self::Atmosphere,
         Self::Bounces,
         Self::SkyView,
         Self::Supersampling,
         Self::PathTerms,
         Self::SubBands,
+        Self::Sun,
+        Self::ShadowRays,
     ];
     /// Their names, in the same order.
-    pub const NAMES: [&'static str; 6] = [
+    pub const NAMES: [&'static str; 8] = [
         "atmosphere",
         "bounces",
         "sky-view",
         "supersampling",
         "path-terms",
         "sub-bands",
+        "sun",
+        "shadow-rays",
     ];
 
     /// The name used in files and on command lines.
@@ -66,7 +76,7 @@ impl fmt::Display for SwitchableModel {
 /// A name that is not one of the [`SwitchableModel`]s.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
-    "unknown model `{0}`: expected one of atmosphere, bounces, sky-view, supersampling, path-terms, sub-bands"
+    "unknown model `{0}`: expected one of atmosphere, bounces, sky-view, supersampling, path-terms, sub-bands, sun, shadow-rays"
 )]
 pub struct UnknownModel(pub String);
 

@@ -10,7 +10,7 @@ use std::sync::{Arc, Mutex};
 
 use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBandCount};
 use irsig_formats::canonical::{error_at_path, from_ron_bytes, raw_scene_error_at_path};
-use irsig_model::decision::Decision;
+use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::uncertainty::{Facets, Uncertainties};
@@ -18,7 +18,7 @@ use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
 use irsig_raster::FramePart;
 use irsig_sensor_model::quantise::CountRequest;
-use irsig_tracer::pilot::{BandChoice, PilotSpace, Supersample};
+use irsig_tracer::pilot::{BandChoice, PilotSpace, SunOffer, Supersample};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
 use miette::{WrapErr, miette};
 use rayon::prelude::*;
@@ -233,8 +233,8 @@ fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
 
 impl Plan {
     /// A plan of `request`, checked: a vacuum's sky radiance finite and not negative, a
-    /// tolerance above 0 K at a percentile in (0, 100], a sun above the horizon and not
-    /// with a tolerance (the pilot does not model the sun yet).
+    /// tolerance above 0 K at a percentile in (0, 100], a sun above the horizon (with a
+    /// tolerance, the pilot decides the sun's models too).
     ///
     /// # Errors
     /// A request error naming the setting.
@@ -259,26 +259,14 @@ impl Plan {
         }
         let sun = match &request.sun {
             None => None,
-            Some(s) if request.tolerance.is_some() => {
-                let lit = s.origin.as_ref().map_or_else(
-                    || format!("--{}", s.setting().name()),
-                    |at| format!("the sun of {at}"),
-                );
-                return Err(RequestError::report(
-                    Setting::Tolerance,
-                    format!(
-                        "the pilot does not model the sun yet, so it cannot choose the models \
-                         of a sunlit frame: with {lit} set the models by hand \
-                         (--atmosphere-model, --bounces, --sky-view-rays, --supersample, \
-                         --sub-bands)"
-                    ),
-                ));
-            }
             Some(s) => Some(s.position()?),
         };
         let mut warnings = Vec::new();
+        // With a tolerance the pilot chooses the sub-bands, measuring the sunlight's error
+        // against the full grid.
         if let Some(s) = &request.sun
             && request.settings.sub_bands.is_none()
+            && request.tolerance.is_none()
         {
             warnings.push(one_sub_band_in_sunlight(s));
         }
@@ -441,14 +429,17 @@ impl Plan {
             },
             atmosphere_model: if vacuum { "none" } else { settings.kind.name() }.to_owned(),
             inputs: self.inputs.clone(),
+            // The sun that lit the image: none where a decision left it out, with the
+            // shadow rays a decision chose.
             sun: self
                 .sun
                 .as_ref()
                 .zip(self.request.sun.as_ref())
+                .filter(|_| settings.sun_lit)
                 .map(|(p, s)| irsig_model::provenance::SunRecord {
                     zenith_deg: p.zenith_deg,
                     azimuth_deg: p.azimuth_deg,
-                    shadow_rays: s.shadow_rays,
+                    shadow_rays: settings.shadow_rays.unwrap_or(s.shadow_rays),
                 }),
         }
     }
@@ -542,6 +533,16 @@ impl Plan {
                 &format!("choices[{i}].setting"),
                 message,
             )));
+        }
+        // The pilot chose these sub-bands, with the sunlight's error measured.
+        if let Some(s) = &self.request.sun
+            && d.choice(SwitchableModel::SubBands).is_some()
+        {
+            let warning = one_sub_band_in_sunlight(s);
+            self.warnings
+                .lock()
+                .map_err(|_| poisoned())?
+                .retain(|w| *w != warning);
         }
         self.decision = Some(d);
         Ok(())
@@ -971,6 +972,7 @@ impl Plan {
             &self.materials,
             air.kinds.as_deref(),
             air.spectral,
+            tracer.has_sun(),
             &tolerance.pins,
         )?;
         let (Some(&ref_kind), Some(&ref_count)) =
@@ -1018,7 +1020,16 @@ impl Plan {
                     continue;
                 }
             };
-            let set = tracer.band_set(sub).map_err(|e| miette!("{e}"))?;
+            // By day each set carries the sun's beams over its own sub-bands.
+            let beams = if tracer.has_sun() {
+                (air.sun)(count)?.map(|s| s.beams)
+            } else {
+                None
+            };
+            let set = tracer
+                .band_set(sub)
+                .and_then(|set| tracer.lit_band_set(set, beams))
+                .map_err(|e| miette!("{e}"))?;
             let (path_call_ns, sky_ns) = atmosphere_costs(kind);
             bands.push(BandChoice {
                 atmosphere: kind,
@@ -1029,6 +1040,19 @@ impl Plan {
             });
         }
         offer.sub_bands.retain(|c| !unavailable.contains(c));
+        // The sun switched off is the band model's set without its beams.
+        let sun = if offer.sun.is_empty() {
+            None
+        } else {
+            let dark = tracer
+                .band_set(pilot(ref_kind, SubBandCount::BAND)?)
+                .map_err(|e| miette!("{e}"))?;
+            Some(SunOffer {
+                lit: offer.sun,
+                shadow_rays: offer.shadow_rays,
+                dark,
+            })
+        };
         let space = PilotSpace {
             bands,
             atmospheres: offer.atmospheres,
@@ -1039,6 +1063,7 @@ impl Plan {
             path_terms: offer.path_terms,
             reasons: offer.reasons,
             pinned: offer.pinned,
+            sun,
         };
         // About one pixel in 192 (1024 at 512 x 384), at least 1024 (every pixel of a
         // smaller image) and at most 4096: a thin population of pixels (edges, a small hot
@@ -1080,7 +1105,18 @@ impl Plan {
             None => asked,
         };
         let (mut kind, mut count) = (base.kind, base.sub_bands);
-        let sun = (air.sun)(count)?;
+        // The sun as the settings have it: left out, or with their shadow rays.
+        let sun_of = |settings: &Settings| -> miette::Result<Option<irsig_tracer::Sun>> {
+            Ok((air.sun)(settings.sub_bands)?
+                .filter(|_| settings.sun_lit)
+                .map(|mut sun| {
+                    if let Some(n) = settings.shadow_rays {
+                        sun.shadow_rays = n;
+                    }
+                    sun
+                }))
+        };
+        let sun = sun_of(&base)?;
         let mut tracer = Tracer::with_sub_bands(
             &scene,
             &self.materials,
@@ -1131,6 +1167,12 @@ impl Plan {
             let piloted;
             let (settings, decision) = match &self.request.tolerance {
                 Some(tolerance) => {
+                    // The pilot sees the sun asked for, whatever an earlier frame chose.
+                    if self.request.sun.is_some() {
+                        tracer = tracer
+                            .with_sun((air.sun)(count)?)
+                            .map_err(|e| miette!("{e}"))?;
+                    }
                     let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
                     piloted = p;
                     self.flush_warnings(sink);
@@ -1143,6 +1185,8 @@ impl Plan {
                     settings.options.specular_bounces = c.bounces;
                     settings.options.sky_view_rays = c.sky_view_rays;
                     settings.refinement = c.refinement;
+                    settings.sun_lit = c.sun.is_none_or(|s| s.lit);
+                    settings.shadow_rays = c.sun.map(|s| s.shadow_rays);
                     (
                         settings.options.supersampling,
                         settings.options.adaptive_threshold_k,
@@ -1171,12 +1215,16 @@ impl Plan {
             });
             if settings.kind != kind || settings.sub_bands != count {
                 // New sub-bands drop the sun, whose beams are per sub-band: lit again.
-                let sun = (air.sun)(settings.sub_bands)?;
+                let sun = sun_of(&settings)?;
                 tracer = tracer
                     .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
                     .and_then(|t| t.with_sun(sun))
                     .map_err(|e| miette!("{e}"))?;
                 (kind, count) = (settings.kind, settings.sub_bands);
+            } else if self.request.sun.is_some() {
+                tracer = tracer
+                    .with_sun(sun_of(&settings)?)
+                    .map_err(|e| miette!("{e}"))?;
             }
             self.flush_warnings(sink);
             let wanted = sink.files(i);

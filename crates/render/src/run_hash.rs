@@ -53,6 +53,13 @@ impl RunHash {
         if let Some(r) = &settings.refinement {
             text.push_str(&format!(" {r:?}"));
         }
+        // The sun's settings only where a decision set them (a night's hash as before).
+        if !settings.sun_lit {
+            text.push_str(" sun off");
+        }
+        if let Some(n) = settings.shadow_rays {
+            text.push_str(&format!(" shadow-rays {n}"));
+        }
         h.field("settings", text.as_bytes());
         let digest = h.0.finalize();
         let mut hex = String::with_capacity(7 + 64);

@@ -42,6 +42,11 @@ pub struct Settings {
     /// Pixels refined to a standard error (a tolerance's sampling), instead of the options'
     /// supersampling.
     pub refinement: Option<Refinement>,
+    /// By day, whether the sun lights the frame: `false` where a decision left it out
+    /// (its effect within the tolerance). Without a sun it changes nothing.
+    pub sun_lit: bool,
+    /// By day, the shadow rays per hit a decision chose; `None`: the sun request's own.
+    pub shadow_rays: Option<u32>,
 }
 
 impl Settings {
@@ -61,6 +66,8 @@ impl Settings {
             path_terms: request.path_terms.unwrap_or_default(),
             sub_bands: request.sub_bands.unwrap_or(SubBandCount::BAND),
             refinement: None,
+            sun_lit: true,
+            shadow_rays: None,
         }
     }
 
@@ -126,6 +133,20 @@ impl Settings {
                 }
                 SwitchableModel::SubBands => {
                     self.sub_bands = c.setting.parse().map_err(|_| bad())?;
+                }
+                SwitchableModel::Sun => {
+                    self.sun_lit = match c.setting.as_str() {
+                        "on" => true,
+                        "off" => false,
+                        _ => return Err(bad()),
+                    };
+                }
+                SwitchableModel::ShadowRays => {
+                    let n: u32 = c.setting.parse().map_err(|_| bad())?;
+                    if !(1..=irsig_tracer::sun::MAX_SHADOW_RAYS).contains(&n) {
+                        return Err(bad());
+                    }
+                    self.shadow_rays = Some(n);
                 }
             }
             self.options
@@ -196,6 +217,36 @@ mod tests {
         assert_eq!(s.path_terms, PathTermsMode::Tabulated);
         assert_eq!(s.sub_bands, SubBandCount::Full);
         assert_eq!(s.refinement, None);
+    }
+
+    #[test]
+    fn a_day_decision_sets_the_sun_and_a_night_one_leaves_it() {
+        let d = decision(&[
+            (SwitchableModel::Sun, "off"),
+            (SwitchableModel::ShadowRays, "16"),
+        ]);
+        let s = Settings::of(&SettingsRequest::default())
+            .with_decision(&d)
+            .unwrap();
+        assert!(!s.sun_lit);
+        assert_eq!(s.shadow_rays, Some(16));
+        // A decision of before the sun (no sun's choices): the sun as asked for.
+        let s = Settings::of(&SettingsRequest::default())
+            .with_decision(&decision(&[(SwitchableModel::Bounces, "1")]))
+            .unwrap();
+        assert!(s.sun_lit);
+        assert_eq!(s.shadow_rays, None);
+        for (model, bad) in [
+            (SwitchableModel::Sun, "maybe"),
+            (SwitchableModel::ShadowRays, "0"),
+            (SwitchableModel::ShadowRays, "65537"),
+        ] {
+            let (i, why) = Settings::of(&SettingsRequest::default())
+                .with_decision(&decision(&[(model, bad)]))
+                .unwrap_err();
+            assert_eq!(i, 0);
+            assert!(why.contains("not a setting"), "{why}");
+        }
     }
 
     #[test]

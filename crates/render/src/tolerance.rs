@@ -18,6 +18,10 @@ pub const BOUNCES: [u32; 5] = [8, 4, 2, 1, 0];
 /// The sky-view rays on offer, from the most: each step of four halves a Monte Carlo
 /// estimate's error, and the step from 64 to 256 measures what 256 leave.
 pub const SKY_VIEW_RAYS: [u32; 4] = [256, 64, 16, 0];
+/// The shadow rays per facet hit on offer by day, from the most: 64 stratified over the
+/// sun's disk down to 4, each step of four a convergence step, and 1 to the disk's
+/// centre (hard shadows); the step from 16 to 64 measures what 64 leave.
+pub const SHADOW_RAYS: [u32; 4] = [64, 16, 4, 1];
 
 /// A model fixed by hand (`MODEL=SETTING`): the pilot measures it but does not choose.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -34,6 +38,10 @@ pub enum Pin {
     PathTerms(PathTermsMode),
     /// `sub-bands=1|K|full`.
     SubBands(SubBandCount),
+    /// `sun=on|off`, by day.
+    Sun(bool),
+    /// `shadow-rays=N`, 1 to 65536, by day.
+    ShadowRays(u32),
 }
 
 impl Pin {
@@ -47,6 +55,8 @@ impl Pin {
             Self::Supersampling(_) => SwitchableModel::Supersampling,
             Self::PathTerms(_) => SwitchableModel::PathTerms,
             Self::SubBands(_) => SwitchableModel::SubBands,
+            Self::Sun(_) => SwitchableModel::Sun,
+            Self::ShadowRays(_) => SwitchableModel::ShadowRays,
         }
     }
 }
@@ -56,7 +66,8 @@ impl std::fmt::Display for Pin {
         let model = self.model();
         match self {
             Self::Atmosphere(k) => write!(f, "{model}={k}"),
-            Self::Bounces(n) | Self::SkyView(n) => write!(f, "{model}={n}"),
+            Self::Bounces(n) | Self::SkyView(n) | Self::ShadowRays(n) => write!(f, "{model}={n}"),
+            Self::Sun(lit) => write!(f, "{model}={}", if *lit { "on" } else { "off" }),
             Self::Supersampling(s) => write!(f, "{model}={s}"),
             Self::PathTerms(p) => write!(f, "{model}={}", p.name()),
             Self::SubBands(k) => write!(f, "{model}={k}"),
@@ -87,6 +98,16 @@ impl FromStr for Pin {
             SwitchableModel::Supersampling => setting.parse().ok().map(Self::Supersampling),
             SwitchableModel::PathTerms => setting.parse().ok().map(Self::PathTerms),
             SwitchableModel::SubBands => setting.parse().ok().map(Self::SubBands),
+            SwitchableModel::Sun => match setting {
+                "on" => Some(Self::Sun(true)),
+                "off" => Some(Self::Sun(false)),
+                _ => None,
+            },
+            SwitchableModel::ShadowRays => setting
+                .parse::<u32>()
+                .ok()
+                .filter(|n| (1..=irsig_tracer::sun::MAX_SHADOW_RAYS).contains(n))
+                .map(Self::ShadowRays),
         };
         pin.ok_or_else(|| {
             let expected = match model {
@@ -98,6 +119,8 @@ impl FromStr for Pin {
                 }
                 SwitchableModel::PathTerms => "exact or tabulated",
                 SwitchableModel::SubBands => "a number of sub-bands (1: the band model) or full",
+                SwitchableModel::Sun => "on or off",
+                SwitchableModel::ShadowRays => "a number of shadow rays per hit, 1 to 65536",
             };
             format!("{model}={setting}: expected {expected}")
         })
@@ -113,6 +136,10 @@ pub struct Offer {
     pub supersampling: Vec<Supersample>,
     pub path_terms: Vec<PathTermsMode>,
     pub sub_bands: Vec<SubBandCount>,
+    /// By day, the sun on and off (empty at night).
+    pub sun: Vec<bool>,
+    /// By day, the shadow rays per hit (empty at night).
+    pub shadow_rays: Vec<u32>,
     pub reasons: Vec<(SwitchableModel, String)>,
     pub pinned: Vec<SwitchableModel>,
 }
@@ -128,15 +155,18 @@ pub const SPECTRAL_SUB_BANDS: [SubBandCount; 4] = [
 
 /// What the pilot may choose for a scene with `materials` under `atmosphere` (the kinds
 /// its tables allow, or `None` for a vacuum; `spectral` when it has spectra, so that
-/// sub-band counts are on offer), with `pins` fixing models.
+/// sub-band counts are on offer; `sun` by day, so that the sun and its shadow rays are),
+/// with `pins` fixing models.
 ///
 /// # Errors
 /// A pin the scene cannot honour (an atmosphere model whose table is missing, sub-bands of
-/// an atmosphere without spectra): a request error naming the pin.
+/// an atmosphere without spectra, the sun's models at night): a request error naming the
+/// pin.
 pub fn offer(
     materials: &MaterialLibrary,
     kinds: Option<&[ModelKind]>,
     spectral: bool,
+    sun: bool,
     pins: &[Pin],
 ) -> miette::Result<Offer> {
     let mut reasons = Vec::new();
@@ -213,6 +243,22 @@ pub fn offer(
         ));
         vec![SubBandCount::BAND]
     };
+    // By day the sun may be left out where its effect is within the tolerance; shadow rays
+    // matter only where a facet reflects diffusely.
+    let (mut sun_lit, mut shadow_rays) = if sun {
+        let rays = if diffuse {
+            SHADOW_RAYS.to_vec()
+        } else {
+            reasons.push((
+                SwitchableModel::ShadowRays,
+                "no diffuse material: shadow rays cannot matter".to_owned(),
+            ));
+            vec![1]
+        };
+        (vec![true, false], rays)
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let mut pinned = Vec::new();
     for &pin in pins {
         let model = pin.model();
@@ -252,6 +298,15 @@ pub fn offer(
                 }
                 sub_bands = vec![count];
             }
+            Pin::Sun(_) | Pin::ShadowRays(_) if !sun => {
+                return Err(RequestError::of_value(
+                    Setting::Pin,
+                    pin,
+                    "this frame has no sun (give one with the sun's settings)",
+                ));
+            }
+            Pin::Sun(lit) => sun_lit = vec![lit],
+            Pin::ShadowRays(n) => shadow_rays = vec![n],
         }
     }
     Ok(Offer {
@@ -261,6 +316,8 @@ pub fn offer(
         supersampling,
         path_terms,
         sub_bands,
+        sun: sun_lit,
+        shadow_rays,
         reasons,
         pinned,
     })
@@ -387,24 +444,41 @@ mod tests {
         assert!("atmosphere=lowtran".parse::<Pin>().is_err());
         assert!("supersampling=0".parse::<Pin>().is_err());
         assert!("sub-bands=0".parse::<Pin>().is_err());
+        assert_eq!("sun=off".parse::<Pin>(), Ok(Pin::Sun(false)));
+        assert_eq!("shadow-rays=16".parse::<Pin>(), Ok(Pin::ShadowRays(16)));
+        assert!("sun=maybe".parse::<Pin>().is_err());
+        assert!("shadow-rays=0".parse::<Pin>().is_err());
+    }
+
+    #[test]
+    fn the_sun_is_on_offer_by_day_only() {
+        let materials = MaterialLibrary::default();
+        let kinds = [ModelKind::Table];
+        let night = offer(&materials, Some(&kinds), true, false, &[]).unwrap();
+        assert!(night.sun.is_empty() && night.shadow_rays.is_empty());
+        let pin: Pin = "sun=off".parse().unwrap();
+        assert!(offer(&materials, Some(&kinds), true, false, &[pin]).is_err());
+        let day = offer(&materials, Some(&kinds), true, true, &[pin]).unwrap();
+        assert_eq!(day.sun, vec![false]);
+        assert!(day.pinned.contains(&SwitchableModel::Sun));
     }
 
     #[test]
     fn a_spectral_atmosphere_offers_sub_bands_over_the_table_model() {
         let materials = MaterialLibrary::default();
         let kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis];
-        let o = offer(&materials, Some(&kinds), true, &[]).unwrap();
+        let o = offer(&materials, Some(&kinds), true, false, &[]).unwrap();
         assert_eq!(o.sub_bands, SPECTRAL_SUB_BANDS.to_vec());
         assert_eq!(o.atmospheres, vec![ModelKind::Table]);
         // The band model pinned: every atmosphere model again, as without spectra.
         let pin: Pin = "sub-bands=1".parse().unwrap();
-        let o = offer(&materials, Some(&kinds), true, &[pin]).unwrap();
+        let o = offer(&materials, Some(&kinds), true, false, &[pin]).unwrap();
         assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
         assert_eq!(o.atmospheres, kinds.to_vec());
         // Without spectra only the band model; a count above 1 cannot be pinned.
-        let o = offer(&materials, Some(&kinds), false, &[]).unwrap();
+        let o = offer(&materials, Some(&kinds), false, false, &[]).unwrap();
         assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
         let pin: Pin = "sub-bands=16".parse().unwrap();
-        assert!(offer(&materials, Some(&kinds), false, &[pin]).is_err());
+        assert!(offer(&materials, Some(&kinds), false, false, &[pin]).is_err());
     }
 }

@@ -348,7 +348,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 c
             }
         };
-        let n = sun.shadow_rays;
+        let n = ctx.shadow_rays.unwrap_or(sun.shadow_rays);
         if n == 1 {
             let c = lit(sun.to_sun);
             return SunLight {

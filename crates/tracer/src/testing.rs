@@ -848,5 +848,39 @@ pub fn vacuum_pilot_space(
         path_terms: vec![crate::PathTermsMode::Exact],
         reasons: Vec::new(),
         pinned: Vec::new(),
+        sun: None,
     }
+}
+
+/// [`vacuum_pilot_space`] by day: the band set lit by the tracer's sun (one sub-band,
+/// `beam`), and the sun on or off and 64, 16, 4 or 1 shadow rays on offer, as
+/// `irsig-trace` offers them.
+///
+/// # Panics
+/// If the tracer has no sun ([`Tracer::with_sun`]).
+#[must_use]
+pub fn sunlit_pilot_space(
+    tracer: &Tracer<TotalRadiance, Vacuum>,
+    sky: Vacuum,
+    beam: crate::SunBeam,
+) -> crate::pilot::PilotSpace<Vacuum> {
+    let one = || {
+        tracer
+            .band_set(vec![crate::SubBand {
+                band: TotalRadiance,
+                atmosphere: sky,
+                emissivity: None,
+            }])
+            .expect("one sub-band without emissivity tables")
+    };
+    let mut space = vacuum_pilot_space(tracer, sky);
+    space.bands[0].set = tracer
+        .lit_band_set(one(), Some(vec![beam]))
+        .expect("a tracer with a sun");
+    space.sun = Some(crate::pilot::SunOffer {
+        lit: vec![true, false],
+        shadow_rays: vec![64, 16, 4, 1],
+        dark: one(),
+    });
+    space
 }

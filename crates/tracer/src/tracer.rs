@@ -791,6 +791,9 @@ pub(crate) struct Ctx<'a> {
     /// This ray's truth is kept: a primary facet with no diffuse part then casts shadow
     /// rays too, for the sun's truth layers only.
     pub(crate) sun_truth: bool,
+    /// Shadow rays per facet hit in place of the sun's own count (the pilot's measurement
+    /// of each count on offer); `None`: the sun's.
+    pub(crate) shadow_rays: Option<u32>,
     /// The pixel's index in the image, from which its random stream is seeded.
     pixel_index: u64,
     /// Which of the pixel's streams (0: its centre ray's and supersampling's).
@@ -806,6 +809,7 @@ impl<'a> Ctx<'a> {
             sun_rng: None,
             sun_truth_rng: None,
             sun_truth: false,
+            shadow_rays: None,
             pixel_index,
             stream: 0,
         }
@@ -1158,6 +1162,42 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             b.terrain_leaving = terrain_leaving(&terrain, b, None);
             b.terrain_solar = terrain_solar(&terrain, b, None);
         }
+    }
+
+    /// `set` (made by [`Self::band_set`]) lit by this tracer's sun with one beam per
+    /// sub-band: what the pilot evaluates a sunlit frame's recorded paths with, so that
+    /// its sub-band sets carry the sunlight of their own sub-bands. `None`: no sun, the
+    /// set as it was.
+    ///
+    /// # Errors
+    /// Beams given to a tracer without a sun, or not one beam per sub-band.
+    pub fn lit_band_set<S: Atmosphere>(
+        &self,
+        mut set: BandSet<S>,
+        beams: Option<Vec<SunBeam>>,
+    ) -> Result<BandSet<S>, TraceError> {
+        let Some(beams) = beams else {
+            return Ok(set);
+        };
+        let bad = |m: String| TraceError::new(TraceErrorKind::InvalidOptions(m));
+        let geometry = self
+            .sun
+            .as_ref()
+            .ok_or_else(|| bad("sun beams for a band set of a tracer without a sun".into()))?;
+        if beams.len() != set.len() {
+            return Err(bad(format!(
+                "sun: {} beams for {} sub-bands: expected one per sub-band",
+                beams.len(),
+                set.len()
+            )));
+        }
+        let terrain = self.terrain;
+        for (b, beam) in set.bands.iter_mut().zip(beams) {
+            b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, geometry)));
+            b.terrain_solar = terrain_solar(&terrain, b, Some((&beam, geometry)));
+            b.sun = Some(beam);
+        }
+        Ok(set)
     }
 
     /// Whether the sun shines on this tracer's scene ([`Self::with_sun`]).

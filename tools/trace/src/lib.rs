@@ -113,7 +113,8 @@ pub struct Cli {
     #[arg(long, value_name = "MODE", value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
     pub path_terms: Option<PathTermsMode>,
     /// Let the tool choose the models (atmosphere, bounces, sky-view rays, supersampling,
-    /// path terms, sub-bands) for this scene and view: the cheapest whose error against a
+    /// path terms, sub-bands; by day also whether the sun may be left out and its shadow
+    /// rays) for this scene and view: the cheapest whose error against a
     /// converged rendering stays within K kelvin at --tolerance-percentile of the pixels and
     /// in every population of them (materials, mirrors, grazing, thin features); refused
     /// when no setting on offer can keep it. A pilot decides per frame; the decision is
@@ -136,7 +137,7 @@ pub struct Cli {
     /// With --tolerance, fix one model's setting: MODEL=SETTING, with MODEL one of
     /// atmosphere (table, layered, thesis), bounces (N), sky-view (N rays, 0: off),
     /// supersampling (N or adaptive-N), path-terms (exact, tabulated), sub-bands (1, K,
-    /// full). Repeat for several.
+    /// full), and by day sun (on, off) and shadow-rays (N). Repeat for several.
     #[arg(long, value_name = "MODEL=SETTING", requires = "tolerance")]
     pub pin: Vec<Pin>,
     /// Apply a decision an earlier --tolerance run wrote (for every frame), instead of

@@ -71,8 +71,9 @@ pub struct SunArgs {
     pub altitude_m: f64,
     /// Shadow rays per facet hit toward the sun: 1 aims at the disk's centre (hard
     /// shadows); more sample the disk (soft edges). With a sun of these flags or of the
-    /// view file; default 1.
-    #[arg(long, value_name = "N")]
+    /// view file; default 1. With --tolerance the pilot chooses them (pin them with
+    /// --pin shadow-rays=N).
+    #[arg(long, value_name = "N", conflicts_with = "tolerance")]
     pub sun_shadow_rays: Option<u32>,
 }
 

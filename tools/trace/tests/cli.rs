@@ -441,6 +441,27 @@ fn bad_tolerances_and_pins_are_refused_before_tracing() {
             "supersampling=0",
         ),
         (vec!["--tolerance", "0.1", "--bounces", "2"], "--bounces"),
+        // The sun's models exist only by day; with a tolerance the pilot chooses the
+        // shadow rays.
+        (
+            vec!["--tolerance", "0.3", "--pin", "sun=off"],
+            "this frame has no sun",
+        ),
+        (
+            vec!["--tolerance", "0.3", "--pin", "shadow-rays=many"],
+            "shadow-rays=many",
+        ),
+        (
+            vec![
+                "--tolerance",
+                "0.3",
+                "--sun-zenith-deg",
+                "30",
+                "--sun-shadow-rays",
+                "4",
+            ],
+            "--sun-shadow-rays",
+        ),
     ] {
         let out = trace()
             .args([

@@ -60,9 +60,17 @@ const PATH_ALONG_SHARE: f64 = 0.15;
 /// trial measures it): two levels from the edge side, 8 × (16 + 64).
 const PRIOR_PATHS_PER_CANDIDATE: f64 = 640.0;
 
+/// The models a combination sets ([`irsig_model::decision::SwitchableModel::ALL`]).
+pub(crate) const MODELS: usize = 8;
+/// The sun's index in a combination (`lit`, [`crate::pilot::SunOffer`]).
+pub(crate) const SUN_MODEL: usize = 6;
+/// The shadow rays' index in a combination.
+pub(crate) const SHADOW_RAYS_MODEL: usize = 7;
+
 /// A combination: one index per model ([`irsig_model::decision::SwitchableModel::ALL`]
-/// order), into its list.
-pub(crate) type Combo = [usize; 6];
+/// order), into its list (without a sun, the sun's two models have one setting each, and
+/// no error).
+pub(crate) type Combo = [usize; MODELS];
 
 /// What a path meets on average, each point weighted by what it stands for.
 #[derive(Debug, Clone, Default)]
@@ -73,6 +81,8 @@ pub(crate) struct PathMix {
     pub(crate) diffuse: f64,
     /// Facets evaluated per path.
     pub(crate) nodes: f64,
+    /// Nodes with a diffuse part: each casts the shadow rays of a sunlit path.
+    pub(crate) lit_nodes: f64,
     /// Reflection rays per path at each bounce limit.
     pub(crate) reflections: Vec<f64>,
 }
@@ -99,6 +109,7 @@ impl PathMix {
             mix.hit += w * f64::from(u8::from(m.hit));
             mix.diffuse += w * f64::from(u8::from(m.diffuse));
             mix.nodes += w * f64::from(m.nodes);
+            mix.lit_nodes += w * f64::from(m.lit_nodes);
             for (r, &n) in mix.reflections.iter_mut().zip(&m.reflection_rays) {
                 *r += w * f64::from(n);
             }
@@ -109,6 +120,7 @@ impl PathMix {
         mix.hit /= total;
         mix.diffuse /= total;
         mix.nodes /= total;
+        mix.lit_nodes /= total;
         for r in &mut mix.reflections {
             *r /= total;
         }
@@ -194,7 +206,15 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
     // hemispheric sky in place of its sky-view rays, as refinement's stopping test does.
     let path_ns = |mix: &PathMix, hemi_rays: f64, table: bool, calm: bool| {
         let reflections = mix.reflections.get(c[1]).copied().unwrap_or(0.0);
-        let rays = 1.0 + reflections + mix.diffuse * hemi_rays;
+        // A sunlit path's shadow rays (any-hit queries, priced as rays): its nodes with a
+        // diffuse part, each casting the count chosen.
+        let shadow_rays = match &space.sun {
+            Some(sun) if sun.lit[c[SUN_MODEL]] => {
+                mix.lit_nodes * f64::from(sun.shadow_rays[c[SHADOW_RAYS_MODEL]])
+            }
+            _ => 0.0,
+        };
+        let rays = 1.0 + reflections + mix.diffuse * hemi_rays + shadow_rays;
         let node_ns = k * mix.nodes * u.node_eval_ns;
         let evals = node_ns + k * mix.diffuse * hemi_rays * u.hemi_eval_ns;
         let terms = mix.hit
@@ -243,11 +263,18 @@ pub(crate) struct Verdict {
     pub(crate) worst_k: f64,
 }
 
+/// The error of model `k` at setting `combo[k]` at a point, K: a shadow-ray count is
+/// none of a frame whose sun is off.
+pub(crate) fn error_of(m: &Measured, combo: &Combo, k: usize) -> f64 {
+    if k == SHADOW_RAYS_MODEL && m.sun_off == Some(combo[SUN_MODEL]) {
+        return 0.0;
+    }
+    m.errors[k].get(combo[k]).copied().unwrap_or(0.0)
+}
+
 /// The per-point bound of `combo`: the sum of its models' errors.
 pub(crate) fn bound(m: &Measured, combo: &Combo) -> f64 {
-    (0..6)
-        .map(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0))
-        .sum()
+    (0..MODELS).map(|k| error_of(m, combo, k)).sum()
 }
 
 /// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]).
@@ -272,7 +299,7 @@ pub(crate) fn holds(
             let m = &measured[i];
             scratch.push(bound(m, combo));
             // No model alone may change a point by more than the tolerance.
-            if (0..6).any(|k| m.errors[k].get(combo[k]).copied().unwrap_or(0.0) > tolerance_k) {
+            if (0..MODELS).any(|k| error_of(m, combo, k) > tolerance_k) {
                 return None;
             }
         }

@@ -17,6 +17,7 @@ use irsig_radiometry::{BandModel, InverseTable};
 use crate::env::Atmosphere;
 use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
+use crate::pilot::choose::MODELS;
 use crate::pilot::classes::SamplePoint;
 use crate::pilot::{PilotSpace, Supersample};
 use crate::tracer::{
@@ -31,7 +32,7 @@ const REFERENCE_SIDE: u32 = 8;
 /// own 0 included), and the counts the cost model needs.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Measured {
-    pub(crate) errors: [Vec<f64>; 6],
+    pub(crate) errors: [Vec<f64>; MODELS],
     /// The change over the last step of the bounces' sequence, K: what the most bounces on
     /// offer leave (a convergent chain of reflections loses at least as much at each
     /// further step).
@@ -40,6 +41,15 @@ pub(crate) struct Measured {
     /// space's order (each from rays of its own): the class's Monte Carlo error of the
     /// most rays is estimated from their differences ([`super`]).
     pub(crate) by_sky_view_k: Vec<f64>,
+    /// The apparent temperature at each shadow-ray count above 1 on offer, in the space's
+    /// order (empty without a sun): the most rays' own sampling error, as the sky-view
+    /// rays'.
+    pub(crate) by_shadow_rays_k: Vec<f64>,
+    /// The index of the sun's `off` setting, where it is on offer: a shadow-ray count then
+    /// costs that combination no error ([`crate::pilot::choose::error_of`]).
+    pub(crate) sun_off: Option<usize>,
+    /// Nodes of the reference path with a diffuse part (each casts shadow rays by day).
+    pub(crate) lit_nodes: u32,
     /// The primary ray hit a facet.
     pub(crate) hit: bool,
     /// The first facet has a diffuse part (it casts sky-view rays).
@@ -96,7 +106,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let dir = camera.direction_at(point.x, point.y);
         let mut path = Path::default();
         let mut scratch = Sample::miss(Event::Sky);
+        // By day, every path is traced with the most shadow rays on offer.
+        let shadow_rays = space.sun.as_ref().map(|s| s.shadow_rays[0]);
         let mut ctx = stream(Ctx::for_pixel(&reference, point.pixel), point.probe, 0);
+        ctx.shadow_rays = shadow_rays;
         self.follow(fc, dir, &mut ctx, &mut path);
         let eval = |set: usize, table: Option<&PathTable>, p: &Path, s: &mut Sample| {
             self.radiance_with::<false, S>(&space.bands[set].set, table, fc, p, s)
@@ -113,6 +126,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut out = Measured {
             hit: !path.nodes.is_empty(),
             nodes: path.nodes.len() as u32,
+            lit_nodes: path.nodes.iter().filter(|n| n.diffuse.is_some()).count() as u32,
             diffuse: path.has_sky_view_rays()
                 || path.nodes.first().is_some_and(|n| n.diffuse.is_some()),
             reflection_rays: space
@@ -157,6 +171,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     point.probe,
                     SKY_VIEW_STREAM + u64::from(n),
                 );
+                ctx.shadow_rays = shadow_rays;
                 self.follow(fc, dir, &mut ctx, &mut cut);
                 t(eval(sets.band_model, None, &cut, &mut scratch))
             };
@@ -179,8 +194,80 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .filter(|(n, _)| *n > 0)
             .map(|&(_, t)| t)
             .collect();
+        self.measure_sun(fc, space, sets, inverse, &reference, point, &path, &mut out);
         self.measure_supersampling(fc, space, inverse, seed, point, candidate, &mut out);
         out
+    }
+
+    /// The sun's two models at `point` (none without a sun: one setting each, no error):
+    /// its effect, the band model's path evaluated without the beams; and each shadow-ray
+    /// count's error, the path's shadow rays cast again at that count from the same
+    /// stream (the rest of the path, its sky-view rays among them, kept: shadow rays draw
+    /// from a stream of their own, so a rendering with that count records the same path
+    /// with only the sunlight changed).
+    #[allow(clippy::too_many_arguments)]
+    fn measure_sun<S: Atmosphere>(
+        &self,
+        fc: &FrameConsts<'_>,
+        space: &PilotSpace<S>,
+        sets: &Sets<'_>,
+        inverse: &InverseTable<'_, B>,
+        reference: &TraceOptions,
+        point: &SamplePoint,
+        path: &Path,
+        out: &mut Measured,
+    ) {
+        let [.., sun_errors, shadow_errors] = &mut out.errors;
+        let Some(sun) = &space.sun else {
+            sun_errors.push(0.0);
+            shadow_errors.push(0.0);
+            return;
+        };
+        let t = |l: f64| inverse.temperature(l);
+        let mut scratch = Sample::miss(Event::Sky);
+        let band = &space.bands[sets.band_model].set;
+        let t_band = t(self.radiance_with::<false, S>(band, None, fc, path, &mut scratch));
+        out.sun_off = sun.lit.iter().position(|&l| !l);
+        for &lit in &sun.lit {
+            sun_errors.push(if lit {
+                0.0
+            } else {
+                let l = self.radiance_with::<false, S>(&sun.dark, None, fc, path, &mut scratch);
+                (t(l) - t_band).abs()
+            });
+        }
+        // Only a facet with a diffuse part casts shadow rays into the radiance.
+        let casts = path.nodes.iter().any(|n| n.diffuse.is_some());
+        let bare = TraceOptions {
+            sky_view_rays: 0,
+            ..*reference
+        };
+        let mut again = Path::default();
+        let mut varied = Path::default();
+        for (k, &n) in sun.shadow_rays.iter().enumerate() {
+            let tn = if k == 0 || !casts || self.sun.is_none() {
+                t_band
+            } else {
+                let mut ctx = Ctx::for_pixel(&bare, point.pixel);
+                if point.probe {
+                    ctx = ctx.stream(crate::tracer::PROBE_STREAM ^ 1);
+                }
+                ctx.shadow_rays = Some(n);
+                let dir = fc.camera().direction_at(point.x, point.y);
+                self.follow(fc, dir, &mut ctx, &mut again);
+                varied.clone_from(path);
+                for (node, other) in varied.nodes.iter_mut().zip(&again.nodes) {
+                    node.sun_diffuse_per_sr = other.sun_diffuse_per_sr;
+                    node.sun_cos_visible = other.sun_cos_visible;
+                    node.sun_visible = other.sun_visible;
+                }
+                t(self.radiance_with::<false, S>(band, None, fc, &varied, &mut scratch))
+            };
+            shadow_errors.push((tn - t_band).abs());
+            if n > 1 {
+                out.by_shadow_rays_k.push(tn);
+            }
+        }
     }
 
     /// The error of each supersampling on offer at `point`'s pixel: the mean of its

@@ -28,6 +28,7 @@ mod choose;
 mod classes;
 mod measure;
 mod stats;
+mod sun;
 
 use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_model::decision::{
@@ -49,7 +50,7 @@ use crate::path_table::PathTermsMode;
 use crate::refine::Refinement;
 use crate::tile::Tile;
 use crate::tracer::{BandSet, EDGE_SIDE, TraceOptions, Tracer};
-use choose::{Combo, Counts};
+use choose::{Combo, Counts, MODELS};
 use classes::Census;
 use measure::{Measured, Sets};
 use stats::{NORMAL_TAILS, confident_rank, order_statistic, weighted_percentile};
@@ -178,6 +179,33 @@ pub struct PilotSpace<S> {
     pub reasons: Vec<(SwitchableModel, String)>,
     /// Models the user pinned.
     pub pinned: Vec<SwitchableModel>,
+    /// With a sun (the tracer's, [`Tracer::with_sun`]; each band set then carries its
+    /// beams, [`Tracer::lit_band_set`]): whether it may be switched off, and the shadow
+    /// rays on offer. `None`: a night, and the decision names no sun.
+    pub sun: Option<SunOffer<S>>,
+}
+
+/// What the pilot may choose for the sun.
+#[derive(Debug)]
+pub struct SunOffer<S> {
+    /// The sun's settings, reference first: `true` on, `false` off.
+    pub lit: Vec<bool>,
+    /// Shadow rays per facet hit, reference (most) first; each count four times the next
+    /// (but 1, the disk's centre), so that the sequence measures what the most leave.
+    pub shadow_rays: Vec<u32>,
+    /// The band model's set at the reference atmosphere without the sun
+    /// ([`Tracer::band_set`]): what `off` is evaluated with.
+    pub dark: BandSet<S>,
+}
+
+/// What the pilot chose for the sun.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SunChosen {
+    /// The sun lights the frame (`false`: it is left out, its effect within the
+    /// tolerance).
+    pub lit: bool,
+    /// Shadow rays per facet hit.
+    pub shadow_rays: u32,
 }
 
 /// The setting the pilot chose for each model.
@@ -197,6 +225,8 @@ pub struct Chosen {
     pub sub_bands: SubBandCount,
     /// The refinement the frame is rendered with (with [`Supersample::Refine`]).
     pub refinement: Option<Refinement>,
+    /// The sun's settings, when the frame has a sun.
+    pub sun: Option<SunChosen>,
 }
 
 /// What the pilot decided: the settings, and the decision that records them with their
@@ -343,6 +373,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .copied()
             .filter(|&n| n > 0)
             .collect();
+        let shadow_counts: Vec<u32> = space.sun.as_ref().map_or_else(Vec::new, |s| {
+            s.shadow_rays.iter().copied().filter(|&n| n > 1).collect()
+        });
         let residual: Vec<f64> = by_class
             .iter()
             .map(|points| {
@@ -350,8 +383,18 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     points.iter().map(|&i| measured[i].bounce_step_k).collect();
                 let rank = confident_rank(steps.len(), 90.0);
                 let bounces = order_statistic(&mut steps, rank);
-                let sky = sky_view_sigma_k(&sky_counts, points.iter().map(|&i| &measured[i]));
-                bounces + P90_OF_NORMAL * sky
+                let sky = monte_carlo_sigma_k(
+                    &sky_counts,
+                    points.iter().map(|&i| measured[i].by_sky_view_k.as_slice()),
+                );
+                // The most shadow rays' own sampling error, independent of the sky's.
+                let shadow = monte_carlo_sigma_k(
+                    &shadow_counts,
+                    points
+                        .iter()
+                        .map(|&i| measured[i].by_shadow_rays_k.as_slice()),
+                );
+                bounces + P90_OF_NORMAL * sky.hypot(shadow)
             })
             .collect();
         let guaranteed: Vec<bool> = residual.iter().map(|&r| r <= det_k).collect();
@@ -369,9 +412,18 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             space.supersampling.len(),
             space.path_terms.len(),
             space.sub_bands.len(),
+            space.sun.as_ref().map_or(1, |s| s.lit.len()),
+            space.sun.as_ref().map_or(1, |s| s.shadow_rays.len()),
         ];
+        if space
+            .sun
+            .as_ref()
+            .is_some_and(|s| s.lit.is_empty() || s.shadow_rays.is_empty())
+        {
+            return Err(bad("every model needs at least one setting".into()));
+        }
         let mut best: Option<(f64, Combo, choose::Verdict)> = None;
-        let mut combo: Combo = [0; 6];
+        let mut combo: Combo = [0; MODELS];
         loop {
             if let Some(v) = choose::holds(
                 &census,
@@ -395,7 +447,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 break;
             }
         }
-        let reference_combo: Combo = [0; 6];
+        let reference_combo: Combo = [0; MODELS];
         let (chosen_combo, verdict) = match best {
             Some((_, c, v)) => (c, v),
             None => {
@@ -586,6 +638,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 path_terms: space.path_terms[chosen_combo[4]],
                 sub_bands: space.sub_bands[chosen_combo[5]],
                 refinement,
+                sun: space.sun.as_ref().map(|s| SunChosen {
+                    lit: s.lit[chosen_combo[6]],
+                    shadow_rays: s.shadow_rays[chosen_combo[7]],
+                }),
             },
             decision,
         })
@@ -704,14 +760,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// The most accurate setting of each model, as the decision's `relative_to` names them.
     fn reference_names<S>(&self, space: &PilotSpace<S>) -> String {
-        format!(
+        let mut names = format!(
             "atmosphere {}, {} bounces, {} sky-view rays, {} sub-bands, {} path terms",
             space.atmospheres[0],
             space.bounces[0],
             space.sky_view_rays[0],
             space.sub_bands[0],
             space.path_terms[0].name()
-        )
+        );
+        if let Some(sun) = &space.sun {
+            names.push_str(&format!(
+                ", the sun {}, {} shadow rays",
+                if sun.lit[0] { "on" } else { "off" },
+                sun.shadow_rays[0]
+            ));
+        }
+        names
     }
 
     /// The decision's record of each model's setting.
@@ -724,7 +788,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         guaranteed: &[bool],
         chosen: Combo,
         percentile: f64,
-        lens: &[usize; 6],
+        lens: &[usize; MODELS],
         relative_cost: &dyn Fn(&Combo) -> f64,
     ) -> Vec<ModelChoice> {
         let settings = |m: usize, i: usize| -> String {
@@ -734,11 +798,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 2 => space.sky_view_rays[i].to_string(),
                 3 => space.supersampling[i].name(),
                 4 => space.path_terms[i].name().to_owned(),
-                _ => space.sub_bands[i].to_string(),
+                5 => space.sub_bands[i].to_string(),
+                6 => match space.sun.as_ref().map(|s| s.lit[i]) {
+                    Some(false) => "off".to_owned(),
+                    _ => "on".to_owned(),
+                },
+                _ => space
+                    .sun
+                    .as_ref()
+                    .map_or(1, |s| s.shadow_rays[i])
+                    .to_string(),
             }
         };
         let points = census.points.len();
-        SwitchableModel::ALL
+        // The sun's two models only where there is a sun: a night's decision is as before.
+        let models = if space.sun.is_some() { MODELS } else { 6 };
+        SwitchableModel::ALL[..models]
             .iter()
             .enumerate()
             .map(|(m, &model)| {
@@ -756,17 +831,20 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     })
                     .collect();
                 let max_k = errors.iter().map(|e| e.0).fold(0.0, f64::max);
-                let mut alone = [0; 6];
+                let mut alone = [0; MODELS];
                 alone[m] = i;
                 let inert = lens[m] > 1
                     && measured
                         .iter()
                         .all(|s| s.errors[m].iter().all(|&e| e == 0.0));
+                let sun_reason =
+                    self.sun_reason(space, census, measured, guaranteed, &chosen, m, percentile);
                 let reason = space
                     .reasons
                     .iter()
                     .find(|(r, _)| *r == model)
                     .map(|(_, why)| why.clone())
+                    .or(sun_reason)
                     .unwrap_or_else(|| match model {
                         SwitchableModel::Supersampling
                             if matches!(space.supersampling[i], Supersample::Refine(_)) =>
@@ -899,19 +977,19 @@ pub fn ungranted_sigma_k(tolerance_k: f64) -> f64 {
     tolerance_k * (1.0 - DETERMINISTIC_SHARE) / P90_OF_NORMAL
 }
 
-/// The standard error of the sky-view estimate at the most rays on offer (`counts[0]`,
-/// each count four times the next), K, over a class's `points`: each count's estimate is
+/// The standard error of a Monte Carlo estimate (sky-view rays, shadow rays) at the most
+/// samples on offer (`counts[0]`, each count four times the next), K, over a class's
+/// `points` (each point's apparent temperature at every count): each count's estimate is
 /// independent, so the mean square difference of neighbouring counts is the sum of their
 /// variances; with σ_N = c·N^(−a), the two differences give `a` (clamped to 0.5, plain
-/// Monte Carlo, and 1), and the first gives σ at the most rays. With two counts, `a` is
+/// Monte Carlo, and 1), and the first gives σ at the most samples. With two counts, `a` is
 /// taken as 0.5, the slowest; with fewer, 0.
-fn sky_view_sigma_k<'a>(counts: &[u32], points: impl Iterator<Item = &'a Measured>) -> f64 {
+fn monte_carlo_sigma_k<'a>(counts: &[u32], points: impl Iterator<Item = &'a [f64]>) -> f64 {
     if counts.len() < 2 {
         return 0.0;
     }
     let (mut d01, mut d12, mut n) = (0.0, 0.0, 0.0);
-    for m in points {
-        let t = &m.by_sky_view_k;
+    for t in points {
         if t.len() < 2 {
             continue;
         }
@@ -941,8 +1019,8 @@ fn sky_view_sigma_k<'a>(counts: &[u32], points: impl Iterator<Item = &'a Measure
 
 /// Steps `combo` to the next combination (an odometer over the lists); false after the
 /// last.
-fn next_combo(combo: &mut Combo, lens: &[usize; 6]) -> bool {
-    for m in 0..6 {
+fn next_combo(combo: &mut Combo, lens: &[usize; MODELS]) -> bool {
+    for m in 0..MODELS {
         combo[m] += 1;
         if combo[m] < lens[m] {
             return true;
@@ -1035,13 +1113,13 @@ mod tests {
 
     #[test]
     fn combinations_are_counted_like_an_odometer() {
-        let lens = [2, 1, 3, 1, 1, 2];
-        let mut combo = [0; 6];
+        let lens = [2, 1, 3, 1, 1, 2, 1, 1];
+        let mut combo = [0; MODELS];
         let mut n = 1;
         while next_combo(&mut combo, &lens) {
             n += 1;
         }
         assert_eq!(n, 12);
-        assert_eq!(combo, [0; 6]);
+        assert_eq!(combo, [0; MODELS]);
     }
 }
