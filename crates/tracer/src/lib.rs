@@ -46,6 +46,7 @@
 //!         source: "example".into(),
 //!         band_um: None,
 //!         spectral: None,
+//!         rms_slope: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;

@@ -45,8 +45,9 @@ use crate::error::{RadiometryError, RadiometryErrorKind};
 
 use super::{ComplexIndex, IndexTable, band_emissivity_table, check_angles};
 
-/// The largest RMS slope accepted: a mean facet tilt of 84°.
-pub const MAX_RMS_SLOPE: f64 = 10.0;
+/// The largest RMS slope accepted: a mean facet tilt of 84° (the model's limit, which a
+/// material's `rms_slope` is held to as well).
+pub use irsig_model::limits::MAX_RMS_SLOPE;
 
 /// Slope magnitudes beyond this many σ carry less than e^(−42) of the surface.
 const X_MAX: f64 = 6.5;
