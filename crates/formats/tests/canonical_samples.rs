@@ -90,8 +90,8 @@ fn a_material_rms_slope_is_read_and_a_bad_one_is_refused_at_its_place() {
     );
     for bad in ["Some(-0.1)", "Some(10.5)", "Some(inf)", "Some(NaN)"] {
         let text = lib(bad);
-        let e = irsig_formats::canonical::from_ron::<MaterialLibrary>("lib.ron", &text)
-            .unwrap_err();
+        let e =
+            irsig_formats::canonical::from_ron::<MaterialLibrary>("lib.ron", &text).unwrap_err();
         assert!(e.message.contains("materials[0].rms_slope"), "{bad}: {e}");
         assert_eq!(e.line, 6, "{bad}: {e}");
         let column = text.lines().nth(5).unwrap().find("Some(").unwrap() + 1;

@@ -69,6 +69,7 @@ pub mod camera;
 pub mod env;
 mod error;
 pub mod geometry;
+mod lobe;
 mod path;
 mod path_table;
 pub mod pilot;
@@ -86,6 +87,7 @@ pub use camera::{
 };
 pub use env::{Atmosphere, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
+pub use lobe::{DISK_PSI_NODES, DISK_U_NODES};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };

@@ -589,6 +589,9 @@ pub(crate) struct MaterialData {
     pub(crate) id: u16,
     pub(crate) name: String,
     pub(crate) specular_fraction: f64,
+    /// The specular share's lobe for the sun's glint, where the material has an RMS slope
+    /// above 0 and a specular share ([`crate::lobe`]); `None`: a mirror.
+    pub(crate) lobe: Option<crate::lobe::Lobe>,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
@@ -1015,6 +1018,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 id: m.id.0,
                 name: m.name.clone(),
                 specular_fraction: m.specular_fraction,
+                lobe: m
+                    .rms_slope
+                    .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
+                    .map(crate::lobe::Lobe::new),
             });
         }
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets
