@@ -94,7 +94,7 @@ impl Frame {
     fn slope_of(&self, w: V3) -> Option<[f64; 2]> {
         let h = add(w, self.o);
         let hn = dot(h, self.n);
-        if !(hn > 1e-12 * dot(h, h).sqrt()) {
+        if hn.is_nan() || hn <= 1e-12 * dot(h, h).sqrt() {
             return None;
         }
         Some([dot(h, self.e1) / hn, dot(h, self.e2) / hn])
@@ -187,7 +187,7 @@ impl Lobe {
         let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
         let reach = (j[0][0].powi(2) + j[0][1].powi(2) + j[1][0].powi(2) + j[1][1].powi(2)).sqrt();
         let dist = pc[0].hypot(pc[1]);
-        if !(det.abs() > 0.0) || dist - reach > FAR_SIGMAS * sigma {
+        if det.is_nan() || det.abs() <= 0.0 || dist - reach > FAR_SIGMAS * sigma {
             return 0.0;
         }
         let inv = [

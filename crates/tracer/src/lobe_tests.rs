@@ -254,7 +254,9 @@ fn lobe_figures() {
         let mut half = [0.0, 0.0];
         for (i, dir) in [-1.0, 1.0].into_iter().enumerate() {
             let mut deg = 0.0;
-            while lobe.glint_per_sr(&sun, UP, view(30.0 + dir * deg, 180.0)) > peak / std::f64::consts::E {
+            while lobe.glint_per_sr(&sun, UP, view(30.0 + dir * deg, 180.0))
+                > peak / std::f64::consts::E
+            {
                 deg += 0.01;
             }
             half[i] = deg;
@@ -263,12 +265,20 @@ fn lobe_figures() {
         let mut sum = 0.0;
         let n = 200_000;
         for k in 0..n {
-            sum += lobe.glint_per_sr(&sun, UP, view(20.0 + 20.0 * f64::from(k) / f64::from(n), 180.0));
+            sum += lobe.glint_per_sr(
+                &sun,
+                UP,
+                view(20.0 + 20.0 * f64::from(k) / f64::from(n), 180.0),
+            );
         }
         let near = start.elapsed().as_secs_f64() / f64::from(n);
         let start = std::time::Instant::now();
         for k in 0..n {
-            sum += lobe.glint_per_sr(&sun, UP, view(20.0 + 20.0 * f64::from(k) / f64::from(n), 0.0));
+            sum += lobe.glint_per_sr(
+                &sun,
+                UP,
+                view(20.0 + 20.0 * f64::from(k) / f64::from(n), 0.0),
+            );
         }
         let far = start.elapsed().as_secs_f64() / f64::from(n);
         eprintln!(

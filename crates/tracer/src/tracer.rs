@@ -191,7 +191,8 @@ pub struct Sample {
     pub blackbody_w_m2_sr: f64,
     /// Radiance arriving along the mirror direction, W m⁻² sr⁻¹: `L_b` of event 4 (the
     /// surface-leaving radiance of the second facet) or `L_d(θ_r)` of event 3, plus the sun's
-    /// disk where the reflection leaves inside it ([`crate::sun`]).
+    /// glint: the disk where a smooth reflection leaves inside it, a rough material's lobe
+    /// over the disk ([`crate::sun`]).
     pub specular_incident_w_m2_sr: f64,
     /// Zenith angle of the reflection ray, degrees.
     pub reflected_zenith_deg: f64,
