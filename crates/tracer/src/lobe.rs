@@ -62,6 +62,9 @@ pub(crate) struct Lobe {
     sigma: f64,
     /// `A(θ_o)` at `θ_o = k·ALBEDO_STEP_DEG`, k = 0 to 90.
     albedo: Vec<f64>,
+    /// The disk rule's Gauss–Legendre nodes in `ψ` and in `u`, made once.
+    psi_rule: Vec<(f64, f64)>,
+    u_rule: Vec<(f64, f64)>,
 }
 
 /// A facet's frame: its normal (toward the viewer), two tangents, and the view.
@@ -132,7 +135,12 @@ impl Lobe {
                 albedo(sigma, cos_o, &rule)
             })
             .collect();
-        Self { sigma, albedo }
+        Self {
+            sigma,
+            albedo,
+            psi_rule: gauss_legendre(DISK_PSI_NODES),
+            u_rule: gauss_legendre(DISK_U_NODES),
+        }
     }
 
     /// The unscaled lobe's albedo `A(θ_o)` at the view cosine `cos_o`, interpolated.
@@ -203,7 +211,13 @@ impl Lobe {
         // The peak in the ellipse's own coordinates.
         let q = apply(inv, [-pc[0], -pc[1]]);
         let qq = q[0] * q[0] + q[1] * q[1];
-        let u_rule = gauss_legendre(u_nodes);
+        let made;
+        let u_rule: &[(f64, f64)] = if u_nodes == DISK_U_NODES {
+            &self.u_rule
+        } else {
+            made = gauss_legendre(u_nodes);
+            &made
+        };
         // ∫ W du along the ray of direction ψ, between its entry and exit of the ellipse.
         let along = |psi: f64| -> f64 {
             let d = [psi.cos(), psi.sin()];
@@ -228,7 +242,7 @@ impl Lobe {
             }
             let mid = 0.5 * (u_in + u_out);
             let mut sum = 0.0;
-            for &(x, w) in &u_rule {
+            for &(x, w) in u_rule {
                 let u = mid + half * x;
                 let rho = sigma * (-u.ln()).max(0.0).sqrt();
                 sum += w * f.weight([rho * d[0], rho * d[1]], sigma);
@@ -261,7 +275,14 @@ impl Lobe {
             let (d1, d2) = (wrap(tangent(beta)), wrap(tangent(-beta)));
             let (lo, hi) = (d1.min(d2), d1.max(d2));
             let (mid, half) = (centre + 0.5 * (lo + hi), 0.5 * (hi - lo));
-            gauss_legendre(psi_nodes)
+            let made;
+            let psi_rule: &[(f64, f64)] = if psi_nodes == DISK_PSI_NODES {
+                &self.psi_rule
+            } else {
+                made = gauss_legendre(psi_nodes);
+                &made
+            };
+            psi_rule
                 .iter()
                 .map(|&(x, w)| {
                     let phi = x * std::f64::consts::FRAC_PI_2;
