@@ -160,6 +160,8 @@ fn fresnel_roughness_keeps_the_emissivity_up_at_grazing_and_is_diffuse_by_defaul
         "{r:?}"
     );
     assert!(r.source.contains("RMS slope 0.8"), "{}", r.source);
+    // The facets' slope is recorded for the specular lobe; a smooth surface records none.
+    assert_eq!((s.rms_slope, r.rms_slope), (None, Some(0.8)));
 }
 
 #[test]

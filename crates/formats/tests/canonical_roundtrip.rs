@@ -114,6 +114,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
                     source,
                     band_um: None,
                     spectral: None,
+                    rms_slope: None,
                 }
             })
             .collect(),

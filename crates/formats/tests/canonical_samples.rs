@@ -67,3 +67,34 @@ fn the_regions_sample_reads_and_round_trips() {
     );
     assert_eq!(RegionSet::reference(&set.regions[2], "kinetic"), None);
 }
+
+#[test]
+fn a_material_rms_slope_is_read_and_a_bad_one_is_refused_at_its_place() {
+    use irsig_model::MaterialLibrary;
+    let lib = |sigma: &str| {
+        format!(
+            "(\n  materials: [\n    (\n      id: 1, name: \"paint\", emissivity: [(0.0, 0.9)],\n      specular_fraction: 1.0, source: \"x\",\n      rms_slope: {sigma},\n    ),\n  ],\n)\n"
+        )
+    };
+    let ok = irsig_formats::canonical::from_ron::<MaterialLibrary>("lib.ron", &lib("Some(0.15)"))
+        .unwrap();
+    assert_eq!(ok.materials[0].rms_slope, Some(0.15));
+    // Absent is None, and writes nothing back: a library without it keeps its bytes.
+    let text = "(materials: [(id: 1, name: \"a\", emissivity: [(0.0, 0.9)], specular_fraction: 1.0, source: \"x\")])";
+    let plain = irsig_formats::canonical::from_ron::<MaterialLibrary>("lib.ron", text).unwrap();
+    assert_eq!(plain.materials[0].rms_slope, None);
+    assert!(
+        !irsig_formats::canonical::to_ron_pretty(&plain)
+            .unwrap()
+            .contains("rms_slope")
+    );
+    for bad in ["Some(-0.1)", "Some(10.5)", "Some(inf)", "Some(NaN)"] {
+        let text = lib(bad);
+        let e =
+            irsig_formats::canonical::from_ron::<MaterialLibrary>("lib.ron", &text).unwrap_err();
+        assert!(e.message.contains("materials[0].rms_slope"), "{bad}: {e}");
+        assert_eq!(e.line, 6, "{bad}: {e}");
+        let column = text.lines().nth(5).unwrap().find("Some(").unwrap() + 1;
+        assert_eq!(e.column, column, "{bad}: {e}");
+    }
+}

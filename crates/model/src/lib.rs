@@ -33,6 +33,7 @@
 //!         source: "example".into(),
 //!         band_um: None,
 //!         spectral: None,
+//!         rms_slope: None,
 //!     }],
 //! };
 //! assert!(lib.validate().is_ok());

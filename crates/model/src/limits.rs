@@ -32,3 +32,8 @@ pub const RESPONSE_WAVELENGTH_UM: [f64; 2] = [0.2, 1000.0];
 /// and counts all fit). A band radiance weighted by it stays finite at any temperature a
 /// scene holds.
 pub const MAX_RESPONSE: f64 = 1e6;
+
+/// The largest RMS facet slope a rough surface may have (dimensionless: `σ² = ⟨z_x² +
+/// z_y²⟩`, the tangent of the facets' tilt): 10, a mean facet tilt of 84°. A material's
+/// `rms_slope` and the rough-surface emissivity (`irsig_radiometry::fresnel`) share it.
+pub const MAX_RMS_SLOPE: f64 = 10.0;

@@ -17,7 +17,7 @@ impl MaterialId {
 }
 
 /// One material: how it emits and reflects in the band.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Material {
     /// The material's number (1 or more), unique in its library.
@@ -47,6 +47,31 @@ pub struct Material {
     /// the band's.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub spectral: Option<SpectralEmissivity>,
+    /// The RMS slope of the surface's facets, dimensionless (`σ² = ⟨z_x² + z_y²⟩`, isotropic
+    /// Gaussian slopes, the rough-surface emissivity's parameter), 0 to
+    /// [`crate::limits::MAX_RMS_SLOPE`]: the roughness of the specular share's lobe, which
+    /// spreads the sun's glint. `None` or 0: a smooth mirror.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_slope: Option<f64>,
+}
+
+/// The derived form, with `rms_slope` shown only when given: a material without one prints
+/// (and so feeds a run's hash, `irsig.run`) exactly as before the field existed.
+impl std::fmt::Debug for Material {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mut d = f.debug_struct("Material");
+        d.field("id", &self.id)
+            .field("name", &self.name)
+            .field("emissivity", &self.emissivity)
+            .field("specular_fraction", &self.specular_fraction)
+            .field("source", &self.source)
+            .field("band_um", &self.band_um)
+            .field("spectral", &self.spectral);
+        if let Some(sigma) = &self.rms_slope {
+            d.field("rms_slope", sigma);
+        }
+        d.finish()
+    }
 }
 
 /// A material's emissivity at normal incidence against wavelength: linear between the
@@ -216,6 +241,14 @@ impl Material {
             0.0,
             1.0,
         )?;
+        if let Some(sigma) = self.rms_slope {
+            check_range(
+                || format!("{prefix}.rms_slope"),
+                sigma,
+                0.0,
+                crate::limits::MAX_RMS_SLOPE,
+            )?;
+        }
         if let Some((shortest, longest)) = self.band_um {
             check_range(|| format!("{prefix}.band_um.0"), shortest, 1e-3, 1e4)?;
             check_range(|| format!("{prefix}.band_um.1"), longest, 1e-3, 1e4)?;
@@ -299,6 +332,7 @@ mod tests {
             source: "test".into(),
             band_um: None,
             spectral: None,
+            rms_slope: None,
         }
     }
 
@@ -347,6 +381,34 @@ mod tests {
             lib.validate().unwrap_err().kind,
             ModelErrorKind::Duplicate(_)
         ));
+    }
+
+    #[test]
+    fn an_rms_slope_must_be_finite_and_within_the_limit() {
+        let with = |sigma: f64| {
+            let mut m = mat(1, "a", vec![(0.0, 0.9)]);
+            m.rms_slope = Some(sigma);
+            m.validate("m")
+        };
+        assert!(with(0.0).is_ok());
+        assert!(with(0.2).is_ok());
+        assert!(with(crate::limits::MAX_RMS_SLOPE).is_ok());
+        for bad in [-0.1, 10.5, f64::NAN, f64::INFINITY] {
+            let e = with(bad).unwrap_err();
+            assert_eq!(e.path, "m.rms_slope", "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_material_without_a_slope_prints_as_before_the_field_existed() {
+        let mut m = mat(1, "a", vec![(0.0, 0.9)]);
+        assert_eq!(
+            format!("{m:?}"),
+            "Material { id: MaterialId(1), name: \"a\", emissivity: [(0.0, 0.9)], \
+             specular_fraction: 1.0, source: \"test\", band_um: None, spectral: None }"
+        );
+        m.rms_slope = Some(0.2);
+        assert!(format!("{m:?}").ends_with("spectral: None, rms_slope: 0.2 }"));
     }
 
     #[test]

@@ -642,8 +642,10 @@ fn nodes_radiance(nodes: &[Node], t_k: f64) -> (f64, f64) {
     (radiance.min(f64::MAX), derivative.min(f64::MAX))
 }
 
-/// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the Legendre recurrence).
-pub(crate) fn gauss_legendre(order: usize) -> Vec<(f64, f64)> {
+/// Gauss–Legendre nodes and weights on [−1, 1] (Newton on the Legendre recurrence), as
+/// `(node, weight)` pairs.
+#[must_use]
+pub fn gauss_legendre(order: usize) -> Vec<(f64, f64)> {
     let n = order as f64;
     let mut rule = Vec::with_capacity(order);
     for i in 0..order {

@@ -34,7 +34,9 @@
 use num_complex::Complex64;
 
 mod rough;
-pub use rough::{MAX_RMS_SLOPE, RoughSurface, rough_band_emissivity_table, rough_emissivity_table};
+pub use rough::{
+    MAX_RMS_SLOPE, RoughSurface, rough_band_emissivity_table, rough_emissivity_table, smith_escape,
+};
 
 use crate::band::Band;
 use crate::emissivity::EmissivityTable;

@@ -33,7 +33,7 @@ mod planck_weights;
 mod spectral_emissivity;
 mod table;
 
-pub use band::{Band, SensorResponse};
+pub use band::{Band, SensorResponse, gauss_legendre};
 pub use band_model::{
     AnyBand, BandModel, STEFAN_BOLTZMANN_W_M2_K4, TotalRadiance, apparent_temperatures,
 };

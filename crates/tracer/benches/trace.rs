@@ -56,6 +56,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         source: "bench".into(),
         band_um: None,
         spectral: None,
+        rms_slope: None,
     };
     MaterialLibrary {
         materials: vec![m(1, sphere_specular), m(2, 0.0)],

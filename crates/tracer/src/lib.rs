@@ -46,6 +46,7 @@
 //!         source: "example".into(),
 //!         band_um: None,
 //!         spectral: None,
+//!         rms_slope: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;
@@ -69,6 +70,7 @@ mod day;
 pub mod env;
 mod error;
 pub mod geometry;
+mod lobe;
 mod path;
 mod path_table;
 pub mod pilot;
@@ -86,6 +88,7 @@ pub use camera::{
 };
 pub use env::{Atmosphere, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
+pub use lobe::{DISK_PSI_NODES, DISK_U_NODES};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
 };

@@ -85,9 +85,10 @@ pub(crate) struct Node {
     /// `cos θ_i·V/π`, sr⁻¹ ([`crate::sun`]): 0 without a sun, without a diffuse part, in
     /// shadow or with the sun behind the facet.
     pub(crate) sun_diffuse_per_sr: f64,
-    /// The sun's radiance along the mirror direction per unit of the beam's normal
-    /// irradiance, sr⁻¹: `1/Ω_sun` when the reflection leaves toward the sky inside the
-    /// disk (the glint), else 0.
+    /// The sun's glint per unit of the beam's normal irradiance, sr⁻¹, which the specular
+    /// share `s·r` multiplies: for a smooth material `1/Ω_sun` when the reflection leaves
+    /// toward the sky inside the disk, else 0; for a rough one the lobe over the disk
+    /// times the visible fraction of the sun ([`crate::lobe`]).
     pub(crate) sun_glint_per_sr: f64,
     /// The sun's irradiance at this facet per unit of the beam's normal irradiance,
     /// `cos θ_i·V` (what `sun_diffuse_per_sr` is `1/π` of), for the truth layers: 0 without a
@@ -290,10 +291,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 Mirror::Untraced(environment)
             };
             path.nodes[index].mirror = Some(mirror);
-            if let Some(sun) = &self.sun {
+            if let Some(sun) = &self.sun
+                && m.lobe.is_none()
+            {
                 path.nodes[index].sun_glint_per_sr = glint_per_sr(sun, refl, mirror);
             }
         }
+        // A rough specular share: the lobe over the disk, before the visible fraction.
+        let lobe_glint = match (&self.sun, &m.lobe) {
+            (Some(sun), Some(lobe)) => lobe.glint_per_sr(sun, hit.normal, scale(dir, -1.0)),
+            _ => 0.0,
+        };
         if sfrac < 1.0 {
             let diffuse = if depth == 0 && ctx.options.sky_view_rays > 0 {
                 self.follow_hemisphere(hit, alt, ctx, path)
@@ -305,6 +313,20 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let light = self.sun_light(sun, hit, ctx, false);
                 let node = &mut path.nodes[index];
                 node.sun_diffuse_per_sr = light.cos_visible * std::f64::consts::FRAC_1_PI;
+                node.sun_cos_visible = light.cos_visible;
+                node.sun_visible = light.visible;
+                node.sun_glint_per_sr = lobe_glint * light.visible;
+            }
+        } else if lobe_glint > 0.0
+            && let Some(sun) = &self.sun
+        {
+            // A rough mirror lit through its lobe: its shadow rays, from the pixel's sun
+            // stream whether or not truth is kept, give the glint's visible fraction and
+            // the truth layers both.
+            let light = self.sun_light(sun, hit, ctx, false);
+            let node = &mut path.nodes[index];
+            node.sun_glint_per_sr = lobe_glint * light.visible;
+            if depth == 0 && ctx.sun_truth {
                 node.sun_cos_visible = light.cos_visible;
                 node.sun_visible = light.visible;
             }

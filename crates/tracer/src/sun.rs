@@ -20,13 +20,22 @@
 //!   `cos θ_i`, for soft shadow edges. A shadow ray below the horizontal is blocked by
 //!   the ground. In the equation the sun's term joins the diffuse incident radiance as
 //!   `E_n·cos θ_i·V/π`, the radiance of a uniform sky that would give the same irradiance.
-//! * **Specular part.** The specular share `s` is an ideal mirror: where its reflection ray
-//!   leaves the scene toward the sky (or, the bounces spent, would do so) within the sun's
-//!   disk, it reflects the disk's radiance `E_n/Ω_sun`, `Ω_sun = 2π(1 − cos α)` for the
-//!   angular radius α, a uniform disk. This is the glint; it joins the specular incident
-//!   radiance. A mirror ray that hits a facet brings that facet's leaving radiance, sunlit
-//!   or not, as before. Rough specular lobes (a microfacet model whose glint spreads beyond
-//!   the disk) are not modelled yet.
+//! * **Specular part, smooth.** A material without an RMS slope (or with 0) is an ideal
+//!   mirror: where its reflection ray leaves the scene toward the sky (or, the bounces
+//!   spent, would do so) within the sun's disk, it reflects the disk's radiance
+//!   `E_n/Ω_sun`, `Ω_sun = 2π(1 − cos α)` for the angular radius α, a uniform disk. This is
+//!   the glint; it joins the specular incident radiance. A mirror ray that hits a facet
+//!   brings that facet's leaving radiance, sunlit or not, as before.
+//! * **Specular part, rough.** A material with an RMS facet slope `σ > 0` reflects the sun
+//!   through a Cook–Torrance lobe (Beckmann slopes of RMS `σ`, Smith's shadowing) scaled so
+//!   that its directional-hemispherical reflectance at the viewing angle is `s·r(θ_o)`
+//!   ([`crate::lobe`], which states the non-reciprocity this implies). Its glint is the
+//!   lobe integrated over the disk by a fixed rule (no random numbers), times `V`, the
+//!   fraction of the facet's shadow rays that reach the sun (a facet with no diffuse part
+//!   casts them for this, from the pixel's sun stream, only where the lobe reaches the
+//!   disk). It tends to the smooth glint as `σ → 0` and to the point sun's `f·cos θ_i·E_n`
+//!   for `σ` well above the disk's `α`. The rest of the environment (sky, terrain, facets)
+//!   is still reflected along the mirror direction alone: the lobe is the sun's only.
 //! * **Terrain background.** The terrain beyond the scene is flat and unshadowed: it
 //!   reflects `(1 − ε)·E_n(0)·cos θ_sun/π` more, `θ_sun` the sun's zenith angle.
 //!

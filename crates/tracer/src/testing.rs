@@ -317,6 +317,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
                 source: "irsig_tracer::testing".into(),
                 band_um: None,
                 spectral: None,
+                rms_slope: None,
             })
             .collect(),
     }

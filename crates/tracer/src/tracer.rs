@@ -191,7 +191,8 @@ pub struct Sample {
     pub blackbody_w_m2_sr: f64,
     /// Radiance arriving along the mirror direction, W m⁻² sr⁻¹: `L_b` of event 4 (the
     /// surface-leaving radiance of the second facet) or `L_d(θ_r)` of event 3, plus the sun's
-    /// disk where the reflection leaves inside it ([`crate::sun`]).
+    /// glint: the disk where a smooth reflection leaves inside it, a rough material's lobe
+    /// over the disk ([`crate::sun`]).
     pub specular_incident_w_m2_sr: f64,
     /// Zenith angle of the reflection ray, degrees.
     pub reflected_zenith_deg: f64,
@@ -589,6 +590,9 @@ pub(crate) struct MaterialData {
     pub(crate) id: u16,
     pub(crate) name: String,
     pub(crate) specular_fraction: f64,
+    /// The specular share's lobe for the sun's glint, where the material has an RMS slope
+    /// above 0 and a specular share ([`crate::lobe`]); `None`: a mirror.
+    pub(crate) lobe: Option<crate::lobe::Lobe>,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
@@ -1034,6 +1038,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 id: m.id.0,
                 name: m.name.clone(),
                 specular_fraction: m.specular_fraction,
+                lobe: m
+                    .rms_slope
+                    .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
+                    .map(crate::lobe::Lobe::new),
             });
         }
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets

@@ -51,6 +51,7 @@ fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Mat
         source: "test".into(),
         band_um: None,
         spectral: None,
+        rms_slope: None,
     }
 }
 

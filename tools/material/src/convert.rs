@@ -154,6 +154,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             source,
             band_um: None,
             spectral: None,
+            rms_slope: None,
         });
     }
     let library = MaterialLibrary { materials };

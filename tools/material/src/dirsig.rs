@@ -109,6 +109,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 ),
                 band_um: None,
                 spectral: None,
+                rms_slope: None,
             });
             continue;
         };
@@ -172,6 +173,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 // DIRSIG's angular factors are one curve for every wavelength.
                 angular: None,
             }),
+            rms_slope: None,
         });
     }
     let library = MaterialLibrary { materials };

@@ -248,6 +248,9 @@ pub fn run(args: &Args) -> miette::Result<()> {
             name,
             specular_fraction: specular,
             source,
+            // The facets' slopes are the specular lobe's too (the tracer's glint): one
+            // surface for emission and reflection. A smooth surface records none.
+            rms_slope: (surface.rms_slope() > 0.0).then_some(surface.rms_slope()),
         };
         write_library(&table, entry, args, output)
     }
@@ -275,6 +278,7 @@ struct Entry {
     name: String,
     specular_fraction: f64,
     source: String,
+    rms_slope: Option<f64>,
 }
 
 fn write_library(
@@ -292,6 +296,7 @@ fn write_library(
             source: entry.source,
             band_um: entry.band_um,
             spectral: entry.spectral,
+            rms_slope: entry.rms_slope,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

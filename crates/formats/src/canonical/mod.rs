@@ -420,6 +420,7 @@ mod tests {
                     source: "test".into(),
                     band_um: None,
                     spectral: None,
+                    rms_slope: None,
                 },
                 Material {
                     id: MaterialId(2),
@@ -429,6 +430,7 @@ mod tests {
                     source: "test".into(),
                     band_um: None,
                     spectral: None,
+                    rms_slope: None,
                 },
             ],
         }

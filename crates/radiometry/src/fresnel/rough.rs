@@ -45,8 +45,9 @@ use crate::error::{RadiometryError, RadiometryErrorKind};
 
 use super::{ComplexIndex, IndexTable, band_emissivity_table, check_angles};
 
-/// The largest RMS slope accepted: a mean facet tilt of 84°.
-pub const MAX_RMS_SLOPE: f64 = 10.0;
+/// The largest RMS slope accepted: a mean facet tilt of 84° (the model's limit, which a
+/// material's `rms_slope` is held to as well).
+pub use irsig_model::limits::MAX_RMS_SLOPE;
 
 /// Slope magnitudes beyond this many σ carry less than e^(−42) of the surface.
 const X_MAX: f64 = 6.5;
@@ -229,8 +230,10 @@ impl RoughSurface {
 
 /// Smith's (1967) probability that a ray leaving the surface at `cos θ_r` from the mean
 /// normal is not blocked by the surface, for Gaussian slopes of RMS slope `sigma > 0`:
-/// `1/(1 + Λ(ν))`, `ν = cot θ_r / σ`; 0 for a ray going down.
-fn smith_escape(cos_reflected: f64, sigma: f64) -> f64 {
+/// `1/(1 + Λ(ν))`, `ν = cot θ_r / σ`; 0 for a ray going down. Also the shadowing of the
+/// tracer's specular lobe (`irsig_tracer`'s sun glint), so that both describe one surface.
+#[must_use]
+pub fn smith_escape(cos_reflected: f64, sigma: f64) -> f64 {
     if cos_reflected <= 0.0 {
         return 0.0;
     }
