@@ -30,8 +30,7 @@
 use irsig_model::SpectralAtmosphere;
 
 use crate::error::AtmosphereError;
-use crate::spectral::BandQuadrature;
-use crate::sunlit::{Table, fold_azimuth_deg, missing};
+use crate::sunlit::{SunlitPaths, Table, fold_azimuth_deg};
 
 /// Midpoints of the hemispheric integral in `sin² z` (zenith) and in azimuth over 0–180°.
 const HEMI_ZENITH_STEPS: usize = 400;
@@ -69,44 +68,10 @@ impl ScatteredSunlight {
         weight: impl Fn(f64) -> f64,
         to_sun: [f64; 3],
     ) -> Result<Self, AtmosphereError> {
-        let slant = spectral.slant.as_ref().ok_or_else(|| {
-            missing(
-                "slant",
-                "build the atmosphere from a plan (irsig-atmos plan/build)",
-            )
-        })?;
-        let solar = spectral.solar.as_ref().ok_or_else(|| {
-            missing(
-                "solar",
-                "build the atmosphere from a plan with a sun and its scattered light (irsig-atmos plan --sun-zenith-deg Z --day-of-year D --sun-scattering)",
-            )
-        })?;
-        if solar.relative_azimuth_deg.is_empty() {
-            return Err(missing(
-                "solar.relative_azimuth_deg",
-                "build the atmosphere from a plan with --sun-scattering, which runs its scattered sunlight",
-            ));
-        }
-        spectral.validate()?;
-        let n = spectral.grid.points.len();
-        let q = BandQuadrature::new(&spectral.grid, lo_um, hi_um, weight)?;
-        let band = |values: &[f32]| -> Vec<f64> {
-            values.chunks_exact(n).map(|s| q.radiance(s)).collect()
-        };
-        let na = solar.relative_azimuth_deg.len();
-        let path = Table {
-            altitude_m: slant.altitude_m.clone(),
-            angle_deg: slant.nadir_deg.clone(),
-            values: band(&solar.path_scattered_w_m2_sr_per_unit),
-            azimuths: na,
-        };
-        let sky = Table {
-            altitude_m: solar.altitude_m.clone(),
-            angle_deg: slant.sky_zenith_deg.clone(),
-            values: band(&solar.sky_scattered_w_m2_sr_per_unit),
-            azimuths: na,
-        };
-        let azimuth_deg = solar.relative_azimuth_deg.clone();
+        // The same band tables `SunlitPaths` reads, and refused alike when missing.
+        let (path, sky, azimuth_deg) =
+            SunlitPaths::new(spectral, lo_um, hi_um, weight)?.into_scattered();
+        let ground_m = spectral.slant.as_ref().and_then(|s| s.ground_m);
         let hemispheric = sky
             .altitude_m
             .iter()
@@ -122,7 +87,7 @@ impl ScatteredSunlight {
             sun_horizontal,
             azimuth_deg,
             path,
-            ground_m: slant.ground_m.unwrap_or(0.0),
+            ground_m: ground_m.unwrap_or(0.0),
             sky,
             hemispheric,
         })

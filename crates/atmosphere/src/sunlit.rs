@@ -207,6 +207,12 @@ impl SunlitPaths {
         })
     }
 
+    /// The scattered-sunlight tables alone: the slant paths' and the sky's (each with
+    /// its azimuths from the sun), and those azimuths, degrees.
+    pub(crate) fn into_scattered(self) -> (Table, Table, Vec<f64>) {
+        (self.path_scattered, self.sky_scattered, self.azimuth_deg)
+    }
+
     /// The sun's zenith angle the tables were made for, degrees.
     #[must_use]
     pub fn sun_zenith_deg(&self) -> f64 {

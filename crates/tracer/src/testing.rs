@@ -767,6 +767,28 @@ impl BareObvhs {
     }
 }
 
+/// A frame's apparent temperatures, K, through the total (all-wavelength) radiance.
+#[must_use]
+pub fn temperatures(frame: &crate::Frame) -> Vec<f64> {
+    frame
+        .radiance_w_m2_sr
+        .iter()
+        .map(|&l| TotalRadiance.temperature(l))
+        .collect()
+}
+
+/// The |x| below which `p` % of `values` lie (the nearest rank above).
+///
+/// # Panics
+/// `values` is empty.
+#[must_use]
+pub fn percentile(values: &[f64], p: f64) -> f64 {
+    let mut v: Vec<f64> = values.iter().map(|x| x.abs()).collect();
+    v.sort_by(f64::total_cmp);
+    let i = ((p / 100.0) * (v.len() - 1) as f64).ceil() as usize;
+    v[i.min(v.len() - 1)]
+}
+
 /// The unit direction of every pixel's centre ray of `camera`, row by row.
 #[must_use]
 pub fn primary_directions(camera: &Camera) -> Vec<V3> {

@@ -20,10 +20,12 @@
 //! tolerance); CI runs scene 0's low view and scene 1's mast view at 0.5 K.
 
 use irsig_model::View;
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::PilotSpace;
-use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene, vacuum_pilot_space};
-use irsig_tracer::{Camera, Frame, Tile, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::testing::{
+    box_mesh, grey_materials, ground_quad, percentile, raw_scene, temperatures, vacuum_pilot_space,
+};
+use irsig_tracer::{Camera, Tile, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -103,22 +105,6 @@ fn generated(seed: u64, view: usize) -> (Tracer<TotalRadiance, Vacuum>, Camera) 
 
 fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
     vacuum_pilot_space(tracer, SKY)
-}
-
-fn temperatures(frame: &Frame) -> Vec<f64> {
-    frame
-        .radiance_w_m2_sr
-        .iter()
-        .map(|&l| TotalRadiance.temperature(l))
-        .collect()
-}
-
-/// The |x| below which `p` % of `values` lie.
-fn percentile(values: &[f64], p: f64) -> f64 {
-    let mut v: Vec<f64> = values.iter().map(|x| x.abs()).collect();
-    v.sort_by(f64::total_cmp);
-    let i = ((p / 100.0) * (v.len() - 1) as f64).ceil() as usize;
-    v[i.min(v.len() - 1)]
 }
 
 struct Outcome {

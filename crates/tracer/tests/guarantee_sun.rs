@@ -17,10 +17,12 @@
 
 use irsig_model::View;
 use irsig_model::decision::SwitchableModel;
-use irsig_radiometry::{BandModel, TotalRadiance};
+use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::Piloted;
-use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene, sunlit_pilot_space};
-use irsig_tracer::{Camera, Frame, Sun, SunBeam, Tile, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::testing::{
+    box_mesh, grey_materials, ground_quad, percentile, raw_scene, sunlit_pilot_space, temperatures,
+};
+use irsig_tracer::{Camera, Sun, SunBeam, Tile, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -112,22 +114,6 @@ fn pilot(seed: u64, beam_w_m2: f64, specular: bool, tolerance_k: f64) -> (Pilote
         .pilot(&camera, &space, tolerance_k, 99.0, 1024, 1)
         .unwrap_or_else(|e| panic!("scene {seed} at {tolerance_k} K: {e}"));
     (piloted, camera)
-}
-
-fn temperatures(frame: &Frame) -> Vec<f64> {
-    frame
-        .radiance_w_m2_sr
-        .iter()
-        .map(|&l| TotalRadiance.temperature(l))
-        .collect()
-}
-
-/// The |x| below which `p` % of `values` lie.
-fn percentile(values: &[f64], p: f64) -> f64 {
-    let mut v: Vec<f64> = values.iter().map(|x| x.abs()).collect();
-    v.sort_by(f64::total_cmp);
-    let i = ((p / 100.0) * (v.len() - 1) as f64).ceil() as usize;
-    v[i.min(v.len() - 1)]
 }
 
 /// The converged day reference of scene `seed` (sun on, 16 shadow rays per hit): the
