@@ -997,7 +997,8 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "--sun-utc",
         &["horizon"],
     );
-    // The pilot does not know the sun.
+    // With a tolerance the pilot chooses the shadow rays (tests/pilot_sun.rs): giving
+    // them as well is refused.
     refused(
         trace_plate(
             &out,
@@ -1008,6 +1009,8 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
                 "30",
                 "--sun-azimuth-deg",
                 "0",
+                "--sun-shadow-rays",
+                "4",
                 "--tolerance",
                 "0.5",
             ],
@@ -1015,7 +1018,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         &out,
         "piloted",
         "--tolerance",
-        &["sun"],
+        &["--sun-shadow-rays"],
     );
     let secs = start.elapsed().as_secs_f64();
     eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
