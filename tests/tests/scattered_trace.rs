@@ -327,10 +327,10 @@ fn the_tracers_scattered_sunlight_is_lowtran7s_between_rows() {
     // Facets above the ground: the path radiance of the view path itself.
     // (observer m, facet m, zenith angle at the observer, azimuth from the sun, whether
     // the floor is asserted). Two paths are measured, not held to the floor, because the
-    // model misses it there (docs/accuracy.md): the 87 m path, whose scattered light is a
-    // small difference of two long paths into which the night model's τ of the slab
-    // carries (its thermal part is +56 % off); and the path looking up, a difference of
-    // two skies each interpolated linearly in altitude.
+    // model misses it there (docs/accuracy.md): the 87 m path and the path looking up.
+    // Each is a difference of two longer paths, which LOWTRAN7's band model does not
+    // obey: with LOWTRAN7's own terms at both ends the difference is +21.5 % and +6.4 %
+    // of the scattered part (scripts/accuracy/slab-additivity.py).
     for (observer, facet, zenith, az, floor) in [
         (850.0, 150.0, 180.0 - 47.0, 100.0, true),
         (850.0, 50.0, 180.0 - 47.0, 100.0, true),
