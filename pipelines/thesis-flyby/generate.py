@@ -374,6 +374,9 @@ def materials():
             f"      emissivity: [{t}],",
             f"      specular_fraction: {fmt(spec)},",
             f'      source: "{source}",',
+            # Every table is an 8-14 um band emissivity: a trace in another band refuses
+            # it rather than use these values there.
+            "      band_um: Some((8.0, 14.0)),",
             "    ),",
         ]
     lines += ["  ],", ")"]

@@ -4,7 +4,11 @@
 //!
 //! Each index entry `index name [file.ems [0|1]]` becomes a material with id = index,
 //! the `.ems` rows as its angular emissivity (validated by the `.ems` parser: 0 ≤ ε ≤ 1,
-//! angles 0–90° strictly increasing) and specular fraction 0 or 1 from the flag. An entry
+//! angles 0–90° strictly increasing) and specular fraction 0 or 1 from the flag. An `.ems`
+//! table is one band's emissivity and does not say which band: `--band` does, 8–14 µm
+//! (the thesis's) when it is not given, which stderr then says; the material records it
+//! (`band_um`), so that a trace in another band is refused rather than given 8–14 µm
+//! values (formats/canonical/material-library.md). An entry
 //! without an `.ems` file is an error naming its line, unless `--default-emissivity E`
 //! says which constant emissivity such materials get; the material's `source` records
 //! which happened. Back to legacy, a library is written as `STEM.mat` plus `NAME.ems` per
@@ -13,6 +17,7 @@
 
 use std::path::{Path, PathBuf};
 
+use irsig_cli::args::BandArg;
 use irsig_formats::ParseError;
 use irsig_formats::legacy::{Position, ems, material_index};
 use irsig_model::{Material, MaterialId, MaterialLibrary};
@@ -25,6 +30,9 @@ Examples:
   # the 1990 material index file and the .ems tables it names to a material library;
   # entries without an .ems file get the constant emissivity 0.9
   irsig-material convert materials.mat --default-emissivity 0.9 -o lib.ron
+
+  # .ems tables made for 3-5 um (irsig-material fresnel --band 3-5 --legacy)
+  irsig-material convert mwir.mat --band 3-5 -o mwir.ron
 
   # a material library back to legacy/materials.mat plus legacy/NAME.ems per material
   irsig-material convert --to-legacy lib.ron --out-dir legacy/")]
@@ -45,6 +53,12 @@ pub struct ConvertArgs {
     /// `.ems` file. Without it such a material is an error.
     #[arg(long, value_name = "E", conflicts_with = "to_legacy")]
     pub default_emissivity: Option<f64>,
+    /// The band the `.ems` tables are band emissivities for, `MIN-MAX` in micrometres:
+    /// an `.ems` file does not record it. Each converted material records it, and a
+    /// trace in another band refuses the material [default: 8-14, the thesis's band,
+    /// said on stderr].
+    #[arg(long, value_name = "MIN-MAX", conflicts_with = "to_legacy")]
+    pub band: Option<BandArg>,
     /// Output canonical material library (stdout when absent or `-`).
     #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub output: Option<PathBuf>,
@@ -89,6 +103,23 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
         }
         other => other,
     };
+    let band_um = match &args.band {
+        None => (8.0, 14.0),
+        Some(BandArg::Flat { min_um, max_um }) if *min_um > 0.0 && max_um > min_um => {
+            (*min_um, *max_um)
+        }
+        Some(BandArg::Flat { min_um, max_um }) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--band {min_um}-{max_um}: expected MIN-MAX with 0 < MIN < MAX, in micrometres"
+            )));
+        }
+        Some(other) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--band {other}: an .ems table is a band emissivity over a range of \
+                 wavelengths; give that range as MIN-MAX in micrometres, such as 8-14"
+            )));
+        }
+    };
     let input = irsig_cli::read_input(index_path)?;
     let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
     let index = material_index::parse(&input.name, text).map_err(Report::new)?;
@@ -102,6 +133,14 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
         ))
     };
     let mut materials = Vec::with_capacity(index.materials.len());
+    if args.band.is_none() && index.materials.iter().any(|m| m.ems_file.is_some()) {
+        irsig_cli::note!(
+            "irsig-material: {}: the .ems tables are taken as 8-14 um band emissivities, the \
+             thesis's band (an .ems file does not record its band); give --band MIN-MAX if \
+             they were made for another",
+            input.name
+        );
+    }
     for entry in &index.materials {
         let (emissivity, source) = match (&entry.ems_file, default) {
             (Some(file), _) => {
@@ -152,7 +191,8 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             emissivity,
             specular_fraction: if entry.specular { 1.0 } else { 0.0 },
             source,
-            band_um: None,
+            // A constant from --default-emissivity is the same in every band.
+            band_um: entry.ems_file.is_some().then_some(band_um),
             spectral: None,
             rms_slope: None,
         });
@@ -230,6 +270,17 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
                 input.name,
                 m.name
             ));
+        }
+        // The .ems format has no band: a table for another band than the thesis's is said,
+        // so that converting it back can give it again.
+        if let Some((lo, hi)) = m.band_um
+            && (lo, hi) != (8.0, 14.0)
+        {
+            irsig_cli::note!(
+                "irsig-material: `{}`: its table is for {lo}-{hi} um, which an .ems file \
+                 does not record; convert it back with --band {lo}-{hi}",
+                m.name
+            );
         }
         let ems_file = format!("{}.ems", m.name);
         let table = ems::EmsTable::from_pairs(&m.emissivity);

@@ -77,8 +77,18 @@ fn the_sample_index_converts_with_an_explicit_default() {
         "{}",
         water.source
     );
-    // The others: the constant the user named, diffuse, and a source that says so.
+    // An .ems table is one band's, which the file does not say: without --band it is the
+    // thesis's 8-14 um, recorded, and stderr says so.
+    assert_eq!(water.band_um, Some((8.0, 14.0)));
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr.contains("8-14 um") && stderr.contains("--band"),
+        "{stderr}"
+    );
+    // The others: the constant the user named, diffuse, and a source that says so; a
+    // constant holds in every band.
     let asphalt = lib.by_name("asphalt").unwrap();
+    assert_eq!(asphalt.band_um, None);
     assert_eq!(asphalt.emissivity, [(0.0, 0.9)]);
     assert!(asphalt.specular_fraction.abs() < f64::EPSILON);
     assert!(
@@ -141,6 +151,47 @@ fn a_library_goes_back_to_the_same_legacy_files() {
         m.source.clear();
     }
     assert_eq!(a, b);
+}
+
+#[test]
+fn the_band_of_the_ems_tables_is_recorded_and_a_wrong_one_refused() {
+    let mat = samples().join("materials.mat");
+    let out = material()
+        .arg("convert")
+        .arg(&mat)
+        .args(["--default-emissivity", "0.9", "--band", "3-5"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert_eq!(
+        library(&out.stdout).by_name("water").unwrap().band_um,
+        Some((3.0, 5.0))
+    );
+    // Given, the band needs no note.
+    assert!(
+        out.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for (band, expected) in [
+        ("5-3", "0 < MIN < MAX"),
+        ("0-5", "0 < MIN < MAX"),
+        ("total", "range of wavelengths"),
+        ("response.srf", "range of wavelengths"),
+    ] {
+        material()
+            .arg("convert")
+            .arg(&mat)
+            .args(["--default-emissivity", "0.9", "--band", band])
+            .assert()
+            .failure()
+            .stdout(predicate::str::is_empty())
+            .stderr(predicate::str::contains(expected));
+    }
 }
 
 #[test]
