@@ -184,3 +184,123 @@ fn a_lowtran7_run_reads_the_same_in_tape6_and_tape7() {
     let h = t7.runs[1].header.as_ref().unwrap();
     assert_eq!(h.path.unwrap()[2], 120.0);
 }
+
+/// Half a unit in the last of `digits` significant digits of `v`.
+fn half_unit(v: f64, digits: i32) -> f64 {
+    0.5 * 10f64.powi(v.abs().log10().floor() as i32 - (digits - 1))
+}
+
+#[test]
+fn a_lowtran7_solar_run_reads_the_same_in_tape6_and_tape7() {
+    // One deck, three calculations: a 1 m path down from 1 km at 45 deg from nadir with the
+    // sun 30 deg from the zenith and 60 deg of azimuth away (IEMSCT 2), the same with
+    // multiple scattering (IMULT 1), and the sun's direct beam at 300 m (IEMSCT 3); US
+    // Standard 1976, rural aerosol at 23 km, day 95, 2500-2600 cm-1 every 20.
+    let deck = tape5::parse("solar.tape5", &read("formats/radtran/samples/solar.tape5")).unwrap();
+    let calcs = deck.calculations();
+    assert_eq!(
+        calcs
+            .iter()
+            .map(|c| (c.card1.iemsct, c.card1.imult))
+            .collect::<Vec<_>>(),
+        [(2, 0), (2, 1), (3, 0)]
+    );
+    let t7 =
+        lowtran_tape7::parse("solar.tape7", &read("formats/radtran/samples/solar.tape7")).unwrap();
+    let t6 =
+        lowtran_tape6::parse("solar.tape6", &read("formats/radtran/samples/solar.tape6")).unwrap();
+    assert_eq!((t7.runs.len(), t6.runs.len()), (3, 3));
+    let nu: Vec<f64> = (0..6).map(|k| 2500.0 + 20.0 * f64::from(k)).collect();
+    for (i, (r7, r6)) in t7.runs.iter().zip(&t6.runs).enumerate() {
+        let (tab7, tab6) = (r7.table.as_ref().unwrap(), r6.table.as_ref().unwrap());
+        assert_eq!(tab6.wavenumber_per_cm(), nu, "run {i}");
+        assert_eq!(tab7.wavenumber_per_cm(), nu, "run {i}");
+        // Both print τ to 4 decimals and each spectral value to 3 digits.
+        assert_eq!(tab6.transmission().unwrap(), tab7.transmission(), "run {i}");
+        // TAPE6 prints each radiance per cm-1 and per µm: L_λ = L_ν ν² / 10⁴, to the
+        // 3 digits of both.
+        let per_um = |a: &str, b: &str| {
+            let (v, u) = (tab6.column(a).unwrap(), tab6.column(b).unwrap());
+            for k in 0..nu.len() {
+                let want = v[k] * nu[k] * nu[k] / 1e4;
+                assert!(
+                    (u[k] - want).abs()
+                        <= half_unit(u[k], 3) + half_unit(v[k], 3) * nu[k] * nu[k] / 1e4,
+                    "run {i} row {k}: {b} {} vs {want}",
+                    u[k]
+                );
+            }
+        };
+        if r6.iemsct == Some(3) {
+            assert_eq!(
+                tab6.transmitted_solar_irradiance().unwrap(),
+                tab7.columns[2],
+                "run {i}"
+            );
+            assert_eq!(
+                tab6.extraterrestrial_irradiance(),
+                tab7.extraterrestrial_irradiance(),
+                "run {i}"
+            );
+            per_um(
+                "TRANSMITTED SOLAR IRRADIANCE PER CM-1",
+                "TRANSMITTED SOLAR IRRADIANCE PER MICRON",
+            );
+            // The integrated irradiance is the trapezoid of the transmitted irradiance
+            // over wavenumber: 20 x (1.26/2 + 1.32 + 1.27 + 1.24 + 1.22 + 1.32/2) e-6
+            // = 1.268e-4 W cm-2, as printed.
+            let e = tab7.columns[2].as_slice();
+            let trap: f64 = (1..nu.len()).map(|k| 10.0 * (e[k] + e[k - 1])).sum();
+            assert!((trap - 1.268e-4).abs() < 1e-9, "{trap}");
+            assert_eq!(r6.integrated_irradiance_w_cm2, Some(1.268e-4));
+        } else {
+            assert_eq!(
+                tab6.scattered_radiance(),
+                tab7.scattered_radiance(),
+                "run {i}"
+            );
+            assert_eq!(tab6.thermal_radiance(), tab7.thermal_radiance(), "run {i}");
+            assert_eq!(tab6.total_radiance().unwrap(), tab7.columns[7], "run {i}");
+            per_um(
+                "PATH SCATTERED RADIANCE PER CM-1",
+                "PATH SCATTERED RADIANCE PER MICRON",
+            );
+            // Thermal plus scattered plus ground-reflected is the total, to the digits.
+            let (th, sc, tot) = (
+                tab7.thermal_radiance().unwrap(),
+                tab7.scattered_radiance().unwrap(),
+                tab7.columns[7].as_slice(),
+            );
+            for k in 0..nu.len() {
+                assert!(
+                    (th[k] + sc[k] + tab7.columns[5][k] - tot[k]).abs()
+                        <= 2.0 * half_unit(tot[k], 3) + half_unit(th[k], 3)
+                );
+            }
+        }
+    }
+    // With multiple scattering the scattered light exceeds its single-scattered part,
+    // which TAPE6 prints as `S SCAT` and TAPE7 as `SINGLE SCATTERED`; without, they are
+    // one (TAPE7 prints both).
+    let multi = t6.runs[1].table.as_ref().unwrap();
+    let single = multi.single_scattered_radiance().unwrap();
+    assert_eq!(single, t7.runs[1].table.as_ref().unwrap().columns[4]);
+    assert!(
+        multi
+            .scattered_radiance()
+            .unwrap()
+            .iter()
+            .zip(single)
+            .all(|(a, b)| a > b)
+    );
+    let once = t7.runs[0].table.as_ref().unwrap();
+    assert_eq!(once.columns[3], once.columns[4]);
+    assert!(
+        t6.runs[0]
+            .table
+            .as_ref()
+            .unwrap()
+            .single_scattered_radiance()
+            .is_none()
+    );
+}
