@@ -21,8 +21,8 @@
 //! must strictly increase; radiances are W cm⁻² sr⁻¹ per cm⁻¹ and irradiances W cm⁻² per
 //! cm⁻¹, not negative; transmittances (`TOT_TRANS`, `COMBIN TRANS`, `TRANS`) lie in 0–1.01.
 //!
-//! Card 1's IEMSCT (columns 11–15, in MODTRAN 4's `2A1,I3,12I5` as in MODTRAN 5's
-//! `4A1,I1,A1,I4,10I5`) says which columns hold data: an IEMSCT 1 run prints the solar
+//! Card 1's IEMSCT (columns 11–15: MODTRAN 4's `2A1,I3,12I5`, and where pyradi's MODTRAN 5
+//! `tape7-05` has it) says which columns hold data: an IEMSCT 1 run prints the solar
 //! columns of an IEMSCT 2 run, without valid values, so the solar accessors answer only
 //! for IEMSCT 2 (scattered sunlight) and 3 (direct solar irradiance).
 //!
