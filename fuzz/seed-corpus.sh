@@ -42,12 +42,13 @@ cp $root/tests/data/object/tri.bin $root/tests/data/malformed/object/*.bin "$c/b
 # malformed plans' decks and tape7s, and the quickstart's spectral built-in.
 r=$root/tests/data/malformed/radtran
 mkdir -p "$c/tape5" "$c/lowtran_tape6" "$c/lowtran_tape7" "$c/modtran_tape7" "$c/spectral_atmosphere"
-cp $root/formats/radtran/samples/us-std-1976.tape5 $root/tests/data/third-party/lowtran/TAPE5 "$c/tape5/"
+cp $root/formats/radtran/samples/us-std-1976.tape5 $root/formats/radtran/samples/solar.tape5 $root/tests/data/third-party/lowtran/TAPE5 "$c/tape5/"
 for d in $r/*/; do cp "$d/runs/0000.tape5" "$c/tape5/$(basename "$d").tape5"; done
-cp $root/formats/radtran/samples/us-std-1976.tape6 "$c/lowtran_tape6/"
-cp $root/formats/radtran/samples/us-std-1976.tape7 "$c/lowtran_tape7/"
+cp $root/formats/radtran/samples/us-std-1976.tape6 $root/formats/radtran/samples/solar.tape6 "$c/lowtran_tape6/"
+cp $root/formats/radtran/samples/us-std-1976.tape7 $root/formats/radtran/samples/solar.tape7 "$c/lowtran_tape7/"
 for k in truncated column-count repeated-wavenumber falling-wavenumber; do cp "$r/$k/runs/0000.tape7" "$c/lowtran_tape7/$k.tape7"; done
 cp $root/tests/data/third-party/pyradi/tape7-* "$r/modtran-column-count/runs/0000.tape7" "$c/modtran_tape7/"
+cp $root/formats/radtran/samples/modtran-iemsct3-layout.tape7 "$c/modtran_tape7/"
 cp $root/crates/atmosphere/data/us-std-1976.spectral.bin "$c/spectral_atmosphere/"
 # Sensor responses, n, k tables, regions files and EXRs: the samples and the malformed cases.
 m=$root/tests/data/malformed

@@ -184,3 +184,231 @@ fn a_lowtran7_run_reads_the_same_in_tape6_and_tape7() {
     let h = t7.runs[1].header.as_ref().unwrap();
     assert_eq!(h.path.unwrap()[2], 120.0);
 }
+
+/// Planck's spectral radiance per wavenumber, W cm⁻² sr⁻¹ per cm⁻¹ (2hc² = 1.191042972e-12
+/// W cm² sr⁻¹, hc/k = 1.4387769 cm K; CODATA 2018).
+fn planck_per_cm(nu: f64, t: f64) -> f64 {
+    1.191_042_972e-12 * nu.powi(3) / ((1.438_776_9 * nu / t).exp() - 1.0)
+}
+
+/// Half a unit in the last of `digits` significant digits of `v`.
+fn half_unit(v: f64, digits: i32) -> f64 {
+    0.5 * 10f64.powi(v.abs().log10().floor() as i32 - (digits - 1))
+}
+
+#[test]
+fn modtran_solar_columns_keep_their_documented_relations() {
+    // tape7-05: a radiance run with solar scattering (card 1's IEMSCT = 2, IMULT = 0),
+    // from H1 = 0 up to H2 = 100 km (card 3).
+    let text = read("tests/data/third-party/pyradi/tape7-05");
+    let card1 = text.lines().next().unwrap();
+    assert_eq!((&card1[10..15], &card1[15..20]), ("    2", "    0"));
+    let card3 = text.lines().nth(5).unwrap();
+    assert!(card3.starts_with("   0.00000 100.00000"), "{card3}");
+    let t = modtran_tape7::parse("tape7-05", &text).unwrap();
+    assert_eq!(t.iemsct, Some(2));
+    let nu = t.wavenumber_per_cm();
+    let tau = t.transmission().unwrap();
+    let sol_scat = t.solar_scattered_radiance().unwrap();
+    let sing = t.single_scattered_radiance().unwrap();
+    let ref_sol = t.reflected_path_solar_irradiance().unwrap();
+    let at_obs = t.solar_irradiance_at_observer().unwrap();
+    let toa = t.extraterrestrial_irradiance().unwrap();
+    let total = t.total_radiance().unwrap();
+    let bbody = t.column("BBODY_T[K]").unwrap();
+    assert_eq!(
+        (ref_sol[0], toa[0], sol_scat[0]),
+        (7.20e-7, 9.6338e-7, 1.1042e-9)
+    );
+    for i in 0..nu.len() {
+        // IMULT = 0: the scattered sunlight is all single scattering.
+        assert_eq!(sol_scat[i], sing[i], "row {i}");
+        // REF_SOL is TOA_SUN times the transmittance of sun -> H2 -> H1; H2 is the top of
+        // the atmosphere, so that is TOT_TRANS: to REF_SOL's 3 printed digits
+        // (7.20e-7 / 9.6338e-7 = 0.74737 at 2050 cm-1, where TOT_TRANS is 0.74773).
+        let by_hand = tau[i] * toa[i];
+        assert!(
+            (ref_sol[i] - by_hand).abs() <= 1.2 * half_unit(ref_sol[i], 3),
+            "row {i}: REF_SOL {} vs TOT_TRANS x TOA_SUN {by_hand}",
+            ref_sol[i]
+        );
+        // BBODY_T is the brightness temperature of TOTAL_RAD: Planck's function inverted
+        // at TOTAL_RAD gives it within 0.005 K (printed to 0.001 K; MODTRAN's radiation
+        // constants are not quite CODATA 2018's).
+        let tb = 1.438_776_9 * nu[i] / (1.0 + 1.191_042_972e-12 * nu[i].powi(3) / total[i]).ln();
+        assert!(
+            (tb - bbody[i]).abs() < 0.005,
+            "row {i}: brightness temperature {tb} K vs BBODY_T {} K",
+            bbody[i]
+        );
+        // SOL@OBS is a direct solar irradiance at H1, below the sun's at the top.
+        assert!(at_obs[i] > 0.0 && at_obs[i] < toa[i], "row {i}");
+    }
+    // SOL@OBS is not REF_SOL plus a scattered contribution, as the PcModWin FAQ guessed:
+    // at 2099 cm-1 it is below REF_SOL (4.86e-7 < 4.89e-7).
+    let k = nu.iter().position(|&v| v == 2099.0).unwrap();
+    assert!(at_obs[k] < ref_sol[k], "{} vs {}", at_obs[k], ref_sol[k]);
+    // TOA_SUN against the sun as a 5778 K black body filling 6.8e-5 sr (its disk at
+    // 1 AU): the sun's 4.9 µm brightness temperature is lower, so within 15 %.
+    let disk_sr = std::f64::consts::PI * (6.957e5_f64 / 1.496e8).powi(2);
+    for i in [0, nu.len() - 1] {
+        let bb = planck_per_cm(nu[i], 5778.0) * disk_sr;
+        assert!((toa[i] / bb - 1.0).abs() < 0.15, "{} vs {bb}", toa[i]);
+    }
+    // The transmittance-mode sample (IEMSCT 0) has no solar columns.
+    let t0 = modtran_tape7::parse(
+        "tape7-01b",
+        &read("tests/data/third-party/pyradi/tape7-01b"),
+    )
+    .unwrap();
+    assert_eq!(t0.iemsct, Some(0));
+    assert!(t0.solar_scattered_radiance().is_none() && t0.extraterrestrial_irradiance().is_none());
+}
+
+#[test]
+fn the_modtran_direct_solar_layout_sample_reads_as_lowtran7s_run() {
+    // A layout sample, not MODTRAN output: MODTRAN 5's IEMSCT 3 header over LOWTRAN7's
+    // numbers for the same path (the sample's own text says so).
+    let text = read("formats/radtran/samples/modtran-iemsct3-layout.tape7");
+    assert!(text.contains("LAYOUT SAMPLE, NOT MODTRAN OUTPUT"));
+    let m = modtran_tape7::parse("modtran-iemsct3-layout.tape7", &text).unwrap();
+    assert_eq!(m.mode, modtran_tape7::Mode::DirectSolar);
+    let l7 =
+        lowtran_tape7::parse("solar.tape7", &read("formats/radtran/samples/solar.tape7")).unwrap();
+    let sun = l7.runs[2].table.as_ref().unwrap();
+    assert_eq!(m.wavenumber_per_cm(), sun.wavenumber_per_cm());
+    assert_eq!(m.transmission().unwrap(), sun.transmission());
+    assert_eq!(
+        m.extraterrestrial_irradiance().unwrap(),
+        sun.extraterrestrial_irradiance().unwrap()
+    );
+    assert_eq!(m.transmitted_solar_irradiance().unwrap(), sun.columns[2]);
+    // SOL TR is TRANS x SOLAR, to its 3 printed digits.
+    let (tau, tr, solar) = (
+        m.transmission().unwrap(),
+        m.transmitted_solar_irradiance().unwrap(),
+        m.extraterrestrial_irradiance().unwrap(),
+    );
+    for i in 0..tau.len() {
+        assert!(
+            (tau[i] * solar[i] - tr[i]).abs()
+                <= half_unit(tr[i], 3) + tau[i] * half_unit(solar[i], 3),
+            "row {i}"
+        );
+    }
+}
+
+#[test]
+fn a_lowtran7_solar_run_reads_the_same_in_tape6_and_tape7() {
+    // One deck, three calculations: a 1 m path down from 1 km at 45 deg from nadir with the
+    // sun 30 deg from the zenith and 60 deg of azimuth away (IEMSCT 2), the same with
+    // multiple scattering (IMULT 1), and the sun's direct beam at 300 m (IEMSCT 3); US
+    // Standard 1976, rural aerosol at 23 km, day 95, 2500-2600 cm-1 every 20.
+    let deck = tape5::parse("solar.tape5", &read("formats/radtran/samples/solar.tape5")).unwrap();
+    let calcs = deck.calculations();
+    assert_eq!(
+        calcs
+            .iter()
+            .map(|c| (c.card1.iemsct, c.card1.imult))
+            .collect::<Vec<_>>(),
+        [(2, 0), (2, 1), (3, 0)]
+    );
+    let t7 =
+        lowtran_tape7::parse("solar.tape7", &read("formats/radtran/samples/solar.tape7")).unwrap();
+    let t6 =
+        lowtran_tape6::parse("solar.tape6", &read("formats/radtran/samples/solar.tape6")).unwrap();
+    assert_eq!((t7.runs.len(), t6.runs.len()), (3, 3));
+    let nu: Vec<f64> = (0..6).map(|k| 2500.0 + 20.0 * f64::from(k)).collect();
+    for (i, (r7, r6)) in t7.runs.iter().zip(&t6.runs).enumerate() {
+        let (tab7, tab6) = (r7.table.as_ref().unwrap(), r6.table.as_ref().unwrap());
+        assert_eq!(tab6.wavenumber_per_cm(), nu, "run {i}");
+        assert_eq!(tab7.wavenumber_per_cm(), nu, "run {i}");
+        // Both print τ to 4 decimals and each spectral value to 3 digits.
+        assert_eq!(tab6.transmission().unwrap(), tab7.transmission(), "run {i}");
+        // TAPE6 prints each radiance per cm-1 and per µm: L_λ = L_ν ν² / 10⁴, to the
+        // 3 digits of both.
+        let per_um = |a: &str, b: &str| {
+            let (v, u) = (tab6.column(a).unwrap(), tab6.column(b).unwrap());
+            for k in 0..nu.len() {
+                let want = v[k] * nu[k] * nu[k] / 1e4;
+                assert!(
+                    (u[k] - want).abs()
+                        <= half_unit(u[k], 3) + half_unit(v[k], 3) * nu[k] * nu[k] / 1e4,
+                    "run {i} row {k}: {b} {} vs {want}",
+                    u[k]
+                );
+            }
+        };
+        if r6.iemsct == Some(3) {
+            assert_eq!(
+                tab6.transmitted_solar_irradiance().unwrap(),
+                tab7.columns[2],
+                "run {i}"
+            );
+            assert_eq!(
+                tab6.extraterrestrial_irradiance(),
+                tab7.extraterrestrial_irradiance(),
+                "run {i}"
+            );
+            per_um(
+                "TRANSMITTED SOLAR IRRADIANCE PER CM-1",
+                "TRANSMITTED SOLAR IRRADIANCE PER MICRON",
+            );
+            // The integrated irradiance is the trapezoid of the transmitted irradiance
+            // over wavenumber: 20 x (1.26/2 + 1.32 + 1.27 + 1.24 + 1.22 + 1.32/2) e-6
+            // = 1.268e-4 W cm-2, as printed.
+            let e = tab7.columns[2].as_slice();
+            let trap: f64 = (1..nu.len()).map(|k| 10.0 * (e[k] + e[k - 1])).sum();
+            assert!((trap - 1.268e-4).abs() < 1e-9, "{trap}");
+            assert_eq!(r6.integrated_irradiance_w_cm2, Some(1.268e-4));
+        } else {
+            assert_eq!(
+                tab6.scattered_radiance(),
+                tab7.scattered_radiance(),
+                "run {i}"
+            );
+            assert_eq!(tab6.thermal_radiance(), tab7.thermal_radiance(), "run {i}");
+            assert_eq!(tab6.total_radiance().unwrap(), tab7.columns[7], "run {i}");
+            per_um(
+                "PATH SCATTERED RADIANCE PER CM-1",
+                "PATH SCATTERED RADIANCE PER MICRON",
+            );
+            // Thermal plus scattered plus ground-reflected is the total, to the digits.
+            let (th, sc, tot) = (
+                tab7.thermal_radiance().unwrap(),
+                tab7.scattered_radiance().unwrap(),
+                tab7.columns[7].as_slice(),
+            );
+            for k in 0..nu.len() {
+                assert!(
+                    (th[k] + sc[k] + tab7.columns[5][k] - tot[k]).abs()
+                        <= 2.0 * half_unit(tot[k], 3) + half_unit(th[k], 3)
+                );
+            }
+        }
+    }
+    // With multiple scattering the scattered light exceeds its single-scattered part,
+    // which TAPE6 prints as `S SCAT` and TAPE7 as `SINGLE SCATTERED`; without, they are
+    // one (TAPE7 prints both).
+    let multi = t6.runs[1].table.as_ref().unwrap();
+    let single = multi.single_scattered_radiance().unwrap();
+    assert_eq!(single, t7.runs[1].table.as_ref().unwrap().columns[4]);
+    assert!(
+        multi
+            .scattered_radiance()
+            .unwrap()
+            .iter()
+            .zip(single)
+            .all(|(a, b)| a > b)
+    );
+    let once = t7.runs[0].table.as_ref().unwrap();
+    assert_eq!(once.columns[3], once.columns[4]);
+    assert!(
+        t6.runs[0]
+            .table
+            .as_ref()
+            .unwrap()
+            .single_scattered_radiance()
+            .is_none()
+    );
+}

@@ -7,8 +7,10 @@
 //! itself (found as [`crate::lowtran::find`] says), one process per run, in parallel. A
 //! deck LOWTRAN7 rejects fails the build with LOWTRAN's own message at the deck's card 3.
 //! The output is written only when every run succeeded. A plan with a sun has direct solar
-//! irradiance runs (IEMSCT = 3) after the others: their outputs must be LOWTRAN7's TAPE7
-//! of such a run (MODTRAN's solar columns are not read yet).
+//! irradiance runs (IEMSCT = 3) after the others, and its sunlit paths are solar
+//! scattering runs (IEMSCT = 2): a given output for such a path must be a TAPE7 of that
+//! mode, LOWTRAN7's or MODTRAN's (`TRANS`/`SOLAR` of IEMSCT 3, `SOL_SCAT` of IEMSCT 2),
+//! its units converted to SI here.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -35,7 +37,8 @@ Examples:
 
 LOWTRAN7 is $IRSIG_LOWTRAN, else `lowtran7` on PATH
 (scripts/atmosphere/install-lowtran.sh builds it). Where runs/NNNN.tape7 exists in the
-plan directory it is used instead of running LOWTRAN7 (a LOWTRAN7 or MODTRAN tape7).
+plan directory it is used instead of running LOWTRAN7 (a LOWTRAN7 or MODTRAN tape7 of
+the path's mode: IEMSCT 3 for the sun's paths, 2 for sunlit ones).
 The output is a binary spectral atmosphere, RON if its name ends in .ron.")]
 pub struct BuildArgs {
     /// The plan directory `irsig-atmos plan` wrote (plan.ron and runs/), or a plan file
@@ -170,36 +173,89 @@ fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
     })
 }
 
+/// What a MODTRAN tape7's card 1 says, for errors: `IEMSCT = 1`, or that it has none.
+fn modtran_mode(t: &modtran_tape7::ModtranTape7) -> String {
+    t.iemsct.map_or_else(
+        || "no card 1 with an IEMSCT".to_owned(),
+        |k| format!("card 1's IEMSCT = {k}"),
+    )
+}
+
+/// The spectra of a MODTRAN tape7 given for one path, converted to SI (W cm-2 -> W m-2) here.
+/// A sun's path takes a direct solar irradiance run (IEMSCT = 3: `TRANS`, `SOLAR`); a
+/// sunlit path a solar scattering run (IEMSCT = 2), whose `SOL_SCAT` is the scattered
+/// sunlight; a thermal path a radiance-mode run. A file of another mode is an error at
+/// card 1's IEMSCT (or the column header, without card 1).
 fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
     let t = modtran_tape7::parse(file, text)?;
-    if want == Want::Scattered {
-        return Err(located(
-            file,
-            text,
-            t.header_position,
-            "expected LOWTRAN7's TAPE7 of a solar scattering run (IEMSCT = 2) for this \
-             sunlit path: MODTRAN's solar columns are not read yet"
-                .into(),
-        ));
-    }
-    if want == Want::Solar {
-        return Err(located(
-            file,
-            text,
-            t.header_position,
-            "expected LOWTRAN7's TAPE7 of a direct solar irradiance run (IEMSCT = 3) for \
-             this path of the sun's: MODTRAN's solar columns are not read yet"
-                .into(),
-        ));
-    }
-    let tau = t.transmission().ok_or_else(|| {
+    // The wrong IEMSCT is an error at card 1's field; the right one without the columns
+    // it needs, at the column header.
+    let wrong = |expected: &str, iemsct: i64, columns: &str| {
+        let (at, found) = if t.iemsct == Some(iemsct) {
+            (
+                t.header_position,
+                format!("card 1's IEMSCT = {iemsct} without {columns} in the column header"),
+            )
+        } else {
+            (
+                t.iemsct_position.unwrap_or(t.header_position),
+                modtran_mode(&t),
+            )
+        };
         located(
+            file,
+            text,
+            at,
+            format!("expected {expected}, found {found}"),
+        )
+    };
+    let tau = t.transmission();
+    if want == Want::Solar {
+        // Only a direct solar run: an IEMSCT 2 run's TOA_SUN and TOT_TRANS are of another
+        // path than the sun's.
+        let etoa = (t.mode == modtran_tape7::Mode::DirectSolar)
+            .then(|| t.extraterrestrial_irradiance())
+            .flatten();
+        let (Some(tau), Some(etoa)) = (tau, etoa) else {
+            return Err(wrong(
+                "a direct solar irradiance run (IEMSCT = 3, columns TRANS, SOL TR and SOLAR): \
+                 this path of the plan is the sun's",
+                3,
+                "a TRANS column",
+            ));
+        };
+        return Ok(PathSpectra {
+            wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
+            transmission: tau.to_vec(),
+            radiance_w_m2_sr_per_cm: Vec::new(),
+            // W cm-2 per cm-1 -> W m-2 per cm-1.
+            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
+            scattered_w_m2_sr_per_cm: Vec::new(),
+        });
+    }
+    let scattered = if want == Want::Scattered {
+        let Some(l) = t.solar_scattered_radiance() else {
+            return Err(wrong(
+                "a solar scattering run (IEMSCT = 2, column SOL_SCAT): this path of the plan \
+                 is a sunlit one",
+                2,
+                "a SOL_SCAT column",
+            ));
+        };
+        warn_multiple_scattering(file, &t, l);
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        l.iter().map(|x| x * 1e4).collect()
+    } else {
+        Vec::new()
+    };
+    let Some(tau) = tau else {
+        return Err(located(
             file,
             text,
             t.header_position,
             "expected a TOT_TRANS or COMBIN TRANS column in the header, found none".into(),
-        )
-    })?;
+        ));
+    };
     let l = t.path_thermal_radiance().ok_or_else(|| {
         located(
             file,
@@ -215,8 +271,34 @@ fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
         transmission: tau.to_vec(),
         radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
         extraterrestrial_w_m2_per_cm: Vec::new(),
-        scattered_w_m2_sr_per_cm: Vec::new(),
+        scattered_w_m2_sr_per_cm: scattered,
     })
+}
+
+/// MODTRAN's `SOL_SCAT` includes multiple scattering when MODTRAN ran with it; LOWTRAN7's
+/// runs of a plan scatter sunlight once (IMULT = 0). Where `SOL_SCAT` exceeds the
+/// single-scattered `SING_SCAT`, the path's scattered sunlight is not the same quantity as
+/// the other paths', and the build says so.
+fn warn_multiple_scattering(file: &str, t: &modtran_tape7::ModtranTape7, total: &[f64]) {
+    let Some(single) = t.single_scattered_radiance() else {
+        return;
+    };
+    let excess = total
+        .iter()
+        .zip(single)
+        .filter(|(a, _)| **a > 0.0)
+        .map(|(a, b)| (a - b) / a)
+        .fold(0.0_f64, f64::max);
+    // Both are printed to 5 digits: a difference within their rounding is none.
+    if excess > 1e-4 {
+        irsig_cli::note!(
+            "irsig-atmos: warning: {file}: MODTRAN's SOL_SCAT includes multiple scattering \
+             (up to {:.1} % above SING_SCAT): this sunlit path's scattered sunlight is \
+             MODTRAN's single plus multiple scattering, while the paths LOWTRAN7 runs for \
+             the plan scatter sunlight once (IMULT = 0)",
+            excess * 100.0
+        );
+    }
 }
 
 /// Every run must be on one spectral grid, the one most runs share: a given tape7 on

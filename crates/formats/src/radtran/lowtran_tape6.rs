@@ -31,9 +31,16 @@
 //! | profile row | `I4,F9.2,F9.3,F7.1,…` (905, 906) | I 1-4, Z 5-13, P 14-22, T 23-29 |
 //! | IEMSCT 1 row | `1X,F7.0,F8.3,3E10.2,F9.4` (916) | columns 2-8, 9-16, 17-26, 27-36, 37-46, 47-55 |
 //! | IEMSCT 0 row | `1X,F7.0,F8.3,11F9.4,F12.3` (906) | columns 2-8, 9-16, 11 × 9 from 17, 116-127 |
+//! | IEMSCT 2 row | `1X,F7.0,F8.3,1P9E10.2,0PF9.4` (926) | columns 2-8, 9-16, 9 × 10 from 17, 107-115 |
+//! | IEMSCT 2 row, IMULT 1 | `1X,F6.0,F8.3,1P11E10.2,0PF7.4` (928) | columns 2-7, 8-15, 11 × 10 from 16, 126-132 |
+//! | IEMSCT 3 row | `1X,F7.0,F8.3,1P6E10.2,0PF9.4` (936) | columns 2-8, 9-16, 6 × 10 from 17, 77-85 |
 //! | integrated absorption | `'0INTEGRATED ABSORPTION FROM',I5,' TO',I5,' CM-1 =',F10.2` (740) | columns 48-57 |
 //! | average transmittance | `' AVERAGE TRANSMITTANCE =',F6.4` (740) | columns 25-30 |
 //! | integrated radiance | `'0INTEGRATED RADIANCE = ',E10.3` (750) | columns 24-33 |
+//! | integrated irradiance | `'0INTEGRATED IRRADIANCE = ',E10.3` (755) | columns 26-35 |
+//!
+//! Which table a run has is told by its column header (formats 900, 910, 920, 921, 930),
+//! and must be the one of the run's IEMSCT.
 
 use super::{Source, TextLine, read_int, read_real, text_lines};
 use crate::ParseError;
@@ -57,6 +64,71 @@ pub struct Tape6Table {
     pub columns: Vec<Vec<f64>>,
 }
 
+impl Tape6Table {
+    /// The column named `name` (one of [`Tape6Table::names`]).
+    #[must_use]
+    pub fn column(&self, name: &str) -> Option<&[f64]> {
+        self.names
+            .iter()
+            .position(|n| *n == name)
+            .map(|i| self.columns[i].as_slice())
+    }
+
+    /// Wavenumbers, cm⁻¹, increasing.
+    #[must_use]
+    pub fn wavenumber_per_cm(&self) -> &[f64] {
+        &self.columns[0]
+    }
+
+    /// The path's total transmittance, 0-1 (every table's last transmittance column).
+    #[must_use]
+    pub fn transmission(&self) -> Option<&[f64]> {
+        self.column("TRANS").or_else(|| self.column("TOTAL TRANS"))
+    }
+
+    /// The thermal radiance of the path, W cm⁻² sr⁻¹ per cm⁻¹ (IEMSCT 1 and 2).
+    #[must_use]
+    pub fn thermal_radiance(&self) -> Option<&[f64]> {
+        self.column("RADIANCE PER CM-1")
+            .or_else(|| self.column("ATMOS RADIANCE PER CM-1"))
+    }
+
+    /// The sunlight scattered into the path, W cm⁻² sr⁻¹ per cm⁻¹: IEMSCT 2's `PATH
+    /// SCATTERED` per cm⁻¹ (single scattering, and multiple scattering with IMULT = 1).
+    #[must_use]
+    pub fn scattered_radiance(&self) -> Option<&[f64]> {
+        self.column("PATH SCATTERED RADIANCE PER CM-1")
+    }
+
+    /// The single-scattered part of [`Tape6Table::scattered_radiance`], W cm⁻² sr⁻¹ per
+    /// cm⁻¹: printed by an IEMSCT 2 run with IMULT = 1 only (`S SCAT`).
+    #[must_use]
+    pub fn single_scattered_radiance(&self) -> Option<&[f64]> {
+        self.column("SINGLE SCATTERED RADIANCE PER CM-1")
+    }
+
+    /// The total radiance of an IEMSCT 2 run, W cm⁻² sr⁻¹ per cm⁻¹: thermal, scattered
+    /// and ground-reflected.
+    #[must_use]
+    pub fn total_radiance(&self) -> Option<&[f64]> {
+        self.column("TOTAL RADIANCE PER CM-1")
+    }
+
+    /// The solar irradiance transmitted along the path, on a surface normal to the beam,
+    /// W cm⁻² per cm⁻¹: IEMSCT 3's `TRANSMITTED` per cm⁻¹.
+    #[must_use]
+    pub fn transmitted_solar_irradiance(&self) -> Option<&[f64]> {
+        self.column("TRANSMITTED SOLAR IRRADIANCE PER CM-1")
+    }
+
+    /// The extraterrestrial solar (or lunar) irradiance, on a surface normal to the beam,
+    /// W cm⁻² per cm⁻¹: IEMSCT 3's `SOLAR` per cm⁻¹.
+    #[must_use]
+    pub fn extraterrestrial_irradiance(&self) -> Option<&[f64]> {
+        self.column("SOLAR IRRADIANCE PER CM-1")
+    }
+}
+
 /// One calculation's part of TAPE6.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Tape6Run {
@@ -68,8 +140,12 @@ pub struct Tape6Run {
     pub integrated_absorption_per_cm: Option<f64>,
     /// `AVERAGE TRANSMITTANCE = X`.
     pub average_transmittance: Option<f64>,
-    /// `INTEGRATED RADIANCE = X WATTS CM-2 STER-1`: ∫ L dν, W cm⁻² sr⁻¹.
+    /// `INTEGRATED RADIANCE = X WATTS CM-2 STER-1`: ∫ L dν, W cm⁻² sr⁻¹ (IEMSCT 2: of
+    /// the total, thermal plus scattered plus ground-reflected).
     pub integrated_radiance_w_cm2_sr: Option<f64>,
+    /// `INTEGRATED IRRADIANCE = X WATTS CM-2` (IEMSCT 3): ∫ of the transmitted solar
+    /// irradiance dν, W cm⁻².
+    pub integrated_irradiance_w_cm2: Option<f64>,
     /// Errors, warnings and resets LOWTRAN printed.
     pub messages: Vec<Message>,
     /// The first `ATMOSPHERIC PROFILES` table: altitude (km), pressure (mb) and
@@ -111,6 +187,54 @@ const TRANSMITTANCE: [&str; 14] = [
     "HNO3 TRANS",
     "AER-HYD ABS",
     "INTEGRATED ABSORPTION",
+];
+
+/// IEMSCT 2's table (FORMAT 926, header 920): each radiance per cm⁻¹ and per µm.
+const SCATTERED: [&str; 12] = [
+    "FREQ",
+    "WAVELENGTH",
+    "ATMOS RADIANCE PER CM-1",
+    "ATMOS RADIANCE PER MICRON",
+    "PATH SCATTERED RADIANCE PER CM-1",
+    "PATH SCATTERED RADIANCE PER MICRON",
+    "GROUND REFLECTED RADIANCE PER CM-1",
+    "GROUND REFLECTED RADIANCE PER MICRON",
+    "TOTAL RADIANCE PER CM-1",
+    "TOTAL RADIANCE PER MICRON",
+    "INTEGRAL",
+    "TRANS",
+];
+/// IEMSCT 2's table with multiple scattering (FORMAT 928, header 921): the scattered
+/// radiance's single-scattered part (`S SCAT`) and the ground-reflected radiance's direct
+/// part (`DIRECT`) added, per cm⁻¹.
+const SCATTERED_MULTIPLE: [&str; 14] = [
+    "FREQ",
+    "WAVELENGTH",
+    "ATMOS RADIANCE PER CM-1",
+    "ATMOS RADIANCE PER MICRON",
+    "PATH SCATTERED RADIANCE PER CM-1",
+    "PATH SCATTERED RADIANCE PER MICRON",
+    "SINGLE SCATTERED RADIANCE PER CM-1",
+    "GROUND REFLECTED RADIANCE PER CM-1",
+    "GROUND REFLECTED RADIANCE PER MICRON",
+    "DIRECT GROUND REFLECTED RADIANCE PER CM-1",
+    "TOTAL RADIANCE PER CM-1",
+    "TOTAL RADIANCE PER MICRON",
+    "INTEGRAL",
+    "TRANS",
+];
+/// IEMSCT 3's table (FORMAT 936, header 930): irradiances per cm⁻¹ and per µm, and the
+/// running integrals (W cm⁻²) of the transmitted and the extraterrestrial one.
+const SOLAR: [&str; 9] = [
+    "FREQ",
+    "WAVELENGTH",
+    "TRANSMITTED SOLAR IRRADIANCE PER CM-1",
+    "TRANSMITTED SOLAR IRRADIANCE PER MICRON",
+    "SOLAR IRRADIANCE PER CM-1",
+    "SOLAR IRRADIANCE PER MICRON",
+    "INTEGRATED TRANSMITTED",
+    "INTEGRATED SOLAR",
+    "TRANS",
 ];
 
 /// A numeric field of a printed line: its first column (0-based), its width, the decimals
@@ -160,6 +284,38 @@ const TRANSMITTANCE_ROW: [Field; 14] = [
     field(115, 12, 3, "F12.3"),
 ];
 
+/// `F7.0,F8.3` from column 2, then `count` fields `E10.2`, then `F9.4`: FORMATs 926 and
+/// 936 of LOWTRAN7's `TRANS`.
+const fn e_row<const N: usize>() -> [Field; N] {
+    let mut row = [field(1, 7, 0, "F7.0"); N];
+    row[1] = field(8, 8, 3, "F8.3");
+    let mut k = 2;
+    while k + 1 < N {
+        row[k] = field(16 + 10 * (k - 2), 10, 2, "E10.2");
+        k += 1;
+    }
+    row[N - 1] = field(16 + 10 * (N - 3), 9, 4, "F9.4");
+    row
+}
+
+/// FORMAT 926 (IEMSCT 2): `1X,F7.0,F8.3,1P9E10.2,0PF9.4`.
+const SCATTERED_ROW: [Field; 12] = e_row::<12>();
+/// FORMAT 936 (IEMSCT 3): `1X,F7.0,F8.3,1P6E10.2,0PF9.4`.
+const SOLAR_ROW: [Field; 9] = e_row::<9>();
+/// FORMAT 928 (IEMSCT 2, IMULT 1): `1X,F6.0,F8.3,1P11E10.2,0PF7.4`, one column narrower
+/// at each end.
+const SCATTERED_MULTIPLE_ROW: [Field; 14] = {
+    let mut row = [field(1, 6, 0, "F6.0"); 14];
+    row[1] = field(7, 8, 3, "F8.3");
+    let mut k = 2;
+    while k < 13 {
+        row[k] = field(15 + 10 * (k - 2), 10, 2, "E10.2");
+        k += 1;
+    }
+    row[13] = field(125, 7, 4, "F7.4");
+    row
+};
+
 /// FORMATs 905 and 906 of LOWTRAN7's `STDMDL`: `I4,0PF9.2,F9.3,F7.1,…`, the level's
 /// number, then Z (km), P (mb) and T (K).
 const PROFILE_Z_P_T: [Field; 3] = [
@@ -179,6 +335,8 @@ const ABSORPTION: Field = field(47, 10, 2, "F10.2");
 const AVERAGE: Field = field(24, 6, 4, "F6.4");
 /// FORMAT 750: `'0INTEGRATED RADIANCE = ',1PE10.3,' WATTS CM-2 STER-1'`.
 const RADIANCE_SUM: Field = field(23, 10, 3, "E10.3");
+/// FORMAT 755: `'0INTEGRATED IRRADIANCE = ',1PE10.3,' WATTS CM-2 '`.
+const IRRADIANCE_SUM: Field = field(25, 10, 3, "E10.3");
 
 /// Reads `f` of `line` as a Fortran formatted read does, but a blank field, which LOWTRAN
 /// never prints, is an error rather than 0; so is a value that is not a finite number.
@@ -257,24 +415,41 @@ fn body<'a>(line: &TextLine<'a>) -> &'a str {
     line.text.get(1..).unwrap_or("")
 }
 
-fn table_layout(iemsct: i64) -> Option<(&'static [&'static str], &'static [Field])> {
-    match iemsct {
-        0 => Some((&TRANSMITTANCE, &TRANSMITTANCE_ROW)),
-        1 => Some((&RADIANCE, &RADIANCE_ROW)),
-        _ => None,
+/// A table's names, its row's fields and the IEMSCT it belongs to.
+type Layout = (&'static [&'static str], &'static [Field], i64);
+
+/// The table a column header line starts (`FREQ WAVLEN …` / `FREQ WAVELENGTH …`, the
+/// body of FORMATs 900, 910, 920, 921 and 930), told by its words.
+fn table_layout(t: &str) -> Option<Layout> {
+    let mut words = t.split_whitespace();
+    if words.next() != Some("FREQ") || !matches!(words.next(), Some("WAVLEN" | "WAVELENGTH")) {
+        return None;
     }
+    Some(if t.contains("TRANSMITTED") {
+        (&SOLAR, &SOLAR_ROW, 3)
+    } else if t.contains("PATH SCATTERED RADIANCE") {
+        (&SCATTERED_MULTIPLE, &SCATTERED_MULTIPLE_ROW, 2)
+    } else if t.contains("PATH SCATTERED") {
+        (&SCATTERED, &SCATTERED_ROW, 2)
+    } else if t.contains("ATMOS RADIANCE") {
+        (&RADIANCE, &RADIANCE_ROW, 1)
+    } else {
+        (&TRANSMITTANCE, &TRANSMITTANCE_ROW, 0)
+    })
 }
 
 /// Reads a LOWTRAN7 `TAPE6`.
 ///
-/// Only IEMSCT 0 and 1 tables are read (transmittance and thermal radiance); the runs of
-/// other modes keep their integrated values and messages.
+/// Every mode's table is read: transmittance (IEMSCT 0), thermal radiance (1), with
+/// scattered sunlight (2, with or without multiple scattering) and direct solar irradiance
+/// (3).
 ///
 /// # Errors
 /// A [`ParseError`] at the place: an empty file, a file with no `***** LOWTRAN 7 *****`
 /// banner, a table row whose count of numbers is not the table's, a value that is not a
 /// finite number (LOWTRAN prints `Infinity` or asterisks when a deck's numbers overflow),
-/// wavenumbers that do not increase, or an integrated value that is not a number.
+/// wavenumbers that do not increase, an integrated value that is not a number, or a table
+/// whose column header is not the one of the run's IEMSCT.
 pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
     let src = Source { file, text };
     let lines = text_lines(text);
@@ -291,7 +466,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
     let mut runs = Vec::new();
     let mut run = Tape6Run::default();
     let mut iemsct: Option<i64> = None;
-    let mut in_table = false;
+    let mut in_table: Option<Layout> = None;
     let mut started = false;
     // 0: outside, 1: after the `ATMOSPHERIC PROFILES` banner, 2: in its Z P T table.
     let mut profile_state = 0;
@@ -352,7 +527,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
         if t.starts_with("CARD 5 *****") {
             run.iemsct = iemsct;
             runs.push(std::mem::take(&mut run));
-            in_table = false;
+            in_table = None;
             profile_state = 0;
             started = false;
             continue;
@@ -367,7 +542,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             }
         }
         if t.starts_with("INTEGRATED ABSORPTION") {
-            in_table = false;
+            in_table = None;
             run.integrated_absorption_per_cm = Some(read_field(
                 src,
                 line,
@@ -382,7 +557,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             continue;
         }
         if t.starts_with("INTEGRATED RADIANCE") {
-            in_table = false;
+            in_table = None;
             run.integrated_radiance_w_cm2_sr = Some(read_field(
                 src,
                 line,
@@ -391,27 +566,57 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             )?);
             continue;
         }
-        if t.starts_with("FREQ WAVLEN") || t.starts_with("FREQ WAVELENGTH") {
-            in_table = true;
+        if t.starts_with("INTEGRATED IRRADIANCE") {
+            in_table = None;
+            run.integrated_irradiance_w_cm2 = Some(read_field(
+                src,
+                line,
+                IRRADIANCE_SUM,
+                "the integrated irradiance in W cm-2",
+            )?);
             continue;
         }
-        if !in_table {
+        if let Some(found) = table_layout(t) {
+            if iemsct.is_some_and(|k| k != found.2) {
+                return Err(src.error(
+                    line.offset,
+                    line.text.len(),
+                    format!(
+                        "expected the table of an IEMSCT = {} run, as the echo of card 1 says, \
+                         found the column header of IEMSCT = {}'s",
+                        iemsct.unwrap_or(0),
+                        found.2
+                    ),
+                ));
+            }
+            if run.table.as_ref().is_some_and(|t| t.names != found.0) {
+                return Err(src.error(
+                    line.offset,
+                    line.text.len(),
+                    "expected the rest of the run's table (a page's repeated header), found \
+                     the header of another table",
+                ));
+            }
+            in_table = Some(found);
             continue;
         }
-        let Some((names, layout)) = iemsct.and_then(table_layout) else {
+        let Some((names, layout, _)) = in_table else {
             continue;
         };
         // Page headers and unit lines (`1/CM  MICRONS …`) inside the table: not a row. A
         // row starts with its wavenumber, which LOWTRAN prints `F7.0` in columns 2-8
-        // (`   710.`).
-        let first = line.field(1, 7).trim();
+        // (`   710.`), or `F6.0` in columns 2-7 (FORMAT 928).
+        let first = line.field(layout[0].start, layout[0].width).trim();
         let is_row = first.ends_with('.')
             && first.len() > 1
             && first[..first.len() - 1].bytes().all(|c| c.is_ascii_digit());
         if !is_row {
             continue;
         }
-        let what = format!("a row of the IEMSCT = {} table", iemsct.unwrap_or(0));
+        let what = format!(
+            "a row of the IEMSCT = {} table",
+            in_table.map_or(0, |l| l.2)
+        );
         let table = run.table.get_or_insert_with(|| Tape6Table {
             names: names.to_vec(),
             columns: vec![Vec::new(); names.len()],
@@ -552,6 +757,72 @@ mod tests {
         let blank_iemsct = PROFILE.replace("*****    6    2    1", "*****    6    2     ");
         let e = parse("TAPE6", &blank_iemsct).unwrap_err();
         assert_eq!((e.line, e.column), (2, 26), "{e}");
+    }
+
+    /// An IEMSCT 3 run's table and integrals as LOWTRAN7 printed them
+    /// (formats/radtran/samples/solar.tape6, run 3: two of its six rows, and the integrals
+    /// over all six).
+    const SUN: &str = "1                    ***** LOWTRAN 7 *****
+0 CARD 1  *****    6    3    3    0    0    0    0    0    0    0    0    0    0   0.000   0.00
+1                      IRRADIANCE (WATTS/CM2-XXXX)
+0  FREQ   WAVLEN      TRANSMITTED           SOLAR           INTEGRATED         TOTAL
+  (CM-1) (MICRN)   (CM-1)    (MICRN)   (CM-1)    (MICRN)   TRANS.    SOLAR     TRANS
+   2500.   4.000  1.26E-06  7.88E-04  1.52E-06  9.49E-04  1.26E-05  1.52E-05   0.8304
+   2520.   3.968  1.32E-06  8.36E-04  1.53E-06  9.74E-04  3.89E-05  4.59E-05   0.8575
+0INTEGRATED ABSORPTION FROM 2500 TO 2600 CM-1 =     18.39 CM-1
+ AVERAGE TRANSMITTANCE =0.8161
+
+0INTEGRATED IRRADIANCE =  1.268E-04 WATTS CM-2 
+0 CARD 5 *****    0
+";
+
+    #[test]
+    fn a_direct_solar_table_and_its_integral() {
+        let t = parse("TAPE6", SUN).unwrap();
+        let r = &t.runs[0];
+        assert_eq!(r.iemsct, Some(3));
+        let tab = r.table.as_ref().unwrap();
+        assert_eq!(tab.wavenumber_per_cm(), [2500.0, 2520.0]);
+        assert_eq!(
+            tab.transmitted_solar_irradiance().unwrap(),
+            [1.26e-6, 1.32e-6]
+        );
+        assert_eq!(
+            tab.extraterrestrial_irradiance().unwrap(),
+            [1.52e-6, 1.53e-6]
+        );
+        assert_eq!(tab.transmission().unwrap(), [0.8304, 0.8575]);
+        assert_eq!(r.integrated_irradiance_w_cm2, Some(1.268e-4));
+        assert!(tab.scattered_radiance().is_none());
+    }
+
+    #[test]
+    fn bad_solar_tables_are_refused_at_their_place() {
+        // Cut in the middle of a row: its SOLAR per micron is blank.
+        let cut = &SUN[..SUN.find("  9.74E-04").unwrap()];
+        let e = parse("TAPE6", cut).unwrap_err();
+        assert_eq!((e.line, e.column), (7, 47), "{e}");
+        assert!(e.message.contains("SOLAR IRRADIANCE PER MICRON"), "{e}");
+        let nan = SUN.replace("1.26E-06  7.88E-04", "     NaN  7.88E-04");
+        let e = parse("TAPE6", &nan).unwrap_err();
+        assert_eq!((e.line, e.column), (6, 24), "{e}");
+        // The table of another mode than card 1's.
+        let other = SUN.replace("*****    6    3    3", "*****    6    3    1");
+        let e = parse("TAPE6", &other).unwrap_err();
+        assert_eq!(e.line, 4, "{e}");
+        assert!(e.message.contains("IEMSCT = 1 run"), "{e}");
+        // Without card 1's echo, a second table of another kind in the run.
+        let card1 = SUN.lines().nth(1).unwrap();
+        let two = SUN.replace(&format!("{card1}\n"), "").replace(
+            "0INTEGRATED ABSORPTION",
+            "0   FREQ WAVLEN   ATMOS RADIANCE       INTEGRAL TOTAL\n0INTEGRATED ABSORPTION",
+        );
+        let e = parse("TAPE6", &two).unwrap_err();
+        assert_eq!(e.line, 7, "{e}");
+        assert!(e.message.contains("another table"), "{e}");
+        let moved = SUN.replace("=  1.268E-04", "= 1.268E-04 ");
+        let e = parse("TAPE6", &moved).unwrap_err();
+        assert_eq!(e.line, 11, "{e}");
     }
 
     #[test]
