@@ -261,7 +261,7 @@ fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra,
             file,
             text,
             t.header_position,
-            "expected the path radiance columns (PTH_THRML, THRML_SCT) of a radiance-mode \
+            "expected the path radiance column (PTH_THRML) of a radiance-mode \
              tape7, found none: run MODTRAN in radiance mode"
                 .into(),
         )

@@ -198,15 +198,12 @@ impl ModtranTape7 {
         self.of_run(3, "SOL TR")
     }
 
-    /// The path's thermal radiance, W cm⁻² sr⁻¹ per cm⁻¹: `PTH_THRML` plus the thermal
-    /// scattering `THRML_SCT` where the file has it (radiance mode only).
+    /// The path's thermal radiance, W cm⁻² sr⁻¹ per cm⁻¹: `PTH_THRML` (radiance mode
+    /// only), which already includes the thermal scattering `THRML_SCT` (its part, as
+    /// `SING_SCAT` is `SOL_SCAT`'s: formats/radtran/modtran-tape7.md).
     #[must_use]
     pub fn path_thermal_radiance(&self) -> Option<Vec<f64>> {
-        let emitted = self.column("PTH_THRML")?;
-        Some(match self.column("THRML_SCT") {
-            Some(s) => emitted.iter().zip(s).map(|(a, b)| a + b).collect(),
-            None => emitted.to_vec(),
-        })
+        self.column("PTH_THRML").map(<[f64]>::to_vec)
     }
 }
 
@@ -434,10 +431,8 @@ mod tests {
         assert_eq!(t.names, ["FREQ", "TOT_TRANS", "PTH_THRML", "THRML_SCT"]);
         assert_eq!(t.wavenumber_per_cm(), [2050.0, 2051.0]);
         assert_eq!(t.transmission().unwrap(), [0.74772996, 0.59794545]);
-        assert_eq!(
-            t.path_thermal_radiance().unwrap(),
-            [5.6037e-8 + 1e-9, 9.6305e-8]
-        );
+        // THRML_SCT is a part of PTH_THRML, not added to it.
+        assert_eq!(t.path_thermal_radiance().unwrap(), [5.6037e-8, 9.6305e-8]);
         let d = t.declared.unwrap();
         assert_eq!(
             (d.v1_per_cm, d.v2_per_cm, d.dv_per_cm, d.position.line),
