@@ -21,8 +21,8 @@ use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::Piloted;
 use irsig_tracer::testing::{
-    ConvergedReference, box_mesh, converged_reference, grey_materials, ground_quad, material_p90s,
-    percentile, raw_scene, sunlit_pilot_space, temperatures,
+    ConvergedReference, REFERENCE_ROUNDS_DEFAULT, box_mesh, converged_reference, grey_materials,
+    ground_quad, material_p90s, percentile, raw_scene, sunlit_pilot_space, temperatures,
 };
 use irsig_tracer::{Camera, Sun, SunBeam, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
@@ -122,7 +122,7 @@ fn pilot(seed: u64, beam_w_m2: f64, specular: bool, tolerance_k: f64) -> (Pilote
 /// to `stop_k` (`irsig_tracer::testing::converged_reference`).
 fn reference(seed: u64, beam_w_m2: f64, stop_k: f64) -> ConvergedReference {
     let (tracer, camera) = generated(seed, beam_w_m2, Some(16), true);
-    let reference = converged_reference(&tracer, &camera, stop_k);
+    let reference = converged_reference(&tracer, &camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
     eprintln!("reference: {}", reference.rounds_line());
     reference
 }
