@@ -4,11 +4,13 @@
 //! from a mast, traced with the pilot's choice at a tolerance, against a converged
 //! rendering of the same view.
 //!
-//! The reference is converged by construction and checked: 16 × 16 rays per pixel with
-//! 64 sky-view rays each (64 × 64 with 16, four seeds, where the pixel is not one
-//! surface), 8 bounces, traced from two independent sets of seeds; their mean is the
-//! truth, and its own error (half their difference) must be under a third of the
-//! tolerance at p99.
+//! The reference is converged by construction and checked
+//! (`irsig_tracer::testing::converged_reference`): 8 bounces, every pixel traced in two
+//! independent halves, from 16 × 16 rays with 64 sky-view rays each; a pixel whose halves
+//! differ by more than a sixth of the tolerance is traced again from fresh seeds with four
+//! times the rays, round after round up to 262,144 a half (a pixel that is not one surface
+//! to 64 × 64 at least). The halves' mean is the truth, and its own error (half their
+//! difference) must be under a third of the tolerance at p99, or the case is not verified.
 //! The promise checked is the one `--tolerance` makes: the frame's 99th percentile of
 //! |ΔT| within the tolerance, every material's 90th within it too, and what the pilot
 //! says it cannot guarantee kept under 0.5 % of the frame.
@@ -17,15 +19,18 @@
 //! irsig-tracer --test guarantee -- --nocapture` runs more scenes at another tolerance
 //! and prints each one's figures (`docs/accuracy.md` holds a table of them;
 //! `IRSIG_GUARANTEE_DEBUG=1` adds every pixel off by more than a quarter of the
-//! tolerance); CI runs scene 0's low view and scene 1's mast view at 0.5 K.
+//! tolerance and the reference's capped pixels; `IRSIG_GUARANTEE_VIEW=1` the mast views
+//! alone; `IRSIG_GUARANTEE_REFERENCE_ROUNDS=N` the reference's first N rounds alone); CI
+//! runs scene 0's low view and scene 1's mast view at 0.5 K.
 
 use irsig_model::View;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::PilotSpace;
 use irsig_tracer::testing::{
-    box_mesh, grey_materials, ground_quad, percentile, raw_scene, temperatures, vacuum_pilot_space,
+    REFERENCE_ROUNDS_DEFAULT, box_mesh, converged_reference, grey_materials, ground_quad,
+    material_p90s, percentile, raw_scene, temperatures, vacuum_pilot_space,
 };
-use irsig_tracer::{Camera, Tile, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -143,102 +148,71 @@ fn check((seed, view): (u64, usize), tolerance_k: f64) -> Result<Outcome, String
             &|_| {},
         )
         .unwrap();
-    // The reference: 16 x 16 rays everywhere from two seeds. A pixel that is not one
-    // surface (an edge, a reflected horizon, a wire: with the hemispheric sky, its 16 x 16
-    // mean is more than a sixth of the tolerance from its centre ray), or whose two seeds
-    // differ by more than that, is traced again at 64 x 64 from four seeds a side: two
-    // seeds at 16 x 16 can agree by chance on an edge, since a few rays flipping across it
-    // is all that moves them.
-    let options = |supersampling: u32, sky_view_rays: u32, seed: u64| TraceOptions {
-        specular_bounces: 8,
-        sky_view_rays,
-        supersampling,
-        adaptive_threshold_k: None,
-        seed,
-        truth: false,
-    };
-    let whole = |supersampling: u32, sky_view_rays: u32, seed: u64| {
-        let o = options(supersampling, sky_view_rays, seed);
-        temperatures(&reference_tracer.render(&camera, &o, &|_| {}).unwrap())
-    };
-    let (centre, calm) = (whole(1, 0, 0), whole(16, 0, 101));
-    let (mut a, mut b) = (whole(16, 64, 101), whole(16, 64, 202));
+    // The reference: converged in rounds to a sixth of the tolerance (testing.rs).
+    let rounds = std::env::var("IRSIG_GUARANTEE_REFERENCE_ROUNDS")
+        .map_or(REFERENCE_ROUNDS_DEFAULT, |r| {
+            r.parse().expect("IRSIG_GUARANTEE_REFERENCE_ROUNDS=N")
+        });
+    let reference = converged_reference(&reference_tracer, &camera, tolerance_k / 6.0, rounds);
+    let (truth, noise) = (&reference.truth, &reference.error);
     let width = camera.pixels[0];
-    let mut finer = 0;
-    for i in 0..a.len() {
-        let one_surface = (calm[i] - centre[i]).abs() <= tolerance_k / 6.0;
-        if one_surface && (a[i] - b[i]).abs() <= tolerance_k / 6.0 {
-            continue;
-        }
-        finer += 1;
-        let tile = Tile {
-            x: i as u32 % width,
-            y: i as u32 / width,
-            width: 1,
-            height: 1,
-        };
-        let pixel = |seed: u64| {
-            let frame = reference_tracer
-                .render_tile(&camera, &options(64, 16, seed), tile, &|_| {})
-                .unwrap();
-            temperatures(&frame)[0]
-        };
-        let mean = |from: u64| (from..from + 4).map(pixel).sum::<f64>() / 4.0;
-        (a[i], b[i]) = (mean(301), mean(401));
-    }
-    // The truth is the mean of two independent halves: its own error is about half their
-    // difference.
-    let noise: Vec<f64> = a.iter().zip(&b).map(|(a, b)| 0.5 * (a - b)).collect();
-    let truth: Vec<f64> = a.iter().zip(&b).map(|(a, b)| 0.5 * (a + b)).collect();
     let got = temperatures(&chosen);
-    let error: Vec<f64> = got.iter().zip(&truth).map(|(g, t)| g - t).collect();
+    let error: Vec<f64> = got.iter().zip(truth).map(|(g, t)| g - t).collect();
     let material = chosen
         .truth_layer(irsig_model::truth::Layer::MaterialPrimary)
         .unwrap();
     let mut worst = 0.0_f64;
-    for id in [GROUND, PAINT, GLASS, METAL, POLE] {
-        let of: Vec<f64> = error
-            .iter()
-            .zip(&material)
-            .filter(|&(_, &m)| m.to_bits() == f32::from(id).to_bits())
-            .map(|(e, _)| *e)
-            .collect();
-        // A class of a handful of pixels has no 90th percentile worth the name.
-        if of.len() >= 10 {
-            let p90 = percentile(&of, 90.0);
-            eprintln!("  material {id}: {} pixels, p90 |dT| {p90:.3} K", of.len());
-            if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
-                for (i, e) in error.iter().enumerate() {
-                    if material[i].to_bits() == f32::from(id).to_bits()
-                        && e.abs() > 0.25 * tolerance_k
-                    {
-                        eprintln!(
-                            "    pixel {i} ({}, {}): {e:.3} K, reference {:.2} K, noise {:.3}",
-                            i as u32 % width,
-                            i as u32 / width,
-                            truth[i],
-                            noise[i]
-                        );
-                    }
+    for (id, pixels, p90) in material_p90s(&error, &material, &[GROUND, PAINT, GLASS, METAL, POLE])
+    {
+        eprintln!("  material {id}: {pixels} pixels, p90 |dT| {p90:.3} K");
+        if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
+            for (i, e) in error.iter().enumerate() {
+                if material[i].to_bits() == f32::from(id).to_bits() && e.abs() > 0.25 * tolerance_k
+                {
+                    eprintln!(
+                        "    pixel {i} ({}, {}): {e:.3} K, reference {:.2} K, noise {:.3}",
+                        i as u32 % width,
+                        i as u32 / width,
+                        truth[i],
+                        noise[i]
+                    );
                 }
             }
-            worst = worst.max(p90);
+        }
+        worst = worst.max(p90);
+    }
+    if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
+        for &i in &reference.capped {
+            eprintln!(
+                "  capped reference pixel {i} ({}, {}): material {}, reference {:.2} K, noise {:.3}",
+                i as u32 % width,
+                i as u32 / width,
+                material[i],
+                truth[i],
+                noise[i]
+            );
         }
     }
     eprintln!("  refinement {:?}", c.refinement);
     let outcome = Outcome {
         p99_k: percentile(&error, 99.0),
         worst_material_p90_k: worst,
-        reference_noise_p99_k: percentile(&noise, 99.0),
+        reference_noise_p99_k: reference.error_p99_k(),
         not_guaranteed_share: piloted.decision.not_guaranteed_share,
     };
     eprintln!(
         "scene {seed} view {view} at {tolerance_k} K: p99 |dT| {:.3} K, worst material p90 {:.3} K, \
-         reference noise p99 {:.3} K ({finer} pixels at 64 x 64), not guaranteed {:.2} %, chosen {} bounces, {} sky-view \
-         rays, relative cost {:.3}",
+         reference error p99 {:.3} K ({}), {}, not guaranteed {:.2} %, chosen {} \
+         bounces, {} sky-view rays, relative cost {:.3}",
         outcome.p99_k,
         outcome.worst_material_p90_k,
         outcome.reference_noise_p99_k,
+        reference.rounds_line(),
+        if outcome.reference_noise_p99_k < tolerance_k / 3.0 {
+            "verified"
+        } else {
+            "NOT VERIFIED: the reference's error is over a third of the tolerance"
+        },
         100.0 * outcome.not_guaranteed_share,
         c.bounces,
         c.sky_view_rays,
@@ -247,14 +221,20 @@ fn check((seed, view): (u64, usize), tolerance_k: f64) -> Result<Outcome, String
     Ok(outcome)
 }
 
-/// The scenes and views checked: every view of `IRSIG_GUARANTEE_SEEDS=FROM..TO`, else
-/// scene 0's low view and scene 1's mast view.
+/// The scenes and views checked: every view of `IRSIG_GUARANTEE_SEEDS=FROM..TO` (only view
+/// V with `IRSIG_GUARANTEE_VIEW=V`), else scene 0's low view and scene 1's mast view.
 fn cases() -> Vec<(u64, usize)> {
+    let views: Vec<usize> = match std::env::var("IRSIG_GUARANTEE_VIEW") {
+        Ok(v) => vec![v.parse().expect("IRSIG_GUARANTEE_VIEW=0 or 1")],
+        Err(_) => vec![0, 1],
+    };
     match std::env::var("IRSIG_GUARANTEE_SEEDS") {
         Ok(s) => {
             let (a, b) = s.split_once("..").expect("IRSIG_GUARANTEE_SEEDS=FROM..TO");
             let seeds = a.parse::<u64>().unwrap()..b.parse().unwrap();
-            seeds.flat_map(|seed| [(seed, 0), (seed, 1)]).collect()
+            seeds
+                .flat_map(|seed| views.iter().map(move |&view| (seed, view)))
+                .collect()
         }
         Err(_) => vec![(0, 0), (1, 1)],
     }
@@ -262,6 +242,7 @@ fn cases() -> Vec<(u64, usize)> {
 
 #[test]
 fn the_tolerance_holds_on_generated_scenes_against_a_converged_reference() {
+    let by_hand = std::env::var("IRSIG_GUARANTEE_SEEDS").is_ok();
     let tolerance_k = std::env::var("IRSIG_GUARANTEE_TOLERANCE_K").map_or(0.5, |t| {
         t.parse().expect("IRSIG_GUARANTEE_TOLERANCE_K=KELVIN")
     });
@@ -270,8 +251,28 @@ fn the_tolerance_holds_on_generated_scenes_against_a_converged_reference() {
         .into_iter()
         .map(|case| (case, check(case, tolerance_k)))
         .collect();
+    let refused = outcomes.iter().filter(|(_, o)| o.is_err()).count();
+    let unverified = outcomes
+        .iter()
+        .filter(|(_, o)| {
+            o.as_ref()
+                .is_ok_and(|o| o.reference_noise_p99_k >= tolerance_k / 3.0)
+        })
+        .count();
+    eprintln!(
+        "at {tolerance_k} K: {} cases, {refused} refused, {} accepted and verified, {unverified} \
+         accepted with a reference not converged enough to verify them",
+        outcomes.len(),
+        outcomes.len() - refused - unverified
+    );
     for ((seed, view), o) in outcomes {
-        let o = o.unwrap_or_else(|e| panic!("scene {seed} view {view}: {e}"));
+        // A refusal, with its floor, is the pilot's promise kept; a hand run at a small
+        // tolerance counts them. CI's cases are all within reach.
+        let o = match o {
+            Ok(o) => o,
+            Err(e) if by_hand && e.contains("reachable floor") => continue,
+            Err(e) => panic!("scene {seed} view {view}: {e}"),
+        };
         assert!(
             o.reference_noise_p99_k < tolerance_k / 3.0,
             "scene {seed} view {view}: the reference is not converged: {:.3} K, half its seeds' difference",
@@ -289,4 +290,51 @@ fn the_tolerance_holds_on_generated_scenes_against_a_converged_reference() {
         );
         assert!(o.not_guaranteed_share <= 0.005, "scene {seed} view {view}");
     }
+}
+
+/// The reference machinery against an exact answer: a straight edge between blackbody
+/// facets at 330 K and 300 K (`EdgeExperiment`), each pixel's exact radiance the two
+/// facets' weighted by its area either side of the edge. A reference stopped at `stop_k`
+/// claims its error's 99th percentile under `2·stop_k` (a third of the tolerance whose
+/// sixth it is); over the pixels the edge crosses, the 99th percentile of its distance from
+/// the exact temperatures must be under that, and off the edge it is exact.
+#[test]
+fn the_converged_reference_is_within_its_claim_of_an_exact_edge() {
+    use irsig_radiometry::BandModel;
+    use irsig_tracer::testing::{EdgeExperiment, pixel_fraction_left_of_line};
+    let e = EdgeExperiment::new();
+    let stop_k = 0.05;
+    let reference = converged_reference(&e.tracer, &e.camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
+    eprintln!("edge reference: {}", reference.rounds_line());
+    let [w, _] = EdgeExperiment::PIXELS;
+    let (mut on_edge, mut off_edge) = (Vec::new(), Vec::new());
+    for (i, t) in reference.truth.iter().enumerate() {
+        let (col, row) = (i as u32 % w, i as u32 / w);
+        let exact = TotalRadiance.temperature(EdgeExperiment::exact_radiance_w_m2_sr(col, row));
+        let f = pixel_fraction_left_of_line(
+            EdgeExperiment::X0,
+            EdgeExperiment::SLOPE,
+            col.into(),
+            row.into(),
+        );
+        if f > 0.0 && f < 1.0 {
+            on_edge.push(t - exact);
+        } else {
+            off_edge.push(t - exact);
+        }
+    }
+    let p99 = percentile(&on_edge, 99.0);
+    eprintln!(
+        "{} edge pixels: p99 |truth - exact| {p99:.4} K, claimed error p99 {:.4} K",
+        on_edge.len(),
+        reference.error_p99_k()
+    );
+    assert!(on_edge.len() > 50, "{} edge pixels", on_edge.len());
+    assert!(p99 < 2.0 * stop_k, "p99 {p99:.4} K off the exact edge");
+    assert!(reference.error_p99_k() < 2.0 * stop_k);
+    // Off the edge every ray sees one blackbody: the temperature is its own to the
+    // inverse table's precision.
+    assert!(percentile(&off_edge, 100.0) < 1e-3);
+    // The edge needs more than the first round: it must have been refined.
+    assert!(reference.pixels_per_round[1..].iter().any(|&n| n > 0));
 }

@@ -4,11 +4,12 @@
 //! converged rendering of the same view.
 //!
 //! The pilot decides the sun's two models as well: whether it may be left out, and the
-//! shadow rays per hit. The reference has the sun on with 16 shadow rays per hit, 16 × 16
-//! rays per pixel (4096 points on the disk per pixel) and 64 sky-view rays, 8 bounces,
-//! from two independent seeds (64 × 64 rays from four seeds a side where the pixel is not
-//! one surface); their mean is the truth, and half their difference its own noise, which
-//! must be under a third of the tolerance at p99. Checked as `--tolerance` promises: the
+//! shadow rays per hit. The reference has the sun on with 16 shadow rays per hit (4096
+//! points on the disk per pixel at its first round), converged in rounds as guarantee.rs's
+//! (`irsig_tracer::testing::converged_reference`: two independent halves a pixel, four
+//! times the rays while they differ by more than a sixth of the smaller tolerance); their
+//! mean is the truth, and half their difference its own error, which must be under a
+//! third of the tolerance at p99. Checked as `--tolerance` promises: the
 //! frame's p99 of |ΔT| and every material's p90 within the tolerance, what the decision
 //! does not guarantee under 0.5 % of the frame.
 //!
@@ -20,9 +21,10 @@ use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::Piloted;
 use irsig_tracer::testing::{
-    box_mesh, grey_materials, ground_quad, percentile, raw_scene, sunlit_pilot_space, temperatures,
+    ConvergedReference, REFERENCE_ROUNDS_DEFAULT, box_mesh, converged_reference, grey_materials,
+    ground_quad, material_p90s, percentile, raw_scene, sunlit_pilot_space, temperatures,
 };
-use irsig_tracer::{Camera, Sun, SunBeam, Tile, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{Camera, Sun, SunBeam, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -116,49 +118,13 @@ fn pilot(seed: u64, beam_w_m2: f64, specular: bool, tolerance_k: f64) -> (Pilote
     (piloted, camera)
 }
 
-/// The converged day reference of scene `seed` (sun on, 16 shadow rays per hit): the
-/// truth and its own noise per pixel, the finer pass where a pixel moves by more than
-/// `fine_k`.
-fn reference(seed: u64, beam_w_m2: f64, fine_k: f64) -> (Vec<f64>, Vec<f64>) {
+/// The converged day reference of scene `seed` (sun on, 16 shadow rays per hit), in rounds
+/// to `stop_k` (`irsig_tracer::testing::converged_reference`).
+fn reference(seed: u64, beam_w_m2: f64, stop_k: f64) -> ConvergedReference {
     let (tracer, camera) = generated(seed, beam_w_m2, Some(16), true);
-    let options = |supersampling: u32, sky_view_rays: u32, seed: u64| TraceOptions {
-        specular_bounces: 8,
-        sky_view_rays,
-        supersampling,
-        adaptive_threshold_k: None,
-        seed,
-        truth: false,
-    };
-    let whole = |supersampling: u32, sky_view_rays: u32, seed: u64| {
-        let o = options(supersampling, sky_view_rays, seed);
-        temperatures(&tracer.render(&camera, &o, &|_| {}).unwrap())
-    };
-    let (centre, calm) = (whole(1, 0, 0), whole(16, 0, 101));
-    let (mut a, mut b) = (whole(16, 64, 101), whole(16, 64, 202));
-    let width = camera.pixels[0];
-    for i in 0..a.len() {
-        let one_surface = (calm[i] - centre[i]).abs() <= fine_k;
-        if one_surface && (a[i] - b[i]).abs() <= fine_k {
-            continue;
-        }
-        let tile = Tile {
-            x: i as u32 % width,
-            y: i as u32 / width,
-            width: 1,
-            height: 1,
-        };
-        let pixel = |seed: u64| {
-            let frame = tracer
-                .render_tile(&camera, &options(64, 16, seed), tile, &|_| {})
-                .unwrap();
-            temperatures(&frame)[0]
-        };
-        let mean = |from: u64| (from..from + 4).map(pixel).sum::<f64>() / 4.0;
-        (a[i], b[i]) = (mean(301), mean(401));
-    }
-    let noise = a.iter().zip(&b).map(|(a, b)| 0.5 * (a - b)).collect();
-    let truth = a.iter().zip(&b).map(|(a, b)| 0.5 * (a + b)).collect();
-    (truth, noise)
+    let reference = converged_reference(&tracer, &camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
+    eprintln!("reference: {}", reference.rounds_line());
+    reference
 }
 
 /// The beam of the generated day: a clear noon's direct normal irradiance over the whole
@@ -170,8 +136,8 @@ const BEAM_W_M2: f64 = 90.0;
 fn the_tolerance_holds_by_day_against_a_converged_reference() {
     let seed = 3;
     let tolerances = [1.0, 0.3];
-    let (truth, noise) = reference(seed, BEAM_W_M2, 0.3 / 6.0);
-    let noise_p99 = percentile(&noise, 99.0);
+    let reference = reference(seed, BEAM_W_M2, 0.3 / 6.0);
+    let (truth, noise_p99) = (&reference.truth, reference.error_p99_k());
     for tolerance_k in tolerances {
         let (piloted, camera) = pilot(seed, BEAM_W_M2, true, tolerance_k);
         let c = piloted.chosen;
@@ -203,26 +169,17 @@ fn the_tolerance_holds_by_day_against_a_converged_reference() {
             )
             .unwrap();
         let got = temperatures(&chosen);
-        let error: Vec<f64> = got.iter().zip(&truth).map(|(g, t)| g - t).collect();
+        let error: Vec<f64> = got.iter().zip(truth).map(|(g, t)| g - t).collect();
         let material = chosen
             .truth_layer(irsig_model::truth::Layer::MaterialPrimary)
             .unwrap();
-        let mut worst = 0.0_f64;
-        for id in [GROUND, PAINT, GLASS, METAL, POLE] {
-            let of: Vec<f64> = error
-                .iter()
-                .zip(&material)
-                .filter(|&(_, &m)| m.to_bits() == f32::from(id).to_bits())
-                .map(|(e, _)| *e)
-                .collect();
-            if of.len() >= 10 {
-                worst = worst.max(percentile(&of, 90.0));
-            }
-        }
+        let worst = material_p90s(&error, &material, &[GROUND, PAINT, GLASS, METAL, POLE])
+            .into_iter()
+            .fold(0.0_f64, |w, (_, _, p90)| w.max(p90));
         let p99 = percentile(&error, 99.0);
         eprintln!(
             "scene {seed} by day at {tolerance_k} K: p99 |dT| {p99:.3} K, worst material p90 \
-             {worst:.3} K, reference noise p99 {noise_p99:.3} K, not guaranteed {:.2} %, sun \
+             {worst:.3} K, reference error p99 {noise_p99:.3} K, not guaranteed {:.2} %, sun \
              {}, {} shadow rays, {} bounces, {} sky-view rays, relative cost {:.3}",
             100.0 * d.not_guaranteed_share,
             if sun.lit { "on" } else { "off" },
