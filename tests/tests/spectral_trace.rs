@@ -912,3 +912,90 @@ fn sub_bands_with_a_sensor_response_file_sum_to_the_response_weighted_integral()
         );
     }
 }
+
+/// LOWTRAN7's 3–5 µm band values of the US Standard 1976 vertical path from `observer_m`
+/// to 1 m (`crates/atmosphere/data/lowtran/us-std-1976/us-std-1976.mwir-band.csv`, written
+/// by `scripts/atmosphere/regen.py --mwir` from LOWTRAN7's spectra before they were
+/// quantised): band-mean τ and path radiance, W m⁻² sr⁻¹.
+fn mwir_level(band_um: &str, observer_m: f64) -> (f64, f64) {
+    let text = std::fs::read_to_string(
+        irsig_tests::repo_root()
+            .join("crates/atmosphere/data/lowtran/us-std-1976/us-std-1976.mwir-band.csv"),
+    )
+    .unwrap();
+    text.lines()
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .find(|f| f[0] == band_um && f[1] == "level" && f[2].parse::<f64>() == Ok(observer_m))
+        .map(|f| (f[4].parse().unwrap(), f[5].parse().unwrap()))
+        .unwrap()
+}
+
+#[test]
+fn a_builtin_traces_3_to_5_um_at_night_and_refuses_a_band_it_does_not_hold() {
+    use irsig_radiometry::Band;
+    let dir = tempfile::tempdir().unwrap();
+    scene(dir.path(), 300.0);
+    let black = dir.path().join("black.ron").to_string_lossy().into_owned();
+    // A 300 K blackbody 1 km straight below, in 3-5 um and in 3.4-4.2 um (one band, the
+    // band model: τ̄·L(300 K) + L_path, exact at a node): LOWTRAN7's band values.
+    for (flag, band_um, lo, hi) in [
+        ("3-5", "3.0-5.0", 3.0, 5.0),
+        ("3.4-4.2", "3.4-4.2", 3.4, 4.2),
+    ] {
+        let args: Vec<String> = [
+            "--materials",
+            &black,
+            "--atmosphere",
+            "us-std-1976",
+            "--band",
+            flag,
+        ]
+        .iter()
+        .map(|s| (*s).to_owned())
+        .collect();
+        let (l, n) = probe_args(dir.path(), &args, 300.0, 1000.0, 0.0);
+        assert_eq!(n, 1);
+        let band = Band::new(lo, hi).unwrap();
+        let (tau, path) = mwir_level(band_um, 1000.0);
+        let want = tau * band.radiance(300.0) + path;
+        let error = band.temperature(l) - band.temperature(want);
+        eprintln!("{flag} um, 300 K through 1 km: traced {l}, LOWTRAN7 {want}: {error:+.5} K");
+        assert!(error.abs() < 0.002, "{flag}: {error} K");
+    }
+    let refused = |extra: &[&str]| {
+        let out = bin("irsig-trace")
+            .arg("--scene")
+            .arg(scene(dir.path(), 300.0))
+            .args(["--materials", &black, "--view"])
+            .arg(dir.path().join("view.ron"))
+            .args(["--atmosphere", "us-std-1976", "--probe", "0,0"])
+            .args(extra)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    // A band inside neither range: refused at its flag, naming both.
+    for band in ["4-9", "2.5-4", "5-7.5"] {
+        let e = refused(&["--band", band]);
+        assert!(
+            e.contains(&format!("--band {band}"))
+                && e.contains("7.407-14.085 um")
+                && e.contains("2.994-5.000 um"),
+            "{band}: {e}"
+        );
+    }
+    // By day: the built-ins are night atmospheres; the message says how to build a day one.
+    let e = refused(&[
+        "--band",
+        "3-5",
+        "--sun-zenith-deg",
+        "30",
+        "--sun-azimuth-deg",
+        "0",
+    ]);
+    assert!(
+        e.contains("night only") && e.contains("irsig-atmos plan --sun-zenith-deg"),
+        "{e}"
+    );
+}

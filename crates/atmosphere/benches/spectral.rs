@@ -1,7 +1,8 @@
-//! Cost of the spectral built-ins at start-up: decoding one (`builtin_spectral`), one
-//! collapse over 8–14 µm, and the 64 collapses a spectral tracer makes for 64 sub-bands.
+//! Cost of the spectral built-ins at start-up: decoding one (`builtin_spectral`; a 3–5 µm
+//! one, quantised and deflated, `builtin_spectral_mwir`), one collapse over 8–14 µm, and
+//! the 64 collapses a spectral tracer makes for 64 sub-bands.
 
-use irsig_atmosphere::{builtin_spectral, collapse};
+use irsig_atmosphere::{builtin_spectral, builtin_spectral_mwir, collapse};
 
 fn main() {
     divan::main();
@@ -10,6 +11,11 @@ fn main() {
 #[divan::bench]
 fn decode_builtin() -> irsig_model::SpectralAtmosphere {
     builtin_spectral(divan::black_box("us-std-1976")).unwrap()
+}
+
+#[divan::bench]
+fn decode_builtin_mwir() -> irsig_model::SpectralAtmosphere {
+    builtin_spectral_mwir(divan::black_box("us-std-1976")).unwrap()
 }
 
 #[divan::bench]

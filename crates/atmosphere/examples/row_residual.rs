@@ -3,7 +3,7 @@
 //! `scripts/atmosphere/regen.py` asks while it places rows by error.
 //!
 //! ```text
-//! cargo run --release -p irsig-atmosphere --example row_residual -- CANDIDATE.bin PATHS.csv
+//! cargo run --release -p irsig-atmosphere --example row_residual -- CANDIDATE.bin PATHS.csv [LO-HI]
 //! ```
 //!
 //! `CANDIDATE.bin` is a binary spectral atmosphere with slant tables; `PATHS.csv` has a
@@ -14,7 +14,8 @@
 //! sky). For every path it prints `kind,observer_m,angle_deg,error_k`: the largest
 //! apparent-temperature error (model − spectra, K) over blackbody targets of 260, 290 and
 //! 320 K seen through the path (slant) or the brightness-temperature error of the sky,
-//! both summed over 16 sub-bands of flat 8–14 µm (equal shares of the 300 K radiance, as
+//! both summed over 16 sub-bands of flat 8–14 µm, or of `LO-HI` µm when given (`3-5` for the
+//! 3–5 µm built-ins; equal shares of the 300 K radiance, as
 //! `irsig-trace --sub-bands 16` makes them), each sub-band's truth the same quadrature of
 //! the given spectra: what is left is the interpolation between rows.
 
@@ -26,8 +27,19 @@ use irsig_radiometry::Band;
 fn main() {
     let args: Vec<String> = std::env::args().collect();
     let (Some(bin), Some(paths)) = (args.get(1), args.get(2)) else {
-        eprintln!("usage: row_residual CANDIDATE.bin PATHS.csv");
+        eprintln!("usage: row_residual CANDIDATE.bin PATHS.csv [LO-HI]");
         std::process::exit(2);
+    };
+    let [lo, hi] = match args.get(3) {
+        None => [8.0, 14.0],
+        Some(b) => {
+            let limits: Vec<f64> = b.split('-').filter_map(|x| x.parse().ok()).collect();
+            let [lo, hi] = limits[..] else {
+                eprintln!("row_residual: the band `{b}` is not LO-HI in um (such as 3-5)");
+                std::process::exit(2);
+            };
+            [lo, hi]
+        }
     };
     let bytes = std::fs::read(bin).expect("the candidate atmosphere");
     let spectral = irsig_formats::canonical::binary_spectral::decode(bin, &bytes)
@@ -38,7 +50,7 @@ fn main() {
         .and_then(|s| s.ground_m)
         .unwrap_or(0.0);
     let share = |a: f64, b: f64| Band::new(a, b).map_or(0.0, |band| band.radiance(300.0));
-    let edges = sub_band_edges(&spectral.grid, 8.0, 14.0, SubBandCount::Count(16), share)
+    let edges = sub_band_edges(&spectral.grid, lo, hi, SubBandCount::Count(16), share)
         .expect("16 sub-bands");
     let collapser = Collapser::new(&spectral).expect("a valid atmosphere");
     let bands: Vec<(AtmosphereModel, BandQuadrature, Band)> = edges
@@ -52,7 +64,7 @@ fn main() {
             )
         })
         .collect();
-    let whole = Band::new(8.0, 14.0).expect("8-14 um");
+    let whole = Band::new(lo, hi).expect("the band");
     let text = std::fs::read_to_string(paths).expect("the paths");
     for line in text.lines().skip(1).filter(|l| !l.trim().is_empty()) {
         let f: Vec<&str> = line.split(',').collect();

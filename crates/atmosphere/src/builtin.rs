@@ -1,6 +1,7 @@
-//! The built-in atmospheres: LOWTRAN7's six standard models as 8–14 µm band tables and
-//! 7.41–14.08 µm spectra in canonical form, shipped inside the binary so scenes can name
-//! them, and decoded by `irsig-formats` (this crate knows no file syntax).
+//! The built-in atmospheres: LOWTRAN7's six standard models as 8–14 µm band tables,
+//! 7.41–14.08 µm spectra and, for night, 2.99–5.00 µm spectra in canonical form, shipped
+//! inside the binary so scenes can name them, and decoded by `irsig-formats` (this crate
+//! knows no file syntax).
 
 use irsig_model::{Atmosphere, SpectralAtmosphere};
 
@@ -68,6 +69,85 @@ pub fn builtin_spectral_bytes(name: &str) -> Option<&'static [u8]> {
     }
 }
 
+/// The bytes of a built-in's 3–5 µm night spectra (binary spectral atmosphere, version 2:
+/// quantised to 16 bits and deflated, `formats/canonical/spectral-atmosphere.md`).
+#[must_use]
+pub fn builtin_spectral_mwir_bytes(name: &str) -> Option<&'static [u8]> {
+    match name {
+        "us-std-1976" => Some(include_bytes!("../data/us-std-1976.mwir.bin")),
+        "midlat-winter" => Some(include_bytes!("../data/midlat-winter.mwir.bin")),
+        "tropical" => Some(include_bytes!("../data/tropical.mwir.bin")),
+        "midlat-summer" => Some(include_bytes!("../data/midlat-summer.mwir.bin")),
+        "subarctic-summer" => Some(include_bytes!("../data/subarctic-summer.mwir.bin")),
+        "subarctic-winter" => Some(include_bytes!("../data/subarctic-winter.mwir.bin")),
+        _ => None,
+    }
+}
+
+/// The spectral ranges the built-ins hold, µm, as their grids span them: 710–1350 cm⁻¹
+/// (8–14 µm responses) and 2000–3340 cm⁻¹ (3–5 µm responses, night only).
+pub const BUILTIN_SPECTRAL_RANGES_UM: [[f64; 2]; 2] =
+    [[1e4 / 1350.0, 1e4 / 710.0], [1e4 / 3340.0, 1e4 / 2000.0]];
+
+/// The bytes of the built-in `name`'s spectra that cover `[lo, hi]` µm: its 7.41–14.08 µm
+/// spectra ([`builtin_spectral_bytes`]) or its 2.99–5.00 µm night spectra
+/// ([`builtin_spectral_mwir_bytes`]); `None` for an unknown name or a band inside neither
+/// ([`BUILTIN_SPECTRAL_RANGES_UM`]).
+#[must_use]
+pub fn builtin_spectral_bytes_over(name: &str, [lo, hi]: [f64; 2]) -> Option<&'static [u8]> {
+    let inside = |[min, max]: [f64; 2]| {
+        let slack = 1e-9 * max;
+        lo >= min - slack && hi <= max + slack
+    };
+    if inside(BUILTIN_SPECTRAL_RANGES_UM[0]) {
+        builtin_spectral_bytes(name)
+    } else if inside(BUILTIN_SPECTRAL_RANGES_UM[1]) {
+        builtin_spectral_mwir_bytes(name)
+    } else {
+        None
+    }
+}
+
+/// The built-in `name`'s spectra that cover `[lo, hi]` µm (see
+/// [`builtin_spectral_bytes_over`]), decoded; `None` when neither range covers the band.
+///
+/// # Errors
+/// An unknown name.
+pub fn builtin_spectral_over(
+    name: &str,
+    range_um: [f64; 2],
+) -> Result<Option<SpectralAtmosphere>, AtmosphereError> {
+    if !BUILTIN_NAMES.contains(&name) {
+        return Err(AtmosphereErrorKind::UnknownBuiltin(name.to_owned()).into());
+    }
+    builtin_spectral_bytes_over(name, range_um)
+        .map(|bytes| decode_builtin(name, bytes))
+        .transpose()
+}
+
+/// A built-in's 3–5 µm night spectra (LOWTRAN7's 2000–3340 cm⁻¹ every 5 cm⁻¹, IEMSCT = 1,
+/// at the paths and nodes of [`builtin_spectral`], its rows): collapsed over a band or
+/// response inside 3–5 µm, the band atmosphere for that sensor at night. No `solar` table:
+/// by day the sun's geometry is part of the atmosphere, which `irsig-atmos build` makes.
+///
+/// # Errors
+/// An unknown name.
+pub fn builtin_spectral_mwir(name: &str) -> Result<SpectralAtmosphere, AtmosphereError> {
+    let bytes = builtin_spectral_mwir_bytes(name)
+        .ok_or_else(|| AtmosphereErrorKind::UnknownBuiltin(name.to_owned()))?;
+    decode_builtin(name, bytes)
+}
+
+fn decode_builtin(name: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, AtmosphereError> {
+    irsig_formats::canonical::binary_spectral::decode(name, bytes).map_err(|e| {
+        AtmosphereErrorKind::CorruptBuiltin {
+            name: name.to_owned(),
+            message: e.to_string(),
+        }
+        .into()
+    })
+}
+
 /// A built-in atmosphere in spectral form (LOWTRAN7's 710–1350 cm⁻¹ every 5 cm⁻¹, at the
 /// paths and nodes of [`builtin`]): [`crate::collapse`] over flat 8–14 µm gives
 /// [`builtin`]'s tables back (`tests/spectral.rs`), and over any other band or response
@@ -78,11 +158,5 @@ pub fn builtin_spectral_bytes(name: &str) -> Option<&'static [u8]> {
 pub fn builtin_spectral(name: &str) -> Result<SpectralAtmosphere, AtmosphereError> {
     let bytes = builtin_spectral_bytes(name)
         .ok_or_else(|| AtmosphereErrorKind::UnknownBuiltin(name.to_owned()))?;
-    irsig_formats::canonical::binary_spectral::decode(name, bytes).map_err(|e| {
-        AtmosphereErrorKind::CorruptBuiltin {
-            name: name.to_owned(),
-            message: e.to_string(),
-        }
-        .into()
-    })
+    decode_builtin(name, bytes)
 }

@@ -24,7 +24,7 @@
 // Grids and angles are copied, not computed: they must be equal.
 #![allow(clippy::float_cmp)]
 
-use irsig_atmosphere::{BUILTIN_NAMES, builtin, builtin_spectral, collapse};
+use irsig_atmosphere::{BUILTIN_NAMES, builtin, builtin_spectral, builtin_spectral_mwir, collapse};
 
 /// The unit of the last digit of `x` printed with `sig` significant figures.
 fn last_unit(x: f64, sig: i32) -> f64 {
@@ -166,4 +166,141 @@ fn a_response_and_a_narrower_band_collapse_to_a_usable_atmosphere() {
     assert!(window.levels[6].transmission > band.levels[6].transmission);
     // Outside LOWTRAN's 7.1-14.08 um grid: refused.
     assert!(collapse(&spectral, 7.0, 14.0, |_| 1.0).is_err());
+}
+
+/// One line of a `NAME.mwir-band.csv`: band (`3.0-5.0`), kind (`level`, `sky`,
+/// `hemispheric`), observer (m), angle (°), band-mean τ, band radiance (W m⁻² sr⁻¹).
+type BandRow = (String, String, f64, Option<f64>, Option<f64>, f64);
+
+/// The LOWTRAN7 band values of one 3–5 µm built-in (`data/lowtran/NAME/NAME.mwir-band.csv`,
+/// from `scripts/atmosphere/regen.py --mwir`: LOWTRAN7's `f32` spectra of the same runs
+/// integrated in Python, before the built-in was quantised).
+fn mwir_band_rows(name: &str) -> Vec<BandRow> {
+    let path = format!(
+        "{}/data/lowtran/{name}/{name}.mwir-band.csv",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{path}: {e}"));
+    let number = |s: &str| (!s.is_empty()).then(|| s.parse::<f64>().unwrap());
+    text.lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (
+                f[0].to_owned(),
+                f[1].to_owned(),
+                f[2].parse().unwrap(),
+                number(f[3]),
+                number(f[4]),
+                f[5].parse().unwrap(),
+            )
+        })
+        .collect()
+}
+
+/// The 3–5 µm night built-ins, quantised to 16 bits (binary spectral atmosphere, version 2),
+/// collapsed over flat 3–5, 3.4–4.2 and 4.5–5 µm, against LOWTRAN7's band values of the
+/// same runs at full `f32` precision: the profile's paths (apparent temperature of 260, 290
+/// and 320 K blackbodies through them), the ground's sky at 0–90° and its hemispheric value
+/// (brightness temperature). Floor 0.002 K: the quantisation's half step is 1/131070 of a
+/// spectrum's largest value (measured: within 0.0007 K for every node of us-std-1976,
+/// docs/accuracy.md), the CSV's 7 figures 5e-8 relative.
+#[test]
+fn collapsing_the_mwir_builtins_gives_lowtran7s_band_values() {
+    use irsig_radiometry::Band;
+    const FLOOR_K: f64 = 0.002;
+    for name in BUILTIN_NAMES {
+        let spectral = builtin_spectral_mwir(name).unwrap();
+        assert_eq!(spectral.name, name);
+        assert!(spectral.solar.is_none(), "{name}: a night atmosphere");
+        let rows = mwir_band_rows(name);
+        assert_eq!(rows.len(), 3 * (14 + 19 + 1), "{name}: rows of the CSV");
+        let mut worst = 0.0_f64;
+        for band_um in ["3.0-5.0", "3.4-4.2", "4.5-5.0"] {
+            let (lo, hi) = band_um.split_once('-').unwrap();
+            let (lo, hi): (f64, f64) = (lo.parse().unwrap(), hi.parse().unwrap());
+            let c = collapse(&spectral, lo, hi, |_| 1.0).unwrap();
+            let band = Band::new(lo, hi).unwrap();
+            let mut check = |what: String, got: f64, want: f64| {
+                let error = band.temperature(got) - band.temperature(want);
+                worst = worst.max(error.abs());
+                assert!(
+                    error.abs() <= FLOOR_K,
+                    "{name} {band_um} um {what}: collapsed {got}, LOWTRAN7 {want}: {error:+.5} K"
+                );
+            };
+            let mine: Vec<_> = rows.iter().filter(|r| r.0 == band_um).collect();
+            let levels: Vec<_> = mine.iter().filter(|r| r.1 == "level").collect();
+            assert_eq!(levels.len(), c.levels.len());
+            for (r, l) in levels.iter().zip(&c.levels) {
+                assert_eq!(l.altitude_m, r.2, "{name}: the CSV's levels");
+                for t in [260.0, 290.0, 320.0] {
+                    let b = band.radiance(t);
+                    check(
+                        format!("{t} K through {} m", r.2),
+                        l.transmission * b + l.path_radiance_w_m2_sr,
+                        r.4.unwrap() * b + r.5,
+                    );
+                }
+            }
+            let sky: Vec<_> = mine.iter().filter(|r| r.1 == "sky").collect();
+            assert_eq!(sky.len(), c.sky.len());
+            for (r, &(zenith, l)) in sky.iter().zip(&c.sky) {
+                assert_eq!(zenith, r.3.unwrap(), "{name}: the CSV's zenith angles");
+                check(format!("sky at {zenith}°"), l, r.5);
+            }
+            let hemi = mine.iter().find(|r| r.1 == "hemispheric").unwrap();
+            check(
+                "hemispheric sky".into(),
+                c.sky_hemispheric_w_m2_sr.unwrap(),
+                hemi.5,
+            );
+        }
+        eprintln!("{name}: 3-5 um collapse within {worst:.5} K of LOWTRAN7's band values");
+    }
+}
+
+#[test]
+fn a_band_picks_the_builtins_spectra_that_cover_it() {
+    use irsig_atmosphere::{BUILTIN_SPECTRAL_RANGES_UM, builtin_spectral_over};
+    let lwir = builtin_spectral_over("tropical", [8.0, 14.0])
+        .unwrap()
+        .unwrap();
+    assert_eq!(lwir.grid.points.first(), Some(&710.0));
+    let mwir = builtin_spectral_over("tropical", [3.7, 4.8])
+        .unwrap()
+        .unwrap();
+    assert_eq!(
+        (mwir.grid.points.first(), mwir.grid.points.last()),
+        (Some(&2000.0), Some(&3340.0))
+    );
+    // 3-5 um exactly, and both built-in ranges as they are stated.
+    assert!(
+        builtin_spectral_over("tropical", [3.0, 5.0])
+            .unwrap()
+            .is_some()
+    );
+    for r in BUILTIN_SPECTRAL_RANGES_UM {
+        assert!(
+            builtin_spectral_over("tropical", r).unwrap().is_some(),
+            "{r:?}"
+        );
+    }
+    // Inside neither, or across both: none; an unknown name: an error.
+    assert!(
+        builtin_spectral_over("tropical", [4.0, 9.0])
+            .unwrap()
+            .is_none()
+    );
+    assert!(
+        builtin_spectral_over("tropical", [2.5, 4.0])
+            .unwrap()
+            .is_none()
+    );
+    assert!(
+        builtin_spectral_over("tropical", [5.0, 7.5])
+            .unwrap()
+            .is_none()
+    );
+    assert!(builtin_spectral_over("nowhere", [3.0, 5.0]).is_err());
 }

@@ -79,14 +79,38 @@ pub(crate) enum AirData {
     Spectral(SpectralAtmosphere, Vec<u8>),
 }
 
+/// The limits of a band request, µm; `None` for the whole spectrum.
+pub(crate) fn band_range_um(band: &crate::BandRequest) -> Option<[f64; 2]> {
+    match &band.band {
+        irsig_radiometry::AnyBand::Band(b) => Some([b.lambda_min_um(), b.lambda_max_um()]),
+        irsig_radiometry::AnyBand::Total(_) => None,
+    }
+}
+
+/// The bytes of the built-in `name`'s spectra a band of `range_um` reads: its 3–5 µm night
+/// spectra for a band inside them, else its 8–14 µm ones (which a band outside both is then
+/// refused against, [`check_builtin_range`]).
+pub(crate) fn builtin_bytes(name: &str, range_um: Option<[f64; 2]>) -> &'static [u8] {
+    range_um
+        .and_then(|r| irsig_atmosphere::builtin_spectral_bytes_over(name, r))
+        .or_else(|| irsig_atmosphere::builtin_spectral_bytes(name))
+        .unwrap_or_default()
+}
+
 /// The atmosphere of a built-in or a file request: a built-in in spectral form when
-/// `spectral`, a file in whatever form it holds.
-pub(crate) fn read(request: &AtmosphereRequest, spectral: bool) -> miette::Result<AirData> {
+/// `spectral` (the spectra over the band of `range_um`, [`builtin_bytes`]), a file in
+/// whatever form it holds.
+pub(crate) fn read(
+    request: &AtmosphereRequest,
+    spectral: bool,
+    range_um: Option<[f64; 2]>,
+) -> miette::Result<AirData> {
     match request {
         AtmosphereRequest::Vacuum { .. } => Err(miette!("a vacuum has no tables")),
         AtmosphereRequest::Builtin(name) if spectral => {
-            let a = irsig_atmosphere::builtin_spectral(name).map_err(|e| miette!("{e}"))?;
-            let bytes = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+            let bytes = builtin_bytes(name, range_um);
+            let a = irsig_formats::canonical::binary_spectral::decode(name, bytes)
+                .map_err(|e| miette!("the built-in atmosphere `{name}` is corrupt: {e}"))?;
             Ok(AirData::Spectral(a, bytes.to_vec()))
         }
         AtmosphereRequest::Builtin(name) => irsig_atmosphere::builtin(name)
@@ -145,24 +169,26 @@ pub(crate) fn covers([min, max]: [f64; 2], [lo, hi]: [f64; 2]) -> bool {
 }
 
 /// A built-in's spectra must cover the band: else a request error about the band, which
-/// names both ranges and how to get an atmosphere over the band.
+/// names the band, the ranges the built-ins hold and how to get an atmosphere over the
+/// band.
 pub(crate) fn check_builtin_range(
     name: &str,
     a: &SpectralAtmosphere,
     band: &crate::BandRequest,
     range_um: [f64; 2],
 ) -> miette::Result<()> {
-    let [min, max] = spectral_range_um(a);
-    if covers([min, max], range_um) {
+    if covers(spectral_range_um(a), range_um) {
         return Ok(());
     }
+    let [[l1, l2], [m1, m2]] = irsig_atmosphere::BUILTIN_SPECTRAL_RANGES_UM;
     Err(RequestError::of_value(
         Setting::Band,
         &band.label,
         format!(
-            "the band, {}, reaches outside the spectra of the built-in atmosphere `{name}`, \
-             {min:.3}-{max:.3} um: trace a band inside them, or build an atmosphere over the \
-             band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
+            "the band, {}, lies inside neither range of the built-in atmosphere `{name}`'s \
+             spectra, {l1:.3}-{l2:.3} um (8-14 um responses) and {m1:.3}-{m2:.3} um (3-5 um \
+             responses, night): trace a band inside one of them, or build an atmosphere over \
+             the band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
              (LOWTRAN7) and give its file to --atmosphere",
             band.record, range_um[0], range_um[1]
         ),

@@ -278,7 +278,7 @@ impl Plan {
                 sha256: sha256_hex(bytes),
             }),
             AtmosphereRequest::Builtin(name) => {
-                let data = irsig_atmosphere::builtin_spectral_bytes(name).unwrap_or_default();
+                let data = air::builtin_bytes(name, air::band_range_um(&request.band));
                 inputs.push(InputRecord {
                     stage: "trace".into(),
                     role: "atmosphere (a built-in's spectra)".into(),
@@ -728,7 +728,8 @@ impl Plan {
             && (settings.sub_bands.is_some_and(|c| !c.is_band())
                 || self.request.tolerance.is_some()
                 || self.decision.is_some());
-        let mut data = air::read(request, wants_spectra)?;
+        let range_um = split.map(|sp| sp.range_um);
+        let mut data = air::read(request, wants_spectra, range_um)?;
         // A built-in's band tables are for the flat band they were made for (8-14 um): any
         // other band, or a sensor response, collapses its spectra instead (else the band
         // model would add the flat band's path and sky radiance to a response-weighted
@@ -741,7 +742,7 @@ impl Plan {
                     .zip(a.band_um)
                     .any(|(x, y)| (x - y).abs() > 1e-9 * y);
             if other_band && matches!(request, AtmosphereRequest::Builtin(_)) {
-                data = air::read(request, true)?;
+                data = air::read(request, true, range_um)?;
             } else if other_band {
                 self.warn(format!(
                     "`{name}` holds band tables for {}-{} um, flat; the band traced is {}-{} \
@@ -757,6 +758,24 @@ impl Plan {
                     }
                 ));
             }
+        }
+        // The built-ins are night atmospheres: by day the sun's geometry is part of the
+        // atmosphere, which a build makes.
+        if let (Some(s), AtmosphereRequest::Builtin(_)) = (&self.request.sun, request) {
+            let what = match &data {
+                AirData::Band(_) => {
+                    "a built-in: a band atmosphere (tables integrated over a band, without spectra)"
+                }
+                AirData::Spectral(..) => "a built-in: a night atmosphere",
+            };
+            return Err(sunlight::no_solar_table(
+                s,
+                &name,
+                &format!(
+                    "{what}; the built-ins, 8-14 um and 3-5 um, are for night only, since by \
+                     day the sun's geometry is part of the atmosphere"
+                ),
+            ));
         }
         match (&data, &split, request) {
             (AirData::Spectral(a, bytes), Some(sp), AtmosphereRequest::File { name, .. }) => {

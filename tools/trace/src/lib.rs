@@ -64,9 +64,11 @@ pub struct Cli {
     #[arg(long, value_name = "MIN-MAX|FILE|total")]
     pub band: Option<BandArg>,
     /// The atmosphere: a built-in LOWTRAN7 model (us-std-1976, tropical, midlat-summer,
-    /// midlat-winter, subarctic-summer, subarctic-winter; spectra 7.41-14.08 um), a canonical
-    /// or spectral atmosphere file (`irsig-atmos build` writes one), or `none` (a vacuum
-    /// under --sky-radiance) [default: none, with a note on stderr].
+    /// midlat-winter, subarctic-summer, subarctic-winter; spectra 7.41-14.08 um, and
+    /// 2.99-5.00 um at night: with a sun, build the atmosphere for it with `irsig-atmos plan
+    /// --sun-zenith-deg` and `build`), a canonical or spectral atmosphere file (`irsig-atmos
+    /// build` writes one), or `none` (a vacuum under --sky-radiance) [default: none, with a
+    /// note on stderr].
     #[arg(long, value_name = "NAME|FILE")]
     pub atmosphere: Option<String>,
     /// Sum the radiance equation over sub-bands of the band (the spectral model), each

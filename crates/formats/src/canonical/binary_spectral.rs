@@ -1,4 +1,4 @@
-//! The compact binary spectral atmosphere: what `irsig-atmos build` writes and the two
+//! The compact binary spectral atmosphere: what `irsig-atmos build` writes and the
 //! built-ins are embedded as. A spectral atmosphere holds tens of thousands of numbers
 //! (the built-ins ~80 000 each); as RON they would be ~1 MB and take tens of milliseconds
 //! to parse, as single-precision binary they are ~320 kB and load in well under a
@@ -9,10 +9,10 @@
 //! | offset | size | field |
 //! | --- | --- | --- |
 //! | 0 | 8 | magic `IRSIGSPA` |
-//! | 8 | 4 | `u32` version, 1 |
+//! | 8 | 4 | `u32` version, 1 or 2 |
 //! | 12 | 4 | `u32` byte length `H` of the header |
 //! | 16 | `H` | header: the atmosphere as canonical RON (UTF-8) with every table of spectra empty |
-//! | 16 + `H` | … | the tables of spectra, each a `u32` count `N` and `N` `f32` values |
+//! | 16 + `H` | … | the tables of spectra, each a `u32` count `N` and `N` `f32` values (version 1), or (version 2) a `u32` count `N`, a `u32` byte length `Z` and `Z` bytes of a zlib stream of the table quantised to 16 bits per value ([`encode_quantised`]) |
 //!
 //! The tables follow in this order, each only when the header has the field:
 //! `level_transmission`, `level_path_radiance_w_m2_sr_per_unit`,
@@ -33,8 +33,15 @@ use crate::ParseError;
 
 /// The first eight bytes of a binary spectral atmosphere.
 pub const MAGIC: &[u8; 8] = b"IRSIGSPA";
-/// The layout version this code reads and writes.
+/// The layout version [`encode`] writes: every value an `f32`.
 pub const VERSION: u32 = 1;
+/// The layout version [`encode_quantised`] writes: each table quantised to 16 bits per
+/// value against its spectra's maxima, and deflated (zlib). Both are read.
+pub const VERSION_QUANTISED: u32 = 2;
+/// The largest expansion of a deflate stream (its format allows at most 1032 output bytes
+/// per input byte): a version 2 count that needs more than this is refused before anything
+/// is allocated.
+const MAX_INFLATE_RATIO: usize = 1032;
 
 /// True when `bytes` start with [`MAGIC`].
 #[must_use]
@@ -136,6 +143,144 @@ pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error
     Ok(out)
 }
 
+/// Encodes a spectral atmosphere in version 2 (`formats/canonical/spectral-atmosphere.md`):
+/// each spectrum's values as 16-bit fractions `q` of its largest value `s`, `v = q·s/65535`
+/// (rounded to nearest: at most `s/131070` off), each table's `q` the difference from the
+/// previous spectrum's (mod 2¹⁶), low bytes then high bytes, deflated with its scales. What
+/// the built-ins over 3–5 µm are embedded as: a quarter of the `f32` form's bytes, within
+/// 0.001 K of it (docs/accuracy.md).
+///
+/// # Errors
+/// As [`encode`]; a table whose length is not a whole number of spectra.
+pub fn encode_quantised(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error> {
+    let mut header = atmosphere.clone();
+    for t in tables_mut(&mut header) {
+        t.clear();
+    }
+    let ron = ron::ser::to_string(&header).map_err(std::io::Error::other)?;
+    let too_big = || std::io::Error::other("a table of spectra holds more than 2^32 values");
+    let n = atmosphere.grid.points.len().max(1);
+    let mut out = Vec::new();
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&VERSION_QUANTISED.to_le_bytes());
+    out.extend_from_slice(
+        &u32::try_from(ron.len())
+            .map_err(|_| too_big())?
+            .to_le_bytes(),
+    );
+    out.extend_from_slice(ron.as_bytes());
+    for t in tables(atmosphere) {
+        if t.len() % n != 0 {
+            return Err(std::io::Error::other(format!(
+                "a table of {} values is not a whole number of spectra of {n} points",
+                t.len()
+            )));
+        }
+        let spectra = t.len() / n;
+        let mut raw = Vec::with_capacity(4 * spectra + 2 * t.len());
+        let mut low = Vec::with_capacity(t.len());
+        let mut high = Vec::with_capacity(t.len());
+        let mut previous = vec![0_u16; n];
+        for spectrum in t.chunks_exact(n) {
+            let scale = spectrum.iter().copied().fold(0.0_f32, f32::max);
+            raw.extend_from_slice(&scale.to_le_bytes());
+            for (v, p) in spectrum.iter().zip(&mut previous) {
+                let q = if scale > 0.0 {
+                    // In 0..=65535: 0 <= v <= scale.
+                    #[allow(clippy::cast_possible_truncation, clippy::cast_sign_loss)]
+                    let q = (f64::from(*v) / f64::from(scale) * 65535.0)
+                        .round()
+                        .clamp(0.0, 65535.0) as u16;
+                    q
+                } else {
+                    0
+                };
+                let [l, h] = q.wrapping_sub(*p).to_le_bytes();
+                low.push(l);
+                high.push(h);
+                *p = q;
+            }
+        }
+        raw.extend_from_slice(&low);
+        raw.extend_from_slice(&high);
+        let z = miniz_oxide::deflate::compress_to_vec_zlib(&raw, 9);
+        out.extend_from_slice(&u32::try_from(t.len()).map_err(|_| too_big())?.to_le_bytes());
+        out.extend_from_slice(&u32::try_from(z.len()).map_err(|_| too_big())?.to_le_bytes());
+        out.extend_from_slice(&z);
+    }
+    Ok(out)
+}
+
+/// The values of one version 2 table of `count` values (spectra of `n` points) from its
+/// zlib stream `z`, which starts at byte `at` of the file.
+fn dequantise(
+    file: &str,
+    z: &[u8],
+    at: usize,
+    count: usize,
+    n: usize,
+) -> Result<Vec<f32>, ParseError> {
+    if n == 0 || count % n != 0 {
+        return Err(ParseError::in_binary(
+            file,
+            at,
+            format!(
+                "expected a whole number of spectra of {n} points, found a table of {count} values"
+            ),
+        ));
+    }
+    let spectra = count / n;
+    let want = count
+        .checked_mul(2)
+        .and_then(|b| b.checked_add(4 * spectra))
+        .filter(|&b| b <= z.len().saturating_mul(MAX_INFLATE_RATIO))
+        .ok_or_else(|| {
+            ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "a table of {count} values cannot come from {} compressed bytes: the file \
+                     is damaged",
+                    z.len()
+                ),
+            )
+        })?;
+    let raw = miniz_oxide::inflate::decompress_to_vec_zlib_with_limit(z, want).map_err(|e| {
+        ParseError::in_binary(
+            file,
+            at + 4,
+            format!(
+                "expected a zlib stream of {want} bytes, found a broken one ({:?})",
+                e.status
+            ),
+        )
+    })?;
+    if raw.len() != want {
+        return Err(ParseError::in_binary(
+            file,
+            at + 4,
+            format!(
+                "expected a zlib stream of {want} bytes (a table of {count} values), found {}",
+                raw.len()
+            ),
+        ));
+    }
+    let (scales, q) = raw.split_at(4 * spectra);
+    let (low, high) = q.split_at(count);
+    let mut values = Vec::with_capacity(count);
+    let mut previous = vec![0_u16; n];
+    for (k, scale) in scales.chunks_exact(4).enumerate() {
+        let scale = f64::from(f32::from_le_bytes([scale[0], scale[1], scale[2], scale[3]]));
+        for (i, p) in previous.iter_mut().enumerate() {
+            let j = k * n + i;
+            *p = p.wrapping_add(u16::from_le_bytes([low[j], high[j]]));
+            #[allow(clippy::cast_possible_truncation)]
+            values.push((f64::from(*p) * scale / 65535.0) as f32);
+        }
+    }
+    Ok(values)
+}
+
 /// The header's RON text and its byte offset in the file, if `bytes` hold a well-formed
 /// header (what [`decode`] reads first).
 #[must_use]
@@ -177,11 +322,11 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
         ));
     }
     let version = u32_at(file, bytes, 8, "the version")?;
-    if version != VERSION {
+    if version != VERSION && version != VERSION_QUANTISED {
         return Err(ParseError::in_binary(
             file,
             8,
-            format!("expected version {VERSION}, found {version}"),
+            format!("expected version {VERSION} or {VERSION_QUANTISED}, found {version}"),
         ));
     }
     let h = u32_at(file, bytes, 12, "the header length")? as usize;
@@ -269,8 +414,28 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
         ));
     }
     let mut at = 16 + h;
+    let points = atm.grid.points.len();
     for t in tables_mut(&mut atm) {
         let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
+        if version == VERSION_QUANTISED {
+            let z = u32_at(file, bytes, at + 4, "the byte length of a compressed table")? as usize;
+            let stream = bytes
+                .get(at + 8..(at + 8).saturating_add(z))
+                .ok_or_else(|| {
+                    ParseError::in_binary(
+                        file,
+                        at + 4,
+                        format!(
+                            "a compressed table of {z} bytes, but only {} are left: the file is \
+                         truncated",
+                            bytes.len().saturating_sub(at + 8)
+                        ),
+                    )
+                })?;
+            *t = dequantise(file, stream, at, n, points)?;
+            at += 8 + z;
+            continue;
+        }
         let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
             ParseError::in_binary(
                 file,
@@ -415,6 +580,94 @@ mod tests {
         assert!(e.message.contains("truncated"), "{}", e.message);
         // A night atmosphere is written as before.
         assert_eq!(encode(&small()).unwrap(), night);
+    }
+
+    #[test]
+    #[allow(clippy::float_cmp)] // largest values and zeros are exact
+    fn version_2_holds_each_value_within_half_a_step_of_its_spectrums_largest() {
+        let mut a = small();
+        a.grid.points = vec![2000.0, 2005.0, 2010.0];
+        a.level_transmission = vec![1.0, 0.5, 0.0];
+        a.level_path_radiance_w_m2_sr_per_unit = vec![3e-9, 1.5e-9, 7e-13];
+        a.sky_radiance_w_m2_sr_per_unit = vec![0.0, 0.0, 0.0];
+        a.sky_hemispheric_w_m2_sr_per_unit = Some(vec![2e-3, 1e-3, 6e-3]);
+        let bytes = encode_quantised(&a).unwrap();
+        assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 2);
+        let b = decode("a.bin", &bytes).unwrap();
+        // Largest values and zeros come back exactly; the rest within half a step, largest
+        // / 131070 (0.5 of 1 is 32767.5 steps: 0.5 + 7.6e-6; 7e-13 of 3e-9 is 15.3 steps,
+        // 15: 6.87e-13, 2 % low).
+        let t = &b.level_transmission;
+        assert_eq!((t[0], t[2]), (1.0, 0.0));
+        assert!((f64::from(t[1]) - 0.5).abs() <= 1.0 / 131_070.0, "{t:?}");
+        assert!(f64::from(t[1]) != 0.5, "{t:?}: quantised");
+        assert_eq!(b.level_path_radiance_w_m2_sr_per_unit[0], 3e-9);
+        let l = b.level_path_radiance_w_m2_sr_per_unit[1];
+        assert!((f64::from(l) - 1.5e-9).abs() <= 3e-9 / 131_070.0, "{l}");
+        let small = b.level_path_radiance_w_m2_sr_per_unit[2];
+        assert!(
+            (f64::from(small) - 7e-13).abs() <= 3e-9 / 131_070.0,
+            "{small}"
+        );
+        assert_eq!(b.sky_radiance_w_m2_sr_per_unit, vec![0.0; 3]);
+        let h = b.sky_hemispheric_w_m2_sr_per_unit.unwrap();
+        assert_eq!(h[2], 6e-3);
+        assert!((f64::from(h[0]) - 2e-3).abs() <= 6e-3 / 131_070.0, "{h:?}");
+        // Everything else of the atmosphere is the header's, exactly.
+        assert_eq!((b.grid, b.levels, b.name), (a.grid, a.levels, a.name));
+    }
+
+    #[test]
+    fn version_2_damage_is_refused_at_its_offset() {
+        let mut a = small();
+        a.level_transmission = vec![0.1, 0.2, 0.3, 0.4];
+        a.level_path_radiance_w_m2_sr_per_unit = vec![0.1, 0.09, 0.08, 0.07];
+        a.levels.push(a.levels[0]);
+        a.levels[1].altitude_m = 2000.0;
+        a.levels[1].altitude_asl_m = 2000.0;
+        let bytes = encode_quantised(&a).unwrap();
+        assert!(decode("a", &bytes).is_ok());
+        let h = u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let first = 16 + h;
+        // Truncated inside a stream.
+        let e = decode("a", &bytes[..bytes.len() - 3]).unwrap_err();
+        assert!(e.message.contains("truncated"), "{}", e.message);
+        // A count that is not whole spectra (grid of 2 points).
+        let mut odd = bytes.clone();
+        odd[first..first + 4].copy_from_slice(&3_u32.to_le_bytes());
+        let e = decode("a", &odd).unwrap_err();
+        assert!(
+            e.message.contains("whole number of spectra"),
+            "{}",
+            e.message
+        );
+        assert_eq!(e.column, first + 1);
+        // A count far beyond what its compressed bytes can hold: refused before inflating.
+        let mut huge = bytes.clone();
+        huge[first..first + 4].copy_from_slice(&(u32::MAX - 1).to_le_bytes());
+        let e = decode("a", &huge).unwrap_err();
+        assert!(e.message.contains("cannot come from"), "{}", e.message);
+        // A count the stream does not hold.
+        let mut more = bytes.clone();
+        more[first..first + 4].copy_from_slice(&6_u32.to_le_bytes());
+        let e = decode("a", &more).unwrap_err();
+        assert!(e.message.contains("zlib stream"), "{}", e.message);
+        // A broken stream.
+        let mut broken = bytes.clone();
+        for b in &mut broken[first + 8..first + 14] {
+            *b ^= 0x5a;
+        }
+        let e = decode("a", &broken).unwrap_err();
+        assert!(e.message.contains("zlib stream"), "{}", e.message);
+        // An unknown version.
+        let mut v3 = bytes.clone();
+        v3[8..12].copy_from_slice(&3_u32.to_le_bytes());
+        let e = decode("a", &v3).unwrap_err();
+        assert!(
+            e.message.contains("expected version 1 or 2"),
+            "{}",
+            e.message
+        );
     }
 
     #[test]
