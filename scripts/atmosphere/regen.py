@@ -5,6 +5,9 @@ usage:
     python regen.py OUTDIR            # legacy tables + slant tables for every atmosphere
     python regen.py OUTDIR --truth    # also the LOWTRAN "truth" used by docs/accuracy.md
     python regen.py OUTDIR --spectral # also the spectral built-ins, rows placed by error
+    python regen.py OUTDIR --mwir crates/atmosphere/data
+                                      # the 3-5 um night built-ins on those rows
+                                      # (NAME.mwir.bin; README.md beside this script)
 
 For each atmosphere NAME (us-std-1976, midlat-winter, tropical, midlat-summer,
 subarctic-summer, subarctic-winter: LOWTRAN7's standard models) it writes into OUTDIR/NAME/:
@@ -13,7 +16,7 @@ subarctic-summer, subarctic-winter: LOWTRAN7's standard models) it writes into O
     NAME.slant.ron               the 2-D tables of irsig's `table` atmosphere model, as a
                                  canonical `SlantTables` (SI: metres, W m^-2 sr^-1)
     NAME.spectral.bin            the spectral built-in (every table above, spectrum by
-                                 spectrum on LOWTRAN's 710-1250 cm^-1 grid), in the binary
+                                 spectrum on LOWTRAN's 710-1350 cm^-1 grid), in the binary
                                  spectral atmosphere format (formats/canonical/spectral-atmosphere.md)
 and with --truth:
     NAME.truth.csv               LOWTRAN band tau and path radiance for the paths the

@@ -88,6 +88,23 @@ fn build(plan: &Path, out: &Path) -> (SpectralAtmosphere, String) {
     (a, stderr)
 }
 
+/// `irsig-atmos build` of `plan` refused (exit 1), with each of `said` on stderr and
+/// nothing written to `out`.
+fn refused(plan: &Path, out: &Path, said: &[&str]) {
+    let mut assert = atmos()
+        .env("IRSIG_LOWTRAN", lowtran())
+        .arg("build")
+        .arg(plan)
+        .arg("-o")
+        .arg(out)
+        .assert()
+        .code(1);
+    for s in said {
+        assert = assert.stderr(predicates::str::contains(*s));
+    }
+    assert!(!out.exists());
+}
+
 /// LOWTRAN7's TAPE7 for the deck `runs/NNNN.tape5`, run here.
 fn lowtran_tape7_of(plan: &Path, i: usize) -> String {
     let run = irsig_atmos::lowtran::run(
@@ -212,20 +229,15 @@ fn a_modtran_tape7_of_the_wrong_mode_is_refused_at_card_1() {
     let t7 = plan.join(format!("runs/{sun:04}.tape7"));
     std::fs::copy(&tape7_05, &t7).unwrap();
     let out = dir.path().join("never.spa");
-    atmos()
-        .env("IRSIG_LOWTRAN", lowtran())
-        .arg("build")
-        .arg(&plan)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(1)
-        .stderr(predicates::str::contains(format!("{sun:04}.tape7:1:11")))
-        .stderr(predicates::str::contains(
+    refused(
+        &plan,
+        &out,
+        &[
+            &format!("{sun:04}.tape7:1:11"),
             "expected a direct solar irradiance run (IEMSCT = 3",
-        ))
-        .stderr(predicates::str::contains("found card 1's IEMSCT = 2"));
-    assert!(!out.exists());
+            "found card 1's IEMSCT = 2",
+        ],
+    );
     std::fs::remove_file(&t7).unwrap();
     // tape7-05 without its SOL_SCAT column, for a sunlit path: the right IEMSCT without
     // the column, an error at the column header (line 11).
@@ -246,35 +258,25 @@ fn a_modtran_tape7_of_the_wrong_mode_is_refused_at_card_1() {
     }
     let sunlit_t7 = plan.join(format!("runs/{sunlit:04}.tape7"));
     std::fs::write(&sunlit_t7, cut).unwrap();
-    atmos()
-        .env("IRSIG_LOWTRAN", lowtran())
-        .arg("build")
-        .arg(&plan)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(1)
-        .stderr(predicates::str::contains(format!("{sunlit:04}.tape7:11:1")))
-        .stderr(predicates::str::contains(
+    refused(
+        &plan,
+        &out,
+        &[
+            &format!("{sunlit:04}.tape7:11:1"),
             "found card 1's IEMSCT = 2 without a SOL_SCAT column",
-        ));
-    assert!(!out.exists());
+        ],
+    );
     // The direct solar layout sample given for a sunlit path.
     let layout = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../../formats/radtran/samples/modtran-iemsct3-layout.tape7");
     std::fs::copy(&layout, plan.join(format!("runs/{sunlit:04}.tape7"))).unwrap();
-    atmos()
-        .env("IRSIG_LOWTRAN", lowtran())
-        .arg("build")
-        .arg(&plan)
-        .arg("-o")
-        .arg(&out)
-        .assert()
-        .code(1)
-        .stderr(predicates::str::contains(format!("{sunlit:04}.tape7:1:11")))
-        .stderr(predicates::str::contains(
+    refused(
+        &plan,
+        &out,
+        &[
+            &format!("{sunlit:04}.tape7:1:11"),
             "expected a solar scattering run (IEMSCT = 2, column SOL_SCAT)",
-        ))
-        .stderr(predicates::str::contains("found card 1's IEMSCT = 3"));
-    assert!(!out.exists());
+            "found card 1's IEMSCT = 3",
+        ],
+    );
 }
