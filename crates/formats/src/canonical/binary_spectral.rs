@@ -118,22 +118,8 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
 /// A table longer than `u32::MAX` values, or a header serde cannot write (never for a
 /// validated atmosphere).
 pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error> {
-    let mut header = atmosphere.clone();
-    for t in tables_mut(&mut header) {
-        t.clear();
-    }
-    let ron = ron::ser::to_string(&header).map_err(std::io::Error::other)?;
-    let too_big = || std::io::Error::other("a table of spectra holds more than 2^32 values");
     let total: usize = tables(atmosphere).iter().map(|t| 4 + 4 * t.len()).sum();
-    let mut out = Vec::with_capacity(16 + ron.len() + total);
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION.to_le_bytes());
-    out.extend_from_slice(
-        &u32::try_from(ron.len())
-            .map_err(|_| too_big())?
-            .to_le_bytes(),
-    );
-    out.extend_from_slice(ron.as_bytes());
+    let mut out = start(atmosphere, VERSION, total)?;
     for t in tables(atmosphere) {
         out.extend_from_slice(&u32::try_from(t.len()).map_err(|_| too_big())?.to_le_bytes());
         for v in t {
@@ -141,6 +127,34 @@ pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error
         }
     }
     Ok(out)
+}
+
+/// The file's start for `version`: the magic, the version, and the atmosphere without its
+/// tables as RON with its byte length; room for `tables` bytes more.
+fn start(
+    atmosphere: &SpectralAtmosphere,
+    version: u32,
+    tables: usize,
+) -> Result<Vec<u8>, std::io::Error> {
+    let mut bare = atmosphere.clone();
+    for t in tables_mut(&mut bare) {
+        t.clear();
+    }
+    let ron = ron::ser::to_string(&bare).map_err(std::io::Error::other)?;
+    let mut out = Vec::with_capacity(16 + ron.len() + tables);
+    out.extend_from_slice(MAGIC);
+    out.extend_from_slice(&version.to_le_bytes());
+    out.extend_from_slice(
+        &u32::try_from(ron.len())
+            .map_err(|_| too_big())?
+            .to_le_bytes(),
+    );
+    out.extend_from_slice(ron.as_bytes());
+    Ok(out)
+}
+
+fn too_big() -> std::io::Error {
+    std::io::Error::other("a table of spectra holds more than 2^32 values")
 }
 
 /// Encodes a spectral atmosphere in version 2 (`formats/canonical/spectral-atmosphere.md`):
@@ -153,22 +167,8 @@ pub fn encode(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error
 /// # Errors
 /// As [`encode`]; a table whose length is not a whole number of spectra.
 pub fn encode_quantised(atmosphere: &SpectralAtmosphere) -> Result<Vec<u8>, std::io::Error> {
-    let mut header = atmosphere.clone();
-    for t in tables_mut(&mut header) {
-        t.clear();
-    }
-    let ron = ron::ser::to_string(&header).map_err(std::io::Error::other)?;
-    let too_big = || std::io::Error::other("a table of spectra holds more than 2^32 values");
     let n = atmosphere.grid.points.len().max(1);
-    let mut out = Vec::new();
-    out.extend_from_slice(MAGIC);
-    out.extend_from_slice(&VERSION_QUANTISED.to_le_bytes());
-    out.extend_from_slice(
-        &u32::try_from(ron.len())
-            .map_err(|_| too_big())?
-            .to_le_bytes(),
-    );
-    out.extend_from_slice(ron.as_bytes());
+    let mut out = start(atmosphere, VERSION_QUANTISED, 0)?;
     for t in tables(atmosphere) {
         if t.len() % n != 0 {
             return Err(std::io::Error::other(format!(
