@@ -220,13 +220,21 @@ type SubBandsOf<'a, R, T> =
 /// choices and errors are those of 33 levels (docs/accuracy.md).
 const PILOT_SKY_LEVELS: usize = 5;
 
-/// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md):
-/// one `path` call, and precomputing the sky of one sub-band up to a few km.
-fn atmosphere_costs(kind: ModelKind) -> (f64, f64) {
+/// Unit costs of the atmosphere models for the pilot's cost model, ns (BENCHMARKS.md "The
+/// tolerance pilot's cost model"): one `path` call by a sensor `sensor_alt_m` above the
+/// ground, and precomputing the sky of one sub-band up to a few km. A path's cost grows
+/// with the profile levels it crosses (each a piece of the layered walk): it is priced by
+/// the built-in levels below the sensor, fitted to the quickstart (5 m, no level) and to
+/// `cargo bench -p irsig-atmosphere --bench path` (1 km, seven).
+fn atmosphere_costs(kind: ModelKind, sensor_alt_m: f64) -> (f64, f64) {
+    let levels = irsig_atmosphere::plan::LEVELS_M
+        .iter()
+        .filter(|&&z| z <= sensor_alt_m)
+        .count() as f64;
     match kind {
-        ModelKind::Table => (330.0, 5e6),
-        ModelKind::Layered => (280.0, 88e6),
-        ModelKind::Thesis => (110.0, 121e6),
+        ModelKind::Table => (165.0 + 23.0 * levels, 3e6),
+        ModelKind::Layered => (70.0 + 30.0 * levels, 88e6),
+        ModelKind::Thesis => (57.0 + 7.5 * levels, 121e6),
         ModelKind::None => (5.0, 0.0),
     }
 }
@@ -1049,7 +1057,7 @@ impl Plan {
                 .band_set(sub)
                 .and_then(|set| tracer.lit_band_set(set, beams))
                 .map_err(|e| miette!("{e}"))?;
-            let (path_call_ns, sky_ns) = atmosphere_costs(kind);
+            let (path_call_ns, sky_ns) = atmosphere_costs(kind, camera.position_m[2].max(0.0));
             bands.push(BandChoice {
                 atmosphere: kind,
                 sub_bands: count,

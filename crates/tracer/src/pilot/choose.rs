@@ -27,7 +27,7 @@ use crate::pilot::measure::Measured;
 use crate::pilot::stats::{confident_rank, order_statistic, weighted_percentile};
 use crate::pilot::{PilotSpace, Supersample};
 
-/// Unit costs of the cost model, ns of one core's time (BENCHMARKS.md "Unit costs of the
+/// Unit costs of the cost model, ns of one core's time (BENCHMARKS.md "The tolerance
 /// pilot's cost model"): a ray through a BVH of `t` triangles costs
 /// `ray_base + ray_per_log2 · log2(t)`; a node and a hemisphere ray evaluated in one
 /// sub-band; a path-table lookup in one sub-band.
@@ -39,22 +39,23 @@ pub(crate) struct UnitCosts {
     pub(crate) table_lookup_ns: f64,
 }
 
-/// The measured unit costs: node, hemisphere-ray and table figures fitted to single-thread
-/// renderings of the quickstart at 512 × 384 with 0 and 16 sky-view rays, the band model
-/// and the full grid, exact and tabulated path terms (BENCHMARKS.md "The tolerance pilot's
-/// cost model").
+/// The measured unit costs (BENCHMARKS.md "The tolerance pilot's cost model"): fitted to
+/// single-thread renderings of the quickstart at 128 × 96 with 1, 4, 16 and all 108
+/// sub-bands, 1 to 16 × 16 rays a pixel, 0 and 64 sky-view rays, exact and tabulated path
+/// terms, the table build's cost taken out of the tabulated ones.
 pub(crate) const UNIT_COSTS: UnitCosts = UnitCosts {
     ray_base_ns: 60.0,
     ray_per_log2_ns: 14.0,
-    node_eval_ns: 125.0,
-    hemi_eval_ns: 33.0,
-    table_lookup_ns: 15.0,
+    node_eval_ns: 22.0,
+    hemi_eval_ns: 18.0,
+    table_lookup_ns: 10.0,
 };
 
 /// A path-term call for a further sub-band of a path already located, as a share of the
-/// first call's cost (the sub-bands share the path's grid search): 50 ns against 330 in
-/// the same renderings.
-const PATH_ALONG_SHARE: f64 = 0.15;
+/// first call's cost (the sub-bands share the path's grid search, but the layered walk's
+/// curve of growth is each sub-band's own): 150 of 165 ns by a sensor 5 m up, 243 of 327
+/// at 1 km.
+const PATH_ALONG_SHARE: f64 = 0.8;
 
 /// Paths a refined pixel is assumed to cost while combinations are compared (before the
 /// trial measures it): two levels from the edge side, 8 × (16 + 64).
