@@ -23,93 +23,23 @@
 //! alone; `IRSIG_GUARANTEE_REFERENCE_ROUNDS=N` the reference's first N rounds alone); CI
 //! runs scene 0's low view and scene 1's mast view at 0.5 K.
 
-use irsig_model::View;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::PilotSpace;
 use irsig_tracer::testing::{
-    REFERENCE_ROUNDS_DEFAULT, box_mesh, converged_reference, grey_materials, ground_quad,
-    material_p90s, percentile, raw_scene, temperatures, vacuum_pilot_space,
+    GENERATED_MATERIALS, GENERATED_SKY, REFERENCE_ROUNDS_DEFAULT, converged_reference,
+    generated_scene, material_p90s, percentile, temperatures, vacuum_pilot_space,
 };
 use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
-use rand::{Rng, SeedableRng};
-use rand_chacha::ChaCha8Rng;
 
-const SKY: Vacuum = Vacuum {
-    sky_radiance_w_m2_sr: 25.0,
-};
-
-/// Material ids: ground, diffuse paint, glass, polished metal, pole and wire.
-const GROUND: u16 = 1;
-const PAINT: u16 = 2;
-const GLASS: u16 = 3;
-const METAL: u16 = 4;
-const POLE: u16 = 5;
-
-/// A scene drawn from `seed`, and its view `view`: 0 a low camera looking along the
-/// ground (its far end grazing), 1 a camera on a mast looking down across the scene.
+/// The generated scene `seed` ([`generated_scene`]), ready to trace from its view `view`.
 fn generated(seed: u64, view: usize) -> (Tracer<TotalRadiance, Vacuum>, Camera) {
-    let mut rng = ChaCha8Rng::seed_from_u64(seed);
-    let mut t = |lo: f64, hi: f64| rng.random_range(lo..hi);
-    let ground = ground_quad([-200.0, -200.0], [200.0, 400.0], 0.0);
-    let mut meshes = vec![(ground, GROUND, t(285.0, 315.0))];
-    // Boxes near and far, each diffuse, glass-fronted or metal.
-    for k in 0..6 {
-        let y = t(5.0, 80.0);
-        let x = t(-0.5, 0.5) * y;
-        let (w, d, h) = (t(1.0, 6.0), t(1.0, 6.0), t(1.0, 8.0));
-        let material = [PAINT, GLASS, METAL][k % 3];
-        let kinetic = t(270.0, 340.0);
-        meshes.push((box_mesh([x, y, 0.0], [x + w, y + d, h]), material, kinetic));
-    }
-    // Poles 3-6 cm wide and a wire of 1 cm: a fraction of a pixel at their distance.
-    for _ in 0..3 {
-        let (x, y) = (t(-10.0, 10.0), t(10.0, 40.0));
-        let width = t(0.03, 0.06);
-        let kinetic = t(290.0, 340.0);
-        meshes.push((
-            box_mesh([x, y, 0.0], [x + width, y + width, t(4.0, 10.0)]),
-            POLE,
-            kinetic,
-        ));
-    }
-    let (y, z) = (t(12.0, 30.0), t(3.0, 7.0));
-    meshes.push((
-        box_mesh([-30.0, y, z], [30.0, y + 0.01, z + 0.01]),
-        POLE,
-        t(280.0, 320.0),
-    ));
-    let parts: Vec<_> = meshes.iter().map(|(m, id, k)| (m, *id, *k)).collect();
-    let scene = raw_scene(&parts);
-    let materials = grey_materials(&[
-        (GROUND, 0.95, 0.0),
-        (PAINT, 0.9, 0.0),
-        (GLASS, 0.12, 1.0),
-        (METAL, 0.05, 0.9),
-        (POLE, 0.9, 0.0),
-    ]);
-    let tracer = Tracer::new(&scene, &materials, TotalRadiance, SKY).unwrap();
-    let low = View::LookAt {
-        position_m: [t(-3.0, 3.0), -8.0, t(1.5, 4.0)],
-        target_m: [0.0, 30.0, t(0.0, 2.0)],
-        up: [0.0, 0.0, 1.0],
-        pixels: [48, 36],
-        fov_deg: [60.0, 45.0],
-        gain_dc_per_k: None,
-    };
-    let mast = View::LookAt {
-        position_m: [t(-30.0, 30.0), -30.0, t(12.0, 25.0)],
-        target_m: [0.0, t(15.0, 40.0), 0.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: [48, 36],
-        fov_deg: [50.0, 37.5],
-        gain_dc_per_k: None,
-    };
-    let camera = Camera::from_view(if view == 0 { &low } else { &mast }).unwrap();
-    (tracer, camera)
+    let (scene, materials, view) = generated_scene(seed, view);
+    let tracer = Tracer::new(&scene, &materials, TotalRadiance, GENERATED_SKY).unwrap();
+    (tracer, Camera::from_view(&view).unwrap())
 }
 
 fn space(tracer: &Tracer<TotalRadiance, Vacuum>) -> PilotSpace<Vacuum> {
-    vacuum_pilot_space(tracer, SKY)
+    vacuum_pilot_space(tracer, GENERATED_SKY)
 }
 
 struct Outcome {
@@ -162,8 +92,7 @@ fn check((seed, view): (u64, usize), tolerance_k: f64) -> Result<Outcome, String
         .truth_layer(irsig_model::truth::Layer::MaterialPrimary)
         .unwrap();
     let mut worst = 0.0_f64;
-    for (id, pixels, p90) in material_p90s(&error, &material, &[GROUND, PAINT, GLASS, METAL, POLE])
-    {
+    for (id, pixels, p90) in material_p90s(&error, &material, &GENERATED_MATERIALS) {
         eprintln!("  material {id}: {pixels} pixels, p90 |dT| {p90:.3} K");
         if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
             for (i, e) in error.iter().enumerate() {
