@@ -1,6 +1,8 @@
 //! The search over every combination of the models' settings for the cheapest that holds
 //! ([`choose::holds`], priced by [`choose::cost`]).
 
+use rayon::prelude::*;
+
 use super::choose::{self, Combo, Counts, MODELS};
 use super::classes::Census;
 use super::measure::Measured;
@@ -27,7 +29,7 @@ pub(crate) fn lens<S>(space: &PilotSpace<S>) -> [usize; MODELS] {
 /// keep them from holding (against themselves every other error is 0), and its error is
 /// the user's.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn cheapest<S>(
+pub(crate) fn cheapest<S: Sync>(
     space: &PilotSpace<S>,
     counts: &Counts,
     census: &Census,
@@ -39,27 +41,39 @@ pub(crate) fn cheapest<S>(
     det_k: f64,
     percentile: f64,
 ) -> (Combo, choose::Verdict) {
-    let mut best: Option<(f64, Combo, choose::Verdict)> = None;
+    // Every combination, in the odometer's order; each judged on its own (side by side),
+    // then the cheapest taken in that order, so that ties go as they always did.
+    let mut combos: Vec<Combo> = Vec::new();
     let mut combo: Combo = [0; MODELS];
     loop {
-        if let Some(v) = choose::holds(
-            census,
-            measured,
-            by_class,
-            guaranteed,
-            &combo,
-            tolerance_k,
-            det_k,
-            percentile,
-        ) {
-            let c = choose::cost(space, counts, &combo);
+        combos.push(combo);
+        if !next_combo(&mut combo, lens) {
+            break;
+        }
+    }
+    let judged: Vec<Option<(f64, choose::Verdict)>> = combos
+        .par_iter()
+        .map(|combo| {
+            choose::holds(
+                census,
+                measured,
+                by_class,
+                guaranteed,
+                combo,
+                tolerance_k,
+                det_k,
+                percentile,
+            )
+            .map(|v| (choose::cost(space, counts, combo), v))
+        })
+        .collect();
+    let mut best: Option<(f64, Combo, choose::Verdict)> = None;
+    for (combo, judged) in combos.into_iter().zip(judged) {
+        if let Some((c, v)) = judged {
             let cheaper = |b: &Combo| combo.iter().sum::<usize>() > b.iter().sum::<usize>();
             if best.is_none_or(|(bc, b, _)| c < bc * (1.0 - 1e-12) || (c <= bc && cheaper(&b))) {
                 best = Some((c, combo, v));
             }
-        }
-        if !next_combo(&mut combo, lens) {
-            break;
         }
     }
     match best {
