@@ -146,3 +146,21 @@ impl SkyView {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn views_on_the_same_angles_each_integrate_their_own_radiance() {
+        // Eq. 5 of a constant is the constant; of L(θ) = θ in degrees, linear between the
+        // knots and so integrated exactly, (180/π)∫θ sin 2θ dθ over [0, π/2] = 45.
+        let seven = SkyView::build(0.0, 90.0, |_| 7.0);
+        let three = SkyView::build(0.0, 90.0, |_| 3.0);
+        let ramp = SkyView::build(2.0, 90.1, |z| z);
+        assert!((seven.hemispheric() - 7.0).abs() < 1e-12);
+        assert!((three.hemispheric() - 3.0).abs() < 1e-12);
+        assert!((ramp.hemispheric() - 45.0).abs() < 1e-9);
+        assert!((seven.hemispheric() - 7.0).abs() < 1e-12);
+    }
+}

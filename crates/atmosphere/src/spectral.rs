@@ -648,6 +648,43 @@ fn transmissions_valid(
 mod tests {
     use super::*;
 
+    #[test]
+    fn transmissions_are_those_of_the_collapse_with_the_same_weight() {
+        let spectral = crate::builtin_spectral("us-std-1976").unwrap();
+        let collapser = Collapser::new(&spectral).unwrap();
+        let flat = |_: f64| 1.0;
+        let tilted = |l: f64| l * l;
+        for (lo, hi) in [(8.0, 14.0), (9.5, 9.7)] {
+            let whole = collapser.collapse(lo, hi, tilted).unwrap();
+            let alone = collapser.transmissions(lo, hi, tilted).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let levels: Vec<f64> = whole.levels.iter().map(|l| l.transmission).collect();
+            assert_eq!(bits(&alone.levels), bits(&levels));
+            assert_eq!(alone.correction, whole.transmission_correction);
+            let slant = whole.slant.as_ref().unwrap();
+            assert_eq!(alone.slant.as_ref(), Some(&slant.transmission));
+            // Put into the collapse with another weight, they are all that changes.
+            let mut other = collapser.collapse(lo, hi, flat).unwrap();
+            assert_ne!(
+                other.levels[0].transmission.to_bits(),
+                whole.levels[0].transmission.to_bits()
+            );
+            let radiance = other.levels[0].path_radiance_w_m2_sr;
+            alone.apply_to(&mut other);
+            let levels: Vec<f64> = other.levels.iter().map(|l| l.transmission).collect();
+            assert_eq!(bits(&levels), bits(&alone.levels));
+            assert_eq!(other.transmission_correction, alone.correction);
+            assert_eq!(
+                other.slant.as_ref().map(|s| &s.transmission),
+                alone.slant.as_ref()
+            );
+            assert_eq!(
+                other.levels[0].path_radiance_w_m2_sr.to_bits(),
+                radiance.to_bits()
+            );
+        }
+    }
+
     fn grid(axis: SpectralAxis, points: Vec<f64>) -> SpectralGrid {
         SpectralGrid { axis, points }
     }

@@ -103,6 +103,31 @@ mod tests {
     }
 
     #[test]
+    fn curves_averaged_together_are_each_averaged_as_alone() {
+        // The step of the test below and a constant on the same wavelengths: the step's
+        // Planck shares (Simpson's sums) and the constant itself, each bit for bit what
+        // `band_average_emissivity` gives it.
+        let w = [7.0, 10.0, 10.000_001, 15.0];
+        let step = [0.5, 0.5, 0.9, 0.9];
+        let constant = [0.7; 4];
+        let band = Band::new(8.0, 14.0).unwrap();
+        let both = band_average_emissivities(&w, &[&step, &constant], &band, 300.0).unwrap();
+        let (lo, hi) = (
+            planck_integral(8.0, 10.0, 300.0),
+            planck_integral(10.0, 14.0, 300.0),
+        );
+        assert!((both[0] - (0.5 * lo + 0.9 * hi) / (lo + hi)).abs() < 1e-7);
+        assert!((both[1] - 0.7).abs() < 1e-12);
+        for (curve, value) in [(&step, both[0]), (&constant, both[1])] {
+            let alone = band_average_emissivity(&w, curve, &band, 300.0).unwrap();
+            assert_eq!(alone.to_bits(), value.to_bits());
+        }
+        // A curve of the wrong length is refused, whichever it is.
+        let short = [0.7; 3];
+        assert!(band_average_emissivities(&w, &[&step, &short], &band, 300.0).is_err());
+    }
+
+    #[test]
     fn a_step_averages_to_the_planck_shares_of_its_two_sides() {
         // ε = 0.5 below 10 µm and 0.9 above (the step between 10 and 10.000001 µm):
         // ε̄ = (0.5 ∫₈¹⁰ B + 0.9 ∫₁₀¹⁴ B) / ∫₈¹⁴ B.
