@@ -117,10 +117,18 @@ impl Cell {
     /// The table `zs[row][col]` at the cell: a monotone cubic along each row (across the
     /// columns `ys` the cell was located in), then linear between the two rows.
     pub(crate) fn cubic_in_columns(&self, ys: &[f64], zs: &[Vec<f64>]) -> f64 {
-        let row = |k: usize| {
-            zs.get(k)
-                .map_or(f64::NAN, |r| monotone_cubic_located(ys, r, self.j, self.fy))
-        };
+        self.cubic_in_rows(ys, |k| zs.get(k).map(Vec::as_slice))
+    }
+
+    /// As [`Cell::cubic_in_columns`], the rows given by `zs` (`None` past the last), for a
+    /// table whose rows are made on first use.
+    pub(crate) fn cubic_in_rows<'a>(
+        &self,
+        ys: &[f64],
+        zs: impl Fn(usize) -> Option<&'a [f64]>,
+    ) -> f64 {
+        let row =
+            |k: usize| zs(k).map_or(f64::NAN, |r| monotone_cubic_located(ys, r, self.j, self.fy));
         if self.rows < 2 {
             return row(0);
         }
@@ -193,32 +201,78 @@ impl Quadratic {
 /// `[0°, 90°]`: `L_hemi = (1/π)∫∫ L cosθ dΩ = ∫₀^{π/2} L(θ) sin 2θ dθ`, integrated exactly
 /// segment by segment. Below the first and above the last angle the end values hold.
 pub(crate) fn hemispheric(angles_deg: &[f64], radiance: &[f64]) -> f64 {
-    let mut knots: Vec<(f64, f64)> = Vec::with_capacity(angles_deg.len() + 2);
     let (Some(&first), Some(&last)) = (radiance.first(), radiance.last()) else {
         return 0.0;
     };
-    knots.push((0.0, first));
-    for (&a, &l) in angles_deg.iter().zip(radiance) {
-        if a > 0.0 && a < 90.0 {
-            knots.push((a.to_radians(), l));
+    let n = angles_deg.len().min(radiance.len());
+    Hemispheric::new(&angles_deg[..n]).integrate(first, last, radiance)
+}
+
+/// [`hemispheric`] over fixed angles: the knots and their sines and cosines made once, for
+/// the many radiances on the same angles (every level of every sub-band's sky).
+#[derive(Debug, Clone)]
+pub(crate) struct Hemispheric {
+    /// The knots, radians: 0, the angles strictly between 0° and 90°, then π/2.
+    knots: Vec<f64>,
+    /// sin 2θ and cos 2θ at each knot: each is an end of two segments.
+    trig: Vec<(f64, f64)>,
+    /// Which angle each knot between the ends is.
+    inner: Vec<usize>,
+}
+
+impl Hemispheric {
+    /// The rule for radiances at `angles_deg`.
+    pub(crate) fn new(angles_deg: &[f64]) -> Self {
+        let mut knots = Vec::with_capacity(angles_deg.len() + 2);
+        let mut inner = Vec::with_capacity(angles_deg.len());
+        knots.push(0.0);
+        for (k, &a) in angles_deg.iter().enumerate() {
+            if a > 0.0 && a < 90.0 {
+                knots.push(a.to_radians());
+                inner.push(k);
+            }
+        }
+        knots.push(std::f64::consts::FRAC_PI_2);
+        let trig = knots.iter().map(|&t| (2.0 * t).sin_cos()).collect();
+        Self { knots, trig, inner }
+    }
+
+    /// Eq. 5 of `radiance`, one value per angle of the rule (0 for none).
+    pub(crate) fn of(&self, radiance: &[f64]) -> f64 {
+        match (radiance.first(), radiance.last()) {
+            (Some(&first), Some(&last)) => self.integrate(first, last, radiance),
+            _ => 0.0,
         }
     }
-    knots.push((std::f64::consts::FRAC_PI_2, last));
-    // sin 2θ and cos 2θ once per knot: each is an end of two segments.
-    let trig: Vec<(f64, f64)> = knots.iter().map(|&(t, _)| (2.0 * t).sin_cos()).collect();
-    let mut sum = 0.0;
-    for (w, s) in knots.windows(2).zip(trig.windows(2)) {
-        let ((t0, l0), (t1, l1)) = (w[0], w[1]);
-        if t1 <= t0 {
-            continue;
+
+    /// Eq. 5 of `radiance` (at least one value per angle of the rule), `first` held from
+    /// 0° and `last` to 90°.
+    fn integrate(&self, first: f64, last: f64, radiance: &[f64]) -> f64 {
+        let end = self.knots.len() - 1;
+        let value = |i: usize| {
+            if i == 0 {
+                first
+            } else if i == end {
+                last
+            } else {
+                radiance[self.inner[i - 1]]
+            }
+        };
+        let mut sum = 0.0;
+        for (i, s) in self.trig.windows(2).enumerate() {
+            let (t0, t1) = (self.knots[i], self.knots[i + 1]);
+            let (l0, l1) = (value(i), value(i + 1));
+            if t1 <= t0 {
+                continue;
+            }
+            let slope = (l1 - l0) / (t1 - t0);
+            // ∫ sin2θ dθ = -cos2θ/2 ;  ∫ (θ - t0) sin2θ dθ = -(θ - t0)cos2θ/2 + sin2θ/4
+            let a = |(_, cos2t): (f64, f64)| -cos2t / 2.0;
+            let b = |t: f64, (sin2t, cos2t): (f64, f64)| -(t - t0) * cos2t / 2.0 + sin2t / 4.0;
+            sum += l0 * (a(s[1]) - a(s[0])) + slope * (b(t1, s[1]) - b(t0, s[0]));
         }
-        let slope = (l1 - l0) / (t1 - t0);
-        // ∫ sin2θ dθ = -cos2θ/2 ;  ∫ (θ - t0) sin2θ dθ = -(θ - t0)cos2θ/2 + sin2θ/4
-        let a = |(_, cos2t): (f64, f64)| -cos2t / 2.0;
-        let b = |t: f64, (sin2t, cos2t): (f64, f64)| -(t - t0) * cos2t / 2.0 + sin2t / 4.0;
-        sum += l0 * (a(s[1]) - a(s[0])) + slope * (b(t1, s[1]) - b(t0, s[0]));
+        sum
     }
-    sum
 }
 
 #[cfg(test)]

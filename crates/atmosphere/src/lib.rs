@@ -80,7 +80,9 @@ pub use sky::{
     APPENDIX_E_EXTRAPOLATE_FROM_DEG, APPENDIX_E_FIT_FROM_DEG, HEMISPHERIC_TOLERANCE,
     HemisphericSky, SkyView,
 };
-pub use spectral::{BandQuadrature, Collapser, SubBandCount, collapse, sub_band_edges};
+pub use spectral::{
+    BandQuadrature, Collapser, SubBandCount, Transmissions, collapse, sub_band_edges,
+};
 
 use layered::{Profile, Slant};
 use sky::GroundSky;

@@ -1,7 +1,9 @@
 //! Sky radiance: the angular `L_d(θ)` seen from the ground (the `.dwr`), the path radiance
 //! from an observer above the ground to space, and the hemispheric value (eq. 5).
 
-use crate::interp::{fit_quadratic, hemispheric, monotone_cubic};
+use std::sync::OnceLock;
+
+use crate::interp::{Hemispheric, fit_quadratic, hemispheric, monotone_cubic};
 
 /// Zenith angle (degrees) beyond which thesis Appendix E replaces computed sky radiance by
 /// a least-squares quadratic fitted over [`APPENDIX_E_FIT_FROM_DEG`, this].
@@ -124,10 +126,41 @@ impl SkyView {
     /// Eq. 5 over the upper hemisphere (0–90°), W m⁻² sr⁻¹.
     #[must_use]
     pub fn hemispheric(&self) -> f64 {
-        let angles: Vec<f64> = (0..self.radiance.len())
-            .map(|k| k as f64 * self.step_deg)
-            .take_while(|&a| a <= 90.0)
-            .collect();
-        hemispheric(&angles, &self.radiance[..angles.len()])
+        let count = (0..self.radiance.len())
+            .take_while(|&k| k as f64 * self.step_deg <= 90.0)
+            .count();
+        let radiance = &self.radiance[..count];
+        // Every view is built on the same angles ([`SkyView::build`]): their rule is made
+        // once (a plan precomputes hundreds of views: each level of each sub-band).
+        static RULE: OnceLock<(f64, usize, Hemispheric)> = OnceLock::new();
+        let (step, n, rule) = RULE.get_or_init(|| {
+            let angles: Vec<f64> = (0..count).map(|k| k as f64 * self.step_deg).collect();
+            (self.step_deg, count, Hemispheric::new(&angles))
+        });
+        #[allow(clippy::float_cmp)] // the same step, exactly, means the same angles
+        if *step == self.step_deg && *n == count {
+            rule.of(radiance)
+        } else {
+            let angles: Vec<f64> = (0..count).map(|k| k as f64 * self.step_deg).collect();
+            hemispheric(&angles, radiance)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn views_on_the_same_angles_each_integrate_their_own_radiance() {
+        // Eq. 5 of a constant is the constant; of L(θ) = θ in degrees, linear between the
+        // knots and so integrated exactly, (180/π)∫θ sin 2θ dθ over [0, π/2] = 45.
+        let seven = SkyView::build(0.0, 90.0, |_| 7.0);
+        let three = SkyView::build(0.0, 90.0, |_| 3.0);
+        let ramp = SkyView::build(2.0, 90.1, |z| z);
+        assert!((seven.hemispheric() - 7.0).abs() < 1e-12);
+        assert!((three.hemispheric() - 3.0).abs() < 1e-12);
+        assert!((ramp.hemispheric() - 45.0).abs() < 1e-9);
+        assert!((seven.hemispheric() - 7.0).abs() < 1e-12);
     }
 }

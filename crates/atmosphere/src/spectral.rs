@@ -439,6 +439,12 @@ impl<'a> Collapser<'a> {
         Ok(Self(spectral))
     }
 
+    /// The spectral atmosphere it collapses.
+    #[must_use]
+    pub fn spectral(&self) -> &'a SpectralAtmosphere {
+        self.0
+    }
+
     /// [`collapse`] over `[lo_um, hi_um]` with response `weight(λ in µm)`.
     ///
     /// # Errors
@@ -450,6 +456,22 @@ impl<'a> Collapser<'a> {
         weight: impl Fn(f64) -> f64,
     ) -> Result<Atmosphere, AtmosphereError> {
         collapse_valid(self.0, lo_um, hi_um, weight)
+    }
+
+    /// The transmittances alone of [`Collapser::collapse`] over `[lo_um, hi_um]` with
+    /// `weight`, each the same number: for a collapse whose τ is weighted otherwise than
+    /// its radiances (sub-bands weigh τ by the blackbody too), without collapsing every
+    /// radiance a second time.
+    ///
+    /// # Errors
+    /// As [`collapse`].
+    pub fn transmissions(
+        &self,
+        lo_um: f64,
+        hi_um: f64,
+        weight: impl Fn(f64) -> f64,
+    ) -> Result<Transmissions, AtmosphereError> {
+        transmissions_valid(self.0, lo_um, hi_um, weight)
     }
 }
 
@@ -474,29 +496,7 @@ fn collapse_valid(
             path_radiance_w_m2_sr: q.radiance(lu),
         })
         .collect();
-    let transmission_correction = match &spectral.transmission_correction {
-        None => None,
-        Some(c) => {
-            let tau: Vec<f64> = spectra(&c.transmission, n)
-                .map(|s| q.transmission(s))
-                .collect();
-            if tau.iter().all(|&t| t <= 0.0) {
-                // Opaque at every angle (the 4.3 µm CO2 band over the 1 km .cor paths, a
-                // sub-band of 3-5 µm): τ(θ) = τ(0) = 0 whatever the polynomial, and the
-                // identity says so. (Refused, this sub-band stopped every spectral trace
-                // of 3-5 µm through a plan's atmosphere.)
-                Some([1.0, 0.0, 0.0])
-            } else if tau[0] <= 0.0 {
-                return Err(AtmosphereErrorKind::Band(format!(
-                    "the .cor paths have no transmittance at nadir in {lo_um}-{hi_um} um"
-                ))
-                .into());
-            } else {
-                let ratio: Vec<f64> = tau.iter().map(|t| t / tau[0]).collect();
-                fit_correction(&c.nadir_deg, &ratio)
-            }
-        }
-    };
+    let transmission_correction = correction(spectral, &q, lo_um, hi_um)?;
     let sky = spectral
         .sky_zenith_deg
         .iter()
@@ -504,12 +504,8 @@ fn collapse_valid(
         .map(|(&z, s)| (z, q.radiance(s)))
         .collect();
     let slant = spectral.slant.as_ref().map(|s| {
-        let grid = |values: &[f32], rows: usize, f: &dyn Fn(&[f32]) -> f64| -> Vec<Vec<f64>> {
-            let all: Vec<f64> = spectra(values, n).map(f).collect();
-            all.chunks(all.len() / rows.max(1))
-                .map(<[f64]>::to_vec)
-                .collect()
-        };
+        let grid =
+            |values: &[f32], rows: usize, f: &dyn Fn(&[f32]) -> f64| grid(values, n, rows, f);
         SlantTables {
             altitude_m: s.altitude_m.clone(),
             nadir_deg: s.nadir_deg.clone(),
@@ -556,9 +552,138 @@ fn collapse_valid(
     Ok(atmosphere)
 }
 
+/// The `.cor` fit of `spectral` collapsed with `q` over `[lo_um, hi_um]`.
+fn correction(
+    spectral: &SpectralAtmosphere,
+    q: &BandQuadrature,
+    lo_um: f64,
+    hi_um: f64,
+) -> Result<Option<[f64; 3]>, AtmosphereError> {
+    let Some(c) = &spectral.transmission_correction else {
+        return Ok(None);
+    };
+    let n = spectral.grid.points.len();
+    let tau: Vec<f64> = spectra(&c.transmission, n)
+        .map(|s| q.transmission(s))
+        .collect();
+    if tau.iter().all(|&t| t <= 0.0) {
+        // Opaque at every angle (the 4.3 µm CO2 band over the 1 km .cor paths, a
+        // sub-band of 3-5 µm): τ(θ) = τ(0) = 0 whatever the polynomial, and the
+        // identity says so. (Refused, this sub-band stopped every spectral trace
+        // of 3-5 µm through a plan's atmosphere.)
+        Ok(Some([1.0, 0.0, 0.0]))
+    } else if tau[0] <= 0.0 {
+        Err(AtmosphereErrorKind::Band(format!(
+            "the .cor paths have no transmittance at nadir in {lo_um}-{hi_um} um"
+        ))
+        .into())
+    } else {
+        let ratio: Vec<f64> = tau.iter().map(|t| t / tau[0]).collect();
+        Ok(fit_correction(&c.nadir_deg, &ratio))
+    }
+}
+
+/// A table of `rows` rows of spectra (`n` values each) collapsed by `f`.
+fn grid(values: &[f32], n: usize, rows: usize, f: &dyn Fn(&[f32]) -> f64) -> Vec<Vec<f64>> {
+    let all: Vec<f64> = spectra(values, n).map(f).collect();
+    all.chunks(all.len() / rows.max(1))
+        .map(<[f64]>::to_vec)
+        .collect()
+}
+
+/// The transmittances of a spectral atmosphere collapsed over a band, alone: the
+/// profile's levels', the `.cor` fit's and the slant tables' ([`Collapser::transmissions`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Transmissions {
+    /// Each level's, in the order of the atmosphere's levels.
+    pub levels: Vec<f64>,
+    /// The `.cor` fit (`None` without `.cor` paths).
+    pub correction: Option<[f64; 3]>,
+    /// The slant table's, `[altitude][nadir]` (`None` without slant tables).
+    pub slant: Option<Vec<Vec<f64>>>,
+}
+
+impl Transmissions {
+    /// Puts these transmittances into `atmosphere`, a collapse of the same spectral
+    /// atmosphere over the same band with another weight.
+    pub fn apply_to(&self, atmosphere: &mut Atmosphere) {
+        for (level, &t) in atmosphere.levels.iter_mut().zip(&self.levels) {
+            level.transmission = t;
+        }
+        atmosphere.transmission_correction = self.correction;
+        if let (Some(slant), Some(t)) = (atmosphere.slant.as_mut(), self.slant.as_ref()) {
+            slant.transmission.clone_from(t);
+        }
+    }
+}
+
+fn transmissions_valid(
+    spectral: &SpectralAtmosphere,
+    lo_um: f64,
+    hi_um: f64,
+    weight: impl Fn(f64) -> f64,
+) -> Result<Transmissions, AtmosphereError> {
+    let q = BandQuadrature::new(&spectral.grid, lo_um, hi_um, weight)?;
+    let n = spectral.grid.points.len();
+    let levels = spectral
+        .levels
+        .iter()
+        .zip(spectra(&spectral.level_transmission, n))
+        .map(|(_, tau)| q.transmission(tau))
+        .collect();
+    let correction = correction(spectral, &q, lo_um, hi_um)?;
+    let slant = spectral.slant.as_ref().map(|s| {
+        grid(&s.transmission, n, s.altitude_m.len(), &|x| {
+            q.transmission(x)
+        })
+    });
+    Ok(Transmissions {
+        levels,
+        correction,
+        slant,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn transmissions_are_those_of_the_collapse_with_the_same_weight() {
+        let spectral = crate::builtin_spectral("us-std-1976").unwrap();
+        let collapser = Collapser::new(&spectral).unwrap();
+        let flat = |_: f64| 1.0;
+        let tilted = |l: f64| l * l;
+        for (lo, hi) in [(8.0, 14.0), (9.5, 9.7)] {
+            let whole = collapser.collapse(lo, hi, tilted).unwrap();
+            let alone = collapser.transmissions(lo, hi, tilted).unwrap();
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            let levels: Vec<f64> = whole.levels.iter().map(|l| l.transmission).collect();
+            assert_eq!(bits(&alone.levels), bits(&levels));
+            assert_eq!(alone.correction, whole.transmission_correction);
+            let slant = whole.slant.as_ref().unwrap();
+            assert_eq!(alone.slant.as_ref(), Some(&slant.transmission));
+            // Put into the collapse with another weight, they are all that changes.
+            let mut other = collapser.collapse(lo, hi, flat).unwrap();
+            assert_ne!(
+                other.levels[0].transmission.to_bits(),
+                whole.levels[0].transmission.to_bits()
+            );
+            let radiance = other.levels[0].path_radiance_w_m2_sr;
+            alone.apply_to(&mut other);
+            let levels: Vec<f64> = other.levels.iter().map(|l| l.transmission).collect();
+            assert_eq!(bits(&levels), bits(&alone.levels));
+            assert_eq!(other.transmission_correction, alone.correction);
+            assert_eq!(
+                other.slant.as_ref().map(|s| &s.transmission),
+                alone.slant.as_ref()
+            );
+            assert_eq!(
+                other.levels[0].path_radiance_w_m2_sr.to_bits(),
+                radiance.to_bits()
+            );
+        }
+    }
 
     fn grid(axis: SpectralAxis, points: Vec<f64>) -> SpectralGrid {
         SpectralGrid { axis, points }

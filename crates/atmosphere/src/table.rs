@@ -14,6 +14,8 @@
 //! quantity itself; outside the grid (beyond the last angle, above the top altitude, or a
 //! path to a target above the ground) it is the layered model with the nearest correction.
 
+use std::sync::OnceLock;
+
 use irsig_model::{Atmosphere, SlantTables};
 
 use crate::PathTerms;
@@ -30,12 +32,33 @@ pub(crate) struct TableWalk {
     keep: Option<f64>,
 }
 
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone)]
 pub(crate) struct Table {
     pub profile: Profile,
     pub slant: SlantTables,
-    depth_ratio: Vec<Vec<f64>>,
-    radiance_ratio: Vec<Vec<f64>>,
+    /// Each altitude row's corrections, made on its first use ([`Table::row`]): a path
+    /// reads two rows, and the tolerance pilot's full grid builds a table per sub-band
+    /// (108 at 8-14 µm) whose paths, from a few observer heights, read a handful of the
+    /// rows. A row is made by the same arithmetic whenever it is made, so a path's terms
+    /// do not depend on which rows were made before.
+    rows: Vec<OnceLock<Corrections>>,
+}
+
+/// One altitude row of a table's corrections to the layered model, per nadir angle.
+#[derive(Debug, Clone)]
+struct Corrections {
+    /// The table's slant optical depth over the layered model's.
+    depth_ratio: Vec<f64>,
+    /// The table's path radiance over the layered model's.
+    radiance_ratio: Vec<f64>,
+}
+
+/// Two tables are equal when their profiles and tables are: the corrections follow from
+/// them, whichever rows have been made.
+impl PartialEq for Table {
+    fn eq(&self, other: &Self) -> bool {
+        self.profile == other.profile && self.slant == other.slant
+    }
 }
 
 impl Table {
@@ -54,47 +77,61 @@ impl Table {
                       build`), not from DIRTRAN tables: use the `layered` model (eq. 8-9) or \
                       the `thesis` model (eq. 10-11) with this atmosphere",
         })?;
-        let mut depth_ratio = Vec::with_capacity(slant.altitude_m.len());
-        let mut radiance_ratio = Vec::with_capacity(slant.altitude_m.len());
+        let rows = (0..slant.altitude_m.len())
+            .map(|_| OnceLock::new())
+            .collect();
+        Ok(Self {
+            profile,
+            slant,
+            rows,
+        })
+    }
+
+    /// Row `i`'s corrections (`None` past the last row), made on first use.
+    fn row(&self, i: usize) -> Option<&Corrections> {
+        self.rows
+            .get(i)
+            .map(|row| row.get_or_init(|| self.corrections(i)))
+    }
+
+    /// The corrections of altitude row `i`: at every node the ratio of the table's slant
+    /// optical depth to the layered model's over the same path, and of the path radiances.
+    fn corrections(&self, i: usize) -> Corrections {
+        let slant = &self.slant;
+        let h = slant.altitude_m[i];
         // The layered model over the table's own paths: to its lower end, not to 0 m. (Taken
         // to 0 m, the 2 m row's ratio was LOWTRAN's 1 m of air over the layered model's 2 m:
         // half the optical depth for every path starting near 2 m.)
         let end = slant.ground_m.unwrap_or(0.0);
-        for (i, &h) in slant.altitude_m.iter().enumerate() {
-            let mut dr = Vec::with_capacity(slant.nadir_deg.len());
-            let mut lr = Vec::with_capacity(slant.nadir_deg.len());
-            for (j, &a) in slant.nadir_deg.iter().enumerate() {
-                let sec = 1.0 / a.to_radians().cos();
-                // The layered optical depth as `along` scales it, so that a path through a
-                // node gets the table's own value back.
-                let (layered, layered_depth) = Slant::new(h, end, (h - end) * sec)
-                    .map_or((PathTerms::VACUUM, 0.0), |s| {
-                        profile.along_with_depth(&profile.walk(&s))
-                    });
-                let tau = slant
-                    .transmission
-                    .get(i)
-                    .and_then(|r| r.get(j))
-                    .copied()
-                    .unwrap_or(1.0);
-                let lu = slant
-                    .path_radiance_w_m2_sr
-                    .get(i)
-                    .and_then(|r| r.get(j))
-                    .copied()
-                    .unwrap_or(0.0);
-                dr.push(ratio(-tau.max(1e-300).ln(), layered_depth));
-                lr.push(ratio(lu, layered.path_radiance_w_m2_sr));
-            }
-            depth_ratio.push(dr);
-            radiance_ratio.push(lr);
+        let mut dr = Vec::with_capacity(slant.nadir_deg.len());
+        let mut lr = Vec::with_capacity(slant.nadir_deg.len());
+        for (j, &a) in slant.nadir_deg.iter().enumerate() {
+            let sec = 1.0 / a.to_radians().cos();
+            // The layered optical depth as `along` scales it, so that a path through a
+            // node gets the table's own value back.
+            let (layered, layered_depth) = Slant::new(h, end, (h - end) * sec)
+                .map_or((PathTerms::VACUUM, 0.0), |s| {
+                    self.profile.along_with_depth(&self.profile.walk(&s))
+                });
+            let tau = slant
+                .transmission
+                .get(i)
+                .and_then(|r| r.get(j))
+                .copied()
+                .unwrap_or(1.0);
+            let lu = slant
+                .path_radiance_w_m2_sr
+                .get(i)
+                .and_then(|r| r.get(j))
+                .copied()
+                .unwrap_or(0.0);
+            dr.push(ratio(-tau.max(1e-300).ln(), layered_depth));
+            lr.push(ratio(lu, layered.path_radiance_w_m2_sr));
         }
-        Ok(Self {
-            profile,
-            slant,
-            depth_ratio,
-            radiance_ratio,
-        })
+        Corrections {
+            depth_ratio: dr,
+            radiance_ratio: lr,
+        }
     }
 
     pub(crate) fn path(&self, s: &Slant) -> PathTerms {
@@ -128,8 +165,12 @@ impl Table {
         // 3 km), where a cubic through the rows overshoots; the rows are dense instead
         // (docs/accuracy.md).
         let angles = &self.slant.nadir_deg;
-        let mut dr = walk.cell.cubic_in_columns(angles, &self.depth_ratio);
-        let mut lr = walk.cell.cubic_in_columns(angles, &self.radiance_ratio);
+        let mut dr = walk
+            .cell
+            .cubic_in_rows(angles, |k| self.row(k).map(|r| r.depth_ratio.as_slice()));
+        let mut lr = walk
+            .cell
+            .cubic_in_rows(angles, |k| self.row(k).map(|r| r.radiance_ratio.as_slice()));
         if let Some(keep) = walk.keep {
             dr = 1.0 + keep * (dr - 1.0);
             lr = 1.0 + keep * (lr - 1.0);
@@ -169,5 +210,41 @@ fn ratio(num: f64, den: f64) -> f64 {
         num / den
     } else {
         1.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The rows made so far.
+    fn made(t: &Table) -> usize {
+        t.rows.iter().filter(|r| r.get().is_some()).count()
+    }
+
+    #[test]
+    fn a_path_makes_the_two_rows_it_reads_and_the_order_of_paths_changes_no_bit() {
+        let atm = crate::builtin("us-std-1976").unwrap();
+        let (a, b) = (Table::new(&atm).unwrap(), Table::new(&atm).unwrap());
+        assert_eq!(made(&a), 0);
+        // From 5 m to the ground at 80 degrees from nadir (the quickstart's panel), and from
+        // 1.5 km down to 100 m at 30 degrees.
+        let low = Slant::new(5.0, 0.0, 5.0 / 80f64.to_radians().cos()).unwrap();
+        let high = Slant::new(1500.0, 100.0, 1400.0 / 30f64.to_radians().cos()).unwrap();
+        let first = a.path(&low);
+        assert_eq!(made(&a), 2, "a path reads two rows");
+        let low_first = (first, a.path(&high));
+        assert_eq!(made(&a), 4);
+        let high_first = (b.path(&high), b.path(&low));
+        for (x, y) in [(low_first.0, high_first.1), (low_first.1, high_first.0)] {
+            assert_eq!(x.transmission.to_bits(), y.transmission.to_bits());
+            assert_eq!(
+                x.path_radiance_w_m2_sr.to_bits(),
+                y.path_radiance_w_m2_sr.to_bits()
+            );
+        }
+        // Made or not, the rows follow from the table: the two compare equal.
+        assert_eq!(a, b);
+        assert_eq!(a, Table::new(&atm).unwrap());
     }
 }

@@ -44,5 +44,5 @@ pub use emissivity::EmissivityTable;
 pub use error::{RadiometryError, RadiometryErrorKind};
 pub use inverse::InverseTable;
 pub use planck::spectral_radiance_per_um;
-pub use spectral_emissivity::band_average_emissivity;
+pub use spectral_emissivity::{band_average_emissivities, band_average_emissivity};
 pub use table::RadianceTable;

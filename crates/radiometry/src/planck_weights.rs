@@ -3,6 +3,8 @@
 //! (an emissivity curve, a refractive-index table): its nodes and weights, shared by
 //! [`crate::band_average_emissivity`] and the Fresnel generator's band tables.
 
+use std::sync::OnceLock;
+
 use crate::band::{Band, gauss_legendre};
 use crate::constants::{C1L_W_M2_SR, C2_M_K};
 use crate::error::{RadiometryError, RadiometryErrorKind};
@@ -12,6 +14,14 @@ use crate::error::{RadiometryError, RadiometryErrorKind};
 const NODES_PER_PIECE: usize = 8;
 /// The longest piece, µm.
 const MAX_PIECE_UM: f64 = 0.25;
+
+/// [`gauss_legendre`]`(NODES_PER_PIECE)`, made once: a spectral material's band tables
+/// average each angle's column over each sub-band (the tolerance pilot's full grid is 108
+/// sub-bands), and finding the rule's nodes by Newton's method took most of that.
+fn rule() -> &'static [(f64, f64)] {
+    static RULE: OnceLock<Vec<(f64, f64)>> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(NODES_PER_PIECE))
+}
 
 /// One node: its wavelength, µm, and its weight `w · S(λ) · B_λ(λ, T)`, scaled so the
 /// largest is 1 (only ratios of sums of weights mean anything).
@@ -75,7 +85,7 @@ pub(crate) fn nodes(
     }
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
-    let rule = gauss_legendre(NODES_PER_PIECE);
+    let rule = rule();
     // ln B = ln c1L − 5 ln λ − ln(e^x − 1), x = c2/(λT).
     let ln_planck = |lambda_um: f64| {
         let lambda_m = lambda_um * 1e-6;
@@ -94,7 +104,7 @@ pub(crate) fn nodes(
         let h = (b - a) / pieces;
         for p in 0..pieces as usize {
             let start = a + h * p as f64;
-            for &(t, w) in &rule {
+            for &(t, w) in rule {
                 let lambda = start + 0.5 * h * (t + 1.0);
                 let s = response.map_or(1.0, |r| r.at(lambda));
                 if s > 0.0 {

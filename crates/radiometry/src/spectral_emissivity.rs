@@ -26,14 +26,35 @@ pub fn band_average_emissivity(
     band: &Band,
     temperature_k: f64,
 ) -> Result<f64, RadiometryError> {
+    let values = band_average_emissivities(wavelength_um, &[emissivity], band, temperature_k)?;
+    Ok(values[0])
+}
+
+/// [`band_average_emissivity`] of several curves on the same wavelengths (the columns of
+/// an angular table, one per angle), the quadrature's nodes found once: each value is the
+/// one [`band_average_emissivity`] gives for its curve.
+///
+/// # Errors
+/// As [`band_average_emissivity`], for the first curve that has one.
+pub fn band_average_emissivities(
+    wavelength_um: &[f64],
+    curves: &[&[f64]],
+    band: &Band,
+    temperature_k: f64,
+) -> Result<Vec<f64>, RadiometryError> {
     let bad = |m: String| RadiometryError::new(RadiometryErrorKind::InvalidEmissivity, m);
-    if wavelength_um.len() < 2 || wavelength_um.len() != emissivity.len() {
-        return Err(bad(format!(
-            "a spectral emissivity needs at least two samples and one emissivity per \
-             wavelength ({} wavelengths, {} emissivities)",
-            wavelength_um.len(),
-            emissivity.len()
-        )));
+    for emissivity in curves {
+        if wavelength_um.len() < 2 || wavelength_um.len() != emissivity.len() {
+            return Err(bad(format!(
+                "a spectral emissivity needs at least two samples and one emissivity per \
+                 wavelength ({} wavelengths, {} emissivities)",
+                wavelength_um.len(),
+                emissivity.len()
+            )));
+        }
+    }
+    if curves.is_empty() {
+        return Ok(Vec::new());
     }
     let nodes = planck_weights::nodes(band, temperature_k, wavelength_um, |lo, hi| {
         let (first, last) = (wavelength_um[0], wavelength_um[wavelength_um.len() - 1]);
@@ -45,18 +66,23 @@ pub fn band_average_emissivity(
         }
         Ok(())
     })?;
-    let eps_at = |l: f64| {
-        let k = wavelength_um
-            .partition_point(|&w| w <= l)
-            .clamp(1, wavelength_um.len() - 1);
-        let (w0, w1) = (wavelength_um[k - 1], wavelength_um[k]);
-        let t = ((l - w0) / (w1 - w0)).clamp(0.0, 1.0);
-        emissivity[k - 1] + t * (emissivity[k] - emissivity[k - 1])
-    };
-    let (num, den) = nodes.iter().fold((0.0, 0.0), |(num, den), n| {
-        (num + n.weight * eps_at(n.wavelength_um), den + n.weight)
-    });
-    Ok((num / den).clamp(0.0, 1.0))
+    Ok(curves
+        .iter()
+        .map(|emissivity| {
+            let eps_at = |l: f64| {
+                let k = wavelength_um
+                    .partition_point(|&w| w <= l)
+                    .clamp(1, wavelength_um.len() - 1);
+                let (w0, w1) = (wavelength_um[k - 1], wavelength_um[k]);
+                let t = ((l - w0) / (w1 - w0)).clamp(0.0, 1.0);
+                emissivity[k - 1] + t * (emissivity[k] - emissivity[k - 1])
+            };
+            let (num, den) = nodes.iter().fold((0.0, 0.0), |(num, den), n| {
+                (num + n.weight * eps_at(n.wavelength_um), den + n.weight)
+            });
+            (num / den).clamp(0.0, 1.0)
+        })
+        .collect())
 }
 
 #[cfg(test)]
@@ -74,6 +100,31 @@ mod tests {
             s += w * spectral_radiance_per_um(a + h * f64::from(i), t);
         }
         s * h / 3.0
+    }
+
+    #[test]
+    fn curves_averaged_together_are_each_averaged_as_alone() {
+        // The step of the test below and a constant on the same wavelengths: the step's
+        // Planck shares (Simpson's sums) and the constant itself, each bit for bit what
+        // `band_average_emissivity` gives it.
+        let w = [7.0, 10.0, 10.000_001, 15.0];
+        let step = [0.5, 0.5, 0.9, 0.9];
+        let constant = [0.7; 4];
+        let band = Band::new(8.0, 14.0).unwrap();
+        let both = band_average_emissivities(&w, &[&step, &constant], &band, 300.0).unwrap();
+        let (lo, hi) = (
+            planck_integral(8.0, 10.0, 300.0),
+            planck_integral(10.0, 14.0, 300.0),
+        );
+        assert!((both[0] - (0.5 * lo + 0.9 * hi) / (lo + hi)).abs() < 1e-7);
+        assert!((both[1] - 0.7).abs() < 1e-12);
+        for (curve, value) in [(&step, both[0]), (&constant, both[1])] {
+            let alone = band_average_emissivity(&w, curve, &band, 300.0).unwrap();
+            assert_eq!(alone.to_bits(), value.to_bits());
+        }
+        // A curve of the wrong length is refused, whichever it is.
+        let short = [0.7; 3];
+        assert!(band_average_emissivities(&w, &[&step, &short], &band, 300.0).is_err());
     }
 
     #[test]

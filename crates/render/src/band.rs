@@ -130,14 +130,19 @@ impl<'a> Split<'a> {
     /// response times the blackbody at [`SHARE_REFERENCE_K`], so that τ·L_T is the
     /// sub-band's ∫τB dλ; radiances by the response alone.
     ///
+    /// The atmosphere comes checked, as a [`Collapser`](irsig_atmosphere::Collapser): a
+    /// plan collapses it for several counts, and checking every spectrum of it again for
+    /// each cost the tolerance pilot more than collapsing the band model.
+    ///
     /// # Errors
     /// A count the grid cannot make over the band (a request error), or a sub-band the
     /// atmosphere cannot be collapsed over.
     pub fn collapse(
         &self,
-        spectral: &irsig_model::SpectralAtmosphere,
+        collapser: irsig_atmosphere::Collapser<'_>,
         count: SubBandCount,
     ) -> miette::Result<Collapsed> {
+        let spectral = collapser.spectral();
         let [lo, hi] = self.range_um;
         let share = |a: f64, b: f64| match self.sub_band(a, b) {
             Ok(Some(band)) => band.radiance(SHARE_REFERENCE_K),
@@ -146,7 +151,6 @@ impl<'a> Split<'a> {
         };
         let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
             .map_err(|e| RequestError::of_value(Setting::SubBands, count, e.to_string()))?;
-        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
         edges
             .par_windows(2)
             .map(|w| {
@@ -162,29 +166,19 @@ impl<'a> Split<'a> {
                 if !count.is_band() {
                     // τ as the target sees it (without it the full grid reads up to 0.024 K
                     // warm in a tropical atmosphere; docs/accuracy.md).
-                    let seen = collapser
-                        .collapse(w[0], w[1], |l| {
+                    // Its transmittances alone: collapsing the radiances again under this
+                    // weight was a third of the full grid's collapse, and none was read.
+                    collapser
+                        .transmissions(w[0], w[1], |l| {
                             self.weight(l) * spectral_radiance_per_um(l, SHARE_REFERENCE_K)
                         })
-                        .map_err(at)?;
-                    with_transmission(&mut atmosphere, &seen);
+                        .map_err(at)?
+                        .apply_to(&mut atmosphere);
                 }
                 Ok(Some((band, atmosphere)))
             })
             .filter_map(Result::transpose)
             .collect()
-    }
-}
-
-/// `atmosphere` with the transmittances of `seen`, the same atmosphere collapsed with
-/// another weight: the profile's, the `.cor` fit's and the slant tables'.
-pub fn with_transmission(atmosphere: &mut irsig_model::Atmosphere, seen: &irsig_model::Atmosphere) {
-    for (level, s) in atmosphere.levels.iter_mut().zip(&seen.levels) {
-        level.transmission = s.transmission;
-    }
-    atmosphere.transmission_correction = seen.transmission_correction;
-    if let (Some(slant), Some(s)) = (atmosphere.slant.as_mut(), seen.slant.as_ref()) {
-        slant.transmission.clone_from(&s.transmission);
     }
 }
 
@@ -197,7 +191,8 @@ mod tests {
         let spectral = irsig_atmosphere::builtin_spectral("us-std-1976").unwrap();
         let band = Band::new(8.0, 14.0).unwrap();
         let split = Split::of(&band);
-        let four = split.collapse(&spectral, SubBandCount::Count(4)).unwrap();
+        let collapser = irsig_atmosphere::Collapser::new(&spectral).unwrap();
+        let four = split.collapse(collapser, SubBandCount::Count(4)).unwrap();
         assert_eq!(four.len(), 4);
         // The sub-bands tile the band: their blackbody radiances add up to the band's.
         let sum: f64 = four.iter().map(|(b, _)| b.radiance(300.0)).sum();

@@ -5,7 +5,7 @@
 //! table gives the shape: ε(λ, θ) = ε(λ) · ε_table(θ) / ε_table(0°), held to [0, 1].
 
 use irsig_model::{Material, MaterialLibrary};
-use irsig_radiometry::{Band, EmissivityTable, band_average_emissivity};
+use irsig_radiometry::{Band, EmissivityTable, band_average_emissivities, band_average_emissivity};
 use miette::miette;
 
 /// The Planck weighting temperature, K: the sub-bands' reference (`SHARE_REFERENCE_K`).
@@ -84,13 +84,13 @@ fn averaged(
         return EmissivityTable::new(angles, values);
     };
     if let Some(a) = &s.angular {
-        // ε(λ, θ) on a grid: each angle's column averaged over the band.
-        let averaged = (0..a.angle_deg.len())
-            .map(|j| {
-                let column: Vec<f64> = a.emissivity.iter().map(|row| row[j]).collect();
-                band_average_emissivity(&s.wavelength_um, &column, band, WEIGHT_K)
-            })
-            .collect::<Result<Vec<f64>, _>>()?;
+        // ε(λ, θ) on a grid: each angle's column averaged over the band (the quadrature's
+        // nodes, the same for every column, found once).
+        let columns: Vec<Vec<f64>> = (0..a.angle_deg.len())
+            .map(|j| a.emissivity.iter().map(|row| row[j]).collect())
+            .collect();
+        let columns: Vec<&[f64]> = columns.iter().map(Vec::as_slice).collect();
+        let averaged = band_average_emissivities(&s.wavelength_um, &columns, band, WEIGHT_K)?;
         return EmissivityTable::new(a.angle_deg.clone(), averaged);
     }
     let mean = band_average_emissivity(&s.wavelength_um, &s.emissivity, band, WEIGHT_K)?;

@@ -897,13 +897,16 @@ impl Plan {
                 let Some(split) = split else {
                     return Err(air::no_spectra(&name, SubBandCount::Full));
                 };
-                // Each count's collapsed sub-bands, made once.
+                // Each count's collapsed sub-bands, made once, from the atmosphere checked
+                // once.
+                let collapser =
+                    irsig_atmosphere::Collapser::new(&spectral).map_err(|e| miette!("{e}"))?;
                 let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
                 let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
                     if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
                         return Ok(c.clone());
                     }
-                    let c = Arc::new(split.collapse(&spectral, count)?);
+                    let c = Arc::new(split.collapse(collapser, count)?);
                     cache
                         .lock()
                         .map_err(|_| poisoned())?

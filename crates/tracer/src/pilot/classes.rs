@@ -288,33 +288,37 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let thin_count = thin_pixels.len();
         let (probed, _) = thin_pixels.partial_shuffle(&mut rng, PROBED_THIN.min(thin_count));
         probed.sort_unstable();
-        let mut probe_points: Vec<(PixelClass, SamplePoint)> = Vec::new();
-        let mut path = Path::default();
-        for &i in probed.iter() {
-            let (col, row) = (i % w, i / w);
-            let mut ctx =
-                Ctx::for_pixel(&options, u64::from(i)).stream(crate::tracer::PROBE_STREAM);
-            let mut hits: Vec<(PixelClass, f64, f64)> = Vec::new();
-            ctx.for_each_subpixel((col, row), PROBE_SIDE, |ctx, x, y| {
-                let dir = camera.direction_at(x, y);
-                self.follow(fc, dir, ctx, &mut path);
-                hits.push((PixelClass::of_path(&path, &self.materials, dir), x, y));
-            });
-            for (class, x, y) in hits {
-                if found.binary_search(&class).is_err() {
-                    probe_points.push((
-                        class,
-                        SamplePoint {
-                            x,
-                            y,
-                            pixel: u64::from(i),
-                            class: 0,
-                            probe: true,
-                        },
-                    ));
-                }
-            }
-        }
+        // Each probed pixel's rays are its own stream: probed side by side, taken in order.
+        let mut probe_points: Vec<(PixelClass, SamplePoint)> = probed
+            .par_iter()
+            .map_init(Path::default, |path, &i| {
+                let (col, row) = (i % w, i / w);
+                let mut ctx =
+                    Ctx::for_pixel(&options, u64::from(i)).stream(crate::tracer::PROBE_STREAM);
+                let mut hits: Vec<(PixelClass, f64, f64)> = Vec::new();
+                ctx.for_each_subpixel((col, row), PROBE_SIDE, |ctx, x, y| {
+                    let dir = camera.direction_at(x, y);
+                    self.follow(fc, dir, ctx, path);
+                    hits.push((PixelClass::of_path(path, &self.materials, dir), x, y));
+                });
+                hits.into_iter()
+                    .filter(|(class, _, _)| found.binary_search(class).is_err())
+                    .map(|(class, x, y)| {
+                        (
+                            class,
+                            SamplePoint {
+                                x,
+                                y,
+                                pixel: u64::from(i),
+                                class: 0,
+                                probe: true,
+                            },
+                        )
+                    })
+                    .collect::<Vec<_>>()
+            })
+            .flatten_iter()
+            .collect();
         probe_points.sort_by(|a, b| {
             a.0.cmp(&b.0)
                 .then(a.1.pixel.cmp(&b.1.pixel))

@@ -1,0 +1,142 @@
+//! Refinement's half of the tolerance: the standard error edge and thin pixels are refined
+//! to, and a trial that refines some of the census's candidates with the chosen settings to
+//! price refinement and count the pixels that reach its cap.
+
+use irsig_radiometry::BandModel;
+use rand::{SeedableRng, seq::SliceRandom};
+use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
+
+use super::classes::Census;
+use super::space::Supersample;
+use super::stats::NORMAL_TAILS;
+use super::{REFINE_THIN_SIDE, SAMPLING_EXCEEDANCE};
+use crate::env::Atmosphere;
+use crate::path::Path;
+use crate::refine::Refinement;
+use crate::tracer::{EDGE_SIDE, FrameConsts, TraceOptions, Tracer};
+
+/// Candidates refined in the trial, at most (and about one in twenty of them).
+const TRIAL_MAX: usize = 48;
+
+/// What the trial of refinement found.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Trial {
+    pub pixels: usize,
+    pub paths_per_candidate: f64,
+    pub capped_share: f64,
+    /// The standard error each capped pixel stopped at, K.
+    pub capped_sigma_k: Vec<f64>,
+    /// The largest standard error of a trial pixel, K.
+    pub worst_sigma_k: f64,
+}
+
+/// The refinement `supersampling` asks for (`None` but for [`Supersample::Refine`]) and
+/// the normal quantile its target was set with: the refined pixels' standard error such
+/// that, with `candidate_share` of the frame refined, at most [`SAMPLING_EXCEEDANCE`] of
+/// it leaves refinement's share of the tolerance (`tolerance_k - det_k`).
+pub(crate) fn refinement_for(
+    supersampling: Supersample,
+    candidate_share: f64,
+    tolerance_k: f64,
+    det_k: f64,
+    edge_k: f64,
+) -> (f64, Option<Refinement>) {
+    match supersampling {
+        Supersample::Refine(max_side) => {
+            let z = NORMAL_TAILS
+                .iter()
+                .find(|(q, _)| q * candidate_share <= SAMPLING_EXCEEDANCE)
+                .map_or(NORMAL_TAILS[NORMAL_TAILS.len() - 1].1, |&(_, z)| z);
+            let r = Refinement {
+                target_k: (tolerance_k - det_k) / z,
+                edge_k,
+                max_side,
+                thin_side: REFINE_THIN_SIDE.min(max_side),
+            };
+            (z, Some(r))
+        }
+        _ => (0.0, None),
+    }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Refines some of the census's candidates with the chosen settings: about one in
+    /// twenty, at least 8 (all of fewer) and at most [`TRIAL_MAX`], seeded. A pixel refined
+    /// here is refined exactly so in the rendering (its rays are its own).
+    pub(crate) fn trial(
+        &self,
+        fc: &FrameConsts<'_>,
+        census: &Census,
+        options: &TraceOptions,
+        refinement: &Refinement,
+        seed: u64,
+    ) -> Trial {
+        let camera = fc.camera();
+        let w = camera.pixels[0];
+        let mut candidates: Vec<u32> = census
+            .candidate
+            .iter()
+            .enumerate()
+            .filter(|&(_, &c)| c)
+            .map(|(i, _)| i as u32)
+            .collect();
+        if candidates.is_empty() {
+            return Trial::default();
+        }
+        let n = (candidates.len() / 20)
+            .max(8.min(candidates.len()))
+            .min(TRIAL_MAX);
+        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x7472_6961_6c00_0000);
+        let (picked, _) = candidates.partial_shuffle(&mut rng, n);
+        picked.sort_unstable();
+        let inverse = self.inverse_table();
+        let thin_contrast_k = self.contrast_bound_k();
+        let results: Vec<crate::refine::PixelSampling> = picked
+            .par_iter()
+            .map(|&i| {
+                let (col, row) = (i % w, i / w);
+                let thin = census.thin[i as usize];
+                let start = if thin {
+                    refinement.thin_side
+                } else {
+                    EDGE_SIDE.min(refinement.max_side)
+                };
+                let hide = if thin {
+                    thin_contrast_k
+                } else {
+                    census.contrast[i as usize]
+                };
+                let mut path = Path::default();
+                self.refine_pixel::<false>(
+                    fc,
+                    options,
+                    refinement,
+                    &inverse,
+                    (col, row),
+                    start,
+                    hide,
+                    &mut path,
+                )
+                .1
+            })
+            .collect();
+        let pixels = results.len();
+        let capped: Vec<f64> = results
+            .iter()
+            .filter(|s| s.capped)
+            .map(|s| f64::from(s.sigma_k))
+            .collect();
+        Trial {
+            pixels,
+            paths_per_candidate: results.iter().map(|s| f64::from(s.rays)).sum::<f64>()
+                / pixels as f64,
+            capped_share: capped.len() as f64 / pixels as f64,
+            capped_sigma_k: capped,
+            worst_sigma_k: results
+                .iter()
+                .map(|s| f64::from(s.sigma_k))
+                .fold(0.0, f64::max),
+        }
+    }
+}
