@@ -102,8 +102,10 @@ impl Want {
     fn of(path: &PlanPath) -> Self {
         match path {
             PlanPath::Sun { .. } => Self::Solar,
-            PlanPath::DownSunlit { .. } | PlanPath::UpSunlit { .. } => Self::Scattered,
-            PlanPath::Down { .. } | PlanPath::Up { .. } => Self::Thermal,
+            PlanPath::DownSunlit { .. }
+            | PlanPath::UpSunlit { .. }
+            | PlanPath::SlabSunlit { .. } => Self::Scattered,
+            PlanPath::Down { .. } | PlanPath::Up { .. } | PlanPath::Slab { .. } => Self::Thermal,
         }
     }
 }
