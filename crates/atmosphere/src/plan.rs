@@ -178,32 +178,31 @@ pub fn make_plan(
 }
 
 /// The angles, degrees, at which a plan's slabs are run, down (nadir) and up (zenith)
-/// alike: 10° apart to 60°, then 5° to 80°. Between rows 10° apart the monotone cubic in
-/// angle met the floor of the slab tables (docs/accuracy.md, "Slab tables").
+/// alike: 10° apart to 60°, then 5° to 80°. Between rows 10° and 20° apart the monotone
+/// cubic in angle met the floor of the slab tables (docs/accuracy.md, "Slab tables").
 pub const SLAB_ANGLE_DEG: [f64; 11] = [
     0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 65.0, 70.0, 75.0, 80.0,
 ];
 
 /// Target altitudes of a plan's slabs for a scene whose top is `top_m` above its lowest
-/// point, metres: 25 m apart up to 100 m, 50 m apart to 500 m, 100 m apart above, up to
-/// the first row at or above the top (the paths' end excluded). Linear interpolation in the
-/// target's altitude between rows 50 m apart met the floor on the 87 m slab
-/// (docs/accuracy.md, "Slab tables").
+/// point, metres: 2, 5, 10 and 25 m, 25 m apart to 100 m, 50 m apart above, up to the
+/// first row at or above the top. Between rows 50 m apart, a power of the distance from
+/// the observer met the floor on the 87 m slab (docs/accuracy.md, "Slab tables").
 #[must_use]
 pub fn slab_targets_m(top_m: f64) -> Vec<f64> {
     let mut out = Vec::new();
-    let mut h = 25.0;
+    let mut h = 2.0;
     loop {
         out.push(h);
         if h >= top_m {
             break;
         }
-        h += if h < 100.0 {
-            25.0
-        } else if h < 500.0 {
-            50.0
-        } else {
-            100.0
+        h = match h {
+            x if x < 2.5 => 5.0,
+            x if x < 7.5 => 10.0,
+            x if x < 17.5 => 25.0,
+            x if x < 100.0 => x + 25.0,
+            x => x + 50.0,
         };
     }
     out
@@ -1339,7 +1338,7 @@ mod tests {
         let before = paths(&p);
         add_slabs(&mut p, 800.0).unwrap();
         let slabs = p.slabs.clone().unwrap();
-        assert_eq!(slabs.target_m.first(), Some(&25.0));
+        assert_eq!(slabs.target_m[..5], [2.0, 5.0, 10.0, 25.0, 50.0]);
         assert_eq!(slabs.target_m.last(), Some(&800.0));
         let after = paths(&p);
         // The runs without slabs keep their numbers; each observer's slabs, thermal and at
@@ -1354,7 +1353,7 @@ mod tests {
             first,
             Path::Slab {
                 observer_m: 150.0,
-                target_m: 25.0,
+                target_m: 2.0,
                 zenith_deg: 100.0,
             }
         );
@@ -1370,7 +1369,7 @@ mod tests {
         else {
             panic!("{:?}", c.card3)
         };
-        assert_eq!((h1_km, h2_km, angle_deg), (0.15, 0.025, 100.0));
+        assert_eq!((h1_km, h2_km, angle_deg), (0.15, 0.002, 100.0));
         // Assembled: per observer, the observer's own row is τ = 1 and no radiance.
         let nu = vec![2000.0, 2020.0];
         let spectra: Vec<PathSpectra> = after
@@ -1406,7 +1405,7 @@ mod tests {
         assert_eq!(down.transmission[0], 0.9);
         assert_eq!(down.scattered_w_m2_sr_per_unit.len(), rows * na * 2);
         let up = s.up.as_ref().unwrap();
-        assert_eq!(up.target_m, [650.0, 700.0, 800.0]);
+        assert_eq!(up.target_m, [650.0, 700.0, 750.0, 800.0]);
         assert_eq!(up.path_radiance_w_m2_sr_per_unit[..2], [0.0, 0.0]);
         // The binary form holds the slabs and reads back what it wrote.
         let bytes = irsig_formats::canonical::binary_spectral::encode(&a).unwrap();
