@@ -68,9 +68,9 @@ impl Side {
             // Held as logarithms: the aerosol's forward peak makes the scattered light fall
             // about exponentially with the angle from the sun, so the cubics in azimuth
             // and angle bend less in its logarithm (LOWTRAN7's light 150 m up to 800 m at
-            // zenith 40°, 70° from the sun, between the 60° and 90° rows: +3.2 % of
-            // itself interpolated as values, +0.6 % as logarithms). The observer's own row,
-            // 0, is held as `LOG_ZERO`.
+            // zenith 40°, 70° from the sun, between the 60° and 90° rows: +2.4 % of
+            // itself interpolated as values, +0.5 % as logarithms). The observer's own row,
+            // 0, is held as the logarithm of `TINY`.
             scattered: (azimuths > 0 && !t.scattered_w_m2_sr_per_unit.is_empty()).then(|| {
                 let values = band(&t.scattered_w_m2_sr_per_unit, &|s| q.radiance(s));
                 table(
