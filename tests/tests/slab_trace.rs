@@ -12,7 +12,8 @@
 //!   of LOWTRAN7's path radiance (issue 30's floor); the whole path radiance's error,
 //!   thermal part included, and τ are printed for docs/accuracy.md;
 //! - **at night** (a plan without a sun), the 87 m slab's thermal path radiance and τ;
-//! - a plan asking for slabs without observers is refused, naming the field.
+//! - a slab table out of order or of a wrong length is refused at its line, naming the
+//!   field; a plan asking for slabs without observers is refused, naming the field.
 //!
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH; never skipped.
 
@@ -328,6 +329,53 @@ fn slab_tables_hold_lowtran7s_slabs_between_rows_by_day_and_at_night() {
     );
     assert!(error.abs() < 0.02, "{error}");
     assert!((terms["transmission"] - tau).abs() < 0.002);
+
+    // A slab table out of order, or of a wrong length, is refused at its line and column,
+    // naming the field.
+    let ron = d.join("night.ron");
+    bin("irsig-atmos")
+        .env("IRSIG_LOWTRAN", lowtran())
+        .arg("build")
+        .arg(d.join("plan-night"))
+        .args(["--model", "us-std-1976", "-o"])
+        .arg(&ron)
+        .assert()
+        .success();
+    let text = std::fs::read_to_string(&ron).unwrap();
+    let up = "up: Some((target_m: [650.0, 700.0, 900.0], angle_deg: [20.0, 30.0, 50.0, 60.0], \
+              transmission: [1.0, ";
+    assert!(text.contains(up), "the night's up table from 650 m");
+    for (bad, field) in [
+        (
+            text.replace(
+                "target_m: [650.0, 700.0, 900.0]",
+                "target_m: [650.0, 900.0, 700.0]",
+            ),
+            "`slabs[0].up.target_m[2]`",
+        ),
+        (
+            text.replace(up, &up.replace("[1.0, ", "[")),
+            "`slabs[0].up.transmission`",
+        ),
+    ] {
+        let file = d.join("bad.ron");
+        std::fs::write(&file, bad).unwrap();
+        let out = bin("irsig-trace")
+            .arg("--scene")
+            .arg(&scene)
+            .arg("--materials")
+            .arg(d.join("materials.ron"))
+            .arg("--view")
+            .arg(d.join("view.ron"))
+            .arg("--atmosphere")
+            .arg(&file)
+            .args(["--band", BAND, "--probe", "0,0"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success());
+        assert!(err.contains("bad.ron:") && err.contains(field), "{err}");
+    }
 
     // A plan asking for slabs without an observer to run them from.
     let p = d.join("plan-none");
