@@ -16,8 +16,9 @@
 //! What it does: for a band or sub-band (the response weight `w(λ)`, [`BandQuadrature`]),
 //! each slab's band-mean τ, thermal path radiance and scattered sunlight, interpolated in
 //! the target's altitude as a power of its distance from the observer (linear in log–log
-//! between two rows; linear next to the observer's own row, the path of no length: τ = 1,
-//! no radiance; τ through its absorptance 1 − τ), by a monotone cubic in angle and, for
+//! between two rows; next to the observer's own row, the path of no length, τ = 1, no
+//! radiance, the nearest two rows' power carried in to 0; τ through its absorptance 1 −
+//! τ), by a monotone cubic in angle and, for
 //! the scattered light, in azimuth from the sun (as [`crate::sunlit`] interpolates its
 //! tables, but of the scattered light's logarithm). A path is taken from the slab tables when
 //! its observer is one of the tables' (within half a metre: plans hold whole metres) and its
@@ -82,11 +83,14 @@ impl Side {
     }
 
     /// `table` at the target `target_m` (within the rows), `angle_deg` and `az`: between
-    /// two rows a power of the distance from the observer `observer_m` through both,
-    /// `y = y₁ (y₂/y₁)^(ln(d/d₁)/ln(d₂/d₁))` (linear in log–log), which is exact for a
-    /// quantity growing as any power of the path's length: linear on thin paths, as
-    /// its square root in the curve of growth of strong lines; linear where a row is 0
-    /// (the observer's own).
+    /// two rows a power of the distance `d` from the observer `observer_m` through both,
+    /// `y = y₁ (d/d₁)^p`, `p = ln(y₂/y₁)/ln(d₂/d₁)` (linear in log–log), which is exact for
+    /// a quantity growing as any power of the path's length: linear on thin paths, as its
+    /// square root in the curve of growth of strong lines. Between the observer's own row
+    /// (`d = 0`, no length) and the nearest, the power of the nearest two rows carried in
+    /// to 0 (the band model's growth is steepest on the shortest paths, where a line
+    /// to 0 is most wrong: LOWTRAN7's 35 m slab from 650 m was 27 % above it); linear
+    /// where that power is not positive or a value is not (an empty table).
     #[allow(clippy::too_many_arguments)]
     fn along(
         table: &Table,
@@ -97,23 +101,42 @@ impl Side {
         az: f64,
         map: fn(f64) -> f64,
     ) -> f64 {
-        let (k, f) = crate::interp::locate(&table.altitude_m, target_m);
-        let a = map(table.at_altitude_row(k, azimuth_deg, angle_deg, az));
-        if table.altitude_m.len() < 2 || f == 0.0 {
+        let rows = &table.altitude_m;
+        let (k, f) = crate::interp::locate(rows, target_m);
+        let row = |i: usize| map(table.at_altitude_row(i, azimuth_deg, angle_deg, az));
+        let a = row(k);
+        if rows.len() < 2 || f == 0.0 {
             return a;
         }
-        let b = map(table.at_altitude_row(k + 1, azimuth_deg, angle_deg, az));
+        let b = row(k + 1);
         let d = |h: f64| (h - observer_m).abs();
-        let (d1, d2, dx) = (
-            d(table.altitude_m[k]),
-            d(table.altitude_m[k + 1]),
-            d(target_m),
-        );
-        if a > 0.0 && b > 0.0 && d1 > 0.0 && d2 > 0.0 && dx > 0.0 {
-            a * (b / a).powf((dx / d1).ln() / (d2 / d1).ln())
+        let dx = d(target_m);
+        // The pair the power is taken through: this interval's, or next to the observer
+        // the nearest two rows beyond it.
+        let (near, far) = if d(rows[k]) == 0.0 {
+            (k + 1, k + 2)
+        } else if d(rows[k + 1]) == 0.0 {
+            (k, k.wrapping_sub(1))
         } else {
-            a + f * (b - a)
+            (k, k + 1)
+        };
+        let linear = a + f * (b - a);
+        if far >= rows.len() || dx <= 0.0 {
+            return linear;
         }
+        let (y1, y2) = (
+            if near == k { a } else { b },
+            if far == k + 1 { b } else { row(far) },
+        );
+        let (d1, d2) = (d(rows[near]), d(rows[far]));
+        if !(y1 > 0.0 && y2 > 0.0 && d1 > 0.0 && d2 > 0.0) {
+            return linear;
+        }
+        let p = (y2 / y1).ln() / (d2 / d1).ln();
+        if !(p.is_finite() && p > 0.0) {
+            return linear;
+        }
+        y1 * (dx / d1).powf(p)
     }
 
     /// Whether the target at `target_m` and the angle lie within the rows.
