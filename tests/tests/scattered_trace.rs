@@ -330,7 +330,8 @@ fn the_tracers_scattered_sunlight_is_lowtran7s_between_rows() {
     // model misses it there (docs/accuracy.md): the 87 m path and the path looking up.
     // Each is a difference of two longer paths, which LOWTRAN7's band model does not
     // obey: with LOWTRAN7's own terms at both ends the difference is +21.5 % and +6.4 %
-    // of the scattered part (scripts/accuracy/slab-additivity.py).
+    // of the scattered part (scripts/accuracy/slab-additivity.py). With slab tables (a plan
+    // with `slabs`) both are held: tests/tests/slab_trace.rs.
     for (observer, facet, zenith, az, floor) in [
         (850.0, 150.0, 180.0 - 47.0, 100.0, true),
         (850.0, 50.0, 180.0 - 47.0, 100.0, true),

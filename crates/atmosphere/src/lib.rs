@@ -52,6 +52,7 @@ pub mod plan;
 mod precomputed;
 pub mod scattered;
 mod sky;
+pub mod slab;
 pub mod solar;
 mod spectral;
 pub mod sun;

@@ -22,8 +22,9 @@ use irsig_formats::radtran::tape5::{
     Step, UserProfile,
 };
 use irsig_model::{
-    AtmospherePlan, CorrectionPaths, PlanAerosol, PlanModel, PlanSun, ProfileLevel,
-    SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlantTables, SpectralSolar,
+    AtmospherePlan, CorrectionPaths, PlanAerosol, PlanModel, PlanSlabs, PlanSun, ProfileLevel,
+    SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlab, SpectralSlabTable,
+    SpectralSlantTables, SpectralSolar,
 };
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
@@ -172,7 +173,66 @@ pub fn make_plan(
         sky_zenith_deg: sky_zenith_deg(),
         sun: None,
         aerosol: None,
+        slabs: None,
     })
+}
+
+/// The angles, degrees, at which a plan's slabs are run, down (nadir) and up (zenith)
+/// alike: 10° apart to 60°, then 5° to 80°. Between rows 10° and 20° apart the monotone
+/// cubic in angle met the floor of the slab tables (docs/accuracy.md, "Slab tables").
+pub const SLAB_ANGLE_DEG: [f64; 11] = [
+    0.0, 10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 65.0, 70.0, 75.0, 80.0,
+];
+
+/// Target altitudes of a plan's slabs for a scene whose top is `top_m` above its lowest
+/// point, metres: 2, 5, 10 and 25 m, 25 m apart to 100 m, 50 m apart above, up to the
+/// first row at or above the top. Between rows 50 m apart, a power of the distance from
+/// the observer met the floor on the 87 m slab (docs/accuracy.md, "Slab tables").
+#[must_use]
+pub fn slab_targets_m(top_m: f64) -> Vec<f64> {
+    let mut out = Vec::new();
+    let mut h = 2.0;
+    loop {
+        out.push(h);
+        if h >= top_m {
+            break;
+        }
+        h = match h {
+            x if x < 2.5 => 5.0,
+            x if x < 7.5 => 10.0,
+            x if x < 17.5 => 25.0,
+            x if x < 100.0 => x + 25.0,
+            x => x + 50.0,
+        };
+    }
+    out
+}
+
+/// Asks `plan` for slabs that end above the ground ([`PlanSlabs`]): from each of its
+/// observers to [`slab_targets_m`]`(top_m)` at [`SLAB_ANGLE_DEG`] down and up.
+///
+/// # Errors
+/// What [`AtmospherePlan::validate`] refuses of them (a plan without observers, a top
+/// that is not finite or not above the paths' end).
+pub fn add_slabs(plan: &mut AtmospherePlan, top_m: f64) -> Result<(), AtmosphereError> {
+    if !(top_m.is_finite() && top_m > plan.path_end_m) {
+        return Err(AtmosphereErrorKind::Plan(format!(
+            "slabs end above the ground and below the scene's top: expected a top above the \
+             paths' end ({} m), found {top_m} m",
+            plan.path_end_m
+        ))
+        .into());
+    }
+    let mut p = plan.clone();
+    p.slabs = Some(PlanSlabs {
+        target_m: slab_targets_m(top_m),
+        nadir_deg: SLAB_ANGLE_DEG.to_vec(),
+        zenith_deg: SLAB_ANGLE_DEG.to_vec(),
+    });
+    p.validate()
+        .map_err(|e| AtmosphereError::from(AtmosphereErrorKind::Plan(e.to_string())))?;
+    *plan = p;
+    Ok(())
 }
 
 /// Puts `aerosol` in every path of `plan` (LOWTRAN7's card 2: IHAZE, VIS and, for the
@@ -290,6 +350,29 @@ pub enum Path {
         /// Azimuth from the sun's, degrees, 0–180.
         azimuth_deg: f64,
     },
+    /// A slab that ends above the ground ([`PlanSlabs`]): from an observer at
+    /// `observer_m` to `target_m`, `zenith_deg` from straight up at the observer (above 90
+    /// down, below it up).
+    Slab {
+        /// Observer altitude, metres.
+        observer_m: f64,
+        /// Target altitude, metres.
+        target_m: f64,
+        /// Zenith angle at the observer, degrees.
+        zenith_deg: f64,
+    },
+    /// A slab with the sunlight it scatters, the line of sight `azimuth_deg` from the sun's
+    /// vertical plane.
+    SlabSunlit {
+        /// Observer altitude, metres.
+        observer_m: f64,
+        /// Target altitude, metres.
+        target_m: f64,
+        /// Zenith angle at the observer, degrees.
+        zenith_deg: f64,
+        /// Azimuth from the sun's, degrees, 0–180.
+        azimuth_deg: f64,
+    },
     /// The sun's direct beam from the top of the atmosphere down to `altitude_m`, the sun
     /// `zenith_deg` from straight up, on day `day_of_year` (a direct solar irradiance run).
     Sun {
@@ -302,7 +385,7 @@ pub enum Path {
     },
 }
 
-type Key = (u8, i64, i64, i64);
+type Key = (u8, i64, i64, i64, i64);
 
 fn key(p: &Path) -> Key {
     #[allow(clippy::cast_possible_truncation)]
@@ -311,29 +394,92 @@ fn key(p: &Path) -> Key {
         Path::Down {
             altitude_m,
             nadir_deg,
-        } => (0, q(altitude_m), q(nadir_deg), 0),
+        } => (0, q(altitude_m), q(nadir_deg), 0, 0),
         Path::Up {
             altitude_m,
             zenith_deg,
-        } => (1, q(altitude_m), q(zenith_deg), 0),
+        } => (1, q(altitude_m), q(zenith_deg), 0, 0),
         // After every thermal path: a plan's runs without a sun keep their numbers.
         Path::Sun {
             altitude_m,
             zenith_deg,
             ..
-        } => (2, q(altitude_m), q(zenith_deg), 0),
+        } => (2, q(altitude_m), q(zenith_deg), 0, 0),
         // After the direct beam's: a plan with a sun but no azimuths numbers as before.
         Path::DownSunlit {
             altitude_m,
             nadir_deg,
             azimuth_deg,
-        } => (3, q(altitude_m), q(nadir_deg), q(azimuth_deg)),
+        } => (3, q(altitude_m), q(nadir_deg), q(azimuth_deg), 0),
         Path::UpSunlit {
             altitude_m,
             zenith_deg,
             azimuth_deg,
-        } => (4, q(altitude_m), q(zenith_deg), q(azimuth_deg)),
+        } => (4, q(altitude_m), q(zenith_deg), q(azimuth_deg), 0),
+        // After every other path: a plan without slabs numbers as before.
+        Path::Slab {
+            observer_m,
+            target_m,
+            zenith_deg,
+        } => (5, q(observer_m), q(target_m), q(zenith_deg), 0),
+        Path::SlabSunlit {
+            observer_m,
+            target_m,
+            zenith_deg,
+            azimuth_deg,
+        } => (6, q(observer_m), q(target_m), q(zenith_deg), q(azimuth_deg)),
     }
+}
+
+/// The slabs of `observer_m`, down then up: `(targets, angles, zenith of an angle)` with
+/// the observer's own row (the path of no length) in its place, last down, first up.
+#[allow(clippy::type_complexity)]
+fn slab_tables(slabs: &PlanSlabs, observer_m: f64) -> [Option<(Vec<f64>, &[f64], bool)>; 2] {
+    let (mut below, above) = slabs.targets_of(observer_m);
+    let down = (!below.is_empty()).then(|| {
+        below.push(observer_m);
+        (below, slabs.nadir_deg.as_slice(), true)
+    });
+    let up = (!above.is_empty()).then(|| {
+        let mut rows = vec![observer_m];
+        rows.extend(above);
+        (rows, slabs.zenith_deg.as_slice(), false)
+    });
+    [down, up]
+}
+
+/// The slab paths of `plan`, thermal (`azimuths` empty) or sunlit at each azimuth:
+/// `[observer][down, up][target][angle][azimuth]`, the observer's own row left out (it is
+/// the observer's value copied: compared exactly).
+#[allow(clippy::float_cmp)]
+fn slab_paths(plan: &AtmospherePlan, azimuths: Option<&[f64]>) -> Vec<Path> {
+    let mut out = Vec::new();
+    let Some(slabs) = &plan.slabs else {
+        return out;
+    };
+    for &o in &plan.observers_m {
+        for (targets, angles, down) in slab_tables(slabs, o).into_iter().flatten() {
+            for &t in targets.iter().filter(|&&t| t != o) {
+                for &a in angles {
+                    let zenith_deg = if down { 180.0 - a } else { a };
+                    match azimuths {
+                        None => out.push(Path::Slab {
+                            observer_m: o,
+                            target_m: t,
+                            zenith_deg,
+                        }),
+                        Some(az) => out.extend(az.iter().map(|&azimuth_deg| Path::SlabSunlit {
+                            observer_m: o,
+                            target_m: t,
+                            zenith_deg,
+                            azimuth_deg,
+                        })),
+                    }
+                }
+            }
+        }
+    }
+    out
 }
 
 fn sun_paths(sun: &PlanSun) -> impl Iterator<Item = Path> + '_ {
@@ -372,6 +518,14 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
         out.extend(sun_paths(sun));
         out.extend(sunlit_slant_paths(plan, sun));
         out.extend(sunlit_sky_paths(plan, sun));
+    }
+    out.extend(slab_paths(plan, None));
+    if let Some(sun) = plan
+        .sun
+        .as_ref()
+        .filter(|s| !s.relative_azimuth_deg.is_empty())
+    {
+        out.extend(slab_paths(plan, Some(&sun.relative_azimuth_deg)));
     }
     out
 }
@@ -579,6 +733,29 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
                 len: 0,
             },
         ),
+        Path::Slab {
+            observer_m,
+            target_m,
+            zenith_deg,
+        }
+        | Path::SlabSunlit {
+            observer_m,
+            target_m,
+            zenith_deg,
+            ..
+        } => (
+            2,
+            1,
+            Card3::Path {
+                h1_km: round3(observer_m / 1000.0),
+                h2_km: round3(target_m / 1000.0),
+                angle_deg: round3(zenith_deg),
+                range_km: 0.0,
+                beta_deg: 0.0,
+                ro_km: 0.0,
+                len: 0,
+            },
+        ),
         Path::Sun {
             altitude_m,
             zenith_deg,
@@ -609,8 +786,12 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
     };
     cards.card1.mdef = i64::from(matches!(plan.model, PlanModel::Radiosonde(_)));
     cards.card1.iemsct = iemsct;
-    if let (Path::DownSunlit { azimuth_deg, .. } | Path::UpSunlit { azimuth_deg, .. }, Some(sun)) =
-        (*path, &plan.sun)
+    if let (
+        Path::DownSunlit { azimuth_deg, .. }
+        | Path::UpSunlit { azimuth_deg, .. }
+        | Path::SlabSunlit { azimuth_deg, .. },
+        Some(sun),
+    ) = (*path, &plan.sun)
     {
         // IEMSCT 2, single scattering; card 3A1: IPARM 2 (the geometry given as angles),
         // IPH 2 (LOWTRAN's Mie phase functions of its aerosol models), IDAY, ISOURC 0
@@ -701,7 +882,7 @@ pub fn assemble(
                 "an extraterrestrial solar irradiance (a direct solar irradiance run, IEMSCT = 3)",
                 s.extraterrestrial_w_m2_per_cm.len(),
             ),
-            Path::DownSunlit { .. } | Path::UpSunlit { .. } => (
+            Path::DownSunlit { .. } | Path::UpSunlit { .. } | Path::SlabSunlit { .. } => (
                 "a scattered solar radiance (a solar scattering run, IEMSCT = 2)",
                 s.scattered_w_m2_sr_per_cm.len(),
             ),
@@ -806,6 +987,7 @@ pub fn assemble(
             })
         }
     };
+    let slabs = assemble_slabs(plan, &get, grid.len());
     let atmosphere = SpectralAtmosphere {
         name: plan.name.clone(),
         source: source.to_owned(),
@@ -857,9 +1039,90 @@ pub fn assemble(
             interpolation_residual: None,
         }),
         solar,
+        slabs,
     };
     atmosphere.validate()?;
     Ok(atmosphere)
+}
+
+/// The spectral slabs of `plan` from its runs (`get`), one per observer that has any; the
+/// observer's own row (its value copied: compared exactly) is τ = 1 and no radiance.
+#[allow(clippy::float_cmp)]
+fn assemble_slabs<'a>(
+    plan: &AtmospherePlan,
+    get: &dyn Fn(Path) -> &'a PathSpectra,
+    n: usize,
+) -> Vec<SpectralSlab> {
+    let Some(slabs) = &plan.slabs else {
+        return Vec::new();
+    };
+    let azimuths: &[f64] = plan
+        .sun
+        .as_ref()
+        .map_or(&[], |s| s.relative_azimuth_deg.as_slice());
+    #[allow(clippy::cast_possible_truncation)]
+    let f32s = |v: &[f64], clamp: bool| {
+        v.iter()
+            .map(|&x| if clamp { x.clamp(0.0, 1.0) } else { x } as f32)
+            .collect::<Vec<f32>>()
+    };
+    let mut observers = plan.observers_m.clone();
+    observers.sort_by(f64::total_cmp);
+    observers.dedup();
+    let mut out = Vec::new();
+    for &o in &observers {
+        let [down, up] = slab_tables(slabs, o).map(|table| {
+            table.map(|(targets, angles, down)| {
+                let mut t = SpectralSlabTable {
+                    target_m: targets.clone(),
+                    angle_deg: angles.to_vec(),
+                    transmission: Vec::new(),
+                    path_radiance_w_m2_sr_per_unit: Vec::new(),
+                    scattered_w_m2_sr_per_unit: Vec::new(),
+                };
+                for &h in &targets {
+                    for &a in angles {
+                        let zenith_deg = if down { 180.0 - a } else { a };
+                        if h == o {
+                            t.transmission.extend(std::iter::repeat_n(1.0, n));
+                            t.path_radiance_w_m2_sr_per_unit
+                                .extend(std::iter::repeat_n(0.0, n));
+                            t.scattered_w_m2_sr_per_unit
+                                .extend(std::iter::repeat_n(0.0, n * azimuths.len()));
+                            continue;
+                        }
+                        let run = get(Path::Slab {
+                            observer_m: o,
+                            target_m: h,
+                            zenith_deg,
+                        });
+                        t.transmission.extend(f32s(&run.transmission, true));
+                        t.path_radiance_w_m2_sr_per_unit
+                            .extend(f32s(&run.radiance_w_m2_sr_per_cm, false));
+                        for &azimuth_deg in azimuths {
+                            let lit = get(Path::SlabSunlit {
+                                observer_m: o,
+                                target_m: h,
+                                zenith_deg,
+                                azimuth_deg,
+                            });
+                            t.scattered_w_m2_sr_per_unit
+                                .extend(f32s(&lit.scattered_w_m2_sr_per_cm, false));
+                        }
+                    }
+                }
+                t
+            })
+        });
+        if down.is_some() || up.is_some() {
+            out.push(SpectralSlab {
+                observer_m: o,
+                down,
+                up,
+            });
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -1066,6 +1329,93 @@ mod tests {
         two_days[last].extraterrestrial_w_m2_per_cm = vec![0.0095, 0.0094];
         let e = assemble(&p, &two_days, &|_| 288.0, 0.0, "test").unwrap_err();
         assert!(e.to_string().contains("one day"), "{e}");
+    }
+
+    #[test]
+    fn slabs_follow_every_other_run_and_assemble_per_observer() {
+        let mut p = make_plan("t", PlanModel::Standard(6), &[150.0, 650.0]).unwrap();
+        add_sun(&mut p, 30.0, 172, true).unwrap();
+        let before = paths(&p);
+        add_slabs(&mut p, 800.0).unwrap();
+        let slabs = p.slabs.clone().unwrap();
+        assert_eq!(slabs.target_m[..5], [2.0, 5.0, 10.0, 25.0, 50.0]);
+        assert_eq!(slabs.target_m.last(), Some(&800.0));
+        let after = paths(&p);
+        // The runs without slabs keep their numbers; each observer's slabs, thermal and at
+        // each azimuth, follow.
+        assert_eq!(after[..before.len()], before[..]);
+        let na = RELATIVE_AZIMUTH_DEG.len();
+        let runs = slabs.runs_of(150.0) + slabs.runs_of(650.0);
+        assert_eq!(after.len(), before.len() + runs * (1 + na));
+        // In key order: observer, target, zenith angle (nadir 80 is zenith 100).
+        let first = after[before.len()];
+        assert_eq!(
+            first,
+            Path::Slab {
+                observer_m: 150.0,
+                target_m: 2.0,
+                zenith_deg: 100.0,
+            }
+        );
+        let d = deck(&p, &first).unwrap();
+        let c = &d.calculations()[0];
+        assert_eq!((c.card1.itype, c.card1.iemsct), (2, 1));
+        let Card3::Path {
+            h1_km,
+            h2_km,
+            angle_deg,
+            ..
+        } = c.card3
+        else {
+            panic!("{:?}", c.card3)
+        };
+        assert_eq!((h1_km, h2_km, angle_deg), (0.15, 0.002, 100.0));
+        // Assembled: per observer, the observer's own row is τ = 1 and no radiance.
+        let nu = vec![2000.0, 2020.0];
+        let spectra: Vec<PathSpectra> = after
+            .iter()
+            .map(|q| PathSpectra {
+                wavenumber_per_cm: nu.clone(),
+                transmission: vec![0.9, 0.8],
+                radiance_w_m2_sr_per_cm: match q {
+                    Path::Sun { .. } => vec![],
+                    _ => vec![0.01, 0.02],
+                },
+                extraterrestrial_w_m2_per_cm: match q {
+                    Path::Sun { .. } => vec![0.0092, 0.0094],
+                    _ => vec![],
+                },
+                scattered_w_m2_sr_per_cm: match q {
+                    Path::DownSunlit { .. } | Path::UpSunlit { .. } | Path::SlabSunlit { .. } => {
+                        vec![1e-3, 2e-3]
+                    }
+                    _ => vec![],
+                },
+            })
+            .collect();
+        let a = assemble(&p, &spectra, &|_| 288.0, 0.0, "test").unwrap();
+        assert_eq!(a.slabs.len(), 2);
+        let s = &a.slabs[1];
+        assert_eq!(s.observer_m, 650.0);
+        let down = s.down.as_ref().unwrap();
+        assert_eq!(down.target_m.last(), Some(&650.0));
+        let rows = down.target_m.len() * down.angle_deg.len();
+        let own = &down.transmission[2 * (rows - 1)..];
+        assert_eq!(own, [1.0, 1.0]);
+        assert_eq!(down.transmission[0], 0.9);
+        assert_eq!(down.scattered_w_m2_sr_per_unit.len(), rows * na * 2);
+        let up = s.up.as_ref().unwrap();
+        assert_eq!(up.target_m, [650.0, 700.0, 750.0, 800.0]);
+        assert_eq!(up.path_radiance_w_m2_sr_per_unit[..2], [0.0, 0.0]);
+        // The binary form holds the slabs and reads back what it wrote.
+        let bytes = irsig_formats::canonical::binary_spectral::encode(&a).unwrap();
+        let back = irsig_formats::canonical::binary_spectral::decode("t", &bytes).unwrap();
+        assert_eq!(back, a);
+        // No observers, no slabs.
+        let mut none = p.clone();
+        none.observers_m.clear();
+        assert!(add_slabs(&mut none, 800.0).is_err());
+        assert!(add_slabs(&mut p, f64::NAN).is_err());
     }
 
     #[test]

@@ -4,6 +4,7 @@
 
 use crate::scattered::ScatteredSunlight;
 use crate::sky::SkyView;
+use crate::slab::SlabPaths;
 use crate::{AtmosphereModel, PathTerms};
 use rayon::prelude::*;
 
@@ -21,6 +22,8 @@ pub struct PrecomputedAtmosphere {
     warnings: Vec<String>,
     /// By day, the sunlight scattered into its paths ([`Self::with_scattered`]).
     scattered: Option<ScatteredSunlight>,
+    /// Slab tables for paths that end above the ground ([`Self::with_slabs`]).
+    slabs: Option<SlabPaths>,
 }
 
 impl PrecomputedAtmosphere {
@@ -74,6 +77,7 @@ impl PrecomputedAtmosphere {
             levels,
             warnings,
             scattered: None,
+            slabs: None,
         }
     }
 
@@ -83,6 +87,21 @@ impl PrecomputedAtmosphere {
     pub fn with_scattered(mut self, scattered: ScatteredSunlight) -> Self {
         self.scattered = Some(scattered);
         self
+    }
+
+    /// This atmosphere with slab tables: a path they cover ([`SlabPaths::covers`]) takes
+    /// its τ and thermal path radiance from them ([`Self::path`]), and by day its
+    /// scattered sunlight (the tracer asks [`Self::slabs`]).
+    #[must_use]
+    pub fn with_slabs(mut self, slabs: SlabPaths) -> Self {
+        self.slabs = Some(slabs);
+        self
+    }
+
+    /// The slab tables, if any.
+    #[must_use]
+    pub fn slabs(&self) -> Option<&SlabPaths> {
+        self.slabs.as_ref()
     }
 
     /// The scattered sunlight, by day with scattered tables; `None` at night or without.
@@ -115,9 +134,15 @@ impl PrecomputedAtmosphere {
         (i, i + 1, x - i as f64)
     }
 
-    /// The model's path terms ([`AtmosphereModel::path`]).
+    /// The path terms: the slab tables' where they cover the path, else the model's
+    /// ([`AtmosphereModel::path`]).
     #[must_use]
     pub fn path(&self, sensor_altitude_m: f64, target_altitude_m: f64, range_m: f64) -> PathTerms {
+        if let Some(s) = &self.slabs
+            && let Some(cell) = s.covers(sensor_altitude_m, target_altitude_m, range_m)
+        {
+            return s.terms(&cell);
+        }
         self.model
             .path(sensor_altitude_m, target_altitude_m, range_m)
     }

@@ -28,7 +28,9 @@
 //!   `tests/tests/scattered_trace.rs` and tabled in `docs/accuracy.md`: within 1 % of the
 //!   path radiance on long paths down, but up to +21 % of the scattered part on a short
 //!   slab, most of it the formula's own (LOWTRAN7's band model does not multiply along a
-//!   path; `scripts/accuracy/slab-additivity.py`), not the tables'.
+//!   path; `scripts/accuracy/slab-additivity.py`), not the tables'. Where an atmosphere
+//!   has slab tables that cover a path ([`crate::slab`]), the tracer takes its scattered
+//!   light from them instead.
 
 use irsig_model::SpectralAtmosphere;
 

@@ -195,6 +195,7 @@ mod tests {
                 path_scattered_w_m2_sr_per_unit: Vec::new(),
                 sky_scattered_w_m2_sr_per_unit: Vec::new(),
             }),
+            slabs: Vec::new(),
         }
     }
 

@@ -60,7 +60,13 @@ impl Table {
     /// angle. Only the (at most four) angle rows the monotone cubic reads are interpolated
     /// in azimuth: the slopes at the two nodes around the angle depend on their neighbours
     /// alone, so the window gives the whole row's value, bit for bit, without allocating.
-    fn at_altitude_row(&self, k: usize, azimuth_deg: &[f64], angle_deg: f64, az: f64) -> f64 {
+    pub(crate) fn at_altitude_row(
+        &self,
+        k: usize,
+        azimuth_deg: &[f64],
+        angle_deg: f64,
+        az: f64,
+    ) -> f64 {
         let na = self.angle_deg.len();
         let at = |j: usize| {
             let start = (k * na + j) * self.azimuths;

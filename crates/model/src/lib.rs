@@ -65,12 +65,14 @@ pub use atmosphere::{
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 pub use object::{Facet, Object, triangle_is_degenerate};
-pub use plan::{AerosolModel, AtmospherePlan, MAX_VISIBILITY_M, PlanAerosol, PlanModel, PlanSun};
+pub use plan::{
+    AerosolModel, AtmospherePlan, MAX_VISIBILITY_M, PlanAerosol, PlanModel, PlanSlabs, PlanSun,
+};
 pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
 pub use spectral::{
-    CorrectionPaths, ProfileLevel, SpectralAtmosphere, SpectralAxis, SpectralGrid,
-    SpectralSlantTables, SpectralSolar,
+    CorrectionPaths, ProfileLevel, SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlab,
+    SpectralSlabTable, SpectralSlantTables, SpectralSolar,
 };
 pub use view::{LengthUnit, View};

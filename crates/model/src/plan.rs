@@ -244,6 +244,59 @@ impl PlanAerosol {
     }
 }
 
+/// LOWTRAN7 run for slabs that end above the ground: from each of the plan's observers to
+/// target altitudes between the ground and the scene's top, so that a view path from an
+/// observer to a facet above the ground takes its transmittance, thermal path radiance and
+/// (by day) scattered sunlight from runs of such slabs (`irsig_atmosphere::slab`) instead of
+/// the difference of two paths to the ground. For observer `o`, every target below it is
+/// run at each of `nadir_deg` (ITYPE 2, H1 = `o`, H2 = the target, ANGLE = 180° − nadir)
+/// and every target above it at each of `zenith_deg` (ANGLE = zenith); a target at `o`
+/// itself is the path of no length (τ = 1, no radiance) and is not run. By day each slab
+/// is run again at each of the sun's `relative_azimuth_deg` (IEMSCT = 2). An observer with
+/// `b` targets below and `a` above costs `b·len(nadir_deg) + a·len(zenith_deg)` runs, times
+/// `1 + len(sun.relative_azimuth_deg)` by day.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlanSlabs {
+    /// Target altitudes, metres above the scene's lowest point, increasing, whole metres,
+    /// above the paths' end.
+    pub target_m: Vec<f64>,
+    /// Nadir angles of the slabs down from an observer, degrees, increasing within 0 to
+    /// 89.999, multiples of 0.001°.
+    pub nadir_deg: Vec<f64>,
+    /// Zenith angles of the slabs up from an observer, degrees, increasing within 0 to
+    /// 89.999, multiples of 0.001°.
+    pub zenith_deg: Vec<f64>,
+}
+
+impl PlanSlabs {
+    /// The targets below `observer_m` and those above it (a target at it is neither).
+    #[must_use]
+    pub fn targets_of(&self, observer_m: f64) -> (Vec<f64>, Vec<f64>) {
+        let below = self
+            .target_m
+            .iter()
+            .copied()
+            .filter(|&t| t < observer_m)
+            .collect();
+        let above = self
+            .target_m
+            .iter()
+            .copied()
+            .filter(|&t| t > observer_m)
+            .collect();
+        (below, above)
+    }
+
+    /// LOWTRAN7 runs of the slabs of one observer, thermal only (by day, times one plus
+    /// the sun's azimuths).
+    #[must_use]
+    pub fn runs_of(&self, observer_m: f64) -> usize {
+        let (below, above) = self.targets_of(observer_m);
+        below.len() * self.nadir_deg.len() + above.len() * self.zenith_deg.len()
+    }
+}
+
 /// The paths of an atmosphere build, as node lists; the paths themselves are derived from
 /// them (`irsig_atmosphere::plan::paths`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -285,6 +338,10 @@ pub struct AtmospherePlan {
     /// The aerosol of every path; none: no aerosol (LOWTRAN7's IHAZE 0), as before.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub aerosol: Option<PlanAerosol>,
+    /// Slabs from each observer to targets above the ground; none: no slab runs, as
+    /// before.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub slabs: Option<PlanSlabs>,
 }
 
 impl AtmospherePlan {
@@ -430,6 +487,61 @@ impl AtmospherePlan {
         if let Some(aerosol) = &self.aerosol {
             aerosol.validate()?;
         }
+        if let Some(slabs) = &self.slabs {
+            self.validate_slabs(slabs)?;
+        }
+        Ok(())
+    }
+
+    fn validate_slabs(&self, slabs: &PlanSlabs) -> Result<(), ModelError> {
+        if self.observers_m.is_empty() {
+            return Err(ModelError::new(
+                "slabs",
+                ModelErrorKind::Other(
+                    "slabs run from the plan's observers, and `observers_m` is empty".into(),
+                ),
+            ));
+        }
+        for (name, axis, max) in [
+            ("slabs.target_m", &slabs.target_m, f64::MAX),
+            ("slabs.nadir_deg", &slabs.nadir_deg, 89.999),
+            ("slabs.zenith_deg", &slabs.zenith_deg, 89.999),
+        ] {
+            if axis.is_empty() {
+                return Err(ModelError::new(name, ModelErrorKind::Empty));
+            }
+            for (i, &v) in axis.iter().enumerate() {
+                check_range(|| format!("{name}[{i}]"), v, 0.0, max)?;
+                let (scale, what) = if name == "slabs.target_m" {
+                    (
+                        1.0,
+                        "a whole number of metres (a deck holds km to 3 decimals)",
+                    )
+                } else {
+                    (
+                        1000.0,
+                        "an angle in multiples of 0.001 deg (a deck holds 3 decimals)",
+                    )
+                };
+                if (v * scale - (v * scale).round()).abs() > 1e-6 {
+                    return Err(ModelError::new(
+                        format!("{name}[{i}]"),
+                        ModelErrorKind::Other(format!("expected {what}, found {v}")),
+                    ));
+                }
+            }
+            check_increasing(|i| format!("{name}[{i}]"), axis.iter().copied())?;
+        }
+        if slabs.target_m[0] <= self.path_end_m {
+            return Err(ModelError::new(
+                "slabs.target_m[0]",
+                ModelErrorKind::Other(format!(
+                    "expected a target above the paths' end ({} m): slabs end above the \
+                     ground, the slant table holds the paths to it; found {}",
+                    self.path_end_m, slabs.target_m[0]
+                )),
+            ));
+        }
         Ok(())
     }
 }
@@ -457,6 +569,62 @@ mod tests {
             sky_zenith_deg: vec![0.0],
             sun: None,
             aerosol: None,
+            slabs: None,
+        }
+    }
+
+    #[test]
+    fn slabs_need_observers_and_ordered_whole_rows() {
+        let ok = PlanSlabs {
+            target_m: vec![100.0, 500.0, 1200.0],
+            nadir_deg: vec![0.0, 30.0],
+            zenith_deg: vec![10.0, 50.0],
+        };
+        let mut p = plan();
+        p.slabs = Some(ok.clone());
+        p.validate().unwrap();
+        // The observer at 1 km: two targets below at 2 angles, one above at 2.
+        assert_eq!(ok.runs_of(1000.0), 6);
+        // At 500 m (a target itself, not run): one below and one above, 2 angles each.
+        assert_eq!(ok.runs_of(500.0), 2 + 2);
+        type Break = dyn Fn(&mut AtmospherePlan);
+        let cases: [(&Break, &str); 8] = [
+            (&|p| p.observers_m.clear(), "slabs"),
+            (
+                &|p| p.slabs.as_mut().unwrap().target_m = vec![500.0, 100.0],
+                "slabs.target_m[1]",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().target_m[1] = f64::NAN,
+                "slabs.target_m[1]",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().target_m[0] = 12.5,
+                "slabs.target_m[0]",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().target_m[0] = 1.0,
+                "slabs.target_m[0]",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().nadir_deg = vec![],
+                "slabs.nadir_deg",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().zenith_deg = vec![10.0, 90.0],
+                "slabs.zenith_deg[1]",
+            ),
+            (
+                &|p| p.slabs.as_mut().unwrap().nadir_deg = vec![0.0, 10.0005],
+                "slabs.nadir_deg[1]",
+            ),
+        ];
+        for (break_it, field) in cases {
+            let mut p = plan();
+            p.slabs = Some(ok.clone());
+            break_it(&mut p);
+            let e = p.validate().unwrap_err();
+            assert_eq!(e.path, field, "{e}");
         }
     }
 

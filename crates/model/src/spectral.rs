@@ -151,6 +151,43 @@ pub struct SpectralSolar {
     pub sky_scattered_w_m2_sr_per_unit: Vec<f32>,
 }
 
+/// One direction of an observer's slabs (down to targets below it, or up to targets above
+/// it): LOWTRAN7 run from the observer to each target altitude at each angle.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSlabTable {
+    /// Target altitudes above the ground, metres, increasing; one of them is the
+    /// observer's own (the path of no length: τ = 1, no radiance), the last down, the first
+    /// up.
+    pub target_m: Vec<f64>,
+    /// Nadir angles (down) or zenith angles (up) at the observer, degrees, increasing
+    /// within 0 to below 90.
+    pub angle_deg: Vec<f64>,
+    /// Transmittance from the observer to the target, `[target][angle]` spectra.
+    pub transmission: Vec<f32>,
+    /// The air's own path radiance, W m⁻² sr⁻¹ per grid unit, `[target][angle]` spectra.
+    pub path_radiance_w_m2_sr_per_unit: Vec<f32>,
+    /// By day, sunlight single-scattered into the slab (LOWTRAN7's IEMSCT = 2), W m⁻² sr⁻¹
+    /// per grid unit, `[target][angle][azimuth]` spectra on `solar.relative_azimuth_deg`;
+    /// empty at night.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub scattered_w_m2_sr_per_unit: Vec<f32>,
+}
+
+/// The slabs of one observer (`AtmospherePlan::slabs`): paths that end above the ground.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpectralSlab {
+    /// The observer's altitude above the ground, metres.
+    pub observer_m: f64,
+    /// Slabs down to targets below the observer (angles: nadir), if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub down: Option<SpectralSlabTable>,
+    /// Slabs up to targets above the observer (angles: zenith), if any.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub up: Option<SpectralSlabTable>,
+}
+
 /// An atmosphere on a spectral grid: the canonical spectral atmosphere file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -189,6 +226,10 @@ pub struct SpectralAtmosphere {
     /// The sun's direct beam, for a daylight atmosphere; none at night.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub solar: Option<SpectralSolar>,
+    /// Slabs that end above the ground, one entry per observer, observers increasing;
+    /// empty: none (the view paths to facets above the ground are the models' own).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub slabs: Vec<SpectralSlab>,
 }
 
 fn check_spectra(
@@ -431,6 +472,91 @@ impl SpectralAtmosphere {
                 ));
             }
         }
+        self.validate_slabs(n)
+    }
+
+    fn validate_slabs(&self, n: usize) -> Result<(), ModelError> {
+        let azimuths = self
+            .solar
+            .as_ref()
+            .map_or(0, |s| s.relative_azimuth_deg.len());
+        check_increasing(
+            |i| format!("slabs[{i}].observer_m"),
+            self.slabs.iter().map(|s| s.observer_m),
+        )?;
+        for (i, slab) in self.slabs.iter().enumerate() {
+            let o = slab.observer_m;
+            check_range(|| format!("slabs[{i}].observer_m"), o, 0.0, f64::MAX)?;
+            if slab.down.is_none() && slab.up.is_none() {
+                return Err(ModelError::new(
+                    format!("slabs[{i}]"),
+                    ModelErrorKind::Other(
+                        "expected a `down` or an `up` table, found neither".into(),
+                    ),
+                ));
+            }
+            for (dir, table) in [("down", &slab.down), ("up", &slab.up)] {
+                let Some(t) = table else { continue };
+                let path = |f: &str| format!("slabs[{i}].{dir}.{f}");
+                check_axis(&path("target_m"), &t.target_m, f64::MAX)?;
+                check_axis(&path("angle_deg"), &t.angle_deg, 89.999)?;
+                let (own, wrong) = if dir == "down" {
+                    (
+                        t.target_m[t.target_m.len() - 1],
+                        t.target_m.iter().position(|&x| x > o),
+                    )
+                } else {
+                    (t.target_m[0], t.target_m.iter().position(|&x| x < o))
+                };
+                if let Some(k) = wrong {
+                    return Err(ModelError::new(
+                        path(&format!("target_m[{k}]")),
+                        ModelErrorKind::Other(format!(
+                            "expected a target {} the observer at {o} m, found {}",
+                            if dir == "down" {
+                                "at or below"
+                            } else {
+                                "at or above"
+                            },
+                            t.target_m[k]
+                        )),
+                    ));
+                }
+                // The row is the observer's value copied, not computed: equal bit for bit.
+                #[allow(clippy::float_cmp)]
+                let elsewhere = own != o;
+                if elsewhere || t.target_m.len() < 2 {
+                    return Err(ModelError::new(
+                        path("target_m"),
+                        ModelErrorKind::Other(format!(
+                            "expected the observer's own altitude ({o} m) as the {} row and at \
+                             least one other, found {:?}",
+                            if dir == "down" { "last" } else { "first" },
+                            t.target_m
+                        )),
+                    ));
+                }
+                let count = t.target_m.len() * t.angle_deg.len();
+                check_spectra(&path("transmission"), &t.transmission, count, n, 1.0)?;
+                check_spectra(
+                    &path("path_radiance_w_m2_sr_per_unit"),
+                    &t.path_radiance_w_m2_sr_per_unit,
+                    count,
+                    n,
+                    f64::MAX,
+                )?;
+                let scattered = &t.scattered_w_m2_sr_per_unit;
+                if azimuths > 0 || !scattered.is_empty() {
+                    check_spectra(
+                        &path("scattered_w_m2_sr_per_unit"),
+                        scattered,
+                        count * azimuths,
+                        n,
+                        f64::MAX,
+                    )?;
+                }
+            }
+        }
         Ok(())
     }
 }
@@ -461,7 +587,76 @@ mod tests {
             radiosonde: vec![],
             slant: None,
             solar: None,
+            slabs: vec![],
         }
+    }
+
+    #[test]
+    fn a_slab_table_out_of_order_nan_or_of_a_wrong_length_is_refused_by_name() {
+        let table = |target_m: Vec<f64>| SpectralSlabTable {
+            angle_deg: vec![10.0, 50.0],
+            transmission: vec![0.9; target_m.len() * 2 * 3],
+            path_radiance_w_m2_sr_per_unit: vec![0.01; target_m.len() * 2 * 3],
+            scattered_w_m2_sr_per_unit: vec![],
+            target_m,
+        };
+        let mut a = small();
+        a.slabs = vec![SpectralSlab {
+            observer_m: 600.0,
+            down: Some(table(vec![300.0, 550.0, 600.0])),
+            up: Some(table(vec![600.0, 800.0])),
+        }];
+        a.validate().unwrap();
+        type Break = dyn Fn(&mut SpectralSlab);
+        let cases: [(&Break, &str); 7] = [
+            (
+                &|s| s.down.as_mut().unwrap().target_m.swap(0, 1),
+                "slabs[0].down.target_m[1]",
+            ),
+            (
+                &|s| s.up.as_mut().unwrap().transmission[5] = f32::NAN,
+                "slabs[0].up.transmission[1][2]",
+            ),
+            (
+                &|s| {
+                    s.down
+                        .as_mut()
+                        .unwrap()
+                        .path_radiance_w_m2_sr_per_unit
+                        .pop();
+                },
+                "slabs[0].down.path_radiance_w_m2_sr_per_unit",
+            ),
+            (
+                &|s| s.up.as_mut().unwrap().angle_deg = vec![50.0, 10.0],
+                "slabs[0].up.angle_deg[1]",
+            ),
+            (
+                &|s| s.up.as_mut().unwrap().target_m = vec![500.0, 800.0],
+                "slabs[0].up.target_m[0]",
+            ),
+            (
+                &|s| s.down.as_mut().unwrap().target_m = vec![300.0, 550.0, 590.0],
+                "slabs[0].down.target_m",
+            ),
+            (
+                // Scattered spectra in an atmosphere without the sun's azimuths.
+                &|s| s.down.as_mut().unwrap().scattered_w_m2_sr_per_unit = vec![0.0; 18],
+                "slabs[0].down.scattered_w_m2_sr_per_unit",
+            ),
+        ];
+        for (break_it, path) in cases {
+            let mut b = a.clone();
+            break_it(&mut b.slabs[0]);
+            let e = b.validate().unwrap_err();
+            assert_eq!(e.path, path, "{e}");
+        }
+        let mut b = a.clone();
+        b.slabs.push(SpectralSlab {
+            observer_m: 100.0,
+            ..a.slabs[0].clone()
+        });
+        assert_eq!(b.validate().unwrap_err().path, "slabs[1].observer_m");
     }
 
     #[test]

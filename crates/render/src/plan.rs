@@ -951,6 +951,8 @@ impl Plan {
                             } else {
                                 precompute(m)
                             };
+                            let atmosphere =
+                                crate::sun::with_slabs(atmosphere, spectral_ref, *split, b)?;
                             Ok(SubBand {
                                 band: R::of_band(b)?,
                                 atmosphere: crate::sun::scattered(

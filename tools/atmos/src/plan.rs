@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use irsig_atmosphere::plan::{add_aerosol, add_sun, deck, make_plan, paths};
+use irsig_atmosphere::plan::{add_aerosol, add_slabs, add_sun, deck, make_plan, paths};
 use irsig_atmosphere::sun::{keep_one_sun, parse_views_and_sun};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
@@ -73,6 +73,13 @@ pub struct PlanArgs {
     /// yet; a hazy 3-5 um sky is where they matter (docs/accuracy.md).
     #[arg(long)]
     pub sun_scattering: bool,
+    /// Also run LOWTRAN7 for slabs that end above the ground: from each observer to target
+    /// altitudes up to the scene's top (2, 5, 10, 25 m, 25 m apart to 100, 50 above), at nadir
+    /// and zenith angles 0-80 deg (11 each), and by day with scattered sunlight at each of
+    /// the sun's azimuths; irsig-trace then takes a view path to a facet above the ground
+    /// from them (the slab tables, docs/accuracy.md). The note says what they cost.
+    #[arg(long)]
+    pub slabs: bool,
     /// The spectral range and step of every run, cm⁻¹: `V1,V2,DV` (LOWTRAN7's card 4).
     /// The default, 710,1250,5, covers 8–14 µm; 710,3335,5 covers 3–5 µm as well (3 µm is
     /// 3333.3 cm⁻¹), for a scene traced in both bands. Runs take longer the wider it is.
@@ -371,6 +378,11 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         .iter()
         .map(|p| p[2])
         .fold(f64::INFINITY, f64::min);
+    let highest = scene
+        .positions_m
+        .iter()
+        .map(|p| p[2])
+        .fold(f64::NEG_INFINITY, f64::max);
     // The terrain beyond the objects is the plane z = 0.
     let ground_z = lowest.min(0.0);
     let mut observers = Vec::new();
@@ -404,6 +416,11 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     if let Some(aer) = aerosol {
         add_aerosol(&mut plan, aer)
             .map_err(|e| irsig_cli::usage_error(format!("--aerosol: {e}")))?;
+    }
+    if a.slabs {
+        // The scene's top above its lowest point, to the metre above.
+        let top = (highest - ground_z).ceil();
+        add_slabs(&mut plan, top).map_err(|e| irsig_cli::usage_error(format!("--slabs: {e}")))?;
     }
     let plan_text = canonical::to_ron(&plan).into_diagnostic()?;
     let all = paths(&plan);
@@ -455,8 +472,31 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             )
         },
     );
+    // Said when asked for: what the slabs cost, per observer.
+    let slab_text = plan.slabs.as_ref().map_or_else(String::new, |s| {
+        let per = 1 + plan
+            .sun
+            .as_ref()
+            .map_or(0, |x| x.relative_azimuth_deg.len());
+        let runs: Vec<String> = plan
+            .observers_m
+            .iter()
+            .map(|&o| format!("{} at {o} m", s.runs_of(o) * per))
+            .collect();
+        format!(
+            ", slabs to {} target altitudes up to {} m ({} runs per observer: {})",
+            s.target_m.len(),
+            s.target_m.last().copied().unwrap_or(0.0),
+            if per > 1 {
+                "thermal and scattered"
+            } else {
+                "thermal"
+            },
+            runs.join(", ")
+        )
+    });
     irsig_cli::note!(
-        "{}: {} paths{sun}, {aerosol_text}, for {} observer(s) at {} m above the scene's lowest point ({} m)",
+        "{}: {} paths{sun}{slab_text}, {aerosol_text}, for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
         all.len(),
         plan.observers_m.len(),

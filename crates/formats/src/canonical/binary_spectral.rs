@@ -21,7 +21,10 @@
 //! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`,
 //! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`, and when
 //! `solar.relative_azimuth_deg` is not empty `solar.path_scattered_w_m2_sr_per_unit`,
-//! `solar.sky_scattered_w_m2_sr_per_unit`. (A file without a `solar` table is what
+//! `solar.sky_scattered_w_m2_sr_per_unit`, then for each of `slabs`, its `down` and its
+//! `up` table when present, `transmission`, `path_radiance_w_m2_sr_per_unit` and, when
+//! `solar.relative_azimuth_deg` is not empty, `scattered_w_m2_sr_per_unit`. (A file
+//! without slabs is what it was before them. A file without a `solar` table is what
 //! version 1 always was: its bytes do not change; nor does one whose sun has no
 //! scattered-sunlight tables.)
 //! Each count is checked against the bytes left before anything is allocated; the file
@@ -77,10 +80,26 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
             ]);
         }
     }
+    let lit = a
+        .solar
+        .as_ref()
+        .is_some_and(|s| !s.relative_azimuth_deg.is_empty());
+    for table in a.slabs.iter().flat_map(|s| [&s.down, &s.up]).flatten() {
+        t.extend([&table.transmission, &table.path_radiance_w_m2_sr_per_unit]);
+        if lit {
+            t.push(&table.scattered_w_m2_sr_per_unit);
+        }
+    }
     t
 }
 
 fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
+    // The header holds no values: a slab table's scattered spectra follow when the
+    // atmosphere has the sun's azimuths (as `validate` requires them then).
+    let lit = a
+        .solar
+        .as_ref()
+        .is_some_and(|s| !s.relative_azimuth_deg.is_empty());
     let mut t = vec![
         &mut a.level_transmission,
         &mut a.level_path_radiance_w_m2_sr_per_unit,
@@ -107,6 +126,20 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
                 &mut s.path_scattered_w_m2_sr_per_unit,
                 &mut s.sky_scattered_w_m2_sr_per_unit,
             ]);
+        }
+    }
+    for table in a
+        .slabs
+        .iter_mut()
+        .flat_map(|s| [&mut s.down, &mut s.up])
+        .flatten()
+    {
+        t.extend([
+            &mut table.transmission,
+            &mut table.path_radiance_w_m2_sr_per_unit,
+        ]);
+        if lit {
+            t.push(&mut table.scattered_w_m2_sr_per_unit);
         }
     }
     t
@@ -402,7 +435,32 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             so.map_or(0, |s| s.sky_scattered_w_m2_sr_per_unit.len()),
         ),
     ];
-    if let Some((path, n)) = in_header.into_iter().find(|&(_, n)| n > 0) {
+    let slab_values = atm.slabs.iter().enumerate().flat_map(|(i, s)| {
+        [("down", &s.down), ("up", &s.up)]
+            .into_iter()
+            .filter_map(move |(dir, t)| t.as_ref().map(|t| (i, dir, t)))
+            .flat_map(|(i, dir, t)| {
+                [
+                    ("transmission", t.transmission.len()),
+                    (
+                        "path_radiance_w_m2_sr_per_unit",
+                        t.path_radiance_w_m2_sr_per_unit.len(),
+                    ),
+                    (
+                        "scattered_w_m2_sr_per_unit",
+                        t.scattered_w_m2_sr_per_unit.len(),
+                    ),
+                ]
+                .map(|(f, n)| (format!("slabs[{i}].{dir}.{f}"), n))
+            })
+    });
+    let in_header: Vec<(String, usize)> = in_header
+        .into_iter()
+        .map(|(p, n)| (p.to_owned(), n))
+        .chain(slab_values)
+        .collect();
+    if let Some((path, n)) = in_header.into_iter().find(|(_, n)| *n > 0) {
+        let path = path.as_str();
         let (start, _) = crate::ron_tree::locate(text, path);
         return Err(ParseError::in_binary(
             file,
@@ -501,6 +559,7 @@ mod tests {
             radiosonde: vec![],
             slant: None,
             solar: None,
+            slabs: vec![],
         }
     }
 
