@@ -69,8 +69,9 @@ pub struct PlanArgs {
     pub day_of_year: Option<u16>,
     /// With a sun, also run every slant and sky path for the sunlight it
     /// scatters (LOWTRAN7's IEMSCT = 2) at 10 azimuths from the sun, and the direct beam at
-    /// 3 more altitudes: about ten times the runs. irsig-trace does not use these tables
-    /// yet; a hazy 3-5 um sky is where they matter (docs/accuracy.md).
+    /// 3 more altitudes: about ten times the runs. irsig-trace adds that sunlight to every
+    /// sky ray, the hemispheric sky and every view path; a hazy 3-5 um sky is where it
+    /// matters (docs/accuracy.md, "Scattered sunlight in the tracer").
     #[arg(long)]
     pub sun_scattering: bool,
     /// Also run LOWTRAN7 for slabs that end above the ground: from each observer to target
@@ -507,5 +508,18 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             .join(", "),
         ground_z
     );
+    // Without slabs, a view path that ends on a facet well above the ground is made from
+    // paths to the ground or to space: said, with what that costs, rather than left silent.
+    if plan.slabs.is_none() && highest - ground_z > SLAB_WORTH_M {
+        irsig_cli::note!(
+            "the scene stands {:.0} m above its lowest point: view paths to its facets up there are made from paths that end at the ground or in space (LOWTRAN7's band-model averages do not multiply along a path: traced through hazy 3.4-4.1 um air by day, an 87 m slab's path radiance was +58 % off LOWTRAN7's own, docs/accuracy.md \"Slab tables\"); --slabs runs LOWTRAN7 for those slabs themselves",
+            highest - ground_z
+        );
+    }
     Ok(())
 }
+
+/// The height of a scene above its lowest point, metres, from which `plan` says that it
+/// has no slab tables: a facet a few metres up is seen through nearly the whole path to
+/// the ground, whose tables are LOWTRAN7's own.
+const SLAB_WORTH_M: f64 = 25.0;
