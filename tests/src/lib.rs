@@ -7,6 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+pub mod hazy_day;
+
 /// The repository root.
 #[must_use]
 pub fn repo_root() -> PathBuf {
