@@ -74,6 +74,7 @@ mod lobe;
 mod path;
 mod path_table;
 pub mod pilot;
+pub mod reference;
 pub mod refine;
 mod shade;
 pub mod sun;

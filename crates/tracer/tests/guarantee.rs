@@ -5,7 +5,7 @@
 //! rendering of the same view.
 //!
 //! The reference is converged by construction and checked
-//! (`irsig_tracer::testing::converged_reference`): 8 bounces, every pixel traced in two
+//! (`irsig_tracer::reference::converged_reference`): 8 bounces, every pixel traced in two
 //! independent halves, from 16 × 16 rays with 64 sky-view rays each; a pixel whose halves
 //! differ by more than a sixth of the tolerance is traced again from fresh seeds with four
 //! times the rays, round after round up to 262,144 a half (a pixel that is not one surface
@@ -25,9 +25,11 @@
 
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::PilotSpace;
+use irsig_tracer::reference::{
+    REFERENCE_ROUNDS_DEFAULT, converged_reference, material_p90s, percentile,
+};
 use irsig_tracer::testing::{
-    GENERATED_MATERIALS, GENERATED_SKY, REFERENCE_ROUNDS_DEFAULT, converged_reference,
-    generated_scene, material_p90s, percentile, temperatures, vacuum_pilot_space,
+    GENERATED_MATERIALS, GENERATED_SKY, generated_scene, temperatures, vacuum_pilot_space,
 };
 use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
 
@@ -78,7 +80,7 @@ fn check((seed, view): (u64, usize), tolerance_k: f64) -> Result<Outcome, String
             &|_| {},
         )
         .unwrap();
-    // The reference: converged in rounds to a sixth of the tolerance (testing.rs).
+    // The reference: converged in rounds to a sixth of the tolerance (reference.rs).
     let rounds = std::env::var("IRSIG_GUARANTEE_REFERENCE_ROUNDS")
         .map_or(REFERENCE_ROUNDS_DEFAULT, |r| {
             r.parse().expect("IRSIG_GUARANTEE_REFERENCE_ROUNDS=N")

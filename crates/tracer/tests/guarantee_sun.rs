@@ -6,7 +6,7 @@
 //! The pilot decides the sun's two models as well: whether it may be left out, and the
 //! shadow rays per hit. The reference has the sun on with 16 shadow rays per hit (4096
 //! points on the disk per pixel at its first round), converged in rounds as guarantee.rs's
-//! (`irsig_tracer::testing::converged_reference`: two independent halves a pixel, four
+//! (`irsig_tracer::reference::converged_reference`: two independent halves a pixel, four
 //! times the rays while they differ by more than a sixth of the smaller tolerance); their
 //! mean is the truth, and half their difference its own error, which must be under a
 //! third of the tolerance at p99. Checked as `--tolerance` promises: the
@@ -20,9 +20,11 @@ use irsig_model::View;
 use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::pilot::Piloted;
+use irsig_tracer::reference::{
+    ConvergedReference, REFERENCE_ROUNDS_DEFAULT, converged_reference, material_p90s, percentile,
+};
 use irsig_tracer::testing::{
-    ConvergedReference, REFERENCE_ROUNDS_DEFAULT, box_mesh, converged_reference, grey_materials,
-    ground_quad, material_p90s, percentile, raw_scene, sunlit_pilot_space, temperatures,
+    box_mesh, grey_materials, ground_quad, raw_scene, sunlit_pilot_space, temperatures,
 };
 use irsig_tracer::{Camera, Sun, SunBeam, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
@@ -119,7 +121,7 @@ fn pilot(seed: u64, beam_w_m2: f64, specular: bool, tolerance_k: f64) -> (Pilote
 }
 
 /// The converged day reference of scene `seed` (sun on, 16 shadow rays per hit), in rounds
-/// to `stop_k` (`irsig_tracer::testing::converged_reference`).
+/// to `stop_k` (`irsig_tracer::reference::converged_reference`).
 fn reference(seed: u64, beam_w_m2: f64, stop_k: f64) -> ConvergedReference {
     let (tracer, camera) = generated(seed, beam_w_m2, Some(16), true);
     let reference = converged_reference(&tracer, &camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
