@@ -19,6 +19,7 @@ use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
 use irsig_raster::FramePart;
 use irsig_sensor_model::quantise::CountRequest;
 use irsig_tracer::pilot::{BandChoice, PilotSpace, SunOffer, Supersample};
+use irsig_tracer::reference::{ConvergedReference, converged_reference};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
 use miette::{WrapErr, miette};
 use rayon::prelude::*;
@@ -624,6 +625,33 @@ impl Plan {
         out.ok_or_else(|| miette!("the probe printed nothing"))
     }
 
+    /// Every frame converged by construction, its own error per pixel measured
+    /// ([`converged_reference`]): the truth a tolerance is promised against, to check it
+    /// on a scene (`irsig-tests`'s `tolerance_rows`). Its atmosphere model, path terms,
+    /// sub-bands and sun are the request's settings; its rays a pixel, sky-view rays and 8
+    /// bounces are the rounds' own, the first `rounds` of them, each pixel's stopping when
+    /// its two halves differ by `stop_k` or less. A tolerance or a decision in the request
+    /// is not used.
+    ///
+    /// # Errors
+    /// A stopping difference that is not a finite number above 0 K, or as
+    /// [`Plan::render`].
+    pub fn converge(self, stop_k: f64, rounds: usize) -> miette::Result<Vec<ConvergedReference>> {
+        if !(stop_k.is_finite() && stop_k > 0.0) {
+            return Err(miette!(
+                "the reference's stopping difference: expected a finite number of kelvin \
+                 above 0, found {stop_k}"
+            ));
+        }
+        let mut out = Vec::new();
+        self.dispatch(&mut Job::Converge {
+            stop_k,
+            rounds,
+            out: &mut out,
+        })?;
+        Ok(out)
+    }
+
     /// Traces every frame (or its `tile`) and gives its files to `sink`; `progress` is
     /// called with the number of rows traced as they are.
     ///
@@ -1186,6 +1214,17 @@ impl Plan {
                 ));
                 return Ok(());
             }
+            Job::Converge {
+                stop_k,
+                rounds,
+                out,
+            } => {
+                **out = cameras
+                    .iter()
+                    .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
+                    .collect();
+                return Ok(());
+            }
             Job::Render {
                 tile,
                 progress,
@@ -1330,6 +1369,12 @@ enum Job<'a> {
         column: u32,
         row: u32,
         text: &'a mut Option<String>,
+    },
+    /// Converges every frame's reference ([`Plan::converge`]).
+    Converge {
+        stop_k: f64,
+        rounds: usize,
+        out: &'a mut Vec<ConvergedReference>,
     },
     /// Traces every frame.
     Render {

@@ -269,6 +269,15 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     Ok((plan, execute_files))
 }
 
+/// The plan the flags make, its inputs read: what `irsig-trace` would render (the
+/// tolerance's verification, `irsig-tests`'s `tolerance_rows`, converges it instead).
+///
+/// # Errors
+/// As the tool's, for its inputs.
+pub fn plan_of(cli: &Cli) -> miette::Result<Plan> {
+    plan(cli).map(|(plan, _)| plan).map_err(as_usage)
+}
+
 /// Runs the tool.
 ///
 /// # Errors
