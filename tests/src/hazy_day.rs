@@ -1,4 +1,5 @@
-//! What the daylight path tests share (`tests/scattered_trace.rs`, `tests/slab_trace.rs`):
+//! What the daylight path tests share (`tests/scattered_trace.rs`, `tests/slab_trace.rs`,
+//! and `tests/sunlit.rs`, which also runs the day in clear air):
 //! one hazy 3.4–4.1 µm day (US Standard 1976, a rural 10 km aerosol, the sun at 30° from
 //! the zenith on day 172), LOWTRAN7 run for one path under it, the band integrals of its
 //! TAPE7, and `irsig-trace --probe` of one pixel looking at a plate through an atmosphere
@@ -16,7 +17,9 @@ pub const SUN_ZENITH_DEG: f64 = 30.0;
 pub const SUN_AZIMUTH_DEG: f64 = 120.0;
 /// Day of the year.
 pub const DAY: u32 = 172;
-/// The spectral grid, cm⁻¹: from, to, step.
+/// The spectral grid, cm⁻¹: from, to, step. The 3.4–4.1 µm window on the grid's points,
+/// where the sun's scattered light is a real share of the path radiance (outside it, the
+/// 4.3 µm CO₂ and the 2.7 µm H₂O bands' emission dominates).
 pub const V1: f64 = 2440.0;
 pub const V2: f64 = 2940.0;
 pub const DV: f64 = 10.0;
@@ -37,18 +40,39 @@ pub struct Row {
     pub total: f64,
 }
 
-/// LOWTRAN7's radiance with single-scattered sunlight along one path (cards 1, 2, 3, 3A1
-/// IPARM 2 IPH 2 IDAY ISOURC 0, 3A2 PARM1 = azimuth of the line of sight from the sun,
-/// PARM2 = the sun's zenith, 4, 5): `itype` 2 from `h1_km` to `h2_km`, 3 from `h1_km` to
-/// space, `angle_deg` the zenith angle at `h1_km`.
+/// LOWTRAN7's card 2 without an aerosol (IHAZE 0): clear air, only Rayleigh scattering.
+pub const CLEAR_CARD2: &str =
+    "    0    0    0    0    0    0     0.000     0.000     0.000     0.000     0.000";
+
+/// [`lowtran_sunlit_under`] the hazy day's aerosol ([`CARD2`]).
+///
+/// # Panics
+/// As [`lowtran_sunlit_under`].
+#[must_use]
+pub fn lowtran_sunlit(itype: u32, h1_km: f64, h2_km: f64, angle_deg: f64, az_deg: f64) -> Vec<Row> {
+    lowtran_sunlit_under(CARD2, itype, h1_km, h2_km, angle_deg, az_deg)
+}
+
+/// LOWTRAN7's radiance with single-scattered sunlight along one path, its aerosol card 2
+/// `card2` (a deck written by columns: cards 1 and 2 `6I5,5F10.3`, 3 `6F10.3,I5`, 3A1 `4I5`
+/// IPARM 2 IPH 2 IDAY ISOURC 0, 3A2 `8F10.3` PARM1 = azimuth of the line of sight from the
+/// sun, PARM2 = the sun's zenith, 4, 5): `itype` 2 from `h1_km` to `h2_km`, 3 from `h1_km`
+/// to space, `angle_deg` the zenith angle at `h1_km`.
 ///
 /// # Panics
 /// When LOWTRAN7 fails or its TAPE7 has no radiance columns.
 #[must_use]
-pub fn lowtran_sunlit(itype: u32, h1_km: f64, h2_km: f64, angle_deg: f64, az_deg: f64) -> Vec<Row> {
+pub fn lowtran_sunlit_under(
+    card2: &str,
+    itype: u32,
+    h1_km: f64,
+    h2_km: f64,
+    angle_deg: f64,
+    az_deg: f64,
+) -> Vec<Row> {
     let deck = format!(
         "    6{itype:5}    2    0    0    0    0    0    0    0    0    0    0   0.000   0.00\n\
-         {CARD2}\n\
+         {card2}\n\
          {h1_km:10.3}{h2_km:10.3}{angle_deg:10.3}{:10.3}{:10.3}{:10.3}{:5}\n\
          \x20   2    2{DAY:5}    0\n\
          {az_deg:10.3}{SUN_ZENITH_DEG:10.3}{:10.3}{:10.3}{:10.3}{:10.3}{:10.3}{:10.3}\n\

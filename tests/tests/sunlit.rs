@@ -16,16 +16,10 @@ use irsig_atmosphere::plan::RELATIVE_AZIMUTH_DEG;
 use irsig_atmosphere::sunlit::SunlitPaths;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
+use irsig_tests::hazy_day::{
+    CARD2, CLEAR_CARD2, DAY, DV, SUN_ZENITH_DEG, V1, V2, band_integral, lowtran_sunlit_under,
+};
 use irsig_tests::{bin, lowtran};
-
-const SUN_ZENITH_DEG: f64 = 30.0;
-const DAY: u32 = 172;
-/// The 3.4–4.1 µm window on the grid's points, 2440–2940 cm⁻¹ every 10: where the sun's
-/// scattered light is a real share of the path radiance (outside it, the 4.3 µm CO₂ and
-/// the 2.7 µm H₂O bands' emission dominates).
-const V1: f64 = 2440.0;
-const V2: f64 = 2940.0;
-const DV: f64 = 10.0;
 
 fn plan_ron(aerosol: &str) -> String {
     let az: Vec<String> = RELATIVE_AZIMUTH_DEG
@@ -78,71 +72,6 @@ fn build(dir: &Path, name: &str, aerosol: &str) -> SpectralAtmosphere {
     canonical::read_spectral_atmosphere("built", &std::fs::read(&out).unwrap()).unwrap()
 }
 
-/// One row of an IEMSCT = 2 TAPE7: wavenumber (cm⁻¹), the scattered and the total radiance
-/// (W cm⁻² sr⁻¹ per cm⁻¹).
-struct Row {
-    nu: f64,
-    scattered: f64,
-    total: f64,
-}
-
-/// LOWTRAN7's radiance with single-scattered sunlight along one path: a deck written here
-/// by columns (LOWTRAN7's cards 1, 2 `6I5,5F10.3`, 3 `6F10.3,I5`, 3A1 `4I5` IPARM IPH
-/// IDAY ISOURC, 3A2 `8F10.3` PARM1 = azimuth of the sun from the line of sight, PARM2 =
-/// sun zenith; 4, 5), its TAPE7 read by words.
-fn lowtran_sunlit(
-    itype: u32,
-    h1_km: f64,
-    h2_km: f64,
-    angle_deg: f64,
-    az_deg: f64,
-    card2: &str,
-) -> Vec<Row> {
-    let deck = format!(
-        "    6{itype:5}    2    0    0    0    0    0    0    0    0    0    0   0.000   0.00\n\
-         {card2}\n\
-         {h1_km:10.3}{h2_km:10.3}{angle_deg:10.3}{:10.3}{:10.3}{:10.3}{:5}\n\
-         \x20   2    2{DAY:5}    0\n\
-         {az_deg:10.3}{SUN_ZENITH_DEG:10.3}{:10.3}{:10.3}{:10.3}{:10.3}{:10.3}{:10.3}\n\
-         {V1:10.3}{V2:10.3}{DV:10.3}\n\
-         \x20   0\n",
-        0.0, 0.0, 0.0, 0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
-    );
-    let t7 = irsig_tests::run_lowtran(&deck).tape7;
-    let mut lines = t7
-        .lines()
-        .skip_while(|l| !l.trim_start().starts_with("FREQ"));
-    let header = lines.next().expect("a column header in TAPE7");
-    assert!(header.contains("TOTAL RAD"), "{header}\n{deck}");
-    lines
-        .take_while(|l| l.trim() != "-9999.")
-        .map(|l| {
-            let w: Vec<f64> = l.split_whitespace().map(|x| x.parse().unwrap()).collect();
-            // FREQ TRANS THERMAL PATH-SCATTERED SINGLE GROUND GROUND-SINGLE TOTAL …
-            Row {
-                nu: w[0],
-                scattered: w[3],
-                total: w[7],
-            }
-        })
-        .collect()
-}
-
-/// `∫ L_λ dλ` over the whole grid, W m⁻² sr⁻¹, of a radiance given per cm⁻¹ in W cm⁻²
-/// sr⁻¹: converted to per µm at the points (`L_λ = L_ν ν² / 10⁴`, and ×10⁴ for m⁻²), the
-/// trapezoid in wavelength (formats/canonical/spectral-atmosphere.md's rule; the band's
-/// edges are grid points).
-fn band_integral(rows: &[Row], y: impl Fn(&Row) -> f64) -> f64 {
-    let nodes: Vec<(f64, f64)> = rows
-        .iter()
-        .map(|r| (1e4 / r.nu, y(r) * 1e4 * r.nu * r.nu / 1e4))
-        .collect();
-    nodes
-        .windows(2)
-        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[0].0 - w[1].0))
-        .sum()
-}
-
 /// Checks `atm` against LOWTRAN7 at paths between its rows; returns the largest error,
 /// relative to the path radiance, outside the sun's aureole and inside it (a sky path
 /// within 5° of the sun, where the aerosols' forward peak makes the scattered light
@@ -165,17 +94,17 @@ fn check(name: &str, atm: &SpectralAtmosphere, card2: &str, min_share: f64) -> (
     for (slant, h_m, angle, az) in cases {
         let (rows, ours) = if slant {
             (
-                lowtran_sunlit(2, h_m / 1000.0, 0.001, 180.0 - angle, az, card2),
+                lowtran_sunlit_under(card2, 2, h_m / 1000.0, 0.001, 180.0 - angle, az),
                 sunlit.path_radiance(h_m, angle, az),
             )
         } else {
             (
-                lowtran_sunlit(3, h_m / 1000.0, 0.0, angle, az, card2),
+                lowtran_sunlit_under(card2, 3, h_m / 1000.0, 0.0, angle, az),
                 sunlit.sky_radiance(h_m, angle, -az),
             )
         };
-        let total = band_integral(&rows, |r| r.total);
-        let scattered = band_integral(&rows, |r| r.scattered);
+        let total = band_integral(&rows, true, |r| r.total);
+        let scattered = band_integral(&rows, true, |r| r.scattered);
         let error = (ours.total_w_m2_sr() - total) / total;
         let scattered_error = (ours.scattered_w_m2_sr - scattered) / scattered;
         eprintln!(
@@ -228,12 +157,8 @@ fn interpolated_radiance_with_scattered_sunlight_is_lowtran7s_within_1_percent()
     let s = hazy.solar.as_ref().unwrap();
     assert_eq!(s.relative_azimuth_deg, RELATIVE_AZIMUTH_DEG);
     assert!(hazy.source.contains("IEMSCT=2"), "{}", hazy.source);
-    let clear_card2 =
-        "    0    0    0    0    0    0     0.000     0.000     0.000     0.000     0.000";
-    let hazy_card2 =
-        "    1    0    0    0    0    0    10.000     0.000     0.000     0.000     0.000";
-    let (worst_clear, aureole_clear) = check("clear", &clear, clear_card2, 0.0);
-    let (worst_hazy, aureole_hazy) = check("rural 10 km", &hazy, hazy_card2, 0.02);
+    let (worst_clear, aureole_clear) = check("clear", &clear, CLEAR_CARD2, 0.0);
+    let (worst_hazy, aureole_hazy) = check("rural 10 km", &hazy, CARD2, 0.02);
     eprintln!(
         "largest error: {:.3} % clear, {:.3} % with aerosol; within 5 deg of the sun {:.3} % and {:.3} %",
         100.0 * worst_clear,
