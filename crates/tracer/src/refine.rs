@@ -112,6 +112,10 @@ pub struct PixelSampling {
     pub rays: u32,
     /// Refinement ended at the largest side with σ above the target.
     pub capped: bool,
+    /// The levels traced: bit k for the level of side `min(2^k, max_side)` (a level's side
+    /// is a power of two or the refinement's largest, [`PixelSampling::level_sides`]); 0
+    /// for a pixel that kept its centre ray.
+    pub levels: u32,
     /// The mean over the pixel's value's rays of ∂L/∂T (`Sample::temperature_sensitivity`).
     pub temperature_sensitivity: f32,
     /// The mean of ∂L/∂ε.
@@ -121,6 +125,21 @@ pub struct PixelSampling {
 }
 
 impl PixelSampling {
+    /// The bit of [`PixelSampling::levels`] for a level of side `side`.
+    fn level_bit(side: u32) -> u32 {
+        1 << side
+            .checked_next_power_of_two()
+            .map_or(31, u32::trailing_zeros)
+    }
+
+    /// The sides of the levels traced, smallest first, under a refinement whose largest
+    /// side is `max_side`.
+    pub fn level_sides(&self, max_side: u32) -> impl Iterator<Item = u32> + '_ {
+        (0..32)
+            .filter(|k| self.levels & (1 << k) != 0)
+            .map(move |k| (1_u32 << k).min(max_side))
+    }
+
     /// A pixel that kept its centre ray, whose terms are `t`.
     pub(crate) fn from_truth(t: &TruthPixel) -> Self {
         let path = t.path_radiance_w_m2_sr;
@@ -128,6 +147,7 @@ impl PixelSampling {
             sigma_k: 0.0,
             rays: 1,
             capped: false,
+            levels: 0,
             temperature_sensitivity: t.temperature_sensitivity,
             emissivity_sensitivity: t.emissivity_sensitivity,
             path_radiance_w_m2_sr: if path.is_finite() { path } else { 0.0 },
@@ -328,8 +348,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut scratch = Sample::miss(Event::Sky);
         let mut hemispheric = Path::default();
         let mut rays = 1;
+        let mut levels = 0;
         let mut side = start.clamp(1, refinement.max_side);
         loop {
+            levels |= PixelSampling::level_bit(side);
             // Each level draws from a stream of its own (the centre ray's draws are the
             // centre pass's), and shares the centre's sky-view rays out among its paths
             // ([`level_sky_view_rays`]).
@@ -417,6 +439,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         sigma_k: sigma_k as f32,
                         rays,
                         capped: !reached,
+                        levels,
                         temperature_sensitivity: (sums.temperature_sensitivity / n) as f32,
                         emissivity_sensitivity: (sums.emissivity_sensitivity / n) as f32,
                         path_radiance_w_m2_sr: (sums.path_radiance / n) as f32,

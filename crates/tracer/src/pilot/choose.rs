@@ -61,6 +61,9 @@ const PATH_ALONG_SHARE: f64 = 0.8;
 /// trial measures it): two levels from the edge side, 8 × (16 + 64).
 const PRIOR_PATHS_PER_CANDIDATE: f64 = 640.0;
 
+/// The paths at each side assumed before the trial (`(side, paths)`): those two levels.
+const PRIOR_PATHS_BY_SIDE: [(u32, f64); 2] = [(4, 128.0), (8, 512.0)];
+
 /// The models a combination sets ([`irsig_model::decision::SwitchableModel::ALL`]).
 pub(crate) const MODELS: usize = 8;
 /// The sun's index in a combination (`lit`, [`crate::pilot::SunOffer`]).
@@ -143,6 +146,9 @@ pub(crate) struct Counts {
     pub(crate) candidates: f64,
     /// Paths per refined pixel.
     pub(crate) paths_per_candidate: f64,
+    /// A refined pixel's paths at each side (`(side, paths)`): what shares its sky-view
+    /// rays out.
+    pub(crate) paths_by_side: Vec<(u32, f64)>,
     /// Triangles in the BVH.
     pub(crate) triangles: f64,
 }
@@ -174,6 +180,7 @@ impl Counts {
             refined,
             candidates: census.candidate_share() * pixels,
             paths_per_candidate: PRIOR_PATHS_PER_CANDIDATE,
+            paths_by_side: PRIOR_PATHS_BY_SIDE.to_vec(),
             triangles: triangles.max(1) as f64,
         }
     }
@@ -230,11 +237,21 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
     let table = space.path_terms[c[4]] == PathTermsMode::Tabulated;
     let centre = path_ns(&counts.frame, sky_rays, table, false);
     // A refined pixel's paths share the centre's sky-view rays out by level
-    // (`level_sky_view_rays`); most of its paths are in the levels of side 4 and 8
-    // (8 rounds of 16 and of 64 paths), and each is also evaluated once more with the
+    // (`level_sky_view_rays`), weighted by its paths at each side (the trial's, else two
+    // levels from the edge side), and each is also evaluated once more with the
     // hemispheric sky when it has sky-view rays.
     let level = |side: u32| f64::from(crate::refine::level_sky_view_rays(n_sky, side));
-    let refined_hemi = (16.0 * level(4) + 64.0 * level(8)) / 80.0;
+    let paths: f64 = counts.paths_by_side.iter().map(|&(_, p)| p).sum();
+    let refined_hemi = if paths > 0.0 {
+        counts
+            .paths_by_side
+            .iter()
+            .map(|&(side, p)| p * level(side))
+            .sum::<f64>()
+            / paths
+    } else {
+        0.0
+    };
     let refined = path_ns(&counts.refined, refined_hemi, table, n_sky > 0);
     let sampling = match space.supersampling[c[3]] {
         Supersample::Every(1) | Supersample::Adaptive(1) => counts.pixels * centre,

@@ -190,6 +190,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         if trial.pixels > 0 {
             counts.paths_per_candidate = trial.paths_per_candidate;
+            counts.paths_by_side.clone_from(&trial.paths_by_side);
         }
 
         // 5. What is not guaranteed, and whether that is too much.

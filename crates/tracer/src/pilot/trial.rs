@@ -13,7 +13,7 @@ use super::stats::NORMAL_TAILS;
 use super::{REFINE_THIN_SIDE, SAMPLING_EXCEEDANCE};
 use crate::env::Atmosphere;
 use crate::path::Path;
-use crate::refine::Refinement;
+use crate::refine::{ROUNDS, Refinement};
 use crate::tracer::{EDGE_SIDE, FrameConsts, TraceOptions, Tracer};
 
 /// Candidates refined in the trial, at most (and about one in twenty of them).
@@ -24,6 +24,9 @@ const TRIAL_MAX: usize = 48;
 pub(crate) struct Trial {
     pub pixels: usize,
     pub paths_per_candidate: f64,
+    /// The paths a trial pixel traced at each side it visited, on average: `(side, paths)`,
+    /// smallest side first (the sky-view rays of a path depend on its level's side).
+    pub paths_by_side: Vec<(u32, f64)>,
     pub capped_share: f64,
     /// The standard error each capped pixel stopped at, K.
     pub capped_sigma_k: Vec<f64>,
@@ -127,8 +130,21 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .filter(|s| s.capped)
             .map(|s| f64::from(s.sigma_k))
             .collect();
+        let mut paths_by_side: Vec<(u32, f64)> = Vec::new();
+        for side in results
+            .iter()
+            .flat_map(|s| s.level_sides(refinement.max_side))
+        {
+            let paths = ROUNDS as f64 * f64::from(side) * f64::from(side) / pixels as f64;
+            match paths_by_side.iter_mut().find(|(s, _)| *s == side) {
+                Some((_, p)) => *p += paths,
+                None => paths_by_side.push((side, paths)),
+            }
+        }
+        paths_by_side.sort_by_key(|&(side, _)| side);
         Trial {
             pixels,
+            paths_by_side,
             paths_per_candidate: results.iter().map(|s| f64::from(s.rays)).sum::<f64>()
                 / pixels as f64,
             capped_share: capped.len() as f64 / pixels as f64,
