@@ -270,10 +270,12 @@ fn main() {
             let (run_s, stderr) = match outcome {
                 Ok(o) => o,
                 Err(stderr) => {
-                    let why = stderr
-                        .lines()
-                        .map(str::trim)
-                        .find(|l| !l.is_empty())
+                    // The refusal's floor, else its last line.
+                    let lines: Vec<&str> = stderr.lines().map(str::trim).collect();
+                    let why = lines
+                        .iter()
+                        .find_map(|l| l.find("floor is about").map(|at| &l[at..]))
+                        .or_else(|| lines.iter().rev().find(|l| !l.is_empty()).copied())
                         .unwrap_or("(no message)")
                         .replace('|', "\\|");
                     println!(
