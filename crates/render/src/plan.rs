@@ -1222,7 +1222,8 @@ impl Plan {
                 **out = cameras
                     .iter()
                     .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
-                    .collect();
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| miette!("{e}"))?;
                 return Ok(());
             }
             Job::Render {

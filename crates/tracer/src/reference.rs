@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use irsig_radiometry::BandModel;
 
 use crate::env::Atmosphere;
-use crate::{Camera, Tile, TraceOptions, Tracer};
+use crate::{Camera, Tile, TraceError, TraceOptions, Tracer};
 
 /// The |x| below which `p` % of `values` lie (the nearest rank above).
 ///
@@ -142,15 +142,14 @@ impl ConvergedReference {
 /// percentile must stay under: the margin is for halves that agree by chance (one
 /// difference is a one-sample estimate of the spread).
 ///
-/// # Panics
-/// If the tracer cannot render the camera (the options are valid).
-#[must_use]
+/// # Errors
+/// The tracer's, where it cannot render the camera.
 pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
     tracer: &Tracer<B, A>,
     camera: &Camera,
     stop_k: f64,
     rounds: usize,
-) -> ConvergedReference {
+) -> Result<ConvergedReference, TraceError> {
     let rounds = &REFERENCE_ROUNDS[..rounds.clamp(1, REFERENCE_ROUNDS.len())];
     let temperature = |l: f64| tracer.apparent_temperature_k(l);
     let options = |round: ReferenceRound, sky_view_rays: u32, seed: u64| TraceOptions {
@@ -161,22 +160,22 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
         seed,
         truth: false,
     };
-    let whole = |o: TraceOptions| -> Vec<f64> {
-        let frame = tracer.render(camera, &o, &|_| {}).unwrap();
-        frame
+    let whole = |o: TraceOptions| -> Result<Vec<f64>, TraceError> {
+        let frame = tracer.render(camera, &o, &|_| {})?;
+        Ok(frame
             .radiance_w_m2_sr
             .iter()
             .map(|&l| temperature(l))
-            .collect()
+            .collect())
     };
     let first = REFERENCE_ROUNDS[0];
     let centre = whole(TraceOptions {
         supersampling: 1,
         ..options(first, 0, 0)
-    });
-    let calm = whole(options(first, 0, 101));
-    let mut a = whole(options(first, first.sky_view_rays, 101));
-    let mut b = whole(options(first, first.sky_view_rays, 202));
+    })?;
+    let calm = whole(options(first, 0, 101))?;
+    let mut a = whole(options(first, first.sky_view_rays, 101))?;
+    let mut b = whole(options(first, first.sky_view_rays, 202))?;
     let edge: Vec<bool> = centre
         .iter()
         .zip(&calm)
@@ -205,33 +204,31 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
                 height: 1,
             };
             let from = 1000 * r as u64 + 500 * h;
-            let sum: f64 = (from..from + u64::from(round.seeds))
-                .map(|seed| {
-                    let o = options(round, round.sky_view_rays, seed);
-                    tracer
-                        .render_tile(camera, &o, tile, &|_| {})
-                        .unwrap()
-                        .radiance_w_m2_sr[0]
-                })
-                .sum();
-            temperature(sum / f64::from(round.seeds))
+            let mut sum = 0.0;
+            for seed in from..from + u64::from(round.seeds) {
+                let o = options(round, round.sky_view_rays, seed);
+                sum += tracer
+                    .render_tile(camera, &o, tile, &|_| {})?
+                    .radiance_w_m2_sr[0];
+            }
+            Ok::<_, TraceError>(temperature(sum / f64::from(round.seeds)))
         };
         let traced: Vec<(usize, f64, f64)> = next
             .par_iter()
-            .map(|&i| (i, half(i, 0), half(i, 1)))
-            .collect();
+            .map(|&i| Ok((i, half(i, 0)?, half(i, 1)?)))
+            .collect::<Result<_, TraceError>>()?;
         for (i, x, y) in traced {
             (a[i], b[i], level[i]) = (x, y, r);
         }
     }
     let capped = (0..a.len()).filter(|&i| needs(&a, &b, &level, i)).collect();
-    ConvergedReference {
+    Ok(ConvergedReference {
         truth: a.iter().zip(&b).map(|(a, b)| 0.5 * (a + b)).collect(),
         error: a.iter().zip(&b).map(|(a, b)| 0.5 * (a - b)).collect(),
         pixels_per_round,
         capped,
         stop_k,
-    }
+    })
 }
 
 /// The 90th percentile of |`error`| over the pixels of each material of `ids` (`material`:

@@ -85,7 +85,8 @@ fn check((seed, view): (u64, usize), tolerance_k: f64) -> Result<Outcome, String
         .map_or(REFERENCE_ROUNDS_DEFAULT, |r| {
             r.parse().expect("IRSIG_GUARANTEE_REFERENCE_ROUNDS=N")
         });
-    let reference = converged_reference(&reference_tracer, &camera, tolerance_k / 6.0, rounds);
+    let reference =
+        converged_reference(&reference_tracer, &camera, tolerance_k / 6.0, rounds).unwrap();
     let (truth, noise) = (&reference.truth, &reference.error);
     let width = camera.pixels[0];
     let got = temperatures(&chosen);
@@ -235,7 +236,8 @@ fn the_converged_reference_is_within_its_claim_of_an_exact_edge() {
     use irsig_tracer::testing::{EdgeExperiment, pixel_fraction_left_of_line};
     let e = EdgeExperiment::new();
     let stop_k = 0.05;
-    let reference = converged_reference(&e.tracer, &e.camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
+    let reference =
+        converged_reference(&e.tracer, &e.camera, stop_k, REFERENCE_ROUNDS_DEFAULT).unwrap();
     eprintln!("edge reference: {}", reference.rounds_line());
     let [w, _] = EdgeExperiment::PIXELS;
     let (mut on_edge, mut off_edge) = (Vec::new(), Vec::new());

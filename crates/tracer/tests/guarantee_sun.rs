@@ -124,7 +124,8 @@ fn pilot(seed: u64, beam_w_m2: f64, specular: bool, tolerance_k: f64) -> (Pilote
 /// to `stop_k` (`irsig_tracer::reference::converged_reference`).
 fn reference(seed: u64, beam_w_m2: f64, stop_k: f64) -> ConvergedReference {
     let (tracer, camera) = generated(seed, beam_w_m2, Some(16), true);
-    let reference = converged_reference(&tracer, &camera, stop_k, REFERENCE_ROUNDS_DEFAULT);
+    let reference =
+        converged_reference(&tracer, &camera, stop_k, REFERENCE_ROUNDS_DEFAULT).unwrap();
     eprintln!("reference: {}", reference.rounds_line());
     reference
 }
