@@ -1,5 +1,6 @@
 //! The `--tolerance` verification of docs/accuracy.md on the shipped pipelines: for the
-//! quickstart, three fly-by frames (near, far, oblique) and the thesis experiment, at
+//! quickstart, three fly-by frames (near, far, oblique), the thesis experiment and the
+//! daylight pipeline's two bands by day (its atmosphere built with LOWTRAN7), at
 //! tolerances of 1, 0.3 and 0.1 K, the models the pilot chose and the chosen rendering's
 //! error against a reference converged by construction: the 99th percentile of |ΔT| of
 //! the apparent temperature, the worst material's 90th percentile (materials of 10 pixels
@@ -16,8 +17,8 @@
 //! thousands of rays on its hardest pixels. The reference
 //! (`irsig_tracer::reference::converged_reference`) has the most accurate setting of
 //! every model the pilot compares against that is not sampled (table atmosphere, exact
-//! path terms, the atmosphere's full spectral grid) and converges the sampled ones (rays a
-//! pixel, sky-view rays, 8 bounces) in rounds until each pixel's two independent halves
+//! path terms, the atmosphere's full spectral grid; by day the sun with 16 shadow rays a
+//! hit) and converges the sampled ones (rays a pixel, sky-view rays, 8 bounces) in rounds until each pixel's two independent halves
 //! differ by a sixth of the smallest tolerance, 0.1 K; its first
 //! `IRSIG_ROWS_REFERENCE_ROUNDS` rounds (default 5; `IRSIG_ROWS_CASE=TEXT` runs the cases
 //! whose name holds TEXT alone). Its own error (half the halves'
@@ -42,16 +43,29 @@ struct Case {
     view: &'static str,
     /// The pixels traced, across and down.
     pixels: [u32; 2],
+    /// The band, µm (the apparent temperatures' too).
+    band: [f64; 2],
+    /// More flags: [`DAY_ATMOSPHERE`] stands for the daylight atmosphere's file.
     extra: &'static [&'static str],
 }
 
-const CASES: [Case; 5] = [
+/// The daylight pipeline's atmosphere, built here with LOWTRAN7 (`$IRSIG_LOWTRAN`, else
+/// `lowtran7` on PATH) when a case names it: mid-latitude winter, the sun 70° from the
+/// zenith on day 172, 710–3340 cm⁻¹ every 20 (both bands), planned from the quickstart's
+/// view (`irsig-atmos plan`, then `build`).
+const DAY_ATMOSPHERE: &str = "<the daylight atmosphere>";
+
+/// The daylight pipeline's sun: 70° from the zenith, due north.
+const DAY_SUN: [&str; 4] = ["--sun-zenith-deg", "70", "--sun-azimuth-deg", "0"];
+
+const CASES: [Case; 7] = [
     Case {
         name: "quickstart",
         scene: "pipelines/quickstart/scene.ron",
         materials: "pipelines/quickstart/materials.ron",
         view: "pipelines/quickstart/view.ron",
         pixels: [64, 48],
+        band: [8.0, 14.0],
         extra: &["--atmosphere", "us-std-1976"],
     },
     Case {
@@ -60,6 +74,7 @@ const CASES: [Case; 5] = [
         materials: "pipelines/thesis-flyby/materials.ron",
         view: "pipelines/thesis-flyby/views/frame-14.view",
         pixels: [64, 64],
+        band: [8.0, 14.0],
         extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
     },
     Case {
@@ -68,6 +83,7 @@ const CASES: [Case; 5] = [
         materials: "pipelines/thesis-flyby/materials.ron",
         view: "pipelines/thesis-flyby/views/frame-09.view",
         pixels: [64, 64],
+        band: [8.0, 14.0],
         extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
     },
     Case {
@@ -76,6 +92,7 @@ const CASES: [Case; 5] = [
         materials: "pipelines/thesis-flyby/materials.ron",
         view: "pipelines/thesis-flyby/views/frame-08.view",
         pixels: [64, 64],
+        band: [8.0, 14.0],
         extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
     },
     Case {
@@ -84,7 +101,44 @@ const CASES: [Case; 5] = [
         materials: "pipelines/thesis-experiment/materials.ron",
         view: "pipelines/thesis-experiment/view.ron",
         pixels: [64, 50],
+        band: [8.0, 14.0],
         extra: &["--atmosphere", "midlat-winter"],
+    },
+    Case {
+        name: "daylight 3-5 µm (the quickstart at a low noon sun)",
+        scene: "pipelines/quickstart/scene.ron",
+        materials: "pipelines/daylight/materials.ron",
+        view: "pipelines/quickstart/view.ron",
+        pixels: [64, 48],
+        band: [3.0, 5.0],
+        extra: &[
+            "--atmosphere",
+            DAY_ATMOSPHERE,
+            "--band",
+            "3-5",
+            DAY_SUN[0],
+            DAY_SUN[1],
+            DAY_SUN[2],
+            DAY_SUN[3],
+        ],
+    },
+    Case {
+        name: "daylight 8-14 µm (the quickstart at a low noon sun)",
+        scene: "pipelines/quickstart/scene.ron",
+        materials: "pipelines/daylight/materials.ron",
+        view: "pipelines/quickstart/view.ron",
+        pixels: [64, 48],
+        band: [8.0, 14.0],
+        extra: &[
+            "--atmosphere",
+            DAY_ATMOSPHERE,
+            "--band",
+            "8-14",
+            DAY_SUN[0],
+            DAY_SUN[1],
+            DAY_SUN[2],
+            DAY_SUN[3],
+        ],
     },
 ];
 
@@ -135,9 +189,8 @@ fn smaller_view(path: &str, pixels: [u32; 2], to: &Path) {
     std::fs::write(to, out).unwrap();
 }
 
-/// The radiance EXR's apparent temperatures (the default band, 8–14 µm) and the truth
-/// EXR's primary material.
-fn temperatures(radiance: &Path) -> Vec<f64> {
+/// The radiance EXR's apparent temperatures in the flat band `band` (µm).
+fn temperatures(radiance: &Path, band: [f64; 2]) -> Vec<f64> {
     let raster = irsig_raster::read_exr(&std::fs::read(radiance).unwrap()).unwrap();
     let radiance: Vec<f64> = raster
         .layer("radiance")
@@ -146,11 +199,12 @@ fn temperatures(radiance: &Path) -> Vec<f64> {
         .iter()
         .map(|&l| f64::from(l))
         .collect();
-    let band = Band::default();
+    let band = Band::new(band[0], band[1]).unwrap();
     let table = InverseTable::new(&band, &radiance);
     radiance.iter().map(|&l| table.temperature(l)).collect()
 }
 
+/// The truth EXR's primary material.
 fn material(truth: &Path) -> Vec<f32> {
     let raster = irsig_raster::read_exr(&std::fs::read(truth).unwrap()).unwrap();
     raster
@@ -158,6 +212,60 @@ fn material(truth: &Path) -> Vec<f32> {
         .unwrap()
         .data
         .clone()
+}
+
+/// The daylight atmosphere's file in `dir` ([`DAY_ATMOSPHERE`]), built on first use.
+fn day_atmosphere(bin: &Path, dir: &Path) -> String {
+    let spa = dir.join("day.spa");
+    if !spa.exists() {
+        let (raw, plan) = (dir.join("day-scene.raw"), dir.join("day-plan"));
+        let path = |p: &Path| p.to_string_lossy().into_owned();
+        run(
+            bin,
+            "irsig-flatten",
+            &strings(&[
+                "pipelines/quickstart/scene.ron",
+                "--materials",
+                "pipelines/quickstart/materials.ron",
+                "-o",
+                &path(&raw),
+            ]),
+        )
+        .unwrap();
+        run(
+            bin,
+            "irsig-atmos",
+            &strings(&[
+                "plan",
+                "--scene",
+                &path(&raw),
+                "--view",
+                "pipelines/quickstart/view.ron",
+                "--model",
+                "midlat-winter",
+                DAY_SUN[0],
+                DAY_SUN[1],
+                "--day-of-year",
+                "172",
+                "--wavenumber-per-cm",
+                "710,3340,20",
+                "-o",
+                &path(&plan),
+            ]),
+        )
+        .unwrap();
+        let out = Command::new(bin.join("irsig-atmos"))
+            .env("IRSIG_LOWTRAN", irsig_tests::lowtran())
+            .args(["build", &path(&plan), "-o", &path(&spa)])
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "irsig-atmos build: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+    spa.to_string_lossy().into_owned()
 }
 
 fn strings(v: &[&str]) -> Vec<String> {
@@ -205,7 +313,13 @@ fn main() {
                 "--view",
                 &view,
             ]);
-            v.extend(strings(case.extra));
+            v.extend(case.extra.iter().map(|&a| {
+                if a == DAY_ATMOSPHERE {
+                    day_atmosphere(&bin, tmp.path())
+                } else {
+                    a.to_owned()
+                }
+            }));
             v.extend(strings(more));
             v
         };
@@ -220,6 +334,9 @@ fn main() {
             "--sub-bands",
             "full",
         ]));
+        if case.extra.contains(&DAY_SUN[0]) {
+            args.extend(strings(&["--sun-shadow-rays", "16"]));
+        }
         let plan = irsig_trace::plan_of(&irsig_trace::Cli::parse_from(&args)).unwrap();
         let reference = plan.converge(stop_k, rounds).unwrap().remove(0);
         references.push((
@@ -297,7 +414,7 @@ fn main() {
             )
             .unwrap();
             let settings: Vec<&str> = d.choices.iter().map(|c| c.setting.as_str()).collect();
-            let error: Vec<f64> = temperatures(Path::new(&chosen))
+            let error: Vec<f64> = temperatures(Path::new(&chosen), case.band)
                 .iter()
                 .zip(&reference.truth)
                 .map(|(c, r)| c - r)
