@@ -562,6 +562,22 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_levels_a_pixel_visited_give_back_their_sides() {
+        // Sides from the thin start, doubling, up to a largest side that is a power of two
+        // and one that is not.
+        for (max_side, visited) in [(128, [8, 16, 128]), (96, [8, 32, 96])] {
+            let s = PixelSampling {
+                levels: visited
+                    .iter()
+                    .fold(0, |m, &v| m | PixelSampling::level_bit(v)),
+                ..PixelSampling::default()
+            };
+            assert_eq!(s.level_sides(max_side).collect::<Vec<_>>(), visited);
+        }
+        assert_eq!(PixelSampling::default().level_sides(128).count(), 0);
+    }
+
+    #[test]
     fn distances_to_a_triangle_are_zero_inside_and_to_the_nearest_side_outside() {
         let t = [[0.0, 0.0], [4.0, 0.0], [0.0, 4.0]];
         assert!(distance_to_triangle([1.0, 1.0], t).abs() < 1e-12);
