@@ -4,7 +4,9 @@
 //! temperature differs from one of its 8 neighbours' by more than [`Refinement::edge_k`] (an
 //! edge passes near it), or when a facet that projects thinner than a pixel lies within a
 //! pixel of it (a wire, a pole, a far spire: [`Tracer::thin_pixels`], found from the
-//! geometry, so that no thin feature is missed because no centre ray happened to hit it).
+//! geometry, so that no thin feature is missed because no centre ray happened to hit it),
+//! or when the horizon crosses it (an edge along the image's border has no neighbour on
+//! its far side to show it).
 //! A candidate is traced in levels: at side `n`, [`ROUNDS`] independent stratified rounds
 //! of `n × n` jittered rays each; the round means give the level's mean and its standard
 //! error, `σ = std(round means)/√ROUNDS`, an estimate from the pixel's own samples as a Monte
@@ -178,10 +180,13 @@ struct Sums {
 
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The pixels of `camera`'s image that lie within a pixel of a facet that projects
-    /// thinner than a pixel (its smallest height on the image under one pixel), row-major:
-    /// where a feature can hide between centre rays. Found by projecting every facet, not
-    /// by tracing: whether the facet is hidden behind another does not matter (a candidate
-    /// too many costs rays, one too few an error).
+    /// thinner than a pixel (its smallest height on the image under one pixel), or that
+    /// the horizon crosses (the terrain background below it, the sky above), row-major:
+    /// where a feature can hide between centre rays. A horizon along the image's top or
+    /// bottom row, or one that every neighbour's centre sees on the same side, is an edge
+    /// no centre's contrast shows. Found by projecting every facet and the corners of every
+    /// pixel, not by tracing: whether the facet or the horizon is hidden behind another
+    /// facet does not matter (a candidate too many costs rays, one too few an error).
     #[must_use]
     pub fn thin_pixels(&self, camera: &Camera) -> Vec<bool> {
         let [w, h] = camera.pixels;
@@ -212,6 +217,27 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 (1.0 - v / camera.tan_half_fov[1]) * hf / 2.0,
             ])
         };
+        // The horizon: a pixel whose corners look on both sides of the Earth's limb.
+        let cos_critical = self.bands.bands[0]
+            .atmosphere
+            .critical_nadir_angle_deg(camera.position_m[2].max(0.0))
+            .to_radians()
+            .cos();
+        let below =
+            |x: u32, y: u32| -camera.direction_at(f64::from(x), f64::from(y))[2] > cos_critical;
+        for y in tile.y..tile.y + tile.height {
+            for x in tile.x..tile.x + tile.width {
+                let corners = [
+                    below(x, y),
+                    below(x + 1, y),
+                    below(x, y + 1),
+                    below(x + 1, y + 1),
+                ];
+                if corners.contains(&true) && corners.contains(&false) {
+                    mask[(y - tile.y) as usize * tw + (x - tile.x) as usize] = true;
+                }
+            }
+        }
         self.geometry.for_each_triangle(|tri| {
             let (Some(a), Some(b), Some(c)) = (project(tri[0]), project(tri[1]), project(tri[2]))
             else {
