@@ -1,7 +1,8 @@
 //! Refinement to a standard-error target (`Tracer::with_refinement`): edge pixels converge
 //! on their exact area-averaged radiance within the error each reports; a pole a quarter
-//! of a pixel wide, between the centre rays, is found from the geometry and measured; a
-//! refined frame in tiles is bit for bit the frame whole.
+//! of a pixel wide, between the centre rays, is found from the geometry and measured; so is
+//! the horizon inside the image's top row; a refined frame in tiles is bit for bit the
+//! frame whole.
 
 use irsig_model::View;
 use irsig_radiometry::{BandModel, TotalRadiance};
@@ -184,5 +185,71 @@ fn a_refined_frame_in_tiles_is_the_frame_whole() {
                 assert_eq!(part.sampling[j], whole.sampling[i]);
             }
         }
+    }
+}
+
+/// The horizon inside the image's top row: every centre ray there sees the terrain
+/// background and no row above can show the sky, so no centre's contrast finds the edge.
+/// The pixels it crosses are found from their corners, and refined to the share of each
+/// pixel above it, set by the geometry: the camera is pitched down so that the Earth's
+/// limb crosses row 0 at 0.9 of the top half-field, 40 % of the row's height from its top.
+#[test]
+fn the_horizon_inside_the_top_row_is_found_and_measured() {
+    use irsig_tracer::Atmosphere;
+    let (height, pixels, fov_v) = (10.0, [8, 8], 20.0_f64);
+    let half = (fov_v / 2.0).to_radians().tan();
+    // The limb's depression below the horizontal, from the sensor's altitude (a ray whose
+    // nadir angle is under the critical one meets the terrain).
+    let sky = Vacuum {
+        sky_radiance_w_m2_sr: TotalRadiance.radiance(200.0),
+    };
+    let dip = (90.0 - sky.critical_nadir_angle_deg(height)).to_radians();
+    assert!(dip > 0.0 && dip < 0.01, "{dip}");
+    let pitch = (0.9 * half).atan() + dip;
+    let ground = ground_quad([-1.0, -1.0], [1.0, 1.0], 0.0);
+    let scene = raw_scene(&[(&ground, 1, 300.0)]);
+    let materials = grey_materials(&[(1, 1.0, 0.0)]);
+    let tracer = Tracer::new(&scene, &materials, TotalRadiance, sky).unwrap();
+    let camera = Camera::from_view(&View::LookAt {
+        position_m: [0.0, 0.0, height],
+        target_m: [0.0, 1000.0, height - 1000.0 * pitch.tan()],
+        up: [0.0, 0.0, 1.0],
+        pixels,
+        fov_deg: [fov_v, fov_v],
+        gain_dc_per_k: None,
+    })
+    .unwrap();
+    let thin = tracer.thin_pixels(&camera);
+    let at = |col: u32, row: u32| (row * pixels[0] + col) as usize;
+    for col in 0..pixels[0] {
+        assert!(thin[at(col, 0)], "column {col} of row 0");
+        for row in 1..pixels[1] {
+            assert!(!thin[at(col, row)], "({col}, {row})");
+        }
+    }
+    let plain = tracer
+        .render(&camera, &TraceOptions::default(), &|_| {})
+        .unwrap();
+    let (l_sky, l_terrain) = (sky.sky_radiance_w_m2_sr, plain.radiance_w_m2_sr[at(3, 1)]);
+    // The centre rays alone read row 0 as terrain.
+    assert_eq!(plain.radiance_w_m2_sr[at(3, 0)], l_terrain);
+    assert!(
+        t_of(l_terrain) - t_of(l_sky) > 50.0,
+        "an edge worth finding"
+    );
+    let frame = tracer
+        .with_refinement(Some(REFINE))
+        .unwrap()
+        .render(&camera, &TraceOptions::default(), &|_| {})
+        .unwrap();
+    let expected = 0.4 * l_sky + 0.6 * l_terrain;
+    for col in 0..pixels[0] {
+        let l = frame.radiance_w_m2_sr[at(col, 0)];
+        let s = frame.sampling[at(col, 0)];
+        let error = (t_of(l) - t_of(expected)).abs();
+        assert!(
+            error < 0.05 + 3.0 * f64::from(s.sigma_k),
+            "column {col}: {l} against {expected}, {error} K, {s:?}"
+        );
     }
 }
