@@ -139,6 +139,10 @@ pub struct ClassReport {
     pub grazing: bool,
     /// The ray looks within 5° of the horizon.
     pub horizon: bool,
+    /// Its reflection meets a facet that reflects specularly too (a mirror seen in a
+    /// mirror, where the bounces' cut lies). Absent in decisions written before it: false.
+    #[serde(default)]
+    pub mirror_in_mirror: bool,
     /// Only a sub-pixel probe found it: no pixel's centre ray meets it.
     pub sub_pixel: bool,
     /// Its share of the frame's pixels, 0 to 1.

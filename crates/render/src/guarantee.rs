@@ -17,6 +17,9 @@ pub struct Guarantee<'a> {
     pub camera: &'a Camera,
     /// The tile's top-left pixel in the frame (`[0, 0]` for a whole frame).
     pub origin: [u32; 2],
+    /// The ids of the materials with a specular share (a pixel whose reflection meets one
+    /// is a mirror seen in a mirror, a class of its own).
+    pub mirrors: &'a [u16],
 }
 
 impl Guarantee<'_> {
@@ -39,7 +42,9 @@ impl Guarantee<'_> {
             .map(|(i, t)| {
                 let col = self.origin[0] + (i % width) as u32;
                 let row = self.origin[1] + (i / width) as u32;
-                let class = PixelClass::of_truth(t, self.camera.pixel_direction(col, row));
+                let class = PixelClass::of_truth(t, self.camera.pixel_direction(col, row), |m| {
+                    self.mirrors.contains(&m)
+                });
                 listed
                     .iter()
                     .find(|(_, k)| k.same_population(&class))

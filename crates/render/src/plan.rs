@@ -1193,6 +1193,15 @@ impl Plan {
         })?
         .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
+        // The materials with a specular share: a reflection that meets one is a mirror
+        // seen in a mirror, a class of the decision's own.
+        let mirrors: Vec<u16> = self
+            .materials
+            .materials
+            .iter()
+            .filter(|m| m.specular_fraction > 0.0)
+            .map(|m| m.id.0)
+            .collect();
         let cameras = self
             .views
             .iter()
@@ -1284,6 +1293,7 @@ impl Plan {
                 decision,
                 camera: cam,
                 origin: [tiles[i].x, tiles[i].y],
+                mirrors: &mirrors,
             });
             if settings.kind != kind || settings.sub_bands != count {
                 // New sub-bands drop the sun, whose beams are per sub-band: lit again.

@@ -388,6 +388,7 @@ pub fn table(d: &Decision) -> String {
         for (flag, word) in [
             (c.grazing, ", grazing"),
             (c.horizon, ", horizon"),
+            (c.mirror_in_mirror, ", reflecting a mirror"),
             (c.sub_pixel, ", sub-pixel"),
         ] {
             if flag {

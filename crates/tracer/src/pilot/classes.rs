@@ -3,10 +3,12 @@
 //! A cheap pass traces every pixel's centre ray (one bounce, the hemispheric sky, the band
 //! model) and puts each pixel in a [`PixelClass`]: what the ray met first (the sky, the
 //! terrain, a diffuse facet, a specular facet whose reflection escapes or meets another
-//! facet), the material, whether it meets its facet at a grazing angle, and whether it
-//! looks within a few degrees of the horizon. Facets thinner than a pixel, which no centre
-//! ray may meet, are probed densely ([`Tracer::thin_pixels`]); a population only such a
-//! probe finds is a class of its own, *sub-pixel*. The sample is stratified over the
+//! facet), the material, whether it meets its facet at a grazing angle, whether it looks
+//! within a few degrees of the horizon, and whether its reflection meets another mirror
+//! (where the bounces' cut errs). The refinement candidates, where a centre ray may miss
+//! what part of the pixel holds (facets thinner than a pixel, [`Tracer::thin_pixels`], the
+//! horizon, edges), are probed densely; a population only such a probe finds is a class
+//! of its own, *sub-pixel*. The sample is stratified over the
 //! classes: a floor of [`CLASS_FLOOR`] points in each (every point of a smaller one), the
 //! rest in proportion to the pixels, and each point weighs back to the frame by the
 //! pixels it stands for. A population of 0.1 % of the frame (a glass pane, a wire) is
@@ -35,9 +37,10 @@ pub const GRAZING_DEG: f64 = 75.0;
 /// A ray within this of the horizon looks through the longest, most interpolated paths of
 /// the atmosphere, degrees.
 pub const HORIZON_DEG: f64 = 5.0;
-/// Thin pixels probed for sub-pixel populations, at most.
-const PROBED_THIN: usize = 512;
-/// Probe rays per thin pixel (a 4 × 4 stratified grid).
+/// Candidate pixels (thin, on the horizon, or on an edge) probed for sub-pixel
+/// populations, at most.
+const PROBED: usize = 512;
+/// Probe rays per probed pixel (a 4 × 4 stratified grid).
 const PROBE_SIDE: u32 = 4;
 
 /// A population of pixels: what the centre ray met, how, and where it looked.
@@ -51,6 +54,9 @@ pub struct PixelClass {
     pub grazing: bool,
     /// The ray (sky or terrain) looks within [`HORIZON_DEG`] of the horizon.
     pub horizon: bool,
+    /// The facet's reflection meets a facet that reflects specularly too: a chain the
+    /// bounces cut, where their error lives (a mirror seen in a mirror).
+    pub mirror_in_mirror: bool,
 }
 
 impl PixelClass {
@@ -60,6 +66,8 @@ impl PixelClass {
         let near_horizon = dir[2].abs() < HORIZON_DEG.to_radians().sin();
         match (path.primary, path.nodes.first()) {
             (Primary::Facet { .. }, Some(node)) => Self {
+                mirror_in_mirror: matches!(node.mirror, Some(Mirror::Next))
+                    && path.nodes.get(1).is_some_and(|next| next.mirror.is_some()),
                 event: match node.mirror {
                     None => Event::Diffuse,
                     Some(Mirror::Next) => Event::SpecularHitsFacet,
@@ -76,19 +84,23 @@ impl PixelClass {
                 material: 0,
                 grazing: false,
                 horizon: near_horizon,
+                mirror_in_mirror: false,
             },
             _ => Self {
                 event: Event::Sky,
                 material: 0,
                 grazing: false,
                 horizon: near_horizon,
+                mirror_in_mirror: false,
             },
         }
     }
 
-    /// The class of a rendered pixel from its centre ray's truth and direction.
+    /// The class of a rendered pixel from its centre ray's truth and direction;
+    /// `reflects_specularly` says whether a material id reflects specularly (a facet met
+    /// by the pixel's reflection that does makes it a mirror in a mirror).
     #[must_use]
-    pub fn of_truth(t: &TruthPixel, dir: V3) -> Self {
+    pub fn of_truth(t: &TruthPixel, dir: V3, reflects_specularly: impl Fn(u16) -> bool) -> Self {
         let facet = matches!(
             t.event,
             Event::Diffuse | Event::SpecularEscapes | Event::SpecularHitsFacet
@@ -98,6 +110,8 @@ impl PixelClass {
             material: if facet { t.primary_material } else { 0 },
             grazing: facet && t.cos_incidence < GRAZING_DEG.to_radians().cos(),
             horizon: !facet && dir[2].abs() < HORIZON_DEG.to_radians().sin(),
+            mirror_in_mirror: t.event == Event::SpecularHitsFacet
+                && reflects_specularly(t.secondary_material),
         }
     }
 
@@ -111,6 +125,10 @@ impl PixelClass {
             && self.material == other.material
             && self.grazing == other.grazing
             && self.horizon == other.horizon
+            // A chain cut at fewer bounces escapes: what it would have met is unknown.
+            && (self.mirror_in_mirror == other.mirror_in_mirror
+                || self.event != other.event
+                || self.event != Event::SpecularHitsFacet)
     }
 
     /// The class a decision's report names, if its event is one of [`Event::name`]'s.
@@ -121,6 +139,7 @@ impl PixelClass {
             material: r.material,
             grazing: r.grazing,
             horizon: r.horizon,
+            mirror_in_mirror: r.mirror_in_mirror,
         })
     }
 }
@@ -280,13 +299,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             });
         }
 
-        // The sub-pixel probe: thin pixels, 4 × 4 rays each; a class no centre ray found
-        // becomes a class of its own, sampled at the points that found it.
-        let mut thin_pixels: Vec<u32> = (0..(wu * hu) as u32)
-            .filter(|&i| thin[i as usize])
+        // The sub-pixel probe: the refinement candidates (thin pixels, the horizon's, and
+        // edges, where a sliver of a pixel may hold what no centre ray met: a wire, a mirror
+        // glimpsed in a window's edge), 4 × 4 rays each; a class no centre ray found becomes
+        // a class of its own, sampled at the points that found it.
+        let mut probe_pixels: Vec<u32> = (0..(wu * hu) as u32)
+            .filter(|&i| candidate[i as usize])
             .collect();
-        let thin_count = thin_pixels.len();
-        let (probed, _) = thin_pixels.partial_shuffle(&mut rng, PROBED_THIN.min(thin_count));
+        let probe_count = probe_pixels.len();
+        let (probed, _) = probe_pixels.partial_shuffle(&mut rng, PROBED.min(probe_count));
         probed.sort_unstable();
         // Each probed pixel's rays are its own stream: probed side by side, taken in order.
         let mut probe_points: Vec<(PixelClass, SamplePoint)> = probed
@@ -335,9 +356,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .take_while(|p| p.0 == class)
                     .count();
             let group = &mut probe_points[start..end];
-            // Its area: the probe rays that met it, over the probed share of the thin
-            // pixels.
-            let share = (end - start) as f64 / probe_rays * thin_count as f64 / total;
+            // Its area: the probe rays that met it, over the probed share of the
+            // candidates.
+            let share = (end - start) as f64 / probe_rays * probe_count as f64 / total;
             let k = classes.len();
             let wanted = CLASS_FLOOR.min(group.len());
             let (picked, _) = group.partial_shuffle(&mut rng, wanted);
@@ -374,8 +395,17 @@ mod tests {
             material: 3,
             grazing: false,
             horizon: false,
+            mirror_in_mirror: false,
         };
         assert!(c(Event::SpecularEscapes).same_population(&c(Event::SpecularHitsFacet)));
+        // A mirror seen in a mirror is a population of its own where both reflections
+        // meet a facet; a chain cut short may be either.
+        let in_mirror = PixelClass {
+            mirror_in_mirror: true,
+            ..c(Event::SpecularHitsFacet)
+        };
+        assert!(!in_mirror.same_population(&c(Event::SpecularHitsFacet)));
+        assert!(in_mirror.same_population(&c(Event::SpecularEscapes)));
         assert!(!c(Event::Diffuse).same_population(&c(Event::SpecularHitsFacet)));
         let other = PixelClass {
             material: 4,

@@ -205,6 +205,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         if class.horizon {
             notes.push("near the horizon");
         }
+        if class.mirror_in_mirror {
+            notes.push("reflecting a mirror");
+        }
         if sub_pixel {
             notes.push("sub-pixel");
         }
@@ -395,6 +398,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     name: self.material_name(&k.class),
                     grazing: k.class.grazing,
                     horizon: k.class.horizon,
+                    mirror_in_mirror: k.class.mirror_in_mirror,
                     sub_pixel: k.sub_pixel,
                     share: k.share.clamp(0.0, 1.0),
                     samples: k.samples as u32,
