@@ -15,16 +15,16 @@
 //! Each view is traced at fewer pixels than it ships with (its field of view unchanged,
 //! the quickstart 64 × 48, the others 64 pixels wide): the reference traces hundreds of
 //! thousands of rays on its hardest pixels. The reference
-//! (`irsig_tracer::reference::converged_reference`) has the most accurate setting of
-//! every model the pilot compares against that is not sampled (table atmosphere, exact
-//! path terms, the atmosphere's full spectral grid; by day the sun with 16 shadow rays a
-//! hit) and converges the sampled ones (rays a pixel, sky-view rays, 8 bounces) in rounds until each pixel's two independent halves
-//! differ by a sixth of the smallest tolerance, 0.1 K; its first
-//! `IRSIG_ROWS_REFERENCE_ROUNDS` rounds (default 5; `IRSIG_ROWS_CASE=TEXT` runs the cases
-//! whose name holds TEXT alone). Its own error (half the halves'
-//! difference) is printed per case: under a third of a tolerance, that tolerance's rows
-//! are verified. The cheapest rendering: the thesis model, no bounce, F = 1, one ray per
-//! pixel, tabulated path terms, the band model.
+//! (`irsig_tracer::reference::converged_reference`, through `Plan::converge`) has the most
+//! accurate setting of every model the pilot compares against that is not sampled (table
+//! atmosphere, exact path terms, the atmosphere's full spectral grid; by day the sun with
+//! 16 shadow rays a hit) and converges the sampled ones (rays a pixel, sky-view rays, 8
+//! bounces) in rounds, until each pixel's two independent halves differ by a sixth of the
+//! smallest tolerance, 0.1 K: its first `IRSIG_ROWS_REFERENCE_ROUNDS` rounds (default 5).
+//! `IRSIG_ROWS_CASE=TEXT` runs the cases whose name holds TEXT alone. The reference's own
+//! error (half its halves' difference) is printed per case: under a third of a tolerance,
+//! that tolerance's rows are verified. The cheapest rendering: the thesis model, no
+//! bounce, F = 1, one ray per pixel, tabulated path terms, the band model.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
