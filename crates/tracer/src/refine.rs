@@ -218,11 +218,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ])
         };
         // The horizon: a pixel whose corners look on both sides of the Earth's limb.
-        let cos_critical = self.bands.bands[0]
-            .atmosphere
-            .critical_nadir_angle_deg(camera.position_m[2].max(0.0))
-            .to_radians()
-            .cos();
+        let cos_critical = self.cos_critical_nadir(camera);
         let below =
             |x: u32, y: u32| -camera.direction_at(f64::from(x), f64::from(y))[2] > cos_critical;
         for y in tile.y..tile.y + tile.height {

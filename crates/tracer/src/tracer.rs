@@ -1317,13 +1317,20 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             vs: rows.map(|r| camera.v_at(f64::from(r) + 0.5)).collect(),
             origin: self.geometry.to_local(camera.position_m),
             sensor_alt,
-            cos_critical_nadir: self.bands.bands[0]
-                .atmosphere
-                .critical_nadir_angle_deg(sensor_alt)
-                .to_radians()
-                .cos(),
+            cos_critical_nadir: self.cos_critical_nadir(camera),
             path_table: table.then(|| self.path_table(camera, &self.bands)),
         }
+    }
+
+    /// Cosine of the Earth's limb's angle from nadir seen from `camera` (clamped at the
+    /// ground): rays with a larger cosine of their nadir angle meet the terrain, the rest
+    /// see the sky.
+    pub(crate) fn cos_critical_nadir(&self, camera: &Camera) -> f64 {
+        self.bands.bands[0]
+            .atmosphere
+            .critical_nadir_angle_deg(camera.position_m[2].max(0.0))
+            .to_radians()
+            .cos()
     }
 
     /// The path-term table of `camera`'s frame for every sub-band of `set`: over the
