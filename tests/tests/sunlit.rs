@@ -17,9 +17,8 @@ use irsig_atmosphere::sunlit::SunlitPaths;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
 use irsig_tests::hazy_day::{
-    CARD2, CLEAR_CARD2, DAY, DV, SUN_ZENITH_DEG, V1, V2, band_integral, lowtran_sunlit_under,
+    self, CARD2, CLEAR_CARD2, DAY, DV, SUN_ZENITH_DEG, V1, V2, band_integral, lowtran_sunlit_under,
 };
-use irsig_tests::{bin, lowtran};
 
 fn plan_ron(aerosol: &str) -> String {
     let az: Vec<String> = RELATIVE_AZIMUTH_DEG
@@ -54,22 +53,13 @@ fn plan_ron(aerosol: &str) -> String {
     )
 }
 
+/// The day plan with `aerosol` built by LOWTRAN7 ([`hazy_day::build`]), read.
 fn build(dir: &Path, name: &str, aerosol: &str) -> SpectralAtmosphere {
-    let p = dir.join(name);
-    std::fs::create_dir(&p).unwrap();
-    std::fs::write(p.join("plan.ron"), plan_ron(aerosol)).unwrap();
-    let out = dir.join(format!("{name}.spa"));
-    let t = std::time::Instant::now();
-    bin("irsig-atmos")
-        .env("IRSIG_LOWTRAN", lowtran())
-        .arg("build")
-        .arg(&p)
-        .args(["--model", "us-std-1976", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    eprintln!("{name}: built in {:.1} s", t.elapsed().as_secs_f64());
-    canonical::read_spectral_atmosphere("built", &std::fs::read(&out).unwrap()).unwrap()
+    read(&hazy_day::build(dir, name, &plan_ron(aerosol)))
+}
+
+fn read(spa: &Path) -> SpectralAtmosphere {
+    canonical::read_spectral_atmosphere("built", &std::fs::read(spa).unwrap()).unwrap()
 }
 
 /// Checks `atm` against LOWTRAN7 at paths between its rows; returns the largest error,
@@ -179,8 +169,6 @@ fn interpolated_radiance_with_scattered_sunlight_is_lowtran7s_within_1_percent()
 #[test]
 fn a_night_atmosphere_or_a_sun_without_azimuths_has_no_sunlit_paths() {
     let dir = tempfile::tempdir().unwrap();
-    let p = dir.path().join("night");
-    std::fs::create_dir(&p).unwrap();
     // The day plan without its sun's azimuths: the direct beam only, as before.
     let text = plan_ron("").replace(
         &format!(
@@ -194,17 +182,7 @@ fn a_night_atmosphere_or_a_sun_without_azimuths_has_no_sunlit_paths() {
         "",
     );
     assert!(!text.contains("relative_azimuth"));
-    std::fs::write(p.join("plan.ron"), text).unwrap();
-    let out = dir.path().join("direct.spa");
-    bin("irsig-atmos")
-        .env("IRSIG_LOWTRAN", lowtran())
-        .arg("build")
-        .arg(&p)
-        .args(["--model", "us-std-1976", "-o"])
-        .arg(&out)
-        .assert()
-        .success();
-    let atm = canonical::read_spectral_atmosphere("built", &std::fs::read(&out).unwrap()).unwrap();
+    let atm = read(&hazy_day::build(dir.path(), "direct", &text));
     let s = atm.solar.as_ref().unwrap();
     assert!(s.relative_azimuth_deg.is_empty() && s.path_scattered_w_m2_sr_per_unit.is_empty());
     let e = SunlitPaths::new(&atm, 3.1, 5.0, |_| 1.0).unwrap_err();
