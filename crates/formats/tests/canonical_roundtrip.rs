@@ -115,6 +115,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
                     band_um: None,
                     spectral: None,
                     rms_slope: None,
+                    thermal: None,
                 }
             })
             .collect(),

@@ -34,6 +34,7 @@
 //!         band_um: None,
 //!         spectral: None,
 //!         rms_slope: None,
+//!         thermal: None,
 //!     }],
 //! };
 //! assert!(lib.validate().is_ok());
@@ -55,6 +56,7 @@ mod raw;
 mod regions;
 mod scene;
 mod spectral;
+pub mod thermal;
 pub mod truth;
 pub mod uncertainty;
 mod view;

@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ModelError, ModelErrorKind, check_increasing, check_range};
+use crate::thermal::ThermalProperties;
 
 /// A material's number, as facets and the interaction map carry it. 0 is never a material:
 /// the legacy interaction map uses 0 for "nothing hit".
@@ -53,10 +54,16 @@ pub struct Material {
     /// spreads the sun's glint. `None` or 0: a smooth mirror.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub rms_slope: Option<f64>,
+    /// What the thermal model (`irsig-therm`) needs: the wall's layers, its back and its
+    /// surface's solar absorptance and broadband emissivity. `None`: the material's facets
+    /// take the temperatures the scene gives them, and the thermal model refuses it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<ThermalProperties>,
 }
 
-/// The derived form, with `rms_slope` shown only when given: a material without one prints
-/// (and so feeds a run's hash, `irsig.run`) exactly as before the field existed.
+/// The derived form, with `rms_slope` and `thermal` shown only when given: a material
+/// without them prints (and so feeds a run's hash, `irsig.run`) exactly as before the
+/// fields existed.
 impl std::fmt::Debug for Material {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         let mut d = f.debug_struct("Material");
@@ -69,6 +76,9 @@ impl std::fmt::Debug for Material {
             .field("spectral", &self.spectral);
         if let Some(sigma) = &self.rms_slope {
             d.field("rms_slope", sigma);
+        }
+        if let Some(thermal) = &self.thermal {
+            d.field("thermal", thermal);
         }
         d.finish()
     }
@@ -262,6 +272,9 @@ impl Material {
                 ));
             }
         }
+        if let Some(t) = &self.thermal {
+            t.validate(&format!("{prefix}.thermal"))?;
+        }
         if let Some(s) = &self.spectral {
             s.validate(&format!("{prefix}.spectral"))?;
             if self.emissivity.first().is_some_and(|r| r.1 <= 0.0) {
@@ -333,6 +346,7 @@ mod tests {
             band_um: None,
             spectral: None,
             rms_slope: None,
+            thermal: None,
         }
     }
 

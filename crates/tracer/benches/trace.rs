@@ -57,6 +57,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         band_um: None,
         spectral: None,
         rms_slope: None,
+        thermal: None,
     };
     MaterialLibrary {
         materials: vec![m(1, sphere_specular), m(2, 0.0)],

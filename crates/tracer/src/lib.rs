@@ -47,6 +47,7 @@
 //!         band_um: None,
 //!         spectral: None,
 //!         rms_slope: None,
+//!         thermal: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;

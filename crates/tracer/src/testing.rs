@@ -319,6 +319,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
                 band_um: None,
                 spectral: None,
                 rms_slope: None,
+                thermal: None,
             })
             .collect(),
     }

@@ -52,6 +52,7 @@ fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Mat
         band_um: None,
         spectral: None,
         rms_slope: None,
+        thermal: None,
     }
 }
 

@@ -195,6 +195,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             band_um: entry.ems_file.is_some().then_some(band_um),
             spectral: None,
             rms_slope: None,
+            thermal: None,
         });
     }
     let library = MaterialLibrary { materials };

@@ -110,6 +110,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 band_um: None,
                 spectral: None,
                 rms_slope: None,
+                thermal: None,
             });
             continue;
         };
@@ -174,6 +175,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 angular: None,
             }),
             rms_slope: None,
+            thermal: None,
         });
     }
     let library = MaterialLibrary { materials };

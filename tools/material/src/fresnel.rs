@@ -297,6 +297,7 @@ fn write_library(
             band_um: entry.band_um,
             spectral: entry.spectral,
             rms_slope: entry.rms_slope,
+            thermal: None,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

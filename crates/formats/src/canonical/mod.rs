@@ -421,6 +421,7 @@ mod tests {
                     band_um: None,
                     spectral: None,
                     rms_slope: None,
+                    thermal: None,
                 },
                 Material {
                     id: MaterialId(2),
@@ -431,6 +432,7 @@ mod tests {
                     band_um: None,
                     spectral: None,
                     rms_slope: None,
+                    thermal: None,
                 },
             ],
         }
