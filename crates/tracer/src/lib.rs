@@ -70,6 +70,7 @@ pub mod camera;
 mod day;
 pub mod env;
 mod error;
+pub mod exposure;
 pub mod geometry;
 mod lobe;
 mod path;
