@@ -47,6 +47,7 @@ mod atmosphere;
 pub mod decision;
 mod error;
 pub mod frame;
+pub mod history;
 pub mod limits;
 mod material;
 mod object;

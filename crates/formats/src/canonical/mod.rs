@@ -16,6 +16,7 @@
 //! The format pages are `formats/canonical/*.md` in the repository.
 
 pub mod binary;
+pub mod binary_history;
 pub mod binary_object;
 pub mod binary_spectral;
 mod layout;
