@@ -33,6 +33,7 @@ pub mod nk;
 pub mod radtran;
 pub mod ron_tree;
 pub mod srf;
+pub mod time;
 pub mod views;
 
 pub use error::{ParseError, line_column, offset_of};

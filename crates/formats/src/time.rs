@@ -1,0 +1,138 @@
+//! Times as users and files write them. Inside, a time is seconds since
+//! 1970-01-01T00:00:00Z (UTC, leap seconds not counted, as POSIX and RFC 3339 count), an
+//! `f64`: exact to a microsecond for millennia either side of 1970.
+//!
+//! Accepted forms (parsed by the `jiff` crate):
+//! - RFC 3339 with `Z` or an offset: `2026-07-15T14:00:00Z`, `2026-07-15T14:00-06:00`
+//!   (seconds may be left out);
+//! - RFC 9557, a local time with an IANA time zone in brackets:
+//!   `2026-07-15T14:00[America/Denver]`, its offset that day taken from the time zone
+//!   database bundled with irsig (the same on every machine). A local time that the zone
+//!   skips (a spring-forward gap) or repeats is refused rather than guessed.
+//!
+//! A time without an offset or a zone is refused: "14:00" means nothing until it is said
+//! where.
+
+/// The forms [`parse_time`] accepts, for messages.
+pub const TIME_FORMS: &str = "a time as 2026-07-15T14:00:00Z, 2026-07-15T14:00-06:00 or \
+                              2026-07-15T14:00[America/Denver]";
+
+/// Parses a time (see the module's forms) into seconds since 1970-01-01T00:00:00Z.
+///
+/// # Errors
+/// A time in none of the forms, a time zone the database does not have, a local time the
+/// zone skips or repeats, or a time jiff cannot represent (years −9999 to 9999).
+pub fn parse_time(text: &str) -> Result<f64, String> {
+    use jiff::fmt::temporal::DateTimeParser;
+    use jiff::tz::Disambiguation;
+    // A local time the zone skips or repeats is refused, not moved.
+    const PARSER: DateTimeParser = DateTimeParser::new().disambiguation(Disambiguation::Reject);
+    let text = text.trim();
+    if text.ends_with(']') {
+        let zoned = PARSER.parse_zoned_datetime(text).map_err(|e| {
+            format!("`{text}` is not a time in a known zone, or not one its zone has ({e}): expected {TIME_FORMS}")
+        })?;
+        return Ok(seconds(zoned.timestamp()));
+    }
+    let timestamp = PARSER.parse_timestamp(text).map_err(|e| {
+        format!("`{text}` is not a time with an offset or a zone ({e}): expected {TIME_FORMS}")
+    })?;
+    Ok(seconds(timestamp))
+}
+
+fn seconds(t: jiff::Timestamp) -> f64 {
+    t.as_second() as f64 + f64::from(t.subsec_nanosecond()) * 1e-9
+}
+
+/// The UTC time of `time_s` as RFC 3339, `YYYY-MM-DDTHH:MM:SS[.fraction]Z`, to the
+/// microsecond; `None` outside the years jiff represents.
+#[must_use]
+pub fn format_utc(time_s: f64) -> Option<String> {
+    timestamp(time_s).map(|t| t.to_string())
+}
+
+/// The UTC time of `time_s` compact, for file names: `20260715T140000Z` (whole seconds,
+/// rounded down).
+#[must_use]
+pub fn compact_utc(time_s: f64) -> Option<String> {
+    let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
+    Some(t.strftime("%Y%m%dT%H%M%SZ").to_string())
+}
+
+/// The day of the year of `time_s` in UTC, 1–366.
+#[must_use]
+pub fn day_of_year_utc(time_s: f64) -> Option<u16> {
+    let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
+    u16::try_from(t.to_zoned_datetime(jiff::tz::TimeZone::UTC).day_of_year()).ok()
+}
+
+fn timestamp(time_s: f64) -> Option<jiff::Timestamp> {
+    if !time_s.is_finite() {
+        return None;
+    }
+    let micros = (time_s * 1e6).round();
+    if micros.abs() > 2.5e17 {
+        return None;
+    }
+    jiff::Timestamp::from_microsecond(micros as i64).ok()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_form_gives_the_same_instant() {
+        // By hand: 1970–2025 are 56 years with 14 leap days, so 2026-01-01 is day
+        // 56 · 365 + 14 = 20 454 after the epoch; 15 July is 195 days later (31 + 28 + 31
+        // + 30 + 31 + 30 + 14); 20:00 adds 72 000 s.
+        let expect = (20_454.0 + 195.0) * 86_400.0 + 20.0 * 3600.0;
+        assert_eq!(
+            parse_time("2026-07-15T20:00:00Z").unwrap().to_bits(),
+            f64::to_bits(expect)
+        );
+        assert_eq!(
+            parse_time("2026-07-15T14:00-06:00").unwrap().to_bits(),
+            f64::to_bits(expect)
+        );
+        // Denver keeps mountain daylight time (UTC−6) in July.
+        assert_eq!(
+            parse_time("2026-07-15T14:00[America/Denver]")
+                .unwrap()
+                .to_bits(),
+            f64::to_bits(expect)
+        );
+        assert_eq!(format_utc(expect).unwrap(), "2026-07-15T20:00:00Z");
+        assert_eq!(compact_utc(expect).unwrap(), "20260715T200000Z");
+        // 15 July of a common year is day 31+28+31+30+31+30+15 = 196.
+        assert_eq!(day_of_year_utc(expect), Some(196));
+    }
+
+    #[test]
+    fn a_time_without_a_place_or_in_no_zone_is_refused() {
+        let e = parse_time("2026-07-15T14:00").unwrap_err();
+        assert!(e.contains("expected a time as"), "{e}");
+        let e = parse_time("2026-07-15T14:00[Mars/Olympus_Mons]").unwrap_err();
+        assert!(e.contains("known zone"), "{e}");
+        // Paris skips 02:00–03:00 on 29 March 2026.
+        let e = parse_time("2026-03-29T02:30[Europe/Paris]").unwrap_err();
+        assert!(e.contains("known zone"), "{e}");
+        // An offset that disagrees with the zone is refused; the right one is taken.
+        assert!(parse_time("2026-03-29T02:30+01:00[Europe/Paris]").is_err());
+        assert_eq!(
+            parse_time("2026-03-29T03:30+02:00[Europe/Paris]")
+                .unwrap()
+                .to_bits(),
+            parse_time("2026-03-29T01:30Z").unwrap().to_bits()
+        );
+        assert!(parse_time("").is_err());
+    }
+
+    #[test]
+    fn fractions_of_a_second_survive() {
+        let t = parse_time("2026-07-15T20:00:00.25Z").unwrap();
+        assert!((t.fract() - 0.25).abs() < 1e-9);
+        assert_eq!(format_utc(t).unwrap(), "2026-07-15T20:00:00.25Z");
+        assert_eq!(format_utc(f64::NAN), None);
+    }
+}
