@@ -532,6 +532,12 @@ fn surface_error(
     time_step: TimeStep,
 ) -> ThermalError {
     let what = match kind {
+        ThermalErrorKind::OutOfRange if time_step.scheme == Scheme::CrankNicolson => format!(
+            "the surface balance has no root between {MIN_TEMPERATURE_K} and \
+             {MAX_TEMPERATURE_K} K (Crank–Nicolson's explicit half overshoots when the \
+             surface's fluxes change this steeply over a step this long; Backward Euler \
+             or a shorter step keeps the temperature physical)"
+        ),
         ThermalErrorKind::OutOfRange => format!(
             "the surface balance has no root between {MIN_TEMPERATURE_K} and \
              {MAX_TEMPERATURE_K} K"
