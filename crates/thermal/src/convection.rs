@@ -170,7 +170,7 @@ impl ConvectionAt {
                     1.31
                 };
                 let hn = c * delta_k.abs().cbrt();
-                let s = hn.hypot(forced_smooth);
+                let s = (hn * hn + forced_smooth * forced_smooth).sqrt();
                 let h = hn + roughness_multiplier * (s - hn);
                 let dh_dhn = if s > 0.0 {
                     1.0 + roughness_multiplier * (hn / s - 1.0)

@@ -25,7 +25,7 @@ use irsig_model::thermal::{BackAir, BackBoundary};
 
 use crate::convection::Orientation;
 use crate::error::{ThermalError, ThermalErrorKind};
-use crate::surface::{Loads, Surface, SurfaceAt};
+use crate::surface::{Loads, Surface, SurfaceAt, SurfaceParts};
 use crate::wall::Wall;
 use crate::{MAX_TEMPERATURE_K, MIN_TEMPERATURE_K};
 
@@ -141,8 +141,15 @@ struct Elimination {
     wall_id: u64,
     dt_bits: u64,
     scheme: Scheme,
+    /// `Q_i`.
     q: Vec<f64>,
+    /// `1/β_i`.
     inv_beta: Vec<f64>,
+    /// `C_i / (Δt β_i)`: what `T_i` at the step's start adds to `P_i`.
+    own: Vec<f64>,
+    /// `θ g_i / β_i`: what `P_{i+1}` adds to `P_i`, so that the recurrence is one fused
+    /// multiply-add per node.
+    coupling: Vec<f64>,
     /// The surface row's coefficient of `T_0` once `T_1` is eliminated.
     d0: f64,
 }
@@ -182,6 +189,8 @@ impl Scratch {
                 scheme,
                 q: Vec::new(),
                 inv_beta: Vec::new(),
+                own: Vec::new(),
+                coupling: Vec::new(),
                 d0: 0.0,
             });
             self.cache.len() - 1
@@ -206,10 +215,10 @@ fn eliminate(e: &mut Elimination, wall: &Wall, dt_s: f64, scheme: Scheme) {
     e.wall_id = wall.id();
     e.dt_bits = dt_s.to_bits();
     e.scheme = scheme;
-    e.q.clear();
-    e.q.resize(n, 0.0);
-    e.inv_beta.clear();
-    e.inv_beta.resize(n, 0.0);
+    for v in [&mut e.q, &mut e.inv_beta, &mut e.own, &mut e.coupling] {
+        v.clear();
+        v.resize(n, 0.0);
+    }
     let (a_last, b_last) = match wall.back() {
         BackBoundary::Temperature { .. } => (0.0, 1.0),
         BackBoundary::Adiabatic => (-theta * g[last - 1], c[last] / dt_s + theta * g[last - 1]),
@@ -227,6 +236,8 @@ fn eliminate(e: &mut Elimination, wall: &Wall, dt_s: f64, scheme: Scheme) {
         let beta = b - upper * e.q[i + 1];
         e.inv_beta[i] = 1.0 / beta;
         e.q[i] = a / beta;
+        e.own[i] = c[i] / dt_s / beta;
+        e.coupling[i] = theta * g[i] / beta;
     }
     e.d0 = c[0] / dt_s + theta * g[0] + theta * g[0] * e.q[1];
 }
@@ -373,14 +384,19 @@ fn advance(
         r
     };
     p[last] = r_last * e.inv_beta[last];
-    // Interior rows, back to front.
-    for i in (1..last).rev() {
-        let mut r = c[i] / dt_s * temps[i];
-        if explicit != 0.0 {
-            r += explicit
-                * (g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]));
+    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`.
+    let mut next = p[last];
+    if explicit == 0.0 {
+        for i in (1..last).rev() {
+            next = e.own[i] * temps[i] + e.coupling[i] * next;
+            p[i] = next;
         }
-        p[i] = (r + theta * g[i] * p[i + 1]) * e.inv_beta[i];
+    } else {
+        for i in (1..last).rev() {
+            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
+            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
+            p[i] = next;
+        }
     }
     // The surface row: `d0 T_0 − θ q(T_0) = r`.
     let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
@@ -392,23 +408,32 @@ fn advance(
         SurfaceMode::Held(held) => held,
         SurfaceMode::Balance(surface, orientation) => {
             let at1 = SurfaceAt::new(surface, orientation, after);
-            let at0 = (explicit != 0.0).then(|| SurfaceAt::new(surface, orientation, before));
-            if let Some(at0) = &at0 {
-                r0 += explicit * at0.net_flux(temps[0]).0;
-            }
-            let t0 = solve_surface(e.d0, theta, r0, &at1, temps[0]).map_err(|kind| {
+            // The step's start, for Crank–Nicolson's explicit half.
+            let start = (explicit != 0.0).then(|| {
+                let at0 = SurfaceAt::new(surface, orientation, before);
+                let parts = at0.parts(temps[0]);
+                r0 += explicit * (at0.absorbed_w_m2() - parts.leaving());
+                (at0, parts)
+            });
+            let (t0, end) = solve_surface(e.d0, theta, r0, &at1, temps[0]).map_err(|kind| {
                 surface_error(kind, surface, orientation, temps, after, time_step)
             })?;
-            account_surface(&mut fluxes, &at1, at0.as_ref(), t0, temps[0], theta, dt_s);
+            account_surface(&mut fluxes, (&at1, &end), start.as_ref(), theta, dt_s);
             t0
         }
     };
-    // Back-substitution into `p`, so that `temps` is untouched until all is checked.
+    // Back-substitution into `p`, so that `temps` is untouched until all is checked, with
+    // the stored change on the way.
     p[0] = t0_new;
-    let mut in_range = (MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K).contains(&t0_new);
+    let range = MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K;
+    let mut in_range = range.contains(&t0_new);
+    let mut stored = c[0] * (t0_new - temps[0]);
+    let mut previous = t0_new;
     for i in 1..n {
-        p[i] -= e.q[i] * p[i - 1];
-        in_range &= (MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K).contains(&p[i]);
+        previous = p[i] - e.q[i] * previous;
+        p[i] = previous;
+        in_range &= range.contains(&previous);
+        stored += c[i] * (previous - temps[i]);
     }
     if !in_range {
         return Err(out_of_range(p, temps, after));
@@ -427,34 +452,28 @@ fn advance(
     if let SurfaceMode::Held(_) = mode {
         fluxes.held_surface_j_m2 = c[0] * (p[0] - temps[0]) - weighted(0, p, temps);
     }
-    let mut stored = 0.0;
-    for ((t, &new), &ci) in temps.iter_mut().zip(p.iter()).zip(c) {
-        stored += ci * (new - *t);
-        *t = new;
-    }
     fluxes.stored_change_j_m2 = stored;
+    temps.copy_from_slice(p);
     Ok(fluxes)
 }
 
-/// The surface terms of a step, weighted by the scheme.
+/// The surface terms of a step, weighted by the scheme, from the surface's loads and what
+/// leaves it at the step's end and (Crank–Nicolson) start.
 fn account_surface(
     fluxes: &mut StepFluxes,
-    at1: &SurfaceAt,
-    at0: Option<&SurfaceAt>,
-    t_new: f64,
-    t_old: f64,
+    (at1, end): (&SurfaceAt, &SurfaceParts),
+    start: Option<&(SurfaceAt, SurfaceParts)>,
     theta: f64,
     dt_s: f64,
 ) {
-    let end = at1.parts(t_new);
-    fluxes.absorbed_shortwave_j_m2 = dt_s * theta * at1.absorbed_shortwave_w_m2();
-    fluxes.absorbed_longwave_j_m2 = dt_s * theta * at1.absorbed_longwave_w_m2();
-    fluxes.emitted_j_m2 = dt_s * theta * end.emitted;
-    fluxes.convected_j_m2 = dt_s * theta * end.convected;
-    fluxes.latent_j_m2 = dt_s * theta * end.latent;
-    if let Some(at0) = at0 {
+    let w = dt_s * theta;
+    fluxes.absorbed_shortwave_j_m2 = w * at1.absorbed_shortwave_w_m2();
+    fluxes.absorbed_longwave_j_m2 = w * at1.absorbed_longwave_w_m2();
+    fluxes.emitted_j_m2 = w * end.emitted;
+    fluxes.convected_j_m2 = w * end.convected;
+    fluxes.latent_j_m2 = w * end.latent;
+    if let Some((at0, start)) = start {
         let w = dt_s * (1.0 - theta);
-        let start = at0.parts(t_old);
         fluxes.absorbed_shortwave_j_m2 += w * at0.absorbed_shortwave_w_m2();
         fluxes.absorbed_longwave_j_m2 += w * at0.absorbed_longwave_w_m2();
         fluxes.emitted_j_m2 += w * start.emitted;
@@ -463,20 +482,26 @@ fn account_surface(
     }
 }
 
-/// Solves `d0 T − θ q(T) = r` for the surface temperature, from `guess`.
+/// Solves `d0 T − θ q(T) = r` for the surface temperature, from `guess`; returns it with
+/// what leaves the surface there.
 ///
 /// `f(T) = d0 T − θ q(T) − r` increases with `T` (`d0 > 0`, and every term of `−q` does
 /// not decrease), so its root is bracketed by 1 K and 5000 K whenever it is physical. Each
 /// evaluation narrows the bracket by the sign of `f`; a Newton step that leaves the bracket
 /// (or a derivative that is not positive, possible only within a hair of `T_air` under
-/// DOE-2 with condensation) is replaced by bisection.
+/// DOE-2 with condensation) is replaced by bisection. Newton's method stops once its step
+/// is below [`SURFACE_TOLERANCE_K`], or once the error left after its step, estimated from
+/// the quadratic convergence of the last two steps (`e ≈ δ_k³ / δ_{k−1}²`, trusted only
+/// when the steps shrink at least tenfold), is a hundred times below it. The parts returned are those at the last evaluation carried to the root
+/// by their derivatives: exactly what the last Newton step solved, so the step's energy
+/// closes to round-off; they differ from a fresh evaluation by `O(δ²)`.
 fn solve_surface(
     d0: f64,
     theta: f64,
     r: f64,
     at: &SurfaceAt,
     guess: f64,
-) -> Result<f64, ThermalErrorKind> {
+) -> Result<(f64, SurfaceParts), ThermalErrorKind> {
     let mut lo = MIN_TEMPERATURE_K;
     let mut hi = MAX_TEMPERATURE_K;
     let mut t = if guess.is_finite() {
@@ -484,30 +509,40 @@ fn solve_surface(
     } else {
         300.0
     };
+    let absorbed = at.absorbed_w_m2();
+    let mut previous_step = f64::INFINITY;
     for _ in 0..MAX_ITERATIONS {
-        let (q, dq) = at.net_flux(t);
-        let f = d0 * t - theta * q - r;
+        let parts = at.parts(t);
+        let f = d0 * t - theta * (absorbed - parts.leaving()) - r;
         if f < 0.0 {
             lo = t;
         } else if f > 0.0 {
             hi = t;
         } else if f == 0.0 {
-            return check_bracket(t);
+            return check_bracket(t).map(|t| (t, parts));
         } else {
             return Err(ThermalErrorKind::NotConverged);
         }
-        let slope = d0 - theta * dq;
-        let newton = t - f / slope;
+        let slope = d0 + theta * parts.d_leaving();
+        let delta = -f / slope;
+        let newton = t + delta;
         if slope > 0.0 && newton > lo && newton < hi {
-            if (newton - t).abs() <= SURFACE_TOLERANCE_K {
-                return check_bracket(newton);
+            let size = delta.abs();
+            let quadratic = previous_step.is_finite()
+                && size < 0.1 * previous_step
+                && size * size * size <= 0.01 * SURFACE_TOLERANCE_K * previous_step * previous_step;
+            if size <= SURFACE_TOLERANCE_K || quadratic {
+                return check_bracket(newton).map(|t| (t, parts.extrapolated(delta)));
             }
+            previous_step = size;
             t = newton;
         } else {
-            t = 0.5 * (lo + hi);
+            let mid = 0.5 * (lo + hi);
             if hi - lo <= 2.0 * SURFACE_TOLERANCE_K {
-                return check_bracket(t);
+                return check_bracket(mid).map(|m| (m, parts.extrapolated(m - t)));
             }
+            previous_step = f64::INFINITY;
+            t = mid;
         }
     }
     Err(ThermalErrorKind::NotConverged)

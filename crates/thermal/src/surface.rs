@@ -123,12 +123,40 @@ pub(crate) struct SurfaceAt {
     latent: LatentAt,
 }
 
-/// The energy leaving the surface by each route at one surface temperature, W m⁻².
+/// The energy leaving the surface by each route at one surface temperature, W m⁻², and
+/// each one's derivative in that temperature, W m⁻² K⁻¹.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct SurfaceParts {
     pub emitted: f64,
     pub convected: f64,
     pub latent: f64,
+    pub d_emitted: f64,
+    pub d_convected: f64,
+    pub d_latent: f64,
+}
+
+impl SurfaceParts {
+    /// What leaves in all, W m⁻².
+    #[inline]
+    pub(crate) fn leaving(&self) -> f64 {
+        self.emitted + self.convected + self.latent
+    }
+
+    /// Its derivative in the surface temperature, W m⁻² K⁻¹.
+    #[inline]
+    pub(crate) fn d_leaving(&self) -> f64 {
+        self.d_emitted + self.d_convected + self.d_latent
+    }
+
+    /// The parts `delta_k` further on, to first order: what Newton's last step solved.
+    pub(crate) fn extrapolated(&self, delta_k: f64) -> Self {
+        Self {
+            emitted: self.emitted + self.d_emitted * delta_k,
+            convected: self.convected + self.d_convected * delta_k,
+            latent: self.latent + self.d_latent * delta_k,
+            ..*self
+        }
+    }
 }
 
 impl SurfaceAt {
@@ -156,34 +184,32 @@ impl SurfaceAt {
         self.absorbed_longwave_w_m2
     }
 
-    /// The net flux into the surface from outside, W m⁻², and its derivative in the surface
-    /// temperature, W m⁻² K⁻¹.
+    /// What is absorbed, W m⁻².
     #[inline]
-    pub(crate) fn net_flux(&self, surface_k: f64) -> (f64, f64) {
-        let delta = surface_k - self.air_k;
-        let c = self.convection.eval(delta);
-        let t2 = surface_k * surface_k;
-        let emitted = self.emissivity_sigma * t2 * t2;
-        let d_emitted = 4.0 * self.emissivity_sigma * t2 * surface_k;
-        let mut q =
-            self.absorbed_shortwave_w_m2 + self.absorbed_longwave_w_m2 - emitted - c.h * delta;
-        let mut dq = -d_emitted - c.flux_derivative;
-        if !self.latent.is_dry() {
-            let l = self.latent.eval(surface_k, c.h, c.dh_dt);
-            q -= l.flux_w_m2;
-            dq -= l.derivative_w_m2_k;
-        }
-        (q, dq)
+    pub(crate) fn absorbed_w_m2(&self) -> f64 {
+        self.absorbed_shortwave_w_m2 + self.absorbed_longwave_w_m2
     }
 
-    /// What leaves the surface by emission, convection and latent heat at `surface_k`.
+    /// What leaves the surface by emission, convection and latent heat at `surface_k`, and
+    /// the derivatives; the net flux into the surface is `absorbed − leaving`.
+    #[inline]
     pub(crate) fn parts(&self, surface_k: f64) -> SurfaceParts {
         let delta = surface_k - self.air_k;
         let c = self.convection.eval(delta);
+        let t2 = surface_k * surface_k;
+        let (latent, d_latent) = if self.latent.is_dry() {
+            (0.0, 0.0)
+        } else {
+            let l = self.latent.eval(surface_k, c.h, c.dh_dt);
+            (l.flux_w_m2, l.derivative_w_m2_k)
+        };
         SurfaceParts {
-            emitted: self.emissivity_sigma * surface_k.powi(4),
+            emitted: self.emissivity_sigma * t2 * t2,
             convected: c.h * delta,
-            latent: self.latent.eval(surface_k, c.h, c.dh_dt).flux_w_m2,
+            latent,
+            d_emitted: 4.0 * self.emissivity_sigma * t2 * surface_k,
+            d_convected: c.flux_derivative,
+            d_latent,
         }
     }
 }
