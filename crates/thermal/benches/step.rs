@@ -1,8 +1,9 @@
-//! The cost of one facet-step: [`irsig_thermal::step`] on typical walls (10 and 20 nodes),
+//! The cost of one facet-step: [`irsig_thermal::step`] on typical walls (10 and 19 nodes),
 //! DOE-2 convection, dry and wet, Backward Euler and Crank–Nicolson, loads changing every
-//! step as a day's do. Each iteration steps 288 facets (a day at 5 minutes for one facet,
-//! or one step of 288 facets sharing a wall and a scratch), so the figure per item is the
-//! cost of one facet-step with the elimination cached, as in `irsig-therm`.
+//! step as a day's do. Each iteration makes 288 facet-steps, so the figure per item is the
+//! cost of one facet-step with the elimination cached: either one facet through a day at
+//! 5 minutes (the wind changes every step), or, in `irsig-therm`'s order, 288 facets
+//! sharing a wall, a scratch and the weather, each with its own sun, through one step.
 
 use divan::{Bencher, black_box};
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness, ThermalLayer, ThermalProperties};
@@ -121,4 +122,69 @@ fn crank_nicolson_dry(b: Bencher, nodes: usize) {
 #[divan::bench(args = [10, 19])]
 fn backward_euler_wet(b: Bencher, nodes: usize) {
     run(b, nodes, Scheme::BackwardEuler, 1.0);
+}
+
+/// `irsig-therm`'s order: every facet through one step, then the next step; the facets
+/// share the weather (and so the wind) but each has its own sun and tilt.
+fn run_all_facets(b: Bencher, nodes: usize, scheme: Scheme) {
+    let wall = wall(nodes);
+    let surface = Surface {
+        solar_absorptance: 0.6,
+        thermal_emissivity: 0.9,
+        wet_fraction: 0.0,
+        roughness: Roughness::Rough,
+        convection: Convection::Doe2,
+    };
+    let orientations: Vec<Orientation> = (0..STEPS)
+        .map(|i| Orientation {
+            cos_tilt: (i as f64 * 0.37).sin(),
+            windward: i % 3 != 0,
+        })
+        .collect();
+    let day = day();
+    let time_step = TimeStep {
+        dt_s: 300.0,
+        scheme,
+    };
+    let mut scratch = Scratch::new();
+    let mut temps: Vec<Vec<f64>> = (0..STEPS).map(|_| wall.uniform_state(293.0)).collect();
+    let suns: Vec<f64> = (0..STEPS)
+        .map(|i| 0.5 + 0.5 * (i as f64 * 0.11).cos())
+        .collect();
+    let mut n = 0;
+    b.counter(divan::counter::ItemsCount::new(STEPS))
+        .bench_local(|| {
+            let (before, after) = (day[n % STEPS], day[n % STEPS + 1]);
+            for ((t, &orientation), &sun) in temps.iter_mut().zip(&orientations).zip(&suns) {
+                let facet = Facet {
+                    wall: &wall,
+                    surface: &surface,
+                    orientation,
+                };
+                let lit = |l: Loads| Loads {
+                    shortwave_w_m2: l.shortwave_w_m2 * sun,
+                    ..l
+                };
+                step(
+                    &facet,
+                    black_box(t),
+                    &lit(before),
+                    &lit(after),
+                    time_step,
+                    &mut scratch,
+                )
+                .unwrap();
+            }
+            n += 1;
+        });
+}
+
+#[divan::bench(args = [10, 19])]
+fn all_facets_backward_euler(b: Bencher, nodes: usize) {
+    run_all_facets(b, nodes, Scheme::BackwardEuler);
+}
+
+#[divan::bench(args = [10, 19])]
+fn all_facets_crank_nicolson(b: Bencher, nodes: usize) {
+    run_all_facets(b, nodes, Scheme::CrankNicolson);
 }

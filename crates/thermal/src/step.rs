@@ -23,7 +23,7 @@ use std::ops::AddAssign;
 
 use irsig_model::thermal::{BackAir, BackBoundary};
 
-use crate::convection::Orientation;
+use crate::convection::{ForcedCache, Orientation};
 use crate::error::{ThermalError, ThermalErrorKind};
 use crate::surface::{Loads, Surface, SurfaceAt, SurfaceParts};
 use crate::wall::Wall;
@@ -162,6 +162,7 @@ pub struct Scratch {
     next_victim: usize,
     last: usize,
     p: Vec<f64>,
+    forced: ForcedCache,
 }
 
 impl Scratch {
@@ -384,12 +385,18 @@ fn advance(
         r
     };
     p[last] = r_last * e.inv_beta[last];
-    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`.
+    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
+    // one length so that the loop carries no bounds checks.
     let mut next = p[last];
+    let rows = 1..last;
+    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
+    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
     if explicit == 0.0 {
-        for i in (1..last).rev() {
-            next = e.own[i] * temps[i] + e.coupling[i] * next;
-            p[i] = next;
+        for (((pi, &ti), &own), &coupling) in
+            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
+        {
+            next = own * ti + coupling * next;
+            *pi = next;
         }
     } else {
         for i in (1..last).rev() {
@@ -407,10 +414,10 @@ fn advance(
     let t0_new = match mode {
         SurfaceMode::Held(held) => held,
         SurfaceMode::Balance(surface, orientation) => {
-            let at1 = SurfaceAt::new(surface, orientation, after);
+            let at1 = SurfaceAt::new(surface, orientation, after, &mut scratch.forced);
             // The step's start, for Crank–Nicolson's explicit half.
             let start = (explicit != 0.0).then(|| {
-                let at0 = SurfaceAt::new(surface, orientation, before);
+                let at0 = SurfaceAt::new(surface, orientation, before, &mut scratch.forced);
                 let parts = at0.parts(temps[0]);
                 r0 += explicit * (at0.absorbed_w_m2() - parts.leaving());
                 (at0, parts)
@@ -429,11 +436,16 @@ fn advance(
     let mut in_range = range.contains(&t0_new);
     let mut stored = c[0] * (t0_new - temps[0]);
     let mut previous = t0_new;
-    for i in 1..n {
-        previous = p[i] - e.q[i] * previous;
-        p[i] = previous;
+    for (((pi, &qi), &ci), &ti) in p[1..n]
+        .iter_mut()
+        .zip(&e.q[1..n])
+        .zip(&c[1..n])
+        .zip(&temps[1..n])
+    {
+        previous = *pi - qi * previous;
+        *pi = previous;
         in_range &= range.contains(&previous);
-        stored += c[i] * (previous - temps[i]);
+        stored += ci * (previous - ti);
     }
     if !in_range {
         return Err(out_of_range(p, temps, after));

@@ -3,7 +3,7 @@
 
 use irsig_model::thermal::Roughness;
 
-use crate::convection::{Convection, ConvectionAt, Orientation};
+use crate::convection::{Convection, ConvectionAt, ForcedCache, Orientation};
 use crate::error::ThermalError;
 use crate::latent::LatentAt;
 use crate::{MAX_TEMPERATURE_K, MIN_TEMPERATURE_K};
@@ -87,6 +87,18 @@ impl Loads {
     /// [`crate::ThermalErrorKind::InvalidInput`] naming the first number out of its range.
     pub fn validate(&self) -> Result<(), ThermalError> {
         let temperature = MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K;
+        // One chain of comparisons on the way through every step; the message only on a
+        // failure.
+        let fine = (0.0..=1e7).contains(&self.shortwave_w_m2)
+            && (0.0..=1e7).contains(&self.longwave_w_m2)
+            && temperature.contains(&self.air_temperature_k)
+            && temperature.contains(&self.dew_point_k)
+            && (1.0..=1e7).contains(&self.pressure_pa)
+            && (0.0..=1e3).contains(&self.wind_speed_m_s)
+            && (-1e9..=1e9).contains(&self.source_w_m2);
+        if fine {
+            return Ok(());
+        }
         for (name, v, range) in [
             ("shortwave_w_m2", self.shortwave_w_m2, 0.0..=1e7),
             ("longwave_w_m2", self.longwave_w_m2, 0.0..=1e7),
@@ -160,7 +172,12 @@ impl SurfaceParts {
 }
 
 impl SurfaceAt {
-    pub(crate) fn new(surface: &Surface, orientation: Orientation, loads: &Loads) -> Self {
+    pub(crate) fn new(
+        surface: &Surface,
+        orientation: Orientation,
+        loads: &Loads,
+        cache: &mut ForcedCache,
+    ) -> Self {
         Self {
             absorbed_shortwave_w_m2: surface.solar_absorptance * loads.shortwave_w_m2,
             absorbed_longwave_w_m2: surface.thermal_emissivity * loads.longwave_w_m2,
@@ -171,6 +188,7 @@ impl SurfaceAt {
                 surface.roughness,
                 orientation,
                 loads.wind_speed_m_s,
+                cache,
             ),
             latent: LatentAt::new(surface.wet_fraction, loads.dew_point_k, loads.pressure_pa),
         }
@@ -200,7 +218,7 @@ impl SurfaceAt {
         let (latent, d_latent) = if self.latent.is_dry() {
             (0.0, 0.0)
         } else {
-            let l = self.latent.eval(surface_k, c.h, c.dh_dt);
+            let l = self.latent.eval(surface_k, c.h, c.dh_dt(delta));
             (l.flux_w_m2, l.derivative_w_m2_k)
         };
         SurfaceParts {
