@@ -1,0 +1,620 @@
+//! One implicit time step of a facet's wall.
+//!
+//! Each node `i` balances `C_i dT_i/dt = Σ_j g_ij (T_j − T_i) + boundary terms`, advanced
+//! by the θ-method: the right-hand side is weighted `θ` at the step's end and `1 − θ` at
+//! its start, with the loads of each end. Backward Euler (`θ = 1`) is first-order in the
+//! step and L-stable: it damps every mode, however stiff. Crank–Nicolson (`θ = ½`) is
+//! second-order and A-stable but not L-stable: modes much faster than the step (a thin
+//! paint layer's, a metal skin's) are not damped but flip sign each step, so a wall whose
+//! fastest cell responds in far less than the step may carry a small step-to-step ripple
+//! at its surface (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
+//! the accuracy of conduction modelling").
+//!
+//! The interior is linear with coefficients fixed by the wall, the step length and θ, so
+//! the tridiagonal elimination from the back node toward the surface is computed once per
+//! (wall, step, scheme) and kept in a [`Scratch`]. What remains at the surface node is one
+//! scalar equation, nonlinear through `ε σ T⁴`, a temperature-dependent `h` and the latent
+//! heat; it is solved exactly by Newton's method on its analytic derivative, safeguarded by
+//! bisection (the equation is increasing in the surface temperature, so a bracket always
+//! holds the root), to 1e-9 K. The other nodes follow by back-substitution. A step
+//! allocates nothing once its (wall, step, scheme) has been seen.
+
+use std::ops::AddAssign;
+
+use irsig_model::thermal::{BackAir, BackBoundary};
+
+use crate::convection::{ForcedCache, Orientation};
+use crate::error::{ThermalError, ThermalErrorKind};
+use crate::surface::{Loads, Surface, SurfaceAt, SurfaceParts};
+use crate::wall::Wall;
+use crate::{MAX_TEMPERATURE_K, MIN_TEMPERATURE_K};
+
+/// The surface balance is converged when Newton's step is this small, K.
+pub const SURFACE_TOLERANCE_K: f64 = 1e-9;
+/// The most iterations of the surface balance (bisection from 1–5000 K alone would need 43).
+const MAX_ITERATIONS: usize = 200;
+/// How many (wall, step, scheme) eliminations a [`Scratch`] keeps.
+const CACHE_CAPACITY: usize = 16;
+
+/// The time-stepping scheme, a θ-method.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum Scheme {
+    /// Fully implicit, `θ = 1`: first-order in the step, L-stable.
+    BackwardEuler,
+    /// Trapezoidal, `θ = ½`: second-order in the step, A-stable, not L-stable.
+    CrankNicolson,
+}
+
+impl Scheme {
+    /// The weight `θ` of the step's end.
+    #[must_use]
+    pub fn theta(self) -> f64 {
+        match self {
+            Self::BackwardEuler => 1.0,
+            Self::CrankNicolson => 0.5,
+        }
+    }
+}
+
+/// The length and scheme of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeStep {
+    /// The step's length, s, above 0.
+    pub dt_s: f64,
+    /// The scheme.
+    pub scheme: Scheme,
+}
+
+/// One facet as the solver sees it: its wall (shared by a material's facets), its surface
+/// and its orientation.
+#[derive(Debug, Clone, Copy)]
+pub struct Facet<'a> {
+    /// The discretised wall.
+    pub wall: &'a Wall,
+    /// The exposed surface's properties.
+    pub surface: &'a Surface,
+    /// How the facet faces the sky and the wind.
+    pub orientation: Orientation,
+}
+
+/// The energy of one step, J m⁻², each term weighted as the scheme weights it, so that
+/// `stored_change_j_m2` equals the sum of the others (signed as named) to round-off and the
+/// surface tolerance: see [`StepFluxes::imbalance_j_m2`]. Add steps with `+=`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepFluxes {
+    /// Shortwave absorbed at the surface, ≥ 0.
+    pub absorbed_shortwave_j_m2: f64,
+    /// Longwave absorbed at the surface, ≥ 0.
+    pub absorbed_longwave_j_m2: f64,
+    /// Emitted by the surface, `ε σ T⁴`, ≥ 0.
+    pub emitted_j_m2: f64,
+    /// Convected from the surface to the air (negative when the air warms it).
+    pub convected_j_m2: f64,
+    /// Carried away by evaporation (negative when water condenses on the surface).
+    pub latent_j_m2: f64,
+    /// Into the wall through its back (negative when it loses heat there; for a held back,
+    /// whatever holds it takes or gives, the source included).
+    pub back_j_m2: f64,
+    /// Deposited by the source at the back node.
+    pub source_j_m2: f64,
+    /// Into the wall through a held surface ([`step_held`]; 0 for a balanced one).
+    pub held_surface_j_m2: f64,
+    /// The change of `Σ C_i T_i`.
+    pub stored_change_j_m2: f64,
+}
+
+impl StepFluxes {
+    /// What the stored change lacks of the sum of the flows: 0 to round-off and the
+    /// surface tolerance.
+    #[must_use]
+    pub fn imbalance_j_m2(&self) -> f64 {
+        self.stored_change_j_m2
+            - (self.absorbed_shortwave_j_m2 + self.absorbed_longwave_j_m2
+                - self.emitted_j_m2
+                - self.convected_j_m2
+                - self.latent_j_m2
+                + self.back_j_m2
+                + self.source_j_m2
+                + self.held_surface_j_m2)
+    }
+}
+
+impl AddAssign for StepFluxes {
+    fn add_assign(&mut self, o: Self) {
+        self.absorbed_shortwave_j_m2 += o.absorbed_shortwave_j_m2;
+        self.absorbed_longwave_j_m2 += o.absorbed_longwave_j_m2;
+        self.emitted_j_m2 += o.emitted_j_m2;
+        self.convected_j_m2 += o.convected_j_m2;
+        self.latent_j_m2 += o.latent_j_m2;
+        self.back_j_m2 += o.back_j_m2;
+        self.source_j_m2 += o.source_j_m2;
+        self.held_surface_j_m2 += o.held_surface_j_m2;
+        self.stored_change_j_m2 += o.stored_change_j_m2;
+    }
+}
+
+/// The elimination of one (wall, step, scheme): rows `i ≥ 1` give
+/// `T_i = P_i − Q_i T_{i−1}`, where `Q_i` and `1/β_i` are fixed and `P_i` follows the
+/// right-hand side.
+#[derive(Debug, Clone)]
+struct Elimination {
+    wall_id: u64,
+    dt_bits: u64,
+    scheme: Scheme,
+    /// `Q_i`.
+    q: Vec<f64>,
+    /// `1/β_i`.
+    inv_beta: Vec<f64>,
+    /// `C_i / (Δt β_i)`: what `T_i` at the step's start adds to `P_i`.
+    own: Vec<f64>,
+    /// `θ g_i / β_i`: what `P_{i+1}` adds to `P_i`, so that the recurrence is one fused
+    /// multiply-add per node.
+    coupling: Vec<f64>,
+    /// The surface row's coefficient of `T_0` once `T_1` is eliminated.
+    d0: f64,
+}
+
+/// Working memory for [`step`]: the eliminations of the last walls, steps and schemes seen,
+/// and per-node buffers. One per thread; reuse it across facets and steps.
+#[derive(Debug, Clone, Default)]
+pub struct Scratch {
+    cache: Vec<Elimination>,
+    next_victim: usize,
+    last: usize,
+    p: Vec<f64>,
+    forced: ForcedCache,
+}
+
+impl Scratch {
+    /// Empty working memory.
+    #[must_use]
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The index of the elimination for this wall, step and scheme, made if not kept.
+    fn elimination(&mut self, wall: &Wall, dt_s: f64, scheme: Scheme) -> usize {
+        let key = (wall.id(), dt_s.to_bits(), scheme);
+        let hit = |e: &Elimination| (e.wall_id, e.dt_bits, e.scheme) == key;
+        if self.cache.get(self.last).is_some_and(hit) {
+            return self.last;
+        }
+        if let Some(i) = self.cache.iter().position(hit) {
+            self.last = i;
+            return i;
+        }
+        let i = if self.cache.len() < CACHE_CAPACITY {
+            self.cache.push(Elimination {
+                wall_id: 0,
+                dt_bits: 0,
+                scheme,
+                q: Vec::new(),
+                inv_beta: Vec::new(),
+                own: Vec::new(),
+                coupling: Vec::new(),
+                d0: 0.0,
+            });
+            self.cache.len() - 1
+        } else {
+            let i = self.next_victim;
+            self.next_victim = (self.next_victim + 1) % CACHE_CAPACITY;
+            i
+        };
+        eliminate(&mut self.cache[i], wall, dt_s, scheme);
+        self.last = i;
+        i
+    }
+}
+
+/// Fills `e` with the elimination of `wall` for a step `dt_s` under `scheme`.
+fn eliminate(e: &mut Elimination, wall: &Wall, dt_s: f64, scheme: Scheme) {
+    let theta = scheme.theta();
+    let c = wall.capacities_j_m2_k();
+    let g = wall.conductances_w_m2_k();
+    let n = c.len();
+    let last = n - 1;
+    e.wall_id = wall.id();
+    e.dt_bits = dt_s.to_bits();
+    e.scheme = scheme;
+    for v in [&mut e.q, &mut e.inv_beta, &mut e.own, &mut e.coupling] {
+        v.clear();
+        v.resize(n, 0.0);
+    }
+    let (a_last, b_last) = match wall.back() {
+        BackBoundary::Temperature { .. } => (0.0, 1.0),
+        BackBoundary::Adiabatic => (-theta * g[last - 1], c[last] / dt_s + theta * g[last - 1]),
+        BackBoundary::Convective { h_w_m2_k, .. } => (
+            -theta * g[last - 1],
+            c[last] / dt_s + theta * (g[last - 1] + h_w_m2_k),
+        ),
+    };
+    e.inv_beta[last] = 1.0 / b_last;
+    e.q[last] = a_last / b_last;
+    for i in (1..last).rev() {
+        let a = -theta * g[i - 1];
+        let b = c[i] / dt_s + theta * (g[i - 1] + g[i]);
+        let upper = -theta * g[i];
+        let beta = b - upper * e.q[i + 1];
+        e.inv_beta[i] = 1.0 / beta;
+        e.q[i] = a / beta;
+        e.own[i] = c[i] / dt_s / beta;
+        e.coupling[i] = theta * g[i] / beta;
+    }
+    e.d0 = c[0] / dt_s + theta * g[0] + theta * g[0] * e.q[1];
+}
+
+/// How the surface node is closed.
+#[derive(Debug, Clone, Copy)]
+enum SurfaceMode<'a> {
+    /// By its energy balance.
+    Balance(&'a Surface, Orientation),
+    /// Held at a temperature at the step's end, K.
+    Held(f64),
+}
+
+/// Advances a facet's node temperatures by one step.
+///
+/// `temps` holds the wall's node temperatures (K, surface first, [`Wall::nodes`] of them) at
+/// the step's start and is overwritten with those at its end; `before` and `after` are the
+/// loads at the step's start and end. On an error `temps` is left as it was.
+///
+/// # Errors
+/// [`ThermalErrorKind::InvalidInput`] for a load or surface property out of range, a step
+/// that is not positive and finite, or `temps` of the wrong length;
+/// [`ThermalErrorKind::NotConverged`] if the surface balance does not converge (with the
+/// facet's numbers); [`ThermalErrorKind::OutOfRange`] if a temperature would leave 1–5000 K.
+pub fn step(
+    facet: &Facet<'_>,
+    temps: &mut [f64],
+    before: &Loads,
+    after: &Loads,
+    time_step: TimeStep,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    facet.surface.validate()?;
+    advance(
+        facet.wall,
+        SurfaceMode::Balance(facet.surface, facet.orientation),
+        temps,
+        [before, after],
+        time_step,
+        scratch,
+    )
+}
+
+/// Advances a wall whose surface is held at a given temperature: a blackbody held at a
+/// temperature, or a Dirichlet condition for tests. The surface node ends the step at
+/// `held_surface_k` (it starts at `temps[0]`, the last step's held value). The loads supply
+/// the back air and the source; their radiation and convection do not act on a held
+/// surface. The energy that holding the surface takes is
+/// [`StepFluxes::held_surface_j_m2`].
+///
+/// # Errors
+/// As [`step`]; a held temperature outside 1–5000 K is [`ThermalErrorKind::InvalidInput`].
+pub fn step_held(
+    wall: &Wall,
+    temps: &mut [f64],
+    held_surface_k: f64,
+    before: &Loads,
+    after: &Loads,
+    time_step: TimeStep,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    if !(MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K).contains(&held_surface_k) {
+        return Err(ThermalError::input(format!(
+            "held surface temperature {held_surface_k} K must lie between \
+             {MIN_TEMPERATURE_K} and {MAX_TEMPERATURE_K} K"
+        )));
+    }
+    advance(
+        wall,
+        SurfaceMode::Held(held_surface_k),
+        temps,
+        [before, after],
+        time_step,
+        scratch,
+    )
+}
+
+/// What the back boundary sees at one instant: its conductance and the temperature behind
+/// it (0 and 0 for an adiabatic back).
+fn back_at(back: BackBoundary, loads: &Loads) -> (f64, f64) {
+    match back {
+        BackBoundary::Adiabatic => (0.0, 0.0),
+        BackBoundary::Temperature { temperature_k } => (0.0, temperature_k),
+        BackBoundary::Convective { h_w_m2_k, air } => (
+            h_w_m2_k,
+            match air {
+                BackAir::Outdoor => loads.air_temperature_k,
+                BackAir::Fixed { temperature_k } => temperature_k,
+            },
+        ),
+    }
+}
+
+/// The shared body of [`step`] and [`step_held`].
+fn advance(
+    wall: &Wall,
+    mode: SurfaceMode<'_>,
+    temps: &mut [f64],
+    [before, after]: [&Loads; 2],
+    time_step: TimeStep,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    let TimeStep { dt_s, scheme } = time_step;
+    if !(dt_s.is_finite() && dt_s > 0.0) {
+        return Err(ThermalError::input(format!(
+            "time step {dt_s} s must be positive and finite"
+        )));
+    }
+    if temps.len() != wall.nodes() {
+        return Err(ThermalError::input(format!(
+            "{} temperatures for a wall of {} nodes",
+            temps.len(),
+            wall.nodes()
+        )));
+    }
+    before.validate()?;
+    after.validate()?;
+    let theta = scheme.theta();
+    let explicit = 1.0 - theta;
+    let c = wall.capacities_j_m2_k();
+    let g = wall.conductances_w_m2_k();
+    let n = c.len();
+    let last = n - 1;
+    let index = scratch.elimination(wall, dt_s, scheme);
+    let e = &scratch.cache[index];
+    let p = &mut scratch.p;
+    p.clear();
+    p.resize(n, 0.0);
+
+    // The back row.
+    let back = wall.back();
+    let held_back = matches!(back, BackBoundary::Temperature { .. });
+    let (hb0, tb0) = back_at(back, before);
+    let (hb1, tb1) = back_at(back, after);
+    let source = theta * after.source_w_m2 + explicit * before.source_w_m2;
+    let r_last = if held_back {
+        tb1
+    } else {
+        let mut r = c[last] / dt_s * temps[last] + theta * hb1 * tb1 + source;
+        if explicit != 0.0 {
+            r += explicit
+                * (g[last - 1] * (temps[last - 1] - temps[last]) + hb0 * (tb0 - temps[last]));
+        }
+        r
+    };
+    p[last] = r_last * e.inv_beta[last];
+    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
+    // one length so that the loop carries no bounds checks.
+    let mut next = p[last];
+    let rows = 1..last;
+    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
+    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
+    if explicit == 0.0 {
+        for (((pi, &ti), &own), &coupling) in
+            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
+        {
+            next = own * ti + coupling * next;
+            *pi = next;
+        }
+    } else {
+        for i in (1..last).rev() {
+            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
+            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
+            p[i] = next;
+        }
+    }
+    // The surface row: `d0 T_0 − θ q(T_0) = r`.
+    let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
+    if explicit != 0.0 {
+        r0 += explicit * g[0] * (temps[1] - temps[0]);
+    }
+    let mut fluxes = StepFluxes::default();
+    let t0_new = match mode {
+        SurfaceMode::Held(held) => held,
+        SurfaceMode::Balance(surface, orientation) => {
+            let at1 = SurfaceAt::new(surface, orientation, after, &mut scratch.forced);
+            // The step's start, for Crank–Nicolson's explicit half.
+            let start = (explicit != 0.0).then(|| {
+                let at0 = SurfaceAt::new(surface, orientation, before, &mut scratch.forced);
+                let parts = at0.parts(temps[0]);
+                r0 += explicit * (at0.absorbed_w_m2() - parts.leaving());
+                (at0, parts)
+            });
+            let (t0, end) = solve_surface(e.d0, theta, r0, &at1, temps[0]).map_err(|kind| {
+                surface_error(kind, surface, orientation, temps, after, time_step)
+            })?;
+            account_surface(&mut fluxes, (&at1, &end), start.as_ref(), theta, dt_s);
+            t0
+        }
+    };
+    // Back-substitution into `p`, so that `temps` is untouched until all is checked, with
+    // the stored change on the way.
+    p[0] = t0_new;
+    let range = MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K;
+    let mut in_range = range.contains(&t0_new);
+    let mut stored = c[0] * (t0_new - temps[0]);
+    let mut previous = t0_new;
+    for (((pi, &qi), &ci), &ti) in p[1..n]
+        .iter_mut()
+        .zip(&e.q[1..n])
+        .zip(&c[1..n])
+        .zip(&temps[1..n])
+    {
+        previous = *pi - qi * previous;
+        *pi = previous;
+        in_range &= range.contains(&previous);
+        stored += ci * (previous - ti);
+    }
+    if !in_range {
+        return Err(out_of_range(p, temps, after));
+    }
+    // The flows through the back and a held surface, and the stored change.
+    fluxes.source_j_m2 = source * dt_s;
+    let conduction = |i: usize, t: &[f64]| g[i] * (t[i + 1] - t[i]);
+    let weighted = |i: usize, new: &[f64], old: &[f64]| {
+        dt_s * (theta * conduction(i, new) + explicit * conduction(i, old))
+    };
+    fluxes.back_j_m2 = if held_back {
+        c[last] * (p[last] - temps[last]) + weighted(last - 1, p, temps) - fluxes.source_j_m2
+    } else {
+        dt_s * (theta * hb1 * (tb1 - p[last]) + explicit * hb0 * (tb0 - temps[last]))
+    };
+    if let SurfaceMode::Held(_) = mode {
+        fluxes.held_surface_j_m2 = c[0] * (p[0] - temps[0]) - weighted(0, p, temps);
+    }
+    fluxes.stored_change_j_m2 = stored;
+    temps.copy_from_slice(p);
+    Ok(fluxes)
+}
+
+/// The surface terms of a step, weighted by the scheme, from the surface's loads and what
+/// leaves it at the step's end and (Crank–Nicolson) start.
+fn account_surface(
+    fluxes: &mut StepFluxes,
+    (at1, end): (&SurfaceAt, &SurfaceParts),
+    start: Option<&(SurfaceAt, SurfaceParts)>,
+    theta: f64,
+    dt_s: f64,
+) {
+    let w = dt_s * theta;
+    fluxes.absorbed_shortwave_j_m2 = w * at1.absorbed_shortwave_w_m2();
+    fluxes.absorbed_longwave_j_m2 = w * at1.absorbed_longwave_w_m2();
+    fluxes.emitted_j_m2 = w * end.emitted;
+    fluxes.convected_j_m2 = w * end.convected;
+    fluxes.latent_j_m2 = w * end.latent;
+    if let Some((at0, start)) = start {
+        let w = dt_s * (1.0 - theta);
+        fluxes.absorbed_shortwave_j_m2 += w * at0.absorbed_shortwave_w_m2();
+        fluxes.absorbed_longwave_j_m2 += w * at0.absorbed_longwave_w_m2();
+        fluxes.emitted_j_m2 += w * start.emitted;
+        fluxes.convected_j_m2 += w * start.convected;
+        fluxes.latent_j_m2 += w * start.latent;
+    }
+}
+
+/// Solves `d0 T − θ q(T) = r` for the surface temperature, from `guess`; returns it with
+/// what leaves the surface there.
+///
+/// `f(T) = d0 T − θ q(T) − r` increases with `T` (`d0 > 0`, and every term of `−q` does
+/// not decrease), so its root is bracketed by 1 K and 5000 K whenever it is physical. Each
+/// evaluation narrows the bracket by the sign of `f`; a Newton step that leaves the bracket
+/// (or a derivative that is not positive, possible only within a hair of `T_air` under
+/// DOE-2 with condensation) is replaced by bisection. Newton's method stops once its step
+/// is below [`SURFACE_TOLERANCE_K`], or once the error left after its step, estimated from
+/// the quadratic convergence of the last two steps (`e ≈ δ_k³ / δ_{k−1}²`, trusted only
+/// when the steps shrink at least tenfold), is a hundred times below it. The parts returned are those at the last evaluation carried to the root
+/// by their derivatives: exactly what the last Newton step solved, so the step's energy
+/// closes to round-off; they differ from a fresh evaluation by `O(δ²)`.
+fn solve_surface(
+    d0: f64,
+    theta: f64,
+    r: f64,
+    at: &SurfaceAt,
+    guess: f64,
+) -> Result<(f64, SurfaceParts), ThermalErrorKind> {
+    let mut lo = MIN_TEMPERATURE_K;
+    let mut hi = MAX_TEMPERATURE_K;
+    let mut t = if guess.is_finite() {
+        guess.clamp(lo, hi)
+    } else {
+        300.0
+    };
+    let absorbed = at.absorbed_w_m2();
+    let mut previous_step = f64::INFINITY;
+    for _ in 0..MAX_ITERATIONS {
+        let parts = at.parts(t);
+        let f = d0 * t - theta * (absorbed - parts.leaving()) - r;
+        if f < 0.0 {
+            lo = t;
+        } else if f > 0.0 {
+            hi = t;
+        } else if f == 0.0 {
+            return check_bracket(t).map(|t| (t, parts));
+        } else {
+            return Err(ThermalErrorKind::NotConverged);
+        }
+        let slope = d0 + theta * parts.d_leaving();
+        let delta = -f / slope;
+        let newton = t + delta;
+        if slope > 0.0 && newton > lo && newton < hi {
+            let size = delta.abs();
+            let quadratic = previous_step.is_finite()
+                && size < 0.1 * previous_step
+                && size * size * size <= 0.01 * SURFACE_TOLERANCE_K * previous_step * previous_step;
+            if size <= SURFACE_TOLERANCE_K || quadratic {
+                return check_bracket(newton).map(|t| (t, parts.extrapolated(delta)));
+            }
+            previous_step = size;
+            t = newton;
+        } else {
+            let mid = 0.5 * (lo + hi);
+            if hi - lo <= 2.0 * SURFACE_TOLERANCE_K {
+                return check_bracket(mid).map(|m| (m, parts.extrapolated(m - t)));
+            }
+            previous_step = f64::INFINITY;
+            t = mid;
+        }
+    }
+    Err(ThermalErrorKind::NotConverged)
+}
+
+/// A root pinned against the bracket's ends is not a root: the balance lies outside
+/// 1–5000 K.
+fn check_bracket(t: f64) -> Result<f64, ThermalErrorKind> {
+    if t - MIN_TEMPERATURE_K < 1e-6 || MAX_TEMPERATURE_K - t < 1e-6 {
+        Err(ThermalErrorKind::OutOfRange)
+    } else {
+        Ok(t)
+    }
+}
+
+fn surface_error(
+    kind: ThermalErrorKind,
+    surface: &Surface,
+    orientation: Orientation,
+    temps: &[f64],
+    after: &Loads,
+    time_step: TimeStep,
+) -> ThermalError {
+    let what = match kind {
+        ThermalErrorKind::OutOfRange if time_step.scheme == Scheme::CrankNicolson => format!(
+            "the surface balance has no root between {MIN_TEMPERATURE_K} and \
+             {MAX_TEMPERATURE_K} K (Crank–Nicolson's explicit half overshoots when the \
+             surface's fluxes change this steeply over a step this long; Backward Euler \
+             or a shorter step keeps the temperature physical)"
+        ),
+        ThermalErrorKind::OutOfRange => format!(
+            "the surface balance has no root between {MIN_TEMPERATURE_K} and \
+             {MAX_TEMPERATURE_K} K"
+        ),
+        _ => format!("the surface balance did not converge in {MAX_ITERATIONS} iterations"),
+    };
+    ThermalError::new(
+        kind,
+        format!(
+            "{what}: surface {surface:?}, {orientation:?}, loads at the step's end {after:?}, \
+             {time_step:?}, surface at the step's start {} K, back node {} K",
+            temps[0],
+            temps[temps.len() - 1]
+        ),
+    )
+}
+
+fn out_of_range(new: &[f64], old: &[f64], after: &Loads) -> ThermalError {
+    let (i, t) = new
+        .iter()
+        .copied()
+        .enumerate()
+        .find(|(_, t)| !(MIN_TEMPERATURE_K..=MAX_TEMPERATURE_K).contains(t))
+        .unwrap_or((0, f64::NAN));
+    ThermalError::new(
+        ThermalErrorKind::OutOfRange,
+        format!(
+            "node {i} would reach {t} K (from {} K), outside {MIN_TEMPERATURE_K}–\
+             {MAX_TEMPERATURE_K} K; loads at the step's end {after:?}",
+            old.get(i).copied().unwrap_or(f64::NAN)
+        ),
+    )
+}
