@@ -40,6 +40,58 @@ pub fn parse_time(text: &str) -> Result<f64, String> {
     Ok(seconds(timestamp))
 }
 
+/// The most times [`parse_times`] expands a range into.
+pub const MAX_TIMES: usize = 1_000_000;
+
+/// A list of times: one time, or a range `START/END/STEP` (ISO 8601's interval form) with
+/// `STEP` a duration as ISO 8601 writes it (`PT1H`, `PT15M`) or plain seconds (`3600`),
+/// expanded to `START, START + STEP, …` up to and including `END` when it falls on the
+/// step. Seconds since 1970-01-01T00:00:00Z, increasing.
+///
+/// # Errors
+/// A time [`parse_time`] refuses, a step that is not a positive duration, an end before
+/// the start, or more than [`MAX_TIMES`] times.
+pub fn parse_times(text: &str) -> Result<Vec<f64>, String> {
+    let parts: Vec<&str> = text.split('/').collect();
+    let [start, end, step] = parts.as_slice() else {
+        if parts.len() == 1 {
+            return Ok(vec![parse_time(text)?]);
+        }
+        return Err(format!(
+            "`{text}`: expected one time, or START/END/STEP such as \
+             2026-07-15T00:00Z/2026-07-16T00:00Z/PT1H"
+        ));
+    };
+    let (start_s, end_s) = (parse_time(start)?, parse_time(end)?);
+    let step_s = match step.trim().parse::<f64>() {
+        Ok(s) => s,
+        Err(_) => step
+            .trim()
+            .parse::<jiff::SignedDuration>()
+            .map_err(|e| {
+                format!("`{step}` is not a step: expected a duration such as PT1H or seconds ({e})")
+            })?
+            .as_secs_f64(),
+    };
+    if !(step_s.is_finite() && step_s > 0.0) {
+        return Err(format!(
+            "`{text}`: the step must be a positive duration, found {step_s} s"
+        ));
+    }
+    if end_s < start_s {
+        return Err(format!("`{text}`: the range ends before it starts"));
+    }
+    let count = ((end_s - start_s) / step_s + 1e-9).floor() + 1.0;
+    if count > MAX_TIMES as f64 {
+        return Err(format!(
+            "`{text}` expands to {count} times: at most {MAX_TIMES} are accepted"
+        ));
+    }
+    Ok((0..count as usize)
+        .map(|k| start_s + k as f64 * step_s)
+        .collect())
+}
+
 fn seconds(t: jiff::Timestamp) -> f64 {
     t.as_second() as f64 + f64::from(t.subsec_nanosecond()) * 1e-9
 }
@@ -126,6 +178,28 @@ mod tests {
             parse_time("2026-03-29T01:30Z").unwrap().to_bits()
         );
         assert!(parse_time("").is_err());
+    }
+
+    #[test]
+    fn a_range_expands_to_its_steps() {
+        let t = parse_times("2026-07-15T00:00Z/2026-07-15T03:00Z/PT1H").unwrap();
+        let t0 = parse_time("2026-07-15T00:00Z").unwrap();
+        assert_eq!(t, vec![t0, t0 + 3600.0, t0 + 7200.0, t0 + 10_800.0]);
+        // Plain seconds; an end between steps is not reached.
+        let t = parse_times("2026-07-15T00:00Z/2026-07-15T00:50Z/1200").unwrap();
+        assert_eq!(t.len(), 3);
+        assert_eq!(parse_times("2026-07-15T00:00Z").unwrap(), vec![t0]);
+        for bad in [
+            "2026-07-15T03:00Z/2026-07-15T00:00Z/PT1H",
+            "2026-07-15T00:00Z/2026-07-15T03:00Z/PT0S",
+            "2026-07-15T00:00Z/2026-07-15T03:00Z/0",
+            "2026-07-15T00:00Z/2026-07-15T03:00Z/-PT1H",
+            "2026-07-15T00:00Z/2026-07-15T03:00Z/soon",
+            "2026-07-15T00:00Z/2026-07-15T03:00Z",
+            "2026-07-15T00:00Z/2126-07-15T03:00Z/1",
+        ] {
+            assert!(parse_times(bad).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -78,6 +78,7 @@
 mod convection;
 mod error;
 pub mod latent;
+pub mod sky;
 mod step;
 mod surface;
 mod wall;
