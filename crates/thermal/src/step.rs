@@ -8,7 +8,11 @@
 //! paint layer's, a metal skin's) are not damped but flip sign each step, so a wall whose
 //! fastest cell responds in far less than the step may carry a small step-to-step ripple
 //! at its surface (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
-//! the accuracy of conduction modelling").
+//! the accuracy of conduction modelling"). Its explicit half can also overshoot: a surface
+//! whose emission or convection changes steeply over a long step (a hot skin of little heat
+//! capacity) can be driven below 1 K, which [`step`] refuses rather than returns. Spinning
+//! up by Backward Euler and then switching to Crank–Nicolson damps what the start excites;
+//! the tests do so.
 //!
 //! The interior is linear with coefficients fixed by the wall, the step length and θ, so
 //! the tridiagonal elimination from the back node toward the surface is computed once per
@@ -332,6 +336,89 @@ fn back_at(back: BackBoundary, loads: &Loads) -> (f64, f64) {
     }
 }
 
+/// The back boundary over a step: held, or its conductance and the temperature behind it
+/// at the step's start (`0`) and end (`1`), and the scheme-weighted source.
+#[derive(Debug, Clone, Copy)]
+struct BackTerms {
+    held: bool,
+    h0: f64,
+    t0: f64,
+    h1: f64,
+    t1: f64,
+    source_w_m2: f64,
+}
+
+impl BackTerms {
+    fn new(back: BackBoundary, before: &Loads, after: &Loads, theta: f64) -> Self {
+        let (h0, t0) = back_at(back, before);
+        let (h1, t1) = back_at(back, after);
+        Self {
+            held: matches!(back, BackBoundary::Temperature { .. }),
+            h0,
+            t0,
+            h1,
+            t1,
+            source_w_m2: theta * after.source_w_m2 + (1.0 - theta) * before.source_w_m2,
+        }
+    }
+}
+
+/// Fills `p` from the back row to row 1 with the right-hand side of the step's start, and
+/// returns the surface row's right-hand side with `T_1` eliminated (its surface flux
+/// terms still to come).
+fn sweep_to_surface(
+    e: &Elimination,
+    wall: &Wall,
+    temps: &[f64],
+    p: &mut [f64],
+    back: &BackTerms,
+    dt_s: f64,
+    theta: f64,
+) -> f64 {
+    let explicit = 1.0 - theta;
+    let c = wall.capacities_j_m2_k();
+    let g = wall.conductances_w_m2_k();
+    let last = c.len() - 1;
+    let r_last = if back.held {
+        back.t1
+    } else {
+        let mut r = c[last] / dt_s * temps[last] + theta * back.h1 * back.t1 + back.source_w_m2;
+        if explicit != 0.0 {
+            r += explicit
+                * (g[last - 1] * (temps[last - 1] - temps[last])
+                    + back.h0 * (back.t0 - temps[last]));
+        }
+        r
+    };
+    p[last] = r_last * e.inv_beta[last];
+    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
+    // one length so that the loop carries no bounds checks.
+    let mut next = p[last];
+    let rows = 1..last;
+    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
+    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
+    if explicit == 0.0 {
+        for (((pi, &ti), &own), &coupling) in
+            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
+        {
+            next = own * ti + coupling * next;
+            *pi = next;
+        }
+    } else {
+        for i in (1..last).rev() {
+            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
+            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
+            p[i] = next;
+        }
+    }
+    // The surface row: `d0 T_0 − θ q(T_0) = r`.
+    let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
+    if explicit != 0.0 {
+        r0 += explicit * g[0] * (temps[1] - temps[0]);
+    }
+    r0
+}
+
 /// The shared body of [`step`] and [`step_held`].
 fn advance(
     wall: &Wall,
@@ -368,48 +455,8 @@ fn advance(
     p.clear();
     p.resize(n, 0.0);
 
-    // The back row.
-    let back = wall.back();
-    let held_back = matches!(back, BackBoundary::Temperature { .. });
-    let (hb0, tb0) = back_at(back, before);
-    let (hb1, tb1) = back_at(back, after);
-    let source = theta * after.source_w_m2 + explicit * before.source_w_m2;
-    let r_last = if held_back {
-        tb1
-    } else {
-        let mut r = c[last] / dt_s * temps[last] + theta * hb1 * tb1 + source;
-        if explicit != 0.0 {
-            r += explicit
-                * (g[last - 1] * (temps[last - 1] - temps[last]) + hb0 * (tb0 - temps[last]));
-        }
-        r
-    };
-    p[last] = r_last * e.inv_beta[last];
-    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
-    // one length so that the loop carries no bounds checks.
-    let mut next = p[last];
-    let rows = 1..last;
-    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
-    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
-    if explicit == 0.0 {
-        for (((pi, &ti), &own), &coupling) in
-            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
-        {
-            next = own * ti + coupling * next;
-            *pi = next;
-        }
-    } else {
-        for i in (1..last).rev() {
-            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
-            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
-            p[i] = next;
-        }
-    }
-    // The surface row: `d0 T_0 − θ q(T_0) = r`.
-    let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
-    if explicit != 0.0 {
-        r0 += explicit * g[0] * (temps[1] - temps[0]);
-    }
+    let back = BackTerms::new(wall.back(), before, after, theta);
+    let mut r0 = sweep_to_surface(e, wall, temps, p, &back, dt_s, theta);
     let mut fluxes = StepFluxes::default();
     let t0_new = match mode {
         SurfaceMode::Held(held) => held,
@@ -451,15 +498,16 @@ fn advance(
         return Err(out_of_range(p, temps, after));
     }
     // The flows through the back and a held surface, and the stored change.
-    fluxes.source_j_m2 = source * dt_s;
+    fluxes.source_j_m2 = back.source_w_m2 * dt_s;
     let conduction = |i: usize, t: &[f64]| g[i] * (t[i + 1] - t[i]);
     let weighted = |i: usize, new: &[f64], old: &[f64]| {
         dt_s * (theta * conduction(i, new) + explicit * conduction(i, old))
     };
-    fluxes.back_j_m2 = if held_back {
+    fluxes.back_j_m2 = if back.held {
         c[last] * (p[last] - temps[last]) + weighted(last - 1, p, temps) - fluxes.source_j_m2
     } else {
-        dt_s * (theta * hb1 * (tb1 - p[last]) + explicit * hb0 * (tb0 - temps[last]))
+        dt_s * (theta * back.h1 * (back.t1 - p[last])
+            + explicit * back.h0 * (back.t0 - temps[last]))
     };
     if let SurfaceMode::Held(_) = mode {
         fluxes.held_surface_j_m2 = c[0] * (p[0] - temps[0]) - weighted(0, p, temps);
