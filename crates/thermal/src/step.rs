@@ -666,3 +666,98 @@ fn out_of_range(new: &[f64], old: &[f64], after: &Loads) -> ThermalError {
         ),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Convection, Discretisation};
+    use irsig_model::thermal::{Roughness, ThermalLayer, ThermalProperties};
+
+    fn wall(thickness_m: f64) -> Wall {
+        let props = ThermalProperties {
+            layers: vec![ThermalLayer {
+                thickness_m,
+                conductivity_w_m_k: 1.4,
+                density_kg_m3: 2300.0,
+                specific_heat_j_kg_k: 880.0,
+                source: "test".into(),
+            }],
+            back: BackBoundary::Adiabatic,
+            solar_absorptance: None,
+            thermal_emissivity: None,
+            wet_fraction: 0.0,
+            roughness: Roughness::Rough,
+            source: "test".into(),
+        };
+        Wall::new(&props, &Discretisation::cells_per_layer(4)).unwrap()
+    }
+
+    /// One scratch shared by more walls, steps and schemes than it keeps gives bit for bit
+    /// what a fresh scratch per facet gives.
+    #[test]
+    fn a_shared_scratch_evicts_and_recomputes_correctly() {
+        let walls: Vec<Wall> = (1..=20).map(|i| wall(0.01 * f64::from(i))).collect();
+        let surface = Surface {
+            solar_absorptance: 0.7,
+            thermal_emissivity: 0.9,
+            wet_fraction: 0.0,
+            roughness: Roughness::Rough,
+            convection: Convection::Doe2,
+        };
+        let loads = Loads {
+            shortwave_w_m2: 700.0,
+            longwave_w_m2: 340.0,
+            air_temperature_k: 300.0,
+            dew_point_k: 285.0,
+            pressure_pa: 101_325.0,
+            wind_speed_m_s: 2.0,
+            source_w_m2: 0.0,
+        };
+        let mut shared = Scratch::new();
+        let mut temps_shared: Vec<Vec<f64>> =
+            walls.iter().map(|w| w.uniform_state(290.0)).collect();
+        let mut temps_fresh = temps_shared.clone();
+        for round in 0..3 {
+            for (i, w) in walls.iter().enumerate() {
+                let time_step = TimeStep {
+                    dt_s: [60.0, 300.0][(i + round) % 2],
+                    scheme: [Scheme::BackwardEuler, Scheme::CrankNicolson][i % 2],
+                };
+                let facet = Facet {
+                    wall: w,
+                    surface: &surface,
+                    orientation: Orientation {
+                        cos_tilt: 0.5,
+                        windward: i % 3 == 0,
+                    },
+                };
+                let a = step(
+                    &facet,
+                    &mut temps_shared[i],
+                    &loads,
+                    &loads,
+                    time_step,
+                    &mut shared,
+                )
+                .unwrap();
+                let b = step(
+                    &facet,
+                    &mut temps_fresh[i],
+                    &loads,
+                    &loads,
+                    time_step,
+                    &mut Scratch::new(),
+                )
+                .unwrap();
+                assert_eq!(a, b);
+                assert!(
+                    temps_shared[i]
+                        .iter()
+                        .zip(&temps_fresh[i])
+                        .all(|(x, y)| x.to_bits() == y.to_bits())
+                );
+            }
+        }
+        assert_eq!(shared.cache.len(), CACHE_CAPACITY);
+    }
+}
