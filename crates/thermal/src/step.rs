@@ -452,7 +452,7 @@ fn advance(
     let index = scratch.elimination(wall, dt_s, scheme);
     let e = &scratch.cache[index];
     let p = &mut scratch.p;
-    p.clear();
+    // Every entry is written before it is read: no clearing.
     p.resize(n, 0.0);
 
     let back = BackTerms::new(wall.back(), before, after, theta);
