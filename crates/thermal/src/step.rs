@@ -12,7 +12,8 @@
 //! whose emission or convection changes steeply over a long step (a hot skin of little heat
 //! capacity) can be driven below 1 K, which [`step`] refuses rather than returns. Spinning
 //! up by Backward Euler and then switching to Crank–Nicolson damps what the start excites;
-//! the tests do so.
+//! the tests do so. TR-BDF2 ([`Scheme::TrBdf2`]) is second-order and L-stable, at two
+//! surface solves a step: the choice where thin skins over insulators meet long steps.
 //!
 //! The interior is linear with coefficients fixed by the wall, the step length and θ, so
 //! the tridiagonal elimination from the back node toward the surface is computed once per
@@ -40,25 +41,37 @@ const MAX_ITERATIONS: usize = 200;
 /// How many (wall, step, scheme) eliminations a [`Scratch`] keeps.
 const CACHE_CAPACITY: usize = 16;
 
-/// The time-stepping scheme, a θ-method.
+/// The time-stepping scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Scheme {
-    /// Fully implicit, `θ = 1`: first-order in the step, L-stable.
+    /// Fully implicit, the θ-method with `θ = 1`: first-order in the step, L-stable. One
+    /// surface solve per step.
     BackwardEuler,
-    /// Trapezoidal, `θ = ½`: second-order in the step, A-stable, not L-stable.
+    /// Trapezoidal, the θ-method with `θ = ½`: second-order in the step, A-stable, not
+    /// L-stable (see the module's notes). One surface solve and one evaluation per step.
     CrankNicolson,
+    /// TR-BDF2 (Bank et al. 1985, IEEE Trans. Electron Devices 32, 1992–2007; Hosea &
+    /// Shampine 1996, Appl. Numer. Math. 20, 21–37): a trapezoidal stage to `t + γΔt`, then
+    /// a second-order backward-difference stage to `t + Δt`, `γ = 2 − √2`, so that both
+    /// stages share one matrix. Second-order and L-stable: it damps the stiff modes
+    /// Crank–Nicolson leaves ringing (a thin skin over an insulator, whose surface is all
+    /// but algebraic). Two surface solves per step; the loads at `t + γΔt` are interpolated
+    /// linearly between `before` and `after`.
+    TrBdf2,
 }
 
 impl Scheme {
-    /// The weight `θ` of the step's end.
-    #[must_use]
-    pub fn theta(self) -> f64 {
+    /// The weight `θ` of a θ-method stage's end.
+    pub(crate) fn theta(self) -> f64 {
         match self {
-            Self::BackwardEuler => 1.0,
+            Self::BackwardEuler | Self::TrBdf2 => 1.0,
             Self::CrankNicolson => 0.5,
         }
     }
 }
+
+/// TR-BDF2's `γ = 2 − √2`: its trapezoidal stage's share of the step.
+const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 
 /// The length and scheme of a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -123,6 +136,29 @@ impl StepFluxes {
     }
 }
 
+impl StepFluxes {
+    /// Every term times `k`.
+    fn scaled(self, k: f64) -> Self {
+        Self {
+            absorbed_shortwave_j_m2: k * self.absorbed_shortwave_j_m2,
+            absorbed_longwave_j_m2: k * self.absorbed_longwave_j_m2,
+            emitted_j_m2: k * self.emitted_j_m2,
+            convected_j_m2: k * self.convected_j_m2,
+            latent_j_m2: k * self.latent_j_m2,
+            back_j_m2: k * self.back_j_m2,
+            source_j_m2: k * self.source_j_m2,
+            held_surface_j_m2: k * self.held_surface_j_m2,
+            stored_change_j_m2: k * self.stored_change_j_m2,
+        }
+    }
+
+    /// The sum of two steps' terms.
+    fn plus(mut self, o: &Self) -> Self {
+        self += *o;
+        self
+    }
+}
+
 impl AddAssign for StepFluxes {
     fn add_assign(&mut self, o: Self) {
         self.absorbed_shortwave_j_m2 += o.absorbed_shortwave_j_m2;
@@ -166,6 +202,8 @@ pub struct Scratch {
     next_victim: usize,
     last: usize,
     p: Vec<f64>,
+    /// TR-BDF2's copy of the step's starting temperatures.
+    start: Vec<f64>,
     forced: ForcedCache,
 }
 
@@ -224,27 +262,39 @@ fn eliminate(e: &mut Elimination, wall: &Wall, dt_s: f64, scheme: Scheme) {
         v.clear();
         v.resize(n, 0.0);
     }
-    let (a_last, b_last) = match wall.back() {
-        BackBoundary::Temperature { .. } => (0.0, 1.0),
-        BackBoundary::Adiabatic => (-theta * g[last - 1], c[last] / dt_s + theta * g[last - 1]),
-        BackBoundary::Convective { h_w_m2_k, .. } => (
-            -theta * g[last - 1],
-            c[last] / dt_s + theta * (g[last - 1] + h_w_m2_k),
-        ),
+    // Each row's pivot is `β_i = σ_i + θ g_{i−1}`, with `σ_i = C_i/Δt + θ g_i s_{i+1}` and
+    // `s_i = 1 + Q_i = σ_i / β_i`: sums of positive terms only, so that a wall whose
+    // conductances span many orders (a micron of metal over a thick insulator) loses no
+    // digits to cancellation in `1 + Q_i`, nor the surface row's `d0 = C_0/Δt + θ g_0 s_1`.
+    let sigma_last = match wall.back() {
+        BackBoundary::Temperature { .. } => None,
+        BackBoundary::Adiabatic => Some(c[last] / dt_s),
+        BackBoundary::Convective { h_w_m2_k, .. } => Some(c[last] / dt_s + theta * h_w_m2_k),
     };
-    e.inv_beta[last] = 1.0 / b_last;
-    e.q[last] = a_last / b_last;
+    let mut s_next = match sigma_last {
+        // A held back node: `T_N` is given, `Q_N = 0`.
+        None => {
+            e.inv_beta[last] = 1.0;
+            e.q[last] = 0.0;
+            1.0
+        }
+        Some(sigma) => {
+            let beta = sigma + theta * g[last - 1];
+            e.inv_beta[last] = 1.0 / beta;
+            e.q[last] = -theta * g[last - 1] / beta;
+            sigma / beta
+        }
+    };
     for i in (1..last).rev() {
-        let a = -theta * g[i - 1];
-        let b = c[i] / dt_s + theta * (g[i - 1] + g[i]);
-        let upper = -theta * g[i];
-        let beta = b - upper * e.q[i + 1];
+        let sigma = c[i] / dt_s + theta * g[i] * s_next;
+        let beta = sigma + theta * g[i - 1];
         e.inv_beta[i] = 1.0 / beta;
-        e.q[i] = a / beta;
+        e.q[i] = -theta * g[i - 1] / beta;
         e.own[i] = c[i] / dt_s / beta;
         e.coupling[i] = theta * g[i] / beta;
+        s_next = sigma / beta;
     }
-    e.d0 = c[0] / dt_s + theta * g[0] + theta * g[0] * e.q[1];
+    e.d0 = c[0] / dt_s + theta * g[0] * s_next;
 }
 
 /// How the surface node is closed.
@@ -276,7 +326,7 @@ pub fn step(
     scratch: &mut Scratch,
 ) -> Result<StepFluxes, ThermalError> {
     facet.surface.validate()?;
-    advance(
+    advance_scheme(
         facet.wall,
         SurfaceMode::Balance(facet.surface, facet.orientation),
         temps,
@@ -310,7 +360,7 @@ pub fn step_held(
              {MIN_TEMPERATURE_K} and {MAX_TEMPERATURE_K} K"
         )));
     }
-    advance(
+    advance_scheme(
         wall,
         SurfaceMode::Held(held_surface_k),
         temps,
@@ -419,7 +469,103 @@ fn sweep_to_surface(
     r0
 }
 
-/// The shared body of [`step`] and [`step_held`].
+/// [`advance`] for a θ-method; TR-BDF2 as its two stages.
+fn advance_scheme(
+    wall: &Wall,
+    mode: SurfaceMode<'_>,
+    temps: &mut [f64],
+    loads: [&Loads; 2],
+    time_step: TimeStep,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    if time_step.scheme == Scheme::TrBdf2 {
+        tr_bdf2(wall, mode, temps, loads, time_step.dt_s, scratch)
+    } else {
+        advance(wall, mode, temps, loads, time_step, scratch)
+    }
+}
+
+/// TR-BDF2 as a Crank–Nicolson step of `γΔt` to `T_γ`, then a Backward Euler step of
+/// `wΔt`, `w = (1 − γ)/(2 − γ)` (= γ/2, so both stages share one matrix up to scale), from
+/// `T̃ = T_n + (T_γ − T_n)/(γ(2 − γ))`: the BDF2 stage
+/// `T_{n+1} = (T_γ − (1 − γ)² T_n)/(γ(2 − γ)) + w Δt F(T_{n+1})` rewritten. The step's
+/// energy terms weight the start and `T_γ` by `Δt/(2(2 − γ))` each and the end by `wΔt`,
+/// which is the first stage's terms times `1/(γ(2 − γ))` plus the second's; the stored
+/// change scales the same way, so the sum still closes.
+fn tr_bdf2(
+    wall: &Wall,
+    mode: SurfaceMode<'_>,
+    temps: &mut [f64],
+    [before, after]: [&Loads; 2],
+    dt_s: f64,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    let k = 1.0 / (GAMMA * (2.0 - GAMMA));
+    let mid = before.lerp(after, GAMMA);
+    let first_mode = match mode {
+        SurfaceMode::Held(held) => {
+            SurfaceMode::Held(temps.first().map_or(held, |&t0| t0 + GAMMA * (held - t0)))
+        }
+        balance @ SurfaceMode::Balance(..) => balance,
+    };
+    let mut start = std::mem::take(&mut scratch.start);
+    start.clear();
+    start.extend_from_slice(temps);
+    let in_stage = |stage: &'static str| {
+        move |mut e: ThermalError| {
+            let hint = if e.kind == ThermalErrorKind::OutOfRange {
+                " (TR-BDF2 extrapolates from its trapezoidal stage, which overshoots when the \
+                 surface's fluxes change this steeply over a step this long; Backward Euler \
+                 or a shorter step keeps the temperature physical)"
+            } else {
+                ""
+            };
+            e.message = format!(
+                "TR-BDF2 step of {dt_s} s, {stage} stage{hint}: {}",
+                e.message
+            );
+            e
+        }
+    };
+    let result = advance(
+        wall,
+        first_mode,
+        temps,
+        [before, &mid],
+        TimeStep {
+            dt_s: GAMMA * dt_s,
+            scheme: Scheme::CrankNicolson,
+        },
+        scratch,
+    )
+    .map_err(in_stage("trapezoidal"))
+    .and_then(|first| {
+        for (t, &t0) in temps.iter_mut().zip(&start) {
+            *t = t0 + (*t - t0) * k;
+        }
+        let second = advance(
+            wall,
+            mode,
+            temps,
+            [&mid, after],
+            TimeStep {
+                dt_s: (1.0 - GAMMA) / (2.0 - GAMMA) * dt_s,
+                scheme: Scheme::BackwardEuler,
+            },
+            scratch,
+        );
+        if second.is_err() {
+            temps.copy_from_slice(&start);
+        }
+        Ok(first
+            .scaled(k)
+            .plus(&second.map_err(in_stage("backward-difference"))?))
+    });
+    scratch.start = start;
+    result
+}
+
+/// The shared body of [`step`] and [`step_held`] for one θ-method step.
 fn advance(
     wall: &Wall,
     mode: SurfaceMode<'_>,
@@ -629,9 +775,10 @@ fn surface_error(
     let what = match kind {
         ThermalErrorKind::OutOfRange if time_step.scheme == Scheme::CrankNicolson => format!(
             "the surface balance has no root between {MIN_TEMPERATURE_K} and \
-             {MAX_TEMPERATURE_K} K (Crank–Nicolson's explicit half overshoots when the \
-             surface's fluxes change this steeply over a step this long; Backward Euler \
-             or a shorter step keeps the temperature physical)"
+             {MAX_TEMPERATURE_K} K (the trapezoidal rule's explicit half, Crank–Nicolson's \
+             or TR-BDF2's first stage's, overshoots when the surface's fluxes change this \
+             steeply over a step this long; Backward Euler or a shorter step keeps the \
+             temperature physical)"
         ),
         ThermalErrorKind::OutOfRange => format!(
             "the surface balance has no root between {MIN_TEMPERATURE_K} and \
