@@ -5,10 +5,12 @@
 //! its start, with the loads of each end. Backward Euler (`θ = 1`) is first-order in the
 //! step and L-stable: it damps every mode, however stiff. Crank–Nicolson (`θ = ½`) is
 //! second-order and A-stable but not L-stable: modes much faster than the step (a thin
-//! paint layer's, a metal skin's) are not damped but flip sign each step, so a wall whose
-//! fastest cell responds in far less than the step may carry a small step-to-step ripple
-//! at its surface (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
-//! the accuracy of conduction modelling"). Its explicit half can also overshoot: a surface
+//! paint layer's, a thin skin's over an insulator) are not damped but flip sign each step,
+//! so such a wall carries a step-to-step ripple at its surface as large as the mismatch a
+//! start or a sudden change of load left in that mode: millikelvin for paint over
+//! concrete, tens of kelvin for a micron of metal over an insulator, whose surface is all
+//! but algebraic (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
+//! the accuracy of conduction modelling"; `tests/extremes.rs` shows both). Its explicit half can also overshoot: a surface
 //! whose emission or convection changes steeply over a long step (a hot skin of little heat
 //! capacity) can be driven below 1 K, which [`step`] refuses rather than returns. Spinning
 //! up by Backward Euler and then switching to Crank–Nicolson damps what the start excites;
