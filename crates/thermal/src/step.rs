@@ -10,12 +10,13 @@
 //! start or a sudden change of load left in that mode: millikelvin for paint over
 //! concrete, tens of kelvin for a micron of metal over an insulator, whose surface is all
 //! but algebraic (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
-//! the accuracy of conduction modelling"; `tests/extremes.rs` shows both). Its explicit half can also overshoot: a surface
-//! whose emission or convection changes steeply over a long step (a hot skin of little heat
-//! capacity) can be driven below 1 K, which [`step`] refuses rather than returns. Spinning
-//! up by Backward Euler and then switching to Crank–Nicolson damps what the start excites;
-//! the tests do so. TR-BDF2 ([`Scheme::TrBdf2`]) is second-order and L-stable, at two
-//! surface solves a step: the choice where thin skins over insulators meet long steps.
+//! the accuracy of conduction modelling"; `tests/extremes.rs` has the second). Its
+//! explicit half can also overshoot: a surface whose emission or convection changes
+//! steeply over a long step (a hot skin of little heat capacity) can be driven below 1 K,
+//! which [`step`] refuses rather than returns. Spinning up by Backward Euler and then
+//! switching to Crank–Nicolson damps what the start excites; the tests do so. TR-BDF2
+//! ([`Scheme::TrBdf2`]) is second-order and L-stable, at two surface solves a step: the
+//! choice where thin skins over insulators meet long steps.
 //!
 //! The interior is linear with coefficients fixed by the wall, the step length and θ, so
 //! the tridiagonal elimination from the back node toward the surface is computed once per
