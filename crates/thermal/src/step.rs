@@ -701,9 +701,10 @@ fn account_surface(
 /// DOE-2 with condensation) is replaced by bisection. Newton's method stops once its step
 /// is below [`SURFACE_TOLERANCE_K`], or once the error left after its step, estimated from
 /// the quadratic convergence of the last two steps (`e ≈ δ_k³ / δ_{k−1}²`, trusted only
-/// when the steps shrink at least tenfold), is a hundred times below it. The parts returned are those at the last evaluation carried to the root
-/// by their derivatives: exactly what the last Newton step solved, so the step's energy
-/// closes to round-off; they differ from a fresh evaluation by `O(δ²)`.
+/// when the steps shrink at least tenfold), is a hundred times below it. The parts
+/// returned are those at the last evaluation carried to the root by their derivatives:
+/// exactly what the last Newton step solved, so the step's energy closes to round-off;
+/// they differ from a fresh evaluation by `O(δ²)`.
 fn solve_surface(
     d0: f64,
     theta: f64,

@@ -108,7 +108,8 @@ fn slab_after_a_step_in_air_temperature() {
     let (t_initial, t_air) = (300.0, 350.0);
     let alpha = k / (2300.0 * 880.0);
     let bi = h * l / k;
-    // ζ_n in (nπ, nπ + π/2): `(−1)^n (ζ sin ζ − Bi cos ζ)` rises from −Bi to nπ + π/2.
+    // ζ_n in (nπ, nπ + π/2): `(−1)^n (ζ sin ζ − Bi cos ζ)` rises from −Bi to
+    // nπ + π/2.
     let zetas: Vec<f64> = (0..200)
         .map(|n| {
             let sign = if n % 2 == 0 { 1.0 } else { -1.0 };
