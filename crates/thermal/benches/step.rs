@@ -1,9 +1,10 @@
 //! The cost of one facet-step: [`irsig_thermal::step`] on typical walls (10 and 19 nodes),
 //! DOE-2 convection, dry and wet, Backward Euler, Crank–Nicolson and TR-BDF2, loads
-//! changing every step as a day's do. Each iteration makes 288 facet-steps, so the figure per item is the
-//! cost of one facet-step with the elimination cached: either one facet through a day at
-//! 5 minutes (the wind changes every step), or, in `irsig-therm`'s order, 288 facets
-//! sharing a wall, a scratch and the weather, each with its own sun, through one step.
+//! changing every step as a day's do. Each iteration makes 288 facet-steps, so the figure
+//! per item is the cost of one facet-step with the elimination cached: either one facet
+//! through a day at 5 minutes (the wind changes every step), or, in `irsig-therm`'s order,
+//! 288 facets sharing a wall, a scratch and the weather, each with its own sun, through one
+//! step.
 
 use divan::{Bencher, black_box};
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness, ThermalLayer, ThermalProperties};
