@@ -1,9 +1,10 @@
 //! The cost of one facet-step: [`irsig_thermal::step`] on typical walls (10 and 19 nodes),
-//! DOE-2 convection, dry and wet, Backward Euler and Crank–Nicolson, loads changing every
-//! step as a day's do. Each iteration makes 288 facet-steps, so the figure per item is the
-//! cost of one facet-step with the elimination cached: either one facet through a day at
-//! 5 minutes (the wind changes every step), or, in `irsig-therm`'s order, 288 facets
-//! sharing a wall, a scratch and the weather, each with its own sun, through one step.
+//! DOE-2 convection, dry and wet, Backward Euler, Crank–Nicolson and TR-BDF2, loads
+//! changing every step as a day's do. Each iteration makes 288 facet-steps, so the figure
+//! per item is the cost of one facet-step with the elimination cached: either one facet
+//! through a day at 5 minutes (the wind changes every step), or, in `irsig-therm`'s order,
+//! 288 facets sharing a wall, a scratch and the weather, each with its own sun, through one
+//! step.
 
 use divan::{Bencher, black_box};
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness, ThermalLayer, ThermalProperties};
@@ -187,4 +188,9 @@ fn all_facets_backward_euler(b: Bencher, nodes: usize) {
 #[divan::bench(args = [10, 19])]
 fn all_facets_crank_nicolson(b: Bencher, nodes: usize) {
     run_all_facets(b, nodes, Scheme::CrankNicolson);
+}
+
+#[divan::bench(args = [10, 19])]
+fn all_facets_tr_bdf2(b: Bencher, nodes: usize) {
+    run_all_facets(b, nodes, Scheme::TrBdf2);
 }

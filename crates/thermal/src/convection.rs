@@ -28,10 +28,11 @@ pub enum Convection {
     },
     /// `h = 5.7 + 3.8 V`: McAdams (1954, *Heat Transmission*, 3rd ed.) from Jürges'
     /// wind-tunnel measurements on a heated 0.5 m square plate, as Duffie & Beckman give it
-    /// (*Solar Engineering of Thermal Processes*, §3.15). Measured for wind speeds up to
-    /// about 5 m/s and extrapolated above; independent of the surface's tilt and
-    /// temperature, and, Duffie & Beckman note, probably including some free convection and
-    /// radiation, so it overestimates pure convection somewhat.
+    /// (*Solar Engineering of Thermal Processes*, §3.15). Jürges' measurements cover wind
+    /// speeds up to about 5 m/s, the range usually quoted with it; above that it is
+    /// extrapolated. Independent of the surface's size, tilt and temperature, and, Duffie &
+    /// Beckman note, probably including some free convection and radiation, so it
+    /// overestimates pure convection somewhat.
     McAdams,
     /// The DOE-2 exterior correlation as the EnergyPlus Engineering Reference gives it
     /// ("Outside Surface Heat Balance", DOE-2 model; after Yazdanian & Klems 1994, ASHRAE

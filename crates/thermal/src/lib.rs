@@ -6,9 +6,9 @@
 //! [`Discretisation`]), with an exposed [`Surface`] that absorbs sunlight and longwave
 //! radiation, emits `ε σ T⁴`, convects to the air by a named correlation ([`Convection`])
 //! and, where wet, evaporates ([`latent`]). [`step`] advances its node temperatures over
-//! one time step from the [`Loads`] at the step's start and end by Backward Euler or
-//! Crank–Nicolson ([`Scheme`]), solving the nonlinear surface balance exactly, and returns
-//! the step's energy terms ([`StepFluxes`]), which close to round-off.
+//! one time step from the [`Loads`] at the step's start and end by Backward Euler,
+//! Crank–Nicolson or TR-BDF2 ([`Scheme`]), solving the nonlinear surface balance exactly,
+//! and returns the step's energy terms ([`StepFluxes`]), which close to round-off.
 //!
 //! The crate is pure physics: the loads arrive as numbers. It knows no ray tracer, no
 //! atmosphere model, no weather file or other file syntax and no command line, and never

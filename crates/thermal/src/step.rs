@@ -5,10 +5,18 @@
 //! its start, with the loads of each end. Backward Euler (`θ = 1`) is first-order in the
 //! step and L-stable: it damps every mode, however stiff. Crank–Nicolson (`θ = ½`) is
 //! second-order and A-stable but not L-stable: modes much faster than the step (a thin
-//! paint layer's, a metal skin's) are not damped but flip sign each step, so a wall whose
-//! fastest cell responds in far less than the step may carry a small step-to-step ripple
-//! at its surface (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
-//! the accuracy of conduction modelling").
+//! paint layer's, a thin skin's over an insulator) are not damped but flip sign each step,
+//! so such a wall carries a step-to-step ripple at its surface as large as the mismatch a
+//! start or a sudden change of load left in that mode: millikelvin for paint over
+//! concrete, tens of kelvin for a micron of metal over an insulator, whose surface is all
+//! but algebraic (Patankar 1980, §4.3; Hensen & Nakhi 1994, "Fourier and Biot numbers and
+//! the accuracy of conduction modelling"; `tests/extremes.rs` has the second). Its
+//! explicit half can also overshoot: a surface whose emission or convection changes
+//! steeply over a long step (a hot skin of little heat capacity) can be driven below 1 K,
+//! which [`step`] refuses rather than returns. Spinning up by Backward Euler and then
+//! switching to Crank–Nicolson damps what the start excites; the tests do so. TR-BDF2
+//! ([`Scheme::TrBdf2`]) is second-order and L-stable, at two surface solves a step: the
+//! choice where thin skins over insulators meet long steps.
 //!
 //! The interior is linear with coefficients fixed by the wall, the step length and θ, so
 //! the tridiagonal elimination from the back node toward the surface is computed once per
@@ -36,25 +44,37 @@ const MAX_ITERATIONS: usize = 200;
 /// How many (wall, step, scheme) eliminations a [`Scratch`] keeps.
 const CACHE_CAPACITY: usize = 16;
 
-/// The time-stepping scheme, a θ-method.
+/// The time-stepping scheme.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum Scheme {
-    /// Fully implicit, `θ = 1`: first-order in the step, L-stable.
+    /// Fully implicit, the θ-method with `θ = 1`: first-order in the step, L-stable. One
+    /// surface solve per step.
     BackwardEuler,
-    /// Trapezoidal, `θ = ½`: second-order in the step, A-stable, not L-stable.
+    /// Trapezoidal, the θ-method with `θ = ½`: second-order in the step, A-stable, not
+    /// L-stable (see the module's notes). One surface solve and one evaluation per step.
     CrankNicolson,
+    /// TR-BDF2 (Bank et al. 1985, IEEE Trans. Electron Devices 32, 1992–2007; Hosea &
+    /// Shampine 1996, Appl. Numer. Math. 20, 21–37): a trapezoidal stage to `t + γΔt`, then
+    /// a second-order backward-difference stage to `t + Δt`, `γ = 2 − √2`, so that both
+    /// stages share one matrix. Second-order and L-stable: it damps the stiff modes
+    /// Crank–Nicolson leaves ringing (a thin skin over an insulator, whose surface is all
+    /// but algebraic). Two surface solves per step; the loads at `t + γΔt` are interpolated
+    /// linearly between `before` and `after`.
+    TrBdf2,
 }
 
 impl Scheme {
-    /// The weight `θ` of the step's end.
-    #[must_use]
-    pub fn theta(self) -> f64 {
+    /// The weight `θ` of a θ-method stage's end.
+    pub(crate) fn theta(self) -> f64 {
         match self {
-            Self::BackwardEuler => 1.0,
+            Self::BackwardEuler | Self::TrBdf2 => 1.0,
             Self::CrankNicolson => 0.5,
         }
     }
 }
+
+/// TR-BDF2's `γ = 2 − √2`: its trapezoidal stage's share of the step.
+const GAMMA: f64 = 2.0 - std::f64::consts::SQRT_2;
 
 /// The length and scheme of a step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -119,6 +139,29 @@ impl StepFluxes {
     }
 }
 
+impl StepFluxes {
+    /// Every term times `k`.
+    fn scaled(self, k: f64) -> Self {
+        Self {
+            absorbed_shortwave_j_m2: k * self.absorbed_shortwave_j_m2,
+            absorbed_longwave_j_m2: k * self.absorbed_longwave_j_m2,
+            emitted_j_m2: k * self.emitted_j_m2,
+            convected_j_m2: k * self.convected_j_m2,
+            latent_j_m2: k * self.latent_j_m2,
+            back_j_m2: k * self.back_j_m2,
+            source_j_m2: k * self.source_j_m2,
+            held_surface_j_m2: k * self.held_surface_j_m2,
+            stored_change_j_m2: k * self.stored_change_j_m2,
+        }
+    }
+
+    /// The sum of two steps' terms.
+    fn plus(mut self, o: &Self) -> Self {
+        self += *o;
+        self
+    }
+}
+
 impl AddAssign for StepFluxes {
     fn add_assign(&mut self, o: Self) {
         self.absorbed_shortwave_j_m2 += o.absorbed_shortwave_j_m2;
@@ -162,6 +205,8 @@ pub struct Scratch {
     next_victim: usize,
     last: usize,
     p: Vec<f64>,
+    /// TR-BDF2's copy of the step's starting temperatures.
+    start: Vec<f64>,
     forced: ForcedCache,
 }
 
@@ -220,27 +265,39 @@ fn eliminate(e: &mut Elimination, wall: &Wall, dt_s: f64, scheme: Scheme) {
         v.clear();
         v.resize(n, 0.0);
     }
-    let (a_last, b_last) = match wall.back() {
-        BackBoundary::Temperature { .. } => (0.0, 1.0),
-        BackBoundary::Adiabatic => (-theta * g[last - 1], c[last] / dt_s + theta * g[last - 1]),
-        BackBoundary::Convective { h_w_m2_k, .. } => (
-            -theta * g[last - 1],
-            c[last] / dt_s + theta * (g[last - 1] + h_w_m2_k),
-        ),
+    // Each row's pivot is `β_i = σ_i + θ g_{i−1}`, with `σ_i = C_i/Δt + θ g_i s_{i+1}` and
+    // `s_i = 1 + Q_i = σ_i / β_i`: sums of positive terms only, so that a wall whose
+    // conductances span many orders (a micron of metal over a thick insulator) loses no
+    // digits to cancellation in `1 + Q_i`, nor the surface row's `d0 = C_0/Δt + θ g_0 s_1`.
+    let sigma_last = match wall.back() {
+        BackBoundary::Temperature { .. } => None,
+        BackBoundary::Adiabatic => Some(c[last] / dt_s),
+        BackBoundary::Convective { h_w_m2_k, .. } => Some(c[last] / dt_s + theta * h_w_m2_k),
     };
-    e.inv_beta[last] = 1.0 / b_last;
-    e.q[last] = a_last / b_last;
+    let mut s_next = match sigma_last {
+        // A held back node: `T_N` is given, `Q_N = 0`.
+        None => {
+            e.inv_beta[last] = 1.0;
+            e.q[last] = 0.0;
+            1.0
+        }
+        Some(sigma) => {
+            let beta = sigma + theta * g[last - 1];
+            e.inv_beta[last] = 1.0 / beta;
+            e.q[last] = -theta * g[last - 1] / beta;
+            sigma / beta
+        }
+    };
     for i in (1..last).rev() {
-        let a = -theta * g[i - 1];
-        let b = c[i] / dt_s + theta * (g[i - 1] + g[i]);
-        let upper = -theta * g[i];
-        let beta = b - upper * e.q[i + 1];
+        let sigma = c[i] / dt_s + theta * g[i] * s_next;
+        let beta = sigma + theta * g[i - 1];
         e.inv_beta[i] = 1.0 / beta;
-        e.q[i] = a / beta;
+        e.q[i] = -theta * g[i - 1] / beta;
         e.own[i] = c[i] / dt_s / beta;
         e.coupling[i] = theta * g[i] / beta;
+        s_next = sigma / beta;
     }
-    e.d0 = c[0] / dt_s + theta * g[0] + theta * g[0] * e.q[1];
+    e.d0 = c[0] / dt_s + theta * g[0] * s_next;
 }
 
 /// How the surface node is closed.
@@ -272,7 +329,7 @@ pub fn step(
     scratch: &mut Scratch,
 ) -> Result<StepFluxes, ThermalError> {
     facet.surface.validate()?;
-    advance(
+    advance_scheme(
         facet.wall,
         SurfaceMode::Balance(facet.surface, facet.orientation),
         temps,
@@ -306,7 +363,7 @@ pub fn step_held(
              {MIN_TEMPERATURE_K} and {MAX_TEMPERATURE_K} K"
         )));
     }
-    advance(
+    advance_scheme(
         wall,
         SurfaceMode::Held(held_surface_k),
         temps,
@@ -332,7 +389,186 @@ fn back_at(back: BackBoundary, loads: &Loads) -> (f64, f64) {
     }
 }
 
-/// The shared body of [`step`] and [`step_held`].
+/// The back boundary over a step: held, or its conductance and the temperature behind it
+/// at the step's start (`0`) and end (`1`), and the scheme-weighted source.
+#[derive(Debug, Clone, Copy)]
+struct BackTerms {
+    held: bool,
+    h0: f64,
+    t0: f64,
+    h1: f64,
+    t1: f64,
+    source_w_m2: f64,
+}
+
+impl BackTerms {
+    fn new(back: BackBoundary, before: &Loads, after: &Loads, theta: f64) -> Self {
+        let (h0, t0) = back_at(back, before);
+        let (h1, t1) = back_at(back, after);
+        Self {
+            held: matches!(back, BackBoundary::Temperature { .. }),
+            h0,
+            t0,
+            h1,
+            t1,
+            source_w_m2: theta * after.source_w_m2 + (1.0 - theta) * before.source_w_m2,
+        }
+    }
+}
+
+/// Fills `p` from the back row to row 1 with the right-hand side of the step's start, and
+/// returns the surface row's right-hand side with `T_1` eliminated (its surface flux
+/// terms still to come).
+fn sweep_to_surface(
+    e: &Elimination,
+    wall: &Wall,
+    temps: &[f64],
+    p: &mut [f64],
+    back: &BackTerms,
+    dt_s: f64,
+    theta: f64,
+) -> f64 {
+    let explicit = 1.0 - theta;
+    let c = wall.capacities_j_m2_k();
+    let g = wall.conductances_w_m2_k();
+    let last = c.len() - 1;
+    let r_last = if back.held {
+        back.t1
+    } else {
+        let mut r = c[last] / dt_s * temps[last] + theta * back.h1 * back.t1 + back.source_w_m2;
+        if explicit != 0.0 {
+            r += explicit
+                * (g[last - 1] * (temps[last - 1] - temps[last])
+                    + back.h0 * (back.t0 - temps[last]));
+        }
+        r
+    };
+    p[last] = r_last * e.inv_beta[last];
+    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
+    // one length so that the loop carries no bounds checks.
+    let mut next = p[last];
+    let rows = 1..last;
+    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
+    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
+    if explicit == 0.0 {
+        for (((pi, &ti), &own), &coupling) in
+            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
+        {
+            next = own * ti + coupling * next;
+            *pi = next;
+        }
+    } else {
+        for i in (1..last).rev() {
+            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
+            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
+            p[i] = next;
+        }
+    }
+    // The surface row: `d0 T_0 − θ q(T_0) = r`.
+    let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
+    if explicit != 0.0 {
+        r0 += explicit * g[0] * (temps[1] - temps[0]);
+    }
+    r0
+}
+
+/// [`advance`] for a θ-method; TR-BDF2 as its two stages.
+fn advance_scheme(
+    wall: &Wall,
+    mode: SurfaceMode<'_>,
+    temps: &mut [f64],
+    loads: [&Loads; 2],
+    time_step: TimeStep,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    if time_step.scheme == Scheme::TrBdf2 {
+        tr_bdf2(wall, mode, temps, loads, time_step.dt_s, scratch)
+    } else {
+        advance(wall, mode, temps, loads, time_step, scratch)
+    }
+}
+
+/// TR-BDF2 as a Crank–Nicolson step of `γΔt` to `T_γ`, then a Backward Euler step of
+/// `wΔt`, `w = (1 − γ)/(2 − γ)` (= γ/2, so both stages share one matrix up to scale), from
+/// `T̃ = T_n + (T_γ − T_n)/(γ(2 − γ))`: the BDF2 stage
+/// `T_{n+1} = (T_γ − (1 − γ)² T_n)/(γ(2 − γ)) + w Δt F(T_{n+1})` rewritten. The step's
+/// energy terms weight the start and `T_γ` by `Δt/(2(2 − γ))` each and the end by `wΔt`,
+/// which is the first stage's terms times `1/(γ(2 − γ))` plus the second's; the stored
+/// change scales the same way, so the sum still closes.
+fn tr_bdf2(
+    wall: &Wall,
+    mode: SurfaceMode<'_>,
+    temps: &mut [f64],
+    [before, after]: [&Loads; 2],
+    dt_s: f64,
+    scratch: &mut Scratch,
+) -> Result<StepFluxes, ThermalError> {
+    let k = 1.0 / (GAMMA * (2.0 - GAMMA));
+    let mid = before.lerp(after, GAMMA);
+    let first_mode = match mode {
+        SurfaceMode::Held(held) => {
+            SurfaceMode::Held(temps.first().map_or(held, |&t0| t0 + GAMMA * (held - t0)))
+        }
+        balance @ SurfaceMode::Balance(..) => balance,
+    };
+    let mut start = std::mem::take(&mut scratch.start);
+    start.clear();
+    start.extend_from_slice(temps);
+    let in_stage = |stage: &'static str| {
+        move |mut e: ThermalError| {
+            let hint = if e.kind == ThermalErrorKind::OutOfRange {
+                " (TR-BDF2 extrapolates from its trapezoidal stage, which overshoots when the \
+                 surface's fluxes change this steeply over a step this long; Backward Euler \
+                 or a shorter step keeps the temperature physical)"
+            } else {
+                ""
+            };
+            e.message = format!(
+                "TR-BDF2 step of {dt_s} s, {stage} stage{hint}: {}",
+                e.message
+            );
+            e
+        }
+    };
+    let result = advance(
+        wall,
+        first_mode,
+        temps,
+        [before, &mid],
+        TimeStep {
+            dt_s: GAMMA * dt_s,
+            scheme: Scheme::CrankNicolson,
+        },
+        scratch,
+    )
+    .map_err(in_stage("trapezoidal"))
+    .and_then(|first| {
+        for (t, &t0) in temps.iter_mut().zip(&start) {
+            *t = t0 + (*t - t0) * k;
+        }
+        let second = advance(
+            wall,
+            mode,
+            temps,
+            [&mid, after],
+            TimeStep {
+                dt_s: (1.0 - GAMMA) / (2.0 - GAMMA) * dt_s,
+                scheme: Scheme::BackwardEuler,
+            },
+            scratch,
+        );
+        if second.is_err() {
+            temps.copy_from_slice(&start);
+        }
+        Ok(first
+            .scaled(k)
+            .plus(&second.map_err(in_stage("backward-difference"))?))
+    });
+    scratch.start = start;
+    result
+}
+
+/// The shared body of [`step`] and [`step_held`] for one θ-method step.
 fn advance(
     wall: &Wall,
     mode: SurfaceMode<'_>,
@@ -365,51 +601,11 @@ fn advance(
     let index = scratch.elimination(wall, dt_s, scheme);
     let e = &scratch.cache[index];
     let p = &mut scratch.p;
-    p.clear();
+    // Every entry is written before it is read: no clearing.
     p.resize(n, 0.0);
 
-    // The back row.
-    let back = wall.back();
-    let held_back = matches!(back, BackBoundary::Temperature { .. });
-    let (hb0, tb0) = back_at(back, before);
-    let (hb1, tb1) = back_at(back, after);
-    let source = theta * after.source_w_m2 + explicit * before.source_w_m2;
-    let r_last = if held_back {
-        tb1
-    } else {
-        let mut r = c[last] / dt_s * temps[last] + theta * hb1 * tb1 + source;
-        if explicit != 0.0 {
-            r += explicit
-                * (g[last - 1] * (temps[last - 1] - temps[last]) + hb0 * (tb0 - temps[last]));
-        }
-        r
-    };
-    p[last] = r_last * e.inv_beta[last];
-    // Interior rows, back to front: `P_i = (r_i + θ g_i P_{i+1}) / β_i`, over slices of
-    // one length so that the loop carries no bounds checks.
-    let mut next = p[last];
-    let rows = 1..last;
-    let (own, coupling) = (&e.own[rows.clone()], &e.coupling[rows.clone()]);
-    let (p_rows, t_rows) = (&mut p[rows.clone()], &temps[rows]);
-    if explicit == 0.0 {
-        for (((pi, &ti), &own), &coupling) in
-            p_rows.iter_mut().zip(t_rows).zip(own).zip(coupling).rev()
-        {
-            next = own * ti + coupling * next;
-            *pi = next;
-        }
-    } else {
-        for i in (1..last).rev() {
-            let exchange = g[i - 1] * (temps[i - 1] - temps[i]) + g[i] * (temps[i + 1] - temps[i]);
-            next = e.own[i] * temps[i] + explicit * exchange * e.inv_beta[i] + e.coupling[i] * next;
-            p[i] = next;
-        }
-    }
-    // The surface row: `d0 T_0 − θ q(T_0) = r`.
-    let mut r0 = c[0] / dt_s * temps[0] + theta * g[0] * p[1];
-    if explicit != 0.0 {
-        r0 += explicit * g[0] * (temps[1] - temps[0]);
-    }
+    let back = BackTerms::new(wall.back(), before, after, theta);
+    let mut r0 = sweep_to_surface(e, wall, temps, p, &back, dt_s, theta);
     let mut fluxes = StepFluxes::default();
     let t0_new = match mode {
         SurfaceMode::Held(held) => held,
@@ -451,15 +647,16 @@ fn advance(
         return Err(out_of_range(p, temps, after));
     }
     // The flows through the back and a held surface, and the stored change.
-    fluxes.source_j_m2 = source * dt_s;
+    fluxes.source_j_m2 = back.source_w_m2 * dt_s;
     let conduction = |i: usize, t: &[f64]| g[i] * (t[i + 1] - t[i]);
     let weighted = |i: usize, new: &[f64], old: &[f64]| {
         dt_s * (theta * conduction(i, new) + explicit * conduction(i, old))
     };
-    fluxes.back_j_m2 = if held_back {
+    fluxes.back_j_m2 = if back.held {
         c[last] * (p[last] - temps[last]) + weighted(last - 1, p, temps) - fluxes.source_j_m2
     } else {
-        dt_s * (theta * hb1 * (tb1 - p[last]) + explicit * hb0 * (tb0 - temps[last]))
+        dt_s * (theta * back.h1 * (back.t1 - p[last])
+            + explicit * back.h0 * (back.t0 - temps[last]))
     };
     if let SurfaceMode::Held(_) = mode {
         fluxes.held_surface_j_m2 = c[0] * (p[0] - temps[0]) - weighted(0, p, temps);
@@ -504,9 +701,10 @@ fn account_surface(
 /// DOE-2 with condensation) is replaced by bisection. Newton's method stops once its step
 /// is below [`SURFACE_TOLERANCE_K`], or once the error left after its step, estimated from
 /// the quadratic convergence of the last two steps (`e ≈ δ_k³ / δ_{k−1}²`, trusted only
-/// when the steps shrink at least tenfold), is a hundred times below it. The parts returned are those at the last evaluation carried to the root
-/// by their derivatives: exactly what the last Newton step solved, so the step's energy
-/// closes to round-off; they differ from a fresh evaluation by `O(δ²)`.
+/// when the steps shrink at least tenfold), is a hundred times below it. The parts
+/// returned are those at the last evaluation carried to the root by their derivatives:
+/// exactly what the last Newton step solved, so the step's energy closes to round-off;
+/// they differ from a fresh evaluation by `O(δ²)`.
 fn solve_surface(
     d0: f64,
     theta: f64,
@@ -581,9 +779,10 @@ fn surface_error(
     let what = match kind {
         ThermalErrorKind::OutOfRange if time_step.scheme == Scheme::CrankNicolson => format!(
             "the surface balance has no root between {MIN_TEMPERATURE_K} and \
-             {MAX_TEMPERATURE_K} K (Crank–Nicolson's explicit half overshoots when the \
-             surface's fluxes change this steeply over a step this long; Backward Euler \
-             or a shorter step keeps the temperature physical)"
+             {MAX_TEMPERATURE_K} K (the trapezoidal rule's explicit half, Crank–Nicolson's \
+             or TR-BDF2's first stage's, overshoots when the surface's fluxes change this \
+             steeply over a step this long; Backward Euler or a shorter step keeps the \
+             temperature physical)"
         ),
         ThermalErrorKind::OutOfRange => format!(
             "the surface balance has no root between {MIN_TEMPERATURE_K} and \
@@ -617,4 +816,99 @@ fn out_of_range(new: &[f64], old: &[f64], after: &Loads) -> ThermalError {
             old.get(i).copied().unwrap_or(f64::NAN)
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Convection, Discretisation};
+    use irsig_model::thermal::{Roughness, ThermalLayer, ThermalProperties};
+
+    fn wall(thickness_m: f64) -> Wall {
+        let props = ThermalProperties {
+            layers: vec![ThermalLayer {
+                thickness_m,
+                conductivity_w_m_k: 1.4,
+                density_kg_m3: 2300.0,
+                specific_heat_j_kg_k: 880.0,
+                source: "test".into(),
+            }],
+            back: BackBoundary::Adiabatic,
+            solar_absorptance: None,
+            thermal_emissivity: None,
+            wet_fraction: 0.0,
+            roughness: Roughness::Rough,
+            source: "test".into(),
+        };
+        Wall::new(&props, &Discretisation::cells_per_layer(4)).unwrap()
+    }
+
+    /// One scratch shared by more walls, steps and schemes than it keeps gives bit for bit
+    /// what a fresh scratch per facet gives.
+    #[test]
+    fn a_shared_scratch_evicts_and_recomputes_correctly() {
+        let walls: Vec<Wall> = (1..=20).map(|i| wall(0.01 * f64::from(i))).collect();
+        let surface = Surface {
+            solar_absorptance: 0.7,
+            thermal_emissivity: 0.9,
+            wet_fraction: 0.0,
+            roughness: Roughness::Rough,
+            convection: Convection::Doe2,
+        };
+        let loads = Loads {
+            shortwave_w_m2: 700.0,
+            longwave_w_m2: 340.0,
+            air_temperature_k: 300.0,
+            dew_point_k: 285.0,
+            pressure_pa: 101_325.0,
+            wind_speed_m_s: 2.0,
+            source_w_m2: 0.0,
+        };
+        let mut shared = Scratch::new();
+        let mut temps_shared: Vec<Vec<f64>> =
+            walls.iter().map(|w| w.uniform_state(290.0)).collect();
+        let mut temps_fresh = temps_shared.clone();
+        for round in 0..3 {
+            for (i, w) in walls.iter().enumerate() {
+                let time_step = TimeStep {
+                    dt_s: [60.0, 300.0][(i + round) % 2],
+                    scheme: [Scheme::BackwardEuler, Scheme::CrankNicolson][i % 2],
+                };
+                let facet = Facet {
+                    wall: w,
+                    surface: &surface,
+                    orientation: Orientation {
+                        cos_tilt: 0.5,
+                        windward: i % 3 == 0,
+                    },
+                };
+                let a = step(
+                    &facet,
+                    &mut temps_shared[i],
+                    &loads,
+                    &loads,
+                    time_step,
+                    &mut shared,
+                )
+                .unwrap();
+                let b = step(
+                    &facet,
+                    &mut temps_fresh[i],
+                    &loads,
+                    &loads,
+                    time_step,
+                    &mut Scratch::new(),
+                )
+                .unwrap();
+                assert_eq!(a, b);
+                assert!(
+                    temps_shared[i]
+                        .iter()
+                        .zip(&temps_fresh[i])
+                        .all(|(x, y)| x.to_bits() == y.to_bits())
+                );
+            }
+        }
+        assert_eq!(shared.cache.len(), CACHE_CAPACITY);
+    }
 }

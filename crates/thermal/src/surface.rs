@@ -81,6 +81,21 @@ pub struct Loads {
 }
 
 impl Loads {
+    /// The loads a share `f` of the way from `self` to `to`, each linearly.
+    #[must_use]
+    pub fn lerp(&self, to: &Self, f: f64) -> Self {
+        let mix = |a: f64, b: f64| a + f * (b - a);
+        Self {
+            shortwave_w_m2: mix(self.shortwave_w_m2, to.shortwave_w_m2),
+            longwave_w_m2: mix(self.longwave_w_m2, to.longwave_w_m2),
+            air_temperature_k: mix(self.air_temperature_k, to.air_temperature_k),
+            dew_point_k: mix(self.dew_point_k, to.dew_point_k),
+            pressure_pa: mix(self.pressure_pa, to.pressure_pa),
+            wind_speed_m_s: mix(self.wind_speed_m_s, to.wind_speed_m_s),
+            source_w_m2: mix(self.source_w_m2, to.source_w_m2),
+        }
+    }
+
     /// Checks every number against its physical range.
     ///
     /// # Errors

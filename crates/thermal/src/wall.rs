@@ -9,9 +9,10 @@
 //! no cell straddles an interface, the series resistance of two layers is the sum of their
 //! cells' resistances `Δx / k` and no averaging of conductivities is needed; a steady,
 //! piecewise-linear profile is represented exactly, and the scheme is second-order in the
-//! node spacing (Patankar 1980, *Numerical Heat Transfer and Fluid Flow*, §4.2 and §4.6,
-//! practice B). The surface node's temperature is the surface temperature the energy
-//! balance and the sensor see, with no extrapolation.
+//! node spacing (Patankar 1980, *Numerical Heat Transfer and Fluid Flow*, §4.2 and §4.6:
+//! his practice A, grid points first and faces midway, with the boundary and interface
+//! half control volumes of his §4.2-9). The surface node's temperature is the surface
+//! temperature the energy balance and the sensor see, with no extrapolation.
 
 use std::sync::atomic::{AtomicU64, Ordering};
 

@@ -1,5 +1,6 @@
 //! The solver's observed orders of accuracy: the error against a fine reference falls as
-//! the step halves at the scheme's order (Backward Euler 1, Crank–Nicolson 2) and as the
+//! the step halves at the scheme's order (Backward Euler 1, Crank–Nicolson and TR-BDF2 2)
+//! and as the
 //! node spacing halves at 2 (the vertex-centred finite volumes). The problem is a rendered
 //! concrete wall ventilated behind, with the full nonlinear boundary (radiation, McAdams
 //! convection, latent heat) under smooth loads.
@@ -83,7 +84,7 @@ fn orders(errors: &[f64]) -> Vec<f64> {
 
 /// Six hours from a spun-up state with steps of 1200, 600, 300 and 150 s against a
 /// reference at 1200/128 s by Crank–Nicolson, on one grid: the observed order of Backward
-/// Euler must lie in 0.85–1.15, of Crank–Nicolson in 1.8–2.2.
+/// Euler must lie in 0.85–1.15, of Crank–Nicolson and TR-BDF2 in 1.8–2.2.
 #[test]
 fn error_falls_at_the_schemes_order_as_the_step_halves() {
     let wall = Wall::new(&wall_props(), &Discretisation::cells_per_layer(8)).unwrap();
@@ -104,6 +105,7 @@ fn error_falls_at_the_schemes_order_as_the_step_halves() {
     for (scheme, band) in [
         (Scheme::BackwardEuler, 0.85..=1.15),
         (Scheme::CrankNicolson, 1.8..=2.2),
+        (Scheme::TrBdf2, 1.8..=2.2),
     ] {
         let errors: Vec<f64> = [1200.0, 600.0, 300.0, 150.0]
             .iter()
