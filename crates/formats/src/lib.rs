@@ -34,5 +34,6 @@ pub mod radtran;
 pub mod ron_tree;
 pub mod srf;
 pub mod views;
+pub mod weather;
 
 pub use error::{ParseError, line_column, offset_of};
