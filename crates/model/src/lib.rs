@@ -15,6 +15,7 @@
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
+//! | [`weather::Weather`] | `irsig-formats` (EPW, CSV) | `irsig-therm` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
 //! | [`frame::FrameFile`] kinds | `irsig-trace`, `irsig-merge` | `irsig-cli` (naming) |
 //!
@@ -61,6 +62,7 @@ pub mod thermal;
 pub mod truth;
 pub mod uncertainty;
 mod view;
+pub mod weather;
 
 pub use atmosphere::{
     Atmosphere, AtmosphereLevel, InterpolationResidual, RadiosondeLevel, SlantTables,
