@@ -52,7 +52,21 @@ pub const MAX_TIMES: usize = 1_000_000;
 /// A time [`parse_time`] refuses, a step that is not a positive duration, an end before
 /// the start, or more than [`MAX_TIMES`] times.
 pub fn parse_times(text: &str) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = text.split('/').collect();
+    // A zone's name holds `/` too (`America/Denver`): split outside brackets only.
+    let mut parts: Vec<&str> = Vec::new();
+    let (mut depth, mut from) = (0_i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            '/' if depth == 0 => {
+                parts.push(&text[from..i]);
+                from = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&text[from..]);
     let [start, end, step] = parts.as_slice() else {
         if parts.len() == 1 {
             return Ok(vec![parse_time(text)?]);
@@ -116,6 +130,15 @@ pub fn compact_utc(time_s: f64) -> Option<String> {
 pub fn day_of_year_utc(time_s: f64) -> Option<u16> {
     let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
     u16::try_from(t.to_zoned_datetime(jiff::tz::TimeZone::UTC).day_of_year()).ok()
+}
+
+/// The year of `time_s` in UTC.
+#[must_use]
+pub fn year_utc(time_s: f64) -> Option<i64> {
+    let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
+    Some(i64::from(
+        t.to_zoned_datetime(jiff::tz::TimeZone::UTC).year(),
+    ))
 }
 
 fn timestamp(time_s: f64) -> Option<jiff::Timestamp> {
@@ -189,6 +212,16 @@ mod tests {
         let t = parse_times("2026-07-15T00:00Z/2026-07-15T00:50Z/1200").unwrap();
         assert_eq!(t.len(), 3);
         assert_eq!(parse_times("2026-07-15T00:00Z").unwrap(), vec![t0]);
+        // A zone's name holds a slash.
+        assert_eq!(
+            parse_times("2026-07-14T18:00[America/Denver]/2026-07-14T20:00[America/Denver]/PT1H")
+                .unwrap(),
+            vec![t0, t0 + 3600.0, t0 + 7200.0]
+        );
+        assert_eq!(
+            parse_times("2026-07-14T18:00[America/Denver]").unwrap(),
+            vec![t0]
+        );
         for bad in [
             "2026-07-15T03:00Z/2026-07-15T00:00Z/PT1H",
             "2026-07-15T00:00Z/2026-07-15T03:00Z/PT0S",
