@@ -59,6 +59,7 @@ mod regions;
 mod scene;
 mod spectral;
 pub mod thermal;
+pub mod thermal_decision;
 pub mod truth;
 pub mod uncertainty;
 mod view;

@@ -20,13 +20,16 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use irsig_model::history::{TemperatureHistory, ThermalProvenance};
 use irsig_model::provenance::InputRecord;
+use irsig_model::thermal_decision::ThermalDecision;
 use irsig_model::weather::Weather;
 use irsig_model::{MaterialLibrary, RawScene};
 use miette::miette;
 
 pub mod environment;
 pub mod models;
+pub mod pilot;
 pub mod prepare;
+mod report;
 pub mod setup;
 pub mod solve;
 
@@ -129,6 +132,14 @@ pub struct Cli {
     /// The models, each a named approximation (docs/accuracy.md, "The thermal model").
     #[command(flatten)]
     pub models: Models,
+    /// Choose the cheapest settings of the models that keep every facet's temperature
+    /// within K kelvin of a converged solve (the 99th percentile over the pilot's facets and
+    /// the moments), instead of the model flags' settings; print the decision on stderr.
+    #[arg(long, value_name = "K")]
+    pub tolerance: Option<f64>,
+    /// With --tolerance, also write the decision (canonical RON) here.
+    #[arg(long, value_name = "FILE", requires = "tolerance")]
+    pub decision_out: Option<PathBuf>,
     /// Threads (default: all cores); results are the same at any count.
     #[arg(long)]
     pub threads: Option<usize>,
@@ -153,6 +164,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let mut all_outputs: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
     if let Some(h) = &cli.history {
         all_outputs.push(h);
+    }
+    if let Some(d) = &cli.decision_out {
+        all_outputs.push(d);
     }
     irsig_cli::refuse_output_is_input([&cli.scene, &cli.materials, &cli.weather], &all_outputs)?;
     for o in &all_outputs {
@@ -181,17 +195,32 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         record("weather", &weather_in),
     ];
     let prepared = Prepared::new(&cli, &scene, &materials, &weather, &weather_in.name, site)?;
-    let outcome = prepared.solve(&cli.models, &times, cli.history.is_some())?;
+    let (models, decision) = match cli.tolerance {
+        Some(k) => {
+            let (models, decision) = pilot::decide(&prepared, &cli.models, &times, k)?;
+            report::print(&decision);
+            (models, Some(decision))
+        }
+        None => (cli.models.clone(), None),
+    };
+    let outcome = prepared.solve(&models, &times, cli.history.is_some())?;
     let provenance = ThermalProvenance {
         irsig_version: env!("CARGO_PKG_VERSION").into(),
         inputs,
         site: (site.latitude_deg, site.longitude_deg, site.altitude_m),
         start_s: outcome.start_s,
-        step_s: cli.models.step_s,
+        step_s: models.step_s,
         radiation: prepared.radiation(),
-        models: cli.models.describe(),
+        models: models.describe(),
     };
-    write(&cli, &scene, &outputs, outcome, provenance)
+    write(
+        &cli,
+        &scene,
+        &outputs,
+        outcome,
+        provenance,
+        decision.as_ref(),
+    )
 }
 
 /// Stages every moment's scene and the history, and renames them into place together.
@@ -201,8 +230,16 @@ fn write(
     outputs: &[PathBuf],
     outcome: Outcome,
     provenance: ThermalProvenance,
+    decision: Option<&ThermalDecision>,
 ) -> miette::Result<()> {
     let mut staged = irsig_cli::Staged::new();
+    if let (Some(path), Some(d)) = (&cli.decision_out, decision) {
+        d.validate()
+            .map_err(|e| miette!("the decision would break its own rules: {e}"))?;
+        let text = irsig_formats::canonical::to_ron_pretty(d)
+            .map_err(|e| miette!("cannot write the decision: {e}"))?;
+        staged.stage(path, text.as_bytes())?;
+    }
     for ((path, surface), ground) in outputs
         .iter()
         .zip(&outcome.surface_k)

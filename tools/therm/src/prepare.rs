@@ -9,7 +9,7 @@ use irsig_tracer::exposure::{Exposure, ExposureOptions, ViewFactors};
 use miette::miette;
 
 use crate::Cli;
-use crate::environment::{Environment, Site};
+use crate::environment::{Environment, Site, SkyLongwave};
 use crate::models::{Models, Switch};
 use crate::setup::{self, MaterialModel};
 use crate::solve::{self, Ground, Scenario, Settings};
@@ -19,27 +19,52 @@ const MAX_HELD_K: f64 = 3000.0;
 /// The most heat deposited behind a facet, W/m².
 const MAX_HEAT_W_M2: f64 = 1e5;
 
-/// The scene resolved for the solver.
+/// The scene resolved for the solver: what does not change with the models' settings.
 #[derive(Debug)]
 pub struct Prepared<'a> {
-    scene: &'a RawScene,
-    exposure: Exposure,
-    views: ViewFactors,
-    models: Vec<MaterialModel>,
-    slot: Vec<Option<usize>>,
+    pub(crate) scene: &'a RawScene,
+    materials: &'a MaterialLibrary,
+    ground_material: Option<String>,
+    pub(crate) exposure: Exposure,
+    solved: Vec<bool>,
     held_k: Vec<Option<f64>>,
     heat_w_m2: Vec<f64>,
+    ground_albedo: f64,
+    pub(crate) environment: Environment<'a>,
+    seed: u64,
+}
+
+/// What the models' settings make of the materials: each solved material's wall and
+/// surface, each facet's slot among them, the facets' optics and the ground's model.
+#[derive(Debug)]
+pub(crate) struct Walls {
+    models: Vec<MaterialModel>,
+    slot: Vec<Option<usize>>,
     optics: Vec<(f64, f64)>,
     ground: Option<MaterialModel>,
-    ground_albedo: f64,
-    environment: Environment<'a>,
+}
+
+impl Walls {
+    /// Facet `i`'s material model's slot, or `None` when it is held.
+    pub(crate) fn slot_of(&self, i: usize) -> Option<usize> {
+        self.slot[i]
+    }
+
+    /// The mean number of nodes of the walls of `facets` (a held facet's is 0).
+    pub(crate) fn mean_nodes(&self, facets: &[u32]) -> f64 {
+        let total: usize = facets
+            .iter()
+            .map(|&f| self.slot[f as usize].map_or(0, |s| self.models[s].wall.nodes()))
+            .sum();
+        total as f64 / facets.len().max(1) as f64
+    }
 }
 
 /// What a run gives: each moment's surface temperatures and the ground's, and the history
 /// when asked for.
 #[derive(Debug)]
 pub struct Outcome {
-    /// Per moment, every facet's surface temperature, K.
+    /// Per moment, every stepped facet's surface temperature, K.
     pub surface_k: Vec<Vec<f64>>,
     /// Per moment, the ground's temperature, when it is solved.
     pub ground_k: Vec<Option<f64>>,
@@ -49,9 +74,39 @@ pub struct Outcome {
     pub start_s: f64,
 }
 
+/// One run: which facets it steps through which grid, with what walls, views and settings.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Run<'r> {
+    /// The facets stepped.
+    pub stepped: Stepped<'r>,
+    /// Their views.
+    pub views: &'r ViewFactors,
+    /// The walls.
+    pub walls: &'r Walls,
+    /// The settings.
+    pub models: &'r Models,
+    /// The steps.
+    pub grid: &'r Grid,
+    /// The walls' start above the air's temperature, K.
+    pub offset_k: f64,
+    /// The sky's longwave source.
+    pub sky: SkyLongwave,
+    /// Keep every step's temperatures from the first moment.
+    pub history: bool,
+    /// Show a progress bar.
+    pub progress: bool,
+}
+
+/// Which facets a run steps, and who stands in for the others.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Stepped<'s> {
+    pub facets: &'s [u32],
+    pub proxy: &'s [u32],
+}
+
 impl<'a> Prepared<'a> {
-    /// Resolves the scene: held and heated facets, every solved facet's material model, the
-    /// ground, what each facet sees (view factors, once), and the weather's sources.
+    /// Resolves the scene: held and heated facets, the ground, and the weather's sources;
+    /// checks that every solved facet's material can be modelled.
     ///
     /// # Errors
     /// Bad flags, a material without thermal properties, a weather record without the
@@ -59,7 +114,7 @@ impl<'a> Prepared<'a> {
     pub fn new(
         cli: &Cli,
         scene: &'a RawScene,
-        materials: &MaterialLibrary,
+        materials: &'a MaterialLibrary,
         weather: &'a Weather,
         weather_name: &str,
         site: Site,
@@ -73,27 +128,26 @@ impl<'a> Prepared<'a> {
             "W/m2",
             (-MAX_HEAT_W_M2, MAX_HEAT_W_M2),
         )?;
-        let heat_w_m2: Vec<f64> = heat.iter().map(|h| h.unwrap_or(0.0)).collect();
-        let solved: Vec<bool> = held_k.iter().map(Option::is_none).collect();
-        let by_id = setup::material_models(
+        let (sunlight, sky) = Environment::sources(weather, weather_name)?;
+        let mut prepared = Self {
             scene,
             materials,
-            &solved,
-            &cli.models.discretisation(),
-            cli.models.convection(),
-        )?;
-        let (models, slot) = slots(scene, &solved, by_id);
-        let optics = optics(scene, materials, &models, &slot);
-        let ground = match &cli.ground_material {
-            Some(name) => Some(setup::ground_model(
-                materials,
-                name,
-                &cli.models.discretisation(),
-                cli.models.convection(),
-            )?),
-            None => None,
+            ground_material: cli.ground_material.clone(),
+            exposure: Exposure::new(scene).map_err(|e| miette!("{e}"))?,
+            solved: held_k.iter().map(Option::is_none).collect(),
+            held_k,
+            heat_w_m2: heat.iter().map(|h| h.unwrap_or(0.0)).collect(),
+            ground_albedo: 0.2,
+            environment: Environment {
+                weather,
+                site,
+                sunlight,
+                sky,
+            },
+            seed: cli.seed,
         };
-        let ground_albedo = match (cli.ground_albedo, &ground) {
+        let walls = prepared.walls(&cli.models)?;
+        prepared.ground_albedo = match (cli.ground_albedo, &walls.ground) {
             (Some(a), _) if a.is_finite() && (0.0..=1.0).contains(&a) => a,
             (Some(a), _) => {
                 return Err(irsig_cli::usage_error(format!(
@@ -103,35 +157,56 @@ impl<'a> Prepared<'a> {
             (None, Some(g)) => 1.0 - g.surface.solar_absorptance,
             (None, None) => 0.2,
         };
-        let (sunlight, sky) = Environment::sources(weather, weather_name)?;
-        let exposure = Exposure::new(scene).map_err(|e| miette!("{e}"))?;
-        let views = exposure
-            .views(
-                cli.models.hemisphere_rays,
-                cli.seed,
-                ExposureOptions {
-                    samples_per_side: cli.models.shadow_samples,
-                },
-            )
-            .map_err(|e| miette!("{e}"))?;
-        Ok(Self {
-            scene,
-            exposure,
-            views,
-            models,
+        Ok(prepared)
+    }
+
+    /// The walls and surfaces the settings make.
+    ///
+    /// # Errors
+    /// A material that cannot be modelled (named).
+    pub(crate) fn walls(&self, models: &Models) -> miette::Result<Walls> {
+        let discretisation = models.discretisation();
+        let by_id = setup::material_models(
+            self.scene,
+            self.materials,
+            &self.solved,
+            &discretisation,
+            models.convection(),
+        )?;
+        let (materials, slot) = slots(self.scene, &self.solved, by_id);
+        let optics = optics(self.scene, self.materials, &materials, &slot);
+        let ground = match &self.ground_material {
+            Some(name) => Some(setup::ground_model(
+                self.materials,
+                name,
+                &discretisation,
+                models.convection(),
+            )?),
+            None => None,
+        };
+        Ok(Walls {
+            models: materials,
             slot,
-            held_k,
-            heat_w_m2,
             optics,
             ground,
-            ground_albedo,
-            environment: Environment {
-                weather,
-                site,
-                sunlight,
-                sky,
-            },
         })
+    }
+
+    /// What each of `facets`' hemispheres holds, by the settings' rays and sample points.
+    ///
+    /// # Errors
+    /// More view factors than fit.
+    pub(crate) fn views(&self, facets: &[u32], models: &Models) -> miette::Result<ViewFactors> {
+        self.exposure
+            .views(
+                facets,
+                models.hemisphere_rays,
+                self.seed,
+                ExposureOptions {
+                    samples_per_side: models.shadow_samples,
+                },
+            )
+            .map_err(|e| miette!("{e}"))
     }
 
     /// Where the sky's longwave came from, in words.
@@ -140,15 +215,15 @@ impl<'a> Prepared<'a> {
         format!(
             "sunlight: the weather file's dni and dhi columns; sky longwave: {}",
             match self.environment.sky {
-                crate::environment::SkyLongwave::Weather => "the weather file's column",
-                crate::environment::SkyLongwave::Prata =>
-                    "Prata (1996) clear sky with Crawford & Duchon (1999) clouds",
+                SkyLongwave::Weather => "the weather file's column",
+                SkyLongwave::Prata => "Prata (1996) clear sky with Crawford & Duchon (1999) clouds",
             }
         )
     }
 
-    /// Solves from the spin-up's start to the last moment, keeping each moment's
-    /// temperatures and, when `history` is asked for, every step's from the first moment.
+    /// Solves every facet from the spin-up's start to the last moment, keeping each
+    /// moment's temperatures and, when `history` is asked for, every step's from the first
+    /// moment.
     ///
     /// # Errors
     /// Moments off the step's grid, a history too large to hold, a time outside the
@@ -164,18 +239,61 @@ impl<'a> Prepared<'a> {
                 irsig_model::history::MAX_HISTORY_VALUES
             )));
         }
+        let all: Vec<u32> = (0..facets as u32).collect();
+        let walls = self.walls(models)?;
+        let views = self.views(&all, models)?;
+        let stepped = Stepped {
+            facets: &all,
+            proxy: &all,
+        };
+        self.run_on(&Run {
+            stepped,
+            views: &views,
+            walls: &walls,
+            models,
+            grid: &grid,
+            offset_k: 0.0,
+            sky: self.environment.sky,
+            history,
+            progress: true,
+        })
+    }
+
+    /// Runs `run`, keeping each moment's temperatures and, when it asks, every step's from
+    /// the first moment.
+    ///
+    /// # Errors
+    /// A time outside the weather, a facet whose balance fails.
+    pub(crate) fn run_on(&self, run: &Run<'_>) -> miette::Result<Outcome> {
+        let Run {
+            stepped,
+            views,
+            walls,
+            models,
+            grid,
+            offset_k,
+            sky,
+            history,
+            progress,
+        } = *run;
+        let environment = Environment {
+            sky,
+            ..self.environment
+        };
         let scenario = Scenario {
             scene: self.scene,
             exposure: &self.exposure,
-            views: &self.views,
-            models: &self.models,
-            slot: &self.slot,
+            facets: stepped.facets,
+            proxy: stepped.proxy,
+            views,
+            models: &walls.models,
+            slot: &walls.slot,
             held_k: &self.held_k,
             heat_w_m2: &self.heat_w_m2,
-            optics: &self.optics,
-            environment: &self.environment,
+            optics: &walls.optics,
+            environment: &environment,
             ground: Ground {
-                model: self.ground.as_ref(),
+                model: walls.ground.as_ref(),
                 albedo: self.ground_albedo,
             },
         };
@@ -183,37 +301,44 @@ impl<'a> Prepared<'a> {
             time_step: models.time_step(),
             shadow: models.shadow(),
             exchange: models.exchange == Switch::On,
+            initial_offset_k: offset_k,
         };
+        let n = stepped.facets.len();
+        let rows = grid.last_index - grid.first_index + 1;
         let mut outcome = Outcome {
             surface_k: Vec::new(),
             ground_k: Vec::new(),
-            history: history.then(|| (Vec::new(), Vec::with_capacity(rows * facets))),
+            history: history.then(|| (Vec::new(), Vec::with_capacity(rows * n))),
             start_s: grid.start_s,
         };
-        let bar = irsig_cli::progress_bar(grid.last_index as u64, "therm");
+        let bar = progress.then(|| irsig_cli::progress_bar(grid.last_index as u64, "therm"));
         solve::run(
             &scenario,
             &settings,
             grid.start_s,
             grid.last_index,
             |k, t, surface, ground_k| {
-                bar.set_position(k as u64);
-                if k >= grid.first_index {
-                    if let Some((times, table)) = &mut outcome.history {
-                        times.push(t);
-                        table.extend(surface.iter().map(|&s| s as f32));
-                    }
+                if let Some(bar) = &bar {
+                    bar.set_position(k as u64);
+                }
+                if k >= grid.first_index
+                    && let Some((times, table)) = &mut outcome.history
+                {
+                    times.push(t);
+                    table.extend(surface.iter().map(|&s| s as f32));
                 }
                 if grid.moments.contains(&k) {
                     outcome.surface_k.push(surface.to_vec());
                     outcome
                         .ground_k
-                        .push(self.ground.is_some().then_some(ground_k));
+                        .push(walls.ground.is_some().then_some(ground_k));
                 }
                 Ok(())
             },
         )?;
-        bar.finish_and_clear();
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
         Ok(outcome)
     }
 }
@@ -271,18 +396,22 @@ fn optics(
 
 /// The steps: from the spin-up's start, every `step_s`, through every moment.
 #[derive(Debug)]
-struct Grid {
-    start_s: f64,
+pub(crate) struct Grid {
+    pub start_s: f64,
     /// The step index of the first moment.
-    first_index: usize,
+    pub first_index: usize,
     /// The step index of the last moment.
-    last_index: usize,
+    pub last_index: usize,
     /// The step index of every moment.
-    moments: Vec<usize>,
+    pub moments: Vec<usize>,
 }
 
 impl Grid {
-    fn new(models: &Models, times: &[f64]) -> miette::Result<Self> {
+    /// The grid of `models`' step and spin-up through `times`.
+    ///
+    /// # Errors
+    /// A moment off the grid from the first.
+    pub(crate) fn new(models: &Models, times: &[f64]) -> miette::Result<Self> {
         let step = models.step_s;
         let first = times[0];
         let spin = (models.spin_up_h * 3600.0 / step).ceil() as usize;

@@ -40,6 +40,9 @@ pub struct Settings {
     pub shadow: ExposureOptions,
     /// Whether facets exchange sunlight and longwave with each other.
     pub exchange: bool,
+    /// The walls' start above the air's temperature, K: 0 in a run; the pilot's measure
+    /// of what the start still weighs after the spin-up.
+    pub initial_offset_k: f64,
 }
 
 /// The ground beyond the scene.
@@ -52,25 +55,33 @@ pub struct Ground<'a> {
     pub albedo: f64,
 }
 
-/// Everything the loop reads.
+/// Everything the loop reads. The loop steps a list of the scene's facets (all of them, or
+/// the tolerance pilot's sample); the views are in that list's order, the other per-facet
+/// lists in the scene's, and a facet seen that is not stepped is stood in for by one that
+/// is (`proxy`).
 #[derive(Debug)]
 pub struct Scenario<'a> {
     /// The scene.
     pub scene: &'a RawScene,
     /// Its BVH, for the shadow rays.
     pub exposure: &'a Exposure,
-    /// What each facet's hemisphere holds.
+    /// The facets stepped: their indices in the scene.
+    pub facets: &'a [u32],
+    /// Per facet of the scene: the stepped facet (its place in `facets`) whose state it
+    /// takes when another facet sees it; itself when it is stepped.
+    pub proxy: &'a [u32],
+    /// What each stepped facet's hemisphere holds.
     pub views: &'a ViewFactors,
     /// The material model of each solved facet's material, by slot.
     pub models: &'a [MaterialModel],
-    /// Per facet: its material model's slot, or `None` when it is held.
+    /// Per facet of the scene: its material model's slot, or `None` when it is held.
     pub slot: &'a [Option<usize>],
-    /// Per facet: the temperature it is held at, if it is.
+    /// Per facet of the scene: the temperature it is held at, if it is.
     pub held_k: &'a [Option<f64>],
-    /// Per facet: heat deposited at its wall's back, W/m².
+    /// Per facet of the scene: heat deposited at its wall's back, W/m².
     pub heat_w_m2: &'a [f64],
-    /// Per facet: solar absorptance and broadband emissivity (a held facet's from its
-    /// material where it has a thermal record, else 1 and 1: a blackbody).
+    /// Per facet of the scene: solar absorptance and broadband emissivity (a held facet's
+    /// from its material where it has a thermal record, else 1 and 1: a blackbody).
     pub optics: &'a [(f64, f64)],
     /// The weather, the sun and the sky.
     pub environment: &'a Environment<'a>,
@@ -110,7 +121,7 @@ impl Scenario<'_> {
     }
 
     fn orientation(&self, i: usize, moment: &Moment) -> Orientation {
-        let n = self.exposure.frame(i).normal;
+        let n = self.exposure.frame(self.facets[i] as usize).normal;
         let horizontal = (n.x * n.x + n.y * n.y).sqrt();
         // EnergyPlus's rule: windward when the wind comes from within 100° of the
         // surface's outward direction; a roof (nearly horizontal) is windward, as is any
@@ -137,7 +148,7 @@ impl Scenario<'_> {
         prev: Previous<'_>,
         settings: &Settings,
     ) -> Loads {
-        let n = self.exposure.frame(i).normal;
+        let n = self.exposure.frame(self.facets[i] as usize).normal;
         let direct = moment.to_sun.map_or(0.0, |s| {
             let cos_i = n.x * s[0] + n.y * s[1] + n.z * s[2];
             moment.dni_w_m2 * cos_i.max(0.0) * f64::from(lit)
@@ -151,10 +162,10 @@ impl Scenario<'_> {
         let mut longwave = moment.longwave_down_w_m2 * f_sky + ground_lw * f_terrain;
         if settings.exchange {
             for (&j, &f) in seen.iter().zip(share) {
-                let j = j as usize;
-                let (alpha, eps) = self.optics[j];
-                let their = &prev.loads[j];
-                let t = prev.surface_k[j];
+                let (alpha, eps) = self.optics[j as usize];
+                let k = self.proxy[j as usize] as usize;
+                let their = &prev.loads[k];
+                let t = prev.surface_k[k];
                 shortwave += f64::from(f) * (1.0 - alpha) * their.shortwave_w_m2;
                 longwave += f64::from(f)
                     * (eps * STEFAN_BOLTZMANN_W_M2_K4 * t.powi(4)
@@ -172,7 +183,7 @@ impl Scenario<'_> {
             dew_point_k: moment.dew_point_k,
             pressure_pa: moment.pressure_pa,
             wind_speed_m_s: moment.wind_speed_m_s,
-            source_w_m2: self.heat_w_m2[i],
+            source_w_m2: self.heat_w_m2[self.facets[i] as usize],
         }
     }
 
@@ -201,10 +212,14 @@ impl Scenario<'_> {
     /// depth (as DIRSIG's THERM starts), held facets at their temperature, and the loads of
     /// that moment with every facet at the air's temperature.
     fn start(&self, moment: &Moment, lit: &[f32], settings: &Settings) -> State {
-        let n = self.scene.facets.len();
+        let n = self.facets.len();
         let stride = self.stride();
-        let t0 = moment.air_temperature_k;
-        let surface_k: Vec<f64> = (0..n).map(|i| self.held_k[i].unwrap_or(t0)).collect();
+        let t0 = moment.air_temperature_k + settings.initial_offset_k;
+        let surface_k: Vec<f64> = self
+            .facets
+            .iter()
+            .map(|&g| self.held_k[g as usize].unwrap_or(t0))
+            .collect();
         let ground_nodes = self
             .ground
             .model
@@ -255,7 +270,8 @@ impl Scenario<'_> {
             .enumerate()
             .map_init(Scratch::new, |scratch, (i, temps)| {
                 let loads = self.loads(i, after, lit[i], prev, settings);
-                let surface_k = match (self.held_k[i], self.slot[i]) {
+                let global = self.facets[i] as usize;
+                let surface_k = match (self.held_k[global], self.slot[global]) {
                     (Some(t), _) => t,
                     (None, Some(slot)) => {
                         let m = &self.models[slot];
@@ -315,14 +331,15 @@ impl Scenario<'_> {
     }
 
     fn facet_error(&self, i: usize, e: &ThermalError) -> miette::Report {
-        let f = &self.scene.facets[i];
+        let global = self.facets[i] as usize;
+        let f = &self.scene.facets[global];
         let object = self
             .scene
             .objects
             .get(f.object as usize)
             .map_or("?", String::as_str);
-        let material = self.slot[i].map_or("?", |s| self.models[s].name.as_str());
-        miette!("facet {i} (object `{object}`, material `{material}`): {e}")
+        let material = self.slot[global].map_or("?", |s| self.models[s].name.as_str());
+        miette!("facet {global} (object `{object}`, material `{material}`): {e}")
     }
 }
 
@@ -348,8 +365,10 @@ pub fn run(
     mut observe: impl FnMut(usize, f64, &[f64], f64) -> miette::Result<()>,
 ) -> miette::Result<()> {
     let lit_at = |m: &Moment| match m.to_sun {
-        Some(s) => scenario.exposure.sunlit_fractions(s, settings.shadow),
-        None => vec![0.0; scenario.scene.facets.len()],
+        Some(s) => scenario
+            .exposure
+            .sunlit_fractions(scenario.facets, s, settings.shadow),
+        None => vec![0.0; scenario.facets.len()],
     };
     let first = scenario.environment.at(start_s)?;
     let mut state = scenario.start(&first, &lit_at(&first), settings);

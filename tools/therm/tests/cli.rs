@@ -343,3 +343,85 @@ fn times_off_the_grid_or_outside_the_weather_are_refused() {
     );
     assert!(!dir.path().join("t.raw").exists());
 }
+
+#[test]
+fn a_tolerance_is_kept_against_the_reference_settings_on_every_facet() {
+    // The guarantee checked from outside the pilot: the scene traced with the settings the
+    // tolerance chose, against the same scene with every model at its most accurate
+    // setting, facet by facet.
+    let dir = tempfile::tempdir().unwrap();
+    let (s, m, w) = (
+        scene(dir.path()),
+        materials(dir.path(), true),
+        weather(dir.path()),
+    );
+    let decision = dir.path().join("d.ron");
+    let common = |cmd: &mut Command| {
+        cmd.args([
+            &s,
+            "--materials",
+            &m,
+            "--weather",
+            &w,
+            "--at",
+            "2026-07-15T12:00Z",
+        ])
+        .args(["--latitude-deg", "30", "--longitude-deg", "0"]);
+    };
+    let mut cmd = therm();
+    common(&mut cmd);
+    let out = cmd
+        .args(["--tolerance", "0.3", "--decision-out"])
+        .arg(&decision)
+        .arg("-o")
+        .arg(dir.path().join("chosen"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("--tolerance 0.3 K"),
+        "{}",
+        stderr(&out)
+    );
+    let text = std::fs::read_to_string(&decision).unwrap();
+    let d: irsig_model::thermal_decision::ThermalDecision =
+        irsig_formats::canonical::from_ron_as("d.ron", &text, "decision").unwrap();
+    assert!(d.measured_p99_k <= 0.3, "{d:?}");
+    let spin = d
+        .models
+        .iter()
+        .find(|c| c.model == "spin-up")
+        .unwrap()
+        .reference
+        .trim_end_matches(" h")
+        .to_owned();
+    let mut cmd = therm();
+    common(&mut cmd);
+    let out = cmd
+        .args([
+            "--step-s",
+            "60",
+            "--scheme",
+            "tr-bdf2",
+            "--first-cell-mm",
+            "0.25",
+        ])
+        .args([
+            "--shadow-samples",
+            "8",
+            "--hemisphere-rays",
+            "1024",
+            "--spin-up-h",
+            &spin,
+        ])
+        .arg("-o")
+        .arg(dir.path().join("reference"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let chosen = temperatures(&dir.path().join("chosen.raw"));
+    let reference = temperatures(&dir.path().join("reference.raw"));
+    for (i, (a, b)) in chosen.iter().zip(&reference).enumerate() {
+        assert!((a - b).abs() <= 0.3, "facet {i}: {a} against {b}");
+    }
+}
