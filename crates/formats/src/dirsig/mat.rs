@@ -1,7 +1,9 @@
 //! DIRSIG classic `.mat`: material entries, nested `NAME { … }` blocks of `KEY = VALUE`
-//! lines. What irsig reads of an entry: `ID`, `NAME`, and in
+//! lines. What irsig reads of an entry: `ID`, `NAME`, in
 //! `SURFACE_PROPERTIES { EMISSIVITY_PROP { … } }` the `FILENAME` of its `.ems` and its
-//! `SPECULAR_FRACTION`; everything else (solvers, thermal properties) is skipped.
+//! `SPECULAR_FRACTION`, and `TEMP_SOLVER_NAME` with the `KEY = VALUE` lines of its
+//! `TEMP_SOLVER { … }` block, as written (`dirsig::therm` reads a `Therm` block's numbers);
+//! everything else (the radiometry solver, other properties) is skipped.
 //!
 //! ```text
 //! MATERIAL_ENTRY {
@@ -45,18 +47,35 @@ pub struct Entry {
     pub emissivity_file: Option<Located<String>>,
     /// `EMISSIVITY_PROP`'s `SPECULAR_FRACTION`, if any, 0 to 1.
     pub specular_fraction: Option<f64>,
+    /// `TEMP_SOLVER_NAME` and the `TEMP_SOLVER` block, if the entry has either.
+    pub temp_solver: Option<TempSolver>,
     /// Where the entry starts.
     pub position: Position,
 }
 
-/// An entry being read: where it starts, `ID`, `NAME`, `FILENAME`, `SPECULAR_FRACTION`.
-type Partial = (
-    Position,
-    Option<Located<u64>>,
-    Option<String>,
-    Option<Located<String>>,
-    Option<f64>,
-);
+/// An entry's temperature solver: its name and its block's lines, as written.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TempSolver {
+    /// `TEMP_SOLVER_NAME` (`Therm`, `Null`, `DataDriven`, ...), if given.
+    pub name: Option<Located<String>>,
+    /// The `TEMP_SOLVER { … }` block's `KEY = VALUE` lines in file order: each key and its
+    /// value (the rest of the line, trimmed). Nested blocks inside it are skipped.
+    pub values: Vec<(Located<String>, Located<String>)>,
+    /// The byte range of the `TEMP_SOLVER {` line, if the block is there.
+    pub block: Option<(usize, usize)>,
+}
+
+/// An entry being read.
+#[derive(Debug, Default)]
+struct Partial {
+    position: Option<Position>,
+    span: Option<(usize, usize)>,
+    id: Option<Located<u64>>,
+    name: Option<String>,
+    emissivity_file: Option<Located<String>>,
+    specular_fraction: Option<f64>,
+    temp_solver: Option<TempSolver>,
+}
 
 /// Reads a DIRSIG `.mat`.
 ///
@@ -71,7 +90,6 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
     let mut entries = Vec::new();
     let mut stack: Vec<String> = Vec::new();
     let mut current: Option<Partial> = None;
-    let mut entry_span = None;
     // The keys irsig reads that the open entry has given, with their lines.
     let mut seen: Vec<(String, usize)> = Vec::new();
     while let Some(line) = lines.next_line() {
@@ -84,19 +102,30 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                 ));
             };
             if stack.is_empty() && block == "MATERIAL_ENTRY" {
-                let Some((pos, id, name, file_name, specular)) = current.take() else {
+                let Some(partial) = current.take() else {
                     continue;
                 };
-                let span = entry_span.take().unwrap_or(line.span);
-                let id = id.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no ID"))?;
-                let name =
-                    name.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no NAME"))?;
+                let (start, len) = partial
+                    .span
+                    .unwrap_or_else(|| (line.span.location_offset(), line.span.fragment().len()));
+                let missing = |what: &str| {
+                    ParseError::at_span(
+                        file,
+                        text,
+                        start,
+                        len,
+                        format!("this MATERIAL_ENTRY has no {what}"),
+                    )
+                };
+                let id = partial.id.ok_or_else(|| missing("ID"))?;
+                let name = partial.name.ok_or_else(|| missing("NAME"))?;
                 entries.push(Entry {
                     id,
                     name,
-                    emissivity_file: file_name,
-                    specular_fraction: specular,
-                    position: pos,
+                    emissivity_file: partial.emissivity_file,
+                    specular_fraction: partial.specular_fraction,
+                    temp_solver: partial.temp_solver,
+                    position: partial.position.unwrap_or_else(|| position(line.span)),
                 });
             }
             continue;
@@ -113,9 +142,24 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                         format!("expected MATERIAL_ENTRY {{, found `{body}`"),
                     ));
                 }
-                current = Some((position(line.span), None, None, None, None));
-                entry_span = Some(line.span);
+                current = Some(Partial {
+                    position: Some(position(line.span)),
+                    span: Some((line.span.location_offset(), line.span.fragment().len())),
+                    ..Partial::default()
+                });
                 seen.clear();
+            } else if stack.len() == 1
+                && block == "TEMP_SOLVER"
+                && let Some(entry) = current.as_mut()
+            {
+                let solver = entry.temp_solver.get_or_insert_with(TempSolver::default);
+                if solver.block.is_some() {
+                    return Err(lines.error(
+                        line.span,
+                        "TEMP_SOLVER is given twice in this MATERIAL_ENTRY: which one is meant?",
+                    ));
+                }
+                solver.block = Some((line.span.location_offset(), line.span.fragment().len()));
             }
             stack.push(block.to_owned());
             continue;
@@ -143,7 +187,8 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         };
         let read = matches!(
             (path.as_slice(), key),
-            (["MATERIAL_ENTRY"], "ID" | "NAME")
+            (["MATERIAL_ENTRY"], "ID" | "NAME" | "TEMP_SOLVER_NAME")
+                | (["MATERIAL_ENTRY", "TEMP_SOLVER"], _)
                 | (
                     ["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"],
                     "FILENAME" | "SPECULAR_FRACTION"
@@ -166,7 +211,7 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         match (path.as_slice(), key) {
             (["MATERIAL_ENTRY"], "ID") => {
                 let id = lines.unsigned(vspan, "a material ID")?;
-                entry.1 = Some(Located {
+                entry.id = Some(Located {
                     value: id,
                     position: vpos,
                     span: vrange,
@@ -179,10 +224,39 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                         "expected a material name after `NAME =`, found nothing",
                     ));
                 }
-                entry.2 = Some(raw.to_owned());
+                entry.name = Some(raw.to_owned());
+            }
+            (["MATERIAL_ENTRY"], "TEMP_SOLVER_NAME") => {
+                entry
+                    .temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .name = Some(Located {
+                    value: raw.to_owned(),
+                    position: vpos,
+                    span: vrange,
+                });
+            }
+            (["MATERIAL_ENTRY", "TEMP_SOLVER"], _) => {
+                let kspan = line.span.take(key.len());
+                entry
+                    .temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .values
+                    .push((
+                        Located {
+                            value: key.to_owned(),
+                            position: position(kspan),
+                            span: (kspan.location_offset(), key.len()),
+                        },
+                        Located {
+                            value: raw.to_owned(),
+                            position: vpos,
+                            span: vrange,
+                        },
+                    ));
             }
             (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
-                entry.3 = Some(Located {
+                entry.emissivity_file = Some(Located {
                     value: raw.to_owned(),
                     position: vpos,
                     span: vrange,
@@ -196,7 +270,7 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                         format!("expected a specular fraction 0 to 1, found {f}"),
                     ));
                 }
-                entry.4 = Some(f);
+                entry.specular_fraction = Some(f);
             }
             _ => {}
         }
