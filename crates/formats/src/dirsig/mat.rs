@@ -23,7 +23,7 @@ use crate::ParseError;
 use crate::legacy::Position;
 use nom::Input;
 
-use crate::legacy::lex::{Lines, position};
+use crate::legacy::lex::{Line, Lines, Span, position};
 
 /// A value and where it is.
 #[derive(Debug, Clone, PartialEq)]
@@ -102,31 +102,9 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                 ));
             };
             if stack.is_empty() && block == "MATERIAL_ENTRY" {
-                let Some(partial) = current.take() else {
-                    continue;
-                };
-                let (start, len) = partial
-                    .span
-                    .unwrap_or_else(|| (line.span.location_offset(), line.span.fragment().len()));
-                let missing = |what: &str| {
-                    ParseError::at_span(
-                        file,
-                        text,
-                        start,
-                        len,
-                        format!("this MATERIAL_ENTRY has no {what}"),
-                    )
-                };
-                let id = partial.id.ok_or_else(|| missing("ID"))?;
-                let name = partial.name.ok_or_else(|| missing("NAME"))?;
-                entries.push(Entry {
-                    id,
-                    name,
-                    emissivity_file: partial.emissivity_file,
-                    specular_fraction: partial.specular_fraction,
-                    temp_solver: partial.temp_solver,
-                    position: partial.position.unwrap_or_else(|| position(line.span)),
-                });
+                if let Some(partial) = current.take() {
+                    entries.push(partial.finish(file, text, line)?);
+                }
             }
             continue;
         }
@@ -180,7 +158,6 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         let start = line.span.location_offset() + body.len() - value.trim_start().len();
         let vspan = line.span.take_from(start - line.span.location_offset());
         let vspan = vspan.take(raw.len());
-        let (vpos, vrange) = (position(vspan), (start, raw.len()));
         let path: Vec<&str> = stack.iter().map(String::as_str).collect();
         let Some(entry) = current.as_mut() else {
             continue;
@@ -208,72 +185,7 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
             }
             seen.push((full, position(line.span).line));
         }
-        match (path.as_slice(), key) {
-            (["MATERIAL_ENTRY"], "ID") => {
-                let id = lines.unsigned(vspan, "a material ID")?;
-                entry.id = Some(Located {
-                    value: id,
-                    position: vpos,
-                    span: vrange,
-                });
-            }
-            (["MATERIAL_ENTRY"], "NAME") => {
-                if raw.is_empty() {
-                    return Err(lines.error(
-                        line.span,
-                        "expected a material name after `NAME =`, found nothing",
-                    ));
-                }
-                entry.name = Some(raw.to_owned());
-            }
-            (["MATERIAL_ENTRY"], "TEMP_SOLVER_NAME") => {
-                entry
-                    .temp_solver
-                    .get_or_insert_with(TempSolver::default)
-                    .name = Some(Located {
-                    value: raw.to_owned(),
-                    position: vpos,
-                    span: vrange,
-                });
-            }
-            (["MATERIAL_ENTRY", "TEMP_SOLVER"], _) => {
-                let kspan = line.span.take(key.len());
-                entry
-                    .temp_solver
-                    .get_or_insert_with(TempSolver::default)
-                    .values
-                    .push((
-                        Located {
-                            value: key.to_owned(),
-                            position: position(kspan),
-                            span: (kspan.location_offset(), key.len()),
-                        },
-                        Located {
-                            value: raw.to_owned(),
-                            position: vpos,
-                            span: vrange,
-                        },
-                    ));
-            }
-            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
-                entry.emissivity_file = Some(Located {
-                    value: raw.to_owned(),
-                    position: vpos,
-                    span: vrange,
-                });
-            }
-            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "SPECULAR_FRACTION") => {
-                let f = lines.real(vspan, "a specular fraction")?;
-                if !(0.0..=1.0).contains(&f) {
-                    return Err(lines.error(
-                        vspan,
-                        format!("expected a specular fraction 0 to 1, found {f}"),
-                    ));
-                }
-                entry.specular_fraction = Some(f);
-            }
-            _ => {}
-        }
+        entry.set(&lines, &path, key, raw, line, vspan)?;
     }
     if let Some(open) = stack.last() {
         return Err(lines.eof_error(&format!("expected `}}` closing {open}, found end of file")));
@@ -284,6 +196,101 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         ));
     }
     Ok(entries)
+}
+
+impl Partial {
+    /// The entry, once its block closes at `line`: refused without an `ID` or a `NAME`.
+    fn finish(self, file: &str, text: &str, line: Line<'_>) -> Result<Entry, ParseError> {
+        let (start, len) = self
+            .span
+            .unwrap_or_else(|| (line.span.location_offset(), line.span.fragment().len()));
+        let missing = |what: &str| {
+            ParseError::at_span(
+                file,
+                text,
+                start,
+                len,
+                format!("this MATERIAL_ENTRY has no {what}"),
+            )
+        };
+        Ok(Entry {
+            id: self.id.ok_or_else(|| missing("ID"))?,
+            name: self.name.ok_or_else(|| missing("NAME"))?,
+            emissivity_file: self.emissivity_file,
+            specular_fraction: self.specular_fraction,
+            temp_solver: self.temp_solver,
+            position: self.position.unwrap_or_else(|| position(line.span)),
+        })
+    }
+
+    /// Keeps `key = raw` (on `line`, the value at `vspan`) where the block `path` makes it
+    /// one irsig reads; skips it otherwise.
+    fn set(
+        &mut self,
+        lines: &Lines<'_>,
+        path: &[&str],
+        key: &str,
+        raw: &str,
+        line: Line<'_>,
+        vspan: Span<'_>,
+    ) -> Result<(), ParseError> {
+        let located = |value: String| Located {
+            value,
+            position: position(vspan),
+            span: (vspan.location_offset(), raw.len()),
+        };
+        match (path, key) {
+            (["MATERIAL_ENTRY"], "ID") => {
+                let id = lines.unsigned(vspan, "a material ID")?;
+                self.id = Some(Located {
+                    value: id,
+                    position: position(vspan),
+                    span: (vspan.location_offset(), raw.len()),
+                });
+            }
+            (["MATERIAL_ENTRY"], "NAME") => {
+                if raw.is_empty() {
+                    return Err(lines.error(
+                        line.span,
+                        "expected a material name after `NAME =`, found nothing",
+                    ));
+                }
+                self.name = Some(raw.to_owned());
+            }
+            (["MATERIAL_ENTRY"], "TEMP_SOLVER_NAME") => {
+                self.temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .name = Some(located(raw.to_owned()));
+            }
+            (["MATERIAL_ENTRY", "TEMP_SOLVER"], _) => {
+                let kspan = line.span.take(key.len());
+                let key_at = Located {
+                    value: key.to_owned(),
+                    position: position(kspan),
+                    span: (kspan.location_offset(), key.len()),
+                };
+                self.temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .values
+                    .push((key_at, located(raw.to_owned())));
+            }
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
+                self.emissivity_file = Some(located(raw.to_owned()));
+            }
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "SPECULAR_FRACTION") => {
+                let f = lines.real(vspan, "a specular fraction")?;
+                if !(0.0..=1.0).contains(&f) {
+                    return Err(lines.error(
+                        vspan,
+                        format!("expected a specular fraction 0 to 1, found {f}"),
+                    ));
+                }
+                self.specular_fraction = Some(f);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]

@@ -162,9 +162,9 @@ pub fn thermal(
             ))
         })
     };
-    let (specific_heat, c_at) = required("SPECIFIC_HEAT")?;
-    let (density, rho_at) = required("MASS_DENSITY")?;
-    let (conductivity, k_at) = required("THERMAL_CONDUCTIVITY")?;
+    let (specific_heat, _) = required("SPECIFIC_HEAT")?;
+    let (density, _) = required("MASS_DENSITY")?;
+    let (conductivity, _) = required("THERMAL_CONDUCTIVITY")?;
     let (thickness_cm, d_at) = required("THICKNESS")?;
     if thickness_cm == 0.0 {
         return Err(at(
@@ -216,25 +216,23 @@ pub fn thermal(
     };
     properties.validate("thermal").map_err(|e| {
         let field = e.path.rsplit('.').next().unwrap_or_default();
-        let (value, key): (&Located<String>, &str) = match field {
-            "thickness_m" => (d_at, "THICKNESS"),
-            "conductivity_w_m_k" => (k_at, "THERMAL_CONDUCTIVITY"),
-            "density_kg_m3" => (rho_at, "MASS_DENSITY"),
-            "specific_heat_j_kg_k" => (c_at, "SPECIFIC_HEAT"),
-            "solar_absorptance" => match absorptance {
-                Some((_, at)) => (at, "the solar absorptance"),
-                None => return block(format!("{e}")),
-            },
-            "thermal_emissivity" => match emissivity {
-                Some((_, at)) => (at, "THERMAL_EMISSIVITY"),
-                None => return block(format!("{e}")),
-            },
-            _ => return block(format!("the back boundary given: {e}")),
+        let key = match field {
+            "thickness_m" => "THICKNESS",
+            "conductivity_w_m_k" => "THERMAL_CONDUCTIVITY",
+            "density_kg_m3" => "MASS_DENSITY",
+            "specific_heat_j_kg_k" => "SPECIFIC_HEAT",
+            "solar_absorptance" if get("SOLAR_ABSORPTION").is_some() => "SOLAR_ABSORPTION",
+            "solar_absorptance" => "VISIBLE_EMISSIVITY",
+            "thermal_emissivity" => "THERMAL_EMISSIVITY",
+            _ => "",
         };
-        at(
-            value,
-            format!("{key} {}: as {field} in SI, {}", value.value, e.kind),
-        )
+        match get(key) {
+            Some((_, value)) => at(
+                value,
+                format!("{key} {}: as {field} in SI, {}", value.value, e.kind),
+            ),
+            None => block(format!("the back boundary given: {e}")),
+        }
     })?;
     Ok(Some(properties))
 }
