@@ -60,6 +60,7 @@ mod scene;
 mod spectral;
 pub mod thermal;
 pub mod thermal_decision;
+pub mod time;
 pub mod truth;
 pub mod uncertainty;
 mod view;

@@ -119,8 +119,7 @@ impl Environment<'_> {
     /// A time outside the weather record, or a sun SPA cannot place.
     pub fn at(&self, time_s: f64) -> miette::Result<Moment> {
         let c = self.weather.at(time_s).map_err(|e| miette!("{e}"))?;
-        let utc = irsig_formats::time::format_utc(time_s)
-            .ok_or_else(|| miette!("time {time_s} s is outside the calendar"))?;
+        let utc = irsig_model::time::format_utc(time_s);
         let position = SunSpec::At {
             utc,
             latitude_deg: self.site.latitude_deg,

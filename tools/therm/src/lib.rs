@@ -182,7 +182,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     // the first moment unless told otherwise.
     let year = cli
         .weather_year
-        .or_else(|| irsig_formats::time::year_utc(times[0]));
+        .or_else(|| irsig_model::time::year_utc(times[0]));
     let weather = irsig_formats::weather::read(
         &weather_in.name,
         &weather_in.bytes,
@@ -306,7 +306,7 @@ fn output_paths(prefix: &Path, times: &[f64]) -> miette::Result<Vec<PathBuf>> {
     times
         .iter()
         .map(|&t| {
-            let stamp = irsig_formats::time::compact_utc(t).ok_or_else(|| {
+            let stamp = irsig_model::time::compact_utc(t).ok_or_else(|| {
                 irsig_cli::usage_error(format!("--at: time {t} s has no calendar date"))
             })?;
             let mut name = prefix.as_os_str().to_owned();

@@ -442,5 +442,5 @@ impl Grid {
 }
 
 fn fmt(t: f64) -> String {
-    irsig_formats::time::format_utc(t).unwrap_or_else(|| format!("{t} s"))
+    irsig_model::time::format_utc(t)
 }

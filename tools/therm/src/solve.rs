@@ -383,12 +383,7 @@ pub fn run(
         let moment = scenario.environment.at(t)?;
         scenario
             .advance(&mut state, &moment, &lit_at(&moment), settings)
-            .map_err(|e| {
-                miette!(
-                    "at {}: {e}",
-                    irsig_formats::time::format_utc(t).unwrap_or_default()
-                )
-            })?;
+            .map_err(|e| miette!("at {}: {e}", irsig_model::time::format_utc(t)))?;
         observe(k, t, &state.surface_k, scenario.ground_k(&state, &moment))?;
     }
     Ok(())
