@@ -113,7 +113,8 @@ pub struct Cli {
     )]
     pub altitude_m: f64,
     /// Hold every facet of an object at a temperature, OBJECT=K (a heated blackbody
-    /// panel); repeatable.
+    /// panel); repeatable. OBJECT is a placed object's name, or #N for the N-th (from 0)
+    /// where placements share a name.
     #[arg(long, value_name = "OBJECT=K")]
     pub hold: Vec<String>,
     /// Heat deposited behind every facet of an object, OBJECT=W/m2 (an engine under a

@@ -151,8 +151,9 @@ pub fn material_models(
     Ok(out)
 }
 
-/// `NAME=VALUE` pairs of objects (`--hold`, `--heat`) resolved to a value per facet; every
-/// name must be an object of the scene.
+/// `OBJECT=VALUE` pairs (`--hold`, `--heat`) resolved to a value per facet. `OBJECT` is a
+/// placed object's name, or `#N`, the N-th placed object (from 0, the raw scene's order),
+/// for a name two placements share.
 ///
 /// # Errors
 /// A pair without `=`, a value that is not a finite number within `range`, or a name the
@@ -180,21 +181,8 @@ pub fn per_facet(
                     range.0, range.1
                 ))
             })?;
-        let index = scene
-            .objects
-            .iter()
-            .position(|o| o == name)
-            .ok_or_else(|| {
-                irsig_cli::usage_error(format!(
-                    "{flag} `{pair}`: the scene has no object `{name}`; its objects are {}",
-                    scene
-                        .objects
-                        .iter()
-                        .map(|o| format!("`{o}`"))
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ))
-            })?;
+        let index = object_index(scene, name)
+            .map_err(|why| irsig_cli::usage_error(format!("{flag} `{pair}`: {why}")))?;
         if by_object[index].replace(value).is_some() {
             return Err(irsig_cli::usage_error(format!(
                 "{flag} names object `{name}` twice"
@@ -237,4 +225,44 @@ pub fn ground_model(
         surface,
         absorptance_from,
     })
+}
+
+/// The placed object `name` names: a name only one placement has, or `#N`.
+fn object_index(scene: &RawScene, name: &str) -> Result<usize, String> {
+    if let Some(n) = name.strip_prefix('#') {
+        return n
+            .parse::<usize>()
+            .ok()
+            .filter(|&i| i < scene.objects.len())
+            .ok_or_else(|| {
+                format!(
+                    "`#{n}`: expected a placed object's place, 0 to {}",
+                    scene.objects.len().saturating_sub(1)
+                )
+            });
+    }
+    let places: Vec<usize> = (0..scene.objects.len())
+        .filter(|&i| scene.objects[i] == name)
+        .collect();
+    match places.as_slice() {
+        [i] => Ok(*i),
+        [] => Err(format!(
+            "the scene has no object `{name}`; its objects are {}",
+            scene
+                .objects
+                .iter()
+                .enumerate()
+                .map(|(i, o)| format!("`{o}` (#{i})"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+        many => Err(format!(
+            "{} placed objects are named `{name}` ({}): name one by its place, #N",
+            many.len(),
+            many.iter()
+                .map(|i| format!("#{i}"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )),
+    }
 }
