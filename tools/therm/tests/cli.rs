@@ -337,7 +337,7 @@ fn times_off_the_grid_or_outside_the_weather_are_refused() {
     ]);
     assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
     assert!(
-        stderr(&out).contains("`plate`, `block`"),
+        stderr(&out).contains("`plate` (#0), `block` (#1)"),
         "{}",
         stderr(&out)
     );
