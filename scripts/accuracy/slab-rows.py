@@ -146,7 +146,7 @@ def main():
         spa = os.path.join(d, "rows.spa")
         subprocess.run(
             [os.path.join(BIN, "irsig-atmos"), "build", os.path.join(d, "plan"),
-             "--model", "us-std-1976", "-o", spa],
+             "--atmosphere", "us-std-1976", "-o", spa],
             check=True, env=dict(os.environ, IRSIG_LOWTRAN=LOWTRAN),
         )
         print(f"{spa}: {os.path.getsize(spa)} bytes")

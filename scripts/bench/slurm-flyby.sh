@@ -53,7 +53,7 @@ local_s=()
 slurm_s=()
 for i in $(seq "$runs"); do
   t0=$(now)
-  (cd "$work" && "$run" --quiet --force --jobs "$(nproc)" thesis-flyby.ron)
+  (cd "$work" && "$run" --quiet --force --threads "$(nproc)" thesis-flyby.ron)
   t1=$(now)
   local_s+=("$(elapsed "$t0" "$t1")")
   cp -r "$work/thesis-flyby/build" "$work/local-build"
@@ -89,7 +89,7 @@ tasks=26 # flatten, 24 frames, contact sheet
 echo
 echo "| what | wall, each run (s) | median (s) | fly-by frames per minute |"
 echo "| --- | --- | --- | --- |"
-echo "| irsig-run --jobs $cpus | ${local_s[*]} | $local_m | $(echo "scale=1; 24 * 60 / $local_m" | bc) |"
+echo "| irsig-run --threads $cpus | ${local_s[*]} | $local_m | $(echo "scale=1; 24 * 60 / $local_m" | bc) |"
 echo "| Slurm job array (emit, submit, wait) | ${slurm_s[*]} | $slurm_m | $(echo "scale=1; 24 * 60 / $slurm_m" | bc) |"
 echo "| 48 empty tasks, $cpus at a time | ${empty_s[*]} | $empty_m | |"
 echo

@@ -41,7 +41,7 @@ cat > view.ron <<VIEW
 LookAt(position_m: (70.0, 0.0, 5.0), target_m: (100.0, 0.0, 5.0), pixels: ($size, $size), fov_deg: (45.0, 45.0))
 VIEW
 sed "s/pixels: ([0-9]*, [0-9]*)/pixels: (8, 8)/" view.ron > fixed.ron
-"$bin/irsig-atmos" plan --scene scene.raw --view view.ron --model us-std-1976 \
+"$bin/irsig-atmos" plan --scene scene.raw --view view.ron --atmosphere us-std-1976 \
   --sun-zenith-deg 40 --day-of-year 172 -o plan >/dev/null
 "$bin/irsig-atmos" build plan -o noon.spa
 echo "scene: 1 000 000 triangles; frame ${size}x${size}, 1 ray per pixel; atmosphere: $(stat -c %s noon.spa) bytes"

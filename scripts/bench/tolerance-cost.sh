@@ -96,7 +96,7 @@ case_args[thesis]="--scene $work/thesis.raw --materials $t/materials.ron --view 
 "$bin/irsig-flatten" "$f/scene.ron" --materials "$f/materials.ron" -o "$work/flyby.raw"
 for n in 04 09 14 24; do
   scaled_view "$f/views/frame-$n.view" "$work/flyby-$n.view"
-  case_args[flyby-$n]="--scene $work/flyby.raw --materials $f/materials.ron --view $work/flyby-$n.view --view-unit km --atmosphere us-std-1976"
+  case_args[flyby-$n]="--scene $work/flyby.raw --materials $f/materials.ron --view $work/flyby-$n.view --legacy-unit km --atmosphere us-std-1976"
 done
 for seed in 0 1 2; do
   for view in 0 1; do

@@ -15,7 +15,7 @@ trap 'rm -rf "$work"' EXIT
 git archive HEAD pipelines | tar -x -C "$work"
 cd "$work"
 for p in quickstart thesis-flyby thesis-experiment quickstart-tiles; do
-  "$bin/irsig-run" --quiet --jobs 2 "pipelines/$p.ron"
+  "$bin/irsig-run" --quiet --threads 2 "pipelines/$p.ron"
 done
 # Every file the runs wrote, but the run report (it names irsig's version) and run states.
 find out pipelines -type f -newer pipelines/quickstart.ron \

@@ -75,7 +75,7 @@ const CASES: [Case; 7] = [
         view: "pipelines/thesis-flyby/views/frame-14.view",
         pixels: [64, 64],
         band: [8.0, 14.0],
-        extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
+        extra: &["--atmosphere", "us-std-1976", "--legacy-unit", "km"],
     },
     Case {
         name: "fly-by frame 9 (far: 12 km)",
@@ -84,7 +84,7 @@ const CASES: [Case; 7] = [
         view: "pipelines/thesis-flyby/views/frame-09.view",
         pixels: [64, 64],
         band: [8.0, 14.0],
-        extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
+        extra: &["--atmosphere", "us-std-1976", "--legacy-unit", "km"],
     },
     Case {
         name: "fly-by frame 8 (oblique: 81° from nadir)",
@@ -93,7 +93,7 @@ const CASES: [Case; 7] = [
         view: "pipelines/thesis-flyby/views/frame-08.view",
         pixels: [64, 64],
         band: [8.0, 14.0],
-        extra: &["--atmosphere", "us-std-1976", "--view-unit", "km"],
+        extra: &["--atmosphere", "us-std-1976", "--legacy-unit", "km"],
     },
     Case {
         name: "thesis experiment",
@@ -241,7 +241,7 @@ fn day_atmosphere(bin: &Path, dir: &Path) -> String {
                 &path(&raw),
                 "--view",
                 "pipelines/quickstart/view.ron",
-                "--model",
+                "--atmosphere",
                 "midlat-winter",
                 DAY_SUN[0],
                 DAY_SUN[1],

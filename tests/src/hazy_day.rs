@@ -166,7 +166,7 @@ pub fn build(dir: &Path, name: &str, plan: &str) -> PathBuf {
         .env("IRSIG_LOWTRAN", lowtran())
         .arg("build")
         .arg(&p)
-        .args(["--model", "us-std-1976", "-o"])
+        .args(["--atmosphere", "us-std-1976", "-o"])
         .arg(&spa)
         .assert()
         .success();

@@ -81,7 +81,7 @@ pub fn run_lowtran(deck: &str) -> LowtranRun {
 
 /// `irsig-flatten` of the quickstart scene into `dir/scene.raw` (once), then `irsig-atmos
 /// plan` of it from the quickstart's view into the plan directory `dir/name`, with the
-/// model's flags `model` (`--model us-std-1976`, or a radiosonde) and `extra`.
+/// model's flags `model` (`--atmosphere us-std-1976`, or a radiosonde) and `extra`.
 #[must_use]
 pub fn quickstart_plan(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -> PathBuf {
     let raw = dir.join("scene.raw");

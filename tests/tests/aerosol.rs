@@ -21,7 +21,7 @@ use irsig_tests::{bin, lowtran};
 
 /// flatten + plan for the quickstart scene into `dir`, US Standard 1976, with `extra` flags.
 fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
-    irsig_tests::quickstart_plan(dir, name, &["--model", "us-std-1976"], extra)
+    irsig_tests::quickstart_plan(dir, name, &["--atmosphere", "us-std-1976"], extra)
 }
 
 /// Every file of a plan directory, by relative path.
@@ -104,7 +104,7 @@ fn each_aerosol_gives_koschmieders_extinction_at_550_nm_with_lowtran7() {
     ] {
         let (aerosol, model_flags): (&str, &[&str]) = match model.strip_suffix("-radiosonde") {
             Some(a) => (a, &radiosonde),
-            None => (model, &["--model", "us-std-1976"]),
+            None => (model, &["--atmosphere", "us-std-1976"]),
         };
         let mut flags = vec![
             "--aerosol".to_owned(),
@@ -201,7 +201,7 @@ fn an_aerosol_lowers_the_8_to_14_um_transmittance_of_every_path() {
             .env("IRSIG_LOWTRAN", lowtran())
             .arg("build")
             .arg(&p)
-            .args(["--model", "us-std-1976", "-o"])
+            .args(["--atmosphere", "us-std-1976", "-o"])
             .arg(&out)
             .assert()
             .success();
@@ -311,7 +311,7 @@ fn bad_aerosol_flags_and_plan_fields_are_refused() {
         let out = dir.path().join("never");
         let mut cmd = bin("irsig-atmos");
         cmd.args(["plan", "--scene", "no-scene.raw", "--view", "no-view.ron"]);
-        cmd.args(["--model", "us-std-1976"]);
+        cmd.args(["--atmosphere", "us-std-1976"]);
         // `=`: clap would take a separate `-3` for a flag of its own.
         for pair in flags.chunks(2) {
             cmd.arg(format!("{}={}", pair[0], pair[1]));

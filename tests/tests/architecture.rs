@@ -301,8 +301,22 @@ fn binary_layouts_are_read_only_by_irsig_formats() {
 }
 
 /// Every flag of `command` and of its subcommands, by long name: the type its value parser
-/// makes, its default values and whether it takes a value.
+/// makes, its default values, whether it takes a value, its value names, how many values
+/// one use of it takes and whether it is required on its own (a tool that needs one of
+/// several flags says so with a group or `required_unless_present`, which is its own
+/// business).
 fn flags(tool: &str, command: &clap::Command, out: &mut BTreeMap<String, Vec<(String, String)>>) {
+    let mut command = command.clone();
+    // Built, so that every argument's number of values is settled as clap parses it.
+    command.build();
+    collect_flags(tool, &command, out);
+}
+
+fn collect_flags(
+    tool: &str,
+    command: &clap::Command,
+    out: &mut BTreeMap<String, Vec<(String, String)>>,
+) {
     for arg in command.get_arguments() {
         let Some(long) = arg.get_long() else {
             continue;
@@ -312,23 +326,32 @@ fn flags(tool: &str, command: &clap::Command, out: &mut BTreeMap<String, Vec<(St
             .iter()
             .map(|v| v.to_string_lossy().into_owned())
             .collect();
+        let value_names: Vec<String> = arg
+            .get_value_names()
+            .unwrap_or_default()
+            .iter()
+            .map(ToString::to_string)
+            .collect();
         let kind = format!(
-            "type {:?}, default {defaults:?}, takes a value: {}",
+            "type {:?}, default {defaults:?}, takes a value: {}, value names {value_names:?}, \
+             values per use {:?}, required: {}",
             arg.get_value_parser().type_id(),
-            arg.get_action().takes_values()
+            arg.get_action().takes_values(),
+            arg.get_num_args(),
+            arg.is_required_set()
         );
         let at = format!("{tool} {}", command.get_name());
         out.entry(long.to_owned()).or_default().push((at, kind));
     }
     for sub in command.get_subcommands() {
-        flags(tool, sub, out);
+        collect_flags(tool, sub, out);
     }
 }
 
-#[test]
-fn a_flag_of_one_name_has_one_type_and_one_default_in_every_tool() {
+/// The tools' clap definitions, by the name `irsig-<name>` is run as.
+fn tool_commands() -> Vec<(&'static str, clap::Command)> {
     use clap::CommandFactory;
-    let tools = [
+    vec![
         ("import", irsig_import::Cli::command()),
         ("flatten", irsig_flatten::Cli::command()),
         ("atmos", irsig_atmos::Cli::command()),
@@ -340,16 +363,26 @@ fn a_flag_of_one_name_has_one_type_and_one_default_in_every_tool() {
         ("stats", irsig_stats::Cli::command()),
         ("report", irsig_report::Cli::command()),
         ("run", irsig_run::Cli::command()),
-    ];
+    ]
+}
+
+#[test]
+fn a_flag_of_one_name_is_spelt_typed_and_defaulted_alike_in_every_tool() {
     let mut all = BTreeMap::new();
-    for (tool, command) in &tools {
+    for (tool, command) in &tool_commands() {
         flags(tool, command, &mut all);
     }
-    // The reading is live: the band is in many tools.
+    // The reading is live: the band is in many tools, and value names are read.
     assert!(
         all.get("band").is_some_and(|v| v.len() >= 7),
         "{:?}",
         all.get("band")
+    );
+    assert!(
+        all.get("scene")
+            .is_some_and(|v| v.iter().all(|(_, k)| k.contains("value names [\"FILE\"]"))),
+        "{:?}",
+        all.get("scene")
     );
     let mut broken = Vec::new();
     for (flag, uses) in &all {
@@ -361,7 +394,180 @@ fn a_flag_of_one_name_has_one_type_and_one_default_in_every_tool() {
     }
     assert_none(
         &broken,
-        "a flag is spelt, typed and defaulted alike in every tool",
+        "a flag is spelt, typed, defaulted, named, counted and required alike in every tool",
+    );
+}
+
+/// The text between the bracket at `open` (a `(` or `[`) and its match, and the index just
+/// past the match; string literals are skipped whole.
+fn balanced(text: &str, open: usize) -> Option<(&str, usize)> {
+    let bytes = text.as_bytes();
+    let (mut depth, mut i, mut in_string) = (0usize, open, false);
+    while i < bytes.len() {
+        match bytes[i] {
+            b'\\' if in_string => i += 1,
+            b'"' => in_string = !in_string,
+            b'(' | b'[' if !in_string => depth += 1,
+            b')' | b']' if !in_string => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some((&text[open + 1..i], i + 1));
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    None
+}
+
+/// `text` without its string literals' contents (`"..."` becomes `""`).
+fn without_strings(text: &str) -> String {
+    let mut out = String::new();
+    let mut in_string = false;
+    let mut escaped = false;
+    for c in text.chars() {
+        match (in_string, escaped, c) {
+            (true, false, '\\') => escaped = true,
+            (true, true, _) => escaped = false,
+            (_, false, '"') => {
+                in_string = !in_string;
+                out.push('"');
+            }
+            (false, _, c) => out.push(c),
+            (true, false, _) => {}
+        }
+    }
+    out
+}
+
+/// The long flags a source file defines through clap's derive: every `#[arg(...)]` that
+/// has `long`, named by `long = "..."` or by its field in kebab case.
+fn defined_flags(text: &str) -> Vec<String> {
+    let mut flags = Vec::new();
+    let mut from = 0;
+    while let Some(at) = text[from..].find("#[arg(") {
+        let open = from + at + "#[arg".len();
+        let Some((inside, mut next)) = balanced(text, open) else {
+            break;
+        };
+        from = next;
+        // The field: past the attribute's `]`, other attributes and doc comments.
+        next += 1;
+        let field = loop {
+            let rest = text[next..].trim_start();
+            next = text.len() - rest.len();
+            if rest.starts_with("///") || rest.starts_with("//") {
+                next += rest.find('\n').unwrap_or(rest.len());
+            } else if rest.starts_with("#[") {
+                match balanced(text, next + 1) {
+                    Some((_, end)) => next = end + 1,
+                    None => break None,
+                }
+            } else {
+                let head: String = rest
+                    .trim_start_matches("pub ")
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                break Some(head);
+            }
+        };
+        let code = without_strings(inside);
+        let words: Vec<&str> = code
+            .split(|c: char| !(c.is_alphanumeric() || c == '_' || c == '='))
+            .filter(|w| !w.is_empty())
+            .collect();
+        let named = inside
+            .split("long = \"")
+            .nth(1)
+            .and_then(|rest| rest.split('"').next());
+        match (named, words.contains(&"long"), field) {
+            (Some(name), _, _) => flags.push(name.to_owned()),
+            (None, true, Some(field)) => flags.push(field.replace('_', "-")),
+            _ => {}
+        }
+    }
+    flags
+}
+
+#[test]
+fn reading_a_flag_definition_finds_its_long_name() {
+    let text = r#"
+        /// A doc comment that says long = "nothing".
+        #[arg(long, value_name = "N", help = "not long")]
+        #[allow(dead_code)]
+        pub sun_shadow_rays: Option<u32>,
+        #[arg(id = "output", short = 'o', long = "output", conflicts_with_all = ["a", "b"])]
+        pub path: Option<PathBuf>,
+        #[arg(value_name = "TILE", long_help = "long")]
+        pub tiles: Vec<String>,
+    "#;
+    assert_eq!(defined_flags(text), ["sun-shadow-rays", "output"]);
+}
+
+#[test]
+fn a_flag_two_tools_share_is_defined_once_in_irsig_cli() {
+    // What each tool takes, by the tools' own clap definitions.
+    let mut tools_of: BTreeMap<String, std::collections::BTreeSet<&str>> = BTreeMap::new();
+    for (tool, command) in &tool_commands() {
+        let mut all = BTreeMap::new();
+        flags(tool, command, &mut all);
+        for flag in all.into_keys() {
+            tools_of.entry(flag).or_default().insert(tool);
+        }
+    }
+    let shared: Vec<&String> = tools_of
+        .iter()
+        .filter(|(flag, tools)| tools.len() >= 2 && !["help", "version"].contains(&flag.as_str()))
+        .map(|(flag, _)| flag)
+        .collect();
+    // Where each flag is defined: in irsig-cli, or in a tool.
+    let mut in_cli: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    let mut in_tools: BTreeMap<String, Vec<String>> = BTreeMap::new();
+    for (dir, into) in [("crates/cli/src", &mut in_cli), ("tools", &mut in_tools)] {
+        for (path, text) in sources(dir) {
+            let shown = path
+                .strip_prefix(repo_root())
+                .unwrap_or(&path)
+                .display()
+                .to_string();
+            // A unit test's own command lines are not the tools'.
+            let code = text
+                .split("#[cfg(test)]\nmod tests")
+                .next()
+                .unwrap_or(&text);
+            for flag in defined_flags(code) {
+                into.entry(flag).or_default().push(shown.clone());
+            }
+        }
+    }
+    // The reading is live: shared flags are found where they are defined, and a tool's
+    // own flag in its tool.
+    assert!(shared.len() >= 20, "{shared:?}");
+    assert!(in_cli.contains_key("band") && in_cli.contains_key("sun-zenith-deg"));
+    assert!(in_tools.contains_key("sun-shadow-rays"), "{in_tools:?}");
+    let mut broken = Vec::new();
+    for flag in shared {
+        if let Some(files) = in_tools.get(flag.as_str()) {
+            broken.push(format!(
+                "--{flag} (in {:?}) is defined in {}",
+                tools_of[flag],
+                files.join(", ")
+            ));
+        }
+        match in_cli.get(flag.as_str()).map(Vec::len) {
+            Some(1) => {}
+            n => broken.push(format!(
+                "--{flag} (in {:?}) is defined {} times in irsig-cli",
+                tools_of[flag],
+                n.unwrap_or(0)
+            )),
+        }
+    }
+    assert_none(
+        &broken,
+        "a flag two tools share is defined once, in irsig-cli",
     );
 }
 

@@ -24,7 +24,7 @@ fn radiance_at_300_k_is_the_last_number_on_its_line() {
 
 #[test]
 fn temperature_inverts_radiance() {
-    let out = stdout_of(&["temperature", "--radiance", "54.9334613768"]);
+    let out = stdout_of(&["temperature", "--radiance-w-m2-sr", "54.9334613768"]);
     assert!(
         (last_number(out.lines().nth(1).unwrap()) - 300.0).abs() < 1e-4,
         "{out}"
@@ -221,7 +221,7 @@ fn bad_values_exit_non_zero_with_a_message() {
             "--ld",
             "0.0014",
         ],
-        &["temperature", "--radiance", "-1"],
+        &["temperature", "--radiance", "-1"], // the old spelling of --radiance-w-m2-sr
         &["radiance", "--temperature", "300", "--band", "14:8"],
     ];
     for args in cases {

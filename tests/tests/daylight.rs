@@ -828,7 +828,13 @@ fn a_spectral_range_that_is_none_is_refused_at_its_flag() {
             .arg(&scene)
             .arg("--view")
             .arg(&view)
-            .args(["--model", "us-std-1976", "--wavenumber-per-cm", range, "-o"])
+            .args([
+                "--atmosphere",
+                "us-std-1976",
+                "--wavenumber-per-cm",
+                range,
+                "-o",
+            ])
             .arg(&plan)
             .assert()
     };

@@ -209,7 +209,7 @@ fn real_glbs_import_with_their_triangle_counts() {
                 LIBRARY,
                 "--default-material",
                 "skin",
-                "--unit",
+                "--legacy-unit",
                 "cm",
             ])
             .output()
@@ -223,7 +223,7 @@ fn real_glbs_import_with_their_triangle_counts() {
         assert!(out.stdout.starts_with(b"IRSIGOBJ"));
         let object = irsig_formats::canonical::read_object(file, &out.stdout).unwrap();
         assert_eq!(object.facets.len(), triangles);
-        // --unit cm: the 0.2 m-sized models become 2 mm-sized.
+        // --legacy-unit cm: the 0.2 m-sized models become 2 mm-sized.
         let extent = object
             .positions_m
             .iter()
@@ -421,7 +421,7 @@ fn obj_from_stdin_with_format() {
             "obj",
             "--materials",
             LIBRARY,
-            "--unit",
+            "--legacy-unit",
             "km",
         ])
         .stdin(Stdio::piped())
@@ -439,7 +439,7 @@ fn obj_from_stdin_with_format() {
     );
     let object: irsig_model::Object =
         irsig_formats::canonical::read_object("<stdin>", &out.stdout).unwrap();
-    // --unit km: the 2-unit edge is 2000 m.
+    // --legacy-unit km: the 2-unit edge is 2000 m.
     let max_x = object.positions_m.iter().map(|p| p[0]).fold(0.0, f64::max);
     assert!((max_x - 2000.0).abs() < 1e-9);
     // The MTL is not looked for when the OBJ comes from stdin: a warning says so.
@@ -458,7 +458,7 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
     // Import: 4 facets, km to m, material index 6 is id 6.
     let out = bin("irsig-import")
         .arg(&fac)
-        .args(["--unit", "km", "--materials"])
+        .args(["--legacy-unit", "km", "--materials"])
         .arg(dir.path().join("lib.ron"))
         .output()
         .unwrap();
@@ -488,7 +488,7 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
     .unwrap();
     let out = bin("irsig-flatten")
         .arg(dir.path().join("scene.scn"))
-        .args(["--unit", "km", "--ron", "--materials"])
+        .args(["--legacy-unit", "km", "--ron", "--materials"])
         .arg(dir.path().join("lib.ron"))
         .output()
         .unwrap();
@@ -519,7 +519,7 @@ fn legacy_facet_file_and_legacy_scene_in_km() {
     .unwrap();
     let out = bin("irsig-flatten")
         .arg(dir.path().join("cold.scn"))
-        .args(["--unit", "km", "--ron"])
+        .args(["--legacy-unit", "km", "--ron"])
         .output()
         .unwrap();
     assert_eq!(out.status.code(), Some(1));
@@ -536,7 +536,7 @@ fn legacy_facet_file_with_4_vertex_facets_imports_as_triangles() {
     let out = bin("irsig-import")
         .args([
             "formats/legacy/samples/quads.fac",
-            "--unit",
+            "--legacy-unit",
             "km",
             "--ron",
             "--materials",

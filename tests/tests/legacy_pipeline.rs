@@ -99,7 +99,7 @@ fn the_makefile_turns_1990_inputs_into_images() {
     let raw = dir.path().join("direct.raw");
     bin("irsig-flatten")
         .current_dir(dir.path())
-        .args(["scene.scn", "--unit", "km", "-o"])
+        .args(["scene.scn", "--legacy-unit", "km", "-o"])
         .arg(&raw)
         .assert()
         .success();
@@ -159,7 +159,7 @@ fn trace_scratch() -> tempfile::TempDir {
         .success();
     bin("irsig-flatten")
         .current_dir(dir.path())
-        .args(["scene.scn", "--unit", "km", "-o", "scene.raw"])
+        .args(["scene.scn", "--legacy-unit", "km", "-o", "scene.raw"])
         .assert()
         .success();
     dir

@@ -91,7 +91,7 @@ fn a_rough_plate_glints_as_the_cook_torrance_lobe_by_hand() {
         .env("IRSIG_LOWTRAN", lowtran())
         .arg("build")
         .arg(&plan)
-        .args(["--model", "us-std-1976", "-o"])
+        .args(["--atmosphere", "us-std-1976", "-o"])
         .arg(&spa)
         .assert()
         .success();

@@ -47,7 +47,7 @@ fn the_pilot_decides_the_sun_in_3_5_um_and_its_image_holds_the_tolerance() {
     let plan = irsig_tests::quickstart_plan(
         dir.path(),
         "plan.ron",
-        &["--model", "midlat-winter"],
+        &["--atmosphere", "midlat-winter"],
         &[
             "--sun-zenith-deg",
             "70",

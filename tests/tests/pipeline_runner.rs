@@ -120,7 +120,7 @@ fn chain() -> Scratch {
 #[test]
 fn stages_run_in_dependency_order_not_file_order() {
     let s = chain();
-    s.run(&["-j", "1"]).success();
+    s.run(&["--threads", "1"]).success();
     assert_eq!(s.read("build/a.txt"), "A:head\n");
     // b upper-cases everything it writes, its own prefix included.
     assert_eq!(s.read("build/b.txt"), "B:A:HEAD\n");
@@ -194,6 +194,7 @@ fn independent_stages_run_at_the_same_time() {
         Stage(tool: "testcat", args: ["x.txt"], params: {"touch": "right.flag", "wait-for": "left.flag"}, outputs: {"o": "right.txt"}),
     ])"#;
     let s = Scratch::new(text, &[("x.txt", "x")]);
+    // `--jobs` (and `-j`), the old spelling of `--threads`, is still taken.
     s.run(&["--jobs", "2"]).success();
     assert_eq!(s.read("left.txt"), "x");
     assert_eq!(s.read("right.txt"), "x");
@@ -437,9 +438,9 @@ fn an_unknown_parameter_is_caught_by_the_tools_own_parser() {
 #[test]
 fn a_mistyped_parameter_points_at_its_value() {
     fails_at(
-        "Pipeline(stages: [\n  Stage(tool: \"run\", args: [\"x.txt\"], params: {\"jobs\": \"many\"}),\n])",
+        "Pipeline(stages: [\n  Stage(tool: \"run\", args: [\"x.txt\"], params: {\"threads\": \"many\"}),\n])",
         "\"many\"",
-        "invalid value 'many' for '--jobs <N>'",
+        "invalid value 'many' for '--threads <N>'",
     );
 }
 

@@ -41,7 +41,7 @@ fn plan(dir: &Path, model: &str) -> PathBuf {
         .args([
             "--view",
             "pipelines/quickstart/view.ron",
-            "--model",
+            "--atmosphere",
             model,
             "-o",
         ])

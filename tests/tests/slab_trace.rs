@@ -155,7 +155,7 @@ fn slab_tables_hold_lowtran7s_slabs_between_rows_by_day_and_at_night() {
         .env("IRSIG_LOWTRAN", lowtran())
         .arg("build")
         .arg(d.join("plan-night"))
-        .args(["--model", "us-std-1976", "-o"])
+        .args(["--atmosphere", "us-std-1976", "-o"])
         .arg(&ron)
         .assert()
         .success();
@@ -203,7 +203,7 @@ fn slab_tables_hold_lowtran7s_slabs_between_rows_by_day_and_at_night() {
         .env("IRSIG_LOWTRAN", lowtran())
         .arg("build")
         .arg(&p)
-        .args(["--model", "us-std-1976", "-o"])
+        .args(["--atmosphere", "us-std-1976", "-o"])
         .arg(d.join("none.spa"))
         .output()
         .unwrap();

@@ -158,7 +158,7 @@ fn build(plan_dir: &Path, out: &Path) -> SpectralAtmosphere {
         .env("IRSIG_LOWTRAN", lowtran())
         .arg("build")
         .arg(plan_dir)
-        .args(["--model", "us-std-1976", "-o"])
+        .args(["--atmosphere", "us-std-1976", "-o"])
         .arg(out)
         .assert()
         .success();
@@ -270,7 +270,7 @@ fn direct_sunlight_is_lowtran7s_transmitted_irradiance_times_the_cosine() {
 
 /// flatten + plan for the quickstart scene into `dir`, with `extra` flags.
 fn quickstart_plan(dir: &Path, name: &str, extra: &[&str]) -> PathBuf {
-    irsig_tests::quickstart_plan(dir, name, &["--model", "us-std-1976"], extra)
+    irsig_tests::quickstart_plan(dir, name, &["--atmosphere", "us-std-1976"], extra)
 }
 
 fn decks(plan: &Path) -> Vec<String> {
@@ -372,7 +372,7 @@ fn a_sun_at_or_below_the_horizon_or_a_day_that_is_none_is_refused() {
         let out = dir.path().join("never");
         let mut cmd = bin("irsig-atmos");
         cmd.args(["plan", "--scene", "no-scene.raw", "--view", "no-view.ron"]);
-        cmd.args(["--model", "us-std-1976"]);
+        cmd.args(["--atmosphere", "us-std-1976"]);
         // `=`: clap would take a separate `-1` for a flag of its own.
         if let Some(z) = zenith {
             cmd.arg(format!("--sun-zenith-deg={z}"));
@@ -405,7 +405,7 @@ fn a_sun_at_or_below_the_horizon_or_a_day_that_is_none_is_refused() {
             .env("IRSIG_LOWTRAN", lowtran())
             .arg("build")
             .arg(&plan_dir)
-            .args(["--model", "us-std-1976", "-o"])
+            .args(["--atmosphere", "us-std-1976", "-o"])
             .arg(&out)
             .assert()
             .code(1)
@@ -463,7 +463,7 @@ fn plan_plate(dir: &Path, name: &str, view: &str, flags: &[&str]) -> assert_cmd:
     let view_file = dir.join(format!("{name}-view.ron"));
     std::fs::write(&view_file, view).unwrap();
     bin("irsig-atmos")
-        .args(["plan", "--model", "us-std-1976", "--scene"])
+        .args(["plan", "--atmosphere", "us-std-1976", "--scene"])
         .arg(scene)
         .arg("--view")
         .arg(view_file)
@@ -1038,9 +1038,8 @@ fn a_sun_needs_an_atmosphere_with_a_solar_table() {
         let mut flags = sun.to_vec();
         flags.extend(extra);
         refused(
-            trace_plate(dir.path(), Path::new(atmosphere), "lit", &flags).stderr(
-                predicates::str::contains("irsig-atmos plan --sun-zenith-deg"),
-            ),
+            trace_plate(dir.path(), Path::new(atmosphere), "lit", &flags)
+                .stderr(predicates::str::contains("irsig-atmos plan")),
             dir.path(),
             "lit",
             "--sun-zenith-deg",

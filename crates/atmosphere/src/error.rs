@@ -57,11 +57,11 @@ pub enum AtmosphereErrorKind {
     Plan(String),
     /// A sun's position that cannot be computed: a field out of its range or not a
     /// number, a time that does not parse or that SPA does not cover, no ΔT for its year.
-    #[error("sun `{field}`: {message}")]
+    #[error("sun `{}`: {message}", field.path())]
     Sun {
-        /// The field of [`crate::sun::SunSpec`] (`latitude_deg`, `utc`,
-        /// `refraction.pressure_hpa`, …); a command line spells it as a flag.
-        field: &'static str,
+        /// The field of [`crate::sun::SunSpec`] at fault; a file names it by its path
+        /// (`refraction.pressure_hpa`), a command line by its flag.
+        field: crate::sun::SunField,
         /// What is wrong, with the accepted range and the value found.
         message: String,
     },

@@ -69,7 +69,7 @@ impl DirectSun {
             AtmosphereError::from(AtmosphereErrorKind::MissingTable {
                 model: "direct sun",
                 table: "solar",
-                instead: "build the atmosphere from a plan with a sun (irsig-atmos plan --sun-zenith-deg Z --day-of-year D)",
+                instead: "build the atmosphere from a plan with a sun (its zenith angle and day of the year)",
             })
         })?;
         let n = spectral.grid.points.len();
@@ -296,7 +296,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(
-            e.contains("`solar`") && e.contains("--sun-zenith-deg"),
+            e.contains("`solar`") && e.contains("a plan with a sun"),
             "{e}"
         );
     }

@@ -72,6 +72,151 @@ pub const DELTA_UT1_MAX_S: f64 = 0.9;
 
 const SECONDS_PER_DAY: f64 = 86_400.0;
 
+/// A field of a [`SunSpec`]: what an error about the sun names, and what each caller
+/// spells its own way (a view file by [`SunField::path`], a command line by a flag).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SunField {
+    /// The time, UTC ([`SunSpec::At`]'s `utc`).
+    Utc,
+    /// The site's latitude, degrees.
+    LatitudeDeg,
+    /// The site's longitude, degrees.
+    LongitudeDeg,
+    /// The site's altitude above mean sea level, metres.
+    AltitudeM,
+    /// The site's air pressure for refraction, hPa.
+    PressureHpa,
+    /// The site's air temperature for refraction, °C.
+    TemperatureC,
+    /// ΔT = TT − UT1, seconds.
+    DeltaTS,
+    /// UT1 − UTC, seconds.
+    DeltaUt1S,
+    /// A given direction's zenith angle, degrees ([`SunSpec::Direction`]).
+    ZenithDeg,
+    /// A given direction's azimuth, degrees clockwise from north.
+    AzimuthDeg,
+}
+
+impl SunField {
+    /// Every field, in the order of [`SunSpec`]'s.
+    pub const ALL: [Self; 10] = [
+        Self::Utc,
+        Self::LatitudeDeg,
+        Self::LongitudeDeg,
+        Self::AltitudeM,
+        Self::PressureHpa,
+        Self::TemperatureC,
+        Self::DeltaTS,
+        Self::DeltaUt1S,
+        Self::ZenithDeg,
+        Self::AzimuthDeg,
+    ];
+
+    /// Where the field is in a [`SunSpec`] as files write it: `latitude_deg`,
+    /// `refraction.pressure_hpa`.
+    #[must_use]
+    pub fn path(self) -> &'static str {
+        match self {
+            Self::Utc => "utc",
+            Self::LatitudeDeg => "latitude_deg",
+            Self::LongitudeDeg => "longitude_deg",
+            Self::AltitudeM => "altitude_m",
+            Self::PressureHpa => "refraction.pressure_hpa",
+            Self::TemperatureC => "refraction.temperature_c",
+            Self::DeltaTS => "delta_t_s",
+            Self::DeltaUt1S => "delta_ut1_s",
+            Self::ZenithDeg => "zenith_deg",
+            Self::AzimuthDeg => "azimuth_deg",
+        }
+    }
+
+    /// Checks a number given for this field against the field's range, the rule
+    /// [`SunSpec::validate`] applies to it (a caller that reads one value alone, a command
+    /// line's flag, checks it here before it has the whole spec).
+    ///
+    /// # Errors
+    /// The range and the value found, in words; for [`SunField::Utc`], which is a time and
+    /// not a number, always ([`check_utc`] checks a time).
+    pub fn check(self, value: f64) -> Result<(), String> {
+        match self {
+            Self::Utc => Err(format!(
+                "expected a UTC time YYYY-MM-DDTHH:MM:SSZ, found the number {value}"
+            )),
+            Self::LatitudeDeg => in_range(value, -90.0, 90.0, "° (positive north)"),
+            Self::LongitudeDeg => in_range(value, -180.0, 180.0, "° (positive east)"),
+            Self::AltitudeM => {
+                let [low, high] = ALTITUDE_RANGE_M;
+                in_range(value, low, high, " m above sea level")
+            }
+            Self::PressureHpa => {
+                let [low, high] = PRESSURE_RANGE_HPA;
+                if value > low && value <= high {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "must be in ({low}, {high}] hPa (the local pressure), found {value}"
+                    ))
+                }
+            }
+            Self::TemperatureC => {
+                let [low, high] = TEMPERATURE_RANGE_C;
+                in_range(value, low, high, " °C")
+            }
+            Self::DeltaTS => {
+                if value.is_finite() {
+                    Ok(())
+                } else {
+                    Err(format!("must be a finite number of seconds, found {value}"))
+                }
+            }
+            Self::DeltaUt1S => in_range(value, -DELTA_UT1_MAX_S, DELTA_UT1_MAX_S, " s (UT1 − UTC)"),
+            Self::ZenithDeg => in_range(value, 0.0, 180.0, "° from the vertical"),
+            Self::AzimuthDeg => {
+                if (0.0..360.0).contains(&value) {
+                    Ok(())
+                } else {
+                    Err(format!(
+                        "must be in [0, 360)° clockwise from north, found {value}"
+                    ))
+                }
+            }
+        }
+    }
+}
+
+/// Checks a UTC time as [`SunSpec::validate`] does: its form
+/// (`YYYY-MM-DDTHH:MM:SS[.fraction]Z`), SPA's years and the calendar (no 30 February).
+///
+/// # Errors
+/// What is wrong with the time, in words.
+pub fn check_utc(utc: &str) -> Result<(), String> {
+    utc_day(utc).map(|_| ())
+}
+
+/// The time `utc` as calendar fields and as SPA's Julian day, checked.
+fn utc_day(utc: &str) -> Result<(UtcTime, JulianDate), String> {
+    let when = parse_utc(utc)?;
+    if !(SPA_FIRST_YEAR..=SPA_LAST_YEAR).contains(&when.year) {
+        return Err(format!(
+            "year {} of `{utc}` is outside SPA's years, {SPA_FIRST_YEAR} to {SPA_LAST_YEAR}",
+            when.year
+        ));
+    }
+    // The calendar first (month 13, 30 February): ΔT's estimate needs a month.
+    let day = JulianDate::from_utc(
+        when.year,
+        when.month,
+        when.day,
+        when.hour,
+        when.minute,
+        when.second,
+        0.0,
+    )
+    .map_err(|e| format!("`{utc}`: {e}"))?;
+    Ok((when, day))
+}
+
 /// Where the sun is: computed from a time and a place, or given as a direction.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -243,55 +388,19 @@ impl SunSpec {
                 delta_t_s,
                 delta_ut1_s,
             } => {
-                let when = parse_utc(utc).map_err(|m| sun_error("utc", m))?;
-                if !(SPA_FIRST_YEAR..=SPA_LAST_YEAR).contains(&when.year) {
-                    return Err(sun_error(
-                        "utc",
-                        format!(
-                            "year {} of `{utc}` is outside SPA's years, {SPA_FIRST_YEAR} to {SPA_LAST_YEAR}",
-                            when.year
-                        ),
-                    ));
-                }
-                // The calendar first (month 13, 30 February): ΔT's estimate needs a month.
-                let utc_day = JulianDate::from_utc(
-                    when.year,
-                    when.month,
-                    when.day,
-                    when.hour,
-                    when.minute,
-                    when.second,
-                    0.0,
-                )
-                .map_err(|e| sun_error("utc", format!("`{utc}`: {e}")))?;
-                in_range(
-                    "latitude_deg",
-                    *latitude_deg,
-                    -90.0,
-                    90.0,
-                    "° (positive north)",
-                )?;
-                in_range(
-                    "longitude_deg",
-                    *longitude_deg,
-                    -180.0,
-                    180.0,
-                    "° (positive east)",
-                )?;
-                let [low, high] = ALTITUDE_RANGE_M;
-                in_range("altitude_m", *altitude_m, low, high, " m above sea level")?;
+                let (when, utc_day) = utc_day(utc).map_err(|m| sun_error(SunField::Utc, m))?;
+                check(SunField::LatitudeDeg, *latitude_deg)?;
+                check(SunField::LongitudeDeg, *longitude_deg)?;
+                check(SunField::AltitudeM, *altitude_m)?;
                 let refraction = refraction.map(Refraction::correction).transpose()?;
                 let delta_t = match delta_t_s {
-                    Some(s) if s.is_finite() => *s,
                     Some(s) => {
-                        return Err(sun_error(
-                            "delta_t_s",
-                            format!("must be a finite number of seconds, found {s}"),
-                        ));
+                        check(SunField::DeltaTS, *s)?;
+                        *s
                     }
                     None => delta_t::estimate_from_date(when.year, when.month).map_err(|_| {
                         sun_error(
-                            "delta_t_s",
+                            SunField::DeltaTS,
                             format!(
                                 "no estimate of ΔT (TT − UT1) for year {} (the Espenak & Meeus estimate covers -500 to 3000): give delta_t_s",
                                 when.year
@@ -300,13 +409,7 @@ impl SunSpec {
                     })?,
                 };
                 let delta_ut1 = delta_ut1_s.unwrap_or(0.0);
-                in_range(
-                    "delta_ut1_s",
-                    delta_ut1,
-                    -DELTA_UT1_MAX_S,
-                    DELTA_UT1_MAX_S,
-                    " s (UT1 − UTC)",
-                )?;
+                check(SunField::DeltaUt1S, delta_ut1)?;
                 let time =
                     JulianDate::new(utc_day.julian_date() + delta_ut1 / SECONDS_PER_DAY, delta_t)
                         .map_err(|e| from_spa(&e))?;
@@ -324,13 +427,8 @@ impl SunSpec {
                 zenith_deg,
                 azimuth_deg,
             } => {
-                in_range("zenith_deg", *zenith_deg, 0.0, 180.0, "° from the vertical")?;
-                if !(0.0..360.0).contains(azimuth_deg) {
-                    return Err(sun_error(
-                        "azimuth_deg",
-                        format!("must be in [0, 360)° clockwise from north, found {azimuth_deg}"),
-                    ));
-                }
+                check(SunField::ZenithDeg, *zenith_deg)?;
+                check(SunField::AzimuthDeg, *azimuth_deg)?;
                 Ok(Resolved::Direction {
                     zenith_deg: *zenith_deg,
                     azimuth_deg: *azimuth_deg,
@@ -342,24 +440,8 @@ impl SunSpec {
 
 impl Refraction {
     fn correction(self) -> Result<RefractionCorrection, AtmosphereError> {
-        let [low, high] = PRESSURE_RANGE_HPA;
-        if !(self.pressure_hpa > low && self.pressure_hpa <= high) {
-            return Err(sun_error(
-                "refraction.pressure_hpa",
-                format!(
-                    "must be in ({low}, {high}] hPa (the local pressure), found {}",
-                    self.pressure_hpa
-                ),
-            ));
-        }
-        let [low, high] = TEMPERATURE_RANGE_C;
-        in_range(
-            "refraction.temperature_c",
-            self.temperature_c,
-            low,
-            high,
-            " °C",
-        )?;
+        check(SunField::PressureHpa, self.pressure_hpa)?;
+        check(SunField::TemperatureC, self.temperature_c)?;
         RefractionCorrection::new(self.pressure_hpa, self.temperature_c).map_err(|e| from_spa(&e))
     }
 }
@@ -378,25 +460,21 @@ enum Resolved {
     },
 }
 
-fn sun_error(field: &'static str, message: String) -> AtmosphereError {
+fn sun_error(field: SunField, message: String) -> AtmosphereError {
     AtmosphereErrorKind::Sun { field, message }.into()
 }
 
+/// [`SunField::check`] as the spec's error.
+fn check(field: SunField, value: f64) -> Result<(), AtmosphereError> {
+    field.check(value).map_err(|m| sun_error(field, m))
+}
+
 /// `value` in `[low, high]` (NaN is not).
-fn in_range(
-    field: &'static str,
-    value: f64,
-    low: f64,
-    high: f64,
-    unit: &str,
-) -> Result<(), AtmosphereError> {
+fn in_range(value: f64, low: f64, high: f64, unit: &str) -> Result<(), String> {
     if (low..=high).contains(&value) {
         Ok(())
     } else {
-        Err(sun_error(
-            field,
-            format!("must be in [{low}, {high}]{unit}, found {value}"),
-        ))
+        Err(format!("must be in [{low}, {high}]{unit}, found {value}"))
     }
 }
 
@@ -405,12 +483,12 @@ fn in_range(
 fn from_spa(e: &solar_positioning::Error) -> AtmosphereError {
     use solar_positioning::Error as E;
     let field = match e {
-        E::InvalidLatitude { .. } => "latitude_deg",
-        E::InvalidLongitude { .. } => "longitude_deg",
-        E::InvalidHeight { .. } => "altitude_m",
-        E::InvalidPressure { .. } => "refraction.pressure_hpa",
-        E::InvalidTemperature { .. } => "refraction.temperature_c",
-        _ => "utc",
+        E::InvalidLatitude { .. } => SunField::LatitudeDeg,
+        E::InvalidLongitude { .. } => SunField::LongitudeDeg,
+        E::InvalidHeight { .. } => SunField::AltitudeM,
+        E::InvalidPressure { .. } => SunField::PressureHpa,
+        E::InvalidTemperature { .. } => SunField::TemperatureC,
+        _ => SunField::Utc,
     };
     sun_error(field, e.to_string())
 }
@@ -457,7 +535,7 @@ pub fn keep_one_sun(
 /// the horizon, the field at fault named.
 fn check_view_sun(spec: &SunSpec) -> Result<(), (String, String)> {
     let position = spec.position().map_err(|e| match e.kind {
-        AtmosphereErrorKind::Sun { field, message } => (field.to_owned(), message),
+        AtmosphereErrorKind::Sun { field, message } => (field.path().to_owned(), message),
         _ => (String::new(), e.to_string()),
     })?;
     if position.is_above_horizon() {
@@ -880,7 +958,7 @@ mod tests {
         let e = spec.position().unwrap_err();
         assert_eq!(spec.validate().unwrap_err(), e);
         match e.kind {
-            AtmosphereErrorKind::Sun { field, message } => (field, message),
+            AtmosphereErrorKind::Sun { field, message } => (field.path(), message),
             other => panic!("not a sun error: {other}"),
         }
     }

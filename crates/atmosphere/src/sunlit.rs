@@ -160,13 +160,13 @@ impl SunlitPaths {
         let solar = spectral.solar.as_ref().ok_or_else(|| {
             missing(
                 "solar",
-                "build the atmosphere from a plan with a sun and its scattered light (irsig-atmos plan --sun-zenith-deg Z --day-of-year D --sun-scattering)",
+                "build the atmosphere from a plan with a sun and the sunlight it scatters",
             )
         })?;
         if solar.relative_azimuth_deg.is_empty() {
             return Err(missing(
                 "solar.relative_azimuth_deg",
-                "build the atmosphere from a plan whose sun has relative azimuths (irsig-atmos plan --sun-zenith-deg Z --day-of-year D --sun-scattering writes them)",
+                "build the atmosphere from a plan whose sun has relative azimuths (a plan with the sunlight the sun scatters has them)",
             ));
         }
         spectral.validate()?;

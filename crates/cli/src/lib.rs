@@ -14,8 +14,10 @@
 //! - **No output is an input** ([`refuse_output_is_input`]): one check every tool makes
 //!   before any work.
 //!
-//! - **Shared flags** ([`args`]): the band, the digital-count calibration and library enums
-//!   named on the command line, spelt the same in every tool.
+//! - **Shared flags** ([`args`]): every flag two tools share, defined once (the band, the
+//!   sun, the views and the unit of 1990 files, the atmosphere, threads, the digital-count
+//!   calibration, the inputs and outputs several tools name), spelt, typed and checked the
+//!   same in every tool.
 //!
 //! This is the only library crate that knows about processes, exit codes and terminals.
 //!

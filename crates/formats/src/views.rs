@@ -146,7 +146,7 @@ fn split_sun(file: &str, text: &str) -> Result<(String, Option<(usize, usize)>),
                     text,
                     key.start,
                     "a sun in a list of views: one sun lights a run; give it in a single \
-                     view's file, with irsig-trace's --sun-... flags or in a pipeline's `sun`",
+                     view's file, on the command line or in a pipeline's `sun`",
                 ));
             }
         }
@@ -336,7 +336,7 @@ pub fn read_execute(
                 frame.positions[1],
                 format!(
                     "expected the scene file of frame 1, `{first_scene}`, found `{}`: one run \
-                     traces one flattened scene (--scene) with one BVH; split the execute file \
+                     traces one flattened scene with one BVH; split the execute file \
                      by scene",
                     frame.scene
                 ),

@@ -57,6 +57,7 @@ pub use slurm::{
     Dependency, MEMORY_FLOOR_MIB, MEMORY_PER_INPUT_BYTE, NodeLimits, SlurmJob, SlurmOptions,
     SlurmScripts, estimate_memory_mib,
 };
+pub use sun::SunFlags;
 
 /// `word` quoted for a POSIX shell when it needs quoting, as dry runs, Makefiles and Slurm
 /// scripts print it: as it is when it holds only letters, digits and `+ - . / : @ ] _`,

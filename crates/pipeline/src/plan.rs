@@ -7,6 +7,7 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::error::{ErrorKind, PipelineError};
 use crate::spec::{self, Param, PipelineSpec, Source, Spanned, StageSpec};
+use crate::sun::SunFlags;
 
 /// Checks a stage's command line (program name first, as `std::env::args` gives it) the way
 /// the tool itself would parse it, without running anything. The message is shown to the
@@ -23,6 +24,7 @@ type Span = (usize, usize);
 pub struct Tools {
     lookup: Box<Lookup>,
     validators: BTreeMap<String, Validator>,
+    sun_flags: Option<SunFlags>,
 }
 
 impl std::fmt::Debug for Tools {
@@ -40,7 +42,16 @@ impl Tools {
         Self {
             lookup: Box::new(lookup),
             validators: BTreeMap::new(),
+            sun_flags: None,
         }
+    }
+
+    /// Says how the tools spell a sun, so that a pipeline's `sun` can become a trace
+    /// stage's flags and be checked against an atmosphere plan stage's. Without it a
+    /// pipeline with a `sun` is refused.
+    pub fn with_sun_flags(&mut self, flags: SunFlags) -> &mut Self {
+        self.sun_flags = Some(flags);
+        self
     }
 
     /// Registers the parameter check of `tool`: usually `Cli::try_parse_from` of the tool's
@@ -152,7 +163,8 @@ impl Pipeline {
         let src = self.source();
         let mut steps = Vec::new();
         let mut names = BTreeMap::new();
-        for (index, stage) in self.spec.stages.iter().enumerate() {
+        let stages = self.lit_stages(tools)?;
+        for (index, stage) in stages.iter().enumerate() {
             let program = self.find_tool(stage, tools)?;
             let base_name = stage.name.as_ref().map_or_else(
                 || format!("{}#{}", stage.tool.value, index + 1),
@@ -196,9 +208,29 @@ impl Pipeline {
             file: self.file.clone(),
             text: self.text.clone(),
             base_dir: self.base_dir.clone(),
-            stages: self.spec.stages.clone(),
+            stages,
             steps: reorder(steps, &order),
         })
+    }
+
+    /// The stages, with the pipeline's `sun` (if it has one) given to them as `tools`
+    /// spell it.
+    fn lit_stages(&self, tools: &Tools) -> Result<Vec<StageSpec>, PipelineError> {
+        let mut stages = self.spec.stages.clone();
+        if let Some(sun) = &self.spec.sun {
+            let src = self.source();
+            let Some(flags) = &tools.sun_flags else {
+                return Err(src.error(
+                    ErrorKind::Structure,
+                    sun.start(),
+                    sun.start(),
+                    "this pipeline has a `sun`, and its runner does not say how its tools take \
+                     one",
+                ));
+            };
+            crate::sun::apply(src, sun, flags, &mut stages)?;
+        }
+        Ok(stages)
     }
 
     fn find_tool(&self, stage: &StageSpec, tools: &Tools) -> Result<PathBuf, PipelineError> {

@@ -63,6 +63,9 @@ impl Source<'_> {
 pub(crate) struct PipelineSpec {
     pub stages: Vec<StageSpec>,
     pub sweeps: BTreeMap<String, SweepSpec>,
+    /// The pipeline's `sun`, read and checked; given to the stages when they are planned,
+    /// as the tools spell it.
+    pub sun: Option<crate::sun::PipelineSun>,
 }
 
 /// A flag and the file it names: `"o": "out.ron"`.
@@ -150,15 +153,19 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
             "the pipeline has no stages: `stages: []` would run nothing and succeed",
         ));
     }
-    let mut stages = items
+    let stages = items
         .iter()
         .map(|n| stage(src, n))
         .collect::<Result<Vec<_>, _>>()?;
-    if let Some(node) = fields.get("sun") {
-        let sun = crate::sun::read(src, node)?;
-        crate::sun::apply(src, &sun, &mut stages)?;
-    }
-    Ok(PipelineSpec { stages, sweeps })
+    let sun = fields
+        .get("sun")
+        .map(|node| crate::sun::read(src, node))
+        .transpose()?;
+    Ok(PipelineSpec {
+        stages,
+        sweeps,
+        sun,
+    })
 }
 
 const STAGE_FIELDS: &[&str] = &[

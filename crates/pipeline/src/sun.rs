@@ -1,36 +1,50 @@
 //! The pipeline's `sun` (issue 30): one sun for the whole job, written once and given to
-//! every `trace` stage as irsig-trace's own sun flags, so that what runs is still exactly a
+//! every `trace` stage as the tool's own sun flags, so that what runs is still exactly a
 //! command line a user could type. An `atmos plan` stage in the same file must be planned
-//! for that sun: its `sun-zenith-deg` must agree with the sun's zenith angle within the
-//! solar table's tolerance (the check irsig-trace makes later against the built table, made
-//! here before anything runs), and with a sun given by time its `day-of-year` with the
-//! date. A trace stage that gives sun flags of its own is refused: the sun is given once.
+//! for that sun: its zenith angle must agree with the sun's within the solar table's
+//! tolerance (the check irsig-trace makes later against the built table, made here before
+//! anything runs), and with a sun given by time its day of the year with the date. A trace
+//! stage that gives sun flags of its own is refused: the sun is given once. The flags are
+//! the tools' to spell ([`SunFlags`], which the program filling [`crate::Tools`] gives): this
+//! crate knows the sun's fields, not their flags.
 
 use irsig_atmosphere::AtmosphereErrorKind;
 use irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG;
-use irsig_atmosphere::sun::SunSpec;
+use irsig_atmosphere::sun::{SunField, SunSpec};
 use irsig_formats::ron_tree::{Kind, Node};
 
 use crate::error::{ErrorKind, PipelineError};
 use crate::spec::{Param, Source, Spanned, StageSpec, fields_of, scalar};
 
-/// The flags of irsig-trace that say where the sun is: a stage may not give them when the
-/// pipeline has a `sun`.
-const TRACE_SUN_FLAGS: [&str; 6] = [
-    "sun-zenith-deg",
-    "sun-azimuth-deg",
-    "sun-utc",
-    "latitude-deg",
-    "longitude-deg",
-    "altitude-m",
+/// How the tools spell a sun: the flag (without its dashes) of each field of a sun, as the
+/// `trace` tool takes it and as an `atmos plan` stage gives its zenith angle, and the flag
+/// of a plan's day of the year. The program that fills [`crate::Tools`] gives it
+/// ([`crate::Tools::with_sun_flags`]).
+#[derive(Debug, Clone, Copy)]
+pub struct SunFlags {
+    /// The flag of a field of a sun: `sun-zenith-deg` for [`SunField::ZenithDeg`].
+    pub field: fn(SunField) -> &'static str,
+    /// The flag of an atmosphere plan's day of the year (LOWTRAN7's IDAY).
+    pub day_of_year: &'static str,
+}
+
+/// The fields a trace stage may give a sun by: a stage that gives any of them when the
+/// pipeline has a `sun` gives a second sun.
+const TRACE_SUN_FIELDS: [SunField; 6] = [
+    SunField::ZenithDeg,
+    SunField::AzimuthDeg,
+    SunField::Utc,
+    SunField::LatitudeDeg,
+    SunField::LongitudeDeg,
+    SunField::AltitudeM,
 ];
 
-/// The pipeline's sun as read: the trace flags it makes, and its position.
+/// The pipeline's sun as read: its fields as written, and its position.
 #[derive(Debug, Clone)]
 pub(crate) struct PipelineSun {
-    /// `(flag, value)` in the order irsig-trace documents them, each spanned at the value
-    /// it came from.
-    flags: Vec<(Spanned<String>, Param)>,
+    /// Each field given, in the order of its form, with its value spanned at the value it
+    /// came from.
+    fields: Vec<(SunField, Spanned<String>)>,
     /// The day of the year of a sun given by time (1–366).
     day_of_year: Option<u32>,
     zenith_deg: f64,
@@ -60,14 +74,19 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
             ));
         }
     };
-    let (names, flags): (&[&str], &[&str]) = match form {
+    let (names, fields_of_form): (&[&str], &[SunField]) = match form {
         "Direction" => (
             &["zenith_deg", "azimuth_deg"],
-            &["sun-zenith-deg", "sun-azimuth-deg"],
+            &[SunField::ZenithDeg, SunField::AzimuthDeg],
         ),
         "At" => (
             &["utc", "latitude_deg", "longitude_deg", "altitude_m"],
-            &["sun-utc", "latitude-deg", "longitude-deg", "altitude-m"],
+            &[
+                SunField::Utc,
+                SunField::LatitudeDeg,
+                SunField::LongitudeDeg,
+                SunField::AltitudeM,
+            ],
         ),
         _ => {
             return Err(src.error(
@@ -145,9 +164,10 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
     };
     let position = spec.position().map_err(|e| {
         let (n, message) = match e.kind {
-            AtmosphereErrorKind::Sun { field, message } => {
-                (at_field(field), format!("`{field}`: {message}"))
-            }
+            AtmosphereErrorKind::Sun { field, message } => (
+                at_field(field.path()),
+                format!("`{}`: {message}", field.path()),
+            ),
             _ => (inner, e.to_string()),
         };
         src.error(
@@ -175,26 +195,24 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
         ));
     }
     let day_of_year = spec.day_of_year().map(u32::from);
-    let flags = values
+    let fields = values
         .into_iter()
-        .zip(flags)
-        .filter_map(|(v, flag)| {
-            v.map(|(value, n)| {
-                let key = Spanned {
-                    value: (*flag).to_owned(),
-                    start: n.start,
-                    end: n.end,
-                };
-                (key, Param::One(value))
-            })
-        })
+        .zip(fields_of_form)
+        .filter_map(|(v, &field)| v.map(|(value, _)| (field, value)))
         .collect();
     Ok(PipelineSun {
-        flags,
+        fields,
         day_of_year,
         zenith_deg: position.zenith_deg,
         start: node.start,
     })
+}
+
+impl PipelineSun {
+    /// Where the `sun` value starts in the file.
+    pub(crate) fn start(&self) -> usize {
+        self.start
+    }
 }
 
 /// The first word and the rest of a stage's tool.
@@ -220,18 +238,22 @@ fn param<'a>(
         })
 }
 
-/// Gives the sun's flags to every `trace` stage, and checks every `atmos plan` stage
-/// against it.
+/// Gives the sun's flags, as `flags` spells them, to every `trace` stage, and checks every
+/// `atmos plan` stage against it.
 pub(crate) fn apply(
     src: Source<'_>,
     sun: &PipelineSun,
+    flags: &SunFlags,
     stages: &mut [StageSpec],
 ) -> Result<(), PipelineError> {
     let sun_line = src.line(sun.start);
     for stage in stages.iter_mut() {
         let words = tool_words(stage);
         if words.first() == Some(&"trace") {
-            if let Some((key, _)) = TRACE_SUN_FLAGS.iter().find_map(|f| param(stage, f)) {
+            if let Some((key, _)) = TRACE_SUN_FIELDS
+                .iter()
+                .find_map(|&f| param(stage, (flags.field)(f)))
+            {
                 return Err(src.error(
                     ErrorKind::Structure,
                     key.start,
@@ -243,9 +265,17 @@ pub(crate) fn apply(
                     ),
                 ));
             }
-            stage.params.extend(sun.flags.iter().cloned());
+            let given = sun.fields.iter().map(|(field, value)| {
+                let key = Spanned {
+                    value: (flags.field)(*field).to_owned(),
+                    start: value.start,
+                    end: value.end,
+                };
+                (key, Param::One(value.clone()))
+            });
+            stage.params.extend(given);
         } else if words.starts_with(&["atmos", "plan"]) {
-            check_plan(src, sun, sun_line, stage)?;
+            check_plan(src, sun, flags, sun_line, stage)?;
         }
     }
     Ok(())
@@ -256,18 +286,21 @@ pub(crate) fn apply(
 fn check_plan(
     src: Source<'_>,
     sun: &PipelineSun,
+    flags: &SunFlags,
     sun_line: usize,
     stage: &StageSpec,
 ) -> Result<(), PipelineError> {
-    let Some((key, value)) = param(stage, "sun-zenith-deg") else {
+    let zenith_flag = (flags.field)(SunField::ZenithDeg);
+    let day_flag = flags.day_of_year;
+    let Some((key, value)) = param(stage, zenith_flag) else {
         return Err(src.error(
             ErrorKind::Structure,
             stage.tool.start,
             stage.tool.end,
             format!(
-                "this atmosphere plan is for a night (no `sun-zenith-deg`), but the pipeline's \
+                "this atmosphere plan is for a night (no `{zenith_flag}`), but the pipeline's \
                  `sun` (line {sun_line}) lights the trace stages at {:.4} deg from the zenith: \
-                 give the plan `params: {{\"sun-zenith-deg\": {:.3}, \"day-of-year\": D}}`",
+                 give the plan `params: {{\"{zenith_flag}\": {:.3}, \"{day_flag}\": D}}`",
                 sun.zenith_deg, sun.zenith_deg
             ),
         ));
@@ -290,7 +323,7 @@ fn check_plan(
             ));
         }
     }
-    if let (Some(day), Some((key, value))) = (sun.day_of_year, param(stage, "day-of-year")) {
+    if let (Some(day), Some((key, value))) = (sun.day_of_year, param(stage, day_flag)) {
         let (start, end) = value.map_or((key.start, key.end), |v| (v.start, v.end));
         if value.and_then(|v| v.value.parse::<u32>().ok()) != Some(day) {
             return Err(src.error(
@@ -314,8 +347,36 @@ mod tests {
     use std::path::{Path, PathBuf};
 
     fn plan(text: &str) -> Result<Plan, PipelineError> {
-        let tools = Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))));
+        let mut tools = Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))));
+        tools.with_sun_flags(FLAGS);
         Pipeline::parse("p.ron", text, Path::new("/nonexistent"))?.plan(&tools)
+    }
+
+    /// The tools' spelling of a sun, as a program filling `Tools` gives it (irsig-run's
+    /// is irsig-cli's).
+    const FLAGS: SunFlags = SunFlags {
+        field: |field| match field {
+            SunField::ZenithDeg => "sun-zenith-deg",
+            SunField::AzimuthDeg => "sun-azimuth-deg",
+            SunField::Utc => "sun-utc",
+            SunField::LatitudeDeg => "latitude-deg",
+            SunField::LongitudeDeg => "longitude-deg",
+            SunField::AltitudeM => "altitude-m",
+            _ => "not-a-trace-flag",
+        },
+        day_of_year: "day-of-year",
+    };
+
+    #[test]
+    fn a_sun_without_the_tools_spelling_is_refused() {
+        let text = lit("Direction(zenith_deg: 30.0, azimuth_deg: 120)", "", "");
+        let tools = Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))));
+        let e = Pipeline::parse("p.ron", &text, Path::new("/nonexistent"))
+            .unwrap()
+            .plan(&tools)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("p.ron:2:8") && e.contains("does not say"), "{e}");
     }
 
     /// A pipeline of a plan, a trace and a sensor stage under `sun`, the plan with

@@ -176,6 +176,7 @@ pub(crate) fn check_builtin_range(
     a: &SpectralAtmosphere,
     band: &crate::BandRequest,
     range_um: [f64; 2],
+    spelling: crate::Spelling,
 ) -> miette::Result<()> {
     if covers(spectral_range_um(a), range_um) {
         return Ok(());
@@ -189,8 +190,11 @@ pub(crate) fn check_builtin_range(
              spectra, {l1:.3}-{l2:.3} um (8-14 um responses) and {m1:.3}-{m2:.3} um (3-5 um \
              responses, night): trace a band inside one of them, or build an atmosphere over \
              the band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
-             (LOWTRAN7) and give its file to --atmosphere",
-            band.record, range_um[0], range_um[1]
+             (LOWTRAN7) and give its file to {}",
+            band.record,
+            range_um[0],
+            range_um[1],
+            spelling.of(Setting::Atmosphere)
         ),
     ))
 }

@@ -3,9 +3,12 @@
 //! inputs' content are `irsig_formats::ParseError`s at their file, line and column, and
 //! come through as they are.
 
-/// The setting of a [`crate::Request`] an error is about: the tool names its flag.
+use irsig_atmosphere::sun::SunField;
+
+/// The setting of a [`crate::Request`] an error is about: the tool names its flag (each
+/// tool maps every setting to the flag it spells it with, so the library knows none).
+/// Exhaustive, so that a tool's mapping is checked by the compiler when a setting is added.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-#[non_exhaustive]
 pub enum Setting {
     /// The band (`Request::band`).
     Band,
@@ -21,54 +24,41 @@ pub enum Setting {
     TolerancePercentile,
     /// A pinned model of the pilot.
     Pin,
-    /// The materials.
-    Materials,
     /// A tile of the frame.
     Tile,
     /// The pixel probed.
     Probe,
-    /// The outputs asked for.
-    Outputs,
-    /// The sun's zenith angle (a sun given as a direction).
-    SunZenith,
-    /// The sun's azimuth (a sun given as a direction).
-    SunAzimuth,
-    /// The time the sun is seen at (a sun given by a time and a place).
-    SunUtc,
-    /// The latitude of the place the sun is seen from.
-    Latitude,
-    /// The longitude of the place the sun is seen from.
-    Longitude,
-    /// The altitude above sea level of the place the sun is seen from.
-    SiteAltitude,
+    /// A field of the sun's position (`SunRequest::spec`): its zenith angle or azimuth for a
+    /// direction; its time, latitude, longitude or altitude for a time and a place.
+    Sun(SunField),
     /// The sun's shadow rays per hit.
     SunShadowRays,
 }
 
-impl Setting {
-    /// The setting's name, as the tools spell it (kebab-case): `sub-bands`, `sky-radiance`.
+/// How the maker of a request spells each setting where the user reads it (`--sub-bands` on
+/// a command line): the library names settings, never flags, and words what it says about
+/// one (a warning, the advice in an error, a decision's reasons) in its caller's spelling.
+#[derive(Clone, Copy)]
+pub struct Spelling(pub fn(Setting) -> String);
+
+impl Spelling {
+    /// How `setting` is spelt.
     #[must_use]
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Band => "band",
-            Self::Atmosphere => "atmosphere",
-            Self::SkyRadiance => "sky-radiance",
-            Self::SubBands => "sub-bands",
-            Self::Tolerance => "tolerance",
-            Self::TolerancePercentile => "tolerance-percentile",
-            Self::Pin => "pin",
-            Self::Materials => "materials",
-            Self::Tile => "tile",
-            Self::Probe => "probe",
-            Self::Outputs => "outputs",
-            Self::SunZenith => "sun-zenith-deg",
-            Self::SunAzimuth => "sun-azimuth-deg",
-            Self::SunUtc => "sun-utc",
-            Self::Latitude => "latitude-deg",
-            Self::Longitude => "longitude-deg",
-            Self::SiteAltitude => "altitude-m",
-            Self::SunShadowRays => "sun-shadow-rays",
-        }
+    pub fn of(self, setting: Setting) -> String {
+        (self.0)(setting)
+    }
+}
+
+impl std::fmt::Debug for Spelling {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("Spelling(..)")
+    }
+}
+
+impl PartialEq for Spelling {
+    /// Two requests that differ only in how their settings are spelt render the same.
+    fn eq(&self, _: &Self) -> bool {
+        true
     }
 }
 

@@ -15,7 +15,7 @@
 //! sink.
 //!
 //! ```
-//! use irsig_render::{AtmosphereRequest, BandRequest, Plan, Request};
+//! use irsig_render::{AtmosphereRequest, BandRequest, Plan, Request, Spelling};
 //! let request = Request {
 //!     band: BandRequest::total(),
 //!     atmosphere: AtmosphereRequest::Vacuum { sky_radiance_w_m2_sr: -1.0 },
@@ -24,6 +24,7 @@
 //!     sun: None,
 //!     counts: Default::default(),
 //!     defaulted: vec![],
+//!     spelling: Spelling(|setting| format!("{setting:?}")),
 //! };
 //! // A sky radiance below 0 is refused before anything is read.
 //! let e = Plan::new(request).unwrap_err();
@@ -47,7 +48,7 @@ pub mod tolerance;
 
 pub use air::AtmosphereRequest;
 pub use band::BandRequest;
-pub use error::{RequestError, Setting};
+pub use error::{RequestError, Setting, Spelling};
 pub use plan::{Plan, Request, Sink, TileRequest, ToleranceRequest};
 pub use run_hash::RunHash;
 pub use sun::SunRequest;

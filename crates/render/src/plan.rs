@@ -27,7 +27,7 @@ use rayon::prelude::*;
 use crate::air::{self, AirData, AtmosphereRequest};
 use crate::band::{BandRequest, Collapsed, Split, SubBandModel};
 use crate::budget::Budget;
-use crate::error::{RequestError, Setting};
+use crate::error::{RequestError, Setting, Spelling};
 use crate::guarantee::Guarantee;
 use crate::products::{self, FrameRadiometry};
 use crate::run_hash::RunHash;
@@ -64,6 +64,8 @@ pub struct Request {
     /// The settings the user left at their defaults, where a default changes the physics
     /// (the band, the atmosphere): the plan says what it took, through the sink's notes.
     pub defaulted: Vec<Setting>,
+    /// How the request's maker spells its settings, for what the plan says about them.
+    pub spelling: Spelling,
 }
 
 /// A tile of every frame: a rectangle `X,Y,W,H` or tile `I/CxR` of a grid, resolved
@@ -277,7 +279,7 @@ impl Plan {
             && request.settings.sub_bands.is_none()
             && request.tolerance.is_none()
         {
-            warnings.push(one_sub_band_in_sunlight(s));
+            warnings.push(one_sub_band_in_sunlight(request.spelling, s));
         }
         let mut inputs = Vec::new();
         match &request.atmosphere {
@@ -342,7 +344,13 @@ impl Plan {
     ) -> miette::Result<()> {
         let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
         self.record_input("materials", bytes);
-        check_material_bands(&lib, &self.request.band.band, name, bytes)?;
+        check_material_bands(
+            &lib,
+            &self.request.band.band,
+            name,
+            bytes,
+            self.request.spelling,
+        )?;
         let lib = match &self.request.band.band {
             _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
             AnyBand::Band(band) => {
@@ -547,7 +555,7 @@ impl Plan {
         if let Some(s) = &self.request.sun
             && d.choice(SwitchableModel::SubBands).is_some()
         {
-            let warning = one_sub_band_in_sunlight(s);
+            let warning = one_sub_band_in_sunlight(self.request.spelling, s);
             self.warnings
                 .lock()
                 .map_err(|_| poisoned())?
@@ -741,7 +749,12 @@ impl Plan {
         } = *request
         {
             if let Some(s) = &self.request.sun {
-                return Err(sunlight::no_solar_table(s, "none", "a vacuum"));
+                return Err(sunlight::no_solar_table(
+                    s,
+                    "none",
+                    "a vacuum",
+                    self.request.spelling,
+                ));
             }
             let vacuum = Vacuum {
                 sky_radiance_w_m2_sr,
@@ -811,6 +824,7 @@ impl Plan {
                     "{what}; the built-ins, 8-14 um and 3-5 um, are for night only, since by \
                      day the sun's geometry is part of the atmosphere"
                 ),
+                self.request.spelling,
             ));
         }
         match (&data, &split, request) {
@@ -818,7 +832,13 @@ impl Plan {
                 air::check_spectral_range(name, a, bytes, sp.range_um)?;
             }
             (AirData::Spectral(a, _), Some(sp), AtmosphereRequest::Builtin(name)) => {
-                air::check_builtin_range(name, a, &self.request.band, sp.range_um)?;
+                air::check_builtin_range(
+                    name,
+                    a,
+                    &self.request.band,
+                    sp.range_um,
+                    self.request.spelling,
+                )?;
             }
             _ => {}
         }
@@ -887,6 +907,7 @@ impl Plan {
                         s,
                         &name,
                         "a band atmosphere (tables integrated over a band, without spectra)",
+                        self.request.spelling,
                     ));
                 }
                 let data_error_k = data_error_k(
@@ -1004,7 +1025,16 @@ impl Plan {
                         return Ok(None);
                     };
                     let c = collapsed(count)?;
-                    sunlight::sun(request, position, &name, spectral, split, &c).map(Some)
+                    sunlight::sun(
+                        request,
+                        position,
+                        &name,
+                        spectral,
+                        split,
+                        &c,
+                        self.request.spelling,
+                    )
+                    .map(Some)
                 };
                 lit(SubBandCount::BAND)?;
                 let air = Air {
@@ -1034,6 +1064,7 @@ impl Plan {
             air.spectral,
             tracer.has_sun(),
             &tolerance.pins,
+            self.request.spelling,
         )?;
         let (Some(&ref_kind), Some(&ref_count)) =
             (offer.atmospheres.first(), offer.sub_bands.first())
@@ -1431,14 +1462,15 @@ fn poisoned() -> miette::Report {
 /// that they are opaque in the same absorption bands, which docs/accuracy.md ("The sun's
 /// share by day") measures against LOWTRAN7's spectra. Not refused: at 8-14 µm the error
 /// is a few 0.001 % of the radiance, and a user may want the band model's speed.
-fn one_sub_band_in_sunlight(sun: &SunRequest) -> String {
+fn one_sub_band_in_sunlight(spelling: Spelling, sun: &SunRequest) -> String {
+    let sub_bands = spelling.of(Setting::SubBands);
     format!(
-        "with --{} and one sub-band (the default), the sunlight is summed as a product of band \
+        "with {} and one sub-band (the default), the sunlight is summed as a product of band \
          averages: measured against LOWTRAN7's spectra it is 7-8 % low in 8-14 um and 20-26 % \
          low in 3-5 um through 1 km (docs/accuracy.md, \"The sun's share by day\"); give \
-         --sub-bands full for the spectral integral, or --sub-bands 1 to keep the band model \
+         {sub_bands} full for the spectral integral, or {sub_bands} 1 to keep the band model \
          and silence this",
-        sun.setting().name()
+        spelling.of(sun.setting())
     )
 }
 
@@ -1454,7 +1486,9 @@ fn check_material_bands(
     band: &AnyBand,
     file: &str,
     bytes: &[u8],
+    spelling: Spelling,
 ) -> miette::Result<()> {
+    let band_setting = spelling.of(Setting::Band);
     // A band is within the table's when its edges are, to a part in 1e9 (the band's edges
     // are parsed from the same decimals the library writes).
     let within = |(shortest, longest): (f64, f64), lo: f64, hi: f64| {
@@ -1468,8 +1502,12 @@ fn check_material_bands(
             AnyBand::Band(b) if within(table_band, b.lambda_min_um(), b.lambda_max_um()) => {
                 continue;
             }
-            AnyBand::Band(b) => format!("--band {}-{} um", b.lambda_min_um(), b.lambda_max_um()),
-            AnyBand::Total(_) => "--band total (the whole spectrum)".to_owned(),
+            AnyBand::Band(b) => format!(
+                "{band_setting} {}-{} um",
+                b.lambda_min_um(),
+                b.lambda_max_um()
+            ),
+            AnyBand::Total(_) => format!("{band_setting} total (the whole spectrum)"),
         };
         return Err(error_at_path(
             file,
@@ -1478,7 +1516,7 @@ fn check_material_bands(
             format!(
                 "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
                  {asked}: give it a `spectral` curve over that band (irsig-material fresnel \
-                 --nk-table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
+                 with an n, k table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
                  use its {}-{} um values there",
                 m.name, table_band.0, table_band.1, table_band.0, table_band.1
             ),

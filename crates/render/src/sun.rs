@@ -13,13 +13,13 @@
 use irsig_atmosphere::AtmosphereErrorKind;
 use irsig_atmosphere::scattered::ScatteredSunlight;
 use irsig_atmosphere::solar::{DirectSun, ZENITH_TOLERANCE_DEG};
-use irsig_atmosphere::sun::{SunPosition, SunSpec};
+use irsig_atmosphere::sun::{SunField, SunPosition, SunSpec};
 use irsig_model::SpectralAtmosphere;
 use irsig_tracer::{Sun, SunBeam};
 use miette::miette;
 
 use crate::band::{Collapsed, Split};
-use crate::error::{RequestError, Setting};
+use crate::error::{RequestError, Setting, Spelling};
 
 /// A sun to light the scene with.
 #[derive(Debug, Clone, PartialEq)]
@@ -40,8 +40,8 @@ impl SunRequest {
     #[must_use]
     pub fn setting(&self) -> Setting {
         match self.spec {
-            SunSpec::Direction { .. } => Setting::SunZenith,
-            SunSpec::At { .. } => Setting::SunUtc,
+            SunSpec::Direction { .. } => Setting::Sun(SunField::ZenithDeg),
+            SunSpec::At { .. } => Setting::Sun(SunField::Utc),
         }
     }
 
@@ -60,11 +60,12 @@ impl SunRequest {
             ));
         }
         let position = self.spec.position().map_err(|e| match e.kind {
-            AtmosphereErrorKind::Sun { field, message } if self.origin.is_some() => {
-                self.refuse(field_setting(field), format!("`{field}`: {message}"))
-            }
+            AtmosphereErrorKind::Sun { field, message } if self.origin.is_some() => self.refuse(
+                Setting::Sun(field),
+                format!("`{}`: {message}", field.path()),
+            ),
             AtmosphereErrorKind::Sun { field, message } => {
-                RequestError::report(field_setting(field), message)
+                RequestError::report(Setting::Sun(field), message)
             }
             _ => self.refuse(self.setting(), e.to_string()),
         })?;
@@ -73,7 +74,7 @@ impl SunRequest {
                 self.setting(),
                 format!(
                     "the sun is {:.4} deg from the zenith, at or below the horizon: a sun \
-                     below 90 deg lights the scene; trace a night without the sun's flags",
+                     below 90 deg lights the scene; leave the sun out for a night",
                     position.zenith_deg
                 ),
             ));
@@ -93,31 +94,30 @@ impl SunRequest {
     }
 }
 
-/// The setting of a field of [`SunSpec`].
-fn field_setting(field: &str) -> Setting {
-    match field {
-        "zenith_deg" => Setting::SunZenith,
-        "azimuth_deg" => Setting::SunAzimuth,
-        "latitude_deg" => Setting::Latitude,
-        "longitude_deg" => Setting::Longitude,
-        "altitude_m" => Setting::SiteAltitude,
-        _ => Setting::SunUtc,
-    }
+/// How to make an atmosphere with a `solar` table, for messages, the atmosphere's setting
+/// spelt as the request's maker spells it.
+fn how_to_build(spelling: Spelling) -> String {
+    format!(
+        "build one for this sun with irsig-atmos plan (for the sun's zenith angle and day of \
+         the year) and irsig-atmos build, and give its file to {}",
+        spelling.of(Setting::Atmosphere)
+    )
 }
-
-/// How to make an atmosphere with a `solar` table, for messages.
-const HOW_TO_BUILD: &str = "build one for this sun with `irsig-atmos plan --sun-zenith-deg Z \
-                            --day-of-year D` and `irsig-atmos build`, and give its file to \
-                            --atmosphere";
 
 /// The refusal of a sun with an atmosphere `name` that has no `solar` table (`what` says
 /// what it is instead).
-pub(crate) fn no_solar_table(sun: &SunRequest, name: &str, what: &str) -> miette::Report {
+pub(crate) fn no_solar_table(
+    sun: &SunRequest,
+    name: &str,
+    what: &str,
+    spelling: Spelling,
+) -> miette::Report {
     sun.refuse(
         sun.setting(),
         format!(
             "the sun's beam needs a spectral atmosphere with a solar table, and `{name}` is \
-             {what}: {HOW_TO_BUILD}"
+             {what}: {}",
+            how_to_build(spelling)
         ),
     )
 }
@@ -136,12 +136,14 @@ pub(crate) fn sun(
     spectral: &SpectralAtmosphere,
     split: &Split<'_>,
     collapsed: &Collapsed,
+    spelling: Spelling,
 ) -> miette::Result<Sun> {
     let Some(solar) = spectral.solar.as_ref() else {
         return Err(no_solar_table(
             request,
             name,
             "a night atmosphere (its plan had no sun)",
+            spelling,
         ));
     };
     if (position.zenith_deg - solar.zenith_deg).abs() > ZENITH_TOLERANCE_DEG {
@@ -149,8 +151,10 @@ pub(crate) fn sun(
             request.setting(),
             format!(
                 "the sun is {:.4} deg from the zenith, but the solar table of `{name}` is for \
-                 a sun at {} deg (the two must agree within {ZENITH_TOLERANCE_DEG} deg): {HOW_TO_BUILD}",
-                position.zenith_deg, solar.zenith_deg
+                 a sun at {} deg (the two must agree within {ZENITH_TOLERANCE_DEG} deg): {}",
+                position.zenith_deg,
+                solar.zenith_deg,
+                how_to_build(spelling)
             ),
         ));
     }
@@ -196,8 +200,8 @@ pub(crate) fn scattering(
                 "`{name}` has the sun's direct beam but no scattered-sunlight tables: the sky \
                  and the path radiance hold the air's own emission only (up to 1.2 % of a \
                  3-5 um slant path and 7.5 % of the sky with an urban 5 km haze, \
-                 docs/accuracy.md); build the atmosphere with `irsig-atmos plan \
-                 --sun-scattering` to add them"
+                 docs/accuracy.md); plan the atmosphere with the sunlight it scatters \
+                 (irsig-atmos plan) and build it again to add them"
             ));
             None
         }

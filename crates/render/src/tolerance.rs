@@ -10,7 +10,7 @@ use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
 use irsig_tracer::pilot::{REFINE_MAX_SIDE, Supersample};
 
-use crate::error::{RequestError, Setting};
+use crate::error::{RequestError, Setting, Spelling};
 /// The bounces on offer, a convergence sequence from the most: Appendix A finds one enough
 /// at earth-ambient temperatures; the step from 4 to 8 measures what 8 leave (a hall of
 /// mirrors that still changes there is not guaranteed).
@@ -168,6 +168,7 @@ pub fn offer(
     spectral: bool,
     sun: bool,
     pins: &[Pin],
+    spelling: Spelling,
 ) -> miette::Result<Offer> {
     let mut reasons = Vec::new();
     let specular = materials
@@ -199,7 +200,7 @@ pub fn offer(
         None => {
             reasons.push((
                 SwitchableModel::Atmosphere,
-                "no atmosphere (--atmosphere none)".to_owned(),
+                format!("no atmosphere ({} none)", spelling.of(Setting::Atmosphere)),
             ));
             vec![ModelKind::None]
         }
@@ -262,7 +263,7 @@ pub fn offer(
     let mut pinned = Vec::new();
     for &pin in pins {
         let model = pin.model();
-        let why = format!("pinned by --pin {pin}");
+        let why = format!("pinned by {} {pin}", spelling.of(Setting::Pin));
         reasons.retain(|(m, _)| *m != model);
         reasons.push((model, why));
         pinned.push(model);
@@ -429,6 +430,9 @@ pub fn table(d: &Decision) -> String {
 mod tests {
     use super::*;
 
+    /// Settings spelt as a command line spells them, in kebab case.
+    const SPELLING: Spelling = Spelling(|setting| format!("--{setting:?}").to_lowercase());
+
     #[test]
     fn pins_name_a_model_and_one_of_its_settings() {
         assert_eq!("bounces=2".parse::<Pin>(), Ok(Pin::Bounces(2)));
@@ -455,11 +459,11 @@ mod tests {
     fn the_sun_is_on_offer_by_day_only() {
         let materials = MaterialLibrary::default();
         let kinds = [ModelKind::Table];
-        let night = offer(&materials, Some(&kinds), true, false, &[]).unwrap();
+        let night = offer(&materials, Some(&kinds), true, false, &[], SPELLING).unwrap();
         assert!(night.sun.is_empty() && night.shadow_rays.is_empty());
         let pin: Pin = "sun=off".parse().unwrap();
-        assert!(offer(&materials, Some(&kinds), true, false, &[pin]).is_err());
-        let day = offer(&materials, Some(&kinds), true, true, &[pin]).unwrap();
+        assert!(offer(&materials, Some(&kinds), true, false, &[pin], SPELLING).is_err());
+        let day = offer(&materials, Some(&kinds), true, true, &[pin], SPELLING).unwrap();
         assert_eq!(day.sun, vec![false]);
         assert!(day.pinned.contains(&SwitchableModel::Sun));
     }
@@ -468,18 +472,18 @@ mod tests {
     fn a_spectral_atmosphere_offers_sub_bands_over_the_table_model() {
         let materials = MaterialLibrary::default();
         let kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis];
-        let o = offer(&materials, Some(&kinds), true, false, &[]).unwrap();
+        let o = offer(&materials, Some(&kinds), true, false, &[], SPELLING).unwrap();
         assert_eq!(o.sub_bands, SPECTRAL_SUB_BANDS.to_vec());
         assert_eq!(o.atmospheres, vec![ModelKind::Table]);
         // The band model pinned: every atmosphere model again, as without spectra.
         let pin: Pin = "sub-bands=1".parse().unwrap();
-        let o = offer(&materials, Some(&kinds), true, false, &[pin]).unwrap();
+        let o = offer(&materials, Some(&kinds), true, false, &[pin], SPELLING).unwrap();
         assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
         assert_eq!(o.atmospheres, kinds.to_vec());
         // Without spectra only the band model; a count above 1 cannot be pinned.
-        let o = offer(&materials, Some(&kinds), false, false, &[]).unwrap();
+        let o = offer(&materials, Some(&kinds), false, false, &[], SPELLING).unwrap();
         assert_eq!(o.sub_bands, vec![SubBandCount::BAND]);
         let pin: Pin = "sub-bands=16".parse().unwrap();
-        assert!(offer(&materials, Some(&kinds), false, false, &[pin]).is_err());
+        assert!(offer(&materials, Some(&kinds), false, false, &[pin], SPELLING).is_err());
     }
 }

@@ -1,7 +1,7 @@
 //! `irsig-atmos bounces`: thesis Appendix A, the apparent temperature of a specular target
 //! after 0..N bounces, every background surface alike (Figure A-1).
 
-use irsig_cli::args::TableFormat;
+use irsig_cli::args::Format;
 use irsig_radiometry::{Surface, bounce_temperatures};
 
 use crate::common::{BandArgs, Column, diagnostic, fractions, print_table, temperatures};
@@ -27,9 +27,9 @@ pub struct Args {
     pub max: usize,
     #[command(flatten)]
     pub band: BandArgs,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t)]
-    pub format: TableFormat,
+    /// `--format`.
+    #[command(flatten)]
+    pub format: Format,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
@@ -39,7 +39,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
             args.max
         )));
     }
-    let band = args.band.band()?;
+    let band = args.band.load()?;
     let te = fractions("--target-emissivity", &args.target_emissivity)?;
     let tt = temperatures("--target-temperature", &args.target_temperature)?;
     let be = fractions("--background-emissivity", &args.background_emissivity)?;
@@ -74,5 +74,5 @@ pub fn run(args: &Args) -> miette::Result<()> {
         Column::new("background_temperature_k", 4),
     ];
     columns.extend((0..=args.max).map(|n| Column::new(format!("bounces_{n}_k"), 4)));
-    print_table(args.format, &columns, &rows)
+    print_table(args.format.value, &columns, &rows)
 }

@@ -18,6 +18,9 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use clap::Args;
 use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra, assemble, deck, paths};
+use irsig_cli::args::atmosphere::StandardModel;
+use irsig_cli::args::outputs::Output;
+use irsig_cli::args::{AtmosphereArgs, ThreadsArgs};
 use irsig_formats::ParseError;
 use irsig_formats::canonical;
 use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
@@ -33,31 +36,49 @@ use crate::plan::{deck_name, model_of};
 Examples:
   irsig-atmos build tropical-plan -o tropical.spa
   irsig-atmos build site-plan --radiosonde evening.rsd -o evening.spa
-  IRSIG_LOWTRAN=/opt/lowtran7 irsig-atmos build plan -o atm.spa --jobs 2
+  IRSIG_LOWTRAN=/opt/lowtran7 irsig-atmos build plan -o atm.spa --threads 2
 
 LOWTRAN7 is $IRSIG_LOWTRAN, else `lowtran7` on PATH
 (scripts/atmosphere/install-lowtran.sh builds it). Where runs/NNNN.tape7 exists in the
 plan directory it is used instead of running LOWTRAN7 (a LOWTRAN7 or MODTRAN tape7 of
 the path's mode: IEMSCT 3 for the sun's paths, 2 for sunlit ones).
-The output is a binary spectral atmosphere, RON if its name ends in .ron.")]
+The output is a binary spectral atmosphere, RON if its name ends in .ron.",
+    group(clap::ArgGroup::new("output_required").args(["output"]).required(true)),
+    mut_arg("output", |a| a.help(
+        "The spectral atmosphere to write (binary; RON if the name ends in `.ron`; `-` for \
+         standard output)"
+    )),
+    mut_arg("atmosphere", |a| a
+        .alias("model")
+        .conflicts_with("radiosonde")
+        .help(
+            "Run every path with this LOWTRAN7 standard model instead of the plan's (writes its \
+             own decks): tropical, midlat-summer, midlat-winter, subarctic-summer, \
+             subarctic-winter or us-std-1976 (or its number, 1-6)"
+        )),
+    mut_arg("threads", |a| a
+        .short_alias('j')
+        .alias("jobs")
+        .help("LOWTRAN7 processes at once [default: the number of CPUs]")),
+)]
 pub struct BuildArgs {
     /// The plan directory `irsig-atmos plan` wrote (plan.ron and runs/), or a plan file
     /// (`plan -o FILE.ron`), whose decks are then written here from it.
     pub plan: PathBuf,
-    /// The spectral atmosphere to write (binary; RON if the name ends in `.ron`; `-` for
-    /// standard output).
-    #[arg(short = 'o', long, value_name = "FILE")]
-    pub output: PathBuf,
-    /// Run every path with this standard model instead of the plan's (writes its own decks).
-    #[arg(long, value_name = "MODEL", conflicts_with = "radiosonde")]
-    pub model: Option<String>,
+    /// `-o PATH`: the spectral atmosphere.
+    #[command(flatten)]
+    pub output: Output,
+    /// `--atmosphere`: a standard model instead of the plan's (the old spelling `--model`
+    /// is kept).
+    #[command(flatten)]
+    pub atmosphere: AtmosphereArgs<StandardModel>,
     /// Run every path with this `.rsd` radiosonde as LOWTRAN7's user-defined model instead
     /// of the plan's model (writes its own decks).
     #[arg(long, value_name = "FILE.rsd")]
     pub radiosonde: Option<String>,
-    /// LOWTRAN7 processes at once (default: the number of CPUs).
-    #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub jobs: Option<u32>,
+    /// `--threads N`: LOWTRAN7 processes at once.
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
 }
 
 /// One run's result.
@@ -511,13 +532,15 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
         inputs.extend(runs.flatten().map(|e| e.path()));
     }
     inputs.extend(a.radiosonde.iter().map(PathBuf::from));
-    irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
-    irsig_cli::check_output(&a.output)?;
+    let output = a.output.required()?;
+    irsig_cli::refuse_output_is_input(inputs, [output])?;
+    irsig_cli::check_output(output)?;
     let input = irsig_cli::read_input(plan_file)?;
     let mut plan: AtmospherePlan = canonical::from_ron_bytes(&input.name, &input.bytes)?;
-    let own_decks = plan_is_file || a.model.is_some() || a.radiosonde.is_some();
-    if a.model.is_some() || a.radiosonde.is_some() {
-        plan.model = model_of(a.model.as_deref(), a.radiosonde.as_deref())?.0;
+    let model = a.atmosphere.given();
+    let own_decks = plan_is_file || model.is_some() || a.radiosonde.is_some();
+    if model.is_some() || a.radiosonde.is_some() {
+        plan.model = model_of(model, a.radiosonde.as_deref())?.0;
     }
     let all = paths(&plan);
     // The deck of every run: the plan's files, checked against the plan's paths, or our own.
@@ -561,10 +584,7 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     } else {
         Some(lowtran::find().map_err(|m| miette!("{m}"))?)
     };
-    let jobs = a.jobs.map_or_else(
-        || std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
-        |j| j as usize,
-    );
+    let jobs = a.threads.count();
     let bar = irsig_cli::progress_bar(all.len() as u64, "LOWTRAN7");
     let next = AtomicUsize::new(0);
     let results: Mutex<Vec<Option<Result<RunResult, Report>>>> =
@@ -722,12 +742,12 @@ pub fn run(a: &BuildArgs) -> miette::Result<()> {
     let spectra: Vec<PathSpectra> = ok.into_iter().map(|r| r.spectra).collect();
     let atmosphere = assemble(&plan, &spectra, &*temperature, ground_asl_m, &source)
         .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
-    let bytes = if a.output.extension().is_some_and(|e| e == "ron") {
+    let bytes = if output.extension().is_some_and(|e| e == "ron") {
         canonical::to_ron(&atmosphere)
             .into_diagnostic()?
             .into_bytes()
     } else {
         canonical::binary_spectral::encode(&atmosphere).into_diagnostic()?
     };
-    irsig_cli::write_output(Some(&a.output), |w| w.write_all(&bytes))
+    irsig_cli::write_output(Some(output), |w| w.write_all(&bytes))
 }

@@ -1,26 +1,14 @@
-//! What the subcommands share: checked value lists, the band options, and the table
-//! printer (aligned text, CSV, RON).
+//! What the subcommands share: checked value lists, the band flag, and the table printer
+//! (aligned text, CSV, RON).
 
 use std::io::Write;
 
-use irsig_cli::args::{BandArg, TableFormat, values};
-use irsig_radiometry::Band;
+use irsig_cli::args::{TableFormat, values};
 use miette::miette;
 
-/// `--band` of the calculators (`irsig_cli::args::BandArg`, spelt as in every tool).
-#[derive(Debug, clap::Args)]
-pub struct BandArgs {
-    /// The band: `MIN-MAX` in micrometres (flat response) or a sensor response file
-    /// (formats/srf.md), whose first and last wavelengths bound it [default: 8-14].
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<BandArg>,
-}
-
-impl BandArgs {
-    pub fn band(&self) -> miette::Result<Band> {
-        BandArg::or_default(self.band.as_ref()).load()
-    }
-}
+/// `--band` of the calculators: a band with wavelengths (a flat band or a response file),
+/// spelt as in every tool.
+pub type BandArgs = irsig_cli::args::BandArgs<irsig_cli::args::band::Wavelengths>;
 
 /// Values that must be temperatures in K (finite, ≥ 0).
 pub fn temperatures(option: &str, text: &str) -> miette::Result<Vec<f64>> {

@@ -9,6 +9,9 @@ use clap::{Args, ValueEnum};
 use irsig_atmosphere::legacy::{
     ConvertOptions, DirtranTables, LegacyUnits, from_atmosphere, to_atmosphere,
 };
+use irsig_cli::args::BandArgs;
+use irsig_cli::args::band::Flat;
+use irsig_cli::args::outputs::{Name, Output, ToLegacyArgs};
 use irsig_formats::legacy::{atm, cor, dwr, rsd, rtt};
 use irsig_model::{Atmosphere, SlantTables};
 use miette::{IntoDiagnostic, Report, WrapErr};
@@ -26,13 +29,37 @@ Examples:
   irsig-atmos convert --to-legacy us-std-1976.ron --altitude-unit km \\
       --radiance-unit W/cm2/sr --out-dir legacy/ --stem us
 
-Material files (the index and its .ems tables) convert with irsig-material convert.")]
+Material files (the index and its .ems tables) convert with irsig-material convert.",
+    mut_arg("band", |a| a.help(
+        "The band the tables were integrated over: MIN-MAX in micrometres, a flat band \
+         [default: 8-14]"
+    )),
+    mut_arg("name", |a| a
+        .required_unless_present("to_legacy")
+        .help("Name of the atmosphere")),
+    mut_arg("output", |a| a
+        .conflicts_with("to_legacy")
+        .help("Output canonical atmosphere (stdout when absent or `-`)")),
+    mut_arg("to_legacy", |a| a.help(
+        "Convert the other way: this canonical atmosphere (a file, `-`, or `builtin:NAME`) \
+         to DIRTRAN tables"
+    )),
+    mut_arg("out_dir", |a| a.help("Directory for the legacy files written by `--to-legacy`")),
+    mut_arg("stem", |a| a.help(
+        "File stem of the DIRTRAN tables written by `--to-legacy` (default: the name)"
+    )),
+)]
 pub struct ConvertArgs {
     /// The `.atm` table (altitude ASL, T in K, altitude above ground, τ, L_u).
-    #[arg(long, value_name = "FILE", required_unless_present = "to_legacy")]
+    #[arg(
+        long,
+        value_name = "FILE",
+        required_unless_present = "to_legacy",
+        conflicts_with = "to_legacy"
+    )]
     pub atm: Option<String>,
     /// The `.cor` coefficients a1 a2 a3 (thesis eq. 10).
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub cor: Option<String>,
     /// The altitude in metres the `.cor` was fitted at (the format does not say; the
     /// LOWTRAN7 reference tables use 1000). Lets the models scale the correction to other
@@ -40,16 +67,21 @@ pub struct ConvertArgs {
     #[arg(long, value_name = "METRES", requires = "cor")]
     pub cor_altitude_m: Option<f64>,
     /// The `.dwr` sky table (zenith angle, L_d; `-1` row = hemispheric).
-    #[arg(long, value_name = "FILE", required_unless_present = "to_legacy")]
+    #[arg(
+        long,
+        value_name = "FILE",
+        required_unless_present = "to_legacy",
+        conflicts_with = "to_legacy"
+    )]
     pub dwr: Option<String>,
     /// The `.rtt` temperature → band radiance table.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub rtt: Option<String>,
     /// The `.rsd` radiosonde.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub rsd: Option<String>,
     /// Slant tables (canonical `SlantTables` RON, SI) from scripts/atmosphere/regen.py.
-    #[arg(long, value_name = "FILE")]
+    #[arg(long, value_name = "FILE", conflicts_with = "to_legacy")]
     pub slant: Option<String>,
     /// Unit of every altitude in the legacy tables (DIRTRAN wrote km).
     #[arg(long, value_enum)]
@@ -58,32 +90,24 @@ pub struct ConvertArgs {
     /// text once says W/m2/sr for the `.rtt`, so it must be stated).
     #[arg(long, value_enum)]
     pub radiance_unit: RadianceUnit,
-    /// Name of the atmosphere.
-    #[arg(long, required_unless_present = "to_legacy")]
-    pub name: Option<String>,
+    /// `--name`: of the atmosphere.
+    #[command(flatten)]
+    pub name: Name,
     /// Where the numbers come from (model, version, settings).
     #[arg(
         long,
         default_value = "DIRTRAN tables converted by irsig-atmos convert"
     )]
     pub source: String,
-    /// The band the tables were integrated over: `MIN-MAX` in micrometres (a flat band)
-    /// [default: 8-14].
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<irsig_cli::args::BandArg>,
-    /// Output canonical atmosphere (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
-    pub output: Option<PathBuf>,
-    /// Convert the other way: this canonical atmosphere (a file, `-`, or `builtin:NAME`)
-    /// to DIRTRAN tables.
-    #[arg(long, value_name = "FILE", conflicts_with_all = ["atm", "cor", "dwr", "rtt", "rsd", "slant"])]
-    pub to_legacy: Option<String>,
-    /// Directory for the legacy files written by `--to-legacy`.
-    #[arg(long, value_name = "DIR", requires = "to_legacy", default_value = ".")]
-    pub out_dir: PathBuf,
-    /// File stem of the DIRTRAN tables written by `--to-legacy` (default: the name).
-    #[arg(long, requires = "to_legacy")]
-    pub stem: Option<String>,
+    /// `--band`: a flat band.
+    #[command(flatten)]
+    pub band: BandArgs<Flat>,
+    /// `-o PATH`: the canonical atmosphere.
+    #[command(flatten)]
+    pub output: Output,
+    /// `--to-legacy FILE`, `--out-dir`, `--stem`.
+    #[command(flatten)]
+    pub legacy: ToLegacyArgs,
 }
 
 /// A legacy altitude unit.
@@ -127,7 +151,7 @@ impl ConvertArgs {
 /// A missing or malformed table (file, line, column and what was expected), a converted
 /// atmosphere that breaks a rule, or an I/O error; nothing is written then.
 pub fn run(args: &ConvertArgs) -> miette::Result<()> {
-    match &args.to_legacy {
+    match &args.legacy.file {
         Some(input) => to_legacy(args, input),
         None => from_legacy(args),
     }
@@ -142,7 +166,8 @@ fn read_text(path: &str) -> miette::Result<(String, String)> {
 }
 
 fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
-    let (Some(atm_path), Some(dwr_path), Some(name)) = (&args.atm, &args.dwr, &args.name) else {
+    let (Some(atm_path), Some(dwr_path), Some(name)) = (&args.atm, &args.dwr, &args.name.value)
+    else {
         return Err(irsig_cli::usage_error(
             "--atm, --dwr and --name are required unless --to-legacy is given",
         ));
@@ -155,7 +180,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
         &args.rsd,
         &args.slant,
     ];
-    irsig_cli::refuse_output_is_input(inputs.into_iter().flatten(), args.output.iter())?;
+    irsig_cli::refuse_output_is_input(inputs.into_iter().flatten(), args.output.path.iter())?;
     let (file, text) = read_text(atm_path)?;
     let atm_table = atm::parse(&file, &text).map_err(Report::new)?;
     let (file, text) = read_text(dwr_path)?;
@@ -200,7 +225,7 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let options = ConvertOptions {
         name: name.clone(),
         source: args.source.clone(),
-        band_um: irsig_cli::args::BandArg::or_default(args.band.as_ref()).flat_limits_um()?,
+        band_um: args.band.limits_um()?,
         units: args.units(),
         cor_altitude_m: args.cor_altitude_m,
         slant,
@@ -210,7 +235,9 @@ fn from_legacy(args: &ConvertArgs) -> miette::Result<()> {
     let text = irsig_formats::canonical::to_ron(&atmosphere)
         .into_diagnostic()
         .wrap_err("cannot write RON")?;
-    irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(text.as_bytes()))
+    irsig_cli::write_output(args.output.path.as_deref(), |w| {
+        w.write_all(text.as_bytes())
+    })
 }
 
 fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
@@ -223,13 +250,17 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         }
     };
     let t = from_atmosphere(&atmosphere, args.units());
-    let stem = args.stem.clone().unwrap_or_else(|| atmosphere.name.clone());
+    let stem = args
+        .legacy
+        .stem
+        .clone()
+        .unwrap_or_else(|| atmosphere.name.clone());
     if stem.is_empty() || stem.contains(['/', '\\']) {
         return Err(irsig_cli::usage_error(format!(
             "--stem must be a plain file stem, found `{stem}`"
         )));
     }
-    let path = |ext: &str| args.out_dir.join(format!("{stem}.{ext}"));
+    let path = |ext: &str| args.legacy.out_dir.join(format!("{stem}.{ext}"));
     let werr = |what: &str, e: irsig_formats::legacy::WriteError| {
         miette::miette!("cannot write the {what}: {e}")
     };
@@ -303,10 +334,10 @@ fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         let text = irsig_formats::canonical::to_ron_pretty(s).into_diagnostic()?;
         files.push((path("slant.ron"), text.into_bytes()));
     }
-    if !Path::new(&args.out_dir).is_dir() {
+    if !Path::new(&args.legacy.out_dir).is_dir() {
         return Err(miette::miette!(
             "output directory {} does not exist",
-            args.out_dir.display()
+            args.legacy.out_dir.display()
         ));
     }
     irsig_cli::refuse_output_is_input([input], files.iter().map(|(p, _)| p))?;

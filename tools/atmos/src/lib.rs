@@ -15,17 +15,17 @@
 //!   the program (issue 14).
 //!
 //! ```text
-//! irsig-atmos plan --scene scene.raw --view view.ron --model tropical -o plan
+//! irsig-atmos plan --scene scene.raw --view view.ron --atmosphere tropical -o plan
 //! irsig-atmos build plan -o tropical.spa
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
 //! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
-//! irsig-atmos temperature --radiance 54.93
+//! irsig-atmos temperature --radiance-w-m2-sr 54.93
 //! irsig-atmos rtt --from 200 --to 350 --step-k 1 --legacy -o us.rtt
 //! irsig-atmos bounces --target-temperature 260:400:10 --max 4
 //! irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \
 //!     --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
-//! irsig-atmos sun --utc 2026-06-21T12:00:00Z --latitude-deg 43.08 --longitude-deg -77.67
+//! irsig-atmos sun --sun-utc 2026-06-21T12:00:00Z --latitude-deg 43.08 --longitude-deg -77.67
 //! ```
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
@@ -56,13 +56,13 @@ mod temperature;
   irsig-atmos convert --to-legacy builtin:us-std-1976 --altitude-unit km \\
       --radiance-unit W/cm2/sr --out-dir /tmp
   irsig-atmos radiance --temperature 300
-  irsig-atmos temperature --radiance 54.93 --band 8-14
+  irsig-atmos temperature --radiance-w-m2-sr 54.93 --band 8-14
   irsig-atmos rtt --from 200 --to 350 --step-k 1 --legacy -o us-std.rtt
   irsig-atmos bounces --target-emissivity 0.98 --target-temperature 260:400:10 \\
       --background-emissivity 0.95 --background-temperature 300 --max 4
   irsig-atmos shape-factor --emissivity 0.95 --object-temperature 240 \\
       --background-temperature 240,280,320,360 --ld 0.0014 --ld-unit W/m2/sr
-  irsig-atmos sun --utc 2026-06-21T12:00:00Z --latitude-deg 43.08 \\
+  irsig-atmos sun --sun-utc 2026-06-21T12:00:00Z --latitude-deg 43.08 \\
       --longitude-deg -77.67 --altitude-m 170
 
 Material libraries (the 1990 index and .ems tables, Fresnel emissivity): irsig-material."

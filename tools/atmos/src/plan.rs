@@ -8,65 +8,94 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 use irsig_atmosphere::plan::{add_aerosol, add_slabs, add_sun, deck, make_plan, paths};
-use irsig_atmosphere::sun::{keep_one_sun, parse_views_and_sun};
+use irsig_atmosphere::sun::SunSpec;
+use irsig_cli::args::atmosphere::StandardModel;
+use irsig_cli::args::inputs::Scene;
+use irsig_cli::args::outputs::{Name, Output};
+use irsig_cli::args::{AtmosphereArgs, DayOfYear, SunArgs, ViewArgs};
 use irsig_formats::canonical;
 use irsig_formats::radtran::tape5;
-use irsig_model::{AerosolModel, LengthUnit, PlanAerosol, PlanModel, RadiosondeLevel};
+use irsig_model::{AerosolModel, AtmospherePlan, PlanAerosol, PlanModel, RadiosondeLevel};
 use miette::{IntoDiagnostic, WrapErr, miette};
 
-use crate::plan_sun::{self, sun_zenith};
+use crate::plan_sun;
 
 /// Arguments of `irsig-atmos plan`.
 #[derive(Debug, Clone, Args)]
 #[command(after_help = "\
 Examples:
   irsig-flatten pipelines/quickstart/scene.ron --materials pipelines/quickstart/materials.ron -o scene.raw
-  irsig-atmos plan --scene scene.raw --view pipelines/quickstart/view.ron --model tropical -o tropical-plan
+  irsig-atmos plan --scene scene.raw --view pipelines/quickstart/view.ron --atmosphere tropical \
+      -o tropical-plan
   irsig-atmos plan --scene scene.raw --view view.ron --radiosonde site.rsd -o site-plan
-  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
+  irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-summer \
       --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
-  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-winter \
+  irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-winter \
       --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
-  irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
+  irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-summer \
       --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
-  irsig-atmos build tropical-plan -o tropical.spa")]
+  irsig-atmos plan --scene scene.raw --view view.ron --atmosphere us-std-1976 \
+      --sun-utc 2026-06-21T16:00:00Z --latitude-deg 43.08 --longitude-deg -77.67 -o rit-plan
+  irsig-atmos build tropical-plan -o tropical.spa",
+    group(clap::ArgGroup::new("model").args(["atmosphere", "radiosonde"]).required(true)),
+    group(clap::ArgGroup::new("views_required").args(["view"]).required(true)),
+    mut_arg("atmosphere", |a| a.alias("model")),
+    mut_arg("legacy_unit", |a| a.alias("view-unit")),
+    mut_arg("scene", |a| a.help(
+        "The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the \
+         ground of every path"
+    )),
+    mut_arg("sun_zenith_deg", |a| a.requires(clap::builder::Resettable::<clap::Id>::Reset).requires("day_of_year").help(
+        "The sun's zenith angle at the scene, degrees, 0 to below 90: adds LOWTRAN7's direct \
+         solar irradiance runs (IEMSCT = 3) at the sky altitudes; with --day-of-year. \
+         --sun-utc with the place, or a view file's `sun`, does the same (one of them). \
+         Without any the plan is for night (no solar runs)"
+    )),
+    mut_arg("sun_azimuth_deg", |a| a.requires(clap::builder::Resettable::<clap::Id>::Reset).help(
+        "The sun's azimuth, degrees clockwise from north, in [0, 360): taken, and not needed \
+         (the scattered sunlight is tabulated at azimuths from the sun's vertical plane)"
+    )),
+    mut_arg("sun_utc", |a| a.help(
+        "The sun seen at this time, UTC (`YYYY-MM-DDTHH:MM:SSZ`), from --latitude-deg, \
+         --longitude-deg and --altitude-m: the plan takes its geometric zenith angle (NREL's \
+         SPA) and its day of the year"
+    )),
+    mut_arg("day_of_year", |a| a.help(
+        "The day of the year, 1-366, for the Earth-Sun distance (LOWTRAN7's IDAY); with \
+         --sun-zenith-deg, or with a view file's sun given as a direction (a sun given by \
+         time has its own day)"
+    )),
+    mut_arg("name", |a| a.help(
+        "The atmosphere's name (default: the model's or the radiosonde file's)"
+    )),
+    mut_arg("output", |a| a.help(
+        "The plan directory to write (must not exist, or be empty); or, for a name ending in \
+         `.ron`, the plan file alone, without decks: `irsig-atmos build FILE.ron` writes them \
+         from it (a pipeline's stages pass files, not directories)"
+    )),
+    group(clap::ArgGroup::new("output_required").args(["output"]).required(true)),
+)]
 pub struct PlanArgs {
-    /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
-    /// ground of every path.
-    #[arg(long, value_name = "FILE")]
-    pub scene: String,
-    /// A view file (canonical RON: one view or a list; or a 1990 viewing file); repeat
-    /// for more.
-    #[arg(long, value_name = "FILE", required = true)]
-    pub view: Vec<String>,
-    /// Length unit of the positions in 1990 viewing files (km in the thesis's files),
-    /// converted to metres on reading. Canonical views are always in metres.
-    #[arg(long, default_value = irsig_cli::args::VIEW_UNIT_DEFAULT, value_name = "UNIT",
-          value_parser = irsig_cli::args::length_unit)]
-    pub view_unit: LengthUnit,
-    /// A LOWTRAN7 standard model: tropical, midlat-summer, midlat-winter,
-    /// subarctic-summer, subarctic-winter, us-std-1976 (or its number 1-6).
-    #[arg(
-        long,
-        value_name = "MODEL",
-        conflicts_with = "radiosonde",
-        required_unless_present = "radiosonde"
-    )]
-    pub model: Option<String>,
+    /// `--scene FILE`.
+    #[command(flatten)]
+    pub scene: Scene,
+    /// `--view FILE` (repeatable, at least one) and the unit of 1990 viewing files.
+    #[command(flatten)]
+    pub views: ViewArgs,
+    /// `--atmosphere`: a LOWTRAN7 standard model (the old spelling `--model` is kept).
+    #[command(flatten)]
+    pub atmosphere: AtmosphereArgs<StandardModel>,
     /// A DIRTRAN `.rsd` radiosonde (km, mb, degC, dew-point depression degC) as LOWTRAN7's
     /// user-defined model; its first level is the ground.
     #[arg(long, value_name = "FILE.rsd")]
     pub radiosonde: Option<String>,
-    /// The sun's zenith angle at the scene, degrees, 0 to below 90: adds LOWTRAN7's direct
-    /// solar irradiance runs (IEMSCT = 3) at the sky altitudes. A view file's `sun` does
-    /// the same (not both). Without either the plan is for night (no solar runs).
-    #[arg(long, value_name = "DEG", requires = "day_of_year", value_parser = sun_zenith)]
-    pub sun_zenith_deg: Option<f64>,
-    /// The day of the year, 1-366, for the Earth-Sun distance (LOWTRAN7's IDAY); with
-    /// --sun-zenith-deg, or with a view file's sun given as a direction (a sun given by
-    /// time has its own day).
-    #[arg(long, value_name = "DAY", value_parser = clap::value_parser!(u16).range(1..=366))]
-    pub day_of_year: Option<u16>,
+    /// Where the sun is: `--sun-zenith-deg` (with `--day-of-year`), or `--sun-utc` with the
+    /// place.
+    #[command(flatten)]
+    pub sun: SunArgs,
+    /// `--day-of-year D`.
+    #[command(flatten)]
+    pub day_of_year: DayOfYear,
     /// With a sun, also run every slant and sky path for the sunlight it
     /// scatters (LOWTRAN7's IEMSCT = 2) at 10 azimuths from the sun, and the direct beam at
     /// 3 more altitudes: about ten times the runs. irsig-trace adds that sunlight to every
@@ -100,14 +129,12 @@ pub struct PlanArgs {
     /// --aerosol desert.
     #[arg(long, value_name = "M/S", value_parser = wind_speed)]
     pub wind_speed_m_s: Option<f64>,
-    /// The atmosphere's name (default: the model's or the radiosonde file's).
-    #[arg(long)]
-    pub name: Option<String>,
-    /// The plan directory to write (must not exist, or be empty); or, for a name ending in
-    /// `.ron`, the plan file alone, without decks: `irsig-atmos build FILE.ron` writes them
-    /// from it (a pipeline's stages pass files, not directories).
-    #[arg(short = 'o', long, value_name = "DIR|FILE.ron")]
-    pub output: PathBuf,
+    /// `--name`: of the atmosphere.
+    #[command(flatten)]
+    pub name: Name,
+    /// `-o PATH`: the plan directory, or the plan file.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Whether `-o` names a plan file (`….ron`) rather than a plan directory.
@@ -366,13 +393,18 @@ pub(crate) fn deck_name(i: usize) -> PathBuf {
 /// scene's lowest point; an unknown model; an output directory that exists and is not
 /// empty.
 pub fn run(a: &PlanArgs) -> miette::Result<()> {
-    let inputs = std::iter::once(&a.scene)
-        .chain(&a.view)
+    let output = a.output.required()?;
+    let inputs = std::iter::once(&a.scene.file)
+        .chain(&a.views.files)
         .chain(&a.radiosonde);
-    irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
+    irsig_cli::refuse_output_is_input(inputs, [output])?;
     // The flags first: a wrong one is refused before any file is read.
     let aerosol = aerosol_of(a.aerosol.as_deref(), a.visibility_km, a.wind_speed_m_s)?;
-    let input = irsig_cli::read_input(&a.scene)?;
+    if let Some(z) = a.sun.sun_zenith_deg {
+        plan_sun::rounds_above_horizon(z)
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
+    }
+    let input = irsig_cli::read_input(&a.scene.file)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
         .positions_m
@@ -386,25 +418,37 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         .fold(f64::NEG_INFINITY, f64::max);
     // The terrain beyond the objects is the plane z = 0.
     let ground_z = lowest.min(0.0);
-    let mut observers = Vec::new();
-    let mut view_sun = None;
-    for v in &a.view {
-        let input = irsig_cli::read_input(v)?;
-        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
-        let (views, this) = parse_views_and_sun(&input.name, text, a.view_unit)?;
-        keep_one_sun(&mut view_sun, this).map_err(|e| miette!("{e}"))?;
-        observers.extend(views.iter().map(|view| view.position_m()[2] - ground_z));
-    }
+    let (files, view_sun) = a.views.read()?;
+    let observers: Vec<f64> = files
+        .iter()
+        .flat_map(|(_, views)| views.iter().map(|view| view.position_m()[2] - ground_z))
+        .collect();
+    // The flags' sun, and how they gave it, for messages. A plan is the same at any
+    // azimuth (its scattered sunlight is tabulated at azimuths from the sun's vertical
+    // plane), so a zenith angle alone is a sun here.
+    let spec = a.sun.spec().or_else(|| {
+        a.sun.sun_zenith_deg.map(|zenith_deg| SunSpec::Direction {
+            zenith_deg,
+            azimuth_deg: 0.0,
+        })
+    });
+    let flags = spec.map(|spec| {
+        let given = match &spec {
+            SunSpec::Direction { zenith_deg, .. } => format!("--sun-zenith-deg {zenith_deg}"),
+            SunSpec::At { utc, .. } => format!("--sun-utc {utc}"),
+        };
+        (spec, given)
+    });
     let sun = plan_sun::choose(
-        a.sun_zenith_deg,
-        a.day_of_year,
+        flags.as_ref().map(|(spec, given)| (spec, given.as_str())),
+        a.day_of_year.day,
         a.sun_scattering,
         view_sun.as_ref(),
     )?;
-    let (model, default_name) = model_of(a.model.as_deref(), a.radiosonde.as_deref())?;
-    let name = a.name.clone().unwrap_or(default_name);
-    let mut plan =
-        make_plan(&name, model, &observers).map_err(|e| miette!("{}: {e}", a.view.join(", ")))?;
+    let (model, default_name) = model_of(a.atmosphere.given(), a.radiosonde.as_deref())?;
+    let name = a.name.value.clone().unwrap_or(default_name);
+    let mut plan = make_plan(&name, model, &observers)
+        .map_err(|e| miette!("{}: {e}", a.views.files.join(", ")))?;
     if let Some(range) = a.wavenumber_per_cm {
         plan.wavenumber_per_cm = range;
     }
@@ -425,13 +469,13 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     }
     let plan_text = canonical::to_ron(&plan).into_diagnostic()?;
     let all = paths(&plan);
-    if plan_file_only(&a.output) {
+    if plan_file_only(output) {
         // Every deck is checked as the directory's would be, then left to `build`.
         for (i, p) in all.iter().enumerate() {
             let d = deck(&plan, p).map_err(|e| miette!("{e}"))?;
             tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
         }
-        irsig_cli::write_output(Some(&a.output), |w: &mut dyn std::io::Write| {
+        irsig_cli::write_output(Some(output), |w: &mut dyn std::io::Write| {
             w.write_all(plan_text.as_bytes())
         })?;
     } else {
@@ -441,8 +485,24 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             let text = tape5::write(&d).map_err(|e| miette!("deck of path {i}: {e}"))?;
             files.push((deck_name(i), text.into_bytes()));
         }
-        write_dir_atomic(&a.output, &files)?;
+        write_dir_atomic(output, &files)?;
     }
+    irsig_cli::note!("{}", summary(&plan, output, all.len(), ground_z));
+    // Without slabs, a view path that ends on a facet well above the ground is made from
+    // paths to the ground or to space: said, with what that costs, rather than left silent.
+    if plan.slabs.is_none() && highest - ground_z > SLAB_WORTH_M {
+        irsig_cli::note!(
+            "the scene stands {:.0} m above its lowest point: view paths to its facets up there are made from paths that end at the ground or in space (LOWTRAN7's band-model averages do not multiply along a path: traced through hazy 3.4-4.1 um air by day, an 87 m slab's path radiance was +58 % off LOWTRAN7's own, docs/accuracy.md \"Slab tables\"); --slabs runs LOWTRAN7 for those slabs themselves",
+            highest - ground_z
+        );
+    }
+    Ok(())
+}
+
+/// The plan in one line for stderr: its paths, its sun (and whether the sunlight scattered
+/// into the paths is in it), its slabs, its aerosol (said either way: never a silent
+/// default) and its observers.
+fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) -> String {
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         // Said either way: whether the sunlight scattered into the paths is in the plan.
         let scattered = if s.relative_azimuth_deg.is_empty() {
@@ -496,10 +556,10 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             runs.join(", ")
         )
     });
-    irsig_cli::note!(
+    format!(
         "{}: {} paths{sun}{slab_text}, {aerosol_text}, for {} observer(s) at {} m above the scene's lowest point ({} m)",
-        a.output.display(),
-        all.len(),
+        output.display(),
+        paths,
         plan.observers_m.len(),
         plan.observers_m
             .iter()
@@ -507,16 +567,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             .collect::<Vec<_>>()
             .join(", "),
         ground_z
-    );
-    // Without slabs, a view path that ends on a facet well above the ground is made from
-    // paths to the ground or to space: said, with what that costs, rather than left silent.
-    if plan.slabs.is_none() && highest - ground_z > SLAB_WORTH_M {
-        irsig_cli::note!(
-            "the scene stands {:.0} m above its lowest point: view paths to its facets up there are made from paths that end at the ground or in space (LOWTRAN7's band-model averages do not multiply along a path: traced through hazy 3.4-4.1 um air by day, an 87 m slab's path radiance was +58 % off LOWTRAN7's own, docs/accuracy.md \"Slab tables\"); --slabs runs LOWTRAN7 for those slabs themselves",
-            highest - ground_z
-        );
-    }
-    Ok(())
+    )
 }
 
 /// The height of a scene above its lowest point, metres, from which `plan` says that it

@@ -1,13 +1,14 @@
-//! The sun of `irsig-atmos plan`: its flags (`--sun-zenith-deg`, `--day-of-year`) or the
-//! `sun` of a view file (`formats/canonical/view.md`), the one `irsig-trace` lights the
-//! same views by. A sun given both ways is refused, naming the flag and the file's line
-//! and column, as `irsig-trace` refuses it: neither wins silently.
+//! The sun of `irsig-atmos plan`: its flags (every tool's sun flags, `--sun-zenith-deg`
+//! with `--day-of-year` or `--sun-utc` with the place) or the `sun` of a view file
+//! (`formats/canonical/view.md`), the one `irsig-trace` lights the same views by. A sun
+//! given both ways is refused, naming the flag and the file's line and column, as
+//! `irsig-trace` refuses it: neither wins silently.
 //!
 //! The plan takes the zenith angle `irsig-trace` will check its solar table against:
-//! the view's sun's [`SunPosition::zenith_deg`] (geometric, unless the view gives the air
-//! for refraction), rounded to the 0.001° a deck holds. Its day of the year (LOWTRAN7's
-//! IDAY, the Earth–Sun distance) is the time's for a sun given by time and place; a sun
-//! given as a direction has no date, so `--day-of-year` must give it.
+//! the sun's [`SunPosition::zenith_deg`] (geometric, unless a view gives the air for
+//! refraction), rounded to the 0.001° a deck holds. Its day of the year (LOWTRAN7's IDAY,
+//! the Earth–Sun distance) is the time's for a sun given by time and place; a sun given as
+//! a direction has no date, so `--day-of-year` must give it.
 //!
 //! [`SunPosition::zenith_deg`]: irsig_atmosphere::sun::SunPosition::zenith_deg
 
@@ -21,28 +22,9 @@ pub(crate) struct PlanSunChoice {
     pub day_of_year: u16,
 }
 
-/// `--sun-zenith-deg`: a finite angle from 0 to below 90 degrees.
-pub(crate) fn sun_zenith(s: &str) -> Result<f64, String> {
-    let z: f64 = s
-        .trim()
-        .parse()
-        .map_err(|_| format!("expected the sun's zenith angle in degrees, found `{s}`"))?;
-    if !z.is_finite() || z < 0.0 {
-        return Err(format!(
-            "expected the sun's zenith angle from 0 to below 90 degrees, found {z}"
-        ));
-    }
-    if z >= 90.0 {
-        return Err(format!(
-            "the sun at {z} deg from the zenith is at or below the horizon and gives no direct light: expected 0 to below 90 degrees (leave out --sun-zenith-deg for night)"
-        ));
-    }
-    rounds_above_horizon(z)
-}
-
 /// A deck holds 0.001 deg: the plan keeps the angle rounded so, and a sun that rounds to
 /// the horizon gives no direct light.
-fn rounds_above_horizon(z: f64) -> Result<f64, String> {
+pub(crate) fn rounds_above_horizon(z: f64) -> Result<f64, String> {
     if (z * 1000.0).round() / 1000.0 >= 90.0 {
         return Err(format!(
             "{z} deg rounds to 90 at the 0.001 deg a LOWTRAN7 deck holds: the sun on the horizon gives no direct light; expected at most 89.999 degrees"
@@ -51,64 +33,65 @@ fn rounds_above_horizon(z: f64) -> Result<f64, String> {
     Ok(z)
 }
 
-/// The plan's sun from the flags (`zenith`, `day`, `scattering`) and the views' sun
-/// (`view`, already checked above the horizon by its reader), if any.
+/// The plan's sun from the flags' sun (`flags`: the sun and how the flags gave it, such as
+/// `--sun-zenith-deg 30`, checked at parse time), `--day-of-year` (`day`), `--sun-scattering` (`scattering`) and the
+/// views' sun (`view`, checked above the horizon by its reader), if any.
 ///
 /// # Errors
-/// A usage error when both give a sun; a view's direction without `--day-of-year`; a
-/// `--day-of-year` that is not the view's time's, or that has no sun; `--sun-scattering`
-/// without a sun; a view's sun that rounds to the horizon.
+/// A usage error when both give a sun; a direction without `--day-of-year`; a
+/// `--day-of-year` that is not the time's, or that has no sun; `--sun-scattering` without
+/// a sun; a sun that rounds to the horizon.
 pub(crate) fn choose(
-    zenith: Option<f64>,
+    flags: Option<(&SunSpec, &str)>,
     day: Option<u16>,
     scattering: bool,
     view: Option<&ViewSun<SunSpec>>,
 ) -> miette::Result<Option<PlanSunChoice>> {
-    let Some(view) = view else {
-        return match (zenith, day) {
-            // clap requires --day-of-year with --sun-zenith-deg.
-            (Some(zenith_deg), Some(day_of_year)) => Ok(Some(PlanSunChoice {
-                zenith_deg,
-                day_of_year,
-            })),
-            (None, Some(d)) => Err(irsig_cli::usage_error(format!(
-                "--day-of-year {d} without a sun: give --sun-zenith-deg, or a view file with a \
-                 `sun`"
-            ))),
-            _ if scattering => Err(irsig_cli::usage_error(
-                "--sun-scattering without a sun: give --sun-zenith-deg and --day-of-year, or a \
-                 view file with a `sun`",
-            )),
-            _ => Ok(None),
-        };
+    let (sun, given_by) = match (flags, view) {
+        (Some((_, given)), Some(view)) => {
+            return Err(irsig_cli::usage_error(format!(
+                "{given} and the `sun` of the view file at {} both give a sun: give it once, \
+                 by the flags or in the view file",
+                view.location
+            )));
+        }
+        (Some((spec, given)), None) => (spec, given.to_owned()),
+        (None, Some(view)) => (
+            &view.sun,
+            format!("the `sun` of the view file at {}", view.location),
+        ),
+        (None, None) => {
+            return match day {
+                Some(d) => Err(irsig_cli::usage_error(format!(
+                    "--day-of-year {d} without a sun: give --sun-zenith-deg, --sun-utc with the \
+                     place, or a view file with a `sun`"
+                ))),
+                None if scattering => Err(irsig_cli::usage_error(
+                    "--sun-scattering without a sun: give --sun-zenith-deg and --day-of-year, \
+                     --sun-utc with the place, or a view file with a `sun`",
+                )),
+                None => Ok(None),
+            };
+        }
     };
-    let location = &view.location;
-    if let Some(z) = zenith {
-        return Err(irsig_cli::usage_error(format!(
-            "--sun-zenith-deg {z} and the `sun` of the view file at {location} both give a \
-             sun: give it once, by the flags or in the view file"
-        )));
-    }
-    let position = view.sun.position().map_err(|e| {
-        irsig_cli::usage_error(format!("the `sun` of the view file at {location}: {e}"))
-    })?;
-    let zenith_deg = rounds_above_horizon(position.zenith_deg).map_err(|e| {
-        irsig_cli::usage_error(format!("the `sun` of the view file at {location}: {e}"))
-    })?;
-    let day_of_year = match (view.sun.day_of_year(), day) {
+    let position = sun
+        .position()
+        .map_err(|e| irsig_cli::usage_error(format!("{given_by}: {e}")))?;
+    let zenith_deg = rounds_above_horizon(position.zenith_deg)
+        .map_err(|e| irsig_cli::usage_error(format!("{given_by}: {e}")))?;
+    let day_of_year = match (sun.day_of_year(), day) {
         (Some(of_time), Some(given)) if of_time != given => {
             return Err(irsig_cli::usage_error(format!(
-                "--day-of-year {given}, but the `sun` of the view file at {location} is seen \
-                 on day {of_time} of its year: leave out --day-of-year"
+                "--day-of-year {given}, but {given_by} is seen on day {of_time} of its year: \
+                 leave out --day-of-year"
             )));
         }
         (Some(of_time), _) => of_time,
         (None, Some(given)) => given,
         (None, None) => {
             return Err(irsig_cli::usage_error(format!(
-                "the `sun` of the view file at {location} is a direction, which has no date: \
-                 give --day-of-year D (1-366) for the Earth-Sun distance, or give the sun by \
-                 time and place (`At(utc: ...)`)"
+                "{given_by} is a direction, which has no date: give --day-of-year D (1-366) \
+                 for the Earth-Sun distance, or give the sun by time and place"
             )));
         }
     };
@@ -153,11 +136,31 @@ mod tests {
         assert!(message.contains(says), "{message}");
     }
 
+    /// The sun of the flags `--sun-zenith-deg Z --sun-azimuth-deg 180`.
+    fn zenith(zenith_deg: f64) -> SunSpec {
+        SunSpec::Direction {
+            zenith_deg,
+            azimuth_deg: 180.0,
+        }
+    }
+
     #[test]
     fn flags_alone_as_before() {
         assert_eq!(choose(None, None, false, None).unwrap(), None);
-        let sun = choose(Some(30.0), Some(172), true, None).unwrap().unwrap();
+        let flags = zenith(30.0);
+        let sun = choose(Some((&flags, "--sun-zenith-deg 30")), Some(172), true, None)
+            .unwrap()
+            .unwrap();
         assert_eq!((sun.zenith_deg, sun.day_of_year), (30.0, 172));
+        refused(
+            choose(
+                Some((&zenith(89.9996), "--sun-zenith-deg 89.9996")),
+                Some(1),
+                false,
+                None,
+            ),
+            "--sun-zenith-deg 89.9996: 89.9996 deg rounds to 90",
+        );
         refused(
             choose(None, Some(172), false, None),
             "--day-of-year 172 without a sun",
@@ -178,7 +181,12 @@ mod tests {
             "view.ron:4:8 is a direction",
         );
         refused(
-            choose(Some(40.0), Some(100), false, Some(&v)),
+            choose(
+                Some((&zenith(40.0), "--sun-zenith-deg 40")),
+                Some(100),
+                false,
+                Some(&v),
+            ),
             "--sun-zenith-deg 40 and the `sun` of the view file at view.ron:4:8",
         );
         refused(
@@ -201,6 +209,31 @@ mod tests {
         refused(
             choose(None, Some(80), false, Some(&v)),
             "is seen on day 79 of its year",
+        );
+    }
+
+    #[test]
+    fn a_time_on_the_flags_gives_its_zenith_and_day_as_a_views_does() {
+        let flags = at("2026-03-20T12:00:00Z").sun;
+        let from_flags = choose(
+            Some((&flags, "--sun-utc 2026-03-20T12:00:00Z")),
+            None,
+            false,
+            None,
+        )
+        .unwrap()
+        .unwrap();
+        let view = at("2026-03-20T12:00:00Z");
+        let from_view = choose(None, None, false, Some(&view)).unwrap().unwrap();
+        assert_eq!(from_flags, from_view);
+        refused(
+            choose(
+                Some((&flags, "--sun-utc 2026-03-20T12:00:00Z")),
+                Some(80),
+                false,
+                None,
+            ),
+            "--day-of-year 80, but --sun-utc 2026-03-20T12:00:00Z is seen on day 79",
         );
     }
 }

@@ -1,6 +1,6 @@
 //! `irsig-atmos radiance`: band radiance of blackbodies.
 
-use irsig_cli::args::TableFormat;
+use irsig_cli::args::Format;
 
 use crate::common::{BandArgs, Column, print_table, temperatures};
 
@@ -12,19 +12,19 @@ pub struct Args {
     pub temperature: String,
     #[command(flatten)]
     pub band: BandArgs,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t)]
-    pub format: TableFormat,
+    /// `--format`.
+    #[command(flatten)]
+    pub format: Format,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
-    let band = args.band.band()?;
+    let band = args.band.load()?;
     let rows: Vec<Vec<f64>> = temperatures("--temperature", &args.temperature)?
         .into_iter()
         .map(|t| vec![t, band.radiance(t)])
         .collect();
     print_table(
-        args.format,
+        args.format.value,
         &[
             Column::new("temperature_k", 4),
             Column::new("radiance_w_m2_sr", 6),

@@ -4,15 +4,18 @@
 //! `T_K L` per temperature, radiance in W cm^-2 sr^-1, 12 significant digits, no header.
 //! Otherwise the same rows in W m^-2 sr^-1 after `#` header lines naming band and units.
 
-use std::io::Write;
-use std::path::PathBuf;
-
+use irsig_cli::args::outputs::{Legacy, Output};
 use miette::miette;
+use std::io::Write;
 
 use crate::common::BandArgs;
 
 /// Arguments of `rtt`.
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("legacy", |a| a.help("The 1990 layout: W cm^-2 sr^-1, no header")),
+    mut_arg("output", |a| a.help("Output file (stdout when absent or `-`)")),
+)]
 pub struct Args {
     /// First temperature, K.
     #[arg(long, allow_hyphen_values = true)]
@@ -23,14 +26,14 @@ pub struct Args {
     /// Temperature step, K.
     #[arg(long, default_value_t = 1.0, allow_hyphen_values = true)]
     pub step_k: f64,
-    /// The 1990 layout: W cm^-2 sr^-1, no header.
-    #[arg(long)]
-    pub legacy: bool,
+    /// `--legacy`: the 1990 layout.
+    #[command(flatten)]
+    pub legacy: Legacy,
     #[command(flatten)]
     pub band: BandArgs,
-    /// Output file (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// `-o PATH`: the table.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// `v` in the `%.11e` layout of C and Python (two-digit exponent at least).
@@ -46,9 +49,8 @@ fn c_exponential(v: f64) -> String {
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
-    let band_file = irsig_cli::args::BandArg::response_file(args.band.band.as_ref());
-    irsig_cli::refuse_output_is_input(band_file, args.output.iter())?;
-    let band = args.band.band()?;
+    irsig_cli::refuse_output_is_input(args.band.response_file(), args.output.path.iter())?;
+    let band = args.band.load()?;
     let range = format!("{}:{}:{}", args.from, args.to, args.step_k);
     let temps = crate::common::temperatures("--from/--to/--step", &range)?;
     if temps.is_empty() {
@@ -56,8 +58,8 @@ pub fn run(args: &Args) -> miette::Result<()> {
     }
     let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
     let srf = band.has_response();
-    irsig_cli::write_output(args.output.as_deref(), |w: &mut dyn Write| {
-        if !args.legacy {
+    irsig_cli::write_output(args.output.path.as_deref(), |w: &mut dyn Write| {
+        if !args.legacy.on {
             writeln!(
                 w,
                 "# irsig rtt: blackbody band radiance, {lo}-{hi} um{}, CODATA 2018",
@@ -74,7 +76,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         }
         for &t in &temps {
             let l = band.radiance(t);
-            let l = if args.legacy { l * 1e-4 } else { l };
+            let l = if args.legacy.on { l * 1e-4 } else { l };
             writeln!(w, "{t} {}", c_exponential(l))?;
         }
         Ok(())

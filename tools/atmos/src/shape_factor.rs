@@ -3,7 +3,7 @@
 
 use miette::miette;
 
-use irsig_cli::args::TableFormat;
+use irsig_cli::args::Format;
 use irsig_radiometry::shape_factor_temperature;
 
 use crate::common::{BandArgs, Column, diagnostic, fractions, print_table, temperatures};
@@ -43,13 +43,13 @@ pub struct Args {
     pub factors: String,
     #[command(flatten)]
     pub band: BandArgs,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t)]
-    pub format: TableFormat,
+    /// `--format`.
+    #[command(flatten)]
+    pub format: Format,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
-    let band = args.band.band()?;
+    let band = args.band.load()?;
     let emissivities = fractions("--emissivity", &args.emissivity)?;
     let objects = temperatures("--object-temperature", &args.object_temperature)?;
     let backgrounds = temperatures("--background-temperature", &args.background_temperature)?;
@@ -85,5 +85,5 @@ pub fn run(args: &Args) -> miette::Result<()> {
         Column::new("background_temperature_k", 4),
     ];
     columns.extend(factors.iter().map(|f| Column::new(format!("f_{f}_k"), 4)));
-    print_table(args.format, &columns, &rows)
+    print_table(args.format.value, &columns, &rows)
 }

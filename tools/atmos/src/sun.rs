@@ -1,63 +1,40 @@
 //! `irsig-atmos sun`: the sun's position from a UTC time and a place (NREL's SPA, through
-//! `irsig_atmosphere::sun`), as angles and as the unit vector toward it in the scene frame.
+//! `irsig_atmosphere::sun`), or as given, as angles and as the unit vector toward it in the
+//! scene frame. Its flags are every tool's ([`SunArgs`]; `--utc` is the old spelling of
+//! `--sun-utc`).
 
-use irsig_atmosphere::sun::{Refraction, SunSpec};
 use irsig_atmosphere::{AtmosphereError, AtmosphereErrorKind};
-use irsig_cli::args::TableFormat;
+use irsig_cli::args::sun::SUN_GROUP;
+use irsig_cli::args::{Format, SunArgs, SunPrecisionArgs};
 use miette::miette;
 
 use crate::common::{Column, print_table};
 
 /// Arguments of `sun`.
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_group(SUN_GROUP, |g| g.required(true)),
+    mut_arg("sun_utc", |a| a.alias("utc")),
+)]
 pub struct Args {
-    /// The time, UTC: `YYYY-MM-DDTHH:MM:SS[.fraction]Z` (years -2000 to 6000).
-    #[arg(long, allow_hyphen_values = true)]
-    pub utc: String,
-    /// Latitude, degrees, positive north, in [-90, 90].
-    #[arg(long, allow_hyphen_values = true)]
-    pub latitude_deg: f64,
-    /// Longitude, degrees, positive east, in [-180, 180].
-    #[arg(long, allow_hyphen_values = true)]
-    pub longitude_deg: f64,
-    /// The site's altitude, metres above mean sea level.
-    #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
-    pub altitude_m: f64,
-    /// Local air pressure, hPa, for the refracted (apparent) zenith angle; with
-    /// `--temperature-c`. Without both the direction is geometric.
-    #[arg(long, requires = "temperature_c", allow_hyphen_values = true)]
-    pub pressure_hpa: Option<f64>,
-    /// Local air temperature, °C, for the refracted zenith angle; with `--pressure-hpa`.
-    #[arg(long, requires = "pressure_hpa", allow_hyphen_values = true)]
-    pub temperature_c: Option<f64>,
-    /// ΔT = TT − UT1, seconds [default: the Espenak & Meeus estimate for the month].
-    #[arg(long, allow_hyphen_values = true)]
-    pub delta_t_s: Option<f64>,
-    /// UT1 − UTC, seconds, in [-0.9, 0.9] [default: 0].
-    #[arg(long, allow_hyphen_values = true)]
-    pub delta_ut1_s: Option<f64>,
-    /// Output format.
-    #[arg(long, value_enum, default_value_t)]
-    pub format: TableFormat,
+    /// Where the sun is: a UTC time and a place, or a direction (echoed, with its scene
+    /// vector).
+    #[command(flatten)]
+    pub sun: SunArgs,
+    /// The site's air for refraction, and the clock's ΔT and UT1 − UTC.
+    #[command(flatten)]
+    pub precision: SunPrecisionArgs,
+    /// `--format`.
+    #[command(flatten)]
+    pub format: Format,
 }
 
 pub fn run(args: &Args) -> miette::Result<()> {
-    let refraction = match (args.pressure_hpa, args.temperature_c) {
-        (Some(pressure_hpa), Some(temperature_c)) => Some(Refraction {
-            pressure_hpa,
-            temperature_c,
-        }),
-        // clap requires the two together.
-        _ => None,
-    };
-    let spec = SunSpec::At {
-        utc: args.utc.clone(),
-        latitude_deg: args.latitude_deg,
-        longitude_deg: args.longitude_deg,
-        altitude_m: args.altitude_m,
-        refraction,
-        delta_t_s: args.delta_t_s,
-        delta_ut1_s: args.delta_ut1_s,
+    let Some(spec) = args.sun.spec_with(&args.precision) else {
+        return Err(irsig_cli::usage_error(
+            "give the sun: --sun-utc TIME with --latitude-deg and --longitude-deg, or \
+             --sun-zenith-deg with --sun-azimuth-deg",
+        ));
     };
     let sun = spec.position().map_err(|e| flag_error(&e))?;
     if !sun.is_above_horizon() {
@@ -81,16 +58,14 @@ pub fn run(args: &Args) -> miette::Result<()> {
         Column::new("z_up", 6),
     ]);
     row.extend([sun.azimuth_deg, sun.elevation_deg(), east, north, up]);
-    print_table(args.format, &columns, &[row])
+    print_table(args.format.value, &columns, &[row])
 }
 
-/// The library names a field (`latitude_deg`, `refraction.pressure_hpa`); the command line
-/// names its flag (`--latitude-deg`, `--pressure-hpa`).
+/// The library names a field of the sun; the command line names its flag.
 fn flag_error(e: &AtmosphereError) -> miette::Report {
     match &e.kind {
         AtmosphereErrorKind::Sun { field, message } => {
-            let name = field.rsplit('.').next().unwrap_or(field).replace('_', "-");
-            miette!("--{name}: {message}")
+            miette!("--{}: {message}", irsig_cli::args::sun::flag(*field))
         }
         _ => miette!("{e}"),
     }

@@ -1,7 +1,8 @@
 //! `irsig-atmos sun` end to end: the SPA paper's worked example through the command line
 //! (angles and the scene-frame vector), the plain table with its units, a sun below the
-//! horizon said on stderr, and each bad flag refused by name with its range, exit 1 (a
-//! value) or 2 (usage), and nothing on stdout.
+//! horizon said on stderr, the old spelling `--utc` of `--sun-utc` still taken, a sun
+//! given as a direction echoed, and each bad flag refused at parse time by name with its
+//! range, exit 2, and nothing on stdout.
 
 use assert_cmd::Command;
 
@@ -14,7 +15,7 @@ fn atmos() -> Command {
 /// 1830.14 m, 820 mbar, 11 °C, ΔT = 67 s.
 const SPA_EXAMPLE: [&str; 15] = [
     "sun",
-    "--utc",
+    "--sun-utc",
     "2003-10-17T19:30:30Z",
     "--latitude-deg",
     "39.742476",
@@ -76,6 +77,7 @@ fn the_spa_example_through_the_command_line() {
 
 #[test]
 fn the_table_states_its_units_and_a_sun_below_the_horizon_is_said_on_stderr() {
+    // `--utc`, the old spelling of `--sun-utc`, is still taken.
     let rit = [
         "sun",
         "--utc",
@@ -144,44 +146,52 @@ fn bad_flags_are_refused_by_name_with_their_range() {
     let cases = [
         (
             with("--latitude-deg", "91"),
-            1,
+            2,
             ["--latitude-deg", "[-90, 90]"],
         ),
-        (with("--latitude-deg", "NaN"), 1, ["--latitude-deg", "NaN"]),
+        (with("--latitude-deg", "NaN"), 2, ["--latitude-deg", "NaN"]),
         (
             with("--longitude-deg", "-180.5"),
-            1,
+            2,
             ["--longitude-deg", "[-180, 180]"],
         ),
-        (with("--altitude-m", "1e6"), 1, ["--altitude-m", "100000"]),
-        (with("--utc", "2003-10-17T19:30:30"), 1, ["--utc", "`Z`"]),
+        (with("--altitude-m", "1e6"), 2, ["--altitude-m", "100000"]),
         (
-            with("--utc", "2003-10-17"),
-            1,
-            ["--utc", "YYYY-MM-DDTHH:MM:SS"],
+            with("--sun-utc", "2003-10-17T19:30:30"),
+            2,
+            ["--sun-utc", "`Z`"],
         ),
         (
-            with("--utc", "7000-01-01T00:00:00Z"),
-            1,
-            ["--utc", "-2000 to 6000"],
+            with("--sun-utc", "2003-10-17"),
+            2,
+            ["--sun-utc", "YYYY-MM-DDTHH:MM:SS"],
         ),
-        (with("--utc", "2003-02-30T00:00:00Z"), 1, ["--utc", "day"]),
+        (
+            with("--sun-utc", "7000-01-01T00:00:00Z"),
+            2,
+            ["--sun-utc", "-2000 to 6000"],
+        ),
+        (
+            with("--sun-utc", "2003-02-30T00:00:00Z"),
+            2,
+            ["--sun-utc", "day"],
+        ),
         (
             with("--pressure-hpa", "-3"),
-            1,
+            2,
             ["--pressure-hpa", "(0, 1100]"],
         ),
         (
             with("--temperature-c", "200"),
-            1,
+            2,
             ["--temperature-c", "[-100, 60]"],
         ),
         (
             with("--delta-ut1-s", "1.5"),
-            1,
+            2,
             ["--delta-ut1-s", "[-0.9, 0.9]"],
         ),
-        (with("--delta-t-s", "inf"), 1, ["--delta-t-s", "finite"]),
+        (with("--delta-t-s", "inf"), 2, ["--delta-t-s", "finite"]),
         (
             with("--latitude-deg", "north"),
             2,
@@ -205,4 +215,35 @@ fn bad_flags_are_refused_by_name_with_their_range() {
         .get_output()
         .clone();
     assert!(String::from_utf8_lossy(&out.stderr).contains("--temperature-c"));
+}
+
+#[test]
+fn a_sun_given_as_a_direction_is_echoed_with_its_scene_vector() {
+    // 60 deg from the zenith in the east: (sin 60°, 0, cos 60°) in (x east, y north, z up).
+    let out = atmos()
+        .args([
+            "sun",
+            "--sun-zenith-deg",
+            "60",
+            "--sun-azimuth-deg",
+            "90",
+            "--format",
+            "csv",
+        ])
+        .assert()
+        .success();
+    let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    let row: Vec<f64> = text
+        .lines()
+        .nth(1)
+        .unwrap()
+        .split(',')
+        .map(|v| v.parse().unwrap())
+        .collect();
+    let want = [60.0, 90.0, 30.0, 3f64.sqrt() / 2.0, 0.0, 0.5];
+    for (got, want) in row.iter().zip(want) {
+        assert!((got - want).abs() < 1e-9, "{row:?}");
+    }
+    // No sun at all is bad usage.
+    atmos().arg("sun").assert().code(2);
 }

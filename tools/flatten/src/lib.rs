@@ -3,10 +3,11 @@
 //! The scene is canonical RON ([`irsig_model::Scene`]) or the 1990 scene file (object name
 //! and nine values, optional temperature; `irsig_formats::legacy::scene`), told apart by
 //! the extension (`.ron` is RON) or `--scene-format`. A legacy scene's translations are in
-//! its length unit, `--unit` (km for the 1990 data). An object file that starts with the
+//! its length unit, `--legacy-unit` (km unless given, the 1990 data's). An object file that
+//! starts with the
 //! binary object's magic `IRSIGOBJ` or whose name ends in `.bin` is a binary canonical
 //! object, one ending in `.ron` a RON canonical object (standard input is either, told by
-//! the magic); any other is a legacy facet file read in `--unit`, whose material
+//! the magic); any other is a legacy facet file read in `--legacy-unit`, whose material
 //! indices are material ids. Each placement's object file is
 //! read relative to the scene file's directory (the working directory when the scene comes
 //! from standard input); `--object NAME=PATH` replaces the file a placement names by
@@ -33,6 +34,9 @@ use std::io::IsTerminal as _;
 use std::path::{Path, PathBuf};
 
 use clap::{Parser, ValueEnum};
+use irsig_cli::args::LegacyUnitArgs;
+use irsig_cli::args::inputs::Materials;
+use irsig_cli::args::outputs::{Output, Ron};
 use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object, Placement, Scene};
 use miette::miette;
 
@@ -55,7 +59,13 @@ pub enum SceneFormat {
 Each vertex p of a placed object goes to T + R(S p): scale, then the rotation\n\
 R = Rz Ry Rx (about world x first, then y, then z, degrees), then the translation.\n\
 A mirroring scale reverses the winding. A facet keeps its own temperature, else takes\n\
-the placement's temperature_k; overrides then apply in order."
+the placement's temperature_k; overrides then apply in order.",
+    mut_arg("legacy_unit", |a| a.alias("unit")),
+    mut_arg("materials", |a| a.help(
+        "Check that every facet's material id is in this material library"
+    )),
+    mut_arg("ron", |a| a.help("Write RON instead of the binary raw scene")),
+    mut_arg("output", |a| a.help("Output file (default: standard output)")),
 )]
 pub struct Cli {
     /// The scene file (canonical RON), or `-` for standard input.
@@ -68,19 +78,18 @@ pub struct Cli {
     /// The scene's form; by default `.ron` files (and stdin) are RON, others legacy.
     #[arg(long, value_enum)]
     pub scene_format: Option<SceneFormat>,
-    /// Length unit of legacy files: the legacy scene's translations and legacy facet
-    /// files' coordinates (km for the 1990 data). RON files are always in metres.
-    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
-    pub unit: LengthUnit,
-    /// Check that every facet's material id is in this material library.
-    #[arg(long, value_name = "LIBRARY")]
-    pub materials: Option<String>,
-    /// Write RON instead of the binary raw scene.
-    #[arg(long)]
-    pub ron: bool,
-    /// Output file (default: standard output).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
+    /// `--legacy-unit`: of a legacy scene's translations and legacy facet files.
+    #[command(flatten)]
+    pub unit: LegacyUnitArgs,
+    /// `--materials FILE`: checked against.
+    #[command(flatten)]
+    pub materials: Materials,
+    /// `--ron`.
+    #[command(flatten)]
+    pub ron: Ron,
+    /// `-o PATH`.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Runs `irsig-flatten`.
@@ -88,8 +97,12 @@ pub struct Cli {
 /// # Errors
 /// Bad usage (exit 2), or an unreadable, malformed or inconsistent input (exit 1).
 pub fn run(cli: Cli) -> miette::Result<()> {
-    let to_stdout = cli.output.as_ref().is_none_or(|p| p.as_os_str() == "-");
-    if !cli.ron && to_stdout && std::io::stdout().is_terminal() {
+    let to_stdout = cli
+        .output
+        .path
+        .as_ref()
+        .is_none_or(|p| p.as_os_str() == "-");
+    if !cli.ron.on && to_stdout && std::io::stdout().is_terminal() {
         return Err(irsig_cli::usage_error(
             "the binary raw scene would go to a terminal; give -o FILE, redirect, or use --ron",
         ));
@@ -139,7 +152,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let text = irsig_formats::legacy::decode(&scene_input.name, &scene_input.bytes)?;
             let file = irsig_formats::legacy::scene::parse(&scene_input.name, text)?;
             scene_text = text.to_owned();
-            let metres = cli.unit.metres();
+            let metres = cli.unit.unit().metres();
             entry_positions = file.entries.iter().map(|e| e.position).collect();
             Scene {
                 objects: file
@@ -215,9 +228,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let inputs = [cli.scene.as_str()]
         .into_iter()
         .map(PathBuf::from)
-        .chain(cli.materials.iter().map(PathBuf::from))
+        .chain(cli.materials.file.iter().map(PathBuf::from))
         .chain(sources.iter().map(PathBuf::from));
-    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
+    irsig_cli::refuse_output_is_input(inputs, cli.output.path.iter())?;
     for (i, placement) in scene.objects.iter().enumerate() {
         if loaded.contains_key(&placement.object) {
             continue;
@@ -244,7 +257,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         {
             irsig_formats::canonical::read_object(&input.name, &input.bytes)?
         } else {
-            legacy_object(&input, cli.unit)?
+            legacy_object(&input, cli.unit.unit())?
         };
         loaded.insert(placement.object.clone(), object);
     }
@@ -261,7 +274,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         };
         at(e.placement, path.as_deref(), e.to_string())
     })?;
-    if let Some(path) = &cli.materials {
+    if let Some(path) = &cli.materials.file {
         check_materials(Path::new(path), &raw, |r, message| {
             // The facet's material came from its object file unless an override of the
             // placement changed it: point at whichever gave it.
@@ -285,8 +298,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             at(Some(i), None, message)
         })?;
     }
-    irsig_cli::write_output(cli.output.as_deref(), |w| {
-        if cli.ron {
+    irsig_cli::write_output(cli.output.path.as_deref(), |w| {
+        if cli.ron.on {
             irsig_formats::canonical::write_ron(&raw, w)
         } else {
             irsig_formats::canonical::binary::write(&raw, w)

@@ -2,7 +2,7 @@
 //!
 //! Reads the 1990 Intergraph-derived facet file (`.fac`, `irsig_formats::legacy::object`),
 //! Wavefront OBJ (+ MTL) and glTF 2.0 / GLB (`irsig_formats::mesh`), converts
-//! lengths to metres (`--unit`, then `--scale`), maps every facet's material name to an id
+//! lengths to metres (`--legacy-unit`, then `--scale`), maps every facet's material name to an id
 //! through a material library, and writes an [`irsig_model::Object`]. A facet whose
 //! material the library does not know is an error that names the material and where it is
 //! first used, unless `--default-material` names the material to use instead. A facet
@@ -26,9 +26,12 @@
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use clap::{Parser, ValueEnum};
+use irsig_cli::args::inputs::Materials;
+use irsig_cli::args::outputs::{Name, Output, Ron};
+use irsig_cli::args::{LegacyUnitArgs, ThreadsArgs};
 use irsig_formats::mesh::{self, Mesh};
 use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object};
 use miette::miette;
@@ -52,15 +55,29 @@ pub enum Format {
     name = "irsig-import",
     version,
     about = "Mesh file (Intergraph facet file, OBJ + MTL, glTF/GLB) -> canonical irsig object (RON, or binary into a pipe)",
-    after_help = "Examples:\n  irsig-import vehicle.fac --unit km --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --unit cm\n  cat car.obj | irsig-import - --mesh-format obj --materials materials.ron > car.ron\n\n\
+    after_help = "Examples:\n  irsig-import vehicle.fac --materials materials.ron -o vehicle.ron\n  irsig-import car.obj --materials materials.ron -o car.ron\n  irsig-import tree.glb --materials materials.ron --default-material leaf --legacy-unit cm\n  cat car.obj | irsig-import - --mesh-format obj --materials materials.ron > car.ron\n\n\
 Facet materials come from OBJ `usemtl` names and glTF material names (`material N` when\n\
-unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: --unit\n\
-gives the file's unit (1990 data are in km), --scale multiplies on top.\n\n\
+unnamed), mapped to ids through --materials; a facet file's material indices are ids. Lengths are converted to metres: a facet\n\
+file's from --legacy-unit (km, the 1990 data's, unless given), an OBJ's or glTF's from metres\n\
+or from --legacy-unit when given; --scale multiplies on top.\n\n\
 glTF is +Y up, irsig +Z up: glTF positions are turned (x, y, z) -> (x, -z, y), a rotation\n\
 that keeps every front a front; --keep-axes keeps the file's axes.\n\n\
 Output form: binary (IRSIGOBJ) into a pipe or to a file ending in .bin, RON otherwise\n\
 (terminal, redirection to a file, other names); --binary or --ron to choose. Readers\n\
-(irsig-flatten) take either form."
+(irsig-flatten) take either form.",
+    group(clap::ArgGroup::new("materials_required").args(["materials"]).required(true)),
+    mut_arg("materials", |a| a.help(
+        "The material library (canonical RON) that maps material names to ids"
+    )),
+    mut_arg("legacy_unit", |a| a.alias("unit").help(
+        "Length unit of the mesh's coordinates: of a 1990 facet file km unless given (the \
+         thesis's files); of an OBJ or glTF metres unless given (m, km, cm, mm, ft or in)"
+    )),
+    mut_arg("name", |a| a.help("The object's name (default: the file name without its extension)")),
+    mut_arg("ron", |a| a.conflicts_with("binary").help(
+        "Write RON (the default to a terminal, a redirected file or any non-`.bin` file)"
+    )),
+    mut_arg("output", |a| a.help("Output file (default: standard output)")),
 )]
 pub struct Cli {
     /// The mesh file, or `-` for standard input (then --mesh-format is required).
@@ -68,31 +85,31 @@ pub struct Cli {
     /// The format; by default from the file extension (.fac, .obj, .gltf, .glb).
     #[arg(long, value_enum)]
     pub mesh_format: Option<Format>,
-    /// The material library (canonical RON) that maps material names to ids.
-    #[arg(long, value_name = "LIBRARY")]
-    pub materials: String,
+    /// `--materials FILE`.
+    #[command(flatten)]
+    pub materials: Materials,
     /// The material for facets whose material the library does not know or that have
     /// none. Without it those facets are an error.
     #[arg(long, value_name = "NAME")]
     pub default_material: Option<String>,
-    /// The length unit of the file's coordinates.
-    #[arg(long, default_value = "m", value_name = "UNIT", value_parser = irsig_cli::args::length_unit)]
-    pub unit: LengthUnit,
+    /// `--legacy-unit`: of a facet file (km unless given), and of an OBJ or glTF when given.
+    #[command(flatten)]
+    pub unit: LegacyUnitArgs,
     /// An extra factor applied after the unit conversion.
     #[arg(long, default_value_t = 1.0)]
     pub scale: f64,
-    /// The object's name (default: the file name without its extension).
-    #[arg(long)]
-    pub name: Option<String>,
+    /// `--name`: the object's.
+    #[command(flatten)]
+    pub name: Name,
     /// Write the binary object (the default into a pipe or to a `.bin` file).
-    #[arg(long, conflicts_with = "ron")]
-    pub binary: bool,
-    /// Write RON (the default to a terminal, a redirected file or any non-`.bin` file).
     #[arg(long)]
-    pub ron: bool,
-    /// Output file (default: standard output).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
+    pub binary: bool,
+    /// `--ron`.
+    #[command(flatten)]
+    pub ron: Ron,
+    /// `-o PATH`.
+    #[command(flatten)]
+    pub output: Output,
     /// Keep a glTF's own axes. glTF is +Y up and irsig +Z up, so by default positions are
     /// turned by 90° about +X, (x, y, z) -> (x, -z, y): a rotation, so fronts stay fronts
     /// and what was up in the model is up in the scene. glTF and GLB only.
@@ -102,16 +119,19 @@ pub struct Cli {
     /// them) with a warning that says how many and where the first few are.
     #[arg(long)]
     pub strict: bool,
+    /// `--threads N`: an OBJ's two passes run on two threads when there are two.
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
 }
 
 /// Whether `irsig-import` writes the binary object: `--binary`/`--ron` when given, else
 /// binary for a `.bin` output file, and for standard output when `stdout_is_pipe`.
 #[must_use]
 pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
-    if cli.binary || cli.ron {
+    if cli.binary || cli.ron.on {
         return cli.binary;
     }
-    match cli.output.as_deref() {
+    match cli.output.path.as_deref() {
         Some(path) if path.as_os_str() != "-" => path
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("bin")),
@@ -124,9 +144,14 @@ pub fn writes_binary(cli: &Cli, stdout_is_pipe: bool) -> bool {
 /// # Errors
 /// Bad usage (exit 2), or an unreadable, malformed or inconsistent input (exit 1).
 pub fn run(cli: Cli) -> miette::Result<()> {
+    cli.threads.install(|| import(&cli))
+}
+
+fn import(cli: &Cli) -> miette::Result<()> {
+    let materials = cli.materials.required()?;
     irsig_cli::refuse_output_is_input(
-        [Path::new(&cli.input), Path::new(&cli.materials)],
-        cli.output.iter(),
+        [Path::new(&cli.input), Path::new(materials)],
+        cli.output.path.iter(),
     )?;
     if !(cli.scale.is_finite() && cli.scale > 0.0) {
         return Err(irsig_cli::usage_error(format!(
@@ -150,12 +175,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
              axis and are never turned",
         ));
     }
-    let library = read_library(&cli.materials)?;
+    let library = read_library(materials)?;
     let default = match &cli.default_material {
         Some(name) => Some(library.by_name(name).map(|m| m.id).ok_or_else(|| {
             irsig_cli::usage_error(format!(
-                "--default-material `{name}` is not in {}; it has: {}",
-                cli.materials,
+                "--default-material `{name}` is not in {materials}; it has: {}",
                 known_names(&library)
             ))
         })?),
@@ -176,7 +200,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     for w in &mesh.warnings {
         irsig_cli::note!("warning: {w}");
     }
-    let name = cli.name.clone().unwrap_or_else(|| {
+    let name = cli.name.value.clone().unwrap_or_else(|| {
         std::path::Path::new(&input.name)
             .file_stem()
             .map_or_else(|| "object".to_owned(), |s| s.to_string_lossy().into_owned())
@@ -184,15 +208,24 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     // The text and the mesh are dropped as soon as the object is built: the peak memory of
     // a million-triangle import is set by what is alive at once.
     drop(input);
-    let object = to_object(mesh, &library, &cli, default, name, format)?;
-    let binary = writes_binary(&cli, irsig_cli::stdout_is_pipe());
-    irsig_cli::write_output(cli.output.as_deref(), |w| {
+    let object = to_object(mesh, &library, cli, default, name, format)?;
+    let binary = writes_binary(cli, irsig_cli::stdout_is_pipe());
+    irsig_cli::write_output(cli.output.path.as_deref(), |w| {
         if binary {
             irsig_formats::canonical::binary_object::write(&object, w)
         } else {
             irsig_formats::canonical::write_ron(&object, w)
         }
     })
+}
+
+/// The unit of the mesh's coordinates: a 1990 facet file's is the legacy unit (km unless
+/// given); an OBJ's or glTF's is metres (glTF 2.0 §3.4; OBJ by custom) unless one is given.
+fn mesh_unit(cli: &Cli, format: Format) -> LengthUnit {
+    match format {
+        Format::Intergraph => cli.unit.unit(),
+        Format::Obj | Format::Gltf | Format::Glb => cli.unit.given.unwrap_or(LengthUnit::M),
+    }
 }
 
 fn format_of(path: &str) -> miette::Result<Format> {
@@ -239,7 +272,7 @@ fn to_object(
     name: String,
     format: Format,
 ) -> miette::Result<Object> {
-    let library_name = &cli.materials;
+    let library_name = cli.materials.file.as_deref().unwrap_or_default();
     // Map each material name once.
     let mut ids = Vec::with_capacity(mesh.materials.len());
     for m in &mesh.materials {
@@ -262,7 +295,8 @@ fn to_object(
         };
         ids.push(id);
     }
-    let factor = cli.unit.metres() * cli.scale;
+    let unit = mesh_unit(cli, format);
+    let factor = unit.metres() * cli.scale;
     let mut facets = Vec::with_capacity(mesh.triangles.len());
     for (i, t) in mesh.triangles.iter().enumerate() {
         let material = match t.material.and_then(|m| ids.get(m as usize)) {
@@ -287,7 +321,7 @@ fn to_object(
             "irsig-import {} {} (unit {}, scale {}{})",
             format!("{format:?}").to_lowercase(),
             mesh.file,
-            format!("{:?}", cli.unit).to_lowercase(),
+            format!("{unit:?}").to_lowercase(),
             cli.scale,
             match format {
                 Format::Gltf | Format::Glb if cli.keep_axes => ", the file's axes kept",

@@ -17,7 +17,9 @@
 
 use std::path::{Path, PathBuf};
 
-use irsig_cli::args::BandArg;
+use irsig_cli::args::BandArgs;
+use irsig_cli::args::band::Flat;
+use irsig_cli::args::outputs::{Output, ToLegacyArgs};
 use irsig_formats::ParseError;
 use irsig_formats::legacy::{Position, ems, material_index};
 use irsig_model::{Material, MaterialId, MaterialLibrary};
@@ -35,7 +37,24 @@ Examples:
   irsig-material convert mwir.mat --band 3-5 -o mwir.ron
 
   # a material library back to legacy/materials.mat plus legacy/NAME.ems per material
-  irsig-material convert --to-legacy lib.ron --out-dir legacy/")]
+  irsig-material convert --to-legacy lib.ron --out-dir legacy/",
+    mut_arg("band", |a| a.conflicts_with("to_legacy").help(
+        "The band the `.ems` tables are band emissivities for, MIN-MAX in micrometres: an \
+         `.ems` file does not record it. Each converted material records it, and a trace in \
+         another band refuses the material [default: 8-14, the thesis's band, said on stderr]"
+    )),
+    mut_arg("output", |a| a
+        .conflicts_with("to_legacy")
+        .help("Output canonical material library (stdout when absent or `-`)")),
+    mut_arg("to_legacy", |a| a.help(
+        "Convert the other way: this canonical material library (a file or `-`) to a \
+         material index file (`STEM.mat`) and one `NAME.ems` per material in `--out-dir`"
+    )),
+    mut_arg("out_dir", |a| a.help("Directory for the legacy files written by `--to-legacy`")),
+    mut_arg("stem", |a| a.help(
+        "File stem of the material index written by `--to-legacy` [default: materials]"
+    )),
+)]
 pub struct ConvertArgs {
     /// The 1990 material index file (`index name [file.ems [0|1]]` per line), or `-`,
     /// converted with the `.ems` tables it names to a canonical material library.
@@ -53,25 +72,15 @@ pub struct ConvertArgs {
     /// `.ems` file. Without it such a material is an error.
     #[arg(long, value_name = "E", conflicts_with = "to_legacy")]
     pub default_emissivity: Option<f64>,
-    /// The band the `.ems` tables are band emissivities for, `MIN-MAX` in micrometres:
-    /// an `.ems` file does not record it. Each converted material records it, and a
-    /// trace in another band refuses the material [default: 8-14, the thesis's band,
-    /// said on stderr].
-    #[arg(long, value_name = "MIN-MAX", conflicts_with = "to_legacy")]
-    pub band: Option<BandArg>,
-    /// Output canonical material library (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE", conflicts_with = "to_legacy")]
-    pub output: Option<PathBuf>,
-    /// Convert the other way: this canonical material library (a file or `-`) to a
-    /// material index file (`STEM.mat`) and one `NAME.ems` per material in `--out-dir`.
-    #[arg(long, value_name = "LIBRARY")]
-    pub to_legacy: Option<String>,
-    /// Directory for the legacy files written by `--to-legacy`.
-    #[arg(long, value_name = "DIR", requires = "to_legacy", default_value = ".")]
-    pub out_dir: PathBuf,
-    /// File stem of the material index written by `--to-legacy` [default: materials].
-    #[arg(long, requires = "to_legacy")]
-    pub stem: Option<String>,
+    /// `--band`: a flat band.
+    #[command(flatten)]
+    pub band: BandArgs<Flat>,
+    /// `-o PATH`: the material library.
+    #[command(flatten)]
+    pub output: Output,
+    /// `--to-legacy LIBRARY`, `--out-dir`, `--stem`.
+    #[command(flatten)]
+    pub legacy: ToLegacyArgs,
 }
 
 /// Runs `irsig-material convert`.
@@ -79,7 +88,7 @@ pub struct ConvertArgs {
 /// # Errors
 /// As [`from_legacy`] and [`to_legacy`].
 pub fn run(args: &ConvertArgs) -> miette::Result<()> {
-    match (&args.to_legacy, &args.index) {
+    match (&args.legacy.file, &args.index) {
         (Some(library), _) => to_legacy(args, library),
         (None, Some(index)) => from_legacy(args, index),
         (None, None) => Err(irsig_cli::usage_error(
@@ -103,23 +112,8 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
         }
         other => other,
     };
-    let band_um = match &args.band {
-        None => (8.0, 14.0),
-        Some(BandArg::Flat { min_um, max_um }) if *min_um > 0.0 && max_um > min_um => {
-            (*min_um, *max_um)
-        }
-        Some(BandArg::Flat { min_um, max_um }) => {
-            return Err(irsig_cli::usage_error(format!(
-                "--band {min_um}-{max_um}: expected MIN-MAX with 0 < MIN < MAX, in micrometres"
-            )));
-        }
-        Some(other) => {
-            return Err(irsig_cli::usage_error(format!(
-                "--band {other}: an .ems table is a band emissivity over a range of \
-                 wavelengths; give that range as MIN-MAX in micrometres, such as 8-14"
-            )));
-        }
-    };
+    let [min_um, max_um] = args.band.limits_um()?;
+    let band_um = (min_um, max_um);
     let input = irsig_cli::read_input(index_path)?;
     let text = irsig_formats::canonical::utf8(&input.name, &input.bytes).map_err(Report::new)?;
     let index = material_index::parse(&input.name, text).map_err(Report::new)?;
@@ -133,7 +127,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
         ))
     };
     let mut materials = Vec::with_capacity(index.materials.len());
-    if args.band.is_none() && index.materials.iter().any(|m| m.ems_file.is_some()) {
+    if args.band.given().is_none() && index.materials.iter().any(|m| m.ems_file.is_some()) {
         irsig_cli::note!(
             "irsig-material: {}: the .ems tables are taken as 8-14 um band emissivities, the \
              thesis's band (an .ems file does not record its band); give --band MIN-MAX if \
@@ -227,8 +221,8 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             .filter_map(|m| m.ems_file.as_ref())
             .map(|f| ems_dir.join(f)),
     );
-    irsig_cli::refuse_output_is_input(inputs, args.output.iter())?;
-    irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
+    irsig_cli::refuse_output_is_input(inputs, args.output.path.iter())?;
+    irsig_cli::write_output(args.output.path.as_deref(), |w| w.write_all(ron.as_bytes()))
 }
 
 /// A canonical material library to `STEM.mat` and one `NAME.ems` per material in
@@ -241,7 +235,7 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
     let input = irsig_cli::read_input(input)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes).map_err(Report::new)?;
-    let stem = args.stem.as_deref().unwrap_or("materials");
+    let stem = args.legacy.stem.as_deref().unwrap_or("materials");
     if stem.is_empty() || stem.contains(['/', '\\']) {
         return Err(irsig_cli::usage_error(format!(
             "--stem must be a plain file stem, found `{stem}`"
@@ -287,7 +281,7 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
         let table = ems::EmsTable::from_pairs(&m.emissivity);
         let text = ems::write(&table)
             .map_err(|e| miette::miette!("{}: cannot write {ems_file}: {e}", input.name))?;
-        files.push((args.out_dir.join(&ems_file), text.into_bytes()));
+        files.push((args.legacy.out_dir.join(&ems_file), text.into_bytes()));
         entries.push(material_index::MaterialEntry {
             index: m.id.0,
             name: m.name.clone(),
@@ -299,11 +293,14 @@ pub fn to_legacy(args: &ConvertArgs, input: &str) -> miette::Result<()> {
     let index = material_index::MaterialIndexFile { materials: entries };
     let text = material_index::write(&index)
         .map_err(|e| miette::miette!("{}: cannot write the material index: {e}", input.name))?;
-    files.push((args.out_dir.join(format!("{stem}.mat")), text.into_bytes()));
-    if !Path::new(&args.out_dir).is_dir() {
+    files.push((
+        args.legacy.out_dir.join(format!("{stem}.mat")),
+        text.into_bytes(),
+    ));
+    if !Path::new(&args.legacy.out_dir).is_dir() {
         return Err(miette::miette!(
             "output directory {} does not exist",
-            args.out_dir.display()
+            args.legacy.out_dir.display()
         ));
     }
     irsig_cli::refuse_output_is_input([&input.name], files.iter().map(|(p, _)| p))?;

@@ -33,7 +33,9 @@ use miette::{IntoDiagnostic, Report, WrapErr};
 Examples:
   irsig-material dirsig materials/anadirsig.mat --default-emissivity 0.95 --no-thermal -o lib.ron
   irsig-material dirsig scene.mat --thermal-back adiabatic -o lib.ron
-  irsig-material dirsig scene.mat --thermal-back convective:10 -o lib.ron   # outdoor air behind")]
+  irsig-material dirsig scene.mat --thermal-back convective:10 -o lib.ron   # outdoor air behind",
+    mut_arg("output", |a| a.help("Output canonical material library (stdout when absent or `-`)")),
+)]
 pub struct Args {
     /// The DIRSIG `.mat` file; the `.ems` files it names are relative to its folder.
     #[arg(value_name = "MAT")]
@@ -51,9 +53,9 @@ pub struct Args {
     /// Convert no temperature solver: the library's materials get no thermal record.
     #[arg(long)]
     pub no_thermal: bool,
-    /// Output canonical material library (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// `-o PATH`: the material library.
+    #[command(flatten)]
+    pub output: irsig_cli::args::outputs::Output,
 }
 
 /// Runs `irsig-material dirsig`.
@@ -76,7 +78,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         .map(|f| dir.join(&f.value));
     irsig_cli::refuse_output_is_input(
         std::iter::once(PathBuf::from(&args.mat)).chain(ems_files),
-        args.output.iter(),
+        args.output.path.iter(),
     )?;
     let at_span = |span: (usize, usize), message: String| {
         Report::new(ParseError::at_span(
@@ -206,7 +208,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
     let ron = irsig_formats::canonical::to_ron(&library)
         .into_diagnostic()
         .wrap_err("cannot write RON")?;
-    irsig_cli::write_output(args.output.as_deref(), |w| w.write_all(ron.as_bytes()))
+    irsig_cli::write_output(args.output.path.as_deref(), |w| w.write_all(ron.as_bytes()))
 }
 
 /// Checks the options' values before anything is read: the default emissivity within 0–1,

@@ -5,7 +5,9 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use irsig_cli::args::{BandArg, values};
+use irsig_cli::args::band::Wavelengths;
+use irsig_cli::args::outputs::{Legacy, Name, Output};
+use irsig_cli::args::{BandArg, BandArgs, values};
 use irsig_model::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 use irsig_radiometry::EmissivityTable;
 use irsig_radiometry::fresnel::{
@@ -15,6 +17,22 @@ use miette::miette;
 
 /// Arguments of `fresnel`.
 #[derive(Debug, clap::Args)]
+#[command(
+    mut_arg("band", |a| a.help(
+        "The band of the spectral average: MIN-MAX in micrometres (flat response) or a \
+         sensor response file (formats/srf.md) [default: 8-14]"
+    )),
+    mut_arg("legacy", |a| a.help(
+        "Write a legacy `.ems` (also chosen by an `-o` name ending in `.ems`): the \
+         band-averaged angular table only, since the 1990 format has no wavelength axis to \
+         carry the spectrum of an `--nk-table`"
+    )),
+    mut_arg("name", |a| a.help(
+        "Material name in the library entry [default: the nk table's file stem, else \
+         `fresnel`]"
+    )),
+    mut_arg("output", |a| a.help("Output file (stdout when absent or `-`)")),
+)]
 pub struct Args {
     /// Real part of a constant refractive index (> 0).
     #[arg(
@@ -43,10 +61,9 @@ pub struct Args {
     /// total`, which cannot average a spectrum).
     #[arg(long, requires = "nk_table")]
     pub band_only: bool,
-    /// The band of the spectral average: `MIN-MAX` in micrometres (flat response) or a
-    /// sensor response file (formats/srf.md) [default: 8-14].
-    #[arg(long, value_name = "MIN-MAX|FILE")]
-    pub band: Option<BandArg>,
+    /// `--band`: a band with wavelengths.
+    #[command(flatten)]
+    pub band: BandArgs<Wavelengths>,
     /// Temperature of the Planck weighting, K: the surface temperature the table is made
     /// for [default: 300].
     #[arg(long, value_name = "K", allow_hyphen_values = true)]
@@ -55,15 +72,12 @@ pub struct Args {
     /// 0–90, increasing. Include 90 (ε = 0) so interpolation reaches grazing.
     #[arg(long, default_value = "0:90:1", allow_hyphen_values = true)]
     pub angles: String,
-    /// Write a legacy `.ems` (also chosen by an `-o` name ending in `.ems`): the
-    /// band-averaged angular table only, since the 1990 format has no wavelength axis to
-    /// carry the spectrum of an `--nk-table`.
-    #[arg(long)]
-    pub legacy: bool,
-    /// Material name in the library entry [default: the nk table's file stem, else
-    /// `fresnel`].
-    #[arg(long)]
-    pub name: Option<String>,
+    /// `--legacy`: a `.ems`.
+    #[command(flatten)]
+    pub legacy: Legacy,
+    /// `--name`: the material's.
+    #[command(flatten)]
+    pub name: Name,
     /// Material id in the library entry (1–65535).
     #[arg(long, default_value_t = 1)]
     pub id: u16,
@@ -92,9 +106,9 @@ pub struct Args {
     /// above 0 or a diffuse body].
     #[arg(long, allow_hyphen_values = true)]
     pub specular_fraction: Option<f64>,
-    /// Output file (stdout when absent or `-`).
-    #[arg(short, long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// `-o PATH`.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 fn legacy_by_name(path: Option<&Path>) -> bool {
@@ -109,17 +123,15 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
 /// band the table does not cover, an invalid library entry, or an I/O error; nothing is
 /// written then.
 pub fn run(args: &Args) -> miette::Result<()> {
-    let band_file = match &args.band {
-        Some(BandArg::Response(path)) => Some(PathBuf::from(path)),
-        _ => None,
-    };
+    let band_file = args.band.response_file().map(PathBuf::from);
     irsig_cli::refuse_output_is_input(
         args.nk_table.iter().cloned().chain(band_file),
-        args.output.iter(),
+        args.output.path.iter(),
     )?;
     // clap's `requires` is waived when a conflicting argument (here --n) is present, so
     // this rule is checked by hand.
-    if args.nk_table.is_none() && (args.band.is_some() || args.planck_temperature.is_some()) {
+    if args.nk_table.is_none() && (args.band.given().is_some() || args.planck_temperature.is_some())
+    {
         return Err(irsig_cli::usage_error(
             "--band and --planck-temperature weight the spectral average of --nk-table; \
              a constant --n/--k has none",
@@ -149,8 +161,8 @@ pub fn run(args: &Args) -> miette::Result<()> {
             let first_um = nk.wavelength_um.first().copied().unwrap_or(f64::NAN);
             let index = IndexTable::new(nk.wavelength_um, &nk.n, &nk.k)
                 .map_err(|e| miette!("{}: {e}", input.name))?;
-            let band_arg = args.band.clone().unwrap_or_default();
-            let band = band_arg.load()?;
+            let band_arg = args.band.or_default();
+            let band = args.band.load()?;
             let t = args.planck_temperature.unwrap_or(300.0);
             let table =
                 rough_band_emissivity_table(&index, &band, t, surface, &angles).map_err(|e| {
@@ -230,12 +242,13 @@ pub fn run(args: &Args) -> miette::Result<()> {
         }
         (None, None) => return Err(irsig_cli::usage_error("give --n (and --k) or --nk-table")),
     };
-    let output = args.output.as_deref();
-    if args.legacy || legacy_by_name(output) {
+    let output = args.output.path.as_deref();
+    if args.legacy.on || legacy_by_name(output) {
         write_ems(&table, output)
     } else {
         let name = args
             .name
+            .value
             .clone()
             .or(default_name)
             .unwrap_or_else(|| "fresnel".to_owned());

@@ -24,10 +24,9 @@
 use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{DcArgs, FrameOutputArgs, ImageBandArgs, VIEW_UNIT_DEFAULT, length_unit};
+use irsig_cli::args::{DcArgs, FrameOutputArgs, ImageBandArgs, ThreadsArgs, ViewArgs};
 use irsig_formats::legacy::decode;
 use irsig_formats::views::parse_views;
-use irsig_model::LengthUnit;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_model::truth::Layer;
 use irsig_raster::merge::Layout;
@@ -51,7 +50,18 @@ same scene, materials, view, band, atmosphere and options. Give irsig-merge the 
 
 /// Merge the tiles of a frame into its radiance EXR, truth EXR, map, counts and LUT.
 #[derive(Debug, Parser)]
-#[command(name = "irsig-merge", version, about, after_help = EXAMPLE)]
+#[command(
+    name = "irsig-merge",
+    version,
+    about,
+    after_help = EXAMPLE,
+    mut_arg("view", |a| a.help(
+        "The view the tiles were traced with: its DC/K is the counts' gain when no \
+         --dc-per-kelvin is given (as in irsig-trace). A canonical RON view or a 1990 viewing \
+         file, holding one view"
+    )),
+    mut_arg("legacy_unit", |a| a.alias("view-unit")),
+)]
 pub struct Cli {
     /// The tiles: radiance and truth EXRs written by `irsig-trace --tile`, in any order
     /// (told apart by their layers). Files, not `-`.
@@ -62,14 +72,9 @@ pub struct Cli {
     /// tiles), or one flag per file, each of which needs its tiles.
     #[command(flatten)]
     pub output: FrameOutputArgs,
-    /// The view the tiles were traced with: its DC/K is the counts' gain when no
-    /// --dc-per-kelvin is given (as in irsig-trace). A canonical RON view or a 1990 viewing
-    /// file, holding one view.
-    #[arg(long, value_name = "FILE")]
-    pub view: Option<String>,
-    /// Length unit of the position in a 1990 viewing file (km in the thesis's files).
-    #[arg(long, default_value = VIEW_UNIT_DEFAULT, value_name = "UNIT", value_parser = length_unit)]
-    pub view_unit: LengthUnit,
+    /// `--view FILE` (one) and the unit of a 1990 viewing file.
+    #[command(flatten)]
+    pub views: ViewArgs,
     /// The band the tiles were traced in, which they record (the counts' calibration and the
     /// LUT's temperatures use it).
     #[command(flatten)]
@@ -78,6 +83,9 @@ pub struct Cli {
     /// DC/K, else 2 counts per kelvin (the thesis's auto-bias).
     #[command(flatten)]
     pub dc: DcArgs,
+    /// `--threads N`: worker threads.
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
 }
 
 /// One tile file: its name and header.
@@ -191,14 +199,22 @@ fn merge(tiles: &[Tile]) -> miette::Result<Option<Raster>> {
     Ok(Some(frame))
 }
 
-/// The view's DC/K, from `--view`.
+/// The view's DC/K, from `--view`: the one view of the frame the tiles are of. A `sun` in
+/// its file does not change the counts and is not read.
 fn view_gain(cli: &Cli) -> miette::Result<Option<f64>> {
-    let Some(path) = &cli.view else {
-        return Ok(None);
+    let path = match cli.views.files.as_slice() {
+        [] => return Ok(None),
+        [path] => path,
+        more => {
+            return Err(irsig_cli::usage_error(format!(
+                "{} view files: give --view once, the view of the frame the tiles are of",
+                more.len()
+            )));
+        }
     };
     let input = irsig_cli::read_input(path)?;
     let text = decode(&input.name, &input.bytes)?;
-    let views = parse_views(&input.name, text, cli.view_unit)?;
+    let views = parse_views(&input.name, text, cli.views.unit.unit())?;
     match views.as_slice() {
         [view] => Ok(view.gain_dc_per_k()),
         _ => Err(irsig_cli::usage_error(format!(
@@ -215,20 +231,24 @@ fn view_gain(cli: &Cli) -> miette::Result<Option<f64>> {
 /// Unreadable or mismatched tiles (named), bad usage (exit 2), or an output that cannot be
 /// written. Nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    if cli.output.output.is_none() && !cli.output.has_files() {
+    cli.threads.install(|| merge_frame(&cli))
+}
+
+fn merge_frame(cli: &Cli) -> miette::Result<()> {
+    if cli.output.prefix.path.is_none() && !cli.output.has_files() {
         return Err(irsig_cli::usage_error(
             "give -o PREFIX for every output the tiles make, or per-output flags such as \
              --radiance-exr FILE",
         ));
     }
     let tiles = read_tiles(&cli.tiles)?;
-    let out = outputs(&cli, &tiles)?;
-    let band_file = irsig_cli::args::BandArg::response_file(cli.band.band.as_ref());
+    let out = outputs(cli, &tiles)?;
+    let band_file = cli.band.band.response_file();
     irsig_cli::refuse_output_is_input(
         cli.tiles
             .iter()
             .map(String::as_str)
-            .chain(cli.view.as_deref())
+            .chain(cli.views.files.iter().map(String::as_str))
             .chain(band_file),
         out.iter().map(|(_, p)| p),
     )?;
@@ -236,7 +256,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     for (_, path) in out.iter() {
         irsig_cli::check_output(path)?;
     }
-    let gain = view_gain(&cli)?;
+    let gain = view_gain(cli)?;
     // Radiance and truth tiles of one frame: one run, one frame.
     let frame_of = |t: &Tile| {
         t.info
@@ -275,7 +295,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         }
         Ok(())
     };
-    let refused = if cli.output.output.is_some() {
+    let refused = if cli.output.prefix.path.is_some() {
         MapRefused::Skip
     } else {
         MapRefused::Fail

@@ -39,7 +39,11 @@ use std::str::FromStr;
 use base64::Engine as _;
 use clap::Parser;
 use irsig_cli::Input;
-use irsig_cli::args::{BandArg, ImageBandArgs};
+use irsig_cli::args::ImageBandArgs;
+use irsig_cli::args::inputs::{
+    Decision as DecisionArg, RadianceImage, Regions, Uncertainties as UncertaintiesArg,
+};
+use irsig_cli::args::outputs::{ColourPreview, Lut, Output};
 use irsig_model::RegionSet;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
@@ -88,40 +92,63 @@ What the page holds: formats/report.md.";
 
 /// One self-contained HTML report of a run.
 #[derive(Debug, Parser)]
-#[command(name = "irsig-report", version, about, after_help = EXAMPLE)]
+#[command(
+    name = "irsig-report",
+    version,
+    about,
+    after_help = EXAMPLE,
+    mut_arg("radiance", |a| a.help(
+        "Show the apparent temperature of this image's `radiance` layer (W m^-2 sr^-1) in \
+         --band instead (the sensor stage's EXR, say); the same size as the truth EXR"
+    )),
+    mut_arg("regions", |a| a.requires("truth").help(
+        "Per-region statistics from this regions file (canonical RON); needs the truth EXR"
+    )),
+    mut_arg("uncertainties", |a| a.requires("truth").help(
+        "The declared uncertainties the truth EXR was traced with (`irsig-trace \
+         --uncertainties`), listed in the error budget; must be the file the truth EXR records"
+    )),
+    mut_arg("lut", |a| a.help(
+        "The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin, and \
+         the pixels at count 0 and at full scale"
+    )),
+    mut_arg("colour_preview", |a| a.help(
+        "The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`): checked and \
+         listed with its SHA-256 (the page shows the image once, in its own colours)"
+    )),
+    mut_arg("output", |a| a.help(
+        "Output HTML file (`-` or absent: stdout); written atomically. Files are named on the \
+         page relative to its directory"
+    )),
+)]
 #[command(group = clap::ArgGroup::new("image").required(true).multiple(true).args(["truth", "radiance"]))]
 pub struct Cli {
     /// The tracer's truth EXR: its `apparent_temperature` (K) is shown unless --radiance
     /// is given; its `material_primary` selects the regions; its `sigma_total`, when
     /// present, is the error-budget image.
     pub truth: Option<String>,
-    /// Show the apparent temperature of this image's `radiance` layer (W m^-2 sr^-1) in
-    /// --band instead (the sensor stage's EXR, say); the same size as the truth EXR.
-    #[arg(long, value_name = "FILE")]
-    pub radiance: Option<String>,
+    /// `--radiance FILE`.
+    #[command(flatten)]
+    pub radiance: RadianceImage,
     /// The band of --radiance, which that image records (irsig-trace and irsig-sensor
     /// write it); --band must be that band unless --override-band.
     #[command(flatten)]
     pub band: ImageBandArgs,
-    /// Per-region statistics from this regions file (canonical RON); needs the truth EXR.
-    #[arg(long, value_name = "FILE", requires = "truth")]
-    pub regions: Option<String>,
-    /// The tolerance pilot's decision (`irsig-trace --tolerance`, `*.decision.ron`).
-    #[arg(long, value_name = "FILE")]
-    pub decision: Option<String>,
-    /// The declared uncertainties the truth EXR was traced with (`irsig-trace
-    /// --uncertainties`), listed in the error budget; must be the file the truth EXR
-    /// records.
-    #[arg(long, value_name = "FILE", requires = "truth")]
-    pub uncertainties: Option<String>,
-    /// The sensor stage's LUT (`irsig-sensor --lut`): its curve, count against kelvin, and
-    /// the pixels at count 0 and at full scale.
-    #[arg(long, value_name = "FILE")]
-    pub lut: Option<PathBuf>,
-    /// The sensor stage's colour preview PNG (`irsig-sensor --colour-preview`): checked
-    /// and listed with its SHA-256 (the page shows the image once, in its own colours).
-    #[arg(long, value_name = "FILE")]
-    pub colour_preview: Option<PathBuf>,
+    /// `--regions FILE`.
+    #[command(flatten)]
+    pub regions: Regions,
+    /// `--decision FILE`.
+    #[command(flatten)]
+    pub decision: DecisionArg,
+    /// `--uncertainties FILE`.
+    #[command(flatten)]
+    pub uncertainties: UncertaintiesArg,
+    /// `--lut FILE`: the sensor stage's LUT, read.
+    #[command(flatten)]
+    pub lut: Lut,
+    /// `--colour-preview FILE`: the sensor stage's colour preview, read.
+    #[command(flatten)]
+    pub colour_preview: ColourPreview,
     /// A line profile of apparent temperature from pixel (X0, Y0) to (X1, Y1), columns and
     /// rows from the top-left pixel (0, 0); the line is drawn on the image.
     #[arg(long, value_name = "X0,Y0:X1,Y1")]
@@ -136,10 +163,9 @@ pub struct Cli {
     /// The page's title (default: the image's file name).
     #[arg(long, value_name = "TEXT")]
     pub title: Option<String>,
-    /// Output HTML file (`-` or absent: stdout); written atomically. Files are named on
-    /// the page relative to its directory.
-    #[arg(short = 'o', long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// `-o PATH`: the page.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// A line between two pixels, `X0,Y0:X1,Y1`.
@@ -469,22 +495,22 @@ fn pipeline_files(
 /// records, or an unwritable output; nothing is written then.
 #[allow(clippy::too_many_lines)] // one page, section by section
 pub fn run(cli: Cli) -> miette::Result<()> {
-    let band_file = BandArg::response_file(cli.band.band.as_ref()).map(PathBuf::from);
+    let band_file = cli.band.band.response_file().map(PathBuf::from);
     let named = [
         &cli.truth,
-        &cli.radiance,
-        &cli.regions,
-        &cli.decision,
+        &cli.radiance.file,
+        &cli.regions.file,
+        &cli.decision.file,
         &cli.pipeline,
     ]
     .into_iter()
     .flatten()
     .map(PathBuf::from)
-    .chain(cli.lut.iter().cloned())
-    .chain(cli.colour_preview.iter().cloned())
+    .chain(cli.lut.path.iter().cloned())
+    .chain(cli.colour_preview.path.iter().cloned())
     .chain(band_file);
-    irsig_cli::refuse_output_is_input(named, cli.output.iter())?;
-    let names = Names::for_output(cli.output.as_deref());
+    irsig_cli::refuse_output_is_input(named, cli.output.path.iter())?;
+    let names = Names::for_output(cli.output.path.as_deref());
     let mut inputs: Vec<(String, Known)> = Vec::new();
 
     let truth = match &cli.truth {
@@ -497,7 +523,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         }
         None => None,
     };
-    let radiance = match &cli.radiance {
+    let radiance = match &cli.radiance.file {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             inputs.push(own(&names, "radiance EXR", &input));
@@ -568,7 +594,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let radiance_values: Option<Vec<f32>> = radiance.as_mut().and_then(|(_, image, _, _)| {
         let i = image.layers.iter().position(|l| l.name == RADIANCE_LAYER);
         let kept = i
-            .filter(|_| cli.lut.is_some())
+            .filter(|_| cli.lut.path.is_some())
             .map(|i| image.layers.swap_remove(i).data);
         image.layers = Vec::new();
         kept
@@ -603,7 +629,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    let regions = match (&cli.regions, &truth) {
+    let regions = match (&cli.regions.file, &truth) {
         (Some(path), Some((truth_name, image, _))) => {
             let input = irsig_cli::read_input(path)?;
             inputs.push(own(&names, "regions", &input));
@@ -628,7 +654,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         _ => None,
     };
 
-    let decision = match &cli.decision {
+    let decision = match &cli.decision.file {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             inputs.push(own(&names, "decision", &input));
@@ -646,7 +672,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             .find(|i| i.stage == "trace" && i.role == "uncertainties")
             .map(|i| i.sha256.clone())
     });
-    let uncertainties = match &cli.uncertainties {
+    let uncertainties = match &cli.uncertainties.file {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
@@ -679,7 +705,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    let lut = match &cli.lut {
+    let lut = match &cli.lut.path {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             inputs.push(own(&names, "LUT", &input));
@@ -692,7 +718,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         None => None,
     };
 
-    if let Some(path) = &cli.colour_preview {
+    if let Some(path) = &cli.colour_preview.path {
         let input = irsig_cli::read_input(path)?;
         if !input.bytes.starts_with(PNG_SIGNATURE) {
             return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
@@ -704,30 +730,34 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         inputs.push(own(&names, "colour preview", &input));
     }
 
-    let (commands, pipeline): (Vec<String>, Option<(String, Vec<PipelineFile>)>) = match &cli
-        .pipeline
-    {
-        Some(path) => {
-            let input = irsig_cli::read_input(path)?;
-            inputs.push(own(&names, "pipeline", &input));
-            let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
-            let base = input.base_dir();
-            let pipeline = irsig_pipeline::Pipeline::parse(&input.name, text, &base)
-                .map_err(miette::Report::new)?;
-            let tools = irsig_pipeline::Tools::new(|t| Some(PathBuf::from(format!("irsig-{t}"))));
-            let plan = pipeline.plan(&tools).map_err(miette::Report::new)?;
-            let files = pipeline_files(&plan, &names, cli.output.as_deref())?;
-            (
-                plan.steps
-                    .iter()
-                    .map(irsig_pipeline::Step::command_line)
-                    .chain(cli.command.iter().cloned())
-                    .collect(),
-                Some((names.show(plan.base_dir()), files)),
-            )
-        }
-        None => (cli.command.clone(), None),
-    };
+    let (commands, pipeline): (Vec<String>, Option<(String, Vec<PipelineFile>)>) =
+        match &cli.pipeline {
+            Some(path) => {
+                let input = irsig_cli::read_input(path)?;
+                inputs.push(own(&names, "pipeline", &input));
+                let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?;
+                let base = input.base_dir();
+                let pipeline = irsig_pipeline::Pipeline::parse(&input.name, text, &base)
+                    .map_err(miette::Report::new)?;
+                let mut tools =
+                    irsig_pipeline::Tools::new(|t| Some(PathBuf::from(format!("irsig-{t}"))));
+                tools.with_sun_flags(irsig_pipeline::SunFlags {
+                    field: irsig_cli::args::sun::flag,
+                    day_of_year: irsig_cli::args::DayOfYear::FLAG,
+                });
+                let plan = pipeline.plan(&tools).map_err(miette::Report::new)?;
+                let files = pipeline_files(&plan, &names, cli.output.path.as_deref())?;
+                (
+                    plan.steps
+                        .iter()
+                        .map(irsig_pipeline::Step::command_line)
+                        .chain(cli.command.iter().cloned())
+                        .collect(),
+                    Some((names.show(plan.base_dir()), files)),
+                )
+            }
+            None => (cli.command.clone(), None),
+        };
 
     let sigma = match &truth {
         Some((name, image, _)) => image.layer(SIGMA_LAYER).map(|_| (name.clone(), image)),
@@ -759,6 +789,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let title = cli.title.clone().unwrap_or_else(|| {
         let name = cli
             .radiance
+            .file
             .as_deref()
             .or(cli.truth.as_deref())
             .unwrap_or("run");
@@ -1090,7 +1121,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     provenance_section(w, &recorded, &chain_rows, pipeline.as_ref(), &commands);
     w.push_str("</body>\n</html>\n");
 
-    irsig_cli::write_output(cli.output.as_deref(), |out| out.write_all(page.as_bytes()))
+    irsig_cli::write_output(cli.output.path.as_deref(), |out| {
+        out.write_all(page.as_bytes())
+    })
 }
 
 /// The provenance section: the images' record, every input with its file and SHA-256, the

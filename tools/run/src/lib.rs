@@ -40,15 +40,19 @@ Examples:
   irsig-run pipelines/quickstart.ron
   irsig-run --dry-run --force pipelines/quickstart.ron
   irsig-run --emit-makefile pipelines/Makefile pipelines/quickstart.ron && make -C pipelines -j
-  irsig-run --emit-slurm slurm pipelines/thesis-flyby.ron && sh slurm/submit.sh"
+  irsig-run --emit-slurm slurm pipelines/thesis-flyby.ron && sh slurm/submit.sh",
+    mut_arg("threads", |a| a
+        .short_alias('j')
+        .alias("jobs")
+        .help("Run at most N tools at once [default: the number of CPUs]")),
 )]
 pub struct Cli {
     /// The pipeline file (RON). Paths in it are relative to its directory.
     pub pipeline: PathBuf,
 
-    /// Run at most N tools at once [default: the number of CPUs].
-    #[arg(short, long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
-    pub jobs: Option<u32>,
+    /// `--threads N`: tools at once.
+    #[command(flatten)]
+    pub threads: irsig_cli::args::ThreadsArgs,
 
     /// Run every stage, even those up to date.
     #[arg(long)]
@@ -112,6 +116,10 @@ pub const STAGE_TOOLS: [&str; 11] = [
 #[must_use]
 pub fn tools() -> Tools {
     let mut tools = Tools::new(irsig_cli::find_tool);
+    tools.with_sun_flags(irsig_pipeline::SunFlags {
+        field: irsig_cli::args::sun::flag,
+        day_of_year: irsig_cli::args::DayOfYear::FLAG,
+    });
     for tool in STAGE_TOOLS {
         if let Some(program) = irsig_cli::find_tool(tool) {
             tools.register(
@@ -147,10 +155,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         let text = plan.dry_run_script(cli.force)?;
         return irsig_cli::write_output(None, |w| w.write_all(text.as_bytes()));
     }
-    let jobs = cli.jobs.map_or_else(
-        || std::thread::available_parallelism().map_or(1, std::num::NonZero::get),
-        |j| usize::try_from(j).unwrap_or(1),
-    );
+    let jobs = cli.threads.count();
     let quiet = cli.quiet;
     let report = move |event: Event<'_>| {
         if quiet {

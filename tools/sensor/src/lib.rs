@@ -30,7 +30,8 @@ pub mod spec;
 use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
-use irsig_cli::args::{BandArg, DcArgs, ImageBandArgs};
+use irsig_cli::args::outputs::{ColourPreview, DcPng, Lut, Output};
+use irsig_cli::args::{DcArgs, ImageBandArgs, Seed, ThreadsArgs};
 use irsig_model::limits::MEMORY_BUDGET_BYTES;
 use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::truth::Layer;
@@ -55,7 +56,9 @@ const RADIANCE_LAYER: &str = Layer::Radiance.name();
     about = "Blur, sample, add noise to and quantise a radiance EXR as a thermal imager would",
     after_help = "Example:\n  irsig-sensor --contact-sheet sheet.png --sheet-columns 8 f01.dc.png f02.dc.png ...\n\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
 gauss:hp=0.25 | ss:across=0.3,along=0.2 | diffraction:lambda-um=10,f=2,pitch-um=25 | \
-footprint:1x1 | motion:len=3,angle=30 | jitter:0.3 | jitter:x=0.3,y=0.5"
+footprint:1x1 | motion:len=3,angle=30 | jitter:0.3 | jitter:x=0.3,y=0.5",
+    mut_arg("output", |a| a.help("The output EXR (`-` or absent: stdout)")),
+    mut_arg("seed", |a| a.help("Seed of the noise: the same seed gives the same noise, bit for bit")),
 )]
 pub struct Cli {
     /// The tracer's radiance EXR (with a `radiance` layer in W m^-2 sr^-1), or `-`.
@@ -80,9 +83,9 @@ pub struct Cli {
           value_parser = clap::value_parser!(u32).range(1..))]
     pub sheet_columns: Option<u32>,
 
-    /// The output EXR (`-` or absent: stdout).
-    #[arg(short, long)]
-    pub output: Option<PathBuf>,
+    /// `-o PATH`: the output EXR.
+    #[command(flatten)]
+    pub output: Output,
 
     /// One MTF component; repeat to cascade them (their product, eq. 12).
     #[arg(long = "mtf", value_name = "KIND:PARAMS", value_parser = spec::parse_mtf)]
@@ -116,22 +119,21 @@ pub struct Cli {
     #[arg(long, default_value_t = 300.0)]
     pub nedt_reference_k: f64,
 
-    /// Seed of the noise: the same seed gives the same noise, bit for bit.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// `--seed`: of the noise.
+    #[command(flatten)]
+    pub seed: Seed,
 
     /// How radiance becomes digital counts (--dc-png and --lut need a gain).
     #[command(flatten)]
     pub dc: DcArgs,
 
-    /// Write the digital counts as a grey PNG (8-bit up to 8 bits, else 16-bit, counts
-    /// unscaled).
-    #[arg(long)]
-    pub dc_png: Option<PathBuf>,
+    /// `--dc-png FILE`.
+    #[command(flatten)]
+    pub dc_png: DcPng,
 
-    /// Write the LUT: count, radiance, K, degC for every count.
-    #[arg(long)]
-    pub lut: Option<PathBuf>,
+    /// `--lut FILE`.
+    #[command(flatten)]
+    pub lut: Lut,
 
     /// Write the apparent (blackbody) temperature of the sensor's radiance, K, as an EXR.
     #[arg(long)]
@@ -146,9 +148,13 @@ pub struct Cli {
     #[arg(long, value_enum, default_value_t = PreviewBits::Eight)]
     pub preview_bits: PreviewBits,
 
-    /// Write a colour preview PNG (inferno map) with a colour bar labelled in kelvin.
-    #[arg(long)]
-    pub colour_preview: Option<PathBuf>,
+    /// `--colour-preview FILE`.
+    #[command(flatten)]
+    pub colour_preview: ColourPreview,
+
+    /// `--threads N`: worker threads (the blur, the EXR's compression).
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
 }
 
 /// `--preview-bits`.
@@ -360,18 +366,22 @@ fn sensor(e: SensorError) -> miette::Report {
 /// # Errors
 /// Bad input (named), bad usage (exit 2), or an output that cannot be written.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    let band_file = BandArg::response_file(cli.band.band.as_ref());
+    cli.threads.install(|| sense(&cli))
+}
+
+fn sense(cli: &Cli) -> miette::Result<()> {
+    let band_file = cli.band.band.response_file();
     let inputs = std::iter::once(cli.input.as_str())
         .chain(cli.more_inputs.iter().map(String::as_str))
         .chain(band_file);
     let outputs = [
-        &cli.output,
+        &cli.output.path,
         &cli.contact_sheet,
-        &cli.dc_png,
-        &cli.lut,
+        &cli.dc_png.path,
+        &cli.lut.path,
         &cli.temperature_exr,
         &cli.preview,
-        &cli.colour_preview,
+        &cli.colour_preview.path,
     ];
     irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())?;
     if let Some(sheet) = &cli.contact_sheet {
@@ -383,7 +393,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         let png = contact_sheet::build(&inputs, cli.sheet_columns.map(|c| c as usize))?;
         return irsig_cli::write_files_atomic(&[(sheet.clone(), png)]);
     }
-    let wants_counts = cli.dc_png.is_some() || cli.lut.is_some();
+    let wants_counts = cli.dc_png.path.is_some() || cli.lut.path.is_some();
     let calibration = cli.dc.calibration(None);
     if wants_counts && calibration.is_none() {
         return Err(irsig_cli::usage_error(
@@ -459,18 +469,20 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         samples_per_pixel: cli.samples_per_pixel,
         categorical: cli.categorical.clone(),
         nedt: cli.nedt_k.map(|n| (n, cli.nedt_reference_k)),
-        seed: cli.seed,
+        seed: cli.seed.value,
     };
     let out = process(raster, &settings, &band).wrap_err_with(|| format!("`{name}`"))?;
     let (w, h) = (out.raster.width, out.raster.height);
 
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    let temperature =
-        if cli.temperature_exr.is_some() || cli.preview.is_some() || cli.colour_preview.is_some() {
-            Some(apparent_temperatures(out.radiance(), &band))
-        } else {
-            None
-        };
+    let temperature = if cli.temperature_exr.is_some()
+        || cli.preview.is_some()
+        || cli.colour_preview.path.is_some()
+    {
+        Some(apparent_temperatures(out.radiance(), &band))
+    } else {
+        None
+    };
     if let (Some(path), Some(t)) = (&cli.temperature_exr, &temperature) {
         let mut r = Raster::new(w, h).with_comments(comments.clone());
         let layer = Layer::ApparentTemperature;
@@ -482,7 +494,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         let bits = cli.dc.dc_bits;
         let q = Quantiser::calibrate(bits, &cal, out.radiance(), &band)
             .map_err(|e| miette!("quantisation: {e}"))?;
-        if let Some(path) = &cli.dc_png {
+        if let Some(path) = &cli.dc_png.path {
             let counts = q.quantise(out.radiance(), w).map_err(sensor)?;
             let full = (1u32 << bits) - 1;
             let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
@@ -505,7 +517,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 counts_png(&counts, w, h, bits).into_diagnostic()?,
             ));
         }
-        if let Some(path) = &cli.lut {
+        if let Some(path) = &cli.lut.path {
             let text = q.lut(&band).text_in_band(&provenance.band.to_string());
             files.push((path.clone(), text.into_bytes()));
         }
@@ -513,12 +525,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     if let (Some(path), Some(t)) = (&cli.preview, &temperature) {
         files.push((path.clone(), preview::grey(t, w, h, cli.preview_bits)?));
     }
-    if let (Some(path), Some(t)) = (&cli.colour_preview, &temperature) {
+    if let (Some(path), Some(t)) = (&cli.colour_preview.path, &temperature) {
         files.push((path.clone(), preview::colour_with_bar(t, w, h)?));
     }
     // The sensed image's layers go into the encoder, not a copy of them.
     let exr = into_exr_bytes(out.raster.with_comments(comments)).into_diagnostic()?;
-    match &cli.output {
+    match &cli.output.path {
         Some(p) if p.as_os_str() != "-" => {
             files.push((p.clone(), exr));
             irsig_cli::write_files_atomic(&files)

@@ -25,10 +25,11 @@
 #![warn(clippy::print_stderr)]
 
 use std::fmt::Write as _;
-use std::path::PathBuf;
 
 use clap::Parser;
-use irsig_cli::args::{BandArg, ImageBandArgs, TableFormat};
+use irsig_cli::args::inputs::{RadianceImage, Regions};
+use irsig_cli::args::outputs::Output;
+use irsig_cli::args::{Format, ImageBandArgs, TableFormat};
 use irsig_model::RegionSet;
 use irsig_model::truth::Layer;
 use irsig_raster::Raster;
@@ -61,18 +62,33 @@ The regions file (canonical RON, formats/canonical/regions.md):
 
 /// Per-region statistics of a traced image beside reference values.
 #[derive(Debug, Parser)]
-#[command(name = "irsig-stats", version, about, after_help = EXAMPLE)]
+#[command(
+    name = "irsig-stats",
+    version,
+    about,
+    after_help = EXAMPLE,
+    group(clap::ArgGroup::new("regions_required").args(["regions"]).required(true)),
+    mut_arg("radiance", |a| a.conflicts_with("layer").help(
+        "Take the values from this image's `radiance` layer (W m^-2 sr^-1), converted to \
+         apparent temperature in --band, instead of a layer of the truth EXR. Same size as \
+         the truth EXR"
+    )),
+    mut_arg("format", |a| a.help(
+        "Output form: `table` (aligned columns, the sources as `#` comment lines), `csv` (a \
+         header row, full precision) or `ron` (`(values: .., unit: .., references: [..], \
+         regions: [..])`, full precision)"
+    )),
+    mut_arg("output", |a| a.help("Output file (`-` or absent: stdout); written atomically")),
+)]
 pub struct Cli {
     /// The tracer's truth EXR (its `material_primary` layer selects pixels), or `-`.
     pub truth: String,
-    /// The regions file (canonical RON).
-    #[arg(long, value_name = "FILE")]
-    pub regions: String,
-    /// Take the values from this image's `radiance` layer (W m^-2 sr^-1), converted to
-    /// apparent temperature in --band, instead of a layer of the truth EXR. Same size as
-    /// the truth EXR.
-    #[arg(long, value_name = "FILE", conflicts_with = "layer")]
-    pub radiance: Option<String>,
+    /// `--regions FILE`.
+    #[command(flatten)]
+    pub regions: Regions,
+    /// `--radiance FILE`.
+    #[command(flatten)]
+    pub radiance: RadianceImage,
     /// The truth EXR's layer to take the values from, in its own unit (K for the
     /// temperatures, W m^-2 for `solar_irradiance`, none for a fraction).
     #[arg(long, value_name = "NAME", default_value = APPARENT_LAYER)]
@@ -84,14 +100,12 @@ pub struct Cli {
     /// Report temperatures in degC (K − 273.15) instead of K; differences are the same.
     #[arg(long)]
     pub celsius: bool,
-    /// Output form: `table` (aligned columns, the sources as `#` comment lines), `csv`
-    /// (a header row, full precision) or `ron` (`(values: .., unit: .., references: [..],
-    /// regions: [..])`, full precision).
-    #[arg(long, value_enum, default_value_t = TableFormat::Table)]
-    pub format: TableFormat,
-    /// Output file (`-` or absent: stdout); written atomically.
-    #[arg(short = 'o', long, value_name = "FILE")]
-    pub output: Option<PathBuf>,
+    /// `--format`.
+    #[command(flatten)]
+    pub format: Format,
+    /// `-o PATH`.
+    #[command(flatten)]
+    pub output: Output,
 }
 
 /// Runs the tool.
@@ -101,19 +115,20 @@ pub struct Cli {
 /// layer, images of different sizes, a region that selects nothing, or an unwritable
 /// output; nothing is written then.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    let band_file = BandArg::response_file(cli.band.band.as_ref());
-    let inputs = [cli.truth.as_str(), cli.regions.as_str()]
+    let band_file = cli.band.band.response_file();
+    let regions = cli.regions.required()?;
+    let inputs = [cli.truth.as_str(), regions]
         .into_iter()
-        .chain(cli.radiance.as_deref())
+        .chain(cli.radiance.file.as_deref())
         .chain(band_file);
-    irsig_cli::refuse_output_is_input(inputs, cli.output.iter())?;
-    let regions_input = irsig_cli::read_input(&cli.regions)?;
+    irsig_cli::refuse_output_is_input(inputs, cli.output.path.iter())?;
+    let regions_input = irsig_cli::read_input(regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
     let truth_input = irsig_cli::read_input(&cli.truth)?;
     let truth = irsig_cli::read_exr(&truth_input.name, &truth_input.bytes)?;
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
-    let (values, source): (Vec<f32>, String) = match &cli.radiance {
+    let (values, source): (Vec<f32>, String) = match &cli.radiance.file {
         Some(path) => {
             let input = irsig_cli::read_input(path)?;
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
@@ -153,7 +168,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         ),
     };
     // The values' unit is the layer's: a temperature, a radiance, a ratio.
-    let unit = match (&cli.radiance, Layer::from_name(&cli.layer)) {
+    let unit = match (&cli.radiance.file, Layer::from_name(&cli.layer)) {
         (Some(_), _) => "K",
         (None, Some(l)) if l.is_label() => {
             return Err(irsig_cli::usage_error(format!(
@@ -190,8 +205,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         unit,
         celsius: cli.celsius,
     })?;
-    let text = render(&table, cli.format)?;
-    irsig_cli::write_output(cli.output.as_deref(), |w| w.write_all(text.as_bytes()))
+    let text = render(&table, cli.format.value)?;
+    irsig_cli::write_output(cli.output.path.as_deref(), |w| w.write_all(text.as_bytes()))
 }
 
 fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::Result<&'a [f32]> {

@@ -9,11 +9,14 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use irsig_atmosphere::sun::SunSpec;
 use irsig_atmosphere::{ModelKind, SubBandCount};
-use irsig_cli::args::{BandArg, DcArgs, FrameOutputArgs, VIEW_UNIT_DEFAULT, length_unit, named};
+use irsig_cli::args::inputs::{Decision, Materials, Scene, Uncertainties};
+use irsig_cli::args::{
+    AtmosphereArgs, BandArgs, DcArgs, FrameOutputArgs, Seed, SunArgs, ThreadsArgs, TrailingViews,
+    ViewArgs, atmosphere, band, named,
+};
 use irsig_formats::legacy::decode;
 use irsig_formats::views::{ViewSun, read_execute};
-use irsig_model::LengthUnit;
-use irsig_model::decision::Decision;
+use irsig_model::decision::Decision as PilotDecision;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_render::tolerance::Pin;
 use irsig_render::{
@@ -29,24 +32,50 @@ const EXAMPLE: &str = include_str!("examples.txt");
 
 /// Render a raw scene: radiance EXR, truth EXR and the legacy interaction map per view.
 #[derive(Debug, Parser)]
-#[command(name = "irsig-trace", version, about, after_help = EXAMPLE)]
+#[command(
+    name = "irsig-trace",
+    version,
+    about,
+    after_help = EXAMPLE,
+    group(clap::ArgGroup::new("materials_required").args(["materials"]).required(true)),
+    mut_arg("view", |a| a.required_unless_present("execute")),
+    mut_arg("legacy_unit", |a| a.alias("view-unit")),
+    mut_arg("seed", |a| a.help("Seed for sky-view directions and sub-pixel jitter")),
+    mut_arg("decision", |a| a.help(
+        "Apply a decision an earlier --tolerance run wrote (for every frame), instead of \
+         piloting: tiles of one frame share their frame's decision"
+    )),
+    mut_arg("uncertainties", |a| a.help(
+        "Declared uncertainties of the inputs (canonical RON, \
+         formats/canonical/uncertainties.md): the truth EXR gains the error budget, one σ \
+         layer (K) per source and their root-sum-square"
+    )),
+    mut_arg("sun_zenith_deg", |a| a.help(
+        "Light the scene by the sun at this zenith angle, degrees (0 overhead, below 90), with \
+         --sun-azimuth-deg. The atmosphere must be a spectral one built for this sun, whose \
+         solar table is for this zenith angle within 0.0011 deg: `irsig-atmos plan \
+         --sun-zenith-deg Z --day-of-year D`, then `irsig-atmos build`"
+    )),
+    mut_arg("sun_utc", |a| a.help(
+        "Light the scene by the sun seen at this time, UTC (`YYYY-MM-DDTHH:MM:SSZ`), from \
+         --latitude-deg, --longitude-deg and --altitude-m (NREL's SPA, geometric: the zenith \
+         angle `irsig-atmos sun` prints without --pressure-hpa, which is the one to build the \
+         atmosphere for)"
+    )),
+)]
 pub struct Cli {
-    /// The raw scene (canonical RON or the binary form `irsig-flatten` writes), or `-` for
-    /// stdin.
-    #[arg(long, value_name = "FILE")]
-    pub scene: String,
-    /// The material library (canonical RON).
-    #[arg(long, value_name = "FILE")]
-    pub materials: String,
-    /// One or more view files, each a canonical RON view, a RON list of views, or a 1990
-    /// viewing file (told apart by their first character: a number starts a viewing file);
-    /// frames are numbered in the order given.
-    #[arg(long, value_name = "FILE", num_args = 1.., required_unless_present = "execute")]
-    pub view: Vec<String>,
-    /// Length unit of the positions in 1990 viewing files (km in the thesis's files),
-    /// converted to metres on reading. Canonical views are always in metres.
-    #[arg(long, default_value = VIEW_UNIT_DEFAULT, value_name = "UNIT", value_parser = length_unit)]
-    pub view_unit: LengthUnit,
+    /// `--scene FILE`.
+    #[command(flatten)]
+    pub scene: Scene,
+    /// `--materials FILE`.
+    #[command(flatten)]
+    pub materials: Materials,
+    /// The old spelling `--view A B C` (before the views: it reads their places).
+    #[command(flatten)]
+    pub trailing_views: TrailingViews,
+    /// `--view FILE`, repeatable, and `--legacy-unit` of 1990 viewing and execute files.
+    #[command(flatten)]
+    pub views: ViewArgs,
     /// A 1990 execute file: frames of (viewing file, scene file, map image, output image,
     /// LUT), names relative to its folder. Each frame writes its interaction map PNG, its
     /// DC image PNG and its LUT under the names given; the BVH of --scene is built once.
@@ -56,21 +85,12 @@ pub struct Cli {
         "view", "output", "radiance_exr", "truth_exr", "map_png", "dc_png", "lut", "no_dc"
     ])]
     pub execute: Option<String>,
-    /// The band: `MIN-MAX` in micrometres (flat response), a sensor response file
-    /// (formats/srf.md), or `total`, the whole spectrum (σT⁴/π), exact and for checking by
-    /// hand [default: 8-14]. A built-in atmosphere is collapsed from its spectra over any
-    /// band other than its tables' flat 8-14; with a band-form atmosphere file use the band
-    /// its tables were integrated over.
-    #[arg(long, value_name = "MIN-MAX|FILE|total")]
-    pub band: Option<BandArg>,
-    /// The atmosphere: a built-in LOWTRAN7 model (us-std-1976, tropical, midlat-summer,
-    /// midlat-winter, subarctic-summer, subarctic-winter; spectra 7.41-14.08 um, and
-    /// 2.99-5.00 um at night: with a sun, build the atmosphere for it with `irsig-atmos plan
-    /// --sun-zenith-deg` and `build`), a canonical or spectral atmosphere file (`irsig-atmos
-    /// build` writes one), or `none` (a vacuum under --sky-radiance) [default: none, with a
-    /// note on stderr].
-    #[arg(long, value_name = "NAME|FILE")]
-    pub atmosphere: Option<String>,
+    /// `--band`: every form.
+    #[command(flatten)]
+    pub band: BandArgs<band::Traced>,
+    /// `--atmosphere`: a built-in, a file or `none`.
+    #[command(flatten)]
+    pub atmosphere: AtmosphereArgs<atmosphere::Traced>,
     /// Sum the radiance equation over sub-bands of the band (the spectral model), each
     /// with its own τ, path and sky radiance collapsed from a spectral atmosphere: K
     /// sub-bands, each holding an equal share of the band's response-weighted blackbody
@@ -106,9 +126,9 @@ pub struct Cli {
     /// (edges); the others keep their centre ray.
     #[arg(long, value_name = "K", requires = "supersample")]
     pub adaptive_supersampling: Option<f64>,
-    /// Seed for sky-view directions and sub-pixel jitter.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// `--seed`.
+    #[command(flatten)]
+    pub seed: Seed,
     /// Path terms (τ, L_u) of facet hits: `exact` (one atmosphere call per hit) or
     /// `tabulated` (a per-frame altitude × range table; worst error 7 mK, see
     /// docs/accuracy.md; faster from about 200 × 200 pixels up) [default: exact].
@@ -142,15 +162,12 @@ pub struct Cli {
     /// full), and by day sun (on, off) and shadow-rays (N). Repeat for several.
     #[arg(long, value_name = "MODEL=SETTING", requires = "tolerance")]
     pub pin: Vec<Pin>,
-    /// Apply a decision an earlier --tolerance run wrote (for every frame), instead of
-    /// piloting: tiles of one frame share their frame's decision.
-    #[arg(long, value_name = "FILE")]
-    pub decision: Option<String>,
-    /// Declared uncertainties of the inputs (canonical RON, formats/canonical/
-    /// uncertainties.md): the truth EXR gains the error budget, one σ layer (K) per source
-    /// and their root-sum-square.
-    #[arg(long, value_name = "FILE")]
-    pub uncertainties: Option<String>,
+    /// `--decision FILE`.
+    #[command(flatten)]
+    pub decision: Decision,
+    /// `--uncertainties FILE`.
+    #[command(flatten)]
+    pub uncertainties: Uncertainties,
     /// With --tolerance and the per-output flags, write the decision (canonical RON) to
     /// FILE instead of beside the first output.
     #[arg(
@@ -177,25 +194,37 @@ pub struct Cli {
     /// 2 counts per kelvin (the thesis's auto-bias).
     #[command(flatten)]
     pub dc: DcArgs,
+    /// Where the sun is: a direction or a time and a place. Without these flags, no sun: a
+    /// night (or a view file's `sun`).
     #[command(flatten)]
-    pub sun: sun::SunArgs,
-    /// Worker threads (default: all cores). The images do not depend on it.
-    #[arg(long)]
-    pub threads: Option<usize>,
+    pub sun: SunArgs,
+    /// Shadow rays per facet hit toward the sun: 1 aims at the disk's centre (hard
+    /// shadows); more sample the disk (soft edges). With a sun of these flags or of the
+    /// view file; default 1. With --tolerance the pilot chooses them (pin them with
+    /// --pin shadow-rays=N).
+    #[arg(long, value_name = "N", conflicts_with = "tolerance")]
+    pub sun_shadow_rays: Option<u32>,
+    /// `--threads N`: worker threads.
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
 }
 
 /// The request the flags make, lit by their sun or `view_sun`, a view file's.
 fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Request> {
-    let arg = BandArg::or_default(cli.band.as_ref());
-    let (band, record) = arg.load_recorded()?;
-    let band = BandRequest::new(band, record, arg.to_string());
-    let name = cli.atmosphere.as_deref().unwrap_or("none");
+    let (band, record) = cli.band.load_recorded()?;
+    let band = BandRequest::new(band, record, cli.band.or_default().to_string());
+    let name = cli.atmosphere.given().unwrap_or("none");
     let atmosphere = AtmosphereRequest::named(name, cli.sky_radiance, |name| {
         Ok(irsig_cli::read_input_if_any(name)?.map(|i| (i.name, i.bytes)))
     })?;
     let mut defaulted = Vec::new();
-    defaulted.extend(cli.band.is_none().then_some(Setting::Band));
-    defaulted.extend(cli.atmosphere.is_none().then_some(Setting::Atmosphere));
+    defaulted.extend(cli.band.given().is_none().then_some(Setting::Band));
+    defaulted.extend(
+        cli.atmosphere
+            .given()
+            .is_none()
+            .then_some(Setting::Atmosphere),
+    );
     Ok(Request {
         band,
         atmosphere,
@@ -205,7 +234,7 @@ fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Requ
             sky_view_rays: cli.sky_view_rays,
             supersample: cli.supersample,
             adaptive_threshold_k: cli.adaptive_supersampling,
-            seed: cli.seed,
+            seed: cli.seed.value,
             path_terms: cli.path_terms,
             sub_bands: cli.sub_bands,
         },
@@ -214,10 +243,30 @@ fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Requ
             percentile: cli.tolerance_percentile,
             pins: cli.pin.clone(),
         }),
-        sun: cli.sun.request_with(view_sun)?,
+        sun: sun::request(&cli.sun, cli.sun_shadow_rays, view_sun)?,
         counts: cli.dc.request(),
         defaulted,
+        spelling: irsig_render::Spelling(flag),
     })
+}
+
+/// The flag that gives `setting`: the library names settings, each tool its flags.
+#[must_use]
+pub fn flag(setting: Setting) -> String {
+    let name = match setting {
+        Setting::Band => "band",
+        Setting::Atmosphere => "atmosphere",
+        Setting::SkyRadiance => "sky-radiance",
+        Setting::SubBands => "sub-bands",
+        Setting::Tolerance => "tolerance",
+        Setting::TolerancePercentile => "tolerance-percentile",
+        Setting::Pin => "pin",
+        Setting::Tile => "tile",
+        Setting::Probe => "probe",
+        Setting::Sun(field) => irsig_cli::args::sun::flag(field),
+        Setting::SunShadowRays => "sun-shadow-rays",
+    };
+    format!("--{name}")
 }
 
 /// A request error as bad usage, naming the flag of its setting.
@@ -226,17 +275,19 @@ fn as_usage(report: miette::Report) -> miette::Report {
         return report;
     };
     let joint = if e.value.is_some() { " " } else { ": " };
-    irsig_cli::usage_error(format!("--{}{joint}{e}", e.setting.name()))
+    irsig_cli::usage_error(format!("{}{joint}{e}", flag(e.setting)))
 }
 
 /// Reads the inputs into a plan: the scene, the materials, the views (of --view or
 /// --execute), the uncertainties and a decision. With --execute, also each frame's files.
 fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
-    let (view_files, view_sun) = sun::read_views(&cli.view, cli.view_unit)?;
+    let view_paths = cli.trailing_views.files(&cli.views);
+    let (view_files, view_sun) =
+        irsig_cli::args::view::read_views(view_paths, cli.views.unit.unit())?;
     let mut plan = Plan::new(request(cli, view_sun)?)?;
-    let scene = irsig_cli::read_input(&cli.scene)?;
+    let scene = irsig_cli::read_input(&cli.scene.file)?;
     plan.read_scene(&scene.name, &scene.bytes)?;
-    let materials = irsig_cli::read_input(&cli.materials)?;
+    let materials = irsig_cli::read_input(cli.materials.required()?)?;
     plan.read_materials(&materials.name, &materials.bytes, &scene.bytes)?;
     drop(scene);
     let mut execute_files = None;
@@ -244,7 +295,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
         let input = irsig_cli::read_input(path)?;
         plan.record_input("execute file", &input.bytes);
         let text = decode(&input.name, &input.bytes)?;
-        let frames = read_execute(&input.name, text, &input.base_dir(), cli.view_unit)?;
+        let frames = read_execute(&input.name, text, &input.base_dir(), cli.views.unit.unit())?;
         let files = frames.iter().map(|f| FrameFiles {
             map_png: Some(f.map_png.clone()),
             dc_png: Some(f.dc_png.clone()),
@@ -258,11 +309,11 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
         plan.record_input("view", &input.bytes);
         plan.add_views(views);
     }
-    if let Some(path) = &cli.uncertainties {
+    if let Some(path) = &cli.uncertainties.file {
         let input = irsig_cli::read_input(path)?;
         plan.read_uncertainties(&input.name, &input.bytes)?;
     }
-    if let Some(path) = &cli.decision {
+    if let Some(path) = &cli.decision.file {
         let input = irsig_cli::read_input(path)?;
         plan.read_decision(&input.name, &input.bytes)?;
     }
@@ -288,7 +339,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
 
 fn trace(cli: &Cli) -> miette::Result<()> {
     let out = &cli.output;
-    let outputs = out.output.is_some() || out.has_files() || cli.decision_out.is_some();
+    let outputs = out.prefix.path.is_some() || out.has_files() || cli.decision_out.is_some();
     if cli.probe.is_none() && !outputs && cli.execute.is_none() {
         return Err(irsig_cli::usage_error(
             "give -o PREFIX for all the output files, per-output flags such as \
@@ -300,10 +351,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     plan.notes()
         .iter()
         .for_each(|n| irsig_cli::note!("irsig-trace: note: {n}"));
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(cli.threads.unwrap_or(0))
-        .build()
-        .into_diagnostic()?;
+    let pool = cli.threads.pool()?;
     if let Some((column, row)) = cli.probe {
         let text = pool.install(|| plan.probe(column, row))?;
         return irsig_cli::write_output(None, |w| w.write_all(text.as_bytes()));
@@ -321,7 +369,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
             "{}: {} of `{}`",
             path.display(),
             irsig_render::products::map_refusal(max_id),
-            cli.materials
+            cli.materials.file.as_deref().unwrap_or_default()
         ));
     }
     // Every frame's tile and files are checked before anything is traced: a fly-by would
@@ -341,19 +389,28 @@ fn trace(cli: &Cli) -> miette::Result<()> {
         })
         .collect();
     let more: Vec<&Path> = decisions.iter().flatten().map(PathBuf::as_path).collect();
-    let named = [&cli.scene, &cli.materials].into_iter().chain(&cli.view);
+    let named = [cli.scene.file.as_str()]
+        .into_iter()
+        .chain(cli.materials.file.as_deref())
+        .chain(
+            cli.trailing_views
+                .files(&cli.views)
+                .iter()
+                .map(String::as_str),
+        );
     let named = named.chain(
         cli.atmosphere
-            .iter()
-            .chain(&cli.execute)
-            .chain(&cli.decision),
+            .given()
+            .into_iter()
+            .chain(cli.execute.as_deref())
+            .chain(cli.decision.file.as_deref()),
     );
-    let named = named.chain(&cli.uncertainties).map(String::as_str);
+    let named = named.chain(cli.uncertainties.file.as_deref());
     let written = files
         .iter()
         .flat_map(|f| f.iter().map(|(_, p)| p.as_path()));
     irsig_cli::refuse_output_is_input(
-        named.chain(BandArg::response_file(cli.band.as_ref())),
+        named.chain(cli.band.response_file()),
         written.chain(more.iter().copied()),
     )?;
     let frames = irsig_cli::StagedFrames::new(files, &more)?;
@@ -361,7 +418,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     let bar = irsig_cli::progress_bar(rows, "tracing");
     pool.install(|| plan.render(cli.tile, &|n| bar.inc(n), &mut sink))?;
     bar.finish_and_clear();
-    if !map_fits && out.output.is_some() && whole {
+    if !map_fits && out.prefix.path.is_some() && whole {
         let refusal = irsig_render::products::map_refusal(max_id);
         irsig_cli::note!("irsig-trace: {refusal}");
     }
@@ -379,7 +436,7 @@ impl Sink for Staging {
         self.frames.wanted(index)
     }
 
-    fn decision(&mut self, index: usize, d: &Decision, seconds: f64) -> miette::Result<()> {
+    fn decision(&mut self, index: usize, d: &PilotDecision, seconds: f64) -> miette::Result<()> {
         let table = irsig_render::tolerance::table(d);
         irsig_cli::note!("irsig-trace: --{}", table.trim_end());
         // What the pilot cost, for comparing with the rendering it chose (the decision file

@@ -623,3 +623,104 @@ fn a_response_outside_a_builtins_spectra_names_the_band_file_both_ranges_and_the
     assert!(!err.contains("--sub-bands"), "{err}");
     assert!(!dir.path().join("f.radiance.exr").exists());
 }
+
+#[test]
+fn views_repeat_and_the_old_list_after_one_view_flag_traces_the_same_frames() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, first) = inputs(dir.path(), 2);
+    let second = write(
+        dir.path(),
+        "second.ron",
+        "LookAt(position_m: (0.0, -50.0, 50.0), target_m: (0.0, 0.0, 0.0), pixels: (6, 2), fov_deg: (10.0, 5.0))",
+    );
+    let run = |views: &[&str], prefix: &str| {
+        let out = trace()
+            .args(["--scene", &scene, "--materials", &mats])
+            .args(views)
+            .args(["--no-dc", "-o"])
+            .arg(dir.path().join(prefix))
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{views:?}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    };
+    run(&["--view", &first, "--view", &second], "repeated");
+    run(&["--view", &first, &second], "listed");
+    for n in ["0001", "0002"] {
+        let read = |p: &str| std::fs::read(dir.path().join(format!("{p}.{n}.radiance.exr")));
+        assert_eq!(
+            read("repeated").unwrap(),
+            read("listed").unwrap(),
+            "frame {n}"
+        );
+    }
+    // The second frame is the 6 x 2 view: the order given is kept.
+    let second_frame = std::fs::read(dir.path().join("listed.0002.radiance.exr")).unwrap();
+    let raster = irsig_raster::read_exr(&second_frame).unwrap();
+    assert_eq!((raster.width, raster.height), (6, 2));
+    // A file anywhere else is not a view.
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            &second,
+            "--materials",
+            &mats,
+            "--view",
+            &first,
+        ])
+        .args(["-o"])
+        .arg(dir.path().join("stray"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}
+
+#[test]
+fn every_setting_the_library_names_is_one_of_the_tools_flags() {
+    use clap::CommandFactory;
+    use irsig_atmosphere::sun::SunField;
+    use irsig_render::Setting;
+    let command = irsig_trace::Cli::command();
+    let longs: Vec<&str> = command
+        .get_arguments()
+        .filter_map(|a| a.get_long())
+        .collect();
+    let settings = [
+        Setting::Band,
+        Setting::Atmosphere,
+        Setting::SkyRadiance,
+        Setting::SubBands,
+        Setting::Tolerance,
+        Setting::TolerancePercentile,
+        Setting::Pin,
+        Setting::Tile,
+        Setting::Probe,
+        Setting::SunShadowRays,
+    ]
+    .into_iter()
+    // The sun's fields a trace can be given (refraction and SPA's clock are irsig-atmos
+    // sun's alone).
+    .chain(
+        [
+            SunField::ZenithDeg,
+            SunField::AzimuthDeg,
+            SunField::Utc,
+            SunField::LatitudeDeg,
+            SunField::LongitudeDeg,
+            SunField::AltitudeM,
+        ]
+        .map(Setting::Sun),
+    );
+    for setting in settings {
+        let flag = irsig_trace::flag(setting);
+        let name = flag.trim_start_matches("--");
+        assert!(
+            longs.contains(&name),
+            "{setting:?} -> {flag}: not a flag of irsig-trace"
+        );
+    }
+}
