@@ -18,6 +18,9 @@
 use std::path::{Path, PathBuf};
 
 use clap::Parser;
+use irsig_cli::args::inputs::Materials;
+use irsig_cli::args::outputs::Output;
+use irsig_cli::args::{DecisionOut, PlaceArgs, Seed, ThreadsArgs, Tolerance};
 use irsig_model::history::{TemperatureHistory, ThermalProvenance};
 use irsig_model::provenance::InputRecord;
 use irsig_model::thermal_decision::ThermalDecision;
@@ -56,62 +59,74 @@ IANA zone: 2026-07-15T14:00Z, 2026-07-15T14:00-06:00, 2026-07-15T14:00[America/D
 
 /// Facet temperatures from a heat balance over time, written as raw scenes.
 #[derive(Debug, Parser)]
-#[command(name = "irsig-therm", version, about, after_help = EXAMPLE)]
+#[command(
+    name = "irsig-therm",
+    version,
+    about,
+    after_help = EXAMPLE,
+    group(clap::ArgGroup::new("materials_required").args(["materials"]).required(true)),
+    mut_arg("materials", |a| a.help(
+        "The material library: every solved facet's material with a `thermal` record"
+    )),
+    group(clap::ArgGroup::new("output_required").args(["output"]).required(true)),
+    mut_arg("output", |a| a.help(
+        "Where the scenes go: PATH.raw for one moment, PATH.YYYYMMDDTHHMMSSZ.raw (UTC) for \
+         several"
+    )),
+    mut_arg("latitude_deg", |a| a.requires("longitude_deg").help(
+        "The site's latitude, degrees north, in [-90, 90] (default: the weather file's)"
+    )),
+    mut_arg("longitude_deg", |a| a.requires("latitude_deg").help(
+        "The site's longitude, degrees east, in [-180, 180] (default: the weather file's)"
+    )),
+    mut_arg("altitude_m", |a| a.help(
+        "The site's altitude above sea level, m, with --latitude-deg (the weather file's \
+         with its site)"
+    )),
+    mut_arg("seed", |a| a.help("Seed of the hemisphere rays' streams")),
+    mut_arg("tolerance", |a| a.help(
+        "Choose the cheapest settings of the models that keep every facet's temperature \
+         within K kelvin of a converged solve (the 99th percentile over the pilot's facets \
+         and the moments), instead of the model flags' settings; print the decision on \
+         stderr"
+    )),
+    mut_arg("decision_out", |a| a.help(
+        "With --tolerance, also write the decision (canonical RON) here"
+    )),
+)]
 pub struct Cli {
     /// The raw scene (`irsig-flatten`'s output, binary or RON), or `-` for stdin. Its
     /// facets' temperatures are replaced; a facet's exposed side is its winding's front.
     pub scene: String,
-    /// The material library: every solved facet's material with a `thermal` record.
-    #[arg(long, value_name = "FILE")]
-    pub materials: String,
+    /// `--materials FILE`.
+    #[command(flatten)]
+    pub materials: Materials,
     /// The weather: an EPW file or a CSV with a unit header (formats/weather.md). Its air
     /// temperature, dew point, pressure and wind drive convection and evaporation; its
     /// direct normal and diffuse horizontal irradiance the sunlight; its downwelling
     /// longwave the sky, or Prata's clear-sky formula where it has none.
     #[arg(long, value_name = "FILE")]
     pub weather: String,
-    /// The moments whose scenes are written: a time, or START/END/STEP (such as
-    /// 2026-07-15T06:00Z/2026-07-16T06:00Z/PT1H); repeatable. They must lie on the time
-    /// step's grid from the first.
-    #[arg(long, required = true, value_name = "TIME")]
-    pub at: Vec<String>,
-    /// Output: PREFIX.raw for one moment, PREFIX.YYYYMMDDTHHMMSSZ.raw (UTC) for several.
-    #[arg(short = 'o', long = "output", value_name = "PREFIX")]
-    pub output: PathBuf,
-    /// Also write every facet's surface temperature at every step from the first moment
-    /// to the last (formats/canonical/temperature-history.md).
-    #[arg(long, value_name = "FILE")]
-    pub history: Option<PathBuf>,
     /// Read an EPW file's rows as this year, whatever their year fields say (default: the
     /// first moment's year, UTC): a typical-year file (TMY, IWEC) takes each month from
     /// another year. The CSV form's times are absolute and ignore it.
     #[arg(long, value_name = "YEAR")]
     pub weather_year: Option<i64>,
-    /// The site's latitude, degrees north (default: the weather file's).
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_hyphen_values = true,
-        requires = "longitude_deg"
-    )]
-    pub latitude_deg: Option<f64>,
-    /// The site's longitude, degrees east (default: the weather file's).
-    #[arg(
-        long,
-        value_name = "DEG",
-        allow_hyphen_values = true,
-        requires = "latitude_deg"
-    )]
-    pub longitude_deg: Option<f64>,
-    /// The site's altitude above sea level, m, with --latitude-deg (the weather file's
-    /// with its site).
-    #[arg(
-        long,
-        default_value_t = 0.0,
-        value_name = "M",
-        allow_hyphen_values = true
-    )]
-    pub altitude_m: f64,
+    /// The moments whose scenes are written: a time, or START/END/STEP (such as
+    /// 2026-07-15T06:00Z/2026-07-16T06:00Z/PT1H); repeatable. They must lie on the time
+    /// step's grid from the first.
+    #[arg(long, required = true, value_name = "TIME")]
+    pub at: Vec<String>,
+    /// `-o PREFIX`.
+    #[command(flatten)]
+    pub output: Output,
+    /// Also write every facet's surface temperature at every step from the first moment
+    /// to the last (formats/canonical/temperature-history.md).
+    #[arg(long, value_name = "FILE")]
+    pub history: Option<PathBuf>,
+    /// The site (default: the weather file's).
+    #[command(flatten)]
+    pub place: PlaceArgs,
     /// Hold every facet of an object at a temperature, OBJECT=K (a heated blackbody
     /// panel); repeatable. OBJECT is a placed object's name, or #N for the N-th (from 0)
     /// where placements share a name.
@@ -133,20 +148,18 @@ pub struct Cli {
     /// The models, each a named approximation (docs/accuracy.md, "The thermal model").
     #[command(flatten)]
     pub models: Models,
-    /// Choose the cheapest settings of the models that keep every facet's temperature
-    /// within K kelvin of a converged solve (the 99th percentile over the pilot's facets and
-    /// the moments), instead of the model flags' settings; print the decision on stderr.
-    #[arg(long, value_name = "K")]
-    pub tolerance: Option<f64>,
-    /// With --tolerance, also write the decision (canonical RON) here.
-    #[arg(long, value_name = "FILE", requires = "tolerance")]
-    pub decision_out: Option<PathBuf>,
-    /// Threads (default: all cores); results are the same at any count.
-    #[arg(long)]
-    pub threads: Option<usize>,
-    /// Seed of the hemisphere rays' streams.
-    #[arg(long, default_value_t = 0)]
-    pub seed: u64,
+    /// `--tolerance K`.
+    #[command(flatten)]
+    pub tolerance: Tolerance,
+    /// `--decision-out FILE`.
+    #[command(flatten)]
+    pub decision_out: DecisionOut,
+    /// `--threads N`.
+    #[command(flatten)]
+    pub threads: ThreadsArgs,
+    /// `--seed`.
+    #[command(flatten)]
+    pub seed: Seed,
 }
 
 /// Runs the tool.
@@ -154,28 +167,31 @@ pub struct Cli {
 /// # Errors
 /// Bad input, named at its file, line and column; a run that cannot be carried out.
 pub fn run(cli: Cli) -> miette::Result<()> {
-    if let Some(n) = cli.threads {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(n.max(1))
-            .build_global()
-            .map_err(|e| miette!("cannot start {n} threads: {e}"))?;
-    }
+    cli.threads.pool()?.install(|| run_in_pool(&cli))
+}
+
+fn run_in_pool(cli: &Cli) -> miette::Result<()> {
+    let materials_file = cli.materials.required()?;
+    let output = cli.output.required()?;
     let times = moments(&cli.at)?;
-    let outputs = output_paths(&cli.output, &times)?;
+    let outputs = output_paths(output, &times)?;
     let mut all_outputs: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
     if let Some(h) = &cli.history {
         all_outputs.push(h);
     }
-    if let Some(d) = &cli.decision_out {
+    if let Some(d) = &cli.decision_out.path {
         all_outputs.push(d);
     }
-    irsig_cli::refuse_output_is_input([&cli.scene, &cli.materials, &cli.weather], &all_outputs)?;
+    irsig_cli::refuse_output_is_input(
+        [cli.scene.as_str(), materials_file, cli.weather.as_str()],
+        &all_outputs,
+    )?;
     for o in &all_outputs {
         irsig_cli::check_output(o)?;
     }
     let scene_in = irsig_cli::read_input(&cli.scene)?;
     let scene = irsig_formats::canonical::read_raw_scene(&scene_in.name, &scene_in.bytes)?;
-    let materials_in = irsig_cli::read_input(&cli.materials)?;
+    let materials_in = irsig_cli::read_input(materials_file)?;
     let materials: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&materials_in.name, &materials_in.bytes)?;
     let weather_in = irsig_cli::read_input(&cli.weather)?;
@@ -189,14 +205,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         &weather_in.bytes,
         &irsig_formats::weather::Options { year },
     )?;
-    let site = site(&cli, &weather)?;
+    let site = site(cli, &weather)?;
     let inputs = vec![
         record("scene", &scene_in),
         record("materials", &materials_in),
         record("weather", &weather_in),
     ];
-    let prepared = Prepared::new(&cli, &scene, &materials, &weather, &weather_in.name, site)?;
-    let (models, decision) = match cli.tolerance {
+    let prepared = Prepared::new(cli, &scene, &materials, &weather, &weather_in.name, site)?;
+    let (models, decision) = match cli.tolerance.kelvin {
         Some(k) => {
             let (models, decision) = pilot::decide(&prepared, &cli.models, &times, k)?;
             report::print(&decision);
@@ -215,7 +231,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         models: models.describe(),
     };
     write(
-        &cli,
+        cli,
         &scene,
         &outputs,
         outcome,
@@ -234,7 +250,7 @@ fn write(
     decision: Option<&ThermalDecision>,
 ) -> miette::Result<()> {
     let mut staged = irsig_cli::Staged::new();
-    if let (Some(path), Some(d)) = (&cli.decision_out, decision) {
+    if let (Some(path), Some(d)) = (&cli.decision_out.path, decision) {
         d.validate()
             .map_err(|e| miette!("the decision would break its own rules: {e}"))?;
         let text = irsig_formats::canonical::to_ron_pretty(d)
@@ -318,11 +334,15 @@ fn output_paths(prefix: &Path, times: &[f64]) -> miette::Result<Vec<PathBuf>> {
 }
 
 fn site(cli: &Cli, weather: &Weather) -> miette::Result<Site> {
-    match (cli.latitude_deg, cli.longitude_deg, &weather.site) {
+    match (
+        cli.place.latitude_deg,
+        cli.place.longitude_deg,
+        &weather.site,
+    ) {
         (Some(latitude_deg), Some(longitude_deg), _) => Ok(Site {
             latitude_deg,
             longitude_deg,
-            altitude_m: cli.altitude_m,
+            altitude_m: cli.place.altitude_m,
         }),
         (_, _, Some(s)) => Ok(Site {
             latitude_deg: s.latitude_deg,

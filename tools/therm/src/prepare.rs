@@ -144,7 +144,7 @@ impl<'a> Prepared<'a> {
                 sunlight,
                 sky,
             },
-            seed: cli.seed,
+            seed: cli.seed.value,
         };
         let walls = prepared.walls(&cli.models)?;
         prepared.ground_albedo = match (cli.ground_albedo, &walls.ground) {

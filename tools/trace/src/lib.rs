@@ -11,8 +11,8 @@ use irsig_atmosphere::sun::SunSpec;
 use irsig_atmosphere::{ModelKind, SubBandCount};
 use irsig_cli::args::inputs::{Decision, Materials, Scene, Uncertainties};
 use irsig_cli::args::{
-    AtmosphereArgs, BandArgs, DcArgs, FrameOutputArgs, Seed, SunArgs, ThreadsArgs, TrailingViews,
-    ViewArgs, atmosphere, band, named,
+    AtmosphereArgs, BandArgs, DcArgs, DecisionOut, FrameOutputArgs, Seed, SunArgs, ThreadsArgs,
+    Tolerance, TrailingViews, ViewArgs, atmosphere, band, named,
 };
 use irsig_formats::legacy::decode;
 use irsig_formats::views::{ViewSun, read_execute};
@@ -41,6 +41,23 @@ const EXAMPLE: &str = include_str!("examples.txt");
     mut_arg("view", |a| a.required_unless_present("execute")),
     mut_arg("legacy_unit", |a| a.alias("view-unit")),
     mut_arg("seed", |a| a.help("Seed for sky-view directions and sub-pixel jitter")),
+    mut_arg("tolerance", |a| a.help(
+        "Let the tool choose the models (atmosphere, bounces, sky-view rays, supersampling, \
+         path terms, sub-bands; by day also whether the sun may be left out and its shadow \
+         rays) for this scene and view: the cheapest whose error against a converged \
+         rendering stays within K kelvin at --tolerance-percentile of the pixels and in every \
+         population of them (materials, mirrors, grazing, thin features); refused when no \
+         setting on offer can keep it. A pilot decides per frame; the decision is printed on \
+         stderr and written beside the outputs (PREFIX.decision.ron with -o, --decision-out, \
+         else beside the first output file). Pin a model with --pin"
+    ).conflicts_with_all([
+        "atmosphere_model", "bounces", "sky_view_rays", "supersample", "path_terms",
+        "adaptive_supersampling", "decision", "sub_bands",
+    ])),
+    mut_arg("decision_out", |a| a.help(
+        "With --tolerance and the per-output flags, write the decision (canonical RON) to \
+         FILE instead of beside the first output"
+    ).conflicts_with("output")),
     mut_arg("decision", |a| a.help(
         "Apply a decision an earlier --tolerance run wrote (for every frame), instead of \
          piloting: tiles of one frame share their frame's decision"
@@ -134,19 +151,9 @@ pub struct Cli {
     /// docs/accuracy.md; faster from about 200 × 200 pixels up) [default: exact].
     #[arg(long, value_name = "MODE", value_parser = named::<PathTermsMode>(&PathTermsMode::NAMES))]
     pub path_terms: Option<PathTermsMode>,
-    /// Let the tool choose the models (atmosphere, bounces, sky-view rays, supersampling,
-    /// path terms, sub-bands; by day also whether the sun may be left out and its shadow
-    /// rays) for this scene and view: the cheapest whose error against a
-    /// converged rendering stays within K kelvin at --tolerance-percentile of the pixels and
-    /// in every population of them (materials, mirrors, grazing, thin features); refused
-    /// when no setting on offer can keep it. A pilot decides per frame; the decision is
-    /// printed on stderr and written beside the outputs (PREFIX.decision.ron with -o,
-    /// --decision-out, else beside the first output file). Pin a model with --pin.
-    #[arg(long, value_name = "K", allow_negative_numbers = true, conflicts_with_all = [
-        "atmosphere_model", "bounces", "sky_view_rays", "supersample", "path_terms",
-        "adaptive_supersampling", "decision", "sub_bands",
-    ])]
-    pub tolerance: Option<f64>,
+    /// `--tolerance K`.
+    #[command(flatten)]
+    pub tolerance: Tolerance,
     /// The percentile of pixels --tolerance applies to, more than 0 and at most 100.
     #[arg(
         long,
@@ -168,15 +175,9 @@ pub struct Cli {
     /// `--uncertainties FILE`.
     #[command(flatten)]
     pub uncertainties: Uncertainties,
-    /// With --tolerance and the per-output flags, write the decision (canonical RON) to
-    /// FILE instead of beside the first output.
-    #[arg(
-        long,
-        value_name = "FILE",
-        requires = "tolerance",
-        conflicts_with = "output"
-    )]
-    pub decision_out: Option<PathBuf>,
+    /// `--decision-out FILE`.
+    #[command(flatten)]
+    pub decision_out: DecisionOut,
     /// Print every term of the radiance equation for pixel COLUMN,ROW of the first view and
     /// write no files.
     #[arg(long, value_name = "COLUMN,ROW", value_parser = irsig_cli::args::pixel)]
@@ -238,7 +239,7 @@ fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Requ
             path_terms: cli.path_terms,
             sub_bands: cli.sub_bands,
         },
-        tolerance: cli.tolerance.map(|tolerance_k| ToleranceRequest {
+        tolerance: cli.tolerance.kelvin.map(|tolerance_k| ToleranceRequest {
             tolerance_k,
             percentile: cli.tolerance_percentile,
             pins: cli.pin.clone(),
@@ -339,7 +340,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
 
 fn trace(cli: &Cli) -> miette::Result<()> {
     let out = &cli.output;
-    let outputs = out.prefix.path.is_some() || out.has_files() || cli.decision_out.is_some();
+    let outputs = out.prefix.path.is_some() || out.has_files() || cli.decision_out.path.is_some();
     if cli.probe.is_none() && !outputs && cli.execute.is_none() {
         return Err(irsig_cli::usage_error(
             "give -o PREFIX for all the output files, per-output flags such as \
@@ -382,7 +383,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     };
     // Each frame's decision (with --tolerance) goes beside its files, or to --decision-out.
     let decisions: Vec<Option<PathBuf>> = (0..frames)
-        .map(|i| match (&cli.tolerance, &cli.decision_out) {
+        .map(|i| match (&cli.tolerance.kelvin, &cli.decision_out.path) {
             (None, _) => None,
             (Some(_), Some(path)) => Some(path.clone()),
             (Some(_), None) => out.decision_file(i, frames, &files[i]),

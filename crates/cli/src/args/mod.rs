@@ -37,14 +37,16 @@ pub mod inputs;
 pub mod outputs;
 pub mod sun;
 pub mod threads;
+pub mod tolerance;
 pub mod view;
 
 pub use atmosphere::AtmosphereArgs;
 pub use band::{BandArg, BandArgs, ImageBandArgs, ResolvedBand, band_of};
 pub use counts::DcArgs;
 pub use frame::{FrameOutputArgs, with_suffix};
-pub use sun::{DayOfYear, SunArgs, SunPrecisionArgs};
+pub use sun::{DayOfYear, PlaceArgs, SunArgs, SunPrecisionArgs};
 pub use threads::ThreadsArgs;
+pub use tolerance::{DecisionOut, Tolerance};
 pub use view::{LegacyUnitArgs, TrailingViews, ViewArgs, ViewFile};
 
 /// A length unit by name (m, km, cm, mm, ft, in), as a clap value parser.

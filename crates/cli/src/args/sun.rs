@@ -19,7 +19,16 @@ pub const SUN_GROUP: &str = "sun";
 
 /// Where the sun is: a direction, or a UTC time and a place. Without these flags, no sun.
 #[derive(Debug, Clone, Default, clap::Args)]
-#[command(group(clap::ArgGroup::new(SUN_GROUP).args(["sun_zenith_deg", "sun_utc"])))]
+#[command(
+    group(clap::ArgGroup::new(SUN_GROUP).args(["sun_zenith_deg", "sun_utc"])),
+    mut_arg("latitude_deg", |a| a.requires("sun_utc").help(
+        "Latitude of the place, degrees, positive north, in [-90, 90]; with --sun-utc")),
+    mut_arg("longitude_deg", |a| a.requires("sun_utc").help(
+        "Longitude of the place, degrees, positive east, in [-180, 180]; with --sun-utc")),
+    mut_arg("altitude_m", |a| a.requires("sun_utc").help(
+        "Altitude of the place, metres above mean sea level (the sun's parallax); with \
+         --sun-utc")),
+)]
 pub struct SunArgs {
     /// The sun's zenith angle, degrees (0 overhead, below 90: above the horizon), with
     /// --sun-azimuth-deg.
@@ -47,31 +56,37 @@ pub struct SunArgs {
           requires_all = ["latitude_deg", "longitude_deg"], allow_hyphen_values = true,
           value_parser = utc)]
     pub sun_utc: Option<String>,
-    /// Latitude of the place, degrees, positive north, in [-90, 90]; with --sun-utc.
+    /// The place a sun by time is seen from.
+    #[command(flatten)]
+    pub place: PlaceArgs,
+}
+
+/// A place on the Earth: latitude, longitude and altitude above sea level. A sun by time is
+/// seen from it (with `--sun-utc`, which requires the first two); the thermal model
+/// computes its suns there.
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct PlaceArgs {
+    /// Latitude of the place, degrees, positive north, in [-90, 90].
     #[arg(
         long,
         value_name = "DEG",
-        requires = "sun_utc",
         allow_hyphen_values = true,
         value_parser = number_of(SunField::LatitudeDeg)
     )]
     pub latitude_deg: Option<f64>,
-    /// Longitude of the place, degrees, positive east, in [-180, 180]; with --sun-utc.
+    /// Longitude of the place, degrees, positive east, in [-180, 180].
     #[arg(
         long,
         value_name = "DEG",
-        requires = "sun_utc",
         allow_hyphen_values = true,
         value_parser = number_of(SunField::LongitudeDeg)
     )]
     pub longitude_deg: Option<f64>,
-    /// Altitude of the place, metres above mean sea level (the sun's parallax); with
-    /// --sun-utc.
+    /// Altitude of the place, metres above mean sea level (the sun's parallax).
     #[arg(
         long,
         default_value_t = 0.0,
         value_name = "M",
-        requires = "sun_utc",
         allow_hyphen_values = true,
         value_parser = number_of(SunField::AltitudeM)
     )]
@@ -93,8 +108,8 @@ impl SunArgs {
             self.sun_zenith_deg,
             self.sun_azimuth_deg,
             &self.sun_utc,
-            self.latitude_deg,
-            self.longitude_deg,
+            self.place.latitude_deg,
+            self.place.longitude_deg,
         ) {
             (Some(zenith_deg), Some(azimuth_deg), ..) => Some(SunSpec::Direction {
                 zenith_deg,
@@ -104,7 +119,7 @@ impl SunArgs {
                 utc: utc.clone(),
                 latitude_deg,
                 longitude_deg,
-                altitude_m: self.altitude_m,
+                altitude_m: self.place.altitude_m,
                 refraction: precision.refraction(),
                 delta_t_s: precision.delta_t_s,
                 delta_ut1_s: precision.delta_ut1_s,
