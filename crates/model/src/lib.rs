@@ -13,6 +13,8 @@
 //! | [`MaterialLibrary`] | the user, `irsig-material` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
+//! | [`loads::LoadsPlan`] | `irsig-atmos plan --loads` | `irsig-atmos build` |
+//! | [`loads::BroadbandLoads`] | `irsig-atmos build` | the thermal model |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
@@ -48,6 +50,7 @@ pub mod decision;
 mod error;
 pub mod frame;
 pub mod limits;
+pub mod loads;
 mod material;
 mod object;
 mod plan;
