@@ -48,6 +48,7 @@ mod error;
 mod interp;
 mod layered;
 pub mod legacy;
+pub mod loads;
 pub mod plan;
 mod precomputed;
 pub mod scattered;
