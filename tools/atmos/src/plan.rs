@@ -29,16 +29,40 @@ Examples:
       --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
   irsig-atmos plan --scene scene.raw --view view.ron --model midlat-summer \
       --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
-  irsig-atmos build tropical-plan -o tropical.spa")]
+  irsig-atmos build tropical-plan -o tropical.spa
+  irsig-atmos plan --loads --model midlat-summer --aerosol rural --visibility-km 23 \
+      --sun-zeniths-deg 20:85:5,87.5,89,89.9 --day-of-year 172 -o june-loads
+  irsig-atmos build june-loads -o june-loads.ron")]
 pub struct PlanArgs {
     /// The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the
     /// ground of every path.
-    #[arg(long, value_name = "FILE")]
-    pub scene: String,
+    #[arg(long, value_name = "FILE", required_unless_present = "loads")]
+    pub scene: Option<String>,
     /// A view file (canonical RON: one view or a list; or a 1990 viewing file); repeat
     /// for more.
-    #[arg(long, value_name = "FILE", required = true)]
+    #[arg(long, value_name = "FILE", required_unless_present = "loads")]
     pub view: Vec<String>,
+    /// Plan a day's broadband thermal loads at the ground instead of a scene's
+    /// atmosphere: at each of --sun-zeniths-deg, the direct normal sunlight (IEMSCT = 3)
+    /// and the diffuse sky's (IEMSCT = 2 with multiple scattering, 9-64 lines of sight),
+    /// and the sky's downwelling longwave (IEMSCT = 1, 8 lines of sight); `build` writes
+    /// the table (formats/canonical/broadband-loads.md). No scene or view.
+    #[arg(long, requires_all = ["sun_zeniths_deg", "day_of_year"],
+          conflicts_with_all = ["scene", "view", "sun_zenith_deg", "sun_scattering", "slabs",
+                                "wavenumber_per_cm"])]
+    pub loads: bool,
+    /// With --loads: the sun's zenith angles, degrees, 0 to below 90, as values and ranges
+    /// `FROM:TO:STEP`, comma-separated (`20:85:5,87.5,89,89.9`): the day's from its
+    /// lowest to the horizon, 2-5 deg apart (docs/accuracy.md measures the interpolation
+    /// between rows).
+    #[arg(long, value_name = "LIST", requires = "loads",
+          value_parser = crate::plan_loads::sun_zeniths)]
+    pub sun_zeniths_deg: Option<crate::plan_loads::SunZeniths>,
+    /// With --loads: the ground's albedo, 0-1 (LOWTRAN7's SALB, to 0.01): sunlight the
+    /// ground reflects that the sky scatters back down. Default 0, a black ground.
+    #[arg(long, value_name = "A", requires = "loads",
+          value_parser = crate::plan_loads::ground_albedo)]
+    pub ground_albedo: Option<f64>,
     /// Length unit of the positions in 1990 viewing files (km in the thesis's files),
     /// converted to metres on reading. Canonical views are always in metres.
     #[arg(long, default_value = irsig_cli::args::VIEW_UNIT_DEFAULT, value_name = "UNIT",
@@ -366,13 +390,18 @@ pub(crate) fn deck_name(i: usize) -> PathBuf {
 /// scene's lowest point; an unknown model; an output directory that exists and is not
 /// empty.
 pub fn run(a: &PlanArgs) -> miette::Result<()> {
-    let inputs = std::iter::once(&a.scene)
-        .chain(&a.view)
-        .chain(&a.radiosonde);
+    if a.loads {
+        return crate::plan_loads::run(a);
+    }
+    // clap requires it without --loads.
+    let Some(scene) = &a.scene else {
+        return Err(irsig_cli::usage_error("--scene FILE is required"));
+    };
+    let inputs = std::iter::once(scene).chain(&a.view).chain(&a.radiosonde);
     irsig_cli::refuse_output_is_input(inputs, [&a.output])?;
     // The flags first: a wrong one is refused before any file is read.
     let aerosol = aerosol_of(a.aerosol.as_deref(), a.visibility_km, a.wind_speed_m_s)?;
-    let input = irsig_cli::read_input(&a.scene)?;
+    let input = irsig_cli::read_input(scene)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
         .positions_m
