@@ -96,23 +96,29 @@ pub(crate) fn run(a: &PlanArgs) -> miette::Result<()> {
         write_dir_atomic(&a.output, &files)?;
     }
     let sky: Vec<usize> = plan.sun.iter().map(|s| s.diffuse.len()).collect();
+    let (fewest, most) = (
+        sky.iter().min().copied().unwrap_or(0),
+        sky.iter().max().copied().unwrap_or(0),
+    );
+    let lines = if fewest == most {
+        format!("{most}")
+    } else {
+        format!("{fewest} to {most}")
+    };
     let zs: Vec<String> = plan
         .sun
         .iter()
         .map(|s| format!("{}", s.zenith_deg))
         .collect();
     irsig_cli::note!(
-        "{}: {} paths: the sky's longwave along {} lines of sight, and for each of {} suns \
-         ({} deg from the zenith) on day {} its direct beam and the diffuse sky along {} to {} \
-         lines of sight; {}, ground albedo {}",
+        "{}: {} paths: the sky's longwave along {} lines of sight, and for each sun ({} deg \
+         from the zenith) on day {} its direct beam and the diffuse sky along {lines} lines of \
+         sight; {}, ground albedo {}",
         a.output.display(),
         all.len(),
         plan.longwave.len(),
-        plan.sun.len(),
         zs.join(", "),
         plan.day_of_year,
-        sky.iter().min().copied().unwrap_or(0),
-        sky.iter().max().copied().unwrap_or(0),
         plan.aerosol.as_ref().map_or_else(
             || "no aerosol".to_owned(),
             |x| format!(
