@@ -472,6 +472,19 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         }
         write_dir_atomic(&a.output, &files)?;
     }
+    say_what_was_planned(a, &plan, all.len(), ground_z, highest);
+    Ok(())
+}
+
+/// Says on stderr what `plan` wrote: the paths, the sun, the slabs and the aerosol, the
+/// observers; and, for a scene well above its lowest point without slabs, what that costs.
+fn say_what_was_planned(
+    a: &PlanArgs,
+    plan: &irsig_model::AtmospherePlan,
+    paths: usize,
+    ground_z: f64,
+    highest: f64,
+) {
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         // Said either way: whether the sunlight scattered into the paths is in the plan.
         let scattered = if s.relative_azimuth_deg.is_empty() {
@@ -528,7 +541,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     irsig_cli::note!(
         "{}: {} paths{sun}{slab_text}, {aerosol_text}, for {} observer(s) at {} m above the scene's lowest point ({} m)",
         a.output.display(),
-        all.len(),
+        paths,
         plan.observers_m.len(),
         plan.observers_m
             .iter()
@@ -545,7 +558,6 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
             highest - ground_z
         );
     }
-    Ok(())
 }
 
 /// The height of a scene above its lowest point, metres, from which `plan` says that it
