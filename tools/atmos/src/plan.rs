@@ -44,7 +44,7 @@ pub struct PlanArgs {
     pub view: Vec<String>,
     /// Plan a day's broadband thermal loads at the ground instead of a scene's
     /// atmosphere: at each of --sun-zeniths-deg, the direct normal sunlight (IEMSCT = 3)
-    /// and the diffuse sky's (IEMSCT = 2 with multiple scattering, 9-64 lines of sight),
+    /// and the diffuse sky's (IEMSCT = 2 with multiple scattering, 9-66 lines of sight),
     /// and the sky's downwelling longwave (IEMSCT = 1, 8 lines of sight); `build` writes
     /// the table (formats/canonical/broadband-loads.md). No scene or view.
     #[arg(long, requires_all = ["sun_zeniths_deg", "day_of_year"],

@@ -47,8 +47,8 @@ pub struct DiffuseRule {
 
 impl DiffuseRule {
     /// The rule a loads plan takes: 9 lines of sight for a sun at the zenith, 40 at 30°,
-    /// 52 at 60°, 64 at 80°; within 0.07 % of a rule of 60–950 lines of sight for the sun
-    /// at 0–80°, 0.14 % at 88° (docs/accuracy.md, "Broadband loads").
+    /// 52 at 60°, 64 at 80°, at most 66 (89°); within 0.07 % of a rule of 60–950 lines of
+    /// sight for the sun at 0–80°, 0.14 % at 88° (docs/accuracy.md, "Broadband loads").
     pub const DEFAULT: Self = Self {
         aureole_edges_deg: [2.0, 15.0],
         aureole_nodes: 2,
@@ -267,6 +267,13 @@ mod tests {
         assert_eq!(diffuse_nodes(30.0, &DiffuseRule::DEFAULT).len(), 40);
         assert_eq!(diffuse_nodes(60.0, &DiffuseRule::DEFAULT).len(), 52);
         assert_eq!(diffuse_nodes(80.0, &DiffuseRule::DEFAULT).len(), 64);
+        // Every sun, 0.1° apart up to the last a deck holds: never more than 66.
+        let most = (0..900)
+            .map(|k| f64::from(k) * 0.1)
+            .chain([89.95, 89.999])
+            .map(|z| diffuse_nodes(z, &DiffuseRule::DEFAULT).len())
+            .max();
+        assert_eq!(most, Some(66));
         // The ring through the sun's azimuth toward it: a node 1° from the sun lies in
         // the sun's vertical plane on the sun's side.
         let near = diffuse_nodes(30.0, &DiffuseRule::DEFAULT)
