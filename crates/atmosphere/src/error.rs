@@ -55,6 +55,10 @@ pub enum AtmosphereErrorKind {
     /// An atmosphere build's plan that cannot be made or assembled.
     #[error("{0}")]
     Plan(String),
+    /// A plan of broadband loads that cannot be made or assembled, or a loads table asked
+    /// for a sun it does not hold.
+    #[error("{0}")]
+    Loads(String),
     /// A sun's position that cannot be computed: a field out of its range or not a
     /// number, a time that does not parse or that SPA does not cover, no ΔT for its year.
     #[error("sun `{}`: {message}", field.path())]

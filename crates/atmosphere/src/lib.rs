@@ -19,6 +19,10 @@
 //! (NREL's SPA, ±0.0003°) or from a given direction, as angles and as a unit vector in the
 //! scene frame (its altitudes are above sea level, not above the tables' ground).
 //!
+//! [`loads`] plans and assembles a day's broadband thermal loads at the ground from
+//! LOWTRAN7 (direct and diffuse sunlight per sun zenith angle, the sky's longwave), what a
+//! surface energy balance takes from the atmosphere.
+//!
 //! Conventions: altitudes in metres above the ground of the tables (scene z = 0), ranges in
 //! metres, angles in degrees (nadir angle 0 = straight down, zenith angle 0 = straight up),
 //! radiance in W m⁻² sr⁻¹. The Earth is flat for paths (plane-parallel layers, as the
@@ -48,6 +52,7 @@ mod error;
 mod interp;
 mod layered;
 pub mod legacy;
+pub mod loads;
 pub mod plan;
 mod precomputed;
 pub mod scattered;

@@ -62,7 +62,7 @@ fn sky_zenith_deg() -> Vec<f64> {
 }
 
 /// Gauss–Legendre nodes and weights on [0, 1], `n` points (Newton on P_n).
-fn gauss_legendre_01(n: usize) -> Vec<(f64, f64)> {
+pub(crate) fn gauss_legendre_01(n: usize) -> Vec<(f64, f64)> {
     let nf = n as f64;
     (0..n)
         .map(|i| {
@@ -90,7 +90,7 @@ fn gauss_legendre_01(n: usize) -> Vec<(f64, f64)> {
 }
 
 /// Rounds to the `decimals` a card's `F10.3` field keeps.
-fn round3(x: f64) -> f64 {
+pub(crate) fn round3(x: f64) -> f64 {
     (x * 1000.0).round() / 1000.0
 }
 
@@ -571,7 +571,7 @@ pub fn paths(plan: &AtmospherePlan) -> Vec<Path> {
     map.into_values().collect()
 }
 
-fn standard_cards(model: i64, itype: i64, card3: Card3, v: [f64; 3]) -> Cards {
+pub(crate) fn standard_cards(model: i64, itype: i64, card3: Card3, v: [f64; 3]) -> Cards {
     Cards {
         card1: Card1 {
             model,

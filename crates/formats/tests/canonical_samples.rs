@@ -113,3 +113,37 @@ fn the_temperature_history_sample_reads_and_writes_back_bit_for_bit() {
     assert!(h.temperature_k.iter().all(|&t| (280.0..360.0).contains(&t)));
     assert_eq!(canonical::binary_history::encode(&h).unwrap(), bytes);
 }
+
+#[test]
+fn the_loads_samples_read_round_trip_and_tell_their_kind_of_plan() {
+    use irsig_formats::canonical::AnyPlan;
+    use irsig_model::loads::{BroadbandLoads, LoadsPlan};
+    let plan: LoadsPlan = round_trip("loads-plan.ron");
+    assert_eq!(plan.sun.len(), 2);
+    let pi = std::f64::consts::PI;
+    for sun in &plan.sun {
+        let sum: f64 = sun.diffuse.iter().map(|n| n.2).sum();
+        assert!((sum / pi - 1.0).abs() < 1e-3, "{sum}");
+    }
+    let table: BroadbandLoads = round_trip("broadband-loads.ron");
+    assert_eq!(table.sun_zenith_deg.len(), table.direct_normal_w_m2.len());
+    assert!(table.longwave_down_w_m2 > table.longwave_outside_range_w_m2);
+    // A loads plan is told from an atmosphere plan by its `longwave` field.
+    let any = canonical::read_any_plan("loads-plan.ron", sample("loads-plan.ron").as_bytes());
+    assert!(matches!(any, Ok(AnyPlan::Loads(p)) if p == plan));
+    let atmosphere = "(name: \"a\", model: Standard(1), wavenumber_per_cm: (710.0, 1250.0, 90.0), \
+        path_end_m: 1.0, observers_m: [1000.0], levels_m: [1000.0], correction_altitude_m: \
+        1000.0, correction_nadir_deg: [0.0], ground_sky_zenith_deg: [0.0], hemispheric: [], \
+        slant_altitude_m: [1000.0], slant_nadir_deg: [0.0], sky_altitude_m: [0.0], \
+        sky_zenith_deg: [0.0])";
+    let any = canonical::read_any_plan("plan.ron", atmosphere.as_bytes());
+    assert!(matches!(any, Ok(AnyPlan::Atmosphere(_))), "{any:?}");
+    // A loads plan's error is a loads plan's, at its place.
+    let bad = sample("loads-plan.ron").replace("day_of_year: 172", "day_of_year: 0");
+    let e = canonical::read_any_plan("bad.ron", bad.as_bytes()).unwrap_err();
+    assert!(
+        e.message.contains("loads plan") && e.message.contains("day_of_year"),
+        "{e}"
+    );
+    assert_eq!(e.line, 9, "{e}");
+}

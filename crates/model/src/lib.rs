@@ -13,6 +13,8 @@
 //! | [`MaterialLibrary`] | the user, `irsig-material` | import, flatten, trace |
 //! | [`Atmosphere`] | `irsig-atmos convert`, built-ins | `irsig-trace` |
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
+//! | [`loads::LoadsPlan`] | `irsig-atmos plan --loads` | `irsig-atmos build` |
+//! | [`loads::BroadbandLoads`] | `irsig-atmos build` | the thermal model |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
 //! | [`weather::Weather`] | `irsig-formats` (EPW, CSV) | `irsig-therm` |
@@ -50,6 +52,7 @@ mod error;
 pub mod frame;
 pub mod history;
 pub mod limits;
+pub mod loads;
 mod material;
 mod object;
 mod plan;

@@ -20,6 +20,35 @@ pub enum PlanModel {
     Radiosonde(Vec<RadiosondeLevel>),
 }
 
+impl PlanModel {
+    /// Checks the model: a standard model 1–6, or a radiosonde of at least 2 levels whose
+    /// altitudes increase; paths name the field `model`.
+    ///
+    /// # Errors
+    /// The first rule broken.
+    pub fn validate(&self) -> Result<(), ModelError> {
+        match self {
+            PlanModel::Standard(m) if !(1..=6).contains(m) => Err(ModelError::new(
+                "model",
+                ModelErrorKind::Other(format!("expected a standard model 1 to 6, found {m}")),
+            )),
+            PlanModel::Standard(_) => Ok(()),
+            PlanModel::Radiosonde(levels) => {
+                if levels.len() < 2 {
+                    return Err(ModelError::new(
+                        "model",
+                        ModelErrorKind::Other("a radiosonde needs at least 2 levels".into()),
+                    ));
+                }
+                check_increasing(
+                    |i| format!("model.Radiosonde[{i}].altitude_m"),
+                    levels.iter().map(|l| l.altitude_m),
+                )
+            }
+        }
+    }
+}
+
 /// The sun of a daylight build: where it stands and the altitudes at which LOWTRAN7
 /// computes its direct irradiance (IEMSCT = 3, one run per altitude).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -363,26 +392,7 @@ impl AtmospherePlan {
                 )),
             ));
         }
-        if let PlanModel::Standard(m) = self.model
-            && !(1..=6).contains(&m)
-        {
-            return Err(ModelError::new(
-                "model",
-                ModelErrorKind::Other(format!("expected a standard model 1 to 6, found {m}")),
-            ));
-        }
-        if let PlanModel::Radiosonde(levels) = &self.model {
-            if levels.len() < 2 {
-                return Err(ModelError::new(
-                    "model",
-                    ModelErrorKind::Other("a radiosonde needs at least 2 levels".into()),
-                ));
-            }
-            check_increasing(
-                |i| format!("model.Radiosonde[{i}].altitude_m"),
-                levels.iter().map(|l| l.altitude_m),
-            )?;
-        }
+        self.model.validate()?;
         check_range(|| "path_end_m".into(), self.path_end_m, 0.0, f64::MAX)?;
         let axes: [(&str, &Vec<f64>, f64); 7] = [
             ("levels_m", &self.levels_m, f64::MAX),

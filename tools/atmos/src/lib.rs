@@ -12,11 +12,16 @@
 //!
 //! - `plan` and `build` ([`plan`], [`build`]): the LOWTRAN7 runs a scene needs, and their
 //!   outputs assembled into a canonical spectral atmosphere; [`lowtran`] finds and runs
-//!   the program (issue 14).
+//!   the program. `plan --loads` plans a day's broadband thermal loads at the ground
+//!   instead (direct and diffuse sunlight per sun zenith angle, the sky's longwave), and
+//!   `build` writes their table.
 //!
 //! ```text
 //! irsig-atmos plan --scene scene.raw --view view.ron --atmosphere tropical -o plan
 //! irsig-atmos build plan -o tropical.spa
+//! irsig-atmos plan --loads --model midlat-summer --sun-zeniths-deg 20:85:5,89 \
+//!     --day-of-year 172 -o june-loads
+//! irsig-atmos build june-loads -o june-loads.ron
 //! irsig-atmos convert --atm us.atm --dwr us.dwr --altitude-unit km \
 //!     --radiance-unit W/cm2/sr --name us -o us.ron
 //! irsig-atmos radiance --temperature 300            # 54.933461 W m^-2 sr^-1
@@ -35,13 +40,16 @@ use clap::{Parser, Subcommand};
 
 mod bounces;
 pub mod build;
+mod build_loads;
 mod common;
 pub mod convert;
 pub mod lowtran;
 pub mod plan;
+mod plan_loads;
 mod plan_sun;
 mod radiance;
 mod rtt;
+mod runs;
 mod shape_factor;
 mod sun;
 mod temperature;
@@ -91,11 +99,11 @@ pub enum Command {
     /// The sun's zenith, azimuth (degrees) and scene-frame direction at a UTC time and
     /// place (NREL's SPA, ±0.0003°).
     Sun(sun::Args),
-    /// The radiative-transfer paths a scene needs: a plan and one LOWTRAN7 card deck per
-    /// path.
+    /// The radiative-transfer paths a scene needs (or, with --loads, a day's broadband
+    /// loads at the ground): a plan and one LOWTRAN7 card deck per path.
     Plan(plan::PlanArgs),
     /// A plan's runs (LOWTRAN7, run here, or given tape7s) assembled into one spectral
-    /// atmosphere.
+    /// atmosphere, or a loads plan's into a table of broadband loads.
     Build(build::BuildArgs),
 }
 

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 use irsig_atmosphere::plan::{add_aerosol, add_slabs, add_sun, deck, make_plan, paths};
 use irsig_atmosphere::sun::SunSpec;
+use irsig_cli::args::GroundAlbedo;
 use irsig_cli::args::atmosphere::StandardModel;
 use irsig_cli::args::inputs::Scene;
 use irsig_cli::args::outputs::{Name, Output};
@@ -36,9 +37,17 @@ Examples:
       --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
   irsig-atmos plan --scene scene.raw --view view.ron --atmosphere us-std-1976 \
       --sun-utc 2026-06-21T16:00:00Z --latitude-deg 43.08 --longitude-deg -77.67 -o rit-plan
-  irsig-atmos build tropical-plan -o tropical.spa",
+  irsig-atmos build tropical-plan -o tropical.spa
+  irsig-atmos plan --loads --atmosphere midlat-summer --aerosol rural --visibility-km 23 \
+      --sun-zeniths-deg 20:85:5,87.5,89,89.9 --day-of-year 172 -o june-loads
+  irsig-atmos build june-loads -o june-loads.ron",
     group(clap::ArgGroup::new("model").args(["atmosphere", "radiosonde"]).required(true)),
-    group(clap::ArgGroup::new("views_required").args(["view"]).required(true)),
+    mut_arg("view", |a| a.required_unless_present("loads")),
+    mut_arg("scene", |a| a.required_unless_present("loads")),
+    mut_arg("ground_albedo", |a| a.requires("loads").help(
+        "With --loads: the ground's albedo, 0-1 (LOWTRAN7's SALB, to 0.01): sunlight the \
+         ground reflects that the sky scatters back down. Default 0, a black ground"
+    )),
     mut_arg("atmosphere", |a| a.alias("model")),
     mut_arg("legacy_unit", |a| a.alias("view-unit")),
     mut_arg("scene", |a| a.help(
@@ -85,6 +94,25 @@ pub struct PlanArgs {
     /// `--atmosphere`: a LOWTRAN7 standard model (the old spelling `--model` is kept).
     #[command(flatten)]
     pub atmosphere: AtmosphereArgs<StandardModel>,
+    /// Plan a day's broadband thermal loads at the ground instead of a scene's
+    /// atmosphere: at each of --sun-zeniths-deg, the direct normal sunlight (IEMSCT = 3)
+    /// and the diffuse sky's (IEMSCT = 2 with multiple scattering, 9-66 lines of sight),
+    /// and the sky's downwelling longwave (IEMSCT = 1, 8 lines of sight); `build` writes
+    /// the table (formats/canonical/broadband-loads.md). No scene or view.
+    #[arg(long, requires_all = ["sun_zeniths_deg", "day_of_year"],
+          conflicts_with_all = ["scene", "view", "sun_zenith_deg", "sun_utc", "sun_scattering",
+                                "slabs", "wavenumber_per_cm"])]
+    pub loads: bool,
+    /// With --loads: the sun's zenith angles, degrees, 0 to below 90, as values and ranges
+    /// `FROM:TO:STEP`, comma-separated (`20:85:5,87.5,89,89.9`): the day's from its
+    /// lowest to the horizon, 2-5 deg apart (docs/accuracy.md measures the interpolation
+    /// between rows).
+    #[arg(long, value_name = "LIST", requires = "loads",
+          value_parser = crate::plan_loads::sun_zeniths)]
+    pub sun_zeniths_deg: Option<crate::plan_loads::SunZeniths>,
+    /// `--ground-albedo` (with --loads).
+    #[command(flatten)]
+    pub ground_albedo: GroundAlbedo,
     /// A DIRTRAN `.rsd` radiosonde (km, mb, degC, dew-point depression degC) as LOWTRAN7's
     /// user-defined model; its first level is the ground.
     #[arg(long, value_name = "FILE.rsd")]
@@ -393,10 +421,14 @@ pub(crate) fn deck_name(i: usize) -> PathBuf {
 /// scene's lowest point; an unknown model; an output directory that exists and is not
 /// empty.
 pub fn run(a: &PlanArgs) -> miette::Result<()> {
+    if a.loads {
+        return crate::plan_loads::run(a);
+    }
     let output = a.output.required()?;
-    let inputs = std::iter::once(&a.scene.file)
-        .chain(&a.views.files)
-        .chain(&a.radiosonde);
+    let scene = a.scene.required()?;
+    let inputs = std::iter::once(scene)
+        .chain(a.views.files.iter().map(String::as_str))
+        .chain(a.radiosonde.as_deref());
     irsig_cli::refuse_output_is_input(inputs, [output])?;
     // The flags first: a wrong one is refused before any file is read.
     let aerosol = aerosol_of(a.aerosol.as_deref(), a.visibility_km, a.wind_speed_m_s)?;
@@ -404,7 +436,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         plan_sun::rounds_above_horizon(z)
             .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
     }
-    let input = irsig_cli::read_input(&a.scene.file)?;
+    let input = irsig_cli::read_input(scene)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
         .positions_m

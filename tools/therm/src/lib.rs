@@ -20,7 +20,7 @@ use std::path::{Path, PathBuf};
 use clap::Parser;
 use irsig_cli::args::inputs::Materials;
 use irsig_cli::args::outputs::Output;
-use irsig_cli::args::{DecisionOut, PlaceArgs, Seed, ThreadsArgs, Tolerance};
+use irsig_cli::args::{DecisionOut, GroundAlbedo, PlaceArgs, Seed, ThreadsArgs, Tolerance};
 use irsig_model::history::{TemperatureHistory, ThermalProvenance};
 use irsig_model::provenance::InputRecord;
 use irsig_model::thermal_decision::ThermalDecision;
@@ -84,6 +84,10 @@ IANA zone: 2026-07-15T14:00Z, 2026-07-15T14:00-06:00, 2026-07-15T14:00[America/D
          with its site)"
     )),
     mut_arg("seed", |a| a.help("Seed of the hemisphere rays' streams")),
+    mut_arg("ground_albedo", |a| a.help(
+        "The share of sunlight the ground beyond the scene reflects, 0 to 1 (default: 1 − the \
+         ground material's solar absorptance, else 0.2)"
+    )),
     mut_arg("tolerance", |a| a.help(
         "Choose the cheapest settings of the models that keep every facet's temperature \
          within K kelvin of a converged solve (the 99th percentile over the pilot's facets \
@@ -141,10 +145,9 @@ pub struct Cli {
     /// ground is at the air's temperature and the terrain background is left as it is.
     #[arg(long, value_name = "NAME")]
     pub ground_material: Option<String>,
-    /// The share of sunlight the ground beyond the scene reflects (default: 1 − the ground
-    /// material's solar absorptance, else 0.2).
-    #[arg(long, value_name = "ALBEDO")]
-    pub ground_albedo: Option<f64>,
+    /// `--ground-albedo`.
+    #[command(flatten)]
+    pub ground_albedo: GroundAlbedo,
     /// The models, each a named approximation (docs/accuracy.md, "The thermal model").
     #[command(flatten)]
     pub models: Models,

@@ -147,13 +147,9 @@ impl<'a> Prepared<'a> {
             seed: cli.seed.value,
         };
         let walls = prepared.walls(&cli.models)?;
-        prepared.ground_albedo = match (cli.ground_albedo, &walls.ground) {
-            (Some(a), _) if a.is_finite() && (0.0..=1.0).contains(&a) => a,
-            (Some(a), _) => {
-                return Err(irsig_cli::usage_error(format!(
-                    "--ground-albedo: expected 0 to 1, found {a}"
-                )));
-            }
+        // The parser checked a given albedo's range.
+        prepared.ground_albedo = match (cli.ground_albedo.value, &walls.ground) {
+            (Some(a), _) => a,
             (None, Some(g)) => 1.0 - g.surface.solar_absorptance,
             (None, None) => 0.2,
         };

@@ -38,6 +38,7 @@ const EXAMPLE: &str = include_str!("examples.txt");
     about,
     after_help = EXAMPLE,
     group(clap::ArgGroup::new("materials_required").args(["materials"]).required(true)),
+    group(clap::ArgGroup::new("scene_required").args(["scene"]).required(true)),
     mut_arg("view", |a| a.required_unless_present("execute")),
     mut_arg("legacy_unit", |a| a.alias("view-unit")),
     mut_arg("seed", |a| a.help("Seed for sky-view directions and sub-pixel jitter")),
@@ -286,7 +287,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     let (view_files, view_sun) =
         irsig_cli::args::view::read_views(view_paths, cli.views.unit.unit())?;
     let mut plan = Plan::new(request(cli, view_sun)?)?;
-    let scene = irsig_cli::read_input(&cli.scene.file)?;
+    let scene = irsig_cli::read_input(cli.scene.required()?)?;
     plan.read_scene(&scene.name, &scene.bytes)?;
     let materials = irsig_cli::read_input(cli.materials.required()?)?;
     plan.read_materials(&materials.name, &materials.bytes, &scene.bytes)?;
@@ -390,7 +391,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
         })
         .collect();
     let more: Vec<&Path> = decisions.iter().flatten().map(PathBuf::as_path).collect();
-    let named = [cli.scene.file.as_str()]
+    let named = [cli.scene.required()?]
         .into_iter()
         .chain(cli.materials.file.as_deref())
         .chain(

@@ -11,7 +11,19 @@ pub struct Scene {
     /// The raw scene (canonical RON or the binary form `irsig-flatten` writes), or `-` for
     /// stdin.
     #[arg(id = "scene", long = "scene", value_name = "FILE")]
-    pub file: String,
+    pub file: Option<String>,
+}
+
+impl Scene {
+    /// The scene's file, which the tool's group made clap require.
+    ///
+    /// # Errors
+    /// No `--scene` (bad usage): only when the tool's definition does not require it.
+    pub fn required(&self) -> miette::Result<&str> {
+        self.file
+            .as_deref()
+            .ok_or_else(|| crate::usage_error("give --scene FILE, the raw scene"))
+    }
 }
 
 /// `--materials FILE`: the material library.

@@ -57,6 +57,31 @@ pub fn length_unit(s: &str) -> Result<LengthUnit, String> {
     s.parse()
 }
 
+/// `--ground-albedo ALBEDO`: the share of sunlight the ground reflects, in the tools that
+/// model a ground's reflection (the thermal model's ground beyond the scene, a loads plan's
+/// LOWTRAN7 runs).
+#[derive(Debug, Clone, Copy, Default, clap::Args)]
+pub struct GroundAlbedo {
+    /// The share of sunlight the ground reflects, 0 to 1.
+    #[arg(
+        id = "ground_albedo",
+        long = "ground-albedo",
+        value_name = "ALBEDO",
+        value_parser = albedo
+    )]
+    pub value: Option<f64>,
+}
+
+/// `--ground-albedo`: a finite albedo from 0 to 1.
+fn albedo(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(a) if a.is_finite() && (0.0..=1.0).contains(&a) => Ok(a),
+        _ => Err(format!(
+            "expected the ground's albedo, a number from 0 to 1, found `{s}`"
+        )),
+    }
+}
+
 /// `--seed N`: the seed of a tool's random streams; the same seed gives the same bytes.
 #[derive(Debug, Clone, Copy, Default, clap::Args)]
 pub struct Seed {

@@ -12,6 +12,7 @@
 //! | [`Scene`] | yes | no |
 //! | [`RawScene`] | yes (small scenes, hand-made tests, diffs) | yes ([`binary`], the default for `irsig-flatten`) |
 //! | [`MaterialLibrary`], [`Atmosphere`], [`View`], [`RegionSet`], [`Decision`], [`Uncertainties`] | yes | no |
+//! | [`LoadsPlan`], [`BroadbandLoads`] | yes | no |
 //!
 //! The format pages are `formats/canonical/*.md` in the repository.
 
@@ -22,6 +23,7 @@ pub mod binary_spectral;
 mod layout;
 
 use irsig_model::decision::Decision;
+use irsig_model::loads::{BroadbandLoads, LoadsPlan};
 use irsig_model::provenance::Provenance;
 use irsig_model::uncertainty::Uncertainties;
 use irsig_model::{
@@ -69,6 +71,8 @@ canonical!(View, "view", 2);
 canonical!(RegionSet, "regions file", 3);
 canonical!(SpectralAtmosphere, "spectral atmosphere", 2);
 canonical!(AtmospherePlan, "atmosphere plan", 2);
+canonical!(LoadsPlan, "loads plan", 4);
+canonical!(BroadbandLoads, "broadband loads table", 2);
 canonical!(Decision, "decision", 3);
 canonical!(Uncertainties, "uncertainties file", 3);
 canonical!(Provenance, "provenance", 3);
@@ -344,6 +348,30 @@ pub fn read_any_atmosphere(file: &str, bytes: &[u8]) -> Result<AnyAtmosphere, Pa
         from_ron(file, text).map(AnyAtmosphere::Spectral)
     } else {
         from_ron(file, text).map(AnyAtmosphere::Band)
+    }
+}
+
+/// A plan file of either kind.
+#[derive(Debug, Clone, PartialEq)]
+#[allow(clippy::large_enum_variant)] // one per file read
+pub enum AnyPlan {
+    /// The paths of a spectral atmosphere for a scene.
+    Atmosphere(AtmospherePlan),
+    /// The paths of a day's broadband loads.
+    Loads(LoadsPlan),
+}
+
+/// Reads a plan file of either kind (RON): a loads plan by its top-level `longwave` field
+/// (an atmosphere plan has none), else an atmosphere plan.
+///
+/// # Errors
+/// As [`from_ron_bytes`], with the errors of the kind the file is taken for.
+pub fn read_any_plan(file: &str, bytes: &[u8]) -> Result<AnyPlan, ParseError> {
+    let text = utf8(file, bytes)?;
+    if crate::ron_tree::has_top_level_field(text, "longwave") {
+        from_ron(file, text).map(AnyPlan::Loads)
+    } else {
+        from_ron(file, text).map(AnyPlan::Atmosphere)
     }
 }
 

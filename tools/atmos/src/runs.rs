@@ -1,0 +1,636 @@
+//! Running a plan's decks: LOWTRAN7 on each (one process per run in a scratch directory,
+//! in parallel, progress on stderr), or a given `runs/NNNN.tape7` read instead, and what
+//! every build makes of the runs' outputs (their spectra in SI, the model's temperature
+//! profile). Shared by the spectral atmosphere's build (`build.rs`) and the broadband
+//! loads' (`build_loads.rs`).
+
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra};
+use irsig_formats::ParseError;
+use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
+use irsig_model::{PlanAerosol, PlanModel};
+use miette::{Report, WrapErr, miette};
+
+use crate::lowtran;
+use crate::plan::deck_name;
+
+/// One run's result.
+pub(crate) struct RunResult {
+    pub spectra: PathSpectra,
+    /// LOWTRAN7's profile of the run (TAPE6): altitude (km), pressure (mb), temperature
+    /// (K) per level.
+    pub profile: Vec<[f64; 3]>,
+    /// How the run was moved off its node, when LOWTRAN7 could not run the node itself.
+    pub nudged: Option<String>,
+}
+
+/// The deck `text` with its card 3 angle moved by `delta_deg`.
+pub(crate) fn nudged(name: &str, text: &str, delta_deg: f64) -> Result<String, Report> {
+    let mut d = tape5::parse(name, text)?;
+    if let Some(tape5::Step::Full(c)) = d.steps.first_mut()
+        && let tape5::Card3::Path { angle_deg, .. } = &mut c.geometry.card3
+    {
+        *angle_deg = ((*angle_deg + delta_deg) * 1000.0).round() / 1000.0;
+    }
+    tape5::write(&d).map_err(|e| miette!("{name}: {e}"))
+}
+
+pub(crate) fn located(
+    file: &str,
+    text: &str,
+    pos: irsig_formats::legacy::Position,
+    message: String,
+) -> Report {
+    let offset = irsig_formats::offset_of(text, pos.line, pos.column);
+    Report::new(ParseError::at_offset(file, text, offset, message))
+}
+
+/// What a run must give: a thermal path's radiance, or the sun's irradiance.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Want {
+    Thermal,
+    Solar,
+    /// Thermal radiance and the sunlight scattered into the path once (IEMSCT = 2,
+    /// IMULT = 0).
+    Scattered,
+    /// The sunlight the sky scatters toward the ground, multiple scattering included
+    /// (IEMSCT = 2, IMULT = 1): a loads plan's diffuse lines of sight.
+    Diffuse,
+}
+
+impl Want {
+    pub(crate) fn of(path: &PlanPath) -> Self {
+        match path {
+            PlanPath::Sun { .. } => Self::Solar,
+            PlanPath::DownSunlit { .. }
+            | PlanPath::UpSunlit { .. }
+            | PlanPath::SlabSunlit { .. } => Self::Scattered,
+            PlanPath::Down { .. } | PlanPath::Up { .. } | PlanPath::Slab { .. } => Self::Thermal,
+        }
+    }
+}
+
+fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
+    let t7 = lowtran_tape7::parse(file, text)?;
+    let run = t7
+        .runs
+        .first()
+        .ok_or_else(|| miette!("{file}: no run in this TAPE7"))?;
+    let table = run
+        .table
+        .as_ref()
+        .ok_or_else(|| miette!("{file}: LOWTRAN7 made no table for this run (see its TAPE6)"))?;
+    if want == Want::Solar {
+        let etoa = table.extraterrestrial_irradiance().ok_or_else(|| {
+            located(
+                file,
+                text,
+                run.position,
+                "expected a direct solar irradiance run (IEMSCT = 3): this path of the plan is \
+                 the sun's"
+                    .into(),
+            )
+        })?;
+        return Ok(PathSpectra {
+            wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
+            transmission: table.transmission().to_vec(),
+            radiance_w_m2_sr_per_cm: Vec::new(),
+            // W cm-2 per cm-1 -> W m-2 per cm-1.
+            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
+            scattered_w_m2_sr_per_cm: Vec::new(),
+        });
+    }
+    let scattered = if matches!(want, Want::Scattered | Want::Diffuse) {
+        let l = table.scattered_radiance().ok_or_else(|| {
+            located(
+                file,
+                text,
+                run.position,
+                "expected a solar scattering run (IEMSCT = 2): this path of the plan is a \
+                 sunlit one"
+                    .into(),
+            )
+        })?;
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        l.iter().map(|x| x * 1e4).collect()
+    } else {
+        Vec::new()
+    };
+    let radiance = table.thermal_radiance().ok_or_else(|| {
+        located(
+            file,
+            text,
+            run.position,
+            "expected a thermal radiance run (IEMSCT = 1 or 2): the build needs path radiance"
+                .into(),
+        )
+    })?;
+    Ok(PathSpectra {
+        wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
+        transmission: table.transmission().to_vec(),
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        radiance_w_m2_sr_per_cm: radiance.iter().map(|l| l * 1e4).collect(),
+        extraterrestrial_w_m2_per_cm: Vec::new(),
+        scattered_w_m2_sr_per_cm: scattered,
+    })
+}
+
+/// What a MODTRAN tape7's card 1 says, for errors: `IEMSCT = 1`, or that it has none.
+fn modtran_mode(t: &modtran_tape7::ModtranTape7) -> String {
+    t.iemsct.map_or_else(
+        || "no card 1 with an IEMSCT".to_owned(),
+        |k| format!("card 1's IEMSCT = {k}"),
+    )
+}
+
+/// The spectra of a MODTRAN tape7 given for one path, converted to SI (W cm-2 -> W m-2) here.
+/// A sun's path takes a direct solar irradiance run (IEMSCT = 3: `TRANS`, `SOLAR`); a
+/// sunlit path a solar scattering run (IEMSCT = 2), whose `SOL_SCAT` is the scattered
+/// sunlight; a thermal path a radiance-mode run. A file of another mode is an error at
+/// card 1's IEMSCT (or the column header, without card 1).
+fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
+    let t = modtran_tape7::parse(file, text)?;
+    // The wrong IEMSCT is an error at card 1's field; the right one without the columns
+    // it needs, at the column header.
+    let wrong = |expected: &str, iemsct: i64, columns: &str| {
+        let (at, found) = if t.iemsct == Some(iemsct) {
+            (
+                t.header_position,
+                format!("card 1's IEMSCT = {iemsct} without {columns} in the column header"),
+            )
+        } else {
+            (
+                t.iemsct_position.unwrap_or(t.header_position),
+                modtran_mode(&t),
+            )
+        };
+        located(
+            file,
+            text,
+            at,
+            format!("expected {expected}, found {found}"),
+        )
+    };
+    let tau = t.transmission();
+    if want == Want::Solar {
+        // Only a direct solar run: an IEMSCT 2 run's TOA_SUN and TOT_TRANS are of another
+        // path than the sun's.
+        let etoa = (t.mode == modtran_tape7::Mode::DirectSolar)
+            .then(|| t.extraterrestrial_irradiance())
+            .flatten();
+        let (Some(tau), Some(etoa)) = (tau, etoa) else {
+            return Err(wrong(
+                "a direct solar irradiance run (IEMSCT = 3, columns TRANS, SOL TR and SOLAR): \
+                 this path of the plan is the sun's",
+                3,
+                "a TRANS column",
+            ));
+        };
+        return Ok(PathSpectra {
+            wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
+            transmission: tau.to_vec(),
+            radiance_w_m2_sr_per_cm: Vec::new(),
+            // W cm-2 per cm-1 -> W m-2 per cm-1.
+            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
+            scattered_w_m2_sr_per_cm: Vec::new(),
+        });
+    }
+    let scattered = if matches!(want, Want::Scattered | Want::Diffuse) {
+        let Some(l) = t.solar_scattered_radiance() else {
+            return Err(wrong(
+                "a solar scattering run (IEMSCT = 2, column SOL_SCAT): this path of the plan \
+                 is a sunlit one",
+                2,
+                "a SOL_SCAT column",
+            ));
+        };
+        if want == Want::Scattered {
+            warn_multiple_scattering(file, &t, l);
+        }
+        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
+        l.iter().map(|x| x * 1e4).collect()
+    } else {
+        Vec::new()
+    };
+    let Some(tau) = tau else {
+        return Err(located(
+            file,
+            text,
+            t.header_position,
+            "expected a TOT_TRANS or COMBIN TRANS column in the header, found none".into(),
+        ));
+    };
+    let l = t.path_thermal_radiance().ok_or_else(|| {
+        located(
+            file,
+            text,
+            t.header_position,
+            "expected the path radiance column (PTH_THRML) of a radiance-mode \
+             tape7, found none: run MODTRAN in radiance mode"
+                .into(),
+        )
+    })?;
+    Ok(PathSpectra {
+        wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
+        transmission: tau.to_vec(),
+        radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
+        extraterrestrial_w_m2_per_cm: Vec::new(),
+        scattered_w_m2_sr_per_cm: scattered,
+    })
+}
+
+/// MODTRAN's `SOL_SCAT` includes multiple scattering when MODTRAN ran with it; LOWTRAN7's
+/// runs of a plan scatter sunlight once (IMULT = 0). Where `SOL_SCAT` exceeds the
+/// single-scattered `SING_SCAT`, the path's scattered sunlight is not the same quantity as
+/// the other paths', and the build says so.
+fn warn_multiple_scattering(file: &str, t: &modtran_tape7::ModtranTape7, total: &[f64]) {
+    let Some(single) = t.single_scattered_radiance() else {
+        return;
+    };
+    let excess = total
+        .iter()
+        .zip(single)
+        .filter(|(a, _)| **a > 0.0)
+        .map(|(a, b)| (a - b) / a)
+        .fold(0.0_f64, f64::max);
+    // Both are printed to 5 digits: a difference within their rounding is none.
+    if excess > 1e-4 {
+        irsig_cli::note!(
+            "irsig-atmos: warning: {file}: MODTRAN's SOL_SCAT includes multiple scattering \
+             (up to {:.1} % above SING_SCAT): this sunlit path's scattered sunlight is \
+             MODTRAN's single plus multiple scattering, while the paths LOWTRAN7 runs for \
+             the plan scatter sunlight once (IMULT = 0)",
+            excess * 100.0
+        );
+    }
+}
+/// Reads a run's given outputs.
+pub(crate) fn read_given(tape7: &Path, want: Want) -> Result<RunResult, Report> {
+    let input = irsig_cli::read_input(tape7)?;
+    let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+    let modtran = text
+        .trim_start()
+        .starts_with(|c: char| c.is_ascii_alphabetic());
+    let spectra = if modtran {
+        spectra_of_modtran(&input.name, text, want)?
+    } else {
+        spectra_of_lowtran(&input.name, text, want)?
+    };
+    let t6 = tape7.with_extension("tape6");
+    let mut profile = Vec::new();
+    if t6.is_file() {
+        let input = irsig_cli::read_input(&t6)?;
+        let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+        let tape6 = lowtran_tape6::parse(&input.name, text)?;
+        profile = tape6
+            .runs
+            .first()
+            .map(|r| r.profile.clone())
+            .unwrap_or_default();
+        // A TAPE6 is given for its profile: one without two levels of it is cut short or
+        // is not LOWTRAN7's.
+        if profile.len() < 2 {
+            return Err(Report::new(ParseError::at_offset(
+                &input.name,
+                text,
+                text.trim_end().len().saturating_sub(1),
+                format!(
+                    "expected the first run's ATMOSPHERIC PROFILES table with at least two \
+                     levels (the profile's temperatures come from it), found {} by the end of \
+                     the file",
+                    profile.len()
+                ),
+            )));
+        }
+    }
+    Ok(RunResult {
+        spectra,
+        profile,
+        nudged: None,
+    })
+}
+
+/// The sun's zenith angles, degrees, by which a rejected scattering run of a loads plan is
+/// moved up, in turn. LOWTRAN7 gives up on a path (`GEOINP- THE ENTIRE PATH LIES ABOVE
+/// THE TOP ZMAX`) when, seen from the far end of the line of sight at the top of its
+/// atmosphere (100 km), the sun stands within about 0.02° below that point's horizon: a
+/// low sun and a line of sight away from it (the sun at 80°, a line of sight 89.86° from
+/// the zenith; the sun at 89.5°, one at 30°). Moving the sun 0.05° leaves that band; the
+/// scattered radiance of the one line of sight changes by about the DHI's change over
+/// 0.05° of the sun, well under 1 % of a small weight.
+const SUN_NUDGES_DEG: [f64; 3] = [0.05, 0.1, 0.2];
+
+/// The deck `text` with its sun (card 3A2's PARM2, the solar zenith angle) `delta_deg`
+/// higher, not above the zenith.
+fn sun_higher(name: &str, text: &str, delta_deg: f64) -> Result<String, Report> {
+    let mut d = tape5::parse(name, text)?;
+    if let Some(tape5::Step::Full(c)) = d.steps.first_mut()
+        && let Some(sc) = c.geometry.scattering.as_mut()
+    {
+        sc.card3a2[1] = (((sc.card3a2[1] - delta_deg) * 1000.0).round() / 1000.0).max(0.0);
+    }
+    tape5::write(&d).map_err(|e| miette!("{name}: {e}"))
+}
+
+/// One LOWTRAN7 run of a deck, and how it was moved off its node: LOWTRAN7's geometry
+/// breaks down on a few metre-long grazing paths (the tropical model, 2 m down to 1 m at
+/// 85° from nadir: its range comes out 0 and every value NaN). Such a path is run again
+/// 0.001° closer to nadir.
+fn attempt(
+    exe: &Path,
+    name: &str,
+    text: &str,
+    card3: irsig_formats::legacy::Position,
+) -> Result<(lowtran::Output, Option<String>), Report> {
+    let out = lowtran::run(exe, text).map_err(|m| located(name, text, card3, m))?;
+    if !out.tape7.contains("NaN") {
+        return Ok((out, None));
+    }
+    // Card 3's ANGLE is the zenith angle at H1: +0.001 moves a downward path toward
+    // nadir and an upward one away from the zenith.
+    let again = nudged(name, text, 0.001)?;
+    let out = lowtran::run(exe, &again).map_err(|m| located(name, text, card3, m))?;
+    if out.tape7.contains("NaN") {
+        return Err(located(
+            name,
+            text,
+            card3,
+            "LOWTRAN7 printed NaN for this path, and for the path 0.001 deg away".into(),
+        ));
+    }
+    Ok((
+        out,
+        Some("LOWTRAN7 gave NaN on this path; used the path 0.001 deg closer to nadir".into()),
+    ))
+}
+
+/// LOWTRAN7's messages when it rejected the run (no table in TAPE7), else `None`.
+fn rejection(name: &str, out: &lowtran::Output) -> Result<Option<String>, Report> {
+    let t7 = lowtran_tape7::parse(&format!("{name} -> TAPE7"), &out.tape7)?;
+    if !t7.runs.first().is_none_or(lowtran_tape7::Run::failed) {
+        return Ok(None);
+    }
+    let t6 = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6).ok();
+    Ok(Some(
+        t6.as_ref()
+            .and_then(|t| t.runs.first())
+            .map(|r| {
+                r.messages
+                    .iter()
+                    .map(|m| m.text.as_str())
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })
+            .filter(|s| !s.is_empty())
+            .unwrap_or_else(|| "no table, and no message in TAPE6".into()),
+    ))
+}
+
+/// Runs LOWTRAN7 on one deck (`name` its file, `text` its content): a path LOWTRAN7
+/// prints NaN for is moved 0.001° ([`attempt`]); a loads plan's scattering run it rejects
+/// is run with the sun a little higher ([`SUN_NUDGES_DEG`]); the result says so.
+fn run_deck(
+    exe: &Path,
+    name: &str,
+    text: &str,
+    card3: irsig_formats::legacy::Position,
+    want: Want,
+) -> Result<RunResult, Report> {
+    let (mut out, mut nudge) = attempt(exe, name, text, card3)?;
+    if let Some(said) = rejection(name, &out)? {
+        let mut accepted = false;
+        if want == Want::Diffuse {
+            for delta in SUN_NUDGES_DEG {
+                let again = sun_higher(name, text, delta)?;
+                let (o, n) = attempt(exe, name, &again, card3)?;
+                if rejection(name, &o)?.is_none() {
+                    out = o;
+                    nudge = Some(format!(
+                        "LOWTRAN7 rejected this path ({said}); used the sun {delta} deg higher{}",
+                        n.map_or_else(String::new, |n| format!(", and {n}"))
+                    ));
+                    accepted = true;
+                    break;
+                }
+            }
+        }
+        if !accepted {
+            return Err(located(
+                name,
+                text,
+                card3,
+                format!("LOWTRAN7 rejected this path: {said}"),
+            ));
+        }
+    }
+    let t7_name = format!("{name} -> TAPE7");
+    let spectra = spectra_of_lowtran(&t7_name, &out.tape7, want)?;
+    let profile = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6)
+        .ok()
+        .and_then(|t| t.runs.into_iter().next())
+        .map(|r| r.profile)
+        .unwrap_or_default();
+    Ok(RunResult {
+        spectra,
+        profile,
+        nudged: nudge,
+    })
+}
+
+/// One run of a build: its deck, what it must give, and the output given for it, if any.
+pub(crate) struct Job {
+    /// The deck's file name, for messages.
+    pub name: String,
+    /// The deck.
+    pub text: String,
+    /// Where the deck's card 3 is.
+    pub card3: irsig_formats::legacy::Position,
+    /// What the run must give.
+    pub want: Want,
+    /// `runs/NNNN.tape7` beside the deck, read instead of running LOWTRAN7.
+    pub given: Option<PathBuf>,
+}
+
+/// The job of run `i` of a plan in `plan_dir`: its deck file, checked against `ours` (the
+/// deck the plan makes: its only calculation must have `ours`'s card 3), and its given
+/// output; or, with `own_decks`, `ours` written here and no given output.
+///
+/// # Errors
+/// A deck that is missing, unreadable or not the plan's path, at its line and column.
+pub(crate) fn job(
+    plan_dir: &Path,
+    i: usize,
+    own_decks: bool,
+    ours: &tape5::CardDeck,
+    want: Want,
+) -> miette::Result<Job> {
+    let file = plan_dir.join(deck_name(i));
+    let name = file.to_string_lossy().into_owned();
+    let text = if own_decks {
+        tape5::write(ours).map_err(|e| miette!("{name}: {e}"))?
+    } else {
+        let input = irsig_cli::read_input(&name)
+            .wrap_err("a plan's deck is missing: rerun irsig-atmos plan")?;
+        irsig_formats::legacy::decode(&input.name, &input.bytes)?.to_owned()
+    };
+    let parsed = tape5::parse(&name, &text)?;
+    let calcs = parsed.calculations();
+    let want_card3 = &ours.calculations()[0].card3;
+    if calcs.len() != 1 || calcs[0].card3 != *want_card3 {
+        return Err(located(
+            &name,
+            &text,
+            calcs[0].card3_position,
+            format!(
+                "expected the plan's path {i} (card 3 {want_card3:?}) as the deck's only calculation"
+            ),
+        ));
+    }
+    let card3 = calcs[0].card3_position;
+    let t7 = file.with_extension("tape7");
+    Ok(Job {
+        name,
+        text,
+        card3,
+        want,
+        given: (!own_decks && t7.is_file()).then_some(t7),
+    })
+}
+
+/// Runs every job (LOWTRAN7 on its deck, or reads its given output), `threads` at once
+/// (default: the number of CPUs), with progress on stderr; stops handing out runs at the
+/// first failure.
+///
+/// # Errors
+/// LOWTRAN7 missing while a run has no given output; the first run that failed.
+pub(crate) fn run_jobs(jobs: &[Job], threads: usize) -> miette::Result<Vec<RunResult>> {
+    let exe = if jobs.iter().all(|j| j.given.is_some()) {
+        None
+    } else {
+        Some(lowtran::find().map_err(|m| miette!("{m}"))?)
+    };
+    let bar = irsig_cli::progress_bar(jobs.len() as u64, "LOWTRAN7");
+    let next = AtomicUsize::new(0);
+    let results: Mutex<Vec<Option<Result<RunResult, Report>>>> =
+        Mutex::new((0..jobs.len()).map(|_| None).collect());
+    std::thread::scope(|s| {
+        for _ in 0..threads.min(jobs.len()) {
+            s.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= jobs.len() {
+                        break;
+                    }
+                    let j = &jobs[i];
+                    let r = match (&j.given, &exe) {
+                        (Some(t7), _) => read_given(t7, j.want),
+                        (None, Some(exe)) => run_deck(exe, &j.name, &j.text, j.card3, j.want),
+                        (None, None) => Err(miette!("no LOWTRAN7 and no output for run {i}")),
+                    };
+                    let failed = r.is_err();
+                    if let Ok(mut v) = results.lock() {
+                        v[i] = Some(r);
+                    }
+                    bar.inc(1);
+                    if failed {
+                        // Stop handing out runs: the build fails anyway.
+                        next.store(jobs.len(), Ordering::Relaxed);
+                    }
+                }
+            });
+        }
+    });
+    bar.finish_and_clear();
+    let results = results
+        .into_inner()
+        .map_err(|_| miette!("a LOWTRAN7 worker panicked"))?;
+    let mut ok = Vec::with_capacity(jobs.len());
+    for r in results {
+        match r {
+            Some(Ok(r)) => ok.push(r),
+            Some(Err(e)) => return Err(e),
+            None => {}
+        }
+    }
+    if ok.len() != jobs.len() {
+        return Err(miette!("only {} of {} runs finished", ok.len(), jobs.len()));
+    }
+    Ok(ok)
+}
+
+fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
+    let k = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
+    let t = ((x - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
+    ys[k - 1] + t * (ys[k] - ys[k - 1])
+}
+
+/// The air temperature against altitude above the ground (m) of the runs' model, the
+/// ground's altitude above sea level (m) and the model in words: a radiosonde's levels, or
+/// LOWTRAN7's profile of a standard model from the first run's TAPE6 that has one.
+///
+/// # Errors
+/// A standard model and no run with a TAPE6 profile (given outputs without their TAPE6).
+#[allow(clippy::type_complexity)]
+pub(crate) fn profile_temperature(
+    model: &PlanModel,
+    runs: &[RunResult],
+) -> miette::Result<(Box<dyn Fn(f64) -> f64>, f64, String)> {
+    Ok(match model {
+        PlanModel::Radiosonde(levels) => {
+            let ground = levels[0].altitude_m;
+            let xs: Vec<f64> = levels.iter().map(|l| l.altitude_m - ground).collect();
+            let ys: Vec<f64> = levels.iter().map(|l| l.temperature_k).collect();
+            (
+                Box::new(move |h| interpolate(&xs, &ys, h)),
+                ground,
+                format!(
+                    "MODEL=7 (a radiosonde of {} levels, US Standard 1976 above)",
+                    levels.len()
+                ),
+            )
+        }
+        PlanModel::Standard(m) => {
+            let profile = runs
+                .iter()
+                .find(|r| r.profile.len() >= 2)
+                .map(|r| r.profile.clone())
+                .ok_or_else(|| {
+                    miette!(
+                        "the profile's temperatures come from LOWTRAN7's TAPE6 (runs/NNNN.tape6), and no run has one: give the TAPE6 beside a tape7, or build with --radiosonde"
+                    )
+                })?;
+            let xs: Vec<f64> = profile.iter().map(|p| p[0] * 1000.0).collect();
+            let ys: Vec<f64> = profile.iter().map(|p| p[2]).collect();
+            let name = crate::plan::MODELS
+                .iter()
+                .find(|x| x.1 == *m)
+                .map_or("?", |x| x.0);
+            (
+                Box::new(move |h| interpolate(&xs, &ys, h)),
+                0.0,
+                format!("MODEL={m} ({name})"),
+            )
+        }
+    })
+}
+
+/// A plan's aerosol as the source of what a build made says it: `IHAZE=1 (rural aerosol,
+/// meteorological range 23 km)`, or `IHAZE=0 (no aerosol)`.
+pub(crate) fn aerosol_text(aerosol: Option<&PlanAerosol>) -> String {
+    aerosol.map_or_else(
+        || "IHAZE=0 (no aerosol)".to_owned(),
+        |a| {
+            format!(
+                "IHAZE={} ({} aerosol, meteorological range {} km{})",
+                a.model.ihaze(),
+                a.model.name(),
+                a.visibility_m / 1000.0,
+                a.wind_speed_m_s
+                    .map_or_else(String::new, |w| format!(", wind {w} m/s"))
+            )
+        },
+    )
+}
