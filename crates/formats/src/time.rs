@@ -13,8 +13,9 @@
 //! where.
 
 /// The forms [`parse_time`] accepts, for messages.
-pub const TIME_FORMS: &str = "a time as 2026-07-15T14:00:00Z, 2026-07-15T14:00-06:00 or \
-                              2026-07-15T14:00[America/Denver]";
+pub const TIME_FORMS: &str = "an RFC 3339 time with an offset (2026-07-15T14:00:00Z, \
+                              2026-07-15T14:00-06:00) or a local time in an IANA zone \
+                              (2026-07-15T14:00[America/Denver])";
 
 /// Parses a time (see the module's forms) into seconds since 1970-01-01T00:00:00Z.
 ///
@@ -139,7 +140,7 @@ mod tests {
     #[test]
     fn a_time_without_a_place_or_in_no_zone_is_refused() {
         let e = parse_time("2026-07-15T14:00").unwrap_err();
-        assert!(e.contains("expected a time as"), "{e}");
+        assert!(e.contains("expected an RFC 3339 time"), "{e}");
         let e = parse_time("2026-07-15T14:00[Mars/Olympus_Mons]").unwrap_err();
         assert!(e.contains("known zone"), "{e}");
         // Paris skips 02:00–03:00 on 29 March 2026.

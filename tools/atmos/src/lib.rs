@@ -101,7 +101,7 @@ pub enum Command {
     Sun(sun::Args),
     /// The radiative-transfer paths a scene needs (or, with --loads, a day's broadband
     /// loads at the ground): a plan and one LOWTRAN7 card deck per path.
-    Plan(plan::PlanArgs),
+    Plan(Box<plan::PlanArgs>),
     /// A plan's runs (LOWTRAN7, run here, or given tape7s) assembled into one spectral
     /// atmosphere, or a loads plan's into a table of broadband loads.
     Build(build::BuildArgs),
