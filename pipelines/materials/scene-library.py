@@ -460,7 +460,8 @@ def wet_mix(name, xs, es, shape_table, water_xs, water_es, f, dry_what, props, s
     r_mix = 1.0 - planck_mean(xs, mixed, 8.0, 14.0, 300.0)
     specular = round(f * r_water / r_mix, 6)
     src = (f"areal mixture of open water (share {f}) and {dry_what}: emissivity = {f} water + {1 - f} soil at every wavelength "
-           f"(opaque patches larger than the wavelength emit side by side); the water is the rippled water of this library; "
+           f"(opaque patches larger than the wavelength emit side by side); the water is the rippled water of this library ({CC0}), "
+           f"the soil as that entry says (ECOSTRESS spectral library terms); "
            f"specular fraction {fmt(specular)}: the water's share of the 8-14 um reflectance; angular shape the dry soil's, separable")
     return material(name, table, specular, src, dict(wavelength_um=xs, emissivity=mixed),
                     soil(props, f, solar, f"the water share is the wet share; {solar_why}"), 0.105)
