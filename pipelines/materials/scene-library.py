@@ -40,9 +40,11 @@ HERE = "pipelines/materials"
 SRC = HERE + "/sources"
 TOOL = os.environ.get("IRSIG_MATERIAL") or "irsig-material"
 
-# The library's wavelength grid, um: fine where the sun's spectrum and the clays' and
-# metals' short-wave features are, 0.1 um through the thermal bands.
-GRID = [round(0.30 + 0.05 * i, 2) for i in range(45)] + [round(2.6 + 0.1 * i, 1) for i in range(125)]
+# The library's wavelength grid, um: every 0.1 um from 0.3 to 15 um. Metals, whose n, k
+# change slowly, take every 0.25 um beyond 2.5 um (their epsilon(lambda, theta) grids are
+# most of a library's bytes, and a trace reads them all).
+GRID = [round(0.3 + 0.1 * i, 1) for i in range(148)]
+METAL_GRID = GRID[:23] + [round(2.75 + 0.25 * i, 2) for i in range(50)]
 # Angles of a smooth surface's epsilon(lambda, theta) grid: dense towards grazing, where a
 # Fresnel surface's emissivity turns fastest (a metal's peaks near 85-88 deg).
 SMOOTH_ANGLES = "0,10,20,30,40,50,60,65,70,75,80,84,87,89,90"
@@ -82,8 +84,8 @@ def interp(xs, ys, x):
     return ys[lo] + t * (ys[hi] - ys[lo])
 
 
-def grid_within(xs):
-    return [g for g in GRID if xs[0] <= g <= xs[-1]]
+def grid_within(xs, grid=None):
+    return [g for g in (grid or GRID) if xs[0] <= g <= xs[-1]]
 
 
 def planck(lam_um, t_k):
@@ -216,12 +218,12 @@ def run_tool(args, stdin=None):
     return parse_ron(out.stdout)["materials"][0]
 
 
-def fresnel_nk(page, extra_rows=None, *args):
+def fresnel_nk(page, extra_rows=None, *args, grid=None):
     """The tool's material for an n, k table resampled onto the grid."""
     rows = ri_rows(page) if extra_rows is None else extra_rows
     xs = [r[0] for r in rows]
     ns, ks = [r[1] for r in rows], [r[2] for r in rows]
-    table = "".join(f"{g} {interp(xs, ns, g):.6g} {interp(xs, ks, g):.6g}\n" for g in grid_within(xs))
+    table = "".join(f"{g} {interp(xs, ns, g):.6g} {interp(xs, ks, g):.6g}\n" for g in grid_within(xs, grid))
     return run_tool(["--nk-table", "-", "--band", "8-14", "--planck-temperature", "300"] + list(args), table)
 
 
@@ -292,16 +294,16 @@ def material(name, table, specular, source, spectral, therm, rms=None, band=None
                 thermal=therm, rms=rms, band=band)
 
 
-def nk_material(name, page, cite, therm, rough=None, specular=None, rows=None, note=""):
+def nk_material(name, page, cite, therm, rough=None, specular=None, rows=None, note="", grid=None):
     """A Fresnel material from an n, k page: smooth (angular grid) or rough (separable)."""
     args = ["--angles", SMOOTH_ANGLES if rough is None else ROUGH_ANGLES]
     if rough is not None:
         args += ["--roughness", str(rough)]
     if specular is not None:
         args += ["--specular-fraction", str(specular)]
-    m = fresnel_nk(page, rows, *args)
+    m = fresnel_nk(page, rows, *args, grid=grid)
     kind = "smooth" if rough is None else f"rough (RMS facet slope {rough}{note})"
-    src = (f"{cite} ({CC0}; {RI}, sources/refractiveindex/{page}), n, k on the library's grid; "
+    src = (f"{cite} ({CC0}; {RI}, sources/refractiveindex/{page}), n, k on the library's grid" + ("" if grid is None else " (every 0.25 um beyond 2.5 um)") + "; "
            f"{kind}: {m['source']}")
     return material(name, m["emissivity"], m["specular_fraction"], src,
                     spectral_from_tool(m, rough is None), therm, m.get("rms_slope"), m.get("band_um"))
@@ -315,8 +317,8 @@ def materials():
     hale = "Hale & Querry (1973, Appl. Opt. 12, 555) water"
     out.append(material(
         "water", water["emissivity"], 1.0,
-        f"{hale} ({CC0}; {RI}, sources/refractiveindex/water-hale.yml), n, k on the library's grid; a lightly rippled surface, RMS slope 0.105 fitted to Sobrino & Cuenca (1999) in rough-surfaces.ron: {water['source']}",
-        spectral_from_tool(water, True),
+        f"{hale} ({CC0}; {RI}, sources/refractiveindex/water-hale.yml), n, k on the library's grid; a lightly rippled surface, RMS slope 0.105 fitted to Sobrino & Cuenca (1999) in rough-surfaces.ron, separable (epsilon(lambda, theta) on a grid differs from it by at most 0.004 in either band): {water['source']}",
+        spectral_from_tool(water, False),
         thermal([layer(1.0, 1000.0, 1000.0, 4180.0,
                        "well-mixed layer: density and specific heat of water, " + OKE_21 + "; conductivity 1000 W m-1 K-1 is an effective one that stands for wind and convective mixing (k = rho c d^2 / tau with a mixing time tau of about an hour over d = 1 m), which keeps the 1 m layer within a few 0.01 K of uniform, as a mixed layer is; still water's molecular conductivity is 0.57")],
                 ADIABATIC,
@@ -400,25 +402,27 @@ def materials():
     al_sheet = [layer(0.002, 177.0, 2770.0, 875.0, INC_A1 + ", aluminium alloy 2024-T6")]
     out.append(nk_material(
         "aluminium (polished)", "aluminium-rakic.yml", rakic_al,
-        thermal(al_sheet, SHEET_BACK, "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve (polished aluminium 0.09, " + INC_A13 + ")", None, 0.0, "VerySmooth")))
+        thermal(al_sheet, SHEET_BACK, "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve (polished aluminium 0.09, " + INC_A13 + ")", None, 0.0, "VerySmooth"),
+        grid=METAL_GRID))
     out.append(nk_material(
         "aluminium (matte)", "aluminium-rakic.yml", rakic_al,
         thermal(al_sheet, SHEET_BACK, "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "Smooth"),
-        rough=0.3, note=", chosen, not measured: a bead-blasted or brushed finish"))
+        rough=0.3, note=", chosen, not measured: a bead-blasted or brushed finish", grid=METAL_GRID))
     querry_fe = "Querry (1985, CRDC-CR-85034) iron"
     steel_sheet = layer(0.001, 63.9, 7832.0, 434.0, INC_A1 + ", plain carbon steel AISI 1010")
     out.append(nk_material(
         "steel (polished)", "iron-querry.yml", querry_fe + " (a steel's surface is its iron's)",
-        thermal([steel_sheet], SHEET_BACK, "a 1 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth")))
+        thermal([steel_sheet], SHEET_BACK, "a 1 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth"),
+        grid=METAL_GRID))
     out.append(nk_material(
         "steel (rusted)", "hematite-querry-o.yml", "Querry (1985, CRDC-CR-85034) hematite (Fe2O3, ordinary ray), the red rust on weathered steel",
         thermal([layer(0.003, 63.9, 7832.0, 434.0, INC_A1 + ", plain carbon steel AISI 1010")], SHEET_BACK,
                 "a 3 mm plate (the rust's own layer, tens of um, neglected); " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "Rough"),
-        rough=0.65, note=", chosen, not measured"))
+        rough=0.65, note=", chosen, not measured", grid=METAL_GRID))
     zinc = "Querry (1985, CRDC-CR-85034) zinc, 0.36-55.6 um: the clean zinc coat of galvanised steel (a weathered coat's oxide is not in the spectrum: handbook new galvanised sheet is 0.13, " + INC_A13 + ")"
     galv = [layer(0.00002, 116.0, 7140.0, 389.0, INC_A1 + ", zinc (a 20 um hot-dip coat)"),
             layer(0.0007, 63.9, 7832.0, 434.0, INC_A1 + ", plain carbon steel AISI 1010")]
-    zn = nk_material("zinc-coated steel (polished)", "zinc-querry.yml", zinc, None)
+    zn = nk_material("zinc-coated steel (polished)", "zinc-querry.yml", zinc, None, grid=METAL_GRID)
     zx, ze = zn["spectral"]["wavelength_um"], zn["spectral"]["emissivity"]
     zn_solar, zn_why = solar_from_curve(zx, ze, "the table starts at 0.36 um")
     zn["thermal"] = thermal(galv, SHEET_BACK, "a 0.7 mm roofing or cladding sheet with a 20 um zinc coat; " + SHEET_BACK_WHY + "; " + zn_why + " (clean new galvanised sheet: 0.65, " + INC_A13 + ")", zn_solar, 0.0, "Smooth")
@@ -426,11 +430,13 @@ def materials():
     out.append(nk_material(
         "copper (polished)", "copper-querry.yml", "Querry (1985, CRDC-CR-85034) copper",
         thermal([layer(0.001, 401.0, 8933.0, 385.0, INC_A1 + ", copper, pure")], SHEET_BACK,
-                "a 1 mm roofing or cladding sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth")))
+                "a 1 mm roofing or cladding sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth"),
+        grid=METAL_GRID))
     out.append(nk_material(
         "titanium (polished)", "titanium-rakic-bb.yml", "Rakic et al. (1998, Appl. Opt. 37, 5271) titanium, Brendel-Bormann fit, 0.25-31 um",
         thermal([layer(0.002, 21.9, 4500.0, 522.0, INC_A1 + ", titanium")], SHEET_BACK,
-                "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth")))
+                "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth"),
+        grid=METAL_GRID))
     return out
 
 

@@ -209,7 +209,7 @@ fn the_measured_soil_is_one_minus_its_reflectance_at_every_wavelength() {
     let lib = library();
     let dry = material(&lib, "soil (silty loam, dry)");
     let s = dry.spectral.as_ref().unwrap();
-    assert_eq!(s.wavelength_um[0], 0.4);
+    assert!((s.wavelength_um[0] - 0.4).abs() < 1e-12);
     for (&lam, &e) in s.wavelength_um.iter().zip(&s.emissivity) {
         // Opaque: emissivity = 1 - reflectance (Kirchhoff), to the library's 6 decimals.
         assert!(
@@ -259,8 +259,16 @@ fn fresnel_materials_agree_with_a_hand_computation() {
         .as_ref()
         .unwrap();
     let grid = al.angular.as_ref().unwrap();
-    let i = al.wavelength_um.iter().position(|&w| w == 10.0).unwrap();
-    let j = grid.angle_deg.iter().position(|&a| a == 60.0).unwrap();
+    let i = al
+        .wavelength_um
+        .iter()
+        .position(|&w| (w - 10.0).abs() < 1e-9)
+        .unwrap();
+    let j = grid
+        .angle_deg
+        .iter()
+        .position(|&a| (a - 60.0).abs() < 1e-9)
+        .unwrap();
     let hand = fresnel_emissivity(n, k, 60.0);
     assert!(
         (grid.emissivity[i][j] - hand).abs() <= 5.1e-7,
