@@ -63,6 +63,9 @@ cp $m/base/truth.exr $m/exr-sensor/*.exr "$c/exr_sensor/"
 mkdir -p "$c/dirsig_mat" "$c/dirsig_ems"
 cp $root/tests/data/third-party/dirsig-channel/anadirsig.mat "$c/dirsig_mat/"
 cp $root/tests/data/third-party/dirsig-channel/emissivity/*.ems "$c/dirsig_ems/"
+cp $root/tests/data/malformed/dirsig-mat/therm-*.mat "$c/dirsig_mat/"
+mkdir -p "$c/weather"
+cp $root/formats/samples/golden-tmy3-aug.epw "$c/weather/"
 # Pipeline files: the sample, the runnable pipelines and the malformed cases (the reader
 # target); the back-end targets start empty (their input is six arbitrary strings).
 mkdir -p "$c/pipeline_reader" "$c/emit_dry_run" "$c/emit_makefile" "$c/emit_slurm"

@@ -333,6 +333,7 @@ fn a_flag_of_one_name_has_one_type_and_one_default_in_every_tool() {
         ("flatten", irsig_flatten::Cli::command()),
         ("atmos", irsig_atmos::Cli::command()),
         ("material", irsig_material::Cli::command()),
+        ("therm", irsig_therm::Cli::command()),
         ("trace", irsig_trace::Cli::command()),
         ("merge", irsig_merge::Cli::command()),
         ("sensor", irsig_sensor::Cli::command()),

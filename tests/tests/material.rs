@@ -378,12 +378,12 @@ fn dirsig_materials_become_spectral_materials_and_a_missing_ems_is_refused_at_it
         .code(1)
         .stderr(predicate::str::contains("anadirsig.mat:2:20"))
         .stderr(predicate::str::contains("--default-emissivity"));
-    // ... and, given a default for it, grass names `emissivity/grass_texture.ems`, which is
-    // not there (line 77, the value at column 33).
+    // ... and, given a default for it (and converting no THERM block), grass names
+    // `emissivity/grass_texture.ems`, which is not there (line 77, the value at column 33).
     bin("irsig-material")
         .arg("dirsig")
         .arg(src.join("anadirsig.mat"))
-        .args(["--default-emissivity", "0.95", "-o"])
+        .args(["--default-emissivity", "0.95", "--no-thermal", "-o"])
         .arg(&out)
         .assert()
         .code(1)
@@ -442,6 +442,97 @@ fn dirsig_materials_become_spectral_materials_and_a_missing_ems_is_refused_at_it
     assert!(s.emissivity.iter().all(|&e| e == 0.98));
     assert!(bg.emissivity.iter().all(|&(_, e)| (e - 0.98).abs() < 1e-12));
     assert_eq!(bg.specular_fraction, 0.0);
+}
+
+/// DIRSIG's THERM blocks: the real database's are refused where they hold what irsig
+/// cannot represent, and a block irsig can represent becomes the material's thermal
+/// record in SI, with the back boundary the user gives (formats/dirsig.md).
+#[test]
+fn a_therm_block_becomes_the_thermal_record_and_what_irsig_cannot_say_is_refused() {
+    let src = irsig_tests::repo_root().join("tests/data/third-party/dirsig-channel");
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("lib.ron");
+    let dirsig = |extra: &[&str]| {
+        let mut cmd = bin("irsig-material");
+        cmd.arg("dirsig")
+            .arg(src.join("anadirsig.mat"))
+            .args(["--default-emissivity", "0.95"])
+            .args(extra)
+            .arg("-o")
+            .arg(&out);
+        cmd
+    };
+    // Water has a THERM block (line 30, TEMP_SOLVER_NAME's value at column 24), and DIRSIG
+    // does not say what lies behind its slab.
+    dirsig(&[])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("anadirsig.mat:30:24"))
+        .stderr(predicate::str::contains("--thermal-back"));
+    // Given a back, its EXPOSED_AREA of -0.4 (line 37, column 32) is refused: DIRSIG gives
+    // a negative exposed area a meaning its documentation does not state.
+    dirsig(&["--thermal-back", "adiabatic"])
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("anadirsig.mat:37:32"))
+        .stderr(predicate::str::contains("negative"));
+    assert!(!out.exists());
+
+    // A block irsig can represent: 5 cm of asphalt in DIRSIG's units.
+    std::fs::create_dir(dir.path().join("emissivity")).unwrap();
+    std::fs::copy(
+        src.join("emissivity/background_1.ems"),
+        dir.path().join("emissivity/background_1.ems"),
+    )
+    .unwrap();
+    let mat = dir.path().join("asphalt.mat");
+    std::fs::write(
+        &mat,
+        "MATERIAL_ENTRY {\n  ID = 9\n  NAME = asphalt\n  TEMP_SOLVER_NAME = Therm\n  \
+         TEMP_SOLVER {\n    SPECIFIC_HEAT = 0.22\n    MASS_DENSITY = 2.1\n    \
+         THERMAL_CONDUCTIVITY = 0.75\n    SOLAR_ABSORPTION = 0.9\n    \
+         THERMAL_EMISSIVITY = 0.95\n    EXPOSED_AREA = 0.4\n    THICKNESS = 5\n  }\n  \
+         SURFACE_PROPERTIES {\n    EMISSIVITY_PROP {\n      FILENAME = emissivity/background_1.ems\n    }\n  }\n}\n",
+    )
+    .unwrap();
+    bin("irsig-material")
+        .arg("dirsig")
+        .arg(&mat)
+        .args(["--thermal-back", "temperature:288.15", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let lib: irsig_model::MaterialLibrary =
+        irsig_formats::canonical::from_ron_bytes("lib.ron", &std::fs::read(&out).unwrap()).unwrap();
+    let t = lib.by_name("asphalt").unwrap().thermal.as_ref().unwrap();
+    let layer = &t.layers[0];
+    // 5 cm; 2.1 g/cm³ is 2100 kg/m³; 0.22 cal/(g °C) is 0.22 × 4186.8 = 921.096 J/(kg K).
+    assert!((layer.thickness_m - 0.05).abs() < 1e-12);
+    assert!((layer.density_kg_m3 - 2100.0).abs() < 1e-9);
+    assert!((layer.specific_heat_j_kg_k - 921.096).abs() < 1e-9);
+    assert!((layer.conductivity_w_m_k - 0.75).abs() < 1e-12);
+    assert_eq!(
+        (t.solar_absorptance, t.thermal_emissivity),
+        (Some(0.9), Some(0.95))
+    );
+    assert_eq!(
+        t.back,
+        irsig_model::thermal::BackBoundary::Temperature {
+            temperature_k: 288.15
+        }
+    );
+    assert!(t.source.contains("EXPOSED_AREA 0.4"), "{}", t.source);
+    // With --no-thermal the same entry has none.
+    bin("irsig-material")
+        .arg("dirsig")
+        .arg(&mat)
+        .args(["--no-thermal", "-o"])
+        .arg(&out)
+        .assert()
+        .success();
+    let lib: irsig_model::MaterialLibrary =
+        irsig_formats::canonical::from_ron_bytes("lib.ron", &std::fs::read(&out).unwrap()).unwrap();
+    assert!(lib.by_name("asphalt").unwrap().thermal.is_none());
 }
 
 /// A band table for 8–14 µm (`band_um`) is refused in 3–5 µm and for the whole spectrum,

@@ -35,5 +35,6 @@ pub mod ron_tree;
 pub mod srf;
 pub mod time;
 pub mod views;
+pub mod weather;
 
 pub use error::{ParseError, line_column, offset_of};

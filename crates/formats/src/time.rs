@@ -1,6 +1,5 @@
-//! Times as users and files write them. Inside, a time is seconds since
-//! 1970-01-01T00:00:00Z (UTC, leap seconds not counted, as POSIX and RFC 3339 count), an
-//! `f64`: exact to a microsecond for millennia either side of 1970.
+//! Times as users and files write them, parsed into irsig's time: seconds since
+//! 1970-01-01T00:00:00Z (`irsig_model::time`, which also formats them).
 //!
 //! Accepted forms (parsed by the `jiff` crate):
 //! - RFC 3339 with `Z` or an offset: `2026-07-15T14:00:00Z`, `2026-07-15T14:00-06:00`
@@ -52,7 +51,21 @@ pub const MAX_TIMES: usize = 1_000_000;
 /// A time [`parse_time`] refuses, a step that is not a positive duration, an end before
 /// the start, or more than [`MAX_TIMES`] times.
 pub fn parse_times(text: &str) -> Result<Vec<f64>, String> {
-    let parts: Vec<&str> = text.split('/').collect();
+    // A zone's name holds `/` too (`America/Denver`): split outside brackets only.
+    let mut parts: Vec<&str> = Vec::new();
+    let (mut depth, mut from) = (0_i32, 0);
+    for (i, c) in text.char_indices() {
+        match c {
+            '[' => depth += 1,
+            ']' => depth -= 1,
+            '/' if depth == 0 => {
+                parts.push(&text[from..i]);
+                from = i + 1;
+            }
+            _ => {}
+        }
+    }
+    parts.push(&text[from..]);
     let [start, end, step] = parts.as_slice() else {
         if parts.len() == 1 {
             return Ok(vec![parse_time(text)?]);
@@ -96,39 +109,6 @@ fn seconds(t: jiff::Timestamp) -> f64 {
     t.as_second() as f64 + f64::from(t.subsec_nanosecond()) * 1e-9
 }
 
-/// The UTC time of `time_s` as RFC 3339, `YYYY-MM-DDTHH:MM:SS[.fraction]Z`, to the
-/// microsecond; `None` outside the years jiff represents.
-#[must_use]
-pub fn format_utc(time_s: f64) -> Option<String> {
-    timestamp(time_s).map(|t| t.to_string())
-}
-
-/// The UTC time of `time_s` compact, for file names: `20260715T140000Z` (whole seconds,
-/// rounded down).
-#[must_use]
-pub fn compact_utc(time_s: f64) -> Option<String> {
-    let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
-    Some(t.strftime("%Y%m%dT%H%M%SZ").to_string())
-}
-
-/// The day of the year of `time_s` in UTC, 1–366.
-#[must_use]
-pub fn day_of_year_utc(time_s: f64) -> Option<u16> {
-    let t = jiff::Timestamp::from_second(time_s.floor() as i64).ok()?;
-    u16::try_from(t.to_zoned_datetime(jiff::tz::TimeZone::UTC).day_of_year()).ok()
-}
-
-fn timestamp(time_s: f64) -> Option<jiff::Timestamp> {
-    if !time_s.is_finite() {
-        return None;
-    }
-    let micros = (time_s * 1e6).round();
-    if micros.abs() > 2.5e17 {
-        return None;
-    }
-    jiff::Timestamp::from_microsecond(micros as i64).ok()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -154,10 +134,6 @@ mod tests {
                 .to_bits(),
             f64::to_bits(expect)
         );
-        assert_eq!(format_utc(expect).unwrap(), "2026-07-15T20:00:00Z");
-        assert_eq!(compact_utc(expect).unwrap(), "20260715T200000Z");
-        // 15 July of a common year is day 31+28+31+30+31+30+15 = 196.
-        assert_eq!(day_of_year_utc(expect), Some(196));
     }
 
     #[test]
@@ -189,6 +165,16 @@ mod tests {
         let t = parse_times("2026-07-15T00:00Z/2026-07-15T00:50Z/1200").unwrap();
         assert_eq!(t.len(), 3);
         assert_eq!(parse_times("2026-07-15T00:00Z").unwrap(), vec![t0]);
+        // A zone's name holds a slash.
+        assert_eq!(
+            parse_times("2026-07-14T18:00[America/Denver]/2026-07-14T20:00[America/Denver]/PT1H")
+                .unwrap(),
+            vec![t0, t0 + 3600.0, t0 + 7200.0]
+        );
+        assert_eq!(
+            parse_times("2026-07-14T18:00[America/Denver]").unwrap(),
+            vec![t0]
+        );
         for bad in [
             "2026-07-15T03:00Z/2026-07-15T00:00Z/PT1H",
             "2026-07-15T00:00Z/2026-07-15T03:00Z/PT0S",
@@ -206,7 +192,5 @@ mod tests {
     fn fractions_of_a_second_survive() {
         let t = parse_time("2026-07-15T20:00:00.25Z").unwrap();
         assert!((t.fract() - 0.25).abs() < 1e-9);
-        assert_eq!(format_utc(t).unwrap(), "2026-07-15T20:00:00.25Z");
-        assert_eq!(format_utc(f64::NAN), None);
     }
 }

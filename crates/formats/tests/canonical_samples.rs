@@ -98,3 +98,18 @@ fn a_material_rms_slope_is_read_and_a_bad_one_is_refused_at_its_place() {
         assert_eq!(e.column, column, "{bad}: {e}");
     }
 }
+
+#[test]
+fn the_temperature_history_sample_reads_and_writes_back_bit_for_bit() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../../formats/canonical/samples/history.thm");
+    let bytes = std::fs::read(path).unwrap();
+    let h = canonical::binary_history::decode("history.thm", &bytes).unwrap();
+    // A plate of two facets, 12:00 to 13:00 MST (UTC-7) on 7 August 2001 every 300 s.
+    assert_eq!(h.facets, 2);
+    assert_eq!(h.time_s.len(), 13);
+    let noon = irsig_model::time::utc_seconds(2001, 8, 7, 19, 0, 0.0).unwrap();
+    assert!((h.time_s[0] - noon).abs() < 1e-6);
+    assert!(h.temperature_k.iter().all(|&t| (280.0..360.0).contains(&t)));
+    assert_eq!(canonical::binary_history::encode(&h).unwrap(), bytes);
+}

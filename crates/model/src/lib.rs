@@ -15,6 +15,7 @@
 //! | [`SpectralAtmosphere`] | `irsig-atmos build`, built-ins | `irsig-atmosphere::collapse` |
 //! | [`View`] | the user, `irsig-atmos`/legacy conversion | `irsig-trace` |
 //! | [`RegionSet`] | the user | `irsig-stats` |
+//! | [`weather::Weather`] | `irsig-formats` (EPW, CSV) | `irsig-therm` |
 //! | [`truth::Layer`] names | `irsig-trace` (EXR layers) | sensor, stats |
 //! | [`frame::FrameFile`] kinds | `irsig-trace`, `irsig-merge` | `irsig-cli` (naming) |
 //!
@@ -58,9 +59,12 @@ mod regions;
 mod scene;
 mod spectral;
 pub mod thermal;
+pub mod thermal_decision;
+pub mod time;
 pub mod truth;
 pub mod uncertainty;
 mod view;
+pub mod weather;
 
 pub use atmosphere::{
     Atmosphere, AtmosphereLevel, InterpolationResidual, RadiosondeLevel, SlantTables,

@@ -80,7 +80,8 @@ pub struct FacetView {
     pub facets: Vec<(u32, f64)>,
 }
 
-/// Every facet's [`FacetView`], stored flat.
+/// The [`FacetView`]s of a list of facets, stored flat, in the list's order (the facets
+/// seen are named by their index in the scene).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ViewFactors {
     /// Per facet, the sky's share.
@@ -98,7 +99,7 @@ pub struct ViewFactors {
 }
 
 impl ViewFactors {
-    /// Facet `i`'s facets seen and their shares.
+    /// The `i`-th listed facet's facets seen and their shares.
     #[must_use]
     pub fn seen_by(&self, i: usize) -> (&[u32], &[f32]) {
         let (a, b) = (self.start[i] as usize, self.start[i + 1] as usize);
@@ -191,13 +192,18 @@ impl Exposure {
         lit as f64 / f64::from(k * k)
     }
 
-    /// [`Self::sunlit_fraction`] of every facet, in parallel; the same at any thread
-    /// count.
+    /// [`Self::sunlit_fraction`] of each of `facets` (indices into the scene), in
+    /// parallel; the same at any thread count.
     #[must_use]
-    pub fn sunlit_fractions(&self, to_sun: [f64; 3], options: ExposureOptions) -> Vec<f32> {
-        (0..self.frames.len())
-            .into_par_iter()
-            .map(|i| self.sunlit_fraction(i, to_sun, options) as f32)
+    pub fn sunlit_fractions(
+        &self,
+        facets: &[u32],
+        to_sun: [f64; 3],
+        options: ExposureOptions,
+    ) -> Vec<f32> {
+        facets
+            .par_iter()
+            .map(|&i| self.sunlit_fraction(i as usize, to_sun, options) as f32)
             .collect()
     }
 
@@ -261,19 +267,21 @@ impl Exposure {
         }
     }
 
-    /// [`Self::view`] of every facet, in parallel; the same at any thread count.
+    /// [`Self::view`] of each of `facets` (indices into the scene), in parallel, in that
+    /// order; the same at any thread count.
     ///
     /// # Errors
     /// More facet entries than a `u32` index holds (`rays` × facets above 4 × 10⁹).
     pub fn views(
         &self,
+        facets: &[u32],
         rays: u32,
         seed: u64,
         options: ExposureOptions,
     ) -> Result<ViewFactors, TraceError> {
-        let views: Vec<FacetView> = (0..self.frames.len())
-            .into_par_iter()
-            .map(|i| self.view(i, rays, seed, options))
+        let views: Vec<FacetView> = facets
+            .par_iter()
+            .map(|&i| self.view(i as usize, rays, seed, options))
             .collect();
         let entries: usize = views.iter().map(|v| v.facets.len()).sum();
         if u32::try_from(entries).is_err() {

@@ -190,16 +190,17 @@ fn views_are_the_same_at_any_thread_count() {
     let options = ExposureOptions {
         samples_per_side: 2,
     };
+    let all: Vec<u32> = (0..exposure.facets() as u32).collect();
     let one = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
         .build()
         .unwrap()
-        .install(|| exposure.views(256, 5, options).unwrap());
+        .install(|| exposure.views(&all, 256, 5, options).unwrap());
     let two = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
         .build()
         .unwrap()
-        .install(|| exposure.views(256, 5, options).unwrap());
+        .install(|| exposure.views(&all, 256, 5, options).unwrap());
     assert_eq!(one, two);
     // Every facet's shares sum to 1.
     for i in 0..exposure.facets() {

@@ -1380,6 +1380,20 @@ DIRSIG_MAT = """MATERIAL_ENTRY {
     }
 }
 """
+# A THERM temperature solver (formats/dirsig.md): water, 1 m deep, in DIRSIG's units.
+DIRSIG_THERM = edit(DIRSIG_MAT, "    NAME = water\n", """    NAME = water
+    TEMP_SOLVER_NAME = Therm
+    TEMP_SOLVER {
+        SPECIFIC_HEAT        = 1
+        MASS_DENSITY         = 1
+        THERMAL_CONDUCTIVITY = 0.6
+        SOLAR_ABSORPTION     = 0.5
+        THERMAL_EMISSIVITY   = 0.96
+        EXPOSED_AREA         = 0.4
+        THICKNESS            = 100
+    }
+""")
+THERM_ARGS = "dirsig {in} --default-emissivity 0.9 --thermal-back adiabatic -o {out}/lib.ron"
 folder(
     "dirsig-mat",
     "Malformed DIRSIG `.mat` files (formats/dirsig.md), read by `irsig-material dirsig`; "
@@ -1395,6 +1409,16 @@ folder(
         ("comment-only.mat", "# no entry here\n", "MATERIAL_ENTRY", "only a comment"),
         ("id-twice.mat", edit(DIRSIG_MAT, "    ID = 4\n", "    ID = 4\n    ID = 5\n"), "given twice", "ID twice in one entry"),
         ("output-is-ems.mat", DIRSIG_MAT, "both an output and an input", "the .ems it names given as the output (finding 4)", "dirsig {in} --default-emissivity 0.9 -o tests/data/malformed/dirsig-mat/good.ems", "2"),
+        ("therm-no-back.mat", DIRSIG_THERM, "--thermal-back", "a THERM block without `--thermal-back`: DIRSIG does not say what lies behind the slab"),
+        ("therm-thickness-zero.mat", edit(DIRSIG_THERM, "= 100\n", "= 0\n"), "THICKNESS 0", "`THICKNESS = 0`, which DIRSIG gives a meaning of its own", THERM_ARGS),
+        ("therm-no-thickness.mat", edit(DIRSIG_THERM, "        THICKNESS            = 100\n", ""), "no THICKNESS", "no `THICKNESS`", THERM_ARGS),
+        ("therm-exposed-negative.mat", edit(DIRSIG_THERM, "= 0.4\n", "= -0.4\n"), "negative", "a negative `EXPOSED_AREA`, which DIRSIG gives a meaning of its own", THERM_ARGS),
+        ("therm-conductivity-zero.mat", edit(DIRSIG_THERM, "= 0.6\n", "= 0\n"), "out of range", "a slab that conducts no heat", THERM_ARGS),
+        ("therm-nan.mat", edit(DIRSIG_THERM, "= 0.5\n", "= NaN\n"), "finite", "a NaN solar absorption", THERM_ARGS),
+        ("therm-unknown-key.mat", edit(DIRSIG_THERM, "        THICKNESS", "        HEAT_SOURCE          = 5\n        THICKNESS"), "does not know", "a THERM key irsig does not know", THERM_ARGS),
+        ("therm-key-twice.mat", edit(DIRSIG_THERM, "        THICKNESS", "        THICKNESS            = 50\n        THICKNESS"), "given twice", "`THICKNESS` twice", THERM_ARGS),
+        ("therm-back-negative.mat", DIRSIG_THERM, "--thermal-back", "a back boundary that makes no sense (a negative convective coefficient)", "dirsig {in} --default-emissivity 0.9 --thermal-back convective:-3 -o {out}/lib.ron", "2"),
+        ("therm-back-and-none.mat", DIRSIG_THERM, "cannot be used with", "`--thermal-back` and `--no-thermal` together", "dirsig {in} --default-emissivity 0.9 --thermal-back adiabatic --no-thermal -o {out}/lib.ron", "2"),
     ],
     extra={"good.ems": (ROOT / "tests/data/third-party/dirsig-channel/emissivity/muddy_water.ems").read_bytes()},
 )

@@ -14,7 +14,8 @@ use std::process::{Command, ExitCode};
 
 /// The stages, in pipeline order.
 const STAGES: &[&str] = &[
-    "import", "flatten", "atmos", "material", "trace", "merge", "sensor", "stats", "report", "run",
+    "import", "flatten", "atmos", "material", "therm", "trace", "merge", "sensor", "stats",
+    "report", "run",
 ];
 
 const USAGE: &str = "\
@@ -28,6 +29,7 @@ Stages (each is also a program of its own, irsig-<STAGE>):
   flatten   scene + objects -> raw world-space scene
   atmos     DIRTRAN tables <-> canonical atmosphere; band radiance calculators
   material  material index + .ems <-> material library; Fresnel emissivity
+  therm     raw scene + materials + weather -> facet temperatures from a heat balance
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
   merge     the tiles of a frame (trace --tile) -> the frame's images, byte for byte
   sensor    MTF blur, noise, quantisation

@@ -99,8 +99,9 @@ pub struct Cli {
 }
 
 /// The stage tools whose parameters the runner checks before anything runs.
-pub const STAGE_TOOLS: [&str; 10] = [
-    "import", "flatten", "atmos", "material", "trace", "merge", "sensor", "stats", "report", "run",
+pub const STAGE_TOOLS: [&str; 11] = [
+    "import", "flatten", "atmos", "material", "therm", "trace", "merge", "sensor", "stats",
+    "report", "run",
 ];
 
 /// The tools the runner knows, each found program registered with a validator that asks

@@ -1,7 +1,9 @@
 //! DIRSIG classic `.mat`: material entries, nested `NAME { … }` blocks of `KEY = VALUE`
-//! lines. What irsig reads of an entry: `ID`, `NAME`, and in
+//! lines. What irsig reads of an entry: `ID`, `NAME`, in
 //! `SURFACE_PROPERTIES { EMISSIVITY_PROP { … } }` the `FILENAME` of its `.ems` and its
-//! `SPECULAR_FRACTION`; everything else (solvers, thermal properties) is skipped.
+//! `SPECULAR_FRACTION`, and `TEMP_SOLVER_NAME` with the `KEY = VALUE` lines of its
+//! `TEMP_SOLVER { … }` block, as written (`dirsig::therm` reads a `Therm` block's numbers);
+//! everything else (the radiometry solver, other properties) is skipped.
 //!
 //! ```text
 //! MATERIAL_ENTRY {
@@ -21,7 +23,7 @@ use crate::ParseError;
 use crate::legacy::Position;
 use nom::Input;
 
-use crate::legacy::lex::{Lines, position};
+use crate::legacy::lex::{Line, Lines, Span, position};
 
 /// A value and where it is.
 #[derive(Debug, Clone, PartialEq)]
@@ -45,18 +47,35 @@ pub struct Entry {
     pub emissivity_file: Option<Located<String>>,
     /// `EMISSIVITY_PROP`'s `SPECULAR_FRACTION`, if any, 0 to 1.
     pub specular_fraction: Option<f64>,
+    /// `TEMP_SOLVER_NAME` and the `TEMP_SOLVER` block, if the entry has either.
+    pub temp_solver: Option<TempSolver>,
     /// Where the entry starts.
     pub position: Position,
 }
 
-/// An entry being read: where it starts, `ID`, `NAME`, `FILENAME`, `SPECULAR_FRACTION`.
-type Partial = (
-    Position,
-    Option<Located<u64>>,
-    Option<String>,
-    Option<Located<String>>,
-    Option<f64>,
-);
+/// An entry's temperature solver: its name and its block's lines, as written.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct TempSolver {
+    /// `TEMP_SOLVER_NAME` (`Therm`, `Null`, `DataDriven`, ...), if given.
+    pub name: Option<Located<String>>,
+    /// The `TEMP_SOLVER { … }` block's `KEY = VALUE` lines in file order: each key and its
+    /// value (the rest of the line, trimmed). Nested blocks inside it are skipped.
+    pub values: Vec<(Located<String>, Located<String>)>,
+    /// The byte range of the `TEMP_SOLVER {` line, if the block is there.
+    pub block: Option<(usize, usize)>,
+}
+
+/// An entry being read.
+#[derive(Debug, Default)]
+struct Partial {
+    position: Option<Position>,
+    span: Option<(usize, usize)>,
+    id: Option<Located<u64>>,
+    name: Option<String>,
+    emissivity_file: Option<Located<String>>,
+    specular_fraction: Option<f64>,
+    temp_solver: Option<TempSolver>,
+}
 
 /// Reads a DIRSIG `.mat`.
 ///
@@ -71,7 +90,6 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
     let mut entries = Vec::new();
     let mut stack: Vec<String> = Vec::new();
     let mut current: Option<Partial> = None;
-    let mut entry_span = None;
     // The keys irsig reads that the open entry has given, with their lines.
     let mut seen: Vec<(String, usize)> = Vec::new();
     while let Some(line) = lines.next_line() {
@@ -84,20 +102,9 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                 ));
             };
             if stack.is_empty() && block == "MATERIAL_ENTRY" {
-                let Some((pos, id, name, file_name, specular)) = current.take() else {
-                    continue;
-                };
-                let span = entry_span.take().unwrap_or(line.span);
-                let id = id.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no ID"))?;
-                let name =
-                    name.ok_or_else(|| lines.error(span, "this MATERIAL_ENTRY has no NAME"))?;
-                entries.push(Entry {
-                    id,
-                    name,
-                    emissivity_file: file_name,
-                    specular_fraction: specular,
-                    position: pos,
-                });
+                if let Some(partial) = current.take() {
+                    entries.push(partial.finish(file, text, line)?);
+                }
             }
             continue;
         }
@@ -113,9 +120,24 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
                         format!("expected MATERIAL_ENTRY {{, found `{body}`"),
                     ));
                 }
-                current = Some((position(line.span), None, None, None, None));
-                entry_span = Some(line.span);
+                current = Some(Partial {
+                    position: Some(position(line.span)),
+                    span: Some((line.span.location_offset(), line.span.fragment().len())),
+                    ..Partial::default()
+                });
                 seen.clear();
+            } else if stack.len() == 1
+                && block == "TEMP_SOLVER"
+                && let Some(entry) = current.as_mut()
+            {
+                let solver = entry.temp_solver.get_or_insert_with(TempSolver::default);
+                if solver.block.is_some() {
+                    return Err(lines.error(
+                        line.span,
+                        "TEMP_SOLVER is given twice in this MATERIAL_ENTRY: which one is meant?",
+                    ));
+                }
+                solver.block = Some((line.span.location_offset(), line.span.fragment().len()));
             }
             stack.push(block.to_owned());
             continue;
@@ -136,14 +158,14 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         let start = line.span.location_offset() + body.len() - value.trim_start().len();
         let vspan = line.span.take_from(start - line.span.location_offset());
         let vspan = vspan.take(raw.len());
-        let (vpos, vrange) = (position(vspan), (start, raw.len()));
         let path: Vec<&str> = stack.iter().map(String::as_str).collect();
         let Some(entry) = current.as_mut() else {
             continue;
         };
         let read = matches!(
             (path.as_slice(), key),
-            (["MATERIAL_ENTRY"], "ID" | "NAME")
+            (["MATERIAL_ENTRY"], "ID" | "NAME" | "TEMP_SOLVER_NAME")
+                | (["MATERIAL_ENTRY", "TEMP_SOLVER"], _)
                 | (
                     ["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"],
                     "FILENAME" | "SPECULAR_FRACTION"
@@ -163,43 +185,7 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
             }
             seen.push((full, position(line.span).line));
         }
-        match (path.as_slice(), key) {
-            (["MATERIAL_ENTRY"], "ID") => {
-                let id = lines.unsigned(vspan, "a material ID")?;
-                entry.1 = Some(Located {
-                    value: id,
-                    position: vpos,
-                    span: vrange,
-                });
-            }
-            (["MATERIAL_ENTRY"], "NAME") => {
-                if raw.is_empty() {
-                    return Err(lines.error(
-                        line.span,
-                        "expected a material name after `NAME =`, found nothing",
-                    ));
-                }
-                entry.2 = Some(raw.to_owned());
-            }
-            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
-                entry.3 = Some(Located {
-                    value: raw.to_owned(),
-                    position: vpos,
-                    span: vrange,
-                });
-            }
-            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "SPECULAR_FRACTION") => {
-                let f = lines.real(vspan, "a specular fraction")?;
-                if !(0.0..=1.0).contains(&f) {
-                    return Err(lines.error(
-                        vspan,
-                        format!("expected a specular fraction 0 to 1, found {f}"),
-                    ));
-                }
-                entry.4 = Some(f);
-            }
-            _ => {}
-        }
+        entry.set(&lines, &path, key, raw, line, vspan)?;
     }
     if let Some(open) = stack.last() {
         return Err(lines.eof_error(&format!("expected `}}` closing {open}, found end of file")));
@@ -210,6 +196,101 @@ pub fn parse(file: &str, text: &str) -> Result<Vec<Entry>, ParseError> {
         ));
     }
     Ok(entries)
+}
+
+impl Partial {
+    /// The entry, once its block closes at `line`: refused without an `ID` or a `NAME`.
+    fn finish(self, file: &str, text: &str, line: Line<'_>) -> Result<Entry, ParseError> {
+        let (start, len) = self
+            .span
+            .unwrap_or_else(|| (line.span.location_offset(), line.span.fragment().len()));
+        let missing = |what: &str| {
+            ParseError::at_span(
+                file,
+                text,
+                start,
+                len,
+                format!("this MATERIAL_ENTRY has no {what}"),
+            )
+        };
+        Ok(Entry {
+            id: self.id.ok_or_else(|| missing("ID"))?,
+            name: self.name.ok_or_else(|| missing("NAME"))?,
+            emissivity_file: self.emissivity_file,
+            specular_fraction: self.specular_fraction,
+            temp_solver: self.temp_solver,
+            position: self.position.unwrap_or_else(|| position(line.span)),
+        })
+    }
+
+    /// Keeps `key = raw` (on `line`, the value at `vspan`) where the block `path` makes it
+    /// one irsig reads; skips it otherwise.
+    fn set(
+        &mut self,
+        lines: &Lines<'_>,
+        path: &[&str],
+        key: &str,
+        raw: &str,
+        line: Line<'_>,
+        vspan: Span<'_>,
+    ) -> Result<(), ParseError> {
+        let located = |value: String| Located {
+            value,
+            position: position(vspan),
+            span: (vspan.location_offset(), raw.len()),
+        };
+        match (path, key) {
+            (["MATERIAL_ENTRY"], "ID") => {
+                let id = lines.unsigned(vspan, "a material ID")?;
+                self.id = Some(Located {
+                    value: id,
+                    position: position(vspan),
+                    span: (vspan.location_offset(), raw.len()),
+                });
+            }
+            (["MATERIAL_ENTRY"], "NAME") => {
+                if raw.is_empty() {
+                    return Err(lines.error(
+                        line.span,
+                        "expected a material name after `NAME =`, found nothing",
+                    ));
+                }
+                self.name = Some(raw.to_owned());
+            }
+            (["MATERIAL_ENTRY"], "TEMP_SOLVER_NAME") => {
+                self.temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .name = Some(located(raw.to_owned()));
+            }
+            (["MATERIAL_ENTRY", "TEMP_SOLVER"], _) => {
+                let kspan = line.span.take(key.len());
+                let key_at = Located {
+                    value: key.to_owned(),
+                    position: position(kspan),
+                    span: (kspan.location_offset(), key.len()),
+                };
+                self.temp_solver
+                    .get_or_insert_with(TempSolver::default)
+                    .values
+                    .push((key_at, located(raw.to_owned())));
+            }
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "FILENAME") => {
+                self.emissivity_file = Some(located(raw.to_owned()));
+            }
+            (["MATERIAL_ENTRY", "SURFACE_PROPERTIES", "EMISSIVITY_PROP"], "SPECULAR_FRACTION") => {
+                let f = lines.real(vspan, "a specular fraction")?;
+                if !(0.0..=1.0).contains(&f) {
+                    return Err(lines.error(
+                        vspan,
+                        format!("expected a specular fraction 0 to 1, found {f}"),
+                    ));
+                }
+                self.specular_fraction = Some(f);
+            }
+            _ => {}
+        }
+        Ok(())
+    }
 }
 
 #[cfg(test)]
