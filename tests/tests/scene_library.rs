@@ -3,8 +3,9 @@
 //! check; every material over 3-14 um with a source, a licence and thermal properties;
 //! physical bounds and reflectance = 1 - emissivity against the measured source file,
 //! read here with a plain split; a Fresnel material against a hand computation; spectra
-//! against independent published values; and the library traced on the quickstart scene
-//! in both bands at night.
+//! against independent published values; the library traced on the quickstart scene in
+//! both bands at night; and every material's thermal record solved by `irsig-therm`
+//! through summer days in Golden, Colorado.
 
 use std::path::Path;
 
@@ -354,4 +355,70 @@ fn the_library_traces_the_quickstart_scene_in_both_bands_at_night() {
             );
         }
     }
+}
+
+#[test]
+fn every_thermal_record_is_solved_through_a_summer_day() {
+    // One horizontal 1 m square per material, 3 m apart, under the sample TMY3 weather of
+    // Golden, Colorado (formats/samples), solved for 48 hours up to 19:00 UTC on 7 August
+    // (noon at the site, air 31 C, direct normal irradiance 769 W/m2 the hour before).
+    let lib = library();
+    let n = lib.materials.len();
+    let mut positions = String::new();
+    let mut facets = String::new();
+    for (i, m) in lib.materials.iter().enumerate() {
+        let x = 3.0 * i as f64;
+        for (dx, dy) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            positions += &format!("({:.1}, {dy:.1}, 0.0), ", x + dx);
+        }
+        let v = 4 * i;
+        for tri in [[v, v + 1, v + 2], [v, v + 2, v + 3]] {
+            facets += &format!(
+                "(vertices: ({}, {}, {}), material: {}, temperature_k: 300.0, object: {i}), ",
+                tri[0], tri[1], tri[2], m.id.0
+            );
+        }
+    }
+    let objects: Vec<String> = (0..n).map(|i| format!("\"m{i}\"")).collect();
+    let scene = format!(
+        "(terrain: (temperature_k: 300.0, emissivity: 0.95), objects: [{}], positions_m: [{positions}], facets: [{facets}])",
+        objects.join(", ")
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let scene_path = dir.path().join("squares.ron");
+    std::fs::write(&scene_path, scene).unwrap();
+    let prefix = dir.path().join("noon");
+    irsig_tests::bin("irsig-therm")
+        .arg(&scene_path)
+        .args(["--materials", LIBRARY])
+        .args(["--weather", "formats/samples/golden-tmy3-aug.epw"])
+        .args(["--at", "2026-08-07T19:00Z", "--spin-up-h", "48", "-o"])
+        .arg(&prefix)
+        .assert()
+        .success();
+    let bytes = std::fs::read(dir.path().join("noon.raw")).unwrap();
+    let solved = irsig_formats::canonical::read_raw_scene("noon.raw", &bytes).unwrap();
+    let t = |name: &str| {
+        let slot = lib.materials.iter().position(|m| m.name == name).unwrap();
+        solved.facets[2 * slot].temperature_k
+    };
+    for (i, m) in lib.materials.iter().enumerate() {
+        let (a, b) = (
+            solved.facets[2 * i].temperature_k,
+            solved.facets[2 * i + 1].temperature_k,
+        );
+        // Physical at a summer noon with air at 304 K: no surface below freezing or above
+        // 80 C, and a square's two halves alike.
+        assert!(
+            (273.0..=353.0).contains(&a) && (a - b).abs() < 0.5,
+            "{}: {a} K, {b} K",
+            m.name
+        );
+    }
+    // Sunlight decides the order: rust (solar absorptance 0.80) is far above polished
+    // aluminium (0.08), whose low emissivity keeps it near the air; the dry soil, which
+    // cannot evaporate, is above its wet half; the mixed pond stays near the air.
+    assert!(t("steel (rusted)") > t("aluminium (polished)") + 10.0);
+    assert!(t("soil (silty loam, dry)") > t("soil (silty loam, wet)") + 3.0);
+    assert!((t("water") - 304.0).abs() < 10.0, "{}", t("water"));
 }
