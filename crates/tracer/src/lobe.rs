@@ -60,8 +60,11 @@ const FAR_SIGMAS: f64 = 6.5;
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) struct Lobe {
     sigma: f64,
-    /// `A(θ_o)` at `θ_o = k·ALBEDO_STEP_DEG`, k = 0 to 90.
-    albedo: Vec<f64>,
+    /// `A(θ_o)` at `θ_o = k·ALBEDO_STEP_DEG`, k = 0 to 90, made on the first glint that
+    /// needs it: 91 rows of a 64 × 64 rule cost tens of milliseconds per material, which a
+    /// trace without a sun, or whose sun never meets the material, should not pay (a
+    /// library of many rough materials would add them all to every trace).
+    albedo: std::sync::OnceLock<Vec<f64>>,
     /// The disk rule's Gauss–Legendre nodes in `ψ` and in `u`, made once.
     psi_rule: Vec<(f64, f64)>,
     u_rule: Vec<(f64, f64)>,
@@ -123,33 +126,40 @@ impl Frame {
 }
 
 impl Lobe {
-    /// The lobe of RMS slope `sigma` (above 0, at most the model's limit), with its albedo
-    /// table.
+    /// The lobe of RMS slope `sigma` (above 0, at most the model's limit); its albedo
+    /// table is made when first needed.
     pub(crate) fn new(sigma: f64) -> Self {
-        let rows = (90.0 / ALBEDO_STEP_DEG).round() as usize + 1;
-        let rule = gauss_legendre(ALBEDO_NODES);
-        let albedo = (0..rows)
-            .map(|k| {
-                let theta = (k as f64 * ALBEDO_STEP_DEG).to_radians();
-                let cos_o = theta.cos().max(MIN_COS_VIEW);
-                albedo(sigma, cos_o, &rule)
-            })
-            .collect();
         Self {
             sigma,
-            albedo,
+            albedo: std::sync::OnceLock::new(),
             psi_rule: gauss_legendre(DISK_PSI_NODES),
             u_rule: gauss_legendre(DISK_U_NODES),
         }
     }
 
+    /// The albedo table, `A(θ_o)` every [`ALBEDO_STEP_DEG`] from 0° to 90°.
+    pub(crate) fn albedo_table(&self) -> &[f64] {
+        self.albedo.get_or_init(|| {
+            let rows = (90.0 / ALBEDO_STEP_DEG).round() as usize + 1;
+            let rule = gauss_legendre(ALBEDO_NODES);
+            (0..rows)
+                .map(|k| {
+                    let theta = (k as f64 * ALBEDO_STEP_DEG).to_radians();
+                    let cos_o = theta.cos().max(MIN_COS_VIEW);
+                    albedo(self.sigma, cos_o, &rule)
+                })
+                .collect()
+        })
+    }
+
     /// The unscaled lobe's albedo `A(θ_o)` at the view cosine `cos_o`, interpolated.
     pub(crate) fn albedo_at(&self, cos_o: f64) -> f64 {
+        let table = self.albedo_table();
         let deg = cos_o.clamp(0.0, 1.0).acos().to_degrees() / ALBEDO_STEP_DEG;
-        let last = self.albedo.len() - 1;
+        let last = table.len() - 1;
         let k = (deg.floor() as usize).min(last - 1);
         let w = (deg - k as f64).clamp(0.0, 1.0);
-        self.albedo[k] + w * (self.albedo[k + 1] - self.albedo[k])
+        table[k] + w * (table[k + 1] - table[k])
     }
 
     /// The glint of the sun's disk in the view `o` (unit, toward the sensor) of a facet of

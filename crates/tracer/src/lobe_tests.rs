@@ -211,7 +211,7 @@ fn the_peak_is_at_the_mirror_and_its_width_is_twice_the_slope() {
 fn extremes_are_finite_and_not_negative() {
     for sigma in [1e-6, 0.01, 1.0, MAX_RMS_SLOPE_FOR_TESTS] {
         let lobe = Lobe::new(sigma);
-        for &a in &lobe.albedo {
+        for &a in lobe.albedo_table() {
             assert!(
                 a.is_finite() && a > 0.0 && a <= 1.0 + 1e-9,
                 "σ {sigma}: {a}"
@@ -298,4 +298,20 @@ fn lobe_figures() {
             far * 1e9
         );
     }
+}
+
+#[test]
+fn the_albedo_table_is_made_when_a_glint_first_needs_it() {
+    // A lobe costs its 91-row table only once a glint asks for it: a trace without a sun
+    // never does, and a library of many rough materials would otherwise pay for all of
+    // them on every trace.
+    let lobe = Lobe::new(0.3);
+    assert!(lobe.albedo.get().is_none());
+    let before = lobe.clone();
+    let a = lobe.albedo_at(0.8);
+    assert!(lobe.albedo.get().is_some() && before.albedo.get().is_none());
+    // The same value as a table made at once.
+    let made = Lobe::new(0.3);
+    let _ = made.albedo_table();
+    assert_eq!(made.albedo_at(0.8).to_bits(), a.to_bits());
 }

@@ -14,6 +14,7 @@
 //! irsig-material fresnel --n 1.2 --k 0.05 -o glassy.ron
 //! irsig-material fresnel --n 1.36 --roughness 0.8 --diffuse-reflectance 0.0347 -o asphalt.ron
 //! irsig-material fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
+//! irsig-material list pipelines/materials/scene-library.ron --plot plots/
 //! ```
 
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
@@ -24,6 +25,7 @@ use clap::{Parser, Subcommand};
 pub mod convert;
 pub mod dirsig;
 pub mod fresnel;
+pub mod list;
 
 /// Material libraries: the 1990 material files converted, and angular emissivity from
 /// Fresnel's equations.
@@ -37,7 +39,8 @@ pub mod fresnel;
   irsig-material convert --to-legacy lib.ron --out-dir legacy/
   irsig-material fresnel --n 1.2 --k 0.05 --angles 0:90:5
   irsig-material fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
-      --temperature 300 --angles 0:90:5 --legacy -o water.ems"
+      --temperature 300 --angles 0:90:5 --legacy -o water.ems
+  irsig-material list pipelines/materials/scene-library.ron --plot plots/"
 )]
 pub struct Cli {
     /// What to do.
@@ -83,6 +86,10 @@ and paint fitted this way: pipelines/materials/rough-surfaces.ron, docs/accuracy
     /// A DIRSIG classic .mat and the spectral .ems curves it names -> a canonical material
     /// library of spectral materials (ε(λ) with an angular shape).
     Dirsig(dirsig::Args),
+    /// What a material library holds: per material its spectrum's coverage, emissivity
+    /// over 3-5 and 8-14 um, solar absorptance, thermal record and source; `--plot DIR`
+    /// draws each spectrum as an SVG.
+    List(list::Args),
 }
 
 /// Runs one subcommand.
@@ -96,5 +103,6 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         Command::Convert(args) => convert::run(&args),
         Command::Fresnel(args) => fresnel::run(&args),
         Command::Dirsig(args) => dirsig::run(&args),
+        Command::List(args) => list::run(&args),
     }
 }
