@@ -22,6 +22,7 @@ use irsig_cli::args::inputs::Materials;
 use irsig_cli::args::outputs::Output;
 use irsig_cli::args::{DecisionOut, GroundAlbedo, PlaceArgs, Seed, ThreadsArgs, Tolerance};
 use irsig_model::history::{TemperatureHistory, ThermalProvenance};
+use irsig_model::loads::BroadbandLoads;
 use irsig_model::provenance::InputRecord;
 use irsig_model::thermal_decision::ThermalDecision;
 use irsig_model::weather::Weather;
@@ -36,7 +37,7 @@ mod report;
 pub mod setup;
 pub mod solve;
 
-use environment::Site;
+use environment::{Site, SkyLongwave, Sunlight};
 use models::Models;
 use prepare::{Outcome, Prepared};
 
@@ -111,6 +112,20 @@ pub struct Cli {
     /// longwave the sky, or Prata's clear-sky formula where it has none.
     #[arg(long, value_name = "FILE")]
     pub weather: String,
+    /// Sunlight and sky longwave from this loads table (`irsig-atmos plan --loads` and
+    /// `build`: LOWTRAN7's clear sky at each sun zenith angle), where the weather file has
+    /// no radiation columns or --sunlight/--sky-longwave ask for it.
+    #[arg(long, value_name = "FILE")]
+    pub loads: Option<String>,
+    /// Where the sunlight comes from (default: the weather file's dni and dhi columns when
+    /// it has them, else --loads).
+    #[arg(long, value_enum, value_name = "SOURCE")]
+    pub sunlight: Option<Sunlight>,
+    /// Where the sky's longwave comes from (default: the weather file's column when it has
+    /// one, else --loads, else Prata's clear-sky formula from the air's temperature and dew
+    /// point).
+    #[arg(long, value_enum, value_name = "SOURCE")]
+    pub sky_longwave: Option<SkyLongwave>,
     /// Read an EPW file's rows as this year, whatever their year fields say (default: the
     /// first moment's year, UTC): a typical-year file (TMY, IWEC) takes each month from
     /// another year. The CSV form's times are absolute and ignore it.
@@ -186,7 +201,9 @@ fn run_in_pool(cli: &Cli) -> miette::Result<()> {
         all_outputs.push(d);
     }
     irsig_cli::refuse_output_is_input(
-        [cli.scene.as_str(), materials_file, cli.weather.as_str()],
+        [cli.scene.as_str(), materials_file, cli.weather.as_str()]
+            .into_iter()
+            .chain(cli.loads.as_deref()),
         &all_outputs,
     )?;
     for o in &all_outputs {
@@ -209,12 +226,30 @@ fn run_in_pool(cli: &Cli) -> miette::Result<()> {
         &irsig_formats::weather::Options { year },
     )?;
     let site = site(cli, &weather)?;
-    let inputs = vec![
+    let mut inputs = vec![
         record("scene", &scene_in),
         record("materials", &materials_in),
         record("weather", &weather_in),
     ];
-    let prepared = Prepared::new(cli, &scene, &materials, &weather, &weather_in.name, site)?;
+    let loads = match &cli.loads {
+        Some(file) => {
+            let input = irsig_cli::read_input(file)?;
+            inputs.push(record("loads", &input));
+            Some(irsig_formats::canonical::from_ron_bytes::<BroadbandLoads>(
+                &input.name,
+                &input.bytes,
+            )?)
+        }
+        None => None,
+    };
+    let prepared = Prepared::new(
+        cli,
+        &scene,
+        &materials,
+        (&weather, &weather_in.name),
+        loads.as_ref(),
+        site,
+    )?;
     let (models, decision) = match cli.tolerance.kelvin {
         Some(k) => {
             let (models, decision) = pilot::decide(&prepared, &cli.models, &times, k)?;

@@ -513,10 +513,10 @@ fn spreads(pilot: &Pilot<'_, '_>, chosen: &Models) -> miette::Result<Vec<Thermal
         p99_k,
         max_k,
     });
-    if sky == SkyLongwave::Weather {
+    if sky != SkyLongwave::Prata {
         let (p99_k, max_k) = difference(&pilot.run(chosen, 0.0, SkyLongwave::Prata)?, &at_chosen);
         out.push(ThermalSpread {
-            what: "sky longwave: prata against the weather file's".into(),
+            what: format!("sky longwave: prata against {}", sky.describe()),
             p99_k,
             max_k,
         });

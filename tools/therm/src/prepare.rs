@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 
+use irsig_model::loads::BroadbandLoads;
 use irsig_model::weather::Weather;
 use irsig_model::{MaterialLibrary, RawScene};
 use irsig_tracer::exposure::{Exposure, ExposureOptions, ViewFactors};
@@ -115,10 +116,11 @@ impl<'a> Prepared<'a> {
         cli: &Cli,
         scene: &'a RawScene,
         materials: &'a MaterialLibrary,
-        weather: &'a Weather,
-        weather_name: &str,
+        weather: (&'a Weather, &str),
+        loads: Option<&'a BroadbandLoads>,
         site: Site,
     ) -> miette::Result<Self> {
+        let (weather, weather_name) = weather;
         cli.models.validate()?;
         let held_k = setup::per_facet(scene, &cli.hold, "--hold", "K", (1.0, MAX_HELD_K))?;
         let heat = setup::per_facet(
@@ -128,7 +130,12 @@ impl<'a> Prepared<'a> {
             "W/m2",
             (-MAX_HEAT_W_M2, MAX_HEAT_W_M2),
         )?;
-        let (sunlight, sky) = Environment::sources(weather, weather_name)?;
+        let (sunlight, sky) = Environment::sources(
+            weather,
+            weather_name,
+            loads,
+            (cli.sunlight, cli.sky_longwave),
+        )?;
         let mut prepared = Self {
             scene,
             materials,
@@ -143,6 +150,7 @@ impl<'a> Prepared<'a> {
                 site,
                 sunlight,
                 sky,
+                loads,
             },
             seed: cli.seed.value,
         };
@@ -205,15 +213,13 @@ impl<'a> Prepared<'a> {
             .map_err(|e| miette!("{e}"))
     }
 
-    /// Where the sky's longwave came from, in words.
+    /// Where the sunlight and the sky's longwave came from, in words.
     #[must_use]
     pub fn radiation(&self) -> String {
         format!(
-            "sunlight: the weather file's dni and dhi columns; sky longwave: {}",
-            match self.environment.sky {
-                SkyLongwave::Weather => "the weather file's column",
-                SkyLongwave::Prata => "Prata (1996) clear sky with Crawford & Duchon (1999) clouds",
-            }
+            "sunlight: {}; sky longwave: {}",
+            self.environment.sunlight.describe(),
+            self.environment.sky.describe()
         )
     }
 

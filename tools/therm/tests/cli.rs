@@ -425,3 +425,97 @@ fn a_tolerance_is_kept_against_the_reference_settings_on_every_facet() {
         assert!((a - b).abs() <= 0.3, "facet {i}: {a} against {b}");
     }
 }
+
+#[test]
+fn sunlight_and_sky_from_a_loads_table_reach_a_lone_plate() {
+    // The weather gives no radiation; the sample loads table (LOWTRAN7, mid-latitude
+    // summer, day 172) gives the sunlight and the sky. At 45° N, 0° E on 21 June near noon
+    // the sun is about 21.6° from the zenith, between the table's rows.
+    let dir = tempfile::tempdir().unwrap();
+    let mut text =
+        String::from("time,air_temperature[K],dew_point[K],pressure[Pa],wind_speed[m/s]\n");
+    for h in 0..40 {
+        text.push_str(&format!(
+            "2026-06-{:02}T{:02}:00:00Z,300,285,100000,3\n",
+            20 + h / 24,
+            h % 24
+        ));
+    }
+    let weather = write(dir.path(), "w.csv", &text);
+    let table_path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../formats/canonical/samples/broadband-loads.ron"
+    );
+    let at = "2026-06-21T12:02:00Z";
+    let out = therm()
+        .args([
+            &scene(dir.path()),
+            "--materials",
+            &materials(dir.path(), true),
+        ])
+        .args(["--weather", &weather, "--loads", table_path, "--at", at])
+        .args([
+            "--latitude-deg",
+            "45",
+            "--longitude-deg",
+            "0",
+            "--spin-up-h",
+            "12",
+        ])
+        .args(["--step-s", "60", "--convection", "mcadams", "--history"])
+        .arg(dir.path().join("h.thm"))
+        .arg("-o")
+        .arg(dir.path().join("t"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    // What the table gives at that sun, by the library the tool uses, and the plate's
+    // balance solved by hand with it.
+    let text = std::fs::read_to_string(table_path).unwrap();
+    let table: irsig_model::loads::BroadbandLoads =
+        irsig_formats::canonical::from_ron("t", &text).unwrap();
+    let sun = irsig_atmosphere::sun::SunSpec::At {
+        utc: at.into(),
+        latitude_deg: 45.0,
+        longitude_deg: 0.0,
+        altitude_m: 0.0,
+        refraction: None,
+        delta_t_s: None,
+        delta_ut1_s: None,
+    }
+    .position()
+    .unwrap();
+    let loads = irsig_atmosphere::loads::sun_loads_at(&table, sun.zenith_deg).unwrap();
+    let ghi = loads.global_horizontal_w_m2;
+    // The table's sky: its effective emissivity at the weather's 300 K air.
+    let sky = table.longwave_down_w_m2 * (300.0 / table.air_temperature_k).powi(4);
+    let h = 5.7 + 3.8 * 3.0;
+    let balance = |t: f64| 0.6 * ghi + 0.9 * sky - 0.9 * SIGMA * t.powi(4) - h * (t - 300.0);
+    let (mut lo, mut hi) = (250.0, 400.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if balance(mid) > 0.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let t = temperatures(&dir.path().join("t.raw"));
+    // The 2 mm plate lags the sun's slow climb by a few seconds' worth: 0.05 K.
+    assert!(
+        (t[0] - lo).abs() < 0.05,
+        "{} against {lo} (GHI {ghi})",
+        t[0]
+    );
+    let h = irsig_formats::canonical::binary_history::decode(
+        "h",
+        &std::fs::read(dir.path().join("h.thm")).unwrap(),
+    )
+    .unwrap();
+    assert!(
+        h.provenance.radiation.contains("LOWTRAN7"),
+        "{}",
+        h.provenance.radiation
+    );
+    assert!(h.provenance.inputs.iter().any(|r| r.role == "loads"));
+}

@@ -27,6 +27,7 @@
 
 mod assemble;
 pub mod rule;
+pub mod weathered;
 
 use std::collections::BTreeMap;
 
