@@ -11,19 +11,21 @@ quickstart's ids. Standard library only:
 tests/tests/thermal.rs checks that the committed file is what this writes.
 """
 
+# The scene library's ids (pipelines/materials/scene-library.ron).
+GRASS, WATER, ROAD = 6, 1, 7
 CELL = 0.25
 # Around the panel (x -3..3, y 0..0.1) and the car (x 6..8, y 4..8.5), north of the pool,
 # where the afternoon sun casts their shadows.
 FINE = (-5.0, 10.0, -1.0, 11.0)
 # The quickstart's seven rectangles: (x0, x1, y0, y1, material, what).
 QUICKSTART = [
-    (-120.0, -5.0, -40.0, 200.0, 1, "field, west of the pool"),
-    (-5.0, 4.0, -40.0, -10.0, 1, "field, south of the pool"),
-    (-5.0, 4.0, -10.0, -1.0, 2, "the pool"),
-    (-5.0, 4.0, -1.0, 200.0, 1, "field, north of the pool"),
-    (4.0, 5.0, -40.0, 200.0, 1, "verge between the pool and the road"),
-    (5.0, 9.0, -40.0, 200.0, 3, "the road"),
-    (9.0, 120.0, -40.0, 200.0, 1, "field, east of the road"),
+    (-120.0, -5.0, -40.0, 200.0, GRASS, "field, west of the pool"),
+    (-5.0, 4.0, -40.0, -10.0, GRASS, "field, south of the pool"),
+    (-5.0, 4.0, -10.0, -1.0, WATER, "the pool"),
+    (-5.0, 4.0, -1.0, 200.0, GRASS, "field, north of the pool"),
+    (4.0, 5.0, -40.0, 200.0, GRASS, "verge between the pool and the road"),
+    (5.0, 9.0, -40.0, 200.0, ROAD, "the road"),
+    (9.0, 120.0, -40.0, 200.0, GRASS, "field, east of the road"),
 ]
 
 

@@ -69,7 +69,7 @@ IANA zone: 2026-07-15T14:00Z, 2026-07-15T14:00-06:00, 2026-07-15T14:00[America/D
     mut_arg("materials", |a| a.help(
         "The material library: every solved facet's material with a `thermal` record"
     )),
-    group(clap::ArgGroup::new("output_required").args(["output"]).required(true)),
+    group(clap::ArgGroup::new("output_required").args(["output", "raw"]).required(true)),
     mut_arg("output", |a| a.help(
         "Where the scenes go: PATH.raw for one moment, PATH.YYYYMMDDTHHMMSSZ.raw (UTC) for \
          several"
@@ -139,6 +139,10 @@ pub struct Cli {
     /// `-o PREFIX`.
     #[command(flatten)]
     pub output: Output,
+    /// Write the one moment's scene to FILE (binary raw scene) instead of PREFIX.raw: a
+    /// pipeline's stage names the file it makes.
+    #[arg(long, value_name = "FILE", conflicts_with = "output")]
+    pub raw: Option<PathBuf>,
     /// Also write every facet's surface temperature at every step from the first moment
     /// to the last (formats/canonical/temperature-history.md).
     #[arg(long, value_name = "FILE")]
@@ -190,9 +194,17 @@ pub fn run(cli: Cli) -> miette::Result<()> {
 
 fn run_in_pool(cli: &Cli) -> miette::Result<()> {
     let materials_file = cli.materials.required()?;
-    let output = cli.output.required()?;
     let times = moments(&cli.at)?;
-    let outputs = output_paths(output, &times)?;
+    let outputs = match &cli.raw {
+        Some(file) if times.len() == 1 => vec![file.clone()],
+        Some(_) => {
+            return Err(irsig_cli::usage_error(format!(
+                "--raw names one file, and --at gives {} moments: give -o PREFIX for several",
+                times.len()
+            )));
+        }
+        None => output_paths(cli.output.required()?, &times)?,
+    };
     let mut all_outputs: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
     if let Some(h) = &cli.history {
         all_outputs.push(h);
