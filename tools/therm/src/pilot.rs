@@ -1,9 +1,10 @@
 //! `--tolerance K`: the cheapest settings of the named models that keep the facets'
 //! temperatures within K of a converged solve, chosen on a sample of the scene's facets.
 //!
-//! 1. **The sample.** The facets are put in classes by material (or held) and by which way
-//!    they face (up, down, sideways); up to [`PER_CLASS`] of each class are taken, evenly
-//!    spread through it, at most [`MAX_SAMPLE`] in all. A facet the sample sees but does not
+//! 1. **The sample.** The facets are put in classes by material (or held), by which way
+//!    they face (up, down, sideways) and by their shading at the first moment and one and
+//!    three hours before it (sunlit, a shadow's edge, shaded); up to [`PER_CLASS`] of each
+//!    class are taken, evenly spread through it, at most [`MAX_SAMPLE`] in all. A facet the sample sees but does not
 //!    hold is stood in for by a sampled facet of its class, whose temperature and loads it
 //!    then takes: the pilot's only approximation of the scene.
 //! 2. **The reference.** The most accurate setting of every model on offer: 60 s steps of
@@ -29,6 +30,7 @@ use miette::miette;
 use crate::environment::SkyLongwave;
 use crate::models::{ConvectionArg, Models, SchemeArg, Switch};
 use crate::prepare::{Grid, Prepared, Run, Stepped, Walls};
+use crate::solve::LitCache;
 
 /// The most facets a class gives the sample.
 pub const PER_CLASS: usize = 24;
@@ -59,9 +61,10 @@ struct Sample {
 }
 
 impl Sample {
-    fn new(prepared: &Prepared<'_>, walls: &Walls) -> Self {
+    fn new(prepared: &Prepared<'_>, walls: &Walls, first_s: f64) -> miette::Result<Self> {
         let scene = prepared.scene;
-        let mut classes: std::collections::BTreeMap<(u32, u8), Vec<u32>> = Default::default();
+        let shade = shade_signatures(prepared, first_s)?;
+        let mut classes: std::collections::BTreeMap<(u32, u8, u8), Vec<u32>> = Default::default();
         for (i, f) in scene.facets.iter().enumerate() {
             let nz = prepared.exposure.frame(i).normal.z;
             let way = if nz > 0.7 {
@@ -74,7 +77,10 @@ impl Sample {
             let kind = walls
                 .slot_of(i)
                 .map_or(u32::MAX - u32::from(f.material.0), |s| s as u32);
-            classes.entry((kind, way)).or_default().push(i as u32);
+            classes
+                .entry((kind, way, shade[i]))
+                .or_default()
+                .push(i as u32);
         }
         let per_class = (MAX_SAMPLE / classes.len().max(1)).clamp(1, PER_CLASS);
         let mut facets = Vec::new();
@@ -92,8 +98,42 @@ impl Sample {
         for (local, &g) in facets.iter().enumerate() {
             proxy[g as usize] = local as u32;
         }
-        Self { facets, proxy }
+        Ok(Self { facets, proxy })
     }
+}
+
+/// Each facet's shading at the first moment and one and three hours before it, in one
+/// number: per moment 0 (sunlit, or the sun down), 1 (partly shaded) or 2 (shaded, or
+/// facing away), from 4 × 4 shadow rays. A shadow's edge and the ground a shadow has
+/// just left are classes of their own, so the sample holds them.
+fn shade_signatures(prepared: &Prepared<'_>, first_s: f64) -> miette::Result<Vec<u8>> {
+    let n = prepared.scene.facets.len();
+    let all: Vec<u32> = (0..n as u32).collect();
+    let mut signature = vec![0_u8; n];
+    for hours in [0.0, 1.0, 3.0] {
+        let moment = prepared.environment.at(first_s - hours * 3600.0)?;
+        let Some(s) = moment.to_sun else {
+            continue;
+        };
+        let lit = prepared.exposure.sunlit_fractions(
+            &all,
+            s,
+            irsig_tracer::exposure::ExposureOptions {
+                samples_per_side: 4,
+            },
+        );
+        for (sig, l) in signature.iter_mut().zip(lit) {
+            let class = if l >= 1.0 {
+                0
+            } else if l > 0.0 {
+                1
+            } else {
+                2
+            };
+            *sig = *sig * 3 + class;
+        }
+    }
+    Ok(signature)
 }
 
 /// The reference settings: the most accurate on offer.
@@ -211,6 +251,8 @@ struct Pilot<'p, 'a> {
     prepared: &'p Prepared<'a>,
     sample: Sample,
     times: &'p [f64],
+    /// The sample's sunlit shares, cast once per moment and sample count for every run.
+    lit: LitCache,
 }
 
 impl Pilot<'_, '_> {
@@ -232,6 +274,7 @@ impl Pilot<'_, '_> {
             sky,
             history: false,
             progress: false,
+            lit_cache: Some(&self.lit),
         })?;
         Ok(outcome.surface_k.concat())
     }
@@ -305,8 +348,9 @@ pub fn decide(
     let walls = prepared.walls(&reference)?;
     let pilot = Pilot {
         prepared,
-        sample: Sample::new(prepared, &walls),
+        sample: Sample::new(prepared, &walls, times[0])?,
         times,
+        lit: LitCache::default(),
     };
     let sky = prepared.environment.sky;
     let truth = pilot.run(&reference, 0.0, sky)?;

@@ -13,7 +13,7 @@ use crate::Cli;
 use crate::environment::{Environment, Site, SkyLongwave};
 use crate::models::{Models, Switch};
 use crate::setup::{self, MaterialModel};
-use crate::solve::{self, Ground, Scenario, Settings};
+use crate::solve::{self, Ground, LitCache, Scenario, Settings};
 
 /// The hottest a held facet may be, K.
 const MAX_HELD_K: f64 = 3000.0;
@@ -96,6 +96,8 @@ pub(crate) struct Run<'r> {
     pub history: bool,
     /// Show a progress bar.
     pub progress: bool,
+    /// Sunlit shares to reuse across runs of the same facets.
+    pub lit_cache: Option<&'r LitCache>,
 }
 
 /// Which facets a run steps, and who stands in for the others.
@@ -258,6 +260,7 @@ impl<'a> Prepared<'a> {
             sky: self.environment.sky,
             history,
             progress: true,
+            lit_cache: None,
         })
     }
 
@@ -277,6 +280,7 @@ impl<'a> Prepared<'a> {
             sky,
             history,
             progress,
+            lit_cache,
         } = *run;
         let environment = Environment {
             sky,
@@ -298,6 +302,7 @@ impl<'a> Prepared<'a> {
                 model: walls.ground.as_ref(),
                 albedo: self.ground_albedo,
             },
+            lit_cache,
         };
         let settings = Settings {
             time_step: models.time_step(),

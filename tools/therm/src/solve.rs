@@ -87,7 +87,16 @@ pub struct Scenario<'a> {
     pub environment: &'a Environment<'a>,
     /// The ground beyond the scene.
     pub ground: Ground<'a>,
+    /// Sunlit shares to reuse, when several runs step the same facets.
+    pub lit_cache: Option<&'a LitCache>,
 }
+
+/// Sunlit shares already cast, by moment and sample points per side: the tolerance
+/// pilot's runs over one sample share them (the shares depend on nothing else).
+#[derive(Debug, Default)]
+pub struct LitCache(
+    pub std::sync::Mutex<std::collections::HashMap<(u64, u32), std::sync::Arc<Vec<f32>>>>,
+);
 
 /// The state between steps.
 #[derive(Debug, Clone)]
@@ -364,11 +373,24 @@ pub fn run(
     steps: usize,
     mut observe: impl FnMut(usize, f64, &[f64], f64) -> miette::Result<()>,
 ) -> miette::Result<()> {
-    let lit_at = |m: &Moment| match m.to_sun {
+    let cast = |m: &Moment| match m.to_sun {
         Some(s) => scenario
             .exposure
             .sunlit_fractions(scenario.facets, s, settings.shadow),
         None => vec![0.0; scenario.facets.len()],
+    };
+    let lit_at = |m: &Moment| -> std::sync::Arc<Vec<f32>> {
+        let Some(cache) = scenario.lit_cache else {
+            return std::sync::Arc::new(cast(m));
+        };
+        let key = (m.time_s.to_bits(), settings.shadow.samples_per_side);
+        let mut map = cache
+            .0
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        map.entry(key)
+            .or_insert_with(|| std::sync::Arc::new(cast(m)))
+            .clone()
     };
     let first = scenario.environment.at(start_s)?;
     let mut state = scenario.start(&first, &lit_at(&first), settings);
