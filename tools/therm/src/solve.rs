@@ -27,6 +27,7 @@ use irsig_thermal::{
 use irsig_tracer::exposure::{Exposure, ExposureOptions, ViewFactors};
 use miette::miette;
 use rayon::prelude::*;
+use std::sync::Arc;
 
 use crate::environment::{Environment, Moment};
 use crate::setup::MaterialModel;
@@ -94,9 +95,10 @@ pub struct Scenario<'a> {
 /// Sunlit shares already cast, by moment and sample points per side: the tolerance
 /// pilot's runs over one sample share them (the shares depend on nothing else).
 #[derive(Debug, Default)]
-pub struct LitCache(
-    pub std::sync::Mutex<std::collections::HashMap<(u64, u32), std::sync::Arc<Vec<f32>>>>,
-);
+pub struct LitCache(pub std::sync::Mutex<std::collections::HashMap<LitKey, Arc<Vec<f32>>>>);
+
+/// A moment (its time's bits) and the sample points per side of its shadow rays.
+pub type LitKey = (u64, u32);
 
 /// The state between steps.
 #[derive(Debug, Clone)]
@@ -379,18 +381,16 @@ pub fn run(
             .sunlit_fractions(scenario.facets, s, settings.shadow),
         None => vec![0.0; scenario.facets.len()],
     };
-    let lit_at = |m: &Moment| -> std::sync::Arc<Vec<f32>> {
+    let lit_at = |m: &Moment| -> Arc<Vec<f32>> {
         let Some(cache) = scenario.lit_cache else {
-            return std::sync::Arc::new(cast(m));
+            return Arc::new(cast(m));
         };
         let key = (m.time_s.to_bits(), settings.shadow.samples_per_side);
         let mut map = cache
             .0
             .lock()
             .unwrap_or_else(std::sync::PoisonError::into_inner);
-        map.entry(key)
-            .or_insert_with(|| std::sync::Arc::new(cast(m)))
-            .clone()
+        map.entry(key).or_insert_with(|| Arc::new(cast(m))).clone()
     };
     let first = scenario.environment.at(start_s)?;
     let mut state = scenario.start(&first, &lit_at(&first), settings);
