@@ -20,7 +20,13 @@ What the script does, per kind of source (each material's `source` says which):
   table's).
 - DIRSIG .ems curves (emissivity): the mean of a file's curves, interpolated linearly onto
   the library's grid; the angular shape is a rough surface's of irsig-material fresnel
-  (the fitted grass of rough-surfaces.ron).
+  (the fitted grass of rough-surfaces.ron). The grass curve serves the grass and, as named
+  models, two tree canopies.
+- Coatings: a paint is the opaque, smooth surface of its binder (PMMA's n, k; pigments
+  set only its cited solar absorptance); an anodised sheet is an alumina film on aluminium,
+  its multiple reflections summed incoherently (film_on_metal). Both separable.
+- Assemblies (a roof, double glazing, a car panel) are thermal records of several layers
+  under a surface the library already has.
 
 Every emissivity is written to 6 decimals. Thermal properties are handbook values, each
 layer's `source` naming its table.
@@ -70,6 +76,8 @@ RI_PAGES = {
     "titanium-rakic-bb.yml": ("main/Ti/nk/Rakic-BB.yml", "c817541a"),
     "soda-lime-rubin-clear.yml": ("glass/misc/soda-lime/nk/Rubin-clear.yml", "37773dce"),
     "soda-lime-rubin-ir.yml": ("glass/misc/soda-lime/nk/Rubin-IR.yml", "37773dce"),
+    "alumina-franta.yml": ("main/Al2O3/nk/Franta.yml", "37773dce"),
+    "pmma-zhang-mitsubishi.yml": ("organic/(C5H8O2)n - poly(methyl methacrylate)/nk/Zhang-Mitsubishi.yml", "37773dce"),
 }
 
 
@@ -300,21 +308,26 @@ def material(name, table, specular, source, spectral, therm, rms=None, band=None
                 thermal=therm, rms=rms, band=band)
 
 
-def nk_material(name, pages, cite, therm, rough=None, specular=None, rows=None, note="", grid=None):
+def nk_material(name, pages, cite, therm, rough=None, specular=None, rows=None, note="", grid=None, shape_only=False):
     """A Fresnel material from n, k pages (the first, unless `rows` joins several): smooth
-    (angular grid) or rough (separable)."""
+    (angular grid, or with `shape_only` separable) or rough (separable)."""
     pages = (pages,) if isinstance(pages, str) else pages
-    args = ["--angles", SMOOTH_ANGLES if rough is None else ROUGH_ANGLES]
+    grid_angles = rough is None and not shape_only
+    args = ["--angles", SMOOTH_ANGLES if grid_angles else ROUGH_ANGLES]
     if rough is not None:
         args += ["--roughness", str(rough)]
     if specular is not None:
         args += ["--specular-fraction", str(specular)]
     m = fresnel_nk(pages[0], rows, *args, grid=grid)
     kind = "smooth" if rough is None else f"rough (RMS facet slope {rough}{note})"
+    tool = m["source"]
+    if shape_only:
+        kind += ", separable (its 8-14 um angular table as the shape)"
+        tool = tool.replace(", at normal incidence and at every angle", ", at normal incidence")
     src = (f"{cite} ({ri_origin(*pages)}), n, k on the library's grid" + ("" if grid is None else " (every 0.25 um beyond 2.5 um)") + "; "
-           f"{kind}: {m['source']}")
+           f"{kind}: {tool}")
     return material(name, m["emissivity"], m["specular_fraction"], src,
-                    spectral_from_tool(m, rough is None), therm, m.get("rms_slope"), m.get("band_um"))
+                    spectral_from_tool(m, grid_angles), therm, m.get("rms_slope"), m.get("band_um"))
 
 
 def materials():
@@ -429,7 +442,151 @@ def materials():
         thermal([layer(0.002, 21.9, 4500.0, 522.0, INC_A1 + ", titanium")], SHEET_BACK,
                 "a 2 mm sheet; " + SHEET_BACK_WHY + "; solar absorptance from the curve", None, 0.0, "VerySmooth"),
         grid=METAL_GRID))
+    coated_metals(out)
+    glazing_water_and_canopies(out, glass_rows, dict(xs=gx, es=ge, shape=grass_shape))
     return out
+
+
+# ---- coatings, assemblies and canopies (ids 17-27) ---------------------------------------
+
+INC_A4_AIR = INC + ", Table A.4, air at 300 K"
+ASHRAE = "ASHRAE Handbook - Fundamentals"
+# A plane air space between ordinary building surfaces (effective emittance 0.82) holds
+# 0.15-0.18 m2 K W-1 whatever its width from 13 to 90 mm and the direction of heat flow
+# (ASHRAE Handbook - Fundamentals, ch. 26, Table 3): convection and radiation across it,
+# which a layer of still air (0.026 W m-1 K-1) would overstate several times. The layer takes
+# 0.16 as an effective conductivity d / 0.16.
+AIR_SPACE_R = 0.16
+
+
+def air_space(thickness_m):
+    return layer(thickness_m, thickness_m / AIR_SPACE_R, 1.1614, 1007.0,
+                 f"a plane air space, its resistance {fmt(AIR_SPACE_R)} m2 K W-1 ({ASHRAE}, ch. 26, Table 3: 0.15-0.18 for 13-90 mm between surfaces of emittance 0.9, effective emittance 0.82) as an effective conductivity; density and specific heat of air, {INC_A4_AIR}")
+
+
+def complex_nk(rows, lam):
+    xs = [r[0] for r in rows]
+    return complex(interp(xs, [r[1] for r in rows], lam), interp(xs, [r[2] for r in rows], lam))
+
+
+def film_on_metal(film_rows, metal_rows, film_um):
+    """(um, epsilon) at normal incidence of a film film_um thick on an opaque metal, on the
+    grid points both tables cover: the incoherent sum of the film's multiple reflections (a
+    film many wavelengths thick and not even to a fraction of one averages its fringes out),
+    R = R01 + (1 - R01)^2 R12 t^2 / (1 - R01 R12 t^2), t = exp(-4 pi k1 d / lambda), with R01
+    and R12 the normal-incidence reflectances |(Na - Nb)/(Na + Nb)|^2 of the air-film and
+    film-metal interfaces, and epsilon = 1 - R (the net-radiation sum for a semitransparent
+    layer on an opaque substrate: Siegel & Howell, Thermal Radiation Heat Transfer)."""
+    lo = max(film_rows[0][0], metal_rows[0][0])
+    hi = min(film_rows[-1][0], metal_rows[-1][0])
+    xs = [g for g in GRID if lo <= g <= hi]
+    es = []
+    for lam in xs:
+        n1, n2 = complex_nk(film_rows, lam), complex_nk(metal_rows, lam)
+        r01 = abs((1 - n1) / (1 + n1)) ** 2
+        r12 = abs((n1 - n2) / (n1 + n2)) ** 2
+        t2 = math.exp(-2.0 * 4.0 * math.pi * n1.imag * film_um / lam)
+        es.append(1.0 - (r01 + (1 - r01) ** 2 * r12 * t2 / (1 - r01 * r12 * t2)))
+    return xs, es
+
+
+AL_SHEET = [layer(0.002, 177.0, 2770.0, 875.0, INC_A1 + ", aluminium alloy 2024-T6")]
+RAKIC_AL = "Rakic (1995, Appl. Opt. 34, 4755) evaporated aluminium"
+# Paint is a pigmented binder tens of um thick; in the thermal infrared its surface is the
+# binder's and the pigment loading makes the film opaque, so its emissivity is that of an
+# opaque, smooth binder surface. Acrylic binders are poly(methyl methacrylate)'s kin.
+PAINT_WHY = ("the paint as an opaque surface of its binder, acrylic taken as poly(methyl methacrylate): "
+             "Zhang et al. (2020, Appl. Opt. 59, 2337; J. Quant. Spectrosc. Radiat. Transf. 252, 107063) PMMA, 0.4-19.9 um")
+WHITE = (0.26, "white acrylic paint, " + INC_A13)
+BLACK = (0.98, "black paint (Parsons), " + INC_A13)
+
+
+def paint_base():
+    """The paint surface every painted entry shares: smooth PMMA, separable."""
+    return nk_material(
+        "paint", "pmma-zhang-mitsubishi.yml",
+        PAINT_WHY + "; pigments and fillers are not in the spectrum: they set the solar absorptance (given, cited) and, "
+        "where they scatter, lower the 3-5 um emissivity of real paints below this binder surface's",
+        None, shape_only=True)
+
+
+def painted(base, name, colour, layers, back, why):
+    m = dict(base, name=name)
+    solar, solar_why = colour
+    m["thermal"] = thermal(layers, back, f"{why}; the paint film's own heat capacity neglected (about 0.1 mm); solar absorptance {fmt(solar)}: {solar_why}",
+                           solar, 0.0, "Smooth")
+    return m
+
+
+def coated_metals(out):
+    """Anodised aluminium and painted steel and aluminium: coatings on the library's metals."""
+    film = ri_rows("alumina-franta.yml")
+    xs, es = film_on_metal(film, ri_rows("aluminium-rakic.yml"), 15.0)
+    dielectric = run_tool(["--angles", ROUGH_ANGLES, "--n", "1.6"])["emissivity"]
+    add(out, 17, material(
+        "aluminium (anodised)", separable(xs, es, dielectric), 1.0,
+        "a 15 um anodic film on aluminium as a named model: the film amorphous alumina, Franta et al. (2015, Proc. SPIE 9628, 96281U) "
+        f"Al2O3 ({ri_origin('alumina-franta.yml')}), on {RAKIC_AL} ({ri_origin('aluminium-rakic.yml')}), both on the library's grid; "
+        "the film's multiple reflections summed incoherently at normal incidence (Siegel & Howell); 15 um chosen, not measured "
+        "(sulfuric-acid anodising makes 5-25 um); angular shape: a smooth dielectric of n 1.6 (irsig-material fresnel --n 1.6), separable; "
+        "dense alumina barely absorbs below 8 um, where the sheet shows through; a real anodic film is porous and holds water "
+        "and sulfate, which absorb near 3 and 6 um and raise its 3-5 um emissivity above this model's",
+        dict(wavelength_um=xs, emissivity=es),
+        thermal(AL_SHEET, SHEET_BACK, "a 2 mm sheet (the 15 um film's heat capacity neglected); " + SHEET_BACK_WHY + "; solar absorptance from the curve: the film is clear, the sheet below reflects", None, 0.0, "Smooth")))
+    base = paint_base()
+    panel = [layer(0.0008, 63.9, 7832.0, 434.0, INC_A1 + ", plain carbon steel AISI 1010")]
+    panel_why = ("a car body panel: 0.8 mm of steel under the paint; back: the air inside the body, taken at the outdoor temperature, "
+                 "by natural convection, 3 W m-2 K-1 (a vertical plate a few kelvin from the air, Incropera & DeWitt eq. 9.26 gives 2-4)")
+    add(out, 18, painted(base, "steel (painted, white)", WHITE, panel, SHEET_BACK, panel_why))
+    add(out, 19, painted(base, "steel (painted, black)", BLACK, panel, SHEET_BACK, panel_why))
+    roof = [layer(0.0005, 63.9, 7832.0, 434.0, INC_A1 + ", plain carbon steel AISI 1010"), air_space(0.02),
+            layer(0.012, 0.12, 545.0, 1215.0, INC_A3 + ", plywood")]
+    room_below = convective(6.13, 293.15)
+    roof_why = ("a roof: 0.5 mm steel sheet, a 20 mm air space, 12 mm plywood deck, and a room at 293.15 K below "
+                f"with a still-air surface coefficient of 6.13 W m-2 K-1 ({ASHRAE}, ch. 26, Table 1, horizontal surface, heat flow downward)")
+    add(out, 20, painted(base, "roofing (white-painted steel)", WHITE, roof, room_below, roof_why))
+    add(out, 21, painted(base, "roofing (black-painted steel)", BLACK, roof, room_below, roof_why))
+    skin_why = "an aluminium skin (a trailer, an aircraft or a sign): a 2 mm sheet; " + SHEET_BACK_WHY
+    add(out, 22, painted(base, "aluminium (painted, white)", WHITE, AL_SHEET, SHEET_BACK, skin_why))
+    add(out, 23, painted(base, "aluminium (painted, black)", BLACK, AL_SHEET, SHEET_BACK, skin_why))
+
+
+def glazing_water_and_canopies(out, glass_rows, grass):
+    """A double-glazed window and calm water from the library's n, k tables, and two canopies
+    as named models on the grass's measured curve."""
+    pane = layer(0.004, 1.4, 2500.0, 750.0, INC_A3 + ", glass, plate (soda lime)")
+    add(out, 24, nk_material(
+        "glass (double-glazed window)", ("soda-lime-rubin-clear.yml", "soda-lime-rubin-ir.yml"),
+        "Rubin (1985, Sol. Energy Mater. 12, 275) clear soda-lime window glass, as the window above",
+        thermal([pane, air_space(0.012), pane], convective(8.3, 293.15),
+                "a double-glazed window: two 4 mm panes around a 12 mm air space, a room at 293.15 K behind with a still-air surface coefficient of 8.3 W m-2 K-1 "
+                f"({ASHRAE}, ch. 26, Table 1, vertical surface); solar absorptance 0.10: what the outer pane absorbs, as for the single pane ({ASHRAE}, ch. 15); "
+                "the sunlight the outer pane passes, most of it, is lost to this model of opaque layers",
+                0.10, 0.0, "VerySmooth"),
+        rows=glass_rows))
+    add(out, 25, nk_material(
+        "water (calm)", "water-hale.yml", "Hale & Querry (1973, Appl. Opt. 12, 555) water, as the water above but without ripples",
+        thermal([layer(1.0, 1000.0, 1000.0, 4180.0, "well-mixed layer as for the water above: density and specific heat of water, " + OKE_21 + "; conductivity 1000 W m-1 K-1 an effective one for the mixing")],
+                ADIABATIC, "a sheltered pond's well-mixed upper metre, adiabatic below, as for the water above; solar absorptance 0.94: albedo 0.03-0.10, " + OKE_11 + "; open water, wet share 1",
+                0.94, 1.0, "VerySmooth"),
+        shape_only=True))
+    canopy = ("a tree canopy as a named model: its surface is leaves, and no broadleaf or needle spectrum is among the sources, "
+              "so DIRSIG's grass blades stand for them: grass_texture.ems (github.com/Rendered-ai/dirsig-channel @ 135340af, Apache-2.0; "
+              "sources/dirsig/grass_texture.ems), the mean of its 43 curves on the library's grid; angular shape the grass's "
+              "(rough-surfaces.ron: n 1.20, RMS slope 1.5, diffuse reflectance 0.0182, fitted to Sobrino & Cuenca 1999), separable; "
+              "the cavities of a deep crown raise its emissivity a little above its leaves', which this curve does not add")
+    leaves = layer(0.001, 0.57, 1000.0, 4180.0, "the leaves taken as water, " + OKE_21 + ": 1 mm, a leaf area index of 4 of leaves 0.25 mm thick (an assumption)")
+    for id_, name, albedo, solar in ((26, "canopy (deciduous)", "0.15-0.20", 0.825), (27, "canopy (conifer)", "0.05-0.15", 0.90)):
+        add(out, id_, material(
+            name, separable(grass["xs"], grass["es"], grass["shape"]), 0.0, canopy,
+            dict(wavelength_um=grass["xs"], emissivity=grass["es"]),
+            thermal([leaves],
+                    convective(25.0),
+                    "the crown's leaves over the air of the trunk space: no soil under them exchanges with the leaves, whose undersides meet air "
+                    "at the outdoor temperature with 25 W m-2 K-1 (a leaf's boundary-layer conductance 1.4 x 0.135 (u/d)^0.5 mol m-2 s-1 at u = 1 m s-1 "
+                    f"and d = 5 cm, Campbell & Norman 1998, An Introduction to Environmental Biophysics, eq. 7.30, times 29.3 J mol-1 K-1); solar absorptance {fmt(solar)}: "
+                    f"albedo {albedo}, {OKE_11}; wet share 0.3 stands for transpiration, as for the grass, an assumption",
+                    solar, 0.3, "VeryRough")))
 
 
 def solar_from_curve(xs, es, why_short):
