@@ -416,6 +416,16 @@ fn spectra_agree_with_independent_published_values() {
     let e = at(&al.wavelength_um, &al.emissivity, 10.0);
     assert!((e - drude).abs() < 0.003, "{e} vs {drude}");
     assert!(e < 0.02);
+    // Paint over 8-14 µm against handbook paints' total emissivities near 300 K, white
+    // acrylic 0.90 and black (Parsons) 0.98 (Incropera & DeWitt, Table A.13): the binder
+    // surface lies between them.
+    let paint = material(&lib, "steel (painted, white)")
+        .spectral
+        .as_ref()
+        .unwrap();
+    let lwir = Band::new(8.0, 14.0).unwrap();
+    let e = band_average_emissivity(&paint.wavelength_um, &paint.emissivity, &lwir, 300.0).unwrap();
+    assert!((0.90..=0.98).contains(&e), "{e}");
 }
 
 /// Traces the quickstart scene, flattened with the scene library's materials in the
