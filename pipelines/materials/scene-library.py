@@ -584,7 +584,7 @@ def glazing_water_and_canopies(out, glass_rows, grass):
                     convective(25.0),
                     "the crown's leaves over the air of the trunk space: no soil under them exchanges with the leaves, whose undersides meet air "
                     "at the outdoor temperature with 25 W m-2 K-1 (a leaf's boundary-layer conductance 1.4 x 0.135 (u/d)^0.5 mol m-2 s-1 at u = 1 m s-1 "
-                    f"and d = 5 cm, Campbell & Norman 1998, An Introduction to Environmental Biophysics, eq. 7.30, times 29.3 J mol-1 K-1); solar absorptance {fmt(solar)}: "
+                    f"and d = 5 cm, Campbell & Norman 1998, An Introduction to Environmental Biophysics, ch. 7, times 29.3 J mol-1 K-1); solar absorptance {fmt(solar)}: "
                     f"albedo {albedo}, {OKE_11}; wet share 0.3 stands for transpiration, as for the grass, an assumption",
                     solar, 0.3, "VeryRough")))
 
