@@ -12,7 +12,7 @@ tests/tests/thermal.rs checks that the committed file is what this writes.
 """
 
 # The scene library's ids (pipelines/materials/scene-library.ron).
-GRASS, WATER, ROAD = 6, 1, 7
+GRASS, WATER, ROAD = 6, 1, 100
 CELL = 0.25
 # Around the panel (x -3..3, y 0..0.1) and the car (x 6..8, y 4..8.5), north of the pool,
 # where the afternoon sun casts their shadows.

@@ -25,9 +25,9 @@ const LONGITUDE_DEG: f64 = -105.18;
 /// The panel's box (x, y, z ranges, m) and the car's: thermal/scene.ron.
 const PANEL: [[f64; 2]; 3] = [[-3.0, 3.0], [0.0, 0.1], [0.0, 2.5]];
 const CAR: [[f64; 2]; 3] = [[6.0, 8.0], [4.0, 8.5], [0.0, 1.4]];
-/// The scene library's ids the ground uses.
+/// The ids the ground uses (thermal/materials.ron).
 const GRASS: u16 = 6;
-const TRACK: u16 = 7;
+const TRACK: u16 = 100;
 
 /// The pipeline, copied with what it reads into a temporary directory and run once.
 fn thermal() -> &'static tempfile::TempDir {
