@@ -14,8 +14,8 @@ use miette::miette;
 pub enum Sunlight {
     /// The weather file's `dni` and `dhi` columns (measured or a typical year's).
     Weather,
-    /// A loads table LOWTRAN7 made (`--loads`): clear sky at the sun's zenith angle, taken
-    /// to the moment's Earth–Sun distance and, where the weather gives cloud cover, under
+    /// A loads table LOWTRAN7 made (`--loads-table`): clear sky at the sun's zenith angle,
+    /// taken to the moment's Earth–Sun distance and, where the weather gives cloud cover, under
     /// Kasten & Czeplak's (1980) clouds (`irsig_atmosphere::loads::weathered`).
     Loads,
 }
@@ -25,7 +25,7 @@ pub enum Sunlight {
 pub enum SkyLongwave {
     /// The weather file's downwelling longwave column (EPW's horizontal infrared).
     Weather,
-    /// A loads table's (`--loads`): its sky's effective emissivity at the weather's air
+    /// A loads table's (`--loads-table`): its sky's effective emissivity at the weather's air
     /// temperature, with Crawford & Duchon's (1999) cloud term.
     Loads,
     /// Prata's (1996) clear-sky formula from the air's temperature and dew point, with
@@ -138,7 +138,7 @@ impl Environment<'_> {
         let weather_sky = has(|r| r.longwave_down_w_m2);
         let no_loads = || {
             irsig_cli::usage_error(
-                "no --loads table to take it from: make one with irsig-atmos plan --loads \
+                "no --loads-table to take it from: make one with irsig-atmos plan --loads \
                  and irsig-atmos build",
             )
         };
@@ -156,7 +156,7 @@ impl Environment<'_> {
             None => {
                 return Err(miette!(
                     "`{name}` does not give the direct normal (dni) and diffuse horizontal \
-                     (dhi) irradiance on every record, and no --loads table was given: the \
+                     (dhi) irradiance on every record, and no --loads-table was given: the \
                      thermal model needs sunlight from one of them"
                 ));
             }

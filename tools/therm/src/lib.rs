@@ -116,14 +116,14 @@ pub struct Cli {
     /// `build`: LOWTRAN7's clear sky at each sun zenith angle), where the weather file has
     /// no radiation columns or --sunlight/--sky-longwave ask for it.
     #[arg(long, value_name = "FILE")]
-    pub loads: Option<String>,
+    pub loads_table: Option<String>,
     /// Where the sunlight comes from (default: the weather file's dni and dhi columns when
-    /// it has them, else --loads).
+    /// it has them, else --loads-table).
     #[arg(long, value_enum, value_name = "SOURCE")]
     pub sunlight: Option<Sunlight>,
     /// Where the sky's longwave comes from (default: the weather file's column when it has
-    /// one, else --loads, else Prata's clear-sky formula from the air's temperature and dew
-    /// point).
+    /// one, else --loads-table, else Prata's clear-sky formula from the air's temperature
+    /// and dew point).
     #[arg(long, value_enum, value_name = "SOURCE")]
     pub sky_longwave: Option<SkyLongwave>,
     /// Read an EPW file's rows as this year, whatever their year fields say (default: the
@@ -215,7 +215,7 @@ fn run_in_pool(cli: &Cli) -> miette::Result<()> {
     irsig_cli::refuse_output_is_input(
         [cli.scene.as_str(), materials_file, cli.weather.as_str()]
             .into_iter()
-            .chain(cli.loads.as_deref()),
+            .chain(cli.loads_table.as_deref()),
         &all_outputs,
     )?;
     for o in &all_outputs {
@@ -243,7 +243,7 @@ fn run_in_pool(cli: &Cli) -> miette::Result<()> {
         record("materials", &materials_in),
         record("weather", &weather_in),
     ];
-    let loads = match &cli.loads {
+    let loads = match &cli.loads_table {
         Some(file) => {
             let input = irsig_cli::read_input(file)?;
             inputs.push(record("loads", &input));

@@ -453,7 +453,14 @@ fn sunlight_and_sky_from_a_loads_table_reach_a_lone_plate() {
             "--materials",
             &materials(dir.path(), true),
         ])
-        .args(["--weather", &weather, "--loads", table_path, "--at", at])
+        .args([
+            "--weather",
+            &weather,
+            "--loads-table",
+            table_path,
+            "--at",
+            at,
+        ])
         .args([
             "--latitude-deg",
             "45",
