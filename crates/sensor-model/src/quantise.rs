@@ -382,7 +382,33 @@ pub struct Lut {
     pub entries: Vec<LutEntry>,
 }
 
+/// The temperatures a look-up table can show ([`Lut::temperature_span`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TemperatureSpan {
+    /// The temperature of the lowest count whose radiance is positive, K.
+    pub lowest_k: f64,
+    /// The temperature of the highest count, K.
+    pub highest_k: f64,
+    /// How many counts, from 0 up, stand for zero or negative radiance: no temperature
+    /// (a fixed calibration whose reference puts count 0 below zero radiance).
+    pub counts_without_temperature: usize,
+}
+
 impl Lut {
+    /// From the lowest count of positive radiance to the highest count, and how many counts
+    /// below it have no temperature; `None` when no count has a positive radiance. A
+    /// count of zero or negative radiance has no blackbody temperature, so it is never the
+    /// span's low end (its 0 K would be no temperature of the scene's).
+    #[must_use]
+    pub fn temperature_span(&self) -> Option<TemperatureSpan> {
+        let first = self.entries.iter().position(|e| e.radiance_w_m2_sr > 0.0)?;
+        Some(TemperatureSpan {
+            lowest_k: self.entries[first].temperature_k,
+            highest_k: self.entries.last()?.temperature_k,
+            counts_without_temperature: first,
+        })
+    }
+
     /// The table's text ([`fmt::Display`]) with a second comment line naming the band its
     /// radiances and temperatures are in (`# band: …`), so that the file says it too.
     #[must_use]
@@ -562,6 +588,40 @@ pub(crate) mod tests {
         let text = lut.to_string();
         assert!(text.starts_with("# dc radiance_w_m2_sr temperature_k temperature_c\n"));
         assert_eq!(text.lines().count(), 257);
+    }
+
+    /// A 14-bit fixed calibration of 10 counts per kelvin with 300 K at count 8192 puts
+    /// zero radiance at count 8192 − 10 × L(300)/L'(300) by hand, L/L' ≈ 54.93/0.80 ≈ 69 K
+    /// for 8–14 µm at 300 K: near count 7500. The counts below it are radiance ≤ 0, and
+    /// the span starts above them, never at the 0 K the band gives zero radiance. With 300 K
+    /// at count 500 no count is below zero radiance, and the span starts at count 0.
+    #[test]
+    fn a_luts_span_starts_at_its_first_count_of_positive_radiance() {
+        let band = SimpsonBand;
+        let q = Quantiser::fixed(14, 10.0, 300.0, 8192.0, &band).unwrap();
+        let lut = q.lut(&band);
+        let span = lut.temperature_span().unwrap();
+        let n = span.counts_without_temperature;
+        let by_hand = 8192.0 - 10.0 * band.radiance(300.0) / band.radiance_derivative(300.0);
+        assert!((7400.0..7600.0).contains(&by_hand), "{by_hand}");
+        assert!((n as f64 - by_hand).abs() <= 1.0, "{n} counts vs {by_hand}");
+        assert!(lut.entries[n].radiance_w_m2_sr > 0.0);
+        assert!(lut.entries[n - 1].radiance_w_m2_sr <= 0.0);
+        assert!(span.lowest_k > 1.0 && span.lowest_k < 200.0, "{span:?}");
+        assert_eq!(
+            span.highest_k.to_bits(),
+            lut.entries[16383].temperature_k.to_bits()
+        );
+
+        let q = Quantiser::fixed(14, 10.0, 300.0, 500.0, &band).unwrap();
+        let lut = q.lut(&band);
+        let span = lut.temperature_span().unwrap();
+        assert_eq!(span.counts_without_temperature, 0);
+        assert_eq!(
+            span.lowest_k.to_bits(),
+            lut.entries[0].temperature_k.to_bits()
+        );
+        assert!((150.0..300.0).contains(&span.lowest_k), "{span:?}");
     }
 
     #[test]

@@ -139,14 +139,21 @@ pub struct Cli {
     #[arg(long)]
     pub temperature_exr: Option<PathBuf>,
 
-    /// Write a grey preview PNG: apparent temperature stretched from its minimum (black)
-    /// to its maximum (white).
+    /// Write a grey preview PNG: apparent temperature stretched over --preview-range (by
+    /// default from its minimum, black, to its maximum, white).
     #[arg(long)]
     pub preview: Option<PathBuf>,
 
     /// Bits of the grey preview.
     #[arg(long, value_enum, default_value_t = PreviewBits::Eight)]
     pub preview_bits: PreviewBits,
+
+    /// The temperatures the previews (--preview, --colour-preview) span: MIN-MAX in kelvin
+    /// (280-320), percentiles of the image's pLO-pHI (p1-p99: a glint or a hot spot no
+    /// longer darkens the rest), or `full`, the coldest to the hottest pixel. Pixels
+    /// outside are clipped to its ends
+    #[arg(long, value_name = "RANGE", default_value = "full")]
+    pub preview_range: preview::PreviewRange,
 
     /// `--colour-preview FILE`.
     #[command(flatten)]
@@ -500,16 +507,11 @@ fn sense(cli: &Cli) -> miette::Result<()> {
             let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
             let high = counts.iter().filter(|&&c| u32::from(c) == full).count();
             if low + high > 0 {
-                let lut = q.lut(&band);
-                let t = |e: Option<&irsig_sensor_model::quantise::LutEntry>| {
-                    e.map_or(f64::NAN, |e| e.temperature_k)
-                };
                 irsig_cli::note!(
                     "irsig-sensor: {high} pixel(s) saturate at count {full} and {low} at count 0 \
-                     of {} (the LUT spans {:.2}-{:.2} K): their temperatures are clipped",
+                     of {} ({}): their temperatures are clipped",
                     counts.len(),
-                    t(lut.entries.first()),
-                    t(lut.entries.last())
+                    lut_span_text(&q.lut(&band))
                 );
             }
             files.push((
@@ -523,10 +525,12 @@ fn sense(cli: &Cli) -> miette::Result<()> {
         }
     }
     if let (Some(path), Some(t)) = (&cli.preview, &temperature) {
-        files.push((path.clone(), preview::grey(t, w, h, cli.preview_bits)?));
+        let r = cli.preview_range.of(t);
+        files.push((path.clone(), preview::grey(t, w, h, cli.preview_bits, r)?));
     }
     if let (Some(path), Some(t)) = (&cli.colour_preview.path, &temperature) {
-        files.push((path.clone(), preview::colour_with_bar(t, w, h)?));
+        let r = cli.preview_range.of(t);
+        files.push((path.clone(), preview::colour_with_bar(t, w, h, r)?));
     }
     // The sensed image's layers go into the encoder, not a copy of them.
     let exr = into_exr_bytes(out.raster.with_comments(comments)).into_diagnostic()?;
@@ -539,6 +543,24 @@ fn sense(cli: &Cli) -> miette::Result<()> {
             irsig_cli::write_files_atomic(&files)?;
             irsig_cli::write_output(None, |w| w.write_all(&exr))
         }
+    }
+}
+
+/// What a look-up table spans, for a note: its temperatures from the first count of
+/// positive radiance, and the counts below that, which have none.
+fn lut_span_text(lut: &irsig_sensor_model::quantise::Lut) -> String {
+    match lut.temperature_span() {
+        None => "no count of the LUT has a positive radiance".to_owned(),
+        Some(span) if span.counts_without_temperature == 0 => {
+            format!("the LUT spans {:.2}-{:.2} K", span.lowest_k, span.highest_k)
+        }
+        Some(span) => format!(
+            "the LUT spans {:.2}-{:.2} K; counts 0-{} stand for zero or negative radiance, \
+             no temperature",
+            span.lowest_k,
+            span.highest_k,
+            span.counts_without_temperature - 1
+        ),
     }
 }
 
