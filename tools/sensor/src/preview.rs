@@ -6,6 +6,97 @@ use miette::IntoDiagnostic;
 
 use crate::PreviewBits;
 
+/// `--preview-range`: which temperatures span a preview's black to white (grey) or its
+/// colour map and bar. Pixels outside are clipped to its ends.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub enum PreviewRange {
+    /// The image's coldest to its hottest finite pixel.
+    #[default]
+    Full,
+    /// Given limits, K.
+    Kelvin(f64, f64),
+    /// Percentiles of the image's finite temperatures, 0-100 (nearest rank).
+    Percentiles(f64, f64),
+}
+
+impl std::str::FromStr for PreviewRange {
+    type Err = String;
+
+    /// `MIN-MAX` in kelvin (`280-320`), `pLO-pHI` percentiles (`p1-p99`), or `full`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        let expected = "expected MIN-MAX in kelvin (280-320), percentiles pLO-pHI (p1-p99) \
+                        or `full`";
+        if s.trim() == "full" {
+            return Ok(Self::Full);
+        }
+        let (a, b) = s
+            .split_once('-')
+            .ok_or_else(|| format!("{expected}, found `{s}`"))?;
+        let (a, b, percent) = match (a.trim().strip_prefix('p'), b.trim().strip_prefix('p')) {
+            (Some(a), Some(b)) => (a, b, true),
+            (None, None) => (a.trim(), b.trim(), false),
+            _ => {
+                return Err(format!(
+                    "{expected}: both ends percentiles or neither, found `{s}`"
+                ));
+            }
+        };
+        let number = |v: &str| {
+            v.parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite())
+                .ok_or_else(|| format!("{expected}, found `{v}` in `{s}`"))
+        };
+        let (lo, hi) = (number(a)?, number(b)?);
+        if percent {
+            if !(0.0 <= lo && lo < hi && hi <= 100.0) {
+                return Err(format!(
+                    "expected percentiles 0 <= LO < HI <= 100, found p{lo}-p{hi}"
+                ));
+            }
+            Ok(Self::Percentiles(lo, hi))
+        } else {
+            if !(0.0 <= lo && lo < hi) {
+                return Err(format!(
+                    "expected temperatures 0 <= MIN < MAX in kelvin, found {lo}-{hi}"
+                ));
+            }
+            Ok(Self::Kelvin(lo, hi))
+        }
+    }
+}
+
+impl PreviewRange {
+    /// The temperatures, K, this range gives the image `t` (NaN pixels left out).
+    #[must_use]
+    pub fn of(self, t: &[f32]) -> (f64, f64) {
+        match self {
+            Self::Full => range(t),
+            Self::Kelvin(lo, hi) => (lo, hi),
+            Self::Percentiles(lo, hi) => {
+                let mut v: Vec<f32> = t.iter().copied().filter(|v| v.is_finite()).collect();
+                if v.is_empty() {
+                    return range(t);
+                }
+                v.sort_unstable_by(f32::total_cmp);
+                // Nearest rank: the smallest value with at least p % of the values at or
+                // below it.
+                let rank = |p: f64| {
+                    let n = v.len();
+                    let k = (p * n as f64 / 100.0).ceil() as usize;
+                    f64::from(v[k.clamp(1, n) - 1])
+                };
+                let (a, b) = (rank(lo), rank(hi));
+                if b - a < 1e-9 {
+                    (a - 0.5, b + 0.5)
+                } else {
+                    (a, b)
+                }
+            }
+        }
+    }
+}
+
 /// The finite range of the temperatures (a flat image gets a 1 K span so it maps to
 /// mid-grey rather than dividing by zero).
 fn range(t: &[f32]) -> (f64, f64) {
@@ -28,9 +119,14 @@ fn unit(v: f32, (lo, hi): (f64, f64)) -> f64 {
     ((f64::from(v) - lo) / (hi - lo)).clamp(0.0, 1.0)
 }
 
-/// Apparent temperature stretched linearly from its minimum (black) to maximum (white).
-pub fn grey(t: &[f32], w: usize, h: usize, bits: PreviewBits) -> miette::Result<Vec<u8>> {
-    let r = range(t);
+/// Apparent temperature stretched linearly over the range `r`, K (black to white).
+pub fn grey(
+    t: &[f32],
+    w: usize,
+    h: usize,
+    bits: PreviewBits,
+    r: (f64, f64),
+) -> miette::Result<Vec<u8>> {
     let mut out = Vec::new();
     match bits {
         PreviewBits::Eight => {
@@ -78,10 +174,10 @@ fn tick_labels(r: (f64, f64)) -> [String; 5] {
 }
 
 /// The image in the inferno colour map (coldest dark, hottest bright) with, to its right, a
-/// vertical colour bar from the minimum (bottom) to the maximum (top) temperature and five
-/// labelled ticks in kelvin. The canvas is at least 64 pixels tall so that labels fit.
-pub fn colour_with_bar(t: &[f32], w: usize, h: usize) -> miette::Result<Vec<u8>> {
-    let r = range(t);
+/// vertical colour bar over the range `r`, K, from its low end (bottom) to its high end (top),
+/// and five labelled ticks in kelvin. The canvas is at least 64 pixels tall so that labels
+/// fit.
+pub fn colour_with_bar(t: &[f32], w: usize, h: usize, r: (f64, f64)) -> miette::Result<Vec<u8>> {
     let labels = tick_labels(r);
     let label_chars = labels.iter().map(|l| l.chars().count()).max().unwrap_or(0);
     let cw = w + GAP + BAR + TICK + LABEL_GAP + label_chars * GLYPH + 2;
@@ -159,6 +255,52 @@ pub(crate) fn for_each_text_pixel(text: &str, mut lit: impl FnMut(usize, usize))
 mod tests {
     use super::*;
 
+    /// Percentiles by nearest rank, by hand: of 1..=100 K, p1 is 1 and p99 is 99; p0 is the
+    /// smallest; NaN pixels are left out; given kelvin are taken as given.
+    #[test]
+    fn a_preview_range_is_its_limits_or_its_percentiles() {
+        let t: Vec<f32> = (1..=100).map(|v| v as f32).chain([f32::NAN]).collect();
+        assert_eq!(PreviewRange::Full.of(&t), (1.0, 100.0));
+        assert_eq!(
+            "p1-p99".parse::<PreviewRange>().unwrap().of(&t),
+            (1.0, 99.0)
+        );
+        assert_eq!(
+            "p0-p50".parse::<PreviewRange>().unwrap().of(&t),
+            (1.0, 50.0)
+        );
+        assert_eq!(
+            "p10-p100".parse::<PreviewRange>().unwrap().of(&t),
+            (10.0, 100.0)
+        );
+        assert_eq!(
+            "280-320".parse::<PreviewRange>().unwrap().of(&t),
+            (280.0, 320.0)
+        );
+        assert_eq!("full".parse::<PreviewRange>().unwrap(), PreviewRange::Full);
+        for bad in [
+            "320-280", "p99-p1", "p1-99", "p0-p101", "a-b", "300", "nan-300", "-5-10",
+        ] {
+            assert!(bad.parse::<PreviewRange>().is_err(), "{bad} was taken");
+        }
+        // A flat percentile range still maps: 1 K wide about it.
+        let flat = vec![300.0_f32; 10];
+        assert_eq!(
+            "p5-p95".parse::<PreviewRange>().unwrap().of(&flat),
+            (299.5, 300.5)
+        );
+    }
+
+    /// A range narrower than the image clips: the pixels below it are black, above white.
+    #[test]
+    fn pixels_outside_the_preview_range_clip_to_its_ends() {
+        let t = [250.0_f32, 290.0, 300.0, 310.0, 350.0];
+        let png = grey(&t, 5, 1, PreviewBits::Eight, (290.0, 310.0)).unwrap();
+        let img = image::load_from_memory(&png).unwrap().to_luma8();
+        let v: Vec<u8> = img.pixels().map(|p| p.0[0]).collect();
+        assert_eq!(v, [0, 0, 128, 255, 255]);
+    }
+
     #[test]
     fn tick_labels_resolve_the_range() {
         // 290-310 K: ticks 5 K apart, one decimal.
@@ -196,7 +338,7 @@ mod tests {
         let t: Vec<f32> = (0..w * h)
             .map(|i| 250.7 + 71.2 * (i / w) as f32 / (h - 1) as f32)
             .collect();
-        let (cw, ch, white) = white_pixels(&colour_with_bar(&t, w, h).unwrap());
+        let (cw, ch, white) = white_pixels(&colour_with_bar(&t, w, h, range(&t)).unwrap());
         let at = |x: usize, y: usize| white[y * cw + x];
         let tick_x = w + GAP + BAR;
         let tick_rows: Vec<usize> = (0..ch).filter(|&y| at(tick_x, y)).collect();
