@@ -398,3 +398,82 @@ fn the_ground_sky_between_the_five_degree_rows_follows_lowtran7() {
         }
     }
 }
+
+/// `irsig-atmos plan --band` spans the band in LOWTRAN7's 5 cm⁻¹ steps, its ends widened
+/// outwards to the grid, by hand: 3-5 µm is 2000-3333.3 cm⁻¹ → 2000,3335,5; 3-14 µm is
+/// 714.3-3333.3 → 710,3335,5 (what pipelines/daylight.ron types for both bands); 8-14 µm
+/// the default plan's 710,1250,5. With --wavenumber-per-cm as well it is refused, as is a
+/// band that reaches beyond LOWTRAN7's 50,000 cm⁻¹.
+#[test]
+fn a_plan_for_a_named_band_spans_it_in_five_wavenumber_steps() {
+    let dir = tempfile::tempdir().unwrap();
+    let raw = dir.path().join("scene.raw");
+    bin("irsig-flatten")
+        .args([
+            "pipelines/quickstart/scene.ron",
+            "--materials",
+            "pipelines/quickstart/materials.ron",
+            "-o",
+        ])
+        .arg(&raw)
+        .assert()
+        .success();
+    let planned = |band: Option<&str>| {
+        let out = dir
+            .path()
+            .join(format!("plan-{}", band.unwrap_or("default")));
+        let mut cmd = bin("irsig-atmos");
+        cmd.args(["plan", "--scene"]).arg(&raw).args([
+            "--view",
+            "pipelines/quickstart/view.ron",
+            "--atmosphere",
+            "tropical",
+        ]);
+        if let Some(band) = band {
+            cmd.args(["--band", band]);
+        }
+        cmd.arg("-o").arg(&out).assert().success();
+        let bytes = std::fs::read(out.join("plan.ron")).unwrap();
+        match canonical::read_any_plan("plan.ron", &bytes).unwrap() {
+            canonical::AnyPlan::Atmosphere(plan) => plan.wavenumber_per_cm,
+            canonical::AnyPlan::Loads(_) => panic!("an atmosphere plan was asked for"),
+        }
+    };
+    assert_eq!(planned(Some("3-5")), [2000.0, 3335.0, 5.0]);
+    assert_eq!(planned(Some("3-14")), [710.0, 3335.0, 5.0]);
+    let default = planned(None);
+    assert_eq!(default, [710.0, 1250.0, 5.0]);
+    assert_eq!(planned(Some("8-14")), default);
+
+    for (band, extra, says) in [
+        (
+            "3-5",
+            &["--wavenumber-per-cm", "710,3335,5"][..],
+            "cannot be used with",
+        ),
+        ("0.1-5", &[][..], "above LOWTRAN7's 50000 cm-1"),
+    ] {
+        let out = dir.path().join("refused");
+        bin("irsig-atmos")
+            .args(["plan", "--scene"])
+            .arg(&raw)
+            .args([
+                "--view",
+                "pipelines/quickstart/view.ron",
+                "--atmosphere",
+                "tropical",
+            ])
+            .args(["--band", band])
+            .args(extra)
+            .arg("-o")
+            .arg(&out)
+            .assert()
+            .failure()
+            .stderr(predicates::str::contains(says));
+        assert!(
+            !out.exists(),
+            "{band}: a refused plan left {}",
+            out.display()
+        );
+    }
+}

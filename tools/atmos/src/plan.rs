@@ -32,7 +32,7 @@ Examples:
   irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-summer \
       --sun-zenith-deg 30 --day-of-year 172 -o noon-plan
   irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-winter \
-      --sun-zenith-deg 70 --day-of-year 172 --wavenumber-per-cm 710,3335,5 -o mwir-plan
+      --sun-zenith-deg 70 --day-of-year 172 --band 3-14 -o mwir-plan
   irsig-atmos plan --scene scene.raw --view view.ron --atmosphere midlat-summer \
       --aerosol rural --visibility-km 23 --sun-zenith-deg 30 --day-of-year 172 -o hazy-noon
   irsig-atmos plan --scene scene.raw --view view.ron --atmosphere us-std-1976 \
@@ -49,6 +49,12 @@ Examples:
          ground reflects that the sky scatters back down. Default 0, a black ground"
     )),
     mut_arg("atmosphere", |a| a.alias("model")),
+    mut_arg("band", |a| a.conflicts_with_all(["wavenumber_per_cm", "loads"]).help(
+        "The band the plan's spectra cover: MIN-MAX in micrometres (3-5, 8-14, or 3-14 for \
+         a scene traced in both) or a sensor response file (formats/srf.md), as irsig-trace \
+         takes it; each run then spans it in LOWTRAN7's 5 cm-1 steps (3-5 is 2000,3335,5). \
+         Or --wavenumber-per-cm. Default 8-14"
+    )),
     mut_arg("legacy_unit", |a| a.alias("view-unit")),
     mut_arg("scene", |a| a.help(
         "The raw scene (binary or RON, as irsig-flatten writes it); its lowest point is the \
@@ -143,6 +149,10 @@ pub struct PlanArgs {
     /// 3333.3 cm⁻¹), for a scene traced in both bands. Runs take longer the wider it is.
     #[arg(long, value_name = "V1,V2,DV", value_parser = wavenumber_range)]
     pub wavenumber_per_cm: Option<[f64; 3]>,
+    /// `--band`: the band the plan covers, as the tracer names it (instead of
+    /// --wavenumber-per-cm).
+    #[command(flatten)]
+    pub band: crate::common::BandArgs,
     /// LOWTRAN7's boundary-layer aerosol in every path: rural, urban, maritime,
     /// tropospheric or desert, each with --visibility-km (desert also with
     /// --wind-speed-m-s); or none. Without it the paths have no aerosol (IHAZE 0).
@@ -199,6 +209,34 @@ fn wavenumber_range(s: &str) -> Result<[f64; 3], String> {
         ));
     }
     Ok([v1, v2, dv])
+}
+
+/// LOWTRAN7's step for a band's runs, cm⁻¹: the default plan's and its 5 cm⁻¹ model's.
+const BAND_STEP_PER_CM: f64 = 5.0;
+
+/// The runs' `V1,V2,DV` that cover a band from `min_um` to `max_um`: its ends in cm⁻¹
+/// (10⁴/λ) widened outwards to the next multiple of 5 cm⁻¹, in steps of 5 (8-14 µm is
+/// 710,1250,5, the default plan's; 3-5 µm is 2000,3335,5).
+///
+/// # Errors
+/// A band whose short end is below 0.2 µm (above LOWTRAN7's 50,000 cm⁻¹), or too narrow
+/// for one 5 cm⁻¹ step.
+fn band_wavenumbers_per_cm(min_um: f64, max_um: f64) -> Result<[f64; 3], String> {
+    let step = BAND_STEP_PER_CM;
+    let v1 = (1e4 / max_um / step).floor() * step;
+    let v2 = (1e4 / min_um / step).ceil() * step;
+    let v1 = v1.max(step);
+    if v2 > 50_000.0 {
+        return Err(format!(
+            "a band from {min_um} um reaches {v2} cm-1, above LOWTRAN7's 50000 cm-1 (0.2 um)"
+        ));
+    }
+    if v2 <= v1 {
+        return Err(format!(
+            "the band {min_um}-{max_um} um is narrower than one 5 cm-1 step"
+        ));
+    }
+    Ok([v1, v2, step])
 }
 
 /// `--visibility-km`: a finite range above 0 and at most 337 km.
@@ -483,6 +521,11 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         .map_err(|e| miette!("{}: {e}", a.views.files.join(", ")))?;
     if let Some(range) = a.wavenumber_per_cm {
         plan.wavenumber_per_cm = range;
+    } else if a.band.given().is_some() {
+        let band = a.band.load()?;
+        plan.wavenumber_per_cm =
+            band_wavenumbers_per_cm(band.lambda_min_um(), band.lambda_max_um())
+                .map_err(|e| miette!("--band: {e}"))?;
     }
     if let Some(sun) = sun {
         // Rounded to the 0.001 deg a deck holds (`plan_sun` refused what rounds to 90).
