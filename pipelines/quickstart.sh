@@ -5,17 +5,13 @@
 #
 #     sh pipelines/quickstart.sh            # extra arguments go to irsig-run (--force, -n)
 #
-# It says what it is doing before the build, which takes minutes the first time: cargo's
-# progress is shown when standard error is a terminal, and kept quiet when it is a file or
-# a pipe (a log, CI).
+# It says what it is doing before the build, which takes minutes the first time. cargo
+# shows its progress bar when standard error is a terminal, and a line per crate it
+# compiles when it is a file or a pipe (a log, CI): never minutes of silence.
 set -eu
 cd "$(dirname "$0")/.."
 echo "quickstart: building the tools (cargo build --release): 5-15 minutes the first time, seconds after" >&2
-if [ -t 2 ]; then
-  cargo build --release --bins
-else
-  cargo build --release --bins --quiet
-fi
+cargo build --release --bins
 bin="${CARGO_TARGET_DIR:-target}/release"
 "$bin/irsig-run" "$@" pipelines/quickstart.ron
 echo "quickstart: out/quickstart/colour.png is the picture, report.html the run report (sensor.exr the radiance, lut.txt the counts)"

@@ -644,10 +644,11 @@ fn the_readme_picture_is_what_the_quickstart_makes() {
 
 /// `sh pipelines/quickstart.sh` with a stand-in `cargo` that takes two seconds and records
 /// its arguments and whether its standard error is a terminal, and a stand-in `irsig-run`:
-/// the line saying what is being built comes first, within a second; with standard error a
-/// pipe cargo is quiet, and under a terminal (`script` gives the script one) it is not.
+/// the line saying what is being built comes first, within a second; cargo is never told to
+/// be quiet, with standard error a pipe (a line per crate) or a terminal (its progress bar;
+/// `script` gives the script one).
 #[test]
-fn quickstart_sh_says_it_is_building_and_shows_progress_on_a_terminal() {
+fn quickstart_sh_says_it_is_building_and_shows_progress_in_a_pipe_and_on_a_terminal() {
     use std::io::Read as _;
     let dir = tempfile::tempdir().unwrap();
     let d = dir.path();
@@ -736,7 +737,7 @@ fn quickstart_sh_says_it_is_building_and_shows_progress_on_a_terminal() {
     );
     assert_eq!(
         std::fs::read_to_string(&calls).unwrap(),
-        "pipe build --release --bins --quiet\n"
+        "pipe build --release --bins\n"
     );
 
     // Standard error a terminal: `script` runs the command on a pseudo-terminal.

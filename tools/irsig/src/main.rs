@@ -19,7 +19,7 @@ const STAGES: &[&str] = &[
 ];
 
 const USAGE: &str = "\
-irsig: radiometric thermal-infrared (8-14 um) synthetic imagery
+irsig: radiometric thermal-infrared (3-5 and 8-14 um) synthetic imagery
 
 Usage: irsig <STAGE> [ARGS...]
        irsig --version | --help
@@ -27,7 +27,8 @@ Usage: irsig <STAGE> [ARGS...]
 Stages (each is also a program of its own, irsig-<STAGE>):
   import    Intergraph facet files, OBJ (+MTL), glTF/GLB -> canonical objects
   flatten   scene + objects -> raw world-space scene
-  atmos     DIRTRAN tables <-> canonical atmosphere; band radiance calculators
+  atmos     LOWTRAN7 plans and builds, the sun's position, DIRTRAN tables <->
+            canonical atmosphere, band radiance calculators
   material  material index + .ems <-> material library; Fresnel emissivity
   therm     raw scene + materials + weather -> facet temperatures from a heat balance
   trace     view + raw scene + materials + atmosphere -> radiance image and truth
