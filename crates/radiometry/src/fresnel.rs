@@ -353,7 +353,8 @@ pub fn emissivity_table(
 /// so the rule converges fast (checked against a 0.0005 µm trapezoid rule in the tests).
 ///
 /// # Errors
-/// - [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is finite and > 0.
+/// - [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is within
+///   [`irsig_model::limits::PLANCK_WEIGHTING_K`].
 /// - [`RadiometryErrorKind::InvalidRefractiveIndex`] when the table does not cover the
 ///   part of the band where the response is not zero (no extrapolation).
 /// - [`RadiometryErrorKind::InvalidEmissivity`] for bad angles (see [`emissivity_table`]).

@@ -39,7 +39,8 @@ pub(crate) struct Node {
 /// Planck's law is taken in logarithms, so no temperature underflows every weight to 0.
 ///
 /// # Errors
-/// [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is finite and > 0;
+/// [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is within
+/// [`irsig_model::limits::PLANCK_WEIGHTING_K`];
 /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero throughout the band
 /// or the weights are; what `covers` returns.
 pub(crate) fn nodes(
@@ -48,11 +49,13 @@ pub(crate) fn nodes(
     samples_um: &[f64],
     covers: impl FnOnce(f64, f64) -> Result<(), RadiometryError>,
 ) -> Result<Vec<Node>, RadiometryError> {
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+    let [t_min, t_max] = irsig_model::limits::PLANCK_WEIGHTING_K;
+    if !(t_min..=t_max).contains(&temperature_k) {
         return Err(RadiometryError::new(
             RadiometryErrorKind::InvalidTemperature,
             format!(
-                "the Planck weighting temperature must be finite and > 0 K, found {temperature_k}"
+                "the Planck weighting temperature must be from {t_min} to {t_max} K, found \
+                 {temperature_k}"
             ),
         ));
     }
