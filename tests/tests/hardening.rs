@@ -178,7 +178,11 @@ fn an_interrupted_atmosphere_build_leaves_no_scratch_folder() {
             wrong.push(format!("SIG{signal}: {status:?}, left {left:?}"));
         }
     }
-    assert!(names_in(dir.path()).iter().all(|n| !n.starts_with(".irsig-")));
+    assert!(
+        names_in(dir.path())
+            .iter()
+            .all(|n| !n.starts_with(".irsig-"))
+    );
     assert!(wrong.is_empty(), "{}", wrong.join("\n"));
 }
 

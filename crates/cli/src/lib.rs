@@ -471,21 +471,56 @@ pub fn open(path: &Path) -> miette::Result<File> {
 /// line ([`parse`]): exit 0 when clap accepts the rest, else clap's message and exit 2.
 pub const CHECK_ARGS: &str = "--irsig-check-args";
 
+/// What a tool refuses of its command line from the flags alone, before it reads a file: a
+/// value out of its range (a sun below the horizon, a NaN), a flag given twice that may be
+/// given once, flags that contradict each other. [`parse`] runs it after clap, and so does
+/// the check `irsig-run` asks of a stage ([`CHECK_ARGS`]), so a pipeline's stage is refused
+/// by the tool's own rules before anything runs, not when the stage starts.
+pub trait CheckArgs {
+    /// The flags' own rules.
+    ///
+    /// # Errors
+    /// A usage error naming the flag (`--sun-zenith-deg 95: …`).
+    fn check_args(&self) -> miette::Result<()> {
+        Ok(())
+    }
+}
+
 /// The tool's command line, parsed by its clap `Cli` (exit 2 and clap's message when it is
-/// malformed). With [`CHECK_ARGS`] first, only that: the process ends after the check, so
-/// that the pipeline runner checks a stage's parameters with the tool's own definition
-/// without depending on the tool's crate.
+/// malformed), then checked by its own rules ([`CheckArgs`]; exit 2 and the message). With
+/// [`CHECK_ARGS`] first, only that: the process ends after the check, so that the pipeline
+/// runner checks a stage's parameters with the tool's own definition without depending on
+/// the tool's crate.
 #[must_use]
-pub fn parse<C: clap::Parser>() -> C {
+pub fn parse<C: clap::Parser + CheckArgs>() -> C {
     let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     if args.get(1).is_some_and(|a| a == CHECK_ARGS) {
         args.remove(1);
         match C::try_parse_from(args) {
-            Ok(_) => std::process::exit(i32::from(EXIT_OK)),
+            Ok(cli) => match cli.check_args() {
+                Ok(()) => std::process::exit(i32::from(EXIT_OK)),
+                Err(report) => {
+                    // One paragraph, as clap's own complaints start: the runner quotes it.
+                    note!("error: {report}");
+                    std::process::exit(i32::from(EXIT_USAGE))
+                }
+            },
             Err(e) => e.exit(),
         }
     }
-    C::parse()
+    let cli = C::parse();
+    if let Err(report) = cli.check_args() {
+        // As `run` reports it (a bad value is bad input, a contradiction bad usage); nothing
+        // is staged yet.
+        note!("{report:?}");
+        let code = if report.downcast_ref::<UsageError>().is_some() {
+            EXIT_USAGE
+        } else {
+            EXIT_BAD_INPUT
+        };
+        std::process::exit(i32::from(code));
+    }
+    cli
 }
 
 /// Checks `argv` (the program's name first) with the tool at `program`, as [`parse`] does:

@@ -116,6 +116,38 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("ems"))
 }
 
+/// The flags' own rules, before a file is read (what `irsig-run` asks of a stage too): the
+/// angles, the surface, a Planck weighting within
+/// [`irsig_model::limits::PLANCK_WEIGHTING_K`] and only for an n, k table.
+///
+/// # Errors
+/// A usage error naming the flag, or a bad value.
+pub(crate) fn flags(args: &Args) -> miette::Result<(Vec<f64>, RoughSurface)> {
+    // clap's `requires` is waived when a conflicting argument (here --n) is present, so
+    // this rule is checked by hand.
+    if args.nk_table.is_none() && (args.band.given().is_some() || args.planck_temperature.is_some())
+    {
+        return Err(irsig_cli::usage_error(
+            "--band and --planck-temperature weight the spectral average of --nk-table; \
+             a constant --n/--k has none",
+        ));
+    }
+    let [t_min, t_max] = irsig_model::limits::PLANCK_WEIGHTING_K;
+    if let Some(t) = args.planck_temperature
+        && !(t_min..=t_max).contains(&t)
+    {
+        return Err(irsig_cli::usage_error(format!(
+            "--planck-temperature {t}: the Planck weighting temperature must be from {t_min} \
+             to {t_max} K"
+        )));
+    }
+    let angles = values("--angles", &args.angles)?;
+    let surface = RoughSurface::new(args.roughness)
+        .and_then(|s| s.with_diffuse_reflectance(args.diffuse_reflectance))
+        .map_err(|e| miette!("--roughness/--diffuse-reflectance: {e}"))?;
+    Ok((angles, surface))
+}
+
 /// Runs `irsig-material fresnel`.
 ///
 /// # Errors
@@ -128,19 +160,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         args.nk_table.iter().cloned().chain(band_file),
         args.output.path.iter(),
     )?;
-    // clap's `requires` is waived when a conflicting argument (here --n) is present, so
-    // this rule is checked by hand.
-    if args.nk_table.is_none() && (args.band.given().is_some() || args.planck_temperature.is_some())
-    {
-        return Err(irsig_cli::usage_error(
-            "--band and --planck-temperature weight the spectral average of --nk-table; \
-             a constant --n/--k has none",
-        ));
-    }
-    let angles = values("--angles", &args.angles)?;
-    let surface = RoughSurface::new(args.roughness)
-        .and_then(|s| s.with_diffuse_reflectance(args.diffuse_reflectance))
-        .map_err(|e| miette!("--roughness/--diffuse-reflectance: {e}"))?;
+    let (angles, surface) = flags(args)?;
     let rough = surface.rms_slope() > 0.0 || surface.diffuse_reflectance() > 0.0;
     let kind = if rough {
         format!(

@@ -168,6 +168,10 @@ pub struct Cli {
     pub output: Output,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// A line between two pixels, `X0,Y0:X1,Y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ProfileLine {

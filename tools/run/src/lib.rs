@@ -102,6 +102,10 @@ pub struct Cli {
     pub quiet: bool,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// The stage tools whose parameters the runner checks before anything runs.
 pub const STAGE_TOOLS: [&str; 11] = [
     "import", "flatten", "atmos", "material", "therm", "trace", "merge", "sensor", "stats",
