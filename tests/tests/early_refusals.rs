@@ -109,3 +109,54 @@ fn a_model_pinned_twice_is_refused() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("pinned twice"), "{stderr}");
 }
+
+#[test]
+fn stats_and_report_hold_an_image_to_the_band_and_the_record_it_carries() {
+    // `irsig-report t.exr --band 8-12` and `irsig-stats … --band 8-12` on an 8–14 µm image
+    // exited 0, and irsig-stats took any record (a reversed, NaN or missing band,
+    // non-UTF-8 comments) that report and sensor refuse.
+    let dir = tempfile::tempdir().unwrap();
+    let folder = irsig_tests::repo_root().join("tests/data/malformed/banded-exr");
+    let image = folder.join("records-8-14-band-8-12.exr");
+    let regions = folder.join("all.ron");
+    let stats = |image: &Path, band: &str| {
+        bin("irsig-stats")
+            .arg(image)
+            .arg("--regions")
+            .arg(&regions)
+            .args(["--band", band])
+            .output()
+            .unwrap()
+    };
+    let report = |image: &Path, band: &str| {
+        bin("irsig-report")
+            .arg(image)
+            .args(["--band", band, "-o"])
+            .arg(dir.path().join("r.html"))
+            .output()
+            .unwrap()
+    };
+    for out in [stats(&image, "8-12"), report(&image, "8-12")] {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{stderr}");
+        assert!(
+            stderr.contains("8-12 um, flat") && stderr.contains("8-14 um, flat"),
+            "{stderr}"
+        );
+    }
+    assert!(stats(&image, "8-14").status.success());
+    assert!(report(&image, "8-14").status.success());
+    for bad in [
+        "band-reversed.exr",
+        "band-nan.exr",
+        "band-missing.exr",
+        "comments-not-utf8.exr",
+        "response-hash-short.exr",
+    ] {
+        let bad = folder.join(bad);
+        for out in [stats(&bad, "8-14"), report(&bad, "8-14")] {
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert_eq!(out.status.code(), Some(1), "{}: {stderr}", bad.display());
+        }
+    }
+}
