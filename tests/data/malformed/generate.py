@@ -890,6 +890,39 @@ DECISION = """(
   pilot_pixels: 16,
 )
 """
+# The decision's fields after the choices, and its classes (the new fields of the third
+# pass): each broken as the page's rules forbid, read by irsig-trace --decision and by
+# irsig-report --decision alike.
+DECISION_CLASSES = edit(
+    DECISION,
+    "  pilot_pixels: 16,\n",
+    """  pilot_pixels: 16,
+  classes: [
+    (event: "diffuse", material: 1, name: "concrete", grazing: false, horizon: false,
+      sub_pixel: false, share: 1.0, samples: 16,
+      error: (percentile_k: 0.1, max_k: 0.2), rms_k: 0.05, residual_k: 0.01,
+      guaranteed: true, why: "held"),
+  ],
+  not_guaranteed_share: 0.0,
+  data_error_k: Some(0.004),
+""",
+)
+DECISION_RULES = [
+    ("classes-valid.ron", DECISION_CLASSES, "", "a valid decision with a class (success)", None, "0"),
+    ("not-guaranteed-half.ron", edit(DECISION_CLASSES, "not_guaranteed_share: 0.0", "not_guaranteed_share: 0.5"), "0.5 is out of range: expected 0 to 0.005", "half the frame not guaranteed: the page allows at most 0.005"),
+    ("event-bogus.ron", edit(DECISION_CLASSES, 'event: "diffuse"', 'event: "bogus"'), "`bogus`: expected one of sky, terrain, diffuse", "a class whose event is `bogus`"),
+    ("data-error-huge.ron", edit(DECISION_CLASSES, "data_error_k: Some(0.004)", "data_error_k: Some(1e308)"), "1e308 is out of range: expected 0 to 10000", "a data error of 1e308 K"),
+    ("class-error-huge.ron", edit(DECISION_CLASSES, "rms_k: 0.05", "rms_k: 1e300"), "`classes[0].rms_k`: 1e300 is out of range", "a class's σ of 1e300 K"),
+    ("reference-word.ron", edit(DECISION_CLASSES, 'setting: "exact", reference: "exact"', 'setting: "exact", reference: "exakt"'), "`exakt` is no setting of path-terms", "a reference setting that does not exist"),
+]
+DECISION_SUN = edit(
+    DECISION_CLASSES,
+    "  ],\n  predicted:",
+    """    (model: sun, setting: "on", reference: "on", pinned: false,
+      error: (percentile_k: 0.0, max_k: 0.0), relative_cost: 1.0, reason: "cheapest"),
+  ],
+  predicted:""",
+)
 folder(
     "decision",
     "Malformed decisions (formats/canonical/decision.md), read by `irsig-trace --decision`.",
@@ -914,9 +947,25 @@ folder(
         ("path-terms-unknown.ron", edit(DECISION, '(model: r#path-terms, setting: "exact"', '(model: r#path-terms, setting: "exakt"'), "path-terms-unknown.ron:13:36", "path terms `exakt`, at its entry's setting (finding 14)"),
         ("sub-bands-word.ron", edit(DECISION, '(model: r#sub-bands, setting: "1"', '(model: r#sub-bands, setting: "two"'), "sub-bands-word.ron:15:35", "sub-bands `two`, at its entry's setting (finding 14)"),
         ("error-negative.ron", edit(DECISION, "predicted: (percentile_k: 0.12", "predicted: (percentile_k: -0.12"), "", "a negative error"),
-    ],
+    ]
+    + [c for c in DECISION_RULES if c[0] != "classes-valid.ron"],
 )
 
+
+
+folder(
+    "decision-report",
+    "Malformed decisions (formats/canonical/decision.md), read by `irsig-report "
+    "--decision`: the same rules irsig-trace applies, the settings' spelling included.",
+    "irsig-report",
+    BASE + "/truth.exr --decision {in} -o {out}/r.html",
+    [
+        ("sun-maybe.ron", edit(DECISION_SUN, 'model: sun, setting: "on"', 'model: sun, setting: "maybe"'), "`maybe` is no setting of sun: expected on or off", "the sun's setting `maybe`, which irsig-trace refuses"),
+        ("sun-on.ron", DECISION_SUN, "", "the sun on (success)", None, "0"),
+        ("unknown-setting.ron", edit(DECISION, 'setting: "table"', 'setting: "tabel"'), "`tabel` is no setting of atmosphere", "an atmosphere setting that does not exist"),
+    ]
+    + DECISION_RULES,
+)
 
 
 # ---------------------------------------------------------------- spectral atmospheres
