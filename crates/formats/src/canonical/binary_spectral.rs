@@ -387,6 +387,85 @@ fn u32_at(file: &str, bytes: &[u8], at: usize, what: &str) -> Result<u32, ParseE
         })
 }
 
+/// Reads the tables that follow the header from `at` into `atm`, each count held to the
+/// header's dimensions and all of them to the memory budget before a value is read or a
+/// byte inflated; returns where the last table ends.
+fn read_tables(
+    file: &str,
+    bytes: &[u8],
+    text: &str,
+    atm: &mut SpectralAtmosphere,
+    version: u32,
+    mut at: usize,
+) -> Result<usize, ParseError> {
+    let points = atm.grid.points.len();
+    let shapes = expected_spectra(atm).map_err(|(path, why)| {
+        let (start, _) = crate::ron_tree::locate(text, &path);
+        ParseError::in_binary(file, 16 + start, why)
+    })?;
+    let values = shapes.iter().try_fold(0_u64, |sum, (_, spectra)| {
+        sum.checked_add((*spectra as u64).checked_mul(points as u64)?)
+    });
+    crate::inflate::check_budget(
+        file,
+        16,
+        values.and_then(|v| v.checked_mul(4)),
+        "the tables the header describes",
+    )?;
+    for (t, (path, spectra)) in tables_mut(atm).into_iter().zip(&shapes) {
+        let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
+        // Within the budget just checked, so no product overflows.
+        let want = spectra * points;
+        if n != want {
+            return Err(ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "expected `{path}` to hold {want} values ({spectra} spectra of {points} \
+                     points, as the header gives them), found a count of {n}"
+                ),
+            ));
+        }
+        if version == VERSION_QUANTISED {
+            let z = u32_at(file, bytes, at + 4, "the byte length of a compressed table")? as usize;
+            let stream = bytes
+                .get(at + 8..(at + 8).saturating_add(z))
+                .ok_or_else(|| {
+                    ParseError::in_binary(
+                        file,
+                        at + 4,
+                        format!(
+                            "a compressed table of {z} bytes, but only {} are left: the file is \
+                         truncated",
+                            bytes.len().saturating_sub(at + 8)
+                        ),
+                    )
+                })?;
+            *t = dequantise(file, stream, at, n, points)?;
+            at += 8 + z;
+            continue;
+        }
+        let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
+            ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "a table of {n} values needs {} bytes, but only {} are left: the file is truncated",
+                    n.saturating_mul(4),
+                    bytes.len() - at - 4
+                ),
+            )
+        })?;
+        at += 4;
+        *t = bytes[at..at + len]
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        at += len;
+    }
+    Ok(at)
+}
+
 /// Decodes and validates a binary spectral atmosphere.
 ///
 /// # Errors
@@ -518,72 +597,7 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             ),
         ));
     }
-    let mut at = 16 + h;
-    let points = atm.grid.points.len();
-    let shapes = expected_spectra(&atm).map_err(|(path, why)| {
-        let (start, _) = crate::ron_tree::locate(text, &path);
-        ParseError::in_binary(file, 16 + start, why)
-    })?;
-    let values = shapes.iter().try_fold(0_u64, |sum, (_, spectra)| {
-        sum.checked_add((*spectra as u64).checked_mul(points as u64)?)
-    });
-    crate::inflate::check_budget(
-        file,
-        16,
-        values.and_then(|v| v.checked_mul(4)),
-        "the tables the header describes",
-    )?;
-    for (t, (path, spectra)) in tables_mut(&mut atm).into_iter().zip(&shapes) {
-        let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
-        // Within the budget just checked, so no product overflows.
-        let want = spectra * points;
-        if n != want {
-            return Err(ParseError::in_binary(
-                file,
-                at,
-                format!(
-                    "expected `{path}` to hold {want} values ({spectra} spectra of {points} \
-                     points, as the header gives them), found a count of {n}"
-                ),
-            ));
-        }
-        if version == VERSION_QUANTISED {
-            let z = u32_at(file, bytes, at + 4, "the byte length of a compressed table")? as usize;
-            let stream = bytes
-                .get(at + 8..(at + 8).saturating_add(z))
-                .ok_or_else(|| {
-                    ParseError::in_binary(
-                        file,
-                        at + 4,
-                        format!(
-                            "a compressed table of {z} bytes, but only {} are left: the file is \
-                         truncated",
-                            bytes.len().saturating_sub(at + 8)
-                        ),
-                    )
-                })?;
-            *t = dequantise(file, stream, at, n, points)?;
-            at += 8 + z;
-            continue;
-        }
-        let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
-            ParseError::in_binary(
-                file,
-                at,
-                format!(
-                    "a table of {n} values needs {} bytes, but only {} are left: the file is truncated",
-                    n.saturating_mul(4),
-                    bytes.len() - at - 4
-                ),
-            )
-        })?;
-        at += 4;
-        *t = bytes[at..at + len]
-            .chunks_exact(4)
-            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect();
-        at += len;
-    }
+    let at = read_tables(file, bytes, text, &mut atm, version, 16 + h)?;
     if at != bytes.len() {
         return Err(ParseError::in_binary(
             file,
