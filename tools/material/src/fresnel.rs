@@ -138,10 +138,11 @@ pub(crate) fn flags(args: &Args) -> miette::Result<(Vec<f64>, RoughSurface)> {
     if let Some(t) = args.planck_temperature
         && !(t_min..=t_max).contains(&t)
     {
-        return Err(irsig_cli::usage_error(format!(
+        // A value out of its range, as --roughness's: bad input, not bad usage.
+        return Err(miette!(
             "--planck-temperature {t}: the Planck weighting temperature must be from {t_min} \
              to {t_max} K"
-        )));
+        ));
     }
     let angles = values("--angles", &args.angles)?;
     let surface = RoughSurface::new(args.roughness)
