@@ -132,6 +132,60 @@ fn an_interrupt_leaves_no_staged_file() {
     assert!(left.is_empty(), "left behind: {left:?}");
 }
 
+#[cfg(unix)]
+#[test]
+fn an_interrupted_atmosphere_build_leaves_no_scratch_folder() {
+    // SIGINT or SIGTERM during `irsig-atmos build` left its LOWTRAN7 scratch folders
+    // (`irsig-lowtran-*`, with TAPE5 and `out/`) in $TMPDIR, 4 runs of 4. Here LOWTRAN7 is
+    // a stand-in that waits, so every signal lands while the runs are under way.
+    let dir = tempfile::tempdir().unwrap();
+    let plan = irsig_tests::quickstart_plan(dir.path(), "plan", &["--model", "us-std-1976"], &[]);
+    let fake = dir.path().join("lowtran7");
+    std::fs::write(&fake, "#!/bin/sh\nexec sleep 20\n").unwrap();
+    {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    }
+    let mut wrong = Vec::new();
+    for signal in ["INT", "TERM"] {
+        let tmp = dir.path().join(format!("tmp-{signal}"));
+        std::fs::create_dir(&tmp).unwrap();
+        let mut child = Command::new(bin_path("irsig-atmos"))
+            .arg("build")
+            .arg(&plan)
+            .arg("-o")
+            .arg(dir.path().join("a.spa"))
+            .args(["--jobs", "2"])
+            .env("IRSIG_LOWTRAN", &fake)
+            .env("TMPDIR", &tmp)
+            .stdout(Stdio::null())
+            .stderr(Stdio::null())
+            .spawn()
+            .unwrap();
+        let start = std::time::Instant::now();
+        while names_in(&tmp).len() < 2 {
+            assert!(start.elapsed().as_secs() < 60, "no LOWTRAN7 run started");
+            std::thread::sleep(std::time::Duration::from_millis(20));
+        }
+        let killed = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(killed.success());
+        let status = child.wait().unwrap();
+        let left = names_in(&tmp);
+        if status.success() || !left.is_empty() {
+            wrong.push(format!("SIG{signal}: {status:?}, left {left:?}"));
+        }
+    }
+    assert!(
+        names_in(dir.path())
+            .iter()
+            .all(|n| !n.starts_with(".irsig-"))
+    );
+    assert!(wrong.is_empty(), "{}", wrong.join("\n"));
+}
+
 /// Every name in `dir`.
 fn names_in(dir: &Path) -> Vec<String> {
     let mut v: Vec<String> = std::fs::read_dir(dir)
@@ -298,11 +352,14 @@ fn no_tool_writes_over_one_of_its_inputs() {
         let path = entry.unwrap().path();
         std::fs::copy(&path, d.join("emissivity").join(path.file_name().unwrap())).unwrap();
     }
+    copy("formats/samples/golden-tmy3-aug.epw", "w.epw");
     std::fs::write(
         d.join("p.ron"),
-        r#"(stages: [(tool: "testcat", args: ["box.obj"], outputs: {"o": "x.txt"})])"#,
+        r#"(stages: [(tool: "testcat", args: ["box.obj"], outputs: {"o": "x.txt"}),
+            (name: "b", tool: "testcat", args: ["submit.sh"], outputs: {"o": "y.txt"})])"#,
     )
     .unwrap();
+    std::fs::write(d.join("submit.sh"), "echo a stage's input\n").unwrap();
     // A flattened scene, a view and two radiance tiles of it, for trace and merge.
     let tool = |name: &str, args: &[&str]| {
         let out = Command::new(bin_path(name))
@@ -468,6 +525,34 @@ fn no_tool_writes_over_one_of_its_inputs() {
             vec!["--emit-makefile", "p.ron", "p.ron"],
             "p.ron",
         ),
+        // The mtl the OBJ names, not the command line.
+        (
+            "irsig-import",
+            vec!["box.obj", "--materials", "materials.ron", "-o", "box.mtl"],
+            "box.mtl",
+        ),
+        // A stage's input, replaced by the Makefile; one named like an emitted script.
+        (
+            "irsig-run",
+            vec!["--emit-makefile", "box.obj", "p.ron"],
+            "box.obj",
+        ),
+        ("irsig-run", vec!["--emit-slurm", ".", "p.ron"], "submit.sh"),
+        (
+            "irsig-therm",
+            vec![
+                "scene.raw",
+                "--materials",
+                "materials.ron",
+                "--weather",
+                "w.epw",
+                "--at",
+                "2026-07-15T12:00Z",
+                "-o",
+                "scene",
+            ],
+            "scene.raw",
+        ),
         (
             "irsig-trace",
             vec![
@@ -559,7 +644,8 @@ fn no_tool_writes_over_one_of_its_inputs() {
             .unwrap();
         let stderr = String::from_utf8_lossy(&out.stderr);
         if out.status.code() != Some(2)
-            || !stderr.contains("both an output and an input")
+            || !(stderr.contains("both an output and an input")
+                || stderr.contains("output and also an input"))
             || !stderr.contains(named)
         {
             wrong.push(format!(

@@ -2,7 +2,8 @@
 //! `tests/data/malformed/*/cases.tsv` manifest runs through its tool, which must (unless
 //! the case expects otherwise, below) exit 1 within a time and memory bound, name the case's file with a line and column (a binary
 //! file's byte offset is given as line 1, column offset + 1; an OBJ face is located by its
-//! line; a bad sample of an image by its pixel, `pixel (x X, y Y)`), hold the manifest's
+//! line; a bad sample of an image by its pixel, `pixel (x X, y Y)`; an image's provenance
+//! record at its own line and column, `a.exr (its provenance):2:36`), hold the manifest's
 //! message
 //! fragment, and leave its output folder empty and its own folder as it was (outputs an
 //! execute file names lie beside it): no output and no staged temporary file.
@@ -45,6 +46,15 @@ fn has_location(text: &str, file: &str) -> bool {
         .file_name()
         .map_or_else(|| file.to_owned(), |s| s.to_string_lossy().into_owned());
     if text.contains(&name) && text.contains("pixel (x ") {
+        return true;
+    }
+    // An image's provenance is a file of its own inside the image: `a.exr (its
+    // provenance):2:36`.
+    let record = format!("{name} (its provenance):");
+    if text
+        .match_indices(&record)
+        .any(|(i, _)| text[i + record.len()..].starts_with(|c: char| c.is_ascii_digit()))
+    {
         return true;
     }
     let stem = Path::new(file)

@@ -410,9 +410,25 @@ impl SunSpec {
                 };
                 let delta_ut1 = delta_ut1_s.unwrap_or(0.0);
                 check(SunField::DeltaUt1S, delta_ut1)?;
+                // The time itself was accepted above: what fails now is the offsets, ΔT
+                // when it was given (UT1 − UTC is under a second), checked here so that
+                // `validate` refuses what `position` would.
+                let offsets = |e: &solar_positioning::Error| match delta_t_s {
+                    Some(_) => sun_error(
+                        SunField::DeltaTS,
+                        format!(
+                            "ΔT of {delta_t} s puts `{utc}` outside the years SPA covers, \
+                             {SPA_FIRST_YEAR} to {SPA_LAST_YEAR} ({e})"
+                        ),
+                    ),
+                    None => from_spa(e),
+                };
                 let time =
                     JulianDate::new(utc_day.julian_date() + delta_ut1 / SECONDS_PER_DAY, delta_t)
-                        .map_err(|e| from_spa(&e))?;
+                        .map_err(|e| offsets(&e))?;
+                SolarPositions::new()
+                    .for_time_from_julian(time)
+                    .map_err(|e| offsets(&e))?;
                 Ok(Resolved::At {
                     time,
                     location: Location {
@@ -1066,6 +1082,16 @@ mod tests {
                 .spec(),
                 "delta_t_s",
                 "finite",
+            ),
+            // 1e308 s was reported as an invalid `utc`, the flag not given wrongly.
+            (
+                Site {
+                    delta_t_s: Some(1e308),
+                    ..RIT
+                }
+                .spec(),
+                "delta_t_s",
+                "ΔT of 1",
             ),
             (
                 Site {

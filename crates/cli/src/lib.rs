@@ -41,13 +41,17 @@ mod frames;
 mod staged;
 
 pub use frames::StagedFrames;
-pub use staged::{Staged, check_output, remove_staged_files, remove_staged_files_and_exit};
+pub use staged::{
+    ScratchDir, Staged, check_output, remove_staged_files, remove_staged_files_and_exit,
+    write_dir_atomic,
+};
 
 use std::fs::File;
 use std::io::{self, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
+use irsig_formats::file::FileId;
 use miette::{Diagnostic, IntoDiagnostic, Report, WrapErr};
 
 /// Writes one line to standard error, as `eprintln!` does, but never panics: a closed or
@@ -76,13 +80,16 @@ pub fn write_stderr_line(args: std::fmt::Arguments<'_>) {
 /// would replace the file being read (`irsig-sensor a.exr -o a.exr`), and the input would
 /// be lost whatever the outcome. Every tool calls it with all the files it reads (those
 /// named on its command line and those it finds named inside them) and all the files it
-/// writes, before any work.
+/// writes, before any work; [`Staged`], the one writer, makes the same check again against
+/// every file the process has read ([`irsig_formats::file::files_read`]) when an output is
+/// staged, so a file found named inside an input (an `mtllib`) is never replaced either.
 ///
 /// Two names are one file when both exist and are the same file (device and inode on
 /// Unix, so a symbolic or hard link, `./a` and `d/../a` are all caught; the canonical path
-/// elsewhere). `-` (standard input or output) is never compared, nor is an output that is
-/// a device or a socket (`-o /dev/null`): it is written in place, never replaced. A name
-/// that does not exist yet is no input of the run.
+/// elsewhere). `-` as an output (standard output) is never compared; `-` as an input is
+/// standard input, compared when it is redirected from a regular file (`tool - -o a.exr <
+/// a.exr`). An output that is a device or a socket (`-o /dev/null`) is written in place,
+/// never replaced. A name that does not exist yet is no input of the run.
 ///
 /// ```no_run
 /// # fn main() -> miette::Result<()> {
@@ -99,79 +106,146 @@ where
     O: IntoIterator,
     O::Item: AsRef<Path>,
 {
-    let inputs: Vec<(PathBuf, FileIdentity)> = inputs
+    let inputs: Vec<(PathBuf, FileId)> = inputs
         .into_iter()
-        .filter(|p| p.as_ref().as_os_str() != "-")
-        .filter_map(|p| Some((p.as_ref().to_path_buf(), FileIdentity::of(p.as_ref())?)))
+        .filter_map(|p| {
+            let p = p.as_ref();
+            let id = if p.as_os_str() == "-" {
+                stdin_file()
+            } else {
+                FileId::of(p)
+            };
+            Some((p.to_path_buf(), id?))
+        })
+        .collect();
+    for output in outputs {
+        refuse_output_among(output.as_ref(), &inputs)?;
+    }
+    Ok(())
+}
+
+/// Refuses an output that is one of the files another program of the run reads or writes:
+/// a pipeline's stage files, which `irsig-run --emit-makefile` and `--emit-slurm` must not
+/// write over (a stage's input replaced by the Makefile, or a stage's output that `make`
+/// would then write over the Makefile). `files` pairs each such file with what it is, for
+/// the message (`an input of stage trace`). Two names are one file when both exist and are
+/// the same file, or when they name the same entry of the same real directory (a file not
+/// made yet).
+///
+/// # Errors
+/// A usage error (exit code 2) naming the output and what it also is.
+pub fn refuse_output_is_named<O>(files: &[(PathBuf, String)], outputs: O) -> miette::Result<()>
+where
+    O: IntoIterator,
+    O::Item: AsRef<Path>,
+{
+    let keys: Vec<(PathBuf, Option<FileId>, &(PathBuf, String))> = files
+        .iter()
+        .map(|f| (name_key(&f.0), FileId::of(&f.0), f))
         .collect();
     for output in outputs {
         let output = output.as_ref();
-        if output.as_os_str() == "-" {
+        if output.as_os_str() == "-" || written_in_place(output) {
             continue;
         }
-        let Some(id) = FileIdentity::of(output).filter(|id| !id.written_in_place) else {
-            continue;
-        };
-        if let Some((input, _)) = inputs.iter().find(|(_, i)| i.same_file(&id)) {
-            let alias = if input == output {
+        let (key, id) = (name_key(output), FileId::of(output));
+        let clash = keys
+            .iter()
+            .find(|(k, i, _)| *k == key || matches!((i, &id), (Some(a), Some(b)) if a == b));
+        if let Some((_, _, (path, what))) = clash {
+            let alias = if path == output {
                 String::new()
             } else {
-                format!(" (`{}` is `{}`)", output.display(), input.display())
+                format!(" (`{}`)", path.display())
             };
             return Err(usage_error(format!(
-                "`{}` is both an output and an input{alias}: writing it would replace the \
-                 file being read; name another output",
-                output.display()
+                "`{}` is this command's output and also {what}{alias}: writing it would \
+                 replace that file; name another output",
+                output.display(),
             )));
         }
     }
     Ok(())
 }
 
-/// What makes two names one file.
-#[derive(Debug)]
-struct FileIdentity {
-    #[cfg(unix)]
-    dev_ino: (u64, u64),
-    #[cfg(not(unix))]
-    canonical: PathBuf,
-    /// A device or socket: an output there is written in place.
-    written_in_place: bool,
-}
-
-impl FileIdentity {
-    /// The file `path` names (following symbolic links), or `None` when there is none.
-    fn of(path: &Path) -> Option<Self> {
-        let meta = std::fs::metadata(path).ok()?;
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::{FileTypeExt as _, MetadataExt as _};
-            let kind = meta.file_type();
-            Some(Self {
-                dev_ino: (meta.dev(), meta.ino()),
-                written_in_place: kind.is_char_device()
-                    || kind.is_block_device()
-                    || kind.is_socket(),
-            })
-        }
-        #[cfg(not(unix))]
-        {
-            Some(Self {
-                canonical: std::fs::canonicalize(path).ok()?,
-                written_in_place: !meta.is_file() && !meta.is_dir(),
-            })
+/// `path` as an entry of its real directory (the directory's symbolic links resolved), or,
+/// when the directory does not exist, made absolute and cleaned of `.` and `..` by name.
+fn name_key(path: &Path) -> PathBuf {
+    let absolute = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+    let mut clean = PathBuf::new();
+    for part in absolute.components() {
+        match part {
+            std::path::Component::CurDir => {}
+            std::path::Component::ParentDir => {
+                clean.pop();
+            }
+            other => clean.push(other),
         }
     }
+    match (clean.parent(), clean.file_name()) {
+        (Some(dir), Some(name)) => {
+            std::fs::canonicalize(dir).map_or(clean.clone(), |d| d.join(name))
+        }
+        _ => clean,
+    }
+}
 
-    fn same_file(&self, other: &Self) -> bool {
-        #[cfg(unix)]
-        {
-            self.dev_ino == other.dev_ino
-        }
-        #[cfg(not(unix))]
-        {
-            self.canonical == other.canonical
-        }
+/// The regular file standard input is redirected from, if it is one.
+fn stdin_file() -> Option<FileId> {
+    #[cfg(unix)]
+    {
+        use std::os::fd::AsFd as _;
+        let file = File::from(io::stdin().as_fd().try_clone_to_owned().ok()?);
+        FileId::of_regular_file(&file)
+    }
+    #[cfg(not(unix))]
+    {
+        None
+    }
+}
+
+/// A usage error when `output` is one of `inputs` (and not `-`, a device or a socket).
+pub(crate) fn refuse_output_among(
+    output: &Path,
+    inputs: &[(PathBuf, FileId)],
+) -> miette::Result<()> {
+    if output.as_os_str() == "-" || written_in_place(output) {
+        return Ok(());
+    }
+    let Some(id) = FileId::of(output) else {
+        return Ok(());
+    };
+    if let Some((input, _)) = inputs.iter().find(|(_, i)| *i == id) {
+        let alias = if input.as_os_str() == "-" {
+            " (standard input is read from it)".to_owned()
+        } else if input == output {
+            String::new()
+        } else {
+            format!(" (`{}` is `{}`)", output.display(), input.display())
+        };
+        return Err(usage_error(format!(
+            "`{}` is both an output and an input{alias}: writing it would replace the file \
+             being read; name another output",
+            output.display()
+        )));
+    }
+    Ok(())
+}
+
+/// Whether `path` is a device or a socket: an output there is written in place.
+fn written_in_place(path: &Path) -> bool {
+    let Ok(meta) = std::fs::metadata(path) else {
+        return false;
+    };
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt as _;
+        let kind = meta.file_type();
+        kind.is_char_device() || kind.is_block_device() || kind.is_socket()
+    }
+    #[cfg(not(unix))]
+    {
+        !meta.is_file() && !meta.is_dir()
     }
 }
 
@@ -257,6 +331,9 @@ pub fn provenance(
 pub fn read_input(path: impl AsRef<Path>) -> miette::Result<Input> {
     let path = path.as_ref();
     if path.as_os_str() == "-" {
+        if let Some(id) = stdin_file() {
+            irsig_formats::file::record_read(Path::new("-"), id);
+        }
         let bytes = irsig_formats::file::read_bounded(io::stdin().lock())
             .into_diagnostic()
             .wrap_err("cannot read standard input")?;
@@ -394,21 +471,56 @@ pub fn open(path: &Path) -> miette::Result<File> {
 /// line ([`parse`]): exit 0 when clap accepts the rest, else clap's message and exit 2.
 pub const CHECK_ARGS: &str = "--irsig-check-args";
 
+/// What a tool refuses of its command line from the flags alone, before it reads a file: a
+/// value out of its range (a sun below the horizon, a NaN), a flag given twice that may be
+/// given once, flags that contradict each other. [`parse`] runs it after clap, and so does
+/// the check `irsig-run` asks of a stage ([`CHECK_ARGS`]), so a pipeline's stage is refused
+/// by the tool's own rules before anything runs, not when the stage starts.
+pub trait CheckArgs {
+    /// The flags' own rules.
+    ///
+    /// # Errors
+    /// A usage error naming the flag (`--sun-zenith-deg 95: …`).
+    fn check_args(&self) -> miette::Result<()> {
+        Ok(())
+    }
+}
+
 /// The tool's command line, parsed by its clap `Cli` (exit 2 and clap's message when it is
-/// malformed). With [`CHECK_ARGS`] first, only that: the process ends after the check, so
-/// that the pipeline runner checks a stage's parameters with the tool's own definition
-/// without depending on the tool's crate.
+/// malformed), then checked by its own rules ([`CheckArgs`]; exit 2 and the message). With
+/// [`CHECK_ARGS`] first, only that: the process ends after the check, so that the pipeline
+/// runner checks a stage's parameters with the tool's own definition without depending on
+/// the tool's crate.
 #[must_use]
-pub fn parse<C: clap::Parser>() -> C {
+pub fn parse<C: clap::Parser + CheckArgs>() -> C {
     let mut args: Vec<std::ffi::OsString> = std::env::args_os().collect();
     if args.get(1).is_some_and(|a| a == CHECK_ARGS) {
         args.remove(1);
         match C::try_parse_from(args) {
-            Ok(_) => std::process::exit(i32::from(EXIT_OK)),
+            Ok(cli) => match cli.check_args() {
+                Ok(()) => std::process::exit(i32::from(EXIT_OK)),
+                Err(report) => {
+                    // One paragraph, as clap's own complaints start: the runner quotes it.
+                    note!("error: {report}");
+                    std::process::exit(i32::from(EXIT_USAGE))
+                }
+            },
             Err(e) => e.exit(),
         }
     }
-    C::parse()
+    let cli = C::parse();
+    if let Err(report) = cli.check_args() {
+        // As `run` reports it (a bad value is bad input, a contradiction bad usage); nothing
+        // is staged yet.
+        note!("{report:?}");
+        let code = if report.downcast_ref::<UsageError>().is_some() {
+            EXIT_USAGE
+        } else {
+            EXIT_BAD_INPUT
+        };
+        std::process::exit(i32::from(code));
+    }
+    cli
 }
 
 /// Checks `argv` (the program's name first) with the tool at `program`, as [`parse`] does:
@@ -649,6 +761,100 @@ mod tests {
         refuse_output_is_input([a.as_path(), Path::new("-")], [Path::new("-"), &new]).unwrap();
         #[cfg(unix)]
         refuse_output_is_input(["/dev/null"], ["/dev/null"]).unwrap();
+    }
+
+    #[test]
+    fn a_file_an_input_names_is_never_replaced_by_an_output() {
+        // `irsig-import d/box.obj -o d/box.mtl` replaced the `.mtl` the OBJ names, exit 0:
+        // the command line named only the OBJ. Every file read through the bounded reader
+        // is one the writer refuses, whoever named it.
+        let dir = tempfile::tempdir().unwrap();
+        let named = dir.path().join("named.mtl");
+        std::fs::write(&named, b"newmtl a").unwrap();
+        irsig_formats::file::read_file(&named).unwrap();
+        let through = dir.path().join(".").join("named.mtl");
+        let err = write_output(Some(&through), |w| w.write_all(b"object")).unwrap_err();
+        assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+        assert!(
+            format!("{err:?}").contains("both an output and an input"),
+            "{err:?}"
+        );
+        assert_eq!(std::fs::read(&named).unwrap(), b"newmtl a");
+        assert_eq!(names(dir.path()), ["named.mtl"]);
+        // Checked before a long run starts, too.
+        assert!(check_output(&named).is_err());
+        // A file not read is written.
+        write_output(Some(&dir.path().join("other")), |w| w.write_all(b"o")).unwrap();
+    }
+
+    #[test]
+    fn an_emitted_file_is_no_file_of_the_pipeline() {
+        // `irsig-run --emit-makefile p/t.exr p/p.ron` replaced the stage input `t.exr` with
+        // the Makefile, and `--emit-slurm p` a stage input named `submit.sh`; a stage's
+        // output not made yet is refused too (make would write it over the Makefile).
+        let dir = tempfile::tempdir().unwrap();
+        let input = dir.path().join("t.exr");
+        std::fs::write(&input, b"tile").unwrap();
+        let files = vec![
+            (
+                input.clone(),
+                "an input of the pipeline's step `a`".to_owned(),
+            ),
+            (
+                dir.path().join("sub").join("..").join("later.exr"),
+                "an output of the pipeline's step `b`".to_owned(),
+            ),
+        ];
+        let err = refuse_output_is_named(&files, [dir.path().join("./t.exr")]).unwrap_err();
+        assert!(err.downcast_ref::<UsageError>().is_some(), "{err:?}");
+        assert!(format!("{err:?}").contains("step `a`"), "{err:?}");
+        let err = refuse_output_is_named(&files, [dir.path().join("later.exr")]).unwrap_err();
+        assert!(format!("{err:?}").contains("step `b`"), "{err:?}");
+        refuse_output_is_named(&files, [dir.path().join("Makefile"), PathBuf::from("-")]).unwrap();
+        assert_eq!(std::fs::read(&input).unwrap(), b"tile");
+    }
+
+    #[test]
+    fn scratch_and_staged_directories_are_removed_by_an_interrupt() {
+        // An interrupted `irsig-atmos build` left its LOWTRAN7 scratch folders (TAPE5,
+        // `out/`) in $TMPDIR, and `plan` its directory staged beside the plan: neither went
+        // through the staged writer, whose list an interrupt empties. (The list is not
+        // emptied here: other tests stage files at the same time.)
+        let scratch = ScratchDir::new("irsig-test-scratch-").unwrap();
+        std::fs::create_dir(scratch.path().join("out")).unwrap();
+        std::fs::write(scratch.path().join("out").join("TAPE6"), b"x").unwrap();
+        let path = scratch.path().to_path_buf();
+        assert!(staged::is_pending(&path));
+        assert!(staged::remove_pending(&path));
+        assert!(!path.exists(), "{} is left", path.display());
+        drop(scratch);
+        assert!(!staged::is_pending(&path));
+        // Dropped without an interrupt, it goes too.
+        let scratch = ScratchDir::new("irsig-test-scratch-").unwrap();
+        let path = scratch.path().to_path_buf();
+        drop(scratch);
+        assert!(!path.exists() && !staged::is_pending(&path));
+    }
+
+    #[test]
+    fn a_directory_is_written_whole_or_not_at_all() {
+        let dir = tempfile::tempdir().unwrap();
+        let plan = dir.path().join("plan");
+        let files = vec![
+            (PathBuf::from("plan.ron"), b"()".to_vec()),
+            (PathBuf::from("runs/0000.tape5"), b"deck".to_vec()),
+        ];
+        write_dir_atomic(&plan, &files).unwrap();
+        assert_eq!(names(dir.path()), ["plan"]);
+        assert_eq!(
+            std::fs::read(plan.join("runs/0000.tape5")).unwrap(),
+            b"deck"
+        );
+        // Not over a directory that holds something, nor outside it.
+        assert!(write_dir_atomic(&plan, &files).is_err());
+        let out = vec![(PathBuf::from("../x"), b"x".to_vec())];
+        assert!(write_dir_atomic(&dir.path().join("other"), &out).is_err());
+        assert_eq!(names(dir.path()), ["plan"]);
     }
 
     #[test]

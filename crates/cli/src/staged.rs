@@ -21,6 +21,9 @@
 //!   registered under one lock, and the handler keeps that lock until the process has
 //!   exited, so no thread can stage a file the handler does not see: an interrupt at any
 //!   moment, during the renames too, leaves no staged file.
+//! - Directories go the same way: a scratch directory ([`ScratchDir`], a LOWTRAN7 run's)
+//!   and a directory written whole ([`write_dir_atomic`], a plan) are registered when they
+//!   are made, so an interrupt removes them with everything in them.
 
 use std::collections::HashSet;
 use std::io::{self, Write};
@@ -46,9 +49,30 @@ pub fn remove_staged_files() -> usize {
 }
 
 fn remove_all(list: &mut Vec<PathBuf>) -> usize {
-    list.drain(..)
-        .filter(|p| std::fs::remove_file(p).is_ok())
-        .count()
+    list.drain(..).filter(|p| remove_any(p)).count()
+}
+
+/// Whether `path` is on the list an interrupt removes.
+#[cfg(test)]
+pub(crate) fn is_pending(path: &Path) -> bool {
+    pending().iter().any(|p| p == path)
+}
+
+/// Removes `path` as an interrupt would, if it is on the list.
+#[cfg(test)]
+pub(crate) fn remove_pending(path: &Path) -> bool {
+    let list = pending();
+    list.iter().any(|p| p == path) && remove_any(path)
+}
+
+/// Removes the file or the directory (with everything in it) at `path`. A directory a
+/// child process is still writing into may gain an entry while it is emptied: tried again.
+fn remove_any(path: &Path) -> bool {
+    if std::fs::symlink_metadata(path).is_ok_and(|m| m.is_dir()) {
+        (0..4).any(|_| std::fs::remove_dir_all(path).is_ok())
+    } else {
+        std::fs::remove_file(path).is_ok()
+    }
 }
 
 /// Removes every staged file and ends the process with `code`, holding the list of staged
@@ -73,6 +97,24 @@ impl Registration {
         list.push(tmp.path().to_path_buf());
         let registration = Self(tmp.path().to_path_buf());
         Ok((tmp, registration))
+    }
+}
+
+impl Registration {
+    /// A new directory named `.irsig-*.tmp` in `parent` (a staged directory), or with
+    /// `prefix` in the system's temporary directory when `parent` is `None` (a scratch
+    /// directory), created and registered under one lock.
+    fn create_dir(parent: Option<&Path>, prefix: &str) -> io::Result<(tempfile::TempDir, Self)> {
+        let mut list = pending();
+        let mut builder = tempfile::Builder::new();
+        builder.prefix(prefix).suffix(".tmp");
+        let dir = match parent {
+            Some(p) => builder.tempdir_in(p)?,
+            None => builder.tempdir()?,
+        };
+        list.push(dir.path().to_path_buf());
+        let registration = Self(dir.path().to_path_buf());
+        Ok((dir, registration))
     }
 }
 
@@ -185,6 +227,7 @@ impl Staged {
     ) -> miette::Result<()> {
         let ctx = || format!("cannot write output file `{}`", dest.display());
         check_destination(dest).wrap_err_with(ctx)?;
+        refuse_replacing_an_input(dest)?;
         let file = match destination(dest).into_diagnostic().wrap_err_with(ctx)? {
             Destination::File(file) => file,
             Destination::Stream => {
@@ -326,6 +369,110 @@ fn undo(dest: &Path, backup: Option<TempPath>) {
     }
 }
 
+/// A scratch directory in the system's temporary directory (`$TMPDIR`), for a program this
+/// one runs (LOWTRAN7 reads and writes its tapes in one). It and everything in it are
+/// removed when it is dropped, and by an interrupt (SIGINT, SIGTERM), as staged files are.
+pub struct ScratchDir {
+    /// Dropped (the directory removed) before `_registration`.
+    dir: tempfile::TempDir,
+    _registration: Registration,
+}
+
+impl std::fmt::Debug for ScratchDir {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_tuple("ScratchDir").field(&self.dir.path()).finish()
+    }
+}
+
+impl ScratchDir {
+    /// A new, empty scratch directory whose name starts with `prefix`.
+    ///
+    /// # Errors
+    /// The directory cannot be made.
+    pub fn new(prefix: &str) -> io::Result<Self> {
+        let (dir, registration) = Registration::create_dir(None, prefix)?;
+        Ok(Self {
+            dir,
+            _registration: registration,
+        })
+    }
+
+    /// Where it is.
+    #[must_use]
+    pub fn path(&self) -> &Path {
+        self.dir.path()
+    }
+}
+
+/// Writes `files` (paths relative to `dir`, and their bytes) as the directory `dir`, all or
+/// nothing: into a staged directory beside it first, renamed into place at the end. `dir`
+/// must not exist or be empty. An interrupt removes the staged directory, as it does a
+/// staged file.
+///
+/// # Errors
+/// `dir` exists and is not empty, a relative path that leaves `dir`, or any I/O error;
+/// `dir` is then as it was.
+pub fn write_dir_atomic(dir: &Path, files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
+    if dir.exists() {
+        let empty = std::fs::read_dir(dir)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot read `{}`", dir.display()))?
+            .next()
+            .is_none();
+        if !empty {
+            return Err(miette::miette!(
+                "`{}` exists and is not empty: choose a new directory",
+                dir.display()
+            ));
+        }
+    }
+    if let Some((rel, _)) = files.iter().find(|(rel, _)| {
+        rel.components()
+            .any(|c| !matches!(c, std::path::Component::Normal(_)))
+    }) {
+        return Err(miette::miette!(
+            "`{}` is not a plain relative path inside `{}`",
+            rel.display(),
+            dir.display()
+        ));
+    }
+    let parent = parent_dir(dir);
+    std::fs::create_dir_all(&parent)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot create `{}`", parent.display()))?;
+    let (tmp, registration) = Registration::create_dir(Some(&parent), ".irsig-")
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot create a directory in `{}`", parent.display()))?;
+    for (rel, bytes) in files {
+        let p = tmp.path().join(rel);
+        if let Some(d) = p.parent() {
+            std::fs::create_dir_all(d)
+                .into_diagnostic()
+                .wrap_err_with(|| format!("cannot create `{}`", d.display()))?;
+        }
+        std::fs::write(&p, bytes)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot write `{}`", p.display()))?;
+    }
+    // Under the lock an interrupt takes: the directory is either still staged (and removed)
+    // or in place.
+    let mut list = pending();
+    if dir.exists() {
+        std::fs::remove_dir(dir)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot replace the empty `{}`", dir.display()))?;
+    }
+    std::fs::rename(tmp.path(), dir)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot rename the directory into `{}`", dir.display()))?;
+    list.retain(|x| x != tmp.path());
+    drop(list);
+    // Renamed: nothing is left under the staged name to remove.
+    let _ = tmp.keep();
+    drop(registration);
+    Ok(())
+}
+
 /// Checks that `dest` can take an output before the work that makes it starts: `-`; a
 /// device, named pipe or socket; or a name that is not a directory, in an existing
 /// directory where a file can be created (a staged file is made there and removed). A long
@@ -341,6 +488,7 @@ pub fn check_output(dest: &Path) -> miette::Result<()> {
     }
     let ctx = || format!("cannot write output file `{}`", dest.display());
     check_destination(dest).wrap_err_with(ctx)?;
+    refuse_replacing_an_input(dest)?;
     let Destination::File(file) = destination(dest).into_diagnostic().wrap_err_with(ctx)? else {
         return Ok(());
     };
@@ -357,6 +505,17 @@ pub fn check_output(dest: &Path) -> miette::Result<()> {
         .into_diagnostic()
         .wrap_err_with(|| format!("no file can be created in `{}`", dir.display()))
         .wrap_err_with(ctx)
+}
+
+/// An output must not be a file this process has read: the one output-over-input check,
+/// made for every file staged, whoever named the input (the command line, or a file an
+/// input names, such as an OBJ's `mtllib`).
+fn refuse_replacing_an_input(dest: &Path) -> miette::Result<()> {
+    // Only the files still there under the name they were read by: a scratch file read and
+    // removed since is no input any more, and its inode may now be another file's.
+    let mut read = irsig_formats::file::files_read();
+    read.retain(|(path, id)| irsig_formats::file::FileId::of(path).as_ref() == Some(id));
+    crate::refuse_output_among(dest, &read)
 }
 
 /// An output destination must not be an existing directory.

@@ -26,6 +26,7 @@ mod columns;
 pub mod dirsig;
 mod error;
 pub mod file;
+pub mod inflate;
 pub mod legacy;
 pub mod lut;
 pub mod mesh;

@@ -73,6 +73,67 @@ impl fmt::Display for SwitchableModel {
     }
 }
 
+impl SwitchableModel {
+    /// Whether `setting` is spelt as a setting of this model (the decision page's forms;
+    /// the ranges of numbers are the tracer's to judge): `table`, `layered`, `thesis`; a
+    /// count; `N`, `adaptive-N` or `refine-N`; `exact`, `tabulated`; `1`, `K`, `full`;
+    /// `on`, `off`.
+    ///
+    /// # Errors
+    /// What the setting should look like.
+    pub fn check_setting(self, setting: &str) -> Result<(), String> {
+        let count = |s: &str| s.parse::<u32>().is_ok();
+        let ok = match self {
+            Self::Atmosphere => ["table", "layered", "thesis"].contains(&setting),
+            Self::Bounces | Self::SkyView | Self::ShadowRays => count(setting),
+            Self::Supersampling => {
+                let n = setting
+                    .strip_prefix("adaptive-")
+                    .or_else(|| setting.strip_prefix("refine-"))
+                    .unwrap_or(setting);
+                count(n)
+            }
+            Self::PathTerms => ["exact", "tabulated"].contains(&setting),
+            Self::SubBands => setting == "full" || count(setting),
+            Self::Sun => ["on", "off"].contains(&setting),
+        };
+        if ok {
+            return Ok(());
+        }
+        let expected = match self {
+            Self::Atmosphere => "table, layered or thesis",
+            Self::Bounces => "a number of bounces",
+            Self::SkyView => "a number of sky-view rays",
+            Self::ShadowRays => "a number of shadow rays",
+            Self::Supersampling => "N, adaptive-N or refine-N",
+            Self::PathTerms => "exact or tabulated",
+            Self::SubBands => "1, a number of sub-bands, or full",
+            Self::Sun => "on or off",
+        };
+        Err(format!(
+            "`{setting}` is no setting of {self}: expected {expected}"
+        ))
+    }
+}
+
+/// What a class's `event` may be: what its pixels' centre rays met first.
+pub const CLASS_EVENTS: [&str; 5] = [
+    "sky",
+    "terrain",
+    "diffuse",
+    "specular-escapes",
+    "specular-hits-facet",
+];
+
+/// The most of a frame's pixels a decision may leave not guaranteed: 0.5 %. A pilot that
+/// cannot guarantee more refuses the tolerance.
+pub const NOT_GUARANTEED_MAX: f64 = 0.005;
+
+/// The largest error in kelvin a decision may state: no rendering is off by more than the
+/// hottest apparent temperature a scene holds, the sun's disk seen in a mirror (below the
+/// photosphere's 5,778 K).
+pub const MAX_ERROR_K: f64 = 10_000.0;
+
 /// A name that is not one of the [`SwitchableModel`]s.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 #[error(
@@ -240,13 +301,18 @@ impl Decision {
         check_percentile(self.percentile, "percentile")?;
         for (i, c) in self.choices.iter().enumerate() {
             let p = |f: &str| format!("choices[{i}].{f}");
+            for (field, setting) in [("setting", &c.setting), ("reference", &c.reference)] {
+                c.model
+                    .check_setting(setting)
+                    .map_err(|m| ModelError::new(p(field), ModelErrorKind::Other(m)))?;
+            }
             check_range(
                 || p("error.percentile_k"),
                 c.error.percentile_k,
                 0.0,
-                f64::MAX,
+                MAX_ERROR_K,
             )?;
-            check_range(|| p("error.max_k"), c.error.max_k, 0.0, f64::MAX)?;
+            check_range(|| p("error.max_k"), c.error.max_k, 0.0, MAX_ERROR_K)?;
             check_range(|| p("relative_cost"), c.relative_cost, 0.0, f64::MAX)?;
             if self.choices[..i].iter().any(|o| o.model == c.model) {
                 return Err(ModelError::new(
@@ -259,26 +325,36 @@ impl Decision {
             || "predicted.percentile_k".into(),
             self.predicted.percentile_k,
             0.0,
-            f64::MAX,
+            MAX_ERROR_K,
         )?;
         check_range(
             || "predicted.max_k".into(),
             self.predicted.max_k,
             0.0,
-            f64::MAX,
+            MAX_ERROR_K,
         )?;
         for (i, c) in self.classes.iter().enumerate() {
             let p = |f: &str| format!("classes[{i}].{f}");
+            if !CLASS_EVENTS.contains(&c.event.as_str()) {
+                return Err(ModelError::new(
+                    p("event"),
+                    ModelErrorKind::Other(format!(
+                        "`{}`: expected one of {}",
+                        c.event,
+                        CLASS_EVENTS.join(", ")
+                    )),
+                ));
+            }
             check_range(|| p("share"), c.share, 0.0, 1.0)?;
             check_range(
                 || p("error.percentile_k"),
                 c.error.percentile_k,
                 0.0,
-                f64::MAX,
+                MAX_ERROR_K,
             )?;
-            check_range(|| p("error.max_k"), c.error.max_k, 0.0, f64::MAX)?;
-            check_range(|| p("rms_k"), c.rms_k, 0.0, f64::MAX)?;
-            check_range(|| p("residual_k"), c.residual_k, 0.0, f64::MAX)?;
+            check_range(|| p("error.max_k"), c.error.max_k, 0.0, MAX_ERROR_K)?;
+            check_range(|| p("rms_k"), c.rms_k, 0.0, MAX_ERROR_K)?;
+            check_range(|| p("residual_k"), c.residual_k, 0.0, MAX_ERROR_K)?;
         }
         if let Some(s) = &self.sampling {
             check_range(
@@ -317,10 +393,10 @@ impl Decision {
             || "not_guaranteed_share".into(),
             self.not_guaranteed_share,
             0.0,
-            1.0,
+            NOT_GUARANTEED_MAX,
         )?;
         if let Some(sigma) = self.data_error_k {
-            check_range(|| "data_error_k".into(), sigma, 0.0, f64::MAX)?;
+            check_range(|| "data_error_k".into(), sigma, 0.0, MAX_ERROR_K)?;
         }
         check_range(|| "relative_cost".into(), self.relative_cost, 0.0, f64::MAX)
     }
@@ -382,6 +458,77 @@ mod tests {
         assert!(check_percentile(0.5, "p").is_ok());
         for bad in [0.0, -1.0, 100.5, f64::NAN] {
             assert!(check_percentile(bad, "p").is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_pages_rules_on_classes_shares_errors_and_settings_are_kept() {
+        // `not_guaranteed_share: 0.5` (the page: at most 0.005), `event: "bogus"`,
+        // `data_error_k: Some(1e308)` and a sun `maybe` (which the tracer refuses) were read.
+        let good = || Decision {
+            tolerance_k: 0.3,
+            percentile: 99.0,
+            choices: vec![ModelChoice {
+                model: SwitchableModel::Sun,
+                setting: "on".into(),
+                reference: "on".into(),
+                pinned: false,
+                error: ErrorEstimate::default(),
+                relative_cost: 1.0,
+                reason: String::new(),
+            }],
+            classes: vec![ClassReport {
+                event: "specular-hits-facet".into(),
+                material: 1,
+                name: "pool".into(),
+                grazing: false,
+                horizon: false,
+                mirror_in_mirror: false,
+                sub_pixel: false,
+                share: 1.0,
+                samples: 16,
+                error: ErrorEstimate::default(),
+                rms_k: 0.1,
+                residual_k: 0.0,
+                guaranteed: true,
+                why: String::new(),
+            }],
+            not_guaranteed_share: NOT_GUARANTEED_MAX,
+            data_error_k: Some(0.004),
+            ..Decision::default()
+        };
+        good().validate().unwrap();
+        type Break = dyn Fn(&mut Decision);
+        let cases: [(&Break, &str); 6] = [
+            (&|d| d.not_guaranteed_share = 0.5, "not_guaranteed_share"),
+            (&|d| d.classes[0].event = "bogus".into(), "classes[0].event"),
+            (&|d| d.data_error_k = Some(1e308), "data_error_k"),
+            (
+                &|d| d.choices[0].setting = "maybe".into(),
+                "choices[0].setting",
+            ),
+            (
+                &|d| d.choices[0].reference = "yes".into(),
+                "choices[0].reference",
+            ),
+            (&|d| d.predicted.max_k = 1e300, "predicted.max_k"),
+        ];
+        for (break_it, path) in cases {
+            let mut d = good();
+            break_it(&mut d);
+            assert_eq!(d.validate().unwrap_err().path, path);
+        }
+        // Every model's own forms are settings of it.
+        for (model, setting) in [
+            (SwitchableModel::Atmosphere, "thesis"),
+            (SwitchableModel::Supersampling, "adaptive-4"),
+            (SwitchableModel::Supersampling, "refine-8"),
+            (SwitchableModel::SubBands, "full"),
+            (SwitchableModel::SubBands, "16"),
+            (SwitchableModel::PathTerms, "tabulated"),
+            (SwitchableModel::ShadowRays, "64"),
+        ] {
+            model.check_setting(setting).unwrap();
         }
     }
 }

@@ -33,6 +33,13 @@ pub const RESPONSE_WAVELENGTH_UM: [f64; 2] = [0.2, 1000.0];
 /// scene holds.
 pub const MAX_RESPONSE: f64 = 1e6;
 
+/// The temperatures a band average may be Planck-weighted at, kelvin: from 1 K (below it
+/// no thermal-infrared source is left to weight by) to 10,000 K (above the Sun's
+/// photosphere, 5,778 K, the hottest source a scene's light comes from, whose weighting
+/// gives a material's solar absorptance). A temperature outside them is a mistake, not a
+/// weighting.
+pub const PLANCK_WEIGHTING_K: [f64; 2] = [1.0, 10_000.0];
+
 /// The largest RMS facet slope a rough surface may have (dimensionless: `σ² = ⟨z_x² +
 /// z_y²⟩`, the tangent of the facets' tilt): 10, a mean facet tilt of 84°. A material's
 /// `rms_slope` and the rough-surface emissivity (`irsig_radiometry::fresnel`) share it.

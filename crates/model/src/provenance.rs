@@ -76,8 +76,10 @@ impl BandRecord {
         }
     }
 
-    /// Checks the numbers: finite limits with 0 < min < max, a response table of two or
-    /// more rows of equal length.
+    /// Checks the numbers: finite limits with 0 < min < max; a response table of two or
+    /// more rows of equal length, its wavelengths increasing within
+    /// [`crate::limits::RESPONSE_WAVELENGTH_UM`], its values within 0 and
+    /// [`crate::limits::MAX_RESPONSE`], its file's hash a SHA-256.
     ///
     /// # Errors
     /// The first rule broken, at its path.
@@ -98,9 +100,9 @@ impl BandRecord {
                 Ok(())
             }
             Self::Response {
+                sha256,
                 wavelength_um,
                 response,
-                ..
             } => {
                 if wavelength_um.len() < 2 || wavelength_um.len() != response.len() {
                     return Err(ModelError::new(
@@ -113,10 +115,56 @@ impl BandRecord {
                         )),
                     ));
                 }
+                check_sha256(&format!("{path}.sha256"), sha256)?;
+                // A response file's own rules (formats/srf.md): the table the band is.
+                let [w_min, w_max] = crate::limits::RESPONSE_WAVELENGTH_UM;
+                for (i, &w) in wavelength_um.iter().enumerate() {
+                    check_range(|| format!("{path}.wavelength_um[{i}]"), w, w_min, w_max)?;
+                    if i > 0 && w <= wavelength_um[i - 1] {
+                        return Err(ModelError::new(
+                            format!("{path}.wavelength_um[{i}]"),
+                            ModelErrorKind::Other(format!(
+                                "{w} um: expected more than the row before, {} um",
+                                wavelength_um[i - 1]
+                            )),
+                        ));
+                    }
+                }
+                for (i, &r) in response.iter().enumerate() {
+                    check_range(
+                        || format!("{path}.response[{i}]"),
+                        r,
+                        0.0,
+                        crate::limits::MAX_RESPONSE,
+                    )?;
+                }
                 Ok(())
             }
         }
     }
+}
+
+/// A content hash as irsig writes one: `sha256:` and 64 lowercase hex digits. A shorter or
+/// other hash (`sha256:00`) names no content, and a record holding one cannot be matched
+/// to the file it claims to be.
+///
+/// # Errors
+/// Another form, at `path`.
+pub fn check_sha256(path: &str, sha256: &str) -> Result<(), ModelError> {
+    let hex = sha256.strip_prefix("sha256:").unwrap_or("");
+    if hex.len() == 64
+        && hex
+            .bytes()
+            .all(|b| b.is_ascii_digit() || (b'a'..=b'f').contains(&b))
+    {
+        return Ok(());
+    }
+    Err(ModelError::new(
+        path,
+        ModelErrorKind::Other(format!(
+            "`{sha256}`: expected `sha256:` and the 64 lowercase hex digits of a SHA-256"
+        )),
+    ))
 }
 
 impl std::fmt::Display for BandRecord {
@@ -186,12 +234,16 @@ pub struct SunRecord {
 }
 
 impl Provenance {
-    /// Checks the band.
+    /// Checks the band and every input's hash.
     ///
     /// # Errors
-    /// As [`BandRecord::validate`].
+    /// As [`BandRecord::validate`], or a hash that is not [`check_sha256`]'s form.
     pub fn validate(&self) -> Result<(), ModelError> {
-        self.band.validate("band")
+        self.band.validate("band")?;
+        for (i, input) in self.inputs.iter().enumerate() {
+            check_sha256(&format!("inputs[{i}].sha256"), &input.sha256)?;
+        }
+        Ok(())
     }
 }
 
@@ -238,5 +290,39 @@ mod tests {
             response: vec![1.0],
         };
         assert_eq!(short.validate("band").unwrap_err().path, "band.response");
+        // A response whose hash is `sha256:00` was accepted: it names no file.
+        let hash = format!("sha256:{}", "ab".repeat(32));
+        let good = BandRecord::Response {
+            sha256: hash.clone(),
+            wavelength_um: vec![8.0, 10.0, 12.0],
+            response: vec![0.0, 1.0, 0.0],
+        };
+        good.validate("band").unwrap();
+        type Edit<'a> = &'a dyn Fn(&mut Vec<f64>, &mut Vec<f64>, &mut String);
+        let broken = |edit: Edit<'_>| {
+            let BandRecord::Response {
+                mut sha256,
+                mut wavelength_um,
+                mut response,
+            } = good.clone()
+            else {
+                unreachable!()
+            };
+            edit(&mut wavelength_um, &mut response, &mut sha256);
+            BandRecord::Response {
+                sha256,
+                wavelength_um,
+                response,
+            }
+            .validate("band")
+            .unwrap_err()
+            .path
+        };
+        assert_eq!(broken(&|_, _, h| *h = "sha256:00".into()), "band.sha256");
+        assert_eq!(broken(&|_, _, h| *h = hash.to_uppercase()), "band.sha256");
+        assert_eq!(broken(&|w, _, _| w[1] = 8.0), "band.wavelength_um[1]");
+        assert_eq!(broken(&|w, _, _| w[2] = f64::NAN), "band.wavelength_um[2]");
+        assert_eq!(broken(&|_, r, _| r[1] = -1.0), "band.response[1]");
+        assert_eq!(broken(&|_, r, _| r[1] = 1e300), "band.response[1]");
     }
 }

@@ -279,6 +279,66 @@ fn check_axis(path: &str, axis: &[f64], max: f64) -> Result<(), ModelError> {
     check_increasing(|i| format!("{path}[{i}]"), axis.iter().copied())
 }
 
+/// The observer's own row of a slab table is the path of no length: τ = 1 and no radiance
+/// (path or scattered), exactly, as the plan's assembly copies it.
+fn check_observer_row(
+    path: &dyn Fn(&str) -> String,
+    t: &SpectralSlabTable,
+    row: usize,
+    n: usize,
+    azimuths: usize,
+) -> Result<(), ModelError> {
+    let angles = t.angle_deg.len();
+    let spectra = |values: &[f32], per: usize| -> Vec<(usize, f32)> {
+        let start = row * angles * per * n;
+        values
+            .get(start..start + angles * per * n)
+            .unwrap_or_default()
+            .iter()
+            .copied()
+            .enumerate()
+            .map(|(i, v)| (start + i, v))
+            .collect()
+    };
+    // Exactly 1 and 0: the values are copied, not computed.
+    #[allow(clippy::float_cmp)]
+    let bad_tau = spectra(&t.transmission, 1)
+        .into_iter()
+        .find(|&(_, v)| v != 1.0);
+    if let Some((i, v)) = bad_tau {
+        return Err(ModelError::new(
+            path(&format!("transmission[{}][{}]", i / n, i % n)),
+            ModelErrorKind::Other(format!(
+                "expected 1 on the observer's own row (target {row}, the path of no length), \
+                 found {v}"
+            )),
+        ));
+    }
+    for (field, values, per) in [
+        (
+            "path_radiance_w_m2_sr_per_unit",
+            &t.path_radiance_w_m2_sr_per_unit,
+            1,
+        ),
+        (
+            "scattered_w_m2_sr_per_unit",
+            &t.scattered_w_m2_sr_per_unit,
+            azimuths,
+        ),
+    ] {
+        if let Some((i, v)) = spectra(values, per).into_iter().find(|&(_, v)| v != 0.0) {
+            return Err(ModelError::new(
+                path(&format!("{field}[{}][{}]", i / n, i % n)),
+                ModelErrorKind::Other(format!(
+                    "expected 0 on the observer's own row (target {row}, the path of no \
+                     length), found {v}"
+                )),
+            ));
+        }
+    }
+    Ok(())
+}
+
 impl SpectralAtmosphere {
     /// Checks the grid (at least 2 points, positive, strictly increasing), the profile
     /// (altitudes increasing, temperatures above 0 K), every table's shape, τ within 0–1,
@@ -555,6 +615,12 @@ impl SpectralAtmosphere {
                         f64::MAX,
                     )?;
                 }
+                let row = if dir == "down" {
+                    t.target_m.len() - 1
+                } else {
+                    0
+                };
+                check_observer_row(&path, t, row, n, azimuths)?;
             }
         }
         Ok(())
@@ -591,24 +657,34 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_slab_table_out_of_order_nan_or_of_a_wrong_length_is_refused_by_name() {
-        let table = |target_m: Vec<f64>| SpectralSlabTable {
+    /// A slab table on 3 grid points at 2 angles: τ 0.9 and path radiance 0.01, but on the
+    /// observer's own row (`observer`), the path of no length, τ = 1 and no radiance.
+    fn slab_table(target_m: Vec<f64>, observer: usize) -> SpectralSlabTable {
+        let values = |away: f32, own: f32| -> Vec<f32> {
+            (0..target_m.len())
+                .flat_map(|t| std::iter::repeat_n(if t == observer { own } else { away }, 6))
+                .collect()
+        };
+        SpectralSlabTable {
             angle_deg: vec![10.0, 50.0],
-            transmission: vec![0.9; target_m.len() * 2 * 3],
-            path_radiance_w_m2_sr_per_unit: vec![0.01; target_m.len() * 2 * 3],
+            transmission: values(0.9, 1.0),
+            path_radiance_w_m2_sr_per_unit: values(0.01, 0.0),
             scattered_w_m2_sr_per_unit: vec![],
             target_m,
-        };
+        }
+    }
+
+    #[test]
+    fn a_slab_table_out_of_order_nan_or_of_a_wrong_length_is_refused_by_name() {
         let mut a = small();
         a.slabs = vec![SpectralSlab {
             observer_m: 600.0,
-            down: Some(table(vec![300.0, 550.0, 600.0])),
-            up: Some(table(vec![600.0, 800.0])),
+            down: Some(slab_table(vec![300.0, 550.0, 600.0], 2)),
+            up: Some(slab_table(vec![600.0, 800.0], 0)),
         }];
         a.validate().unwrap();
         type Break = dyn Fn(&mut SpectralSlab);
-        let cases: [(&Break, &str); 7] = [
+        let cases: [(&Break, &str); 10] = [
             (
                 &|s| s.down.as_mut().unwrap().target_m.swap(0, 1),
                 "slabs[0].down.target_m[1]",
@@ -643,6 +719,20 @@ mod tests {
                 // Scattered spectra in an atmosphere without the sun's azimuths.
                 &|s| s.down.as_mut().unwrap().scattered_w_m2_sr_per_unit = vec![0.0; 18],
                 "slabs[0].down.scattered_w_m2_sr_per_unit",
+            ),
+            // The observer's own row is the path of no length: τ = 1, no radiance. An
+            // observer row with τ = 0.5 was accepted.
+            (
+                &|s| s.down.as_mut().unwrap().transmission[13] = 0.5,
+                "slabs[0].down.transmission[4][1]",
+            ),
+            (
+                &|s| s.up.as_mut().unwrap().transmission[0] = 0.999,
+                "slabs[0].up.transmission[0][0]",
+            ),
+            (
+                &|s| s.up.as_mut().unwrap().path_radiance_w_m2_sr_per_unit[5] = 1e-9,
+                "slabs[0].up.path_radiance_w_m2_sr_per_unit[1][2]",
             ),
         ];
         for (break_it, path) in cases {

@@ -792,12 +792,24 @@ fn check_parameters(
     let mut span = step.tool_span;
     let quoted =
         |word: &str| first.contains(&format!("'{word}'")) || first.contains(&format!("'{word} "));
+    // A tool's own rules name the flag first: `--sun-zenith-deg: the sun is 95 deg …`.
+    let leading = first
+        .split([':', ' '])
+        .next()
+        .filter(|w| w.starts_with("--"));
+    let flag_at = |word: &str| {
+        step.flags
+            .iter()
+            .find(|(at, _, _)| step.argv.get(*at).is_some_and(|w| w == word))
+    };
     if let Some(&(_, key, value)) = step
         .flags
         .iter()
         .find(|(at, _, _)| step.argv.get(*at).is_some_and(|w| quoted(w)))
     {
         span = if invalid_value { value } else { key };
+    } else if let Some(&(_, _, value)) = leading.and_then(flag_at) {
+        span = value;
     } else if let Some(input) = step
         .inputs
         .iter()
@@ -998,6 +1010,31 @@ mod plan_tests {
         assert_eq!(e.line_column(), Some((2, 25)));
         // An unregistered tool is not checked here.
         assert!(plan(text, &tools()).is_ok());
+    }
+
+    #[test]
+    fn a_tools_own_rule_points_at_the_value_of_the_flag_it_names() {
+        // `sun-zenith-deg: "95"` in a trace stage passed the dry run: the tool's own rules
+        // (irsig_cli::CheckArgs) now refuse it, naming the flag first.
+        let mut t = tools();
+        t.register(
+            "trace",
+            Box::new(
+                |argv: &[String]| match argv.iter().position(|w| w == "--sun-zenith-deg") {
+                    Some(i) if argv[i + 1] == "95" => Err(
+                        "error: --sun-zenith-deg: the sun is 95.0000 deg from the zenith"
+                            .to_owned(),
+                    ),
+                    _ => Ok(()),
+                },
+            ),
+        );
+        let text = "(stages: [\n (tool: \"trace\", params: {\"sun-zenith-deg\": \"95\"}),\n])";
+        let e = plan(text, &t).unwrap_err();
+        assert_eq!(e.kind(), ErrorKind::BadParameter);
+        // `"95"` starts at line 2, column 45.
+        assert_eq!(e.line_column(), Some((2, 45)));
+        assert!(e.to_string().contains("95.0000 deg"), "{e}");
     }
 
     #[test]

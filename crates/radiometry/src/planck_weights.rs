@@ -14,6 +14,14 @@ use crate::error::{RadiometryError, RadiometryErrorKind};
 const NODES_PER_PIECE: usize = 8;
 /// The longest piece, µm.
 const MAX_PIECE_UM: f64 = 0.25;
+/// The most pieces between breakpoints an average takes (8 nodes each): a table denser
+/// than that over the band (a million rows of n, k) has its breakpoints thinned to every
+/// k-th, so that a piece spans k rows. `f` then has k − 1 kinks inside a piece, and the
+/// rule's error there is of second order in the piece's width: at 1,024 pieces over a
+/// 6 µm band a piece is about 6 nm wide, far finer than any feature of a solid's optical
+/// constants in the thermal infrared. Cost is then bounded by the band, not the table
+/// (a rough surface's band table evaluates each node at 1,801 angles).
+const MAX_PIECES: usize = 1024;
 
 /// [`gauss_legendre`]`(NODES_PER_PIECE)`, made once: a spectral material's band tables
 /// average each angle's column over each sub-band (the tolerance pilot's full grid is 108
@@ -30,6 +38,31 @@ pub(crate) struct Node {
     pub(crate) weight: f64,
 }
 
+/// `breaks` (sorted, the band's limits first and last) with at most [`MAX_PIECES`]
+/// pieces between them: every k-th kept, and the last. A list that fits is returned as it
+/// is, so that tables of a few thousand rows keep their rule bit for bit.
+fn thinned(breaks: Vec<f64>) -> Vec<f64> {
+    let pieces: usize = breaks
+        .windows(2)
+        .map(|w| ((w[1] - w[0]) / MAX_PIECE_UM).ceil().max(1.0) as usize)
+        .sum();
+    if pieces <= MAX_PIECES {
+        return breaks;
+    }
+    // The 0.25 µm split adds at most one piece per 0.25 µm of the band's span.
+    let span_pieces = breaks
+        .last()
+        .zip(breaks.first())
+        .map_or(0, |(hi, lo)| ((hi - lo) / MAX_PIECE_UM).ceil() as usize);
+    let budget = MAX_PIECES.saturating_sub(span_pieces).max(1);
+    let step = (breaks.len() - 1).div_ceil(budget);
+    let last = breaks.len() - 1;
+    (0..breaks.len())
+        .filter(|&i| i % step == 0 || i == last)
+        .map(|i| breaks[i])
+        .collect()
+}
+
 /// The nodes of the average over `band` at `temperature_k`, on every piece between the
 /// band's limits (cut to the response's support), the `samples_um` of `f` and the
 /// response's own wavelengths; nodes where the response is 0 are left out. `covers` is
@@ -39,7 +72,8 @@ pub(crate) struct Node {
 /// Planck's law is taken in logarithms, so no temperature underflows every weight to 0.
 ///
 /// # Errors
-/// [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is finite and > 0;
+/// [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is within
+/// [`irsig_model::limits::PLANCK_WEIGHTING_K`];
 /// [`RadiometryErrorKind::InvalidResponse`] when the response is zero throughout the band
 /// or the weights are; what `covers` returns.
 pub(crate) fn nodes(
@@ -48,11 +82,13 @@ pub(crate) fn nodes(
     samples_um: &[f64],
     covers: impl FnOnce(f64, f64) -> Result<(), RadiometryError>,
 ) -> Result<Vec<Node>, RadiometryError> {
-    if !(temperature_k.is_finite() && temperature_k > 0.0) {
+    let [t_min, t_max] = irsig_model::limits::PLANCK_WEIGHTING_K;
+    if !(t_min..=t_max).contains(&temperature_k) {
         return Err(RadiometryError::new(
             RadiometryErrorKind::InvalidTemperature,
             format!(
-                "the Planck weighting temperature must be finite and > 0 K, found {temperature_k}"
+                "the Planck weighting temperature must be from {t_min} to {t_max} K, found \
+                 {temperature_k}"
             ),
         ));
     }
@@ -85,6 +121,7 @@ pub(crate) fn nodes(
     }
     breaks.sort_by(f64::total_cmp);
     breaks.dedup();
+    let breaks = thinned(breaks);
     let rule = rule();
     // ln B = ln c1L − 5 ln λ − ln(e^x − 1), x = c2/(λT).
     let ln_planck = |lambda_um: f64| {

@@ -18,7 +18,8 @@ use crate::{Band, RadiometryError, RadiometryErrorKind};
 /// - [`RadiometryErrorKind::InvalidEmissivity`]: the curve has fewer than two samples,
 ///   lengths differ, or it does not cover the band where the response is not zero (it is
 ///   not extrapolated); the message says what it covers and what is needed.
-/// - [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is finite and > 0.
+/// - [`RadiometryErrorKind::InvalidTemperature`] unless `temperature_k` is within
+///   [`irsig_model::limits::PLANCK_WEIGHTING_K`].
 /// - [`RadiometryErrorKind::InvalidResponse`] when the weights are zero across the band.
 pub fn band_average_emissivity(
     wavelength_um: &[f64],

@@ -126,6 +126,17 @@ pub enum RasterError {
     /// The frame a raster says it is part of does not hold it.
     #[error("{0}")]
     Part(String),
+    /// The `comments` attribute is not UTF-8 text (where irsig records an image's
+    /// provenance: a byte changed there would be read as another record).
+    #[error("the `comments` attribute is not UTF-8: a byte that is not one at its byte {0}")]
+    Comments(usize),
+}
+
+/// The `comments` attribute's text: UTF-8, or refused (a lossy reading would turn a record
+/// with a bad byte into another record).
+fn comments_text(bytes: &[u8]) -> Result<String, RasterError> {
+    String::from_utf8(bytes.to_vec())
+        .map_err(|e| RasterError::Comments(e.utf8_error().valid_up_to()))
 }
 
 impl Raster {
@@ -429,7 +440,8 @@ pub fn read_exr(bytes: &[u8]) -> Result<Raster, RasterError> {
         .attributes
         .comments
         .as_ref()
-        .map(|t| String::from_utf8_lossy(t.bytes()).into_owned());
+        .map(|t| comments_text(t.bytes()))
+        .transpose()?;
     for channel in part.channel_data.list {
         let name = channel.name.to_string();
         let unit = unit_of(&units, &name).unwrap_or_default().to_owned();
@@ -546,6 +558,10 @@ pub fn exr_error_offset(bytes: &[u8], error: &RasterError) -> usize {
     if let RasterError::TooLarge(_) = error {
         return exr_attribute_offset(bytes, "dataWindow").unwrap_or(8);
     }
+    if let RasterError::Comments(at) = error {
+        // The value follows the name, the type and the 4-byte size: `comments\0string\0`.
+        return exr_attribute_offset(bytes, "comments").map_or(8, |o| o + 20 + at);
+    }
     let truncated = matches!(error, RasterError::Exr(e) if e.to_string().contains("missing bytes"));
     let mut cursor = Cursor::new(bytes);
     match x::MetaData::read_from_buffered(&mut cursor, false) {
@@ -637,7 +653,8 @@ pub fn read_exr_info(bytes: &[u8]) -> Result<RasterInfo, RasterError> {
         .own_attributes
         .comments
         .as_ref()
-        .map(|t| String::from_utf8_lossy(t.bytes()).into_owned());
+        .map(|t| comments_text(t.bytes()))
+        .transpose()?;
     Ok(RasterInfo {
         width,
         height,
@@ -947,6 +964,25 @@ mod tests {
             read_exr(&exr_bytes(&sample()).unwrap()).unwrap().comments,
             None
         );
+    }
+
+    #[test]
+    fn comments_that_are_not_utf8_are_refused_at_their_byte() {
+        // A Latin-1 byte in an image's provenance was read lossily, as another record.
+        let r = sample().with_comments(Some("irsig provenance\nscene\n".into()));
+        let mut bytes = exr_bytes(&r).unwrap();
+        let at = bytes
+            .windows(5)
+            .position(|w| w == b"scene")
+            .expect("the comment's text");
+        bytes[at + 2] = 0xe9;
+        for e in [
+            read_exr(&bytes).unwrap_err(),
+            read_exr_info(&bytes).unwrap_err(),
+        ] {
+            assert!(matches!(e, RasterError::Comments(19)), "{e}");
+            assert_eq!(exr_error_offset(&bytes, &e), at + 2);
+        }
     }
 
     #[test]

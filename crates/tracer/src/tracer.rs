@@ -1865,3 +1865,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         sum / f64::from(n * n)
     }
 }
+
+#[cfg(test)]
+mod event_names {
+    use super::Event;
+
+    #[test]
+    fn every_event_is_a_class_event_a_decision_may_name() {
+        let names: Vec<&str> = Event::ALL.iter().map(|e| e.name()).collect();
+        assert_eq!(names, irsig_model::decision::CLASS_EVENTS);
+    }
+}

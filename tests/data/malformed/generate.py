@@ -890,6 +890,39 @@ DECISION = """(
   pilot_pixels: 16,
 )
 """
+# The decision's fields after the choices, and its classes (the new fields of the third
+# pass): each broken as the page's rules forbid, read by irsig-trace --decision and by
+# irsig-report --decision alike.
+DECISION_CLASSES = edit(
+    DECISION,
+    "  pilot_pixels: 16,\n",
+    """  pilot_pixels: 16,
+  classes: [
+    (event: "diffuse", material: 1, name: "concrete", grazing: false, horizon: false,
+      sub_pixel: false, share: 1.0, samples: 16,
+      error: (percentile_k: 0.1, max_k: 0.2), rms_k: 0.05, residual_k: 0.01,
+      guaranteed: true, why: "held"),
+  ],
+  not_guaranteed_share: 0.0,
+  data_error_k: Some(0.004),
+""",
+)
+DECISION_RULES = [
+    ("classes-valid.ron", DECISION_CLASSES, "", "a valid decision with a class (success)", None, "0"),
+    ("not-guaranteed-half.ron", edit(DECISION_CLASSES, "not_guaranteed_share: 0.0", "not_guaranteed_share: 0.5"), "0.5 is out of range: expected 0 to 0.005", "half the frame not guaranteed: the page allows at most 0.005"),
+    ("event-bogus.ron", edit(DECISION_CLASSES, 'event: "diffuse"', 'event: "bogus"'), "`bogus`: expected one of sky, terrain, diffuse", "a class whose event is `bogus`"),
+    ("data-error-huge.ron", edit(DECISION_CLASSES, "data_error_k: Some(0.004)", "data_error_k: Some(1e308)"), "1e308 is out of range: expected 0 to 10000", "a data error of 1e308 K"),
+    ("class-error-huge.ron", edit(DECISION_CLASSES, "rms_k: 0.05", "rms_k: 1e300"), "`classes[0].rms_k`: 1e300 is out of range", "a class's σ of 1e300 K"),
+    ("reference-word.ron", edit(DECISION_CLASSES, 'setting: "exact", reference: "exact"', 'setting: "exact", reference: "exakt"'), "`exakt` is no setting of path-terms", "a reference setting that does not exist"),
+]
+DECISION_SUN = edit(
+    DECISION_CLASSES,
+    "  ],\n  predicted:",
+    """    (model: sun, setting: "on", reference: "on", pinned: false,
+      error: (percentile_k: 0.0, max_k: 0.0), relative_cost: 1.0, reason: "cheapest"),
+  ],
+  predicted:""",
+)
 folder(
     "decision",
     "Malformed decisions (formats/canonical/decision.md), read by `irsig-trace --decision`.",
@@ -914,9 +947,25 @@ folder(
         ("path-terms-unknown.ron", edit(DECISION, '(model: r#path-terms, setting: "exact"', '(model: r#path-terms, setting: "exakt"'), "path-terms-unknown.ron:13:36", "path terms `exakt`, at its entry's setting (finding 14)"),
         ("sub-bands-word.ron", edit(DECISION, '(model: r#sub-bands, setting: "1"', '(model: r#sub-bands, setting: "two"'), "sub-bands-word.ron:15:35", "sub-bands `two`, at its entry's setting (finding 14)"),
         ("error-negative.ron", edit(DECISION, "predicted: (percentile_k: 0.12", "predicted: (percentile_k: -0.12"), "", "a negative error"),
-    ],
+    ]
+    + [c for c in DECISION_RULES if c[0] != "classes-valid.ron"],
 )
 
+
+
+folder(
+    "decision-report",
+    "Malformed decisions (formats/canonical/decision.md), read by `irsig-report "
+    "--decision`: the same rules irsig-trace applies, the settings' spelling included.",
+    "irsig-report",
+    BASE + "/truth.exr --decision {in} -o {out}/r.html",
+    [
+        ("sun-maybe.ron", edit(DECISION_SUN, 'model: sun, setting: "on"', 'model: sun, setting: "maybe"'), "`maybe` is no setting of sun: expected on or off", "the sun's setting `maybe`, which irsig-trace refuses"),
+        ("sun-on.ron", DECISION_SUN, "", "the sun on (success)", None, "0"),
+        ("unknown-setting.ron", edit(DECISION, 'setting: "table"', 'setting: "tabel"'), "`tabel` is no setting of atmosphere", "an atmosphere setting that does not exist"),
+    ]
+    + DECISION_RULES,
+)
 
 
 # ---------------------------------------------------------------- spectral atmospheres
@@ -1496,6 +1545,91 @@ folder(
         ("unknown-field.ron", "(objects: [Objekt()])\n", "", "an unknown struct name", None, "stderr-closed"),
         ("missing-object.ron", "(objects: [(object: \"absent.ron\")])\n", "", "an object that does not exist", None, "stderr-closed"),
     ],
+)
+
+
+# ---------------------------------------------------------------- banded EXRs
+def with_comments(exr_bytes, comments):
+    """`exr_bytes` (a scanline EXR) with a `comments` string attribute, where irsig records
+    an image's provenance: added at the header's end, the offset table moved along."""
+    i = 8
+    count = None
+    while exr_bytes[i] != 0:
+        j = exr_bytes.index(b"\0", i)
+        name = exr_bytes[i:j]
+        k = exr_bytes.index(b"\0", j + 1)
+        (n,) = struct.unpack("<i", exr_bytes[k + 1 : k + 5])
+        if name == b"chunkCount":
+            (count,) = struct.unpack("<i", exr_bytes[k + 5 : k + 9])
+        i = k + 5 + n
+    attr = b"comments\0string\0" + struct.pack("<i", len(comments)) + comments
+    head, rest = exr_bytes[:i], exr_bytes[i + 1 :]
+    table = [struct.unpack("<Q", rest[8 * c : 8 * c + 8])[0] + len(attr) for c in range(count)]
+    return head + attr + b"\0" + b"".join(struct.pack("<Q", t) for t in table) + rest[8 * count :]
+
+
+TRUTH_EXR = (HERE / "base/truth.exr").read_bytes()
+SHA = "sha256:" + "ab" * 32
+RECORD = """irsig provenance (canonical RON)
+(
+    band: BAND,
+    sub_bands: "1",
+    atmosphere: "none",
+    atmosphere_model: "none",
+    inputs: [(stage: "trace", role: "scene", sha256: "SHA")],
+)
+"""
+
+
+def banded(band, record=RECORD):
+    return with_comments(TRUTH_EXR, record.replace("BAND", band).replace("SHA", SHA).encode())
+
+
+FLAT_8_14 = "Flat(min_um: 8.0, max_um: 14.0)"
+BANDED_CASES = [
+    ("band-reversed.exr", banded("Flat(min_um: 14.0, max_um: 8.0)"), "max_um", "a band from 14 to 8 µm"),
+    ("band-nan.exr", banded("Flat(min_um: NaN, max_um: 14.0)"), "min_um", "a band from NaN µm"),
+    ("band-missing.exr", with_comments(TRUTH_EXR, RECORD.replace("    band: BAND,\n", "").replace("SHA", SHA).encode()), "band", "no band in the record"),
+    ("comments-not-utf8.exr", with_comments(TRUTH_EXR, RECORD.replace("BAND", FLAT_8_14).replace("SHA", SHA).encode().replace(b"scene", b"sc\xe9ne")), "", "a Latin-1 byte in the record"),
+    ("response-hash-short.exr", banded('Response(sha256: "sha256:00", wavelength_um: [8.0, 10.0, 12.0], response: [0.0, 1.0, 0.0])'), "sha256", "a response band whose hash is `sha256:00`"),
+    ("input-hash-short.exr", with_comments(TRUTH_EXR, RECORD.replace("BAND", FLAT_8_14).replace("SHA", "sha256:0").encode()), "sha256", "an input whose hash is `sha256:0`"),
+    ("response-decreasing.exr", banded(f'Response(sha256: "{SHA}", wavelength_um: [8.0, 12.0, 10.0], response: [0.0, 1.0, 0.0])'), "wavelength_um", "a response whose wavelengths fall"),
+]
+ALL_REGION = '(regions: [(name: "all", pixels: Some((columns: (0, 3), rows: (0, 3))))])\n'
+BANDED_TITLE = (
+    "Truth EXRs whose provenance (formats/images.md, the `comments` attribute) is "
+    "malformed, read at the record's line and column by `{tool}` as by every stage that "
+    "reads an image; and a `--band` that is not the band an image records, refused "
+    "(exit 2) whether or not a radiance image is converted."
+)
+folder(
+    "banded-exr",
+    BANDED_TITLE.format(tool="irsig-stats"),
+    "irsig-stats",
+    "{in} --regions tests/data/malformed/banded-exr/all.ron -o {out}/stats.txt",
+    BANDED_CASES
+    + [
+        ("records-8-14-band-8-12.exr", banded(FLAT_8_14), "is not the band", "an 8-14 µm image, `--band 8-12`, no radiance image", "{in} --regions tests/data/malformed/banded-exr/all.ron --band 8-12 -o {out}/stats.txt", "2"),
+        ("records-8-14-band-8-14.exr", banded(FLAT_8_14), "", "an 8-14 µm image with its own band given", "{in} --regions tests/data/malformed/banded-exr/all.ron --band 8-14 -o {out}/stats.txt", "0"),
+    ],
+    extra={"all.ron": ALL_REGION},
+)
+folder(
+    "banded-exr-report",
+    BANDED_TITLE.format(tool="irsig-report"),
+    "irsig-report",
+    "{in} -o {out}/r.html",
+    BANDED_CASES
+    + [
+        ("records-8-14-band-8-12.exr", banded(FLAT_8_14), "is not the band", "an 8-14 µm image, `--band 8-12`, no radiance image", "{in} --band 8-12 -o {out}/r.html", "2"),
+    ],
+)
+folder(
+    "banded-exr-sensor",
+    BANDED_TITLE.format(tool="irsig-sensor"),
+    "irsig-sensor",
+    "{in} --mtf box:1x1 -o {out}/s.exr",
+    BANDED_CASES,
 )
 
 

@@ -50,6 +50,8 @@ struct Cli {
     stage_many: Option<usize>,
 }
 
+impl irsig_cli::CheckArgs for Cli {}
+
 fn main() -> ExitCode {
     irsig_cli::run(|| run(irsig_cli::parse()))
 }

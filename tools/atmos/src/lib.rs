@@ -107,6 +107,20 @@ pub enum Command {
     Build(build::BuildArgs),
 }
 
+/// The flags' own rules, checked before a file is read (and when `irsig-run` asks of a
+/// stage): the sun's fields, and a plan's aerosol.
+impl irsig_cli::CheckArgs for Cli {
+    fn check_args(&self) -> miette::Result<()> {
+        match &self.command {
+            Command::Sun(a) => sun::check(a),
+            Command::Plan(a) => {
+                plan::aerosol_of(a.aerosol.as_deref(), a.visibility_km, a.wind_speed_m_s).map(drop)
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
 /// Runs one subcommand.
 ///
 /// # Errors

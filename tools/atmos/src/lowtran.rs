@@ -59,9 +59,8 @@ pub struct Output {
 /// The program could not start, or it stopped with an error (its own message, from
 /// standard error and standard output).
 pub fn run(exe: &Path, deck: &str) -> Result<Output, String> {
-    let dir = tempfile::Builder::new()
-        .prefix("irsig-lowtran-")
-        .tempdir()
+    // Through the staged writer's registry: an interrupt removes it, as it does a staged file.
+    let dir = irsig_cli::ScratchDir::new("irsig-lowtran-")
         .map_err(|e| format!("cannot make a scratch directory: {e}"))?;
     let io = |e: std::io::Error| format!("cannot prepare LOWTRAN7's files: {e}");
     std::fs::write(dir.path().join("TAPE5"), deck).map_err(io)?;

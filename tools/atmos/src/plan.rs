@@ -401,50 +401,10 @@ pub(crate) fn model_of(
         })
 }
 
-/// Writes `files` (relative paths and contents) as the directory `dir`, all or nothing:
-/// into a fresh sibling directory first, renamed into place at the end.
+/// Writes `files` (relative paths and contents) as the directory `dir`, all or nothing,
+/// through the staged writer, which an interrupt cleans up after.
 pub(crate) fn write_dir_atomic(dir: &Path, files: &[(PathBuf, Vec<u8>)]) -> miette::Result<()> {
-    if dir.exists() {
-        let empty = std::fs::read_dir(dir)
-            .into_diagnostic()
-            .wrap_err_with(|| format!("cannot read `{}`", dir.display()))?
-            .next()
-            .is_none();
-        if !empty {
-            return Err(miette!(
-                "`{}` exists and is not empty: choose a new directory for the plan",
-                dir.display()
-            ));
-        }
-    }
-    let parent = dir
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(parent)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot create `{}`", parent.display()))?;
-    let tmp = tempfile::Builder::new()
-        .prefix(".irsig-plan-")
-        .tempdir_in(parent)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot create a directory in `{}`", parent.display()))?;
-    for (rel, bytes) in files {
-        let p = tmp.path().join(rel);
-        if let Some(d) = p.parent() {
-            std::fs::create_dir_all(d).into_diagnostic()?;
-        }
-        std::fs::write(&p, bytes)
-            .into_diagnostic()
-            .wrap_err_with(|| format!("cannot write `{}`", p.display()))?;
-    }
-    if dir.exists() {
-        std::fs::remove_dir(dir).into_diagnostic()?;
-    }
-    let kept = tmp.keep();
-    std::fs::rename(&kept, dir)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot rename the plan into `{}`", dir.display()))
+    irsig_cli::write_dir_atomic(dir, files).wrap_err("cannot write the plan")
 }
 
 /// The deck file of run `i`, relative to the plan directory.

@@ -29,6 +29,19 @@ pub struct Args {
     pub format: Format,
 }
 
+/// The flags' own rules: every field of a sun the flags give in its range, named by its
+/// flag (a sun not given is `run`'s to refuse).
+pub(crate) fn check(args: &Args) -> miette::Result<()> {
+    match args.sun.spec_with(&args.precision) {
+        Some(spec) => spec.validate().map_err(|e| flag_error(&e)),
+        None => Ok(()),
+    }
+}
+
+/// Runs `irsig-atmos sun`.
+///
+/// # Errors
+/// No sun given, or a field out of its range, named by its flag.
 pub fn run(args: &Args) -> miette::Result<()> {
     let Some(spec) = args.sun.spec_with(&args.precision) else {
         return Err(irsig_cli::usage_error(

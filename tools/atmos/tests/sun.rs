@@ -192,6 +192,8 @@ fn bad_flags_are_refused_by_name_with_their_range() {
             ["--delta-ut1-s", "[-0.9, 0.9]"],
         ),
         (with("--delta-t-s", "inf"), 2, ["--delta-t-s", "finite"]),
+        // Was "--utc: invalid date/time", a flag given rightly.
+        (with("--delta-t-s", "1e308"), 1, ["--delta-t-s", "ΔT of 1"]),
         (
             with("--latitude-deg", "north"),
             2,

@@ -92,6 +92,10 @@ pub struct Cli {
     pub output: Output,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// Runs `irsig-flatten`.
 ///
 /// # Errors

@@ -153,28 +153,8 @@ fn import(cli: &Cli) -> miette::Result<()> {
         [Path::new(&cli.input), Path::new(materials)],
         cli.output.path.iter(),
     )?;
-    if !(cli.scale.is_finite() && cli.scale > 0.0) {
-        return Err(irsig_cli::usage_error(format!(
-            "--scale must be a positive finite number, found {}",
-            cli.scale
-        )));
-    }
-    let format = match (cli.mesh_format, cli.input.as_str()) {
-        (Some(f), _) => f,
-        (None, "-") => {
-            return Err(irsig_cli::usage_error(
-                "reading standard input needs --mesh-format (intergraph, obj, gltf or glb)",
-            ));
-        }
-        (None, path) => format_of(path)?,
-    };
+    let format = flags_format(cli)?;
     let gltf = matches!(format, Format::Gltf | Format::Glb);
-    if cli.keep_axes && !gltf {
-        return Err(irsig_cli::usage_error(
-            "--keep-axes is for glTF and GLB, whose axes are +Y up; other formats state no up \
-             axis and are never turned",
-        ));
-    }
     let library = read_library(materials)?;
     let default = match &cli.default_material {
         Some(name) => Some(library.by_name(name).map(|m| m.id).ok_or_else(|| {
@@ -226,6 +206,39 @@ fn mesh_unit(cli: &Cli, format: Format) -> LengthUnit {
         Format::Intergraph => cli.unit.unit(),
         Format::Obj | Format::Gltf | Format::Glb => cli.unit.given.unwrap_or(LengthUnit::M),
     }
+}
+
+impl irsig_cli::CheckArgs for Cli {
+    fn check_args(&self) -> miette::Result<()> {
+        flags_format(self).map(drop)
+    }
+}
+
+/// The mesh format the flags give, and their own rules: a positive finite scale, a format
+/// for standard input, `--keep-axes` for glTF only.
+fn flags_format(cli: &Cli) -> miette::Result<Format> {
+    if !(cli.scale.is_finite() && cli.scale > 0.0) {
+        return Err(irsig_cli::usage_error(format!(
+            "--scale must be a positive finite number, found {}",
+            cli.scale
+        )));
+    }
+    let format = match (cli.mesh_format, cli.input.as_str()) {
+        (Some(f), _) => f,
+        (None, "-") => {
+            return Err(irsig_cli::usage_error(
+                "reading standard input needs --mesh-format (intergraph, obj, gltf or glb)",
+            ));
+        }
+        (None, path) => format_of(path)?,
+    };
+    if cli.keep_axes && !matches!(format, Format::Gltf | Format::Glb) {
+        return Err(irsig_cli::usage_error(
+            "--keep-axes is for glTF and GLB, whose axes are +Y up; other formats state no up \
+             axis and are never turned",
+        ));
+    }
+    Ok(format)
 }
 
 fn format_of(path: &str) -> miette::Result<Format> {

@@ -11,9 +11,11 @@ use irsig_cli::args::{BandArg, BandArgs, values};
 use irsig_model::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
 use irsig_radiometry::EmissivityTable;
 use irsig_radiometry::fresnel::{
-    ComplexIndex, IndexTable, RoughSurface, rough_band_emissivity_table, rough_emissivity_table,
+    ComplexIndex, IndexTable, RoughSurface, RoughView, rough_band_emissivity_table,
+    rough_emissivity_table,
 };
 use miette::miette;
+use rayon::prelude::*;
 
 /// Arguments of `fresnel`.
 #[derive(Debug, clap::Args)]
@@ -116,6 +118,39 @@ fn legacy_by_name(path: Option<&Path>) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("ems"))
 }
 
+/// The flags' own rules, before a file is read (what `irsig-run` asks of a stage too): the
+/// angles, the surface, a Planck weighting within
+/// [`irsig_model::limits::PLANCK_WEIGHTING_K`] and only for an n, k table.
+///
+/// # Errors
+/// A usage error naming the flag, or a bad value.
+pub(crate) fn flags(args: &Args) -> miette::Result<(Vec<f64>, RoughSurface)> {
+    // clap's `requires` is waived when a conflicting argument (here --n) is present, so
+    // this rule is checked by hand.
+    if args.nk_table.is_none() && (args.band.given().is_some() || args.planck_temperature.is_some())
+    {
+        return Err(irsig_cli::usage_error(
+            "--band and --planck-temperature weight the spectral average of --nk-table; \
+             a constant --n/--k has none",
+        ));
+    }
+    let [t_min, t_max] = irsig_model::limits::PLANCK_WEIGHTING_K;
+    if let Some(t) = args.planck_temperature
+        && !(t_min..=t_max).contains(&t)
+    {
+        // A value out of its range, as --roughness's: bad input, not bad usage.
+        return Err(miette!(
+            "--planck-temperature {t}: the Planck weighting temperature must be from {t_min} \
+             to {t_max} K"
+        ));
+    }
+    let angles = values("--angles", &args.angles)?;
+    let surface = RoughSurface::new(args.roughness)
+        .and_then(|s| s.with_diffuse_reflectance(args.diffuse_reflectance))
+        .map_err(|e| miette!("--roughness/--diffuse-reflectance: {e}"))?;
+    Ok((angles, surface))
+}
+
 /// Runs `irsig-material fresnel`.
 ///
 /// # Errors
@@ -128,19 +163,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
         args.nk_table.iter().cloned().chain(band_file),
         args.output.path.iter(),
     )?;
-    // clap's `requires` is waived when a conflicting argument (here --n) is present, so
-    // this rule is checked by hand.
-    if args.nk_table.is_none() && (args.band.given().is_some() || args.planck_temperature.is_some())
-    {
-        return Err(irsig_cli::usage_error(
-            "--band and --planck-temperature weight the spectral average of --nk-table; \
-             a constant --n/--k has none",
-        ));
-    }
-    let angles = values("--angles", &args.angles)?;
-    let surface = RoughSurface::new(args.roughness)
-        .and_then(|s| s.with_diffuse_reflectance(args.diffuse_reflectance))
-        .map_err(|e| miette!("--roughness/--diffuse-reflectance: {e}"))?;
+    let (angles, surface) = flags(args)?;
     let rough = surface.rms_slope() > 0.0 || surface.diffuse_reflectance() > 0.0;
     let kind = if rough {
         format!(
@@ -185,33 +208,18 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 BandArg::Response(path) => format!(" weighted by the response {path}"),
                 BandArg::Flat { .. } | BandArg::Total => String::new(),
             };
-            // The spectrum: the Fresnel equations at normal incidence on every row. With it
-            // a tracer takes ε(λ, θ) = ε(λ) · table(θ) / table(0°), the band's angular shape
-            // at every wavelength (its error: docs/accuracy.md, "Fresnel emissivity").
-            let spectral = (!args.band_only).then(|| SpectralEmissivity {
-                wavelength_um: index.wavelength_um().to_vec(),
-                emissivity: index
-                    .index()
-                    .iter()
-                    .map(|&i| surface.emissivity(i, 0.0))
-                    .collect(),
-                // And at every angle of `--angles`: a Fresnel surface's angular shape
-                // changes with wavelength, which the separable form misses by up to 0.08
-                // in ε at 80° in one sixteenth of 8–14 µm (docs/accuracy.md).
-                angular: Some(SpectralAngular {
-                    angle_deg: angles.clone(),
-                    emissivity: index
-                        .index()
-                        .iter()
-                        .map(|&i| angles.iter().map(|&a| surface.emissivity(i, a)).collect())
-                        .collect(),
-                }),
-            });
-            let kept = if spectral.is_some() {
-                "; spectral: the emissivity at the table's wavelengths, at normal incidence \
-                 and at every angle"
-            } else {
-                ""
+            let spectral = (!args.band_only).then(|| spectrum(&index, surface, &angles));
+            let kept = match &spectral {
+                None => String::new(),
+                Some(s) if s.wavelength_um.len() < index.wavelength_um().len() => format!(
+                    "; spectral: the emissivity at normal incidence and at every angle at {} \
+                     of the table's {} wavelengths, evenly spread by row",
+                    s.wavelength_um.len(),
+                    index.wavelength_um().len()
+                ),
+                Some(_) => "; spectral: the emissivity at the table's wavelengths, at normal \
+                            incidence and at every angle"
+                    .to_owned(),
             };
             let source = format!(
                 "Fresnel, {kind} (irsig-material fresnel): n, k from {} linearly \
@@ -266,6 +274,64 @@ pub fn run(args: &Args) -> miette::Result<()> {
             rms_slope: (surface.rms_slope() > 0.0).then_some(surface.rms_slope()),
         };
         write_library(&table, entry, args, output)
+    }
+}
+
+/// The most wavelengths a spectral entry keeps: a table with more rows (a million) keeps
+/// that many of them, evenly spread by row (first and last among them), so that the entry
+/// stays a file a tracer reads in a moment (91 angles at a million rows would be 1.8 GB of
+/// RON) and its cost is bounded. At 16,384 rows over 2-20 um the kept rows are about 1 nm
+/// apart, finer than a solid's optical constants vary in the thermal infrared.
+const MAX_SPECTRUM_ROWS: usize = 16_384;
+/// The same for a rough surface, each of whose emissivities averages over a thousand facet
+/// classes' Fresnel emissivities: 512 rows, about 12 nm apart over 8-14 um (a solid's
+/// reststrahlen features are tenths of a micrometre wide).
+const MAX_ROUGH_SPECTRUM_ROWS: usize = 512;
+
+/// The rows a spectrum keeps of a table of `n` rows: all, or `max` evenly spread by row.
+fn spectrum_rows(n: usize, max: usize) -> Vec<usize> {
+    if n <= max {
+        (0..n).collect()
+    } else {
+        (0..max).map(|k| k * (n - 1) / (max - 1)).collect()
+    }
+}
+
+/// The spectrum: the Fresnel equations at normal incidence, and at every angle of
+/// `--angles`, on the table's rows (at most [`MAX_SPECTRUM_ROWS`] of them, or
+/// [`MAX_ROUGH_SPECTRUM_ROWS`] for a rough surface). With it a tracer takes the emissivity
+/// at each wavelength (a Fresnel surface's angular shape changes with wavelength, which a
+/// separable form misses by up to 0.08 in ε at 80° in one sixteenth of 8–14 µm:
+/// docs/accuracy.md, "Fresnel emissivity"). Rows in parallel, each the same at any thread
+/// count; each view's facet classes found once.
+fn spectrum(index: &IndexTable, surface: RoughSurface, angles: &[f64]) -> SpectralEmissivity {
+    let rough = surface.rms_slope() > 0.0;
+    let max = if rough {
+        MAX_ROUGH_SPECTRUM_ROWS
+    } else {
+        MAX_SPECTRUM_ROWS
+    };
+    let rows = spectrum_rows(index.wavelength_um().len(), max);
+    let normal = surface.view(0.0);
+    let views: Vec<RoughView> = angles.iter().map(|&a| surface.view(a)).collect();
+    let values: Vec<(f64, Vec<f64>)> = rows
+        .par_iter()
+        .map(|&i| {
+            let at = index.index()[i];
+            (
+                normal.emissivity(at),
+                views.iter().map(|v| v.emissivity(at)).collect(),
+            )
+        })
+        .collect();
+    let (emissivity, angular) = values.into_iter().unzip();
+    SpectralEmissivity {
+        wavelength_um: rows.iter().map(|&i| index.wavelength_um()[i]).collect(),
+        emissivity,
+        angular: Some(SpectralAngular {
+            angle_deg: angles.to_vec(),
+            emissivity: angular,
+        }),
     }
 }
 
@@ -331,4 +397,27 @@ fn data_rows(text: &str) -> impl Iterator<Item = usize> + '_ {
         let t = line.trim_start();
         (!t.is_empty() && !t.starts_with('#')).then(|| at + (line.len() - t.len()))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_spectrum_keeps_every_row_of_a_table_up_to_its_cap_and_spreads_them_beyond() {
+        assert_eq!(
+            spectrum_rows(300, MAX_SPECTRUM_ROWS),
+            (0..300).collect::<Vec<_>>()
+        );
+        for n in [MAX_SPECTRUM_ROWS + 1, 20_000, 1_000_000] {
+            let rows = spectrum_rows(n, MAX_SPECTRUM_ROWS);
+            assert_eq!(rows.len(), MAX_SPECTRUM_ROWS);
+            assert_eq!((rows[0], rows[rows.len() - 1]), (0, n - 1));
+            assert!(rows.windows(2).all(|w| w[0] < w[1]));
+            // Evenly spread: no gap more than one row wider than another.
+            let gaps: Vec<usize> = rows.windows(2).map(|w| w[1] - w[0]).collect();
+            let (lo, hi) = (gaps.iter().min().unwrap(), gaps.iter().max().unwrap());
+            assert!(hi - lo <= 1, "{n}: gaps {lo} to {hi}");
+        }
+    }
 }

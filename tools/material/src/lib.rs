@@ -13,7 +13,7 @@
 //! irsig-material convert --to-legacy lib.ron --out-dir legacy/
 //! irsig-material fresnel --n 1.2 --k 0.05 -o glassy.ron
 //! irsig-material fresnel --n 1.36 --roughness 0.8 --diffuse-reflectance 0.0347 -o asphalt.ron
-//! irsig-material fresnel --nk-table water.nk --band 8-14 --temperature 300 -o water.ems
+//! irsig-material fresnel --nk-table water.nk --band 8-14 --planck-temperature 300 -o water.ems
 //! irsig-material list pipelines/materials/scene-library.ron --plot plots/
 //! ```
 
@@ -39,7 +39,7 @@ pub mod list;
   irsig-material convert --to-legacy lib.ron --out-dir legacy/
   irsig-material fresnel --n 1.2 --k 0.05 --angles 0:90:5
   irsig-material fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
-      --temperature 300 --angles 0:90:5 --legacy -o water.ems
+      --planck-temperature 300 --angles 0:90:5 --legacy -o water.ems
   irsig-material list pipelines/materials/scene-library.ron --plot plots/"
 )]
 pub struct Cli {
@@ -60,11 +60,11 @@ pub enum Command {
   irsig-material fresnel --n 1.36 --roughness 0.8 --diffuse-reflectance 0.0347 --name asphalt
   irsig-material fresnel --n 25 --k 90 --name aluminium --id 7 -o aluminium.ron
   irsig-material fresnel --nk-table formats/samples/water-hale-querry-nk.txt --band 8-14 \\
-      --temperature 300 --angles 0:90:5 --legacy -o water.ems
+      --planck-temperature 300 --angles 0:90:5 --legacy -o water.ems
 
 A constant index gives the monochromatic table. A table of n, k against wavelength is
 averaged over the band (a response file as --band weights it) with Planck weighting at
---temperature:
+--planck-temperature:
 eps(theta) = int eps(lambda, theta) S B(lambda, T) dlambda / int S B(lambda, T) dlambda.
 Output is a canonical material library (RON) unless --legacy or -o NAME.ems.
 
@@ -90,6 +90,15 @@ and paint fitted this way: pipelines/materials/rough-surfaces.ron, docs/accuracy
     /// over 3-5 and 8-14 um, solar absorptance, thermal record and source; `--plot DIR`
     /// draws each spectrum as an SVG.
     List(list::Args),
+}
+
+impl irsig_cli::CheckArgs for Cli {
+    fn check_args(&self) -> miette::Result<()> {
+        match &self.command {
+            Command::Fresnel(args) => fresnel::flags(args).map(drop),
+            Command::Convert(_) | Command::Dirsig(_) | Command::List(_) => Ok(()),
+        }
+    }
 }
 
 /// Runs one subcommand.

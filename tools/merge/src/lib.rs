@@ -88,6 +88,10 @@ pub struct Cli {
     pub threads: ThreadsArgs,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// One tile file: its name and header.
 struct Tile {
     name: String,

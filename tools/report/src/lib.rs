@@ -168,6 +168,10 @@ pub struct Cli {
     pub output: Output,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// A line between two pixels, `X0,Y0:X1,Y1`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct ProfileLine {
@@ -519,6 +523,16 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             inputs.push(own(&names, "truth EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             let recorded = irsig_cli::provenance(&input.name, &image)?;
+            // Without a radiance image a --band is the truth EXR's, whose apparent
+            // temperatures are in the band it records: given, it must be that band.
+            if cli.radiance.file.is_none() && cli.band.band.given().is_some() {
+                let band = cli
+                    .band
+                    .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
+                if let Some(w) = &band.warning {
+                    irsig_cli::note!("irsig-report: warning: {w}");
+                }
+            }
             Some((input.name, image, recorded))
         }
         None => None,

@@ -102,6 +102,10 @@ pub struct Cli {
     pub quiet: bool,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// The stage tools whose parameters the runner checks before anything runs.
 pub const STAGE_TOOLS: [&str; 11] = [
     "import", "flatten", "atmos", "material", "therm", "trace", "merge", "sensor", "stats",
@@ -131,6 +135,24 @@ pub fn tools() -> Tools {
     tools
 }
 
+/// Every file a step of `plan` reads or writes, each with what it is, for the emitters: a
+/// file they write must be none of them.
+pub(crate) fn stage_files(plan: &irsig_pipeline::Plan) -> Vec<(PathBuf, String)> {
+    plan.steps
+        .iter()
+        .flat_map(|step| {
+            let input = step.inputs.iter().map(|f| (f, "an input"));
+            let output = step.outputs.iter().map(|f| (f, "an output"));
+            input.chain(output).map(|(f, role)| {
+                (
+                    plan.base_dir().join(&f.path),
+                    format!("{role} of the pipeline's step `{}`", step.name),
+                )
+            })
+        })
+        .collect()
+}
+
 /// Runs `irsig-run`.
 ///
 /// # Errors
@@ -148,6 +170,7 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     };
     if let Some(path) = &cli.emit_makefile {
         irsig_cli::refuse_output_is_input([&cli.pipeline], [path])?;
+        irsig_cli::refuse_output_is_named(&stage_files(&plan), [path])?;
         let text = plan.makefile()?;
         return irsig_cli::write_output(Some(path), |w| w.write_all(text.as_bytes()));
     }

@@ -70,6 +70,7 @@ pub(crate) fn emit(cli: &Cli, dir: &Path) -> miette::Result<()> {
         .map(|(name, text)| (script_dir.join(name), text.clone().into_bytes()))
         .collect();
     irsig_cli::refuse_output_is_input([&cli.pipeline], files.iter().map(|(p, _)| p))?;
+    irsig_cli::refuse_output_is_named(&crate::stage_files(&plan), files.iter().map(|(p, _)| p))?;
     std::fs::create_dir_all(&script_dir)
         .into_diagnostic()
         .wrap_err_with(|| format!("cannot create directory `{}`", dir.display()))?;

@@ -164,6 +164,10 @@ pub struct Cli {
     pub threads: ThreadsArgs,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// `--preview-bits`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
 pub enum PreviewBits {

@@ -108,6 +108,10 @@ pub struct Cli {
     pub output: Output,
 }
 
+/// The flags' own rules are clap's and the run's: nothing more is checked before a file
+/// is read.
+impl irsig_cli::CheckArgs for Cli {}
+
 /// Runs the tool.
 ///
 /// # Errors
@@ -127,6 +131,18 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
     let truth_input = irsig_cli::read_input(&cli.truth)?;
     let truth = irsig_cli::read_exr(&truth_input.name, &truth_input.bytes)?;
+    // The truth EXR's own record is read as every stage reads one: a malformed record, or
+    // a --band that is not the band it records (whose apparent temperatures it holds), is
+    // refused even when no radiance image is converted.
+    let truth_recorded = irsig_cli::provenance(&truth_input.name, &truth)?;
+    if cli.radiance.file.is_none() && cli.band.band.given().is_some() {
+        let band = cli
+            .band
+            .resolve(&truth_input.name, truth_recorded.as_ref().map(|p| &p.band))?;
+        if let Some(w) = &band.warning {
+            irsig_cli::note!("irsig-stats: warning: {w}");
+        }
+    }
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
     let (values, source): (Vec<f32>, String) = match &cli.radiance.file {
         Some(path) => {

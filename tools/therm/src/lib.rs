@@ -349,6 +349,18 @@ fn record(role: &str, input: &irsig_cli::Input) -> InputRecord {
     }
 }
 
+/// The flags' own rules, before a file is read (and when `irsig-run` asks of a stage):
+/// the moments parse and, with `-o`, name distinct outputs.
+impl irsig_cli::CheckArgs for Cli {
+    fn check_args(&self) -> miette::Result<()> {
+        let times = moments(&self.at)?;
+        match &self.output.path {
+            Some(prefix) => output_paths(prefix, &times).map(drop),
+            None => Ok(()),
+        }
+    }
+}
+
 /// The moments asked for, increasing, each once.
 fn moments(at: &[String]) -> miette::Result<Vec<f64>> {
     let mut times = Vec::new();

@@ -25,6 +25,7 @@ use irsig_render::{
 };
 use irsig_tracer::PathTermsMode;
 use miette::IntoDiagnostic;
+mod check;
 pub mod sun;
 
 /// `--help`'s examples.
@@ -213,6 +214,7 @@ pub struct Cli {
 
 /// The request the flags make, lit by their sun or `view_sun`, a view file's.
 fn request(cli: &Cli, view_sun: Option<ViewSun<SunSpec>>) -> miette::Result<Request> {
+    check::check_pins(&cli.pin)?;
     let (band, record) = cli.band.load_recorded()?;
     let band = BandRequest::new(band, record, cli.band.or_default().to_string());
     let name = cli.atmosphere.given().unwrap_or("none");
@@ -272,7 +274,7 @@ pub fn flag(setting: Setting) -> String {
 }
 
 /// A request error as bad usage, naming the flag of its setting.
-fn as_usage(report: miette::Report) -> miette::Report {
+pub(crate) fn as_usage(report: miette::Report) -> miette::Report {
     let Some(e) = report.downcast_ref::<RequestError>() else {
         return report;
     };

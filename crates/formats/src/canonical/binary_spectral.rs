@@ -41,10 +41,6 @@ pub const VERSION: u32 = 1;
 /// The layout version [`encode_quantised`] writes: each table quantised to 16 bits per
 /// value against its spectra's maxima, and deflated (zlib). Both are read.
 pub const VERSION_QUANTISED: u32 = 2;
-/// The largest expansion of a deflate stream (its format allows at most 1032 output bytes
-/// per input byte): a version 2 count that needs more than this is refused before anything
-/// is allocated.
-const MAX_INFLATE_RATIO: usize = 1032;
 
 /// True when `bytes` start with [`MAGIC`].
 #[must_use]
@@ -143,6 +139,88 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
         }
     }
     t
+}
+
+/// How many spectra each table holds, from the header's dimensions alone, in the order of
+/// [`tables_mut`], with the table's path: what every count in the file must be, checked
+/// before a table is read or inflated. `Err` holds the header path of a dimension that
+/// cannot be had (scattered sunlight without slant tables) and why.
+fn expected_spectra(a: &SpectralAtmosphere) -> Result<Vec<(String, usize)>, (String, String)> {
+    let mut t = vec![
+        ("level_transmission".to_owned(), a.levels.len()),
+        (
+            "level_path_radiance_w_m2_sr_per_unit".to_owned(),
+            a.levels.len(),
+        ),
+    ];
+    if let Some(c) = &a.transmission_correction {
+        t.push((
+            "transmission_correction.transmission".to_owned(),
+            c.nadir_deg.len(),
+        ));
+    }
+    t.push((
+        "sky_radiance_w_m2_sr_per_unit".to_owned(),
+        a.sky_zenith_deg.len(),
+    ));
+    if a.sky_hemispheric_w_m2_sr_per_unit.is_some() {
+        t.push(("sky_hemispheric_w_m2_sr_per_unit".to_owned(), 1));
+    }
+    let product = |x: usize, y: usize| x.saturating_mul(y);
+    if let Some(s) = &a.slant {
+        let paths = product(s.altitude_m.len(), s.nadir_deg.len());
+        t.extend([
+            ("slant.transmission".to_owned(), paths),
+            ("slant.path_radiance_w_m2_sr_per_unit".to_owned(), paths),
+            (
+                "slant.sky_radiance_w_m2_sr_per_unit".to_owned(),
+                product(s.sky_altitude_m.len(), s.sky_zenith_deg.len()),
+            ),
+        ]);
+    }
+    let azimuths = a.solar.as_ref().map_or(0, |s| s.relative_azimuth_deg.len());
+    if let Some(s) = &a.solar {
+        t.extend([
+            ("solar.extraterrestrial_w_m2_per_unit".to_owned(), 1),
+            ("solar.transmission".to_owned(), s.altitude_m.len()),
+        ]);
+        if azimuths > 0 {
+            let Some(sl) = &a.slant else {
+                return Err((
+                    "solar.relative_azimuth_deg".to_owned(),
+                    "scattered-sunlight tables lie on the slant tables' nodes: expected a \
+                     `slant` table"
+                        .to_owned(),
+                ));
+            };
+            t.extend([
+                (
+                    "solar.path_scattered_w_m2_sr_per_unit".to_owned(),
+                    product(product(sl.altitude_m.len(), sl.nadir_deg.len()), azimuths),
+                ),
+                (
+                    "solar.sky_scattered_w_m2_sr_per_unit".to_owned(),
+                    product(
+                        product(s.altitude_m.len(), sl.sky_zenith_deg.len()),
+                        azimuths,
+                    ),
+                ),
+            ]);
+        }
+    }
+    for (i, slab) in a.slabs.iter().enumerate() {
+        for (dir, table) in [("down", &slab.down), ("up", &slab.up)] {
+            let Some(table) = table else { continue };
+            let count = product(table.target_m.len(), table.angle_deg.len());
+            let path = |f: &str| format!("slabs[{i}].{dir}.{f}");
+            t.push((path("transmission"), count));
+            t.push((path("path_radiance_w_m2_sr_per_unit"), count));
+            if azimuths > 0 {
+                t.push((path("scattered_w_m2_sr_per_unit"), product(count, azimuths)));
+            }
+        }
+    }
+    Ok(t)
 }
 
 /// Encodes a spectral atmosphere.
@@ -263,44 +341,13 @@ fn dequantise(
         ));
     }
     let spectra = count / n;
-    let want = count
-        .checked_mul(2)
-        .and_then(|b| b.checked_add(4 * spectra))
-        .filter(|&b| b <= z.len().saturating_mul(MAX_INFLATE_RATIO))
-        .ok_or_else(|| {
-            ParseError::in_binary(
-                file,
-                at,
-                format!(
-                    "a table of {count} values cannot come from {} compressed bytes: the file \
-                     is damaged",
-                    z.len()
-                ),
-            )
-        })?;
-    let raw = miniz_oxide::inflate::decompress_to_vec_zlib_with_limit(z, want).map_err(|e| {
-        ParseError::in_binary(
-            file,
-            at + 4,
-            format!(
-                "expected a zlib stream of {want} bytes, found a broken one ({:?})",
-                e.status
-            ),
-        )
-    })?;
-    if raw.len() != want {
-        return Err(ParseError::in_binary(
-            file,
-            at + 4,
-            format!(
-                "expected a zlib stream of {want} bytes (a table of {count} values), found {}",
-                raw.len()
-            ),
-        ));
-    }
+    // Within the budget: `count` is the header's, checked by the caller.
+    let want = 2 * count + 4 * spectra;
+    let raw =
+        crate::inflate::zlib_exact(file, z, at + 4, want, &format!("a table of {count} values"))?;
     let (scales, q) = raw.split_at(4 * spectra);
     let (low, high) = q.split_at(count);
-    let mut values = Vec::with_capacity(count);
+    let mut values = crate::inflate::reserve(file, at, count, "a table of spectra")?;
     let mut previous = vec![0_u16; n];
     for (k, scale) in scales.chunks_exact(4).enumerate() {
         let scale = f64::from(f32::from_le_bytes([scale[0], scale[1], scale[2], scale[3]]));
@@ -338,6 +385,85 @@ fn u32_at(file: &str, bytes: &[u8], at: usize, what: &str) -> Result<u32, ParseE
                 format!("expected {what} (4 bytes), found the end of the file: it is truncated"),
             )
         })
+}
+
+/// Reads the tables that follow the header from `at` into `atm`, each count held to the
+/// header's dimensions and all of them to the memory budget before a value is read or a
+/// byte inflated; returns where the last table ends.
+fn read_tables(
+    file: &str,
+    bytes: &[u8],
+    text: &str,
+    atm: &mut SpectralAtmosphere,
+    version: u32,
+    mut at: usize,
+) -> Result<usize, ParseError> {
+    let points = atm.grid.points.len();
+    let shapes = expected_spectra(atm).map_err(|(path, why)| {
+        let (start, _) = crate::ron_tree::locate(text, &path);
+        ParseError::in_binary(file, 16 + start, why)
+    })?;
+    let values = shapes.iter().try_fold(0_u64, |sum, (_, spectra)| {
+        sum.checked_add((*spectra as u64).checked_mul(points as u64)?)
+    });
+    crate::inflate::check_budget(
+        file,
+        16,
+        values.and_then(|v| v.checked_mul(4)),
+        "the tables the header describes",
+    )?;
+    for (t, (path, spectra)) in tables_mut(atm).into_iter().zip(&shapes) {
+        let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
+        // Within the budget just checked, so no product overflows.
+        let want = spectra * points;
+        if n != want {
+            return Err(ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "expected `{path}` to hold {want} values ({spectra} spectra of {points} \
+                     points, as the header gives them), found a count of {n}"
+                ),
+            ));
+        }
+        if version == VERSION_QUANTISED {
+            let z = u32_at(file, bytes, at + 4, "the byte length of a compressed table")? as usize;
+            let stream = bytes
+                .get(at + 8..(at + 8).saturating_add(z))
+                .ok_or_else(|| {
+                    ParseError::in_binary(
+                        file,
+                        at + 4,
+                        format!(
+                            "a compressed table of {z} bytes, but only {} are left: the file is \
+                         truncated",
+                            bytes.len().saturating_sub(at + 8)
+                        ),
+                    )
+                })?;
+            *t = dequantise(file, stream, at, n, points)?;
+            at += 8 + z;
+            continue;
+        }
+        let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
+            ParseError::in_binary(
+                file,
+                at,
+                format!(
+                    "a table of {n} values needs {} bytes, but only {} are left: the file is truncated",
+                    n.saturating_mul(4),
+                    bytes.len() - at - 4
+                ),
+            )
+        })?;
+        at += 4;
+        *t = bytes[at..at + len]
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect();
+        at += len;
+    }
+    Ok(at)
 }
 
 /// Decodes and validates a binary spectral atmosphere.
@@ -471,47 +597,7 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
             ),
         ));
     }
-    let mut at = 16 + h;
-    let points = atm.grid.points.len();
-    for t in tables_mut(&mut atm) {
-        let n = u32_at(file, bytes, at, "the count of a table of spectra")? as usize;
-        if version == VERSION_QUANTISED {
-            let z = u32_at(file, bytes, at + 4, "the byte length of a compressed table")? as usize;
-            let stream = bytes
-                .get(at + 8..(at + 8).saturating_add(z))
-                .ok_or_else(|| {
-                    ParseError::in_binary(
-                        file,
-                        at + 4,
-                        format!(
-                            "a compressed table of {z} bytes, but only {} are left: the file is \
-                         truncated",
-                            bytes.len().saturating_sub(at + 8)
-                        ),
-                    )
-                })?;
-            *t = dequantise(file, stream, at, n, points)?;
-            at += 8 + z;
-            continue;
-        }
-        let len = n.checked_mul(4).filter(|&l| l <= bytes.len() - at - 4).ok_or_else(|| {
-            ParseError::in_binary(
-                file,
-                at,
-                format!(
-                    "a table of {n} values needs {} bytes, but only {} are left: the file is truncated",
-                    n.saturating_mul(4),
-                    bytes.len() - at - 4
-                ),
-            )
-        })?;
-        at += 4;
-        *t = bytes[at..at + len]
-            .chunks_exact(4)
-            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-            .collect();
-        at += len;
-    }
+    let at = read_tables(file, bytes, text, &mut atm, version, 16 + h)?;
     if at != bytes.len() {
         return Err(ParseError::in_binary(
             file,
@@ -676,6 +762,119 @@ mod tests {
         assert_eq!((b.grid, b.levels, b.name), (a.grid, a.levels, a.name));
     }
 
+    fn u32_len(bytes: &[u8], at: usize) -> usize {
+        u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize
+    }
+
+    #[test]
+    fn a_version_2_table_larger_than_its_header_is_refused_before_inflating() {
+        // An 875 KB file whose `level_transmission` claimed 350M values cost 2.2 GB and 7.7 s
+        // before "expected 7 values"; one claiming 2,147,483,646 values aborted (exit 134).
+        // The count is now held to the header's dimensions first, whatever the stream.
+        let a = small();
+        let bytes = encode_quantised(&a).unwrap();
+        let first = 16 + u32_len(&bytes, 12);
+        for claimed in [350_000_000_u32, 2_147_483_646] {
+            // A stream that really inflates to the claim's size would be megabytes; the
+            // claim alone must be refused, whatever follows it.
+            let raw = vec![0_u8; 1 << 20];
+            let z = miniz_oxide::deflate::compress_to_vec_zlib(&raw, 9);
+            let mut bomb = bytes[..first].to_vec();
+            bomb.extend_from_slice(&claimed.to_le_bytes());
+            bomb.extend_from_slice(&u32::try_from(z.len()).unwrap().to_le_bytes());
+            bomb.extend_from_slice(&z);
+            let e = decode("bomb.spa", &bomb).unwrap_err();
+            assert!(
+                e.message
+                    .contains("expected `level_transmission` to hold 2 values"),
+                "{}",
+                e.message
+            );
+            assert_eq!((e.line, e.column), (1, first + 1));
+        }
+    }
+
+    #[test]
+    fn a_header_whose_tables_pass_the_memory_budget_is_refused_before_any_is_read() {
+        // 70,000 levels × 66,000 points: 4.6 × 10^9 values, 18.5 GB of f32, from a header of
+        // a few megabytes. Nothing after the header is needed to refuse it.
+        let mut a = small();
+        a.grid.points = (0..66_000).map(|i| 700.0 + f64::from(i) * 1e-2).collect();
+        a.levels = (0..70_000)
+            .map(|i| ProfileLevel {
+                altitude_asl_m: f64::from(i),
+                temperature_k: 250.0,
+                altitude_m: f64::from(i),
+            })
+            .collect();
+        a.level_transmission.clear();
+        a.level_path_radiance_w_m2_sr_per_unit.clear();
+        a.sky_radiance_w_m2_sr_per_unit.clear();
+        a.sky_hemispheric_w_m2_sr_per_unit = Some(vec![]);
+        let mut bytes = start(&a, VERSION_QUANTISED, 0).unwrap();
+        bytes.extend_from_slice(&[0; 8]);
+        let e = decode("big.spa", &bytes).unwrap_err();
+        assert!(e.message.contains("memory budget"), "{}", e.message);
+    }
+
+    #[test]
+    fn the_expected_counts_follow_the_tables_in_order() {
+        // Every table the encoder writes, with the count the header's dimensions give it,
+        // for an atmosphere with every kind of table the model's own rules accept.
+        let mut a = small();
+        a.transmission_correction = Some(irsig_model::CorrectionPaths {
+            altitude_m: 1000.0,
+            nadir_deg: vec![0.0, 30.0, 60.0],
+            transmission: vec![0.5; 6],
+        });
+        a.slant = Some(irsig_model::SpectralSlantTables {
+            altitude_m: vec![10.0, 100.0],
+            nadir_deg: vec![0.0, 45.0],
+            ground_m: None,
+            transmission: vec![0.5; 8],
+            path_radiance_w_m2_sr_per_unit: vec![0.1; 8],
+            sky_altitude_m: vec![0.0],
+            sky_zenith_deg: vec![0.0, 60.0, 90.0],
+            sky_radiance_w_m2_sr_per_unit: vec![0.1; 6],
+            interpolation_residual: None,
+        });
+        a.solar = Some(irsig_model::SpectralSolar {
+            zenith_deg: 30.0,
+            day_of_year: 172,
+            altitude_m: vec![0.0, 300.0],
+            extraterrestrial_w_m2_per_unit: vec![0.01; 2],
+            transmission: vec![0.5; 4],
+            relative_azimuth_deg: vec![0.0, 180.0],
+            path_scattered_w_m2_sr_per_unit: vec![0.01; 16],
+            sky_scattered_w_m2_sr_per_unit: vec![0.01; 24],
+        });
+        let own_row = |own: f32, away: f32| -> Vec<f32> {
+            [away, away, away, away, own, own, own, own].to_vec()
+        };
+        a.slabs = vec![irsig_model::SpectralSlab {
+            observer_m: 50.0,
+            down: Some(irsig_model::SpectralSlabTable {
+                target_m: vec![0.0, 50.0],
+                angle_deg: vec![0.0, 30.0],
+                transmission: own_row(1.0, 0.5),
+                path_radiance_w_m2_sr_per_unit: own_row(0.0, 0.1),
+                scattered_w_m2_sr_per_unit: [[0.1; 8], [0.0; 8]].concat(),
+            }),
+            up: None,
+        }];
+        a.validate().unwrap();
+        let shapes = expected_spectra(&a).unwrap();
+        let tables = tables(&a);
+        assert_eq!(shapes.len(), tables.len());
+        assert_eq!(shapes.len(), 15);
+        for ((path, spectra), t) in shapes.iter().zip(tables) {
+            assert_eq!(spectra * a.grid.points.len(), t.len(), "{path}");
+        }
+        for bytes in [encode(&a).unwrap(), encode_quantised(&a).unwrap()] {
+            decode("lit.spa", &bytes).unwrap();
+        }
+    }
+
     #[test]
     fn version_2_damage_is_refused_at_its_offset() {
         let mut a = small();
@@ -691,26 +890,32 @@ mod tests {
         // Truncated inside a stream.
         let e = decode("a", &bytes[..bytes.len() - 3]).unwrap_err();
         assert!(e.message.contains("truncated"), "{}", e.message);
-        // A count that is not whole spectra (grid of 2 points).
-        let mut odd = bytes.clone();
-        odd[first..first + 4].copy_from_slice(&3_u32.to_le_bytes());
-        let e = decode("a", &odd).unwrap_err();
-        assert!(
-            e.message.contains("whole number of spectra"),
-            "{}",
-            e.message
-        );
-        assert_eq!(e.column, first + 1);
-        // A count far beyond what its compressed bytes can hold: refused before inflating.
-        let mut huge = bytes.clone();
-        huge[first..first + 4].copy_from_slice(&(u32::MAX - 1).to_le_bytes());
-        let e = decode("a", &huge).unwrap_err();
-        assert!(e.message.contains("cannot come from"), "{}", e.message);
-        // A count the stream does not hold.
-        let mut more = bytes.clone();
-        more[first..first + 4].copy_from_slice(&6_u32.to_le_bytes());
-        let e = decode("a", &more).unwrap_err();
-        assert!(e.message.contains("zlib stream"), "{}", e.message);
+        // A count that is not the header's (levels × points = 4): refused at the count,
+        // before a byte is inflated, whether one short, odd or beyond the stream's reach.
+        for count in [3_u32, 6, u32::MAX - 1] {
+            let mut wrong = bytes.clone();
+            wrong[first..first + 4].copy_from_slice(&count.to_le_bytes());
+            let e = decode("a", &wrong).unwrap_err();
+            assert!(
+                e.message
+                    .contains("expected `level_transmission` to hold 4 values"),
+                "{}",
+                e.message
+            );
+            assert_eq!(e.column, first + 1);
+        }
+        // A stream that holds less or more than the header's count (4 values in 2 spectra:
+        // 16 bytes).
+        let z_len = u32_len(&bytes, first + 4);
+        for (len, said) in [(14, "one of 14 bytes"), (18, "a longer one")] {
+            let z = miniz_oxide::deflate::compress_to_vec_zlib(&vec![0_u8; len], 9);
+            let mut spliced = bytes[..first + 4].to_vec();
+            spliced.extend_from_slice(&u32::try_from(z.len()).unwrap().to_le_bytes());
+            spliced.extend_from_slice(&z);
+            spliced.extend_from_slice(&bytes[first + 8 + z_len..]);
+            let e = decode("a", &spliced).unwrap_err();
+            assert!(e.message.contains(said), "{}", e.message);
+        }
         // A broken stream.
         let mut broken = bytes.clone();
         for b in &mut broken[first + 8..first + 14] {

@@ -137,29 +137,31 @@ impl RoughSurface {
     /// `facet(view_deg)`; NaN gives NaN.
     #[must_use]
     pub fn emissivity_with(&self, view_deg: f64, facet: impl Fn(f64) -> f64) -> f64 {
-        if view_deg.is_nan() {
-            return f64::NAN;
-        }
-        let view = view_deg.abs().min(90.0);
-        let interface = if self.rms_slope == 0.0 {
-            facet(view).clamp(0.0, 1.0)
-        } else {
-            self.facets(view)
-                .iter()
-                .map(|f| {
-                    let e = facet(f.local_deg).clamp(0.0, 1.0);
-                    f.weight * (e + (1.0 - e) * (1.0 - f.escape))
-                })
-                .sum::<f64>()
-                .clamp(0.0, 1.0)
-        };
-        (1.0 - self.diffuse_reflectance) * interface
+        self.view(view_deg).emissivity_with(facet)
     }
 
     /// The directional emissivity at `view_deg` of facets of constant index `index`.
     #[must_use]
     pub fn emissivity(&self, index: ComplexIndex, view_deg: f64) -> f64 {
         self.emissivity_with(view_deg, |chi| index.emissivity(chi))
+    }
+
+    /// The surface seen at `view_deg`, its facet classes found once: what a spectrum of
+    /// many indices seen from one angle shares ([`RoughView::emissivity`] gives what
+    /// [`Self::emissivity`] gives, bit for bit).
+    #[must_use]
+    pub fn view(&self, view_deg: f64) -> RoughView {
+        let view = view_deg.abs().min(90.0);
+        let facets = if view_deg.is_nan() || self.rms_slope == 0.0 {
+            Vec::new()
+        } else {
+            self.facets(view)
+        };
+        RoughView {
+            surface: *self,
+            view_deg: if view_deg.is_nan() { f64::NAN } else { view },
+            facets,
+        }
     }
 
     /// The facet classes of the view at `view_deg` (0–90°), weights summing to 1.
@@ -265,6 +267,45 @@ pub fn rough_emissivity_table(
         .map(|&a| surface.emissivity(index, a))
         .collect();
     EmissivityTable::new(angles_deg.to_vec(), values)
+}
+
+/// A rough surface seen from one angle ([`RoughSurface::view`]).
+#[derive(Debug, Clone)]
+pub struct RoughView {
+    surface: RoughSurface,
+    /// 0–90°, or NaN.
+    view_deg: f64,
+    /// Empty for a smooth surface.
+    facets: Vec<Facet>,
+}
+
+impl RoughView {
+    /// As [`RoughSurface::emissivity_with`] at this view.
+    #[must_use]
+    pub fn emissivity_with(&self, facet: impl Fn(f64) -> f64) -> f64 {
+        if self.view_deg.is_nan() {
+            return f64::NAN;
+        }
+        let interface = if self.surface.rms_slope == 0.0 {
+            facet(self.view_deg).clamp(0.0, 1.0)
+        } else {
+            self.facets
+                .iter()
+                .map(|f| {
+                    let e = facet(f.local_deg).clamp(0.0, 1.0);
+                    f.weight * (e + (1.0 - e) * (1.0 - f.escape))
+                })
+                .sum::<f64>()
+                .clamp(0.0, 1.0)
+        };
+        (1.0 - self.surface.diffuse_reflectance) * interface
+    }
+
+    /// As [`RoughSurface::emissivity`] at this view.
+    #[must_use]
+    pub fn emissivity(&self, index: ComplexIndex) -> f64 {
+        self.emissivity_with(|chi| index.emissivity(chi))
+    }
 }
 
 /// Step (deg) of the band-averaged smooth facet table the rough average reads.

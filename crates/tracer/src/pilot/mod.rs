@@ -70,7 +70,7 @@ pub const EDGE_SHARE: f64 = 0.5;
 /// tolerance (the rest of the percentile's tail is the deterministic models').
 pub(crate) const SAMPLING_EXCEEDANCE: f64 = 0.005;
 /// The most of the frame a decision may leave not guaranteed.
-pub const NOT_GUARANTEED_MAX: f64 = 0.005;
+pub const NOT_GUARANTEED_MAX: f64 = irsig_model::decision::NOT_GUARANTEED_MAX;
 /// The largest side of a refinement level on offer ([`crate::refine::MAX_SIDE`]).
 pub const REFINE_MAX_SIDE: u32 = crate::refine::MAX_SIDE;
 /// The side a thin candidate's refinement starts at.
