@@ -49,6 +49,7 @@ mod run;
 mod slurm;
 mod spec;
 mod sun;
+mod times;
 
 pub use error::{ErrorKind, PipelineError};
 pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};
@@ -58,6 +59,7 @@ pub use slurm::{
     SlurmScripts, estimate_memory_mib,
 };
 pub use sun::SunFlags;
+pub use times::TimeFlags;
 
 /// `word` quoted for a POSIX shell when it needs quoting, as dry runs, Makefiles and Slurm
 /// scripts print it: as it is when it holds only letters, digits and `+ - . / : @ ] _`,
