@@ -98,7 +98,7 @@ impl Plan {
             let _ = writeln!(
                 rules,
                 "\n# {} ({})",
-                comment_text(&step.name),
+                comment_text(&step.described()),
                 comment_text(&self.location(step))
             );
             let rule = format!("{targets} {colon} {prerequisites}");

@@ -399,7 +399,7 @@ impl Plan {
                 .find(|i| !self.base_dir.join(&i.path).is_file());
             let message = format!(
                 "stage `{}` cannot run: its input `{}` is missing",
-                step.name,
+                step.described(),
                 missing.map_or_else(String::new, |m| m.path.display().to_string())
             );
             return Err(match missing {
@@ -429,7 +429,7 @@ impl Plan {
                     ErrorKind::StageFailed,
                     format!(
                         "stage `{}`: cannot start `{}`: {e}",
-                        step.name,
+                        step.described(),
                         step.program.display()
                     ),
                 )
@@ -444,7 +444,7 @@ impl Plan {
                 ErrorKind::StageFailed,
                 format!(
                     "stage `{}` failed: `{}` {how}",
-                    step.name,
+                    step.described(),
                     step.command_line()
                 ),
             ));
@@ -456,7 +456,7 @@ impl Plan {
                 .find(|o| !self.base_dir.join(&o.path).is_file());
             let message = format!(
                 "stage `{}` succeeded but did not write its output `{}`",
-                step.name,
+                step.described(),
                 missing.map_or_else(String::new, |m| m.path.display().to_string())
             );
             return Err(match missing {

@@ -191,9 +191,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             return;
         }
         match event {
-            Event::UpToDate(step) => irsig_cli::note!("  up to date  {}", step.name),
+            Event::UpToDate(step) => irsig_cli::note!("  up to date  {}", step.described()),
             Event::Started(step) => {
-                irsig_cli::note!("     running  {}: {}", step.name, step.command_line());
+                irsig_cli::note!(
+                    "     running  {}: {}",
+                    step.described(),
+                    step.command_line()
+                );
             }
             _ => {}
         }
