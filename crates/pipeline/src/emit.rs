@@ -17,7 +17,8 @@ use std::fmt::Write;
 use std::path::Path;
 
 use crate::error::{ErrorKind, PipelineError};
-use crate::plan::{FileRef, Plan, Step};
+use crate::plan::Plan;
+use crate::step::{FileRef, Step};
 
 /// `text` for one line of a comment: control characters escaped (`\n`), so that it cannot
 /// end the comment's line (nor, in a Makefile, continue it: a trailing `\` is escaped too).

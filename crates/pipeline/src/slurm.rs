@@ -12,8 +12,9 @@ use irsig_formats::ron_tree::{Kind, Node};
 
 use crate::emit::{comment_text, file_name};
 use crate::error::{ErrorKind, PipelineError};
-use crate::plan::{Plan, Step};
+use crate::plan::Plan;
 use crate::spec::{self, Source, Spanned};
+use crate::step::Step;
 
 /// Memory asked for a task whose stage does not say: a floor for the process, its tables
 /// and a frame of up to 256 × 256 pixels (irsig-trace, the thesis fly-by frame: 17 MiB peak).
