@@ -1,4 +1,4 @@
-//! `irsig-run --emit-slurm` through a real Slurm cluster (the single-node one
+//! `irsig-run --emit-slurm` through a real Slurm cluster (the several nodes on one machine
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
 //! frames as a job array, byte for byte the same files as `irsig-run` writes; one 1024²
 //! frame in 16 tiles (`pipelines/quickstart-tiles.ron`: a job array of tiles, the merge and
@@ -10,7 +10,7 @@
 //! Also, without a cluster: `irsig-run --step` (what each task runs) and its shared run
 //! state under concurrent runners, and `submit.sh` without `sbatch` on `PATH`.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -165,6 +165,22 @@ fn task_states(jobs: &[(String, String)]) -> BTreeMap<(String, String), (String,
     states
 }
 
+/// The nodes the tasks of job `id` ran on (each task's `BatchHost`), from `scontrol show job`.
+fn nodes_of(id: &str) -> BTreeSet<String> {
+    let out = Command::new("scontrol")
+        .args(["--oneliner", "show", "job", id])
+        .output()
+        .unwrap();
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|line| {
+            line.split_whitespace()
+                .find_map(|w| w.strip_prefix("BatchHost="))
+                .map(str::to_owned)
+        })
+        .collect()
+}
+
 /// Waits until none of the jobs is pending or running. On timeout, cancels them and fails
 /// naming each job, task and state.
 fn wait_for(jobs: &[(String, String)]) {
@@ -277,6 +293,13 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     let states = task_states(&jobs);
     let trace_tasks = states.keys().filter(|(id, _)| *id == jobs[1].0).count();
     assert_eq!(trace_tasks, 24, "one task per frame: {states:?}");
+    // The local cluster is several nodes (one slurmd each): the frames are spread over them,
+    // and the bytes below are the same whichever node wrote them.
+    let nodes = nodes_of(&jobs[1].0);
+    assert!(
+        nodes.len() >= 2,
+        "the frames ran on one node only: {nodes:?}"
+    );
     let build = "thesis-flyby/build";
     assert_same_files(&local.path().join(build), &cluster.path().join(build));
     // 1 raw scene, 5 files per frame, the contact sheet.
