@@ -1,6 +1,8 @@
 //! `irsig-run --emit-slurm` through a real Slurm cluster (the several nodes on one machine
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
-//! frames as a job array, byte for byte the same files as `irsig-run` writes; one 1024²
+//! frames as a job array spread over the nodes, byte for byte the same files as `irsig-run`
+//! writes; one of those frames killed while it runs, and a resubmission that runs that frame
+//! alone (every other file keeps its time) and ends with the same bytes; one 1024²
 //! frame in 16 tiles (`pipelines/quickstart-tiles.ron`: a job array of tiles, the merge and
 //! the sensor stage after it), byte for byte the frame `irsig-run` traces whole; a per-frame
 //! chain waiting task by task (`aftercorr`), a failed task, and a re-submission that runs only
@@ -330,6 +332,119 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     wait_for(&jobs);
     assert_all_completed(cluster.path(), &jobs);
     assert_same_files(&local.path().join(build), &cluster.path().join(build));
+}
+
+/// Every file under `dir` with its modification time.
+fn file_times(dir: &Path) -> BTreeMap<PathBuf, std::time::SystemTime> {
+    files(dir)
+        .into_iter()
+        .map(|name| {
+            let time = std::fs::metadata(dir.join(&name))
+                .and_then(|m| m.modified())
+                .unwrap();
+            (name, time)
+        })
+        .collect()
+}
+
+/// Cancels (SIGTERM, then SIGKILL: what a lost node or a pre-emption does to a task) one
+/// task of array job `id` while it runs, and returns its task number. A task seen running
+/// may end before the cancel reaches it; then the next one running is tried.
+fn kill_one_running_task(id: &str) -> String {
+    let start = Instant::now();
+    let mut tried = BTreeSet::new();
+    while start.elapsed() < TIMEOUT {
+        let out = Command::new("squeue")
+            .args([
+                "--noheader",
+                "--format=%i",
+                "--states=RUNNING",
+                "--jobs",
+                id,
+            ])
+            .output()
+            .unwrap();
+        let running = String::from_utf8_lossy(&out.stdout).into_owned();
+        // A task after the first few, so that its frame is in the middle of the array.
+        let task = running
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix(&format!("{id}_")).map(str::to_owned))
+            .find(|t| t.parse::<usize>().is_ok_and(|n| n >= 3) && !tried.contains(t));
+        if let Some(task) = task {
+            tried.insert(task.clone());
+            let _ = Command::new("scancel").arg(format!("{id}_{task}")).status();
+            // Wait for the task to leave the queue, then see whether the cancel was in time.
+            while Command::new("squeue")
+                .args(["--noheader", "--jobs", &format!("{id}_{task}")])
+                .output()
+                .is_ok_and(|o| !String::from_utf8_lossy(&o.stdout).trim().is_empty())
+            {
+                std::thread::sleep(Duration::from_millis(100));
+            }
+            let states = task_states(&[(id.to_owned(), String::new())]);
+            if states
+                .get(&(id.to_owned(), task.clone()))
+                .is_some_and(|(state, _)| state == "CANCELLED")
+            {
+                return task;
+            }
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("no task of job {id} could be cancelled while it ran (tried {tried:?})");
+}
+
+#[test]
+fn a_task_killed_mid_run_is_all_a_resubmission_runs_and_the_bytes_are_the_same() {
+    require_cluster();
+    let local = copy_pipeline("thesis-flyby");
+    bin("irsig-run")
+        .current_dir(local.path())
+        .args(["--quiet", "thesis-flyby.ron"])
+        .assert()
+        .success();
+    let cluster = copy_pipeline("thesis-flyby");
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    assert_eq!(jobs[1].1, "02-trace.sbatch");
+    let killed = kill_one_running_task(&jobs[1].0);
+    // The sheet waits for every frame, so it can never start now: it is cancelled too once
+    // the other frames are done.
+    wait_for(&jobs[..2]);
+    let _ = Command::new("scancel").arg(&jobs[2].0).status();
+    wait_for(&jobs);
+    let states = task_states(&jobs);
+    for ((id, task), (state, _)) in &states {
+        let expected = if (*id == jobs[1].0 && *task == killed) || *id == jobs[2].0 {
+            "CANCELLED"
+        } else {
+            "COMPLETED"
+        };
+        assert_eq!(state, expected, "job {id} task {task}: {states:?}");
+    }
+    let build = cluster.path().join("thesis-flyby/build");
+    let before = file_times(&build);
+
+    // The resubmission: the killed frame, and the sheet after it; nothing else.
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(scripts, ["01-trace.sbatch", "02-contact-sheet.sbatch"]);
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/01-trace.sbatch")).unwrap();
+    assert!(
+        trace.contains(&format!("\n#SBATCH --array={killed}\n")),
+        "{trace}"
+    );
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    // Every file of another frame is the one the first submission wrote, untouched.
+    let frame = format!("frame-{:02}.", killed.parse::<usize>().unwrap());
+    let after = file_times(&build);
+    for (name, time) in &before {
+        let text = name.to_string_lossy();
+        if !text.starts_with(&frame) && !text.starts_with("contact-sheet") {
+            assert_eq!(after.get(name), Some(time), "{text} was written again");
+        }
+    }
+    assert_same_files(&local.path().join("thesis-flyby/build"), &build);
 }
 
 /// `pipelines/quickstart-tiles.ron` with the frame traced whole: the same flatten, one trace
