@@ -1,6 +1,9 @@
-//! The pipeline's `sun` (issue 30): one sun for the whole job, written once and given to
-//! every `trace` stage as the tool's own sun flags, so that what runs is still exactly a
-//! command line a user could type. An `atmos plan` stage in the same file must be planned
+//! The pipeline's `sun`: one sun for the whole job, written once and given to every `trace`
+//! stage as the tool's own sun flags, so that what runs is still exactly a command line a
+//! user could type. Over a `Times` sweep the sun is templated by the frame's time (`At(utc:
+//! "{utc}", ...)`): each per-frame `trace` and `atmos plan` takes the sun of its own time, a
+//! frame whose sun is below the horizon none, and one plan for the whole day must hold every
+//! lit frame's sun. An `atmos plan` stage in the same file must be planned
 //! for that sun: its zenith angle must agree with the sun's within the solar table's
 //! tolerance (the check irsig-trace makes later against the built table, made here before
 //! anything runs), and with a sun given by time its day of the year with the date. A trace
