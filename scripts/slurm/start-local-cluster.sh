@@ -48,13 +48,22 @@ case "$NODES" in
   *) die "IRSIG_SLURM_NODES=$NODES: expected a number of nodes from 1 to 16" ;;
 esac
 
+# Whether the process PID is alive: it exists and is not a zombie. A daemon that died (a
+# crash, kill -9) stays a zombie until its parent reaps it, and a container's first process
+# often never does; its /proc entry, name included, lingers meanwhile.
+alive() {
+  local state
+  state=$(sed -n 's/^State:[[:space:]]*\([A-Z]\).*/\1/p' "/proc/$1/status" 2>/dev/null) || return 1
+  [ -n "$state" ] && [ "$state" != Z ] && [ "$state" != X ]
+}
+
 # Whether the daemon NAME whose pid file is PIDFILE runs. The process's name is checked too:
 # a pid file left by a machine's earlier life may name a pid some other process has now.
 running() {
   local name=$1 pidfile=$2 pid
   [ -s "$pidfile" ] || return 1
   pid=$(cat "$pidfile")
-  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ]
+  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] && alive "$pid"
 }
 
 stop_daemon() {
@@ -62,7 +71,7 @@ stop_daemon() {
   if running "$name" "$pidfile"; then
     pid=$(cat "$pidfile")
     kill "$pid"
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    for _ in $(seq 50); do alive "$pid" || break; sleep 0.1; done
   fi
   rm -f "$pidfile"
 }
@@ -204,7 +213,7 @@ fi
 if ! running slurmctld "$RUN_DIR/slurmctld.pid"; then
   slurmctld || { show_log "$LOG_DIR/slurmctld.log"; die "slurmctld did not start"; }
 fi
-for _ in $(seq 100); do scontrol ping 2>/dev/null | grep -q "is UP" && break; sleep 0.1; done
+for _ in $(seq $((TIMEOUT_S * 10))); do scontrol ping 2>/dev/null | grep -q "is UP" && break; sleep 0.1; done
 scontrol ping 2>/dev/null | grep -q "is UP" ||
   { show_log "$LOG_DIR/slurmctld.log"; die "slurmctld is not answering (scontrol ping)"; }
 
@@ -255,4 +264,10 @@ done
 for i in $(seq "$NODES"); do show_log "$LOG_DIR/slurmd-node$i.log"; done
 show_log "$LOG_DIR/slurmctld.log"
 reasons=$(sinfo -h -N -n "$nodes" -o '%N %T %E' 2>/dev/null | sort -u | tr '\n' ';')
-die "not every node took jobs within ${TIMEOUT_S} s: ${reasons:-no answer from sinfo}"
+# The controller may still report a node whose daemon died as idle: name the dead daemons.
+down=""
+running slurmctld "$RUN_DIR/slurmctld.pid" || down="$down slurmctld"
+for i in $(seq "$NODES"); do
+  running slurmd "$RUN_DIR/slurmd-node$i.pid" || down="$down slurmd(node$i)"
+done
+die "not every node took jobs within ${TIMEOUT_S} s: ${reasons:-no answer from sinfo}${down:+; not running:$down}"
