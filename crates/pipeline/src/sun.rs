@@ -63,17 +63,16 @@ pub(crate) struct PipelineSun {
 /// A stand-in time that checks a per-frame sun's other fields when the file is read.
 const ANY_TIME: &str = "2000-01-01T12:00:00Z";
 
-/// Reads the `sun` field: `Direction(zenith_deg: Z, azimuth_deg: A)` or `At(utc: "...",
-/// latitude_deg: LAT, longitude_deg: LON[, altitude_m: H])`, optionally in `Some(...)`,
-/// every number checked by the sun's own model and the sun above the horizon.
-pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, PipelineError> {
-    let inner = match &node.kind {
-        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
-        _ => node,
-    };
-    let expected = "expected `sun: Direction(zenith_deg: DEG, azimuth_deg: DEG)` or `sun: \
-                    At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: DEG, \
-                    altitude_m: M)`";
+/// What a `sun` value may be, for errors.
+const EXPECTED: &str = "expected `sun: Direction(zenith_deg: DEG, azimuth_deg: DEG)` or `sun: \
+                        At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: \
+                        DEG, altitude_m: M)`";
+
+/// The sun's form (`Direction` or `At`), its field names and the sun model's fields.
+fn form_of<'n>(
+    src: Source<'_>,
+    inner: &'n Node,
+) -> Result<(&'n str, &'static [&'static str], &'static [SunField]), PipelineError> {
     let form = match &inner.kind {
         Kind::Struct(Some(name), _) => name.as_str(),
         other => {
@@ -81,7 +80,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                 ErrorKind::Structure,
                 inner.start,
                 inner.end,
-                format!("{expected}, found {}", other.describe()),
+                format!("{EXPECTED}, found {}", other.describe()),
             ));
         }
     };
@@ -104,10 +103,22 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                 ErrorKind::Structure,
                 inner.start,
                 inner.end,
-                format!("{expected}, found `{form}(...)`"),
+                format!("{EXPECTED}, found `{form}(...)`"),
             ));
         }
     };
+    Ok((form, names, fields_of_form))
+}
+
+/// Reads the `sun` field: `Direction(zenith_deg: Z, azimuth_deg: A)` or `At(utc: "...",
+/// latitude_deg: LAT, longitude_deg: LON[, altitude_m: H])`, optionally in `Some(...)`,
+/// every number checked by the sun's own model and the sun above the horizon.
+pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, PipelineError> {
+    let inner = match &node.kind {
+        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
+        _ => node,
+    };
+    let (form, names, fields_of_form) = form_of(src, inner)?;
     let fields = fields_of(src, inner, form, names)?;
     let mut values: Vec<Option<(Spanned<String>, &Node)>> = Vec::new();
     for name in names {
@@ -119,7 +130,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                     ErrorKind::Structure,
                     inner.start,
                     inner.end,
-                    format!("the sun has no `{name}`: {expected}"),
+                    format!("the sun has no `{name}`: {EXPECTED}"),
                 ));
             }
         };
