@@ -2,7 +2,9 @@
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
 //! frames as a job array spread over the nodes, byte for byte the same files as `irsig-run`
 //! writes; one of those frames killed while it runs, and a resubmission that runs that frame
-//! alone (every other file keeps its time) and ends with the same bytes; one 1024²
+//! alone (every other file keeps its time) and ends with the same bytes; a day of hourly
+//! frames (a `Times` sweep) as an array waiting for the one thermal job that solves the
+//! whole day, spread over the nodes, with irsig-run's bytes; one 1024²
 //! frame in 16 tiles (`pipelines/quickstart-tiles.ron`: a job array of tiles, the merge and
 //! the sensor stage after it), byte for byte the frame `irsig-run` traces whole; a per-frame
 //! chain waiting task by task (`aftercorr`), a failed task, and a re-submission that runs only
@@ -445,6 +447,98 @@ fn a_task_killed_mid_run_is_all_a_resubmission_runs_and_the_bytes_are_the_same()
         }
     }
     assert_same_files(&local.path().join("thesis-flyby/build"), &build);
+}
+
+/// A day of the thermal pipeline's scene in hourly frames: one `irsig-therm` over the whole
+/// day gathering every frame's scene, then one small 8-14 um trace per frame (a built-in
+/// atmosphere, no sun), each output named by the frame's UTC time.
+const DAY: &str = r#"Pipeline(
+    sweeps: {"day": Times(start: "2001-08-07T00:00", end: "2001-08-07T23:00", step: "PT1H",
+                          zone: "America/Denver")},
+    stages: [
+        Stage(name: "flatten", tool: "flatten", args: ["thermal/scene.ron"],
+              reads: ["thermal/ground.ron", "quickstart/box.ron"],
+              inputs: {"materials": "thermal/materials.ron"}, outputs: {"o": "build/start.raw"}),
+        Stage(name: "therm", tool: "therm", gather: "day", args: ["build/start.raw"],
+              inputs: {"materials": "thermal/materials.ron", "weather": "golden-tmy3-aug.epw"},
+              params: {"at": "{time}", "spin-up-h": 12, "step-s": 600},
+              outputs: {"raw": "build/{time_utc}.raw"}),
+        Stage(name: "trace", tool: "trace", sweep: "day",
+              inputs: {"scene": "build/{time_utc}.raw", "materials": "thermal/materials.ron",
+                       "view": "view.ron"},
+              params: {"band": "8-14", "atmosphere": "us-std-1976", "atmosphere-model": "table"},
+              outputs: {"radiance-exr": "build/{time_utc}.radiance.exr",
+                        "truth-exr": "build/{time_utc}.truth.exr"}),
+    ],
+)
+"#;
+
+/// A scratch directory holding [`DAY`] as `day.ron`, the thermal pipeline's scene and the
+/// quickstart's box it places, the August weather record and a 64 x 48 view of the scene.
+fn day() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let pipelines = repo_root().join("pipelines");
+    for data in ["thermal", "quickstart"] {
+        copy_tree(&pipelines.join(data), &dir.path().join(data));
+    }
+    std::fs::copy(
+        repo_root().join("formats/samples/golden-tmy3-aug.epw"),
+        dir.path().join("golden-tmy3-aug.epw"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("view.ron"),
+        "LookAt(position_m: (3.0, 26.0, 7.0), target_m: (2.0, 3.0, 0.5), pixels: (64, 48), \
+         fov_deg: (47.0, 36.0))\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("day.ron"), DAY).unwrap();
+    dir
+}
+
+#[test]
+fn a_days_frames_run_as_an_array_after_one_thermal_job_with_irsig_runs_bytes() {
+    require_cluster();
+    let local = day();
+    bin("irsig-run")
+        .current_dir(local.path())
+        .args(["--quiet", "day.ron"])
+        .assert()
+        .success();
+    let cluster = day();
+    let jobs = emit_and_submit(cluster.path(), "day.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(
+        scripts,
+        ["01-flatten.sbatch", "02-therm.sbatch", "03-trace.sbatch"]
+    );
+    // The frames are an array that waits for the one thermal job, and say their times.
+    let submit_sh = std::fs::read_to_string(cluster.path().join("slurm/submit.sh")).unwrap();
+    assert!(
+        submit_sh.contains("--dependency=afterok:$job2 "),
+        "{submit_sh}"
+    );
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/03-trace.sbatch")).unwrap();
+    for line in [
+        "#   task 1: 2001-08-07T00:00:00-06:00",
+        "#   task 15: 2001-08-07T14:00:00-06:00",
+        "#SBATCH --array=1-24",
+    ] {
+        assert!(trace.contains(&format!("\n{line}\n")), "{line} in {trace}");
+    }
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    let nodes = nodes_of(&jobs[2].0);
+    assert!(
+        nodes.len() >= 2,
+        "the frames ran on one node only: {nodes:?}"
+    );
+    let build = cluster.path().join("build");
+    // The start, and each hour's scene, radiance and truth, named by its UTC time: 14:00
+    // in Denver in August is 20:00 UTC.
+    assert_eq!(files(&build).len(), 1 + 24 * 3);
+    assert!(build.join("20010807T200000Z.truth.exr").is_file());
+    assert_same_files(&local.path().join("build"), &build);
 }
 
 /// `pipelines/quickstart-tiles.ron` with the frame traced whole: the same flatten, one trace
