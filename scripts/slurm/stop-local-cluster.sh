@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Stops the single-node Slurm cluster that scripts/slurm/start-local-cluster.sh started (and
-# scripts/test.sh starts for tests/tests/slurm.rs): slurmd, slurmctld and munged, each only
-# when its pid file names a running process of that name. Needs root, like the start; the
+# Stops the local Slurm cluster that scripts/slurm/start-local-cluster.sh started (and
+# scripts/test.sh starts for tests/tests/slurm.rs): every slurmd, slurmctld and munged,
+# each only when its pid file names a running process of that name. Needs root, like the start; the
 # next `sh scripts/test.sh` starts them again.
 #
 #   sudo scripts/slurm/stop-local-cluster.sh

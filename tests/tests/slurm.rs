@@ -1,6 +1,10 @@
-//! `irsig-run --emit-slurm` through a real Slurm cluster (the single-node one
+//! `irsig-run --emit-slurm` through a real Slurm cluster (the several nodes on one machine
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
-//! frames as a job array, byte for byte the same files as `irsig-run` writes; one 1024²
+//! frames as a job array spread over the nodes, byte for byte the same files as `irsig-run`
+//! writes; one of those frames killed while it runs, and a resubmission that runs that frame
+//! alone (every other file keeps its time) and ends with the same bytes; a day of hourly
+//! frames (a `Times` sweep) as an array waiting for the one thermal job that solves the
+//! whole day, spread over the nodes, with irsig-run's bytes; one 1024²
 //! frame in 16 tiles (`pipelines/quickstart-tiles.ron`: a job array of tiles, the merge and
 //! the sensor stage after it), byte for byte the frame `irsig-run` traces whole; a per-frame
 //! chain waiting task by task (`aftercorr`), a failed task, and a re-submission that runs only
@@ -10,7 +14,7 @@
 //! Also, without a cluster: `irsig-run --step` (what each task runs) and its shared run
 //! state under concurrent runners, and `submit.sh` without `sbatch` on `PATH`.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -165,6 +169,22 @@ fn task_states(jobs: &[(String, String)]) -> BTreeMap<(String, String), (String,
     states
 }
 
+/// The nodes the tasks of job `id` ran on (each task's `BatchHost`), from `scontrol show job`.
+fn nodes_of(id: &str) -> BTreeSet<String> {
+    let out = Command::new("scontrol")
+        .args(["--oneliner", "show", "job", id])
+        .output()
+        .unwrap();
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|line| {
+            line.split_whitespace()
+                .find_map(|w| w.strip_prefix("BatchHost="))
+                .map(str::to_owned)
+        })
+        .collect()
+}
+
 /// Waits until none of the jobs is pending or running. On timeout, cancels them and fails
 /// naming each job, task and state.
 fn wait_for(jobs: &[(String, String)]) {
@@ -277,6 +297,13 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     let states = task_states(&jobs);
     let trace_tasks = states.keys().filter(|(id, _)| *id == jobs[1].0).count();
     assert_eq!(trace_tasks, 24, "one task per frame: {states:?}");
+    // The local cluster is several nodes (one slurmd each): the frames are spread over them,
+    // and the bytes below are the same whichever node wrote them.
+    let nodes = nodes_of(&jobs[1].0);
+    assert!(
+        nodes.len() >= 2,
+        "the frames ran on one node only: {nodes:?}"
+    );
     let build = "thesis-flyby/build";
     assert_same_files(&local.path().join(build), &cluster.path().join(build));
     // 1 raw scene, 5 files per frame, the contact sheet.
@@ -307,6 +334,211 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     wait_for(&jobs);
     assert_all_completed(cluster.path(), &jobs);
     assert_same_files(&local.path().join(build), &cluster.path().join(build));
+}
+
+/// Every file under `dir` with its modification time.
+fn file_times(dir: &Path) -> BTreeMap<PathBuf, std::time::SystemTime> {
+    files(dir)
+        .into_iter()
+        .map(|name| {
+            let time = std::fs::metadata(dir.join(&name))
+                .and_then(|m| m.modified())
+                .unwrap();
+            (name, time)
+        })
+        .collect()
+}
+
+/// Cancels (SIGTERM, then SIGKILL: what a lost node or a pre-emption does to a task) one
+/// task of array job `id` while it runs, and returns its task number. A task seen running
+/// may end before the cancel reaches it; then the next one running is tried.
+fn kill_one_running_task(id: &str) -> String {
+    let start = Instant::now();
+    let mut tried = BTreeSet::new();
+    while start.elapsed() < TIMEOUT {
+        let out = Command::new("squeue")
+            .args([
+                "--noheader",
+                "--format=%i",
+                "--states=RUNNING",
+                "--jobs",
+                id,
+            ])
+            .output()
+            .unwrap();
+        let running = String::from_utf8_lossy(&out.stdout).into_owned();
+        // A task after the first few, so that its frame is in the middle of the array.
+        let task = running
+            .lines()
+            .filter_map(|l| l.trim().strip_prefix(&format!("{id}_")).map(str::to_owned))
+            .find(|t| t.parse::<usize>().is_ok_and(|n| n >= 3) && !tried.contains(t));
+        if let Some(task) = task {
+            tried.insert(task.clone());
+            let _ = Command::new("scancel").arg(format!("{id}_{task}")).status();
+            // Wait for the task to leave the queue, then see whether the cancel was in time.
+            while Command::new("squeue")
+                .args(["--noheader", "--jobs", &format!("{id}_{task}")])
+                .output()
+                .is_ok_and(|o| !String::from_utf8_lossy(&o.stdout).trim().is_empty())
+            {
+                std::thread::sleep(Duration::from_millis(100));
+            }
+            let states = task_states(&[(id.to_owned(), String::new())]);
+            if states
+                .get(&(id.to_owned(), task.clone()))
+                .is_some_and(|(state, _)| state == "CANCELLED")
+            {
+                return task;
+            }
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    }
+    panic!("no task of job {id} could be cancelled while it ran (tried {tried:?})");
+}
+
+#[test]
+fn a_task_killed_mid_run_is_all_a_resubmission_runs_and_the_bytes_are_the_same() {
+    require_cluster();
+    let local = copy_pipeline("thesis-flyby");
+    bin("irsig-run")
+        .current_dir(local.path())
+        .args(["--quiet", "thesis-flyby.ron"])
+        .assert()
+        .success();
+    let cluster = copy_pipeline("thesis-flyby");
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    assert_eq!(jobs[1].1, "02-trace.sbatch");
+    let killed = kill_one_running_task(&jobs[1].0);
+    // The sheet waits for every frame, so it can never start now: it is cancelled too once
+    // the other frames are done.
+    wait_for(&jobs[..2]);
+    let _ = Command::new("scancel").arg(&jobs[2].0).status();
+    wait_for(&jobs);
+    let states = task_states(&jobs);
+    for ((id, task), (state, _)) in &states {
+        let expected = if (*id == jobs[1].0 && *task == killed) || *id == jobs[2].0 {
+            "CANCELLED"
+        } else {
+            "COMPLETED"
+        };
+        assert_eq!(state, expected, "job {id} task {task}: {states:?}");
+    }
+    let build = cluster.path().join("thesis-flyby/build");
+    let before = file_times(&build);
+
+    // The resubmission: the killed frame, and the sheet after it; nothing else.
+    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(scripts, ["01-trace.sbatch", "02-contact-sheet.sbatch"]);
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/01-trace.sbatch")).unwrap();
+    assert!(
+        trace.contains(&format!("\n#SBATCH --array={killed}\n")),
+        "{trace}"
+    );
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    // Every file of another frame is the one the first submission wrote, untouched.
+    let frame = format!("frame-{:02}.", killed.parse::<usize>().unwrap());
+    let after = file_times(&build);
+    for (name, time) in &before {
+        let text = name.to_string_lossy();
+        if !text.starts_with(&frame) && !text.starts_with("contact-sheet") {
+            assert_eq!(after.get(name), Some(time), "{text} was written again");
+        }
+    }
+    assert_same_files(&local.path().join("thesis-flyby/build"), &build);
+}
+
+/// A day of the thermal pipeline's scene in hourly frames: one `irsig-therm` over the whole
+/// day gathering every frame's scene, then one small 8-14 um trace per frame (a built-in
+/// atmosphere, no sun), each output named by the frame's UTC time.
+const DAY: &str = r#"Pipeline(
+    sweeps: {"day": Times(start: "2001-08-07T00:00", end: "2001-08-07T23:00", step: "PT1H",
+                          zone: "America/Denver")},
+    stages: [
+        Stage(name: "flatten", tool: "flatten", args: ["thermal/scene.ron"],
+              reads: ["thermal/ground.ron", "quickstart/box.ron"],
+              inputs: {"materials": "thermal/materials.ron"}, outputs: {"o": "build/start.raw"}),
+        Stage(name: "therm", tool: "therm", gather: "day", args: ["build/start.raw"],
+              inputs: {"materials": "thermal/materials.ron", "weather": "golden-tmy3-aug.epw"},
+              params: {"at": "{time}", "spin-up-h": 12, "step-s": 600},
+              outputs: {"raw": "build/{time_utc}.raw"}),
+        Stage(name: "trace", tool: "trace", sweep: "day",
+              inputs: {"scene": "build/{time_utc}.raw", "materials": "thermal/materials.ron",
+                       "view": "view.ron"},
+              params: {"band": "8-14", "atmosphere": "us-std-1976", "atmosphere-model": "table"},
+              outputs: {"radiance-exr": "build/{time_utc}.radiance.exr",
+                        "truth-exr": "build/{time_utc}.truth.exr"}),
+    ],
+)
+"#;
+
+/// A scratch directory holding [`DAY`] as `day.ron`, the thermal pipeline's scene and the
+/// quickstart's box it places, the August weather record and a 64 x 48 view of the scene.
+fn day() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    let pipelines = repo_root().join("pipelines");
+    for data in ["thermal", "quickstart"] {
+        copy_tree(&pipelines.join(data), &dir.path().join(data));
+    }
+    std::fs::copy(
+        repo_root().join("formats/samples/golden-tmy3-aug.epw"),
+        dir.path().join("golden-tmy3-aug.epw"),
+    )
+    .unwrap();
+    std::fs::write(
+        dir.path().join("view.ron"),
+        "LookAt(position_m: (3.0, 26.0, 7.0), target_m: (2.0, 3.0, 0.5), pixels: (64, 48), \
+         fov_deg: (47.0, 36.0))\n",
+    )
+    .unwrap();
+    std::fs::write(dir.path().join("day.ron"), DAY).unwrap();
+    dir
+}
+
+#[test]
+fn a_days_frames_run_as_an_array_after_one_thermal_job_with_irsig_runs_bytes() {
+    require_cluster();
+    let local = day();
+    bin("irsig-run")
+        .current_dir(local.path())
+        .args(["--quiet", "day.ron"])
+        .assert()
+        .success();
+    let cluster = day();
+    let jobs = emit_and_submit(cluster.path(), "day.ron");
+    let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
+    assert_eq!(
+        scripts,
+        ["01-flatten.sbatch", "02-therm.sbatch", "03-trace.sbatch"]
+    );
+    // The frames are an array that waits for the one thermal job, and say their times.
+    let submit_sh = std::fs::read_to_string(cluster.path().join("slurm/submit.sh")).unwrap();
+    assert!(
+        submit_sh.contains("--dependency=afterok:$job2 "),
+        "{submit_sh}"
+    );
+    let trace = std::fs::read_to_string(cluster.path().join("slurm/03-trace.sbatch")).unwrap();
+    for line in [
+        "#   task 1: 2001-08-07T00:00:00-06:00",
+        "#   task 15: 2001-08-07T14:00:00-06:00",
+        "#SBATCH --array=1-24",
+    ] {
+        assert!(trace.contains(&format!("\n{line}\n")), "{line} in {trace}");
+    }
+    wait_for(&jobs);
+    assert_all_completed(cluster.path(), &jobs);
+    let nodes = nodes_of(&jobs[2].0);
+    assert!(
+        nodes.len() >= 2,
+        "the frames ran on one node only: {nodes:?}"
+    );
+    let build = cluster.path().join("build");
+    // The start, and each hour's scene, radiance and truth, named by its UTC time: 14:00
+    // in Denver in August is 20:00 UTC.
+    assert_eq!(files(&build).len(), 1 + 24 * 3);
+    assert!(build.join("20010807T200000Z.truth.exr").is_file());
+    assert_same_files(&local.path().join("build"), &build);
 }
 
 /// `pipelines/quickstart-tiles.ron` with the frame traced whole: the same flatten, one trace

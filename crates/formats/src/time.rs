@@ -77,16 +77,7 @@ pub fn parse_times(text: &str) -> Result<Vec<f64>, String> {
         ));
     };
     let (start_s, end_s) = (parse_time(start)?, parse_time(end)?);
-    let step_s = match step.trim().parse::<f64>() {
-        Ok(s) => s,
-        Err(_) => step
-            .trim()
-            .parse::<jiff::SignedDuration>()
-            .map_err(|e| {
-                format!("`{step}` is not a step: expected a duration such as PT1H or seconds ({e})")
-            })?
-            .as_secs_f64(),
-    };
+    let step_s = parse_duration_s(step)?;
     if !(step_s.is_finite() && step_s > 0.0) {
         return Err(format!(
             "`{text}`: the step must be a positive duration, found {step_s} s"
@@ -104,6 +95,24 @@ pub fn parse_times(text: &str) -> Result<Vec<f64>, String> {
     Ok((0..count as usize)
         .map(|k| start_s + k as f64 * step_s)
         .collect())
+}
+
+/// A duration as ISO 8601 writes it (`PT1H`, `PT15M`, `-PT1H`) or plain seconds (`3600`),
+/// in seconds; its sign is the caller's to check.
+///
+/// # Errors
+/// Text that is neither.
+pub fn parse_duration_s(text: &str) -> Result<f64, String> {
+    match text.trim().parse::<f64>() {
+        Ok(s) => Ok(s),
+        Err(_) => Ok(text
+            .trim()
+            .parse::<jiff::SignedDuration>()
+            .map_err(|e| {
+                format!("`{text}` is not a step: expected a duration such as PT1H or seconds ({e})")
+            })?
+            .as_secs_f64()),
+    }
 }
 
 fn seconds(t: jiff::Timestamp) -> f64 {

@@ -82,6 +82,38 @@ pub fn year_utc(time_s: f64) -> Option<i64> {
     Some(i64::from(utc(time_s)?.year()))
 }
 
+/// A moment as the clocks of one time zone show it: what a frame of a day is named and
+/// labelled by.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ZonedTime {
+    /// RFC 3339 with the zone's offset at that moment, whole seconds:
+    /// `2001-08-07T14:00:00-06:00` (what `irsig_formats::time::parse_time` reads back).
+    pub rfc3339: String,
+    /// The local date, `2001-08-07`.
+    pub date: String,
+    /// The local time of day, `14:00` (hours and minutes).
+    pub clock: String,
+}
+
+/// `time_s` (rounded down to the second) on the clocks of the IANA time zone `zone`
+/// (`America/Denver`, `UTC`), from the time zone database bundled with irsig, so that the
+/// same moment reads the same on every machine.
+///
+/// # Errors
+/// A zone the database does not have, or a time outside the calendar's years.
+pub fn in_zone(time_s: f64, zone: &str) -> Result<ZonedTime, String> {
+    let tz = jiff::tz::TimeZone::get(zone).map_err(|e| {
+        format!("`{zone}` is not a time zone of the IANA database irsig carries ({e})")
+    })?;
+    let at = timestamp(time_s.floor()).ok_or_else(|| format!("{time_s} s has no calendar date"))?;
+    let local = at.to_zoned_datetime(tz);
+    Ok(ZonedTime {
+        rfc3339: local.strftime("%Y-%m-%dT%H:%M:%S%:z").to_string(),
+        date: local.strftime("%Y-%m-%d").to_string(),
+        clock: local.strftime("%H:%M").to_string(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -140,5 +172,32 @@ mod tests {
         // 7 August of a common year: 31 + 28 + 31 + 30 + 31 + 30 + 31 + 7 = 219.
         assert_eq!(day_of_year_utc(t), Some(219));
         assert_eq!(year_utc(t), Some(2001));
+    }
+
+    #[test]
+    fn a_moment_on_a_zones_clocks() {
+        // 20:00 UTC on 7 August 2001: Denver keeps mountain daylight time (UTC-6) then,
+        // Sydney eastern standard time (UTC+10), so 14:00 on the 7th and 06:00 on the 8th.
+        let t = utc_seconds(2001, 8, 7, 20, 0, 0.0).unwrap();
+        let denver = in_zone(t, "America/Denver").unwrap();
+        assert_eq!(denver.rfc3339, "2001-08-07T14:00:00-06:00");
+        assert_eq!(
+            (denver.date.as_str(), denver.clock.as_str()),
+            ("2001-08-07", "14:00")
+        );
+        let sydney = in_zone(t, "Australia/Sydney").unwrap();
+        assert_eq!(sydney.rfc3339, "2001-08-08T06:00:00+10:00");
+        assert_eq!(
+            in_zone(t, "UTC").unwrap().rfc3339,
+            "2001-08-07T20:00:00+00:00"
+        );
+        // In January Denver keeps standard time (UTC-7).
+        let winter = utc_seconds(2001, 1, 15, 20, 0, 0.0).unwrap();
+        assert_eq!(
+            in_zone(winter, "America/Denver").unwrap().rfc3339,
+            "2001-01-15T13:00:00-07:00"
+        );
+        assert!(in_zone(t, "Mars/Olympus_Mons").is_err());
+        assert!(in_zone(f64::NAN, "UTC").is_err());
     }
 }

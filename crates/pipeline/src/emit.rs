@@ -17,7 +17,8 @@ use std::fmt::Write;
 use std::path::Path;
 
 use crate::error::{ErrorKind, PipelineError};
-use crate::plan::{FileRef, Plan, Step};
+use crate::plan::Plan;
+use crate::step::{FileRef, Step};
 
 /// `text` for one line of a comment: control characters escaped (`\n`), so that it cannot
 /// end the comment's line (nor, in a Makefile, continue it: a trailing `\` is escaped too).
@@ -98,7 +99,7 @@ impl Plan {
             let _ = writeln!(
                 rules,
                 "\n# {} ({})",
-                comment_text(&step.name),
+                comment_text(&step.described()),
                 comment_text(&self.location(step))
             );
             let rule = format!("{targets} {colon} {prerequisites}");

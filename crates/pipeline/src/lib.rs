@@ -48,16 +48,20 @@ mod plan;
 mod run;
 mod slurm;
 mod spec;
+mod step;
 mod sun;
+mod times;
 
 pub use error::{ErrorKind, PipelineError};
-pub use plan::{FileRef, Pipeline, Plan, Step, Tools, Validator};
+pub use plan::{Pipeline, Plan, Tools, Validator};
 pub use run::{Event, RunOptions, RunSummary};
 pub use slurm::{
     Dependency, MEMORY_FLOOR_MIB, MEMORY_PER_INPUT_BYTE, NodeLimits, SlurmJob, SlurmOptions,
     SlurmScripts, estimate_memory_mib,
 };
+pub use step::{FileRef, Step};
 pub use sun::SunFlags;
+pub use times::TimeFlags;
 
 /// `word` quoted for a POSIX shell when it needs quoting, as dry runs, Makefiles and Slurm
 /// scripts print it: as it is when it holds only letters, digits and `+ - . / : @ ] _`,

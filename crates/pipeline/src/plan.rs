@@ -7,7 +7,9 @@ use std::path::{Component, Path, PathBuf};
 
 use crate::error::{ErrorKind, PipelineError};
 use crate::spec::{self, Param, PipelineSpec, Source, Spanned, StageSpec};
+use crate::step::{FileRef, Step};
 use crate::sun::SunFlags;
+use crate::times::TimeFlags;
 
 /// Checks a stage's command line (program name first, as `std::env::args` gives it) the way
 /// the tool itself would parse it, without running anything. The message is shown to the
@@ -17,14 +19,12 @@ pub type Validator = Box<dyn Fn(&[String]) -> Result<(), String> + Send + Sync>;
 /// Finds a tool's program by the tool's name.
 type Lookup = dyn Fn(&str) -> Option<PathBuf> + Send + Sync;
 
-/// A byte range `(start, end)` in the pipeline file.
-type Span = (usize, usize);
-
 /// How the runner finds and checks the tools stages name.
 pub struct Tools {
     lookup: Box<Lookup>,
     validators: BTreeMap<String, Validator>,
     sun_flags: Option<SunFlags>,
+    time_flags: Option<TimeFlags>,
 }
 
 impl std::fmt::Debug for Tools {
@@ -43,6 +43,7 @@ impl Tools {
             lookup: Box::new(lookup),
             validators: BTreeMap::new(),
             sun_flags: None,
+            time_flags: None,
         }
     }
 
@@ -51,6 +52,14 @@ impl Tools {
     /// pipeline with a `sun` is refused.
     pub fn with_sun_flags(&mut self, flags: SunFlags) -> &mut Self {
         self.sun_flags = Some(flags);
+        self
+    }
+
+    /// Says how the tools name a weather record, so that the frames of a `Times` sweep are
+    /// checked against the record a stage reads before anything runs. Without it they are
+    /// checked only by the tool, when it runs.
+    pub fn with_time_flags(&mut self, flags: TimeFlags) -> &mut Self {
+        self.time_flags = Some(flags);
         self
     }
 
@@ -164,6 +173,7 @@ impl Pipeline {
         let mut steps = Vec::new();
         let mut names = BTreeMap::new();
         let stages = self.lit_stages(tools)?;
+        let mut weather = crate::times::WeatherSpans::new();
         for (index, stage) in stages.iter().enumerate() {
             let program = self.find_tool(stage, tools)?;
             let base_name = stage.name.as_ref().map_or_else(
@@ -184,24 +194,33 @@ impl Pipeline {
                     ));
                 }
             }
+            let gathered = self.gathered(stage)?;
+            let timed = self.is_timed(stage);
             for (frame, vars) in self.frames_of(stage)? {
                 let name = match frame {
                     Some(f) => format!("{base_name}[{f}]"),
                     None => base_name.clone(),
                 };
+                let lit = self.lit_frame(stage, vars.as_ref(), tools)?;
+                let at_frame = lit.as_ref().unwrap_or(stage);
                 let mut step = build_step(
                     src,
-                    stage,
+                    at_frame,
                     name,
                     &program,
                     vars.as_ref(),
-                    self.gathered(stage)?,
+                    gathered.as_deref(),
                 )?;
                 step.stage = index;
                 step.frame = frame;
-                check_parameters(src, stage, &step, tools)?;
+                step.label = vars
+                    .as_ref()
+                    .filter(|_| timed)
+                    .and_then(|v| v.get("time").cloned());
+                check_parameters(src, at_frame, &step, tools)?;
                 steps.push(step);
             }
+            self.check_weather(stage, tools, &mut weather)?;
         }
         let order = self.link(&mut steps, inputs_must_exist)?;
         Ok(Plan {
@@ -228,9 +247,61 @@ impl Pipeline {
                      one",
                 ));
             };
-            crate::sun::apply(src, sun, flags, &mut stages)?;
+            crate::sun::apply(src, sun, flags, &mut stages, &self.spec.sweeps)?;
         }
         Ok(stages)
+    }
+
+    /// The stage as it runs for one frame, when the pipeline's sun follows the frames'
+    /// times and lights this frame of it: `None` when it runs as written.
+    fn lit_frame(
+        &self,
+        stage: &StageSpec,
+        vars: Option<&BTreeMap<String, String>>,
+        tools: &Tools,
+    ) -> Result<Option<StageSpec>, PipelineError> {
+        let (Some(sun), Some(vars), Some(flags)) = (&self.spec.sun, vars, &tools.sun_flags) else {
+            return Ok(None);
+        };
+        let params = crate::sun::frame_params(self.source(), sun, flags, stage, vars)?;
+        if params.is_empty() {
+            return Ok(None);
+        }
+        let mut lit = stage.clone();
+        lit.params.extend(params);
+        Ok(Some(lit))
+    }
+
+    /// The `Times` sweep a stage runs over (`sweep`) or gathers, if it is one.
+    fn times_of(&self, stage: &StageSpec) -> Option<&crate::times::TimesSpec> {
+        let name = stage.sweep.as_ref().or(stage.gather.as_ref())?;
+        self.spec.sweeps.get(&name.value)?.times.as_ref()
+    }
+
+    /// Whether a stage runs once per frame of a `Times` sweep: its steps are labelled by
+    /// their frame's time.
+    fn is_timed(&self, stage: &StageSpec) -> bool {
+        stage.sweep.is_some() && self.times_of(stage).is_some()
+    }
+
+    /// The frames' times against the weather record the stage reads, if any.
+    fn check_weather(
+        &self,
+        stage: &StageSpec,
+        tools: &Tools,
+        spans: &mut crate::times::WeatherSpans,
+    ) -> Result<(), PipelineError> {
+        let (Some(flags), Some(times)) = (&tools.time_flags, self.times_of(stage)) else {
+            return Ok(());
+        };
+        crate::times::check_weather(
+            self.source(),
+            &self.base_dir,
+            flags,
+            stage,
+            (times, &times.instants_s),
+            spans,
+        )
     }
 
     fn find_tool(&self, stage: &StageSpec, tools: &Tools) -> Result<PathBuf, PipelineError> {
@@ -461,90 +532,6 @@ fn reorder(steps: Vec<Step>, order: &[usize]) -> Vec<Step> {
         .collect()
 }
 
-/// A file a step reads or writes, with where the pipeline file names it.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct FileRef {
-    /// The path as written (after templates), relative to the pipeline's directory.
-    pub path: PathBuf,
-    /// The lexically normalised path, for matching outputs to inputs.
-    pub(crate) key: PathBuf,
-    start: usize,
-    end: usize,
-}
-
-/// One run of one tool: a stage, or one frame of a swept stage.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Step {
-    /// The stage's name, with `[frame]` for a frame of a sweep: `trace[3]`.
-    pub name: String,
-    /// The tool's name, such as `trace`.
-    pub tool: String,
-    /// The program found for the tool.
-    pub program: PathBuf,
-    /// The command line, program name (`irsig-<tool>`) first: exactly what a user would type.
-    pub argv: Vec<String>,
-    /// Files read: positional `args`, `inputs` and `reads`.
-    pub inputs: Vec<FileRef>,
-    /// Files written: `outputs`.
-    pub outputs: Vec<FileRef>,
-    /// Indices (in [`Plan::steps`]) of the steps whose outputs this one reads.
-    pub deps: Vec<usize>,
-    /// The frame of the stage's sweep this step runs (from 1), or `None` for a stage without
-    /// `sweep`.
-    pub frame: Option<usize>,
-    /// The index of the stage in the pipeline file's `stages`.
-    pub(crate) stage: usize,
-    pub(crate) start: usize,
-    end: usize,
-    /// (argv index, key span, value span) of each flag, to locate a validator's complaint.
-    flags: Vec<(usize, Span, Span)>,
-    tool_span: Span,
-}
-
-impl Step {
-    /// The command line for messages, shell-quoted so that it can be pasted into a shell.
-    /// A planned step's words hold no control character (the pipeline file refuses them);
-    /// should a word hold one, it is shown escaped (`\n`) inside quotes, inert, never raw.
-    /// Scripts use [`Step::shell_line`], which refuses it.
-    #[must_use]
-    pub fn command_line(&self) -> String {
-        self.argv
-            .iter()
-            .map(|w| {
-                crate::shell_quote(w).unwrap_or_else(|_| {
-                    let shown: String = w
-                        .chars()
-                        .flat_map(|c| {
-                            let escaped: Vec<char> = if c.is_control() {
-                                c.escape_debug().collect()
-                            } else {
-                                vec![c]
-                            };
-                            escaped
-                        })
-                        .collect();
-                    crate::shell_quote(&shown).unwrap_or_default()
-                })
-            })
-            .collect::<Vec<_>>()
-            .join(" ")
-    }
-
-    /// The command line as one line of a shell script: every word quoted so that `sh` runs
-    /// exactly [`Step::argv`].
-    ///
-    /// # Errors
-    /// [`ErrorKind::ControlCharacter`] for a word no shell line can carry.
-    pub fn shell_line(&self) -> Result<String, PipelineError> {
-        Ok(self
-            .argv
-            .iter()
-            .map(|w| crate::shell_quote(w))
-            .collect::<Result<Vec<_>, _>>()?
-            .join(" "))
-    }
-}
-
 fn flag(key: &str) -> String {
     if key.starts_with('-') {
         key.to_owned()
@@ -555,13 +542,108 @@ fn flag(key: &str) -> String {
     }
 }
 
+/// The words one templated text gives a step: one, expanded with the frame's variables;
+/// or, in a `gather` stage, one per gathered frame, in frame order, when it holds a
+/// template.
+fn values(
+    src: Source<'_>,
+    text: &Spanned<String>,
+    vars: Option<&BTreeMap<String, String>>,
+    gathered: Option<&[BTreeMap<String, String>]>,
+) -> Result<Vec<String>, PipelineError> {
+    match gathered {
+        Some(frames) if spec::has_template(&text.value) => frames
+            .iter()
+            .map(|frame| expand(src, text, Some(frame)))
+            .collect(),
+        _ => Ok(vec![expand(src, text, vars)?]),
+    }
+}
+
+/// The files one templated path names in a step (as [`values`]), each checked to be a
+/// file rather than standard input or output.
+fn files(
+    src: Source<'_>,
+    path: &Spanned<String>,
+    vars: Option<&BTreeMap<String, String>>,
+    gathered: Option<&[BTreeMap<String, String>]>,
+) -> Result<Vec<FileRef>, PipelineError> {
+    values(src, path, vars, gathered)?
+        .into_iter()
+        .map(|p| {
+            if p == "-" || p.is_empty() {
+                return Err(src.error(
+                    ErrorKind::Structure,
+                    path.start,
+                    path.end,
+                    "expected a file path: pipeline stages pass files, not standard input or output",
+                ));
+            }
+            let p = PathBuf::from(p);
+            Ok(FileRef {
+                key: normalise(&p),
+                path: p,
+                start: path.start,
+                end: path.end,
+            })
+        })
+        .collect()
+}
+
+/// The words of one parameter: `--key value` (a list repeats the flag, a tuple gives it
+/// several values), each templated value once per gathered frame in a `gather` stage.
+fn param_words(
+    src: Source<'_>,
+    key: &str,
+    param: &Param,
+    vars: Option<&BTreeMap<String, String>>,
+    gathered: Option<&[BTreeMap<String, String>]>,
+) -> Result<Vec<String>, PipelineError> {
+    let mut words = Vec::new();
+    match param {
+        Param::Switch(false) => {}
+        Param::Switch(true) => words.push(flag(key)),
+        Param::One(v) => {
+            for value in values(src, v, vars, gathered)? {
+                words.push(flag(key));
+                words.push(value);
+            }
+        }
+        Param::Repeated(vs) => {
+            for v in vs {
+                for value in values(src, v, vars, gathered)? {
+                    words.push(flag(key));
+                    words.push(value);
+                }
+            }
+        }
+        Param::Several(vs) => match gathered {
+            Some(frames) if vs.iter().any(|v| spec::has_template(&v.value)) => {
+                for frame in frames {
+                    words.push(flag(key));
+                    for v in vs {
+                        words.push(expand(src, v, Some(frame))?);
+                    }
+                }
+            }
+            _ => {
+                words.push(flag(key));
+                for v in vs {
+                    words.push(expand(src, v, vars)?);
+                }
+            }
+        },
+    }
+    Ok(words)
+}
+
 fn build_step(
     src: Source<'_>,
     stage: &StageSpec,
     name: String,
     program: &Path,
     vars: Option<&BTreeMap<String, String>>,
-    gathered: Option<Vec<BTreeMap<String, String>>>,
+    gathered: Option<&[BTreeMap<String, String>]>,
 ) -> Result<Step, PipelineError> {
     let mut words = stage.tool.value.split_whitespace();
     let tool = words.next().unwrap_or_default().to_owned();
@@ -570,51 +652,24 @@ fn build_step(
     let mut inputs = Vec::new();
     let mut outputs = Vec::new();
     let mut flags = Vec::new();
-    let file = |s: &Spanned<String>,
-                vars: Option<&BTreeMap<String, String>>|
-     -> Result<FileRef, PipelineError> {
-        let path = expand(src, s, vars)?;
-        if path == "-" || path.is_empty() {
-            return Err(src.error(
-                ErrorKind::Structure,
-                s.start,
-                s.end,
-                "expected a file path: pipeline stages pass files, not standard input or output",
-            ));
-        }
-        let path = PathBuf::from(path);
-        Ok(FileRef {
-            key: normalise(&path),
-            path,
-            start: s.start,
-            end: s.end,
-        })
-    };
     for arg in &stage.args {
-        match (&gathered, arg.value.contains('{')) {
-            (Some(frames), true) => {
-                for frame in frames {
-                    inputs.push(file(arg, Some(frame))?);
-                }
-            }
-            _ => inputs.push(file(arg, vars)?),
-        }
+        inputs.extend(files(src, arg, vars, gathered)?);
     }
     for input in &inputs {
         argv.push(positional(&input.path));
     }
     for (key, path) in &stage.inputs {
-        let f = file(path, vars)?;
-        flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
-        argv.push(flag(&key.value));
-        argv.push(f.path.display().to_string());
-        inputs.push(f);
+        for f in files(src, path, vars, gathered)? {
+            flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
+            argv.push(flag(&key.value));
+            argv.push(f.path.display().to_string());
+            inputs.push(f);
+        }
     }
     for read in &stage.reads {
-        inputs.push(file(read, vars)?);
+        inputs.extend(files(src, read, vars, gathered)?);
     }
     for (key, param) in &stage.params {
-        let at = argv.len();
         let (vstart, vend) = match param {
             Param::Switch(_) => (key.start, key.end),
             Param::One(v) => (v.start, v.end),
@@ -623,34 +678,20 @@ fn build_step(
                 vs.last().map_or(key.end, |v| v.end),
             ),
         };
-        match param {
-            Param::Switch(false) => continue,
-            Param::Switch(true) => argv.push(flag(&key.value)),
-            Param::One(v) => {
-                argv.push(flag(&key.value));
-                argv.push(expand(src, v, vars)?);
-            }
-            Param::Repeated(vs) => {
-                for v in vs {
-                    argv.push(flag(&key.value));
-                    argv.push(expand(src, v, vars)?);
-                }
-            }
-            Param::Several(vs) => {
-                argv.push(flag(&key.value));
-                for v in vs {
-                    argv.push(expand(src, v, vars)?);
-                }
-            }
+        let words = param_words(src, &key.value, param, vars, gathered)?;
+        let at = argv.len();
+        if !words.is_empty() {
+            flags.push((at, (key.start, key.end), (vstart, vend)));
         }
-        flags.push((at, (key.start, key.end), (vstart, vend)));
+        argv.extend(words);
     }
     for (key, path) in &stage.outputs {
-        let f = file(path, vars)?;
-        flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
-        argv.push(flag(&key.value));
-        argv.push(f.path.display().to_string());
-        outputs.push(f);
+        for f in files(src, path, vars, gathered)? {
+            flags.push((argv.len(), (key.start, key.end), (path.start, path.end)));
+            argv.push(flag(&key.value));
+            argv.push(f.path.display().to_string());
+            outputs.push(f);
+        }
     }
     Ok(Step {
         name,
@@ -661,6 +702,7 @@ fn build_step(
         outputs,
         deps: Vec::new(),
         frame: None,
+        label: None,
         stage: 0,
         start: stage.start,
         end: stage.end,
@@ -700,7 +742,7 @@ fn normalise(path: &Path) -> PathBuf {
 
 /// Substitutes `{name}` and `{name:0N}` (zero-padded to N digits) from the frame's
 /// variables; `{{` and `}}` are literal braces.
-fn expand(
+pub(crate) fn expand(
     src: Source<'_>,
     text: &Spanned<String>,
     vars: Option<&BTreeMap<String, String>>,
@@ -913,6 +955,7 @@ mod tests {
 #[cfg(test)]
 mod plan_tests {
     use super::*;
+    use crate::TimeFlags;
 
     fn tools() -> Tools {
         Tools::new(|t| Some(PathBuf::from(format!("/opt/irsig-{t}"))))
@@ -1100,6 +1143,103 @@ mod plan_tests {
             let e = plan(&text, &tools()).unwrap_err();
             assert!(e.to_string().contains(says), "{bad}: {e}");
         }
+    }
+
+    const DAY: &str = r#"Times(start: "2001-08-07T12:00", end: "2001-08-07T14:00", step: "PT1H", zone: "America/Denver")"#;
+
+    #[test]
+    fn a_gather_stage_repeats_every_templated_value_once_per_frame() {
+        // One thermal solve writes every frame's scene; each frame's trace reads its own.
+        let text = format!(
+            r##"(sweeps: {{"day": {DAY}}}, stages: [
+            (name: "therm", tool: "therm", gather: "day", args: ["start.raw"],
+             params: {{"at": "{{time}}", "hold": "#1=325", "pair": ("{{clock}}", "x")}},
+             outputs: {{"raw": "s-{{time_utc}}.raw"}}),
+            (name: "trace", tool: "trace", sweep: "day", inputs: {{"scene": "s-{{time_utc}}.raw"}},
+             outputs: {{"o": "f-{{time_utc}}.exr"}}),
+            (tool: "gen", outputs: {{"o": "start.raw"}}),
+        ])"##
+        );
+        let p = plan(&text, &tools()).unwrap();
+        let therm = p.steps.iter().find(|s| s.name == "therm").unwrap();
+        assert_eq!(
+            therm.argv,
+            [
+                "irsig-therm",
+                "start.raw",
+                "--at",
+                "2001-08-07T12:00:00-06:00",
+                "--at",
+                "2001-08-07T13:00:00-06:00",
+                "--at",
+                "2001-08-07T14:00:00-06:00",
+                "--hold",
+                "#1=325",
+                "--pair",
+                "12:00",
+                "x",
+                "--pair",
+                "13:00",
+                "x",
+                "--pair",
+                "14:00",
+                "x",
+                "--raw",
+                "s-20010807T180000Z.raw",
+                "--raw",
+                "s-20010807T190000Z.raw",
+                "--raw",
+                "s-20010807T200000Z.raw",
+            ]
+        );
+        assert_eq!(therm.outputs.len(), 3);
+        assert_eq!(therm.label, None);
+        // Each trace frame waits for the one solve; its name says its time.
+        let trace = p.steps.iter().find(|s| s.name == "trace[2]").unwrap();
+        assert_eq!(trace.deps.len(), 1);
+        assert_eq!(p.steps[trace.deps[0]].name, "therm");
+        assert_eq!(trace.described(), "trace[2] (2001-08-07T13:00:00-06:00)");
+        assert_eq!(trace.argv[2], "s-20010807T190000Z.raw");
+        // A stage without a sweep still has no frame variables.
+        let e = plan(&text.replace(r#"gather: "day", "#, ""), &tools()).unwrap_err();
+        assert!(e.to_string().contains("has no `sweep`"), "{e}");
+    }
+
+    /// The sample weather record (Golden, Colorado, 4-7 August 2001, hourly, local standard
+    /// time UTC-7): its first row is 4 August hour 1 (08:00 UTC), its last 7 August hour 24
+    /// (8 August 07:00 UTC).
+    fn weathered(start: &str, end: &str) -> Result<Plan, PipelineError> {
+        let mut t = tools();
+        t.with_time_flags(TimeFlags {
+            weather: "weather",
+            weather_year: "weather-year",
+        });
+        let text = format!(
+            "(\n  sweeps: {{\"day\": Times(start: \"{start}\",\n    end: \"{end}\", step: \"PT1H\", \
+             zone: \"America/Denver\")}},\n  stages: [(tool: \"therm\", gather: \"day\", \
+             inputs: {{\"weather\": \"golden-tmy3-aug.epw\"}}, params: {{\"at\": \"{{time}}\"}})],\n)"
+        );
+        let samples = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../formats/samples");
+        Pipeline::parse("p.ron", &text, &samples)?.plan(&t)
+    }
+
+    #[test]
+    fn frames_outside_the_weather_record_are_refused_at_their_time() {
+        // 7 August, 00:00 to 23:00 MDT: 06:00 UTC on the 7th to 05:00 on the 8th, inside.
+        assert!(weathered("2001-08-07T00:00", "2001-08-07T23:00").is_ok());
+        // Ending at 02:00 MDT on the 8th (08:00 UTC), an hour past the record: at `end`.
+        let e = weathered("2001-08-07T20:00", "2001-08-08T02:00").unwrap_err();
+        // Line 3: `    end: ` is 9 characters, then the value.
+        assert_eq!(e.line_column(), Some((3, 10)), "{e}");
+        assert!(e.to_string().contains("outside the weather record"), "{e}");
+        assert!(e.to_string().contains("2001-08-08T07:00:00Z"), "{e}");
+        // Starting at 01:00 MDT on the 4th (07:00 UTC), an hour before it: at `start`.
+        let e = weathered("2001-08-04T01:00", "2001-08-04T05:00").unwrap_err();
+        // Line 2: `  sweeps: {"day": Times(start: ` is 31 characters, then the value.
+        assert_eq!(e.line_column(), Some((2, 32)), "{e}");
+        assert!(e.to_string().contains("2001-08-04T08:00:00Z"), "{e}");
+        // 02:00 MDT on the 4th (08:00 UTC) is the record's first row: inside.
+        assert!(weathered("2001-08-04T02:00", "2001-08-04T05:00").is_ok());
     }
 
     /// Line and column (from 1) of the `n`th (from 0) occurrence of `needle` in `text`.

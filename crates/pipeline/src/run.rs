@@ -10,7 +10,8 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::error::{ErrorKind, PipelineError};
-use crate::plan::{Plan, Step};
+use crate::plan::Plan;
+use crate::step::Step;
 
 /// How to run a plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -399,7 +400,7 @@ impl Plan {
                 .find(|i| !self.base_dir.join(&i.path).is_file());
             let message = format!(
                 "stage `{}` cannot run: its input `{}` is missing",
-                step.name,
+                step.described(),
                 missing.map_or_else(String::new, |m| m.path.display().to_string())
             );
             return Err(match missing {
@@ -429,7 +430,7 @@ impl Plan {
                     ErrorKind::StageFailed,
                     format!(
                         "stage `{}`: cannot start `{}`: {e}",
-                        step.name,
+                        step.described(),
                         step.program.display()
                     ),
                 )
@@ -444,7 +445,7 @@ impl Plan {
                 ErrorKind::StageFailed,
                 format!(
                     "stage `{}` failed: `{}` {how}",
-                    step.name,
+                    step.described(),
                     step.command_line()
                 ),
             ));
@@ -456,7 +457,7 @@ impl Plan {
                 .find(|o| !self.base_dir.join(&o.path).is_file());
             let message = format!(
                 "stage `{}` succeeded but did not write its output `{}`",
-                step.name,
+                step.described(),
                 missing.map_or_else(String::new, |m| m.path.display().to_string())
             );
             return Err(match missing {

@@ -12,8 +12,9 @@ use irsig_formats::ron_tree::{Kind, Node};
 
 use crate::emit::{comment_text, file_name};
 use crate::error::{ErrorKind, PipelineError};
-use crate::plan::{Plan, Step};
+use crate::plan::Plan;
 use crate::spec::{self, Source, Spanned};
+use crate::step::Step;
 
 /// Memory asked for a task whose stage does not say: a floor for the process, its tables
 /// and a frame of up to 256 × 256 pixels (irsig-trace, the thesis fly-by frame: 17 MiB peak).
@@ -260,7 +261,7 @@ impl Plan {
                 .map(|t| t.value);
             files.push((
                 job.script.clone(),
-                self.job_script(job, stage, time, options)?,
+                self.job_script(job, (stage, &steps_of[&stage]), time, options)?,
             ));
         }
         files.push(("submit.sh".to_owned(), self.submit_script(&jobs, options)?));
@@ -426,7 +427,7 @@ impl Plan {
     fn job_script(
         &self,
         job: &SlurmJob,
-        stage: usize,
+        (stage, steps): (usize, &[usize]),
         time_limit_min: Option<u64>,
         options: &SlurmOptions,
     ) -> Result<String, PipelineError> {
@@ -446,6 +447,13 @@ impl Plan {
                     s,
                     "# A job array: task i runs frame i of the sweep; these are the frames out of date."
                 );
+                // What each task shows, when its frames have times: the expansion, readable.
+                for &i in steps {
+                    let step = &self.steps[i];
+                    if let (Some(frame), Some(label)) = (step.frame, &step.label) {
+                        let _ = writeln!(s, "#   task {frame}: {}", comment_text(label));
+                    }
+                }
                 let _ = writeln!(s, "#SBATCH --array={array}");
             }
             None => {
@@ -853,6 +861,42 @@ mod plan_tests {
                 crate::shell_quote(&pipeline).unwrap()
             )),
             "{sheet}"
+        );
+    }
+
+    #[test]
+    fn the_frames_of_a_day_show_their_times_in_every_script() {
+        let s = Scratch::new();
+        let text = r#"(
+    sweeps: {"day": Times(start: "2001-08-07T23:00", end: "2001-08-08T01:00", step: "PT1H", zone: "America/Denver")},
+    stages: [
+        (name: "therm", tool: "t", gather: "day", args: ["in.txt"], params: {"at": "{time}"},
+         outputs: {"raw": "build/{time_utc}.raw"}),
+        (name: "trace", tool: "t", sweep: "day", args: ["build/{time_utc}.raw"],
+         outputs: {"o": "build/{time_utc}.exr"}),
+    ],
+)"#;
+        let scripts = s.scripts(text);
+        // The frames' one thermal job, then the array that waits for all of it.
+        assert_eq!(scripts.jobs[1].after, [(Dependency::AfterOk, 0)]);
+        let trace = file(&scripts, "02-trace.sbatch");
+        for line in [
+            "#   task 1: 2001-08-07T23:00:00-06:00",
+            "#   task 2: 2001-08-08T00:00:00-06:00",
+            "#   task 3: 2001-08-08T01:00:00-06:00",
+            "#SBATCH --array=1-3",
+        ] {
+            assert!(trace.contains(&format!("\n{line}\n")), "{line} in {trace}");
+        }
+        let plan = s.plan(text).unwrap();
+        let makefile = plan.makefile().unwrap();
+        assert!(
+            makefile.contains("\n# trace[2] (2001-08-08T00:00:00-06:00) (p.ron:"),
+            "{makefile}"
+        );
+        assert!(
+            makefile.contains("build/20010808T060000Z.exr : build/20010808T060000Z.raw\n"),
+            "{makefile}"
         );
     }
 

@@ -112,6 +112,8 @@ pub(crate) enum Param {
 pub(crate) struct SweepSpec {
     /// The variables of each frame, in frame order; `frame` and `frames` not included.
     pub frames: Vec<BTreeMap<String, String>>,
+    /// A `Times` sweep's moments and where its times are written.
+    pub times: Option<crate::times::TimesSpec>,
 }
 
 pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, PipelineError> {
@@ -122,7 +124,7 @@ pub(crate) fn pipeline(src: Source<'_>, root: &Node) -> Result<PipelineSpec, Pip
             return Err(src.structure(
                 node,
                 format!(
-                    "expected `sweeps` to be a map {{\"name\": Frames([...]) or FlyBy(...)}}, found {}",
+                    "expected `sweeps` to be a map {{\"name\": Frames([...]), FlyBy(...), Tiles(...) or Times(...)}}, found {}",
                     node.kind.describe()
                 ),
             ));
@@ -494,6 +496,13 @@ pub(crate) fn fields_of<'n>(
 }
 
 fn sweep(src: Source<'_>, node: &Node) -> Result<SweepSpec, PipelineError> {
+    if matches!(&node.kind, Kind::Struct(Some(name), _) if name == "Times") {
+        let (frames, times) = crate::times::read(src, node)?;
+        return Ok(SweepSpec {
+            frames,
+            times: Some(times),
+        });
+    }
     let frames = match &node.kind {
         Kind::Tuple(Some(name), items) if name == "Frames" && items.len() == 1 => {
             frames_list(src, &items[0])?
@@ -505,8 +514,9 @@ fn sweep(src: Source<'_>, node: &Node) -> Result<SweepSpec, PipelineError> {
                 node,
                 format!(
                     "expected a sweep: Frames([{{\"var\": \"value\", ...}}, ...]), \
-                     FlyBy(frames: N, path: [(x, y, z), ...], look_at: (x, y, z)) or \
-                     Tiles(columns: C, rows: R), found {}",
+                     FlyBy(frames: N, path: [(x, y, z), ...], look_at: (x, y, z)), \
+                     Tiles(columns: C, rows: R) or Times(start: \"YYYY-MM-DDTHH:MM\", end: \
+                     \"...\", step: \"PT1H\", zone: \"America/Denver\"), found {}",
                     other.describe()
                 ),
             ));
@@ -515,7 +525,10 @@ fn sweep(src: Source<'_>, node: &Node) -> Result<SweepSpec, PipelineError> {
     if frames.is_empty() {
         return Err(src.structure(node, "a sweep needs at least one frame"));
     }
-    Ok(SweepSpec { frames })
+    Ok(SweepSpec {
+        frames,
+        times: None,
+    })
 }
 
 fn frames_list(
@@ -565,6 +578,19 @@ fn frames_list(
 
 pub(crate) fn is_variable(name: &str) -> bool {
     !name.is_empty() && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// Whether `text` holds a template `{...}` (a `{{` is a literal brace, no template).
+pub(crate) fn has_template(text: &str) -> bool {
+    let mut rest = text;
+    while let Some(i) = rest.find('{') {
+        if rest[i + 1..].starts_with('{') {
+            rest = &rest[i + 2..];
+        } else {
+            return true;
+        }
+    }
+    false
 }
 
 /// A fly-by: `frames` sensor positions spaced evenly along the polyline `path` (metres, by

@@ -1,6 +1,9 @@
-//! The pipeline's `sun` (issue 30): one sun for the whole job, written once and given to
-//! every `trace` stage as the tool's own sun flags, so that what runs is still exactly a
-//! command line a user could type. An `atmos plan` stage in the same file must be planned
+//! The pipeline's `sun`: one sun for the whole job, written once and given to every `trace`
+//! stage as the tool's own sun flags, so that what runs is still exactly a command line a
+//! user could type. Over a `Times` sweep the sun is templated by the frame's time (`At(utc:
+//! "{utc}", ...)`): each per-frame `trace` and `atmos plan` takes the sun of its own time, a
+//! frame whose sun is below the horizon none, and one plan for the whole day must hold every
+//! lit frame's sun. An `atmos plan` stage in the same file must be planned
 //! for that sun: its zenith angle must agree with the sun's within the solar table's
 //! tolerance (the check irsig-trace makes later against the built table, made here before
 //! anything runs), and with a sun given by time its day of the year with the date. A trace
@@ -10,11 +13,13 @@
 
 use irsig_atmosphere::AtmosphereErrorKind;
 use irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG;
-use irsig_atmosphere::sun::{SunField, SunSpec};
+use irsig_atmosphere::sun::{SunField, SunPosition, SunSpec};
 use irsig_formats::ron_tree::{Kind, Node};
 
+use std::collections::BTreeMap;
+
 use crate::error::{ErrorKind, PipelineError};
-use crate::spec::{Param, Source, Spanned, StageSpec, fields_of, scalar};
+use crate::spec::{Param, Source, Spanned, StageSpec, SweepSpec, fields_of, scalar};
 
 /// How the tools spell a sun: the flag (without its dashes) of each field of a sun, as the
 /// `trace` tool takes it and as an `atmos plan` stage gives its zenith angle, and the flag
@@ -50,19 +55,24 @@ pub(crate) struct PipelineSun {
     zenith_deg: f64,
     /// Where the `sun` value starts in the file.
     start: usize,
+    /// For a sun whose time is a frame's (`At(utc: "{utc}", ...)`): the place it is seen
+    /// from (latitude, longitude, altitude), its position worked out frame by frame.
+    per_frame: Option<[f64; 3]>,
 }
 
-/// Reads the `sun` field: `Direction(zenith_deg: Z, azimuth_deg: A)` or `At(utc: "...",
-/// latitude_deg: LAT, longitude_deg: LON[, altitude_m: H])`, optionally in `Some(...)`,
-/// every number checked by the sun's own model and the sun above the horizon.
-pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, PipelineError> {
-    let inner = match &node.kind {
-        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
-        _ => node,
-    };
-    let expected = "expected `sun: Direction(zenith_deg: DEG, azimuth_deg: DEG)` or `sun: \
-                    At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: DEG, \
-                    altitude_m: M)`";
+/// A stand-in time that checks a per-frame sun's other fields when the file is read.
+const ANY_TIME: &str = "2000-01-01T12:00:00Z";
+
+/// What a `sun` value may be, for errors.
+const EXPECTED: &str = "expected `sun: Direction(zenith_deg: DEG, azimuth_deg: DEG)` or `sun: \
+                        At(utc: \"YYYY-MM-DDTHH:MM:SSZ\", latitude_deg: DEG, longitude_deg: \
+                        DEG, altitude_m: M)`";
+
+/// The sun's form (`Direction` or `At`), its field names and the sun model's fields.
+fn form_of<'n>(
+    src: Source<'_>,
+    inner: &'n Node,
+) -> Result<(&'n str, &'static [&'static str], &'static [SunField]), PipelineError> {
     let form = match &inner.kind {
         Kind::Struct(Some(name), _) => name.as_str(),
         other => {
@@ -70,7 +80,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                 ErrorKind::Structure,
                 inner.start,
                 inner.end,
-                format!("{expected}, found {}", other.describe()),
+                format!("{EXPECTED}, found {}", other.describe()),
             ));
         }
     };
@@ -93,10 +103,22 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                 ErrorKind::Structure,
                 inner.start,
                 inner.end,
-                format!("{expected}, found `{form}(...)`"),
+                format!("{EXPECTED}, found `{form}(...)`"),
             ));
         }
     };
+    Ok((form, names, fields_of_form))
+}
+
+/// Reads the `sun` field: `Direction(zenith_deg: Z, azimuth_deg: A)` or `At(utc: "...",
+/// latitude_deg: LAT, longitude_deg: LON[, altitude_m: H])`, optionally in `Some(...)`,
+/// every number checked by the sun's own model and the sun above the horizon.
+pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, PipelineError> {
+    let inner = match &node.kind {
+        Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
+        _ => node,
+    };
+    let (form, names, fields_of_form) = form_of(src, inner)?;
     let fields = fields_of(src, inner, form, names)?;
     let mut values: Vec<Option<(Spanned<String>, &Node)>> = Vec::new();
     for name in names {
@@ -108,7 +130,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                     ErrorKind::Structure,
                     inner.start,
                     inner.end,
-                    format!("the sun has no `{name}`: {expected}"),
+                    format!("the sun has no `{name}`: {EXPECTED}"),
                 ));
             }
         };
@@ -130,6 +152,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
             )),
         }
     };
+    let mut per_frame = None;
     let spec = if form == "Direction" {
         SunSpec::Direction {
             zenith_deg: number(0)?,
@@ -142,14 +165,28 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
                 ErrorKind::Structure,
                 utc_node.start,
                 utc_node.end,
-                "expected the time as a string, \"YYYY-MM-DDTHH:MM:SSZ\"",
+                "expected the time as a string, \"YYYY-MM-DDTHH:MM:SSZ\", or a frame's, \"{utc}\"",
             ));
         }
+        let place = [
+            number(1)?,
+            number(2)?,
+            if values[3].is_some() { number(3)? } else { 0.0 },
+        ];
+        // A frame's time: the place is checked now, each frame's sun when it is planned.
+        let templated = crate::spec::has_template(&utc.value);
+        if templated {
+            per_frame = Some(place);
+        }
         SunSpec::At {
-            utc: utc.value.clone(),
-            latitude_deg: number(1)?,
-            longitude_deg: number(2)?,
-            altitude_m: if values[3].is_some() { number(3)? } else { 0.0 },
+            utc: if templated {
+                ANY_TIME.to_owned()
+            } else {
+                utc.value.clone()
+            },
+            latitude_deg: place[0],
+            longitude_deg: place[1],
+            altitude_m: place[2],
             refraction: None,
             delta_t_s: None,
             delta_ut1_s: None,
@@ -177,7 +214,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
             format!("the sun: {message}"),
         )
     })?;
-    if !position.is_above_horizon() {
+    if per_frame.is_none() && !position.is_above_horizon() {
         let n = at_field(if form == "Direction" {
             "zenith_deg"
         } else {
@@ -202,9 +239,10 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
         .collect();
     Ok(PipelineSun {
         fields,
-        day_of_year,
+        day_of_year: day_of_year.filter(|_| per_frame.is_none()),
         zenith_deg: position.zenith_deg,
         start: node.start,
+        per_frame,
     })
 }
 
@@ -213,6 +251,20 @@ impl PipelineSun {
     pub(crate) fn start(&self) -> usize {
         self.start
     }
+
+    /// The `utc` field as written, with its place.
+    fn utc(&self) -> Option<&Spanned<String>> {
+        self.fields
+            .iter()
+            .find_map(|(f, v)| (*f == SunField::Utc).then_some(v))
+    }
+}
+
+/// Whether a sun `zenith_deg` from the zenith lights a frame: above the horizon at the
+/// 0.001 deg a LOWTRAN7 deck holds, the rule `irsig-atmos plan` plans a sun by, so that a
+/// frame lit here has a plan, and one not lit is a night's.
+fn lights(zenith_deg: f64) -> bool {
+    (zenith_deg * 1000.0).round() / 1000.0 < 90.0
 }
 
 /// The first word and the rest of a stage's tool.
@@ -238,33 +290,53 @@ fn param<'a>(
         })
 }
 
+/// Refuses a stage's own sun flags (any of `TRACE_SUN_FIELDS`, and for a plan of a
+/// per-frame sun its day of the year): the pipeline's sun is given once.
+fn refuse_own_sun(
+    src: Source<'_>,
+    flags: &SunFlags,
+    sun_line: usize,
+    stage: &StageSpec,
+    also: Option<&str>,
+) -> Result<(), PipelineError> {
+    let own = TRACE_SUN_FIELDS
+        .iter()
+        .map(|&f| (flags.field)(f))
+        .chain(also)
+        .find_map(|flag| param(stage, flag));
+    match own {
+        Some((key, _)) => Err(src.error(
+            ErrorKind::Structure,
+            key.start,
+            key.end,
+            format!(
+                "the pipeline's `sun` (line {sun_line}) lights this stage: its own `{}` would \
+                 give a second sun; give the sun once",
+                key.value
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Gives the sun's flags, as `flags` spells them, to every `trace` stage, and checks every
-/// `atmos plan` stage against it.
+/// `atmos plan` stage against it. A sun whose time is each frame's is given frame by frame
+/// ([`frame_params`]); here its stages are checked.
 pub(crate) fn apply(
     src: Source<'_>,
     sun: &PipelineSun,
     flags: &SunFlags,
     stages: &mut [StageSpec],
+    sweeps: &BTreeMap<String, SweepSpec>,
 ) -> Result<(), PipelineError> {
+    if sun.per_frame.is_some() {
+        return check_per_frame(src, sun, flags, stages, sweeps);
+    }
     let sun_line = src.line(sun.start);
     for stage in stages.iter_mut() {
         let words = tool_words(stage);
         if words.first() == Some(&"trace") {
-            if let Some((key, _)) = TRACE_SUN_FIELDS
-                .iter()
-                .find_map(|&f| param(stage, (flags.field)(f)))
-            {
-                return Err(src.error(
-                    ErrorKind::Structure,
-                    key.start,
-                    key.end,
-                    format!(
-                        "the pipeline's `sun` (line {sun_line}) lights every trace stage: this \
-                         stage's own `{}` would give a second sun; give the sun once",
-                        key.value
-                    ),
-                ));
-            }
+            refuse_own_sun(src, flags, sun_line, stage, None)?;
             let given = sun.fields.iter().map(|(field, value)| {
                 let key = Spanned {
                     value: (flags.field)(*field).to_owned(),
@@ -336,6 +408,247 @@ fn check_plan(
                 ),
             ));
         }
+    }
+    Ok(())
+}
+
+/// A frame's sun: the time its variables give the sun's `utc`, and where the sun is then.
+fn frame_sun(
+    src: Source<'_>,
+    sun: &PipelineSun,
+    vars: &BTreeMap<String, String>,
+) -> Result<Option<(String, SunPosition)>, PipelineError> {
+    let (Some(place), Some(utc)) = (sun.per_frame, sun.utc()) else {
+        return Ok(None);
+    };
+    let time = crate::plan::expand(src, utc, Some(vars))?;
+    let spec = SunSpec::At {
+        utc: time.clone(),
+        latitude_deg: place[0],
+        longitude_deg: place[1],
+        altitude_m: place[2],
+        refraction: None,
+        delta_t_s: None,
+        delta_ut1_s: None,
+    };
+    let position = spec.position().map_err(|e| {
+        src.error(
+            ErrorKind::Structure,
+            utc.start,
+            utc.end,
+            format!(
+                "the sun of frame {} at `{time}`: {e}",
+                vars.get("frame").map_or("?", String::as_str)
+            ),
+        )
+    })?;
+    Ok(Some((time, position)))
+}
+
+/// The sun's flags a stage takes for one frame when the pipeline's sun is each frame's
+/// (`At(utc: "{utc}", ...)`): a `trace` stage's and a swept `atmos plan` stage's, the
+/// frame's time in place of the template; none for a frame whose sun is at or below the
+/// horizon (a night frame, traced and planned without a sun), nor for other stages.
+pub(crate) fn frame_params(
+    src: Source<'_>,
+    sun: &PipelineSun,
+    flags: &SunFlags,
+    stage: &StageSpec,
+    vars: &BTreeMap<String, String>,
+) -> Result<Vec<(Spanned<String>, Param)>, PipelineError> {
+    let words = tool_words(stage);
+    let takes_sun = words.first() == Some(&"trace")
+        || (words.starts_with(&["atmos", "plan"]) && stage.sweep.is_some());
+    if !takes_sun {
+        return Ok(Vec::new());
+    }
+    let Some((time, position)) = frame_sun(src, sun, vars)? else {
+        return Ok(Vec::new());
+    };
+    if !lights(position.zenith_deg) {
+        return Ok(Vec::new());
+    }
+    Ok(sun
+        .fields
+        .iter()
+        .map(|(field, value)| {
+            let key = Spanned {
+                value: (flags.field)(*field).to_owned(),
+                start: value.start,
+                end: value.end,
+            };
+            let value = if *field == SunField::Utc {
+                Spanned {
+                    value: time.clone(),
+                    start: value.start,
+                    end: value.end,
+                }
+            } else {
+                value.clone()
+            };
+            (key, Param::One(value))
+        })
+        .collect())
+}
+
+/// A lit frame of a trace stage under a per-frame sun: its time, and where to point when
+/// it falls before or after what a plan covers (the `Times` sweep's `start` and `end`, or
+/// the sun's `utc`).
+struct LitFrame {
+    time_s: f64,
+    shown: String,
+    before: (usize, usize),
+    after: (usize, usize),
+}
+
+/// The stages of a pipeline whose sun is each frame's: every trace stage runs once per
+/// frame (`sweep`) and gives no sun of its own; an `atmos plan` stage swept over frames
+/// gets each frame's sun too (a small build per frame) and gives none of its own; one that
+/// runs once must plan the suns of every lit frame ([`check_day_plan`]).
+fn check_per_frame(
+    src: Source<'_>,
+    sun: &PipelineSun,
+    flags: &SunFlags,
+    stages: &[StageSpec],
+    sweeps: &BTreeMap<String, SweepSpec>,
+) -> Result<(), PipelineError> {
+    let sun_line = src.line(sun.start);
+    let utc_span = sun
+        .utc()
+        .map_or((sun.start, sun.start), |u| (u.start, u.end));
+    let mut lit = Vec::new();
+    let mut once = Vec::new();
+    for stage in stages {
+        let words = tool_words(stage);
+        if words.first() == Some(&"trace") {
+            refuse_own_sun(src, flags, sun_line, stage, None)?;
+            let Some(name) = &stage.sweep else {
+                return Err(src.error(
+                    ErrorKind::Structure,
+                    stage.tool.start,
+                    stage.tool.end,
+                    format!(
+                        "the pipeline's `sun` (line {sun_line}) is each frame's, and this trace \
+                         stage runs once, at no frame's time: give it `sweep` over the frames"
+                    ),
+                ));
+            };
+            // An unknown sweep is reported where the stage is planned.
+            let Some(sweep) = sweeps.get(&name.value) else {
+                continue;
+            };
+            let (before, after) = sweep
+                .times
+                .as_ref()
+                .map_or((utc_span, utc_span), |t| (t.start, t.end));
+            let count = sweep.frames.len().to_string();
+            for (i, vars) in sweep.frames.iter().enumerate() {
+                let mut vars = vars.clone();
+                vars.insert("frame".to_owned(), (i + 1).to_string());
+                vars.insert("frames".to_owned(), count.clone());
+                let Some((time, position)) = frame_sun(src, sun, &vars)? else {
+                    continue;
+                };
+                if lights(position.zenith_deg) {
+                    // The sun's model parsed the time: it is one.
+                    let time_s = irsig_formats::time::parse_time(&time).unwrap_or(f64::NAN);
+                    lit.push(LitFrame {
+                        time_s,
+                        shown: time,
+                        before,
+                        after,
+                    });
+                }
+            }
+        } else if words.starts_with(&["atmos", "plan"]) {
+            if stage.sweep.is_some() {
+                refuse_own_sun(src, flags, sun_line, stage, Some(flags.day_of_year))?;
+            } else {
+                once.push(stage);
+            }
+        }
+    }
+    for stage in once {
+        check_day_plan(src, flags, sun_line, stage, &lit)?;
+    }
+    Ok(())
+}
+
+/// An `atmos plan` stage that runs once under a per-frame sun: its atmosphere lights every
+/// lit frame, so it must plan the suns of a time range (`sun-utc: "START/END/STEP"`) that
+/// holds every lit frame's time; a plan of one sun, or a night's while a frame is lit, is
+/// refused, and so is a lit frame outside the range (at the `Times` sweep's `start` or
+/// `end`).
+fn check_day_plan(
+    src: Source<'_>,
+    flags: &SunFlags,
+    sun_line: usize,
+    stage: &StageSpec,
+    lit: &[LitFrame],
+) -> Result<(), PipelineError> {
+    let utc_flag = (flags.field)(SunField::Utc);
+    let one_sun = |start: usize, end: usize| {
+        src.error(
+            ErrorKind::Structure,
+            start,
+            end,
+            format!(
+                "this atmosphere plan holds one sun, and the pipeline's `sun` (line {sun_line}) \
+                 moves with the frames' times: sweep the plan over the frames (a plan per \
+                 frame), or plan every frame's sun, `\"{utc_flag}\": \"START/END/STEP\"`"
+            ),
+        )
+    };
+    let Some((key, value)) = param(stage, utc_flag) else {
+        if let Some((key, _)) = param(stage, (flags.field)(SunField::ZenithDeg)) {
+            return Err(one_sun(key.start, key.end));
+        }
+        if let Some(frame) = lit.first() {
+            return Err(src.error(
+                ErrorKind::Structure,
+                stage.tool.start,
+                stage.tool.end,
+                format!(
+                    "this atmosphere plan is for a night (no sun), but the pipeline's `sun` (line \
+                     {sun_line}) lights the frame at {}",
+                    frame.shown
+                ),
+            ));
+        }
+        return Ok(());
+    };
+    let (start, end) = value.map_or((key.start, key.end), |v| (v.start, v.end));
+    let range = value
+        .and_then(|v| irsig_formats::time::parse_times(&v.value).ok())
+        .filter(|t| t.len() > 1);
+    let Some(times) = range else {
+        return Err(one_sun(start, end));
+    };
+    let (first, last) = (times[0], times[times.len() - 1]);
+    let fmt = irsig_model::time::format_utc;
+    for frame in lit {
+        let blame = if frame.time_s < first {
+            frame.before
+        } else if frame.time_s > last {
+            frame.after
+        } else {
+            continue;
+        };
+        return Err(src
+            .error(
+                ErrorKind::Structure,
+                blame.0,
+                blame.1,
+                format!(
+                    "the frame at {} is outside the atmosphere's sun table, which the plan on \
+                     line {} makes for {} to {}: no solar table would light it",
+                    frame.shown,
+                    src.line(start),
+                    fmt(first),
+                    fmt(last)
+                ),
+            )
+            .with_help("give frames inside the plan's times, or plan the suns of every frame"));
     }
     Ok(())
 }
@@ -570,6 +883,151 @@ mod tests {
             ("Noon", 8, "expected `sun: Direction"),
         ] {
             refused(&lit(sun, "", ""), 2, column, says);
+        }
+    }
+
+    /// A day at Golden, Colorado: hourly frames of 7 August 2001, mountain daylight time,
+    /// each frame's sun; a plan per frame and a trace per frame, with `plan` and `trace`
+    /// extra parameters.
+    fn day(plan: &str, trace: &str) -> String {
+        format!(
+            "(\n  sweeps: {{\"day\": Times(start: \"2001-08-07T00:00\", end: \"2001-08-07T23:00\", \
+             step: \"PT1H\", zone: \"America/Denver\")}},\n  sun: At(utc: \"{{utc}}\", \
+             latitude_deg: 39.74, longitude_deg: -105.18),\n  stages: [\n    {plan}\n    \
+             (name: \"trace\", tool: \"trace\", sweep: \"day\", inputs: {{\"view\": \
+             \"p-{{time_utc}}.ron\"}}, {trace}outputs: {{\"o\": \"f-{{time_utc}}\"}}),\n  ],\n)"
+        )
+    }
+
+    const PLAN_PER_FRAME: &str = "(name: \"plan\", tool: \"atmos plan\", sweep: \"day\", \
+                                  outputs: {\"o\": \"p-{time_utc}.ron\"}),";
+
+    /// The words after `--sun-utc` in a step, if any.
+    fn sun_of(p: &Plan, name: &str) -> Option<Vec<String>> {
+        let step = p.steps.iter().find(|s| s.name == name).unwrap();
+        let at = step.argv.iter().position(|w| w == "--sun-utc")?;
+        Some(step.argv[at..].to_vec())
+    }
+
+    #[test]
+    fn each_frame_is_lit_by_the_sun_of_its_time_and_a_night_frame_by_none() {
+        let p = plan(&day(PLAN_PER_FRAME, "")).unwrap();
+        // 14:00 MDT is 20:00 UTC: the trace and its frame's plan take that sun.
+        let afternoon = [
+            "--sun-utc",
+            "2001-08-07T20:00:00Z",
+            "--latitude-deg",
+            "39.74",
+            "--longitude-deg",
+            "-105.18",
+            "-o",
+            "f-20010807T200000Z",
+        ];
+        assert_eq!(sun_of(&p, "trace[15]").unwrap(), afternoon);
+        assert_eq!(sun_of(&p, "plan[15]").unwrap()[..6], afternoon[..6]);
+        // The frames lit are those whose sun SPA puts above the horizon, no others: a
+        // summer day at 40 deg N is about 14 hours long, so 13 or 14 hourly frames.
+        let mut lit = Vec::new();
+        for hour in 0..24u32 {
+            let utc = irsig_model::time::format_utc(
+                irsig_model::time::utc_seconds(2001, 8, 7, 6, 0, 0.0).unwrap()
+                    + f64::from(hour) * 3600.0,
+            );
+            let above = SunSpec::At {
+                utc,
+                latitude_deg: 39.74,
+                longitude_deg: -105.18,
+                altitude_m: 0.0,
+                refraction: None,
+                delta_t_s: None,
+                delta_ut1_s: None,
+            }
+            .position()
+            .unwrap()
+            .zenith_deg
+                < 90.0;
+            let frame = hour + 1;
+            assert_eq!(
+                sun_of(&p, &format!("trace[{frame}]")).is_some(),
+                above,
+                "frame {frame}"
+            );
+            assert_eq!(sun_of(&p, &format!("plan[{frame}]")).is_some(), above);
+            if above {
+                lit.push(hour);
+            }
+        }
+        assert!((13..=14).contains(&lit.len()), "{lit:?}");
+        assert!(!lit.contains(&0) && lit.contains(&12), "{lit:?}");
+        // Steps of a time sweep say what time they show.
+        let noon = p.steps.iter().find(|s| s.name == "trace[13]").unwrap();
+        assert_eq!(noon.described(), "trace[13] (2001-08-07T12:00:00-06:00)");
+    }
+
+    #[test]
+    fn a_frames_sun_is_given_once_and_only_to_stages_that_run_per_frame() {
+        let text = day(PLAN_PER_FRAME, "");
+        // A trace stage that runs once has no frame's time.
+        let once = text.replace(
+            "(name: \"trace\", tool: \"trace\", sweep: \"day\",",
+            "(name: \"trace\", tool: \"trace\",",
+        );
+        let e = plan(&once).unwrap_err().to_string();
+        assert!(e.contains("runs once, at no frame's time"), "{e}");
+        // A trace stage's own sun, a per-frame plan's own day.
+        let e = plan(&day(PLAN_PER_FRAME, "params: {\"sun-utc\": \"{utc}\"}, "))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("second sun"), "{e}");
+        let own_day =
+            PLAN_PER_FRAME.replace("outputs:", "params: {\"day-of-year\": 219}, outputs:");
+        let e = plan(&day(&own_day, "")).unwrap_err().to_string();
+        assert!(e.contains("second sun") && e.contains("day-of-year"), "{e}");
+    }
+
+    #[test]
+    fn one_plan_for_the_day_must_hold_every_lit_frames_sun() {
+        let once = |params: &str| {
+            day(
+                &format!(
+                    "(name: \"plan\", tool: \"atmos plan\", params: {{{params}}}, outputs: \
+                     {{\"o\": \"day.ron\"}}),"
+                ),
+                "",
+            )
+            .replace("p-{time_utc}.ron", "day.ron")
+        };
+        // The lit frames run from 07:00 to 19:00 MDT, 13:00 to 01:00 UTC: a plan of the
+        // suns from 12:00 to 02:00 UTC holds them all.
+        assert!(
+            plan(&once(
+                "\"sun-utc\": \"2001-08-07T12:00:00Z/2001-08-08T02:00:00Z/PT10M\""
+            ))
+            .is_ok()
+        );
+        // One that stops at midnight UTC leaves the evening's frames without a table: the
+        // error is at the times' end (line 2).
+        let text = once("\"sun-utc\": \"2001-08-07T12:00:00Z/2001-08-08T00:00:00Z/PT10M\"");
+        let e = plan(&text).unwrap_err();
+        let shown = e.to_string();
+        assert!(
+            shown.contains("outside the atmosphere's sun table"),
+            "{shown}"
+        );
+        let (line, column) = e.line_column().unwrap();
+        assert_eq!(line, 2);
+        assert_eq!(
+            text.lines().nth(1).unwrap()[column - 1..].get(..18),
+            Some("\"2001-08-07T23:00\"")
+        );
+        // One sun, or a night's plan, cannot light a day.
+        for (params, says) in [
+            ("\"sun-zenith-deg\": 30", "holds one sun"),
+            ("\"sun-utc\": \"2001-08-07T20:00:00Z\"", "holds one sun"),
+            ("\"atmosphere\": \"midlat-summer\"", "for a night"),
+        ] {
+            let e = plan(&once(params)).unwrap_err().to_string();
+            assert!(e.contains(says), "{params}: {e}");
         }
     }
 }

@@ -124,6 +124,12 @@ pub fn tools() -> Tools {
         field: irsig_cli::args::sun::flag,
         day_of_year: irsig_cli::args::DayOfYear::FLAG,
     });
+    // irsig-therm's weather record and the year it reads a typical year as: a day's frames
+    // are checked against the record before anything runs.
+    tools.with_time_flags(irsig_pipeline::TimeFlags {
+        weather: "weather",
+        weather_year: "weather-year",
+    });
     for tool in STAGE_TOOLS {
         if let Some(program) = irsig_cli::find_tool(tool) {
             tools.register(
@@ -185,9 +191,13 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             return;
         }
         match event {
-            Event::UpToDate(step) => irsig_cli::note!("  up to date  {}", step.name),
+            Event::UpToDate(step) => irsig_cli::note!("  up to date  {}", step.described()),
             Event::Started(step) => {
-                irsig_cli::note!("     running  {}: {}", step.name, step.command_line());
+                irsig_cli::note!(
+                    "     running  {}: {}",
+                    step.described(),
+                    step.command_line()
+                );
             }
             _ => {}
         }

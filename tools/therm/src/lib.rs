@@ -53,6 +53,9 @@ Examples:
       a scene for every hour of a day (day/t.20260715T060000Z.raw, ...) and every
       facet's temperature at every step; the object `panel` held at 325 K, 150 W/m2
       deposited behind the facets of `car`
+  irsig-therm scene.raw --materials materials.ron --weather site.epw \\
+      --at 2026-07-15T06:00Z --raw dawn.raw --at 2026-07-15T12:00Z --raw noon.raw
+      each moment's scene named, in time order (as a pipeline's stage names them)
 
 Every material the solved facets use needs a `thermal` record (layers, back boundary,
 solar absorptance; formats/canonical/material-library.md). Times take an offset or an
@@ -139,10 +142,11 @@ pub struct Cli {
     /// `-o PREFIX`.
     #[command(flatten)]
     pub output: Output,
-    /// Write the one moment's scene to FILE (binary raw scene) instead of PREFIX.raw: a
-    /// pipeline's stage names the file it makes.
+    /// Write the moments' scenes to these files (binary raw scenes), one --raw per moment
+    /// in time order, instead of PREFIX...: a pipeline's stage names every file it makes
+    /// (a day's frames: one --at and one --raw per frame).
     #[arg(long, value_name = "FILE", conflicts_with = "output")]
-    pub raw: Option<PathBuf>,
+    pub raw: Vec<PathBuf>,
     /// Also write every facet's surface temperature at every step from the first moment
     /// to the last (formats/canonical/temperature-history.md).
     #[arg(long, value_name = "FILE")]
@@ -195,15 +199,17 @@ pub fn run(cli: Cli) -> miette::Result<()> {
 fn run_in_pool(cli: &Cli) -> miette::Result<()> {
     let materials_file = cli.materials.required()?;
     let times = moments(&cli.at)?;
-    let outputs = match &cli.raw {
-        Some(file) if times.len() == 1 => vec![file.clone()],
-        Some(_) => {
-            return Err(irsig_cli::usage_error(format!(
-                "--raw names one file, and --at gives {} moments: give -o PREFIX for several",
-                times.len()
-            )));
-        }
-        None => output_paths(cli.output.required()?, &times)?,
+    let outputs = if cli.raw.is_empty() {
+        output_paths(cli.output.required()?, &times)?
+    } else if cli.raw.len() == times.len() {
+        cli.raw.clone()
+    } else {
+        return Err(irsig_cli::usage_error(format!(
+            "--raw names {} file(s), and --at gives {} moment(s): give one --raw per moment, \
+             in time order, or -o PREFIX",
+            cli.raw.len(),
+            times.len()
+        )));
     };
     let mut all_outputs: Vec<&Path> = outputs.iter().map(PathBuf::as_path).collect();
     if let Some(h) = &cli.history {

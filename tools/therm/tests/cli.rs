@@ -526,3 +526,58 @@ fn sunlight_and_sky_from_a_loads_table_reach_a_lone_plate() {
     );
     assert!(h.provenance.inputs.iter().any(|r| r.role == "loads"));
 }
+
+#[test]
+fn each_moment_is_written_to_the_raw_file_named_for_it() {
+    // A pipeline stage names every file it makes: one --raw per moment, in time order, the
+    // same bytes as the -o PREFIX names; as many --raw as moments, or nothing is done.
+    let dir = tempfile::tempdir().unwrap();
+    let (s, m, w) = (
+        scene(dir.path()),
+        materials(dir.path(), true),
+        weather(dir.path()),
+    );
+    let base = |out: &mut Command| {
+        out.args([&s, "--materials", &m, "--weather", &w])
+            .args(["--latitude-deg", "0", "--longitude-deg", "0"])
+            .args(["--spin-up-h", "6", "--step-s", "600"]);
+    };
+    let mut by_prefix = therm();
+    base(&mut by_prefix);
+    let out = by_prefix
+        .args(["--at", "2026-07-15T10:00Z/2026-07-15T11:00Z/PT1H", "-o"])
+        .arg(dir.path().join("p"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let mut named = therm();
+    base(&mut named);
+    // The moments given out of order are still solved in time order; the files follow it.
+    let out = named
+        .args(["--at", "2026-07-15T11:00Z", "--at", "2026-07-15T10:00Z"])
+        .arg("--raw")
+        .arg(dir.path().join("ten.raw"))
+        .arg("--raw")
+        .arg(dir.path().join("eleven.raw"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", stderr(&out));
+    let read = |name: &str| std::fs::read(dir.path().join(name)).unwrap();
+    assert_eq!(read("ten.raw"), read("p.20260715T100000Z.raw"));
+    assert_eq!(read("eleven.raw"), read("p.20260715T110000Z.raw"));
+    // Two moments, one file: bad usage, nothing written.
+    let mut short = therm();
+    base(&mut short);
+    let out = short
+        .args(["--at", "2026-07-15T10:00Z/2026-07-15T11:00Z/PT1H", "--raw"])
+        .arg(dir.path().join("one.raw"))
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains("one --raw per moment"),
+        "{}",
+        stderr(&out)
+    );
+    assert!(!dir.path().join("one.raw").exists());
+}
