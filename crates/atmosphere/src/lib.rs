@@ -276,24 +276,6 @@ impl AtmosphereModel {
         Ok(Self { inner, ..self })
     }
 
-    /// The highest observer, metres above the ground, whose paths and sky the model's data
-    /// hold: the top of its profile's levels, and for the `table` model of its sky table
-    /// too (the lower of the two; its slant rows may stop lower, where the layered profile
-    /// carries the paths on). Above it the model would take the air above the top level
-    /// as the top level's (from 30 km with a built-in, whose levels stop at 10 km: +3 K at
-    /// nadir and a sky 29 K too warm), so an observer there is refused by whoever traces,
-    /// never served. `None` for `none` and for the `thesis` model, whose 1990 tables'
-    /// own altitude rule stands.
-    #[must_use]
-    pub fn observer_ceiling_m(&self) -> Option<f64> {
-        let top = |v: &[f64]| v.last().copied().unwrap_or(f64::INFINITY);
-        match &self.inner {
-            Inner::Table(t) => Some(top(&t.profile.z_m).min(top(&t.slant.sky_altitude_m))),
-            Inner::Layered(p) => Some(top(&p.z_m)),
-            Inner::None | Inner::Thesis(_) => None,
-        }
-    }
-
     fn profile(&self) -> Option<&Profile> {
         match &self.inner {
             Inner::None => None,

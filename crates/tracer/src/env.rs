@@ -29,11 +29,6 @@ pub trait Atmosphere: Sync {
     fn critical_nadir_angle_deg(&self, sensor_altitude_m: f64) -> f64 {
         critical_nadir_angle_deg(sensor_altitude_m)
     }
-    /// The highest observer, metres above the ground, the atmosphere's data hold
-    /// ([`AtmosphereModel::observer_ceiling_m`]); `None`: any height.
-    fn observer_ceiling_m(&self) -> Option<f64> {
-        self.model().and_then(AtmosphereModel::observer_ceiling_m)
-    }
     /// The atmosphere model underneath, when the path terms are an
     /// [`AtmosphereModel`]'s: then sub-bands whose models share grids locate each path
     /// once ([`AtmosphereModel::locate_path`]) and evaluate it in each.
@@ -66,9 +61,6 @@ impl Atmosphere for PrecomputedAtmosphere {
     }
     fn sky_hemispheric(&self, observer_altitude_m: f64) -> f64 {
         PrecomputedAtmosphere::sky_hemispheric(self, observer_altitude_m)
-    }
-    fn observer_ceiling_m(&self) -> Option<f64> {
-        PrecomputedAtmosphere::model(self).observer_ceiling_m()
     }
     fn model(&self) -> Option<&AtmosphereModel> {
         // With slab tables the path terms are not the model's alone: each sub-band's

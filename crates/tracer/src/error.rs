@@ -57,19 +57,6 @@ pub enum TraceErrorKind {
     /// A tile asked for is empty or reaches beyond the image.
     #[error("{0}")]
     InvalidTile(crate::tile::TileError),
-    /// The camera is above the highest observer the atmosphere's tables hold.
-    #[error(
-        "the camera is {observer_m:.1} m above the ground, above the {ceiling_m:.0} m the \
-         atmosphere's tables reach: its paths and sky would be the top row's, not its own. \
-         Build an atmosphere for this view (irsig-atmos plan --scene SCENE --view VIEW, then \
-         irsig-atmos build), or trace from {ceiling_m:.0} m or lower"
-    )]
-    ObserverAboveAtmosphere {
-        /// The camera's altitude above the ground, m.
-        observer_m: f64,
-        /// The highest observer the atmosphere holds, m.
-        ceiling_m: f64,
-    },
     /// A pixel asked for lies outside the image.
     #[error("pixel ({column}, {row}) lies outside the {width}x{height} image")]
     PixelOutsideImage {

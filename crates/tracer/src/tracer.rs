@@ -672,24 +672,6 @@ pub struct BandSet<A> {
 }
 
 impl<A: Atmosphere> BandSet<A> {
-    /// A camera at `observer_m` above the ground against the highest observer every
-    /// sub-band's atmosphere holds, with half a metre for a plan's observers, which are
-    /// rounded to the metre.
-    pub(crate) fn check_observer(&self, observer_m: f64) -> Result<(), TraceError> {
-        let ceiling_m = self
-            .bands
-            .iter()
-            .filter_map(|b| b.atmosphere.observer_ceiling_m())
-            .fold(f64::INFINITY, f64::min);
-        if observer_m > ceiling_m + 0.5 {
-            return Err(TraceError::new(TraceErrorKind::ObserverAboveAtmosphere {
-                observer_m,
-                ceiling_m,
-            }));
-        }
-        Ok(())
-    }
-
     fn new(bands: Vec<BandData<A>>) -> Self {
         let shared_grids = match bands.first().and_then(|b| b.atmosphere.model()) {
             Some(first) => bands.iter().all(|b| {
@@ -1479,7 +1461,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         progress: &(dyn Fn(u64) + Sync),
     ) -> Result<Frame, TraceError> {
         options.validate()?;
-        self.bands.check_observer(camera.position_m[2])?;
         let [w, h] = camera.pixels;
         tile.check(w, h)
             .map_err(|e| TraceError::new(TraceErrorKind::InvalidTile(e)))?;
@@ -1793,7 +1774,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         row: u32,
     ) -> Result<Sample, TraceError> {
         options.validate()?;
-        self.bands.check_observer(camera.position_m[2])?;
         let [w, h] = camera.pixels;
         if column >= w || row >= h {
             return Err(TraceError::new(TraceErrorKind::PixelOutsideImage {
