@@ -17,6 +17,12 @@ pub const BUILTIN_NAMES: [&str; 6] = [
     "subarctic-winter",
 ];
 
+/// The top of every built-in's profile and sky rows, metres above the ground: the highest
+/// observer their data hold. Above it a path would take the air above 10 km as absent
+/// (from 30 km: +3 K at nadir and a sky 29 K too warm against LOWTRAN7), so a camera
+/// there is refused, with the way to build an atmosphere for it.
+pub const BUILTIN_TOP_M: f64 = 10_000.0;
+
 /// The canonical RON text of a built-in atmosphere.
 #[must_use]
 pub fn builtin_ron(name: &str) -> Option<&'static str> {

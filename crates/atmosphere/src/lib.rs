@@ -72,8 +72,8 @@ use irsig_model::Atmosphere;
 use serde::{Deserialize, Serialize};
 
 pub use builtin::{
-    BUILTIN_NAMES, BUILTIN_SPECTRAL_RANGES_UM, builtin, builtin_ron, builtin_spectral,
-    builtin_spectral_bytes, builtin_spectral_bytes_over, builtin_spectral_mwir,
+    BUILTIN_NAMES, BUILTIN_SPECTRAL_RANGES_UM, BUILTIN_TOP_M, builtin, builtin_ron,
+    builtin_spectral, builtin_spectral_bytes, builtin_spectral_bytes_over, builtin_spectral_mwir,
     builtin_spectral_mwir_bytes, builtin_spectral_over,
 };
 pub use earth::{

@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use irsig_atmosphere::legacy::{ConvertOptions, DirtranTables, LegacyUnits, to_atmosphere};
-use irsig_atmosphere::{BUILTIN_NAMES, builtin, builtin_ron};
+use irsig_atmosphere::{BUILTIN_NAMES, BUILTIN_TOP_M, builtin, builtin_ron};
 use irsig_model::{Atmosphere, SlantTables};
 
 fn data() -> PathBuf {
@@ -124,5 +124,24 @@ fn unknown_builtin_names_the_known_ones() {
     let e = builtin("mars").unwrap_err().to_string();
     for name in BUILTIN_NAMES {
         assert!(e.contains(name), "{e}");
+    }
+}
+
+/// The top the tracer holds cameras to is where every built-in's data stop: its levels'
+/// and its sky rows' last altitude.
+#[test]
+fn every_builtin_stops_at_the_stated_top() {
+    for name in BUILTIN_NAMES {
+        let a = builtin(name).unwrap();
+        let top = a.levels.last().unwrap().altitude_m;
+        assert!(
+            (top - BUILTIN_TOP_M).abs() < 1e-9,
+            "{name}: levels end at {top} m"
+        );
+        let sky = *a.slant.as_ref().unwrap().sky_altitude_m.last().unwrap();
+        assert!(
+            (sky - BUILTIN_TOP_M).abs() < 1e-9,
+            "{name}: sky rows end at {sky} m"
+        );
     }
 }

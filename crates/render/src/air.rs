@@ -123,6 +123,26 @@ pub(crate) fn read(
     }
 }
 
+/// Every camera at or below the top of the built-in's data ([`irsig_atmosphere::BUILTIN_TOP_M`],
+/// with half a metre for views written to the metre): above it the air over 10 km would be
+/// left out of every path, silently.
+pub(crate) fn check_builtin_top(name: &str, views: &[irsig_model::View]) -> miette::Result<()> {
+    let top = irsig_atmosphere::BUILTIN_TOP_M;
+    match views
+        .iter()
+        .map(|v| v.position_m()[2])
+        .find(|&z| z > top + 0.5)
+    {
+        None => Ok(()),
+        Some(z) => Err(miette!(
+            "the camera is {z:.1} m above the ground, above the {top:.0} m where the built-in \
+             atmosphere `{name}`'s data stop: the air above would be left out of every path. \
+             Build an atmosphere for this view (irsig-atmos plan --scene SCENE --view VIEW \
+             --atmosphere {name}, then irsig-atmos build) and trace through it"
+        )),
+    }
+}
+
 /// A spectral atmosphere file must cover the band `[lo, hi]` µm: else an error at its grid
 /// (`grid.points`, in the RON or in the binary form's RON header), before anything is
 /// traced.

@@ -842,6 +842,9 @@ impl Plan {
             }
             _ => {}
         }
+        if let AtmosphereRequest::Builtin(name) = request {
+            air::check_builtin_top(name, &self.views)?;
+        }
         // The sky is precomputed up to the highest sensor or scene point.
         let top = self
             .views

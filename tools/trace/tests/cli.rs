@@ -724,3 +724,60 @@ fn every_setting_the_library_names_is_one_of_the_tools_flags() {
         );
     }
 }
+
+/// A built-in's data stop at 10 km: a camera above is refused before anything is traced,
+/// naming both heights and the way to build an atmosphere for it; from 10 km the frame is
+/// traced.
+#[test]
+fn a_camera_above_a_builtins_ten_kilometres_is_refused_with_the_way_out() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, _) = inputs(dir.path(), 2);
+    let at = |z: f64| {
+        write(
+            dir.path(),
+            &format!("view-{z}.ron"),
+            &format!(
+                "LookAt(position_m: (0.0, 0.0, {z:?}), target_m: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), pixels: (4, 3), fov_deg: (0.1, 0.075))"
+            ),
+        )
+    };
+    for z in [10_600.0, 30_000.0] {
+        let prefix = dir.path().join(format!("high-{z}"));
+        let out = trace()
+            .args(["--scene", &scene, "--materials", &mats, "--view", &at(z)])
+            .args(["--atmosphere", "us-std-1976", "-o"])
+            .arg(&prefix)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{z} m: {stderr}");
+        assert!(stderr.contains(&format!("{z:.1} m")), "{stderr}");
+        assert!(stderr.contains("10000 m"), "{stderr}");
+        assert!(stderr.contains("irsig-atmos plan"), "{stderr}");
+        let written: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .filter_map(Result::ok)
+            .filter(|e| e.file_name().to_string_lossy().starts_with("high-"))
+            .collect();
+        assert!(written.is_empty(), "{z} m wrote {written:?}");
+    }
+    let prefix = dir.path().join("top");
+    let out = trace()
+        .args([
+            "--scene",
+            &scene,
+            "--materials",
+            &mats,
+            "--view",
+            &at(10_000.0),
+        ])
+        .args(["--atmosphere", "us-std-1976", "-o"])
+        .arg(&prefix)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
