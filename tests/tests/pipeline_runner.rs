@@ -200,6 +200,44 @@ fn independent_stages_run_at_the_same_time() {
     assert_eq!(s.read("right.txt"), "x");
 }
 
+/// Stages run side by side: every line a stage's tool writes on stderr begins with the
+/// stage's name, whole; one stage at a time, the tool's stderr is the runner's own.
+#[test]
+fn warnings_of_stages_run_side_by_side_name_their_stage() {
+    let text = r#"Pipeline(stages: [
+        Stage(name: "left", tool: "testcat", args: ["x.txt"], params: {"warn": "saturated at 255", "touch": "left.flag", "wait-for": "right.flag"}, outputs: {"o": "left.txt"}),
+        Stage(name: "right", tool: "testcat", args: ["x.txt"], params: {"warn": "saturated at 0", "touch": "right.flag", "wait-for": "left.flag"}, outputs: {"o": "right.txt"}),
+    ])"#;
+    let s = Scratch::new(text, &[("x.txt", "x")]);
+    let out = s.run(&["--threads", "2"]).success().get_output().clone();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l == "[left] irsig-testcat: warning: saturated at 255"),
+        "{stderr}"
+    );
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l == "[right] irsig-testcat: warning: saturated at 0"),
+        "{stderr}"
+    );
+
+    let text = r#"Pipeline(stages: [
+        Stage(name: "alone", tool: "testcat", args: ["x.txt"], params: {"warn": "saturated"}, outputs: {"o": "alone.txt"}),
+    ])"#;
+    let s = Scratch::new(text, &[("x.txt", "x")]);
+    let out = s.run(&["--threads", "1"]).success().get_output().clone();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        stderr
+            .lines()
+            .any(|l| l == "irsig-testcat: warning: saturated"),
+        "{stderr}"
+    );
+}
+
 #[test]
 fn dry_run_prints_what_would_run_and_runs_nothing() {
     let s = chain();

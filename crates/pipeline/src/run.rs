@@ -293,8 +293,13 @@ impl Plan {
                     let tx = tx.clone();
                     running += 1;
                     scope.spawn(move || {
-                        let outcome =
-                            self.run_step(step, &tool, record.as_ref(), options.force, on_event);
+                        let how = StepRun {
+                            force: options.force,
+                            // Stages side by side: each line a stage writes on stderr says
+                            // which stage it is.
+                            name_lines: options.jobs > 1,
+                        };
+                        let outcome = self.run_step(step, &tool, record.as_ref(), how, on_event);
                         // The receiver outlives every worker inside this scope.
                         let _ = tx.send((i, outcome));
                     });
@@ -369,7 +374,11 @@ impl Plan {
         let tool = hex(&Sha256::digest(bytes));
         let mut cache = self.load_cached();
         let record = cache.state.steps.get(&step.name).cloned();
-        match self.run_step(step, &tool, record.as_ref(), force, on_event)? {
+        let how = StepRun {
+            force,
+            name_lines: false,
+        };
+        match self.run_step(step, &tool, record.as_ref(), how, on_event)? {
             None => Ok(RunSummary {
                 ran: 0,
                 up_to_date: 1,
@@ -390,9 +399,10 @@ impl Plan {
         step: &Step,
         tool_sha256: &str,
         record: Option<&Record>,
-        force: bool,
+        how: StepRun,
         on_event: &(dyn Fn(Event<'_>) + Sync),
     ) -> Result<Option<Record>, PipelineError> {
+        let force = how.force;
         let Some(recipe) = self.recipe(step, tool_sha256) else {
             let missing = step
                 .inputs
@@ -420,21 +430,26 @@ impl Plan {
             }
         }
         on_event(Event::Started(step));
-        let status = Command::new(&step.program)
+        let mut command = Command::new(&step.program);
+        command
             .args(step.argv.iter().skip(1))
-            .current_dir(&self.base_dir)
-            .status()
-            .map_err(|e| {
-                self.step_error(
-                    step,
-                    ErrorKind::StageFailed,
-                    format!(
-                        "stage `{}`: cannot start `{}`: {e}",
-                        step.described(),
-                        step.program.display()
-                    ),
-                )
-            })?;
+            .current_dir(&self.base_dir);
+        let status = if how.name_lines {
+            status_naming_lines(&mut command, &step.name)
+        } else {
+            command.status()
+        }
+        .map_err(|e| {
+            self.step_error(
+                step,
+                ErrorKind::StageFailed,
+                format!(
+                    "stage `{}`: cannot start `{}`: {e}",
+                    step.described(),
+                    step.program.display()
+                ),
+            )
+        })?;
         if !status.success() {
             let how = status.code().map_or_else(
                 || "was killed by a signal".to_owned(),
@@ -481,4 +496,43 @@ fn hex(bytes: &[u8]) -> String {
             let _ = write!(s, "{b:02x}");
             s
         })
+}
+
+/// How one step is run.
+#[derive(Debug, Clone, Copy)]
+struct StepRun {
+    /// Run it even when it is up to date.
+    force: bool,
+    /// Begin each line its tool writes on stderr with `[STEP] `: steps run side by side,
+    /// and a warning must say which one it is from. The tool's stderr is then a pipe, not
+    /// the terminal, so it shows no progress bar (bars of parallel steps would overwrite
+    /// each other).
+    name_lines: bool,
+}
+
+/// Runs `command` with its stderr copied line by line to ours, each line begun with
+/// `[name] ` and written whole, so that lines of steps run side by side never interleave
+/// within a line. A line that is not UTF-8 is copied as its bytes.
+fn status_naming_lines(
+    command: &mut Command,
+    name: &str,
+) -> std::io::Result<std::process::ExitStatus> {
+    use std::io::{BufRead as _, Write as _};
+    let mut child = command.stderr(std::process::Stdio::piped()).spawn()?;
+    if let Some(stderr) = child.stderr.take() {
+        let prefix = format!("[{name}] ");
+        // A read error ends the copying, never the wait: the child is always reaped.
+        for line in std::io::BufReader::new(stderr)
+            .split(b'\n')
+            .map_while(Result::ok)
+        {
+            let mut out = std::io::stderr().lock();
+            // Our stderr gone (a closed pipe) must not stop the step: its lines are lost.
+            let _ = out
+                .write_all(prefix.as_bytes())
+                .and_then(|()| out.write_all(&line))
+                .and_then(|()| out.write_all(b"\n"));
+        }
+    }
+    child.wait()
 }

@@ -9,7 +9,8 @@
 //! at the same time); `--copy-stdin` copies standard input into the output as it comes, so
 //! the output is being written for as long as stdin stays open (an interrupt test);
 //! `--stage-many N` writes the output N times more, to `OUT.1` … `OUT.N`, all staged
-//! together and committed at once (an interrupt at any moment of staging or renaming).
+//! together and committed at once (an interrupt at any moment of staging or renaming);
+//! `--warn TEXT` writes `irsig-testcat: warning: TEXT` on stderr, as a tool's warning.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -45,6 +46,9 @@ struct Cli {
     /// Copies standard input into the output after the inputs, while the output is staged.
     #[arg(long)]
     copy_stdin: bool,
+    /// Writes this warning on stderr.
+    #[arg(long, value_name = "TEXT")]
+    warn: Option<String>,
     /// Also writes the output to OUT.1 … OUT.N, all in one all-or-nothing commit.
     #[arg(long, value_name = "N", requires = "o")]
     stage_many: Option<usize>,
@@ -59,6 +63,9 @@ fn main() -> ExitCode {
 fn run(cli: Cli) -> miette::Result<()> {
     if let Some(t) = &cli.touch {
         std::fs::write(t, b"").into_diagnostic()?;
+    }
+    if let Some(w) = &cli.warn {
+        eprintln!("irsig-testcat: warning: {w}");
     }
     let mut bytes = cli.prefix.clone().unwrap_or_default().into_bytes();
     for input in &cli.inputs {

@@ -44,7 +44,8 @@ Examples:
     mut_arg("threads", |a| a
         .short_alias('j')
         .alias("jobs")
-        .help("Run at most N tools at once [default: the number of CPUs]")),
+        .help("Run at most N tools at once [default: the number of CPUs]; with more than \
+               one, each line a tool writes on stderr begins with its stage's name, [STAGE]")),
 )]
 pub struct Cli {
     /// The pipeline file (RON). Paths in it are relative to its directory.
