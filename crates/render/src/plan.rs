@@ -461,9 +461,13 @@ impl Plan {
         }
     }
 
-    /// Adds frames, one per view, in order.
+    /// Adds frames, one per view, in order; a camera below the ground is warned about.
     pub fn add_views(&mut self, views: impl IntoIterator<Item = View>) {
+        let first = self.views.len();
         self.views.extend(views);
+        if let Some(w) = crate::observer::below_ground(&self.views[first..], first) {
+            self.warn(w);
+        }
     }
 
     /// The views, one per frame.
