@@ -58,7 +58,7 @@ fn plan_ron_over(zenith: &str, day: &str, [v1, v2, dv]: [f64; 3]) -> String {
   hemispheric: [],
   slant_altitude_m: [1000.0],
   slant_nadir_deg: [0.0],
-  sky_altitude_m: [0.0],
+  sky_altitude_m: [0.0, 1000.0],
   sky_zenith_deg: [0.0],
   sun: Some((
     zenith_deg: {zenith},

@@ -975,13 +975,15 @@ fn a_builtin_traces_3_to_5_um_at_night_and_refuses_a_band_it_does_not_hold() {
         assert_eq!(out.status.code(), Some(2));
         String::from_utf8_lossy(&out.stderr).into_owned()
     };
-    // A band inside neither range: refused at its flag, naming both.
+    // A band inside neither range: refused at its flag, naming both, each end rounded
+    // inward (1e4/1350 = 7.407407, 1e4/710 = 14.084507, 1e4/3340 = 2.994012 um) so that
+    // the ranges typed back are taken.
     for band in ["4-9", "2.5-4", "5-7.5"] {
         let e = refused(&["--band", band]);
         assert!(
             e.contains(&format!("--band {band}"))
-                && e.contains("7.407-14.085 um")
-                && e.contains("2.994-5.000 um"),
+                && e.contains("7.408-14.084 um")
+                && e.contains("2.995-5.000 um"),
             "{band}: {e}"
         );
     }

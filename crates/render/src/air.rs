@@ -157,8 +157,9 @@ pub(crate) fn check_spectral_range(
         return Ok(());
     }
     let message = format!(
-        "the band {lo}-{hi} um reaches outside this atmosphere's spectral grid, {min:.6}-{max:.6} \
-         um: trace a band inside the grid, or build the atmosphere over the band"
+        "the band {lo}-{hi} um reaches outside this atmosphere's spectral grid, {} um: trace a \
+         band inside the grid, or build the atmosphere over the band",
+        range_text([min, max], 6)
     );
     Err(miette::Report::new(
         irsig_formats::canonical::spectral_atmosphere_error_at_path(
@@ -184,8 +185,25 @@ pub(crate) fn spectral_range_um(a: &SpectralAtmosphere) -> [f64; 2] {
 
 /// Whether `[min, max]` covers `[lo, hi]`, to rounding.
 pub(crate) fn covers([min, max]: [f64; 2], [lo, hi]: [f64; 2]) -> bool {
-    let slack = 1e-9 * max;
+    let slack = covers_slack(max);
     lo >= min - slack && hi <= max + slack
+}
+
+/// The rounding [`covers`] forgives at a range's ends, µm.
+fn covers_slack(max: f64) -> f64 {
+    1e-9 * max
+}
+
+/// `[min, max]` µm as a message prints it, `MIN-MAX` to `decimals` places, each end
+/// rounded inward (the lower up, the upper down) so that the printed range, typed back as
+/// a band, is one [`covers`] takes: a message never offers a range the check refuses.
+pub(crate) fn range_text([min, max]: [f64; 2], decimals: i32) -> String {
+    let scale = 10_f64.powi(decimals);
+    let slack = covers_slack(max);
+    let lo = ((min - slack) * scale).ceil() / scale;
+    let hi = ((max + slack) * scale).floor() / scale;
+    let places = usize::try_from(decimals).unwrap_or(0);
+    format!("{lo:.places$}-{hi:.places$}")
 }
 
 /// A built-in's spectra must cover the band: else a request error about the band, which
@@ -201,17 +219,19 @@ pub(crate) fn check_builtin_range(
     if covers(spectral_range_um(a), range_um) {
         return Ok(());
     }
-    let [[l1, l2], [m1, m2]] = irsig_atmosphere::BUILTIN_SPECTRAL_RANGES_UM;
+    let [long, mid] = irsig_atmosphere::BUILTIN_SPECTRAL_RANGES_UM;
     Err(RequestError::of_value(
         Setting::Band,
         &band.label,
         format!(
             "the band, {}, lies inside neither range of the built-in atmosphere `{name}`'s \
-             spectra, {l1:.3}-{l2:.3} um (8-14 um responses) and {m1:.3}-{m2:.3} um (3-5 um \
-             responses, night): trace a band inside one of them, or build an atmosphere over \
-             the band ({:.3}-{:.3} um) with `irsig-atmos plan` and `irsig-atmos build` \
-             (LOWTRAN7) and give its file to {}",
+             spectra, {} um (8-14 um responses) and {} um (3-5 um responses, night): trace a \
+             band inside one of them, or build an atmosphere over the band ({:.3}-{:.3} um) \
+             with `irsig-atmos plan` and `irsig-atmos build` (LOWTRAN7) and give its file to \
+             {}",
             band.record,
+            range_text(long, 3),
+            range_text(mid, 3),
             range_um[0],
             range_um[1],
             spelling.of(Setting::Atmosphere)
@@ -229,4 +249,33 @@ pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> m
              built-in, or a file irsig-atmos build wrote), and the `total` band has none"
         ),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_printed_range_typed_back_is_covered() {
+        // The built-ins' 3-5 um night spectra span 2000-3340 cm-1: 1e4/3340 = 2.994012 um
+        // to 5 um exactly; their 8-14 um spectra 710-1350 cm-1, 7.407407-14.084507 um.
+        let [long, mid] = irsig_atmosphere::BUILTIN_SPECTRAL_RANGES_UM;
+        assert_eq!(range_text(mid, 3), "2.995-5.000");
+        assert_eq!(range_text(long, 3), "7.408-14.084");
+        assert_eq!(range_text(mid, 6), "2.994012-5.000000");
+        // A band typed as printed is taken, at either precision; 2.994 is below the
+        // spectra's first point, 1.2e-5 um further than the data reach, and refused.
+        for range in [long, mid] {
+            for decimals in [3, 6] {
+                let text = range_text(range, decimals);
+                let (lo, hi) = text.split_once('-').unwrap();
+                let typed = [lo.parse().unwrap(), hi.parse().unwrap()];
+                assert!(covers(range, typed), "{text} against {range:?}");
+            }
+        }
+        assert!(!covers(mid, [2.994, 5.0]));
+        // Ends that are round numbers print as they are, not a step inward.
+        assert_eq!(range_text([3.0, 5.0], 3), "3.000-5.000");
+        assert_eq!(range_text([1e4 / 1250.0, 1e4 / 700.0], 2), "8.00-14.28");
+    }
 }

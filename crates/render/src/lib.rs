@@ -39,6 +39,7 @@ pub mod budget;
 mod error;
 pub mod guarantee;
 pub mod materials;
+mod observer;
 mod plan;
 pub mod products;
 mod run_hash;

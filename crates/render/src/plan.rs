@@ -279,7 +279,7 @@ impl Plan {
             && request.settings.sub_bands.is_none()
             && request.tolerance.is_none()
         {
-            warnings.push(one_sub_band_in_sunlight(request.spelling, s));
+            warnings.push(sunlight::one_sub_band_in_sunlight(request.spelling, s));
         }
         let mut inputs = Vec::new();
         match &request.atmosphere {
@@ -461,9 +461,13 @@ impl Plan {
         }
     }
 
-    /// Adds frames, one per view, in order.
+    /// Adds frames, one per view, in order; a camera below the ground is warned about.
     pub fn add_views(&mut self, views: impl IntoIterator<Item = View>) {
+        let first = self.views.len();
         self.views.extend(views);
+        if let Some(w) = crate::observer::below_ground(&self.views[first..], first) {
+            self.warn(w);
+        }
     }
 
     /// The views, one per frame.
@@ -555,7 +559,7 @@ impl Plan {
         if let Some(s) = &self.request.sun
             && d.choice(SwitchableModel::SubBands).is_some()
         {
-            let warning = one_sub_band_in_sunlight(self.request.spelling, s);
+            let warning = sunlight::one_sub_band_in_sunlight(self.request.spelling, s);
             self.warnings
                 .lock()
                 .map_err(|_| poisoned())?
@@ -980,7 +984,7 @@ impl Plan {
                 let collapsed = &collapsed;
                 let precompute = &precompute;
                 let materials = &self.materials;
-                let scatter = crate::sun::scattering(
+                let scatter = crate::sun::by_day(
                     self.request.sun.as_ref(),
                     self.sun.as_ref(),
                     &spectral,
@@ -1458,23 +1462,6 @@ fn sha256_hex(bytes: &[u8]) -> String {
 
 fn poisoned() -> miette::Report {
     miette!("a lock of the run was poisoned by a panic")
-}
-
-/// The warning for a sunlit frame left at one sub-band (the default): the band model
-/// multiplies the path's τ, the sun's beam and ε each averaged over the band and misses
-/// that they are opaque in the same absorption bands, which docs/accuracy.md ("The sun's
-/// share by day") measures against LOWTRAN7's spectra. Not refused: at 8-14 µm the error
-/// is a few 0.001 % of the radiance, and a user may want the band model's speed.
-fn one_sub_band_in_sunlight(spelling: Spelling, sun: &SunRequest) -> String {
-    let sub_bands = spelling.of(Setting::SubBands);
-    format!(
-        "with {} and one sub-band (the default), the sunlight is summed as a product of band \
-         averages: measured against LOWTRAN7's spectra it is 7-8 % low in 8-14 um and 20-26 % \
-         low in 3-5 um through 1 km (docs/accuracy.md, \"The sun's share by day\"); give \
-         {sub_bands} full for the spectral integral, or {sub_bands} 1 to keep the band model \
-         and silence this",
-        spelling.of(sun.setting())
-    )
 }
 
 /// Refuses a material whose angular table is one band's (`band_um`) and that has no

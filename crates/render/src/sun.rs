@@ -9,13 +9,28 @@
 //! radiances are collapsed with, so that the sunlight and the path radiance of a sub-band
 //! are integrated alike. The table's altitudes are metres above the ground, as the
 //! tracer's are (a hit's altitude is its scene `z`, the ground at `z = 0`).
+//!
+//! The table's extraterrestrial spectrum is LOWTRAN7's at the Earth–Sun distance of the
+//! day its plan was made for (IDAY). A sun given by time is seen on its date's day, which
+//! need not be the table's: the beam is then scaled by the ratio of the two days'
+//! inverse-square factors `(r₀/r)²` (Spencer 1971,
+//! [`irsig_atmosphere::loads::weathered::earth_sun_factor`]), and a warning says so once.
+//! The transmittance does not depend on the day, so the scaled beam is what LOWTRAN7 run
+//! for the date would give, to Spencer's 0.1 %; correcting is what a user asking for a
+//! date wants, where refusing would cost a LOWTRAN7 build per day for a known factor. The
+//! sunlight the air scatters (the scattered tables), where there is any, keeps the table's
+//! day. The disk's angular radius follows the same distance, `α = α₀ r₀/r`
+//! ([`SunDay::angular_radius_deg`]), so that the disk's radiance `E_n/Ω_sun` is the
+//! same on every day, as the sun's is (radiance is conserved; only the solid angle and
+//! the irradiance follow `1/r²`).
 
 use irsig_atmosphere::AtmosphereErrorKind;
+use irsig_atmosphere::loads::weathered::earth_sun_factor;
 use irsig_atmosphere::scattered::ScatteredSunlight;
 use irsig_atmosphere::solar::{DirectSun, ZENITH_TOLERANCE_DEG};
 use irsig_atmosphere::sun::{SunField, SunPosition, SunSpec};
 use irsig_model::SpectralAtmosphere;
-use irsig_tracer::{Sun, SunBeam};
+use irsig_tracer::{SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam};
 use miette::miette;
 
 use crate::band::{Collapsed, Split};
@@ -94,6 +109,105 @@ impl SunRequest {
     }
 }
 
+/// The day of the year a sun is seen on, and the day its solar table was made for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct SunDay {
+    /// The day the sun is seen on (1–366): its date's for a sun given by time, the table's
+    /// for a direction (which has no date).
+    pub day_of_year: u16,
+    /// The day the solar table was made for (LOWTRAN7's IDAY).
+    pub table_day_of_year: u16,
+}
+
+impl SunDay {
+    /// The day of `spec` against a table made for `table_day_of_year`.
+    #[must_use]
+    pub fn new(spec: &SunSpec, table_day_of_year: u16) -> Self {
+        Self {
+            day_of_year: spec.day_of_year().unwrap_or(table_day_of_year),
+            table_day_of_year,
+        }
+    }
+
+    /// The factor on the table's beam: the day's `(r₀/r)²` over the table day's (exactly 1
+    /// on the table's own day).
+    #[must_use]
+    pub fn beam_factor(self) -> f64 {
+        if self.day_of_year == self.table_day_of_year {
+            return 1.0;
+        }
+        earth_sun_factor(self.day_of_year) / earth_sun_factor(self.table_day_of_year)
+    }
+
+    /// The sun's angular radius on the day, degrees: the mean radius (at the mean
+    /// distance `r₀`) times `r₀/r`, the square root of Spencer's `(r₀/r)²`.
+    #[must_use]
+    pub fn angular_radius_deg(self) -> f64 {
+        SUN_ANGULAR_RADIUS_DEG * earth_sun_factor(self.day_of_year).sqrt()
+    }
+}
+
+/// The warning for a sun seen on another day than its table's (`None` on the table's own
+/// day, for a direction, or without a solar table): what the beam was scaled by.
+pub(crate) fn distance_note(
+    request: &SunRequest,
+    spectral: &SpectralAtmosphere,
+    name: &str,
+) -> Option<String> {
+    let solar = spectral.solar.as_ref()?;
+    let day = SunDay::new(&request.spec, solar.day_of_year);
+    if day.day_of_year == day.table_day_of_year {
+        return None;
+    }
+    let scattered = if solar.relative_azimuth_deg.is_empty() {
+        ""
+    } else {
+        "; the sunlight the air scatters keeps the table's day"
+    };
+    Some(format!(
+        "the sun is seen on day {} of its year, and the solar table of `{name}` was made for \
+         day {}: the sun's beam is scaled by the two days' Earth-Sun distance factors, x{:.4} \
+         (Spencer 1971; the transmittance is the table's), and the disk's radius is the \
+         day's, {:.4} deg{scattered}",
+        day.day_of_year,
+        day.table_day_of_year,
+        day.beam_factor(),
+        day.angular_radius_deg()
+    ))
+}
+
+/// What the sun's day and table make of a frame, said once before it is traced: the
+/// warning of [`distance_note`], then [`scattering`]'s direction and warning.
+pub(crate) fn by_day(
+    request: Option<&SunRequest>,
+    position: Option<&SunPosition>,
+    spectral: &SpectralAtmosphere,
+    name: &str,
+    mut warn: impl FnMut(String),
+) -> Option<[f64; 3]> {
+    if let Some(note) = request.and_then(|r| distance_note(r, spectral, name)) {
+        warn(note);
+    }
+    scattering(request, position, spectral, name, warn)
+}
+
+/// The warning for a sunlit frame left at one sub-band (the default): the band model
+/// multiplies the path's τ, the sun's beam and ε each averaged over the band and misses
+/// that they are opaque in the same absorption bands, which docs/accuracy.md ("The sun's
+/// share by day") measures against LOWTRAN7's spectra. Not refused: at 8-14 µm the error
+/// is a few 0.001 % of the radiance, and a user may want the band model's speed.
+pub(crate) fn one_sub_band_in_sunlight(spelling: Spelling, sun: &SunRequest) -> String {
+    let sub_bands = spelling.of(Setting::SubBands);
+    format!(
+        "with {} and one sub-band (the default), the sunlight is summed as a product of band \
+         averages: measured against LOWTRAN7's spectra it is 7-8 % low in 8-14 um and 20-26 % \
+         low in 3-5 um through 1 km (docs/accuracy.md, \"The sun's share by day\"); give \
+         {sub_bands} full for the spectral integral, or {sub_bands} 1 to keep the band model \
+         and silence this",
+        spelling.of(sun.setting())
+    )
+}
+
 /// How to make an atmosphere with a `solar` table, for messages, the atmosphere's setting
 /// spelt as the request's maker spells it.
 fn how_to_build(spelling: Spelling) -> String {
@@ -123,7 +237,8 @@ pub(crate) fn no_solar_table(
 }
 
 /// The sun of `position` over the sub-bands `collapsed` of `split`, its beams from
-/// `spectral`'s `solar` table.
+/// `spectral`'s `solar` table at the Earth–Sun distance of the sun's day, its disk's
+/// radius that day's ([`SunDay`]).
 ///
 /// # Errors
 /// An atmosphere without a `solar` table, or one made for another zenith angle (a request
@@ -158,6 +273,8 @@ pub(crate) fn sun(
             ),
         ));
     }
+    let day = SunDay::new(&request.spec, solar.day_of_year);
+    let factor = day.beam_factor();
     let beams = collapsed
         .iter()
         .map(|(band, _)| {
@@ -167,12 +284,13 @@ pub(crate) fn sun(
             let normal = solar
                 .altitude_m
                 .iter()
-                .map(|&h| direct.normal_w_m2(h))
+                .map(|&h| direct.normal_w_m2(h) * factor)
                 .collect();
             SunBeam::new(solar.altitude_m.clone(), normal).map_err(|e| miette!("{e}"))
         })
         .collect::<miette::Result<Vec<_>>>()?;
     let mut sun = Sun::new(position.to_scene_direction(), beams);
+    sun.angular_radius_deg = day.angular_radius_deg();
     sun.shadow_rays = request.shadow_rays;
     Ok(sun)
 }
@@ -250,4 +368,96 @@ pub(crate) fn with_slabs(
         Some(s) => atmosphere.with_slabs(s),
         None => atmosphere,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A sun seen at `utc` from the equator on the prime meridian.
+    fn at(utc: &str) -> SunSpec {
+        SunSpec::At {
+            utc: utc.to_owned(),
+            latitude_deg: 0.0,
+            longitude_deg: 0.0,
+            altitude_m: 0.0,
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        }
+    }
+
+    /// `(a/r)²` of a Keplerian orbit to first order in its eccentricity `e = 0.0167`,
+    /// `r/a = 1 − e cos M`, the mean anomaly `M` counted from perihelion on 3 January: an
+    /// estimate independent of Spencer's series, within about `e²` of the orbit.
+    fn kepler(day: u16) -> f64 {
+        let m = std::f64::consts::TAU * (f64::from(day) - 3.0) / 365.256;
+        (1.0 - 0.0167 * m.cos()).powi(-2)
+    }
+
+    #[test]
+    fn a_beam_seen_on_another_day_than_its_tables_is_scaled_by_the_distances() {
+        // Seen on 1 March 2026 (day 60), the table made for day 286 (13 October).
+        // Spencer's series by hand, Γ = 2π(d − 1)/365:
+        // day 60, Γ = 1.01564: 1.000110 + 0.034221·0.52708 + 0.001280·0.84982
+        //   + 0.000719·(−0.44438) + 0.000077·0.89584 = 1.018984;
+        // day 286, Γ = 4.90605: 1.000110 + 0.034221·0.19245 + 0.001280·(−0.98131)
+        //   + 0.000719·(−0.92592) + 0.000077·(−0.37771) = 1.004745;
+        // the table's beam is 1.4172 % too weak for 1 March.
+        let day = SunDay::new(&at("2026-03-01T10:00:00Z"), 286);
+        assert_eq!(day.day_of_year, 60);
+        let f = day.beam_factor();
+        assert!((f - 1.018_984 / 1.004_745).abs() < 2e-6, "{f}");
+        assert!((f - 1.014_17).abs() < 1e-5, "{f}");
+        // And the orbit's own ratio, to Spencer's 0.1 %.
+        assert!((f - kepler(60) / kepler(286)).abs() < 1e-3, "{f}");
+        // January against July: ±3.4 % about the mean, (1.01671/0.98329)² = 1.06913 from
+        // the aphelion and perihelion distances.
+        let jan_july = SunDay::new(&at("2026-01-03T12:00:00Z"), 185).beam_factor();
+        assert!((jan_july - 1.069_13).abs() < 2e-3, "{jan_july}");
+        let july_jan = SunDay::new(&at("2026-07-04T12:00:00Z"), 3).beam_factor();
+        assert!((july_jan * jan_july - 1.0).abs() < 1e-12, "{july_jan}");
+        // On the table's own day, or for a direction (no date), the table's beam exactly.
+        let same = SunDay::new(&at("2026-10-13T10:00:00Z"), 286);
+        assert_eq!(
+            (same.day_of_year, same.beam_factor().to_bits()),
+            (286, 1f64.to_bits())
+        );
+        let direction = SunSpec::Direction {
+            zenith_deg: 30.0,
+            azimuth_deg: 0.0,
+        };
+        assert_eq!(
+            SunDay::new(&direction, 60).beam_factor().to_bits(),
+            1f64.to_bits()
+        );
+        // The last day of a leap year is day 366, taken as it is.
+        let leap = SunDay::new(&at("2024-12-31T12:00:00Z"), 1);
+        assert_eq!(leap.day_of_year, 366);
+        assert!((leap.beam_factor() - 1.0).abs() < 1e-3);
+    }
+
+    #[test]
+    fn the_disk_is_larger_at_perihelion_and_smaller_at_aphelion() {
+        // α = 0.2666° · a/r: 0.2666/0.98329 = 0.27113° on 3 January, 0.2666/1.01671 =
+        // 0.26222° on 4 July.
+        let radius = |utc: &str, table: u16| SunDay::new(&at(utc), table).angular_radius_deg();
+        let near = radius("2026-01-03T12:00:00Z", 185);
+        let far = radius("2026-07-04T12:00:00Z", 3);
+        assert!((near - 0.27113).abs() < 2e-4, "{near}");
+        assert!((far - 0.26222).abs() < 2e-4, "{far}");
+        // Near the mean distance (early April, early October) it is the mean radius.
+        assert!((radius("2026-04-04T12:00:00Z", 1) - SUN_ANGULAR_RADIUS_DEG).abs() < 2e-4);
+        // A direction is seen on its table's day: day 172's radius.
+        let direction = SunSpec::Direction {
+            zenith_deg: 70.0,
+            azimuth_deg: 0.0,
+        };
+        let june = SunDay::new(&direction, 172).angular_radius_deg();
+        assert!((june - 0.2666 / 1.0163).abs() < 2e-4, "{june}");
+        // The disk's radiance E/Ω is the same on both days: E ∝ (a/r)², Ω ∝ α².
+        let (e_near, e_far) = (earth_sun_factor(3), earth_sun_factor(185));
+        let omega = |a: f64| std::f64::consts::TAU * (1.0 - a.to_radians().cos());
+        assert!((e_near / omega(near) / (e_far / omega(far)) - 1.0).abs() < 1e-5);
+    }
 }

@@ -76,6 +76,7 @@ mod lobe;
 mod path;
 mod path_table;
 pub mod pilot;
+mod probe_text;
 pub mod reference;
 pub mod refine;
 mod shade;

@@ -46,7 +46,10 @@
 use crate::error::{TraceError, TraceErrorKind};
 use crate::vec::{V3, basis, dot, scale};
 
-/// The sun's mean angular radius seen from the Earth, degrees (0.533° across).
+/// The sun's angular radius seen from the Earth at its mean distance (the orbit's
+/// semi-major axis), degrees (0.533° across). On a given day it is this times `r₀/r`, 0.2711°
+/// at perihelion and 0.2622° at aphelion: whoever builds the tracer knows the day and sets
+/// [`Sun::angular_radius_deg`].
 pub const SUN_ANGULAR_RADIUS_DEG: f64 = 0.2666;
 
 /// Most shadow rays per hit [`Sun::shadow_rays`] accepts.

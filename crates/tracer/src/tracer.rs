@@ -1,7 +1,5 @@
 //! The radiance equation along each ray: the four events of thesis Figure 6 (§3.3).
 
-use std::fmt;
-
 use irsig_atmosphere::PathTerms;
 use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, Terrain};
@@ -274,97 +272,6 @@ impl Sample {
             reflected_solar_w_m2_sr: f64::NAN,
             sun_share: f64::NAN,
         }
-    }
-}
-
-impl fmt::Display for Sample {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let facet = self
-            .facet
-            .map_or_else(|| "none".to_owned(), |i| i.to_string());
-        writeln!(
-            f,
-            "event                      {} ({:?})",
-            self.event.number(),
-            self.event
-        )?;
-        writeln!(
-            f,
-            "facet                      {facet}{}",
-            if self.back_face { " (back face)" } else { "" }
-        )?;
-        writeln!(f, "primary material           {}", self.primary_material)?;
-        writeln!(f, "secondary material         {}", self.secondary_material)?;
-        writeln!(f, "range_m                    {}", self.range_m)?;
-        writeln!(f, "incidence_deg              {}", self.incidence_deg())?;
-        writeln!(f, "kinetic temperature_k      {}", self.temperature_k)?;
-        writeln!(f, "emissivity ε               {}", self.emissivity)?;
-        writeln!(f, "reflectance r = 1 − ε      {}", self.reflectance)?;
-        writeln!(f, "specular fraction s        {}", self.specular_fraction)?;
-        writeln!(f, "L_T (W m-2 sr-1)           {}", self.blackbody_w_m2_sr)?;
-        writeln!(
-            f,
-            "reflected zenith_deg       {}",
-            self.reflected_zenith_deg
-        )?;
-        writeln!(
-            f,
-            "L_spec = L_b or L_d(θr)    {}",
-            self.specular_incident_w_m2_sr
-        )?;
-        writeln!(
-            f,
-            "L_d hemispheric            {}",
-            self.sky_hemispheric_w_m2_sr
-        )?;
-        writeln!(f, "sky-view factor F          {}", self.sky_view_factor)?;
-        writeln!(
-            f,
-            "F·L_d + (1 − F)·L_b        {}",
-            self.diffuse_incident_w_m2_sr
-        )?;
-        writeln!(
-            f,
-            "surface-leaving L(0,θ)     {}",
-            self.surface_leaving_w_m2_sr
-        )?;
-        writeln!(f, "τ                          {}", self.transmission)?;
-        writeln!(
-            f,
-            "L_u (W m-2 sr-1)           {}",
-            self.path_radiance_w_m2_sr
-        )?;
-        writeln!(f, "L at sensor (W m-2 sr-1)   {}", self.radiance_w_m2_sr)?;
-        writeln!(
-            f,
-            "dL/dT_kinetic              {}",
-            self.temperature_sensitivity
-        )?;
-        write!(
-            f,
-            "dL/dε                      {}",
-            self.emissivity_sensitivity
-        )?;
-        if self.sun_share.is_nan() {
-            return Ok(());
-        }
-        writeln!(f)?;
-        writeln!(
-            f,
-            "sun: E (W m-2)             {}",
-            self.solar_irradiance_w_m2
-        )?;
-        writeln!(
-            f,
-            "sun: visible fraction V    {}",
-            self.sun_visible_fraction
-        )?;
-        writeln!(
-            f,
-            "sun: reflected (W m-2 sr-1) {}",
-            self.reflected_solar_w_m2_sr
-        )?;
-        write!(f, "sun: share of L            {}", self.sun_share)
     }
 }
 

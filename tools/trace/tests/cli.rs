@@ -615,7 +615,8 @@ fn a_response_outside_a_builtins_spectra_names_the_band_file_both_ranges_and_the
     let err = String::from_utf8_lossy(&out.stderr).replace('\n', " ");
     for needed in [
         "bolometer.srf: the band, 7-14 um with a response",
-        "7.407-14.085 um",
+        // 1e4/1350 = 7.407407 and 1e4/710 = 14.084507 um, rounded inward.
+        "7.408-14.084 um",
         "irsig-atmos plan",
     ] {
         assert!(err.contains(needed), "`{needed}` missing from: {err}");
