@@ -319,3 +319,113 @@ fn saturated_counts_are_said_on_stderr() {
     assert_eq!((zero, full), (0, 0));
     assert!(!said.contains("saturate"), "{said}");
 }
+
+/// A 6 × 4 colour PNG of four flat quadrant colours that depend on `k`, and the colour
+/// of its pixel (x, y).
+fn quadrants(k: u8) -> impl Fn(u32, u32) -> [u8; 3] {
+    move |x, y| match (x < 3, y < 2) {
+        (true, true) => [k, 0, 0],
+        (false, true) => [0, k, 0],
+        (true, false) => [0, 0, k],
+        (false, false) => [k, k, 255 - k],
+    }
+}
+
+/// `--animation`: colour and grey PNG frames, in the order given, come back from the GIF
+/// one for one (each frame has fewer than 256 colours, so GIF's palette holds them
+/// exactly), every one shown for the delay asked.
+#[test]
+fn an_animation_decodes_to_its_input_frames_in_order() {
+    use image::AnimationDecoder;
+    let dir = tempfile::tempdir().unwrap();
+    let mut names = Vec::new();
+    for k in [40u8, 120, 200] {
+        let colour = quadrants(k);
+        let img = image::RgbImage::from_fn(6, 4, |x, y| image::Rgb(colour(x, y)));
+        let name = dir.path().join(format!("c{k}.png"));
+        img.save(&name).unwrap();
+        names.push(name);
+    }
+    // A grey frame: a ramp over its 24 pixels.
+    let grey = image::GrayImage::from_fn(6, 4, |x, y| image::Luma([(10 * (y * 6 + x)) as u8]));
+    let grey_name = dir.path().join("grey.png");
+    grey.save(&grey_name).unwrap();
+    names.push(grey_name);
+
+    let gif = dir.path().join("day.gif");
+    bin("irsig-sensor")
+        .arg("--animation")
+        .arg(&gif)
+        .args(["--frame-delay-ms", "120"])
+        .args(&names)
+        .assert()
+        .success();
+    let file = std::io::BufReader::new(std::fs::File::open(&gif).unwrap());
+    let frames = image::codecs::gif::GifDecoder::new(file)
+        .unwrap()
+        .into_frames()
+        .collect_frames()
+        .unwrap();
+    assert_eq!(frames.len(), 4);
+    for (f, k) in frames.iter().zip([40u8, 120, 200]) {
+        assert_eq!(f.delay().numer_denom_ms(), (120, 1));
+        let colour = quadrants(k);
+        for (x, y, p) in f.buffer().enumerate_pixels() {
+            let [r, g, b] = colour(x, y);
+            assert_eq!(p.0, [r, g, b, 255], "frame of {k}, pixel ({x}, {y})");
+        }
+    }
+    for (x, y, p) in frames[3].buffer().enumerate_pixels() {
+        let v = (10 * (y * 6 + x)) as u8;
+        assert_eq!(p.0, [v, v, v, 255], "grey frame, pixel ({x}, {y})");
+    }
+}
+
+/// Frames of two sizes, a delay GIF cannot hold, an EXR frame and a second mode: refused,
+/// the file named, nothing written.
+#[test]
+fn a_bad_animation_is_refused_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let (a, b) = (dir.path().join("a.png"), dir.path().join("b.png"));
+    image::GrayImage::new(6, 4).save(&a).unwrap();
+    image::GrayImage::new(6, 5).save(&b).unwrap();
+    let gif = dir.path().join("out.gif");
+    bin("irsig-sensor")
+        .arg("--animation")
+        .arg(&gif)
+        .arg(&a)
+        .arg(&b)
+        .assert()
+        .code(1)
+        .stderr(predicate::str::contains("b.png").and(predicate::str::contains("6 x 5")));
+    let exr = write_scene(dir.path());
+    bin("irsig-sensor")
+        .arg("--animation")
+        .arg(&gif)
+        .arg(&a)
+        .arg(&exr)
+        .assert()
+        .code(1)
+        .stderr(
+            predicate::str::contains("radiance.exr").and(predicate::str::contains("not a PNG")),
+        );
+    bin("irsig-sensor")
+        .arg("--animation")
+        .arg(&gif)
+        .args(["--frame-delay-ms", "15"])
+        .arg(&a)
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("hundredths"));
+    bin("irsig-sensor")
+        .arg("--animation")
+        .arg(&gif)
+        .arg("--contact-sheet")
+        .arg(dir.path().join("sheet.png"))
+        .arg(&a)
+        .assert()
+        .code(2);
+    // A second image without a mode that takes several.
+    bin("irsig-sensor").arg(&a).arg(&b).assert().code(2);
+    assert!(!gif.exists() && !dir.path().join("sheet.png").exists());
+}

@@ -23,6 +23,7 @@
 // A closed stderr must not panic the tool: notes go through `irsig_cli::note!`.
 #![warn(clippy::print_stderr)]
 
+pub mod animation;
 pub mod contact_sheet;
 mod preview;
 pub mod spec;
@@ -50,11 +51,12 @@ const RADIANCE_LAYER: &str = Layer::Radiance.name();
 
 /// Command line of `irsig-sensor`.
 #[derive(Debug, Parser)]
+#[command(group = clap::ArgGroup::new("sequence").args(["contact_sheet", "animation"]))]
 #[command(
     name = "irsig-sensor",
     version,
     about = "Blur, sample, add noise to and quantise a radiance EXR as a thermal imager would",
-    after_help = "Example:\n  irsig-sensor --contact-sheet sheet.png --sheet-columns 8 f01.dc.png f02.dc.png ...\n\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
+    after_help = "Example:\n  irsig-sensor --contact-sheet sheet.png --sheet-columns 8 f01.dc.png f02.dc.png ...\n\n  irsig-sensor --animation day.gif --frame-delay-ms 250 h00.dc.png h01.dc.png ...\n\n  irsig-sensor radiance.exr -o sensor.exr --mtf box:5x5 \\\n    --mtf diffraction:lambda-um=10,f=2,pitch-um=25 --nedt-k 0.05 --seed 1 \\\n    --dc-per-kelvin 4 --dc-png dc.png --lut dc.lut --colour-preview preview.png\n\n  irsig-trace … | irsig-sensor - --mtf gauss:hp=0.25 -o - > sensor.exr\n\nMTF forms (cycles and lengths per sensor pixel): box:5x5 | gauss:sigma=0.8 | \
 gauss:hp=0.25 | ss:across=0.3,along=0.2 | diffraction:lambda-um=10,f=2,pitch-um=25 | \
 footprint:1x1 | motion:len=3,angle=30 | jitter:0.3 | jitter:x=0.3,y=0.5",
     mut_arg("output", |a| a.help("The output EXR (`-` or absent: stdout)")),
@@ -65,8 +67,8 @@ pub struct Cli {
     #[arg(default_value = "-")]
     pub input: String,
 
-    /// Further input images, for --contact-sheet only.
-    #[arg(value_name = "MORE", requires = "contact_sheet")]
+    /// Further input images, for --contact-sheet or --animation only.
+    #[arg(value_name = "MORE", requires = "sequence")]
     pub more_inputs: Vec<String>,
 
     /// Contact-sheet mode: put every input image (PNG, or EXR whose `radiance` layer is
@@ -82,6 +84,22 @@ pub struct Cli {
     #[arg(long, value_name = "N", requires = "contact_sheet",
           value_parser = clap::value_parser!(u32).range(1..))]
     pub sheet_columns: Option<u32>,
+
+    /// Animation mode: every input PNG (one size, in the order given) as a frame of one
+    /// animated GIF written to this file, looping forever; nothing else is done or written.
+    /// Frames of at most 256 colours (any 8-bit grey PNG) are kept exactly, others are
+    /// reduced to 256 colours.
+    #[arg(long, value_name = "GIF", conflicts_with_all = [
+        "output", "mtf", "dc_png", "lut", "temperature_exr", "preview", "colour_preview",
+        "nedt_k", "contact_sheet",
+    ])]
+    pub animation: Option<PathBuf>,
+
+    /// How long each frame of the animation is shown, milliseconds (GIF holds hundredths
+    /// of a second: 10 to 655350 in steps of 10).
+    #[arg(long, value_name = "MS", default_value_t = 500, requires = "animation",
+          value_parser = animation::parse_delay_ms)]
+    pub frame_delay_ms: u32,
 
     /// `-o PATH`: the output EXR.
     #[command(flatten)]
@@ -380,6 +398,14 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     cli.threads.install(|| sense(&cli))
 }
 
+/// Every input of a contact sheet or an animation, `(name, bytes)`, in the order given.
+fn read_all(cli: &Cli) -> miette::Result<Vec<(String, Vec<u8>)>> {
+    std::iter::once(&cli.input)
+        .chain(&cli.more_inputs)
+        .map(|name| irsig_cli::read_input(name).map(|input| (input.name, input.bytes)))
+        .collect()
+}
+
 fn sense(cli: &Cli) -> miette::Result<()> {
     let band_file = cli.band.band.response_file();
     let inputs = std::iter::once(cli.input.as_str())
@@ -388,6 +414,7 @@ fn sense(cli: &Cli) -> miette::Result<()> {
     let outputs = [
         &cli.output.path,
         &cli.contact_sheet,
+        &cli.animation,
         &cli.dc_png.path,
         &cli.lut.path,
         &cli.temperature_exr,
@@ -396,13 +423,14 @@ fn sense(cli: &Cli) -> miette::Result<()> {
     ];
     irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())?;
     if let Some(sheet) = &cli.contact_sheet {
-        let mut inputs = Vec::with_capacity(1 + cli.more_inputs.len());
-        for name in std::iter::once(&cli.input).chain(&cli.more_inputs) {
-            let input = irsig_cli::read_input(name)?;
-            inputs.push((input.name, input.bytes));
-        }
+        let inputs = read_all(cli)?;
         let png = contact_sheet::build(&inputs, cli.sheet_columns.map(|c| c as usize))?;
         return irsig_cli::write_files_atomic(&[(sheet.clone(), png)]);
+    }
+    if let Some(gif) = &cli.animation {
+        let inputs = read_all(cli)?;
+        let bytes = animation::build(&inputs, cli.frame_delay_ms)?;
+        return irsig_cli::write_files_atomic(&[(gif.clone(), bytes)]);
     }
     let wants_counts = cli.dc_png.path.is_some() || cli.lut.path.is_some();
     let calibration = cli.dc.calibration(None);
