@@ -31,12 +31,12 @@ pub mod weathered;
 
 use std::collections::BTreeMap;
 
-use irsig_formats::radtran::tape5::{Card3, CardDeck, Scattering, Step};
+use irsig_formats::radtran::tape5::{Card3, CardDeck, Step};
 use irsig_model::loads::{LoadsPlan, LoadsSun};
 use irsig_model::{PlanAerosol, PlanModel};
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
-use crate::plan::{radiosonde_profile, round3, standard_cards};
+use crate::plan::{radiosonde_profile, round3, set_aerosol, standard_cards, sun_scattering};
 
 pub use assemble::{LongwaveOutside, SunLoads, assemble, kasten_young_air_mass, sun_loads_at};
 pub use rule::{DiffuseRule, diffuse_nodes, longwave_nodes};
@@ -295,26 +295,13 @@ pub fn deck(plan: &LoadsPlan, path: &LoadsPath) -> Result<CardDeck, AtmosphereEr
         ..
     } = *path
     {
-        cards.geometry.scattering = Some(Scattering {
-            card3a1: [2, 2, i64::from(plan.day_of_year), 0],
-            card3a2: [
-                round3(azimuth_deg),
-                round3(sun_zenith_deg),
-                0.0,
-                0.0,
-                0.0,
-                0.0,
-                0.0,
-                0.0,
-            ],
-            phase_function: Vec::new(),
-        });
+        cards.geometry.scattering = Some(sun_scattering(
+            plan.day_of_year,
+            azimuth_deg,
+            sun_zenith_deg,
+        ));
     }
-    if let Some(a) = &plan.aerosol {
-        cards.card2.ihaze = a.model.ihaze();
-        cards.card2.vis_km = round3(a.visibility_m / 1000.0);
-        cards.card2.wss_m_s = a.wind_speed_m_s.unwrap_or(0.0);
-    }
+    set_aerosol(&mut cards, plan.aerosol.as_ref());
     Ok(CardDeck {
         steps: vec![Step::Full(Box::new(cards))],
     })

@@ -1,0 +1,305 @@
+//! From every path's spectra back to the spectral atmosphere the plan describes.
+
+use super::*;
+
+/// What a run gave for one path.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathSpectra {
+    /// Wavenumbers, cm⁻¹, increasing.
+    pub wavenumber_per_cm: Vec<f64>,
+    /// Transmittance, 0–1 (values a little above 1, as LOWTRAN prints them on short paths,
+    /// are clamped to 1 by [`assemble`]).
+    pub transmission: Vec<f64>,
+    /// Path (or sky) radiance, W m⁻² sr⁻¹ per cm⁻¹; empty for the sun's paths.
+    pub radiance_w_m2_sr_per_cm: Vec<f64>,
+    /// The sun's paths (direct solar irradiance runs): the extraterrestrial solar
+    /// irradiance on a surface normal to the beam, W m⁻² per cm⁻¹; empty for the others.
+    pub extraterrestrial_w_m2_per_cm: Vec<f64>,
+    /// The sunlit paths (IEMSCT = 2 runs): the sunlight scattered into the path, W m⁻²
+    /// sr⁻¹ per cm⁻¹; empty for the others.
+    pub scattered_w_m2_sr_per_cm: Vec<f64>,
+}
+
+/// The spectral atmosphere from the spectra of every path of [`paths`] (same order),
+/// `temperature_k(altitude above the ground in m)` for the profile, the ground's altitude
+/// above sea level and the source text.
+///
+/// # Errors
+/// A count of spectra that is not the count of paths, runs on different spectral grids,
+/// or an atmosphere that fails validation.
+pub fn assemble(
+    plan: &AtmospherePlan,
+    spectra: &[PathSpectra],
+    temperature_k: &dyn Fn(f64) -> f64,
+    ground_asl_m: f64,
+    source: &str,
+) -> Result<SpectralAtmosphere, AtmosphereError> {
+    let bad = |m: String| -> AtmosphereError { AtmosphereErrorKind::Plan(m).into() };
+    let all = paths(plan);
+    if spectra.len() != all.len() {
+        return Err(bad(format!(
+            "the plan has {} paths, the runs gave {}",
+            all.len(),
+            spectra.len()
+        )));
+    }
+    let grid = spectra[0].wavenumber_per_cm.clone();
+    for (i, s) in spectra.iter().enumerate() {
+        if s.wavenumber_per_cm != grid {
+            return Err(bad(format!(
+                "run {i} is on a different spectral grid from run 0 ({} points from {} cm-1, against {} from {} cm-1)",
+                s.wavenumber_per_cm.len(),
+                s.wavenumber_per_cm.first().copied().unwrap_or(f64::NAN),
+                grid.len(),
+                grid.first().copied().unwrap_or(f64::NAN)
+            )));
+        }
+    }
+    for (i, (p, s)) in all.iter().zip(spectra).enumerate() {
+        let (what, found) = match p {
+            Path::Sun { .. } => (
+                "an extraterrestrial solar irradiance (a direct solar irradiance run, IEMSCT = 3)",
+                s.extraterrestrial_w_m2_per_cm.len(),
+            ),
+            Path::DownSunlit { .. } | Path::UpSunlit { .. } | Path::SlabSunlit { .. } => (
+                "a scattered solar radiance (a solar scattering run, IEMSCT = 2)",
+                s.scattered_w_m2_sr_per_cm.len(),
+            ),
+            _ => (
+                "a path radiance (a thermal radiance run)",
+                s.radiance_w_m2_sr_per_cm.len(),
+            ),
+        };
+        if found != grid.len() || s.transmission.len() != grid.len() {
+            return Err(bad(format!(
+                "run {i} ({p:?}): expected {what} and a transmittance at each of the {} grid points, found {found} and {}",
+                grid.len(),
+                s.transmission.len()
+            )));
+        }
+    }
+    let index: BTreeMap<Key, usize> = all.iter().enumerate().map(|(i, p)| (key(p), i)).collect();
+    let get = |p: Path| -> &PathSpectra { &spectra[index[&key(&p)]] };
+    #[allow(clippy::cast_possible_truncation)]
+    let f32s = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
+    // LOWTRAN prints τ a little above 1 on metre-long paths: clamp.
+    let tau = |p: Path| {
+        let t: Vec<f64> = get(p)
+            .transmission
+            .iter()
+            .map(|t| t.clamp(0.0, 1.0))
+            .collect();
+        f32s(&t)
+    };
+    let rad = |p: Path| f32s(&get(p).radiance_w_m2_sr_per_cm);
+    let down = |a: f64, n: f64| Path::Down {
+        altitude_m: a,
+        nadir_deg: n,
+    };
+    let up = |a: f64, z: f64| Path::Up {
+        altitude_m: a,
+        zenith_deg: z,
+    };
+    let levels: Vec<ProfileLevel> = plan
+        .levels_m
+        .iter()
+        .map(|&h| ProfileLevel {
+            altitude_asl_m: ground_asl_m + h,
+            temperature_k: (temperature_k(h) * 1e3).round() / 1e3,
+            altitude_m: h,
+        })
+        .collect();
+    let mut hemi = vec![0.0_f64; grid.len()];
+    for &(z, w) in &plan.hemispheric {
+        for (h, l) in hemi
+            .iter_mut()
+            .zip(&get(up(0.0, z)).radiance_w_m2_sr_per_cm)
+        {
+            *h += w * l;
+        }
+    }
+    let flat = |ps: Vec<Path>, f: &dyn Fn(Path) -> Vec<f32>| -> Vec<f32> {
+        ps.into_iter().flat_map(f).collect()
+    };
+    let slant_paths: Vec<Path> = plan
+        .slant_altitude_m
+        .iter()
+        .flat_map(|&a| plan.slant_nadir_deg.iter().map(move |&n| down(a, n)))
+        .collect();
+    let sky_paths: Vec<Path> = plan
+        .sky_altitude_m
+        .iter()
+        .flat_map(|&a| plan.sky_zenith_deg.iter().map(move |&z| up(a, z)))
+        .collect();
+    let solar = match &plan.sun {
+        None => None,
+        Some(sun) => {
+            let runs: Vec<Path> = sun_paths(sun).collect();
+            // Every run of one day has one extraterrestrial spectrum: the lowest's is kept,
+            // the others must agree with it to the printed digits.
+            let etoa = &get(runs[0]).extraterrestrial_w_m2_per_cm;
+            for &p in &runs[1..] {
+                let other = &get(p).extraterrestrial_w_m2_per_cm;
+                if let Some(k) = (0..grid.len())
+                    .find(|&k| (other[k] - etoa[k]).abs() > 1e-6 * etoa[k].abs().max(1e-30))
+                {
+                    return Err(bad(format!(
+                        "run {} ({p:?}) has another extraterrestrial solar irradiance than run {} at {} cm-1 ({} against {} W m-2 per cm-1): the sun's runs must be of one day",
+                        index[&key(&p)],
+                        index[&key(&runs[0])],
+                        grid[k],
+                        other[k],
+                        etoa[k]
+                    )));
+                }
+            }
+            let scattered = |p: Path| f32s(&get(p).scattered_w_m2_sr_per_cm);
+            Some(SpectralSolar {
+                zenith_deg: sun.zenith_deg,
+                day_of_year: sun.day_of_year,
+                altitude_m: sun.altitude_m.clone(),
+                extraterrestrial_w_m2_per_unit: f32s(etoa),
+                transmission: flat(runs, &tau),
+                relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
+                path_scattered_w_m2_sr_per_unit: flat(sunlit_slant_paths(plan, sun), &scattered),
+                sky_scattered_w_m2_sr_per_unit: flat(sunlit_sky_paths(plan, sun), &scattered),
+            })
+        }
+    };
+    let slabs = assemble_slabs(plan, &get, grid.len());
+    let atmosphere = SpectralAtmosphere {
+        name: plan.name.clone(),
+        source: source.to_owned(),
+        grid: SpectralGrid {
+            axis: SpectralAxis::WavenumberPerCm,
+            points: grid,
+        },
+        levels,
+        level_transmission: flat(plan.levels_m.iter().map(|&a| down(a, 0.0)).collect(), &tau),
+        level_path_radiance_w_m2_sr_per_unit: flat(
+            plan.levels_m.iter().map(|&a| down(a, 0.0)).collect(),
+            &rad,
+        ),
+        transmission_correction: Some(CorrectionPaths {
+            altitude_m: plan.correction_altitude_m,
+            nadir_deg: plan.correction_nadir_deg.clone(),
+            transmission: flat(
+                plan.correction_nadir_deg
+                    .iter()
+                    .map(|&n| down(plan.correction_altitude_m, n))
+                    .collect(),
+                &tau,
+            ),
+        }),
+        sky_zenith_deg: plan.ground_sky_zenith_deg.clone(),
+        sky_radiance_w_m2_sr_per_unit: flat(
+            plan.ground_sky_zenith_deg
+                .iter()
+                .map(|&z| up(0.0, z))
+                .collect(),
+            &rad,
+        ),
+        sky_hemispheric_w_m2_sr_per_unit: Some(f32s(&hemi)),
+        radiosonde: match &plan.model {
+            PlanModel::Radiosonde(l) => l.clone(),
+            PlanModel::Standard(_) => Vec::new(),
+        },
+        slant: Some(SpectralSlantTables {
+            altitude_m: plan.slant_altitude_m.clone(),
+            nadir_deg: plan.slant_nadir_deg.clone(),
+            ground_m: Some(plan.path_end_m),
+            transmission: flat(slant_paths.clone(), &tau),
+            path_radiance_w_m2_sr_per_unit: flat(slant_paths, &rad),
+            sky_altitude_m: plan.sky_altitude_m.clone(),
+            sky_zenith_deg: plan.sky_zenith_deg.clone(),
+            sky_radiance_w_m2_sr_per_unit: flat(sky_paths, &rad),
+            // The plan's rows are the scene's own paths: nothing lies between them that
+            // was measured.
+            interpolation_residual: None,
+        }),
+        solar,
+        slabs,
+    };
+    atmosphere.validate()?;
+    Ok(atmosphere)
+}
+
+/// The spectral slabs of `plan` from its runs (`get`), one per observer that has any; the
+/// observer's own row (its value copied: compared exactly) is τ = 1 and no radiance.
+#[allow(clippy::float_cmp)]
+pub(super) fn assemble_slabs<'a>(
+    plan: &AtmospherePlan,
+    get: &dyn Fn(Path) -> &'a PathSpectra,
+    n: usize,
+) -> Vec<SpectralSlab> {
+    let Some(slabs) = &plan.slabs else {
+        return Vec::new();
+    };
+    let azimuths: &[f64] = plan
+        .sun
+        .as_ref()
+        .map_or(&[], |s| s.relative_azimuth_deg.as_slice());
+    #[allow(clippy::cast_possible_truncation)]
+    let f32s = |v: &[f64], clamp: bool| {
+        v.iter()
+            .map(|&x| if clamp { x.clamp(0.0, 1.0) } else { x } as f32)
+            .collect::<Vec<f32>>()
+    };
+    let mut observers = plan.observers_m.clone();
+    observers.sort_by(f64::total_cmp);
+    observers.dedup();
+    let mut out = Vec::new();
+    for &o in &observers {
+        let [down, up] = slab_tables(slabs, o).map(|table| {
+            table.map(|(targets, angles, down)| {
+                let mut t = SpectralSlabTable {
+                    target_m: targets.clone(),
+                    angle_deg: angles.to_vec(),
+                    transmission: Vec::new(),
+                    path_radiance_w_m2_sr_per_unit: Vec::new(),
+                    scattered_w_m2_sr_per_unit: Vec::new(),
+                };
+                for &h in &targets {
+                    for &a in angles {
+                        let zenith_deg = if down { 180.0 - a } else { a };
+                        if h == o {
+                            t.transmission.extend(std::iter::repeat_n(1.0, n));
+                            t.path_radiance_w_m2_sr_per_unit
+                                .extend(std::iter::repeat_n(0.0, n));
+                            t.scattered_w_m2_sr_per_unit
+                                .extend(std::iter::repeat_n(0.0, n * azimuths.len()));
+                            continue;
+                        }
+                        let run = get(Path::Slab {
+                            observer_m: o,
+                            target_m: h,
+                            zenith_deg,
+                        });
+                        t.transmission.extend(f32s(&run.transmission, true));
+                        t.path_radiance_w_m2_sr_per_unit
+                            .extend(f32s(&run.radiance_w_m2_sr_per_cm, false));
+                        for &azimuth_deg in azimuths {
+                            let lit = get(Path::SlabSunlit {
+                                observer_m: o,
+                                target_m: h,
+                                zenith_deg,
+                                azimuth_deg,
+                            });
+                            t.scattered_w_m2_sr_per_unit
+                                .extend(f32s(&lit.scattered_w_m2_sr_per_cm, false));
+                        }
+                    }
+                }
+                t
+            })
+        });
+        if down.is_some() || up.is_some() {
+            out.push(SpectralSlab {
+                observer_m: o,
+                down,
+                up,
+            });
+        }
+    }
+    out
+}
