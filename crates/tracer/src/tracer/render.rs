@@ -1,0 +1,443 @@
+//! The render loops: a whole frame, a tile of it, refined or supersampled, and the probe
+//! of one pixel, each ray through the one pixel function.
+
+use super::*;
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Renders every pixel of `camera`'s image, rows in parallel (rayon): the whole image as
+    /// one tile ([`Self::render_tile`]). `progress` is called with 1 after each row. The
+    /// result does not depend on the thread count.
+    ///
+    /// # Errors
+    /// The options are out of range.
+    pub fn render(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Frame, TraceError> {
+        let [w, h] = camera.pixels;
+        self.render_tile(camera, options, Tile::whole(w, h), progress)
+    }
+
+    /// The pixels of `frame` whose apparent temperature differs from one of its 8
+    /// neighbours' by more than `threshold_k` (the diagonal ones count: a corner of a facet
+    /// can cut into a pixel whose 4-neighbours' centres all miss it).
+    pub(crate) fn edges(&self, frame: &Frame, threshold_k: f64) -> Vec<bool> {
+        let inverse = self.inverse_table();
+        let t: Vec<f64> = frame
+            .radiance_w_m2_sr
+            .par_chunks(4096)
+            .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
+            .collect();
+        let (w, h) = (frame.width as usize, frame.height as usize);
+        contrast_of(&t, w, h)
+            .into_iter()
+            .map(|c| c > threshold_k)
+            .collect()
+    }
+
+    /// Renders the pixels of `tile` of `camera`'s image, rows in parallel, exactly as
+    /// [`Self::render`] renders them in the whole image: each pixel's rays and random
+    /// stream are its own (seeded by its index in the whole image), and adaptive
+    /// supersampling compares the tile's pixels with their neighbours' centre rays over a
+    /// one-pixel margin, so every pixel is bit for bit the whole frame's. The frame returned
+    /// is the tile's: `tile.width × tile.height`, row 0 the tile's top row. What it holds
+    /// beyond its pixels is of the tile's size too, never the image's: the camera's
+    /// per-column and per-row directions over the tile's columns and rows and its margin,
+    /// and, with adaptive supersampling or refinement, the centre rays of the margin.
+    ///
+    /// # Errors
+    /// The options are out of range, or the tile is empty or reaches beyond the image.
+    pub fn render_tile(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Result<Frame, TraceError> {
+        options.validate()?;
+        let [w, h] = camera.pixels;
+        tile.check(w, h)
+            .map_err(|e| TraceError::new(TraceErrorKind::InvalidTile(e)))?;
+        // Every pixel a tile traces lies in it or in its one-pixel margin.
+        let fc = self.frame_consts(camera, tile.grown(1, w, h));
+        if let Some(refinement) = self.refinement {
+            if options.supersampling != 1 || options.adaptive_threshold_k.is_some() {
+                return Err(TraceError::new(TraceErrorKind::InvalidOptions(
+                    "refinement replaces supersampling: give one ray per pixel (supersampling \
+                     1, no adaptive threshold) with it"
+                        .into(),
+                )));
+            }
+            return Ok(self.render_refined(&fc, options, &refinement, tile, progress));
+        }
+        let adaptive = options
+            .adaptive_threshold_k
+            .filter(|_| options.supersampling > 1);
+        let Some(threshold_k) = adaptive else {
+            return Ok(self.render_rect(&fc, options, tile, progress));
+        };
+        // The centre rays of the tile and a one-pixel margin: an edge test needs all 8
+        // neighbours, as in the whole frame (the margin stops at the image's border, where
+        // the whole frame's neighbourhood stops too).
+        let centre_options = TraceOptions {
+            supersampling: 1,
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        let halo = tile.grown(1, w, h);
+        let centres = self.render_rect(&fc, &centre_options, halo, &|_| {});
+        let refine = self.edges(&centres, threshold_k);
+        let tw = tile.width as usize;
+        let (mut radiance, flags, truth, sun) = if halo == tile {
+            // The whole image: the margin is empty, nothing to crop.
+            (centres.radiance_w_m2_sr, refine, centres.truth, centres.sun)
+        } else {
+            let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+            let hw = halo.width as usize;
+            let crop = |r: usize| (r + dy) * hw + dx..(r + dy) * hw + dx + tw;
+            let mut radiance = Vec::with_capacity(tile.pixels());
+            let mut flags = Vec::with_capacity(tile.pixels());
+            let mut truth = Vec::new();
+            let mut sun = Vec::new();
+            for r in 0..tile.height as usize {
+                radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
+                flags.extend_from_slice(&refine[crop(r)]);
+                if !centres.truth.is_empty() {
+                    truth.extend_from_slice(&centres.truth[crop(r)]);
+                }
+                if !centres.sun.is_empty() {
+                    sun.extend_from_slice(&centres.sun[crop(r)]);
+                }
+            }
+            (radiance, flags, truth, sun)
+        };
+        let full = TraceOptions {
+            adaptive_threshold_k: None,
+            ..*options
+        };
+        radiance
+            .par_chunks_mut(tw)
+            .zip(flags.par_chunks(tw))
+            .enumerate()
+            .for_each(|(r, (rad, flags))| {
+                let mut path = Path::default();
+                let mut scratch = Sample::miss(Event::Sky);
+                let row = tile.y + r as u32;
+                for (c, (l_out, &flag)) in rad.iter_mut().zip(flags).enumerate() {
+                    if flag {
+                        *l_out = self.pixel::<false>(
+                            &fc,
+                            &full,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut scratch,
+                        );
+                    }
+                }
+                progress(1);
+            });
+        Ok(Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+            sampling: Vec::new(),
+            sun,
+        })
+    }
+
+    /// [`Self::render_tile`] with refinement: the centre rays of the tile and a one-pixel
+    /// margin, the candidates among the tile's pixels (an edge against a neighbour, or a
+    /// thin facet near), and each candidate refined to the target.
+    pub(super) fn render_refined(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        refinement: &Refinement,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Frame {
+        let camera = fc.camera();
+        let [w, h] = camera.pixels;
+        let halo = tile.grown(1, w, h);
+        // The centre pass keeps every centre's terms: a pixel that stays with its centre
+        // ray gives the budget its sensitivities.
+        let centres = self.refinement_centres(fc, options, halo);
+        let inverse = self.inverse_table();
+        let calm: Vec<f64> = centres
+            .calm_w_m2_sr
+            .par_chunks(4096)
+            .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
+            .collect();
+        let contrast = contrast_of(&calm, halo.width as usize, halo.height as usize);
+        let thin = self.thin_pixels_in(camera, tile);
+        // What a thin facet, which no centre may have seen, could hide: the same for a tile
+        // as for its frame.
+        let thin_contrast_k = self.contrast_bound_k();
+        let (hw, tw) = (halo.width as usize, tile.width as usize);
+        let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+        let mut radiance = vec![0.0; tile.pixels()];
+        let mut sampling = vec![PixelSampling::default(); tile.pixels()];
+        radiance
+            .par_chunks_mut(tw)
+            .zip(sampling.par_chunks_mut(tw))
+            .enumerate()
+            .for_each(|(r, (rad, smp))| {
+                let mut path = Path::default();
+                let row = tile.y + r as u32;
+                for (c, (l_out, s_out)) in rad.iter_mut().zip(smp.iter_mut()).enumerate() {
+                    let col = tile.x + c as u32;
+                    let at = (r + dy) * hw + c + dx;
+                    let is_thin = thin[r * tw + c];
+                    if contrast[at] > refinement.edge_k || is_thin {
+                        let start = if is_thin {
+                            refinement.thin_side
+                        } else {
+                            EDGE_SIDE.min(refinement.max_side)
+                        };
+                        let one = (col, row);
+                        // What a sliver could hide: the neighbours' contrast, or for a thin
+                        // facet, which no centre may have seen, the frame's.
+                        let hide = if is_thin {
+                            thin_contrast_k
+                        } else {
+                            contrast[at]
+                        };
+                        (*l_out, *s_out) = if options.truth {
+                            self.refine_pixel::<true>(
+                                fc, options, refinement, &inverse, one, start, hide, &mut path,
+                            )
+                        } else {
+                            self.refine_pixel::<false>(
+                                fc, options, refinement, &inverse, one, start, hide, &mut path,
+                            )
+                        };
+                    } else {
+                        *l_out = centres.radiance_w_m2_sr[at];
+                        *s_out = PixelSampling::from_truth(&centres.truth[at]);
+                    }
+                }
+                progress(1);
+            });
+        let crop = |all: &[SunPixel]| -> Vec<SunPixel> {
+            (0..tile.height as usize)
+                .flat_map(|r| {
+                    let start = (r + dy) * hw + dx;
+                    all[start..start + tw].iter().copied()
+                })
+                .collect()
+        };
+        let (truth, sun) = if options.truth {
+            let truth = (0..tile.height as usize)
+                .flat_map(|r| {
+                    let start = (r + dy) * hw + dx;
+                    centres.truth[start..start + tw].iter().copied()
+                })
+                .collect();
+            let sun = if self.sun.is_some() {
+                crop(&centres.sun)
+            } else {
+                Vec::new()
+            };
+            (truth, sun)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+            sampling,
+            sun,
+        }
+    }
+
+    /// The pixels of `tile` (checked to lie in the image), rows in parallel: a frame of the
+    /// tile's size.
+    pub(super) fn render_rect(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        tile: Tile,
+        progress: &(dyn Fn(u64) + Sync),
+    ) -> Frame {
+        let n = tile.pixels();
+        let row_len = tile.width.max(1) as usize;
+        let mut radiance = vec![0.0; n];
+        let mut truth = Vec::new();
+        let mut sun = Vec::new();
+        if options.truth && self.sun.is_some() {
+            // The sun's layers in a vector of their own, so that a night frame's loop
+            // below stays as it was.
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+            sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
+            radiance
+                .par_chunks_mut(row_len)
+                .zip(truth.par_chunks_mut(row_len))
+                .zip(sun.par_chunks_mut(row_len))
+                .enumerate()
+                .for_each(|(r, ((rad, tru), sun))| {
+                    let mut path = Path::default();
+                    let mut centre = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, ((l_out, t_out), s_out)) in rad
+                        .iter_mut()
+                        .zip(tru.iter_mut())
+                        .zip(sun.iter_mut())
+                        .enumerate()
+                    {
+                        *l_out = self.pixel::<true>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut centre,
+                        );
+                        *t_out = TruthPixel::from(&centre);
+                        *s_out = SunPixel::from(&centre);
+                    }
+                    progress(1);
+                });
+        } else if options.truth {
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+            radiance
+                .par_chunks_mut(row_len)
+                .zip(truth.par_chunks_mut(row_len))
+                .enumerate()
+                .for_each(|(r, (rad, tru))| {
+                    let mut path = Path::default();
+                    let mut centre = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
+                        *l_out = self.pixel::<true>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut centre,
+                        );
+                        *t_out = TruthPixel::from(&centre);
+                    }
+                    progress(1);
+                });
+        } else {
+            radiance
+                .par_chunks_mut(row_len)
+                .enumerate()
+                .for_each(|(r, rad)| {
+                    let mut path = Path::default();
+                    let mut scratch = Sample::miss(Event::Sky);
+                    let row = tile.y + r as u32;
+                    for (c, l_out) in rad.iter_mut().enumerate() {
+                        *l_out = self.pixel::<false>(
+                            fc,
+                            options,
+                            tile.x + c as u32,
+                            row,
+                            &mut path,
+                            &mut scratch,
+                        );
+                    }
+                    progress(1);
+                });
+        }
+        Frame {
+            width: tile.width,
+            height: tile.height,
+            radiance_w_m2_sr: radiance,
+            truth,
+            sampling: Vec::new(),
+            sun,
+        }
+    }
+
+    /// Every term of the ray through the centre of pixel `(column, row)`, exactly as
+    /// [`Self::render`] computes them for the truth outputs, in f64.
+    ///
+    /// # Errors
+    /// The pixel lies outside the image, or the options are out of range.
+    pub fn probe(
+        &self,
+        camera: &Camera,
+        options: &TraceOptions,
+        column: u32,
+        row: u32,
+    ) -> Result<Sample, TraceError> {
+        options.validate()?;
+        let [w, h] = camera.pixels;
+        if column >= w || row >= h {
+            return Err(TraceError::new(TraceErrorKind::PixelOutsideImage {
+                column,
+                row,
+                width: w,
+                height: h,
+            }));
+        }
+        let mut s = Sample::miss(Event::Sky);
+        let mut path = Path::default();
+        self.pixel::<true>(
+            &self.frame_consts(
+                camera,
+                Tile {
+                    x: column,
+                    y: row,
+                    width: 1,
+                    height: 1,
+                },
+            ),
+            options,
+            column,
+            row,
+            &mut path,
+            &mut s,
+        );
+        Ok(s)
+    }
+
+    /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
+    /// terms go to `centre` (written in place: a sample is 192 bytes, and moving it
+    /// through every call level showed as memory copies in the profile); without, `centre`
+    /// is not touched. `path` is scratch space reused from pixel to pixel.
+    pub(super) fn pixel<const TRUTH: bool>(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        col: u32,
+        row: u32,
+        path: &mut Path,
+        centre: &mut Sample,
+    ) -> f64 {
+        let camera = fc.camera;
+        let mut ctx = Ctx::for_pixel(
+            options,
+            u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col),
+        );
+        // Bit for bit `camera.pixel_direction(col, row)`, without its divisions; the pixel
+        // lies in the window (`frame_consts`'s callers make it so).
+        let dir = camera.direction_uv(
+            fc.us[(col - fc.window.x) as usize],
+            fc.vs[(row - fc.window.y) as usize],
+        );
+        ctx.sun_truth = TRUTH;
+        self.follow(fc, dir, &mut ctx, path);
+        ctx.sun_truth = false;
+        let centre_radiance = self.radiance::<TRUTH>(fc, path, centre);
+        let n = options.supersampling;
+        if n <= 1 {
+            return centre_radiance;
+        }
+        let mut sum = 0.0;
+        ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
+            // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
+            self.follow(fc, camera.direction_at(x, y), ctx, path);
+            sum += self.radiance::<false>(fc, path, centre);
+        });
+        sum / f64::from(n * n)
+    }
+}
