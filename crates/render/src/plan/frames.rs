@@ -1,0 +1,363 @@
+//! Each frame's settings (as asked, from a decision, or chosen by the tolerance pilot) and
+//! each frame traced and turned into its files.
+
+use super::*;
+
+impl Plan {
+    /// The pilot's decision for `camera`'s frame, with the seconds it took.
+    pub(super) fn decide<R: BandModel + Clone + Send, A: Atmosphere, S: Atmosphere + Send>(
+        &self,
+        tolerance: &ToleranceRequest,
+        tracer: &Tracer<R, A>,
+        air: &Air<'_, R, A, S>,
+        camera: &Camera,
+    ) -> miette::Result<(irsig_tracer::pilot::Piloted, f64)> {
+        let mut offer = tolerance::offer(
+            &self.materials,
+            air.kinds.as_deref(),
+            air.spectral,
+            tracer.has_sun(),
+            &tolerance.pins,
+            self.request.spelling,
+        )?;
+        let (Some(&ref_kind), Some(&ref_count)) =
+            (offer.atmospheres.first(), offer.sub_bands.first())
+        else {
+            return Err(miette!(
+                "the pilot has no atmosphere or sub-band count to offer"
+            ));
+        };
+        // A count the band's grid cannot make (more sub-bands than grid intervals in a
+        // narrow band) is not on offer, unless it is the one pinned.
+        let pinned_count = offer.sub_bands.len() == 1;
+        // The sub-band counts at the reference atmosphere; every other model is measured in
+        // the band model (`Tracer::pilot` says why), so each atmosphere in it.
+        let mut pairs: Vec<(ModelKind, SubBandCount)> = Vec::new();
+        for &count in &offer.sub_bands {
+            pairs.push((ref_kind, count));
+        }
+        pairs.push((ref_kind, SubBandCount::BAND));
+        for &kind in &offer.atmospheres {
+            pairs.push((kind, SubBandCount::BAND));
+        }
+        // The pilot's time includes making its band sets (each sub-band's sky).
+        let started = std::time::Instant::now();
+        let mut bands: Vec<BandChoice<S>> = Vec::new();
+        let mut unavailable = Vec::new();
+        let mut unique: Vec<(ModelKind, SubBandCount)> = Vec::new();
+        for pair in pairs {
+            if !unique.contains(&pair) {
+                unique.push(pair);
+            }
+        }
+        // Made side by side (the full grid's set is most of the time), then taken in order.
+        let pilot = &air.pilot;
+        let made: Vec<_> = unique
+            .par_iter()
+            .map(|&(kind, count)| pilot(kind, count))
+            .collect();
+        for ((kind, count), made) in unique.into_iter().zip(made) {
+            let sub = match made {
+                Ok(sub) => sub,
+                Err(e) if count == ref_count || count.is_band() || pinned_count => return Err(e),
+                Err(_) => {
+                    unavailable.push(count);
+                    continue;
+                }
+            };
+            // By day each set carries the sun's beams over its own sub-bands.
+            let beams = if tracer.has_sun() {
+                (air.sun)(count)?.map(|s| s.beams)
+            } else {
+                None
+            };
+            let set = tracer
+                .band_set(sub)
+                .and_then(|set| tracer.lit_band_set(set, beams))
+                .map_err(|e| miette!("{e}"))?;
+            let (path_call_ns, sky_ns) = atmosphere_costs(kind, camera.position_m[2].max(0.0));
+            bands.push(BandChoice {
+                atmosphere: kind,
+                sub_bands: count,
+                set,
+                path_call_ns,
+                sky_ns,
+            });
+        }
+        offer.sub_bands.retain(|c| !unavailable.contains(c));
+        // The sun switched off is the band model's set without its beams.
+        let sun = if offer.sun.is_empty() {
+            None
+        } else {
+            let dark = tracer
+                .band_set(pilot(ref_kind, SubBandCount::BAND)?)
+                .map_err(|e| miette!("{e}"))?;
+            Some(SunOffer {
+                lit: offer.sun,
+                shadow_rays: offer.shadow_rays,
+                dark,
+            })
+        };
+        let space = PilotSpace {
+            bands,
+            atmospheres: offer.atmospheres,
+            sub_bands: offer.sub_bands,
+            bounces: offer.bounces,
+            sky_view_rays: offer.sky_view_rays,
+            supersampling: offer.supersampling,
+            path_terms: offer.path_terms,
+            reasons: offer.reasons,
+            pinned: offer.pinned,
+            sun,
+        };
+        // About one pixel in 192 (1024 at 512 x 384), at least 1024 (every pixel of a
+        // smaller image) and at most 4096: a thin population of pixels (edges, a small hot
+        // object) of 1 % needs several hundred samples to be seen at all.
+        let pixels =
+            (u64::from(camera.pixels[0]) * u64::from(camera.pixels[1]) / 192).clamp(1024, 4096);
+        let mut piloted = tracer
+            .pilot(
+                camera,
+                &space,
+                tolerance.tolerance_k,
+                tolerance.percentile,
+                pixels as u32,
+                self.request.settings.seed,
+            )
+            .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
+        // What no setting removes: said beside the decision, and left to the error budget.
+        piloted.decision.data_error_k = air.data_error_k;
+        Ok((piloted, started.elapsed().as_secs_f64()))
+    }
+
+    #[allow(clippy::too_many_lines)]
+    pub(super) fn trace_all<
+        R: BandModel + Clone + Send + Sync,
+        A: Atmosphere,
+        S: Atmosphere + Send,
+    >(
+        &self,
+        run: &RunHash,
+        band: R,
+        air: &Air<'_, R, A, S>,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        let scene = self
+            .scene
+            .lock()
+            .map_err(|_| poisoned())?
+            .take()
+            .ok_or_else(|| miette!("the raw scene was already traced"))?;
+        let asked = Settings::of(&self.request.settings);
+        let base = match &self.decision {
+            Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
+            None => asked,
+        };
+        let (mut kind, mut count) = (base.kind, base.sub_bands);
+        // The sun as the settings have it: left out, or with their shadow rays.
+        let sun_of = |settings: &Settings| -> miette::Result<Option<irsig_tracer::Sun>> {
+            Ok((air.sun)(settings.sub_bands)?
+                .filter(|_| settings.sun_lit)
+                .map(|mut sun| {
+                    if let Some(n) = settings.shadow_rays {
+                        sun.shadow_rays = n;
+                    }
+                    sun
+                }))
+        };
+        let sun = sun_of(&base)?;
+        let mut tracer = Tracer::with_sub_bands(
+            &scene,
+            &self.materials,
+            band,
+            (air.precomputed)(kind, count)?,
+        )
+        .and_then(|t| t.with_sun(sun))
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| {
+            format!(
+                "cannot trace `{}` with `{}`",
+                self.scene_name, self.materials_name
+            )
+        })?
+        .with_path_terms(base.path_terms);
+        let scene = self.uncertainties.is_some().then_some(scene);
+        // The materials with a specular share: a reflection that meets one is a mirror
+        // seen in a mirror, a class of the decision's own.
+        let mirrors: Vec<u16> = self
+            .materials
+            .materials
+            .iter()
+            .filter(|m| m.specular_fraction > 0.0)
+            .map(|m| m.id.0)
+            .collect();
+        let cameras = self
+            .views
+            .iter()
+            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
+            .collect::<miette::Result<Vec<_>>>()?;
+        let (tile, sink) = match job {
+            Job::Probe { column, row, text } => {
+                let cam = cameras
+                    .first()
+                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
+                let s = tracer
+                    .probe(cam, &base.options, *column, *row)
+                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
+                let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+                let sub_bands = tracer.sub_bands();
+                **text = Some(format!(
+                    "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)\n{s}\n\
+                     apparent temperature_k     {t}\n"
+                ));
+                return Ok(());
+            }
+            Job::Converge {
+                stop_k,
+                rounds,
+                out,
+            } => {
+                **out = cameras
+                    .iter()
+                    .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| miette!("{e}"))?;
+                return Ok(());
+            }
+            Job::Render {
+                tile,
+                progress,
+                sink,
+            } => (*tile, (*progress, &mut **sink)),
+        };
+        let (progress, sink) = sink;
+        let tiles = self.tiles(tile)?;
+        self.flush_warnings(sink);
+        for (i, cam) in cameras.iter().enumerate() {
+            let piloted;
+            let (settings, decision) = match &self.request.tolerance {
+                Some(tolerance) => {
+                    // The pilot sees the sun asked for, whatever an earlier frame chose.
+                    if self.request.sun.is_some() {
+                        tracer = tracer
+                            .with_sun((air.sun)(count)?)
+                            .map_err(|e| miette!("{e}"))?;
+                    }
+                    let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
+                    piloted = p;
+                    self.flush_warnings(sink);
+                    sink.decision(i, &piloted.decision, seconds)?;
+                    let c = piloted.chosen;
+                    let mut settings = base;
+                    settings.kind = c.atmosphere;
+                    settings.sub_bands = c.sub_bands;
+                    settings.path_terms = c.path_terms;
+                    settings.options.specular_bounces = c.bounces;
+                    settings.options.sky_view_rays = c.sky_view_rays;
+                    settings.refinement = c.refinement;
+                    settings.sun_lit = c.sun.is_none_or(|s| s.lit);
+                    settings.shadow_rays = c.sun.map(|s| s.shadow_rays);
+                    (
+                        settings.options.supersampling,
+                        settings.options.adaptive_threshold_k,
+                    ) = match c.supersampling {
+                        Supersample::Every(n) => (n, None),
+                        Supersample::Adaptive(n) => (n, Some(tolerance.tolerance_k)),
+                        Supersample::Refine(_) => (1, None),
+                    };
+                    settings.options.validate().map_err(|e| miette!("{e}"))?;
+                    (settings, Some(&piloted.decision))
+                }
+                None => (base, self.decision.as_ref()),
+            };
+            let budget = self
+                .uncertainties
+                .as_ref()
+                .zip(scene.as_ref())
+                .map(|(u, scene)| Budget {
+                    uncertainties: u,
+                    scene,
+                });
+            let guarantee = decision.map(|decision| Guarantee {
+                decision,
+                camera: cam,
+                origin: [tiles[i].x, tiles[i].y],
+                mirrors: &mirrors,
+            });
+            if settings.kind != kind || settings.sub_bands != count {
+                // New sub-bands drop the sun, whose beams are per sub-band: lit again.
+                let sun = sun_of(&settings)?;
+                tracer = tracer
+                    .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
+                    .and_then(|t| t.with_sun(sun))
+                    .map_err(|e| miette!("{e}"))?;
+                (kind, count) = (settings.kind, settings.sub_bands);
+            } else if self.request.sun.is_some() {
+                tracer = tracer
+                    .with_sun(sun_of(&settings)?)
+                    .map_err(|e| miette!("{e}"))?;
+            }
+            self.flush_warnings(sink);
+            let wanted = sink.files(i);
+            if !wanted.any() {
+                // Only the pilot's decision was asked for.
+                continue;
+            }
+            tracer = tracer
+                .with_path_terms(settings.path_terms)
+                .with_refinement(settings.refinement)
+                .map_err(|e| miette!("{e}"))?;
+            // The per-pixel terms are kept only when a file of this frame reads them.
+            let options = TraceOptions {
+                truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
+                ..settings.options
+            };
+            let frame = if tile.is_some() {
+                tracer.render_tile(cam, &options, tiles[i], progress)
+            } else {
+                tracer.render(cam, &options, progress)
+            }
+            .map_err(|e| miette!("{e}"))?;
+            let part = FramePart {
+                frame_width: cam.pixels[0] as usize,
+                frame_height: cam.pixels[1] as usize,
+                x: tiles[i].x as usize,
+                y: tiles[i].y as usize,
+                run: run.frame(&self.views[i], &settings),
+            };
+            let radiometry = FrameRadiometry {
+                band: tracer.band().clone(),
+                sub_bands: tracer.sub_bands(),
+                view_gain: self.views.get(i).and_then(View::gain_dc_per_k),
+                counts: self.request.counts,
+                provenance: Some(self.provenance(&settings)),
+            };
+            let mut emit = |kind, bytes| sink.file(i, kind, bytes);
+            if i + 1 == cameras.len() {
+                // The last frame's files need the band, not the scene: the BVH and the facet
+                // records (about 100 bytes a facet) go before the files are made, which hold
+                // the frame's layers and encoded files (the frame's peak memory was there).
+                drop(tracer);
+                return products::traced(
+                    &radiometry,
+                    frame,
+                    &wanted,
+                    &part,
+                    budget.as_ref(),
+                    guarantee.as_ref(),
+                    &mut emit,
+                );
+            }
+            products::traced(
+                &radiometry,
+                frame,
+                &wanted,
+                &part,
+                budget.as_ref(),
+                guarantee.as_ref(),
+                &mut emit,
+            )?;
+        }
+        Ok(())
+    }
+}
