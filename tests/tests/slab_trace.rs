@@ -12,6 +12,8 @@
 //!   of LOWTRAN7's path radiance (issue 30's floor); the whole path radiance's error,
 //!   thermal part included, and τ are printed for docs/accuracy.md;
 //! - **at night** (a plan without a sun), the 87 m slab's thermal path radiance and τ;
+//! - a frame whose paths the tables do not cover (its camera 10 m above their observer)
+//!   says so once, with why; one they cover says nothing;
 //! - a slab table out of order or of a wrong length is refused at its line, naming the
 //!   field; a plan asking for slabs without observers is refused, naming the field.
 //!
@@ -64,6 +66,46 @@ fn plan_ron(sun: bool, observers: &str) -> String {
 )
 "
     )
+}
+
+/// What `irsig-trace` says on stderr rendering 4 × 4 pixels of `scene` through `spa` from
+/// `observer_m` up, looking along `look` (`probe`'s materials, already written in `dir`).
+fn render_warnings(
+    dir: &std::path::Path,
+    spa: &std::path::Path,
+    scene: &std::path::Path,
+    observer_m: f64,
+    look: [f64; 3],
+) -> String {
+    let view = dir.join("frame-view.ron");
+    let t = look.map(|c| c * 100.0);
+    std::fs::write(
+        &view,
+        format!(
+            "LookAt(position_m: (0.0, 0.0, {observer_m:?}), target_m: ({:?}, {:?}, {:?}), \
+             up: (0.0, 0.0, 1.0), pixels: (4, 4), fov_deg: (1.0, 1.0))",
+            t[0],
+            t[1],
+            observer_m + t[2]
+        ),
+    )
+    .unwrap();
+    let out = bin("irsig-trace")
+        .arg("--scene")
+        .arg(scene)
+        .arg("--materials")
+        .arg(dir.join("materials.ron"))
+        .arg("--view")
+        .arg(&view)
+        .arg("--atmosphere")
+        .arg(spa)
+        .args(["--band", BAND, "-o"])
+        .arg(dir.join("frame.exr"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert!(out.status.success(), "{err}");
+    err
 }
 
 /// LOWTRAN7's band-mean τ, `∫ τ dλ / ∫ dλ` (the band is flat).
@@ -147,6 +189,24 @@ fn slab_tables_hold_lowtran7s_slabs_between_rows_by_day_and_at_night() {
     );
     assert!(error.abs() < 0.02, "{error}");
     assert!((terms["transmission"] - tau).abs() < 0.002);
+
+    // A frame whose paths the tables cover says nothing of them; from 10 m above the
+    // tables' observer every path falls back, and the frame says so once, with why.
+    let look = direction(zenith, az);
+    let quiet = render_warnings(d, &night, &scene, observer, look);
+    assert!(!quiet.contains("slab"), "{quiet}");
+    let told = render_warnings(d, &night, &scene, observer + 10.0, look);
+    assert_eq!(
+        told.matches("are not the slab tables'").count(),
+        1,
+        "{told}"
+    );
+    assert!(
+        told.contains("16 of the 16 view paths to facets (100.0 %)")
+            && told.contains("16 because the observer is none of the tables'")
+            && told.contains("the camera is at 660.0 m, the tables' observers at 650.0 m"),
+        "{told}"
+    );
 
     // A slab table out of order, or of a wrong length, is refused at its line and column,
     // naming the field.

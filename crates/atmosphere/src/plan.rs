@@ -197,7 +197,7 @@ pub const SLAB_ANGLE_DEG: [f64; 11] = [
 #[must_use]
 pub fn slab_targets_m(top_m: f64) -> Vec<f64> {
     let mut out = Vec::new();
-    let mut h = 2.0;
+    let mut h = crate::slab::GROUND_ROW_M;
     loop {
         out.push(h);
         if h >= top_m {

@@ -37,6 +37,16 @@ use crate::sunlit::Table;
 /// plan's observers are whole metres).
 pub const OBSERVER_TOLERANCE_M: f64 = 0.5;
 
+/// Paths down to targets at most this high above the ground, metres, are the slant tables'
+/// (which end at the ground, and are exact there), not the slab tables': a plan's lowest
+/// slab row (`crate::plan::slab_targets_m`).
+pub const GROUND_ROW_M: f64 = 2.0;
+
+/// How far, degrees, a path's angle may lie outside a slab table's angle rows and still
+/// be covered (then taken as the nearest row's): a path at a row's own angle, recomputed
+/// by `acos` from its direction, lands within about 1e-8° of it, on either side.
+pub const ANGLE_TOLERANCE_DEG: f64 = 1e-6;
+
 /// The radiance, W m⁻² sr⁻¹, below which the scattered table's logarithm holds 0 (its
 /// observer's own row): `exp(ln TINY)` is taken as 0.
 const TINY: f64 = 1e-30;
@@ -139,10 +149,14 @@ impl Side {
         y1 * (dx / d1).powf(p)
     }
 
-    /// Whether the target at `target_m` and the angle lie within the rows.
-    fn covers(&self, target_m: f64, angle_deg: f64) -> bool {
+    /// The angle the tables are read at when the target at `target_m` and the angle lie
+    /// within the rows (the angle within [`ANGLE_TOLERANCE_DEG`] of them, taken into them);
+    /// `None` otherwise.
+    fn covers(&self, target_m: f64, angle_deg: f64) -> Option<f64> {
         let (h, a) = (&self.thermal.altitude_m, &self.thermal.angle_deg);
-        (h[0]..=h[h.len() - 1]).contains(&target_m) && (a[0]..=a[a.len() - 1]).contains(&angle_deg)
+        let (lo, hi) = (a[0], a[a.len() - 1]);
+        let within = (lo - ANGLE_TOLERANCE_DEG..=hi + ANGLE_TOLERANCE_DEG).contains(&angle_deg);
+        ((h[0]..=h[h.len() - 1]).contains(&target_m) && within).then(|| angle_deg.clamp(lo, hi))
     }
 }
 
@@ -170,6 +184,32 @@ pub struct SlabCell {
     down: bool,
     target_m: f64,
     angle_deg: f64,
+}
+
+/// Why a path is not the slab tables' (it is then the other models', as without them).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum SlabMiss {
+    /// Its observer is none of the tables' (within [`OBSERVER_TOLERANCE_M`]).
+    Observer,
+    /// The tables hold no slab in its direction (down or up) from its observer.
+    Side,
+    /// Its target lies beyond the tables' target rows.
+    Target,
+    /// Its angle lies beyond the tables' angle rows (within [`ANGLE_TOLERANCE_DEG`]).
+    Angle,
+}
+
+impl SlabMiss {
+    /// A few words for a warning.
+    #[must_use]
+    pub const fn describe(self) -> &'static str {
+        match self {
+            Self::Observer => "the observer is none of the tables'",
+            Self::Side => "the tables hold no slab in that direction",
+            Self::Target => "the target lies beyond the target rows",
+            Self::Angle => "the angle lies beyond the angle rows",
+        }
+    }
 }
 
 impl SlabPaths {
@@ -247,12 +287,53 @@ impl SlabPaths {
         let target_m = o.observer_m + dh;
         let down = dh < 0.0;
         let side = if down { o.down.as_ref() } else { o.up.as_ref() }?;
-        side.covers(target_m, angle_deg).then_some(SlabCell {
+        side.covers(target_m, angle_deg).map(|angle_deg| SlabCell {
             observer: k,
             down,
             target_m,
             angle_deg,
         })
+    }
+
+    /// Why the tables do not cover the line of sight [`SlabPaths::covers_along`] is asked
+    /// about; `None` when they do, when the path ends near the ground below their rows
+    /// ([`GROUND_ROW_M`]), or when it has no length or a NaN (which no model covers). What a frame counts to say how many of its paths fell back.
+    #[must_use]
+    pub fn why_not(&self, observer_m: f64, target_m: f64, cos_angle: f64) -> Option<SlabMiss> {
+        let dh = target_m - observer_m;
+        if !(dh.is_finite() && dh != 0.0 && cos_angle.is_finite()) {
+            return None;
+        }
+        let Some(o) = self
+            .observers
+            .iter()
+            .find(|o| (o.observer_m - observer_m).abs() <= OBSERVER_TOLERANCE_M)
+        else {
+            return Some(SlabMiss::Observer);
+        };
+        let side = if dh < 0.0 { &o.down } else { &o.up };
+        let Some(side) = side else {
+            return Some(SlabMiss::Side);
+        };
+        let h = &side.thermal.altitude_m;
+        let angle_deg = cos_angle.abs().clamp(0.0, 1.0).acos().to_degrees();
+        let target = o.observer_m + dh;
+        if dh < 0.0 && target < h[0] && target <= GROUND_ROW_M {
+            // Near the ground: the slant tables' path, by design.
+            None
+        } else if !(h[0]..=h[h.len() - 1]).contains(&target) {
+            Some(SlabMiss::Target)
+        } else if side.covers(o.observer_m + dh, angle_deg).is_none() {
+            Some(SlabMiss::Angle)
+        } else {
+            None
+        }
+    }
+
+    /// The observers' altitudes, metres, in the tables' order.
+    #[must_use]
+    pub fn observers_m(&self) -> Vec<f64> {
+        self.observers.iter().map(|o| o.observer_m).collect()
     }
 
     fn side(&self, c: &SlabCell) -> (&Side, f64) {
@@ -389,5 +470,62 @@ mod tests {
         let mut none = a;
         none.slabs.clear();
         assert!(SlabPaths::new(&none, 8.0, 12.0, |_| 1.0).unwrap().is_none());
+    }
+
+    #[test]
+    fn a_path_at_the_widest_angle_row_is_covered_and_read_on_that_row() {
+        let a = atmosphere();
+        let s = SlabPaths::new(&a, 8.0, 12.0, |_| 1.0).unwrap().unwrap();
+        // 100 m down at the 60° row, its direction's cosine as a tracer has it: acos gives
+        // the angle back only to a rounding, on either side of the row.
+        let mut covered = 0;
+        for k in -3_i32..=3 {
+            let cos = 60_f64.to_radians().cos() + f64::from(k) * f64::EPSILON;
+            let angle = cos.acos().to_degrees();
+            assert!((angle - 60.0).abs() < ANGLE_TOLERANCE_DEG / 10.0, "{angle}");
+            let c = s
+                .covers_along(600.0, 500.0, cos)
+                .expect("the row's own angle");
+            // On the row: the range is 200 m, L = 2 per µm over the 4 µm band, τ = 0.8.
+            let p = s.terms(&c);
+            assert!((p.path_radiance_w_m2_sr - 8.0).abs() < 1e-5, "{p:?}");
+            assert!((p.transmission - 0.8).abs() < 1e-6, "{p:?}");
+            assert_eq!(s.why_not(600.0, 500.0, cos), None);
+            covered += 1;
+        }
+        assert_eq!(covered, 7);
+        // A tenth of a degree beyond it is not.
+        let beyond = 60.1_f64.to_radians().cos();
+        assert!(s.covers_along(600.0, 500.0, beyond).is_none());
+        assert_eq!(s.why_not(600.0, 500.0, beyond), Some(SlabMiss::Angle));
+    }
+
+    #[test]
+    fn a_path_the_tables_do_not_cover_is_told_why() {
+        let a = atmosphere();
+        let s = SlabPaths::new(&a, 8.0, 12.0, |_| 1.0).unwrap().unwrap();
+        let down = 0.9;
+        // 10 m above the table's observer: the tolerance is half a metre.
+        assert_eq!(s.why_not(610.0, 500.0, down), Some(SlabMiss::Observer));
+        assert_eq!(s.why_not(600.4, 500.0, down), None);
+        // 400 m down from 600 m lies below the lowest target row, 300 m.
+        assert_eq!(s.why_not(600.0, 200.0, down), Some(SlabMiss::Target));
+        // Down to the ground itself is the slant tables' path, not a fallback: at and
+        // below the lowest row a plan writes, but not above it.
+        assert_eq!(s.why_not(600.0, GROUND_ROW_M, down), None);
+        assert_eq!(s.why_not(600.0, 0.0, down), None);
+        assert_eq!(
+            s.why_not(600.0, GROUND_ROW_M + 0.5, down),
+            Some(SlabMiss::Target)
+        );
+        // No length and NaN are no model's.
+        assert_eq!(s.why_not(600.0, 600.0, down), None);
+        assert_eq!(s.why_not(600.0, 500.0, f64::NAN), None);
+        // Without an up side, a path up is told so.
+        let mut no_up = a;
+        no_up.slabs[0].up = None;
+        let s = SlabPaths::new(&no_up, 8.0, 12.0, |_| 1.0).unwrap().unwrap();
+        assert_eq!(s.why_not(600.0, 700.0, down), Some(SlabMiss::Side));
+        assert_eq!(s.observers_m(), vec![600.0]);
     }
 }

@@ -80,6 +80,7 @@ mod probe_text;
 pub mod reference;
 pub mod refine;
 mod shade;
+pub mod slab_census;
 pub mod sun;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;

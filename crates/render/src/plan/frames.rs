@@ -307,6 +307,12 @@ impl Plan {
                 .with_path_terms(settings.path_terms)
                 .with_refinement(settings.refinement)
                 .map_err(|e| miette!("{e}"))?;
+            if let Some(text) = tracer
+                .slab_census(cam, tiles[i])
+                .and_then(|c| slab_fallback(&c, i + 1))
+            {
+                sink.warning(&text);
+            }
             // The per-pixel terms are kept only when a file of this frame reads them.
             let options = TraceOptions {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
@@ -360,4 +366,35 @@ impl Plan {
         }
         Ok(())
     }
+}
+
+/// The warning for a frame whose view paths the slab tables do not all cover (`None` when
+/// they do): how many, why, and what the fallback has been measured to cost.
+fn slab_fallback(census: &irsig_tracer::slab_census::SlabCensus, view: usize) -> Option<String> {
+    let missed = census.missed_paths();
+    if missed == 0 {
+        return None;
+    }
+    let why: Vec<String> = census
+        .missed
+        .iter()
+        .map(|(m, n)| format!("{n} because {}", m.describe()))
+        .collect();
+    let observers: Vec<String> = census
+        .observers_m
+        .iter()
+        .map(|o| format!("{o:.1}"))
+        .collect();
+    Some(format!(
+        "view {view}: {missed} of the {} view paths to facets ({:.1} %) are not the slab \
+         tables' ({}; the camera is at {:.1} m, the tables' observers at {} m) and are the \
+         slant tables' and the difference of two paths' instead, which on the slabs measured \
+         put the path radiance off by +10 % to +58 % (docs/accuracy.md, \"Slab tables\"); \
+         a plan with this observer and these rows (`irsig-atmos plan --slabs`) covers them",
+        census.facet_paths,
+        100.0 * missed as f64 / census.facet_paths.max(1) as f64,
+        why.join(", "),
+        census.camera_m,
+        observers.join(", "),
+    ))
 }
