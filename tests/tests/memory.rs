@@ -199,3 +199,63 @@ fn a_tile_of_a_very_wide_or_tall_view_holds_memory_for_its_own_pixels() {
         }
     }
 }
+
+#[test]
+fn a_frame_too_large_for_the_machine_is_refused_before_the_pilot() {
+    // Under a 4 GB address space an 8,192² frame (about 10 GB at the stated 150 bytes a
+    // pixel) aborted at once with -o, and with --tolerance after a 33 s pilot, leaving its
+    // staged files in the output folder. It is refused before either, saying what it
+    // needs, what is left and the way out; a tile of the same frame fits.
+    let dir = tempfile::tempdir().unwrap();
+    let root = repo_root();
+    let scene = root.join("tests/data/malformed/base/scene.raw.ron");
+    let materials = root.join("formats/canonical/samples/materials.ron");
+    std::fs::write(
+        dir.path().join("view.ron"),
+        format!(
+            "LookAt(position_m: (0.0, 0.0, 50.0), target_m: (0.0, 0.0, 0.0), \
+             up: (0.0, 1.0, 0.0), pixels: ({SIDE}, {SIDE}), fov_deg: (10.0, 10.0))"
+        ),
+    )
+    .unwrap();
+    let trace = |extra: &str| {
+        let script = format!(
+            "ulimit -v 4000000 && exec '{}' --scene '{}' --materials '{}' --view view.ron \
+             --atmosphere none --band 8-12 {extra} 2>&1",
+            bin_path("irsig-trace").display(),
+            scene.display(),
+            materials.display()
+        );
+        let out = Command::new("sh")
+            .arg("-c")
+            .arg(script)
+            .current_dir(dir.path())
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stdout).into_owned(),
+        )
+    };
+    for extra in ["-o t", "--tolerance 1 -o t"] {
+        let (code, text) = trace(extra);
+        assert_eq!(code, Some(1), "{extra}: {text}");
+        assert!(
+            text.contains(
+                "tracing a frame, 8192 x 8192 pixels at 150 bytes a pixel, needs about 10.1 GB"
+            ) && text.contains("the address space `ulimit -v` leaves is")
+                && text.contains("--tile"),
+            "{extra}: {text}"
+        );
+        let left: Vec<_> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .filter(|n| n != "view.ron")
+            .collect();
+        assert!(left.is_empty(), "{extra} left {left:?}");
+    }
+    // One tile of a 16 × 16 grid, 514² pixels with its margin (about 40 MB), is traced.
+    let (code, text) = trace("--tile 1/16x16 -o t");
+    assert_eq!(code, Some(0), "{text}");
+    assert!(dir.path().join("t.radiance.exr").is_file(), "{text}");
+}

@@ -14,6 +14,9 @@
 //! - **No output is an input** ([`refuse_output_is_input`]): one check every tool makes
 //!   before any work.
 //!
+//! - **Memory** ([`memory::check_fits`]): an estimate checked against what the process may
+//!   still take before a large allocation, refused with both figures and the way out.
+//!
 //! - **Shared flags** ([`args`]): every flag two tools share, defined once (the band, the
 //!   sun, the views and the unit of 1990 files, the atmosphere, threads, the digital-count
 //!   calibration, the inputs and outputs several tools name), spelt, typed and checked the
@@ -38,6 +41,7 @@
 
 pub mod args;
 mod frames;
+pub mod memory;
 mod staged;
 
 pub use frames::StagedFrames;

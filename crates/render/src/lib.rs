@@ -50,6 +50,6 @@ pub mod tolerance;
 pub use air::AtmosphereRequest;
 pub use band::BandRequest;
 pub use error::{RequestError, Setting, Spelling};
-pub use plan::{Plan, Request, Sink, TileRequest, ToleranceRequest};
+pub use plan::{FRAME_BYTES_PER_PIXEL, Plan, Request, Sink, TileRequest, ToleranceRequest};
 pub use run_hash::RunHash;
 pub use sun::SunRequest;

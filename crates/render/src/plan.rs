@@ -161,6 +161,11 @@ pub trait Sink {
     fn warning(&mut self, text: &str);
 }
 
+/// What tracing a frame holds per pixel with every truth layer, bytes: the radiance, the
+/// truth and sampling records and the encoded layers (README, "Memory per pixel";
+/// `tests/tests/memory.rs` holds a tile to it).
+pub const FRAME_BYTES_PER_PIXEL: u64 = 150;
+
 /// A run: its request and inputs, read and checked as they come.
 #[derive(Debug)]
 pub struct Plan {
@@ -623,6 +628,26 @@ impl Plan {
                 }
             })
             .collect()
+    }
+
+    /// The largest frame (or, with `tile`, the largest tile and its one-pixel margin), in
+    /// pixels, and what tracing it holds at [`FRAME_BYTES_PER_PIXEL`], bytes: what a tool
+    /// checks against the machine before any pilot runs.
+    ///
+    /// # Errors
+    /// As [`Plan::tiles`].
+    pub fn largest_frame(&self, tile: Option<TileRequest>) -> miette::Result<([u64; 2], u64)> {
+        let tiles = self.tiles(tile)?;
+        let margin = u64::from(tile.is_some()) * 2;
+        let largest = tiles
+            .iter()
+            .map(|t| [u64::from(t.width) + margin, u64::from(t.height) + margin])
+            .max_by_key(|[w, h]| w * h)
+            .unwrap_or([0, 0]);
+        let bytes = largest[0]
+            .saturating_mul(largest[1])
+            .saturating_mul(FRAME_BYTES_PER_PIXEL);
+        Ok((largest, bytes))
     }
 
     /// Every term of the radiance equation for pixel `(column, row)` of the first view,

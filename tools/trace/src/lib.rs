@@ -18,6 +18,7 @@ use irsig_formats::legacy::decode;
 use irsig_formats::views::{ViewSun, read_execute};
 use irsig_model::decision::Decision as PilotDecision;
 use irsig_model::frame::{FrameFile, FrameFiles};
+use irsig_render::FRAME_BYTES_PER_PIXEL;
 use irsig_render::tolerance::Pin;
 use irsig_render::{
     AtmosphereRequest, BandRequest, Plan, Request, RequestError, Setting, Sink, TileRequest,
@@ -379,6 +380,20 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     // Every frame's tile and files are checked before anything is traced: a fly-by would
     // otherwise fail only when its first frame is written.
     let rows = plan.rows(cli.tile)?;
+    // A frame too large for the machine is refused here, before a pilot spends minutes on
+    // it and the allocation aborts the process with its staged files left behind.
+    let ([w, h], bytes) = plan.largest_frame(cli.tile)?;
+    let what = if cli.tile.is_some() {
+        "a tile and its one-pixel margin"
+    } else {
+        "a frame"
+    };
+    irsig_cli::memory::check_fits(
+        bytes,
+        &format!("tracing {what}, {w} x {h} pixels at {FRAME_BYTES_PER_PIXEL} bytes a pixel,"),
+        "trace it in tiles (--tile), which need as much per pixel of the tile, or on a \
+         machine with more memory",
+    )?;
     let (whole, kinds) = (cli.tile.is_none(), plan.file_kinds(cli.tile.is_none()));
     let files = match execute_files {
         Some(files) => files,
