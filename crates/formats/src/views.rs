@@ -71,7 +71,7 @@ pub struct ViewSun<S> {
 }
 
 /// [`parse_views`], and the `sun` entry of a single RON view, if it has one: `sun:
-/// Direction(...)` or `sun: Some(Direction(...))`, read as `S` (its unknown fields refused
+/// Direction(...)` or `sun: Some(Direction(...))` (`sun: None` is none), read as `S` (its unknown fields refused
 /// at their line and column), then checked by `check`, which names the field at fault and
 /// why: a field is reported at its value's line and column. A sun in a list of views, or in
 /// anything but the view's own fields, is refused where it stands: one sun lights a run.
@@ -175,6 +175,10 @@ fn split_sun(file: &str, text: &str) -> Result<(String, Option<(usize, usize)>),
         }
     }
     let rest = String::from_utf8(rest).expect("ASCII spaces in place of whole entries");
+    // `sun: None` says there is none, as leaving it out does.
+    if matches!(&value.kind, Kind::Ident(none) if none == "None") {
+        return Ok((rest, None));
+    }
     let inner = match &value.kind {
         Kind::Tuple(Some(name), items) if name == "Some" && items.len() == 1 => &items[0],
         _ => value,
@@ -550,9 +554,15 @@ mod tests {
                 latitude_deg: 51.5
             }
         );
-        // No sun: none, and the views as ever.
+        // No sun, or `sun: None`: none, and the views as ever.
         let (views, none) = read(&format!("{VIEW})")).unwrap();
-        assert_eq!((views, none), (plain, None));
+        assert_eq!((views, none), (plain.clone(), None));
+        let (views, none) = read(&with_sun("None")).unwrap();
+        assert_eq!((views, none), (plain.clone(), None));
+        assert_eq!(
+            parse_views("v.ron", &with_sun("None"), LengthUnit::M).unwrap(),
+            plain
+        );
     }
 
     #[test]
