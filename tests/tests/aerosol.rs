@@ -1,4 +1,4 @@
-//! LOWTRAN7's aerosol models in `irsig-atmos plan` (issue 30): `--aerosol MODEL
+//! LOWTRAN7's aerosol models in `irsig-atmos plan`: `--aerosol MODEL
 //! --visibility-km V` reach every deck's card 2, checked against physics with real
 //! LOWTRAN7 runs: each model's card 2 as the plan wrote it, on a horizontal path at
 //! 0.55 µm, gives the extinction of Koschmieder's law (LOWTRAN's VIS is the meteorological

@@ -1,13 +1,13 @@
-//! The built-in atmospheres between their rows (issue 29, Build 1 and 3): at observers and
+//! The built-in atmospheres between their rows: at observers and
 //! angles that are not rows of any table, chosen by a seeded generator, LOWTRAN7 runs the
 //! path and the built-in's `table` model in 16 sub-bands of 8–14 µm is compared with its
 //! spectra: blackbodies at 260, 290 and 320 K seen through a path to the ground, or the
-//! sky's brightness temperature, against the issue's floors: 0.02 K at nadir ≤ 80°, 0.1 K
+//! sky's brightness temperature, against the floors: 0.02 K at nadir ≤ 80°, 0.1 K
 //! at 80–88°, 0.05 K for the sky from 0–3 km, 0–90°. (The residual each built-in records,
 //! the largest error found at its rows' midpoints, is larger: docs/accuracy.md.) The full
 //! sweep is `scripts/atmosphere/sweep.sh`; this is a handful of paths per model.
 //!
-//! The 3–5 µm night built-ins (issue 30, Build 3) at the same rows, the same way in 16
+//! The 3–5 µm night built-ins at the same rows, the same way in 16
 //! sub-bands of flat 3–5 µm (LOWTRAN7 over 2000–3340 cm⁻¹), against their own floors
 //! (`the_mwir_builtins_follow_lowtran7_between_their_rows` says them and why).
 //!
@@ -289,7 +289,7 @@ fn sweep_mwir() {
 }
 
 fn sweep_of(span: Span) {
-    // Observers and angles that are rows of no table (the issue's 0.45 and 1.7 km, nadir
+    // Observers and angles that are rows of no table (0.45 and 1.7 km, nadir
     // 23, 57 and 76°, and more), every built-in; a markdown table on stdout.
     let observers = [50.0, 450.0, 1700.0, 2900.0];
     let nadirs = [23.0, 57.0, 76.0, 84.0, 87.0];

@@ -1,4 +1,4 @@
-//! Daylight (issue 30), with real LOWTRAN7 runs:
+//! Daylight, with real LOWTRAN7 runs:
 //!
 //! - **Day in LWIR**: the sun's share of the radiance of a grey, diffuse plate of
 //!   emissivity 0.95 at 300 K, seen straight down from 1 km, at several sun zeniths, in

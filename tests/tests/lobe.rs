@@ -1,4 +1,4 @@
-//! The rough specular lobe end to end (issue 30): a rough plate lit by a LOWTRAN7-built sun
+//! The rough specular lobe end to end: a rough plate lit by a LOWTRAN7-built sun
 //! through `irsig-trace`, every pixel's glint against a hand computation of the
 //! Cook–Torrance lobe (Beckmann D; for σ = 0.1 and views within 45° Smith's G and the
 //! lobe's albedo are 1 to e⁻³⁰, so the hand value is `r·E_n·D(h)/(4 cos θ_o)`).

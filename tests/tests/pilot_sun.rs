@@ -1,4 +1,4 @@
-//! The tolerance pilot by day, end to end (issue 30, item 6): the quickstart scene at a
+//! The tolerance pilot by day, end to end: the quickstart scene at a
 //! low noon sun (70° from the zenith, due north, as `pipelines/daylight.ron`), its
 //! atmosphere built over 3–5 µm by real LOWTRAN7 runs, traced by `irsig-trace --tolerance
 //! 1 --sun-zenith-deg 70` on a small view of the quickstart camera. The decision is

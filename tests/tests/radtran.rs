@@ -1,4 +1,4 @@
-//! The atmosphere build end to end, with LOWTRAN7 really running (issue 14, Build 3):
+//! The atmosphere build end to end, with LOWTRAN7 really running:
 //! `irsig-atmos plan` on the quickstart scene → LOWTRAN7 → `irsig-atmos build`, for the
 //! tropical model, checked against LOWTRAN7's own integrals (its TAPE6) and against
 //! physics; the same plan built with the US Standard model against the built-in

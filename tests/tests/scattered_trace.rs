@@ -1,4 +1,4 @@
-//! Scattered sunlight in the tracer (issue 30): `irsig-trace` by day through an atmosphere
+//! Scattered sunlight in the tracer: `irsig-trace` by day through an atmosphere
 //! built with `--sun-scattering` against LOWTRAN7 run here for the same paths and sun
 //! (IEMSCT = 2, decks written column by column). A small plan over the 3.4–4.1 µm window
 //! (2440–2940 cm⁻¹ every 10), US Standard 1976 with a rural 10 km aerosol, sun at 30° on
@@ -14,7 +14,7 @@
 //! - **facets above the ground seen along slant paths** (down onto a plate, and up at one):
 //!   the scattered part of the path radiance (the probe's `L_u` by day less at night)
 //!   against LOWTRAN7's for the path from the observer to the facet, within 1 % of the
-//!   path radiance (issue 30's floor); the thermal part, the night's model, is printed
+//!   path radiance (the floor); the thermal part, the night's model, is printed
 //!   beside.
 //!
 //! Values come from `irsig-trace --probe`. Errors are printed (`--nocapture`) for
@@ -184,7 +184,7 @@ fn the_tracers_scattered_sunlight_is_lowtran7s_between_rows() {
             100.0 * scattered_error
         );
         assert!(scattered > 0.02 * total, "{scattered} of {total}");
-        // Issue 30's floor, for the scattered sunlight: its error within 1 % of the path
+        // The floor, for the scattered sunlight: its error within 1 % of the path
         // radiance. The thermal part is the night's model of a slab above the ground (the
         // `table` model's correction over the layered one, docs/accuracy.md), unchanged
         // by day and not this test's subject; its error is printed beside.

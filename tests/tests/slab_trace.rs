@@ -1,4 +1,4 @@
-//! Slab tables (issue 30's last floor): view paths that end above the ground, from a
+//! Slab tables: view paths that end above the ground, from a
 //! plan whose `slabs` ask LOWTRAN7 for slabs from each observer, against LOWTRAN7 run here
 //! for the path itself (decks written column by column, nothing mocked). The atmosphere
 //! is `scattered_trace.rs`'s (3.4–4.1 µm every 10 cm⁻¹, US Standard 1976, rural 10 km,
@@ -9,7 +9,7 @@
 //! - **by day**, the two paths the difference of two paths missed the floor on (650 m down
 //!   to 600 m at nadir 55°, 165° from the sun; 150 m up to 800 m at zenith 40°, 70°): the
 //!   scattered part of the probe's path radiance (by day less without the sun) within 1 %
-//!   of LOWTRAN7's path radiance (issue 30's floor); the whole path radiance's error,
+//!   of LOWTRAN7's path radiance (the floor); the whole path radiance's error,
 //!   thermal part included, and τ are printed for docs/accuracy.md;
 //! - **at night** (a plan without a sun), the 87 m slab's thermal path radiance and τ;
 //! - a frame whose paths the tables do not cover (its camera 10 m above their observer)
@@ -152,7 +152,7 @@ fn slab_tables_hold_lowtran7s_slabs_between_rows_by_day_and_at_night() {
             lit["transmission"] - tau
         );
         assert!(scattered > 0.02 * total, "{scattered} of {total}");
-        // Issue 30's floor: the scattered sunlight within 1 % of the path radiance.
+        // The floor: the scattered sunlight within 1 % of the path radiance.
         assert!(
             scattered_share.abs() < 0.01,
             "{observer} {facet} {zenith} {az}: {scattered_share}"

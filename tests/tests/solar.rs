@@ -1,4 +1,4 @@
-//! The atmosphere in sunlight, first part (issue 30): the sun's direct beam from real
+//! The atmosphere in sunlight, first part: the sun's direct beam from real
 //! LOWTRAN7 direct solar irradiance runs (IEMSCT = 3). A small plan with a sun is built by
 //! `irsig-atmos build`; its direct irradiance on plates at and between the table's
 //! altitudes is checked against hand integrals over the TAPE7 of LOWTRAN7 runs made here

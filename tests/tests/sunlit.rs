@@ -1,4 +1,4 @@
-//! The atmosphere in sunlight, second part (issue 30): path and sky radiance with
+//! The atmosphere in sunlight, second part: path and sky radiance with
 //! single-scattered sunlight. A small day plan over the 3.4–4.1 µm window, on the plan's own row spacing
 //! (slant altitudes 300–1000 m and nadir angles every 10°, sky altitudes 0–1000 m (the scattered sky's finer) and
 //! zenith angles every 5°, the sun–view azimuths of `RELATIVE_AZIMUTH_DEG`), is built by

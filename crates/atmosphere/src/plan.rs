@@ -1,4 +1,4 @@
-//! Planning an atmosphere build (issue 14, Build 3): from the observers of a scene to the
+//! Planning an atmosphere build: from the observers of a scene to the
 //! list of radiative-transfer paths a [`SpectralAtmosphere`] needs, a LOWTRAN7 card deck
 //! for each, and back from the paths' spectra to the spectral atmosphere.
 //!

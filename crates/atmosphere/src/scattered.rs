@@ -1,4 +1,4 @@
-//! Sunlight single-scattered into the tracer's paths by day (issue 30): what a sky ray, the
+//! Sunlight single-scattered into the tracer's paths by day: what a sky ray, the
 //! hemispheric sky and a view path gain from a spectral atmosphere's `solar` table
 //! (LOWTRAN7's IEMSCT = 2 runs), over one band or sub-band, for a sun in a given direction.
 //! The air's own emission stays the night model's; this is the part to add to it.

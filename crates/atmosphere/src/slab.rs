@@ -1,4 +1,4 @@
-//! **Slab tables** (a named model, issue 30): the view path from an observer to a point
+//! **Slab tables** (a named model): the view path from an observer to a point
 //! above the ground taken from LOWTRAN7 run for that slab itself, rather than built from
 //! paths that end at the ground or in space.
 //!

@@ -1,4 +1,4 @@
-//! Direct sunlight from a spectral atmosphere's `solar` table (issue 30): the irradiance
+//! Direct sunlight from a spectral atmosphere's `solar` table: the irradiance
 //! the sun's beam brings to a surface at altitude `h` whose normal is `θ_i` from the sun,
 //! over a band or sub-band with a response `w(λ)`:
 //!

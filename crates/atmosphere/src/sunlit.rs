@@ -1,4 +1,4 @@
-//! Path and sky radiance by day (issue 30): a spectral atmosphere's thermal slant and sky
+//! Path and sky radiance by day: a spectral atmosphere's thermal slant and sky
 //! tables plus the sunlight single-scattered into the same paths (its `solar` table's
 //! scattered spectra, LOWTRAN7's IEMSCT = 2), over a band or sub-band with a response
 //! `w(λ)`:

@@ -1,6 +1,6 @@
 //! Parse and write throughput at a million triangles: parse-and-flatten for every form an
 //! object reaches `irsig-flatten` in (OBJ, GLB, legacy facet file, canonical object as RON
-//! and as binary; the 2 s floor of issue 2 is OBJ), the object's own write and read in
+//! and as binary; the 2 s floor is OBJ's), the object's own write and read in
 //! both forms, and the raw scene as RON and as binary.
 //!
 //! Inputs are generated here (a UV sphere of exactly 1,000,000 triangles), never committed.

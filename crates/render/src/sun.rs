@@ -1,4 +1,4 @@
-//! The sun of a request (issue 30): where it is, checked before anything is read, and its
+//! The sun of a request: where it is, checked before anything is read, and its
 //! direct beam in each sub-band, from the `solar` table of the spectral atmosphere the
 //! frame is traced through.
 //!

@@ -1,4 +1,4 @@
-//! The sun's direct beam (issue 30): what the tracer needs to light its facets with it.
+//! The sun's direct beam: what the tracer needs to light its facets with it.
 //!
 //! A [`Sun`] is a direction, an angular radius and, per sub-band, the beam's irradiance on a
 //! surface normal to it as a function of altitude ([`SunBeam`]). The tracer knows no dates,

@@ -325,7 +325,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
     }
 }
 
-/// The sky-view factor trade (issue 4): a 2 m square pit 1 m deep ([`square_pit`]; floor
+/// The sky-view factor trade: a 2 m square pit 1 m deep ([`square_pit`]; floor
 /// ε = 0.9 at 300 K, blackbody walls at 300 K, a uniform sky of a 250 K blackbody, whole
 /// spectrum) seen straight down through a 16 × 16 image so narrow (0.001°) that every
 /// pixel's ray lands within a millimetre of the floor's centre: 256 independent F
@@ -413,7 +413,7 @@ impl Default for PitExperiment {
     }
 }
 
-/// The supersampling trade (issue 4): two coplanar blackbody facets, 330 K west and 300 K
+/// The supersampling trade: two coplanar blackbody facets, 330 K west and 300 K
 /// east of a straight edge, seen straight down (black sky, whole spectrum) by a 24 × 64
 /// image. In image units the edge is the line `x = X0 + SLOPE·y`, so each pixel's exact
 /// radiance is `f·L(330) + (1 − f)·L(300)` with `f` its area left of the line

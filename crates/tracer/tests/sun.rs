@@ -1,4 +1,4 @@
-//! The sun's direct beam (issue 30) against hand computation, in a vacuum (τ = 1, no path
+//! The sun's direct beam against hand computation, in a vacuum (τ = 1, no path
 //! radiance, cold sky) so that the sun's part of a pixel is the pixel with the sun minus
 //! the pixel without: a Lambertian plate gives `r·E_n·cos θ_i/π`, a plate in a shadow, a
 //! plate with the sun behind it and the inside of a closed box give nothing, a mirror

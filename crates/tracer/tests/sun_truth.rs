@@ -1,4 +1,4 @@
-//! The sun's truth layers (issue 30, item 5) against hand computation: a plate in the sun
+//! The sun's truth layers against hand computation: a plate in the sun
 //! gets `E = E_n·cos θ_i` and a visible fraction 1; a roofed plate 0 and 0; a soft shadow's
 //! edge the visible segment of the disk; a Lambertian plate's reflected sunlight is
 //! `r·E/π` and the sun's share `τ·r·E/π / L`; the terrain's are its flat, unshadowed

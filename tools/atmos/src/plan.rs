@@ -1,4 +1,4 @@
-//! `irsig-atmos plan`: the radiative-transfer runs a scene needs (issue 14, Build 3). Reads
+//! `irsig-atmos plan`: the radiative-transfer runs a scene needs. Reads
 //! the raw scene (its lowest point is the ground) and its views (`irsig_formats::views`:
 //! a RON view or list, or a 1990 viewing file), and writes `DIR/plan.ron` (the node lists, `irsig_model::AtmospherePlan`)
 //! and one LOWTRAN7 card deck per path, `DIR/runs/NNNN.tape5`, in the order of
