@@ -384,11 +384,14 @@ impl AtmospherePlan {
     /// The first rule broken.
     pub fn validate(&self) -> Result<(), ModelError> {
         let [v1, v2, dv] = self.wavenumber_per_cm;
-        if !(v1 > 0.0 && v2 > v1 && dv > 0.0 && v2 <= 50_000.0) {
+        // LOWTRAN7's spectra span 0 to 50000 cm-1; its finest step is 1 cm-1 (a finer one
+        // asks for billions of spectral points from a hand-edited plan).
+        if !(v1 > 0.0 && v2 > v1 && v2 <= 50_000.0 && (1.0..=v2 - v1).contains(&dv)) {
             return Err(ModelError::new(
                 "wavenumber_per_cm",
                 ModelErrorKind::Other(format!(
-                    "expected 0 < v1 < v2 <= 50000 cm-1 and dv > 0, found [{v1}, {v2}, {dv}]"
+                    "expected 0 < v1 < v2 <= 50000 cm-1 and a step dv from 1 cm-1 (LOWTRAN7's \
+                     finest) to v2 - v1, found [{v1}, {v2}, {dv}]"
                 )),
             ));
         }
@@ -580,6 +583,28 @@ mod tests {
             sun: None,
             aerosol: None,
             slabs: None,
+        }
+    }
+
+    #[test]
+    fn a_plans_step_is_one_lowtran7_can_take() {
+        // 1 cm-1 is LOWTRAN7's finest step; a 1e-9 step would ask for 5e11 points.
+        for (range, ok) in [
+            ([710.0, 1250.0, 1.0], true),
+            ([710.0, 1250.0, 540.0], true),
+            ([710.0, 1250.0, 1e-9], false),
+            ([710.0, 1250.0, 0.5], false),
+            ([710.0, 1250.0, 541.0], false),
+            ([1250.0, 710.0, 5.0], false),
+            ([710.0, 1250.0, f64::NAN], false),
+        ] {
+            let mut p = plan();
+            p.wavenumber_per_cm = range;
+            let got = p.validate();
+            assert_eq!(got.is_ok(), ok, "{range:?}: {got:?}");
+            if let Err(e) = got {
+                assert_eq!(e.path, "wavenumber_per_cm");
+            }
         }
     }
 
