@@ -14,13 +14,17 @@
 //! j-th facet (thesis eq. 2 and 6), so the j-th event's partials are those of its own
 //! surface carried by the throughput before it, `τ·Π_{i<j} r_i s_i`:
 //! `∂L/∂T_j = τ·Π r_i s_i·ε_j·dL_T,j/dT` and `∂L/∂ε_j = τ·Π r_i s_i·(L_T,j − L_refl,j)`
-//! (a change of ε moves r = 1 − ε the other way). What sky-view rays see of other facets
-//! is left out: a facet met by a sky-view ray is not charged.
+//! (a change of ε moves r = 1 − ε the other way). A facet a sky-view ray meets brings
+//! `ε₂·L_T2 + r₂·L_d` as one of the `n` rays of the diffuse incident radiance, so it is
+//! charged `τ·Π r_i s_i·r_j(1 − s_j)/n` times its own `ε₂·dL_T2/dT` and `L_T2 − L_d`.
+//! Facets beyond the last bounce are not traced, and do not move the radiance: nothing is
+//! charged to them (their absence is a model's error, the tolerance's).
 
 use irsig_radiometry::BandModel;
 
+use crate::day::sky_hemispheric;
 use crate::env::Atmosphere;
-use crate::path::{Mirror, Node, Path, Surface};
+use crate::path::{Diffuse, HemiRay, Mirror, Path, Surface};
 use crate::shade::SurfaceTerms;
 use crate::tracer::{BandData, Tracer};
 
@@ -252,20 +256,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         tau: f64,
         sink: &mut C,
     ) {
-        let derivative = |node: &Node| b.derivative[node.surface.data.temperature_index as usize];
-        let [only] = path.nodes.as_slice() else {
-            return self.charge_chain(b, path, tau, sink);
-        };
-        sink.charge(
-            self.group_of(&only.surface),
-            tau * first.emissivity * derivative(only),
-            tau * (first.blackbody - first.reflected),
-        );
+        match path.nodes.as_slice() {
+            [only] if !matches!(only.diffuse, Some(Diffuse::Rays { .. })) => sink.charge(
+                self.group_of(&only.surface),
+                tau * first.emissivity * b.derivative[only.surface.data.temperature_index as usize],
+                tau * (first.blackbody - first.reflected),
+            ),
+            _ => self.charge_chain(b, path, tau, sink),
+        }
     }
 
-    /// [`Self::charge_path`] along a chain of specular bounces: its terms evaluated from
-    /// the far end back, as the radiance is, then charged from the sensor out with the
-    /// throughput before each facet.
+    /// [`Self::charge_path`] along a chain of specular bounces, or with sky-view rays: its
+    /// terms evaluated from the far end back, as the radiance is, then charged from the
+    /// sensor out with the throughput before each facet.
     fn charge_chain<S: Atmosphere, C: ChargeSink>(
         &self,
         b: &BandData<S>,
@@ -273,30 +276,66 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         tau: f64,
         sink: &mut C,
     ) {
-        // Per facet: ε·dL_T/dT, L_T − L_reflected, and r·s, what it passes on of the next.
-        let mut local = [[0.0; 3]; MAX_EVENTS];
+        // Per facet: ε·dL_T/dT, L_T − L_reflected, r·s (what it passes on of the next
+        // facet) and r·(1 − s) (of what its sky-view rays bring).
+        let mut local = [[0.0; 4]; MAX_EVENTS];
         let mut next = 0.0;
         for (node, slot) in path.nodes.iter().zip(local.iter_mut()).rev() {
             let terms = self.surface_terms::<false, S>(b, node, next, 0.0, path);
             let sfrac = self.materials[usize::from(node.surface.data.material)].specular_fraction;
+            let r = 1.0 - terms.emissivity;
             *slot = [
                 terms.emissivity * b.derivative[node.surface.data.temperature_index as usize],
                 terms.blackbody - terms.reflected,
-                (1.0 - terms.emissivity) * sfrac,
+                r * sfrac,
+                r * (1.0 - sfrac),
             ];
             next = terms.leaving;
         }
         let mut throughput = tau;
-        for (node, [by_t, by_e, passed]) in path.nodes.iter().zip(local) {
+        for (node, [by_t, by_e, specular, diffuse]) in path.nodes.iter().zip(local) {
             sink.charge(
                 self.group_of(&node.surface),
                 throughput * by_t,
                 throughput * by_e,
             );
+            if let Some(Diffuse::Rays { start, count, .. }) = node.diffuse {
+                self.charge_sky_view(b, path, (start, count), throughput * diffuse, sink);
+            }
             if node.mirror != Some(Mirror::Next) {
                 break;
             }
-            throughput *= passed;
+            throughput *= specular;
+        }
+    }
+
+    /// Charges the facets the sky-view rays `start..start + count` met, each bringing
+    /// `ε₂·L_T2 + r₂·L_d` to the diffuse incident radiance as one of `count`, seen through
+    /// `weight` (the throughput to the facet that cast them times its `r·(1 − s)`).
+    fn charge_sky_view<S: Atmosphere, C: ChargeSink>(
+        &self,
+        b: &BandData<S>,
+        path: &Path,
+        (start, count): (u32, u32),
+        weight: f64,
+        sink: &mut C,
+    ) {
+        let Some(rays) = path
+            .rays
+            .get(start as usize..start as usize + count as usize)
+        else {
+            return;
+        };
+        let weight = weight / f64::from(count.max(1));
+        for ray in rays {
+            if let HemiRay::Facet(h) = ray {
+                let eps = b.emissivity_of(h);
+                sink.charge(
+                    self.group_of(h),
+                    weight * eps * b.derivative[h.data.temperature_index as usize],
+                    weight * (b.blackbody_of(&h.data) - sky_hemispheric(b, h.alt_m)),
+                );
+            }
         }
     }
 }

@@ -1,7 +1,7 @@
 //! The error budget in mixed pixels against central finite differences: a generated scene
 //! of a thin pole (two, of one material, as two objects) against the ground and the sky,
 //! and a glass pane whose edges cut pixels and whose reflection meets the ground, traced
-//! with refinement at night and by day. Each material's temperature and emissivity, one
+//! with refinement at night and by day, and with sky-view rays. Each material's temperature and emissivity, one
 //! object's temperature and every facet's temperature are moved by ± a small step; the
 //! pixel's charges ([`irsig_tracer::Frame::charges`]) summed over the groups the input
 //! governs must be the central difference of the pixel's radiance. The settings are
@@ -75,12 +75,22 @@ fn materials(step: &Step) -> MaterialLibrary {
     grey_materials(&m)
 }
 
-fn decision() -> Decision {
-    irsig_formats::canonical::from_ron(
+/// The saved decisions: without sky-view rays, and with 16 (whose facets the budget
+/// charges too).
+const DECISIONS: [(&str, &str); 2] = [
+    (
         "budget-mixed.decision.ron",
         include_str!("data/budget-mixed.decision.ron"),
-    )
-    .unwrap()
+    ),
+    (
+        "budget-mixed-sky-view.decision.ron",
+        include_str!("data/budget-mixed-sky-view.decision.ron"),
+    ),
+];
+
+fn decision(sky_view: bool) -> Decision {
+    let (name, text) = DECISIONS[usize::from(sky_view)];
+    irsig_formats::canonical::from_ron(name, text).unwrap()
 }
 
 fn camera() -> Camera {
@@ -97,14 +107,18 @@ fn camera() -> Camera {
 
 /// One frame with every step of `step` applied, the settings of the saved decision, the
 /// budget's groups the objects (`charged`).
-fn frame(step: &Step, day: bool, charged: bool) -> Frame {
-    let (tracer, options) = tracer_and_options(step, day, charged);
+fn frame(step: &Step, (day, sky_view): (bool, bool), charged: bool) -> Frame {
+    let (tracer, options) = tracer_and_options(step, (day, sky_view), charged);
     tracer.render(&camera(), &options, &|_| {}).unwrap()
 }
 
 /// The tracer [`frame`] renders with, and its options.
-fn tracer_and_options(step: &Step, day: bool, charged: bool) -> (Tracer<Band, Air>, TraceOptions) {
-    let d = decision();
+fn tracer_and_options(
+    step: &Step,
+    (day, sky_view): (bool, bool),
+    charged: bool,
+) -> (Tracer<Band, Air>, TraceOptions) {
+    let d = decision(sky_view);
     let setting = |m: SwitchableModel| d.choice(m).unwrap().setting.parse::<u32>().unwrap();
     let options = TraceOptions {
         specular_bounces: setting(SwitchableModel::Bounces),
@@ -186,8 +200,9 @@ fn percentile(mut v: Vec<f64>, p: f64) -> f64 {
     v[k - 1]
 }
 
-fn check(day: bool) {
-    let base = frame(&Step::default(), day, true);
+fn check(day: bool, sky_view: bool) {
+    let run = (day, sky_view);
+    let base = frame(&Step::default(), run, true);
     let facet_objects: Vec<u32> = scene(&Step::default())
         .facets
         .iter()
@@ -197,8 +212,8 @@ fn check(day: bool) {
     assert_eq!(base.charges.len(), n);
     let mut refined_total = 0;
     for input in inputs() {
-        let up = frame(&input.steps(1.0), day, false);
-        let down = frame(&input.steps(-1.0), day, false);
+        let up = frame(&input.steps(1.0), run, false);
+        let down = frame(&input.steps(-1.0), run, false);
         let (mut plain_worst, mut refined, mut switched, mut zero, mut centre_off) =
             (0.0_f64, Vec::new(), 0, 0, 0);
         for i in 0..n {
@@ -251,7 +266,11 @@ fn check(day: bool) {
                 plain_worst = plain_worst.max(off);
             }
         }
-        let when = if day { "day" } else { "night" };
+        let when = match run {
+            (false, false) => "night",
+            (true, false) => "day",
+            (_, true) => "sky-view rays",
+        };
         assert_eq!(zero, 0, "{when}, {}: {zero} pixels got 0", input.name);
         assert!(
             plain_worst <= 1e-4,
@@ -291,17 +310,24 @@ fn check(day: bool) {
 
 #[test]
 fn mixed_pixels_budget_matches_finite_differences_at_night() {
-    check(false);
+    check(false, false);
+}
+
+#[test]
+fn mixed_pixels_budget_matches_finite_differences_with_sky_view_rays() {
+    // The ground beside the poles and below the glass sees them through its sky-view
+    // rays: those pixels hold their partials too.
+    check(false, true);
 }
 
 #[test]
 fn mixed_pixels_budget_matches_finite_differences_by_day() {
-    check(true);
+    check(true, false);
 }
 
 #[test]
 fn a_tiles_charges_are_the_frames_at_any_thread_count() {
-    let (tracer, options) = tracer_and_options(&Step::default(), true, true);
+    let (tracer, options) = tracer_and_options(&Step::default(), (true, true), true);
     let whole = tracer.render(&camera(), &options, &|_| {}).unwrap();
     let one_thread = rayon::ThreadPoolBuilder::new()
         .num_threads(1)
