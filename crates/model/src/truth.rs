@@ -61,6 +61,10 @@ pub enum Layer {
     /// With a tolerance: 1 where the decision does not guarantee the pixel (its class
     /// cannot be afforded, or its refinement reached the cap), 0 elsewhere.
     NotGuaranteed,
+    /// With a tolerance: the rays the pixel's value is the mean of where the frame was
+    /// refined (1: the pixel kept its centre ray; more: a refined pixel, whose rays may
+    /// have met several materials); NaN in a frame rendered without refinement.
+    Samples,
     /// With a sun: the sun's direct irradiance on the surface hit, W m⁻², integrated over
     /// the band with its response as the beam is (`E_n·cos θ_i·V`, summed over the
     /// sub-bands; the terrain's flat, unshadowed `E_n·cos θ_sun` for a terrain miss).
@@ -109,7 +113,7 @@ impl Layer {
 
     /// The tolerance's layers, written after the others when a frame is rendered to a
     /// tolerance (piloted or with a decision applied).
-    pub const TOLERANCE: [Self; 1] = [Self::NotGuaranteed];
+    pub const TOLERANCE: [Self; 2] = [Self::NotGuaranteed, Self::Samples];
 
     /// The sun's layers, written after [`Layer::TRUTH`] (before the error budget's) when
     /// the frame was traced with a sun; a night truth EXR holds none of them.
@@ -122,7 +126,7 @@ impl Layer {
 
     /// Every layer: the radiance, the truth layers, the error budget, the tolerance, the
     /// sun's.
-    pub const ALL: [Self; 24] = [
+    pub const ALL: [Self; 25] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -143,6 +147,7 @@ impl Layer {
         Self::SigmaModel,
         Self::SigmaTotal,
         Self::NotGuaranteed,
+        Self::Samples,
         Self::SolarIrradiance,
         Self::SunVisibleFraction,
         Self::ReflectedSolarRadiance,
@@ -173,6 +178,7 @@ impl Layer {
             Self::SigmaModel => "sigma_model",
             Self::SigmaTotal => "sigma_total",
             Self::NotGuaranteed => "not_guaranteed",
+            Self::Samples => "samples",
             Self::SolarIrradiance => "solar_irradiance",
             Self::SunVisibleFraction => "sun_visible_fraction",
             Self::ReflectedSolarRadiance => "reflected_solar_radiance",
@@ -204,12 +210,13 @@ impl Layer {
             | Self::Transmission
             | Self::SkyViewFactor
             | Self::NotGuaranteed
+            | Self::Samples
             | Self::SunVisibleFraction
             | Self::SunShare => "",
         }
     }
 
-    /// Whether the layer holds labels (material ids, events, the sub-band count), which are reduced by majority
+    /// Whether the layer holds labels (material ids, events, the sub-band count, ray counts), which are reduced by majority
     /// and never averaged.
     #[must_use]
     pub const fn is_label(self) -> bool {
@@ -220,6 +227,7 @@ impl Layer {
                 | Self::Event
                 | Self::SubBands
                 | Self::NotGuaranteed
+                | Self::Samples
         )
     }
 
@@ -250,8 +258,8 @@ mod tests {
         }
         assert_eq!(Layer::ALL[1..13], Layer::TRUTH);
         assert_eq!(Layer::ALL[13..19], Layer::BUDGET);
-        assert_eq!(Layer::ALL[19..20], Layer::TOLERANCE);
-        assert_eq!(Layer::ALL[20..], Layer::SUN);
+        assert_eq!(Layer::ALL[19..21], Layer::TOLERANCE);
+        assert_eq!(Layer::ALL[21..], Layer::SUN);
         assert!(Layer::SUN.iter().all(|l| !l.is_label()));
         assert_eq!(Layer::from_name("Radiance"), None);
     }

@@ -128,25 +128,35 @@ impl Uncertainties {
     /// The temperature σ of a facet of material `material` in object `object`, K.
     #[must_use]
     pub fn temperature_sigma_k(&self, material: MaterialId, object: &str) -> f64 {
-        self.temperature
-            .iter()
-            .rev()
-            .find(|t| match &t.facets {
-                Facets::All => true,
-                Facets::Material(m) => *m == material,
-                Facets::Object(o) => o == object,
-            })
-            .map_or(0.0, |t| t.sigma_k)
+        self.temperature_entry(material, object)
+            .map_or(0.0, |i| self.temperature[i].sigma_k)
+    }
+
+    /// The index of the temperature entry that governs a facet of material `material` in
+    /// object `object` (the last naming it), if any. Each entry is one input of the error
+    /// budget: every facet it governs is off by the same error, so their sensitivities add
+    /// before the σ multiplies them (a correlated input, GUM §5.2).
+    #[must_use]
+    pub fn temperature_entry(&self, material: MaterialId, object: &str) -> Option<usize> {
+        self.temperature.iter().rposition(|t| match &t.facets {
+            Facets::All => true,
+            Facets::Material(m) => *m == material,
+            Facets::Object(o) => o == object,
+        })
     }
 
     /// The emissivity σ of material `material`.
     #[must_use]
     pub fn emissivity_sigma(&self, material: MaterialId) -> f64 {
-        self.emissivity
-            .iter()
-            .rev()
-            .find(|e| e.material == material)
-            .map_or(0.0, |e| e.sigma)
+        self.emissivity_entry(material)
+            .map_or(0.0, |i| self.emissivity[i].sigma)
+    }
+
+    /// The index of the emissivity entry that governs material `material` (the last naming
+    /// it), if any: one correlated input, as [`Self::temperature_entry`]'s.
+    #[must_use]
+    pub fn emissivity_entry(&self, material: MaterialId) -> Option<usize> {
+        self.emissivity.iter().rposition(|e| e.material == material)
     }
 }
 
@@ -172,6 +182,13 @@ mod tests {
         assert!((u.temperature_sigma_k(MaterialId(1), "panel") - 1.5).abs() < 1e-12);
         assert!((u.temperature_sigma_k(MaterialId(1), "pool") - 0.1).abs() < 1e-12);
         assert!(u.emissivity_sigma(MaterialId(1)).abs() < 1e-12);
+        assert_eq!(u.temperature_entry(MaterialId(1), "panel"), Some(1));
+        assert_eq!(u.temperature_entry(MaterialId(1), "pool"), Some(0));
+        assert_eq!(u.emissivity_entry(MaterialId(1)), None);
+        assert_eq!(
+            Uncertainties::default().temperature_entry(MaterialId(1), "pool"),
+            None
+        );
     }
 
     #[test]

@@ -256,8 +256,18 @@ fn truth_raster<R: BandModel + Sync>(
     }
     if let Some(g) = guarantee {
         push(&mut r, Layer::NotGuaranteed, g.not_guaranteed(frame))?;
+        push(&mut r, Layer::Samples, samples(frame))?;
     }
     Ok(r)
+}
+
+/// The [`Layer::Samples`] layer: the rays each pixel's value is the mean of where the
+/// frame was refined, NaN where it was not.
+fn samples(frame: &Frame) -> Vec<f32> {
+    if frame.sampling.is_empty() {
+        return vec![f32::NAN; frame.radiance_w_m2_sr.len()];
+    }
+    frame.sampling.iter().map(|s| s.rays as f32).collect()
 }
 
 /// What [`merged`] does with an interaction map that cannot be made.

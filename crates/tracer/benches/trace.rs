@@ -238,3 +238,45 @@ fn shaded_us_std_atmosphere_100k(bencher: divan::Bencher, mode: &str) {
         })
     });
 }
+
+/// The error budget's charges ([`irsig_tracer::charge`]): a frame of the 100k sphere, its
+/// specular share mirroring the ground, with its truth kept, without and with the budget's
+/// groups (one per material), centre rays alone and refined (edges and the horizon in 8
+/// rounds of up to 16 × 16 rays). What the budget adds to a frame is the ratio of each
+/// pair.
+#[divan::bench(
+    args = ["plain", "plain+budget", "refined", "refined+budget"],
+    sample_count = 3,
+    sample_size = 1
+)]
+fn budget_charges(bencher: divan::Bencher, case: &str) {
+    let m = mesh(1);
+    let sc = raw_scene(&m);
+    let sky = Vacuum {
+        sky_radiance_w_m2_sr: 20.0,
+    };
+    let refinement = case
+        .starts_with("refined")
+        .then_some(irsig_tracer::Refinement {
+            target_k: 0.1,
+            edge_k: 0.5,
+            max_side: 16,
+            thin_side: 8,
+        });
+    let groups = case
+        .ends_with("+budget")
+        .then(|| sc.facets.iter().map(|f| u32::from(f.material.0)).collect());
+    let tracer = Tracer::new(&sc, &materials(0.5), TotalRadiance, sky)
+        .unwrap()
+        .with_refinement(refinement)
+        .unwrap()
+        .with_budget_groups(groups);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            tracer
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}

@@ -67,6 +67,7 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod camera;
+pub mod charge;
 mod day;
 pub mod env;
 mod error;
@@ -91,6 +92,7 @@ mod vec;
 pub use camera::{
     Camera, look_at_omega_phi_kappa_deg, omega_phi_kappa_matrix, thesis_look_at_angles_deg,
 };
+pub use charge::{Charge, Charges, NO_GROUP};
 pub use env::{Atmosphere, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
 pub use lobe::{DISK_PSI_NODES, DISK_U_NODES};

@@ -28,6 +28,7 @@
 use irsig_radiometry::{BandModel, InverseTable};
 
 use crate::camera::Camera;
+use crate::charge::{ChargeSink, Charges, Tally};
 use crate::env::Atmosphere;
 use crate::path::Path;
 use rayon::prelude::*;
@@ -167,6 +168,8 @@ pub(crate) struct Centres {
     /// The sun's truth of each centre; empty without a sun.
     pub(crate) sun: Vec<SunPixel>,
     pub(crate) calm_w_m2_sr: Vec<f64>,
+    /// Each centre ray's charges ([`crate::charge`]); empty unless the tracer keeps them.
+    pub(crate) charges: Charges,
 }
 
 /// Sums over a round's rays.
@@ -281,13 +284,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth: vec![TruthPixel::from(&Sample::miss(Event::Sky)); n],
             sun: Vec::new(),
             calm_w_m2_sr: vec![0.0; n],
+            charges: Charges::default(),
         };
+        let charging = options.truth && self.keeps_charges();
         let lit = self.sun.is_some();
         if lit {
             out.sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
         }
         // Without a sun, each row's sun slice is empty and nothing is written to it.
         let rows = n.div_ceil(row_len);
+        let mut charge_rows: Vec<Charges> = (0..rows).map(|_| Charges::default()).collect();
         let sun_rows: Vec<&mut [SunPixel]> = if lit {
             out.sun.chunks_mut(row_len).collect()
         } else {
@@ -298,11 +304,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .zip(out.truth.par_chunks_mut(row_len))
             .zip(out.calm_w_m2_sr.par_chunks_mut(row_len))
             .zip(sun_rows)
+            .zip(charge_rows.par_iter_mut())
             .enumerate()
-            .for_each(|(r, (((rad, tru), calm), sun))| {
+            .for_each(|(r, ((((rad, tru), calm), sun), charges))| {
                 let mut path = Path::default();
                 let mut hemispheric = Path::default();
                 let mut centre = Sample::miss(Event::Sky);
+                let mut tally = Tally::default();
                 let row = tile.y + r as u32;
                 for (c, ((l_out, t_out), calm_out)) in
                     rad.iter_mut().zip(tru.iter_mut()).zip(calm).enumerate()
@@ -312,7 +320,20 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     let mut ctx = Ctx::for_pixel(options, index);
                     ctx.sun_truth = true;
                     self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
-                    *l_out = self.radiance::<true>(fc, &path, &mut centre);
+                    *l_out = if charging {
+                        tally.restart();
+                        tally.set_rays(1);
+                        let l = self.radiance_charged::<true, Tally>(
+                            fc,
+                            &path,
+                            &mut centre,
+                            &mut tally,
+                        );
+                        tally.finish_into(charges);
+                        l
+                    } else {
+                        self.radiance::<true>(fc, &path, &mut centre)
+                    };
                     *t_out = TruthPixel::from(&centre);
                     if let Some(s_out) = sun.get_mut(c) {
                         *s_out = SunPixel::from(&centre);
@@ -325,6 +346,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     };
                 }
             });
+        if charging {
+            out.charges = Charges::concat(charge_rows);
+        }
         out
     }
 
@@ -353,8 +377,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// the sky-view model's error, which the pilot bounds (a refined pixel, with at least
     /// as many sky-view rays in each round as its centre had, has less of it than a pixel
     /// that kept its centre ray); the σ the pixel reports is its whole standard error.
+    ///
+    /// The rays of the level the pixel's value comes from are charged to `sink`.
     #[allow(clippy::too_many_arguments)]
-    pub(crate) fn refine_pixel<const TRUTH: bool>(
+    pub(crate) fn refine_pixel<const TRUTH: bool, C: ChargeSink>(
         &self,
         fc: &FrameConsts<'_>,
         options: &TraceOptions,
@@ -364,6 +390,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         start: u32,
         contrast_k: f64,
         path: &mut Path,
+        sink: &mut C,
     ) -> (f64, PixelSampling) {
         let camera = fc.camera();
         let index = u64::from(row) * u64::from(camera.pixels[0]) + u64::from(col);
@@ -385,12 +412,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let mut means = [0.0; ROUNDS];
             let mut calm_means = [0.0; ROUNDS];
             let mut sums = Sums::default();
+            // A level replaces the last: its rays are the pixel's.
+            sink.restart();
             for (mean, calm_mean) in means.iter_mut().zip(&mut calm_means) {
                 let mut round = 0.0;
                 let mut calm = 0.0;
                 ctx.for_each_subpixel((col, row), side, |ctx, x, y| {
                     self.follow(fc, camera.direction_at(x, y), ctx, path);
-                    let l = self.radiance::<TRUTH>(fc, path, &mut scratch);
+                    let l = self.radiance_charged::<TRUTH, C>(fc, path, &mut scratch, sink);
                     round += l;
                     if TRUTH {
                         sums.temperature_sensitivity += scratch.temperature_sensitivity;
@@ -454,6 +483,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             }
             let reached = calm_sigma_k <= refinement.target_k && !border_differs;
             if reached || side >= refinement.max_side {
+                sink.set_rays(ROUNDS as u32 * side * side);
                 let n = n_rounds * f64::from(side * side);
                 return (
                     mean,

@@ -20,6 +20,7 @@
 use irsig_atmosphere::PathTerms;
 use irsig_radiometry::BandModel;
 
+use crate::charge::ChargeSink;
 use crate::day::{
     escaped_sunlight, lit_path, scattered_hemispheric, scattered_sky, sky, sky_hemispheric,
 };
@@ -30,15 +31,15 @@ use crate::tracer::{BandData, BandSet, Event, FrameConsts, Sample, Tracer};
 
 /// The terms of one facet's surface-leaving radiance in one sub-band.
 #[derive(Debug, Clone, Copy, Default)]
-struct SurfaceTerms {
-    emissivity: f64,
-    blackbody: f64,
+pub(crate) struct SurfaceTerms {
+    pub(crate) emissivity: f64,
+    pub(crate) blackbody: f64,
     /// `s·L_spec + (1 − s)·L_diffuse`: what the reflectance multiplies.
-    reflected: f64,
+    pub(crate) reflected: f64,
     specular_incident: f64,
     sky_hemispheric: f64,
     diffuse_incident: f64,
-    leaving: f64,
+    pub(crate) leaving: f64,
     /// The sunlight in `leaving` (0 without a sun, or when not asked for).
     solar: f64,
     /// The beam's irradiance on the facet, W m⁻² (0 without a sun, or when not asked for).
@@ -96,7 +97,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         path: &Path,
         s: &mut Sample,
     ) -> f64 {
-        self.radiance_with::<TRUTH, A>(&self.bands, fc.path_table.as_ref(), fc, path, s)
+        self.radiance_charged::<TRUTH, ()>(fc, path, s, &mut ())
+    }
+
+    /// [`Self::radiance`], each facet the path met charged with its partials to `sink`
+    /// ([`crate::charge`]).
+    pub(crate) fn radiance_charged<const TRUTH: bool, C: ChargeSink>(
+        &self,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        s: &mut Sample,
+        sink: &mut C,
+    ) -> f64 {
+        self.radiance_sink::<TRUTH, A, C>(&self.bands, fc.path_table.as_ref(), fc, path, s, sink)
     }
 
     /// [`Self::radiance`] in the sub-bands of `set`, with `table` (built for `set`) for the
@@ -108,6 +121,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         fc: &FrameConsts<'_>,
         path: &Path,
         s: &mut Sample,
+    ) -> f64 {
+        self.radiance_sink::<TRUTH, S, ()>(set, table, fc, path, s, &mut ())
+    }
+
+    /// [`Self::radiance_with`], charging `sink`.
+    fn radiance_sink<const TRUTH: bool, S: Atmosphere, C: ChargeSink>(
+        &self,
+        set: &BandSet<S>,
+        table: Option<&PathTable>,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        s: &mut Sample,
+        sink: &mut C,
     ) -> f64 {
         let one = set.bands.len() == 1;
         // The sun's truth terms, when this set of sub-bands carries its beam.
@@ -193,6 +219,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     let (p, scattered) = lit_path(b, p, fc.sensor_alt, alt_m, path.dir);
                     let first = self.leaving_chain::<TRUTH, S>(b, path);
                     radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
+                    if C::ON {
+                        self.charge_path(b, path, &first, p.transmission, sink);
+                    }
                     if TRUTH {
                         let facet = &path.nodes[0].surface.data;
                         let derivative = b.derivative[facet.temperature_index as usize];
@@ -304,7 +333,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// surface-leaving radiance `next` of the node its reflection ray hit; with `SOLAR`,
     /// also the sunlight in it, given the sunlight `next_solar` in `next`.
     #[inline]
-    fn surface_terms<const SOLAR: bool, S: Atmosphere>(
+    pub(crate) fn surface_terms<const SOLAR: bool, S: Atmosphere>(
         &self,
         b: &BandData<S>,
         node: &Node,

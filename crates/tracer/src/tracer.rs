@@ -9,6 +9,7 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::camera::Camera;
+use crate::charge::{ChargeSink, Charges, Tally};
 use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::Geometry;
@@ -209,6 +210,9 @@ pub struct Tracer<B, A> {
     /// The sun's geometry when it shines ([`Tracer::with_sun`]): each facet hit then casts
     /// shadow rays toward it. Its beam, per sub-band, is in [`BandData::sun`].
     pub(crate) sun: Option<SunGeometry>,
+    /// The error budget's input group of each raw-scene facet ([`Tracer::with_budget_groups`]);
+    /// `None`: no charges are kept.
+    pub(crate) budget_groups: Option<Vec<u32>>,
 }
 
 /// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.
@@ -560,6 +564,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             path_terms: PathTermsMode::Exact,
             refinement: None,
             sun: None,
+            budget_groups: None,
         };
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records.

@@ -182,6 +182,16 @@ impl Plan {
         })?
         .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
+        // With declared uncertainties each frame keeps the budget's charges, per input.
+        tracer = tracer.with_budget_groups(self.uncertainties.as_ref().zip(scene.as_ref()).map(
+            |(uncertainties, scene)| {
+                Budget {
+                    uncertainties,
+                    scene,
+                }
+                .groups()
+            },
+        ));
         // The materials with a specular share: a reflection that meets one is a mirror
         // seen in a mirror, a class of the decision's own.
         let mirrors: Vec<u16> = self

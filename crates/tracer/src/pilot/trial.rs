@@ -111,7 +111,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     census.contrast[i as usize]
                 };
                 let mut path = Path::default();
-                self.refine_pixel::<false>(
+                self.refine_pixel::<false, ()>(
                     fc,
                     options,
                     refinement,
@@ -120,6 +120,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     start,
                     hide,
                     &mut path,
+                    &mut (),
                 )
                 .1
             })

@@ -117,24 +117,52 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             adaptive_threshold_k: None,
             ..*options
         };
+        // The budget's charges: a refined pixel's from its rays, the others' its centre's.
+        let charging = !centres.charges.is_empty();
+        let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
+        let hw = halo.width as usize;
+        let mut charge_rows: Vec<Charges> = (0..tile.height).map(|_| Charges::default()).collect();
         radiance
             .par_chunks_mut(tw)
             .zip(flags.par_chunks(tw))
+            .zip(charge_rows.par_iter_mut())
             .enumerate()
-            .for_each(|(r, (rad, flags))| {
+            .for_each(|(r, ((rad, flags), charges))| {
                 let mut path = Path::default();
                 let mut scratch = Sample::miss(Event::Sky);
+                let mut tally = Tally::default();
                 let row = tile.y + r as u32;
                 for (c, (l_out, &flag)) in rad.iter_mut().zip(flags).enumerate() {
-                    if flag {
-                        *l_out = self.pixel::<false>(
-                            &fc,
-                            &full,
-                            tile.x + c as u32,
-                            row,
-                            &mut path,
-                            &mut scratch,
-                        );
+                    let col = tile.x + c as u32;
+                    match (flag, charging) {
+                        (true, true) => {
+                            tally.restart();
+                            *l_out = self.pixel::<false, Tally>(
+                                &fc,
+                                &full,
+                                col,
+                                row,
+                                &mut path,
+                                &mut scratch,
+                                &mut tally,
+                            );
+                            tally.finish_into(charges);
+                        }
+                        (true, false) => {
+                            *l_out = self.pixel::<false, ()>(
+                                &fc,
+                                &full,
+                                col,
+                                row,
+                                &mut path,
+                                &mut scratch,
+                                &mut (),
+                            );
+                        }
+                        (false, true) => {
+                            charges.push_from(&centres.charges, (r + dy) * hw + c + dx);
+                        }
+                        (false, false) => {}
                     }
                 }
                 progress(1);
@@ -146,6 +174,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling: Vec::new(),
             sun,
+            charges: Charges::concat(charge_rows),
         })
     }
 
@@ -181,12 +210,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
         let mut radiance = vec![0.0; tile.pixels()];
         let mut sampling = vec![PixelSampling::default(); tile.pixels()];
+        let charging = !centres.charges.is_empty();
+        let mut charge_rows: Vec<Charges> = (0..tile.height).map(|_| Charges::default()).collect();
         radiance
             .par_chunks_mut(tw)
             .zip(sampling.par_chunks_mut(tw))
+            .zip(charge_rows.par_iter_mut())
             .enumerate()
-            .for_each(|(r, (rad, smp))| {
+            .for_each(|(r, ((rad, smp), charges))| {
                 let mut path = Path::default();
+                let mut tally = Tally::default();
                 let row = tile.y + r as u32;
                 for (c, (l_out, s_out)) in rad.iter_mut().zip(smp.iter_mut()).enumerate() {
                     let col = tile.x + c as u32;
@@ -206,18 +239,44 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         } else {
                             contrast[at]
                         };
-                        (*l_out, *s_out) = if options.truth {
-                            self.refine_pixel::<true>(
-                                fc, options, refinement, &inverse, one, start, hide, &mut path,
-                            )
-                        } else {
-                            self.refine_pixel::<false>(
-                                fc, options, refinement, &inverse, one, start, hide, &mut path,
-                            )
+                        (*l_out, *s_out) = match (options.truth, charging) {
+                            (true, true) => {
+                                let refined = self.refine_pixel::<true, Tally>(
+                                    fc, options, refinement, &inverse, one, start, hide, &mut path,
+                                    &mut tally,
+                                );
+                                tally.finish_into(charges);
+                                refined
+                            }
+                            (true, false) => self.refine_pixel::<true, ()>(
+                                fc,
+                                options,
+                                refinement,
+                                &inverse,
+                                one,
+                                start,
+                                hide,
+                                &mut path,
+                                &mut (),
+                            ),
+                            (false, _) => self.refine_pixel::<false, ()>(
+                                fc,
+                                options,
+                                refinement,
+                                &inverse,
+                                one,
+                                start,
+                                hide,
+                                &mut path,
+                                &mut (),
+                            ),
                         };
                     } else {
                         *l_out = centres.radiance_w_m2_sr[at];
                         *s_out = PixelSampling::from_truth(&centres.truth[at]);
+                        if charging {
+                            charges.push_from(&centres.charges, at);
+                        }
                     }
                 }
                 progress(1);
@@ -253,6 +312,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling,
             sun,
+            charges: Charges::concat(charge_rows),
         }
     }
 
@@ -270,6 +330,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut radiance = vec![0.0; n];
         let mut truth = Vec::new();
         let mut sun = Vec::new();
+        // The budget's charges, a row's at a time (empty unless the tracer keeps them).
+        let charging = options.truth && self.keeps_charges();
+        let rows = n.div_ceil(row_len);
+        let mut charge_rows: Vec<Charges> = (0..rows).map(|_| Charges::default()).collect();
+        // One pixel with its truth, its charges appended to `charges` when kept.
+        let truth_pixel = |col: u32,
+                           row: u32,
+                           path: &mut Path,
+                           centre: &mut Sample,
+                           tally: &mut Tally,
+                           charges: &mut Charges| {
+            if charging {
+                tally.restart();
+                let l = self.pixel::<true, Tally>(fc, options, col, row, path, centre, tally);
+                tally.finish_into(charges);
+                l
+            } else {
+                self.pixel::<true, ()>(fc, options, col, row, path, centre, &mut ())
+            }
+        };
         if options.truth && self.sun.is_some() {
             // The sun's layers in a vector of their own, so that a night frame's loop
             // below stays as it was.
@@ -279,10 +359,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .par_chunks_mut(row_len)
                 .zip(truth.par_chunks_mut(row_len))
                 .zip(sun.par_chunks_mut(row_len))
+                .zip(charge_rows.par_iter_mut())
                 .enumerate()
-                .for_each(|(r, ((rad, tru), sun))| {
+                .for_each(|(r, (((rad, tru), sun), charges))| {
                     let mut path = Path::default();
                     let mut centre = Sample::miss(Event::Sky);
+                    let mut tally = Tally::default();
                     let row = tile.y + r as u32;
                     for (c, ((l_out, t_out), s_out)) in rad
                         .iter_mut()
@@ -290,13 +372,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         .zip(sun.iter_mut())
                         .enumerate()
                     {
-                        *l_out = self.pixel::<true>(
-                            fc,
-                            options,
+                        *l_out = truth_pixel(
                             tile.x + c as u32,
                             row,
                             &mut path,
                             &mut centre,
+                            &mut tally,
+                            charges,
                         );
                         *t_out = TruthPixel::from(&centre);
                         *s_out = SunPixel::from(&centre);
@@ -308,19 +390,21 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             radiance
                 .par_chunks_mut(row_len)
                 .zip(truth.par_chunks_mut(row_len))
+                .zip(charge_rows.par_iter_mut())
                 .enumerate()
-                .for_each(|(r, (rad, tru))| {
+                .for_each(|(r, ((rad, tru), charges))| {
                     let mut path = Path::default();
                     let mut centre = Sample::miss(Event::Sky);
+                    let mut tally = Tally::default();
                     let row = tile.y + r as u32;
                     for (c, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                        *l_out = self.pixel::<true>(
-                            fc,
-                            options,
+                        *l_out = truth_pixel(
                             tile.x + c as u32,
                             row,
                             &mut path,
                             &mut centre,
+                            &mut tally,
+                            charges,
                         );
                         *t_out = TruthPixel::from(&centre);
                     }
@@ -335,13 +419,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     let mut scratch = Sample::miss(Event::Sky);
                     let row = tile.y + r as u32;
                     for (c, l_out) in rad.iter_mut().enumerate() {
-                        *l_out = self.pixel::<false>(
+                        *l_out = self.pixel::<false, ()>(
                             fc,
                             options,
                             tile.x + c as u32,
                             row,
                             &mut path,
                             &mut scratch,
+                            &mut (),
                         );
                     }
                     progress(1);
@@ -354,6 +439,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling: Vec::new(),
             sun,
+            charges: if charging {
+                Charges::concat(charge_rows)
+            } else {
+                Charges::default()
+            },
         }
     }
 
@@ -381,7 +471,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         }
         let mut s = Sample::miss(Event::Sky);
         let mut path = Path::default();
-        self.pixel::<true>(
+        self.pixel::<true, ()>(
             &self.frame_consts(
                 camera,
                 Tile {
@@ -396,6 +486,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             row,
             &mut path,
             &mut s,
+            &mut (),
         );
         Ok(s)
     }
@@ -403,8 +494,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// Radiance of a pixel (mean over its sub-pixel rays). With `TRUTH`, the centre ray's
     /// terms go to `centre` (written in place: a sample is 192 bytes, and moving it
     /// through every call level showed as memory copies in the profile); without, `centre`
-    /// is not touched. `path` is scratch space reused from pixel to pixel.
-    pub(super) fn pixel<const TRUTH: bool>(
+    /// is not touched. The rays the value is the mean of are charged to `sink`, which the
+    /// caller has restarted. `path` is scratch space reused from pixel to pixel.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn pixel<const TRUTH: bool, C: ChargeSink>(
         &self,
         fc: &FrameConsts<'_>,
         options: &TraceOptions,
@@ -412,6 +505,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         row: u32,
         path: &mut Path,
         centre: &mut Sample,
+        sink: &mut C,
     ) -> f64 {
         let camera = fc.camera;
         let mut ctx = Ctx::for_pixel(
@@ -427,17 +521,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         ctx.sun_truth = TRUTH;
         self.follow(fc, dir, &mut ctx, path);
         ctx.sun_truth = false;
-        let centre_radiance = self.radiance::<TRUTH>(fc, path, centre);
         let n = options.supersampling;
         if n <= 1 {
-            return centre_radiance;
+            sink.set_rays(1);
+            return self.radiance_charged::<TRUTH, C>(fc, path, centre, sink);
         }
+        self.radiance::<TRUTH>(fc, path, centre);
         let mut sum = 0.0;
         ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
             // Only the centre ray's terms are kept: the sub-pixel rays compute radiance.
             self.follow(fc, camera.direction_at(x, y), ctx, path);
-            sum += self.radiance::<false>(fc, path, centre);
+            sum += self.radiance_charged::<false, C>(fc, path, centre, sink);
         });
+        sink.set_rays(n * n);
         sum / f64::from(n * n)
     }
 }

@@ -347,6 +347,7 @@ impl TruthPixel {
             | Layer::SigmaModel
             | Layer::SigmaTotal
             | Layer::NotGuaranteed
+            | Layer::Samples
             | Layer::SolarIrradiance
             | Layer::SunVisibleFraction
             | Layer::ReflectedSolarRadiance
@@ -433,6 +434,10 @@ pub struct Frame {
     /// The sun's truth layers of each pixel's centre ray; empty without a sun
     /// ([`Tracer::with_sun`]) or when [`TraceOptions::truth`] is off.
     pub sun: Vec<SunPixel>,
+    /// The error budget's partials of each pixel's value, per input group of the facets
+    /// its rays met ([`crate::charge`]); empty unless the tracer was given the groups
+    /// ([`Tracer::with_budget_groups`]) and the truth is kept.
+    pub charges: Charges,
 }
 
 impl Frame {
