@@ -16,8 +16,8 @@ means physically is the tool's ``--help`` (``irsig-trace --help``) and README.md
     >>> ds.apparent_temperature.plot()
 
 Long work releases the GIL. A trace reports its progress to ``progress(done, total)`` (rows)
-or, without one, to the ``irsig`` logger at DEBUG; Ctrl-C stops it at its next row, and
-nothing is written. Errors are :class:`IrsigError`, with the file, line and column the
+or, without one, to the ``irsig`` logger at DEBUG; Ctrl-C stops it (within the frame it
+is tracing: the tracer finishes that frame's rows), and nothing is written. Errors are :class:`IrsigError`, with the file, line and column the
 command line prints.
 """
 

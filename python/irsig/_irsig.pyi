@@ -29,8 +29,8 @@ def trace(
     One dict per frame: ``files`` (suffix to bytes), ``decision`` (RON or None), ``band``,
     ``atmosphere``, ``angles_x_deg``, ``angles_y_deg``, ``notes``, ``warnings``.
     ``progress(done_rows, total_rows)`` is called from the calling thread about every 50
-    ms; an exception it raises, or ``KeyboardInterrupt``, stops the trace at its next row
-    and nothing is written.
+    ms; an exception it raises, or ``KeyboardInterrupt``, stops the trace within the frame
+    it is tracing, and nothing is written.
     """
 
 def run_stage(stage: str, args: Sequence[str]) -> None:

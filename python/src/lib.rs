@@ -5,7 +5,7 @@
 //! (`irsig_trace::Cli`, so every option the command has is the same option here, defined
 //! once), read into an `irsig_render::Plan` by the tool's own `plan_of` and rendered here:
 //! with the GIL released, progress reported to a Python callable, an interrupt (Ctrl-C)
-//! honoured between rows, and the frame's files handed back as bytes (and staged and
+//! honoured within the frame being traced, and the frame's files handed back as bytes (and staged and
 //! renamed into place exactly as `irsig-trace` does when outputs are named). The other
 //! stages (flatten, import, atmos, material, therm, sensor, stats, merge, report) run their
 //! tool's own body in this process. A layered EXR is read back into planes by

@@ -5,7 +5,9 @@
 //! While the plan renders on a thread of its own, the calling thread wakes every
 //! [`POLL`] to give a Python callable the rows traced so far and to let Python's signal
 //! handlers run: an interrupt (Ctrl-C's `KeyboardInterrupt`) or an exception from the
-//! callable stops the rendering at its next row, and nothing is written. When the argument
+//! callable stops the rendering: the tracer has no stopping point inside a frame (the rows
+//! already handed to its threads are traced), so the run ends with the frame it is on, no
+//! further frame is traced or encoded, and nothing is written. When the argument
 //! list names outputs (`-o PREFIX` or the per-file flags, `--decision-out`), the files are
 //! staged as each frame's bytes arrive and renamed into place together at the end, or none
 //! (`irsig_cli::StagedFrames`), exactly as the command line does.
@@ -26,8 +28,9 @@ use crate::errors::to_py;
 /// How often the caller hears of the rendering's progress and Python's signals are checked.
 const POLL: Duration = Duration::from_millis(50);
 
-/// What unwinds the rendering when the caller stops it: a payload of its own, never a
-/// panic message (`resume_unwind` runs no panic hook).
+/// What unwinds the rendering when the caller stops it, from the progress of each row
+/// traced after: a payload of its own, never a panic message (`resume_unwind` runs no panic
+/// hook).
 struct Stopped;
 
 /// Traces `irsig-trace`'s `args` (the arguments after the program's name); `progress`, if
@@ -40,7 +43,8 @@ struct Stopped;
 /// centres' angles from the optical axis), and the run's `notes` and `warnings`.
 ///
 /// Raises `IrsigError` for what `irsig-trace` refuses (with file, line and column), and
-/// whatever Python raised while it ran (`KeyboardInterrupt`, the callable's exception).
+/// whatever Python raised while it ran (`KeyboardInterrupt`, the callable's exception),
+/// once the frame being traced is done.
 #[pyfunction]
 #[pyo3(signature = (args, progress=None))]
 pub(crate) fn trace<'py>(

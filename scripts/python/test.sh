@@ -4,8 +4,8 @@
 # made on the first run with the system's python3 (3.9 or later), into which pip installs
 # maturin, numpy, xarray and pytest from the package index (about 30 s once, seconds after).
 # `maturin develop` then builds the extension module in the dev profile into the same
-# target folder as the Rust build (irsig's crates are not compiled again), and the tests
-# compare it with irsig-flatten and irsig-trace of that build.
+# target folder as the Rust build, and the tests compare it with irsig-flatten and
+# irsig-trace of that build.
 #
 # A missing python3, venv module or pip fails here, saying what to install: nothing is
 # skipped.
@@ -35,7 +35,10 @@ if ! "$venv/bin/python" -m pip --version >/dev/null 2>&1; then
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
   'maturin>=1.9.4,<2' 'numpy>=1.22' 'xarray>=2022.6' 'pytest>=7'
-echo "python-tests: building irsig-flatten and irsig-trace (dev profile), then the extension module" >&2
-cargo build --quiet -p irsig-flatten -p irsig-trace
+# The tools as the Rust tests build them (irsig_tests::bin_path), and the module with the
+# features of the workspace's test build (python/Cargo.toml): after `cargo test
+# --workspace` neither compiles irsig's crates again.
+echo "python-tests: building the tools (dev profile), then the extension module" >&2
+cargo build --quiet --workspace --bins --features irsig-tests/test-tools
 VIRTUAL_ENV="$venv" "$venv/bin/maturin" develop --quiet -m python/Cargo.toml
 IRSIG_BIN="$target/debug" exec "$venv/bin/python" -m pytest python/tests "$@"
