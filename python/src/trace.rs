@@ -34,7 +34,8 @@ const POLL: Duration = Duration::from_millis(50);
 struct Stopped;
 
 /// Traces `irsig-trace`'s `args` (the arguments after the program's name); `progress`, if
-/// given, is called with (rows traced, rows in all) from the calling thread.
+/// given, is called with (rows traced, rows in all) from the calling thread as rows are
+/// traced, and once more at the end.
 ///
 /// Returns one dict per frame: `files` (file kind to bytes: `radiance.exr`, `truth.exr`,
 /// and where the frame makes them `map.png`, `dc.png`, `lut.txt`), `decision` (the pilot's,
@@ -84,14 +85,15 @@ pub(crate) fn trace<'py>(
                     })
                 }))
             });
-            let mut raised = None;
+            let (mut raised, mut told) = (None, None);
             while !worker.is_finished() {
                 std::thread::sleep(POLL);
                 if raised.is_none() {
-                    raised = Python::attach(|py| {
-                        report(py, progress.as_ref(), done.load(Ordering::Relaxed), rows)
-                    })
-                    .err();
+                    // The callable hears of new rows only; the signals are checked each time.
+                    let now = done.load(Ordering::Relaxed);
+                    let callable = progress.as_ref().filter(|_| told != Some(now));
+                    told = Some(now);
+                    raised = Python::attach(|py| report(py, callable, now, rows)).err();
                     stop.store(raised.is_some(), Ordering::Relaxed);
                 }
             }

@@ -15,7 +15,9 @@ case "$target" in /*) ;; *) target="$PWD/$target" ;; esac
 venv="$target/py-venv-release"
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check 'maturin>=1.9.4,<2' numpy xarray
-cargo build --quiet --release -p irsig-flatten -p irsig-trace
+# With the package, so that the tools are built with the features maturin builds it with
+# (python/Cargo.toml) and the two share every compiled crate.
+cargo build --quiet --release -p irsig-flatten -p irsig-trace -p irsig-python
 VIRTUAL_ENV="$venv" "$venv/bin/maturin" develop --quiet --release -m python/Cargo.toml
 IRSIG_BIN="$target/release" ROUNDS="$rounds" "$venv/bin/python" - <<'PY'
 import os, statistics, subprocess, tempfile, time
