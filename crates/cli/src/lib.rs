@@ -527,6 +527,21 @@ pub fn parse<C: clap::Parser + CheckArgs>() -> C {
     cli
 }
 
+/// The tool's command line from `argv` (the program's name first), parsed by its clap `Cli`
+/// and checked by its own rules ([`CheckArgs`]) as [`parse`] does, for a caller in this
+/// process (the Python package): a malformed line is a usage error carrying clap's message,
+/// never an exit.
+///
+/// # Errors
+/// Clap's complaint (with `--help` and `--version`, their text) or the tool's own check.
+pub fn parse_from<C: clap::Parser + CheckArgs>(
+    argv: impl IntoIterator<Item = String>,
+) -> miette::Result<C> {
+    let cli = C::try_parse_from(argv).map_err(|e| usage_error(e.render().to_string()))?;
+    cli.check_args()?;
+    Ok(cli)
+}
+
 /// Checks `argv` (the program's name first) with the tool at `program`, as [`parse`] does:
 /// `Ok` when the tool accepts it, else clap's message. A program that does not know
 /// [`CHECK_ARGS`] cannot be asked, and is checked only when it runs (`Ok`).
