@@ -139,6 +139,7 @@ fn prepare(cli: &irsig_trace::Cli) -> miette::Result<(Plan, Vec<FrameFiles<()>>)
     }
     cli.output.check_stdout()?;
     let plan = irsig_trace::plan_of(cli)?;
+    irsig_trace::fits_in_memory(&plan, None)?;
     let mut wanted = FrameFiles::default();
     for kind in plan.file_kinds(true) {
         wanted.set(kind, ());

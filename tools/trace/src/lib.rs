@@ -334,6 +334,28 @@ pub fn plan_of(cli: &Cli) -> miette::Result<Plan> {
     plan(cli).map(|(plan, _)| plan).map_err(as_usage)
 }
 
+/// Refuses a frame (or, with `tile`, a tile and its margin) too large for the machine,
+/// before a pilot spends minutes on it and the allocation aborts the process with its
+/// staged files left behind: the largest one's [`FRAME_BYTES_PER_PIXEL`] against what the
+/// process may still take ([`irsig_cli::memory`]).
+///
+/// # Errors
+/// A frame that does not fit, or a tile the frame does not hold.
+pub fn fits_in_memory(plan: &Plan, tile: Option<TileRequest>) -> miette::Result<()> {
+    let ([w, h], bytes) = plan.largest_frame(tile)?;
+    let what = if tile.is_some() {
+        "a tile and its one-pixel margin"
+    } else {
+        "a frame"
+    };
+    irsig_cli::memory::check_fits(
+        bytes,
+        &format!("tracing {what}, {w} x {h} pixels at {FRAME_BYTES_PER_PIXEL} bytes a pixel,"),
+        "trace it in tiles (--tile), which need as much per pixel of the tile, or on a \
+         machine with more memory",
+    )
+}
+
 /// Runs the tool.
 ///
 /// # Errors
@@ -380,20 +402,7 @@ fn trace(cli: &Cli) -> miette::Result<()> {
     // Every frame's tile and files are checked before anything is traced: a fly-by would
     // otherwise fail only when its first frame is written.
     let rows = plan.rows(cli.tile)?;
-    // A frame too large for the machine is refused here, before a pilot spends minutes on
-    // it and the allocation aborts the process with its staged files left behind.
-    let ([w, h], bytes) = plan.largest_frame(cli.tile)?;
-    let what = if cli.tile.is_some() {
-        "a tile and its one-pixel margin"
-    } else {
-        "a frame"
-    };
-    irsig_cli::memory::check_fits(
-        bytes,
-        &format!("tracing {what}, {w} x {h} pixels at {FRAME_BYTES_PER_PIXEL} bytes a pixel,"),
-        "trace it in tiles (--tile), which need as much per pixel of the tile, or on a \
-         machine with more memory",
-    )?;
+    fits_in_memory(&plan, cli.tile)?;
     let (whole, kinds) = (cli.tile.is_none(), plan.file_kinds(cli.tile.is_none()));
     let files = match execute_files {
         Some(files) => files,
