@@ -48,6 +48,7 @@
 //!         spectral: None,
 //!         rms_slope: None,
 //!         thermal: None,
+//!         texture: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;
@@ -83,6 +84,7 @@ mod shade;
 pub mod sun;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
+mod texture;
 pub mod tile;
 mod tracer;
 mod vec;
