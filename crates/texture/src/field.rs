@@ -18,13 +18,14 @@ use rand_chacha::ChaCha8Rng;
 use crate::spectrum::Shape;
 
 /// The number of plane waves in a field: enough that a realisation's variance is exact and
-/// its one-point distribution Gaussian (excess kurtosis `−1.5/N` = −0.023), few enough that
-/// a hit evaluates both of a material's fields in about as long as it takes to find it
-/// (BENCHMARKS.md, "texture").
-pub const WAVES: usize = 64;
+/// its one-point distribution Gaussian (excess kurtosis `−1.5/N` = −0.047), and the
+/// rendered σ and correlation lengths those asked for over a few seeds (the tracer's
+/// `tests/texture.rs`); each wave costs a hit about 4 ns (BENCHMARKS.md, "texture"), so
+/// 64 cost twice as much for no test that 32 fail.
+pub const WAVES: usize = 32;
 
 /// A field's values are held within this many σ of its mean: a sum of cosines is bounded
-/// anyway (by `√(2N)` σ = 11.3 σ), and beyond 8 σ a Gaussian puts one point in 10¹⁵.
+/// anyway (by `√(2N)` σ = 8 σ), and beyond 8 σ a Gaussian puts one point in 10¹⁵.
 pub const CLIP_SIGMAS: f64 = 8.0;
 
 /// One random field, ready to evaluate.
@@ -111,7 +112,8 @@ impl Field {
 /// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises and gives the same
 /// bits on every platform: `t` reduced to `a = |t − round(t)|` in [0, ½] (rounding by the
 /// 1.5·2⁵² trick, exact for `|t| < 2⁵¹`), then `cos 2πa = −sin y`, `y = 2π(a − ¼)` in
-/// [−π/2, π/2], by its Taylor series to `y¹⁵` (truncation below `(π/2)¹⁷/17!` = 6·10⁻¹²).
+/// [−π/2, π/2], by its Taylor series to `y¹¹` (truncation below `(π/2)¹³/13!` = 6·10⁻⁸, far
+/// below any texture's σ: the statistics rest on the waves, not on the last digits).
 #[inline]
 pub(crate) fn cos_turns(t: f64) -> f64 {
     const ROUND: f64 = 6_755_399_441_055_744.0;
@@ -122,10 +124,7 @@ pub(crate) fn cos_turns(t: f64) -> f64 {
     let series = 1.0
         + y2 * (-1.0 / 6.0
             + y2 * (1.0 / 120.0
-                + y2 * (-1.0 / 5040.0
-                    + y2 * (1.0 / 362_880.0
-                        + y2 * (-1.0 / 39_916_800.0
-                            + y2 * (1.0 / 6_227_020_800.0 + y2 * (-1.0 / 1_307_674_368_000.0)))))));
+                + y2 * (-1.0 / 5040.0 + y2 * (1.0 / 362_880.0 + y2 * (-1.0 / 39_916_800.0)))));
     -y * series
 }
 
@@ -141,10 +140,10 @@ mod tests {
             let t = f64::from(i) * 1.37e-3 + 0.1234;
             worst = worst.max((cos_turns(t) - (std::f64::consts::TAU * t).cos()).abs());
         }
-        assert!(worst < 1e-10, "{worst}");
+        assert!(worst < 1e-7, "{worst}");
         // Extremes: whole and half turns, far from the origin.
-        assert!((cos_turns(0.0) - 1.0).abs() < 1e-11);
-        assert!((cos_turns(0.5) + 1.0).abs() < 1e-11);
+        assert!((cos_turns(0.0) - 1.0).abs() < 1e-7);
+        assert!((cos_turns(0.5) + 1.0).abs() < 1e-7);
         assert!((cos_turns(-1e9 - 0.25)).abs() < 1e-6);
     }
 
