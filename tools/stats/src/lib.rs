@@ -56,7 +56,7 @@ Examples:
       the same for the sensor stage's blurred radiance, in degC, as CSV
   irsig-stats out/frame.truth.exr --regions regions.ron --layer kinetic_temperature
       the kinetic temperature the tracer assigned, per region
-  irsig-stats out/frame.truth.exr --regions regions.ron --texture grass --pixel-m 0.05 \
+  irsig-stats out/frame.truth.exr --regions regions.ron --texture grass --pixel-m 0.05 \\
       --texture-out grass-texture.ron
       also the texture of region `grass` (sigma, correlation lengths, a fitted spectrum)
       as a material's `texture` description
