@@ -44,8 +44,9 @@ pub struct Field {
 }
 
 impl Field {
-    /// The field `spec` drawn from `seed` (its waves from a ChaCha8 stream: the same on
-    /// every platform). `spec` should be valid (`RandomField::validate`); lengths that are
+    /// The field `spec` drawn from `seed` (its waves from a ChaCha8 stream, the same
+    /// numbers on every platform; their frequencies through the standard library's `ln`,
+    /// `exp`, `sin` and `cos`). `spec` should be valid (`RandomField::validate`); lengths that are
     /// not finite or not positive give a field of 0.
     #[must_use]
     pub fn new(spec: &RandomField, seed: u64) -> Self {
@@ -113,8 +114,7 @@ impl Field {
     }
 }
 
-/// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises and gives the same
-/// bits on every platform: `t` reduced to `a = |t − round(t)|` in [0, ½] (rounding by the
+/// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises: `t` reduced to `a = |t − round(t)|` in [0, ½] (rounding by the
 /// 1.5·2⁵² trick, exact for `|t| < 2⁵¹`), then `cos 2πa = −sin y`, `y = 2π(a − ¼)` in
 /// [−π/2, π/2], by its Taylor series to `y¹¹` (truncation below `(π/2)¹³/13!` = 6·10⁻⁸, far
 /// below any texture's σ: the statistics rest on the waves, not on the last digits).
