@@ -116,6 +116,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
                     spectral: None,
                     rms_slope: None,
                     thermal: None,
+                    texture: None,
                 }
             })
             .collect(),

@@ -147,3 +147,38 @@ fn the_loads_samples_read_round_trip_and_tell_their_kind_of_plan() {
     );
     assert_eq!(e.line, 9, "{e}");
 }
+
+#[test]
+fn the_textured_materials_sample_reads_and_a_bad_sigma_is_refused_at_its_place() {
+    use irsig_model::texture::{CorrelationLength, FieldSpectrum};
+    let lib: MaterialLibrary = round_trip("materials-textured.ron");
+    let grass = lib.materials[0].texture.as_ref().unwrap();
+    assert_eq!(grass.seed, 7);
+    assert!(grass.emissivity_scale.is_none());
+    let asphalt = lib.materials[1].texture.as_ref().unwrap();
+    assert_eq!(
+        asphalt.emissivity_scale.as_ref().unwrap().spectrum,
+        FieldSpectrum::Exponential {
+            correlation_length_m: CorrelationLength::PerAxis(4.0, 0.3, 0.3)
+        }
+    );
+    // A library without texture writes none back.
+    let plain: MaterialLibrary = round_trip("materials.ron");
+    assert!(
+        !canonical::to_ron_pretty(&plain)
+            .unwrap()
+            .contains("texture")
+    );
+    let text = sample("materials-textured.ron");
+    for bad in ["-1.5", "NaN"] {
+        let broken = text.replacen("sigma: 1.5", &format!("sigma: {bad}"), 1);
+        let e = canonical::from_ron::<MaterialLibrary>("lib.ron", &broken).unwrap_err();
+        assert!(
+            e.message
+                .contains("materials[0].texture.temperature_offset_k.sigma"),
+            "{bad}: {e}"
+        );
+        let line = text.lines().position(|l| l.contains("sigma: 1.5")).unwrap() + 1;
+        assert_eq!(e.line, line, "{bad}: {e}");
+    }
+}

@@ -38,6 +38,7 @@
 //!         spectral: None,
 //!         rms_slope: None,
 //!         thermal: None,
+//!         texture: None,
 //!     }],
 //! };
 //! assert!(lib.validate().is_ok());
@@ -61,6 +62,7 @@ mod raw;
 mod regions;
 mod scene;
 mod spectral;
+pub mod texture;
 pub mod thermal;
 pub mod thermal_decision;
 pub mod time;

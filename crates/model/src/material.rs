@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ModelError, ModelErrorKind, check_increasing, check_range};
+use crate::texture::StatisticalTexture;
 use crate::thermal::ThermalProperties;
 
 /// A material's number, as facets and the interaction map carry it. 0 is never a material:
@@ -59,9 +60,14 @@ pub struct Material {
     /// take the temperatures the scene gives them, and the thermal model refuses it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub thermal: Option<ThermalProperties>,
+    /// Random fields over world space that vary the temperature of the material's facets
+    /// and its emissivity from point to point ([`crate::texture`]). `None`: every facet
+    /// is one temperature and one emissivity, as the scene and the table give them.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub texture: Option<StatisticalTexture>,
 }
 
-/// The derived form, with `rms_slope` and `thermal` shown only when given: a material
+/// The derived form, with `rms_slope`, `thermal` and `texture` shown only when given: a material
 /// without them prints (and so feeds a run's hash, `irsig.run`) exactly as before the
 /// fields existed.
 impl std::fmt::Debug for Material {
@@ -79,6 +85,9 @@ impl std::fmt::Debug for Material {
         }
         if let Some(thermal) = &self.thermal {
             d.field("thermal", thermal);
+        }
+        if let Some(texture) = &self.texture {
+            d.field("texture", texture);
         }
         d.finish()
     }
@@ -275,6 +284,9 @@ impl Material {
         if let Some(t) = &self.thermal {
             t.validate(&format!("{prefix}.thermal"))?;
         }
+        if let Some(t) = &self.texture {
+            t.validate(&format!("{prefix}.texture"))?;
+        }
         if let Some(s) = &self.spectral {
             s.validate(&format!("{prefix}.spectral"))?;
             if self.emissivity.first().is_some_and(|r| r.1 <= 0.0) {
@@ -347,6 +359,7 @@ mod tests {
             spectral: None,
             rms_slope: None,
             thermal: None,
+            texture: None,
         }
     }
 

@@ -36,6 +36,7 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 pub mod stats;
+pub mod texture;
 
 use irsig_model::RegionSet;
 use serde::Serialize;

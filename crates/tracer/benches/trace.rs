@@ -1,7 +1,8 @@
 //! Tracer throughput on one core: primary radiance samples per second on a tessellated
 //! sphere (1k, 100k and 1M triangles) over a ground plate, diffuse, with one specular
 //! bounce and with the sky-view factor on; the same primary rays through bare obvhs
-//! (its own, non-watertight triangle test, no radiometry) for the ratio; and BVH build time.
+//! (its own, non-watertight triangle test, no radiometry) for the ratio; the diffuse case
+//! with a statistical texture on every facet; and BVH build time.
 //!
 //! `cargo bench -p irsig-tracer` (a few seconds per case). Figures go to BENCHMARKS.md.
 
@@ -58,6 +59,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         spectral: None,
         rms_slope: None,
         thermal: None,
+        texture: None,
     };
     MaterialLibrary {
         materials: vec![m(1, sphere_specular), m(2, 0.0)],
@@ -110,6 +112,53 @@ fn shaded_diffuse(bencher: divan::Bencher, i: usize) {
     bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
         one_core(|| {
             p.diffuse
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}
+
+/// The diffuse scene with every facet textured: both materials vary their temperature
+/// (σ 1.5 K, exponential, 0.5 m) and their emissivity (σ 2 %, Gaussian, 2 m), so every hit
+/// evaluates two fields of `irsig_texture::WAVES` waves and reads the textured `L_T`
+/// table. Against `shaded_diffuse`: what a texture on every facet costs a frame.
+fn textured(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
+    use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 3] =
+        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    CACHE[i].get_or_init(|| {
+        let mut lib = materials(0.0);
+        for (k, m) in lib.materials.iter_mut().enumerate() {
+            m.texture = Some(StatisticalTexture {
+                seed: k as u64,
+                temperature_offset_k: Some(RandomField {
+                    sigma: 1.5,
+                    spectrum: FieldSpectrum::Exponential {
+                        correlation_length_m: CorrelationLength::Isotropic(0.5),
+                    },
+                }),
+                emissivity_scale: Some(RandomField {
+                    sigma: 0.02,
+                    spectrum: FieldSpectrum::Gaussian {
+                        correlation_length_m: CorrelationLength::Isotropic(2.0),
+                    },
+                }),
+            });
+        }
+        let sky = Vacuum {
+            sky_radiance_w_m2_sr: 20.0,
+        };
+        Tracer::new(&raw_scene(&mesh(i)), &lib, TotalRadiance, sky).unwrap()
+    })
+}
+
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
+    let tracer = textured(i);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            tracer
                 .render(&cam, &TraceOptions::default(), &|_| {})
                 .unwrap()
         })

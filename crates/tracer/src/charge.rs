@@ -259,7 +259,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         match path.nodes.as_slice() {
             [only] if !matches!(only.diffuse, Some(Diffuse::Rays { .. })) => sink.charge(
                 self.group_of(&only.surface),
-                tau * first.emissivity * b.derivative[only.surface.data.temperature_index as usize],
+                tau * first.emissivity * b.derivative_at(&only.surface),
                 tau * (first.blackbody - first.reflected),
             ),
             _ => self.charge_chain(b, path, tau, sink),
@@ -285,7 +285,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let sfrac = self.materials[usize::from(node.surface.data.material)].specular_fraction;
             let r = 1.0 - terms.emissivity;
             *slot = [
-                terms.emissivity * b.derivative[node.surface.data.temperature_index as usize],
+                terms.emissivity * b.derivative_at(&node.surface),
                 terms.blackbody - terms.reflected,
                 r * sfrac,
                 r * (1.0 - sfrac),
@@ -332,8 +332,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let eps = b.emissivity_of(h);
                 sink.charge(
                     self.group_of(h),
-                    weight * eps * b.derivative[h.data.temperature_index as usize],
-                    weight * (b.blackbody_of(&h.data) - sky_hemispheric(b, h.alt_m)),
+                    weight * eps * b.derivative_at(h),
+                    weight * (b.blackbody_at(h) - sky_hemispheric(b, h.alt_m)),
                 );
             }
         }

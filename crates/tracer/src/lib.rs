@@ -48,6 +48,7 @@
 //!         spectral: None,
 //!         rms_slope: None,
 //!         thermal: None,
+//!         texture: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;
@@ -85,6 +86,7 @@ pub mod slab_census;
 pub mod sun;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
+mod texture;
 pub mod tile;
 mod tracer;
 mod vec;

@@ -41,8 +41,11 @@ pub(crate) struct Surface {
     pub(crate) alt_m: f64,
     /// ε at this incidence in the tracer's own emissivity tables, found once: every
     /// sub-band whose table for the material is the same reads it
-    /// ([`crate::tracer::BandData::emissivity_of`]).
+    /// ([`crate::tracer::BandData::emissivity_of`]). Before the texture's scale.
     pub(crate) emissivity: f64,
+    /// The material's texture at the hit point ([`irsig_texture`]); `None` for a material
+    /// without one, whose hits take exactly the facet's temperature and the table's ε.
+    pub(crate) texel: Option<irsig_texture::Texel>,
 }
 
 /// What arrives along the mirror direction of a facet with a specular part.
@@ -407,15 +410,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         }
     }
 
-    /// The record of a hit at altitude `alt`.
+    /// The record of a hit at altitude `alt`: with its material's texture sampled at the
+    /// hit's world position, every event alike (the first hit, a specular bounce's, a
+    /// sky-view ray's).
     fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
+        let slot = usize::from(hit.data.material);
         Surface {
             facet: hit.facet,
             data: hit.data,
             cos_incidence: hit.cos_incidence,
             back_face: hit.back_face,
             alt_m: alt,
-            emissivity: self.emissivity[usize::from(hit.data.material)].at_cos(hit.cos_incidence),
+            emissivity: self.emissivity[slot].at_cos(hit.cos_incidence),
+            texel: self.materials[slot]
+                .texture
+                .as_ref()
+                .map(|t| t.sample(self.geometry.to_world(hit.point_local))),
         }
     }
 

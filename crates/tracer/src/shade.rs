@@ -223,8 +223,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         self.charge_path(b, path, &first, p.transmission, sink);
                     }
                     if TRUTH {
-                        let facet = &path.nodes[0].surface.data;
-                        let derivative = b.derivative[facet.temperature_index as usize];
+                        let derivative = b.derivative_at(&path.nodes[0].surface);
                         sums.add(&first, p.transmission, p.path_radiance_w_m2_sr, derivative);
                         sums.transmitted_solar += scattered;
                         single = first;
@@ -275,7 +274,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         s.back_face = surface.back_face;
         s.range_m = range_m;
         s.cos_incidence = surface.cos_incidence;
-        s.temperature_k = surface.data.temperature_k;
+        s.temperature_k =
+            surface.data.temperature_k + surface.texel.map_or(0.0, |t| t.temperature_offset_k);
         s.emissivity = if one {
             single.emissivity
         } else {
@@ -345,7 +345,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let slot = usize::from(surface.data.material);
         let sfrac = self.materials[slot].specular_fraction;
         let eps = b.emissivity_of(surface);
-        let blackbody = b.blackbody_of(&surface.data);
+        let blackbody = b.blackbody_at(surface);
         let sky_hemi = sky_hemispheric(b, surface.alt_m);
         let specular_incident = match node.mirror {
             None => 0.0,
@@ -363,7 +363,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .map(|ray| match *ray {
                         HemiRay::Facet(h) => {
                             let e2 = b.emissivity_of(&h);
-                            e2 * b.blackbody_of(&h.data) + (1.0 - e2) * sky_hemispheric(b, h.alt_m)
+                            e2 * b.blackbody_at(&h) + (1.0 - e2) * sky_hemispheric(b, h.alt_m)
                         }
                         HemiRay::Escaped(e) => escaped(b, e),
                     })

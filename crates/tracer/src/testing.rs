@@ -320,6 +320,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
                 spectral: None,
                 rms_slope: None,
                 thermal: None,
+                texture: None,
             })
             .collect(),
     }

@@ -49,6 +49,9 @@ pub(crate) struct MaterialData {
     /// The specular share's lobe for the sun's glint, where the material has an RMS slope
     /// above 0 and a specular share ([`crate::lobe`]); `None`: a mirror.
     pub(crate) lobe: Option<crate::lobe::Lobe>,
+    /// The material's statistical texture, drawn; `None` where it has none (or one that
+    /// varies nothing), and its hits are shaded exactly as without the field.
+    pub(crate) texture: Option<irsig_texture::TextureFields>,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
@@ -90,18 +93,26 @@ pub(crate) struct BandData<A> {
     pub(crate) terrain_solar: f64,
     /// The sun's direct beam in this sub-band ([`Tracer::with_sun`]); `None`: no sun.
     pub(crate) sun: Option<SunBeam>,
+    /// L_T and dL_T/dT over the temperatures textured hits reach
+    /// ([`crate::texture`]); `None` when no material's texture varies the temperature.
+    pub(crate) textured: Option<crate::texture::BlackbodyTable>,
 }
 
 impl<A> BandData<A> {
     /// ε of a recorded hit in this sub-band: the one found when the hit was recorded where
     /// the material's table is the tracer's own, else looked up (bit for bit the same).
+    /// A textured hit's ε is the table's scaled by the texel, held to 0 to 1.
     #[inline]
     pub(crate) fn emissivity_of(&self, surface: &crate::path::Surface) -> f64 {
         let slot = usize::from(surface.data.material);
-        if self.own_emissivity[slot] {
+        let eps = if self.own_emissivity[slot] {
             surface.emissivity
         } else {
             self.emissivity[slot].at_cos(surface.cos_incidence)
+        };
+        match surface.texel {
+            None => eps,
+            Some(texel) => texel.emissivity(eps),
         }
     }
 
@@ -112,6 +123,34 @@ impl<A> BandData<A> {
             facet.blackbody
         } else {
             self.blackbody[facet.temperature_index as usize]
+        }
+    }
+
+    /// L_T at a hit in this sub-band, W m⁻² sr⁻¹: the facet's, or at a texture's
+    /// temperature offset the textured table's.
+    #[inline]
+    pub(crate) fn blackbody_at(&self, surface: &crate::path::Surface) -> f64 {
+        match (surface.texel, &self.textured) {
+            (Some(texel), Some(table)) if texel.temperature_offset_k != 0.0 => {
+                table
+                    .at(surface.data.temperature_k + texel.temperature_offset_k)
+                    .0
+            }
+            _ => self.blackbody_of(&surface.data),
+        }
+    }
+
+    /// dL_T/dT at a hit in this sub-band, W m⁻² sr⁻¹ K⁻¹ (the error budget's
+    /// sensitivity), at its textured temperature where it has one.
+    #[inline]
+    pub(crate) fn derivative_at(&self, surface: &crate::path::Surface) -> f64 {
+        match (surface.texel, &self.textured) {
+            (Some(texel), Some(table)) if texel.temperature_offset_k != 0.0 => {
+                table
+                    .at(surface.data.temperature_k + texel.temperature_offset_k)
+                    .1
+            }
+            _ => self.derivative[surface.data.temperature_index as usize],
         }
     }
 }
@@ -213,6 +252,10 @@ pub struct Tracer<B, A> {
     /// The error budget's input group of each raw-scene facet ([`Tracer::with_budget_groups`]);
     /// `None`: no charges are kept.
     pub(crate) budget_groups: Option<Vec<u32>>,
+    /// The temperatures, K, that hits of a material whose texture varies the temperature
+    /// can reach (its facets' temperatures, plus and minus the largest offset); `None`
+    /// when there is none, and no sub-band tabulates them.
+    pub(crate) textured_span_k: Option<[f64; 2]>,
 }
 
 /// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.
@@ -493,6 +536,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 })
             })?;
             tables.push(table);
+            let texture = match &m.texture {
+                Some(t) if t.varies() => {
+                    Some(irsig_texture::TextureFields::new(t).map_err(|e| {
+                        TraceError::new(TraceErrorKind::InvalidOptions(format!(
+                            "material {}: {e}",
+                            m.id.0
+                        )))
+                    })?)
+                }
+                _ => None,
+            };
             mats.push(MaterialData {
                 id: m.id.0,
                 name: m.name.clone(),
@@ -501,6 +555,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .rms_slope
                     .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
                     .map(crate::lobe::Lobe::new),
+                texture,
             });
         }
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets
@@ -565,7 +620,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             refinement: None,
             sun: None,
             budget_groups: None,
+            textured_span_k: None,
         };
+        tracer.textured_span_k = tracer.textured_span(scene);
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records.
         own.bands[0].inline = true;
@@ -716,7 +773,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .zip(&self.emissivity)
                 .map(|(a, b)| a == b)
                 .collect();
+            let textured = self
+                .textured_span_k
+                .map(|span| crate::texture::BlackbodyTable::new(&sb.band, span));
             bands.push(BandData {
+                textured,
                 atmosphere: sb.atmosphere,
                 emissivity,
                 own_emissivity,
@@ -733,6 +794,40 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             b.terrain_solar = terrain_solar(&terrain, b, None);
         }
         Ok(BandSet::new(bands))
+    }
+
+    /// The span of temperatures, K, that the hits of materials whose texture varies the
+    /// temperature reach: their facets' coldest minus and hottest plus the largest offset
+    /// any of them gives. `None`: no such material has a facet.
+    fn textured_span(&self, scene: &RawScene) -> Option<[f64; 2]> {
+        let offset: Vec<f64> = self
+            .materials
+            .iter()
+            .map(|m| {
+                m.texture
+                    .as_ref()
+                    .map_or(0.0, irsig_texture::TextureFields::max_temperature_offset_k)
+            })
+            .collect();
+        if offset.iter().all(|&o| o <= 0.0) {
+            return None;
+        }
+        let slot_of: std::collections::HashMap<u16, usize> = self
+            .materials
+            .iter()
+            .enumerate()
+            .map(|(slot, m)| (m.id, slot))
+            .collect();
+        let mut span: Option<[f64; 2]> = None;
+        for f in &scene.facets {
+            let o = slot_of.get(&f.material.0).map_or(0.0, |&s| offset[s]);
+            if o > 0.0 {
+                let [lo, hi] = span.get_or_insert([f64::INFINITY, f64::NEG_INFINITY]);
+                *lo = lo.min(f.temperature_k - o);
+                *hi = hi.max(f.temperature_k + o);
+            }
+        }
+        span
     }
 
     /// The geometry (BVH and re-centring).

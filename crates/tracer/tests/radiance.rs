@@ -53,6 +53,7 @@ fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Mat
         spectral: None,
         rms_slope: None,
         thermal: None,
+        texture: None,
     }
 }
 

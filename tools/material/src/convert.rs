@@ -190,6 +190,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             spectral: None,
             rms_slope: None,
             thermal: None,
+            texture: None,
         });
     }
     let library = MaterialLibrary { materials };

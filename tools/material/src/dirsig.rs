@@ -129,6 +129,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 spectral: None,
                 rms_slope: None,
                 thermal,
+                texture: None,
             });
             continue;
         };
@@ -194,6 +195,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
             }),
             rms_slope: None,
             thermal,
+            texture: None,
         });
     }
     let library = MaterialLibrary { materials };

@@ -377,6 +377,7 @@ fn write_library(
             spectral: entry.spectral,
             rms_slope: entry.rms_slope,
             thermal: None,
+            texture: None,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

@@ -37,6 +37,8 @@ use miette::miette;
 
 use irsig_regions::{Inputs, Row, Table, tabulate};
 
+mod texture;
+
 /// The truth layer regions select by.
 const MATERIAL_LAYER: &str = Layer::MaterialPrimary.name();
 /// The default value layer: the tracer's apparent temperature, K.
@@ -54,6 +56,10 @@ Examples:
       the same for the sensor stage's blurred radiance, in degC, as CSV
   irsig-stats out/frame.truth.exr --regions regions.ron --layer kinetic_temperature
       the kinetic temperature the tracer assigned, per region
+  irsig-stats out/frame.truth.exr --regions regions.ron --texture grass --pixel-m 0.05 \\
+      --texture-out grass-texture.ron
+      also the texture of region `grass` (sigma, correlation lengths, a fitted spectrum)
+      as a material's `texture` description
 
 The regions file (canonical RON, formats/canonical/regions.md):
   (references: [(name: \"paper\", source: \"Table 7\")],
@@ -106,6 +112,9 @@ pub struct Cli {
     /// `-o PATH`.
     #[command(flatten)]
     pub output: Output,
+    /// `--texture REGION --pixel-m M --texture-out FILE`.
+    #[command(flatten)]
+    pub texture: texture::TextureArgs,
 }
 
 /// The flags' own rules are clap's and the run's: nothing more is checked before a file
@@ -125,7 +134,18 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         .into_iter()
         .chain(cli.radiance.file.as_deref())
         .chain(band_file);
-    irsig_cli::refuse_output_is_input(inputs, cli.output.path.iter())?;
+    irsig_cli::refuse_output_is_input(
+        inputs,
+        cli.output.path.iter().chain(cli.texture.texture_out.iter()),
+    )?;
+    if let (Some(out), Some(texture_out)) = (&cli.output.path, &cli.texture.texture_out)
+        && out == texture_out
+    {
+        return Err(irsig_cli::usage_error(format!(
+            "--texture-out {}: the same file as -o: expected two outputs",
+            texture_out.display()
+        )));
+    }
     let regions_input = irsig_cli::read_input(regions)?;
     let regions_text = irsig_formats::canonical::utf8(&regions_input.name, &regions_input.bytes)?;
     let set: RegionSet = irsig_formats::canonical::from_ron(&regions_input.name, regions_text)?;
@@ -209,6 +229,21 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         )));
     }
 
+    let texture_text = match (&cli.texture.texture, cli.texture.pixel_m) {
+        (Some(region), Some(pixel_m)) => Some(texture::describe(&texture::Request {
+            region,
+            pixel_m,
+            seed: cli.texture.texture_seed,
+            set: &set,
+            ids,
+            values: &values,
+            width: truth.width,
+            unit,
+            source: &source,
+            regions_name: &regions_input.name,
+        })?),
+        _ => None,
+    };
     let table = tabulate(&Inputs {
         regions_name: &regions_input.name,
         regions_text,
@@ -222,6 +257,10 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         celsius: cli.celsius,
     })?;
     let text = render(&table, cli.format.value)?;
+    // Everything is computed before anything is written.
+    if let (Some(out), Some(t)) = (&cli.texture.texture_out, &texture_text) {
+        irsig_cli::write_output(Some(out), |w| w.write_all(t.as_bytes()))?;
+    }
     irsig_cli::write_output(cli.output.path.as_deref(), |w| w.write_all(text.as_bytes()))
 }
 

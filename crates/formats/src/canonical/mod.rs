@@ -451,6 +451,7 @@ mod tests {
                     spectral: None,
                     rms_slope: None,
                     thermal: None,
+                    texture: None,
                 },
                 Material {
                     id: MaterialId(2),
@@ -462,6 +463,7 @@ mod tests {
                     spectral: None,
                     rms_slope: None,
                     thermal: None,
+                    texture: None,
                 },
             ],
         }
