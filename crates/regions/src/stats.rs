@@ -51,6 +51,38 @@ pub fn region_stats(
     values: &[f32],
     width: usize,
 ) -> Result<RegionStats, RegionProblem> {
+    let (plane, _) = region_plane(region, ids, values, width)?;
+    let selected: Vec<f64> = plane.into_iter().filter(|v| !v.is_nan()).collect();
+    let n = selected.len();
+    let (sum, min, max) = selected.iter().fold(
+        (0.0_f64, f64::INFINITY, f64::NEG_INFINITY),
+        |(sum, min, max), &v| (sum + v, min.min(v), max.max(v)),
+    );
+    let mean = sum / n as f64;
+    // Two passes: the variance of values that differ by millikelvin around 300 K loses
+    // every digit to cancellation in the one-pass form.
+    let variance = selected.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
+    Ok(RegionStats {
+        pixels: n,
+        mean,
+        std_dev: variance.sqrt(),
+        min,
+        max,
+    })
+}
+
+/// The values `region` selects of a `width`-wide image, as a plane over its box (the whole
+/// image without one) with NaN at the pixels it does not select (another material), and
+/// that plane's width: what [`estimate`] reads.
+///
+/// # Errors
+/// A box beyond the image, an empty selection or a non-finite selected value.
+pub fn region_plane(
+    region: &Region,
+    ids: &[f32],
+    values: &[f32],
+    width: usize,
+) -> Result<(Vec<f64>, usize), RegionProblem> {
     let height = values.len().checked_div(width).unwrap_or(0);
     let (columns, rows) = match region.pixels {
         Some(b) => {
@@ -65,43 +97,28 @@ pub fn region_stats(
         None => (0..=width - 1, 0..=height - 1),
     };
     let wanted = region.material.map(|MaterialId(id)| f32::from(id));
-    let mut n = 0usize;
-    let (mut sum, mut min, mut max) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
-    let mut selected = Vec::new();
+    let mut plane = Vec::with_capacity(columns.clone().count() * rows.clone().count());
+    let mut any = false;
     for row in rows {
         for column in columns.clone() {
             let i = row * width + column;
-            if let Some(id) = wanted
-                && ids.get(i).copied() != Some(id)
-            {
-                continue;
+            let selected = wanted.is_none_or(|id| ids.get(i).copied() == Some(id));
+            match values.get(i) {
+                Some(&v) if selected => {
+                    if !v.is_finite() {
+                        return Err(RegionProblem::NotFinite { column, row });
+                    }
+                    any = true;
+                    plane.push(f64::from(v));
+                }
+                _ => plane.push(f64::NAN),
             }
-            let Some(&v) = values.get(i) else { continue };
-            if !v.is_finite() {
-                return Err(RegionProblem::NotFinite { column, row });
-            }
-            let v = f64::from(v);
-            n += 1;
-            sum += v;
-            min = min.min(v);
-            max = max.max(v);
-            selected.push(v);
         }
     }
-    if n == 0 {
+    if !any {
         return Err(RegionProblem::Empty);
     }
-    let mean = sum / n as f64;
-    // Two passes: the variance of values that differ by millikelvin around 300 K loses
-    // every digit to cancellation in the one-pass form.
-    let variance = selected.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n as f64;
-    Ok(RegionStats {
-        pixels: n,
-        mean,
-        std_dev: variance.sqrt(),
-        min,
-        max,
-    })
+    Ok((plane, columns.count()))
 }
 
 #[cfg(test)]

@@ -13,9 +13,8 @@
 //! a pixel along each.
 
 use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
-use irsig_model::{MaterialId, Region};
 
-use crate::stats::RegionProblem;
+pub use crate::stats::region_plane;
 
 /// Lags of the autocorrelation are measured out to where it falls below this (the fit
 /// uses the part of the curve that holds the length scale, not the noise of its tail).
@@ -67,56 +66,6 @@ impl std::fmt::Display for TextureProblem {
             Self::BadPixelLength => "expected a pixel length above 0 m",
         })
     }
-}
-
-/// The values `region` selects of a `width`-wide image, as a plane over its box (the whole
-/// image without one) with NaN at the pixels it does not select (another material), and
-/// that plane's width: what [`estimate`] reads.
-///
-/// # Errors
-/// A box beyond the image, an empty selection or a non-finite selected value.
-pub fn region_plane(
-    region: &Region,
-    ids: &[f32],
-    values: &[f32],
-    width: usize,
-) -> Result<(Vec<f64>, usize), RegionProblem> {
-    let height = values.len().checked_div(width).unwrap_or(0);
-    let (columns, rows) = match region.pixels {
-        Some(b) => {
-            let (c0, c1) = (b.columns.0 as usize, b.columns.1 as usize);
-            let (r0, r1) = (b.rows.0 as usize, b.rows.1 as usize);
-            if c1 >= width || r1 >= height {
-                return Err(RegionProblem::BoxOutside { width, height });
-            }
-            (c0..=c1, r0..=r1)
-        }
-        None if width == 0 || height == 0 => return Err(RegionProblem::Empty),
-        None => (0..=width - 1, 0..=height - 1),
-    };
-    let wanted = region.material.map(|MaterialId(id)| f32::from(id));
-    let mut plane = Vec::with_capacity(columns.clone().count() * rows.clone().count());
-    let mut any = false;
-    for row in rows {
-        for column in columns.clone() {
-            let i = row * width + column;
-            let selected = wanted.is_none_or(|id| ids.get(i).copied() == Some(id));
-            match values.get(i) {
-                Some(&v) if selected => {
-                    if !v.is_finite() {
-                        return Err(RegionProblem::NotFinite { column, row });
-                    }
-                    any = true;
-                    plane.push(f64::from(v));
-                }
-                _ => plane.push(f64::NAN),
-            }
-        }
-    }
-    if !any {
-        return Err(RegionProblem::Empty);
-    }
-    Ok((plane, columns.count()))
 }
 
 /// The texture of the pixels of a `width × height` image whose `values` are finite (NaN
