@@ -140,8 +140,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                             *l_out = self.pixel::<false, Tally>(
                                 &fc,
                                 &full,
-                                col,
-                                row,
+                                [col, row],
                                 &mut path,
                                 &mut scratch,
                                 &mut tally,
@@ -152,8 +151,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                             *l_out = self.pixel::<false, ()>(
                                 &fc,
                                 &full,
-                                col,
-                                row,
+                                [col, row],
                                 &mut path,
                                 &mut scratch,
                                 &mut (),
@@ -343,11 +341,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                            charges: &mut Charges| {
             if charging {
                 tally.restart();
-                let l = self.pixel::<true, Tally>(fc, options, col, row, path, centre, tally);
+                let l = self.pixel::<true, Tally>(fc, options, [col, row], path, centre, tally);
                 tally.finish_into(charges);
                 l
             } else {
-                self.pixel::<true, ()>(fc, options, col, row, path, centre, &mut ())
+                self.pixel::<true, ()>(fc, options, [col, row], path, centre, &mut ())
             }
         };
         if options.truth && self.sun.is_some() {
@@ -422,8 +420,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         *l_out = self.pixel::<false, ()>(
                             fc,
                             options,
-                            tile.x + c as u32,
-                            row,
+                            [tile.x + c as u32, row],
                             &mut path,
                             &mut scratch,
                             &mut (),
@@ -482,8 +479,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 },
             ),
             options,
-            column,
-            row,
+            [column, row],
             &mut path,
             &mut s,
             &mut (),
@@ -496,13 +492,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// through every call level showed as memory copies in the profile); without, `centre`
     /// is not touched. The rays the value is the mean of are charged to `sink`, which the
     /// caller has restarted. `path` is scratch space reused from pixel to pixel.
-    #[allow(clippy::too_many_arguments)]
     pub(super) fn pixel<const TRUTH: bool, C: ChargeSink>(
         &self,
         fc: &FrameConsts<'_>,
         options: &TraceOptions,
-        col: u32,
-        row: u32,
+        [col, row]: [u32; 2],
         path: &mut Path,
         centre: &mut Sample,
         sink: &mut C,
