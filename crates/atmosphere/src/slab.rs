@@ -272,62 +272,57 @@ impl SlabPaths {
     /// `cos_angle` (`|dir_z|` of a unit direction).
     #[must_use]
     pub fn covers_along(&self, observer_m: f64, target_m: f64, cos_angle: f64) -> Option<SlabCell> {
+        self.locate(observer_m, target_m, cos_angle).ok()
+    }
+
+    /// Why the tables do not cover the line of sight [`SlabPaths::covers_along`] is asked
+    /// about; `None` when they do, when the path ends near the ground below their rows
+    /// ([`GROUND_ROW_M`]), or when it has no length or a NaN (which no model covers). What
+    /// a frame counts to say how many of its paths fell back.
+    #[must_use]
+    pub fn why_not(&self, observer_m: f64, target_m: f64, cos_angle: f64) -> Option<SlabMiss> {
+        self.locate(observer_m, target_m, cos_angle).err().flatten()
+    }
+
+    /// The cell of a line of sight, or why there is none (`None`: no fallback to count).
+    fn locate(
+        &self,
+        observer_m: f64,
+        target_m: f64,
+        cos_angle: f64,
+    ) -> Result<SlabCell, Option<SlabMiss>> {
+        let dh = target_m - observer_m;
+        if !(dh.is_finite() && dh != 0.0 && cos_angle.is_finite()) {
+            return Err(None);
+        }
         let k = self
             .observers
             .iter()
-            .position(|o| (o.observer_m - observer_m).abs() <= OBSERVER_TOLERANCE_M)?;
+            .position(|o| (o.observer_m - observer_m).abs() <= OBSERVER_TOLERANCE_M)
+            .ok_or(Some(SlabMiss::Observer))?;
         let o = &self.observers[k];
-        let dh = target_m - observer_m;
-        if !(dh.is_finite() && dh != 0.0 && cos_angle.is_finite()) {
-            return None;
-        }
-        let angle_deg = cos_angle.abs().clamp(0.0, 1.0).acos().to_degrees();
+        let down = dh < 0.0;
+        let side = if down { &o.down } else { &o.up };
+        let side = side.as_ref().ok_or(Some(SlabMiss::Side))?;
         // The table's observer row stands for this observer: the target is placed at the
         // same height above (or below) it.
         let target_m = o.observer_m + dh;
-        let down = dh < 0.0;
-        let side = if down { o.down.as_ref() } else { o.up.as_ref() }?;
-        side.covers(target_m, angle_deg).map(|angle_deg| SlabCell {
+        let h = &side.thermal.altitude_m;
+        if !(h[0]..=h[h.len() - 1]).contains(&target_m) {
+            // Near the ground the path is the slant tables', by design.
+            let ground = down && target_m < h[0] && target_m <= GROUND_ROW_M;
+            return Err((!ground).then_some(SlabMiss::Target));
+        }
+        let angle_deg = cos_angle.abs().clamp(0.0, 1.0).acos().to_degrees();
+        let angle_deg = side
+            .covers(target_m, angle_deg)
+            .ok_or(Some(SlabMiss::Angle))?;
+        Ok(SlabCell {
             observer: k,
             down,
             target_m,
             angle_deg,
         })
-    }
-
-    /// Why the tables do not cover the line of sight [`SlabPaths::covers_along`] is asked
-    /// about; `None` when they do, when the path ends near the ground below their rows
-    /// ([`GROUND_ROW_M`]), or when it has no length or a NaN (which no model covers). What a frame counts to say how many of its paths fell back.
-    #[must_use]
-    pub fn why_not(&self, observer_m: f64, target_m: f64, cos_angle: f64) -> Option<SlabMiss> {
-        let dh = target_m - observer_m;
-        if !(dh.is_finite() && dh != 0.0 && cos_angle.is_finite()) {
-            return None;
-        }
-        let Some(o) = self
-            .observers
-            .iter()
-            .find(|o| (o.observer_m - observer_m).abs() <= OBSERVER_TOLERANCE_M)
-        else {
-            return Some(SlabMiss::Observer);
-        };
-        let side = if dh < 0.0 { &o.down } else { &o.up };
-        let Some(side) = side else {
-            return Some(SlabMiss::Side);
-        };
-        let h = &side.thermal.altitude_m;
-        let angle_deg = cos_angle.abs().clamp(0.0, 1.0).acos().to_degrees();
-        let target = o.observer_m + dh;
-        if dh < 0.0 && target < h[0] && target <= GROUND_ROW_M {
-            // Near the ground: the slant tables' path, by design.
-            None
-        } else if !(h[0]..=h[h.len() - 1]).contains(&target) {
-            Some(SlabMiss::Target)
-        } else if side.covers(o.observer_m + dh, angle_deg).is_none() {
-            Some(SlabMiss::Angle)
-        } else {
-            None
-        }
     }
 
     /// The observers' altitudes, metres, in the tables' order.
