@@ -232,6 +232,13 @@ pub struct SpectralAtmosphere {
     pub slabs: Vec<SpectralSlab>,
 }
 
+/// The largest spectral radiance or irradiance a table may hold, W m⁻² (sr⁻¹) per cm⁻¹ or
+/// per µm: 10⁹. The Sun's surface (5,772 K) peaks near 2.6 × 10⁷ W m⁻² sr⁻¹ µm⁻¹ and
+/// 1.2 × 10³ per cm⁻¹, and no atmosphere's path or sky, nor sunlight scattered into it,
+/// comes near; a larger value (10³⁸, say) is an edit or an overflow, and would make the
+/// band integrals and the sensor's counts infinite far from the file that caused it.
+pub const SPECTRAL_FLUX_MAX: f64 = 1e9;
+
 fn check_spectra(
     path: &str,
     values: &[f32],
@@ -257,9 +264,9 @@ fn check_spectra(
         let what = if max <= 1.0 {
             "a transmittance from 0 to 1"
         } else if path.contains("irradiance") || path.contains("extraterrestrial") {
-            "a finite irradiance of 0 or more"
+            "an irradiance from 0 to 1e9"
         } else {
-            "a finite radiance of 0 or more"
+            "a radiance from 0 to 1e9"
         };
         return Err(ModelError::new(
             format!("{path}[{}][{}]", i / n.max(1), i % n.max(1)),
@@ -389,7 +396,7 @@ impl SpectralAtmosphere {
             &self.level_path_radiance_w_m2_sr_per_unit,
             nl,
             n,
-            f64::MAX,
+            SPECTRAL_FLUX_MAX,
         )?;
         if let Some(c) = &self.transmission_correction {
             check_range(
@@ -422,10 +429,16 @@ impl SpectralAtmosphere {
             &self.sky_radiance_w_m2_sr_per_unit,
             self.sky_zenith_deg.len(),
             n,
-            f64::MAX,
+            SPECTRAL_FLUX_MAX,
         )?;
         if let Some(h) = &self.sky_hemispheric_w_m2_sr_per_unit {
-            check_spectra("sky_hemispheric_w_m2_sr_per_unit", h, 1, n, f64::MAX)?;
+            check_spectra(
+                "sky_hemispheric_w_m2_sr_per_unit",
+                h,
+                1,
+                n,
+                SPECTRAL_FLUX_MAX,
+            )?;
         }
         check_radiosonde(&self.radiosonde)?;
         if let Some(s) = &self.slant {
@@ -451,14 +464,14 @@ impl SpectralAtmosphere {
                 &s.path_radiance_w_m2_sr_per_unit,
                 paths,
                 n,
-                f64::MAX,
+                SPECTRAL_FLUX_MAX,
             )?;
             check_spectra(
                 "slant.sky_radiance_w_m2_sr_per_unit",
                 &s.sky_radiance_w_m2_sr_per_unit,
                 s.sky_altitude_m.len() * s.sky_zenith_deg.len(),
                 n,
-                f64::MAX,
+                SPECTRAL_FLUX_MAX,
             )?;
         }
         if let Some(s) = &self.solar {
@@ -486,7 +499,7 @@ impl SpectralAtmosphere {
                 &s.extraterrestrial_w_m2_per_unit,
                 1,
                 n,
-                f64::MAX,
+                SPECTRAL_FLUX_MAX,
             )?;
             check_spectra(
                 "solar.transmission",
@@ -512,14 +525,14 @@ impl SpectralAtmosphere {
                     &s.path_scattered_w_m2_sr_per_unit,
                     sl.altitude_m.len() * sl.nadir_deg.len() * na,
                     n,
-                    f64::MAX,
+                    SPECTRAL_FLUX_MAX,
                 )?;
                 check_spectra(
                     "solar.sky_scattered_w_m2_sr_per_unit",
                     &s.sky_scattered_w_m2_sr_per_unit,
                     s.altitude_m.len() * sl.sky_zenith_deg.len() * na,
                     n,
-                    f64::MAX,
+                    SPECTRAL_FLUX_MAX,
                 )?;
             } else if !(s.path_scattered_w_m2_sr_per_unit.is_empty()
                 && s.sky_scattered_w_m2_sr_per_unit.is_empty())
@@ -603,7 +616,7 @@ impl SpectralAtmosphere {
                     &t.path_radiance_w_m2_sr_per_unit,
                     count,
                     n,
-                    f64::MAX,
+                    SPECTRAL_FLUX_MAX,
                 )?;
                 let scattered = &t.scattered_w_m2_sr_per_unit;
                 if azimuths > 0 || !scattered.is_empty() {
@@ -612,7 +625,7 @@ impl SpectralAtmosphere {
                         scattered,
                         count * azimuths,
                         n,
-                        f64::MAX,
+                        SPECTRAL_FLUX_MAX,
                     )?;
                 }
                 let row = if dir == "down" {

@@ -1064,6 +1064,7 @@ folder(
         ("inf.spa", spa_bin(tables={"sky_radiance_w_m2_sr_per_unit": [1.0, 2.0, float("inf"), 1.5, 2.5, 2.0, 3.0, 4.0, 3.5]}), "", "an infinite sky radiance"),
         ("transmission-above-one.spa", spa_bin(tables={"level_transmission": [0.95, 1.9, 0.96, 0.9, 0.8, 0.92]}), "transmission", "τ = 1.9"),
         ("radiance-negative.spa", spa_bin(tables={"level_path_radiance_w_m2_sr_per_unit": [0.1, -0.2, 0.1, 0.5, 0.9, 0.6]}), "", "a negative path radiance"),
+        ("radiance-1e38.spa", spa_bin(tables={"sky_radiance_w_m2_sr_per_unit": [1.0, 2.0, 1e38, 1.5, 2.5, 2.0, 3.0, 4.0, 3.5]}), "radiance from 0 to 1e9", "a sky radiance of 1e38: finite, but no sky's, and infinite once integrated"),
         ("table-short.spa", spa_bin(tables={"level_transmission": [0.95, 0.9, 0.96, 0.9, 0.8]}), "", "5 values for 2 levels × 3 points"),
         ("header-truncated-file.spa", SPA_GOOD[: 16 + header_len // 2], "", "cut inside the header"),
         ("missing-table.spa", SPA_GOOD[: SPA_GOOD.rindex(struct.pack("<I", 9))], "", "the last table missing"),
@@ -1240,6 +1241,22 @@ def t5_with(card, start, width, value):
     return "\n".join(lines) + "\n"
 
 
+def swap_v1_v2():
+    """The base deck with card 4's V1 and V2 (F10.3 each, columns 1-20) swapped."""
+    lines = list(T5_LINES)
+    card4 = lines[3]
+    lines[3] = card4[10:20] + card4[0:10] + card4[20:]
+    return "\n".join(lines) + "\n"
+
+
+def deck_beside_its_tape7(case, contents, fragment, what):
+    """A deck off the plan with the good deck's TAPE7 still beside it: build reads that
+    TAPE7 instead of running LOWTRAN7, so the deck's own check is all that refuses it."""
+    ((file, files, fragment, what, args),) = plan_cases("tape5", "0000.tape5", [(case, contents, fragment, what)])
+    files[f"{case}/runs/0000.tape7"] = (PLAN / "runs/0000.tape7").read_text()
+    return (file, files, fragment, what, args)
+
+
 folder(
     "tape5",
     "Malformed LOWTRAN7 card decks (formats/radtran/tape5.md), read by `irsig-atmos build` "
@@ -1268,7 +1285,10 @@ folder(
         ("nan", t5_with(2, 1, 10, "NaN"), "", "H1 is NaN"),
         ("binary", b"\x00\x01\x02\xff" * 20, "", "bytes that are not text"),
         ("crlf-truncated", T5.replace("\n", "\r\n")[:150], "", "a CRLF deck cut inside card 3"),
-    ]),
+    ]) + [
+        deck_beside_its_tape7("v1-above-v2-given-tape7", swap_v1_v2(), "card 4", "V1 and V2 swapped, with LOWTRAN7's TAPE7 of the good deck given beside it"),
+        deck_beside_its_tape7("dv-other-given-tape7", t5_with(3, 21, 10, "10.000"), "card 4", "DV 10 where the plan has 90, with the good deck's TAPE7 given beside it"),
+    ],
 )
 
 T7_LINES = T7.splitlines()
@@ -1301,6 +1321,8 @@ folder(
         ("word-in-row", edit(T7, "0.7023", "abcdef"), "", "a word for τ"),
         ("grid-differs", edit(T7, "  1250.  0.3573", "  1240.  0.3573"), "", "a grid that is not the other runs' (ends at 1240 cm⁻¹)"),
         ("inf", edit(T7, "3.38E-06", "Infinity"), "", "an infinite radiance"),
+        ("misspelt-header", edit(T7, "ATMOS   PATH", "ATMOS   PAHT"), "column headers LOWTRAN7 writes", "`PAHT` for `PATH`: a header LOWTRAN never writes, word for word"),
+        ("header-extra-column", edit(T7, "TOTAL RAD", "TOTAL RAD   EXTRA"), "column headers LOWTRAN7 writes", "a column added to LOWTRAN's header"),
     ]),
 )
 
@@ -1380,6 +1402,12 @@ folder(
         ("profile-shifted", edit(T6, next(l for l in T6_LINES if l.startswith("   2     1.00")), "   2  1.00   " + next(l for l in T6_LINES if l.startswith("   2     1.00"))[13:]), "right-aligned", "row 2's Z out of its columns (F9.2, 5-13)"),
         ("spectral-extra-field", edit(T6, "    800.  12.500  6.71E-06  4.29E-04  1.21E-03   0.4790", "    800.  12.500  6.71E-06  4.29E-04  1.21E-03   0.4790 7"), "end of", "a seventh number after a row's last column"),
         ("card1-iemsct-blank", edit(T6, "0 CARD 1  *****    1    2    1", "0 CARD 1  *****    1    2     "), "IEMSCT", "the echo of card 1 without its IEMSCT"),
+        ("header-renamed", edit(T6, "ATMOS RADIANCE       INTEGRAL", "ATMOS RADIANZE       INTEGRAL"), "column headers LOWTRAN7 prints", "a column of the table's header renamed"),
+        ("spectral-negative", edit(T6, "6.71E-06", "-6.7E-06"), "from 0", "a negative radiance"),
+        ("spectral-huge", edit(T6, "6.71E-06", "1.00E+99"), "from 0", "a radiance of 1e99 W cm-2 sr-1 per cm-1: finite, and no atmosphere's"),
+        ("transmittance-above", edit(T6, "0.4790", "1.4790"), "transmittance", "τ = 1.479"),
+        ("table-empty", "\n".join(l for l in T6_LINES if not l.startswith(("    710.", "    800.", "    890.", "    980.", "   1070.", "   1160.", "   1250."))) + "\n", "found none", "a column header and no rows under it"),
+        ("table-cut", T6[: T6.index("    890.  11.236")], "cut", "cut inside the spectral table, before its INTEGRATED line"),
     ]),
 )
 

@@ -489,6 +489,32 @@ pub(crate) fn job(
             ),
         ));
     }
+    // The spectral range too: a given tape7 is checked against the deck, so a deck whose
+    // V1, V2 or DV is not the plan's (V1 > V2 among them) would build from another range.
+    let (got, planned) = (&calcs[0].card4, &ours.calculations()[0].card4);
+    let range = |c: &tape5::Card4| [c.v1_per_cm, c.v2_per_cm, c.dv_per_cm];
+    // Card 4 is written F10.3: within half its last digit is the same card.
+    if range(got)
+        .iter()
+        .zip(range(planned))
+        .any(|(g, p)| (g - p).abs() > 5e-4)
+    {
+        return Err(located(
+            &name,
+            &text,
+            got.position,
+            format!(
+                "expected the plan's spectral range on card 4 (V1 {} V2 {} DV {} cm-1), found \
+                 V1 {} V2 {} DV {}",
+                planned.v1_per_cm,
+                planned.v2_per_cm,
+                planned.dv_per_cm,
+                got.v1_per_cm,
+                got.v2_per_cm,
+                got.dv_per_cm
+            ),
+        ));
+    }
     let card3 = calcs[0].card3_position;
     let t7 = file.with_extension("tape7");
     Ok(Job {

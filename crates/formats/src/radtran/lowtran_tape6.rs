@@ -42,6 +42,7 @@
 //! Which table a run has is told by its column header (formats 900, 910, 920, 921, 930),
 //! and must be the one of the run's IEMSCT.
 
+use super::lowtran_tape7::TRANSMITTANCE_MAX;
 use super::{Source, TextLine, read_int, read_real, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
@@ -418,24 +419,109 @@ fn body<'a>(line: &TextLine<'a>) -> &'a str {
 /// A table's names, its row's fields and the IEMSCT it belongs to.
 type Layout = (&'static [&'static str], &'static [Field], i64);
 
-/// The table a column header line starts (`FREQ WAVLEN …` / `FREQ WAVELENGTH …`, the
-/// body of FORMATs 900, 910, 920, 921 and 930), told by its words.
-fn table_layout(t: &str) -> Option<Layout> {
+/// The column header lines LOWTRAN7 prints above its spectral tables (FORMATs 900, 910,
+/// 920, 921 and 930 of `lowtran7.f`), as words, with the table each starts.
+const TABLE_HEADERS: [(&str, Layout); 5] = [
+    (
+        "FREQ WAVELENGTH TOTAL H2O CO2+ OZONE TRACE N2 CONT H2O CONT MOL SCAT AER-HYD HNO3 \
+         AER-HYD INTEGRATED",
+        (&TRANSMITTANCE, &TRANSMITTANCE_ROW, 0),
+    ),
+    (
+        "FREQ WAVLEN ATMOS RADIANCE INTEGRAL TOTAL",
+        (&RADIANCE, &RADIANCE_ROW, 1),
+    ),
+    (
+        "FREQ WAVLEN ATMOS RADIANCE PATH SCATTERED GROUND REFLECTED TOTAL INTEGRAL TOTAL",
+        (&SCATTERED, &SCATTERED_ROW, 2),
+    ),
+    (
+        "FREQ WAVLEN ATMOS RADIANCE PATH SCATTERED RADIANCE GROUND REFLECTED RADIANCE TOTAL \
+         RADIANCE INTEGRAL TOTAL",
+        (&SCATTERED_MULTIPLE, &SCATTERED_MULTIPLE_ROW, 2),
+    ),
+    (
+        "FREQ WAVLEN TRANSMITTED SOLAR INTEGRATED TOTAL",
+        (&SOLAR, &SOLAR_ROW, 3),
+    ),
+];
+
+/// Whether a line is a spectral table's column header: it starts `FREQ WAVLEN` or `FREQ
+/// WAVELENGTH`, as every one LOWTRAN7 prints does.
+fn is_table_header(t: &str) -> bool {
     let mut words = t.split_whitespace();
-    if words.next() != Some("FREQ") || !matches!(words.next(), Some("WAVLEN" | "WAVELENGTH")) {
-        return None;
-    }
-    Some(if t.contains("TRANSMITTED") {
-        (&SOLAR, &SOLAR_ROW, 3)
-    } else if t.contains("PATH SCATTERED RADIANCE") {
-        (&SCATTERED_MULTIPLE, &SCATTERED_MULTIPLE_ROW, 2)
-    } else if t.contains("PATH SCATTERED") {
-        (&SCATTERED, &SCATTERED_ROW, 2)
-    } else if t.contains("ATMOS RADIANCE") {
-        (&RADIANCE, &RADIANCE_ROW, 1)
+    words.next() == Some("FREQ") && matches!(words.next(), Some("WAVLEN" | "WAVELENGTH"))
+}
+
+/// The table a column header line starts, when its words are exactly one of LOWTRAN7's
+/// headers (a renamed or added column is not LOWTRAN's, and would be read wrongly).
+fn table_layout(t: &str) -> Option<Layout> {
+    TABLE_HEADERS
+        .iter()
+        .find(|(h, _)| h.split_whitespace().eq(t.split_whitespace()))
+        .map(|&(_, layout)| layout)
+}
+
+/// The largest value a radiance or irradiance column may hold, W cm⁻² (sr⁻¹) per cm⁻¹ or
+/// per µm, and the largest integral: 1. The Sun's own irradiance above the atmosphere peaks
+/// near 0.2 W cm⁻² µm⁻¹ and totals 0.136 W cm⁻²; a 330 K path's radiance is a
+/// thousandth of that. A larger value is an overflow or an edit, not LOWTRAN's.
+const FLUX_MAX: f64 = 1.0;
+
+/// The range a column's values must lie in: transmittances 0 to [`TRANSMITTANCE_MAX`] (as
+/// in TAPE7),
+/// radiances, irradiances and their integrals 0 to [`FLUX_MAX`]; the rest (wavenumber,
+/// wavelength, absorption) unchecked here.
+fn column_range(name: &str) -> Option<(f64, f64, &'static str)> {
+    if name.ends_with("TRANS") {
+        Some((0.0, TRANSMITTANCE_MAX, "a transmittance"))
+    } else if name.contains("RADIANCE")
+        || name == "INTEGRAL"
+        || (name.starts_with("INTEGRATED ") && !name.contains("ABSORPTION"))
+    {
+        Some((0.0, FLUX_MAX, "a radiance or irradiance in W cm-2"))
     } else {
-        (&TRANSMITTANCE, &TRANSMITTANCE_ROW, 0)
-    })
+        None
+    }
+}
+
+/// Where the table being read begins: its column header line.
+#[derive(Debug, Clone, Copy)]
+struct Opened {
+    offset: usize,
+    len: usize,
+    line: usize,
+}
+
+/// A table LOWTRAN7 has ended (with its `INTEGRATED …` line) must have had rows under its
+/// column header.
+fn check_rows(src: Source<'_>, opened: Option<Opened>, has_rows: bool) -> Result<(), ParseError> {
+    match opened {
+        Some(o) if !has_rows => Err(src.error(
+            o.offset,
+            o.len,
+            "expected the rows of the table this column header starts, found none before its \
+             `INTEGRATED` line",
+        )),
+        _ => Ok(()),
+    }
+}
+
+/// A run that ends (at its `CARD 5` echo, or at the file's end) inside a table was cut:
+/// LOWTRAN7 ends every table with its `INTEGRATED …` line.
+fn check_closed(src: Source<'_>, opened: Option<Opened>, at: usize) -> Result<(), ParseError> {
+    match opened {
+        Some(o) => Err(src.error(
+            at,
+            0,
+            format!(
+                "expected the `INTEGRATED` line that ends the table begun at line {}, found the \
+                 run's end: the table was cut",
+                o.line
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// Reads a LOWTRAN7 `TAPE6`.
@@ -467,6 +553,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
     let mut run = Tape6Run::default();
     let mut iemsct: Option<i64> = None;
     let mut in_table: Option<Layout> = None;
+    let mut opened: Option<Opened> = None;
     let mut started = false;
     // 0: outside, 1: after the `ATMOSPHERIC PROFILES` banner, 2: in its Z P T table.
     let mut profile_state = 0;
@@ -525,6 +612,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             }
         }
         if t.starts_with("CARD 5 *****") {
+            check_closed(src, opened.take(), line.offset)?;
             run.iemsct = iemsct;
             runs.push(std::mem::take(&mut run));
             in_table = None;
@@ -542,6 +630,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             }
         }
         if t.starts_with("INTEGRATED ABSORPTION") {
+            check_rows(src, opened.take(), run.table.is_some())?;
             in_table = None;
             run.integrated_absorption_per_cm = Some(read_field(
                 src,
@@ -557,6 +646,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             continue;
         }
         if t.starts_with("INTEGRATED RADIANCE") {
+            check_rows(src, opened.take(), run.table.is_some())?;
             in_table = None;
             run.integrated_radiance_w_cm2_sr = Some(read_field(
                 src,
@@ -567,6 +657,7 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             continue;
         }
         if t.starts_with("INTEGRATED IRRADIANCE") {
+            check_rows(src, opened.take(), run.table.is_some())?;
             in_table = None;
             run.integrated_irradiance_w_cm2 = Some(read_field(
                 src,
@@ -576,7 +667,17 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             )?);
             continue;
         }
-        if let Some(found) = table_layout(t) {
+        if is_table_header(t) {
+            let Some(found) = table_layout(t) else {
+                return Err(src.error(
+                    line.offset,
+                    line.text.len(),
+                    format!(
+                        "expected one of the column headers LOWTRAN7 prints (FORMAT 900, 910, \
+                         920, 921 or 930), found `{t}`"
+                    ),
+                ));
+            };
             if iemsct.is_some_and(|k| k != found.2) {
                 return Err(src.error(
                     line.offset,
@@ -598,6 +699,11 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
                 ));
             }
             in_table = Some(found);
+            opened.get_or_insert(Opened {
+                offset: line.offset,
+                len: line.text.len(),
+                line: line.position().line,
+            });
             continue;
         }
         let Some((names, layout, _)) = in_table else {
@@ -633,11 +739,21 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
                     format!("wavenumbers must strictly increase: {v} cm-1 follows {last} cm-1"),
                 ));
             }
+            if let Some((lo, hi, what)) = column_range(name)
+                && !(lo..=hi).contains(&v)
+            {
+                return Err(src.error(
+                    line.offset_of_column(f.start),
+                    f.width,
+                    format!("expected {what} from {lo} to {hi} for {name}, found {v}"),
+                ));
+            }
             table.columns[c].push(v);
         }
         let end = layout.last().map_or(0, |f| f.start + f.width);
         end_of_row(src, line, end, &what)?;
     }
+    check_closed(src, opened, text.len())?;
     if started && (run.table.is_some() || !run.messages.is_empty()) {
         // A file cut before its last `CARD 5` echo: keep what it says.
         run.iemsct = iemsct;

@@ -184,18 +184,28 @@ fn columns_for(iemsct: i64) -> &'static [&'static str] {
     }
 }
 
-/// The first words of each column header line LOWTRAN writes (formats 931, 932, 933).
+/// The column header lines LOWTRAN7 writes to TAPE7 (its FORMATs 931, 932 and 933, in
+/// `lowtran7.f`), as words, and the IEMSCT values each is written for.
+const COLUMN_HEADERS: [(&str, &[i64]); 3] = [
+    (
+        "FREQ TOTAL H2O CO2+ OZONE TRACE N2 CON H2O CON MOL SCAT AER-HYD HNO3 AER-HYD",
+        &[0],
+    ),
+    (
+        "FREQ TRANS ATMOS PATH SINGLE GROUND DIRECT TOTAL RAD",
+        &[1, 2],
+    ),
+    ("FREQ TRANS SOL TR SOLAR", &[3]),
+];
+
+/// The IEMSCT values a column header line is written for: its words must be exactly one
+/// of LOWTRAN's headers (`SOL TX` for `SOL TR`, or a column added, is not LOWTRAN's).
 fn header_kind(line: &str) -> Option<&'static [i64]> {
-    let t = line.trim_start();
-    if t.starts_with("FREQ   TOTAL") {
-        Some(&[0])
-    } else if t.starts_with("FREQ   TRANS     ATMOS") {
-        Some(&[1, 2])
-    } else if t.starts_with("FREQ   TRANS     SOL") {
-        Some(&[3])
-    } else {
-        None
-    }
+    let words: Vec<&str> = line.split_whitespace().collect();
+    COLUMN_HEADERS
+        .iter()
+        .find(|(h, _)| h.split_whitespace().eq(words.iter().copied()))
+        .map(|&(_, kinds)| kinds)
 }
 
 fn is_end(line: &TextLine<'_>) -> bool {
@@ -386,7 +396,10 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape7, ParseError> {
             return Err(src.error(
                 col_line.offset,
                 col_line.text.len(),
-                "expected the column header (`  FREQ   TOTAL…`, `  FREQ   TRANS     ATMOS…` or `  FREQ   TRANS     SOL…`)",
+                format!(
+                    "expected one of the column headers LOWTRAN7 writes (`{}`, `{}` or `{}`)",
+                    COLUMN_HEADERS[0].0, COLUMN_HEADERS[1].0, COLUMN_HEADERS[2].0
+                ),
             ));
         };
         if !kinds.contains(&header.iemsct) {
@@ -541,6 +554,25 @@ mod tests {
                 .message
                 .contains("IEMSCT = 0")
         );
+        // A header that is not LOWTRAN's, word for word: a renamed column, a misspelt
+        // one, one added. (LOWTRAN's FORMAT 932 line, in HEAD, reads.)
+        for renamed in [
+            "  FREQ   TRANS     ATMOS   PAHT     SINGLE   GROUND DIRECT   TOTAL RAD",
+            "  FREQ   TRANS     ATMOS   PATH     SINGLE   GROUND DIRECT   TOTAL RAD  EXTRA",
+            "  FREQ   TRANS     ATMOS   PATH",
+        ] {
+            let text = HEAD.replace(
+                "  FREQ   TRANS     ATMOS   PATH     SINGLE   GROUND DIRECT   TOTAL RAD",
+                renamed,
+            ) + ROWS;
+            let e = parse("t7", &text).unwrap_err();
+            assert_eq!((e.line, e.column), (11, 1), "{renamed}: {}", e.message);
+            assert!(
+                e.message.contains("column headers LOWTRAN7 writes"),
+                "{}",
+                e.message
+            );
+        }
         assert!(parse("t7", "").is_err());
         assert!(
             parse("t7", "T F 6\n")
