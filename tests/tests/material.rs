@@ -237,6 +237,17 @@ fn fresnel_bad_input_exits_1_or_2_with_a_message_and_no_output() {
             1,
             "temperature",
         ),
+        // Said as written, not as the 309 digits of 1e308.
+        (
+            &["--nk-table", water, "--planck-temperature", "1e308"],
+            1,
+            "--planck-temperature 1e308: the Planck",
+        ),
+        (
+            &["--nk-table", water, "--planck-temperature", "1e-300"],
+            1,
+            "--planck-temperature 1e-300: the Planck",
+        ),
         (
             &["--n", "1.2", "--nk-table", water],
             2,

@@ -180,6 +180,8 @@ pub struct Plan {
     views: Vec<View>,
     uncertainties: Option<Uncertainties>,
     decision: Option<Decision>,
+    /// The decision's file name and text, to point at a choice this run cannot keep.
+    decision_file: Option<(String, String)>,
     /// The sun's position, checked, when the request has a sun.
     sun: Option<irsig_atmosphere::sun::SunPosition>,
     /// Every input read, in order: what each image's provenance lists.
@@ -316,6 +318,7 @@ impl Plan {
             views: Vec::new(),
             uncertainties: None,
             decision: None,
+            decision_file: None,
             sun,
             inputs,
             warnings: Mutex::new(warnings),
@@ -574,7 +577,34 @@ impl Plan {
                 .retain(|w| *w != warning);
         }
         self.decision = Some(d);
+        self.decision_file = Some((name.to_owned(), String::from_utf8_lossy(bytes).into_owned()));
         Ok(())
+    }
+
+    /// An error about a setting the decision chose (its sub-band count, which only the
+    /// atmosphere's grid can refuse), said at the decision's choice rather than as a flag
+    /// the user never typed; any other error as it is.
+    fn at_decision_choice(&self, model: SwitchableModel, report: miette::Report) -> miette::Report {
+        let (Some(d), Some((name, text))) = (&self.decision, &self.decision_file) else {
+            return report;
+        };
+        let Some(i) = d.choices.iter().position(|c| c.model == model) else {
+            return report;
+        };
+        let Some(e) = report.downcast_ref::<RequestError>() else {
+            return report;
+        };
+        let value = e.value.as_deref().unwrap_or("");
+        let message = format!(
+            "this decision's `{value}` cannot be kept for this run: {}",
+            e.message
+        );
+        miette::Report::new(error_at_path(
+            name,
+            text,
+            &format!("choices[{i}].setting"),
+            message,
+        ))
     }
 
     /// The largest material id of the library (0 for none): the interaction map holds ids

@@ -140,7 +140,8 @@ pub(crate) fn flags(args: &Args) -> miette::Result<(Vec<f64>, RoughSurface)> {
     {
         // A value out of its range, as --roughness's: bad input, not bad usage.
         return Err(miette!(
-            "--planck-temperature {t}: the Planck weighting temperature must be from {t_min} \
+            // Debug form: 1e308 as written, not its 309 digits.
+            "--planck-temperature {t:?}: the Planck weighting temperature must be from {t_min} \
              to {t_max} K"
         ));
     }

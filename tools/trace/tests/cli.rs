@@ -417,6 +417,63 @@ fn a_tolerance_runs_the_pilot_prints_and_writes_its_decision() {
     );
 }
 
+/// A decision's sub-band count that the atmosphere's grid cannot make (16 sub-bands over
+/// 8-8.2 um, where the built-ins' 5 cm-1 grid has 7 intervals: 1250 to 1220 cm-1) is the
+/// decision file's error, at its choice: no `--sub-bands` flag was typed.
+#[test]
+fn a_decisions_sub_bands_the_grid_cannot_make_are_refused_at_the_decision() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, view) = inputs(dir.path(), 2);
+    let common = |cmd: &mut Command| {
+        cmd.args(["--scene", &scene, "--materials", &mats, "--view", &view])
+            .args(["--atmosphere", "us-std-1976", "--band", "8-8.2"]);
+    };
+    let decision = dir.path().join("d.ron");
+    let mut cmd = trace();
+    common(&mut cmd);
+    let out = cmd
+        .args(["--tolerance", "1", "--pin", "sub-bands=4", "--decision-out"])
+        .arg(&decision)
+        .arg("--radiance-exr")
+        .arg(dir.path().join("a.exr"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&decision).unwrap();
+    let four = "model: r#sub-bands,\n      setting: \"4\",";
+    assert!(text.contains(four), "{text}");
+    std::fs::write(
+        &decision,
+        text.replace(four, &four.replace("\"4\"", "\"16\"")),
+    )
+    .unwrap();
+    let line = text
+        .lines()
+        .position(|l| l.contains("model: r#sub-bands"))
+        .unwrap()
+        + 2;
+    let mut cmd = trace();
+    common(&mut cmd);
+    let out = cmd
+        .arg("--decision")
+        .arg(&decision)
+        .arg("--radiance-exr")
+        .arg(dir.path().join("b.exr"))
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr).replace('\n', " ");
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(err.contains(&format!("d.ron:{line}:")), "{err}");
+    assert!(err.contains("this decision's `16`"), "{err}");
+    assert!(err.contains("7 intervals"), "{err}");
+    assert!(!err.contains("--sub-bands"), "{err}");
+    assert!(!dir.path().join("b.exr").exists());
+}
+
 #[test]
 fn bad_tolerances_and_pins_are_refused_before_tracing() {
     let dir = tempfile::tempdir().unwrap();

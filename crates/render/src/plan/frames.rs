@@ -149,6 +149,7 @@ impl Plan {
             .take()
             .ok_or_else(|| miette!("the raw scene was already traced"))?;
         let asked = Settings::of(&self.request.settings);
+        let asked_sub_bands = asked.sub_bands;
         let base = match &self.decision {
             Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
             None => asked,
@@ -165,22 +166,29 @@ impl Plan {
                     sun
                 }))
         };
-        let sun = sun_of(&base)?;
-        let mut tracer = Tracer::with_sub_bands(
-            &scene,
-            &self.materials,
-            band,
-            (air.precomputed)(kind, count)?,
-        )
-        .and_then(|t| t.with_sun(sun))
-        .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| {
-            format!(
-                "cannot trace `{}` with `{}`",
-                self.scene_name, self.materials_name
-            )
-        })?
-        .with_path_terms(base.path_terms);
+        let sun = sun_of(&base);
+        // A count the decision chose that this atmosphere's grid cannot make is the
+        // decision's error, not a flag's.
+        let sub_bands_of_decision = self.decision.is_some() && base.sub_bands != asked_sub_bands;
+        let said = |e: miette::Report| {
+            if sub_bands_of_decision {
+                self.at_decision_choice(SwitchableModel::SubBands, e)
+            } else {
+                e
+            }
+        };
+        let sun = sun.map_err(said)?;
+        let precomputed = (air.precomputed)(kind, count).map_err(said)?;
+        let mut tracer = Tracer::with_sub_bands(&scene, &self.materials, band, precomputed)
+            .and_then(|t| t.with_sun(sun))
+            .map_err(|e| miette!("{e}"))
+            .wrap_err_with(|| {
+                format!(
+                    "cannot trace `{}` with `{}`",
+                    self.scene_name, self.materials_name
+                )
+            })?
+            .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
         // With declared uncertainties each frame keeps the budget's charges, per input.
         tracer = tracer.with_budget_groups(self.uncertainties.as_ref().zip(scene.as_ref()).map(
