@@ -50,6 +50,12 @@ for k in truncated column-count repeated-wavenumber falling-wavenumber; do cp "$
 cp $root/tests/data/third-party/pyradi/tape7-* "$r/modtran-column-count/runs/0000.tape7" "$c/modtran_tape7/"
 cp $root/formats/radtran/samples/modtran-iemsct3-layout.tape7 "$c/modtran_tape7/"
 cp $root/crates/atmosphere/data/us-std-1976.spectral.bin "$c/spectral_atmosphere/"
+# The malformed TAPE6 and TAPE7 listings (renamed headers, values out of range, empty and
+# cut tables) and binary spectral atmospheres (version 2, counts against the header,
+# radiances of 1e38).
+for d in $root/tests/data/malformed/lowtran-tape6/*/; do cp "$d/runs/0000.tape6" "$c/lowtran_tape6/$(basename "$d").tape6"; done
+for d in $root/tests/data/malformed/lowtran-tape7/*/; do cp "$d/runs/0000.tape7" "$c/lowtran_tape7/$(basename "$d").tape7"; done
+cp $root/tests/data/malformed/spectral-binary/*.spa "$c/spectral_atmosphere/"
 # Sensor responses, n, k tables, regions files and EXRs: the samples and the malformed cases.
 m=$root/tests/data/malformed
 mkdir -p "$c/srf" "$c/nk" "$c/regions" "$c/exr_sensor"
@@ -59,6 +65,8 @@ cp $s/regions.ron "$c/regions/"
 cp $root/pipelines/thesis-experiment/regions.ron "$c/regions/thesis-experiment.ron"
 for f in $m/regions/*.ron; do cp "$f" "$c/regions/bad-$(basename "$f")"; done
 cp $m/base/truth.exr $m/exr-sensor/*.exr "$c/exr_sensor/"
+# EXRs that record a band in their provenance: reversed, NaN, missing, another band.
+for d in banded-exr banded-exr-report banded-exr-sensor; do cp $m/$d/*.exr "$c/exr_sensor/" 2>/dev/null || true; done
 # DIRSIG material sets and curves: the third-party samples.
 mkdir -p "$c/dirsig_mat" "$c/dirsig_ems"
 cp $root/tests/data/third-party/dirsig-channel/anadirsig.mat "$c/dirsig_mat/"
