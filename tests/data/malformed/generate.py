@@ -1547,6 +1547,7 @@ EMS_CASES = [
     ("curve-one-row.ems", "1\n" + "1.0\n" * 91 + "CURVE_BEGIN\n8.0 0.95\nCURVE_END\n", "", "a curve of one row"),
     ("row-three-values.ems", edit(DIRSIG_EMS, "11.0 0.96", "11.0 0.96 3"), "", "a row of three numbers"),
     ("nan.ems", edit(DIRSIG_EMS, "11.0 0.96", "11.0 NaN"), "", "a NaN emissivity"),
+    ("curves-other-wavelengths.ems", "2\n" + "1.0\n" * 91 + "CURVE_BEGIN\n8.0 0.95\n11.0 0.96\n14.0 0.97\nCURVE_END\nCURVE_BEGIN\n8.0 0.95\n12.0 0.96\n14.0 0.97\nCURVE_END\n", "share their wavelengths", "a second curve on other wavelengths: the curves of a file are averaged point by point"),
     ("non-utf8.ems", edit(DIRSIG_EMS, "CURVE_BEGIN", "CURVE_BEGIN # caf\xe9").encode("latin-1"), "UTF-8", "a Latin-1 byte"),
 ]
 folder(

@@ -97,6 +97,8 @@ pub fn parse(file: &str, text: &str) -> Result<DirsigEms, ParseError> {
         while let Some(line) = lines.next_line() {
             let body = line.span.fragment().trim();
             if body == "CURVE_END" && keyword {
+                // The next curve, if any, starts on the following line.
+                pending = lines.next_line();
                 break;
             }
             if body == "CURVE_BEGIN" || Lines::tokens(line).count() == 1 {
@@ -201,6 +203,14 @@ mod tests {
         let text = header(1) + "CURVE_BEGIN\n8.0\t0.98\n14.0\t0.97\nCURVE_END\n";
         let e = parse("b.ems", &text).unwrap();
         assert_eq!(e.curves[0].wavelength_um, vec![8.0, 14.0]);
+        // Two keyword curves, each closed by CURVE_END: both read.
+        let text = header(2)
+            + "CURVE_BEGIN\n8.0 0.98\n14.0 0.97\nCURVE_END\n\
+               CURVE_BEGIN\n8.5 0.96\n13.0 0.95\nCURVE_END\n";
+        let e = parse("c.ems", &text).unwrap();
+        assert_eq!(e.curves.len(), 2);
+        assert_eq!(e.curves[1].wavelength_um, vec![8.5, 13.0]);
+        assert_eq!(e.curves[1].emissivity, vec![0.96, 0.95]);
     }
 
     #[test]
