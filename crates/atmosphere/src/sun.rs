@@ -417,7 +417,7 @@ impl SunSpec {
                     Some(_) => sun_error(
                         SunField::DeltaTS,
                         format!(
-                            "ΔT of {delta_t} s puts `{utc}` outside the years SPA covers, \
+                            "ΔT of {delta_t:?} s puts `{utc}` outside the years SPA covers, \
                              {SPA_FIRST_YEAR} to {SPA_LAST_YEAR} ({e})"
                         ),
                     ),
