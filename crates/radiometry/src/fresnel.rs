@@ -36,8 +36,8 @@ use rayon::prelude::*;
 
 mod rough;
 pub use rough::{
-    MAX_RMS_SLOPE, RoughSurface, RoughView, rough_band_emissivity_table, rough_emissivity_table,
-    smith_escape,
+    FacetTable, MAX_RMS_SLOPE, RoughSurface, RoughView, rough_band_emissivity_table,
+    rough_emissivity_table, smith_escape,
 };
 
 use crate::band::Band;

@@ -193,7 +193,11 @@ fn bad_flags_are_refused_by_name_with_their_range() {
         ),
         (with("--delta-t-s", "inf"), 2, ["--delta-t-s", "finite"]),
         // Was "--utc: invalid date/time", a flag given rightly.
-        (with("--delta-t-s", "1e308"), 1, ["--delta-t-s", "ΔT of 1e308 s"]),
+        (
+            with("--delta-t-s", "1e308"),
+            1,
+            ["--delta-t-s", "ΔT of 1e308 s"],
+        ),
         (
             with("--latitude-deg", "north"),
             2,
