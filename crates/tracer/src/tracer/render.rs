@@ -348,87 +348,50 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 self.pixel::<true, ()>(fc, options, [col, row], path, centre, &mut ())
             }
         };
+        if options.truth {
+            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+        }
         if options.truth && self.sun.is_some() {
-            // The sun's layers in a vector of their own, so that a night frame's loop
-            // below stays as it was.
-            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
+            // The sun's layers in a vector of their own, empty on a night frame.
             sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
-            radiance
-                .par_chunks_mut(row_len)
-                .zip(truth.par_chunks_mut(row_len))
-                .zip(sun.par_chunks_mut(row_len))
-                .zip(charge_rows.par_iter_mut())
-                .enumerate()
-                .for_each(|(r, (((rad, tru), sun), charges))| {
-                    let mut path = Path::default();
-                    let mut centre = Sample::miss(Event::Sky);
-                    let mut tally = Tally::default();
-                    let row = tile.y + r as u32;
-                    for (c, ((l_out, t_out), s_out)) in rad
-                        .iter_mut()
-                        .zip(tru.iter_mut())
-                        .zip(sun.iter_mut())
-                        .enumerate()
-                    {
-                        *l_out = truth_pixel(
-                            tile.x + c as u32,
-                            row,
-                            &mut path,
-                            &mut centre,
-                            &mut tally,
-                            charges,
-                        );
-                        *t_out = TruthPixel::from(&centre);
-                        *s_out = SunPixel::from(&centre);
-                    }
-                    progress(1);
-                });
-        } else if options.truth {
-            truth = vec![TruthPixel::from(&Sample::miss(Event::Sky)); n];
-            radiance
-                .par_chunks_mut(row_len)
-                .zip(truth.par_chunks_mut(row_len))
-                .zip(charge_rows.par_iter_mut())
-                .enumerate()
-                .for_each(|(r, ((rad, tru), charges))| {
-                    let mut path = Path::default();
-                    let mut centre = Sample::miss(Event::Sky);
-                    let mut tally = Tally::default();
-                    let row = tile.y + r as u32;
-                    for (c, (l_out, t_out)) in rad.iter_mut().zip(tru.iter_mut()).enumerate() {
-                        *l_out = truth_pixel(
-                            tile.x + c as u32,
-                            row,
-                            &mut path,
-                            &mut centre,
-                            &mut tally,
-                            charges,
-                        );
-                        *t_out = TruthPixel::from(&centre);
-                    }
-                    progress(1);
-                });
-        } else {
-            radiance
-                .par_chunks_mut(row_len)
-                .enumerate()
-                .for_each(|(r, rad)| {
-                    let mut path = Path::default();
-                    let mut scratch = Sample::miss(Event::Sky);
-                    let row = tile.y + r as u32;
-                    for (c, l_out) in rad.iter_mut().enumerate() {
-                        *l_out = self.pixel::<false, ()>(
+        }
+        // Each row's share of the layers kept (none where a layer is not).
+        let mut truth_rows = row_slices(&mut truth, row_len, rows);
+        let mut sun_rows = row_slices(&mut sun, row_len, rows);
+        radiance
+            .par_chunks_mut(row_len)
+            .zip(truth_rows.par_iter_mut())
+            .zip(sun_rows.par_iter_mut())
+            .zip(charge_rows.par_iter_mut())
+            .enumerate()
+            .for_each(|(r, (((rad, tru), sun), charges))| {
+                let mut path = Path::default();
+                let mut centre = Sample::miss(Event::Sky);
+                let mut tally = Tally::default();
+                let row = tile.y + r as u32;
+                for (c, l_out) in rad.iter_mut().enumerate() {
+                    let col = tile.x + c as u32;
+                    *l_out = if options.truth {
+                        truth_pixel(col, row, &mut path, &mut centre, &mut tally, charges)
+                    } else {
+                        self.pixel::<false, ()>(
                             fc,
                             options,
-                            [tile.x + c as u32, row],
+                            [col, row],
                             &mut path,
-                            &mut scratch,
+                            &mut centre,
                             &mut (),
-                        );
+                        )
+                    };
+                    if let Some(t) = tru {
+                        t[c] = TruthPixel::from(&centre);
                     }
-                    progress(1);
-                });
-        }
+                    if let Some(s) = sun {
+                        s[c] = SunPixel::from(&centre);
+                    }
+                }
+                progress(1);
+            });
         Frame {
             width: tile.width,
             height: tile.height,
@@ -529,5 +492,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         });
         sink.set_rays(n * n);
         sum / f64::from(n * n)
+    }
+}
+
+/// `layer` cut into its rows of `row_len` pixels, one entry per row of `rows`: `None` for
+/// every row when the layer is not kept (empty).
+fn row_slices<T>(layer: &mut [T], row_len: usize, rows: usize) -> Vec<Option<&mut [T]>> {
+    if layer.is_empty() {
+        (0..rows).map(|_| None).collect()
+    } else {
+        layer.chunks_mut(row_len).map(Some).collect()
     }
 }
