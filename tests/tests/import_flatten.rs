@@ -778,7 +778,8 @@ fn gltf_is_turned_to_z_up_unless_its_axes_are_kept() {
 
 /// A terrain that names a material: flatten carries it into the binary raw scene, and
 /// flatten and trace both refuse one the library lacks, flatten at the scene's
-/// `terrain.material` and trace at the raw scene's byte of it (the header flags, 12).
+/// `terrain.material` and trace at the raw scene's bytes of it (the header flags' high half,
+/// byte 14).
 #[test]
 fn a_terrain_material_goes_through_flatten_and_an_unknown_one_is_refused() {
     let dir = tempfile::tempdir().unwrap();
@@ -857,7 +858,7 @@ fn a_terrain_material_goes_through_flatten_and_an_unknown_one_is_refused() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(1), "{stderr}");
     assert!(
-        stderr.contains("nine.raw:1:13") && stderr.contains("the terrain's material is 9"),
+        stderr.contains("nine.raw:1:15") && stderr.contains("the terrain's material is 9"),
         "{stderr}"
     );
 }
