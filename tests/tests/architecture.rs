@@ -171,7 +171,7 @@ fn no_library_depends_on_a_tool() {
 }
 
 /// Crates only one workspace package may depend on (outside tests), and which.
-const OWNERS: [(&str, &[&str]); 8] = [
+const OWNERS: [(&str, &[&str]); 9] = [
     // file syntax: only irsig-formats knows it
     ("ron", &["irsig-formats"]),
     ("gltf", &["irsig-formats"]),
@@ -180,6 +180,8 @@ const OWNERS: [(&str, &[&str]); 8] = [
     ("jsonc-parser", &["irsig-formats"]),
     // EXR files: only irsig-raster reads and writes them
     ("exr", &["irsig-raster"]),
+    // PNG's own encoder (indexed colour), beneath image: irsig-raster's too
+    ("png", &["irsig-raster"]),
     // terminals: progress bars only through irsig-cli
     ("indicatif", &["irsig-cli"]),
     // command lines: the tools, the flags they share in irsig-cli, and the test-only

@@ -775,3 +775,90 @@ fn gltf_is_turned_to_z_up_unless_its_axes_are_kept() {
         .code(2)
         .stderr(predicate::str::contains("--keep-axes is for glTF"));
 }
+
+/// A terrain that names a material: flatten carries it into the binary raw scene, and
+/// flatten and trace both refuse one the library lacks, flatten at the scene's
+/// `terrain.material` and trace at the raw scene's bytes of it (the header flags' high half,
+/// byte 14).
+#[test]
+fn a_terrain_material_goes_through_flatten_and_an_unknown_one_is_refused() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::copy(
+        repo_root().join(SAMPLES).join("box.ron"),
+        dir.path().join("box.ron"),
+    )
+    .unwrap();
+    let sample = std::fs::read_to_string(repo_root().join(SAMPLES).join("scene.ron")).unwrap();
+    let scene = |id: u16| {
+        let text = sample.replace(
+            "terrain: (temperature_k: 286.0, emissivity: 1.0),",
+            &format!("terrain: (temperature_k: 286.0, material: Some({id})),"),
+        );
+        assert_ne!(text, sample);
+        let path = dir.path().join(format!("scene-{id}.ron"));
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let library = repo_root().join(LIBRARY);
+    let raw = dir.path().join("one.raw");
+    bin("irsig-flatten")
+        .arg(scene(1))
+        .arg("--materials")
+        .arg(&library)
+        .arg("-o")
+        .arg(&raw)
+        .assert()
+        .success();
+    let read =
+        irsig_formats::canonical::read_raw_scene("one.raw", &std::fs::read(&raw).unwrap()).unwrap();
+    assert_eq!(read.terrain.material, Some(irsig_model::MaterialId(1)));
+
+    let unknown = scene(9);
+    let out = bin("irsig-flatten")
+        .arg(&unknown)
+        .arg("--materials")
+        .arg(&library)
+        .arg("-o")
+        .arg(dir.path().join("nine.raw"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("scene-9.ron:") && stderr.contains("the terrain's material is 9"),
+        "{stderr}"
+    );
+    assert!(!dir.path().join("nine.raw").exists());
+    // Without a library flatten cannot check it; trace can.
+    let raw = dir.path().join("nine.raw");
+    bin("irsig-flatten")
+        .arg(&unknown)
+        .arg("-o")
+        .arg(&raw)
+        .assert()
+        .success();
+    let view = dir.path().join("view.ron");
+    std::fs::write(
+        &view,
+        "LookAt(position_m: (0.0, -14.0, 3.0), target_m: (0.0, 1.0, 0.5), pixels: (8, 6), \
+         fov_deg: (64.0, 48.0))",
+    )
+    .unwrap();
+    let out = bin("irsig-trace")
+        .arg("--scene")
+        .arg(&raw)
+        .arg("--materials")
+        .arg(&library)
+        .arg("--view")
+        .arg(&view)
+        .arg("--radiance-exr")
+        .arg(dir.path().join("r.exr"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(1), "{stderr}");
+    assert!(
+        stderr.contains("nine.raw:1:15") && stderr.contains("the terrain's material is 9"),
+        "{stderr}"
+    );
+}

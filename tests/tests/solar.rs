@@ -717,6 +717,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         stderr.contains("one sub-band (the default)") && stderr.contains("--sub-bands full"),
         "a sunlit trace at the default sub-bands should warn: {stderr}"
     );
+    let warning = stderr.clone();
     let quiet = trace_plate(
         &out,
         &spa,
@@ -766,6 +767,32 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         night[0]
     );
     assert!(day[0] > night[0]);
+
+    // What one sub-band cost this frame, in kelvin: 4-5 um is inside 3-5 um, where the
+    // band model's sunlight is measured 25.5 % low at worst (docs/accuracy.md), so the
+    // spectral radiance is the day's plus the sunlight the day adds over the night times
+    // 0.255/0.745, and the cost is the difference of the two radiances' temperatures
+    // through the band's exact inverse (the warning's is to first order).
+    let band = irsig_radiometry::Band::new(4.0, 5.0).unwrap();
+    let most = day
+        .iter()
+        .zip(&night)
+        .map(|(&d, &n)| {
+            let (d, n) = (f64::from(d), f64::from(n));
+            band.temperature(d + (d - n) * 0.255 / 0.745) - band.temperature(d)
+        })
+        .fold(0.0, f64::max);
+    let said: f64 = warning
+        .split(" K at most")
+        .next()
+        .and_then(|s| s.rsplit(" and ").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no cost in kelvin in: {warning}"));
+    assert!(
+        warning.contains("view 1: one sub-band's sunlight, 25.5 % low")
+            && (said - most).abs() < 0.05 * most + 1e-3,
+        "{said} K said, {most} K from the day's and night's radiances: {warning}"
+    );
 
     // The sun's truth layers (item 5), by hand from the same E: the plate gets E·cos θ, sees
     // the whole disk, reflects (1 − ε)·E·cos θ/π, which is τ·(1 − ε)·E·cos θ/π of the

@@ -95,6 +95,38 @@ fn per_output_flags_write_only_the_files_named_with_the_prefix_forms_bytes() {
     }
 }
 
+/// The interaction map is the 1990 nibble bytes as palette indices: each pixel's index is
+/// `primary · 16 + reflected`, the ids the truth EXR's material layers hold; a viewer shows
+/// the palette, in which every material has its own colour and nothing hit is black.
+#[test]
+fn the_maps_indices_are_the_truths_ids_and_its_palette_is_visible() {
+    let dir = tempfile::tempdir().unwrap();
+    let (raw, view) = inputs(dir.path());
+    let prefix = dir.path().join("f");
+    trace(&raw, &view).arg("-o").arg(&prefix).assert().success();
+    let png = std::fs::read(dir.path().join("f.map.png")).unwrap();
+    let (w, h, indices) = irsig_raster::read_png_indices(&png).unwrap();
+    assert_eq!((w, h), (48, 36));
+    let truth =
+        irsig_raster::read_exr(&std::fs::read(dir.path().join("f.truth.exr")).unwrap()).unwrap();
+    let layer = |name: &str| &truth.layer(name).unwrap().data;
+    let (primary, reflected) = (layer("material_primary"), layer("material_secondary"));
+    let want: Vec<u8> = primary
+        .iter()
+        .zip(reflected)
+        .map(|(&p, &s)| (p as u8) * 16 + s as u8)
+        .collect();
+    assert_eq!(indices, want);
+    // The view sees the sky or the terrain (0) and two materials at least.
+    let distinct: std::collections::BTreeSet<u8> = indices.iter().map(|i| i >> 4).collect();
+    assert!(distinct.contains(&0) && distinct.len() >= 3, "{distinct:?}");
+    let rgb = image::load_from_memory(&png).unwrap().into_rgb8();
+    for (i, pixel) in rgb.pixels().enumerate() {
+        let visible = pixel.0.iter().map(|&c| u32::from(c)).sum::<u32>() >= 200;
+        assert_eq!(visible, indices[i] >= 16, "pixel {i}: index {}", indices[i]);
+    }
+}
+
 #[test]
 fn one_output_goes_to_standard_output_with_the_file_forms_bytes() {
     let dir = tempfile::tempdir().unwrap();

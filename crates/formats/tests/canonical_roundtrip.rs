@@ -57,7 +57,11 @@ fn object() -> impl Strategy<Value = Object> {
 
 fn raw_scene() -> impl Strategy<Value = RawScene> {
     (
-        (0.0..1e4f64, 0.0..=1.0f64),
+        (
+            0.0..1e4f64,
+            0.0..=1.0f64,
+            proptest::option::of(1..=u16::MAX),
+        ),
         proptest::collection::vec(".*", 0..4),
         proptest::collection::vec(point(), 1..30),
         proptest::collection::vec(
@@ -70,10 +74,11 @@ fn raw_scene() -> impl Strategy<Value = RawScene> {
             0..30,
         ),
     )
-        .prop_map(|((t, e), objects, positions_m, facets)| RawScene {
+        .prop_map(|((t, e, m), objects, positions_m, facets)| RawScene {
             terrain: Terrain {
                 temperature_k: t,
                 emissivity: e,
+                material: m.map(MaterialId),
             },
             objects,
             positions_m,

@@ -6,15 +6,25 @@ use crate::error::{ModelError, ModelErrorKind, check_finite, check_range};
 use crate::material::MaterialId;
 
 /// What a ray sees when it leaves the scene below the horizon: flat terrain of one
-/// temperature and emissivity (the 1990 code hard-wired a 286 K blackbody).
+/// temperature, and either one emissivity or a material of the library (the 1990 code
+/// hard-wired a 286 K blackbody).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Terrain {
     /// Kinetic temperature of the terrain in kelvin.
     pub temperature_k: f64,
-    /// Band emissivity of the terrain, 0 to 1. The rest reflects the hemispheric sky.
+    /// Band emissivity of the terrain, 0 to 1, the same at every angle. The rest reflects
+    /// the hemispheric sky. Not read when `material` is given.
     #[serde(default = "one")]
     pub emissivity: f64,
+    /// A material of the material library the terrain is made of: its angular emissivity
+    /// (per sub-band, where the library is spectral) and its specular fraction, as a
+    /// horizontal facet of that material at the terrain's temperature would have them.
+    /// A ground plane of grass inside the scene and a grass terrain beyond its edge then
+    /// meet without a seam; a constant `emissivity` differs from an angular table by up to
+    /// the table's whole fall toward grazing incidence. `None`: the constant.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<MaterialId>,
 }
 
 fn one() -> f64 {
@@ -27,12 +37,14 @@ impl Default for Terrain {
         Self {
             temperature_k: 286.0,
             emissivity: 1.0,
+            material: None,
         }
     }
 }
 
 impl Terrain {
-    /// Checks the temperature and emissivity.
+    /// Checks the temperature, the emissivity and the material's id (1 or more; whether
+    /// the library defines it is the tracer's check, which holds the library).
     ///
     /// # Errors
     /// The first rule broken, below `prefix`.
@@ -43,7 +55,11 @@ impl Terrain {
             0.0,
             f64::MAX,
         )?;
-        check_range(|| format!("{prefix}.emissivity"), self.emissivity, 0.0, 1.0)
+        check_range(|| format!("{prefix}.emissivity"), self.emissivity, 0.0, 1.0)?;
+        match self.material {
+            Some(m) => m.check_facet(|| format!("{prefix}.material")),
+            None => Ok(()),
+        }
     }
 }
 

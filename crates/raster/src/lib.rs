@@ -5,8 +5,9 @@
 //!   part, losslessly compressed; the layers' units are stored in the text attribute
 //!   `irsig.units`, one `name=unit` line per layer. Files from other programs read too (their channels become
 //!   layers, with `f16`/`u32` samples converted to `f32` and unknown units left empty).
-//! - **PNG** ([`write_png_gray8`], [`write_png_gray16`], [`write_png_rgb8`]): 8- and
-//!   16-bit previews, digital-count images and the legacy interaction map.
+//! - **PNG** ([`write_png_gray8`], [`write_png_gray16`], [`write_png_rgb8`],
+//!   [`write_png_indexed8`]): 8- and 16-bit previews, digital-count images, and the
+//!   legacy interaction map as palette indices ([`read_png_indices`] reads them back).
 //!
 //! Pixel `(0, 0)` is the top-left corner; `data[row * width + column]`, row 0 at the top,
 //! columns left to right, as in EXR and PNG.
@@ -33,7 +34,10 @@ use std::io::{Cursor, Seek, Write};
 
 use exr::prelude::{self as x, ReadChannels, ReadLayers, WritableImage};
 
+mod indexed;
 pub mod merge;
+
+pub use indexed::{read_png_indices, write_png_indexed8};
 
 /// One image plane: a name, its unit and `width × height` samples, row-major from the top.
 #[derive(Debug, Clone, PartialEq)]
@@ -117,6 +121,9 @@ pub enum RasterError {
     /// The PNG could not be written.
     #[error("PNG: {0}")]
     Png(#[from] image::ImageError),
+    /// An indexed PNG could not be written, or a PNG's pixels could not be read as stored.
+    #[error("PNG: {0}")]
+    PngPixels(String),
     /// An I/O error.
     #[error(transparent)]
     Io(#[from] std::io::Error),

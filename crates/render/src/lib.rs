@@ -45,6 +45,7 @@ pub mod products;
 mod run_hash;
 pub mod settings;
 pub mod sun;
+pub mod sun_cost;
 pub mod tolerance;
 
 pub use air::AtmosphereRequest;

@@ -382,7 +382,23 @@ impl Plan {
         let scene = guard
             .as_ref()
             .ok_or_else(|| miette!("the scene is read before the materials"))?;
-        // A facet whose material the library lacks, at its place in the scene file.
+        // A terrain or a facet whose material the library lacks, at its place in the scene
+        // file.
+        if let Some(m) = scene.terrain.material
+            && lib.by_id(m).is_none()
+        {
+            return Err(miette::Report::new(raw_scene_error_at_path(
+                &self.scene_name,
+                scene_bytes,
+                scene,
+                "terrain.material",
+                format!(
+                    "the terrain's material is {}, which the material library {name} does not \
+                     define",
+                    m.0
+                ),
+            )));
+        }
         if let Some((i, f)) = scene
             .facets
             .iter()

@@ -10,7 +10,7 @@ use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_model::provenance::Provenance;
 use irsig_model::truth::Layer;
 use irsig_radiometry::BandModel;
-use irsig_raster::{FramePart, Raster, counts_png, into_exr_bytes, write_png_gray8};
+use irsig_raster::{FramePart, Raster, counts_png, into_exr_bytes, write_png_indexed8};
 use irsig_sensor_model::quantise::{CountRequest, Quantiser};
 use irsig_tracer::Frame;
 use miette::{IntoDiagnostic, miette};
@@ -116,7 +116,9 @@ pub fn map_refusal(max_id: u32) -> String {
 
 /// The 1990 interaction map (thesis §4.2) of `width × height` pixels from each pixel's
 /// primary and reflected material ids: primary in the upper nibble, reflected in the
-/// lower, 0 where nothing was hit. `Ok(Err(id))`: an id does not fit a nibble.
+/// lower, 0 where nothing was hit, as the indices of an indexed PNG whose palette
+/// ([`map::palette`]) makes every material visible. `Ok(Err(id))`: an id does not fit a
+/// nibble.
 fn interaction_map(
     width: usize,
     height: usize,
@@ -131,7 +133,7 @@ fn interaction_map(
         }
     }
     let mut png = Vec::new();
-    write_png_gray8(&mut png, width, height, &data).into_diagnostic()?;
+    write_png_indexed8(&mut png, width, height, &data, &map::palette()).into_diagnostic()?;
     Ok(Ok(png))
 }
 
@@ -361,8 +363,12 @@ mod tests {
     fn a_map_holds_primary_then_reflected_ids_and_refuses_wide_ones() {
         let ids = [(1, 0), (2, 15), (0, 0), (15, 3)].map(Ok);
         let png = interaction_map(2, 2, ids.into_iter()).unwrap().unwrap();
-        let image = image::load_from_memory(&png).unwrap().into_luma8();
-        assert_eq!(image.into_raw(), [0x10, 0x2f, 0x00, 0xf3]);
+        let indices = irsig_raster::read_png_indices(&png).unwrap();
+        assert_eq!(indices, (2, 2, vec![0x10, 0x2f, 0x00, 0xf3]));
+        // A viewer sees the palette: material 1 in Kelly's yellow, nothing hit in black.
+        let rgb = image::load_from_memory(&png).unwrap().into_rgb8();
+        assert_eq!(rgb.get_pixel(0, 0).0, [0xf3, 0xc3, 0x00]);
+        assert_eq!(rgb.get_pixel(0, 1).0, [0, 0, 0]);
         let wide = [(1, 0), (16, 2)].map(Ok);
         assert_eq!(interaction_map(2, 1, wide.into_iter()).unwrap(), Err(16));
         assert!(material_id(2.5).is_err() && material_id(f32::NAN).is_err());

@@ -35,6 +35,15 @@ pub enum TraceErrorKind {
         /// The material id it names.
         material: u16,
     },
+    /// The terrain names a material the material library does not define.
+    #[error(
+        "raw scene: the terrain's material is {material}, which the material library does not \
+         define"
+    )]
+    UnknownTerrainMaterial {
+        /// The material id it names.
+        material: u16,
+    },
     /// A material's angular emissivity table is not one irsig-radiometry can interpolate
     /// (the data model's checks should have caught it first).
     #[error("material library: material {material}: {reason}")]

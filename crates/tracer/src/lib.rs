@@ -84,6 +84,7 @@ pub mod refine;
 mod shade;
 pub mod slab_census;
 pub mod sun;
+mod terrain;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
 mod texture;

@@ -114,7 +114,7 @@ struct SunLight {
 /// The glint of a mirror whose reflection ray `refl` (unit) went as `mirror`, per unit of
 /// the beam's normal irradiance, sr⁻¹: the disk's `1/Ω_sun` when the ray leaves toward the
 /// sky (or would, its bounces spent) inside the disk, else 0.
-fn glint_per_sr(sun: &SunGeometry, refl: V3, mirror: Mirror) -> f64 {
+pub(crate) fn glint_per_sr(sun: &SunGeometry, refl: V3, mirror: Mirror) -> f64 {
     let to_sky = matches!(
         mirror,
         Mirror::Escaped(Escape::Sky { .. }) | Mirror::Untraced(Escape::Sky { .. })
@@ -229,7 +229,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// Where a ray from a surface point at altitude `alt` along `dir` that leaves the scene
     /// ends: the sky above the horizon, the terrain below it.
-    fn escape(&self, dir: V3, alt: f64) -> Escape {
+    pub(crate) fn escape(&self, dir: V3, alt: f64) -> Escape {
         let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
         if nadir < self.bands.bands[0].atmosphere.critical_nadir_angle_deg(alt) {
             Escape::Terrain

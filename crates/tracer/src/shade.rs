@@ -170,19 +170,23 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
                 let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
                 let (mut solar, mut transmitted_solar, mut irradiance) = (0.0, 0.0, 0.0);
+                let (mut emitted, mut single_eps) = (0.0, 0.0);
                 let cos_sun_zenith = self.sun.as_ref().map_or(0.0, |g| g.to_sun[2].max(0.0));
                 set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
                     let (p, scattered) = lit_path(b, p, fc.sensor_alt, 0.0, path.dir);
-                    radiance += p.transmission * b.terrain_leaving + p.path_radiance_w_m2_sr;
+                    let ground = self.terrain_terms(b, path.dir);
+                    radiance += p.transmission * ground.leaving + p.path_radiance_w_m2_sr;
                     if TRUTH {
-                        transmitted += p.transmission * b.terrain_leaving;
+                        transmitted += p.transmission * ground.leaving;
                         path_radiance += p.path_radiance_w_m2_sr;
                         blackbody += b.terrain_blackbody;
-                        leaving += b.terrain_leaving;
+                        emitted += ground.emissivity * b.terrain_blackbody;
+                        single_eps = ground.emissivity;
+                        leaving += ground.leaving;
                         single_tau = p.transmission;
                         if let Some(beam) = &b.sun {
-                            solar += b.terrain_solar;
-                            transmitted_solar += p.transmission * b.terrain_solar + scattered;
+                            solar += ground.solar;
+                            transmitted_solar += p.transmission * ground.solar + scattered;
                             irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
                         }
                     }
@@ -191,8 +195,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     *s = Sample::miss(Event::Terrain);
                     s.range_m = range_m;
                     s.temperature_k = self.terrain.temperature_k;
-                    s.emissivity = self.terrain.emissivity;
-                    s.reflectance = 1.0 - self.terrain.emissivity;
+                    // A material's: as a facet's, the emitted-radiance-weighted mean over
+                    // the sub-bands; the constant's is the same in every sub-band.
+                    s.emissivity = if one || self.terrain_slot.is_none() {
+                        single_eps
+                    } else {
+                        emitted / blackbody
+                    };
+                    s.reflectance = 1.0 - s.emissivity;
                     s.blackbody_w_m2_sr = blackbody;
                     s.surface_leaving_w_m2_sr = leaving;
                     s.transmission = effective_transmission(one, single_tau, transmitted, leaving);
@@ -481,7 +491,7 @@ fn effective_transmission(one: bool, single: f64, transmitted: f64, leaving: f64
 
 /// Radiance arriving along a ray that left the scene, in one sub-band.
 #[inline]
-fn escaped<A: Atmosphere>(b: &BandData<A>, e: Escape) -> f64 {
+pub(crate) fn escaped<A: Atmosphere>(b: &BandData<A>, e: Escape) -> f64 {
     match e {
         Escape::Sky {
             alt_m,

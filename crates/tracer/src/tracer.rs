@@ -17,6 +17,7 @@ use crate::path::Path;
 use crate::path_table::{PathTable, PathTermsMode};
 use crate::refine::{PixelSampling, Refinement};
 use crate::sun::{Sun, SunBeam, SunGeometry};
+use crate::terrain;
 use crate::tile::Tile;
 use crate::vec::V3;
 
@@ -234,6 +235,8 @@ pub struct Tracer<B, A> {
     pub(crate) geometry: Geometry<FacetRadiometry>,
     pub(crate) materials: Vec<MaterialData>,
     pub(crate) terrain: Terrain,
+    /// The terrain's material slot, when it names one ([`crate::terrain`]).
+    pub(crate) terrain_slot: Option<u16>,
     /// The whole band: what the apparent temperature inverts.
     pub(crate) band: B,
     /// The sub-bands the radiance equation is summed over (one: the band itself).
@@ -432,43 +435,6 @@ pub(crate) fn contrast_of(t: &[f64], w: usize, h: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The terrain background's surface-leaving radiance in sub-band `b`, W m⁻² sr⁻¹:
-/// `ε·L_T + (1 − ε)·L_d(0)`, and with a sun or by day its sunlight ([`terrain_solar`])
-/// more (the terrain is flat and unshadowed).
-fn terrain_leaving<A: Atmosphere>(
-    terrain: &Terrain,
-    b: &BandData<A>,
-    sun: Option<(&SunBeam, &SunGeometry)>,
-) -> f64 {
-    let eps = terrain.emissivity;
-    let night = eps * b.terrain_blackbody + (1.0 - eps) * b.atmosphere.sky_hemispheric(0.0);
-    if sun.is_none() && b.atmosphere.scattered().is_none() {
-        return night;
-    }
-    night + terrain_solar(terrain, b, sun)
-}
-
-/// The sunlight in the terrain background's surface-leaving radiance in one sub-band,
-/// W m⁻² sr⁻¹: the beam's `(1 − ε)·E_n(0)·cos θ_sun/π`, and by day the scattered sky's
-/// `(1 − ε)·L_d,scattered(0)` (0 without either).
-fn terrain_solar<A: Atmosphere>(
-    terrain: &Terrain,
-    b: &BandData<A>,
-    sun: Option<(&SunBeam, &SunGeometry)>,
-) -> f64 {
-    let direct = sun.map_or(0.0, |(beam, geometry)| {
-        let cos_zenith = geometry.to_sun[2].max(0.0);
-        (1.0 - terrain.emissivity)
-            * beam.normal_w_m2(0.0)
-            * cos_zenith
-            * std::f64::consts::FRAC_1_PI
-    });
-    match b.atmosphere.scattered() {
-        None => direct,
-        Some(s) => direct + (1.0 - terrain.emissivity) * s.sky_hemispheric(0.0),
-    }
-}
-
 fn splitmix64(mut x: u64) -> u64 {
     x = x.wrapping_add(0x9E37_79B9_7F4A_7C15);
     x = (x ^ (x >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -586,6 +552,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             });
         }
         drop(index_of);
+        let terrain_slot = match scene.terrain.material {
+            None => None,
+            Some(m) if slot_of[usize::from(m.0)] == u16::MAX => {
+                return Err(TraceError::new(TraceErrorKind::UnknownTerrainMaterial {
+                    material: m.0,
+                }));
+            }
+            Some(m) => Some(slot_of[usize::from(m.0)]),
+        };
         let first = &sub_bands[0].band;
         let blackbody: Vec<f64> = temperatures.iter().map(|&t| first.radiance(t)).collect();
         let radiometry = |i: usize| {
@@ -609,6 +584,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             geometry,
             materials: mats,
             terrain: scene.terrain,
+            terrain_slot,
             band,
             bands: BandSet {
                 bands: Vec::new(),
@@ -666,12 +642,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ))));
         }
         self.remove_sun();
-        let terrain = self.terrain;
-        for (b, beam) in self.bands.bands.iter_mut().zip(sun.beams) {
-            b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, &geometry)));
-            b.terrain_solar = terrain_solar(&terrain, b, Some((&beam, &geometry)));
+        let mut bands = std::mem::take(&mut self.bands.bands);
+        for (b, beam) in bands.iter_mut().zip(sun.beams) {
+            let eps = self.terrain_emissivity(b);
+            b.terrain_leaving = terrain::leaving(eps, b, Some((&beam, &geometry)));
+            b.terrain_solar = terrain::solar(eps, b, Some((&beam, &geometry)));
             b.sun = Some(beam);
         }
+        self.bands.bands = bands;
         self.sun = Some(geometry);
         Ok(self)
     }
@@ -681,12 +659,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         if self.sun.take().is_none() {
             return;
         }
-        let terrain = self.terrain;
-        for b in &mut self.bands.bands {
+        let mut bands = std::mem::take(&mut self.bands.bands);
+        for b in &mut bands {
+            let eps = self.terrain_emissivity(b);
             b.sun = None;
-            b.terrain_leaving = terrain_leaving(&terrain, b, None);
-            b.terrain_solar = terrain_solar(&terrain, b, None);
+            b.terrain_leaving = terrain::leaving(eps, b, None);
+            b.terrain_solar = terrain::solar(eps, b, None);
         }
+        self.bands.bands = bands;
     }
 
     /// `set` (made by [`Self::band_set`]) lit by this tracer's sun with one beam per
@@ -716,10 +696,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 set.len()
             )));
         }
-        let terrain = self.terrain;
         for (b, beam) in set.bands.iter_mut().zip(beams) {
-            b.terrain_leaving = terrain_leaving(&terrain, b, Some((&beam, geometry)));
-            b.terrain_solar = terrain_solar(&terrain, b, Some((&beam, geometry)));
+            let eps = self.terrain_emissivity(b);
+            b.terrain_leaving = terrain::leaving(eps, b, Some((&beam, geometry)));
+            b.terrain_solar = terrain::solar(eps, b, Some((&beam, geometry)));
             b.sun = Some(beam);
         }
         Ok(set)
@@ -790,8 +770,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 sun: None,
             });
             let b = bands.last_mut().expect("just pushed");
-            b.terrain_leaving = terrain_leaving(&terrain, b, None);
-            b.terrain_solar = terrain_solar(&terrain, b, None);
+            let eps = self.terrain_emissivity(b);
+            b.terrain_leaving = terrain::leaving(eps, b, None);
+            b.terrain_solar = terrain::solar(eps, b, None);
         }
         Ok(BandSet::new(bands))
     }

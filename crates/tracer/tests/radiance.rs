@@ -63,6 +63,7 @@ fn scene(parts: &[(Mesh, u16, f64)]) -> RawScene {
         terrain: Terrain {
             temperature_k: 290.0,
             emissivity: 0.9,
+            material: None,
         },
         ..RawScene::default()
     };

@@ -279,7 +279,8 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         at(e.placement, path.as_deref(), e.to_string())
     })?;
     if let Some(path) = &cli.materials.file {
-        check_materials(Path::new(path), &raw, |r, message| {
+        let terrain_at = |message| at(None, Some("terrain.material"), message);
+        check_materials(Path::new(path), &raw, terrain_at, |r, message| {
             // The facet's material came from its object file unless an override of the
             // placement changed it: point at whichever gave it.
             let i = raw.facets[r].object as usize;
@@ -359,11 +360,20 @@ fn resolve(base: &Path, object: &Path) -> String {
 fn check_materials(
     path: &Path,
     raw: &irsig_model::RawScene,
+    terrain_at: impl Fn(String) -> miette::Report,
     at: impl Fn(usize, String) -> miette::Report,
 ) -> miette::Result<()> {
     let input = irsig_cli::read_input(path)?;
     let library: MaterialLibrary =
         irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
+    if let Some(m) = raw.terrain.material
+        && library.by_id(m).is_none()
+    {
+        return Err(terrain_at(format!(
+            "the terrain's material is {}, which {} does not define",
+            m.0, input.name
+        )));
+    }
     for (i, f) in raw.facets.iter().enumerate() {
         if library.by_id(f.material).is_none() {
             let object = raw

@@ -34,8 +34,8 @@ pub struct FrameOutputArgs {
     /// Write the truth layers (multi-layer f32 EXR) to FILE.
     #[arg(long, value_name = "FILE", conflicts_with = "output")]
     pub truth_exr: Option<PathBuf>,
-    /// Write the legacy interaction map (8-bit nibble PNG) to FILE; an error when a
-    /// material id does not fit in four bits.
+    /// Write the legacy interaction map (8-bit nibble bytes as a palette PNG, a colour
+    /// per material) to FILE; an error when a material id does not fit in four bits.
     #[arg(long, value_name = "FILE", conflicts_with = "output")]
     pub map_png: Option<PathBuf>,
     /// `--dc-png FILE`.

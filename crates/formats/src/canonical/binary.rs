@@ -8,7 +8,7 @@
 //! | --- | --- | --- |
 //! | 0 | 8 | magic `IRSIGRAW` |
 //! | 8 | 4 | `u32` version, 1 |
-//! | 12 | 4 | `u32` flags, 0 (reserved) |
+//! | 12 | 4 | `u32` flags: bits 0–15 reserved 0, 16–31 the terrain's material id (0: none) |
 //! | 16 | 8 | `f64` terrain temperature, K |
 //! | 24 | 8 | `f64` terrain emissivity |
 //! | 32 | 4 | `u32` object count `O` |
@@ -43,7 +43,15 @@ const FORM: Form = Form {
     version: VERSION,
     header_len: HEADER_LEN,
     noun: "raw scene",
+    flag_bits: TERRAIN_MATERIAL_BITS,
 };
+
+/// The flag bits that hold the terrain's material id, the high half (bytes 14 and 15), so
+/// that the low half stays reserved as it was: 0 is never a material, so a file written
+/// before the terrain could name one (flags 0) reads as the constant emissivity.
+const TERRAIN_MATERIAL_BITS: u32 = 0xffff_0000;
+/// Where the terrain's material id starts in the flags.
+const TERRAIN_MATERIAL_SHIFT: u32 = 16;
 
 /// True when `bytes` start with [`MAGIC`].
 #[must_use]
@@ -77,7 +85,11 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
 pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let count = |n: usize, what: &str| FORM.count(n, what);
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
-    let mut header = FORM.start_header(HEADER_LEN + names_len);
+    let flags = scene
+        .terrain
+        .material
+        .map_or(0, |m| u32::from(m.0) << TERRAIN_MATERIAL_SHIFT);
+    let mut header = FORM.start_header(HEADER_LEN + names_len, flags);
     header.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
     header.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
     header.extend_from_slice(&count(scene.objects.len(), "objects")?.to_le_bytes());
@@ -110,6 +122,8 @@ pub fn offset_of_path(scene: &RawScene, path: &str) -> usize {
     let facets_at = positions_at + POSITION_LEN * scene.positions_m.len();
     match layout::record_offset(path, positions_at, facets_at, FACET_LEN) {
         Some(at) => at,
+        // The material's id is the flags' high half.
+        None if path.starts_with("terrain.material") => 14,
         None if path.starts_with("terrain") => 16,
         None => 0,
     }
@@ -196,6 +210,11 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
         terrain: Terrain {
             temperature_k: f64_at(bytes, 16),
             emissivity: f64_at(bytes, 24),
+            material: match (u32_at(bytes, 12) & TERRAIN_MATERIAL_BITS) >> TERRAIN_MATERIAL_SHIFT {
+                0 => None,
+                // The mask and the shift leave 16 bits.
+                id => Some(MaterialId(id as u16)),
+            },
         },
         objects: names,
         positions_m,
@@ -212,6 +231,7 @@ mod tests {
             terrain: Terrain {
                 temperature_k: 290.5,
                 emissivity: 0.95,
+                material: None,
             },
             objects: vec!["car".into(), "ström".into()],
             positions_m: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 1e-9]],
@@ -254,6 +274,21 @@ mod tests {
         let facet0 = 48 + 17 + 3 * 24;
         assert_eq!(bytes[facet0 + 12..facet0 + 14], 7u16.to_le_bytes());
         assert_eq!(bytes[facet0 + 20..facet0 + 28], 300.25f64.to_le_bytes());
+    }
+
+    #[test]
+    fn the_terrains_material_is_the_flags_high_half() {
+        // Without one, flags 0: the bytes of a file written before the field existed.
+        assert_eq!(encode(&scene()).unwrap()[12..16], [0; 4]);
+        let mut s = scene();
+        s.terrain.material = Some(MaterialId(0xbeef));
+        let bytes = encode(&s).unwrap();
+        assert_eq!(bytes[12..16], [0, 0, 0xef, 0xbe]);
+        assert_eq!(decode("s.bin", &bytes).unwrap(), s);
+        let mut reserved = bytes;
+        reserved[12] = 1;
+        let e = decode("s.bin", &reserved).unwrap_err();
+        assert!(e.message.contains("outside 0xffff0000"), "{e}");
     }
 
     #[test]
@@ -326,6 +361,7 @@ mod tests {
         let mut bytes = encode(&scene()).unwrap();
         bytes[48] = 200;
         assert!(decode("s.bin", &bytes).is_err());
+        // Bits 0-15 of the flags are reserved (16-31 are the terrain's material).
         let mut bytes = encode(&scene()).unwrap();
         bytes[12] = 1;
         assert!(

@@ -65,6 +65,7 @@ const FORM: Form = Form {
     version: VERSION,
     header_len: HEADER_LEN,
     noun: "object",
+    flag_bits: 0,
 };
 
 /// True when `bytes` start with [`MAGIC`].
@@ -99,7 +100,7 @@ pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
 /// error from `w`.
 pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let count = |n: usize, what: &str| FORM.count(n, what);
-    let mut header = FORM.start_header(HEADER_LEN + object.name.len() + object.source.len());
+    let mut header = FORM.start_header(HEADER_LEN + object.name.len() + object.source.len(), 0);
     header.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());

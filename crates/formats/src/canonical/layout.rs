@@ -1,6 +1,6 @@
 //! What the two binary forms, the raw scene ([`super::binary`], `IRSIGRAW`) and the object
 //! ([`super::binary_object`], `IRSIGOBJ`), share: the opening 16 bytes (an 8-byte magic, a
-//! `u32` version and `u32` reserved flags that are 0), `u32` counts, the check of the file
+//! `u32` version and `u32` flags, 0 in every bit the form gives no meaning), `u32` counts, the check of the file
 //! length against the header's counts before anything is allocated, positions as `f64`
 //! x y z, and records written a chunk at a time. All little-endian, no padding.
 
@@ -43,16 +43,19 @@ pub(super) struct Form {
     pub header_len: usize,
     /// What the file holds, for messages ("raw scene", "object").
     pub noun: &'static str,
+    /// The bits of the flags word (bytes 12–15) the form gives a meaning; every other
+    /// bit is reserved and must be 0, so that a later version can use it.
+    pub flag_bits: u32,
 }
 
 impl Form {
     /// A buffer for the header (of `capacity` bytes with what follows it), holding the
-    /// magic, the version and the reserved flags 0.
-    pub fn start_header(&self, capacity: usize) -> Vec<u8> {
+    /// magic, the version and the flags (only [`Self::flag_bits`] of them kept).
+    pub fn start_header(&self, capacity: usize, flags: u32) -> Vec<u8> {
         let mut header = Vec::with_capacity(capacity);
         header.extend_from_slice(self.magic);
         header.extend_from_slice(&self.version.to_le_bytes());
-        header.extend_from_slice(&0u32.to_le_bytes());
+        header.extend_from_slice(&(flags & self.flag_bits).to_le_bytes());
         header
     }
 
@@ -70,7 +73,7 @@ impl Form {
     }
 
     /// The checks every file of this form opens with: its magic, a whole fixed-size
-    /// header, its version and reserved flags that are 0.
+    /// header, its version and reserved flag bits that are 0.
     ///
     /// # Errors
     /// The first of these that fails, at its byte offset.
@@ -107,11 +110,16 @@ impl Form {
             ));
         }
         let flags = u32_at(bytes, 12);
-        if flags != 0 {
-            return Err(err(
-                12,
-                format!("expected header flags 0 (reserved), found {flags:#x}"),
-            ));
+        if flags & !self.flag_bits != 0 {
+            let which = if self.flag_bits == 0 {
+                "header flags 0 (reserved)".to_owned()
+            } else {
+                format!(
+                    "header flags outside {:#x} to be 0 (reserved)",
+                    self.flag_bits
+                )
+            };
+            return Err(err(12, format!("expected {which}, found {flags:#x}")));
         }
         Ok(())
     }
@@ -211,10 +219,11 @@ mod tests {
         version: 3,
         header_len: 20,
         noun: "test",
+        flag_bits: 0,
     };
 
     fn header() -> Vec<u8> {
-        let mut h = FORM.start_header(20);
+        let mut h = FORM.start_header(20, 0);
         h.extend_from_slice(&7u32.to_le_bytes());
         h
     }
@@ -253,6 +262,32 @@ mod tests {
             let e = FORM.check_header("t.bin", &bytes).unwrap_err();
             assert_eq!((e.column, e.message.as_str()), (column, says));
         }
+    }
+
+    #[test]
+    fn a_form_reads_its_own_flag_bits_and_refuses_the_reserved_ones() {
+        let low = Form {
+            flag_bits: 0xffff,
+            ..FORM
+        };
+        let mut h = low.start_header(20, 0x0001_0007);
+        h.extend_from_slice(&7u32.to_le_bytes());
+        assert_eq!(
+            h[12..16],
+            7u32.to_le_bytes(),
+            "bits outside the form's are not written"
+        );
+        assert!(low.check_header("t.bin", &h).is_ok());
+        h[14] = 1;
+        let e = low.check_header("t.bin", &h).unwrap_err();
+        assert_eq!(
+            (e.column, e.message.as_str()),
+            (
+                13,
+                "expected header flags outside 0xffff to be 0 (reserved), found 0x10007"
+            )
+        );
+        assert!(FORM.check_header("t.bin", &h).is_err());
     }
 
     #[test]

@@ -342,6 +342,19 @@ impl Plan {
                 tracer.render(cam, &options, progress)
             }
             .map_err(|e| miette!("{e}"))?;
+            // One sub-band by day because none was asked for: what it cost this frame.
+            if self.request.settings.sub_bands.is_none()
+                && decision.is_none()
+                && settings.sub_bands.is_band()
+                && let Some(text) = crate::sun_cost::note(
+                    tracer.band(),
+                    crate::air::band_range_um(&self.request.band),
+                    &frame,
+                    i + 1,
+                )
+            {
+                sink.warning(&text);
+            }
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
                 frame_height: cam.pixels[1] as usize,

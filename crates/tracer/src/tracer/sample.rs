@@ -164,7 +164,8 @@ pub struct Sample {
     pub cos_incidence: f64,
     /// Kinetic temperature of what was hit (facet or terrain), K.
     pub temperature_k: f64,
-    /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
+    /// ε at the incidence angle (for a terrain miss the terrain's constant emissivity, or
+    /// its material's at the ray's incidence).
     pub emissivity: f64,
     /// Reflectance `r = 1 − ε`.
     pub reflectance: f64,
@@ -283,7 +284,8 @@ pub struct TruthPixel {
     pub cos_incidence: f64,
     /// Kinetic temperature of what was hit (facet or terrain), K.
     pub temperature_k: f32,
-    /// ε at the incidence angle (the terrain's band emissivity for a terrain miss).
+    /// ε at the incidence angle (for a terrain miss the terrain's constant emissivity, or
+    /// its material's at the ray's incidence).
     pub emissivity: f32,
     /// τ of the path from the hit to the sensor.
     pub transmission: f32,
