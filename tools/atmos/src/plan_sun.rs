@@ -101,6 +101,141 @@ pub(crate) fn choose(
     }))
 }
 
+/// The suns of a day a plan is for (one build for every sun of the day): the table's zenith
+/// angles, degrees, increasing, rounded to the 0.001° a deck holds; its day of the year;
+/// and what the plan says of them.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DaySuns {
+    pub zenith_deg: Vec<f64>,
+    pub day_of_year: u16,
+    pub note: String,
+}
+
+/// Whether a `--sun-utc` is a time range `START/END/STEP` rather than one time.
+pub(crate) fn is_range(utc: &str) -> bool {
+    utc.contains('/')
+}
+
+/// `--sun-utc` of `irsig-atmos plan`: one time, as every tool takes it, or a range
+/// `START/END/STEP` (`irsig_formats::time::parse_times`: an end before the start, a step
+/// of 0 and a time that is none are refused here, at the flag).
+pub(crate) fn utc_or_range(s: &str) -> Result<String, String> {
+    if is_range(s) {
+        irsig_formats::time::parse_times(s)?;
+    } else {
+        irsig_atmosphere::sun::check_utc(s)?;
+    }
+    Ok(s.to_owned())
+}
+
+/// The suns of `--sun-zeniths-deg` on `--day-of-year`: those angles, as given.
+///
+/// # Errors
+/// No `--day-of-year`; an angle that rounds to the horizon.
+pub(crate) fn suns_of_zeniths(zenith_deg: &[f64], day: Option<u16>) -> miette::Result<DaySuns> {
+    let Some(day_of_year) = day else {
+        return Err(irsig_cli::usage_error(
+            "--sun-zeniths-deg needs --day-of-year D (1-366) for the Earth-Sun distance",
+        ));
+    };
+    for &z in zenith_deg {
+        rounds_above_horizon(z)
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-zeniths-deg: {e}")))?;
+    }
+    let mut rows: Vec<f64> = zenith_deg
+        .iter()
+        .map(|z| (z * 1000.0).round() / 1000.0)
+        .collect();
+    rows.sort_by(f64::total_cmp);
+    rows.dedup();
+    Ok(DaySuns {
+        note: format!("the suns of --sun-zeniths-deg, {} rows", rows.len()),
+        zenith_deg: rows,
+        day_of_year,
+    })
+}
+
+/// The suns of the moments `utc` (`START/END/STEP`) seen from `place`: each moment's
+/// geometric zenith angle (NREL's SPA, as `irsig-trace --sun-utc` sees it) while the sun
+/// is above the horizon, with the rows of
+/// [`irsig_atmosphere::plan::day_sun_rows`] between them; the moments with the sun at or
+/// below the horizon dropped, and said. The day of the year is the first lit moment's
+/// (a trace on another date scales the beam to its own Earth–Sun distance).
+///
+/// # Errors
+/// A range `parse_times` refuses; a place without latitude or longitude; a `--day-of-year`
+/// that is not the first lit moment's; no moment with the sun above the horizon.
+pub(crate) fn suns_of_times(
+    utc: &str,
+    place: &irsig_cli::args::PlaceArgs,
+    day: Option<u16>,
+) -> miette::Result<DaySuns> {
+    let times = irsig_formats::time::parse_times(utc)
+        .map_err(|e| irsig_cli::usage_error(format!("--sun-utc {utc}: {e}")))?;
+    let (Some(latitude_deg), Some(longitude_deg)) = (place.latitude_deg, place.longitude_deg)
+    else {
+        return Err(irsig_cli::usage_error(
+            "--sun-utc needs --latitude-deg and --longitude-deg",
+        ));
+    };
+    let mut lit = Vec::new();
+    let mut dark = 0_usize;
+    let mut first_day = None;
+    for &t in &times {
+        let spec = SunSpec::At {
+            utc: irsig_model::time::format_utc(t),
+            latitude_deg,
+            longitude_deg,
+            altitude_m: place.altitude_m,
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        };
+        let position = spec
+            .position()
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-utc {utc}: {e}")))?;
+        if rounds_above_horizon(position.zenith_deg).is_err() {
+            dark += 1;
+            continue;
+        }
+        lit.push(position.zenith_deg);
+        first_day = first_day.or_else(|| spec.day_of_year());
+    }
+    let Some(day_of_year) = first_day else {
+        return Err(irsig_cli::usage_error(format!(
+            "--sun-utc {utc}: the sun is at or below the horizon at all {} moments: plan a \
+             night (leave the sun out)",
+            times.len()
+        )));
+    };
+    if let Some(given) = day.filter(|&d| d != day_of_year) {
+        return Err(irsig_cli::usage_error(format!(
+            "--day-of-year {given}, but the first lit moment of --sun-utc {utc} is on day \
+             {day_of_year}: leave out --day-of-year"
+        )));
+    }
+    let rows = irsig_atmosphere::plan::day_sun_rows(&lit);
+    let dropped = if dark == 0 {
+        String::new()
+    } else {
+        format!(
+            "; {dark} of the {} moments have the sun at or below the horizon and are dropped \
+             (no direct light)",
+            times.len()
+        )
+    };
+    Ok(DaySuns {
+        note: format!(
+            "the suns of {} lit moments of --sun-utc {utc}, {} rows with the grid between \
+             them{dropped}",
+            lit.len(),
+            rows.len()
+        ),
+        zenith_deg: rows,
+        day_of_year,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
