@@ -76,7 +76,7 @@ Examples:
          SPA) and its day of the year. Or the suns of a day, START/END/STEP \
          (`2026-06-21T10:00:00Z/2026-06-22T10:00:00Z/PT1H`): the direct beam at every lit \
          moment's zenith angle and at rows between them (every 5 deg to 80, 2 deg to 86, 1 \
-         deg to 89), for one build that irsig-trace interpolates for any sun among them; the \
+         deg to 87, 0.5 deg to 89.5), for one build that irsig-trace interpolates for any sun among them; the \
          moments with the sun below the horizon are dropped, and said"
     )),
     mut_arg("day_of_year", |a| a.help(
@@ -601,7 +601,9 @@ fn refuse_a_views_sun_beside(
 fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) -> String {
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         // Said either way: whether the sunlight scattered into the paths is in the plan.
-        let scattered = if s.relative_azimuth_deg.is_empty() {
+        let scattered = if !s.further_zenith_deg.is_empty() {
+            "; the direct beam only (the scattered sunlight is planned for one sun)".to_owned()
+        } else if s.relative_azimuth_deg.is_empty() {
             "; the direct beam only, no scattered sunlight (--sun-scattering adds it)".to_owned()
         } else {
             format!(
