@@ -8,7 +8,9 @@
 //! suns. The first table's beam interpolated at each of them ([`DirectSun::at_zenith`]) is
 //! held to 0.5 % of the second's above 10° of elevation, in 3–5 and 8–14 µm, at the ground
 //! and at 1 km; below 10° the error is printed and held to the bound `docs/accuracy.md`
-//! states. Then `irsig-atmos plan --sun-utc START/END/STEP` end to end: the plan holds the
+//! states; through `irsig-trace`, a plate lit by a sun between rows has the radiance the
+//! sun's own rows give it, and a sun past the last row is refused naming the table's suns.
+//! Then `irsig-atmos plan --sun-utc START/END/STEP` end to end: the plan holds the
 //! zenith angle of every lit hour of a day, as `irsig-atmos sun` gives it, drops the hours
 //! of night, saying so, and refuses a range that is none.
 //!
@@ -16,7 +18,7 @@
 //! (`sh scripts/atmosphere/install-lowtran.sh` builds it). When it is missing these tests
 //! fail, saying so: they never skip.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use irsig_atmosphere::solar::DirectSun;
 use irsig_formats::canonical;
@@ -57,7 +59,9 @@ fn plan_ron(zeniths: &[f64]) -> String {
     )
 }
 
-fn build(dir: &Path, name: &str, zeniths: &[f64]) -> SpectralAtmosphere {
+/// `irsig-atmos build` of [`plan_ron`] for `zeniths` into `dir/NAME.spa`: the file and
+/// the atmosphere read back.
+fn build(dir: &Path, name: &str, zeniths: &[f64]) -> (PathBuf, SpectralAtmosphere) {
     let plan = dir.join(name);
     std::fs::create_dir(&plan).unwrap();
     std::fs::write(plan.join("plan.ron"), plan_ron(zeniths)).unwrap();
@@ -70,7 +74,60 @@ fn build(dir: &Path, name: &str, zeniths: &[f64]) -> SpectralAtmosphere {
         .arg(&out)
         .assert()
         .success();
-    canonical::read_spectral_atmosphere(name, &std::fs::read(&out).unwrap()).unwrap()
+    let a = canonical::read_spectral_atmosphere(name, &std::fs::read(&out).unwrap()).unwrap();
+    (out, a)
+}
+
+/// `irsig-trace` of one pixel looking straight down from 1 km onto a horizontal grey
+/// plate (ε = 0.2, 300 K) at the ground, in 3–5 µm with the spectral integral, through
+/// `spa`, the sun at `zenith_deg`: the radiance at the sensor, W m⁻² sr⁻¹, or the error.
+fn trace(dir: &Path, spa: &Path, zenith_deg: f64) -> Result<f64, String> {
+    let scene = dir.join("plate.raw.ron");
+    std::fs::write(
+        &scene,
+        "(objects: [\"plate\"], positions_m: [(-2e3, -2e3, 0.0), (2e3, -2e3, 0.0), \
+         (2e3, 2e3, 0.0), (-2e3, 2e3, 0.0)], facets: [(vertices: (0, 1, 2), material: 1, \
+         temperature_k: 300.0, object: 0), (vertices: (0, 2, 3), material: 1, \
+         temperature_k: 300.0, object: 0)])",
+    )
+    .unwrap();
+    let view = dir.join("view.ron");
+    std::fs::write(
+        &view,
+        "LookAt(position_m: (0.0, 0.0, 1000.0), target_m: (0.0, 0.001, 900.0), \
+         up: (0.0, 1.0, 0.0), pixels: (1, 1), fov_deg: (0.01, 0.01))",
+    )
+    .unwrap();
+    let materials = dir.join("materials.ron");
+    std::fs::write(
+        &materials,
+        "(materials: [(id: 1, name: \"grey\", emissivity: [(0.0, 0.2), (90.0, 0.2)], \
+         specular_fraction: 0.0, source: \"a test\")])",
+    )
+    .unwrap();
+    let out = bin("irsig-trace")
+        .arg("--scene")
+        .arg(&scene)
+        .arg("--materials")
+        .arg(&materials)
+        .arg("--view")
+        .arg(&view)
+        .arg("--atmosphere")
+        .arg(spa)
+        .args(["--band", "3-5", "--sub-bands", "full", "--probe", "0,0"])
+        .args(["--sun-zenith-deg", &zenith_deg.to_string()])
+        .args(["--sun-azimuth-deg", "120"])
+        .output()
+        .unwrap();
+    if !out.status.success() {
+        return Err(String::from_utf8_lossy(&out.stderr).into_owned());
+    }
+    let text = String::from_utf8(out.stdout).unwrap();
+    let line = text
+        .lines()
+        .find_map(|l| l.strip_prefix("L at sensor (W m-2 sr-1)"))
+        .expect("the probe's radiance at the sensor");
+    Ok(line.trim().parse().unwrap())
 }
 
 /// Suns between the day table's rows, none on one: above 10° of elevation, then below.
@@ -81,9 +138,9 @@ const LOW: [f64; 9] = [81.0, 83.3, 85.1, 86.5, 87.3, 87.8, 88.2, 88.7, 89.2];
 fn a_sun_between_the_rows_of_one_build_is_lowtran7s_for_that_sun() {
     let dir = tempfile::tempdir().unwrap();
     let grid = irsig_atmosphere::plan::day_sun_grid_deg();
-    let day = build(dir.path(), "day", &grid);
+    let (day_spa, day) = build(dir.path(), "day", &grid);
     let suns: Vec<f64> = HIGH.iter().chain(&LOW).copied().collect();
-    let exact = build(dir.path(), "exact", &suns);
+    let (exact_spa, exact) = build(dir.path(), "exact", &suns);
     let (day_solar, exact_solar) = (day.solar.as_ref().unwrap(), exact.solar.as_ref().unwrap());
     assert_eq!(day_solar.zeniths_deg(), grid);
     assert_eq!(exact_solar.zeniths_deg(), suns);
@@ -123,6 +180,25 @@ fn a_sun_between_the_rows_of_one_build_is_lowtran7s_for_that_sun() {
         "worst above 10 deg of elevation: {:.3} %",
         100.0 * worst_high
     );
+    // Through irsig-trace: the plate's radiance at the sensor with the sun at 63.1 deg is
+    // the same from the day's table (interpolated) as from the sun's own rows (the thermal
+    // tables of the two builds are the same runs); a sun past the day's last row is
+    // refused, naming the table's suns.
+    let (from_day, own) = (
+        trace(dir.path(), &day_spa, 63.1).unwrap(),
+        trace(dir.path(), &exact_spa, 63.1).unwrap(),
+    );
+    eprintln!(
+        "3-5 um radiance at the sensor, sun at 63.1 deg: {from_day} from the day's table, \
+         {own} from its own rows"
+    );
+    assert!(
+        (from_day / own - 1.0).abs() < 1e-4,
+        "{from_day} against {own}"
+    );
+    let e = trace(dir.path(), &day_spa, 89.7).unwrap_err();
+    assert!(e.contains("holds suns from 0 to 89.5 deg"), "{e}");
+    assert!(e.contains("--sun-zenith-deg"), "{e}");
 }
 
 /// The bound below 10° of elevation that `docs/accuracy.md` states.

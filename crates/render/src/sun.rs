@@ -278,12 +278,20 @@ pub(crate) fn sun(
                  them, not beyond)"
             )
         };
+        let fix = if zeniths.len() == 1 {
+            how_to_build(spelling)
+        } else {
+            format!(
+                "plan suns that cover this one (irsig-atmos plan --sun-utc START/END/STEP \
+                 with the place, or --sun-zeniths-deg) and build again; or {}",
+                how_to_build(spelling)
+            )
+        };
         return Err(request.refuse(
             request.setting(),
             format!(
                 "the sun is {z:.4} deg from the zenith, but the solar table of `{name}` \
-                 {table}: {}",
-                how_to_build(spelling)
+                 {table}: {fix}"
             ),
         ));
     }
