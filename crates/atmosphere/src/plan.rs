@@ -403,7 +403,29 @@ pub fn day_sun_rows(lit_zenith_deg: &[f64]) -> Vec<f64> {
     }
     rows.extend(fill);
     rows.sort_by(f64::total_cmp);
-    rows
+    // Two moments a hair apart (a morning's and an evening's sun) make a secant of two
+    // nearly equal beams, whose rounding would bend the cubic's slopes around them: a row
+    // within a fiftieth of its grid step of the one kept before it is left out (the last
+    // row is kept, its neighbour left out instead); a moment left out is then
+    // interpolated over that fiftieth.
+    let step_at = |z: f64| {
+        grid.windows(2)
+            .find(|w| z <= w[1])
+            .map_or(0.5, |w| w[1] - w[0])
+    };
+    let mut kept: Vec<f64> = Vec::with_capacity(rows.len());
+    for (k, &z) in rows.iter().enumerate() {
+        match kept.last() {
+            Some(&before) if z - before < 0.02 * step_at(z) => {
+                if k + 1 == rows.len() {
+                    kept.pop();
+                    kept.push(z);
+                }
+            }
+            _ => kept.push(z),
+        }
+    }
+    kept
 }
 
 /// One radiative-transfer path.
@@ -767,6 +789,11 @@ mod tests {
             };
             assert!(w[1] - w[0] <= limit, "{w:?}");
         }
+        // A morning's and an evening's sun 0.035 deg apart near 82 deg (a step of 2): one
+        // row; near the zenith, 0.17 deg apart (a step of 5), both.
+        assert_eq!(day_sun_rows(&[82.298, 82.333, 84.0]), [82.298, 84.0]);
+        assert_eq!(day_sun_rows(&[82.298, 82.333]), [82.333]);
+        assert_eq!(day_sun_rows(&[19.644, 19.814]), [19.644, 19.814]);
         assert_eq!(day_sun_rows(&[42.0]), [42.0]);
         assert!(day_sun_rows(&[]).is_empty());
         assert_eq!(day_sun_rows(&[0.0, 10.0]), [0.0, 5.0, 10.0]);

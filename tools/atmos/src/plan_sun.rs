@@ -111,6 +111,13 @@ pub(crate) struct DaySuns {
     pub note: String,
 }
 
+/// How many times a day's range is sampled at most (at least a minute apart) for its
+/// highest sun and whether the sun crosses the horizon in it.
+const SAMPLES: u32 = 20_000;
+
+/// The last zenith angle a deck holds below the horizon's 90°, degrees.
+const LAST_ZENITH_DEG: f64 = 89.999;
+
 /// Whether a `--sun-utc` is a time range `START/END/STEP` rather than one time.
 pub(crate) fn is_range(utc: &str) -> bool {
     utc.contains('/')
@@ -157,9 +164,11 @@ pub(crate) fn suns_of_zeniths(zenith_deg: &[f64], day: Option<u16>) -> miette::R
 
 /// The suns of the moments `utc` (`START/END/STEP`) seen from `place`: each moment's
 /// geometric zenith angle (NREL's SPA, as `irsig-trace --sun-utc` sees it) while the sun
-/// is above the horizon, with the rows of
-/// [`irsig_atmosphere::plan::day_sun_rows`] between them; the moments with the sun at or
-/// below the horizon dropped, and said. The day of the year is the first lit moment's
+/// is above the horizon, the range's highest sun (sampled every minute, or finer than
+/// [`SAMPLES`] over a long range) and, when the sun rises or sets in the range, 89.999°,
+/// with the rows of [`irsig_atmosphere::plan::day_sun_rows`] between them: any lit time
+/// of the range, a frame's or not, is then between the table's rows. The moments with the
+/// sun at or below the horizon are dropped, and said. The day of the year is the first lit moment's
 /// (a trace on another date scales the beam to its own Earth–Sun distance).
 ///
 /// # Errors
@@ -178,10 +187,7 @@ pub(crate) fn suns_of_times(
             "--sun-utc needs --latitude-deg and --longitude-deg",
         ));
     };
-    let mut lit = Vec::new();
-    let mut dark = 0_usize;
-    let mut first_day = None;
-    for &t in &times {
+    let sun_at = |t: f64| -> miette::Result<(f64, SunSpec)> {
         let spec = SunSpec::At {
             utc: irsig_model::time::format_utc(t),
             latitude_deg,
@@ -194,12 +200,45 @@ pub(crate) fn suns_of_times(
         let position = spec
             .position()
             .map_err(|e| irsig_cli::usage_error(format!("--sun-utc {utc}: {e}")))?;
-        if rounds_above_horizon(position.zenith_deg).is_err() {
+        Ok((position.zenith_deg, spec))
+    };
+    let mut lit = Vec::new();
+    let mut dark = 0_usize;
+    let mut first_day = None;
+    for &t in &times {
+        let (zenith_deg, spec) = sun_at(t)?;
+        if rounds_above_horizon(zenith_deg).is_err() {
             dark += 1;
             continue;
         }
-        lit.push(position.zenith_deg);
+        lit.push(zenith_deg);
         first_day = first_day.or_else(|| spec.day_of_year());
+    }
+    // A frame between two moments may see a sun beyond both: higher at a noon between
+    // them, lower after a sunrise or before a sunset between them. The table reaches the
+    // range's highest sun and, when the sun crosses the horizon in it, the last angle a
+    // deck holds, so that every lit time of the range is between its rows.
+    let frames = lit.len();
+    let (start, end) = (times[0], times[times.len() - 1]);
+    let step_s = ((end - start) / f64::from(SAMPLES)).max(60.0);
+    let mut t = start;
+    let (mut highest, mut crosses) = (f64::INFINITY, false);
+    while t <= end {
+        let (zenith_deg, _) = sun_at(t)?;
+        if rounds_above_horizon(zenith_deg).is_ok() {
+            highest = highest.min(zenith_deg);
+        } else {
+            crosses = true;
+        }
+        t += step_s;
+    }
+    if !lit.is_empty() {
+        if highest.is_finite() {
+            lit.push(highest);
+        }
+        if crosses {
+            lit.push(LAST_ZENITH_DEG);
+        }
     }
     let Some(day_of_year) = first_day else {
         return Err(irsig_cli::usage_error(format!(
@@ -226,10 +265,10 @@ pub(crate) fn suns_of_times(
     };
     Ok(DaySuns {
         note: format!(
-            "the suns of {} lit moments of --sun-utc {utc}, {} rows with the grid between \
-             them{dropped}",
-            lit.len(),
-            rows.len()
+            "the suns of {frames} lit moments of --sun-utc {utc}, {} rows with the day's \
+             highest sun{} and the grid between them{dropped}",
+            rows.len(),
+            if crosses { ", the horizon's" } else { "" }
         ),
         zenith_deg: rows,
         day_of_year,
