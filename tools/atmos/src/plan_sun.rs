@@ -115,6 +115,10 @@ pub(crate) struct DaySuns {
 /// highest sun and whether the sun crosses the horizon in it.
 const SAMPLES: u32 = 20_000;
 
+/// The Earth's rotation, degrees per second (360° a sidereal day, 86 164.1 s): no sun's
+/// zenith angle moves faster.
+const EARTH_TURN_DEG_PER_S: f64 = 360.0 / 86_164.1;
+
 /// The last zenith angle a deck holds below the horizon's 90°, degrees.
 const LAST_ZENITH_DEG: f64 = 89.999;
 
@@ -164,7 +168,7 @@ pub(crate) fn suns_of_zeniths(zenith_deg: &[f64], day: Option<u16>) -> miette::R
 
 /// The suns of the moments `utc` (`START/END/STEP`) seen from `place`: each moment's
 /// geometric zenith angle (NREL's SPA, as `irsig-trace --sun-utc` sees it) while the sun
-/// is above the horizon, the range's highest sun (sampled every minute, or finer than
+/// is above the horizon, the range's highest sun (sampled every minute, or less often than
 /// [`SAMPLES`] over a long range) and, when the sun rises or sets in the range, 89.999°,
 /// with the rows of [`irsig_atmosphere::plan::day_sun_rows`] between them: any lit time
 /// of the range, a frame's or not, is then between the table's rows. The moments with the
@@ -234,7 +238,9 @@ pub(crate) fn suns_of_times(
     }
     if !lit.is_empty() {
         if highest.is_finite() {
-            lit.push(highest);
+            // The true highest lies within half a step of a sample, and no sun's zenith
+            // angle moves faster than the Earth turns: the row goes that much higher.
+            lit.push((highest - EARTH_TURN_DEG_PER_S * step_s / 2.0).max(0.0));
         }
         if crosses {
             lit.push(LAST_ZENITH_DEG);
@@ -409,5 +415,74 @@ mod tests {
             ),
             "--day-of-year 80, but --sun-utc 2026-03-20T12:00:00Z is seen on day 79",
         );
+    }
+
+    #[test]
+    fn a_days_zenith_list_needs_its_day_and_a_range_is_checked_at_the_flag() {
+        let suns = suns_of_zeniths(&[60.0, 30.0004, 45.0, 30.0], Some(172)).unwrap();
+        assert_eq!(
+            (suns.zenith_deg, suns.day_of_year),
+            (vec![30.0, 45.0, 60.0], 172)
+        );
+        let e = suns_of_zeniths(&[30.0], None).unwrap_err().to_string();
+        assert!(e.contains("--day-of-year"), "{e}");
+        let e = suns_of_zeniths(&[30.0, 89.9996], Some(1))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("rounds to 90"), "{e}");
+        // One time, or a range; a range that ends before it starts, or steps by 0, is none.
+        assert!(utc_or_range("2026-06-21T12:00:00Z").is_ok());
+        assert!(utc_or_range("2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT1H").is_ok());
+        assert!(is_range("2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT1H"));
+        assert!(!is_range("2026-06-21T12:00:00Z"));
+        for bad in [
+            "2026-06-22T00:00:00Z/2026-06-21T00:00:00Z/PT1H",
+            "2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT0S",
+            "2026-06-21T00:00:00Z/2026-06-22T00:00:00Z",
+            "2026-13-21T12:00:00Z",
+        ] {
+            assert!(utc_or_range(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_days_times_give_every_lit_moment_the_noon_and_the_horizon() {
+        let place = irsig_cli::args::PlaceArgs {
+            latitude_deg: Some(0.0),
+            longitude_deg: Some(0.0),
+            altitude_m: 0.0,
+        };
+        // The 2026 March equinox (14:46 UTC) at the equator on the prime meridian: the sun
+        // rises about 06:07 and sets about 18:14 UTC (the equation of time, -7.4 min), so
+        // 06:00 is dark and 07:00-18:00 lit; at the noon, 12:07, it stands |δ| = 0.39
+        // deg/day x 2.65 h = 0.04 deg from the zenith, between two hours (12:00 is 1.9 deg
+        // off): the first row is at or above it.
+        let suns = suns_of_times(
+            "2026-03-20T00:00:00Z/2026-03-21T00:00:00Z/PT1H",
+            &place,
+            None,
+        )
+        .unwrap();
+        assert_eq!(suns.day_of_year, 79);
+        assert!(suns.zenith_deg[0] <= 0.04, "{:?}", suns.zenith_deg);
+        assert_eq!(suns.zenith_deg.last(), Some(&89.999));
+        assert!(suns.note.contains("12 lit moments"), "{}", suns.note);
+        assert!(suns.note.contains("13 of the 25 moments"), "{}", suns.note);
+        let e = suns_of_times(
+            "2026-03-20T00:00:00Z/2026-03-20T04:00:00Z/PT1H",
+            &place,
+            None,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("at all 5 moments"), "{e}");
+        let e = suns_of_times(
+            "2026-03-20T08:00:00Z/2026-03-20T10:00:00Z/PT1H",
+            &place,
+            Some(80),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("is on day 79"), "{e}");
     }
 }
