@@ -23,7 +23,7 @@ use irsig_formats::radtran::tape5::{
 };
 use irsig_model::{
     AtmospherePlan, CorrectionPaths, PlanAerosol, PlanModel, PlanSlabs, PlanSun, ProfileLevel,
-    SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlab, SpectralSlabTable,
+    SolarBeam, SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlab, SpectralSlabTable,
     SpectralSlantTables, SpectralSolar,
 };
 
@@ -291,6 +291,44 @@ pub fn add_sun(
     day_of_year: u16,
     scattered: bool,
 ) -> Result<(), AtmosphereError> {
+    add_suns(plan, &[zenith_deg], day_of_year, scattered)
+}
+
+/// Puts the suns of a day at `zenith_deg` (each rounded to the 0.001° a deck holds, then
+/// sorted, repeats dropped) on day `day_of_year` in `plan`, as [`add_sun`] puts one: the
+/// direct beam of every sun at every altitude of the sun's rows, so that one build's
+/// solar table holds them all (`SpectralSolar::further_suns`) and the tracer interpolates
+/// between them (`crate::solar`). The scattered sunlight is one sun's: `scattered` with
+/// more than one zenith angle is refused.
+///
+/// # Errors
+/// No zenith angle; one that is not finite or not within 0 to below 90° once rounded; a
+/// day outside 1–366; `scattered` with several suns.
+pub fn add_suns(
+    plan: &mut AtmospherePlan,
+    zenith_deg: &[f64],
+    day_of_year: u16,
+    scattered: bool,
+) -> Result<(), AtmosphereError> {
+    let plan_error = |m: String| AtmosphereError::from(AtmosphereErrorKind::Plan(m));
+    let mut zeniths: Vec<f64> = zenith_deg.iter().map(|&z| round3(z)).collect();
+    if let Some(z) = zeniths.iter().find(|z| !z.is_finite()) {
+        return Err(plan_error(format!(
+            "expected the sun's zenith angle from 0 to below 90 deg, found {z}"
+        )));
+    }
+    zeniths.sort_by(f64::total_cmp);
+    zeniths.dedup();
+    let Some((&first, further)) = zeniths.split_first() else {
+        return Err(plan_error("expected at least one sun zenith angle".into()));
+    };
+    if scattered && !further.is_empty() {
+        return Err(plan_error(format!(
+            "the sunlight the air scatters is planned for one sun, and {} are given: plan \
+             the direct beam alone for several suns, or one sun with its scattered sunlight",
+            zeniths.len()
+        )));
+    }
     // The scattered sky changes faster with the observer's altitude than the thermal one
     // (the aerosol is mixed through the lowest km or two): the sun's rows, on which the
     // scattered sky is run too, add the slant grid's 500, 700 and 1500 m below the
@@ -304,7 +342,8 @@ pub fn add_sun(
         sky.dedup();
     }
     let sun = PlanSun {
-        zenith_deg: round3(zenith_deg),
+        zenith_deg: first,
+        further_zenith_deg: further.to_vec(),
         day_of_year,
         altitude_m: sky,
         relative_azimuth_deg: if scattered {
@@ -318,6 +357,75 @@ pub fn add_sun(
         .map_err(|e| AtmosphereError::from(AtmosphereErrorKind::Plan(e.kind.to_string())))?;
     plan.sun = Some(sun);
     Ok(())
+}
+
+/// The sun rows of a day's table between its lit moments: every 5° to 80°, every 2° to
+/// 86°, every degree to 87°, then every half degree to 89.5° (toward the horizon the air
+/// mass, and the beam's curvature in it, grow fastest: with whole degrees past 87° the
+/// 8–14 µm beam halfway between 88° and 89° was 2 % low). The direct beam interpolated between rows this far
+/// apart is within the error `docs/accuracy.md` tables ("One atmosphere for a day's
+/// suns", measured against LOWTRAN7 in `tests/tests/solar_day.rs`).
+#[must_use]
+pub fn day_sun_grid_deg() -> Vec<f64> {
+    let mut grid: Vec<f64> = (0..=16).map(|i| 5.0 * f64::from(i)).collect();
+    grid.extend([82.0, 84.0, 86.0, 87.0, 87.5, 88.0, 88.5, 89.0, 89.5]);
+    grid
+}
+
+/// The sun rows of a day's table for the suns `lit_zenith_deg` (the zenith angles of every
+/// lit moment, any order): each of them (rounded to the 0.001° a deck holds, each once),
+/// and the rows of [`day_sun_grid_deg`] between the first and the last that are not within
+/// a tenth of their step of one of them (a row that close adds a run and nothing to the
+/// interpolation; leaving it out widens a step by a tenth at most on each side). A frame at one of the moments is then lit by its own row, and a moment
+/// between them by rows close enough to interpolate.
+#[must_use]
+pub fn day_sun_rows(lit_zenith_deg: &[f64]) -> Vec<f64> {
+    let mut rows: Vec<f64> = lit_zenith_deg
+        .iter()
+        .map(|&z| round3(z))
+        .filter(|z| z.is_finite())
+        .collect();
+    rows.sort_by(f64::total_cmp);
+    rows.dedup();
+    let (Some(&first), Some(&last)) = (rows.first(), rows.last()) else {
+        return rows;
+    };
+    let grid = day_sun_grid_deg();
+    let mut fill = Vec::new();
+    for (k, &g) in grid.iter().enumerate() {
+        let step = grid
+            .get(k + 1)
+            .map_or(grid[k] - grid[k.saturating_sub(1)], |next| next - g);
+        let near = rows.iter().any(|&z| (z - g).abs() < 0.1 * step);
+        if g > first && g < last && !near {
+            fill.push(g);
+        }
+    }
+    rows.extend(fill);
+    rows.sort_by(f64::total_cmp);
+    // Two moments a hair apart (a morning's and an evening's sun) make a secant of two
+    // nearly equal beams, whose rounding would bend the cubic's slopes around them: a row
+    // within a fiftieth of its grid step of the one kept before it is left out (the last
+    // row is kept, its neighbour left out instead); a moment left out is then
+    // interpolated over that fiftieth.
+    let step_at = |z: f64| {
+        grid.windows(2)
+            .find(|w| z <= w[1])
+            .map_or(0.5, |w| w[1] - w[0])
+    };
+    let mut kept: Vec<f64> = Vec::with_capacity(rows.len());
+    for (k, &z) in rows.iter().enumerate() {
+        match kept.last() {
+            Some(&before) if z - before < 0.02 * step_at(z) => {
+                if k + 1 == rows.len() {
+                    kept.pop();
+                    kept.push(z);
+                }
+            }
+            _ => kept.push(z),
+        }
+    }
+    kept
 }
 
 /// One radiative-transfer path.
@@ -488,12 +596,20 @@ fn slab_paths(plan: &AtmospherePlan, azimuths: Option<&[f64]>) -> Vec<Path> {
     out
 }
 
-fn sun_paths(sun: &PlanSun) -> impl Iterator<Item = Path> + '_ {
-    sun.altitude_m.iter().map(|&a| Path::Sun {
+/// The direct beam's runs of one sun `zenith_deg` of `sun`, by altitude.
+fn sun_paths_at(sun: &PlanSun, zenith_deg: f64) -> impl Iterator<Item = Path> + '_ {
+    sun.altitude_m.iter().map(move |&a| Path::Sun {
         altitude_m: a,
-        zenith_deg: sun.zenith_deg,
+        zenith_deg,
         day_of_year: sun.day_of_year,
     })
+}
+
+/// The direct beam's runs of every sun of `sun`, `[zenith][altitude]`.
+fn sun_paths(sun: &PlanSun) -> impl Iterator<Item = Path> + '_ {
+    sun.zeniths_deg()
+        .into_iter()
+        .flat_map(|z| sun_paths_at(sun, z))
 }
 
 fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
@@ -612,6 +728,75 @@ mod tests {
         let high = make_plan("t", PlanModel::Standard(6), &[9000.0]).unwrap();
         assert!(high.slant_nadir_deg.last().unwrap() < &88.0);
         assert!(make_plan("t", PlanModel::Standard(6), &[1.0]).is_err());
+    }
+
+    #[test]
+    fn several_suns_run_the_beam_at_every_zenith_and_altitude_and_no_scattering() {
+        let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
+        let mut one = night.clone();
+        add_sun(&mut one, 30.0, 172, false).unwrap();
+        let mut day = night.clone();
+        // Unsorted, a repeat once rounded: three suns.
+        add_suns(&mut day, &[60.0, 30.0, 45.0, 30.0002], 172, false).unwrap();
+        day.validate().unwrap();
+        let sun = day.sun.as_ref().unwrap();
+        assert_eq!(sun.zeniths_deg(), [30.0, 45.0, 60.0]);
+        let (before, after) = (paths(&night), paths(&day));
+        assert_eq!(after[..before.len()], before[..]);
+        assert_eq!(after.len(), before.len() + 3 * sun.altitude_m.len());
+        for z in [30.0, 45.0, 60.0] {
+            let runs = after
+                .iter()
+                .filter(|p| matches!(p, Path::Sun { zenith_deg, .. } if *zenith_deg == z))
+                .count();
+            assert_eq!(runs, sun.altitude_m.len(), "{z}");
+        }
+        // One sun plans as it did: the same runs as `add_sun`'s.
+        let mut single = night.clone();
+        add_suns(&mut single, &[30.0], 172, false).unwrap();
+        assert_eq!(single, one);
+        assert!(single.sun.as_ref().unwrap().further_zenith_deg.is_empty());
+        // The scattered sunlight is one sun's; no sun, or one at the horizon, is none.
+        let mut p = night.clone();
+        let e = add_suns(&mut p, &[30.0, 40.0], 172, true).unwrap_err();
+        assert!(e.to_string().contains("one sun"), "{e}");
+        assert!(add_suns(&mut p, &[], 172, false).is_err());
+        assert!(add_suns(&mut p, &[30.0, 89.9999], 172, false).is_err());
+        assert!(add_suns(&mut p, &[f64::NAN], 172, false).is_err());
+        assert!(p.sun.is_none());
+    }
+
+    #[test]
+    fn a_days_rows_are_its_moments_and_the_grid_between_them() {
+        // Moments at 31.2, 58.9, 64.6 and 88.4 deg: the grid's 35-60, 70-80, 82-88 between
+        // them; 65 is within 0.5 deg of 64.6 and left out, 88.5 is past the last moment.
+        let rows = day_sun_rows(&[58.9, 31.2, 88.4, 64.6, 31.2004]);
+        let want = [
+            31.2, 35.0, 40.0, 45.0, 50.0, 55.0, 58.9, 60.0, 64.6, 70.0, 75.0, 80.0, 82.0, 84.0,
+            86.0, 87.0, 87.5, 88.0, 88.4,
+        ];
+        assert_eq!(rows, want);
+        // Every step within the grid's at its upper end.
+        for w in rows.windows(2) {
+            let limit = if w[1] <= 80.0 {
+                6.0
+            } else if w[1] <= 86.0 {
+                2.4
+            } else if w[1] <= 87.0 {
+                1.2
+            } else {
+                0.6
+            };
+            assert!(w[1] - w[0] <= limit, "{w:?}");
+        }
+        // A morning's and an evening's sun 0.035 deg apart near 82 deg (a step of 2): one
+        // row; near the zenith, 0.17 deg apart (a step of 5), both.
+        assert_eq!(day_sun_rows(&[82.298, 82.333, 84.0]), [82.298, 84.0]);
+        assert_eq!(day_sun_rows(&[82.298, 82.333]), [82.333]);
+        assert_eq!(day_sun_rows(&[19.644, 19.814]), [19.644, 19.814]);
+        assert_eq!(day_sun_rows(&[42.0]), [42.0]);
+        assert!(day_sun_rows(&[]).is_empty());
+        assert_eq!(day_sun_rows(&[0.0, 10.0]), [0.0, 5.0, 10.0]);
     }
 
     #[test]

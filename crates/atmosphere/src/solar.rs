@@ -14,24 +14,44 @@
 //! the nearest row's. The sun's beam is taken as parallel: one zenith angle at every
 //! altitude of the scene.
 //!
+//! A table of several suns (`SpectralSolar::further_suns`, one build for a whole day)
+//! holds the band integral at each of its zenith angles; the beam of a sun between them
+//! ([`DirectSun::at_zenith`]) is interpolated at each altitude by a monotone cubic in the
+//! logarithm of the beam against the relative air mass (Kasten & Young 1989,
+//! [`crate::loads::kasten_young_air_mass`]): Beer's law `E = E_toa e^{−k m}` makes that
+//! nearly a line, and the cubic follows the curvature that band saturation and the band's
+//! mix of absorbers give it, never overshooting the rows around it. The error against
+//! LOWTRAN7 run for the sun itself is measured in `tests/tests/solar_day.rs` and tabled in
+//! `docs/accuracy.md` ("One atmosphere for a day's suns"). A sun outside the table's
+//! zenith angles is refused, naming them: the beam is not extrapolated.
+//!
 //! Axes are the scene's: +Z up, unit vectors not required (they are normalised).
 
 use irsig_model::{SpectralAtmosphere, SpectralSolar};
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
 use crate::interp;
+use crate::loads::kasten_young_air_mass;
 use crate::spectral::BandQuadrature;
 
 /// How far, degrees, a direction given for the sun may lie from the table's zenith angle:
 /// the 0.001° a deck holds, and a little for the arithmetic that made the vector.
 pub const ZENITH_TOLERANCE_DEG: f64 = 1.1e-3;
 
-/// The direct solar irradiance of one band at each altitude of a `solar` table.
+/// Below this, W m⁻², an interpolated beam is none: the logarithm of a beam of 0 is
+/// taken at this floor, so that a row the air makes opaque pulls its neighbours down
+/// without an infinity, and what comes back at the floor (to twice it) is 0 again.
+const BEAM_FLOOR_W_M2: f64 = 1e-30;
+
+/// The direct solar irradiance of one band at each altitude of a `solar` table, for each
+/// of its suns.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DirectSun {
-    zenith_deg: f64,
+    /// The suns' zenith angles, degrees, increasing; one for a one-sun table.
+    zenith_deg: Vec<f64>,
     altitude_m: Vec<f64>,
-    /// `∫ w E_toa τ_sun(h_k) dλ` on a surface normal to the beam, W m⁻², per altitude.
+    /// `∫ w E_toa τ_sun(h_k) dλ` on a surface normal to the beam, W m⁻²,
+    /// `[zenith][altitude]`.
     normal_w_m2: Vec<f64>,
     /// `∫ w E_toa dλ`, W m⁻².
     extraterrestrial_w_m2: f64,
@@ -53,7 +73,7 @@ fn unit(name: &str, v: [f64; 3]) -> Result<[f64; 3], AtmosphereError> {
 
 impl DirectSun {
     /// The band `[lo_um, hi_um]` with response `weight(λ in µm)` of `spectral`'s `solar`
-    /// table.
+    /// table, at each of its suns.
     ///
     /// # Errors
     /// An atmosphere without a `solar` table (a night atmosphere), a table whose spectra
@@ -74,35 +94,45 @@ impl DirectSun {
         })?;
         let n = spectral.grid.points.len();
         let rows = solar.altitude_m.len();
+        let zenith_deg = solar.zeniths_deg();
+        let fits = |row: usize| solar.transmission_of(row).map(<[f32]>::len) == Some(rows * n);
         if rows == 0
             || solar.extraterrestrial_w_m2_per_unit.len() != n
-            || solar.transmission.len() != rows * n
+            || !(0..zenith_deg.len()).all(fits)
         {
             return Err(sun_error(format!(
-                "invalid atmosphere: `solar`: expected one extraterrestrial spectrum and {rows} transmittance spectra of {n} points, found {} and {} values",
+                "invalid atmosphere: `solar`: expected one extraterrestrial spectrum and {rows} transmittance spectra of {n} points per sun, found {} and {} values (the first sun's)",
                 solar.extraterrestrial_w_m2_per_unit.len(),
                 solar.transmission.len()
             )));
         }
+        if let Some(k) = (1..zenith_deg.len())
+            .find(|&k| !(zenith_deg[k] > zenith_deg[k - 1] && zenith_deg[k] < 90.0))
+        {
+            return Err(sun_error(format!(
+                "invalid atmosphere: `solar`: expected the suns' zenith angles increasing \
+                 to below 90 deg, found {zenith_deg:?} (row {k})"
+            )));
+        }
         let q = BandQuadrature::new(&spectral.grid, lo_um, hi_um, weight)?;
         let etoa = &solar.extraterrestrial_w_m2_per_unit;
-        let normal_w_m2 = solar
-            .transmission
-            .chunks_exact(n)
+        let normal_w_m2 = (0..zenith_deg.len())
+            .filter_map(|row| solar.transmission_of(row))
+            .flat_map(|t| t.chunks_exact(n))
             .map(|tau| q.integral(|i| f64::from(etoa[i]) * f64::from(tau[i])))
             .collect();
         Ok(Self {
-            zenith_deg: solar.zenith_deg,
+            zenith_deg,
             altitude_m: solar.altitude_m.clone(),
             normal_w_m2,
             extraterrestrial_w_m2: q.integral(|i| f64::from(etoa[i])),
         })
     }
 
-    /// The sun's zenith angle the table was made for, degrees.
+    /// The suns' zenith angles the table was made for, degrees, increasing.
     #[must_use]
-    pub fn zenith_deg(&self) -> f64 {
-        self.zenith_deg
+    pub fn zeniths_deg(&self) -> &[f64] {
+        &self.zenith_deg
     }
 
     /// The band's extraterrestrial irradiance on a surface normal to the beam, W m⁻².
@@ -111,22 +141,85 @@ impl DirectSun {
         self.extraterrestrial_w_m2
     }
 
-    /// The band's direct irradiance on a surface facing the sun at `altitude_m` above the
-    /// ground, W m⁻²: linear in altitude between the table's rows, the nearest row's
-    /// outside them (NaN for a NaN altitude).
+    /// The band's direct irradiance of the table's first sun on a surface facing it at
+    /// `altitude_m` above the ground, W m⁻²: linear in altitude between the table's rows,
+    /// the nearest row's outside them (NaN for a NaN altitude). For another sun of a table
+    /// of several, [`DirectSun::at_zenith`] first.
     #[must_use]
     pub fn normal_w_m2(&self, altitude_m: f64) -> f64 {
-        interp::linear(&self.altitude_m, &self.normal_w_m2, altitude_m)
+        let rows = self.altitude_m.len();
+        interp::linear(&self.altitude_m, &self.normal_w_m2[..rows], altitude_m)
+    }
+
+    /// The beam of the sun `zenith_deg` from the zenith, as a table of that one sun.
+    ///
+    /// A one-sun table is its own sun's, unchanged, within [`ZENITH_TOLERANCE_DEG`]. A
+    /// table of several is interpolated between its suns at each altitude (the module's
+    /// documentation), for a sun from the first zenith angle to the last (each end
+    /// widened by [`ZENITH_TOLERANCE_DEG`], the end row's there).
+    ///
+    /// # Errors
+    /// A zenith angle that is not finite, or outside the table's suns (it names them).
+    pub fn at_zenith(&self, zenith_deg: f64) -> Result<Self, AtmosphereError> {
+        let (first, last) = (
+            self.zenith_deg[0],
+            self.zenith_deg[self.zenith_deg.len() - 1],
+        );
+        let within = zenith_deg.is_finite()
+            && zenith_deg >= first - ZENITH_TOLERANCE_DEG
+            && zenith_deg <= last + ZENITH_TOLERANCE_DEG;
+        if !within {
+            return Err(sun_error(if self.zenith_deg.len() == 1 {
+                format!(
+                    "the direction to the sun is {zenith_deg:.4} deg from the zenith, but the atmosphere's solar table is for a sun at {first} deg: build the atmosphere for this sun"
+                )
+            } else {
+                format!(
+                    "the direction to the sun is {zenith_deg:.4} deg from the zenith, but the atmosphere's solar table holds suns from {first} to {last} deg: build the atmosphere for suns that cover this one"
+                )
+            }));
+        }
+        if self.zenith_deg.len() == 1 {
+            return Ok(self.clone());
+        }
+        let z = zenith_deg.clamp(first, last);
+        let air_mass: Vec<f64> = self
+            .zenith_deg
+            .iter()
+            .map(|&r| kasten_young_air_mass(r))
+            .collect();
+        let m = kasten_young_air_mass(z);
+        let rows = self.altitude_m.len();
+        let normal_w_m2 = (0..rows)
+            .map(|k| {
+                let log_beam: Vec<f64> = self
+                    .normal_w_m2
+                    .iter()
+                    .skip(k)
+                    .step_by(rows)
+                    .map(|&e| e.max(BEAM_FLOOR_W_M2).ln())
+                    .collect();
+                let e = interp::monotone_cubic(&air_mass, &log_beam, m).exp();
+                // The floor back through `ln` and `exp` is a hair above it.
+                if e < 2.0 * BEAM_FLOOR_W_M2 { 0.0 } else { e }
+            })
+            .collect();
+        Ok(Self {
+            zenith_deg: vec![zenith_deg],
+            altitude_m: self.altitude_m.clone(),
+            normal_w_m2,
+            extraterrestrial_w_m2: self.extraterrestrial_w_m2,
+        })
     }
 
     /// The band's direct irradiance, W m⁻², on a surface at `altitude_m` whose outward
     /// normal is `normal`, with the sun in direction `to_sun` (both in the scene's axes,
-    /// +Z up): `cos θ_i` times [`DirectSun::normal_w_m2`], 0 for a surface facing away.
+    /// +Z up): `cos θ_i` times the beam of that sun ([`DirectSun::at_zenith`]), 0 for a
+    /// surface facing away.
     ///
     /// # Errors
-    /// A vector that is not finite or of zero length; a sun whose direction is more than
-    /// [`ZENITH_TOLERANCE_DEG`] from the table's zenith angle (the table holds the beam
-    /// for that sun only); an altitude that is not finite.
+    /// A vector that is not finite or of zero length; a sun whose direction is outside the
+    /// table's suns ([`DirectSun::at_zenith`]); an altitude that is not finite.
     pub fn irradiance_w_m2(
         &self,
         altitude_m: f64,
@@ -141,17 +234,12 @@ impl DirectSun {
         let n = unit("surface normal", normal)?;
         let s = unit("direction to the sun", to_sun)?;
         let zenith = s[2].clamp(-1.0, 1.0).acos().to_degrees();
-        if (zenith - self.zenith_deg).abs() > ZENITH_TOLERANCE_DEG {
-            return Err(sun_error(format!(
-                "the direction to the sun is {zenith:.4} deg from the zenith, but the atmosphere's solar table is for a sun at {} deg: build the atmosphere for this sun",
-                self.zenith_deg
-            )));
-        }
+        let sun = self.at_zenith(zenith)?;
         let cos_i = n[0] * s[0] + n[1] * s[1] + n[2] * s[2];
         if cos_i <= 0.0 {
             return Ok(0.0);
         }
-        Ok(cos_i * self.normal_w_m2(altitude_m))
+        Ok(cos_i * sun.normal_w_m2(altitude_m))
     }
 }
 
@@ -194,6 +282,7 @@ mod tests {
                 relative_azimuth_deg: Vec::new(),
                 path_scattered_w_m2_sr_per_unit: Vec::new(),
                 sky_scattered_w_m2_sr_per_unit: Vec::new(),
+                further_suns: Vec::new(),
             }),
             slabs: Vec::new(),
         }
@@ -259,6 +348,7 @@ mod tests {
             relative_azimuth_deg: Vec::new(),
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
+            further_suns: Vec::new(),
         });
         atm.validate().unwrap();
         let sun = DirectSun::new(&atm, 4.0, 5.0, |_| 1.0).unwrap();
@@ -299,5 +389,117 @@ mod tests {
             e.contains("`solar`") && e.contains("a plan with a sun"),
             "{e}"
         );
+    }
+
+    /// Beer's law along Kasten & Young's (1989) relative air mass, written out from the
+    /// paper: `m = 1 / (cos z + 0.50572 (96.07995 − z)^−1.6364)`.
+    fn beer(k: f64, zenith_deg: f64) -> f64 {
+        let m =
+            1.0 / (zenith_deg.to_radians().cos() + 0.50572 * (96.07995 - zenith_deg).powf(-1.6364));
+        (-k * m).exp()
+    }
+
+    /// The test atmosphere with suns at `zeniths`, each beam Beer's law with optical depth
+    /// 0.4 at the ground and 0.1 at 300 m, flat over the band.
+    fn day(zeniths: &[f64]) -> SpectralAtmosphere {
+        let mut atm = atmosphere();
+        let beam = |z: f64| -> Vec<f32> {
+            [vec![beer(0.4, z) as f32; 5], vec![beer(0.1, z) as f32; 5]].concat()
+        };
+        if let Some(s) = atm.solar.as_mut() {
+            s.zenith_deg = zeniths[0];
+            s.transmission = beam(zeniths[0]);
+            s.further_suns = zeniths[1..]
+                .iter()
+                .map(|&zenith_deg| irsig_model::SolarBeam {
+                    zenith_deg,
+                    transmission: beam(zenith_deg),
+                })
+                .collect();
+        }
+        atm.validate().unwrap();
+        atm
+    }
+
+    #[test]
+    fn a_sun_between_rows_gets_beers_law_where_the_rows_follow_it() {
+        let atm = day(&[0.0, 20.0, 40.0, 60.0, 75.0, 85.0, 89.0]);
+        let sun = DirectSun::new(&atm, 3.0, 5.0, |_| 1.0).unwrap();
+        assert_eq!(sun.zeniths_deg(), [0.0, 20.0, 40.0, 60.0, 75.0, 85.0, 89.0]);
+        // 2 um x 10 W m-2 um-1 at the top, times τ: ln E is a line in the air mass, which
+        // the cubic holds exactly; the rest is the f32 rounding of the rows' τ.
+        for z in [0.0, 7.5, 33.3, 50.0, 68.0, 80.0, 87.0, 88.5, 89.0] {
+            let at = sun.at_zenith(z).unwrap();
+            assert_eq!(at.zeniths_deg(), [z]);
+            for (h, k) in [(0.0, 0.4), (300.0, 0.1), (150.0, f64::NAN)] {
+                let want = if k.is_nan() {
+                    10.0 * (beer(0.4, z) + beer(0.1, z))
+                } else {
+                    20.0 * beer(k, z)
+                };
+                let got = at.normal_w_m2(h);
+                assert!(
+                    (got / want - 1.0).abs() < 2e-6,
+                    "{z} deg, {h} m: {got} vs {want}"
+                );
+            }
+        }
+        // The plate's cosine on top, the sun's zenith from its direction.
+        let s = to_sun(50.0, 200.0);
+        let flat = sun.irradiance_w_m2(0.0, [0.0, 0.0, 1.0], s).unwrap();
+        let want = 50_f64.to_radians().cos() * 20.0 * beer(0.4, 50.0);
+        assert!((flat / want - 1.0).abs() < 2e-6, "{flat} vs {want}");
+        // At a row, that row's beam exactly.
+        let row = sun.at_zenith(60.0).unwrap();
+        let direct = DirectSun::new(&day(&[60.0]), 3.0, 5.0, |_| 1.0).unwrap();
+        assert!((row.normal_w_m2(0.0) / direct.normal_w_m2(0.0) - 1.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_sun_outside_the_rows_is_refused_naming_them_and_one_sun_is_as_before() {
+        let atm = day(&[20.0, 40.0, 60.0]);
+        let sun = DirectSun::new(&atm, 3.0, 5.0, |_| 1.0).unwrap();
+        for z in [19.99, 60.01, 0.0, 89.0, f64::NAN] {
+            let e = sun.at_zenith(z).unwrap_err().to_string();
+            assert!(e.contains("from 20 to 60 deg"), "{z}: {e}");
+        }
+        let e = sun
+            .irradiance_w_m2(0.0, [0.0, 0.0, 1.0], to_sun(10.0, 0.0))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("10.0000 deg") && e.contains("from 20 to 60 deg"),
+            "{e}"
+        );
+        // Within the tolerance of an end: that end's beam.
+        let edge = sun.at_zenith(60.0 + 0.5 * ZENITH_TOLERANCE_DEG).unwrap();
+        let end = sun.at_zenith(60.0).unwrap();
+        assert_eq!(edge.normal_w_m2(0.0), end.normal_w_m2(0.0));
+        // A one-sun table is its sun's, bit for bit, and refused elsewhere as before.
+        let one = DirectSun::new(&atmosphere(), 3.0, 5.0, |_| 1.0).unwrap();
+        assert_eq!(one.at_zenith(60.0 + 1e-3).unwrap(), one);
+        let e = one.at_zenith(61.0).unwrap_err().to_string();
+        assert!(e.contains("for a sun at 60 deg"), "{e}");
+    }
+
+    #[test]
+    fn an_opaque_row_gives_no_beam_and_pulls_its_neighbours_down_without_a_nan() {
+        let mut atm = day(&[30.0, 60.0, 89.0]);
+        if let Some(s) = atm.solar.as_mut() {
+            s.further_suns[1].transmission = vec![0.0; 10];
+        }
+        let sun = DirectSun::new(&atm, 3.0, 5.0, |_| 1.0).unwrap();
+        assert_eq!(sun.at_zenith(89.0).unwrap().normal_w_m2(0.0), 0.0);
+        let near = sun.at_zenith(88.0).unwrap().normal_w_m2(0.0);
+        let above = sun.at_zenith(60.0).unwrap().normal_w_m2(0.0);
+        assert!(
+            near.is_finite() && near >= 0.0 && near < above,
+            "{near} {above}"
+        );
+        // A table whose further sun's spectra do not fit is refused.
+        if let Some(s) = atm.solar.as_mut() {
+            s.further_suns[0].transmission.pop();
+        }
+        assert!(DirectSun::new(&atm, 3.0, 5.0, |_| 1.0).is_err());
     }
 }

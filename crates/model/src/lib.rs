@@ -84,7 +84,7 @@ pub use raw::{RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
 pub use spectral::{
-    CorrectionPaths, ProfileLevel, SpectralAtmosphere, SpectralAxis, SpectralGrid, SpectralSlab,
-    SpectralSlabTable, SpectralSlantTables, SpectralSolar,
+    CorrectionPaths, ProfileLevel, SolarBeam, SpectralAtmosphere, SpectralAxis, SpectralGrid,
+    SpectralSlab, SpectralSlabTable, SpectralSlantTables, SpectralSolar,
 };
 pub use view::{LengthUnit, View};

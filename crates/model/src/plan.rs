@@ -69,9 +69,24 @@ pub struct PlanSun {
     /// scatters. Empty: the direct beam only.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub relative_azimuth_deg: Vec<f64>,
+    /// Further suns of the same day for the direct beam, zenith angles increasing above
+    /// `zenith_deg`, below 90°, multiples of 0.001°: each is run at every altitude, and the
+    /// build's solar table holds them all (`SpectralSolar::further_suns`). Empty: one sun.
+    /// Not with relative azimuths (the scattered sunlight is one sun's).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub further_zenith_deg: Vec<f64>,
 }
 
 impl PlanSun {
+    /// The plan's sun zenith angles, degrees, increasing: `zenith_deg`, then the further
+    /// suns'.
+    #[must_use]
+    pub fn zeniths_deg(&self) -> Vec<f64> {
+        std::iter::once(self.zenith_deg)
+            .chain(self.further_zenith_deg.iter().copied())
+            .collect()
+    }
+
     /// Checks the zenith angle (finite, 0 to below 90°, thousandths of a degree), the day
     /// (1–366) and the altitudes (not empty, not negative, increasing, whole metres); paths
     /// name the fields under `sun`.
@@ -138,7 +153,44 @@ impl PlanSun {
         check_increasing(
             |i| format!("sun.relative_azimuth_deg[{i}]"),
             self.relative_azimuth_deg.iter().copied(),
-        )
+        )?;
+        self.validate_further()
+    }
+
+    fn validate_further(&self) -> Result<(), ModelError> {
+        let mut previous = self.zenith_deg;
+        for (i, &z) in self.further_zenith_deg.iter().enumerate() {
+            let path = || format!("sun.further_zenith_deg[{i}]");
+            if !(z.is_finite() && z > previous && z < 90.0) {
+                return Err(ModelError::new(
+                    path(),
+                    ModelErrorKind::Other(format!(
+                        "expected a zenith angle above the previous sun's ({previous} deg) and \
+                         below 90 deg, found {z}"
+                    )),
+                ));
+            }
+            if (z * 1000.0 - (z * 1000.0).round()).abs() > 1e-6 {
+                return Err(ModelError::new(
+                    path(),
+                    ModelErrorKind::Other(format!(
+                        "expected an angle in multiples of 0.001 deg (a deck holds 3 decimals), found {z}"
+                    )),
+                ));
+            }
+            previous = z;
+        }
+        if !(self.further_zenith_deg.is_empty() || self.relative_azimuth_deg.is_empty()) {
+            return Err(ModelError::new(
+                "sun.further_zenith_deg",
+                ModelErrorKind::Other(
+                    "the scattered sunlight (relative azimuths) is planned for one sun: expected \
+                     no further suns beside it"
+                        .into(),
+                ),
+            ));
+        }
+        Ok(())
     }
 }
 
@@ -696,6 +748,7 @@ mod tests {
             day_of_year: 172,
             altitude_m: vec![0.0, 300.0],
             relative_azimuth_deg: vec![0.0, 90.0, 180.0],
+            further_zenith_deg: Vec::new(),
         };
         let mut p = plan();
         p.sun = Some(sun.clone());
@@ -718,6 +771,7 @@ mod tests {
                 day_of_year: day,
                 altitude_m: alt,
                 relative_azimuth_deg: Vec::new(),
+                further_zenith_deg: Vec::new(),
             });
             let e = p.validate().unwrap_err();
             assert_eq!(e.path, field, "{z} {day}: {e}");
@@ -740,6 +794,34 @@ mod tests {
             });
             assert_eq!(p.validate().unwrap_err().path, field);
         }
+        // Further suns: increasing above the first, below 90, in thousandths, and only
+        // for the direct beam.
+        let day = PlanSun {
+            relative_azimuth_deg: Vec::new(),
+            further_zenith_deg: vec![45.0, 89.999],
+            ..sun.clone()
+        };
+        p.sun = Some(day.clone());
+        p.validate().unwrap();
+        assert_eq!(day.zeniths_deg(), [30.0, 45.0, 89.999]);
+        for (further, field) in [
+            (vec![30.0], "sun.further_zenith_deg[0]"),
+            (vec![45.0, 40.0], "sun.further_zenith_deg[1]"),
+            (vec![45.0, 90.0], "sun.further_zenith_deg[1]"),
+            (vec![f64::NAN], "sun.further_zenith_deg[0]"),
+            (vec![45.0005], "sun.further_zenith_deg[0]"),
+        ] {
+            p.sun = Some(PlanSun {
+                further_zenith_deg: further,
+                ..day.clone()
+            });
+            assert_eq!(p.validate().unwrap_err().path, field);
+        }
+        p.sun = Some(PlanSun {
+            further_zenith_deg: vec![45.0],
+            ..sun.clone()
+        });
+        assert_eq!(p.validate().unwrap_err().path, "sun.further_zenith_deg");
     }
 
     #[test]

@@ -149,6 +149,51 @@ pub struct SpectralSolar {
     /// radiance by day.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub sky_scattered_w_m2_sr_per_unit: Vec<f32>,
+    /// Further suns of the same day, their zenith angles increasing above `zenith_deg`,
+    /// each with its direct beam's transmittance on `altitude_m`: one build then serves
+    /// every sun of a day, the tracer interpolating between the rows
+    /// (`irsig_atmosphere::solar`). Empty: the table is for the sun at `zenith_deg` alone.
+    /// The scattered-sunlight tables hold one sun's light: a table with further suns has
+    /// none.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub further_suns: Vec<SolarBeam>,
+}
+
+/// The direct beam of one more sun of a [`SpectralSolar`] table: its zenith angle and the
+/// transmittance from the top of the atmosphere down to each of the table's altitudes
+/// along its direction.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolarBeam {
+    /// The sun's zenith angle at the scene, degrees, below 90 and above the previous row's.
+    pub zenith_deg: f64,
+    /// Transmittance from the top of the atmosphere down to each altitude of the table,
+    /// one spectrum per altitude (LOWTRAN7's direct solar irradiance runs, IEMSCT = 3).
+    pub transmission: Vec<f32>,
+}
+
+impl SpectralSolar {
+    /// The table's sun zenith angles, degrees, increasing: `zenith_deg`, then each further
+    /// sun's.
+    #[must_use]
+    pub fn zeniths_deg(&self) -> Vec<f64> {
+        std::iter::once(self.zenith_deg)
+            .chain(self.further_suns.iter().map(|b| b.zenith_deg))
+            .collect()
+    }
+
+    /// The transmittance spectra (one per altitude) of zenith row `row` of
+    /// [`Self::zeniths_deg`]; `None` past the last row.
+    #[must_use]
+    pub fn transmission_of(&self, row: usize) -> Option<&[f32]> {
+        match row {
+            0 => Some(&self.transmission),
+            _ => self
+                .further_suns
+                .get(row - 1)
+                .map(|b| b.transmission.as_slice()),
+        }
+    }
 }
 
 /// One direction of an observer's slabs (down to targets below it, or up to targets above
@@ -346,6 +391,44 @@ fn check_observer_row(
     Ok(())
 }
 
+/// The further suns of a solar table: zenith angles increasing above the first sun's and
+/// below 90°, each beam one spectrum per altitude, and no scattered-sunlight tables beside
+/// them (those hold one sun's light).
+fn check_further_suns(s: &SpectralSolar, n: usize) -> Result<(), ModelError> {
+    let mut previous = s.zenith_deg;
+    for (i, b) in s.further_suns.iter().enumerate() {
+        let z = b.zenith_deg;
+        if !(z.is_finite() && z > previous && z < 90.0) {
+            return Err(ModelError::new(
+                format!("solar.further_suns[{i}].zenith_deg"),
+                ModelErrorKind::Other(format!(
+                    "expected a zenith angle above the previous sun's ({previous} deg) and \
+                     below 90 deg, found {z}"
+                )),
+            ));
+        }
+        previous = z;
+        check_spectra(
+            &format!("solar.further_suns[{i}].transmission"),
+            &b.transmission,
+            s.altitude_m.len(),
+            n,
+            1.0,
+        )?;
+    }
+    if !s.further_suns.is_empty() && !s.relative_azimuth_deg.is_empty() {
+        return Err(ModelError::new(
+            "solar.further_suns",
+            ModelErrorKind::Other(
+                "the scattered-sunlight tables hold one sun's light: expected no further suns \
+                 beside them (or no scattered-sunlight tables)"
+                    .into(),
+            ),
+        ));
+    }
+    Ok(())
+}
+
 impl SpectralAtmosphere {
     /// Checks the grid (at least 2 points, positive, strictly increasing), the profile
     /// (altitudes increasing, temperatures above 0 K), every table's shape, τ within 0–1,
@@ -508,6 +591,7 @@ impl SpectralAtmosphere {
                 n,
                 1.0,
             )?;
+            check_further_suns(s, n)?;
             if !s.relative_azimuth_deg.is_empty() {
                 check_axis("solar.relative_azimuth_deg", &s.relative_azimuth_deg, 180.0)?;
                 let Some(sl) = &self.slant else {
@@ -796,6 +880,7 @@ mod tests {
             relative_azimuth_deg: Vec::new(),
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
+            further_suns: Vec::new(),
         };
         let mut a = small();
         a.solar = Some(sun.clone());
@@ -822,6 +907,80 @@ mod tests {
             let e = a.validate().unwrap_err();
             assert_eq!(e.path, path, "{e}");
         }
+        // Further suns: zeniths increasing above the first sun's and below 90, one
+        // spectrum per altitude each, and no scattered tables beside them.
+        let mut day = sun.clone();
+        day.further_suns = vec![
+            SolarBeam {
+                zenith_deg: 60.0,
+                transmission: vec![0.25; 6],
+            },
+            SolarBeam {
+                zenith_deg: 89.999,
+                transmission: vec![0.0; 6],
+            },
+        ];
+        a.solar = Some(day.clone());
+        a.validate().unwrap();
+        assert_eq!(day.zeniths_deg(), [30.0, 60.0, 89.999]);
+        assert_eq!(day.transmission_of(0), Some(&day.transmission[..]));
+        assert_eq!(day.transmission_of(2), Some(&[0.0_f32; 6][..]));
+        assert_eq!(day.transmission_of(3), None);
+        let cases: [(&Break, &str); 6] = [
+            (
+                &|s| s.further_suns[0].zenith_deg = 30.0,
+                "solar.further_suns[0].zenith_deg",
+            ),
+            (
+                &|s| s.further_suns[1].zenith_deg = 50.0,
+                "solar.further_suns[1].zenith_deg",
+            ),
+            (
+                &|s| s.further_suns[1].zenith_deg = 90.0,
+                "solar.further_suns[1].zenith_deg",
+            ),
+            (
+                &|s| s.further_suns[0].zenith_deg = f64::NAN,
+                "solar.further_suns[0].zenith_deg",
+            ),
+            (
+                &|s| s.further_suns[1].transmission.truncate(3),
+                "solar.further_suns[1].transmission",
+            ),
+            (
+                &|s| s.further_suns[0].transmission[5] = 1.01,
+                "solar.further_suns[0].transmission[1][2]",
+            ),
+        ];
+        for (break_it, path) in cases {
+            let mut s = day.clone();
+            break_it(&mut s);
+            a.solar = Some(s);
+            let e = a.validate().unwrap_err();
+            assert_eq!(e.path, path, "{e}");
+        }
+        let mut lit = day;
+        lit.relative_azimuth_deg = vec![0.0, 180.0];
+        a.slant = Some(SpectralSlantTables {
+            altitude_m: vec![100.0],
+            nadir_deg: vec![0.0],
+            ground_m: None,
+            transmission: vec![0.9; 3],
+            path_radiance_w_m2_sr_per_unit: vec![0.01; 3],
+            sky_altitude_m: vec![0.0],
+            sky_zenith_deg: vec![0.0],
+            sky_radiance_w_m2_sr_per_unit: vec![0.01; 3],
+            interpolation_residual: None,
+        });
+        lit.path_scattered_w_m2_sr_per_unit = vec![0.01; 6];
+        lit.sky_scattered_w_m2_sr_per_unit = vec![0.01; 12];
+        a.solar = Some(lit.clone());
+        let e = a.validate().unwrap_err();
+        assert_eq!(e.path, "solar.further_suns", "{e}");
+        lit.further_suns.clear();
+        a.solar = Some(lit);
+        a.validate().unwrap();
+        a.slant = None;
         let mut s = sun;
         s.extraterrestrial_w_m2_per_unit[0] = f32::NAN;
         a.solar = Some(s);

@@ -2,9 +2,11 @@
 //! direct beam in each sub-band, from the `solar` table of the spectral atmosphere the
 //! frame is traced through.
 //!
-//! The table holds the beam for one sun zenith angle (the one its plan was made for), so
-//! the sun asked for must be that sun, within
-//! [`irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG`]. Each sub-band's beam is
+//! The table holds the beam for the sun zenith angles its plan was made for: one sun, which
+//! the sun asked for must then be, within
+//! [`irsig_atmosphere::solar::ZENITH_TOLERANCE_DEG`]; or several (one build for a day's
+//! suns), between which the beam is interpolated ([`DirectSun::at_zenith`]), a sun outside
+//! them refused with their range. Each sub-band's beam is
 //! [`DirectSun`] over the sub-band's wavelengths with the band's response, the weight its
 //! radiances are collapsed with, so that the sunlight and the path radiance of a sub-band
 //! are integrated alike. The table's altitudes are metres above the ground, as the
@@ -241,9 +243,9 @@ pub(crate) fn no_solar_table(
 /// radius that day's ([`SunDay`]).
 ///
 /// # Errors
-/// An atmosphere without a `solar` table, or one made for another zenith angle (a request
-/// error naming the sun's setting, with both angles), or a sub-band the table cannot be
-/// integrated over.
+/// An atmosphere without a `solar` table, or one made for another zenith angle or whose
+/// suns do not cover this one (a request error naming the sun's setting, with the angles),
+/// or a sub-band the table cannot be integrated over.
 pub(crate) fn sun(
     request: &SunRequest,
     position: &SunPosition,
@@ -261,15 +263,35 @@ pub(crate) fn sun(
             spelling,
         ));
     };
-    if (position.zenith_deg - solar.zenith_deg).abs() > ZENITH_TOLERANCE_DEG {
+    let zeniths = solar.zeniths_deg();
+    let (first, last) = (zeniths[0], zeniths[zeniths.len() - 1]);
+    let z = position.zenith_deg;
+    if !(z >= first - ZENITH_TOLERANCE_DEG && z <= last + ZENITH_TOLERANCE_DEG) {
+        let table = if zeniths.len() == 1 {
+            format!(
+                "is for a sun at {first} deg (the two must agree within \
+                 {ZENITH_TOLERANCE_DEG} deg)"
+            )
+        } else {
+            format!(
+                "holds suns from {first} to {last} deg (the beam is interpolated between \
+                 them, not beyond)"
+            )
+        };
+        let fix = if zeniths.len() == 1 {
+            how_to_build(spelling)
+        } else {
+            format!(
+                "plan suns that cover this one (irsig-atmos plan --sun-utc START/END/STEP \
+                 with the place, or --sun-zeniths-deg) and build again; or {}",
+                how_to_build(spelling)
+            )
+        };
         return Err(request.refuse(
             request.setting(),
             format!(
-                "the sun is {:.4} deg from the zenith, but the solar table of `{name}` is for \
-                 a sun at {} deg (the two must agree within {ZENITH_TOLERANCE_DEG} deg): {}",
-                position.zenith_deg,
-                solar.zenith_deg,
-                how_to_build(spelling)
+                "the sun is {z:.4} deg from the zenith, but the solar table of `{name}` \
+                 {table}: {fix}"
             ),
         ));
     }
@@ -280,6 +302,7 @@ pub(crate) fn sun(
         .map(|(band, _)| {
             let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
             let direct = DirectSun::new(spectral, lo, hi, |l| split.weight(l))
+                .and_then(|d| d.at_zenith(z))
                 .map_err(|e| miette!("the sun's beam over {lo}-{hi} um: {e}"))?;
             let normal = solar
                 .altitude_m

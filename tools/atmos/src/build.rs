@@ -248,9 +248,18 @@ fn build_atmosphere(a: &BuildArgs, plan: &AtmospherePlan, place: &Place) -> miet
                 s.relative_azimuth_deg.len()
             )
         };
+        // One sun is said as it always was: a one-sun build's source does not change.
+        let suns = if s.further_zenith_deg.is_empty() {
+            format!("the sun at {} deg", s.zenith_deg)
+        } else {
+            format!(
+                "{} suns at {:?} deg",
+                1 + s.further_zenith_deg.len(),
+                s.zeniths_deg()
+            )
+        };
         format!(
-            "; the sun at {} deg from the zenith on day {} (IEMSCT=3, ISOURC=0, LOWTRAN7's solar spectrum) at {} altitude(s){scattered}",
-            s.zenith_deg,
+            "; {suns} from the zenith on day {} (IEMSCT=3, ISOURC=0, LOWTRAN7's solar spectrum) at {} altitude(s){scattered}",
             s.day_of_year,
             s.altitude_m.len()
         )

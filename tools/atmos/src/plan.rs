@@ -7,7 +7,7 @@
 use std::path::{Path, PathBuf};
 
 use clap::Args;
-use irsig_atmosphere::plan::{add_aerosol, add_slabs, add_sun, deck, make_plan, paths};
+use irsig_atmosphere::plan::{add_aerosol, add_slabs, add_sun, add_suns, deck, make_plan, paths};
 use irsig_atmosphere::sun::SunSpec;
 use irsig_cli::args::GroundAlbedo;
 use irsig_cli::args::atmosphere::StandardModel;
@@ -70,10 +70,14 @@ Examples:
         "The sun's azimuth, degrees clockwise from north, in [0, 360): taken, and not needed \
          (the scattered sunlight is tabulated at azimuths from the sun's vertical plane)"
     )),
-    mut_arg("sun_utc", |a| a.help(
+    mut_arg("sun_utc", |a| a.value_parser(crate::plan_sun::utc_or_range).help(
         "The sun seen at this time, UTC (`YYYY-MM-DDTHH:MM:SSZ`), from --latitude-deg, \
          --longitude-deg and --altitude-m: the plan takes its geometric zenith angle (NREL's \
-         SPA) and its day of the year"
+         SPA) and its day of the year. Or the suns of a day, START/END/STEP \
+         (`2026-06-21T10:00:00Z/2026-06-22T10:00:00Z/PT1H`): the direct beam at every lit \
+         moment's zenith angle and at rows between them (every 5 deg to 80, 2 deg to 86, 1 \
+         deg to 87, 0.5 deg to 89.5), for one build that irsig-trace interpolates for any sun among them; the \
+         moments with the sun below the horizon are dropped, and said"
     )),
     mut_arg("day_of_year", |a| a.help(
         "The day of the year, 1-366, for the Earth-Sun distance (LOWTRAN7's IDAY); with \
@@ -109,11 +113,13 @@ pub struct PlanArgs {
           conflicts_with_all = ["scene", "view", "sun_zenith_deg", "sun_utc", "sun_scattering",
                                 "slabs", "wavenumber_per_cm"])]
     pub loads: bool,
-    /// With --loads: the sun's zenith angles, degrees, 0 to below 90, as values and ranges
-    /// `FROM:TO:STEP`, comma-separated (`20:85:5,87.5,89,89.9`): the day's from its
-    /// lowest to the horizon, 2-5 deg apart (docs/accuracy.md measures the interpolation
-    /// between rows).
-    #[arg(long, value_name = "LIST", requires = "loads",
+    /// The sun's zenith angles, degrees, 0 to below 90, as values and ranges
+    /// `FROM:TO:STEP`, comma-separated (`20:85:5,87.5,89,89.9`), with --day-of-year: the
+    /// day's from its lowest to the horizon, 2-5 deg apart (docs/accuracy.md measures the
+    /// interpolation between rows). With --loads, the suns of the loads table; else the
+    /// direct beam of each for one atmosphere that irsig-trace interpolates for any sun
+    /// among them (not with --sun-scattering: the scattered sunlight is one sun's).
+    #[arg(long, value_name = "LIST", conflicts_with_all = ["sun_zenith_deg", "sun_utc"],
           value_parser = crate::plan_loads::sun_zeniths)]
     pub sun_zeniths_deg: Option<crate::plan_loads::SunZeniths>,
     /// `--ground-albedo` (with --loads).
@@ -434,6 +440,7 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         plan_sun::rounds_above_horizon(z)
             .map_err(|e| irsig_cli::usage_error(format!("--sun-zenith-deg {z}: {e}")))?;
     }
+    let day_suns = day_suns(a)?;
     let input = irsig_cli::read_input(scene)?;
     let scene = canonical::read_raw_scene(&input.name, &input.bytes)?;
     let lowest = scene
@@ -469,12 +476,15 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         };
         (spec, given)
     });
-    let sun = plan_sun::choose(
-        flags.as_ref().map(|(spec, given)| (spec, given.as_str())),
-        a.day_of_year.day,
-        a.sun_scattering,
-        view_sun.as_ref(),
-    )?;
+    let sun = match &day_suns {
+        Some(_) => refuse_a_views_sun_beside(view_sun.as_ref())?,
+        None => plan_sun::choose(
+            flags.as_ref().map(|(spec, given)| (spec, given.as_str())),
+            a.day_of_year.day,
+            a.sun_scattering,
+            view_sun.as_ref(),
+        )?,
+    };
     let (model, default_name) = model_of(a.atmosphere.given(), a.radiosonde.as_deref())?;
     let name = a.name.value.clone().unwrap_or(default_name);
     let mut plan = make_plan(&name, model, &observers)
@@ -492,6 +502,16 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
         let z = sun.zenith_deg;
         add_sun(&mut plan, z, sun.day_of_year, a.sun_scattering)
             .map_err(|e| irsig_cli::usage_error(format!("the sun at {z} deg: {e}")))?;
+    }
+    if let Some(day) = &day_suns {
+        add_suns(
+            &mut plan,
+            &day.zenith_deg,
+            day.day_of_year,
+            a.sun_scattering,
+        )
+        .map_err(|e| irsig_cli::usage_error(format!("the suns of the day: {e}")))?;
+        irsig_cli::note!("{}", day.note);
     }
     if let Some(aer) = aerosol {
         add_aerosol(&mut plan, aer)
@@ -534,13 +554,56 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
     Ok(())
 }
 
+/// The suns of a day the flags ask for (`--sun-zeniths-deg`, or `--sun-utc` as a range),
+/// if any; refused with `--sun-scattering` (the scattered sunlight is one sun's).
+fn day_suns(a: &PlanArgs) -> miette::Result<Option<plan_sun::DaySuns>> {
+    let suns = match (&a.sun_zeniths_deg, &a.sun.sun_utc) {
+        (Some(z), _) => plan_sun::suns_of_zeniths(&z.0, a.day_of_year.day)?,
+        (None, Some(utc)) if plan_sun::is_range(utc) => {
+            plan_sun::suns_of_times(utc, &a.sun.place, a.day_of_year.day)?
+        }
+        _ => return Ok(None),
+    };
+    if a.sun_scattering && suns.zenith_deg.len() > 1 {
+        return Err(irsig_cli::usage_error(format!(
+            "--sun-scattering plans the sunlight the air scatters for one sun, and {} gives \
+             {} suns: plan the direct beam alone for a day's suns, or one sun with \
+             --sun-scattering",
+            if a.sun_zeniths_deg.is_some() {
+                "--sun-zeniths-deg"
+            } else {
+                "--sun-utc"
+            },
+            suns.zenith_deg.len()
+        )));
+    }
+    Ok(Some(suns))
+}
+
+/// A plan of a day's suns from the flags takes no `sun` from a view file: refused, naming
+/// it, as a sun given twice is.
+fn refuse_a_views_sun_beside(
+    view: Option<&irsig_formats::views::ViewSun<SunSpec>>,
+) -> miette::Result<Option<plan_sun::PlanSunChoice>> {
+    match view {
+        Some(v) => Err(irsig_cli::usage_error(format!(
+            "the flags give the suns of a day and the view file gives a `sun` at {}: give \
+             the suns once",
+            v.location
+        ))),
+        None => Ok(None),
+    }
+}
+
 /// The plan in one line for stderr: its paths, its sun (and whether the sunlight scattered
 /// into the paths is in it), its slabs, its aerosol (said either way: never a silent
 /// default) and its observers.
 fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) -> String {
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         // Said either way: whether the sunlight scattered into the paths is in the plan.
-        let scattered = if s.relative_azimuth_deg.is_empty() {
+        let scattered = if !s.further_zenith_deg.is_empty() {
+            "; the direct beam only (the scattered sunlight is planned for one sun)".to_owned()
+        } else if s.relative_azimuth_deg.is_empty() {
             "; the direct beam only, no scattered sunlight (--sun-scattering adds it)".to_owned()
         } else {
             format!(
@@ -548,9 +611,17 @@ fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) ->
                 s.relative_azimuth_deg.len()
             )
         };
+        let zeniths = s.zeniths_deg();
+        let at = match zeniths.as_slice() {
+            [one] => format!("the sun at {one} deg from the zenith"),
+            [first, .., last] => format!(
+                "{} suns from {first} to {last} deg from the zenith",
+                zeniths.len()
+            ),
+            [] => String::new(),
+        };
         format!(
-            " (the sun at {} deg from the zenith on day {}: its direct beam at {} altitudes{scattered})",
-            s.zenith_deg,
+            " ({at} on day {}: its direct beam at {} altitudes{scattered})",
             s.day_of_year,
             s.altitude_m.len(),
         )

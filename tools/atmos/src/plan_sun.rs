@@ -101,6 +101,186 @@ pub(crate) fn choose(
     }))
 }
 
+/// The suns of a day a plan is for (one build for every sun of the day): the table's zenith
+/// angles, degrees, increasing, rounded to the 0.001° a deck holds; its day of the year;
+/// and what the plan says of them.
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct DaySuns {
+    pub zenith_deg: Vec<f64>,
+    pub day_of_year: u16,
+    pub note: String,
+}
+
+/// How many times a day's range is sampled at most (at least a minute apart) for its
+/// highest sun and whether the sun crosses the horizon in it.
+const SAMPLES: u32 = 20_000;
+
+/// The Earth's rotation, degrees per second (360° a sidereal day, 86 164.1 s): no sun's
+/// zenith angle moves faster.
+const EARTH_TURN_DEG_PER_S: f64 = 360.0 / 86_164.1;
+
+/// The last zenith angle a deck holds below the horizon's 90°, degrees.
+const LAST_ZENITH_DEG: f64 = 89.999;
+
+/// Whether a `--sun-utc` is a time range `START/END/STEP` rather than one time.
+pub(crate) fn is_range(utc: &str) -> bool {
+    utc.contains('/')
+}
+
+/// `--sun-utc` of `irsig-atmos plan`: one time, as every tool takes it, or a range
+/// `START/END/STEP` (`irsig_formats::time::parse_times`: an end before the start, a step
+/// of 0 and a time that is none are refused here, at the flag).
+pub(crate) fn utc_or_range(s: &str) -> Result<String, String> {
+    if is_range(s) {
+        irsig_formats::time::parse_times(s)?;
+    } else {
+        irsig_atmosphere::sun::check_utc(s)?;
+    }
+    Ok(s.to_owned())
+}
+
+/// The suns of `--sun-zeniths-deg` on `--day-of-year`: those angles, as given.
+///
+/// # Errors
+/// No `--day-of-year`; an angle that rounds to the horizon.
+pub(crate) fn suns_of_zeniths(zenith_deg: &[f64], day: Option<u16>) -> miette::Result<DaySuns> {
+    let Some(day_of_year) = day else {
+        return Err(irsig_cli::usage_error(
+            "--sun-zeniths-deg needs --day-of-year D (1-366) for the Earth-Sun distance",
+        ));
+    };
+    for &z in zenith_deg {
+        rounds_above_horizon(z)
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-zeniths-deg: {e}")))?;
+    }
+    let mut rows: Vec<f64> = zenith_deg
+        .iter()
+        .map(|z| (z * 1000.0).round() / 1000.0)
+        .collect();
+    rows.sort_by(f64::total_cmp);
+    rows.dedup();
+    Ok(DaySuns {
+        note: format!("the suns of --sun-zeniths-deg, {} rows", rows.len()),
+        zenith_deg: rows,
+        day_of_year,
+    })
+}
+
+/// The suns of the moments `utc` (`START/END/STEP`) seen from `place`: each moment's
+/// geometric zenith angle (NREL's SPA, as `irsig-trace --sun-utc` sees it) while the sun
+/// is above the horizon, the range's highest sun (sampled every minute, or less often than
+/// [`SAMPLES`] over a long range) and, when the sun rises or sets in the range, 89.999°,
+/// with the rows of [`irsig_atmosphere::plan::day_sun_rows`] between them: any lit time
+/// of the range, a frame's or not, is then between the table's rows. The moments with the
+/// sun at or below the horizon are dropped, and said. The day of the year is the first lit moment's
+/// (a trace on another date scales the beam to its own Earth–Sun distance).
+///
+/// # Errors
+/// A range `parse_times` refuses; a place without latitude or longitude; a `--day-of-year`
+/// that is not the first lit moment's; no moment with the sun above the horizon.
+pub(crate) fn suns_of_times(
+    utc: &str,
+    place: &irsig_cli::args::PlaceArgs,
+    day: Option<u16>,
+) -> miette::Result<DaySuns> {
+    let times = irsig_formats::time::parse_times(utc)
+        .map_err(|e| irsig_cli::usage_error(format!("--sun-utc {utc}: {e}")))?;
+    let (Some(latitude_deg), Some(longitude_deg)) = (place.latitude_deg, place.longitude_deg)
+    else {
+        return Err(irsig_cli::usage_error(
+            "--sun-utc needs --latitude-deg and --longitude-deg",
+        ));
+    };
+    let sun_at = |t: f64| -> miette::Result<(f64, SunSpec)> {
+        let spec = SunSpec::At {
+            utc: irsig_model::time::format_utc(t),
+            latitude_deg,
+            longitude_deg,
+            altitude_m: place.altitude_m,
+            refraction: None,
+            delta_t_s: None,
+            delta_ut1_s: None,
+        };
+        let position = spec
+            .position()
+            .map_err(|e| irsig_cli::usage_error(format!("--sun-utc {utc}: {e}")))?;
+        Ok((position.zenith_deg, spec))
+    };
+    let mut lit = Vec::new();
+    let mut dark = 0_usize;
+    let mut first_day = None;
+    for &t in &times {
+        let (zenith_deg, spec) = sun_at(t)?;
+        if rounds_above_horizon(zenith_deg).is_err() {
+            dark += 1;
+            continue;
+        }
+        lit.push(zenith_deg);
+        first_day = first_day.or_else(|| spec.day_of_year());
+    }
+    // A frame between two moments may see a sun beyond both: higher at a noon between
+    // them, lower after a sunrise or before a sunset between them. The table reaches the
+    // range's highest sun and, when the sun crosses the horizon in it, the last angle a
+    // deck holds, so that every lit time of the range is between its rows.
+    let frames = lit.len();
+    let (start, end) = (times[0], times[times.len() - 1]);
+    let step_s = ((end - start) / f64::from(SAMPLES)).max(60.0);
+    let mut t = start;
+    let (mut highest, mut crosses) = (f64::INFINITY, false);
+    while t <= end {
+        let (zenith_deg, _) = sun_at(t)?;
+        if rounds_above_horizon(zenith_deg).is_ok() {
+            highest = highest.min(zenith_deg);
+        } else {
+            crosses = true;
+        }
+        t += step_s;
+    }
+    if !lit.is_empty() {
+        if highest.is_finite() {
+            // The true highest lies within half a step of a sample, and no sun's zenith
+            // angle moves faster than the Earth turns: the row goes that much higher.
+            lit.push((highest - EARTH_TURN_DEG_PER_S * step_s / 2.0).max(0.0));
+        }
+        if crosses {
+            lit.push(LAST_ZENITH_DEG);
+        }
+    }
+    let Some(day_of_year) = first_day else {
+        return Err(irsig_cli::usage_error(format!(
+            "--sun-utc {utc}: the sun is at or below the horizon at all {} moments: plan a \
+             night (leave the sun out)",
+            times.len()
+        )));
+    };
+    if let Some(given) = day.filter(|&d| d != day_of_year) {
+        return Err(irsig_cli::usage_error(format!(
+            "--day-of-year {given}, but the first lit moment of --sun-utc {utc} is on day \
+             {day_of_year}: leave out --day-of-year"
+        )));
+    }
+    let rows = irsig_atmosphere::plan::day_sun_rows(&lit);
+    let dropped = if dark == 0 {
+        String::new()
+    } else {
+        format!(
+            "; {dark} of the {} moments have the sun at or below the horizon and are dropped \
+             (no direct light)",
+            times.len()
+        )
+    };
+    Ok(DaySuns {
+        note: format!(
+            "the suns of {frames} lit moments of --sun-utc {utc}, {} rows with the day's \
+             highest sun{} and the grid between them{dropped}",
+            rows.len(),
+            if crosses { ", the horizon's" } else { "" }
+        ),
+        zenith_deg: rows,
+        day_of_year,
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -235,5 +415,74 @@ mod tests {
             ),
             "--day-of-year 80, but --sun-utc 2026-03-20T12:00:00Z is seen on day 79",
         );
+    }
+
+    #[test]
+    fn a_days_zenith_list_needs_its_day_and_a_range_is_checked_at_the_flag() {
+        let suns = suns_of_zeniths(&[60.0, 30.0004, 45.0, 30.0], Some(172)).unwrap();
+        assert_eq!(
+            (suns.zenith_deg, suns.day_of_year),
+            (vec![30.0, 45.0, 60.0], 172)
+        );
+        let e = suns_of_zeniths(&[30.0], None).unwrap_err().to_string();
+        assert!(e.contains("--day-of-year"), "{e}");
+        let e = suns_of_zeniths(&[30.0, 89.9996], Some(1))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("rounds to 90"), "{e}");
+        // One time, or a range; a range that ends before it starts, or steps by 0, is none.
+        assert!(utc_or_range("2026-06-21T12:00:00Z").is_ok());
+        assert!(utc_or_range("2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT1H").is_ok());
+        assert!(is_range("2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT1H"));
+        assert!(!is_range("2026-06-21T12:00:00Z"));
+        for bad in [
+            "2026-06-22T00:00:00Z/2026-06-21T00:00:00Z/PT1H",
+            "2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT0S",
+            "2026-06-21T00:00:00Z/2026-06-22T00:00:00Z",
+            "2026-13-21T12:00:00Z",
+        ] {
+            assert!(utc_or_range(bad).is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn a_days_times_give_every_lit_moment_the_noon_and_the_horizon() {
+        let place = irsig_cli::args::PlaceArgs {
+            latitude_deg: Some(0.0),
+            longitude_deg: Some(0.0),
+            altitude_m: 0.0,
+        };
+        // The 2026 March equinox (14:46 UTC) at the equator on the prime meridian: the sun
+        // rises about 06:07 and sets about 18:14 UTC (the equation of time, -7.4 min), so
+        // 06:00 is dark and 07:00-18:00 lit; at the noon, 12:07, it stands |δ| = 0.39
+        // deg/day x 2.65 h = 0.04 deg from the zenith, between two hours (12:00 is 1.9 deg
+        // off): the first row is at or above it.
+        let suns = suns_of_times(
+            "2026-03-20T00:00:00Z/2026-03-21T00:00:00Z/PT1H",
+            &place,
+            None,
+        )
+        .unwrap();
+        assert_eq!(suns.day_of_year, 79);
+        assert!(suns.zenith_deg[0] <= 0.04, "{:?}", suns.zenith_deg);
+        assert_eq!(suns.zenith_deg.last(), Some(&89.999));
+        assert!(suns.note.contains("12 lit moments"), "{}", suns.note);
+        assert!(suns.note.contains("13 of the 25 moments"), "{}", suns.note);
+        let e = suns_of_times(
+            "2026-03-20T00:00:00Z/2026-03-20T04:00:00Z/PT1H",
+            &place,
+            None,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("at all 5 moments"), "{e}");
+        let e = suns_of_times(
+            "2026-03-20T08:00:00Z/2026-03-20T10:00:00Z/PT1H",
+            &place,
+            Some(80),
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("is on day 79"), "{e}");
     }
 }

@@ -154,12 +154,21 @@ pub fn assemble(
                 }
             }
             let scattered = |p: Path| f32s(&get(p).scattered_w_m2_sr_per_cm);
+            let further_suns = sun
+                .further_zenith_deg
+                .iter()
+                .map(|&zenith_deg| SolarBeam {
+                    zenith_deg,
+                    transmission: flat(sun_paths_at(sun, zenith_deg).collect(), &tau),
+                })
+                .collect();
             Some(SpectralSolar {
                 zenith_deg: sun.zenith_deg,
                 day_of_year: sun.day_of_year,
                 altitude_m: sun.altitude_m.clone(),
                 extraterrestrial_w_m2_per_unit: f32s(etoa),
-                transmission: flat(runs, &tau),
+                transmission: flat(sun_paths_at(sun, sun.zenith_deg).collect(), &tau),
+                further_suns,
                 relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
                 path_scattered_w_m2_sr_per_unit: flat(sunlit_slant_paths(plan, sun), &scattered),
                 sky_scattered_w_m2_sr_per_unit: flat(sunlit_sky_paths(plan, sun), &scattered),

@@ -21,12 +21,13 @@
 //! `slant.path_radiance_w_m2_sr_per_unit`, `slant.sky_radiance_w_m2_sr_per_unit`,
 //! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`, and when
 //! `solar.relative_azimuth_deg` is not empty `solar.path_scattered_w_m2_sr_per_unit`,
-//! `solar.sky_scattered_w_m2_sr_per_unit`, then for each of `slabs`, its `down` and its
+//! `solar.sky_scattered_w_m2_sr_per_unit`, then each of `solar.further_suns`'
+//! `transmission`, then for each of `slabs`, its `down` and its
 //! `up` table when present, `transmission`, `path_radiance_w_m2_sr_per_unit` and, when
 //! `solar.relative_azimuth_deg` is not empty, `scattered_w_m2_sr_per_unit`. (A file
 //! without slabs is what it was before them. A file without a `solar` table is what
 //! version 1 always was: its bytes do not change; nor does one whose sun has no
-//! scattered-sunlight tables.)
+//! scattered-sunlight tables, nor one with a single sun.)
 //! Each count is checked against the bytes left before anything is allocated; the file
 //! must end after the last table; the result is validated.
 
@@ -75,6 +76,7 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
                 &s.sky_scattered_w_m2_sr_per_unit,
             ]);
         }
+        t.extend(s.further_suns.iter().map(|b| &b.transmission));
     }
     let lit = a
         .solar
@@ -123,6 +125,7 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
                 &mut s.sky_scattered_w_m2_sr_per_unit,
             ]);
         }
+        t.extend(s.further_suns.iter_mut().map(|b| &mut b.transmission));
     }
     for table in a
         .slabs
@@ -207,6 +210,12 @@ fn expected_spectra(a: &SpectralAtmosphere) -> Result<Vec<(String, usize)>, (Str
                 ),
             ]);
         }
+        t.extend(s.further_suns.iter().enumerate().map(|(i, _)| {
+            (
+                format!("solar.further_suns[{i}].transmission"),
+                s.altitude_m.len(),
+            )
+        }));
     }
     for (i, slab) in a.slabs.iter().enumerate() {
         for (dir, table) in [("down", &slab.down), ("up", &slab.up)] {
@@ -711,6 +720,7 @@ mod tests {
             relative_azimuth_deg: Vec::new(),
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
+            further_suns: Vec::new(),
         });
         let bytes = encode(&a).unwrap();
         assert_eq!(decode("a.spa", &bytes).unwrap(), a);
@@ -725,6 +735,57 @@ mod tests {
         assert!(e.message.contains("truncated"), "{}", e.message);
         // A night atmosphere is written as before.
         assert_eq!(encode(&small()).unwrap(), night);
+    }
+
+    #[test]
+    fn further_suns_follow_the_first_suns_tables_and_round_trip_in_both_versions() {
+        let mut a = small();
+        let first = irsig_model::SpectralSolar {
+            zenith_deg: 30.0,
+            day_of_year: 172,
+            altitude_m: vec![0.0, 300.0],
+            extraterrestrial_w_m2_per_unit: vec![0.0092, 0.0094],
+            transmission: vec![0.25, 0.5, 0.3, 0.55],
+            relative_azimuth_deg: Vec::new(),
+            path_scattered_w_m2_sr_per_unit: Vec::new(),
+            sky_scattered_w_m2_sr_per_unit: Vec::new(),
+            further_suns: Vec::new(),
+        };
+        a.solar = Some(first.clone());
+        let one_sun = encode(&a).unwrap();
+        let mut s = first;
+        s.further_suns = vec![
+            irsig_model::SolarBeam {
+                zenith_deg: 60.0,
+                transmission: vec![0.125, 0.25, 0.15, 0.275],
+            },
+            irsig_model::SolarBeam {
+                zenith_deg: 85.0,
+                transmission: vec![0.0625, 0.125, 0.075, 0.1375],
+            },
+        ];
+        a.solar = Some(s);
+        let bytes = encode(&a).unwrap();
+        assert_eq!(decode("a.spa", &bytes).unwrap(), a);
+        // The last table is the last sun's: a count of 4 and its values, in order.
+        let tail = &bytes[bytes.len() - (4 + 16)..];
+        assert_eq!(u32::from_le_bytes(tail[..4].try_into().unwrap()), 4);
+        assert_eq!(tail[4..8], 0.0625_f32.to_le_bytes());
+        assert_eq!(tail[16..20], 0.1375_f32.to_le_bytes());
+        // Two more tables of 4 values (and the header's two rows) follow the one-sun file.
+        assert!(bytes.len() > one_sun.len() + 2 * (4 + 16));
+        let quantised = decode("a.spa", &encode_quantised(&a).unwrap()).unwrap();
+        let s = quantised.solar.unwrap();
+        assert_eq!(s.zeniths_deg(), [30.0, 60.0, 85.0]);
+        let last = s.transmission_of(2).unwrap();
+        assert!((f64::from(last[3]) - 0.1375).abs() < 0.1375 / 60_000.0);
+        // A count that is not the altitudes' is refused at the further sun's path.
+        let mut cut = bytes.clone();
+        let at = cut.len() - (4 + 16);
+        cut[at..at + 4].copy_from_slice(&3u32.to_le_bytes());
+        cut.truncate(cut.len() - 4);
+        let e = decode("a", &cut).unwrap_err();
+        assert!(e.message.contains("further_suns[1]"), "{}", e.message);
     }
 
     #[test]
@@ -847,6 +908,7 @@ mod tests {
             relative_azimuth_deg: vec![0.0, 180.0],
             path_scattered_w_m2_sr_per_unit: vec![0.01; 16],
             sky_scattered_w_m2_sr_per_unit: vec![0.01; 24],
+            further_suns: Vec::new(),
         });
         let own_row = |own: f32, away: f32| -> Vec<f32> {
             [away, away, away, away, own, own, own, own].to_vec()
