@@ -597,9 +597,9 @@ impl Plan {
         Ok(())
     }
 
-    /// An error about a setting the decision chose (its sub-band count, which only the
-    /// atmosphere's grid can refuse), said at the decision's choice rather than as a flag
-    /// the user never typed; any other error as it is.
+    /// An error about the sub-band count the decision chose (which only the atmosphere's
+    /// grid can refuse), said at the decision's choice rather than as a flag the user never
+    /// typed; any other error as it is.
     fn at_decision_choice(&self, model: SwitchableModel, report: miette::Report) -> miette::Report {
         let (Some(d), Some((name, text))) = (&self.decision, &self.decision_file) else {
             return report;
@@ -610,6 +610,9 @@ impl Plan {
         let Some(e) = report.downcast_ref::<RequestError>() else {
             return report;
         };
+        if e.setting != Setting::SubBands || model != SwitchableModel::SubBands {
+            return report;
+        }
         let value = e.value.as_deref().unwrap_or("");
         let message = format!(
             "this decision's `{value}` cannot be kept for this run: {}",

@@ -469,9 +469,8 @@ fn table_layout(t: &str) -> Option<Layout> {
 const FLUX_MAX: f64 = 1.0;
 
 /// The range a column's values must lie in: transmittances 0 to [`TRANSMITTANCE_MAX`] (as
-/// in TAPE7),
-/// radiances, irradiances and their integrals 0 to [`FLUX_MAX`]; the rest (wavenumber,
-/// wavelength, absorption) unchecked here.
+/// in TAPE7), radiances, irradiances and their integrals 0 to [`FLUX_MAX`]; the rest
+/// (wavenumber, wavelength, absorption) unchecked here.
 fn column_range(name: &str) -> Option<(f64, f64, &'static str)> {
     if name.ends_with("TRANS") {
         Some((0.0, TRANSMITTANCE_MAX, "a transmittance"))
