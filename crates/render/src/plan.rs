@@ -600,17 +600,21 @@ impl Plan {
     /// An error about the sub-band count the decision chose (which only the atmosphere's
     /// grid can refuse), said at the decision's choice rather than as a flag the user never
     /// typed; any other error as it is.
-    fn at_decision_choice(&self, model: SwitchableModel, report: miette::Report) -> miette::Report {
+    fn at_decision_sub_bands(&self, report: miette::Report) -> miette::Report {
         let (Some(d), Some((name, text))) = (&self.decision, &self.decision_file) else {
             return report;
         };
-        let Some(i) = d.choices.iter().position(|c| c.model == model) else {
+        let Some(i) = d
+            .choices
+            .iter()
+            .position(|c| c.model == SwitchableModel::SubBands)
+        else {
             return report;
         };
         let Some(e) = report.downcast_ref::<RequestError>() else {
             return report;
         };
-        if e.setting != Setting::SubBands || model != SwitchableModel::SubBands {
+        if e.setting != Setting::SubBands {
             return report;
         }
         let value = e.value.as_deref().unwrap_or("");

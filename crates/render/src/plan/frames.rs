@@ -166,18 +166,17 @@ impl Plan {
                     sun
                 }))
         };
-        let sun = sun_of(&base);
         // A count the decision chose that this atmosphere's grid cannot make is the
         // decision's error, not a flag's.
         let sub_bands_of_decision = self.decision.is_some() && base.sub_bands != asked_sub_bands;
         let said = |e: miette::Report| {
             if sub_bands_of_decision {
-                self.at_decision_choice(SwitchableModel::SubBands, e)
+                self.at_decision_sub_bands(e)
             } else {
                 e
             }
         };
-        let sun = sun.map_err(said)?;
+        let sun = sun_of(&base).map_err(said)?;
         let precomputed = (air.precomputed)(kind, count).map_err(said)?;
         let mut tracer = Tracer::with_sub_bands(&scene, &self.materials, band, precomputed)
             .and_then(|t| t.with_sun(sun))
