@@ -2,7 +2,8 @@
 # The Python package's tests (python/tests, pytest), run by scripts/test.sh after the Rust
 # tests: in a virtual environment of their own (target/py-venv, or under CARGO_TARGET_DIR),
 # made on the first run with the system's python3 (3.9 or later), into which pip installs
-# maturin, numpy, xarray and pytest from the package index (about 30 s once, seconds after).
+# maturin, numpy, xarray, pytest and matplotlib (the README's example plots) from the package
+# index (about 30 s once, seconds after).
 # `maturin develop` then builds the extension module in the dev profile into the same
 # target folder as the Rust build, and the tests compare it with irsig-flatten and
 # irsig-trace of that build.
@@ -34,7 +35,7 @@ if ! "$venv/bin/python" -m pip --version >/dev/null 2>&1; then
   exit 1
 fi
 "$venv/bin/python" -m pip install --quiet --disable-pip-version-check \
-  'maturin>=1.9.4,<2' 'numpy>=1.22' 'xarray>=2022.6' 'pytest>=7'
+  'maturin>=1.9.4,<2' 'numpy>=1.22' 'xarray>=2022.6' 'pytest>=7' 'matplotlib>=3.5'
 # The tools as the Rust tests build them (irsig_tests::bin_path), and the module with the
 # features of the workspace's test build (python/Cargo.toml): after `cargo test
 # --workspace` neither compiles irsig's crates again.

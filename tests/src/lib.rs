@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 pub mod hazy_day;
+pub mod recipe;
 
 /// The repository root.
 #[must_use]

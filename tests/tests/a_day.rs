@@ -1,6 +1,7 @@
-//! The day pipeline (`pipelines/a-day.ron`) end to end, through a copy of it whose camera
-//! is 64 × 48 pixels: one `irsig-therm` for the whole day, 24 hourly frames traced and
-//! sensed, their contact sheet and their animation.
+//! The day pipeline (`pipelines/a-day.ron`) end to end, by the README's recipe as written
+//! in a copy of it whose camera is 64 × 48 pixels (the 512 × 384 day is the README's
+//! picture, made by `scripts/docs/a-day-picture.sh`): one `irsig-therm` for the whole day,
+//! 24 hourly frames traced and sensed, their contact sheet and their animation.
 //!
 //! - The open grass and the open clay track are warmest within three hours of solar noon
 //!   and coolest in the hours before dawn, as the sun heats them and the night sky cools
@@ -14,7 +15,7 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use irsig_raster::read_exr;
-use irsig_tests::{bin_path, repo_root};
+use irsig_tests::{recipe, repo_root};
 
 /// The frames' local hours (MDT) and their UTC stamps (MDT + 6 h) on 7 August 2001.
 fn frames() -> Vec<(u32, String)> {
@@ -69,16 +70,12 @@ fn day() -> &'static tempfile::TempDir {
             view.replace("pixels: (512, 384)", &format!("pixels: ({W}, {H})")),
         )
         .unwrap();
-        let out = std::process::Command::new(bin_path("irsig-run"))
-            .current_dir(dir.path())
-            .args(["--quiet", "pipelines/a-day.ron"])
-            .output()
-            .unwrap();
-        assert!(
-            out.status.success(),
-            "irsig-run pipelines/a-day.ron failed:\n{}",
-            String::from_utf8_lossy(&out.stderr)
+        // The README's recipe, as written.
+        let block = recipe::block(
+            "README.md",
+            "irsig-run pipelines/a-day.ron      # everything in out/a-day/, named by UTC time",
         );
+        recipe::run_ok(&block, dir.path(), &[]);
         dir
     })
 }

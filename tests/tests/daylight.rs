@@ -9,7 +9,8 @@
 //!   reflected sunlight, against `∫ τ_path (ε B(T) + (1 − ε)(E_sun cos θ/π + L_sky)) +
 //!   L_path` integrated by hand over the file's spectra, ε from Fresnel's equations at
 //!   normal incidence on the published n, k.
-//! - **The daylight pipeline** (`pipelines/daylight.ron`) end to end: its run time; the
+//! - **The daylight pipeline** (`pipelines/daylight.ron`) end to end, through its README's
+//!   recipe as written (`irsig_tests::recipe`), and its generator's recipe: its run time; the
 //!   car's shadow on the clay track where hand geometry puts it, and the sunlit ground's
 //!   3–5 µm excess `τ (1 − ε) E cos θ/π` with E by hand; the pool's glint within the sun's
 //!   disk; the sun's share small in 8–14 µm; the library is what its generator makes; and
@@ -28,7 +29,7 @@ use std::time::Instant;
 use irsig_formats::canonical;
 use irsig_model::SpectralAtmosphere;
 use irsig_raster::Raster;
-use irsig_tests::{bin, bin_path, lowtran, repo_root};
+use irsig_tests::{bin, lowtran, recipe, repo_root};
 
 /// CODATA 2018: Planck constant (J s), speed of light (m/s), Boltzmann constant (J/K).
 const H: f64 = 6.626_070_15e-34;
@@ -430,9 +431,9 @@ fn an_aluminium_plate_in_3_5_um_is_mostly_reflected_sunlight_as_computed_by_hand
     }
 }
 
-/// The daylight pipeline, copied with the quickstart's scene and its own library into a
-/// temporary directory and run once by `irsig-run` (LOWTRAN7 included), and how long it
-/// took, s.
+/// The daylight pipeline's recipe (`pipelines/daylight/README.md`), run once as written
+/// (LOWTRAN7's installer, then `irsig-run`) in a scratch copy of the clone, and how long
+/// it took, s.
 struct Daylight {
     dir: tempfile::TempDir,
     secs: f64,
@@ -451,33 +452,17 @@ impl Daylight {
 fn daylight() -> &'static Daylight {
     static RUN: OnceLock<Daylight> = OnceLock::new();
     RUN.get_or_init(|| {
-        let dir = tempfile::tempdir().unwrap();
-        let from = repo_root().join("pipelines");
-        let to = dir.path().join("pipelines");
-        for sub in ["quickstart", "daylight"] {
-            std::fs::create_dir_all(to.join(sub)).unwrap();
-            for entry in std::fs::read_dir(from.join(sub)).unwrap() {
-                let path = entry.unwrap().path();
-                std::fs::copy(&path, to.join(sub).join(path.file_name().unwrap())).unwrap();
-            }
-        }
-        std::fs::copy(from.join("daylight.ron"), to.join("daylight.ron")).unwrap();
-        // Built before the clock starts: the run is timed, not the build.
-        let runner = bin_path("irsig-run");
-        let start = Instant::now();
-        let out = std::process::Command::new(runner)
-            .current_dir(dir.path())
-            .env("IRSIG_LOWTRAN", lowtran())
-            .arg("pipelines/daylight.ron")
-            .output()
-            .unwrap();
-        let secs = start.elapsed().as_secs_f64();
-        assert!(
-            out.status.success(),
-            "irsig-run pipelines/daylight.ron failed:\n{}",
-            String::from_utf8_lossy(&out.stderr)
+        let dir = recipe::scratch_root();
+        let block = recipe::block(
+            "pipelines/daylight/README.md",
+            "export IRSIG_LOWTRAN=\"$(sh scripts/atmosphere/install-lowtran.sh)\"   # LOWTRAN7's path",
         );
-        eprintln!("irsig-run pipelines/daylight.ron: {secs:.1} s");
+        // Built before the clock starts: the run is timed, not the build.
+        let _ = recipe::tools_dir();
+        let start = Instant::now();
+        recipe::run_ok(&block, dir.path(), &[]);
+        let secs = start.elapsed().as_secs_f64();
+        eprintln!("the daylight recipe: {secs:.1} s");
         Daylight { dir, secs }
     })
 }
@@ -745,20 +730,16 @@ fn the_daylight_pipeline_lights_the_scene_as_hand_geometry_and_the_atmosphere_sa
 
 #[test]
 fn the_daylight_library_is_what_its_generator_makes_and_covers_both_bands() {
-    let root = repo_root();
-    let out = std::process::Command::new("sh")
-        .arg("pipelines/daylight/generate.sh")
-        .env("IRSIG_MATERIAL", bin_path("irsig-material"))
-        .current_dir(&root)
-        .output()
-        .unwrap();
-    assert!(
-        out.status.success(),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let dir = recipe::scratch_root();
+    let block = recipe::block(
+        "pipelines/daylight/README.md",
+        "sh pipelines/daylight/generate.sh > pipelines/daylight/materials.ron",
     );
-    let made = String::from_utf8(out.stdout).unwrap();
-    let committed = std::fs::read_to_string(root.join("pipelines/daylight/materials.ron")).unwrap();
+    recipe::run_ok(&block, dir.path(), &[]);
+    let made =
+        std::fs::read_to_string(dir.path().join("pipelines/daylight/materials.ron")).unwrap();
+    let committed =
+        std::fs::read_to_string(repo_root().join("pipelines/daylight/materials.ron")).unwrap();
     assert!(
         made == committed,
         "pipelines/daylight/materials.ron is not what generate.sh makes"

@@ -1,6 +1,6 @@
 //! `irsig-run --emit-slurm` through a real Slurm cluster (the several nodes on one machine
 //! `scripts/slurm/start-local-cluster.sh` starts, as `.ci/run` does): the thesis fly-by's 24
-//! frames as a job array spread over the nodes, byte for byte the same files as `irsig-run`
+//! frames, submitted by `docs/slurm.md`'s recipes as written, as a job array spread over the nodes, byte for byte the same files as `irsig-run`
 //! writes; one of those frames killed while it runs, and a resubmission that runs that frame
 //! alone (every other file keeps its time) and ends with the same bytes; a day of hourly
 //! frames (a `Times` sweep) as an array waiting for the one thermal job that solves the
@@ -19,7 +19,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 
-use irsig_tests::{bin, bin_path, repo_root};
+use irsig_tests::{bin, bin_path, recipe, repo_root};
 use predicates::prelude::*;
 
 /// How long a submission may take before the test gives up and names what is still queued.
@@ -113,6 +113,29 @@ fn emit_and_submit(dir: &Path, pipeline: &str) -> Vec<(String, String)> {
         .assert()
         .success();
     submit(dir)
+}
+
+/// The first line of `docs/slurm.md`'s recipe that submits the fly-by, and of the one that
+/// submits it again after a loss.
+const FLYBY_RECIPE: &str = "irsig-run --emit-slurm slurm pipelines/thesis-flyby.ron   # writes slurm/*.sbatch, slurm/submit.sh";
+const FLYBY_AGAIN_RECIPE: &str =
+    "irsig-run --emit-slurm slurm pipelines/thesis-flyby.ron   # now: only the frames not done";
+
+/// Runs `docs/slurm.md`'s recipe that starts with `first_line` as written in `dir` (a
+/// scratch copy of the clone): the job ids `submit.sh` printed with their scripts, in
+/// submission order.
+fn submit_by_recipe(dir: &Path, first_line: &str) -> Vec<(String, String)> {
+    let out = recipe::run_ok(&recipe::block("docs/slurm.md", first_line), dir, &[]);
+    // `submit.sh` prints "JOBID SCRIPT" per job; `squeue --me` after it prints a table.
+    String::from_utf8(out.stdout)
+        .unwrap()
+        .lines()
+        .filter_map(|l| {
+            let (id, script) = l.split_once(' ')?;
+            (id.chars().all(|c| c.is_ascii_digit()) && script.ends_with(".sbatch"))
+                .then(|| (id.to_owned(), script.to_owned()))
+        })
+        .collect()
 }
 
 fn submit(dir: &Path) -> Vec<(String, String)> {
@@ -279,8 +302,9 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
         .args(["--quiet", "thesis-flyby.ron"])
         .assert()
         .success();
-    let cluster = copy_pipeline("thesis-flyby");
-    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    // The page's recipe, as written, in a copy of the clone.
+    let cluster = recipe::scratch_root();
+    let jobs = submit_by_recipe(cluster.path(), FLYBY_RECIPE);
     let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
     assert_eq!(
         scripts,
@@ -305,21 +329,22 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
         "the frames ran on one node only: {nodes:?}"
     );
     let build = "thesis-flyby/build";
-    assert_same_files(&local.path().join(build), &cluster.path().join(build));
+    let cluster_build = cluster.path().join("pipelines").join(build);
+    assert_same_files(&local.path().join(build), &cluster_build);
     // 1 raw scene, 5 files per frame, the contact sheet.
-    assert_eq!(files(&cluster.path().join(build)).len(), 1 + 24 * 5 + 1);
+    assert_eq!(files(&cluster_build).len(), 1 + 24 * 5 + 1);
 
     // The tasks recorded their runs in the shared state: irsig-run finds all 26 steps done.
     bin("irsig-run")
         .current_dir(cluster.path())
-        .arg("thesis-flyby.ron")
+        .arg("pipelines/thesis-flyby.ron")
         .assert()
         .success()
         .stderr(predicate::str::contains("0 stage(s) ran, 26 up to date"));
 
     // A lost frame: the next submission is that frame, and the sheet after it.
-    std::fs::remove_file(cluster.path().join(build).join("frame-07.truth.exr")).unwrap();
-    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    std::fs::remove_file(cluster_build.join("frame-07.truth.exr")).unwrap();
+    let jobs = submit_by_recipe(cluster.path(), FLYBY_AGAIN_RECIPE);
     let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
     assert_eq!(scripts, ["01-trace.sbatch", "02-contact-sheet.sbatch"]);
     let trace = std::fs::read_to_string(cluster.path().join("slurm/01-trace.sbatch")).unwrap();
@@ -333,7 +358,7 @@ fn the_thesis_flyby_as_a_job_array_writes_irsig_runs_bytes() {
     );
     wait_for(&jobs);
     assert_all_completed(cluster.path(), &jobs);
-    assert_same_files(&local.path().join(build), &cluster.path().join(build));
+    assert_same_files(&local.path().join(build), &cluster_build);
 }
 
 /// Every file under `dir` with its modification time.
@@ -405,8 +430,8 @@ fn a_task_killed_mid_run_is_all_a_resubmission_runs_and_the_bytes_are_the_same()
         .args(["--quiet", "thesis-flyby.ron"])
         .assert()
         .success();
-    let cluster = copy_pipeline("thesis-flyby");
-    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    let cluster = recipe::scratch_root();
+    let jobs = submit_by_recipe(cluster.path(), FLYBY_RECIPE);
     assert_eq!(jobs[1].1, "02-trace.sbatch");
     let killed = kill_one_running_task(&jobs[1].0);
     // The sheet waits for every frame, so it can never start now: it is cancelled too once
@@ -423,11 +448,12 @@ fn a_task_killed_mid_run_is_all_a_resubmission_runs_and_the_bytes_are_the_same()
         };
         assert_eq!(state, expected, "job {id} task {task}: {states:?}");
     }
-    let build = cluster.path().join("thesis-flyby/build");
+    let build = cluster.path().join("pipelines/thesis-flyby/build");
     let before = file_times(&build);
 
-    // The resubmission: the killed frame, and the sheet after it; nothing else.
-    let jobs = emit_and_submit(cluster.path(), "thesis-flyby.ron");
+    // The resubmission, by the page's recipe: the killed frame, and the sheet after it;
+    // nothing else.
+    let jobs = submit_by_recipe(cluster.path(), FLYBY_AGAIN_RECIPE);
     let scripts: Vec<&str> = jobs.iter().map(|(_, s)| s.as_str()).collect();
     assert_eq!(scripts, ["01-trace.sbatch", "02-contact-sheet.sbatch"]);
     let trace = std::fs::read_to_string(cluster.path().join("slurm/01-trace.sbatch")).unwrap();
