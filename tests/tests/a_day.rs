@@ -1,21 +1,28 @@
 //! The day pipeline (`pipelines/a-day.ron`) end to end, by the README's recipe as written
 //! in a copy of it whose camera is 64 × 48 pixels (the 512 × 384 day is the README's
 //! picture, made by `scripts/docs/a-day-picture.sh`): one `irsig-therm` for the whole day,
-//! 24 hourly frames traced and sensed, their contact sheet and their animation.
+//! one LOWTRAN7 build for every sun of the day, 24 hourly frames traced in 8-14 and 3-5 µm
+//! by each hour's sun and sensed, each band's contact sheet and animation.
 //!
 //! - The open grass and the open clay track are warmest within three hours of solar noon
 //!   and coolest in the hours before dawn, as the sun heats them and the night sky cools
 //!   them.
 //! - The panel, held at 325 K, keeps one apparent temperature all day while the ground
 //!   swings around it.
-//! - The contact sheet is four rows of six 64 × 48 tiles, and the animation holds the 24
-//!   frames' count images, in time order, exactly.
+//! - The sun lights the lit hours and no other: its share of the open grass is a few per
+//!   cent in 3-5 µm and under 0.1 % in 8-14 µm, as hand estimates of the reflected beam
+//!   say.
+//! - Each band's contact sheet is four rows of six 64 × 48 tiles, and its animation holds
+//!   the 24 frames' count images, in time order, exactly.
+//!
+//! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH: the test fails when it is
+//! missing, saying so; it never skips.
 
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
 use irsig_raster::read_exr;
-use irsig_tests::{recipe, repo_root};
+use irsig_tests::{lowtran, recipe, repo_root};
 
 /// The frames' local hours (MDT) and their UTC stamps (MDT + 6 h) on 7 August 2001.
 fn frames() -> Vec<(u32, String)> {
@@ -75,7 +82,11 @@ fn day() -> &'static tempfile::TempDir {
             "README.md",
             "irsig-run pipelines/a-day.ron      # everything in out/a-day/, named by UTC time",
         );
-        recipe::run_ok(&block, dir.path(), &[]);
+        recipe::run_ok(
+            &block,
+            dir.path(),
+            &[("IRSIG_LOWTRAN", lowtran().as_os_str())],
+        );
         dir
     })
 }
@@ -90,13 +101,12 @@ fn layer(path: &Path, name: &str) -> Vec<f32> {
     raster.layer(name).unwrap().data.clone()
 }
 
-/// Per frame, the median apparent temperature (K) of the pixels whose whole footprint
-/// is of `material`: a pixel and its eight neighbours all of it, so that the 5 × 5 IFOV
-/// mixes in little else.
-fn median_apparent_k(material: u16) -> Vec<f64> {
+/// The pixels whose whole footprint is of `material`: a pixel and its eight neighbours all
+/// of it, so that the 5 × 5 IFOV mixes in little else.
+fn inside(material: u16) -> Vec<usize> {
     let (_, first) = &frames()[0];
     // The truth layer holds each pixel's material id as a float.
-    let ids: Vec<u16> = layer(&out(&format!("{first}.truth.exr")), "material_primary")
+    let ids: Vec<u16> = layer(&out(&format!("{first}.lwir.truth.exr")), "material_primary")
         .iter()
         .map(|&id| id.round() as u16)
         .collect();
@@ -112,11 +122,17 @@ fn median_apparent_k(material: u16) -> Vec<f64> {
         "{} pixels of material {material}",
         inside.len()
     );
+    inside
+}
+
+/// Per frame, the median 8-14 µm apparent temperature (K) of [`inside`] `material`.
+fn median_apparent_k(material: u16) -> Vec<f64> {
+    let inside = inside(material);
     frames()
         .iter()
         .map(|(_, stamp)| {
             let t = layer(
-                &out(&format!("{stamp}.temperature.exr")),
+                &out(&format!("{stamp}.lwir.temperature.exr")),
                 "apparent_temperature",
             );
             let mut v: Vec<f64> = inside.iter().map(|&i| f64::from(t[i])).collect();
@@ -185,58 +201,127 @@ fn the_held_panel_stays_put_while_the_ground_swings() {
     assert!(panel.iter().all(|&t| t < 325.0 && t > 315.0), "{panel:.1?}");
 }
 
-#[test]
-fn the_contact_sheet_holds_the_24_frames_in_four_rows_of_six() {
-    let sheet = image::open(out("contact-sheet.png")).unwrap().to_luma8();
-    // Six columns of 64-pixel tiles and four rows of 48, a 4-pixel gap around each.
-    assert_eq!(
-        (sheet.width(), sheet.height()),
-        ((6 * W + 7 * 4) as u32, (4 * H + 5 * 4) as u32)
-    );
-    let count_images = std::fs::read_dir(out(""))
-        .unwrap()
-        .filter(|e| {
-            e.as_ref()
-                .unwrap()
-                .file_name()
-                .to_string_lossy()
-                .ends_with(".dc.png")
-        })
-        .count();
-    assert_eq!(count_images, 24);
-    // Tile 24 (row 4, column 6), its bottom-right pixel, clear of its label, is frame 24's.
-    let (_, last) = &frames()[23];
-    let dc = image::open(out(&format!("{last}.dc.png")))
-        .unwrap()
-        .to_luma8();
-    let (x0, y0) = (4 + 5 * (W + 4), 4 + 3 * (H + 4));
-    assert_eq!(
-        sheet.get_pixel((x0 + W - 1) as u32, (y0 + H - 1) as u32),
-        dc.get_pixel((W - 1) as u32, (H - 1) as u32)
-    );
+/// The sun's position by hand (the declination and hour angle above): above the horizon
+/// from 06:10 to 20:03 MDT, so the frames of 07:00-20:00 are lit and those of 00:00-05:00
+/// and 21:00-23:00 are not (06:00 is within minutes of sunrise, left out either way).
+fn lit(hour: u32) -> Option<bool> {
+    match hour {
+        7..=20 => Some(true),
+        0..=5 | 21..=23 => Some(false),
+        _ => None,
+    }
 }
 
-/// The animation: 24 frames, a quarter of a second each, frame k the k-th hour's count
-/// image exactly (8-bit grey, so GIF's palette holds every level).
+/// The reflected sun, by hand, for the open grass at 10:00-16:00 MDT (sun 26-46° from the
+/// zenith). Above the air the sun's disc (5772 K, 6.8e-5 sr) gives about 17 W m⁻² in
+/// 3-5 µm (Planck: 9 W m⁻² µm⁻¹ at 4 µm) and 1.5 W m⁻² in 8-14 µm. Through a summer
+/// path of τ 0.4-0.8 onto level ground at cos θ 0.69-0.9 that is 4.7-12 W m⁻² in
+/// 3-5 µm; grass of ε 0.95 reflects 0.05 of it over π sr, 0.08-0.21 W m⁻² sr⁻¹, against
+/// the 1.8-2.1 W m⁻² sr⁻¹ it emits at 300-305 K: a share of 4-10 %. In 8-14 µm the
+/// reflected 0.005-0.017 W m⁻² sr⁻¹ stands against some 40 emitted: 0.01-0.04 %. The
+/// test holds the 3-5 µm share within a factor two of that range (2-20 %: the grass is
+/// seen obliquely and its ε and the path's τ vary over the band), the 8-14 µm one under
+/// 0.1 %, and the first at least 30 times the second, pixel by pixel of the median.
 #[test]
-fn the_animation_is_the_24_count_images_in_time_order() {
-    use image::AnimationDecoder;
-    let file = std::io::BufReader::new(std::fs::File::open(out("day.gif")).unwrap());
-    let gif = image::codecs::gif::GifDecoder::new(file)
-        .unwrap()
-        .into_frames()
-        .collect_frames()
-        .unwrap();
-    assert_eq!(gif.len(), 24);
-    for (frame, (hour, stamp)) in gif.iter().zip(frames()) {
-        assert_eq!(frame.delay().numer_denom_ms(), (250, 1));
-        let dc = image::open(out(&format!("{stamp}.dc.png")))
+fn the_sun_lights_the_lit_hours_a_few_per_cent_in_3_5_um_and_little_in_8_14_um() {
+    let grass = inside(GRASS);
+    for (hour, stamp) in frames() {
+        let Some(is_lit) = lit(hour) else { continue };
+        let mut medians = Vec::new();
+        for band in ["lwir", "mwir"] {
+            let path = out(&format!("{stamp}.{band}.truth.exr"));
+            let raster = read_exr(&std::fs::read(&path).unwrap()).unwrap();
+            let share = raster.layer("sun_share");
+            assert_eq!(
+                share.is_some(),
+                is_lit,
+                "{hour}:00 MDT {band}: the sun's layers are there only when it is up"
+            );
+            let Some(share) = share else { continue };
+            let mut v: Vec<f64> = grass.iter().map(|&i| f64::from(share.data[i])).collect();
+            v.sort_by(f64::total_cmp);
+            medians.push(v[v.len() / 2]);
+        }
+        let [lwir, mwir] = medians[..] else { continue };
+        assert!(lwir < 1e-3, "{hour}:00 MDT 8-14 um: the sun's share {lwir}");
+        assert!(
+            mwir > 30.0 * lwir,
+            "{hour}:00 MDT: the sun's share {mwir} in 3-5 um, {lwir} in 8-14 um"
+        );
+        if (10..=16).contains(&hour) {
+            assert!(
+                (0.02..=0.2).contains(&mwir),
+                "{hour}:00 MDT 3-5 um: the sun's share of the grass {mwir}"
+            );
+        }
+    }
+}
+
+#[test]
+fn each_contact_sheet_holds_the_24_frames_in_four_rows_of_six() {
+    for band in ["lwir", "mwir"] {
+        let sheet = image::open(out(&format!("{band}-contact-sheet.png")))
             .unwrap()
             .to_luma8();
-        assert_eq!(frame.buffer().dimensions(), dc.dimensions());
-        for (x, y, p) in frame.buffer().enumerate_pixels() {
-            let v = dc.get_pixel(x, y).0[0];
-            assert_eq!(p.0, [v, v, v, 255], "{hour}:00 MDT, pixel ({x}, {y})");
+        // Six columns of 64-pixel tiles and four rows of 48, a 4-pixel gap around each.
+        assert_eq!(
+            (sheet.width(), sheet.height()),
+            ((6 * W + 7 * 4) as u32, (4 * H + 5 * 4) as u32)
+        );
+        let suffix = format!(".{band}.dc.png");
+        let count_images = std::fs::read_dir(out(""))
+            .unwrap()
+            .filter(|e| {
+                e.as_ref()
+                    .unwrap()
+                    .file_name()
+                    .to_string_lossy()
+                    .ends_with(&suffix)
+            })
+            .count();
+        assert_eq!(count_images, 24);
+        // Tile 24 (row 4, column 6), its bottom-right pixel, clear of its label, is frame
+        // 24's.
+        let (_, last) = &frames()[23];
+        let dc = image::open(out(&format!("{last}{suffix}")))
+            .unwrap()
+            .to_luma8();
+        let (x0, y0) = (4 + 5 * (W + 4), 4 + 3 * (H + 4));
+        assert_eq!(
+            sheet.get_pixel((x0 + W - 1) as u32, (y0 + H - 1) as u32),
+            dc.get_pixel((W - 1) as u32, (H - 1) as u32)
+        );
+    }
+}
+
+/// Each animation: 24 frames, a quarter of a second each, frame k the k-th hour's count
+/// image exactly (8-bit grey, so GIF's palette holds every level).
+#[test]
+fn each_animation_is_the_24_count_images_in_time_order() {
+    use image::AnimationDecoder;
+    for band in ["lwir", "mwir"] {
+        let gif = out(&format!("{band}-day.gif"));
+        let file = std::io::BufReader::new(std::fs::File::open(gif).unwrap());
+        let gif = image::codecs::gif::GifDecoder::new(file)
+            .unwrap()
+            .into_frames()
+            .collect_frames()
+            .unwrap();
+        assert_eq!(gif.len(), 24);
+        for (frame, (hour, stamp)) in gif.iter().zip(frames()) {
+            assert_eq!(frame.delay().numer_denom_ms(), (250, 1));
+            let dc = image::open(out(&format!("{stamp}.{band}.dc.png")))
+                .unwrap()
+                .to_luma8();
+            assert_eq!(frame.buffer().dimensions(), dc.dimensions());
+            for (x, y, p) in frame.buffer().enumerate_pixels() {
+                let v = dc.get_pixel(x, y).0[0];
+                assert_eq!(
+                    p.0,
+                    [v, v, v, 255],
+                    "{band} {hour}:00 MDT, pixel ({x}, {y})"
+                );
+            }
         }
     }
 }
