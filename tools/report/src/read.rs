@@ -174,13 +174,12 @@ fn images(
             let recorded = irsig_cli::provenance(&input.name, &image)?;
             // Without a radiance image a --band is the truth EXR's, whose apparent
             // temperatures are in the band it records: given, it must be that band.
-            if cli.radiance.file.is_none() && cli.band.band.given().is_some() {
-                let band = cli
-                    .band
-                    .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
-                if let Some(w) = &band.warning {
-                    irsig_cli::note!("irsig-report: warning: {w}");
-                }
+            if cli.radiance.file.is_none() {
+                cli.band.check_truth(
+                    "irsig-report",
+                    &input.name,
+                    recorded.as_ref().map(|p| &p.band),
+                )?;
             }
             Some((input.name, image, recorded))
         }
@@ -192,12 +191,11 @@ fn images(
             inputs.push(own(names, "radiance EXR", &input));
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             let recorded = irsig_cli::provenance(&input.name, &image)?;
-            let band = cli
-                .band
-                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
-            if let Some(w) = &band.warning {
-                irsig_cli::note!("irsig-report: warning: {w}");
-            }
+            let band = cli.band.resolve_saying(
+                "irsig-report",
+                &input.name,
+                recorded.as_ref().map(|p| &p.band),
+            )?;
             if let Some((name, t, _)) = &truth
                 && (image.width, image.height) != (t.width, t.height)
             {

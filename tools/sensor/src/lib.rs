@@ -445,12 +445,11 @@ fn sense(cli: &Cli) -> miette::Result<()> {
     let name = input.name.clone();
     // The band is the one the radiance records; what the outputs record adds this stage.
     let recorded = irsig_cli::provenance(&input.name, &raster)?;
-    let resolved = cli
-        .band
-        .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
-    if let Some(w) = &resolved.warning {
-        irsig_cli::note!("irsig-sensor: warning: {w}");
-    }
+    let resolved = cli.band.resolve_saying(
+        "irsig-sensor",
+        &input.name,
+        recorded.as_ref().map(|p| &p.band),
+    )?;
     let mut provenance = recorded.unwrap_or_else(|| Provenance {
         band: resolved.record.clone(),
         sub_bands: "not recorded".into(),

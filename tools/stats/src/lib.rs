@@ -155,13 +155,12 @@ pub fn run(cli: Cli) -> miette::Result<()> {
     // a --band that is not the band it records (whose apparent temperatures it holds), is
     // refused even when no radiance image is converted.
     let truth_recorded = irsig_cli::provenance(&truth_input.name, &truth)?;
-    if cli.radiance.file.is_none() && cli.band.band.given().is_some() {
-        let band = cli
-            .band
-            .resolve(&truth_input.name, truth_recorded.as_ref().map(|p| &p.band))?;
-        if let Some(w) = &band.warning {
-            irsig_cli::note!("irsig-stats: warning: {w}");
-        }
+    if cli.radiance.file.is_none() {
+        cli.band.check_truth(
+            "irsig-stats",
+            &truth_input.name,
+            truth_recorded.as_ref().map(|p| &p.band),
+        )?;
     }
     let ids = layer(&truth, &truth_input.name, MATERIAL_LAYER)?;
     let (values, source): (Vec<f32>, String) = match &cli.radiance.file {
@@ -169,12 +168,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             let input = irsig_cli::read_input(path)?;
             let image = irsig_cli::read_exr(&input.name, &input.bytes)?;
             let recorded = irsig_cli::provenance(&input.name, &image)?;
-            let band = cli
-                .band
-                .resolve(&input.name, recorded.as_ref().map(|p| &p.band))?;
-            if let Some(w) = &band.warning {
-                irsig_cli::note!("irsig-stats: warning: {w}");
-            }
+            let band = cli.band.resolve_saying(
+                "irsig-stats",
+                &input.name,
+                recorded.as_ref().map(|p| &p.band),
+            )?;
             if (image.width, image.height) != (truth.width, truth.height) {
                 return Err(miette!(
                     "{}: the image is {} x {} pixels but the truth EXR {} is {} x {}: \

@@ -379,6 +379,41 @@ pub struct ResolvedBand {
 }
 
 impl ImageBandArgs {
+    /// [`resolve`](Self::resolve), its warning said on stderr as `tool`'s
+    /// (`irsig-stats: warning: …`).
+    ///
+    /// # Errors
+    /// As [`resolve`](Self::resolve).
+    pub fn resolve_saying(
+        &self,
+        tool: &str,
+        image: &str,
+        recorded: Option<&BandRecord>,
+    ) -> miette::Result<ResolvedBand> {
+        let band = self.resolve(image, recorded)?;
+        if let Some(w) = &band.warning {
+            crate::note!("{tool}: warning: {w}");
+        }
+        Ok(band)
+    }
+
+    /// A truth EXR read with no radiance image beside it: its apparent temperatures are
+    /// in the band it records, so a --band, when given, must be that band.
+    ///
+    /// # Errors
+    /// As [`resolve`](Self::resolve), when --band is given.
+    pub fn check_truth(
+        &self,
+        tool: &str,
+        image: &str,
+        recorded: Option<&BandRecord>,
+    ) -> miette::Result<()> {
+        if self.band.given().is_some() {
+            self.resolve_saying(tool, image, recorded)?;
+        }
+        Ok(())
+    }
+
     /// The band of the image `image` (its name, for messages), which records `recorded`.
     ///
     /// # Errors
