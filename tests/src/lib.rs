@@ -18,6 +18,13 @@ pub fn repo_root() -> PathBuf {
         .map_or_else(|| PathBuf::from("."), std::path::Path::to_path_buf)
 }
 
+/// A text with every run of whitespace as one space, trimmed: how a test finds a
+/// sentence a document may wrap anywhere.
+#[must_use]
+pub fn squeeze(text: &str) -> String {
+    text.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
 /// LOWTRAN7: `$IRSIG_LOWTRAN`, else `lowtran7` on `PATH`.
 ///
 /// # Panics

@@ -8,7 +8,7 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use crate::{bin_path, repo_root};
+use crate::{bin_path, repo_root, squeeze};
 
 /// One fenced block of a document.
 #[derive(Debug, Clone)]
@@ -45,7 +45,7 @@ impl Block {
             current.push(' ');
             current.push_str(code);
             if !continued {
-                let squeezed = current.split_whitespace().collect::<Vec<_>>().join(" ");
+                let squeezed = squeeze(&current);
                 if !squeezed.is_empty() {
                     commands.push(squeezed);
                 }

@@ -14,30 +14,11 @@
 use std::path::Path;
 use std::process::Command;
 
-use irsig_tests::{bin, repo_root};
+use irsig_tests::{bin, recipe, repo_root, squeeze};
 use sha2::Digest as _;
 
 fn read(path: &str) -> String {
     std::fs::read_to_string(repo_root().join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
-}
-
-/// The lines of every fenced block of `lang` in a Markdown text.
-fn fenced(text: &str, lang: &str) -> Vec<Vec<String>> {
-    let open = format!("```{lang}\n");
-    let mut blocks = Vec::new();
-    let mut rest = text;
-    while let Some(i) = rest.find(&open) {
-        let body = &rest[i + open.len()..];
-        let end = body.find("```").expect("an unclosed fence");
-        blocks.push(body[..end].lines().map(str::to_owned).collect());
-        rest = &body[end..];
-    }
-    blocks
-}
-
-/// Whitespace runs as one space.
-fn squeeze(s: &str) -> String {
-    s.split_whitespace().collect::<Vec<_>>().join(" ")
 }
 
 #[test]
@@ -58,7 +39,11 @@ fn the_makefile_excerpts_are_what_irsig_run_emits() {
         .map(str::to_owned)
         .collect();
     for doc in ["README.md", "docs/pipelines.md"] {
-        let blocks = fenced(&read(doc), "make");
+        let blocks: Vec<Vec<String>> = recipe::blocks_of(doc)
+            .into_iter()
+            .filter(|b| b.lang == "make")
+            .map(|b| b.text.lines().map(str::to_owned).collect())
+            .collect();
         assert!(!blocks.is_empty(), "{doc} shows no Makefile");
         for block in blocks {
             assert!(

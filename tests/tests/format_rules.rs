@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use irsig_tests::repo_root;
+use irsig_tests::{repo_root, squeeze};
 
 /// A row of the table: the page (relative to `formats/`), the rule's words as the page
 /// has them, and what refuses a violation.
@@ -20,10 +20,6 @@ struct Row {
 const HEADING: &str = "## The rules the pages state, and what refuses each";
 
 /// `text` with every run of white space one space: a rule may be wrapped anywhere.
-fn normalized(text: &str) -> String {
-    text.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
 fn rows(readme: &str) -> Vec<Row> {
     let start = readme.find(HEADING).expect("the rule table's heading");
     let section = &readme[start + HEADING.len()..];
@@ -125,12 +121,12 @@ fn every_must_a_format_page_states_names_a_case_or_test_that_refuses_it() {
         }
     }
     for page in pages(&formats) {
-        let text = normalized(&std::fs::read_to_string(formats.join(&page)).unwrap());
+        let text = squeeze(&std::fs::read_to_string(formats.join(&page)).unwrap());
         let mine: Vec<&Row> = rows.iter().filter(|r| r.page == page).collect();
         // Where each of the page's rows stands on it.
         let mut spans = Vec::new();
         for row in &mine {
-            let rule = normalized(&row.rule);
+            let rule = squeeze(&row.rule);
             let at: Vec<usize> = text.match_indices(&rule).map(|(i, _)| i).collect();
             if at.is_empty() {
                 faults.push(format!(
@@ -162,5 +158,5 @@ fn every_must_a_format_page_states_names_a_case_or_test_that_refuses_it() {
 #[test]
 fn the_scan_finds_words_not_parts_of_words() {
     assert_eq!(musts("It must be. Mustard must-have; MUST"), [3, 20, 31]);
-    assert_eq!(normalized(" a\n  b\tc "), "a b c");
+    assert_eq!(squeeze(" a\n  b\tc "), "a b c");
 }
