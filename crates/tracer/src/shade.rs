@@ -507,7 +507,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 /// `τ·L_leaving` of sub-band `b` through a view path of transmittance `tau`, and the
 /// path's τ for sunlight: by day the sunlight `solar` in `leaving` goes through
 /// [`SunBeam::sunlit_transmission`](crate::sun::SunBeam::sunlit_transmission) and the rest
-/// through `tau`; without a sun, `tau·leaving` and `tau`, as ever.
+/// through `tau`; without a sun, or where that is `tau` itself, `tau·leaving` and `tau`,
+/// as ever.
 #[inline]
 fn transmitted_of<S: Atmosphere>(
     b: &BandData<S>,
@@ -515,13 +516,14 @@ fn transmitted_of<S: Atmosphere>(
     leaving: f64,
     solar: f64,
 ) -> (f64, f64) {
-    match &b.sun {
-        Some(beam) => {
-            let tau_sun = beam.sunlit_transmission(tau);
-            (tau * (leaving - solar) + tau_sun * solar, tau_sun)
+    if let Some(beam) = &b.sun {
+        let tau_sun = beam.sunlit_transmission(tau);
+        // A beam without pairs (or whose τ_sun is τ) sums as before, bit for bit.
+        if tau_sun.to_bits() != tau.to_bits() {
+            return (tau * (leaving - solar) + tau_sun * solar, tau_sun);
         }
-        None => (tau * leaving, tau),
     }
+    (tau * leaving, tau)
 }
 
 /// The sun's share of a radiance at the sensor: its transmitted sunlight over the whole
