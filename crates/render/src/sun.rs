@@ -205,8 +205,8 @@ pub(crate) fn by_day(
 /// 16 sub-bands, in 8–14 µm +1.37, +1.63, +0.77, +0.16, +0.06 K (the reflected sky's,
 /// the same at night); the daylight library's aluminium +2.10 to +0.12 K in 3–5 µm and
 /// +3.35 to +0.12 K in 8–14 µm, its grass, water, clay and panel within 0.03 K from 8 on.
-/// 16 is the least count that holds every one of them within 0.3 K, at 16 times the band
-/// model's shading and the same rays.
+/// 16 is the least count that holds every one of them within 0.3 K, with the same rays:
+/// the daylight pipeline's 3–5 µm frame takes 1.6 s against 0.8 s at one sub-band.
 pub const DAYLIGHT_SUB_BANDS: usize = 16;
 
 /// The count a sunlit frame takes by default over `split` on `spectral`'s grid:
