@@ -227,6 +227,11 @@ pub fn probe(
         .arg(spa)
         .args(["--band", BAND, "--probe", "0,0"])
         .args(extra);
+    // The band model, whose terms are the tables' band averages that LOWTRAN7's are
+    // compared with (by day the tracer's default is 16 sub-bands).
+    if !extra.contains(&"--sub-bands") {
+        cmd.args(["--sub-bands", "1"]);
+    }
     if sun {
         cmd.args(["--sun-zenith-deg", &SUN_ZENITH_DEG.to_string()])
             .args(["--sun-azimuth-deg", &SUN_AZIMUTH_DEG.to_string()]);

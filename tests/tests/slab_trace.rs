@@ -99,7 +99,7 @@ fn render_warnings(
         .arg(&view)
         .arg("--atmosphere")
         .arg(spa)
-        .args(["--band", BAND, "-o"])
+        .args(["--band", BAND, "--sub-bands", "1", "-o"])
         .arg(dir.join("frame.exr"))
         .output()
         .unwrap();

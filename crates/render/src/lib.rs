@@ -45,7 +45,6 @@ pub mod products;
 mod run_hash;
 pub mod settings;
 pub mod sun;
-pub mod sun_cost;
 pub mod tolerance;
 
 pub use air::AtmosphereRequest;

@@ -207,6 +207,9 @@ struct Air<'a, R, A, S> {
     data_error_k: Option<f64>,
     /// The sun over the sub-bands of a count (`None`: no sun asked for).
     sun: SunOf<'a>,
+    /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
+    /// ([`sunlight::day_sub_bands`]); `None` by night or when one was.
+    day_default: Option<SubBandCount>,
 }
 
 /// The sun over the sub-bands of a count.
@@ -282,15 +285,7 @@ impl Plan {
             None => None,
             Some(s) => Some(s.position()?),
         };
-        let mut warnings = Vec::new();
-        // With a tolerance the pilot chooses the sub-bands, measuring the sunlight's error
-        // against the full grid.
-        if let Some(s) = &request.sun
-            && request.settings.sub_bands.is_none()
-            && request.tolerance.is_none()
-        {
-            warnings.push(sunlight::one_sub_band_in_sunlight(request.spelling, s));
-        }
+        let warnings = Vec::new();
         let mut inputs = Vec::new();
         match &request.atmosphere {
             AtmosphereRequest::File { bytes, .. } => inputs.push(InputRecord {
@@ -581,16 +576,6 @@ impl Plan {
                 &format!("choices[{i}].setting"),
                 message,
             )));
-        }
-        // The pilot chose these sub-bands, with the sunlight's error measured.
-        if let Some(s) = &self.request.sun
-            && d.choice(SwitchableModel::SubBands).is_some()
-        {
-            let warning = sunlight::one_sub_band_in_sunlight(self.request.spelling, s);
-            self.warnings
-                .lock()
-                .map_err(|_| poisoned())?
-                .retain(|w| *w != warning);
         }
         self.decision = Some(d);
         self.decision_file = Some((name.to_owned(), String::from_utf8_lossy(bytes).into_owned()));

@@ -12,6 +12,11 @@
 //! view path's `L_u` gain it for their direction (`crate::day`);
 //! it counts as the sun's in the sun's truth terms.
 //!
+//! By day the sunlight in `L_leaving,k` reaches the sensor through the view path's τ for
+//! sunlight (`SunBeam::sunlit_transmission`), the rest through `τ_k`: the two sources have
+//! two spectra, and a sub-band's τ averaged for one is wrong for the other
+//! ([`crate::sun`]).
+//!
 //! With one sub-band this is the band model. With several, the truth terms are the
 //! band-integrated ones: radiances add over sub-bands; the emissivity is the emitted-
 //! radiance-weighted mean `Σ ε_k L_T,k / Σ L_T,k`, and the transmission the one that keeps
@@ -68,21 +73,31 @@ struct Sums {
 }
 
 impl Sums {
-    /// Adds one sub-band's terms; `derivative` is its dL_T/dT at the facet's temperature.
-    fn add(&mut self, t: &SurfaceTerms, transmission: f64, path_radiance: f64, derivative: f64) {
+    /// Adds one sub-band's terms; `derivative` is its dL_T/dT at the facet's temperature,
+    /// `transmitted` its `τ·L_leaving` with the sunlight through its own τ
+    /// ([`transmitted`]), `solar_transmission` that τ.
+    fn add(
+        &mut self,
+        t: &SurfaceTerms,
+        transmission: [f64; 2],
+        transmitted: f64,
+        path_radiance: f64,
+        derivative: f64,
+    ) {
+        let [transmission, solar_transmission] = transmission;
         self.emitted += t.emissivity * t.blackbody;
         self.blackbody += t.blackbody;
         self.specular_incident += t.specular_incident;
         self.sky_hemispheric += t.sky_hemispheric;
         self.diffuse_incident += t.diffuse_incident;
         self.leaving += t.leaving;
-        self.transmitted += transmission * t.leaving;
+        self.transmitted += transmitted;
         self.path_radiance += path_radiance;
-        self.radiance += transmission * t.leaving + path_radiance;
+        self.radiance += transmitted + path_radiance;
         self.temperature_sensitivity += transmission * t.emissivity * derivative;
         self.emissivity_sensitivity += transmission * (t.blackbody - t.reflected);
         self.solar += t.solar;
-        self.transmitted_solar += transmission * t.solar;
+        self.transmitted_solar += solar_transmission * t.solar;
         self.irradiance += t.irradiance;
     }
 }
@@ -175,9 +190,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
                     let (p, scattered) = lit_path(b, p, fc.sensor_alt, 0.0, path.dir);
                     let ground = self.terrain_terms(b, path.dir);
-                    radiance += p.transmission * ground.leaving + p.path_radiance_w_m2_sr;
+                    let (through, tau_sun) =
+                        transmitted_of(b, p.transmission, ground.leaving, ground.solar);
+                    radiance += through + p.path_radiance_w_m2_sr;
                     if TRUTH {
-                        transmitted += p.transmission * ground.leaving;
+                        transmitted += through;
                         path_radiance += p.path_radiance_w_m2_sr;
                         blackbody += b.terrain_blackbody;
                         emitted += ground.emissivity * b.terrain_blackbody;
@@ -186,7 +203,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         single_tau = p.transmission;
                         if let Some(beam) = &b.sun {
                             solar += ground.solar;
-                            transmitted_solar += p.transmission * ground.solar + scattered;
+                            transmitted_solar += tau_sun * ground.solar + scattered;
                             irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
                         }
                     }
@@ -227,14 +244,28 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     // The path table's terms are the air's own: by day the scattered
                     // sunlight is added here for the path's direction, table or not.
                     let (p, scattered) = lit_path(b, p, fc.sensor_alt, alt_m, path.dir);
-                    let first = self.leaving_chain::<TRUTH, S>(b, path);
-                    radiance += p.transmission * first.leaving + p.path_radiance_w_m2_sr;
+                    // By day the sunlight in the leaving radiance is needed apart (it has a
+                    // path τ of its own), with or without the truth.
+                    let first = if b.sun.is_some() {
+                        self.leaving_chain::<true, S>(b, path)
+                    } else {
+                        self.leaving_chain::<TRUTH, S>(b, path)
+                    };
+                    let (through, tau_sun) =
+                        transmitted_of(b, p.transmission, first.leaving, first.solar);
+                    radiance += through + p.path_radiance_w_m2_sr;
                     if C::ON {
                         self.charge_path(b, path, &first, p.transmission, sink);
                     }
                     if TRUTH {
                         let derivative = b.derivative_at(&path.nodes[0].surface);
-                        sums.add(&first, p.transmission, p.path_radiance_w_m2_sr, derivative);
+                        sums.add(
+                            &first,
+                            [p.transmission, tau_sun],
+                            through,
+                            p.path_radiance_w_m2_sr,
+                            derivative,
+                        );
                         sums.transmitted_solar += scattered;
                         single = first;
                         single_tau = p.transmission;
@@ -471,6 +502,28 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let solar = (1.0 - eps) * (sfrac * specular + (1.0 - sfrac) * diffuse);
         (solar, e * node.sun_cos_visible)
     }
+}
+
+/// `τ·L_leaving` of sub-band `b` through a view path of transmittance `tau`, and the
+/// path's τ for sunlight: by day the sunlight `solar` in `leaving` goes through
+/// [`SunBeam::sunlit_transmission`](crate::sun::SunBeam::sunlit_transmission) and the rest
+/// through `tau`; without a sun, or where that is `tau` itself, `tau·leaving` and `tau`,
+/// as ever.
+#[inline]
+fn transmitted_of<S: Atmosphere>(
+    b: &BandData<S>,
+    tau: f64,
+    leaving: f64,
+    solar: f64,
+) -> (f64, f64) {
+    if let Some(beam) = &b.sun {
+        let tau_sun = beam.sunlit_transmission(tau);
+        // A beam without pairs (or whose τ_sun is τ) sums as before, bit for bit.
+        if tau_sun.to_bits() != tau.to_bits() {
+            return (tau * (leaving - solar) + tau_sun * solar, tau_sun);
+        }
+    }
+    (tau * leaving, tau)
 }
 
 /// The sun's share of a radiance at the sensor: its transmitted sunlight over the whole

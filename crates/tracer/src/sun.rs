@@ -40,8 +40,15 @@
 //!   reflects `(1 − ε)·E_n(0)·cos θ_sun/π` more, `θ_sun` the sun's zenith angle.
 //!
 //! Both reflectances are taken at the viewing angle's `ε(θ)`, as the sky's are. The sun's
-//! terms are carried through the path's τ and summed per sub-band like every other
-//! surface-leaving term. No sun (the default) traces and sums exactly what it did before.
+//! terms are summed per sub-band like every other surface-leaving term, and carried to the
+//! sensor through the view path's transmittance *for sunlight*
+//! ([`SunBeam::sunlit_transmission`]): a sub-band's τ is an average over its wavelengths
+//! weighted by what the atmosphere was collapsed for (the emission), and the sunlight that
+//! reaches the ground has already lost the wavelengths the view path absorbs (both paths
+//! are opaque in the same CO₂ and water bands), so its own weighted average of the same
+//! path is higher: through 1 km in 3–5 µm, 0.856 against 0.677. Without that map the
+//! sunlight is the emission's τ times it, as before. No sun (the default) traces and sums
+//! exactly what it did before.
 
 use crate::error::{TraceError, TraceErrorKind};
 use crate::vec::{V3, basis, dot, scale};
@@ -62,10 +69,15 @@ fn invalid(message: String) -> TraceError {
 /// The direct beam of one sub-band: its irradiance on a surface normal to the beam, W m⁻²,
 /// at a few altitudes above the ground, linear in altitude between them and the nearest
 /// one's outside them.
+///
+/// It also carries the sub-band's transmittance of a view path for the sunlight, as a
+/// function of the sub-band's own τ of the same path ([`SunBeam::with_path_transmission`]).
 #[derive(Debug, Clone, PartialEq)]
 pub struct SunBeam {
     altitude_m: Vec<f64>,
     normal_w_m2: Vec<f64>,
+    /// `(τ, τ_sun)` pairs, τ strictly increasing; empty: `τ_sun = τ`.
+    path_transmission: Vec<[f64; 2]>,
 }
 
 impl SunBeam {
@@ -98,7 +110,53 @@ impl SunBeam {
         Ok(Self {
             altitude_m,
             normal_w_m2,
+            path_transmission: Vec::new(),
         })
+    }
+
+    /// This beam with `pairs` as the view path's transmittance for the sunlight: `(τ,
+    /// τ_sun)`, the sub-band's transmittance of a path as its atmosphere gives it and the
+    /// same path's weighted by the sunlight at the ground, for paths that span the scene's.
+    /// Between two pairs `τ_sun` is linear in `τ`; outside them it is taken to `(0, 0)` and
+    /// `(1, 1)` (an opaque path passes no sunlight, a clear one all of it).
+    ///
+    /// # Errors
+    /// A pair not finite or outside 0–1, or τ not strictly increasing.
+    pub fn with_path_transmission(mut self, pairs: Vec<[f64; 2]>) -> Result<Self, TraceError> {
+        if let Some(p) = pairs
+            .iter()
+            .find(|p| !p.iter().all(|v| v.is_finite() && (0.0..=1.0).contains(v)))
+        {
+            return Err(invalid(format!(
+                "sun beam: path transmittance pair {p:?}: expected two values of 0 to 1"
+            )));
+        }
+        if pairs.windows(2).any(|w| w[1][0] <= w[0][0]) {
+            return Err(invalid(
+                "sun beam: path transmittance pairs: expected τ strictly increasing".into(),
+            ));
+        }
+        self.path_transmission = pairs;
+        Ok(self)
+    }
+
+    /// The view path's transmittance for the sunlight, given the sub-band's `tau` of the
+    /// path: `tau` itself without pairs.
+    #[must_use]
+    pub fn sunlit_transmission(&self, tau: f64) -> f64 {
+        let p = &self.path_transmission;
+        if p.is_empty() || !(0.0..=1.0).contains(&tau) {
+            return tau;
+        }
+        let k = p.partition_point(|q| q[0] <= tau);
+        let (lo, hi) = (
+            if k == 0 { [0.0, 0.0] } else { p[k - 1] },
+            if k == p.len() { [1.0, 1.0] } else { p[k] },
+        );
+        if hi[0] <= lo[0] {
+            return lo[1];
+        }
+        lo[1] + (tau - lo[0]) / (hi[0] - lo[0]) * (hi[1] - lo[1])
     }
 
     /// A beam of `normal_w_m2` W m⁻² at every altitude (no atmosphere, or a test).

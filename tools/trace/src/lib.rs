@@ -115,8 +115,9 @@ pub struct Cli {
     /// with its own τ, path and sky radiance collapsed from a spectral atmosphere: K
     /// sub-bands, each holding an equal share of the band's response-weighted blackbody
     /// radiance at 300 K, or `full`, one per interval of the atmosphere's spectral grid.
-    /// 1, the default, is the band model: one band-mean τ times the band radiance, the
-    /// faster model (docs/accuracy.md measures what it costs in kelvin).
+    /// 1, the default at night, is the band model: one band-mean τ times the band
+    /// radiance, the faster model (docs/accuracy.md measures what it costs in kelvin). By
+    /// day the default is 16, said on stderr (docs/accuracy.md, "Sub-bands by day").
     #[arg(long, value_name = "K|full")]
     pub sub_bands: Option<SubBandCount>,
     /// The atmosphere model: `table` (slant-path tables), `layered` (eq. 8-9), `thesis`

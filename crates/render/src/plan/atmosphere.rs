@@ -49,6 +49,7 @@ impl Plan {
                 pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
                 data_error_k: None,
                 sun: no_sun(),
+                day_default: None,
             };
             return self.trace_all(&run, band, &air, job);
         }
@@ -223,6 +224,7 @@ impl Plan {
                     }),
                     data_error_k,
                     sun: no_sun(),
+                    day_default: None,
                 };
                 self.trace_all(&run, band, &air, job)
             }
@@ -315,15 +317,27 @@ impl Plan {
                         &name,
                         spectral,
                         split,
-                        &c,
+                        (count, &c),
                         self.request.spelling,
                     )
                     .map(Some)
                 };
                 lit(SubBandCount::BAND)?;
+                // By day with no count asked for, chosen or piloted: enough sub-bands for
+                // the sunlight, said once.
+                let day_default = (self.request.sun.is_some()
+                    && self.request.settings.sub_bands.is_none()
+                    && self.request.tolerance.is_none()
+                    && self.decision.is_none())
+                .then(|| {
+                    let count = sunlight::day_sub_bands(spectral, split);
+                    self.warn(sunlight::day_sub_bands_note(self.request.spelling, count));
+                    count
+                });
                 let air = Air {
                     kinds: Some(kinds),
                     spectral: true,
+                    day_default,
                     precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
                     pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
                     data_error_k,

@@ -148,7 +148,10 @@ impl Plan {
             .map_err(|_| poisoned())?
             .take()
             .ok_or_else(|| miette!("the raw scene was already traced"))?;
-        let asked = Settings::of(&self.request.settings);
+        let mut asked = Settings::of(&self.request.settings);
+        if let Some(count) = air.day_default {
+            asked.sub_bands = count;
+        }
         let asked_sub_bands = asked.sub_bands;
         let base = match &self.decision {
             Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
@@ -341,19 +344,6 @@ impl Plan {
                 tracer.render(cam, &options, progress)
             }
             .map_err(|e| miette!("{e}"))?;
-            // One sub-band by day because none was asked for: what it cost this frame.
-            if self.request.settings.sub_bands.is_none()
-                && decision.is_none()
-                && settings.sub_bands.is_band()
-                && let Some(text) = crate::sun_cost::note(
-                    tracer.band(),
-                    crate::air::band_range_um(&self.request.band),
-                    &frame,
-                    i + 1,
-                )
-            {
-                sink.warning(&text);
-            }
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
                 frame_height: cam.pixels[1] as usize,
