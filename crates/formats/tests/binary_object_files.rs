@@ -59,6 +59,7 @@ fn the_generated_object_reads_as_written() {
     assert_eq!(binary_object::encode(&o).unwrap(), bytes);
 }
 
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn the_generated_object_with_texture_coordinates_reads_as_written() {
     let (name, bytes) = data("object/tri-uv.bin");

@@ -183,6 +183,7 @@ fn the_textured_materials_sample_reads_and_a_bad_sigma_is_refused_at_its_place()
     }
 }
 
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn the_mapped_materials_sample_reads_and_a_nan_mapping_is_refused_at_its_place() {
     use irsig_model::image_map::MapFilter;
@@ -215,6 +216,7 @@ fn the_mapped_materials_sample_reads_and_a_nan_mapping_is_refused_at_its_place()
     assert_eq!(e.line, line, "{e}");
 }
 
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn the_object_sample_with_texture_coordinates_reads_and_round_trips_through_binary() {
     let object: Object = round_trip("quad-uv.ron");

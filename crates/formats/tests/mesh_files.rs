@@ -477,6 +477,7 @@ fn textured_triangle(texcoord_type: &str, texcoords: &[u8], image_uri: &str) -> 
     )
 }
 
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn gltf_texture_coordinates_turn_v_and_name_the_base_colour_image() {
     let uv = f32s(&[0.0, 0.0, 2.0, 0.25, -1.0, 1.0]);
@@ -523,6 +524,7 @@ fn gltf_texture_coordinates_turn_v_and_name_the_base_colour_image() {
     assert!(e.message.contains("one TEXCOORD_0 per vertex"), "{e}");
 }
 
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn obj_texture_coordinates_and_the_image_its_mtl_names() {
     let dir = tempfile::tempdir().unwrap();

@@ -102,6 +102,7 @@ mod tests {
         out
     }
 
+    #[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
     #[test]
     fn grey_8_and_16_bit_read_as_0_to_1_from_the_top_row() {
         let mut png8 = Vec::new();

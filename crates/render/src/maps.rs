@@ -9,6 +9,9 @@ use irsig_model::{MaterialId, MaterialLibrary};
 use irsig_texture::{GreyImage, MaterialMaps, TextureError, TextureErrorKind};
 use miette::miette;
 
+/// Each material's maps with their images read, by material id: what the tracer takes.
+pub(crate) type Maps = Vec<(MaterialId, MaterialMaps)>;
+
 /// The maps of every material of `lib` that has some, with their images read, and the
 /// bytes of each image read (for the run's inputs); `materials_file` is the library's path
 /// as given.
@@ -20,7 +23,7 @@ use miette::miette;
 pub(crate) fn read_maps(
     lib: &MaterialLibrary,
     materials_file: &str,
-) -> miette::Result<(Vec<(MaterialId, MaterialMaps)>, Vec<Vec<u8>>)> {
+) -> miette::Result<(Maps, Vec<Vec<u8>>)> {
     let dir = Path::new(materials_file)
         .parent()
         .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);

@@ -178,7 +178,7 @@ pub struct Plan {
     materials: MaterialLibrary,
     materials_name: String,
     /// The materials' image maps, their images read ([`crate::maps`]).
-    maps: Vec<(irsig_model::MaterialId, irsig_texture::MaterialMaps)>,
+    maps: crate::maps::Maps,
     views: Vec<View>,
     uncertainties: Option<Uncertainties>,
     decision: Option<Decision>,
