@@ -132,6 +132,7 @@ fn to_object(mesh: &irsig_formats::mesh::Mesh) -> Object {
                 vertices: t.vertices,
                 material: MaterialId(1),
                 temperature_k: None,
+                uv: None,
             })
             .collect(),
     };

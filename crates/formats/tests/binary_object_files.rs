@@ -44,16 +44,35 @@ fn the_generated_object_reads_as_written() {
             Facet {
                 vertices: [0, 1, 2],
                 material: MaterialId(1),
-                temperature_k: Some(300.5)
+                temperature_k: Some(300.5),
+                uv: None,
             },
             Facet {
                 vertices: [0, 3, 1],
                 material: MaterialId(2),
-                temperature_k: None
+                temperature_k: None,
+                uv: None,
             },
         ]
     );
     // And the Rust encoder writes exactly the bytes the script did.
+    assert_eq!(binary_object::encode(&o).unwrap(), bytes);
+}
+
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
+#[test]
+fn the_generated_object_with_texture_coordinates_reads_as_written() {
+    let (name, bytes) = data("object/tri-uv.bin");
+    let o = canonical::read_object(&name, &bytes).unwrap();
+    assert_eq!(
+        o.facets.iter().map(|f| f.uv).collect::<Vec<_>>(),
+        [Some([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]), None]
+    );
+    // Besides the coordinates, the object of `tri.bin`.
+    let (_, plain) = data("object/tri.bin");
+    let mut without = o.clone();
+    without.facets[0].uv = None;
+    assert_eq!(binary_object::encode(&without).unwrap(), plain);
     assert_eq!(binary_object::encode(&o).unwrap(), bytes);
 }
 

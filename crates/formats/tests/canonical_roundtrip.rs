@@ -50,6 +50,7 @@ fn object() -> impl Strategy<Value = Object> {
                     vertices,
                     material: MaterialId(m),
                     temperature_k,
+                    uv: None,
                 })
                 .collect(),
         })
@@ -89,6 +90,7 @@ fn raw_scene() -> impl Strategy<Value = RawScene> {
                     material: MaterialId(m),
                     object,
                     temperature_k,
+                    uv: None,
                 })
                 .collect(),
         })
@@ -122,6 +124,7 @@ fn library() -> impl Strategy<Value = MaterialLibrary> {
                     rms_slope: None,
                     thermal: None,
                     texture: None,
+                    maps: None,
                 }
             })
             .collect(),

@@ -182,3 +182,53 @@ fn the_textured_materials_sample_reads_and_a_bad_sigma_is_refused_at_its_place()
         assert_eq!(e.line, line, "{bad}: {e}");
     }
 }
+
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
+#[test]
+fn the_mapped_materials_sample_reads_and_a_nan_mapping_is_refused_at_its_place() {
+    use irsig_model::image_map::MapFilter;
+    let lib: MaterialLibrary = round_trip("materials-mapped.ron");
+    let maps = lib.materials[0].maps.as_ref().unwrap();
+    let t = maps.temperature_offset_k.as_ref().unwrap();
+    assert_eq!(
+        (t.image.as_str(), t.at_black, t.per_grey),
+        ("checker-8x8.png", 0.0, 10.0)
+    );
+    assert_eq!(t.filter, MapFilter::Nearest);
+    let e = maps.emissivity_scale.as_ref().unwrap();
+    assert_eq!((e.at(0.0), e.filter), (0.95, MapFilter::Bilinear));
+    // A library without maps writes none back.
+    let plain: MaterialLibrary = round_trip("materials.ron");
+    assert!(!canonical::to_ron_pretty(&plain).unwrap().contains("maps"));
+    let text = sample("materials-mapped.ron");
+    let broken = text.replacen("per_grey: 10.0", "per_grey: NaN", 1);
+    let e = canonical::from_ron::<MaterialLibrary>("lib.ron", &broken).unwrap_err();
+    assert!(
+        e.message
+            .contains("materials[0].maps.temperature_offset_k.per_grey"),
+        "{e}"
+    );
+    let line = text
+        .lines()
+        .position(|l| l.contains("per_grey: 10.0"))
+        .unwrap()
+        + 1;
+    assert_eq!(e.line, line, "{e}");
+}
+
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
+#[test]
+fn the_object_sample_with_texture_coordinates_reads_and_round_trips_through_binary() {
+    let object: Object = round_trip("quad-uv.ron");
+    assert_eq!(
+        object.facets[1].uv,
+        Some([[0.0, 0.0], [1.0, 1.0], [0.0, 1.0]])
+    );
+    let bytes = canonical::binary_object::encode(&object).unwrap();
+    // Header 32, name 5, source 16, 4 positions, 2 facets and their coordinates.
+    assert_eq!(bytes.len(), 32 + 5 + 16 + 4 * 24 + 2 * 24 + 2 * 48);
+    assert_eq!(
+        canonical::read_object("quad-uv.bin", &bytes).unwrap(),
+        object
+    );
+}

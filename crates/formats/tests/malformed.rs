@@ -103,6 +103,7 @@ fn degenerate_triangles_parse_and_the_model_rejects_them() {
                 vertices: [base, base + 1, base + 2],
                 material: MaterialId(f.material_index),
                 temperature_k: f.temperature_k,
+                uv: None,
             });
         }
         let err = obj.validate().expect_err(name);

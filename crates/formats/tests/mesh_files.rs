@@ -431,3 +431,146 @@ fn a_symbolic_link_out_of_the_model_directory_is_refused() {
     assert_eq!((e.line, e.column), (1, 8), "{e}");
     assert!(e.message.contains("symbolic link"), "{e}");
 }
+
+#[test]
+fn the_controllers_texture_coordinates_are_where_the_asset_puts_them() {
+    // Body8's first triangle is vertices (0, 1, 2) of accessor 3 (TEXCOORD_0, float VEC2),
+    // whose first three elements a separate reading of the GLB (Python's `struct` on the
+    // JSON and BIN chunks) gives as (0.52349937, 0.97464734), (0.51120794, 0.96778017),
+    // (0.52300584, 0.97691607); glTF's v runs down from the image's top, irsig's up.
+    let (name, bytes) = third_party("generic-trigger/none.glb");
+    let m = read_gltf(&name, &bytes, None).unwrap();
+    let want = [
+        [0.523_499_369_621_276_9, 0.974_647_343_158_721_9],
+        [0.511_207_938_194_274_9, 0.967_780_172_824_859_6],
+        [0.523_005_843_162_536_6, 0.976_916_074_752_807_6],
+    ];
+    let uv = m.triangles[0].uv.unwrap();
+    for (got, [u, v]) in uv.iter().zip(want) {
+        assert!(
+            (got[0] - u).abs() < 1e-12 && (got[1] - (1.0 - v)).abs() < 1e-12,
+            "{uv:?}"
+        );
+    }
+    assert!(m.triangles.iter().all(|t| t.uv.is_some()));
+    // Its base colour image is inside the file (a buffer view): no path to name.
+    assert_eq!(m.materials[0].image, None);
+}
+
+/// One triangle with TEXCOORD_0 of the given component type and bytes, and a material
+/// whose base colour texture is the image at `image_uri`.
+fn textured_triangle(texcoord_type: &str, texcoords: &[u8], image_uri: &str) -> String {
+    let mut buf = f32s(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]);
+    buf.extend_from_slice(texcoords);
+    gltf_text(
+        &buf,
+        &format!(
+            r#""bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":{}}}],
+            "accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}},
+                         {{"bufferView":1,{texcoord_type},"count":3,"type":"VEC2"}}],
+            "images":[{{"uri":"{image_uri}"}}],"textures":[{{"source":0}}],
+            "materials":[{{"name":"paint","pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}],
+            "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"material":0}}]}}],
+            "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0"#,
+            texcoords.len()
+        ),
+    )
+}
+
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
+#[test]
+fn gltf_texture_coordinates_turn_v_and_name_the_base_colour_image() {
+    let uv = f32s(&[0.0, 0.0, 2.0, 0.25, -1.0, 1.0]);
+    let text = textured_triangle(r#""componentType":5126"#, &uv, "maps/paint%20grey.png");
+    let m = read_gltf("t.gltf", text.as_bytes(), None).unwrap();
+    assert_eq!(
+        m.triangles[0].uv,
+        Some([[0.0, 1.0], [2.0, 0.75], [-1.0, 0.0]])
+    );
+    assert_eq!(m.materials[0].image.as_deref(), Some("maps/paint grey.png"));
+    // Normalised unsigned bytes: 255 is 1, 51 is 0.2.
+    let text = textured_triangle(
+        r#""componentType":5121,"normalized":true"#,
+        &[0, 255, 51, 0, 255, 255, 0, 0],
+        "a.png",
+    );
+    let m = read_gltf("t.gltf", text.as_bytes(), None).unwrap();
+    let got = m.triangles[0].uv.unwrap();
+    let want = [[0.0, 0.0], [0.2, 1.0], [1.0, 0.0]];
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            (g[0] - w[0]).abs() < 1e-15 && (g[1] - w[1]).abs() < 1e-15,
+            "{got:?}"
+        );
+    }
+    // Bytes that are not normalised are no texture coordinates glTF allows.
+    let text = textured_triangle(r#""componentType":5121"#, &[0; 8], "a.png");
+    let e = read_gltf("t.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.contains("not normalised"), "{e}");
+    // An image above the model's folder is refused at its URI.
+    let text = textured_triangle(r#""componentType":5126"#, &uv, "../secret.png");
+    let e = read_gltf("t.gltf", text.as_bytes(), None).unwrap_err();
+    // At the image's `uri` member, as a buffer's bad URI is.
+    assert_eq!(
+        (e.line, e.column),
+        line_col_of(&text, r#""uri":"../secret.png""#),
+        "{e}"
+    );
+    assert!(e.message.contains("climbs out"), "{e}");
+    // Fewer texture coordinates than vertices: refused, not read past.
+    let text = textured_triangle(r#""componentType":5126"#, &uv[..16], "a.png")
+        .replace(r#""count":3,"type":"VEC2""#, r#""count":2,"type":"VEC2""#);
+    let e = read_gltf("t.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.contains("one TEXCOORD_0 per vertex"), "{e}");
+}
+
+#[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
+#[test]
+fn obj_texture_coordinates_and_the_image_its_mtl_names() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::create_dir(dir.path().join("mtl")).unwrap();
+    std::fs::write(
+        dir.path().join("mtl/q.mtl"),
+        "newmtl brick\nKd 1 1 1\nmap_Kd tex/brick.png\nnewmtl bare\nKd 1 1 1\n",
+    )
+    .unwrap();
+    // A quad with a vt at every corner (a fan of two triangles, (1 2 3) and (1 3 4)), a
+    // triangle with none, a triangle with a vt at two corners only, a negative vt index.
+    let text = "mtllib mtl/q.mtl\nv 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\n\
+                vt 0 0\nvt 1 0\nvt 1 0.5\nvt 0 0.5\n\
+                usemtl brick\nf 1/1 2/2 3/3 4/4\nusemtl bare\nf 1 2 3\nf 1/1 2/2 3\nf 1/-4 3/-2 4/-1\n";
+    std::fs::write(dir.path().join("q.obj"), text).unwrap();
+    let m = read_obj("q.obj", text.as_bytes(), Some(dir.path())).unwrap();
+    let uvs: Vec<_> = m.triangles.iter().map(|t| t.uv).collect();
+    assert_eq!(
+        uvs,
+        [
+            Some([[0.0, 0.0], [1.0, 0.0], [1.0, 0.5]]),
+            Some([[0.0, 0.0], [1.0, 0.5], [0.0, 0.5]]),
+            None,
+            None,
+            Some([[0.0, 0.0], [1.0, 0.5], [0.0, 0.5]]),
+        ]
+    );
+    // Each triangle's corners are the face's: vertex k has the vt of its corner.
+    let corner_0 = m.positions[m.triangles[1].vertices[2] as usize];
+    assert_eq!(corner_0, [0.0, 1.0, 0.0]);
+    // The image is relative to the MTL, given relative to the OBJ's folder.
+    let image = |name: &str| {
+        m.materials
+            .iter()
+            .find(|u| u.name == name)
+            .and_then(|u| u.image.clone())
+    };
+    assert_eq!(image("brick").as_deref(), Some("mtl/tex/brick.png"));
+    assert_eq!(image("bare"), None);
+    // A map_Kd that climbs out of the model's folder is refused at its line and column.
+    std::fs::write(
+        dir.path().join("mtl/q.mtl"),
+        "newmtl brick\nmap_Kd ../../up.png\n",
+    )
+    .unwrap();
+    let e = read_obj("q.obj", text.as_bytes(), Some(dir.path())).unwrap_err();
+    assert_eq!((e.line, e.column), (2, 8), "{e}");
+    assert!(e.message.contains("climbs out"), "{e}");
+}

@@ -39,6 +39,7 @@
 //!         rms_slope: None,
 //!         thermal: None,
 //!         texture: None,
+//!         maps: None,
 //!     }],
 //! };
 //! assert!(lib.validate().is_ok());
@@ -52,6 +53,7 @@ pub mod decision;
 mod error;
 pub mod frame;
 pub mod history;
+pub mod image_map;
 pub mod limits;
 pub mod loads;
 mod material;
@@ -76,7 +78,7 @@ pub use atmosphere::{
 };
 pub use error::{ModelError, ModelErrorKind};
 pub use material::{Material, MaterialId, MaterialLibrary, SpectralAngular, SpectralEmissivity};
-pub use object::{Facet, Object, triangle_is_degenerate};
+pub use object::{Facet, FacetUv, MAX_UV, Object, triangle_is_degenerate};
 pub use plan::{
     AerosolModel, AtmospherePlan, MAX_VISIBILITY_M, PlanAerosol, PlanModel, PlanSlabs, PlanSun,
 };

@@ -1,6 +1,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{ModelError, ModelErrorKind, check_increasing, check_range};
+use crate::image_map::ImageMaps;
 use crate::texture::StatisticalTexture;
 use crate::thermal::ThermalProperties;
 
@@ -65,9 +66,14 @@ pub struct Material {
     /// is one temperature and one emissivity, as the scene and the table give them.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub texture: Option<StatisticalTexture>,
+    /// Grey images laid on the material's facets by their texture coordinates, that vary
+    /// the temperature and the emissivity within a facet ([`crate::image_map`]); with a
+    /// statistical texture too, the offsets add and the scales multiply. `None`: no image.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub maps: Option<ImageMaps>,
 }
 
-/// The derived form, with `rms_slope`, `thermal` and `texture` shown only when given: a material
+/// The derived form, with `rms_slope`, `thermal`, `texture` and `maps` shown only when given: a material
 /// without them prints (and so feeds a run's hash, `irsig.run`) exactly as before the
 /// fields existed.
 impl std::fmt::Debug for Material {
@@ -88,6 +94,9 @@ impl std::fmt::Debug for Material {
         }
         if let Some(texture) = &self.texture {
             d.field("texture", texture);
+        }
+        if let Some(maps) = &self.maps {
+            d.field("maps", maps);
         }
         d.finish()
     }
@@ -287,6 +296,9 @@ impl Material {
         if let Some(t) = &self.texture {
             t.validate(&format!("{prefix}.texture"))?;
         }
+        if let Some(m) = &self.maps {
+            m.validate(&format!("{prefix}.maps"))?;
+        }
         if let Some(s) = &self.spectral {
             s.validate(&format!("{prefix}.spectral"))?;
             if self.emissivity.first().is_some_and(|r| r.1 <= 0.0) {
@@ -360,6 +372,7 @@ mod tests {
             rms_slope: None,
             thermal: None,
             texture: None,
+            maps: None,
         }
     }
 

@@ -17,6 +17,41 @@ pub struct Facet {
     /// scene's per-object temperature applies when flattening.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub temperature_k: Option<f64>,
+    /// The texture coordinates `(u, v)` of the facet's three corners, in the order of
+    /// [`Self::vertices`], if the input gives them ([`FacetUv`]). `None`: the facet has
+    /// none, and no image map can be laid on it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uv: Option<FacetUv>,
+}
+
+/// A facet's texture coordinates: `(u, v)` at each of its three corners, in the facet's
+/// vertex order. The image's texel `(0, 0)` starts at `(u, v) = (0, 0)` and `(1, 1)` is
+/// its far corner; `u` runs along the image's rows (left to right) and `v` from its
+/// bottom row to its top (OpenGL's and OBJ's convention; glTF's `v`, which runs from the
+/// top, is turned by the importer). A coordinate outside 0 to 1 repeats the image.
+pub type FacetUv = [[f64; 2]; 3];
+
+/// The largest texture coordinate a facet may have, in images: 10⁶ repetitions of a map.
+/// Beyond it an `f64` coordinate's fraction, the position within one repetition, keeps
+/// fewer than 30 bits, too few to tell the texels of a large image apart.
+pub const MAX_UV: f64 = 1e6;
+
+/// Checks a facet's texture coordinates: finite and within ±[`MAX_UV`].
+///
+/// # Errors
+/// The first coordinate out of range, at `{path}[corner][axis]`.
+pub(crate) fn check_uv(path: impl Fn() -> String, uv: &FacetUv) -> Result<(), ModelError> {
+    for (corner, c) in uv.iter().enumerate() {
+        for (axis, &x) in c.iter().enumerate() {
+            check_range(
+                || format!("{}[{corner}][{axis}]", path()),
+                x,
+                -MAX_UV,
+                MAX_UV,
+            )?;
+        }
+    }
+    Ok(())
 }
 
 /// A triangle mesh in its own (object) coordinates, in metres, as `irsig-import` writes it.
@@ -47,6 +82,9 @@ impl Object {
             f.material.check_facet(|| format!("facets[{i}].material"))?;
             if let Some(t) = f.temperature_k {
                 check_range(|| format!("facets[{i}].temperature_k"), t, 0.0, f64::MAX)?;
+            }
+            if let Some(uv) = &f.uv {
+                check_uv(|| format!("facets[{i}].uv"), uv)?;
             }
             Ok(())
         })
@@ -145,8 +183,21 @@ mod tests {
                 vertices,
                 material: MaterialId(1),
                 temperature_k: None,
+                uv: None,
             }],
         }
+    }
+
+    #[test]
+    fn texture_coordinates_are_finite_and_bounded() {
+        let mut o = tri(vec![[0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]], [0, 1, 2]);
+        o.facets[0].uv = Some([[0.0, 0.0], [-MAX_UV, 1.0], [0.5, MAX_UV]]);
+        assert!(o.validate().is_ok());
+        o.facets[0].uv = Some([[0.0, 0.0], [1.0, 0.0], [0.0, f64::NAN]]);
+        let e = o.validate().unwrap_err();
+        assert_eq!(e.path, "facets[0].uv[2][1]");
+        o.facets[0].uv = Some([[0.0, 0.0], [2e6, 0.0], [0.0, 1.0]]);
+        assert_eq!(o.validate().unwrap_err().path, "facets[0].uv[1][0]");
     }
 
     #[test]

@@ -16,6 +16,10 @@ pub struct RawFacet {
     pub temperature_k: f64,
     /// Index into [`RawScene::objects`]: which placed object the facet came from.
     pub object: u32,
+    /// The texture coordinates of the facet's corners, as its object gave them
+    /// ([`crate::FacetUv`]); `None`: none.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub uv: Option<crate::FacetUv>,
 }
 
 /// A flattened scene in world coordinates (metres, z up), what the tracer reads: the 1990
@@ -59,7 +63,11 @@ impl RawScene {
                 f.temperature_k,
                 0.0,
                 f64::MAX,
-            )
+            )?;
+            match &f.uv {
+                Some(uv) => crate::object::check_uv(|| format!("facets[{i}].uv"), uv),
+                None => Ok(()),
+            }
         })
     }
 }

@@ -34,9 +34,11 @@ use std::io::{Cursor, Seek, Write};
 
 use exr::prelude::{self as x, ReadChannels, ReadLayers, WritableImage};
 
+mod grey;
 mod indexed;
 pub mod merge;
 
+pub use grey::read_png_grey;
 pub use indexed::{read_png_indices, write_png_indexed8};
 
 /// One image plane: a name, its unit and `width × height` samples, row-major from the top.

@@ -222,6 +222,7 @@ mod tests {
             material: MaterialId(material),
             temperature_k: 300.0,
             object,
+            uv: None,
         }
     }
 

@@ -38,6 +38,7 @@ pub mod band;
 pub mod budget;
 mod error;
 pub mod guarantee;
+mod maps;
 pub mod materials;
 mod observer;
 mod plan;

@@ -177,6 +177,8 @@ pub struct Plan {
     scene_name: String,
     materials: MaterialLibrary,
     materials_name: String,
+    /// The materials' image maps, their images read ([`crate::maps`]).
+    maps: crate::maps::Maps,
     views: Vec<View>,
     uncertainties: Option<Uncertainties>,
     decision: Option<Decision>,
@@ -310,6 +312,7 @@ impl Plan {
             scene_name: String::new(),
             materials: MaterialLibrary::default(),
             materials_name: String::new(),
+            maps: Vec::new(),
             views: Vec::new(),
             uncertainties: None,
             decision: None,
@@ -413,6 +416,12 @@ impl Plan {
             )));
         }
         self.run.field("materials", format!("{lib:?}").as_bytes());
+        let (maps, images) = crate::maps::read_maps(&lib, name)?;
+        for bytes in &images {
+            self.record_input("map image", bytes);
+            self.run.field("map image", bytes);
+        }
+        self.maps = maps;
         self.materials = lib;
         name.clone_into(&mut self.materials_name);
         Ok(())

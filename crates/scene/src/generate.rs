@@ -7,6 +7,7 @@ fn facet(vertices: [u32; 3], material: MaterialId) -> Facet {
         vertices,
         material,
         temperature_k: None,
+        uv: None,
     }
 }
 

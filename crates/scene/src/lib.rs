@@ -312,11 +312,17 @@ pub fn flatten(scene: &Scene, objects: &[&Object]) -> Result<RawScene, FlattenEr
             let temperature_k =
                 temperatures[k].ok_or_else(|| err(FlattenErrorKind::NoTemperature { facet: k }))?;
             let [a, b, c] = facet.vertices.map(|v| v + base);
+            // A mirror reverses the winding; the corners' texture coordinates go with
+            // their corners.
+            let uv = facet
+                .uv
+                .map(|[p, q, r]| if mirrors { [p, r, q] } else { [p, q, r] });
             raw.facets.push(RawFacet {
                 vertices: if mirrors { [a, c, b] } else { [a, b, c] },
                 material: materials[k],
                 temperature_k,
                 object: object_index,
+                uv,
             });
         }
     }

@@ -72,6 +72,7 @@ fn triangle(temperature_k: Option<f64>) -> Object {
             vertices: [0, 1, 2],
             material: MaterialId(1),
             temperature_k,
+            uv: None,
         }],
     }
 }
@@ -116,6 +117,29 @@ fn a_mirror_flips_the_winding_so_the_front_stays_up() {
 }
 
 #[test]
+fn texture_coordinates_stay_with_their_corners_through_a_mirror() {
+    let mut o = triangle(None);
+    // Corner k of the object's triangle (0,0), (1,0), (0,1) has u = x, v = y.
+    o.facets[0].uv = Some([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+    let mut p = placement();
+    p.scale = [-1.0, 1.0, 1.0];
+    for placement in [placement(), p] {
+        let sign = placement.scale[0];
+        let raw = flatten(&scene(placement), &[&o]).unwrap();
+        let f = &raw.facets[0];
+        let uv = f.uv.unwrap();
+        for (k, &v) in f.vertices.iter().enumerate() {
+            // Whatever the order, each corner keeps the coordinates of the object's vertex
+            // it came from: (x, y) before placement, recovered from the world position.
+            let base = raw.positions_m[0];
+            let w = raw.positions_m[v as usize];
+            let [x, y] = [(w[0] - base[0]) * sign, w[1] - base[1]];
+            assert!((uv[k][0] - x).abs() < 1e-12 && (uv[k][1] - y).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
 fn temperatures_come_from_the_facet_then_the_placement_then_overrides() {
     let mut o = triangle(Some(280.0));
     o.positions_m.push([1.0, 1.0, 0.0]);
@@ -123,11 +147,13 @@ fn temperatures_come_from_the_facet_then_the_placement_then_overrides() {
         vertices: [1, 3, 2],
         material: MaterialId(2),
         temperature_k: None,
+        uv: None,
     });
     o.facets.push(Facet {
         vertices: [0, 1, 3],
         material: MaterialId(2),
         temperature_k: None,
+        uv: None,
     });
     let mut p = placement();
     p.overrides = vec![

@@ -32,14 +32,21 @@
 //! # Ok::<(), irsig_texture::TextureError>(())
 //! ```
 //!
+//! A material's image maps ([`MaterialMaps`]) are sampled here too: a [`GreyImage`] read
+//! at texture coordinates with a named filter (nearest or bilinear, repeating), its grey
+//! mapped linearly to a temperature offset or an emissivity scale. The image arrives
+//! decoded: reading the file is `irsig-raster`'s.
+//!
 //! Must not know rays, files, the band or the command line: it gives numbers at points.
 
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod field;
+mod image;
 mod spectrum;
 
 pub use field::{CLIP_SIGMAS, Field, WAVES};
+pub use image::{GreyImage, MaterialMaps};
 pub use spectrum::{correlation, correlation_length_m};
 
 use irsig_model::ModelError;
@@ -66,6 +73,14 @@ pub enum TextureErrorKind {
     /// out of range): the path of the value and what was expected.
     #[error("invalid texture: {0}")]
     Invalid(ModelError),
+    /// A map's image is not one a map can read: no texel, a texel count that disagrees
+    /// with its size, or a grey outside 0 to 1.
+    #[error("unusable map image: {0}")]
+    BadImage(String),
+    /// A map's image could not be had (missing, unreadable, too large): the file and why,
+    /// as the caller that reads images says it.
+    #[error("{0}")]
+    Image(String),
 }
 
 /// What a texture gives at one point of a surface.
@@ -75,6 +90,19 @@ pub struct Texel {
     pub temperature_offset_k: f64,
     /// Multiplies the material's emissivity (the result held to 0 to 1).
     pub emissivity_scale: f64,
+}
+
+impl std::ops::Mul for Texel {
+    type Output = Self;
+
+    /// Two textures at one point (a statistical texture and an image map): the offsets
+    /// add, the scales multiply.
+    fn mul(self, other: Self) -> Self {
+        Self {
+            temperature_offset_k: self.temperature_offset_k + other.temperature_offset_k,
+            emissivity_scale: self.emissivity_scale * other.emissivity_scale,
+        }
+    }
 }
 
 impl Texel {
@@ -173,7 +201,9 @@ mod tests {
     fn bad_sigma_is_refused_with_its_path() {
         for bad in [f64::NAN, -1.0] {
             let e = TextureFields::new(&texture(bad, 0.1)).unwrap_err();
-            let TextureErrorKind::Invalid(m) = e.kind;
+            let TextureErrorKind::Invalid(m) = e.kind else {
+                panic!("expected an invalid texture")
+            };
             assert_eq!(m.path, "texture.temperature_offset_k.sigma");
         }
     }

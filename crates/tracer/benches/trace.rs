@@ -2,7 +2,8 @@
 //! sphere (1k, 100k and 1M triangles) over a ground plate, diffuse, with one specular
 //! bounce and with the sky-view factor on; the same primary rays through bare obvhs
 //! (its own, non-watertight triangle test, no radiometry) for the ratio; the diffuse case
-//! with a statistical texture on every facet; and BVH build time.
+//! with a statistical texture on every facet, and with an image map on every facet; and BVH
+//! build time.
 //!
 //! `cargo bench -p irsig-tracer` (a few seconds per case). Figures go to BENCHMARKS.md.
 
@@ -42,6 +43,7 @@ fn raw_scene(m: &Mesh) -> RawScene {
                 material: MaterialId(if i + 2 >= n { 2 } else { 1 }),
                 temperature_k: 290.0 + (i % 17) as f64,
                 object: 0,
+                uv: None,
             })
             .collect(),
         ..RawScene::default()
@@ -60,6 +62,7 @@ fn materials(sphere_specular: f64) -> MaterialLibrary {
         rms_slope: None,
         thermal: None,
         texture: None,
+        maps: None,
     };
     MaterialLibrary {
         materials: vec![m(1, sphere_specular), m(2, 0.0)],
@@ -155,6 +158,71 @@ fn textured(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
 #[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
 fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
     let tracer = textured(i);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            tracer
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}
+
+/// The diffuse scene with an image map on every facet: each facet's corners get texture
+/// coordinates from their x and y (one repetition of the image per 4 m), and both
+/// materials a 256 × 256 temperature map (nearest) and emissivity map (bilinear), so every
+/// hit interpolates its coordinates and reads two maps. Against `shaded_diffuse`: what an
+/// image map on every facet costs a frame.
+fn mapped(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
+    use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
+    use irsig_texture::{GreyImage, MaterialMaps};
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 3] =
+        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    CACHE[i].get_or_init(|| {
+        let mut scene = raw_scene(&mesh(i));
+        let positions = scene.positions_m.clone();
+        for f in &mut scene.facets {
+            f.uv = Some(f.vertices.map(|v| {
+                let p = positions[v as usize];
+                [p[0] / 4.0, p[1] / 4.0]
+            }));
+        }
+        let map = |image: &str, at_black, per_grey, filter| ImageMap {
+            image: image.into(),
+            at_black,
+            per_grey,
+            filter,
+        };
+        let maps = ImageMaps {
+            temperature_offset_k: Some(map("t.png", -2.0, 4.0, MapFilter::Nearest)),
+            emissivity_scale: Some(map("e.png", 0.98, 0.04, MapFilter::Bilinear)),
+        };
+        let side = 256;
+        let grey: Vec<f32> = (0..side * side)
+            .map(|k| ((k * 7919) % 251) as f32 / 250.0)
+            .collect();
+        let image = GreyImage::new(side, side, grey).unwrap();
+        let mut lib = materials(0.0);
+        let mut loaded = Vec::new();
+        for m in &mut lib.materials {
+            m.maps = Some(maps.clone());
+            let maps = MaterialMaps::new(&maps, |_, _| Ok(image.clone())).unwrap();
+            loaded.push((m.id, maps));
+        }
+        let sky = irsig_tracer::SubBand {
+            band: TotalRadiance,
+            atmosphere: Vacuum {
+                sky_radiance_w_m2_sr: 20.0,
+            },
+            emissivity: None,
+        };
+        Tracer::with_sub_bands_and_maps(&scene, &lib, TotalRadiance, vec![sky], loaded).unwrap()
+    })
+}
+
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn shaded_diffuse_mapped(bencher: divan::Bencher, i: usize) {
+    let tracer = mapped(i);
     let cam = camera();
     bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
         one_core(|| {

@@ -53,6 +53,37 @@ pub enum TraceErrorKind {
         /// What is wrong with its table.
         reason: String,
     },
+    /// A facet of a material with image maps has no texture coordinates to lay them by.
+    #[error(
+        "raw scene: facets[{facet}] (object `{object}`) has no texture coordinates, but its \
+         material {material} has image maps, which need them"
+    )]
+    NoTextureCoordinates {
+        /// Index of the facet in the raw scene.
+        facet: usize,
+        /// The name of the placed object it came from.
+        object: String,
+        /// Its material's id.
+        material: u16,
+    },
+    /// A material's emissivity-scale map would make ε leave 0 to 1 somewhere: the scale is
+    /// never clamped, so it is refused.
+    #[error(
+        "material library: material {material}'s emissivity map scales ε by {scale_lo} to \
+         {scale_hi}, which takes ε (up to {max_emissivity} in sub-band {sub_band}) outside 0 to 1"
+    )]
+    EmissivityScaleOutOfRange {
+        /// The material's id.
+        material: u16,
+        /// The least and greatest scale the map gives anywhere.
+        scale_lo: f64,
+        /// See `scale_lo`.
+        scale_hi: f64,
+        /// The material's greatest ε in the sub-band.
+        max_emissivity: f64,
+        /// The sub-band (from 1).
+        sub_band: usize,
+    },
     /// The view breaks a rule of the data model.
     #[error("view: {0}")]
     InvalidView(ModelError),

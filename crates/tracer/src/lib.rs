@@ -34,7 +34,7 @@
 //!     objects: vec!["plate".into()],
 //!     positions_m: vec![[-5.0, -5.0, 0.0], [5.0, -5.0, 0.0], [5.0, 5.0, 0.0], [-5.0, 5.0, 0.0]],
 //!     facets: [[0, 1, 2], [0, 2, 3]]
-//!         .map(|vertices| RawFacet { vertices, material: MaterialId(1), temperature_k: 300.0, object: 0 })
+//!         .map(|vertices| RawFacet { vertices, material: MaterialId(1), temperature_k: 300.0, object: 0, uv: None })
 //!         .to_vec(),
 //! };
 //! let materials = MaterialLibrary {
@@ -49,6 +49,7 @@
 //!         rms_slope: None,
 //!         thermal: None,
 //!         texture: None,
+//!         maps: None,
 //!     }],
 //! };
 //! let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default())?;

@@ -411,8 +411,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// The record of a hit at altitude `alt`: with its material's texture sampled at the
-    /// hit's world position, every event alike (the first hit, a specular bounce's, a
-    /// sky-view ray's).
+    /// hit's world position and its image maps at the hit's texture coordinates, every
+    /// event alike (the first hit, a specular bounce's, a sky-view ray's).
     fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
         let slot = usize::from(hit.data.material);
         Surface {
@@ -422,10 +422,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             back_face: hit.back_face,
             alt_m: alt,
             emissivity: self.emissivity[slot].at_cos(hit.cos_incidence),
-            texel: self.materials[slot]
-                .texture
-                .as_ref()
-                .map(|t| t.sample(self.geometry.to_world(hit.point_local))),
+            texel: self.texel_at(hit),
         }
     }
 

@@ -294,6 +294,7 @@ pub fn raw_scene(parts: &[(&Mesh, u16, f64)]) -> RawScene {
             material: MaterialId(*material),
             temperature_k: *temperature_k,
             object: k as u32,
+            uv: None,
         }));
     }
     s
@@ -321,6 +322,7 @@ pub fn grey_materials(materials: &[(u16, f64, f64)]) -> MaterialLibrary {
                 rms_slope: None,
                 thermal: None,
                 texture: None,
+                maps: None,
             })
             .collect(),
     }

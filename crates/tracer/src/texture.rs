@@ -66,6 +66,162 @@ impl BlackbodyTable {
     }
 }
 
+/// A facet's texture coordinates as a function of the world point: `uv(p) = uv₀ + (∇u·(p −
+/// a), ∇v·(p − a))`, the barycentric interpolation of its corners' coordinates for every
+/// point of its plane. The gradients are the corners' coordinate differences along the
+/// dual basis of the edges `e₁ = b − a`, `e₂ = c − a`: the barycentrics `(β, γ)` of
+/// `p − a = β e₁ + γ e₂` solve the 2 × 2 Gram system `G (β, γ) = (e₁·d, e₂·d)`
+/// (Ericson, *Real-Time Collision Detection*, §3.4), linear in `d = p − a`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct UvMap {
+    origin_m: [f64; 3],
+    uv0: [f64; 2],
+    grad_u: [f64; 3],
+    grad_v: [f64; 3],
+}
+
+impl UvMap {
+    /// The map of the triangle `[a, b, c]` (world, m) whose corners have coordinates `uv`;
+    /// `None` for a degenerate triangle (the raw scene has none).
+    pub(crate) fn new([a, b, c]: [[f64; 3]; 3], uv: [[f64; 2]; 3]) -> Option<Self> {
+        let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
+        let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+        let (e1, e2) = (sub(b, a), sub(c, a));
+        let (g11, g12, g22) = (dot(e1, e1), dot(e1, e2), dot(e2, e2));
+        let det = g11 * g22 - g12 * g12;
+        if !(det.is_normal() && det > 0.0) {
+            return None;
+        }
+        // β = dual_b·d, γ = dual_c·d.
+        let dual_b: [f64; 3] = std::array::from_fn(|k| (g22 * e1[k] - g12 * e2[k]) / det);
+        let dual_c: [f64; 3] = std::array::from_fn(|k| (g11 * e2[k] - g12 * e1[k]) / det);
+        let grad = |axis: usize| -> [f64; 3] {
+            let (db, dc) = (uv[1][axis] - uv[0][axis], uv[2][axis] - uv[0][axis]);
+            std::array::from_fn(|k| db * dual_b[k] + dc * dual_c[k])
+        };
+        Some(Self {
+            origin_m: a,
+            uv0: uv[0],
+            grad_u: grad(0),
+            grad_v: grad(1),
+        })
+    }
+
+    /// The texture coordinates at the world point `p_m` of the facet's plane.
+    #[inline]
+    pub(crate) fn at(&self, p_m: [f64; 3]) -> [f64; 2] {
+        let d: [f64; 3] = std::array::from_fn(|k| p_m[k] - self.origin_m[k]);
+        let dot = |g: [f64; 3]| g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+        [
+            self.uv0[0] + dot(self.grad_u),
+            self.uv0[1] + dot(self.grad_v),
+        ]
+    }
+}
+
+/// Each facet's [`UvMap`], for the facets whose material has image maps (`has_maps[slot]`);
+/// empty when no material has any.
+///
+/// # Errors
+/// Such a facet without texture coordinates, named with its object.
+pub(crate) fn facet_uv_maps(
+    scene: &irsig_model::RawScene,
+    slot_of: impl Fn(u16) -> usize,
+    has_maps: &[bool],
+) -> Result<Vec<Option<UvMap>>, crate::error::TraceError> {
+    use crate::error::{TraceError, TraceErrorKind};
+    if !has_maps.iter().any(|&m| m) {
+        return Ok(Vec::new());
+    }
+    scene
+        .facets
+        .iter()
+        .enumerate()
+        .map(|(i, f)| {
+            if !has_maps
+                .get(slot_of(f.material.0))
+                .copied()
+                .unwrap_or(false)
+            {
+                return Ok(None);
+            }
+            let Some(uv) = f.uv else {
+                return Err(TraceError::new(TraceErrorKind::NoTextureCoordinates {
+                    facet: i,
+                    object: scene
+                        .objects
+                        .get(f.object as usize)
+                        .cloned()
+                        .unwrap_or_default(),
+                    material: f.material.0,
+                }));
+            };
+            // Indices were checked by the scene's validation.
+            Ok(UvMap::new(
+                f.vertices.map(|v| scene.positions_m[v as usize]),
+                uv,
+            ))
+        })
+        .collect()
+}
+
+/// Refuses an emissivity-scale map that takes a material's ε outside 0 to 1 anywhere in
+/// sub-band `sub_band` (from 0): the greatest scale times the greatest ε of the material's
+/// table for it above 1, or a scale below 0. Never clamped, so refused.
+///
+/// # Errors
+/// The first material whose map does.
+pub(crate) fn check_emissivity_scales(
+    materials: &[crate::tracer::MaterialData],
+    tables: &[irsig_radiometry::EmissivityTable],
+    sub_band: usize,
+) -> Result<(), crate::error::TraceError> {
+    for (m, table) in materials.iter().zip(tables) {
+        let Some(maps) = &m.maps else { continue };
+        let [lo, hi] = maps.emissivity_scale_range();
+        let max_emissivity = table.emissivity().iter().copied().fold(0.0, f64::max);
+        if lo < 0.0 || hi * max_emissivity > 1.0 {
+            return Err(crate::error::TraceError::new(
+                crate::error::TraceErrorKind::EmissivityScaleOutOfRange {
+                    material: m.id,
+                    scale_lo: lo,
+                    scale_hi: hi,
+                    max_emissivity,
+                    sub_band: sub_band + 1,
+                },
+            ));
+        }
+    }
+    Ok(())
+}
+
+impl<B, A> crate::tracer::Tracer<B, A> {
+    /// What the material's textures give at a hit: its statistical texture at the world
+    /// point and its image maps at the point's texture coordinates, combined (offsets add,
+    /// scales multiply); `None` for a material with neither.
+    #[inline]
+    pub(crate) fn texel_at(
+        &self,
+        hit: &crate::geometry::Hit<crate::tracer::FacetRadiometry>,
+    ) -> Option<irsig_texture::Texel> {
+        let m = &self.materials[usize::from(hit.data.material)];
+        if m.texture.is_none() && m.maps.is_none() {
+            return None;
+        }
+        let p_m = self.geometry.to_world(hit.point_local);
+        let field = m.texture.as_ref().map(|t| t.sample(p_m));
+        let map = m
+            .maps
+            .as_ref()
+            .zip(self.uv_maps.get(hit.facet as usize).copied().flatten())
+            .map(|(maps, uv)| maps.sample(uv.at(p_m)));
+        match (field, map) {
+            (Some(a), Some(b)) => Some(a * b),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -101,5 +257,30 @@ mod tests {
         // A span of one temperature still interpolates.
         let one = BlackbodyTable::new(&TotalRadiance, [300.0, 300.0]);
         assert!((one.at(300.0).0 / TotalRadiance.radiance(300.0) - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn a_facets_uv_map_interpolates_its_corners_by_barycentrics() {
+        // A tilted triangle a = (1, 2, 3), b = a + (2, 0, 1), c = a + (0, 3, -1) with
+        // coordinates (0.1, 0.2), (0.9, 0.2), (0.1, 0.8): a point β e₁ + γ e₂ from a has
+        // u = 0.1 + 0.8 β and v = 0.2 + 0.6 γ.
+        let a = [1.0, 2.0, 3.0];
+        let b = [3.0, 2.0, 4.0];
+        let c = [1.0, 5.0, 2.0];
+        let map = UvMap::new([a, b, c], [[0.1, 0.2], [0.9, 0.2], [0.1, 0.8]]).unwrap();
+        for (beta, gamma) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.25, 0.5), (0.3, 0.3)] {
+            let p: [f64; 3] =
+                std::array::from_fn(|k| a[k] + beta * (b[k] - a[k]) + gamma * (c[k] - a[k]));
+            let [u, v] = map.at(p);
+            assert!(
+                (u - (0.1 + 0.8 * beta)).abs() < 1e-14,
+                "{beta} {gamma}: {u}"
+            );
+            assert!(
+                (v - (0.2 + 0.6 * gamma)).abs() < 1e-14,
+                "{beta} {gamma}: {v}"
+            );
+        }
+        assert!(UvMap::new([a, a, c], [[0.0; 2]; 3]).is_none());
     }
 }

@@ -53,6 +53,8 @@ pub(crate) struct MaterialData {
     /// The material's statistical texture, drawn; `None` where it has none (or one that
     /// varies nothing), and its hits are shaded exactly as without the field.
     pub(crate) texture: Option<irsig_texture::TextureFields>,
+    /// The material's image maps with their images ([`Tracer::with_sub_bands_and_maps`]).
+    pub(crate) maps: Option<irsig_texture::MaterialMaps>,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit
@@ -259,6 +261,9 @@ pub struct Tracer<B, A> {
     /// can reach (its facets' temperatures, plus and minus the largest offset); `None`
     /// when there is none, and no sub-band tabulates them.
     pub(crate) textured_span_k: Option<[f64; 2]>,
+    /// Per raw-scene facet, its texture coordinates at a world point where its material has
+    /// image maps ([`crate::texture::UvMap`]); empty when no material has any.
+    pub(crate) uv_maps: Vec<Option<crate::texture::UvMap>>,
 }
 
 /// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.
@@ -478,6 +483,23 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         band: B,
         sub_bands: Vec<SubBand<B, A>>,
     ) -> Result<Self, TraceError> {
+        Self::with_sub_bands_and_maps(scene, materials, band, sub_bands, Vec::new())
+    }
+
+    /// [`Tracer::with_sub_bands`] with image maps: `maps` gives, for each material of the
+    /// library that has `maps`, its maps with their images read (`irsig-raster` reads
+    /// them; the tracer knows no file).
+    ///
+    /// # Errors
+    /// As [`Tracer::with_sub_bands`]; also a facet of a material with maps that has no
+    /// texture coordinates, or an emissivity-scale map that takes ε outside 0 to 1.
+    pub fn with_sub_bands_and_maps(
+        scene: &RawScene,
+        materials: &MaterialLibrary,
+        band: B,
+        sub_bands: Vec<SubBand<B, A>>,
+        maps: Vec<(irsig_model::MaterialId, irsig_texture::MaterialMaps)>,
+    ) -> Result<Self, TraceError> {
         scene
             .validate()
             .map_err(|e| TraceError::new(TraceErrorKind::InvalidScene(e)))?;
@@ -522,7 +544,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
                     .map(crate::lobe::Lobe::new),
                 texture,
+                maps: None,
             });
+        }
+        for (id, m) in maps {
+            if let Some(slot) = mats.iter().position(|d| d.id == id.0) {
+                mats[slot].maps = Some(m);
+            }
         }
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets
         // usually share one), so K sub-bands cost K small tables, not K × facets; the
@@ -597,7 +625,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sun: None,
             budget_groups: None,
             textured_span_k: None,
+            uv_maps: Vec::new(),
         };
+        let has_maps: Vec<bool> = tracer.materials.iter().map(|m| m.maps.is_some()).collect();
+        let slot = |id: u16| usize::from(slot_of[usize::from(id)]);
+        tracer.uv_maps = crate::texture::facet_uv_maps(scene, slot, &has_maps)?;
         tracer.textured_span_k = tracer.textured_span(scene);
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records.
@@ -742,6 +774,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     ))));
                 }
             };
+            crate::texture::check_emissivity_scales(&self.materials, &emissivity, k)?;
             let (blackbody, derivative) = self
                 .temperatures
                 .iter()
@@ -788,6 +821,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 m.texture
                     .as_ref()
                     .map_or(0.0, irsig_texture::TextureFields::max_temperature_offset_k)
+                    + m.maps
+                        .as_ref()
+                        .map_or(0.0, irsig_texture::MaterialMaps::max_temperature_offset_k)
             })
             .collect();
         if offset.iter().all(|&o| o <= 0.0) {

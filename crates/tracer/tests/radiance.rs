@@ -54,6 +54,7 @@ fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Mat
         rms_slope: None,
         thermal: None,
         texture: None,
+        maps: None,
     }
 }
 
@@ -76,6 +77,7 @@ fn scene(parts: &[(Mesh, u16, f64)]) -> RawScene {
             material: MaterialId(*mat),
             temperature_k: *t,
             object: k as u32,
+            uv: None,
         }));
     }
     s

@@ -94,6 +94,7 @@ fn grass(id: u16) -> Material {
         rms_slope: None,
         thermal: None,
         texture: None,
+        maps: None,
     }
 }
 

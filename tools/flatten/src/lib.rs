@@ -340,6 +340,7 @@ fn legacy_object(input: &irsig_cli::Input, unit: LengthUnit) -> miette::Result<O
                         .unwrap_or(0),
                 ),
                 temperature_k: t.temperature_k,
+                uv: None,
             })
             .collect(),
     };

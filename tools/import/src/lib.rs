@@ -306,6 +306,15 @@ fn to_object(
                 ));
             }
         };
+        if let Some(image) = &m.image {
+            // What a material map of the library needs to lay the asset's texture on it.
+            irsig_cli::note!(
+                "{}: material `{}` (id {}) names the image `{image}`, relative to the model's folder",
+                m.first_use,
+                m.name,
+                id.0
+            );
+        }
         ids.push(id);
     }
     let unit = mesh_unit(cli, format);
@@ -326,6 +335,7 @@ fn to_object(
             vertices: t.vertices,
             material,
             temperature_k: t.temperature_k,
+            uv: t.uv,
         });
     }
     let mut object = Object {

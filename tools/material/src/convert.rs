@@ -191,6 +191,7 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
             rms_slope: None,
             thermal: None,
             texture: None,
+            maps: None,
         });
     }
     let library = MaterialLibrary { materials };

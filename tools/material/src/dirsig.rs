@@ -130,6 +130,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
                 rms_slope: None,
                 thermal,
                 texture: None,
+                maps: None,
             });
             continue;
         };
@@ -196,6 +197,7 @@ pub fn run(args: &Args) -> miette::Result<()> {
             rms_slope: None,
             thermal,
             texture: None,
+            maps: None,
         });
     }
     let library = MaterialLibrary { materials };

@@ -390,6 +390,7 @@ fn write_library(
             rms_slope: entry.rms_slope,
             thermal: None,
             texture: None,
+            maps: None,
         }],
     };
     // The model's own rules (id 0 reserved, specular fraction in [0, 1], a name).

@@ -8,7 +8,7 @@
 //! | --- | --- | --- |
 //! | 0 | 8 | magic `IRSIGRAW` |
 //! | 8 | 4 | `u32` version, 1 |
-//! | 12 | 4 | `u32` flags: bits 0–15 reserved 0, 16–31 the terrain's material id (0: none) |
+//! | 12 | 4 | `u32` flags: bit 0 a texture-coordinate section, bits 1–15 reserved 0, 16–31 the terrain's material id (0: none) |
 //! | 16 | 8 | `f64` terrain temperature, K |
 //! | 24 | 8 | `f64` terrain emissivity |
 //! | 32 | 4 | `u32` object count `O` |
@@ -17,14 +17,20 @@
 //! | 44 | 4 | `u32` byte length `N` of the name block |
 //! | 48 | `N` | `O` names, each a `u32` byte length and that many UTF-8 bytes |
 //! | 48 + `N` | 24 `P` | positions, `f64` x y z in metres |
-//! | … | 28 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` reserved 0, `u32` object, `f64` temperature K |
+//! | … | 28 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` facet flags, `u32` object, `f64` temperature K |
+//! | … | 48 `F` | only when flag bit 0 is set: per facet `f64` u v at each corner (zeros for a facet without) |
+//!
+//! Header flag bit 0 says the texture-coordinate section follows the facets; it is set only
+//! when some facet has coordinates, so a scene without them keeps the bytes it had before
+//! the section existed. Facet flag bit 0 says the facet has coordinates; the facet flags'
+//! other bits are reserved and must be 0.
 //!
 //! The reader checks that the file length equals what the header's counts imply before it
 //! allocates anything, so a corrupt count cannot make it allocate more than the file holds.
 
 use irsig_model::{MaterialId, RawFacet, RawScene, Terrain};
 
-use super::layout::{self, Form, f64_at, u32_at};
+use super::layout::{self, Form, UV_LEN, f64_at, u32_at};
 use crate::ParseError;
 
 /// The first eight bytes of a binary raw scene.
@@ -43,8 +49,11 @@ const FORM: Form = Form {
     version: VERSION,
     header_len: HEADER_LEN,
     noun: "raw scene",
-    flag_bits: TERRAIN_MATERIAL_BITS,
+    flag_bits: TERRAIN_MATERIAL_BITS | layout::HAS_UV_SECTION,
 };
+
+/// Facet flag: the facet has texture coordinates in the section after the facets.
+pub const FACET_HAS_UV: u16 = 1;
 
 /// The flag bits that hold the terrain's material id, the high half (bytes 14 and 15), so
 /// that the low half stays reserved as it was: 0 is never a material, so a file written
@@ -65,11 +74,16 @@ pub fn is_binary(bytes: &[u8]) -> bool {
 /// As [`write`], less the I/O errors.
 pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
+    let uv_len = if scene.facets.iter().any(|f| f.uv.is_some()) {
+        UV_LEN
+    } else {
+        0
+    };
     let mut out = Vec::with_capacity(
         HEADER_LEN
             + names_len
             + POSITION_LEN * scene.positions_m.len()
-            + FACET_LEN * scene.facets.len(),
+            + (FACET_LEN + uv_len) * scene.facets.len(),
     );
     write(scene, &mut out)?;
     Ok(out)
@@ -85,10 +99,12 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
 pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let count = |n: usize, what: &str| FORM.count(n, what);
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
+    let uv_flags = layout::uv_flags(scene.facets.iter().map(|f| f.uv.as_ref()));
     let flags = scene
         .terrain
         .material
-        .map_or(0, |m| u32::from(m.0) << TERRAIN_MATERIAL_SHIFT);
+        .map_or(0, |m| u32::from(m.0) << TERRAIN_MATERIAL_SHIFT)
+        | uv_flags;
     let mut header = FORM.start_header(HEADER_LEN + names_len, flags);
     header.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
     header.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
@@ -107,10 +123,12 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
             out.extend_from_slice(&v.to_le_bytes());
         }
         out.extend_from_slice(&f.material.0.to_le_bytes());
-        out.extend_from_slice(&0u16.to_le_bytes());
+        let facet_flags = if f.uv.is_some() { FACET_HAS_UV } else { 0 };
+        out.extend_from_slice(&facet_flags.to_le_bytes());
         out.extend_from_slice(&f.object.to_le_bytes());
         out.extend_from_slice(&f.temperature_k.to_le_bytes());
-    })
+    })?;
+    layout::write_uvs(w, uv_flags, &scene.facets, |f| f.uv.as_ref())
 }
 
 /// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`, `terrain…`)
@@ -142,15 +160,22 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
     let positions = u32_at(bytes, 36) as usize;
     let facets = u32_at(bytes, 40) as usize;
     let names_len = u32_at(bytes, 44) as usize;
+    let has_uv_section = u32_at(bytes, 12) & layout::HAS_UV_SECTION != 0;
+    let uv_len = if has_uv_section { UV_LEN } else { 0 };
     // u64 arithmetic: u32 counts times record sizes cannot overflow it.
     let expected = HEADER_LEN as u64
         + names_len as u64
         + POSITION_LEN as u64 * positions as u64
-        + FACET_LEN as u64 * facets as u64;
+        + (FACET_LEN + uv_len) as u64 * facets as u64;
     FORM.check_length(file, bytes, expected, || {
+        let uvs = if has_uv_section {
+            " with texture coordinates"
+        } else {
+            ""
+        };
         format!(
             "{objects} objects ({names_len} name bytes), {positions} positions and {facets} \
-             facets"
+             facets{uvs}"
         )
     })?;
     // From here every count is bounded by the file length.
@@ -189,21 +214,47 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
     let positions_m =
         layout::read_positions(&bytes[names_end..names_end + POSITION_LEN * positions]);
     let facet_start = names_end + POSITION_LEN * positions;
-    let mut facets = Vec::with_capacity(facets);
-    for (i, c) in bytes[facet_start..].chunks_exact(FACET_LEN).enumerate() {
-        // Reserved bytes must be 0, so that decoding and encoding are inverse and a later
+    let uv_start = facet_start + FACET_LEN * facets;
+    let mut out = Vec::with_capacity(facets);
+    for (i, c) in bytes[facet_start..uv_start]
+        .chunks_exact(FACET_LEN)
+        .enumerate()
+    {
+        // Reserved bits must be 0, so that decoding and encoding are inverse and a later
         // version can give them a meaning.
-        if c[14] != 0 || c[15] != 0 {
+        let facet_flags = u16::from_le_bytes([c[14], c[15]]);
+        let allowed = if has_uv_section { FACET_HAS_UV } else { 0 };
+        if facet_flags & !allowed != 0 {
             return Err(err(
                 facet_start + FACET_LEN * i + 14,
-                format!("facet {i}: expected the reserved u16 to be 0"),
+                format!(
+                    "facet {i}: expected facet flags {}, found {facet_flags:#x}",
+                    if has_uv_section {
+                        "0 or 1"
+                    } else {
+                        "0 (the header declares no texture coordinates)"
+                    }
+                ),
             ));
         }
-        facets.push(RawFacet {
+        let uv = if has_uv_section {
+            let at = uv_start + UV_LEN * i;
+            layout::read_uv(
+                file,
+                &bytes[at..at + UV_LEN],
+                facet_flags & FACET_HAS_UV != 0,
+                uv_start,
+                i,
+            )?
+        } else {
+            None
+        };
+        out.push(RawFacet {
             vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
             material: MaterialId(u16::from_le_bytes([c[12], c[13]])),
             object: u32_at(c, 16),
             temperature_k: f64_at(c, 20),
+            uv,
         });
     }
     Ok(RawScene {
@@ -218,7 +269,7 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
         },
         objects: names,
         positions_m,
-        facets,
+        facets: out,
     })
 }
 
@@ -241,12 +292,14 @@ mod tests {
                     material: MaterialId(7),
                     temperature_k: 300.25,
                     object: 0,
+                    uv: None,
                 },
                 RawFacet {
                     vertices: [2, 1, 0],
                     material: MaterialId(65535),
                     temperature_k: 1e-3,
                     object: 1,
+                    uv: None,
                 },
             ],
         }
@@ -286,9 +339,9 @@ mod tests {
         assert_eq!(bytes[12..16], [0, 0, 0xef, 0xbe]);
         assert_eq!(decode("s.bin", &bytes).unwrap(), s);
         let mut reserved = bytes;
-        reserved[12] = 1;
+        reserved[12] = 2;
         let e = decode("s.bin", &reserved).unwrap_err();
-        assert!(e.message.contains("outside 0xffff0000"), "{e}");
+        assert!(e.message.contains("outside 0xffff0001"), "{e}");
     }
 
     #[test]
@@ -317,6 +370,7 @@ mod tests {
                 material: MaterialId((i % 5) as u16),
                 temperature_k: 200.0 + f64::from(i) / 64.0,
                 object: i % 2,
+                uv: None,
             })
             .collect();
         let mut w = Trickle(Vec::new());
@@ -349,6 +403,53 @@ mod tests {
     }
 
     #[test]
+    fn texture_coordinates_follow_the_facets_only_when_a_facet_has_them() {
+        let plain = encode(&scene()).unwrap();
+        let mut s = scene();
+        s.facets[1].uv = Some([[0.0, 1.0], [-2.5, 0.125], [1e6, -0.0]]);
+        let bytes = encode(&s).unwrap();
+        // The same bytes as without, but for header flag bit 0, facet 1's flag and the
+        // section: 48 bytes per facet, zeros for facet 0.
+        let facets_end = 48 + 17 + 3 * 24 + 2 * 28;
+        assert_eq!(bytes.len(), facets_end + 2 * 48);
+        assert_eq!(bytes[12], 1);
+        let facet1 = 48 + 17 + 3 * 24 + 28;
+        assert_eq!(bytes[facet1 + 14..facet1 + 16], [1, 0]);
+        let mut masked = bytes[..facets_end].to_vec();
+        masked[12] = 0;
+        masked[facet1 + 14] = 0;
+        assert_eq!(masked, plain);
+        assert_eq!(bytes[facets_end..facets_end + 48], [0; 48]);
+        assert_eq!(
+            bytes[facets_end + 48 + 16..facets_end + 48 + 24],
+            (-2.5f64).to_le_bytes()
+        );
+        assert_eq!(
+            bytes[facets_end + 48 + 40..facets_end + 48 + 48],
+            (-0.0f64).to_le_bytes()
+        );
+        assert_eq!(decode("s.bin", &bytes).unwrap(), s);
+        for n in 0..bytes.len() {
+            assert!(decode("s.bin", &bytes[..n]).is_err(), "length {n}");
+        }
+        // A facet whose flag says it has none must have a record of zeros.
+        let mut stray = bytes.clone();
+        stray[facets_end + 3] = 1;
+        let e = decode("s.bin", &stray).unwrap_err();
+        assert_eq!(e.column, facets_end + 1);
+        assert!(
+            e.message
+                .starts_with("facet 0: expected a texture-coordinate"),
+            "{e}"
+        );
+        // The section's flag without the section: the length disagrees.
+        let mut short = plain;
+        short[12] = 1;
+        let e = decode("s.bin", &short).unwrap_err();
+        assert!(e.message.contains("facets with texture coordinates"), "{e}");
+    }
+
+    #[test]
     fn wrong_version_and_bad_names_are_errors() {
         let mut bytes = encode(&scene()).unwrap();
         bytes[8] = 2;
@@ -361,9 +462,10 @@ mod tests {
         let mut bytes = encode(&scene()).unwrap();
         bytes[48] = 200;
         assert!(decode("s.bin", &bytes).is_err());
-        // Bits 0-15 of the flags are reserved (16-31 are the terrain's material).
+        // Bits 1-15 of the flags are reserved (0 is the texture coordinates' section,
+        // 16-31 the terrain's material).
         let mut bytes = encode(&scene()).unwrap();
-        bytes[12] = 1;
+        bytes[12] = 0x80;
         assert!(
             decode("s.bin", &bytes)
                 .unwrap_err()
@@ -375,7 +477,8 @@ mod tests {
         bytes[facet1 + 15] = 1;
         let e = decode("s.bin", &bytes).unwrap_err();
         assert!(
-            e.message.starts_with("facet 1: expected the reserved"),
+            e.message
+                .starts_with("facet 1: expected facet flags 0 (the header declares no"),
             "{e}"
         );
         assert_eq!(e.column, facet1 + 14 + 1);

@@ -10,7 +10,7 @@
 //! | --- | --- | --- |
 //! | 0 | 8 | magic `IRSIGOBJ` |
 //! | 8 | 4 | `u32` version, 1 |
-//! | 12 | 4 | `u32` flags, 0 (reserved) |
+//! | 12 | 4 | `u32` flags: bit 0 a texture-coordinate section, bits 1–31 reserved 0 |
 //! | 16 | 4 | `u32` byte length `N` of the name |
 //! | 20 | 4 | `u32` byte length `S` of the source |
 //! | 24 | 4 | `u32` position count `P` |
@@ -19,10 +19,14 @@
 //! | 32 + `N` | `S` | source, UTF-8 |
 //! | … | 24 `P` | positions, `f64` x y z in metres |
 //! | … | 24 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` facet flags, `f64` temperature K |
+//! | … | 48 `F` | only when flag bit 0 is set: per facet `f64` u v at each corner (zeros for a facet without) |
 //!
 //! Facet flags: bit 0 set means the facet has a temperature of its own (`Some(T)`); clear
-//! means it has none, and the temperature field is written as 0 and ignored. The other
-//! bits are reserved and must be 0.
+//! means it has none, and the temperature field is written as 0 and ignored. Bit 1 set
+//! means the facet has texture coordinates in the section after the facets; clear means
+//! its record there is zeros. The other bits are reserved and must be 0. Header flag bit 0
+//! is set only when some facet has coordinates, so an object without them keeps the bytes
+//! it had before the section existed.
 //!
 //! The reader checks that the file length equals what the header's counts imply before it
 //! allocates anything, so a corrupt count cannot make it allocate more than the file holds.
@@ -35,7 +39,7 @@
 //!     name: "tri".into(),
 //!     source: String::new(),
 //!     positions_m: vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
-//!     facets: vec![Facet { vertices: [0, 1, 2], material: MaterialId(1), temperature_k: None }],
+//!     facets: vec![Facet { vertices: [0, 1, 2], material: MaterialId(1), temperature_k: None, uv: None }],
 //! };
 //! let bytes = binary_object::encode(&object).unwrap();
 //! assert_eq!(bytes.len(), 32 + 3 + 3 * 24 + 24);
@@ -44,7 +48,7 @@
 
 use irsig_model::{Facet, MaterialId, Object};
 
-use super::layout::{self, Form, f64_at, u32_at};
+use super::layout::{self, Form, UV_LEN, f64_at, u32_at};
 use crate::ParseError;
 
 /// The first eight bytes of a binary object.
@@ -59,13 +63,15 @@ pub const POSITION_LEN: usize = layout::POSITION_LEN;
 pub const FACET_LEN: usize = 24;
 /// Facet flag: the facet carries its own temperature.
 pub const HAS_TEMPERATURE: u16 = 1;
+/// Facet flag: the facet has texture coordinates in the section after the facets.
+pub const HAS_UV: u16 = 2;
 
 const FORM: Form = Form {
     magic: MAGIC,
     version: VERSION,
     header_len: HEADER_LEN,
     noun: "object",
-    flag_bits: 0,
+    flag_bits: layout::HAS_UV_SECTION,
 };
 
 /// True when `bytes` start with [`MAGIC`].
@@ -79,12 +85,17 @@ pub fn is_binary(bytes: &[u8]) -> bool {
 /// # Errors
 /// As [`write`], less the I/O errors.
 pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
+    let uv_len = if object.facets.iter().any(|f| f.uv.is_some()) {
+        UV_LEN
+    } else {
+        0
+    };
     let mut out = Vec::with_capacity(
         HEADER_LEN
             + object.name.len()
             + object.source.len()
             + POSITION_LEN * object.positions_m.len()
-            + FACET_LEN * object.facets.len(),
+            + (FACET_LEN + uv_len) * object.facets.len(),
     );
     write(object, &mut out)?;
     Ok(out)
@@ -100,7 +111,11 @@ pub fn encode(object: &Object) -> Result<Vec<u8>, std::io::Error> {
 /// error from `w`.
 pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let count = |n: usize, what: &str| FORM.count(n, what);
-    let mut header = FORM.start_header(HEADER_LEN + object.name.len() + object.source.len(), 0);
+    let uv_flags = layout::uv_flags(object.facets.iter().map(|f| f.uv.as_ref()));
+    let mut header = FORM.start_header(
+        HEADER_LEN + object.name.len() + object.source.len(),
+        uv_flags,
+    );
     header.extend_from_slice(&count(object.name.len(), "name bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.source.len(), "source bytes")?.to_le_bytes());
     header.extend_from_slice(&count(object.positions_m.len(), "positions")?.to_le_bytes());
@@ -114,13 +129,17 @@ pub fn write(object: &Object, w: &mut dyn std::io::Write) -> std::io::Result<()>
             out.extend_from_slice(&v.to_le_bytes());
         }
         out.extend_from_slice(&f.material.0.to_le_bytes());
-        let (flags, t) = match f.temperature_k {
+        let (mut flags, t) = match f.temperature_k {
             Some(t) => (HAS_TEMPERATURE, t),
             None => (0, 0.0),
         };
+        if f.uv.is_some() {
+            flags |= HAS_UV;
+        }
         out.extend_from_slice(&flags.to_le_bytes());
         out.extend_from_slice(&t.to_le_bytes());
-    })
+    })?;
+    layout::write_uvs(w, uv_flags, &object.facets, |f| f.uv.as_ref())
 }
 
 /// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`) starts in
@@ -146,16 +165,23 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
     let source_len = u32_at(bytes, 20) as usize;
     let positions = u32_at(bytes, 24) as usize;
     let facets = u32_at(bytes, 28) as usize;
+    let has_uv_section = u32_at(bytes, 12) & layout::HAS_UV_SECTION != 0;
+    let uv_len = if has_uv_section { UV_LEN } else { 0 };
     // u64 arithmetic: u32 counts times record sizes cannot overflow it.
     let expected = HEADER_LEN as u64
         + name_len as u64
         + source_len as u64
         + POSITION_LEN as u64 * positions as u64
-        + FACET_LEN as u64 * facets as u64;
+        + (FACET_LEN + uv_len) as u64 * facets as u64;
     FORM.check_length(file, bytes, expected, || {
+        let uvs = if has_uv_section {
+            " with texture coordinates"
+        } else {
+            ""
+        };
         format!(
             "a {name_len}-byte name, a {source_len}-byte source, {positions} positions and \
-             {facets} facets"
+             {facets} facets{uvs}"
         )
     })?;
     // From here every count is bounded by the file length.
@@ -174,19 +200,38 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
     let positions_at = HEADER_LEN + name_len + source_len;
     let facets_at = positions_at + POSITION_LEN * positions;
     let positions_m = layout::read_positions(&bytes[positions_at..facets_at]);
+    let uvs_at = facets_at + FACET_LEN * facets;
+    let allowed = if has_uv_section {
+        HAS_TEMPERATURE | HAS_UV
+    } else {
+        HAS_TEMPERATURE
+    };
     let mut out = Vec::with_capacity(facets);
-    for (i, c) in bytes[facets_at..].chunks_exact(FACET_LEN).enumerate() {
+    for (i, c) in bytes[facets_at..uvs_at].chunks_exact(FACET_LEN).enumerate() {
         let flags = u16::from_le_bytes([c[14], c[15]]);
-        if flags & !HAS_TEMPERATURE != 0 {
+        if flags & !allowed != 0 {
             return Err(err(
                 facets_at + FACET_LEN * i + 14,
-                format!("facet {i}: expected facet flags 0 or 1, found {flags:#x}"),
+                format!("facet {i}: expected facet flags within {allowed:#x}, found {flags:#x}"),
             ));
         }
+        let uv = if has_uv_section {
+            let at = uvs_at + UV_LEN * i;
+            layout::read_uv(
+                file,
+                &bytes[at..at + UV_LEN],
+                flags & HAS_UV != 0,
+                uvs_at,
+                i,
+            )?
+        } else {
+            None
+        };
         out.push(Facet {
             vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
             material: MaterialId(u16::from_le_bytes([c[12], c[13]])),
             temperature_k: (flags & HAS_TEMPERATURE != 0).then(|| f64_at(c, 16)),
+            uv,
         });
     }
     Ok(Object {
@@ -211,11 +256,13 @@ mod tests {
                     vertices: [0, 1, 2],
                     material: MaterialId(7),
                     temperature_k: Some(300.25),
+                    uv: None,
                 },
                 Facet {
                     vertices: [2, 1, 0],
                     material: MaterialId(65535),
                     temperature_k: None,
+                    uv: None,
                 },
             ],
         }
@@ -289,6 +336,7 @@ mod tests {
                     vertices: [i, i + 1, i + 2],
                     material: MaterialId((i % 7) as u16),
                     temperature_k: (i % 3 == 0).then(|| 250.0 + f64::from(i) / 1024.0),
+                    uv: None,
                 })
                 .collect(),
         };
@@ -364,16 +412,61 @@ mod tests {
         assert!(e.message.contains("name is not UTF-8"), "{e}");
         assert_eq!(e.column, 33, "offset 32 is the first invalid byte");
         let mut bytes = encode(&object()).unwrap();
-        bytes[12] = 1;
+        bytes[12] = 2;
         assert!(decode("o.bin", &bytes).is_err());
         let mut bytes = encode(&object()).unwrap();
-        bytes[FACETS_AT + 24 + 14] = 2;
+        bytes[FACETS_AT + 24 + 14] = 4;
         let e = decode("o.bin", &bytes).unwrap_err();
         assert!(
             e.message.starts_with("facet 1: expected facet flags"),
             "{e}"
         );
         assert_eq!(e.column, FACETS_AT + 24 + 14 + 1);
+    }
+
+    #[test]
+    fn texture_coordinates_follow_the_facets_only_when_a_facet_has_them() {
+        let plain = encode(&object()).unwrap();
+        let mut o = object();
+        o.facets[0].uv = Some([[0.25, 0.75], [1.0, 0.0], [-3.0, 2.0]]);
+        let bytes = encode(&o).unwrap();
+        let facets_end = FACETS_AT + 2 * 24;
+        assert_eq!(bytes.len(), facets_end + 2 * 48);
+        assert_eq!(bytes[12], 1, "header flag bit 0: the section");
+        // Facet 0 has a temperature (bit 0) and coordinates (bit 1); facet 1 neither.
+        assert_eq!(bytes[FACETS_AT + 14..FACETS_AT + 16], 3u16.to_le_bytes());
+        assert_eq!(bytes[FACETS_AT + 24 + 14..FACETS_AT + 24 + 16], [0, 0]);
+        let mut masked = bytes[..facets_end].to_vec();
+        masked[12] = 0;
+        masked[FACETS_AT + 14] = 1;
+        assert_eq!(masked, plain, "otherwise the bytes of the object without");
+        assert_eq!(
+            bytes[facets_end + 8..facets_end + 16],
+            0.75f64.to_le_bytes()
+        );
+        assert_eq!(
+            bytes[facets_end + 32..facets_end + 40],
+            (-3.0f64).to_le_bytes()
+        );
+        assert_eq!(bytes[facets_end + 48..], [0; 48]);
+        assert_eq!(decode("o.bin", &bytes).unwrap(), o);
+        for n in 0..bytes.len() {
+            assert!(decode("o.bin", &bytes[..n]).is_err(), "length {n}");
+        }
+        let mut stray = bytes.clone();
+        stray[facets_end + 48 + 47] = 0x80;
+        let e = decode("o.bin", &stray).unwrap_err();
+        assert_eq!(e.column, facets_end + 48 + 1);
+        assert!(
+            e.message
+                .starts_with("facet 1: expected a texture-coordinate"),
+            "{e}"
+        );
+        // A facet's coordinate flag without the header's section is reserved.
+        let mut no_section = plain;
+        no_section[FACETS_AT + 24 + 14] = 2;
+        let e = decode("o.bin", &no_section).unwrap_err();
+        assert!(e.message.contains("within 0x1, found 0x2"), "{e}");
     }
 
     #[test]

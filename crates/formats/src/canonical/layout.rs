@@ -173,6 +173,72 @@ pub(super) fn read_positions(bytes: &[u8]) -> Vec<[f64; 3]> {
         .collect()
 }
 
+/// Bytes per facet of the texture-coordinate section: `f64` u v at each of three corners.
+pub(super) const UV_LEN: usize = 48;
+
+/// The header flag that says a texture-coordinate section follows the facets: one
+/// [`UV_LEN`] record per facet. Written only when some facet has coordinates, so that a
+/// scene or object without them keeps the bytes it had before the section existed.
+pub(super) const HAS_UV_SECTION: u32 = 1;
+
+/// The header flags for `uvs`: [`HAS_UV_SECTION`] when any facet has coordinates.
+pub(super) fn uv_flags<'a>(mut uvs: impl Iterator<Item = Option<&'a [[f64; 2]; 3]>>) -> u32 {
+    if uvs.any(|uv| uv.is_some()) {
+        HAS_UV_SECTION
+    } else {
+        0
+    }
+}
+
+/// Writes the texture-coordinate section when `flags` has [`HAS_UV_SECTION`]: per facet
+/// its coordinates, or zeros for a facet without.
+pub(super) fn write_uvs<T>(
+    w: &mut dyn std::io::Write,
+    flags: u32,
+    facets: &[T],
+    uv: impl Fn(&T) -> Option<&[[f64; 2]; 3]>,
+) -> std::io::Result<()> {
+    if flags & HAS_UV_SECTION == 0 {
+        return Ok(());
+    }
+    write_records(w, facets, UV_LEN, |f, out| {
+        let corners = uv(f).copied().unwrap_or([[0.0; 2]; 3]);
+        for x in corners.as_flattened() {
+            out.extend_from_slice(&x.to_le_bytes());
+        }
+    })
+}
+
+/// The coordinates of facet `i` from its record `c` of the section starting at
+/// `section_at`: `Some` when the facet's flag says it has them, else `None`, and then the
+/// record must be zeros (so that decoding and encoding are inverse).
+///
+/// # Errors
+/// A facet without coordinates whose record is not zeros, at the record's offset.
+pub(super) fn read_uv(
+    file: &str,
+    c: &[u8],
+    has_uv: bool,
+    section_at: usize,
+    i: usize,
+) -> Result<Option<[[f64; 2]; 3]>, ParseError> {
+    if has_uv {
+        let x = |k: usize| f64_at(c, 8 * k);
+        return Ok(Some([[x(0), x(1)], [x(2), x(3)], [x(4), x(5)]]));
+    }
+    if c.iter().any(|&b| b != 0) {
+        return Err(ParseError::in_binary(
+            file,
+            section_at + UV_LEN * i,
+            format!(
+                "facet {i}: expected a texture-coordinate record of zeros, as its flags say it \
+                 has none"
+            ),
+        ));
+    }
+    Ok(None)
+}
+
 /// Bytes encoded per `write_all` by [`write_records`]: large enough that the writer's
 /// buffer is bypassed and the system calls are few, small enough to stay in cache.
 const CHUNK_LEN: usize = 256 * 1024;

@@ -452,6 +452,7 @@ mod tests {
                     rms_slope: None,
                     thermal: None,
                     texture: None,
+                    maps: None,
                 },
                 Material {
                     id: MaterialId(2),
@@ -464,6 +465,7 @@ mod tests {
                     rms_slope: None,
                     thermal: None,
                     texture: None,
+                    maps: None,
                 },
             ],
         }

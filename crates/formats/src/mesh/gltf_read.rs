@@ -10,6 +10,8 @@ use gltf::mesh::Mode;
 use super::{Location, MaterialUse, Mesh, Origin, Triangle, json_path};
 use crate::ParseError;
 
+mod texcoord;
+
 type Matrix = [[f64; 4]; 4]; // column-major, m[column][row], as glTF stores it
 
 const IDENTITY: Matrix = [
@@ -289,6 +291,7 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
 
     let mut reader = Walk {
         source: &source,
+        base_dir,
         buffers: &buffers,
         mesh: Mesh {
             file: file.to_owned(),
@@ -513,6 +516,9 @@ fn load_uri(
 
 struct Walk<'a> {
     source: &'a Source<'a>,
+    /// Where the model's file is, for the images its materials name (`None`: standard
+    /// input).
+    base_dir: Option<&'a Path>,
     buffers: &'a [Vec<u8>],
     mesh: Mesh,
     material_index: std::collections::HashMap<Option<usize>, Option<u32>>,
@@ -652,31 +658,40 @@ impl Walk<'_> {
         }
     }
 
-    fn material(&mut self, primitive: &gltf::Primitive<'_>, part: &str) -> Option<u32> {
+    fn material(
+        &mut self,
+        primitive: &gltf::Primitive<'_>,
+        part: &str,
+    ) -> Result<Option<u32>, ParseError> {
         let m = primitive.material();
         let key = m.index();
         if let Some(&id) = self.material_index.get(&key) {
-            return id;
+            return Ok(id);
         }
-        let id = key.map(|i| {
-            let name = m
-                .name()
-                .map_or_else(|| format!("material {i}"), str::to_owned);
-            let id = u32::try_from(self.mesh.materials.len()).unwrap_or(u32::MAX);
-            self.mesh.materials.push(MaterialUse {
-                name,
-                id: None,
-                first_use: Location {
-                    file: self.source.file.to_owned(),
-                    line: None,
-                    column: None,
-                    part: Some(part.to_owned()),
-                },
-            });
-            id
-        });
+        let id = match key {
+            None => None,
+            Some(i) => {
+                let name = m
+                    .name()
+                    .map_or_else(|| format!("material {i}"), str::to_owned);
+                let image = self.base_color_image(&m, self.base_dir)?;
+                let id = u32::try_from(self.mesh.materials.len()).unwrap_or(u32::MAX);
+                self.mesh.materials.push(MaterialUse {
+                    name,
+                    id: None,
+                    first_use: Location {
+                        file: self.source.file.to_owned(),
+                        line: None,
+                        column: None,
+                        part: Some(part.to_owned()),
+                    },
+                    image,
+                });
+                Some(id)
+            }
+        };
         self.material_index.insert(key, id);
-        id
+        Ok(id)
     }
 
     #[allow(clippy::too_many_lines)] // one primitive, read in order: positions, indices, triangles
@@ -845,7 +860,8 @@ impl Walk<'_> {
         }
         let offset =
             u32::try_from(base).map_err(|_| self.err(&pos_at, &part, "more than 2^32 vertices"))?;
-        let material = self.material(primitive, &part);
+        let material = self.material(primitive, &part)?;
+        let texcoords = self.texcoords(primitive, vertex_count, &part)?;
         let first_triangle = u32::try_from(self.mesh.triangles.len())
             .map_err(|_| self.err(&indices_at, &part, "more than 2^32 triangles"))?;
         self.mesh.parts.push(part);
@@ -858,13 +874,16 @@ impl Walk<'_> {
             lines_follow: false,
         });
         self.mesh.positions.extend(new_positions);
-        self.mesh
-            .triangles
-            .extend(corners.into_iter().map(|c| Triangle {
+        self.mesh.triangles.extend(corners.into_iter().map(|c| {
+            Triangle {
+                uv: texcoords
+                    .as_ref()
+                    .map(|t| c.map(|v| t.get(v as usize).copied().unwrap_or_default())),
                 vertices: c.map(|v| v + offset),
                 material,
                 temperature_k: None,
-            }));
+            }
+        }));
         Ok(())
     }
 }

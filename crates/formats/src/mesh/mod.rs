@@ -7,8 +7,10 @@
 //!   convex polygons, which is what exporters write; a non-convex polygon should be
 //!   triangulated by the exporter). A face's material is the last `usemtl` before it.
 //!   `mtllib` files are parsed when present (a malformed MTL is an error) but only the
-//!   names matter in the thermal band; a missing MTL is a warning. Points and lines are
-//!   skipped. Positions are read as `f64`.
+//!   names matter in the thermal band, and the image a material's `map_Kd` names
+//!   ([`MaterialUse::image`]); a missing MTL is a warning. Points and lines are skipped.
+//!   Positions are read as `f64`; a face whose every corner has a `vt` index gives its
+//!   triangles texture coordinates ([`Triangle::uv`]).
 //! - **glTF/GLB**: the default scene (or every root node when there is none) is walked
 //!   through its node hierarchy, each node's matrix or TRS applied; a transform with a
 //!   negative determinant (a mirror) reverses the winding so that fronts stay fronts.
@@ -54,6 +56,11 @@ pub struct Triangle {
     pub material: Option<u32>,
     /// Kinetic temperature in kelvin, where the file gives one.
     pub temperature_k: Option<f64>,
+    /// Texture coordinates `(u, v)` of the three corners, in the order of `vertices`, where
+    /// the file gives them (OBJ `vt`, glTF `TEXCOORD_0`), in irsig's convention: `v` runs
+    /// up from the image's bottom row (OBJ's own; glTF's, which runs down from the top, is
+    /// turned: `v = 1 − v_gltf`).
+    pub uv: Option<[[f64; 2]; 3]>,
 }
 
 /// A material name as a mesh file uses it, and where it is first used.
@@ -67,6 +74,11 @@ pub struct MaterialUse {
     pub id: Option<u16>,
     /// Where it is first used.
     pub first_use: Location,
+    /// The image the file names for the material's surface (an MTL's `map_Kd`, a glTF
+    /// material's `baseColorTexture` image `uri`), as a path relative to the model's
+    /// folder with `/` between its parts, checked as every reference is (relative, never
+    /// absolute or above that folder). Not read: a material's image map may name it.
+    pub image: Option<String>,
 }
 
 /// A place in an input file, for messages: a line, or a described part of a binary file.
@@ -177,6 +189,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
                     column: Some(f.position.column),
                     part: None,
                 },
+                image: None,
             });
             u32::try_from(mesh.materials.len() - 1).unwrap_or(u32::MAX)
         });
@@ -190,6 +203,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
                 vertices: corners.map(|k| base + u32::try_from(k).unwrap_or(0)),
                 material: Some(material),
                 temperature_k: f.temperature_k,
+                uv: None,
             });
         }
         mesh.origins.push(Origin {
@@ -201,6 +215,32 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
         });
     }
     Ok(mesh)
+}
+
+/// The file a model or a materials file in `dir` names by `reference` (a buffer, an MTL, an
+/// image map): a local relative path (`%`-escapes decoded) that stays in `dir`, never an
+/// absolute path, a URI with a scheme, a `..` or a symbolic link out of `dir`.
+///
+/// # Errors
+/// Why the reference is refused, naming it.
+pub fn resolve_reference(
+    dir: &std::path::Path,
+    reference: &str,
+) -> Result<std::path::PathBuf, String> {
+    let rel = gltf_read::local_relative_path(reference)?;
+    gltf_read::inside(dir, &rel, reference)
+}
+
+/// A relative path, already checked to hold only normal parts, written with `/` between
+/// them whatever the platform, as a model's references and irsig's files write paths.
+pub(crate) fn slash_path(path: &std::path::Path) -> String {
+    path.components()
+        .filter_map(|c| match c {
+            std::path::Component::Normal(part) => Some(part.to_string_lossy().into_owned()),
+            _ => None,
+        })
+        .collect::<Vec<_>>()
+        .join("/")
 }
 
 impl Mesh {

@@ -27,6 +27,65 @@ struct Scan {
     origins: Vec<Origin>,
     warnings: Vec<String>,
     triangles: usize,
+    texcoords: TexCoords,
+    /// The image each MTL material's `map_Kd` names, by material name, relative to the
+    /// OBJ's folder.
+    images: HashMap<String, String>,
+}
+
+/// The texture coordinates the scan collects: the `vt` values, and per triangle those of
+/// its corners where its face gives every corner a `vt` index (a face that gives some
+/// corners none has no coordinates: tobj would invent them from a neighbour).
+#[derive(Debug, Default)]
+struct TexCoords {
+    values: Vec<[f64; 2]>,
+    /// Per triangle, from the first triangle on once any has some; empty while none has.
+    triangles: Vec<Option<[[f64; 2]; 3]>>,
+    /// The face being read: each corner's index into `values`, if it names one.
+    face: Vec<Option<usize>>,
+}
+
+impl TexCoords {
+    /// Records the `vt` index `i` (from 1, or negative from the end) of the face's corner
+    /// being read, already checked to exist when negative.
+    fn corner(&mut self, i: i64) {
+        let index = if i > 0 {
+            usize::try_from(i - 1).ok()
+        } else {
+            usize::try_from(i.unsigned_abs())
+                .ok()
+                .and_then(|back| self.values.len().checked_sub(back))
+        };
+        if let Some(last) = self.face.last_mut() {
+            *last = index;
+        }
+    }
+
+    /// Ends a face of `n ≥ 3` corners whose first triangle is `first`: its fan of
+    /// triangles `(0, k, k + 1)`, as tobj triangulates, each with its corners' coordinates
+    /// where the face gives them all.
+    fn end_face(&mut self, first: usize) {
+        let corners: Option<Vec<[f64; 2]>> = self
+            .face
+            .iter()
+            .map(|i| i.and_then(|i| self.values.get(i).copied()))
+            .collect();
+        let n = self.face.len();
+        match corners {
+            Some(c) => {
+                if self.triangles.is_empty() {
+                    self.triangles.resize(first, None);
+                }
+                self.triangles
+                    .extend((1..n - 1).map(|k| Some([c[0], c[k], c[k + 1]])));
+            }
+            None if !self.triangles.is_empty() => {
+                self.triangles.extend((1..n - 1).map(|_| None));
+            }
+            None => {}
+        }
+        self.face.clear();
+    }
 }
 
 struct MaterialRun {
@@ -116,6 +175,7 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             vertices: [base + c[0], base + c[1], base + c[2]],
             material: None,
             temperature_k: None,
+            uv: None,
         }));
     }
     if triangles.len() != scan.triangles {
@@ -140,12 +200,17 @@ pub fn read_obj(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Mes
             material = run.material;
         }
         t.material = material;
+        t.uv = scan.texcoords.triangles.get(i).copied().flatten();
+    }
+    let mut materials = scan.materials;
+    for m in &mut materials {
+        m.image = scan.images.get(&m.name).cloned();
     }
     Ok(Mesh {
         file: file.to_owned(),
         positions,
         triangles,
-        materials: scan.materials,
+        materials,
         warnings: scan.warnings,
         origins: scan.origins,
         parts: Vec::new(),
@@ -308,6 +373,8 @@ fn scan(
         origins: Vec::new(),
         warnings: Vec::new(),
         triangles: 0,
+        texcoords: TexCoords::default(),
+        images: HashMap::new(),
     };
     let mut names: HashMap<&str, u32> = HashMap::new();
     let mut vertices = 0usize;
@@ -365,6 +432,7 @@ fn scan(
             Some("f") => {
                 let mut n = 0usize;
                 for w in words {
+                    out.texcoords.face.push(None);
                     let index = w.split('/').next().unwrap_or("");
                     let i: i64 = index
                         .parse()
@@ -405,13 +473,18 @@ fn scan(
                                 ),
                             ));
                         }
+                        if what == "texture coordinate" {
+                            out.texcoords.corner(i);
+                        }
                     }
                     n += 1;
                 }
                 if n < 3 {
+                    out.texcoords.face.clear();
                     skipped_short_faces += 1;
                     continue;
                 }
+                out.texcoords.end_face(out.triangles);
                 let first = u32::try_from(out.triangles)
                     .map_err(|_| err(line, "more than 2^32 triangles in one OBJ".into()))?;
                 if !run_started {
@@ -471,6 +544,7 @@ fn scan(
                                 column: Some(line.len() - line.trim_start().len() + 1),
                                 part: None,
                             },
+                            image: None,
                         });
                         index
                     }
@@ -482,7 +556,10 @@ fn scan(
             }
             Some("mtllib") => {
                 let name = line.trim_start()["mtllib".len()..].trim();
-                check_mtl(file, text, at(name), name, base_dir, &mut out.warnings)?;
+                let images = check_mtl(file, text, at(name), name, base_dir, &mut out.warnings)?;
+                for (material, image) in images {
+                    out.images.entry(material).or_insert(image);
+                }
             }
             Some(kind @ ("vn" | "vt")) => {
                 // What tobj requires (and otherwise reports at 1:1): u v for a texture
@@ -495,11 +572,21 @@ fn scan(
                     (3, "a normal (x y z)")
                 };
                 let mut found = 0;
+                let mut uv = [0.0; 2];
                 for w in words.take(need) {
-                    if w.parse::<f64>().is_err() {
+                    let Ok(x) = w.parse::<f64>() else {
                         return Err(err(w, format!("expected a number, found `{w}`")));
+                    };
+                    if kind == "vt" && !x.is_finite() {
+                        return Err(err(w, format!("expected a finite number, found `{w}`")));
+                    }
+                    if let Some(slot) = uv.get_mut(found) {
+                        *slot = x;
                     }
                     found += 1;
+                }
+                if kind == "vt" {
+                    out.texcoords.values.push(uv);
                 }
                 if found < need {
                     return Err(ParseError::at_offset(
@@ -522,8 +609,10 @@ fn scan(
 }
 
 /// An `mtllib` must be a local relative file that stays in the OBJ's directory. It is
-/// parsed when present, so that a broken MTL is reported; its contents (colours,
-/// textures) mean nothing in the thermal band.
+/// parsed when present, so that a broken MTL is reported; its colours mean nothing in the
+/// thermal band, but the image each material's `map_Kd` names is returned (material name,
+/// image path relative to the OBJ's folder), checked as the `mtllib` is: relative to the
+/// MTL's folder, and never out of the OBJ's.
 fn check_mtl(
     file: &str,
     text: &str,
@@ -531,7 +620,7 @@ fn check_mtl(
     name: &str,
     base_dir: Option<&Path>,
     warnings: &mut Vec<String>,
-) -> Result<(), ParseError> {
+) -> Result<Vec<(String, String)>, ParseError> {
     let refused = |why| {
         ParseError::at_span(
             file,
@@ -546,7 +635,7 @@ fn check_mtl(
         warnings.push(format!(
             "{file}: mtllib `{name}` not read (the OBJ came from standard input); material names come from `usemtl`"
         ));
-        return Ok(());
+        return Ok(Vec::new());
     };
     let full = super::gltf_read::inside(dir, &path, name).map_err(refused)?;
     match crate::file::read_file(&full) {
@@ -555,17 +644,33 @@ fn check_mtl(
             let mtl_text = crate::canonical::utf8(&mtl_name, &bytes)?;
             check_mtl_lines(&mtl_name, mtl_text)?;
             let mut reader = std::io::BufReader::new(bytes.as_slice());
-            tobj::load_mtl_buf(&mut reader).map_err(|e| {
+            let (materials, _) = tobj::load_mtl_buf(&mut reader).map_err(|e| {
                 ParseError::at_offset(&mtl_name, mtl_text, 0, format!("malformed MTL: {e}"))
             })?;
-            Ok(())
+            let mtl_dir = path.parent().unwrap_or(Path::new(""));
+            materials
+                .into_iter()
+                .filter_map(|m| m.diffuse_texture.map(|image| (m.name, image)))
+                .map(|(material, image)| {
+                    let refused = |why: String| {
+                        let at = mtl_text.find(image.as_str()).unwrap_or(0);
+                        ParseError::at_span(&mtl_name, mtl_text, at, image.len().max(1), why)
+                    };
+                    let rel = super::gltf_read::local_relative_path(&image)
+                        .map(|p| mtl_dir.join(p))
+                        .map_err(|why| refused(format!("map_Kd {why}")))?;
+                    super::gltf_read::inside(dir, &rel, &image)
+                        .map_err(|why| refused(format!("map_Kd {why}")))?;
+                    Ok((material, super::slash_path(&rel)))
+                })
+                .collect()
         }
         Err(_) => {
             warnings.push(format!(
                 "{file}: mtllib `{name}` not found at {}; material names come from `usemtl`",
                 full.display()
             ));
-            Ok(())
+            Ok(Vec::new())
         }
     }
 }

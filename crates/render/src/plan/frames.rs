@@ -181,16 +181,18 @@ impl Plan {
         };
         let sun = sun_of(&base).map_err(said)?;
         let precomputed = (air.precomputed)(kind, count).map_err(said)?;
-        let mut tracer = Tracer::with_sub_bands(&scene, &self.materials, band, precomputed)
-            .and_then(|t| t.with_sun(sun))
-            .map_err(|e| miette!("{e}"))
-            .wrap_err_with(|| {
-                format!(
-                    "cannot trace `{}` with `{}`",
-                    self.scene_name, self.materials_name
-                )
-            })?
-            .with_path_terms(base.path_terms);
+        let maps = self.maps.clone();
+        let mut tracer =
+            Tracer::with_sub_bands_and_maps(&scene, &self.materials, band, precomputed, maps)
+                .and_then(|t| t.with_sun(sun))
+                .map_err(|e| miette!("{e}"))
+                .wrap_err_with(|| {
+                    format!(
+                        "cannot trace `{}` with `{}`",
+                        self.scene_name, self.materials_name
+                    )
+                })?
+                .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
         // With declared uncertainties each frame keeps the budget's charges, per input.
         tracer = tracer.with_budget_groups(self.uncertainties.as_ref().zip(scene.as_ref()).map(
