@@ -693,9 +693,8 @@ fn probe_full(run: &Daylight, band: &str, col: usize, row: usize) -> f64 {
 
 #[test]
 fn the_daylight_pipeline_lights_the_scene_as_hand_geometry_and_the_atmosphere_say() {
+    // Its time is said below, not held: speed is the benchmarks' to measure.
     let run = daylight();
-    // The whole pipeline, LOWTRAN7's runs included, in CI's few minutes on 2 cores.
-    assert!(run.secs < 300.0, "{} s", run.secs);
     let a = canonical::read_spectral_atmosphere(
         "noon.spa",
         &std::fs::read(run.out("noon.spa")).unwrap(),

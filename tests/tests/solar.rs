@@ -265,7 +265,6 @@ fn direct_sunlight_is_lowtran7s_transmitted_irradiance_times_the_cosine() {
         "solar constant of LOWTRAN7's spectrum: {e0:.1} W m-2 on day {DAY}; build and runs \
          {secs:.1} s"
     );
-    assert!(secs < 60.0, "{secs} s");
 }
 
 /// flatten + plan for the quickstart scene into `dir`, with `extra` flags.
@@ -1041,7 +1040,6 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     );
     let secs = start.elapsed().as_secs_f64();
     eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
-    assert!(secs < 60.0, "{secs} s");
 }
 
 #[test]
