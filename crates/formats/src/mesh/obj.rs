@@ -360,6 +360,43 @@ impl BufRead for CheckedText<'_> {
     }
 }
 
+/// One line of an OBJ: its index (from 0), its first byte's offset in the file, and its
+/// text without the line's end.
+#[derive(Clone, Copy)]
+struct Line<'t> {
+    index: usize,
+    start: usize,
+    text: &'t str,
+}
+
+impl Line<'_> {
+    /// The file offset of `token`, a slice of this line.
+    fn at(&self, token: &str) -> usize {
+        self.start + (token.as_ptr() as usize - self.text.as_ptr() as usize)
+    }
+
+    /// The column (from 1) of the line's first word, past any indentation.
+    fn indent_column(&self) -> usize {
+        self.text.len() - self.text.trim_start().len() + 1
+    }
+}
+
+/// The scan's running state: what the lines so far have defined and gathered.
+struct Scanner<'t> {
+    file: &'t str,
+    text: &'t str,
+    base_dir: Option<&'t Path>,
+    out: Scan,
+    names: HashMap<&'t str, u32>,
+    vertices: usize,
+    texcoords: usize,
+    normals: usize,
+    skipped_short_faces: usize,
+    /// The material of the last `usemtl`, and whether a run with it has been started.
+    current_material: Option<u32>,
+    run_started: bool,
+}
+
 /// Our pass over the text, publishing its progress to `checked` as it goes.
 fn scan(
     file: &str,
@@ -367,245 +404,319 @@ fn scan(
     base_dir: Option<&Path>,
     checked: &Checked,
 ) -> Result<Scan, ParseError> {
-    let mut out = Scan {
-        materials: Vec::new(),
-        material_runs: Vec::new(),
-        origins: Vec::new(),
-        warnings: Vec::new(),
-        triangles: 0,
-        texcoords: TexCoords::default(),
-        images: HashMap::new(),
+    let mut s = Scanner {
+        file,
+        text,
+        base_dir,
+        out: Scan {
+            materials: Vec::new(),
+            material_runs: Vec::new(),
+            origins: Vec::new(),
+            warnings: Vec::new(),
+            triangles: 0,
+            texcoords: TexCoords::default(),
+            images: HashMap::new(),
+        },
+        names: HashMap::new(),
+        vertices: 0,
+        texcoords: 0,
+        normals: 0,
+        skipped_short_faces: 0,
+        current_material: None,
+        run_started: false,
     };
-    let mut names: HashMap<&str, u32> = HashMap::new();
-    let mut vertices = 0usize;
-    let (mut texcoords, mut normals) = (0usize, 0usize);
     let mut offset = 0usize;
-    let mut skipped_short_faces = 0usize;
-    // The material of the last `usemtl`, and whether a run with it has been started.
-    let mut current_material: Option<u32> = None;
-    let mut run_started = false;
     let mut published = 0usize;
-    for (line_index, raw) in text.split_inclusive('\n').enumerate() {
-        let line_start = offset;
+    for (index, raw) in text.split_inclusive('\n').enumerate() {
+        let start = offset;
         // Every line before this one is accepted.
-        if line_start - published >= Checked::STEP {
-            checked.publish(line_start);
-            published = line_start;
+        if start - published >= Checked::STEP {
+            checked.publish(start);
+            published = start;
         }
         offset += raw.len();
-        let line = raw.trim_end_matches(['\n', '\r']);
-        let at = |token: &str| line_start + (token.as_ptr() as usize - line.as_ptr() as usize);
-        let err = |token: &str, msg: String| {
-            ParseError::at_span(file, text, at(token), token.len().max(1), msg)
+        let line = Line {
+            index,
+            start,
+            text: raw.trim_end_matches(['\n', '\r']),
         };
-        let mut words = line.split_whitespace();
+        let mut words = line.text.split_whitespace();
         match words.next() {
-            Some("v") => {
-                for axis in ["x", "y", "z"] {
-                    let Some(w) = words.next() else {
-                        return Err(ParseError::at_offset(
-                            file,
-                            text,
-                            line_start + line.len(),
-                            format!(
-                                "expected the vertex's {axis} coordinate, found the end of the line"
-                            ),
-                        ));
-                    };
-                    let v: f64 = w.parse().map_err(|_| {
-                        err(
-                            w,
-                            format!(
-                                "expected a number for the vertex's {axis} coordinate, found `{w}`"
-                            ),
-                        )
-                    })?;
-                    if !v.is_finite() {
-                        return Err(err(
-                            w,
-                            format!("expected a finite {axis} coordinate, found `{w}`"),
-                        ));
-                    }
-                }
-                vertices += 1;
-            }
-            Some("f") => {
-                let mut n = 0usize;
-                for w in words {
-                    out.texcoords.face.push(None);
-                    let index = w.split('/').next().unwrap_or("");
-                    let i: i64 = index
-                        .parse()
-                        .map_err(|_| err(w, format!("expected a vertex index, found `{w}`")))?;
-                    let ok = if i > 0 {
-                        (i as u64) <= vertices as u64
-                    } else {
-                        i != 0 && i.unsigned_abs() <= vertices as u64
-                    };
-                    if !ok {
-                        return Err(err(
-                            w,
-                            format!(
-                                "vertex index {i} does not exist: {vertices} vertices are defined before this face (indices count from 1, negative ones from the end)"
-                            ),
-                        ));
-                    }
-                    // tobj 4.0.5 turns a texture or normal index of 0, or a negative one that
-                    // reaches before the first, into an index near 2^64 and overflows on it
-                    // (a panic with overflow checks); positive ones it bounds-checks itself.
-                    let mut parts = w.split('/').skip(1);
-                    for (what, defined) in [("texture coordinate", texcoords), ("normal", normals)]
-                    {
-                        let Some(part) = parts.next().filter(|p| !p.is_empty()) else {
-                            continue;
-                        };
-                        let i: i64 = part.parse().map_err(|_| {
-                            err(
-                                w,
-                                format!("expected a {what} index in `{w}`, found `{part}`"),
-                            )
-                        })?;
-                        if i == 0 || (i < 0 && i.unsigned_abs() > defined as u64) {
-                            return Err(err(
-                                w,
-                                format!(
-                                    "{what} index {i} does not exist: {defined} are defined before this face (indices count from 1, negative ones from the end)"
-                                ),
-                            ));
-                        }
-                        if what == "texture coordinate" {
-                            out.texcoords.corner(i);
-                        }
-                    }
-                    n += 1;
-                }
-                if n < 3 {
-                    out.texcoords.face.clear();
-                    skipped_short_faces += 1;
-                    continue;
-                }
-                out.texcoords.end_face(out.triangles);
-                let first = u32::try_from(out.triangles)
-                    .map_err(|_| err(line, "more than 2^32 triangles in one OBJ".into()))?;
-                if !run_started {
-                    out.material_runs.push(MaterialRun {
-                        first_triangle: out.triangles,
-                        material: current_material,
-                    });
-                    run_started = true;
-                }
-                // The face's column: where its `f` is (past any indentation).
-                let column =
-                    u32::try_from(line.len() - line.trim_start().len() + 1).unwrap_or(u32::MAX);
-                let line_no = u32::try_from(line_index + 1).unwrap_or(u32::MAX);
-                // A triangle on the line after the last one of a run of triangles, at the
-                // same column, continues that run.
-                let follows = n == 3
-                    && out.origins.last().is_some_and(|o| {
-                        o.lines_follow
-                            && o.column == column
-                            && u64::from(o.line) + u64::from(first - o.first_triangle)
-                                == u64::from(line_no)
-                    });
-                if !follows {
-                    out.origins.push(Origin {
-                        first_triangle: first,
-                        line: line_no,
-                        column,
-                        part: None,
-                        lines_follow: n == 3,
-                    });
-                }
-                out.triangles += n - 2;
-            }
-            Some("usemtl") => {
-                let name = line.trim_start()["usemtl".len()..].trim();
-                if name.is_empty() {
-                    return Err(ParseError::at_offset(
-                        file,
-                        text,
-                        line_start + line.len(),
-                        "expected a material name after `usemtl`",
-                    ));
-                }
-                let index = match names.get(name) {
-                    Some(&index) => index,
-                    None => {
-                        let index = u32::try_from(out.materials.len()).map_err(|_| {
-                            err(name, "more than 2^32 material names in one OBJ".into())
-                        })?;
-                        names.insert(name, index);
-                        out.materials.push(MaterialUse {
-                            name: name.to_owned(),
-                            id: None,
-                            first_use: Location {
-                                file: file.to_owned(),
-                                line: Some(line_index + 1),
-                                column: Some(line.len() - line.trim_start().len() + 1),
-                                part: None,
-                            },
-                            image: None,
-                        });
-                        index
-                    }
-                };
-                if current_material != Some(index) {
-                    current_material = Some(index);
-                    run_started = false;
-                }
-            }
-            Some("mtllib") => {
-                let name = line.trim_start()["mtllib".len()..].trim();
-                let images = check_mtl(file, text, at(name), name, base_dir, &mut out.warnings)?;
-                for (material, image) in images {
-                    out.images.entry(material).or_insert(image);
-                }
-            }
-            Some(kind @ ("vn" | "vt")) => {
-                // What tobj requires (and otherwise reports at 1:1): u v for a texture
-                // coordinate (w optional), x y z for a normal.
-                let (need, what) = if kind == "vt" {
-                    texcoords += 1;
-                    (2, "a texture coordinate (u v)")
-                } else {
-                    normals += 1;
-                    (3, "a normal (x y z)")
-                };
-                let mut found = 0;
-                let mut uv = [0.0; 2];
-                for w in words.take(need) {
-                    let Ok(x) = w.parse::<f64>() else {
-                        return Err(err(w, format!("expected a number, found `{w}`")));
-                    };
-                    if kind == "vt" && !x.is_finite() {
-                        return Err(err(w, format!("expected a finite number, found `{w}`")));
-                    }
-                    if let Some(slot) = uv.get_mut(found) {
-                        *slot = x;
-                    }
-                    found += 1;
-                }
-                if kind == "vt" {
-                    out.texcoords.values.push(uv);
-                }
-                if found < need {
-                    return Err(ParseError::at_offset(
-                        file,
-                        text,
-                        line_start + line.len(),
-                        format!("expected {need} numbers after `{kind}` for {what}, found {found}"),
-                    ));
-                }
-            }
+            Some("v") => s.vertex(line, words)?,
+            Some("f") => s.face(line, words)?,
+            Some("usemtl") => s.usemtl(line)?,
+            Some("mtllib") => s.mtllib(line)?,
+            Some(kind @ ("vn" | "vt")) => s.normal_or_texcoord(line, kind, words)?,
             _ => {}
         }
     }
-    if skipped_short_faces > 0 {
-        out.warnings.push(format!(
-            "{file}: skipped {skipped_short_faces} faces with fewer than three vertices (points and lines)"
+    if s.skipped_short_faces > 0 {
+        s.out.warnings.push(format!(
+            "{file}: skipped {} faces with fewer than three vertices (points and lines)",
+            s.skipped_short_faces
         ));
     }
-    Ok(out)
+    Ok(s.out)
+}
+
+impl<'t> Scanner<'t> {
+    /// An error at `token`, a slice of `line`.
+    fn err(&self, line: Line<'t>, token: &str, msg: String) -> ParseError {
+        ParseError::at_span(
+            self.file,
+            self.text,
+            line.at(token),
+            token.len().max(1),
+            msg,
+        )
+    }
+
+    /// An error at the end of `line`: what it should have held and does not.
+    fn at_end(&self, line: Line<'t>, msg: impl Into<String>) -> ParseError {
+        ParseError::at_offset(self.file, self.text, line.start + line.text.len(), msg)
+    }
+
+    /// `v x y z`: three finite numbers.
+    fn vertex(
+        &mut self,
+        line: Line<'t>,
+        mut words: std::str::SplitWhitespace<'t>,
+    ) -> Result<(), ParseError> {
+        for axis in ["x", "y", "z"] {
+            let Some(w) = words.next() else {
+                return Err(self.at_end(
+                    line,
+                    format!("expected the vertex's {axis} coordinate, found the end of the line"),
+                ));
+            };
+            let v: f64 = w.parse().map_err(|_| {
+                self.err(
+                    line,
+                    w,
+                    format!("expected a number for the vertex's {axis} coordinate, found `{w}`"),
+                )
+            })?;
+            if !v.is_finite() {
+                return Err(self.err(
+                    line,
+                    w,
+                    format!("expected a finite {axis} coordinate, found `{w}`"),
+                ));
+            }
+        }
+        self.vertices += 1;
+        Ok(())
+    }
+
+    /// One corner `v[/vt[/vn]]` of a face: its indices checked against what is defined
+    /// before the face, its texture coordinate's index kept.
+    fn corner(&mut self, line: Line<'t>, w: &'t str) -> Result<(), ParseError> {
+        self.out.texcoords.face.push(None);
+        let index = w.split('/').next().unwrap_or("");
+        let i: i64 = index
+            .parse()
+            .map_err(|_| self.err(line, w, format!("expected a vertex index, found `{w}`")))?;
+        let vertices = self.vertices;
+        let ok = if i > 0 {
+            (i as u64) <= vertices as u64
+        } else {
+            i != 0 && i.unsigned_abs() <= vertices as u64
+        };
+        if !ok {
+            return Err(self.err(
+                line,
+                w,
+                format!(
+                    "vertex index {i} does not exist: {vertices} vertices are defined before this face (indices count from 1, negative ones from the end)"
+                ),
+            ));
+        }
+        // tobj 4.0.5 turns a texture or normal index of 0, or a negative one that reaches
+        // before the first, into an index near 2^64 and overflows on it (a panic with
+        // overflow checks); positive ones it bounds-checks itself.
+        let mut parts = w.split('/').skip(1);
+        for (what, defined) in [
+            ("texture coordinate", self.texcoords),
+            ("normal", self.normals),
+        ] {
+            let Some(part) = parts.next().filter(|p| !p.is_empty()) else {
+                continue;
+            };
+            let i: i64 = part.parse().map_err(|_| {
+                self.err(
+                    line,
+                    w,
+                    format!("expected a {what} index in `{w}`, found `{part}`"),
+                )
+            })?;
+            if i == 0 || (i < 0 && i.unsigned_abs() > defined as u64) {
+                return Err(self.err(
+                    line,
+                    w,
+                    format!(
+                        "{what} index {i} does not exist: {defined} are defined before this face (indices count from 1, negative ones from the end)"
+                    ),
+                ));
+            }
+            if what == "texture coordinate" {
+                self.out.texcoords.corner(i);
+            }
+        }
+        Ok(())
+    }
+
+    /// `f` and its corners: a fan of `n − 2` triangles, in the current material's run,
+    /// located at the face's line and column (a run of one-triangle lines shares one
+    /// origin); fewer than three corners (a point or a line) skipped and counted.
+    fn face(
+        &mut self,
+        line: Line<'t>,
+        words: std::str::SplitWhitespace<'t>,
+    ) -> Result<(), ParseError> {
+        let mut n = 0usize;
+        for w in words {
+            self.corner(line, w)?;
+            n += 1;
+        }
+        let out = &mut self.out;
+        if n < 3 {
+            out.texcoords.face.clear();
+            self.skipped_short_faces += 1;
+            return Ok(());
+        }
+        out.texcoords.end_face(out.triangles);
+        let Ok(first) = u32::try_from(out.triangles) else {
+            return Err(self.err(
+                line,
+                line.text,
+                "more than 2^32 triangles in one OBJ".into(),
+            ));
+        };
+        if !self.run_started {
+            out.material_runs.push(MaterialRun {
+                first_triangle: out.triangles,
+                material: self.current_material,
+            });
+            self.run_started = true;
+        }
+        // The face's column: where its `f` is (past any indentation).
+        let column = u32::try_from(line.indent_column()).unwrap_or(u32::MAX);
+        let line_no = u32::try_from(line.index + 1).unwrap_or(u32::MAX);
+        // A triangle on the line after the last one of a run of triangles, at the same
+        // column, continues that run.
+        let follows = n == 3
+            && out.origins.last().is_some_and(|o| {
+                o.lines_follow
+                    && o.column == column
+                    && u64::from(o.line) + u64::from(first - o.first_triangle) == u64::from(line_no)
+            });
+        if !follows {
+            out.origins.push(Origin {
+                first_triangle: first,
+                line: line_no,
+                column,
+                part: None,
+                lines_follow: n == 3,
+            });
+        }
+        out.triangles += n - 2;
+        Ok(())
+    }
+
+    /// `usemtl NAME`: the material of the faces that follow, numbered by first use.
+    fn usemtl(&mut self, line: Line<'t>) -> Result<(), ParseError> {
+        let name = line.text.trim_start()["usemtl".len()..].trim();
+        if name.is_empty() {
+            return Err(self.at_end(line, "expected a material name after `usemtl`"));
+        }
+        let index = if let Some(&index) = self.names.get(name) {
+            index
+        } else {
+            let Ok(index) = u32::try_from(self.out.materials.len()) else {
+                return Err(self.err(
+                    line,
+                    name,
+                    "more than 2^32 material names in one OBJ".into(),
+                ));
+            };
+            self.names.insert(name, index);
+            self.out.materials.push(MaterialUse {
+                name: name.to_owned(),
+                id: None,
+                first_use: Location {
+                    file: self.file.to_owned(),
+                    line: Some(line.index + 1),
+                    column: Some(line.indent_column()),
+                    part: None,
+                },
+                image: None,
+            });
+            index
+        };
+        if self.current_material != Some(index) {
+            self.current_material = Some(index);
+            self.run_started = false;
+        }
+        Ok(())
+    }
+
+    /// `mtllib NAME`: the library checked, and the image each of its materials names.
+    fn mtllib(&mut self, line: Line<'t>) -> Result<(), ParseError> {
+        let name = line.text.trim_start()["mtllib".len()..].trim();
+        let images = check_mtl(
+            self.file,
+            self.text,
+            line.at(name),
+            name,
+            self.base_dir,
+            &mut self.out.warnings,
+        )?;
+        for (material, image) in images {
+            self.out.images.entry(material).or_insert(image);
+        }
+        Ok(())
+    }
+
+    /// `vn x y z` or `vt u v [w]`: what tobj requires (and otherwise reports at 1:1), a
+    /// texture coordinate's u and v kept.
+    fn normal_or_texcoord(
+        &mut self,
+        line: Line<'t>,
+        kind: &str,
+        words: std::str::SplitWhitespace<'t>,
+    ) -> Result<(), ParseError> {
+        let (need, what) = if kind == "vt" {
+            self.texcoords += 1;
+            (2, "a texture coordinate (u v)")
+        } else {
+            self.normals += 1;
+            (3, "a normal (x y z)")
+        };
+        let mut found = 0;
+        let mut uv = [0.0; 2];
+        for w in words.take(need) {
+            let Ok(x) = w.parse::<f64>() else {
+                return Err(self.err(line, w, format!("expected a number, found `{w}`")));
+            };
+            if kind == "vt" && !x.is_finite() {
+                return Err(self.err(line, w, format!("expected a finite number, found `{w}`")));
+            }
+            if let Some(slot) = uv.get_mut(found) {
+                *slot = x;
+            }
+            found += 1;
+        }
+        if kind == "vt" {
+            self.out.texcoords.values.push(uv);
+        }
+        if found < need {
+            return Err(self.at_end(
+                line,
+                format!("expected {need} numbers after `{kind}` for {what}, found {found}"),
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// An `mtllib` must be a local relative file that stays in the OBJ's directory. It is
