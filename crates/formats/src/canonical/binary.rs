@@ -237,18 +237,13 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
                 ),
             ));
         }
-        let uv = if has_uv_section {
-            let at = uv_start + UV_LEN * i;
-            layout::read_uv(
-                file,
-                &bytes[at..at + UV_LEN],
-                facet_flags & FACET_HAS_UV != 0,
-                uv_start,
-                i,
-            )?
-        } else {
-            None
-        };
+        let uv = layout::read_uv(
+            file,
+            bytes,
+            has_uv_section.then_some(uv_start),
+            facet_flags & FACET_HAS_UV != 0,
+            i,
+        )?;
         out.push(RawFacet {
             vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
             material: MaterialId(u16::from_le_bytes([c[12], c[13]])),

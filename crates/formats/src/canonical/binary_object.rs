@@ -215,18 +215,13 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<Object, ParseError> {
                 format!("facet {i}: expected facet flags within {allowed:#x}, found {flags:#x}"),
             ));
         }
-        let uv = if has_uv_section {
-            let at = uvs_at + UV_LEN * i;
-            layout::read_uv(
-                file,
-                &bytes[at..at + UV_LEN],
-                flags & HAS_UV != 0,
-                uvs_at,
-                i,
-            )?
-        } else {
-            None
-        };
+        let uv = layout::read_uv(
+            file,
+            bytes,
+            has_uv_section.then_some(uvs_at),
+            flags & HAS_UV != 0,
+            i,
+        )?;
         out.push(Facet {
             vertices: [u32_at(c, 0), u32_at(c, 4), u32_at(c, 8)],
             material: MaterialId(u16::from_le_bytes([c[12], c[13]])),

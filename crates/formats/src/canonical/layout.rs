@@ -209,19 +209,26 @@ pub(super) fn write_uvs<T>(
     })
 }
 
-/// The coordinates of facet `i` from its record `c` of the section starting at
-/// `section_at`: `Some` when the facet's flag says it has them, else `None`, and then the
-/// record must be zeros (so that decoding and encoding are inverse).
+/// The coordinates of facet `i`, from its record in the texture-coordinate section of
+/// `bytes` that starts at `section_at` (`None`: the file has no such section, and no
+/// facet has coordinates): `Some` when the facet's flag says it has them, else `None`,
+/// and then the record must be zeros (so that decoding and encoding are inverse). The
+/// section's length is the caller's to have checked.
 ///
 /// # Errors
 /// A facet without coordinates whose record is not zeros, at the record's offset.
 pub(super) fn read_uv(
     file: &str,
-    c: &[u8],
+    bytes: &[u8],
+    section_at: Option<usize>,
     has_uv: bool,
-    section_at: usize,
     i: usize,
 ) -> Result<Option<[[f64; 2]; 3]>, ParseError> {
+    let Some(section_at) = section_at else {
+        return Ok(None);
+    };
+    let at = section_at + UV_LEN * i;
+    let c = &bytes[at..at + UV_LEN];
     if has_uv {
         let x = |k: usize| f64_at(c, 8 * k);
         return Ok(Some([[x(0), x(1)], [x(2), x(3)], [x(4), x(5)]]));
@@ -229,7 +236,7 @@ pub(super) fn read_uv(
     if c.iter().any(|&b| b != 0) {
         return Err(ParseError::in_binary(
             file,
-            section_at + UV_LEN * i,
+            at,
             format!(
                 "facet {i}: expected a texture-coordinate record of zeros, as its flags say it \
                  has none"
