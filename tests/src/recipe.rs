@@ -222,7 +222,12 @@ pub fn scratch_root() -> tempfile::TempDir {
     dir
 }
 
-fn copy_tree(from: &Path, to: &Path) {
+/// Copies the folder `from` to `to`, leaving out what a run writes into a checkout (`out/`,
+/// `build/`, `.irsig-run/` at any depth), which a clone does not have.
+///
+/// # Panics
+/// When a file cannot be copied.
+pub fn copy_tree(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap_or_else(|e| panic!("{}: {e}", to.display()));
     for entry in std::fs::read_dir(from).unwrap_or_else(|e| panic!("{}: {e}", from.display())) {
         let entry = entry.expect("a folder entry");

@@ -85,23 +85,8 @@ fn copy_pipeline(name: &str) -> tempfile::TempDir {
         dir.path().join(format!("{name}.ron")),
     )
     .unwrap();
-    copy_tree(&src.join(name), &dir.path().join(name));
+    recipe::copy_tree(&src.join(name), &dir.path().join(name));
     dir
-}
-
-fn copy_tree(from: &Path, to: &Path) {
-    std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap();
-        if path.is_dir() {
-            if name != "build" {
-                copy_tree(&path, &to.join(name));
-            }
-        } else {
-            std::fs::copy(&path, to.join(name)).unwrap();
-        }
-    }
 }
 
 /// `irsig-run --emit-slurm slurm PIPELINE` in `dir`, then `sh slurm/submit.sh`: the job ids
@@ -505,7 +490,7 @@ fn day() -> tempfile::TempDir {
     let dir = tempfile::tempdir().unwrap();
     let pipelines = repo_root().join("pipelines");
     for data in ["thermal", "quickstart"] {
-        copy_tree(&pipelines.join(data), &dir.path().join(data));
+        recipe::copy_tree(&pipelines.join(data), &dir.path().join(data));
     }
     std::fs::copy(
         repo_root().join("formats/samples/golden-tmy3-aug.epw"),
@@ -600,7 +585,7 @@ fn one_frame_in_16_tiles_through_the_cluster_writes_the_whole_frames_bytes() {
         pipelines.join("quickstart-tiles.ron"),
     )
     .unwrap();
-    copy_tree(
+    recipe::copy_tree(
         &repo_root().join("pipelines/quickstart"),
         &pipelines.join("quickstart"),
     );
