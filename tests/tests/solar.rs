@@ -705,12 +705,22 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     let a = build(&plan_dir, &spa);
     let out = dir.path().join("out");
     std::fs::create_dir(&out).unwrap();
-
     trace_plate(&out, &spa, "night", &[]).success();
+    day_takes_16_sub_bands_unless_asked(&out, &spa);
+    the_beam_and_the_sun_layers_are_the_hand_computed_ones(&out, &a);
+    tiles_of_a_day_merge_to_the_whole_frame(&out, &spa);
+    the_sun_of_a_view_or_a_pipeline_is_the_flags_sun(&out, &spa);
+    suns_the_table_is_not_for_are_refused(&out, &spa);
+    let secs = start.elapsed().as_secs_f64();
+    eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
+}
+
+/// By day the default is 16 sub-bands, said; asked for by name, said nothing about.
+fn day_takes_16_sub_bands_unless_asked(out: &Path, spa: &Path) {
     // By day with no count given the tracer takes 16 sub-bands and says so; one sub-band
     // asked for by name is the band model, said nothing about.
     let sun = ["--sun-zenith-deg", "30", "--sun-azimuth-deg", "120"];
-    let chosen = trace_plate(&out, &spa, "day-16", &sun).success();
+    let chosen = trace_plate(out, spa, "day-16", &sun).success();
     let stderr = String::from_utf8_lossy(&chosen.get_output().stderr).into_owned();
     assert!(
         stderr.contains("by day with no sub-band count given")
@@ -719,8 +729,8 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "a sunlit trace at the default sub-bands should say what it chose: {stderr}"
     );
     let asked = trace_plate(
-        &out,
-        &spa,
+        out,
+        spa,
         "day-16-asked",
         &[&sun[..], &["--sub-bands", "16"]].concat(),
     )
@@ -732,14 +742,20 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "--sub-bands 16 is the default's image by day"
     );
     let quiet = trace_plate(
-        &out,
-        &spa,
+        out,
+        spa,
         "day",
         &[&sun[..], &["--sub-bands", "1"]].concat(),
     )
     .success();
     let stderr = String::from_utf8_lossy(&quiet.get_output().stderr).into_owned();
     assert!(!stderr.contains("sub-band"), "{stderr}");
+}
+
+/// The sun adds τ_sun·(1 − ε)·E·cos θ/π to every pixel of the plate, E by hand from the
+/// atmosphere file's spectra, and the sun's truth layers hold E·cos θ, the whole disk, the
+/// reflected radiance and the sun's share.
+fn the_beam_and_the_sun_layers_are_the_hand_computed_ones(out: &Path, a: &SpectralAtmosphere) {
     let night = layer(&out.join("night.radiance.exr"), "radiance");
     let day = layer(&out.join("day.radiance.exr"), "radiance");
     let truth = out.join("day.truth.exr");
@@ -747,7 +763,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     let eps = layer(&truth, "emissivity");
     assert_eq!(tau, layer(&out.join("night.truth.exr"), "transmission"));
     // The beam on the plate, by hand from the file's spectra: half-way between the rows.
-    let e = direct_by_hand(&a, 4.0, 5.0, PLATE_M);
+    let e = direct_by_hand(a, 4.0, 5.0, PLATE_M);
     let cos = ZENITH_DEG.to_radians().cos();
     let r = (1.0 - EPSILON) * e * cos / std::f64::consts::PI;
     // The sunlight reaches the sensor through the path's transmittance for sunlight, which
@@ -826,11 +842,16 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "sun layers: E {:.6} W m-2, reflected {:.6} W m-2 sr-1, share {:.6}",
         irradiance[0], reflected[0], share[0]
     );
+}
+
+/// Traced in two tiles and merged, the day's truth is the whole frame's, byte for byte.
+fn tiles_of_a_day_merge_to_the_whole_frame(out: &Path, spa: &Path) {
+    let truth = out.join("day.truth.exr");
     // Traced in two tiles and merged, the day's truth is the whole frame's, byte for byte.
     for i in 1..=2 {
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             &format!("tile{i}"),
             &[
                 "--sun-zenith-deg",
@@ -859,11 +880,15 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         std::fs::read(&truth).unwrap(),
         "merged tiles' truth differs from the whole frame's"
     );
+}
 
+/// The same sun from the view file and from a pipeline's `sun` block gives the flags'
+/// pixels, bit for bit; given twice, or other than the table's in the view, it is refused.
+fn the_sun_of_a_view_or_a_pipeline_is_the_flags_sun(out: &Path, spa: &Path) {
     // The same sun from the view file: the same pixels, bit for bit, in every layer (the
     // files' headers differ only by the view file's checksum in the provenance).
     let lit = "Some(Direction(zenith_deg: 30.0, azimuth_deg: 120.0))";
-    trace_plate_lit(&out, &spa, "viewsun", &[], Some(&view_with_sun(lit))).success();
+    trace_plate_lit(out, spa, "viewsun", &[], Some(&view_with_sun(lit))).success();
     let pixels = |path: &Path| -> Vec<(String, Vec<u32>)> {
         irsig_raster::read_exr(&std::fs::read(path).unwrap())
             .unwrap()
@@ -878,7 +903,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
             out.join(format!("viewsun.{file}")),
         );
         assert_eq!(
-            pixels(&a),
+            pixels(a),
             pixels(&b),
             "{file}: the view's sun differs from the flags'"
         );
@@ -887,7 +912,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     // (In a folder of its own: the runner keeps its state beside the pipeline file.)
     let pipe = out.join("pipe");
     std::fs::create_dir(&pipe).unwrap();
-    std::fs::copy(&spa, pipe.join("sunny.spa")).unwrap();
+    std::fs::copy(spa, pipe.join("sunny.spa")).unwrap();
     plate(&pipe);
     std::fs::write(
         pipe.join("lit.ron"),
@@ -913,7 +938,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
             pipe.join(format!("piped/frame.{file}")),
         );
         assert_eq!(
-            pixels(&a),
+            pixels(a),
             pixels(&b),
             "{file}: the pipeline's sun differs from the flags'"
         );
@@ -922,21 +947,21 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     // inside `Some(`, at column 13).
     refused(
         trace_plate_lit(
-            &out,
-            &spa,
+            out,
+            spa,
             "twice",
             &["--sun-zenith-deg", "30", "--sun-azimuth-deg", "120"],
             Some(&view_with_sun(lit)),
         ),
-        &out,
+        out,
         "twice",
         "--sun-zenith-deg",
         &["sun-view-twice.ron:3:13", "both give a sun"],
     );
     // A view's sun other than the table's: refused at its place in the file.
     let other = trace_plate_lit(
-        &out,
-        &spa,
+        out,
+        spa,
         "viewother",
         &[],
         Some(&view_with_sun(
@@ -950,25 +975,29 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
         "{stderr}"
     );
     assert!(!out.join("viewother.radiance.exr").exists());
+}
 
+/// A sun other than the table's, below the horizon, or with shadow rays beside a
+/// tolerance: refused, naming the flag, nothing written.
+fn suns_the_table_is_not_for_are_refused(out: &Path, spa: &Path) {
     // A sun other than the table's, by direction or by time and place (London at noon on
     // the solstice, about 28 deg from the zenith), and a sun below the horizon.
     refused(
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             "other",
             &["--sun-zenith-deg", "31", "--sun-azimuth-deg", "0"],
         ),
-        &out,
+        out,
         "other",
         "--sun-zenith-deg",
         &["31.0000", "30 deg"],
     );
     refused(
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             "london",
             &[
                 "--sun-utc",
@@ -979,27 +1008,27 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
                 "0",
             ],
         ),
-        &out,
+        out,
         "london",
         "--sun-utc",
         &["30 deg"],
     );
     refused(
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             "low",
             &["--sun-zenith-deg", "95", "--sun-azimuth-deg", "0"],
         ),
-        &out,
+        out,
         "low",
         "--sun-zenith-deg",
         &["horizon"],
     );
     refused(
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             "midnight",
             &[
                 "--sun-utc",
@@ -1010,7 +1039,7 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
                 "0",
             ],
         ),
-        &out,
+        out,
         "midnight",
         "--sun-utc",
         &["horizon"],
@@ -1019,8 +1048,8 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
     // them as well is refused.
     refused(
         trace_plate(
-            &out,
-            &spa,
+            out,
+            spa,
             "piloted",
             &[
                 "--sun-zenith-deg",
@@ -1033,13 +1062,11 @@ fn irsig_trace_lights_a_plate_by_the_suns_beam_and_refuses_a_sun_the_table_is_no
                 "0.5",
             ],
         ),
-        &out,
+        out,
         "piloted",
         "--tolerance",
         &["--sun-shadow-rays"],
     );
-    let secs = start.elapsed().as_secs_f64();
-    eprintln!("build, four traces, a merge and five refusals: {secs:.1} s");
 }
 
 #[test]

@@ -2,10 +2,14 @@
 //! spectra collapsed over the band or each sub-band, with the sun's tables by day, and the
 //! tracer built over it once.
 
+use std::sync::Once;
+
+use irsig_model::SpectralAtmosphere;
+
 use super::*;
 
 impl Plan {
-    #[allow(clippy::too_many_lines)]
+    /// Reads and checks the atmosphere asked for, then traces every frame through it.
     pub(super) fn with_atmosphere<R: SubBandModel>(
         &self,
         mut run: RunHash,
@@ -13,7 +17,47 @@ impl Plan {
         split: Option<&Split<'_>>,
         job: &mut Job<'_>,
     ) -> miette::Result<()> {
-        let top_scene = self
+        let request = &self.request.atmosphere;
+        if let AtmosphereRequest::Vacuum {
+            sky_radiance_w_m2_sr,
+        } = *request
+        {
+            return self.trace_vacuum(run, band, sky_radiance_w_m2_sr, job);
+        }
+        let data = self.air_data(split)?;
+        // The sky is precomputed up to the highest sensor or scene point.
+        let top = self
+            .views
+            .iter()
+            .map(|v| v.position_m()[2])
+            .fold(self.scene_top_m()?, f64::max);
+        self.hash_air(&mut run, &data, top);
+        if matches!(self.request.band.band, AnyBand::Total(_)) {
+            let band_um = match &data {
+                AirData::Band(a) => format!("{:?}", a.band_um),
+                AirData::Spectral(..) => "its spectral range".to_owned(),
+            };
+            self.warn(format!(
+                "the `total` band (whole spectrum) is combined with `{}`, whose tables \
+                 cover {band_um} um: facet radiances and path terms are in different bands; \
+                 use this only to check the geometry and the event logic",
+                request.name()
+            ));
+        }
+        match data {
+            AirData::Band(atmosphere) => self.trace_band_tables(run, band, &atmosphere, top, job),
+            AirData::Spectral(spectral, _) => {
+                let Some(split) = split else {
+                    return Err(air::no_spectra(request.name(), SubBandCount::Full));
+                };
+                self.trace_spectra(run, band, &spectral, split, top, job)
+            }
+        }
+    }
+
+    /// The highest point of the scene, metres (0 for a scene below the ground).
+    fn scene_top_m(&self) -> miette::Result<f64> {
+        Ok(self
             .scene
             .lock()
             .map_err(|_| poisoned())?
@@ -22,37 +66,47 @@ impl Plan {
             .positions_m
             .iter()
             .map(|p| p[2])
-            .fold(0.0_f64, f64::max);
-        let request = &self.request.atmosphere;
-        let name = request.name().to_owned();
-        if let AtmosphereRequest::Vacuum {
-            sky_radiance_w_m2_sr,
-        } = *request
-        {
-            if let Some(s) = &self.request.sun {
-                return Err(sunlight::no_solar_table(
-                    s,
-                    "none",
-                    "a vacuum",
-                    self.request.spelling,
-                ));
-            }
-            let vacuum = Vacuum {
-                sky_radiance_w_m2_sr,
-            };
-            run.field("atmosphere", format!("{vacuum:?}").as_bytes());
-            let (b1, b2) = (band.clone(), band.clone());
-            let air = Air {
-                kinds: None,
-                spectral: false,
-                precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
-                pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
-                data_error_k: None,
-                sun: no_sun(),
-                day_default: None,
-            };
-            return self.trace_all(&run, band, &air, job);
+            .fold(0.0_f64, f64::max))
+    }
+
+    /// No air: the sky's radiance as given, no sun.
+    fn trace_vacuum<R: SubBandModel>(
+        &self,
+        mut run: RunHash,
+        band: R,
+        sky_radiance_w_m2_sr: f64,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        if let Some(s) = &self.request.sun {
+            return Err(sunlight::no_solar_table(
+                s,
+                "none",
+                "a vacuum",
+                self.request.spelling,
+            ));
         }
+        let vacuum = Vacuum {
+            sky_radiance_w_m2_sr,
+        };
+        run.field("atmosphere", format!("{vacuum:?}").as_bytes());
+        let (b1, b2) = (band.clone(), band.clone());
+        let air = Air {
+            kinds: None,
+            spectral: false,
+            precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
+            pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
+            data_error_k: None,
+            sun: no_sun(),
+            day_default: None,
+        };
+        self.trace_all(&run, band, &air, job)
+    }
+
+    /// The atmosphere's data, read in the form the band needs and checked against the
+    /// band, the sun and the cameras.
+    fn air_data(&self, split: Option<&Split<'_>>) -> miette::Result<AirData> {
+        let request = &self.request.atmosphere;
+        let name = request.name();
         // A built-in is read in spectral form when sub-bands may be asked for.
         let settings = &self.request.settings;
         let wants_spectra = split.is_some()
@@ -101,7 +155,7 @@ impl Plan {
             };
             return Err(sunlight::no_solar_table(
                 s,
-                &name,
+                name,
                 &format!(
                     "{what}; the built-ins, 8-14 um and 3-5 um, are for night only, since by \
                      day the sun's geometry is part of the atmosphere"
@@ -127,14 +181,13 @@ impl Plan {
         if let AtmosphereRequest::Builtin(name) = request {
             air::check_builtin_top(name, &self.views)?;
         }
-        // The sky is precomputed up to the highest sensor or scene point.
-        let top = self
-            .views
-            .iter()
-            .map(|v| v.position_m()[2])
-            .fold(top_scene, f64::max);
-        // The sky's precomputed levels depend on the top: so do the pixels.
-        match &data {
+        Ok(data)
+    }
+
+    /// Adds what of the air decides the pixels to the run's hash: the data, the top its sky
+    /// is precomputed to, and the sun.
+    fn hash_air(&self, run: &mut RunHash, data: &AirData, top: f64) {
+        match data {
             AirData::Band(atmosphere) => run.field(
                 "atmosphere",
                 format!("{atmosphere:?} top {:x}", top.to_bits()).as_bytes(),
@@ -158,193 +211,225 @@ impl Plan {
                 .as_bytes(),
             );
         }
-        if matches!(self.request.band.band, AnyBand::Total(_)) {
-            let band_um = match &data {
-                AirData::Band(a) => format!("{:?}", a.band_um),
-                AirData::Spectral(..) => "its spectral range".to_owned(),
-            };
-            self.warn(format!(
-                "the `total` band (whole spectrum) is combined with `{name}`, whose tables \
-                 cover {band_um} um: facet radiances and path terms are in different bands; \
-                 use this only to check the geometry and the event logic"
+    }
+
+    /// Band tables: the band model only, at night.
+    fn trace_band_tables<R: SubBandModel>(
+        &self,
+        run: RunHash,
+        band: R,
+        atmosphere: &irsig_model::Atmosphere,
+        top: f64,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        let name = self.request.atmosphere.name();
+        if let Some(s) = &self.request.sun {
+            return Err(sunlight::no_solar_table(
+                s,
+                name,
+                "a band atmosphere (tables integrated over a band, without spectra)",
+                self.request.spelling,
             ));
         }
-        let model_name = name.clone();
-        let model = move |atmosphere: &irsig_model::Atmosphere, kind: ModelKind| {
-            AtmosphereModel::new(atmosphere, kind)
-                .map_err(|e| miette!("{e}"))
-                .wrap_err_with(|| format!("cannot build the {kind} model of `{model_name}`"))
+        let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+            .into_iter()
+            .filter(|&k| AtmosphereModel::new(atmosphere, k).is_ok())
+            .collect();
+        let models = Models::new(self, top);
+        let models = &models;
+        let (b1, b2) = (band.clone(), band.clone());
+        let air = Air {
+            kinds: Some(kinds),
+            spectral: false,
+            precomputed: Box::new(move |kind, count| {
+                whole(&b1, name, count, || {
+                    Ok(models.precompute(models.model(atmosphere, kind)?))
+                })
+            }),
+            pilot: Box::new(move |kind, count| {
+                whole(&b2, name, count, || {
+                    Ok(PrecomputedAtmosphere::new(
+                        models.model(atmosphere, kind)?,
+                        top,
+                    ))
+                })
+            }),
+            data_error_k: data_error_k(
+                atmosphere
+                    .slant
+                    .as_ref()
+                    .and_then(|s| s.interpolation_residual.as_ref()),
+            ),
+            sun: no_sun(),
+            day_default: None,
         };
-        let warned = std::sync::Once::new();
-        let precompute = |model: AtmosphereModel| {
-            let air = PrecomputedAtmosphere::new(model, top);
-            warned.call_once(|| {
-                for w in air.warnings() {
-                    self.warn(format!("{name}: {w}"));
-                }
-            });
-            air
-        };
-        match data {
-            AirData::Band(atmosphere) => {
-                if let Some(s) = &self.request.sun {
-                    return Err(sunlight::no_solar_table(
-                        s,
-                        &name,
-                        "a band atmosphere (tables integrated over a band, without spectra)",
-                        self.request.spelling,
-                    ));
-                }
-                let data_error_k = data_error_k(
-                    atmosphere
-                        .slant
-                        .as_ref()
-                        .and_then(|s| s.interpolation_residual.as_ref()),
-                );
-                let kinds: Vec<ModelKind> =
-                    [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
-                        .into_iter()
-                        .filter(|&k| AtmosphereModel::new(&atmosphere, k).is_ok())
-                        .collect();
-                let (a1, a2) = (atmosphere.clone(), atmosphere);
-                let (m1, m2) = (model.clone(), model);
-                let (b1, b2) = (band.clone(), band.clone());
-                let (n1, n2) = (name.clone(), name.clone());
-                let precompute = &precompute;
-                let air = Air {
-                    kinds: Some(kinds),
-                    spectral: false,
-                    precomputed: Box::new(move |kind, count| {
-                        whole(&b1, &n1, count, || Ok(precompute(m1(&a1, kind)?)))
-                    }),
-                    pilot: Box::new(move |kind, count| {
-                        whole(&b2, &n2, count, || {
-                            Ok(PrecomputedAtmosphere::new(m2(&a2, kind)?, top))
-                        })
-                    }),
-                    data_error_k,
-                    sun: no_sun(),
-                    day_default: None,
-                };
-                self.trace_all(&run, band, &air, job)
+        self.trace_all(&run, band, &air, job)
+    }
+
+    /// Spectra: collapsed over the band or each sub-band of a count (each count once), with
+    /// the sun's beams and scattered sunlight by day.
+    fn trace_spectra<R: SubBandModel>(
+        &self,
+        run: RunHash,
+        band: R,
+        spectral: &SpectralAtmosphere,
+        split: &Split<'_>,
+        top: f64,
+        job: &mut Job<'_>,
+    ) -> miette::Result<()> {
+        let name = self.request.atmosphere.name();
+        // Each count's collapsed sub-bands, made once, from the atmosphere checked once.
+        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
+        let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
+        let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
+            if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
+                return Ok(c.clone());
             }
-            AirData::Spectral(spectral, _) => {
-                let Some(split) = split else {
-                    return Err(air::no_spectra(&name, SubBandCount::Full));
-                };
-                // Each count's collapsed sub-bands, made once, from the atmosphere checked
-                // once.
-                let collapser =
-                    irsig_atmosphere::Collapser::new(&spectral).map_err(|e| miette!("{e}"))?;
-                let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
-                let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
-                    if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
-                        return Ok(c.clone());
-                    }
-                    let c = Arc::new(split.collapse(collapser, count)?);
-                    cache
-                        .lock()
-                        .map_err(|_| poisoned())?
-                        .insert(count, c.clone());
-                    Ok(c)
-                };
-                let data_error_k = data_error_k(
-                    spectral
-                        .slant
-                        .as_ref()
-                        .and_then(|s| s.interpolation_residual.as_ref()),
-                );
-                let one = collapsed(SubBandCount::BAND)?;
-                let kinds: Vec<ModelKind> =
-                    [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
-                        .into_iter()
-                        .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
-                        .collect();
-                let collapsed = &collapsed;
-                let precompute = &precompute;
-                let materials = &self.materials;
-                let scatter = crate::sun::by_day(
-                    self.request.sun.as_ref(),
-                    self.sun.as_ref(),
-                    &spectral,
-                    &name,
-                    |w| self.warn(w),
-                );
-                let spectral_ref = &spectral;
-                // The pilot evaluates its paths in every sub-band: the precomputed sky costs
-                // a few ms per sub-band (table model) and saves a slant integration per ray,
-                // so the pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
-                // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its
-                // cost). Sub-bands are precomputed in parallel; `collect` keeps their order.
-                let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
-                    collapsed(count)?
-                        .par_iter()
-                        .map(|(b, a)| {
-                            let m = model(a, kind)?;
-                            let atmosphere = if pilot && !count.is_band() {
-                                PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
-                            } else {
-                                precompute(m)
-                            };
-                            let atmosphere =
-                                crate::sun::with_slabs(atmosphere, spectral_ref, *split, b)?;
-                            Ok(SubBand {
-                                band: R::of_band(b)?,
-                                atmosphere: crate::sun::scattered(
-                                    atmosphere,
-                                    scatter,
-                                    spectral_ref,
-                                    *split,
-                                    b,
-                                )?,
-                                emissivity: crate::materials::sub_band_tables(materials, b)?,
-                            })
-                        })
-                        .collect()
-                };
-                let sub_bands = &sub_bands;
-                // The sun's beams over the same sub-bands; the table is checked now, before
-                // anything is traced.
-                let spectral = &spectral;
-                let lit = |count: SubBandCount| -> miette::Result<Option<irsig_tracer::Sun>> {
-                    let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
-                        return Ok(None);
+            let c = Arc::new(split.collapse(collapser, count)?);
+            cache
+                .lock()
+                .map_err(|_| poisoned())?
+                .insert(count, c.clone());
+            Ok(c)
+        };
+        let one = collapsed(SubBandCount::BAND)?;
+        let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+            .into_iter()
+            .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
+            .collect();
+        let collapsed = &collapsed;
+        let models = Models::new(self, top);
+        let models = &models;
+        let materials = &self.materials;
+        let scatter = crate::sun::by_day(
+            self.request.sun.as_ref(),
+            self.sun.as_ref(),
+            spectral,
+            name,
+            |w| self.warn(w),
+        );
+        // The pilot evaluates its paths in every sub-band: the precomputed sky costs a few
+        // ms per sub-band (table model) and saves a slant integration per ray, so the
+        // pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
+        // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its cost).
+        // Sub-bands are precomputed in parallel; `collect` keeps their order.
+        let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
+            collapsed(count)?
+                .par_iter()
+                .map(|(b, a)| {
+                    let m = models.model(a, kind)?;
+                    let atmosphere = if pilot && !count.is_band() {
+                        PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
+                    } else {
+                        models.precompute(m)
                     };
-                    let c = collapsed(count)?;
-                    sunlight::sun(
-                        request,
-                        position,
-                        &name,
-                        spectral,
-                        split,
-                        (count, &c),
-                        self.request.spelling,
-                    )
-                    .map(Some)
-                };
-                lit(SubBandCount::BAND)?;
-                // By day with no count asked for, chosen or piloted: enough sub-bands for
-                // the sunlight, said once.
-                let day_default = (self.request.sun.is_some()
-                    && self.request.settings.sub_bands.is_none()
-                    && self.request.tolerance.is_none()
-                    && self.decision.is_none())
-                .then(|| {
-                    let count = sunlight::day_sub_bands(spectral, split);
-                    self.warn(sunlight::day_sub_bands_note(self.request.spelling, count));
-                    count
-                });
-                let air = Air {
-                    kinds: Some(kinds),
-                    spectral: true,
-                    day_default,
-                    precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
-                    pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
-                    data_error_k,
-                    sun: Box::new(lit),
-                };
-                self.trace_all(&run, band, &air, job)
-            }
+                    let atmosphere = crate::sun::with_slabs(atmosphere, spectral, *split, b)?;
+                    Ok(SubBand {
+                        band: R::of_band(b)?,
+                        atmosphere: crate::sun::scattered(
+                            atmosphere, scatter, spectral, *split, b,
+                        )?,
+                        emissivity: crate::materials::sub_band_tables(materials, b)?,
+                    })
+                })
+                .collect()
+        };
+        let sub_bands = &sub_bands;
+        // The sun's beams over the same sub-bands; the table is checked now, before
+        // anything is traced.
+        let lit = move |count: SubBandCount| -> miette::Result<Option<irsig_tracer::Sun>> {
+            let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
+                return Ok(None);
+            };
+            let c = collapsed(count)?;
+            sunlight::sun(
+                request,
+                position,
+                name,
+                spectral,
+                split,
+                (count, &c),
+                self.request.spelling,
+            )
+            .map(Some)
+        };
+        lit(SubBandCount::BAND)?;
+        let air = Air {
+            kinds: Some(kinds),
+            spectral: true,
+            day_default: self.day_default(spectral, split),
+            precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
+            pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
+            data_error_k: data_error_k(
+                spectral
+                    .slant
+                    .as_ref()
+                    .and_then(|s| s.interpolation_residual.as_ref()),
+            ),
+            sun: Box::new(lit),
+        };
+        self.trace_all(&run, band, &air, job)
+    }
+
+    /// By day with no count asked for, chosen or piloted: enough sub-bands for the
+    /// sunlight, said once.
+    fn day_default(
+        &self,
+        spectral: &SpectralAtmosphere,
+        split: &Split<'_>,
+    ) -> Option<SubBandCount> {
+        (self.request.sun.is_some()
+            && self.request.settings.sub_bands.is_none()
+            && self.request.tolerance.is_none()
+            && self.decision.is_none())
+        .then(|| {
+            let count = sunlight::day_sub_bands(spectral, split);
+            self.warn(sunlight::day_sub_bands_note(self.request.spelling, count));
+            count
+        })
+    }
+}
+
+/// Builds a model kind of the run's atmosphere and precomputes its sky to the run's top,
+/// saying the precomputation's warnings once.
+struct Models<'p> {
+    plan: &'p Plan,
+    top_m: f64,
+    warned: Once,
+}
+
+impl<'p> Models<'p> {
+    fn new(plan: &'p Plan, top_m: f64) -> Self {
+        Self {
+            plan,
+            top_m,
+            warned: Once::new(),
         }
+    }
+
+    fn model(
+        &self,
+        atmosphere: &irsig_model::Atmosphere,
+        kind: ModelKind,
+    ) -> miette::Result<AtmosphereModel> {
+        AtmosphereModel::new(atmosphere, kind)
+            .map_err(|e| miette!("{e}"))
+            .wrap_err_with(|| {
+                format!(
+                    "cannot build the {kind} model of `{}`",
+                    self.plan.request.atmosphere.name()
+                )
+            })
+    }
+
+    fn precompute(&self, model: AtmosphereModel) -> PrecomputedAtmosphere {
+        let air = PrecomputedAtmosphere::new(model, self.top_m);
+        self.warned.call_once(|| {
+            for w in air.warnings() {
+                self.plan
+                    .warn(format!("{}: {w}", self.plan.request.atmosphere.name()));
+            }
+        });
+        air
     }
 }

@@ -130,7 +130,8 @@ impl Plan {
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 
-    #[allow(clippy::too_many_lines)]
+    /// Builds the tracer once and runs the job with it: a probe, converged references, or
+    /// every frame rendered and turned into its files.
     pub(super) fn trace_all<
         R: BandModel + Clone + Send + Sync,
         A: Atmosphere,
@@ -142,6 +143,66 @@ impl Plan {
         air: &Air<'_, R, A, S>,
         job: &mut Job<'_>,
     ) -> miette::Result<()> {
+        let (tracer, scene, base) = self.build_tracer(band, air)?;
+        let cameras = self
+            .views
+            .iter()
+            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
+            .collect::<miette::Result<Vec<_>>>()?;
+        match job {
+            Job::Probe { column, row, text } => {
+                let cam = cameras
+                    .first()
+                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
+                let s = tracer
+                    .probe(cam, &base.options, *column, *row)
+                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
+                let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
+                let sub_bands = tracer.sub_bands();
+                **text = Some(format!(
+                    "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)\n{s}\n\
+                     apparent temperature_k     {t}\n"
+                ));
+                Ok(())
+            }
+            Job::Converge {
+                stop_k,
+                rounds,
+                out,
+            } => {
+                **out = cameras
+                    .iter()
+                    .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
+                    .collect::<Result<_, _>>()
+                    .map_err(|e| miette!("{e}"))?;
+                Ok(())
+            }
+            Job::Render {
+                tile,
+                progress,
+                sink,
+            } => {
+                let frames = Frames {
+                    air,
+                    run,
+                    cameras: &cameras,
+                    scene: scene.as_ref(),
+                    tiles: self.tiles(*tile)?,
+                    whole: tile.is_none(),
+                    progress: *progress,
+                };
+                self.render_frames(tracer, base, &frames, &mut **sink)
+            }
+        }
+    }
+
+    /// The tracer over the settings asked for (or the decision's), lit by day, with the
+    /// budget's groups; the raw scene kept only when the budget reads its facets.
+    fn build_tracer<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+        &self,
+        band: R,
+        air: &Air<'_, R, A, S>,
+    ) -> miette::Result<(Tracer<R, A>, Option<RawScene>, Settings)> {
         let scene = self
             .scene
             .lock()
@@ -157,18 +218,6 @@ impl Plan {
             Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
             None => asked,
         };
-        let (mut kind, mut count) = (base.kind, base.sub_bands);
-        // The sun as the settings have it: left out, or with their shadow rays.
-        let sun_of = |settings: &Settings| -> miette::Result<Option<irsig_tracer::Sun>> {
-            Ok((air.sun)(settings.sub_bands)?
-                .filter(|_| settings.sun_lit)
-                .map(|mut sun| {
-                    if let Some(n) = settings.shadow_rays {
-                        sun.shadow_rays = n;
-                    }
-                    sun
-                }))
-        };
         // A count the decision chose that this atmosphere's grid cannot make is the
         // decision's error, not a flag's.
         let sub_bands_of_decision = self.decision.is_some() && base.sub_bands != asked_sub_bands;
@@ -179,31 +228,52 @@ impl Plan {
                 e
             }
         };
-        let sun = sun_of(&base).map_err(said)?;
-        let precomputed = (air.precomputed)(kind, count).map_err(said)?;
-        let maps = self.maps.clone();
-        let mut tracer =
-            Tracer::with_sub_bands_and_maps(&scene, &self.materials, band, precomputed, maps)
-                .and_then(|t| t.with_sun(sun))
-                .map_err(|e| miette!("{e}"))
-                .wrap_err_with(|| {
-                    format!(
-                        "cannot trace `{}` with `{}`",
-                        self.scene_name, self.materials_name
-                    )
-                })?
-                .with_path_terms(base.path_terms);
+        let sun = sun_of(air, &base).map_err(said)?;
+        let precomputed = (air.precomputed)(base.kind, base.sub_bands).map_err(said)?;
+        let tracer = Tracer::with_sub_bands_and_maps(
+            &scene,
+            &self.materials,
+            band,
+            precomputed,
+            self.maps.clone(),
+        )
+        .and_then(|t| t.with_sun(sun))
+        .map_err(|e| miette!("{e}"))
+        .wrap_err_with(|| {
+            format!(
+                "cannot trace `{}` with `{}`",
+                self.scene_name, self.materials_name
+            )
+        })?
+        .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
         // With declared uncertainties each frame keeps the budget's charges, per input.
-        tracer = tracer.with_budget_groups(self.uncertainties.as_ref().zip(scene.as_ref()).map(
-            |(uncertainties, scene)| {
-                Budget {
-                    uncertainties,
-                    scene,
-                }
-                .groups()
-            },
-        ));
+        let tracer = tracer.with_budget_groups(
+            self.uncertainties
+                .as_ref()
+                .zip(scene.as_ref())
+                .map(|(uncertainties, scene)| {
+                    Budget {
+                        uncertainties,
+                        scene,
+                    }
+                    .groups()
+                }),
+        );
+        Ok((tracer, scene, base))
+    }
+
+    /// Every frame: its settings (piloted when a tolerance is asked for), the tracer moved
+    /// to them, traced and turned into the files the sink wants.
+    fn render_frames<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+        &self,
+        mut tracer: Tracer<R, A>,
+        base: Settings,
+        frames: &Frames<'_, '_, R, A, S>,
+        sink: &mut dyn Sink,
+    ) -> miette::Result<()> {
+        let air = frames.air;
+        let (mut kind, mut count) = (base.kind, base.sub_bands);
         // The materials with a specular share: a reflection that meets one is a mirror
         // seen in a mirror, a class of the decision's own.
         let mirrors: Vec<u16> = self
@@ -213,49 +283,8 @@ impl Plan {
             .filter(|m| m.specular_fraction > 0.0)
             .map(|m| m.id.0)
             .collect();
-        let cameras = self
-            .views
-            .iter()
-            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
-            .collect::<miette::Result<Vec<_>>>()?;
-        let (tile, sink) = match job {
-            Job::Probe { column, row, text } => {
-                let cam = cameras
-                    .first()
-                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
-                let s = tracer
-                    .probe(cam, &base.options, *column, *row)
-                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
-                let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
-                let sub_bands = tracer.sub_bands();
-                **text = Some(format!(
-                    "pixel ({column}, {row}), view 1, {sub_bands} sub-band(s)\n{s}\n\
-                     apparent temperature_k     {t}\n"
-                ));
-                return Ok(());
-            }
-            Job::Converge {
-                stop_k,
-                rounds,
-                out,
-            } => {
-                **out = cameras
-                    .iter()
-                    .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
-                    .collect::<Result<_, _>>()
-                    .map_err(|e| miette!("{e}"))?;
-                return Ok(());
-            }
-            Job::Render {
-                tile,
-                progress,
-                sink,
-            } => (*tile, (*progress, &mut **sink)),
-        };
-        let (progress, sink) = sink;
-        let tiles = self.tiles(tile)?;
         self.flush_warnings(sink);
-        for (i, cam) in cameras.iter().enumerate() {
+        for (i, cam) in frames.cameras.iter().enumerate() {
             let piloted;
             let (settings, decision) = match &self.request.tolerance {
                 Some(tolerance) => {
@@ -269,46 +298,16 @@ impl Plan {
                     piloted = p;
                     self.flush_warnings(sink);
                     sink.decision(i, &piloted.decision, seconds)?;
-                    let c = piloted.chosen;
-                    let mut settings = base;
-                    settings.kind = c.atmosphere;
-                    settings.sub_bands = c.sub_bands;
-                    settings.path_terms = c.path_terms;
-                    settings.options.specular_bounces = c.bounces;
-                    settings.options.sky_view_rays = c.sky_view_rays;
-                    settings.refinement = c.refinement;
-                    settings.sun_lit = c.sun.is_none_or(|s| s.lit);
-                    settings.shadow_rays = c.sun.map(|s| s.shadow_rays);
                     (
-                        settings.options.supersampling,
-                        settings.options.adaptive_threshold_k,
-                    ) = match c.supersampling {
-                        Supersample::Every(n) => (n, None),
-                        Supersample::Adaptive(n) => (n, Some(tolerance.tolerance_k)),
-                        Supersample::Refine(_) => (1, None),
-                    };
-                    settings.options.validate().map_err(|e| miette!("{e}"))?;
-                    (settings, Some(&piloted.decision))
+                        chosen_settings(base, &piloted.chosen, tolerance.tolerance_k)?,
+                        Some(&piloted.decision),
+                    )
                 }
                 None => (base, self.decision.as_ref()),
             };
-            let budget = self
-                .uncertainties
-                .as_ref()
-                .zip(scene.as_ref())
-                .map(|(u, scene)| Budget {
-                    uncertainties: u,
-                    scene,
-                });
-            let guarantee = decision.map(|decision| Guarantee {
-                decision,
-                camera: cam,
-                origin: [tiles[i].x, tiles[i].y],
-                mirrors: &mirrors,
-            });
             if settings.kind != kind || settings.sub_bands != count {
                 // New sub-bands drop the sun, whose beams are per sub-band: lit again.
-                let sun = sun_of(&settings)?;
+                let sun = sun_of(air, &settings)?;
                 tracer = tracer
                     .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
                     .and_then(|t| t.with_sun(sun))
@@ -316,7 +315,7 @@ impl Plan {
                 (kind, count) = (settings.kind, settings.sub_bands);
             } else if self.request.sun.is_some() {
                 tracer = tracer
-                    .with_sun(sun_of(&settings)?)
+                    .with_sun(sun_of(air, &settings)?)
                     .map_err(|e| miette!("{e}"))?;
             }
             self.flush_warnings(sink);
@@ -329,8 +328,9 @@ impl Plan {
                 .with_path_terms(settings.path_terms)
                 .with_refinement(settings.refinement)
                 .map_err(|e| miette!("{e}"))?;
+            let tile = frames.tiles[i];
             if let Some(text) = tracer
-                .slab_census(cam, tiles[i])
+                .slab_census(cam, tile)
                 .and_then(|c| slab_fallback(&c, i + 1))
             {
                 sink.warning(&text);
@@ -340,18 +340,18 @@ impl Plan {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
                 ..settings.options
             };
-            let frame = if tile.is_some() {
-                tracer.render_tile(cam, &options, tiles[i], progress)
+            let frame = if frames.whole {
+                tracer.render(cam, &options, frames.progress)
             } else {
-                tracer.render(cam, &options, progress)
+                tracer.render_tile(cam, &options, tile, frames.progress)
             }
             .map_err(|e| miette!("{e}"))?;
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
                 frame_height: cam.pixels[1] as usize,
-                x: tiles[i].x as usize,
-                y: tiles[i].y as usize,
-                run: run.frame(&self.views[i], &settings),
+                x: tile.x as usize,
+                y: tile.y as usize,
+                run: frames.run.frame(&self.views[i], &settings),
             };
             let radiometry = FrameRadiometry {
                 band: tracer.band().clone(),
@@ -360,8 +360,22 @@ impl Plan {
                 counts: self.request.counts,
                 provenance: Some(self.provenance(&settings)),
             };
+            let budget = self
+                .uncertainties
+                .as_ref()
+                .zip(frames.scene)
+                .map(|(u, scene)| Budget {
+                    uncertainties: u,
+                    scene,
+                });
+            let guarantee = decision.map(|decision| Guarantee {
+                decision,
+                camera: cam,
+                origin: [tile.x, tile.y],
+                mirrors: &mirrors,
+            });
             let mut emit = |kind, bytes| sink.file(i, kind, bytes);
-            if i + 1 == cameras.len() {
+            if i + 1 == frames.cameras.len() {
                 // The last frame's files need the band, not the scene: the BVH and the facet
                 // records (about 100 bytes a facet) go before the files are made, which hold
                 // the frame's layers and encoded files (the frame's peak memory was there).
@@ -388,6 +402,63 @@ impl Plan {
         }
         Ok(())
     }
+}
+
+/// What every frame of a rendering shares.
+struct Frames<'a, 'b, R, A, S> {
+    air: &'a Air<'b, R, A, S>,
+    run: &'a RunHash,
+    cameras: &'a [Camera],
+    /// The raw scene, when the budget reads its facets.
+    scene: Option<&'a RawScene>,
+    /// Each frame's tile (the whole image without a tile request).
+    tiles: Vec<Tile>,
+    /// No tile was asked for: each frame is rendered whole.
+    whole: bool,
+    progress: &'a (dyn Fn(u64) + Sync),
+}
+
+/// The sun as `settings` have it: left out, or with their shadow rays.
+fn sun_of<R, A, S>(
+    air: &Air<'_, R, A, S>,
+    settings: &Settings,
+) -> miette::Result<Option<irsig_tracer::Sun>> {
+    Ok((air.sun)(settings.sub_bands)?
+        .filter(|_| settings.sun_lit)
+        .map(|mut sun| {
+            if let Some(n) = settings.shadow_rays {
+                sun.shadow_rays = n;
+            }
+            sun
+        }))
+}
+
+/// The frame's settings from the pilot's choice: the asked settings with every model the
+/// pilot chose.
+fn chosen_settings(
+    base: Settings,
+    c: &irsig_tracer::pilot::Chosen,
+    tolerance_k: f64,
+) -> miette::Result<Settings> {
+    let mut settings = base;
+    settings.kind = c.atmosphere;
+    settings.sub_bands = c.sub_bands;
+    settings.path_terms = c.path_terms;
+    settings.options.specular_bounces = c.bounces;
+    settings.options.sky_view_rays = c.sky_view_rays;
+    settings.refinement = c.refinement;
+    settings.sun_lit = c.sun.is_none_or(|s| s.lit);
+    settings.shadow_rays = c.sun.map(|s| s.shadow_rays);
+    (
+        settings.options.supersampling,
+        settings.options.adaptive_threshold_k,
+    ) = match c.supersampling {
+        Supersample::Every(n) => (n, None),
+        Supersample::Adaptive(n) => (n, Some(tolerance_k)),
+        Supersample::Refine(_) => (1, None),
+    };
+    settings.options.validate().map_err(|e| miette!("{e}"))?;
+    Ok(settings)
 }
 
 /// The warning for a frame whose view paths the slab tables do not all cover (`None` when
