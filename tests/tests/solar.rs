@@ -741,13 +741,7 @@ fn day_takes_16_sub_bands_unless_asked(out: &Path, spa: &Path) {
         layer(&out.join("day-16.radiance.exr"), "radiance"),
         "--sub-bands 16 is the default's image by day"
     );
-    let quiet = trace_plate(
-        out,
-        spa,
-        "day",
-        &[&sun[..], &["--sub-bands", "1"]].concat(),
-    )
-    .success();
+    let quiet = trace_plate(out, spa, "day", &[&sun[..], &["--sub-bands", "1"]].concat()).success();
     let stderr = String::from_utf8_lossy(&quiet.get_output().stderr).into_owned();
     assert!(!stderr.contains("sub-band"), "{stderr}");
 }
@@ -903,7 +897,7 @@ fn the_sun_of_a_view_or_a_pipeline_is_the_flags_sun(out: &Path, spa: &Path) {
             out.join(format!("viewsun.{file}")),
         );
         assert_eq!(
-            pixels(a),
+            pixels(&a),
             pixels(&b),
             "{file}: the view's sun differs from the flags'"
         );
@@ -938,7 +932,7 @@ fn the_sun_of_a_view_or_a_pipeline_is_the_flags_sun(out: &Path, spa: &Path) {
             pipe.join(format!("piped/frame.{file}")),
         );
         assert_eq!(
-            pixels(a),
+            pixels(&a),
             pixels(&b),
             "{file}: the pipeline's sun differs from the flags'"
         );

@@ -248,18 +248,16 @@ impl Plan {
         .with_path_terms(base.path_terms);
         let scene = self.uncertainties.is_some().then_some(scene);
         // With declared uncertainties each frame keeps the budget's charges, per input.
-        let tracer = tracer.with_budget_groups(
-            self.uncertainties
-                .as_ref()
-                .zip(scene.as_ref())
-                .map(|(uncertainties, scene)| {
+        let tracer =
+            tracer.with_budget_groups(self.uncertainties.as_ref().zip(scene.as_ref()).map(
+                |(uncertainties, scene)| {
                     Budget {
                         uncertainties,
                         scene,
                     }
                     .groups()
-                }),
-        );
+                },
+            ));
         Ok((tracer, scene, base))
     }
 
