@@ -7,15 +7,28 @@ use irsig_model::{Atmosphere, SpectralAtmosphere};
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
 
-/// Names of the built-in atmospheres: LOWTRAN7's models 6, 3, 1, 2, 4 and 5.
-pub const BUILTIN_NAMES: [&str; 6] = [
-    "us-std-1976",
-    "midlat-winter",
-    "tropical",
-    "midlat-summer",
-    "subarctic-summer",
-    "subarctic-winter",
+/// LOWTRAN7's six standard models by name and number (its card 1 MODEL), in the order of
+/// [`BUILTIN_NAMES`]: every built-in is one of them, and `irsig-atmos plan` names them so.
+pub const STANDARD_MODELS: [(&str, u8); 6] = [
+    ("us-std-1976", 6),
+    ("midlat-winter", 3),
+    ("tropical", 1),
+    ("midlat-summer", 2),
+    ("subarctic-summer", 4),
+    ("subarctic-winter", 5),
 ];
+
+/// Names of the built-in atmospheres: LOWTRAN7's models 6, 3, 1, 2, 4 and 5
+/// ([`STANDARD_MODELS`]).
+pub const BUILTIN_NAMES: [&str; 6] = {
+    let mut names = [""; 6];
+    let mut i = 0;
+    while i < names.len() {
+        names[i] = STANDARD_MODELS[i].0;
+        i += 1;
+    }
+    names
+};
 
 /// The top of every built-in's profile and sky rows, metres above the ground: the highest
 /// observer their data hold. Above it a path would take the air above 10 km as absent

@@ -72,9 +72,9 @@ use irsig_model::Atmosphere;
 use serde::{Deserialize, Serialize};
 
 pub use builtin::{
-    BUILTIN_NAMES, BUILTIN_SPECTRAL_RANGES_UM, BUILTIN_TOP_M, builtin, builtin_ron,
-    builtin_spectral, builtin_spectral_bytes, builtin_spectral_bytes_over, builtin_spectral_mwir,
-    builtin_spectral_mwir_bytes, builtin_spectral_over,
+    BUILTIN_NAMES, BUILTIN_SPECTRAL_RANGES_UM, BUILTIN_TOP_M, STANDARD_MODELS, builtin,
+    builtin_ron, builtin_spectral, builtin_spectral_bytes, builtin_spectral_bytes_over,
+    builtin_spectral_mwir, builtin_spectral_mwir_bytes, builtin_spectral_over,
 };
 pub use earth::{
     EARTH_RADIUS_M, critical_nadir_angle_deg, range_to_ground_from_cos_m, range_to_ground_m,

@@ -52,8 +52,6 @@ pub const LEVELS_M: [f64; 14] = [
     50.0, 100.0, 200.0, 300.0, 500.0, 700.0, 1000.0, 1500.0, 2000.0, 3000.0, 4000.0, 5000.0,
     7000.0, 10_000.0,
 ];
-/// Earth radius LOWTRAN7 uses, metres.
-const EARTH_RADIUS_M: f64 = 6_371_230.0;
 /// Levels of the US Standard 1976 model put above a radiosonde's last level, km.
 const ABOVE_RADIOSONDE_KM: [f64; 22] = [
     1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0, 9.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 25.0, 30.0,
@@ -138,9 +136,7 @@ pub fn make_plan(
     // LOWTRAN refracts over a spherical Earth: keep inside the geometric horizon of the
     // highest observer (refraction lowers it a little further), so that every path of the
     // rectangular table reaches the ground (from 3 km: 88 deg does, 88.5 does not).
-    let horizon = (EARTH_RADIUS_M / (EARTH_RADIUS_M + highest))
-        .asin()
-        .to_degrees();
+    let horizon = crate::earth::critical_nadir_angle_deg(highest);
     let nadir: Vec<f64> = SLANT_NADIR_DEG
         .iter()
         .copied()

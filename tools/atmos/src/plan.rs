@@ -360,14 +360,7 @@ pub(crate) fn aerosol_of(
 }
 
 /// The standard models by name and number.
-pub(crate) const MODELS: [(&str, u8); 6] = [
-    ("tropical", 1),
-    ("midlat-summer", 2),
-    ("midlat-winter", 3),
-    ("subarctic-summer", 4),
-    ("subarctic-winter", 5),
-    ("us-std-1976", 6),
-];
+pub(crate) use irsig_atmosphere::STANDARD_MODELS as MODELS;
 
 /// The model a `--model` or `--radiosonde` names, and a default name.
 pub(crate) fn model_of(
