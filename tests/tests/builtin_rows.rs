@@ -319,3 +319,30 @@ fn sweep_of(span: Span) {
         }
     }
 }
+
+#[test]
+#[ignore = "beyond the widest row: a minute; docs/accuracy.md's table of the last degrees"]
+fn beyond_the_widest_row() {
+    // Paths to the ground from below 3 km at nadir angles past every table's widest row
+    // (88°) and short of the observer's horizon (89.44° from 300 m, 88.98° from 1 km):
+    // what a frame's grazing view paths meet. A markdown table on stdout.
+    let cells: [(f64, &[f64]); 6] = [
+        (5.0, &[88.5, 89.0, 89.5, 89.8, 89.9]),
+        (20.0, &[88.5, 89.0, 89.5, 89.8]),
+        (50.0, &[88.5, 89.0, 89.5, 89.7]),
+        (100.0, &[88.25, 88.5, 88.75, 89.0, 89.25, 89.5, 89.6]),
+        (300.0, &[88.25, 88.5, 88.75, 89.0, 89.25, 89.4]),
+        (1000.0, &[88.25, 88.5, 88.75, 88.9]),
+    ];
+    println!("| atmosphere | observer (m) | nadir: error (K) |\n| --- | ---: | --- |");
+    for name in BUILTIN_NAMES {
+        let b = SubBands::new(name, LWIR);
+        for (h, nadirs) in cells {
+            let errors: Vec<String> = nadirs
+                .iter()
+                .map(|&a| format!("{a}°: {:+.3}", b.slant_error(h, a)))
+                .collect();
+            println!("| {name} | {h} | {} |", errors.join(", "));
+        }
+    }
+}

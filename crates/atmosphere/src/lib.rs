@@ -276,6 +276,19 @@ impl AtmosphereModel {
         Ok(Self { inner, ..self })
     }
 
+    /// The widest nadir angle of the `table` model's slant rows, degrees (`None` for the
+    /// other kinds). Past it, toward the horizon, the table's correction fades to none at
+    /// 90° and a path to the ground is the plane-parallel layered one's, whose error
+    /// against LOWTRAN7's spherical path grows to kelvins (docs/accuracy.md, "The last
+    /// degrees to the horizon").
+    #[must_use]
+    pub fn widest_nadir_row_deg(&self) -> Option<f64> {
+        match &self.inner {
+            Inner::Table(t) => t.slant.nadir_deg.last().copied(),
+            _ => None,
+        }
+    }
+
     fn profile(&self) -> Option<&Profile> {
         match &self.inner {
             Inner::None => None,

@@ -83,6 +83,7 @@ mod probe_text;
 pub mod reference;
 pub mod refine;
 mod shade;
+pub mod horizon_census;
 pub mod slab_census;
 pub mod sun;
 mod terrain;

@@ -839,3 +839,68 @@ fn a_camera_above_a_builtins_ten_kilometres_is_refused_with_the_way_out() {
         String::from_utf8_lossy(&out.stderr)
     );
 }
+
+#[test]
+fn view_paths_past_the_tables_widest_row_are_counted_and_said() {
+    let dir = tempfile::tempdir().unwrap();
+    let (scene, mats, _) = inputs(dir.path(), 2);
+    // From 300 m a column of 40 pixels looks north from 87.5° to 89.5° from nadir: the
+    // built-ins' widest slant row is 88°, the horizon asin(R / (R + h)) = 89.444°
+    // (R = 6371.23 km, LOWTRAN7's), beyond which a ray is the sky's.
+    let (h, centre_deg, fov_deg, rows) = (300.0_f64, 88.5_f64, 2.0_f64, 40_u32);
+    let d = [
+        0.0,
+        centre_deg.to_radians().sin(),
+        -centre_deg.to_radians().cos(),
+    ];
+    let view = write(
+        dir.path(),
+        "grazing.ron",
+        &format!(
+            "LookAt(position_m: (0.0, 0.0, {h:?}), target_m: ({:?}, {:?}, {:?}), up: (0.0, 0.0, 1.0), pixels: (1, {rows}), fov_deg: (0.05, {fov_deg:?}))",
+            1e4 * d[0],
+            1e4 * d[1],
+            h + 1e4 * d[2]
+        ),
+    );
+    // Each row's centre ray by hand: tilted up from the centre by atan((1 − 2(r + ½)/rows)
+    // · tan(fov/2)), i.e. that much farther from nadir.
+    let horizon_deg = (6_371_230.0_f64 / (6_371_230.0 + h)).asin().to_degrees();
+    let nadirs: Vec<f64> = (0..rows)
+        .map(|r| {
+            let v = (1.0 - 2.0 * (f64::from(r) + 0.5) / f64::from(rows))
+                * (fov_deg / 2.0).to_radians().tan();
+            centre_deg + v.atan().to_degrees()
+        })
+        .collect();
+    assert!(nadirs.iter().all(|a| (a - 88.0).abs() > 0.01 && (a - horizon_deg).abs() > 0.01));
+    let ground = nadirs.iter().filter(|&&a| a < horizon_deg).count();
+    let beyond = nadirs.iter().filter(|&&a| a > 88.0 && a < horizon_deg).count();
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &view])
+        .args(["--atmosphere", "us-std-1976", "-o"])
+        .arg(dir.path().join("grazing"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let said = format!("view 1: {beyond} of the {ground} view paths to the ground and facets");
+    assert!(stderr.contains(&said), "expected `{said}` in: {stderr}");
+    assert!(stderr.contains("88.00 deg from nadir"), "{stderr}");
+    assert!(stderr.contains("The last degrees to the horizon"), "{stderr}");
+    // Straight down nothing is past the row, and nothing is said.
+    let down = write(
+        dir.path(),
+        "down.ron",
+        "LookAt(position_m: (0.0, 0.0, 300.0), target_m: (0.0, 0.0, 0.0), up: (0.0, 1.0, 0.0), pixels: (4, 3), fov_deg: (10.0, 7.5))",
+    );
+    let out = trace()
+        .args(["--scene", &scene, "--materials", &mats, "--view", &down])
+        .args(["--atmosphere", "us-std-1976", "-o"])
+        .arg(dir.path().join("down"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(!stderr.contains("widest row"), "{stderr}");
+}

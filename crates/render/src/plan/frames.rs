@@ -333,6 +333,12 @@ impl Plan {
             {
                 sink.warning(&text);
             }
+            if let Some(text) = tracer
+                .horizon_census(cam, tile)
+                .and_then(|c| beyond_the_widest_row(&c, i + 1))
+            {
+                sink.warning(&text);
+            }
             // The per-pixel terms are kept only when a file of this frame reads them.
             let options = TraceOptions {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
@@ -457,6 +463,32 @@ fn chosen_settings(
     };
     settings.options.validate().map_err(|e| miette!("{e}"))?;
     Ok(settings)
+}
+
+/// The warning for a frame with view paths past the slant tables' widest nadir row
+/// (`None` without): how many, how far, and what that has been measured to cost.
+fn beyond_the_widest_row(
+    census: &irsig_tracer::horizon_census::HorizonCensus,
+    view: usize,
+) -> Option<String> {
+    if census.beyond == 0 {
+        return None;
+    }
+    Some(format!(
+        "view {view}: {} of the {} view paths to the ground and facets ({:.1} %) lie past \
+         the slant tables' widest row, {:.2} deg from nadir (up to {:.2} deg, the camera at \
+         {:.1} m), where the table model's correction fades to none at 90 deg: against \
+         LOWTRAN7 the built-ins' paths to the ground there err by up to 0.55 K at 88.5 deg \
+         and 1.9 K nearer the horizon from 5-50 m, and up to 5.4 K from 300 m-1 km (docs/accuracy.md, \"The last degrees to \
+         the horizon\"); no table has rows there: the built-ins' and `irsig-atmos plan`'s \
+         stop at 88 deg",
+        census.beyond,
+        census.ground_paths,
+        100.0 * census.beyond as f64 / census.ground_paths.max(1) as f64,
+        census.widest_row_deg,
+        census.largest_nadir_deg,
+        census.camera_m,
+    ))
 }
 
 /// The warning for a frame whose view paths the slab tables do not all cover (`None` when
