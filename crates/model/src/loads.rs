@@ -480,7 +480,19 @@ mod tests {
     fn a_table_has_one_row_per_zenith_and_no_more_sun_than_space_gives() {
         table().validate().unwrap();
         type Break = dyn Fn(&mut BroadbandLoads);
-        let cases: [(&Break, &str); 10] = [
+        // The apparent angles the beams ran at: one per sun, at most its geometric angle.
+        let mut lifted = table();
+        lifted.apparent_sun_zenith_deg = vec![0.0, 29.991];
+        lifted.validate().unwrap();
+        let cases: [(&Break, &str); 12] = [
+            (
+                &|t| t.apparent_sun_zenith_deg = vec![0.0],
+                "apparent_sun_zenith_deg",
+            ),
+            (
+                &|t| t.apparent_sun_zenith_deg = vec![0.0, 30.001],
+                "apparent_sun_zenith_deg[1]",
+            ),
             (&|t| t.day_of_year = 0, "day_of_year"),
             (&|t| t.sun_zenith_deg.clear(), "sun_zenith_deg"),
             (

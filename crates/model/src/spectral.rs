@@ -968,6 +968,33 @@ mod tests {
         a.solar = Some(day.clone());
         a.validate().unwrap();
         assert_eq!(day.zeniths_deg(), [30.0, 60.0, 89.999]);
+        // The angles the beams ran at: one per sun and altitude, refraction lifting each
+        // sun (at most its geometric angle), or none.
+        let n = day.altitude_m.len();
+        let mut lifted = day.clone();
+        lifted.apparent_zenith_deg = [30.0, 59.973, 89.5]
+            .iter()
+            .flat_map(|&z| std::iter::repeat_n(z, n))
+            .collect();
+        a.solar = Some(lifted.clone());
+        a.validate().unwrap();
+        for (k, bad, path) in [
+            (None, 0.0, "solar.apparent_zenith_deg"),
+            (Some(n), 60.001, "solar.apparent_zenith_deg[2]"),
+            (Some(0), -0.5, "solar.apparent_zenith_deg[0]"),
+            (Some(2 * n), f64::NAN, "solar.apparent_zenith_deg[4]"),
+        ] {
+            let mut s = lifted.clone();
+            match k {
+                None => {
+                    s.apparent_zenith_deg.pop();
+                }
+                Some(k) => s.apparent_zenith_deg[k] = bad,
+            }
+            a.solar = Some(s);
+            assert_eq!(a.validate().unwrap_err().path, path);
+        }
+        a.solar = Some(day.clone());
         assert_eq!(day.transmission_of(0), Some(&day.transmission[..]));
         assert_eq!(day.transmission_of(2), Some(&[0.0_f32; 6][..]));
         assert_eq!(day.transmission_of(3), None);
