@@ -486,12 +486,19 @@ fn between_its_rows_the_table_is_lowtran7_halfway() {
     std::fs::write(&p, text).unwrap();
     let t = build(&p);
     assert_eq!(t.sun_zenith_deg, [70.0, 75.0, 77.5, 80.0, 85.0]);
+    // Each beam ran at its sun's apparent zenith, lifted by refraction: LOWTRAN7 bends the
+    // ray from the ground 0.04-0.16 deg at 70-85 deg.
+    assert_eq!(t.apparent_sun_zenith_deg.len(), 5);
+    for (g, a) in t.sun_zenith_deg.iter().zip(&t.apparent_sun_zenith_deg) {
+        assert!(g - a > 0.03 && g - a < 0.2, "{g} ran at {a}");
+    }
     // The table without its 77.5 deg row, asked for 77.5 deg.
     let mut rows = t.clone();
     for v in [
         &mut rows.sun_zenith_deg,
         &mut rows.direct_normal_w_m2,
         &mut rows.diffuse_horizontal_w_m2,
+        &mut rows.apparent_sun_zenith_deg,
     ] {
         v.remove(2);
     }

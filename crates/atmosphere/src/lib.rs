@@ -55,6 +55,7 @@ pub mod legacy;
 pub mod loads;
 pub mod plan;
 mod precomputed;
+pub mod refraction;
 pub mod scattered;
 mod sky;
 pub mod slab;

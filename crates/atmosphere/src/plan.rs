@@ -678,6 +678,24 @@ fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
     out
 }
 
+/// The run number (the index in [`paths`]) of each of `plan`'s direct beams,
+/// `[sun][altitude]` over [`PlanSun::zeniths_deg`] and the sun's altitudes: the order of
+/// `SpectralSolar::apparent_zenith_deg`. Empty without a sun.
+#[must_use]
+pub fn sun_runs(plan: &AtmospherePlan) -> Vec<usize> {
+    let Some(sun) = &plan.sun else {
+        return Vec::new();
+    };
+    let index: BTreeMap<Key, usize> = paths(plan)
+        .iter()
+        .enumerate()
+        .map(|(i, p)| (key(p), i))
+        .collect();
+    sun_paths(sun)
+        .filter_map(|p| index.get(&key(&p)).copied())
+        .collect()
+}
+
 /// The plan's unique paths, in a fixed order (slant paths by altitude and angle, then sky
 /// paths, then the sun's by altitude): run `i` of a build is path `i`.
 #[must_use]
@@ -747,6 +765,21 @@ mod tests {
                 .count();
             assert_eq!(runs, sun.altitude_m.len(), "{z}");
         }
+        // The beams' run numbers, [sun][altitude].
+        let runs = sun_runs(&day);
+        assert_eq!(runs.len(), 3 * sun.altitude_m.len());
+        for (k, &i) in runs.iter().enumerate() {
+            let (z, a) = (
+                [30.0, 45.0, 60.0][k / sun.altitude_m.len()],
+                sun.altitude_m[k % sun.altitude_m.len()],
+            );
+            assert!(
+                matches!(after[i], Path::Sun { zenith_deg, altitude_m, .. } if zenith_deg == z && altitude_m == a),
+                "{k}: {:?}",
+                after[i]
+            );
+        }
+        assert!(sun_runs(&night).is_empty());
         // One sun plans as it did: the same runs as `add_sun`'s.
         let mut single = night.clone();
         add_suns(&mut single, &[30.0], 172, false).unwrap();

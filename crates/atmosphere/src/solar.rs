@@ -283,6 +283,7 @@ mod tests {
                 path_scattered_w_m2_sr_per_unit: Vec::new(),
                 sky_scattered_w_m2_sr_per_unit: Vec::new(),
                 further_suns: Vec::new(),
+                apparent_zenith_deg: Vec::new(),
             }),
             slabs: Vec::new(),
         }
@@ -349,6 +350,7 @@ mod tests {
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
             further_suns: Vec::new(),
+            apparent_zenith_deg: Vec::new(),
         });
         atm.validate().unwrap();
         let sun = DirectSun::new(&atm, 4.0, 5.0, |_| 1.0).unwrap();

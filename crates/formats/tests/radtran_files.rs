@@ -313,6 +313,14 @@ fn a_lowtran7_solar_run_reads_the_same_in_tape6_and_tape7() {
     let t6 =
         lowtran_tape6::parse("solar.tape6", &read("formats/radtran/samples/solar.tape6")).unwrap();
     assert_eq!((t7.runs.len(), t6.runs.len()), (3, 3));
+    // The bending of each run's first geometry summary (`BENDING = x DEG`): the line of
+    // sight 135 deg from the zenith at 1 km down to 1 m bends 0.001 deg; the sun's beam from
+    // 300 m at 30 deg, 0.009 deg (Bennett's refraction at 60 deg elevation, 0.575 arcmin
+    // = 0.0096 deg, scaled to 300 m's air by p/T, 0.0092 deg).
+    assert_eq!(
+        t6.runs.iter().map(|r| r.bending_deg).collect::<Vec<_>>(),
+        [Some(0.001), Some(0.000), Some(0.009)]
+    );
     let nu: Vec<f64> = (0..6).map(|k| 2500.0 + 20.0 * f64::from(k)).collect();
     for (i, (r7, r6)) in t7.runs.iter().zip(&t6.runs).enumerate() {
         let (tab7, tab6) = (r7.table.as_ref().unwrap(), r6.table.as_ref().unwrap());

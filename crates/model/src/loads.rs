@@ -241,6 +241,13 @@ pub struct BroadbandLoads {
     /// The direct normal irradiance at each zenith angle, W m⁻², at most the
     /// extraterrestrial.
     pub direct_normal_w_m2: Vec<f64>,
+    /// The apparent zenith angle each direct beam was run at, degrees, one per
+    /// `sun_zenith_deg` (which are geometric): LOWTRAN7's card 3 ANGLE, that of the
+    /// refracted ray that leaves the atmosphere toward the sun (ANGLE + BENDING = the
+    /// sun's angle, to 0.002°). Empty: every beam was run at its sun's own angle (suns
+    /// bent less than 0.03°, or a table made before the beams were refracted).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub apparent_sun_zenith_deg: Vec<f64>,
     /// The diffuse horizontal irradiance at each zenith angle, W m⁻².
     pub diffuse_horizontal_w_m2: Vec<f64>,
     /// The downwelling longwave irradiance on a horizontal surface, W m⁻²: LOWTRAN7's
@@ -312,6 +319,24 @@ impl BroadbandLoads {
             |k| format!("sun_zenith_deg[{k}]"),
             self.sun_zenith_deg.iter().copied(),
         )?;
+        if !self.apparent_sun_zenith_deg.is_empty() && self.apparent_sun_zenith_deg.len() != n {
+            return Err(ModelError::new(
+                "apparent_sun_zenith_deg",
+                ModelErrorKind::Other(format!(
+                    "expected one angle per sun zenith angle ({n}), or none, found {}",
+                    self.apparent_sun_zenith_deg.len()
+                )),
+            ));
+        }
+        for (k, (&a, &z)) in self
+            .apparent_sun_zenith_deg
+            .iter()
+            .zip(&self.sun_zenith_deg)
+            .enumerate()
+        {
+            // Refraction lifts a sun: its apparent angle is at most its geometric one.
+            check_range(|| format!("apparent_sun_zenith_deg[{k}]"), a, 0.0, z)?;
+        }
         // The direct beam is the extraterrestrial one times a transmittance of at most 1
         // (LOWTRAN prints 1.0002 on metre-long paths: a part in 10^3 is allowed).
         let most = self.extraterrestrial_normal_w_m2 * 1.001;
@@ -381,6 +406,7 @@ mod tests {
 
     fn table() -> BroadbandLoads {
         BroadbandLoads {
+            apparent_sun_zenith_deg: Vec::new(),
             name: "day".into(),
             source: "test".into(),
             model: "MODEL=6".into(),
@@ -454,7 +480,19 @@ mod tests {
     fn a_table_has_one_row_per_zenith_and_no_more_sun_than_space_gives() {
         table().validate().unwrap();
         type Break = dyn Fn(&mut BroadbandLoads);
-        let cases: [(&Break, &str); 10] = [
+        // The apparent angles the beams ran at: one per sun, at most its geometric angle.
+        let mut lifted = table();
+        lifted.apparent_sun_zenith_deg = vec![0.0, 29.991];
+        lifted.validate().unwrap();
+        let cases: [(&Break, &str); 12] = [
+            (
+                &|t| t.apparent_sun_zenith_deg = vec![0.0],
+                "apparent_sun_zenith_deg",
+            ),
+            (
+                &|t| t.apparent_sun_zenith_deg = vec![0.0, 30.001],
+                "apparent_sun_zenith_deg[1]",
+            ),
             (&|t| t.day_of_year = 0, "day_of_year"),
             (&|t| t.sun_zenith_deg.clear(), "sun_zenith_deg"),
             (

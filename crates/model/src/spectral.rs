@@ -117,8 +117,10 @@ pub struct SpectralSlantTables {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpectralSolar {
-    /// The sun's zenith angle at the scene, degrees, from 0 to below 90 (LOWTRAN's
-    /// apparent angle at each altitude: the path is refracted).
+    /// The sun's geometric zenith angle at the scene, degrees, from 0 to below 90: the
+    /// direction the sun is in (NREL's SPA without refraction), the angle a trace looks
+    /// its beam up by. LOWTRAN7 runs the beam at the apparent angle whose refracted ray
+    /// leaves the atmosphere toward it (`apparent_zenith_deg`).
     pub zenith_deg: f64,
     /// Day of the year, 1–366: the Earth–Sun distance `extraterrestrial…` is for.
     pub day_of_year: u16,
@@ -157,6 +159,15 @@ pub struct SpectralSolar {
     /// none.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub further_suns: Vec<SolarBeam>,
+    /// The apparent zenith angle each beam was run at, degrees, `[sun][altitude]` over
+    /// [`Self::zeniths_deg`] and `altitude_m`: LOWTRAN7's card 3 ANGLE, the zenith angle
+    /// at that altitude of the refracted ray that leaves the atmosphere toward the sun's
+    /// geometric zenith (ANGLE + BENDING = the sun's angle, to 0.002°;
+    /// `irsig_atmosphere::refraction`). At most the sun's angle. Empty: every beam was run
+    /// at its sun's own angle (a sun bent less than 0.03°, or a table built before the
+    /// beams were refracted).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub apparent_zenith_deg: Vec<f64>,
 }
 
 /// The direct beam of one more sun of a [`SpectralSolar`] table: its zenith angle and the
@@ -391,6 +402,38 @@ fn check_observer_row(
     Ok(())
 }
 
+/// The apparent zenith angles of a solar table's beams: none, or one per sun and altitude,
+/// each from 0 to its sun's geometric angle (refraction lifts a sun, never lowers it).
+fn check_apparent_zeniths(s: &SpectralSolar) -> Result<(), ModelError> {
+    if s.apparent_zenith_deg.is_empty() {
+        return Ok(());
+    }
+    let zeniths = s.zeniths_deg();
+    let n = s.altitude_m.len();
+    if s.apparent_zenith_deg.len() != zeniths.len() * n {
+        return Err(ModelError::new(
+            "solar.apparent_zenith_deg",
+            ModelErrorKind::Other(format!(
+                "expected one angle per sun and altitude ({} x {n}), or none, found {}",
+                zeniths.len(),
+                s.apparent_zenith_deg.len()
+            )),
+        ));
+    }
+    for (k, &a) in s.apparent_zenith_deg.iter().enumerate() {
+        let z = zeniths[k / n.max(1)];
+        if !(a.is_finite() && (0.0..=z).contains(&a)) {
+            return Err(ModelError::new(
+                format!("solar.apparent_zenith_deg[{k}]"),
+                ModelErrorKind::Other(format!(
+                    "expected an apparent zenith angle from 0 to its sun's geometric {z} deg                      (refraction lifts a sun), found {a}"
+                )),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The further suns of a solar table: zenith angles increasing above the first sun's and
 /// below 90°, each beam one spectrum per altitude, and no scattered-sunlight tables beside
 /// them (those hold one sun's light).
@@ -416,6 +459,7 @@ fn check_further_suns(s: &SpectralSolar, n: usize) -> Result<(), ModelError> {
             1.0,
         )?;
     }
+    check_apparent_zeniths(s)?;
     if !s.further_suns.is_empty() && !s.relative_azimuth_deg.is_empty() {
         return Err(ModelError::new(
             "solar.further_suns",
@@ -881,6 +925,7 @@ mod tests {
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
             further_suns: Vec::new(),
+            apparent_zenith_deg: Vec::new(),
         };
         let mut a = small();
         a.solar = Some(sun.clone());
@@ -923,6 +968,33 @@ mod tests {
         a.solar = Some(day.clone());
         a.validate().unwrap();
         assert_eq!(day.zeniths_deg(), [30.0, 60.0, 89.999]);
+        // The angles the beams ran at: one per sun and altitude, refraction lifting each
+        // sun (at most its geometric angle), or none.
+        let n = day.altitude_m.len();
+        let mut lifted = day.clone();
+        lifted.apparent_zenith_deg = [30.0, 59.973, 89.5]
+            .iter()
+            .flat_map(|&z| std::iter::repeat_n(z, n))
+            .collect();
+        a.solar = Some(lifted.clone());
+        a.validate().unwrap();
+        for (k, bad, path) in [
+            (None, 0.0, "solar.apparent_zenith_deg"),
+            (Some(n), 60.001, "solar.apparent_zenith_deg[2]"),
+            (Some(0), -0.5, "solar.apparent_zenith_deg[0]"),
+            (Some(2 * n), f64::NAN, "solar.apparent_zenith_deg[4]"),
+        ] {
+            let mut s = lifted.clone();
+            match k {
+                None => {
+                    s.apparent_zenith_deg.pop();
+                }
+                Some(k) => s.apparent_zenith_deg[k] = bad,
+            }
+            a.solar = Some(s);
+            assert_eq!(a.validate().unwrap_err().path, path);
+        }
+        a.solar = Some(day.clone());
         assert_eq!(day.transmission_of(0), Some(&day.transmission[..]));
         assert_eq!(day.transmission_of(2), Some(&[0.0_f32; 6][..]));
         assert_eq!(day.transmission_of(3), None);

@@ -16,7 +16,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use irsig_atmosphere::plan::{PathSpectra, assemble, deck, paths};
+use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra, assemble, deck, paths, sun_runs};
 use irsig_formats::ParseError;
 use irsig_formats::canonical::{self, AnyPlan};
 use irsig_model::AtmospherePlan;
@@ -27,7 +27,7 @@ use irsig_cli::args::outputs::Output;
 use irsig_cli::args::{AtmosphereArgs, ThreadsArgs};
 
 use crate::plan::model_of;
-use crate::runs::{Want, aerosol_text, job, profile_temperature, run_jobs};
+use crate::runs::{RunResult, Want, aerosol_text, job, profile_temperature, run_jobs};
 
 /// Arguments of `irsig-atmos build`.
 #[derive(Debug, Clone, Args)]
@@ -208,6 +208,53 @@ pub(crate) struct Place {
     pub own_decks: bool,
 }
 
+/// The geometric and apparent zenith angles of each of `plan`'s direct beams,
+/// `[sun][altitude]`: the apparent one LOWTRAN7 ran, or for a given output the deck's own
+/// angle (LOWTRAN7 took it as the apparent one).
+fn beam_zeniths(plan: &AtmospherePlan, all: &[PlanPath], ok: &[RunResult]) -> Vec<(f64, f64)> {
+    sun_runs(plan)
+        .iter()
+        .filter_map(|&i| match all.get(i) {
+            Some(PlanPath::Sun { zenith_deg, .. }) => Some((
+                *zenith_deg,
+                ok.get(i)
+                    .and_then(|r| r.sun)
+                    .map_or(*zenith_deg, |s| s.apparent_deg),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
+/// `SpectralSolar::apparent_zenith_deg`: the apparent zenith of each beam, or none when
+/// every beam ran at its sun's own angle (a high sun's table is then what it always was).
+fn apparent_zeniths(plan: &AtmospherePlan, all: &[PlanPath], ok: &[RunResult]) -> Vec<f64> {
+    let beams = beam_zeniths(plan, all, ok);
+    if beams.iter().all(|(g, a)| (g - a).abs() < 5e-4) {
+        return Vec::new();
+    }
+    beams.into_iter().map(|(_, a)| a).collect()
+}
+
+/// What the source says of the beams run at an apparent zenith: nothing when none was.
+fn apparent_text(plan: &AtmospherePlan, all: &[PlanPath], ok: &[RunResult]) -> String {
+    let beams = beam_zeniths(plan, all, ok);
+    let bent: Vec<f64> = beams
+        .iter()
+        .map(|(g, a)| g - a)
+        .filter(|d| *d >= 5e-4)
+        .collect();
+    if bent.is_empty() {
+        return String::new();
+    }
+    let most = bent.iter().copied().fold(0.0_f64, f64::max);
+    format!(
+        "; {} of {} beams run at the apparent zenith whose refracted ray leaves toward the sun's          geometric one (ANGLE + LOWTRAN7's BENDING = the sun's, to 0.002 deg; up to {most:.3}          deg below it), the others bent less than 0.03 deg and run at the sun's",
+        bent.len(),
+        beams.len()
+    )
+}
+
 /// Builds the spectral atmosphere of `plan`.
 fn build_atmosphere(a: &BuildArgs, plan: &AtmospherePlan, place: &Place) -> miette::Result<()> {
     let all = paths(plan);
@@ -264,6 +311,9 @@ fn build_atmosphere(a: &BuildArgs, plan: &AtmospherePlan, place: &Place) -> miet
             s.altitude_m.len()
         )
     });
+    let apparent = apparent_zeniths(plan, &all, &ok);
+    let refracted = apparent_text(plan, &all, &ok);
+    let sun_text = format!("{sun_text}{refracted}");
     let aerosol_text = aerosol_text(plan.aerosol.as_ref());
     let slab_text = plan.slabs.as_ref().map_or_else(String::new, |s| {
         format!(
@@ -284,8 +334,14 @@ fn build_atmosphere(a: &BuildArgs, plan: &AtmospherePlan, place: &Place) -> miet
         all.len() - ran
     );
     let spectra: Vec<PathSpectra> = ok.into_iter().map(|r| r.spectra).collect();
-    let atmosphere = assemble(plan, &spectra, &*temperature, ground_asl_m, &source)
+    let mut atmosphere = assemble(plan, &spectra, &*temperature, ground_asl_m, &source)
         .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
+    if let Some(solar) = atmosphere.solar.as_mut() {
+        solar.apparent_zenith_deg = apparent;
+        atmosphere
+            .validate()
+            .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
+    }
     let output = a.output.required()?;
     let bytes = if output.extension().is_some_and(|e| e == "ron") {
         canonical::to_ron(&atmosphere)

@@ -57,6 +57,33 @@ fn check_group(
     check_grids(&group)
 }
 
+/// The apparent zenith each direct beam was run at, one per sun (the paths are by sun,
+/// each sun's beam once), and a note saying so; `None` when every beam ran at its sun's
+/// own angle (a given output runs at its deck's).
+fn apparent_zeniths(all: &[LoadsPath], ok: &[RunResult]) -> Option<(Vec<f64>, String)> {
+    let beams: Vec<(f64, f64)> = all
+        .iter()
+        .zip(ok)
+        .filter_map(|(p, r)| match p {
+            LoadsPath::Direct { sun_zenith_deg } => Some((
+                *sun_zenith_deg,
+                r.sun.map_or(*sun_zenith_deg, |s| s.apparent_deg),
+            )),
+            _ => None,
+        })
+        .collect();
+    let bent = beams.iter().filter(|(g, a)| g - a >= 5e-4).count();
+    (bent > 0).then(|| {
+        (
+            beams.iter().map(|b| b.1).collect(),
+            format!(
+                "{bent} of {} direct beams run at the apparent zenith whose refracted ray                  leaves toward the sun's geometric one (LOWTRAN7's ANGLE + BENDING = the                  sun's, to 0.002 deg: apparent_sun_zenith_deg); the others bent less than                  0.03 deg and run at the sun's. The diffuse runs take the sun's geometric                  angle (PARM2), which LOWTRAN7 bends itself",
+                beams.len()
+            ),
+        )
+    })
+}
+
 /// Builds the broadband loads of `plan` and writes them to `a.output` (canonical RON).
 ///
 /// # Errors
@@ -106,9 +133,17 @@ pub(crate) fn build(a: &BuildArgs, plan: &LoadsPlan, place: &Place) -> miette::R
         all.len(),
         all.len() - ran
     );
+    let apparent = apparent_zeniths(&all, &ok);
     let spectra: Vec<PathSpectra> = ok.into_iter().map(|r| r.spectra).collect();
-    let table = assemble(plan, &spectra, &outside, &model_text, &source, notes)
+    let mut table = assemble(plan, &spectra, &outside, &model_text, &source, notes)
         .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
+    if let Some((apparent, note)) = apparent {
+        table.apparent_sun_zenith_deg = apparent;
+        table.notes.push(note);
+        table
+            .validate()
+            .map_err(|e| miette!("{}: {e}", a.plan.display()))?;
+    }
     let text = canonical::to_ron(&table).into_diagnostic()?;
     irsig_cli::write_output(Some(a.output.required()?), |w| w.write_all(text.as_bytes()))
 }

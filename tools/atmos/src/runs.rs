@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use irsig_atmosphere::AtmosphereError;
 use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra};
+use irsig_atmosphere::refraction::{ApparentZenith, apparent_zenith};
 use irsig_formats::ParseError;
 use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
 use irsig_model::{PlanAerosol, PlanModel};
@@ -25,6 +27,10 @@ pub(crate) struct RunResult {
     pub profile: Vec<[f64; 3]>,
     /// How the run was moved off its node, when LOWTRAN7 could not run the node itself.
     pub nudged: Option<String>,
+    /// A direct solar run's zenith angles: the geometric one of the deck and the apparent
+    /// one LOWTRAN7 ran (`irsig_atmosphere::refraction`). `None`: not a solar run, or its
+    /// output was given (run at the deck's angle).
+    pub sun: Option<ApparentZenith>,
 }
 
 /// The deck `text` with its card 3 angle moved by `delta_deg`.
@@ -310,6 +316,7 @@ pub(crate) fn read_given(tape7: &Path, want: Want) -> Result<RunResult, Report> 
         spectra,
         profile,
         nudged: None,
+        sun: None,
     })
 }
 
@@ -426,6 +433,12 @@ fn run_deck(
             ));
         }
     }
+    let mut sun = None;
+    if want == Want::Solar {
+        let (o, s) = refracted(exe, name, text, card3, out)?;
+        out = o;
+        sun = Some(s);
+    }
     let t7_name = format!("{name} -> TAPE7");
     let spectra = spectra_of_lowtran(&t7_name, &out.tape7, want)?;
     let profile = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6)
@@ -437,7 +450,100 @@ fn run_deck(
         spectra,
         profile,
         nudged: nudge,
+        sun,
     })
+}
+
+/// Why finding a sun's apparent zenith stopped: a run that failed (its report), or the
+/// search itself.
+#[derive(Debug)]
+enum Refraction {
+    Run(Report),
+    Search(AtmosphereError),
+}
+
+impl From<AtmosphereError> for Refraction {
+    fn from(e: AtmosphereError) -> Self {
+        Self::Search(e)
+    }
+}
+
+/// The direct solar deck `text` with card 3's ANGLE set to `angle_deg`.
+fn sun_at(name: &str, text: &str, angle_deg: f64) -> Result<String, Report> {
+    let mut d = tape5::parse(name, text)?;
+    if let Some(tape5::Step::Full(c)) = d.steps.first_mut()
+        && let tape5::Card3::DirectSolar { angle_deg: a, .. } = &mut c.geometry.card3
+    {
+        *a = angle_deg;
+    }
+    tape5::write(&d).map_err(|e| miette!("{name}: {e}"))
+}
+
+/// The direct solar deck `text`'s card 3 ANGLE: the sun's geometric zenith angle, as the
+/// plan writes it.
+fn sun_angle(name: &str, text: &str) -> Result<f64, Report> {
+    let d = tape5::parse(name, text)?;
+    d.calculations()
+        .first()
+        .and_then(|c| match c.card3 {
+            tape5::Card3::DirectSolar { angle_deg, .. } => Some(angle_deg),
+            _ => None,
+        })
+        .ok_or_else(|| miette!("{name}: expected a direct solar run (card 3's alternate form)"))
+}
+
+/// LOWTRAN7's `BENDING` of a run, degrees (TAPE6's geometry summary).
+fn bending_of(name: &str, out: &lowtran::Output) -> Result<f64, Report> {
+    let t6 = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6)?;
+    t6.runs.first().and_then(|r| r.bending_deg).ok_or_else(|| {
+        miette!("{name}: LOWTRAN7's TAPE6 has no `BENDING = x DEG` for this direct solar run")
+    })
+}
+
+/// The sun's beam at the apparent zenith: the deck's ANGLE is the sun's geometric zenith
+/// θ_g, and LOWTRAN7 takes ANGLE as the apparent one at H1, so the deck is run again at
+/// θ_g − BENDING until the bent ray leaves toward θ_g
+/// ([`irsig_atmosphere::refraction::apparent_zenith`]; `first` is the run at θ_g). The
+/// output of the last run, and the angles.
+fn refracted(
+    exe: &Path,
+    name: &str,
+    text: &str,
+    card3: irsig_formats::legacy::Position,
+    first: lowtran::Output,
+) -> Result<(lowtran::Output, ApparentZenith), Report> {
+    let geometric = sun_angle(name, text)?;
+    let mut last = Some(first);
+    let found = apparent_zenith(geometric, |angle| {
+        let out = match last.take() {
+            Some(out) if (angle - geometric).abs() < 5e-4 => out,
+            _ => {
+                let deck = sun_at(name, text, angle).map_err(Refraction::Run)?;
+                let out = lowtran::run(exe, &deck)
+                    .map_err(|m| Refraction::Run(located(name, text, card3, m)))?;
+                if let Some(said) = rejection(name, &out).map_err(Refraction::Run)? {
+                    return Err(Refraction::Run(located(
+                        name,
+                        text,
+                        card3,
+                        format!(
+                            "LOWTRAN7 rejected this sun's path at its apparent zenith {angle}                              deg: {said}"
+                        ),
+                    )));
+                }
+                out
+            }
+        };
+        let bending = bending_of(name, &out).map_err(Refraction::Run)?;
+        last = Some(out);
+        Ok(bending)
+    });
+    match (found, last) {
+        (Ok(found), Some(out)) => Ok((out, found)),
+        (Err(Refraction::Run(r)), _) => Err(r),
+        (Err(Refraction::Search(e)), _) => Err(located(name, text, card3, e.to_string())),
+        (Ok(_), None) => Err(miette!("{name}: no LOWTRAN7 run of the sun's path")),
+    }
 }
 
 /// One run of a build: its deck, what it must give, and the output given for it, if any.

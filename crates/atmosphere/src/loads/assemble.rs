@@ -169,6 +169,7 @@ pub fn assemble(
         ),
     ]);
     let table = BroadbandLoads {
+        apparent_sun_zenith_deg: Vec::new(),
         name: plan.name.clone(),
         source: source.to_owned(),
         model: model.to_owned(),

@@ -8,9 +8,12 @@
 //! make one LOWTRAN7 card deck per path, every path starting at the ground (LOWTRAN7's
 //! 0 km, the model's first level):
 //!
-//! - per sun zenith angle z, the **direct normal irradiance** (DNI): a direct solar
-//!   irradiance run (IEMSCT = 3, ITYPE 3, ANGLE = z, the day's IDAY, ISOURC 0), `DNI =
-//!   ∫ E_toa(ν) τ_sun(ν) dν` over the solar range;
+//! - per sun zenith angle z (geometric), the **direct normal irradiance** (DNI): a direct
+//!   solar irradiance run (IEMSCT = 3, ITYPE 3, the day's IDAY, ISOURC 0), `DNI =
+//!   ∫ E_toa(ν) τ_sun(ν) dν` over the solar range. The deck's ANGLE = z is the first
+//!   guess: LOWTRAN7 takes ANGLE as the apparent zenith, so the build runs it again at the
+//!   angle whose refracted ray leaves toward z ([`crate::refraction`]; a sun bent less
+//!   than 0.03° stays at z);
 //! - per sun zenith angle, the **diffuse horizontal irradiance** (DHI): one solar
 //!   scattering run per line of sight of [`rule::diffuse_nodes`] (IEMSCT = 2 with
 //!   multiple scattering, IMULT = 1: LOWTRAN7's two-stream flux adding of Isaacs et al.

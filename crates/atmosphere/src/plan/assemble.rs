@@ -169,6 +169,8 @@ pub fn assemble(
                 extraterrestrial_w_m2_per_unit: f32s(etoa),
                 transmission: flat(sun_paths_at(sun, sun.zenith_deg).collect(), &tau),
                 further_suns,
+                // The build records the angles LOWTRAN7 ran, which the plan does not know.
+                apparent_zenith_deg: Vec::new(),
                 relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
                 path_scattered_w_m2_sr_per_unit: flat(sunlit_slant_paths(plan, sun), &scattered),
                 sky_scattered_w_m2_sr_per_unit: flat(sunlit_sky_paths(plan, sun), &scattered),

@@ -117,7 +117,12 @@ pub fn radiosonde_profile(
 /// (none without one: IHAZE 0), no multiple scattering, the plan's spectral range; case 2A (ITYPE 2, H1, H2, ANGLE =
 /// 180 − nadir) down, case 3A (ITYPE 3, H1, ANGLE = zenith) up. The sun's paths are
 /// direct solar irradiance runs (IEMSCT = 3, ITYPE 3; card 3's alternate form: H1, ANGLE =
-/// the sun's zenith angle, IDAY, ISOURC = 0, the sun).
+/// the sun's geometric zenith angle, IDAY, ISOURC = 0, the sun). LOWTRAN7 takes that
+/// ANGLE as the apparent zenith at H1: the deck is the first guess, and the build runs
+/// the beam again at the apparent angle whose refracted ray leaves toward the sun
+/// ([`crate::refraction::apparent_zenith`]). The sunlit paths' PARM2 is the sun's
+/// geometric angle as it is: LOWTRAN7 bends each scattering point's path to the sun
+/// itself.
 ///
 /// # Errors
 /// As [`radiosonde_profile`].
@@ -228,7 +233,8 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
         // IEMSCT 2, single scattering; card 3A1: IPARM 2 (the geometry given as angles),
         // IPH 2 (LOWTRAN's Mie phase functions of its aerosol models), IDAY, ISOURC 0
         // (the sun); card 3A2: PARM1 the azimuth of the sun from the line of sight,
-        // PARM2 the sun's zenith angle.
+        // PARM2 the sun's geometric zenith angle (LOWTRAN7's SSGEO bends the path from
+        // each scattering point to the sun by its own BENDING: PARM2 is not apparent).
         cards.card1.iemsct = 2;
         cards.geometry.scattering =
             Some(sun_scattering(sun.day_of_year, azimuth_deg, sun.zenith_deg));

@@ -721,6 +721,7 @@ mod tests {
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
             further_suns: Vec::new(),
+            apparent_zenith_deg: Vec::new(),
         });
         let bytes = encode(&a).unwrap();
         assert_eq!(decode("a.spa", &bytes).unwrap(), a);
@@ -750,6 +751,7 @@ mod tests {
             path_scattered_w_m2_sr_per_unit: Vec::new(),
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
             further_suns: Vec::new(),
+            apparent_zenith_deg: Vec::new(),
         };
         a.solar = Some(first.clone());
         let one_sun = encode(&a).unwrap();
@@ -909,6 +911,7 @@ mod tests {
             path_scattered_w_m2_sr_per_unit: vec![0.01; 16],
             sky_scattered_w_m2_sr_per_unit: vec![0.01; 24],
             further_suns: Vec::new(),
+            apparent_zenith_deg: Vec::new(),
         });
         let own_row = |own: f32, away: f32| -> Vec<f32> {
             [away, away, away, away, own, own, own, own].to_vec()

@@ -152,6 +152,11 @@ pub struct Tape6Run {
     /// The first `ATMOSPHERIC PROFILES` table: altitude (km), pressure (mb) and
     /// temperature (K) of each of LOWTRAN's levels (a run after `IRPT = 3` has none).
     pub profile: Vec<[f64; 3]>,
+    /// `BENDING = X DEG` of the run's first `SUMMARY OF THE GEOMETRY CALCULATION`: how far
+    /// refraction turns the line of sight between H1 and its far end, degrees. Card 3's
+    /// ANGLE is the apparent zenith angle at H1; ANGLE + BENDING is the direction the ray
+    /// leaves the atmosphere in (of a direct solar run, the sun's geometric zenith).
+    pub bending_deg: Option<f64>,
     /// Whether LOWTRAN gave up on the path (`GEO:  IERROR NE 0`).
     pub rejected: bool,
     /// Where the run starts.
@@ -338,6 +343,9 @@ const AVERAGE: Field = field(24, 6, 4, "F6.4");
 const RADIANCE_SUM: Field = field(23, 10, 3, "E10.3");
 /// FORMAT 755: `'0INTEGRATED IRRADIANCE = ',1PE10.3,' WATTS CM-2 '`.
 const IRRADIANCE_SUM: Field = field(25, 10, 3, "E10.3");
+
+/// FORMAT 4226 of `GEO`'s summary: `10X,'BENDING = ',F10.3,' DEG'`.
+const BENDING: Field = field(20, 10, 3, "F10.3");
 
 /// Reads `f` of `line` as a Fortran formatted read does, but a blank field, which LOWTRAN
 /// never prints, is an error rather than 0; so is a value that is not a finite number.
@@ -637,6 +645,10 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
                 ABSORPTION,
                 "the integrated absorption in cm-1",
             )?);
+            continue;
+        }
+        if t.starts_with("BENDING =") && run.bending_deg.is_none() {
+            run.bending_deg = Some(read_field(src, line, BENDING, "the bending in degrees")?);
             continue;
         }
         if t.starts_with("AVERAGE TRANSMITTANCE") {
