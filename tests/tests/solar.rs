@@ -517,6 +517,31 @@ fn plan_takes_the_sun_of_a_view_file_as_trace_does() {
         "{} {zenith}",
         sun.zenith_deg
     );
+    // A view that gives the air for SPA's refraction lifts the direction the light comes
+    // from, not the plan's sun: the plan keeps the geometric zenith, whose beam the build
+    // bends itself along LOWTRAN7's refracted path (else it would be bent twice). Near
+    // sunrise the two differ by a few tenths of a degree.
+    let refracted = "At(utc: \"2026-08-01T10:30:00Z\", latitude_deg: 43.08, longitude_deg: \
+                     -77.67, refraction: Some((pressure_hpa: 1000.0, temperature_c: 15.0)))";
+    plan_plate(d, "refracted", &view_with_sun(refracted), &[]).success();
+    let plan: irsig_model::AtmospherePlan = canonical::from_ron_bytes(
+        "plan.ron",
+        &std::fs::read(d.join("refracted/plan.ron")).unwrap(),
+    )
+    .unwrap();
+    let sun = plan.sun.expect("a plan with the view's sun");
+    let spec: irsig_atmosphere::sun::SunSpec = ron::from_str(refracted).unwrap();
+    let position = spec.position().unwrap();
+    assert!(
+        position.geometric_zenith_deg - position.zenith_deg > 0.1,
+        "{position:?}"
+    );
+    assert!(
+        (sun.zenith_deg - position.geometric_zenith_deg).abs() <= 0.0005,
+        "the plan's sun {} is not the geometric {}",
+        sun.zenith_deg,
+        position.geometric_zenith_deg
+    );
     // Refused, exit 2, nothing written: a sun given twice (naming the flag and the view's
     // line and column), a direction without a day, a day that is not the time's, a day or
     // scattering without any sun.

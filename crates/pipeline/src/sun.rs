@@ -240,7 +240,7 @@ pub(crate) fn read(src: Source<'_>, node: &Node) -> Result<PipelineSun, Pipeline
     Ok(PipelineSun {
         fields,
         day_of_year: day_of_year.filter(|_| per_frame.is_none()),
-        zenith_deg: position.zenith_deg,
+        zenith_deg: position.geometric_zenith_deg,
         start: node.start,
         per_frame,
     })

@@ -299,7 +299,7 @@ pub(crate) fn sun(
     };
     let zeniths = solar.zeniths_deg();
     let (first, last) = (zeniths[0], zeniths[zeniths.len() - 1]);
-    let z = position.zenith_deg;
+    let z = position.geometric_zenith_deg;
     if !(z >= first - ZENITH_TOLERANCE_DEG && z <= last + ZENITH_TOLERANCE_DEG) {
         let table = if zeniths.len() == 1 {
             format!(

@@ -5,12 +5,15 @@
 //! `irsig-trace` refuses it: neither wins silently.
 //!
 //! The plan takes the zenith angle `irsig-trace` will check its solar table against:
-//! the sun's [`SunPosition::zenith_deg`] (geometric, unless a view gives the air for
-//! refraction), rounded to the 0.001° a deck holds. Its day of the year (LOWTRAN7's IDAY,
+//! the sun's [`SunPosition::geometric_zenith_deg`], rounded to the 0.001° a deck holds,
+//! also when a view gives the air for SPA's refraction (that lifts the direction the
+//! light arrives from, which the trace keeps for shadows and glints; the build finds the
+//! beam's own refracted path from LOWTRAN7's bending, so a refracted zenith here would be
+//! bent twice). Its day of the year (LOWTRAN7's IDAY,
 //! the Earth–Sun distance) is the time's for a sun given by time and place; a sun given as
 //! a direction has no date, so `--day-of-year` must give it.
 //!
-//! [`SunPosition::zenith_deg`]: irsig_atmosphere::sun::SunPosition::zenith_deg
+//! [`SunPosition::geometric_zenith_deg`]: irsig_atmosphere::sun::SunPosition::geometric_zenith_deg
 
 use irsig_atmosphere::sun::SunSpec;
 use irsig_formats::views::ViewSun;
@@ -77,7 +80,7 @@ pub(crate) fn choose(
     let position = sun
         .position()
         .map_err(|e| irsig_cli::usage_error(format!("{given_by}: {e}")))?;
-    let zenith_deg = rounds_above_horizon(position.zenith_deg)
+    let zenith_deg = rounds_above_horizon(position.geometric_zenith_deg)
         .map_err(|e| irsig_cli::usage_error(format!("{given_by}: {e}")))?;
     let day_of_year = match (sun.day_of_year(), day) {
         (Some(of_time), Some(given)) if of_time != given => {

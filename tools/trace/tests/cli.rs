@@ -873,9 +873,16 @@ fn view_paths_past_the_tables_widest_row_are_counted_and_said() {
             centre_deg + v.atan().to_degrees()
         })
         .collect();
-    assert!(nadirs.iter().all(|a| (a - 88.0).abs() > 0.01 && (a - horizon_deg).abs() > 0.01));
+    assert!(
+        nadirs
+            .iter()
+            .all(|a| (a - 88.0).abs() > 0.01 && (a - horizon_deg).abs() > 0.01)
+    );
     let ground = nadirs.iter().filter(|&&a| a < horizon_deg).count();
-    let beyond = nadirs.iter().filter(|&&a| a > 88.0 && a < horizon_deg).count();
+    let beyond = nadirs
+        .iter()
+        .filter(|&&a| a > 88.0 && a < horizon_deg)
+        .count();
     let out = trace()
         .args(["--scene", &scene, "--materials", &mats, "--view", &view])
         .args(["--atmosphere", "us-std-1976", "-o"])
@@ -887,7 +894,10 @@ fn view_paths_past_the_tables_widest_row_are_counted_and_said() {
     let said = format!("view 1: {beyond} of the {ground} view paths to the ground and facets");
     assert!(stderr.contains(&said), "expected `{said}` in: {stderr}");
     assert!(stderr.contains("88.00 deg from nadir"), "{stderr}");
-    assert!(stderr.contains("The last degrees to the horizon"), "{stderr}");
+    assert!(
+        stderr.contains("The last degrees to the horizon"),
+        "{stderr}"
+    );
     // Straight down nothing is past the row, and nothing is said.
     let down = write(
         dir.path(),
