@@ -196,6 +196,15 @@ pub(crate) fn check_emissivity_scales(
 }
 
 impl<B, A> crate::tracer::Tracer<B, A> {
+    /// Whether any material of the scene has a texture (statistical, or image maps): a
+    /// frame then keeps the texture's truth layers ([`crate::Frame::texture`]).
+    #[must_use]
+    pub fn is_textured(&self) -> bool {
+        self.materials
+            .iter()
+            .any(|m| m.texture.is_some() || m.maps.is_some())
+    }
+
     /// What the material's textures give at a hit: its statistical texture at the world
     /// point and its image maps at the point's texture coordinates, combined (offsets add,
     /// scales multiply); `None` for a material with neither.
