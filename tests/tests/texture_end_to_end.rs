@@ -7,7 +7,8 @@
 //! (white 10 K bottom-left, 51/255 = 0.2 → 2 K top-right, black 0 K elsewhere); the truth
 //! EXR's `texture_temperature_offset` holds it, its `texture_emissivity_scale` 1 (no
 //! emissivity map); the terrain around holds NaN in both. The same scene with the map
-//! taken out of the materials writes no texture layers at all.
+//! taken out of the materials writes no texture layers at all; traced in four tiles and
+//! merged by `irsig-merge`, its truth EXR is the whole frame's, byte for byte.
 
 // A scale of exactly 1 (no emissivity map) is stored exactly.
 #![allow(clippy::float_cmp)]
@@ -194,4 +195,41 @@ fn the_same_scene_without_the_map_writes_no_texture_layers() {
     assert!(truth.layer("kinetic_temperature").is_some());
     assert!(truth.layer("texture_temperature_offset").is_none());
     assert!(truth.layer("texture_emissivity_scale").is_none());
+}
+
+#[test]
+fn a_textured_frame_traced_in_tiles_merges_into_the_whole_frames_truth() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    traced(d, true);
+    let tiles = d.join("tiles");
+    std::fs::create_dir(&tiles).unwrap();
+    let mut files = Vec::new();
+    for i in 1..=4 {
+        let prefix = tiles.join(format!("t{i}"));
+        bin("irsig-trace")
+            .arg("--scene")
+            .arg(d.join("scene.raw"))
+            .arg("--materials")
+            .arg(d.join("materials.ron"))
+            .arg("--view")
+            .arg(d.join("view.ron"))
+            .args(["--atmosphere", "none", "--tile", &format!("{i}/2x2"), "-o"])
+            .arg(&prefix)
+            .assert()
+            .success();
+        for kind in ["radiance", "truth"] {
+            files.push(tiles.join(format!("t{i}.{kind}.exr")));
+        }
+    }
+    // The merge knows a tile's texture layers as a truth tile's, and the merged truth is
+    // the whole frame's, byte for byte.
+    bin("irsig-merge")
+        .args(&files)
+        .arg("--truth-exr")
+        .arg(d.join("merged.truth.exr"))
+        .assert()
+        .success();
+    let read = |name: &str| std::fs::read(d.join(name)).unwrap();
+    assert!(read("merged.truth.exr") == read("out.truth.exr"));
 }
