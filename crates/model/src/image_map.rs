@@ -49,7 +49,7 @@ pub struct ImageMap {
     pub filter: MapFilter,
 }
 
-/// The named filters a map is read with. Both repeat the image outside 0 to 1.
+/// The named filters a map is read with. All repeat the image outside 0 to 1.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
 pub enum MapFilter {
     /// The texel the point falls in.
@@ -59,6 +59,17 @@ pub enum MapFilter {
     /// along each axis: a texel's own value at its centre, the mean of two halfway between
     /// their centres.
     Bilinear,
+    /// Against aliasing where a texel is smaller than a pixel's footprint: a box-filtered
+    /// mip pyramid of the image (each level's texel the mean of the 2 × 2 below it), read
+    /// bilinearly at the level whose texel is the footprint's size and blended between the
+    /// two levels around it (Williams 1983, "trilinear"). The footprint is the pixel's
+    /// angular size times the distance the ray travelled (through its mirror bounces) over
+    /// the cosine of incidence, in texels through the facet's ratio of texture area to
+    /// world area. A texture far away gives the mean of its texels, within the spread of
+    /// the texel means at that level; under one texel a pixel it is `Bilinear`. Hits of
+    /// sky-view rays read the image itself (a hemisphere's ray has no footprint to speak
+    /// of).
+    Footprint,
 }
 
 impl ImageMap {

@@ -81,6 +81,15 @@ pub enum Layer {
     /// solar radiance times the path's τ over the pixel's centre-ray radiance (0 for a sky
     /// pixel, whose sky holds no sunlight in this model).
     SunShare,
+    /// With a textured material in the scene: the temperature offset the texture gives at
+    /// the primary hit of the pixel's centre ray, K (its statistical texture's and its
+    /// temperature map's, added; 0 on an untextured facet, NaN where no facet was hit).
+    TextureTemperatureOffset,
+    /// With a textured material in the scene: the scale the texture puts on the emissivity
+    /// at the primary hit of the pixel's centre ray (its statistical texture's and its
+    /// emissivity map's, multiplied; 1 on an untextured facet, NaN where no facet was
+    /// hit). The `emissivity` layer holds the scaled ε, held to 0 to 1.
+    TextureEmissivityScale,
 }
 
 impl Layer {
@@ -124,9 +133,14 @@ impl Layer {
         Self::SunShare,
     ];
 
+    /// The texture's layers, written after [`Layer::TRUTH`] and the sun's (before the error
+    /// budget's) when the scene has a textured material; an untextured scene's truth EXR
+    /// holds none of them.
+    pub const TEXTURE: [Self; 2] = [Self::TextureTemperatureOffset, Self::TextureEmissivityScale];
+
     /// Every layer: the radiance, the truth layers, the error budget, the tolerance, the
-    /// sun's.
-    pub const ALL: [Self; 25] = [
+    /// sun's, the texture's.
+    pub const ALL: [Self; 27] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -152,6 +166,8 @@ impl Layer {
         Self::SunVisibleFraction,
         Self::ReflectedSolarRadiance,
         Self::SunShare,
+        Self::TextureTemperatureOffset,
+        Self::TextureEmissivityScale,
     ];
 
     /// The layer's name in the EXR.
@@ -183,6 +199,8 @@ impl Layer {
             Self::SunVisibleFraction => "sun_visible_fraction",
             Self::ReflectedSolarRadiance => "reflected_solar_radiance",
             Self::SunShare => "sun_share",
+            Self::TextureTemperatureOffset => "texture_temperature_offset",
+            Self::TextureEmissivityScale => "texture_emissivity_scale",
         }
     }
 
@@ -201,7 +219,8 @@ impl Layer {
             | Self::SigmaTransmission
             | Self::SigmaPathRadiance
             | Self::SigmaModel
-            | Self::SigmaTotal => "K",
+            | Self::SigmaTotal
+            | Self::TextureTemperatureOffset => "K",
             Self::MaterialPrimary
             | Self::MaterialSecondary
             | Self::Event
@@ -212,7 +231,8 @@ impl Layer {
             | Self::NotGuaranteed
             | Self::Samples
             | Self::SunVisibleFraction
-            | Self::SunShare => "",
+            | Self::SunShare
+            | Self::TextureEmissivityScale => "",
         }
     }
 
@@ -259,8 +279,10 @@ mod tests {
         assert_eq!(Layer::ALL[1..13], Layer::TRUTH);
         assert_eq!(Layer::ALL[13..19], Layer::BUDGET);
         assert_eq!(Layer::ALL[19..21], Layer::TOLERANCE);
-        assert_eq!(Layer::ALL[21..], Layer::SUN);
+        assert_eq!(Layer::ALL[21..25], Layer::SUN);
+        assert_eq!(Layer::ALL[25..], Layer::TEXTURE);
         assert!(Layer::SUN.iter().all(|l| !l.is_label()));
+        assert!(Layer::TEXTURE.iter().all(|l| !l.is_label()));
         assert_eq!(Layer::from_name("Radiance"), None);
     }
 }

@@ -252,6 +252,7 @@ mod tests {
             truth: vec![truth],
             sampling: Vec::new(),
             sun: Vec::new(),
+            texture: Vec::new(),
             charges: c,
         };
         let budget = Budget {

@@ -68,14 +68,16 @@ impl GreyImage {
         f64::from(self.grey[row * self.width + i])
     }
 
-    /// The grey at texture coordinates `uv` with `filter`.
+    /// The grey at texture coordinates `uv` with `filter` (a footprint filter, given no
+    /// footprint here, reads the image itself bilinearly: [`MipPyramid::sample`] gives it
+    /// its footprint).
     #[must_use]
     pub fn sample(&self, [u, v]: [f64; 2], filter: MapFilter) -> f64 {
         let x = u * self.width as f64;
         let y = v * self.height as f64;
         match filter {
             MapFilter::Nearest => self.texel(x.floor() as i64, y.floor() as i64),
-            MapFilter::Bilinear => {
+            MapFilter::Bilinear | MapFilter::Footprint => {
                 // Texel centres are at half-integers: measure from the centre of the
                 // texel below and left of the point.
                 let (x, y) = (x - 0.5, y - 0.5);
@@ -90,20 +92,152 @@ impl GreyImage {
     }
 }
 
-/// One map with its image.
+/// A box-filtered mip pyramid of a grey image (Williams, "Pyramidal parametrics",
+/// SIGGRAPH 1983): level 0 is the image, and each texel of level `k + 1` is the mean of the
+/// 2 × 2 texels of level `k` it covers (of those that exist: an odd side's last column or
+/// row has only one), down to one texel. For an image whose sides are powers of two, a
+/// level-`k` texel is exactly the mean of the `2ᵏ × 2ᵏ` texels below it and the last level
+/// the image's mean; for other sizes the last column or row of a level weighs its texels
+/// up to twice what the others do.
+///
+/// [`Self::sample`] reads it with a footprint: the point's value over a pixel's footprint
+/// `F` texels across is read at level `L = log₂ F` (between levels `⌊L⌋` and `⌊L⌋ + 1`,
+/// each read bilinearly, blended linearly by `L − ⌊L⌋`: "trilinear" filtering), level 0
+/// bilinearly where `F ≤ 1` (magnification), the last level beyond it. Its error model:
+/// the value is a weighted mean of the texels within about `2F` texels of the point, so
+/// it differs from the mean of the texels under the footprint by at most the spread of
+/// the level-`⌊L⌋` texel means it blends: nothing for a pattern that repeats within
+/// `2^⌊L⌋` texels (a checkerboard of single texels from `F = 2` up), up to the texture's
+/// whole range where the footprint straddles a feature that large. The footprint is
+/// isotropic: its side is the long axis of the pixel's footprint on the surface, so a
+/// grazing view is blurred along the short axis more than its own footprint would (no
+/// anisotropic filtering).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MipPyramid {
+    /// Levels 1, 2, …, down to one texel (level 0 is the image itself).
+    levels: Vec<GreyImage>,
+}
+
+impl MipPyramid {
+    /// The pyramid of `image` (its levels from 1; a 1 × 1 image has none).
+    #[must_use]
+    pub fn new(image: &GreyImage) -> Self {
+        let mut levels: Vec<GreyImage> = Vec::new();
+        loop {
+            let finer = levels.last().unwrap_or(image);
+            if finer.width == 1 && finer.height == 1 {
+                break;
+            }
+            levels.push(finer.halved());
+        }
+        Self { levels }
+    }
+
+    /// How many levels, the image's included.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.levels.len() + 1
+    }
+
+    /// Always false: a pyramid holds at least its image.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The grey of `image` (the pyramid's level 0) at texture coordinates `uv` over a
+    /// footprint `footprint_uv` across, in texture-coordinate units (a texture
+    /// coordinate's unit is `√(W·H)` texels of the image: the geometric mean of its
+    /// sides).
+    #[must_use]
+    pub fn sample(&self, image: &GreyImage, uv: [f64; 2], footprint_uv: f64) -> f64 {
+        let texels = footprint_uv * ((image.width * image.height) as f64).sqrt();
+        // Magnification, and a footprint of 0 or NaN: the image itself, bilinearly.
+        if texels.is_nan() || texels <= 1.0 {
+            return image.sample(uv, MapFilter::Bilinear);
+        }
+        let level = texels.log2().min(self.levels.len() as f64);
+        let k = level.floor() as usize;
+        let at = |k: usize| {
+            let img = if k == 0 {
+                image
+            } else {
+                &self.levels[(k - 1).min(self.levels.len() - 1)]
+            };
+            img.sample(uv, MapFilter::Bilinear)
+        };
+        let f = level - k as f64;
+        if f == 0.0 || k >= self.levels.len() {
+            return at(k);
+        }
+        (1.0 - f) * at(k) + f * at(k + 1)
+    }
+}
+
+impl GreyImage {
+    /// The next level of a box-filtered pyramid: each texel the mean of the (up to) 2 × 2
+    /// texels it covers, in texture coordinates (pairs counted from the bottom-left, as
+    /// `u` and `v` run).
+    fn halved(&self) -> Self {
+        let (w, h) = (self.width.div_ceil(2), self.height.div_ceil(2));
+        let mut grey = vec![0.0f32; w * h];
+        let mut range = [f64::INFINITY, f64::NEG_INFINITY];
+        for j in 0..h {
+            for i in 0..w {
+                let (mut sum, mut n) = (0.0, 0.0);
+                for (ci, cj) in [
+                    (2 * i, 2 * j),
+                    (2 * i + 1, 2 * j),
+                    (2 * i, 2 * j + 1),
+                    (2 * i + 1, 2 * j + 1),
+                ] {
+                    if ci < self.width && cj < self.height {
+                        sum += self.texel(ci as i64, cj as i64);
+                        n += 1.0;
+                    }
+                }
+                let g = sum / n;
+                range = [range[0].min(g), range[1].max(g)];
+                grey[(h - 1 - j) * w + i] = g as f32;
+            }
+        }
+        Self {
+            width: w,
+            height: h,
+            grey,
+            range,
+        }
+    }
+}
+
+/// One map with its image, and its pyramid when its filter is the footprint's.
 #[derive(Debug, Clone, PartialEq)]
 struct LoadedMap {
     map: ImageMap,
     image: GreyImage,
+    pyramid: Option<MipPyramid>,
 }
 
 impl LoadedMap {
-    fn at(&self, uv: [f64; 2]) -> f64 {
-        self.map.at(self.image.sample(uv, self.map.filter))
+    fn new(map: ImageMap, image: GreyImage) -> Self {
+        let pyramid = (map.filter == MapFilter::Footprint).then(|| MipPyramid::new(&image));
+        Self {
+            map,
+            image,
+            pyramid,
+        }
+    }
+
+    fn at(&self, uv: [f64; 2], footprint_uv: f64) -> f64 {
+        let grey = match &self.pyramid {
+            Some(p) => p.sample(&self.image, uv, footprint_uv),
+            None => self.image.sample(uv, self.map.filter),
+        };
+        self.map.at(grey)
     }
 
     /// The least and greatest value the map gives anywhere: at the image's least and
-    /// greatest grey (the mapping is linear, and both filters are weighted means of
+    /// greatest grey (the mapping is linear, and every filter gives a weighted mean of
     /// texels, so no point lies outside its texels' range).
     fn range(&self) -> [f64; 2] {
         let [lo, hi] = self.image.range().map(|g| self.map.at(g));
@@ -133,12 +267,7 @@ impl MaterialMaps {
         })?;
         let mut load = |name: &str, m: &Option<ImageMap>| {
             m.as_ref()
-                .map(|map| {
-                    Ok::<_, TextureError>(LoadedMap {
-                        image: images(name, map)?,
-                        map: map.clone(),
-                    })
-                })
+                .map(|map| Ok::<_, TextureError>(LoadedMap::new(map.clone(), images(name, map)?)))
                 .transpose()
         };
         Ok(Self {
@@ -165,12 +294,27 @@ impl MaterialMaps {
             .map_or([1.0, 1.0], LoadedMap::range)
     }
 
-    /// The texel at texture coordinates `uv`.
+    /// The texel at texture coordinates `uv` (a footprint filter reads the image itself,
+    /// as for a footprint under a texel).
     #[must_use]
     pub fn sample(&self, uv: [f64; 2]) -> Texel {
+        self.sample_over(uv, 0.0)
+    }
+
+    /// The texel at texture coordinates `uv` over a pixel's footprint `footprint_uv`
+    /// across, in texture-coordinate units ([`MipPyramid::sample`]): only maps with the
+    /// footprint filter read it.
+    #[must_use]
+    pub fn sample_over(&self, uv: [f64; 2], footprint_uv: f64) -> Texel {
         Texel {
-            temperature_offset_k: self.temperature.as_ref().map_or(0.0, |m| m.at(uv)),
-            emissivity_scale: self.emissivity.as_ref().map_or(1.0, |m| m.at(uv)),
+            temperature_offset_k: self
+                .temperature
+                .as_ref()
+                .map_or(0.0, |m| m.at(uv, footprint_uv)),
+            emissivity_scale: self
+                .emissivity
+                .as_ref()
+                .map_or(1.0, |m| m.at(uv, footprint_uv)),
         }
     }
 }
@@ -218,6 +362,74 @@ mod tests {
         assert!(close(at(0.5, 0.5), 0.25));
         // At the image's left edge, halfway to the repeated right column: (0.3 + 0.4)/2.
         assert!(close(at(0.0, 0.25), 0.35));
+    }
+
+    /// A `side × side` checkerboard of single texels, 0 and 1: white where the column plus
+    /// the row from the top is odd (for an even side, the bottom-left texel is white).
+    fn checker(side: usize) -> GreyImage {
+        let grey = (0..side * side)
+            .map(|k| ((k / side + k % side) % 2) as f32)
+            .collect();
+        GreyImage::new(side, side, grey).unwrap()
+    }
+
+    #[allow(clippy::float_cmp)] // ½ of 0 and 1, exact in binary
+    #[test]
+    fn each_level_is_the_mean_of_the_texels_below_it() {
+        // The 2 × 2 quad's one level-1 texel: (0.1 + 0.2 + 0.3 + 0.4)/4.
+        let p = MipPyramid::new(&quad());
+        assert_eq!(p.len(), 2);
+        assert!(close(p.levels[0].grey[0].into(), 0.25));
+        assert!(close(p.levels[0].range()[0], 0.25));
+        // 256 × 256 single-texel checkerboard: 9 levels, every texel of levels 1 to 8 is
+        // exactly ½ (a 2 × 2 block holds two of each).
+        let c = checker(256);
+        let p = MipPyramid::new(&c);
+        assert_eq!(p.len(), 9);
+        assert!(p.levels.iter().all(|l| l.grey.iter().all(|&g| g == 0.5)));
+        assert_eq!(p.levels[7].width, 1);
+        // 3 × 1: level 1 is 2 × 1, (a + b)/2 and c alone; level 2 their mean.
+        let odd = GreyImage::new(3, 1, vec![0.2, 0.4, 1.0]).unwrap();
+        let p = MipPyramid::new(&odd);
+        assert_eq!(p.len(), 3);
+        assert!(close(p.levels[0].grey[0].into(), 0.3) && close(p.levels[0].grey[1].into(), 1.0));
+        assert!(close(p.levels[1].grey[0].into(), 0.65));
+        // A 1 × 1 image is its own pyramid.
+        assert_eq!(
+            MipPyramid::new(&GreyImage::new(1, 1, vec![0.7]).unwrap()).len(),
+            1
+        );
+    }
+
+    #[test]
+    fn the_footprint_picks_the_level_and_blends_between_two() {
+        let c = checker(256);
+        let p = MipPyramid::new(&c);
+        let texel = 1.0 / 256.0;
+        // The bottom-left texel's centre: under one texel across (or none, or NaN) the
+        // image itself, bilinearly: the texel's own 1.
+        let centre = [0.5 * texel, 0.5 * texel];
+        for f in [0.0, 0.5 * texel, texel, f64::NAN] {
+            assert!(close(p.sample(&c, centre, f), 1.0), "{f}");
+        }
+        // From 2 texels across up, the mean ½ wherever the point is, out to the whole
+        // image and beyond.
+        for f in [2.0, 3.0, 7.5, 64.0, 256.0, 1e9, f64::INFINITY] {
+            for uv in [centre, [0.3, 0.71], [-2.2, 5.9]] {
+                assert!(close(p.sample(&c, uv, f * texel), 0.5), "{f} {uv:?}");
+            }
+        }
+        // Between levels 0 and 1 (√2 texels: L = ½), at the white texel's centre: half the
+        // image's 1 and half level 1's ½; at its black neighbour's, half 0 and half ½.
+        assert!(close(p.sample(&c, centre, 2f64.sqrt() * texel), 0.75));
+        let black = [1.5 * texel, 0.5 * texel];
+        assert!(close(p.sample(&c, black, 2f64.sqrt() * texel), 0.25));
+        // A ramp of 4 × 1 texels: √(W·H) = 2 texels per unit of texture coordinate, so a
+        // footprint of 1 unit is 2 texels, level 1 = (0.125, 0.625); at u = ¼, the centre
+        // of level 1's first texel, the mean of the image's first two texels.
+        let ramp = GreyImage::new(4, 1, vec![0.0, 0.25, 0.5, 0.75]).unwrap();
+        let pr = MipPyramid::new(&ramp);
+        assert!(close(pr.sample(&ramp, [0.25, 0.5], 1.0), 0.125));
     }
 
     #[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly

@@ -33,7 +33,8 @@
 //! ```
 //!
 //! A material's image maps ([`MaterialMaps`]) are sampled here too: a [`GreyImage`] read
-//! at texture coordinates with a named filter (nearest or bilinear, repeating), its grey
+//! at texture coordinates with a named filter (nearest, bilinear, or the footprint's
+//! box-filtered mip pyramid [`MipPyramid`] against aliasing; all repeating), its grey
 //! mapped linearly to a temperature offset or an emissivity scale. The image arrives
 //! decoded: reading the file is `irsig-raster`'s.
 //!
@@ -46,7 +47,7 @@ mod image;
 mod spectrum;
 
 pub use field::{CLIP_SIGMAS, Field, WAVES};
-pub use image::{GreyImage, MaterialMaps};
+pub use image::{GreyImage, MaterialMaps, MipPyramid};
 pub use spectrum::{correlation, correlation_length_m};
 
 use irsig_model::ModelError;

@@ -172,13 +172,20 @@ fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
 /// coordinates from their x and y (one repetition of the image per 4 m), and both
 /// materials a 256 × 256 temperature map (nearest) and emissivity map (bilinear), so every
 /// hit interpolates its coordinates and reads two maps. Against `shaded_diffuse`: what an
-/// image map on every facet costs a frame.
-fn mapped(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
+/// image map on every facet costs a frame. With `footprint`, both maps are read with the
+/// footprint filter instead (a mip pyramid, two levels read bilinearly at every hit).
+fn mapped(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
     use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
     use irsig_texture::{GreyImage, MaterialMaps};
-    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 3] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
-    CACHE[i].get_or_init(|| {
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+    ];
+    CACHE[i + 3 * usize::from(footprint)].get_or_init(|| {
         let mut scene = raw_scene(&mesh(i));
         let positions = scene.positions_m.clone();
         for f in &mut scene.facets {
@@ -193,9 +200,14 @@ fn mapped(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
             per_grey,
             filter,
         };
+        let (t_filter, e_filter) = if footprint {
+            (MapFilter::Footprint, MapFilter::Footprint)
+        } else {
+            (MapFilter::Nearest, MapFilter::Bilinear)
+        };
         let maps = ImageMaps {
-            temperature_offset_k: Some(map("t.png", -2.0, 4.0, MapFilter::Nearest)),
-            emissivity_scale: Some(map("e.png", 0.98, 0.04, MapFilter::Bilinear)),
+            temperature_offset_k: Some(map("t.png", -2.0, 4.0, t_filter)),
+            emissivity_scale: Some(map("e.png", 0.98, 0.04, e_filter)),
         };
         let side = 256;
         let grey: Vec<f32> = (0..side * side)
@@ -222,7 +234,21 @@ fn mapped(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
 
 #[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
 fn shaded_diffuse_mapped(bencher: divan::Bencher, i: usize) {
-    let tracer = mapped(i);
+    let tracer = mapped(i, false);
+    let cam = camera();
+    bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
+        one_core(|| {
+            tracer
+                .render(&cam, &TraceOptions::default(), &|_| {})
+                .unwrap()
+        })
+    });
+}
+
+/// `shaded_diffuse_mapped` with both maps read through the footprint filter.
+#[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
+fn shaded_diffuse_mapped_footprint(bencher: divan::Bencher, i: usize) {
+    let tracer = mapped(i, true);
     let cam = camera();
     bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
         one_core(|| {

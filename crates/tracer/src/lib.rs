@@ -109,6 +109,6 @@ pub use sun::{SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam};
 pub use tile::{Tile, TileError};
 pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, SunPixel,
-    TraceOptions, Tracer, TruthPixel, inverse_table,
+    TexturePixel, TraceOptions, Tracer, TruthPixel, inverse_table,
 };
 pub use vec::V3;

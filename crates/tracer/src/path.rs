@@ -149,6 +149,16 @@ pub(crate) enum HemiRay {
     Escaped(Escape),
 }
 
+/// A pixel's angular size, rad: the square root of its solid angle at the image's centre,
+/// `√((2·tan(fov_x/2)/W)·(2·tan(fov_y/2)/H))`. Off the axis a pixel subtends less (by
+/// `cos²` of its angle from the axis), so a footprint from it errs wide: toward blur, never
+/// aliasing.
+fn pixel_angle_rad(camera: &crate::camera::Camera) -> f64 {
+    let [w, h] = camera.pixels.map(f64::from);
+    let [tx, ty] = camera.tan_half_fov;
+    (2.0 * tx / w * 2.0 * ty / h).sqrt()
+}
+
 /// What the ray from the sensor met first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Primary {
@@ -175,6 +185,14 @@ pub(crate) struct Path {
     pub(crate) dir: V3,
     pub(crate) nodes: Vec<Node>,
     pub(crate) rays: Vec<HemiRay>,
+    /// The pixel's angular size, rad: the width of its cone per metre travelled, which the
+    /// footprint filter of an image map reads (0 when the scene has no image map).
+    cone_rad: f64,
+    /// How far the ray has travelled from the sensor to the facet being recorded, m,
+    /// through its mirror bounces (a mirror keeps a cone's spread: Akenine-Möller et al.,
+    /// "Texture level of detail strategies for real-time ray tracing", *Ray Tracing
+    /// Gems*, 2019, ch. 20).
+    travelled_m: f64,
 }
 
 impl Default for Path {
@@ -184,6 +202,8 @@ impl Default for Path {
             dir: [0.0, 0.0, 1.0],
             nodes: Vec::new(),
             rays: Vec::new(),
+            cone_rad: 0.0,
+            travelled_m: 0.0,
         }
     }
 }
@@ -205,6 +225,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     range_m: hit.distance_m,
                     alt_m: alt,
                 };
+                path.cone_rad = if self.uv_maps.is_empty() {
+                    0.0
+                } else {
+                    pixel_angle_rad(fc.camera())
+                };
+                path.travelled_m = hit.distance_m;
                 self.follow_surface(&hit, dir, alt, 0, ctx, path);
             }
         }
@@ -258,7 +284,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let sfrac = m.specular_fraction;
         let index = path.nodes.len();
         path.nodes.push(Node {
-            surface: self.surface(hit, alt),
+            surface: self.surface(hit, alt, path.cone_rad * path.travelled_m),
             mirror: None,
             diffuse: None,
             reflected_z: f64::NAN,
@@ -285,6 +311,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 ) {
                     Some(h2) => {
                         let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
+                        path.travelled_m += h2.distance_m;
                         self.follow_surface(&h2, refl, alt2, depth + 1, ctx, path);
                         Mirror::Next
                     }
@@ -412,8 +439,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// The record of a hit at altitude `alt`: with its material's texture sampled at the
     /// hit's world position and its image maps at the hit's texture coordinates, every
-    /// event alike (the first hit, a specular bounce's, a sky-view ray's).
-    fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64) -> Surface {
+    /// event alike (the first hit, a specular bounce's, a sky-view ray's), a footprint
+    /// filter over the ray's cone `footprint_m` wide there ([`Tracer::texel_at`]).
+    fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64, footprint_m: f64) -> Surface {
         let slot = usize::from(hit.data.material);
         Surface {
             facet: hit.facet,
@@ -422,7 +450,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             back_face: hit.back_face,
             alt_m: alt,
             emissivity: self.emissivity[slot].at_cos(hit.cos_incidence),
-            texel: self.texel_at(hit),
+            texel: self.texel_at(hit, footprint_m),
         }
     }
 
@@ -465,7 +493,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ) {
                 Some(h2) => {
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                    HemiRay::Facet(self.surface(&h2, alt2))
+                    HemiRay::Facet(self.surface(&h2, alt2, 0.0))
                 }
                 None => {
                     if d[2] >= 0.0 {

@@ -35,8 +35,8 @@ use rayon::prelude::*;
 
 use crate::tile::Tile;
 use crate::tracer::{
-    Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, SunPixel, TraceOptions,
-    Tracer, TruthPixel,
+    Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, SunPixel, TexturePixel,
+    TraceOptions, Tracer, TruthPixel,
 };
 use crate::vec::{dot, sub};
 
@@ -167,6 +167,8 @@ pub(crate) struct Centres {
     pub(crate) truth: Vec<TruthPixel>,
     /// The sun's truth of each centre; empty without a sun.
     pub(crate) sun: Vec<SunPixel>,
+    /// The texture's truth of each centre; empty for an untextured scene.
+    pub(crate) texture: Vec<TexturePixel>,
     pub(crate) calm_w_m2_sr: Vec<f64>,
     /// Each centre ray's charges ([`crate::charge`]); empty unless the tracer keeps them.
     pub(crate) charges: Charges,
@@ -283,6 +285,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             radiance_w_m2_sr: vec![0.0; n],
             truth: vec![TruthPixel::from(&Sample::miss(Event::Sky)); n],
             sun: Vec::new(),
+            texture: Vec::new(),
             calm_w_m2_sr: vec![0.0; n],
             charges: Charges::default(),
         };
@@ -290,6 +293,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let lit = self.sun.is_some();
         if lit {
             out.sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
+        }
+        let textured = self.is_textured();
+        if textured {
+            out.texture = vec![TexturePixel::from(&Sample::miss(Event::Sky)); n];
         }
         // Without a sun, each row's sun slice is empty and nothing is written to it.
         let rows = n.div_ceil(row_len);
@@ -299,14 +306,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         } else {
             (0..rows).map(|_| <&mut [SunPixel]>::default()).collect()
         };
+        let texture_rows: Vec<&mut [TexturePixel]> = if textured {
+            out.texture.chunks_mut(row_len).collect()
+        } else {
+            (0..rows)
+                .map(|_| <&mut [TexturePixel]>::default())
+                .collect()
+        };
         out.radiance_w_m2_sr
             .par_chunks_mut(row_len)
             .zip(out.truth.par_chunks_mut(row_len))
             .zip(out.calm_w_m2_sr.par_chunks_mut(row_len))
             .zip(sun_rows)
+            .zip(texture_rows)
             .zip(charge_rows.par_iter_mut())
             .enumerate()
-            .for_each(|(r, ((((rad, tru), calm), sun), charges))| {
+            .for_each(|(r, (((((rad, tru), calm), sun), tex), charges))| {
                 let mut path = Path::default();
                 let mut hemispheric = Path::default();
                 let mut centre = Sample::miss(Event::Sky);
@@ -337,6 +352,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     *t_out = TruthPixel::from(&centre);
                     if let Some(s_out) = sun.get_mut(c) {
                         *s_out = SunPixel::from(&centre);
+                    }
+                    if let Some(x_out) = tex.get_mut(c) {
+                        *x_out = TexturePixel::from(&centre);
                     }
                     *calm_out = if path.has_sky_view_rays() {
                         path.with_sky_rays(0, &mut hemispheric);

@@ -315,8 +315,10 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         s.back_face = surface.back_face;
         s.range_m = range_m;
         s.cos_incidence = surface.cos_incidence;
-        s.temperature_k =
-            surface.data.temperature_k + surface.texel.map_or(0.0, |t| t.temperature_offset_k);
+        let texel = surface.texel.unwrap_or(irsig_texture::Texel::NONE);
+        s.temperature_k = surface.data.temperature_k + texel.temperature_offset_k;
+        s.texture_offset_k = texel.temperature_offset_k;
+        s.texture_emissivity_scale = texel.emissivity_scale;
         s.emissivity = if one {
             single.emissivity
         } else {

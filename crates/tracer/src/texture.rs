@@ -78,6 +78,12 @@ pub(crate) struct UvMap {
     uv0: [f64; 2],
     grad_u: [f64; 3],
     grad_v: [f64; 3],
+    /// Texture-coordinate units per metre: `√(A_uv / A_world)`, the square root of the
+    /// triangle's area in texture coordinates over its area in the world, constant over
+    /// the triangle (the map is affine). A footprint's width in metres times it is its
+    /// width in texture coordinates, as an isotropic scale (a stretched mapping's two
+    /// axes are averaged geometrically).
+    uv_per_m: f64,
 }
 
 impl UvMap {
@@ -99,12 +105,28 @@ impl UvMap {
             let (db, dc) = (uv[1][axis] - uv[0][axis], uv[2][axis] - uv[0][axis]);
             std::array::from_fn(|k| db * dual_b[k] + dc * dual_c[k])
         };
+        // Twice each area: |e₁ × e₂| = √det in the world, |Δu₁Δv₂ − Δu₂Δv₁| in texture
+        // coordinates.
+        let uv_area = ((uv[1][0] - uv[0][0]) * (uv[2][1] - uv[0][1])
+            - (uv[2][0] - uv[0][0]) * (uv[1][1] - uv[0][1]))
+            .abs();
         Some(Self {
             origin_m: a,
             uv0: uv[0],
             grad_u: grad(0),
             grad_v: grad(1),
+            uv_per_m: (uv_area / det.sqrt()).sqrt(),
         })
+    }
+
+    /// A pixel's footprint `footprint_m` across (its cone's width at the hit, before the
+    /// slant) on this facet at incidence cosine `cos_incidence`, in texture-coordinate
+    /// units: the width over `|cos θ|` (the footprint's long axis) times
+    /// [`Self::uv_per_m`]. Grazing incidence gives an infinite footprint: the pyramid's
+    /// last level, the image's mean.
+    #[inline]
+    pub(crate) fn footprint_uv(&self, footprint_m: f64, cos_incidence: f64) -> f64 {
+        footprint_m / cos_incidence.abs() * self.uv_per_m
     }
 
     /// The texture coordinates at the world point `p_m` of the facet's plane.
@@ -196,13 +218,24 @@ pub(crate) fn check_emissivity_scales(
 }
 
 impl<B, A> crate::tracer::Tracer<B, A> {
+    /// Whether any material of the scene has a texture (statistical, or image maps): a
+    /// frame then keeps the texture's truth layers ([`crate::Frame::texture`]).
+    #[must_use]
+    pub fn is_textured(&self) -> bool {
+        self.materials
+            .iter()
+            .any(|m| m.texture.is_some() || m.maps.is_some())
+    }
+
     /// What the material's textures give at a hit: its statistical texture at the world
     /// point and its image maps at the point's texture coordinates, combined (offsets add,
-    /// scales multiply); `None` for a material with neither.
+    /// scales multiply); `None` for a material with neither. `footprint_m` is the width of
+    /// the ray's pixel cone at the hit, m, which the footprint filter reads (0: none).
     #[inline]
     pub(crate) fn texel_at(
         &self,
         hit: &crate::geometry::Hit<crate::tracer::FacetRadiometry>,
+        footprint_m: f64,
     ) -> Option<irsig_texture::Texel> {
         let m = &self.materials[usize::from(hit.data.material)];
         if m.texture.is_none() && m.maps.is_none() {
@@ -214,7 +247,9 @@ impl<B, A> crate::tracer::Tracer<B, A> {
             .maps
             .as_ref()
             .zip(self.uv_maps.get(hit.facet as usize).copied().flatten())
-            .map(|(maps, uv)| maps.sample(uv.at(p_m)));
+            .map(|(maps, uv)| {
+                maps.sample_over(uv.at(p_m), uv.footprint_uv(footprint_m, hit.cos_incidence))
+            });
         match (field, map) {
             (Some(a), Some(b)) => Some(a * b),
             (a, b) => a.or(b),
@@ -282,5 +317,30 @@ mod tests {
             );
         }
         assert!(UvMap::new([a, a, c], [[0.0; 2]; 3]).is_none());
+    }
+
+    #[test]
+    fn a_footprint_in_texture_coordinates_is_its_width_over_the_cosine_times_the_scale() {
+        // A right triangle of legs 4 m and 2 m (area 4 m²) mapped onto legs 0.5 and 0.25
+        // (area 1/16): √(1/64) = 1/8 unit per metre.
+        let map = UvMap::new(
+            [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            [[0.0, 0.0], [0.5, 0.0], [0.0, 0.25]],
+        )
+        .unwrap();
+        assert!((map.uv_per_m - 0.125).abs() < 1e-15);
+        // 2 m across at normal incidence: 0.25 units; at 60°: twice that; a back face the
+        // same; at grazing incidence infinite.
+        assert!((map.footprint_uv(2.0, 1.0) - 0.25).abs() < 1e-15);
+        assert!((map.footprint_uv(2.0, 0.5) - 0.5).abs() < 1e-15);
+        assert!((map.footprint_uv(2.0, -0.5) - 0.5).abs() < 1e-15);
+        assert!(map.footprint_uv(2.0, 0.0).is_infinite());
+        // A mirrored mapping has the same scale.
+        let mirrored = UvMap::new(
+            [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            [[0.5, 0.0], [0.0, 0.0], [0.5, 0.25]],
+        )
+        .unwrap();
+        assert!((mirrored.uv_per_m - 0.125).abs() < 1e-15);
     }
 }

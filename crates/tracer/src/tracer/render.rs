@@ -90,9 +90,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let centres = self.render_rect(&fc, &centre_options, halo, &|_| {});
         let refine = self.edges(&centres, threshold_k);
         let tw = tile.width as usize;
-        let (mut radiance, flags, truth, sun) = if halo == tile {
+        let (mut radiance, flags, truth, sun, texture) = if halo == tile {
             // The whole image: the margin is empty, nothing to crop.
-            (centres.radiance_w_m2_sr, refine, centres.truth, centres.sun)
+            (
+                centres.radiance_w_m2_sr,
+                refine,
+                centres.truth,
+                centres.sun,
+                centres.texture,
+            )
         } else {
             let (dx, dy) = ((tile.x - halo.x) as usize, (tile.y - halo.y) as usize);
             let hw = halo.width as usize;
@@ -101,6 +107,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let mut flags = Vec::with_capacity(tile.pixels());
             let mut truth = Vec::new();
             let mut sun = Vec::new();
+            let mut texture = Vec::new();
             for r in 0..tile.height as usize {
                 radiance.extend_from_slice(&centres.radiance_w_m2_sr[crop(r)]);
                 flags.extend_from_slice(&refine[crop(r)]);
@@ -110,8 +117,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 if !centres.sun.is_empty() {
                     sun.extend_from_slice(&centres.sun[crop(r)]);
                 }
+                if !centres.texture.is_empty() {
+                    texture.extend_from_slice(&centres.texture[crop(r)]);
+                }
             }
-            (radiance, flags, truth, sun)
+            (radiance, flags, truth, sun, texture)
         };
         let full = TraceOptions {
             adaptive_threshold_k: None,
@@ -172,6 +182,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling: Vec::new(),
             sun,
+            texture,
             charges: Charges::concat(charge_rows),
         })
     }
@@ -279,29 +290,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 }
                 progress(1);
             });
-        let crop = |all: &[SunPixel]| -> Vec<SunPixel> {
-            (0..tile.height as usize)
-                .flat_map(|r| {
-                    let start = (r + dy) * hw + dx;
-                    all[start..start + tw].iter().copied()
-                })
-                .collect()
-        };
-        let (truth, sun) = if options.truth {
-            let truth = (0..tile.height as usize)
-                .flat_map(|r| {
-                    let start = (r + dy) * hw + dx;
-                    centres.truth[start..start + tw].iter().copied()
-                })
-                .collect();
-            let sun = if self.sun.is_some() {
-                crop(&centres.sun)
-            } else {
-                Vec::new()
-            };
-            (truth, sun)
+        // The tile's rows of each layer kept over the halo (empty where one is not).
+        let th = tile.height as usize;
+        let (truth, sun, texture) = if options.truth {
+            (
+                crop_rows(&centres.truth, [dx, dy], hw, tw, th),
+                crop_rows(&centres.sun, [dx, dy], hw, tw, th),
+                crop_rows(&centres.texture, [dx, dy], hw, tw, th),
+            )
         } else {
-            (Vec::new(), Vec::new())
+            (Vec::new(), Vec::new(), Vec::new())
         };
         Frame {
             width: tile.width,
@@ -310,6 +308,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling,
             sun,
+            texture,
             charges: Charges::concat(charge_rows),
         }
     }
@@ -328,6 +327,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let mut radiance = vec![0.0; n];
         let mut truth = Vec::new();
         let mut sun = Vec::new();
+        let mut texture = Vec::new();
         // The budget's charges, a row's at a time (empty unless the tracer keeps them).
         let charging = options.truth && self.keeps_charges();
         let rows = n.div_ceil(row_len);
@@ -355,16 +355,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             // The sun's layers in a vector of their own, empty on a night frame.
             sun = vec![SunPixel::from(&Sample::miss(Event::Sky)); n];
         }
+        if options.truth && self.is_textured() {
+            // The texture's layers likewise, empty for an untextured scene.
+            texture = vec![TexturePixel::from(&Sample::miss(Event::Sky)); n];
+        }
         // Each row's share of the layers kept (none where a layer is not).
         let mut truth_rows = row_slices(&mut truth, row_len, rows);
         let mut sun_rows = row_slices(&mut sun, row_len, rows);
+        let mut texture_rows = row_slices(&mut texture, row_len, rows);
         radiance
             .par_chunks_mut(row_len)
             .zip(truth_rows.par_iter_mut())
             .zip(sun_rows.par_iter_mut())
+            .zip(texture_rows.par_iter_mut())
             .zip(charge_rows.par_iter_mut())
             .enumerate()
-            .for_each(|(r, (((rad, tru), sun), charges))| {
+            .for_each(|(r, ((((rad, tru), sun), tex), charges))| {
                 let mut path = Path::default();
                 let mut centre = Sample::miss(Event::Sky);
                 let mut tally = Tally::default();
@@ -389,6 +395,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     if let Some(s) = sun {
                         s[c] = SunPixel::from(&centre);
                     }
+                    if let Some(t) = tex {
+                        t[c] = TexturePixel::from(&centre);
+                    }
                 }
                 progress(1);
             });
@@ -399,6 +408,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             truth,
             sampling: Vec::new(),
             sun,
+            texture,
             charges: if charging {
                 Charges::concat(charge_rows)
             } else {
@@ -497,6 +507,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
 /// `layer` cut into its rows of `row_len` pixels, one entry per row of `rows`: `None` for
 /// every row when the layer is not kept (empty).
+/// The `rows` rows of `width` pixels that start at `[dx, dy]` in a layer of rows of
+/// `stride` pixels (a tile within its halo); empty for an empty layer (one not kept).
+fn crop_rows<T: Copy>(
+    layer: &[T],
+    [dx, dy]: [usize; 2],
+    stride: usize,
+    width: usize,
+    rows: usize,
+) -> Vec<T> {
+    if layer.is_empty() {
+        return Vec::new();
+    }
+    (0..rows)
+        .flat_map(|r| {
+            let start = (r + dy) * stride + dx;
+            layer[start..start + width].iter().copied()
+        })
+        .collect()
+}
+
 fn row_slices<T>(layer: &mut [T], row_len: usize, rows: usize) -> Vec<Option<&mut [T]>> {
     if layer.is_empty() {
         (0..rows).map(|_| None).collect()

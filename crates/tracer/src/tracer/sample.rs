@@ -218,6 +218,13 @@ pub struct Sample {
     /// With a sun: the sun's share of the radiance at the sensor, `Σ τ·L_solar / L`, 0 to 1
     /// (0 for a sky miss). NaN without a sun.
     pub sun_share: f64,
+    /// The temperature offset the primary facet's texture gives at the hit, K (already in
+    /// [`Self::temperature_k`]): 0 for an untextured material, NaN for a miss.
+    pub texture_offset_k: f64,
+    /// The scale the primary facet's texture puts on ε at the hit, before ε is held to 0
+    /// to 1 (already in [`Self::emissivity`]): 1 for an untextured material, NaN for a
+    /// miss.
+    pub texture_emissivity_scale: f64,
 }
 
 impl Sample {
@@ -257,13 +264,16 @@ impl Sample {
             sun_visible_fraction: f64::NAN,
             reflected_solar_w_m2_sr: f64::NAN,
             sun_share: f64::NAN,
+            texture_offset_k: f64::NAN,
+            texture_emissivity_scale: f64::NAN,
         }
     }
 }
 
 /// The truth layers of one pixel: the terms of the ray through its centre that the truth
 /// outputs carry, rounded to f32 as the truth EXR stores them: 56 bytes, where a whole
-/// [`Sample`] is 192 (160 when measured; the sun's four terms are kept in [`SunPixel`]).
+/// [`Sample`] is 208 (160 when measured; the sun's four terms are kept in [`SunPixel`],
+/// the texture's two in [`TexturePixel`]).
 /// (Keeping a whole sample per pixel cost 10-45 ns per primary ray at 1k-1M triangles;
 /// this record, with the angle derived later, costs 2-4 ns: BENCHMARKS.md.) [`Tracer::probe`] gives every term of a pixel in f64. Terms that do not
 /// apply are NaN, as in [`Sample`].
@@ -304,8 +314,9 @@ pub struct TruthPixel {
 
 // The sizes the frame's memory traffic was measured at (the doc above).
 const _: () = assert!(std::mem::size_of::<TruthPixel>() == 56);
-const _: () = assert!(std::mem::size_of::<Sample>() == 192);
+const _: () = assert!(std::mem::size_of::<Sample>() == 208);
 const _: () = assert!(std::mem::size_of::<SunPixel>() == 16);
+const _: () = assert!(std::mem::size_of::<TexturePixel>() == 8);
 
 impl TruthPixel {
     /// The angle between the reversed ray and the facet normal, degrees, rounded to f32 (NaN
@@ -353,7 +364,9 @@ impl TruthPixel {
             | Layer::SolarIrradiance
             | Layer::SunVisibleFraction
             | Layer::ReflectedSolarRadiance
-            | Layer::SunShare => return None,
+            | Layer::SunShare
+            | Layer::TextureTemperatureOffset
+            | Layer::TextureEmissivityScale => return None,
         })
     }
 }
@@ -384,6 +397,42 @@ impl SunPixel {
             Layer::SunShare => |p| p.sun_share,
             _ => return None,
         })
+    }
+}
+
+/// The texture's truth layers of one pixel ([`Layer::TEXTURE`]): what the texture gave at
+/// the primary hit of the pixel's centre ray, as every truth layer is the centre ray's
+/// (a refined or supersampled pixel's radiance is the mean of its rays; its truth is not).
+/// Rounded to f32 as the truth EXR stores them, and kept apart from [`TruthPixel`], in
+/// [`Frame::texture`], only when the scene has a textured material, so that an
+/// untextured frame pays nothing for them and its files keep their bytes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TexturePixel {
+    /// [`Sample::texture_offset_k`], K.
+    pub temperature_offset_k: f32,
+    /// [`Sample::texture_emissivity_scale`].
+    pub emissivity_scale: f32,
+}
+
+impl TexturePixel {
+    /// What the texture's truth layer `layer` reads, as a function; `None` for the other
+    /// layers.
+    #[must_use]
+    pub fn layer_of(layer: Layer) -> Option<fn(&Self) -> f32> {
+        Some(match layer {
+            Layer::TextureTemperatureOffset => |p| p.temperature_offset_k,
+            Layer::TextureEmissivityScale => |p| p.emissivity_scale,
+            _ => return None,
+        })
+    }
+}
+
+impl From<&Sample> for TexturePixel {
+    fn from(s: &Sample) -> Self {
+        Self {
+            temperature_offset_k: s.texture_offset_k as f32,
+            emissivity_scale: s.texture_emissivity_scale as f32,
+        }
     }
 }
 
@@ -436,6 +485,10 @@ pub struct Frame {
     /// The sun's truth layers of each pixel's centre ray; empty without a sun
     /// ([`Tracer::with_sun`]) or when [`TraceOptions::truth`] is off.
     pub sun: Vec<SunPixel>,
+    /// The texture's truth layers of each pixel's centre ray; empty when no material of
+    /// the scene has a texture ([`Tracer::is_textured`]) or when [`TraceOptions::truth`] is
+    /// off.
+    pub texture: Vec<TexturePixel>,
     /// The error budget's partials of each pixel's value, per input group of the facets
     /// its rays met ([`crate::charge`]); empty unless the tracer was given the groups
     /// ([`Tracer::with_budget_groups`]) and the truth is kept.
@@ -453,6 +506,12 @@ impl Frame {
                 return None;
             }
             return Some(self.sun.iter().map(value).collect());
+        }
+        if let Some(value) = TexturePixel::layer_of(layer) {
+            if self.texture.is_empty() {
+                return None;
+            }
+            return Some(self.texture.iter().map(value).collect());
         }
         if self.truth.is_empty() {
             return None;
