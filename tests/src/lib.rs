@@ -10,6 +10,7 @@ use std::process::Command;
 pub mod hazy_day;
 pub mod recipe;
 pub mod slant_plate;
+pub mod sunlit_plate;
 
 /// The repository root.
 #[must_use]
