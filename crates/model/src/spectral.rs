@@ -426,7 +426,8 @@ fn check_apparent_zeniths(s: &SpectralSolar) -> Result<(), ModelError> {
             return Err(ModelError::new(
                 format!("solar.apparent_zenith_deg[{k}]"),
                 ModelErrorKind::Other(format!(
-                    "expected an apparent zenith angle from 0 to its sun's geometric {z} deg                      (refraction lifts a sun), found {a}"
+                    "expected an apparent zenith angle from 0 to its sun's geometric {z} deg \
+                     (refraction lifts a sun), found {a}"
                 )),
             ));
         }

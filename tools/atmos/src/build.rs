@@ -249,7 +249,9 @@ fn apparent_text(plan: &AtmospherePlan, all: &[PlanPath], ok: &[RunResult]) -> S
     }
     let most = bent.iter().copied().fold(0.0_f64, f64::max);
     format!(
-        "; {} of {} beams run at the apparent zenith whose refracted ray leaves toward the sun's          geometric one (ANGLE + LOWTRAN7's BENDING = the sun's, to 0.002 deg; up to {most:.3}          deg below it), the others bent less than 0.03 deg and run at the sun's",
+        "; {} of {} beams run at the apparent zenith whose refracted ray leaves toward the sun's \
+         geometric one (ANGLE + LOWTRAN7's BENDING = the sun's, to 0.002 deg; up to {most:.3} \
+         deg below it), the others bent less than 0.03 deg and run at the sun's",
         bent.len(),
         beams.len()
     )

@@ -77,7 +77,11 @@ fn apparent_zeniths(all: &[LoadsPath], ok: &[RunResult]) -> Option<(Vec<f64>, St
         (
             beams.iter().map(|b| b.1).collect(),
             format!(
-                "{bent} of {} direct beams run at the apparent zenith whose refracted ray                  leaves toward the sun's geometric one (LOWTRAN7's ANGLE + BENDING = the                  sun's, to 0.002 deg: apparent_sun_zenith_deg); the others bent less than                  0.03 deg and run at the sun's. The diffuse runs take the sun's geometric                  angle (PARM2), which LOWTRAN7 bends itself",
+                "{bent} of {} direct beams run at the apparent zenith whose refracted ray \
+                 leaves toward the sun's geometric one (LOWTRAN7's ANGLE + BENDING = the \
+                 sun's, to 0.002 deg: apparent_sun_zenith_deg); the others bent less than \
+                 0.03 deg and run at the sun's. The diffuse runs take the sun's geometric \
+                 angle (PARM2), which LOWTRAN7 bends itself",
                 beams.len()
             ),
         )

@@ -527,7 +527,8 @@ fn refracted(
                         text,
                         card3,
                         format!(
-                            "LOWTRAN7 rejected this sun's path at its apparent zenith {angle}                              deg: {said}"
+                            "LOWTRAN7 rejected this sun's path at its apparent zenith {angle} \
+                             deg: {said}"
                         ),
                     )));
                 }
