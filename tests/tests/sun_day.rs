@@ -13,77 +13,26 @@
 //! LOWTRAN7 is `$IRSIG_LOWTRAN`, else `lowtran7` on PATH: without it this test fails,
 //! saying so, and never skips.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use irsig_atmosphere::sun::SunSpec;
 use irsig_model::truth::Layer;
+use irsig_tests::sunlit_plate::{plan_ron_over, plate};
 use irsig_tests::{bin, lowtran};
 
 /// The table's sun and day, and the factor 1 March's beam is of it, by hand (above).
 const ZENITH_DEG: f64 = 30.0;
 const TABLE_DAY: u32 = 286;
 const MARCH_OVER_OCTOBER: f64 = 1.018_984 / 1.004_745;
-const EPSILON: f64 = 0.6;
 
 /// A plan of one view down, 4-5 µm (2000-2500 cm⁻¹, both edges on the grid), and the
-/// sun's beam at 0, 300 and 1000 m.
+/// sun's beam at 0, 300 and 1000 m, on the table's day.
 fn plan_ron() -> String {
-    format!(
-        "(
-  name: \"october\",
-  model: Standard(6),
-  wavenumber_per_cm: (1980.0, 2520.0, 20.0),
-  path_end_m: 1.0,
-  observers_m: [1000.0],
-  levels_m: [1000.0],
-  correction_altitude_m: 1000.0,
-  correction_nadir_deg: [0.0, 5.0, 10.0],
-  ground_sky_zenith_deg: [0.0],
-  hemispheric: [],
-  slant_altitude_m: [1000.0],
-  slant_nadir_deg: [0.0],
-  sky_altitude_m: [0.0, 1000.0],
-  sky_zenith_deg: [0.0],
-  sun: Some((
-    zenith_deg: {ZENITH_DEG:.1},
-    day_of_year: {TABLE_DAY},
-    altitude_m: [0.0, 300.0, 1000.0],
-  )),
-)
-"
+    plan_ron_over(
+        &format!("{ZENITH_DEG:.1}"),
+        &TABLE_DAY.to_string(),
+        [1980.0, 2520.0, 20.0],
     )
-}
-
-/// A grey diffuse plate 200 km across at 150 m, and a 4 × 4 view straight down on it
-/// from 1000 m: the scene, the materials and the view.
-fn plate(dir: &Path) -> [PathBuf; 3] {
-    let scene = dir.join("plate.raw.ron");
-    std::fs::write(
-        &scene,
-        "(objects: [\"plate\"], \
-         positions_m: [(-1e5, -1e5, 150.0), (1e5, -1e5, 150.0), (1e5, 1e5, 150.0), \
-                       (-1e5, 1e5, 150.0)], \
-         facets: [(vertices: (0, 1, 2), material: 1, temperature_k: 300.0, object: 0), \
-                  (vertices: (0, 2, 3), material: 1, temperature_k: 300.0, object: 0)])",
-    )
-    .unwrap();
-    let materials = dir.join("grey.ron");
-    std::fs::write(
-        &materials,
-        format!(
-            "(materials: [(id: 1, name: \"grey\", emissivity: [(0.0, {EPSILON:?}), \
-             (90.0, {EPSILON:?})], specular_fraction: 0.0, source: \"a test\")])"
-        ),
-    )
-    .unwrap();
-    let view = dir.join("down.ron");
-    std::fs::write(
-        &view,
-        "LookAt(position_m: (0.0, 0.0, 1000.0), target_m: (0.0, 0.0, 0.0), \
-         up: (0.0, 1.0, 0.0), pixels: (4, 4), fov_deg: (1.0, 1.0))",
-    )
-    .unwrap();
-    [scene, materials, view]
 }
 
 /// The sun seen from (0°, 0°) at `utc`, geometric, as `--sun-utc` without the air's flags.
