@@ -51,6 +51,9 @@ pub mod tolerance;
 pub use air::AtmosphereRequest;
 pub use band::BandRequest;
 pub use error::{RequestError, Setting, Spelling};
-pub use plan::{FRAME_BYTES_PER_PIXEL, Plan, Request, Sink, TileRequest, ToleranceRequest};
+pub use plan::{
+    FRAME_BYTES_PER_PIXEL, Plan, Request, Sink, TEXTURE_BYTES_PER_PIXEL, TileRequest,
+    ToleranceRequest,
+};
 pub use run_hash::RunHash;
 pub use sun::SunRequest;

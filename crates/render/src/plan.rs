@@ -166,6 +166,11 @@ pub trait Sink {
 /// `tests/tests/memory.rs` holds a tile to it).
 pub const FRAME_BYTES_PER_PIXEL: u64 = 150;
 
+/// What a textured frame holds per pixel beyond [`FRAME_BYTES_PER_PIXEL`], bytes: each
+/// pixel's texture truth (an 8-byte record of the offset and the scale at the primary hit)
+/// and its two f32 layers in the truth EXR.
+pub const TEXTURE_BYTES_PER_PIXEL: u64 = 16;
+
 /// A run: its request and inputs, read and checked as they come.
 #[derive(Debug)]
 pub struct Plan {
@@ -678,7 +683,7 @@ impl Plan {
     }
 
     /// The largest frame (or, with `tile`, the largest tile and its one-pixel margin), in
-    /// pixels, and what tracing it holds at [`FRAME_BYTES_PER_PIXEL`], bytes: what a tool
+    /// pixels, and what tracing it holds at [`Plan::bytes_per_pixel`], bytes: what a tool
     /// checks against the machine before any pilot runs.
     ///
     /// # Errors
@@ -693,8 +698,21 @@ impl Plan {
             .unwrap_or([0, 0]);
         let bytes = largest[0]
             .saturating_mul(largest[1])
-            .saturating_mul(FRAME_BYTES_PER_PIXEL);
+            .saturating_mul(self.bytes_per_pixel());
         Ok((largest, bytes))
+    }
+
+    /// What tracing holds per pixel of a frame with every truth layer, bytes:
+    /// [`FRAME_BYTES_PER_PIXEL`], and [`TEXTURE_BYTES_PER_PIXEL`] more when a material is
+    /// textured.
+    #[must_use]
+    pub fn bytes_per_pixel(&self) -> u64 {
+        let textured = self
+            .materials
+            .materials
+            .iter()
+            .any(|m| m.texture.is_some() || m.maps.is_some());
+        FRAME_BYTES_PER_PIXEL + u64::from(textured) * TEXTURE_BYTES_PER_PIXEL
     }
 
     /// Every term of the radiance equation for pixel `(column, row)` of the first view,

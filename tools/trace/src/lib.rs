@@ -18,7 +18,6 @@ use irsig_formats::legacy::decode;
 use irsig_formats::views::{ViewSun, read_execute};
 use irsig_model::decision::Decision as PilotDecision;
 use irsig_model::frame::{FrameFile, FrameFiles};
-use irsig_render::FRAME_BYTES_PER_PIXEL;
 use irsig_render::tolerance::Pin;
 use irsig_render::{
     AtmosphereRequest, BandRequest, Plan, Request, RequestError, Setting, Sink, TileRequest,
@@ -337,7 +336,7 @@ pub fn plan_of(cli: &Cli) -> miette::Result<Plan> {
 
 /// Refuses a frame (or, with `tile`, a tile and its margin) too large for the machine,
 /// before a pilot spends minutes on it and the allocation aborts the process with its
-/// staged files left behind: the largest one's [`FRAME_BYTES_PER_PIXEL`] against what the
+/// staged files left behind: the largest one's [`Plan::bytes_per_pixel`] against what the
 /// process may still take ([`irsig_cli::memory`]).
 ///
 /// # Errors
@@ -351,7 +350,10 @@ pub fn fits_in_memory(plan: &Plan, tile: Option<TileRequest>) -> miette::Result<
     };
     irsig_cli::memory::check_fits(
         bytes,
-        &format!("tracing {what}, {w} x {h} pixels at {FRAME_BYTES_PER_PIXEL} bytes a pixel,"),
+        &format!(
+            "tracing {what}, {w} x {h} pixels at {} bytes a pixel,",
+            plan.bytes_per_pixel()
+        ),
         "trace it in tiles (--tile), which need as much per pixel of the tile, or on a \
          machine with more memory",
     )
