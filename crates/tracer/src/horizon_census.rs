@@ -32,7 +32,8 @@ pub struct HorizonCensus {
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The census of the centre-ray view paths of `camera`'s pixels in `window` against
     /// the slant tables' widest nadir row; `None` when the atmosphere's model has no slant
-    /// tables. It costs one closest hit a pixel, a small share of a frame's rays.
+    /// tables. It costs an arc cosine a pixel, and a closest hit for each ray above the
+    /// horizon.
     #[must_use]
     pub fn horizon_census(&self, camera: &Camera, window: Tile) -> Option<HorizonCensus> {
         let atmosphere = &self.bands.bands.first()?.atmosphere;
@@ -48,11 +49,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 for column in columns.clone() {
                     let dir = camera.pixel_direction(column, row);
                     let nadir_deg = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
-                    let hit = self
-                        .geometry
-                        .closest_hit(origin, dir, 0.0, f64::INFINITY, None)
-                        .is_some();
-                    if !hit && nadir_deg >= horizon_deg {
+                    // Below the horizon a ray ends at a facet or the terrain alike: only a
+                    // ray above it needs the scene to say whether a facet stops it.
+                    let ends_low = nadir_deg < horizon_deg
+                        || self
+                            .geometry
+                            .closest_hit(origin, dir, 0.0, f64::INFINITY, None)
+                            .is_some();
+                    if !ends_low {
                         continue;
                     }
                     ground += 1;
