@@ -15,8 +15,8 @@
 //! scripts/atmosphere/install-lowtran.sh`); without it this test fails, saying so.
 
 use irsig_atmosphere::{
-    AtmosphereModel, BUILTIN_NAMES, BandQuadrature, Collapser, ModelKind, SubBandCount,
-    builtin_spectral, builtin_spectral_mwir, sub_band_edges,
+    AtmosphereModel, BUILTIN_NAMES, BandQuadrature, Collapser, ModelKind, STANDARD_MODELS,
+    SubBandCount, builtin_spectral, builtin_spectral_mwir, sub_band_edges,
 };
 use irsig_formats::radtran::lowtran_tape7;
 use irsig_model::SpectralAtmosphere;
@@ -24,15 +24,11 @@ use irsig_radiometry::Band;
 
 /// LOWTRAN7's model number of a built-in.
 fn model_number(name: &str) -> u32 {
-    match name {
-        "us-std-1976" => 6,
-        "midlat-winter" => 3,
-        "tropical" => 1,
-        "midlat-summer" => 2,
-        "subarctic-summer" => 4,
-        "subarctic-winter" => 5,
-        other => panic!("{other}"),
-    }
+    STANDARD_MODELS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|&(_, k)| u32::from(k))
+        .unwrap_or_else(|| panic!("{name} is not a built-in"))
 }
 
 /// A built-in's spectra: their band, LOWTRAN7's wavenumbers (cm⁻¹) and the spectra.
