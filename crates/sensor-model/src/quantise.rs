@@ -466,8 +466,9 @@ pub(crate) mod tests {
     use super::*;
 
     /// An independent 8–14 µm blackbody band for the tests: Planck's law integrated with
-    /// Simpson's rule on 2001 points, temperature by bisection. Slow but transparently
-    /// right; not the code under test.
+    /// Simpson's rule on 401 points (within 1e-11 of 2001 points from 100 to 3000 K, 5e-9 at
+    /// 30 K), temperature by bisection to a nanokelvin. Slow but transparently right; not
+    /// the code under test. A 14-bit LUT inverts 16,384 radiances through it.
     pub(crate) struct SimpsonBand;
 
     const C1: f64 = 1.191_042_972e-16; // 2hc², W m² sr⁻¹
@@ -478,7 +479,7 @@ pub(crate) mod tests {
     }
 
     fn simpson(f: impl Fn(f64) -> f64) -> f64 {
-        let (a, b, n) = (8e-6, 14e-6, 2000);
+        let (a, b, n) = (8e-6, 14e-6, 400);
         let h = (b - a) / f64::from(n);
         let mut s = f(a) + f(b);
         for i in 1..n {
@@ -500,7 +501,7 @@ pub(crate) mod tests {
                 return 0.0;
             }
             let (mut lo, mut hi) = (1.0, 5000.0);
-            for _ in 0..100 {
+            while hi - lo > 1e-9 {
                 let mid = 0.5 * (lo + hi);
                 if self.radiance(mid) < radiance {
                     lo = mid;
