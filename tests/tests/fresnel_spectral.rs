@@ -15,8 +15,8 @@
 //! grid of ε at every row and angle the entry also keeps (`spectral.angular`), which is
 //! what a tracer uses.
 //!
-//! `cargo test -p irsig-tests --test fresnel_spectral -- --ignored --nocapture
-//! separable_table` prints the table of docs/accuracy.md ("Fresnel emissivity"); the other
+//! `cargo test -p irsig-tests --test e2e fresnel_spectral::separable_table -- --ignored
+//! --nocapture` prints the table of docs/accuracy.md ("Fresnel emissivity"); the other
 //! tests hold its headline figures.
 
 use irsig_atmosphere::{SubBandCount, builtin_spectral, sub_band_edges};

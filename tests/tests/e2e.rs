@@ -1,0 +1,55 @@
+//! The end-to-end tests, one module per concern, in one test binary: one link and one
+//! set of generic instantiations instead of one per file, and one pool of test threads
+//! across all of them. `cargo test -p irsig-tests --test e2e solar::` runs one module.
+
+mod a_day;
+mod aerosol;
+mod architecture;
+mod atmos_calculators;
+mod band_provenance;
+mod below_ground;
+mod budget;
+mod builtin_rows;
+mod daylight;
+mod docs;
+mod early_refusals;
+mod experiment;
+mod flyby;
+mod format_rules;
+mod fresnel_spectral;
+mod golden;
+mod hardening;
+mod help_examples;
+mod import_flatten;
+mod injection;
+mod legacy_pipeline;
+mod loads;
+mod lobe;
+mod malformed_corpus;
+mod material;
+mod memory;
+mod pilot_sun;
+mod pipeline_runner;
+mod quickstart;
+mod radtran;
+mod recipes;
+mod reference;
+mod refraction;
+mod report;
+mod scattered_trace;
+mod scene_library;
+mod sensor;
+mod slab_trace;
+mod slurm;
+mod solar;
+mod solar_day;
+mod solar_trace;
+mod spectral_materials;
+mod spectral_trace;
+mod sun_day;
+mod sunlit;
+mod texture_end_to_end;
+mod thermal;
+mod tiles;
+mod trace_outputs;
+mod umbrella;
