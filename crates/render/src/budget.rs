@@ -79,7 +79,8 @@ impl Budget<'_> {
     /// the facets the declaration governs, `∂L/∂τ = L − L_u` for a relative σ of τ, `L_u`
     /// for a relative σ of the path radiance), over the band's dL/dT at the pixel's
     /// apparent temperature; the models' σ at each pixel, `model_k` (0 without a
-    /// tolerance); and their root-sum-square. The partials are the means over the pixel's
+    /// tolerance); and their root-sum-square, with the atmosphere data's error of the
+    /// pixel ([`Frame::data_error_k`], a bound, as σ = bound/√3) where the frame holds it. The partials are the means over the pixel's
     /// rays ([`Frame::charges`], which the tracer keeps when given [`Self::groups`]);
     /// without them, the centre ray's facet answers for the whole pixel.
     #[must_use]
@@ -152,11 +153,26 @@ impl Budget<'_> {
             .enumerate()
             .map(|(k, &layer)| (layer, per_pixel.iter().map(|s| s[k] as f32).collect()))
             .collect();
+        // The atmosphere data's error is a bound (the largest error measured), not a σ:
+        // taken as the half-width of a uniform distribution, its σ is bound/√3 (GUM
+        // §4.3.7). A pixel without a number adds nothing (the frame says why).
+        let data_sigma = |i: usize| {
+            frame
+                .data_error_k
+                .get(i)
+                .map(|&b| f64::from(b))
+                .filter(|b| b.is_finite())
+                .map_or(0.0, |b| b / 3.0_f64.sqrt())
+        };
         out.push((
             Layer::SigmaTotal,
             per_pixel
                 .iter()
-                .map(|s| s.iter().map(|v| v * v).sum::<f64>().sqrt() as f32)
+                .enumerate()
+                .map(|(i, s)| {
+                    let data = data_sigma(i);
+                    (s.iter().map(|v| v * v).sum::<f64>() + data * data).sqrt() as f32
+                })
                 .collect(),
         ));
         out
@@ -253,6 +269,7 @@ mod tests {
             sampling: Vec::new(),
             sun: Vec::new(),
             texture: Vec::new(),
+            data_error_k: Vec::new(),
             charges: c,
         };
         let budget = Budget {

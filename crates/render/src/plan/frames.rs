@@ -126,7 +126,10 @@ impl Plan {
             )
             .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
         // What no setting removes: said beside the decision, and left to the error budget.
-        piloted.decision.data_error_k = air.data_error_k;
+        let whole = Tile::whole(camera.pixels[0], camera.pixels[1]);
+        piloted.decision.data_error = air
+            .data
+            .map(|data| tracer.data_error_census(&data, camera, whole));
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 
@@ -344,12 +347,26 @@ impl Plan {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
                 ..settings.options
             };
-            let frame = if frames.whole {
+            let mut frame = if frames.whole {
                 tracer.render(cam, &options, frames.progress)
             } else {
                 tracer.render_tile(cam, &options, tile, frames.progress)
             }
             .map_err(|e| miette!("{e}"))?;
+            if wanted.wants(FrameFile::TruthExr) {
+                match &air.data {
+                    Some(data) => {
+                        frame.data_error_k = tracer.data_error_layer(data, cam, tile, &frame.truth);
+                    }
+                    None => sink.warning(&format!(
+                        "view {}: the truth EXR has no `{}` layer: the atmosphere's tables \
+                         record no interpolation residual (built and slab tables, and a \
+                         vacuum, do not), so the data's own error is not known",
+                        i + 1,
+                        irsig_model::truth::Layer::AtmosphereDataError
+                    )),
+                }
+            }
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
                 frame_height: cam.pixels[1] as usize,
