@@ -278,7 +278,7 @@ mod tests {
         assert_eq!(d.region(88.0), PathRegion::GrazingRows);
         assert_eq!(d.ground_path_k(300.0, 88.0), Some(0.2));
         assert_eq!(d.region(88.01), PathRegion::BeyondWidestRow);
-        assert_eq!(d.sky_k(), 0.5);
+        assert_eq!(d.sky_k().to_bits(), 0.5_f64.to_bits());
     }
 
     #[test]
@@ -309,7 +309,7 @@ mod tests {
                     .iter()
                     .map(|(_, rows)| rows[k][i])
                     .fold(0.0, f64::max);
-                assert_eq!(w, largest, "row {k} cell {i}");
+                assert_eq!(w.to_bits(), largest.to_bits(), "row {k} cell {i}");
             }
         }
         let d = DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0]);
