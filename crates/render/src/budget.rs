@@ -244,6 +244,16 @@ mod tests {
 
     /// One pixel of apparent temperature 300 K whose centre met facet 0, with `charges`.
     fn layers(u: &Uncertainties, scene: &RawScene, charges: &[Charge]) -> Vec<f64> {
+        layers_with_data(u, scene, charges, Vec::new())
+    }
+
+    /// [`layers`] with the frame's atmosphere-data layer `data_error_k`.
+    fn layers_with_data(
+        u: &Uncertainties,
+        scene: &RawScene,
+        charges: &[Charge],
+        data_error_k: Vec<f32>,
+    ) -> Vec<f64> {
         let truth = TruthPixel {
             event: Event::Diffuse,
             primary_material: 1,
@@ -269,7 +279,7 @@ mod tests {
             sampling: Vec::new(),
             sun: Vec::new(),
             texture: Vec::new(),
-            data_error_k: Vec::new(),
+            data_error_k,
             charges: c,
         };
         let budget = Budget {
@@ -281,6 +291,24 @@ mod tests {
             .into_iter()
             .map(|(_, v)| f64::from(v[0]))
             .collect()
+    }
+
+    #[test]
+    fn the_atmosphere_datas_bound_joins_the_total_as_a_uniform_sigma() {
+        let scene = RawScene {
+            facets: vec![facet(1, 0)],
+            objects: vec!["a".into()],
+            ..RawScene::default()
+        };
+        let u = Uncertainties::default();
+        // Nothing declared: the total is the data's alone, a 0.3·√3 K bound's σ = 0.3 K.
+        let bound = (0.3 * 3.0_f64.sqrt()) as f32;
+        let with = layers_with_data(&u, &scene, &[], vec![bound]);
+        assert!((with[5] - 0.3).abs() < 1e-6, "{with:?}");
+        assert!(with[..5].iter().all(|&s| s.abs() < 1e-12), "{with:?}");
+        // A pixel with no number (NaN) adds nothing.
+        let nan = layers_with_data(&u, &scene, &[], vec![f32::NAN]);
+        assert!(nan[5].abs() < 1e-12, "{nan:?}");
     }
 
     fn charge(group: u32, temperature: f32, emissivity: f32) -> Charge {
