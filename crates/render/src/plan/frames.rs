@@ -353,19 +353,11 @@ impl Plan {
                 tracer.render_tile(cam, &options, tile, frames.progress)
             }
             .map_err(|e| miette!("{e}"))?;
-            if wanted.wants(FrameFile::TruthExr) {
-                match &air.data {
-                    Some(data) => {
-                        frame.data_error_k = tracer.data_error_layer(data, cam, tile, &frame.truth);
-                    }
-                    None => sink.warning(&format!(
-                        "view {}: the truth EXR has no `{}` layer: the atmosphere's tables \
-                         record no interpolation residual (built and slab tables, and a \
-                         vacuum, do not), so the data's own error is not known",
-                        i + 1,
-                        irsig_model::truth::Layer::AtmosphereDataError
-                    )),
-                }
+            if wanted.wants(FrameFile::TruthExr)
+                && let Some(text) =
+                    keep_data_error(&tracer, air.data.as_ref(), cam, tile, &mut frame, i + 1)
+            {
+                sink.warning(&text);
             }
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
@@ -506,6 +498,28 @@ fn beyond_the_widest_row(
         census.largest_nadir_deg,
         census.camera_m,
     ))
+}
+
+/// Puts the atmosphere data's error of each pixel into `frame` (its truth EXR's layer)
+/// where the atmosphere records it; else the warning saying why the layer is absent.
+fn keep_data_error<R: BandModel, A: Atmosphere>(
+    tracer: &Tracer<R, A>,
+    data: Option<&irsig_atmosphere::data_error::DataError>,
+    camera: &Camera,
+    tile: Tile,
+    frame: &mut irsig_tracer::Frame,
+    view: usize,
+) -> Option<String> {
+    let Some(data) = data else {
+        return Some(format!(
+            "view {view}: the truth EXR has no `{}` layer: the atmosphere's tables record no \
+             interpolation residual (built and slab tables, and a vacuum, do not), so the \
+             data's own error is not known",
+            irsig_model::truth::Layer::AtmosphereDataError
+        ));
+    };
+    frame.data_error_k = tracer.data_error_layer(data, camera, tile, &frame.truth);
+    None
 }
 
 /// The warning for a frame whose view paths the slab tables do not all cover (`None` when
