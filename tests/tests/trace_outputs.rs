@@ -265,8 +265,17 @@ fn with_a_tolerance_the_decision_is_written_beside_the_outputs_and_says_where() 
         irsig_formats::canonical::from_ron("decision", &text).unwrap();
     assert!((d.tolerance_k - 1.0).abs() < 1e-12, "{text}");
     // The built-in's rows record their interpolation error (crates/atmosphere/data): the
-    // decision says it, apart from the tolerance.
-    assert!(d.data_error_k.is_some_and(|e| e > 0.0 && e < 1.0), "{text}");
+    // decision summarises it over the view paths, apart from the tolerance; it writes no
+    // one-number `data_error_k` any more.
+    assert!(
+        d.data_error
+            .is_some_and(|e| e.p99_k > 0.0 && e.p99_k <= e.max_k && e.max_k < 10.0),
+        "{text}"
+    );
+    assert!(
+        d.data_error_k.is_none() && !text.contains("data_error_k"),
+        "{text}"
+    );
     // Every output to standard output: no file to put it beside, and the note says so.
     trace(&raw, &view)
         .args(["--tolerance", "1", "--radiance-exr", "-"])

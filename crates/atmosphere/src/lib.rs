@@ -47,6 +47,7 @@
 #![deny(clippy::print_stdout, clippy::print_stderr)]
 
 mod builtin;
+pub mod data_error;
 mod earth;
 mod error;
 mod interp;
@@ -204,6 +205,9 @@ enum Inner {
 pub struct AtmosphereModel {
     inner: Inner,
     ground_sky: GroundSky,
+    /// The data's own error per path, where a `table` model's slant tables record their
+    /// interpolation residual.
+    data_error: Option<data_error::DataError>,
 }
 
 impl AtmosphereModel {
@@ -225,7 +229,21 @@ impl AtmosphereModel {
             radiance: atmosphere.sky.iter().map(|r| r.1).collect(),
             given_hemispheric: atmosphere.sky_hemispheric_w_m2_sr,
         };
-        Ok(Self { inner, ground_sky })
+        let data_error = match &inner {
+            Inner::Table(t) => t
+                .slant
+                .interpolation_residual
+                .zip(t.slant.nadir_deg.last().copied())
+                .map(|(r, widest)| {
+                    data_error::DataError::new(r, widest, &atmosphere.name, atmosphere.band_um)
+                }),
+            _ => None,
+        };
+        Ok(Self {
+            inner,
+            ground_sky,
+            data_error,
+        })
     }
 
     /// The model's kind.
@@ -288,6 +306,15 @@ impl AtmosphereModel {
             Inner::Table(t) => t.slant.nadir_deg.last().copied(),
             _ => None,
         }
+    }
+
+    /// The data's own error per path ([`data_error`]): `Some` for the `table` model of
+    /// slant tables that record their interpolation residual (the built-ins'), `None` for
+    /// the other kinds and for tables that record none (built and slab tables: their
+    /// rows' error was never measured).
+    #[must_use]
+    pub fn data_error(&self) -> Option<data_error::DataError> {
+        self.data_error
     }
 
     fn profile(&self) -> Option<&Profile> {

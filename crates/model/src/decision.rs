@@ -277,11 +277,31 @@ pub struct Decision {
     /// afford, pixels predicted to cap), 0 to 1.
     #[serde(default)]
     pub not_guaranteed_share: f64,
-    /// The inputs' own error that no setting removes, K: the largest error the atmosphere
-    /// data's interpolation between its rows was measured to make (slant paths and sky),
-    /// when its tables record it. It belongs to the error budget, not to the tolerance.
+    /// The inputs' own error that no setting removes: the atmosphere data's, over the
+    /// frame's view paths, when its tables record it. It belongs to the error budget, not
+    /// to the tolerance.
     #[serde(default)]
+    pub data_error: Option<DataErrorSummary>,
+    /// One number for the whole frame (the largest of the slant paths' and the sky's
+    /// residuals), what decisions held before [`Self::data_error`]: read from such files so
+    /// that they still apply, never written.
+    #[serde(default, skip_serializing)]
     pub data_error_k: Option<f64>,
+}
+
+/// The atmosphere data's own error over a frame's pixels (the truth EXR's
+/// `atmosphere_data_error`, summarised): bounds of measured errors, K.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DataErrorSummary {
+    /// The 99th percentile over the pixels, K.
+    pub p99_k: f64,
+    /// The largest, K.
+    pub max_k: f64,
+    /// The share of pixels with no number (past the widest row in a band never measured
+    /// there), 0 to 1.
+    #[serde(default)]
+    pub unmeasured_share: f64,
 }
 
 impl Decision {
@@ -398,6 +418,16 @@ impl Decision {
         if let Some(sigma) = self.data_error_k {
             check_range(|| "data_error_k".into(), sigma, 0.0, MAX_ERROR_K)?;
         }
+        if let Some(d) = &self.data_error {
+            check_range(|| "data_error.p99_k".into(), d.p99_k, 0.0, MAX_ERROR_K)?;
+            check_range(|| "data_error.max_k".into(), d.max_k, 0.0, MAX_ERROR_K)?;
+            check_range(
+                || "data_error.unmeasured_share".into(),
+                d.unmeasured_share,
+                0.0,
+                1.0,
+            )?;
+        }
         check_range(|| "relative_cost".into(), self.relative_cost, 0.0, f64::MAX)
     }
 }
@@ -495,12 +525,21 @@ mod tests {
             }],
             not_guaranteed_share: NOT_GUARANTEED_MAX,
             data_error_k: Some(0.004),
+            data_error: Some(DataErrorSummary {
+                p99_k: 0.05,
+                max_k: 0.2,
+                unmeasured_share: 0.0,
+            }),
             ..Decision::default()
         };
         good().validate().unwrap();
         type Break = dyn Fn(&mut Decision);
-        let cases: [(&Break, &str); 6] = [
+        let cases: [(&Break, &str); 7] = [
             (&|d| d.not_guaranteed_share = 0.5, "not_guaranteed_share"),
+            (
+                &|d| d.data_error.as_mut().unwrap().max_k = f64::NAN,
+                "data_error.max_k",
+            ),
             (&|d| d.classes[0].event = "bogus".into(), "classes[0].event"),
             (&|d| d.data_error_k = Some(1e308), "data_error_k"),
             (

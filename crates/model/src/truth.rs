@@ -56,7 +56,9 @@ pub enum Layer {
     /// error (against the most accurate settings, their own residual included) and the
     /// pixel's own sampling error when it was refined, added in quadrature.
     SigmaModel,
-    /// The root-sum-square of the σ layers, K.
+    /// The root-sum-square of the σ layers, K, and of the atmosphere data's error where the
+    /// frame records it ([`Layer::AtmosphereDataError`], a bound, taken as a uniform
+    /// distribution's half-width: σ = bound/√3).
     SigmaTotal,
     /// With a tolerance: 1 where the decision does not guarantee the pixel (its class
     /// cannot be afforded, or its refinement reached the cap), 0 elsewhere.
@@ -90,6 +92,13 @@ pub enum Layer {
     /// emissivity map's, multiplied; 1 on an untextured facet, NaN where no facet was
     /// hit). The `emissivity` layer holds the scaled ε, held to 0 to 1.
     TextureEmissivityScale,
+    /// With an atmosphere whose slant tables record their interpolation residual (the
+    /// built-ins'): how far the atmosphere data may put the pixel's apparent temperature,
+    /// K, a bound of measured errors, not a σ. The view path's by the region of the table
+    /// it reads (its nadir angle; past the widest row, by the observer's altitude too),
+    /// the sky's for a sky pixel, plus the sky the surface reflects (`irsig_atmosphere::
+    /// data_error`). NaN past the widest row in a band never measured there.
+    AtmosphereDataError,
 }
 
 impl Layer {
@@ -138,9 +147,14 @@ impl Layer {
     /// holds none of them.
     pub const TEXTURE: [Self; 2] = [Self::TextureTemperatureOffset, Self::TextureEmissivityScale];
 
+    /// The atmosphere data's layer, written after the texture's (before the error
+    /// budget's) when the atmosphere records its data error; a truth EXR of built or slab
+    /// tables, or of a vacuum, holds none.
+    pub const DATA: [Self; 1] = [Self::AtmosphereDataError];
+
     /// Every layer: the radiance, the truth layers, the error budget, the tolerance, the
-    /// sun's, the texture's.
-    pub const ALL: [Self; 27] = [
+    /// sun's, the texture's, the atmosphere data's.
+    pub const ALL: [Self; 28] = [
         Self::Radiance,
         Self::MaterialPrimary,
         Self::MaterialSecondary,
@@ -168,6 +182,7 @@ impl Layer {
         Self::SunShare,
         Self::TextureTemperatureOffset,
         Self::TextureEmissivityScale,
+        Self::AtmosphereDataError,
     ];
 
     /// The layer's name in the EXR.
@@ -201,6 +216,7 @@ impl Layer {
             Self::SunShare => "sun_share",
             Self::TextureTemperatureOffset => "texture_temperature_offset",
             Self::TextureEmissivityScale => "texture_emissivity_scale",
+            Self::AtmosphereDataError => "atmosphere_data_error",
         }
     }
 
@@ -220,7 +236,8 @@ impl Layer {
             | Self::SigmaPathRadiance
             | Self::SigmaModel
             | Self::SigmaTotal
-            | Self::TextureTemperatureOffset => "K",
+            | Self::TextureTemperatureOffset
+            | Self::AtmosphereDataError => "K",
             Self::MaterialPrimary
             | Self::MaterialSecondary
             | Self::Event
@@ -280,7 +297,9 @@ mod tests {
         assert_eq!(Layer::ALL[13..19], Layer::BUDGET);
         assert_eq!(Layer::ALL[19..21], Layer::TOLERANCE);
         assert_eq!(Layer::ALL[21..25], Layer::SUN);
-        assert_eq!(Layer::ALL[25..], Layer::TEXTURE);
+        assert_eq!(Layer::ALL[25..27], Layer::TEXTURE);
+        assert_eq!(Layer::ALL[27..], Layer::DATA);
+        assert!(!Layer::AtmosphereDataError.is_label());
         assert!(Layer::SUN.iter().all(|l| !l.is_label()));
         assert!(Layer::TEXTURE.iter().all(|l| !l.is_label()));
         assert_eq!(Layer::from_name("Radiance"), None);

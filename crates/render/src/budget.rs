@@ -79,7 +79,8 @@ impl Budget<'_> {
     /// the facets the declaration governs, `∂L/∂τ = L − L_u` for a relative σ of τ, `L_u`
     /// for a relative σ of the path radiance), over the band's dL/dT at the pixel's
     /// apparent temperature; the models' σ at each pixel, `model_k` (0 without a
-    /// tolerance); and their root-sum-square. The partials are the means over the pixel's
+    /// tolerance); and their root-sum-square, with the atmosphere data's error of the
+    /// pixel ([`Frame::data_error_k`], a bound, as σ = bound/√3) where the frame holds it. The partials are the means over the pixel's
     /// rays ([`Frame::charges`], which the tracer keeps when given [`Self::groups`]);
     /// without them, the centre ray's facet answers for the whole pixel.
     #[must_use]
@@ -152,11 +153,26 @@ impl Budget<'_> {
             .enumerate()
             .map(|(k, &layer)| (layer, per_pixel.iter().map(|s| s[k] as f32).collect()))
             .collect();
+        // The atmosphere data's error is a bound (the largest error measured), not a σ:
+        // taken as the half-width of a uniform distribution, its σ is bound/√3 (GUM
+        // §4.3.7). A pixel without a number adds nothing (the frame says why).
+        let data_sigma = |i: usize| {
+            frame
+                .data_error_k
+                .get(i)
+                .map(|&b| f64::from(b))
+                .filter(|b| b.is_finite())
+                .map_or(0.0, |b| b / 3.0_f64.sqrt())
+        };
         out.push((
             Layer::SigmaTotal,
             per_pixel
                 .iter()
-                .map(|s| s.iter().map(|v| v * v).sum::<f64>().sqrt() as f32)
+                .enumerate()
+                .map(|(i, s)| {
+                    let data = data_sigma(i);
+                    (s.iter().map(|v| v * v).sum::<f64>() + data * data).sqrt() as f32
+                })
                 .collect(),
         ));
         out
@@ -228,6 +244,16 @@ mod tests {
 
     /// One pixel of apparent temperature 300 K whose centre met facet 0, with `charges`.
     fn layers(u: &Uncertainties, scene: &RawScene, charges: &[Charge]) -> Vec<f64> {
+        layers_with_data(u, scene, charges, Vec::new())
+    }
+
+    /// [`layers`] with the frame's atmosphere-data layer `data_error_k`.
+    fn layers_with_data(
+        u: &Uncertainties,
+        scene: &RawScene,
+        charges: &[Charge],
+        data_error_k: Vec<f32>,
+    ) -> Vec<f64> {
         let truth = TruthPixel {
             event: Event::Diffuse,
             primary_material: 1,
@@ -253,6 +279,7 @@ mod tests {
             sampling: Vec::new(),
             sun: Vec::new(),
             texture: Vec::new(),
+            data_error_k,
             charges: c,
         };
         let budget = Budget {
@@ -264,6 +291,24 @@ mod tests {
             .into_iter()
             .map(|(_, v)| f64::from(v[0]))
             .collect()
+    }
+
+    #[test]
+    fn the_atmosphere_datas_bound_joins_the_total_as_a_uniform_sigma() {
+        let scene = RawScene {
+            facets: vec![facet(1, 0)],
+            objects: vec!["a".into()],
+            ..RawScene::default()
+        };
+        let u = Uncertainties::default();
+        // Nothing declared: the total is the data's alone, a 0.3·√3 K bound's σ = 0.3 K.
+        let bound = (0.3 * 3.0_f64.sqrt()) as f32;
+        let with = layers_with_data(&u, &scene, &[], vec![bound]);
+        assert!((with[5] - 0.3).abs() < 1e-6, "{with:?}");
+        assert!(with[..5].iter().all(|&s| s.abs() < 1e-12), "{with:?}");
+        // A pixel with no number (NaN) adds nothing.
+        let nan = layers_with_data(&u, &scene, &[], vec![f32::NAN]);
+        assert!(nan[5].abs() < 1e-12, "{nan:?}");
     }
 
     fn charge(group: u32, temperature: f32, emissivity: f32) -> Charge {

@@ -208,10 +208,9 @@ struct Air<'a, R, A, S> {
     spectral: bool,
     precomputed: SubBandsOf<'a, R, A>,
     pilot: SubBandsOf<'a, R, S>,
-    /// The atmosphere data's own interpolation error between its rows, K, where its
-    /// slant tables record it: the largest of the slant paths' and the sky's (grazing
-    /// paths beyond 80° are the horizon classes' own).
-    data_error_k: Option<f64>,
+    /// The atmosphere data's own error per path, where its slant tables record their
+    /// interpolation residual (`None`: built and slab tables, a vacuum).
+    data: Option<irsig_atmosphere::data_error::DataError>,
     /// The sun over the sub-bands of a count (`None`: no sun asked for).
     sun: SunOf<'a>,
     /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
@@ -227,9 +226,13 @@ fn no_sun<'a>() -> SunOf<'a> {
     Box::new(|_| Ok(None))
 }
 
-/// The interpolation error a slant table records, K (see [`Air::data_error_k`]).
-fn data_error_k(residual: Option<&irsig_model::InterpolationResidual>) -> Option<f64> {
-    residual.map(|r| r.slant_k.max(r.sky_k))
+/// The data error of `atmosphere`'s `table` model (see [`Air::data`]).
+fn data_error_of(
+    atmosphere: &irsig_model::Atmosphere,
+) -> Option<irsig_atmosphere::data_error::DataError> {
+    irsig_atmosphere::AtmosphereModel::new(atmosphere, irsig_atmosphere::ModelKind::Table)
+        .ok()?
+        .data_error()
 }
 
 /// The sub-bands of a model kind and a count.

@@ -145,16 +145,25 @@ fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()>
 
 /// The layers a truth EXR holds: [`Layer::TRUTH`], then [`Layer::SUN`] when traced with a
 /// sun, then [`Layer::TEXTURE`] when the scene has a textured material, then
-/// [`Layer::BUDGET`] with declared uncertainties, then [`Layer::TOLERANCE`] when rendered
-/// to a tolerance.
+/// [`Layer::DATA`] when the atmosphere records its data error, then [`Layer::BUDGET`] with
+/// declared uncertainties, then [`Layer::TOLERANCE`] when rendered to a tolerance.
 #[must_use]
-pub fn truth_layers(sun: bool, texture: bool, budget: bool, tolerance: bool) -> Vec<Layer> {
+pub fn truth_layers(
+    sun: bool,
+    texture: bool,
+    data: bool,
+    budget: bool,
+    tolerance: bool,
+) -> Vec<Layer> {
     let mut layers = Layer::TRUTH.to_vec();
     if sun {
         layers.extend(Layer::SUN);
     }
     if texture {
         layers.extend(Layer::TEXTURE);
+    }
+    if data {
+        layers.extend(Layer::DATA);
     }
     if budget {
         layers.extend(Layer::BUDGET);
@@ -208,14 +217,15 @@ pub fn traced<R: BandModel + Sync>(
         frame.truth = Vec::new();
         frame.sun = Vec::new();
         frame.texture = Vec::new();
+        frame.data_error_k = Vec::new();
         emit(FrameFile::TruthExr, into_exr_bytes(r).into_diagnostic()?)?;
     }
     Ok(())
 }
 
 /// The truth layers ([`truth_layers`], in order): the terms of each pixel's centre ray, the
-/// apparent temperature of its radiance, the sun's and the texture's (when the frame kept
-/// them), the error budget's and the tolerance's layers. NaN where a term does not apply (no facet hit).
+/// apparent temperature of its radiance, the sun's, the texture's and the atmosphere
+/// data's (when the frame kept them), the error budget's and the tolerance's layers. NaN where a term does not apply (no facet hit).
 fn truth_raster<R: BandModel + Sync>(
     radiometry: &FrameRadiometry<R>,
     frame: &Frame,
@@ -250,6 +260,7 @@ fn truth_raster<R: BandModel + Sync>(
     let kept = [
         (!frame.sun.is_empty(), Layer::SUN.as_slice()),
         (!frame.texture.is_empty(), Layer::TEXTURE.as_slice()),
+        (!frame.data_error_k.is_empty(), Layer::DATA.as_slice()),
     ];
     for layer in kept.into_iter().filter(|(k, _)| *k).flat_map(|(_, l)| l) {
         let data = frame

@@ -416,11 +416,31 @@ pub fn table(d: &Decision) -> String {
             100.0 * d.not_guaranteed_share
         );
     }
-    if let Some(sigma) = d.data_error_k {
+    if let Some(e) = &d.data_error {
         let _ = writeln!(
             out,
             "  the inputs' own error, outside the tolerance (the error budget's): the \
-             atmosphere data's interpolation between its rows, up to {sigma:.4} K"
+             atmosphere data's along the view paths, {:.4} K at the 99th percentile of the \
+             pixels, up to {:.4} K{} (per pixel, with the sky surfaces reflect: the truth \
+             EXR's `atmosphere_data_error`)",
+            e.p99_k,
+            e.max_k,
+            if e.unmeasured_share > 0.0 {
+                format!(
+                    "; {:.1} % of the pixels lie past the widest row in a band never \
+                     measured there",
+                    100.0 * e.unmeasured_share
+                )
+            } else {
+                String::new()
+            }
+        );
+    } else if let Some(sigma) = d.data_error_k {
+        let _ = writeln!(
+            out,
+            "  the inputs' own error, outside the tolerance (the error budget's): the \
+             atmosphere data's interpolation between its rows, up to {sigma:.4} K (one \
+             number for the frame: a decision written before the per-pixel record)"
         );
     }
     out

@@ -70,6 +70,7 @@
 
 pub mod camera;
 pub mod charge;
+pub mod data_error;
 mod day;
 pub mod env;
 mod error;

@@ -126,23 +126,26 @@ fn read_tiles(names: &[String]) -> miette::Result<Tiles> {
         };
         if is(vec![Layer::Radiance]) {
             tiles.radiance.push(tile);
-        } else if (0..16)
-            .map(|k| [k & 1 != 0, k & 2 != 0, k & 4 != 0, k & 8 != 0])
-            .any(|[sun, texture, budget, tolerance]| {
-                is(products::truth_layers(sun, texture, budget, tolerance))
+        } else if (0..32)
+            .map(|k| [k & 1 != 0, k & 2 != 0, k & 4 != 0, k & 8 != 0, k & 16 != 0])
+            .any(|[sun, texture, data, budget, tolerance]| {
+                is(products::truth_layers(
+                    sun, texture, data, budget, tolerance,
+                ))
             })
         {
             tiles.truth.push(tile);
         } else {
             return Err(miette!(
                 "`{}` is neither a radiance tile (the layer `radiance`) nor a truth tile \
-                 (the layers {}, then the sun's {}, then the texture's {}, then the error \
-                 budget's {}, then the tolerance's {}, each group when rendered so): its \
-                 layers are {}",
+                 (the layers {}, then the sun's {}, then the texture's {}, then the \
+                 atmosphere data's {}, then the error budget's {}, then the tolerance's {}, \
+                 each group when rendered so): its layers are {}",
                 tile.name,
                 Layer::TRUTH.map(Layer::name).join(", "),
                 Layer::SUN.map(Layer::name).join(", "),
                 Layer::TEXTURE.map(Layer::name).join(", "),
+                Layer::DATA.map(Layer::name).join(", "),
                 Layer::BUDGET.map(Layer::name).join(", "),
                 Layer::TOLERANCE.map(Layer::name).join(", "),
                 names.join(", ")

@@ -95,7 +95,7 @@ impl Plan {
             spectral: false,
             precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
             pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
-            data_error_k: None,
+            data: None,
             sun: no_sun(),
             day_default: None,
         };
@@ -254,12 +254,7 @@ impl Plan {
                     ))
                 })
             }),
-            data_error_k: data_error_k(
-                atmosphere
-                    .slant
-                    .as_ref()
-                    .and_then(|s| s.interpolation_residual.as_ref()),
-            ),
+            data: data_error_of(atmosphere),
             sun: no_sun(),
             day_default: None,
         };
@@ -360,12 +355,7 @@ impl Plan {
             day_default: self.day_default(spectral, split),
             precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
             pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
-            data_error_k: data_error_k(
-                spectral
-                    .slant
-                    .as_ref()
-                    .and_then(|s| s.interpolation_residual.as_ref()),
-            ),
+            data: one.first().and_then(|(_, a)| data_error_of(a)),
             sun: Box::new(lit),
         };
         self.trace_all(&run, band, &air, job)

@@ -126,7 +126,10 @@ impl Plan {
             )
             .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
         // What no setting removes: said beside the decision, and left to the error budget.
-        piloted.decision.data_error_k = air.data_error_k;
+        let whole = Tile::whole(camera.pixels[0], camera.pixels[1]);
+        piloted.decision.data_error = air
+            .data
+            .map(|data| tracer.data_error_census(&data, camera, whole));
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 
@@ -344,12 +347,18 @@ impl Plan {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
                 ..settings.options
             };
-            let frame = if frames.whole {
+            let mut frame = if frames.whole {
                 tracer.render(cam, &options, frames.progress)
             } else {
                 tracer.render_tile(cam, &options, tile, frames.progress)
             }
             .map_err(|e| miette!("{e}"))?;
+            if wanted.wants(FrameFile::TruthExr)
+                && let Some(text) =
+                    keep_data_error(&tracer, air.data.as_ref(), cam, tile, &mut frame, i + 1)
+            {
+                sink.warning(&text);
+            }
             let part = FramePart {
                 frame_width: cam.pixels[0] as usize,
                 frame_height: cam.pixels[1] as usize,
@@ -489,6 +498,28 @@ fn beyond_the_widest_row(
         census.largest_nadir_deg,
         census.camera_m,
     ))
+}
+
+/// Puts the atmosphere data's error of each pixel into `frame` (its truth EXR's layer)
+/// where the atmosphere records it; else the warning saying why the layer is absent.
+fn keep_data_error<R: BandModel, A: Atmosphere>(
+    tracer: &Tracer<R, A>,
+    data: Option<&irsig_atmosphere::data_error::DataError>,
+    camera: &Camera,
+    tile: Tile,
+    frame: &mut irsig_tracer::Frame,
+    view: usize,
+) -> Option<String> {
+    let Some(data) = data else {
+        return Some(format!(
+            "view {view}: the truth EXR has no `{}` layer: the atmosphere's tables record no \
+             interpolation residual (built and slab tables, and a vacuum, do not), so the \
+             data's own error is not known",
+            irsig_model::truth::Layer::AtmosphereDataError
+        ));
+    };
+    frame.data_error_k = tracer.data_error_layer(data, camera, tile, &frame.truth);
+    None
 }
 
 /// The warning for a frame whose view paths the slab tables do not all cover (`None` when

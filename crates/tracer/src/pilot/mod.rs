@@ -263,6 +263,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             classes,
             sampling,
             not_guaranteed_share: not_guaranteed,
+            data_error: None,
             data_error_k: None,
         };
         Ok(Piloted {

@@ -183,6 +183,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sampling: Vec::new(),
             sun,
             texture,
+            data_error_k: Vec::new(),
             charges: Charges::concat(charge_rows),
         })
     }
@@ -309,6 +310,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sampling,
             sun,
             texture,
+            data_error_k: Vec::new(),
             charges: Charges::concat(charge_rows),
         }
     }
@@ -409,6 +411,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sampling: Vec::new(),
             sun,
             texture,
+            data_error_k: Vec::new(),
             charges: if charging {
                 Charges::concat(charge_rows)
             } else {

@@ -366,7 +366,8 @@ impl TruthPixel {
             | Layer::ReflectedSolarRadiance
             | Layer::SunShare
             | Layer::TextureTemperatureOffset
-            | Layer::TextureEmissivityScale => return None,
+            | Layer::TextureEmissivityScale
+            | Layer::AtmosphereDataError => return None,
         })
     }
 }
@@ -489,6 +490,10 @@ pub struct Frame {
     /// the scene has a texture ([`Tracer::is_textured`]) or when [`TraceOptions::truth`] is
     /// off.
     pub texture: Vec<TexturePixel>,
+    /// The atmosphere data's error of each pixel, K ([`Layer::AtmosphereDataError`]);
+    /// empty until the caller fills it ([`Tracer::data_error_layer`]), which it does when
+    /// the atmosphere records its data error and the truth is kept.
+    pub data_error_k: Vec<f32>,
     /// The error budget's partials of each pixel's value, per input group of the facets
     /// its rays met ([`crate::charge`]); empty unless the tracer was given the groups
     /// ([`Tracer::with_budget_groups`]) and the truth is kept.
@@ -512,6 +517,9 @@ impl Frame {
                 return None;
             }
             return Some(self.texture.iter().map(value).collect());
+        }
+        if layer == Layer::AtmosphereDataError {
+            return (!self.data_error_k.is_empty()).then(|| self.data_error_k.clone());
         }
         if self.truth.is_empty() {
             return None;
