@@ -299,13 +299,18 @@ pub(crate) fn bound(m: &Measured, combo: &Combo) -> f64 {
 pub(crate) struct Pixels<'a> {
     /// Each class's residual, K.
     pub(crate) residual_k: &'a [f64],
+    /// Each class's residual's deterministic part, K.
+    pub(crate) bounces_k: &'a [f64],
+    /// Refinement's target σ as a share of the tolerance.
+    pub(crate) target_share: f64,
     /// Each point's pixel is a refinement candidate.
     pub(crate) candidate: &'a [bool],
 }
 
 /// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]), and
-/// every guaranteed class's pixels, with its residual and refinement's share on a
-/// candidate, within the tolerance at the 90th percentile ([`super::predict`]).
+/// every guaranteed class's pixels, with its residual (a refined pixel's with
+/// refinement's noise in place of the residual's), within the tolerance at the 90th
+/// percentile ([`super::predict`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn holds(
     census: &Census,
@@ -332,9 +337,9 @@ pub(crate) fn holds(
             scratch.push(b);
             needs.push(super::predict::need_k(
                 b + pixels.residual_k[c],
+                b + pixels.bounces_k[c],
                 pixels.candidate[i],
-                tolerance_k,
-                det_k,
+                pixels.target_share * tolerance_k,
             ));
             // No model alone may change a point by more than the tolerance.
             if (0..MODELS).any(|k| error_of(m, combo, k) > tolerance_k) {

@@ -149,7 +149,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             by_class[p.class].push(i);
         }
         let residual = residual::residuals(space, &measured, &by_class);
-        let terms = predict::PixelTerms::of(space, &census, &by_class, &residual);
+        // Refinement's target σ is a share of the tolerance set by the share of candidates.
+        let target_share = trial::refinement_for(
+            Supersample::Refine(REFINE_MAX_SIDE),
+            census.candidate_share(),
+            1.0,
+            DETERMINISTIC_SHARE,
+            EDGE_SHARE,
+        )
+        .1
+        .map_or(0.0, |r| r.target_k);
+        let terms = predict::PixelTerms::of(space, &census, &by_class, &residual, target_share);
         let guaranteed = terms.guaranteed(tolerance_k);
         let pixels = terms.pixels();
 

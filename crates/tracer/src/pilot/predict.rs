@@ -11,17 +11,16 @@
 //! the deterministic models and of the residual does not shrink and is carried whole.
 //!
 //! So a class is held to the tolerance at its 90th percentile (at the pilot's confidence,
-//! [`super::stats::confident_rank`]) with each point's need: its bias, plus refinement's
-//! share of the tolerance where the point is a candidate; and the frame's percentile is
-//! predicted from the mixture of biased points and refined points whose error is their bias
-//! plus a normal of the target σ (evaluated at a percentile halfway to 100, for the pilot's
-//! own sample, [`super::choose::stricter`]).
+//! [`super::stats::confident_rank`]) with each point's need, the 90th percentile of its
+//! pixel's error ([`need_k`]); and the frame's percentile is predicted from the mixture of
+//! biased centre pixels and refined pixels whose error is their bias plus a normal of the
+//! target σ (evaluated at a percentile halfway to 100, for the pilot's own sample,
+//! [`super::choose::stricter`]).
 
-use super::DETERMINISTIC_SHARE;
 use super::choose::{self, Combo, Pixels};
 use super::classes::Census;
 use super::measure::Measured;
-use super::residual::Residual;
+use super::residual::{P90_OF_NORMAL, Residual};
 use super::space::{PilotSpace, Supersample};
 use super::stats::{confident_rank, order_statistic};
 
@@ -30,6 +29,10 @@ use super::stats::{confident_rank, order_statistic};
 pub(crate) struct PixelTerms {
     /// Each class's residual, K ([`Residual::k`]).
     pub(crate) residual_k: Vec<f64>,
+    /// Each class's residual's deterministic part, K ([`Residual::bounces_k`]).
+    pub(crate) bounces_k: Vec<f64>,
+    /// Refinement's target σ as a share of the tolerance (0 without refinement).
+    pub(crate) target_share: f64,
     /// Each point's pixel is refined: a refinement candidate, with refinement on offer.
     pub(crate) candidate: Vec<bool>,
     /// The smallest tolerance at which the most accurate settings hold each class
@@ -39,14 +42,18 @@ pub(crate) struct PixelTerms {
 
 impl PixelTerms {
     /// The terms of `census`'s points and classes (`by_class`: each class's points) with
-    /// the classes' `residual`.
+    /// the classes' `residual`; refinement's target σ is `target_share` of the tolerance
+    /// ([`super::trial::refinement_for`]: it depends on the share of candidates, not on the
+    /// tolerance).
     pub(crate) fn of<S>(
         space: &PilotSpace<S>,
         census: &Census,
         by_class: &[Vec<usize>],
         residual: &[Residual],
+        target_share: f64,
     ) -> Self {
         let residual_k: Vec<f64> = residual.iter().map(|r| r.k).collect();
+        let bounces_k: Vec<f64> = residual.iter().map(|r| r.bounces_k).collect();
         let refines = space
             .supersampling
             .iter()
@@ -64,14 +71,22 @@ impl PixelTerms {
             .collect();
         let class_floor_k = by_class
             .iter()
-            .zip(&residual_k)
-            .map(|(points, &r)| {
+            .enumerate()
+            .map(|(c, points)| {
                 let candidates = points.iter().filter(|&&i| candidate[i]).count();
-                class_floor_k(r, points.len(), candidates, DETERMINISTIC_SHARE)
+                class_floor_k(
+                    residual_k[c],
+                    bounces_k[c],
+                    points.len(),
+                    candidates,
+                    target_share,
+                )
             })
             .collect();
         Self {
             residual_k,
+            bounces_k,
+            target_share,
             candidate,
             class_floor_k,
         }
@@ -89,13 +104,16 @@ impl PixelTerms {
     pub(crate) fn pixels(&self) -> Pixels<'_> {
         Pixels {
             residual_k: &self.residual_k,
+            bounces_k: &self.bounces_k,
+            target_share: self.target_share,
             candidate: &self.candidate,
         }
     }
 
     /// The frame's `percentile` of |ΔT| under `combo` against a converged rendering
     /// ([`frame_percentile_k`], at [`choose::stricter`]): each `guaranteed` point's bias its
-    /// bound and its class's residual, a refined one's with a normal of `target_k`.
+    /// bound and its class's residual, a refined one's its bound and the residual's
+    /// deterministic part with a normal of `target_k`.
     pub(crate) fn frame_percentile_k(
         &self,
         (census, measured, guaranteed): (&Census, &[Measured], &[bool]),
@@ -109,20 +127,36 @@ impl PixelTerms {
             .zip(measured)
             .enumerate()
             .filter(|(_, (p, _))| guaranteed[p.class])
-            .map(|(i, (p, m))| FramePoint {
-                bias_k: choose::bound(m, combo) + self.residual_k[p.class],
-                weight: census.classes[p.class].weight(),
-                candidate: self.candidate[i],
+            .map(|(i, (p, m))| {
+                let candidate = self.candidate[i];
+                let residual = if candidate {
+                    &self.bounces_k
+                } else {
+                    &self.residual_k
+                };
+                FramePoint {
+                    bias_k: choose::bound(m, combo) + residual[p.class],
+                    weight: census.classes[p.class].weight(),
+                    candidate,
+                }
             })
             .collect();
         frame_percentile_k(&points, target_k, choose::stricter(percentile))
     }
 }
 
-/// What one point of a class needs of the tolerance, K: its bias `bias_k` (the bound plus
-/// its class's residual), and refinement's share (`tolerance_k - det_k`) on a candidate.
-pub(crate) fn need_k(bias_k: f64, candidate: bool, tolerance_k: f64, det_k: f64) -> f64 {
-    bias_k + if candidate { tolerance_k - det_k } else { 0.0 }
+/// What one point of a class needs of the tolerance, K: the 90th percentile of its pixel's
+/// error. A centre pixel's is its bias `bias_k` (the bound plus its class's whole
+/// residual, the Monte Carlo noise of the most rays in it); a refined pixel's is its bias
+/// `refined_bias_k` (the bound plus the residual's deterministic part: the sky-view rays'
+/// noise is averaged into refinement's own standard error) plus 1.645 times refinement's
+/// target σ `target_k`.
+pub(crate) fn need_k(bias_k: f64, refined_bias_k: f64, candidate: bool, target_k: f64) -> f64 {
+    if candidate {
+        refined_bias_k + P90_OF_NORMAL * target_k
+    } else {
+        bias_k
+    }
 }
 
 /// Whether a class whose points need `needs` ([`need_k`]) holds at `tolerance_k`: their
@@ -132,23 +166,36 @@ pub(crate) fn class_holds(needs: &mut [f64], tolerance_k: f64) -> bool {
     needs.is_empty() || order_statistic(needs, rank) <= tolerance_k
 }
 
-/// The smallest tolerance at which a class of `points` sample points, `candidates` of them
-/// refinement candidates, is held by the most accurate settings (each point's bias its
-/// class's residual `residual_k`): the residual itself, or, where the class's confident
-/// 90th percentile falls on a candidate, the tolerance whose deterministic share
-/// `det_share` covers it.
+/// The smallest tolerance at which a class is held by the most accurate settings: each of
+/// its points holds from its own threshold (a centre pixel's its class's residual
+/// `residual_k`, a refined pixel's the residual's deterministic part `bounces_k` over
+/// `1 − 1.645·σ_t/T`, refinement's target σ being a fixed share `target_share` of the
+/// tolerance), and the class from the confident 90th percentile's rank of those thresholds
+/// (`candidates` of its `points` refined).
 pub(crate) fn class_floor_k(
     residual_k: f64,
+    bounces_k: f64,
     points: usize,
     candidates: usize,
-    det_share: f64,
+    target_share: f64,
 ) -> f64 {
     let rank = confident_rank(points, 90.0);
-    if points > 0 && candidates > points - rank {
-        residual_k / det_share
+    let refined = 1.0 - P90_OF_NORMAL * target_share;
+    let refined_k = if refined > 0.0 {
+        bounces_k / refined
     } else {
-        residual_k
-    }
+        f64::INFINITY
+    };
+    let mut thresholds: Vec<f64> = (0..points)
+        .map(|i| {
+            if i < candidates {
+                refined_k
+            } else {
+                residual_k
+            }
+        })
+        .collect();
+    order_statistic(&mut thresholds, rank)
 }
 
 /// P(|b + N(0, σ²)| > x): a refined pixel of bias `b` and standard error `sigma_k` off by
@@ -212,25 +259,31 @@ mod tests {
     use super::*;
 
     #[test]
-    fn a_class_of_centre_pixels_is_held_by_its_residual_and_one_of_refined_pixels_by_twice_it() {
-        // 24 points (a class's floor): the confident 90th percentile is the largest.
-        assert!((class_floor_k(0.2, 24, 0, 0.5) - 0.2).abs() < 1e-15);
-        assert!((class_floor_k(0.2, 24, 1, 0.5) - 0.4).abs() < 1e-15);
-        // 1024 points: the confident rank leaves 1024 − rank points above it, so that
-        // many candidates do not move it, and one more does.
-        let rank = confident_rank(1024, 90.0);
-        assert!((class_floor_k(0.2, 1024, 1024 - rank, 0.5) - 0.2).abs() < 1e-15);
-        assert!((class_floor_k(0.2, 1024, 1025 - rank, 0.5) - 0.4).abs() < 1e-15);
+    fn a_class_holds_from_the_rank_of_its_points_thresholds() {
+        // 24 points (a class's floor): the confident 90th percentile is the largest. All
+        // centre pixels: the residual.
+        assert!((class_floor_k(0.2, 0.05, 24, 0, 0.2) - 0.2).abs() < 1e-15);
+        // One refined point of deterministic part 0.05 K, σ_t = 0.2 T: it holds from
+        // 0.05/(1 − 1.645·0.2) = 0.07452… K, under the centre pixels' 0.2 K.
+        assert!((class_floor_k(0.2, 0.05, 24, 1, 0.2) - 0.2).abs() < 1e-15);
+        let refined = 0.05 / (1.0 - 1.645 * 0.2);
+        assert!((class_floor_k(0.2, 0.05, 24, 24, 0.2) - refined).abs() < 1e-12);
+        // A deterministic part larger than the whole centre residual decides where it is
+        // the largest.
+        assert!((class_floor_k(0.1, 0.1, 24, 1, 0.2) - 0.1 / (1.0 - 0.329)).abs() < 1e-12);
+        // A target σ no smaller than the tolerance over 1.645: never held.
+        assert!(class_floor_k(0.1, 0.1, 24, 24, 0.7).is_infinite());
         // Nothing measured: nothing to add.
-        assert!((class_floor_k(0.0, 0, 0, 0.5)).abs() < 1e-15);
+        assert!((class_floor_k(0.0, 0.0, 0, 0, 0.2)).abs() < 1e-15);
     }
 
     #[test]
     fn a_class_holds_when_its_needs_at_the_90th_percentile_are_within_the_tolerance() {
-        let mut needs: Vec<f64> = (0..24).map(|_| need_k(0.3, false, 0.5, 0.25)).collect();
+        let mut needs: Vec<f64> = (0..24).map(|_| need_k(0.3, 0.0, false, 0.1)).collect();
         assert!(class_holds(&mut needs, 0.5));
-        // One candidate of bias 0.3 needs 0.3 + 0.25 > 0.5: the largest of 24 decides.
-        needs[3] = need_k(0.3, true, 0.5, 0.25);
+        // One refined point of deterministic part 0.3 K needs 0.3 + 1.645·0.15 > 0.5: the
+        // largest of 24 decides.
+        needs[3] = need_k(0.0, 0.3, true, 0.15);
         assert!(!class_holds(&mut needs, 0.5));
         assert!(class_holds(&mut [], 0.1));
     }
