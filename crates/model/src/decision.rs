@@ -256,8 +256,9 @@ pub struct Decision {
     pub percentile: f64,
     /// One choice per model, in [`SwitchableModel::ALL`] order.
     pub choices: Vec<ModelChoice>,
-    /// The predicted error of the chosen combination against the all-reference render
-    /// (the per-pixel sum of the models' errors: an upper bound).
+    /// The predicted error of the chosen combination against a converged rendering: per
+    /// pixel the sum of the models' errors against the all-reference render plus what the
+    /// all-reference settings leave, a refined pixel's with its sampling noise.
     pub predicted: ErrorEstimate,
     /// The chosen combination's estimated cost relative to the all-reference render's.
     pub relative_cost: f64,

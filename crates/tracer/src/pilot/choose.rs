@@ -275,9 +275,7 @@ pub(crate) fn cost<S>(space: &PilotSpace<S>, counts: &Counts, c: &Combo) -> f64 
 /// What the rule found for a combination.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Verdict {
-    /// The bound's weighted percentile over the guaranteed points, K.
-    pub(crate) frame_k: f64,
-    /// The largest bound over them, K.
+    /// The largest bound over the guaranteed points, K.
     pub(crate) worst_k: f64,
 }
 
@@ -295,34 +293,63 @@ pub(crate) fn bound(m: &Measured, combo: &Combo) -> f64 {
     (0..MODELS).map(|k| error_of(m, combo, k)).sum()
 }
 
-/// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]).
+/// What a class's points are held to besides their bound: each class's residual
+/// ([`super::residual`]) and whether each point's pixel is refined ([`super::predict`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Pixels<'a> {
+    /// Each class's residual, K.
+    pub(crate) residual_k: &'a [f64],
+    /// Each class's residual's deterministic part, K.
+    pub(crate) bounces_k: &'a [f64],
+    /// Refinement's target σ as a share of the tolerance.
+    pub(crate) target_share: f64,
+    /// Each point's pixel is a refinement candidate.
+    pub(crate) candidate: &'a [bool],
+}
+
+/// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]), and
+/// every guaranteed class's pixels, with its residual (a refined pixel's with
+/// refinement's noise in place of the residual's), within the tolerance at the 90th
+/// percentile ([`super::predict`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn holds(
     census: &Census,
     measured: &[Measured],
     by_class: &[Vec<usize>],
     guaranteed: &[bool],
+    pixels: Pixels<'_>,
     combo: &Combo,
     tolerance_k: f64,
     det_k: f64,
     percentile: f64,
 ) -> Option<Verdict> {
     let mut scratch = Vec::new();
+    let mut needs = Vec::new();
     for (c, points) in by_class.iter().enumerate() {
         if !guaranteed[c] || points.is_empty() {
             continue;
         }
         scratch.clear();
+        needs.clear();
         for &i in points {
             let m = &measured[i];
-            scratch.push(bound(m, combo));
+            let b = bound(m, combo);
+            scratch.push(b);
+            needs.push(super::predict::need_k(
+                b + pixels.residual_k[c],
+                b + pixels.bounces_k[c],
+                pixels.candidate[i],
+                pixels.target_share * tolerance_k,
+            ));
             // No model alone may change a point by more than the tolerance.
             if (0..MODELS).any(|k| error_of(m, combo, k) > tolerance_k) {
                 return None;
             }
         }
         let rank = confident_rank(scratch.len(), 90.0);
-        if order_statistic(&mut scratch, rank) > det_k {
+        if order_statistic(&mut scratch, rank) > det_k
+            || !super::predict::class_holds(&mut needs, tolerance_k)
+        {
             return None;
         }
     }
@@ -335,7 +362,7 @@ pub(crate) fn holds(
         .collect();
     let worst_k = weighted.iter().map(|v| v.0).fold(0.0, f64::max);
     let frame_k = weighted_percentile(&mut weighted, stricter(percentile));
-    (frame_k <= det_k).then_some(Verdict { frame_k, worst_k })
+    (frame_k <= det_k).then_some(Verdict { worst_k })
 }
 
 /// The percentile the frame's sample is held to: halfway from `percentile` to 100, for

@@ -1,7 +1,7 @@
 //! One sample point of the pilot measured: its path traced once with the most accurate
 //! geometry on offer, then evaluated under every cheaper setting of every model (the
-//! others at their most accurate), and the most accurate settings' own residual from the
-//! last step of each convergence sequence.
+//! others at their most accurate), and each convergence sequence's steps, from which the
+//! most accurate settings' own residual is estimated ([`super::residual`]).
 //!
 //! Only the sub-bands are measured against the reference sub-bands (the full grid): every
 //! other model's error is measured in the band model, against the band model at the
@@ -33,10 +33,10 @@ const REFERENCE_SIDE: u32 = 8;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Measured {
     pub(crate) errors: [Vec<f64>; MODELS],
-    /// The change over the last step of the bounces' sequence, K: what the most bounces on
-    /// offer leave (a convergent chain of reflections loses at least as much at each
-    /// further step).
-    pub(crate) bounce_step_k: f64,
+    /// The apparent temperature at each bounce limit on offer, K, in the space's order
+    /// (the most first): the bounces' convergence sequence, whose rate says what the most
+    /// bounces leave ([`super::residual`]).
+    pub(crate) by_bounces_k: Vec<f64>,
     /// The apparent temperature at each non-zero sky-view ray count on offer, in the
     /// space's order (each from rays of its own): the class's Monte Carlo error of the
     /// most rays is estimated from their differences ([`super`]).
@@ -185,10 +185,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             };
             out.errors[index(SwitchableModel::PathTerms)].push((t(l) - t_band).abs());
         }
-        out.bounce_step_k = match by_bounces.as_slice() {
-            [first, second, ..] => (first - second).abs(),
-            _ => 0.0,
-        };
+        out.by_bounces_k = by_bounces;
         out.by_sky_view_k = by_sky
             .iter()
             .filter(|(n, _)| *n > 0)

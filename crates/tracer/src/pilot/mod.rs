@@ -9,8 +9,8 @@
 //! 2. **A stratified sample** of points, a floor in every class, each measured under every
 //!    setting of every model of the [`PilotSpace`] ([`space`]) against the most accurate
 //!    ([`measure`]; the sun's two models, [`sun`]; a path as a cheaper setting would have
-//!    traced it, [`paths`]), with the most accurate settings' own residual from the last
-//!    step of each convergence sequence ([`residual`]).
+//!    traced it, [`paths`]), with the most accurate settings' own residual from the rate
+//!    of each convergence sequence ([`residual`], [`rate`]).
 //! 3. **The choice** ([`choose`]: whether a combination holds, and its cost; [`search`]:
 //!    every combination tried): the cheapest combination whose error holds within half
 //!    the tolerance in every class (its 90th percentile) and over the frame (the
@@ -32,6 +32,8 @@ mod choose;
 mod classes;
 mod measure;
 mod paths;
+mod predict;
+mod rate;
 mod report;
 mod residual;
 mod search;
@@ -147,7 +149,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             by_class[p.class].push(i);
         }
         let residual = residual::residuals(space, &measured, &by_class);
-        let guaranteed: Vec<bool> = residual.iter().map(|&r| r <= det_k).collect();
+        // Refinement's target σ is a share of the tolerance set by the share of candidates.
+        let target_share = trial::refinement_for(
+            Supersample::Refine(REFINE_MAX_SIDE),
+            census.candidate_share(),
+            1.0,
+            DETERMINISTIC_SHARE,
+            EDGE_SHARE,
+        )
+        .1
+        .map_or(0.0, |r| r.target_k);
+        let terms = predict::PixelTerms::of(space, &census, &by_class, &residual, target_share);
+        let guaranteed = terms.guaranteed(tolerance_k);
+        let pixels = terms.pixels();
 
         // 3. The cheapest combination that holds.
         let mut counts = Counts::of(
@@ -164,6 +178,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             &measured,
             &by_class,
             &guaranteed,
+            pixels,
             &lens,
             tolerance_k,
             det_k,
@@ -174,7 +189,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         // 4. Refinement: its target from the share of candidates, its cost from a trial.
         let supersampling = space.supersampling[chosen_combo[3]];
         let candidate_share = census.candidate_share();
-        let (z, refinement) =
+        let (_, refinement) =
             trial::refinement_for(supersampling, candidate_share, tolerance_k, det_k, edge_k);
         let chosen_options = TraceOptions {
             specular_bounces: space.bounces[chosen_combo[1]],
@@ -201,6 +216,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             return Err(self.unreachable(
                 &census,
                 &residual,
+                &terms.class_floor_k,
                 &guaranteed,
                 &trial,
                 &shortfall,
@@ -227,11 +243,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             &measured,
             &by_class,
             &residual,
+            &terms.class_floor_k,
             &guaranteed,
             &chosen_combo,
             det_k,
         );
-        let sampling_allowance = refinement.map_or(0.0, |r| z * r.target_k);
+        let target_k = refinement.map_or(0.0, |r| r.target_k);
+        let at = (&census, measured.as_slice(), guaranteed.as_slice());
+        let predicted_k = terms.frame_percentile_k(at, &chosen_combo, target_k, percentile);
         let sampling = refinement.map(|r| SamplingReport {
             target_k: r.target_k,
             edge_k: r.edge_k,
@@ -246,12 +265,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             percentile,
             choices,
             predicted: ErrorEstimate {
-                percentile_k: verdict.frame_k
-                    + if candidate_share > 0.0 {
-                        sampling_allowance
-                    } else {
-                        0.0
-                    },
+                percentile_k: predicted_k,
                 max_k: verdict.worst_k + 3.0 * trial.worst_sigma_k,
             },
             relative_cost: chosen_cost / reference_cost,

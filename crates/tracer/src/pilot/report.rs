@@ -11,7 +11,7 @@ use irsig_radiometry::BandModel;
 use super::choose::{self, Combo, MODELS};
 use super::classes::{Census, PixelClass};
 use super::measure::Measured;
-use super::residual::{P90_OF_NORMAL, ungranted_sigma_k};
+use super::residual::{P90_OF_NORMAL, Residual, ungranted_sigma_k};
 use super::space::{PilotSpace, Supersample};
 use super::stats::{confident_rank, order_statistic, weighted_percentile};
 use super::trial::Trial;
@@ -130,7 +130,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     pub(crate) fn unreachable(
         &self,
         census: &Census,
-        residual: &[f64],
+        residual: &[Residual],
+        class_floor_k: &[f64],
         guaranteed: &[bool],
         trial: &Trial,
         shortfall: &Shortfall,
@@ -140,7 +141,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     ) -> TraceError {
         let mut thresholds: Vec<(f64, f64)> = (0..census.classes.len())
             .filter(|&c| !guaranteed[c])
-            .map(|c| (residual[c] / DETERMINISTIC_SHARE, census.classes[c].share))
+            .map(|c| (class_floor_k[c], census.classes[c].share))
             .collect();
         let per_capped = census.candidate_share() / trial.pixels.max(1) as f64;
         thresholds.extend(
@@ -164,10 +165,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .filter(|&c| !guaranteed[c])
             .map(|c| {
                 format!(
-                    "{} ({:.2} % of the frame: the most accurate settings on offer leave {:.3} K)",
+                    "{} ({:.2} % of the frame: the most accurate settings on offer leave {:.3} K{})",
                     self.class_name(&census.classes[c].class, census.classes[c].sub_pixel),
                     100.0 * census.classes[c].share,
-                    residual[c]
+                    residual[c].k,
+                    residual[c].parts()
                 )
             })
             .collect();
@@ -360,7 +362,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         census: &Census,
         measured: &[Measured],
         by_class: &[Vec<usize>],
-        residual: &[f64],
+        residual: &[Residual],
+        class_floor_k: &[f64],
         guaranteed: &[bool],
         chosen: &Combo,
         det_k: f64,
@@ -376,7 +379,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .collect();
                 let n = bounds.len().max(1) as f64;
                 let ms = bounds.iter().map(|b| b * b).sum::<f64>() / n
-                    + (residual[c] / P90_OF_NORMAL).powi(2);
+                    + (residual[c].k / P90_OF_NORMAL).powi(2);
                 let worst = bounds.iter().copied().fold(0.0, f64::max);
                 let rank = confident_rank(bounds.len(), 90.0);
                 let p90 = order_statistic(&mut bounds, rank);
@@ -387,9 +390,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     )
                 } else {
                     format!(
-                        "the most accurate settings on offer leave {:.4} K here (more than half \
-                         the tolerance, {det_k:.4} K)",
-                        residual[c]
+                        "the most accurate settings on offer leave {:.4} K here{}: they hold \
+                         it from a tolerance of {:.4} K",
+                        residual[c].k,
+                        residual[c].parts(),
+                        class_floor_k[c]
                     )
                 };
                 ClassReport {
@@ -407,7 +412,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         max_k: worst,
                     },
                     rms_k: ms.sqrt(),
-                    residual_k: residual[c],
+                    residual_k: residual[c].k,
                     guaranteed: guaranteed[c],
                     why,
                 }

@@ -1,9 +1,12 @@
 //! What the most accurate settings on offer leave in each class: their own residual, which
-//! decides whether a class can be guaranteed at all, and the standard error above which a
-//! pixel refined to the cap is not guaranteed.
+//! decides whether a class can be guaranteed at all, read from the rate at which each
+//! convergence sequence converges ([`super::rate`]: the bounces' geometric tail, the Monte
+//! Carlo error's power of the samples), and the standard error above which a pixel refined
+//! to the cap is not guaranteed.
 
 use super::DETERMINISTIC_SHARE;
 use super::measure::Measured;
+use super::rate::{self, NoRate, Step, Tail};
 use super::space::PilotSpace;
 use super::stats::{confident_rank, order_statistic};
 
@@ -58,15 +61,90 @@ fn monte_carlo_sigma_k<'a>(counts: &[u32], points: impl Iterator<Item = &'a [f64
     (d01 / (1.0 + k * k)).sqrt()
 }
 
+/// What the most accurate settings on offer leave in one class, and how it was read.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Residual {
+    /// The whole, K: the bounces' tail at its 90th percentile plus 1.645 σ of the Monte
+    /// Carlo error.
+    pub(crate) k: f64,
+    /// The bounces' tail at the class's 90th percentile (at the pilot's confidence), K.
+    pub(crate) bounces_k: f64,
+    /// The Monte Carlo standard error of the most sky-view and shadow rays, K.
+    pub(crate) sampling_sigma_k: f64,
+    /// Where the bounces' rate was not estimated at some of the class's points: how many,
+    /// and why (empty when it was at every point).
+    pub(crate) note: String,
+}
+
+impl Residual {
+    /// The parts as a refusal or a class's report names them: `: bounces 0.012 K beyond
+    /// the most, sampling σ 0.031 K; <the note>`.
+    pub(crate) fn parts(&self) -> String {
+        let mut s = format!(
+            ": bounces {:.3} K beyond the most, sampling σ {:.3} K",
+            self.bounces_k, self.sampling_sigma_k
+        );
+        if !self.note.is_empty() {
+            s.push_str("; ");
+            s.push_str(&self.note);
+        }
+        s
+    }
+}
+
+/// What the most bounces on offer leave at one point whose apparent temperature at each
+/// limit of `bounces` (the most first) is `by_bounces_k`: the geometric tail of its last
+/// two steps ([`rate::geometric_tail`]), each step's length its bounces.
+fn bounce_tail(bounces: &[u32], by_bounces_k: &[f64]) -> Tail {
+    let steps: Vec<Step> = (0..by_bounces_k.len().saturating_sub(1).min(2))
+        .rev()
+        .map(|i| {
+            let length = bounces
+                .get(i)
+                .zip(bounces.get(i + 1))
+                .map_or(1, |(a, b)| a.saturating_sub(*b).max(1));
+            Step::exact(by_bounces_k[i] - by_bounces_k[i + 1], f64::from(length))
+        })
+        .collect();
+    rate::geometric_tail(&steps)
+}
+
+/// The reasons the rate was not estimated at some of `total` points, counted: `rate not
+/// estimated at 3 of 24 points (the last two steps change sign: 2; …)`, empty when none.
+fn describe_misses(misses: &[NoRate], total: usize) -> String {
+    if misses.is_empty() {
+        return String::new();
+    }
+    let kinds = [
+        NoRate::SignChange,
+        NoRate::NotConverging,
+        NoRate::WithinSigma,
+        NoRate::TooFewSteps,
+    ];
+    let counted: Vec<String> = kinds
+        .iter()
+        .filter_map(|&k| {
+            let n = misses.iter().filter(|&&m| m == k).count();
+            (n > 0).then(|| format!("{}: {n}", k.describe()))
+        })
+        .collect();
+    format!(
+        "bounces' rate not estimated at {} of {total} points ({}), their last step kept as \
+         the bound",
+        misses.len(),
+        counted.join("; ")
+    )
+}
+
 /// The most accurate settings' own residual in each class of `by_class` (the indices of its
-/// sample points in `measured`), K: the bounces' last step at its 90th percentile (at the
-/// pilot's confidence), and 1.645 σ of the sky-view and shadow rays' Monte Carlo error at
-/// their most samples, the two independent.
+/// sample points in `measured`): the bounces' geometric tail beyond the most on offer at
+/// its 90th percentile (at the pilot's confidence), and 1.645 σ of the sky-view and shadow
+/// rays' Monte Carlo error at their most samples, the two independent.
 pub(crate) fn residuals<S>(
     space: &PilotSpace<S>,
     measured: &[Measured],
     by_class: &[Vec<usize>],
-) -> Vec<f64> {
+) -> Vec<Residual> {
     let sky_counts: Vec<u32> = space
         .sky_view_rays
         .iter()
@@ -79,9 +157,23 @@ pub(crate) fn residuals<S>(
     by_class
         .iter()
         .map(|points| {
-            let mut steps: Vec<f64> = points.iter().map(|&i| measured[i].bounce_step_k).collect();
-            let rank = confident_rank(steps.len(), 90.0);
-            let bounces = order_statistic(&mut steps, rank);
+            let mut misses = Vec::new();
+            let mut tails: Vec<f64> = points
+                .iter()
+                .map(|&i| {
+                    let t = bounce_tail(&space.bounces, &measured[i].by_bounces_k);
+                    if let Err(why) = t.rate {
+                        misses.push(why);
+                    }
+                    t.tail_k
+                })
+                .collect();
+            // One bounce limit on offer is no sequence: nothing to say about its rate.
+            if space.bounces.len() < 2 {
+                misses.clear();
+            }
+            let rank = confident_rank(tails.len(), 90.0);
+            let bounces_k = order_statistic(&mut tails, rank);
             let sky = monte_carlo_sigma_k(
                 &sky_counts,
                 points.iter().map(|&i| measured[i].by_sky_view_k.as_slice()),
@@ -93,7 +185,68 @@ pub(crate) fn residuals<S>(
                     .iter()
                     .map(|&i| measured[i].by_shadow_rays_k.as_slice()),
             );
-            bounces + P90_OF_NORMAL * sky.hypot(shadow)
+            let sampling_sigma_k = sky.hypot(shadow);
+            Residual {
+                k: bounces_k + P90_OF_NORMAL * sampling_sigma_k,
+                bounces_k,
+                sampling_sigma_k,
+                note: describe_misses(&misses, points.len()),
+            }
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_point_whose_bounces_converge_geometrically_leaves_the_geometric_tail() {
+        // Each bounce j adds c·0.5^j: at limit b the temperature is T∞ − c·0.5^b (the
+        // sum beyond b), so 8 bounces leave c·0.5⁸, 1/15 of their last step from 4.
+        let (t_inf, c) = (300.0, 2.0);
+        let bounces: [u32; 5] = [8, 4, 2, 1, 0];
+        let by: Vec<f64> = bounces
+            .iter()
+            .map(|&b| t_inf - c * 0.5_f64.powf(f64::from(b)))
+            .collect();
+        let t = bounce_tail(&bounces, &by);
+        assert!((t.tail_k - c * 0.5_f64.powi(8)).abs() < 1e-9, "{t:?}");
+        assert!(t.tail_k < (by[0] - by[1]).abs() / 10.0);
+    }
+
+    #[test]
+    fn a_point_whose_bounces_alternate_keeps_its_last_step() {
+        // A mirror between a hot and a cold surface: each further bounce swings the other way.
+        let by = [300.5, 300.0, 301.0, 299.0, 310.0];
+        let t = bounce_tail(&[8, 4, 2, 1, 0], &by);
+        assert_eq!(t.rate, Err(NoRate::SignChange));
+        assert!((t.tail_k - 0.5).abs() < 1e-12);
+        // One limit on offer: nothing to extrapolate, nothing measured.
+        let t = bounce_tail(&[8], &[300.0]);
+        assert_eq!(t.rate, Err(NoRate::TooFewSteps));
+        assert!(t.tail_k.abs() < 1e-300);
+    }
+
+    #[test]
+    fn the_points_whose_rate_is_not_estimated_are_counted_by_reason() {
+        assert_eq!(describe_misses(&[], 24), "");
+        let note = describe_misses(
+            &[
+                NoRate::SignChange,
+                NoRate::NotConverging,
+                NoRate::SignChange,
+            ],
+            24,
+        );
+        assert!(
+            note.starts_with("bounces' rate not estimated at 3 of 24 points"),
+            "{note}"
+        );
+        assert!(note.contains("the last two steps change sign: 2"), "{note}");
+        assert!(
+            note.contains("not smaller than the one before: 1"),
+            "{note}"
+        );
+    }
 }

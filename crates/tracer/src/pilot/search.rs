@@ -7,7 +7,6 @@ use super::choose::{self, Combo, Counts, MODELS};
 use super::classes::Census;
 use super::measure::Measured;
 use super::space::PilotSpace;
-use super::stats::weighted_percentile;
 
 /// How many settings each model has on offer, in the order of [`Combo`].
 pub(crate) fn lens<S>(space: &PilotSpace<S>) -> [usize; MODELS] {
@@ -36,6 +35,7 @@ pub(crate) fn cheapest<S: Sync>(
     measured: &[Measured],
     by_class: &[Vec<usize>],
     guaranteed: &[bool],
+    pixels: choose::Pixels<'_>,
     lens: &[usize; MODELS],
     tolerance_k: f64,
     det_k: f64,
@@ -59,6 +59,7 @@ pub(crate) fn cheapest<S: Sync>(
                 measured,
                 by_class,
                 guaranteed,
+                pixels,
                 combo,
                 tolerance_k,
                 det_k,
@@ -80,33 +81,28 @@ pub(crate) fn cheapest<S: Sync>(
         Some((_, c, v)) => (c, v),
         None => {
             let reference: Combo = [0; MODELS];
-            let v = frame_verdict(census, measured, guaranteed, &reference, percentile);
+            let v = frame_verdict(census, measured, guaranteed, &reference);
             (reference, v)
         }
     }
 }
 
 /// The frame's verdict on `combo` whether or not it holds (for a pinned model's own
-/// error).
+/// error): its largest bound over the guaranteed points.
 fn frame_verdict(
     census: &Census,
     measured: &[Measured],
     guaranteed: &[bool],
     combo: &Combo,
-    percentile: f64,
 ) -> choose::Verdict {
-    let mut weighted: Vec<(f64, f64)> = census
+    let worst_k = census
         .points
         .iter()
         .zip(measured)
         .filter(|(p, _)| guaranteed[p.class])
-        .map(|(p, m)| (choose::bound(m, combo), census.classes[p.class].weight()))
-        .collect();
-    let worst_k = weighted.iter().map(|v| v.0).fold(0.0, f64::max);
-    choose::Verdict {
-        frame_k: weighted_percentile(&mut weighted, choose::stricter(percentile)),
-        worst_k,
-    }
+        .map(|(_, m)| choose::bound(m, combo))
+        .fold(0.0, f64::max);
+    choose::Verdict { worst_k }
 }
 
 /// Steps `combo` to the next combination (an odometer over the lists); false after the
