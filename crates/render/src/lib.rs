@@ -52,8 +52,8 @@ pub use air::AtmosphereRequest;
 pub use band::BandRequest;
 pub use error::{RequestError, Setting, Spelling};
 pub use plan::{
-    FRAME_BYTES_PER_PIXEL, Plan, Request, Sink, TEXTURE_BYTES_PER_PIXEL, TileRequest,
-    ToleranceRequest,
+    DATA_ERROR_BYTES_PER_PIXEL, FRAME_BYTES_PER_PIXEL, Plan, Request, Sink,
+    TEXTURE_BYTES_PER_PIXEL, TileRequest, ToleranceRequest,
 };
 pub use run_hash::RunHash;
 pub use sun::SunRequest;

@@ -171,6 +171,12 @@ pub const FRAME_BYTES_PER_PIXEL: u64 = 150;
 /// and its two f32 layers in the truth EXR.
 pub const TEXTURE_BYTES_PER_PIXEL: u64 = 16;
 
+/// What a frame through an atmosphere holds per pixel beyond [`FRAME_BYTES_PER_PIXEL`],
+/// bytes: each pixel's atmosphere-data error (an f32 record) and its f32 layer in the truth
+/// EXR. Counted for every atmosphere but a vacuum: whether a file's tables record their
+/// residual is known only once it is read, and the check must not under-count.
+pub const DATA_ERROR_BYTES_PER_PIXEL: u64 = 8;
+
 /// A run: its request and inputs, read and checked as they come.
 #[derive(Debug)]
 pub struct Plan {
@@ -706,8 +712,8 @@ impl Plan {
     }
 
     /// What tracing holds per pixel of a frame with every truth layer, bytes:
-    /// [`FRAME_BYTES_PER_PIXEL`], and [`TEXTURE_BYTES_PER_PIXEL`] more when a material is
-    /// textured.
+    /// [`FRAME_BYTES_PER_PIXEL`], [`TEXTURE_BYTES_PER_PIXEL`] more when a material is
+    /// textured, and [`DATA_ERROR_BYTES_PER_PIXEL`] more through an atmosphere.
     #[must_use]
     pub fn bytes_per_pixel(&self) -> u64 {
         let textured = self
@@ -715,7 +721,10 @@ impl Plan {
             .materials
             .iter()
             .any(|m| m.texture.is_some() || m.maps.is_some());
-        FRAME_BYTES_PER_PIXEL + u64::from(textured) * TEXTURE_BYTES_PER_PIXEL
+        let air = !matches!(self.request.atmosphere, AtmosphereRequest::Vacuum { .. });
+        FRAME_BYTES_PER_PIXEL
+            + u64::from(textured) * TEXTURE_BYTES_PER_PIXEL
+            + u64::from(air) * DATA_ERROR_BYTES_PER_PIXEL
     }
 
     /// Every term of the radiance equation for pixel `(column, row)` of the first view,

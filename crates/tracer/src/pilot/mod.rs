@@ -96,23 +96,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         points: u32,
         seed: u64,
     ) -> Result<Piloted, TraceError> {
-        let bad = |m: String| TraceError::new(TraceErrorKind::InvalidOptions(m));
-        irsig_model::decision::check_tolerance(tolerance_k, "tolerance")
-            .map_err(|e| bad(e.to_string()))?;
-        irsig_model::decision::check_percentile(percentile, "percentile")
-            .map_err(|e| bad(e.to_string()))?;
-        let indices = space.set_indices()?;
-        if space.bounces.is_empty()
-            || space.sky_view_rays.is_empty()
-            || space.supersampling.is_empty()
-            || space.path_terms.is_empty()
-            || space
-                .sun
-                .as_ref()
-                .is_some_and(|s| s.lit.is_empty() || s.shadow_rays.is_empty())
-        {
-            return Err(bad("every model needs at least one setting".into()));
-        }
+        let indices = checked_indices(space, tolerance_k, percentile)?;
         let band_model = &space.bands[indices.band_model].set;
         let fc = self.frame_consts_with(
             camera,
@@ -281,20 +265,56 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             data_error_k: None,
         };
         Ok(Piloted {
-            chosen: Chosen {
-                atmosphere: space.atmospheres[chosen_combo[0]],
-                bounces: space.bounces[chosen_combo[1]],
-                sky_view_rays: space.sky_view_rays[chosen_combo[2]],
-                supersampling,
-                path_terms: space.path_terms[chosen_combo[4]],
-                sub_bands: space.sub_bands[chosen_combo[5]],
-                refinement,
-                sun: space.sun.as_ref().map(|s| SunChosen {
-                    lit: s.lit[chosen_combo[6]],
-                    shadow_rays: s.shadow_rays[chosen_combo[7]],
-                }),
-            },
+            chosen: chosen(space, &chosen_combo, refinement),
             decision,
         })
+    }
+}
+
+/// The space's band-set indices, once the tolerance, the percentile and every model's
+/// settings are checked.
+fn checked_indices<S>(
+    space: &PilotSpace<S>,
+    tolerance_k: f64,
+    percentile: f64,
+) -> Result<space::SetIndices, TraceError> {
+    let bad = |m: String| TraceError::new(TraceErrorKind::InvalidOptions(m));
+    irsig_model::decision::check_tolerance(tolerance_k, "tolerance")
+        .map_err(|e| bad(e.to_string()))?;
+    irsig_model::decision::check_percentile(percentile, "percentile")
+        .map_err(|e| bad(e.to_string()))?;
+    let indices = space.set_indices()?;
+    if space.bounces.is_empty()
+        || space.sky_view_rays.is_empty()
+        || space.supersampling.is_empty()
+        || space.path_terms.is_empty()
+        || space
+            .sun
+            .as_ref()
+            .is_some_and(|s| s.lit.is_empty() || s.shadow_rays.is_empty())
+    {
+        return Err(bad("every model needs at least one setting".into()));
+    }
+    Ok(indices)
+}
+
+/// The settings of a combination of the space's models, with refinement's.
+fn chosen<S>(
+    space: &PilotSpace<S>,
+    combo: &Combo,
+    refinement: Option<crate::refine::Refinement>,
+) -> Chosen {
+    Chosen {
+        atmosphere: space.atmospheres[combo[0]],
+        bounces: space.bounces[combo[1]],
+        sky_view_rays: space.sky_view_rays[combo[2]],
+        supersampling: space.supersampling[combo[3]],
+        path_terms: space.path_terms[combo[4]],
+        sub_bands: space.sub_bands[combo[5]],
+        refinement,
+        sun: space.sun.as_ref().map(|s| SunChosen {
+            lit: s.lit[combo[6]],
+            shadow_rays: s.shadow_rays[combo[7]],
+        }),
     }
 }
