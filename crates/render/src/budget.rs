@@ -80,8 +80,8 @@ impl Budget<'_> {
     /// for a relative σ of the path radiance), over the band's dL/dT at the pixel's
     /// apparent temperature; the models' σ at each pixel, `model_k` (0 without a
     /// tolerance); and their root-sum-square, with the atmosphere data's error of the
-    /// pixel ([`Frame::data_error_k`], a bound, as σ = bound/√3) where the frame holds it. The partials are the means over the pixel's
-    /// rays ([`Frame::charges`], which the tracer keeps when given [`Self::groups`]);
+    /// pixel ([`Frame::data_error_k`], a bound, as σ = bound/√3) where the frame holds it.
+    /// The partials are the means over the pixel's rays ([`Frame::charges`], which the tracer keeps when given [`Self::groups`]);
     /// without them, the centre ray's facet answers for the whole pixel.
     #[must_use]
     pub fn layers<R: BandModel + Sync>(
