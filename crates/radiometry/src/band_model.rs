@@ -2,6 +2,8 @@
 //! inverse. The tracer shades with it, the sensor stage quantises and adds noise with it,
 //! and the apparent temperature everywhere comes from it, so it is defined once, here.
 
+use rayon::prelude::*;
+
 use crate::band::Band;
 use crate::constants::{BOLTZMANN_J_K, PLANCK_J_S, SPEED_OF_LIGHT_M_S};
 
@@ -65,11 +67,12 @@ impl BandModel for AnyBand {
 
 /// The apparent temperature, K, of each radiance of an image layer (W m⁻² sr⁻¹, f32), in
 /// `band`; NaN where the radiance is not finite. Each pixel solved exactly
-/// ([`BandModel::temperature`]), not through a table.
+/// ([`BandModel::temperature`]), not through a table, on every core: each pixel's solve is
+/// its own, so the result is the same on any number of threads.
 #[must_use]
-pub fn apparent_temperatures(band: &impl BandModel, radiance_w_m2_sr: &[f32]) -> Vec<f32> {
+pub fn apparent_temperatures(band: &(impl BandModel + Sync), radiance_w_m2_sr: &[f32]) -> Vec<f32> {
     radiance_w_m2_sr
-        .iter()
+        .par_iter()
         .map(|&l| {
             if l.is_finite() {
                 band.temperature(f64::from(l)) as f32
