@@ -70,7 +70,7 @@ impl BandModel for AnyBand {
 /// ([`BandModel::temperature`]), not through a table, on every core: each pixel's solve is
 /// its own, so the result is the same on any number of threads.
 #[must_use]
-pub fn apparent_temperatures(band: &(impl BandModel + Sync), radiance_w_m2_sr: &[f32]) -> Vec<f32> {
+pub fn apparent_temperatures(band: &impl BandModel, radiance_w_m2_sr: &[f32]) -> Vec<f32> {
     radiance_w_m2_sr
         .par_iter()
         .map(|&l| {
