@@ -9,10 +9,8 @@
 //! Every row and every column is transformed independently of the others with the same
 //! plan, so the result is bit-identical at any number of rayon threads.
 
+use irsig_fft::{Complex, Complex64, Float, Plans2d};
 use rayon::prelude::*;
-use realfft::RealFftPlanner;
-use rustfft::FftPlanner;
-use rustfft::num_complex::{Complex, Complex64};
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 
@@ -117,7 +115,7 @@ pub fn blur_with_precision(
 }
 
 /// Conversions the generic FFT path needs.
-trait Sample: realfft::FftNum + Into<f64> {
+trait Sample: Float + Into<f64> {
     fn of(v: f64) -> Self;
 }
 impl Sample for f64 {
@@ -184,12 +182,12 @@ fn blur_generic<T: Sample>(
     let mean = image.data.iter().sum::<f64>() / image.data.len() as f64;
     let zero = Complex::new(T::zero(), T::zero());
     let spectrum_w = pw / 2 + 1;
-    let mut real_planner = RealFftPlanner::<T>::new();
-    let row_forward = real_planner.plan_fft_forward(pw);
-    let row_inverse = real_planner.plan_fft_inverse(pw);
-    let mut planner = FftPlanner::<T>::new();
-    let col_forward = planner.plan_fft_forward(ph);
-    let col_inverse = planner.plan_fft_inverse(ph);
+    let Plans2d {
+        row_forward,
+        row_inverse,
+        col_forward,
+        col_inverse,
+    } = T::plans_2d(pw, ph);
 
     // 1. Pad each row and transform it (rows are independent).
     let mut rows = vec![zero; ph * spectrum_w];

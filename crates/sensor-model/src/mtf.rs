@@ -14,7 +14,7 @@
 
 use std::f64::consts::PI;
 
-use rustfft::num_complex::Complex64;
+use irsig_fft::Complex64;
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Result, SensorError, SensorErrorKind, non_negative, positive};
