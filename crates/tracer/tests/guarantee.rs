@@ -16,8 +16,8 @@
 //! says it cannot guarantee kept under 0.5 % of the frame.
 //!
 //! `IRSIG_GUARANTEE_SEEDS=0..10 IRSIG_GUARANTEE_TOLERANCE_K=0.2 cargo test --release -p
-//! irsig-tracer --test guarantee -- --nocapture` runs more scenes at another tolerance
-//! and prints each one's figures (`docs/accuracy.md` holds a table of them;
+//! irsig-tracer --test integration guarantee:: -- --nocapture` runs more scenes at another
+//! tolerance and prints each one's figures (`docs/accuracy.md` holds a table of them;
 //! `IRSIG_GUARANTEE_DEBUG=1` adds every pixel off by more than a quarter of the
 //! tolerance, the reference's capped pixels and the frame's 20 worst pixels;
 //! `IRSIG_GUARANTEE_VIEW=1` the mast views alone; `IRSIG_GUARANTEE_REFERENCE_ROUNDS=N` the
