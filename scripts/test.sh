@@ -12,23 +12,60 @@
 #
 # The whole suite (no arguments) then runs the Python package's tests
 # (scripts/python/test.sh: a virtual environment with maturin, numpy, xarray and pytest
-# from the package index, the extension module built into the same target folder).
+# from the package index, the extension module built into the same target folder). Of
+# the whole suite's wall time, the Rust tests' build is the largest part and waits on the
+# CPU, while LOWTRAN7's and the Python environment's installs wait mostly on the network:
+# those two run beside the build, and their words are shown when they fail.
 #
 #     sh scripts/test.sh                 # the whole suite
 #     sh scripts/test.sh -p irsig-trace  # one package (the Rust tests only)
 set -eu
 cd "$(dirname "$0")/.."
-IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
-export IRSIG_LOWTRAN
-if command -v slurmctld >/dev/null 2>&1; then
-  if [ "$(id -u)" = 0 ]; then
-    scripts/slurm/start-local-cluster.sh
-  else
-    sudo scripts/slurm/start-local-cluster.sh
+
+start_slurm() {
+  if command -v slurmctld >/dev/null 2>&1; then
+    if [ "$(id -u)" = 0 ]; then
+      scripts/slurm/start-local-cluster.sh
+    else
+      sudo scripts/slurm/start-local-cluster.sh
+    fi
   fi
-fi
+}
+
 if [ "$#" -ne 0 ]; then
+  IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
+  export IRSIG_LOWTRAN
+  start_slurm
   exec cargo test "$@"
 fi
+
+target="${CARGO_TARGET_DIR:-target}"
+mkdir -p "$target/test-setup"
+logs=$(cd "$target/test-setup" && pwd)
+sh scripts/atmosphere/install-lowtran.sh >"$logs/lowtran.path" 2>"$logs/lowtran.log" &
+lowtran=$!
+sh scripts/python/setup.sh >"$logs/py-venv.path" 2>"$logs/py-venv.log" &
+python=$!
+# A failed step below leaves no install running behind it.
+trap 'kill "$lowtran" "$python" 2>/dev/null || true' EXIT
+
+# Waits for the install `$1` (process `$2`) and shows its words; stops if it failed.
+finish() {
+  if wait "$2"; then
+    cat "$logs/$1.log" >&2
+  else
+    cat "$logs/$1.log" >&2
+    echo "test: installing $1 failed (above)" >&2
+    exit 1
+  fi
+}
+
+start_slurm
+cargo test --workspace --no-run
+finish lowtran "$lowtran"
+IRSIG_LOWTRAN=$(cat "$logs/lowtran.path")
+export IRSIG_LOWTRAN
 cargo test --workspace
+finish py-venv "$python"
+trap - EXIT
 sh scripts/python/test.sh
