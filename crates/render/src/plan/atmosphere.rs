@@ -16,7 +16,7 @@ impl Plan {
         band: R,
         split: Option<&Split<'_>>,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let request = &self.request.atmosphere;
         if let AtmosphereRequest::Vacuum {
             sky_radiance_w_m2_sr,
@@ -56,13 +56,13 @@ impl Plan {
     }
 
     /// The highest point of the scene, metres (0 for a scene below the ground).
-    fn scene_top_m(&self) -> miette::Result<f64> {
+    fn scene_top_m(&self) -> Result<f64, RenderError> {
         Ok(self
             .scene
             .lock()
             .map_err(|_| poisoned())?
             .as_ref()
-            .ok_or_else(|| miette!("the raw scene was already traced"))?
+            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?
             .positions_m
             .iter()
             .map(|p| p[2])
@@ -76,7 +76,7 @@ impl Plan {
         band: R,
         sky_radiance_w_m2_sr: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         if let Some(s) = &self.request.sun {
             return Err(sunlight::no_solar_table(
                 s,
@@ -104,7 +104,7 @@ impl Plan {
 
     /// The atmosphere's data, read in the form the band needs and checked against the
     /// band, the sun and the cameras.
-    fn air_data(&self, split: Option<&Split<'_>>) -> miette::Result<AirData> {
+    fn air_data(&self, split: Option<&Split<'_>>) -> Result<AirData, RenderError> {
         let request = &self.request.atmosphere;
         let name = request.name();
         // A built-in is read in spectral form when sub-bands may be asked for.
@@ -221,7 +221,7 @@ impl Plan {
         atmosphere: &irsig_model::Atmosphere,
         top: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let name = self.request.atmosphere.name();
         if let Some(s) = &self.request.sun {
             return Err(sunlight::no_solar_table(
@@ -271,12 +271,13 @@ impl Plan {
         split: &Split<'_>,
         top: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let name = self.request.atmosphere.name();
         // Each count's collapsed sub-bands, made once, from the atmosphere checked once.
-        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
+        let collapser = irsig_atmosphere::Collapser::new(spectral)
+            .map_err(|e| RenderError::atmosphere(format!("the spectra of `{name}`"), e))?;
         let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
-        let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
+        let collapsed = |count: SubBandCount| -> Result<Arc<Collapsed>, RenderError> {
             if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
                 return Ok(c.clone());
             }
@@ -332,7 +333,7 @@ impl Plan {
         let sub_bands = &sub_bands;
         // The sun's beams over the same sub-bands; the table is checked now, before
         // anything is traced.
-        let lit = move |count: SubBandCount| -> miette::Result<Option<irsig_tracer::Sun>> {
+        let lit = move |count: SubBandCount| -> Result<Option<irsig_tracer::Sun>, RenderError> {
             let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
                 return Ok(None);
             };
@@ -401,15 +402,16 @@ impl<'p> Models<'p> {
         &self,
         atmosphere: &irsig_model::Atmosphere,
         kind: ModelKind,
-    ) -> miette::Result<AtmosphereModel> {
-        AtmosphereModel::new(atmosphere, kind)
-            .map_err(|e| miette!("{e}"))
-            .wrap_err_with(|| {
+    ) -> Result<AtmosphereModel, RenderError> {
+        AtmosphereModel::new(atmosphere, kind).map_err(|e| {
+            RenderError::atmosphere(
                 format!(
                     "cannot build the {kind} model of `{}`",
                     self.plan.request.atmosphere.name()
-                )
-            })
+                ),
+                e,
+            )
+        })
     }
 
     fn precompute(&self, model: AtmosphereModel) -> PrecomputedAtmosphere {

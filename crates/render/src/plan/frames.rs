@@ -11,7 +11,7 @@ impl Plan {
         tracer: &Tracer<R, A>,
         air: &Air<'_, R, A, S>,
         camera: &Camera,
-    ) -> miette::Result<(irsig_tracer::pilot::Piloted, f64)> {
+    ) -> Result<(irsig_tracer::pilot::Piloted, f64), RenderError> {
         let mut offer = tolerance::offer(
             &self.materials,
             air.kinds.as_deref(),
@@ -23,8 +23,8 @@ impl Plan {
         let (Some(&ref_kind), Some(&ref_count)) =
             (offer.atmospheres.first(), offer.sub_bands.first())
         else {
-            return Err(miette!(
-                "the pilot has no atmosphere or sub-band count to offer"
+            return Err(RenderError::internal(
+                "the pilot has no atmosphere or sub-band count to offer",
             ));
         };
         // A count the band's grid cannot make (more sub-bands than grid intervals in a
@@ -74,7 +74,7 @@ impl Plan {
             let set = tracer
                 .band_set(sub)
                 .and_then(|set| tracer.lit_band_set(set, beams))
-                .map_err(|e| miette!("{e}"))?;
+                .map_err(|e| RenderError::trace(format!("the pilot's {kind} {count}"), e))?;
             let (path_call_ns, sky_ns) = atmosphere_costs(kind, camera.position_m[2].max(0.0));
             bands.push(BandChoice {
                 atmosphere: kind,
@@ -91,7 +91,7 @@ impl Plan {
         } else {
             let dark = tracer
                 .band_set(pilot(ref_kind, SubBandCount::BAND)?)
-                .map_err(|e| miette!("{e}"))?;
+                .map_err(|e| RenderError::trace("the pilot's frame without the sun", e))?;
             Some(SunOffer {
                 lit: offer.sun,
                 shadow_rays: offer.shadow_rays,
@@ -124,7 +124,7 @@ impl Plan {
                 pixels as u32,
                 self.request.settings.seed,
             )
-            .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
+            .map_err(|e| RequestError::new(Setting::Tolerance, e.to_string()))?;
         // What no setting removes: said beside the decision, and left to the error budget.
         let whole = Tile::whole(camera.pixels[0], camera.pixels[1]);
         piloted.decision.data_error = air
@@ -145,21 +145,24 @@ impl Plan {
         band: R,
         air: &Air<'_, R, A, S>,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let (tracer, scene, base) = self.build_tracer(band, air)?;
         let cameras = self
             .views
             .iter()
-            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
-            .collect::<miette::Result<Vec<_>>>()?;
+            .enumerate()
+            .map(|(i, v)| camera(i, v))
+            .collect::<Result<Vec<_>, _>>()?;
         match job {
             Job::Probe { column, row, text } => {
                 let cam = cameras
                     .first()
-                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
+                    .ok_or_else(|| RequestError::new(Setting::Probe, "no view to probe"))?;
                 let s = tracer
                     .probe(cam, &base.options, *column, *row)
-                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
+                    .map_err(|e| {
+                        RenderError::trace(format!("the probed pixel ({column}, {row})"), e)
+                    })?;
                 let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
                 let sub_bands = tracer.sub_bands();
                 **text = Some(format!(
@@ -177,7 +180,7 @@ impl Plan {
                     .iter()
                     .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
                     .collect::<Result<_, _>>()
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace("the converged reference", e))?;
                 Ok(())
             }
             Job::Render {
@@ -205,26 +208,28 @@ impl Plan {
         &self,
         band: R,
         air: &Air<'_, R, A, S>,
-    ) -> miette::Result<(Tracer<R, A>, Option<RawScene>, Settings)> {
+    ) -> Result<Built<R, A>, RenderError> {
         let scene = self
             .scene
             .lock()
             .map_err(|_| poisoned())?
             .take()
-            .ok_or_else(|| miette!("the raw scene was already traced"))?;
+            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?;
         let mut asked = Settings::of(&self.request.settings);
         if let Some(count) = air.day_default {
             asked.sub_bands = count;
         }
         let asked_sub_bands = asked.sub_bands;
         let base = match &self.decision {
-            Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
+            Some(d) => asked
+                .with_decision(d)
+                .map_err(|(_, m)| RenderError::internal(m))?,
             None => asked,
         };
         // A count the decision chose that this atmosphere's grid cannot make is the
         // decision's error, not a flag's.
         let sub_bands_of_decision = self.decision.is_some() && base.sub_bands != asked_sub_bands;
-        let said = |e: miette::Report| {
+        let said = |e: RenderError| {
             if sub_bands_of_decision {
                 self.at_decision_sub_bands(e)
             } else {
@@ -241,11 +246,13 @@ impl Plan {
             self.maps.clone(),
         )
         .and_then(|t| t.with_sun(sun))
-        .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| {
-            format!(
-                "cannot trace `{}` with `{}`",
-                self.scene_name, self.materials_name
+        .map_err(|e| {
+            RenderError::trace(
+                format!(
+                    "cannot trace `{}` with `{}`",
+                    self.scene_name, self.materials_name
+                ),
+                e,
             )
         })?
         .with_path_terms(base.path_terms);
@@ -272,7 +279,7 @@ impl Plan {
         base: Settings,
         frames: &Frames<'_, '_, R, A, S>,
         sink: &mut dyn Sink,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let air = frames.air;
         let (mut kind, mut count) = (base.kind, base.sub_bands);
         // The materials with a specular share: a reflection that meets one is a mirror
@@ -293,12 +300,14 @@ impl Plan {
                     if self.request.sun.is_some() {
                         tracer = tracer
                             .with_sun((air.sun)(count)?)
-                            .map_err(|e| miette!("{e}"))?;
+                            .map_err(|e| RenderError::trace("lighting the pilot's frame", e))?;
                     }
                     let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
                     piloted = p;
                     self.flush_warnings(sink);
-                    sink.decision(i, &piloted.decision, seconds)?;
+                    sink.decision(i, &piloted.decision, seconds).map_err(|e| {
+                        RenderError::caller(format!("keeping view {}'s decision", i + 1), e)
+                    })?;
                     (
                         chosen_settings(base, &piloted.chosen, tolerance.tolerance_k)?,
                         Some(&piloted.decision),
@@ -312,12 +321,12 @@ impl Plan {
                 tracer = tracer
                     .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
                     .and_then(|t| t.with_sun(sun))
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace(format!("view {}'s settings", i + 1), e))?;
                 (kind, count) = (settings.kind, settings.sub_bands);
             } else if self.request.sun.is_some() {
                 tracer = tracer
                     .with_sun(sun_of(air, &settings)?)
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace(format!("view {}'s sun", i + 1), e))?;
             }
             self.flush_warnings(sink);
             let wanted = sink.files(i);
@@ -328,7 +337,7 @@ impl Plan {
             tracer = tracer
                 .with_path_terms(settings.path_terms)
                 .with_refinement(settings.refinement)
-                .map_err(|e| miette!("{e}"))?;
+                .map_err(|e| RenderError::trace(format!("view {}'s refinement", i + 1), e))?;
             let tile = frames.tiles[i];
             if let Some(text) = tracer
                 .slab_census(cam, tile)
@@ -352,7 +361,7 @@ impl Plan {
             } else {
                 tracer.render_tile(cam, &options, tile, frames.progress)
             }
-            .map_err(|e| miette!("{e}"))?;
+            .map_err(|e| RenderError::trace(format!("tracing view {}", i + 1), e))?;
             if wanted.wants(FrameFile::TruthExr)
                 && let Some(text) =
                     keep_data_error(&tracer, air.data.as_ref(), cam, tile, &mut frame, i + 1)
@@ -417,6 +426,10 @@ impl Plan {
     }
 }
 
+/// The tracer built once, the raw scene when the budget reads its facets, and the settings
+/// it was built with.
+type Built<R, A> = (Tracer<R, A>, Option<RawScene>, Settings);
+
 /// What every frame of a rendering shares.
 struct Frames<'a, 'b, R, A, S> {
     air: &'a Air<'b, R, A, S>,
@@ -435,7 +448,7 @@ struct Frames<'a, 'b, R, A, S> {
 fn sun_of<R, A, S>(
     air: &Air<'_, R, A, S>,
     settings: &Settings,
-) -> miette::Result<Option<irsig_tracer::Sun>> {
+) -> Result<Option<irsig_tracer::Sun>, RenderError> {
     Ok((air.sun)(settings.sub_bands)?
         .filter(|_| settings.sun_lit)
         .map(|mut sun| {
@@ -452,7 +465,7 @@ fn chosen_settings(
     base: Settings,
     c: &irsig_tracer::pilot::Chosen,
     tolerance_k: f64,
-) -> miette::Result<Settings> {
+) -> Result<Settings, RenderError> {
     let mut settings = base;
     settings.kind = c.atmosphere;
     settings.sub_bands = c.sub_bands;
@@ -470,7 +483,10 @@ fn chosen_settings(
         Supersample::Adaptive(n) => (n, Some(tolerance_k)),
         Supersample::Refine(_) => (1, None),
     };
-    settings.options.validate().map_err(|e| miette!("{e}"))?;
+    settings
+        .options
+        .validate()
+        .map_err(|e| RenderError::trace("the pilot's chosen settings", e))?;
     Ok(settings)
 }
 
