@@ -201,34 +201,56 @@ pub struct Plan {
     warnings: Mutex<Vec<String>>,
 }
 
-/// The atmosphere of the run, for any model kind its tables allow, over the band or over
-/// sub-bands of it: for rendering (`A`), and for the pilot's band sets (`S`), which
-/// evaluate each kind as a rendering with it would (its sky precomputed: computing the
-/// hemispheric sky afresh at every pilot facet cost more than the whole pilot otherwise
-/// does, and with K sub-bands K times more).
-struct Air<'a, R, A, S> {
+/// The atmosphere of the run resolved for its band, for any model kind its tables allow,
+/// over the band or over sub-bands of it: a vacuum ([`atmosphere::VacuumAir`]), band tables
+/// ([`atmosphere::TableAir`]) or spectra ([`atmosphere::SpectralAir`]). A rendering's
+/// sub-bands and the pilot's band sets come from the same tables; the pilot's evaluate
+/// each kind as a rendering with it would (its sky precomputed: computing the hemispheric
+/// sky afresh at every pilot facet cost more than the whole pilot otherwise does, and with
+/// K sub-bands K times more).
+trait Air<R>: Sync {
+    /// The atmosphere of a sub-band, as the tracer takes it.
+    type Atmosphere: Atmosphere + Send;
+
     /// The kinds on offer, most accurate first (`None`: a vacuum).
-    kinds: Option<Vec<ModelKind>>,
+    fn kinds(&self) -> Option<&[ModelKind]>;
+
     /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
-    spectral: bool,
-    precomputed: SubBandsOf<'a, R, A>,
-    pilot: SubBandsOf<'a, R, S>,
+    fn spectral(&self) -> bool {
+        false
+    }
+
+    /// The sub-bands of a model kind and a count: a rendering's, or (`pilot`) those of the
+    /// pilot's band sets.
+    ///
+    /// # Errors
+    /// A count the atmosphere cannot make, or a model its tables do not allow.
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, Self::Atmosphere>>, RenderError>;
+
     /// The atmosphere data's own error per path, where its slant tables record their
     /// interpolation residual (`None`: built and slab tables, a vacuum).
-    data: Option<irsig_atmosphere::data_error::DataError>,
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        None
+    }
+
     /// The sun over the sub-bands of a count (`None`: no sun asked for).
-    sun: SunOf<'a>,
+    ///
+    /// # Errors
+    /// A solar table that cannot light these sub-bands.
+    fn sun(&self, _count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        Ok(None)
+    }
+
     /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
     /// ([`sunlight::day_sub_bands`]); `None` by night or when one was.
-    day_default: Option<SubBandCount>,
-}
-
-/// The sun over the sub-bands of a count.
-type SunOf<'a> = Box<dyn Fn(SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> + 'a>;
-
-/// No sun, for any count.
-fn no_sun<'a>() -> SunOf<'a> {
-    Box::new(|_| Ok(None))
+    fn day_default(&self) -> Option<SubBandCount> {
+        None
+    }
 }
 
 /// The data error of `atmosphere`'s `table` model (see [`Air::data`]).
@@ -239,10 +261,6 @@ fn data_error_of(
         .ok()?
         .data_error()
 }
-
-/// The sub-bands of a model kind and a count.
-type SubBandsOf<'a, R, T> =
-    Box<dyn Fn(ModelKind, SubBandCount) -> Result<Vec<SubBand<R, T>>, RenderError> + Sync + 'a>;
 
 /// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
 /// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with

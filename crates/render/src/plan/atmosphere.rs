@@ -89,15 +89,9 @@ impl Plan {
             sky_radiance_w_m2_sr,
         };
         run.field("atmosphere", format!("{vacuum:?}").as_bytes());
-        let (b1, b2) = (band.clone(), band.clone());
-        let air = Air {
-            kinds: None,
-            spectral: false,
-            precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
-            pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
-            data: None,
-            sun: no_sun(),
-            day_default: None,
+        let air = VacuumAir {
+            band: band.clone(),
+            vacuum,
         };
         self.trace_all(&run, band, &air, job)
     }
@@ -235,28 +229,14 @@ impl Plan {
             .into_iter()
             .filter(|&k| AtmosphereModel::new(atmosphere, k).is_ok())
             .collect();
-        let models = Models::new(self, top);
-        let models = &models;
-        let (b1, b2) = (band.clone(), band.clone());
-        let air = Air {
-            kinds: Some(kinds),
-            spectral: false,
-            precomputed: Box::new(move |kind, count| {
-                whole(&b1, name, count, || {
-                    Ok(models.precompute(models.model(atmosphere, kind)?))
-                })
-            }),
-            pilot: Box::new(move |kind, count| {
-                whole(&b2, name, count, || {
-                    Ok(PrecomputedAtmosphere::new(
-                        models.model(atmosphere, kind)?,
-                        top,
-                    ))
-                })
-            }),
+        let air = TableAir {
+            band: band.clone(),
+            name,
+            atmosphere,
+            models: Models::new(self, top),
+            top_m: top,
+            kinds,
             data: data_error_of(atmosphere),
-            sun: no_sun(),
-            day_default: None,
         };
         self.trace_all(&run, band, &air, job)
     }
@@ -276,89 +256,36 @@ impl Plan {
         // Each count's collapsed sub-bands, made once, from the atmosphere checked once.
         let collapser = irsig_atmosphere::Collapser::new(spectral)
             .map_err(|e| RenderError::atmosphere(format!("the spectra of `{name}`"), e))?;
-        let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
-        let collapsed = |count: SubBandCount| -> Result<Arc<Collapsed>, RenderError> {
-            if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
-                return Ok(c.clone());
-            }
-            let c = Arc::new(split.collapse(collapser, count)?);
-            cache
-                .lock()
-                .map_err(|_| poisoned())?
-                .insert(count, c.clone());
-            Ok(c)
+        let mut air = SpectralAir {
+            plan: self,
+            name,
+            spectral,
+            split,
+            top_m: top,
+            collapser,
+            cache: Mutex::default(),
+            models: Models::new(self, top),
+            scatter: None,
+            kinds: Vec::new(),
+            data: None,
+            day_default: None,
         };
-        let one = collapsed(SubBandCount::BAND)?;
-        let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+        let one = air.collapsed(SubBandCount::BAND)?;
+        air.kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
             .into_iter()
             .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
             .collect();
-        let collapsed = &collapsed;
-        let models = Models::new(self, top);
-        let models = &models;
-        let materials = &self.materials;
-        let scatter = crate::sun::by_day(
+        air.scatter = crate::sun::by_day(
             self.request.sun.as_ref(),
             self.sun.as_ref(),
             spectral,
             name,
             |w| self.warn(w),
         );
-        // The pilot evaluates its paths in every sub-band: the precomputed sky costs a few
-        // ms per sub-band (table model) and saves a slant integration per ray, so the
-        // pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
-        // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its cost).
-        // Sub-bands are precomputed in parallel; `collect` keeps their order.
-        let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
-            collapsed(count)?
-                .par_iter()
-                .map(|(b, a)| {
-                    let m = models.model(a, kind)?;
-                    let atmosphere = if pilot && !count.is_band() {
-                        PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
-                    } else {
-                        models.precompute(m)
-                    };
-                    let atmosphere = crate::sun::with_slabs(atmosphere, spectral, *split, b)?;
-                    Ok(SubBand {
-                        band: R::of_band(b)?,
-                        atmosphere: crate::sun::scattered(
-                            atmosphere, scatter, spectral, *split, b,
-                        )?,
-                        emissivity: crate::materials::sub_band_tables(materials, b)?,
-                    })
-                })
-                .collect()
-        };
-        let sub_bands = &sub_bands;
-        // The sun's beams over the same sub-bands; the table is checked now, before
-        // anything is traced.
-        let lit = move |count: SubBandCount| -> Result<Option<irsig_tracer::Sun>, RenderError> {
-            let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
-                return Ok(None);
-            };
-            let c = collapsed(count)?;
-            sunlight::sun(
-                request,
-                position,
-                name,
-                spectral,
-                split,
-                (count, &c),
-                self.request.spelling,
-            )
-            .map(Some)
-        };
-        lit(SubBandCount::BAND)?;
-        let air = Air {
-            kinds: Some(kinds),
-            spectral: true,
-            day_default: self.day_default(spectral, split),
-            precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
-            pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
-            data: one.first().and_then(|(_, a)| data_error_of(a)),
-            sun: Box::new(lit),
-        };
+        // The sun's table is checked now, before anything is traced.
+        air.lit(SubBandCount::BAND)?;
+        air.day_default = self.day_default(spectral, split);
+        air.data = one.first().and_then(|(_, a)| data_error_of(a));
         self.trace_all(&run, band, &air, job)
     }
 
@@ -423,5 +350,180 @@ impl<'p> Models<'p> {
             }
         });
         air
+    }
+}
+
+/// No air: the sky's radiance as given, over the whole band, and no sun.
+struct VacuumAir<R> {
+    band: R,
+    vacuum: Vacuum,
+}
+
+impl<R: SubBandModel> Air<R> for VacuumAir<R> {
+    type Atmosphere = Vacuum;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        None
+    }
+
+    fn sub_bands(
+        &self,
+        _: ModelKind,
+        count: SubBandCount,
+        _: bool,
+    ) -> Result<Vec<SubBand<R, Vacuum>>, RenderError> {
+        whole(&self.band, "none", count, || Ok(self.vacuum))
+    }
+}
+
+/// Band tables: any kind they allow, over the whole band, at night.
+struct TableAir<'p, R> {
+    band: R,
+    name: &'p str,
+    atmosphere: &'p irsig_model::Atmosphere,
+    models: Models<'p>,
+    top_m: f64,
+    kinds: Vec<ModelKind>,
+    data: Option<irsig_atmosphere::data_error::DataError>,
+}
+
+impl<R: SubBandModel> Air<R> for TableAir<'_, R> {
+    type Atmosphere = PrecomputedAtmosphere;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        Some(&self.kinds)
+    }
+
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, PrecomputedAtmosphere>>, RenderError> {
+        whole(&self.band, self.name, count, || {
+            let model = self.models.model(self.atmosphere, kind)?;
+            Ok(if pilot {
+                PrecomputedAtmosphere::new(model, self.top_m)
+            } else {
+                self.models.precompute(model)
+            })
+        })
+    }
+
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        self.data.as_ref()
+    }
+}
+
+/// Spectra: collapsed over the band or each sub-band of a count (each count once, from
+/// the atmosphere checked once), with the sun's beams and scattered sunlight by day.
+struct SpectralAir<'p> {
+    plan: &'p Plan,
+    name: &'p str,
+    spectral: &'p SpectralAtmosphere,
+    split: &'p Split<'p>,
+    top_m: f64,
+    collapser: irsig_atmosphere::Collapser<'p>,
+    /// Each count's collapsed sub-bands, made once.
+    cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>>,
+    models: Models<'p>,
+    /// The direction to the sun whose scattered light the sub-bands carry, by day.
+    scatter: Option<[f64; 3]>,
+    kinds: Vec<ModelKind>,
+    data: Option<irsig_atmosphere::data_error::DataError>,
+    day_default: Option<SubBandCount>,
+}
+
+impl SpectralAir<'_> {
+    /// The sub-bands of `count`, collapsed, made once.
+    fn collapsed(&self, count: SubBandCount) -> Result<Arc<Collapsed>, RenderError> {
+        if let Some(c) = self.cache.lock().map_err(|_| poisoned())?.get(&count) {
+            return Ok(c.clone());
+        }
+        let c = Arc::new(self.split.collapse(self.collapser, count)?);
+        self.cache
+            .lock()
+            .map_err(|_| poisoned())?
+            .insert(count, c.clone());
+        Ok(c)
+    }
+
+    /// The sun's beams over the sub-bands of `count` (`None`: no sun asked for).
+    fn lit(&self, count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        let plan = self.plan;
+        let (Some(request), Some(position)) = (&plan.request.sun, &plan.sun) else {
+            return Ok(None);
+        };
+        let c = self.collapsed(count)?;
+        sunlight::sun(
+            request,
+            position,
+            self.name,
+            self.spectral,
+            self.split,
+            (count, &c),
+            plan.request.spelling,
+        )
+        .map(Some)
+    }
+}
+
+impl<R: SubBandModel> Air<R> for SpectralAir<'_> {
+    type Atmosphere = PrecomputedAtmosphere;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        Some(&self.kinds)
+    }
+
+    fn spectral(&self) -> bool {
+        true
+    }
+
+    /// The pilot's sets are precomputed too, its sub-band sets on [`PILOT_SKY_LEVELS`]
+    /// altitudes (the full grid's 108 skies were most of its cost): the precomputed sky
+    /// costs a few ms per sub-band (table model) and saves a slant integration per ray.
+    /// Sub-bands are precomputed in parallel; `collect` keeps their order.
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, PrecomputedAtmosphere>>, RenderError> {
+        let split = *self.split;
+        self.collapsed(count)?
+            .par_iter()
+            .map(|(b, a)| {
+                let m = self.models.model(a, kind)?;
+                let atmosphere = if pilot && !count.is_band() {
+                    PrecomputedAtmosphere::with_levels(m, self.top_m, PILOT_SKY_LEVELS)
+                } else {
+                    self.models.precompute(m)
+                };
+                let atmosphere = crate::sun::with_slabs(atmosphere, self.spectral, split, b)?;
+                Ok(SubBand {
+                    band: R::of_band(b)?,
+                    atmosphere: crate::sun::scattered(
+                        atmosphere,
+                        self.scatter,
+                        self.spectral,
+                        split,
+                        b,
+                    )?,
+                    emissivity: crate::materials::sub_band_tables(&self.plan.materials, b)?,
+                })
+            })
+            .collect()
+    }
+
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        self.data.as_ref()
+    }
+
+    fn sun(&self, count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        self.lit(count)
+    }
+
+    fn day_default(&self) -> Option<SubBandCount> {
+        self.day_default
     }
 }

@@ -5,17 +5,17 @@ use super::*;
 
 impl Plan {
     /// The pilot's decision for `camera`'s frame, with the seconds it took.
-    pub(super) fn decide<R: BandModel + Clone + Send, A: Atmosphere, S: Atmosphere + Send>(
+    pub(super) fn decide<R: BandModel + Clone + Send, Y: Air<R>>(
         &self,
         tolerance: &ToleranceRequest,
-        tracer: &Tracer<R, A>,
-        air: &Air<'_, R, A, S>,
+        tracer: &Tracer<R, Y::Atmosphere>,
+        air: &Y,
         camera: &Camera,
     ) -> Result<(irsig_tracer::pilot::Piloted, f64), RenderError> {
         let mut offer = tolerance::offer(
             &self.materials,
-            air.kinds.as_deref(),
-            air.spectral,
+            air.kinds(),
+            air.spectral(),
             tracer.has_sun(),
             &tolerance.pins,
             self.request.spelling,
@@ -42,7 +42,7 @@ impl Plan {
         }
         // The pilot's time includes making its band sets (each sub-band's sky).
         let started = std::time::Instant::now();
-        let mut bands: Vec<BandChoice<S>> = Vec::new();
+        let mut bands: Vec<BandChoice<Y::Atmosphere>> = Vec::new();
         let mut unavailable = Vec::new();
         let mut unique: Vec<(ModelKind, SubBandCount)> = Vec::new();
         for pair in pairs {
@@ -51,10 +51,9 @@ impl Plan {
             }
         }
         // Made side by side (the full grid's set is most of the time), then taken in order.
-        let pilot = &air.pilot;
         let made: Vec<_> = unique
             .par_iter()
-            .map(|&(kind, count)| pilot(kind, count))
+            .map(|&(kind, count)| air.sub_bands(kind, count, true))
             .collect();
         for ((kind, count), made) in unique.into_iter().zip(made) {
             let sub = match made {
@@ -67,7 +66,7 @@ impl Plan {
             };
             // By day each set carries the sun's beams over its own sub-bands.
             let beams = if tracer.has_sun() {
-                (air.sun)(count)?.map(|s| s.beams)
+                air.sun(count)?.map(|s| s.beams)
             } else {
                 None
             };
@@ -90,7 +89,7 @@ impl Plan {
             None
         } else {
             let dark = tracer
-                .band_set(pilot(ref_kind, SubBandCount::BAND)?)
+                .band_set(air.sub_bands(ref_kind, SubBandCount::BAND, true)?)
                 .map_err(|e| RenderError::trace("the pilot's frame without the sun", e))?;
             Some(SunOffer {
                 lit: offer.sun,
@@ -128,22 +127,18 @@ impl Plan {
         // What no setting removes: said beside the decision, and left to the error budget.
         let whole = Tile::whole(camera.pixels[0], camera.pixels[1]);
         piloted.decision.data_error = air
-            .data
-            .map(|data| tracer.data_error_census(&data, camera, whole));
+            .data()
+            .map(|data| tracer.data_error_census(data, camera, whole));
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 
     /// Builds the tracer once and runs the job with it: a probe, converged references, or
     /// every frame rendered and turned into its files.
-    pub(super) fn trace_all<
-        R: BandModel + Clone + Send + Sync,
-        A: Atmosphere,
-        S: Atmosphere + Send,
-    >(
+    pub(super) fn trace_all<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
         run: &RunHash,
         band: R,
-        air: &Air<'_, R, A, S>,
+        air: &Y,
         job: &mut Job<'_>,
     ) -> Result<(), RenderError> {
         let (tracer, scene, base) = self.build_tracer(band, air)?;
@@ -204,11 +199,11 @@ impl Plan {
 
     /// The tracer over the settings asked for (or the decision's), lit by day, with the
     /// budget's groups; the raw scene kept only when the budget reads its facets.
-    fn build_tracer<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+    fn build_tracer<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
         band: R,
-        air: &Air<'_, R, A, S>,
-    ) -> Result<Built<R, A>, RenderError> {
+        air: &Y,
+    ) -> Result<Built<R, Y::Atmosphere>, RenderError> {
         let scene = self
             .scene
             .lock()
@@ -216,7 +211,7 @@ impl Plan {
             .take()
             .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?;
         let mut asked = Settings::of(&self.request.settings);
-        if let Some(count) = air.day_default {
+        if let Some(count) = air.day_default() {
             asked.sub_bands = count;
         }
         let asked_sub_bands = asked.sub_bands;
@@ -237,7 +232,9 @@ impl Plan {
             }
         };
         let sun = sun_of(air, &base).map_err(said)?;
-        let precomputed = (air.precomputed)(base.kind, base.sub_bands).map_err(said)?;
+        let precomputed = air
+            .sub_bands(base.kind, base.sub_bands, false)
+            .map_err(said)?;
         let tracer = Tracer::with_sub_bands_and_maps(
             &scene,
             &self.materials,
@@ -273,11 +270,11 @@ impl Plan {
 
     /// Every frame: its settings (piloted when a tolerance is asked for), the tracer moved
     /// to them, traced and turned into the files the sink wants.
-    fn render_frames<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+    fn render_frames<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
-        mut tracer: Tracer<R, A>,
+        mut tracer: Tracer<R, Y::Atmosphere>,
         base: Settings,
-        frames: &Frames<'_, '_, R, A, S>,
+        frames: &Frames<'_, Y>,
         sink: &mut dyn Sink,
     ) -> Result<(), RenderError> {
         let air = frames.air;
@@ -299,7 +296,7 @@ impl Plan {
                     // The pilot sees the sun asked for, whatever an earlier frame chose.
                     if self.request.sun.is_some() {
                         tracer = tracer
-                            .with_sun((air.sun)(count)?)
+                            .with_sun(air.sun(count)?)
                             .map_err(|e| RenderError::trace("lighting the pilot's frame", e))?;
                     }
                     let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
@@ -319,7 +316,7 @@ impl Plan {
                 // New sub-bands drop the sun, whose beams are per sub-band: lit again.
                 let sun = sun_of(air, &settings)?;
                 tracer = tracer
-                    .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
+                    .with_bands(air.sub_bands(settings.kind, settings.sub_bands, false)?)
                     .and_then(|t| t.with_sun(sun))
                     .map_err(|e| RenderError::trace(format!("view {}'s settings", i + 1), e))?;
                 (kind, count) = (settings.kind, settings.sub_bands);
@@ -364,7 +361,7 @@ impl Plan {
             .map_err(|e| RenderError::trace(format!("tracing view {}", i + 1), e))?;
             if wanted.wants(FrameFile::TruthExr)
                 && let Some(text) =
-                    keep_data_error(&tracer, air.data.as_ref(), cam, tile, &mut frame, i + 1)
+                    keep_data_error(&tracer, air.data(), cam, tile, &mut frame, i + 1)
             {
                 sink.warning(&text);
             }
@@ -431,8 +428,8 @@ impl Plan {
 type Built<R, A> = (Tracer<R, A>, Option<RawScene>, Settings);
 
 /// What every frame of a rendering shares.
-struct Frames<'a, 'b, R, A, S> {
-    air: &'a Air<'b, R, A, S>,
+struct Frames<'a, Y> {
+    air: &'a Y,
     run: &'a RunHash,
     cameras: &'a [Camera],
     /// The raw scene, when the budget reads its facets.
@@ -445,11 +442,12 @@ struct Frames<'a, 'b, R, A, S> {
 }
 
 /// The sun as `settings` have it: left out, or with their shadow rays.
-fn sun_of<R, A, S>(
-    air: &Air<'_, R, A, S>,
+fn sun_of<R, Y: Air<R>>(
+    air: &Y,
     settings: &Settings,
 ) -> Result<Option<irsig_tracer::Sun>, RenderError> {
-    Ok((air.sun)(settings.sub_bands)?
+    Ok(air
+        .sun(settings.sub_bands)?
         .filter(|_| settings.sun_lit)
         .map(|mut sun| {
             if let Some(n) = settings.shadow_rays {
