@@ -201,59 +201,7 @@ pub struct Plan {
     warnings: Mutex<Vec<String>>,
 }
 
-/// The atmosphere of the run resolved for its band, for any model kind its tables allow,
-/// over the band or over sub-bands of it: a vacuum ([`atmosphere::VacuumAir`]), band tables
-/// ([`atmosphere::TableAir`]) or spectra ([`atmosphere::SpectralAir`]). A rendering's
-/// sub-bands and the pilot's band sets come from the same tables; the pilot's evaluate
-/// each kind as a rendering with it would (its sky precomputed: computing the hemispheric
-/// sky afresh at every pilot facet cost more than the whole pilot otherwise does, and with
-/// K sub-bands K times more).
-trait Air<R>: Sync {
-    /// The atmosphere of a sub-band, as the tracer takes it.
-    type Atmosphere: Atmosphere + Send;
-
-    /// The kinds on offer, most accurate first (`None`: a vacuum).
-    fn kinds(&self) -> Option<&[ModelKind]>;
-
-    /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
-    fn spectral(&self) -> bool {
-        false
-    }
-
-    /// The sub-bands of a model kind and a count: a rendering's, or (`pilot`) those of the
-    /// pilot's band sets.
-    ///
-    /// # Errors
-    /// A count the atmosphere cannot make, or a model its tables do not allow.
-    fn sub_bands(
-        &self,
-        kind: ModelKind,
-        count: SubBandCount,
-        pilot: bool,
-    ) -> Result<Vec<SubBand<R, Self::Atmosphere>>, RenderError>;
-
-    /// The atmosphere data's own error per path, where its slant tables record their
-    /// interpolation residual (`None`: built and slab tables, a vacuum).
-    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
-        None
-    }
-
-    /// The sun over the sub-bands of a count (`None`: no sun asked for).
-    ///
-    /// # Errors
-    /// A solar table that cannot light these sub-bands.
-    fn sun(&self, _count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
-        Ok(None)
-    }
-
-    /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
-    /// ([`sunlight::day_sub_bands`]); `None` by night or when one was.
-    fn day_default(&self) -> Option<SubBandCount> {
-        None
-    }
-}
-
-/// The data error of `atmosphere`'s `table` model (see [`Air::data`]).
+/// The data error of `atmosphere`'s `table` model (what an atmosphere's `Air::data` is).
 fn data_error_of(
     atmosphere: &irsig_model::Atmosphere,
 ) -> Option<irsig_atmosphere::data_error::DataError> {

@@ -1,6 +1,7 @@
 //! Each frame's settings (as asked, from a decision, or chosen by the tolerance pilot) and
 //! each frame traced and turned into its files.
 
+use super::atmosphere::Air;
 use super::*;
 
 impl Plan {
