@@ -77,14 +77,14 @@ pub(crate) fn scattered_between(
     let hi = (i + 2).min(zeniths.len() - 1);
     let mut path_rows = Vec::with_capacity(hi - lo + 1);
     let mut sky_rows = Vec::with_capacity(hi - lo + 1);
-    for row in lo..=hi {
+    for (row, zenith) in zeniths.iter().enumerate().take(hi + 1).skip(lo) {
         let (path, sky) = row_spectra(solar, row)
             .filter(|(p, s)| !(p.is_empty() || s.is_empty()))
             .ok_or_else(|| {
                 AtmosphereError::from(AtmosphereErrorKind::Solar(format!(
-                    "the sun at {} deg of the atmosphere's solar table has no scattered-sunlight \
-                     spectra: every sun of a table with relative azimuths must hold them",
-                    zeniths[row]
+                    "the sun at {zenith} deg of the atmosphere's solar table has no \
+                     scattered-sunlight spectra: every sun of a table with relative azimuths \
+                     must hold them"
                 )))
             })?;
         path_rows.push(band(path));
