@@ -180,7 +180,11 @@ fn the_scattered_sunlight_between_the_rows_of_one_build_is_lowtran7s_for_that_su
     // A row of the table is its own run, to the rounding of a logarithm and back.
     let own = SunlitPaths::at_zenith(&day, LO_UM, HI_UM, |_| 1.0, 60.0).unwrap();
     let s = day.solar.as_ref().unwrap();
-    let row = s.zeniths_deg().iter().position(|&z| z == 60.0).unwrap();
+    let row = s
+        .zeniths_deg()
+        .iter()
+        .position(|&z| (z - 60.0).abs() < 1e-9)
+        .unwrap();
     let mut one = day.clone();
     if let Some(o) = &mut one.solar {
         let b = &s.further_suns[row - 1];
