@@ -187,7 +187,7 @@ pub(crate) fn by_day(
     spectral: &SpectralAtmosphere,
     name: &str,
     mut warn: impl FnMut(String),
-) -> Option<[f64; 3]> {
+) -> Option<ScatterSun> {
     if let Some(note) = request.and_then(|r| distance_note(r, spectral, name)) {
         warn(note);
     }
@@ -451,9 +451,19 @@ fn sunlit_path_transmission(
     Ok(pairs)
 }
 
+/// The sun a frame's scattered sunlight is read for: the direction toward it (scene
+/// frame), whose horizontal part sets each line of sight's azimuth from the sun, and its
+/// geometric zenith angle, at which a day's table of several suns is interpolated (the
+/// table's suns are geometric, as the beam's are).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ScatterSun {
+    pub(crate) to_sun: [f64; 3],
+    pub(crate) geometric_zenith_deg: f64,
+}
+
 /// Whether the frame's sub-band atmospheres add the sunlight scattered into their paths
 /// and sky: with a sun and an atmosphere whose `solar` table has scattered tables, the
-/// direction toward the sun (scene frame); with a sun and none, `None` and a warning
+/// sun they are read for ([`ScatterSun`]); with a sun and none, `None` and a warning
 /// (`warn`) that the frame holds the direct beam only.
 pub(crate) fn scattering(
     request: Option<&SunRequest>,
@@ -461,14 +471,15 @@ pub(crate) fn scattering(
     spectral: &SpectralAtmosphere,
     name: &str,
     warn: impl FnOnce(String),
-) -> Option<[f64; 3]> {
+) -> Option<ScatterSun> {
     let (Some(_), Some(position)) = (request, position) else {
         return None;
     };
     match spectral.solar.as_ref() {
-        Some(solar) if !solar.relative_azimuth_deg.is_empty() => {
-            Some(position.to_scene_direction())
-        }
+        Some(solar) if !solar.relative_azimuth_deg.is_empty() => Some(ScatterSun {
+            to_sun: position.to_scene_direction(),
+            geometric_zenith_deg: position.geometric_zenith_deg,
+        }),
         Some(_) => {
             warn(format!(
                 "`{name}` has the sun's direct beam but no scattered-sunlight tables: the sky \
@@ -483,26 +494,32 @@ pub(crate) fn scattering(
     }
 }
 
-/// `atmosphere`, the sub-band `band`'s of `split`, by day (`to_sun`: the direction toward
-/// the sun) with the sunlight `spectral` scatters into it over the sub-band, with the
+/// `atmosphere`, the sub-band `band`'s of `split`, by day (`sun`: the sun it is lit by)
+/// with the sunlight `spectral` scatters into it over the sub-band, with the
 /// band's response (the weight its radiances are collapsed with).
 ///
 /// # Errors
 /// A sub-band the scattered tables cannot be integrated over.
 pub(crate) fn scattered(
     atmosphere: irsig_atmosphere::PrecomputedAtmosphere,
-    to_sun: Option<[f64; 3]>,
+    sun: Option<ScatterSun>,
     spectral: &SpectralAtmosphere,
     split: Split<'_>,
     band: &irsig_radiometry::Band,
 ) -> Result<irsig_atmosphere::PrecomputedAtmosphere, RenderError> {
-    let Some(to_sun) = to_sun else {
+    let Some(sun) = sun else {
         return Ok(atmosphere);
     };
     let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
-    let s = ScatteredSunlight::new(spectral, lo, hi, |l| split.weight(l), to_sun).map_err(|e| {
-        RenderError::atmosphere(format!("the scattered sunlight over {lo}-{hi} um"), e)
-    })?;
+    let s = ScatteredSunlight::at_sun(
+        spectral,
+        lo,
+        hi,
+        |l| split.weight(l),
+        sun.to_sun,
+        sun.geometric_zenith_deg,
+    )
+    .map_err(|e| RenderError::atmosphere(format!("the scattered sunlight over {lo}-{hi} um"), e))?;
     Ok(atmosphere.with_scattered(s))
 }
 
