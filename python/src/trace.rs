@@ -65,7 +65,9 @@ pub(crate) fn trace<'py>(
         .map(crate::layers::angles_deg)
         .collect::<miette::Result<Vec<_>>>()
         .map_err(|e| to_py(&e))?;
-    let rows = plan.rows(None).map_err(|e| to_py(&e))?;
+    let rows = plan
+        .rows(None)
+        .map_err(|e| to_py(&miette::Report::new(e)))?;
     let mut sink = Collect::new(wanted, staged(&cli, &plan).map_err(|e| to_py(&e))?);
     let pool = cli.threads.pool().map_err(|e| to_py(&e))?;
     let stop = AtomicBool::new(false);
@@ -114,7 +116,7 @@ pub(crate) fn trace<'py>(
                 &angles,
             )
         }
-        (Ok(Ok(Err(e))), None) => Err(to_py(&e)),
+        (Ok(Ok(Err(e))), None) => Err(to_py(&miette::Report::new(e))),
         // A panic of the tracer's is a bug: it surfaces as Python's `PanicException`.
         (Ok(Err(payload)) | Err(payload), None) => resume_unwind(payload),
     }

@@ -36,6 +36,7 @@ mod recipes;
 mod reference;
 mod refraction;
 mod report;
+mod scattered_day;
 mod scattered_trace;
 mod scene_library;
 mod sensor;

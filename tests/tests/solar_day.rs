@@ -286,8 +286,38 @@ fn a_plan_of_a_days_times_holds_every_lit_hours_sun_and_drops_the_night() {
         };
         assert!(w[1] - w[0] <= limit * 1.2 + 1e-9, "{w:?}");
     }
+    // With the scattered sunlight: every sun of the same rows runs every sunlit path. What
+    // that costs in LOWTRAN7 runs is printed (docs/accuracy.md quotes it).
+    let lit_plan = irsig_tests::quickstart_plan(
+        dir.path(),
+        "lit-day.ron",
+        &["--atmosphere", "us-std-1976"],
+        &[&["--sun-utc", DAY, "--sun-scattering"][..], &PLACE[..]].concat(),
+    );
+    let lit_text = std::fs::read_to_string(&lit_plan).unwrap();
+    let q: irsig_model::AtmospherePlan = canonical::from_ron("lit-day.ron", &lit_text).unwrap();
+    let lit_sun = q.sun.as_ref().unwrap();
+    assert_eq!(lit_sun.zeniths_deg(), rows);
+    assert_eq!(
+        lit_sun.relative_azimuth_deg,
+        irsig_atmosphere::plan::RELATIVE_AZIMUTH_DEG
+    );
+    let (beam_runs, lit_runs) = (
+        irsig_atmosphere::plan::paths(&p).len(),
+        irsig_atmosphere::plan::paths(&q).len(),
+    );
+    let sunlit_per_sun = (q.slant_altitude_m.len() * q.slant_nadir_deg.len()
+        + lit_sun.altitude_m.len() * q.sky_zenith_deg.len())
+        * lit_sun.relative_azimuth_deg.len();
+    println!(
+        "a day's plan of {} suns: {beam_runs} LOWTRAN7 runs for the beam alone, {lit_runs} \
+         with the scattered sunlight ({sunlit_per_sun} sunlit runs per sun)",
+        rows.len()
+    );
+    assert!(lit_runs >= beam_runs + rows.len() * sunlit_per_sun);
     // Refused at the flag: an end before the start, a step of 0, several suns with the
-    // scattered sunlight, a day that has no lit moment.
+    // scattered sunlight and slabs (a slab table holds one sun's), a day that has no lit
+    // moment.
     for (extra, says) in [
         (
             vec![
@@ -304,8 +334,8 @@ fn a_plan_of_a_days_times_holds_every_lit_hours_sun_and_drops_the_night() {
             "step",
         ),
         (
-            vec!["--sun-utc", DAY, "--sun-scattering"],
-            "--sun-scattering",
+            vec!["--sun-utc", DAY, "--sun-scattering", "--slabs"],
+            "--slabs",
         ),
         (
             vec![

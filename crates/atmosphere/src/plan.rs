@@ -290,16 +290,25 @@ pub fn add_sun(
     add_suns(plan, &[zenith_deg], day_of_year, scattered)
 }
 
+/// The lowest sun, as a zenith angle in degrees, whose scattered sunlight a plan of several
+/// suns runs: with suns at 88.5° and 89°, LOWTRAN7 left a sunlit sky path from the ground
+/// at zenith 60° without a table and without a message in TAPE6 (docs/accuracy.md, "A
+/// day's scattered sunlight"), so such a plan would be accepted and fail to build.
+pub const SCATTERED_DAY_MAX_ZENITH_DEG: f64 = 88.0;
+
 /// Puts the suns of a day at `zenith_deg` (each rounded to the 0.001° a deck holds, then
 /// sorted, repeats dropped) on day `day_of_year` in `plan`, as [`add_sun`] puts one: the
 /// direct beam of every sun at every altitude of the sun's rows, so that one build's
 /// solar table holds them all (`SpectralSolar::further_suns`) and the tracer interpolates
-/// between them (`crate::solar`). The scattered sunlight is one sun's: `scattered` with
-/// more than one zenith angle is refused.
+/// between them (`crate::solar`). With `scattered`, every sun also runs every sunlit slant
+/// and sky path (the runs of [`add_sun`]'s scattered sunlight, once per sun), and the
+/// tracer interpolates those between the suns too (`crate::scattered`); slabs, whose
+/// tables hold one sun's scattered sunlight, are then refused ([`add_slabs`]).
 ///
 /// # Errors
 /// No zenith angle; one that is not finite or not within 0 to below 90° once rounded; a
-/// day outside 1–366; `scattered` with several suns.
+/// day outside 1–366; `scattered` with several suns in a plan that has slabs, or with a sun
+/// past [`SCATTERED_DAY_MAX_ZENITH_DEG`].
 pub fn add_suns(
     plan: &mut AtmospherePlan,
     zenith_deg: &[f64],
@@ -318,10 +327,22 @@ pub fn add_suns(
     let Some((&first, further)) = zeniths.split_first() else {
         return Err(plan_error("expected at least one sun zenith angle".into()));
     };
-    if scattered && !further.is_empty() {
+    if scattered
+        && !further.is_empty()
+        && let Some(low) = zeniths.iter().find(|&&z| z > SCATTERED_DAY_MAX_ZENITH_DEG)
+    {
         return Err(plan_error(format!(
-            "the sunlight the air scatters is planned for one sun, and {} are given: plan \
-             the direct beam alone for several suns, or one sun with its scattered sunlight",
+            "the sunlight the air scatters is planned for a day's suns up to \
+             {SCATTERED_DAY_MAX_ZENITH_DEG} deg from the zenith, and a sun at {low} deg is \
+             given (LOWTRAN7 leaves some sunlit sky paths of a lower sun unrun): end the \
+             range before the sun is that low, or plan the direct beam alone"
+        )));
+    }
+    if scattered && !further.is_empty() && plan.slabs.is_some() {
+        return Err(plan_error(format!(
+            "a slab table holds the scattered sunlight of one sun, and {} suns are given: \
+             plan the direct beam alone for several suns beside slabs, or one sun with its \
+             scattered sunlight",
             zeniths.len()
         )));
     }
@@ -441,8 +462,9 @@ pub enum Path {
         /// Zenith angle, degrees.
         zenith_deg: f64,
     },
-    /// A slant path of the sunlit tables: [`Path::Down`] with the sunlight it scatters,
-    /// the line of sight `azimuth_deg` from the sun's vertical plane.
+    /// A slant path of the sunlit tables: [`Path::Down`] with the sunlight it scatters
+    /// from the sun `sun_zenith_deg` from the zenith, the line of sight `azimuth_deg` from
+    /// the sun's vertical plane.
     DownSunlit {
         /// Observer altitude, metres.
         altitude_m: f64,
@@ -450,8 +472,11 @@ pub enum Path {
         nadir_deg: f64,
         /// Azimuth from the sun's, degrees, 0–180.
         azimuth_deg: f64,
+        /// The sun's zenith angle, degrees (one of the plan's suns).
+        sun_zenith_deg: f64,
     },
-    /// A sky path of the sunlit tables: [`Path::Up`] with the sunlight it scatters.
+    /// A sky path of the sunlit tables: [`Path::Up`] with the sunlight it scatters from
+    /// the sun `sun_zenith_deg` from the zenith.
     UpSunlit {
         /// Observer altitude, metres.
         altitude_m: f64,
@@ -459,6 +484,8 @@ pub enum Path {
         zenith_deg: f64,
         /// Azimuth from the sun's, degrees, 0–180.
         azimuth_deg: f64,
+        /// The sun's zenith angle, degrees (one of the plan's suns).
+        sun_zenith_deg: f64,
     },
     /// A slab that ends above the ground ([`PlanSlabs`]): from an observer at
     /// `observer_m` to `target_m`, `zenith_deg` from straight up at the observer (above 90
@@ -515,17 +542,33 @@ fn key(p: &Path) -> Key {
             zenith_deg,
             ..
         } => (2, q(altitude_m), q(zenith_deg), 0, 0),
-        // After the direct beam's: a plan with a sun but no azimuths numbers as before.
+        // After the direct beam's: a plan with a sun but no azimuths numbers as before. By
+        // sun first: a plan of one sun numbers its sunlit paths as it did before suns had
+        // a field of their own, and each further sun's follow the first's.
         Path::DownSunlit {
             altitude_m,
             nadir_deg,
             azimuth_deg,
-        } => (3, q(altitude_m), q(nadir_deg), q(azimuth_deg), 0),
+            sun_zenith_deg,
+        } => (
+            3,
+            q(sun_zenith_deg),
+            q(altitude_m),
+            q(nadir_deg),
+            q(azimuth_deg),
+        ),
         Path::UpSunlit {
             altitude_m,
             zenith_deg,
             azimuth_deg,
-        } => (4, q(altitude_m), q(zenith_deg), q(azimuth_deg), 0),
+            sun_zenith_deg,
+        } => (
+            4,
+            q(sun_zenith_deg),
+            q(altitude_m),
+            q(zenith_deg),
+            q(azimuth_deg),
+        ),
         // After every other path: a plan without slabs numbers as before.
         Path::Slab {
             observer_m,
@@ -634,8 +677,10 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
     }
     if let Some(sun) = &plan.sun {
         out.extend(sun_paths(sun));
-        out.extend(sunlit_slant_paths(plan, sun));
-        out.extend(sunlit_sky_paths(plan, sun));
+        for z in sun.zeniths_deg() {
+            out.extend(sunlit_slant_paths(plan, sun, z));
+            out.extend(sunlit_sky_paths(plan, sun, z));
+        }
     }
     out.extend(slab_paths(plan, None));
     if let Some(sun) = plan
@@ -648,8 +693,9 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
     out
 }
 
-/// The sunlit slant paths, `[altitude][nadir][azimuth]`.
-fn sunlit_slant_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
+/// The sunlit slant paths of the sun `sun_zenith_deg`, `[altitude][nadir][azimuth]`;
+/// none without relative azimuths.
+fn sunlit_slant_paths(plan: &AtmospherePlan, sun: &PlanSun, sun_zenith_deg: f64) -> Vec<Path> {
     let mut out = Vec::new();
     for &a in &plan.slant_altitude_m {
         for &n in &plan.slant_nadir_deg {
@@ -657,14 +703,16 @@ fn sunlit_slant_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
                 altitude_m: a,
                 nadir_deg: n,
                 azimuth_deg: az,
+                sun_zenith_deg,
             }));
         }
     }
     out
 }
 
-/// The sunlit sky paths, `[altitude][zenith][azimuth]`, on the sun's altitudes.
-fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
+/// The sunlit sky paths of the sun `sun_zenith_deg`, `[altitude][zenith][azimuth]`, on
+/// the sun's altitudes; none without relative azimuths.
+fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun, sun_zenith_deg: f64) -> Vec<Path> {
     let mut out = Vec::new();
     for &a in &sun.altitude_m {
         for &z in &plan.sky_zenith_deg {
@@ -672,6 +720,7 @@ fn sunlit_sky_paths(plan: &AtmospherePlan, sun: &PlanSun) -> Vec<Path> {
                 altitude_m: a,
                 zenith_deg: z,
                 azimuth_deg: az,
+                sun_zenith_deg,
             }));
         }
     }
@@ -785,14 +834,94 @@ mod tests {
         add_suns(&mut single, &[30.0], 172, false).unwrap();
         assert_eq!(single, one);
         assert!(single.sun.as_ref().unwrap().further_zenith_deg.is_empty());
-        // The scattered sunlight is one sun's; no sun, or one at the horizon, is none.
+        // No sun, or one at the horizon, is none.
         let mut p = night.clone();
-        let e = add_suns(&mut p, &[30.0, 40.0], 172, true).unwrap_err();
-        assert!(e.to_string().contains("one sun"), "{e}");
         assert!(add_suns(&mut p, &[], 172, false).is_err());
         assert!(add_suns(&mut p, &[30.0, 89.9999], 172, false).is_err());
         assert!(add_suns(&mut p, &[f64::NAN], 172, false).is_err());
         assert!(p.sun.is_none());
+    }
+
+    #[test]
+    fn a_days_scattered_sunlight_is_refused_for_a_sun_past_its_lowest_and_the_beam_is_not() {
+        let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
+        let mut p = night.clone();
+        let e = add_suns(&mut p, &[30.0, 88.5], 172, true).unwrap_err();
+        assert!(e.to_string().contains("a sun at 88.5 deg"), "{e}");
+        assert!(p.sun.is_none(), "nothing planned");
+        // 88° itself is the last row the measurement ran; the beam alone goes lower.
+        add_suns(&mut p, &[30.0, 88.0], 172, true).unwrap();
+        let mut beam = night.clone();
+        add_suns(&mut beam, &[30.0, 88.5, 89.999], 172, false).unwrap();
+        // One sun keeps what it had: its scattered paths are planned at any angle below 90°.
+        let mut one = night;
+        add_suns(&mut one, &[88.5], 172, true).unwrap();
+    }
+
+    #[test]
+    fn several_suns_with_scattering_run_every_sunlit_path_once_per_sun() {
+        let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
+        let mut one = night.clone();
+        add_sun(&mut one, 30.0, 172, true).unwrap();
+        let mut day = night.clone();
+        add_suns(&mut day, &[60.0, 30.0, 45.0], 172, true).unwrap();
+        day.validate().unwrap();
+        let sun = day.sun.as_ref().unwrap();
+        let (single, all) = (paths(&one), paths(&day));
+        // Per sun: its beam at each altitude, and each slant and sky path at each azimuth.
+        let na = RELATIVE_AZIMUTH_DEG.len();
+        let sunlit = (day.slant_altitude_m.len() * day.slant_nadir_deg.len()
+            + sun.altitude_m.len() * day.sky_zenith_deg.len())
+            * na;
+        assert_eq!(
+            sunlit,
+            single.len() - paths(&night).len() - sun.altitude_m.len()
+        );
+        assert_eq!(
+            all.len(),
+            paths(&night).len() + 3 * (sun.altitude_m.len() + sunlit)
+        );
+        for z in [30.0, 45.0, 60.0] {
+            let lit = all
+                .iter()
+                .filter(|p| {
+                    matches!(p, Path::DownSunlit { sun_zenith_deg, .. }
+                        | Path::UpSunlit { sun_zenith_deg, .. } if *sun_zenith_deg == z)
+                })
+                .count();
+            assert_eq!(lit, sunlit, "{z}");
+        }
+        // The first sun's sunlit paths are the one-sun plan's, in its order.
+        let first_lit = |ps: &[Path]| -> Vec<Path> {
+            ps.iter()
+                .copied()
+                .filter(|p| {
+                    matches!(p, Path::DownSunlit { sun_zenith_deg, .. }
+                        | Path::UpSunlit { sun_zenith_deg, .. } if *sun_zenith_deg == 30.0)
+                })
+                .collect()
+        };
+        assert_eq!(first_lit(&all), first_lit(&single));
+        // Each sun's deck scatters its own sun (card 3A2's PARM2).
+        let lit45 = all
+            .iter()
+            .find(|p| matches!(p, Path::UpSunlit { sun_zenith_deg, .. } if *sun_zenith_deg == 45.0))
+            .unwrap();
+        let d = deck(&day, lit45).unwrap();
+        let Step::Full(c) = &d.steps[0] else {
+            panic!("a full deck")
+        };
+        assert_eq!(c.geometry.scattering.as_ref().unwrap().card3a2[1], 45.0);
+        // A slab table holds one sun's scattered sunlight: slabs beside several are refused,
+        // either way round.
+        let mut slabbed = day.clone();
+        assert!(add_slabs(&mut slabbed, 20.0).is_err());
+        assert_eq!(slabbed, day);
+        let mut first_slabs = night.clone();
+        add_slabs(&mut first_slabs, 20.0).unwrap();
+        let e = add_suns(&mut first_slabs, &[30.0, 45.0], 172, true).unwrap_err();
+        assert!(e.to_string().contains("slab"), "{e}");
+        add_suns(&mut first_slabs, &[30.0, 45.0], 172, false).unwrap();
     }
 
     #[test]
@@ -856,6 +985,7 @@ mod tests {
             altitude_m,
             nadir_deg,
             azimuth_deg,
+            ..
         } = sunlit
         else {
             panic!("{sunlit:?}")

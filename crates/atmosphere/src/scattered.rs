@@ -60,7 +60,7 @@ pub struct ScatteredSunlight {
 impl ScatteredSunlight {
     /// The band `[lo_um, hi_um]` with response `weight(λ in µm)` of `spectral`'s scattered
     /// sunlight, for the sun toward `to_sun` (a direction in the scene frame; only its
-    /// horizontal part is used, the zenith angle is the table's).
+    /// horizontal part is used, the zenith angle is the table's first sun's).
     ///
     /// # Errors
     /// An atmosphere without slant tables, a `solar` table or its scattered tables (a plan
@@ -73,9 +73,27 @@ impl ScatteredSunlight {
         weight: impl Fn(f64) -> f64,
         to_sun: [f64; 3],
     ) -> Result<Self, AtmosphereError> {
+        let zenith_deg = spectral.solar.as_ref().map_or(0.0, |s| s.zenith_deg);
+        Self::at_sun(spectral, lo_um, hi_um, weight, to_sun, zenith_deg)
+    }
+
+    /// As [`Self::new`], for a sun `zenith_deg` (geometric, as the table's suns are) from
+    /// the zenith: a day's table of several suns is interpolated between them
+    /// ([`SunlitPaths::at_zenith`]); a one-sun table is its sun's.
+    ///
+    /// # Errors
+    /// As [`Self::new`]; with several suns, a zenith angle outside them.
+    pub fn at_sun(
+        spectral: &SpectralAtmosphere,
+        lo_um: f64,
+        hi_um: f64,
+        weight: impl Fn(f64) -> f64,
+        to_sun: [f64; 3],
+        zenith_deg: f64,
+    ) -> Result<Self, AtmosphereError> {
         // The same band tables `SunlitPaths` reads, and refused alike when missing.
         let (path, sky, azimuth_deg) =
-            SunlitPaths::new(spectral, lo_um, hi_um, weight)?.into_scattered();
+            SunlitPaths::at_zenith(spectral, lo_um, hi_um, weight, zenith_deg)?.into_scattered();
         let ground_m = spectral.slant.as_ref().and_then(|s| s.ground_m);
         let hemispheric = sky
             .altitude_m

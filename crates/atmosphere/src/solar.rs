@@ -416,6 +416,8 @@ mod tests {
                 .map(|&zenith_deg| irsig_model::SolarBeam {
                     zenith_deg,
                     transmission: beam(zenith_deg),
+                    path_scattered_w_m2_sr_per_unit: Vec::new(),
+                    sky_scattered_w_m2_sr_per_unit: Vec::new(),
                 })
                 .collect();
         }

@@ -21,12 +21,18 @@
 //! outside the tables the nearest row is used.
 //! The error of this interpolation against LOWTRAN7 at paths between the rows is measured
 //! in `tests/tests/sunlit.rs` and tabled in `docs/accuracy.md`.
+//!
+//! A table of several suns (one build for a day) is read for one sun at a time
+//! ([`SunlitPaths::at_zenith`]): its scattered band values are interpolated between the
+//! suns node by node first (`between`), then as a one-sun table's.
 
 use irsig_model::SpectralAtmosphere;
 
 use crate::error::{AtmosphereError, AtmosphereErrorKind};
 use crate::interp;
 use crate::spectral::BandQuadrature;
+
+mod between;
 
 /// A path's radiance by day, W m⁻² sr⁻¹ over the band, by its two sources.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -139,7 +145,8 @@ pub fn fold_azimuth_deg(azimuth_deg: f64) -> f64 {
 
 impl SunlitPaths {
     /// The band `[lo_um, hi_um]` with response `weight(λ in µm)` of `spectral`'s slant
-    /// tables and its `solar` table's scattered sunlight.
+    /// tables and its `solar` table's scattered sunlight, for the table's first sun
+    /// (`solar.zenith_deg`; [`Self::at_zenith`] for another of a day's table).
     ///
     /// # Errors
     /// An atmosphere without slant tables, without a `solar` table or whose `solar`
@@ -150,6 +157,24 @@ impl SunlitPaths {
         lo_um: f64,
         hi_um: f64,
         weight: impl Fn(f64) -> f64,
+    ) -> Result<Self, AtmosphereError> {
+        let zenith_deg = spectral.solar.as_ref().map_or(0.0, |s| s.zenith_deg);
+        Self::at_zenith(spectral, lo_um, hi_um, weight, zenith_deg)
+    }
+
+    /// As [`Self::new`], for the sun `zenith_deg` (geometric) from the zenith. A one-sun
+    /// table is its sun's whatever the angle (the caller checks the sun against it, as it
+    /// does the beam's); a table of several suns is interpolated between them (the
+    /// module's documentation), and a sun outside them is refused.
+    ///
+    /// # Errors
+    /// As [`Self::new`]; with several suns, a zenith angle outside them.
+    pub fn at_zenith(
+        spectral: &SpectralAtmosphere,
+        lo_um: f64,
+        hi_um: f64,
+        weight: impl Fn(f64) -> f64,
+        zenith_deg: f64,
     ) -> Result<Self, AtmosphereError> {
         let slant = spectral.slant.as_ref().ok_or_else(|| {
             missing(
@@ -177,39 +202,39 @@ impl SunlitPaths {
         };
         let na = solar.relative_azimuth_deg.len();
         let table =
-            |altitude_m: &[f64], angle_deg: &[f64], values: &[f32], azimuths: usize| Table {
+            |altitude_m: &[f64], angle_deg: &[f64], values: Vec<f64>, azimuths: usize| Table {
                 altitude_m: altitude_m.to_vec(),
                 angle_deg: angle_deg.to_vec(),
-                values: band(values),
+                values,
                 azimuths,
             };
+        let (zenith_deg, path_scattered, sky_scattered) = if solar.further_suns.is_empty() {
+            (
+                solar.zenith_deg,
+                band(&solar.path_scattered_w_m2_sr_per_unit),
+                band(&solar.sky_scattered_w_m2_sr_per_unit),
+            )
+        } else {
+            let (path, sky) = between::scattered_between(solar, zenith_deg, &band)?;
+            (zenith_deg, path, sky)
+        };
         Ok(Self {
-            zenith_deg: solar.zenith_deg,
+            zenith_deg,
             azimuth_deg: solar.relative_azimuth_deg.clone(),
             path_thermal: table(
                 &slant.altitude_m,
                 &slant.nadir_deg,
-                &slant.path_radiance_w_m2_sr_per_unit,
+                band(&slant.path_radiance_w_m2_sr_per_unit),
                 1,
             ),
-            path_scattered: table(
-                &slant.altitude_m,
-                &slant.nadir_deg,
-                &solar.path_scattered_w_m2_sr_per_unit,
-                na,
-            ),
+            path_scattered: table(&slant.altitude_m, &slant.nadir_deg, path_scattered, na),
             sky_thermal: table(
                 &slant.sky_altitude_m,
                 &slant.sky_zenith_deg,
-                &slant.sky_radiance_w_m2_sr_per_unit,
+                band(&slant.sky_radiance_w_m2_sr_per_unit),
                 1,
             ),
-            sky_scattered: table(
-                &solar.altitude_m,
-                &slant.sky_zenith_deg,
-                &solar.sky_scattered_w_m2_sr_per_unit,
-                na,
-            ),
+            sky_scattered: table(&solar.altitude_m, &slant.sky_zenith_deg, sky_scattered, na),
         })
     }
 
@@ -219,7 +244,7 @@ impl SunlitPaths {
         (self.path_scattered, self.sky_scattered, self.azimuth_deg)
     }
 
-    /// The sun's zenith angle the tables were made for, degrees.
+    /// The sun's zenith angle the tables were made (or interpolated) for, degrees.
     #[must_use]
     pub fn sun_zenith_deg(&self) -> f64 {
         self.zenith_deg

@@ -72,7 +72,8 @@ pub struct PlanSun {
     /// Further suns of the same day for the direct beam, zenith angles increasing above
     /// `zenith_deg`, below 90°, multiples of 0.001°: each is run at every altitude, and the
     /// build's solar table holds them all (`SpectralSolar::further_suns`). Empty: one sun.
-    /// Not with relative azimuths (the scattered sunlight is one sun's).
+    /// With relative azimuths, each sun also runs every sunlit path (not with slabs: a slab
+    /// table holds one sun's scattered sunlight).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub further_zenith_deg: Vec<f64>,
 }
@@ -179,16 +180,6 @@ impl PlanSun {
                 ));
             }
             previous = z;
-        }
-        if !(self.further_zenith_deg.is_empty() || self.relative_azimuth_deg.is_empty()) {
-            return Err(ModelError::new(
-                "sun.further_zenith_deg",
-                ModelErrorKind::Other(
-                    "the scattered sunlight (relative azimuths) is planned for one sun: expected \
-                     no further suns beside it"
-                        .into(),
-                ),
-            ));
         }
         Ok(())
     }
@@ -559,6 +550,21 @@ impl AtmospherePlan {
     }
 
     fn validate_slabs(&self, slabs: &PlanSlabs) -> Result<(), ModelError> {
+        // A slab table holds one sun's scattered sunlight (`SpectralSlabTable`).
+        if let Some(sun) = self
+            .sun
+            .as_ref()
+            .filter(|s| !(s.further_zenith_deg.is_empty() || s.relative_azimuth_deg.is_empty()))
+        {
+            return Err(ModelError::new(
+                "slabs",
+                ModelErrorKind::Other(format!(
+                    "a slab table holds the scattered sunlight of one sun, and the plan's sun has \
+                     {} zenith angles: plan slabs with one sun, or several suns without slabs",
+                    1 + sun.further_zenith_deg.len()
+                )),
+            ));
+        }
         if self.observers_m.is_empty() {
             return Err(ModelError::new(
                 "slabs",
@@ -817,11 +823,22 @@ mod tests {
             });
             assert_eq!(p.validate().unwrap_err().path, field);
         }
+        // Several suns with their scattered sunlight: each sun runs the sunlit paths. A
+        // slab table holds one sun's: slabs beside them are refused.
         p.sun = Some(PlanSun {
             further_zenith_deg: vec![45.0],
             ..sun.clone()
         });
-        assert_eq!(p.validate().unwrap_err().path, "sun.further_zenith_deg");
+        p.validate().unwrap();
+        p.observers_m = vec![5.0];
+        p.slabs = Some(PlanSlabs {
+            target_m: vec![2.0, 5.0],
+            nadir_deg: vec![0.0],
+            zenith_deg: vec![0.0],
+        });
+        assert_eq!(p.validate().unwrap_err().path, "slabs");
+        p.sun = Some(sun.clone());
+        p.validate().unwrap();
     }
 
     #[test]

@@ -155,8 +155,9 @@ pub struct SpectralSolar {
     /// each with its direct beam's transmittance on `altitude_m`: one build then serves
     /// every sun of a day, the tracer interpolating between the rows
     /// (`irsig_atmosphere::solar`). Empty: the table is for the sun at `zenith_deg` alone.
-    /// The scattered-sunlight tables hold one sun's light: a table with further suns has
-    /// none.
+    /// With scattered-sunlight tables (`relative_azimuth_deg` not empty), each further sun
+    /// holds its own, on the same nodes, and the tracer interpolates those between the
+    /// suns too (`irsig_atmosphere::scattered`).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub further_suns: Vec<SolarBeam>,
     /// The apparent zenith angle each beam was run at, degrees, `[sun][altitude]` over
@@ -172,7 +173,7 @@ pub struct SpectralSolar {
 
 /// The direct beam of one more sun of a [`SpectralSolar`] table: its zenith angle and the
 /// transmittance from the top of the atmosphere down to each of the table's altitudes
-/// along its direction.
+/// along its direction; when the table has scattered-sunlight tables, this sun's too.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolarBeam {
@@ -181,6 +182,16 @@ pub struct SolarBeam {
     /// Transmittance from the top of the atmosphere down to each altitude of the table,
     /// one spectrum per altitude (LOWTRAN7's direct solar irradiance runs, IEMSCT = 3).
     pub transmission: Vec<f32>,
+    /// The sunlight this sun scatters into the slant paths, as
+    /// [`SpectralSolar::path_scattered_w_m2_sr_per_unit`] holds the first sun's (same
+    /// nodes and azimuths); empty when the table has no scattered-sunlight tables.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub path_scattered_w_m2_sr_per_unit: Vec<f32>,
+    /// The sunlight this sun scatters into the sky paths, as
+    /// [`SpectralSolar::sky_scattered_w_m2_sr_per_unit`] holds the first sun's; empty when
+    /// the table has no scattered-sunlight tables.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sky_scattered_w_m2_sr_per_unit: Vec<f32>,
 }
 
 impl SpectralSolar {
@@ -460,16 +471,71 @@ fn check_further_suns(s: &SpectralSolar, n: usize) -> Result<(), ModelError> {
             1.0,
         )?;
     }
-    check_apparent_zeniths(s)?;
-    if !s.further_suns.is_empty() && !s.relative_azimuth_deg.is_empty() {
+    check_apparent_zeniths(s)
+}
+
+/// The scattered-sunlight spectra of every sun of `s` (the first sun's fields, then each
+/// further sun's): with relative azimuths, one spectrum per slant node and azimuth and one
+/// per sun altitude, sky zenith and azimuth, each sun alike (the tracer interpolates
+/// between the suns node by node); without, none.
+fn check_scattered(
+    s: &SpectralSolar,
+    slant: Option<&SpectralSlantTables>,
+    n: usize,
+) -> Result<(), ModelError> {
+    let suns = std::iter::once((
+        "solar.".to_owned(),
+        &s.path_scattered_w_m2_sr_per_unit,
+        &s.sky_scattered_w_m2_sr_per_unit,
+    ))
+    .chain(s.further_suns.iter().enumerate().map(|(i, b)| {
+        (
+            format!("solar.further_suns[{i}]."),
+            &b.path_scattered_w_m2_sr_per_unit,
+            &b.sky_scattered_w_m2_sr_per_unit,
+        )
+    }));
+    if s.relative_azimuth_deg.is_empty() {
+        for (prefix, path, sky) in suns {
+            if !(path.is_empty() && sky.is_empty()) {
+                return Err(ModelError::new(
+                    format!("{prefix}path_scattered_w_m2_sr_per_unit"),
+                    ModelErrorKind::Other(
+                        "scattered-sunlight spectra without their relative azimuths \
+                         (solar.relative_azimuth_deg)"
+                            .into(),
+                    ),
+                ));
+            }
+        }
+        return Ok(());
+    }
+    check_axis("solar.relative_azimuth_deg", &s.relative_azimuth_deg, 180.0)?;
+    let Some(sl) = slant else {
         return Err(ModelError::new(
-            "solar.further_suns",
+            "solar.relative_azimuth_deg",
             ModelErrorKind::Other(
-                "the scattered-sunlight tables hold one sun's light: expected no further suns \
-                 beside them (or no scattered-sunlight tables)"
+                "scattered-sunlight tables lie on the slant tables' nodes: expected a `slant` table"
                     .into(),
             ),
         ));
+    };
+    let na = s.relative_azimuth_deg.len();
+    for (prefix, path, sky) in suns {
+        check_spectra(
+            &format!("{prefix}path_scattered_w_m2_sr_per_unit"),
+            path,
+            sl.altitude_m.len() * sl.nadir_deg.len() * na,
+            n,
+            SPECTRAL_FLUX_MAX,
+        )?;
+        check_spectra(
+            &format!("{prefix}sky_scattered_w_m2_sr_per_unit"),
+            sky,
+            s.altitude_m.len() * sl.sky_zenith_deg.len() * na,
+            n,
+            SPECTRAL_FLUX_MAX,
+        )?;
     }
     Ok(())
 }
@@ -637,42 +703,7 @@ impl SpectralAtmosphere {
                 1.0,
             )?;
             check_further_suns(s, n)?;
-            if !s.relative_azimuth_deg.is_empty() {
-                check_axis("solar.relative_azimuth_deg", &s.relative_azimuth_deg, 180.0)?;
-                let Some(sl) = &self.slant else {
-                    return Err(ModelError::new(
-                        "solar.relative_azimuth_deg",
-                        ModelErrorKind::Other(
-                            "scattered-sunlight tables lie on the slant tables' nodes: expected a `slant` table"
-                                .into(),
-                        ),
-                    ));
-                };
-                let na = s.relative_azimuth_deg.len();
-                check_spectra(
-                    "solar.path_scattered_w_m2_sr_per_unit",
-                    &s.path_scattered_w_m2_sr_per_unit,
-                    sl.altitude_m.len() * sl.nadir_deg.len() * na,
-                    n,
-                    SPECTRAL_FLUX_MAX,
-                )?;
-                check_spectra(
-                    "solar.sky_scattered_w_m2_sr_per_unit",
-                    &s.sky_scattered_w_m2_sr_per_unit,
-                    s.altitude_m.len() * sl.sky_zenith_deg.len() * na,
-                    n,
-                    SPECTRAL_FLUX_MAX,
-                )?;
-            } else if !(s.path_scattered_w_m2_sr_per_unit.is_empty()
-                && s.sky_scattered_w_m2_sr_per_unit.is_empty())
-            {
-                return Err(ModelError::new(
-                    "solar.relative_azimuth_deg",
-                    ModelErrorKind::Other(
-                        "scattered-sunlight spectra without their relative azimuths".into(),
-                    ),
-                ));
-            }
+            check_scattered(s, self.slant.as_ref(), n)?;
         }
         self.validate_slabs(n)
     }
@@ -954,16 +985,20 @@ mod tests {
             assert_eq!(e.path, path, "{e}");
         }
         // Further suns: zeniths increasing above the first sun's and below 90, one
-        // spectrum per altitude each, and no scattered tables beside them.
+        // spectrum per altitude each.
         let mut day = sun.clone();
         day.further_suns = vec![
             SolarBeam {
                 zenith_deg: 60.0,
                 transmission: vec![0.25; 6],
+                path_scattered_w_m2_sr_per_unit: Vec::new(),
+                sky_scattered_w_m2_sr_per_unit: Vec::new(),
             },
             SolarBeam {
                 zenith_deg: 89.999,
                 transmission: vec![0.0; 6],
+                path_scattered_w_m2_sr_per_unit: Vec::new(),
+                sky_scattered_w_m2_sr_per_unit: Vec::new(),
             },
         ];
         a.solar = Some(day.clone());
@@ -1047,9 +1082,48 @@ mod tests {
         });
         lit.path_scattered_w_m2_sr_per_unit = vec![0.01; 6];
         lit.sky_scattered_w_m2_sr_per_unit = vec![0.01; 12];
+        // With scattered tables, each further sun holds its own on the same nodes.
         a.solar = Some(lit.clone());
         let e = a.validate().unwrap_err();
-        assert_eq!(e.path, "solar.further_suns", "{e}");
+        assert_eq!(
+            e.path, "solar.further_suns[0].path_scattered_w_m2_sr_per_unit",
+            "{e}"
+        );
+        for b in &mut lit.further_suns {
+            b.path_scattered_w_m2_sr_per_unit = vec![0.02; 6];
+            b.sky_scattered_w_m2_sr_per_unit = vec![0.02; 12];
+        }
+        a.solar = Some(lit.clone());
+        a.validate().unwrap();
+        let mut short = lit.clone();
+        short.further_suns[1].sky_scattered_w_m2_sr_per_unit.pop();
+        a.solar = Some(short);
+        let e = a.validate().unwrap_err();
+        assert_eq!(
+            e.path, "solar.further_suns[1].sky_scattered_w_m2_sr_per_unit",
+            "{e}"
+        );
+        let mut negative = lit.clone();
+        negative.further_suns[0].path_scattered_w_m2_sr_per_unit[4] = -1.0;
+        a.solar = Some(negative);
+        assert!(a.validate().is_err());
+        // Without azimuths, no sun may hold scattered spectra.
+        let mut dark = lit.clone();
+        dark.relative_azimuth_deg.clear();
+        dark.path_scattered_w_m2_sr_per_unit.clear();
+        dark.sky_scattered_w_m2_sr_per_unit.clear();
+        a.solar = Some(dark.clone());
+        let e = a.validate().unwrap_err();
+        assert_eq!(
+            e.path, "solar.further_suns[0].path_scattered_w_m2_sr_per_unit",
+            "{e}"
+        );
+        for b in &mut dark.further_suns {
+            b.path_scattered_w_m2_sr_per_unit.clear();
+            b.sky_scattered_w_m2_sr_per_unit.clear();
+        }
+        a.solar = Some(dark);
+        a.validate().unwrap();
         lit.further_suns.clear();
         a.solar = Some(lit);
         a.validate().unwrap();

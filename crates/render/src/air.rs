@@ -2,11 +2,9 @@
 //! (a band atmosphere, or a spectral one in either form), read and checked against the
 //! band.
 
+use crate::error::{RenderError, RequestError, Setting};
 use irsig_formats::canonical::{AnyAtmosphere, read_any_atmosphere};
 use irsig_model::SpectralAtmosphere;
-use miette::miette;
-
-use crate::error::{RequestError, Setting};
 
 /// Where the atmosphere comes from, as asked.
 #[derive(Debug, Clone, PartialEq)]
@@ -38,7 +36,7 @@ impl AtmosphereRequest {
         name: &str,
         sky_radiance_w_m2_sr: f64,
         read: impl FnOnce(&str) -> miette::Result<Option<(String, Vec<u8>)>>,
-    ) -> miette::Result<Self> {
+    ) -> Result<Self, RenderError> {
         if name == "none" {
             return Ok(Self::Vacuum {
                 sky_radiance_w_m2_sr,
@@ -47,9 +45,11 @@ impl AtmosphereRequest {
         if irsig_atmosphere::BUILTIN_NAMES.contains(&name) {
             return Ok(Self::Builtin(name.to_owned()));
         }
-        match read(name)? {
+        let file = read(name)
+            .map_err(|e| RenderError::caller(format!("reading the atmosphere `{name}`"), e))?;
+        match file {
             Some((name, bytes)) => Ok(Self::File { name, bytes }),
-            None => Err(RequestError::of_value(
+            None => Err(RequestError::with_value(
                 Setting::Atmosphere,
                 format!("`{name}`"),
                 format!(
@@ -57,7 +57,8 @@ impl AtmosphereRequest {
                      `none` for a vacuum",
                     irsig_atmosphere::BUILTIN_NAMES.join(", ")
                 ),
-            )),
+            )
+            .into()),
         }
     }
 
@@ -104,29 +105,38 @@ pub(crate) fn read(
     request: &AtmosphereRequest,
     spectral: bool,
     range_um: Option<[f64; 2]>,
-) -> miette::Result<AirData> {
+) -> Result<AirData, RenderError> {
     match request {
-        AtmosphereRequest::Vacuum { .. } => Err(miette!("a vacuum has no tables")),
+        AtmosphereRequest::Vacuum { .. } => Err(RenderError::internal("a vacuum has no tables")),
         AtmosphereRequest::Builtin(name) if spectral => {
             let bytes = builtin_bytes(name, range_um);
-            let a = irsig_formats::canonical::binary_spectral::decode(name, bytes)
-                .map_err(|e| miette!("the built-in atmosphere `{name}` is corrupt: {e}"))?;
+            let a =
+                irsig_formats::canonical::binary_spectral::decode(name, bytes).map_err(|e| {
+                    RenderError::input(format!("the built-in atmosphere `{name}` is corrupt"), e)
+                })?;
             Ok(AirData::Spectral(a, bytes.to_vec()))
         }
         AtmosphereRequest::Builtin(name) => irsig_atmosphere::builtin(name)
             .map(AirData::Band)
-            .map_err(|e| miette!("{e}")),
-        AtmosphereRequest::File { name, bytes } => Ok(match read_any_atmosphere(name, bytes)? {
-            AnyAtmosphere::Band(a) => AirData::Band(a),
-            AnyAtmosphere::Spectral(a) => AirData::Spectral(a, bytes.clone()),
-        }),
+            .map_err(|e| RenderError::atmosphere(format!("the built-in atmosphere `{name}`"), e)),
+        AtmosphereRequest::File { name, bytes } => Ok(
+            match read_any_atmosphere(name, bytes)
+                .map_err(|e| RenderError::input(format!("the atmosphere file `{name}`"), e))?
+            {
+                AnyAtmosphere::Band(a) => AirData::Band(a),
+                AnyAtmosphere::Spectral(a) => AirData::Spectral(a, bytes.clone()),
+            },
+        ),
     }
 }
 
 /// Every camera at or below the top of the built-in's data ([`irsig_atmosphere::BUILTIN_TOP_M`],
 /// with half a metre for views written to the metre): above it the air over 10 km would be
 /// left out of every path, silently.
-pub(crate) fn check_builtin_top(name: &str, views: &[irsig_model::View]) -> miette::Result<()> {
+pub(crate) fn check_builtin_top(
+    name: &str,
+    views: &[irsig_model::View],
+) -> Result<(), RenderError> {
     let top = irsig_atmosphere::BUILTIN_TOP_M;
     match views
         .iter()
@@ -134,12 +144,12 @@ pub(crate) fn check_builtin_top(name: &str, views: &[irsig_model::View]) -> miet
         .find(|&z| z > top + 0.5)
     {
         None => Ok(()),
-        Some(z) => Err(miette!(
+        Some(z) => Err(RenderError::refused(format!(
             "the camera is {z:.1} m above the ground, above the {top:.0} m where the built-in \
              atmosphere `{name}`'s data stop: the air above would be left out of every path. \
              Build an atmosphere for this view (irsig-atmos plan --scene SCENE --view VIEW \
              --atmosphere {name}, then irsig-atmos build) and trace through it"
-        )),
+        ))),
     }
 }
 
@@ -151,7 +161,7 @@ pub(crate) fn check_spectral_range(
     a: &SpectralAtmosphere,
     bytes: &[u8],
     [lo, hi]: [f64; 2],
-) -> miette::Result<()> {
+) -> Result<(), RenderError> {
     let [min, max] = spectral_range_um(a);
     if covers([min, max], [lo, hi]) {
         return Ok(());
@@ -161,7 +171,8 @@ pub(crate) fn check_spectral_range(
          band inside the grid, or build the atmosphere over the band",
         range_text([min, max], 6)
     );
-    Err(miette::Report::new(
+    Err(RenderError::input(
+        format!("the atmosphere `{name}` does not cover the band"),
         irsig_formats::canonical::spectral_atmosphere_error_at_path(
             name,
             bytes,
@@ -215,12 +226,12 @@ pub(crate) fn check_builtin_range(
     band: &crate::BandRequest,
     range_um: [f64; 2],
     spelling: crate::Spelling,
-) -> miette::Result<()> {
+) -> Result<(), RenderError> {
     if covers(spectral_range_um(a), range_um) {
         return Ok(());
     }
     let [long, mid] = irsig_atmosphere::BUILTIN_SPECTRAL_RANGES_UM;
-    Err(RequestError::of_value(
+    Err(RequestError::with_value(
         Setting::Band,
         &band.label,
         format!(
@@ -236,12 +247,13 @@ pub(crate) fn check_builtin_range(
             range_um[1],
             spelling.of(Setting::Atmosphere)
         ),
-    ))
+    )
+    .into())
 }
 
 /// The error of sub-bands asked of an atmosphere without spectra.
-pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> miette::Report {
-    RequestError::of_value(
+pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> RenderError {
+    RequestError::with_value(
         Setting::SubBands,
         count,
         format!(
@@ -249,6 +261,7 @@ pub(crate) fn no_spectra(name: &str, count: irsig_atmosphere::SubBandCount) -> m
              built-in, or a file irsig-atmos build wrote), and the `total` band has none"
         ),
     )
+    .into()
 }
 
 #[cfg(test)]

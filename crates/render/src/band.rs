@@ -5,10 +5,9 @@
 use irsig_atmosphere::SubBandCount;
 use irsig_model::provenance::BandRecord;
 use irsig_radiometry::{AnyBand, Band, BandModel, TotalRadiance, spectral_radiance_per_um};
-use miette::miette;
 use rayon::prelude::*;
 
-use crate::error::{RequestError, Setting};
+use crate::error::{RenderError, RequestError, Setting};
 
 /// The band of a request: wavelengths (flat or with a sensor response) or the whole
 /// spectrum (σT⁴/π: exact, for checking by hand), and its record, which every image of the
@@ -68,21 +67,22 @@ pub trait SubBandModel: BandModel + Clone + std::fmt::Debug + Send + Sync {
     ///
     /// # Errors
     /// The whole spectrum has no sub-bands.
-    fn of_band(band: &Band) -> miette::Result<Self>;
+    fn of_band(band: &Band) -> Result<Self, RenderError>;
 }
 
 impl SubBandModel for Band {
-    fn of_band(band: &Band) -> miette::Result<Self> {
+    fn of_band(band: &Band) -> Result<Self, RenderError> {
         Ok(band.clone())
     }
 }
 
 impl SubBandModel for TotalRadiance {
-    fn of_band(_: &Band) -> miette::Result<Self> {
-        Err(RequestError::report(
+    fn of_band(_: &Band) -> Result<Self, RenderError> {
+        Err(RequestError::new(
             Setting::SubBands,
             "the whole spectrum (`total`) has no sub-bands",
-        ))
+        )
+        .into())
     }
 }
 
@@ -111,8 +111,9 @@ impl<'a> Split<'a> {
 
     /// The band model of `[a, b]` µm with the band's response; `None` where the response
     /// is 0 throughout.
-    fn sub_band(&self, a: f64, b: f64) -> miette::Result<Option<Band>> {
-        let flat = Band::new(a, b).map_err(|e| miette!("sub-band {a}-{b} um: {e}"))?;
+    fn sub_band(&self, a: f64, b: f64) -> Result<Option<Band>, RenderError> {
+        let flat =
+            Band::new(a, b).map_err(|e| RenderError::band(format!("sub-band {a}-{b} um"), e))?;
         match self.response {
             None => Ok(Some(flat)),
             Some(r) => Ok(flat.with_response(r).ok()),
@@ -141,7 +142,7 @@ impl<'a> Split<'a> {
         &self,
         collapser: irsig_atmosphere::Collapser<'_>,
         count: SubBandCount,
-    ) -> miette::Result<Collapsed> {
+    ) -> Result<Collapsed, RenderError> {
         let spectral = collapser.spectral();
         let [lo, hi] = self.range_um;
         let share = |a: f64, b: f64| match self.sub_band(a, b) {
@@ -150,7 +151,7 @@ impl<'a> Split<'a> {
             Err(_) => f64::NAN,
         };
         let edges = irsig_atmosphere::sub_band_edges(&spectral.grid, lo, hi, count, share)
-            .map_err(|e| RequestError::of_value(Setting::SubBands, count, e.to_string()))?;
+            .map_err(|e| RequestError::with_value(Setting::SubBands, count, e.to_string()))?;
         edges
             .par_windows(2)
             .map(|w| {
@@ -158,7 +159,7 @@ impl<'a> Split<'a> {
                     return Ok(None);
                 };
                 let at = |e: irsig_atmosphere::AtmosphereError| {
-                    miette!("sub-band {}-{} um: {e}", w[0], w[1])
+                    RenderError::atmosphere(format!("sub-band {}-{} um", w[0], w[1]), e)
                 };
                 let mut atmosphere = collapser
                     .collapse(w[0], w[1], |l| self.weight(l))
@@ -215,9 +216,6 @@ mod tests {
     #[test]
     fn the_whole_spectrum_has_no_sub_bands() {
         let e = TotalRadiance::of_band(&Band::new(8.0, 14.0).unwrap()).unwrap_err();
-        assert_eq!(
-            e.downcast_ref::<RequestError>().map(|r| r.setting),
-            Some(Setting::SubBands)
-        );
+        assert_eq!(e.as_request().map(|r| r.setting), Some(Setting::SubBands));
     }
 }

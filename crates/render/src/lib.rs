@@ -11,8 +11,9 @@
 //! truth and budget layers, counts, LUT, interaction map), which it gives to the caller's
 //! [`Sink`]. `irsig-merge` makes the same files from merged tiles with
 //! [`products::merged`]. Nothing here reads or writes a file, parses a flag or prints:
-//! errors about the request are [`RequestError`]s naming a [`Setting`], warnings go to the
-//! sink.
+//! every error is a [`RenderError`] that keeps the error it wraps as its source (an
+//! input's parse error with its place in the file); errors about the request are its
+//! [`RequestError`]s naming a [`Setting`]; warnings go to the sink.
 //!
 //! ```
 //! use irsig_render::{AtmosphereRequest, BandRequest, Plan, Request, Spelling};
@@ -50,7 +51,7 @@ pub mod tolerance;
 
 pub use air::AtmosphereRequest;
 pub use band::BandRequest;
-pub use error::{RequestError, Setting, Spelling};
+pub use error::{CallerError, RenderError, RenderErrorKind, RequestError, Setting, Spelling};
 pub use plan::{
     DATA_ERROR_BYTES_PER_PIXEL, FRAME_BYTES_PER_PIXEL, Plan, Request, Sink,
     TEXTURE_BYTES_PER_PIXEL, TileRequest, ToleranceRequest,

@@ -7,7 +7,6 @@ use std::path::Path;
 
 use irsig_model::{MaterialId, MaterialLibrary};
 use irsig_texture::{GreyImage, MaterialMaps, TextureError, TextureErrorKind};
-use miette::miette;
 
 /// Each material's maps with their images read, by material id: what the tracer takes.
 pub(crate) type Maps = Vec<(MaterialId, MaterialMaps)>;
@@ -23,7 +22,7 @@ pub(crate) type Maps = Vec<(MaterialId, MaterialMaps)>;
 pub(crate) fn read_maps(
     lib: &MaterialLibrary,
     materials_file: &str,
-) -> miette::Result<(Maps, Vec<Vec<u8>>)> {
+) -> Result<(Maps, Vec<Vec<u8>>), crate::RenderError> {
     let dir = Path::new(materials_file)
         .parent()
         .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
@@ -50,7 +49,12 @@ pub(crate) fn read_maps(
             read.push(bytes);
             GreyImage::new(width, height, grey)
         })
-        .map_err(|e| miette!("{materials_file}: material {} ({}): {e}", m.id.0, m.name))?;
+        .map_err(|e| {
+            crate::RenderError::maps(
+                format!("{materials_file}: material {} ({})", m.id.0, m.name),
+                e,
+            )
+        })?;
         out.push((m.id, loaded));
     }
     Ok((out, read))
@@ -103,9 +107,8 @@ mod tests {
         let dir = tempfile::tempdir().unwrap();
         let materials = dir.path().join("m.ron");
         let materials = materials.to_str().unwrap();
-        let e = read_maps(&library("nowhere.png"), materials)
-            .unwrap_err()
-            .to_string();
+        let e = read_maps(&library("nowhere.png"), materials).unwrap_err();
+        let e = crate::error::chain_text(&e);
         assert!(e.starts_with(materials), "{e}");
         assert!(
             e.contains(
@@ -115,13 +118,12 @@ mod tests {
         );
         // Not a PNG at all.
         std::fs::write(dir.path().join("text.png"), "grey").unwrap();
-        let e = read_maps(&library("text.png"), materials)
-            .unwrap_err()
-            .to_string();
+        let e = read_maps(&library("text.png"), materials).unwrap_err();
+        let e = crate::error::chain_text(&e);
         assert!(e.contains("text.png"), "{e}");
         // Above the materials file's folder, or absolute: refused before any file is read.
         for bad in ["../up.png", "/etc/hostname"] {
-            let e = read_maps(&library(bad), materials).unwrap_err().to_string();
+            let e = crate::error::chain_text(&read_maps(&library(bad), materials).unwrap_err());
             assert!(e.contains(bad), "{e}");
         }
     }

@@ -4,9 +4,9 @@
 //! ε(λ, θ) on a grid (`spectral.angular`) is averaged angle by angle; otherwise the angular
 //! table gives the shape: ε(λ, θ) = ε(λ) · ε_table(θ) / ε_table(0°), held to [0, 1].
 
+use crate::RenderError;
 use irsig_model::{Material, MaterialLibrary};
 use irsig_radiometry::{Band, EmissivityTable, band_average_emissivities, band_average_emissivity};
-use miette::miette;
 
 /// The Planck weighting temperature, K: the sub-bands' reference (`SHARE_REFERENCE_K`).
 const WEIGHT_K: f64 = crate::band::SHARE_REFERENCE_K;
@@ -19,22 +19,25 @@ pub fn band_library(
     band: &Band,
     file: &str,
     text: &str,
-) -> miette::Result<MaterialLibrary> {
+) -> Result<MaterialLibrary, RenderError> {
     let mut out = lib.clone();
     for (i, m) in out.materials.iter_mut().enumerate() {
         if m.spectral.is_none() {
             continue;
         }
         let table = averaged(m, band).map_err(|e| {
-            irsig_formats::canonical::error_at_path(
-                file,
-                text,
-                &format!("materials[{i}].spectral.wavelength_um"),
-                format!(
-                    "material `{}`: {e}; the band is {}-{} um",
-                    m.name,
-                    band.lambda_min_um(),
-                    band.lambda_max_um()
+            RenderError::input(
+                format!("the materials `{file}` over the band"),
+                irsig_formats::canonical::error_at_path(
+                    file,
+                    text,
+                    &format!("materials[{i}].spectral.wavelength_um"),
+                    format!(
+                        "material `{}`: {e}; the band is {}-{} um",
+                        m.name,
+                        band.lambda_min_um(),
+                        band.lambda_max_um()
+                    ),
                 ),
             )
         })?;
@@ -53,7 +56,7 @@ pub fn band_library(
 pub fn sub_band_tables(
     lib: &MaterialLibrary,
     band: &Band,
-) -> miette::Result<Option<Vec<EmissivityTable>>> {
+) -> Result<Option<Vec<EmissivityTable>>, RenderError> {
     if lib.materials.iter().all(|m| m.spectral.is_none()) {
         return Ok(None);
     }
@@ -61,15 +64,18 @@ pub fn sub_band_tables(
         .iter()
         .map(|m| {
             averaged(m, band).map_err(|e| {
-                miette!(
-                    "material `{}` over the sub-band {}-{} um: {e}",
-                    m.name,
-                    band.lambda_min_um(),
-                    band.lambda_max_um()
+                RenderError::band(
+                    format!(
+                        "material `{}` over the sub-band {}-{} um",
+                        m.name,
+                        band.lambda_min_um(),
+                        band.lambda_max_um()
+                    ),
+                    e,
                 )
             })
         })
-        .collect::<miette::Result<Vec<_>>>()
+        .collect::<Result<Vec<_>, _>>()
         .map(Some)
 }
 

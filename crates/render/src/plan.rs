@@ -21,13 +21,12 @@ use irsig_sensor_model::quantise::CountRequest;
 use irsig_tracer::pilot::{BandChoice, PilotSpace, SunOffer, Supersample};
 use irsig_tracer::reference::{ConvergedReference, converged_reference};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
-use miette::{WrapErr, miette};
 use rayon::prelude::*;
 
 use crate::air::{self, AirData, AtmosphereRequest};
 use crate::band::{BandRequest, Collapsed, Split, SubBandModel};
 use crate::budget::Budget;
-use crate::error::{RequestError, Setting, Spelling};
+use crate::error::{RenderError, RequestError, Setting, Spelling};
 use crate::guarantee::Guarantee;
 use crate::products::{self, FrameRadiometry};
 use crate::run_hash::RunHash;
@@ -202,37 +201,7 @@ pub struct Plan {
     warnings: Mutex<Vec<String>>,
 }
 
-/// The atmosphere of the run, for any model kind its tables allow, over the band or over
-/// sub-bands of it: for rendering (`A`), and for the pilot's band sets (`S`), which
-/// evaluate each kind as a rendering with it would (its sky precomputed: computing the
-/// hemispheric sky afresh at every pilot facet cost more than the whole pilot otherwise
-/// does, and with K sub-bands K times more).
-struct Air<'a, R, A, S> {
-    /// The kinds on offer, most accurate first (`None`: a vacuum).
-    kinds: Option<Vec<ModelKind>>,
-    /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
-    spectral: bool,
-    precomputed: SubBandsOf<'a, R, A>,
-    pilot: SubBandsOf<'a, R, S>,
-    /// The atmosphere data's own error per path, where its slant tables record their
-    /// interpolation residual (`None`: built and slab tables, a vacuum).
-    data: Option<irsig_atmosphere::data_error::DataError>,
-    /// The sun over the sub-bands of a count (`None`: no sun asked for).
-    sun: SunOf<'a>,
-    /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
-    /// ([`sunlight::day_sub_bands`]); `None` by night or when one was.
-    day_default: Option<SubBandCount>,
-}
-
-/// The sun over the sub-bands of a count.
-type SunOf<'a> = Box<dyn Fn(SubBandCount) -> miette::Result<Option<irsig_tracer::Sun>> + 'a>;
-
-/// No sun, for any count.
-fn no_sun<'a>() -> SunOf<'a> {
-    Box::new(|_| Ok(None))
-}
-
-/// The data error of `atmosphere`'s `table` model (see [`Air::data`]).
+/// The data error of `atmosphere`'s `table` model (what an atmosphere's `Air::data` is).
 fn data_error_of(
     atmosphere: &irsig_model::Atmosphere,
 ) -> Option<irsig_atmosphere::data_error::DataError> {
@@ -240,10 +209,6 @@ fn data_error_of(
         .ok()?
         .data_error()
 }
-
-/// The sub-bands of a model kind and a count.
-type SubBandsOf<'a, R, T> =
-    Box<dyn Fn(ModelKind, SubBandCount) -> miette::Result<Vec<SubBand<R, T>>> + Sync + 'a>;
 
 /// Altitude levels of the sky in the pilot's sub-band sets (a rendering's have
 /// [`irsig_atmosphere::SKY_LEVELS`]). Interpolating linearly in altitude commutes with
@@ -278,24 +243,24 @@ impl Plan {
     ///
     /// # Errors
     /// A request error naming the setting.
-    pub fn new(request: Request) -> miette::Result<Self> {
+    pub fn new(request: Request) -> Result<Self, RenderError> {
         if let AtmosphereRequest::Vacuum {
             sky_radiance_w_m2_sr: sky,
         } = request.atmosphere
             && (!sky.is_finite() || sky < 0.0)
         {
-            return Err(RequestError::of_value(
+            return Err(RequestError::with_value(
                 Setting::SkyRadiance,
                 sky,
                 "out of range: expected a finite radiance of 0 or more",
-            ));
+            )
+            .into());
         }
         if let Some(t) = &request.tolerance {
             irsig_model::decision::check_tolerance(t.tolerance_k, "tolerance")
-                .map_err(|e| RequestError::report(Setting::Tolerance, e.kind.to_string()))?;
-            irsig_model::decision::check_percentile(t.percentile, "percentile").map_err(|e| {
-                RequestError::report(Setting::TolerancePercentile, e.kind.to_string())
-            })?;
+                .map_err(|e| RequestError::new(Setting::Tolerance, e.kind.to_string()))?;
+            irsig_model::decision::check_percentile(t.percentile, "percentile")
+                .map_err(|e| RequestError::new(Setting::TolerancePercentile, e.kind.to_string()))?;
         }
         let sun = match &request.sun {
             None => None,
@@ -342,10 +307,11 @@ impl Plan {
     ///
     /// # Errors
     /// A malformed scene, at its place in the file.
-    pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+    pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
         self.run.field("scene", bytes);
         self.record_input("scene", bytes);
-        let scene = irsig_formats::canonical::read_raw_scene(name, bytes)?;
+        let scene = irsig_formats::canonical::read_raw_scene(name, bytes)
+            .map_err(|e| RenderError::input(format!("reading the scene `{name}`"), e))?;
         *self.scene.get_mut().map_err(|_| poisoned())? = Some(scene);
         name.clone_into(&mut self.scene_name);
         Ok(())
@@ -364,8 +330,9 @@ impl Plan {
         name: &str,
         bytes: &[u8],
         scene_bytes: &[u8],
-    ) -> miette::Result<()> {
-        let lib: MaterialLibrary = from_ron_bytes(name, bytes)?;
+    ) -> Result<(), RenderError> {
+        let lib: MaterialLibrary = from_ron_bytes(name, bytes)
+            .map_err(|e| RenderError::input(format!("reading the materials `{name}`"), e))?;
         self.record_input("materials", bytes);
         check_material_bands(
             &lib,
@@ -380,36 +347,40 @@ impl Plan {
                 crate::materials::band_library(&lib, band, name, &String::from_utf8_lossy(bytes))?
             }
             AnyBand::Total(_) => {
-                return Err(RequestError::of_value(
+                return Err(RequestError::with_value(
                     Setting::Band,
                     "total",
                     format!(
                         "`{name}` has spectral materials, which the whole spectrum cannot \
                          average: give a band of wavelengths"
                     ),
-                ));
+                )
+                .into());
             }
         };
         let guard = self.scene.get_mut().map_err(|_| poisoned())?;
         let scene = guard
             .as_ref()
-            .ok_or_else(|| miette!("the scene is read before the materials"))?;
+            .ok_or_else(|| RenderError::internal("the scene is read before the materials"))?;
         // A terrain or a facet whose material the library lacks, at its place in the scene
         // file.
         if let Some(m) = scene.terrain.material
             && lib.by_id(m).is_none()
         {
-            return Err(miette::Report::new(raw_scene_error_at_path(
-                &self.scene_name,
-                scene_bytes,
-                scene,
-                "terrain.material",
-                format!(
-                    "the terrain's material is {}, which the material library {name} does not \
-                     define",
-                    m.0
+            return Err(RenderError::input(
+                format!("the scene's materials in `{name}`"),
+                raw_scene_error_at_path(
+                    &self.scene_name,
+                    scene_bytes,
+                    scene,
+                    "terrain.material",
+                    format!(
+                        "the terrain's material is {}, which the material library {name} does \
+                         not define",
+                        m.0
+                    ),
                 ),
-            )));
+            ));
         }
         if let Some((i, f)) = scene
             .facets
@@ -417,17 +388,20 @@ impl Plan {
             .enumerate()
             .find(|(_, f)| lib.by_id(f.material).is_none())
         {
-            return Err(miette::Report::new(raw_scene_error_at_path(
-                &self.scene_name,
-                scene_bytes,
-                scene,
-                &format!("facets[{i}].material"),
-                format!(
-                    "facets[{i}] uses material {}, which the material library {name} does not \
-                     define",
-                    f.material.0
+            return Err(RenderError::input(
+                format!("the scene's materials in `{name}`"),
+                raw_scene_error_at_path(
+                    &self.scene_name,
+                    scene_bytes,
+                    scene,
+                    &format!("facets[{i}].material"),
+                    format!(
+                        "facets[{i}] uses material {}, which the material library {name} does \
+                         not define",
+                        f.material.0
+                    ),
                 ),
-            )));
+            ));
         }
         self.run.field("materials", format!("{lib:?}").as_bytes());
         let (maps, images) = crate::maps::read_maps(&lib, name)?;
@@ -527,14 +501,17 @@ impl Plan {
     ///
     /// # Errors
     /// As said, or a malformed file.
-    pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
-        let text = irsig_formats::canonical::utf8(name, bytes)?;
-        let u: Uncertainties = from_ron_bytes(name, bytes)?;
+    pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
+        let context = || format!("reading the uncertainties `{name}`");
+        let text = irsig_formats::canonical::utf8(name, bytes)
+            .map_err(|e| RenderError::input(context(), e))?;
+        let u: Uncertainties =
+            from_ron_bytes(name, bytes).map_err(|e| RenderError::input(context(), e))?;
         self.record_input("uncertainties", bytes);
         let guard = self.scene.get_mut().map_err(|_| poisoned())?;
         let objects = &guard
             .as_ref()
-            .ok_or_else(|| miette!("the scene is read before the uncertainties"))?
+            .ok_or_else(|| RenderError::internal("the scene is read before the uncertainties"))?
             .objects;
         // An object the raw scene does not have (a misspelt name) would select no facet and
         // silently declare nothing.
@@ -542,22 +519,25 @@ impl Plan {
             if let Facets::Object(object) = &t.facets
                 && !objects.iter().any(|o| o == object)
             {
-                return Err(miette::Report::new(error_at_path(
-                    name,
-                    text,
-                    &format!("temperature[{i}].facets"),
-                    format!(
-                        "invalid uncertainties file: `temperature[{i}].facets`: the raw scene \
+                return Err(RenderError::input(
+                    context(),
+                    error_at_path(
+                        name,
+                        text,
+                        &format!("temperature[{i}].facets"),
+                        format!(
+                            "invalid uncertainties file: `temperature[{i}].facets`: the raw scene \
                          has no object `{object}`; its objects include {}",
-                        // A few, not a million names.
-                        objects
-                            .iter()
-                            .take(8)
-                            .map(|o| format!("`{o}`"))
-                            .collect::<Vec<_>>()
-                            .join(", ")
+                            // A few, not a million names.
+                            objects
+                                .iter()
+                                .take(8)
+                                .map(|o| format!("`{o}`"))
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
                     ),
-                )));
+                ));
             }
         }
         let materials = &self.materials;
@@ -568,11 +548,14 @@ impl Plan {
             Some((normal, most))
         })
         .map_err(|e| {
-            error_at_path(
-                name,
-                text,
-                &e.path,
-                format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
+            RenderError::input(
+                context(),
+                error_at_path(
+                    name,
+                    text,
+                    &e.path,
+                    format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
+                ),
             )
         })?;
         // The budget's layers are pixels of the truth EXR: tiles of other uncertainties
@@ -588,17 +571,22 @@ impl Plan {
     /// # Errors
     /// A malformed decision, or a choice that is not a setting of its model (at the
     /// choice).
-    pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> miette::Result<()> {
+    pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
         // Not an input of the record: its choices are the frame's settings, which a frame
         // piloted anew and a tile given its decision share, and so do their images.
-        let d: Decision = from_ron_bytes(name, bytes)?;
+        let context = || format!("reading the decision `{name}`");
+        let d: Decision =
+            from_ron_bytes(name, bytes).map_err(|e| RenderError::input(context(), e))?;
         if let Err((i, message)) = Settings::of(&self.request.settings).with_decision(&d) {
-            return Err(miette::Report::new(error_at_path(
-                name,
-                &String::from_utf8_lossy(bytes),
-                &format!("choices[{i}].setting"),
-                message,
-            )));
+            return Err(RenderError::input(
+                context(),
+                error_at_path(
+                    name,
+                    &String::from_utf8_lossy(bytes),
+                    &format!("choices[{i}].setting"),
+                    message,
+                ),
+            ));
         }
         self.decision = Some(d);
         self.decision_file = Some((name.to_owned(), String::from_utf8_lossy(bytes).into_owned()));
@@ -608,7 +596,7 @@ impl Plan {
     /// An error about the sub-band count the decision chose (which only the atmosphere's
     /// grid can refuse), said at the decision's choice rather than as a flag the user never
     /// typed; any other error as it is.
-    fn at_decision_sub_bands(&self, report: miette::Report) -> miette::Report {
+    fn at_decision_sub_bands(&self, report: RenderError) -> RenderError {
         let (Some(d), Some((name, text))) = (&self.decision, &self.decision_file) else {
             return report;
         };
@@ -619,7 +607,7 @@ impl Plan {
         else {
             return report;
         };
-        let Some(e) = report.downcast_ref::<RequestError>() else {
+        let Some(e) = report.as_request() else {
             return report;
         };
         if e.setting != Setting::SubBands {
@@ -630,12 +618,10 @@ impl Plan {
             "this decision's `{value}` cannot be kept for this run: {}",
             e.message
         );
-        miette::Report::new(error_at_path(
-            name,
-            text,
-            &format!("choices[{i}].setting"),
-            message,
-        ))
+        RenderError::input(
+            format!("keeping the decision `{name}`"),
+            error_at_path(name, text, &format!("choices[{i}].setting"), message),
+        )
     }
 
     /// The largest material id of the library (0 for none): the interaction map holds ids
@@ -676,16 +662,17 @@ impl Plan {
     /// # Errors
     /// A view that is not a camera, or a tile that does not fit a view's image (a request
     /// error).
-    pub fn tiles(&self, tile: Option<TileRequest>) -> miette::Result<Vec<Tile>> {
+    pub fn tiles(&self, tile: Option<TileRequest>) -> Result<Vec<Tile>, RenderError> {
         self.views
             .iter()
-            .map(|v| {
-                let [w, h] = Camera::from_view(v).map_err(|e| miette!("{e}"))?.pixels;
+            .enumerate()
+            .map(|(i, v)| {
+                let [w, h] = camera(i, v)?.pixels;
                 match tile {
                     None => Ok(Tile::whole(w, h)),
                     Some(t) => t
                         .of(w, h)
-                        .map_err(|e| RequestError::report(Setting::Tile, e)),
+                        .map_err(|e| RequestError::new(Setting::Tile, e).into()),
                 }
             })
             .collect()
@@ -697,7 +684,7 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Plan::tiles`].
-    pub fn largest_frame(&self, tile: Option<TileRequest>) -> miette::Result<([u64; 2], u64)> {
+    pub fn largest_frame(&self, tile: Option<TileRequest>) -> Result<([u64; 2], u64), RenderError> {
         let tiles = self.tiles(tile)?;
         let margin = u64::from(tile.is_some()) * 2;
         let largest = tiles
@@ -732,14 +719,14 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Plan::render`], or a pixel outside the image.
-    pub fn probe(self, column: u32, row: u32) -> miette::Result<String> {
+    pub fn probe(self, column: u32, row: u32) -> Result<String, RenderError> {
         let mut out = None;
         self.dispatch(&mut Job::Probe {
             column,
             row,
             text: &mut out,
         })?;
-        out.ok_or_else(|| miette!("the probe printed nothing"))
+        out.ok_or_else(|| RenderError::internal("the probe printed nothing"))
     }
 
     /// Every frame converged by construction, its own error per pixel measured
@@ -753,12 +740,16 @@ impl Plan {
     /// # Errors
     /// A stopping difference that is not a finite number above 0 K, or as
     /// [`Plan::render`].
-    pub fn converge(self, stop_k: f64, rounds: usize) -> miette::Result<Vec<ConvergedReference>> {
+    pub fn converge(
+        self,
+        stop_k: f64,
+        rounds: usize,
+    ) -> Result<Vec<ConvergedReference>, RenderError> {
         if !(stop_k.is_finite() && stop_k > 0.0) {
-            return Err(miette!(
+            return Err(RenderError::refused(format!(
                 "the reference's stopping difference: expected a finite number of kelvin \
                  above 0, found {stop_k}"
-            ));
+            )));
         }
         let mut out = Vec::new();
         self.dispatch(&mut Job::Converge {
@@ -780,7 +771,7 @@ impl Plan {
         tile: Option<TileRequest>,
         progress: &(dyn Fn(u64) + Sync),
         sink: &mut dyn Sink,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         self.dispatch(&mut Job::Render {
             tile,
             progress,
@@ -792,7 +783,7 @@ impl Plan {
     ///
     /// # Errors
     /// As [`Plan::tiles`].
-    pub fn rows(&self, tile: Option<TileRequest>) -> miette::Result<u64> {
+    pub fn rows(&self, tile: Option<TileRequest>) -> Result<u64, RenderError> {
         Ok(self.tiles(tile)?.iter().map(|t| u64::from(t.height)).sum())
     }
 
@@ -817,7 +808,7 @@ impl Plan {
     }
 
     /// The band's model, then the atmosphere over it.
-    fn dispatch(self, job: &mut Job<'_>) -> miette::Result<()> {
+    fn dispatch(self, job: &mut Job<'_>) -> Result<(), RenderError> {
         match self.request.band.band.clone() {
             AnyBand::Total(_) => {
                 let mut run = self.run.clone();
@@ -861,8 +852,8 @@ fn whole<R: Clone, T>(
     band: &R,
     name: &str,
     count: SubBandCount,
-    atmosphere: impl FnOnce() -> miette::Result<T>,
-) -> miette::Result<Vec<SubBand<R, T>>> {
+    atmosphere: impl FnOnce() -> Result<T, RenderError>,
+) -> Result<Vec<SubBand<R, T>>, RenderError> {
     if !count.is_band() {
         return Err(air::no_spectra(name, count));
     }
@@ -883,8 +874,14 @@ fn sha256_hex(bytes: &[u8]) -> String {
     hex
 }
 
-fn poisoned() -> miette::Report {
-    miette!("a lock of the run was poisoned by a panic")
+fn poisoned() -> RenderError {
+    RenderError::internal("a lock of the run was poisoned by a panic")
+}
+
+/// The camera of view `index`.
+fn camera(index: usize, view: &View) -> Result<Camera, RenderError> {
+    Camera::from_view(view)
+        .map_err(|e| RenderError::trace(format!("the camera of view {}", index + 1), e))
 }
 
 /// Refuses a material whose angular table is one band's (`band_um`) and that has no
@@ -900,7 +897,7 @@ fn check_material_bands(
     file: &str,
     bytes: &[u8],
     spelling: Spelling,
-) -> miette::Result<()> {
+) -> Result<(), RenderError> {
     let band_setting = spelling.of(Setting::Band);
     // A band is within the table's when its edges are, to a part in 1e9 (the band's edges
     // are parsed from the same decimals the library writes).
@@ -922,19 +919,21 @@ fn check_material_bands(
             ),
             AnyBand::Total(_) => format!("{band_setting} total (the whole spectrum)"),
         };
-        return Err(error_at_path(
-            file,
-            &String::from_utf8_lossy(bytes),
-            &format!("materials[{i}].band_um"),
-            format!(
-                "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
+        return Err(RenderError::input(
+            format!("the materials `{file}` for the band"),
+            error_at_path(
+                file,
+                &String::from_utf8_lossy(bytes),
+                &format!("materials[{i}].band_um"),
+                format!(
+                    "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
                  {asked}: give it a `spectral` curve over that band (irsig-material fresnel \
                  with an n, k table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
                  use its {}-{} um values there",
-                m.name, table_band.0, table_band.1, table_band.0, table_band.1
+                    m.name, table_band.0, table_band.1, table_band.0, table_band.1
+                ),
             ),
-        )
-        .into());
+        ));
     }
     Ok(())
 }

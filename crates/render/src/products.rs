@@ -13,9 +13,9 @@ use irsig_radiometry::BandModel;
 use irsig_raster::{FramePart, Raster, counts_png, into_exr_bytes, write_png_indexed8};
 use irsig_sensor_model::quantise::{CountRequest, Quantiser};
 use irsig_tracer::Frame;
-use miette::{IntoDiagnostic, miette};
 use rayon::prelude::*;
 
+use crate::RenderError;
 use crate::budget::Budget;
 use crate::guarantee::Guarantee;
 
@@ -25,6 +25,19 @@ pub const TRACER_DC_PER_KELVIN: f64 = 2.0;
 
 /// Where each encoded file goes: the caller's naming and staging.
 pub type Emit<'a> = dyn FnMut(FrameFile, Vec<u8>) -> miette::Result<()> + 'a;
+
+/// Gives `bytes`, a frame's file of `kind`, to `emit`: the caller's error, if any, kept
+/// whole.
+fn give(emit: &mut Emit<'_>, kind: FrameFile, bytes: Vec<u8>) -> Result<(), RenderError> {
+    emit(kind, bytes)
+        .map_err(|e| RenderError::caller(format!("keeping the frame's {}", kind.suffix()), e))
+}
+
+/// The EXR of `raster`, encoded, the frame's file of `kind`.
+fn exr(raster: Raster, kind: FrameFile) -> Result<Vec<u8>, RenderError> {
+    into_exr_bytes(raster)
+        .map_err(|e| RenderError::encode(format!("encoding the frame's {}", kind.suffix()), e))
+}
 
 /// What a frame's files need besides its pixels: the band its radiances are in, how many
 /// sub-bands they were summed over, the view's gain (DC/K) if it has one, and the counts'
@@ -52,13 +65,13 @@ impl<R: BandModel> FrameRadiometry<R> {
     ///
     /// # Errors
     /// A calibration the quantiser refuses (no finite radiance, a gain of 0).
-    pub fn quantiser(&self, radiance_w_m2_sr: &[f32]) -> miette::Result<Quantiser> {
+    pub fn quantiser(&self, radiance_w_m2_sr: &[f32]) -> Result<Quantiser, RenderError> {
         let calibration = self
             .counts
             .calibration(self.view_gain.or(Some(TRACER_DC_PER_KELVIN)))
-            .ok_or_else(|| miette!("digital counts: no gain"))?;
+            .ok_or_else(|| RenderError::refused("digital counts: no gain"))?;
         Quantiser::calibrate(self.counts.bits, &calibration, radiance_w_m2_sr, &self.band)
-            .map_err(|e| miette!("digital counts: {e}"))
+            .map_err(|e| RenderError::counts("digital counts", e))
     }
 
     /// The counts and the LUT of `wanted`, from the frame's radiance.
@@ -69,7 +82,7 @@ impl<R: BandModel> FrameRadiometry<R> {
         height: usize,
         wanted: &FrameFiles<()>,
         emit: &mut Emit<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         if !wanted.wants(FrameFile::DcPng) && !wanted.wants(FrameFile::Lut) {
             return Ok(());
         }
@@ -77,11 +90,10 @@ impl<R: BandModel> FrameRadiometry<R> {
         if wanted.wants(FrameFile::DcPng) {
             let counts = q
                 .quantise(radiance, width)
-                .map_err(|e| miette!("digital counts: {e}"))?;
-            emit(
-                FrameFile::DcPng,
-                counts_png(&counts, width, height, self.counts.bits).into_diagnostic()?,
-            )?;
+                .map_err(|e| RenderError::counts("digital counts", e))?;
+            let png = counts_png(&counts, width, height, self.counts.bits)
+                .map_err(|e| RenderError::encode("encoding the digital counts' PNG", e))?;
+            give(emit, FrameFile::DcPng, png)?;
         }
         if wanted.wants(FrameFile::Lut) {
             let lut = q.lut(&self.band);
@@ -89,16 +101,19 @@ impl<R: BandModel> FrameRadiometry<R> {
                 Some(p) => lut.text_in_band(&p.band.to_string()),
                 None => lut.to_string(),
             };
-            emit(FrameFile::Lut, text.into_bytes())?;
+            give(emit, FrameFile::Lut, text.into_bytes())?;
         }
         Ok(())
     }
 
     /// The EXRs' comments: the provenance as canonical RON.
-    fn comments(&self) -> miette::Result<Option<String>> {
+    fn comments(&self) -> Result<Option<String>, RenderError> {
         self.provenance
             .as_ref()
-            .map(|p| irsig_formats::canonical::provenance_comments(p).map_err(|e| miette!("{e}")))
+            .map(|p| {
+                irsig_formats::canonical::provenance_comments(p)
+                    .map_err(|e| RenderError::encode("writing the provenance as RON", e))
+            })
             .transpose()
     }
 }
@@ -122,8 +137,8 @@ pub fn map_refusal(max_id: u32) -> String {
 fn interaction_map(
     width: usize,
     height: usize,
-    ids: impl ExactSizeIterator<Item = miette::Result<(u16, u16)>>,
-) -> miette::Result<Result<Vec<u8>, u32>> {
+    ids: impl ExactSizeIterator<Item = Result<(u16, u16), RenderError>>,
+) -> Result<Result<Vec<u8>, u32>, RenderError> {
     let mut data = Vec::with_capacity(ids.len());
     for pair in ids {
         let (p, s) = pair?;
@@ -133,14 +148,15 @@ fn interaction_map(
         }
     }
     let mut png = Vec::new();
-    write_png_indexed8(&mut png, width, height, &data, &map::palette()).into_diagnostic()?;
+    write_png_indexed8(&mut png, width, height, &data, &map::palette())
+        .map_err(|e| RenderError::encode("encoding the interaction map's PNG", e))?;
     Ok(Ok(png))
 }
 
-fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> miette::Result<()> {
+fn push(raster: &mut Raster, layer: Layer, data: Vec<f32>) -> Result<(), RenderError> {
     raster
         .push_layer(layer.name(), layer.unit(), data)
-        .into_diagnostic()
+        .map_err(|e| RenderError::encode(format!("the `{layer}` layer"), e))
 }
 
 /// The layers a truth EXR holds: [`Layer::TRUTH`], then [`Layer::SUN`] when traced with a
@@ -190,7 +206,7 @@ pub fn traced<R: BandModel + Sync>(
     budget: Option<&Budget<'_>>,
     guarantee: Option<&Guarantee<'_>>,
     emit: &mut Emit<'_>,
-) -> miette::Result<()> {
+) -> Result<(), RenderError> {
     let radiance = frame.radiance_f32();
     let (w, h) = (frame.width as usize, frame.height as usize);
     if wanted.wants(FrameFile::MapPng) {
@@ -199,8 +215,8 @@ pub fn traced<R: BandModel + Sync>(
             .iter()
             .map(|s| Ok((s.primary_material, s.secondary_material)));
         let png = interaction_map(w, h, ids)?
-            .map_err(|_| miette!("material id above 15 in the interaction map"))?;
-        emit(FrameFile::MapPng, png)?;
+            .map_err(|_| RenderError::internal("material id above 15 in the interaction map"))?;
+        give(emit, FrameFile::MapPng, png)?;
     }
     radiometry.counts(&radiance, w, h, wanted, emit)?;
     if wanted.wants(FrameFile::RadianceExr) {
@@ -208,7 +224,11 @@ pub fn traced<R: BandModel + Sync>(
             .with_part(part.clone())
             .with_comments(radiometry.comments()?);
         push(&mut r, Layer::Radiance, radiance)?;
-        emit(FrameFile::RadianceExr, into_exr_bytes(r).into_diagnostic()?)?;
+        give(
+            emit,
+            FrameFile::RadianceExr,
+            exr(r, FrameFile::RadianceExr)?,
+        )?;
     }
     if wanted.wants(FrameFile::TruthExr) {
         let r = truth_raster(radiometry, &frame, budget, guarantee)?
@@ -218,7 +238,7 @@ pub fn traced<R: BandModel + Sync>(
         frame.sun = Vec::new();
         frame.texture = Vec::new();
         frame.data_error_k = Vec::new();
-        emit(FrameFile::TruthExr, into_exr_bytes(r).into_diagnostic()?)?;
+        give(emit, FrameFile::TruthExr, exr(r, FrameFile::TruthExr)?)?;
     }
     Ok(())
 }
@@ -231,7 +251,7 @@ fn truth_raster<R: BandModel + Sync>(
     frame: &Frame,
     budget: Option<&Budget<'_>>,
     guarantee: Option<&Guarantee<'_>>,
-) -> miette::Result<Raster> {
+) -> Result<Raster, RenderError> {
     let mut r = Raster::new(frame.width as usize, frame.height as usize);
     // The tracer's table, the same for a frame and its tiles.
     let inverse = irsig_tracer::inverse_table(&radiometry.band);
@@ -241,7 +261,7 @@ fn truth_raster<R: BandModel + Sync>(
         .flat_map_iter(|run| inverse.temperatures(run.iter().copied()))
         .collect();
     // The layers in parallel, each one pass over the pixels.
-    let layers: Vec<miette::Result<Vec<f32>>> = Layer::TRUTH
+    let layers: Vec<Result<Vec<f32>, RenderError>> = Layer::TRUTH
         .par_iter()
         .map(|&layer| match frame.truth_layer(layer) {
             Some(data) => Ok(data),
@@ -251,7 +271,9 @@ fn truth_raster<R: BandModel + Sync>(
             None if layer == Layer::SubBands => {
                 Ok(vec![radiometry.sub_bands as f32; apparent.len()])
             }
-            None => Err(miette!("the frame holds no `{layer}` layer")),
+            None => Err(RenderError::internal(format!(
+                "the frame holds no `{layer}` layer"
+            ))),
         })
         .collect();
     for (layer, data) in Layer::TRUTH.into_iter().zip(layers) {
@@ -265,7 +287,7 @@ fn truth_raster<R: BandModel + Sync>(
     for layer in kept.into_iter().filter(|(k, _)| *k).flat_map(|(_, l)| l) {
         let data = frame
             .truth_layer(*layer)
-            .ok_or_else(|| miette!("the frame holds no `{layer}` layer"))?;
+            .ok_or_else(|| RenderError::internal(format!("the frame holds no `{layer}` layer")))?;
         push(&mut r, *layer, data)?;
     }
     if let Some(budget) = budget {
@@ -314,28 +336,28 @@ pub fn merged<R: BandModel>(
     map_refused: MapRefused,
     note: &mut dyn FnMut(String),
     emit: &mut Emit<'_>,
-) -> miette::Result<()> {
+) -> Result<(), RenderError> {
     if let Some(frame) = radiance {
         let data = &frame
             .layer(Layer::Radiance.name())
-            .ok_or_else(|| miette!("the merged frame has no radiance layer"))?
+            .ok_or_else(|| RenderError::refused("the merged frame has no radiance layer"))?
             .data;
         radiometry.counts(data, frame.width, frame.height, wanted, emit)?;
         // The merged frame's layers go into the encoder, not a copy of them.
         if wanted.wants(FrameFile::RadianceExr) {
-            emit(
+            give(
+                emit,
                 FrameFile::RadianceExr,
-                into_exr_bytes(frame).into_diagnostic()?,
+                exr(frame, FrameFile::RadianceExr)?,
             )?;
         }
     }
     if let Some(frame) = truth {
         if wanted.wants(FrameFile::MapPng) {
             let layer = |l: Layer| {
-                frame
-                    .layer(l.name())
-                    .map(|l| &l.data)
-                    .ok_or_else(|| miette!("the merged truth has no `{}` layer", l.name()))
+                frame.layer(l.name()).map(|l| &l.data).ok_or_else(|| {
+                    RenderError::refused(format!("the merged truth has no `{}` layer", l.name()))
+                })
             };
             let (primary, secondary) = (
                 layer(Layer::MaterialPrimary)?,
@@ -346,29 +368,26 @@ pub fn merged<R: BandModel>(
                 .zip(secondary)
                 .map(|(&p, &s)| Ok((material_id(p)?, material_id(s)?)));
             match interaction_map(frame.width, frame.height, ids)? {
-                Ok(png) => emit(FrameFile::MapPng, png)?,
+                Ok(png) => give(emit, FrameFile::MapPng, png)?,
                 Err(id) if map_refused == MapRefused::Skip => note(map_refusal(id)),
-                Err(id) => return Err(miette!("{}", map_refusal(id))),
+                Err(id) => return Err(RenderError::refused(map_refusal(id))),
             }
         }
         if wanted.wants(FrameFile::TruthExr) {
-            emit(
-                FrameFile::TruthExr,
-                into_exr_bytes(frame).into_diagnostic()?,
-            )?;
+            give(emit, FrameFile::TruthExr, exr(frame, FrameFile::TruthExr)?)?;
         }
     }
     Ok(())
 }
 
 /// A material layer's value as a material id.
-fn material_id(v: f32) -> miette::Result<u16> {
+fn material_id(v: f32) -> Result<u16, RenderError> {
     if v.is_finite() && v.fract() == 0.0 && (0.0..=f32::from(u16::MAX)).contains(&v) {
         Ok(v as u16)
     } else {
-        Err(miette!(
+        Err(RenderError::refused(format!(
             "a material layer holds {v}, which is not a material id (0 to 65535)"
-        ))
+        )))
     }
 }
 

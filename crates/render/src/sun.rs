@@ -34,10 +34,9 @@ use irsig_atmosphere::{AtmosphereErrorKind, BandQuadrature, SubBandCount};
 use irsig_model::SpectralAtmosphere;
 use irsig_radiometry::spectral_radiance_per_um;
 use irsig_tracer::{SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam};
-use miette::miette;
 
 use crate::band::{Collapsed, Split};
-use crate::error::{RequestError, Setting, Spelling};
+use crate::error::{RenderError, RequestError, Setting, Spelling};
 
 /// A sun to light the scene with.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,14 +67,15 @@ impl SunRequest {
     ///
     /// # Errors
     /// A request error naming the setting at fault.
-    pub fn position(&self) -> miette::Result<SunPosition> {
+    pub fn position(&self) -> Result<SunPosition, RenderError> {
         let max = irsig_tracer::sun::MAX_SHADOW_RAYS;
         if !(1..=max).contains(&self.shadow_rays) {
-            return Err(RequestError::of_value(
+            return Err(RequestError::with_value(
                 Setting::SunShadowRays,
                 self.shadow_rays,
                 format!("out of range: expected 1 to {max} shadow rays per hit"),
-            ));
+            )
+            .into());
         }
         let position = self.spec.position().map_err(|e| match e.kind {
             AtmosphereErrorKind::Sun { field, message } if self.origin.is_some() => self.refuse(
@@ -83,7 +83,7 @@ impl SunRequest {
                 format!("`{}`: {message}", field.path()),
             ),
             AtmosphereErrorKind::Sun { field, message } => {
-                RequestError::report(Setting::Sun(field), message)
+                RequestError::new(Setting::Sun(field), message).into()
             }
             _ => self.refuse(self.setting(), e.to_string()),
         })?;
@@ -104,10 +104,10 @@ impl SunRequest {
 impl SunRequest {
     /// A refusal of this sun about `setting`: a request error naming the setting, or, for a
     /// sun given in a file ([`Self::origin`]), an error at that place.
-    pub(crate) fn refuse(&self, setting: Setting, message: String) -> miette::Report {
+    pub(crate) fn refuse(&self, setting: Setting, message: String) -> RenderError {
         match &self.origin {
-            Some(at) => miette!("{at}: the sun: {message}"),
-            None => RequestError::report(setting, message),
+            Some(at) => RenderError::refused(format!("{at}: the sun: {message}")),
+            None => RequestError::new(setting, message).into(),
         }
     }
 }
@@ -187,7 +187,7 @@ pub(crate) fn by_day(
     spectral: &SpectralAtmosphere,
     name: &str,
     mut warn: impl FnMut(String),
-) -> Option<[f64; 3]> {
+) -> Option<ScatterSun> {
     if let Some(note) = request.and_then(|r| distance_note(r, spectral, name)) {
         warn(note);
     }
@@ -260,7 +260,7 @@ pub(crate) fn no_solar_table(
     name: &str,
     what: &str,
     spelling: Spelling,
-) -> miette::Report {
+) -> RenderError {
     sun.refuse(
         sun.setting(),
         format!(
@@ -287,7 +287,7 @@ pub(crate) fn sun(
     split: &Split<'_>,
     collapsed: (SubBandCount, &Collapsed),
     spelling: Spelling,
-) -> miette::Result<Sun> {
+) -> Result<Sun, RenderError> {
     let (count, collapsed) = collapsed;
     let Some(solar) = spectral.solar.as_ref() else {
         return Err(no_solar_table(
@@ -337,19 +337,26 @@ pub(crate) fn sun(
             let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
             let direct = DirectSun::new(spectral, lo, hi, |l| split.weight(l))
                 .and_then(|d| d.at_zenith(z))
-                .map_err(|e| miette!("the sun's beam over {lo}-{hi} um: {e}"))?;
+                .map_err(|e| {
+                    RenderError::atmosphere(format!("the sun's beam over {lo}-{hi} um"), e)
+                })?;
             let normal = solar
                 .altitude_m
                 .iter()
                 .map(|&h| direct.normal_w_m2(h) * factor)
                 .collect();
-            let pairs = sunlit_path_transmission(spectral, split, [lo, hi], count, z)
-                .map_err(|e| miette!("the sunlight's path transmittance over {lo}-{hi} um: {e}"))?;
+            let pairs =
+                sunlit_path_transmission(spectral, split, [lo, hi], count, z).map_err(|e| {
+                    RenderError::atmosphere(
+                        format!("the sunlight's path transmittance over {lo}-{hi} um"),
+                        e,
+                    )
+                })?;
             SunBeam::new(solar.altitude_m.clone(), normal)
                 .and_then(|b| b.with_path_transmission(pairs))
-                .map_err(|e| miette!("{e}"))
+                .map_err(|e| RenderError::trace(format!("the sun's beam over {lo}-{hi} um"), e))
         })
-        .collect::<miette::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, _>>()?;
     let mut sun = Sun::new(position.to_scene_direction(), beams);
     sun.angular_radius_deg = day.angular_radius_deg();
     sun.shadow_rays = request.shadow_rays;
@@ -444,9 +451,19 @@ fn sunlit_path_transmission(
     Ok(pairs)
 }
 
+/// The sun a frame's scattered sunlight is read for: the direction toward it (scene
+/// frame), whose horizontal part sets each line of sight's azimuth from the sun, and its
+/// geometric zenith angle, at which a day's table of several suns is interpolated (the
+/// table's suns are geometric, as the beam's are).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct ScatterSun {
+    pub(crate) to_sun: [f64; 3],
+    pub(crate) geometric_zenith_deg: f64,
+}
+
 /// Whether the frame's sub-band atmospheres add the sunlight scattered into their paths
 /// and sky: with a sun and an atmosphere whose `solar` table has scattered tables, the
-/// direction toward the sun (scene frame); with a sun and none, `None` and a warning
+/// sun they are read for ([`ScatterSun`]); with a sun and none, `None` and a warning
 /// (`warn`) that the frame holds the direct beam only.
 pub(crate) fn scattering(
     request: Option<&SunRequest>,
@@ -454,14 +471,15 @@ pub(crate) fn scattering(
     spectral: &SpectralAtmosphere,
     name: &str,
     warn: impl FnOnce(String),
-) -> Option<[f64; 3]> {
+) -> Option<ScatterSun> {
     let (Some(_), Some(position)) = (request, position) else {
         return None;
     };
     match spectral.solar.as_ref() {
-        Some(solar) if !solar.relative_azimuth_deg.is_empty() => {
-            Some(position.to_scene_direction())
-        }
+        Some(solar) if !solar.relative_azimuth_deg.is_empty() => Some(ScatterSun {
+            to_sun: position.to_scene_direction(),
+            geometric_zenith_deg: position.geometric_zenith_deg,
+        }),
         Some(_) => {
             warn(format!(
                 "`{name}` has the sun's direct beam but no scattered-sunlight tables: the sky \
@@ -476,25 +494,32 @@ pub(crate) fn scattering(
     }
 }
 
-/// `atmosphere`, the sub-band `band`'s of `split`, by day (`to_sun`: the direction toward
-/// the sun) with the sunlight `spectral` scatters into it over the sub-band, with the
+/// `atmosphere`, the sub-band `band`'s of `split`, by day (`sun`: the sun it is lit by)
+/// with the sunlight `spectral` scatters into it over the sub-band, with the
 /// band's response (the weight its radiances are collapsed with).
 ///
 /// # Errors
 /// A sub-band the scattered tables cannot be integrated over.
 pub(crate) fn scattered(
     atmosphere: irsig_atmosphere::PrecomputedAtmosphere,
-    to_sun: Option<[f64; 3]>,
+    sun: Option<ScatterSun>,
     spectral: &SpectralAtmosphere,
     split: Split<'_>,
     band: &irsig_radiometry::Band,
-) -> miette::Result<irsig_atmosphere::PrecomputedAtmosphere> {
-    let Some(to_sun) = to_sun else {
+) -> Result<irsig_atmosphere::PrecomputedAtmosphere, RenderError> {
+    let Some(sun) = sun else {
         return Ok(atmosphere);
     };
     let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
-    let s = ScatteredSunlight::new(spectral, lo, hi, |l| split.weight(l), to_sun)
-        .map_err(|e| miette!("the scattered sunlight over {lo}-{hi} um: {e}"))?;
+    let s = ScatteredSunlight::at_sun(
+        spectral,
+        lo,
+        hi,
+        |l| split.weight(l),
+        sun.to_sun,
+        sun.geometric_zenith_deg,
+    )
+    .map_err(|e| RenderError::atmosphere(format!("the scattered sunlight over {lo}-{hi} um"), e))?;
     Ok(atmosphere.with_scattered(s))
 }
 
@@ -509,10 +534,10 @@ pub(crate) fn with_slabs(
     spectral: &SpectralAtmosphere,
     split: Split<'_>,
     band: &irsig_radiometry::Band,
-) -> miette::Result<irsig_atmosphere::PrecomputedAtmosphere> {
+) -> Result<irsig_atmosphere::PrecomputedAtmosphere, RenderError> {
     let (lo, hi) = (band.lambda_min_um(), band.lambda_max_um());
     let slabs = irsig_atmosphere::slab::SlabPaths::new(spectral, lo, hi, |l| split.weight(l))
-        .map_err(|e| miette!("the slab tables over {lo}-{hi} um: {e}"))?;
+        .map_err(|e| RenderError::atmosphere(format!("the slab tables over {lo}-{hi} um"), e))?;
     Ok(match slabs {
         Some(s) => atmosphere.with_slabs(s),
         None => atmosphere,

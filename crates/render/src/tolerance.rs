@@ -10,7 +10,7 @@ use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_tracer::PathTermsMode;
 use irsig_tracer::pilot::{REFINE_MAX_SIDE, Supersample};
 
-use crate::error::{RequestError, Setting, Spelling};
+use crate::error::{RenderError, RequestError, Setting, Spelling};
 /// The bounces on offer, a convergence sequence from the most: Appendix A finds one enough
 /// at earth-ambient temperatures; the step from 4 to 8 measures what 8 leave (a hall of
 /// mirrors that still changes there is not guaranteed).
@@ -169,7 +169,7 @@ pub fn offer(
     sun: bool,
     pins: &[Pin],
     spelling: Spelling,
-) -> miette::Result<Offer> {
+) -> Result<Offer, RenderError> {
     let mut reasons = Vec::new();
     let specular = materials
         .materials
@@ -270,7 +270,7 @@ pub fn offer(
         match pin {
             Pin::Atmosphere(kind) => {
                 if !atmospheres.contains(&kind) {
-                    return Err(RequestError::of_value(
+                    return Err(RequestError::with_value(
                         Setting::Pin,
                         pin,
                         format!(
@@ -281,7 +281,8 @@ pub fn offer(
                                 .collect::<Vec<_>>()
                                 .join(", ")
                         ),
-                    ));
+                    )
+                    .into());
                 }
                 atmospheres = vec![kind];
             }
@@ -291,20 +292,22 @@ pub fn offer(
             Pin::PathTerms(p) => path_terms = vec![p],
             Pin::SubBands(count) => {
                 if !spectral && !count.is_band() {
-                    return Err(RequestError::of_value(
+                    return Err(RequestError::with_value(
                         Setting::Pin,
                         pin,
                         "this atmosphere has no spectra; only 1 (the band model) is on offer",
-                    ));
+                    )
+                    .into());
                 }
                 sub_bands = vec![count];
             }
             Pin::Sun(_) | Pin::ShadowRays(_) if !sun => {
-                return Err(RequestError::of_value(
+                return Err(RequestError::with_value(
                     Setting::Pin,
                     pin,
                     "this frame has no sun (give one with the sun's settings)",
-                ));
+                )
+                .into());
             }
             Pin::Sun(lit) => sun_lit = vec![lit],
             Pin::ShadowRays(n) => shadow_rays = vec![n],

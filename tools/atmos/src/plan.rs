@@ -118,7 +118,8 @@ pub struct PlanArgs {
     /// day's from its lowest to the horizon, 2-5 deg apart (docs/accuracy.md measures the
     /// interpolation between rows). With --loads, the suns of the loads table; else the
     /// direct beam of each for one atmosphere that irsig-trace interpolates for any sun
-    /// among them (not with --sun-scattering: the scattered sunlight is one sun's).
+    /// among them; with --sun-scattering, each sun's scattered sunlight too (every sunlit
+    /// path once per sun; not with --slabs, whose tables hold one sun's).
     #[arg(long, value_name = "LIST", conflicts_with_all = ["sun_zenith_deg", "sun_utc"],
           value_parser = crate::plan_loads::sun_zeniths)]
     pub sun_zeniths_deg: Option<crate::plan_loads::SunZeniths>,
@@ -548,7 +549,8 @@ pub fn run(a: &PlanArgs) -> miette::Result<()> {
 }
 
 /// The suns of a day the flags ask for (`--sun-zeniths-deg`, or `--sun-utc` as a range),
-/// if any; refused with `--sun-scattering` (the scattered sunlight is one sun's).
+/// if any; refused with `--sun-scattering` and `--slabs` together (a slab table holds one
+/// sun's scattered sunlight).
 fn day_suns(a: &PlanArgs) -> miette::Result<Option<plan_sun::DaySuns>> {
     let suns = match (&a.sun_zeniths_deg, &a.sun.sun_utc) {
         (Some(z), _) => plan_sun::suns_of_zeniths(&z.0, a.day_of_year.day)?,
@@ -557,11 +559,11 @@ fn day_suns(a: &PlanArgs) -> miette::Result<Option<plan_sun::DaySuns>> {
         }
         _ => return Ok(None),
     };
-    if a.sun_scattering && suns.zenith_deg.len() > 1 {
+    if a.sun_scattering && a.slabs && suns.zenith_deg.len() > 1 {
         return Err(irsig_cli::usage_error(format!(
-            "--sun-scattering plans the sunlight the air scatters for one sun, and {} gives \
-             {} suns: plan the direct beam alone for a day's suns, or one sun with \
-             --sun-scattering",
+            "--sun-scattering with --slabs plans the sunlight the air scatters into a slab \
+             for one sun (a slab table holds one sun's), and {} gives {} suns: plan a day's \
+             suns with --sun-scattering and no --slabs, or --slabs and no --sun-scattering",
             if a.sun_zeniths_deg.is_some() {
                 "--sun-zeniths-deg"
             } else {
@@ -594,13 +596,17 @@ fn refuse_a_views_sun_beside(
 fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) -> String {
     let sun = plan.sun.as_ref().map_or_else(String::new, |s| {
         // Said either way: whether the sunlight scattered into the paths is in the plan.
-        let scattered = if !s.further_zenith_deg.is_empty() {
-            "; the direct beam only (the scattered sunlight is planned for one sun)".to_owned()
-        } else if s.relative_azimuth_deg.is_empty() {
+        let scattered = if s.relative_azimuth_deg.is_empty() {
             "; the direct beam only, no scattered sunlight (--sun-scattering adds it)".to_owned()
-        } else {
+        } else if s.further_zenith_deg.is_empty() {
             format!(
                 ", and the sunlight scattered into every slant and sky path at {} azimuths",
+                s.relative_azimuth_deg.len()
+            )
+        } else {
+            format!(
+                ", and each sun's sunlight scattered into every slant and sky path at {} \
+                 azimuths",
                 s.relative_azimuth_deg.len()
             )
         };

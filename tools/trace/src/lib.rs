@@ -274,9 +274,14 @@ pub fn flag(setting: Setting) -> String {
     format!("--{name}")
 }
 
-/// A request error as bad usage, naming the flag of its setting.
+/// A request error as bad usage, naming the flag of its setting: one the tool made itself,
+/// or one the plan refused the request with.
 pub(crate) fn as_usage(report: miette::Report) -> miette::Report {
-    let Some(e) = report.downcast_ref::<RequestError>() else {
+    let Some(e) = report.downcast_ref::<RequestError>().or_else(|| {
+        report
+            .downcast_ref::<irsig_render::RenderError>()
+            .and_then(irsig_render::RenderError::as_request)
+    }) else {
         return report;
     };
     let joint = if e.value.is_some() { " " } else { ": " };

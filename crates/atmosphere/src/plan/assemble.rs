@@ -160,6 +160,14 @@ pub fn assemble(
                 .map(|&zenith_deg| SolarBeam {
                     zenith_deg,
                     transmission: flat(sun_paths_at(sun, zenith_deg).collect(), &tau),
+                    path_scattered_w_m2_sr_per_unit: flat(
+                        sunlit_slant_paths(plan, sun, zenith_deg),
+                        &scattered,
+                    ),
+                    sky_scattered_w_m2_sr_per_unit: flat(
+                        sunlit_sky_paths(plan, sun, zenith_deg),
+                        &scattered,
+                    ),
                 })
                 .collect();
             Some(SpectralSolar {
@@ -172,8 +180,14 @@ pub fn assemble(
                 // The build records the angles LOWTRAN7 ran, which the plan does not know.
                 apparent_zenith_deg: Vec::new(),
                 relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
-                path_scattered_w_m2_sr_per_unit: flat(sunlit_slant_paths(plan, sun), &scattered),
-                sky_scattered_w_m2_sr_per_unit: flat(sunlit_sky_paths(plan, sun), &scattered),
+                path_scattered_w_m2_sr_per_unit: flat(
+                    sunlit_slant_paths(plan, sun, sun.zenith_deg),
+                    &scattered,
+                ),
+                sky_scattered_w_m2_sr_per_unit: flat(
+                    sunlit_sky_paths(plan, sun, sun.zenith_deg),
+                    &scattered,
+                ),
             })
         }
     };

@@ -223,21 +223,33 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
     };
     cards.card1.mdef = i64::from(matches!(plan.model, PlanModel::Radiosonde(_)));
     cards.card1.iemsct = iemsct;
-    if let (
-        Path::DownSunlit { azimuth_deg, .. }
-        | Path::UpSunlit { azimuth_deg, .. }
-        | Path::SlabSunlit { azimuth_deg, .. },
-        Some(sun),
-    ) = (*path, &plan.sun)
-    {
+    let lit = match *path {
+        Path::DownSunlit {
+            azimuth_deg,
+            sun_zenith_deg,
+            ..
+        }
+        | Path::UpSunlit {
+            azimuth_deg,
+            sun_zenith_deg,
+            ..
+        } => Some((azimuth_deg, Some(sun_zenith_deg))),
+        // A slab table holds the plan's one sun's scattered sunlight.
+        Path::SlabSunlit { azimuth_deg, .. } => Some((azimuth_deg, None)),
+        _ => None,
+    };
+    if let (Some((azimuth_deg, sun_zenith_deg)), Some(sun)) = (lit, &plan.sun) {
         // IEMSCT 2, single scattering; card 3A1: IPARM 2 (the geometry given as angles),
         // IPH 2 (LOWTRAN's Mie phase functions of its aerosol models), IDAY, ISOURC 0
         // (the sun); card 3A2: PARM1 the azimuth of the sun from the line of sight,
         // PARM2 the sun's geometric zenith angle (LOWTRAN7's SSGEO bends the path from
         // each scattering point to the sun by its own BENDING: PARM2 is not apparent).
         cards.card1.iemsct = 2;
-        cards.geometry.scattering =
-            Some(sun_scattering(sun.day_of_year, azimuth_deg, sun.zenith_deg));
+        cards.geometry.scattering = Some(sun_scattering(
+            sun.day_of_year,
+            azimuth_deg,
+            sun_zenith_deg.unwrap_or(sun.zenith_deg),
+        ));
     }
     set_aerosol(&mut cards, plan.aerosol.as_ref());
     Ok(CardDeck {

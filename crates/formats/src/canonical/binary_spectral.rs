@@ -22,7 +22,9 @@
 //! `solar.extraterrestrial_w_m2_per_unit`, `solar.transmission`, and when
 //! `solar.relative_azimuth_deg` is not empty `solar.path_scattered_w_m2_sr_per_unit`,
 //! `solar.sky_scattered_w_m2_sr_per_unit`, then each of `solar.further_suns`'
-//! `transmission`, then for each of `slabs`, its `down` and its
+//! `transmission` (and, when `solar.relative_azimuth_deg` is not empty, its
+//! `path_scattered_w_m2_sr_per_unit` and `sky_scattered_w_m2_sr_per_unit`), then for each
+//! of `slabs`, its `down` and its
 //! `up` table when present, `transmission`, `path_radiance_w_m2_sr_per_unit` and, when
 //! `solar.relative_azimuth_deg` is not empty, `scattered_w_m2_sr_per_unit`. (A file
 //! without slabs is what it was before them. A file without a `solar` table is what
@@ -76,7 +78,15 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
                 &s.sky_scattered_w_m2_sr_per_unit,
             ]);
         }
-        t.extend(s.further_suns.iter().map(|b| &b.transmission));
+        for b in &s.further_suns {
+            t.push(&b.transmission);
+            if !s.relative_azimuth_deg.is_empty() {
+                t.extend([
+                    &b.path_scattered_w_m2_sr_per_unit,
+                    &b.sky_scattered_w_m2_sr_per_unit,
+                ]);
+            }
+        }
     }
     let lit = a
         .solar
@@ -125,7 +135,15 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
                 &mut s.sky_scattered_w_m2_sr_per_unit,
             ]);
         }
-        t.extend(s.further_suns.iter_mut().map(|b| &mut b.transmission));
+        for b in &mut s.further_suns {
+            t.push(&mut b.transmission);
+            if scattered {
+                t.extend([
+                    &mut b.path_scattered_w_m2_sr_per_unit,
+                    &mut b.sky_scattered_w_m2_sr_per_unit,
+                ]);
+            }
+        }
     }
     for table in a
         .slabs
@@ -210,12 +228,27 @@ fn expected_spectra(a: &SpectralAtmosphere) -> Result<Vec<(String, usize)>, (Str
                 ),
             ]);
         }
-        t.extend(s.further_suns.iter().enumerate().map(|(i, _)| {
-            (
+        for i in 0..s.further_suns.len() {
+            t.push((
                 format!("solar.further_suns[{i}].transmission"),
                 s.altitude_m.len(),
-            )
-        }));
+            ));
+            if let (true, Some(sl)) = (azimuths > 0, &a.slant) {
+                t.extend([
+                    (
+                        format!("solar.further_suns[{i}].path_scattered_w_m2_sr_per_unit"),
+                        product(product(sl.altitude_m.len(), sl.nadir_deg.len()), azimuths),
+                    ),
+                    (
+                        format!("solar.further_suns[{i}].sky_scattered_w_m2_sr_per_unit"),
+                        product(
+                            product(s.altitude_m.len(), sl.sky_zenith_deg.len()),
+                            azimuths,
+                        ),
+                    ),
+                ]);
+            }
+        }
     }
     for (i, slab) in a.slabs.iter().enumerate() {
         for (dir, table) in [("down", &slab.down), ("up", &slab.up)] {
@@ -760,10 +793,14 @@ mod tests {
             irsig_model::SolarBeam {
                 zenith_deg: 60.0,
                 transmission: vec![0.125, 0.25, 0.15, 0.275],
+                path_scattered_w_m2_sr_per_unit: Vec::new(),
+                sky_scattered_w_m2_sr_per_unit: Vec::new(),
             },
             irsig_model::SolarBeam {
                 zenith_deg: 85.0,
                 transmission: vec![0.0625, 0.125, 0.075, 0.1375],
+                path_scattered_w_m2_sr_per_unit: Vec::new(),
+                sky_scattered_w_m2_sr_per_unit: Vec::new(),
             },
         ];
         a.solar = Some(s);
@@ -938,6 +975,38 @@ mod tests {
         for bytes in [encode(&a).unwrap(), encode_quantised(&a).unwrap()] {
             decode("lit.spa", &bytes).unwrap();
         }
+        // A day's table: a further sun's scattered spectra follow its beam, and the file
+        // reads back what it wrote.
+        let one_sun = encode(&a).unwrap();
+        if let Some(s) = &mut a.solar {
+            s.further_suns.push(irsig_model::SolarBeam {
+                zenith_deg: 60.0,
+                transmission: vec![0.25; 4],
+                path_scattered_w_m2_sr_per_unit: vec![0.005; 16],
+                sky_scattered_w_m2_sr_per_unit: vec![0.0025; 24],
+            });
+        }
+        a.validate().unwrap();
+        let shapes = expected_spectra(&a).unwrap();
+        let names: Vec<&str> = shapes.iter().map(|(p, _)| p.as_str()).collect();
+        assert_eq!(
+            names[12..15],
+            [
+                "solar.further_suns[0].transmission",
+                "solar.further_suns[0].path_scattered_w_m2_sr_per_unit",
+                "solar.further_suns[0].sky_scattered_w_m2_sr_per_unit",
+            ]
+        );
+        for ((path, spectra), t) in shapes.iter().zip(super::tables(&a)) {
+            assert_eq!(spectra * a.grid.points.len(), t.len(), "{path}");
+        }
+        let day = encode(&a).unwrap();
+        assert_eq!(decode("day.spa", &day).unwrap(), a);
+        // Three tables more than the one-sun file: 4 + 16 + 24 values and their counts.
+        assert!(day.len() >= one_sun.len() + 3 * 4 + 4 * (4 + 16 + 24));
+        let quantised = decode("day.spa", &encode_quantised(&a).unwrap()).unwrap();
+        let b = &quantised.solar.unwrap().further_suns[0];
+        assert!((b.sky_scattered_w_m2_sr_per_unit[23] - 0.0025).abs() < 0.0025 / 60_000.0);
     }
 
     #[test]

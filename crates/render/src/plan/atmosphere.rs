@@ -16,7 +16,7 @@ impl Plan {
         band: R,
         split: Option<&Split<'_>>,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let request = &self.request.atmosphere;
         if let AtmosphereRequest::Vacuum {
             sky_radiance_w_m2_sr,
@@ -56,13 +56,13 @@ impl Plan {
     }
 
     /// The highest point of the scene, metres (0 for a scene below the ground).
-    fn scene_top_m(&self) -> miette::Result<f64> {
+    fn scene_top_m(&self) -> Result<f64, RenderError> {
         Ok(self
             .scene
             .lock()
             .map_err(|_| poisoned())?
             .as_ref()
-            .ok_or_else(|| miette!("the raw scene was already traced"))?
+            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?
             .positions_m
             .iter()
             .map(|p| p[2])
@@ -76,7 +76,7 @@ impl Plan {
         band: R,
         sky_radiance_w_m2_sr: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         if let Some(s) = &self.request.sun {
             return Err(sunlight::no_solar_table(
                 s,
@@ -89,22 +89,16 @@ impl Plan {
             sky_radiance_w_m2_sr,
         };
         run.field("atmosphere", format!("{vacuum:?}").as_bytes());
-        let (b1, b2) = (band.clone(), band.clone());
-        let air = Air {
-            kinds: None,
-            spectral: false,
-            precomputed: Box::new(move |_, count| whole(&b1, "none", count, || Ok(vacuum))),
-            pilot: Box::new(move |_, count| whole(&b2, "none", count, || Ok(vacuum))),
-            data: None,
-            sun: no_sun(),
-            day_default: None,
+        let air = VacuumAir {
+            band: band.clone(),
+            vacuum,
         };
         self.trace_all(&run, band, &air, job)
     }
 
     /// The atmosphere's data, read in the form the band needs and checked against the
     /// band, the sun and the cameras.
-    fn air_data(&self, split: Option<&Split<'_>>) -> miette::Result<AirData> {
+    fn air_data(&self, split: Option<&Split<'_>>) -> Result<AirData, RenderError> {
         let request = &self.request.atmosphere;
         let name = request.name();
         // A built-in is read in spectral form when sub-bands may be asked for.
@@ -221,7 +215,7 @@ impl Plan {
         atmosphere: &irsig_model::Atmosphere,
         top: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let name = self.request.atmosphere.name();
         if let Some(s) = &self.request.sun {
             return Err(sunlight::no_solar_table(
@@ -235,28 +229,14 @@ impl Plan {
             .into_iter()
             .filter(|&k| AtmosphereModel::new(atmosphere, k).is_ok())
             .collect();
-        let models = Models::new(self, top);
-        let models = &models;
-        let (b1, b2) = (band.clone(), band.clone());
-        let air = Air {
-            kinds: Some(kinds),
-            spectral: false,
-            precomputed: Box::new(move |kind, count| {
-                whole(&b1, name, count, || {
-                    Ok(models.precompute(models.model(atmosphere, kind)?))
-                })
-            }),
-            pilot: Box::new(move |kind, count| {
-                whole(&b2, name, count, || {
-                    Ok(PrecomputedAtmosphere::new(
-                        models.model(atmosphere, kind)?,
-                        top,
-                    ))
-                })
-            }),
+        let air = TableAir {
+            band: band.clone(),
+            name,
+            atmosphere,
+            models: Models::new(self, top),
+            top_m: top,
+            kinds,
             data: data_error_of(atmosphere),
-            sun: no_sun(),
-            day_default: None,
         };
         self.trace_all(&run, band, &air, job)
     }
@@ -271,93 +251,41 @@ impl Plan {
         split: &Split<'_>,
         top: f64,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let name = self.request.atmosphere.name();
         // Each count's collapsed sub-bands, made once, from the atmosphere checked once.
-        let collapser = irsig_atmosphere::Collapser::new(spectral).map_err(|e| miette!("{e}"))?;
-        let cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>> = Mutex::default();
-        let collapsed = |count: SubBandCount| -> miette::Result<Arc<Collapsed>> {
-            if let Some(c) = cache.lock().map_err(|_| poisoned())?.get(&count) {
-                return Ok(c.clone());
-            }
-            let c = Arc::new(split.collapse(collapser, count)?);
-            cache
-                .lock()
-                .map_err(|_| poisoned())?
-                .insert(count, c.clone());
-            Ok(c)
+        let collapser = irsig_atmosphere::Collapser::new(spectral)
+            .map_err(|e| RenderError::atmosphere(format!("the spectra of `{name}`"), e))?;
+        let mut air = SpectralAir {
+            plan: self,
+            name,
+            spectral,
+            split,
+            top_m: top,
+            collapser,
+            cache: Mutex::default(),
+            models: Models::new(self, top),
+            scatter: None,
+            kinds: Vec::new(),
+            data: None,
+            day_default: None,
         };
-        let one = collapsed(SubBandCount::BAND)?;
-        let kinds: Vec<ModelKind> = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
+        let one = air.collapsed(SubBandCount::BAND)?;
+        air.kinds = [ModelKind::Table, ModelKind::Layered, ModelKind::Thesis]
             .into_iter()
             .filter(|&k| one.iter().all(|(_, a)| AtmosphereModel::new(a, k).is_ok()))
             .collect();
-        let collapsed = &collapsed;
-        let models = Models::new(self, top);
-        let models = &models;
-        let materials = &self.materials;
-        let scatter = crate::sun::by_day(
+        air.scatter = crate::sun::by_day(
             self.request.sun.as_ref(),
             self.sun.as_ref(),
             spectral,
             name,
             |w| self.warn(w),
         );
-        // The pilot evaluates its paths in every sub-band: the precomputed sky costs a few
-        // ms per sub-band (table model) and saves a slant integration per ray, so the
-        // pilot's sets are precomputed too (`S` = `A`), its sub-band sets on
-        // PILOT_SKY_LEVELS altitudes (the full grid's 108 skies were most of its cost).
-        // Sub-bands are precomputed in parallel; `collect` keeps their order.
-        let sub_bands = move |kind: ModelKind, count: SubBandCount, pilot: bool| {
-            collapsed(count)?
-                .par_iter()
-                .map(|(b, a)| {
-                    let m = models.model(a, kind)?;
-                    let atmosphere = if pilot && !count.is_band() {
-                        PrecomputedAtmosphere::with_levels(m, top, PILOT_SKY_LEVELS)
-                    } else {
-                        models.precompute(m)
-                    };
-                    let atmosphere = crate::sun::with_slabs(atmosphere, spectral, *split, b)?;
-                    Ok(SubBand {
-                        band: R::of_band(b)?,
-                        atmosphere: crate::sun::scattered(
-                            atmosphere, scatter, spectral, *split, b,
-                        )?,
-                        emissivity: crate::materials::sub_band_tables(materials, b)?,
-                    })
-                })
-                .collect()
-        };
-        let sub_bands = &sub_bands;
-        // The sun's beams over the same sub-bands; the table is checked now, before
-        // anything is traced.
-        let lit = move |count: SubBandCount| -> miette::Result<Option<irsig_tracer::Sun>> {
-            let (Some(request), Some(position)) = (&self.request.sun, &self.sun) else {
-                return Ok(None);
-            };
-            let c = collapsed(count)?;
-            sunlight::sun(
-                request,
-                position,
-                name,
-                spectral,
-                split,
-                (count, &c),
-                self.request.spelling,
-            )
-            .map(Some)
-        };
-        lit(SubBandCount::BAND)?;
-        let air = Air {
-            kinds: Some(kinds),
-            spectral: true,
-            day_default: self.day_default(spectral, split),
-            precomputed: Box::new(move |kind, count| sub_bands(kind, count, false)),
-            pilot: Box::new(move |kind, count| sub_bands(kind, count, true)),
-            data: one.first().and_then(|(_, a)| data_error_of(a)),
-            sun: Box::new(lit),
-        };
+        // The sun's table is checked now, before anything is traced.
+        air.lit(SubBandCount::BAND)?;
+        air.day_default = self.day_default(spectral, split);
+        air.data = one.first().and_then(|(_, a)| data_error_of(a));
         self.trace_all(&run, band, &air, job)
     }
 
@@ -401,15 +329,16 @@ impl<'p> Models<'p> {
         &self,
         atmosphere: &irsig_model::Atmosphere,
         kind: ModelKind,
-    ) -> miette::Result<AtmosphereModel> {
-        AtmosphereModel::new(atmosphere, kind)
-            .map_err(|e| miette!("{e}"))
-            .wrap_err_with(|| {
+    ) -> Result<AtmosphereModel, RenderError> {
+        AtmosphereModel::new(atmosphere, kind).map_err(|e| {
+            RenderError::atmosphere(
                 format!(
                     "cannot build the {kind} model of `{}`",
                     self.plan.request.atmosphere.name()
-                )
-            })
+                ),
+                e,
+            )
+        })
     }
 
     fn precompute(&self, model: AtmosphereModel) -> PrecomputedAtmosphere {
@@ -421,5 +350,232 @@ impl<'p> Models<'p> {
             }
         });
         air
+    }
+}
+
+/// The atmosphere of the run resolved for its band, for any model kind its tables allow,
+/// over the band or over sub-bands of it: a vacuum ([`VacuumAir`]), band tables
+/// ([`TableAir`]) or spectra ([`SpectralAir`]). A rendering's
+/// sub-bands and the pilot's band sets come from the same tables; the pilot's evaluate
+/// each kind as a rendering with it would (its sky precomputed: computing the hemispheric
+/// sky afresh at every pilot facet cost more than the whole pilot otherwise does, and with
+/// K sub-bands K times more).
+pub(super) trait Air<R>: Sync {
+    /// The atmosphere of a sub-band, as the tracer takes it.
+    type Atmosphere: Atmosphere + Send;
+
+    /// The kinds on offer, most accurate first (`None`: a vacuum).
+    fn kinds(&self) -> Option<&[ModelKind]>;
+
+    /// The atmosphere is spectral: sub-band counts other than 1 are on offer.
+    fn spectral(&self) -> bool {
+        false
+    }
+
+    /// The sub-bands of a model kind and a count: a rendering's, or (`pilot`) those of the
+    /// pilot's band sets.
+    ///
+    /// # Errors
+    /// A count the atmosphere cannot make, or a model its tables do not allow.
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, Self::Atmosphere>>, RenderError>;
+
+    /// The atmosphere data's own error per path, where its slant tables record their
+    /// interpolation residual (`None`: built and slab tables, a vacuum).
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        None
+    }
+
+    /// The sun over the sub-bands of a count (`None`: no sun asked for).
+    ///
+    /// # Errors
+    /// A solar table that cannot light these sub-bands.
+    fn sun(&self, _count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        Ok(None)
+    }
+
+    /// By day, the sub-band count a frame takes when none was asked for, chosen or piloted
+    /// ([`sunlight::day_sub_bands`]); `None` by night or when one was.
+    fn day_default(&self) -> Option<SubBandCount> {
+        None
+    }
+}
+
+/// No air: the sky's radiance as given, over the whole band, and no sun.
+struct VacuumAir<R> {
+    band: R,
+    vacuum: Vacuum,
+}
+
+impl<R: SubBandModel> Air<R> for VacuumAir<R> {
+    type Atmosphere = Vacuum;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        None
+    }
+
+    fn sub_bands(
+        &self,
+        _: ModelKind,
+        count: SubBandCount,
+        _: bool,
+    ) -> Result<Vec<SubBand<R, Vacuum>>, RenderError> {
+        whole(&self.band, "none", count, || Ok(self.vacuum))
+    }
+}
+
+/// Band tables: any kind they allow, over the whole band, at night.
+struct TableAir<'p, R> {
+    band: R,
+    name: &'p str,
+    atmosphere: &'p irsig_model::Atmosphere,
+    models: Models<'p>,
+    top_m: f64,
+    kinds: Vec<ModelKind>,
+    data: Option<irsig_atmosphere::data_error::DataError>,
+}
+
+impl<R: SubBandModel> Air<R> for TableAir<'_, R> {
+    type Atmosphere = PrecomputedAtmosphere;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        Some(&self.kinds)
+    }
+
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, PrecomputedAtmosphere>>, RenderError> {
+        whole(&self.band, self.name, count, || {
+            let model = self.models.model(self.atmosphere, kind)?;
+            Ok(if pilot {
+                PrecomputedAtmosphere::new(model, self.top_m)
+            } else {
+                self.models.precompute(model)
+            })
+        })
+    }
+
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        self.data.as_ref()
+    }
+}
+
+/// Spectra: collapsed over the band or each sub-band of a count (each count once, from
+/// the atmosphere checked once), with the sun's beams and scattered sunlight by day.
+struct SpectralAir<'p> {
+    plan: &'p Plan,
+    name: &'p str,
+    spectral: &'p SpectralAtmosphere,
+    split: &'p Split<'p>,
+    top_m: f64,
+    collapser: irsig_atmosphere::Collapser<'p>,
+    /// Each count's collapsed sub-bands, made once.
+    cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>>,
+    models: Models<'p>,
+    /// The direction to the sun whose scattered light the sub-bands carry, by day.
+    scatter: Option<[f64; 3]>,
+    kinds: Vec<ModelKind>,
+    data: Option<irsig_atmosphere::data_error::DataError>,
+    day_default: Option<SubBandCount>,
+}
+
+impl SpectralAir<'_> {
+    /// The sub-bands of `count`, collapsed, made once.
+    fn collapsed(&self, count: SubBandCount) -> Result<Arc<Collapsed>, RenderError> {
+        if let Some(c) = self.cache.lock().map_err(|_| poisoned())?.get(&count) {
+            return Ok(c.clone());
+        }
+        let c = Arc::new(self.split.collapse(self.collapser, count)?);
+        self.cache
+            .lock()
+            .map_err(|_| poisoned())?
+            .insert(count, c.clone());
+        Ok(c)
+    }
+
+    /// The sun's beams over the sub-bands of `count` (`None`: no sun asked for).
+    fn lit(&self, count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        let plan = self.plan;
+        let (Some(request), Some(position)) = (&plan.request.sun, &plan.sun) else {
+            return Ok(None);
+        };
+        let c = self.collapsed(count)?;
+        sunlight::sun(
+            request,
+            position,
+            self.name,
+            self.spectral,
+            self.split,
+            (count, &c),
+            plan.request.spelling,
+        )
+        .map(Some)
+    }
+}
+
+impl<R: SubBandModel> Air<R> for SpectralAir<'_> {
+    type Atmosphere = PrecomputedAtmosphere;
+
+    fn kinds(&self) -> Option<&[ModelKind]> {
+        Some(&self.kinds)
+    }
+
+    fn spectral(&self) -> bool {
+        true
+    }
+
+    /// The pilot's sets are precomputed too, its sub-band sets on [`PILOT_SKY_LEVELS`]
+    /// altitudes (the full grid's 108 skies were most of its cost): the precomputed sky
+    /// costs a few ms per sub-band (table model) and saves a slant integration per ray.
+    /// Sub-bands are precomputed in parallel; `collect` keeps their order.
+    fn sub_bands(
+        &self,
+        kind: ModelKind,
+        count: SubBandCount,
+        pilot: bool,
+    ) -> Result<Vec<SubBand<R, PrecomputedAtmosphere>>, RenderError> {
+        let split = *self.split;
+        self.collapsed(count)?
+            .par_iter()
+            .map(|(b, a)| {
+                let m = self.models.model(a, kind)?;
+                let atmosphere = if pilot && !count.is_band() {
+                    PrecomputedAtmosphere::with_levels(m, self.top_m, PILOT_SKY_LEVELS)
+                } else {
+                    self.models.precompute(m)
+                };
+                let atmosphere = crate::sun::with_slabs(atmosphere, self.spectral, split, b)?;
+                Ok(SubBand {
+                    band: R::of_band(b)?,
+                    atmosphere: crate::sun::scattered(
+                        atmosphere,
+                        self.scatter,
+                        self.spectral,
+                        split,
+                        b,
+                    )?,
+                    emissivity: crate::materials::sub_band_tables(&self.plan.materials, b)?,
+                })
+            })
+            .collect()
+    }
+
+    fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
+        self.data.as_ref()
+    }
+
+    fn sun(&self, count: SubBandCount) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+        self.lit(count)
+    }
+
+    fn day_default(&self) -> Option<SubBandCount> {
+        self.day_default
     }
 }

@@ -1,21 +1,22 @@
 //! Each frame's settings (as asked, from a decision, or chosen by the tolerance pilot) and
 //! each frame traced and turned into its files.
 
+use super::atmosphere::Air;
 use super::*;
 
 impl Plan {
     /// The pilot's decision for `camera`'s frame, with the seconds it took.
-    pub(super) fn decide<R: BandModel + Clone + Send, A: Atmosphere, S: Atmosphere + Send>(
+    pub(super) fn decide<R: BandModel + Clone + Send, Y: Air<R>>(
         &self,
         tolerance: &ToleranceRequest,
-        tracer: &Tracer<R, A>,
-        air: &Air<'_, R, A, S>,
+        tracer: &Tracer<R, Y::Atmosphere>,
+        air: &Y,
         camera: &Camera,
-    ) -> miette::Result<(irsig_tracer::pilot::Piloted, f64)> {
+    ) -> Result<(irsig_tracer::pilot::Piloted, f64), RenderError> {
         let mut offer = tolerance::offer(
             &self.materials,
-            air.kinds.as_deref(),
-            air.spectral,
+            air.kinds(),
+            air.spectral(),
             tracer.has_sun(),
             &tolerance.pins,
             self.request.spelling,
@@ -23,8 +24,8 @@ impl Plan {
         let (Some(&ref_kind), Some(&ref_count)) =
             (offer.atmospheres.first(), offer.sub_bands.first())
         else {
-            return Err(miette!(
-                "the pilot has no atmosphere or sub-band count to offer"
+            return Err(RenderError::internal(
+                "the pilot has no atmosphere or sub-band count to offer",
             ));
         };
         // A count the band's grid cannot make (more sub-bands than grid intervals in a
@@ -42,7 +43,7 @@ impl Plan {
         }
         // The pilot's time includes making its band sets (each sub-band's sky).
         let started = std::time::Instant::now();
-        let mut bands: Vec<BandChoice<S>> = Vec::new();
+        let mut bands: Vec<BandChoice<Y::Atmosphere>> = Vec::new();
         let mut unavailable = Vec::new();
         let mut unique: Vec<(ModelKind, SubBandCount)> = Vec::new();
         for pair in pairs {
@@ -51,10 +52,9 @@ impl Plan {
             }
         }
         // Made side by side (the full grid's set is most of the time), then taken in order.
-        let pilot = &air.pilot;
         let made: Vec<_> = unique
             .par_iter()
-            .map(|&(kind, count)| pilot(kind, count))
+            .map(|&(kind, count)| air.sub_bands(kind, count, true))
             .collect();
         for ((kind, count), made) in unique.into_iter().zip(made) {
             let sub = match made {
@@ -67,14 +67,14 @@ impl Plan {
             };
             // By day each set carries the sun's beams over its own sub-bands.
             let beams = if tracer.has_sun() {
-                (air.sun)(count)?.map(|s| s.beams)
+                air.sun(count)?.map(|s| s.beams)
             } else {
                 None
             };
             let set = tracer
                 .band_set(sub)
                 .and_then(|set| tracer.lit_band_set(set, beams))
-                .map_err(|e| miette!("{e}"))?;
+                .map_err(|e| RenderError::trace(format!("the pilot's {kind} {count}"), e))?;
             let (path_call_ns, sky_ns) = atmosphere_costs(kind, camera.position_m[2].max(0.0));
             bands.push(BandChoice {
                 atmosphere: kind,
@@ -90,8 +90,8 @@ impl Plan {
             None
         } else {
             let dark = tracer
-                .band_set(pilot(ref_kind, SubBandCount::BAND)?)
-                .map_err(|e| miette!("{e}"))?;
+                .band_set(air.sub_bands(ref_kind, SubBandCount::BAND, true)?)
+                .map_err(|e| RenderError::trace("the pilot's frame without the sun", e))?;
             Some(SunOffer {
                 lit: offer.sun,
                 shadow_rays: offer.shadow_rays,
@@ -124,42 +124,41 @@ impl Plan {
                 pixels as u32,
                 self.request.settings.seed,
             )
-            .map_err(|e| RequestError::report(Setting::Tolerance, e.to_string()))?;
+            .map_err(|e| RequestError::new(Setting::Tolerance, e.to_string()))?;
         // What no setting removes: said beside the decision, and left to the error budget.
         let whole = Tile::whole(camera.pixels[0], camera.pixels[1]);
         piloted.decision.data_error = air
-            .data
-            .map(|data| tracer.data_error_census(&data, camera, whole));
+            .data()
+            .map(|data| tracer.data_error_census(data, camera, whole));
         Ok((piloted, started.elapsed().as_secs_f64()))
     }
 
     /// Builds the tracer once and runs the job with it: a probe, converged references, or
     /// every frame rendered and turned into its files.
-    pub(super) fn trace_all<
-        R: BandModel + Clone + Send + Sync,
-        A: Atmosphere,
-        S: Atmosphere + Send,
-    >(
+    pub(super) fn trace_all<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
         run: &RunHash,
         band: R,
-        air: &Air<'_, R, A, S>,
+        air: &Y,
         job: &mut Job<'_>,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let (tracer, scene, base) = self.build_tracer(band, air)?;
         let cameras = self
             .views
             .iter()
-            .map(|v| Camera::from_view(v).map_err(|e| miette!("{e}")))
-            .collect::<miette::Result<Vec<_>>>()?;
+            .enumerate()
+            .map(|(i, v)| camera(i, v))
+            .collect::<Result<Vec<_>, _>>()?;
         match job {
             Job::Probe { column, row, text } => {
                 let cam = cameras
                     .first()
-                    .ok_or_else(|| RequestError::report(Setting::Probe, "no view to probe"))?;
+                    .ok_or_else(|| RequestError::new(Setting::Probe, "no view to probe"))?;
                 let s = tracer
                     .probe(cam, &base.options, *column, *row)
-                    .map_err(|e| miette!("the probed pixel ({column}, {row}): {e}"))?;
+                    .map_err(|e| {
+                        RenderError::trace(format!("the probed pixel ({column}, {row})"), e)
+                    })?;
                 let t = tracer.apparent_temperature_k(s.radiance_w_m2_sr);
                 let sub_bands = tracer.sub_bands();
                 **text = Some(format!(
@@ -177,7 +176,7 @@ impl Plan {
                     .iter()
                     .map(|cam| converged_reference(&tracer, cam, *stop_k, *rounds))
                     .collect::<Result<_, _>>()
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace("the converged reference", e))?;
                 Ok(())
             }
             Job::Render {
@@ -201,30 +200,32 @@ impl Plan {
 
     /// The tracer over the settings asked for (or the decision's), lit by day, with the
     /// budget's groups; the raw scene kept only when the budget reads its facets.
-    fn build_tracer<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+    fn build_tracer<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
         band: R,
-        air: &Air<'_, R, A, S>,
-    ) -> miette::Result<(Tracer<R, A>, Option<RawScene>, Settings)> {
+        air: &Y,
+    ) -> Result<Built<R, Y::Atmosphere>, RenderError> {
         let scene = self
             .scene
             .lock()
             .map_err(|_| poisoned())?
             .take()
-            .ok_or_else(|| miette!("the raw scene was already traced"))?;
+            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?;
         let mut asked = Settings::of(&self.request.settings);
-        if let Some(count) = air.day_default {
+        if let Some(count) = air.day_default() {
             asked.sub_bands = count;
         }
         let asked_sub_bands = asked.sub_bands;
         let base = match &self.decision {
-            Some(d) => asked.with_decision(d).map_err(|(_, m)| miette!("{m}"))?,
+            Some(d) => asked
+                .with_decision(d)
+                .map_err(|(_, m)| RenderError::internal(m))?,
             None => asked,
         };
         // A count the decision chose that this atmosphere's grid cannot make is the
         // decision's error, not a flag's.
         let sub_bands_of_decision = self.decision.is_some() && base.sub_bands != asked_sub_bands;
-        let said = |e: miette::Report| {
+        let said = |e: RenderError| {
             if sub_bands_of_decision {
                 self.at_decision_sub_bands(e)
             } else {
@@ -232,7 +233,9 @@ impl Plan {
             }
         };
         let sun = sun_of(air, &base).map_err(said)?;
-        let precomputed = (air.precomputed)(base.kind, base.sub_bands).map_err(said)?;
+        let precomputed = air
+            .sub_bands(base.kind, base.sub_bands, false)
+            .map_err(said)?;
         let tracer = Tracer::with_sub_bands_and_maps(
             &scene,
             &self.materials,
@@ -241,11 +244,13 @@ impl Plan {
             self.maps.clone(),
         )
         .and_then(|t| t.with_sun(sun))
-        .map_err(|e| miette!("{e}"))
-        .wrap_err_with(|| {
-            format!(
-                "cannot trace `{}` with `{}`",
-                self.scene_name, self.materials_name
+        .map_err(|e| {
+            RenderError::trace(
+                format!(
+                    "cannot trace `{}` with `{}`",
+                    self.scene_name, self.materials_name
+                ),
+                e,
             )
         })?
         .with_path_terms(base.path_terms);
@@ -266,13 +271,13 @@ impl Plan {
 
     /// Every frame: its settings (piloted when a tolerance is asked for), the tracer moved
     /// to them, traced and turned into the files the sink wants.
-    fn render_frames<R: BandModel + Clone + Send + Sync, A: Atmosphere, S: Atmosphere + Send>(
+    fn render_frames<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
-        mut tracer: Tracer<R, A>,
+        mut tracer: Tracer<R, Y::Atmosphere>,
         base: Settings,
-        frames: &Frames<'_, '_, R, A, S>,
+        frames: &Frames<'_, Y>,
         sink: &mut dyn Sink,
-    ) -> miette::Result<()> {
+    ) -> Result<(), RenderError> {
         let air = frames.air;
         let (mut kind, mut count) = (base.kind, base.sub_bands);
         // The materials with a specular share: a reflection that meets one is a mirror
@@ -292,13 +297,15 @@ impl Plan {
                     // The pilot sees the sun asked for, whatever an earlier frame chose.
                     if self.request.sun.is_some() {
                         tracer = tracer
-                            .with_sun((air.sun)(count)?)
-                            .map_err(|e| miette!("{e}"))?;
+                            .with_sun(air.sun(count)?)
+                            .map_err(|e| RenderError::trace("lighting the pilot's frame", e))?;
                     }
                     let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
                     piloted = p;
                     self.flush_warnings(sink);
-                    sink.decision(i, &piloted.decision, seconds)?;
+                    sink.decision(i, &piloted.decision, seconds).map_err(|e| {
+                        RenderError::caller(format!("keeping view {}'s decision", i + 1), e)
+                    })?;
                     (
                         chosen_settings(base, &piloted.chosen, tolerance.tolerance_k)?,
                         Some(&piloted.decision),
@@ -310,14 +317,14 @@ impl Plan {
                 // New sub-bands drop the sun, whose beams are per sub-band: lit again.
                 let sun = sun_of(air, &settings)?;
                 tracer = tracer
-                    .with_bands((air.precomputed)(settings.kind, settings.sub_bands)?)
+                    .with_bands(air.sub_bands(settings.kind, settings.sub_bands, false)?)
                     .and_then(|t| t.with_sun(sun))
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace(format!("view {}'s settings", i + 1), e))?;
                 (kind, count) = (settings.kind, settings.sub_bands);
             } else if self.request.sun.is_some() {
                 tracer = tracer
                     .with_sun(sun_of(air, &settings)?)
-                    .map_err(|e| miette!("{e}"))?;
+                    .map_err(|e| RenderError::trace(format!("view {}'s sun", i + 1), e))?;
             }
             self.flush_warnings(sink);
             let wanted = sink.files(i);
@@ -328,7 +335,7 @@ impl Plan {
             tracer = tracer
                 .with_path_terms(settings.path_terms)
                 .with_refinement(settings.refinement)
-                .map_err(|e| miette!("{e}"))?;
+                .map_err(|e| RenderError::trace(format!("view {}'s refinement", i + 1), e))?;
             let tile = frames.tiles[i];
             if let Some(text) = tracer
                 .slab_census(cam, tile)
@@ -352,10 +359,10 @@ impl Plan {
             } else {
                 tracer.render_tile(cam, &options, tile, frames.progress)
             }
-            .map_err(|e| miette!("{e}"))?;
+            .map_err(|e| RenderError::trace(format!("tracing view {}", i + 1), e))?;
             if wanted.wants(FrameFile::TruthExr)
                 && let Some(text) =
-                    keep_data_error(&tracer, air.data.as_ref(), cam, tile, &mut frame, i + 1)
+                    keep_data_error(&tracer, air.data(), cam, tile, &mut frame, i + 1)
             {
                 sink.warning(&text);
             }
@@ -417,9 +424,13 @@ impl Plan {
     }
 }
 
+/// The tracer built once, the raw scene when the budget reads its facets, and the settings
+/// it was built with.
+type Built<R, A> = (Tracer<R, A>, Option<RawScene>, Settings);
+
 /// What every frame of a rendering shares.
-struct Frames<'a, 'b, R, A, S> {
-    air: &'a Air<'b, R, A, S>,
+struct Frames<'a, Y> {
+    air: &'a Y,
     run: &'a RunHash,
     cameras: &'a [Camera],
     /// The raw scene, when the budget reads its facets.
@@ -432,11 +443,12 @@ struct Frames<'a, 'b, R, A, S> {
 }
 
 /// The sun as `settings` have it: left out, or with their shadow rays.
-fn sun_of<R, A, S>(
-    air: &Air<'_, R, A, S>,
+fn sun_of<R, Y: Air<R>>(
+    air: &Y,
     settings: &Settings,
-) -> miette::Result<Option<irsig_tracer::Sun>> {
-    Ok((air.sun)(settings.sub_bands)?
+) -> Result<Option<irsig_tracer::Sun>, RenderError> {
+    Ok(air
+        .sun(settings.sub_bands)?
         .filter(|_| settings.sun_lit)
         .map(|mut sun| {
             if let Some(n) = settings.shadow_rays {
@@ -452,7 +464,7 @@ fn chosen_settings(
     base: Settings,
     c: &irsig_tracer::pilot::Chosen,
     tolerance_k: f64,
-) -> miette::Result<Settings> {
+) -> Result<Settings, RenderError> {
     let mut settings = base;
     settings.kind = c.atmosphere;
     settings.sub_bands = c.sub_bands;
@@ -470,7 +482,10 @@ fn chosen_settings(
         Supersample::Adaptive(n) => (n, Some(tolerance_k)),
         Supersample::Refine(_) => (1, None),
     };
-    settings.options.validate().map_err(|e| miette!("{e}"))?;
+    settings
+        .options
+        .validate()
+        .map_err(|e| RenderError::trace("the pilot's chosen settings", e))?;
     Ok(settings)
 }
 
