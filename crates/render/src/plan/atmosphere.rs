@@ -479,8 +479,8 @@ struct SpectralAir<'p> {
     /// Each count's collapsed sub-bands, made once.
     cache: Mutex<HashMap<SubBandCount, Arc<Collapsed>>>,
     models: Models<'p>,
-    /// The direction to the sun whose scattered light the sub-bands carry, by day.
-    scatter: Option<[f64; 3]>,
+    /// The sun whose scattered light the sub-bands carry, by day.
+    scatter: Option<crate::sun::ScatterSun>,
     kinds: Vec<ModelKind>,
     data: Option<irsig_atmosphere::data_error::DataError>,
     day_default: Option<SubBandCount>,
