@@ -207,6 +207,11 @@ const LOW_BOUND: f64 = 0.02;
 /// The quickstart's place and a midsummer day there, UTC.
 const PLACE: [&str; 4] = ["--latitude-deg", "43.08", "--longitude-deg", "-77.67"];
 const DAY: &str = "2026-06-21T00:00:00Z/2026-06-22T00:00:00Z/PT1H";
+/// The hours of `DAY` from 8 am to 6 pm local time (EDT), the sun about 24-70 deg high
+/// (by hand: elevation 24.3 deg at 12 h UTC and 28.6 deg at 22 h, 70.4 deg at noon).
+const LIT_HOURS: &str = "2026-06-21T12:00:00Z/2026-06-21T22:00:00Z/PT1H";
+const LIT_HOURS_FIRST: &str = "2026-06-21T12:00:00Z";
+const LIT_HOURS_LAST: &str = "2026-06-21T22:00:00Z";
 
 /// The sun's zenith angle at `utc` from the quickstart's place, as `irsig-atmos sun` gives
 /// it (without the air's pressure and temperature, the geometric angle).
@@ -286,35 +291,49 @@ fn a_plan_of_a_days_times_holds_every_lit_hours_sun_and_drops_the_night() {
         };
         assert!(w[1] - w[0] <= limit * 1.2 + 1e-9, "{w:?}");
     }
-    // With the scattered sunlight: every sun of the same rows runs every sunlit path. What
-    // that costs in LOWTRAN7 runs is printed (docs/accuracy.md quotes it).
+    // With the scattered sunlight, over hours whose sun stays far above 2 deg of elevation
+    // (8 am to 6 pm local time): every sun row runs every sunlit path. What that costs in
+    // LOWTRAN7 runs is printed.
     let lit_plan = irsig_tests::quickstart_plan(
         dir.path(),
         "lit-day.ron",
         &["--atmosphere", "us-std-1976"],
-        &[&["--sun-utc", DAY, "--sun-scattering"][..], &PLACE[..]].concat(),
+        &[
+            &["--sun-utc", LIT_HOURS, "--sun-scattering"][..],
+            &PLACE[..],
+        ]
+        .concat(),
     );
     let lit_text = std::fs::read_to_string(&lit_plan).unwrap();
     let q: irsig_model::AtmospherePlan = canonical::from_ron("lit-day.ron", &lit_text).unwrap();
     let lit_sun = q.sun.as_ref().unwrap();
-    assert_eq!(lit_sun.zeniths_deg(), rows);
+    // The rows span the hours' suns (the lowest at the ends, at about 66 and 61 deg) and
+    // none is past 88 deg.
+    let lit_rows = lit_sun.zeniths_deg();
+    let ends = [LIT_HOURS_FIRST, LIT_HOURS_LAST].map(geometric_zenith);
+    let lowest = ends[0].max(ends[1]);
+    assert!(lowest > 55.0 && lowest < 70.0, "{ends:?}");
+    assert!(
+        lit_rows[lit_rows.len() - 1] >= lowest - 1e-3,
+        "{lit_rows:?} {ends:?}"
+    );
+    assert!(lit_rows.iter().all(|&z| z <= 88.0), "{lit_rows:?}");
     assert_eq!(
         lit_sun.relative_azimuth_deg,
         irsig_atmosphere::plan::RELATIVE_AZIMUTH_DEG
     );
-    let (beam_runs, lit_runs) = (
-        irsig_atmosphere::plan::paths(&p).len(),
-        irsig_atmosphere::plan::paths(&q).len(),
-    );
+    let lit_runs = irsig_atmosphere::plan::paths(&q).len();
     let sunlit_per_sun = (q.slant_altitude_m.len() * q.slant_nadir_deg.len()
         + lit_sun.altitude_m.len() * q.sky_zenith_deg.len())
         * lit_sun.relative_azimuth_deg.len();
     println!(
-        "a day's plan of {} suns: {beam_runs} LOWTRAN7 runs for the beam alone, {lit_runs} \
-         with the scattered sunlight ({sunlit_per_sun} sunlit runs per sun)",
-        rows.len()
+        "the lit hours' plan of {} suns: {lit_runs} LOWTRAN7 runs with the scattered sunlight \
+         ({sunlit_per_sun} sunlit runs per sun; the whole day's beam alone: {})",
+        lit_rows.len(),
+        irsig_atmosphere::plan::paths(&p).len()
     );
-    assert!(lit_runs >= beam_runs + rows.len() * sunlit_per_sun);
+    // Each sun row: its beam at each altitude and every sunlit path.
+    assert!(lit_runs >= lit_rows.len() * (lit_sun.altitude_m.len() + sunlit_per_sun));
     // Refused at the flag: an end before the start, a step of 0, several suns with the
     // scattered sunlight and slabs (a slab table holds one sun's), a day that has no lit
     // moment.
@@ -334,8 +353,14 @@ fn a_plan_of_a_days_times_holds_every_lit_hours_sun_and_drops_the_night() {
             "step",
         ),
         (
-            vec!["--sun-utc", DAY, "--sun-scattering", "--slabs"],
+            vec!["--sun-utc", LIT_HOURS, "--sun-scattering", "--slabs"],
             "--slabs",
+        ),
+        // The whole day reaches the sun at 89.999 deg, whose scattered paths LOWTRAN7
+        // leaves unrun.
+        (
+            vec!["--sun-utc", DAY, "--sun-scattering"],
+            "up to 88 deg from the zenith",
         ),
         (
             vec![

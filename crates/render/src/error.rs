@@ -290,6 +290,19 @@ impl RenderError {
         }
     }
 
+    /// The caller's own error back, whole, if this is one (its sink's or its reader's): a
+    /// tool's usage error or a broken pipe then reaches the tool's exit code as the tool
+    /// made it, not as the render's.
+    ///
+    /// # Errors
+    /// `self`, when it is not the caller's error.
+    pub fn into_caller(self) -> Result<miette::Report, Self> {
+        match *self.kind {
+            RenderErrorKind::Caller { source, .. } => Ok(source.0),
+            kind => Err(kind.into()),
+        }
+    }
+
     /// An input's content is wrong: `source` says where.
     pub(crate) fn input(context: impl Into<String>, source: irsig_formats::ParseError) -> Self {
         RenderErrorKind::Input {
@@ -574,6 +587,22 @@ mod tests {
             c.downcast_ref::<std::io::Error>()
                 .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
         }));
+    }
+
+    #[test]
+    fn a_callers_error_is_given_back_as_it_was_made_and_no_other_is() {
+        // A usage error or a bare broken pipe at the top of a caller's report is what the
+        // tool's exit code is read from: it must come back as itself, not under a context.
+        let pipe = miette::Report::new(std::io::Error::from(std::io::ErrorKind::BrokenPipe));
+        let back = RenderError::caller("writing", pipe).into_caller().unwrap();
+        let io = back
+            .downcast_ref::<std::io::Error>()
+            .expect("the io error itself");
+        assert_eq!(io.kind(), std::io::ErrorKind::BrokenPipe);
+        let refused = RenderError::refused("no radiance layer")
+            .into_caller()
+            .unwrap_err();
+        assert_eq!(refused.to_string(), "no radiance layer");
     }
 
     /// An error whose source is an io error, as a tool's file error is.

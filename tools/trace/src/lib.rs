@@ -275,8 +275,14 @@ pub fn flag(setting: Setting) -> String {
 }
 
 /// A request error as bad usage, naming the flag of its setting: one the tool made itself,
-/// or one the plan refused the request with.
+/// or one the plan refused the request with. The tool's own errors that the plan passed
+/// back (its sink's: an output named twice, a broken pipe) come out as the tool made them,
+/// so that the exit code is theirs.
 pub(crate) fn as_usage(report: miette::Report) -> miette::Report {
+    let report = match report.downcast::<irsig_render::RenderError>() {
+        Ok(e) => e.into_caller().unwrap_or_else(miette::Report::new),
+        Err(report) => report,
+    };
     let Some(e) = report.downcast_ref::<RequestError>().or_else(|| {
         report
             .downcast_ref::<irsig_render::RenderError>()

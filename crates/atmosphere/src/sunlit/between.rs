@@ -14,7 +14,7 @@
 //! local: the value between rows `i` and `i + 1` uses rows `i − 1` to `i + 2` only, and
 //! only those are integrated over the band. Its error against LOWTRAN7 run for the sun
 //! itself is measured in `tests/tests/scattered_day.rs` and tabled in
-//! `docs/accuracy.md` ("One atmosphere for a day's suns").
+//! `docs/accuracy.md` ("A day's scattered sunlight").
 
 use irsig_model::SpectralSolar;
 
