@@ -593,12 +593,14 @@ mod tests {
     fn a_callers_error_is_given_back_as_it_was_made_and_no_other_is() {
         // A usage error or a bare broken pipe at the top of a caller's report is what the
         // tool's exit code is read from: it must come back as itself, not under a context.
-        let pipe = miette::Report::new(std::io::Error::from(std::io::ErrorKind::BrokenPipe));
+        let pipe = miette::Report::new(Wrapped(std::io::Error::from(
+            std::io::ErrorKind::BrokenPipe,
+        )));
         let back = RenderError::caller("writing", pipe).into_caller().unwrap();
-        let io = back
-            .downcast_ref::<std::io::Error>()
-            .expect("the io error itself");
-        assert_eq!(io.kind(), std::io::ErrorKind::BrokenPipe);
+        let own = back
+            .downcast_ref::<Wrapped>()
+            .expect("the caller's error itself");
+        assert_eq!(own.0.kind(), std::io::ErrorKind::BrokenPipe);
         let refused = RenderError::refused("no radiance layer")
             .into_caller()
             .unwrap_err();
