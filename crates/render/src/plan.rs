@@ -364,21 +364,21 @@ impl Plan {
             .ok_or_else(|| RenderError::internal("the scene is read before the materials"))?;
         // A terrain or a facet whose material the library lacks, at its place in the scene
         // file.
+        let unknown = |path: &str, message: String| {
+            RenderError::input(
+                format!("the scene's materials in `{name}`"),
+                raw_scene_error_at_path(&self.scene_name, scene_bytes, scene, path, message),
+            )
+        };
         if let Some(m) = scene.terrain.material
             && lib.by_id(m).is_none()
         {
-            return Err(RenderError::input(
-                format!("the scene's materials in `{name}`"),
-                raw_scene_error_at_path(
-                    &self.scene_name,
-                    scene_bytes,
-                    scene,
-                    "terrain.material",
-                    format!(
-                        "the terrain's material is {}, which the material library {name} does \
-                         not define",
-                        m.0
-                    ),
+            return Err(unknown(
+                "terrain.material",
+                format!(
+                    "the terrain's material is {}, which the material library {name} does not \
+                     define",
+                    m.0
                 ),
             ));
         }
@@ -388,18 +388,12 @@ impl Plan {
             .enumerate()
             .find(|(_, f)| lib.by_id(f.material).is_none())
         {
-            return Err(RenderError::input(
-                format!("the scene's materials in `{name}`"),
-                raw_scene_error_at_path(
-                    &self.scene_name,
-                    scene_bytes,
-                    scene,
-                    &format!("facets[{i}].material"),
-                    format!(
-                        "facets[{i}] uses material {}, which the material library {name} does \
-                         not define",
-                        f.material.0
-                    ),
+            return Err(unknown(
+                &format!("facets[{i}].material"),
+                format!(
+                    "facets[{i}] uses material {}, which the material library {name} does not \
+                     define",
+                    f.material.0
                 ),
             ));
         }
