@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use crate::band::Band;
 use crate::constants::{BOLTZMANN_J_K, PLANCK_J_S, SPEED_OF_LIGHT_M_S};
+use crate::inverse::InverseTable;
 
 /// Blackbody band radiance and its inverse for one spectral band.
 ///
@@ -66,19 +67,41 @@ impl BandModel for AnyBand {
 }
 
 /// The apparent temperature, K, of each radiance of an image layer (W m⁻² sr⁻¹, f32), in
-/// `band`; NaN where the radiance is not finite. Each pixel solved exactly
-/// ([`BandModel::temperature`]), not through a table, on every core: each pixel's solve is
-/// its own, so the result is the same on any number of threads.
+/// `band`; NaN where the radiance is not finite. Each pixel gets the `f32` its exact solve
+/// ([`BandModel::temperature`]) rounds to, bit for bit, found through an inverse table of
+/// the layer's radiance range ([`InverseTable::temperature_f32`]): one or two Planck
+/// evaluations a pixel rather than five or six. A run of equal radiances is looked up once.
+/// The pixels are shared among every core; each pixel's answer is its own, so the result
+/// is the same on any number of threads.
 #[must_use]
-pub fn apparent_temperatures(band: &impl BandModel, radiance_w_m2_sr: &[f32]) -> Vec<f32> {
+pub fn apparent_temperatures<B: BandModel + ?Sized>(
+    band: &B,
+    radiance_w_m2_sr: &[f32],
+) -> Vec<f32> {
+    let (lo, hi) = radiance_w_m2_sr
+        .iter()
+        .filter(|l| l.is_finite() && **l > 0.0)
+        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &l| {
+            (lo.min(f64::from(l)), hi.max(f64::from(l)))
+        });
+    let table = InverseTable::new(band, &[lo, hi]);
+    let table = &table;
     radiance_w_m2_sr
-        .par_iter()
-        .map(|&l| {
-            if l.is_finite() {
-                band.temperature(f64::from(l)) as f32
-            } else {
-                f32::NAN
-            }
+        .par_chunks(4096)
+        .flat_map_iter(|run| {
+            let mut last: Option<(u32, f32)> = None;
+            run.iter().map(move |&l| match last {
+                Some((bits, t)) if bits == l.to_bits() => t,
+                _ => {
+                    let t = if l.is_finite() {
+                        table.temperature_f32(f64::from(l))
+                    } else {
+                        f32::NAN
+                    };
+                    last = Some((l.to_bits(), t));
+                    t
+                }
+            })
         })
         .collect()
 }
@@ -136,6 +159,33 @@ impl BandModel for TotalRadiance {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn an_images_apparent_temperatures_are_each_pixels_exact_solve_rounded() {
+        // Runs, alternations, nothing positive, infinities and NaN, and radiances spread
+        // over 150-400 K: every pixel the f32 of its own exact solve.
+        let band = Band::default();
+        let mut image: Vec<f32> = (0..5000)
+            .map(|i| band.radiance(150.0 + 0.05 * f64::from(i)) as f32)
+            .collect();
+        image.extend([0.0, -0.0, -1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY]);
+        image.extend([image[7]; 9]);
+        image.extend([image[3], image[4], image[3]]);
+        let t = apparent_temperatures(&band, &image);
+        assert_eq!(t.len(), image.len());
+        for (l, t) in image.iter().zip(&t) {
+            let exact = if l.is_finite() {
+                band.temperature(f64::from(*l)) as f32
+            } else {
+                f32::NAN
+            };
+            assert_eq!(t.to_bits(), exact.to_bits(), "{l}: {t} against {exact}");
+        }
+        assert!(apparent_temperatures(&band, &[]).is_empty());
+        let cold = apparent_temperatures(&band, &[0.0, f32::NAN]);
+        assert_eq!(cold[0], 0.0);
+        assert!(cold[1].is_nan());
+    }
 
     #[test]
     fn stefan_boltzmann_matches_codata_2018() {

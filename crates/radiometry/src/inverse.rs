@@ -12,6 +12,33 @@ const NODES: usize = 256;
 /// Newton steps allowed after the table's start before falling back to the cold solve.
 const MAX_STEPS: usize = 4;
 
+/// How far, relative, the table's answer may be from the exact solve's:
+/// `|warm − exact| ≤ WARM_AGREEMENT · max(T, 1 K)`. The last Newton step leaves
+/// (y/2)·(1e-8)² relative, y = hc/λkT, under 1e-12 for any y below 10⁴ (an 8 µm band at
+/// 1.8 K); the tests hold the table to this bound from 3 K to 5000 K.
+pub const WARM_AGREEMENT: f64 = 1e-9;
+
+/// The smallest radiance the table answers, W m⁻² sr⁻¹; below it the cold solve does. Far
+/// below every physical scene (8 K in 3–5 µm), it keeps the table away from radiances
+/// whose Planck exponentials are subnormal and have lost their precision (3–5 µm at 3.9 K
+/// is 5e-303), where a Newton step's stopping test says nothing of the answer's error.
+pub const MIN_WARM_RADIANCE_W_M2_SR: f64 = 1e-250;
+
+/// Whether every temperature within [`WARM_AGREEMENT`] of `t` rounds to the same `f32`
+/// as `t`: `t` lies clear of the midpoints to the `f32`s either side of its own (midpoints
+/// and ties are left to the exact solve).
+fn rounds_as_its_neighbourhood(t: f64) -> bool {
+    let r = t as f32;
+    if !(t.is_finite() && r.is_finite()) {
+        return false;
+    }
+    let margin = WARM_AGREEMENT * t.abs().max(1.0);
+    // Sums of two f32s and their halves are exact in f64.
+    let below = 0.5 * (f64::from(r.next_down()) + f64::from(r));
+    let above = 0.5 * (f64::from(r) + f64::from(r.next_up()));
+    t - margin > below && t + margin < above
+}
+
 /// The inverse of a band's radiance over a radiance range, for many lookups.
 ///
 /// ```
@@ -84,11 +111,33 @@ impl<'a, B: BandModel + ?Sized> InverseTable<'a, B> {
     /// it up.
     #[must_use]
     pub fn temperature(&self, radiance_w_m2_sr: f64) -> f64 {
-        let target = radiance_w_m2_sr;
+        self.warm(radiance_w_m2_sr)
+            .unwrap_or_else(|| self.band.temperature(radiance_w_m2_sr))
+    }
+
+    /// The apparent temperature of `radiance_w_m2_sr` as an image layer holds it, K: bit
+    /// for bit the `f32` the exact solve ([`BandModel::temperature`]) rounds to. The table's
+    /// answer is within [`WARM_AGREEMENT`] of the exact one, so where it lies farther than
+    /// that from the midpoint between two `f32`s both round to the same `f32`; nearer (a few
+    /// lookups in a hundred), the exact solve decides.
+    #[must_use]
+    pub fn temperature_f32(&self, radiance_w_m2_sr: f64) -> f32 {
+        match self.warm(radiance_w_m2_sr) {
+            Some(t) if rounds_as_its_neighbourhood(t) => t as f32,
+            _ => self.band.temperature(radiance_w_m2_sr) as f32,
+        }
+    }
+
+    /// The table's start polished by Newton steps; `None` outside the table, for what is
+    /// not a finite radiance of at least [`MIN_WARM_RADIANCE_W_M2_SR`], or where the steps did not settle (then the cold
+    /// solve answers).
+    fn warm(&self, target: f64) -> Option<f64> {
+        if !(target >= MIN_WARM_RADIANCE_W_M2_SR) {
+            return None;
+        }
         let x = (target.ln() - self.ln_l0) * self.per;
-        // Outside the table (or not a finite positive radiance): the cold solve.
         if !(x >= 0.0 && x <= (self.t.len().max(1) - 1) as f64) || self.t.len() < 2 {
-            return self.band.temperature(target);
+            return None;
         }
         let i = (x as usize).min(self.t.len() - 2);
         let f = x - i as f64;
@@ -100,7 +149,7 @@ impl<'a, B: BandModel + ?Sized> InverseTable<'a, B> {
         for _ in 0..MAX_STEPS {
             let (l, dl) = self.band.radiance_and_derivative(t);
             if !(dl > 0.0 && dl.is_finite()) {
-                break;
+                return None;
             }
             let step = (l - target) / dl;
             t -= step;
@@ -108,10 +157,10 @@ impl<'a, B: BandModel + ?Sized> InverseTable<'a, B> {
             // (y/2)·(step/T)² relative, y = hc/λkT (below 100 from 3 K up in 8-14 µm), so a
             // step under 1e-8 T leaves less than 1e-14 T.
             if step.abs() <= 1e-8 * t {
-                return t;
+                return Some(t);
             }
         }
-        self.band.temperature(target)
+        None
     }
 
     /// [`Self::temperature`] of each radiance in turn, W m⁻² sr⁻¹ → K, looking up a run of
@@ -231,5 +280,75 @@ mod tests {
         // One radiance: a table of one value.
         let single = InverseTable::new(&band, &[band.radiance(300.0)]);
         assert!((single.temperature(band.radiance(300.0)) - 300.0).abs() < 1e-9);
+    }
+
+    /// Radiances whose exact temperatures lie on or next to the midpoint between two
+    /// neighbouring `f32`s, where rounding the table's answer could differ from rounding
+    /// the exact one, and ordinary ones between 3 and 5000 K.
+    fn hard_radiances(band: &impl BandModel) -> Vec<f64> {
+        let mut out = Vec::new();
+        for i in 0..2000 {
+            let t = 3.0_f64 * 1.0037_f64.powi(i);
+            let r = t as f32;
+            let mid = 0.5 * (f64::from(r) + f64::from(r.next_up()));
+            for k in [-2.0, -1.0, 0.0, 1.0, 2.0] {
+                out.push(band.radiance(mid * (1.0 + k * 1e-12)));
+            }
+            out.push(band.radiance(t));
+        }
+        // And radiances drawn log-uniformly over 1e-300 to 1e6 W m-2 sr-1 (a fixed LCG).
+        let mut x: u64 = 0x9e37_79b9_7f4a_7c15;
+        for _ in 0..20_000 {
+            x = x
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let u = (x >> 11) as f64 / (1u64 << 53) as f64;
+            out.push(10f64.powf(-300.0 + 306.0 * u));
+        }
+        out
+    }
+
+    #[test]
+    fn the_f32_is_the_exact_solves_bit_for_bit_where_rounding_is_closest() {
+        let sixty = Band::new(3.0, 5.0).unwrap();
+        let response = crate::SensorResponse::new(
+            vec![7.5, 8.0, 10.0, 12.0, 14.5],
+            vec![0.0, 0.7, 1.0, 0.6, 0.0],
+        )
+        .unwrap();
+        let shaped = Band::lwir().with_response(&response).unwrap();
+        for band in [Band::default(), sixty, shaped] {
+            let radiance = hard_radiances(&band);
+            let table = InverseTable::new(&band, &radiance);
+            let mut decided_exactly = 0;
+            for &l in &radiance {
+                let exact = band.temperature(l) as f32;
+                assert_eq!(
+                    table.temperature_f32(l).to_bits(),
+                    exact.to_bits(),
+                    "{l} W m-2 sr-1: {} against the exact {exact} K",
+                    table.temperature_f32(l)
+                );
+                if table
+                    .warm(l)
+                    .is_some_and(|t| !rounds_as_its_neighbourhood(t))
+                {
+                    decided_exactly += 1;
+                }
+            }
+            // The midpoints themselves went to the exact solve: the guard was exercised.
+            assert!(decided_exactly >= 2000, "{decided_exactly}");
+        }
+    }
+
+    #[test]
+    fn the_guard_leaves_a_temperature_clear_of_midpoints_to_the_table() {
+        assert!(rounds_as_its_neighbourhood(300.0));
+        let r = 300.0_f32;
+        let mid = 0.5 * (f64::from(r) + f64::from(r.next_up()));
+        assert!(!rounds_as_its_neighbourhood(mid));
+        assert!(!rounds_as_its_neighbourhood(mid - 1e-7));
+        assert!(!rounds_as_its_neighbourhood(f64::NAN));
+        assert!(!rounds_as_its_neighbourhood(1e300));
     }
 }

@@ -325,27 +325,6 @@ pub fn process(
     Ok(SensorOutput { raster })
 }
 
-/// The apparent temperature (K) of every pixel of the sensor's radiance, through the band's
-/// inverse table, in parallel (the same at any thread count), holding only the result.
-fn apparent_temperatures(radiance_w_m2_sr: &[f32], band: &impl BandModel) -> Vec<f32> {
-    use rayon::prelude::*;
-    let (lo, hi) = radiance_w_m2_sr
-        .iter()
-        .filter(|l| **l > 0.0)
-        .fold((f64::INFINITY, 0.0_f64), |(lo, hi), &l| {
-            (lo.min(f64::from(l)), hi.max(f64::from(l)))
-        });
-    let inverse = irsig_radiometry::InverseTable::new(band, &[lo, hi]);
-    radiance_w_m2_sr
-        .par_chunks(4096)
-        .flat_map_iter(|run| {
-            inverse
-                .temperatures(run.iter().map(|&l| f64::from(l)))
-                .map(|t| t as f32)
-        })
-        .collect()
-}
-
 /// The most bytes `process` holds for an image of `width` × `height` pixels and `layers`
 /// layers: 4 per pixel for each layer but the radiance, 8 for the radiance in f64 and 16 per
 /// pixel of the image the blur transforms (a complex half spectrum, and its transpose while
@@ -517,7 +496,10 @@ fn sense(cli: &Cli) -> miette::Result<()> {
         || cli.preview.is_some()
         || cli.colour_preview.path.is_some()
     {
-        Some(apparent_temperatures(out.radiance(), &band))
+        Some(irsig_radiometry::apparent_temperatures(
+            &band,
+            out.radiance(),
+        ))
     } else {
         None
     };
