@@ -319,9 +319,20 @@ fn sweep_of(span: Span) {
 #[test]
 #[ignore = "beyond the widest row: a minute; docs/accuracy.md's table of the last degrees"]
 fn beyond_the_widest_row() {
-    // Paths to the ground from below 3 km at nadir angles past every table's widest row
-    // (88°) and short of the observer's horizon (89.44° from 300 m, 88.98° from 1 km):
-    // what a frame's grazing view paths meet. A markdown table on stdout.
+    beyond_the_widest_row_over(LWIR);
+}
+
+#[test]
+#[ignore = "beyond the widest row in 3-5 um: a minute; docs/accuracy.md's table of the last degrees"]
+fn beyond_the_widest_row_mwir() {
+    beyond_the_widest_row_over(MWIR);
+}
+
+/// Paths to the ground from below 3 km at nadir angles past every table's widest row
+/// (88°) and short of the observer's horizon (89.44° from 300 m, 88.98° from 1 km): what a
+/// frame's grazing view paths meet, over `span`. A markdown table on stdout, and the cells
+/// as `irsig_atmosphere::data_error` holds them.
+fn beyond_the_widest_row_over(span: Span) {
     let cells: [(f64, &[f64]); 6] = [
         (5.0, &[88.5, 89.0, 89.5, 89.8, 89.9]),
         (20.0, &[88.5, 89.0, 89.5, 89.8]),
@@ -330,15 +341,77 @@ fn beyond_the_widest_row() {
         (300.0, &[88.25, 88.5, 88.75, 89.0, 89.25, 89.4]),
         (1000.0, &[88.25, 88.5, 88.75, 88.9]),
     ];
+    assert_eq!(
+        cells.map(|c| c.0),
+        irsig_atmosphere::data_error::BEYOND_ALTITUDES_M
+    );
     println!("| atmosphere | observer (m) | nadir: error (K) |\n| --- | ---: | --- |");
+    let mut rust = String::new();
     for name in BUILTIN_NAMES {
-        let b = SubBands::new(name, LWIR);
+        let b = SubBands::new(name, span);
+        rust.push_str(&format!("    (\n        \"{name}\",\n        [\n"));
         for (h, nadirs) in cells {
-            let errors: Vec<String> = nadirs
+            let errors: Vec<f64> = nadirs.iter().map(|&a| b.slant_error(h, a)).collect();
+            let text: Vec<String> = nadirs
                 .iter()
-                .map(|&a| format!("{a}°: {:+.3}", b.slant_error(h, a)))
+                .zip(&errors)
+                .map(|(a, e)| format!("{a}°: {e:+.3}"))
                 .collect();
-            println!("| {name} | {h} | {} |", errors.join(", "));
+            println!("| {name} | {h} | {} |", text.join(", "));
+            let cells: Vec<String> = errors.iter().map(|e| format!("{:.3}", e.abs())).collect();
+            rust.push_str(&format!("            &[{}],\n", cells.join(", ")));
+        }
+        rust.push_str("        ],\n    ),\n");
+    }
+    println!("\n{rust}");
+}
+
+/// Past the widest row in 3–5 µm, the data error a 3–5 µm frame records
+/// (`BEYOND_WIDEST_ROW_MWIR`) bounds what LOWTRAN7 (run here) measures between the
+/// measured cells, and is not loose by more than its 8–14 µm counterpart (at least 0.3 of
+/// the recorded, as there). us-std-1976 is the 3–5 µm built-in that records its rows'
+/// residual, and so has the layer.
+#[test]
+fn past_the_widest_row_the_recorded_error_bounds_the_measured_in_3_5_um() {
+    let name = "us-std-1976";
+    {
+        let b = SubBands::new(name, MWIR);
+        let spectral = (MWIR.spectra)(name);
+        let slant = spectral
+            .slant
+            .as_ref()
+            .expect("a built-in has slant tables");
+        let residual = slant
+            .interpolation_residual
+            .expect("a 3-5 um built-in records its residual");
+        let widest = *slant.nadir_deg.last().unwrap();
+        let data =
+            irsig_atmosphere::data_error::DataError::new(residual, widest, name, MWIR.band_um);
+        // Halfway between the measured 88.5° and 88.75° from 300 m, between 89° and 89.5°
+        // from 20 m, and between 88.25° and 88.5° from 1 km.
+        for (h, a, tight) in [
+            (300.0, 88.625, true),
+            (20.0, 89.25, false),
+            (1000.0, 88.375, false),
+        ] {
+            let measured = b.slant_error(h, a).abs();
+            let recorded = data
+                .ground_path_k(h, a)
+                .expect("3-5 um is measured past the row");
+            let ratio = measured / recorded;
+            println!(
+                "{name} 3-5 um from {h} m at {a}°: measured {measured:.4} K, recorded {recorded:.4} K, ratio {ratio:.3}"
+            );
+            assert!(
+                ratio <= 1.0,
+                "{name} from {h} m at {a}°: {measured} K over the recorded {recorded} K"
+            );
+            if tight {
+                assert!(
+                    ratio >= 0.3,
+                    "{name} from {h} m at {a}°: the record {recorded} K is loose ({measured} K)"
+                );
+            }
         }
     }
 }

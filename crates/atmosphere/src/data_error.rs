@@ -4,7 +4,7 @@
 //! ([`InterpolationResidual`], measured at the midpoints between neighbouring rows and the
 //! cells' centres when the rows were placed); past the widest nadir row, where no table
 //! has rows and the model's correction fades to none at 90°, it is what that region was
-//! measured to cost against LOWTRAN7 ([`BEYOND_WIDEST_ROW`]). These are bounds of
+//! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]). These are bounds of
 //! measured errors (the largest found), not standard deviations.
 
 use irsig_model::InterpolationResidual;
@@ -19,10 +19,10 @@ pub const NEAR_ROWS_NADIR_DEG: f64 = 80.0;
 /// 1e-7° off.
 const ROW_TOLERANCE_DEG: f64 = 1e-6;
 
-/// Observer altitudes of [`BEYOND_WIDEST_ROW`], m above the ground.
+/// Observer altitudes of [`BEYOND_WIDEST_ROW`]'s rows, m above the ground.
 pub const BEYOND_ALTITUDES_M: [f64; 6] = [5.0, 20.0, 50.0, 100.0, 300.0, 1000.0];
 
-/// Nadir angles of [`BEYOND_WIDEST_ROW`] at each of [`BEYOND_ALTITUDES_M`], degrees: past
+/// Nadir angles of [`BEYOND_WIDEST_ROW`]'s rows at each of [`BEYOND_ALTITUDES_M`], degrees: past
 /// the built-ins' widest row (88°) and short of each observer's horizon (89.44° from
 /// 300 m, 88.98° from 1 km).
 pub const BEYOND_NADIRS_DEG: [&[f64]; 6] = [
@@ -38,85 +38,192 @@ pub const BEYOND_NADIRS_DEG: [&[f64]; 6] = [
 /// [`BEYOND_ALTITUDES_M`] × [`BEYOND_NADIRS_DEG`].
 pub type BeyondRows = [&'static [f64]; 6];
 
-/// The error of the built-ins' paths to the ground past their widest row, by built-in
-/// ([`crate::BUILTIN_NAMES`]' order), K, absolute. Measured by the ignored test
-/// `beyond_the_widest_row` of `tests/tests/builtin_rows.rs`: LOWTRAN7 (run by the test,
-/// spherical Earth, refracted path, 710–1350 cm⁻¹) against the built-in's `table` model
-/// summed over 16 sub-bands of flat 8–14 µm, the largest apparent-temperature error over
+/// The error of the built-ins' paths to the ground past their widest row over one band:
+/// measured by the ignored tests `beyond_the_widest_row` (8–14 µm) and
+/// `beyond_the_widest_row_mwir` (3–5 µm) of `tests/tests/builtin_rows.rs`: LOWTRAN7 (run by
+/// the test, spherical Earth, refracted path) against the built-in's `table` model summed
+/// over 16 sub-bands of the flat band, the largest apparent-temperature error over
 /// blackbodies of 260, 290 and 320 K at the path's end (docs/accuracy.md, "The last
 /// degrees to the horizon").
-pub const BEYOND_WIDEST_ROW: [(&str, BeyondRows); 6] = [
-    (
-        "us-std-1976",
-        [
-            &[0.044, 0.068, 0.239, 0.573, 0.537],
-            &[0.143, 0.331, 0.574, 0.261],
-            &[0.265, 0.581, 0.740, 0.552],
-            &[0.054, 0.143, 0.197, 0.204, 0.289, 0.888, 1.495],
-            &[0.176, 0.459, 0.782, 1.303, 2.160, 3.057],
-            &[0.672, 1.349, 1.984, 2.310],
-        ],
-    ),
-    (
-        "midlat-winter",
-        [
-            &[0.053, 0.151, 0.175, 0.299, 0.247],
-            &[0.082, 0.258, 0.376, 0.132],
-            &[0.127, 0.316, 0.238, 0.810],
-            &[0.057, 0.035, 0.053, 0.053, 0.273, 1.125, 2.214],
-            &[0.236, 0.568, 1.060, 1.823, 3.354, 5.416],
-            &[0.969, 2.196, 3.852, 5.276],
-        ],
-    ),
-    (
-        "tropical",
-        [
-            &[0.390, 0.163, 1.893, 0.723, 0.620],
-            &[0.423, 0.581, 0.879, 0.618],
-            &[0.511, 0.907, 0.992, 0.868],
-            &[0.110, 0.192, 0.306, 0.449, 0.590, 0.657, 0.655],
-            &[0.068, 0.118, 0.197, 0.243, 0.322, 0.391],
-            &[0.253, 0.543, 0.909, 1.173],
-        ],
-    ),
-    (
-        "midlat-summer",
-        [
-            &[0.519, 0.770, 1.009, 1.040, 0.849],
-            &[0.272, 0.607, 0.935, 0.436],
-            &[0.554, 1.119, 1.221, 1.037],
-            &[0.139, 0.258, 0.332, 0.445, 0.681, 1.004, 1.073],
-            &[0.158, 0.304, 0.385, 0.374, 0.400, 0.401],
-            &[0.115, 0.273, 0.482, 0.680],
-        ],
-    ),
-    (
-        "subarctic-summer",
-        [
-            &[0.090, 0.134, 0.426, 0.955, 0.803],
-            &[0.399, 0.710, 1.367, 0.540],
-            &[0.477, 0.953, 1.199, 0.824],
-            &[0.128, 0.239, 0.325, 0.326, 0.545, 1.060, 1.443],
-            &[0.210, 0.495, 0.784, 1.109, 1.399, 1.440],
-            &[0.349, 0.552, 0.534, 0.640],
-        ],
-    ),
-    (
-        "subarctic-winter",
-        [
-            &[0.067, 0.062, 0.280, 0.078, 0.162],
-            &[0.010, 0.009, 0.041, 0.371],
-            &[0.013, 0.026, 0.026, 0.543],
-            &[0.005, 0.020, 0.040, 0.094, 0.182, 0.662, 1.244],
-            &[0.102, 0.251, 0.494, 0.916, 1.855, 3.381],
-            &[0.614, 1.504, 2.935, 4.430],
-        ],
-    ),
-];
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct BeyondMeasurement {
+    /// The wavelengths LOWTRAN7 was run over, µm: a band inside them takes this
+    /// measurement.
+    pub band_um: [f64; 2],
+    /// By built-in ([`crate::BUILTIN_NAMES`]' order), K, absolute.
+    pub rows: [(&'static str, BeyondRows); 6],
+    /// The largest of the built-ins' cells, cell by cell: the bound for an atmosphere that
+    /// is none of them (the built-ins span LOWTRAN7's six standard models).
+    pub worst: BeyondRows,
+}
 
-/// The band [`BEYOND_WIDEST_ROW`] was measured over, µm: a band inside LOWTRAN7's
-/// 710–1350 cm⁻¹ run. Outside it nothing was measured past the widest row.
-pub const BEYOND_MEASURED_BAND_UM: [f64; 2] = [7.40, 14.09];
+/// Past the widest row in 8–14 µm (LOWTRAN7 over 710–1350 cm⁻¹).
+pub const BEYOND_WIDEST_ROW_LWIR: BeyondMeasurement = BeyondMeasurement {
+    band_um: [7.40, 14.09],
+    rows: [
+        (
+            "us-std-1976",
+            [
+                &[0.044, 0.068, 0.239, 0.573, 0.537],
+                &[0.143, 0.331, 0.574, 0.261],
+                &[0.265, 0.581, 0.740, 0.552],
+                &[0.054, 0.143, 0.197, 0.204, 0.289, 0.888, 1.495],
+                &[0.176, 0.459, 0.782, 1.303, 2.160, 3.057],
+                &[0.672, 1.349, 1.984, 2.310],
+            ],
+        ),
+        (
+            "midlat-winter",
+            [
+                &[0.053, 0.151, 0.175, 0.299, 0.247],
+                &[0.082, 0.258, 0.376, 0.132],
+                &[0.127, 0.316, 0.238, 0.810],
+                &[0.057, 0.035, 0.053, 0.053, 0.273, 1.125, 2.214],
+                &[0.236, 0.568, 1.060, 1.823, 3.354, 5.416],
+                &[0.969, 2.196, 3.852, 5.276],
+            ],
+        ),
+        (
+            "tropical",
+            [
+                &[0.390, 0.163, 1.893, 0.723, 0.620],
+                &[0.423, 0.581, 0.879, 0.618],
+                &[0.511, 0.907, 0.992, 0.868],
+                &[0.110, 0.192, 0.306, 0.449, 0.590, 0.657, 0.655],
+                &[0.068, 0.118, 0.197, 0.243, 0.322, 0.391],
+                &[0.253, 0.543, 0.909, 1.173],
+            ],
+        ),
+        (
+            "midlat-summer",
+            [
+                &[0.519, 0.770, 1.009, 1.040, 0.849],
+                &[0.272, 0.607, 0.935, 0.436],
+                &[0.554, 1.119, 1.221, 1.037],
+                &[0.139, 0.258, 0.332, 0.445, 0.681, 1.004, 1.073],
+                &[0.158, 0.304, 0.385, 0.374, 0.400, 0.401],
+                &[0.115, 0.273, 0.482, 0.680],
+            ],
+        ),
+        (
+            "subarctic-summer",
+            [
+                &[0.090, 0.134, 0.426, 0.955, 0.803],
+                &[0.399, 0.710, 1.367, 0.540],
+                &[0.477, 0.953, 1.199, 0.824],
+                &[0.128, 0.239, 0.325, 0.326, 0.545, 1.060, 1.443],
+                &[0.210, 0.495, 0.784, 1.109, 1.399, 1.440],
+                &[0.349, 0.552, 0.534, 0.640],
+            ],
+        ),
+        (
+            "subarctic-winter",
+            [
+                &[0.067, 0.062, 0.280, 0.078, 0.162],
+                &[0.010, 0.009, 0.041, 0.371],
+                &[0.013, 0.026, 0.026, 0.543],
+                &[0.005, 0.020, 0.040, 0.094, 0.182, 0.662, 1.244],
+                &[0.102, 0.251, 0.494, 0.916, 1.855, 3.381],
+                &[0.614, 1.504, 2.935, 4.430],
+            ],
+        ),
+    ],
+    worst: [
+        &[0.519, 0.770, 1.893, 1.040, 0.849],
+        &[0.423, 0.710, 1.367, 0.618],
+        &[0.554, 1.119, 1.221, 1.037],
+        &[0.139, 0.258, 0.332, 0.449, 0.681, 1.125, 2.214],
+        &[0.236, 0.568, 1.060, 1.823, 3.354, 5.416],
+        &[0.969, 2.196, 3.852, 5.276],
+    ],
+};
+
+/// Past the widest row in 3–5 µm (LOWTRAN7 over 2000–3340 cm⁻¹), the 3–5 µm built-ins'
+/// rows being those of 8–14 µm.
+pub const BEYOND_WIDEST_ROW_MWIR: BeyondMeasurement = BeyondMeasurement {
+    band_um: [2.994, 5.0],
+    rows: [
+        (
+            "us-std-1976",
+            [
+                &[0.129, 0.177, 0.162, 0.102, 0.290],
+                &[0.059, 0.121, 0.203, 0.565],
+                &[0.084, 0.133, 0.238, 0.731],
+                &[0.038, 0.066, 0.124, 0.204, 0.349, 0.629, 1.052],
+                &[0.104, 0.242, 0.393, 0.621, 1.002, 1.441],
+                &[0.226, 0.479, 0.813, 1.095],
+            ],
+        ),
+        (
+            "midlat-winter",
+            [
+                &[0.036, 0.154, 0.163, 0.080, 0.316],
+                &[0.078, 0.011, 0.047, 0.860],
+                &[0.048, 0.105, 0.261, 1.343],
+                &[0.034, 0.030, 0.051, 0.196, 0.445, 1.173, 1.976],
+                &[0.165, 0.400, 0.733, 1.215, 2.069, 3.146],
+                &[0.469, 1.020, 1.718, 2.301],
+            ],
+        ),
+        (
+            "tropical",
+            [
+                &[0.099, 0.394, 0.465, 0.086, 0.680],
+                &[0.082, 0.046, 0.143, 0.708],
+                &[0.105, 0.137, 0.341, 0.754],
+                &[0.053, 0.107, 0.208, 0.327, 0.472, 0.708, 0.901],
+                &[0.123, 0.257, 0.400, 0.573, 0.788, 0.973],
+                &[0.217, 0.458, 0.741, 0.976],
+            ],
+        ),
+        (
+            "midlat-summer",
+            [
+                &[0.028, 0.121, 0.055, 0.049, 0.343],
+                &[0.034, 0.054, 0.199, 0.636],
+                &[0.090, 0.148, 0.362, 0.729],
+                &[0.039, 0.106, 0.198, 0.284, 0.425, 0.678, 0.858],
+                &[0.102, 0.229, 0.353, 0.518, 0.723, 0.918],
+                &[0.181, 0.381, 0.623, 0.816],
+            ],
+        ),
+        (
+            "subarctic-summer",
+            [
+                &[0.267, 0.080, 0.031, 0.183, 0.241],
+                &[0.069, 0.043, 0.102, 0.561],
+                &[0.154, 0.155, 0.265, 0.681],
+                &[0.034, 0.084, 0.146, 0.248, 0.380, 0.654, 1.036],
+                &[0.118, 0.259, 0.411, 0.635, 0.946, 1.305],
+                &[0.196, 0.425, 0.702, 0.948],
+            ],
+        ),
+        (
+            "subarctic-winter",
+            [
+                &[0.152, 0.151, 0.421, 0.096, 0.235],
+                &[0.030, 0.040, 0.092, 0.700],
+                &[0.046, 0.059, 0.147, 1.082],
+                &[0.006, 0.045, 0.085, 0.187, 0.364, 1.083, 1.979],
+                &[0.166, 0.401, 0.760, 1.331, 2.472, 4.135],
+                &[0.638, 1.473, 2.698, 3.859],
+            ],
+        ),
+    ],
+    worst: [
+        &[0.267, 0.394, 0.465, 0.183, 0.680],
+        &[0.082, 0.121, 0.203, 0.860],
+        &[0.154, 0.155, 0.362, 1.343],
+        &[0.053, 0.107, 0.208, 0.327, 0.472, 1.173, 1.979],
+        &[0.166, 0.401, 0.760, 1.331, 2.472, 4.135],
+        &[0.638, 1.473, 2.698, 3.859],
+    ],
+};
+
+/// Every band measured past the widest row. A band inside none of them has no
+/// measurement there.
+pub const BEYOND_WIDEST_ROW: [&BeyondMeasurement; 2] =
+    [&BEYOND_WIDEST_ROW_LWIR, &BEYOND_WIDEST_ROW_MWIR];
 
 /// The region of a slant table a path to the ground reads, by its nadir angle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -143,8 +250,8 @@ impl DataError {
     /// The data error of tables that record `residual`, whose widest nadir row is
     /// `widest_row_deg`, of the atmosphere `name` over `band_um`. Past the widest row a
     /// built-in's own measurement answers; another atmosphere's, the largest any built-in
-    /// was measured at (the built-ins span LOWTRAN7's six standard models); a band outside
-    /// [`BEYOND_MEASURED_BAND_UM`] has no measurement there.
+    /// was measured at (the built-ins span LOWTRAN7's six standard models); a band inside
+    /// none of [`BEYOND_WIDEST_ROW`]'s has no measurement there.
     #[must_use]
     pub fn new(
         residual: InterpolationResidual,
@@ -152,14 +259,15 @@ impl DataError {
         name: &str,
         band_um: [f64; 2],
     ) -> Self {
-        let measured =
-            band_um[0] >= BEYOND_MEASURED_BAND_UM[0] && band_um[1] <= BEYOND_MEASURED_BAND_UM[1];
-        let beyond = measured.then(|| {
-            BEYOND_WIDEST_ROW
-                .iter()
-                .find(|(n, _)| *n == name)
-                .map_or(WORST_BEYOND, |(_, rows)| *rows)
-        });
+        let beyond = BEYOND_WIDEST_ROW
+            .iter()
+            .find(|m| band_um[0] >= m.band_um[0] && band_um[1] <= m.band_um[1])
+            .map(|m| {
+                m.rows
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .map_or(m.worst, |(_, rows)| *rows)
+            });
         Self {
             residual,
             widest_row_deg,
@@ -206,19 +314,6 @@ impl DataError {
         self.residual.sky_k
     }
 }
-
-/// The largest of every built-in's measurement at each cell: the bound for an atmosphere
-/// that is none of them.
-/// Every built-in's rows have the same cells; this is their largest, cell by cell (a test
-/// checks it against [`BEYOND_WIDEST_ROW`]).
-const WORST_BEYOND: BeyondRows = [
-    &[0.519, 0.770, 1.893, 1.040, 0.849],
-    &[0.423, 0.710, 1.367, 0.618],
-    &[0.554, 1.119, 1.221, 1.037],
-    &[0.139, 0.258, 0.332, 0.449, 0.681, 1.125, 2.214],
-    &[0.236, 0.568, 1.060, 1.823, 3.354, 5.416],
-    &[0.969, 2.196, 3.852, 5.276],
-];
 
 /// The measured error at `altitude_m` and `nadir_deg` from `rows`, interpolated so that it
 /// is never below a measurement it lies between: the largest of the cells around it (the
@@ -303,31 +398,50 @@ mod tests {
 
     #[test]
     fn another_atmosphere_takes_the_largest_any_built_in_was_measured_at() {
-        for (k, worst) in WORST_BEYOND.iter().enumerate() {
-            for (i, &w) in worst.iter().enumerate() {
-                let largest = BEYOND_WIDEST_ROW
-                    .iter()
-                    .map(|(_, rows)| rows[k][i])
-                    .fold(0.0, f64::max);
-                assert_eq!(w.to_bits(), largest.to_bits(), "row {k} cell {i}");
+        for m in BEYOND_WIDEST_ROW {
+            for (k, worst) in m.worst.iter().enumerate() {
+                for (i, &w) in worst.iter().enumerate() {
+                    let largest = m
+                        .rows
+                        .iter()
+                        .map(|(_, rows)| rows[k][i])
+                        .fold(0.0, f64::max);
+                    assert_eq!(
+                        w.to_bits(),
+                        largest.to_bits(),
+                        "{:?} row {k} cell {i}",
+                        m.band_um
+                    );
+                }
             }
         }
         let d = DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0]);
         assert_eq!(d.ground_path_k(1000.0, 88.9), Some(5.276));
+        let d = DataError::new(RESIDUAL, 88.0, "my-own", [3.0, 5.0]);
+        assert_eq!(d.ground_path_k(1000.0, 88.9), Some(3.859));
     }
 
     #[test]
     fn a_band_not_measured_past_the_widest_row_has_no_number_there() {
-        let d = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.0, 5.0]);
-        assert_eq!(d.ground_path_k(300.0, 89.0), None);
-        assert_eq!(d.ground_path_k(300.0, 70.0), Some(0.05));
+        // 3-5 um and a part of it have their own measurement (us-std-1976 from 300 m at
+        // 89°: 0.621 K in 3-5 um, 1.303 K in 8-14); 1-3 um and a band across both have none.
+        let mwir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.0, 5.0]);
+        assert_eq!(mwir.ground_path_k(300.0, 89.0), Some(0.621));
+        let part = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.4, 4.2]);
+        assert_eq!(part.ground_path_k(300.0, 89.0), Some(0.621));
+        assert_eq!(us_std().ground_path_k(300.0, 89.0), Some(1.303));
+        for band in [[1.0, 3.0], [3.0, 14.0], [5.0, 8.0]] {
+            let d = DataError::new(RESIDUAL, 88.0, "us-std-1976", band);
+            assert_eq!(d.ground_path_k(300.0, 89.0), None, "{band:?}");
+            assert_eq!(d.ground_path_k(300.0, 70.0), Some(0.05));
+        }
     }
 
     #[test]
     fn every_row_has_a_number_per_angle() {
         for (name, rows) in BEYOND_WIDEST_ROW
             .iter()
-            .chain([("worst", WORST_BEYOND)].iter())
+            .flat_map(|m| m.rows.iter().copied().chain([("worst", m.worst)]))
         {
             for (k, row) in rows.iter().enumerate() {
                 assert_eq!(row.len(), BEYOND_NADIRS_DEG[k].len(), "{name} row {k}");

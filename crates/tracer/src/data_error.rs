@@ -223,9 +223,12 @@ mod tests {
         let terrain = truth(Event::Terrain, 1.0, 0.5);
         // us-std-1976 from 300 m at 89°: the cells 88.75° (0.782) and 89° (1.303).
         assert!((pixel_k(&d, 300.0, dir(89.0), &terrain) - 1.303).abs() < 1e-9);
-        // Unmeasured in 3-5 um: NaN, never a made-up number.
+        // 3-5 um has its own measurement: 0.621 K there.
         let mwir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.0, 5.0]);
-        assert!(pixel_k(&mwir, 300.0, dir(89.0), &terrain).is_nan());
+        assert!((pixel_k(&mwir, 300.0, dir(89.0), &terrain) - 0.621).abs() < 1e-9);
+        // Unmeasured in 1-3 um: NaN, never a made-up number.
+        let swir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [1.0, 3.0]);
+        assert!(pixel_k(&swir, 300.0, dir(89.0), &terrain).is_nan());
     }
 
     #[test]
