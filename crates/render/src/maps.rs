@@ -81,6 +81,7 @@ mod tests {
                 filter: MapFilter::Nearest,
             }),
             emissivity_scale: None,
+            material: None,
         });
         lib
     }

@@ -453,6 +453,7 @@ mod tests {
         let maps = ImageMaps {
             temperature_offset_k: Some(map(-5.0, 10.0)),
             emissivity_scale: Some(map(1.0, -0.5)),
+            material: None,
         };
         let loaded = MaterialMaps::new(&maps, |_, _| Ok(quad())).unwrap();
         let t = loaded.sample([0.25, 0.25]);
@@ -467,6 +468,7 @@ mod tests {
         let nan = ImageMaps {
             temperature_offset_k: Some(map(f64::NAN, 1.0)),
             emissivity_scale: None,
+            material: None,
         };
         let e = MaterialMaps::new(&nan, |_, _| panic!("not asked")).unwrap_err();
         assert!(e.to_string().contains("at_black"), "{e}");
