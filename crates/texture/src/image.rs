@@ -250,6 +250,8 @@ impl LoadedMap {
 pub struct MaterialMaps {
     temperature: Option<LoadedMap>,
     emissivity: Option<LoadedMap>,
+    /// The material map with its image ([`Self::with_material`]).
+    material: Option<crate::MixMap>,
 }
 
 impl MaterialMaps {
@@ -273,7 +275,29 @@ impl MaterialMaps {
         Ok(Self {
             temperature: load("temperature_offset_k", &maps.temperature_offset_k)?,
             emissivity: load("emissivity_scale", &maps.emissivity_scale)?,
+            material: None,
         })
+    }
+
+    /// These maps with the material map `material` (read by the caller: its image is not
+    /// a grey map's).
+    #[must_use]
+    pub fn with_material(mut self, material: crate::MixMap) -> Self {
+        self.material = Some(material);
+        self
+    }
+
+    /// The material map, if the maps have one.
+    #[must_use]
+    pub fn material(&self) -> Option<&crate::MixMap> {
+        self.material.as_ref()
+    }
+
+    /// Whether the maps vary the temperature or the emissivity scale (a material map alone
+    /// does neither).
+    #[must_use]
+    pub fn varies_texel(&self) -> bool {
+        self.temperature.is_some() || self.emissivity.is_some()
     }
 
     /// The largest temperature offset the maps give anywhere, in magnitude, K.
