@@ -192,22 +192,41 @@ mod tests {
         MixMap::from_index(2, 2, &[10, 20, 20, 10], &[(10, 0), (20, 1)], 2, filter).unwrap()
     }
 
+    fn bits(w: [f64; MAX_MAP_MATERIALS]) -> [u64; MAX_MAP_MATERIALS] {
+        w.map(f64::to_bits)
+    }
+
     #[test]
     fn nearest_takes_the_texels_material() {
         let m = checker(MapFilter::Nearest);
         // The bottom-left texel (row 1 from the top) holds 20: material 1.
-        assert_eq!(m.sample([0.25, 0.25], 0.0), [0.0, 1.0, 0.0, 0.0]);
-        assert_eq!(m.sample([0.75, 0.25], 0.0), [1.0, 0.0, 0.0, 0.0]);
-        assert_eq!(m.sample([0.25, 0.75], 0.0), [1.0, 0.0, 0.0, 0.0]);
+        assert_eq!(
+            bits(m.sample([0.25, 0.25], 0.0)),
+            bits([0.0, 1.0, 0.0, 0.0])
+        );
+        assert_eq!(
+            bits(m.sample([0.75, 0.25], 0.0)),
+            bits([1.0, 0.0, 0.0, 0.0])
+        );
+        assert_eq!(
+            bits(m.sample([0.25, 0.75], 0.0)),
+            bits([1.0, 0.0, 0.0, 0.0])
+        );
         // Repeated outside 0 to 1.
-        assert_eq!(m.sample([1.25, -0.75], 0.0), [0.0, 1.0, 0.0, 0.0]);
+        assert_eq!(
+            bits(m.sample([1.25, -0.75], 0.0)),
+            bits([0.0, 1.0, 0.0, 0.0])
+        );
     }
 
     #[test]
     fn bilinear_gives_the_area_fractions_of_the_texels_around_the_point() {
         let m = checker(MapFilter::Bilinear);
         // At a texel's centre, its material alone.
-        assert_eq!(m.sample([0.25, 0.25], 0.0), [0.0, 1.0, 0.0, 0.0]);
+        assert_eq!(
+            bits(m.sample([0.25, 0.25], 0.0)),
+            bits([0.0, 1.0, 0.0, 0.0])
+        );
         // Halfway between the bottom two texels' centres (u = 0.5, v = 0.25): half each.
         let w = m.sample([0.5, 0.25], 0.0);
         assert!(
