@@ -6,7 +6,7 @@
 use std::path::Path;
 
 use irsig_model::{MaterialId, MaterialLibrary};
-use irsig_texture::{GreyImage, MaterialMaps, TextureError, TextureErrorKind};
+use irsig_texture::{GreyImage, MaterialMaps, MixMap, TextureError, TextureErrorKind};
 
 /// Each material's maps with their images read, by material id: what the tracer takes.
 pub(crate) type Maps = Vec<(MaterialId, MaterialMaps)>;
@@ -49,6 +49,15 @@ pub(crate) fn read_maps(
             read.push(bytes);
             GreyImage::new(width, height, grey)
         })
+        .and_then(|loaded| match &maps.material {
+            None => Ok(loaded),
+            Some(map) => {
+                let at = format!("materials[{i}].maps.material.image");
+                let (mix, bytes) = read_material_map(&dir, map, &at)?;
+                read.push(bytes);
+                Ok(loaded.with_material(mix))
+            }
+        })
         .map_err(|e| {
             crate::RenderError::maps(
                 format!("{materials_file}: material {} ({})", m.id.0, m.name),
@@ -58,6 +67,70 @@ pub(crate) fn read_maps(
         out.push((m.id, loaded));
     }
     Ok((out, read))
+}
+
+/// A material map's image, found in `dir` and read as the map's form says: an index map
+/// from a one-channel PNG whose every stored value the table lists (each value looked up,
+/// so a value the table lacks is refused at its texel before anything is traced); a
+/// weights map from a PNG of one channel per named material, each sample over the depth's
+/// greatest. `at` is the map's image path in the materials file, for messages.
+///
+/// # Errors
+/// A missing or unreadable image, one of the wrong channel count, a value the table does
+/// not list, or weights that do not sum to 1 within the tolerance: named with `at`, the
+/// image's name and path.
+fn read_material_map(
+    dir: &Path,
+    map: &irsig_model::material_map::MaterialMap,
+    at: &str,
+) -> Result<(MixMap, Vec<u8>), TextureError> {
+    use irsig_model::material_map::MapForm;
+    let image_error = |why: String| TextureError {
+        kind: TextureErrorKind::Image(format!("{at}: image `{}`: {why}", map.image)),
+    };
+    let path = irsig_formats::mesh::resolve_reference(dir, &map.image).map_err(image_error)?;
+    let bytes = irsig_formats::file::read_file(&path)
+        .map_err(|e| image_error(format!("cannot read {}: {e}", path.display())))?;
+    let (width, height, channels, samples, greatest) = irsig_raster::read_png_samples(&bytes)
+        .map_err(|e| image_error(format!("{}: {e}", path.display())))?;
+    let names = map.materials();
+    let mix = match &map.form {
+        MapForm::Index(table) => {
+            if channels != 1 {
+                return Err(image_error(format!(
+                    "{}: {channels} channels: an index map is one grey channel",
+                    path.display()
+                )));
+            }
+            let table: Vec<(u16, usize)> = table
+                .iter()
+                .map(|e| {
+                    (
+                        e.grey,
+                        names.iter().position(|n| *n == e.material).unwrap_or(0),
+                    )
+                })
+                .collect();
+            MixMap::from_index(width, height, &samples, &table, names.len(), map.filter)
+        }
+        MapForm::Weights {
+            channels: named,
+            tolerance,
+        } => {
+            if channels != named.len() {
+                return Err(image_error(format!(
+                    "{}: {channels} channels, but the map names {} materials, one per channel",
+                    path.display(),
+                    named.len()
+                )));
+            }
+            let top = f32::from(greatest);
+            let weights: Vec<f32> = samples.iter().map(|&s| f32::from(s) / top).collect();
+            MixMap::from_weights(width, height, channels, &weights, *tolerance, map.filter)
+        }
+    }
+    .map_err(|e| image_error(format!("{}: {e}", path.display())))?;
+    Ok((mix, bytes))
 }
 
 #[cfg(test)]

@@ -197,7 +197,6 @@ fn a_map_and_a_statistical_texture_add_their_offsets() {
             },
         }),
         emissivity_scale: None,
-        material: None,
     };
     let fields = irsig_texture::TextureFields::new(&texture).unwrap();
     let mut lib = library(&maps, 1.0);
