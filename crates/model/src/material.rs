@@ -352,9 +352,9 @@ impl MaterialLibrary {
             };
             for name in map.materials() {
                 let path = || match &map.form {
-                    crate::material_map::MapForm::Index(table) => {
+                    crate::material_map::MapForm::Index { table } => {
                         let j = table.iter().position(|e| e.material == name).unwrap_or(0);
-                        format!("materials[{i}].maps.material.form[{j}].material")
+                        format!("materials[{i}].maps.material.form.table[{j}].material")
                     }
                     crate::material_map::MapForm::Weights { channels, .. } => {
                         let j = channels.iter().position(|c| c == name).unwrap_or(0);
@@ -459,8 +459,8 @@ mod tests {
             emissivity_scale: None,
             material: Some(MaterialMap {
                 image: "m.png".into(),
-                form: MapForm::Index(
-                    names
+                form: MapForm::Index {
+                    table: names
                         .iter()
                         .enumerate()
                         .map(|(g, n)| IndexEntry {
@@ -468,7 +468,7 @@ mod tests {
                             material: (*n).into(),
                         })
                         .collect(),
-                ),
+                },
                 filter: MapFilter::Nearest,
             }),
         };
@@ -484,12 +484,12 @@ mod tests {
         assert!(lib(host.clone()).validate().is_ok());
         host.maps = Some(mapped(&["asphalt", "gras"]));
         let e = lib(host.clone()).validate().unwrap_err();
-        assert_eq!(e.path, "materials[2].maps.material.form[1].material");
+        assert_eq!(e.path, "materials[2].maps.material.form.table[1].material");
         assert!(e.to_string().contains("unknown material `gras`"), "{e}");
         // A map naming its own material, which has a map: no nesting.
         host.maps = Some(mapped(&["asphalt", "ground"]));
         let e = lib(host).validate().unwrap_err();
-        assert_eq!(e.path, "materials[2].maps.material.form[1].material");
+        assert_eq!(e.path, "materials[2].maps.material.form.table[1].material");
     }
 
     #[test]

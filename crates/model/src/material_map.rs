@@ -48,7 +48,10 @@ pub struct MaterialMap {
 pub enum MapForm {
     /// An 8- or 16-bit grey image whose stored values each name one material. A value of
     /// the image that the table does not list is refused when the image is read.
-    Index(Vec<IndexEntry>),
+    Index {
+        /// Each listed value and the material it names.
+        table: Vec<IndexEntry>,
+    },
     /// An image whose channels, in the file's order (grey; grey, alpha; R, G, B; R, G, B,
     /// A), are the fractions of these materials, one name per channel.
     Weights {
@@ -76,7 +79,7 @@ impl MaterialMap {
     pub fn materials(&self) -> Vec<&str> {
         let mut names: Vec<&str> = Vec::new();
         let listed: Vec<&str> = match &self.form {
-            MapForm::Index(table) => table.iter().map(|e| e.material.as_str()).collect(),
+            MapForm::Index { table } => table.iter().map(|e| e.material.as_str()).collect(),
             MapForm::Weights { channels, .. } => channels.iter().map(String::as_str).collect(),
         };
         for n in listed {
@@ -100,20 +103,20 @@ impl MaterialMap {
             return err(format!("{prefix}.image"), ModelErrorKind::Empty);
         }
         match &self.form {
-            MapForm::Index(table) => {
+            MapForm::Index { table } => {
                 if table.is_empty() {
-                    return err(format!("{prefix}.form"), ModelErrorKind::Empty);
+                    return err(format!("{prefix}.form.table"), ModelErrorKind::Empty);
                 }
                 for (i, e) in table.iter().enumerate() {
                     if e.material.trim().is_empty() {
                         return err(
-                            format!("{prefix}.form[{i}].material"),
+                            format!("{prefix}.form.table[{i}].material"),
                             ModelErrorKind::Empty,
                         );
                     }
                     if table[..i].iter().any(|p| p.grey == e.grey) {
                         return err(
-                            format!("{prefix}.form[{i}].grey"),
+                            format!("{prefix}.form.table[{i}].grey"),
                             ModelErrorKind::Duplicate(e.grey.to_string()),
                         );
                     }
@@ -174,15 +177,15 @@ mod tests {
     fn index(table: &[(u16, &str)]) -> MaterialMap {
         MaterialMap {
             image: "m.png".into(),
-            form: MapForm::Index(
-                table
+            form: MapForm::Index {
+                table: table
                     .iter()
                     .map(|&(grey, m)| IndexEntry {
                         grey,
                         material: m.into(),
                     })
                     .collect(),
-            ),
+            },
             filter: MapFilter::Nearest,
         }
     }
@@ -199,15 +202,15 @@ mod tests {
         assert!(two.validate("m").is_ok());
         assert_eq!(two.materials(), ["asphalt", "grass"]);
         let e = index(&[(3, "a"), (3, "b")]).validate("m").unwrap_err();
-        assert_eq!(e.path, "m.form[1].grey");
+        assert_eq!(e.path, "m.form.table[1].grey");
         let e = index(&[]).validate("m").unwrap_err();
-        assert_eq!(e.path, "m.form");
+        assert_eq!(e.path, "m.form.table");
         let e = index(&[(0, "a"), (1, "b"), (2, "c"), (3, "d"), (4, "e")])
             .validate("m")
             .unwrap_err();
         assert_eq!(e.path, "m.form");
         let e = index(&[(0, " ")]).validate("m").unwrap_err();
-        assert_eq!(e.path, "m.form[0].material");
+        assert_eq!(e.path, "m.form.table[0].material");
     }
 
     #[test]

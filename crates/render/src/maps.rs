@@ -95,7 +95,7 @@ fn read_material_map(
         .map_err(|e| image_error(format!("{}: {e}", path.display())))?;
     let names = map.materials();
     let mix = match &map.form {
-        MapForm::Index(table) => {
+        MapForm::Index { table } => {
             if channels != 1 {
                 return Err(image_error(format!(
                     "{}: {channels} channels: an index map is one grey channel",
@@ -279,7 +279,7 @@ mod tests {
         let materials = materials.to_str().unwrap();
         let index = |image: &str, top: u16| {
             format!(
-                r#"(image: "{image}", form: Index([(grey: 0, material: "asphalt"),
+                r#"(image: "{image}", form: Index(table: [(grey: 0, material: "asphalt"),
                    (grey: {top}, material: "grass")]))"#
             )
         };

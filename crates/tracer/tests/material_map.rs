@@ -67,16 +67,18 @@ fn map(filter: MapFilter) -> ImageMaps {
         emissivity_scale: None,
         material: Some(MaterialMap {
             image: "m.png".into(),
-            form: MapForm::Index(vec![
-                IndexEntry {
-                    grey: 0,
-                    material: "grey2".into(),
-                },
-                IndexEntry {
-                    grey: 1,
-                    material: "grey3".into(),
-                },
-            ]),
+            form: MapForm::Index {
+                table: vec![
+                    IndexEntry {
+                        grey: 0,
+                        material: "grey2".into(),
+                    },
+                    IndexEntry {
+                        grey: 1,
+                        material: "grey3".into(),
+                    },
+                ],
+            },
             filter,
         }),
     }
