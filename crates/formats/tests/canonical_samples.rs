@@ -216,6 +216,41 @@ fn the_mapped_materials_sample_reads_and_a_nan_mapping_is_refused_at_its_place()
     assert_eq!(e.line, line, "{e}");
 }
 
+#[test]
+fn the_material_map_sample_reads_and_an_unknown_name_is_refused_at_its_place() {
+    use irsig_model::material_map::MapForm;
+    let lib: MaterialLibrary = round_trip("materials-material-map.ron");
+    let map = lib.materials[2]
+        .maps
+        .as_ref()
+        .unwrap()
+        .material
+        .as_ref()
+        .unwrap();
+    assert_eq!(map.image, "checker-8x8.png");
+    assert!(matches!(&map.form, MapForm::Index { table: t } if t.len() == 2 && t[1].grey == 255));
+    assert_eq!(map.materials(), ["asphalt", "grass"]);
+    let text = sample("materials-material-map.ron");
+    for (from, to, path) in [
+        (
+            r#"(grey: 255, material: "grass")"#,
+            r#"(grey: 255, material: "gras")"#,
+            "materials[2].maps.material.form.table[1].material",
+        ),
+        (
+            r#"(grey: 255, material: "grass")"#,
+            r#"(grey: 0, material: "grass")"#,
+            "materials[2].maps.material.form.table[1].grey",
+        ),
+    ] {
+        let broken = text.replacen(from, to, 1);
+        let e = canonical::from_ron::<MaterialLibrary>("lib.ron", &broken).unwrap_err();
+        assert!(e.message.contains(path), "{e}");
+        let line = text.lines().position(|l| l.contains(from)).unwrap() + 1;
+        assert_eq!(e.line, line, "{e}");
+    }
+}
+
 #[allow(clippy::float_cmp)] // coordinates and greys written exactly, read back exactly
 #[test]
 fn the_object_sample_with_texture_coordinates_reads_and_round_trips_through_binary() {

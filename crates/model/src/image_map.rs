@@ -30,6 +30,11 @@ pub struct ImageMaps {
     /// 0, is refused when the image is read. `None`: none.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emissivity_scale: Option<ImageMap>,
+    /// Which materials of the library lie where on the facets, as area fractions
+    /// ([`crate::material_map`]): the facets' optics are the mixture's, and the material's
+    /// own emissivity and reflectance are not used at them. `None`: the material's own.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub material: Option<crate::material_map::MaterialMap>,
 }
 
 /// One image map: the image, the linear function of its grey value and the filter.
@@ -131,6 +136,9 @@ impl ImageMaps {
             // only keeps the numbers finite; ε · s ≤ 1 is the real rule.
             m.validate(&format!("{prefix}.emissivity_scale"), [0.0, 1e6])?;
         }
+        if let Some(m) = &self.material {
+            m.validate(&format!("{prefix}.material"))?;
+        }
         Ok(())
     }
 
@@ -173,6 +181,7 @@ mod tests {
         let maps = |t: ImageMap| ImageMaps {
             temperature_offset_k: Some(t),
             emissivity_scale: None,
+            material: None,
         };
         assert!(maps(map(0.0, 10.0)).validate("m").is_ok());
         let e = maps(map(f64::NAN, 1.0)).validate("m").unwrap_err();
@@ -191,6 +200,7 @@ mod tests {
         let e = ImageMaps {
             temperature_offset_k: None,
             emissivity_scale: Some(map(0.5, -1.0)),
+            material: None,
         }
         .validate("m")
         .unwrap_err();
@@ -202,6 +212,7 @@ mod tests {
         let both = ImageMaps {
             temperature_offset_k: Some(map(0.0, 1.0)),
             emissivity_scale: Some(map(1.0, 0.0)),
+            material: None,
         };
         let names: Vec<_> = both.images().into_iter().map(|(n, _)| n).collect();
         assert_eq!(names, ["temperature_offset_k", "emissivity_scale"]);

@@ -57,6 +57,7 @@ pub mod image_map;
 pub mod limits;
 pub mod loads;
 mod material;
+pub mod material_map;
 mod object;
 mod plan;
 pub mod provenance;

@@ -340,6 +340,51 @@ impl MaterialLibrary {
                 ));
             }
         }
+        self.validate_material_maps()
+    }
+
+    /// Checks that every material map names materials of this library, none of which has
+    /// a material map of its own (a mixture is of plain materials).
+    fn validate_material_maps(&self) -> Result<(), ModelError> {
+        for (i, m) in self.materials.iter().enumerate() {
+            let Some(map) = m.maps.as_ref().and_then(|x| x.material.as_ref()) else {
+                continue;
+            };
+            for name in map.materials() {
+                let path = || match &map.form {
+                    crate::material_map::MapForm::Index { table } => {
+                        let j = table.iter().position(|e| e.material == name).unwrap_or(0);
+                        format!("materials[{i}].maps.material.form.table[{j}].material")
+                    }
+                    crate::material_map::MapForm::Weights { channels, .. } => {
+                        let j = channels.iter().position(|c| c == name).unwrap_or(0);
+                        format!("materials[{i}].maps.material.form.channels[{j}]")
+                    }
+                };
+                let Some(component) = self.by_name(name) else {
+                    return Err(ModelError::new(
+                        path(),
+                        ModelErrorKind::Other(format!(
+                            "unknown material `{name}`: expected the name of a material of \
+                             this library"
+                        )),
+                    ));
+                };
+                if component
+                    .maps
+                    .as_ref()
+                    .is_some_and(|x| x.material.is_some())
+                {
+                    return Err(ModelError::new(
+                        path(),
+                        ModelErrorKind::Other(format!(
+                            "material `{name}` has a material map of its own: a map mixes \
+                             plain materials"
+                        )),
+                    ));
+                }
+            }
+        }
         Ok(())
     }
 
@@ -403,6 +448,48 @@ mod tests {
         ));
         let m = mat(1, "a", vec![(f64::NAN, 0.9)]);
         assert_eq!(m.validate("m").unwrap_err().kind, ModelErrorKind::NotFinite);
+    }
+
+    #[test]
+    fn a_material_map_names_plain_materials_of_its_library() {
+        use crate::image_map::{ImageMaps, MapFilter};
+        use crate::material_map::{IndexEntry, MapForm, MaterialMap};
+        let mapped = |names: &[&str]| ImageMaps {
+            temperature_offset_k: None,
+            emissivity_scale: None,
+            material: Some(MaterialMap {
+                image: "m.png".into(),
+                form: MapForm::Index {
+                    table: names
+                        .iter()
+                        .enumerate()
+                        .map(|(g, n)| IndexEntry {
+                            grey: g as u16,
+                            material: (*n).into(),
+                        })
+                        .collect(),
+                },
+                filter: MapFilter::Nearest,
+            }),
+        };
+        let mut host = mat(3, "ground", vec![(0.0, 0.9)]);
+        host.maps = Some(mapped(&["asphalt", "grass"]));
+        let lib = |host: Material| MaterialLibrary {
+            materials: vec![
+                mat(1, "asphalt", vec![(0.0, 0.95)]),
+                mat(2, "grass", vec![(0.0, 0.98)]),
+                host,
+            ],
+        };
+        assert!(lib(host.clone()).validate().is_ok());
+        host.maps = Some(mapped(&["asphalt", "gras"]));
+        let e = lib(host.clone()).validate().unwrap_err();
+        assert_eq!(e.path, "materials[2].maps.material.form.table[1].material");
+        assert!(e.to_string().contains("unknown material `gras`"), "{e}");
+        // A map naming its own material, which has a map: no nesting.
+        host.maps = Some(mapped(&["asphalt", "ground"]));
+        let e = lib(host).validate().unwrap_err();
+        assert_eq!(e.path, "materials[2].maps.material.form.table[1].material");
     }
 
     #[test]

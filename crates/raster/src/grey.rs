@@ -57,6 +57,46 @@ pub fn read_png_grey(bytes: &[u8]) -> Result<(usize, usize, Vec<f32>), RasterErr
     Ok((width as usize, height as usize, grey))
 }
 
+/// A PNG's stored samples as a material map reads them, `(width, height, channels,
+/// samples, greatest)`: one to four channels (grey; grey and alpha; RGB; RGBA), 8 or 16
+/// bits, the samples interleaved texel after texel, row 0 at the top, each the integer the
+/// file stores; `greatest` is 255 or 65,535.
+///
+/// # Errors
+/// As [`read_png_grey`]: not a PNG, too large from its header, or a pixel type other than
+/// 8- or 16-bit grey, grey and alpha, RGB or RGBA.
+pub fn read_png_samples(bytes: &[u8]) -> Result<(usize, usize, usize, Vec<u16>, u16), RasterError> {
+    let reader = || ImageReader::with_format(std::io::Cursor::new(bytes), image::ImageFormat::Png);
+    let (width, height) = reader().into_dimensions()?;
+    let pixels = u64::from(width) * u64::from(height);
+    // Up to four 16-bit samples decoded and kept as u16, and the fractions' f32 images.
+    if pixels > MAX_IMAGE_PIXELS || pixels * (8 + 8 + 16) > MEMORY_BUDGET_BYTES {
+        return Err(RasterError::TooLarge(format!(
+            "the PNG's header claims {width} × {height} = {pixels} pixels, more than the \
+             {MAX_IMAGE_PIXELS} an image may have"
+        )));
+    }
+    let decoder = reader().into_decoder()?;
+    let (w, h) = (width as usize, height as usize);
+    let wide = |v: Vec<u8>| v.into_iter().map(u16::from).collect::<Vec<u16>>();
+    Ok(match image::DynamicImage::from_decoder(decoder)? {
+        image::DynamicImage::ImageLuma8(i) => (w, h, 1, wide(i.into_raw()), 255),
+        image::DynamicImage::ImageLumaA8(i) => (w, h, 2, wide(i.into_raw()), 255),
+        image::DynamicImage::ImageRgb8(i) => (w, h, 3, wide(i.into_raw()), 255),
+        image::DynamicImage::ImageRgba8(i) => (w, h, 4, wide(i.into_raw()), 255),
+        image::DynamicImage::ImageLuma16(i) => (w, h, 1, i.into_raw(), u16::MAX),
+        image::DynamicImage::ImageLumaA16(i) => (w, h, 2, i.into_raw(), u16::MAX),
+        image::DynamicImage::ImageRgb16(i) => (w, h, 3, i.into_raw(), u16::MAX),
+        image::DynamicImage::ImageRgba16(i) => (w, h, 4, i.into_raw(), u16::MAX),
+        other => {
+            return Err(RasterError::PngPixels(format!(
+                "{:?}: expected 8- or 16-bit grey, grey and alpha, RGB or RGBA",
+                other.color()
+            )));
+        }
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -38,7 +38,7 @@ mod grey;
 mod indexed;
 pub mod merge;
 
-pub use grey::read_png_grey;
+pub use grey::{read_png_grey, read_png_samples};
 pub use indexed::{read_png_indices, write_png_indexed8};
 
 /// One image plane: a name, its unit and `width × height` samples, row-major from the top.

@@ -250,6 +250,8 @@ impl LoadedMap {
 pub struct MaterialMaps {
     temperature: Option<LoadedMap>,
     emissivity: Option<LoadedMap>,
+    /// The material map with its image ([`Self::with_material`]).
+    material: Option<crate::MixMap>,
 }
 
 impl MaterialMaps {
@@ -273,7 +275,29 @@ impl MaterialMaps {
         Ok(Self {
             temperature: load("temperature_offset_k", &maps.temperature_offset_k)?,
             emissivity: load("emissivity_scale", &maps.emissivity_scale)?,
+            material: None,
         })
+    }
+
+    /// These maps with the material map `material` (read by the caller: its image is not
+    /// a grey map's).
+    #[must_use]
+    pub fn with_material(mut self, material: crate::MixMap) -> Self {
+        self.material = Some(material);
+        self
+    }
+
+    /// The material map, if the maps have one.
+    #[must_use]
+    pub fn material(&self) -> Option<&crate::MixMap> {
+        self.material.as_ref()
+    }
+
+    /// Whether the maps vary the temperature or the emissivity scale (a material map alone
+    /// does neither).
+    #[must_use]
+    pub fn varies_texel(&self) -> bool {
+        self.temperature.is_some() || self.emissivity.is_some()
     }
 
     /// The largest temperature offset the maps give anywhere, in magnitude, K.
@@ -453,6 +477,7 @@ mod tests {
         let maps = ImageMaps {
             temperature_offset_k: Some(map(-5.0, 10.0)),
             emissivity_scale: Some(map(1.0, -0.5)),
+            material: None,
         };
         let loaded = MaterialMaps::new(&maps, |_, _| Ok(quad())).unwrap();
         let t = loaded.sample([0.25, 0.25]);
@@ -467,6 +492,7 @@ mod tests {
         let nan = ImageMaps {
             temperature_offset_k: Some(map(f64::NAN, 1.0)),
             emissivity_scale: None,
+            material: None,
         };
         let e = MaterialMaps::new(&nan, |_, _| panic!("not asked")).unwrap_err();
         assert!(e.to_string().contains("at_black"), "{e}");

@@ -44,10 +44,12 @@
 
 mod field;
 mod image;
+mod mix;
 mod spectrum;
 
 pub use field::{CLIP_SIGMAS, Field, WAVES};
 pub use image::{GreyImage, MaterialMaps, MipPyramid};
+pub use mix::MixMap;
 pub use spectrum::{correlation, correlation_length_m};
 
 use irsig_model::ModelError;

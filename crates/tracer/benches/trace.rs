@@ -208,6 +208,7 @@ fn mapped(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
         let maps = ImageMaps {
             temperature_offset_k: Some(map("t.png", -2.0, 4.0, t_filter)),
             emissivity_scale: Some(map("e.png", 0.98, 0.04, e_filter)),
+            material: None,
         };
         let side = 256;
         let grey: Vec<f32> = (0..side * side)

@@ -78,6 +78,7 @@ pub mod exposure;
 pub mod geometry;
 pub mod horizon_census;
 mod lobe;
+mod mixture;
 mod path;
 mod path_table;
 pub mod pilot;

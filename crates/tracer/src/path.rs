@@ -46,6 +46,9 @@ pub(crate) struct Surface {
     /// The material's texture at the hit point ([`irsig_texture`]); `None` for a material
     /// without one, whose hits take exactly the facet's temperature and the table's ε.
     pub(crate) texel: Option<irsig_texture::Texel>,
+    /// The materials mixed at the hit, where its material's material map gives more than
+    /// one ([`crate::mixture`]); `None` elsewhere, and `data.material` is the hit's.
+    pub(crate) mix: Option<crate::mixture::Mix>,
 }
 
 /// What arrives along the mirror direction of a facet with a specular part.
@@ -280,11 +283,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         ctx: &mut Ctx<'_>,
         path: &mut Path,
     ) {
-        let m = &self.materials[usize::from(hit.data.material)];
-        let sfrac = m.specular_fraction;
+        let surface = self.surface(hit, alt, path.cone_rad * path.travelled_m);
+        let (has_mirror, has_diffuse, lobe) =
+            self.reflection_parts(&surface.data, surface.mix.as_ref());
         let index = path.nodes.len();
         path.nodes.push(Node {
-            surface: self.surface(hit, alt, path.cone_rad * path.travelled_m),
+            surface,
             mirror: None,
             diffuse: None,
             reflected_z: f64::NAN,
@@ -294,7 +298,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sun_cos_visible: 0.0,
             sun_visible: f64::NAN,
         });
-        if sfrac > 0.0 {
+        if has_mirror {
             // Mirror direction about the normal facing the ray.
             let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
             path.nodes[index].reflected_z = refl[2];
@@ -322,17 +326,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             };
             path.nodes[index].mirror = Some(mirror);
             if let Some(sun) = &self.sun
-                && m.lobe.is_none()
+                && lobe.is_none()
             {
                 path.nodes[index].sun_glint_per_sr = glint_per_sr(sun, refl, mirror);
             }
         }
         // A rough specular share: the lobe over the disk, before the visible fraction.
-        let lobe_glint = match (&self.sun, &m.lobe) {
+        let lobe_glint = match (&self.sun, lobe) {
             (Some(sun), Some(lobe)) => lobe.glint_per_sr(sun, hit.normal, scale(dir, -1.0)),
             _ => 0.0,
         };
-        if sfrac < 1.0 {
+        if has_diffuse {
             let diffuse = if depth == 0 && ctx.options.sky_view_rays > 0 {
                 self.follow_hemisphere(hit, alt, ctx, path)
             } else {
@@ -442,15 +446,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// event alike (the first hit, a specular bounce's, a sky-view ray's), a footprint
     /// filter over the ray's cone `footprint_m` wide there ([`Tracer::texel_at`]).
     fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64, footprint_m: f64) -> Surface {
-        let slot = usize::from(hit.data.material);
+        let (data, mix) = self.resolve_material(hit, footprint_m);
+        let slot = usize::from(data.material);
         Surface {
             facet: hit.facet,
-            data: hit.data,
+            data,
             cos_incidence: hit.cos_incidence,
             back_face: hit.back_face,
             alt_m: alt,
             emissivity: self.emissivity[slot].at_cos(hit.cos_incidence),
             texel: self.texel_at(hit, footprint_m),
+            mix,
         }
     }
 

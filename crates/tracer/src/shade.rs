@@ -385,9 +385,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         path: &Path,
     ) -> SurfaceTerms {
         let surface = &node.surface;
-        let slot = usize::from(surface.data.material);
-        let sfrac = self.materials[slot].specular_fraction;
-        let eps = b.emissivity_of(surface);
+        let (eps, sfrac) = match &surface.mix {
+            None => (
+                b.emissivity_of(surface),
+                self.materials[usize::from(surface.data.material)].specular_fraction,
+            ),
+            Some(mix) => self.mixed_optics(b, surface, mix),
+        };
         let blackbody = b.blackbody_at(surface);
         let sky_hemi = sky_hemispheric(b, surface.alt_m);
         let specular_incident = match node.mirror {

@@ -222,9 +222,12 @@ impl<B, A> crate::tracer::Tracer<B, A> {
     /// frame then keeps the texture's truth layers ([`crate::Frame::texture`]).
     #[must_use]
     pub fn is_textured(&self) -> bool {
-        self.materials
-            .iter()
-            .any(|m| m.texture.is_some() || m.maps.is_some())
+        self.materials.iter().any(|m| {
+            m.texture.is_some()
+                || m.maps
+                    .as_ref()
+                    .is_some_and(irsig_texture::MaterialMaps::varies_texel)
+        })
     }
 
     /// What the material's textures give at a hit: its statistical texture at the world
@@ -238,14 +241,13 @@ impl<B, A> crate::tracer::Tracer<B, A> {
         footprint_m: f64,
     ) -> Option<irsig_texture::Texel> {
         let m = &self.materials[usize::from(hit.data.material)];
-        if m.texture.is_none() && m.maps.is_none() {
+        let maps = m.maps.as_ref().filter(|x| x.varies_texel());
+        if m.texture.is_none() && maps.is_none() {
             return None;
         }
         let p_m = self.geometry.to_world(hit.point_local);
         let field = m.texture.as_ref().map(|t| t.sample(p_m));
-        let map = m
-            .maps
-            .as_ref()
+        let map = maps
             .zip(self.uv_maps.get(hit.facet as usize).copied().flatten())
             .map(|(maps, uv)| {
                 maps.sample_over(uv.at(p_m), uv.footprint_uv(footprint_m, hit.cos_incidence))

@@ -41,6 +41,9 @@ pub(crate) struct MaterialData {
     pub(crate) texture: Option<irsig_texture::TextureFields>,
     /// The material's image maps with their images ([`Tracer::with_sub_bands_and_maps`]).
     pub(crate) maps: Option<irsig_texture::MaterialMaps>,
+    /// The slots of the materials its material map mixes, in the map's order; empty
+    /// without one ([`crate::mixture`]).
+    pub(crate) mix_slots: Vec<u16>,
 }
 
 /// What the tracer keeps per facet, attached to the facet's record in the geometry so a hit

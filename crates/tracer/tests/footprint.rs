@@ -73,6 +73,7 @@ fn tracer(filter: MapFilter, side: usize) -> Tracer<TotalRadiance, Vacuum> {
             filter,
         }),
         emissivity_scale: None,
+        material: None,
     };
     let mut lib = grey_materials(&[(1, 1.0, 0.0)]);
     lib.materials[0].maps = Some(maps.clone());

@@ -77,6 +77,7 @@ fn temperature_map(per_grey_k: f64, filter: MapFilter) -> ImageMaps {
             filter,
         }),
         emissivity_scale: None,
+        material: None,
     }
 }
 
@@ -265,6 +266,7 @@ fn an_emissivity_scale_that_takes_epsilon_above_1_is_refused_not_clamped() {
             per_grey,
             filter: MapFilter::Nearest,
         }),
+        material: None,
     };
     // ε = 0.8: a scale up to 1.2 keeps ε at 0.96 and is allowed; up to 1.3 (ε 1.04) is not.
     let ok = scale(1.0, 0.2);

@@ -12,6 +12,7 @@ mod footprint;
 mod guarantee;
 mod guarantee_sun;
 mod image_map;
+mod material_map;
 mod path_table;
 mod pilot;
 mod radiance;

@@ -84,6 +84,7 @@ fn maps() -> ImageMaps {
     ImageMaps {
         temperature_offset_k: Some(map("checker.png", 0.0, 10.0)),
         emissivity_scale: Some(map("half.png", 0.6, 0.4)),
+        material: None,
     }
 }
 

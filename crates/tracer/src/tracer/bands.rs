@@ -66,6 +66,23 @@ impl<A> BandData<A> {
         } else {
             self.emissivity[slot].at_cos(surface.cos_incidence)
         };
+        if let Some(mix) = &surface.mix {
+            return mix
+                .parts()
+                .map(|(slot, w)| w * self.component_emissivity(slot, surface))
+                .sum();
+        }
+        match surface.texel {
+            None => eps,
+            Some(texel) => texel.emissivity(eps),
+        }
+    }
+
+    /// ε of material slot `slot` at a mixed hit in this sub-band, scaled by the hit's
+    /// texel ([`crate::mixture`]).
+    #[inline]
+    pub(crate) fn component_emissivity(&self, slot: usize, surface: &crate::path::Surface) -> f64 {
+        let eps = self.emissivity[slot].at_cos(surface.cos_incidence);
         match surface.texel {
             None => eps,
             Some(texel) => texel.emissivity(eps),

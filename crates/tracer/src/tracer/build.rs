@@ -111,6 +111,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     .map(crate::lobe::Lobe::new),
                 texture,
                 maps: None,
+                mix_slots: Vec::new(),
             });
         }
         for (id, m) in maps {
@@ -118,6 +119,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 mats[slot].maps = Some(m);
             }
         }
+        mix_slots(materials, &slot_of, &mut mats)?;
         // One table entry per distinct temperature (scenes hold few, and neighbouring facets
         // usually share one), so K sub-bands cost K small tables, not K × facets; the
         // records' L_T is read from the first sub-band's.
@@ -412,4 +414,37 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         }
         span
     }
+}
+
+/// Each material map's materials as slots ([`MaterialData::mix_slots`]), once its image is
+/// given with the material's maps.
+///
+/// # Errors
+/// A material map whose image was not given, or whose specular materials differ in lobe.
+fn mix_slots(
+    library: &MaterialLibrary,
+    slot_of: &[u16],
+    mats: &mut [MaterialData],
+) -> Result<(), TraceError> {
+    for (m, data) in library.materials.iter().zip(mats.iter_mut()) {
+        let Some(map) = m.maps.as_ref().and_then(|x| x.material.as_ref()) else {
+            continue;
+        };
+        let loaded = data.maps.as_ref().and_then(|x| x.material());
+        if loaded.is_none_or(|l| l.materials() != map.materials().len()) {
+            return Err(TraceError::new(TraceErrorKind::InvalidOptions(format!(
+                "material {} ({}): its material map `{}` was not given with its image",
+                m.id.0, m.name, map.image
+            ))));
+        }
+        crate::mixture::check_shared_lobe(m, library)?;
+        // The library's validation found every name.
+        data.mix_slots = map
+            .materials()
+            .into_iter()
+            .filter_map(|n| library.by_name(n))
+            .map(|c| slot_of[usize::from(c.id.0)])
+            .collect();
+    }
+    Ok(())
 }
