@@ -323,7 +323,7 @@ fn beyond_the_widest_row() {
 }
 
 #[test]
-#[ignore = "beyond the widest row in 3-5 um: a minute; docs/accuracy.md's table of the last degrees"]
+#[ignore = "beyond the widest row in 3-5 um: seconds; docs/accuracy.md's table of the last degrees"]
 fn beyond_the_widest_row_mwir() {
     beyond_the_widest_row_over(MWIR);
 }
@@ -403,7 +403,8 @@ fn past_the_widest_row_the_recorded_error_bounds_the_measured_in_3_5_um() {
                 .expect("3-5 um is measured past the row");
             let ratio = measured / recorded;
             println!(
-                "{name} 3-5 um from {h} m at {a}°: measured {measured:.4} K, recorded {recorded:.4} K, ratio {ratio:.3}"
+                "{name} 3-5 um from {h} m at {a}°: measured {measured:.4} K, recorded \
+                 {recorded:.4} K, ratio {ratio:.3}"
             );
             assert!(
                 ratio <= 1.0,

@@ -4,8 +4,8 @@
 //! ([`InterpolationResidual`], measured at the midpoints between neighbouring rows and the
 //! cells' centres when the rows were placed); past the widest nadir row, where no table
 //! has rows and the model's correction fades to none at 90°, it is what that region was
-//! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]). These are bounds of
-//! measured errors (the largest found), not standard deviations.
+//! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]). These
+//! are bounds of measured errors (the largest found), not standard deviations.
 
 use irsig_model::InterpolationResidual;
 
@@ -22,9 +22,9 @@ const ROW_TOLERANCE_DEG: f64 = 1e-6;
 /// Observer altitudes of [`BEYOND_WIDEST_ROW`]'s rows, m above the ground.
 pub const BEYOND_ALTITUDES_M: [f64; 6] = [5.0, 20.0, 50.0, 100.0, 300.0, 1000.0];
 
-/// Nadir angles of [`BEYOND_WIDEST_ROW`]'s rows at each of [`BEYOND_ALTITUDES_M`], degrees: past
-/// the built-ins' widest row (88°) and short of each observer's horizon (89.44° from
-/// 300 m, 88.98° from 1 km).
+/// Nadir angles of [`BEYOND_WIDEST_ROW`]'s rows at each of [`BEYOND_ALTITUDES_M`],
+/// degrees: past the built-ins' widest row (88°) and short of each observer's horizon
+/// (89.44° from 300 m, 88.98° from 1 km).
 pub const BEYOND_NADIRS_DEG: [&[f64]; 6] = [
     &[88.5, 89.0, 89.5, 89.8, 89.9],
     &[88.5, 89.0, 89.5, 89.8],

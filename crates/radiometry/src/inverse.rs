@@ -137,8 +137,8 @@ impl<'a, B: BandModel + ?Sized> InverseTable<'a, B> {
     }
 
     /// The table's start polished by Newton steps; `None` outside the table, for what is
-    /// not a finite radiance of at least [`MIN_WARM_RADIANCE_W_M2_SR`], or where the steps did not settle (then the cold
-    /// solve answers).
+    /// not a finite radiance of at least [`MIN_WARM_RADIANCE_W_M2_SR`], or where the steps
+    /// did not settle (then the cold solve answers).
     fn warm(&self, target: f64) -> Option<f64> {
         if target.is_nan() || target < MIN_WARM_RADIANCE_W_M2_SR {
             return None;
@@ -318,14 +318,14 @@ mod tests {
 
     #[test]
     fn the_f32_is_the_exact_solves_bit_for_bit_where_rounding_is_closest() {
-        let sixty = Band::new(3.0, 5.0).unwrap();
+        let mwir = Band::new(3.0, 5.0).unwrap();
         let response = crate::SensorResponse::new(
             vec![7.5, 8.0, 10.0, 12.0, 14.5],
             vec![0.0, 0.7, 1.0, 0.6, 0.0],
         )
         .unwrap();
         let shaped = Band::lwir().with_response(&response).unwrap();
-        for band in [Band::default(), sixty, shaped] {
+        for band in [Band::default(), mwir, shaped] {
             let radiance = hard_radiances(&band);
             let table = InverseTable::new(&band, &radiance);
             let mut decided_exactly = 0;
