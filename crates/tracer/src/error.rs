@@ -70,7 +70,8 @@ pub enum TraceErrorKind {
     /// never clamped, so it is refused.
     #[error(
         "material library: material {material}'s emissivity map scales ε by {scale_lo} to \
-         {scale_hi}, which takes ε (up to {max_emissivity} in sub-band {sub_band}) outside 0 to 1"
+         {scale_hi}, which takes ε (up to {max_emissivity} in sub-band {sub_band}, its own or, \
+         under a material map, its map's materials') outside 0 to 1"
     )]
     EmissivityScaleOutOfRange {
         /// The material's id.
@@ -79,7 +80,8 @@ pub enum TraceErrorKind {
         scale_lo: f64,
         /// See `scale_lo`.
         scale_hi: f64,
-        /// The material's greatest ε in the sub-band.
+        /// The greatest ε the map scales in the sub-band: the material's own, or under a
+        /// material map its map's materials'.
         max_emissivity: f64,
         /// The sub-band (from 1).
         sub_band: usize,

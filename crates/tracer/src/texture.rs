@@ -188,8 +188,11 @@ pub(crate) fn facet_uv_maps(
 }
 
 /// Refuses an emissivity-scale map that takes a material's ε outside 0 to 1 anywhere in
-/// sub-band `sub_band` (from 0): the greatest scale times the greatest ε of the material's
-/// table for it above 1, or a scale below 0. Never clamped, so refused.
+/// sub-band `sub_band` (from 0): the greatest scale times the greatest ε it scales above 1,
+/// or a scale below 0. Never clamped, so refused. The ε it scales is the material's own
+/// table's, or, under a material map, its map's materials' (a mapped hit is always one of
+/// them or their mixture, each ε scaled by the host's texel: [`crate::mixture`]), never
+/// the host's own.
 ///
 /// # Errors
 /// The first material whose map does.
@@ -198,10 +201,19 @@ pub(crate) fn check_emissivity_scales(
     tables: &[irsig_radiometry::EmissivityTable],
     sub_band: usize,
 ) -> Result<(), crate::error::TraceError> {
+    let greatest =
+        |t: &irsig_radiometry::EmissivityTable| t.emissivity().iter().copied().fold(0.0, f64::max);
     for (m, table) in materials.iter().zip(tables) {
         let Some(maps) = &m.maps else { continue };
         let [lo, hi] = maps.emissivity_scale_range();
-        let max_emissivity = table.emissivity().iter().copied().fold(0.0, f64::max);
+        let max_emissivity = if m.mix_slots.is_empty() {
+            greatest(table)
+        } else {
+            m.mix_slots
+                .iter()
+                .map(|&s| greatest(&tables[usize::from(s)]))
+                .fold(0.0, f64::max)
+        };
         if lo < 0.0 || hi * max_emissivity > 1.0 {
             return Err(crate::error::TraceError::new(
                 crate::error::TraceErrorKind::EmissivityScaleOutOfRange {

@@ -277,3 +277,46 @@ fn the_tracer_refuses_what_it_cannot_lay_or_mix() {
     lib.materials[1].rms_slope = Some(0.2);
     assert!(tracer(&tilted_quad(true), &lib, load()).is_ok());
 }
+
+#[test]
+fn an_emissivity_scale_is_checked_against_the_mapped_materials_not_the_host() {
+    use irsig_model::image_map::ImageMap;
+    use irsig_texture::GreyImage;
+    // A scale of 1 at black rising by `per_grey` to white, on the host of the map.
+    let with_scale = |lib: &mut MaterialLibrary, per_grey: f64| {
+        let mut maps = map(MapFilter::Nearest);
+        maps.emissivity_scale = Some(ImageMap {
+            image: "scale.png".into(),
+            at_black: 1.0,
+            per_grey,
+            filter: MapFilter::Nearest,
+        });
+        lib.materials[0].maps = Some(maps.clone());
+        let mix =
+            MixMap::from_index(2, 1, &[0, 1], &[(0, 0), (1, 1)], 2, MapFilter::Nearest).unwrap();
+        let loaded = MaterialMaps::new(&maps, |_, _| GreyImage::new(2, 2, vec![1.0; 4]))
+            .unwrap()
+            .with_material(mix);
+        vec![(MaterialId(1), loaded)]
+    };
+    // The host's ε (0.2) is never seen under its map; the mapped materials' greatest is 0.95,
+    // so a scale of 1.2 would take it to 1.14: refused, where the host's ε alone (0.24)
+    // would have let it through to a clamp.
+    let mut lib = library(MapFilter::Nearest);
+    let maps = with_scale(&mut lib, 0.2);
+    let e = tracer(&tilted_quad(true), &lib, maps).unwrap_err();
+    match e.kind {
+        TraceErrorKind::EmissivityScaleOutOfRange {
+            material,
+            max_emissivity,
+            ..
+        } => assert_eq!((material, max_emissivity), (1, EPS_A)),
+        ref other => panic!("{other}"),
+    }
+    // A host of ε 0.99 under a scale of 1.05 (1.04 were it seen) is allowed: the mapped
+    // materials reach 0.95 × 1.05 = 0.9975.
+    let mut lib = library(MapFilter::Nearest);
+    lib.materials[0].emissivity = vec![(0.0, 0.99)];
+    let maps = with_scale(&mut lib, 0.05);
+    assert!(tracer(&tilted_quad(true), &lib, maps).is_ok());
+}
