@@ -667,6 +667,7 @@ fn the_quickstart_pipeline_is_listed_by_its_command_lines() {
             l.replace('&', "&amp;")
                 .replace('<', "&lt;")
                 .replace('>', "&gt;")
+                .replace('"', "&quot;")
         })
         .collect();
     let shown: Vec<&str> = listed["<pre id=\"commands\">".len()..].lines().collect();

@@ -1,5 +1,7 @@
 //! The page's small parts: images as data URIs, the false-colour map and its range, the
-//! profile's overlay, escaped text and the tables' number formats.
+//! profile's overlay and the tables' number formats.
+
+use maud::{Markup, html};
 
 use super::*;
 
@@ -18,29 +20,18 @@ pub(crate) fn layer<'a>(image: &'a Raster, name: &str, layer: &str) -> miette::R
         })
 }
 
-pub(crate) fn escape(s: &str) -> String {
-    html_escape::encode_text(s).into_owned()
-}
-
-pub(crate) fn attribute(s: &str) -> String {
-    html_escape::encode_double_quoted_attribute(s).into_owned()
-}
-
 /// Displayed images are enlarged by a whole factor (pixels stay square and sharp) to be
 /// at least this many CSS pixels tall, like the colour bar beside them.
 pub(crate) const DISPLAY_HEIGHT: usize = 360;
 
 /// A PNG as an `<img>` with a `data:` URI, shown enlarged by a whole factor.
-pub(crate) fn img(id: &str, png: &[u8], width: usize, height: usize, alt: &str) -> String {
+pub(crate) fn img(id: &str, png: &[u8], width: usize, height: usize, alt: &str) -> Markup {
     let scale = display_scale(height);
-    format!(
-        "<img id=\"{id}\" width=\"{}\" height=\"{}\" alt=\"{}\" \
-         src=\"data:image/png;base64,{}\">",
-        width * scale,
-        height * scale,
-        attribute(alt),
-        base64::engine::general_purpose::STANDARD.encode(png)
-    )
+    let data = base64::engine::general_purpose::STANDARD.encode(png);
+    html! {
+        img id=(id) width=(width * scale) height=(height * scale) alt=(alt)
+            src={ "data:image/png;base64," (data) };
+    }
 }
 
 /// The values in the inferno map over `range` as an RGB PNG (no finite value: black).
@@ -93,37 +84,34 @@ pub(crate) fn display_scale(height: usize) -> usize {
 /// The profile's line drawn over an image of `width` × `height` pixels shown at `scale`:
 /// an SVG of the image's displayed size laid on it, its user units the image's pixels, the
 /// line from the centre of the start pixel to the centre of the end pixel, dark under light
-/// so that it shows on every colour of the map, a ring at the start.
+/// so that it shows on every colour of the map, a ring at the start. Its elements are
+/// closed by end tags, as SVG inside HTML needs.
 pub(crate) fn profile_overlay(
     line: &ProfileLine,
     width: usize,
     height: usize,
     scale: usize,
-) -> String {
+) -> Markup {
     let (x0, y0) = (line.from.0 as f64 + 0.5, line.from.1 as f64 + 0.5);
     let (x1, y1) = (line.to.0 as f64 + 0.5, line.to.1 as f64 + 0.5);
     // Strokes in display pixels, whatever the enlargement.
     let px = 1.0 / scale as f64;
-    format!(
-        "<svg id=\"profile-overlay\" class=\"overlay\" width=\"{w}\" height=\"{h}\" \
-         viewBox=\"0 0 {width} {height}\" xmlns=\"http://www.w3.org/2000/svg\">\
-         <title>the line profile, from ({a}, {b}) to ({c}, {d})</title>\
-         <line x1=\"{x0}\" y1=\"{y0}\" x2=\"{x1}\" y2=\"{y1}\" stroke=\"#000000\" \
-         stroke-width=\"{outer}\" stroke-linecap=\"round\"/>\
-         <line id=\"profile-line\" x1=\"{x0}\" y1=\"{y0}\" x2=\"{x1}\" y2=\"{y1}\" \
-         stroke=\"#00e5ff\" stroke-width=\"{inner}\" stroke-linecap=\"round\"/>\
-         <circle cx=\"{x0}\" cy=\"{y0}\" r=\"{ring}\" fill=\"none\" stroke=\"#00e5ff\" \
-         stroke-width=\"{inner}\"/></svg>",
-        w = width * scale,
-        h = height * scale,
-        a = line.from.0,
-        b = line.from.1,
-        c = line.to.0,
-        d = line.to.1,
-        outer = 4.0 * px,
-        inner = 2.0 * px,
-        ring = 5.0 * px,
-    )
+    let (outer, inner, ring) = (4.0 * px, 2.0 * px, 5.0 * px);
+    html! {
+        svg id="profile-overlay" class="overlay" width=(width * scale) height=(height * scale)
+            viewBox={ "0 0 " (width) " " (height) } xmlns="http://www.w3.org/2000/svg" {
+            title {
+                "the line profile, from (" (line.from.0) ", " (line.from.1) ") to ("
+                (line.to.0) ", " (line.to.1) ")"
+            }
+            line x1=(x0) y1=(y0) x2=(x1) y2=(y1) stroke="#000000" stroke-width=(outer)
+                stroke-linecap="round" {}
+            line id="profile-line" x1=(x0) y1=(y0) x2=(x1) y2=(y1) stroke="#00e5ff"
+                stroke-width=(inner) stroke-linecap="round" {}
+            circle cx=(x0) cy=(y0) r=(ring) fill="none" stroke="#00e5ff"
+                stroke-width=(inner) {}
+        }
+    }
 }
 
 /// A share as a percentage with enough decimals to tell a few pixels from none.
@@ -149,41 +137,44 @@ pub(crate) fn facets(f: &Facets) -> String {
 }
 
 /// The declared uncertainties as a table: what, of whom, one σ.
-pub(crate) fn declared_table(w: &mut String, u: &Uncertainties) {
-    w.push_str(
-        "<table id=\"declared\">\n<thead><tr><th>quantity</th><th>of</th><th>σ</th></tr>\
-         </thead>\n<tbody>\n",
-    );
-    for t in &u.temperature {
-        let _ = writeln!(
-            w,
-            "<tr><td>kinetic temperature</td><td>{}</td><td class=\"num\">{} K</td></tr>",
-            escape(&facets(&t.facets)),
-            short(t.sigma_k)
-        );
+pub(crate) fn declared_table(u: &Uncertainties) -> Markup {
+    html! {
+        table id="declared" {
+            thead { tr { th { "quantity" } th { "of" } th { "σ" } } }
+            tbody {
+                @for t in &u.temperature {
+                    tr {
+                        td { "kinetic temperature" }
+                        td { (facets(&t.facets)) }
+                        td class="num" { (short(t.sigma_k)) " K" }
+                    }
+                }
+                @if u.temperature.is_empty() {
+                    tr { td { "kinetic temperature" } td { "none declared" } td {} }
+                }
+                @for e in &u.emissivity {
+                    tr {
+                        td { "emissivity" }
+                        td { "material " (e.material.0) }
+                        td class="num" { (short(e.sigma)) }
+                    }
+                }
+                @if u.emissivity.is_empty() {
+                    tr { td { "emissivity" } td { "none declared" } td {} }
+                }
+                tr {
+                    td { "atmospheric transmission" }
+                    td { "relative" }
+                    td class="num" { (short(100.0 * u.transmission_relative)) " %" }
+                }
+                tr {
+                    td { "path and sky radiance" }
+                    td { "relative" }
+                    td class="num" { (short(100.0 * u.path_radiance_relative)) " %" }
+                }
+            }
+        }
     }
-    if u.temperature.is_empty() {
-        w.push_str("<tr><td>kinetic temperature</td><td>none declared</td><td></td></tr>\n");
-    }
-    for e in &u.emissivity {
-        let _ = writeln!(
-            w,
-            "<tr><td>emissivity</td><td>material {}</td><td class=\"num\">{}</td></tr>",
-            e.material.0,
-            short(e.sigma)
-        );
-    }
-    if u.emissivity.is_empty() {
-        w.push_str("<tr><td>emissivity</td><td>none declared</td><td></td></tr>\n");
-    }
-    let _ = writeln!(
-        w,
-        "<tr><td>atmospheric transmission</td><td>relative</td><td class=\"num\">{} %</td>\
-         </tr>\n<tr><td>path and sky radiance</td><td>relative</td><td class=\"num\">{} %\
-         </td></tr>\n</tbody>\n</table>",
-        short(100.0 * u.transmission_relative),
-        short(100.0 * u.path_radiance_relative)
-    );
 }
 
 /// A number with at most six decimals, trailing zeros dropped (`100 × 0.05` is 5, not

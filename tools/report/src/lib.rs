@@ -37,7 +37,6 @@ mod page;
 mod read;
 mod sections;
 
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::str::FromStr;
 

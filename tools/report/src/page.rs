@@ -1,7 +1,11 @@
 //! The page, section by section, from a report's inputs read and checked
 //! ([`crate::read::Run`]): warnings first, then the image, the pixels the counts clip, the
 //! histogram, the profile, the regions, the decision, the error budget and the LUT, each
-//! left out with one line naming the flag that would fill it, and provenance last.
+//! left out with one line naming the flag that would fill it, and provenance last. Every
+//! part is a maud template: text and attribute values are escaped by construction, and
+//! only the style sheet and plotters' SVG go in as they are.
+
+use maud::{DOCTYPE, Markup, PreEscaped, html};
 
 use super::*;
 use crate::read::Run;
@@ -12,98 +16,111 @@ use crate::read::Run;
 /// A plot that cannot be drawn.
 pub(crate) fn page(title: &str, run: &Run) -> miette::Result<String> {
     let (lo, hi) = extremes(&run.values);
-    let mut page = String::new();
-    let w = &mut page;
-    let _ = write!(
-        w,
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>irsig report: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>irsig report: {t}</h1>\n",
-        t = escape(title)
-    );
-    warnings(w, run, (lo, hi));
-    image_section(w, run, (lo, hi))?;
-    saturation_section(w, run, (lo, hi));
     let range = run.range;
-    let _ = write!(
-        w,
-        "<section id=\"histogram\">\n<h2>Histogram of apparent temperature</h2>\n<p>{} \
-         bins of {:.4} K.</p>\n<div class=\"figure\">{}</div>\n</section>\n",
-        HISTOGRAM_BINS,
-        (range.1 - range.0) / HISTOGRAM_BINS as f64,
-        plots::histogram(&run.values, range, HISTOGRAM_BINS)?
-    );
-
     // What is left out, and the flag that would put it in: one line.
     let mut not_shown: Vec<&str> = Vec::new();
-    match &run.profile {
-        Some((line, points)) => {
-            let _ = write!(
-                w,
-                "<section id=\"profile\">\n<h2>Line profile</h2>\n<p>From pixel ({}, {}) to \
-                 ({}, {}), {} pixels (the line on the image above).</p>\n<div class=\"figure\">\
-                 {}</div>\n</section>\n",
-                line.from.0,
-                line.from.1,
-                line.to.0,
-                line.to.1,
-                points.len(),
-                plots::line_chart(
-                    "line profile",
-                    points,
-                    "distance from the start (pixels)",
-                    "apparent temperature (K)"
-                )?
+    let profile = match &run.profile {
+        Some((line, points)) => Some(profile_section(line, points)?),
+        None => {
+            not_shown.push("a line profile (--profile X0,Y0:X1,Y1)");
+            None
+        }
+    };
+    let regions = match &run.regions {
+        Some((table, _)) => Some(html! {
+            section id="regions" { h2 { "Per-region statistics" } (stats_table(table)) }
+        }),
+        None => {
+            not_shown.push("per-region statistics (the truth EXR and --regions FILE)");
+            None
+        }
+    };
+    let decision = match &run.decision {
+        Some(d) => Some(html! {
+            section id="decision" { h2 { "The tolerance pilot's decision" } (decision_table(d)) }
+        }),
+        None => {
+            not_shown.push(
+                "the tolerance pilot's decision (trace with --tolerance K, then --decision FILE)",
             );
+            None
         }
-        None => not_shown.push("a line profile (--profile X0,Y0:X1,Y1)"),
-    }
-    match &run.regions {
-        Some((table, _)) => {
-            w.push_str("<section id=\"regions\">\n<h2>Per-region statistics</h2>\n");
-            stats_table(w, table);
-            w.push_str("</section>\n");
-        }
-        None => not_shown.push("per-region statistics (the truth EXR and --regions FILE)"),
-    }
-    match &run.decision {
-        Some(d) => {
-            w.push_str("<section id=\"decision\">\n<h2>The tolerance pilot's decision</h2>\n");
-            decision_table(w, d);
-            w.push_str("</section>\n");
-        }
-        None => not_shown.push(
-            "the tolerance pilot's decision (trace with --tolerance K, then --decision FILE)",
-        ),
-    }
-    if !budget_section(w, run)? {
+    };
+    let budget = budget_section(run)?;
+    if budget.is_none() {
         not_shown
             .push("the error budget (trace with --uncertainties FILE, then give its truth EXR)");
     }
-    if !lut_section(w, run)? {
+    let lut = lut_section(run)?;
+    if lut.is_none() {
         not_shown.push("the LUT and the counts it clips (--lut FILE)");
     }
-    if !not_shown.is_empty() {
-        let _ = writeln!(
-            w,
-            "<p class=\"absent\" id=\"not-shown\">Not shown: {}.</p>",
-            escape(&not_shown.join("; "))
-        );
-    }
-    provenance_section(
-        w,
-        &run.recorded,
-        &run.chain_rows,
-        run.pipeline.as_ref(),
-        &run.commands,
-    );
-    w.push_str("</body>\n</html>\n");
-    Ok(page)
+    let image = image_section(run, (lo, hi))?;
+    let histogram = plots::histogram(&run.values, range, HISTOGRAM_BINS)?;
+    let page = html! {
+        (DOCTYPE)
+        html lang="en" {
+            head {
+                meta charset="utf-8";
+                title { "irsig report: " (title) }
+                style { (PreEscaped(STYLE)) }
+            }
+            body {
+                h1 { "irsig report: " (title) }
+                (warnings(run, (lo, hi)))
+                (image)
+                (saturation_section(run, (lo, hi)))
+                section id="histogram" {
+                    h2 { "Histogram of apparent temperature" }
+                    p {
+                        (HISTOGRAM_BINS) " bins of "
+                        (format!("{:.4}", (range.1 - range.0) / HISTOGRAM_BINS as f64)) " K."
+                    }
+                    div class="figure" { (PreEscaped(histogram)) }
+                }
+                @if let Some(m) = profile { (m) }
+                @if let Some(m) = regions { (m) }
+                @if let Some(m) = decision { (m) }
+                @if let Some(m) = budget { (m) }
+                @if let Some(m) = lut { (m) }
+                @if !not_shown.is_empty() {
+                    p class="absent" id="not-shown" { "Not shown: " (not_shown.join("; ")) "." }
+                }
+                (provenance_section(
+                    &run.recorded,
+                    &run.chain_rows,
+                    run.pipeline.as_ref(),
+                    &run.commands,
+                ))
+            }
+        }
+    };
+    Ok(page.into_string())
+}
+
+/// The line profile's chart, from the pixels along `line`.
+fn profile_section(line: &ProfileLine, points: &[(f64, f64)]) -> miette::Result<Markup> {
+    let chart = plots::line_chart(
+        "line profile",
+        points,
+        "distance from the start (pixels)",
+        "apparent temperature (K)",
+    )?;
+    Ok(html! {
+        section id="profile" {
+            h2 { "Line profile" }
+            p {
+                "From pixel (" (line.from.0) ", " (line.from.1) ") to (" (line.to.0) ", "
+                (line.to.1) "), " (points.len()) " pixels (the line on the image above)."
+            }
+            div class="figure" { (PreEscaped(chart)) }
+        }
+    })
 }
 
 /// The warnings, first, where nobody can miss them: clipped counts, images from different
 /// runs, inputs the pipeline no longer holds.
-fn warnings(w: &mut String, run: &Run, (lo, hi): (f64, f64)) {
+fn warnings(run: &Run, (lo, hi): (f64, f64)) -> Markup {
     let mut warnings: Vec<(&str, String)> = Vec::new();
     if let (Some(s), Some((_, rows))) = (&run.saturated, &run.lut)
         && s.at_zero + s.at_full > 0
@@ -149,215 +166,221 @@ fn warnings(w: &mut String, run: &Run, (lo, hi): (f64, f64)) {
             ));
         }
     }
-    if warnings.is_empty() {
-        return;
+    html! {
+        @if !warnings.is_empty() {
+            div id="warnings" {
+                @for (id, text) in &warnings {
+                    p class="warning" id=(id) role="alert" { (text) }
+                }
+            }
+        }
     }
-    w.push_str("<div id=\"warnings\">\n");
-    for (id, text) in &warnings {
-        let _ = writeln!(
-            w,
-            "<p class=\"warning\" id=\"{id}\" role=\"alert\">{}</p>",
-            escape(text)
-        );
-    }
-    w.push_str("</div>\n");
 }
 
 /// The colour image, the profile's line on it, and its scale.
-fn image_section(w: &mut String, run: &Run, (lo, hi): (f64, f64)) -> miette::Result<()> {
+fn image_section(run: &Run, (lo, hi): (f64, f64)) -> miette::Result<Markup> {
     let (width, height) = (run.width, run.height);
     let scale = display_scale(height);
-    let _ = write!(
-        w,
-        "<section id=\"image\">\n<h2>Apparent temperature</h2>\n<p>{} ({width} x {height} \
-         pixels): minimum <span class=\"num\" id=\"t-min\">{lo:.3}</span> K, mean <span \
-         class=\"num\" id=\"t-mean\">{:.3}</span> K, maximum <span class=\"num\" \
-         id=\"t-max\">{hi:.3}</span> K.</p>\n<div class=\"figure\"><div class=\"holder\">{}{}\
-         </div>{}</div>\n",
-        escape(&run.shown_source),
-        finite_mean(&run.values),
-        img(
-            "colour",
-            &false_colour(&run.values, width, height, run.range),
-            width,
-            height,
-            "apparent temperature in the inferno colour map"
-        ),
-        run.profile
-            .as_ref()
-            .map(|(line, _)| profile_overlay(line, width, height, scale))
-            .unwrap_or_default(),
-        plots::colour_bar(run.range, "apparent temperature (K)")?
-    );
-    if let Some((line, _)) = &run.profile {
-        let _ = writeln!(
-            w,
-            "<p>The line profile's pixels are drawn on the image in cyan, from the ring at \
-             ({}, {}) to ({}, {}).</p>",
-            line.from.0, line.from.1, line.to.0, line.to.1
-        );
-    }
-    w.push_str("</section>\n");
-    Ok(())
+    let bar = plots::colour_bar(run.range, "apparent temperature (K)")?;
+    let colour = false_colour(&run.values, width, height, run.range);
+    Ok(html! {
+        section id="image" {
+            h2 { "Apparent temperature" }
+            p {
+                (run.shown_source) " (" (width) " x " (height) " pixels): minimum "
+                span class="num" id="t-min" { (format!("{lo:.3}")) } " K, mean "
+                span class="num" id="t-mean" { (format!("{:.3}", finite_mean(&run.values))) }
+                " K, maximum " span class="num" id="t-max" { (format!("{hi:.3}")) } " K."
+            }
+            div class="figure" {
+                div class="holder" {
+                    (img("colour", &colour, width, height,
+                        "apparent temperature in the inferno colour map"))
+                    @if let Some((line, _)) = &run.profile {
+                        (profile_overlay(line, width, height, scale))
+                    }
+                }
+                (PreEscaped(bar))
+            }
+            @if let Some((line, _)) = &run.profile {
+                p {
+                    "The line profile's pixels are drawn on the image in cyan, from the ring at ("
+                    (line.from.0) ", " (line.from.1) ") to (" (line.to.0) ", " (line.to.1) ")."
+                }
+            }
+        }
+    })
 }
 
 /// The pixels the counts clip, and per region when regions are given.
-fn saturation_section(w: &mut String, run: &Run, (lo, hi): (f64, f64)) {
+fn saturation_section(run: &Run, (lo, hi): (f64, f64)) -> Markup {
     let (Some(s), Some((name, rows))) = (&run.saturated, &run.lut) else {
-        return;
+        return html! {};
     };
     let (first, last) = (&rows[0], &rows[rows.len() - 1]);
-    let _ = write!(
-        w,
-        "<section id=\"saturation\">\n<h2>Saturation</h2>\n<p>Of the <span class=\"num\" \
-         id=\"sat-pixels\">{}</span> pixels, <span class=\"num\" id=\"sat-zero\">{}</span> \
-         ({} %) are at count 0 and <span class=\"num\" id=\"sat-full\">{}</span> ({} %) at \
-         full scale, count {}: the counts of {} ({:.4}-{:.4} K) against the image's \
-         {lo:.3}-{hi:.3} K ({}).</p>\n",
-        s.pixels,
-        s.at_zero,
-        percent(s.at_zero, s.pixels),
-        s.at_full,
-        percent(s.at_full, s.pixels),
-        s.full_count,
-        escape(name),
-        first.temperature_k,
-        last.temperature_k,
-        s.compared
-    );
     // The regions' material ids are the truth EXR's, which regions need.
     let ids = run
         .truth
         .as_ref()
         .and_then(|(n, image, _)| layer(image, n, MATERIAL_LAYER).ok());
-    if let (Some((table, set)), Some(ids)) = (&run.regions, ids)
-        && s.at_zero + s.at_full > 0
-    {
-        w.push_str(
-            "<table id=\"saturation-regions\">\n<thead><tr><th>region</th><th>pixels</th>\
-             <th>at count 0</th><th>at full scale</th><th>saturated (%)</th></tr></thead>\
-             \n<tbody>\n",
-        );
-        for (region, row) in set.regions.iter().zip(&table.regions) {
-            let count = |mask: &[f32]| {
-                irsig_regions::stats::region_stats(region, ids, mask, run.width)
-                    .map_or(0, |r| (r.mean * r.pixels as f64).round() as usize)
-            };
-            let (zero, full) = (count(&s.zero_mask), count(&s.full_mask));
-            let _ = writeln!(
-                w,
-                "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{zero}</td>\
-                 <td class=\"num\">{full}</td><td class=\"num\">{}</td></tr>",
-                escape(&row.region),
-                row.pixels,
-                percent(zero + full, row.pixels)
-            );
+    let per_region = match (&run.regions, ids) {
+        (Some((table, set)), Some(ids)) if s.at_zero + s.at_full > 0 => set
+            .regions
+            .iter()
+            .zip(&table.regions)
+            .map(|(region, row)| {
+                let count = |mask: &[f32]| {
+                    irsig_regions::stats::region_stats(region, ids, mask, run.width)
+                        .map_or(0, |r| (r.mean * r.pixels as f64).round() as usize)
+                };
+                (row, count(&s.zero_mask), count(&s.full_mask))
+            })
+            .collect(),
+        _ => Vec::new(),
+    };
+    html! {
+        section id="saturation" {
+            h2 { "Saturation" }
+            p {
+                "Of the " span class="num" id="sat-pixels" { (s.pixels) } " pixels, "
+                span class="num" id="sat-zero" { (s.at_zero) } " ("
+                (percent(s.at_zero, s.pixels)) " %) are at count 0 and "
+                span class="num" id="sat-full" { (s.at_full) } " ("
+                (percent(s.at_full, s.pixels)) " %) at full scale, count " (s.full_count)
+                ": the counts of " (name) " ("
+                (format!("{:.4}-{:.4}", first.temperature_k, last.temperature_k))
+                " K) against the image's " (format!("{lo:.3}-{hi:.3}")) " K ("
+                (s.compared) ")."
+            }
+            @if !per_region.is_empty() {
+                table id="saturation-regions" {
+                    thead { tr {
+                        th { "region" } th { "pixels" } th { "at count 0" }
+                        th { "at full scale" } th { "saturated (%)" }
+                    } }
+                    tbody {
+                        @for (row, zero, full) in &per_region {
+                            tr {
+                                td { (row.region) }
+                                td class="num" { (row.pixels) }
+                                td class="num" { (zero) }
+                                td class="num" { (full) }
+                                td class="num" { (percent(zero + full, row.pixels)) }
+                            }
+                        }
+                    }
+                }
+            }
         }
-        w.push_str("</tbody>\n</table>\n");
     }
-    w.push_str("</section>\n");
 }
 
 /// The error budget, when the truth EXR has `sigma_total`: its image, its sources and what
-/// was declared. Whether it was shown.
-fn budget_section(w: &mut String, run: &Run) -> miette::Result<bool> {
+/// was declared. `None` when it has not.
+fn budget_section(run: &Run) -> miette::Result<Option<Markup>> {
     let Some((name, image, _)) = run
         .truth
         .as_ref()
         .filter(|(_, i, _)| i.layer(SIGMA_LAYER).is_some())
     else {
-        return Ok(false);
+        return Ok(None);
     };
     let s = image
         .layer(SIGMA_LAYER)
         .map_or(&[][..], |l| l.data.as_slice());
-    let shown = escape(&run.names.show_name(name));
-    w.push_str("<section id=\"budget\">\n<h2>Error budget</h2>\n");
-    match plots::finite_range(s) {
-        Some(r) => {
-            let _ = write!(
-                w,
-                "<p>The `{SIGMA_LAYER}` layer of {shown}: σ of apparent temperature from the \
-                 declared uncertainties, root-sum-square of its sources, from <span \
-                 class=\"num\" id=\"sigma-min\">{:.4}</span> K to <span class=\"num\" \
-                 id=\"sigma-max\">{:.4}</span> K.</p>\n<div class=\"figure\">{}{}</div>\n",
-                extremes(s).0,
-                extremes(s).1,
-                img(
-                    "sigma",
-                    &false_colour(s, run.width, run.height, r),
-                    run.width,
-                    run.height,
-                    "sigma_total in the inferno colour map"
-                ),
-                plots::colour_bar(r, "σ total (K)")?
-            );
+    let shown = run.names.show_name(name);
+    let figure = match plots::finite_range(s) {
+        Some(r) => Some((
+            img(
+                "sigma",
+                &false_colour(s, run.width, run.height, r),
+                run.width,
+                run.height,
+                "sigma_total in the inferno colour map",
+            ),
+            plots::colour_bar(r, "σ total (K)")?,
+        )),
+        None => None,
+    };
+    let (least, largest) = extremes(s);
+    Ok(Some(html! {
+        section id="budget" {
+            h2 { "Error budget" }
+            @match figure {
+                Some((image, bar)) => {
+                    p {
+                        "The `" (SIGMA_LAYER) "` layer of " (shown) ": σ of apparent \
+                         temperature from the declared uncertainties, root-sum-square of its \
+                         sources, from "
+                        span class="num" id="sigma-min" { (format!("{least:.4}")) } " K to "
+                        span class="num" id="sigma-max" { (format!("{largest:.4}")) } " K."
+                    }
+                    div class="figure" { (image) (PreEscaped(bar)) }
+                }
+                None => {
+                    p { "The `" (SIGMA_LAYER) "` layer of " (shown) " has no finite value." }
+                }
+            }
+            table id="budget-sources" {
+                thead { tr {
+                    th { "source" } th { "layer" } th { "mean σ (K)" } th { "largest σ (K)" }
+                } }
+                tbody {
+                    @for (layer, what) in BUDGET_SOURCES {
+                        @if let Some(l) = image.layer(layer.name()) {
+                            tr {
+                                td { (what) }
+                                td { code { (layer.name()) } }
+                                td class="num" { (format!("{:.4}", finite_mean(&l.data))) }
+                                td class="num" { (format!("{:.4}", extremes(&l.data).1)) }
+                            }
+                        }
+                    }
+                }
+            }
+            h3 { "What was declared" }
+            @match (&run.uncertainties, &run.recorded_uncertainties) {
+                (Some(u), _) => { (declared_table(u)) }
+                (None, Some(Some(sha))) => {
+                    p id="declared-absent" {
+                        "The truth EXR was traced with declared uncertainties of SHA-256 "
+                        code { (chain::hex(sha)) }
+                        "; give that file as --uncertainties FILE to list them here."
+                    }
+                }
+                (None, _) => {
+                    p id="declared-absent" {
+                        "The truth EXR does not record its declared uncertainties' file; give \
+                         it as --uncertainties FILE to list them here."
+                    }
+                }
+            }
         }
-        None => {
-            let _ = writeln!(
-                w,
-                "<p>The `{SIGMA_LAYER}` layer of {shown} has no finite value.</p>"
-            );
-        }
-    }
-    w.push_str(
-        "<table id=\"budget-sources\">\n<thead><tr><th>source</th><th>layer</th>\
-         <th>mean σ (K)</th><th>largest σ (K)</th></tr></thead>\n<tbody>\n",
-    );
-    for (layer, what) in BUDGET_SOURCES {
-        if let Some(l) = image.layer(layer.name()) {
-            let _ = writeln!(
-                w,
-                "<tr><td>{what}</td><td><code>{}</code></td><td class=\"num\">{:.4}</td>\
-                 <td class=\"num\">{:.4}</td></tr>",
-                layer.name(),
-                finite_mean(&l.data),
-                extremes(&l.data).1
-            );
-        }
-    }
-    w.push_str("</tbody>\n</table>\n<h3>What was declared</h3>\n");
-    match (&run.uncertainties, &run.recorded_uncertainties) {
-        (Some(u), _) => declared_table(w, u),
-        (None, Some(Some(sha))) => {
-            let _ = writeln!(
-                w,
-                "<p id=\"declared-absent\">The truth EXR was traced with declared \
-                 uncertainties of SHA-256 <code>{}</code>; give that file as \
-                 --uncertainties FILE to list them here.</p>",
-                chain::hex(sha)
-            );
-        }
-        (None, _) => w.push_str(
-            "<p id=\"declared-absent\">The truth EXR does not record its declared \
-             uncertainties' file; give it as --uncertainties FILE to list them here.</p>\n",
-        ),
-    }
-    w.push_str("</section>\n");
-    Ok(true)
+    }))
 }
 
-/// The LUT's curve, count against kelvin. Whether it was shown.
-fn lut_section(w: &mut String, run: &Run) -> miette::Result<bool> {
+/// The LUT's curve, count against kelvin. `None` without a LUT.
+fn lut_section(run: &Run) -> miette::Result<Option<Markup>> {
     let Some((name, rows)) = &run.lut else {
-        return Ok(false);
+        return Ok(None);
     };
     let points: Vec<(f64, f64)> = rows
         .iter()
         .map(|r| (r.temperature_k, f64::from(r.dc)))
         .collect();
-    let _ = write!(
-        w,
-        "<section id=\"lut\">\n<h2>LUT: digital count against temperature</h2>\n<p>{}: {} \
-         counts, <span class=\"num\" id=\"lut-first\">{:.4}</span> K at count 0 to <span \
-         class=\"num\" id=\"lut-last\">{:.4}</span> K at count {}.</p>\n<div \
-         class=\"figure\">{}</div>\n</section>\n",
-        escape(name),
-        rows.len(),
-        rows[0].temperature_k,
-        rows[rows.len() - 1].temperature_k,
-        rows[rows.len() - 1].dc,
-        plots::line_chart("LUT curve", &points, "temperature (K)", "digital count")?
-    );
-    Ok(true)
+    let chart = plots::line_chart("LUT curve", &points, "temperature (K)", "digital count")?;
+    let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+    Ok(Some(html! {
+        section id="lut" {
+            h2 { "LUT: digital count against temperature" }
+            p {
+                (name) ": " (rows.len()) " counts, "
+                span class="num" id="lut-first" { (format!("{:.4}", first.temperature_k)) }
+                " K at count 0 to "
+                span class="num" id="lut-last" { (format!("{:.4}", last.temperature_k)) }
+                " K at count " (last.dc) "."
+            }
+            div class="figure" { (PreEscaped(chart)) }
+        }
+    }))
 }

@@ -1,93 +1,99 @@
 //! Sections of the page written whole by one function each: the provenance, the regions'
-//! statistics, and the page's style sheet.
+//! statistics, the decision, and the page's style sheet.
+
+use maud::{Markup, html};
 
 use super::*;
 
 /// The provenance section: the images' record, every input with its file and SHA-256, the
 /// pipeline's files, the command lines and irsig's version.
 pub(crate) fn provenance_section(
-    w: &mut String,
     recorded: &chain::Recorded,
     rows: &[chain::Row],
     pipeline: Option<&(String, Vec<PipelineFile>)>,
     commands: &[String],
-) {
-    let _ = write!(
-        w,
-        "<section id=\"provenance\">\n<h2>Provenance</h2>\n<p>irsig <span \
-         id=\"version\">{}</span>. Files are named relative to this page.</p>\n",
-        env!("CARGO_PKG_VERSION")
-    );
-    match &recorded.summary {
-        Some(p) => {
-            let _ = writeln!(
-                w,
-                "<p id=\"recorded\">The images record their band, <span \
-                 id=\"recorded-band\">{}</span> (sub-bands: {}), their atmosphere, {} (model \
-                 {}), and every input the trace and the sensor read, listed below by SHA-256 \
-                 with the file that holds it now.</p>",
-                escape(&p.band.to_string()),
-                escape(&p.sub_bands),
-                escape(&p.atmosphere),
-                escape(&p.atmosphere_model)
-            );
+) -> Markup {
+    html! {
+        section id="provenance" {
+            h2 { "Provenance" }
+            p {
+                "irsig " span id="version" { (env!("CARGO_PKG_VERSION")) }
+                ". Files are named relative to this page."
+            }
+            @match &recorded.summary {
+                Some(p) => {
+                    p id="recorded" {
+                        "The images record their band, "
+                        span id="recorded-band" { (p.band.to_string()) }
+                        " (sub-bands: " (p.sub_bands) "), their atmosphere, " (p.atmosphere)
+                        " (model " (p.atmosphere_model) "), and every input the trace and the \
+                         sensor read, listed below by SHA-256 with the file that holds it now."
+                    }
+                }
+                None => {
+                    p id="recorded" {
+                        "The images record no provenance (made before irsig recorded it, or by \
+                         another program): only the report's own inputs are listed."
+                    }
+                }
+            }
+            table id="inputs" {
+                thead { tr {
+                    th { "stage" } th { "role" } th { "file" } th { "SHA-256" }
+                    th { "recorded in" }
+                } }
+                tbody {
+                    @for r in rows {
+                        tr {
+                            td { (r.stage) }
+                            td { (r.role) }
+                            td {
+                                @match &r.file {
+                                    Some(f) => { (f) }
+                                    None => {
+                                        span class="absent" { "no file known here holds it" }
+                                    }
+                                }
+                            }
+                            td { code { (r.sha256_hex) } }
+                            td { (r.recorded_in) }
+                        }
+                    }
+                }
+            }
+            @if let Some((base, files)) = pipeline {
+                h3 { "The pipeline's files" }
+                p {
+                    "Every file the pipeline's steps read or write, as it is now (its steps \
+                     run in " (base) ")."
+                }
+                table id="pipeline-files" {
+                    thead { tr {
+                        th { "file" } th { "SHA-256" } th { "written by" } th { "read by" }
+                    } }
+                    tbody {
+                        @for f in files {
+                            tr {
+                                td { (f.shown) }
+                                td {
+                                    @match &f.sha256 {
+                                        Some(s) => { code { (chain::hex(s)) } }
+                                        None => { span class="absent" { "missing" } }
+                                    }
+                                }
+                                td { (f.written_by.join(", ")) }
+                                td { (f.read_by.join(", ")) }
+                            }
+                        }
+                    }
+                }
+            }
+            @if !commands.is_empty() {
+                h3 { "Command lines" }
+                pre id="commands" { @for c in commands { (c) "\n" } }
+            }
         }
-        None => w.push_str(
-            "<p id=\"recorded\">The images record no provenance (made before irsig recorded \
-             it, or by another program): only the report's own inputs are listed.</p>\n",
-        ),
     }
-    w.push_str(
-        "<table id=\"inputs\">\n<thead><tr><th>stage</th><th>role</th><th>file</th>\
-         <th>SHA-256</th><th>recorded in</th></tr></thead>\n<tbody>\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            w,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td><code>{}</code></td><td>{}</td></tr>",
-            escape(&r.stage),
-            escape(&r.role),
-            r.file.as_deref().map_or_else(
-                || "<span class=\"absent\">no file known here holds it</span>".to_owned(),
-                escape
-            ),
-            escape(&r.sha256_hex),
-            escape(&r.recorded_in)
-        );
-    }
-    w.push_str("</tbody>\n</table>\n");
-    if let Some((base, files)) = pipeline {
-        let _ = write!(
-            w,
-            "<h3>The pipeline's files</h3>\n<p>Every file the pipeline's steps read or write, \
-             as it is now (its steps run in {}).</p>\n<table id=\"pipeline-files\">\n<thead>\
-             <tr><th>file</th><th>SHA-256</th><th>written by</th><th>read by</th></tr></thead>\
-             \n<tbody>\n",
-            escape(base)
-        );
-        for f in files {
-            let _ = writeln!(
-                w,
-                "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
-                escape(&f.shown),
-                f.sha256.as_deref().map_or_else(
-                    || "<span class=\"absent\">missing</span>".to_owned(),
-                    |s| format!("<code>{}</code>", chain::hex(s))
-                ),
-                escape(&f.written_by.join(", ")),
-                escape(&f.read_by.join(", "))
-            );
-        }
-        w.push_str("</tbody>\n</table>\n");
-    }
-    if !commands.is_empty() {
-        w.push_str("<h3>Command lines</h3>\n<pre id=\"commands\">");
-        for c in commands {
-            let _ = writeln!(w, "{}", escape(c));
-        }
-        w.push_str("</pre>\n");
-    }
-    w.push_str("</section>\n");
 }
 
 pub(crate) const STYLE: &str = "body{font-family:sans-serif;margin:2em;max-width:80em}\
@@ -102,89 +108,80 @@ img{image-rendering:pixelated;display:block}.absent{color:#777}pre{white-space:p
 font-weight:bold}";
 
 /// The `irsig-stats` table as HTML, three decimals.
-pub(crate) fn stats_table(w: &mut String, table: &irsig_regions::Table) {
-    let _ = write!(
-        w,
-        "<p>Values: {} ({}).</p>\n<table id=\"stats\">\n<thead><tr><th>region</th>\
-         <th>pixels</th><th>mean_k</th><th>std_dev_k</th><th>min_k</th><th>max_k</th>",
-        escape(&table.values),
-        escape(&table.unit)
-    );
-    for (name, _) in &table.references {
-        let n = escape(name);
-        let _ = write!(w, "<th>{n}_k</th><th>mean_minus_{n}_k</th>");
-    }
-    w.push_str("</tr></thead>\n<tbody>\n");
-    for row in &table.regions {
-        let _ = write!(
-            w,
-            "<tr><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{:.3}</td>\
-             <td class=\"num\">{:.3}</td><td class=\"num\">{:.3}</td><td class=\"num\">{:.3}\
-             </td>",
-            escape(&row.region),
-            row.pixels,
-            row.mean,
-            row.std_dev,
-            row.min,
-            row.max
-        );
-        for r in &row.references {
-            match r {
-                Some(c) => {
-                    let _ = write!(
-                        w,
-                        "<td class=\"num\">{:.3}</td><td class=\"num\">{:+.3}</td>",
-                        c.reference, c.difference
-                    );
+pub(crate) fn stats_table(table: &irsig_regions::Table) -> Markup {
+    html! {
+        p { "Values: " (table.values) " (" (table.unit) ")." }
+        table id="stats" {
+            thead { tr {
+                th { "region" } th { "pixels" } th { "mean_k" } th { "std_dev_k" }
+                th { "min_k" } th { "max_k" }
+                @for (name, _) in &table.references {
+                    th { (name) "_k" } th { "mean_minus_" (name) "_k" }
                 }
-                None => w.push_str("<td>-</td><td>-</td>"),
+            } }
+            tbody {
+                @for row in &table.regions {
+                    tr {
+                        td { (row.region) }
+                        td class="num" { (row.pixels) }
+                        td class="num" { (format!("{:.3}", row.mean)) }
+                        td class="num" { (format!("{:.3}", row.std_dev)) }
+                        td class="num" { (format!("{:.3}", row.min)) }
+                        td class="num" { (format!("{:.3}", row.max)) }
+                        @for r in &row.references {
+                            @match r {
+                                Some(c) => {
+                                    td class="num" { (format!("{:.3}", c.reference)) }
+                                    td class="num" { (format!("{:+.3}", c.difference)) }
+                                }
+                                None => { td { "-" } td { "-" } }
+                            }
+                        }
+                    }
+                }
             }
         }
-        w.push_str("</tr>\n");
-    }
-    w.push_str("</tbody>\n</table>\n");
-    for (name, source) in &table.references {
-        let _ = writeln!(
-            w,
-            "<p class=\"source\">{}: {}</p>",
-            escape(name),
-            escape(source)
-        );
+        @for (name, source) in &table.references {
+            p class="source" { (name) ": " (source) }
+        }
     }
 }
 
 /// The decision as the tracer prints it: one row per model, then the combination.
-pub(crate) fn decision_table(w: &mut String, d: &Decision) {
-    let _ = write!(
-        w,
-        "<p>Tolerance <span class=\"num\" id=\"tolerance\">{}</span> K at the <span \
-         class=\"num\" id=\"percentile\">{}</span>th percentile of the pilot's <span \
-         class=\"num\" id=\"pilot-pixels\">{}</span> pixels.</p>\n<table id=\"decision-table\">\
-         \n<thead><tr><th>model</th><th>choice</th><th>reference</th><th>pinned</th>\
-         <th>error_percentile_k</th><th>error_max_k</th><th>relative_cost</th><th>why</th>\
-         </tr></thead>\n<tbody>\n",
-        d.tolerance_k, d.percentile, d.pilot_pixels
-    );
-    for c in &d.choices {
-        let _ = writeln!(
-            w,
-            "<tr><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{:.3}</td>\
-             <td class=\"num\">{:.3}</td><td class=\"num\">{:.3}</td><td>{}</td></tr>",
-            c.model,
-            escape(&c.setting),
-            escape(&c.reference),
-            if c.pinned { "yes" } else { "no" },
-            c.error.percentile_k,
-            c.error.max_k,
-            c.relative_cost,
-            escape(&c.reason)
-        );
+pub(crate) fn decision_table(d: &Decision) -> Markup {
+    html! {
+        p {
+            "Tolerance " span class="num" id="tolerance" { (d.tolerance_k) } " K at the "
+            span class="num" id="percentile" { (d.percentile) } "th percentile of the pilot's "
+            span class="num" id="pilot-pixels" { (d.pilot_pixels) } " pixels."
+        }
+        table id="decision-table" {
+            thead { tr {
+                th { "model" } th { "choice" } th { "reference" } th { "pinned" }
+                th { "error_percentile_k" } th { "error_max_k" } th { "relative_cost" }
+                th { "why" }
+            } }
+            tbody {
+                @for c in &d.choices {
+                    tr {
+                        td { (c.model) }
+                        td { (c.setting) }
+                        td { (c.reference) }
+                        td { @if c.pinned { "yes" } @else { "no" } }
+                        td class="num" { (format!("{:.3}", c.error.percentile_k)) }
+                        td class="num" { (format!("{:.3}", c.error.max_k)) }
+                        td class="num" { (format!("{:.3}", c.relative_cost)) }
+                        td { (c.reason) }
+                    }
+                }
+                tr class="total" {
+                    td { "predicted" } td {} td {} td {}
+                    td class="num" { (format!("{:.3}", d.predicted.percentile_k)) }
+                    td class="num" { (format!("{:.3}", d.predicted.max_k)) }
+                    td class="num" { (format!("{:.3}", d.relative_cost)) }
+                    td { "the chosen combination's error bound and cost" }
+                }
+            }
+        }
     }
-    let _ = writeln!(
-        w,
-        "<tr class=\"total\"><td>predicted</td><td></td><td></td><td></td><td class=\"num\">\
-         {:.3}</td><td class=\"num\">{:.3}</td><td class=\"num\">{:.3}</td><td>the chosen \
-         combination's error bound and cost</td></tr>\n</tbody>\n</table>",
-        d.predicted.percentile_k, d.predicted.max_k, d.relative_cost
-    );
 }
