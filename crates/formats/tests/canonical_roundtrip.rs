@@ -93,6 +93,7 @@ fn raw_scene() -> impl Strategy<Value = RawScene> {
                     uv: None,
                 })
                 .collect(),
+            mix_temperatures: Vec::new(),
         })
 }
 

@@ -267,3 +267,45 @@ fn the_object_sample_with_texture_coordinates_reads_and_round_trips_through_bina
         object
     );
 }
+
+#[test]
+fn per_material_temperatures_round_trip_in_both_forms_and_a_bad_one_is_refused_at_its_place() {
+    let text = r#"(
+  objects: ["lot"],
+  positions_m: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)],
+  facets: [(vertices: (0, 1, 2), material: 3, temperature_k: 320.0, object: 0)],
+  mix_temperatures: [(facet: 0, temperatures_k: [331.25, 303.5])],
+)"#;
+    let raw: irsig_model::RawScene = canonical::from_ron("mix.ron", text).unwrap();
+    assert_eq!(raw.mix_temperatures_of(0), Some(&[331.25, 303.5][..]));
+    let again: irsig_model::RawScene =
+        canonical::from_ron("mix.ron", &canonical::to_ron(&raw).unwrap()).unwrap();
+    assert_eq!(again, raw);
+    let bin = canonical::binary::encode(&raw).unwrap();
+    assert_eq!(canonical::read_raw_scene("mix.bin", &bin).unwrap(), raw);
+    // Without entries the field is not written: the RON of every earlier scene.
+    let mut plain = raw.clone();
+    plain.mix_temperatures.clear();
+    assert!(
+        !canonical::to_ron(&plain)
+            .unwrap()
+            .contains("mix_temperatures")
+    );
+    // A negative temperature, at its line and column.
+    let bad = text.replace("303.5", "-3.5");
+    let e = canonical::from_ron::<irsig_model::RawScene>("mix.ron", &bad).unwrap_err();
+    assert_eq!(e.line, 5, "{e}");
+    let column = bad.lines().nth(4).unwrap().find("-3.5").unwrap() + 1;
+    assert_eq!(e.column, column, "{e}");
+    assert!(
+        e.message.contains("mix_temperatures[0].temperatures_k[1]"),
+        "{e}"
+    );
+    // In the binary form, at its entry's byte offset.
+    let mut bad_raw = raw.clone();
+    bad_raw.mix_temperatures[0].facet = 7;
+    let bin = canonical::binary::encode(&bad_raw).unwrap();
+    let e = canonical::read_raw_scene("mix.bin", &bin).unwrap_err();
+    assert_eq!(e.column, bin.len() - 40 + 1, "{e}");
+    assert!(e.message.contains("mix_temperatures[0].facet"), "{e}");
+}

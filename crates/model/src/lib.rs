@@ -83,7 +83,7 @@ pub use object::{Facet, FacetUv, MAX_UV, Object, triangle_is_degenerate};
 pub use plan::{
     AerosolModel, AtmospherePlan, MAX_VISIBILITY_M, PlanAerosol, PlanModel, PlanSlabs, PlanSun,
 };
-pub use raw::{RawFacet, RawScene};
+pub use raw::{MixTemperatures, RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
 pub use spectral::{

@@ -52,6 +52,7 @@ pub mod tolerance;
 pub use air::AtmosphereRequest;
 pub use band::BandRequest;
 pub use error::{CallerError, RenderError, RenderErrorKind, RequestError, Setting, Spelling};
+pub use maps::read_material_map_of;
 pub use plan::{
     DATA_ERROR_BYTES_PER_PIXEL, FRAME_BYTES_PER_PIXEL, Plan, Request, Sink,
     TEXTURE_BYTES_PER_PIXEL, TileRequest, ToleranceRequest,

@@ -23,14 +23,7 @@ pub(crate) fn read_maps(
     lib: &MaterialLibrary,
     materials_file: &str,
 ) -> Result<(Maps, Vec<Vec<u8>>), crate::RenderError> {
-    let dir = Path::new(materials_file)
-        .parent()
-        .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
-    let dir = if dir.as_os_str().is_empty() {
-        Path::new(".").to_path_buf()
-    } else {
-        dir
-    };
+    let dir = folder_of(materials_file);
     let mut out = Vec::new();
     let mut read = Vec::new();
     for (i, m) in lib.materials.iter().enumerate() {
@@ -67,6 +60,47 @@ pub(crate) fn read_maps(
         out.push((m.id, loaded));
     }
     Ok((out, read))
+}
+
+/// The folder a materials file's references are relative to: its own (`.` for a bare name).
+fn folder_of(materials_file: &str) -> std::path::PathBuf {
+    let dir = Path::new(materials_file)
+        .parent()
+        .map_or_else(|| Path::new(".").to_path_buf(), Path::to_path_buf);
+    if dir.as_os_str().is_empty() {
+        Path::new(".").to_path_buf()
+    } else {
+        dir
+    }
+}
+
+/// The material map of the library's material `i`, its image read beside `materials_file`
+/// (the library's path as given) as [`read_maps`] reads it, with the image's bytes: what
+/// `irsig-therm` takes each facet's area fractions from. `None`: the material has no
+/// material map.
+///
+/// # Errors
+/// As [`read_maps`], for this map alone.
+pub fn read_material_map_of(
+    lib: &MaterialLibrary,
+    i: usize,
+    materials_file: &str,
+) -> Result<Option<(MixMap, Vec<u8>)>, crate::RenderError> {
+    let Some(m) = lib.materials.get(i) else {
+        return Ok(None);
+    };
+    let Some(map) = m.maps.as_ref().and_then(|x| x.material.as_ref()) else {
+        return Ok(None);
+    };
+    let at = format!("materials[{i}].maps.material.image");
+    read_material_map(&folder_of(materials_file), map, &at)
+        .map(Some)
+        .map_err(|e| {
+            crate::RenderError::maps(
+                format!("{materials_file}: material {} ({})", m.id.0, m.name),
+                e,
+            )
+        })
 }
 
 /// A material map's image, found in `dir` and read as the map's form says: an index map

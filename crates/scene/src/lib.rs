@@ -245,6 +245,7 @@ pub fn flatten(scene: &Scene, objects: &[&Object]) -> Result<RawScene, FlattenEr
         objects: Vec::with_capacity(objects.len()),
         positions_m: Vec::with_capacity(total_positions),
         facets: Vec::with_capacity(total_facets),
+        mix_temperatures: Vec::new(),
     };
     for (i, (placement, object)) in scene.objects.iter().zip(objects).enumerate() {
         let err = |kind| FlattenError {

@@ -36,6 +36,7 @@
 //!     facets: [[0, 1, 2], [0, 2, 3]]
 //!         .map(|vertices| RawFacet { vertices, material: MaterialId(1), temperature_k: 300.0, object: 0, uv: None })
 //!         .to_vec(),
+//!     mix_temperatures: Vec::new(),
 //! };
 //! let materials = MaterialLibrary {
 //!     materials: vec![Material {

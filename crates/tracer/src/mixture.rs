@@ -12,7 +12,12 @@
 //! `ε = Σ wᵢ εᵢ`, specular reflectance `Σ wᵢ (1 − εᵢ) sᵢ` and diffuse `Σ wᵢ (1 − εᵢ)(1 − sᵢ)`,
 //! so its surface-leaving radiance `ε L_T + ρ_s L_spec + ρ_d L_diff` is exactly the
 //! fraction-weighted mean of each material's on its own, under the same incident light
-//! and at the facet's one temperature. The host material's statistical texture and grey
+//! and at the facet's one temperature. Where the raw scene gives the facet per-material
+//! temperatures (`RawScene::mix_temperatures`, what `irsig-therm`'s per-material walls
+//! solve), each material emits at its own: a hit of one material at `Tₖ` (its record's
+//! temperature), a mixed hit `Σ wᵢ εᵢ L(Tᵢ)`, carried as the mixture's `L_T` times its `ε`
+//! (`L_T = Σ wᵢ εᵢ L(Tᵢ) / Σ wᵢ εᵢ`, and `dL_T/dT` alike for the error budget). The host
+//! material's statistical texture and grey
 //! image maps still apply (to each εᵢ); the mixed materials' own textures are not read.
 //! The record's slot is the material of the greatest fraction, which the truth layers
 //! name. Materials without a material map never reach this module.
@@ -28,7 +33,14 @@ use crate::tracer::{BandData, FacetRadiometry, Tracer};
 pub(crate) struct Mix {
     pub(crate) slots: [u16; MAX_MAP_MATERIALS],
     pub(crate) weights: [f32; MAX_MAP_MATERIALS],
+    /// Each material's temperature index, where the facet has per-material temperatures;
+    /// [`NO_TEMPERATURES`] in the first place where it has none (every material then at
+    /// the facet's temperature).
+    pub(crate) temperatures: [u32; MAX_MAP_MATERIALS],
 }
+
+/// [`Mix::temperatures`]'s first place on a facet without per-material temperatures.
+pub(crate) const NO_TEMPERATURES: u32 = u32::MAX;
 
 impl Mix {
     /// The mixed materials with a fraction above 0: `(slot, fraction)`.
@@ -39,6 +51,22 @@ impl Mix {
             .zip(self.weights)
             .filter(|(_, w)| *w > 0.0)
             .map(|(&s, w)| (usize::from(s), f64::from(w)))
+    }
+
+    /// The mixed materials with a fraction above 0 and their temperature indices, when the
+    /// facet has per-material temperatures: `(slot, fraction, temperature index)`.
+    #[inline]
+    pub(crate) fn parts_at_temperatures(
+        &self,
+    ) -> Option<impl Iterator<Item = (usize, f64, usize)> + '_> {
+        (self.temperatures[0] != NO_TEMPERATURES).then(|| {
+            self.slots
+                .iter()
+                .zip(self.weights)
+                .zip(self.temperatures)
+                .filter(|((_, w), _)| *w > 0.0)
+                .map(|((&s, w), t)| (usize::from(s), f64::from(w), t as usize))
+        })
     }
 }
 
@@ -70,13 +98,32 @@ impl<B, A> Tracer<B, A> {
             }
         }
         data.material = m.mix_slots[best];
+        let temperatures = self
+            .mix_temperatures
+            .get(hit.facet as usize)
+            .copied()
+            .flatten();
         if w.iter().filter(|&&x| x > 0.0).count() <= 1 {
+            if let Some(t) = temperatures {
+                let index = t[best] as usize;
+                data.temperature_index = t[best];
+                data.temperature_k = self.temperatures[index];
+                data.blackbody = self.bands.bands[0].blackbody[index];
+            }
             return (data, None);
         }
         let mut slots = [data.material; MAX_MAP_MATERIALS];
         slots[..m.mix_slots.len()].copy_from_slice(&m.mix_slots);
         let weights = w.map(|x| x as f32);
-        (data, Some(Mix { slots, weights }))
+        let temperatures = temperatures.unwrap_or([NO_TEMPERATURES; MAX_MAP_MATERIALS]);
+        (
+            data,
+            Some(Mix {
+                slots,
+                weights,
+                temperatures,
+            }),
+        )
     }
 
     /// Which reflected parts a hit with record `data` and mixture `mix` has: a specular
@@ -130,6 +177,57 @@ impl<B, A> Tracer<B, A> {
         let r = 1.0 - eps;
         (eps, if r > 0.0 { specular / r } else { 0.0 })
     }
+}
+
+/// Each facet's per-material temperatures as indices into `temperatures` (each added
+/// there once), when the scene gives any: `None` for a facet without; an empty list when
+/// the scene has none.
+///
+/// # Errors
+/// An entry whose count is not its facet's material map's material count, or whose facet's
+/// material has no material map: naming the entry, the facet, the material and the map.
+pub(crate) fn mix_temperature_indices(
+    scene: &irsig_model::RawScene,
+    library: &irsig_model::MaterialLibrary,
+    mut index_of: impl FnMut(f64) -> u32,
+) -> Result<Vec<Option<[u32; MAX_MAP_MATERIALS]>>, crate::error::TraceError> {
+    if scene.mix_temperatures.is_empty() {
+        return Ok(Vec::new());
+    }
+    let mut out = vec![None; scene.facets.len()];
+    for (k, entry) in scene.mix_temperatures.iter().enumerate() {
+        // The scene's validation put every facet in range.
+        let i = entry.facet as usize;
+        let id = scene.facets[i].material;
+        let host = library.by_id(id);
+        let map = host.and_then(|m| m.maps.as_ref()?.material.as_ref());
+        let expected = map.map_or(0, |m| m.materials().len());
+        if expected != entry.temperatures_k.len() {
+            let name = host.map_or("?", |m| m.name.as_str());
+            let why = match map {
+                Some(m) => format!(
+                    "its material map `{}` mixes {expected} materials: expected one \
+                     temperature per material, in the map's order",
+                    m.image
+                ),
+                None => "the material has no material map to give them to".to_owned(),
+            };
+            return Err(crate::error::TraceError::new(
+                crate::error::TraceErrorKind::InvalidOptions(format!(
+                    "raw scene: mix_temperatures[{k}]: facet {i} (material {} ({name})) has \
+                     {} per-material temperatures, and {why}",
+                    id.0,
+                    entry.temperatures_k.len()
+                )),
+            ));
+        }
+        let mut t = [0; MAX_MAP_MATERIALS];
+        for (slot, &kelvin) in t.iter_mut().zip(&entry.temperatures_k) {
+            *slot = index_of(kelvin);
+        }
+        out[i] = Some(t);
+    }
+    Ok(out)
 }
 
 /// Refuses a material map whose materials with a specular share have different lobes

@@ -97,6 +97,10 @@ pub struct Tracer<B, A> {
     /// Per raw-scene facet, its texture coordinates at a world point where its material has
     /// image maps ([`crate::texture::UvMap`]); empty when no material has any.
     pub(crate) uv_maps: Vec<Option<crate::texture::UvMap>>,
+    /// Per raw-scene facet, its per-material temperatures as temperature indices in its
+    /// material map's order, where the scene gives them ([`crate::mixture`]); empty when
+    /// it gives none.
+    pub(crate) mix_temperatures: Vec<Option<[u32; irsig_model::material_map::MAX_MAP_MATERIALS]>>,
 }
 
 /// The side an edge candidate's refinement starts at: four rounds of 4 × 4 rays.

@@ -9,13 +9,16 @@
 //! - A 2 × 1 index map (Bilinear) gives the area-fraction mixture `(1 − w) L_a + w L_b`,
 //!   `w` linear between the two texel centres: halfway, on the 50/50 boundary, the mean of
 //!   the two materials' radiances.
+//! - With per-material temperatures on the facets (`RawScene::mix_temperatures`), each
+//!   material emits at its own: the checkerboard's pixels are `εₖ σTₖ⁴/π + (1 − εₖ) L_s`
+//!   at their material's `Tₖ`, and the bilinear map's `Σ wᵢ (εᵢ σTᵢ⁴/π + (1 − εᵢ) L_s)`.
 //! - The refusals the tracer owns: a facet of a mapped material without texture
 //!   coordinates, a material map whose image was not given, and specular materials of one
 //!   map with different RMS slopes.
 
 use irsig_model::image_map::{ImageMaps, MapFilter};
 use irsig_model::material_map::{IndexEntry, MapForm, MaterialMap};
-use irsig_model::{MaterialId, MaterialLibrary, RawScene, View};
+use irsig_model::{MaterialId, MaterialLibrary, MixTemperatures, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_texture::{MaterialMaps, MixMap};
 use irsig_tracer::testing::{grey_materials, raw_scene};
@@ -144,6 +147,31 @@ fn leaving(eps: f64) -> f64 {
     eps * TotalRadiance.radiance(T_K) + (1.0 - eps) * SKY_W_M2_SR
 }
 
+/// A facet of emissivity `eps` at `t_k` under the sky, by hand: `ε σT⁴/π + (1 − ε) L_s`.
+fn leaving_at(eps: f64, t_k: f64) -> f64 {
+    const SIGMA: f64 = 5.670_374_419e-8;
+    eps * SIGMA * t_k.powi(4) / std::f64::consts::PI + (1.0 - eps) * SKY_W_M2_SR
+}
+
+/// The two mapped materials' own temperatures, in the map's order (grey2, grey3), K.
+const T_A_K: f64 = 331.5;
+const T_B_K: f64 = 287.25;
+
+/// The tilted quad with both facets' materials at [`T_A_K`] and [`T_B_K`], and its
+/// facets at their radiative mean (what irsig-therm writes; the tracer reads the
+/// materials' own).
+fn tilted_quad_at_two_temperatures() -> RawScene {
+    let mut scene = tilted_quad(true);
+    for (i, f) in scene.facets.iter_mut().enumerate() {
+        f.temperature_k = 310.0;
+        scene.mix_temperatures.push(MixTemperatures {
+            facet: i as u32,
+            temperatures_k: vec![T_A_K, T_B_K],
+        });
+    }
+    scene
+}
+
 /// The texture coordinates where pixel `(column, row)`'s centre ray meets the quad's
 /// plane: `O + s·d` on z = y·tan θ, `s = (tan θ·O_y − O_z)/(d_z − tan θ·d_y)`.
 fn uv_of(camera: &Camera, column: u32, row: u32) -> Option<[f64; 2]> {
@@ -245,6 +273,115 @@ fn a_bilinear_index_map_mixes_by_area_fraction_and_its_5050_boundary_is_the_mean
     assert!(
         checked > 3000 && boundary > 5,
         "{checked} pixels, {boundary} on the boundary"
+    );
+}
+
+/// Texel (i, j), column i from the left and row j from the bottom: value (i + j) mod 2.
+fn checkerboard(n: usize) -> Vec<u16> {
+    (0..n * n)
+        .map(|k| ((k % n + (n - 1 - k / n)) % 2) as u16)
+        .collect()
+}
+
+#[test]
+fn each_material_of_a_nearest_map_emits_at_its_own_temperature() {
+    const N: usize = 8;
+    let t = tracer(
+        &tilted_quad_at_two_temperatures(),
+        &library(MapFilter::Nearest),
+        loaded(MapFilter::Nearest, N, N, &checkerboard(N)),
+    )
+    .unwrap();
+    let image = radiances(&t);
+    let cam = camera();
+    let (mut checked, mut b) = (0, 0);
+    for row in 0..PIXELS {
+        for column in 0..PIXELS {
+            let Some([u, v]) = uv_of(&cam, column, row) else {
+                continue;
+            };
+            let (x, y) = (u * N as f64, v * N as f64);
+            let near_edge = |c: f64| (c - c.round()).abs() < 0.01;
+            if near_edge(x) || near_edge(y) {
+                continue;
+            }
+            let odd = (x.floor() as usize + y.floor() as usize) % 2 == 1;
+            let expected = if odd {
+                leaving_at(EPS_B, T_B_K)
+            } else {
+                leaving_at(EPS_A, T_A_K)
+            };
+            let got = image[(row * PIXELS + column) as usize];
+            assert!(
+                (got / expected - 1.0).abs() < 1e-9,
+                "pixel ({column}, {row}) at texel ({x:.3}, {y:.3}): {got}, expected {expected}"
+            );
+            checked += 1;
+            b += usize::from(odd);
+        }
+    }
+    assert!(checked > 3000, "{checked} pixels checked");
+    assert!(b > checked / 4 && b < 3 * checked / 4, "{b} of {checked}");
+}
+
+#[test]
+fn a_bilinear_mixture_emits_each_material_at_its_own_temperature() {
+    let t = tracer(
+        &tilted_quad_at_two_temperatures(),
+        &library(MapFilter::Bilinear),
+        loaded(MapFilter::Bilinear, 2, 1, &[0, 1]),
+    )
+    .unwrap();
+    let image = radiances(&t);
+    let cam = camera();
+    let (la, lb) = (leaving_at(EPS_A, T_A_K), leaving_at(EPS_B, T_B_K));
+    let (mut checked, mut boundary) = (0, 0);
+    for row in 0..PIXELS {
+        for column in 0..PIXELS {
+            let Some([u, _]) = uv_of(&cam, column, row) else {
+                continue;
+            };
+            let w = 1.0 - ((u - 0.75).abs() * 2.0).min(1.0);
+            let w = if u < 0.25 { (0.25 - u) * 2.0 } else { w };
+            // Σ wᵢ εᵢ L(Tᵢ) + Σ wᵢ (1 − εᵢ) L_s: each material's own leaving radiance,
+            // weighted by its fraction.
+            let expected = (1.0 - w) * la + w * lb;
+            let got = image[(row * PIXELS + column) as usize];
+            assert!(
+                (got / expected - 1.0).abs() < 1e-6,
+                "pixel ({column}, {row}) at u = {u}: {got}, expected {expected} (w = {w})"
+            );
+            if w > 0.05 && w < 0.95 {
+                boundary += 1;
+            }
+            checked += 1;
+        }
+    }
+    assert!(
+        checked > 3000 && boundary > 500,
+        "{checked} pixels, {boundary} mixed"
+    );
+}
+
+#[test]
+fn per_material_temperatures_that_do_not_fit_the_map_are_refused() {
+    let load = || loaded(MapFilter::Nearest, 2, 1, &[0, 1]);
+    let mut scene = tilted_quad_at_two_temperatures();
+    scene.mix_temperatures[1].temperatures_k.push(300.0);
+    let e = tracer(&scene, &library(MapFilter::Nearest), load()).unwrap_err();
+    let text = e.to_string();
+    assert!(
+        text.contains("mix_temperatures[1]: facet 1 (material 1 (grey1)) has 3")
+            && text.contains("`m.png` mixes 2 materials"),
+        "{text}"
+    );
+    // A facet whose material has no map.
+    let mut lib = library(MapFilter::Nearest);
+    lib.materials[0].maps = None;
+    let e = tracer(&tilted_quad_at_two_temperatures(), &lib, Vec::new()).unwrap_err();
+    assert!(
+        e.to_string().contains("the material has no material map"),
+        "{e}"
     );
 }
 

@@ -6,8 +6,9 @@
 //! materials come through `irsig-formats`, the weather too (`irsig_formats::weather`), the
 //! sun's position from `irsig_atmosphere::sun`, what each facet sees from
 //! `irsig_tracer::exposure` (shadow rays and view factors through the scene's BVH), and
-//! the walls' conduction and surface balance from `irsig-thermal`. [`solve`] is the time
-//! loop that assembles each facet's loads.
+//! the walls' conduction and surface balance from `irsig-thermal`, a material map's image
+//! from `irsig-render`. [`solve`] is the time loop that assembles each facet's loads;
+//! [`mixture`] solves a facet under a material map material by material.
 //!
 //! ```text
 //! irsig-therm scene.raw --materials materials.ron --weather site.epw \
@@ -30,6 +31,7 @@ use irsig_model::{MaterialLibrary, RawScene};
 use miette::miette;
 
 pub mod environment;
+pub mod mixture;
 pub mod models;
 pub mod pilot;
 pub mod prepare;
@@ -58,7 +60,8 @@ Examples:
       each moment's scene named, in time order (as a pipeline's stage names them)
 
 Every material the solved facets use needs a `thermal` record (layers, back boundary,
-solar absorptance; formats/canonical/material-library.md). Times take an offset or an
+solar absorptance; formats/canonical/material-library.md); a facet under a material map
+needs each of the map's materials' instead (--mixture per-material, the default). Times take an offset or an
 IANA zone: 2026-07-15T14:00Z, 2026-07-15T14:00-06:00, 2026-07-15T14:00[America/Denver].";
 
 /// Facet temperatures from a heat balance over time, written as raw scenes.
@@ -313,15 +316,19 @@ fn write(
             .map_err(|e| miette!("cannot write the decision: {e}"))?;
         staged.stage(path, text.as_bytes())?;
     }
-    for ((path, surface), ground) in outputs
+    for (((path, surface), ground), mix) in outputs
         .iter()
         .zip(&outcome.surface_k)
         .zip(&outcome.ground_k)
+        .zip(&outcome.mix_k)
     {
         let mut at = scene.clone();
         for (f, &t) in at.facets.iter_mut().zip(surface) {
             f.temperature_k = t;
         }
+        // A facet solved part by part carries its materials' own temperatures; any the
+        // scene came with are the solve's to replace.
+        at.mix_temperatures.clone_from(mix);
         if let Some(g) = ground {
             at.terrain.temperature_k = *g;
         }

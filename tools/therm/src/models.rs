@@ -26,6 +26,17 @@ pub enum ConvectionArg {
     Mcadams,
 }
 
+/// How a facet whose material has a material map is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum MixtureArg {
+    /// "Per-material walls": each material of the map with a share of the facet gets its
+    /// own wall and surface under the facet's loads, with no conduction between them.
+    PerMaterial,
+    /// The host material's one wall for the whole facet, every map material at its one
+    /// temperature (a named approximation, docs/accuracy.md measures its error).
+    OneWall,
+}
+
 /// On or off.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
 pub enum Switch {
@@ -63,6 +74,10 @@ pub struct Models {
     /// The convection correlation.
     #[arg(long, value_enum, default_value_t = ConvectionArg::Doe2)]
     pub convection: ConvectionArg,
+    /// How a facet under a material map is solved: each map material's own wall
+    /// (per-material), or the host material's one wall (one-wall).
+    #[arg(long, value_enum, default_value_t = MixtureArg::PerMaterial)]
+    pub mixture: MixtureArg,
     /// Hours simulated before the first moment, from walls at the air's temperature, so
     /// that the start no longer matters.
     #[arg(long, default_value_t = 72.0, value_name = "H")]
@@ -192,6 +207,13 @@ impl Models {
                 },
             ),
             ("spin-up".into(), format!("{} h", self.spin_up_h)),
+            (
+                "mixture".into(),
+                match self.mixture {
+                    MixtureArg::PerMaterial => "per-material".into(),
+                    MixtureArg::OneWall => "one-wall".into(),
+                },
+            ),
         ]
     }
 }

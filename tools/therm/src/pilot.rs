@@ -74,9 +74,11 @@ impl Sample {
             } else {
                 1
             };
+            // A facet solved part by part is a kind of its own, by its largest part.
+            let mixed = if walls.is_mixed(i) { 1 << 30 } else { 0 };
             let kind = walls
                 .slot_of(i)
-                .map_or(u32::MAX - u32::from(f.material.0), |s| s as u32);
+                .map_or(u32::MAX - u32::from(f.material.0), |s| s as u32 + mixed);
             classes
                 .entry((kind, way, shade[i]))
                 .or_default()
@@ -146,6 +148,7 @@ fn reference(base: &Models, spin_up_h: f64) -> Models {
         hemisphere_rays: 1024,
         exchange: Switch::On,
         convection: base.convection,
+        mixture: base.mixture,
         spin_up_h,
     }
 }

@@ -11,7 +11,8 @@ use miette::miette;
 
 use crate::Cli;
 use crate::environment::{Environment, Site, SkyLongwave};
-use crate::models::{Models, Switch};
+use crate::mixture::{self, Mixed};
+use crate::models::{MixtureArg, Models, Switch};
 use crate::setup::{self, MaterialModel};
 use crate::solve::{self, Ground, LitCache, Scenario, Settings};
 
@@ -33,6 +34,9 @@ pub struct Prepared<'a> {
     ground_albedo: f64,
     pub(crate) environment: Environment<'a>,
     seed: u64,
+    /// Per facet, its area fractions under its material's material map, when it is solved
+    /// and has one (empty when none has).
+    fractions: Vec<Option<[f64; irsig_model::material_map::MAX_MAP_MATERIALS]>>,
 }
 
 /// What the models' settings make of the materials: each solved material's wall and
@@ -41,21 +45,38 @@ pub struct Prepared<'a> {
 pub(crate) struct Walls {
     models: Vec<MaterialModel>,
     slot: Vec<Option<usize>>,
+    /// Per facet, its parts when it is solved by its map's materials (empty when none is).
+    mix: Vec<Option<Box<Mixed>>>,
     optics: Vec<(f64, f64)>,
     ground: Option<MaterialModel>,
 }
 
 impl Walls {
-    /// Facet `i`'s material model's slot, or `None` when it is held.
+    /// Facet `i`'s material model's slot (a mixed facet's: its largest part's), or `None`
+    /// when it is held.
     pub(crate) fn slot_of(&self, i: usize) -> Option<usize> {
         self.slot[i]
+    }
+
+    /// Whether facet `i` is solved part by part.
+    pub(crate) fn is_mixed(&self, i: usize) -> bool {
+        self.mix.get(i).is_some_and(Option::is_some)
     }
 
     /// The mean number of nodes of the walls of `facets` (a held facet's is 0).
     pub(crate) fn mean_nodes(&self, facets: &[u32]) -> f64 {
         let total: usize = facets
             .iter()
-            .map(|&f| self.slot[f as usize].map_or(0, |s| self.models[s].wall.nodes()))
+            .map(
+                |&f| match self.mix.get(f as usize).and_then(Option::as_ref) {
+                    Some(m) => m
+                        .parts
+                        .iter()
+                        .map(|p| self.models[p.slot].wall.nodes())
+                        .sum(),
+                    None => self.slot[f as usize].map_or(0, |s| self.models[s].wall.nodes()),
+                },
+            )
             .sum();
         total as f64 / facets.len().max(1) as f64
     }
@@ -69,6 +90,9 @@ pub struct Outcome {
     pub surface_k: Vec<Vec<f64>>,
     /// Per moment, the ground's temperature, when it is solved.
     pub ground_k: Vec<Option<f64>>,
+    /// Per moment, the per-material temperatures of every stepped facet solved part by
+    /// part (the raw scene's `mix_temperatures`).
+    pub mix_k: Vec<Vec<irsig_model::MixTemperatures>>,
     /// The times of the history's rows and its table (times × facets), when asked for.
     pub history: Option<(Vec<f64>, Vec<f32>)>,
     /// When the solve started, s.
@@ -132,6 +156,12 @@ impl<'a> Prepared<'a> {
             "W/m2",
             (-MAX_HEAT_W_M2, MAX_HEAT_W_M2),
         )?;
+        let solved: Vec<bool> = held_k.iter().map(Option::is_none).collect();
+        let fractions = if cli.models.mixture == MixtureArg::PerMaterial {
+            mixture::facet_fractions(scene, materials, cli.materials.required()?, &solved)?
+        } else {
+            Vec::new()
+        };
         let (sunlight, sky) = Environment::sources(
             weather,
             weather_name,
@@ -143,7 +173,7 @@ impl<'a> Prepared<'a> {
             materials,
             ground_material: cli.ground_material.clone(),
             exposure: Exposure::new(scene).map_err(|e| miette!("{e}"))?,
-            solved: held_k.iter().map(Option::is_none).collect(),
+            solved,
             held_k,
             heat_w_m2: heat.iter().map(|h| h.unwrap_or(0.0)).collect(),
             ground_albedo: 0.2,
@@ -155,6 +185,7 @@ impl<'a> Prepared<'a> {
                 loads,
             },
             seed: cli.seed.value,
+            fractions,
         };
         let walls = prepared.walls(&cli.models)?;
         // The parser checked a given albedo's range.
@@ -172,15 +203,45 @@ impl<'a> Prepared<'a> {
     /// A material that cannot be modelled (named).
     pub(crate) fn walls(&self, models: &Models) -> miette::Result<Walls> {
         let discretisation = models.discretisation();
+        let per_material = models.mixture == MixtureArg::PerMaterial;
+        let by_map: Vec<bool> = (0..self.scene.facets.len())
+            .map(|i| per_material && self.fractions.get(i).is_some_and(Option::is_some))
+            .collect();
         let by_id = setup::material_models(
             self.scene,
             self.materials,
-            &self.solved,
+            (&self.solved, &by_map),
             &discretisation,
             models.convection(),
         )?;
-        let (materials, slot) = slots(self.scene, &self.solved, by_id);
-        let optics = optics(self.scene, self.materials, &materials, &slot);
+        let (materials, index) = slots(by_id);
+        let mix = if per_material && !self.fractions.is_empty() {
+            mixture::mixed_facets(self.scene, self.materials, &self.fractions, |id| {
+                index.get(&id).copied()
+            })
+        } else {
+            Vec::new()
+        };
+        let slot = self
+            .scene
+            .facets
+            .iter()
+            .enumerate()
+            .map(|(i, f)| {
+                if !self.solved[i] {
+                    return None;
+                }
+                match mix.get(i).and_then(Option::as_ref) {
+                    Some(m) => m
+                        .parts
+                        .iter()
+                        .max_by(|a, b| a.fraction.total_cmp(&b.fraction))
+                        .map(|p| p.slot),
+                    None => index.get(&f.material.0).copied(),
+                }
+            })
+            .collect::<Vec<_>>();
+        let optics = optics(self.scene, self.materials, &materials, (&slot, &mix));
         let ground = match &self.ground_material {
             Some(name) => Some(setup::ground_model(
                 self.materials,
@@ -193,6 +254,7 @@ impl<'a> Prepared<'a> {
         Ok(Walls {
             models: materials,
             slot,
+            mix,
             optics,
             ground,
         })
@@ -294,6 +356,7 @@ impl<'a> Prepared<'a> {
             views,
             models: &walls.models,
             slot: &walls.slot,
+            mix: &walls.mix,
             held_k: &self.held_k,
             heat_w_m2: &self.heat_w_m2,
             optics: &walls.optics,
@@ -315,6 +378,7 @@ impl<'a> Prepared<'a> {
         let mut outcome = Outcome {
             surface_k: Vec::new(),
             ground_k: Vec::new(),
+            mix_k: Vec::new(),
             history: history.then(|| (Vec::new(), Vec::with_capacity(rows * n))),
             start_s: grid.start_s,
         };
@@ -324,7 +388,7 @@ impl<'a> Prepared<'a> {
             &settings,
             grid.start_s,
             grid.last_index,
-            |k, t, surface, ground_k| {
+            |k, t, surface, ground_k, parts_k| {
                 if let Some(bar) = &bar {
                     bar.set_position(k as u64);
                 }
@@ -339,6 +403,9 @@ impl<'a> Prepared<'a> {
                     outcome
                         .ground_k
                         .push(walls.ground.is_some().then_some(ground_k));
+                    outcome
+                        .mix_k
+                        .push(mix_temperatures(walls, stepped.facets, surface, parts_k));
                 }
                 Ok(())
             },
@@ -350,54 +417,78 @@ impl<'a> Prepared<'a> {
     }
 }
 
-/// Every solved facet's material model by slot, and each facet's slot.
-fn slots(
-    scene: &RawScene,
-    solved: &[bool],
-    by_id: HashMap<u16, MaterialModel>,
-) -> (Vec<MaterialModel>, Vec<Option<usize>>) {
+/// The per-material temperatures of the stepped facets solved part by part: `surface` and
+/// `parts_k` in the order of `stepped` (scene indices).
+fn mix_temperatures(
+    walls: &Walls,
+    stepped: &[u32],
+    surface: &[f64],
+    parts_k: &[[f64; irsig_model::material_map::MAX_MAP_MATERIALS]],
+) -> Vec<irsig_model::MixTemperatures> {
+    if walls.mix.is_empty() {
+        return Vec::new();
+    }
+    stepped
+        .iter()
+        .enumerate()
+        .filter_map(|(i, &g)| {
+            let m = walls.mix.get(g as usize)?.as_ref()?;
+            Some(irsig_model::MixTemperatures {
+                facet: g,
+                temperatures_k: m.temperatures(&parts_k[i], surface[i]),
+            })
+        })
+        .collect()
+}
+
+/// Every material model by slot (in the order of their ids), and each id's slot.
+fn slots(by_id: HashMap<u16, MaterialModel>) -> (Vec<MaterialModel>, HashMap<u16, usize>) {
     let mut ids: Vec<u16> = by_id.keys().copied().collect();
     ids.sort_unstable();
     let index: HashMap<u16, usize> = ids.iter().enumerate().map(|(k, &id)| (id, k)).collect();
     let mut by_id = by_id;
     let models = ids.iter().filter_map(|id| by_id.remove(id)).collect();
-    let slot = scene
-        .facets
-        .iter()
-        .zip(solved)
-        .map(|(f, &s)| s.then(|| index[&f.material.0]))
-        .collect();
-    (models, slot)
+    (models, index)
 }
 
 /// Each facet's solar absorptance and broadband emissivity as other facets see it: a solved
-/// facet's surface's; a held facet's material's thermal record where it has one, else a
-/// blackbody's (1, 1).
+/// facet's surface's (a mixed facet's the fraction-weighted means of its parts'); a held
+/// facet's material's thermal record where it has one, else a blackbody's (1, 1).
 fn optics(
     scene: &RawScene,
     materials: &MaterialLibrary,
     models: &[MaterialModel],
-    slot: &[Option<usize>],
+    (slot, mix): (&[Option<usize>], &[Option<Box<Mixed>>]),
 ) -> Vec<(f64, f64)> {
     scene
         .facets
         .iter()
         .zip(slot)
-        .map(|(f, s)| match s {
-            Some(k) => (
-                models[*k].surface.solar_absorptance,
-                models[*k].surface.thermal_emissivity,
-            ),
-            None => materials
-                .by_id(f.material)
-                .and_then(|m| m.thermal.as_ref())
-                .map_or((1.0, 1.0), |t| {
+        .enumerate()
+        .map(
+            |(i, (f, s))| match (mix.get(i).and_then(Option::as_ref), s) {
+                (Some(m), _) => m.parts.iter().fold((0.0, 0.0), |(a, e), p| {
+                    let surface = &models[p.slot].surface;
                     (
-                        t.solar_absorptance.unwrap_or(1.0),
-                        t.thermal_emissivity.unwrap_or(1.0),
+                        a + p.fraction * surface.solar_absorptance,
+                        e + p.fraction * surface.thermal_emissivity,
                     )
                 }),
-        })
+                (None, Some(k)) => (
+                    models[*k].surface.solar_absorptance,
+                    models[*k].surface.thermal_emissivity,
+                ),
+                (None, None) => materials
+                    .by_id(f.material)
+                    .and_then(|m| m.thermal.as_ref())
+                    .map_or((1.0, 1.0), |t| {
+                        (
+                            t.solar_absorptance.unwrap_or(1.0),
+                            t.thermal_emissivity.unwrap_or(1.0),
+                        )
+                    }),
+            },
+        )
         .collect()
 }
 

@@ -96,8 +96,10 @@ fn surface_of(
 
 /// Every material the scene's solved facets use, by id: its wall cut as `discretisation`
 /// says and its surface with `convection`. `solved` says which facets are solved (the
-/// others are held); a solved facet's material without thermal properties is refused,
-/// naming it and a facet of it.
+/// others are held), `by_map` which of them are solved by their material map's materials
+/// (per-material walls): those need each of the map's materials' thermal records and not
+/// their own material's. A needed material without thermal properties is refused, naming
+/// it and a facet of it (and the map and its host, for a map's material).
 ///
 /// # Errors
 /// A material the library lacks, one without thermal properties, one whose wall cannot be
@@ -105,13 +107,13 @@ fn surface_of(
 pub fn material_models(
     scene: &RawScene,
     materials: &MaterialLibrary,
-    solved: &[bool],
+    (solved, by_map): (&[bool], &[bool]),
     discretisation: &Discretisation,
     convection: Convection,
 ) -> miette::Result<HashMap<u16, MaterialModel>> {
     let mut out: HashMap<u16, MaterialModel> = HashMap::new();
     for (i, f) in scene.facets.iter().enumerate() {
-        if !solved[i] || out.contains_key(&f.material.0) {
+        if !solved[i] {
             continue;
         }
         let object = scene
@@ -125,6 +127,38 @@ pub fn material_models(
                 f.material.0
             )
         })?;
+        if by_map[i] {
+            let map = m.maps.as_ref().and_then(|x| x.material.as_ref());
+            for name in map.map(|x| x.materials()).unwrap_or_default() {
+                // The library's validation found every name.
+                let Some(c) = materials.by_name(name) else {
+                    continue;
+                };
+                if out.contains_key(&c.id.0) {
+                    continue;
+                }
+                let t = c.thermal.as_ref().ok_or_else(|| {
+                    miette!(
+                        "material `{}` (id {}) has no thermal properties, and the material map \
+                         `{}` of material `{}` (id {}) mixes it on facet {i} (object \
+                         `{object}`): give `{}` a `thermal` record \
+                         (formats/canonical/material-library.md), or solve the map's facets \
+                         with the host's one wall, --mixture one-wall",
+                        c.name,
+                        c.id.0,
+                        map.map_or("?", |x| x.image.as_str()),
+                        m.name,
+                        m.id.0,
+                        c.name
+                    )
+                })?;
+                out.insert(c.id.0, model_of(c, t, discretisation, convection)?);
+            }
+            continue;
+        }
+        if out.contains_key(&f.material.0) {
+            continue;
+        }
         let t = m.thermal.as_ref().ok_or_else(|| {
             miette!(
                 "material `{}` (id {}) has no thermal properties, and facet {i} (object \
@@ -135,20 +169,27 @@ pub fn material_models(
                 m.id.0
             )
         })?;
-        let wall = Wall::new(t, discretisation)
-            .map_err(|e| miette!("material `{}` (id {}): {e}", m.name, m.id.0))?;
-        let (surface, absorptance_from) = surface_of(m, t, convection)?;
-        out.insert(
-            f.material.0,
-            MaterialModel {
-                name: m.name.clone(),
-                wall,
-                surface,
-                absorptance_from,
-            },
-        );
+        out.insert(f.material.0, model_of(m, t, discretisation, convection)?);
     }
     Ok(out)
+}
+
+/// Material `m`'s model from its thermal record `t`.
+fn model_of(
+    m: &Material,
+    t: &ThermalProperties,
+    discretisation: &Discretisation,
+    convection: Convection,
+) -> miette::Result<MaterialModel> {
+    let wall = Wall::new(t, discretisation)
+        .map_err(|e| miette!("material `{}` (id {}): {e}", m.name, m.id.0))?;
+    let (surface, absorptance_from) = surface_of(m, t, convection)?;
+    Ok(MaterialModel {
+        name: m.name.clone(),
+        wall,
+        surface,
+        absorptance_from,
+    })
 }
 
 /// `OBJECT=VALUE` pairs (`--hold`, `--heat`) resolved to a value per facet. `OBJECT` is a

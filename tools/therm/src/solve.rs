@@ -18,7 +18,10 @@
 //! model's surface, or the air's). With exchange off (a named approximation), the facets a
 //! facet sees count as that ground.
 //!
-//! Held facets keep their temperature and still radiate and reflect to the others.
+//! Held facets keep their temperature and still radiate and reflect to the others. A facet
+//! under a material map, solved by per-material walls ([`crate::mixture`]), steps one wall
+//! per material with a share under the same loads; its `T_j` is their radiative mean and
+//! its `α_j`, `ε_j` the fraction-weighted means of theirs.
 
 use irsig_model::RawScene;
 use irsig_thermal::{
@@ -30,7 +33,12 @@ use rayon::prelude::*;
 use std::sync::Arc;
 
 use crate::environment::{Environment, Moment};
+use crate::mixture::Mixed;
 use crate::setup::MaterialModel;
+use irsig_model::material_map::MAX_MAP_MATERIALS;
+
+/// Per facet, each part's surface temperature (unused past its parts), K.
+pub type PartsK = [f64; MAX_MAP_MATERIALS];
 
 /// The settings of the models the loop itself runs.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -77,6 +85,9 @@ pub struct Scenario<'a> {
     pub models: &'a [MaterialModel],
     /// Per facet of the scene: its material model's slot, or `None` when it is held.
     pub slot: &'a [Option<usize>],
+    /// Per facet of the scene: its parts, when it is solved by its material map's
+    /// materials (empty when none is).
+    pub mix: &'a [Option<Box<Mixed>>],
     /// Per facet of the scene: the temperature it is held at, if it is.
     pub held_k: &'a [Option<f64>],
     /// Per facet of the scene: heat deposited at its wall's back, W/m².
@@ -105,8 +116,10 @@ pub type LitKey = (u64, u32);
 struct State {
     /// Node temperatures, `stride` per facet (a facet uses its wall's first nodes).
     nodes: Vec<f64>,
-    /// Surface temperature per facet, K.
+    /// Surface temperature per facet, K (a mixed facet's radiative mean).
     surface_k: Vec<f64>,
+    /// Each part's surface temperature per facet, when any facet is mixed (else empty).
+    parts_k: Vec<PartsK>,
     /// The loads each facet had at the step's start.
     loads: Vec<Loads>,
     /// The ground's nodes, when it is solved.
@@ -119,16 +132,79 @@ struct State {
 #[derive(Debug, Clone, Copy)]
 struct FacetOut {
     surface_k: f64,
+    parts_k: PartsK,
     loads: Loads,
 }
 
 impl Scenario<'_> {
+    /// Nodes per stepped facet: the deepest wall's, or a mixed facet's walls' together.
     fn stride(&self) -> usize {
-        self.models
+        let one = self
+            .models
             .iter()
             .map(|m| m.wall.nodes())
             .max()
-            .unwrap_or(1)
+            .unwrap_or(1);
+        let mixed = self
+            .facets
+            .iter()
+            .filter_map(|&g| self.mixed(g as usize))
+            .map(|m| {
+                m.parts
+                    .iter()
+                    .map(|p| self.models[p.slot].wall.nodes())
+                    .sum::<usize>()
+            })
+            .max()
+            .unwrap_or(0);
+        one.max(mixed)
+    }
+
+    /// Scene facet `g`'s parts, when it is solved part by part.
+    fn mixed(&self, g: usize) -> Option<&Mixed> {
+        self.mix.get(g).and_then(|m| m.as_deref())
+    }
+
+    /// Steps each part of the mixed facet `m` (stepped facet `i`) in its own slice of
+    /// `temps`, under the same loads, and gives each part's surface temperature and their
+    /// radiative mean.
+    #[allow(clippy::too_many_arguments)]
+    fn step_mixed(
+        &self,
+        m: &Mixed,
+        i: usize,
+        temps: &mut [f64],
+        (before, after_loads): (&Loads, &Loads),
+        after: &Moment,
+        settings: &Settings,
+        scratch: &mut Scratch,
+    ) -> Result<(f64, PartsK), ThermalError> {
+        let mut parts_k = [0.0; MAX_MAP_MATERIALS];
+        let mut at = 0;
+        for (k, p) in m.parts.iter().enumerate() {
+            let model = &self.models[p.slot];
+            let n = model.wall.nodes();
+            let slice = &mut temps[at..at + n];
+            let facet = Facet {
+                wall: &model.wall,
+                surface: &model.surface,
+                orientation: self.orientation(i, after),
+            };
+            step(
+                &facet,
+                slice,
+                before,
+                after_loads,
+                settings.time_step,
+                scratch,
+            )?;
+            parts_k[k] = slice[0];
+            at += n;
+        }
+        let mean = m.radiative_mean(&parts_k[..m.parts.len()], |s| {
+            self.models[s].surface.thermal_emissivity
+        });
+        Ok((mean, parts_k))
     }
 
     fn orientation(&self, i: usize, moment: &Moment) -> Orientation {
@@ -235,9 +311,18 @@ impl Scenario<'_> {
             .ground
             .model
             .map_or_else(Vec::new, |m| m.wall.uniform_state(t0));
+        let any_mixed = self
+            .facets
+            .iter()
+            .any(|&g| self.mixed(g as usize).is_some());
         let mut state = State {
             nodes: vec![t0; n * stride],
             surface_k,
+            parts_k: if any_mixed {
+                vec![[t0; MAX_MAP_MATERIALS]; n]
+            } else {
+                Vec::new()
+            },
             loads: vec![Self::ground_loads(moment); n],
             ground_nodes,
             ground_loads: Self::ground_loads(moment),
@@ -282,6 +367,22 @@ impl Scenario<'_> {
             .map_init(Scratch::new, |scratch, (i, temps)| {
                 let loads = self.loads(i, after, lit[i], prev, settings);
                 let global = self.facets[i] as usize;
+                if let (None, Some(m)) = (self.held_k[global], self.mixed(global)) {
+                    let (surface_k, parts_k) = self.step_mixed(
+                        m,
+                        i,
+                        temps,
+                        (&prev.loads[i], &loads),
+                        after,
+                        settings,
+                        scratch,
+                    )?;
+                    return Ok(FacetOut {
+                        surface_k,
+                        parts_k,
+                        loads,
+                    });
+                }
                 let surface_k = match (self.held_k[global], self.slot[global]) {
                     (Some(t), _) => t,
                     (None, Some(slot)) => {
@@ -305,15 +406,24 @@ impl Scenario<'_> {
                     // Setup gives every facet that is not held a material model.
                     (None, None) => prev.surface_k[i],
                 };
-                Ok(FacetOut { surface_k, loads })
+                Ok(FacetOut {
+                    surface_k,
+                    parts_k: [surface_k; MAX_MAP_MATERIALS],
+                    loads,
+                })
             })
             .collect();
         let mut surface_k = Vec::with_capacity(outs.len());
         let mut loads = Vec::with_capacity(outs.len());
+        let keep_parts = !state.parts_k.is_empty();
+        let mut parts_k = Vec::with_capacity(if keep_parts { outs.len() } else { 0 });
         for (i, out) in outs.into_iter().enumerate() {
             let out = out.map_err(|e| self.facet_error(i, &e))?;
             surface_k.push(out.surface_k);
             loads.push(out.loads);
+            if keep_parts {
+                parts_k.push(out.parts_k);
+            }
         }
         if let Some(m) = self.ground.model {
             let after_loads = Self::ground_loads(after);
@@ -337,6 +447,7 @@ impl Scenario<'_> {
             state.ground_loads = after_loads;
         }
         state.surface_k = surface_k;
+        state.parts_k = parts_k;
         state.loads = loads;
         Ok(())
     }
@@ -363,8 +474,9 @@ struct Previous<'a> {
 }
 
 /// Runs the loop from `start_s` for `steps` steps of `settings.time_step`, calling
-/// `observe(k, time_s, surface_k, ground_k)` after the start (`k = 0`) and after every
-/// step.
+/// `observe(k, time_s, surface_k, ground_k, parts_k)` after the start (`k = 0`) and after
+/// every step; `parts_k` holds each stepped facet's parts' temperatures when any facet is
+/// solved part by part, else it is empty.
 ///
 /// # Errors
 /// A moment the weather cannot give, or a facet whose balance fails (named).
@@ -373,7 +485,7 @@ pub fn run(
     settings: &Settings,
     start_s: f64,
     steps: usize,
-    mut observe: impl FnMut(usize, f64, &[f64], f64) -> miette::Result<()>,
+    mut observe: impl FnMut(usize, f64, &[f64], f64, &[PartsK]) -> miette::Result<()>,
 ) -> miette::Result<()> {
     let cast = |m: &Moment| match m.to_sun {
         Some(s) => scenario
@@ -399,6 +511,7 @@ pub fn run(
         start_s,
         &state.surface_k,
         scenario.ground_k(&state, &first),
+        &state.parts_k,
     )?;
     for k in 1..=steps {
         let t = start_s + k as f64 * settings.time_step.dt_s;
@@ -406,7 +519,13 @@ pub fn run(
         scenario
             .advance(&mut state, &moment, &lit_at(&moment), settings)
             .map_err(|e| miette!("at {}: {e}", irsig_model::time::format_utc(t)))?;
-        observe(k, t, &state.surface_k, scenario.ground_k(&state, &moment))?;
+        observe(
+            k,
+            t,
+            &state.surface_k,
+            scenario.ground_k(&state, &moment),
+            &state.parts_k,
+        )?;
     }
     Ok(())
 }

@@ -8,7 +8,7 @@
 //! | --- | --- | --- |
 //! | 0 | 8 | magic `IRSIGRAW` |
 //! | 8 | 4 | `u32` version, 1 |
-//! | 12 | 4 | `u32` flags: bit 0 a texture-coordinate section, bits 1–15 reserved 0, 16–31 the terrain's material id (0: none) |
+//! | 12 | 4 | `u32` flags: bit 0 a texture-coordinate section, bit 1 a per-material temperature section, bits 2–15 reserved 0, 16–31 the terrain's material id (0: none) |
 //! | 16 | 8 | `f64` terrain temperature, K |
 //! | 24 | 8 | `f64` terrain emissivity |
 //! | 32 | 4 | `u32` object count `O` |
@@ -19,16 +19,20 @@
 //! | 48 + `N` | 24 `P` | positions, `f64` x y z in metres |
 //! | … | 28 `F` | facets: `u32` v0 v1 v2, `u16` material, `u16` facet flags, `u32` object, `f64` temperature K |
 //! | … | 48 `F` | only when flag bit 0 is set: per facet `f64` u v at each corner (zeros for a facet without) |
+//! | … | 4 + 40 `M` | only when flag bit 1 is set: `u32` entry count `M`, then per entry `u32` facet, `u32` count `n` (1 to 4), four `f64` temperatures K (zeros past `n`) |
 //!
 //! Header flag bit 0 says the texture-coordinate section follows the facets; it is set only
 //! when some facet has coordinates, so a scene without them keeps the bytes it had before
 //! the section existed. Facet flag bit 0 says the facet has coordinates; the facet flags'
-//! other bits are reserved and must be 0.
+//! other bits are reserved and must be 0. Header flag bit 1 says the per-material
+//! temperature section ([`irsig_model::MixTemperatures`]) ends the file; it too is set only
+//! when the scene has some, so a scene without keeps its bytes.
 //!
 //! The reader checks that the file length equals what the header's counts imply before it
 //! allocates anything, so a corrupt count cannot make it allocate more than the file holds.
 
-use irsig_model::{MaterialId, RawFacet, RawScene, Terrain};
+use irsig_model::material_map::MAX_MAP_MATERIALS;
+use irsig_model::{MaterialId, MixTemperatures, RawFacet, RawScene, Terrain};
 
 use super::layout::{self, Form, UV_LEN, f64_at, u32_at};
 use crate::ParseError;
@@ -49,8 +53,14 @@ const FORM: Form = Form {
     version: VERSION,
     header_len: HEADER_LEN,
     noun: "raw scene",
-    flag_bits: TERRAIN_MATERIAL_BITS | layout::HAS_UV_SECTION,
+    flag_bits: TERRAIN_MATERIAL_BITS | layout::HAS_UV_SECTION | HAS_MIX_SECTION,
 };
+
+/// Header flag: the per-material temperature section ends the file.
+pub const HAS_MIX_SECTION: u32 = 2;
+/// Bytes per entry of the per-material temperature section: `u32` facet, `u32` count and
+/// [`MAX_MAP_MATERIALS`] `f64` temperatures.
+pub const MIX_LEN: usize = 8 + 8 * MAX_MAP_MATERIALS;
 
 /// Facet flag: the facet has texture coordinates in the section after the facets.
 pub const FACET_HAS_UV: u16 = 1;
@@ -83,28 +93,57 @@ pub fn encode(scene: &RawScene) -> Result<Vec<u8>, std::io::Error> {
         HEADER_LEN
             + names_len
             + POSITION_LEN * scene.positions_m.len()
-            + (FACET_LEN + uv_len) * scene.facets.len(),
+            + (FACET_LEN + uv_len) * scene.facets.len()
+            + mix_section_len(scene),
     );
     write(scene, &mut out)?;
     Ok(out)
+}
+
+/// The bytes of the per-material temperature section: none without entries.
+fn mix_section_len(scene: &RawScene) -> usize {
+    if scene.mix_temperatures.is_empty() {
+        0
+    } else {
+        4 + MIX_LEN * scene.mix_temperatures.len()
+    }
 }
 
 /// Writes a raw scene in the binary form, a few hundred kilobytes at a time, so that a
 /// million-triangle scene is never held encoded in memory whole (40 MB).
 ///
 /// # Errors
-/// A scene with more than `u32::MAX` objects, positions or facets, or a name block over
-/// 4 GiB, which this layout cannot hold (found before anything is written), or an I/O
-/// error from `w`.
+/// A scene with more than `u32::MAX` objects, positions, facets or per-material
+/// temperature entries, a name block over 4 GiB, or an entry of more than
+/// [`MAX_MAP_MATERIALS`] temperatures, which this layout cannot hold (found before anything
+/// is written), or an I/O error from `w`.
 pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()> {
     let count = |n: usize, what: &str| FORM.count(n, what);
     let names_len: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
     let uv_flags = layout::uv_flags(scene.facets.iter().map(|f| f.uv.as_ref()));
+    let mix_count = count(
+        scene.mix_temperatures.len(),
+        "per-material temperature entries",
+    )?;
+    if let Some(m) = scene
+        .mix_temperatures
+        .iter()
+        .find(|m| m.temperatures_k.len() > MAX_MAP_MATERIALS)
+    {
+        return Err(std::io::Error::other(format!(
+            "facet {}: {} per-material temperatures, more than the {MAX_MAP_MATERIALS} the \
+             binary form holds",
+            m.facet,
+            m.temperatures_k.len()
+        )));
+    }
+    let mix_flag = if mix_count > 0 { HAS_MIX_SECTION } else { 0 };
     let flags = scene
         .terrain
         .material
         .map_or(0, |m| u32::from(m.0) << TERRAIN_MATERIAL_SHIFT)
-        | uv_flags;
+        | uv_flags
+        | mix_flag;
     let mut header = FORM.start_header(HEADER_LEN + names_len, flags);
     header.extend_from_slice(&scene.terrain.temperature_k.to_le_bytes());
     header.extend_from_slice(&scene.terrain.emissivity.to_le_bytes());
@@ -128,7 +167,20 @@ pub fn write(scene: &RawScene, w: &mut dyn std::io::Write) -> std::io::Result<()
         out.extend_from_slice(&f.object.to_le_bytes());
         out.extend_from_slice(&f.temperature_k.to_le_bytes());
     })?;
-    layout::write_uvs(w, uv_flags, &scene.facets, |f| f.uv.as_ref())
+    layout::write_uvs(w, uv_flags, &scene.facets, |f| f.uv.as_ref())?;
+    if mix_count == 0 {
+        return Ok(());
+    }
+    w.write_all(&mix_count.to_le_bytes())?;
+    layout::write_records(w, &scene.mix_temperatures, MIX_LEN, |m, out| {
+        out.extend_from_slice(&m.facet.to_le_bytes());
+        // Checked above: at most four, so the count fits.
+        out.extend_from_slice(&(m.temperatures_k.len() as u32).to_le_bytes());
+        for k in 0..MAX_MAP_MATERIALS {
+            let t = m.temperatures_k.get(k).copied().unwrap_or(0.0);
+            out.extend_from_slice(&t.to_le_bytes());
+        }
+    })
 }
 
 /// Where the record a validation path names (`positions_m[i]…`, `facets[i]…`, `terrain…`)
@@ -138,6 +190,19 @@ pub fn offset_of_path(scene: &RawScene, path: &str) -> usize {
     let names: usize = scene.objects.iter().map(|n| 4 + n.len()).sum();
     let positions_at = HEADER_LEN + names;
     let facets_at = positions_at + POSITION_LEN * scene.positions_m.len();
+    if let Some(rest) = path.strip_prefix("mix_temperatures") {
+        let uv_len = if scene.facets.iter().any(|f| f.uv.is_some()) {
+            UV_LEN
+        } else {
+            0
+        };
+        let section_at = facets_at + (FACET_LEN + uv_len) * scene.facets.len();
+        let entry = rest
+            .strip_prefix('[')
+            .and_then(|r| r.split(']').next())
+            .and_then(|i| i.parse::<usize>().ok());
+        return entry.map_or(section_at, |k| section_at + 4 + MIX_LEN * k);
+    }
     match layout::record_offset(path, positions_at, facets_at, FACET_LEN) {
         Some(at) => at,
         // The material's id is the flags' high half.
@@ -161,21 +226,38 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
     let facets = u32_at(bytes, 40) as usize;
     let names_len = u32_at(bytes, 44) as usize;
     let has_uv_section = u32_at(bytes, 12) & layout::HAS_UV_SECTION != 0;
+    let has_mix_section = u32_at(bytes, 12) & HAS_MIX_SECTION != 0;
     let uv_len = if has_uv_section { UV_LEN } else { 0 };
     // u64 arithmetic: u32 counts times record sizes cannot overflow it.
-    let expected = HEADER_LEN as u64
+    let body = HEADER_LEN as u64
         + names_len as u64
         + POSITION_LEN as u64 * positions as u64
         + (FACET_LEN + uv_len) as u64 * facets as u64;
+    // The section's entry count is its first word: read where the file holds it.
+    let mix_entries = match usize::try_from(body) {
+        Ok(at) if has_mix_section && bytes.len() >= at.saturating_add(4) => u32_at(bytes, at),
+        _ => 0,
+    };
+    let expected = body
+        + if has_mix_section {
+            4 + MIX_LEN as u64 * u64::from(mix_entries)
+        } else {
+            0
+        };
     FORM.check_length(file, bytes, expected, || {
         let uvs = if has_uv_section {
             " with texture coordinates"
         } else {
             ""
         };
+        let mix = if has_mix_section {
+            format!(" and {mix_entries} per-material temperature entries")
+        } else {
+            String::new()
+        };
         format!(
             "{objects} objects ({names_len} name bytes), {positions} positions and {facets} \
-             facets{uvs}"
+             facets{uvs}{mix}"
         )
     })?;
     // From here every count is bounded by the file length.
@@ -252,7 +334,18 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
             uv,
         });
     }
+    let mix_temperatures = if has_mix_section {
+        read_mix_section(
+            file,
+            bytes,
+            uv_start + uv_len * facets,
+            mix_entries as usize,
+        )?
+    } else {
+        Vec::new()
+    };
     Ok(RawScene {
+        mix_temperatures,
         terrain: Terrain {
             temperature_k: f64_at(bytes, 16),
             emissivity: f64_at(bytes, 24),
@@ -266,6 +359,47 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<RawScene, ParseError> {
         positions_m,
         facets: out,
     })
+}
+
+/// The per-material temperature section from `at` (its count word), whose length the
+/// header check has proved: each entry's count 1 to [`MAX_MAP_MATERIALS`] and zeros past it.
+fn read_mix_section(
+    file: &str,
+    bytes: &[u8],
+    at: usize,
+    entries: usize,
+) -> Result<Vec<MixTemperatures>, ParseError> {
+    let mut out = Vec::with_capacity(entries);
+    for k in 0..entries {
+        let start = at + 4 + MIX_LEN * k;
+        let c = &bytes[start..start + MIX_LEN];
+        let n = u32_at(c, 4) as usize;
+        if !(1..=MAX_MAP_MATERIALS).contains(&n) {
+            return Err(ParseError::in_binary(
+                file,
+                start + 4,
+                format!(
+                    "per-material temperature entry {k}: expected 1 to {MAX_MAP_MATERIALS} \
+                     temperatures, found {n}"
+                ),
+            ));
+        }
+        if c[8 + 8 * n..].iter().any(|&b| b != 0) {
+            return Err(ParseError::in_binary(
+                file,
+                start + 8 + 8 * n,
+                format!(
+                    "per-material temperature entry {k}: expected zeros after its {n} \
+                     temperatures"
+                ),
+            ));
+        }
+        out.push(MixTemperatures {
+            facet: u32_at(c, 0),
+            temperatures_k: (0..n).map(|i| f64_at(c, 8 + 8 * i)).collect(),
+        });
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -297,6 +431,7 @@ mod tests {
                     uv: None,
                 },
             ],
+            mix_temperatures: Vec::new(),
         }
     }
 
@@ -334,9 +469,9 @@ mod tests {
         assert_eq!(bytes[12..16], [0, 0, 0xef, 0xbe]);
         assert_eq!(decode("s.bin", &bytes).unwrap(), s);
         let mut reserved = bytes;
-        reserved[12] = 2;
+        reserved[12] = 4;
         let e = decode("s.bin", &reserved).unwrap_err();
-        assert!(e.message.contains("outside 0xffff0001"), "{e}");
+        assert!(e.message.contains("outside 0xffff0003"), "{e}");
     }
 
     #[test]
@@ -442,6 +577,83 @@ mod tests {
         short[12] = 1;
         let e = decode("s.bin", &short).unwrap_err();
         assert!(e.message.contains("facets with texture coordinates"), "{e}");
+    }
+
+    #[test]
+    fn per_material_temperatures_end_the_file_only_when_the_scene_has_some() {
+        let plain = encode(&scene()).unwrap();
+        let mut s = scene();
+        s.facets[0].uv = Some([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let with_uv = encode(&s).unwrap();
+        s.mix_temperatures = vec![
+            MixTemperatures {
+                facet: 1,
+                temperatures_k: vec![330.5, 291.25],
+            },
+            MixTemperatures {
+                facet: 0,
+                temperatures_k: vec![1e-3, 0.0, 400.0, 5000.0],
+            },
+        ];
+        let bytes = encode(&s).unwrap();
+        // The same bytes as without but for header flag bit 1 and the section: a count
+        // word and 40 bytes per entry, after the texture coordinates.
+        let end = with_uv.len();
+        assert_eq!(bytes.len(), end + 4 + 2 * 40);
+        assert_eq!(bytes[12], 3);
+        let mut masked = bytes[..end].to_vec();
+        masked[12] = 1;
+        assert_eq!(masked, with_uv);
+        assert_eq!(bytes[end..end + 4], 2u32.to_le_bytes());
+        assert_eq!(bytes[end + 4..end + 8], 1u32.to_le_bytes());
+        assert_eq!(bytes[end + 8..end + 12], 2u32.to_le_bytes());
+        assert_eq!(bytes[end + 12..end + 20], 330.5f64.to_le_bytes());
+        assert_eq!(bytes[end + 28..end + 44], [0; 16]);
+        assert_eq!(bytes[end + 44 + 32..end + 44 + 40], 5000f64.to_le_bytes());
+        assert_eq!(decode("s.bin", &bytes).unwrap(), s);
+        assert_eq!(encode(&decode("s.bin", &bytes).unwrap()).unwrap(), bytes);
+        for n in 0..bytes.len() {
+            assert!(decode("s.bin", &bytes[..n]).is_err(), "length {n}");
+        }
+        // Without texture coordinates the section follows the facets.
+        let mut no_uv = s.clone();
+        no_uv.facets[0].uv = None;
+        let b = encode(&no_uv).unwrap();
+        assert_eq!(b.len(), plain.len() + 4 + 80);
+        assert_eq!(b[12], 2);
+        assert_eq!(decode("s.bin", &b).unwrap(), no_uv);
+        // A count outside 1 to 4, and a temperature past the count.
+        let mut bad = bytes.clone();
+        bad[end + 8] = 5;
+        let e = decode("s.bin", &bad).unwrap_err();
+        assert_eq!(e.column, end + 8 + 1);
+        assert!(
+            e.message.contains("expected 1 to 4 temperatures, found 5"),
+            "{e}"
+        );
+        let mut stray = bytes.clone();
+        stray[end + 40] = 1;
+        let e = decode("s.bin", &stray).unwrap_err();
+        assert!(e.message.contains("expected zeros after its 2"), "{e}");
+        // A huge entry count is refused by the length check, before any allocation.
+        let mut huge = bytes.clone();
+        huge[end..end + 4].copy_from_slice(&u32::MAX.to_le_bytes());
+        let e = decode("s.bin", &huge).unwrap_err();
+        assert!(
+            e.message
+                .contains("4294967295 per-material temperature entries"),
+            "{e}"
+        );
+        // More temperatures than the form holds cannot be written.
+        let mut five = s.clone();
+        five.mix_temperatures[0].temperatures_k = vec![300.0; 5];
+        assert!(encode(&five).is_err());
+        // The model's paths find the entry's record.
+        assert_eq!(
+            offset_of_path(&s, "mix_temperatures[1].temperatures_k[0]"),
+            end + 44
+        );
+        assert_eq!(offset_of_path(&s, "mix_temperatures"), end);
     }
 
     #[test]

@@ -52,6 +52,9 @@ pub(crate) struct BandData<A> {
     /// L_T and dL_T/dT over the temperatures textured hits reach
     /// ([`crate::texture`]); `None` when no material's texture varies the temperature.
     pub(crate) textured: Option<crate::texture::BlackbodyTable>,
+    /// Every temperature index's temperature, K, where some facet has per-material
+    /// temperatures (a mixed hit's textured `L(Tᵢ + offset)` reads them); else empty.
+    pub(crate) temperatures_k: Vec<f64>,
 }
 
 impl<A> BandData<A> {
@@ -100,9 +103,13 @@ impl<A> BandData<A> {
     }
 
     /// L_T at a hit in this sub-band, W m⁻² sr⁻¹: the facet's, or at a texture's
-    /// temperature offset the textured table's.
+    /// temperature offset the textured table's; at a mixed hit whose materials have their
+    /// own temperatures, `Σ wᵢ εᵢ L(Tᵢ) / Σ wᵢ εᵢ` ([`crate::mixture`]).
     #[inline]
     pub(crate) fn blackbody_at(&self, surface: &crate::path::Surface) -> f64 {
+        if let Some(mixed) = self.mixed_blackbody(surface, |l| l.0) {
+            return mixed;
+        }
         match (surface.texel, &self.textured) {
             (Some(texel), Some(table)) if texel.temperature_offset_k != 0.0 => {
                 table
@@ -117,6 +124,9 @@ impl<A> BandData<A> {
     /// sensitivity), at its textured temperature where it has one.
     #[inline]
     pub(crate) fn derivative_at(&self, surface: &crate::path::Surface) -> f64 {
+        if let Some(mixed) = self.mixed_blackbody(surface, |l| l.1) {
+            return mixed;
+        }
         match (surface.texel, &self.textured) {
             (Some(texel), Some(table)) if texel.temperature_offset_k != 0.0 => {
                 table
@@ -124,6 +134,47 @@ impl<A> BandData<A> {
                     .1
             }
             _ => self.derivative[surface.data.temperature_index as usize],
+        }
+    }
+}
+
+impl<A> BandData<A> {
+    /// At a mixed hit whose materials have their own temperatures, the emission-weighted
+    /// mean over the materials of `pick` of `(L(Tᵢ), dL/dT(Tᵢ))`: `Σ wᵢ εᵢ xᵢ / Σ wᵢ εᵢ`,
+    /// so that the mixture's `ε = Σ wᵢ εᵢ` times it is each material's own emission summed.
+    /// `Tᵢ` is offset by the hit's texel as a facet's temperature is. Where no material
+    /// emits, the facet's own. `None` at any other hit.
+    #[inline]
+    fn mixed_blackbody(
+        &self,
+        surface: &crate::path::Surface,
+        pick: impl Fn((f64, f64)) -> f64,
+    ) -> Option<f64> {
+        let parts = surface.mix.as_ref()?.parts_at_temperatures()?;
+        let offset = match (surface.texel, &self.textured) {
+            (Some(texel), Some(table)) if texel.temperature_offset_k != 0.0 => {
+                Some((texel.temperature_offset_k, table))
+            }
+            _ => None,
+        };
+        let (mut sum, mut weight) = (0.0, 0.0);
+        for (slot, w, t) in parts {
+            let we = w * self.component_emissivity(slot, surface);
+            let l = match offset {
+                Some((o, table)) => table.at(self.temperatures_k[t] + o),
+                None => (self.blackbody[t], self.derivative[t]),
+            };
+            sum += we * pick(l);
+            weight += we;
+        }
+        if weight > 0.0 {
+            Some(sum / weight)
+        } else {
+            let own = (
+                self.blackbody_of(&surface.data),
+                self.derivative[surface.data.temperature_index as usize],
+            );
+            Some(pick(own))
         }
     }
 }

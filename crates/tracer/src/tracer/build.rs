@@ -147,6 +147,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 }
             });
         }
+        let mix_temperatures = crate::mixture::mix_temperature_indices(scene, materials, |t| {
+            *index_of.entry(t.to_bits()).or_insert_with(|| {
+                temperatures.push(t);
+                (temperatures.len() - 1) as u32
+            })
+        })?;
         drop(index_of);
         let terrain_slot = match scene.terrain.material {
             None => None,
@@ -194,15 +200,19 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             budget_groups: None,
             textured_span_k: None,
             uv_maps: Vec::new(),
+            mix_temperatures,
         };
         let has_maps: Vec<bool> = tracer.materials.iter().map(|m| m.maps.is_some()).collect();
         let slot = |id: u16| usize::from(slot_of[usize::from(id)]);
         tracer.uv_maps = crate::texture::facet_uv_maps(scene, slot, &has_maps)?;
         tracer.textured_span_k = tracer.textured_span(scene);
         let mut own = tracer.band_set(sub_bands)?;
-        // The first sub-band's L_T is in the facet records.
+        // The first sub-band's L_T is in the facet records; its table is kept only where a
+        // hit may take a material's own temperature ([`crate::mixture`]).
         own.bands[0].inline = true;
-        own.bands[0].blackbody = Vec::new();
+        if tracer.mix_temperatures.is_empty() {
+            own.bands[0].blackbody = Vec::new();
+        }
         tracer.bands = own;
         Ok(tracer)
     }
@@ -359,6 +369,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .map(|span| crate::texture::BlackbodyTable::new(&sb.band, span));
             bands.push(BandData {
                 textured,
+                temperatures_k: if self.mix_temperatures.is_empty() {
+                    Vec::new()
+                } else {
+                    self.temperatures.clone()
+                },
                 atmosphere: sb.atmosphere,
                 emissivity,
                 own_emissivity,
@@ -404,12 +419,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .map(|(slot, m)| (m.id, slot))
             .collect();
         let mut span: Option<[f64; 2]> = None;
+        let mut reach = |t: f64, o: f64| {
+            let [lo, hi] = span.get_or_insert([f64::INFINITY, f64::NEG_INFINITY]);
+            *lo = lo.min(t - o);
+            *hi = hi.max(t + o);
+        };
+        let offset_of =
+            |f: &irsig_model::RawFacet| slot_of.get(&f.material.0).map_or(0.0, |&s| offset[s]);
         for f in &scene.facets {
-            let o = slot_of.get(&f.material.0).map_or(0.0, |&s| offset[s]);
+            let o = offset_of(f);
             if o > 0.0 {
-                let [lo, hi] = span.get_or_insert([f64::INFINITY, f64::NEG_INFINITY]);
-                *lo = lo.min(f.temperature_k - o);
-                *hi = hi.max(f.temperature_k + o);
+                reach(f.temperature_k, o);
+            }
+        }
+        // A mapped facet's materials at their own temperatures, offset by its texture.
+        for m in &scene.mix_temperatures {
+            let o = offset_of(&scene.facets[m.facet as usize]);
+            if o > 0.0 {
+                for &t in &m.temperatures_k {
+                    reach(t, o);
+                }
             }
         }
         span
