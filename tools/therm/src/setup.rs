@@ -258,14 +258,7 @@ pub fn ground_model(
             "--ground-material `{name}`: the material has no thermal properties"
         ))
     })?;
-    let wall = Wall::new(t, discretisation).map_err(|e| miette!("material `{name}`: {e}"))?;
-    let (surface, absorptance_from) = surface_of(m, t, convection)?;
-    Ok(MaterialModel {
-        name: m.name.clone(),
-        wall,
-        surface,
-        absorptance_from,
-    })
+    model_of(m, t, discretisation, convection)
 }
 
 /// The placed object `name` names: a name only one placement has, or `#N`.

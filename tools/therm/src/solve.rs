@@ -165,18 +165,15 @@ impl Scenario<'_> {
         self.mix.get(g).and_then(|m| m.as_deref())
     }
 
-    /// Steps each part of the mixed facet `m` (stepped facet `i`) in its own slice of
-    /// `temps`, under the same loads, and gives each part's surface temperature and their
-    /// radiative mean.
-    #[allow(clippy::too_many_arguments)]
+    /// Steps each part of the mixed facet `m`, facing as `orientation` says, in its own
+    /// slice of `temps`, under the same loads, and gives each part's surface temperature
+    /// and their radiative mean.
     fn step_mixed(
         &self,
         m: &Mixed,
-        i: usize,
         temps: &mut [f64],
         (before, after_loads): (&Loads, &Loads),
-        after: &Moment,
-        settings: &Settings,
+        (orientation, time_step): (Orientation, TimeStep),
         scratch: &mut Scratch,
     ) -> Result<(f64, PartsK), ThermalError> {
         let mut parts_k = [0.0; MAX_MAP_MATERIALS];
@@ -188,16 +185,9 @@ impl Scenario<'_> {
             let facet = Facet {
                 wall: &model.wall,
                 surface: &model.surface,
-                orientation: self.orientation(i, after),
+                orientation,
             };
-            step(
-                &facet,
-                slice,
-                before,
-                after_loads,
-                settings.time_step,
-                scratch,
-            )?;
+            step(&facet, slice, before, after_loads, time_step, scratch)?;
             parts_k[k] = slice[0];
             at += n;
         }
@@ -370,11 +360,9 @@ impl Scenario<'_> {
                 if let (None, Some(m)) = (self.held_k[global], self.mixed(global)) {
                     let (surface_k, parts_k) = self.step_mixed(
                         m,
-                        i,
                         temps,
                         (&prev.loads[i], &loads),
-                        after,
-                        settings,
+                        (self.orientation(i, after), settings.time_step),
                         scratch,
                     )?;
                     return Ok(FacetOut {
