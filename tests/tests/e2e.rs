@@ -27,6 +27,7 @@ mod loads;
 mod lobe;
 mod malformed_corpus;
 mod material;
+mod material_map_trace;
 mod memory;
 mod pilot_sun;
 mod pipeline_runner;
