@@ -271,6 +271,12 @@ fn run_in_pool(cli: &Cli) -> miette::Result<()> {
         loads.as_ref(),
         site,
     )?;
+    // A map's image decides its facets' parts as much as the materials file does.
+    inputs.extend(prepared.map_images().iter().map(|sha256| InputRecord {
+        stage: "therm".into(),
+        role: "map image".into(),
+        sha256: sha256.clone(),
+    }));
     let (models, decision) = match cli.tolerance.kelvin {
         Some(k) => {
             let (models, decision) = pilot::decide(&prepared, &cli.models, &times, k)?;

@@ -127,7 +127,8 @@ pub fn fractions(
 
 /// Each solved facet's area fractions under its material's material map (`None` for a
 /// facet whose material has none, or that is held), the maps' images read beside
-/// `materials_file`. Empty when no solved facet's material has a map.
+/// `materials_file`. Empty when no solved facet's material has a map. Beside them, the
+/// SHA-256 of each map image read, in the library's order, for the provenance.
 ///
 /// # Errors
 /// A map's image that cannot be read as declared, or a facet of a mapped material without
@@ -137,8 +138,9 @@ pub fn facet_fractions(
     materials: &MaterialLibrary,
     materials_file: &str,
     solved: &[bool],
-) -> miette::Result<Vec<Option<[f64; MAX_MAP_MATERIALS]>>> {
+) -> miette::Result<(Vec<Option<[f64; MAX_MAP_MATERIALS]>>, Vec<String>)> {
     let mut maps = std::collections::HashMap::new();
+    let mut images = Vec::new();
     for (k, m) in materials.materials.iter().enumerate() {
         if m.maps.as_ref().and_then(|x| x.material.as_ref()).is_none() {
             continue;
@@ -151,12 +153,15 @@ pub fn facet_fractions(
         if !used {
             continue;
         }
-        if let Some((map, _)) = irsig_render::read_material_map_of(materials, k, materials_file)? {
+        if let Some((map, bytes)) =
+            irsig_render::read_material_map_of(materials, k, materials_file)?
+        {
+            images.push(irsig_cli::sha256_hex(&bytes));
             maps.insert(m.id.0, (map, m));
         }
     }
     if maps.is_empty() {
-        return Ok(Vec::new());
+        return Ok((Vec::new(), images));
     }
     for (i, f) in scene.facets.iter().enumerate() {
         if let (true, Some((_, m)), None) = (solved[i], maps.get(&f.material.0), f.uv) {
@@ -178,7 +183,7 @@ pub fn facet_fractions(
             ));
         }
     }
-    Ok(scene
+    let fractions = scene
         .facets
         .par_iter()
         .zip(solved)
@@ -186,7 +191,8 @@ pub fn facet_fractions(
             (true, Some((map, _)), Some(uv)) => Some(fractions(uv, |p| map.sample(p, 0.0))),
             _ => None,
         })
-        .collect())
+        .collect();
+    Ok((fractions, images))
 }
 
 /// Each facet solved by its map's materials as a [`Mixed`]: its parts with a fraction

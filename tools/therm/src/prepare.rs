@@ -37,6 +37,8 @@ pub struct Prepared<'a> {
     /// Per facet, its area fractions under its material's material map, when it is solved
     /// and has one (empty when none has).
     fractions: Vec<Option<[f64; irsig_model::material_map::MAX_MAP_MATERIALS]>>,
+    /// The SHA-256 of each material map image the fractions were read from.
+    map_images: Vec<String>,
 }
 
 /// What the models' settings make of the materials: each solved material's wall and
@@ -157,10 +159,10 @@ impl<'a> Prepared<'a> {
             (-MAX_HEAT_W_M2, MAX_HEAT_W_M2),
         )?;
         let solved: Vec<bool> = held_k.iter().map(Option::is_none).collect();
-        let fractions = if cli.models.mixture == MixtureArg::PerMaterial {
+        let (fractions, map_images) = if cli.models.mixture == MixtureArg::PerMaterial {
             mixture::facet_fractions(scene, materials, cli.materials.required()?, &solved)?
         } else {
-            Vec::new()
+            (Vec::new(), Vec::new())
         };
         let (sunlight, sky) = Environment::sources(
             weather,
@@ -186,6 +188,7 @@ impl<'a> Prepared<'a> {
             },
             seed: cli.seed.value,
             fractions,
+            map_images,
         };
         let walls = prepared.walls(&cli.models)?;
         // The parser checked a given albedo's range.
@@ -275,6 +278,13 @@ impl<'a> Prepared<'a> {
                 },
             )
             .map_err(|e| miette!("{e}"))
+    }
+
+    /// The SHA-256 of each material map image read (per-material walls only), in the
+    /// library's order.
+    #[must_use]
+    pub fn map_images(&self) -> &[String] {
+        &self.map_images
     }
 
     /// Where the sunlight and the sky's longwave came from, in words.

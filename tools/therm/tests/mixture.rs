@@ -13,6 +13,7 @@ use std::process::Command;
 
 use irsig_model::RawScene;
 use irsig_radiometry::Band;
+use sha2::Digest;
 
 /// Broadband emissivities of the materials below.
 const EPS_ASPHALT: f64 = 0.95;
@@ -225,4 +226,39 @@ fn a_map_material_without_a_thermal_record_is_refused_naming_host_map_and_materi
     )
     .unwrap();
     assert!(held[0].mix_temperatures.is_empty());
+}
+
+#[test]
+fn the_map_image_the_parts_were_read_from_is_in_the_history_provenance() {
+    let dir = tempfile::tempdir().unwrap();
+    let mats = materials(dir.path(), true);
+    let history = |mixture: &str| {
+        let h = dir.path().join(format!("{mixture}.thm"));
+        let h_arg = h.to_string_lossy().into_owned();
+        run(
+            dir.path(),
+            &mats,
+            &["--mixture", mixture, "--history", &h_arg],
+        )
+        .unwrap();
+        irsig_formats::canonical::binary_history::decode("h.thm", &std::fs::read(&h).unwrap())
+            .unwrap()
+            .provenance
+            .inputs
+    };
+    // The image's digest, by sha2 over the file's bytes, as every input record writes it.
+    let png = std::fs::read(dir.path().join("lot.png")).unwrap();
+    let hex: String = sha2::Sha256::digest(&png)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    let digest = format!("sha256:{hex}");
+    let per = history("per-material");
+    let maps: Vec<_> = per.iter().filter(|r| r.role == "map image").collect();
+    assert_eq!(maps.len(), 1, "{per:?}");
+    assert_eq!(maps[0].sha256, digest);
+    assert_eq!(maps[0].stage, "therm");
+    // One wall never reads the image: nothing of it decided the temperatures.
+    let one = history("one-wall");
+    assert!(one.iter().all(|r| r.role != "map image"), "{one:?}");
 }
