@@ -2,7 +2,7 @@
 //! the LOWTRAN7 DIRTRAN tables and slant tables kept beside it in `data/lowtran/`.
 //!
 //! After regenerating the tables (scripts/atmosphere/regen.py), rewrite the built-ins with
-//! `IRSIG_UPDATE_BUILTINS=1 cargo test -p irsig-atmosphere --test builtin`.
+//! `IRSIG_UPDATE_BUILTINS=1 cargo test -p irsig-atmosphere --test integration builtin::`.
 
 use std::path::{Path, PathBuf};
 

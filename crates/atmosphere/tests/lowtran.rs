@@ -6,9 +6,9 @@
 // Truth rows are selected by the exact altitudes and angles written in the CSV.
 #![allow(clippy::float_cmp)]
 
-mod common;
+use crate::common;
 
-use common::lowtran::{Rtt, atmosphere, error_k, truth};
+use crate::common::lowtran::{Rtt, atmosphere, error_k, truth};
 use irsig_atmosphere::{AtmosphereModel, ModelKind};
 
 fn worst(name: &str, kind: ModelKind, rows: impl Fn(&common::lowtran::Truth) -> bool) -> f64 {

@@ -11,8 +11,7 @@ use irsig_radiometry::fresnel::{
 use irsig_radiometry::{Band, RadiometryErrorKind, SensorResponse};
 use proptest::prelude::*;
 
-mod common;
-use common::water::{dunkle_hemispherical, water};
+use crate::common::water::{dunkle_hemispherical, water};
 
 fn index(n: f64, k: f64) -> ComplexIndex {
     ComplexIndex::new(n, k).unwrap()

@@ -3,9 +3,7 @@
 //! (Incropera §5.5), a thin insulated plate in steady sun, and a periodic day whose energy
 //! closes. Expected values come from the physics, computed here.
 
-mod common;
-
-use common::{
+use crate::common::{
     DAY_S, SIGMA, bisect, concrete, doe2_h, latent_flux_w_m2, props, quiet, render, steel, surface,
 };
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness};

@@ -5,9 +5,7 @@
 //! concrete wall ventilated behind, with the full nonlinear boundary (radiation, McAdams
 //! convection, latent heat) under smooth loads.
 
-mod common;
-
-use common::{DAY_S, concrete, props, render, surface};
+use crate::common::{DAY_S, concrete, props, render, surface};
 use irsig_model::thermal::{BackAir, BackBoundary, ThermalProperties};
 use irsig_thermal::{
     Convection, Discretisation, Facet, Loads, Orientation, Scheme, Scratch, Surface, TimeStep,

@@ -2,9 +2,9 @@
 //! concrete, a 1 mm steel skin, steps from 1 s to an hour; backs held, convective and
 //! heated; and bad input, which is an error and leaves the temperatures as they were.
 
-mod common;
+use crate::common;
 
-use common::{
+use crate::common::{
     DAY_S, SIGMA, bisect, concrete, doe2_h, latent_flux_w_m2, paint, props, quiet, steel, surface,
 };
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness, ThermalProperties};

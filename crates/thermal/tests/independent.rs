@@ -5,9 +5,7 @@
 //! solve a three-layer wall (render, concrete, insulation) with a convective back, under
 //! radiation, McAdams convection and latent heat, for six hours from a uniform start.
 
-mod common;
-
-use common::{DAY_S, SIGMA, bisect, concrete, insulation, latent_flux_w_m2, props, render};
+use crate::common::{DAY_S, SIGMA, bisect, concrete, insulation, latent_flux_w_m2, props, render};
 use irsig_model::thermal::{BackAir, BackBoundary, Roughness, ThermalLayer};
 use irsig_thermal::{
     Convection, Discretisation, Facet, Loads, Orientation, Scheme, Scratch, Surface, TimeStep,

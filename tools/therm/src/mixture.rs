@@ -125,6 +125,9 @@ pub fn fractions(
     sum.map(|s| s / count)
 }
 
+/// Per facet, its area fractions under its material's material map, or `None`.
+pub type FacetFractions = Vec<Option<[f64; MAX_MAP_MATERIALS]>>;
+
 /// Each solved facet's area fractions under its material's material map (`None` for a
 /// facet whose material has none, or that is held), the maps' images read beside
 /// `materials_file`. Empty when no solved facet's material has a map. Beside them, the
@@ -138,7 +141,7 @@ pub fn facet_fractions(
     materials: &MaterialLibrary,
     materials_file: &str,
     solved: &[bool],
-) -> miette::Result<(Vec<Option<[f64; MAX_MAP_MATERIALS]>>, Vec<String>)> {
+) -> miette::Result<(FacetFractions, Vec<String>)> {
     let mut maps = std::collections::HashMap::new();
     let mut images = Vec::new();
     for (k, m) in materials.materials.iter().enumerate() {
