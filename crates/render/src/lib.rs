@@ -1,9 +1,10 @@
 //! irsig-render: one frame's library work, between the command lines of `irsig-trace` and
 //! `irsig-merge` and the libraries that do the physics.
 //!
-//! A [`Plan`] takes a typed [`Request`] (the band, the atmosphere, the models or a
+//! A [`PlanBuilder`] takes a typed [`Request`] (the band, the atmosphere, the models or a
 //! tolerance, the counts' calibration) and the inputs' bytes (scene, materials, views,
-//! declared uncertainties, a decision), reads and checks them, and renders: it resolves the
+//! declared uncertainties, a decision), reads and checks them, and builds the [`Plan`],
+//! which renders: it resolves the
 //! atmosphere for the band (a vacuum, a built-in or a file; band tables, or spectra
 //! collapsed over the band or each sub-band, [`band`]), averages spectral materials over
 //! them ([`materials`]), builds the tracer once, runs the tolerance pilot per frame when
@@ -16,7 +17,7 @@
 //! [`RequestError`]s naming a [`Setting`]; warnings go to the sink.
 //!
 //! ```
-//! use irsig_render::{AtmosphereRequest, BandRequest, Plan, Request, Spelling};
+//! use irsig_render::{AtmosphereRequest, BandRequest, PlanBuilder, Request, Spelling};
 //! let request = Request {
 //!     band: BandRequest::total(),
 //!     atmosphere: AtmosphereRequest::Vacuum { sky_radiance_w_m2_sr: -1.0 },
@@ -28,7 +29,7 @@
 //!     spelling: Spelling(|setting| format!("{setting:?}")),
 //! };
 //! // A sky radiance below 0 is refused before anything is read.
-//! let e = Plan::new(request).unwrap_err();
+//! let e = PlanBuilder::new(request).unwrap_err();
 //! assert!(e.to_string().contains("out of range"));
 //! ```
 
@@ -54,7 +55,7 @@ pub use band::BandRequest;
 pub use error::{CallerError, RenderError, RenderErrorKind, RequestError, Setting, Spelling};
 pub use maps::read_material_map_of;
 pub use plan::{
-    DATA_ERROR_BYTES_PER_PIXEL, FRAME_BYTES_PER_PIXEL, Plan, Request, Sink,
+    DATA_ERROR_BYTES_PER_PIXEL, FRAME_BYTES_PER_PIXEL, Plan, PlanBuilder, Request, Sink,
     TEXTURE_BYTES_PER_PIXEL, TileRequest, ToleranceRequest,
 };
 pub use run_hash::RunHash;

@@ -6,7 +6,7 @@
 
 use std::collections::HashMap;
 use std::str::FromStr;
-use std::sync::{Arc, Mutex};
+use std::sync::Arc;
 
 use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, SubBandCount};
 use irsig_formats::canonical::{error_at_path, from_ron_bytes, raw_scene_error_at_path};
@@ -35,7 +35,10 @@ use crate::sun::{self as sunlight, SunRequest};
 use crate::tolerance::{self, Pin};
 
 mod atmosphere;
+mod builder;
 mod frames;
+
+pub use builder::PlanBuilder;
 
 /// A tolerance to pilot each frame to.
 #[derive(Debug, Clone, PartialEq)]
@@ -176,14 +179,15 @@ pub const TEXTURE_BYTES_PER_PIXEL: u64 = 16;
 /// residual is known only once it is read, and the check must not under-count.
 pub const DATA_ERROR_BYTES_PER_PIXEL: u64 = 8;
 
-/// A run: its request and inputs, read and checked as they come.
+/// A run: its request and its inputs, read and checked ([`PlanBuilder`]), which probing,
+/// converging or rendering it consumes.
 #[derive(Debug)]
 pub struct Plan {
     request: Request,
     run: RunHash,
-    /// Taken by the rendering, which drops it once the tracer is built unless the error
+    /// Moved into the rendering, which drops it once the tracer is built unless the error
     /// budget reads it (its facets' temperatures and emissivities).
-    scene: Mutex<Option<RawScene>>,
+    scene: Option<RawScene>,
     scene_name: String,
     materials: MaterialLibrary,
     materials_name: String,
@@ -198,7 +202,8 @@ pub struct Plan {
     sun: Option<irsig_atmosphere::sun::SunPosition>,
     /// Every input read, in order: what each image's provenance lists.
     inputs: Vec<InputRecord>,
-    warnings: Mutex<Vec<String>>,
+    /// What reading the inputs warned of, in order: the sink's first warnings.
+    warnings: Vec<String>,
 }
 
 /// The data error of `atmosphere`'s `table` model (what an atmosphere's `Air::data` is).
@@ -237,178 +242,6 @@ fn atmosphere_costs(kind: ModelKind, sensor_alt_m: f64) -> (f64, f64) {
 }
 
 impl Plan {
-    /// A plan of `request`, checked: a vacuum's sky radiance finite and not negative, a
-    /// tolerance above 0 K at a percentile in (0, 100], a sun above the horizon (with a
-    /// tolerance, the pilot decides the sun's models too).
-    ///
-    /// # Errors
-    /// A request error naming the setting.
-    pub fn new(request: Request) -> Result<Self, RenderError> {
-        if let AtmosphereRequest::Vacuum {
-            sky_radiance_w_m2_sr: sky,
-        } = request.atmosphere
-            && (!sky.is_finite() || sky < 0.0)
-        {
-            return Err(RequestError::with_value(
-                Setting::SkyRadiance,
-                sky,
-                "out of range: expected a finite radiance of 0 or more",
-            )
-            .into());
-        }
-        if let Some(t) = &request.tolerance {
-            irsig_model::decision::check_tolerance(t.tolerance_k, "tolerance")
-                .map_err(|e| RequestError::new(Setting::Tolerance, e.kind.to_string()))?;
-            irsig_model::decision::check_percentile(t.percentile, "percentile")
-                .map_err(|e| RequestError::new(Setting::TolerancePercentile, e.kind.to_string()))?;
-        }
-        let sun = match &request.sun {
-            None => None,
-            Some(s) => Some(s.position()?),
-        };
-        let warnings = Vec::new();
-        let mut inputs = Vec::new();
-        match &request.atmosphere {
-            AtmosphereRequest::File { bytes, .. } => inputs.push(InputRecord {
-                stage: "trace".into(),
-                role: "atmosphere".into(),
-                sha256: sha256_hex(bytes),
-            }),
-            AtmosphereRequest::Builtin(name) => {
-                let data = air::builtin_bytes(name, air::band_range_um(&request.band));
-                inputs.push(InputRecord {
-                    stage: "trace".into(),
-                    role: "atmosphere (a built-in's spectra)".into(),
-                    sha256: sha256_hex(data),
-                });
-            }
-            AtmosphereRequest::Vacuum { .. } => {}
-        }
-        Ok(Self {
-            request,
-            run: RunHash::default(),
-            scene: Mutex::new(None),
-            scene_name: String::new(),
-            materials: MaterialLibrary::default(),
-            materials_name: String::new(),
-            maps: Vec::new(),
-            views: Vec::new(),
-            uncertainties: None,
-            decision: None,
-            decision_file: None,
-            sun,
-            inputs,
-            warnings: Mutex::new(warnings),
-        })
-    }
-
-    /// Reads the raw scene (canonical RON or binary) from `bytes` of the file `name`. The
-    /// first input read: the run hash starts with it.
-    ///
-    /// # Errors
-    /// A malformed scene, at its place in the file.
-    pub fn read_scene(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
-        self.run.field("scene", bytes);
-        self.record_input("scene", bytes);
-        let scene = irsig_formats::canonical::read_raw_scene(name, bytes)
-            .map_err(|e| RenderError::input(format!("reading the scene `{name}`"), e))?;
-        *self.scene.get_mut().map_err(|_| poisoned())? = Some(scene);
-        name.clone_into(&mut self.scene_name);
-        Ok(())
-    }
-
-    /// Reads the material library after the scene: spectral materials' band tables become
-    /// their curves averaged over the band (the curves stay, for the sub-bands), and every
-    /// facet's material must be in it.
-    ///
-    /// # Errors
-    /// A malformed library, a spectral curve short of the band (at its wavelengths), a
-    /// facet whose material the library lacks (at the facet in the scene file, `scene` its
-    /// bytes), spectral materials with the whole spectrum as band.
-    pub fn read_materials(
-        &mut self,
-        name: &str,
-        bytes: &[u8],
-        scene_bytes: &[u8],
-    ) -> Result<(), RenderError> {
-        let lib: MaterialLibrary = from_ron_bytes(name, bytes)
-            .map_err(|e| RenderError::input(format!("reading the materials `{name}`"), e))?;
-        self.record_input("materials", bytes);
-        check_material_bands(
-            &lib,
-            &self.request.band.band,
-            name,
-            bytes,
-            self.request.spelling,
-        )?;
-        let lib = match &self.request.band.band {
-            _ if lib.materials.iter().all(|m| m.spectral.is_none()) => lib,
-            AnyBand::Band(band) => {
-                crate::materials::band_library(&lib, band, name, &String::from_utf8_lossy(bytes))?
-            }
-            AnyBand::Total(_) => {
-                return Err(RequestError::with_value(
-                    Setting::Band,
-                    "total",
-                    format!(
-                        "`{name}` has spectral materials, which the whole spectrum cannot \
-                         average: give a band of wavelengths"
-                    ),
-                )
-                .into());
-            }
-        };
-        let guard = self.scene.get_mut().map_err(|_| poisoned())?;
-        let scene = guard
-            .as_ref()
-            .ok_or_else(|| RenderError::internal("the scene is read before the materials"))?;
-        // A terrain or a facet whose material the library lacks, at its place in the scene
-        // file.
-        let unknown = |path: &str, message: String| {
-            RenderError::input(
-                format!("the scene's materials in `{name}`"),
-                raw_scene_error_at_path(&self.scene_name, scene_bytes, scene, path, message),
-            )
-        };
-        if let Some(m) = scene.terrain.material
-            && lib.by_id(m).is_none()
-        {
-            return Err(unknown(
-                "terrain.material",
-                format!(
-                    "the terrain's material is {}, which the material library {name} does not \
-                     define",
-                    m.0
-                ),
-            ));
-        }
-        if let Some((i, f)) = scene
-            .facets
-            .iter()
-            .enumerate()
-            .find(|(_, f)| lib.by_id(f.material).is_none())
-        {
-            return Err(unknown(
-                &format!("facets[{i}].material"),
-                format!(
-                    "facets[{i}] uses material {}, which the material library {name} does not \
-                     define",
-                    f.material.0
-                ),
-            ));
-        }
-        self.run.field("materials", format!("{lib:?}").as_bytes());
-        let (maps, images) = crate::maps::read_maps(&lib, name)?;
-        for bytes in &images {
-            self.record_input("map image", bytes);
-            self.run.field("map image", bytes);
-        }
-        self.maps = maps;
-        self.materials = lib;
-        name.clone_into(&mut self.materials_name);
-        Ok(())
-    }
-
     /// What the run takes where the request said nothing and the default changes the
     /// physics (`Request::defaulted`), one line each, for the user.
     #[must_use]
@@ -435,16 +268,6 @@ impl Plan {
             }
         }
         notes
-    }
-
-    /// Records an input the run read that the plan does not read itself (a view file, an
-    /// execute file): its role and its bytes' SHA-256, for the images' provenance.
-    pub fn record_input(&mut self, role: &str, bytes: &[u8]) {
-        self.inputs.push(InputRecord {
-            stage: "trace".into(),
-            role: role.into(),
-            sha256: sha256_hex(bytes),
-        });
     }
 
     /// What frame images rendered with `settings` record of their making.
@@ -474,117 +297,10 @@ impl Plan {
         }
     }
 
-    /// Adds frames, one per view, in order; a camera below the ground is warned about.
-    pub fn add_views(&mut self, views: impl IntoIterator<Item = View>) {
-        let first = self.views.len();
-        self.views.extend(views);
-        if let Some(w) = crate::observer::below_ground(&self.views[first..], first) {
-            self.warn(w);
-        }
-    }
-
     /// The views, one per frame.
     #[must_use]
     pub fn views(&self) -> &[View] {
         &self.views
-    }
-
-    /// Reads the declared uncertainties (canonical RON) after the scene and the materials:
-    /// an object the scene does not have, or an emissivity ± that would leave [0, 1], is an
-    /// error at its line and column.
-    ///
-    /// # Errors
-    /// As said, or a malformed file.
-    pub fn read_uncertainties(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
-        let context = || format!("reading the uncertainties `{name}`");
-        let text = irsig_formats::canonical::utf8(name, bytes)
-            .map_err(|e| RenderError::input(context(), e))?;
-        let u: Uncertainties =
-            from_ron_bytes(name, bytes).map_err(|e| RenderError::input(context(), e))?;
-        self.record_input("uncertainties", bytes);
-        let guard = self.scene.get_mut().map_err(|_| poisoned())?;
-        let objects = &guard
-            .as_ref()
-            .ok_or_else(|| RenderError::internal("the scene is read before the uncertainties"))?
-            .objects;
-        // An object the raw scene does not have (a misspelt name) would select no facet and
-        // silently declare nothing.
-        for (i, t) in u.temperature.iter().enumerate() {
-            if let Facets::Object(object) = &t.facets
-                && !objects.iter().any(|o| o == object)
-            {
-                return Err(RenderError::input(
-                    context(),
-                    error_at_path(
-                        name,
-                        text,
-                        &format!("temperature[{i}].facets"),
-                        format!(
-                            "invalid uncertainties file: `temperature[{i}].facets`: the raw scene \
-                         has no object `{object}`; its objects include {}",
-                            // A few, not a million names.
-                            objects
-                                .iter()
-                                .take(8)
-                                .map(|o| format!("`{o}`"))
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    ),
-                ));
-            }
-        }
-        let materials = &self.materials;
-        u.check_emissivity(|id| {
-            let m = materials.materials.iter().find(|m| m.id == id)?;
-            let normal = m.emissivity.first().map(|r| r.1)?;
-            let most = m.emissivity.iter().map(|r| r.1).fold(0.0, f64::max);
-            Some((normal, most))
-        })
-        .map_err(|e| {
-            RenderError::input(
-                context(),
-                error_at_path(
-                    name,
-                    text,
-                    &e.path,
-                    format!("invalid uncertainties file: `{}`: {}", e.path, e.kind),
-                ),
-            )
-        })?;
-        // The budget's layers are pixels of the truth EXR: tiles of other uncertainties
-        // differ.
-        self.run.field("uncertainties", format!("{u:?}").as_bytes());
-        self.uncertainties = Some(u);
-        Ok(())
-    }
-
-    /// Reads a decision an earlier run wrote, to apply to every frame: each choice is
-    /// checked here, where the file's text can point at it.
-    ///
-    /// # Errors
-    /// A malformed decision, or a choice that is not a setting of its model (at the
-    /// choice).
-    pub fn read_decision(&mut self, name: &str, bytes: &[u8]) -> Result<(), RenderError> {
-        // Not an input of the record: its choices are the frame's settings, which a frame
-        // piloted anew and a tile given its decision share, and so do their images.
-        let context = || format!("reading the decision `{name}`");
-        let d: Decision =
-            from_ron_bytes(name, bytes).map_err(|e| RenderError::input(context(), e))?;
-        if let Err((i, message)) = Settings::of(&self.request.settings).with_decision(&d) {
-            return Err(RenderError::input(
-                context(),
-                error_at_path(
-                    name,
-                    &String::from_utf8_lossy(bytes),
-                    &format!("choices[{i}].setting"),
-                    message,
-                ),
-            ));
-        }
-        self.decision = Some(d);
-        self.decision_file = Some((name.to_owned(), String::from_utf8_lossy(bytes).into_owned()));
-        Ok(())
     }
 
     /// An error about the sub-band count the decision chose (which only the atmosphere's
@@ -781,42 +497,37 @@ impl Plan {
         Ok(self.tiles(tile)?.iter().map(|t| u64::from(t.height)).sum())
     }
 
-    /// Takes the warnings gathered so far to `sink`.
-    fn flush_warnings(&self, sink: &mut dyn Sink) {
-        let taken = std::mem::take(
-            &mut *self
-                .warnings
-                .lock()
-                .unwrap_or_else(std::sync::PoisonError::into_inner),
-        );
-        for w in taken {
-            sink.warning(&w);
-        }
-    }
-
-    fn warn(&self, text: String) {
-        self.warnings
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner)
-            .push(text);
-    }
-
-    /// The band's model, then the atmosphere over it.
-    fn dispatch(self, job: &mut Job<'_>) -> Result<(), RenderError> {
+    /// The band's model, then the atmosphere over it; the scene and the reading's
+    /// warnings move from the plan to the job.
+    fn dispatch(mut self, job: &mut Job<'_>) -> Result<(), RenderError> {
+        let mut taken = Taken {
+            run: self.run.clone(),
+            scene: self.scene.take(),
+            notes: std::mem::take(&mut self.warnings),
+        };
         match self.request.band.band.clone() {
             AnyBand::Total(_) => {
-                let mut run = self.run.clone();
-                run.field("band", format!("{TotalRadiance:?}").as_bytes());
-                self.with_atmosphere(run, TotalRadiance, None, job)
+                taken
+                    .run
+                    .field("band", format!("{TotalRadiance:?}").as_bytes());
+                self.with_atmosphere(taken, TotalRadiance, None, job)
             }
             AnyBand::Band(band) => {
-                let mut run = self.run.clone();
-                run.field("band", format!("{band:?}").as_bytes());
+                taken.run.field("band", format!("{band:?}").as_bytes());
                 let split = Split::of(&band);
-                self.with_atmosphere(run, band.clone(), Some(&split), job)
+                self.with_atmosphere(taken, band.clone(), Some(&split), job)
             }
         }
     }
+}
+
+/// What a job takes from the plan on its way to the tracer: the run's hash as fed so far,
+/// the raw scene (moved into the tracer's making), and the warnings said so far, in order,
+/// which the sink gets before the first frame.
+struct Taken {
+    run: RunHash,
+    scene: Option<RawScene>,
+    notes: Vec<String>,
 }
 
 /// What a run does once its atmosphere is ready.
@@ -858,78 +569,10 @@ fn whole<R: Clone, T>(
     }])
 }
 
-/// `sha256:` and the 64 hex digits of `bytes`.
-fn sha256_hex(bytes: &[u8]) -> String {
-    use sha2::Digest as _;
-    let mut hex = String::from("sha256:");
-    for b in sha2::Sha256::digest(bytes) {
-        hex.push_str(&format!("{b:02x}"));
-    }
-    hex
-}
-
-fn poisoned() -> RenderError {
-    RenderError::internal("a lock of the run was poisoned by a panic")
-}
-
 /// The camera of view `index`.
 fn camera(index: usize, view: &View) -> Result<Camera, RenderError> {
     Camera::from_view(view)
         .map_err(|e| RenderError::trace(format!("the camera of view {}", index + 1), e))
-}
-
-/// Refuses a material whose angular table is one band's (`band_um`) and that has no
-/// spectral curve, when the trace's band is not within that band: its 8–14 µm values are
-/// not its 3–5 µm ones, and using them there would be silently wrong. The error points at
-/// the material's `band_um` in `file` and names the band asked for.
-///
-/// # Errors
-/// The first such material.
-fn check_material_bands(
-    lib: &MaterialLibrary,
-    band: &AnyBand,
-    file: &str,
-    bytes: &[u8],
-    spelling: Spelling,
-) -> Result<(), RenderError> {
-    let band_setting = spelling.of(Setting::Band);
-    // A band is within the table's when its edges are, to a part in 1e9 (the band's edges
-    // are parsed from the same decimals the library writes).
-    let within = |(shortest, longest): (f64, f64), lo: f64, hi: f64| {
-        lo >= shortest * (1.0 - 1e-9) && hi <= longest * (1.0 + 1e-9)
-    };
-    for (i, m) in lib.materials.iter().enumerate() {
-        let (Some(table_band), None) = (m.band_um, &m.spectral) else {
-            continue;
-        };
-        let asked = match band {
-            AnyBand::Band(b) if within(table_band, b.lambda_min_um(), b.lambda_max_um()) => {
-                continue;
-            }
-            AnyBand::Band(b) => format!(
-                "{band_setting} {}-{} um",
-                b.lambda_min_um(),
-                b.lambda_max_um()
-            ),
-            AnyBand::Total(_) => format!("{band_setting} total (the whole spectrum)"),
-        };
-        return Err(RenderError::input(
-            format!("the materials `{file}` for the band"),
-            error_at_path(
-                file,
-                &String::from_utf8_lossy(bytes),
-                &format!("materials[{i}].band_um"),
-                format!(
-                    "material `{}`: its emissivity table is for {}-{} um, and the trace asks for \
-                 {asked}: give it a `spectral` curve over that band (irsig-material fresnel \
-                 with an n, k table, or DIRSIG .ems curves through irsig-material dirsig) rather than \
-                 use its {}-{} um values there",
-                    m.name, table_band.0, table_band.1, table_band.0, table_band.1
-                ),
-            ),
-        ));
-    }
-    Ok(())
 }
 
 #[cfg(test)]

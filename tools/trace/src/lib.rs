@@ -20,8 +20,8 @@ use irsig_model::decision::Decision as PilotDecision;
 use irsig_model::frame::{FrameFile, FrameFiles};
 use irsig_render::tolerance::Pin;
 use irsig_render::{
-    AtmosphereRequest, BandRequest, Plan, Request, RequestError, Setting, Sink, TileRequest,
-    ToleranceRequest,
+    AtmosphereRequest, BandRequest, Plan, PlanBuilder, Request, RequestError, Setting, Sink,
+    TileRequest, ToleranceRequest,
 };
 use irsig_tracer::PathTermsMode;
 use miette::IntoDiagnostic;
@@ -300,7 +300,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
     let view_paths = cli.trailing_views.files(&cli.views);
     let (view_files, view_sun) =
         irsig_cli::args::view::read_views(view_paths, cli.views.unit.unit())?;
-    let mut plan = Plan::new(request(cli, view_sun)?)?;
+    let mut plan = PlanBuilder::new(request(cli, view_sun)?)?;
     let scene = irsig_cli::read_input(cli.scene.required()?)?;
     plan.read_scene(&scene.name, &scene.bytes)?;
     let materials = irsig_cli::read_input(cli.materials.required()?)?;
@@ -333,7 +333,7 @@ fn plan(cli: &Cli) -> miette::Result<(Plan, Option<Vec<FrameFiles<PathBuf>>>)> {
         let input = irsig_cli::read_input(path)?;
         plan.read_decision(&input.name, &input.bytes)?;
     }
-    Ok((plan, execute_files))
+    Ok((plan.build(), execute_files))
 }
 
 /// The plan the flags make, its inputs read: what `irsig-trace` would render (the

@@ -2,7 +2,7 @@
 //! spectra collapsed over the band or each sub-band, with the sun's tables by day, and the
 //! tracer built over it once.
 
-use std::sync::Once;
+use std::sync::Mutex;
 
 use irsig_model::SpectralAtmosphere;
 
@@ -12,7 +12,7 @@ impl Plan {
     /// Reads and checks the atmosphere asked for, then traces every frame through it.
     pub(super) fn with_atmosphere<R: SubBandModel>(
         &self,
-        mut run: RunHash,
+        mut taken: Taken,
         band: R,
         split: Option<&Split<'_>>,
         job: &mut Job<'_>,
@@ -22,22 +22,23 @@ impl Plan {
             sky_radiance_w_m2_sr,
         } = *request
         {
-            return self.trace_vacuum(run, band, sky_radiance_w_m2_sr, job);
+            return self.trace_vacuum(taken, band, sky_radiance_w_m2_sr, job);
         }
-        let data = self.air_data(split)?;
+        let (data, note) = self.air_data(split)?;
+        taken.notes.extend(note);
         // The sky is precomputed up to the highest sensor or scene point.
         let top = self
             .views
             .iter()
             .map(|v| v.position_m()[2])
-            .fold(self.scene_top_m()?, f64::max);
-        self.hash_air(&mut run, &data, top);
+            .fold(scene_top_m(taken.scene.as_ref())?, f64::max);
+        self.hash_air(&mut taken.run, &data, top);
         if matches!(self.request.band.band, AnyBand::Total(_)) {
             let band_um = match &data {
                 AirData::Band(a) => format!("{:?}", a.band_um),
                 AirData::Spectral(..) => "its spectral range".to_owned(),
             };
-            self.warn(format!(
+            taken.notes.push(format!(
                 "the `total` band (whole spectrum) is combined with `{}`, whose tables \
                  cover {band_um} um: facet radiances and path terms are in different bands; \
                  use this only to check the geometry and the event logic",
@@ -45,34 +46,20 @@ impl Plan {
             ));
         }
         match data {
-            AirData::Band(atmosphere) => self.trace_band_tables(run, band, &atmosphere, top, job),
+            AirData::Band(atmosphere) => self.trace_band_tables(taken, band, &atmosphere, top, job),
             AirData::Spectral(spectral, _) => {
                 let Some(split) = split else {
                     return Err(air::no_spectra(request.name(), SubBandCount::Full));
                 };
-                self.trace_spectra(run, band, &spectral, split, top, job)
+                self.trace_spectra(taken, band, &spectral, split, top, job)
             }
         }
-    }
-
-    /// The highest point of the scene, metres (0 for a scene below the ground).
-    fn scene_top_m(&self) -> Result<f64, RenderError> {
-        Ok(self
-            .scene
-            .lock()
-            .map_err(|_| poisoned())?
-            .as_ref()
-            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?
-            .positions_m
-            .iter()
-            .map(|p| p[2])
-            .fold(0.0_f64, f64::max))
     }
 
     /// No air: the sky's radiance as given, no sun.
     fn trace_vacuum<R: SubBandModel>(
         &self,
-        mut run: RunHash,
+        mut taken: Taken,
         band: R,
         sky_radiance_w_m2_sr: f64,
         job: &mut Job<'_>,
@@ -88,17 +75,22 @@ impl Plan {
         let vacuum = Vacuum {
             sky_radiance_w_m2_sr,
         };
-        run.field("atmosphere", format!("{vacuum:?}").as_bytes());
+        taken
+            .run
+            .field("atmosphere", format!("{vacuum:?}").as_bytes());
         let air = VacuumAir {
             band: band.clone(),
             vacuum,
         };
-        self.trace_all(&run, band, &air, job)
+        self.trace_all(taken, band, &air, job)
     }
 
     /// The atmosphere's data, read in the form the band needs and checked against the
-    /// band, the sun and the cameras.
-    fn air_data(&self, split: Option<&Split<'_>>) -> Result<AirData, RenderError> {
+    /// band, the sun and the cameras, with the warning of band tables for another band.
+    fn air_data(
+        &self,
+        split: Option<&Split<'_>>,
+    ) -> Result<(AirData, Option<String>), RenderError> {
         let request = &self.request.atmosphere;
         let name = request.name();
         // A built-in is read in spectral form when sub-bands may be asked for.
@@ -109,6 +101,7 @@ impl Plan {
                 || self.decision.is_some());
         let range_um = split.map(|sp| sp.range_um);
         let mut data = air::read(request, wants_spectra, range_um)?;
+        let mut note = None;
         // A built-in's band tables are for the flat band they were made for (8-14 um): any
         // other band, or a sensor response, collapses its spectra instead (else the band
         // model would add the flat band's path and sky radiance to a response-weighted
@@ -123,7 +116,7 @@ impl Plan {
             if other_band && matches!(request, AtmosphereRequest::Builtin(_)) {
                 data = air::read(request, true, range_um)?;
             } else if other_band {
-                self.warn(format!(
+                note = Some(format!(
                     "`{name}` holds band tables for {}-{} um, flat; the band traced is {}-{} \
                      um{}: its path and sky radiances are the tables' band's",
                     a.band_um[0],
@@ -175,7 +168,7 @@ impl Plan {
         if let AtmosphereRequest::Builtin(name) = request {
             air::check_builtin_top(name, &self.views)?;
         }
-        Ok(data)
+        Ok((data, note))
     }
 
     /// Adds what of the air decides the pixels to the run's hash: the data, the top its sky
@@ -210,7 +203,7 @@ impl Plan {
     /// Band tables: the band model only, at night.
     fn trace_band_tables<R: SubBandModel>(
         &self,
-        run: RunHash,
+        taken: Taken,
         band: R,
         atmosphere: &irsig_model::Atmosphere,
         top: f64,
@@ -233,19 +226,18 @@ impl Plan {
             band: band.clone(),
             name,
             atmosphere,
-            models: Models::new(self, top),
-            top_m: top,
+            models: Models { name, top_m: top },
             kinds,
             data: data_error_of(atmosphere),
         };
-        self.trace_all(&run, band, &air, job)
+        self.trace_all(taken, band, &air, job)
     }
 
     /// Spectra: collapsed over the band or each sub-band of a count (each count once), with
     /// the sun's beams and scattered sunlight by day.
     fn trace_spectra<R: SubBandModel>(
         &self,
-        run: RunHash,
+        mut taken: Taken,
         band: R,
         spectral: &SpectralAtmosphere,
         split: &Split<'_>,
@@ -264,7 +256,7 @@ impl Plan {
             top_m: top,
             collapser,
             cache: Mutex::default(),
-            models: Models::new(self, top),
+            models: Models { name, top_m: top },
             scatter: None,
             kinds: Vec::new(),
             data: None,
@@ -280,51 +272,61 @@ impl Plan {
             self.sun.as_ref(),
             spectral,
             name,
-            |w| self.warn(w),
+            |w| taken.notes.push(w),
         );
         // The sun's table is checked now, before anything is traced.
         air.lit(SubBandCount::BAND)?;
-        air.day_default = self.day_default(spectral, split);
+        air.day_default = self.day_default(spectral, split).map(|(count, note)| {
+            taken.notes.push(note);
+            count
+        });
         air.data = one.first().and_then(|(_, a)| data_error_of(a));
-        self.trace_all(&run, band, &air, job)
+        self.trace_all(taken, band, &air, job)
     }
 
     /// By day with no count asked for, chosen or piloted: enough sub-bands for the
-    /// sunlight, said once.
+    /// sunlight, and the note that says so.
     fn day_default(
         &self,
         spectral: &SpectralAtmosphere,
         split: &Split<'_>,
-    ) -> Option<SubBandCount> {
+    ) -> Option<(SubBandCount, String)> {
         (self.request.sun.is_some()
             && self.request.settings.sub_bands.is_none()
             && self.request.tolerance.is_none()
             && self.decision.is_none())
         .then(|| {
             let count = sunlight::day_sub_bands(spectral, split);
-            self.warn(sunlight::day_sub_bands_note(self.request.spelling, count));
-            count
+            (
+                count,
+                sunlight::day_sub_bands_note(self.request.spelling, count),
+            )
         })
     }
 }
 
-/// Builds a model kind of the run's atmosphere and precomputes its sky to the run's top,
-/// saying the precomputation's warnings once.
-struct Models<'p> {
-    plan: &'p Plan,
-    top_m: f64,
-    warned: Once,
+/// The highest point of the scene, metres (0 for a scene below the ground).
+fn scene_top_m(scene: Option<&RawScene>) -> Result<f64, RenderError> {
+    Ok(scene
+        .ok_or_else(|| RenderError::internal("the raw scene is read before it is traced"))?
+        .positions_m
+        .iter()
+        .map(|p| p[2])
+        .fold(0.0_f64, f64::max))
 }
 
-impl<'p> Models<'p> {
-    fn new(plan: &'p Plan, top_m: f64) -> Self {
-        Self {
-            plan,
-            top_m,
-            warned: Once::new(),
-        }
-    }
+fn poisoned() -> RenderError {
+    RenderError::internal("a lock of the run was poisoned by a panic")
+}
 
+/// Builds a model kind of the run's atmosphere (`name`) and precomputes its sky to the
+/// run's top; a precomputed sky keeps its warnings, which [`Air::sky_notes`] says.
+struct Models<'p> {
+    name: &'p str,
+    top_m: f64,
+}
+
+impl Models<'_> {
     fn model(
         &self,
         atmosphere: &irsig_model::Atmosphere,
@@ -332,24 +334,26 @@ impl<'p> Models<'p> {
     ) -> Result<AtmosphereModel, RenderError> {
         AtmosphereModel::new(atmosphere, kind).map_err(|e| {
             RenderError::atmosphere(
-                format!(
-                    "cannot build the {kind} model of `{}`",
-                    self.plan.request.atmosphere.name()
-                ),
+                format!("cannot build the {kind} model of `{}`", self.name),
                 e,
             )
         })
     }
 
     fn precompute(&self, model: AtmosphereModel) -> PrecomputedAtmosphere {
-        let air = PrecomputedAtmosphere::new(model, self.top_m);
-        self.warned.call_once(|| {
-            for w in air.warnings() {
-                self.plan
-                    .warn(format!("{}: {w}", self.plan.request.atmosphere.name()));
-            }
-        });
-        air
+        PrecomputedAtmosphere::new(model, self.top_m)
+    }
+
+    /// The warnings of the first sub-band's precomputed sky, each after the atmosphere's
+    /// name.
+    fn notes<R>(&self, sub_bands: &[SubBand<R, PrecomputedAtmosphere>]) -> Vec<String> {
+        sub_bands.first().map_or_else(Vec::new, |s| {
+            s.atmosphere
+                .warnings()
+                .iter()
+                .map(|w| format!("{}: {w}", self.name))
+                .collect()
+        })
     }
 }
 
@@ -403,6 +407,12 @@ pub(super) trait Air<R>: Sync {
     fn day_default(&self) -> Option<SubBandCount> {
         None
     }
+
+    /// What precomputing the skies of `sub_bands` (a rendering's) warned of, said once a
+    /// run: the first sub-band's warnings (none for a vacuum).
+    fn sky_notes(&self, _sub_bands: &[SubBand<R, Self::Atmosphere>]) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// No air: the sky's radiance as given, over the whole band, and no sun.
@@ -434,7 +444,6 @@ struct TableAir<'p, R> {
     name: &'p str,
     atmosphere: &'p irsig_model::Atmosphere,
     models: Models<'p>,
-    top_m: f64,
     kinds: Vec<ModelKind>,
     data: Option<irsig_atmosphere::data_error::DataError>,
 }
@@ -450,20 +459,21 @@ impl<R: SubBandModel> Air<R> for TableAir<'_, R> {
         &self,
         kind: ModelKind,
         count: SubBandCount,
-        pilot: bool,
+        _: bool,
     ) -> Result<Vec<SubBand<R, PrecomputedAtmosphere>>, RenderError> {
         whole(&self.band, self.name, count, || {
-            let model = self.models.model(self.atmosphere, kind)?;
-            Ok(if pilot {
-                PrecomputedAtmosphere::new(model, self.top_m)
-            } else {
-                self.models.precompute(model)
-            })
+            Ok(self
+                .models
+                .precompute(self.models.model(self.atmosphere, kind)?))
         })
     }
 
     fn data(&self) -> Option<&irsig_atmosphere::data_error::DataError> {
         self.data.as_ref()
+    }
+
+    fn sky_notes(&self, sub_bands: &[SubBand<R, PrecomputedAtmosphere>]) -> Vec<String> {
+        self.models.notes(sub_bands)
     }
 }
 
@@ -577,5 +587,9 @@ impl<R: SubBandModel> Air<R> for SpectralAir<'_> {
 
     fn day_default(&self) -> Option<SubBandCount> {
         self.day_default
+    }
+
+    fn sky_notes(&self, sub_bands: &[SubBand<R, PrecomputedAtmosphere>]) -> Vec<String> {
+        self.models.notes(sub_bands)
     }
 }

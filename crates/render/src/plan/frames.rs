@@ -134,15 +134,23 @@ impl Plan {
     }
 
     /// Builds the tracer once and runs the job with it: a probe, converged references, or
-    /// every frame rendered and turned into its files.
+    /// every frame rendered and turned into its files (a probe and references say no
+    /// warnings).
     pub(super) fn trace_all<R: BandModel + Clone + Send + Sync, Y: Air<R>>(
         &self,
-        run: &RunHash,
+        taken: Taken,
         band: R,
         air: &Y,
         job: &mut Job<'_>,
     ) -> Result<(), RenderError> {
-        let (tracer, scene, base) = self.build_tracer(band, air)?;
+        let Taken {
+            run,
+            scene,
+            mut notes,
+        } = taken;
+        let built = self.build_tracer(band, air, scene)?;
+        notes.extend(built.notes);
+        let (tracer, scene, base) = (built.tracer, built.scene, built.settings);
         let cameras = self
             .views
             .iter()
@@ -186,14 +194,14 @@ impl Plan {
             } => {
                 let frames = Frames {
                     air,
-                    run,
+                    run: &run,
                     cameras: &cameras,
                     scene: scene.as_ref(),
                     tiles: self.tiles(*tile)?,
                     whole: tile.is_none(),
                     progress: *progress,
                 };
-                self.render_frames(tracer, base, &frames, &mut **sink)
+                self.render_frames(tracer, base, &frames, &notes, &mut **sink)
             }
         }
     }
@@ -204,13 +212,10 @@ impl Plan {
         &self,
         band: R,
         air: &Y,
+        scene: Option<RawScene>,
     ) -> Result<Built<R, Y::Atmosphere>, RenderError> {
-        let scene = self
-            .scene
-            .lock()
-            .map_err(|_| poisoned())?
-            .take()
-            .ok_or_else(|| RenderError::internal("the raw scene was already traced"))?;
+        let scene = scene
+            .ok_or_else(|| RenderError::internal("the raw scene is read before it is traced"))?;
         let mut asked = Settings::of(&self.request.settings);
         if let Some(count) = air.day_default() {
             asked.sub_bands = count;
@@ -236,6 +241,7 @@ impl Plan {
         let precomputed = air
             .sub_bands(base.kind, base.sub_bands, false)
             .map_err(said)?;
+        let notes = air.sky_notes(&precomputed);
         let tracer = Tracer::with_sub_bands_and_maps(
             &scene,
             &self.materials,
@@ -266,7 +272,12 @@ impl Plan {
                     .groups()
                 },
             ));
-        Ok((tracer, scene, base))
+        Ok(Built {
+            tracer,
+            scene,
+            settings: base,
+            notes,
+        })
     }
 
     /// Every frame: its settings (piloted when a tolerance is asked for), the tracer moved
@@ -276,6 +287,7 @@ impl Plan {
         mut tracer: Tracer<R, Y::Atmosphere>,
         base: Settings,
         frames: &Frames<'_, Y>,
+        notes: &[String],
         sink: &mut dyn Sink,
     ) -> Result<(), RenderError> {
         let air = frames.air;
@@ -289,7 +301,9 @@ impl Plan {
             .filter(|m| m.specular_fraction > 0.0)
             .map(|m| m.id.0)
             .collect();
-        self.flush_warnings(sink);
+        for note in notes {
+            sink.warning(note);
+        }
         for (i, cam) in frames.cameras.iter().enumerate() {
             let piloted;
             let (settings, decision) = match &self.request.tolerance {
@@ -302,7 +316,6 @@ impl Plan {
                     }
                     let (p, seconds) = self.decide(tolerance, &tracer, air, cam)?;
                     piloted = p;
-                    self.flush_warnings(sink);
                     sink.decision(i, &piloted.decision, seconds).map_err(|e| {
                         RenderError::caller(format!("keeping view {}'s decision", i + 1), e)
                     })?;
@@ -326,7 +339,6 @@ impl Plan {
                     .with_sun(sun_of(air, &settings)?)
                     .map_err(|e| RenderError::trace(format!("view {}'s sun", i + 1), e))?;
             }
-            self.flush_warnings(sink);
             let wanted = sink.files(i);
             if !wanted.any() {
                 // Only the pilot's decision was asked for.
@@ -424,9 +436,14 @@ impl Plan {
     }
 }
 
-/// The tracer built once, the raw scene when the budget reads its facets, and the settings
-/// it was built with.
-type Built<R, A> = (Tracer<R, A>, Option<RawScene>, Settings);
+/// The tracer built once, the raw scene when the budget reads its facets, the settings it
+/// was built with, and what precomputing its skies warned of.
+struct Built<R, A> {
+    tracer: Tracer<R, A>,
+    scene: Option<RawScene>,
+    settings: Settings,
+    notes: Vec<String>,
+}
 
 /// What every frame of a rendering shares.
 struct Frames<'a, Y> {
