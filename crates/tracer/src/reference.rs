@@ -134,9 +134,10 @@ impl ConvergedReference {
 /// [`REFERENCE_ROUNDS`], 8 bounces throughout. Every pixel is traced in two independent
 /// halves (their own seeds) at the first round. A pixel goes on to the next round, from
 /// fresh seeds, while its two halves differ by more than `stop_k`, and until
-/// [`REFERENCE_EDGE_ROUND`] when it is not one surface: its first round's mean with the
-/// hemispheric sky (no sky-view rays) more than `stop_k` from its centre ray's (an edge, a
-/// reflected horizon, a wire). The last round's halves are kept; their mean is the truth,
+/// [`REFERENCE_EDGE_ROUND`] when it may not be one surface: its first round's mean with the
+/// hemispheric sky (no sky-view rays) more than `stop_k` from its centre ray's or from a
+/// neighbour's (an edge, a reflected horizon, a wire; [`not_one_surface`]). The last
+/// round's halves are kept; their mean is the truth,
 /// half their difference its own error. A guarantee at tolerance T takes `stop_k` = T/6,
 /// so a stopped pixel's measured error is at most T/12, a quarter of the T/3 its 99th
 /// percentile must stay under: the margin is for halves that agree by chance (one
@@ -176,16 +177,17 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
     let calm = whole(options(first, 0, 101))?;
     let mut a = whole(options(first, first.sky_view_rays, 101))?;
     let mut b = whole(options(first, first.sky_view_rays, 202))?;
-    let edge: Vec<bool> = centre
-        .iter()
-        .zip(&calm)
-        .map(|(c, m)| (c - m).abs() > stop_k)
-        .collect();
     let width = camera.pixels[0];
+    let edge = not_one_surface(&centre, &calm, camera.pixels, stop_k);
     // The round each pixel's halves come from.
     let mut level = vec![0; a.len()];
+    // A pixel that may not be one surface whose halves are equal to the last bit saw one
+    // value with every ray of both: a sliver of another surface (a hot corner reflected in
+    // a mirror) that neither met would leave them so, so they are no evidence it has
+    // converged, and it goes on.
     let needs = |a: &[f64], b: &[f64], level: &[usize], i: usize| {
-        (a[i] - b[i]).abs() > stop_k || (edge[i] && level[i] < REFERENCE_EDGE_ROUND)
+        (a[i] - b[i]).abs() > stop_k
+            || (edge[i] && (level[i] < REFERENCE_EDGE_ROUND || a[i].to_bits() == b[i].to_bits()))
     };
     let mut pixels_per_round = vec![a.len()];
     for (r, &round) in rounds.iter().enumerate().skip(1) {
@@ -231,6 +233,26 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
     })
 }
 
+/// The pixels that may not be one surface, row-major: a pixel whose first round's mean with
+/// the hemispheric sky (`calm`) is more than `stop_k` from its centre ray's (`centre`), or
+/// from one of its 8 neighbours' means. Beside an edge, a sliver of the far side no ray of
+/// the first round met leaves both halves equal, to the last bit where every ray saw one
+/// uniform surface (a mirror reflecting the uniform sky), and equal to the centre: only the
+/// neighbour shows that an edge passes near.
+fn not_one_surface(centre: &[f64], calm: &[f64], [w, h]: [u32; 2], stop_k: f64) -> Vec<bool> {
+    let (w, h) = (w as usize, h as usize);
+    (0..calm.len())
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            let neighbour_differs = (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
+                (x.saturating_sub(1)..(x + 2).min(w))
+                    .any(|nx| (calm[ny * w + nx] - calm[i]).abs() > stop_k)
+            });
+            neighbour_differs || (centre[i] - calm[i]).abs() > stop_k
+        })
+        .collect()
+}
+
 /// The 90th percentile of |`error`| over the pixels of each material of `ids` (`material`:
 /// the truth's primary-material layer) that has at least 10 of them, `(id, pixels, p90)`:
 /// a class of a handful of pixels has no 90th percentile worth the name.
@@ -247,4 +269,29 @@ pub fn material_p90s(error: &[f64], material: &[f32], ids: &[u16]) -> Vec<(u16, 
             (of.len() >= 10).then(|| (id, of.len(), percentile(&of, 90.0)))
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_pixel_beside_an_edge_may_not_be_one_surface_though_its_rays_all_agree() {
+        // 4 × 3 pixels, each centre its own mean (every ray of each saw one surface), a
+        // vertical edge of 30 K between columns 1 and 2; one pixel of column 3 whose mean
+        // is 0.2 K off its centre (a wire in it).
+        let mut calm = vec![300.0, 300.0, 270.0, 270.0];
+        calm = calm.repeat(3);
+        let mut centre = calm.clone();
+        centre[11] += 0.2;
+        let flagged = not_one_surface(&centre, &calm, [4, 3], 0.05);
+        let expected = [
+            false, true, true, false, // beside the edge: columns 1 and 2
+            false, true, true, false, //
+            false, true, true, true, // and the wire's pixel
+        ];
+        assert_eq!(flagged, expected);
+        // A difference of the stop itself is not over it.
+        assert!(!not_one_surface(&[1.0, 1.5], &[1.0, 1.5], [2, 1], 0.5)[0]);
+    }
 }

@@ -9,7 +9,8 @@
 //! independent halves, from 16 × 16 rays with 64 sky-view rays each; a pixel whose halves
 //! differ by more than a sixth of the tolerance is traced again from fresh seeds with four
 //! times the rays, round after round up to 262,144 a half (a pixel that is not one surface
-//! to 64 × 64 at least). The halves' mean is the truth, and its own error (half their
+//! or beside an edge to 64 × 64 at least, and on while its halves are equal to the last
+//! bit). The halves' mean is the truth, and its own error (half their
 //! difference) must be under a third of the tolerance at p99, or the case is not verified.
 //! The promise checked is the one `--tolerance` makes: the frame's 99th percentile of
 //! |ΔT| within the tolerance, every material's 90th within it too, and what the pilot
@@ -53,6 +54,22 @@ struct Outcome {
     not_guaranteed_share: f64,
 }
 
+/// The CPU-seconds this process has used, its every thread's (Linux's `/proc/self/stat`,
+/// user and system time at 100 ticks a second; 0 elsewhere).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").unwrap_or_default();
+    let fields: Vec<f64> = stat
+        .rsplit(')')
+        .next()
+        .unwrap_or("")
+        .split_whitespace()
+        .skip(11)
+        .take(2)
+        .filter_map(|x| x.parse().ok())
+        .collect();
+    fields.iter().sum::<f64>() / 100.0
+}
+
 /// The floor a refusal names, K.
 fn named_floor_k(refusal: &str) -> Option<f64> {
     let at = refusal.find("floor is about ")? + "floor is about ".len();
@@ -76,7 +93,11 @@ fn check_with(
         offer.bounces.truncate(1);
         offer.sky_view_rays.truncate(1);
     }
-    let piloted = match tracer.pilot(&camera, &offer, tolerance_k, 99.0, 1024, 1) {
+    let before = cpu_seconds();
+    let pilot = tracer.pilot(&camera, &offer, tolerance_k, 99.0, 1024, 1);
+    let pilot_cpu_s = cpu_seconds() - before;
+    eprintln!("scene {seed} view {view} at {tolerance_k} K: pilot {pilot_cpu_s:.2} CPU-s");
+    let piloted = match pilot {
         Ok(p) => p,
         Err(e) => {
             eprintln!("scene {seed} view {view} at {tolerance_k} K: refused: {e}");
@@ -86,6 +107,7 @@ fn check_with(
     let c = piloted.chosen;
     // The reference's tracer: the same scene, without the chosen refinement.
     let (reference_tracer, _) = generated(seed, view);
+    let before = cpu_seconds();
     let chosen = tracer
         .with_refinement(c.refinement)
         .unwrap()
@@ -102,6 +124,8 @@ fn check_with(
             &|_| {},
         )
         .unwrap();
+    let render_cpu_s = cpu_seconds() - before;
+    eprintln!("scene {seed} view {view} at {tolerance_k} K: rendering {render_cpu_s:.2} CPU-s");
     // The reference: converged in rounds to a sixth of the tolerance (reference.rs).
     let rounds = std::env::var("IRSIG_GUARANTEE_REFERENCE_ROUNDS")
         .map_or(REFERENCE_ROUNDS_DEFAULT, |r| {
