@@ -51,6 +51,7 @@ mod spectral_trace;
 mod sun_day;
 mod sunlit;
 mod texture_end_to_end;
+mod textured_panel;
 mod thermal;
 mod tiles;
 mod trace_outputs;

@@ -18,34 +18,13 @@
 
 use std::path::Path;
 
-use irsig_model::{MixTemperatures, View};
-use irsig_tests::bin;
+use crate::textured_panel::{SIDE_M, ground_points, import_and_flatten, layer, trace};
+use irsig_model::MixTemperatures;
 use irsig_tests::slant_plate::{apparent_k, band_radiance};
-use irsig_tracer::Camera;
 
-/// The panel's side, m, and the sensor's height above its centre.
-const SIDE_M: f64 = 8.0;
-const HEIGHT_M: f64 = 100.0;
-const PIXELS: u32 = 32;
-const FOV_DEG: f64 = 6.0;
 /// A centre ray this close to the panel's edge or the texels' border (m) is not checked:
 /// more than half a pixel's footprint (10.5 m over 32 pixels).
 const EDGE_MARGIN_M: f64 = 0.2;
-
-const OBJ: &str = "\
-mtllib panel.mtl
-v 0 0 0
-v 8 0 0
-v 8 8 0
-v 0 8 0
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-usemtl panel
-f 1/1 2/2 3/3
-f 1/1 3/3 4/4
-";
 
 const MTL: &str = "newmtl panel\nKd 1 1 1\n";
 
@@ -72,51 +51,18 @@ fn materials(filter: &str) -> String {
     )
 }
 
-const SCENE: &str = "(objects: [(object: \"panel.ron\", temperature_k: Some(300.0))], \
-                     terrain: (temperature_k: 280.0, emissivity: 1.0))";
-
-fn view() -> View {
-    View::Legacy {
-        position_m: [SIDE_M / 2.0, SIDE_M / 2.0, HEIGHT_M],
-        pixels: [PIXELS, PIXELS],
-        omega_phi_kappa_deg: [0.0, 0.0, 0.0],
-        fov_deg: [FOV_DEG, FOV_DEG],
-        gain_dc_per_k: None,
-    }
-}
-
 /// Writes the asset and the map, imports and flattens it; `temperatures` (black's, grey's),
 /// when given, go into the raw scene as every panel facet's per-material temperatures. Then
-/// traces it: the truth EXR.
+/// traces it in 8–14 µm: the truth EXR.
 fn traced(dir: &Path, filter: &str, temperatures: Option<[f64; 2]>) -> irsig_raster::Raster {
-    let p = |name: &str| dir.join(name);
-    std::fs::write(p("panel.obj"), OBJ).unwrap();
-    std::fs::write(p("panel.mtl"), MTL).unwrap();
     image::GrayImage::from_raw(2, 1, vec![0, 255])
         .unwrap()
-        .save(p("halves.png"))
+        .save(dir.join("halves.png"))
         .unwrap();
-    std::fs::write(p("materials.ron"), materials(filter)).unwrap();
-    std::fs::write(p("scene.ron"), SCENE).unwrap();
-    std::fs::write(p("view.ron"), ron::to_string(&view()).unwrap()).unwrap();
-    bin("irsig-import")
-        .arg(p("panel.obj"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("panel.ron"))
-        .assert()
-        .success();
-    bin("irsig-flatten")
-        .arg(p("scene.ron"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("scene.raw"))
-        .assert()
-        .success();
+    import_and_flatten(dir, MTL, &materials(filter));
     if let Some(t) = temperatures {
-        let bytes = std::fs::read(p("scene.raw")).unwrap();
+        let raw = dir.join("scene.raw");
+        let bytes = std::fs::read(&raw).unwrap();
         let mut scene = irsig_formats::canonical::read_raw_scene("scene.raw", &bytes).unwrap();
         assert_eq!(scene.facets.len(), 2, "the panel's two triangles");
         scene.mix_temperatures = (0..2)
@@ -125,48 +71,20 @@ fn traced(dir: &Path, filter: &str, temperatures: Option<[f64; 2]>) -> irsig_ras
                 temperatures_k: t.to_vec(),
             })
             .collect();
-        std::fs::write(p("scene.raw"), ron::to_string(&scene).unwrap()).unwrap();
+        std::fs::write(&raw, ron::to_string(&scene).unwrap()).unwrap();
     }
-    bin("irsig-trace")
-        .arg("--scene")
-        .arg(p("scene.raw"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("--view")
-        .arg(p("view.ron"))
-        .args(["--atmosphere", "none", "--band", "8-14", "-o"])
-        .arg(p("out"))
-        .assert()
-        .success();
-    irsig_raster::read_exr(&std::fs::read(p("out.truth.exr")).unwrap()).unwrap()
-}
-
-fn layer<'a>(truth: &'a irsig_raster::Raster, name: &str) -> &'a [f32] {
-    &truth
-        .layer(name)
-        .unwrap_or_else(|| panic!("no layer `{name}`"))
-        .data
+    trace(dir, &["--band", "8-14"])
 }
 
 /// Each pixel whose centre ray meets the panel more than the margin inside it: its index
 /// in the frame and the texture coordinate u there (x / side).
 fn panel_pixels() -> Vec<(usize, f64)> {
-    let camera = Camera::from_view(&view()).unwrap();
-    let o = camera.position_m;
-    let mut out = Vec::new();
-    for row in 0..PIXELS {
-        for column in 0..PIXELS {
-            // The centre ray meets the ground z = 0 at o + s·d, s = −o_z/d_z.
-            let d = camera.pixel_direction(column, row);
-            let s = -o[2] / d[2];
-            let (x, y) = (o[0] + s * d[0], o[1] + s * d[1]);
-            let inside = |c: f64| c > EDGE_MARGIN_M && c < SIDE_M - EDGE_MARGIN_M;
-            if inside(x) && inside(y) {
-                out.push(((row * PIXELS + column) as usize, x / SIDE_M));
-            }
-        }
-    }
-    out
+    let inside = |c: f64| c > EDGE_MARGIN_M && c < SIDE_M - EDGE_MARGIN_M;
+    ground_points()
+        .into_iter()
+        .filter(|&(_, x, y)| inside(x) && inside(y))
+        .map(|(k, x, _)| (k, x / SIDE_M))
+        .collect()
 }
 
 /// The apparent temperature, K, of a grey surface of emissivity `e` at `t_k`, alone.

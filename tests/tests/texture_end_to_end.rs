@@ -15,32 +15,11 @@
 
 use std::path::Path;
 
-use irsig_model::View;
+use crate::textured_panel::{SIDE_M, ground_points, import_and_flatten, layer, trace};
 use irsig_tests::bin;
-use irsig_tracer::Camera;
 
-/// The panel's side, m, and the sensor's height above its centre.
-const SIDE_M: f64 = 8.0;
-const HEIGHT_M: f64 = 100.0;
-const PIXELS: u32 = 32;
-const FOV_DEG: f64 = 6.0;
 /// A centre ray this close to a quarter's or the panel's edge (m) is not checked.
 const EDGE_MARGIN_M: f64 = 0.05;
-
-const OBJ: &str = "\
-mtllib panel.mtl
-v 0 0 0
-v 8 0 0
-v 8 8 0
-v 0 8 0
-vt 0 0
-vt 1 0
-vt 1 1
-vt 0 1
-usemtl panel
-f 1/1 2/2 3/3
-f 1/1 3/3 4/4
-";
 
 const MTL: &str = "newmtl panel\nKd 1 1 1\nmap_Kd quarters.png\n";
 
@@ -59,68 +38,16 @@ fn materials(maps: bool) -> String {
     )
 }
 
-const SCENE: &str = "(objects: [(object: \"panel.ron\", temperature_k: Some(300.0))], \
-                     terrain: (temperature_k: 280.0, emissivity: 1.0))";
-
-fn view() -> View {
-    View::Legacy {
-        position_m: [SIDE_M / 2.0, SIDE_M / 2.0, HEIGHT_M],
-        pixels: [PIXELS, PIXELS],
-        omega_phi_kappa_deg: [0.0, 0.0, 0.0],
-        fov_deg: [FOV_DEG, FOV_DEG],
-        gain_dc_per_k: None,
-    }
-}
-
 /// Writes the asset (OBJ, MTL, PNG), imports, flattens and traces it with or without the
 /// map; the truth EXR.
 fn traced(dir: &Path, maps: bool) -> irsig_raster::Raster {
-    std::fs::write(dir.join("panel.obj"), OBJ).unwrap();
-    std::fs::write(dir.join("panel.mtl"), MTL).unwrap();
     // Row 0 at the top: top-left black, top-right 51, bottom-left white, bottom-right black.
     image::GrayImage::from_raw(2, 2, vec![0, 51, 255, 0])
         .unwrap()
         .save(dir.join("quarters.png"))
         .unwrap();
-    std::fs::write(dir.join("materials.ron"), materials(maps)).unwrap();
-    std::fs::write(dir.join("scene.ron"), SCENE).unwrap();
-    std::fs::write(dir.join("view.ron"), ron::to_string(&view()).unwrap()).unwrap();
-    let p = |name: &str| dir.join(name);
-    bin("irsig-import")
-        .arg(p("panel.obj"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("panel.ron"))
-        .assert()
-        .success();
-    bin("irsig-flatten")
-        .arg(p("scene.ron"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("scene.raw"))
-        .assert()
-        .success();
-    bin("irsig-trace")
-        .arg("--scene")
-        .arg(p("scene.raw"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("--view")
-        .arg(p("view.ron"))
-        .args(["--atmosphere", "none", "-o"])
-        .arg(p("out"))
-        .assert()
-        .success();
-    irsig_raster::read_exr(&std::fs::read(p("out.truth.exr")).unwrap()).unwrap()
-}
-
-fn layer<'a>(truth: &'a irsig_raster::Raster, name: &str) -> &'a [f32] {
-    &truth
-        .layer(name)
-        .unwrap_or_else(|| panic!("no layer `{name}`"))
-        .data
+    import_and_flatten(dir, MTL, &materials(maps));
+    trace(dir, &[])
 }
 
 #[test]
@@ -131,57 +58,48 @@ fn a_textured_obj_renders_its_image_where_the_asset_puts_it() {
     let scale = layer(&truth, "texture_emissivity_scale");
     let kinetic = layer(&truth, "kinetic_temperature");
     let apparent = layer(&truth, "apparent_temperature");
-    let camera = Camera::from_view(&view()).unwrap();
-    let o = camera.position_m;
     let mut seen = [0usize; 4];
     let mut terrain = 0;
-    for row in 0..PIXELS {
-        for column in 0..PIXELS {
-            let k = (row * PIXELS + column) as usize;
-            // The centre ray meets the ground z = 0 at o + s·d, s = −o_z/d_z.
-            let d = camera.pixel_direction(column, row);
-            let s = -o[2] / d[2];
-            let (x, y) = (o[0] + s * d[0], o[1] + s * d[1]);
-            let inside = |c: f64| c > EDGE_MARGIN_M && c < SIDE_M - EDGE_MARGIN_M;
-            let outside = |c: f64| !(-EDGE_MARGIN_M..=SIDE_M + EDGE_MARGIN_M).contains(&c);
-            if outside(x) || outside(y) {
-                assert!(offset[k].is_nan() && scale[k].is_nan(), "({column}, {row})");
-                terrain += 1;
-                continue;
-            }
-            let half = SIDE_M / 2.0;
-            if !(inside(x) && inside(y))
-                || (x - half).abs() < EDGE_MARGIN_M
-                || (y - half).abs() < EDGE_MARGIN_M
-            {
-                continue;
-            }
-            // u = x/8, v = y/8: the quarter (i, j) from the bottom-left.
-            let (i, j) = (usize::from(x >= half), usize::from(y >= half));
-            let expected_k = match (i, j) {
-                (0, 0) => 10.0,
-                (1, 1) => 10.0 * 51.0 / 255.0,
-                _ => 0.0,
-            };
-            let at = format!("({column}, {row}) quarter ({i}, {j})");
-            assert!(
-                (f64::from(offset[k]) - expected_k).abs() < 1e-5,
-                "{at}: {}",
-                offset[k]
-            );
-            assert_eq!(scale[k], 1.0, "{at}");
-            assert!(
-                (f64::from(kinetic[k]) - (300.0 + expected_k)).abs() < 1e-4,
-                "{at}"
-            );
-            // ε = 1 in a vacuum: the apparent temperature is the kinetic one, to the
-            // inverse table's accuracy.
-            assert!(
-                (f64::from(apparent[k]) - (300.0 + expected_k)).abs() < 0.01,
-                "{at}"
-            );
-            seen[2 * j + i] += 1;
+    for (k, x, y) in ground_points() {
+        let inside = |c: f64| c > EDGE_MARGIN_M && c < SIDE_M - EDGE_MARGIN_M;
+        let outside = |c: f64| !(-EDGE_MARGIN_M..=SIDE_M + EDGE_MARGIN_M).contains(&c);
+        if outside(x) || outside(y) {
+            assert!(offset[k].is_nan() && scale[k].is_nan(), "pixel {k}");
+            terrain += 1;
+            continue;
         }
+        let half = SIDE_M / 2.0;
+        if !(inside(x) && inside(y))
+            || (x - half).abs() < EDGE_MARGIN_M
+            || (y - half).abs() < EDGE_MARGIN_M
+        {
+            continue;
+        }
+        // u = x/8, v = y/8: the quarter (i, j) from the bottom-left.
+        let (i, j) = (usize::from(x >= half), usize::from(y >= half));
+        let expected_k = match (i, j) {
+            (0, 0) => 10.0,
+            (1, 1) => 10.0 * 51.0 / 255.0,
+            _ => 0.0,
+        };
+        let at = format!("pixel {k}, quarter ({i}, {j})");
+        assert!(
+            (f64::from(offset[k]) - expected_k).abs() < 1e-5,
+            "{at}: {}",
+            offset[k]
+        );
+        assert_eq!(scale[k], 1.0, "{at}");
+        assert!(
+            (f64::from(kinetic[k]) - (300.0 + expected_k)).abs() < 1e-4,
+            "{at}"
+        );
+        // ε = 1 in a vacuum: the apparent temperature is the kinetic one, to the
+        // inverse table's accuracy.
+        assert!(
+            (f64::from(apparent[k]) - (300.0 + expected_k)).abs() < 0.01,
+            "{at}"
+        );
+        seen[2 * j + i] += 1;
     }
     // 8 m of the 10.5 m field: about 24 × 24 pixels on the panel, a quarter each.
     assert!(seen.iter().all(|&n| n > 80), "{seen:?}");
