@@ -240,16 +240,10 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
 /// uniform surface (a mirror reflecting the uniform sky), and equal to the centre: only the
 /// neighbour shows that an edge passes near.
 fn not_one_surface(centre: &[f64], calm: &[f64], [w, h]: [u32; 2], stop_k: f64) -> Vec<bool> {
-    let (w, h) = (w as usize, h as usize);
-    (0..calm.len())
-        .map(|i| {
-            let (x, y) = (i % w, i / w);
-            let neighbour_differs = (y.saturating_sub(1)..(y + 2).min(h)).any(|ny| {
-                (x.saturating_sub(1)..(x + 2).min(w))
-                    .any(|nx| (calm[ny * w + nx] - calm[i]).abs() > stop_k)
-            });
-            neighbour_differs || (centre[i] - calm[i]).abs() > stop_k
-        })
+    crate::tracer::contrast_of(calm, w as usize, h as usize)
+        .iter()
+        .zip(centre.iter().zip(calm))
+        .map(|(&contrast, (c, m))| contrast > stop_k || (c - m).abs() > stop_k)
         .collect()
 }
 
