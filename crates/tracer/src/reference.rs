@@ -91,6 +91,25 @@ pub const REFERENCE_ROUNDS_DEFAULT: usize = 6;
 /// it are all that moves them.
 pub const REFERENCE_EDGE_ROUND: usize = 2;
 
+/// The chance, at most, that both halves of a round miss a sliver of another surface worth
+/// the stop, once a pixel beside an edge whose halves are equal to the last bit is taken as
+/// converged ([`sliver_rays`]).
+pub const REFERENCE_SLIVER_MISS: f64 = 0.01;
+
+/// The rays a half past which two halves equal to the last bit are taken as converged, for
+/// a pixel beside an edge in a frame whose temperatures span `range_k`, stopped at
+/// `stop_k`. A sliver of another surface covering a fraction f of the pixel moves it by at
+/// most f × `range_k` (for a surface the frame shows somewhere, at a temperature within
+/// its range), so only one of f ≥ `stop_k` / `range_k` matters. Each of a half's N
+/// jittered-stratified rays misses it with chance 1 − f_s·N, f_s being the sliver's share
+/// in that ray's stratum, so all N miss it with chance at most Π exp(−f_s·N) = exp(−f·N),
+/// and both halves exp(−2·f·N): under [`REFERENCE_SLIVER_MISS`] once N ≥
+/// ln(1 / [`REFERENCE_SLIVER_MISS`]) × `range_k` / (2 × `stop_k`).
+#[must_use]
+pub fn sliver_rays(range_k: f64, stop_k: f64) -> f64 {
+    REFERENCE_SLIVER_MISS.recip().ln() * range_k / (2.0 * stop_k)
+}
+
 /// A converged rendering ([`converged_reference`]): the truth per pixel and its own error.
 #[derive(Debug, Clone)]
 pub struct ConvergedReference {
@@ -136,8 +155,9 @@ impl ConvergedReference {
 /// fresh seeds, while its two halves differ by more than `stop_k`, and until
 /// [`REFERENCE_EDGE_ROUND`] when it may not be one surface: its first round's mean with the
 /// hemispheric sky (no sky-view rays) more than `stop_k` from its centre ray's or from a
-/// neighbour's (an edge, a reflected horizon, a wire; [`not_one_surface`]). The last
-/// round's halves are kept; their mean is the truth,
+/// neighbour's (an edge, a reflected horizon, a wire; [`not_one_surface`]); such a pixel
+/// whose halves are equal to the last bit goes on past that round too, until its rays a
+/// half reach [`sliver_rays`]. The last round's halves are kept; their mean is the truth,
 /// half their difference its own error. A guarantee at tolerance T takes `stop_k` = T/6,
 /// so a stopped pixel's measured error is at most T/12, a quarter of the T/3 its 99th
 /// percentile must stay under: the margin is for halves that agree by chance (one
@@ -184,10 +204,14 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
     // A pixel that may not be one surface whose halves are equal to the last bit saw one
     // value with every ray of both: a sliver of another surface (a hot corner reflected in
     // a mirror) that neither met would leave them so, so they are no evidence it has
-    // converged, and it goes on.
+    // converged, and it goes on until a sliver worth the stop would hardly have been
+    // missed ([`sliver_rays`], over the frame's range of temperatures).
+    let range_k = frame_range_k(&centre, &calm);
+    let sliver = sliver_rays(range_k, stop_k);
     let needs = |a: &[f64], b: &[f64], level: &[usize], i: usize| {
-        (a[i] - b[i]).abs() > stop_k
-            || (edge[i] && (level[i] < REFERENCE_EDGE_ROUND || a[i].to_bits() == b[i].to_bits()))
+        let blind = a[i].to_bits() == b[i].to_bits()
+            && f64::from(REFERENCE_ROUNDS[level[i]].rays()) < sliver;
+        (a[i] - b[i]).abs() > stop_k || (edge[i] && (level[i] < REFERENCE_EDGE_ROUND || blind))
     };
     let mut pixels_per_round = vec![a.len()];
     for (r, &round) in rounds.iter().enumerate().skip(1) {
@@ -231,6 +255,19 @@ pub fn converged_reference<B: BandModel + Sync, A: Atmosphere>(
         capped,
         stop_k,
     })
+}
+
+/// The span of the frame's temperatures, K: the largest less the smallest of its centre
+/// rays' and its first round's means (finite values only; 0 for a uniform frame).
+fn frame_range_k(centre: &[f64], calm: &[f64]) -> f64 {
+    let (lo, hi) = centre
+        .iter()
+        .chain(calm)
+        .filter(|t| t.is_finite())
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &t| {
+            (lo.min(t), hi.max(t))
+        });
+    if hi >= lo { hi - lo } else { 0.0 }
 }
 
 /// The pixels that may not be one surface, row-major: a pixel whose first round's mean with
@@ -287,5 +324,22 @@ mod tests {
         assert_eq!(flagged, expected);
         // A difference of the stop itself is not over it.
         assert!(!not_one_surface(&[1.0, 1.5], &[1.0, 1.5], [2, 1], 0.5)[0]);
+    }
+
+    #[test]
+    fn equal_halves_beside_an_edge_are_believed_once_a_sliver_worth_the_stop_is_hardly_missed() {
+        // A frame spanning 100 K stopped at a sixth of 0.5 K: a sliver worth the stop
+        // covers 1/1,200 of the pixel; two halves of N rays both miss it with chance at
+        // most exp(-2N/1,200), 1 % at N = 1,200 ln(100) / 2 = 2,763.2.
+        let n = sliver_rays(100.0, 0.5 / 6.0);
+        assert!((n - 2763.1).abs() < 0.1, "{n}");
+        assert!((-2.0 * n / 1200.0).exp() <= REFERENCE_SLIVER_MISS * (1.0 + 1e-12));
+        // Twice the range or half the stop, twice the rays.
+        assert!((sliver_rays(200.0, 0.5 / 6.0) / n - 2.0).abs() < 1e-12);
+        assert!((sliver_rays(100.0, 0.25 / 6.0) / n - 2.0).abs() < 1e-12);
+        // The range ignores what is not finite, and a uniform frame spans nothing.
+        let range = frame_range_k(&[300.0, f64::NAN, 250.0], &[310.0, f64::INFINITY]);
+        assert!((range - 60.0).abs() < 1e-12, "{range}");
+        assert!(frame_range_k(&[280.0; 4], &[280.0; 4]).abs() < 1e-12);
     }
 }

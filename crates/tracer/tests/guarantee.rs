@@ -10,7 +10,7 @@
 //! differ by more than a sixth of the tolerance is traced again from fresh seeds with four
 //! times the rays, round after round up to 262,144 a half (a pixel that is not one surface
 //! or beside an edge to 64 × 64 at least, and on while its halves are equal to the last
-//! bit). The halves' mean is the truth, and its own error (half their
+//! bit until a sliver worth the stop would hardly have been missed). The halves' mean is the truth, and its own error (half their
 //! difference) must be under a third of the tolerance at p99, or the case is not verified.
 //! The promise checked is the one `--tolerance` makes: the frame's 99th percentile of
 //! |ΔT| within the tolerance, every material's 90th within it too, and what the pilot
