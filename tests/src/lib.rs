@@ -125,7 +125,10 @@ pub fn quickstart_plan(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -
 ///
 /// `cargo test` does not build other packages' binaries, so the first call builds every
 /// workspace binary, the test-only ones too (`cargo build --workspace --bins --features
-/// irsig-tests/test-tools`, same profile, a no-op when they are up to date).
+/// irsig-tests/test-tools`, in the dev profile or with `--release`; a no-op when they are
+/// up to date, as `scripts/test.sh` leaves them). Cargo hashes a profile's name into what
+/// it builds, so `scripts/test.sh` builds the tests with `--profile dev` as well: in the
+/// test profile, the same settings by another name, this would compile every crate again.
 ///
 /// # Panics
 /// When the build fails or the binary does not exist.
