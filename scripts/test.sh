@@ -36,7 +36,11 @@ if [ "$#" -ne 0 ]; then
   IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
   export IRSIG_LOWTRAN
   start_slurm
-  exec cargo test --profile dev "$@"
+  # The dev profile, as below, unless the arguments choose a profile themselves.
+  case " $* " in
+  *" --release "* | *" -r "* | *" --profile"*) exec cargo test "$@" ;;
+  *) exec cargo test --profile dev "$@" ;;
+  esac
 fi
 
 target="${CARGO_TARGET_DIR:-target}"
@@ -68,9 +72,9 @@ start_slurm
 #
 # All in the dev profile, `cargo build`'s: the end-to-end tests and the Python package's
 # tests run the tools built by `cargo build` (irsig_tests::bin_path), maturin builds the
-# extension with it, and cargo hashes a profile's name into what it builds, so in the test
-# profile (the same settings by another name) every crate would be compiled twice. The
-# tools are built here, with the tests, so that no test waits on a build.
+# extension with it, and cargo compiles again a crate last built under another profile's
+# name, so in the test profile (the same settings by another name) every crate would be
+# compiled twice. The tools are built here, with the tests, so that no test waits on a build.
 cargo test --profile dev --workspace --lib --bins --tests --no-run
 cargo build --workspace --bins --features irsig-tests/test-tools
 finish lowtran "$lowtran"

@@ -126,9 +126,10 @@ pub fn quickstart_plan(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -
 /// `cargo test` does not build other packages' binaries, so the first call builds every
 /// workspace binary, the test-only ones too (`cargo build --workspace --bins --features
 /// irsig-tests/test-tools`, in the dev profile or with `--release`; a no-op when they are
-/// up to date, as `scripts/test.sh` leaves them). Cargo hashes a profile's name into what
-/// it builds, so `scripts/test.sh` builds the tests with `--profile dev` as well: in the
-/// test profile, the same settings by another name, this would compile every crate again.
+/// up to date, as `scripts/test.sh` leaves them). Cargo compiles again a crate last built
+/// under another profile's name, so `scripts/test.sh` builds the tests with `--profile dev`
+/// as well: after a build in the test profile (the same settings by another name) this
+/// would compile every crate again, and the tests' next build every crate once more.
 ///
 /// # Panics
 /// When the build fails or the binary does not exist.
