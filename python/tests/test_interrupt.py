@@ -44,8 +44,16 @@ def interrupted(scene_raw, tmp_path, act):
 
 def test_ctrl_c_stops_the_trace_and_writes_nothing(scene_raw, tmp_path):
     calls, run = interrupted(scene_raw, tmp_path, lambda: signal.raise_signal(signal.SIGINT))
-    with pytest.raises(KeyboardInterrupt):
-        run()
+    # Python's own handler, which turns Ctrl-C into KeyboardInterrupt. A process started in
+    # the background by a shell without job control (`cmd &` in a script, nohup) inherits
+    # SIGINT ignored, and Python then installs no handler: the signal would be dropped
+    # before irsig could see it.
+    before = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            run()
+    finally:
+        signal.signal(signal.SIGINT, before)
     assert calls[-1][0] < calls[-1][1] == FRAMES * 96
     assert no_files(tmp_path)
 
