@@ -31,9 +31,11 @@ use crate::error::{AtmosphereError, AtmosphereErrorKind};
 
 mod assemble;
 mod deck;
+mod outputs;
 
 pub use assemble::*;
 pub use deck::*;
+pub use outputs::*;
 
 /// The built-ins' slant observer altitudes, metres (the grid extends past 3 km as needed).
 pub const SLANT_ALTITUDE_M: [f64; 19] = [

@@ -16,7 +16,9 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra, assemble, deck, paths, sun_runs};
+use irsig_atmosphere::plan::{
+    Path as PlanPath, PathSpectra, RunKind, assemble, deck, paths, sun_runs,
+};
 use irsig_formats::ParseError;
 use irsig_formats::canonical::{self, AnyPlan};
 use irsig_model::AtmospherePlan;
@@ -27,7 +29,7 @@ use irsig_cli::args::outputs::Output;
 use irsig_cli::args::{AtmosphereArgs, ThreadsArgs};
 
 use crate::plan::model_of;
-use crate::runs::{RunResult, Want, aerosol_text, job, profile_temperature, run_jobs};
+use crate::runs::{RunResult, aerosol_text, job, profile_temperature, run_jobs};
 
 /// Arguments of `irsig-atmos build`.
 #[derive(Debug, Clone, Args)]
@@ -263,7 +265,7 @@ fn build_atmosphere(a: &BuildArgs, plan: &AtmospherePlan, place: &Place) -> miet
     let mut jobs = Vec::with_capacity(all.len());
     for (i, p) in all.iter().enumerate() {
         let ours = deck(plan, p).map_err(|e| miette!("{e}"))?;
-        jobs.push(job(&place.dir, i, place.own_decks, &ours, Want::of(p))?);
+        jobs.push(job(&place.dir, i, place.own_decks, &ours, RunKind::of(p))?);
     }
     let given: Vec<Option<PathBuf>> = jobs.iter().map(|j| j.given.clone()).collect();
     let ok = run_jobs(&jobs, a.threads.count())?;

@@ -10,24 +10,24 @@
 use std::path::PathBuf;
 
 use irsig_atmosphere::loads::{LoadsPath, LongwaveOutside, assemble, deck, paths};
-use irsig_atmosphere::plan::PathSpectra;
+use irsig_atmosphere::plan::{PathSpectra, RunKind};
 use irsig_formats::canonical;
 use irsig_model::loads::LoadsPlan;
 use miette::{IntoDiagnostic, miette};
 
 use crate::build::{BuildArgs, Place, check_grids};
-use crate::runs::{RunResult, Want, aerosol_text, job, profile_temperature, run_jobs};
+use crate::runs::{RunResult, aerosol_text, job, profile_temperature, run_jobs};
 
 /// The longest wavelength of the Planck integral below the thermal range, µm (1 km: the
 /// radiance beyond it is 10⁻¹⁹ of the total at 250 K).
 const LONGEST_UM: f64 = 1e9;
 
 /// What a run of `path` must give.
-fn want(path: &LoadsPath) -> Want {
+fn want(path: &LoadsPath) -> RunKind {
     match path {
-        LoadsPath::Longwave { .. } => Want::Thermal,
-        LoadsPath::Direct { .. } => Want::Solar,
-        LoadsPath::Diffuse { .. } => Want::Diffuse,
+        LoadsPath::Longwave { .. } => RunKind::Thermal,
+        LoadsPath::Direct { .. } => RunKind::Solar,
+        LoadsPath::Diffuse { .. } => RunKind::Diffuse,
     }
 }
 

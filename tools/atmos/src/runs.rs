@@ -1,18 +1,19 @@
 //! Running a plan's decks: LOWTRAN7 on each (one process per run in a scratch directory,
 //! in parallel, progress on stderr), or a given `runs/NNNN.tape7` read instead, and what
-//! every build makes of the runs' outputs (their spectra in SI, the model's temperature
-//! profile). Shared by the spectral atmosphere's build (`build.rs`) and the broadband
-//! loads' (`build_loads.rs`).
+//! every build takes from the runs besides their spectra (which
+//! `irsig_atmosphere::plan::run_spectra` reads): the model's temperature profile. Shared
+//! by the spectral atmosphere's build (`build.rs`) and the broadband loads'
+//! (`build_loads.rs`).
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use irsig_atmosphere::AtmosphereError;
-use irsig_atmosphere::plan::{Path as PlanPath, PathSpectra};
+use irsig_atmosphere::plan::{PathSpectra, RunKind, RunSpectra, lowtran_spectra, run_spectra};
 use irsig_atmosphere::refraction::{ApparentZenith, apparent_zenith};
 use irsig_formats::ParseError;
-use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, modtran_tape7, tape5};
+use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, tape5};
 use irsig_model::{PlanAerosol, PlanModel};
 use miette::{Report, WrapErr, miette};
 
@@ -50,241 +51,17 @@ pub(crate) fn located(
     pos: irsig_formats::legacy::Position,
     message: String,
 ) -> Report {
-    let offset = irsig_formats::offset_of(text, pos.line, pos.column);
-    Report::new(ParseError::at_offset(file, text, offset, message))
+    Report::new(irsig_atmosphere::plan::located(file, text, pos, message))
 }
 
-/// What a run must give: a thermal path's radiance, or the sun's irradiance.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Want {
-    Thermal,
-    Solar,
-    /// Thermal radiance and the sunlight scattered into the path once (IEMSCT = 2,
-    /// IMULT = 0).
-    Scattered,
-    /// The sunlight the sky scatters toward the ground, multiple scattering included
-    /// (IEMSCT = 2, IMULT = 1): a loads plan's diffuse lines of sight.
-    Diffuse,
-}
-
-impl Want {
-    pub(crate) fn of(path: &PlanPath) -> Self {
-        match path {
-            PlanPath::Sun { .. } => Self::Solar,
-            PlanPath::DownSunlit { .. }
-            | PlanPath::UpSunlit { .. }
-            | PlanPath::SlabSunlit { .. } => Self::Scattered,
-            PlanPath::Down { .. } | PlanPath::Up { .. } | PlanPath::Slab { .. } => Self::Thermal,
-        }
-    }
-}
-
-fn spectra_of_lowtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
-    let t7 = lowtran_tape7::parse(file, text)?;
-    let run = t7
-        .runs
-        .first()
-        .ok_or_else(|| miette!("{file}: no run in this TAPE7"))?;
-    let table = run
-        .table
-        .as_ref()
-        .ok_or_else(|| miette!("{file}: LOWTRAN7 made no table for this run (see its TAPE6)"))?;
-    if want == Want::Solar {
-        let etoa = table.extraterrestrial_irradiance().ok_or_else(|| {
-            located(
-                file,
-                text,
-                run.position,
-                "expected a direct solar irradiance run (IEMSCT = 3): this path of the plan is \
-                 the sun's"
-                    .into(),
-            )
-        })?;
-        return Ok(PathSpectra {
-            wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
-            transmission: table.transmission().to_vec(),
-            radiance_w_m2_sr_per_cm: Vec::new(),
-            // W cm-2 per cm-1 -> W m-2 per cm-1.
-            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
-            scattered_w_m2_sr_per_cm: Vec::new(),
-        });
-    }
-    let scattered = if matches!(want, Want::Scattered | Want::Diffuse) {
-        let l = table.scattered_radiance().ok_or_else(|| {
-            located(
-                file,
-                text,
-                run.position,
-                "expected a solar scattering run (IEMSCT = 2): this path of the plan is a \
-                 sunlit one"
-                    .into(),
-            )
-        })?;
-        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
-        l.iter().map(|x| x * 1e4).collect()
-    } else {
-        Vec::new()
-    };
-    let radiance = table.thermal_radiance().ok_or_else(|| {
-        located(
-            file,
-            text,
-            run.position,
-            "expected a thermal radiance run (IEMSCT = 1 or 2): the build needs path radiance"
-                .into(),
-        )
-    })?;
-    Ok(PathSpectra {
-        wavenumber_per_cm: table.wavenumber_per_cm().to_vec(),
-        transmission: table.transmission().to_vec(),
-        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
-        radiance_w_m2_sr_per_cm: radiance.iter().map(|l| l * 1e4).collect(),
-        extraterrestrial_w_m2_per_cm: Vec::new(),
-        scattered_w_m2_sr_per_cm: scattered,
-    })
-}
-
-/// What a MODTRAN tape7's card 1 says, for errors: `IEMSCT = 1`, or that it has none.
-fn modtran_mode(t: &modtran_tape7::ModtranTape7) -> String {
-    t.iemsct.map_or_else(
-        || "no card 1 with an IEMSCT".to_owned(),
-        |k| format!("card 1's IEMSCT = {k}"),
-    )
-}
-
-/// The spectra of a MODTRAN tape7 given for one path, converted to SI (W cm-2 -> W m-2) here.
-/// A sun's path takes a direct solar irradiance run (IEMSCT = 3: `TRANS`, `SOLAR`); a
-/// sunlit path a solar scattering run (IEMSCT = 2), whose `SOL_SCAT` is the scattered
-/// sunlight; a thermal path a radiance-mode run. A file of another mode is an error at
-/// card 1's IEMSCT (or the column header, without card 1).
-fn spectra_of_modtran(file: &str, text: &str, want: Want) -> Result<PathSpectra, Report> {
-    let t = modtran_tape7::parse(file, text)?;
-    // The wrong IEMSCT is an error at card 1's field; the right one without the columns
-    // it needs, at the column header.
-    let wrong = |expected: &str, iemsct: i64, columns: &str| {
-        let (at, found) = if t.iemsct == Some(iemsct) {
-            (
-                t.header_position,
-                format!("card 1's IEMSCT = {iemsct} without {columns} in the column header"),
-            )
-        } else {
-            (
-                t.iemsct_position.unwrap_or(t.header_position),
-                modtran_mode(&t),
-            )
-        };
-        located(
-            file,
-            text,
-            at,
-            format!("expected {expected}, found {found}"),
-        )
-    };
-    let tau = t.transmission();
-    if want == Want::Solar {
-        // Only a direct solar run: an IEMSCT 2 run's TOA_SUN and TOT_TRANS are of another
-        // path than the sun's.
-        let etoa = (t.mode == modtran_tape7::Mode::DirectSolar)
-            .then(|| t.extraterrestrial_irradiance())
-            .flatten();
-        let (Some(tau), Some(etoa)) = (tau, etoa) else {
-            return Err(wrong(
-                "a direct solar irradiance run (IEMSCT = 3, columns TRANS, SOL TR and SOLAR): \
-                 this path of the plan is the sun's",
-                3,
-                "a TRANS column",
-            ));
-        };
-        return Ok(PathSpectra {
-            wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
-            transmission: tau.to_vec(),
-            radiance_w_m2_sr_per_cm: Vec::new(),
-            // W cm-2 per cm-1 -> W m-2 per cm-1.
-            extraterrestrial_w_m2_per_cm: etoa.iter().map(|e| e * 1e4).collect(),
-            scattered_w_m2_sr_per_cm: Vec::new(),
-        });
-    }
-    let scattered = if matches!(want, Want::Scattered | Want::Diffuse) {
-        let Some(l) = t.solar_scattered_radiance() else {
-            return Err(wrong(
-                "a solar scattering run (IEMSCT = 2, column SOL_SCAT): this path of the plan \
-                 is a sunlit one",
-                2,
-                "a SOL_SCAT column",
-            ));
-        };
-        if want == Want::Scattered {
-            warn_multiple_scattering(file, &t, l);
-        }
-        // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
-        l.iter().map(|x| x * 1e4).collect()
-    } else {
-        Vec::new()
-    };
-    let Some(tau) = tau else {
-        return Err(located(
-            file,
-            text,
-            t.header_position,
-            "expected a TOT_TRANS or COMBIN TRANS column in the header, found none".into(),
-        ));
-    };
-    let l = t.path_thermal_radiance().ok_or_else(|| {
-        located(
-            file,
-            text,
-            t.header_position,
-            "expected the path radiance column (PTH_THRML) of a radiance-mode \
-             tape7, found none: run MODTRAN in radiance mode"
-                .into(),
-        )
-    })?;
-    Ok(PathSpectra {
-        wavenumber_per_cm: t.wavenumber_per_cm().to_vec(),
-        transmission: tau.to_vec(),
-        radiance_w_m2_sr_per_cm: l.iter().map(|x| x * 1e4).collect(),
-        extraterrestrial_w_m2_per_cm: Vec::new(),
-        scattered_w_m2_sr_per_cm: scattered,
-    })
-}
-
-/// MODTRAN's `SOL_SCAT` includes multiple scattering when MODTRAN ran with it; LOWTRAN7's
-/// runs of a plan scatter sunlight once (IMULT = 0). Where `SOL_SCAT` exceeds the
-/// single-scattered `SING_SCAT`, the path's scattered sunlight is not the same quantity as
-/// the other paths', and the build says so.
-fn warn_multiple_scattering(file: &str, t: &modtran_tape7::ModtranTape7, total: &[f64]) {
-    let Some(single) = t.single_scattered_radiance() else {
-        return;
-    };
-    let excess = total
-        .iter()
-        .zip(single)
-        .filter(|(a, _)| **a > 0.0)
-        .map(|(a, b)| (a - b) / a)
-        .fold(0.0_f64, f64::max);
-    // Both are printed to 5 digits: a difference within their rounding is none.
-    if excess > 1e-4 {
-        irsig_cli::note!(
-            "irsig-atmos: warning: {file}: MODTRAN's SOL_SCAT includes multiple scattering \
-             (up to {:.1} % above SING_SCAT): this sunlit path's scattered sunlight is \
-             MODTRAN's single plus multiple scattering, while the paths LOWTRAN7 runs for \
-             the plan scatter sunlight once (IMULT = 0)",
-            excess * 100.0
-        );
-    }
-}
 /// Reads a run's given outputs.
-pub(crate) fn read_given(tape7: &Path, want: Want) -> Result<RunResult, Report> {
+pub(crate) fn read_given(tape7: &Path, want: RunKind) -> Result<RunResult, Report> {
     let input = irsig_cli::read_input(tape7)?;
     let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
-    let modtran = text
-        .trim_start()
-        .starts_with(|c: char| c.is_ascii_alphabetic());
-    let spectra = if modtran {
-        spectra_of_modtran(&input.name, text, want)?
-    } else {
-        spectra_of_lowtran(&input.name, text, want)?
-    };
+    let RunSpectra { spectra, notes } = run_spectra(&input.name, text, want)?;
+    for n in notes {
+        irsig_cli::note!("irsig-atmos: warning: {n}");
+    }
     let t6 = tape7.with_extension("tape6");
     let mut profile = Vec::new();
     if t6.is_file() {
@@ -404,12 +181,12 @@ fn run_deck(
     name: &str,
     text: &str,
     card3: irsig_formats::legacy::Position,
-    want: Want,
+    want: RunKind,
 ) -> Result<RunResult, Report> {
     let (mut out, mut nudge) = attempt(exe, name, text, card3)?;
     if let Some(said) = rejection(name, &out)? {
         let mut accepted = false;
-        if want == Want::Diffuse {
+        if want == RunKind::Diffuse {
             for delta in SUN_NUDGES_DEG {
                 let again = sun_higher(name, text, delta)?;
                 let (o, n) = attempt(exe, name, &again, card3)?;
@@ -434,13 +211,13 @@ fn run_deck(
         }
     }
     let mut sun = None;
-    if want == Want::Solar {
+    if want == RunKind::Solar {
         let (o, s) = refracted(exe, name, text, card3, out)?;
         out = o;
         sun = Some(s);
     }
     let t7_name = format!("{name} -> TAPE7");
-    let spectra = spectra_of_lowtran(&t7_name, &out.tape7, want)?;
+    let spectra = lowtran_spectra(&t7_name, &out.tape7, want)?;
     let profile = lowtran_tape6::parse(&format!("{name} -> TAPE6"), &out.tape6)
         .ok()
         .and_then(|t| t.runs.into_iter().next())
@@ -556,7 +333,7 @@ pub(crate) struct Job {
     /// Where the deck's card 3 is.
     pub card3: irsig_formats::legacy::Position,
     /// What the run must give.
-    pub want: Want,
+    pub want: RunKind,
     /// `runs/NNNN.tape7` beside the deck, read instead of running LOWTRAN7.
     pub given: Option<PathBuf>,
 }
@@ -572,7 +349,7 @@ pub(crate) fn job(
     i: usize,
     own_decks: bool,
     ours: &tape5::CardDeck,
-    want: Want,
+    want: RunKind,
 ) -> miette::Result<Job> {
     let file = plan_dir.join(deck_name(i));
     let name = file.to_string_lossy().into_owned();
