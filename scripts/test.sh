@@ -36,10 +36,10 @@ if [ "$#" -ne 0 ]; then
   IRSIG_LOWTRAN=$(sh scripts/atmosphere/install-lowtran.sh)
   export IRSIG_LOWTRAN
   start_slurm
-  # The dev profile, as below, unless the arguments choose a profile themselves.
+  # The release profile, as below, unless the arguments choose a profile themselves.
   case " $* " in
   *" --release "* | *" -r "* | *" --profile"*) exec cargo test "$@" ;;
-  *) exec cargo test --profile dev "$@" ;;
+  *) exec cargo test --profile release "$@" ;;
   esac
 fi
 
@@ -70,19 +70,21 @@ start_slurm
 # that print tables and measurements when run by hand (clippy --all-targets, which CI runs,
 # still compiles them).
 #
-# All in the dev profile, `cargo build`'s: the end-to-end tests and the Python package's
-# tests run the tools built by `cargo build` (irsig_tests::bin_path), maturin builds the
-# extension with it, and cargo compiles again a crate last built under another profile's
-# name, so in the test profile (the same settings by another name) every crate would be
-# compiled twice. The tools are built here, with the tests, so that no test waits on a build.
-cargo test --profile dev --workspace --lib --bins --tests --no-run
-cargo build --workspace --bins --features irsig-tests/test-tools
+# All in the release profile, the README's first command's: it has built the tools and
+# every crate they use by then, and cargo compiles again a crate last built under another
+# profile's name (the test profile, `cargo test`'s default, is the dev profile's settings
+# by another name). The release profile keeps integer overflow checked (Cargo.toml), as the
+# dev profile does. The end-to-end and Python tests run the tools of the profile they were
+# built in (irsig_tests::bin_path), and they are built here, with the tests, so that no
+# test waits on a build.
+cargo test --profile release --workspace --lib --bins --tests --no-run
+cargo build --release --workspace --bins --features irsig-tests/test-tools
 finish lowtran "$lowtran"
 lowtran=
 IRSIG_LOWTRAN=$(cat "$logs/lowtran.path")
 export IRSIG_LOWTRAN
-cargo test --profile dev --workspace --lib --bins --tests
-cargo test --profile dev --workspace --doc
+cargo test --profile release --workspace --lib --bins --tests
+cargo test --profile release --workspace --doc
 finish py-venv "$python"
 python=
 sh scripts/python/test.sh

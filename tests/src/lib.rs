@@ -125,43 +125,47 @@ pub fn quickstart_plan(dir: &Path, name: &str, model: &[&str], extra: &[&str]) -
 ///
 /// `cargo test` does not build other packages' binaries, so the first call builds every
 /// workspace binary, the test-only ones too (`cargo build --workspace --bins --features
-/// irsig-tests/test-tools`, in the dev profile or with `--release`; a no-op when they are
-/// up to date, as `scripts/test.sh` leaves them). Cargo compiles again a crate last built
-/// under another profile's name, so `scripts/test.sh` builds the tests with `--profile dev`
-/// as well: after a build in the test profile (the same settings by another name) this
-/// would compile every crate again, and the tests' next build every crate once more.
+/// irsig-tests/test-tools`; a no-op when they are up to date, as `scripts/test.sh` leaves
+/// them), in the profile this test executable was built in: the one whose folder holds it
+/// (`target/release` for release, `target/debug` for dev and test). Cargo compiles again a
+/// crate last built under another profile's name, so the tools of any other profile would
+/// cost a build of every crate.
 ///
 /// # Panics
 /// When the build fails or the binary does not exist.
 #[must_use]
 pub fn bin_path(name: &str) -> PathBuf {
-    static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
-    BUILT.get_or_init(|| {
-        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
-        let mut cmd = Command::new(cargo);
-        cmd.args([
-            "build",
-            "--quiet",
-            "--workspace",
-            "--bins",
-            "--features",
-            "irsig-tests/test-tools",
-        ]);
-        if !cfg!(debug_assertions) {
-            cmd.arg("--release");
-        }
-        let status = cmd
-            .current_dir(repo_root())
-            .status()
-            .expect("run cargo build");
-        assert!(status.success(), "cargo build --workspace --bins failed");
-    });
     // The test executable sits in target/<profile>/deps; the binaries one level up.
     let exe = std::env::current_exe().expect("current test executable");
     let dir = exe
         .parent()
         .and_then(std::path::Path::parent)
         .expect("target/<profile> directory");
+    static BUILT: std::sync::OnceLock<()> = std::sync::OnceLock::new();
+    BUILT.get_or_init(|| {
+        let profile = match dir.file_name().and_then(|n| n.to_str()) {
+            Some("debug") | None => "dev",
+            Some(other) => other,
+        };
+        let cargo = std::env::var_os("CARGO").unwrap_or_else(|| "cargo".into());
+        let status = Command::new(cargo)
+            .args([
+                "build",
+                "--quiet",
+                "--workspace",
+                "--bins",
+                "--profile",
+                profile,
+            ])
+            .args(["--features", "irsig-tests/test-tools"])
+            .current_dir(repo_root())
+            .status()
+            .expect("run cargo build");
+        assert!(
+            status.success(),
+            "cargo build --workspace --bins --profile {profile} failed"
+        );
+    });
     let path = dir.join(format!("{name}{}", std::env::consts::EXE_SUFFIX));
     assert!(path.is_file(), "{} was not built", path.display());
     path
