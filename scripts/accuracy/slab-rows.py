@@ -9,7 +9,8 @@ the sun) and compared with LOWTRAN7 run for each path (IEMSCT 2).
 The setting is tests/tests/slab_trace.rs's (US Standard 1976, rural 10 km, 2440-2940
 cm^-1 every 10, sun 30 deg from the zenith on day 172, its azimuth 120 deg). The build
 runs 5461 LOWTRAN7 decks (about a minute on 2 cores). LOWTRAN7 is $IRSIG_LOWTRAN; the
-tools are $IRSIG_BIN/irsig-atmos and $IRSIG_BIN/irsig-trace (default target/debug).
+tools are $IRSIG_BIN/irsig-atmos and $IRSIG_BIN/irsig-trace (default target/release, where
+the first command builds them).
 
     IRSIG_LOWTRAN=path/to/lowtran7 python3 scripts/accuracy/slab-rows.py
 """
@@ -19,7 +20,7 @@ import subprocess
 import tempfile
 
 LOWTRAN = os.environ.get("IRSIG_LOWTRAN", "lowtran7")
-BIN = os.environ.get("IRSIG_BIN", "target/debug")
+BIN = os.environ.get("IRSIG_BIN", "target/release")
 CARD2 = "    1    0    0    0    0    0    10.000     0.000     0.000     0.000     0.000"
 V1, V2, DV = 2440.0, 2940.0, 10.0
 SUN_ZENITH_DEG, SUN_AZIMUTH_DEG, DAY = 30.0, 120.0, 172
