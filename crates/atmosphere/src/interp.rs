@@ -1,40 +1,9 @@
-//! Small numeric helpers: table lookup, linear and monotone cubic interpolation, the
-//! Appendix E quadratic least-squares fit, and the eq. 5 hemispheric integral of a
-//! piecewise-linear L(θ).
+//! Small numeric helpers over the tables' linear interpolation
+//! (`irsig_model::interp`): monotone cubic and bilinear interpolation, the Appendix E
+//! quadratic least-squares fit, and the eq. 5 hemispheric integral of a piecewise-linear
+//! L(θ).
 
-/// Index `i` of the interval `[xs[i], xs[i + 1]]` holding `x` and the fraction along it,
-/// with `x` clamped to the table. `xs` increases strictly and has at least one entry.
-pub(crate) fn locate(xs: &[f64], x: f64) -> (usize, f64) {
-    let n = xs.len();
-    if n < 2 {
-        return (0, 0.0);
-    }
-    let first = xs[0];
-    let last = xs[n - 1];
-    if x.is_nan() {
-        return (0, f64::NAN);
-    }
-    if x <= first {
-        return (0, 0.0);
-    }
-    if x >= last {
-        return (n - 2, 1.0);
-    }
-    // Tables are short (≤ a few dozen rows): a binary search is as fast as anything.
-    let i = xs.partition_point(|&v| v <= x).saturating_sub(1).min(n - 2);
-    let f = (x - xs[i]) / (xs[i + 1] - xs[i]);
-    (i, f)
-}
-
-/// Linear interpolation of `ys` over `xs` at `x`, clamped at both ends.
-pub(crate) fn linear(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let (i, f) = locate(xs, x);
-    match (ys.get(i), ys.get(i + 1)) {
-        (Some(&a), Some(&b)) => a + f * (b - a),
-        (Some(&a), None) => a,
-        _ => f64::NAN,
-    }
-}
+pub(crate) use irsig_model::interp::{linear, locate};
 
 /// Monotone piecewise-cubic Hermite interpolation of `ys` over `xs` at `x`, clamped at
 /// both ends (Fritsch & Carlson 1980, with the weighted harmonic-mean slopes of Fritsch &
@@ -279,17 +248,6 @@ impl Hemispheric {
 mod tests {
     use super::*;
     use approx::assert_relative_eq;
-
-    #[test]
-    fn linear_interpolates_and_clamps() {
-        let xs = [0.0, 10.0, 20.0];
-        let ys = [1.0, 3.0, 4.0];
-        assert_relative_eq!(linear(&xs, &ys, 5.0), 2.0);
-        assert_relative_eq!(linear(&xs, &ys, 15.0), 3.5);
-        assert_relative_eq!(linear(&xs, &ys, -5.0), 1.0);
-        assert_relative_eq!(linear(&xs, &ys, 25.0), 4.0);
-        assert_relative_eq!(linear(&xs, &ys, 20.0), 4.0);
-    }
 
     #[test]
     fn quadratic_fit_recovers_an_exact_parabola() {

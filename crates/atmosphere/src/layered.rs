@@ -201,7 +201,7 @@ impl Profile {
     pub(crate) fn w_at(&self, z: f64) -> f64 {
         let (i, f) = locate(&self.z_m, z);
         match (self.w.get(i), self.w.get(i + 1)) {
-            (Some(&a), Some(&b)) => a + f * (b - a),
+            (Some(&a), Some(&b)) => irsig_model::interp::lerp(a, b, f),
             (Some(&a), None) => a,
             _ => 0.0,
         }
@@ -228,7 +228,7 @@ impl Profile {
     /// Absorber coordinate at a located altitude ([`Profile::w_at`] without the search).
     fn w_located(&self, (i, f): (usize, f64)) -> f64 {
         match (self.w.get(i), self.w.get(i + 1)) {
-            (Some(&a), Some(&b)) => a + f * (b - a),
+            (Some(&a), Some(&b)) => irsig_model::interp::lerp(a, b, f),
             (Some(&a), None) => a,
             _ => 0.0,
         }

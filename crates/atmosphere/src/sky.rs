@@ -117,7 +117,7 @@ impl SkyView {
         let i = (x as usize).min(last.saturating_sub(1));
         let f = (x - i as f64).clamp(0.0, 1.0);
         match (self.radiance.get(i), self.radiance.get(i + 1)) {
-            (Some(&a), Some(&b)) => a + f * (b - a),
+            (Some(&a), Some(&b)) => irsig_model::interp::lerp(a, b, f),
             (Some(&a), None) => a,
             _ => 0.0,
         }

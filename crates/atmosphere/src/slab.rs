@@ -130,7 +130,7 @@ impl Side {
         } else {
             (k, k + 1)
         };
-        let linear = a + f * (b - a);
+        let linear = irsig_model::interp::lerp(a, b, f);
         if far >= rows.len() || dx <= 0.0 {
             return linear;
         }

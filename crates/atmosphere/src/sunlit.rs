@@ -110,7 +110,7 @@ impl Table {
             return a;
         }
         let b = self.at_altitude_row(k + 1, azimuth_deg, angle_deg, az);
-        a + f * (b - a)
+        irsig_model::interp::lerp(a, b, f)
     }
 }
 

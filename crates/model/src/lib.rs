@@ -54,6 +54,7 @@ mod error;
 pub mod frame;
 pub mod history;
 pub mod image_map;
+pub mod interp;
 pub mod limits;
 pub mod loads;
 mod material;

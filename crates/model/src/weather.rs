@@ -558,7 +558,7 @@ impl Weather {
         }
         let (a, b, w) = self.bracket(time_s);
         let (ra, rb) = (&self.records[a], &self.records[b]);
-        let lerp = |x: f64, y: f64| x + w * (y - x);
+        let lerp = |x: f64, y: f64| crate::interp::lerp(x, y, w);
         let dew_point_k = match (ra.dew_point_k, rb.dew_point_k) {
             (Some(x), Some(y)) => Some(lerp(x, y)),
             _ => lerp_opt(ra.dew_point_or_derived_k(), rb.dew_point_or_derived_k(), w),
@@ -625,7 +625,7 @@ impl Weather {
 #[allow(clippy::float_cmp)]
 fn lerp_opt(a: Option<f64>, b: Option<f64>, w: f64) -> Option<f64> {
     match (a, b) {
-        (Some(x), Some(y)) => Some(x + w * (y - x)),
+        (Some(x), Some(y)) => Some(crate::interp::lerp(x, y, w)),
         (Some(x), None) if w == 0.0 => Some(x),
         (None, Some(y)) if w == 1.0 => Some(y),
         _ => None,

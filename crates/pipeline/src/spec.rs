@@ -746,7 +746,7 @@ pub(crate) fn sample_polyline(path: &[[f64; 3]], count: usize) -> Vec<[f64; 3]> 
                 let len = seg_len(&w[0], &w[1]);
                 if remaining <= len && len > 0.0 {
                     let t = remaining / len;
-                    return [0, 1, 2].map(|k| w[0][k] + t * (w[1][k] - w[0][k]));
+                    return [0, 1, 2].map(|k| irsig_model::interp::lerp(w[0][k], w[1][k], t));
                 }
                 remaining -= len;
             }

@@ -2,6 +2,8 @@
 
 pub use irsig_model::limits::{MAX_RESPONSE, RESPONSE_WAVELENGTH_UM};
 
+use irsig_model::interp;
+
 use crate::constants::{C1L_W_M2_SR, C2_M_K};
 use crate::error::{RadiometryError, RadiometryErrorKind};
 use crate::planck;
@@ -104,9 +106,8 @@ fn interpolate_or_zero(xs: &[f64], ys: &[f64], x: f64) -> f64 {
     if !(x >= first && x <= last) {
         return 0.0;
     }
-    let i = xs.partition_point(|&v| v <= x).clamp(1, xs.len() - 1);
-    let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
-    y0 + (y1 - y0) * (x - x0) / (x1 - x0)
+    let i = interp::interval(xs, x);
+    interp::between((xs[i], ys[i]), (xs[i + 1], ys[i + 1]), x)
 }
 
 /// How the band integral is done.

@@ -1,6 +1,8 @@
 //! [`EmissivityTable`]: angular (directional) band emissivity, linearly interpolated
 //! (thesis §3.2.2, the `.ems` table), and its hemispherical mean (eq. 5 form).
 
+use irsig_model::interp;
+
 use crate::error::{RadiometryError, RadiometryErrorKind};
 
 /// Emissivity against the angle from the surface normal (deg), rotationally symmetric,
@@ -119,9 +121,8 @@ impl EmissivityTable {
         if a >= last {
             return y_last;
         }
-        let i = xs.partition_point(|&v| v <= a).clamp(1, xs.len() - 1);
-        let (x0, x1, y0, y1) = (xs[i - 1], xs[i], ys[i - 1], ys[i]);
-        y0 + (y1 - y0) * (a - x0) / (x1 - x0)
+        let i = interp::interval(xs, a);
+        interp::between((xs[i], ys[i]), (xs[i + 1], ys[i + 1]), a)
     }
 
     /// [`Self::at`] the angle whose cosine is `cos_incidence`, with the same result bit for

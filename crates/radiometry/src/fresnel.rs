@@ -40,6 +40,8 @@ pub use rough::{
     rough_emissivity_table, smith_escape,
 };
 
+use irsig_model::interp;
+
 use crate::band::Band;
 use crate::emissivity::EmissivityTable;
 use crate::error::{RadiometryError, RadiometryErrorKind};
@@ -296,17 +298,12 @@ impl IndexTable {
     /// gets here).
     #[must_use]
     pub fn at(&self, wavelength_um: f64) -> ComplexIndex {
-        let xs = &self.wavelength_um;
-        let i = xs
-            .partition_point(|&v| v <= wavelength_um)
-            .clamp(1, xs.len() - 1);
-        let (x0, x1) = (xs[i - 1], xs[i]);
-        let (a, b) = (self.index[i - 1], self.index[i]);
-        let f = ((wavelength_um - x0) / (x1 - x0)).clamp(0.0, 1.0);
+        let (i, f) = interp::locate(&self.wavelength_um, wavelength_um);
+        let (a, b) = (self.index[i], self.index[i + 1]);
         // Convex combinations of valid values stay valid: n > 0, k ≥ 0.
         ComplexIndex {
-            n: a.n + (b.n - a.n) * f,
-            k: a.k + (b.k - a.k) * f,
+            n: interp::lerp(a.n, b.n, f),
+            k: interp::lerp(a.k, b.k, f),
         }
     }
 }

@@ -1,6 +1,8 @@
 //! A spectral emissivity ε(λ) averaged over a band: the single value whose product with
 //! the band radiance `L(T)` is the radiance the surface emits in the band at `T`.
 
+use irsig_model::interp;
+
 use crate::planck_weights;
 use crate::{Band, RadiometryError, RadiometryErrorKind};
 
@@ -71,12 +73,8 @@ pub fn band_average_emissivities(
         .iter()
         .map(|emissivity| {
             let eps_at = |l: f64| {
-                let k = wavelength_um
-                    .partition_point(|&w| w <= l)
-                    .clamp(1, wavelength_um.len() - 1);
-                let (w0, w1) = (wavelength_um[k - 1], wavelength_um[k]);
-                let t = ((l - w0) / (w1 - w0)).clamp(0.0, 1.0);
-                emissivity[k - 1] + t * (emissivity[k] - emissivity[k - 1])
+                let (k, t) = interp::locate(wavelength_um, l);
+                interp::lerp(emissivity[k], emissivity[k + 1], t)
             };
             let (num, den) = nodes.iter().fold((0.0, 0.0), |(num, den), n| {
                 (num + n.weight * eps_at(n.wavelength_um), den + n.weight)

@@ -84,7 +84,7 @@ impl Loads {
     /// The loads a share `f` of the way from `self` to `to`, each linearly.
     #[must_use]
     pub fn lerp(&self, to: &Self, f: f64) -> Self {
-        let mix = |a: f64, b: f64| a + f * (b - a);
+        let mix = |a: f64, b: f64| irsig_model::interp::lerp(a, b, f);
         Self {
             shortwave_w_m2: mix(self.shortwave_w_m2, to.shortwave_w_m2),
             longwave_w_m2: mix(self.longwave_w_m2, to.longwave_w_m2),

@@ -159,7 +159,7 @@ impl Lobe {
         let last = table.len() - 1;
         let k = (deg.floor() as usize).min(last - 1);
         let w = (deg - k as f64).clamp(0.0, 1.0);
-        table[k] + w * (table[k + 1] - table[k])
+        irsig_model::interp::lerp(table[k], table[k + 1], w)
     }
 
     /// The glint of the sun's disk in the view `o` (unit, toward the sensor) of a facet of

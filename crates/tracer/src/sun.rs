@@ -50,6 +50,8 @@
 //! sunlight is the emission's τ times it, as before. No sun (the default) traces and sums
 //! exactly what it did before.
 
+use irsig_model::interp::{lerp, linear};
+
 use crate::error::{TraceError, TraceErrorKind};
 use crate::vec::{V3, basis, dot, scale};
 
@@ -156,7 +158,7 @@ impl SunBeam {
         if hi[0] <= lo[0] {
             return lo[1];
         }
-        lo[1] + (tau - lo[0]) / (hi[0] - lo[0]) * (hi[1] - lo[1])
+        lerp(lo[1], hi[1], (tau - lo[0]) / (hi[0] - lo[0]))
     }
 
     /// A beam of `normal_w_m2` W m⁻² at every altitude (no atmosphere, or a test).
@@ -179,9 +181,7 @@ impl SunBeam {
         if altitude_m >= h[last] {
             return e[last];
         }
-        let k = h.partition_point(|&x| x <= altitude_m).clamp(1, last);
-        let w = (altitude_m - h[k - 1]) / (h[k] - h[k - 1]);
-        e[k - 1] + w * (e[k] - e[k - 1])
+        linear(h, e, altitude_m)
     }
 }
 

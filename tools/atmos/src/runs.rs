@@ -14,6 +14,7 @@ use irsig_atmosphere::plan::{PathSpectra, RunKind, RunSpectra, lowtran_spectra, 
 use irsig_atmosphere::refraction::{ApparentZenith, apparent_zenith};
 use irsig_formats::ParseError;
 use irsig_formats::radtran::{lowtran_tape6, lowtran_tape7, tape5};
+use irsig_model::interp::linear;
 use irsig_model::{PlanAerosol, PlanModel};
 use miette::{Report, WrapErr, miette};
 
@@ -471,12 +472,6 @@ pub(crate) fn run_jobs(jobs: &[Job], threads: usize) -> miette::Result<Vec<RunRe
     Ok(ok)
 }
 
-fn interpolate(xs: &[f64], ys: &[f64], x: f64) -> f64 {
-    let k = xs.partition_point(|&v| v < x).clamp(1, xs.len() - 1);
-    let t = ((x - xs[k - 1]) / (xs[k] - xs[k - 1])).clamp(0.0, 1.0);
-    ys[k - 1] + t * (ys[k] - ys[k - 1])
-}
-
 /// The air temperature against altitude above the ground (m) of the runs' model, the
 /// ground's altitude above sea level (m) and the model in words: a radiosonde's levels, or
 /// LOWTRAN7's profile of a standard model from the first run's TAPE6 that has one.
@@ -494,7 +489,7 @@ pub(crate) fn profile_temperature(
             let xs: Vec<f64> = levels.iter().map(|l| l.altitude_m - ground).collect();
             let ys: Vec<f64> = levels.iter().map(|l| l.temperature_k).collect();
             (
-                Box::new(move |h| interpolate(&xs, &ys, h)),
+                Box::new(move |h| linear(&xs, &ys, h)),
                 ground,
                 format!(
                     "MODEL=7 (a radiosonde of {} levels, US Standard 1976 above)",
@@ -519,7 +514,7 @@ pub(crate) fn profile_temperature(
                 .find(|x| x.1 == *m)
                 .map_or("?", |x| x.0);
             (
-                Box::new(move |h| interpolate(&xs, &ys, h)),
+                Box::new(move |h| linear(&xs, &ys, h)),
                 0.0,
                 format!("MODEL={m} ({name})"),
             )
