@@ -2,8 +2,8 @@
 //! sphere (1k, 100k and 1M triangles) over a ground plate, diffuse, with one specular
 //! bounce and with the sky-view factor on; the same primary rays through bare obvhs
 //! (its own, non-watertight triangle test, no radiometry) for the ratio; the diffuse case
-//! with a statistical texture on every facet, and with an image map on every facet; and BVH
-//! build time.
+//! with a statistical texture on every facet, and with an image map on every facet (at 128²,
+//! and as whole 1024² frames, `frame_1024`); and BVH build time.
 //!
 //! `cargo bench -p irsig-tracer` (a few seconds per case). Figures go to BENCHMARKS.md.
 
@@ -258,6 +258,30 @@ fn shaded_diffuse_mapped_footprint(bencher: divan::Bencher, i: usize) {
                 .unwrap()
         })
     });
+}
+
+/// The texture floor's own measurement: a whole 1024² frame of the diffuse scene on one
+/// thread, `plain`, with a statistical texture on every facet (`field`), with image maps
+/// (`maps`, nearest and bilinear) and with image maps through the footprint filter
+/// (`footprint`); the textured frames against `plain`, scene by scene.
+#[divan::bench(consts = [0, 1, 2], args = ["plain", "field", "maps", "footprint"], sample_count = 5, sample_size = 1)]
+fn frame_1024<const I: usize>(bencher: divan::Bencher, kind: &str) {
+    let tracer = match kind {
+        "field" => textured(I),
+        "maps" => mapped(I, false),
+        "footprint" => mapped(I, true),
+        _ => &prepared(I).diffuse,
+    };
+    let cam = bench_camera(1024);
+    bencher
+        .counter(ItemsCount::new(1024 * 1024_usize))
+        .bench(|| {
+            one_core(|| {
+                tracer
+                    .render(&cam, &TraceOptions::default(), &|_| {})
+                    .unwrap()
+            })
+        });
 }
 
 #[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
