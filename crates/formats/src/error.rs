@@ -170,6 +170,19 @@ impl ParseError {
         Self::at_span(file, source, offset, 1, message)
     }
 
+    /// An error at 1-based `line` and character `column` of `source` (a legacy parser's
+    /// `legacy::Position`), with a span of one character; past the text, at its end.
+    #[must_use]
+    pub fn at_line_column(
+        file: impl Into<String>,
+        source: &str,
+        line: usize,
+        column: usize,
+        message: impl Into<String>,
+    ) -> Self {
+        Self::at_offset(file, source, offset_of(source, line, column), message)
+    }
+
     /// An error covering `len` bytes from byte `offset` of `source`.
     #[must_use]
     pub fn at_span(

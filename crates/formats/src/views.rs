@@ -222,7 +222,7 @@ fn parse_views_of(file: &str, text: &str, unit: LengthUnit) -> Result<Vec<View>,
         // that only the model rejects, reported at the file's first value.
         v.validate().map_err(|e| {
             let p = parsed.file_position;
-            ParseError::at_offset(file, text, offset_of(text, p.line, p.column), e.to_string())
+            ParseError::at_line_column(file, text, p.line, p.column, e.to_string())
         })?;
         return Ok(vec![v]);
     }
@@ -321,7 +321,7 @@ pub fn read_execute(
 ) -> Result<Vec<ExecuteFrame>, ParseError> {
     let parsed = execute::parse(file, text)?;
     let at = |p: Position, message: String| {
-        ParseError::at_offset(file, text, offset_of(text, p.line, p.column), message)
+        ParseError::at_line_column(file, text, p.line, p.column, message)
     };
     let first_scene = parsed.frames.first().map_or("", |f| f.scene.as_str());
     let mut frames = Vec::with_capacity(parsed.frames.len());

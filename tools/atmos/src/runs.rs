@@ -52,7 +52,9 @@ pub(crate) fn located(
     pos: irsig_formats::legacy::Position,
     message: String,
 ) -> Report {
-    Report::new(irsig_atmosphere::plan::located(file, text, pos, message))
+    Report::new(irsig_formats::ParseError::at_line_column(
+        file, text, pos.line, pos.column, message,
+    ))
 }
 
 /// Reads a run's given outputs.

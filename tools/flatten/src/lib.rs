@@ -197,10 +197,11 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 }
             }
             SceneFormat::Legacy => match i.and_then(|i| entry_positions.get(i)) {
-                Some(p) => miette::Report::new(irsig_formats::ParseError::at_offset(
+                Some(p) => miette::Report::new(irsig_formats::ParseError::at_line_column(
                     name.clone(),
                     &scene_text,
-                    irsig_formats::offset_of(&scene_text, p.line, p.column),
+                    p.line,
+                    p.column,
                     message,
                 )),
                 None => miette!("{name}: {message}"),

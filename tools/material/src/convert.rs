@@ -119,10 +119,11 @@ pub fn from_legacy(args: &ConvertArgs, index_path: &str) -> miette::Result<()> {
     let index = material_index::parse(&input.name, text).map_err(Report::new)?;
     let ems_dir = args.ems_dir.clone().unwrap_or_else(|| input.base_dir());
     let at = |p: Position, message: String| {
-        Report::new(ParseError::at_offset(
+        Report::new(ParseError::at_line_column(
             &input.name,
             text,
-            irsig_formats::offset_of(text, p.line, p.column),
+            p.line,
+            p.column,
             message,
         ))
     };

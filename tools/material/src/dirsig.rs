@@ -155,10 +155,11 @@ pub fn run(args: &Args) -> miette::Result<()> {
         let mut mean = vec![0.0; first.emissivity.len()];
         for c in &curves.curves {
             if c.wavelength_um != first.wavelength_um {
-                return Err(Report::new(ParseError::at_offset(
+                return Err(Report::new(ParseError::at_line_column(
                     &ems_name,
                     ems_text,
-                    irsig_formats::offset_of(ems_text, c.position.line, c.position.column),
+                    c.position.line,
+                    c.position.column,
                     "this curve's wavelengths differ from the first curve's: the curves of \
                      one file are averaged, so they must share their wavelengths",
                 )));

@@ -3,8 +3,8 @@
 //! the sun's irradiance, a sunlit path's scattered sunlight). Running the code and reading
 //! the file are the tool's business; this module owns what the text means.
 
+use irsig_formats::ParseError;
 use irsig_formats::radtran::{lowtran_tape7, modtran_tape7};
-use irsig_formats::{ParseError, legacy::Position, offset_of};
 
 use super::{Path, PathSpectra};
 
@@ -65,12 +65,6 @@ pub fn run_spectra(file: &str, text: &str, kind: RunKind) -> Result<RunSpectra, 
     }
 }
 
-/// A [`ParseError`] in `file` at a legacy parser's line and column.
-#[must_use]
-pub fn located(file: &str, text: &str, pos: Position, message: String) -> ParseError {
-    ParseError::at_offset(file, text, offset_of(text, pos.line, pos.column), message)
-}
-
 /// The spectra of LOWTRAN7's TAPE7 `text`, converted to SI (W cm⁻² → W m⁻²) here.
 ///
 /// # Errors
@@ -87,24 +81,24 @@ pub fn lowtran_spectra(file: &str, text: &str, kind: RunKind) -> Result<PathSpec
         )
     })?;
     let table = run.table.as_ref().ok_or_else(|| {
-        located(
+        ParseError::at_line_column(
             file,
             text,
-            run.position,
+            run.position.line,
+            run.position.column,
             "expected the run's spectral table, found none: LOWTRAN7 made no table for this \
-             run (see its TAPE6)"
-                .into(),
+             run (see its TAPE6)",
         )
     })?;
     if kind == RunKind::Solar {
         let etoa = table.extraterrestrial_irradiance().ok_or_else(|| {
-            located(
+            ParseError::at_line_column(
                 file,
                 text,
-                run.position,
+                run.position.line,
+                run.position.column,
                 "expected a direct solar irradiance run (IEMSCT = 3): this path of the plan is \
-                 the sun's"
-                    .into(),
+                 the sun's",
             )
         })?;
         return Ok(PathSpectra {
@@ -118,13 +112,13 @@ pub fn lowtran_spectra(file: &str, text: &str, kind: RunKind) -> Result<PathSpec
     }
     let scattered = if matches!(kind, RunKind::Scattered | RunKind::Diffuse) {
         let l = table.scattered_radiance().ok_or_else(|| {
-            located(
+            ParseError::at_line_column(
                 file,
                 text,
-                run.position,
+                run.position.line,
+                run.position.column,
                 "expected a solar scattering run (IEMSCT = 2): this path of the plan is a \
-                 sunlit one"
-                    .into(),
+                 sunlit one",
             )
         })?;
         // W cm-2 sr-1 per cm-1 -> W m-2 sr-1 per cm-1.
@@ -133,12 +127,12 @@ pub fn lowtran_spectra(file: &str, text: &str, kind: RunKind) -> Result<PathSpec
         Vec::new()
     };
     let radiance = table.thermal_radiance().ok_or_else(|| {
-        located(
+        ParseError::at_line_column(
             file,
             text,
-            run.position,
-            "expected a thermal radiance run (IEMSCT = 1 or 2): the build needs path radiance"
-                .into(),
+            run.position.line,
+            run.position.column,
+            "expected a thermal radiance run (IEMSCT = 1 or 2): the build needs path radiance",
         )
     })?;
     Ok(PathSpectra {
@@ -180,10 +174,11 @@ fn modtran_spectra(file: &str, text: &str, kind: RunKind) -> Result<RunSpectra, 
                 modtran_mode(&t),
             )
         };
-        located(
+        ParseError::at_line_column(
             file,
             text,
-            at,
+            at.line,
+            at.column,
             format!("expected {expected}, found {found}"),
         )
     };
@@ -233,21 +228,22 @@ fn modtran_spectra(file: &str, text: &str, kind: RunKind) -> Result<RunSpectra, 
         Vec::new()
     };
     let Some(tau) = tau else {
-        return Err(located(
+        return Err(ParseError::at_line_column(
             file,
             text,
-            t.header_position,
-            "expected a TOT_TRANS or COMBIN TRANS column in the header, found none".into(),
+            t.header_position.line,
+            t.header_position.column,
+            "expected a TOT_TRANS or COMBIN TRANS column in the header, found none",
         ));
     };
     let l = t.path_thermal_radiance().ok_or_else(|| {
-        located(
+        ParseError::at_line_column(
             file,
             text,
-            t.header_position,
+            t.header_position.line,
+            t.header_position.column,
             "expected the path radiance column (PTH_THRML) of a radiance-mode \
-             tape7, found none: run MODTRAN in radiance mode"
-                .into(),
+             tape7, found none: run MODTRAN in radiance mode",
         )
     })?;
     Ok(RunSpectra {
