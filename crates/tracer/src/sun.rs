@@ -178,6 +178,8 @@ impl SunBeam {
         if altitude_m.is_nan() || altitude_m <= h[0] {
             return e[0];
         }
+        // The top row exactly: `linear` there gives `e[last − 1] + (e[last] − e[last − 1])`,
+        // which can differ from it in the last bit.
         if altitude_m >= h[last] {
             return e[last];
         }
