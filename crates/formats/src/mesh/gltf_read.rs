@@ -4,12 +4,12 @@
 use std::path::{Component, Path, PathBuf};
 
 use base64::Engine as _;
-use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 
 use super::{Location, MaterialUse, Mesh, Origin, Triangle, json_path};
 use crate::ParseError;
 
+mod geometry;
 mod texcoord;
 
 type Matrix = [[f64; 4]; 4]; // column-major, m[column][row], as glTF stores it
@@ -205,7 +205,43 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
     if bytes.starts_with(b"glTF") {
         check_glb_container(file, bytes)?;
     }
-    let doc = parse_and_validate(bytes).map_err(|e| match e {
+    let doc = read_document(&source, file, bytes)?;
+    check_version(&source, &doc.as_json().asset)?;
+    let buffers = load_buffers(&source, &doc, base_dir)?;
+    check_views(&source, &doc)?;
+
+    let mut reader = Walk {
+        source: &source,
+        base_dir,
+        buffers: &buffers,
+        mesh: Mesh {
+            file: file.to_owned(),
+            ..Mesh::default()
+        },
+        material_index: std::collections::HashMap::new(),
+        primitive_paths: Vec::new(),
+    };
+    for node in root_nodes(&doc) {
+        reader.node(&node, &IDENTITY, 0)?;
+    }
+    if reader.mesh.triangles.is_empty() {
+        return Err(source.error(
+            "meshes",
+            "expected at least one triangle primitive in the scene, found none (empty mesh)",
+        ));
+    }
+    let Walk {
+        mut mesh,
+        primitive_paths,
+        ..
+    } = reader;
+    place_parts(&source, &mut mesh, &primitive_paths);
+    Ok(mesh)
+}
+
+/// The glTF document of `bytes`, parsed and validated, its errors at their place.
+fn read_document(source: &Source<'_>, file: &str, bytes: &[u8]) -> Result<gltf::Gltf, ParseError> {
+    parse_and_validate(bytes).map_err(|e| match e {
         gltf::Error::Deserialize(j) => source.syntax_error(bytes, &j),
         gltf::Error::Binary(b) => {
             ParseError::in_binary(file, 0, format!("malformed GLB container: {b}"))
@@ -222,8 +258,11 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             source.error(&path, format!("invalid glTF: {first}{more}"))
         }
         other => ParseError::in_binary(file, 0, format!("cannot read glTF: {other}")),
-    })?;
-    let asset = &doc.as_json().asset;
+    })
+}
+
+/// Checks that the asset is glTF 2.x and needs no more than 2.0.
+fn check_version(source: &Source<'_>, asset: &gltf::json::Asset) -> Result<(), ParseError> {
     if !is_version_2(&asset.version) {
         return Err(source.error(
             "asset.version",
@@ -239,7 +278,16 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             format!("the file needs glTF \"{min}\"; irsig reads \"2.0\""),
         ));
     }
+    Ok(())
+}
 
+/// Every buffer's bytes (the GLB's BIN chunk, a `data:` URI or a file next to the model),
+/// each checked to be its `byteLength`.
+fn load_buffers(
+    source: &Source<'_>,
+    doc: &gltf::Gltf,
+    base_dir: Option<&Path>,
+) -> Result<Vec<Vec<u8>>, ParseError> {
     let mut buffers: Vec<Vec<u8>> = Vec::new();
     for buffer in doc.buffers() {
         let i = buffer.index();
@@ -255,7 +303,7 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
                 // The BIN chunk is padded to four bytes (glTF 2.0 §4.4.3.3).
                 3,
             ),
-            gltf::buffer::Source::Uri(uri) => (load_uri(&source, uri, base_dir, i)?, 0),
+            gltf::buffer::Source::Uri(uri) => (load_uri(source, uri, base_dir, i)?, 0),
         };
         if data.len() < declared || data.len() > declared.saturating_add(slack) {
             return Err(source.error(
@@ -269,6 +317,11 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
         data.truncate(declared);
         buffers.push(data);
     }
+    Ok(buffers)
+}
+
+/// Checks that every buffer view lies within its buffer.
+fn check_views(source: &Source<'_>, doc: &gltf::Gltf) -> Result<(), ParseError> {
     for view in doc.views() {
         let buffer = view.buffer();
         if view
@@ -288,19 +341,13 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             ));
         }
     }
+    Ok(())
+}
 
-    let mut reader = Walk {
-        source: &source,
-        base_dir,
-        buffers: &buffers,
-        mesh: Mesh {
-            file: file.to_owned(),
-            ..Mesh::default()
-        },
-        material_index: std::collections::HashMap::new(),
-        primitive_paths: Vec::new(),
-    };
-    let roots: Vec<gltf::Node<'_>> = match doc.default_scene().or_else(|| doc.scenes().next()) {
+/// The nodes the mesh is read from: the default scene's (else the first scene's), or,
+/// without a scene, every node that is no other's child.
+fn root_nodes(doc: &gltf::Gltf) -> Vec<gltf::Node<'_>> {
+    match doc.default_scene().or_else(|| doc.scenes().next()) {
         Some(scene) => scene.nodes().collect(),
         None => {
             let mut is_child = vec![false; doc.nodes().len()];
@@ -315,23 +362,13 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
                 .filter(|n| !is_child.get(n.index()).copied().unwrap_or(false))
                 .collect()
         }
-    };
-    for node in roots {
-        reader.node(&node, &IDENTITY, 0)?;
     }
-    if reader.mesh.triangles.is_empty() {
-        return Err(source.error(
-            "meshes",
-            "expected at least one triangle primitive in the scene, found none (empty mesh)",
-        ));
-    }
-    // Where each primitive's triangles and each material's first use are, for the
-    // importer's messages: the JSON is parsed again once for all of them.
-    let Walk {
-        mut mesh,
-        primitive_paths,
-        ..
-    } = reader;
+}
+
+/// Sets where each primitive's triangles (`primitive_paths`, one per part) and each
+/// material's first use are, for the importer's messages.
+fn place_parts(source: &Source<'_>, mesh: &mut Mesh, primitive_paths: &[String]) {
+    // The JSON is parsed again once for all of them.
     let tree = source.json.and_then(json_path::Tree::parse);
     let places: Vec<(usize, usize)> = primitive_paths
         .iter()
@@ -354,7 +391,6 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             m.first_use.column = Some(column);
         }
     }
-    Ok(mesh)
 }
 
 /// A GLB's header and chunk headers (glTF 2.0 §4.4), each checked at its byte offset
@@ -694,7 +730,9 @@ impl Walk<'_> {
         Ok(id)
     }
 
-    #[allow(clippy::too_many_lines)] // one primitive, read in order: positions, indices, triangles
+    /// Reads one primitive of a node's mesh (`world`: the node's transform) into the mesh:
+    /// its positions, its triangles, their material and texture coordinates; a primitive
+    /// without triangles (points, lines) is skipped with a warning.
     fn primitive(
         &mut self,
         primitive: &gltf::Primitive<'_>,
@@ -713,151 +751,12 @@ impl Walk<'_> {
             ));
             return Ok(());
         }
-        let positions = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| {
-            self.err(
-                &format!("{path}.attributes"),
-                &part,
-                "expected a POSITION attribute, found none",
-            )
-        })?;
-        let pos_at = format!("accessors[{}]", positions.index());
-        if positions.data_type() != DataType::F32 {
-            return Err(self.err(
-                &format!("{pos_at}.componentType"),
-                &part,
-                format!(
-                    "expected POSITION as float (5126), found {:?}",
-                    positions.data_type()
-                ),
-            ));
-        }
-        if positions.dimensions() != Dimensions::Vec3 {
-            return Err(self.err(
-                &format!("{pos_at}.type"),
-                &part,
-                format!(
-                    "expected POSITION as VEC3, found {:?}",
-                    positions.dimensions()
-                ),
-            ));
-        }
-        let (data, stride) = self.accessor_data(&positions, 12, &part)?;
+        let (pos_at, new_positions) = self.positions(primitive, world, &part, &path)?;
         let base = self.mesh.positions.len();
-        let vertex_count = positions.count();
-        let f32_at = |b: &[u8], at: usize| -> f32 {
-            let mut a = [0; 4];
-            a.copy_from_slice(&b[at..at + 4]);
-            f32::from_le_bytes(a)
-        };
-        let mut new_positions = Vec::with_capacity(vertex_count);
-        for k in 0..vertex_count {
-            let p = [
-                f64::from(f32_at(data, k * stride)),
-                f64::from(f32_at(data, k * stride + 4)),
-                f64::from(f32_at(data, k * stride + 8)),
-            ];
-            let mut w = [0.0; 3];
-            for (r, v) in w.iter_mut().enumerate() {
-                *v = world[0][r] * p[0] + world[1][r] * p[1] + world[2][r] * p[2] + world[3][r];
-            }
-            if !w.iter().all(|v| v.is_finite()) {
-                return Err(self.err(
-                    &pos_at,
-                    &part,
-                    format!("expected finite positions, found {p:?} at vertex {k}"),
-                ));
-            }
-            new_positions.push(w);
-        }
-
+        let vertex_count = new_positions.len();
         let indices_at = format!("{path}.indices");
-        let indices: Vec<u32> = match primitive.indices() {
-            None => (0..u32::try_from(vertex_count).unwrap_or(u32::MAX)).collect(),
-            Some(acc) => {
-                let size = match (acc.data_type(), acc.dimensions()) {
-                    (DataType::U8, Dimensions::Scalar) => 1,
-                    (DataType::U16, Dimensions::Scalar) => 2,
-                    (DataType::U32, Dimensions::Scalar) => 4,
-                    (t, d) => {
-                        return Err(self.err(
-                            &format!("accessors[{}]", acc.index()),
-                            &part,
-                            format!("expected u8, u16 or u32 SCALAR indices, found {t:?} {d:?}"),
-                        ));
-                    }
-                };
-                let (data, stride) = self.accessor_data(&acc, size, &part)?;
-                (0..acc.count())
-                    .map(|k| {
-                        let at = k * stride;
-                        match size {
-                            1 => u32::from(data[at]),
-                            2 => u32::from(u16::from_le_bytes([data[at], data[at + 1]])),
-                            _ => u32::from_le_bytes([
-                                data[at],
-                                data[at + 1],
-                                data[at + 2],
-                                data[at + 3],
-                            ]),
-                        }
-                    })
-                    .collect()
-            }
-        };
-        if let Some((k, &i)) = indices
-            .iter()
-            .enumerate()
-            .find(|&(_, &i)| i as usize >= vertex_count)
-        {
-            return Err(self.err(
-                &indices_at,
-                &part,
-                format!("index {k} is {i}, past the {vertex_count} vertices of {pos_at}"),
-            ));
-        }
-        if mode == Mode::Triangles && indices.len() % 3 != 0 {
-            let (at, what) = match primitive.indices() {
-                Some(_) => (indices_at.as_str(), "indices"),
-                None => (pos_at.as_str(), "vertices (no indices)"),
-            };
-            return Err(self.err(
-                at,
-                &part,
-                format!(
-                    "a triangle list needs a multiple of 3 {what}, found {}",
-                    indices.len()
-                ),
-            ));
-        }
-        let mut corners: Vec<[u32; 3]> = match mode {
-            Mode::Triangles => indices
-                .chunks_exact(3)
-                .map(|c| [c[0], c[1], c[2]])
-                .collect(),
-            // glTF 2.0 §3.7.2.1: strip triangle k is (k, k+1, k+2), every other one
-            // reversed to keep the winding; fan triangle k is (0, k+1, k+2).
-            Mode::TriangleStrip => indices
-                .windows(3)
-                .enumerate()
-                .map(|(k, w)| {
-                    if k % 2 == 0 {
-                        [w[0], w[1], w[2]]
-                    } else {
-                        [w[1], w[0], w[2]]
-                    }
-                })
-                .collect(),
-            _ => match indices.split_first() {
-                Some((&hub, rest)) => rest.windows(2).map(|w| [hub, w[0], w[1]]).collect(),
-                None => Vec::new(),
-            },
-        };
-        if determinant3(world) < 0.0 {
-            // A mirroring transform turns counter-clockwise into clockwise.
-            for c in &mut corners {
-                c.swap(1, 2);
-            }
-        }
+        let indices = self.indices(primitive, mode, &pos_at, vertex_count, &indices_at, &part)?;
+        let corners = geometry::corners(mode, &indices, world);
         let offset =
             u32::try_from(base).map_err(|_| self.err(&pos_at, &part, "more than 2^32 vertices"))?;
         let material = self.material(primitive, &part)?;

@@ -43,9 +43,13 @@
 //! and must be the one of the run's IEMSCT.
 
 use super::lowtran_tape7::TRANSMITTANCE_MAX;
-use super::{Source, TextLine, read_int, read_real, text_lines};
+use super::{Source, TextLine, read_real, text_lines};
 use crate::ParseError;
 use crate::legacy::Position;
+
+mod reader;
+
+use reader::Reader;
 
 /// A message LOWTRAN printed for a run: an error, a warning or a value it reset.
 #[derive(Debug, Clone, PartialEq)]
@@ -556,221 +560,11 @@ pub fn parse(file: &str, text: &str) -> Result<LowtranTape6, ParseError> {
             "expected a LOWTRAN7 TAPE6 (its banner `***** LOWTRAN 7 *****`), found none",
         ));
     }
-    let mut runs = Vec::new();
-    let mut run = Tape6Run::default();
-    let mut iemsct: Option<i64> = None;
-    let mut in_table: Option<Layout> = None;
-    let mut opened: Option<Opened> = None;
-    let mut started = false;
-    // 0: outside, 1: after the `ATMOSPHERIC PROFILES` banner, 2: in its Z P T table.
-    let mut profile_state = 0;
+    let mut reader = Reader::new(src);
     for line in &lines {
-        let b = body(line);
-        let t = b.trim();
-        if !started {
-            run.position = line.position();
-            started = true;
-        }
-        if line.text.get(1..CARD1_ECHO.len()) == Some(&CARD1_ECHO[1..]) {
-            let text = line.field(IEMSCT_COLUMN, 5);
-            let value = read_int(text).filter(|_| !text.trim().is_empty());
-            let Some(value) = value else {
-                return Err(src.error(
-                    line.offset_of_column(IEMSCT_COLUMN),
-                    5,
-                    format!(
-                        "expected IEMSCT (I5 in columns 26-30 of the echo of card 1), found `{}`",
-                        text.trim()
-                    ),
-                ));
-            };
-            iemsct = Some(value);
-        }
-        if t.starts_with("ATMOSPHERIC PROFILES") && run.profile.is_empty() {
-            profile_state = 1;
-            continue;
-        }
-        if profile_state == 1 && t.starts_with('I') && t.contains(" Z ") {
-            profile_state = 2;
-            continue;
-        }
-        if profile_state == 2 {
-            // A row starts with its level number I (I4, columns 1-4, whose first column is
-            // also the printer's carriage control, a blank); anything else (the units line,
-            // a blank line, a page break `1`, the next table) is not a row.
-            let level = line.field(0, 4).trim();
-            if line.text.starts_with(' ')
-                && !level.is_empty()
-                && level.bytes().all(|c| c.is_ascii_digit())
-            {
-                let mut zpt = [0.0; 3];
-                for ((slot, f), what) in zpt
-                    .iter_mut()
-                    .zip(PROFILE_Z_P_T)
-                    .zip(["Z in km", "P in mb", "T in K"])
-                {
-                    *slot = read_field(src, line, f, &format!("level {level}'s {what}"))?;
-                }
-                run.profile.push(zpt);
-                continue;
-            }
-            if !run.profile.is_empty() {
-                profile_state = 0;
-            }
-        }
-        if t.starts_with("CARD 5 *****") {
-            check_closed(src, opened.take(), line.offset)?;
-            run.iemsct = iemsct;
-            runs.push(std::mem::take(&mut run));
-            in_table = None;
-            profile_state = 0;
-            started = false;
-            continue;
-        }
-        if MESSAGE_WORDS.iter().any(|w| t.contains(w)) {
-            run.messages.push(Message {
-                text: t.to_owned(),
-                position: line.position(),
-            });
-            if t.contains("IERROR NE 0") {
-                run.rejected = true;
-            }
-        }
-        if t.starts_with("INTEGRATED ABSORPTION") {
-            check_rows(src, opened.take(), run.table.is_some())?;
-            in_table = None;
-            run.integrated_absorption_per_cm = Some(read_field(
-                src,
-                line,
-                ABSORPTION,
-                "the integrated absorption in cm-1",
-            )?);
-            continue;
-        }
-        if t.starts_with("BENDING =") && run.bending_deg.is_none() {
-            run.bending_deg = Some(read_field(src, line, BENDING, "the bending in degrees")?);
-            continue;
-        }
-        if t.starts_with("AVERAGE TRANSMITTANCE") {
-            run.average_transmittance =
-                Some(read_field(src, line, AVERAGE, "the average transmittance")?);
-            continue;
-        }
-        if t.starts_with("INTEGRATED RADIANCE") {
-            check_rows(src, opened.take(), run.table.is_some())?;
-            in_table = None;
-            run.integrated_radiance_w_cm2_sr = Some(read_field(
-                src,
-                line,
-                RADIANCE_SUM,
-                "the integrated radiance in W cm-2 sr-1",
-            )?);
-            continue;
-        }
-        if t.starts_with("INTEGRATED IRRADIANCE") {
-            check_rows(src, opened.take(), run.table.is_some())?;
-            in_table = None;
-            run.integrated_irradiance_w_cm2 = Some(read_field(
-                src,
-                line,
-                IRRADIANCE_SUM,
-                "the integrated irradiance in W cm-2",
-            )?);
-            continue;
-        }
-        if is_table_header(t) {
-            let Some(found) = table_layout(t) else {
-                return Err(src.error(
-                    line.offset,
-                    line.text.len(),
-                    format!(
-                        "expected one of the column headers LOWTRAN7 prints (FORMAT 900, 910, \
-                         920, 921 or 930), found `{t}`"
-                    ),
-                ));
-            };
-            if iemsct.is_some_and(|k| k != found.2) {
-                return Err(src.error(
-                    line.offset,
-                    line.text.len(),
-                    format!(
-                        "expected the table of an IEMSCT = {} run, as the echo of card 1 says, \
-                         found the column header of IEMSCT = {}'s",
-                        iemsct.unwrap_or(0),
-                        found.2
-                    ),
-                ));
-            }
-            if run.table.as_ref().is_some_and(|t| t.names != found.0) {
-                return Err(src.error(
-                    line.offset,
-                    line.text.len(),
-                    "expected the rest of the run's table (a page's repeated header), found \
-                     the header of another table",
-                ));
-            }
-            in_table = Some(found);
-            opened.get_or_insert(Opened {
-                offset: line.offset,
-                len: line.text.len(),
-                line: line.position().line,
-            });
-            continue;
-        }
-        let Some((names, layout, _)) = in_table else {
-            continue;
-        };
-        // Page headers and unit lines (`1/CM  MICRONS …`) inside the table: not a row. A
-        // row starts with its wavenumber, which LOWTRAN prints `F7.0` in columns 2-8
-        // (`   710.`), or `F6.0` in columns 2-7 (FORMAT 928).
-        let first = line.field(layout[0].start, layout[0].width).trim();
-        let is_row = first.ends_with('.')
-            && first.len() > 1
-            && first[..first.len() - 1].bytes().all(|c| c.is_ascii_digit());
-        if !is_row {
-            continue;
-        }
-        let what = format!(
-            "a row of the IEMSCT = {} table",
-            in_table.map_or(0, |l| l.2)
-        );
-        let table = run.table.get_or_insert_with(|| Tape6Table {
-            names: names.to_vec(),
-            columns: vec![Vec::new(); names.len()],
-        });
-        for (c, (&f, name)) in layout.iter().zip(names).enumerate() {
-            let v = read_field(src, line, f, name)?;
-            if c == 0
-                && let Some(&last) = table.columns[0].last()
-                && v <= last
-            {
-                return Err(src.error(
-                    line.offset_of_column(f.start),
-                    f.width,
-                    format!("wavenumbers must strictly increase: {v} cm-1 follows {last} cm-1"),
-                ));
-            }
-            if let Some((lo, hi, what)) = column_range(name)
-                && !(lo..=hi).contains(&v)
-            {
-                return Err(src.error(
-                    line.offset_of_column(f.start),
-                    f.width,
-                    format!("expected {what} from {lo} to {hi} for {name}, found {v}"),
-                ));
-            }
-            table.columns[c].push(v);
-        }
-        let end = layout.last().map_or(0, |f| f.start + f.width);
-        end_of_row(src, line, end, &what)?;
+        reader.line(line)?;
     }
-    check_closed(src, opened, text.len())?;
-    if started && (run.table.is_some() || !run.messages.is_empty()) {
-        // A file cut before its last `CARD 5` echo: keep what it says.
-        run.iemsct = iemsct;
-        runs.push(run);
-    }
-    Ok(LowtranTape6 { runs })
+    reader.finish(text.len())
 }
 
 #[cfg(test)]

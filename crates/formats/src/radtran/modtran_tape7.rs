@@ -273,6 +273,31 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
             "expected a column header line starting with `FREQ`, found none: is this a MODTRAN tape7?",
         ));
     };
+    let h_end = header_end(&lines, h);
+    let header = &lines[h..h_end];
+    let last = header[header.len() - 1];
+    let names = column_names(src, header)?;
+    let (columns, positions) = read_rows(src, &lines[h_end..], &names, last)?;
+    let declared = declared_range(&lines[..h]);
+    let mode = mode_of(&names);
+    let card1 = card1_iemsct(src, &lines)?;
+    let iemsct = card1.map(|c| c.0);
+    check_iemsct(src, last, iemsct, mode)?;
+    Ok(ModtranTape7 {
+        mode,
+        iemsct,
+        iemsct_position: card1.map(|c| c.1),
+        names,
+        columns,
+        positions,
+        declared,
+        header_position: last.position(),
+    })
+}
+
+/// Where the column header that starts at line `h` ends: at the first blank line, row of
+/// numbers or ` -9999.` after it.
+fn header_end(lines: &[TextLine<'_>], h: usize) -> usize {
     let mut h_end = h + 1;
     while h_end < lines.len()
         && !lines[h_end].text.trim().is_empty()
@@ -281,8 +306,35 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
     {
         h_end += 1;
     }
-    let header = &lines[h..h_end];
+    h_end
+}
+
+/// The columns' names, from the column header's lines: at least two columns.
+fn column_names(src: Source<'_>, header: &[TextLine<'_>]) -> Result<Vec<String>, ParseError> {
     let last = header[header.len() - 1];
+    let spans = column_spans(&last);
+    if spans.len() < 2 {
+        return Err(src.error(
+            last.offset,
+            last.text.len(),
+            "expected a column header of at least two columns (FREQ and a transmittance)",
+        ));
+    }
+    Ok(spans
+        .iter()
+        .map(|&(a, b)| {
+            header
+                .iter()
+                .map(|l| l.field(a, b - a).trim())
+                .filter(|s| !s.is_empty())
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect())
+}
+
+/// The character span of each column, from the header's last line.
+fn column_spans(last: &TextLine<'_>) -> Vec<(usize, usize)> {
     // Each word of the last header line ends a column (names are right-aligned over the
     // numbers); a name is what the header lines hold in that column's span.
     // Direct solar mode's `SOL TR` is one name of two words.
@@ -301,29 +353,22 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
         spans.push((start, end_col));
         start = end_col;
     }
-    if spans.len() < 2 {
-        return Err(src.error(
-            last.offset,
-            last.text.len(),
-            "expected a column header of at least two columns (FREQ and a transmittance)",
-        ));
-    }
-    let names: Vec<String> = spans
-        .iter()
-        .map(|&(a, b)| {
-            header
-                .iter()
-                .map(|l| l.field(a, b - a).trim())
-                .filter(|s| !s.is_empty())
-                .collect::<Vec<_>>()
-                .join(" ")
-        })
-        .collect();
+    spans
+}
+
+/// The rows under the column header (`last` its last line) up to ` -9999.`: the columns
+/// and where each row is.
+fn read_rows(
+    src: Source<'_>,
+    rows: &[TextLine<'_>],
+    names: &[String],
+    last: TextLine<'_>,
+) -> Result<(Vec<Vec<f64>>, Vec<Position>), ParseError> {
     let n = names.len();
     let mut columns = vec![Vec::new(); n];
     let mut positions = Vec::new();
     let mut ended = false;
-    for line in &lines[h_end..] {
+    for line in rows {
         if is_end(line) {
             ended = true;
             break;
@@ -337,22 +382,8 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
                 last.number
             )
         };
-        push_row(src, line, &names, &mut columns, count, |_, name, v| {
-            // As for LOWTRAN's TAPE7: τ within 0-1.01 (printed slightly above 1 on short
-            // humid paths), radiances not negative.
-            if TRANSMITTANCES.contains(&name) && !(0.0..=1.01).contains(&v) {
-                Some(format!("expected {name} from 0 to 1.01, found {v}"))
-            } else if RADIANCES.contains(&name) && v < 0.0 {
-                Some(format!(
-                    "expected {name} of 0 or more (a radiance), found {v}"
-                ))
-            } else if IRRADIANCES.contains(&name) && v < 0.0 {
-                Some(format!(
-                    "expected {name} of 0 or more (an irradiance), found {v}"
-                ))
-            } else {
-                None
-            }
+        push_row(src, line, names, &mut columns, count, |_, name, v| {
+            value_fault(name, v)
         })?;
         positions.push(line.position());
     }
@@ -368,7 +399,32 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
             "expected rows of numbers after the column header, found none",
         ));
     }
-    let declared = lines[..h].iter().rev().find_map(|l| {
+    Ok((columns, positions))
+}
+
+/// What is wrong with the value `v` of column `name`, if anything.
+fn value_fault(name: &str, v: f64) -> Option<String> {
+    // As for LOWTRAN's TAPE7: τ within 0-1.01 (printed slightly above 1 on short
+    // humid paths), radiances not negative.
+    if TRANSMITTANCES.contains(&name) && !(0.0..=1.01).contains(&v) {
+        Some(format!("expected {name} from 0 to 1.01, found {v}"))
+    } else if RADIANCES.contains(&name) && v < 0.0 {
+        Some(format!(
+            "expected {name} of 0 or more (a radiance), found {v}"
+        ))
+    } else if IRRADIANCES.contains(&name) && v < 0.0 {
+        Some(format!(
+            "expected {name} of 0 or more (an irradiance), found {v}"
+        ))
+    } else {
+        None
+    }
+}
+
+/// Card 4's range: the last line before the column header that starts with three numbers,
+/// V1 below V2 and DV positive.
+fn declared_range(before_header: &[TextLine<'_>]) -> Option<DeclaredRange> {
+    before_header.iter().rev().find_map(|l| {
         let t: Vec<f64> = l
             .text
             .split_whitespace()
@@ -381,9 +437,13 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
             dv_per_cm: t[2],
             position: l.position(),
         })
-    });
+    })
+}
+
+/// What the columns' names say the file is.
+fn mode_of(names: &[String]) -> Mode {
     let has = |name: &str| names.iter().any(|s| s == name);
-    let mode = if has("SOL TR") && has("SOLAR") {
+    if has("SOL TR") && has("SOLAR") {
         Mode::DirectSolar
     } else if names.iter().any(|s| s == "TOT_TRANS" || s == "TOTAL_RAD") {
         Mode::Radiance
@@ -391,9 +451,17 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
         Mode::Transmittance
     } else {
         Mode::Other
-    };
-    let card1 = card1_iemsct(src, &lines)?;
-    let iemsct = card1.map(|c| c.0);
+    }
+}
+
+/// Card 1's IEMSCT, if any, must agree with the columns (`last` the header's last line): 3
+/// is direct solar mode's, and only 3.
+fn check_iemsct(
+    src: Source<'_>,
+    last: TextLine<'_>,
+    iemsct: Option<i64>,
+    mode: Mode,
+) -> Result<(), ParseError> {
     if let Some(k) = iemsct
         && (k == 3) != (mode == Mode::DirectSolar)
     {
@@ -405,16 +473,7 @@ pub fn parse(file: &str, text: &str) -> Result<ModtranTape7, ParseError> {
         };
         return Err(src.error(last.offset, last.text.len(), format!("expected {expected}")));
     }
-    Ok(ModtranTape7 {
-        mode,
-        iemsct,
-        iemsct_position: card1.map(|c| c.1),
-        names,
-        columns,
-        positions,
-        declared,
-        header_position: last.position(),
-    })
+    Ok(())
 }
 
 #[cfg(test)]
