@@ -540,6 +540,114 @@ fn check_scattered(
     Ok(())
 }
 
+/// Checks the transmission correction: its altitude, its angles (at least 3, from 0) and
+/// its τ spectra on a grid of `n`.
+fn check_correction(c: &CorrectionPaths, n: usize) -> Result<(), ModelError> {
+    check_range(
+        || "transmission_correction.altitude_m".into(),
+        c.altitude_m,
+        0.0,
+        f64::MAX,
+    )?;
+    check_axis("transmission_correction.nadir_deg", &c.nadir_deg, 89.999)?;
+    if c.nadir_deg[0] != 0.0 || c.nadir_deg.len() < 3 {
+        return Err(ModelError::new(
+            "transmission_correction.nadir_deg",
+            ModelErrorKind::Other(
+                "expected at least 3 angles starting at 0 (the fit is of τ(θ)/τ(0) against 1, secθ, sec²θ)"
+                    .into(),
+            ),
+        ));
+    }
+    check_spectra(
+        "transmission_correction.transmission",
+        &c.transmission,
+        c.nadir_deg.len(),
+        n,
+        1.0,
+    )
+}
+
+/// Checks the slant tables: their axes, the ground below their lowest altitude, and their
+/// spectra on a grid of `n`.
+fn check_slant(s: &SpectralSlantTables, n: usize) -> Result<(), ModelError> {
+    check_axis("slant.altitude_m", &s.altitude_m, f64::MAX)?;
+    check_axis("slant.nadir_deg", &s.nadir_deg, 89.999)?;
+    check_axis("slant.sky_altitude_m", &s.sky_altitude_m, f64::MAX)?;
+    check_axis("slant.sky_zenith_deg", &s.sky_zenith_deg, 90.0)?;
+    if let Some(g) = s.ground_m
+        && !(g >= 0.0 && g < s.altitude_m[0])
+    {
+        return Err(ModelError::new(
+            "slant.ground_m",
+            ModelErrorKind::Other(format!(
+                "expected 0 m or more and below the lowest altitude ({} m), found {g}",
+                s.altitude_m[0]
+            )),
+        ));
+    }
+    let paths = s.altitude_m.len() * s.nadir_deg.len();
+    check_spectra("slant.transmission", &s.transmission, paths, n, 1.0)?;
+    check_spectra(
+        "slant.path_radiance_w_m2_sr_per_unit",
+        &s.path_radiance_w_m2_sr_per_unit,
+        paths,
+        n,
+        SPECTRAL_FLUX_MAX,
+    )?;
+    check_spectra(
+        "slant.sky_radiance_w_m2_sr_per_unit",
+        &s.sky_radiance_w_m2_sr_per_unit,
+        s.sky_altitude_m.len() * s.sky_zenith_deg.len(),
+        n,
+        SPECTRAL_FLUX_MAX,
+    )
+}
+
+/// Checks the sun: its zenith angle and day, its altitudes, its spectra on a grid of `n`,
+/// the further suns' and the scattered sunlight's (on the `slant` tables' nodes).
+fn check_solar(
+    s: &SpectralSolar,
+    slant: Option<&SpectralSlantTables>,
+    n: usize,
+) -> Result<(), ModelError> {
+    let z = s.zenith_deg;
+    if !(z.is_finite() && (0.0..90.0).contains(&z)) {
+        return Err(ModelError::new(
+            "solar.zenith_deg",
+            ModelErrorKind::Other(format!(
+                "expected the sun's zenith angle from 0 to below 90 deg, found {z}"
+            )),
+        ));
+    }
+    if !(1..=366).contains(&s.day_of_year) {
+        return Err(ModelError::new(
+            "solar.day_of_year",
+            ModelErrorKind::Other(format!(
+                "expected a day of the year from 1 to 366, found {}",
+                s.day_of_year
+            )),
+        ));
+    }
+    check_axis("solar.altitude_m", &s.altitude_m, f64::MAX)?;
+    check_spectra(
+        "solar.extraterrestrial_w_m2_per_unit",
+        &s.extraterrestrial_w_m2_per_unit,
+        1,
+        n,
+        SPECTRAL_FLUX_MAX,
+    )?;
+    check_spectra(
+        "solar.transmission",
+        &s.transmission,
+        s.altitude_m.len(),
+        n,
+        1.0,
+    )?;
+    check_further_suns(s, n)?;
+    check_scattered(s, slant, n)
+}
+
 impl SpectralAtmosphere {
     /// Checks the grid (at least 2 points, positive, strictly increasing), the profile
     /// (altitudes increasing, temperatures above 0 K), every table's shape, τ within 0–1,
@@ -548,6 +656,25 @@ impl SpectralAtmosphere {
     /// # Errors
     /// The first rule broken, with the path of the field.
     pub fn validate(&self) -> Result<(), ModelError> {
+        let n = self.grid.points.len();
+        self.validate_grid()?;
+        self.validate_levels(n)?;
+        if let Some(c) = &self.transmission_correction {
+            check_correction(c, n)?;
+        }
+        self.validate_sky(n)?;
+        check_radiosonde(&self.radiosonde)?;
+        if let Some(s) = &self.slant {
+            check_slant(s, n)?;
+        }
+        if let Some(s) = &self.solar {
+            check_solar(s, self.slant.as_ref(), n)?;
+        }
+        self.validate_slabs(n)
+    }
+
+    /// Checks the grid: at least 2 points, finite, the first positive, strictly increasing.
+    fn validate_grid(&self) -> Result<(), ModelError> {
         let n = self.grid.points.len();
         if n < 2 {
             return Err(ModelError::new(
@@ -569,7 +696,11 @@ impl SpectralAtmosphere {
         check_increasing(
             |i| format!("grid.points[{i}]"),
             self.grid.points.iter().copied(),
-        )?;
+        )
+    }
+
+    /// Checks the profile's levels and their vertical paths' spectra on a grid of `n`.
+    fn validate_levels(&self, n: usize) -> Result<(), ModelError> {
         if self.levels.is_empty() {
             return Err(ModelError::new("levels", ModelErrorKind::Empty));
         }
@@ -591,32 +722,11 @@ impl SpectralAtmosphere {
             nl,
             n,
             SPECTRAL_FLUX_MAX,
-        )?;
-        if let Some(c) = &self.transmission_correction {
-            check_range(
-                || "transmission_correction.altitude_m".into(),
-                c.altitude_m,
-                0.0,
-                f64::MAX,
-            )?;
-            check_axis("transmission_correction.nadir_deg", &c.nadir_deg, 89.999)?;
-            if c.nadir_deg[0] != 0.0 || c.nadir_deg.len() < 3 {
-                return Err(ModelError::new(
-                    "transmission_correction.nadir_deg",
-                    ModelErrorKind::Other(
-                        "expected at least 3 angles starting at 0 (the fit is of τ(θ)/τ(0) against 1, secθ, sec²θ)"
-                            .into(),
-                    ),
-                ));
-            }
-            check_spectra(
-                "transmission_correction.transmission",
-                &c.transmission,
-                c.nadir_deg.len(),
-                n,
-                1.0,
-            )?;
-        }
+        )
+    }
+
+    /// Checks the ground's sky: its zenith angles, its radiances and their hemispheric mean.
+    fn validate_sky(&self, n: usize) -> Result<(), ModelError> {
         check_axis("sky_zenith_deg", &self.sky_zenith_deg, 90.0)?;
         check_spectra(
             "sky_radiance_w_m2_sr_per_unit",
@@ -634,78 +744,7 @@ impl SpectralAtmosphere {
                 SPECTRAL_FLUX_MAX,
             )?;
         }
-        check_radiosonde(&self.radiosonde)?;
-        if let Some(s) = &self.slant {
-            check_axis("slant.altitude_m", &s.altitude_m, f64::MAX)?;
-            check_axis("slant.nadir_deg", &s.nadir_deg, 89.999)?;
-            check_axis("slant.sky_altitude_m", &s.sky_altitude_m, f64::MAX)?;
-            check_axis("slant.sky_zenith_deg", &s.sky_zenith_deg, 90.0)?;
-            if let Some(g) = s.ground_m
-                && !(g >= 0.0 && g < s.altitude_m[0])
-            {
-                return Err(ModelError::new(
-                    "slant.ground_m",
-                    ModelErrorKind::Other(format!(
-                        "expected 0 m or more and below the lowest altitude ({} m), found {g}",
-                        s.altitude_m[0]
-                    )),
-                ));
-            }
-            let paths = s.altitude_m.len() * s.nadir_deg.len();
-            check_spectra("slant.transmission", &s.transmission, paths, n, 1.0)?;
-            check_spectra(
-                "slant.path_radiance_w_m2_sr_per_unit",
-                &s.path_radiance_w_m2_sr_per_unit,
-                paths,
-                n,
-                SPECTRAL_FLUX_MAX,
-            )?;
-            check_spectra(
-                "slant.sky_radiance_w_m2_sr_per_unit",
-                &s.sky_radiance_w_m2_sr_per_unit,
-                s.sky_altitude_m.len() * s.sky_zenith_deg.len(),
-                n,
-                SPECTRAL_FLUX_MAX,
-            )?;
-        }
-        if let Some(s) = &self.solar {
-            let z = s.zenith_deg;
-            if !(z.is_finite() && (0.0..90.0).contains(&z)) {
-                return Err(ModelError::new(
-                    "solar.zenith_deg",
-                    ModelErrorKind::Other(format!(
-                        "expected the sun's zenith angle from 0 to below 90 deg, found {z}"
-                    )),
-                ));
-            }
-            if !(1..=366).contains(&s.day_of_year) {
-                return Err(ModelError::new(
-                    "solar.day_of_year",
-                    ModelErrorKind::Other(format!(
-                        "expected a day of the year from 1 to 366, found {}",
-                        s.day_of_year
-                    )),
-                ));
-            }
-            check_axis("solar.altitude_m", &s.altitude_m, f64::MAX)?;
-            check_spectra(
-                "solar.extraterrestrial_w_m2_per_unit",
-                &s.extraterrestrial_w_m2_per_unit,
-                1,
-                n,
-                SPECTRAL_FLUX_MAX,
-            )?;
-            check_spectra(
-                "solar.transmission",
-                &s.transmission,
-                s.altitude_m.len(),
-                n,
-                1.0,
-            )?;
-            check_further_suns(s, n)?;
-            check_scattered(s, self.slant.as_ref(), n)?;
-        }
-        self.validate_slabs(n)
+        Ok(())
     }
 
     fn validate_slabs(&self, n: usize) -> Result<(), ModelError> {
