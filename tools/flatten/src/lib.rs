@@ -111,6 +111,67 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             "the binary raw scene would go to a terminal; give -o FILE, redirect, or use --ron",
         ));
     }
+    let replacements = object_replacements(&cli)?;
+    let scene_input = irsig_cli::read_input(&cli.scene)?;
+    let (scene_file, scene) = SceneFile::read(&cli, &scene_input)?;
+    for name in replacements.keys() {
+        if !scene.objects.iter().any(|p| &p.object == name) {
+            return Err(irsig_cli::usage_error(format!(
+                "--object `{}` matches no placement in {}",
+                name.display(),
+                scene_input.name
+            )));
+        }
+    }
+    let base = scene_input.base_dir();
+    // The file each placement's object was read from.
+    let sources: Vec<String> = scene
+        .objects
+        .iter()
+        .map(|p| match replacements.get(&p.object) {
+            Some(path) => path.clone(),
+            None => resolve(&base, &p.object),
+        })
+        .collect();
+    // The scene, the library and every object file the scene names are inputs.
+    let inputs = [cli.scene.as_str()]
+        .into_iter()
+        .map(PathBuf::from)
+        .chain(cli.materials.file.iter().map(PathBuf::from))
+        .chain(sources.iter().map(PathBuf::from));
+    irsig_cli::refuse_output_is_input(inputs, cli.output.path.iter())?;
+    let loaded = load_objects(&scene, &sources, &scene_file, cli.unit.unit())?;
+    let objects: Vec<&Object> = scene
+        .objects
+        .iter()
+        .filter_map(|p| loaded.get(&p.object))
+        .collect();
+    let raw = irsig_scene::flatten(&scene, &objects).map_err(|e| {
+        // A rule of the scene itself is at its own value; anything else at the placement.
+        let path = match (&e.kind, e.placement) {
+            (irsig_scene::FlattenErrorKind::Model(m), None) => Some(m.path.clone()),
+            _ => None,
+        };
+        scene_file.at(e.placement, path.as_deref(), e.to_string())
+    })?;
+    if let Some(path) = &cli.materials.file {
+        let terrain_at = |message| scene_file.at(None, Some("terrain.material"), message);
+        check_materials(Path::new(path), &raw, terrain_at, |r, message| {
+            facet_material_error(&raw, &objects, &sources, &scene_file, r, message)
+        })?;
+    }
+    irsig_cli::write_output(cli.output.path.as_deref(), |w| {
+        if cli.ron.on {
+            irsig_formats::canonical::write_ron(&raw, w)
+        } else {
+            irsig_formats::canonical::binary::write(&raw, w)
+        }
+    })
+}
+
+/// The `--object NAME=PATH` flags, by NAME; standard input may feed only one of them and
+/// the scene.
+fn object_replacements(cli: &Cli) -> miette::Result<HashMap<PathBuf, String>> {
     let mut replacements: HashMap<PathBuf, String> = HashMap::new();
     for spec in &cli.objects {
         let (name, path) = spec.split_once('=').ok_or_else(|| {
@@ -132,55 +193,80 @@ pub fn run(cli: Cli) -> miette::Result<()> {
             "standard input (`-`) can feed only one of the scene and the objects",
         ));
     }
+    Ok(replacements)
+}
 
-    let scene_input = irsig_cli::read_input(&cli.scene)?;
-    let format = cli.scene_format.unwrap_or_else(|| {
-        if cli.scene == "-" || cli.scene.ends_with(".ron") {
-            SceneFormat::Ron
-        } else {
-            SceneFormat::Legacy
-        }
-    });
-    // For a legacy scene, where each entry starts, to point errors at it.
-    let mut entry_positions = Vec::new();
-    let scene_text: String;
-    let scene: Scene = match format {
-        SceneFormat::Ron => {
-            let scene =
-                irsig_formats::canonical::from_ron_bytes(&scene_input.name, &scene_input.bytes)?;
-            scene_text =
-                irsig_formats::canonical::utf8(&scene_input.name, &scene_input.bytes)?.to_owned();
-            scene
-        }
-        SceneFormat::Legacy => {
-            let text = irsig_formats::legacy::decode(&scene_input.name, &scene_input.bytes)?;
-            let file = irsig_formats::legacy::scene::parse(&scene_input.name, text)?;
-            scene_text = text.to_owned();
-            let metres = cli.unit.unit().metres();
-            entry_positions = file.entries.iter().map(|e| e.position).collect();
-            Scene {
-                objects: file
-                    .entries
-                    .into_iter()
-                    .map(|e| Placement {
-                        object: PathBuf::from(e.object),
-                        rotation_deg: e.rotation_deg,
-                        translation_m: e.translation.map(|t| t * metres),
-                        scale: e.scale,
-                        temperature_k: e.temperature_k,
-                        overrides: Vec::new(),
-                    })
-                    .collect(),
-                ..Scene::default()
+/// The scene file as read: its text and form, to point errors at its placements and
+/// values.
+struct SceneFile<'a> {
+    input: &'a irsig_cli::Input,
+    format: SceneFormat,
+    text: String,
+    /// For a legacy scene, where each entry starts.
+    entry_positions: Vec<irsig_formats::legacy::Position>,
+}
+
+impl<'a> SceneFile<'a> {
+    /// Reads the scene of `input`, in the form `--scene-format` gives or its name tells.
+    fn read(cli: &Cli, input: &'a irsig_cli::Input) -> miette::Result<(Self, Scene)> {
+        let format = cli.scene_format.unwrap_or_else(|| {
+            if cli.scene == "-" || cli.scene.ends_with(".ron") {
+                SceneFormat::Ron
+            } else {
+                SceneFormat::Legacy
+            }
+        });
+        match format {
+            SceneFormat::Ron => {
+                let scene: Scene =
+                    irsig_formats::canonical::from_ron_bytes(&input.name, &input.bytes)?;
+                let text = irsig_formats::canonical::utf8(&input.name, &input.bytes)?.to_owned();
+                let file = Self {
+                    input,
+                    format,
+                    text,
+                    entry_positions: Vec::new(),
+                };
+                Ok((file, scene))
+            }
+            SceneFormat::Legacy => {
+                let text = irsig_formats::legacy::decode(&input.name, &input.bytes)?;
+                let file = irsig_formats::legacy::scene::parse(&input.name, text)?;
+                let text = text.to_owned();
+                let metres = cli.unit.unit().metres();
+                let entry_positions = file.entries.iter().map(|e| e.position).collect();
+                let scene = Scene {
+                    objects: file
+                        .entries
+                        .into_iter()
+                        .map(|e| Placement {
+                            object: PathBuf::from(e.object),
+                            rotation_deg: e.rotation_deg,
+                            translation_m: e.translation.map(|t| t * metres),
+                            scale: e.scale,
+                            temperature_k: e.temperature_k,
+                            overrides: Vec::new(),
+                        })
+                        .collect(),
+                    ..Scene::default()
+                };
+                let file = Self {
+                    input,
+                    format,
+                    text,
+                    entry_positions,
+                };
+                Ok((file, scene))
             }
         }
-    };
-    // An error about placement `i` (or the scene value at a model `path`), at its line and
-    // column in the scene file.
-    let at = |i: Option<usize>, path: Option<&str>, message: String| -> miette::Report {
-        let name = &scene_input.name;
+    }
+
+    /// An error about placement `i` (or the scene value at a model `path`), at its line
+    /// and column in the scene file.
+    fn at(&self, i: Option<usize>, path: Option<&str>, message: String) -> miette::Report {
+        let name = &self.input.name;
         let i = i.or_else(|| path.and_then(|p| index_in(p, "objects")));
-        match format {
+        match self.format {
             SceneFormat::Ron => {
                 let path = path.map_or_else(
                     || i.map(|i| format!("objects[{i}]")),
@@ -188,18 +274,15 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 );
                 match path {
                     Some(p) => miette::Report::new(irsig_formats::canonical::error_at_path(
-                        name,
-                        &scene_text,
-                        &p,
-                        message,
+                        name, &self.text, &p, message,
                     )),
                     None => miette!("{name}: {message}"),
                 }
             }
-            SceneFormat::Legacy => match i.and_then(|i| entry_positions.get(i)) {
+            SceneFormat::Legacy => match i.and_then(|i| self.entry_positions.get(i)) {
                 Some(p) => miette::Report::new(irsig_formats::ParseError::at_line_column(
                     name.clone(),
-                    &scene_text,
+                    &self.text,
                     p.line,
                     p.column,
                     message,
@@ -207,35 +290,19 @@ pub fn run(cli: Cli) -> miette::Result<()> {
                 None => miette!("{name}: {message}"),
             },
         }
-    };
-    for name in replacements.keys() {
-        if !scene.objects.iter().any(|p| &p.object == name) {
-            return Err(irsig_cli::usage_error(format!(
-                "--object `{}` matches no placement in {}",
-                name.display(),
-                scene_input.name
-            )));
-        }
     }
-    let base = scene_input.base_dir();
-    // Each distinct object file is read once, however many placements use it.
+}
+
+/// Reads the object of each placement from its file (`sources`, one per placement; a
+/// legacy facet file in `unit`), each distinct object once however many placements use
+/// it.
+fn load_objects(
+    scene: &Scene,
+    sources: &[String],
+    scene_file: &SceneFile<'_>,
+    unit: LengthUnit,
+) -> miette::Result<HashMap<PathBuf, Object>> {
     let mut loaded: HashMap<PathBuf, Object> = HashMap::new();
-    // The file each placement's object was read from.
-    let sources: Vec<String> = scene
-        .objects
-        .iter()
-        .map(|p| match replacements.get(&p.object) {
-            Some(path) => path.clone(),
-            None => resolve(&base, &p.object),
-        })
-        .collect();
-    // The scene, the library and every object file the scene names are inputs.
-    let inputs = [cli.scene.as_str()]
-        .into_iter()
-        .map(PathBuf::from)
-        .chain(cli.materials.file.iter().map(PathBuf::from))
-        .chain(sources.iter().map(PathBuf::from));
-    irsig_cli::refuse_output_is_input(inputs, cli.output.path.iter())?;
     for (i, placement) in scene.objects.iter().enumerate() {
         if loaded.contains_key(&placement.object) {
             continue;
@@ -243,9 +310,9 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         let source = sources[i].clone();
         let input = irsig_cli::read_input(&source).map_err(|e| {
             let why: Vec<String> = e.chain().map(ToString::to_string).collect();
-            at(
+            scene_file.at(
                 Some(i),
-                (format == SceneFormat::Ron)
+                (scene_file.format == SceneFormat::Ron)
                     .then(|| format!("objects[{i}].object"))
                     .as_deref(),
                 format!(
@@ -262,55 +329,40 @@ pub fn run(cli: Cli) -> miette::Result<()> {
         {
             irsig_formats::canonical::read_object(&input.name, &input.bytes)?
         } else {
-            legacy_object(&input, cli.unit.unit())?
+            legacy_object(&input, unit)?
         };
         loaded.insert(placement.object.clone(), object);
     }
-    let objects: Vec<&Object> = scene
-        .objects
-        .iter()
-        .filter_map(|p| loaded.get(&p.object))
-        .collect();
-    let raw = irsig_scene::flatten(&scene, &objects).map_err(|e| {
-        // A rule of the scene itself is at its own value; anything else at the placement.
-        let path = match (&e.kind, e.placement) {
-            (irsig_scene::FlattenErrorKind::Model(m), None) => Some(m.path.clone()),
-            _ => None,
-        };
-        at(e.placement, path.as_deref(), e.to_string())
-    })?;
-    if let Some(path) = &cli.materials.file {
-        let terrain_at = |message| at(None, Some("terrain.material"), message);
-        check_materials(Path::new(path), &raw, terrain_at, |r, message| {
-            // The facet's material came from its object file unless an override of the
-            // placement changed it: point at whichever gave it.
-            let i = raw.facets[r].object as usize;
-            let first: usize = objects[..i].iter().map(|o| o.facets.len()).sum();
-            let k = r - first;
-            let from_object =
-                objects[i].facets.get(k).map(|f| f.material) == Some(raw.facets[r].material);
-            let source = &sources[i];
-            if from_object && source != "-" {
-                if let Ok(input) = irsig_cli::read_input(source) {
-                    return miette::Report::new(irsig_formats::canonical::object_error_at_path(
-                        &input.name,
-                        &input.bytes,
-                        objects[i],
-                        &format!("facets[{k}].material"),
-                        message,
-                    ));
-                }
-            }
-            at(Some(i), None, message)
-        })?;
-    }
-    irsig_cli::write_output(cli.output.path.as_deref(), |w| {
-        if cli.ron.on {
-            irsig_formats::canonical::write_ron(&raw, w)
-        } else {
-            irsig_formats::canonical::binary::write(&raw, w)
+    Ok(loaded)
+}
+
+/// An error about raw facet `r`'s material, where that material was given: in its object
+/// file, unless an override of the placement changed it.
+fn facet_material_error(
+    raw: &irsig_model::RawScene,
+    objects: &[&Object],
+    sources: &[String],
+    scene_file: &SceneFile<'_>,
+    r: usize,
+    message: String,
+) -> miette::Report {
+    let i = raw.facets[r].object as usize;
+    let first: usize = objects[..i].iter().map(|o| o.facets.len()).sum();
+    let k = r - first;
+    let from_object = objects[i].facets.get(k).map(|f| f.material) == Some(raw.facets[r].material);
+    let source = &sources[i];
+    if from_object && source != "-" {
+        if let Ok(input) = irsig_cli::read_input(source) {
+            return miette::Report::new(irsig_formats::canonical::object_error_at_path(
+                &input.name,
+                &input.bytes,
+                objects[i],
+                &format!("facets[{k}].material"),
+                message,
+            ));
         }
-    })
+    }
+    scene_file.at(Some(i), None, message)
 }
 
 /// A legacy facet file as a canonical object: coordinates from `unit` to metres, material
