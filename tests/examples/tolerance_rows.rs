@@ -34,7 +34,7 @@ use clap::Parser;
 use irsig_model::decision::Decision;
 use irsig_model::truth::Layer;
 use irsig_radiometry::{Band, InverseTable};
-use irsig_tracer::reference::{material_p90s, percentile};
+use irsig_tracer::reference::{ConvergedReference, material_p90s, percentile};
 
 struct Case {
     name: &'static str,
@@ -282,7 +282,6 @@ fn main() {
         .map_or(5, |r| r.parse().expect("IRSIG_ROWS_REFERENCE_ROUNDS=N"));
     let stop_k = TOLERANCES[TOLERANCES.len() - 1] / 6.0;
     let tmp = tempfile::tempdir().unwrap();
-    let path = |name: &str| tmp.path().join(name).to_string_lossy().into_owned();
     println!(
         "| case | tolerance (K) | chosen: atmosphere, bounces, sky-view, supersampling, path \
          terms, sub-bands | p99 \\|ΔT\\| (K) | worst material p90 (K) | not guaranteed | \
@@ -292,41 +291,97 @@ fn main() {
     let mut references = Vec::new();
     let only = std::env::var("IRSIG_ROWS_CASE").unwrap_or_default();
     for case in CASES.iter().filter(|c| c.name.contains(&only)) {
-        let raw = path("scene.raw");
-        let view = path(&format!(
-            "view.{}",
-            Path::new(case.view).extension().unwrap().to_string_lossy()
+        let ready = CaseRun::prepare(case, &bin, tmp.path());
+        // The reference, through the same flags as the tool's renderings.
+        let started = Instant::now();
+        let reference = ready.reference(stop_k, rounds);
+        references.push((
+            case.name,
+            reference.clone(),
+            started.elapsed().as_secs_f64(),
         ));
+        let cheapest_s = ready.cheapest_seconds();
+        for tolerance in TOLERANCES {
+            ready.tolerance_row(tolerance, &reference, cheapest_s);
+        }
+    }
+    print_references(references);
+}
+
+/// The path of file `name` in `dir`, as a string.
+fn in_dir(dir: &Path, name: &str) -> String {
+    dir.join(name).to_string_lossy().into_owned()
+}
+
+/// One case made ready to trace: its scene flattened and its view made smaller, in the
+/// scratch directory `dir`, with the tools in `bin`.
+struct CaseRun<'a> {
+    case: &'a Case,
+    bin: &'a Path,
+    dir: &'a Path,
+    raw: String,
+    view: String,
+}
+
+impl<'a> CaseRun<'a> {
+    /// Flattens `case`'s scene and writes its smaller view, into `dir`.
+    fn prepare(case: &'a Case, bin: &'a Path, dir: &'a Path) -> Self {
+        let raw = in_dir(dir, "scene.raw");
+        let view = in_dir(
+            dir,
+            &format!(
+                "view.{}",
+                Path::new(case.view).extension().unwrap().to_string_lossy()
+            ),
+        );
         smaller_view(case.view, case.pixels, Path::new(&view));
         run(
-            &bin,
+            bin,
             "irsig-flatten",
             &strings(&[case.scene, "--materials", case.materials, "-o", &raw]),
         )
         .unwrap();
-        let base = |more: &[&str]| -> Vec<String> {
-            let mut v = strings(&[
-                "--scene",
-                &raw,
-                "--materials",
-                case.materials,
-                "--view",
-                &view,
-            ]);
-            v.extend(case.extra.iter().map(|&a| {
-                if a == DAY_ATMOSPHERE {
-                    day_atmosphere(&bin, tmp.path())
-                } else {
-                    a.to_owned()
-                }
-            }));
-            v.extend(strings(more));
-            v
-        };
-        // The reference, through the same flags as the tool's renderings.
-        let started = Instant::now();
+        Self {
+            case,
+            bin,
+            dir,
+            raw,
+            view,
+        }
+    }
+
+    /// The path of file `name` in the scratch directory.
+    fn path(&self, name: &str) -> String {
+        in_dir(self.dir, name)
+    }
+
+    /// The flags of every rendering of the case (the daylight atmosphere built on first
+    /// use), then `more`.
+    fn base(&self, more: &[&str]) -> Vec<String> {
+        let mut v = strings(&[
+            "--scene",
+            &self.raw,
+            "--materials",
+            self.case.materials,
+            "--view",
+            &self.view,
+        ]);
+        v.extend(self.case.extra.iter().map(|&a| {
+            if a == DAY_ATMOSPHERE {
+                day_atmosphere(self.bin, self.dir)
+            } else {
+                a.to_owned()
+            }
+        }));
+        v.extend(strings(more));
+        v
+    }
+
+    /// The reference converged to `stop_k` in at most `rounds` rounds, with the most
+    /// accurate setting of every model that is not sampled.
+    fn reference(&self, stop_k: f64, rounds: usize) -> ConvergedReference {
         let mut args = vec!["irsig-trace".to_owned()];
-        args.extend(base(&[
+        args.extend(self.base(&[
             "--path-terms",
             "exact",
             "--atmosphere-model",
@@ -334,21 +389,20 @@ fn main() {
             "--sub-bands",
             "full",
         ]));
-        if case.extra.contains(&DAY_SUN[0]) {
+        if self.case.extra.contains(&DAY_SUN[0]) {
             args.extend(strings(&["--sun-shadow-rays", "16"]));
         }
         let plan = irsig_trace::plan_of(&irsig_trace::Cli::parse_from(&args)).unwrap();
-        let reference = plan.converge(stop_k, rounds).unwrap().remove(0);
-        references.push((
-            case.name,
-            reference.clone(),
-            started.elapsed().as_secs_f64(),
-        ));
-        let cheapest = path("cheapest.exr");
+        plan.converge(stop_k, rounds).unwrap().remove(0)
+    }
+
+    /// The seconds the cheapest rendering takes.
+    fn cheapest_seconds(&self) -> f64 {
+        let cheapest = self.path("cheapest.exr");
         let (cheapest_s, _) = run(
-            &bin,
+            self.bin,
             "irsig-trace",
-            &base(&[
+            &self.base(&[
                 "--radiance-exr",
                 &cheapest,
                 "--bounces",
@@ -366,79 +420,98 @@ fn main() {
             ]),
         )
         .unwrap();
-        for tolerance in TOLERANCES {
-            let (chosen, truth) = (path("chosen.exr"), path("chosen.truth.exr"));
-            let decision = path("chosen.decision.ron");
-            let tol = tolerance.to_string();
-            let outcome = run(
-                &bin,
-                "irsig-trace",
-                &base(&[
-                    "--radiance-exr",
-                    &chosen,
-                    "--truth-exr",
-                    &truth,
-                    "--tolerance",
-                    &tol,
-                    "--decision-out",
-                    &decision,
-                ]),
-            );
-            let (run_s, stderr) = match outcome {
-                Ok(o) => o,
-                Err(stderr) => {
-                    // The refusal's floor, else its last line.
-                    let lines: Vec<&str> = stderr.lines().map(str::trim).collect();
-                    let why = lines
-                        .iter()
-                        .find_map(|l| l.find("floor is about").map(|at| &l[at..]))
-                        .or_else(|| lines.iter().rev().find(|l| !l.is_empty()).copied())
-                        .unwrap_or("(no message)")
-                        .replace('|', "\\|");
-                    println!(
-                        "| {} | {tolerance} | refused: {why} | | | | | | |",
-                        case.name
-                    );
-                    continue;
-                }
-            };
-            let pilot_s: f64 = stderr
-                .lines()
-                .find_map(|l| l.trim().strip_prefix("pilot: "))
-                .and_then(|l| l.split(" in ").nth(1))
-                .and_then(|l| l.trim_end_matches(" s").parse().ok())
-                .unwrap_or(f64::NAN);
-            let d: Decision = irsig_formats::canonical::from_ron(
-                "decision",
-                &std::fs::read_to_string(&decision).unwrap(),
-            )
-            .unwrap();
-            let settings: Vec<&str> = d.choices.iter().map(|c| c.setting.as_str()).collect();
-            let error: Vec<f64> = temperatures(Path::new(&chosen), case.band)
-                .iter()
-                .zip(&reference.truth)
-                .map(|(c, r)| c - r)
-                .collect();
-            let material = material(Path::new(&truth));
-            let mut ids: Vec<u16> = material.iter().map(|&m| m as u16).collect();
-            ids.sort_unstable();
-            ids.dedup();
-            let worst = material_p90s(&error, &material, &ids)
-                .into_iter()
-                .max_by(|a, b| a.2.total_cmp(&b.2))
-                .map_or("—".to_owned(), |(id, n, p90)| {
-                    format!("{p90:.3} (material {id}, {n} pixels)")
-                });
-            println!(
-                "| {} | {tolerance} | {} | {:.3} | {worst} | {:.2} % | {pilot_s:.2} | {run_s:.2} | \
-                 {cheapest_s:.2} |",
-                case.name,
-                settings.join(", "),
-                percentile(&error, 99.0),
-                100.0 * d.not_guaranteed_share,
-            );
-        }
+        cheapest_s
     }
+
+    /// Renders the case at `tolerance` and prints its row: the pilot's choice and its error
+    /// against `reference`, or the refusal.
+    fn tolerance_row(&self, tolerance: f64, reference: &ConvergedReference, cheapest_s: f64) {
+        let case = self.case;
+        let (chosen, truth) = (self.path("chosen.exr"), self.path("chosen.truth.exr"));
+        let decision = self.path("chosen.decision.ron");
+        let tol = tolerance.to_string();
+        let outcome = run(
+            self.bin,
+            "irsig-trace",
+            &self.base(&[
+                "--radiance-exr",
+                &chosen,
+                "--truth-exr",
+                &truth,
+                "--tolerance",
+                &tol,
+                "--decision-out",
+                &decision,
+            ]),
+        );
+        let (run_s, stderr) = match outcome {
+            Ok(o) => o,
+            Err(stderr) => {
+                let why = refusal(&stderr);
+                println!(
+                    "| {} | {tolerance} | refused: {why} | | | | | | |",
+                    case.name
+                );
+                return;
+            }
+        };
+        let pilot_s: f64 = stderr
+            .lines()
+            .find_map(|l| l.trim().strip_prefix("pilot: "))
+            .and_then(|l| l.split(" in ").nth(1))
+            .and_then(|l| l.trim_end_matches(" s").parse().ok())
+            .unwrap_or(f64::NAN);
+        let d: Decision = irsig_formats::canonical::from_ron(
+            "decision",
+            &std::fs::read_to_string(&decision).unwrap(),
+        )
+        .unwrap();
+        let settings: Vec<&str> = d.choices.iter().map(|c| c.setting.as_str()).collect();
+        let error: Vec<f64> = temperatures(Path::new(&chosen), case.band)
+            .iter()
+            .zip(&reference.truth)
+            .map(|(c, r)| c - r)
+            .collect();
+        let worst = worst_material(&error, &material(Path::new(&truth)));
+        println!(
+            "| {} | {tolerance} | {} | {:.3} | {worst} | {:.2} % | {pilot_s:.2} | {run_s:.2} | \
+             {cheapest_s:.2} |",
+            case.name,
+            settings.join(", "),
+            percentile(&error, 99.0),
+            100.0 * d.not_guaranteed_share,
+        );
+    }
+}
+
+/// Why a rendering was refused, from its stderr: the refusal's floor, else its last line.
+fn refusal(stderr: &str) -> String {
+    let lines: Vec<&str> = stderr.lines().map(str::trim).collect();
+    lines
+        .iter()
+        .find_map(|l| l.find("floor is about").map(|at| &l[at..]))
+        .or_else(|| lines.iter().rev().find(|l| !l.is_empty()).copied())
+        .unwrap_or("(no message)")
+        .replace('|', "\\|")
+}
+
+/// The worst material's 90th percentile of `error`, with the material and its pixels
+/// (`material` each pixel's), for the row.
+fn worst_material(error: &[f64], material: &[f32]) -> String {
+    let mut ids: Vec<u16> = material.iter().map(|&m| m as u16).collect();
+    ids.sort_unstable();
+    ids.dedup();
+    material_p90s(error, material, &ids)
+        .into_iter()
+        .max_by(|a, b| a.2.total_cmp(&b.2))
+        .map_or("—".to_owned(), |(id, n, p90)| {
+            format!("{p90:.3} (material {id}, {n} pixels)")
+        })
+}
+
+/// Prints the table of the references: each case's reference error, its pixels by round,
+/// those capped, and its time.
+fn print_references(references: Vec<(&str, ConvergedReference, f64)>) {
     println!();
     println!(
         "| case | reference error p99 (K) | worst (K) | pixels by round | capped | CPU-bound \

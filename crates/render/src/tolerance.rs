@@ -170,21 +170,183 @@ pub fn offer(
     pins: &[Pin],
     spelling: Spelling,
 ) -> Result<Offer, RenderError> {
-    let mut reasons = Vec::new();
-    let specular = materials
-        .materials
-        .iter()
-        .any(|m| m.specular_fraction > 0.0);
-    let diffuse = materials
-        .materials
-        .iter()
-        .any(|m| m.specular_fraction < 1.0);
-    // Sub-bands pinned to the band model: every atmosphere model costs one sky, as without
-    // spectra.
-    let band_pinned = pins
-        .iter()
-        .any(|p| matches!(p, Pin::SubBands(c) if c.is_band()));
-    let mut atmospheres = match kinds {
+    let mut offer = Offer::unpinned(materials, kinds, spectral, sun, pins, spelling);
+    for &pin in pins {
+        offer.pin(pin, spectral, sun, spelling)?;
+    }
+    Ok(offer)
+}
+
+impl Offer {
+    /// Every setting the scene allows for each model, before any pin, with the reasons for
+    /// the models left one.
+    fn unpinned(
+        materials: &MaterialLibrary,
+        kinds: Option<&[ModelKind]>,
+        spectral: bool,
+        sun: bool,
+        pins: &[Pin],
+        spelling: Spelling,
+    ) -> Self {
+        let mut reasons = Vec::new();
+        let specular = materials
+            .materials
+            .iter()
+            .any(|m| m.specular_fraction > 0.0);
+        let diffuse = materials
+            .materials
+            .iter()
+            .any(|m| m.specular_fraction < 1.0);
+        // Sub-bands pinned to the band model: every atmosphere model costs one sky, as
+        // without spectra.
+        let band_pinned = pins
+            .iter()
+            .any(|p| matches!(p, Pin::SubBands(c) if c.is_band()));
+        let atmospheres = offered_atmospheres(kinds, spectral, band_pinned, spelling, &mut reasons);
+        let bounces = if specular {
+            BOUNCES.to_vec()
+        } else {
+            reasons.push((
+                SwitchableModel::Bounces,
+                "no specular material: bounces cannot matter".to_owned(),
+            ));
+            vec![0]
+        };
+        let sky_view_rays = if diffuse {
+            SKY_VIEW_RAYS.to_vec()
+        } else {
+            reasons.push((
+                SwitchableModel::SkyView,
+                "no diffuse material: the sky-view factor cannot matter".to_owned(),
+            ));
+            vec![0]
+        };
+        // Refinement to a standard error: each pixel gets the rays it needs, and no fixed
+        // grid can do better at the same cost (a pin may still ask for one).
+        let supersampling = vec![Supersample::Refine(REFINE_MAX_SIDE)];
+        let path_terms = if kinds.is_some() {
+            vec![PathTermsMode::Exact, PathTermsMode::Tabulated]
+        } else {
+            reasons.push((
+                SwitchableModel::PathTerms,
+                "no atmosphere: path terms are exact and free".to_owned(),
+            ));
+            vec![PathTermsMode::Exact]
+        };
+        let sub_bands = if spectral {
+            SPECTRAL_SUB_BANDS.to_vec()
+        } else {
+            reasons.push((
+                SwitchableModel::SubBands,
+                "the atmosphere has no spectra: the band model".to_owned(),
+            ));
+            vec![SubBandCount::BAND]
+        };
+        // By day the sun may be left out where its effect is within the tolerance; shadow
+        // rays matter only where a facet reflects diffusely.
+        let (sun_lit, shadow_rays) = if sun {
+            let rays = if diffuse {
+                SHADOW_RAYS.to_vec()
+            } else {
+                reasons.push((
+                    SwitchableModel::ShadowRays,
+                    "no diffuse material: shadow rays cannot matter".to_owned(),
+                ));
+                vec![1]
+            };
+            (vec![true, false], rays)
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        Self {
+            atmospheres,
+            bounces,
+            sky_view_rays,
+            supersampling,
+            path_terms,
+            sub_bands,
+            sun: sun_lit,
+            shadow_rays,
+            reasons,
+            pinned: Vec::new(),
+        }
+    }
+
+    /// Fixes `pin`'s model to its setting, the pin its reason.
+    ///
+    /// # Errors
+    /// As [`offer`].
+    fn pin(
+        &mut self,
+        pin: Pin,
+        spectral: bool,
+        sun: bool,
+        spelling: Spelling,
+    ) -> Result<(), RenderError> {
+        let model = pin.model();
+        let why = format!("pinned by {} {pin}", spelling.of(Setting::Pin));
+        self.reasons.retain(|(m, _)| *m != model);
+        self.reasons.push((model, why));
+        self.pinned.push(model);
+        match pin {
+            Pin::Atmosphere(kind) => {
+                if !self.atmospheres.contains(&kind) {
+                    return Err(RequestError::with_value(
+                        Setting::Pin,
+                        pin,
+                        format!(
+                            "this atmosphere offers {}",
+                            self.atmospheres
+                                .iter()
+                                .map(ToString::to_string)
+                                .collect::<Vec<_>>()
+                                .join(", ")
+                        ),
+                    )
+                    .into());
+                }
+                self.atmospheres = vec![kind];
+            }
+            Pin::Bounces(n) => self.bounces = vec![n],
+            Pin::SkyView(n) => self.sky_view_rays = vec![n],
+            Pin::Supersampling(s) => self.supersampling = vec![s],
+            Pin::PathTerms(p) => self.path_terms = vec![p],
+            Pin::SubBands(count) => {
+                if !spectral && !count.is_band() {
+                    return Err(RequestError::with_value(
+                        Setting::Pin,
+                        pin,
+                        "this atmosphere has no spectra; only 1 (the band model) is on offer",
+                    )
+                    .into());
+                }
+                self.sub_bands = vec![count];
+            }
+            Pin::Sun(_) | Pin::ShadowRays(_) if !sun => {
+                return Err(RequestError::with_value(
+                    Setting::Pin,
+                    pin,
+                    "this frame has no sun (give one with the sun's settings)",
+                )
+                .into());
+            }
+            Pin::Sun(lit) => self.sun = vec![lit],
+            Pin::ShadowRays(n) => self.shadow_rays = vec![n],
+        }
+        Ok(())
+    }
+}
+
+/// The atmosphere models on offer under `kinds` (`None`: a vacuum), with the reason when
+/// the scene leaves one.
+fn offered_atmospheres(
+    kinds: Option<&[ModelKind]>,
+    spectral: bool,
+    band_pinned: bool,
+    spelling: Spelling,
+    reasons: &mut Vec<(SwitchableModel, String)>,
+) -> Vec<ModelKind> {
+    match kinds {
         // Spectra with slant tables: the table model, LOWTRAN's own paths in every
         // sub-band; the layered and thesis models, approximations for atmospheres without
         // slant tables, would each cost a sky precomputation per sub-band of the pilot's
@@ -204,127 +366,7 @@ pub fn offer(
             ));
             vec![ModelKind::None]
         }
-    };
-    let mut bounces = if specular {
-        BOUNCES.to_vec()
-    } else {
-        reasons.push((
-            SwitchableModel::Bounces,
-            "no specular material: bounces cannot matter".to_owned(),
-        ));
-        vec![0]
-    };
-    let mut sky_view_rays = if diffuse {
-        SKY_VIEW_RAYS.to_vec()
-    } else {
-        reasons.push((
-            SwitchableModel::SkyView,
-            "no diffuse material: the sky-view factor cannot matter".to_owned(),
-        ));
-        vec![0]
-    };
-    // Refinement to a standard error: each pixel gets the rays it needs, and no fixed grid
-    // can do better at the same cost (a pin may still ask for one).
-    let mut supersampling = vec![Supersample::Refine(REFINE_MAX_SIDE)];
-    let mut path_terms = if kinds.is_some() {
-        vec![PathTermsMode::Exact, PathTermsMode::Tabulated]
-    } else {
-        reasons.push((
-            SwitchableModel::PathTerms,
-            "no atmosphere: path terms are exact and free".to_owned(),
-        ));
-        vec![PathTermsMode::Exact]
-    };
-    let mut sub_bands = if spectral {
-        SPECTRAL_SUB_BANDS.to_vec()
-    } else {
-        reasons.push((
-            SwitchableModel::SubBands,
-            "the atmosphere has no spectra: the band model".to_owned(),
-        ));
-        vec![SubBandCount::BAND]
-    };
-    // By day the sun may be left out where its effect is within the tolerance; shadow rays
-    // matter only where a facet reflects diffusely.
-    let (mut sun_lit, mut shadow_rays) = if sun {
-        let rays = if diffuse {
-            SHADOW_RAYS.to_vec()
-        } else {
-            reasons.push((
-                SwitchableModel::ShadowRays,
-                "no diffuse material: shadow rays cannot matter".to_owned(),
-            ));
-            vec![1]
-        };
-        (vec![true, false], rays)
-    } else {
-        (Vec::new(), Vec::new())
-    };
-    let mut pinned = Vec::new();
-    for &pin in pins {
-        let model = pin.model();
-        let why = format!("pinned by {} {pin}", spelling.of(Setting::Pin));
-        reasons.retain(|(m, _)| *m != model);
-        reasons.push((model, why));
-        pinned.push(model);
-        match pin {
-            Pin::Atmosphere(kind) => {
-                if !atmospheres.contains(&kind) {
-                    return Err(RequestError::with_value(
-                        Setting::Pin,
-                        pin,
-                        format!(
-                            "this atmosphere offers {}",
-                            atmospheres
-                                .iter()
-                                .map(ToString::to_string)
-                                .collect::<Vec<_>>()
-                                .join(", ")
-                        ),
-                    )
-                    .into());
-                }
-                atmospheres = vec![kind];
-            }
-            Pin::Bounces(n) => bounces = vec![n],
-            Pin::SkyView(n) => sky_view_rays = vec![n],
-            Pin::Supersampling(s) => supersampling = vec![s],
-            Pin::PathTerms(p) => path_terms = vec![p],
-            Pin::SubBands(count) => {
-                if !spectral && !count.is_band() {
-                    return Err(RequestError::with_value(
-                        Setting::Pin,
-                        pin,
-                        "this atmosphere has no spectra; only 1 (the band model) is on offer",
-                    )
-                    .into());
-                }
-                sub_bands = vec![count];
-            }
-            Pin::Sun(_) | Pin::ShadowRays(_) if !sun => {
-                return Err(RequestError::with_value(
-                    Setting::Pin,
-                    pin,
-                    "this frame has no sun (give one with the sun's settings)",
-                )
-                .into());
-            }
-            Pin::Sun(lit) => sun_lit = vec![lit],
-            Pin::ShadowRays(n) => shadow_rays = vec![n],
-        }
     }
-    Ok(Offer {
-        atmospheres,
-        bounces,
-        sky_view_rays,
-        supersampling,
-        path_terms,
-        sub_bands,
-        sun: sun_lit,
-        shadow_rays,
-        reasons,
-        pinned,
-    })
 }
 
 /// The decision as a table for people: model, choice, error at the percentile and at worst

@@ -129,6 +129,8 @@ impl Sample for f32 {
     }
 }
 
+/// Blurs `image` by the chain's OTF with FFTs in `T`: pads it, filters its spectrum, and
+/// crops the padding.
 fn blur_generic<T: Sample>(
     image: &Plane,
     chain: &MtfChain,
@@ -147,50 +149,119 @@ fn blur_generic<T: Sample>(
     if chain.components.is_empty() {
         return Ok(image.clone());
     }
-    let (w, h) = (image.width, image.height);
-    let s = f64::from(samples_per_pixel);
-    let (rx, ry) = chain.support_radius_px(samples_per_pixel);
-    // Beyond one image width a reflected or wrapped margin only repeats itself, and a
-    // zero margin that wide already keeps the wrapped tails off the image.
-    let margin = |r: f64, n: usize| -> usize {
-        let m = (r * s).ceil();
-        if m.is_finite() && m < (2 * n) as f64 {
-            m as usize
-        } else {
-            2 * n
-        }
-    };
-    let (mx, my, pw, ph) = match edge {
-        EdgeMode::Wrap => (0, 0, w, h),
-        EdgeMode::Reflect | EdgeMode::Zero => {
-            let mx = margin(rx, w);
-            let my = margin(ry, h);
-            (mx, my, fast_len(w + 2 * mx), fast_len(h + 2 * my))
-        }
-    };
-
-    // Columns of the padded image that come from each source column (or zero).
-    let col_src: Vec<Option<usize>> = (0..pw)
-        .map(|c| edge.source(c as isize - mx as isize, w))
-        .collect();
-    let row_src: Vec<Option<usize>> = (0..ph)
-        .map(|r| edge.source(r as isize - my as isize, h))
-        .collect();
+    let grid = Grid::new(image, chain, edge, samples_per_pixel);
 
     // The mean goes around the FFTs in f64: blurring a constant gives the constant (the
     // OTF is 1 at zero frequency), so this is exact, and the FFTs carry only the detail.
     let mean = image.data.iter().sum::<f64>() / image.data.len() as f64;
-    let zero = Complex::new(T::zero(), T::zero());
-    let spectrum_w = pw / 2 + 1;
-    let Plans2d {
-        row_forward,
-        row_inverse,
-        col_forward,
-        col_inverse,
-    } = T::plans_2d(pw, ph);
+    let plans = T::plans_2d(grid.pw, grid.ph);
 
     // 1. Pad each row and transform it (rows are independent).
-    let mut rows = vec![zero; ph * spectrum_w];
+    let rows = forward_rows(image, &grid, edge, mean, &plans);
+
+    // 2. Transpose so each frequency column is contiguous, filter it, transpose back.
+    let mut cols = transpose(&rows, grid.ph, grid.spectrum_w);
+    drop(rows);
+    filter_columns(&mut cols, &grid, chain, samples_per_pixel, &plans);
+    let mut rows = transpose(&cols, grid.spectrum_w, grid.ph);
+    drop(cols);
+
+    // 3. Transform rows back and crop the padding.
+    let out = inverse_rows(&mut rows, &grid, mean, &plans);
+    Ok(Plane {
+        width: grid.w,
+        height: grid.h,
+        data: out,
+    })
+}
+
+/// The padded image the FFTs work on: the image's size, its margins on each side, the
+/// padded size and the length of a row's half spectrum.
+struct Grid {
+    w: usize,
+    h: usize,
+    mx: usize,
+    my: usize,
+    pw: usize,
+    ph: usize,
+    spectrum_w: usize,
+    /// Samples per sensor pixel, as a float.
+    s: f64,
+}
+
+impl Grid {
+    /// The grid of `image` padded by the reach of `chain`'s point-spread function on every
+    /// side (none for wrapped edges), grown to fast FFT sizes.
+    fn new(image: &Plane, chain: &MtfChain, edge: EdgeMode, samples_per_pixel: u32) -> Self {
+        let (w, h) = (image.width, image.height);
+        let s = f64::from(samples_per_pixel);
+        let (rx, ry) = chain.support_radius_px(samples_per_pixel);
+        // Beyond one image width a reflected or wrapped margin only repeats itself, and a
+        // zero margin that wide already keeps the wrapped tails off the image.
+        let margin = |r: f64, n: usize| -> usize {
+            let m = (r * s).ceil();
+            if m.is_finite() && m < (2 * n) as f64 {
+                m as usize
+            } else {
+                2 * n
+            }
+        };
+        let (mx, my, pw, ph) = match edge {
+            EdgeMode::Wrap => (0, 0, w, h),
+            EdgeMode::Reflect | EdgeMode::Zero => {
+                let mx = margin(rx, w);
+                let my = margin(ry, h);
+                (mx, my, fast_len(w + 2 * mx), fast_len(h + 2 * my))
+            }
+        };
+        Self {
+            w,
+            h,
+            mx,
+            my,
+            pw,
+            ph,
+            spectrum_w: pw / 2 + 1,
+            s,
+        }
+    }
+
+    /// The horizontal frequency of spectrum column `u`, cycles per sensor pixel.
+    fn fx(&self, u: usize) -> f64 {
+        u as f64 / self.pw as f64 * self.s
+    }
+
+    /// The vertical frequency of spectrum row `v` (the upper half negative), cycles per
+    /// sensor pixel.
+    fn fy(&self, v: usize) -> f64 {
+        let vf = if v <= self.ph / 2 {
+            v as f64
+        } else {
+            v as f64 - self.ph as f64
+        };
+        vf / self.ph as f64 * self.s
+    }
+}
+
+/// The half spectrum of every padded row of `image` less `mean`, the rows one after the
+/// other, each `grid.spectrum_w` long.
+fn forward_rows<T: Sample>(
+    image: &Plane,
+    grid: &Grid,
+    edge: EdgeMode,
+    mean: f64,
+    plans: &Plans2d<T>,
+) -> Vec<Complex<T>> {
+    let (w, pw, spectrum_w) = (grid.w, grid.pw, grid.spectrum_w);
+    // Columns of the padded image that come from each source column (or zero).
+    let col_src: Vec<Option<usize>> = (0..pw)
+        .map(|c| edge.source(c as isize - grid.mx as isize, w))
+        .collect();
+    let row_src: Vec<Option<usize>> = (0..grid.ph)
+        .map(|r| edge.source(r as isize - grid.my as isize, grid.h))
+        .collect();
+    let row_forward = &plans.row_forward;
+    let mut rows = vec![Complex::new(T::zero(), T::zero()); grid.ph * spectrum_w];
     rows.par_chunks_mut(spectrum_w)
         .zip(row_src.par_iter())
         .for_each_init(
@@ -209,23 +280,24 @@ fn blur_generic<T: Sample>(
                 let _ = row_forward.process_with_scratch(line, out, scratch);
             },
         );
+    rows
+}
 
-    // 2. Transpose so each frequency column is contiguous, filter it, transpose back.
-    let mut cols = transpose(&rows, ph, spectrum_w);
-    drop(rows);
+/// Filters each frequency column of `cols` (`grid.ph` long, one per spectrum column) by
+/// the chain's OTF: transformed, multiplied, and transformed back.
+fn filter_columns<T: Sample>(
+    cols: &mut [Complex<T>],
+    grid: &Grid,
+    chain: &MtfChain,
+    samples_per_pixel: u32,
+    plans: &Plans2d<T>,
+) {
+    let (ph, spectrum_w) = (grid.ph, grid.spectrum_w);
+    let fy_of = |v: usize| grid.fy(v);
     // Separable components are tabulated once per spectrum column (x) and row (y); the
     // rest are evaluated at every frequency. The 1/(pw·ph) of the inverse transforms is
     // folded into the x table.
-    let norm = 1.0 / (pw as f64 * ph as f64);
-    let fx_of = |u: usize| u as f64 / pw as f64 * s;
-    let fy_of = |v: usize| {
-        let vf = if v <= ph / 2 {
-            v as f64
-        } else {
-            v as f64 - ph as f64
-        };
-        vf / ph as f64 * s
-    };
+    let norm = 1.0 / (grid.pw as f64 * ph as f64);
     let (separable, other): (Vec<&Mtf>, Vec<&Mtf>) = chain
         .components
         .iter()
@@ -245,17 +317,19 @@ fn blur_generic<T: Sample>(
             })
             .collect()
     };
-    let table_x = table(spectrum_w, &fx_of, Axis::X, norm);
+    let table_x = table(spectrum_w, &|u| grid.fx(u), Axis::X, norm);
     let table_y = table(ph, &fy_of, Axis::Y, 1.0);
+    let (col_forward, col_inverse) = (&plans.col_forward, &plans.col_inverse);
     let scratch_len = col_forward
         .get_inplace_scratch_len()
         .max(col_inverse.get_inplace_scratch_len());
+    let zero = Complex::new(T::zero(), T::zero());
     cols.par_chunks_mut(ph).enumerate().for_each_init(
         || vec![zero; scratch_len],
         |scratch, (u, column)| {
             col_forward.process_with_scratch(column, scratch);
             let hx = table_x[u];
-            let fx = fx_of(u);
+            let fx = grid.fx(u);
             for (v, (value, hy)) in column.iter_mut().zip(&table_y).enumerate() {
                 let mut h = hx * hy;
                 for m in &other {
@@ -266,14 +340,22 @@ fn blur_generic<T: Sample>(
             col_inverse.process_with_scratch(column, scratch);
         },
     );
-    let mut rows = transpose(&cols, spectrum_w, ph);
-    drop(cols);
+}
 
-    // 3. Transform rows back and crop the padding.
-    let mut out = vec![0.0_f64; w * h];
+/// The image from the filtered half spectra `rows`: each row transformed back, cropped to
+/// the image, and `mean` restored.
+fn inverse_rows<T: Sample>(
+    rows: &mut [Complex<T>],
+    grid: &Grid,
+    mean: f64,
+    plans: &Plans2d<T>,
+) -> Vec<f64> {
+    let (w, pw, mx, spectrum_w) = (grid.w, grid.pw, grid.mx, grid.spectrum_w);
+    let row_inverse = &plans.row_inverse;
+    let mut out = vec![0.0_f64; w * grid.h];
     out.par_chunks_mut(w)
         .enumerate()
-        .zip(rows.par_chunks_mut(spectrum_w).skip(my).take(h))
+        .zip(rows.par_chunks_mut(spectrum_w).skip(grid.my).take(grid.h))
         .for_each_init(
             || (vec![T::zero(); pw], row_inverse.make_scratch_vec()),
             |(line, scratch), ((_, dst), spectrum)| {
@@ -288,11 +370,7 @@ fn blur_generic<T: Sample>(
                 }
             },
         );
-    Ok(Plane {
-        width: w,
-        height: h,
-        data: out,
-    })
+    out
 }
 
 /// A non-separable model with its constants worked out once, for evaluation at every

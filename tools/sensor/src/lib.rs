@@ -32,16 +32,16 @@ use std::path::PathBuf;
 
 use clap::{Parser, ValueEnum};
 use irsig_cli::args::outputs::{ColourPreview, DcPng, Lut, Output};
-use irsig_cli::args::{DcArgs, ImageBandArgs, Seed, ThreadsArgs};
+use irsig_cli::args::{DcArgs, ImageBandArgs, ResolvedBand, Seed, ThreadsArgs};
 use irsig_model::limits::MEMORY_BUDGET_BYTES;
 use irsig_model::provenance::{InputRecord, Provenance};
 use irsig_model::truth::Layer;
-use irsig_radiometry::BandModel;
+use irsig_radiometry::{AnyBand, BandModel};
 use irsig_raster::{Raster, counts_png, into_exr_bytes};
 use irsig_sensor_model::blur::{EdgeMode, blur};
 use irsig_sensor_model::mtf::{Mtf, MtfChain};
 use irsig_sensor_model::noise::{add_gaussian_noise, nedt_radiance_sigma};
-use irsig_sensor_model::quantise::Quantiser;
+use irsig_sensor_model::quantise::{Calibration, Quantiser};
 use irsig_sensor_model::sample::{reduce_majority, reduce_mean, reduce_mean_ignoring_nan};
 use irsig_sensor_model::{Plane, SensorError};
 use miette::{IntoDiagnostic, WrapErr, miette};
@@ -385,22 +385,10 @@ fn read_all(cli: &Cli) -> miette::Result<Vec<(String, Vec<u8>)>> {
         .collect()
 }
 
+/// The tool's work: a contact sheet, an animation, or the sensed image and the files made
+/// from it.
 fn sense(cli: &Cli) -> miette::Result<()> {
-    let band_file = cli.band.band.response_file();
-    let inputs = std::iter::once(cli.input.as_str())
-        .chain(cli.more_inputs.iter().map(String::as_str))
-        .chain(band_file);
-    let outputs = [
-        &cli.output.path,
-        &cli.contact_sheet,
-        &cli.animation,
-        &cli.dc_png.path,
-        &cli.lut.path,
-        &cli.temperature_exr,
-        &cli.preview,
-        &cli.colour_preview.path,
-    ];
-    irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())?;
+    refuse_outputs_over_inputs(cli)?;
     if let Some(sheet) = &cli.contact_sheet {
         let inputs = read_all(cli)?;
         let png = contact_sheet::build(&inputs, cli.sheet_columns.map(|c| c as usize))?;
@@ -422,72 +410,15 @@ fn sense(cli: &Cli) -> miette::Result<()> {
     let input = irsig_cli::read_input(&cli.input)?;
     let raster = irsig_cli::read_exr(&input.name, &input.bytes)?;
     let name = input.name.clone();
-    // The band is the one the radiance records; what the outputs record adds this stage.
-    let recorded = irsig_cli::provenance(&input.name, &raster)?;
-    let resolved = cli.band.resolve_saying(
-        "irsig-sensor",
-        &input.name,
-        recorded.as_ref().map(|p| &p.band),
-    )?;
-    let mut provenance = recorded.unwrap_or_else(|| Provenance {
-        band: resolved.record.clone(),
-        sub_bands: "not recorded".into(),
-        atmosphere: "not recorded".into(),
-        atmosphere_model: "not recorded".into(),
-        inputs: Vec::new(),
-        sun: None,
-    });
-    provenance.band = resolved.record.clone();
-    provenance.inputs.push(InputRecord {
-        stage: "sensor".into(),
-        role: "radiance EXR".into(),
-        sha256: input.sha256(),
-    });
+    let (provenance, resolved) = provenance_and_band(cli, &input, &raster)?;
     let comments = Some(
         irsig_formats::canonical::provenance_comments(&provenance).map_err(|e| miette!("{e}"))?,
     );
     let band = resolved.band;
-    if raster.layer(RADIANCE_LAYER).is_none() {
-        let names: Vec<&str> = raster.layers.iter().map(|l| l.name.as_str()).collect();
-        return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
-            input.name.clone(),
-            irsig_raster::exr_attribute_offset(&input.bytes, "channels").unwrap_or(8),
-            format!(
-                "no `{RADIANCE_LAYER}` layer (W m^-2 sr^-1) in the input; it has: {}",
-                names.join(", ")
-            ),
-        )));
-    }
+    require_radiance(&input, &raster)?;
     // The file's bytes are not needed past the decoding.
     drop(input);
-    let chain = MtfChain::new(cli.mtf.clone());
-    let edge: EdgeMode = cli.edge.into();
-    let peak = peak_bytes(
-        raster.width,
-        raster.height,
-        raster.layers.len(),
-        &chain,
-        edge,
-        cli.samples_per_pixel,
-    );
-    if peak > MEMORY_BUDGET_BYTES {
-        return Err(irsig_cli::usage_error(format!(
-            "{name}: blurring its {} x {} pixels with this MTF would hold {:.1} GiB, more \
-             than the {} GiB budget: the MTF reaches too far for an image this large",
-            raster.width,
-            raster.height,
-            peak as f64 / f64::from(1u32 << 30),
-            MEMORY_BUDGET_BYTES >> 30
-        )));
-    }
-    let settings = Settings {
-        chain,
-        edge,
-        samples_per_pixel: cli.samples_per_pixel,
-        categorical: cli.categorical.clone(),
-        nedt: cli.nedt_k.map(|n| (n, cli.nedt_reference_k)),
-        seed: cli.seed.value,
-    };
+    let settings = settings_within_budget(cli, &name, &raster)?;
     let out = process(raster, &settings, &band).wrap_err_with(|| format!("`{name}`"))?;
     let (w, h) = (out.raster.width, out.raster.height);
 
@@ -511,31 +442,7 @@ fn sense(cli: &Cli) -> miette::Result<()> {
         files.push((path.clone(), into_exr_bytes(r).into_diagnostic()?));
     }
     if let Some(cal) = calibration.filter(|_| wants_counts) {
-        let bits = cli.dc.dc_bits;
-        let q = Quantiser::calibrate(bits, &cal, out.radiance(), &band)
-            .map_err(|e| miette!("quantisation: {e}"))?;
-        if let Some(path) = &cli.dc_png.path {
-            let counts = q.quantise(out.radiance(), w).map_err(sensor)?;
-            let full = (1u32 << bits) - 1;
-            let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
-            let high = counts.iter().filter(|&&c| u32::from(c) == full).count();
-            if low + high > 0 {
-                irsig_cli::note!(
-                    "irsig-sensor: {high} pixel(s) saturate at count {full} and {low} at count 0 \
-                     of {} ({}): their temperatures are clipped",
-                    counts.len(),
-                    lut_span_text(&q.lut(&band))
-                );
-            }
-            files.push((
-                path.clone(),
-                counts_png(&counts, w, h, bits).into_diagnostic()?,
-            ));
-        }
-        if let Some(path) = &cli.lut.path {
-            let text = q.lut(&band).text_in_band(&provenance.band.to_string());
-            files.push((path.clone(), text.into_bytes()));
-        }
+        push_count_files(cli, &cal, &out, &band, &provenance, &mut files)?;
     }
     if let (Some(path), Some(t)) = (&cli.preview, &temperature) {
         let r = cli.preview_range.of(t);
@@ -557,6 +464,146 @@ fn sense(cli: &Cli) -> miette::Result<()> {
             irsig_cli::write_output(None, |w| w.write_all(&exr))
         }
     }
+}
+
+/// Refuses an output path that is also one of the inputs (the band's response file among
+/// them).
+fn refuse_outputs_over_inputs(cli: &Cli) -> miette::Result<()> {
+    let band_file = cli.band.band.response_file();
+    let inputs = std::iter::once(cli.input.as_str())
+        .chain(cli.more_inputs.iter().map(String::as_str))
+        .chain(band_file);
+    let outputs = [
+        &cli.output.path,
+        &cli.contact_sheet,
+        &cli.animation,
+        &cli.dc_png.path,
+        &cli.lut.path,
+        &cli.temperature_exr,
+        &cli.preview,
+        &cli.colour_preview.path,
+    ];
+    irsig_cli::refuse_output_is_input(inputs, outputs.into_iter().flatten())
+}
+
+/// The provenance the outputs record (the input's, else one of the band alone, with this
+/// stage added) and the band the radiance is in.
+fn provenance_and_band(
+    cli: &Cli,
+    input: &irsig_cli::Input,
+    raster: &Raster,
+) -> miette::Result<(Provenance, ResolvedBand)> {
+    // The band is the one the radiance records; what the outputs record adds this stage.
+    let recorded = irsig_cli::provenance(&input.name, raster)?;
+    let resolved = cli.band.resolve_saying(
+        "irsig-sensor",
+        &input.name,
+        recorded.as_ref().map(|p| &p.band),
+    )?;
+    let mut provenance = recorded.unwrap_or_else(|| Provenance {
+        band: resolved.record.clone(),
+        sub_bands: "not recorded".into(),
+        atmosphere: "not recorded".into(),
+        atmosphere_model: "not recorded".into(),
+        inputs: Vec::new(),
+        sun: None,
+    });
+    provenance.band = resolved.record.clone();
+    provenance.inputs.push(InputRecord {
+        stage: "sensor".into(),
+        role: "radiance EXR".into(),
+        sha256: input.sha256(),
+    });
+    Ok((provenance, resolved))
+}
+
+/// Refuses an input without a `radiance` layer, naming the layers it has and where in the
+/// file they are listed.
+fn require_radiance(input: &irsig_cli::Input, raster: &Raster) -> miette::Result<()> {
+    if raster.layer(RADIANCE_LAYER).is_none() {
+        let names: Vec<&str> = raster.layers.iter().map(|l| l.name.as_str()).collect();
+        return Err(miette::Report::new(irsig_formats::ParseError::in_binary(
+            input.name.clone(),
+            irsig_raster::exr_attribute_offset(&input.bytes, "channels").unwrap_or(8),
+            format!(
+                "no `{RADIANCE_LAYER}` layer (W m^-2 sr^-1) in the input; it has: {}",
+                names.join(", ")
+            ),
+        )));
+    }
+    Ok(())
+}
+
+/// The settings the command line asks for, refused (a usage error) when blurring `name`'s
+/// `raster` with them would hold more than the memory budget.
+fn settings_within_budget(cli: &Cli, name: &str, raster: &Raster) -> miette::Result<Settings> {
+    let chain = MtfChain::new(cli.mtf.clone());
+    let edge: EdgeMode = cli.edge.into();
+    let peak = peak_bytes(
+        raster.width,
+        raster.height,
+        raster.layers.len(),
+        &chain,
+        edge,
+        cli.samples_per_pixel,
+    );
+    if peak > MEMORY_BUDGET_BYTES {
+        return Err(irsig_cli::usage_error(format!(
+            "{name}: blurring its {} x {} pixels with this MTF would hold {:.1} GiB, more \
+             than the {} GiB budget: the MTF reaches too far for an image this large",
+            raster.width,
+            raster.height,
+            peak as f64 / f64::from(1u32 << 30),
+            MEMORY_BUDGET_BYTES >> 30
+        )));
+    }
+    Ok(Settings {
+        chain,
+        edge,
+        samples_per_pixel: cli.samples_per_pixel,
+        categorical: cli.categorical.clone(),
+        nedt: cli.nedt_k.map(|n| (n, cli.nedt_reference_k)),
+        seed: cli.seed.value,
+    })
+}
+
+/// Adds the digital-count PNG and the LUT asked for to `files`, the counts calibrated by
+/// `cal` over the sensed radiance; notes the pixels whose counts saturate.
+fn push_count_files(
+    cli: &Cli,
+    cal: &Calibration,
+    out: &SensorOutput,
+    band: &AnyBand,
+    provenance: &Provenance,
+    files: &mut Vec<(PathBuf, Vec<u8>)>,
+) -> miette::Result<()> {
+    let (w, h) = (out.raster.width, out.raster.height);
+    let bits = cli.dc.dc_bits;
+    let q = Quantiser::calibrate(bits, cal, out.radiance(), band)
+        .map_err(|e| miette!("quantisation: {e}"))?;
+    if let Some(path) = &cli.dc_png.path {
+        let counts = q.quantise(out.radiance(), w).map_err(sensor)?;
+        let full = (1u32 << bits) - 1;
+        let low = counts.iter().filter(|&&c| u32::from(c) == 0).count();
+        let high = counts.iter().filter(|&&c| u32::from(c) == full).count();
+        if low + high > 0 {
+            irsig_cli::note!(
+                "irsig-sensor: {high} pixel(s) saturate at count {full} and {low} at count 0 \
+                 of {} ({}): their temperatures are clipped",
+                counts.len(),
+                lut_span_text(&q.lut(band))
+            );
+        }
+        files.push((
+            path.clone(),
+            counts_png(&counts, w, h, bits).into_diagnostic()?,
+        ));
+    }
+    if let Some(path) = &cli.lut.path {
+        let text = q.lut(band).text_in_band(&provenance.band.to_string());
+        files.push((path.clone(), text.into_bytes()));
+    }
+    Ok(())
 }
 
 /// What a look-up table spans, for a note: its temperatures from the first count of

@@ -349,18 +349,7 @@ impl Plan {
                 .with_refinement(settings.refinement)
                 .map_err(|e| RenderError::trace(format!("view {}'s refinement", i + 1), e))?;
             let tile = frames.tiles[i];
-            if let Some(text) = tracer
-                .slab_census(cam, tile)
-                .and_then(|c| slab_fallback(&c, i + 1))
-            {
-                sink.warning(&text);
-            }
-            if let Some(text) = tracer
-                .horizon_census(cam, tile)
-                .and_then(|c| beyond_the_widest_row(&c, i + 1))
-            {
-                sink.warning(&text);
-            }
+            warn_of_uncovered_paths(&tracer, cam, tile, i + 1, sink);
             // The per-pixel terms are kept only when a file of this frame reads them.
             let options = TraceOptions {
                 truth: wanted.wants(FrameFile::TruthExr) || wanted.wants(FrameFile::MapPng),
@@ -378,61 +367,65 @@ impl Plan {
             {
                 sink.warning(&text);
             }
-            let part = FramePart {
-                frame_width: cam.pixels[0] as usize,
-                frame_height: cam.pixels[1] as usize,
-                x: tile.x as usize,
-                y: tile.y as usize,
-                run: frames.run.frame(&self.views[i], &settings),
-            };
-            let radiometry = FrameRadiometry {
-                band: tracer.band().clone(),
-                sub_bands: tracer.sub_bands(),
-                view_gain: self.views.get(i).and_then(View::gain_dc_per_k),
-                counts: self.request.counts,
-                provenance: Some(self.provenance(&settings)),
-            };
-            let budget = self
-                .uncertainties
-                .as_ref()
-                .zip(frames.scene)
-                .map(|(u, scene)| Budget {
-                    uncertainties: u,
-                    scene,
-                });
-            let guarantee = decision.map(|decision| Guarantee {
-                decision,
-                camera: cam,
-                origin: [tile.x, tile.y],
-                mirrors: &mirrors,
-            });
-            let mut emit = |kind, bytes| sink.file(i, kind, bytes);
+            let files = self.file_context(&tracer, frames, i, &settings, decision, &mirrors);
             if i + 1 == frames.cameras.len() {
                 // The last frame's files need the band, not the scene: the BVH and the facet
                 // records (about 100 bytes a facet) go before the files are made, which hold
                 // the frame's layers and encoded files (the frame's peak memory was there).
                 drop(tracer);
-                return products::traced(
-                    &radiometry,
-                    frame,
-                    &wanted,
-                    &part,
-                    budget.as_ref(),
-                    guarantee.as_ref(),
-                    &mut emit,
-                );
+                return files.emit(frame, &wanted, i, sink);
             }
-            products::traced(
-                &radiometry,
-                frame,
-                &wanted,
-                &part,
-                budget.as_ref(),
-                guarantee.as_ref(),
-                &mut emit,
-            )?;
+            files.emit(frame, &wanted, i, sink)?;
         }
         Ok(())
+    }
+
+    /// What frame `i`'s files are made with besides its layers: its place in the image, its
+    /// radiometry (from `tracer`), the budget's charges and the decision's guarantee.
+    fn file_context<'a, R: BandModel + Clone, A: Atmosphere, Y>(
+        &'a self,
+        tracer: &Tracer<R, A>,
+        frames: &Frames<'a, Y>,
+        i: usize,
+        settings: &Settings,
+        decision: Option<&'a Decision>,
+        mirrors: &'a [u16],
+    ) -> FileContext<'a, R> {
+        let (cam, tile) = (&frames.cameras[i], frames.tiles[i]);
+        let part = FramePart {
+            frame_width: cam.pixels[0] as usize,
+            frame_height: cam.pixels[1] as usize,
+            x: tile.x as usize,
+            y: tile.y as usize,
+            run: frames.run.frame(&self.views[i], settings),
+        };
+        let radiometry = FrameRadiometry {
+            band: tracer.band().clone(),
+            sub_bands: tracer.sub_bands(),
+            view_gain: self.views.get(i).and_then(View::gain_dc_per_k),
+            counts: self.request.counts,
+            provenance: Some(self.provenance(settings)),
+        };
+        let budget = self
+            .uncertainties
+            .as_ref()
+            .zip(frames.scene)
+            .map(|(u, scene)| Budget {
+                uncertainties: u,
+                scene,
+            });
+        let guarantee = decision.map(|decision| Guarantee {
+            decision,
+            camera: cam,
+            origin: [tile.x, tile.y],
+            mirrors,
+        });
+        FileContext {
+            part,
+            radiometry,
+            budget,
+            guarantee,
+        }
     }
 }
 
@@ -457,6 +450,59 @@ struct Frames<'a, Y> {
     /// No tile was asked for: each frame is rendered whole.
     whole: bool,
     progress: &'a (dyn Fn(u64) + Sync),
+}
+
+/// What a traced frame's files are made with besides its layers.
+struct FileContext<'a, R> {
+    part: FramePart,
+    radiometry: FrameRadiometry<R>,
+    budget: Option<Budget<'a>>,
+    guarantee: Option<Guarantee<'a>>,
+}
+
+impl<R: BandModel + Sync> FileContext<'_, R> {
+    /// Turns `frame` into the files `wanted` names, each given to `sink` as frame `i`'s.
+    fn emit(
+        &self,
+        frame: irsig_tracer::Frame,
+        wanted: &FrameFiles<()>,
+        i: usize,
+        sink: &mut dyn Sink,
+    ) -> Result<(), RenderError> {
+        let mut emit = |kind, bytes| sink.file(i, kind, bytes);
+        products::traced(
+            &self.radiometry,
+            frame,
+            wanted,
+            &self.part,
+            self.budget.as_ref(),
+            self.guarantee.as_ref(),
+            &mut emit,
+        )
+    }
+}
+
+/// Warns `sink` of view `view`'s paths that the slab tables do not cover and of those past
+/// the slant tables' widest row.
+fn warn_of_uncovered_paths<R: BandModel, A: Atmosphere>(
+    tracer: &Tracer<R, A>,
+    cam: &Camera,
+    tile: Tile,
+    view: usize,
+    sink: &mut dyn Sink,
+) {
+    if let Some(text) = tracer
+        .slab_census(cam, tile)
+        .and_then(|c| slab_fallback(&c, view))
+    {
+        sink.warning(&text);
+    }
+    if let Some(text) = tracer
+        .horizon_census(cam, tile)
+        .and_then(|c| beyond_the_widest_row(&c, view))
+    {
+        sink.warning(&text);
+    }
 }
 
 /// The sun as `settings` have it: left out, or with their shadow rays.
