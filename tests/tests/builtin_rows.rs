@@ -284,9 +284,12 @@ fn sweep_mwir() {
     sweep_of(MWIR);
 }
 
+/// Observers and angles that are rows of no table (0.45 and 1.7 km, nadir 23, 57 and
+/// 76°, and more), every built-in, against LOWTRAN7: a markdown table on stdout, each
+/// cell held to the interpolation residual its built-in records for that kind of path
+/// (to the ground at nadir ≤ 80° and beyond, and the sky), the data error a frame is
+/// told.
 fn sweep_of(span: Span) {
-    // Observers and angles that are rows of no table (0.45 and 1.7 km, nadir
-    // 23, 57 and 76°, and more), every built-in; a markdown table on stdout.
     let observers = [50.0, 450.0, 1700.0, 2900.0];
     let nadirs = [23.0, 57.0, 76.0, 84.0, 87.0];
     let zeniths = [30.0, 60.0, 85.0, 89.5];
@@ -301,19 +304,46 @@ fn sweep_of(span: Span) {
         rule += " ---: |";
     }
     println!("{head}\n{rule}");
+    let mut beyond = Vec::new();
     for name in BUILTIN_NAMES {
         let b = SubBands::new(name, span);
+        let recorded = builtin_spectral(name)
+            .unwrap()
+            .slant
+            .and_then(|s| s.interpolation_residual)
+            .expect("every built-in records its residual");
+        let mut hold = |kind: &str, h: f64, angle: f64, error: f64, bound: f64| {
+            if error.abs() > bound {
+                beyond.push(format!(
+                    "{name} {kind} from {h} m at {angle}°: {error:+.4} K, recorded {bound} K"
+                ));
+            }
+        };
         for h in observers {
             let mut line = format!("| {name} | {h} |");
             for a in nadirs {
-                line += &format!(" {:+.4} |", b.slant_error(h, a));
+                let error = b.slant_error(h, a);
+                let bound = if a <= 80.0 {
+                    recorded.slant_k
+                } else {
+                    recorded.grazing_k
+                };
+                hold("nadir", h, a, error, bound);
+                line += &format!(" {error:+.4} |");
             }
             for z in zeniths {
-                line += &format!(" {:+.4} |", b.sky_error(h, z));
+                let error = b.sky_error(h, z);
+                hold("sky", h, z, error, recorded.sky_k);
+                line += &format!(" {error:+.4} |");
             }
             println!("{line}");
         }
     }
+    assert!(
+        beyond.is_empty(),
+        "beyond the recorded residual:\n{}",
+        beyond.join("\n")
+    );
 }
 
 #[test]

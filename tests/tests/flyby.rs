@@ -186,8 +186,9 @@ fn the_24_viewing_files_are_table_2_and_follow_eq_13_14() {
         assert_eq!(v.fov_deg, fov, "{name}");
         // Eq. 13-14 (irsig-tracer's implementation, tested there against the same table)
         // from the position in metres: the angles the file gives.
-        let (omega, kappa) =
-            irsig_tracer::camera::thesis_look_at_angles_deg(v.to_view(LengthUnit::Km).position_m());
+        let (omega, kappa) = irsig_tracer::camera::thesis_look_at_angles_deg(
+            irsig_tracer::DVec3::from(v.to_view(LengthUnit::Km).position_m()),
+        );
         // Frames 15 and 16 (y > 0) carry ω negated, on purpose (see the file's comment and
         // pipelines/thesis-flyby/README.md): that is what shows the scene upside down, as
         // the thesis's Figure 17 does.

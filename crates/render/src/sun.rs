@@ -357,7 +357,7 @@ pub(crate) fn sun(
                 .map_err(|e| RenderError::trace(format!("the sun's beam over {lo}-{hi} um"), e))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let mut sun = Sun::new(position.to_scene_direction(), beams);
+    let mut sun = Sun::new(position.to_scene_direction().into(), beams);
     sun.angular_radius_deg = day.angular_radius_deg();
     sun.shadow_rays = request.shadow_rays;
     Ok(sun)

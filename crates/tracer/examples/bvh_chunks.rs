@@ -38,7 +38,7 @@ fn main() {
         "terrain" => (bench_terrain(), bench_terrain_camera(1024)),
         _ => panic!("SCENE: sphere or terrain"),
     };
-    let triangle = |i: usize| mesh.1[i].map(|v| mesh.0[v as usize]);
+    let triangle = |i: usize| mesh.1[i].map(|v| glam::DVec3::from(mesh.0[v as usize]));
     let directions = primary_directions(&camera);
     let (mut build, mut ray, mut hits, mut chunks) = (f64::INFINITY, f64::INFINITY, 0, 0);
     let one = rayon::ThreadPoolBuilder::new()

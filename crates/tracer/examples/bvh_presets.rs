@@ -31,7 +31,7 @@ fn main() {
         ("medium_build", BvhBuildParams::medium_build()),
         ("slow_build", BvhBuildParams::slow_build()),
     ];
-    let centre = [0.0, 0.0, 0.0];
+    let centre = glam::DVec3::ZERO;
     let mut best = vec![(f64::INFINITY, f64::INFINITY, 0u64); presets.len()];
     for _ in 0..rounds {
         for (i, (_, params)) in presets.iter().enumerate() {

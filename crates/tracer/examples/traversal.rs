@@ -62,7 +62,7 @@ fn main() {
         }
         order
     };
-    let local = |p: [f64; 3]| [p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]];
+    let local = |p: glam::DVec3| (p - centre).to_array();
     let f32s = |v: &[f64]| v.iter().map(|&x| x as f32).collect::<Vec<f32>>();
     let dir = std::path::Path::new(dir);
     std::fs::create_dir_all(dir).expect("create DIR");
@@ -87,7 +87,7 @@ fn main() {
     );
     println!("| --- | ---: | ---: | ---: | ---: |");
     for (name, order) in [("scanline", &scanline), ("tiles", &tiles)] {
-        let directions: Vec<[f64; 3]> = order
+        let directions: Vec<glam::DVec3> = order
             .iter()
             .map(|&(c, r)| camera.pixel_direction(c, r))
             .collect();
@@ -96,7 +96,7 @@ fn main() {
         let mut bytes = Vec::with_capacity(4 + directions.len() * 24);
         bytes.extend((directions.len() as u32).to_le_bytes());
         for d in &directions {
-            for x in f32s(&origin).into_iter().chain(f32s(d)) {
+            for x in f32s(&origin).into_iter().chain(f32s(&d.to_array())) {
                 bytes.extend(x.to_le_bytes());
             }
         }

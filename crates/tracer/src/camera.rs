@@ -32,19 +32,19 @@
 use irsig_model::View;
 
 use crate::error::{TraceError, TraceErrorKind};
-use crate::vec::{V3, add, cross, dot, normalize, scale};
+use glam::DVec3;
 
 /// A pinhole camera in world coordinates (metres).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Camera {
     /// The sensor position, world metres.
-    pub position_m: V3,
+    pub position_m: DVec3,
     /// Unit vector along increasing columns.
-    pub right: V3,
+    pub right: DVec3,
     /// Unit vector towards the top of the image (decreasing rows).
-    pub up: V3,
+    pub up: DVec3,
     /// Unit vector along the optical axis.
-    pub forward: V3,
+    pub forward: DVec3,
     /// Image size, `[columns, rows]`.
     pub pixels: [u32; 2],
     /// `tan` of half the full fields of view, `[x, y]`.
@@ -54,14 +54,14 @@ pub struct Camera {
 /// The rows of the Appendix H photogrammetric matrix for ω, φ, κ in degrees:
 /// `[right, up, backward]` in world coordinates.
 #[must_use]
-pub fn omega_phi_kappa_matrix(omega_deg: f64, phi_deg: f64, kappa_deg: f64) -> [V3; 3] {
+pub fn omega_phi_kappa_matrix(omega_deg: f64, phi_deg: f64, kappa_deg: f64) -> [DVec3; 3] {
     let (so, co) = omega_deg.to_radians().sin_cos();
     let (sp, cp) = phi_deg.to_radians().sin_cos();
     let (sk, ck) = kappa_deg.to_radians().sin_cos();
     [
-        [cp * ck, cp * sk, -sp],
-        [so * sp * ck - co * sk, so * sp * sk + co * ck, so * cp],
-        [co * sp * ck + so * sk, co * sp * sk - so * ck, co * cp],
+        DVec3::new(cp * ck, cp * sk, -sp),
+        DVec3::new(so * sp * ck - co * sk, so * sp * sk + co * ck, so * cp),
+        DVec3::new(co * sp * ck + so * sk, co * sp * sk - so * ck, co * cp),
     ]
 }
 
@@ -74,8 +74,8 @@ pub fn omega_phi_kappa_matrix(omega_deg: f64, phi_deg: f64, kappa_deg: f64) -> [
 /// image plane then faces the origin with its top towards −z). Use
 /// [`look_at_omega_phi_kappa_deg`] for a view that faces the target upright.
 #[must_use]
-pub fn thesis_look_at_angles_deg(position: V3) -> (f64, f64) {
-    let [x, y, z] = position;
+pub fn thesis_look_at_angles_deg(position: DVec3) -> (f64, f64) {
+    let [x, y, z] = position.to_array();
     let r = (x * x + y * y + z * z).sqrt();
     let omega = (z / r).acos().to_degrees();
     let kappa = if x == 0.0 {
@@ -94,18 +94,14 @@ pub fn thesis_look_at_angles_deg(position: V3) -> (f64, f64) {
 /// For a sensor at y < 0 aimed at the origin this equals eq. 14; for y > 0 it gives
 /// κ = ±180°, where eq. 14 gives 0. Straight down (d_x = d_y = 0) gives κ = 0: north up.
 #[must_use]
-pub fn look_at_omega_phi_kappa_deg(position: V3, target: V3) -> [f64; 3] {
-    let d = [
-        target[0] - position[0],
-        target[1] - position[1],
-        target[2] - position[2],
-    ];
-    let r = dot(d, d).sqrt();
-    let omega = (-d[2] / r).clamp(-1.0, 1.0).acos().to_degrees();
-    let kappa = if d[0] == 0.0 && d[1] == 0.0 {
+pub fn look_at_omega_phi_kappa_deg(position: DVec3, target: DVec3) -> [f64; 3] {
+    let d = target - position;
+    let r = d.dot(d).sqrt();
+    let omega = (-d.z / r).clamp(-1.0, 1.0).acos().to_degrees();
+    let kappa = if d.x == 0.0 && d.y == 0.0 {
         0.0
     } else {
-        (-d[0]).atan2(d[1]).to_degrees()
+        (-d.x).atan2(d.y).to_degrees()
     };
     [omega, 0.0, kappa]
 }
@@ -129,7 +125,7 @@ impl Camera {
                 ..
             } => {
                 let [m1, m2, m3] = omega_phi_kappa_matrix(*o, *p, *k);
-                (m1, m2, scale(m3, -1.0))
+                (m1, m2, -m3)
             }
             View::LookAt {
                 position_m,
@@ -137,17 +133,13 @@ impl Camera {
                 up,
                 ..
             } => {
-                let f = normalize([
-                    target_m[0] - position_m[0],
-                    target_m[1] - position_m[1],
-                    target_m[2] - position_m[2],
-                ]);
-                let r = normalize(cross(f, *up));
-                (r, cross(r, f), f)
+                let f = (DVec3::from(*target_m) - DVec3::from(*position_m)).normalize();
+                let r = f.cross(DVec3::from(*up)).normalize();
+                (r, r.cross(f), f)
             }
         };
         Ok(Self {
-            position_m: view.position_m(),
+            position_m: view.position_m().into(),
             right,
             up,
             forward,
@@ -160,7 +152,7 @@ impl Camera {
     /// `(0, 0)` is the top-left corner of the image and `(column + 0.5, row + 0.5)` the
     /// centre of a pixel.
     #[must_use]
-    pub fn direction_at(&self, x: f64, y: f64) -> V3 {
+    pub fn direction_at(&self, x: f64, y: f64) -> DVec3 {
         self.direction_uv(self.u_at(x), self.v_at(y))
     }
 
@@ -178,16 +170,13 @@ impl Camera {
 
     /// The unit direction through image-plane point `(u, v)`.
     #[inline]
-    pub(crate) fn direction_uv(&self, u: f64, v: f64) -> V3 {
-        normalize(add(
-            self.forward,
-            add(scale(self.right, u), scale(self.up, v)),
-        ))
+    pub(crate) fn direction_uv(&self, u: f64, v: f64) -> DVec3 {
+        (self.forward + (self.right * u + self.up * v)).normalize()
     }
 
     /// The unit world direction through the centre of pixel `(column, row)`.
     #[must_use]
-    pub fn pixel_direction(&self, column: u32, row: u32) -> V3 {
+    pub fn pixel_direction(&self, column: u32, row: u32) -> DVec3 {
         self.direction_at(f64::from(column) + 0.5, f64::from(row) + 0.5)
     }
 }
@@ -224,8 +213,8 @@ mod tests {
         (24, [0.00, -3.00, 0.70], 76.8660, 0.0),
     ];
 
-    fn km(p: [f64; 3]) -> V3 {
-        scale(p, 1000.0)
+    fn km(p: [f64; 3]) -> DVec3 {
+        DVec3::from(p) * 1000.0
     }
 
     #[test]
@@ -238,9 +227,9 @@ mod tests {
         }
     }
 
-    fn legacy(pos: V3, opk: [f64; 3]) -> View {
+    fn legacy(pos: DVec3, opk: [f64; 3]) -> View {
         View::Legacy {
-            position_m: pos,
+            position_m: pos.to_array(),
             pixels: [256, 256],
             omega_phi_kappa_deg: opk,
             fov_deg: [1.0, 1.0],
@@ -253,20 +242,20 @@ mod tests {
         for (frame, pos, omega, kappa) in TABLE_2 {
             let p = km(pos);
             let cam = Camera::from_view(&legacy(p, [omega, 0.0, kappa])).unwrap();
-            let to_origin = normalize(scale(p, -1.0));
-            let c = dot(cam.forward, to_origin);
+            let to_origin = (-p).normalize();
+            let c = cam.forward.dot(to_origin);
             if pos[1] > 0.0 {
                 // Eq. 14's κ = 0 for y > 0 points the legacy camera away from the origin.
                 assert!(c < 0.0, "frame {frame}");
                 // With ω negated it faces the origin, upside down: the thesis's observation.
                 let cam = Camera::from_view(&legacy(p, [-omega, 0.0, kappa])).unwrap();
-                assert!(dot(cam.forward, to_origin) > 1.0 - 1e-9, "frame {frame}");
+                assert!(cam.forward.dot(to_origin) > 1.0 - 1e-9, "frame {frame}");
                 assert!(cam.up[2] < 0.0, "frame {frame} should be upside down");
                 // The quadrant-aware κ faces the origin upright.
-                let opk = look_at_omega_phi_kappa_deg(p, [0.0; 3]);
+                let opk = look_at_omega_phi_kappa_deg(p, DVec3::ZERO);
                 assert!((opk[2].abs() - 180.0).abs() < 1e-12);
                 let cam = Camera::from_view(&legacy(p, opk)).unwrap();
-                assert!(dot(cam.forward, to_origin) > 1.0 - 1e-12);
+                assert!(cam.forward.dot(to_origin) > 1.0 - 1e-12);
                 assert!(cam.up[2] > 0.0);
             } else {
                 // Four decimals of angle: the axis is within about 1e-6 rad of the origin.
@@ -280,7 +269,7 @@ mod tests {
 
     #[test]
     fn nadir_view_has_north_up_and_east_right() {
-        let cam = Camera::from_view(&legacy([0.0, 0.0, 700.0], [0.0; 3])).unwrap();
+        let cam = Camera::from_view(&legacy(DVec3::new(0.0, 0.0, 700.0), [0.0; 3])).unwrap();
         // Top-left pixel looks north-west, bottom-right south-east.
         let tl = cam.pixel_direction(0, 0);
         assert!(tl[0] < 0.0 && tl[1] > 0.0 && tl[2] < 0.0);
@@ -288,7 +277,7 @@ mod tests {
         assert!(br[0] > 0.0 && br[1] < 0.0);
         // The outer edge of the image is at half the field of view.
         let edge = cam.direction_at(256.0, 128.0);
-        let angle = dot(edge, [0.0, 0.0, -1.0]).acos().to_degrees();
+        let angle = edge.dot(DVec3::NEG_Z).acos().to_degrees();
         assert!((angle - 0.5).abs() < 1e-12);
         // Pixel centres are symmetric about the axis.
         let a = cam.pixel_direction(127, 128);
@@ -306,7 +295,7 @@ mod tests {
         ];
         for (pos, target) in cases {
             for (pixels, fov) in [([256, 256], [1.0, 1.0]), ([640, 120], [40.0, 9.0])] {
-                let opk = look_at_omega_phi_kappa_deg(pos, target);
+                let opk = look_at_omega_phi_kappa_deg(pos.into(), target.into());
                 let a = Camera::from_view(&View::Legacy {
                     position_m: pos,
                     pixels,
@@ -336,7 +325,7 @@ mod tests {
 
     #[test]
     fn straight_down_look_at_with_north_up_matches_the_zero_matrix() {
-        let a = Camera::from_view(&legacy([5.0, 6.0, 700.0], [0.0; 3])).unwrap();
+        let a = Camera::from_view(&legacy(DVec3::new(5.0, 6.0, 700.0), [0.0; 3])).unwrap();
         let b = Camera::from_view(&View::LookAt {
             position_m: [5.0, 6.0, 700.0],
             target_m: [5.0, 6.0, 0.0],
@@ -364,7 +353,7 @@ mod tests {
         })
         .unwrap();
         let left_edge = cam.direction_at(0.0, 1.5);
-        assert!((dot(left_edge, [0.0, 0.0, -1.0]).acos().to_degrees() - 45.0).abs() < 1e-9);
-        assert!(Camera::from_view(&legacy([0.0; 3], [f64::NAN, 0.0, 0.0])).is_err());
+        assert!((left_edge.dot(DVec3::NEG_Z).acos().to_degrees() - 45.0).abs() < 1e-9);
+        assert!(Camera::from_view(&legacy(DVec3::splat(0.0), [f64::NAN, 0.0, 0.0])).is_err());
     }
 }

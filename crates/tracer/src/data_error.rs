@@ -26,14 +26,14 @@ use crate::camera::Camera;
 use crate::env::Atmosphere;
 use crate::tile::Tile;
 use crate::tracer::{Event, Tracer, TruthPixel};
-use crate::vec::V3;
+use glam::DVec3;
 
 /// The data error of a path from an observer `observer_m` above the ground along the unit
 /// direction `dir` to a surface `range_m` away, K (`None`: past the widest row in a band
 /// never measured there). A path looking up (a facet above the observer) is read from
 /// its upper end down, as the slant table reads it.
 #[must_use]
-pub fn view_path_k(data: &DataError, observer_m: f64, dir: V3, range_m: f64) -> Option<f64> {
+pub fn view_path_k(data: &DataError, observer_m: f64, dir: DVec3, range_m: f64) -> Option<f64> {
     let nadir_deg = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
     if nadir_deg <= 90.0 {
         data.ground_path_k(observer_m, nadir_deg)
@@ -47,7 +47,7 @@ pub fn view_path_k(data: &DataError, observer_m: f64, dir: V3, range_m: f64) -> 
 /// ground along `dir` and met what `truth` records, K (NaN: not measured). See the
 /// module's doc for the reflected sky's share.
 #[must_use]
-pub fn pixel_k(data: &DataError, observer_m: f64, dir: V3, truth: &TruthPixel) -> f64 {
+pub fn pixel_k(data: &DataError, observer_m: f64, dir: DVec3, truth: &TruthPixel) -> f64 {
     if truth.event == Event::Sky {
         return data.sky_k();
     }
@@ -188,9 +188,9 @@ mod tests {
     }
 
     /// A unit direction `nadir_deg` from nadir.
-    fn dir(nadir_deg: f64) -> V3 {
+    fn dir(nadir_deg: f64) -> DVec3 {
         let a = nadir_deg.to_radians();
-        [a.sin(), 0.0, -a.cos()]
+        DVec3::new(a.sin(), 0.0, -a.cos())
     }
 
     #[test]

@@ -7,7 +7,7 @@ use irsig_atmosphere::PathTerms;
 use crate::env::Atmosphere;
 use crate::path::Escape;
 use crate::tracer::BandData;
-use crate::vec::V3;
+use glam::DVec3;
 
 /// The sunlight in what arrives along a ray that left the scene (`shade::escaped`): the
 /// scattered sky's, or the sunlit terrain's.
@@ -26,11 +26,11 @@ pub(crate) fn escaped_sunlight<A: Atmosphere>(b: &BandData<A>, e: Escape) -> f64
 /// The sky seen from `alt_m` at `zenith_deg` along `dir` in sub-band `b`: the air's own
 /// radiance, and by day the sunlight it scatters ([`Atmosphere::scattered`]).
 #[inline]
-pub(crate) fn sky<A: Atmosphere>(b: &BandData<A>, alt_m: f64, zenith_deg: f64, dir: V3) -> f64 {
+pub(crate) fn sky<A: Atmosphere>(b: &BandData<A>, alt_m: f64, zenith_deg: f64, dir: DVec3) -> f64 {
     let thermal = b.atmosphere.sky_radiance(alt_m, zenith_deg);
     match b.atmosphere.scattered() {
         None => thermal,
-        Some(s) => thermal + s.sky(alt_m, zenith_deg, dir),
+        Some(s) => thermal + s.sky(alt_m, zenith_deg, dir.to_array()),
     }
 }
 
@@ -40,11 +40,11 @@ pub(crate) fn scattered_sky<A: Atmosphere>(
     b: &BandData<A>,
     alt_m: f64,
     zenith_deg: f64,
-    dir: V3,
+    dir: DVec3,
 ) -> f64 {
     b.atmosphere
         .scattered()
-        .map_or(0.0, |s| s.sky(alt_m, zenith_deg, dir))
+        .map_or(0.0, |s| s.sky(alt_m, zenith_deg, dir.to_array()))
 }
 
 /// The hemispheric sky at `alt_m` in sub-band `b` (thesis eq. 5): the air's own, and by
@@ -77,16 +77,17 @@ pub(crate) fn lit_path<A: Atmosphere>(
     p: PathTerms,
     sensor_m: f64,
     target_m: f64,
-    dir: V3,
+    dir: DVec3,
 ) -> (PathTerms, f64) {
     match b.atmosphere.scattered() {
         None => (p, 0.0),
         Some(s) => {
             let slab = b.atmosphere.slabs().and_then(|t| {
                 let cell = t.covers_along(sensor_m, target_m, dir[2])?;
-                t.scattered(&cell, s.relative_azimuth_deg(dir))
+                t.scattered(&cell, s.relative_azimuth_deg(dir.to_array()))
             });
-            let scattered = slab.unwrap_or_else(|| s.path(sensor_m, target_m, p.transmission, dir));
+            let scattered =
+                slab.unwrap_or_else(|| s.path(sensor_m, target_m, p.transmission, dir.to_array()));
             (
                 PathTerms {
                     path_radiance_w_m2_sr: p.path_radiance_w_m2_sr + scattered,

@@ -41,7 +41,6 @@ use rayon::prelude::*;
 
 use crate::error::{TraceError, TraceErrorKind};
 use crate::geometry::Geometry;
-use crate::vec::basis;
 
 /// The most sample points per facet side ([`ExposureOptions::samples_per_side`]): 64² =
 /// 4,096 points.
@@ -131,13 +130,13 @@ impl Exposure {
         let world = |i: usize| {
             scene.facets[i]
                 .vertices
-                .map(|v| scene.positions_m[v as usize])
+                .map(|v| DVec3::from(scene.positions_m[v as usize]))
         };
         let geometry = Geometry::new(&(0..scene.facets.len()).map(world).collect::<Vec<_>>());
         let frames = (0..scene.facets.len())
             .into_par_iter()
             .map(|i| {
-                let v = world(i).map(|p| DVec3::from_array(geometry.to_local(p)));
+                let v = world(i).map(|p| geometry.to_local(p));
                 let cross = (v[1] - v[0]).cross(v[2] - v[0]);
                 FacetFrame {
                     vertices_local: v,
@@ -173,8 +172,8 @@ impl Exposure {
     /// direction `to_sun` (scene frame, z up), is not hidden by any facet; 0 when the
     /// exposed side faces away from it or the sun is not above the horizontal.
     #[must_use]
-    pub fn sunlit_fraction(&self, i: usize, to_sun: [f64; 3], options: ExposureOptions) -> f64 {
-        let s = DVec3::from_array(to_sun);
+    pub fn sunlit_fraction(&self, i: usize, to_sun: DVec3, options: ExposureOptions) -> f64 {
+        let s = to_sun;
         let frame = &self.frames[i];
         if s.z <= 0.0 || frame.normal.dot(s) <= 0.0 {
             return 0.0;
@@ -186,7 +185,7 @@ impl Exposure {
                 let p = self.sample_point(i, j, k);
                 !self
                     .geometry
-                    .occluded(p.to_array(), to_sun, eps, f64::INFINITY, Some(i as u32))
+                    .occluded(p, to_sun, eps, f64::INFINITY, Some(i as u32))
             })
             .count();
         lit as f64 / f64::from(k * k)
@@ -198,7 +197,7 @@ impl Exposure {
     pub fn sunlit_fractions(
         &self,
         facets: &[u32],
-        to_sun: [f64; 3],
+        to_sun: DVec3,
         options: ExposureOptions,
     ) -> Vec<f32> {
         facets
@@ -216,8 +215,7 @@ impl Exposure {
         let k = options.samples_per_side.clamp(1, MAX_SAMPLES_PER_SIDE);
         let frame = &self.frames[i];
         let n = frame.normal;
-        let (t, b) = basis(n.to_array());
-        let (t, b) = (DVec3::from_array(t), DVec3::from_array(b));
+        let (t, b) = n.any_orthonormal_pair();
         let eps = self.geometry.surface_epsilon_m();
         let mut rng =
             ChaCha8Rng::seed_from_u64(seed ^ (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15));
@@ -238,13 +236,10 @@ impl Exposure {
                 let phi = std::f64::consts::TAU * u2;
                 let d =
                     t * (rad * phi.cos()) + b * (rad * phi.sin()) + n * (1.0 - u1).max(0.0).sqrt();
-                match self.geometry.closest_hit(
-                    p.to_array(),
-                    d.to_array(),
-                    eps,
-                    f64::INFINITY,
-                    Some(i as u32),
-                ) {
+                match self
+                    .geometry
+                    .closest_hit(p, d, eps, f64::INFINITY, Some(i as u32))
+                {
                     Some(h) => hits.push(h.facet),
                     None if d.z >= 0.0 => sky += 1,
                     None => terrain += 1,

@@ -36,7 +36,7 @@ use obvhs::{
 };
 use rayon::prelude::*;
 
-use crate::vec::{V3, add, cross, dot, normalize, scale, sub};
+use glam::DVec3;
 
 /// How far before the first admissible distance a ray handed to obvhs starts, in metres:
 /// twice the CWBVH's fixed 1e-4 entry clamp.
@@ -59,9 +59,9 @@ pub struct Hit<P = ()> {
     /// Distance from the ray origin in metres (the ray direction is a unit vector).
     pub distance_m: f64,
     /// The hit point in local (re-centred) coordinates, metres.
-    pub point_local: V3,
+    pub point_local: DVec3,
     /// The unit facet normal turned towards the ray's origin.
-    pub normal: V3,
+    pub normal: DVec3,
     /// Cosine of the angle between the reversed ray and `normal`, 0 to 1.
     pub cos_incidence: f64,
     /// True when the ray arrived from the side opposite the facet's winding normal.
@@ -74,14 +74,14 @@ pub struct Hit<P = ()> {
 /// caller's per-facet data `P` (the tracer keeps its radiometry there).
 #[derive(Debug)]
 pub struct Geometry<P = ()> {
-    centre_m: V3,
+    centre_m: DVec3,
     bvh: Bvh,
     /// Per triangle, in BVH order (chunk after chunk, each in its BVH's primitive order):
     /// what the traversal reads, then what a hit reads.
     tris: Vec<FacetRecord<P>>,
-    bounds_local: [V3; 2],
+    bounds_local: [DVec3; 2],
     /// `bounds_local` grown by a margin for f32 rounding: the box rays are clipped to.
-    padded_bounds_local: [V3; 2],
+    padded_bounds_local: [DVec3; 2],
     radius_m: f64,
     /// How far past the nearest hit so far a ray's traversal goes on, metres: a few f32
     /// roundings at the scene's size.
@@ -473,7 +473,7 @@ fn chunk(items: &[Item]) -> CwBvh {
 struct FacetRecord<P> {
     v: [[f32; 3]; 3],
     facet: u32,
-    normal: V3,
+    normal: DVec3,
     offset: f64,
     data: P,
 }
@@ -580,7 +580,7 @@ impl Geometry {
     /// caller has checked that there is at least one triangle, that every number is finite
     /// and that no triangle is degenerate.
     #[must_use]
-    pub fn new(triangles: &[[V3; 3]]) -> Self {
+    pub fn new(triangles: &[[DVec3; 3]]) -> Self {
         Self::with_data(triangles.len(), |i| triangles[i], |_| ())
     }
 }
@@ -595,7 +595,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     #[must_use]
     pub fn with_data(
         count: usize,
-        triangle: impl Fn(usize) -> [V3; 3] + Sync,
+        triangle: impl Fn(usize) -> [DVec3; 3] + Sync,
         data: impl Fn(usize) -> P + Sync,
     ) -> Self {
         Self::with_chunks(count, triangle, data, CHUNK_TRIANGLES)
@@ -606,7 +606,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     #[must_use]
     pub fn with_chunks(
         count: usize,
-        triangle: impl Fn(usize) -> [V3; 3] + Sync,
+        triangle: impl Fn(usize) -> [DVec3; 3] + Sync,
         data: impl Fn(usize) -> P + Sync,
         chunk_max: usize,
     ) -> Self {
@@ -626,17 +626,17 @@ impl<P: Copy + Send + Sync> Geometry<P> {
                 (lo, hi)
             })
             .reduce(
-                || ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                || (DVec3::INFINITY, DVec3::NEG_INFINITY),
                 |(a_lo, a_hi), (b_lo, b_hi)| {
                     (
-                        std::array::from_fn(|k| a_lo[k].min(b_lo[k])),
-                        std::array::from_fn(|k| a_hi[k].max(b_hi[k])),
+                        DVec3::from_array(std::array::from_fn(|k| a_lo[k].min(b_lo[k]))),
+                        DVec3::from_array(std::array::from_fn(|k| a_hi[k].max(b_hi[k]))),
                     )
                 },
             );
-        let centre_m = scale(add(lo, hi), 0.5);
-        let to32 = |p: V3| [p[0] as f32, p[1] as f32, p[2] as f32];
-        let local = |i: usize| triangle(i).map(|p| sub(p, centre_m));
+        let centre_m = (lo + hi) * 0.5;
+        let to32 = |p: DVec3| [p[0] as f32, p[1] as f32, p[2] as f32];
+        let local = |i: usize| triangle(i).map(|p| p - centre_m);
         let (bvh, order) = Bvh::build(
             count,
             &|i| local(i).map(|p| Vec3A::from_array(to32(p))),
@@ -646,25 +646,25 @@ impl<P: Copy + Send + Sync> Geometry<P> {
             .par_iter()
             .map(|&i| {
                 let [a, b, c] = local(i as usize);
-                let normal = normalize(cross(sub(b, a), sub(c, a)));
+                let normal = (b - a).cross(c - a).normalize();
                 FacetRecord {
                     v: [to32(a), to32(b), to32(c)],
                     facet: i,
                     normal,
-                    offset: dot(normal, a),
+                    offset: normal.dot(a),
                     data: data(i as usize),
                 }
             })
             .collect();
-        let bounds_local = [sub(lo, centre_m), sub(hi, centre_m)];
-        let radius_m = 0.5 * dot(sub(hi, lo), sub(hi, lo)).sqrt();
-        let pad = [1e-6 * radius_m + 1e-6; 3];
+        let bounds_local = [lo - centre_m, hi - centre_m];
+        let radius_m = 0.5 * (hi - lo).dot(hi - lo).sqrt();
+        let pad = DVec3::splat(1e-6 * radius_m + 1e-6);
         Self {
             centre_m,
             bvh,
             tris,
             bounds_local,
-            padded_bounds_local: [sub(bounds_local[0], pad), add(bounds_local[1], pad)],
+            padded_bounds_local: [bounds_local[0] - pad, bounds_local[1] + pad],
             radius_m,
             tie_slack: (1e-6 * radius_m) as f32,
         }
@@ -678,22 +678,22 @@ impl<P: Copy + Send + Sync> Geometry<P> {
 
     /// Calls `f` with every triangle's vertices in world metres (as the BVH holds them,
     /// rounded to f32 about the scene's centre), in no particular order.
-    pub fn for_each_triangle(&self, mut f: impl FnMut([V3; 3])) {
+    pub fn for_each_triangle(&self, mut f: impl FnMut([DVec3; 3])) {
         for r in &self.tris {
-            f(r.v.map(|p| self.to_world(p.map(f64::from))));
+            f(r.v.map(|p| self.to_world(DVec3::from_array(p.map(f64::from)))));
         }
     }
 
     /// The world point (metres) the local coordinates are measured from.
     #[must_use]
-    pub fn centre_m(&self) -> V3 {
+    pub fn centre_m(&self) -> DVec3 {
         self.centre_m
     }
 
     /// The scene's bounding box in world metres, `[low corner, high corner]`.
     #[must_use]
-    pub fn bounds_m(&self) -> [V3; 2] {
-        self.bounds_local.map(|p| add(p, self.centre_m))
+    pub fn bounds_m(&self) -> [DVec3; 2] {
+        self.bounds_local.map(|p| p + self.centre_m)
     }
 
     /// Half the diagonal of the scene's bounding box, metres.
@@ -704,14 +704,14 @@ impl<P: Copy + Send + Sync> Geometry<P> {
 
     /// World coordinates (metres) of a local point.
     #[must_use]
-    pub fn to_world(&self, local: V3) -> V3 {
-        add(local, self.centre_m)
+    pub fn to_world(&self, local: DVec3) -> DVec3 {
+        local + self.centre_m
     }
 
     /// Local coordinates of a world point (metres).
     #[must_use]
-    pub fn to_local(&self, world: V3) -> V3 {
-        sub(world, self.centre_m)
+    pub fn to_local(&self, world: DVec3) -> DVec3 {
+        world - self.centre_m
     }
 
     /// The smallest distance a secondary ray from a surface point accepts, metres: a
@@ -723,7 +723,7 @@ impl<P: Copy + Send + Sync> Geometry<P> {
 
     /// The part `[t0, t1]` of `[t_min, t_max]` along the ray inside the scene's bounds,
     /// padded for f32 rounding; `None` when the ray misses them.
-    fn clip(&self, origin: V3, dir: V3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
+    fn clip(&self, origin: DVec3, dir: DVec3, t_min: f64, t_max: f64) -> Option<(f64, f64)> {
         let (mut t0, mut t1) = (t_min, t_max);
         // Slabs of the padded box (this runs once per ray and showed in the profile, so
         // the padding is done once, in `new`). A zero direction component gives ±∞
@@ -748,9 +748,9 @@ impl<P: Copy + Send + Sync> Geometry<P> {
 
     /// The obvhs ray for `[t0, t1]` of the f64 ray, started [`ORIGIN_BACKOFF_M`] before
     /// `t0`; returns the ray, its shift along the f64 ray, and the f32 admissible range.
-    fn prepare(&self, origin: V3, dir: V3, t0: f64, t1: f64) -> (Ray, f64, f32, f32) {
+    fn prepare(&self, origin: DVec3, dir: DVec3, t0: f64, t1: f64) -> (Ray, f64, f32, f32) {
         let shift = t0 - ORIGIN_BACKOFF_M.max(1e-7 * self.radius_m);
-        let o = add(origin, scale(dir, shift));
+        let o = origin + dir * shift;
         let o32 = Vec3A::new(o[0] as f32, o[1] as f32, o[2] as f32);
         let d32 = Vec3A::new(dir[0] as f32, dir[1] as f32, dir[2] as f32);
         let tmin = (t0 - shift) as f32;
@@ -763,8 +763,8 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     #[must_use]
     pub fn closest_hit(
         &self,
-        origin: V3,
-        dir: V3,
+        origin: DVec3,
+        dir: DVec3,
         t_min: f64,
         t_max: f64,
         exclude: Option<u32>,
@@ -824,8 +824,8 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     #[must_use]
     pub fn occluded(
         &self,
-        origin: V3,
-        dir: V3,
+        origin: DVec3,
+        dir: DVec3,
         t_min: f64,
         t_max: f64,
         exclude: Option<u32>,
@@ -854,28 +854,28 @@ impl<P: Copy + Send + Sync> Geometry<P> {
     }
 
     /// The f64 distance, point and facing normal of a hit found in f32.
-    fn refine(&self, slot: usize, facet: u32, origin: V3, dir: V3, t_f32: f64) -> Hit<P> {
+    fn refine(&self, slot: usize, facet: u32, origin: DVec3, dir: DVec3, t_f32: f64) -> Hit<P> {
         let FacetRecord {
             normal: n,
             offset,
             data,
             ..
         } = self.tris[slot];
-        let dn = dot(dir, n);
+        let dn = dir.dot(n);
         // The f64 plane distance, unless the ray runs so close to parallel to the plane
         // that it is worse conditioned than the f32 distance from the watertight test.
-        let t_plane = (offset - dot(origin, n)) / dn;
+        let t_plane = (offset - origin.dot(n)) / dn;
         let distance_m = if dn.abs() > 1e-6 && t_plane.is_finite() {
             t_plane
         } else {
             t_f32
         };
         let back_face = dn > 0.0;
-        let normal = if back_face { scale(n, -1.0) } else { n };
+        let normal = if back_face { -n } else { n };
         Hit {
             facet,
             distance_m,
-            point_local: add(origin, scale(dir, distance_m)),
+            point_local: origin + dir * distance_m,
             normal,
             cos_incidence: dn.abs().min(1.0),
             back_face,

@@ -95,7 +95,6 @@ pub mod testing;
 mod texture;
 pub mod tile;
 mod tracer;
-mod vec;
 
 pub use camera::{
     Camera, look_at_omega_phi_kappa_deg, omega_phi_kappa_matrix, thesis_look_at_angles_deg,
@@ -103,6 +102,7 @@ pub use camera::{
 pub use charge::{Charge, Charges, NO_GROUP};
 pub use env::{Atmosphere, Vacuum};
 pub use error::{TraceError, TraceErrorKind};
+pub use glam::DVec3;
 pub use lobe::{DISK_PSI_NODES, DISK_U_NODES};
 pub use path_table::{
     PATH_TABLE_ALTITUDES, PATH_TABLE_RANGES, PathTermsMode, UnknownPathTermsMode,
@@ -114,4 +114,3 @@ pub use tracer::{
     BandSet, Event, FacetRadiometry, Frame, INVERSE_TABLE_K, Sample, SubBand, SunPixel,
     TexturePixel, TraceOptions, Tracer, TruthPixel, inverse_table,
 };
-pub use vec::V3;

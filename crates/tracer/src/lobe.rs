@@ -41,7 +41,7 @@ use irsig_radiometry::fresnel::smith_escape;
 use irsig_radiometry::gauss_legendre;
 
 use crate::sun::SunGeometry;
-use crate::vec::{V3, add, basis, dot, normalize, scale, sub};
+use glam::DVec3;
 
 /// Ray directions `ψ` of the disk rule (docs/accuracy.md, "The specular lobe").
 pub const DISK_PSI_NODES: usize = 12;
@@ -72,19 +72,19 @@ pub(crate) struct Lobe {
 
 /// A facet's frame: its normal (toward the viewer), two tangents, and the view.
 struct Frame {
-    n: V3,
-    e1: V3,
-    e2: V3,
-    o: V3,
+    n: DVec3,
+    e1: DVec3,
+    e2: DVec3,
+    o: DVec3,
     cos_o: f64,
     /// `S(θ_o)/cos θ_o`.
     view_factor: f64,
 }
 
 impl Frame {
-    fn new(n: V3, o: V3, sigma: f64) -> Self {
-        let (e1, e2) = basis(n);
-        let cos_o = dot(n, o).min(1.0);
+    fn new(n: DVec3, o: DVec3, sigma: f64) -> Self {
+        let (e1, e2) = n.any_orthonormal_pair();
+        let cos_o = n.dot(o).min(1.0);
         Self {
             n,
             e1,
@@ -97,26 +97,26 @@ impl Frame {
 
     /// The slope of the half vector of the unit direction `w` and the view, or `None` where
     /// it does not face the normal.
-    fn slope_of(&self, w: V3) -> Option<[f64; 2]> {
-        let h = add(w, self.o);
-        let hn = dot(h, self.n);
-        if hn.is_nan() || hn <= 1e-12 * dot(h, h).sqrt() {
+    fn slope_of(&self, w: DVec3) -> Option<[f64; 2]> {
+        let h = w + self.o;
+        let hn = h.dot(self.n);
+        if hn.is_nan() || hn <= 1e-12 * h.dot(h).sqrt() {
             return None;
         }
-        Some([dot(h, self.e1) / hn, dot(h, self.e2) / hn])
+        Some([h.dot(self.e1) / hn, h.dot(self.e2) / hn])
     }
 
     /// `W(p) = G·(h·o)/(cos θ_h cos θ_o)`: what the lobe weighs the slope `p` by beside its
     /// Gaussian density (0 where the facet turns from the view or reflects below the mean
     /// surface).
     fn weight(&self, p: [f64; 2], sigma: f64) -> f64 {
-        let h = normalize(add(self.n, add(scale(self.e1, p[0]), scale(self.e2, p[1]))));
-        let ho = dot(h, self.o);
+        let h = (self.n + (self.e1 * p[0] + self.e2 * p[1])).normalize();
+        let ho = h.dot(self.o);
         if ho <= 0.0 {
             return 0.0;
         }
-        let i = sub(scale(h, 2.0 * ho), self.o);
-        let cos_i = dot(i, self.n);
+        let i = h * (2.0 * ho) - self.o;
+        let cos_i = i.dot(self.n);
         if cos_i <= 0.0 {
             return 0.0;
         }
@@ -167,7 +167,7 @@ impl Lobe {
     /// and of the specular share `s·r(θ_o)`, sr⁻¹, before the disk's visible fraction:
     /// `(1/Ω)∫_disk f cos θ_i dω_i / (s·r)`. 0 for a grazing view, a sun behind the facet
     /// or a disk far from the lobe.
-    pub(crate) fn glint_per_sr(&self, sun: &SunGeometry, n: V3, o: V3) -> f64 {
+    pub(crate) fn glint_per_sr(&self, sun: &SunGeometry, n: DVec3, o: DVec3) -> f64 {
         self.disk_integral(sun, n, o, DISK_PSI_NODES, DISK_U_NODES)
     }
 
@@ -175,19 +175,19 @@ impl Lobe {
     pub(crate) fn disk_integral(
         &self,
         sun: &SunGeometry,
-        n: V3,
-        o: V3,
+        n: DVec3,
+        o: DVec3,
         psi_nodes: usize,
         u_nodes: usize,
     ) -> f64 {
         let sigma = self.sigma;
-        if dot(n, o) <= MIN_COS_VIEW || dot(n, sun.to_sun) <= -sun.sin_radius {
+        if n.dot(o) <= MIN_COS_VIEW || n.dot(sun.to_sun) <= -sun.sin_radius {
             return 0.0;
         }
         let f = Frame::new(n, o, sigma);
         let (c, sa) = (sun.to_sun, sun.sin_radius);
         let ca = 1.0 - sun.one_minus_cos;
-        let rim = |t: V3, sign: f64| normalize(add(scale(c, ca), scale(t, sign * sa)));
+        let rim = |t: DVec3, sign: f64| (c * ca + t * (sign * sa)).normalize();
         let (Some(pc), Some(pt1), Some(pt0), Some(pb1), Some(pb0)) = (
             f.slope_of(c),
             f.slope_of(rim(sun.tangent, 1.0)),
@@ -312,21 +312,21 @@ impl Lobe {
 /// `u = e^(−ρ²/σ²)`, `ψ` over the half circle on one side of the plane of incidence (the
 /// lobe is symmetric about it) by the Gauss–Legendre `rule` in both.
 fn albedo(sigma: f64, cos_o: f64, rule: &[(f64, f64)]) -> f64 {
-    let n = [0.0, 0.0, 1.0];
-    let o = [(1.0 - cos_o * cos_o).max(0.0).sqrt(), 0.0, cos_o];
+    let n = DVec3::new(0.0, 0.0, 1.0);
+    let o = DVec3::new((1.0 - cos_o * cos_o).max(0.0).sqrt(), 0.0, cos_o);
     let f = Frame::new(n, o, sigma);
     let mut total = 0.0;
     for &(xp, wp) in rule {
         let psi = std::f64::consts::FRAC_PI_2 * (xp + 1.0);
         let d = [psi.cos(), psi.sin()];
-        // The tangents of `basis(n)` need not be x and y: rotate the slope into them.
+        // The tangents of `n.any_orthonormal_pair()` need not be x and y: rotate the slope into them.
         let along: f64 = rule
             .iter()
             .map(|&(xu, wu)| {
                 let u = 0.5 * (xu + 1.0);
                 let rho = sigma * (-u.ln()).max(0.0).sqrt();
-                let world = [rho * d[0], rho * d[1], 0.0];
-                let p = [dot(world, f.e1), dot(world, f.e2)];
+                let world = DVec3::new(rho * d[0], rho * d[1], 0.0);
+                let p = [world.dot(f.e1), world.dot(f.e2)];
                 0.5 * wu * f.weight(p, sigma)
             })
             .sum();

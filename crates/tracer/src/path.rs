@@ -13,7 +13,7 @@ use crate::env::Atmosphere;
 use crate::geometry::Hit;
 use crate::sun::SunGeometry;
 use crate::tracer::{Ctx, FacetRadiometry, FrameConsts, Tracer};
-use crate::vec::{V3, add, basis, dot, scale, sub};
+use glam::DVec3;
 
 /// Where a ray that left the scene ends.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -23,7 +23,7 @@ pub(crate) enum Escape {
     Sky {
         alt_m: f64,
         zenith_deg: f64,
-        dir: V3,
+        dir: DVec3,
     },
     /// Below it: the terrain background.
     Terrain,
@@ -117,12 +117,12 @@ struct SunLight {
 /// The glint of a mirror whose reflection ray `refl` (unit) went as `mirror`, per unit of
 /// the beam's normal irradiance, sr⁻¹: the disk's `1/Ω_sun` when the ray leaves toward the
 /// sky (or would, its bounces spent) inside the disk, else 0.
-pub(crate) fn glint_per_sr(sun: &SunGeometry, refl: V3, mirror: Mirror) -> f64 {
+pub(crate) fn glint_per_sr(sun: &SunGeometry, refl: DVec3, mirror: Mirror) -> f64 {
     let to_sky = matches!(
         mirror,
         Mirror::Escaped(Escape::Sky { .. }) | Mirror::Untraced(Escape::Sky { .. })
     );
-    if to_sky && refl[2] > 0.0 && dot(refl, sun.to_sun) >= sun.cos_radius {
+    if to_sky && refl[2] > 0.0 && refl.dot(sun.to_sun) >= sun.cos_radius {
         sun.inverse_solid_angle_per_sr
     } else {
         0.0
@@ -185,7 +185,7 @@ pub(crate) struct Path {
     pub(crate) primary: Primary,
     /// The ray's direction from the sensor, unit: by day the sunlight scattered into the
     /// view path depends on its azimuth from the sun.
-    pub(crate) dir: V3,
+    pub(crate) dir: DVec3,
     pub(crate) nodes: Vec<Node>,
     pub(crate) rays: Vec<HemiRay>,
     /// The pixel's angular size, rad: the width of its cone per metre travelled, which the
@@ -202,7 +202,7 @@ impl Default for Path {
     fn default() -> Self {
         Self {
             primary: Primary::Sky { zenith_deg: 0.0 },
-            dir: [0.0, 0.0, 1.0],
+            dir: DVec3::Z,
             nodes: Vec::new(),
             rays: Vec::new(),
             cone_rad: 0.0,
@@ -213,7 +213,13 @@ impl Default for Path {
 
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// Traces the ray from the sensor along `dir` and records its path into `path`.
-    pub(crate) fn follow(&self, fc: &FrameConsts<'_>, dir: V3, ctx: &mut Ctx<'_>, path: &mut Path) {
+    pub(crate) fn follow(
+        &self,
+        fc: &FrameConsts<'_>,
+        dir: DVec3,
+        ctx: &mut Ctx<'_>,
+        path: &mut Path,
+    ) {
         path.nodes.clear();
         path.rays.clear();
         path.dir = dir;
@@ -241,7 +247,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// Event 1: the ray leaves the scene from the sensor. The ground test compares
     /// cosines, so a miss costs no arc cosine unless it sees the sky.
-    fn primary_miss(&self, fc: &FrameConsts<'_>, dir: V3) -> Primary {
+    fn primary_miss(&self, fc: &FrameConsts<'_>, dir: DVec3) -> Primary {
         let alt = fc.sensor_alt;
         let cos_nadir = (-dir[2]).clamp(-1.0, 1.0);
         if cos_nadir > fc.cos_critical_nadir {
@@ -258,7 +264,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// Where a ray from a surface point at altitude `alt` along `dir` that leaves the scene
     /// ends: the sky above the horizon, the terrain below it.
-    pub(crate) fn escape(&self, dir: V3, alt: f64) -> Escape {
+    pub(crate) fn escape(&self, dir: DVec3, alt: f64) -> Escape {
         let nadir = (-dir[2]).clamp(-1.0, 1.0).acos().to_degrees();
         if nadir < self.bands.bands[0].atmosphere.critical_nadir_angle_deg(alt) {
             Escape::Terrain
@@ -277,7 +283,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     fn follow_surface(
         &self,
         hit: &Hit<FacetRadiometry>,
-        dir: V3,
+        dir: DVec3,
         alt: f64,
         depth: u32,
         ctx: &mut Ctx<'_>,
@@ -300,7 +306,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         });
         if has_mirror {
             // Mirror direction about the normal facing the ray.
-            let refl = sub(dir, scale(hit.normal, 2.0 * dot(dir, hit.normal)));
+            let refl = dir - hit.normal * (2.0 * dir.dot(hit.normal));
             path.nodes[index].reflected_z = refl[2];
             let environment = self.escape(refl, alt);
             path.nodes[index].environment = environment;
@@ -333,7 +339,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         }
         // A rough specular share: the lobe over the disk, before the visible fraction.
         let lobe_glint = match (&self.sun, lobe) {
-            (Some(sun), Some(lobe)) => lobe.glint_per_sr(sun, hit.normal, scale(dir, -1.0)),
+            (Some(sun), Some(lobe)) => lobe.glint_per_sr(sun, hit.normal, -dir),
             _ => 0.0,
         };
         if has_diffuse {
@@ -391,8 +397,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         truth_stream: bool,
     ) -> SunLight {
         let eps_m = self.geometry.surface_epsilon_m();
-        let lit = |d: V3| {
-            let c = dot(hit.normal, d);
+        let lit = |d: DVec3| {
+            let c = hit.normal.dot(d);
             if c <= 0.0
                 || d[2] <= 0.0
                 || self
@@ -413,7 +419,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             };
         }
         // Nothing of the disk in front of the facet: no ray to cast.
-        if dot(hit.normal, sun.to_sun) <= -sun.sin_radius {
+        if hit.normal.dot(sun.to_sun) <= -sun.sin_radius {
             return SunLight {
                 cos_visible: 0.0,
                 visible: 0.0,
@@ -472,7 +478,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     ) -> Diffuse {
         let n = ctx.options.sky_view_rays;
         let m = (f64::from(n).sqrt()) as u32;
-        let (t, b) = basis(hit.normal);
+        let (t, b) = hit.normal.any_orthonormal_pair();
         let eps_m = self.geometry.surface_epsilon_m();
         let start = path.rays.len() as u32;
         let mut sky = 0u32;
@@ -486,10 +492,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let rad = u1.sqrt();
             let phi = std::f64::consts::TAU * u2;
             let z = (1.0 - u1).max(0.0).sqrt();
-            let d = add(
-                add(scale(t, rad * phi.cos()), scale(b, rad * phi.sin())),
-                scale(hit.normal, z),
-            );
+            let d = t * (rad * phi.cos()) + b * (rad * phi.sin()) + hit.normal * z;
             let ray = match self.geometry.closest_hit(
                 hit.point_local,
                 d,

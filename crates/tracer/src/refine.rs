@@ -38,7 +38,7 @@ use crate::tracer::{
     Ctx, Event, FrameConsts, INVERSE_TABLE_K, REFINEMENT_STREAM, Sample, SunPixel, TexturePixel,
     TraceOptions, Tracer, TruthPixel,
 };
-use crate::vec::{dot, sub};
+use glam::DVec3;
 
 /// The independent stratified rounds of a level: their means give its standard error with
 /// 7 degrees of freedom (3σ holds a mean with 98 % confidence; 4 rounds' 3 left 6 % out).
@@ -209,14 +209,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let (tx0, ty0) = (f64::from(tile.x), f64::from(tile.y));
         let tx1 = f64::from(tile.x + tile.width) - 1.0;
         let ty1 = f64::from(tile.y + tile.height) - 1.0;
-        let project = |p: [f64; 3]| -> Option<[f64; 2]> {
-            let d = sub(p, camera.position_m);
-            let z = dot(d, camera.forward);
+        let project = |p: DVec3| -> Option<[f64; 2]> {
+            let d = p - camera.position_m;
+            let z = d.dot(camera.forward);
             if z <= 0.0 {
                 return None;
             }
-            let u = dot(d, camera.right) / z;
-            let v = dot(d, camera.up) / z;
+            let u = d.dot(camera.right) / z;
+            let v = d.dot(camera.up) / z;
             Some([
                 (u / camera.tan_half_fov[0] + 1.0) * wf / 2.0,
                 (1.0 - v / camera.tan_half_fov[1]) * hf / 2.0,

@@ -150,148 +150,191 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         s: &mut Sample,
         sink: &mut C,
     ) -> f64 {
-        let one = set.bands.len() == 1;
-        // The sun's truth terms, when this set of sub-bands carries its beam.
-        let lit = TRUTH && set.bands[0].sun.is_some();
         match path.primary {
             Primary::Sky { zenith_deg } => {
-                let radiance: f64 = set
-                    .bands
-                    .iter()
-                    .map(|b| sky(b, fc.sensor_alt, zenith_deg, path.dir))
-                    .sum();
-                if TRUTH {
-                    *s = Sample::miss(Event::Sky);
-                    s.transmission = 0.0;
-                    s.path_radiance_w_m2_sr = radiance;
-                    s.radiance_w_m2_sr = radiance;
-                    if lit {
-                        // The sky's sunlight is what it scatters (none without scattered
-                        // tables).
-                        let scattered: f64 = set
-                            .bands
-                            .iter()
-                            .map(|b| scattered_sky(b, fc.sensor_alt, zenith_deg, path.dir))
-                            .sum();
-                        s.sun_share = share(scattered, radiance);
-                    }
-                }
-                radiance
+                self.sky_radiance::<TRUTH, S>(set, fc, path, zenith_deg, s)
             }
             Primary::Terrain {
                 range_m,
                 path_range_m,
-            } => {
-                let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
-                let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
-                let (mut solar, mut transmitted_solar, mut irradiance) = (0.0, 0.0, 0.0);
-                let (mut emitted, mut single_eps) = (0.0, 0.0);
-                let cos_sun_zenith = self.sun.as_ref().map_or(0.0, |g| g.to_sun[2].max(0.0));
-                set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
-                    let (p, scattered) = lit_path(b, p, fc.sensor_alt, 0.0, path.dir);
-                    let ground = self.terrain_terms(b, path.dir);
-                    let (through, tau_sun) =
-                        transmitted_of(b, p.transmission, ground.leaving, ground.solar);
-                    radiance += through + p.path_radiance_w_m2_sr;
-                    if TRUTH {
-                        transmitted += through;
-                        path_radiance += p.path_radiance_w_m2_sr;
-                        blackbody += b.terrain_blackbody;
-                        emitted += ground.emissivity * b.terrain_blackbody;
-                        single_eps = ground.emissivity;
-                        leaving += ground.leaving;
-                        single_tau = p.transmission;
-                        if let Some(beam) = &b.sun {
-                            solar += ground.solar;
-                            transmitted_solar += tau_sun * ground.solar + scattered;
-                            irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
-                        }
-                    }
-                });
-                if TRUTH {
-                    *s = Sample::miss(Event::Terrain);
-                    s.range_m = range_m;
-                    s.temperature_k = self.terrain.temperature_k;
-                    // A material's: as a facet's, the emitted-radiance-weighted mean over
-                    // the sub-bands; the constant's is the same in every sub-band.
-                    s.emissivity = if one || self.terrain_slot.is_none() {
-                        single_eps
-                    } else {
-                        emitted / blackbody
-                    };
-                    s.reflectance = 1.0 - s.emissivity;
-                    s.blackbody_w_m2_sr = blackbody;
-                    s.surface_leaving_w_m2_sr = leaving;
-                    s.transmission = effective_transmission(one, single_tau, transmitted, leaving);
-                    s.path_radiance_w_m2_sr = path_radiance;
-                    s.radiance_w_m2_sr = radiance;
-                    if lit {
-                        // The terrain beyond the scene is flat and unshadowed.
-                        s.solar_irradiance_w_m2 = irradiance;
-                        s.sun_visible_fraction = if cos_sun_zenith > 0.0 { 1.0 } else { 0.0 };
-                        s.reflected_solar_w_m2_sr = solar;
-                        s.sun_share = share(transmitted_solar, radiance);
-                    }
-                }
-                radiance
-            }
+            } => self.terrain_radiance::<TRUTH, S>(set, fc, path, [range_m, path_range_m], s),
             Primary::Facet { range_m, alt_m } => {
-                let cell = table.map(|t| t.cell(alt_m, range_m));
-                let mut sums = Sums::default();
-                let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
-                let mut radiance = 0.0;
-                let mut add = |b: &BandData<S>, p: PathTerms| {
-                    // The path table's terms are the air's own: by day the scattered
-                    // sunlight is added here for the path's direction, table or not.
-                    let (p, scattered) = lit_path(b, p, fc.sensor_alt, alt_m, path.dir);
-                    // By day the sunlight in the leaving radiance is needed apart (it has a
-                    // path τ of its own), with or without the truth.
-                    let first = if b.sun.is_some() {
-                        self.leaving_chain::<true, S>(b, path)
-                    } else {
-                        self.leaving_chain::<TRUTH, S>(b, path)
-                    };
-                    let (through, tau_sun) =
-                        transmitted_of(b, p.transmission, first.leaving, first.solar);
-                    radiance += through + p.path_radiance_w_m2_sr;
-                    if C::ON {
-                        self.charge_path(b, path, &first, p.transmission, sink);
-                    }
-                    if TRUTH {
-                        let derivative = b.derivative_at(&path.nodes[0].surface);
-                        sums.add(
-                            &first,
-                            [p.transmission, tau_sun],
-                            through,
-                            p.path_radiance_w_m2_sr,
-                            derivative,
-                        );
-                        sums.transmitted_solar += scattered;
-                        single = first;
-                        single_tau = p.transmission;
-                    }
-                };
-                match (table, cell) {
-                    (Some(table), Some(cell)) => {
-                        for (k, b) in set.bands.iter().enumerate() {
-                            add(b, table.terms(cell, k));
-                        }
-                    }
-                    _ => set.path_terms(fc.sensor_alt, alt_m, range_m, |_, b, p| add(b, p)),
-                }
-                if TRUTH {
-                    self.facet_truth(one, path, range_m, &sums, &single, single_tau, s);
-                    s.radiance_w_m2_sr = radiance;
-                    if lit {
-                        s.solar_irradiance_w_m2 = sums.irradiance;
-                        s.sun_visible_fraction = path.nodes[0].sun_visible;
-                        s.reflected_solar_w_m2_sr = sums.solar;
-                        s.sun_share = share(sums.transmitted_solar, radiance);
-                    }
-                }
-                radiance
+                self.facet_radiance::<TRUTH, S, C>(set, table, fc, path, [range_m, alt_m], s, sink)
             }
         }
+    }
+
+    /// The radiance of a path that escapes to the sky at `zenith_deg`, with its truth.
+    fn sky_radiance<const TRUTH: bool, S: Atmosphere>(
+        &self,
+        set: &BandSet<S>,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        zenith_deg: f64,
+        s: &mut Sample,
+    ) -> f64 {
+        // The sun's truth terms, when this set of sub-bands carries its beam.
+        let lit = TRUTH && set.bands[0].sun.is_some();
+        let radiance: f64 = set
+            .bands
+            .iter()
+            .map(|b| sky(b, fc.sensor_alt, zenith_deg, path.dir))
+            .sum();
+        if TRUTH {
+            *s = Sample::miss(Event::Sky);
+            s.transmission = 0.0;
+            s.path_radiance_w_m2_sr = radiance;
+            s.radiance_w_m2_sr = radiance;
+            if lit {
+                // The sky's sunlight is what it scatters (none without scattered
+                // tables).
+                let scattered: f64 = set
+                    .bands
+                    .iter()
+                    .map(|b| scattered_sky(b, fc.sensor_alt, zenith_deg, path.dir))
+                    .sum();
+                s.sun_share = share(scattered, radiance);
+            }
+        }
+        radiance
+    }
+
+    /// The radiance of a path that first meets the terrain, `[range, range of the path
+    /// terms]` (m) away, with its truth.
+    fn terrain_radiance<const TRUTH: bool, S: Atmosphere>(
+        &self,
+        set: &BandSet<S>,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        [range_m, path_range_m]: [f64; 2],
+        s: &mut Sample,
+    ) -> f64 {
+        let one = set.bands.len() == 1;
+        // The sun's truth terms, when this set of sub-bands carries its beam.
+        let lit = TRUTH && set.bands[0].sun.is_some();
+        let (mut radiance, mut transmitted, mut path_radiance) = (0.0, 0.0, 0.0);
+        let (mut blackbody, mut leaving, mut single_tau) = (0.0, 0.0, 0.0);
+        let (mut solar, mut transmitted_solar, mut irradiance) = (0.0, 0.0, 0.0);
+        let (mut emitted, mut single_eps) = (0.0, 0.0);
+        let cos_sun_zenith = self.sun.as_ref().map_or(0.0, |g| g.to_sun[2].max(0.0));
+        set.path_terms(fc.sensor_alt, 0.0, path_range_m, |_, b, p| {
+            let (p, scattered) = lit_path(b, p, fc.sensor_alt, 0.0, path.dir);
+            let ground = self.terrain_terms(b, path.dir);
+            let (through, tau_sun) =
+                transmitted_of(b, p.transmission, ground.leaving, ground.solar);
+            radiance += through + p.path_radiance_w_m2_sr;
+            if TRUTH {
+                transmitted += through;
+                path_radiance += p.path_radiance_w_m2_sr;
+                blackbody += b.terrain_blackbody;
+                emitted += ground.emissivity * b.terrain_blackbody;
+                single_eps = ground.emissivity;
+                leaving += ground.leaving;
+                single_tau = p.transmission;
+                if let Some(beam) = &b.sun {
+                    solar += ground.solar;
+                    transmitted_solar += tau_sun * ground.solar + scattered;
+                    irradiance += beam.normal_w_m2(0.0) * cos_sun_zenith;
+                }
+            }
+        });
+        if TRUTH {
+            *s = Sample::miss(Event::Terrain);
+            s.range_m = range_m;
+            s.temperature_k = self.terrain.temperature_k;
+            // A material's: as a facet's, the emitted-radiance-weighted mean over
+            // the sub-bands; the constant's is the same in every sub-band.
+            s.emissivity = if one || self.terrain_slot.is_none() {
+                single_eps
+            } else {
+                emitted / blackbody
+            };
+            s.reflectance = 1.0 - s.emissivity;
+            s.blackbody_w_m2_sr = blackbody;
+            s.surface_leaving_w_m2_sr = leaving;
+            s.transmission = effective_transmission(one, single_tau, transmitted, leaving);
+            s.path_radiance_w_m2_sr = path_radiance;
+            s.radiance_w_m2_sr = radiance;
+            if lit {
+                // The terrain beyond the scene is flat and unshadowed.
+                s.solar_irradiance_w_m2 = irradiance;
+                s.sun_visible_fraction = if cos_sun_zenith > 0.0 { 1.0 } else { 0.0 };
+                s.reflected_solar_w_m2_sr = solar;
+                s.sun_share = share(transmitted_solar, radiance);
+            }
+        }
+        radiance
+    }
+
+    /// The radiance of a path that first meets a facet `[range (m), altitude (m)]`, with
+    /// its truth and its charges.
+    #[allow(clippy::too_many_arguments)] // radiance_sink's, with the facet's place
+    fn facet_radiance<const TRUTH: bool, S: Atmosphere, C: ChargeSink>(
+        &self,
+        set: &BandSet<S>,
+        table: Option<&PathTable>,
+        fc: &FrameConsts<'_>,
+        path: &Path,
+        [range_m, alt_m]: [f64; 2],
+        s: &mut Sample,
+        sink: &mut C,
+    ) -> f64 {
+        let one = set.bands.len() == 1;
+        // The sun's truth terms, when this set of sub-bands carries its beam.
+        let lit = TRUTH && set.bands[0].sun.is_some();
+        let cell = table.map(|t| t.cell(alt_m, range_m));
+        let mut sums = Sums::default();
+        let (mut single, mut single_tau) = (SurfaceTerms::default(), 0.0);
+        let mut radiance = 0.0;
+        let mut add = |b: &BandData<S>, p: PathTerms| {
+            // The path table's terms are the air's own: by day the scattered
+            // sunlight is added here for the path's direction, table or not.
+            let (p, scattered) = lit_path(b, p, fc.sensor_alt, alt_m, path.dir);
+            // By day the sunlight in the leaving radiance is needed apart (it has a
+            // path τ of its own), with or without the truth.
+            let first = if b.sun.is_some() {
+                self.leaving_chain::<true, S>(b, path)
+            } else {
+                self.leaving_chain::<TRUTH, S>(b, path)
+            };
+            let (through, tau_sun) = transmitted_of(b, p.transmission, first.leaving, first.solar);
+            radiance += through + p.path_radiance_w_m2_sr;
+            if C::ON {
+                self.charge_path(b, path, &first, p.transmission, sink);
+            }
+            if TRUTH {
+                let derivative = b.derivative_at(&path.nodes[0].surface);
+                sums.add(
+                    &first,
+                    [p.transmission, tau_sun],
+                    through,
+                    p.path_radiance_w_m2_sr,
+                    derivative,
+                );
+                sums.transmitted_solar += scattered;
+                single = first;
+                single_tau = p.transmission;
+            }
+        };
+        match (table, cell) {
+            (Some(table), Some(cell)) => {
+                for (k, b) in set.bands.iter().enumerate() {
+                    add(b, table.terms(cell, k));
+                }
+            }
+            _ => set.path_terms(fc.sensor_alt, alt_m, range_m, |_, b, p| add(b, p)),
+        }
+        if TRUTH {
+            self.facet_truth(one, path, range_m, &sums, &single, single_tau, s);
+            s.radiance_w_m2_sr = radiance;
+            if lit {
+                s.solar_irradiance_w_m2 = sums.irradiance;
+                s.sun_visible_fraction = path.nodes[0].sun_visible;
+                s.reflected_solar_w_m2_sr = sums.solar;
+                s.sun_share = share(sums.transmitted_solar, radiance);
+            }
+        }
+        radiance
     }
 
     /// The truth terms of a path whose first event is a facet.

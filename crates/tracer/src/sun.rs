@@ -53,7 +53,7 @@
 use irsig_model::interp::{lerp, linear};
 
 use crate::error::{TraceError, TraceErrorKind};
-use crate::vec::{V3, basis, dot, scale};
+use glam::DVec3;
 
 /// The sun's angular radius seen from the Earth at its mean distance (the orbit's
 /// semi-major axis), degrees (0.533° across). On a given day it is this times `r₀/r`, 0.2711°
@@ -192,7 +192,7 @@ impl SunBeam {
 pub struct Sun {
     /// Direction toward the sun's centre in the scene's axes (x east, y north, z up); need
     /// not be a unit vector.
-    pub to_sun: V3,
+    pub to_sun: DVec3,
     /// The disk's angular radius, degrees ([`SUN_ANGULAR_RADIUS_DEG`]).
     pub angular_radius_deg: f64,
     /// Shadow rays per facet hit: 1 aims at the disk's centre (hard shadows); more sample
@@ -205,7 +205,7 @@ pub struct Sun {
 impl Sun {
     /// A sun toward `to_sun` with the mean angular radius and one shadow ray per hit.
     #[must_use]
-    pub fn new(to_sun: V3, beams: Vec<SunBeam>) -> Self {
+    pub fn new(to_sun: DVec3, beams: Vec<SunBeam>) -> Self {
         Self {
             to_sun,
             angular_radius_deg: SUN_ANGULAR_RADIUS_DEG,
@@ -217,7 +217,7 @@ impl Sun {
     /// The geometry the tracer traces with, checked.
     pub(crate) fn geometry(&self) -> Result<SunGeometry, TraceError> {
         let v = self.to_sun;
-        let n = dot(v, v).sqrt();
+        let n = v.dot(v).sqrt();
         if !(n.is_finite() && n > 0.0) {
             return Err(invalid(format!(
                 "sun direction {v:?}: expected a finite vector of non-zero length"
@@ -235,11 +235,11 @@ impl Sun {
                 self.shadow_rays
             )));
         }
-        let to_sun = scale(v, 1.0 / n);
+        let to_sun = v * (1.0 / n);
         let cos_radius = a.to_radians().cos();
         // 1 − cos α without cancellation.
         let one_minus_cos = 2.0 * (a.to_radians() / 2.0).sin().powi(2);
-        let (t, b) = basis(to_sun);
+        let (t, b) = to_sun.any_orthonormal_pair();
         Ok(SunGeometry {
             to_sun,
             tangent: t,
@@ -257,10 +257,10 @@ impl Sun {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct SunGeometry {
     /// Unit vector toward the disk's centre.
-    pub(crate) to_sun: V3,
+    pub(crate) to_sun: DVec3,
     /// With `to_sun`, an orthonormal basis.
-    pub(crate) tangent: V3,
-    pub(crate) bitangent: V3,
+    pub(crate) tangent: DVec3,
+    pub(crate) bitangent: DVec3,
     /// Cosine of the angular radius: a direction `d` lies in the disk when
     /// `d·to_sun ≥ cos_radius`.
     pub(crate) cos_radius: f64,
@@ -277,7 +277,7 @@ pub(crate) struct SunGeometry {
 impl SunGeometry {
     /// The direction of the disk at `(u1, u2)` in the unit square, uniform in solid angle
     /// over the disk.
-    pub(crate) fn disk_direction(&self, u1: f64, u2: f64) -> V3 {
+    pub(crate) fn disk_direction(&self, u1: f64, u2: f64) -> DVec3 {
         let cos_t = 1.0 - u1 * self.one_minus_cos;
         let sin_t = (u1 * self.one_minus_cos * (2.0 - u1 * self.one_minus_cos))
             .max(0.0)
@@ -287,11 +287,7 @@ impl SunGeometry {
         let t = self.tangent;
         let b = self.bitangent;
         let d = self.to_sun;
-        [
-            cos_t * d[0] + sin_t * (c * t[0] + s * b[0]),
-            cos_t * d[1] + sin_t * (c * t[1] + s * b[1]),
-            cos_t * d[2] + sin_t * (c * t[2] + s * b[2]),
-        ]
+        d * cos_t + (t * c + b * s) * sin_t
     }
 }
 
@@ -318,11 +314,11 @@ mod tests {
         assert!(SunBeam::new(vec![0.0], vec![1.0, 2.0]).is_err());
         assert!(SunBeam::uniform(-1.0).is_err());
         assert!(SunBeam::uniform(f64::NAN).is_err());
-        let ok = Sun::new([0.0, 0.0, 1.0], vec![]);
+        let ok = Sun::new(DVec3::new(0.0, 0.0, 1.0), vec![]);
         assert!(ok.geometry().is_ok());
         for bad in [
-            Sun::new([0.0; 3], vec![]),
-            Sun::new([f64::INFINITY, 0.0, 1.0], vec![]),
+            Sun::new(DVec3::splat(0.0), vec![]),
+            Sun::new(DVec3::new(f64::INFINITY, 0.0, 1.0), vec![]),
             Sun {
                 angular_radius_deg: 0.0,
                 ..ok.clone()
@@ -338,7 +334,9 @@ mod tests {
 
     #[test]
     fn disk_directions_are_unit_and_inside_the_disk() {
-        let sun = Sun::new([1.0, 2.0, 3.0], vec![]).geometry().unwrap();
+        let sun = Sun::new(DVec3::new(1.0, 2.0, 3.0), vec![])
+            .geometry()
+            .unwrap();
         // Ω of a cap of half-angle α: 2π(1 − cos α); for 0.2666° about 6.80e-5 sr.
         let a = SUN_ANGULAR_RADIUS_DEG.to_radians();
         let omega = std::f64::consts::TAU * (1.0 - a.cos());
@@ -346,8 +344,8 @@ mod tests {
         assert!((omega - 6.80e-5).abs() < 0.01e-5);
         for (u1, u2) in [(0.0, 0.3), (0.5, 0.7), (1.0, 0.0), (0.999, 0.5)] {
             let d = sun.disk_direction(u1, u2);
-            assert!((dot(d, d) - 1.0).abs() < 1e-12);
-            let c = dot(d, sun.to_sun);
+            assert!((d.dot(d) - 1.0).abs() < 1e-12);
+            let c = d.dot(sun.to_sun);
             assert!(c >= sun.cos_radius - 1e-12, "{u1} {u2}: {c}");
             // u1 is the solid-angle fraction: the angle from the centre is
             // arccos(1 − u1(1 − cos α)).

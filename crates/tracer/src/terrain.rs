@@ -30,7 +30,7 @@ use crate::path::{Mirror, glint_per_sr};
 use crate::shade::escaped;
 use crate::sun::{SunBeam, SunGeometry};
 use crate::tracer::{BandData, Tracer};
-use crate::vec::V3;
+use glam::DVec3;
 
 /// The terrain's surface-leaving terms in one sub-band, along one ray.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -88,7 +88,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The terrain's terms in sub-band `b` along the ray `dir` (unit) from the sensor that
     /// met it: with a material, as a horizontal facet of it at altitude 0 in full sun
     /// would have them; without, the constant ones.
-    pub(crate) fn terrain_terms<S: Atmosphere>(&self, b: &BandData<S>, dir: V3) -> TerrainTerms {
+    pub(crate) fn terrain_terms<S: Atmosphere>(&self, b: &BandData<S>, dir: DVec3) -> TerrainTerms {
         let Some(slot) = self.terrain_slot else {
             let eps = self.terrain.emissivity;
             return TerrainTerms {
@@ -102,7 +102,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let sfrac = m.specular_fraction;
         let eps = b.emissivity[slot].at_cos((-dir[2]).clamp(0.0, 1.0));
         // The mirror direction about the up normal leaves toward the sky from altitude 0.
-        let refl = [dir[0], dir[1], -dir[2]];
+        let refl = DVec3::new(dir.x, dir.y, -dir.z);
         let sky = self.escape(refl, 0.0);
         let (mut specular, mut diffuse) = (escaped(b, sky), sky_hemispheric(b, 0.0));
         let (mut specular_sun, mut diffuse_sun) =
@@ -111,9 +111,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let e = beam.normal_w_m2(0.0);
             let beam_diffuse = e * geometry.to_sun[2].max(0.0) * FRAC_1_PI;
             let glint = e * match &m.lobe {
-                Some(lobe) => {
-                    lobe.glint_per_sr(geometry, [0.0, 0.0, 1.0], [-dir[0], -dir[1], -dir[2]])
-                }
+                Some(lobe) => lobe.glint_per_sr(geometry, DVec3::Z, -dir),
                 None if sfrac > 0.0 => glint_per_sr(geometry, refl, Mirror::Escaped(sky)),
                 None => 0.0,
             };

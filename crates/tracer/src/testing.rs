@@ -5,19 +5,19 @@
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, View};
 
 use crate::geometry::Geometry;
-use crate::vec::V3;
+use glam::DVec3;
 use irsig_radiometry::{BandModel, TotalRadiance};
 
 pub use crate::reference::percentile;
 use crate::{Camera, TraceOptions, Tracer, Vacuum};
 
 /// A closed mesh: vertex positions and triangles as vertex indices.
-pub type Mesh = (Vec<V3>, Vec<[u32; 3]>);
+pub type Mesh = (Vec<[f64; 3]>, Vec<[u32; 3]>);
 
 /// A closed UV sphere with `2 · segments · (rings − 1)` triangles, poles as single
 /// vertices, wound counter-clockwise seen from outside. `rings ≥ 2`, `segments ≥ 3`.
 #[must_use]
-pub fn uv_sphere(centre: V3, radius: f64, rings: u32, segments: u32) -> Mesh {
+pub fn uv_sphere(centre: [f64; 3], radius: f64, rings: u32, segments: u32) -> Mesh {
     let rings = rings.max(2);
     let segments = segments.max(3);
     let mut v = vec![[centre[0], centre[1], centre[2] + radius]];
@@ -59,7 +59,7 @@ pub fn uv_sphere(centre: V3, radius: f64, rings: u32, segments: u32) -> Mesh {
 
 /// An axis-aligned box from `lo` to `hi` as 12 triangles, normals outward.
 #[must_use]
-pub fn box_mesh(lo: V3, hi: V3) -> Mesh {
+pub fn box_mesh(lo: [f64; 3], hi: [f64; 3]) -> Mesh {
     let p = |i: u32| {
         [
             if i & 1 == 0 { lo[0] } else { hi[0] },
@@ -196,10 +196,10 @@ pub fn bench_terrain_camera(pixels: u32) -> Camera {
 
 /// The triangles of a mesh as vertex triples.
 #[must_use]
-pub fn triangles(mesh: &Mesh) -> Vec<[V3; 3]> {
+pub fn triangles(mesh: &Mesh) -> Vec<[DVec3; 3]> {
     mesh.1
         .iter()
-        .map(|f| f.map(|i| mesh.0[i as usize]))
+        .map(|f| f.map(|i| DVec3::from(mesh.0[i as usize])))
         .collect()
 }
 
@@ -549,21 +549,21 @@ impl Default for EdgeExperiment {
 pub struct BareObvhs {
     bvh: obvhs::cwbvh::CwBvh,
     tris: Vec<AlignedTriangle>,
-    centre_m: V3,
+    centre_m: DVec3,
 }
 
 impl BareObvhs {
     /// Builds the CWBVH (obvhs's very fast preset, as the tracer) over `mesh`, re-centred on `centre_m`
     /// (the tracer's [`crate::geometry::Geometry::centre_m`]).
     #[must_use]
-    pub fn new(mesh: &Mesh, centre_m: V3) -> Self {
+    pub fn new(mesh: &Mesh, centre_m: DVec3) -> Self {
         Self::with_params(mesh, centre_m, obvhs::BvhBuildParams::very_fast_build())
     }
 
     /// As [`BareObvhs::new`], with obvhs's build `params` (one of its presets, for
     /// measuring what build quality trades against traversal).
     #[must_use]
-    pub fn with_params(mesh: &Mesh, centre_m: V3, params: obvhs::BvhBuildParams) -> Self {
+    pub fn with_params(mesh: &Mesh, centre_m: DVec3, params: obvhs::BvhBuildParams) -> Self {
         let tris: Vec<obvhs::triangle::Triangle> = triangles(mesh)
             .iter()
             .map(|t| obvhs::triangle::Triangle {
@@ -784,7 +784,7 @@ pub fn temperatures(frame: &crate::Frame) -> Vec<f64> {
 
 /// The unit direction of every pixel's centre ray of `camera`, row by row.
 #[must_use]
-pub fn primary_directions(camera: &Camera) -> Vec<V3> {
+pub fn primary_directions(camera: &Camera) -> Vec<DVec3> {
     let [w, h] = camera.pixels;
     (0..h)
         .flat_map(|r| (0..w).map(move |c| camera.pixel_direction(c, r)))
@@ -799,8 +799,8 @@ pub fn primary_directions(camera: &Camera) -> Vec<V3> {
 #[must_use]
 pub fn geometry_pass<P: Copy + Send + Sync>(
     geometry: &Geometry<P>,
-    position_m: V3,
-    directions: &[V3],
+    position_m: DVec3,
+    directions: &[DVec3],
 ) -> u64 {
     let origin = geometry.to_local(position_m);
     directions
@@ -820,7 +820,7 @@ pub fn geometry_pass<P: Copy + Send + Sync>(
 #[repr(align(64))]
 struct AlignedTriangle(obvhs::triangle::Triangle);
 
-fn f32_local(p: V3, centre_m: V3) -> glam::Vec3A {
+fn f32_local(p: DVec3, centre_m: DVec3) -> glam::Vec3A {
     glam::Vec3A::new(
         (p[0] - centre_m[0]) as f32,
         (p[1] - centre_m[1]) as f32,
@@ -977,4 +977,39 @@ pub fn generated_scene(seed: u64, view: usize) -> (RawScene, MaterialLibrary, Vi
         gain_dc_per_k: None,
     };
     (scene, materials, if view == 0 { low } else { mast })
+}
+
+/// The rough-surface glint rule ([`crate::lobe`]) alone, for its benchmark: a facet
+/// facing up with rms slope `sigma`, lit by a sun at `sun_zenith_deg` (azimuth 0).
+#[derive(Debug)]
+pub struct LobeProbe {
+    lobe: crate::lobe::Lobe,
+    sun: crate::sun::SunGeometry,
+}
+
+impl LobeProbe {
+    /// The probe of slope `sigma` (rad, rms) under a sun at `sun_zenith_deg`.
+    ///
+    /// # Panics
+    /// A zenith that makes no sun (not finite).
+    #[must_use]
+    pub fn new(sigma: f64, sun_zenith_deg: f64) -> Self {
+        let z = sun_zenith_deg.to_radians();
+        let sun = crate::Sun::new(DVec3::new(z.sin(), 0.0, z.cos()), Vec::new())
+            .geometry()
+            .expect("a finite zenith makes a sun");
+        Self {
+            lobe: crate::lobe::Lobe::new(sigma),
+            sun,
+        }
+    }
+
+    /// The glint seen from the view at zenith `theta_deg`, azimuth `phi_deg` (the sun is at
+    /// azimuth 0), sr⁻¹ per unit of `s·r·E_n`: one call of the rule, as a hit makes it.
+    #[must_use]
+    pub fn glint_per_sr(&self, theta_deg: f64, phi_deg: f64) -> f64 {
+        let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+        let view = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+        self.lobe.glint_per_sr(&self.sun, DVec3::Z, view)
+    }
 }

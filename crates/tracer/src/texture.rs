@@ -10,6 +10,7 @@
 //! which gives 10⁻⁶ of `L` at 50 K in 8–14 µm and 10⁻¹² at 300 K (tested against the
 //! band's own radiance below). Untextured hits never read it.
 
+use glam::DVec3;
 use irsig_radiometry::BandModel;
 
 /// The table's step, K.
@@ -74,10 +75,10 @@ impl BlackbodyTable {
 /// (Ericson, *Real-Time Collision Detection*, §3.4), linear in `d = p − a`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct UvMap {
-    origin_m: [f64; 3],
+    origin_m: DVec3,
     uv0: [f64; 2],
-    grad_u: [f64; 3],
-    grad_v: [f64; 3],
+    grad_u: DVec3,
+    grad_v: DVec3,
     /// Texture-coordinate units per metre: `√(A_uv / A_world)`, the square root of the
     /// triangle's area in texture coordinates over its area in the world, constant over
     /// the triangle (the map is affine). A footprint's width in metres times it is its
@@ -89,21 +90,19 @@ pub(crate) struct UvMap {
 impl UvMap {
     /// The map of the triangle `[a, b, c]` (world, m) whose corners have coordinates `uv`;
     /// `None` for a degenerate triangle (the raw scene has none).
-    pub(crate) fn new([a, b, c]: [[f64; 3]; 3], uv: [[f64; 2]; 3]) -> Option<Self> {
-        let sub = |p: [f64; 3], q: [f64; 3]| [p[0] - q[0], p[1] - q[1], p[2] - q[2]];
-        let dot = |p: [f64; 3], q: [f64; 3]| p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
-        let (e1, e2) = (sub(b, a), sub(c, a));
-        let (g11, g12, g22) = (dot(e1, e1), dot(e1, e2), dot(e2, e2));
+    pub(crate) fn new([a, b, c]: [DVec3; 3], uv: [[f64; 2]; 3]) -> Option<Self> {
+        let (e1, e2) = (b - a, c - a);
+        let (g11, g12, g22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
         let det = g11 * g22 - g12 * g12;
         if !(det.is_normal() && det > 0.0) {
             return None;
         }
         // β = dual_b·d, γ = dual_c·d.
-        let dual_b: [f64; 3] = std::array::from_fn(|k| (g22 * e1[k] - g12 * e2[k]) / det);
-        let dual_c: [f64; 3] = std::array::from_fn(|k| (g11 * e2[k] - g12 * e1[k]) / det);
-        let grad = |axis: usize| -> [f64; 3] {
+        let dual_b = (e1 * g22 - e2 * g12) / det;
+        let dual_c = (e2 * g11 - e1 * g12) / det;
+        let grad = |axis: usize| -> DVec3 {
             let (db, dc) = (uv[1][axis] - uv[0][axis], uv[2][axis] - uv[0][axis]);
-            std::array::from_fn(|k| db * dual_b[k] + dc * dual_c[k])
+            dual_b * db + dual_c * dc
         };
         // Twice each area: |e₁ × e₂| = √det in the world, |Δu₁Δv₂ − Δu₂Δv₁| in texture
         // coordinates.
@@ -131,12 +130,11 @@ impl UvMap {
 
     /// The texture coordinates at the world point `p_m` of the facet's plane.
     #[inline]
-    pub(crate) fn at(&self, p_m: [f64; 3]) -> [f64; 2] {
-        let d: [f64; 3] = std::array::from_fn(|k| p_m[k] - self.origin_m[k]);
-        let dot = |g: [f64; 3]| g[0] * d[0] + g[1] * d[1] + g[2] * d[2];
+    pub(crate) fn at(&self, p_m: DVec3) -> [f64; 2] {
+        let d = p_m - self.origin_m;
         [
-            self.uv0[0] + dot(self.grad_u),
-            self.uv0[1] + dot(self.grad_v),
+            self.uv0[0] + self.grad_u.dot(d),
+            self.uv0[1] + self.grad_v.dot(d),
         ]
     }
 }
@@ -180,7 +178,8 @@ pub(crate) fn facet_uv_maps(
             };
             // Indices were checked by the scene's validation.
             Ok(UvMap::new(
-                f.vertices.map(|v| scene.positions_m[v as usize]),
+                f.vertices
+                    .map(|v| DVec3::from(scene.positions_m[v as usize])),
                 uv,
             ))
         })
@@ -258,7 +257,7 @@ impl<B, A> crate::tracer::Tracer<B, A> {
             return None;
         }
         let p_m = self.geometry.to_world(hit.point_local);
-        let field = m.texture.as_ref().map(|t| t.sample(p_m));
+        let field = m.texture.as_ref().map(|t| t.sample(p_m.to_array()));
         let map = maps
             .zip(self.uv_maps.get(hit.facet as usize).copied().flatten())
             .map(|(maps, uv)| {
@@ -316,11 +315,15 @@ mod tests {
         let a = [1.0, 2.0, 3.0];
         let b = [3.0, 2.0, 4.0];
         let c = [1.0, 5.0, 2.0];
-        let map = UvMap::new([a, b, c], [[0.1, 0.2], [0.9, 0.2], [0.1, 0.8]]).unwrap();
+        let map = UvMap::new(
+            [DVec3::from(a), DVec3::from(b), DVec3::from(c)],
+            [[0.1, 0.2], [0.9, 0.2], [0.1, 0.8]],
+        )
+        .unwrap();
         for (beta, gamma) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (0.25, 0.5), (0.3, 0.3)] {
             let p: [f64; 3] =
                 std::array::from_fn(|k| a[k] + beta * (b[k] - a[k]) + gamma * (c[k] - a[k]));
-            let [u, v] = map.at(p);
+            let [u, v] = map.at(DVec3::from(p));
             assert!(
                 (u - (0.1 + 0.8 * beta)).abs() < 1e-14,
                 "{beta} {gamma}: {u}"
@@ -330,7 +333,13 @@ mod tests {
                 "{beta} {gamma}: {v}"
             );
         }
-        assert!(UvMap::new([a, a, c], [[0.0; 2]; 3]).is_none());
+        assert!(
+            UvMap::new(
+                [DVec3::from(a), DVec3::from(a), DVec3::from(c)],
+                [[0.0; 2]; 3]
+            )
+            .is_none()
+        );
     }
 
     #[test]
@@ -338,7 +347,11 @@ mod tests {
         // A right triangle of legs 4 m and 2 m (area 4 m²) mapped onto legs 0.5 and 0.25
         // (area 1/16): √(1/64) = 1/8 unit per metre.
         let map = UvMap::new(
-            [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            [
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(0.0, 2.0, 0.0),
+            ],
             [[0.0, 0.0], [0.5, 0.0], [0.0, 0.25]],
         )
         .unwrap();
@@ -351,7 +364,11 @@ mod tests {
         assert!(map.footprint_uv(2.0, 0.0).is_infinite());
         // A mirrored mapping has the same scale.
         let mirrored = UvMap::new(
-            [[0.0, 0.0, 0.0], [4.0, 0.0, 0.0], [0.0, 2.0, 0.0]],
+            [
+                DVec3::new(0.0, 0.0, 0.0),
+                DVec3::new(4.0, 0.0, 0.0),
+                DVec3::new(0.0, 2.0, 0.0),
+            ],
             [[0.5, 0.0], [0.0, 0.0], [0.5, 0.25]],
         )
         .unwrap();

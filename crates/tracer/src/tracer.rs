@@ -17,7 +17,7 @@ use crate::path_table::{PathTable, PathTermsMode};
 use crate::refine::{PixelSampling, Refinement};
 use crate::sun::SunGeometry;
 use crate::tile::Tile;
-use crate::vec::V3;
+use glam::DVec3;
 
 mod bands;
 mod build;
@@ -245,7 +245,7 @@ pub(crate) struct FrameConsts<'a> {
     /// Image-plane v of the centre of each of the window's rows, from its first.
     vs: Vec<f64>,
     /// The sensor in local coordinates.
-    pub(crate) origin: V3,
+    pub(crate) origin: DVec3,
     /// The sensor's altitude, metres (clamped at the ground).
     pub(crate) sensor_alt: f64,
     /// Cosine of the Earth's limb's angle from nadir seen from the sensor: rays with a

@@ -12,6 +12,7 @@ use irsig_atmosphere::PathTerms;
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::Band;
+use irsig_tracer::DVec3;
 use irsig_tracer::pilot::refinement_of;
 use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene};
 use irsig_tracer::{Atmosphere, Camera, Frame, Sun, SunBeam, Tile, TraceOptions, Tracer};
@@ -127,7 +128,12 @@ fn tracer_and_options(
     };
     let raw = scene(step);
     let groups = raw.facets.iter().map(|f| f.object).collect();
-    let sun = day.then(|| Sun::new([0.4, -0.5, 0.75], vec![SunBeam::uniform(20.0).unwrap()]));
+    let sun = day.then(|| {
+        Sun::new(
+            DVec3::new(0.4, -0.5, 0.75),
+            vec![SunBeam::uniform(20.0).unwrap()],
+        )
+    });
     let tracer = Tracer::new(&raw, &materials(step), Band::default(), Air)
         .unwrap()
         .with_sun(sun)

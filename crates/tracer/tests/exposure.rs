@@ -1,6 +1,7 @@
 //! What a facet sees, for the heat balance (`irsig_tracer::exposure`): view factors against
 //! their closed forms, and shadows against hand geometry.
 
+use irsig_tracer::DVec3;
 use irsig_tracer::exposure::{Exposure, ExposureOptions};
 use irsig_tracer::testing::{box_mesh, ground_quad, raw_scene};
 
@@ -121,7 +122,7 @@ fn the_sun_is_hidden_under_a_box_and_where_hand_geometry_puts_its_shadow() {
     let four = ExposureOptions {
         samples_per_side: 4,
     };
-    let fraction = |facet: usize| exposure.sunlit_fraction(facet, to_sun, four);
+    let fraction = |facet: usize| exposure.sunlit_fraction(facet, DVec3::from(to_sun), four);
     // Facets 12–13 inside, 14–15 south, 16–17 beyond (the cube's 12 first).
     assert_eq!(fraction(12).to_bits(), 0.0_f64.to_bits());
     assert_eq!(fraction(13).to_bits(), 0.0_f64.to_bits());
@@ -146,7 +147,7 @@ fn the_sun_is_hidden_under_a_box_and_where_hand_geometry_puts_its_shadow() {
     // The sun below the horizon lights nothing.
     assert_eq!(
         exposure
-            .sunlit_fraction(14, [0.0, -1.0, -0.01], four)
+            .sunlit_fraction(14, DVec3::new(0.0, -1.0, -0.01), four)
             .to_bits(),
         0.0_f64.to_bits()
     );
@@ -173,7 +174,7 @@ fn a_shadow_edge_through_a_facet_hides_the_share_of_its_sample_points_it_covers(
         samples_per_side: k,
     };
     let lit: f64 = (2..4)
-        .map(|i| exposure.sunlit_fraction(i, [-s, 0.0, s], options))
+        .map(|i| exposure.sunlit_fraction(i, DVec3::new(-s, 0.0, s), options))
         .sum::<f64>()
         / 2.0;
     // Sample points are the centroids of k² equal sub-triangles: the lit share is within

@@ -19,6 +19,7 @@
 use irsig_model::View;
 use irsig_model::decision::SwitchableModel;
 use irsig_radiometry::TotalRadiance;
+use irsig_tracer::DVec3;
 use irsig_tracer::pilot::Piloted;
 use irsig_tracer::reference::{
     ConvergedReference, REFERENCE_ROUNDS_DEFAULT, converged_reference, material_p90s, percentile,
@@ -100,7 +101,10 @@ fn generated(
     };
     let sun = shadow_rays.map(|n| Sun {
         shadow_rays: n,
-        ..Sun::new(to_sun, vec![SunBeam::uniform(beam_w_m2).unwrap()])
+        ..Sun::new(
+            DVec3::from(to_sun),
+            vec![SunBeam::uniform(beam_w_m2).unwrap()],
+        )
     });
     let tracer = Tracer::new(&scene, &materials, TotalRadiance, SKY)
         .unwrap()

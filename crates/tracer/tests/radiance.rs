@@ -618,7 +618,7 @@ fn two_views_of_the_same_scene_agree_where_they_must() {
     let legacy = Camera::from_view(&View::Legacy {
         position_m: pos,
         pixels: [20, 12],
-        omega_phi_kappa_deg: irsig_tracer::look_at_omega_phi_kappa_deg(pos, target),
+        omega_phi_kappa_deg: irsig_tracer::look_at_omega_phi_kappa_deg(pos.into(), target.into()),
         fov_deg: [50.0, 30.0],
         gain_dc_per_k: None,
     })

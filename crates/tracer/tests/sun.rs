@@ -9,7 +9,7 @@ use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::TotalRadiance;
 use irsig_tracer::testing::{Mesh, box_mesh, grey_materials, ground_quad, raw_scene};
 use irsig_tracer::{
-    Camera, Frame, SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam, TraceOptions, Tracer, V3, Vacuum,
+    Camera, DVec3, Frame, SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam, TraceOptions, Tracer, Vacuum,
 };
 
 /// Direct normal irradiance of the test sun, W m⁻².
@@ -18,7 +18,7 @@ const E_N: f64 = 800.0;
 const ZENITH_DEG: f64 = 30.0;
 const T_K: f64 = 300.0;
 
-fn to_sun() -> V3 {
+fn to_sun() -> [f64; 3] {
     let z = ZENITH_DEG.to_radians();
     [z.sin(), 0.0, z.cos()]
 }
@@ -26,7 +26,7 @@ fn to_sun() -> V3 {
 fn sun(shadow_rays: u32) -> Sun {
     Sun {
         shadow_rays,
-        ..Sun::new(to_sun(), vec![SunBeam::uniform(E_N).unwrap()])
+        ..Sun::new(DVec3::from(to_sun()), vec![SunBeam::uniform(E_N).unwrap()])
     }
 }
 
@@ -47,7 +47,7 @@ fn wall(x: f64, [y0, y1]: [f64; 2], [z0, z1]: [f64; 2]) -> Mesh {
     )
 }
 
-fn look_at(position_m: V3, target_m: V3, pixels: [u32; 2], fov_deg: f64) -> Camera {
+fn look_at(position_m: [f64; 3], target_m: [f64; 3], pixels: [u32; 2], fov_deg: f64) -> Camera {
     Camera::from_view(&View::LookAt {
         position_m,
         target_m,
@@ -59,7 +59,7 @@ fn look_at(position_m: V3, target_m: V3, pixels: [u32; 2], fov_deg: f64) -> Came
     .unwrap()
 }
 
-fn looking_down(above: V3) -> Camera {
+fn looking_down(above: [f64; 3]) -> Camera {
     Camera::from_view(&View::Legacy {
         position_m: above,
         pixels: [5, 5],
@@ -450,10 +450,10 @@ fn a_sun_with_the_wrong_number_of_beams_or_bad_geometry_is_refused() {
     let materials = grey_materials(&[(1, 0.9, 0.0)]);
     let beam = SunBeam::uniform(E_N).unwrap();
     let bad = [
-        Sun::new(to_sun(), vec![]),
-        Sun::new(to_sun(), vec![beam.clone(), beam.clone()]),
-        Sun::new([0.0, 0.0, 0.0], vec![beam.clone()]),
-        Sun::new([f64::NAN, 0.0, 1.0], vec![beam.clone()]),
+        Sun::new(DVec3::from(to_sun()), vec![]),
+        Sun::new(DVec3::from(to_sun()), vec![beam.clone(), beam.clone()]),
+        Sun::new(DVec3::new(0.0, 0.0, 0.0), vec![beam.clone()]),
+        Sun::new(DVec3::new(f64::NAN, 0.0, 1.0), vec![beam.clone()]),
         Sun {
             shadow_rays: 0,
             ..sun(1)

@@ -8,7 +8,7 @@ use irsig_atmosphere::PathTerms;
 use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{Mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Atmosphere, Camera, Sun, SunBeam, TraceOptions, Tracer};
+use irsig_tracer::{Atmosphere, Camera, DVec3, Sun, SunBeam, TraceOptions, Tracer};
 
 /// Direct normal irradiance of the test sun, W m⁻².
 const E_N: f64 = 800.0;
@@ -45,7 +45,7 @@ fn sun(pairs: Option<Vec<[f64; 2]>>) -> Sun {
         Some(p) => beam.with_path_transmission(p).unwrap(),
         None => beam,
     };
-    Sun::new([z.sin(), 0.0, z.cos()], vec![beam])
+    Sun::new(DVec3::new(z.sin(), 0.0, z.cos()), vec![beam])
 }
 
 fn tracer(scene: &RawScene, materials: &MaterialLibrary) -> Tracer<TotalRadiance, Grey> {

@@ -14,8 +14,8 @@ use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{Mesh, box_mesh, grey_materials, ground_quad, raw_scene};
 use irsig_tracer::{
-    Atmosphere, Camera, Frame, SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam, Tile, TraceOptions, Tracer,
-    V3, Vacuum,
+    Atmosphere, Camera, DVec3, Frame, SUN_ANGULAR_RADIUS_DEG, Sun, SunBeam, Tile, TraceOptions,
+    Tracer, Vacuum,
 };
 
 /// Direct normal irradiance of the test sun, W m⁻².
@@ -47,7 +47,7 @@ impl Atmosphere for GreyAir {
     }
 }
 
-fn to_sun() -> V3 {
+fn to_sun() -> [f64; 3] {
     let z = ZENITH_DEG.to_radians();
     [z.sin(), 0.0, z.cos()]
 }
@@ -55,7 +55,7 @@ fn to_sun() -> V3 {
 fn sun(shadow_rays: u32) -> Sun {
     Sun {
         shadow_rays,
-        ..Sun::new(to_sun(), vec![SunBeam::uniform(E_N).unwrap()])
+        ..Sun::new(DVec3::from(to_sun()), vec![SunBeam::uniform(E_N).unwrap()])
     }
 }
 
@@ -75,7 +75,7 @@ fn plate(lo: [f64; 2], hi: [f64; 2], z: f64) -> Mesh {
     ground_quad(lo, hi, z)
 }
 
-fn looking_down(above: V3, pixels: u32) -> Camera {
+fn looking_down(above: [f64; 3], pixels: u32) -> Camera {
     Camera::from_view(&View::Legacy {
         position_m: above,
         pixels: [pixels, pixels],

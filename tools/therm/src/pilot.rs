@@ -119,7 +119,7 @@ fn shade_signatures(prepared: &Prepared<'_>, first_s: f64) -> miette::Result<Vec
         };
         let lit = prepared.exposure.sunlit_fractions(
             &all,
-            s,
+            irsig_tracer::DVec3::from(s),
             irsig_tracer::exposure::ExposureOptions {
                 samples_per_side: 4,
             },

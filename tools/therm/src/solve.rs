@@ -476,9 +476,11 @@ pub fn run(
     mut observe: impl FnMut(usize, f64, &[f64], f64, &[PartsK]) -> miette::Result<()>,
 ) -> miette::Result<()> {
     let cast = |m: &Moment| match m.to_sun {
-        Some(s) => scenario
-            .exposure
-            .sunlit_fractions(scenario.facets, s, settings.shadow),
+        Some(s) => scenario.exposure.sunlit_fractions(
+            scenario.facets,
+            irsig_tracer::DVec3::from(s),
+            settings.shadow,
+        ),
         None => vec![0.0; scenario.facets.len()],
     };
     let lit_at = |m: &Moment| -> Arc<Vec<f32>> {

@@ -1,22 +1,29 @@
 use super::*;
-use crate::testing::{box_mesh, uv_sphere};
+use crate::testing::{Mesh, box_mesh, uv_sphere};
 
-fn tris(mesh: &(Vec<V3>, Vec<[u32; 3]>)) -> Vec<[V3; 3]> {
-    mesh.1
-        .iter()
-        .map(|f| f.map(|i| mesh.0[i as usize]))
-        .collect()
+fn tris(mesh: &Mesh) -> Vec<[DVec3; 3]> {
+    crate::testing::triangles(mesh)
+}
+
+/// The geometry of triangles given as coordinate arrays, m.
+fn of_arrays(triangles: &[[[f64; 3]; 3]]) -> Geometry {
+    Geometry::new(
+        &triangles
+            .iter()
+            .map(|t| t.map(DVec3::from))
+            .collect::<Vec<_>>(),
+    )
 }
 
 /// Directions spread over the sphere (a Fibonacci lattice).
-fn directions(n: usize) -> Vec<V3> {
+fn directions(n: usize) -> Vec<DVec3> {
     let golden = std::f64::consts::PI * (3.0 - 5.0_f64.sqrt());
     (0..n)
         .map(|i| {
             let z = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
             let r = (1.0 - z * z).sqrt();
             let phi = golden * i as f64;
-            [r * phi.cos(), r * phi.sin(), z]
+            DVec3::new(r * phi.cos(), r * phi.sin(), z)
         })
         .collect()
 }
@@ -26,26 +33,27 @@ fn rays_at_shared_edges_and_vertices_of_closed_meshes_never_leak() {
     // A finely tessellated sphere: aim at every vertex and every edge midpoint.
     let sphere = uv_sphere([0.3, -0.2, 1.0], 2.0, 48, 96);
     let geometry = Geometry::new(&tris(&sphere));
-    let mut targets = sphere.0.clone();
+    let vertex = |i: u32| DVec3::from(sphere.0[i as usize]);
+    let mut targets: Vec<DVec3> = sphere.0.iter().map(|&p| DVec3::from(p)).collect();
     for f in &sphere.1 {
         for k in 0..3 {
-            let (a, b) = (sphere.0[f[k] as usize], sphere.0[f[(k + 1) % 3] as usize]);
-            targets.push(scale(add(a, b), 0.5));
+            let (a, b) = (vertex(f[k]), vertex(f[(k + 1) % 3]));
+            targets.push((a + b) * 0.5);
         }
     }
     // Rays towards an edge from outside can only miss through a crack.
     let dirs = directions(24);
-    let centre = geometry.to_local([0.3, -0.2, 1.0]);
+    let centre = geometry.to_local(DVec3::new(0.3, -0.2, 1.0));
     let mut leaks = 0;
     for &p in &targets {
         for &d in &dirs {
             let pl = geometry.to_local(p);
             // Only directions that enter the sphere at this point (from outside).
-            let outward = normalize(sub(pl, centre));
-            if dot(outward, d) > -0.05 {
+            let outward = (pl - centre).normalize();
+            if outward.dot(d) > -0.05 {
                 continue;
             }
-            let origin = sub(pl, scale(d, 10.0));
+            let origin = pl - d * 10.0;
             if geometry
                 .closest_hit(origin, d, 0.0, f64::INFINITY, None)
                 .is_none()
@@ -61,11 +69,11 @@ fn rays_at_shared_edges_and_vertices_of_closed_meshes_never_leak() {
     let geometry = Geometry::new(&tris(&cube));
     let mut targets = Vec::new();
     for f in &cube.1 {
-        let [a, b, c] = f.map(|i| cube.0[i as usize]);
+        let [a, b, c] = f.map(|i| DVec3::from(cube.0[i as usize]));
         for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
-            targets.push(add(scale(a, 1.0 - t), scale(b, t)));
-            targets.push(add(scale(b, 1.0 - t), scale(c, t)));
-            targets.push(add(scale(c, 1.0 - t), scale(a, t)));
+            targets.push(a * (1.0 - t) + b * t);
+            targets.push(b * (1.0 - t) + c * t);
+            targets.push(c * (1.0 - t) + a * t);
         }
     }
     // Every ray that passes through a target point and on into the solid's interior
@@ -76,11 +84,11 @@ fn rays_at_shared_edges_and_vertices_of_closed_meshes_never_leak() {
     let (lo, hi) = ([-1.0, -2.0, 0.0], [1.5, 0.5, 3.0]);
     for &p in &targets {
         for &d in &dirs {
-            let q = add(p, scale(d, 1e-3));
+            let q = p + d * 1e-3;
             if !(0..3).all(|k| q[k] > lo[k] + 1e-9 && q[k] < hi[k] - 1e-9) {
                 continue;
             }
-            let origin = sub(geometry.to_local(p), scale(d, 20.0));
+            let origin = geometry.to_local(p) - d * 20.0;
             if geometry
                 .closest_hit(origin, d, 0.0, f64::INFINITY, None)
                 .is_none()
@@ -99,8 +107,16 @@ fn chunks_find_the_hits_one_bvh_finds() {
     let sphere = uv_sphere([0.0, 0.0, 3.0], 2.0, 24, 48);
     let mut t = tris(&sphere);
     t.extend(tris(&box_mesh([3.0, -1.0, 0.0], [4.0, 1.0, 2.5])));
-    t.push([[-50.0, -50.0, 0.0], [50.0, -50.0, 0.0], [50.0, 50.0, 0.0]]);
-    t.push([[-50.0, -50.0, 0.0], [50.0, 50.0, 0.0], [-50.0, 50.0, 0.0]]);
+    t.push([
+        DVec3::new(-50.0, -50.0, 0.0),
+        DVec3::new(50.0, -50.0, 0.0),
+        DVec3::new(50.0, 50.0, 0.0),
+    ]);
+    t.push([
+        DVec3::new(-50.0, -50.0, 0.0),
+        DVec3::new(50.0, 50.0, 0.0),
+        DVec3::new(-50.0, 50.0, 0.0),
+    ]);
     let whole = Geometry::with_chunks(t.len(), |i| t[i], |i| i, usize::MAX);
     let chunked = Geometry::with_chunks(t.len(), |i| t[i], |i| i, 16);
     assert_eq!(whole.bvh.chunks.len(), 1);
@@ -118,7 +134,7 @@ fn chunks_find_the_hits_one_bvh_finds() {
         [3.5, 0.0, 1.0],
     ] {
         for d in directions(2000) {
-            let o = whole.to_local(origin);
+            let o = whole.to_local(DVec3::from(origin));
             let a = whole.closest_hit(o, d, 0.0, f64::INFINITY, None);
             let b = chunked.closest_hit(o, d, 0.0, f64::INFINITY, None);
             assert_eq!(a, b, "from {origin:?} along {d:?}");
@@ -140,9 +156,9 @@ fn distances_points_and_normals_are_right() {
     // The unit square at z = 2 (two triangles), seen from above and below.
     let quad = box_mesh([0.0, 0.0, 2.0], [1.0, 1.0, 2.0 + 1e-3]);
     let geometry = Geometry::new(&tris(&quad));
-    let o = geometry.to_local([0.3, 0.4, 10.0]);
+    let o = geometry.to_local(DVec3::new(0.3, 0.4, 10.0));
     let hit = geometry
-        .closest_hit(o, [0.0, 0.0, -1.0], 0.0, f64::INFINITY, None)
+        .closest_hit(o, DVec3::new(0.0, 0.0, -1.0), 0.0, f64::INFINITY, None)
         .unwrap();
     assert!((hit.distance_m - (10.0 - 2.001)).abs() < 1e-12);
     assert!((hit.cos_incidence - 1.0).abs() < 1e-12);
@@ -152,28 +168,28 @@ fn distances_points_and_normals_are_right() {
     // t_max before the surface: no hit; occlusion agrees.
     assert!(
         geometry
-            .closest_hit(o, [0.0, 0.0, -1.0], 0.0, 7.0, None)
+            .closest_hit(o, DVec3::new(0.0, 0.0, -1.0), 0.0, 7.0, None)
             .is_none()
     );
-    assert!(!geometry.occluded(o, [0.0, 0.0, -1.0], 0.0, 7.0, None));
-    assert!(geometry.occluded(o, [0.0, 0.0, -1.0], 0.0, 8.5, None));
+    assert!(!geometry.occluded(o, DVec3::new(0.0, 0.0, -1.0), 0.0, 7.0, None));
+    assert!(geometry.occluded(o, DVec3::new(0.0, 0.0, -1.0), 0.0, 8.5, None));
     // Missing the bounds entirely.
-    assert!(!geometry.occluded(o, [0.0, 0.0, 1.0], 0.0, f64::INFINITY, None));
+    assert!(!geometry.occluded(o, DVec3::new(0.0, 0.0, 1.0), 0.0, f64::INFINITY, None));
 }
 
 #[test]
 fn back_faces_are_hit_and_reported() {
     // One triangle facing +z, seen from below.
-    let geometry = Geometry::new(&[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
-    let o = geometry.to_local([0.2, 0.2, -5.0]);
+    let geometry = of_arrays(&[[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]]);
+    let o = geometry.to_local(DVec3::new(0.2, 0.2, -5.0));
     let hit = geometry
-        .closest_hit(o, [0.0, 0.0, 1.0], 0.0, f64::INFINITY, None)
+        .closest_hit(o, DVec3::new(0.0, 0.0, 1.0), 0.0, f64::INFINITY, None)
         .unwrap();
     assert!(hit.back_face);
     assert!(hit.normal[2] < -0.999, "normal faces the ray");
-    let o = geometry.to_local([0.2, 0.2, 5.0]);
+    let o = geometry.to_local(DVec3::new(0.2, 0.2, 5.0));
     let hit = geometry
-        .closest_hit(o, [0.0, 0.0, -1.0], 0.0, f64::INFINITY, None)
+        .closest_hit(o, DVec3::new(0.0, 0.0, -1.0), 0.0, f64::INFINITY, None)
         .unwrap();
     assert!(!hit.back_face);
 }
@@ -185,12 +201,12 @@ fn grazing_rays_at_89_9_degrees_hit_with_the_right_angle() {
         [[0.0, 0.0, 0.0], [10.0, 0.0, 0.0], [10.0, 10.0, 0.0]],
         [[0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [0.0, 10.0, 0.0]],
     ];
-    let geometry = Geometry::new(&plate);
+    let geometry = of_arrays(&plate);
     let theta = 89.9_f64.to_radians();
-    let d = [theta.sin(), 0.0, -theta.cos()];
+    let d = DVec3::new(theta.sin(), 0.0, -theta.cos());
     // Aim at (5, 5, 0) from 100 m back along the ray.
-    let target = [5.0, 5.0, 0.0];
-    let o = geometry.to_local(sub(target, scale(d, 100.0)));
+    let target = DVec3::new(5.0, 5.0, 0.0);
+    let o = geometry.to_local(target - d * 100.0);
     let hit = geometry
         .closest_hit(o, d, 0.0, f64::INFINITY, None)
         .unwrap();
@@ -210,7 +226,7 @@ fn a_sensor_12_km_away_resolves_centimetre_detail() {
         t.extend(tris(&q));
     }
     let geometry = Geometry::new(&t);
-    let sensor = [5000.0, -6000.0, 9000.0];
+    let sensor = DVec3::new(5000.0, -6000.0, 9000.0);
     for (x, expect_hit) in [
         (0.005, true),
         (0.015, false),
@@ -218,8 +234,8 @@ fn a_sensor_12_km_away_resolves_centimetre_detail() {
         (0.0095, true),
         (0.0105, false),
     ] {
-        let target = [x, 0.005, 0.0];
-        let d = normalize(sub(target, sensor));
+        let target = DVec3::new(x, 0.005, 0.0);
+        let d = (target - sensor).normalize();
         let o = geometry.to_local(sensor);
         let hit = geometry.closest_hit(o, d, 0.0, f64::INFINITY, None);
         assert_eq!(hit.is_some(), expect_hit, "x = {x}");
@@ -243,11 +259,11 @@ fn facets_far_smaller_and_far_larger_than_the_scene_scale_are_hit() {
         ],
         [[0.0, 0.0, 1.0], [0.001, 0.0, 1.0], [0.0, 0.001, 1.0]],
     ];
-    let geometry = Geometry::new(&t);
-    let down = [0.0, 0.0, -1.0];
+    let geometry = of_arrays(&t);
+    let down = DVec3::NEG_Z;
     let hit = geometry
         .closest_hit(
-            geometry.to_local([0.0002, 0.0002, 100.0]),
+            geometry.to_local(DVec3::new(0.0002, 0.0002, 100.0)),
             down,
             0.0,
             f64::INFINITY,
@@ -257,7 +273,7 @@ fn facets_far_smaller_and_far_larger_than_the_scene_scale_are_hit() {
     assert_eq!(hit.facet, 1);
     let hit = geometry
         .closest_hit(
-            geometry.to_local([0.002, 0.002, 100.0]),
+            geometry.to_local(DVec3::new(0.002, 0.002, 100.0)),
             down,
             0.0,
             f64::INFINITY,
@@ -278,9 +294,9 @@ fn secondary_rays_skip_their_own_facet_and_see_near_neighbours() {
             [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]],
             [[gap, -1.0, -1.0], [gap, 1.0, -1.0], [gap, 0.0, 1.0]],
         ];
-        let geometry = Geometry::new(&t);
-        let p = geometry.to_local([0.0, 0.2, 0.0]);
-        let d = normalize([1.0, 0.0, 0.0001]);
+        let geometry = of_arrays(&t);
+        let p = geometry.to_local(DVec3::new(0.0, 0.2, 0.0));
+        let d = DVec3::new(1.0, 0.0, 0.0001).normalize();
         let hit = geometry.closest_hit(p, d, geometry.surface_epsilon_m(), f64::INFINITY, Some(0));
         let hit = hit.unwrap_or_else(|| panic!("gap {gap}: missed"));
         assert_eq!(hit.facet, 1);

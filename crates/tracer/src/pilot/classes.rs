@@ -26,7 +26,7 @@ use crate::path::{Mirror, Path, Primary};
 use crate::tracer::{
     BandSet, Ctx, Event, FrameConsts, MaterialData, Sample, TraceOptions, Tracer, TruthPixel,
 };
-use crate::vec::V3;
+use glam::DVec3;
 
 /// Points each class is sampled with at least (all of a smaller one). With 24 points the
 /// class's largest error bounds its 90th percentile with 92 % confidence (1 − 0.9²⁴).
@@ -61,7 +61,7 @@ pub struct PixelClass {
 
 impl PixelClass {
     /// The class of a recorded path along `dir` (world, unit).
-    pub(crate) fn of_path(path: &Path, materials: &[MaterialData], dir: V3) -> Self {
+    pub(crate) fn of_path(path: &Path, materials: &[MaterialData], dir: DVec3) -> Self {
         let cos_grazing = GRAZING_DEG.to_radians().cos();
         let near_horizon = dir[2].abs() < HORIZON_DEG.to_radians().sin();
         match (path.primary, path.nodes.first()) {
@@ -100,7 +100,7 @@ impl PixelClass {
     /// `reflects_specularly` says whether a material id reflects specularly (a facet met
     /// by the pixel's reflection that does makes it a mirror in a mirror).
     #[must_use]
-    pub fn of_truth(t: &TruthPixel, dir: V3, reflects_specularly: impl Fn(u16) -> bool) -> Self {
+    pub fn of_truth(t: &TruthPixel, dir: DVec3, reflects_specularly: impl Fn(u16) -> bool) -> Self {
         let facet = matches!(
             t.event,
             Event::Diffuse | Event::SpecularEscapes | Event::SpecularHitsFacet
@@ -202,6 +202,15 @@ impl Census {
         let n = self.candidate.len().max(1) as f64;
         self.candidate.iter().filter(|&&c| c).count() as f64 / n
     }
+
+    /// The indices of the sample points in each class.
+    pub(crate) fn points_by_class(&self) -> Vec<Vec<usize>> {
+        let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); self.classes.len()];
+        for (i, p) in self.points.iter().enumerate() {
+            by_class[p.class].push(i);
+        }
+        by_class
+    }
 }
 
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
@@ -227,14 +236,73 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             seed,
             truth: false,
         };
+        let per_pixel = self.centre_classes(fc, set, &options);
+        let temperatures: Vec<f64> = per_pixel.iter().map(|p| p.1).collect();
+        let contrast = crate::tracer::contrast_of(&temperatures, wu, hu);
+        let thin = self.thin_pixels(camera);
+        let candidate: Vec<bool> = contrast
+            .iter()
+            .zip(&thin)
+            .map(|(&c, &t)| c > edge_k || t)
+            .collect();
+
+        // The classes the centre rays found, in a fixed order, and their pixels.
+        let mut found: Vec<PixelClass> = per_pixel.iter().map(|p| p.0).collect();
+        found.sort_unstable();
+        found.dedup();
+        let total = (wu * hu).max(1) as f64;
+        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x7069_6c6f_7400_0001);
+        let (mut classes, mut chosen) =
+            stratified_sample(&found, &per_pixel, w, total, points, &mut rng);
+
+        // The sub-pixel probe: the refinement candidates (thin pixels, the horizon's, and
+        // edges, where a sliver of a pixel may hold what no centre ray met: a wire, a mirror
+        // glimpsed in a window's edge), 4 × 4 rays each; a class no centre ray found becomes
+        // a class of its own, sampled at the points that found it.
+        let mut probe_pixels: Vec<u32> = (0..(wu * hu) as u32)
+            .filter(|&i| candidate[i as usize])
+            .collect();
+        let probe_count = probe_pixels.len();
+        let (probed, _) = probe_pixels.partial_shuffle(&mut rng, PROBED.min(probe_count));
+        probed.sort_unstable();
+        let mut probe_points = self.probe_sub_pixels(fc, &options, probed, &found);
+        let probe_rays = (probed.len() as f64 * f64::from(PROBE_SIDE * PROBE_SIDE)).max(1.0);
+        // A class's area: the probe rays that met it, over the probed share of the
+        // candidates.
+        let share = |met: usize| met as f64 / probe_rays * probe_count as f64 / total;
+        sub_pixel_classes(
+            &mut probe_points,
+            share,
+            &mut rng,
+            &mut classes,
+            &mut chosen,
+        );
+        Census {
+            classes,
+            points: chosen,
+            candidate,
+            contrast,
+            thin,
+        }
+    }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Each pixel's class and apparent temperature from its centre ray, rows in parallel.
+    fn centre_classes<S: Atmosphere>(
+        &self,
+        fc: &FrameConsts<'_>,
+        set: &BandSet<S>,
+        options: &TraceOptions,
+    ) -> Vec<(PixelClass, f64)> {
+        let camera = fc.camera();
+        let [w, h] = camera.pixels;
         let inverse = self.inverse_table();
-        // Each pixel's class and apparent temperature, rows in parallel.
-        let per_pixel: Vec<(PixelClass, f64)> = (0..h)
+        (0..h)
             .into_par_iter()
             .flat_map_iter(|row| {
                 let mut path = Path::default();
                 let mut scratch = Sample::miss(Event::Sky);
-                let options = &options;
                 let inverse = &inverse;
                 (0..w)
                     .map(move |col| {
@@ -250,72 +318,26 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     })
                     .collect::<Vec<_>>()
             })
-            .collect();
-        let temperatures: Vec<f64> = per_pixel.iter().map(|p| p.1).collect();
-        let contrast = crate::tracer::contrast_of(&temperatures, wu, hu);
-        let thin = self.thin_pixels(camera);
-        let candidate: Vec<bool> = contrast
-            .iter()
-            .zip(&thin)
-            .map(|(&c, &t)| c > edge_k || t)
-            .collect();
+            .collect()
+    }
 
-        // The classes the centre rays found, in a fixed order, and their pixels.
-        let mut found: Vec<PixelClass> = per_pixel.iter().map(|p| p.0).collect();
-        found.sort_unstable();
-        found.dedup();
-        let mut members: Vec<Vec<u32>> = vec![Vec::new(); found.len()];
-        for (i, p) in per_pixel.iter().enumerate() {
-            if let Ok(k) = found.binary_search(&p.0) {
-                members[k].push(i as u32);
-            }
-        }
-        let total = (wu * hu).max(1) as f64;
-        let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x7069_6c6f_7400_0001);
-        let mut classes = Vec::new();
-        let mut chosen = Vec::new();
-        for (k, (class, pixels)) in found.iter().zip(&mut members).enumerate() {
-            let share = pixels.len() as f64 / total;
-            let wanted = ((points as f64 * share).round() as usize)
-                .max(CLASS_FLOOR)
-                .min(pixels.len());
-            let (picked, _) = pixels.partial_shuffle(&mut rng, wanted);
-            picked.sort_unstable();
-            for &i in picked.iter() {
-                let (col, row) = (i % w, i / w);
-                chosen.push(SamplePoint {
-                    x: f64::from(col) + 0.5,
-                    y: f64::from(row) + 0.5,
-                    pixel: u64::from(i),
-                    class: k,
-                    probe: false,
-                });
-            }
-            classes.push(ClassCensus {
-                class: *class,
-                sub_pixel: false,
-                share,
-                samples: wanted,
-            });
-        }
-
-        // The sub-pixel probe: the refinement candidates (thin pixels, the horizon's, and
-        // edges, where a sliver of a pixel may hold what no centre ray met: a wire, a mirror
-        // glimpsed in a window's edge), 4 × 4 rays each; a class no centre ray found becomes
-        // a class of its own, sampled at the points that found it.
-        let mut probe_pixels: Vec<u32> = (0..(wu * hu) as u32)
-            .filter(|&i| candidate[i as usize])
-            .collect();
-        let probe_count = probe_pixels.len();
-        let (probed, _) = probe_pixels.partial_shuffle(&mut rng, PROBED.min(probe_count));
-        probed.sort_unstable();
-        // Each probed pixel's rays are its own stream: probed side by side, taken in order.
+    /// The probed pixels' sub-pixel rays (each pixel its own stream, probed side by side,
+    /// taken in order) that met a class no centre ray found, sorted by class and position.
+    fn probe_sub_pixels(
+        &self,
+        fc: &FrameConsts<'_>,
+        options: &TraceOptions,
+        probed: &[u32],
+        found: &[PixelClass],
+    ) -> Vec<(PixelClass, SamplePoint)> {
+        let camera = fc.camera();
+        let w = camera.pixels[0];
         let mut probe_points: Vec<(PixelClass, SamplePoint)> = probed
             .par_iter()
             .map_init(Path::default, |path, &i| {
                 let (col, row) = (i % w, i / w);
                 let mut ctx =
-                    Ctx::for_pixel(&options, u64::from(i)).stream(crate::tracer::PROBE_STREAM);
+                    Ctx::for_pixel(options, u64::from(i)).stream(crate::tracer::PROBE_STREAM);
                 let mut hits: Vec<(PixelClass, f64, f64)> = Vec::new();
                 ctx.for_each_subpixel((col, row), PROBE_SIDE, |ctx, x, y| {
                     let dir = camera.direction_at(x, y);
@@ -346,41 +368,89 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .then(a.1.x.total_cmp(&b.1.x))
                 .then(a.1.y.total_cmp(&b.1.y))
         });
-        let probe_rays = (probed.len() as f64 * f64::from(PROBE_SIDE * PROBE_SIDE)).max(1.0);
-        let mut start = 0;
-        while start < probe_points.len() {
-            let class = probe_points[start].0;
-            let end = start
-                + probe_points[start..]
-                    .iter()
-                    .take_while(|p| p.0 == class)
-                    .count();
-            let group = &mut probe_points[start..end];
-            // Its area: the probe rays that met it, over the probed share of the
-            // candidates.
-            let share = (end - start) as f64 / probe_rays * probe_count as f64 / total;
-            let k = classes.len();
-            let wanted = CLASS_FLOOR.min(group.len());
-            let (picked, _) = group.partial_shuffle(&mut rng, wanted);
-            picked.sort_by(|a, b| a.1.pixel.cmp(&b.1.pixel).then(a.1.x.total_cmp(&b.1.x)));
-            for (_, p) in picked.iter() {
-                chosen.push(SamplePoint { class: k, ..*p });
-            }
-            classes.push(ClassCensus {
-                class,
-                sub_pixel: true,
-                share,
-                samples: wanted,
+        probe_points
+    }
+}
+
+/// The stratified sample of the classes the centre rays `found` (sorted): a floor of
+/// [`CLASS_FLOOR`] points in each, the rest in proportion to its pixels.
+fn stratified_sample(
+    found: &[PixelClass],
+    per_pixel: &[(PixelClass, f64)],
+    w: u32,
+    total: f64,
+    points: usize,
+    rng: &mut ChaCha8Rng,
+) -> (Vec<ClassCensus>, Vec<SamplePoint>) {
+    let mut members: Vec<Vec<u32>> = vec![Vec::new(); found.len()];
+    for (i, p) in per_pixel.iter().enumerate() {
+        if let Ok(k) = found.binary_search(&p.0) {
+            members[k].push(i as u32);
+        }
+    }
+    let mut classes = Vec::new();
+    let mut chosen = Vec::new();
+    for (k, (class, pixels)) in found.iter().zip(&mut members).enumerate() {
+        let share = pixels.len() as f64 / total;
+        let wanted = ((points as f64 * share).round() as usize)
+            .max(CLASS_FLOOR)
+            .min(pixels.len());
+        let (picked, _) = pixels.partial_shuffle(rng, wanted);
+        picked.sort_unstable();
+        for &i in picked.iter() {
+            let (col, row) = (i % w, i / w);
+            chosen.push(SamplePoint {
+                x: f64::from(col) + 0.5,
+                y: f64::from(row) + 0.5,
+                pixel: u64::from(i),
+                class: k,
+                probe: false,
             });
-            start = end;
         }
-        Census {
-            classes,
-            points: chosen,
-            candidate,
-            contrast,
-            thin,
+        classes.push(ClassCensus {
+            class: *class,
+            sub_pixel: false,
+            share,
+            samples: wanted,
+        });
+    }
+    (classes, chosen)
+}
+
+/// Each class only the probe found (`probe_points` sorted by class) becomes a sub-pixel
+/// class of the census, its share of the frame `share(rays that met it)`, sampled at up
+/// to [`CLASS_FLOOR`] of those rays.
+fn sub_pixel_classes(
+    probe_points: &mut [(PixelClass, SamplePoint)],
+    share: impl Fn(usize) -> f64,
+    rng: &mut ChaCha8Rng,
+    classes: &mut Vec<ClassCensus>,
+    chosen: &mut Vec<SamplePoint>,
+) {
+    let mut start = 0;
+    while start < probe_points.len() {
+        let class = probe_points[start].0;
+        let end = start
+            + probe_points[start..]
+                .iter()
+                .take_while(|p| p.0 == class)
+                .count();
+        let group = &mut probe_points[start..end];
+        let share = share(end - start);
+        let k = classes.len();
+        let wanted = CLASS_FLOOR.min(group.len());
+        let (picked, _) = group.partial_shuffle(rng, wanted);
+        picked.sort_by(|a, b| a.1.pixel.cmp(&b.1.pixel).then(a.1.x.total_cmp(&b.1.x)));
+        for (_, p) in picked.iter() {
+            chosen.push(SamplePoint { class: k, ..*p });
         }
+        classes.push(ClassCensus {
+            class,
+            sub_pixel: true,
+            share,
+            samples: wanted,
+        });
+        start = end;
     }
 }
 

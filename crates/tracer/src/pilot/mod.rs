@@ -57,8 +57,9 @@ use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
 use crate::path_table::PathTermsMode;
 use crate::tile::Tile;
-use crate::tracer::{TraceOptions, Tracer};
+use crate::tracer::{FrameConsts, TraceOptions, Tracer};
 use choose::{Combo, Counts, MODELS};
+use classes::Census;
 use measure::{Measured, Sets};
 use report::Shortfall;
 use trial::Trial;
@@ -112,7 +113,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
         // 1. The census, 2. each sample point measured under every setting.
         let census = self.census(&fc, band_model, edge_k, points as usize, seed);
-        let inverse = self.inverse_table();
         let sets = Sets {
             reference: indices.reference,
             band_model: indices.band_model,
@@ -120,18 +120,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             sub_bands: &indices.sub_bands,
             table: table.as_ref(),
         };
-        let measured: Vec<Measured> = census
-            .points
-            .par_iter()
-            .map(|p| {
-                let candidate = census.candidate[p.pixel as usize];
-                self.measure(&fc, space, &sets, &inverse, seed, p, candidate)
-            })
-            .collect();
-        let mut by_class: Vec<Vec<usize>> = vec![Vec::new(); census.classes.len()];
-        for (i, p) in census.points.iter().enumerate() {
-            by_class[p.class].push(i);
-        }
+        let measured = self.measure_all(&fc, space, &sets, &census, seed);
+        let by_class = census.points_by_class();
         let residual = residual::residuals(space, &measured, &by_class);
         // Refinement's target σ is a share of the tolerance set by the share of candidates.
         let target_share = trial::refinement_for(
@@ -171,22 +161,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let reference_combo: Combo = [0; MODELS];
 
         // 4. Refinement: its target from the share of candidates, its cost from a trial.
-        let supersampling = space.supersampling[chosen_combo[3]];
-        let candidate_share = census.candidate_share();
-        let (_, refinement) =
-            trial::refinement_for(supersampling, candidate_share, tolerance_k, det_k, edge_k);
-        let chosen_options = TraceOptions {
-            specular_bounces: space.bounces[chosen_combo[1]],
-            sky_view_rays: space.sky_view_rays[chosen_combo[2]],
-            supersampling: 1,
-            adaptive_threshold_k: None,
+        let (refinement, trial) = self.refinement_trial(
+            &fc,
+            space,
+            &census,
+            &chosen_combo,
+            [tolerance_k, det_k, edge_k],
             seed,
-            truth: false,
-        };
-        let trial = match &refinement {
-            Some(r) => self.trial(&fc, &census, &chosen_options, r, seed),
-            None => Trial::default(),
-        };
+        );
         if trial.pixels > 0 {
             counts.paths_per_candidate = trial.paths_per_candidate;
             counts.paths_by_side.clone_from(&trial.paths_by_side);
@@ -235,15 +217,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let target_k = refinement.map_or(0.0, |r| r.target_k);
         let at = (&census, measured.as_slice(), guaranteed.as_slice());
         let predicted_k = terms.frame_percentile_k(at, &chosen_combo, target_k, percentile);
-        let sampling = refinement.map(|r| SamplingReport {
-            target_k: r.target_k,
-            edge_k: r.edge_k,
-            max_side: r.max_side,
-            candidates_share: candidate_share,
-            paths_per_candidate: counts.paths_per_candidate,
-            capped_share: trial.capped_share,
-            trial_pixels: trial.pixels as u32,
-        });
         let decision = Decision {
             tolerance_k,
             percentile,
@@ -259,7 +232,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 self.reference_names(space)
             ),
             classes,
-            sampling,
+            sampling: sampling_report(refinement, &census, &counts, &trial),
             not_guaranteed_share: not_guaranteed,
             data_error: None,
             data_error_k: None,
@@ -269,6 +242,80 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             decision,
         })
     }
+}
+
+impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
+    /// Every sample point of the census measured under every setting of `space`.
+    fn measure_all<S: Atmosphere>(
+        &self,
+        fc: &FrameConsts<'_>,
+        space: &PilotSpace<S>,
+        sets: &Sets<'_>,
+        census: &Census,
+        seed: u64,
+    ) -> Vec<Measured> {
+        let inverse = self.inverse_table();
+        census
+            .points
+            .par_iter()
+            .map(|p| {
+                let candidate = census.candidate[p.pixel as usize];
+                self.measure(fc, space, sets, &inverse, seed, p, candidate)
+            })
+            .collect()
+    }
+
+    /// Refinement for the chosen combination: its target from the share of candidates
+    /// (`[tolerance, deterministic share, edge share]`, K) and its cost from a trial.
+    fn refinement_trial<S>(
+        &self,
+        fc: &FrameConsts<'_>,
+        space: &PilotSpace<S>,
+        census: &Census,
+        combo: &Combo,
+        [tolerance_k, det_k, edge_k]: [f64; 3],
+        seed: u64,
+    ) -> (Option<crate::refine::Refinement>, Trial) {
+        let supersampling = space.supersampling[combo[3]];
+        let (_, refinement) = trial::refinement_for(
+            supersampling,
+            census.candidate_share(),
+            tolerance_k,
+            det_k,
+            edge_k,
+        );
+        let chosen_options = TraceOptions {
+            specular_bounces: space.bounces[combo[1]],
+            sky_view_rays: space.sky_view_rays[combo[2]],
+            supersampling: 1,
+            adaptive_threshold_k: None,
+            seed,
+            truth: false,
+        };
+        let trial = match &refinement {
+            Some(r) => self.trial(fc, census, &chosen_options, r, seed),
+            None => Trial::default(),
+        };
+        (refinement, trial)
+    }
+}
+
+/// What the decision records of refinement, where there is any.
+fn sampling_report(
+    refinement: Option<crate::refine::Refinement>,
+    census: &Census,
+    counts: &Counts,
+    trial: &Trial,
+) -> Option<SamplingReport> {
+    refinement.map(|r| SamplingReport {
+        target_k: r.target_k,
+        edge_k: r.edge_k,
+        max_side: r.max_side,
+        candidates_share: census.candidate_share(),
+        paths_per_candidate: counts.paths_per_candidate,
+        capped_share: trial.capped_share,
+        trial_pixels: trial.pixels as u32,
+    })
 }
 
 /// The space's band-set indices, once the tolerance, the percentile and every model's

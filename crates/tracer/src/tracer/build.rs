@@ -2,6 +2,7 @@
 //! precomputed blackbody tables, image maps and the sun; and band sets of other sub-bands
 //! on the same scene, for the pilot.
 
+use glam::DVec3;
 use irsig_model::{MaterialLibrary, RawScene};
 use irsig_radiometry::{BandModel, EmissivityTable};
 
@@ -77,76 +78,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 "no sub-band: expected at least one".into(),
             )));
         }
-        let mut slot_of = vec![u16::MAX; usize::from(u16::MAX) + 1];
-        let mut mats = Vec::with_capacity(materials.materials.len());
-        let mut tables = Vec::with_capacity(materials.materials.len());
-        for (slot, m) in materials.materials.iter().enumerate() {
-            slot_of[usize::from(m.id.0)] = slot as u16;
-            let (angle_deg, emissivity) = m.emissivity.iter().copied().unzip();
-            let table = EmissivityTable::new(angle_deg, emissivity).map_err(|e| {
-                TraceError::new(TraceErrorKind::InvalidEmissivity {
-                    material: m.id.0,
-                    reason: e.to_string(),
-                })
-            })?;
-            tables.push(table);
-            let texture = match &m.texture {
-                Some(t) if t.varies() => {
-                    Some(irsig_texture::TextureFields::new(t).map_err(|e| {
-                        TraceError::new(TraceErrorKind::InvalidOptions(format!(
-                            "material {}: {e}",
-                            m.id.0
-                        )))
-                    })?)
-                }
-                _ => None,
-            };
-            mats.push(MaterialData {
-                id: m.id.0,
-                name: m.name.clone(),
-                specular_fraction: m.specular_fraction,
-                lobe: m
-                    .rms_slope
-                    .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
-                    .map(crate::lobe::Lobe::new),
-                texture,
-                maps: None,
-                mix_slots: Vec::new(),
-            });
-        }
+        let (slot_of, mut mats, tables) = material_data(materials)?;
         for (id, m) in maps {
             if let Some(slot) = mats.iter().position(|d| d.id == id.0) {
                 mats[slot].maps = Some(m);
             }
         }
         mix_slots(materials, &slot_of, &mut mats)?;
-        // One table entry per distinct temperature (scenes hold few, and neighbouring facets
-        // usually share one), so K sub-bands cost K small tables, not K × facets; the
-        // records' L_T is read from the first sub-band's.
-        let mut temperatures: Vec<f64> = Vec::new();
-        let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
-        let mut last: Option<(u64, u32)> = None;
-        let mut temperature_index = Vec::with_capacity(scene.facets.len());
-        for (i, f) in scene.facets.iter().enumerate() {
-            if slot_of[usize::from(f.material.0)] == u16::MAX {
-                return Err(TraceError::new(TraceErrorKind::UnknownMaterial {
-                    facet: i,
-                    material: f.material.0,
-                }));
-            }
-            let bits = f.temperature_k.to_bits();
-            temperature_index.push(match last {
-                Some((b, index)) if b == bits => index,
-                _ => {
-                    let index = *index_of.entry(bits).or_insert_with(|| {
-                        temperatures.push(f.temperature_k);
-                        (temperatures.len() - 1) as u32
-                    });
-                    last = Some((bits, index));
-                    index
-                }
-            });
-        }
+        let (mut temperatures, mut index_of, temperature_index) =
+            temperature_indices(scene, &slot_of)?;
         let mix_temperatures = crate::mixture::mix_temperature_indices(scene, materials, |t| {
             *index_of.entry(t.to_bits()).or_insert_with(|| {
                 temperatures.push(t);
@@ -178,7 +118,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let triangle = |i: usize| {
             scene.facets[i]
                 .vertices
-                .map(|v| scene.positions_m[v as usize])
+                .map(|v| DVec3::from(scene.positions_m[v as usize]))
         };
         let geometry = Geometry::with_data(scene.facets.len(), triangle, radiometry);
         drop(temperature_index);
@@ -476,4 +416,84 @@ fn mix_slots(
             .collect();
     }
     Ok(())
+}
+
+/// A material library as the tracer holds it: each id's slot (indexed by id; `u16::MAX`:
+/// none), and in slot order each material's data and angular emissivity table.
+type Slots = (Vec<u16>, Vec<MaterialData>, Vec<EmissivityTable>);
+
+/// The library's [`Slots`].
+fn material_data(materials: &MaterialLibrary) -> Result<Slots, TraceError> {
+    let mut slot_of = vec![u16::MAX; usize::from(u16::MAX) + 1];
+    let mut mats = Vec::with_capacity(materials.materials.len());
+    let mut tables = Vec::with_capacity(materials.materials.len());
+    for (slot, m) in materials.materials.iter().enumerate() {
+        slot_of[usize::from(m.id.0)] = slot as u16;
+        let (angle_deg, emissivity) = m.emissivity.iter().copied().unzip();
+        let table = EmissivityTable::new(angle_deg, emissivity).map_err(|e| {
+            TraceError::new(TraceErrorKind::InvalidEmissivity {
+                material: m.id.0,
+                reason: e.to_string(),
+            })
+        })?;
+        tables.push(table);
+        let texture = match &m.texture {
+            Some(t) if t.varies() => Some(irsig_texture::TextureFields::new(t).map_err(|e| {
+                TraceError::new(TraceErrorKind::InvalidOptions(format!(
+                    "material {}: {e}",
+                    m.id.0
+                )))
+            })?),
+            _ => None,
+        };
+        mats.push(MaterialData {
+            id: m.id.0,
+            name: m.name.clone(),
+            specular_fraction: m.specular_fraction,
+            lobe: m
+                .rms_slope
+                .filter(|&sigma| sigma > 0.0 && m.specular_fraction > 0.0)
+                .map(crate::lobe::Lobe::new),
+            texture,
+            maps: None,
+            mix_slots: Vec::new(),
+        });
+    }
+    Ok((slot_of, mats, tables))
+}
+
+/// The scene's distinct facet temperatures (K), their index by bit pattern, and each
+/// facet's index into them.
+type TemperatureIndex = (Vec<f64>, std::collections::HashMap<u64, u32>, Vec<u32>);
+
+/// The scene's [`TemperatureIndex`], once every facet's material is known (`slot_of`).
+fn temperature_indices(scene: &RawScene, slot_of: &[u16]) -> Result<TemperatureIndex, TraceError> {
+    // One table entry per distinct temperature (scenes hold few, and neighbouring facets
+    // usually share one), so K sub-bands cost K small tables, not K × facets; the
+    // records' L_T is read from the first sub-band's.
+    let mut temperatures: Vec<f64> = Vec::new();
+    let mut index_of: std::collections::HashMap<u64, u32> = std::collections::HashMap::new();
+    let mut last: Option<(u64, u32)> = None;
+    let mut temperature_index = Vec::with_capacity(scene.facets.len());
+    for (i, f) in scene.facets.iter().enumerate() {
+        if slot_of[usize::from(f.material.0)] == u16::MAX {
+            return Err(TraceError::new(TraceErrorKind::UnknownMaterial {
+                facet: i,
+                material: f.material.0,
+            }));
+        }
+        let bits = f.temperature_k.to_bits();
+        temperature_index.push(match last {
+            Some((b, index)) if b == bits => index,
+            _ => {
+                let index = *index_of.entry(bits).or_insert_with(|| {
+                    temperatures.push(f.temperature_k);
+                    (temperatures.len() - 1) as u32
+                });
+                last = Some((bits, index));
+                index
+            }
+        });
+    }
+    Ok((temperatures, index_of, temperature_index))
 }
