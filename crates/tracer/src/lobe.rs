@@ -336,6 +336,43 @@ fn albedo(sigma: f64, cos_o: f64, rule: &[(f64, f64)]) -> f64 {
     2.0 * total / std::f64::consts::TAU
 }
 
+/// The rough-surface glint rule ([`crate::lobe`]) alone, for its benchmark: a facet
+/// facing up with rms slope `sigma`, lit by a sun at `sun_zenith_deg` (azimuth 0).
+#[cfg(any(test, feature = "testing"))]
+#[derive(Debug)]
+pub struct LobeProbe {
+    lobe: Lobe,
+    sun: SunGeometry,
+}
+
+#[cfg(any(test, feature = "testing"))]
+impl LobeProbe {
+    /// The probe of slope `sigma` (rad, rms) under a sun at `sun_zenith_deg`.
+    ///
+    /// # Panics
+    /// A zenith that makes no sun (not finite).
+    #[must_use]
+    pub fn new(sigma: f64, sun_zenith_deg: f64) -> Self {
+        let z = sun_zenith_deg.to_radians();
+        let sun = crate::Sun::new(DVec3::new(z.sin(), 0.0, z.cos()), Vec::new())
+            .geometry()
+            .expect("a finite zenith makes a sun");
+        Self {
+            lobe: Lobe::new(sigma),
+            sun,
+        }
+    }
+
+    /// The glint seen from the view at zenith `theta_deg`, azimuth `phi_deg` (the sun is at
+    /// azimuth 0), sr⁻¹ per unit of `s·r·E_n`: one call of the rule, as a hit makes it.
+    #[must_use]
+    pub fn glint_per_sr(&self, theta_deg: f64, phi_deg: f64) -> f64 {
+        let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
+        let view = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
+        self.lobe.glint_per_sr(&self.sun, DVec3::Z, view)
+    }
+}
+
 #[cfg(test)]
 #[path = "lobe_tests.rs"]
 mod tests;

@@ -8,6 +8,7 @@ use crate::geometry::Geometry;
 use glam::DVec3;
 use irsig_radiometry::{BandModel, TotalRadiance};
 
+pub use crate::lobe::LobeProbe;
 pub use crate::reference::percentile;
 use crate::{Camera, TraceOptions, Tracer, Vacuum};
 
@@ -977,39 +978,4 @@ pub fn generated_scene(seed: u64, view: usize) -> (RawScene, MaterialLibrary, Vi
         gain_dc_per_k: None,
     };
     (scene, materials, if view == 0 { low } else { mast })
-}
-
-/// The rough-surface glint rule ([`crate::lobe`]) alone, for its benchmark: a facet
-/// facing up with rms slope `sigma`, lit by a sun at `sun_zenith_deg` (azimuth 0).
-#[derive(Debug)]
-pub struct LobeProbe {
-    lobe: crate::lobe::Lobe,
-    sun: crate::sun::SunGeometry,
-}
-
-impl LobeProbe {
-    /// The probe of slope `sigma` (rad, rms) under a sun at `sun_zenith_deg`.
-    ///
-    /// # Panics
-    /// A zenith that makes no sun (not finite).
-    #[must_use]
-    pub fn new(sigma: f64, sun_zenith_deg: f64) -> Self {
-        let z = sun_zenith_deg.to_radians();
-        let sun = crate::Sun::new(DVec3::new(z.sin(), 0.0, z.cos()), Vec::new())
-            .geometry()
-            .expect("a finite zenith makes a sun");
-        Self {
-            lobe: crate::lobe::Lobe::new(sigma),
-            sun,
-        }
-    }
-
-    /// The glint seen from the view at zenith `theta_deg`, azimuth `phi_deg` (the sun is at
-    /// azimuth 0), sr⁻¹ per unit of `s·r·E_n`: one call of the rule, as a hit makes it.
-    #[must_use]
-    pub fn glint_per_sr(&self, theta_deg: f64, phi_deg: f64) -> f64 {
-        let (t, p) = (theta_deg.to_radians(), phi_deg.to_radians());
-        let view = DVec3::new(t.sin() * p.cos(), t.sin() * p.sin(), t.cos());
-        self.lobe.glint_per_sr(&self.sun, DVec3::Z, view)
-    }
 }

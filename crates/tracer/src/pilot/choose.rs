@@ -154,6 +154,15 @@ pub(crate) struct Counts {
 }
 
 impl Counts {
+    /// What a refinement trial measured, where it refined any pixel: its paths per
+    /// candidate, and per refinement side.
+    pub(crate) fn take_trial(&mut self, trial: &super::trial::Trial) {
+        if trial.pixels > 0 {
+            self.paths_per_candidate = trial.paths_per_candidate;
+            self.paths_by_side.clone_from(&trial.paths_by_side);
+        }
+    }
+
     pub(crate) fn of(
         census: &Census,
         measured: &[Measured],

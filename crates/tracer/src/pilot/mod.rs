@@ -123,16 +123,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let measured = self.measure_all(&fc, space, &sets, &census, seed);
         let by_class = census.points_by_class();
         let residual = residual::residuals(space, &measured, &by_class);
-        // Refinement's target σ is a share of the tolerance set by the share of candidates.
-        let target_share = trial::refinement_for(
-            Supersample::Refine(REFINE_MAX_SIDE),
-            census.candidate_share(),
-            1.0,
-            DETERMINISTIC_SHARE,
-            EDGE_SHARE,
-        )
-        .1
-        .map_or(0.0, |r| r.target_k);
+        let target_share = trial::target_share(census.candidate_share());
         let terms = predict::PixelTerms::of(space, &census, &by_class, &residual, target_share);
         let guaranteed = terms.guaranteed(tolerance_k);
         let pixels = terms.pixels();
@@ -169,10 +160,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             [tolerance_k, det_k, edge_k],
             seed,
         );
-        if trial.pixels > 0 {
-            counts.paths_per_candidate = trial.paths_per_candidate;
-            counts.paths_by_side.clone_from(&trial.paths_by_side);
-        }
+        counts.take_trial(&trial);
 
         // 5. What is not guaranteed, and whether that is too much.
         let shortfall = Shortfall::of(&census, &guaranteed, &trial, tolerance_k);

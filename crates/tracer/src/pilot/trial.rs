@@ -34,6 +34,20 @@ pub(crate) struct Trial {
     pub worst_sigma_k: f64,
 }
 
+/// Refinement's target σ as a share of the tolerance, set by `candidate_share`, the share
+/// of the frame's pixels that are candidates for it.
+pub(crate) fn target_share(candidate_share: f64) -> f64 {
+    refinement_for(
+        Supersample::Refine(super::REFINE_MAX_SIDE),
+        candidate_share,
+        1.0,
+        super::DETERMINISTIC_SHARE,
+        super::EDGE_SHARE,
+    )
+    .1
+    .map_or(0.0, |r| r.target_k)
+}
+
 /// The refinement `supersampling` asks for (`None` but for [`Supersample::Refine`]) and
 /// the normal quantile its target was set with: the refined pixels' standard error such
 /// that, with `candidate_share` of the frame refined, at most [`SAMPLING_EXCEEDANCE`] of
