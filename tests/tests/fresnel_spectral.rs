@@ -180,11 +180,12 @@ fn worst(cells: &[Cell], angle_deg: f64) -> Worst {
     }
 }
 
-/// At 1, 4 and 16 sub-bands and every angle, what holds whatever the count: the separable
-/// form is never further from the exact sub-band average than the band's table alone, and
-/// summed over the band its errors cancel but for the curve's linear interpolation
-/// between the table's rows (5e-5, 0.0035 K), as does the grid's. Prints the tables of
-/// docs/accuracy.md ("Fresnel emissivity") with `--nocapture`.
+/// At 1, 4 and 16 sub-bands and every angle, what holds whatever the count: with several
+/// sub-bands the separable form is never further from the exact sub-band average than the
+/// band's table alone (with one, the band's table is that average, and the separable form
+/// is off by the curve's interpolation between rows alone); summed over the band its
+/// errors cancel but for that interpolation (5e-5, 0.0035 K); the grid is within 0.0014.
+/// Prints the tables of docs/accuracy.md ("Fresnel emissivity") with `--nocapture`.
 #[test]
 fn the_separable_form_holds_at_every_sub_band_count() {
     let material = library_entry(WATER);
@@ -218,12 +219,14 @@ fn the_separable_form_holds_at_every_sub_band_count() {
         let cells = measure(&material, &index, k);
         for a in angles() {
             let w = worst(&cells, a);
-            assert!(
-                w.separable.0 <= w.band_only.0,
-                "K {k}, {a}°: {:?} {:?}",
-                w.separable,
-                w.band_only
-            );
+            // One sub-band is the band: its table is the exact average, and the separable
+            // form is off by the curve's interpolation between rows alone.
+            let held = if k == 1 {
+                w.band_only.0 < 1e-12 && w.separable.0 < 5e-5
+            } else {
+                w.separable.0 <= w.band_only.0
+            };
+            assert!(held, "K {k}, {a}°: {:?} {:?}", w.separable, w.band_only);
             assert!(
                 w.sum.0.abs() < 5e-5 && w.sum.1.abs() < 0.0035,
                 "K {k}, {a}°: {:?}",
