@@ -319,7 +319,8 @@ fn albedo(sigma: f64, cos_o: f64, rule: &[(f64, f64)]) -> f64 {
     for &(xp, wp) in rule {
         let psi = std::f64::consts::FRAC_PI_2 * (xp + 1.0);
         let d = [psi.cos(), psi.sin()];
-        // The tangents of `n.any_orthonormal_pair()` need not be x and y: rotate the slope into them.
+        // The tangents of `n.any_orthonormal_pair()` need not be x and y: rotate the slope
+        // into them.
         let along: f64 = rule
             .iter()
             .map(|&(xu, wu)| {
