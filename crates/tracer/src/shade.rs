@@ -102,6 +102,15 @@ impl Sums {
     }
 }
 
+/// Where a path first meets a facet (range and altitude, m), and the path table (built for
+/// the sub-bands being summed) its path terms come from, or `None` for the exact terms.
+#[derive(Clone, Copy)]
+struct FacetPlace<'t> {
+    range_m: f64,
+    alt_m: f64,
+    table: Option<&'t PathTable>,
+}
+
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The radiance at the sensor of a recorded path, W m⁻² sr⁻¹. With `TRUTH`, every term
     /// also goes to `s`; without, `s` is not touched. Both give the same radiance, bit for
@@ -159,7 +168,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 path_range_m,
             } => self.terrain_radiance::<TRUTH, S>(set, fc, path, [range_m, path_range_m], s),
             Primary::Facet { range_m, alt_m } => {
-                self.facet_radiance::<TRUTH, S, C>(set, table, fc, path, [range_m, alt_m], s, sink)
+                let place = FacetPlace {
+                    range_m,
+                    alt_m,
+                    table,
+                };
+                self.facet_radiance::<TRUTH, S, C>(set, fc, path, &place, s, sink)
             }
         }
     }
@@ -266,19 +280,22 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         radiance
     }
 
-    /// The radiance of a path that first meets a facet `[range (m), altitude (m)]`, with
-    /// its truth and its charges.
-    #[allow(clippy::too_many_arguments)] // radiance_sink's, with the facet's place
+    /// The radiance of a path that first meets a facet at `place`, with its truth and its
+    /// charges.
     fn facet_radiance<const TRUTH: bool, S: Atmosphere, C: ChargeSink>(
         &self,
         set: &BandSet<S>,
-        table: Option<&PathTable>,
         fc: &FrameConsts<'_>,
         path: &Path,
-        [range_m, alt_m]: [f64; 2],
+        place: &FacetPlace<'_>,
         s: &mut Sample,
         sink: &mut C,
     ) -> f64 {
+        let FacetPlace {
+            range_m,
+            alt_m,
+            table,
+        } = *place;
         let one = set.bands.len() == 1;
         // The sun's truth terms, when this set of sub-bands carries its beam.
         let lit = TRUTH && set.bands[0].sun.is_some();
