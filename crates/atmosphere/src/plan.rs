@@ -282,7 +282,8 @@ pub const DAY_SKY_ALTITUDE_M: [f64; 3] = [500.0, 700.0, 1500.0];
 ///
 /// # Errors
 /// A zenith angle that is not finite or not within 0 to below 90° (a sun at or below the
-/// horizon gives no direct light), or a day outside 1–366; the message names the value.
+/// horizon gives no direct light), or a day outside 1–366; with `scattered`, a sun past
+/// [`SCATTERED_MAX_ZENITH_DEG`]; the message names the value.
 pub fn add_sun(
     plan: &mut AtmospherePlan,
     zenith_deg: f64,
@@ -292,11 +293,12 @@ pub fn add_sun(
     add_suns(plan, &[zenith_deg], day_of_year, scattered)
 }
 
-/// The lowest sun, as a zenith angle in degrees, whose scattered sunlight a plan of several
-/// suns runs: with suns at 88.5° and 89°, LOWTRAN7 left a sunlit sky path from the ground
-/// at zenith 60° without a table and without a message in TAPE6 (docs/accuracy.md, "A
-/// day's scattered sunlight"), so such a plan would be accepted and fail to build.
-pub const SCATTERED_DAY_MAX_ZENITH_DEG: f64 = 88.0;
+/// The lowest sun, as a zenith angle in degrees, whose scattered sunlight a plan runs, of
+/// one sun or of a day's: LOWTRAN7 leaves some sunlit paths of a lower sun unrun, without a
+/// table and without a message in TAPE6 (a sky path from the ground at zenith 60° by a sun
+/// at 88.5°, alone or among a day's suns; docs/accuracy.md, "A day's scattered sunlight"),
+/// so such a plan would be accepted and fail to build, after the runs before it.
+pub const SCATTERED_MAX_ZENITH_DEG: f64 = 88.0;
 
 /// Puts the suns of a day at `zenith_deg` (each rounded to the 0.001° a deck holds, then
 /// sorted, repeats dropped) on day `day_of_year` in `plan`, as [`add_sun`] puts one: the
@@ -310,7 +312,7 @@ pub const SCATTERED_DAY_MAX_ZENITH_DEG: f64 = 88.0;
 /// # Errors
 /// No zenith angle; one that is not finite or not within 0 to below 90° once rounded; a
 /// day outside 1–366; `scattered` with several suns in a plan that has slabs, or with a sun
-/// past [`SCATTERED_DAY_MAX_ZENITH_DEG`].
+/// past [`SCATTERED_MAX_ZENITH_DEG`].
 pub fn add_suns(
     plan: &mut AtmospherePlan,
     zenith_deg: &[f64],
@@ -329,15 +331,17 @@ pub fn add_suns(
     let Some((&first, further)) = zeniths.split_first() else {
         return Err(plan_error("expected at least one sun zenith angle".into()));
     };
-    if scattered
-        && !further.is_empty()
-        && let Some(low) = zeniths.iter().find(|&&z| z > SCATTERED_DAY_MAX_ZENITH_DEG)
-    {
+    if scattered && let Some(low) = zeniths.iter().find(|&&z| z > SCATTERED_MAX_ZENITH_DEG) {
+        let what = if further.is_empty() {
+            "a higher sun"
+        } else {
+            "a range that ends before the sun is that low"
+        };
         return Err(plan_error(format!(
-            "the sunlight the air scatters is planned for a day's suns up to \
-             {SCATTERED_DAY_MAX_ZENITH_DEG} deg from the zenith, and a sun at {low} deg is \
-             given (LOWTRAN7 leaves some sunlit sky paths of a lower sun unrun): end the \
-             range before the sun is that low, or plan the direct beam alone"
+            "the sunlight the air scatters is planned for suns up to \
+             {SCATTERED_MAX_ZENITH_DEG} deg from the zenith, and a sun at {low} deg is given \
+             (LOWTRAN7 leaves some sunlit paths of a lower sun unrun): plan {what}, or the \
+             direct beam alone"
         )));
     }
     if scattered && !further.is_empty() && plan.slabs.is_some() {

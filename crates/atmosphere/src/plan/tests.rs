@@ -82,7 +82,7 @@ fn several_suns_run_the_beam_at_every_zenith_and_altitude_and_no_scattering() {
 }
 
 #[test]
-fn a_days_scattered_sunlight_is_refused_for_a_sun_past_its_lowest_and_the_beam_is_not() {
+fn scattered_sunlight_is_refused_for_a_sun_past_its_lowest_and_the_beam_is_not() {
     let night = make_plan("t", PlanModel::Standard(6), &[5.0]).unwrap();
     let mut p = night.clone();
     let e = add_suns(&mut p, &[30.0, 88.5], 172, true).unwrap_err();
@@ -92,9 +92,18 @@ fn a_days_scattered_sunlight_is_refused_for_a_sun_past_its_lowest_and_the_beam_i
     add_suns(&mut p, &[30.0, 88.0], 172, true).unwrap();
     let mut beam = night.clone();
     add_suns(&mut beam, &[30.0, 88.5, 89.999], 172, false).unwrap();
-    // One sun keeps what it had: its scattered paths are planned at any angle below 90°.
-    let mut one = night;
-    add_suns(&mut one, &[88.5], 172, true).unwrap();
+    // One sun alike (LOWTRAN7 left a sky path of a lone sun at 88.5° unrun too), naming
+    // the remedy for one sun; its beam alone goes lower.
+    let mut one = night.clone();
+    let e = add_sun(&mut one, 88.5, 172, true).unwrap_err().to_string();
+    assert!(
+        e.contains("a sun at 88.5 deg") && e.contains("a higher sun"),
+        "{e}"
+    );
+    assert!(one.sun.is_none(), "nothing planned");
+    add_sun(&mut one, 88.0, 172, true).unwrap();
+    let mut beam = night;
+    add_sun(&mut beam, 89.5, 172, false).unwrap();
 }
 
 #[test]
