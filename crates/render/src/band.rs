@@ -61,28 +61,22 @@ impl BandRequest {
 /// spectral materials and τ are Planck-weighted at it too.
 pub const SHARE_REFERENCE_K: f64 = 300.0;
 
-/// A band model that sub-bands of a band can be: [`Band`], not the whole spectrum.
+/// A band model whose sub-bands the tracer can trace: the frame's band, which
+/// [`crate::plan`] passes as an [`AnyBand`] (a band or the whole spectrum) so that the
+/// tracer's code is compiled once for both, where a type per kind compiled it twice; a
+/// sub-band is always a [`Band`] (the whole spectrum has none, and reaches no sub-band: it
+/// takes no spectral atmosphere).
 pub trait SubBandModel: BandModel + Clone + std::fmt::Debug + Send + Sync {
     /// The model of the sub-band `band`.
     ///
     /// # Errors
-    /// The whole spectrum has no sub-bands.
+    /// None for a band model; the `Result` is the caller's.
     fn of_band(band: &Band) -> Result<Self, RenderError>;
 }
 
-impl SubBandModel for Band {
+impl SubBandModel for AnyBand {
     fn of_band(band: &Band) -> Result<Self, RenderError> {
-        Ok(band.clone())
-    }
-}
-
-impl SubBandModel for TotalRadiance {
-    fn of_band(_: &Band) -> Result<Self, RenderError> {
-        Err(RequestError::new(
-            Setting::SubBands,
-            "the whole spectrum (`total`) has no sub-bands",
-        )
-        .into())
+        Ok(Self::Band(band.clone()))
     }
 }
 
@@ -214,8 +208,8 @@ mod tests {
     }
 
     #[test]
-    fn the_whole_spectrum_has_no_sub_bands() {
-        let e = TotalRadiance::of_band(&Band::new(8.0, 14.0).unwrap()).unwrap_err();
-        assert_eq!(e.as_request().map(|r| r.setting), Some(Setting::SubBands));
+    fn a_sub_band_is_a_band_whatever_the_frames_band() {
+        let b = Band::new(8.0, 9.5).unwrap();
+        assert_eq!(AnyBand::of_band(&b).unwrap(), AnyBand::Band(b));
     }
 }

@@ -510,12 +510,12 @@ impl Plan {
                 taken
                     .run
                     .field("band", format!("{TotalRadiance:?}").as_bytes());
-                self.with_atmosphere(taken, TotalRadiance, None, job)
+                self.with_atmosphere(taken, AnyBand::Total(TotalRadiance), None, job)
             }
             AnyBand::Band(band) => {
                 taken.run.field("band", format!("{band:?}").as_bytes());
                 let split = Split::of(&band);
-                self.with_atmosphere(taken, band.clone(), Some(&split), job)
+                self.with_atmosphere(taken, AnyBand::Band(band.clone()), Some(&split), job)
             }
         }
     }
