@@ -2,30 +2,11 @@
 //! ∂L/∂T and ∂L/∂ε of a specular plate mirroring a warm wall under a made-up atmosphere,
 //! against re-traced radiances with the temperature and the emissivity nudged.
 
-use irsig_atmosphere::PathTerms;
+use crate::air::BUDGET_AIR;
 use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::Band;
 use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Atmosphere, Camera, Sample, TraceOptions, Tracer};
-
-#[derive(Debug, Clone, Copy)]
-struct Air;
-
-impl Atmosphere for Air {
-    fn path(&self, _: f64, _: f64, range_m: f64) -> PathTerms {
-        let t = (-2e-4 * range_m).exp();
-        PathTerms {
-            transmission: t,
-            path_radiance_w_m2_sr: (1.0 - t) * 30.0,
-        }
-    }
-    fn sky_radiance(&self, _: f64, zenith_deg: f64) -> f64 {
-        10.0 + 20.0 * (zenith_deg / 90.0).powi(2)
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        18.0
-    }
-}
+use irsig_tracer::{Camera, Sample, TraceOptions, Tracer};
 
 fn scene(plate_k: f64) -> RawScene {
     let plate = ground_quad([-20.0, -20.0], [20.0, 20.0], 0.0);
@@ -38,7 +19,7 @@ fn materials(plate_eps: f64, specular: f64) -> MaterialLibrary {
 }
 
 fn probe(scene: &RawScene, materials: &MaterialLibrary) -> Sample {
-    let tracer = Tracer::new(scene, materials, Band::default(), Air).unwrap();
+    let tracer = Tracer::new(scene, materials, Band::default(), BUDGET_AIR).unwrap();
     let camera = Camera::from_view(&View::LookAt {
         position_m: [0.0, -60.0, 30.0],
         target_m: [0.0, 0.0, 0.0],
@@ -112,7 +93,7 @@ fn a_refined_pixels_sensitivity_is_the_mean_of_its_samples() {
     };
     let frame = |dt: f64| {
         let materials = materials(0.8, 0.0);
-        Tracer::new(&nudged(dt), &materials, Band::default(), Air)
+        Tracer::new(&nudged(dt), &materials, Band::default(), BUDGET_AIR)
             .unwrap()
             .with_refinement(Some(refinement))
             .unwrap()

@@ -8,33 +8,14 @@
 //! those of a saved decision, the same for every run; a pixel whose refinement differs
 //! between the runs (another estimator) is left out and counted.
 
-use irsig_atmosphere::PathTerms;
+use crate::air::{BUDGET_AIR, FnAir};
 use irsig_model::decision::{Decision, SwitchableModel};
 use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::Band;
 use irsig_tracer::DVec3;
 use irsig_tracer::pilot::refinement_of;
 use irsig_tracer::testing::{box_mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Atmosphere, Camera, Frame, Sun, SunBeam, Tile, TraceOptions, Tracer};
-
-#[derive(Debug, Clone, Copy)]
-struct Air;
-
-impl Atmosphere for Air {
-    fn path(&self, _: f64, _: f64, range_m: f64) -> PathTerms {
-        let t = (-2e-4 * range_m).exp();
-        PathTerms {
-            transmission: t,
-            path_radiance_w_m2_sr: (1.0 - t) * 30.0,
-        }
-    }
-    fn sky_radiance(&self, _: f64, zenith_deg: f64) -> f64 {
-        10.0 + 20.0 * (zenith_deg / 90.0).powi(2)
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        18.0
-    }
-}
+use irsig_tracer::{Camera, Frame, Sun, SunBeam, Tile, TraceOptions, Tracer};
 
 /// The parts, object by object: (material, kinetic temperature K).
 const PARTS: [(u16, f64); 4] = [(1, 290.0), (2, 315.0), (2, 311.0), (3, 296.0)];
@@ -118,7 +99,7 @@ fn tracer_and_options(
     step: &Step,
     (day, sky_view): (bool, bool),
     charged: bool,
-) -> (Tracer<Band, Air>, TraceOptions) {
+) -> (Tracer<Band, FnAir>, TraceOptions) {
     let d = decision(sky_view);
     let setting = |m: SwitchableModel| d.choice(m).unwrap().setting.parse::<u32>().unwrap();
     let options = TraceOptions {
@@ -134,7 +115,7 @@ fn tracer_and_options(
             vec![SunBeam::uniform(20.0).unwrap()],
         )
     });
-    let tracer = Tracer::new(&raw, &materials(step), Band::default(), Air)
+    let tracer = Tracer::new(&raw, &materials(step), Band::default(), BUDGET_AIR)
         .unwrap()
         .with_sun(sun)
         .unwrap()

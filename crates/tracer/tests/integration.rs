@@ -4,6 +4,7 @@
 //! `cargo test -p irsig-tracer --test integration adaptive::` runs one module.
 
 mod adaptive;
+mod air;
 mod budget;
 mod budget_mixed;
 mod data_error;

@@ -3,16 +3,12 @@
 //! the horizon, the sky-view factor against an exact configuration factor, supersampling,
 //! re-centring 500 km away, thread-count independence and two views that must agree.
 
+use crate::air::FnAir;
 use irsig_atmosphere::PathTerms;
 use irsig_model::{Material, MaterialId, MaterialLibrary, RawFacet, RawScene, Terrain, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{Mesh, box_mesh, ground_quad};
-use irsig_tracer::{Atmosphere, Camera, Event, TraceOptions, Tracer, Vacuum};
-
-/// A made-up atmosphere whose every term is a closed form: τ depends on the range and on
-/// both ends' altitudes, the sky on the zenith angle.
-#[derive(Debug, Clone, Copy)]
-struct TestAir;
+use irsig_tracer::{Camera, Event, TraceOptions, Tracer, Vacuum};
 
 const L_AIR: f64 = 120.0;
 
@@ -26,21 +22,19 @@ fn sky(zenith_deg: f64) -> f64 {
 
 const SKY_HEMI: f64 = 30.0;
 
-impl Atmosphere for TestAir {
-    fn path(&self, s: f64, t: f64, range: f64) -> PathTerms {
+/// A made-up atmosphere whose every term is a closed form: τ depends on the range and on
+/// both ends' altitudes, the sky on the zenith angle.
+const TEST_AIR: FnAir = FnAir {
+    path: |s, t, range| {
         let tr = tau(s, t, range);
         PathTerms {
             transmission: tr,
             path_radiance_w_m2_sr: (1.0 - tr) * L_AIR,
         }
-    }
-    fn sky_radiance(&self, _: f64, zenith_deg: f64) -> f64 {
-        sky(zenith_deg)
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        SKY_HEMI
-    }
-}
+    },
+    sky: |_, zenith_deg| sky(zenith_deg),
+    hemispheric: |_| SKY_HEMI,
+};
 
 fn material(id: u16, emissivity: Vec<(f64, f64)>, specular_fraction: f64) -> Material {
     Material {
@@ -114,7 +108,7 @@ fn a_specular_facet_at_40_degrees_matches_the_hand_computation() {
         )],
     };
     let sc = scene(&[(ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0), 1, 310.0)]);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let h = 10.0;
     let theta = 40.0_f64.to_radians();
     // Aim 0.3 m off the diagonal so the ray does not strike the shared edge exactly.
@@ -148,7 +142,7 @@ fn a_specular_facet_at_40_degrees_matches_the_hand_computation() {
             0.0,
         )],
     };
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let s = tracer.probe(&cam, &TraceOptions::default(), 0, 0).unwrap();
     let expected = t * (eps * lt(310.0) + (1.0 - eps) * SKY_HEMI) + (1.0 - t) * L_AIR;
     assert_eq!(s.event, Event::Diffuse);
@@ -162,7 +156,7 @@ fn a_specular_facet_at_40_degrees_matches_the_hand_computation() {
             0.25,
         )],
     };
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let s = tracer.probe(&cam, &TraceOptions::default(), 0, 0).unwrap();
     let refl = 0.25 * sky(40.0) + 0.75 * SKY_HEMI;
     let expected = t * (eps * lt(310.0) + (1.0 - eps) * refl) + (1.0 - t) * L_AIR;
@@ -196,7 +190,7 @@ fn a_specular_pool_reflects_the_hot_panel_and_then_the_sky_without_it() {
     let zenith = (5.0 / 125.0_f64.sqrt()).acos().to_degrees(); // 63.43°
 
     let (sc, mats) = pool_scene(true);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let s = tracer.probe(&cam, &TraceOptions::default(), 0, 0).unwrap();
     // L_b is the panel's surface-leaving radiance, ε₂·L_T2 + r₂·L_d, not its blackbody
     // radiance (the 1990 code's slip).
@@ -208,7 +202,7 @@ fn a_specular_pool_reflects_the_hot_panel_and_then_the_sky_without_it() {
     assert!(close(s.radiance_w_m2_sr, expected, 1e-9), "{s}");
 
     let (sc, mats) = pool_scene(false);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let s = tracer.probe(&cam, &TraceOptions::default(), 0, 0).unwrap();
     let expected = t * (0.98 * lt(288.0) + 0.02 * sky(zenith)) + (1.0 - t) * L_AIR;
     assert_eq!(s.event, Event::SpecularEscapes);
@@ -219,7 +213,7 @@ fn a_specular_pool_reflects_the_hot_panel_and_then_the_sky_without_it() {
     // Zero bounces: the pool reflects its environment at the mirror angle without tracing,
     // the sky at 63.43° as if the panel were not there.
     let (sc, mats) = pool_scene(true);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let opts = TraceOptions {
         specular_bounces: 0,
         ..TraceOptions::default()
@@ -246,7 +240,7 @@ fn two_mirrors_need_two_bounces() {
         (box_mesh([-5.0, 5.0, 0.0], [5.0, 5.2, 5.0]), 2, 350.0),
         (box_mesh([-5.0, -6.0, 6.0], [5.0, -5.8, 12.0]), 3, 400.0),
     ]);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let cam = one_pixel([0.3, -10.0, 5.0], [0.3, 0.0, 0.0]);
     let t = tau(5.0, 0.0, 125.0_f64.sqrt());
     let zenith = (5.0 / 125.0_f64.sqrt()).acos().to_degrees();
@@ -287,7 +281,7 @@ fn misses_below_the_horizon_see_the_terrain_and_above_it_the_sky() {
         1,
         300.0,
     )]);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let h = 1000.0;
     // 30° from nadir: below the horizon.
     let a = 30.0_f64.to_radians();
@@ -545,7 +539,7 @@ fn a_scene_500_km_from_the_origin_gives_the_same_image() {
                 315.0,
             ),
         ]);
-        let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+        let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
         let cam = Camera::from_view(&View::LookAt {
             position_m: [off[0] + 4.1, off[1] - 6.3, off[2] + 3.7],
             target_m: [off[0], off[1], off[2]],
@@ -678,7 +672,7 @@ fn a_mirror_out_of_bounces_reflects_the_ground_it_points_at_not_the_hemispheric_
         vec![[0, 1, 2], [0, 2, 3]],
     );
     let sc = scene(&[(mesh, 1, 300.0)]);
-    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TestAir).unwrap();
+    let tracer = Tracer::new(&sc, &mats, TotalRadiance, TEST_AIR).unwrap();
     let cam = one_pixel([0.3, 0.0, 5.0], [0.3, 10.0, 5.0]);
     let terrain = 0.9 * lt(290.0) + 0.1 * SKY_HEMI;
     for bounces in [0, 1] {

@@ -4,11 +4,12 @@
 //! without the pairs both go through τ, as before; the terrain beyond the scene likewise;
 //! and the sun's truth (`sun_share`) says the same.
 
+use crate::air::FnAir;
 use irsig_atmosphere::PathTerms;
 use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_tracer::testing::{Mesh, grey_materials, ground_quad, raw_scene};
-use irsig_tracer::{Atmosphere, Camera, DVec3, Sun, SunBeam, TraceOptions, Tracer};
+use irsig_tracer::{Camera, DVec3, Sun, SunBeam, TraceOptions, Tracer};
 
 /// Direct normal irradiance of the test sun, W m⁻².
 const E_N: f64 = 800.0;
@@ -20,23 +21,14 @@ const TAU: f64 = 0.6;
 const TAU_SUN: f64 = 0.8;
 
 /// An air of transmittance [`TAU`] on every path that emits nothing, under a black sky.
-#[derive(Debug, Clone, Copy)]
-struct Grey;
-
-impl Atmosphere for Grey {
-    fn path(&self, _: f64, _: f64, _: f64) -> PathTerms {
-        PathTerms {
-            transmission: TAU,
-            path_radiance_w_m2_sr: 0.0,
-        }
-    }
-    fn sky_radiance(&self, _: f64, _: f64) -> f64 {
-        0.0
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        0.0
-    }
-}
+const GREY: FnAir = FnAir {
+    path: |_, _, _| PathTerms {
+        transmission: TAU,
+        path_radiance_w_m2_sr: 0.0,
+    },
+    sky: |_, _| 0.0,
+    hemispheric: |_| 0.0,
+};
 
 fn sun(pairs: Option<Vec<[f64; 2]>>) -> Sun {
     let z = ZENITH_DEG.to_radians();
@@ -48,8 +40,8 @@ fn sun(pairs: Option<Vec<[f64; 2]>>) -> Sun {
     Sun::new(DVec3::new(z.sin(), 0.0, z.cos()), vec![beam])
 }
 
-fn tracer(scene: &RawScene, materials: &MaterialLibrary) -> Tracer<TotalRadiance, Grey> {
-    Tracer::new(scene, materials, TotalRadiance, Grey).unwrap()
+fn tracer(scene: &RawScene, materials: &MaterialLibrary) -> Tracer<TotalRadiance, FnAir> {
+    Tracer::new(scene, materials, TotalRadiance, GREY).unwrap()
 }
 
 fn plate(z: f64) -> Mesh {

@@ -8,6 +8,7 @@
 // Exact zeros and ones (a shadow, a whole disk) and f32 roundings: equality is exact.
 #![allow(clippy::float_cmp)]
 
+use crate::air::FnAir;
 use irsig_atmosphere::PathTerms;
 use irsig_model::truth::Layer;
 use irsig_model::{MaterialLibrary, RawScene, View};
@@ -29,23 +30,14 @@ const PATH_W_M2_SR: f64 = 12.0;
 const SKY_W_M2_SR: f64 = 25.0;
 
 /// Air of one transmission and one path radiance on every path, and a uniform sky.
-#[derive(Debug, Clone, Copy)]
-struct GreyAir;
-
-impl Atmosphere for GreyAir {
-    fn path(&self, _: f64, _: f64, _: f64) -> PathTerms {
-        PathTerms {
-            transmission: TAU,
-            path_radiance_w_m2_sr: PATH_W_M2_SR,
-        }
-    }
-    fn sky_radiance(&self, _: f64, _: f64) -> f64 {
-        SKY_W_M2_SR
-    }
-    fn sky_hemispheric(&self, _: f64) -> f64 {
-        SKY_W_M2_SR
-    }
-}
+const GREY_AIR: FnAir = FnAir {
+    path: |_, _, _| PathTerms {
+        transmission: TAU,
+        path_radiance_w_m2_sr: PATH_W_M2_SR,
+    },
+    sky: |_, _| SKY_W_M2_SR,
+    hemispheric: |_| SKY_W_M2_SR,
+};
 
 fn to_sun() -> [f64; 3] {
     let z = ZENITH_DEG.to_radians();
@@ -104,7 +96,7 @@ fn a_plate_in_the_sun_gets_e_n_cos_theta_and_reflects_r_e_over_pi() {
         TAU * (eps * l_t + (1.0 - eps) * (SKY_W_M2_SR + e / std::f64::consts::PI)) + PATH_W_M2_SR;
     let camera = looking_down([0.0, 0.0, 100.0], 3);
     for rays in [1, 64] {
-        let day = lit(&scene, &materials, GreyAir, rays);
+        let day = lit(&scene, &materials, GREY_AIR, rays);
         let s = day.probe(&camera, &TraceOptions::default(), 1, 1).unwrap();
         // Many rays weigh each point of the disk by its own cosine, within cos(θ ± α).
         let rel = if rays == 1 { 1e-12 } else { 5e-3 };
@@ -148,7 +140,7 @@ fn a_roofed_plate_gets_no_irradiance_and_sees_none_of_the_disk() {
     let materials = grey_materials(&[(1, 0.9, 0.0)]);
     let camera = looking_down([0.0, 0.0, 100.0], 3);
     for rays in [1, 16] {
-        let s = lit(&scene, &materials, GreyAir, rays)
+        let s = lit(&scene, &materials, GREY_AIR, rays)
             .probe(&camera, &TraceOptions::default(), 1, 1)
             .unwrap();
         assert_eq!(s.solar_irradiance_w_m2, 0.0, "{s}");
@@ -229,7 +221,7 @@ fn the_terrain_has_the_flat_unshadowed_sun_and_the_sky_none() {
     let mut scene = raw_scene(&[(&plate([-1.0, -1.0], [1.0, 1.0], 1.0), 1, T_K)]);
     scene.terrain.emissivity = 0.85;
     let materials = grey_materials(&[(1, 0.9, 0.0)]);
-    let day = lit(&scene, &materials, GreyAir, 1);
+    let day = lit(&scene, &materials, GREY_AIR, 1);
     let s = day
         .probe(
             &looking_down([50.0, 0.0, 100.0], 3),
@@ -350,7 +342,7 @@ fn sun_truth_does_not_depend_on_the_thread_count_and_does_not_change_the_radianc
         supersampling: 2,
         ..TraceOptions::default()
     };
-    let day = lit(&scene, &materials, GreyAir, 9);
+    let day = lit(&scene, &materials, GREY_AIR, 9);
     let render = |threads, options: &TraceOptions| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -389,7 +381,7 @@ fn sun_truth_does_not_depend_on_the_thread_count_and_does_not_change_the_radianc
 #[test]
 fn a_tile_and_adaptive_supersampling_keep_the_whole_frames_sun_truth() {
     let (scene, materials, camera) = busy_scene();
-    let day = lit(&scene, &materials, GreyAir, 4);
+    let day = lit(&scene, &materials, GREY_AIR, 4);
     for options in [
         TraceOptions::default(),
         TraceOptions {
@@ -420,7 +412,7 @@ fn a_tile_and_adaptive_supersampling_keep_the_whole_frames_sun_truth() {
 #[test]
 fn a_night_frame_keeps_no_sun_layers() {
     let (scene, materials, camera) = busy_scene();
-    let night = Tracer::new(&scene, &materials, TotalRadiance, GreyAir).unwrap();
+    let night = Tracer::new(&scene, &materials, TotalRadiance, GREY_AIR).unwrap();
     let frame = night
         .render(&camera, &TraceOptions::default(), &|_| {})
         .unwrap();
