@@ -70,7 +70,7 @@ pub trait SubBandModel: BandModel + Clone + std::fmt::Debug + Send + Sync {
     /// The model of the sub-band `band`.
     ///
     /// # Errors
-    /// None for a band model; the `Result` is the caller's.
+    /// Never for [`AnyBand`]; a model that has no sub-bands would refuse here.
     fn of_band(band: &Band) -> Result<Self, RenderError>;
 }
 
