@@ -68,15 +68,12 @@ pub const SHARE_REFERENCE_K: f64 = 300.0;
 /// takes no spectral atmosphere).
 pub trait SubBandModel: BandModel + Clone + std::fmt::Debug + Send + Sync {
     /// The model of the sub-band `band`.
-    ///
-    /// # Errors
-    /// Never for [`AnyBand`]; a model that has no sub-bands would refuse here.
-    fn of_band(band: &Band) -> Result<Self, RenderError>;
+    fn of_band(band: &Band) -> Self;
 }
 
 impl SubBandModel for AnyBand {
-    fn of_band(band: &Band) -> Result<Self, RenderError> {
-        Ok(Self::Band(band.clone()))
+    fn of_band(band: &Band) -> Self {
+        Self::Band(band.clone())
     }
 }
 
@@ -210,6 +207,6 @@ mod tests {
     #[test]
     fn a_sub_band_is_a_band_whatever_the_frames_band() {
         let b = Band::new(8.0, 9.5).unwrap();
-        assert_eq!(AnyBand::of_band(&b).unwrap(), AnyBand::Band(b));
+        assert_eq!(AnyBand::of_band(&b), AnyBand::Band(b));
     }
 }

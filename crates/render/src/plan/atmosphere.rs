@@ -563,7 +563,7 @@ impl<R: SubBandModel> Air<R> for SpectralAir<'_> {
                 };
                 let atmosphere = crate::sun::with_slabs(atmosphere, self.spectral, split, b)?;
                 Ok(SubBand {
-                    band: R::of_band(b)?,
+                    band: R::of_band(b),
                     atmosphere: crate::sun::scattered(
                         atmosphere,
                         self.scatter,
