@@ -9,7 +9,9 @@
 //! quantile `(i + ξ)/N`), so that one realisation's spectrum already follows the named one
 //! closely; directions are uniform on the sphere. A value is a function of the position
 //! alone: the same seed gives the same texture at any thread count, in any tile, in every
-//! frame.
+//! frame, on any CPU.
+
+use std::sync::OnceLock;
 
 use irsig_model::texture::RandomField;
 use rand::{Rng, SeedableRng};
@@ -20,8 +22,9 @@ use crate::spectrum::Shape;
 /// The number of plane waves in a field: enough that a realisation's variance is exact and
 /// its one-point distribution Gaussian (excess kurtosis `−1.5/N` = −0.047), and the
 /// rendered σ and correlation lengths those asked for over a few seeds (the tracer's
-/// `tests/texture.rs`); each wave costs a hit about 2.3 ns (BENCHMARKS.md, "texture"),
-/// so 64 cost twice as much for no test that 32 fail.
+/// `tests/texture.rs`); each wave costs a hit about 1.4 ns with AVX2 (BENCHMARKS.md,
+/// "texture: the fields and maps made cheaper"), so 64 cost twice as much for no test that
+/// 32 fail.
 pub const WAVES: usize = 32;
 
 /// A field's values are held within this many σ of its mean: a sum of cosines is bounded
@@ -97,28 +100,76 @@ impl Field {
     /// The field's value at the world point `p_m`, within ±[`CLIP_SIGMAS`] σ.
     #[must_use]
     pub fn at(&self, p_m: [f64; 3]) -> f64 {
+        values([Some(self), None], p_m)[0]
+    }
+
+    /// [`Field::at`] itself, inlined into whichever vector width [`values`] runs it at.
+    #[inline(always)]
+    fn value(&self, p_m: [f64; 3]) -> f64 {
         if self.amplitude == 0.0 {
             return 0.0;
         }
-        // The cosines first, each independent of the others, so that the loop vectorises;
-        // then their sum, in a fixed order (a running sum would chain every wave on the
-        // last, f64 addition not being associative).
+        // The cosines first, each independent of the others, so that the loop vectorises.
         let mut waves = [0.0; WAVES];
         for (i, w) in waves.iter_mut().enumerate() {
             let turns = self.fx[i] * p_m[0] + self.fy[i] * p_m[1] + self.fz[i] * p_m[2];
             *w = cos_turns(turns + self.phase[i]);
         }
-        let sum: f64 = waves.iter().sum();
+        // Then their sum, in a fixed order: four running sums over every fourth wave, then
+        // the pairs of them. A single running sum would chain all the additions one on
+        // the last (f64 addition is not associative, so the compiler keeps the order
+        // written); four chains are a quarter as long and are one vector of four.
+        let mut sums = [0.0; 4];
+        for four in waves.chunks_exact(4) {
+            for (s, w) in sums.iter_mut().zip(four) {
+                *s += w;
+            }
+        }
+        let sum = (sums[0] + sums[1]) + (sums[2] + sums[3]);
         let limit = CLIP_SIGMAS * self.sigma;
         (self.amplitude * sum).clamp(-limit, limit)
     }
 }
 
-/// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises: `t` reduced to `a = |t − round(t)|` in [0, ½] (rounding by the
-/// 1.5·2⁵² trick, exact for `|t| < 2⁵¹`), then `cos 2πa = −sin y`, `y = 2π(a − ¼)` in
-/// [−π/2, π/2], by its Taylor series to `y¹¹` (truncation below `(π/2)¹³/13!` = 6·10⁻⁸, far
-/// below any texture's σ: the statistics rest on the waves, not on the last digits).
-#[inline]
+/// The values at `p_m` of up to two fields (0 for `None`), in one call compiled for the
+/// widest vectors this CPU has: pulp's runtime dispatch picks AVX2 on an x86-64 that has
+/// it, and the baseline's SSE2 otherwise. The bits do not depend on which: every path does
+/// the same IEEE additions and multiplications in the same order (Rust never fuses a
+/// multiplication and an addition into one rounding), and the test
+/// `every_vector_width_gives_the_same_bits` holds the dispatched path to the scalar one.
+pub(crate) fn values(fields: [Option<&Field>; 2], p_m: [f64; 3]) -> [f64; 2] {
+    static ARCH: OnceLock<pulp::Arch> = OnceLock::new();
+    ARCH.get_or_init(pulp::Arch::new)
+        .dispatch(Values { fields, p_m })
+}
+
+/// [`values`]' work, for pulp to compile once per vector width.
+struct Values<'a> {
+    fields: [Option<&'a Field>; 2],
+    p_m: [f64; 3],
+}
+
+impl pulp::WithSimd for Values<'_> {
+    type Output = [f64; 2];
+
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _: S) -> [f64; 2] {
+        let [a, b] = self.fields;
+        [
+            a.map_or(0.0, |f| f.value(self.p_m)),
+            b.map_or(0.0, |f| f.value(self.p_m)),
+        ]
+    }
+}
+
+/// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises: `t` reduced to
+/// `a = |t − round(t)|` in [0, ½] (rounding by the 1.5·2⁵² trick, exact for `|t| < 2⁵¹`),
+/// then `cos 2πa = −sin y`, `y = 2π(a − ¼)` in [−π/2, π/2], by its Taylor series to `y⁹`.
+/// The truncation is below `(π/2)¹¹/11!` = 3.6·10⁻⁶ of a wave's amplitude, so under
+/// 10⁻⁴ σ for a field's 32 waves together: far below any texture's σ and its sampling
+/// error (the statistics rest on the waves, not on the last digits). Taking the series to
+/// `y¹¹` cost 12 % more per field, for a truncation 60 times smaller.
+#[inline(always)]
 pub(crate) fn cos_turns(t: f64) -> f64 {
     const ROUND: f64 = 6_755_399_441_055_744.0;
     let t = if t.abs() < 2f64.powi(51) { t } else { 0.0 };
@@ -126,9 +177,7 @@ pub(crate) fn cos_turns(t: f64) -> f64 {
     let y = std::f64::consts::TAU * (a - 0.25);
     let y2 = y * y;
     let series = 1.0
-        + y2 * (-1.0 / 6.0
-            + y2 * (1.0 / 120.0
-                + y2 * (-1.0 / 5040.0 + y2 * (1.0 / 362_880.0 + y2 * (-1.0 / 39_916_800.0)))));
+        + y2 * (-1.0 / 6.0 + y2 * (1.0 / 120.0 + y2 * (-1.0 / 5040.0 + y2 * (1.0 / 362_880.0))));
     -y * series
 }
 
@@ -137,6 +186,9 @@ mod tests {
     use super::*;
     use irsig_model::texture::{CorrelationLength, FieldSpectrum};
 
+    /// The bound on [`cos_turns`]' truncation, `(π/2)¹¹/11!`.
+    const COS_TRUNCATION: f64 = 3.6e-6;
+
     #[test]
     fn the_arithmetic_cosine_is_the_cosine() {
         let mut worst: f64 = 0.0;
@@ -144,10 +196,13 @@ mod tests {
             let t = f64::from(i) * 1.37e-3 + 0.1234;
             worst = worst.max((cos_turns(t) - (std::f64::consts::TAU * t).cos()).abs());
         }
-        assert!(worst < 1e-7, "{worst}");
-        // Extremes: whole and half turns, far from the origin.
-        assert!((cos_turns(0.0) - 1.0).abs() < 1e-7);
-        assert!((cos_turns(0.5) + 1.0).abs() < 1e-7);
+        // The bound is the series' next term at y = π/2; the worst lies there.
+        let next_term = std::f64::consts::FRAC_PI_2.powi(11) / 39_916_800.0;
+        assert!(next_term < COS_TRUNCATION);
+        assert!(worst < COS_TRUNCATION, "{worst}");
+        // Extremes: whole and half turns (y = ∓π/2, the series' worst), far from the origin.
+        assert!((cos_turns(0.0) - 1.0).abs() < COS_TRUNCATION);
+        assert!((cos_turns(0.5) + 1.0).abs() < COS_TRUNCATION);
         assert!((cos_turns(-1e9 - 0.25)).abs() < 1e-6);
     }
 
@@ -170,6 +225,47 @@ mod tests {
         assert_ne!(a.at(p).to_bits(), c.at(p).to_bits());
         // σ = 0: nothing anywhere.
         assert!(Field::new(&spec(0.0), 7).at(p).abs() < f64::MIN_POSITIVE);
+    }
+
+    #[test]
+    fn every_vector_width_gives_the_same_bits() {
+        use pulp::WithSimd;
+        let t = Field::new(&spec(1.5), 5);
+        let e = Field::new(&spec(0.02), 6);
+        let at = |p_m| Values {
+            fields: [Some(&t), Some(&e)],
+            p_m,
+        };
+        // Each width this CPU has, called through pulp as `values` calls it.
+        let mut widths = vec![("the best", pulp::Arch::new())];
+        #[cfg(target_arch = "x86_64")]
+        {
+            if let Some(v3) = pulp::x86::V3::try_new() {
+                widths.push(("AVX2", pulp::Arch::V3(v3)));
+            }
+            // A machine with AVX2 is checked across widths, not only against itself.
+            if std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("fma")
+            {
+                assert!(widths.len() > 1);
+            }
+        }
+        let mut checked = 0;
+        for i in -300..300 {
+            // From the origin out to 10⁶ m, and both signs.
+            let r = f64::from(i).powi(3) * 3.7e-2 + 0.1;
+            let p = [r, -0.61 * r + 2.0, 0.013 * r];
+            let scalar = at(p).with_simd(pulp::Scalar::new());
+            for (name, arch) in &widths {
+                let bits = arch.dispatch(at(p)).map(f64::to_bits);
+                assert_eq!(bits, scalar.map(f64::to_bits), "{name} {p:?}");
+            }
+            let dispatched = values([Some(&t), Some(&e)], p);
+            assert_eq!(dispatched.map(f64::to_bits), scalar.map(f64::to_bits));
+            assert_eq!(t.at(p).to_bits(), scalar[0].to_bits());
+            checked += usize::from(scalar[0] != 0.0);
+        }
+        assert!(checked > 500, "{checked}");
     }
 
     #[test]

@@ -163,9 +163,10 @@ impl TextureFields {
     /// The texel at the world point `p_m`.
     #[must_use]
     pub fn sample(&self, p_m: [f64; 3]) -> Texel {
+        let [t, e] = field::values([self.temperature.as_ref(), self.emissivity.as_ref()], p_m);
         Texel {
-            temperature_offset_k: self.temperature.as_ref().map_or(0.0, |f| f.at(p_m)),
-            emissivity_scale: 1.0 + self.emissivity.as_ref().map_or(0.0, |f| f.at(p_m)),
+            temperature_offset_k: t,
+            emissivity_scale: 1.0 + e,
         }
     }
 }
