@@ -61,9 +61,11 @@ impl GreyImage {
     /// The grey of texel `(i, j)`, column `i` from the left and row `j` from the bottom,
     /// both repeated (any integer).
     fn texel(&self, i: i64, j: i64) -> f64 {
-        // The sizes are at most the memory budget's pixels, far below i64::MAX.
-        let i = i.rem_euclid(self.width as i64) as usize;
-        let j = j.rem_euclid(self.height as i64) as usize;
+        self.wrapped(wrap(i, self.width), wrap(j, self.height))
+    }
+
+    /// The grey of texel `(i, j)` of the image itself: `i < width`, `j < height`.
+    fn wrapped(&self, i: usize, j: usize) -> f64 {
         let row = self.height - 1 - j;
         f64::from(self.grey[row * self.width + i])
     }
@@ -83,13 +85,33 @@ impl GreyImage {
                 let (x, y) = (x - 0.5, y - 0.5);
                 let (i, j) = (x.floor(), y.floor());
                 let (fx, fy) = (x - i, y - j);
-                let (i, j) = (i as i64, j as i64);
-                let bottom = (1.0 - fx) * self.texel(i, j) + fx * self.texel(i + 1, j);
-                let top = (1.0 - fx) * self.texel(i, j + 1) + fx * self.texel(i + 1, j + 1);
+                // Each coordinate wrapped once, its neighbour from it (an integer
+                // division a coordinate, where wrapping each of the four texels took eight).
+                let (i0, j0) = (wrap(i as i64, self.width), wrap(j as i64, self.height));
+                let (i1, j1) = (next(i0, self.width), next(j0, self.height));
+                let bottom = (1.0 - fx) * self.wrapped(i0, j0) + fx * self.wrapped(i1, j0);
+                let top = (1.0 - fx) * self.wrapped(i0, j1) + fx * self.wrapped(i1, j1);
                 (1.0 - fy) * bottom + fy * top
             }
         }
     }
+}
+
+/// `i` repeated into `0..size` (`size` ≥ 1; the sizes are at most the memory budget's
+/// pixels, far below `i64::MAX`). A side that is a power of two, as a mip pyramid's are,
+/// takes the low bits of `i`'s two's complement, which are its Euclidean remainder,
+/// without the integer division.
+fn wrap(i: i64, size: usize) -> usize {
+    if size.is_power_of_two() {
+        i as usize & (size - 1)
+    } else {
+        i.rem_euclid(size as i64) as usize
+    }
+}
+
+/// The index after `i` (already in `0..size`), repeated.
+fn next(i: usize, size: usize) -> usize {
+    if i + 1 == size { 0 } else { i + 1 }
 }
 
 /// A box-filtered mip pyramid of a grey image (Williams, "Pyramidal parametrics",
@@ -192,7 +214,7 @@ impl GreyImage {
                     (2 * i + 1, 2 * j + 1),
                 ] {
                     if ci < self.width && cj < self.height {
-                        sum += self.texel(ci as i64, cj as i64);
+                        sum += self.wrapped(ci, cj);
                         n += 1.0;
                     }
                 }
@@ -356,6 +378,19 @@ mod tests {
     /// Within what an `f32` grey keeps (6·10⁻⁸ of it), times a mapping's gain of 10.
     fn close(a: f64, b: f64) -> bool {
         (a - b).abs() < 1e-6
+    }
+
+    #[test]
+    fn wrapping_is_the_euclidean_remainder_at_every_size() {
+        for size in [1_usize, 2, 3, 7, 64, 256, 1000, 1 << 20] {
+            let near = (-3 * size as i64..3 * size as i64).step_by(size.div_ceil(500));
+            let far = [i64::MIN, i64::MIN + 1, -(1 << 40) - 1, 1 << 40, i64::MAX];
+            for i in near.chain(far) {
+                let expected = i.rem_euclid(size as i64) as usize;
+                assert_eq!(wrap(i, size), expected, "{i} in {size}");
+                assert_eq!(next(expected, size), (expected + 1) % size);
+            }
+        }
     }
 
     #[test]
