@@ -188,8 +188,9 @@ pub(crate) struct Path {
     pub(crate) dir: DVec3,
     pub(crate) nodes: Vec<Node>,
     pub(crate) rays: Vec<HemiRay>,
-    /// The pixel's angular size, rad: the width of its cone per metre travelled, which the
-    /// footprint filter of an image map reads (0 when the scene has no image map).
+    /// The ray's angular size, rad: the width of its cone per metre travelled, which the
+    /// footprint filter of an image map reads (0 when the scene has no image map): the
+    /// pixel's, or its sub-pixel cell's for a supersampled ray ([`Ctx::subpixel_side`]).
     cone_rad: f64,
     /// How far the ray has travelled from the sensor to the facet being recorded, m,
     /// through its mirror bounces (a mirror keeps a cone's spread: Akenine-Möller et al.,
@@ -237,7 +238,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 path.cone_rad = if self.uv_maps.is_empty() {
                     0.0
                 } else {
-                    pixel_angle_rad(fc.camera())
+                    pixel_angle_rad(fc.camera()) / f64::from(ctx.subpixel_side)
                 };
                 path.travelled_m = hit.distance_m;
                 self.follow_surface(&hit, dir, alt, 0, ctx, path);

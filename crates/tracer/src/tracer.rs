@@ -149,6 +149,12 @@ pub(crate) struct Ctx<'a> {
     pixel_index: u64,
     /// Which of the pixel's streams (0: its centre ray's and supersampling's).
     stream: u64,
+    /// The rays along a side of the pixel the ray being followed shares it with (1: the
+    /// ray stands for the whole pixel): each of an `n × n` grid of sub-pixel rays stands
+    /// for a cell `1/n` of the pixel across, and its cone is that much narrower, so the
+    /// footprint filter averages its own cell and the pixel's mean of them is the pixel's
+    /// box, not a box blurred by another pixel-wide filter at every ray.
+    pub(crate) subpixel_side: u32,
 }
 
 impl<'a> Ctx<'a> {
@@ -163,6 +169,7 @@ impl<'a> Ctx<'a> {
             shadow_rays: None,
             pixel_index,
             stream: 0,
+            subpixel_side: 1,
         }
     }
 
@@ -220,6 +227,7 @@ impl<'a> Ctx<'a> {
         n: u32,
         mut visit: impl FnMut(&mut Self, f64, f64),
     ) {
+        let whole = std::mem::replace(&mut self.subpixel_side, n.max(1));
         for j in 0..n {
             for i in 0..n {
                 let (jx, jy): (f64, f64) = {
@@ -231,6 +239,7 @@ impl<'a> Ctx<'a> {
                 visit(self, x, y);
             }
         }
+        self.subpixel_side = whole;
     }
 }
 

@@ -6,7 +6,9 @@
 //! the texel means at the level read) is nothing, and only f32 greys and the radiance's
 //! inversion remain (under 10⁻³ K). With `Nearest` each pixel takes the one texel its centre
 //! ray meets: 300 or 310 K, the moiré, a spread of kelvins. Near, where a pixel covers a
-//! tenth of a texel, `Footprint` is `Bilinear`, bit for bit.
+//! tenth of a texel, `Footprint` is `Bilinear`, bit for bit. Supersampled, each ray filters
+//! its own cell of the pixel: stripes 16 texels wide read white wherever a pixel lies
+//! within them.
 
 use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
 use irsig_model::{MaterialId, RawScene, View};
@@ -64,7 +66,7 @@ fn checkerboard(side: usize) -> GreyImage {
     GreyImage::new(side, side, grey).unwrap()
 }
 
-fn tracer(filter: MapFilter, side: usize) -> Tracer<TotalRadiance, Vacuum> {
+fn tracer(filter: MapFilter, image: GreyImage) -> Tracer<TotalRadiance, Vacuum> {
     let maps = ImageMaps {
         temperature_offset_k: Some(ImageMap {
             image: "checker.png".into(),
@@ -77,7 +79,7 @@ fn tracer(filter: MapFilter, side: usize) -> Tracer<TotalRadiance, Vacuum> {
     };
     let mut lib = grey_materials(&[(1, 1.0, 0.0)]);
     lib.materials[0].maps = Some(maps.clone());
-    let loaded = MaterialMaps::new(&maps, |_, _| Ok(checkerboard(side))).unwrap();
+    let loaded = MaterialMaps::new(&maps, |_, _| Ok(image.clone())).unwrap();
     let one = irsig_tracer::SubBand {
         band: TotalRadiance,
         atmosphere: Vacuum::default(),
@@ -129,7 +131,10 @@ fn on_quad(t: &Tracer<TotalRadiance, Vacuum>, cam: &Camera) -> Vec<f64> {
 fn a_fine_checkerboard_from_afar_renders_its_texels_mean_with_the_footprint_filter() {
     let cam = camera(FAR_M, FAR_FOV_DEG, PIXELS);
     let mean_k = 300.0 + 0.5 * 10.0;
-    let filtered = on_quad(&tracer(MapFilter::Footprint, FINE_TEXELS), &cam);
+    let filtered = on_quad(
+        &tracer(MapFilter::Footprint, checkerboard(FINE_TEXELS)),
+        &cam,
+    );
     // The quad (±0.14° of the 0.16° half-field) covers most of the image.
     assert!(filtered.len() > 2500, "{} pixels", filtered.len());
     let worst = filtered
@@ -141,7 +146,7 @@ fn a_fine_checkerboard_from_afar_renders_its_texels_mean_with_the_footprint_filt
         "worst {worst} K from {mean_k} K"
     );
     // Nearest: every pixel one texel, 300 or 310 K; the spread is the checkerboard's.
-    let nearest = on_quad(&tracer(MapFilter::Nearest, FINE_TEXELS), &cam);
+    let nearest = on_quad(&tracer(MapFilter::Nearest, checkerboard(FINE_TEXELS)), &cam);
     assert_eq!(nearest.len(), filtered.len());
     let n = nearest.len() as f64;
     let mean = nearest.iter().sum::<f64>() / n;
@@ -160,7 +165,7 @@ fn where_a_pixel_covers_less_than_a_texel_the_footprint_filter_is_bilinear() {
     // checkerboard's 1.25 m texels.
     let cam = camera(60.0, 12.0, 96);
     let radiance = |filter| {
-        tracer(filter, 8)
+        tracer(filter, checkerboard(8))
             .render(&cam, &TraceOptions::default(), &|_| {})
             .unwrap()
             .radiance_w_m2_sr
@@ -168,4 +173,73 @@ fn where_a_pixel_covers_less_than_a_texel_the_footprint_filter_is_bilinear() {
     let footprint = radiance(MapFilter::Footprint);
     assert_eq!(footprint, radiance(MapFilter::Bilinear));
     assert_ne!(footprint, radiance(MapFilter::Nearest));
+}
+
+/// The stripes' width, texels: 62.5 cm on the quad, 3.6 pixels from 2 km.
+const STRIPE_TEXELS: usize = 16;
+
+/// Stripes along v, `STRIPE_TEXELS` wide, across an image `FINE_TEXELS` square: white in
+/// the columns `i` with `⌊i / 16⌋` even (the first from the quad's left edge, x = −5 m).
+fn stripes() -> GreyImage {
+    let side = FINE_TEXELS;
+    let grey = (0..side * side)
+        .map(|k| f32::from(u8::from(k % side / STRIPE_TEXELS % 2 == 0)))
+        .collect();
+    GreyImage::new(side, side, grey).unwrap()
+}
+
+/// Where the ray through the image point (`x`, `y`) (pixel units) meets the quad's plane,
+/// m: the x and y of the intersection with z = y·tan θ, by hand.
+fn ground_xy(cam: &Camera, x: f64, y: f64) -> [f64; 2] {
+    let o = cam.position_m;
+    let d = cam.direction_at(x, y);
+    let s = (slope() * o[1] - o[2]) / (d[2] - slope() * d[1]);
+    [o[0] + s * d[0], o[1] + s * d[1]]
+}
+
+#[test]
+fn each_supersampled_ray_filters_its_own_cell_of_the_pixel() {
+    // From 2 km a pixel covers 4.5 texels in x (4.9 along the tilt). With 8 × 8 rays a
+    // pixel each ray's cell is 0.6 texel across, and the footprint filter reads the image
+    // itself bilinearly, within one texel of the ray. So a pixel whose ground lies more
+    // than a texel inside a white stripe is white through and through: 310 K. Were every
+    // ray to filter the whole pixel (level 2.3: boxes of 4 and 8 texels read bilinearly,
+    // reaching 6 texels out), those within 6 texels of a stripe's edge would mix in the
+    // black beyond it.
+    let cam = camera(FAR_M, FAR_FOV_DEG, PIXELS);
+    let options = TraceOptions {
+        supersampling: 8,
+        ..TraceOptions::default()
+    };
+    let frame = tracer(MapFilter::Footprint, stripes())
+        .render(&cam, &options, &|_| {})
+        .unwrap();
+    let texel_m = 2.0 * HALF_M / FINE_TEXELS as f64;
+    let stripe = |x_m: f64| ((x_m + HALF_M) / (STRIPE_TEXELS as f64 * texel_m)).floor() as i64;
+    let mut inside = Vec::new();
+    for row in 0..PIXELS {
+        for column in 0..PIXELS {
+            let (c, r) = (f64::from(column), f64::from(row));
+            let corners = [(c, r), (c + 1.0, r), (c, r + 1.0), (c + 1.0, r + 1.0)];
+            let ground = corners.map(|(x, y)| ground_xy(&cam, x, y));
+            // The pixel's ground, a texel wider on every side.
+            let [x, y] = [0, 1].map(|axis| {
+                let values = ground.map(|p| p[axis]);
+                [
+                    values.iter().copied().fold(f64::INFINITY, f64::min) - texel_m,
+                    values.iter().copied().fold(f64::NEG_INFINITY, f64::max) + texel_m,
+                ]
+            });
+            let on_quad = x.iter().chain(&y).all(|c| c.abs() < HALF_M);
+            let white = stripe(x[0]) == stripe(x[1]) && stripe(x[0]).rem_euclid(2) == 0;
+            if on_quad && white {
+                let l = frame.radiance_w_m2_sr[(row * PIXELS + column) as usize];
+                inside.push(TotalRadiance.temperature(l));
+            }
+        }
+    }
+    // About two columns of every white stripe the quad shows.
+    assert!(inside.len() > 300, "{} pixels", inside.len());
+    let worst = inside.iter().map(|t| (t - 310.0).abs()).fold(0.0, f64::max);
+    assert!(worst < FOOTPRINT_TOLERANCE_K, "worst {worst} K from 310 K");
 }
