@@ -5,32 +5,13 @@
 //! `cargo bench --profile release --workspace --bench field`. Figures go to BENCHMARKS.md.
 
 use divan::counter::ItemsCount;
-use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
-use irsig_texture::{Field, TextureFields};
+use irsig_texture::{Field, MaterialMaps, TextureFields, testing};
 
 fn main() {
     divan::main();
 }
 
 const POINTS: usize = 4096;
-
-fn texture() -> StatisticalTexture {
-    StatisticalTexture {
-        seed: 1,
-        temperature_offset_k: Some(RandomField {
-            sigma: 1.5,
-            spectrum: FieldSpectrum::Exponential {
-                correlation_length_m: CorrelationLength::Isotropic(0.5),
-            },
-        }),
-        emissivity_scale: Some(RandomField {
-            sigma: 0.02,
-            spectrum: FieldSpectrum::Gaussian {
-                correlation_length_m: CorrelationLength::Isotropic(2.0),
-            },
-        }),
-    }
-}
 
 /// Points on a spiral over a 100 m disc, 0 to 3 m high: no two alike, so nothing repeats
 /// from one sample to the next.
@@ -46,7 +27,7 @@ fn points() -> Vec<[f64; 3]> {
 
 #[divan::bench(sample_count = 200)]
 fn both_fields(bencher: divan::Bencher) {
-    let fields = TextureFields::new(&texture()).unwrap();
+    let fields = TextureFields::new(&testing::statistical(1)).unwrap();
     let points = points();
     bencher.counter(ItemsCount::new(POINTS)).bench(|| {
         points
@@ -61,7 +42,7 @@ fn both_fields(bencher: divan::Bencher) {
 
 #[divan::bench(sample_count = 200)]
 fn one_field(bencher: divan::Bencher) {
-    let spec = texture().temperature_offset_k.unwrap();
+    let spec = testing::statistical(1).temperature_offset_k.unwrap();
     let field = Field::new(&spec, 1);
     let points = points();
     bencher.counter(ItemsCount::new(POINTS)).bench(|| {
@@ -78,31 +59,9 @@ fn one_field(bencher: divan::Bencher) {
 /// bilinear) or 3 texels (`true`: both through the footprint filter).
 #[divan::bench(args = [false, true], sample_count = 200)]
 fn both_maps(bencher: divan::Bencher, footprint: bool) {
-    use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
-    use irsig_texture::{GreyImage, MaterialMaps};
-    let map = |image: &str, at_black, per_grey, filter| ImageMap {
-        image: image.into(),
-        at_black,
-        per_grey,
-        filter,
-    };
-    let (t_filter, e_filter) = if footprint {
-        (MapFilter::Footprint, MapFilter::Footprint)
-    } else {
-        (MapFilter::Nearest, MapFilter::Bilinear)
-    };
-    let declared = ImageMaps {
-        temperature_offset_k: Some(map("t.png", -2.0, 4.0, t_filter)),
-        emissivity_scale: Some(map("e.png", 0.98, 0.04, e_filter)),
-        material: None,
-    };
-    let side = 256;
-    let grey: Vec<f32> = (0..side * side)
-        .map(|k| ((k * 7919) % 251) as f32 / 250.0)
-        .collect();
-    let image = GreyImage::new(side, side, grey).unwrap();
+    let (declared, image) = testing::maps(footprint);
     let maps = MaterialMaps::new(&declared, |_, _| Ok(image.clone())).unwrap();
-    let footprint_uv = if footprint { 3.0 } else { 0.7 } / side as f64;
+    let footprint_uv = if footprint { 3.0 } else { 0.7 } / testing::MAP_SIDE as f64;
     let uvs: Vec<[f64; 2]> = points().iter().map(|p| [p[0] / 4.0, p[1] / 4.0]).collect();
     bencher.counter(ItemsCount::new(POINTS)).bench(|| {
         uvs.iter()

@@ -46,6 +46,8 @@ mod field;
 mod image;
 mod mix;
 mod spectrum;
+#[cfg(any(test, feature = "testing"))]
+pub mod testing;
 
 pub use field::{CLIP_SIGMAS, Field, WAVES};
 pub use image::{GreyImage, MaterialMaps, MipPyramid};

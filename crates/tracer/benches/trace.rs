@@ -127,27 +127,12 @@ fn shaded_diffuse(bencher: divan::Bencher, i: usize) {
 /// evaluates two fields of `irsig_texture::WAVES` waves and reads the textured `L_T`
 /// table. Against `shaded_diffuse`: what a texture on every facet costs a frame.
 fn textured(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
-    use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
     static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 3] =
         [OnceLock::new(), OnceLock::new(), OnceLock::new()];
     CACHE[i].get_or_init(|| {
         let mut lib = materials(0.0);
         for (k, m) in lib.materials.iter_mut().enumerate() {
-            m.texture = Some(StatisticalTexture {
-                seed: k as u64,
-                temperature_offset_k: Some(RandomField {
-                    sigma: 1.5,
-                    spectrum: FieldSpectrum::Exponential {
-                        correlation_length_m: CorrelationLength::Isotropic(0.5),
-                    },
-                }),
-                emissivity_scale: Some(RandomField {
-                    sigma: 0.02,
-                    spectrum: FieldSpectrum::Gaussian {
-                        correlation_length_m: CorrelationLength::Isotropic(2.0),
-                    },
-                }),
-            });
+            m.texture = Some(irsig_texture::testing::statistical(k as u64));
         }
         let sky = Vacuum {
             sky_radiance_w_m2_sr: 20.0,
@@ -176,8 +161,7 @@ fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
 /// image map on every facet costs a frame. With `footprint`, both maps are read with the
 /// footprint filter instead (a mip pyramid, two levels read bilinearly at every hit).
 fn mapped(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
-    use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
-    use irsig_texture::{GreyImage, MaterialMaps};
+    use irsig_texture::MaterialMaps;
     static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [
         OnceLock::new(),
         OnceLock::new(),
@@ -195,27 +179,7 @@ fn mapped(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
                 [p[0] / 4.0, p[1] / 4.0]
             }));
         }
-        let map = |image: &str, at_black, per_grey, filter| ImageMap {
-            image: image.into(),
-            at_black,
-            per_grey,
-            filter,
-        };
-        let (t_filter, e_filter) = if footprint {
-            (MapFilter::Footprint, MapFilter::Footprint)
-        } else {
-            (MapFilter::Nearest, MapFilter::Bilinear)
-        };
-        let maps = ImageMaps {
-            temperature_offset_k: Some(map("t.png", -2.0, 4.0, t_filter)),
-            emissivity_scale: Some(map("e.png", 0.98, 0.04, e_filter)),
-            material: None,
-        };
-        let side = 256;
-        let grey: Vec<f32> = (0..side * side)
-            .map(|k| ((k * 7919) % 251) as f32 / 250.0)
-            .collect();
-        let image = GreyImage::new(side, side, grey).unwrap();
+        let (maps, image) = irsig_texture::testing::maps(footprint);
         let mut lib = materials(0.0);
         let mut loaded = Vec::new();
         for m in &mut lib.materials {
