@@ -15,7 +15,7 @@ use irsig_model::{MaterialId, RawScene, View};
 use irsig_radiometry::{BandModel, TotalRadiance};
 use irsig_texture::{GreyImage, MaterialMaps};
 use irsig_tracer::testing::{grey_materials, raw_scene};
-use irsig_tracer::{Camera, TraceOptions, Tracer, Vacuum};
+use irsig_tracer::{Camera, DVec3, TraceOptions, Tracer, Vacuum};
 
 /// The quad's half-width, m, and its tilt about x, degrees.
 const HALF_M: f64 = 5.0;
@@ -106,18 +106,23 @@ fn camera(height_m: f64, fov_deg: f64, pixels: u32) -> Camera {
     .unwrap()
 }
 
+/// Where the ray from the camera along `d` meets the quad's plane, m: the x and y of the
+/// intersection with z = y·tan θ, by hand.
+fn ground_xy(cam: &Camera, d: DVec3) -> [f64; 2] {
+    let o = cam.position_m;
+    let s = (slope() * o[1] - o[2]) / (d[2] - slope() * d[1]);
+    [o[0] + s * d[0], o[1] + s * d[1]]
+}
+
 /// The apparent temperatures (K; ε = 1 in a vacuum: the kinetic temperature) of the pixels
 /// whose centre ray meets the quad at least 2 cm inside its edge (by hand: the ray
 /// intersected with the plane z = y·tan θ).
 fn on_quad(t: &Tracer<TotalRadiance, Vacuum>, cam: &Camera) -> Vec<f64> {
     let frame = t.render(cam, &TraceOptions::default(), &|_| {}).unwrap();
-    let o = cam.position_m;
     let mut out = Vec::new();
     for row in 0..cam.pixels[1] {
         for column in 0..cam.pixels[0] {
-            let d = cam.pixel_direction(column, row);
-            let s = (slope() * o[1] - o[2]) / (d[2] - slope() * d[1]);
-            let (x, y) = (o[0] + s * d[0], o[1] + s * d[1]);
+            let [x, y] = ground_xy(cam, cam.pixel_direction(column, row));
             if x.abs().max(y.abs()) < HALF_M - 0.02 {
                 let l = frame.radiance_w_m2_sr[(row * cam.pixels[0] + column) as usize];
                 out.push(TotalRadiance.temperature(l));
@@ -188,15 +193,6 @@ fn stripes() -> GreyImage {
     GreyImage::new(side, side, grey).unwrap()
 }
 
-/// Where the ray through the image point (`x`, `y`) (pixel units) meets the quad's plane,
-/// m: the x and y of the intersection with z = y·tan θ, by hand.
-fn ground_xy(cam: &Camera, x: f64, y: f64) -> [f64; 2] {
-    let o = cam.position_m;
-    let d = cam.direction_at(x, y);
-    let s = (slope() * o[1] - o[2]) / (d[2] - slope() * d[1]);
-    [o[0] + s * d[0], o[1] + s * d[1]]
-}
-
 #[test]
 fn each_supersampled_ray_filters_its_own_cell_of_the_pixel() {
     // From 2 km a pixel covers 4.5 texels in x (4.9 along the tilt). With 8 × 8 rays a
@@ -221,7 +217,7 @@ fn each_supersampled_ray_filters_its_own_cell_of_the_pixel() {
         for column in 0..PIXELS {
             let (c, r) = (f64::from(column), f64::from(row));
             let corners = [(c, r), (c + 1.0, r), (c, r + 1.0), (c + 1.0, r + 1.0)];
-            let ground = corners.map(|(x, y)| ground_xy(&cam, x, y));
+            let ground = corners.map(|(x, y)| ground_xy(&cam, cam.direction_at(x, y)));
             // The pixel's ground, a texel wider on every side.
             let [x, y] = [0, 1].map(|axis| {
                 let values = ground.map(|p| p[axis]);
