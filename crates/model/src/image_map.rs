@@ -67,10 +67,9 @@ pub enum MapFilter {
     /// Against aliasing where a texel is smaller than a pixel's footprint: a box-filtered
     /// mip pyramid of the image (each level's texel the mean of the 2 × 2 below it), read
     /// bilinearly at the level whose texel is the footprint's size and blended between the
-    /// two levels around it (Williams 1983, "trilinear"). The footprint is the pixel's
-    /// angular size times the distance the ray travelled (through its mirror bounces) over
-    /// the cosine of incidence, in texels through the facet's ratio of texture area to
-    /// world area. A texture far away gives the mean of its texels, within the spread of
+    /// two levels around it (Williams 1983, "trilinear"). The footprint is the longer edge
+    /// of the ray's pixel cell on the facet (its ray differentials, through its mirror
+    /// bounces), in texels through the facet's ratio of texture area to world area. A texture far away gives the mean of its texels, within the spread of
     /// the texel means at that level; under one texel a pixel it is `Bilinear`. Hits of
     /// sky-view rays read the image itself (a hemisphere's ray has no footprint to speak
     /// of).

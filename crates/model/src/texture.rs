@@ -49,6 +49,41 @@ pub struct StatisticalTexture {
     /// is `1 − ε`. `None`: the material's emissivity everywhere.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub emissivity_scale: Option<RandomField>,
+    /// How a ray takes the fields' value: at its hit point, or averaged over its pixel's
+    /// footprint there.
+    #[serde(default, skip_serializing_if = "FieldFilter::is_point")]
+    pub filter: FieldFilter,
+}
+
+/// The named ways a ray reads a statistical texture.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum FieldFilter {
+    /// The fields' value at the point the ray hits. A field finer than a pixel's footprint
+    /// then aliases unless the pixel is supersampled: one ray gives one point of it, not
+    /// the pixel's mean.
+    #[default]
+    Point,
+    /// The fields' mean over the ray's pixel cell where it lies on the facet (its sub-pixel
+    /// cell for a supersampled ray): the cell's parallelogram from the ray's differentials
+    /// (Igehy 1999), through mirror bounces, over which each plane wave of a field averages
+    /// to itself at the hit times `sinc(π f·a)·sinc(π f·b)` (`a`, `b` the parallelogram's
+    /// edges), exactly. A field much finer than a pixel gives the pixel its mean, not
+    /// moiré. What it leaves: the cell is the plane's linear image of the pixel (the
+    /// perspective within one pixel is not followed), and the mean is taken of the
+    /// temperature offset and the ε scale, not of the radiance they give (a difference of
+    /// `½·L''/L'·σ²` in temperature for the variance filtered away, 0.01 K for 1 K at
+    /// 300 K in 8–14 µm). Costs a hit about three times a point's where the footprint
+    /// matters; where the footprint is under 10⁻³ of the field's shortest wavelength it is
+    /// the point's value, at the point's cost. Hits of sky-view rays read the point.
+    Footprint,
+}
+
+impl FieldFilter {
+    /// Whether this is [`FieldFilter::Point`], the default.
+    #[must_use]
+    pub fn is_point(&self) -> bool {
+        *self == Self::Point
+    }
 }
 
 /// A stationary Gaussian random field: its standard deviation and its power spectrum.
@@ -195,6 +230,7 @@ mod tests {
             seed: 1,
             temperature_offset_k: Some(RandomField { sigma, spectrum }),
             emissivity_scale: None,
+            filter: FieldFilter::Point,
         }
     }
 
@@ -228,6 +264,7 @@ mod tests {
                 sigma: 2.0,
                 spectrum: gaussian(CorrelationLength::Isotropic(1.0)),
             }),
+            filter: FieldFilter::Point,
         };
         assert_eq!(
             t.validate("t").unwrap_err().path,

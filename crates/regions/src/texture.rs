@@ -12,7 +12,9 @@
 //! (north up), as a nadir view with north up gives them; `pixel_m` is the ground length of
 //! a pixel along each.
 
-use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
+use irsig_model::texture::{
+    CorrelationLength, FieldFilter, FieldSpectrum, RandomField, StatisticalTexture,
+};
 
 pub use crate::stats::region_plane;
 
@@ -181,6 +183,7 @@ impl TextureEstimate {
                 spectrum: self.spectrum.clone(),
             }),
             emissivity_scale: None,
+            filter: FieldFilter::Point,
         }
     }
 }
@@ -262,6 +265,7 @@ mod tests {
                 spectrum: spectrum.clone(),
             }),
             emissivity_scale: None,
+            filter: FieldFilter::Point,
         };
         let f = irsig_texture::TextureFields::new(&t).unwrap();
         (0..n * n)

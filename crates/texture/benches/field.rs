@@ -1,11 +1,13 @@
 //! What a statistical texture costs a hit: `TextureFields::sample` (a temperature field
 //! and an emissivity field of `WAVES` plane waves each, as the tracer's `frame_1024` field
-//! case draws them) at 4 096 points spread over 100 m, and one field alone.
+//! case draws them) at 4 096 points spread over 100 m, through the footprint filter, and
+//! one field alone.
 //!
 //! `cargo bench --profile release --workspace --bench field`. Figures go to BENCHMARKS.md.
 
 use divan::counter::ItemsCount;
-use irsig_texture::{Field, MaterialMaps, TextureFields, testing};
+use irsig_model::texture::FieldFilter;
+use irsig_texture::{Field, Footprint, MaterialMaps, TextureFields, testing};
 
 fn main() {
     divan::main();
@@ -34,6 +36,29 @@ fn both_fields(bencher: divan::Bencher) {
             .iter()
             .map(|&p| {
                 let t = fields.sample(divan::black_box(p));
+                t.temperature_offset_k + t.emissivity_scale
+            })
+            .sum::<f64>()
+    });
+}
+
+/// [`both_fields`] through the footprint filter (`FieldFilter::Footprint`), over a
+/// horizontal cell `side_m` across at each point: a cell this small (1 µm) reads the point;
+/// the others filter every wave.
+#[divan::bench(args = [1e-6, 0.1, 1.0], sample_count = 200)]
+fn both_fields_over(bencher: divan::Bencher, side_m: f64) {
+    let mut texture = testing::statistical(1);
+    texture.filter = FieldFilter::Footprint;
+    let fields = TextureFields::new(&texture).unwrap();
+    let cell = Footprint {
+        edges_m: [[side_m, 0.0, 0.0], [0.0, side_m, 0.0]],
+    };
+    let points = points();
+    bencher.counter(ItemsCount::new(POINTS)).bench(|| {
+        points
+            .iter()
+            .map(|&p| {
+                let t = fields.sample_over(divan::black_box(p), Some(&cell));
                 t.temperature_offset_k + t.emissivity_scale
             })
             .sum::<f64>()

@@ -9,7 +9,9 @@
 //! alone, so a texture does not move between frames, tiles or thread counts.
 //!
 //! ```
-//! use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
+//! use irsig_model::texture::{
+//!     CorrelationLength, FieldFilter, FieldSpectrum, RandomField, StatisticalTexture,
+//! };
 //! use irsig_texture::TextureFields;
 //!
 //! let texture = StatisticalTexture {
@@ -21,6 +23,7 @@
 //!         },
 //!     }),
 //!     emissivity_scale: None,
+//!     filter: FieldFilter::Point,
 //! };
 //! let fields = TextureFields::new(&texture)?;
 //! let texel = fields.sample([3.0, 4.0, 0.0]);
@@ -49,13 +52,13 @@ mod spectrum;
 #[cfg(any(test, feature = "testing"))]
 pub mod testing;
 
-pub use field::{CLIP_SIGMAS, Field, WAVES};
+pub use field::{CLIP_SIGMAS, Field, Footprint, WAVES};
 pub use image::{GreyImage, MaterialMaps, MipPyramid};
 pub use mix::MixMap;
 pub use spectrum::{correlation, correlation_length_m};
 
 use irsig_model::ModelError;
-use irsig_model::texture::StatisticalTexture;
+use irsig_model::texture::{FieldFilter, StatisticalTexture};
 
 /// Mixed into a texture's seed for its temperature field's stream.
 const TEMPERATURE_STREAM: u64 = 0x7465_6d70_6572_6174;
@@ -130,6 +133,7 @@ impl Texel {
 pub struct TextureFields {
     temperature: Option<Field>,
     emissivity: Option<Field>,
+    filter: FieldFilter,
 }
 
 impl TextureFields {
@@ -150,6 +154,7 @@ impl TextureFields {
         Ok(Self {
             temperature: draw(&texture.temperature_offset_k, TEMPERATURE_STREAM),
             emissivity: draw(&texture.emissivity_scale, EMISSIVITY_STREAM),
+            filter: texture.filter,
         })
     }
 
@@ -162,10 +167,26 @@ impl TextureFields {
             .map_or(0.0, |f| CLIP_SIGMAS * f.sigma())
     }
 
+    /// Whether a ray reads the fields over its footprint ([`FieldFilter::Footprint`]).
+    #[must_use]
+    pub fn filters_footprint(&self) -> bool {
+        self.filter == FieldFilter::Footprint
+    }
+
     /// The texel at the world point `p_m`.
     #[must_use]
     pub fn sample(&self, p_m: [f64; 3]) -> Texel {
-        let [t, e] = field::values([self.temperature.as_ref(), self.emissivity.as_ref()], p_m);
+        self.sample_over(p_m, None)
+    }
+
+    /// The texel a ray reads at the world point `p_m` through the texture's filter: with
+    /// [`FieldFilter::Footprint`] and a `footprint`, the fields' means over it
+    /// ([`Field::mean_over`]); otherwise their values at the point.
+    #[must_use]
+    pub fn sample_over(&self, p_m: [f64; 3], footprint: Option<&Footprint>) -> Texel {
+        let footprint = footprint.filter(|_| self.filter == FieldFilter::Footprint);
+        let fields = [self.temperature.as_ref(), self.emissivity.as_ref()];
+        let [t, e] = field::values(fields, p_m, footprint);
         Texel {
             temperature_offset_k: t,
             emissivity_scale: 1.0 + e,
@@ -184,7 +205,7 @@ fn splitmix64(mut x: u64) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField};
+    use irsig_model::texture::{CorrelationLength, FieldFilter, FieldSpectrum, RandomField};
 
     fn texture(t_sigma: f64, e_sigma: f64) -> StatisticalTexture {
         let spectrum = FieldSpectrum::Exponential {
@@ -200,6 +221,7 @@ mod tests {
                 sigma: e_sigma,
                 spectrum,
             }),
+            filter: FieldFilter::Point,
         }
     }
 

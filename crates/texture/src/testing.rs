@@ -3,7 +3,9 @@
 //! frame) measure the same ones.
 
 use irsig_model::image_map::{ImageMap, ImageMaps, MapFilter};
-use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
+use irsig_model::texture::{
+    CorrelationLength, FieldFilter, FieldSpectrum, RandomField, StatisticalTexture,
+};
 
 use crate::GreyImage;
 
@@ -25,6 +27,7 @@ pub fn statistical(seed: u64) -> StatisticalTexture {
                 correlation_length_m: CorrelationLength::Isotropic(2.0),
             },
         }),
+        filter: FieldFilter::Point,
     }
 }
 

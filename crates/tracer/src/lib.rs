@@ -73,6 +73,7 @@ pub mod camera;
 pub mod charge;
 pub mod data_error;
 mod day;
+mod differential;
 pub mod env;
 mod error;
 pub mod exposure;

@@ -79,7 +79,7 @@ impl<B, A> Tracer<B, A> {
     pub(crate) fn resolve_material(
         &self,
         hit: &Hit<FacetRadiometry>,
-        footprint_m: f64,
+        footprint: Option<&irsig_texture::Footprint>,
     ) -> (FacetRadiometry, Option<Mix>) {
         let m = &self.materials[usize::from(hit.data.material)];
         let (Some(map), Some(uv)) = (
@@ -89,7 +89,7 @@ impl<B, A> Tracer<B, A> {
             return (hit.data, None);
         };
         let p_m = self.geometry.to_world(hit.point_local);
-        let w = map.sample(uv.at(p_m), uv.footprint_uv(footprint_m, hit.cos_incidence));
+        let w = map.sample(uv.at(p_m), uv.footprint_uv(footprint));
         let mut data = hit.data;
         let mut best = 0;
         for k in 1..map.materials() {

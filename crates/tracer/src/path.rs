@@ -8,7 +8,9 @@ use rand::Rng;
 
 use irsig_atmosphere::range_to_ground_from_cos_m;
 use irsig_radiometry::BandModel;
+use irsig_texture::Footprint;
 
+use crate::differential::Differentials;
 use crate::env::Atmosphere;
 use crate::geometry::Hit;
 use crate::sun::SunGeometry;
@@ -152,16 +154,6 @@ pub(crate) enum HemiRay {
     Escaped(Escape),
 }
 
-/// A pixel's angular size, rad: the square root of its solid angle at the image's centre,
-/// `√((2·tan(fov_x/2)/W)·(2·tan(fov_y/2)/H))`. Off the axis a pixel subtends less (by
-/// `cos²` of its angle from the axis), so a footprint from it errs wide: toward blur, never
-/// aliasing.
-fn pixel_angle_rad(camera: &crate::camera::Camera) -> f64 {
-    let [w, h] = camera.pixels.map(f64::from);
-    let [tx, ty] = camera.tan_half_fov;
-    (2.0 * tx / w * 2.0 * ty / h).sqrt()
-}
-
 /// What the ray from the sensor met first.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Primary {
@@ -188,15 +180,11 @@ pub(crate) struct Path {
     pub(crate) dir: DVec3,
     pub(crate) nodes: Vec<Node>,
     pub(crate) rays: Vec<HemiRay>,
-    /// The ray's angular size, rad: the width of its cone per metre travelled, which the
-    /// footprint filter of an image map reads (0 when the scene has no image map): the
-    /// pixel's, or its sub-pixel cell's for a supersampled ray ([`Ctx::subpixel_side`]).
-    cone_rad: f64,
-    /// How far the ray has travelled from the sensor to the facet being recorded, m,
-    /// through its mirror bounces (a mirror keeps a cone's spread: Akenine-Möller et al.,
-    /// "Texture level of detail strategies for real-time ray tracing", *Ray Tracing
-    /// Gems*, 2019, ch. 20).
-    travelled_m: f64,
+    /// The ray's cell, carried through its mirror bounces, which the texture filters read
+    /// as its footprint at each facet: the pixel's, or its sub-pixel cell's for a
+    /// supersampled ray ([`Ctx::subpixel_side`]). `None` when no texture of the scene
+    /// filters over a footprint.
+    cell: Option<Differentials>,
 }
 
 impl Default for Path {
@@ -206,8 +194,7 @@ impl Default for Path {
             dir: DVec3::Z,
             nodes: Vec::new(),
             rays: Vec::new(),
-            cone_rad: 0.0,
-            travelled_m: 0.0,
+            cell: None,
         }
     }
 }
@@ -235,12 +222,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     range_m: hit.distance_m,
                     alt_m: alt,
                 };
-                path.cone_rad = if self.uv_maps.is_empty() {
-                    0.0
-                } else {
-                    pixel_angle_rad(fc.camera()) / f64::from(ctx.subpixel_side)
-                };
-                path.travelled_m = hit.distance_m;
+                path.cell = self
+                    .filters_footprint
+                    .then(|| Differentials::from_camera(fc.camera(), dir, ctx.subpixel_side));
                 self.follow_surface(&hit, dir, alt, 0, ctx, path);
             }
         }
@@ -290,7 +274,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         ctx: &mut Ctx<'_>,
         path: &mut Path,
     ) {
-        let surface = self.surface(hit, alt, path.cone_rad * path.travelled_m);
+        let footprint = path
+            .cell
+            .as_mut()
+            .map(|c| c.at_hit(dir, hit.distance_m, hit.normal));
+        let surface = self.surface(hit, alt, footprint.as_ref());
         let (has_mirror, has_diffuse, lobe) =
             self.reflection_parts(&surface.data, surface.mix.as_ref());
         let index = path.nodes.len();
@@ -322,7 +310,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 ) {
                     Some(h2) => {
                         let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                        path.travelled_m += h2.distance_m;
+                        if let Some(c) = path.cell.as_mut() {
+                            c.reflect(hit.normal);
+                        }
                         self.follow_surface(&h2, refl, alt2, depth + 1, ctx, path);
                         Mirror::Next
                     }
@@ -451,9 +441,15 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The record of a hit at altitude `alt`: with its material's texture sampled at the
     /// hit's world position and its image maps at the hit's texture coordinates, every
     /// event alike (the first hit, a specular bounce's, a sky-view ray's), a footprint
-    /// filter over the ray's cone `footprint_m` wide there ([`Tracer::texel_at`]).
-    fn surface(&self, hit: &Hit<FacetRadiometry>, alt: f64, footprint_m: f64) -> Surface {
-        let (data, mix) = self.resolve_material(hit, footprint_m);
+    /// filter over the ray's cell there, `footprint` ([`Tracer::texel_at`]; `None` for a
+    /// sky-view ray's hit, which reads the point).
+    fn surface(
+        &self,
+        hit: &Hit<FacetRadiometry>,
+        alt: f64,
+        footprint: Option<&Footprint>,
+    ) -> Surface {
+        let (data, mix) = self.resolve_material(hit, footprint);
         let slot = usize::from(data.material);
         Surface {
             facet: hit.facet,
@@ -462,7 +458,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             back_face: hit.back_face,
             alt_m: alt,
             emissivity: self.emissivity[slot].at_cos(hit.cos_incidence),
-            texel: self.texel_at(hit, footprint_m),
+            texel: self.texel_at(hit, footprint),
             mix,
         }
     }
@@ -503,7 +499,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             ) {
                 Some(h2) => {
                     let alt2 = self.geometry.to_world(h2.point_local)[2].max(0.0);
-                    HemiRay::Facet(self.surface(&h2, alt2, 0.0))
+                    HemiRay::Facet(self.surface(&h2, alt2, None))
                 }
                 None => {
                     if d[2] >= 0.0 {

@@ -12,6 +12,7 @@
 
 use glam::DVec3;
 use irsig_radiometry::BandModel;
+use irsig_texture::Footprint;
 
 /// The table's step, K.
 pub(crate) const STEP_K: f64 = 0.25;
@@ -118,14 +119,13 @@ impl UvMap {
         })
     }
 
-    /// A pixel's footprint `footprint_m` across (its cone's width at the hit, before the
-    /// slant) on this facet at incidence cosine `cos_incidence`, in texture-coordinate
-    /// units: the width over `|cos θ|` (the footprint's long axis) times
-    /// [`Self::uv_per_m`]. Grazing incidence gives an infinite footprint: the pyramid's
-    /// last level, the image's mean.
+    /// A ray's footprint on this facet in texture-coordinate units, the width an
+    /// isotropic filter reads: its cell's longer edge ([`Footprint::width_m`]) times
+    /// [`Self::uv_per_m`]; 0 without one (a sky-view ray's hit). Grazing incidence gives an
+    /// infinite footprint: the pyramid's last level, the image's mean.
     #[inline]
-    pub(crate) fn footprint_uv(&self, footprint_m: f64, cos_incidence: f64) -> f64 {
-        footprint_m / cos_incidence.abs() * self.uv_per_m
+    pub(crate) fn footprint_uv(&self, footprint: Option<&Footprint>) -> f64 {
+        footprint.map_or(0.0, |f| f.width_m() * self.uv_per_m)
     }
 
     /// The texture coordinates at the world point `p_m` of the facet's plane.
@@ -243,13 +243,14 @@ impl<B, A> crate::tracer::Tracer<B, A> {
 
     /// What the material's textures give at a hit: its statistical texture at the world
     /// point and its image maps at the point's texture coordinates, combined (offsets add,
-    /// scales multiply); `None` for a material with neither. `footprint_m` is the width of
-    /// the ray's pixel cone at the hit, m, which the footprint filter reads (0: none).
+    /// scales multiply); `None` for a material with neither. `footprint` is the ray's cell
+    /// on the facet ([`crate::differential`]), which the footprint filters read (`None`:
+    /// the point).
     #[inline]
     pub(crate) fn texel_at(
         &self,
         hit: &crate::geometry::Hit<crate::tracer::FacetRadiometry>,
-        footprint_m: f64,
+        footprint: Option<&Footprint>,
     ) -> Option<irsig_texture::Texel> {
         let m = &self.materials[usize::from(hit.data.material)];
         let maps = m.maps.as_ref().filter(|x| x.varies_texel());
@@ -257,12 +258,13 @@ impl<B, A> crate::tracer::Tracer<B, A> {
             return None;
         }
         let p_m = self.geometry.to_world(hit.point_local);
-        let field = m.texture.as_ref().map(|t| t.sample(p_m.to_array()));
+        let field = m
+            .texture
+            .as_ref()
+            .map(|t| t.sample_over(p_m.to_array(), footprint));
         let map = maps
             .zip(self.uv_maps.get(hit.facet as usize).copied().flatten())
-            .map(|(maps, uv)| {
-                maps.sample_over(uv.at(p_m), uv.footprint_uv(footprint_m, hit.cos_incidence))
-            });
+            .map(|(maps, uv)| maps.sample_over(uv.at(p_m), uv.footprint_uv(footprint)));
         match (field, map) {
             (Some(a), Some(b)) => Some(a * b),
             (a, b) => a.or(b),
@@ -343,7 +345,7 @@ mod tests {
     }
 
     #[test]
-    fn a_footprint_in_texture_coordinates_is_its_width_over_the_cosine_times_the_scale() {
+    fn a_footprint_in_texture_coordinates_is_its_longer_edge_times_the_scale() {
         // A right triangle of legs 4 m and 2 m (area 4 m²) mapped onto legs 0.5 and 0.25
         // (area 1/16): √(1/64) = 1/8 unit per metre.
         let map = UvMap::new(
@@ -356,12 +358,14 @@ mod tests {
         )
         .unwrap();
         assert!((map.uv_per_m - 0.125).abs() < 1e-15);
-        // 2 m across at normal incidence: 0.25 units; at 60°: twice that; a back face the
-        // same; at grazing incidence infinite.
-        assert!((map.footprint_uv(2.0, 1.0) - 0.25).abs() < 1e-15);
-        assert!((map.footprint_uv(2.0, 0.5) - 0.5).abs() < 1e-15);
-        assert!((map.footprint_uv(2.0, -0.5) - 0.5).abs() < 1e-15);
-        assert!(map.footprint_uv(2.0, 0.0).is_infinite());
+        // A cell of edges 2 m and 4 m (a 2 m cell seen at 60°): 0.5 units; at grazing
+        // incidence infinite; no footprint, the point.
+        let cell = |a: [f64; 3], b: [f64; 3]| Footprint { edges_m: [a, b] };
+        let slanted = cell([0.0, 2.0, 0.0], [3.2, 0.0, 2.4]);
+        assert!((map.footprint_uv(Some(&slanted)) - 0.5).abs() < 1e-15);
+        let grazing = cell([f64::INFINITY; 3], [0.0, 2.0, 0.0]);
+        assert!(map.footprint_uv(Some(&grazing)).is_infinite());
+        assert!(map.footprint_uv(None).abs() < f64::MIN_POSITIVE);
         // A mirrored mapping has the same scale.
         let mirrored = UvMap::new(
             [

@@ -186,7 +186,9 @@ fn every_pixel_well_inside_a_texel_renders_the_texel_hand_geometry_predicts() {
 
 #[test]
 fn a_map_and_a_statistical_texture_add_their_offsets() {
-    use irsig_model::texture::{CorrelationLength, FieldSpectrum, RandomField, StatisticalTexture};
+    use irsig_model::texture::{
+        CorrelationLength, FieldFilter, FieldSpectrum, RandomField, StatisticalTexture,
+    };
     let maps = temperature_map(10.0, MapFilter::Nearest);
     let texture = StatisticalTexture {
         seed: 3,
@@ -197,6 +199,7 @@ fn a_map_and_a_statistical_texture_add_their_offsets() {
             },
         }),
         emissivity_scale: None,
+        filter: FieldFilter::Point,
     };
     let fields = irsig_texture::TextureFields::new(&texture).unwrap();
     let mut lib = library(&maps, 1.0);
