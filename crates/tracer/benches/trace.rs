@@ -125,14 +125,27 @@ fn shaded_diffuse(bencher: divan::Bencher, i: usize) {
 /// The diffuse scene with every facet textured: both materials vary their temperature
 /// (σ 1.5 K, exponential, 0.5 m) and their emissivity (σ 2 %, Gaussian, 2 m), so every hit
 /// evaluates two fields of `irsig_texture::WAVES` waves and reads the textured `L_T`
-/// table. Against `shaded_diffuse`: what a texture on every facet costs a frame.
-fn textured(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
-    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 3] =
-        [OnceLock::new(), OnceLock::new(), OnceLock::new()];
-    CACHE[i].get_or_init(|| {
+/// table. Against `shaded_diffuse`: what a texture on every facet costs a frame. With
+/// `footprint`, both fields are read through the footprint filter (the mean over each
+/// ray's pixel cell: every wave filtered, the cells being far above 10⁻³ of the shortest
+/// wavelengths).
+fn textured(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+        OnceLock::new(),
+    ];
+    CACHE[i + 3 * usize::from(footprint)].get_or_init(|| {
         let mut lib = materials(0.0);
         for (k, m) in lib.materials.iter_mut().enumerate() {
-            m.texture = Some(irsig_texture::testing::statistical(k as u64));
+            let mut texture = irsig_texture::testing::statistical(k as u64);
+            if footprint {
+                texture.filter = irsig_model::texture::FieldFilter::Footprint;
+            }
+            m.texture = Some(texture);
         }
         let sky = Vacuum {
             sky_radiance_w_m2_sr: 20.0,
@@ -143,7 +156,7 @@ fn textured(i: usize) -> &'static Tracer<TotalRadiance, Vacuum> {
 
 #[divan::bench(args = [0, 1, 2], sample_count = 5, sample_size = 1)]
 fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
-    let tracer = textured(i);
+    let tracer = textured(i, false);
     let cam = camera();
     bencher.counter(ItemsCount::new(PIXELS)).bench(|| {
         one_core(|| {
@@ -226,13 +239,15 @@ fn shaded_diffuse_mapped_footprint(bencher: divan::Bencher, i: usize) {
 }
 
 /// The texture floor's own measurement: a whole 1024² frame of the diffuse scene on one
-/// thread, `plain`, with a statistical texture on every facet (`field`), with image maps
-/// (`maps`, nearest and bilinear) and with image maps through the footprint filter
-/// (`footprint`); the textured frames against `plain`, scene by scene.
-#[divan::bench(consts = [0, 1, 2], args = ["plain", "field", "maps", "footprint"], sample_count = 5, sample_size = 1)]
+/// thread, `plain`, with a statistical texture on every facet (`field`; `field-footprint`
+/// through the footprint filter), with image maps (`maps`, nearest and bilinear) and with
+/// image maps through the footprint filter (`footprint`); the textured frames against
+/// `plain`, scene by scene.
+#[divan::bench(consts = [0, 1, 2], args = ["plain", "field", "field-footprint", "maps", "footprint"], sample_count = 5, sample_size = 1)]
 fn frame_1024<const I: usize>(bencher: divan::Bencher, kind: &str) {
     let tracer = match kind {
-        "field" => textured(I),
+        "field" => textured(I, false),
+        "field-footprint" => textured(I, true),
         "maps" => mapped(I, false),
         "footprint" => mapped(I, true),
         _ => &prepared(I).diffuse,

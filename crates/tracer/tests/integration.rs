@@ -24,6 +24,7 @@ mod sun_path;
 mod sun_truth;
 mod terrain;
 mod texture;
+mod texture_tolerance;
 mod texture_truth;
 mod tiles;
 mod trades;
