@@ -64,10 +64,10 @@ impl Footprint {
     /// shorter edge.
     #[must_use]
     pub fn width_m(&self) -> f64 {
-        let length = |e: [f64; 3]| (e[0] * e[0] + e[1] * e[1] + e[2] * e[2]).sqrt();
-        let [a, b] = self.edges_m.map(length);
+        let squared = |e: [f64; 3]| e[0] * e[0] + e[1] * e[1] + e[2] * e[2];
+        let [a, b] = self.edges_m.map(squared);
         if a.is_finite() && b.is_finite() {
-            a.max(b)
+            a.max(b).sqrt()
         } else {
             f64::INFINITY
         }

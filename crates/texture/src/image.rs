@@ -315,6 +315,20 @@ impl MaterialMaps {
         self.material.as_ref()
     }
 
+    /// Whether any of the maps (the material map's included) is read over a ray's
+    /// footprint (`MapFilter::Footprint`): only then does a ray's footprint matter to them.
+    #[must_use]
+    pub fn filters_footprint(&self) -> bool {
+        [&self.temperature, &self.emissivity]
+            .into_iter()
+            .flatten()
+            .any(|m| m.pyramid.is_some())
+            || self
+                .material
+                .as_ref()
+                .is_some_and(crate::MixMap::filters_footprint)
+    }
+
     /// Whether the maps vary the temperature or the emissivity scale (a material map alone
     /// does neither).
     #[must_use]
@@ -523,6 +537,14 @@ mod tests {
         assert!(close(loaded.max_temperature_offset_k(), 4.0));
         let [lo, hi] = loaded.emissivity_scale_range();
         assert!(close(lo, 0.8) && close(hi, 0.95));
+        // Only a footprint map reads a ray's footprint.
+        assert!(!loaded.filters_footprint());
+        let mut footprint = maps.clone();
+        if let Some(m) = footprint.emissivity_scale.as_mut() {
+            m.filter = MapFilter::Footprint;
+        }
+        let footprint = MaterialMaps::new(&footprint, |_, _| Ok(quad())).unwrap();
+        assert!(footprint.filters_footprint());
         // A NaN in the mapping is refused before any image is asked for.
         let nan = ImageMaps {
             temperature_offset_k: Some(map(f64::NAN, 1.0)),

@@ -41,6 +41,12 @@ impl MixMap {
         Self { filter, fractions }
     }
 
+    /// Whether the map is read over a ray's footprint (`MapFilter::Footprint`).
+    #[must_use]
+    pub fn filters_footprint(&self) -> bool {
+        self.filter == MapFilter::Footprint
+    }
+
     /// An index map: `values` the image's stored integers row after row from the top,
     /// `table` each listed value with the index (from 0, below `materials`) of the
     /// material it names.

@@ -46,12 +46,14 @@ impl Differentials {
     /// edges that are not finite: the whole facet.
     pub(crate) fn at_hit(&mut self, dir: DVec3, distance_m: f64, normal: DVec3) -> Footprint {
         let along = dir.dot(normal);
+        // One division for both edges.
+        let per_along = 1.0 / along;
         for (dp, de) in self.dp.iter_mut().zip(self.de) {
             let q = *dp + de * distance_m;
             *dp = if along == 0.0 {
                 DVec3::INFINITY
             } else {
-                q - dir * (q.dot(normal) / along)
+                q - dir * (q.dot(normal) * per_along)
             };
         }
         Footprint {

@@ -97,9 +97,9 @@ pub struct Tracer<B, A> {
     /// Per raw-scene facet, its texture coordinates at a world point where its material has
     /// image maps ([`crate::texture::UvMap`]); empty when no material has any.
     pub(crate) uv_maps: Vec<Option<crate::texture::UvMap>>,
-    /// Whether a texture reads a ray's footprint (an image map's, or a statistical
+    /// Whether a texture reads a ray's footprint (an image map's or a statistical
     /// texture's `Footprint` filter): only then do rays carry their cells
-    /// ([`crate::differential`]).
+    /// ([`crate::differential`]); without, every texture reads the point.
     pub(crate) filters_footprint: bool,
     /// Per raw-scene facet, its per-material temperatures as temperature indices in its
     /// material map's order, where the scene gives them ([`crate::mixture`]); empty when

@@ -146,12 +146,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let has_maps: Vec<bool> = tracer.materials.iter().map(|m| m.maps.is_some()).collect();
         let slot = |id: u16| usize::from(slot_of[usize::from(id)]);
         tracer.uv_maps = crate::texture::facet_uv_maps(scene, slot, &has_maps)?;
-        tracer.filters_footprint = !tracer.uv_maps.is_empty()
-            || tracer.materials.iter().any(|m| {
-                m.texture
+        tracer.filters_footprint = tracer.materials.iter().any(|m| {
+            m.texture
+                .as_ref()
+                .is_some_and(irsig_texture::TextureFields::filters_footprint)
+                || m.maps
                     .as_ref()
-                    .is_some_and(irsig_texture::TextureFields::filters_footprint)
-            });
+                    .is_some_and(irsig_texture::MaterialMaps::filters_footprint)
+        });
         tracer.textured_span_k = tracer.textured_span(scene);
         let mut own = tracer.band_set(sub_bands)?;
         // The first sub-band's L_T is in the facet records; its table is kept only where a
