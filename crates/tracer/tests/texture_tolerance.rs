@@ -22,16 +22,17 @@ const SKY: Vacuum = Vacuum {
     sky_radiance_w_m2_sr: 25.0,
 };
 
-/// A ground 300 K, ε 0.95, diffuse, with a temperature field of σ 1 K and ℓ 5 cm read
-/// through `filter`, seen from 20 m up at 55° from nadir, 40 × 30 pixels over 30° × 22.5°.
-fn textured(filter: FieldFilter) -> (Tracer<TotalRadiance, Vacuum>, Camera) {
+/// A ground 300 K, ε 0.95, diffuse, with a temperature field of σ `sigma_k` and ℓ 5 cm
+/// read through `filter`, seen from 20 m up at 55° from nadir, 40 × 30 pixels over
+/// 30° × 22.5°.
+fn textured(filter: FieldFilter, sigma_k: f64) -> (Tracer<TotalRadiance, Vacuum>, Camera) {
     let ground = ground_quad([-400.0, -400.0], [400.0, 400.0], 0.0);
     let scene = raw_scene(&[(&ground, 1, 300.0)]);
     let mut lib = grey_materials(&[(1, 0.95, 0.0)]);
     lib.materials[0].texture = Some(StatisticalTexture {
         seed: 3,
         temperature_offset_k: Some(RandomField {
-            sigma: 1.0,
+            sigma: sigma_k,
             spectrum: FieldSpectrum::Gaussian {
                 correlation_length_m: CorrelationLength::Isotropic(0.05),
             },
@@ -65,8 +66,8 @@ struct Kept {
 
 /// The pilot's choice at `tolerance_k` rendered, and the centre rays alone, measured
 /// against the converged reference.
-fn kept(filter: FieldFilter, tolerance_k: f64) -> Kept {
-    let (tracer, camera) = textured(filter);
+fn kept(filter: FieldFilter, sigma_k: f64, tolerance_k: f64) -> Kept {
+    let (tracer, camera) = textured(filter, sigma_k);
     let offer = vacuum_pilot_space(&tracer, SKY);
     let piloted = tracer
         .pilot(&camera, &offer, tolerance_k, 99.0, 1024, 1)
@@ -80,7 +81,7 @@ fn kept(filter: FieldFilter, tolerance_k: f64) -> Kept {
         seed: 1,
         truth: true,
     };
-    let (reference_tracer, _) = textured(filter);
+    let (reference_tracer, _) = textured(filter, sigma_k);
     let reference = converged_reference(&reference_tracer, &camera, tolerance_k / 6.0, 3).unwrap();
     assert!(
         reference.error_p99_k() < tolerance_k / 3.0,
@@ -108,7 +109,7 @@ fn kept(filter: FieldFilter, tolerance_k: f64) -> Kept {
         centre_k: p99(&centre),
     };
     eprintln!(
-        "{filter:?} at {tolerance_k} K: predicted p99 {:.4} K, measured {:.4} K from {} rays; \
+        "{filter:?}, σ {sigma_k} K, at {tolerance_k} K: predicted p99 {:.4} K, measured {:.4} K from {} rays; \
          the centre rays alone {:.3} K",
         out.predicted_k, out.measured_k, out.rays, out.centre_k
     );
@@ -120,7 +121,7 @@ fn a_texture_finer_than_a_pixel_keeps_the_tolerance_at_the_point_and_through_the
     let tolerance_k = 0.3;
     // At the point, a centre ray misses the pixel's mean by about the field's σ (1 K):
     // the pilot must see it, and refinement average it.
-    let point = kept(FieldFilter::Point, tolerance_k);
+    let point = kept(FieldFilter::Point, 1.0, tolerance_k);
     assert!(point.centre_k > 1.0, "{} K", point.centre_k);
     assert!(
         point.measured_k <= tolerance_k,
@@ -136,7 +137,7 @@ fn a_texture_finer_than_a_pixel_keeps_the_tolerance_at_the_point_and_through_the
     // perspective across one pixel and the radiance's curvature, hundredths of a kelvin):
     // the same tolerance kept, for a fraction of the rays (what refinement still does, it
     // does for the differences between pixels, which stay).
-    let footprint = kept(FieldFilter::Footprint, tolerance_k);
+    let footprint = kept(FieldFilter::Footprint, 1.0, tolerance_k);
     assert!(footprint.centre_k < 0.05, "{} K", footprint.centre_k);
     assert!(
         footprint.measured_k <= tolerance_k,
@@ -153,5 +154,29 @@ fn a_texture_finer_than_a_pixel_keeps_the_tolerance_at_the_point_and_through_the
         "{} against {} rays",
         footprint.rays,
         point.rays
+    );
+}
+
+#[test]
+fn a_texture_too_faint_to_make_edges_is_still_charged_its_spread_within_the_pixel() {
+    // σ 0.12 K read at the point, at 1 K: neighbouring centres hardly ever differ by the
+    // 0.5 K that makes a pixel a refinement candidate, so the pixels keep their centre
+    // rays, which miss their pixels' means by about σ. The pilot must charge that (it had
+    // charged a pixel refinement does not take nothing, and predicted the frame's p99
+    // under what it measured): its prediction is not under the measured error, which is
+    // there to be seen.
+    let tolerance_k = 1.0;
+    let faint = kept(FieldFilter::Point, 0.12, tolerance_k);
+    assert!(faint.centre_k > 0.2, "{} K", faint.centre_k);
+    assert!(
+        faint.measured_k <= tolerance_k,
+        "p99 {} K",
+        faint.measured_k
+    );
+    assert!(
+        faint.predicted_k >= faint.measured_k,
+        "predicted {} K, measured {} K",
+        faint.predicted_k,
+        faint.measured_k
     );
 }

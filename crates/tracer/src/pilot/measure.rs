@@ -269,8 +269,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
 
     /// The error of each supersampling on offer at `point`'s pixel: the mean of its
     /// sub-pixel rays against an 8 × 8 grid's (with one bounce and no sky-view rays, which
-    /// do not move an edge). Refinement's error is not measured here: it is held to its
-    /// target pixel by pixel, and its cost is tried on candidates ([`super`]).
+    /// do not move an edge). Refinement's error on its candidates is not measured here: it
+    /// is held to its target pixel by pixel, and its cost is tried on candidates
+    /// ([`super`]). A pixel it does not take keeps its centre ray, which costs nothing
+    /// where its facet is one material at one temperature; a textured hit varies within
+    /// the pixel (a texture read at the point), so there the centre's distance from the
+    /// grid's mean is refinement's error, as it is the adaptive setting's.
     #[allow(clippy::too_many_arguments)]
     fn measure_supersampling<S: Atmosphere>(
         &self,
@@ -283,14 +287,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         out: &mut Measured,
     ) {
         let errors = &mut out.errors[SwitchableModel::Supersampling as usize];
-        if space
-            .supersampling
-            .iter()
-            .all(|s| matches!(s, Supersample::Refine(_)))
-        {
-            errors.extend(space.supersampling.iter().map(|_| 0.0));
-            return;
-        }
         let camera = fc.camera();
         let (col, row) = (point.x.floor() as u32, point.y.floor() as u32);
         let cheap = TraceOptions {
@@ -303,27 +299,43 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         let mut path = Path::default();
         let mut scratch = Sample::miss(Event::Sky);
-        let mut mean = |n: u32| {
+        let mut mean = |n: u32, path: &mut Path| {
             let mut ctx = Ctx::for_pixel(&cheap, point.pixel);
             if n <= 1 {
-                self.follow(fc, camera.pixel_direction(col, row), &mut ctx, &mut path);
-                return self.radiance::<false>(fc, &path, &mut scratch);
+                self.follow(fc, camera.pixel_direction(col, row), &mut ctx, path);
+                return self.radiance::<false>(fc, path, &mut scratch);
             }
             let mut sum = 0.0;
             ctx.for_each_subpixel((col, row), n, |ctx, x, y| {
-                self.follow(fc, camera.direction_at(x, y), ctx, &mut path);
-                sum += self.radiance::<false>(fc, &path, &mut scratch);
+                self.follow(fc, camera.direction_at(x, y), ctx, path);
+                sum += self.radiance::<false>(fc, path, &mut scratch);
             });
             sum / f64::from(n * n)
         };
-        let t_ref = inverse.temperature(mean(REFERENCE_SIDE));
-        let t_centre = inverse.temperature(mean(1));
+        let l_centre = mean(1, &mut path);
+        let textured = path
+            .nodes
+            .first()
+            .is_some_and(|n| n.surface.texel.is_some());
+        let refine_charges = textured && !candidate;
+        if !refine_charges
+            && space
+                .supersampling
+                .iter()
+                .all(|s| matches!(s, Supersample::Refine(_)))
+        {
+            errors.extend(space.supersampling.iter().map(|_| 0.0));
+            return;
+        }
+        let t_ref = inverse.temperature(mean(REFERENCE_SIDE, &mut path));
+        let t_centre = inverse.temperature(l_centre);
         for s in &space.supersampling {
             let e = match *s {
+                Supersample::Refine(_) if refine_charges => (t_centre - t_ref).abs(),
                 Supersample::Refine(_) => 0.0,
                 Supersample::Adaptive(_) if !candidate => (t_centre - t_ref).abs(),
                 Supersample::Adaptive(n) | Supersample::Every(n) => {
-                    (inverse.temperature(mean(n)) - t_ref).abs()
+                    (inverse.temperature(mean(n, &mut path)) - t_ref).abs()
                 }
             };
             errors.push(e);
