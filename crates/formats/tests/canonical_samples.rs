@@ -150,12 +150,15 @@ fn the_loads_samples_read_round_trip_and_tell_their_kind_of_plan() {
 
 #[test]
 fn the_textured_materials_sample_reads_and_a_bad_sigma_is_refused_at_its_place() {
-    use irsig_model::texture::{CorrelationLength, FieldSpectrum};
+    use irsig_model::texture::{CorrelationLength, FieldFilter, FieldSpectrum};
     let lib: MaterialLibrary = round_trip("materials-textured.ron");
     let grass = lib.materials[0].texture.as_ref().unwrap();
     assert_eq!(grass.seed, 7);
     assert!(grass.emissivity_scale.is_none());
+    // No filter named: the point.
+    assert_eq!(grass.filter, FieldFilter::Point);
     let asphalt = lib.materials[1].texture.as_ref().unwrap();
+    assert_eq!(asphalt.filter, FieldFilter::Footprint);
     assert_eq!(
         asphalt.emissivity_scale.as_ref().unwrap().spectrum,
         FieldSpectrum::Exponential {
