@@ -71,8 +71,8 @@ pub enum FieldFilter {
     /// moiré. What it leaves: the cell is the plane's linear image of the pixel (the
     /// perspective within one pixel is not followed), and the mean is taken of the
     /// temperature offset and the ε scale, not of the radiance they give (a difference of
-    /// `½·L''/L'·σ²` in temperature for the variance filtered away, 0.01 K for 1 K at
-    /// 300 K in 8–14 µm). Costs a hit about three times a point's where the footprint
+    /// `½·L''/L'·σ²` in temperature for the variance filtered away, 0.005 K for 1 K at
+    /// 300 K in 8–14 µm). Costs a hit about four times a point's where the footprint
     /// matters; where the footprint is under 10⁻³ of the field's shortest wavelength it is
     /// the point's value, at the point's cost. Hits of sky-view rays read the point.
     Footprint,
