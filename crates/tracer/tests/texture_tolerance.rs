@@ -4,7 +4,8 @@
 //! that the texture varies within a pixel, and the frame it chooses must keep the
 //! tolerance against a converged reference, with the texture read at the point (where
 //! refinement has to average it) and through the footprint filter (where one ray already
-//! gives the pixel's mean, and refinement has nothing to do).
+//! gives the pixel's mean, and refinement has far less to do). A texture too faint to make
+//! edges is charged its spread within the pixel all the same.
 
 use irsig_model::View;
 use irsig_model::texture::{
