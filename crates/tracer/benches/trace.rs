@@ -81,7 +81,7 @@ struct Prepared {
 }
 
 fn prepared(i: usize) -> &'static Prepared {
-    static CACHE: [OnceLock<Prepared>; 3] = [OnceLock::new(), OnceLock::new(), OnceLock::new()];
+    static CACHE: [OnceLock<Prepared>; 3] = [const { OnceLock::new() }; 3];
     CACHE[i].get_or_init(|| {
         let m = mesh(i);
         let sc = raw_scene(&m);
@@ -130,14 +130,7 @@ fn shaded_diffuse(bencher: divan::Bencher, i: usize) {
 /// ray's pixel cell: every wave filtered, the cells being far above 10⁻³ of the shortest
 /// wavelengths).
 fn textured(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
-    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-    ];
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [const { OnceLock::new() }; 6];
     CACHE[i + 3 * usize::from(footprint)].get_or_init(|| {
         let mut lib = materials(0.0);
         for (k, m) in lib.materials.iter_mut().enumerate() {
@@ -175,14 +168,7 @@ fn shaded_diffuse_textured(bencher: divan::Bencher, i: usize) {
 /// footprint filter instead (a mip pyramid, two levels read bilinearly at every hit).
 fn mapped(i: usize, footprint: bool) -> &'static Tracer<TotalRadiance, Vacuum> {
     use irsig_texture::MaterialMaps;
-    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-        OnceLock::new(),
-    ];
+    static CACHE: [OnceLock<Tracer<TotalRadiance, Vacuum>>; 6] = [const { OnceLock::new() }; 6];
     CACHE[i + 3 * usize::from(footprint)].get_or_init(|| {
         let mut scene = raw_scene(&mesh(i));
         let positions = scene.positions_m.clone();
