@@ -184,7 +184,7 @@ impl TextureFields {
     /// ([`Field::mean_over`]); otherwise their values at the point.
     #[must_use]
     pub fn sample_over(&self, p_m: [f64; 3], footprint: Option<&Footprint>) -> Texel {
-        let footprint = footprint.filter(|_| self.filter == FieldFilter::Footprint);
+        let footprint = footprint.filter(|_| self.filters_footprint());
         let fields = [self.temperature.as_ref(), self.emissivity.as_ref()];
         let [t, e] = field::values(fields, p_m, footprint);
         Texel {
