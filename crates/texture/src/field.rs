@@ -22,9 +22,9 @@ use crate::spectrum::Shape;
 /// The number of plane waves in a field: enough that a realisation's variance is exact and
 /// its one-point distribution Gaussian (excess kurtosis `−1.5/N` = −0.047), and the
 /// rendered σ and correlation lengths those asked for over a few seeds (the tracer's
-/// `tests/texture.rs`); each wave costs a hit about 1.4 ns with AVX2 (BENCHMARKS.md,
-/// "texture: the fields and maps made cheaper"), so 64 cost twice as much for no test that
-/// 32 fail.
+/// `tests/texture.rs`); each wave costs a hit about 0.9 ns with AVX2 and FMA
+/// (BENCHMARKS.md, "texture: the point field within the floor"), so 64 cost twice as much
+/// for no test that 32 fail.
 pub const WAVES: usize = 32;
 
 /// A field's values are held within this many σ of its mean: a sum of cosines is bounded
@@ -75,9 +75,9 @@ impl Footprint {
 }
 
 /// Under this many of a field's shortest wavelengths across, a footprint reads the point:
-/// the box's mean of a wave is then `1 − (π·x)²/6` of the wave at most `x = 10⁻³` waves
-/// across, within 2·10⁻⁶ of its amplitude, below the cosine's own truncation.
-const POINT_REACH: f64 = 1e-3;
+/// the box's mean of a wave is then `1 − (π·x)²/6` of the wave at most `x = 5·10⁻⁴` waves
+/// across, within 4.2·10⁻⁷ of its amplitude, below the cosine's own error.
+const POINT_REACH: f64 = 5e-4;
 
 impl Field {
     /// The field `spec` drawn from `seed` (its waves from a ChaCha8 stream, the same
@@ -159,11 +159,22 @@ impl Field {
         if self.amplitude == 0.0 {
             return 0.0;
         }
+        // Every phase is within `|f|·|p|₁ + 1` turns of 0; the reduction to a turn is exact
+        // under 2⁵¹, so a point beyond (2·10¹⁴ m for a 10 cm wave) or not finite reads the
+        // field's mean: one test a point, not one a wave.
+        let [x, y, z] = p_m;
+        let reach = self.fastest_per_m * (x.abs() + y.abs() + z.abs()) + 1.0;
+        if reach.is_nan() || reach >= EXACT_TURNS {
+            return 0.0;
+        }
         // The cosines first, each independent of the others, so that the loop vectorises.
         let mut waves = [0.0; WAVES];
         for (i, w) in waves.iter_mut().enumerate() {
-            let turns = self.fx[i] * p_m[0] + self.fy[i] * p_m[1] + self.fz[i] * p_m[2];
-            *w = cos_turns(turns + self.phase[i]);
+            let turns = self.fx[i].mul_add(
+                x,
+                self.fy[i].mul_add(y, self.fz[i].mul_add(z, self.phase[i])),
+            );
+            *w = cos_turns(turns);
         }
         if let Some(cell) = footprint {
             let [a, b] = cell.edges_m;
@@ -199,10 +210,13 @@ impl Field {
 /// The values at `p_m` of up to two fields (0 for `None`), in one call compiled for the
 /// widest vectors this CPU has: pulp's runtime dispatch picks AVX2 on an x86-64 that has
 /// it, and the baseline's SSE2 otherwise. The bits do not depend on which: every path does
-/// the same IEEE additions and multiplications in the same order (Rust never fuses a
-/// multiplication and an addition into one rounding), and the test
+/// the same IEEE operations in the same order (Rust fuses a multiplication and an addition
+/// only where the code asks, by `mul_add`, whose one rounding is the same in an AVX2
+/// instruction and in the C library's `fma` the baseline calls), and the test
 /// `every_vector_width_gives_the_same_bits` holds the dispatched path to the scalar one.
-/// With a footprint, their means over it ([`Field::mean_over`]).
+/// A CPU without FMA (x86-64 before about 2013) gets the same bits from the library's
+/// `fma` in software, a call for each of a wave's seven, which is far slower (not measured:
+/// no such CPU here). With a footprint, their means over it ([`Field::mean_over`]).
 pub(crate) fn values(
     fields: [Option<&Field>; 2],
     p_m: [f64; 3],
@@ -236,39 +250,61 @@ impl pulp::WithSimd for Values<'_> {
     }
 }
 
+/// Phases are reduced to a turn exactly below this many turns (the 1.5·2⁵² rounding).
+const EXACT_TURNS: f64 = 2_251_799_813_685_248.0; // 2⁵¹
+
+/// The minimax odd polynomial of degree 7 for `sin y` on `[−π/2, π/2]`, `y·Σ c_k y²ᵏ`
+/// (Remez exchange in 40 digits): its error equioscillates at 5.9·10⁻⁷, six times under the
+/// Taylor series to `y⁹`, which takes one more term.
+const SIN_MINIMAX: [f64; 4] = [
+    0.999_996_615_908_008_3,
+    -0.166_648_283_819_041_9,
+    0.008_306_325_227_265_992,
+    -0.000_183_636_539_797_233_8,
+];
+
+/// The bound on [`cos_turns`]' error, a wave's amplitude: the polynomial's 5.9·10⁻⁷ and
+/// the arithmetic's rounding.
+#[cfg(test)]
+pub(crate) const COS_ERROR: f64 = 6.0e-7;
+
 /// `cos(2π t)` by arithmetic alone, so that a loop of them vectorises: `t` reduced to
-/// `a = |t − round(t)|` in [0, ½] (rounding by the 1.5·2⁵² trick, exact for `|t| < 2⁵¹`),
-/// then `cos 2πa = −sin y`, `y = 2π(a − ¼)` in [−π/2, π/2], by its Taylor series to `y⁹`.
-/// The truncation is below `(π/2)¹¹/11!` = 3.6·10⁻⁶ of a wave's amplitude, so under
-/// 10⁻⁴ σ for a field's 32 waves together: far below any texture's σ and its sampling
-/// error (the statistics rest on the waves, not on the last digits). Taking the series to
-/// `y¹¹` cost 12 % more per field, for a truncation 60 times smaller.
+/// `a = |t − round(t)|` in [0, ½] (rounding by the 1.5·2⁵² trick, exact for
+/// `|t| <` [`EXACT_TURNS`]; the caller keeps `t` there), then `cos 2πa = sin y`,
+/// `y = 2π(¼ − a)` in [−π/2, π/2], by [`SIN_MINIMAX`]. Its error, under [`COS_ERROR`] =
+/// 6·10⁻⁷ of a wave's amplitude, is under 10⁻⁵ σ for a field's 32 waves together: far
+/// below any texture's σ and its sampling error (the statistics rest on the waves, not on
+/// the last digits). Every multiplication that feeds an addition is one fused
+/// multiply-add (`mul_add`, one rounding on every CPU, an instruction wherever AVX2 is),
+/// which with the degree-7 polynomial halves a wave's operations against the Taylor series
+/// to `y⁹` written as products and sums (BENCHMARKS.md, "texture: the point field within
+/// the floor").
 #[inline(always)]
 pub(crate) fn cos_turns(t: f64) -> f64 {
     const ROUND: f64 = 6_755_399_441_055_744.0;
-    let t = if t.abs() < 2f64.powi(51) { t } else { 0.0 };
     let a = (t - ((t + ROUND) - ROUND)).abs();
-    let y = std::f64::consts::TAU * (a - 0.25);
+    let y = (-std::f64::consts::TAU).mul_add(a, std::f64::consts::FRAC_PI_2);
     let y2 = y * y;
-    let series = 1.0
-        + y2 * (-1.0 / 6.0 + y2 * (1.0 / 120.0 + y2 * (-1.0 / 5040.0 + y2 * (1.0 / 362_880.0))));
-    -y * series
+    let [c0, c1, c2, c3] = SIN_MINIMAX;
+    y * c3.mul_add(y2, c2).mul_add(y2, c1).mul_add(y2, c0)
 }
 
 /// The mean of `cos 2π(t + s·x)` over `s` in `[−½, ½]`, as a fraction of `cos 2πt`:
 /// `sinc(πx) = sin(πx)/(πx)`, by arithmetic alone like [`cos_turns`]. Under half a turn
 /// (`y = πx` within ±π/2) its Taylor series to `y¹⁰`, whose truncation is below
 /// `(π/2)¹²/13!` = 4·10⁻⁸; beyond, `sin(πx) = cos 2π(x/2 − ¼)` over `πx`, within
-/// 3.6·10⁻⁶/(π/2) = 2.3·10⁻⁶. Both are computed and one kept, so that a loop of them
+/// 6·10⁻⁷/(π/2) = 3.8·10⁻⁷. Both are computed and one kept, so that a loop of them
 /// vectorises.
 #[inline(always)]
 pub(crate) fn box_mean(x: f64) -> f64 {
     let y = std::f64::consts::PI * x;
     let y2 = y * y;
-    let series = 1.0
-        + y2 * (-1.0 / 6.0
-            + y2 * (1.0 / 120.0
-                + y2 * (-1.0 / 5040.0 + y2 * (1.0 / 362_880.0 + y2 * (-1.0 / 39_916_800.0)))));
+    let series = (-1.0 / 39_916_800.0_f64)
+        .mul_add(y2, 1.0 / 362_880.0)
+        .mul_add(y2, -1.0 / 5040.0)
+        .mul_add(y2, 1.0 / 120.0)
+        .mul_add(y2, -1.0 / 6.0)
+        .mul_add(y2, 1.0);
     let ratio = cos_turns(0.5 * x - 0.25) / y;
     if x.abs() < 0.5 { series } else { ratio }
 }
@@ -278,24 +314,22 @@ mod tests {
     use super::*;
     use irsig_model::texture::{CorrelationLength, FieldSpectrum};
 
-    /// The bound on [`cos_turns`]' truncation, `(π/2)¹¹/11!`.
-    const COS_TRUNCATION: f64 = 3.6e-6;
-
     #[test]
     fn the_arithmetic_cosine_is_the_cosine() {
         let mut worst: f64 = 0.0;
-        for i in -20_000..=20_000 {
-            let t = f64::from(i) * 1.37e-3 + 0.1234;
+        for i in -200_000..=200_000 {
+            let t = f64::from(i) * 1.37e-4 + 0.1234;
             worst = worst.max((cos_turns(t) - (std::f64::consts::TAU * t).cos()).abs());
         }
-        // The bound is the series' next term at y = π/2; the worst lies there.
-        let next_term = std::f64::consts::FRAC_PI_2.powi(11) / 39_916_800.0;
-        assert!(next_term < COS_TRUNCATION);
-        assert!(worst < COS_TRUNCATION, "{worst}");
-        // Extremes: whole and half turns (y = ∓π/2, the series' worst), far from the origin.
-        assert!((cos_turns(0.0) - 1.0).abs() < COS_TRUNCATION);
-        assert!((cos_turns(0.5) + 1.0).abs() < COS_TRUNCATION);
-        assert!((cos_turns(-1e9 - 0.25)).abs() < 1e-6);
+        // The minimax polynomial's equioscillation, 5.9·10⁻⁷, is met: the bound is not
+        // loose by more than the rounding.
+        assert!(worst < COS_ERROR, "{worst}");
+        assert!(worst > 5.5e-7, "{worst}");
+        // Extremes: whole, half and quarter turns (y = π/2, −π/2, 0), far from the origin.
+        assert!((cos_turns(0.0) - 1.0).abs() < COS_ERROR);
+        assert!((cos_turns(0.5) + 1.0).abs() < COS_ERROR);
+        assert!(cos_turns(-1e9 - 0.25).abs() < COS_ERROR);
+        assert!((cos_turns(1e14 + 0.5) + 1.0).abs() < COS_ERROR);
     }
 
     fn spec(sigma: f64) -> RandomField {
@@ -386,13 +420,10 @@ mod tests {
             worst = worst.max((box_mean(x) - y.sin() / y).abs());
         }
         // The series' bound under half a turn, the cosine's over π/2 beyond.
-        assert!(
-            worst < COS_TRUNCATION / std::f64::consts::FRAC_PI_2,
-            "{worst}"
-        );
+        assert!(worst < COS_ERROR / std::f64::consts::FRAC_PI_2, "{worst}");
         assert!((box_mean(0.0) - 1.0).abs() < f64::EPSILON);
-        assert!(box_mean(1.0).abs() < COS_TRUNCATION);
-        assert!(box_mean(-3.0).abs() < COS_TRUNCATION);
+        assert!(box_mean(1.0).abs() < COS_ERROR);
+        assert!(box_mean(-3.0).abs() < COS_ERROR);
     }
 
     #[test]
