@@ -26,8 +26,10 @@ const MAX_NODES: usize = 1 << 16;
 pub(crate) struct BlackbodyTable {
     /// The first node's temperature, K.
     lo_k: f64,
-    /// `(L, dL/dT)` at `lo_k + i·STEP_K`.
-    nodes: Vec<(f64, f64)>,
+    /// Interval `i`'s Hermite cubic in powers of `u = (T − T_i)/STEP_K` in `[0, 1]`,
+    /// `[a, b, c, d]` for `((a·u + b)·u + c)·u + d`: one read and three multiply-adds a
+    /// hit, where the Hermite basis took four weights each of `u`, `u²` and `u³`.
+    cubics: Vec<[f64; 4]>,
 }
 
 impl BlackbodyTable {
@@ -37,33 +39,39 @@ impl BlackbodyTable {
         let lo_k = lo_k.max(1.0);
         let span = (hi_k - lo_k).max(0.0);
         let n = ((span / STEP_K).ceil() as usize + 2).min(MAX_NODES);
-        let nodes = (0..n)
+        let nodes: Vec<(f64, f64)> = (0..n)
             .map(|i| band.radiance_and_derivative(lo_k + i as f64 * STEP_K))
             .collect();
-        Self { lo_k, nodes }
+        // The Hermite basis `h₀₀ = 2u³ − 3u² + 1`, `h₁₀ = u³ − 2u² + u`, `h₀₁ = −2u³ + 3u²`,
+        // `h₁₁ = u³ − u²` gathered by powers of `u`, the slopes `m = STEP_K·dL/dT`.
+        let cubics = nodes
+            .windows(2)
+            .map(|w| {
+                let [(l0, d0), (l1, d1)] = [w[0], w[1]];
+                let (m0, m1) = (d0 * STEP_K, d1 * STEP_K);
+                [
+                    2.0 * l0 + m0 - 2.0 * l1 + m1,
+                    -3.0 * l0 - 2.0 * m0 + 3.0 * l1 - m1,
+                    m0,
+                    l0,
+                ]
+            })
+            .collect();
+        Self { lo_k, cubics }
     }
 
     /// `(L(T), dL/dT)` at `t_k`, held to the table's span.
     #[inline]
     pub(crate) fn at(&self, t_k: f64) -> (f64, f64) {
-        let last = self.nodes.len().saturating_sub(2);
+        let last = self.cubics.len().saturating_sub(1);
         let x = ((t_k - self.lo_k) / STEP_K).max(0.0);
         let i = (x as usize).min(last);
         let u = (x - i as f64).clamp(0.0, 1.0);
-        let (Some(&(l0, d0)), Some(&(l1, d1))) = (self.nodes.get(i), self.nodes.get(i + 1)) else {
-            return self.nodes.first().copied().unwrap_or((0.0, 0.0));
+        let Some(&[a, b, c, d]) = self.cubics.get(i) else {
+            return (0.0, 0.0);
         };
-        let (m0, m1) = (d0 * STEP_K, d1 * STEP_K);
-        let (u2, u3) = (u * u, u * u * u);
-        let value = (2.0 * u3 - 3.0 * u2 + 1.0) * l0
-            + (u3 - 2.0 * u2 + u) * m0
-            + (-2.0 * u3 + 3.0 * u2) * l1
-            + (u3 - u2) * m1;
-        let slope = ((6.0 * u2 - 6.0 * u) * l0
-            + (3.0 * u2 - 4.0 * u + 1.0) * m0
-            + (-6.0 * u2 + 6.0 * u) * l1
-            + (3.0 * u2 - 2.0 * u) * m1)
-            / STEP_K;
+        let value = ((a * u + b) * u + c) * u + d;
+        let slope = ((3.0 * a * u + 2.0 * b) * u + c) / STEP_K;
         (value, slope)
     }
 }
