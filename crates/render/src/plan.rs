@@ -18,7 +18,7 @@ use irsig_model::{MaterialLibrary, RawScene, View};
 use irsig_radiometry::{AnyBand, BandModel, TotalRadiance};
 use irsig_raster::FramePart;
 use irsig_sensor_model::quantise::CountRequest;
-use irsig_tracer::pilot::{BandChoice, PilotSpace, SunOffer, Supersample};
+use irsig_tracer::pilot::{BandChoice, PilotSpace, SunOffer};
 use irsig_tracer::reference::{ConvergedReference, converged_reference};
 use irsig_tracer::{Atmosphere, Camera, SubBand, Tile, TraceOptions, Tracer, Vacuum};
 use rayon::prelude::*;

@@ -113,14 +113,14 @@ fn check_with(
         .unwrap()
         .render(
             &camera,
-            &TraceOptions {
-                specular_bounces: c.bounces,
-                sky_view_rays: c.sky_view_rays,
-                supersampling: 1,
-                adaptive_threshold_k: None,
-                seed: 1,
-                truth: true,
-            },
+            &c.trace_options(
+                TraceOptions {
+                    seed: 1,
+                    truth: true,
+                    ..TraceOptions::default()
+                },
+                tolerance_k,
+            ),
             &|_| {},
         )
         .unwrap();

@@ -164,14 +164,14 @@ fn the_tolerance_holds_by_day_against_a_converged_reference() {
             .unwrap()
             .render(
                 &camera,
-                &TraceOptions {
-                    specular_bounces: c.bounces,
-                    sky_view_rays: c.sky_view_rays,
-                    supersampling: 1,
-                    adaptive_threshold_k: None,
-                    seed: 1,
-                    truth: true,
-                },
+                &c.trace_options(
+                    TraceOptions {
+                        seed: 1,
+                        truth: true,
+                        ..TraceOptions::default()
+                    },
+                    tolerance_k,
+                ),
                 &|_| {},
             )
             .unwrap();

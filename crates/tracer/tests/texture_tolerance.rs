@@ -74,14 +74,14 @@ fn kept(filter: FieldFilter, sigma_k: f64, tolerance_k: f64) -> Kept {
         .pilot(&camera, &offer, tolerance_k, 99.0, 1024, 1)
         .unwrap_or_else(|e| panic!("{filter:?} at {tolerance_k} K refused: {e}"));
     let c = piloted.chosen;
-    let options = TraceOptions {
-        specular_bounces: c.bounces,
-        sky_view_rays: c.sky_view_rays,
-        supersampling: 1,
-        adaptive_threshold_k: None,
-        seed: 1,
-        truth: true,
-    };
+    let options = c.trace_options(
+        TraceOptions {
+            seed: 1,
+            truth: true,
+            ..TraceOptions::default()
+        },
+        tolerance_k,
+    );
     let (reference_tracer, _) = textured(filter, sigma_k);
     let reference = converged_reference(&reference_tracer, &camera, tolerance_k / 6.0, 3).unwrap();
     assert!(

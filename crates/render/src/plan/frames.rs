@@ -532,19 +532,10 @@ fn chosen_settings(
     settings.kind = c.atmosphere;
     settings.sub_bands = c.sub_bands;
     settings.path_terms = c.path_terms;
-    settings.options.specular_bounces = c.bounces;
-    settings.options.sky_view_rays = c.sky_view_rays;
+    settings.options = c.trace_options(settings.options, tolerance_k);
     settings.refinement = c.refinement;
     settings.sun_lit = c.sun.is_none_or(|s| s.lit);
     settings.shadow_rays = c.sun.map(|s| s.shadow_rays);
-    (
-        settings.options.supersampling,
-        settings.options.adaptive_threshold_k,
-    ) = match c.supersampling {
-        Supersample::Every(n) => (n, None),
-        Supersample::Adaptive(n) => (n, Some(tolerance_k)),
-        Supersample::Refine(_) => (1, None),
-    };
     settings
         .options
         .validate()

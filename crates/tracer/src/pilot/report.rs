@@ -20,7 +20,7 @@ use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
 use crate::path_table::PathTermsMode;
 use crate::refine::Refinement;
-use crate::tracer::Tracer;
+use crate::tracer::{TraceOptions, Tracer};
 
 /// What the pilot chose for the sun.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -51,6 +51,29 @@ pub struct Chosen {
     pub refinement: Option<Refinement>,
     /// The sun's settings, when the frame has a sun.
     pub sun: Option<SunChosen>,
+}
+
+impl Chosen {
+    /// `base` (its seed and truth kept) with the bounces, sky-view rays and supersampling
+    /// chosen: `n × n` rays for [`Supersample::Every`], the same only where a centre
+    /// differs from a neighbour's by more than `tolerance_k` for [`Supersample::Adaptive`],
+    /// the centre ray for [`Supersample::Refine`], whose refinement the tracer takes
+    /// instead (`Tracer::with_refinement` of [`Chosen::refinement`]).
+    #[must_use]
+    pub fn trace_options(&self, base: TraceOptions, tolerance_k: f64) -> TraceOptions {
+        let (supersampling, adaptive_threshold_k) = match self.supersampling {
+            Supersample::Every(n) => (n, None),
+            Supersample::Adaptive(n) => (n, Some(tolerance_k)),
+            Supersample::Refine(_) => (1, None),
+        };
+        TraceOptions {
+            specular_bounces: self.bounces,
+            sky_view_rays: self.sky_view_rays,
+            supersampling,
+            adaptive_threshold_k,
+            ..base
+        }
+    }
 }
 
 /// What the pilot decided: the settings, and the decision that records them with their
@@ -418,5 +441,42 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 }
             })
             .collect()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_chosen_options_keep_the_base_and_map_each_supersampling() {
+        let chosen = |supersampling| Chosen {
+            atmosphere: ModelKind::Table,
+            bounces: 3,
+            sky_view_rays: 16,
+            supersampling,
+            path_terms: PathTermsMode::Exact,
+            sub_bands: SubBandCount::Count(4),
+            refinement: None,
+            sun: None,
+        };
+        let base = TraceOptions {
+            specular_bounces: 0,
+            sky_view_rays: 0,
+            supersampling: 8,
+            adaptive_threshold_k: Some(9.0),
+            seed: 7,
+            truth: false,
+        };
+        for (setting, rays, threshold) in [
+            (Supersample::Every(4), 4, None),
+            (Supersample::Adaptive(2), 2, Some(0.3)),
+            (Supersample::Refine(32), 1, None),
+        ] {
+            let o = chosen(setting).trace_options(base, 0.3);
+            assert_eq!((o.specular_bounces, o.sky_view_rays), (3, 16));
+            assert_eq!((o.supersampling, o.adaptive_threshold_k), (rays, threshold));
+            assert_eq!((o.seed, o.truth), (7, false));
+        }
     }
 }
