@@ -574,3 +574,49 @@ fn obj_texture_coordinates_and_the_image_its_mtl_names() {
     assert_eq!((e.line, e.column), (2, 8), "{e}");
     assert!(e.message.contains("climbs out"), "{e}");
 }
+
+#[test]
+fn an_image_inside_the_file_is_carried_as_stored() {
+    // The controller's base colour is images[2], a JPEG in bufferViews[2]: 157,558 bytes
+    // by a separate reading of the GLB (Python's `struct` on its JSON and BIN chunks),
+    // from a start-of-image marker to an end-of-image one.
+    let (name, bytes) = third_party("generic-trigger/none.glb");
+    let m = read_gltf(&name, &bytes, None).unwrap();
+    let e = m.materials[0].embedded_image.as_ref().unwrap();
+    assert_eq!(e.index, 2);
+    assert_eq!(
+        e.name.as_deref(),
+        Some("xrstandard_nonhanded_mat_BaseColor.jpg")
+    );
+    assert_eq!(e.mime_type.as_deref(), Some("image/jpeg"));
+    assert_eq!(e.bytes.len(), 157_558);
+    assert!(e.bytes.starts_with(&[0xff, 0xd8, 0xff]) && e.bytes.ends_with(&[0xff, 0xd9]));
+    // A `data:` URI: its bytes decoded, its type from the URI where the image states none.
+    let png_signature = [0x89, b'P', b'N', b'G', 0x0d, 0x0a, 0x1a, 0x0a];
+    let text = textured_triangle(
+        r#""componentType":5126"#,
+        &f32s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+        "data:image/png;base64,iVBORw0KGgo=",
+    );
+    let m = read_gltf("t.gltf", text.as_bytes(), None).unwrap();
+    let e = m.materials[0].embedded_image.as_ref().unwrap();
+    assert_eq!((e.index, e.mime_type.as_deref()), (0, Some("image/png")));
+    assert_eq!(e.bytes, png_signature);
+    assert_eq!(m.materials[0].image, None);
+    // A file beside the model is a path, not an embedded image.
+    let text = textured_triangle(
+        r#""componentType":5126"#,
+        &f32s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+        "paint.png",
+    );
+    let m = read_gltf("t.gltf", text.as_bytes(), None).unwrap();
+    assert_eq!(m.materials[0].embedded_image, None);
+    // Malformed base64 is refused at the image.
+    let text = textured_triangle(
+        r#""componentType":5126"#,
+        &f32s(&[0.0, 0.0, 1.0, 0.0, 0.0, 1.0]),
+        "data:image/png;base64,%%%",
+    );
+    let e = read_gltf("t.gltf", text.as_bytes(), None).unwrap_err();
+    assert!(e.message.contains("base64"), "{e}");
+}

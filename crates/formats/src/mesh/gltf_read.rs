@@ -523,6 +523,17 @@ pub(crate) fn inside(dir: &Path, rel: &Path, uri: &str) -> Result<PathBuf, Strin
     }
 }
 
+/// A `data:` URI's media type and bytes, from what follows `data:`; only base64 is read.
+pub(super) fn decode_data_uri(rest: &str) -> Result<(&str, Vec<u8>), String> {
+    let (media_type, payload) = rest
+        .split_once(";base64,")
+        .ok_or_else(|| "a `data:` URI must be base64 (`data:...;base64,...`)".to_owned())?;
+    let bytes = base64::engine::general_purpose::STANDARD
+        .decode(payload)
+        .map_err(|e| format!("malformed base64 in its `data:` URI: {e}"))?;
+    Ok((media_type, bytes))
+}
+
 fn load_uri(
     source: &Source<'_>,
     uri: &str,
@@ -533,12 +544,7 @@ fn load_uri(
     let err = |msg: String| source.error(&path, msg);
     if let Some(rest) = uri.strip_prefix("data:") {
         // Embedded data travels inside the file: allowed, it is not a network access.
-        let (_, payload) = rest
-            .split_once(";base64,")
-            .ok_or_else(|| err("a `data:` URI must be base64 (`data:...;base64,...`)".into()))?;
-        return base64::engine::general_purpose::STANDARD
-            .decode(payload)
-            .map_err(|e| err(format!("malformed base64 in its `data:` URI: {e}")));
+        return decode_data_uri(rest).map(|(_, bytes)| bytes).map_err(err);
     }
     let rel = local_relative_path(uri).map_err(err)?;
     let dir = base_dir.ok_or_else(|| {
@@ -711,6 +717,7 @@ impl Walk<'_> {
                     .name()
                     .map_or_else(|| format!("material {i}"), str::to_owned);
                 let image = self.base_color_image(&m, self.base_dir)?;
+                let embedded_image = self.base_color_embedded(&m)?;
                 let id = u32::try_from(self.mesh.materials.len()).unwrap_or(u32::MAX);
                 self.mesh.materials.push(MaterialUse {
                     name,
@@ -722,6 +729,7 @@ impl Walk<'_> {
                         part: Some(part.to_owned()),
                     },
                     image,
+                    embedded_image,
                 });
                 Some(id)
             }

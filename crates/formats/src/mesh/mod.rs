@@ -79,6 +79,26 @@ pub struct MaterialUse {
     /// folder with `/` between its parts, checked as every reference is (relative, never
     /// absolute or above that folder). Not read: a material's image map may name it.
     pub image: Option<String>,
+    /// The image a glTF material's base colour texture carries inside the file (a GLB's
+    /// buffer view, a `data:` URI) instead of naming one beside it: it has no path until
+    /// it is written out (`irsig-import --images DIR`).
+    pub embedded_image: Option<EmbeddedImage>,
+}
+
+/// An image stored inside a glTF file, as stored: its encoded bytes (PNG or JPEG), not
+/// decoded.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EmbeddedImage {
+    /// Its index in the file's `images`.
+    pub index: usize,
+    /// The name the file gives it, if any: a label, not a path, and never used as one
+    /// unchecked.
+    pub name: Option<String>,
+    /// Its MIME type as the file states it (`image/png` or `image/jpeg`, the two glTF 2.0
+    /// allows), `None` where it states none.
+    pub mime_type: Option<String>,
+    /// The bytes.
+    pub bytes: Vec<u8>,
 }
 
 /// A place in an input file, for messages: a line, or a described part of a binary file.
@@ -190,6 +210,7 @@ pub fn from_legacy_object(file: &str, object: &ObjectFile) -> Result<Mesh, Parse
                     part: None,
                 },
                 image: None,
+                embedded_image: None,
             });
             u32::try_from(mesh.materials.len() - 1).unwrap_or(u32::MAX)
         });

@@ -650,6 +650,7 @@ impl<'t> Scanner<'t> {
                     part: None,
                 },
                 image: None,
+                embedded_image: None,
             });
             index
         };

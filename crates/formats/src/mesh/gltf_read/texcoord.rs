@@ -10,8 +10,9 @@ use std::path::Path;
 
 use gltf::accessor::{DataType, Dimensions};
 
-use super::{Walk, inside, local_relative_path};
+use super::{Walk, decode_data_uri, inside, local_relative_path};
 use crate::ParseError;
+use crate::mesh::EmbeddedImage;
 
 impl Walk<'_> {
     /// The `TEXCOORD_0` of a primitive of `vertex_count` vertices, in irsig's convention;
@@ -122,5 +123,57 @@ impl Walk<'_> {
             inside(dir, &rel, uri).map_err(err)?;
         }
         Ok(Some(crate::mesh::slash_path(&rel)))
+    }
+    /// The image a material's base colour texture carries inside the file: a buffer view
+    /// of a buffer (a GLB's `BIN` chunk, or any buffer already loaded), or a `data:` URI;
+    /// `None` when the material names none or names a file.
+    ///
+    /// # Errors
+    /// A buffer view that runs past its buffer, or a `data:` URI that is not base64, at
+    /// `images[i]`.
+    pub(super) fn base_color_embedded(
+        &self,
+        material: &gltf::Material<'_>,
+    ) -> Result<Option<EmbeddedImage>, ParseError> {
+        let Some(info) = material.pbr_metallic_roughness().base_color_texture() else {
+            return Ok(None);
+        };
+        let image = info.texture().source();
+        let index = image.index();
+        let at = |field: &str| format!("images[{index}]{field}");
+        let (mime_type, bytes) = match image.source() {
+            gltf::image::Source::View { view, mime_type } => {
+                let buffer = self.buffers.get(view.buffer().index());
+                let end = view.offset().checked_add(view.length());
+                let bytes = match (buffer, end) {
+                    (Some(b), Some(end)) if end <= b.len() => b[view.offset()..end].to_vec(),
+                    _ => {
+                        return Err(self.source.error(
+                            &at(".bufferView"),
+                            format!(
+                                "bufferViews[{}] runs past its buffer, or its buffer does not exist",
+                                view.index()
+                            ),
+                        ));
+                    }
+                };
+                (Some(mime_type.to_owned()), bytes)
+            }
+            gltf::image::Source::Uri { uri, mime_type } => {
+                let Some(rest) = uri.strip_prefix("data:") else {
+                    return Ok(None);
+                };
+                let (media_type, bytes) =
+                    decode_data_uri(rest).map_err(|e| self.source.error(&at(".uri"), e))?;
+                let stated = mime_type.or((!media_type.is_empty()).then_some(media_type));
+                (stated.map(str::to_owned), bytes)
+            }
+        };
+        Ok(Some(EmbeddedImage {
+            index,
+            name: image.name().map(str::to_owned),
+            mime_type,
+            bytes,
+        }))
     }
 }
