@@ -862,3 +862,63 @@ fn a_terrain_material_goes_through_flatten_and_an_unknown_one_is_refused() {
         "{stderr}"
     );
 }
+
+#[test]
+fn a_glbs_embedded_base_colour_is_written_out_with_images_and_reported_without() {
+    use sha2::{Digest, Sha256};
+    let file = "tests/data/third-party/webxr-input-profiles/generic-trigger/none.glb";
+    let dir = tempfile::tempdir().unwrap();
+    let images = dir.path().join("images");
+    let run = |with_images: bool| {
+        let mut cmd = bin("irsig-import");
+        cmd.args([file, "--materials", LIBRARY, "--default-material", "skin"]);
+        if with_images {
+            cmd.arg("--images").arg(&images);
+        }
+        cmd.output().unwrap()
+    };
+    // Without --images: the image is reported, and nothing is written.
+    let out = run(false);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains(
+            "carries its base colour image inside the file (images[2] \
+             `xrstandard_nonhanded_mat_BaseColor.jpg`, image/jpeg, 157558 bytes)"
+        ) && stderr.contains("--images DIR"),
+        "{stderr}"
+    );
+    assert!(!images.exists());
+    // With it, twice: the second run finds the same bytes there and leaves them.
+    let written = images.join("image-2-xrstandard_nonhanded_mat_BaseColor.jpg");
+    for _ in 0..2 {
+        let out = run(true);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success(), "{stderr}");
+        assert!(stderr.contains("names the image"), "{stderr}");
+        assert!(out.stdout.starts_with(b"IRSIGOBJ"));
+    }
+    // Byte for byte the GLB's bufferViews[2] (images[2]'s view), as a separate reading of
+    // the file (Python's `struct` on its JSON and BIN chunks) gives it: 157,558 bytes.
+    let bytes = std::fs::read(&written).unwrap();
+    let hash: String = Sha256::digest(&bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect();
+    assert_eq!(
+        (bytes.len(), hash.as_str()),
+        (
+            157_558,
+            "675671d20511dd82411cbdd81a42df8d9e8e71fb344e56dd0813dcf1a58d5c71"
+        )
+    );
+    assert_eq!(std::fs::read_dir(&images).unwrap().count(), 1);
+    // Another image under that name is never overwritten: refused, and no object written.
+    std::fs::write(&written, b"another image").unwrap();
+    let out = run(true);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success());
+    assert!(stderr.contains("holds another image"), "{stderr}");
+    assert!(out.stdout.is_empty());
+    assert_eq!(std::fs::read(&written).unwrap(), b"another image");
+}

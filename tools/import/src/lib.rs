@@ -10,6 +10,8 @@
 //! material id (a library converted from the 1990 material index file keeps its numbers).
 //! Facet temperatures in a facet file (an irsig extension) are kept. glTF is +Y up (glTF
 //! 2.0 §3.4) and irsig +Z up: glTF positions are turned to +Z up unless `--keep-axes`.
+//! The image a material's texture names is reported for a material map to name; one a
+//! glTF carries inside its file is written out with `--images DIR` ([`images`]).
 //!
 //! The object is written in one of its two forms (`formats/canonical/object.md`): the
 //! compact binary form when the output goes to another program (standard output is a
@@ -33,6 +35,8 @@ use irsig_cli::args::inputs::Materials;
 use irsig_cli::args::outputs::{Name, Output, Ron};
 use irsig_cli::args::{LegacyUnitArgs, ThreadsArgs};
 use irsig_formats::mesh::{self, Mesh};
+
+mod images;
 use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object};
 use miette::miette;
 
@@ -119,6 +123,11 @@ pub struct Cli {
     /// them) with a warning that says how many and where the first few are.
     #[arg(long)]
     pub strict: bool,
+    /// Write each image a glTF material's base colour carries inside the file (a GLB's
+    /// buffer view, a `data:` URI) into DIR, made if absent, as `image-I-NAME` (its index
+    /// and name) for a material map to name. Without it such an image is only reported.
+    #[arg(long, value_name = "DIR")]
+    pub images: Option<std::path::PathBuf>,
     /// `--threads N`: an OBJ's two passes run on two threads when there are two.
     #[command(flatten)]
     pub threads: ThreadsArgs,
@@ -177,6 +186,7 @@ fn import(cli: &Cli) -> miette::Result<()> {
     if gltf && !cli.keep_axes {
         mesh.y_up_to_z_up();
     }
+    let embedded = images::take(&mut mesh);
     for w in &mesh.warnings {
         irsig_cli::note!("warning: {w}");
     }
@@ -189,6 +199,8 @@ fn import(cli: &Cli) -> miette::Result<()> {
     // a million-triangle import is set by what is alive at once.
     drop(input);
     let object = to_object(mesh, &library, cli, default, name, format)?;
+    // Before the object: it may go to a pipe whose reader has all it wants and closes it.
+    images::write_or_report(&embedded, cli, [cli.input.as_str(), materials])?;
     let binary = writes_binary(cli, irsig_cli::stdout_is_pipe());
     irsig_cli::write_output(cli.output.path.as_deref(), |w| {
         if binary {
