@@ -27,7 +27,7 @@ pub(crate) struct BlackbodyTable {
     /// The first node's temperature, K.
     lo_k: f64,
     /// Interval `i`'s Hermite cubic in powers of `u = (T − T_i)/STEP_K` in `[0, 1]`,
-    /// `[a, b, c, d]` for `((a·u + b)·u + c)·u + d`: one read and three multiply-adds a
+    /// `[a, b, c, d]` for `((a·u + b)·u + c)·u + d`: one read and three Horner steps a
     /// hit, where the Hermite basis took four weights each of `u`, `u²` and `u³`.
     cubics: Vec<[f64; 4]>,
 }
