@@ -774,6 +774,18 @@ fn gltf_is_turned_to_z_up_unless_its_axes_are_kept() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("--keep-axes is for glTF"));
+    // Nor --images for a format whose images are never inside it.
+    bin("irsig-import")
+        .args([
+            "formats/canonical/samples/box.obj",
+            "--materials",
+            LIBRARY,
+            "--images",
+            "unused",
+        ])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("--images is for glTF"));
 }
 
 /// A terrain that names a material: flatten carries it into the binary raw scene, and

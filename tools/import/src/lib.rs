@@ -227,7 +227,7 @@ impl irsig_cli::CheckArgs for Cli {
 }
 
 /// The mesh format the flags give, and their own rules: a positive finite scale, a format
-/// for standard input, `--keep-axes` for glTF only.
+/// for standard input, `--keep-axes` and `--images` for glTF only.
 fn flags_format(cli: &Cli) -> miette::Result<Format> {
     if !(cli.scale.is_finite() && cli.scale > 0.0) {
         return Err(irsig_cli::usage_error(format!(
@@ -248,6 +248,12 @@ fn flags_format(cli: &Cli) -> miette::Result<Format> {
         return Err(irsig_cli::usage_error(
             "--keep-axes is for glTF and GLB, whose axes are +Y up; other formats state no up \
              axis and are never turned",
+        ));
+    }
+    if cli.images.is_some() && !matches!(format, Format::Gltf | Format::Glb) {
+        return Err(irsig_cli::usage_error(
+            "--images is for glTF and GLB, which can carry their images inside the file; an \
+             OBJ's images are files already, named in the note of each material",
         ));
     }
     Ok(format)
