@@ -1,5 +1,6 @@
 //! A textured asset through the real tools: an OBJ panel with texture coordinates (`vt`),
-//! its `.mtl` naming a PNG (`map_Kd`), all written here; `irsig-import`, `irsig-flatten`,
+//! its `.mtl` naming a PNG (`map_Kd`), all written here (and the same panel as a GLB that
+//! carries the PNG inside it, written out by `irsig-import --images`); `irsig-import`, `irsig-flatten`,
 //! and `irsig-trace` with a materials file whose temperature map names that PNG. The panel
 //! is 8 m square on the ground, one repetition of a 2 × 2 grey image across it; seen from
 //! 100 m straight above, each pixel whose centre ray meets the panel well inside a
@@ -15,7 +16,9 @@
 
 use std::path::Path;
 
-use crate::textured_panel::{SIDE_M, ground_points, import_and_flatten, layer, trace};
+use crate::textured_panel::{
+    SIDE_M, ground_points, import_and_flatten, import_and_flatten_glb, layer, trace,
+};
 use irsig_tests::bin;
 
 /// A centre ray this close to a quarter's or the panel's edge (m) is not checked.
@@ -41,11 +44,7 @@ fn materials(maps: bool) -> String {
 /// Writes the asset (OBJ, MTL, PNG), imports, flattens and traces it with or without the
 /// map; the truth EXR.
 fn traced(dir: &Path, maps: bool) -> irsig_raster::Raster {
-    // Row 0 at the top: top-left black, top-right 51, bottom-left white, bottom-right black.
-    image::GrayImage::from_raw(2, 2, vec![0, 51, 255, 0])
-        .unwrap()
-        .save(dir.join("quarters.png"))
-        .unwrap();
+    std::fs::write(dir.join("quarters.png"), quarters_png()).unwrap();
     import_and_flatten(dir, MTL, &materials(maps));
     trace(dir, &[])
 }
@@ -53,11 +52,43 @@ fn traced(dir: &Path, maps: bool) -> irsig_raster::Raster {
 #[test]
 fn a_textured_obj_renders_its_image_where_the_asset_puts_it() {
     let dir = tempfile::tempdir().unwrap();
-    let truth = traced(dir.path(), true);
-    let offset = layer(&truth, "texture_temperature_offset");
-    let scale = layer(&truth, "texture_emissivity_scale");
-    let kinetic = layer(&truth, "kinetic_temperature");
-    let apparent = layer(&truth, "apparent_temperature");
+    assert_quarters(&traced(dir.path(), true));
+}
+
+#[test]
+fn a_glb_with_its_image_inside_renders_it_where_the_asset_puts_it() {
+    // The same panel as a GLB whose base colour image is a buffer view of its own binary
+    // chunk: `irsig-import --images` writes it out, and the map names the file written.
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let map = "maps: Some((temperature_offset_k: Some((image: \"images/image-0-quarters.png\", \
+               at_black: 0.0, per_grey: 10.0, filter: Nearest)))),";
+    let materials = format!(
+        "(materials: [(id: 1, name: \"panel\", emissivity: [(0.0, 1.0), (60.0, 1.0), \
+         (90.0, 0.0)], specular_fraction: 0.0, source: \"test\", {map})])"
+    );
+    import_and_flatten_glb(d, &quarters_png(), &materials);
+    assert_quarters(&trace(d, &[]));
+}
+
+/// The 2 × 2 grey image, row 0 at the top: top-left black, top-right 51, bottom-left
+/// white, bottom-right black; as PNG bytes.
+fn quarters_png() -> Vec<u8> {
+    let mut png = Vec::new();
+    image::GrayImage::from_raw(2, 2, vec![0, 51, 255, 0])
+        .unwrap()
+        .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+        .unwrap();
+    png
+}
+
+/// Each pixel whose centre ray meets the panel well inside a quarter shows the quarter's
+/// offset in the truth EXR, and its temperature; the terrain around, no texture.
+fn assert_quarters(truth: &irsig_raster::Raster) {
+    let offset = layer(truth, "texture_temperature_offset");
+    let scale = layer(truth, "texture_emissivity_scale");
+    let kinetic = layer(truth, "kinetic_temperature");
+    let apparent = layer(truth, "apparent_temperature");
     let mut seen = [0usize; 4];
     let mut terrain = 0;
     for (k, x, y) in ground_points() {

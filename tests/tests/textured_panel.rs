@@ -72,6 +72,92 @@ pub fn import_and_flatten(dir: &Path, mtl: &str, materials: &str) {
         .success();
 }
 
+/// [`import_and_flatten`] for the panel as a GLB (`dir/panel.glb`) whose material's base
+/// colour is `png`, stored in the GLB's binary chunk, imported with `--images dir/images`.
+/// In glTF's axes (+Y up) the panel lies on `y = 0` at `(x, 0, −y)`, which the import
+/// turns to irsig's `(x, y, 0)`; its coordinates `(x/8, 1 − y/8)`, glTF's `v` running down.
+pub fn import_and_flatten_glb(dir: &Path, png: &[u8], materials: &str) {
+    let p = |name: &str| dir.join(name);
+    std::fs::write(p("panel.glb"), panel_glb(png)).unwrap();
+    std::fs::write(p("materials.ron"), materials).unwrap();
+    std::fs::write(p("scene.ron"), SCENE).unwrap();
+    std::fs::write(p("view.ron"), ron::to_string(&view()).unwrap()).unwrap();
+    bin("irsig-import")
+        .arg(p("panel.glb"))
+        .arg("--materials")
+        .arg(p("materials.ron"))
+        .arg("--images")
+        .arg(p("images"))
+        .arg("-o")
+        .arg(p("panel.ron"))
+        .assert()
+        .success();
+    bin("irsig-flatten")
+        .arg(p("scene.ron"))
+        .arg("--materials")
+        .arg(p("materials.ron"))
+        .arg("-o")
+        .arg(p("scene.raw"))
+        .assert()
+        .success();
+}
+
+/// The panel as GLB bytes (glTF 2.0 §4.4): a JSON chunk and a binary chunk of positions,
+/// texture coordinates, indices and the PNG, each 4-byte aligned.
+fn panel_glb(png: &[u8]) -> Vec<u8> {
+    let s = SIDE_M as f32;
+    let mut bin: Vec<u8> = Vec::new();
+    for v in [0.0, 0.0, 0.0, s, 0.0, 0.0, s, 0.0, -s, 0.0, 0.0, -s] {
+        bin.extend_from_slice(&f32::to_le_bytes(v));
+    }
+    for v in [0.0f32, 1.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0] {
+        bin.extend_from_slice(&v.to_le_bytes());
+    }
+    for i in [0u16, 1, 2, 0, 2, 3] {
+        bin.extend_from_slice(&i.to_le_bytes());
+    }
+    let image_at = bin.len() + (4 - bin.len() % 4) % 4;
+    bin.resize(image_at, 0);
+    bin.extend_from_slice(png);
+    let json = format!(
+        r#"{{"asset":{{"version":"2.0"}},"buffers":[{{"byteLength":{total}}}],
+        "bufferViews":[{{"buffer":0,"byteOffset":0,"byteLength":48}},
+                       {{"buffer":0,"byteOffset":48,"byteLength":32}},
+                       {{"buffer":0,"byteOffset":80,"byteLength":12}},
+                       {{"buffer":0,"byteOffset":{image_at},"byteLength":{n}}}],
+        "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[0,0,{neg}],"max":[{s},0,0]}},
+                     {{"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"}},
+                     {{"bufferView":2,"componentType":5123,"count":6,"type":"SCALAR"}}],
+        "images":[{{"bufferView":3,"mimeType":"image/png","name":"quarters.png"}}],
+        "textures":[{{"source":0}}],
+        "materials":[{{"name":"panel","pbrMetallicRoughness":{{"baseColorTexture":{{"index":0}}}}}}],
+        "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0,"TEXCOORD_0":1}},"indices":2,"material":0}}]}}],
+        "nodes":[{{"mesh":0}}],"scenes":[{{"nodes":[0]}}],"scene":0}}"#,
+        total = image_at + png.len(),
+        n = png.len(),
+        neg = -s,
+    );
+    let mut json = json.into_bytes();
+    json.resize(json.len().next_multiple_of(4), b' ');
+    bin.resize(bin.len().next_multiple_of(4), 0);
+    let chunk_len = |c: &[u8]| u32::try_from(c.len()).unwrap().to_le_bytes();
+    let mut glb = Vec::new();
+    glb.extend_from_slice(b"glTF");
+    glb.extend_from_slice(&2u32.to_le_bytes());
+    glb.extend_from_slice(
+        &u32::try_from(12 + 8 + json.len() + 8 + bin.len())
+            .unwrap()
+            .to_le_bytes(),
+    );
+    glb.extend_from_slice(&chunk_len(&json));
+    glb.extend_from_slice(b"JSON");
+    glb.extend_from_slice(&json);
+    glb.extend_from_slice(&chunk_len(&bin));
+    glb.extend_from_slice(b"BIN\0");
+    glb.extend_from_slice(&bin);
+    glb
+}
+
 /// Traces `dir/scene.raw` in a vacuum with `extra` flags into `dir/out.*`: the truth EXR.
 pub fn trace(dir: &Path, extra: &[&str]) -> irsig_raster::Raster {
     let p = |name: &str| dir.join(name);
