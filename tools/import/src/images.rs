@@ -64,16 +64,25 @@ pub(crate) fn write_or_report<const N: usize>(
     if taken.is_empty() {
         return Ok(());
     }
-    std::fs::create_dir_all(dir)
-        .into_diagnostic()
-        .wrap_err_with(|| format!("cannot make the folder --images {}", dir.display()))?;
     let files: Vec<PathBuf> = taken
         .iter()
         .map(|t| dir.join(file_name(&t.image)))
         .collect();
     irsig_cli::refuse_output_is_input(inputs, &files)?;
+    // Every file is checked before any is written, so a refusal leaves nothing new.
+    let mut absent = Vec::new();
     for (t, file) in taken.iter().zip(&files) {
-        write_once(file, &t.image.bytes)?;
+        if !already_there(file, &t.image.bytes)? {
+            absent.push((file, &t.image.bytes));
+        }
+    }
+    std::fs::create_dir_all(dir)
+        .into_diagnostic()
+        .wrap_err_with(|| format!("cannot make the folder --images {}", dir.display()))?;
+    for (file, bytes) in absent {
+        irsig_cli::write_output(Some(file), |w| w.write_all(bytes))?;
+    }
+    for (t, file) in taken.iter().zip(&files) {
         irsig_cli::note!(
             "{}: material `{}` names the image `{}`, written from the file's {}",
             t.first_use,
@@ -134,26 +143,21 @@ fn file_name(image: &EmbeddedImage) -> String {
     name
 }
 
-/// Writes `bytes` to `file` (atomically), unless it already holds them; a file there with
-/// other bytes is refused.
-fn write_once(file: &Path, bytes: &[u8]) -> miette::Result<()> {
+/// Whether `file` already holds `bytes` (`false`: there is no such file); a file there
+/// with other bytes is refused.
+fn already_there(file: &Path, bytes: &[u8]) -> miette::Result<bool> {
     match std::fs::read(file) {
-        Ok(there) if there == bytes => return Ok(()),
-        Ok(_) => {
-            return Err(miette!(
-                help = "give --images another folder, or remove the file",
-                "{} exists and holds another image: --images never overwrites one",
-                file.display()
-            ));
-        }
-        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {}
-        Err(e) => {
-            return Err(e)
-                .into_diagnostic()
-                .wrap_err_with(|| format!("cannot read {}", file.display()));
-        }
+        Ok(there) if there == bytes => Ok(true),
+        Ok(_) => Err(miette!(
+            help = "give --images another folder, or remove the file",
+            "{} exists and holds another image: --images never overwrites one",
+            file.display()
+        )),
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => Ok(false),
+        Err(e) => Err(e)
+            .into_diagnostic()
+            .wrap_err_with(|| format!("cannot read {}", file.display())),
     }
-    irsig_cli::write_output(Some(file), |w| w.write_all(bytes))
 }
 
 #[cfg(test)]

@@ -35,10 +35,10 @@ use irsig_cli::args::inputs::Materials;
 use irsig_cli::args::outputs::{Name, Output, Ron};
 use irsig_cli::args::{LegacyUnitArgs, ThreadsArgs};
 use irsig_formats::mesh::{self, Mesh};
-
-mod images;
 use irsig_model::{Facet, LengthUnit, MaterialId, MaterialLibrary, Object};
 use miette::miette;
+
+mod images;
 
 /// The mesh formats `irsig-import` reads.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]

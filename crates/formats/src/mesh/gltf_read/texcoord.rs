@@ -124,6 +124,7 @@ impl Walk<'_> {
         }
         Ok(Some(crate::mesh::slash_path(&rel)))
     }
+
     /// The image a material's base colour texture carries inside the file: a buffer view
     /// of a buffer (a GLB's `BIN` chunk, or any buffer already loaded), or a `data:` URI;
     /// `None` when the material names none or names a file.
