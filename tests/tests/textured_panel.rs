@@ -48,28 +48,9 @@ pub fn view() -> View {
 /// `materials` (the library's RON) into `dir`, then imports and flattens it into
 /// `dir/scene.raw`.
 pub fn import_and_flatten(dir: &Path, mtl: &str, materials: &str) {
-    let p = |name: &str| dir.join(name);
-    std::fs::write(p("panel.obj"), OBJ).unwrap();
-    std::fs::write(p("panel.mtl"), mtl).unwrap();
-    std::fs::write(p("materials.ron"), materials).unwrap();
-    std::fs::write(p("scene.ron"), SCENE).unwrap();
-    std::fs::write(p("view.ron"), ron::to_string(&view()).unwrap()).unwrap();
-    bin("irsig-import")
-        .arg(p("panel.obj"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("panel.ron"))
-        .assert()
-        .success();
-    bin("irsig-flatten")
-        .arg(p("scene.ron"))
-        .arg("--materials")
-        .arg(p("materials.ron"))
-        .arg("-o")
-        .arg(p("scene.raw"))
-        .assert()
-        .success();
+    std::fs::write(dir.join("panel.obj"), OBJ).unwrap();
+    std::fs::write(dir.join("panel.mtl"), mtl).unwrap();
+    import_and_flatten_as(dir, "panel.obj", &[], materials);
 }
 
 /// [`import_and_flatten`] for the panel as a GLB (`dir/panel.glb`) whose material's base
@@ -77,17 +58,33 @@ pub fn import_and_flatten(dir: &Path, mtl: &str, materials: &str) {
 /// In glTF's axes (+Y up) the panel lies on `y = 0` at `(x, 0, −y)`, which the import
 /// turns to irsig's `(x, y, 0)`; its coordinates `(x/8, 1 − y/8)`, glTF's `v` running down.
 pub fn import_and_flatten_glb(dir: &Path, png: &[u8], materials: &str) {
+    std::fs::write(dir.join("panel.glb"), panel_glb(png)).unwrap();
+    let images = dir.join("images");
+    import_and_flatten_as(
+        dir,
+        "panel.glb",
+        &["--images".as_ref(), images.as_os_str()],
+        materials,
+    );
+}
+
+/// Writes the scene, the view and `materials` into `dir`, imports `dir/model` (with
+/// `import_flags`) as `panel.ron` and flattens the scene into `dir/scene.raw`.
+fn import_and_flatten_as(
+    dir: &Path,
+    model: &str,
+    import_flags: &[&std::ffi::OsStr],
+    materials: &str,
+) {
     let p = |name: &str| dir.join(name);
-    std::fs::write(p("panel.glb"), panel_glb(png)).unwrap();
     std::fs::write(p("materials.ron"), materials).unwrap();
     std::fs::write(p("scene.ron"), SCENE).unwrap();
     std::fs::write(p("view.ron"), ron::to_string(&view()).unwrap()).unwrap();
     bin("irsig-import")
-        .arg(p("panel.glb"))
+        .arg(p(model))
         .arg("--materials")
         .arg(p("materials.ron"))
-        .arg("--images")
-        .arg(p("images"))
+        .args(import_flags)
         .arg("-o")
         .arg(p("panel.ron"))
         .assert()
