@@ -601,7 +601,7 @@ fn an_image_inside_the_file_is_carried_as_stored() {
     let m = read_gltf("t.gltf", text.as_bytes(), None).unwrap();
     let e = m.materials[0].embedded_image.as_ref().unwrap();
     assert_eq!((e.index, e.mime_type.as_deref()), (0, Some("image/png")));
-    assert_eq!(e.bytes, png_signature);
+    assert_eq!(*e.bytes, png_signature);
     assert_eq!(m.materials[0].image, None);
     // A file beside the model is a path, not an embedded image.
     let text = textured_triangle(

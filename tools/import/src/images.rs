@@ -169,7 +169,7 @@ mod tests {
             index: 2,
             name: name.map(str::to_owned),
             mime_type: mime.map(str::to_owned),
-            bytes: Vec::new(),
+            bytes: Vec::new().into(),
         }
     }
 

@@ -219,6 +219,7 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             ..Mesh::default()
         },
         material_index: std::collections::HashMap::new(),
+        embedded_bytes: std::collections::HashMap::new(),
         primitive_paths: Vec::new(),
     };
     for node in root_nodes(&doc) {
@@ -564,6 +565,9 @@ struct Walk<'a> {
     buffers: &'a [Vec<u8>],
     mesh: Mesh,
     material_index: std::collections::HashMap<Option<usize>, Option<u32>>,
+    /// The bytes of each image read from inside the file, by image index: materials that
+    /// share an image share one copy.
+    embedded_bytes: std::collections::HashMap<usize, std::sync::Arc<[u8]>>,
     /// The JSON path of each of `mesh.parts`.
     primitive_paths: Vec<String>,
 }

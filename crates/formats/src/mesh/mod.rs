@@ -97,8 +97,8 @@ pub struct EmbeddedImage {
     /// Its MIME type as the file states it (`image/png` or `image/jpeg`, the two glTF 2.0
     /// allows), `None` where it states none.
     pub mime_type: Option<String>,
-    /// The bytes.
-    pub bytes: Vec<u8>,
+    /// The bytes, one copy however many materials use the image.
+    pub bytes: std::sync::Arc<[u8]>,
 }
 
 /// A place in an input file, for messages: a line, or a described part of a binary file.

@@ -133,7 +133,7 @@ impl Walk<'_> {
     /// A buffer view that runs past its buffer, or a `data:` URI that is not base64, at
     /// `images[i]`.
     pub(super) fn base_color_embedded(
-        &self,
+        &mut self,
         material: &gltf::Material<'_>,
     ) -> Result<Option<EmbeddedImage>, ParseError> {
         let Some(info) = material.pbr_metallic_roughness().base_color_texture() else {
@@ -141,13 +141,15 @@ impl Walk<'_> {
         };
         let image = info.texture().source();
         let index = image.index();
+        let read = self.embedded_bytes.get(&index).cloned();
         let at = |field: &str| format!("images[{index}]{field}");
         let (mime_type, bytes) = match image.source() {
             gltf::image::Source::View { view, mime_type } => {
                 let buffer = self.buffers.get(view.buffer().index());
                 let end = view.offset().checked_add(view.length());
-                let bytes = match (buffer, end) {
-                    (Some(b), Some(end)) if end <= b.len() => b[view.offset()..end].to_vec(),
+                let bytes = match (read, buffer, end) {
+                    (Some(bytes), _, _) => bytes,
+                    (None, Some(b), Some(end)) if end <= b.len() => b[view.offset()..end].into(),
                     _ => {
                         return Err(self.source.error(
                             &at(".bufferView"),
@@ -164,12 +166,16 @@ impl Walk<'_> {
                 let Some(rest) = uri.strip_prefix("data:") else {
                     return Ok(None);
                 };
-                let (media_type, bytes) =
+                let (media_type, decoded) =
                     decode_data_uri(rest).map_err(|e| self.source.error(&at(".uri"), e))?;
                 let stated = mime_type.or((!media_type.is_empty()).then_some(media_type));
-                (stated.map(str::to_owned), bytes)
+                (
+                    stated.map(str::to_owned),
+                    read.unwrap_or_else(|| decoded.into()),
+                )
             }
         };
+        self.embedded_bytes.insert(index, bytes.clone());
         Ok(Some(EmbeddedImage {
             index,
             name: image.name().map(str::to_owned),
