@@ -186,6 +186,24 @@ fn check_with(
         }
     }
     eprintln!("  refinement {:?}", c.refinement);
+    // Where the frame's error sits: refined pixels (more than their centre ray) and the
+    // rest, each with its share of the frame and its 99th percentile.
+    for (label, refined) in [("refined", true), ("centre-ray", false)] {
+        let part: Vec<f64> = error
+            .iter()
+            .zip(&chosen.sampling)
+            .filter(|(_, s)| (s.rays > 1) == refined)
+            .map(|(e, _)| *e)
+            .collect();
+        if !part.is_empty() {
+            eprintln!(
+                "  {label} pixels: {:.1} % of the frame, p99 |dT| {:.3} K, p90 {:.3} K",
+                100.0 * part.len() as f64 / error.len() as f64,
+                percentile(&part, 99.0),
+                percentile(&part, 90.0)
+            );
+        }
+    }
     let outcome = Outcome {
         predicted_p99_k: piloted.decision.predicted.percentile_k,
         p99_k: percentile(&error, 99.0),
