@@ -202,9 +202,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             &chosen_combo,
             det_k,
         );
-        let target_k = refinement.map_or(0.0, |r| r.target_k);
         let at = (&census, measured.as_slice(), guaranteed.as_slice());
-        let predicted_k = terms.frame_percentile_k(at, &chosen_combo, target_k, percentile);
+        let spread = predict::RefinedSpread {
+            sigmas_k: &trial.sigmas_k,
+        };
+        let predicted_k = terms.frame_percentile_k(at, &chosen_combo, spread, percentile);
         let decision = Decision {
             tolerance_k,
             percentile,

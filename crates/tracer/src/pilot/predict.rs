@@ -12,17 +12,22 @@
 //!
 //! So a class is held to the tolerance at its 90th percentile (at the pilot's confidence,
 //! [`super::stats::confident_rank`]) with each point's need, the 90th percentile of its
-//! pixel's error ([`need_k`]); and the frame's percentile is predicted from the mixture of
-//! biased centre pixels and refined pixels whose error is their bias plus a normal of the
-//! target σ (evaluated at a percentile halfway to 100, for the pilot's own sample,
-//! [`super::choose::stricter`]).
+//! pixel's error ([`need_k`]), refinement's target σ standing for its standard error; and
+//! the frame's percentile is predicted from the mixture of biased centre pixels and refined
+//! pixels whose error is their bias plus a normal of the standard error refinement left the
+//! trial's pixels at (evaluated at a percentile halfway to 100, for the pilot's own sample,
+//! [`super::choose::stricter`]). The target is a ceiling on the geometric part only: most
+//! pixels stop well under it (a level's rays halve it or better), while the sky-view rays'
+//! noise, which refinement's stopping test leaves out, can take a pixel over it; the
+//! trial measured both.
 
 use super::choose::{self, Combo, Pixels};
 use super::classes::Census;
 use super::measure::Measured;
 use super::residual::{P90_OF_NORMAL, Residual};
 use super::space::{PilotSpace, Supersample};
-use super::stats::{confident_rank, order_statistic};
+use super::stats::{confident_rank, order_statistic, student_t_upper};
+use crate::refine::ROUNDS;
 
 /// What the pilot knows of each point's pixel and each class beyond the models' errors.
 #[derive(Debug, Clone)]
@@ -31,6 +36,9 @@ pub(crate) struct PixelTerms {
     pub(crate) residual_k: Vec<f64>,
     /// Each class's residual's deterministic part, K ([`Residual::bounces_k`]).
     pub(crate) bounces_k: Vec<f64>,
+    /// Each class's Monte Carlo standard error at the most rays on offer, K
+    /// ([`Residual::sampling_sigma_k`]).
+    pub(crate) sampling_sigma_k: Vec<f64>,
     /// Refinement's target σ as a share of the tolerance (0 without refinement).
     pub(crate) target_share: f64,
     /// Each point's pixel is refined: a refinement candidate, with refinement on offer.
@@ -54,6 +62,7 @@ impl PixelTerms {
     ) -> Self {
         let residual_k: Vec<f64> = residual.iter().map(|r| r.k).collect();
         let bounces_k: Vec<f64> = residual.iter().map(|r| r.bounces_k).collect();
+        let sampling_sigma_k: Vec<f64> = residual.iter().map(|r| r.sampling_sigma_k).collect();
         let refines = space
             .supersampling
             .iter()
@@ -86,6 +95,7 @@ impl PixelTerms {
         Self {
             residual_k,
             bounces_k,
+            sampling_sigma_k,
             target_share,
             candidate,
             class_floor_k,
@@ -112,13 +122,15 @@ impl PixelTerms {
 
     /// The frame's `percentile` of |ΔT| under `combo` against a converged rendering
     /// ([`frame_percentile_k`], at [`choose::stricter`]): each `guaranteed` point's bias its
-    /// bound and its class's residual, a refined one's its bound and the residual's
-    /// deterministic part with a normal of `target_k`.
+    /// bound and its class's bounces' tail, a centre pixel with a normal of its class's
+    /// Monte Carlo error at the most rays (the class's residual holds it at its 90th
+    /// percentile; the frame's percentile reaches further into it), a refined one with the
+    /// `spread` of refinement's rays about it.
     pub(crate) fn frame_percentile_k(
         &self,
         (census, measured, guaranteed): (&Census, &[Measured], &[bool]),
         combo: &Combo,
-        target_k: f64,
+        spread: RefinedSpread<'_>,
         percentile: f64,
     ) -> f64 {
         let points: Vec<FramePoint> = census
@@ -129,19 +141,19 @@ impl PixelTerms {
             .filter(|(_, (p, _))| guaranteed[p.class])
             .map(|(i, (p, m))| {
                 let candidate = self.candidate[i];
-                let residual = if candidate {
-                    &self.bounces_k
-                } else {
-                    &self.residual_k
-                };
                 FramePoint {
-                    bias_k: choose::bound(m, combo) + residual[p.class],
+                    bias_k: choose::bound(m, combo) + self.bounces_k[p.class],
+                    sigma_k: if candidate {
+                        0.0
+                    } else {
+                        self.sampling_sigma_k[p.class]
+                    },
                     weight: census.classes[p.class].weight(),
                     candidate,
                 }
             })
             .collect();
-        frame_percentile_k(&points, target_k, choose::stricter(percentile))
+        frame_percentile_k(&points, spread, choose::stricter(percentile))
     }
 }
 
@@ -198,7 +210,7 @@ pub(crate) fn class_floor_k(
     order_statistic(&mut thresholds, rank)
 }
 
-/// P(|b + N(0, σ²)| > x): a refined pixel of bias `b` and standard error `sigma_k` off by
+/// P(|b + N(0, σ²)| > x): a pixel of bias `b` and normal error of σ `sigma_k` off by
 /// more than `x`.
 fn exceedance(bias_k: f64, sigma_k: f64, x: f64) -> f64 {
     if sigma_k <= 0.0 {
@@ -208,21 +220,84 @@ fn exceedance(bias_k: f64, sigma_k: f64, x: f64) -> f64 {
     upper((x - bias_k) / sigma_k) + upper((x + bias_k) / sigma_k)
 }
 
+/// The one-sided 95 % point of the standard normal: the pilot's confidence
+/// ([`super::stats::CONFIDENCE`]) in a mean over the trial's pixels.
+const CONFIDENT_Z: f64 = 1.645;
+
+/// How refined pixels spread about their bias: the standard errors refinement left the
+/// trial's pixels at ([`super::trial::Trial::sigmas_k`]), each standing for an equal
+/// share of the frame's refined pixels.
+///
+/// A pixel's mean is off by its standard error times a Student's t of `ROUNDS − 1`
+/// degrees of freedom, its σ being estimated from its level's [`ROUNDS`] rounds; the
+/// refined pixels' share beyond `x` is the mean of the trial's shares, plus 1.645 times
+/// that mean's standard error over the trial's pixels (a trial of a few dozen pixels reads
+/// the upper tail of their σ loosely).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct RefinedSpread<'a> {
+    pub(crate) sigmas_k: &'a [f64],
+}
+
+impl RefinedSpread<'_> {
+    /// The share of refined pixels of bias `bias_k` off by more than `x`, at the pilot's
+    /// confidence.
+    fn exceedance(&self, bias_k: f64, x: f64) -> f64 {
+        let one = |s: f64| {
+            if s <= 0.0 {
+                return exceedance(bias_k, 0.0, x);
+            }
+            let dof = ROUNDS as u32 - 1;
+            student_t_upper((x - bias_k) / s, dof) + student_t_upper((x + bias_k) / s, dof)
+        };
+        match self.sigmas_k {
+            [] => exceedance(bias_k, 0.0, x),
+            [s] => one(*s),
+            sigmas => {
+                // Welford's running mean and sum of squared deviations: exact when the
+                // trial's shares agree.
+                let (mut mean, mut m2) = (0.0, 0.0);
+                for (k, &s) in sigmas.iter().enumerate() {
+                    let e = one(s);
+                    let delta = e - mean;
+                    mean += delta / (k + 1) as f64;
+                    m2 += delta * (e - mean);
+                }
+                let n = sigmas.len() as f64;
+                let sd = (m2 / (n - 1.0)).max(0.0).sqrt();
+                (mean + CONFIDENT_Z * sd / n.sqrt()).min(1.0)
+            }
+        }
+    }
+
+    /// The widest standard error, K.
+    fn widest_k(&self) -> f64 {
+        self.sigmas_k.iter().copied().fold(0.0, f64::max)
+    }
+}
+
 /// One point of the frame's prediction.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct FramePoint {
     /// Its bias, K (≥ 0).
     pub(crate) bias_k: f64,
+    /// A centre pixel's normal error about its bias, K (a refined pixel's is the
+    /// [`RefinedSpread`]).
+    pub(crate) sigma_k: f64,
     /// The pixels it stands for.
     pub(crate) weight: f64,
-    /// Its pixel is refined (to a standard error of the target σ).
+    /// Its pixel is refined.
     pub(crate) candidate: bool,
 }
 
 /// The frame's `percentile` of |ΔT| predicted from `points` ([`self`]): the smallest `x`
-/// whose weighted share of exceedance is at most `1 − percentile/100`, each refined point
-/// with its bias and a normal of `sigma_k`, by bisection (0 for no points).
-pub(crate) fn frame_percentile_k(points: &[FramePoint], sigma_k: f64, percentile: f64) -> f64 {
+/// whose weighted share of exceedance is at most `1 − percentile/100`, a centre pixel off
+/// by its bias and a normal of its σ, a refined one by its bias and the `spread`, by
+/// bisection (0 for no points).
+pub(crate) fn frame_percentile_k(
+    points: &[FramePoint],
+    spread: RefinedSpread<'_>,
+    percentile: f64,
+) -> f64 {
     let total: f64 = points.iter().map(|p| p.weight).sum();
     if points.is_empty() || total <= 0.0 {
         return 0.0;
@@ -232,18 +307,36 @@ pub(crate) fn frame_percentile_k(points: &[FramePoint], sigma_k: f64, percentile
         points
             .iter()
             .map(|p| {
-                let s = if p.candidate { sigma_k } else { 0.0 };
-                p.weight * exceedance(p.bias_k, s, x)
+                let e = if p.candidate {
+                    spread.exceedance(p.bias_k, x)
+                } else {
+                    exceedance(p.bias_k, p.sigma_k, x)
+                };
+                p.weight * e
             })
             .sum::<f64>()
             / total
     };
     let worst = points.iter().map(|p| p.bias_k).fold(0.0, f64::max);
-    let (mut lo, mut hi) = (0.0, worst + 12.0 * sigma_k.max(0.0));
+    let widest = points
+        .iter()
+        .map(|p| p.sigma_k)
+        .fold(spread.widest_k(), f64::max);
+    let (mut lo, mut hi) = (0.0, worst + 12.0 * widest);
     if over(lo) <= allowed {
         return 0.0;
     }
-    for _ in 0..80 {
+    // t's tails are wide: widen the bracket until it holds (a percentile of 99.999 and
+    // more may need it).
+    for _ in 0..60 {
+        if over(hi) <= allowed {
+            break;
+        }
+        lo = hi;
+        hi *= 2.0;
+    }
+    // 60 halvings take the bracket to 2⁻⁶⁰ of its width.
+    for _ in 0..60 {
         let mid = 0.5 * (lo + hi);
         if over(mid) <= allowed {
             hi = mid;
@@ -299,41 +392,84 @@ mod tests {
     }
 
     #[test]
+    fn a_refined_pixel_is_off_by_a_student_t_of_its_standard_error() {
+        let spread = |sigmas_k| RefinedSpread { sigmas_k };
+        // No bias: P(|t₇| > 2.3646) = 0.05 (standard tables).
+        let one = spread(&[0.1]).exceedance(0.0, 0.23646);
+        assert!((one - 0.05).abs() < 1e-4, "{one}");
+        // Bias 1σ, x = 1σ: P(t₇ > 0) + P(t₇ < −2) = 0.5 + 0.04281 (by quadrature of the
+        // density, mpmath).
+        let biased = spread(&[0.1]).exceedance(0.1, 0.1);
+        assert!((biased - 0.542_81).abs() < 1e-4, "{biased}");
+        // Trial pixels that agree add no uncertainty of their mean.
+        let same = spread(&[0.1; 16]).exceedance(0.0, 0.23646);
+        assert!((same - one).abs() < 1e-12, "{same}");
+        // Two that differ, σ 0 and 0.1 K: shares 0 and 0.05, mean 0.025, their standard
+        // deviation 0.035355, so 0.025 + 1.645 · 0.035355/√2 = 0.066125.
+        let two = spread(&[0.0, 0.1]).exceedance(0.0, 0.23646);
+        assert!((two - 0.066_125).abs() < 1e-4, "{two}");
+        // None, or no spread: the bias alone.
+        assert!((spread(&[]).exceedance(0.2, 0.1) - 1.0).abs() < 1e-15);
+        assert!(spread(&[0.0]).exceedance(0.05, 0.1).abs() < 1e-15);
+    }
+
+    #[test]
     fn the_frame_percentile_of_biased_pixels_is_their_percentile() {
         // 100 equal points of bias 0.01·i: the 95th percentile leaves 5 above, 0.95.
         let points: Vec<FramePoint> = (1..=100)
             .map(|i| FramePoint {
                 bias_k: 0.01 * f64::from(i),
+                sigma_k: 0.0,
                 weight: 1.0,
                 candidate: false,
             })
             .collect();
-        let p = frame_percentile_k(&points, 0.3, 95.0);
+        let p = frame_percentile_k(&points, RefinedSpread { sigmas_k: &[0.3] }, 95.0);
         assert!((p - 0.95).abs() < 1e-6, "{p}");
     }
 
     #[test]
     fn the_frame_percentile_of_refined_pixels_is_that_of_their_noise() {
-        // Every pixel refined, no bias, σ 0.1 K: the 99th percentile of |N| is 2.576σ.
+        let spread = RefinedSpread { sigmas_k: &[0.1] };
+        // Every pixel refined, no bias, σ 0.1 K: the 99th percentile of |t₇| is 3.4995σ
+        // (standard tables).
         let points = [FramePoint {
             bias_k: 0.0,
+            sigma_k: 0.0,
             weight: 3.0,
             candidate: true,
         }];
-        let p = frame_percentile_k(&points, 0.1, 99.0);
-        assert!((p - 0.2576).abs() < 1e-3, "{p}");
+        let p = frame_percentile_k(&points, spread, 99.0);
+        assert!((p - 0.349_95).abs() < 1e-4, "{p}");
         // Half the frame refined: 1 % of the frame over x is 2 % of the refined half,
-        // |N| > 2.326σ.
+        // |t₇| > 2.998σ.
         let mixed = [
             points[0],
             FramePoint {
                 bias_k: 0.0,
+                sigma_k: 0.0,
                 weight: 3.0,
                 candidate: false,
             },
         ];
-        let p = frame_percentile_k(&mixed, 0.1, 99.0);
-        assert!((p - 0.2326).abs() < 1e-3, "{p}");
-        assert!(frame_percentile_k(&[], 0.1, 99.0).abs() < 1e-15);
+        let p = frame_percentile_k(&mixed, spread, 99.0);
+        assert!((p - 0.2998).abs() < 1e-4, "{p}");
+        // A percentile far in t's tails, past the first bracket of 12σ: 10⁻⁶ of the frame
+        // over x is |t₇| > 15.767σ (by quadrature of the density, mpmath).
+        // The other half centre pixels with a normal error of 0.12 K: x with half of t₇'s
+        // two tails at x/0.1 plus half of the normal's at x/0.12 equal to 1 %, 0.32730 K
+        // (solved with mpmath's quadrature of t₇'s density and erfc).
+        let noisy = [
+            points[0],
+            FramePoint {
+                sigma_k: 0.12,
+                ..mixed[1]
+            },
+        ];
+        let p = frame_percentile_k(&noisy, spread, 99.0);
+        assert!((p - 0.327_30).abs() < 1e-4, "{p}");
+        let far = frame_percentile_k(&points, spread, 99.9999);
+        assert!((far - 1.5767).abs() < 1e-3, "{far}");
+        assert!(frame_percentile_k(&[], spread, 99.0).abs() < 1e-15);
     }
 }

@@ -19,6 +19,12 @@ use crate::tracer::{EDGE_SIDE, FrameConsts, TraceOptions, Tracer};
 /// Candidates refined in the trial, at most (and about one in twenty of them).
 const TRIAL_MAX: usize = 48;
 
+/// Candidates refined in the trial, at least (all of fewer): the frame's prediction reads
+/// the refined pixels' spread from the trial ([`super::predict::RefinedSpread`]), and
+/// fewer pixels read the upper tail of their standard errors too loosely (with 8 to 21,
+/// three cases of twenty generated ones were predicted under their measured error).
+const TRIAL_MIN: usize = 32;
+
 /// What the trial of refinement found.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Trial {
@@ -32,6 +38,10 @@ pub(crate) struct Trial {
     pub capped_sigma_k: Vec<f64>,
     /// The largest standard error of a trial pixel, K.
     pub worst_sigma_k: f64,
+    /// Every trial pixel's standard error as refinement left it, K: the sky-view rays'
+    /// noise in it, capped pixels' included. What a refined pixel's error is predicted
+    /// from ([`super::predict::frame_percentile_k`]).
+    pub sigmas_k: Vec<f64>,
 }
 
 /// Refinement's target σ as a share of the tolerance, set by `candidate_share`, the share
@@ -79,7 +89,7 @@ pub(crate) fn refinement_for(
 
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// Refines some of the census's candidates with the chosen settings: about one in
-    /// twenty, at least 8 (all of fewer) and at most [`TRIAL_MAX`], seeded. A pixel refined
+    /// twenty, at least [`TRIAL_MIN`] (all of fewer) and at most [`TRIAL_MAX`], seeded. A pixel refined
     /// here is refined exactly so in the rendering (its rays are its own).
     pub(crate) fn trial(
         &self,
@@ -102,7 +112,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             return Trial::default();
         }
         let n = (candidates.len() / 20)
-            .max(8.min(candidates.len()))
+            .max(TRIAL_MIN.min(candidates.len()))
             .min(TRIAL_MAX);
         let mut rng = ChaCha8Rng::seed_from_u64(seed ^ 0x7472_6961_6c00_0000);
         let (picked, _) = candidates.partial_shuffle(&mut rng, n);
@@ -168,6 +178,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 .iter()
                 .map(|s| f64::from(s.sigma_k))
                 .fold(0.0, f64::max),
+            sigmas_k: results.iter().map(|s| f64::from(s.sigma_k)).collect(),
         }
     }
 }
