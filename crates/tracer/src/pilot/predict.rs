@@ -13,13 +13,14 @@
 //! So a class is held to the tolerance at its 90th percentile (at the pilot's confidence,
 //! [`super::stats::confident_rank`]) with each point's need, the 90th percentile of its
 //! pixel's error ([`need_k`]), refinement's target σ standing for its standard error; and
-//! the frame's percentile is predicted from the mixture of biased centre pixels and refined
-//! pixels whose error is their bias plus a normal of the standard error refinement left the
-//! trial's pixels at (evaluated at a percentile halfway to 100, for the pilot's own sample,
-//! [`super::choose::stricter`]). The target is a ceiling on the geometric part only: most
-//! pixels stop well under it (a level's rays halve it or better), while the sky-view rays'
-//! noise, which refinement's stopping test leaves out, can take a pixel over it; the
-//! trial measured both.
+//! the frame's percentile is predicted from the mixture of centre pixels, off by their bias
+//! and a normal of their class's Monte Carlo error, and refined pixels, off by their bias
+//! and a Student's t of the standard errors refinement left the trial's pixels at
+//! ([`RefinedSpread`]), evaluated at a percentile halfway to 100, for the pilot's own
+//! sample ([`super::choose::stricter`]). The target is a ceiling on the geometric part
+//! only: most pixels stop well under it (a level's rays divide it by 2.8 or more), while
+//! the sky-view rays' noise, which refinement's stopping test leaves out, can take a pixel
+//! over it; the trial measured both.
 
 use super::choose::{self, Combo, Pixels};
 use super::classes::Census;
@@ -454,8 +455,6 @@ mod tests {
         ];
         let p = frame_percentile_k(&mixed, spread, 99.0);
         assert!((p - 0.2998).abs() < 1e-4, "{p}");
-        // A percentile far in t's tails, past the first bracket of 12σ: 10⁻⁶ of the frame
-        // over x is |t₇| > 15.767σ (by quadrature of the density, mpmath).
         // The other half centre pixels with a normal error of 0.12 K: x with half of t₇'s
         // two tails at x/0.1 plus half of the normal's at x/0.12 equal to 1 %, 0.32730 K
         // (solved with mpmath's quadrature of t₇'s density and erfc).
@@ -468,6 +467,8 @@ mod tests {
         ];
         let p = frame_percentile_k(&noisy, spread, 99.0);
         assert!((p - 0.327_30).abs() < 1e-4, "{p}");
+        // A percentile far in t's tails, past the first bracket of 12σ: 10⁻⁶ of the frame
+        // over x is |t₇| > 15.767σ (by quadrature of the density, mpmath).
         let far = frame_percentile_k(&points, spread, 99.9999);
         assert!((far - 1.5767).abs() < 1e-3, "{far}");
         assert!(frame_percentile_k(&[], spread, 99.0).abs() < 1e-15);

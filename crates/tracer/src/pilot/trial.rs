@@ -40,7 +40,7 @@ pub(crate) struct Trial {
     pub worst_sigma_k: f64,
     /// Every trial pixel's standard error as refinement left it, K: the sky-view rays'
     /// noise in it, capped pixels' included. What a refined pixel's error is predicted
-    /// from ([`super::predict::frame_percentile_k`]).
+    /// from ([`super::predict::RefinedSpread`]).
     pub sigmas_k: Vec<f64>,
 }
 
@@ -89,8 +89,8 @@ pub(crate) fn refinement_for(
 
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// Refines some of the census's candidates with the chosen settings: about one in
-    /// twenty, at least [`TRIAL_MIN`] (all of fewer) and at most [`TRIAL_MAX`], seeded. A pixel refined
-    /// here is refined exactly so in the rendering (its rays are its own).
+    /// twenty, at least [`TRIAL_MIN`] (all of fewer) and at most [`TRIAL_MAX`], seeded. A
+    /// pixel refined here is refined exactly so in the rendering (its rays are its own).
     pub(crate) fn trial(
         &self,
         fc: &FrameConsts<'_>,
