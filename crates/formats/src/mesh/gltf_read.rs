@@ -6,7 +6,7 @@ use std::path::{Component, Path, PathBuf};
 use base64::Engine as _;
 use gltf::mesh::Mode;
 
-use super::{Location, MaterialUse, Mesh, Origin, Triangle, json_path};
+use super::{EmbeddedImage, Location, MaterialUse, Mesh, Origin, Triangle, json_path};
 use crate::ParseError;
 
 mod geometry;
@@ -219,7 +219,7 @@ pub fn read_gltf(file: &str, bytes: &[u8], base_dir: Option<&Path>) -> Result<Me
             ..Mesh::default()
         },
         material_index: std::collections::HashMap::new(),
-        embedded_bytes: std::collections::HashMap::new(),
+        embedded: std::collections::HashMap::new(),
         primitive_paths: Vec::new(),
     };
     for node in root_nodes(&doc) {
@@ -565,9 +565,9 @@ struct Walk<'a> {
     buffers: &'a [Vec<u8>],
     mesh: Mesh,
     material_index: std::collections::HashMap<Option<usize>, Option<u32>>,
-    /// The bytes of each image read from inside the file, by image index: materials that
-    /// share an image share one copy.
-    embedded_bytes: std::collections::HashMap<usize, std::sync::Arc<[u8]>>,
+    /// Each image read from inside the file, by image index: read and decoded once, and
+    /// materials that share it share one copy of its bytes.
+    embedded: std::collections::HashMap<usize, EmbeddedImage>,
     /// The JSON path of each of `mesh.parts`.
     primitive_paths: Vec<String>,
 }

@@ -141,15 +141,16 @@ impl Walk<'_> {
         };
         let image = info.texture().source();
         let index = image.index();
-        let read = self.embedded_bytes.get(&index).cloned();
+        if let Some(read) = self.embedded.get(&index) {
+            return Ok(Some(read.clone()));
+        }
         let at = |field: &str| format!("images[{index}]{field}");
         let (mime_type, bytes) = match image.source() {
             gltf::image::Source::View { view, mime_type } => {
                 let buffer = self.buffers.get(view.buffer().index());
                 let end = view.offset().checked_add(view.length());
-                let bytes = match (read, buffer, end) {
-                    (Some(bytes), _, _) => bytes,
-                    (None, Some(b), Some(end)) if end <= b.len() => b[view.offset()..end].into(),
+                let bytes = match (buffer, end) {
+                    (Some(b), Some(end)) if end <= b.len() => b[view.offset()..end].into(),
                     _ => {
                         return Err(self.source.error(
                             &at(".bufferView"),
@@ -166,21 +167,19 @@ impl Walk<'_> {
                 let Some(rest) = uri.strip_prefix("data:") else {
                     return Ok(None);
                 };
-                let (media_type, decoded) =
+                let (media_type, bytes) =
                     decode_data_uri(rest).map_err(|e| self.source.error(&at(".uri"), e))?;
                 let stated = mime_type.or((!media_type.is_empty()).then_some(media_type));
-                (
-                    stated.map(str::to_owned),
-                    read.unwrap_or_else(|| decoded.into()),
-                )
+                (stated.map(str::to_owned), bytes.into())
             }
         };
-        self.embedded_bytes.insert(index, bytes.clone());
-        Ok(Some(EmbeddedImage {
+        let read = EmbeddedImage {
             index,
             name: image.name().map(str::to_owned),
             mime_type,
             bytes,
-        }))
+        };
+        self.embedded.insert(index, read.clone());
+        Ok(Some(read))
     }
 }
