@@ -213,7 +213,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             choices,
             predicted: ErrorEstimate {
                 percentile_k: predicted_k,
-                max_k: verdict.worst_k + 3.0 * trial.worst_sigma_k,
+                max_k: verdict.worst_k + 3.0 * trial.worst_sigma_k(),
             },
             relative_cost: chosen_cost / reference_cost,
             pilot_pixels: census.points.len() as u32,

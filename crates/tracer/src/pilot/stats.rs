@@ -85,15 +85,13 @@ pub(crate) fn student_t_upper(z: f64, dof: u32) -> f64 {
     }
     let theta = (z.abs() / f64::from(dof).sqrt()).atan();
     let (sin, cos) = theta.sin_cos();
-    let (mut term, mut series) = (cos, 0.0);
-    if dof > 1 {
-        series = cos;
-        let mut k = 3;
-        while k < dof {
-            term *= f64::from(k - 1) / f64::from(k) * cos * cos;
-            series += term;
-            k += 2;
-        }
+    // The bracket's series: none for one degree of freedom, else cos θ and its terms.
+    let (mut term, mut series) = (cos, if dof > 1 { cos } else { 0.0 });
+    let mut k = 3;
+    while k < dof {
+        term *= f64::from(k - 1) / f64::from(k) * cos * cos;
+        series += term;
+        k += 2;
     }
     let within = std::f64::consts::FRAC_2_PI * (theta + sin * series);
     let upper = 0.5 * (1.0 - within).max(0.0);

@@ -36,12 +36,17 @@ pub(crate) struct Trial {
     pub capped_share: f64,
     /// The standard error each capped pixel stopped at, K.
     pub capped_sigma_k: Vec<f64>,
-    /// The largest standard error of a trial pixel, K.
-    pub worst_sigma_k: f64,
     /// Every trial pixel's standard error as refinement left it, K: the sky-view rays'
     /// noise in it, capped pixels' included. What a refined pixel's error is predicted
     /// from ([`super::predict::RefinedSpread`]).
     pub sigmas_k: Vec<f64>,
+}
+
+impl Trial {
+    /// The largest standard error of a trial pixel, K (0 with none).
+    pub(crate) fn worst_sigma_k(&self) -> f64 {
+        self.sigmas_k.iter().copied().fold(0.0, f64::max)
+    }
 }
 
 /// Refinement's target σ as a share of the tolerance, set by `candidate_share`, the share
@@ -174,10 +179,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 / pixels as f64,
             capped_share: capped.len() as f64 / pixels as f64,
             capped_sigma_k: capped,
-            worst_sigma_k: results
-                .iter()
-                .map(|s| f64::from(s.sigma_k))
-                .fold(0.0, f64::max),
             sigmas_k: results.iter().map(|s| f64::from(s.sigma_k)).collect(),
         }
     }
