@@ -4,8 +4,10 @@
 //! ([`InterpolationResidual`], measured at the midpoints between neighbouring rows and the
 //! cells' centres when the rows were placed); past the widest nadir row, where no table
 //! has rows and the model's correction fades to none at 90°, it is what that region was
-//! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]). These
-//! are bounds of measured errors (the largest found), not standard deviations.
+//! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]); from an
+//! observer below [`NEAR_GROUND_TOP_M`], whose paths the rows' residual leaves out, what
+//! such paths were measured to cost ([`NEAR_GROUND`]). These are bounds of measured
+//! errors (the largest found), not standard deviations.
 
 use irsig_model::InterpolationResidual;
 
@@ -225,6 +227,84 @@ pub const BEYOND_WIDEST_ROW_MWIR: BeyondMeasurement = BeyondMeasurement {
 pub const BEYOND_WIDEST_ROW: [&BeyondMeasurement; 2] =
     [&BEYOND_WIDEST_ROW_LWIR, &BEYOND_WIDEST_ROW_MWIR];
 
+/// Below this observer altitude, m above the ground, the rows' residual does not answer:
+/// their placing measured no midpoint from lower (`scripts/atmosphere/README.md`), where
+/// LOWTRAN7's own single-precision geometry moves its answer by tenths of a kelvin
+/// between neighbouring paths (docs/accuracy.md, "LOWTRAN7's own rounding near the
+/// ground"). [`NEAR_GROUND`] answers there.
+pub const NEAR_GROUND_TOP_M: f64 = 10.0;
+
+/// The observers of [`NEAR_GROUND`]'s two intervals, m above the ground: between the
+/// built-ins' 2 and 5 m rows (which also serves observers below 2 m, where the tables
+/// hold the 2 m row), and between the 5 and 10 m rows.
+pub const NEAR_GROUND_ROWS_M: [[f64; 3]; 2] = [[2.5, 3.5, 4.5], [6.0, 7.5, 9.0]];
+
+/// The observer altitude between [`NEAR_GROUND_ROWS_M`]'s intervals, m: the built-ins'
+/// 5 m row.
+const NEAR_GROUND_SPLIT_M: f64 = 5.0;
+
+/// One built-in's measured error from observers below [`NEAR_GROUND_TOP_M`]: `|model −
+/// LOWTRAN7|`, K, the largest over [`NEAR_GROUND_ROWS_M`]'s observers of each interval
+/// and every nadir angle halfway between two rows, `[near rows (nadir ≤ 80°), grazing
+/// rows (80–88°)]`.
+pub type NearGroundRows = [[f64; 2]; 2];
+
+/// The error of the built-ins' paths to the ground from below [`NEAR_GROUND_TOP_M`] over
+/// one band: measured by the ignored tests `near_the_ground` (8–14 µm) and
+/// `near_the_ground_mwir` (3–5 µm) of `tests/tests/builtin_rows.rs`, LOWTRAN7 (run by the
+/// test) against the built-in's `table` model in 16 sub-bands of the flat band, the
+/// largest apparent-temperature error over blackbodies of 260, 290 and 320 K.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NearGroundMeasurement {
+    /// The wavelengths LOWTRAN7 was run over, µm.
+    pub band_um: [f64; 2],
+    /// By built-in ([`crate::BUILTIN_NAMES`]' order), K, absolute.
+    pub rows: [(&'static str, NearGroundRows); 6],
+    /// The largest of the built-ins' cells, cell by cell: the bound for an atmosphere
+    /// that is none of them.
+    pub worst: NearGroundRows,
+}
+
+/// From below 10 m in 8–14 µm (LOWTRAN7 over 710–1350 cm⁻¹).
+pub const NEAR_GROUND_LWIR: NearGroundMeasurement = NearGroundMeasurement {
+    band_um: [7.40, 14.09],
+    rows: NEAR_GROUND_LWIR_ROWS,
+    worst: NEAR_GROUND_LWIR_WORST,
+};
+
+/// From below 10 m in 3–5 µm (LOWTRAN7 over 2000–3340 cm⁻¹).
+pub const NEAR_GROUND_MWIR: NearGroundMeasurement = NearGroundMeasurement {
+    band_um: [2.994, 5.0],
+    rows: NEAR_GROUND_MWIR_ROWS,
+    worst: NEAR_GROUND_MWIR_WORST,
+};
+
+/// `NEAR_GROUND_LWIR`'s cells, as `near_the_ground` printed them.
+const NEAR_GROUND_LWIR_ROWS: [(&str, NearGroundRows); 6] = [
+    ("us-std-1976", [[0.082, 0.283], [0.043, 0.146]]),
+    ("midlat-winter", [[0.113, 0.274], [0.047, 0.131]]),
+    ("tropical", [[0.574, 1.696], [0.264, 0.503]]),
+    ("midlat-summer", [[0.258, 0.475], [0.093, 0.399]]),
+    ("subarctic-summer", [[0.176, 0.311], [0.139, 0.290]]),
+    ("subarctic-winter", [[0.198, 0.597], [0.062, 0.182]]),
+];
+const NEAR_GROUND_LWIR_WORST: NearGroundRows = [[0.574, 1.696], [0.264, 0.503]];
+
+/// `NEAR_GROUND_MWIR`'s cells, as `near_the_ground_mwir` printed them.
+const NEAR_GROUND_MWIR_ROWS: [(&str, NearGroundRows); 6] = [
+    ("us-std-1976", [[0.793, 1.208], [0.284, 0.465]]),
+    ("midlat-winter", [[0.534, 0.648], [0.154, 0.163]]),
+    ("tropical", [[1.273, 1.787], [0.961, 0.944]]),
+    ("midlat-summer", [[1.354, 1.503], [0.353, 0.450]]),
+    ("subarctic-summer", [[0.668, 0.877], [0.297, 0.397]]),
+    ("subarctic-winter", [[0.767, 1.045], [0.213, 0.316]]),
+];
+const NEAR_GROUND_MWIR_WORST: NearGroundRows = [[1.354, 1.787], [0.961, 0.944]];
+
+/// Every band measured from below 10 m. A band inside none of them has no measurement
+/// there.
+pub const NEAR_GROUND: [&NearGroundMeasurement; 2] = [&NEAR_GROUND_LWIR, &NEAR_GROUND_MWIR];
+
 /// The region of a slant table a path to the ground reads, by its nadir angle.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PathRegion {
@@ -244,6 +324,9 @@ pub struct DataError {
     widest_row_deg: f64,
     /// The measured cost past the widest row (`None`: not measured for this band).
     beyond: Option<BeyondRows>,
+    /// The measured cost from below [`NEAR_GROUND_TOP_M`] (`None`: not measured for this
+    /// band).
+    near_ground: Option<NearGroundRows>,
 }
 
 impl DataError {
@@ -251,7 +334,8 @@ impl DataError {
     /// `widest_row_deg`, of the atmosphere `name` over `band_um`. Past the widest row a
     /// built-in's own measurement answers; another atmosphere's, the largest any built-in
     /// was measured at (the built-ins span LOWTRAN7's six standard models); a band inside
-    /// none of [`BEYOND_WIDEST_ROW`]'s has no measurement there.
+    /// none of [`BEYOND_WIDEST_ROW`]'s has no measurement there. From below
+    /// [`NEAR_GROUND_TOP_M`] the same, with [`NEAR_GROUND`].
     #[must_use]
     pub fn new(
         residual: InterpolationResidual,
@@ -268,10 +352,20 @@ impl DataError {
                     .find(|(n, _)| *n == name)
                     .map_or(m.worst, |(_, rows)| *rows)
             });
+        let near_ground = NEAR_GROUND
+            .iter()
+            .find(|m| band_um[0] >= m.band_um[0] && band_um[1] <= m.band_um[1])
+            .map(|m| {
+                m.rows
+                    .iter()
+                    .find(|(n, _)| *n == name)
+                    .map_or(m.worst, |(_, rows)| *rows)
+            });
         Self {
             residual,
             widest_row_deg,
             beyond,
+            near_ground,
         }
     }
 
@@ -296,16 +390,27 @@ impl DataError {
     /// The data error of a path to the ground (or to a facet) from an observer
     /// `altitude_m` above the ground at `nadir_deg` from nadir, K: the residual of the
     /// region it reads; past the widest row, the measured cost there (never less than the
-    /// grazing rows'), `None` where the band was not measured past it.
+    /// grazing rows'), `None` where the band was not measured past it. From below
+    /// [`NEAR_GROUND_TOP_M`], never less than what such paths were measured to cost
+    /// ([`NEAR_GROUND`]; past the widest row, as the grazing rows), `None` where the band
+    /// was not measured there.
     #[must_use]
     pub fn ground_path_k(&self, altitude_m: f64, nadir_deg: f64) -> Option<f64> {
-        match self.region(nadir_deg) {
+        let region = self.region(nadir_deg);
+        let rows = match region {
             PathRegion::NearRows => Some(self.residual.slant_k),
             PathRegion::GrazingRows => Some(self.residual.grazing_k),
             PathRegion::BeyondWidestRow => self
                 .beyond
                 .map(|rows| beyond_k(&rows, altitude_m, nadir_deg).max(self.residual.grazing_k)),
+        };
+        if altitude_m >= NEAR_GROUND_TOP_M {
+            return rows;
         }
+        let interval = usize::from(altitude_m >= NEAR_GROUND_SPLIT_M);
+        let column = usize::from(region != PathRegion::NearRows);
+        let near = self.near_ground?[interval][column];
+        rows.map(|k| k.max(near))
     }
 
     /// The data error of the sky from any altitude at any zenith angle, K.
@@ -391,9 +496,11 @@ mod tests {
         assert_eq!(d.ground_path_k(1000.0, 88.1), Some(0.672));
         // Past the last measured angle: the row's largest.
         assert_eq!(d.ground_path_k(1000.0, 88.95), Some(2.310));
-        // Above 1 km: the 1 km row; below 5 m, the 5 m row.
+        // Above 1 km: the 1 km row; below 5 m, the 5 m row (0.239 K at 89.5°), here
+        // under the grazing paths' 0.283 K from between the 2 and 5 m rows.
         assert_eq!(d.ground_path_k(3000.0, 88.5), Some(1.349));
-        assert_eq!(d.ground_path_k(1.0, 89.5), Some(0.239_f64.max(0.2)));
+        assert_eq!(d.ground_path_k(1.0, 89.5), Some(0.283));
+        assert_eq!(d.ground_path_k(5.0, 89.5), Some(0.239));
     }
 
     #[test]
@@ -434,6 +541,43 @@ mod tests {
             let d = DataError::new(RESIDUAL, 88.0, "us-std-1976", band);
             assert_eq!(d.ground_path_k(300.0, 89.0), None, "{band:?}");
             assert_eq!(d.ground_path_k(300.0, 70.0), Some(0.05));
+        }
+    }
+
+    #[test]
+    fn below_ten_metres_the_near_ground_measurement_answers() {
+        let d = us_std();
+        // Between the 2 and 5 m rows (and below 2 m): 0.082 K near, 0.283 K grazing;
+        // between 5 and 10 m: 0.043 and 0.146 K; from 10 m the rows' residual alone.
+        assert_eq!(d.ground_path_k(3.0, 40.0), Some(0.082));
+        assert_eq!(d.ground_path_k(1.0, 40.0), Some(0.082));
+        assert_eq!(d.ground_path_k(4.999, 85.0), Some(0.283));
+        assert_eq!(d.ground_path_k(5.0, 40.0), Some(0.05));
+        assert_eq!(d.ground_path_k(5.0, 85.0), Some(0.2));
+        assert_eq!(d.ground_path_k(9.99, 80.0), Some(0.05));
+        assert_eq!(d.ground_path_k(9.99, 87.0), Some(0.2));
+        assert_eq!(d.ground_path_k(10.0, 40.0), Some(0.05));
+        // Past the widest row: the larger of that measurement and the grazing rows'.
+        assert_eq!(d.ground_path_k(3.0, 88.1), Some(0.283));
+        assert_eq!(d.ground_path_k(3.0, 89.9), Some(0.573));
+        // Another atmosphere takes the largest of the built-ins'; 3-5 um its own; a band
+        // measured in neither has no number from below 10 m.
+        let other = DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0]);
+        assert_eq!(other.ground_path_k(3.0, 40.0), Some(0.574));
+        let mwir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.0, 5.0]);
+        assert_eq!(mwir.ground_path_k(7.0, 40.0), Some(0.284));
+        let none = DataError::new(RESIDUAL, 88.0, "us-std-1976", [1.0, 3.0]);
+        assert_eq!(none.ground_path_k(7.0, 40.0), None);
+        assert_eq!(none.ground_path_k(10.0, 40.0), Some(0.05));
+        for m in NEAR_GROUND {
+            for (k, worst) in m.worst.iter().enumerate() {
+                for (i, &w) in worst.iter().enumerate() {
+                    let largest = m.rows.iter().map(|(_, r)| r[k][i]).fold(0.0, f64::max);
+                    assert_eq!(w.to_bits(), largest.to_bits(), "{:?} {k} {i}", m.band_um);
+                }
+            }
+            let names: Vec<&str> = m.rows.iter().map(|(n, _)| *n).collect();
+            assert_eq!(names, crate::BUILTIN_NAMES, "{:?}", m.band_um);
         }
     }
 
