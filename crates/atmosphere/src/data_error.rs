@@ -40,24 +40,45 @@ pub const BEYOND_NADIRS_DEG: [&[f64]; 6] = [
 /// [`BEYOND_ALTITUDES_M`] × [`BEYOND_NADIRS_DEG`].
 pub type BeyondRows = [&'static [f64]; 6];
 
-/// The error of the built-ins' paths to the ground past their widest row over one band:
-/// measured by the ignored tests `beyond_the_widest_row` (8–14 µm) and
-/// `beyond_the_widest_row_mwir` (3–5 µm) of `tests/tests/builtin_rows.rs`: LOWTRAN7 (run by
-/// the test, spherical Earth, refracted path) against the built-in's `table` model summed
-/// over 16 sub-bands of the flat band, the largest apparent-temperature error over
-/// blackbodies of 260, 290 and 320 K at the path's end (docs/accuracy.md, "The last
-/// degrees to the horizon").
+/// The built-ins' measured error over one band, against LOWTRAN7 run by an ignored test of
+/// `tests/tests/builtin_rows.rs`: the built-in's `table` model summed over 16 sub-bands
+/// of the flat band, the largest apparent-temperature error over blackbodies of 260, 290
+/// and 320 K at the path's end, in cells of `R` ([`BeyondRows`], [`NearGroundRows`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct BeyondMeasurement {
+pub struct BuiltinMeasurement<R> {
     /// The wavelengths LOWTRAN7 was run over, µm: a band inside them takes this
     /// measurement.
     pub band_um: [f64; 2],
     /// By built-in ([`crate::BUILTIN_NAMES`]' order), K, absolute.
-    pub rows: [(&'static str, BeyondRows); 6],
+    pub rows: [(&'static str, R); 6],
     /// The largest of the built-ins' cells, cell by cell: the bound for an atmosphere that
     /// is none of them (the built-ins span LOWTRAN7's six standard models).
-    pub worst: BeyondRows,
+    pub worst: R,
 }
+
+/// The cells of the measurement among `measured` whose band holds `band_um`, for the
+/// atmosphere `name` (a built-in's own, another's the worst); `None` for a band none holds.
+fn cells_for<R: Copy>(
+    measured: &[&BuiltinMeasurement<R>],
+    name: &str,
+    band_um: [f64; 2],
+) -> Option<R> {
+    measured
+        .iter()
+        .find(|m| band_um[0] >= m.band_um[0] && band_um[1] <= m.band_um[1])
+        .map(|m| {
+            m.rows
+                .iter()
+                .find(|(n, _)| *n == name)
+                .map_or(m.worst, |(_, rows)| *rows)
+        })
+}
+
+/// The error of the built-ins' paths to the ground past their widest row over one band:
+/// measured by the ignored tests `beyond_the_widest_row` (8–14 µm) and
+/// `beyond_the_widest_row_mwir` (3–5 µm), spherical Earth, refracted path
+/// (docs/accuracy.md, "The last degrees to the horizon").
+pub type BeyondMeasurement = BuiltinMeasurement<BeyondRows>;
 
 /// Past the widest row in 8–14 µm (LOWTRAN7 over 710–1350 cm⁻¹).
 pub const BEYOND_WIDEST_ROW_LWIR: BeyondMeasurement = BeyondMeasurement {
@@ -251,19 +272,9 @@ pub type NearGroundRows = [[f64; 2]; 2];
 
 /// The error of the built-ins' paths to the ground from below [`NEAR_GROUND_TOP_M`] over
 /// one band: measured by the ignored tests `near_the_ground` (8–14 µm) and
-/// `near_the_ground_mwir` (3–5 µm) of `tests/tests/builtin_rows.rs`, LOWTRAN7 (run by the
-/// test) against the built-in's `table` model in 16 sub-bands of the flat band, the
-/// largest apparent-temperature error over blackbodies of 260, 290 and 320 K.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NearGroundMeasurement {
-    /// The wavelengths LOWTRAN7 was run over, µm.
-    pub band_um: [f64; 2],
-    /// By built-in ([`crate::BUILTIN_NAMES`]' order), K, absolute.
-    pub rows: [(&'static str, NearGroundRows); 6],
-    /// The largest of the built-ins' cells, cell by cell: the bound for an atmosphere
-    /// that is none of them.
-    pub worst: NearGroundRows,
-}
+/// `near_the_ground_mwir` (3–5 µm) (docs/accuracy.md, "LOWTRAN7's own rounding near the
+/// ground").
+pub type NearGroundMeasurement = BuiltinMeasurement<NearGroundRows>;
 
 /// From below 10 m in 8–14 µm (LOWTRAN7 over 710–1350 cm⁻¹).
 pub const NEAR_GROUND_LWIR: NearGroundMeasurement = NearGroundMeasurement {
@@ -343,24 +354,8 @@ impl DataError {
         name: &str,
         band_um: [f64; 2],
     ) -> Self {
-        let beyond = BEYOND_WIDEST_ROW
-            .iter()
-            .find(|m| band_um[0] >= m.band_um[0] && band_um[1] <= m.band_um[1])
-            .map(|m| {
-                m.rows
-                    .iter()
-                    .find(|(n, _)| *n == name)
-                    .map_or(m.worst, |(_, rows)| *rows)
-            });
-        let near_ground = NEAR_GROUND
-            .iter()
-            .find(|m| band_um[0] >= m.band_um[0] && band_um[1] <= m.band_um[1])
-            .map(|m| {
-                m.rows
-                    .iter()
-                    .find(|(n, _)| *n == name)
-                    .map_or(m.worst, |(_, rows)| *rows)
-            });
+        let beyond = cells_for(&BEYOND_WIDEST_ROW, name, band_um);
+        let near_ground = cells_for(&NEAR_GROUND, name, band_um);
         Self {
             residual,
             widest_row_deg,
