@@ -460,6 +460,16 @@ mod tests {
         DataError::new(RESIDUAL, 88.0, "us-std-1976", [8.0, 14.0])
     }
 
+    /// Each of `m.worst`'s cells is the largest of the built-ins' same cell, bit for bit;
+    /// `cells` lists a measurement's cells in one order.
+    fn worst_is_the_largest<R>(m: &BuiltinMeasurement<R>, cells: impl Fn(&R) -> Vec<f64>) {
+        let worst = cells(&m.worst);
+        for (i, &w) in worst.iter().enumerate() {
+            let largest = m.rows.iter().map(|(_, r)| cells(r)[i]).fold(0.0, f64::max);
+            assert_eq!(w.to_bits(), largest.to_bits(), "{:?} cell {i}", m.band_um);
+        }
+    }
+
     #[test]
     fn each_region_answers_with_its_own_residual() {
         let d = us_std();
@@ -501,21 +511,9 @@ mod tests {
     #[test]
     fn another_atmosphere_takes_the_largest_any_built_in_was_measured_at() {
         for m in BEYOND_WIDEST_ROW {
-            for (k, worst) in m.worst.iter().enumerate() {
-                for (i, &w) in worst.iter().enumerate() {
-                    let largest = m
-                        .rows
-                        .iter()
-                        .map(|(_, rows)| rows[k][i])
-                        .fold(0.0, f64::max);
-                    assert_eq!(
-                        w.to_bits(),
-                        largest.to_bits(),
-                        "{:?} row {k} cell {i}",
-                        m.band_um
-                    );
-                }
-            }
+            worst_is_the_largest(m, |rows| {
+                rows.iter().flat_map(|r| r.iter().copied()).collect()
+            });
         }
         let d = DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0]);
         assert_eq!(d.ground_path_k(1000.0, 88.9), Some(5.276));
@@ -565,12 +563,7 @@ mod tests {
         assert_eq!(none.ground_path_k(7.0, 40.0), None);
         assert_eq!(none.ground_path_k(10.0, 40.0), Some(0.05));
         for m in NEAR_GROUND {
-            for (k, worst) in m.worst.iter().enumerate() {
-                for (i, &w) in worst.iter().enumerate() {
-                    let largest = m.rows.iter().map(|(_, r)| r[k][i]).fold(0.0, f64::max);
-                    assert_eq!(w.to_bits(), largest.to_bits(), "{:?} {k} {i}", m.band_um);
-                }
-            }
+            worst_is_the_largest(m, |rows| rows.iter().flatten().copied().collect());
             let names: Vec<&str> = m.rows.iter().map(|(n, _)| *n).collect();
             assert_eq!(names, crate::BUILTIN_NAMES, "{:?}", m.band_um);
         }
