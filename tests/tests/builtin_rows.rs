@@ -307,11 +307,19 @@ fn sweep_of(span: Span) {
     let mut beyond = Vec::new();
     for name in BUILTIN_NAMES {
         let b = SubBands::new(name, span);
-        let recorded = builtin_spectral(name)
-            .unwrap()
+        let spectral = (span.spectra)(name);
+        let slant = spectral
             .slant
-            .and_then(|s| s.interpolation_residual)
-            .expect("every built-in records its residual");
+            .as_ref()
+            .expect("a built-in has slant tables");
+        let recorded = irsig_atmosphere::data_error::DataError::new(
+            slant
+                .interpolation_residual
+                .expect("every built-in records its residual"),
+            *slant.nadir_deg.last().unwrap(),
+            name,
+            span.band_um,
+        );
         let mut hold = |kind: &str, h: f64, angle: f64, error: f64, bound: f64| {
             if error.abs() > bound {
                 beyond.push(format!(
@@ -323,17 +331,13 @@ fn sweep_of(span: Span) {
             let mut line = format!("| {name} | {h} |");
             for a in nadirs {
                 let error = b.slant_error(h, a);
-                let bound = if a <= 80.0 {
-                    recorded.slant_k
-                } else {
-                    recorded.grazing_k
-                };
+                let bound = recorded.ground_path_k(h, a).unwrap();
                 hold("nadir", h, a, error, bound);
                 line += &format!(" {error:+.4} |");
             }
             for z in zeniths {
                 let error = b.sky_error(h, z);
-                hold("sky", h, z, error, recorded.sky_k);
+                hold("sky", h, z, error, recorded.sky_k(h, z));
                 line += &format!(" {error:+.4} |");
             }
             println!("{line}");
@@ -555,7 +559,7 @@ fn the_recorded_data_error_bounds_the_measured_between_rows() {
             halfway(&b.sky_altitude_m, 137.5),
             halfway(&b.sky_zenith_deg, 87.75),
         );
-        cases.push((3, hs, z, b.sky_error(hs, z).abs(), data.sky_k()));
+        cases.push((3, hs, z, b.sky_error(hs, z).abs(), data.sky_k(hs, z)));
         for (region, h, a, measured, recorded) in cases {
             let ratio = measured / recorded;
             let line = format!(
@@ -589,13 +593,133 @@ fn the_recorded_data_error_bounds_the_measured_between_rows() {
 /// the error would bound it and say little.
 const RECORDED_TIGHTNESS: f64 = 0.3;
 
-/// The regions whose record meets [`RECORDED_TIGHTNESS`] at these halfway paths: nadir
-/// ≤ 80° (measured 0.49, us-std-1976 from 137.5 m at 77.25°: 0.026 of 0.052 K), past
-/// the widest row (0.78 and 0.75) and from below 10 m (0.49, midlat-winter from 8 m at
-/// 86.25°: 0.130 of 0.263 K; tropical from 4 m at 61.25° measures 0.142 K, above the
-/// 0.133 K its rows record, which is why that region has its own record). The grazing
-/// rows' and the sky's records are looser here (0.23: 0.046 of 0.199 K; 0.011: 0.010 of
-/// 0.919 K): their residuals are the largest error found over every midpoint of the
-/// tables, 0–10 km, and these paths are not where it was found (docs/accuracy.md, "The
-/// data error per pixel").
-const RECORDED_TIGHT_REGIONS: [usize; 3] = [0, 2, 4];
+/// The regions whose record meets [`RECORDED_TIGHTNESS`] at these halfway paths: all
+/// five. Measured: nadir ≤ 80° 0.49 (us-std-1976 from 137.5 m at 77.25°: 0.026 of
+/// 0.052 K); 80–88° 0.51 (us-std-1976 from 137.5 m at 87.75°: 0.046 of its 50–200 m cell's
+/// 0.090 K); past the widest row 0.78; the sky 0.33 (midlat-winter from 125 m at 87.75°:
+/// 0.0066 of its 0–950 m, 85–88° cell's 0.020 K); below 10 m 0.99 (midlat-winter from 8 m
+/// at 86.25°: 0.1295 of the 0.131 K measured from 6, 7.5 and 9 m). Before the grazing rows
+/// and the sky were recorded by region (`irsig_atmosphere::data_error::by_region`), their
+/// one number per built-in, the largest over every midpoint to 10 km, made these 0.23 and
+/// 0.011 (docs/accuracy.md, "The data error per pixel").
+const RECORDED_TIGHT_REGIONS: [usize; 5] = [0, 1, 2, 3, 4];
+
+#[test]
+#[ignore = "the sky and grazing rows by region: about fifteen minutes; docs/accuracy.md's table"]
+fn by_region() {
+    by_region_over(LWIR);
+}
+
+#[test]
+#[ignore = "the sky and grazing rows by region in 3-5 um: about fifteen minutes"]
+fn by_region_mwir() {
+    by_region_over(MWIR);
+}
+
+/// The midpoints between neighbouring `xs`.
+fn midpoints_of(xs: &[f64]) -> Vec<f64> {
+    xs.windows(2).map(|p| 0.5 * (p[0] + p[1])).collect()
+}
+
+/// The paths halfway between rows whose observer lies in the band `[lo, hi)` and whose
+/// angle lies past `from_deg`, as the rows' placing probed them (`scripts/atmosphere/
+/// regen.py`): at every altitude midpoint, every angle row and every angle midpoint (the
+/// cells' centres); at every altitude row, every angle midpoint.
+fn region_paths(
+    rows: &[f64],
+    [lo, hi]: [f64; 2],
+    angles: &[f64],
+    from_deg: f64,
+) -> Vec<(f64, f64)> {
+    let past = |a: &f64| *a > from_deg;
+    let angle_rows: Vec<f64> = angles.iter().copied().filter(past).collect();
+    let angle_mids: Vec<f64> = midpoints_of(angles).into_iter().filter(past).collect();
+    let inside = |h: &f64| lo <= *h && *h < hi;
+    let mut paths = Vec::new();
+    for h in midpoints_of(rows).into_iter().filter(inside) {
+        paths.extend(angle_rows.iter().chain(&angle_mids).map(|&a| (h, a)));
+    }
+    for &h in rows.iter().filter(|h| inside(h)) {
+        paths.extend(angle_mids.iter().map(|&a| (h, a)));
+    }
+    paths
+}
+
+/// The sky (by observer altitude band and zenith band) and the paths to the ground at
+/// 80–88° (by observer altitude band and nadir band), halfway between rows, every
+/// built-in over `span`: the largest error (model − LOWTRAN7, K) of each cell with where
+/// it was found, as a markdown table, and the cells as `irsig_atmosphere::data_error`
+/// holds them (each rounded up to 1 mK).
+fn by_region_over(span: Span) {
+    use irsig_atmosphere::data_error::{
+        GRAZING_ALTITUDE_TOPS_M, GRAZING_NADIR_TOPS_DEG, NEAR_GROUND_TOP_M, NEAR_ROWS_NADIR_DEG,
+        SKY_ALTITUDE_TOPS_M, SKY_ZENITH_TOPS_DEG, altitude_band, angle_band,
+    };
+    println!("| atmosphere | path | altitude band (m) | by angle band: error (K) (where) |");
+    println!("| --- | --- | --- | --- |");
+    let (mut sky_rust, mut grazing_rust) = (String::new(), String::new());
+    for name in BUILTIN_NAMES {
+        let b = SubBands::new(name, span);
+        let widest = *b.nadir_deg.last().unwrap();
+        let mut sky =
+            vec![vec![(0.0_f64, 0.0, 0.0); SKY_ZENITH_TOPS_DEG.len()]; SKY_ALTITUDE_TOPS_M.len()];
+        let top = SKY_ALTITUDE_TOPS_M[SKY_ALTITUDE_TOPS_M.len() - 1] + 1.0;
+        for (h, z) in region_paths(&b.sky_altitude_m, [0.0, top], &b.sky_zenith_deg, -1.0) {
+            let e = b.sky_error(h, z);
+            let cell = &mut sky[altitude_band(&SKY_ALTITUDE_TOPS_M, h)]
+                [angle_band(&SKY_ZENITH_TOPS_DEG, z)];
+            if e.abs() > cell.0.abs() {
+                *cell = (e, h, z);
+            }
+        }
+        let mut grazing = vec![
+            vec![(0.0_f64, 0.0, 0.0); GRAZING_NADIR_TOPS_DEG.len()];
+            GRAZING_ALTITUDE_TOPS_M.len()
+        ];
+        let top = GRAZING_ALTITUDE_TOPS_M[GRAZING_ALTITUDE_TOPS_M.len() - 1] + 1.0;
+        let paths = region_paths(
+            &b.altitude_m,
+            [NEAR_GROUND_TOP_M, top],
+            &b.nadir_deg,
+            NEAR_ROWS_NADIR_DEG,
+        );
+        for (h, a) in paths.into_iter().filter(|&(_, a)| a <= widest) {
+            let e = b.slant_error(h, a);
+            let cell = &mut grazing[altitude_band(&GRAZING_ALTITUDE_TOPS_M, h)]
+                [angle_band(&GRAZING_NADIR_TOPS_DEG, a)];
+            if e.abs() > cell.0.abs() {
+                *cell = (e, h, a);
+            }
+        }
+        for (kind, cells, tops) in [
+            ("sky", &sky, &SKY_ALTITUDE_TOPS_M[..]),
+            ("grazing", &grazing, &GRAZING_ALTITUDE_TOPS_M[..]),
+        ] {
+            for (row, top) in cells.iter().zip(tops) {
+                let text: Vec<String> = row
+                    .iter()
+                    .map(|(e, h, a)| format!("{e:+.4} ({h} m, {a}°)"))
+                    .collect();
+                println!("| {name} | {kind} | below {top} | {} |", text.join(", "));
+            }
+        }
+        let rows = |cells: &Vec<Vec<(f64, f64, f64)>>| {
+            let rows: Vec<String> = cells
+                .iter()
+                .map(|row| {
+                    // Rounded up, so that the cell bounds its worst path.
+                    let c: Vec<String> = row
+                        .iter()
+                        .map(|c| format!("{:.3}", (c.0.abs() * 1e3).ceil() / 1e3))
+                        .collect();
+                    format!("[{}]", c.join(", "))
+                })
+                .collect();
+            rows.join(", ")
+        };
+        sky_rust.push_str(&format!("    (\"{name}\", [{}]),\n", rows(&sky)));
+        grazing_rust.push_str(&format!("    (\"{name}\", [{}]),\n", rows(&grazing)));
+    }
+    let band = span.band_um;
+    println!("\nsky ({band:?} um):\n{sky_rust}\ngrazing ({band:?} um):\n{grazing_rust}");
+}

@@ -6,10 +6,19 @@
 //! has rows and the model's correction fades to none at 90°, it is what that region was
 //! measured to cost against LOWTRAN7 in 8–14 and 3–5 µm ([`BEYOND_WIDEST_ROW`]); from an
 //! observer below [`NEAR_GROUND_TOP_M`], whose paths the rows' residual leaves out, what
-//! such paths were measured to cost ([`NEAR_GROUND`]). These are bounds of measured
-//! errors (the largest found), not standard deviations.
+//! such paths were measured to cost ([`NEAR_GROUND`]). A built-in's sky and its paths at
+//! 80–88° answer by region of its tables ([`by_region`]), where the residual is one
+//! number for the whole region. These are bounds of measured errors (the largest found),
+//! not standard deviations.
 
 use irsig_model::InterpolationResidual;
+
+pub mod by_region;
+
+pub use by_region::{
+    GRAZING, GRAZING_ALTITUDE_TOPS_M, GRAZING_NADIR_TOPS_DEG, GrazingRows, RegionMeasurement, SKY,
+    SKY_ALTITUDE_TOPS_M, SKY_ZENITH_TOPS_DEG, SkyRows, altitude_band, angle_band,
+};
 
 /// The nadir angle up to which a path to the ground reads the table's near rows (its
 /// residual is [`InterpolationResidual::slant_k`]); beyond it, up to the widest row, the
@@ -338,6 +347,10 @@ pub struct DataError {
     /// The measured cost from below [`NEAR_GROUND_TOP_M`] (`None`: not measured for this
     /// band).
     near_ground: Option<NearGroundRows>,
+    /// A built-in's sky by region (`None`: another atmosphere, or a band not measured).
+    sky: Option<SkyRows>,
+    /// A built-in's paths at 80–88° by region (`None`: as `sky`).
+    grazing: Option<GrazingRows>,
 }
 
 impl DataError {
@@ -346,7 +359,9 @@ impl DataError {
     /// built-in's own measurement answers; another atmosphere's, the largest any built-in
     /// was measured at (the built-ins span LOWTRAN7's six standard models); a band inside
     /// none of [`BEYOND_WIDEST_ROW`]'s has no measurement there. From below
-    /// [`NEAR_GROUND_TOP_M`] the same, with [`NEAR_GROUND`].
+    /// [`NEAR_GROUND_TOP_M`] the same, with [`NEAR_GROUND`]. A built-in's sky and its
+    /// grazing rows answer by region ([`SKY`], [`GRAZING`]) in a band they were measured
+    /// in; elsewhere the residual answers.
     #[must_use]
     pub fn new(
         residual: InterpolationResidual,
@@ -361,6 +376,8 @@ impl DataError {
             widest_row_deg,
             beyond,
             near_ground,
+            sky: by_region::own_cells(&SKY, name, band_um),
+            grazing: by_region::own_cells(&GRAZING, name, band_um),
         }
     }
 
@@ -383,9 +400,10 @@ impl DataError {
     }
 
     /// The data error of a path to the ground (or to a facet) from an observer
-    /// `altitude_m` above the ground at `nadir_deg` from nadir, K: the residual of the
-    /// region it reads; past the widest row, the measured cost there (never less than the
-    /// grazing rows'), `None` where the band was not measured past it. From below
+    /// `altitude_m` above the ground at `nadir_deg` from nadir, K: the record of the
+    /// region it reads (the grazing rows' by region, [`Self::grazing_rows_k`]); past the
+    /// widest row, the measured cost there (never less than the grazing rows' at the
+    /// widest row), `None` where the band was not measured past it. From below
     /// [`NEAR_GROUND_TOP_M`], never less than what such paths were measured to cost
     /// ([`NEAR_GROUND`]; past the widest row, as the grazing rows), `None` where the band
     /// was not measured there.
@@ -394,10 +412,11 @@ impl DataError {
         let region = self.region(nadir_deg);
         let rows = match region {
             PathRegion::NearRows => Some(self.residual.slant_k),
-            PathRegion::GrazingRows => Some(self.residual.grazing_k),
-            PathRegion::BeyondWidestRow => self
-                .beyond
-                .map(|rows| beyond_k(&rows, altitude_m, nadir_deg).max(self.residual.grazing_k)),
+            PathRegion::GrazingRows => Some(self.grazing_rows_k(altitude_m, nadir_deg)),
+            PathRegion::BeyondWidestRow => self.beyond.map(|rows| {
+                beyond_k(&rows, altitude_m, nadir_deg)
+                    .max(self.grazing_rows_k(altitude_m, self.widest_row_deg))
+            }),
         };
         if altitude_m >= NEAR_GROUND_TOP_M {
             return rows;
@@ -408,10 +427,40 @@ impl DataError {
         rows.map(|k| k.max(near))
     }
 
-    /// The data error of the sky from any altitude at any zenith angle, K.
+    /// The data error of a path to the ground between the grazing rows (80° to the widest
+    /// row) from an observer `altitude_m` above the ground at `nadir_deg`, K: a built-in's
+    /// measured cell there ([`GRAZING`]; below [`NEAR_GROUND_TOP_M`] the lowest band's),
+    /// else the residual's `grazing_k`.
     #[must_use]
-    pub fn sky_k(&self) -> f64 {
-        self.residual.sky_k
+    pub fn grazing_rows_k(&self, altitude_m: f64, nadir_deg: f64) -> f64 {
+        self.grazing.map_or(self.residual.grazing_k, |cells| {
+            cells[altitude_band(&GRAZING_ALTITUDE_TOPS_M, altitude_m)]
+                [angle_band(&GRAZING_NADIR_TOPS_DEG, nadir_deg)]
+        })
+    }
+
+    /// The data error of the sky seen from `altitude_m` above the ground at `zenith_deg`
+    /// from the zenith, K: a built-in's measured cell there ([`SKY`]), else the residual's
+    /// `sky_k` (the largest over every altitude and angle).
+    #[must_use]
+    pub fn sky_k(&self, altitude_m: f64, zenith_deg: f64) -> f64 {
+        self.sky.map_or(self.residual.sky_k, |cells| {
+            cells[altitude_band(&SKY_ALTITUDE_TOPS_M, altitude_m)]
+                [angle_band(&SKY_ZENITH_TOPS_DEG, zenith_deg)]
+        })
+    }
+
+    /// The data error of the sky over the whole hemisphere above `altitude_m`, K: the
+    /// largest of [`Self::sky_k`] over every zenith angle there, what the sky a surface
+    /// reflects from any direction may be off by.
+    #[must_use]
+    pub fn hemisphere_sky_k(&self, altitude_m: f64) -> f64 {
+        self.sky.map_or(self.residual.sky_k, |cells| {
+            cells[altitude_band(&SKY_ALTITUDE_TOPS_M, altitude_m)]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max)
+        })
     }
 }
 
@@ -470,9 +519,17 @@ mod tests {
         }
     }
 
+    /// us-std-1976's cells by region in 8–14 µm: the sky's and the grazing rows'.
+    fn us_std_cells() -> (SkyRows, GrazingRows) {
+        let (sky, grazing) = (by_region::SKY_LWIR.rows[0], by_region::GRAZING_LWIR.rows[0]);
+        assert_eq!((sky.0, grazing.0), ("us-std-1976", "us-std-1976"));
+        (sky.1, grazing.1)
+    }
+
     #[test]
     fn each_region_answers_with_its_own_residual() {
-        let d = us_std();
+        // An atmosphere that is not a built-in has its own rows: its residual answers.
+        let d = DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0]);
         assert_eq!(d.ground_path_k(300.0, 0.0), Some(0.05));
         // 80° is the near rows' last angle; an arc cosine's few 1e-7° past it too.
         assert_eq!(d.ground_path_k(300.0, 80.0), Some(0.05));
@@ -483,7 +540,77 @@ mod tests {
         assert_eq!(d.region(88.0), PathRegion::GrazingRows);
         assert_eq!(d.ground_path_k(300.0, 88.0), Some(0.2));
         assert_eq!(d.region(88.01), PathRegion::BeyondWidestRow);
-        assert_eq!(d.sky_k().to_bits(), 0.5_f64.to_bits());
+        for (h, z) in [(0.0, 0.0), (975.0, 45.0), (9000.0, 90.0)] {
+            assert_eq!(d.sky_k(h, z).to_bits(), 0.5_f64.to_bits());
+        }
+        assert_eq!(d.hemisphere_sky_k(100.0).to_bits(), 0.5_f64.to_bits());
+    }
+
+    #[test]
+    fn a_built_in_reads_its_sky_and_grazing_rows_by_region() {
+        let d = us_std();
+        let (sky, grazing) = us_std_cells();
+        // Altitude bands are [previous top, top); angle bands (previous top, top], a row's
+        // own angle recomputed by an arc cosine included.
+        assert_eq!(d.sky_k(0.0, 0.0).to_bits(), sky[0][0].to_bits());
+        assert_eq!(d.sky_k(949.9, 60.0 + 3e-7).to_bits(), sky[0][0].to_bits());
+        assert_eq!(d.sky_k(950.0, 60.01).to_bits(), sky[1][1].to_bits());
+        assert_eq!(d.sky_k(999.9, 89.0).to_bits(), sky[1][4].to_bits());
+        assert_eq!(d.sky_k(1000.0, 89.0).to_bits(), sky[2][4].to_bits());
+        assert_eq!(d.sky_k(2975.0, 84.0).to_bits(), sky[5][2].to_bits());
+        // Above the table's top, and below the horizon: the last bands.
+        assert_eq!(d.sky_k(12_000.0, 95.0).to_bits(), sky[6][4].to_bits());
+        // The reflected sky may come from any direction: the band's largest.
+        let largest = |row: &[f64; 5]| row.iter().copied().fold(0.0, f64::max);
+        assert_eq!(
+            d.hemisphere_sky_k(0.0).to_bits(),
+            largest(&sky[0]).to_bits()
+        );
+        assert_eq!(
+            d.hemisphere_sky_k(975.0).to_bits(),
+            largest(&sky[1]).to_bits()
+        );
+        // The grazing rows by observer altitude and nadir angle.
+        assert_eq!(d.ground_path_k(300.0, 84.0), Some(grazing[2][0]));
+        assert_eq!(d.ground_path_k(300.0, 84.01), Some(grazing[2][1]));
+        assert_eq!(d.ground_path_k(49.9, 81.0), Some(grazing[0][0]));
+        assert_eq!(d.ground_path_k(50.0, 81.0), Some(grazing[1][0]));
+        assert_eq!(d.ground_path_k(5000.0, 88.0), Some(grazing[4][1]));
+        // The near rows keep the residual.
+        assert_eq!(d.ground_path_k(300.0, 80.0), Some(0.05));
+        // 3-5 um reads its own cells; a band measured in neither, the residual.
+        let mwir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [3.0, 5.0]);
+        assert_eq!(
+            mwir.sky_k(975.0, 30.0).to_bits(),
+            by_region::SKY_MWIR.rows[0].1[1][0].to_bits()
+        );
+        let swir = DataError::new(RESIDUAL, 88.0, "us-std-1976", [1.0, 3.0]);
+        assert_eq!(swir.sky_k(975.0, 30.0).to_bits(), 0.5_f64.to_bits());
+        assert_eq!(swir.ground_path_k(300.0, 85.0), Some(0.2));
+    }
+
+    #[test]
+    fn every_built_in_has_a_finite_cell_in_every_region() {
+        for m in SKY {
+            let names: Vec<&str> = m.rows.iter().map(|(n, _)| *n).collect();
+            assert_eq!(names, crate::BUILTIN_NAMES, "{:?}", m.band_um);
+            let cells = m.rows.iter().flat_map(|(_, r)| r.iter().flatten());
+            assert!(cells.copied().all(|e| e.is_finite() && e >= 0.0));
+        }
+        for m in GRAZING {
+            let names: Vec<&str> = m.rows.iter().map(|(n, _)| *n).collect();
+            assert_eq!(names, crate::BUILTIN_NAMES, "{:?}", m.band_um);
+            let cells = m.rows.iter().flat_map(|(_, r)| r.iter().flatten());
+            assert!(cells.copied().all(|e| e.is_finite() && e >= 0.0));
+        }
+        for tops in [
+            &SKY_ALTITUDE_TOPS_M[..],
+            &SKY_ZENITH_TOPS_DEG,
+            &GRAZING_ALTITUDE_TOPS_M,
+            &GRAZING_NADIR_TOPS_DEG,
+        ] {
+            assert!(tops.windows(2).all(|w| w[0] < w[1]), "{tops:?}");
+        }
     }
 
     #[test]
@@ -496,9 +623,17 @@ mod tests {
         // 650 m at 88.6°: the 300 m row's 0.782 and the 1 km row's 1.984.
         assert_eq!(d.ground_path_k(650.0, 88.6), Some(1.984));
         // Just past the widest row, before the first measured angle: the first cell, or the
-        // grazing rows' residual where that is larger.
-        assert_eq!(d.ground_path_k(5.0, 88.1), Some(0.2));
-        assert_eq!(d.ground_path_k(1000.0, 88.1), Some(0.672));
+        // grazing rows' cell at the widest row where that is larger (from 5 m, the
+        // near-ground paths' 0.146 K between 5 and 10 m).
+        let (_, grazing) = us_std_cells();
+        assert_eq!(
+            d.ground_path_k(5.0, 88.1),
+            Some(0.146_f64.max(grazing[0][1]))
+        );
+        assert_eq!(
+            d.ground_path_k(1000.0, 88.1),
+            Some(0.672_f64.max(grazing[3][1]))
+        );
         // Past the last measured angle: the row's largest.
         assert_eq!(d.ground_path_k(1000.0, 88.95), Some(2.310));
         // Above 1 km: the 1 km row; below 5 m, the 5 m row (0.239 K at 89.5°), here
@@ -546,9 +681,16 @@ mod tests {
         assert_eq!(d.ground_path_k(1.0, 40.0), Some(0.082));
         assert_eq!(d.ground_path_k(4.999, 85.0), Some(0.283));
         assert_eq!(d.ground_path_k(5.0, 40.0), Some(0.05));
-        assert_eq!(d.ground_path_k(5.0, 85.0), Some(0.2));
+        let (_, grazing) = us_std_cells();
+        assert_eq!(
+            d.ground_path_k(5.0, 85.0),
+            Some(0.146_f64.max(grazing[0][1]))
+        );
         assert_eq!(d.ground_path_k(9.99, 80.0), Some(0.05));
-        assert_eq!(d.ground_path_k(9.99, 87.0), Some(0.2));
+        assert_eq!(
+            d.ground_path_k(9.99, 87.0),
+            Some(0.146_f64.max(grazing[0][1]))
+        );
         assert_eq!(d.ground_path_k(10.0, 40.0), Some(0.05));
         // Past the widest row: the larger of that measurement and the grazing rows'.
         assert_eq!(d.ground_path_k(3.0, 88.1), Some(0.283));

@@ -3,13 +3,15 @@
 //! residual of the table region its centre ray's paths read
 //! ([`irsig_atmosphere::data_error`]).
 //!
-//! A pixel that sees the sky reads the sky table: its error is the sky's residual. A pixel
-//! that sees a surface (a facet or the terrain) reads the slant table along its view path,
-//! by the path's nadir angle and the observer's altitude, and adds the sky the surface
-//! reflects: the reflected sky reaches the sensor as `(1 − ε)·τ·L_sky` at most (the
-//! surface's reflectance is `1 − ε` for an opaque surface, Kirchhoff's law, and the path
-//! passes `τ` of it), so an error `δL_sky` of the sky radiance moves the sensor's by at
-//! most `(1 − ε)·τ·δL_sky`. In apparent temperature that is `(1 − ε)·τ·sky_k` times
+//! A pixel that sees the sky reads the sky table: its error is the sky's record from the
+//! observer's altitude at the ray's zenith angle. A pixel that sees a surface (a facet or
+//! the terrain) reads the slant table along its view path, by the path's nadir angle and
+//! the observer's altitude, and adds the sky the surface reflects: the reflected sky
+//! reaches the sensor as `(1 − ε)·τ·L_sky` at most (the surface's reflectance is `1 − ε`
+//! for an opaque surface, Kirchhoff's law, and the path passes `τ` of it), so an error
+//! `δL_sky` of the sky radiance moves the sensor's by at most `(1 − ε)·τ·δL_sky`, where
+//! `δL_sky` is the sky's record over the whole hemisphere above the surface (it may
+//! reflect any direction). In apparent temperature that is `(1 − ε)·τ·sky_k` times
 //! `B′(T_sky)/B′(T_pixel)`, the ratio of the band's dB/dT at the sky's brightness and at
 //! the pixel's apparent temperature; the ratio is at most 1 wherever the sky is no warmer
 //! than the pixel (dB/dT grows with temperature), and it is taken as 1. The two errors
@@ -49,7 +51,7 @@ pub fn view_path_k(data: &DataError, observer_m: f64, dir: DVec3, range_m: f64) 
 #[must_use]
 pub fn pixel_k(data: &DataError, observer_m: f64, dir: DVec3, truth: &TruthPixel) -> f64 {
     if truth.event == Event::Sky {
-        return data.sky_k();
+        return data.sky_k(observer_m, zenith_deg(dir));
     }
     let Some(view) = view_path_k(data, observer_m, dir, f64::from(truth.range_m)) else {
         return f64::NAN;
@@ -61,7 +63,18 @@ pub fn pixel_k(data: &DataError, observer_m: f64, dir: DVec3, truth: &TruthPixel
     } else {
         1.0
     };
-    view + share * data.sky_k()
+    let range_m = f64::from(truth.range_m);
+    let surface_m = if range_m.is_finite() {
+        (observer_m + range_m * dir[2]).max(0.0)
+    } else {
+        0.0
+    };
+    view + share * data.hemisphere_sky_k(surface_m)
+}
+
+/// The zenith angle of the unit direction `dir`, degrees.
+fn zenith_deg(dir: DVec3) -> f64 {
+    dir[2].clamp(-1.0, 1.0).acos().to_degrees()
 }
 
 /// The frame summary of a data-error layer: its 99th percentile and largest value over
@@ -112,8 +125,9 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The data error of the view paths of `camera`'s pixels in `window`, summarised,
     /// before the frame is traced (what a decision records): each centre ray followed to
     /// its first facet (or the terrain below the horizon, or the sky above it), the view
-    /// path's error alone. The sky a surface reflects adds up to `(1 − ε)·τ·sky_k` per
-    /// pixel; the truth layer ([`Self::data_error_layer`]) holds it.
+    /// path's error alone. The sky a surface reflects adds up to `(1 − ε)·τ` times the
+    /// sky's record over the hemisphere per pixel; the truth layer
+    /// ([`Self::data_error_layer`]) holds it.
     #[must_use]
     pub fn data_error_census(
         &self,
@@ -144,7 +158,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         None if nadir_deg < horizon_deg => {
                             view_path_k(data, observer_m, dir, f64::INFINITY)
                         }
-                        None => Some(data.sky_k()),
+                        None => Some(data.sky_k(observer_m, zenith_deg(dir))),
                     };
                     k.map_or(f32::NAN, |k| k as f32)
                 })
@@ -165,7 +179,13 @@ mod tests {
         sky_k: 0.5,
     };
 
+    /// An atmosphere that is not a built-in: its residual answers every region but past
+    /// the widest row.
     fn data() -> DataError {
+        DataError::new(RESIDUAL, 88.0, "my-own", [8.0, 14.0])
+    }
+
+    fn us_std() -> DataError {
         DataError::new(RESIDUAL, 88.0, "us-std-1976", [8.0, 14.0])
     }
 
@@ -218,8 +238,37 @@ mod tests {
     }
 
     #[test]
+    fn a_built_in_reads_the_sky_where_the_ray_looks_and_the_reflected_sky_where_it_lands() {
+        let d = us_std();
+        let sky = truth(Event::Sky, f32::NAN, f32::NAN);
+        // From 1.7 km straight up and 5° above the horizontal: the cells of that altitude
+        // at 0° and 85° from the zenith.
+        assert_eq!(
+            pixel_k(&d, 1700.0, dir(180.0), &sky).to_bits(),
+            d.sky_k(1700.0, 0.0).to_bits()
+        );
+        assert_eq!(
+            pixel_k(&d, 1700.0, dir(95.0), &sky).to_bits(),
+            d.sky_k(1700.0, 85.0).to_bits()
+        );
+        assert_ne!(
+            d.sky_k(1700.0, 0.0).to_bits(),
+            d.sky_k(975.0, 0.0).to_bits()
+        );
+        // A perfect mirror 100 m down a path 60° from nadir, from 1025 m: it lies at
+        // 975 m, and reflects that altitude's sky from any direction.
+        let mirror = truth(Event::SpecularEscapes, 0.0, 1.0);
+        let expected = d.ground_path_k(1025.0, 60.0).unwrap() + d.hemisphere_sky_k(975.0);
+        assert!((pixel_k(&d, 1025.0, dir(60.0), &mirror) - expected).abs() < 1e-9);
+        assert_ne!(
+            d.hemisphere_sky_k(975.0).to_bits(),
+            d.hemisphere_sky_k(1025.0).to_bits()
+        );
+    }
+
+    #[test]
     fn past_the_widest_row_the_measured_cost_answers() {
-        let d = data();
+        let d = us_std();
         let terrain = truth(Event::Terrain, 1.0, 0.5);
         // us-std-1976 from 300 m at 89°: the cells 88.75° (0.782) and 89° (1.303).
         assert!((pixel_k(&d, 300.0, dir(89.0), &terrain) - 1.303).abs() < 1e-9);

@@ -1,7 +1,8 @@
 //! The atmosphere data's error per pixel on whole frames of a built-in: a frame with no sky
 //! and no horizon records its slant rows' residual (plus the little sky its ground
-//! reflects), not the sky's, which is ten times larger; a frame of sky records the sky's;
-//! a frame at the horizon records what the last degrees were measured to cost.
+//! reflects), not the sky's, which is ten times larger; a frame of sky records the sky's
+//! cell for its altitude and angles; a frame at the horizon records what the last degrees
+//! were measured to cost.
 
 use irsig_atmosphere::data_error::DataError;
 use irsig_atmosphere::{AtmosphereModel, ModelKind, PrecomputedAtmosphere, builtin};
@@ -78,33 +79,47 @@ fn a_sky_free_frame_from_1_7_km_records_the_slant_residual_not_the_skys() {
         "{census:?} against sky {}",
         r.sky_k
     );
-    // A grey ground (ε 0.9) reflects a tenth of the sky, through the path's τ < 1.
-    let (_, grey, census, frame) = traced(1700.0, [0.0, 0.0, 0.0], 60.0, 0.9);
+    // A grey ground (ε 0.9) reflects a tenth of the sky, through the path's τ < 1: the
+    // sky's record over the hemisphere above the ground, a cell far below the residual.
+    let (data, grey, census, frame) = traced(1700.0, [0.0, 0.0, 0.0], 60.0, 0.9);
+    let sky = data.hemisphere_sky_k(0.0);
+    assert!(sky < r.sky_k / 5.0, "{sky} K against {} K", r.sky_k);
     for (&k, t) in grey.iter().zip(&frame.truth) {
-        let expected = r.slant_k + 0.1 * f64::from(t.transmission) * r.sky_k;
+        let expected = r.slant_k + 0.1 * f64::from(t.transmission) * sky;
         assert!(
             (f64::from(k) - expected).abs() < 1e-4,
             "{k} K, {expected} K"
         );
-        assert!(f64::from(k) < r.slant_k + 0.1 * r.sky_k);
+        assert!(f64::from(k) < r.slant_k + 0.1 * sky);
     }
     // The census is the view paths': the reflected sky is the layer's.
     assert!((census.p99_k - r.slant_k).abs() < 1e-6, "{census:?}");
 }
 
 #[test]
-fn a_frame_of_sky_records_the_skys_residual() {
+fn a_frame_of_sky_records_the_skys_cell_not_its_residual() {
     let r = builtin("us-std-1976")
         .unwrap()
         .slant
         .unwrap()
         .interpolation_residual
         .unwrap();
-    // Straight up from 100 m.
-    let (_, layer, census, frame) = traced(100.0, [0.0, 0.0, 10_000.0], 30.0, 1.0);
+    // Straight up from 100 m, 30° wide: every ray within 22° of the zenith, one cell of
+    // the sky's record (0–950 m, 0–60°), a fifth of the residual or less.
+    let (data, layer, census, frame) = traced(100.0, [0.0, 0.0, 10_000.0], 30.0, 1.0);
     assert!(frame.truth.iter().all(|t| t.event == Event::Sky));
-    assert!(layer.iter().all(|&k| (f64::from(k) - r.sky_k).abs() < 1e-6));
-    assert!((census.max_k - r.sky_k).abs() < 1e-6, "{census:?}");
+    let cell = data.sky_k(100.0, 0.0);
+    assert!(cell < r.sky_k / 5.0, "{cell} K against {} K", r.sky_k);
+    assert!(layer.iter().all(|&k| (f64::from(k) - cell).abs() < 1e-6));
+    assert!((census.max_k - cell).abs() < 1e-6, "{census:?}");
+    // From 9 km, above the densest rows, the sky's record is larger.
+    let (data, high, _, _) = traced(9000.0, [0.0, 0.0, 20_000.0], 30.0, 1.0);
+    let cell_high = data.sky_k(9000.0, 0.0);
+    assert!(cell_high > 2.0 * cell, "{cell_high} K against {cell} K");
+    assert!(
+        high.iter()
+            .all(|&k| (f64::from(k) - cell_high).abs() < 1e-6)
+    );
 }
 
 #[test]
