@@ -12,6 +12,11 @@ pub use crate::lobe::LobeProbe;
 pub use crate::reference::percentile;
 use crate::{Camera, TraceOptions, Tracer, Vacuum};
 
+mod generated;
+pub use generated::{
+    GENERATED_MATERIALS, GENERATED_SKY, SceneKind, generated_scene, generated_scene_of,
+};
+
 /// A closed mesh: vertex positions and triangles as vertex indices.
 pub type Mesh = (Vec<[f64; 3]>, Vec<[u32; 3]>);
 
@@ -900,82 +905,4 @@ pub fn sunlit_pilot_space(
         dark: one(),
     });
     space
-}
-
-/// The sky of [`generated_scene`]: a uniform 25 W m⁻² sr⁻¹ (about a 266 K blackbody over
-/// the whole spectrum), no air.
-pub const GENERATED_SKY: Vacuum = Vacuum {
-    sky_radiance_w_m2_sr: 25.0,
-};
-
-/// The material ids of [`generated_scene`]: ground, diffuse paint, glass, polished metal,
-/// pole and wire.
-pub const GENERATED_MATERIALS: [u16; 5] = [1, 2, 3, 4, 5];
-
-/// A scene nobody tuned the tolerance to, drawn from `seed` (the tolerance's checks,
-/// `tests/guarantee.rs`, and its cost bench, `examples/generated_scene.rs`): a ground
-/// 400 × 600 m, six boxes near and far (diffuse, glass or metal in turn), three poles
-/// 3–6 cm wide and a wire of 1 cm, a fraction of a pixel at their distance, temperatures
-/// drawn at random; and its view `view` of 48 × 36 pixels: 0 a low camera looking along
-/// the ground (its far end grazing), 1 a camera on a mast looking down across the scene.
-#[must_use]
-pub fn generated_scene(seed: u64, view: usize) -> (RawScene, MaterialLibrary, View) {
-    use rand::{Rng, SeedableRng};
-    let [ground_id, paint, glass, metal, pole] = GENERATED_MATERIALS;
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    let mut t = |lo: f64, hi: f64| rng.random_range(lo..hi);
-    let ground = ground_quad([-200.0, -200.0], [200.0, 400.0], 0.0);
-    let mut meshes = vec![(ground, ground_id, t(285.0, 315.0))];
-    // Boxes near and far, each diffuse, glass-fronted or metal.
-    for k in 0..6 {
-        let y = t(5.0, 80.0);
-        let x = t(-0.5, 0.5) * y;
-        let (w, d, h) = (t(1.0, 6.0), t(1.0, 6.0), t(1.0, 8.0));
-        let material = [paint, glass, metal][k % 3];
-        let kinetic = t(270.0, 340.0);
-        meshes.push((box_mesh([x, y, 0.0], [x + w, y + d, h]), material, kinetic));
-    }
-    // Poles 3-6 cm wide and a wire of 1 cm: a fraction of a pixel at their distance.
-    for _ in 0..3 {
-        let (x, y) = (t(-10.0, 10.0), t(10.0, 40.0));
-        let width = t(0.03, 0.06);
-        let kinetic = t(290.0, 340.0);
-        meshes.push((
-            box_mesh([x, y, 0.0], [x + width, y + width, t(4.0, 10.0)]),
-            pole,
-            kinetic,
-        ));
-    }
-    let (y, z) = (t(12.0, 30.0), t(3.0, 7.0));
-    meshes.push((
-        box_mesh([-30.0, y, z], [30.0, y + 0.01, z + 0.01]),
-        pole,
-        t(280.0, 320.0),
-    ));
-    let parts: Vec<_> = meshes.iter().map(|(m, id, k)| (m, *id, *k)).collect();
-    let scene = raw_scene(&parts);
-    let materials = grey_materials(&[
-        (ground_id, 0.95, 0.0),
-        (paint, 0.9, 0.0),
-        (glass, 0.12, 1.0),
-        (metal, 0.05, 0.9),
-        (pole, 0.9, 0.0),
-    ]);
-    let low = View::LookAt {
-        position_m: [t(-3.0, 3.0), -8.0, t(1.5, 4.0)],
-        target_m: [0.0, 30.0, t(0.0, 2.0)],
-        up: [0.0, 0.0, 1.0],
-        pixels: [48, 36],
-        fov_deg: [60.0, 45.0],
-        gain_dc_per_k: None,
-    };
-    let mast = View::LookAt {
-        position_m: [t(-30.0, 30.0), -30.0, t(12.0, 25.0)],
-        target_m: [0.0, t(15.0, 40.0), 0.0],
-        up: [0.0, 0.0, 1.0],
-        pixels: [48, 36],
-        fov_deg: [50.0, 37.5],
-        gain_dc_per_k: None,
-    };
-    (scene, materials, if view == 0 { low } else { mast })
 }
