@@ -19,11 +19,16 @@
 //! 4. **Refinement** takes the other half ([`trial`]): edge and thin pixels are refined to
 //!    a standard error ([`crate::refine`]) small enough that a refined pixel's error
 //!    exceeds half the tolerance in few enough pixels for the percentile; a trial refines
-//!    some candidates to measure what that costs and how many reach the cap.
+//!    some candidates to measure what that costs and how many reach the cap. With it the
+//!    frame's percentile of |ΔT| against a converged rendering is predicted
+//!    ([`predict`]); where the cheapest combination leaves that over the tolerance (the
+//!    most rays' own noise, in classes whose 90th percentile holds), the cheapest dearer
+//!    combination that holds and is predicted within it is taken.
 //! 5. Pixels the decision cannot guarantee (classes it cannot afford, pixels predicted to
-//!    cap) must stay under [`NOT_GUARANTEED_MAX`] of the frame, or the tolerance is
-//!    refused before tracing, with the floor that can be reached and its cost; else the
-//!    [`Decision`] records the settings, their errors and reasons ([`report`]).
+//!    cap) must stay under [`NOT_GUARANTEED_MAX`] of the frame, and the frame's predicted
+//!    percentile within the tolerance, or the tolerance is refused before tracing, with
+//!    the floor that can be reached and its cost; else the [`Decision`] records the
+//!    settings, their errors and reasons ([`report`]).
 //!
 //! Everything is seeded and counted, never timed, so the same inputs give the same
 //! decision and the same image on every run.
@@ -129,34 +134,36 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let pixels = terms.pixels();
 
         // 3. The cheapest combination that holds.
-        let mut counts = Counts::of(
-            &census,
-            &measured,
-            self.geometry.triangles(),
-            space.bounces.len(),
-        );
         let lens = search::lens(space);
-        let (chosen_combo, verdict) = search::cheapest(
+        let (mut counts, holding) = self.holding(
             space,
-            &counts,
-            &census,
-            &measured,
-            &by_class,
+            (&census, &measured, &by_class),
             &guaranteed,
             pixels,
-            &lens,
-            tolerance_k,
-            det_k,
-            percentile,
+            [tolerance_k, det_k, percentile],
         );
         let reference_combo: Combo = [0; MODELS];
 
-        // 4. Refinement: its target from the share of candidates, its cost from a trial.
-        let (refinement, trial) = self.refinement_trial(
+        // 4. Refinement: its target from the share of candidates, its cost from a trial; the
+        // frame's percentile predicted.
+        let at = (&census, measured.as_slice(), guaranteed.as_slice());
+        let predict = |combo: &Combo, sigmas_k: &[f64]| {
+            let spread = predict::RefinedSpread { sigmas_k };
+            terms.frame_percentile_k(at, combo, spread, percentile)
+        };
+        let Choice {
+            combo: chosen_combo,
+            verdict,
+            refinement,
+            trial,
+            predicted_k,
+        } = self.choice_for_frame(
             &fc,
             space,
             &census,
-            &chosen_combo,
+            (&holding, &counts),
+            search::cheapest(&holding, &census, &measured, &guaranteed),
+            &predict,
             [tolerance_k, det_k, edge_k],
             seed,
         );
@@ -178,6 +185,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 tolerance_k,
                 cost_of(&reference_combo) / 1e9,
             ));
+        }
+        if predicted_k > tolerance_k {
+            let cpu_s = cost_of(&reference_combo) / 1e9;
+            let over = [tolerance_k, percentile, predicted_k];
+            return Err(frame_unreachable(&predict, &trial, over, cpu_s));
         }
 
         let chosen_cost = cost_of(&chosen_combo);
@@ -202,11 +214,6 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             &chosen_combo,
             det_k,
         );
-        let at = (&census, measured.as_slice(), guaranteed.as_slice());
-        let spread = predict::RefinedSpread {
-            sigmas_k: &trial.sigmas_k,
-        };
-        let predicted_k = terms.frame_percentile_k(at, &chosen_combo, spread, percentile);
         let decision = Decision {
             tolerance_k,
             percentile,
@@ -255,6 +262,91 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             .collect()
     }
 
+    /// What the census and the measurement count of the work, and every combination that
+    /// holds in the guaranteed classes and over the frame (`[tolerance, deterministic
+    /// share, percentile]`).
+    fn holding<S: Sync>(
+        &self,
+        space: &PilotSpace<S>,
+        (census, measured, by_class): (&Census, &[Measured], &[Vec<usize>]),
+        guaranteed: &[bool],
+        pixels: choose::Pixels<'_>,
+        [tolerance_k, det_k, percentile]: [f64; 3],
+    ) -> (Counts, search::Holding) {
+        let counts = Counts::of(
+            census,
+            measured,
+            self.geometry.triangles(),
+            space.bounces.len(),
+        );
+        let holding = search::holding(
+            space,
+            &counts,
+            census,
+            measured,
+            by_class,
+            guaranteed,
+            pixels,
+            &search::lens(space),
+            tolerance_k,
+            det_k,
+            percentile,
+        );
+        (counts, holding)
+    }
+
+    /// The cheapest combination that holds in every class (`combo`, and its `verdict`), its
+    /// refinement and trial, and
+    /// the frame's percentile `predict`ed with the trial's σ's; where that is over the
+    /// tolerance (the most rays' own noise, in classes whose 90th percentile holds), the
+    /// cheapest dearer combination predicted within it, with a trial of its own; else the
+    /// cheapest, over it (`[tolerance, deterministic share, edge share]`, K).
+    #[allow(clippy::too_many_arguments)]
+    fn choice_for_frame<S>(
+        &self,
+        fc: &FrameConsts<'_>,
+        space: &PilotSpace<S>,
+        census: &Census,
+        (holding, counts): (&search::Holding, &Counts),
+        (combo, verdict): (Combo, choose::Verdict),
+        predict: &dyn Fn(&Combo, &[f64]) -> f64,
+        limits: [f64; 3],
+        seed: u64,
+    ) -> Choice {
+        let (refinement, trial) = self.refinement_trial(fc, space, census, &combo, limits, seed);
+        let predicted_k = predict(&combo, &trial.sigmas_k);
+        let cheapest = Choice {
+            combo,
+            verdict,
+            refinement,
+            trial,
+            predicted_k,
+        };
+        if predicted_k <= limits[0] {
+            return cheapest;
+        }
+        let cost = choose::cost(space, counts, &combo);
+        let within = holding
+            .dearer_than(cost)
+            .into_iter()
+            .find(|(c, _)| predict(c, &cheapest.trial.sigmas_k) <= limits[0]);
+        match within {
+            Some((combo, verdict)) => {
+                let (refinement, trial) =
+                    self.refinement_trial(fc, space, census, &combo, limits, seed);
+                let predicted_k = predict(&combo, &trial.sigmas_k);
+                Choice {
+                    combo,
+                    verdict,
+                    refinement,
+                    trial,
+                    predicted_k,
+                }
+            }
+            None => cheapest,
+        }
+    }
+
     /// Refinement for the chosen combination: its target from the share of candidates
     /// (`[tolerance, deterministic share, edge share]`, K) and its cost from a trial.
     fn refinement_trial<S>(
@@ -288,6 +380,40 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         (refinement, trial)
     }
+}
+
+/// A combination chosen for the frame, with its verdict, refinement, trial and the frame's
+/// predicted percentile, K.
+struct Choice {
+    combo: Combo,
+    verdict: choose::Verdict,
+    refinement: Option<crate::refine::Refinement>,
+    trial: Trial,
+    predicted_k: f64,
+}
+
+/// The refusal of a frame predicted at `predicted` over the tolerance
+/// (`[tolerance, percentile, predicted]`, K and %), with the floor where the most accurate
+/// settings' prediction meets the tolerance: `predict`ed at a tolerance F with the trial's
+/// σ's scaled by F over the tolerance (refinement's target is a share of it).
+fn frame_unreachable(
+    predict: &dyn Fn(&Combo, &[f64]) -> f64,
+    trial: &Trial,
+    [tolerance_k, percentile, predicted_k]: [f64; 3],
+    cpu_s: f64,
+) -> TraceError {
+    let reference: Combo = [0; MODELS];
+    let floor_k = predict::reachable_floor_k(tolerance_k, |f| {
+        let scaled: Vec<f64> = trial.sigmas_k.iter().map(|s| s * f / tolerance_k).collect();
+        predict(&reference, &scaled)
+    });
+    report::unreachable_frame(
+        [tolerance_k, percentile],
+        predicted_k,
+        predict(&reference, &trial.sigmas_k),
+        floor_k,
+        cpu_s,
+    )
 }
 
 /// What the decision records of refinement, where there is any.

@@ -158,6 +158,26 @@ impl PixelTerms {
     }
 }
 
+/// The smallest tolerance the frame's predicted percentile keeps, K: the fixed point of
+/// `predict_at(F) = F`, where `predict_at(F)` is the percentile predicted at a tolerance of
+/// F. Refinement's standard errors are a share of the tolerance and the rest does not
+/// depend on it, so `predict_at` grows more slowly than F and the iteration from
+/// `tolerance_k` converges (to a relative 1e-4 here, in at most 64 steps).
+pub(crate) fn reachable_floor_k(tolerance_k: f64, predict_at: impl Fn(f64) -> f64) -> f64 {
+    let mut f = tolerance_k;
+    for _ in 0..64 {
+        let next = predict_at(f);
+        if !next.is_finite() {
+            return next;
+        }
+        if (next - f).abs() <= 1e-4 * f {
+            return next;
+        }
+        f = next;
+    }
+    f
+}
+
 /// What one point of a class needs of the tolerance, K: the 90th percentile of its pixel's
 /// error. A centre pixel's is its bias `bias_k` (the bound plus its class's whole
 /// residual, the Monte Carlo noise of the most rays in it); a refined pixel's is its bias
@@ -351,6 +371,18 @@ pub(crate) fn frame_percentile_k(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_reachable_floor_is_where_the_prediction_meets_the_tolerance() {
+        // A centre part a = 0.09 K that no tolerance changes, and refinement's part 0.4·F:
+        // in quadrature F = a/√(1 − 0.16) = 0.0982 K.
+        let predict_at = |f: f64| 0.09_f64.hypot(0.4 * f);
+        let floor = reachable_floor_k(0.05, predict_at);
+        assert!((floor - 0.09 / 0.84_f64.sqrt()).abs() < 1e-5, "{floor}");
+        // From above too, and a prediction that is the tolerance already.
+        assert!((reachable_floor_k(1.0, predict_at) - floor).abs() < 1e-5);
+        assert!((reachable_floor_k(0.2, |_| 0.2) - 0.2).abs() < 1e-12);
+    }
 
     #[test]
     fn a_class_holds_from_the_rank_of_its_points_thresholds() {

@@ -444,6 +444,27 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 }
 
+/// The refusal of a frame whose predicted percentile is over the tolerance with every
+/// combination that holds in its classes (`[tolerance, percentile]`): what the cheapest
+/// and the most accurate settings are predicted at, the floor where the most accurate
+/// settings' prediction meets the tolerance, and their cost in CPU-seconds.
+pub(crate) fn unreachable_frame(
+    [tolerance_k, percentile]: [f64; 2],
+    predicted_k: f64,
+    most_accurate_k: f64,
+    floor_k: f64,
+    cpu_s: f64,
+) -> TraceError {
+    TraceError::new(TraceErrorKind::Unreachable(format!(
+        "a tolerance of {tolerance_k} K cannot be kept in this frame: its {percentile}th \
+         percentile of |dT| is predicted at {predicted_k:.3} K with the cheapest settings that \
+         hold in every class, and at {most_accurate_k:.3} K with the most accurate settings on \
+         offer (what their own rays' noise and the bounces beyond them leave, with \
+         refinement's). The reachable floor is about {floor_k:.3} K, at about {cpu_s:.0} \
+         CPU-seconds with the most accurate settings on offer"
+    )))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -1,5 +1,6 @@
 //! The search over every combination of the models' settings for the cheapest that holds
-//! ([`choose::holds`], priced by [`choose::cost`]).
+//! ([`choose::holds`], priced by [`choose::cost`]), and the dearer ones in order, for a
+//! frame whose predicted percentile the cheapest does not keep.
 
 use rayon::prelude::*;
 
@@ -22,13 +23,40 @@ pub(crate) fn lens<S>(space: &PilotSpace<S>) -> [usize; MODELS] {
     ]
 }
 
-/// The cheapest combination for which every guaranteed class and the frame hold, and its
-/// verdict; at equal cost (a model that changes nothing here), the cheaper settings. When
-/// none holds, the most accurate settings with their own verdict: only a pinned model can
-/// keep them from holding (against themselves every other error is 0), and its error is
-/// the user's.
+/// Every combination for which every guaranteed class and the frame hold, with its cost
+/// and verdict, in the odometer's order.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Holding(Vec<(Combo, f64, choose::Verdict)>);
+
+impl Holding {
+    /// The cheapest; at equal cost (a model that changes nothing here), the cheaper
+    /// settings; ties beyond that go to the first in the odometer's order. `None` when no
+    /// combination holds.
+    pub(crate) fn cheapest(&self) -> Option<(Combo, choose::Verdict)> {
+        let mut best: Option<&(Combo, f64, choose::Verdict)> = None;
+        for held in &self.0 {
+            let (combo, c, _) = held;
+            let cheaper = |b: &Combo| combo.iter().sum::<usize>() > b.iter().sum::<usize>();
+            if best.is_none_or(|(b, bc, _)| *c < bc * (1.0 - 1e-12) || (*c <= *bc && cheaper(b))) {
+                best = Some(held);
+            }
+        }
+        best.map(|&(c, _, v)| (c, v))
+    }
+
+    /// The combinations that cost more than `cost`, cheapest first (at equal cost, the
+    /// first in the odometer's order).
+    pub(crate) fn dearer_than(&self, cost: f64) -> Vec<(Combo, choose::Verdict)> {
+        let mut dearer: Vec<&(Combo, f64, choose::Verdict)> =
+            self.0.iter().filter(|(_, c, _)| *c > cost).collect();
+        dearer.sort_by(|a, b| a.1.total_cmp(&b.1));
+        dearer.into_iter().map(|&(c, _, v)| (c, v)).collect()
+    }
+}
+
+/// Every combination judged ([`choose::holds`], side by side) and priced: those that hold.
 #[allow(clippy::too_many_arguments)]
-pub(crate) fn cheapest<S: Sync>(
+pub(crate) fn holding<S: Sync>(
     space: &PilotSpace<S>,
     counts: &Counts,
     census: &Census,
@@ -40,9 +68,7 @@ pub(crate) fn cheapest<S: Sync>(
     tolerance_k: f64,
     det_k: f64,
     percentile: f64,
-) -> (Combo, choose::Verdict) {
-    // Every combination, in the odometer's order; each judged on its own (side by side),
-    // then the cheapest taken in that order, so that ties go as they always did.
+) -> Holding {
     let mut combos: Vec<Combo> = Vec::new();
     let mut combo: Combo = [0; MODELS];
     loop {
@@ -68,23 +94,32 @@ pub(crate) fn cheapest<S: Sync>(
             .map(|v| (choose::cost(space, counts, combo), v))
         })
         .collect();
-    let mut best: Option<(f64, Combo, choose::Verdict)> = None;
-    for (combo, judged) in combos.into_iter().zip(judged) {
-        if let Some((c, v)) = judged {
-            let cheaper = |b: &Combo| combo.iter().sum::<usize>() > b.iter().sum::<usize>();
-            if best.is_none_or(|(bc, b, _)| c < bc * (1.0 - 1e-12) || (c <= bc && cheaper(&b))) {
-                best = Some((c, combo, v));
-            }
-        }
-    }
-    match best {
-        Some((_, c, v)) => (c, v),
-        None => {
-            let reference: Combo = [0; MODELS];
-            let v = frame_verdict(census, measured, guaranteed, &reference);
-            (reference, v)
-        }
-    }
+    Holding(
+        combos
+            .into_iter()
+            .zip(judged)
+            .filter_map(|(combo, j)| j.map(|(c, v)| (combo, c, v)))
+            .collect(),
+    )
+}
+
+/// The cheapest combination that holds ([`Holding::cheapest`]) and its verdict. When none
+/// holds, the most accurate settings with their own verdict: only a pinned model can keep
+/// them from holding (against themselves every other error is 0), and its error is the
+/// user's.
+pub(crate) fn cheapest(
+    holding: &Holding,
+    census: &Census,
+    measured: &[Measured],
+    guaranteed: &[bool],
+) -> (Combo, choose::Verdict) {
+    holding.cheapest().unwrap_or_else(|| {
+        let reference: Combo = [0; MODELS];
+        (
+            reference,
+            frame_verdict(census, measured, guaranteed, &reference),
+        )
+    })
 }
 
 /// The frame's verdict on `combo` whether or not it holds (for a pinned model's own
@@ -121,6 +156,28 @@ fn next_combo(combo: &mut Combo, lens: &[usize; MODELS]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_cheapest_holds_first_and_the_dearer_follow_by_cost() {
+        let v = |w: f64| choose::Verdict { worst_k: w };
+        let c = |k: usize| {
+            let mut combo = [0; MODELS];
+            combo[1] = k;
+            combo
+        };
+        // At equal cost the cheaper settings (the larger indices) win.
+        let holding = Holding(vec![
+            (c(0), 4.0, v(0.0)),
+            (c(1), 2.0, v(0.1)),
+            (c(2), 2.0, v(0.2)),
+            (c(3), 3.0, v(0.3)),
+        ]);
+        let (cheapest, verdict) = holding.cheapest().unwrap();
+        assert_eq!((cheapest, verdict.worst_k), (c(2), 0.2));
+        let dearer: Vec<Combo> = holding.dearer_than(2.0).into_iter().map(|d| d.0).collect();
+        assert_eq!(dearer, vec![c(3), c(0)]);
+        assert!(Holding::default().cheapest().is_none());
+    }
 
     #[test]
     fn combinations_are_counted_like_an_odometer() {
