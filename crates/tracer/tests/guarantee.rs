@@ -367,6 +367,12 @@ fn the_tolerance_holds_on_generated_scenes_against_a_converged_reference() {
             o.worst_material_p90_k
         );
         assert!(o.not_guaranteed_share <= 0.005, "{case}");
+        // The pilot accepts no frame it predicts over the tolerance.
+        assert!(
+            o.predicted_p99_k <= tolerance_k,
+            "{case}: predicted {:.3} K",
+            o.predicted_p99_k
+        );
     }
 }
 
