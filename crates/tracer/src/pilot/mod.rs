@@ -138,8 +138,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         let (mut counts, holding) = self.holding(
             space,
             (&census, &measured, &by_class),
-            &guaranteed,
-            pixels,
+            (&guaranteed, pixels, &lens),
             [tolerance_k, det_k, percentile],
         );
         let reference_combo: Combo = [0; MODELS];
@@ -269,8 +268,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         &self,
         space: &PilotSpace<S>,
         (census, measured, by_class): (&Census, &[Measured], &[Vec<usize>]),
-        guaranteed: &[bool],
-        pixels: choose::Pixels<'_>,
+        (guaranteed, pixels, lens): (&[bool], choose::Pixels<'_>, &[usize; MODELS]),
         [tolerance_k, det_k, percentile]: [f64; 3],
     ) -> (Counts, search::Holding) {
         let counts = Counts::of(
@@ -287,7 +285,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             by_class,
             guaranteed,
             pixels,
-            &search::lens(space),
+            lens,
             tolerance_k,
             det_k,
             percentile,
@@ -296,11 +294,11 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// The cheapest combination that holds in every class (`combo`, and its `verdict`), its
-    /// refinement and trial, and
-    /// the frame's percentile `predict`ed with the trial's σ's; where that is over the
-    /// tolerance (the most rays' own noise, in classes whose 90th percentile holds), the
-    /// cheapest dearer combination predicted within it, with a trial of its own; else the
-    /// cheapest, over it (`[tolerance, deterministic share, edge share]`, K).
+    /// refinement and trial, and the frame's percentile `predict`ed with the trial's σ's;
+    /// where that is over the tolerance (the most rays' own noise, in classes whose 90th
+    /// percentile holds), the cheapest dearer combination predicted within it, with a
+    /// trial of its own (whose prediction may again be over); else the cheapest, over it
+    /// (`[tolerance, deterministic share, edge share]`, K).
     #[allow(clippy::too_many_arguments)]
     fn choice_for_frame<S>(
         &self,
