@@ -11,7 +11,7 @@ use rand_chacha::ChaCha8Rng;
 use super::{Mesh, box_mesh, grey_materials, ground_quad, raw_scene};
 use crate::Vacuum;
 
-/// The sky of every generated scene: a uniform 25 W m⁻² sr⁻¹ (about a 266 K blackbody over
+/// The sky of every generated scene: a uniform 25 W m⁻² sr⁻¹ (a 193 K blackbody over
 /// the whole spectrum), no air.
 pub const GENERATED_SKY: Vacuum = Vacuum {
     sky_radiance_w_m2_sr: 25.0,
@@ -582,6 +582,20 @@ mod tests {
             assert!(
                 material.contains(&0.0),
                 "seed {seed}: no sky in the low view"
+            );
+            // The steepest ground facet, from its normal.
+            let (scene, _, _) = generated_scene_of(SceneKind::Terrain, seed, 0);
+            let steepest = scene
+                .facets
+                .iter()
+                .filter(|f| f.material.0 == GENERATED_MATERIALS[0])
+                .map(|f| normal(f.vertices.map(|v| scene.positions_m[v as usize]))[2])
+                .fold(1.0, f64::min)
+                .acos()
+                .to_degrees();
+            assert!(
+                steepest > 15.0,
+                "seed {seed}: the steepest slope {steepest} deg"
             );
         }
     }
