@@ -19,8 +19,8 @@
 //! `IRSIG_GUARANTEE_SEEDS=0..10 IRSIG_GUARANTEE_TOLERANCE_K=0.2 cargo test --release -p
 //! irsig-tracer --test integration guarantee:: -- --nocapture` runs more scenes at another
 //! tolerance and prints each one's figures (`docs/accuracy.md` holds a table of them;
-//! `IRSIG_GUARANTEE_DEBUG=1` adds every pixel off by more than a quarter of the
-//! tolerance, the reference's capped pixels and the frame's 20 worst pixels;
+//! `IRSIG_GUARANTEE_DEBUG=1` adds the decision's classes, every pixel off by more than a
+//! quarter of the tolerance, the reference's capped pixels and the frame's 20 worst pixels;
 //! `IRSIG_GUARANTEE_VIEW=1` the mast views alone; `IRSIG_GUARANTEE_KIND=terrain` another
 //! kind of scene; `IRSIG_GUARANTEE_REFERENCE_ROUNDS=N` the reference's first N rounds
 //! alone); CI runs seven cases at 0.5 K ([`cases`]).
@@ -122,26 +122,7 @@ fn check_with(case: Case, tolerance_k: f64, most_accurate: bool) -> Result<Outco
         }
     };
     if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
-        for class in &piloted.decision.classes {
-            eprintln!(
-                "  class {} {}{}{}{}: share {:.4}, {} points, error p90 {:.3} K, worst {:.3} K, \
-                 residual {:.3} K",
-                class.event,
-                class.name,
-                if class.grazing { ", grazing" } else { "" },
-                if class.horizon { ", horizon" } else { "" },
-                if class.mirror_in_mirror {
-                    ", mirror in mirror"
-                } else {
-                    ""
-                },
-                class.share,
-                class.samples,
-                class.error.percentile_k,
-                class.error.max_k,
-                class.residual_k
-            );
-        }
+        debug_classes(&piloted.decision);
     }
     let c = piloted.chosen;
     // The reference's tracer: the same scene, without the chosen refinement.
@@ -199,30 +180,7 @@ fn check_with(case: Case, tolerance_k: f64, most_accurate: bool) -> Result<Outco
         worst = worst.max(p90);
     }
     if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
-        for &i in &reference.capped {
-            eprintln!(
-                "  capped reference pixel {i} ({}, {}): material {}, reference {:.2} K, noise {:.3}",
-                i as u32 % width,
-                i as u32 / width,
-                material[i],
-                truth[i],
-                noise[i]
-            );
-        }
-        // The frame's worst pixels, whatever their material (the sky's included).
-        let mut order: Vec<usize> = (0..error.len()).collect();
-        order.sort_by(|&a, &b| error[b].abs().total_cmp(&error[a].abs()));
-        for &i in order.iter().take(20) {
-            eprintln!(
-                "  worst pixel {i} ({}, {}): {:.3} K, material {}, reference {:.2} K, noise {:.3}",
-                i as u32 % width,
-                i as u32 / width,
-                error[i],
-                material[i],
-                truth[i],
-                noise[i]
-            );
-        }
+        debug_worst(&reference, &error, &material, width);
     }
     eprintln!("  refinement {:?}", c.refinement);
     // Where the frame's error sits: refined pixels (more than their centre ray) and the
@@ -276,6 +234,64 @@ fn check_with(case: Case, tolerance_k: f64, most_accurate: bool) -> Result<Outco
         piloted.decision.relative_cost,
     );
     Ok(outcome)
+}
+
+/// The decision's classes, as a debugging hand run prints them.
+fn debug_classes(decision: &irsig_model::decision::Decision) {
+    for class in &decision.classes {
+        eprintln!(
+            "  class {} {}{}{}{}: share {:.4}, {} points, error p90 {:.3} K, worst {:.3} K, \
+             residual {:.3} K",
+            class.event,
+            class.name,
+            if class.grazing { ", grazing" } else { "" },
+            if class.horizon { ", horizon" } else { "" },
+            if class.mirror_in_mirror {
+                ", mirror in mirror"
+            } else {
+                ""
+            },
+            class.share,
+            class.samples,
+            class.error.percentile_k,
+            class.error.max_k,
+            class.residual_k
+        );
+    }
+}
+
+/// The reference's capped pixels and the frame's 20 worst, whatever their material (the
+/// sky's included), as a debugging hand run prints them.
+fn debug_worst(
+    reference: &irsig_tracer::reference::ConvergedReference,
+    error: &[f64],
+    material: &[f32],
+    width: u32,
+) {
+    let (truth, noise) = (&reference.truth, &reference.error);
+    for &i in &reference.capped {
+        eprintln!(
+            "  capped reference pixel {i} ({}, {}): material {}, reference {:.2} K, noise {:.3}",
+            i as u32 % width,
+            i as u32 / width,
+            material[i],
+            truth[i],
+            noise[i]
+        );
+    }
+    let mut order: Vec<usize> = (0..error.len()).collect();
+    order.sort_by(|&a, &b| error[b].abs().total_cmp(&error[a].abs()));
+    for &i in order.iter().take(20) {
+        eprintln!(
+            "  worst pixel {i} ({}, {}): {:.3} K, material {}, reference {:.2} K, noise {:.3}",
+            i as u32 % width,
+            i as u32 / width,
+            error[i],
+            material[i],
+            truth[i],
+            noise[i]
+        );
+    }
 }
 
 /// The scenes and views checked: every view of `IRSIG_GUARANTEE_SEEDS=FROM..TO` (only view
