@@ -351,7 +351,7 @@ fn panel(centre_m: [f64; 3], size_m: [f64; 3], yaw: f64, tilt: f64) -> Mesh {
 
 /// Many mirrors ([`SceneKind::Mirrors`]): on the flat ground, twelve panels 2 cm thick,
 /// 1–4 m wide and 1–3 m high, their faces turned to any yaw and tilted up to 30° from the
-/// vertical, metal and glass in turn, 6–40 m from the low camera; four boxes from 260 to
+/// vertical, metal and glass in turn, 12–46 m from the low camera; four boxes from 260 to
 /// 360 K for them to reflect; two poles.
 fn mirrors(d: &mut Draw, view: usize) -> (RawScene, MaterialLibrary, View) {
     let [ground_id, paint, glass, metal, pole] = GENERATED_MATERIALS;
