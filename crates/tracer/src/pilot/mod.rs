@@ -160,9 +160,12 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             &fc,
             space,
             &census,
-            (&holding, &counts),
-            search::cheapest(&holding, &census, &measured, &guaranteed),
-            &predict,
+            FrameSearch {
+                holding: &holding,
+                counts: &counts,
+                cheapest: search::cheapest(&holding, &census, &measured, &guaranteed),
+                predict: &predict,
+            },
             [tolerance_k, det_k, edge_k],
             seed,
         );
@@ -293,24 +296,27 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         (counts, holding)
     }
 
-    /// The cheapest combination that holds in every class (`combo`, and its `verdict`), its
-    /// refinement and trial, and the frame's percentile `predict`ed with the trial's σ's;
+    /// The cheapest combination that holds in every class (`search.cheapest`), its
+    /// refinement and trial, and the frame's percentile predicted with the trial's σ's;
     /// where that is over the tolerance (the most rays' own noise, in classes whose 90th
     /// percentile holds), the cheapest dearer combination predicted within it, with a
     /// trial of its own (whose prediction may again be over); else the cheapest, over it
     /// (`[tolerance, deterministic share, edge share]`, K).
-    #[allow(clippy::too_many_arguments)]
     fn choice_for_frame<S>(
         &self,
         fc: &FrameConsts<'_>,
         space: &PilotSpace<S>,
         census: &Census,
-        (holding, counts): (&search::Holding, &Counts),
-        (combo, verdict): (Combo, choose::Verdict),
-        predict: &dyn Fn(&Combo, &[f64]) -> f64,
+        search: FrameSearch<'_>,
         limits: [f64; 3],
         seed: u64,
     ) -> Choice {
+        let FrameSearch {
+            holding,
+            counts,
+            cheapest: (combo, verdict),
+            predict,
+        } = search;
         let (refinement, trial) = self.refinement_trial(fc, space, census, &combo, limits, seed);
         let predicted_k = predict(&combo, &trial.sigmas_k);
         let cheapest = Choice {
@@ -378,6 +384,16 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         };
         (refinement, trial)
     }
+}
+
+/// What the frame's choice reads: every combination that holds, the counts that price
+/// them, the cheapest and its verdict, and the frame's percentile predicted for a
+/// combination with a trial's σ's, K.
+struct FrameSearch<'a> {
+    holding: &'a search::Holding,
+    counts: &'a Counts,
+    cheapest: (Combo, choose::Verdict),
+    predict: &'a dyn Fn(&Combo, &[f64]) -> f64,
 }
 
 /// A combination chosen for the frame, with its verdict, refinement, trial and the frame's
