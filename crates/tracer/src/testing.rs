@@ -14,7 +14,8 @@ use crate::{Camera, TraceOptions, Tracer, Vacuum};
 
 mod generated;
 pub use generated::{
-    GENERATED_MATERIALS, GENERATED_SKY, SceneKind, generated_scene, generated_scene_of,
+    GENERATED_MATERIALS, GENERATED_SKY, SceneKind, generated_materials, generated_scene,
+    generated_scene_of,
 };
 
 /// A closed mesh: vertex positions and triangles as vertex indices.

@@ -25,21 +25,21 @@ use irsig_tracer::reference::{
     ConvergedReference, REFERENCE_ROUNDS_DEFAULT, converged_reference, material_p90s, percentile,
 };
 use irsig_tracer::testing::{
-    box_mesh, grey_materials, ground_quad, raw_scene, sunlit_pilot_space, temperatures,
+    GENERATED_MATERIALS, GENERATED_SKY, box_mesh, generated_materials, ground_quad, raw_scene,
+    sunlit_pilot_space, temperatures,
 };
 use irsig_tracer::{Camera, Sun, SunBeam, TraceOptions, Tracer, Vacuum};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
-const SKY: Vacuum = Vacuum {
-    sky_radiance_w_m2_sr: 25.0,
-};
+const SKY: Vacuum = GENERATED_SKY;
 
-const GROUND: u16 = 1;
-const PAINT: u16 = 2;
-const GLASS: u16 = 3;
-const METAL: u16 = 4;
-const POLE: u16 = 5;
+// The generated scenes' materials (`generated_materials`).
+const GROUND: u16 = GENERATED_MATERIALS[0];
+const PAINT: u16 = GENERATED_MATERIALS[1];
+const GLASS: u16 = GENERATED_MATERIALS[2];
+const METAL: u16 = GENERATED_MATERIALS[3];
+const POLE: u16 = GENERATED_MATERIALS[4];
 
 /// The generated day scene `seed` with a sun of normal irradiance `beam_w_m2` (over the
 /// whole spectrum) and `shadow_rays` per hit, and its mast camera; `specular`: glass and
@@ -78,13 +78,7 @@ fn generated(
     }
     let parts: Vec<_> = meshes.iter().map(|(m, id, k)| (m, *id, *k)).collect();
     let scene = raw_scene(&parts);
-    let materials = grey_materials(&[
-        (GROUND, 0.95, 0.0),
-        (PAINT, 0.9, 0.0),
-        (GLASS, 0.12, 1.0),
-        (METAL, 0.05, 0.9),
-        (POLE, 0.9, 0.0),
-    ]);
+    let materials = generated_materials();
     let (zenith, azimuth) = (t(25.0, 60.0).to_radians(), t(0.0, 360.0).to_radians());
     let to_sun = [
         zenith.sin() * azimuth.sin(),

@@ -84,8 +84,9 @@ pub fn generated_scene(seed: u64, view: usize) -> (RawScene, MaterialLibrary, Vi
 
 /// The five grey materials of every generated scene: ground ε 0.95, paint 0.9, glass 0.12
 /// (all specular), polished metal 0.05 (0.9 specular), pole and wire 0.9; diffuse where not
-/// said.
-fn generated_materials() -> MaterialLibrary {
+/// said (ids [`GENERATED_MATERIALS`]).
+#[must_use]
+pub fn generated_materials() -> MaterialLibrary {
     let [ground, paint, glass, metal, pole] = GENERATED_MATERIALS;
     grey_materials(&[
         (ground, 0.95, 0.0),
