@@ -14,10 +14,12 @@
 //! the band's slope at the mean) is above the target is replaced by the next, at twice the
 //! side, up to [`Refinement::max_side`]. The test reads the rounds' means with the
 //! hemispheric sky in place of the sky-view rays: edges are found and refined by geometry,
-//! while the sky-view rays' noise is the sky-view model's error, which the pilot bounds. A level whose rounds all agree may have missed a
-//! sliver of the edge that made the pixel a candidate: its border is then walked, densely
-//! enough that a corner between two border rays costs less than the target, and a border
-//! that differs sends the pixel on to the next level; a pixel that ends there above the target is
+//! while the sky-view rays' noise is the sky-view model's error, which the pilot bounds. A
+//! level whose rounds all agree, or whose rays are too few for a sliver worth the target to
+//! be hardly missed, may have missed a sliver of the edge that made the pixel a candidate:
+//! its border is then walked, densely enough that a corner between two border rays costs
+//! less than the target, and a border ray outside the range the level's rays saw sends the
+//! pixel on to the next level; a pixel that ends there above the target is
 //! *capped*, and the frame says so ([`PixelSampling::capped`]). Thin candidates start at
 //! [`Refinement::thin_side`], so that a feature a quarter of a pixel wide cannot slip
 //! between the rays of a first level.
@@ -430,6 +432,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let mut means = [0.0; ROUNDS];
             let mut calm_means = [0.0; ROUNDS];
             let mut sums = Sums::default();
+            // The range of the level's rays' calm radiance, for the border walk.
+            let mut seen = (f64::INFINITY, f64::NEG_INFINITY);
             // A level replaces the last: its rays are the pixel's.
             sink.restart();
             for (mean, calm_mean) in means.iter_mut().zip(&mut calm_means) {
@@ -445,12 +449,14 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                         let lu = scratch.path_radiance_w_m2_sr;
                         sums.path_radiance += if lu.is_finite() { lu } else { 0.0 };
                     }
-                    calm += if path.has_sky_view_rays() {
+                    let c = if path.has_sky_view_rays() {
                         path.with_sky_rays(0, &mut hemispheric);
                         self.radiance::<false>(fc, &hemispheric, &mut scratch)
                     } else {
                         l
                     };
+                    seen = (seen.0.min(c), seen.1.max(c));
+                    calm += c;
                 });
                 let n = f64::from(side * side);
                 *mean = round / n;
@@ -477,23 +483,35 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             };
             let sigma_k = in_k(variance);
             let calm_sigma_k = in_k(calm_variance);
-            // Rounds that all agree (to rounding) may all have missed a sliver of the edge
-            // that made the pixel a candidate: the pixel's border is walked, densely enough
-            // that a corner no ray of it met costs less than the target. An edge that
-            // crosses the pixel crosses its border; a feature wholly inside it is a thin
-            // candidate's, and was started dense.
+            // The level's rays may all have missed a sliver of the edge that made the pixel
+            // a candidate: they did so by chance once their rounds agree to rounding, and
+            // may have while they are too few for a sliver worth the target to be hardly
+            // missed ([`sliver_miss_rays`]). The pixel's border is then walked, densely
+            // enough that a corner no ray of it met costs less than the target. An edge
+            // that crosses the pixel crosses its border; a feature wholly inside it is a
+            // thin candidate's, and was started dense.
             let agree = calm_variance.sqrt() <= 1e-12 * calm_mean.abs().max(1e-300);
+            let level_rays = ROUNDS as f64 * f64::from(side) * f64::from(side);
             let mut border_differs = false;
-            if agree {
+            if agree || level_rays < sliver_miss_rays(contrast_k, refinement.target_k) {
                 let per_side = border_rays_per_side(contrast_k, refinement.target_k);
                 rays += 4 * per_side;
+                // Rounds that agree to rounding agree by chance if their rays saw more than
+                // one surface (an edge along a boundary of the strata): the border is held
+                // to their mean, as if they had seen one.
+                let range = if agree {
+                    let t = inverse.temperature(calm_mean);
+                    (t - refinement.target_k, t + refinement.target_k)
+                } else {
+                    let (lo, hi) = (inverse.temperature(seen.0), inverse.temperature(seen.1));
+                    seen_range(lo, hi, side, refinement.target_k)
+                };
                 border_differs = self.border_differs(
                     fc,
                     &mut ctx,
                     (col, row),
                     per_side,
-                    inverse.temperature(calm_mean),
-                    refinement.target_k,
+                    range,
                     inverse,
                     path,
                     &mut scratch,
@@ -521,8 +539,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     }
 
     /// Whether a ray through the border of pixel (`col`, `row`), `per_side` jittered rays a
-    /// side, sees an apparent temperature (with the hemispheric sky) more than `target_k`
-    /// from `t_mean`.
+    /// side, sees an apparent temperature (with the hemispheric sky) outside `range` (K,
+    /// [`seen_range`]).
     #[allow(clippy::too_many_arguments)]
     fn border_differs(
         &self,
@@ -530,8 +548,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         ctx: &mut Ctx<'_>,
         (col, row): (u32, u32),
         per_side: u32,
-        t_mean: f64,
-        target_k: f64,
+        range: (f64, f64),
         inverse: &InverseTable<'_, B>,
         path: &mut Path,
         scratch: &mut Sample,
@@ -556,7 +573,8 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 } else {
                     self.radiance::<false>(fc, path, scratch)
                 };
-                differs |= (inverse.temperature(l) - t_mean).abs() > target_k;
+                let t = inverse.temperature(l);
+                differs |= t < range.0 || t > range.1;
             }
         }
         differs
@@ -584,6 +602,25 @@ fn next_side(side: u32, sigma_k: f64, refinement: &Refinement) -> u32 {
 pub fn level_sky_view_rays(n: u32, side: u32) -> u32 {
     n.div_ceil(side.max(1).saturating_mul(side.max(1)))
         .max(n.min(4))
+}
+
+/// The rays of a level below which its rays may all have missed a sliver of another
+/// surface worth `target_k` in a pixel that may hide `contrast_k`: a sliver covering a
+/// fraction f of the pixel moves it by at most f × `contrast_k`, and N jittered-stratified
+/// rays all miss it with chance at most exp(−f·N) (as the converged reference's halves,
+/// [`crate::reference::sliver_rays`], here over the level's rays at once).
+fn sliver_miss_rays(contrast_k: f64, target_k: f64) -> f64 {
+    2.0 * crate::reference::sliver_rays(contrast_k, target_k)
+}
+
+/// The range of apparent temperature, K, a border ray may see without showing a feature
+/// the level's rays missed: the range `lo`..`hi` they saw, widened by `target_k` and by
+/// the distance a ray of a level of side `side` may stand from the border (up to a
+/// stratum's diagonal, √2/side of the pixel) times that range (a smooth gradient reaches a
+/// little further at the border than inside).
+fn seen_range(lo: f64, hi: f64, side: u32, target_k: f64) -> (f64, f64) {
+    let margin = target_k + (hi - lo).max(0.0) * std::f64::consts::SQRT_2 / f64::from(side.max(1));
+    (lo - margin, hi + margin)
 }
 
 /// Rays along each side of a pixel's border so that a corner cut off by an edge between
