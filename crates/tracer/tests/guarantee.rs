@@ -20,7 +20,8 @@
 //! irsig-tracer --test integration guarantee:: -- --nocapture` runs more scenes at another
 //! tolerance and prints each one's figures (`docs/accuracy.md` holds a table of them;
 //! `IRSIG_GUARANTEE_DEBUG=1` adds the decision's classes, every pixel off by more than a
-//! quarter of the tolerance, the reference's capped pixels and the frame's 20 worst pixels;
+//! quarter of the tolerance, the reference's capped pixels and the frame's 20 worst pixels
+//! with the rays, standard error and levels refinement gave them;
 //! `IRSIG_GUARANTEE_VIEW=1` the mast views alone; `IRSIG_GUARANTEE_KIND=terrain` another
 //! kind of scene; `IRSIG_GUARANTEE_REFERENCE_ROUNDS=N` the reference's first N rounds
 //! alone); CI runs seven cases at 0.5 K ([`cases`]).
@@ -180,7 +181,7 @@ fn check_with(case: Case, tolerance_k: f64, most_accurate: bool) -> Result<Outco
         worst = worst.max(p90);
     }
     if std::env::var("IRSIG_GUARANTEE_DEBUG").is_ok() {
-        debug_worst(&reference, &error, &material, width);
+        debug_worst(&reference, &error, &material, &chosen.sampling, width);
     }
     eprintln!("  refinement {:?}", c.refinement);
     // Where the frame's error sits: refined pixels (more than their centre ray) and the
@@ -266,6 +267,7 @@ fn debug_worst(
     reference: &irsig_tracer::reference::ConvergedReference,
     error: &[f64],
     material: &[f32],
+    sampling: &[irsig_tracer::PixelSampling],
     width: u32,
 ) {
     let (truth, noise) = (&reference.truth, &reference.error);
@@ -283,13 +285,18 @@ fn debug_worst(
     order.sort_by(|&a, &b| error[b].abs().total_cmp(&error[a].abs()));
     for &i in order.iter().take(20) {
         eprintln!(
-            "  worst pixel {i} ({}, {}): {:.3} K, material {}, reference {:.2} K, noise {:.3}",
+            "  worst pixel {i} ({}, {}): {:.3} K, material {}, reference {:.2} K, noise {:.3}; \
+             {} rays, sigma {:.3} K, levels {:#b}{}",
             i as u32 % width,
             i as u32 / width,
             error[i],
             material[i],
             truth[i],
-            noise[i]
+            noise[i],
+            sampling[i].rays,
+            sampling[i].sigma_k,
+            sampling[i].levels,
+            if sampling[i].capped { ", capped" } else { "" }
         );
     }
 }
