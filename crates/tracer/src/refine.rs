@@ -113,6 +113,11 @@ pub struct PixelSampling {
     /// its rounds (the sky-view rays' noise included); 0 for a pixel that kept its centre
     /// ray.
     pub sigma_k: f32,
+    /// The geometric part of [`PixelSampling::sigma_k`], K: the last level's rounds read
+    /// with the hemispheric sky in place of the sky-view rays, what refinement's stopping
+    /// test holds to its target (the rest is the sky-view rays' noise, which a target does
+    /// not scale); 0 for a pixel that kept its centre ray.
+    pub geometric_sigma_k: f32,
     /// Rays traced for the pixel, its centre ray included.
     pub rays: u32,
     /// Refinement ended at the largest side with σ above the target.
@@ -150,6 +155,7 @@ impl PixelSampling {
         let path = t.path_radiance_w_m2_sr;
         Self {
             sigma_k: 0.0,
+            geometric_sigma_k: 0.0,
             rays: 1,
             capped: false,
             levels: 0,
@@ -525,6 +531,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                     mean,
                     PixelSampling {
                         sigma_k: sigma_k as f32,
+                        geometric_sigma_k: calm_sigma_k as f32,
                         rays,
                         capped: !reached,
                         levels,

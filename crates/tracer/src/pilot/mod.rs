@@ -418,8 +418,7 @@ fn frame_unreachable(
 ) -> TraceError {
     let reference: Combo = [0; MODELS];
     let floor_k = predict::reachable_floor_k(tolerance_k, |f| {
-        let scaled: Vec<f64> = trial.sigmas_k.iter().map(|s| s * f / tolerance_k).collect();
-        predict(&reference, &scaled)
+        predict(&reference, &trial.sigmas_scaled_k(f / tolerance_k))
     });
     report::unreachable_frame(
         [tolerance_k, percentile],

@@ -160,8 +160,10 @@ impl PixelTerms {
 
 /// The smallest tolerance the frame's predicted percentile keeps, K: the fixed point of
 /// `predict_at(F) = F`, where `predict_at(F)` is the percentile predicted at a tolerance of
-/// F. Refinement's standard errors are a share of the tolerance and the rest does not
-/// depend on it, so `predict_at` grows more slowly than F and the iteration from
+/// F. The geometric part of refinement's standard errors is a share of the tolerance and
+/// the rest (the sky-view rays' noise in them, a capped pixel's, every bias) does not
+/// depend on it ([`super::trial::Trial::sigmas_scaled_k`]), so `predict_at` grows more
+/// slowly than F and the iteration from
 /// `tolerance_k` converges (to a relative 1e-4 here, in at most 64 steps).
 pub(crate) fn reachable_floor_k(tolerance_k: f64, predict_at: impl Fn(f64) -> f64) -> f64 {
     let mut f = tolerance_k;

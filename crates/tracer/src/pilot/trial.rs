@@ -40,12 +40,33 @@ pub(crate) struct Trial {
     /// noise in it, capped pixels' included. What a refined pixel's error is predicted
     /// from ([`super::predict::RefinedSpread`]).
     pub sigmas_k: Vec<f64>,
+    /// The geometric part of each of [`Trial::sigmas_k`], K
+    /// ([`crate::refine::PixelSampling::geometric_sigma_k`]): what a target scales.
+    pub geometric_sigmas_k: Vec<f64>,
+    /// The target σ the trial refined to, K.
+    pub target_k: f64,
 }
 
 impl Trial {
     /// The largest standard error of a trial pixel, K (0 with none).
     pub(crate) fn worst_sigma_k(&self) -> f64 {
         self.sigmas_k.iter().copied().fold(0.0, f64::max)
+    }
+
+    /// The trial's standard errors, K, as a refinement whose target is `scale` times this
+    /// one's would leave them: the geometric part scaled (but a capped pixel's, over the
+    /// target, which the cap and not the target set), the sky-view rays' noise (the rest,
+    /// in quadrature) as it is.
+    pub(crate) fn sigmas_scaled_k(&self, scale: f64) -> Vec<f64> {
+        self.sigmas_k
+            .iter()
+            .zip(&self.geometric_sigmas_k)
+            .map(|(&s, &g)| {
+                let g = g.min(s);
+                let scaled = if g > self.target_k { g } else { g * scale };
+                (scaled * scaled + (s * s - g * g)).sqrt()
+            })
+            .collect()
     }
 }
 
@@ -179,7 +200,36 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 / pixels as f64,
             capped_share: capped.len() as f64 / pixels as f64,
             capped_sigma_k: capped,
+            target_k: refinement.target_k,
             sigmas_k: results.iter().map(|s| f64::from(s.sigma_k)).collect(),
+            geometric_sigmas_k: results
+                .iter()
+                .map(|s| f64::from(s.geometric_sigma_k))
+                .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_looser_target_scales_the_geometric_part_alone() {
+        // Pixels of σ 0.05 K, all geometric; 0.05 K, 0.03 K of it geometric (0.04 K of
+        // sky-view rays' noise); a capped one of 0.5 K, over the 0.1 K target.
+        let trial = Trial {
+            sigmas_k: vec![0.05, 0.05, 0.5],
+            geometric_sigmas_k: vec![0.05, 0.03, 0.5],
+            target_k: 0.1,
+            ..Trial::default()
+        };
+        let s = trial.sigmas_scaled_k(2.0);
+        assert!((s[0] - 0.1).abs() < 1e-12, "{s:?}");
+        assert!((s[1] - (0.06_f64.powi(2) + 0.04_f64.powi(2)).sqrt()).abs() < 1e-12);
+        assert!((s[2] - 0.5).abs() < 1e-12);
+        for (a, b) in trial.sigmas_scaled_k(1.0).iter().zip(&trial.sigmas_k) {
+            assert!((a - b).abs() < 1e-15, "{a} {b}");
         }
     }
 }
