@@ -66,32 +66,48 @@ fn edge_pixels_reach_their_exact_value_within_the_error_they_report() {
     );
 }
 
+/// The nadir view the thin-pole and sliver tests share: 100 m up, 21 × 11 pixels over
+/// 21 × 11°.
+const NADIR_HEIGHT_M: f64 = 100.0;
+const NADIR_PIXELS: [u32; 2] = [21, 11];
+const NADIR_FOV_DEG: [f64; 2] = [21.0, 11.0];
+
+fn nadir_camera() -> Camera {
+    Camera::from_view(&View::Legacy {
+        position_m: [0.0, 0.0, NADIR_HEIGHT_M],
+        pixels: NADIR_PIXELS,
+        omega_phi_kappa_deg: [0.0; 3],
+        fov_deg: NADIR_FOV_DEG,
+        gain_dc_per_k: None,
+    })
+    .unwrap()
+}
+
+/// Ground x of the nadir view's pixel column `c`'s left edge, m (the camera's x runs east,
+/// column 0 west; fractions of a column are linear on the ground).
+fn column_x(c: f64) -> f64 {
+    let half = NADIR_HEIGHT_M * (NADIR_FOV_DEG[0] / 2.0).to_radians().tan();
+    -half + c * 2.0 * half / f64::from(NADIR_PIXELS[0])
+}
+
+/// The index of the nadir view's pixel (`col`, `row`).
+fn nadir_at(col: u32, row: u32) -> usize {
+    (row * NADIR_PIXELS[0] + col) as usize
+}
+
 #[test]
 fn a_pole_thinner_than_a_pixel_between_the_centre_rays_is_found_and_measured() {
     // A nadir camera over cold ground (0 K: black) sees a hot strip (400 K) a quarter of a
     // pixel wide, lying in the left part of pixel column 10: no centre ray touches it.
-    let height = 100.0;
-    let pixels = [21, 11];
-    let fov = [21.0_f64, 11.0];
-    let pitch = 2.0 * height * (fov[0] / 2.0).to_radians().tan() / f64::from(pixels[0]);
-    // Ground x of pixel column c's left edge (the camera's x runs east, column 0 west).
-    let column_x = |c: f64| -height * (fov[0] / 2.0).to_radians().tan() + c * pitch;
     let (x0, x1) = (column_x(10.05), column_x(10.30));
     let ground = ground_quad([-100.0, -100.0], [100.0, 100.0], 0.0);
     let strip = ground_quad([x0, -30.0], [x1, 30.0], 0.01);
     let scene = raw_scene(&[(&ground, 1, 0.0), (&strip, 2, 400.0)]);
     let materials = grey_materials(&[(1, 1.0, 0.0), (2, 1.0, 0.0)]);
     let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default()).unwrap();
-    let camera = Camera::from_view(&View::Legacy {
-        position_m: [0.0, 0.0, height],
-        pixels,
-        omega_phi_kappa_deg: [0.0; 3],
-        fov_deg: fov,
-        gain_dc_per_k: None,
-    })
-    .unwrap();
+    let camera = nadir_camera();
     let thin = tracer.thin_pixels(&camera);
-    let at = |col: u32, row: u32| (row * pixels[0] + col) as usize;
+    let at = nadir_at;
     assert!(thin[at(10, 5)] && !thin[at(3, 5)]);
     // Centre rays alone miss it: the row reads black.
     let plain = tracer
@@ -266,11 +282,6 @@ fn the_horizon_inside_the_top_row_is_found_and_measured() {
 /// never a few kelvin off with a small σ.
 #[test]
 fn a_sliver_along_the_border_that_the_rays_missed_is_not_taken_as_converged() {
-    let height = 100.0;
-    let pixels = [21, 11];
-    let fov = [21.0_f64, 11.0];
-    let pitch = 2.0 * height * (fov[0] / 2.0).to_radians().tan() / f64::from(pixels[0]);
-    let column_x = |c: f64| -height * (fov[0] / 2.0).to_radians().tan() + c * pitch;
     let sliver = 2e-4;
     let plate = ground_quad(
         [column_x(5.0), -30.0],
@@ -282,15 +293,8 @@ fn a_sliver_along_the_border_that_the_rays_missed_is_not_taken_as_converged() {
     let scene = raw_scene(&[(&plate, 1, 1300.0), (&cool, 2, 300.0), (&warm, 3, 310.0)]);
     let materials = grey_materials(&[(1, 1.0, 0.0), (2, 1.0, 0.0), (3, 1.0, 0.0)]);
     let tracer = Tracer::new(&scene, &materials, TotalRadiance, Vacuum::default()).unwrap();
-    let camera = Camera::from_view(&View::Legacy {
-        position_m: [0.0, 0.0, height],
-        pixels,
-        omega_phi_kappa_deg: [0.0; 3],
-        fov_deg: fov,
-        gain_dc_per_k: None,
-    })
-    .unwrap();
-    let at = |col: u32, row: u32| (row * pixels[0] + col) as usize;
+    let camera = nadir_camera();
+    let at = nadir_at;
     assert!(
         !tracer.thin_pixels(&camera)[at(10, 5)],
         "found by its edge, not as thin"
