@@ -55,8 +55,9 @@ impl Holding {
                 best = Some(held);
             }
         }
-        let &(cheapest, cost, _) = best?;
-        let mut chosen = best?;
+        let best = best?;
+        let (cheapest, cost) = (best.0, best.1);
+        let mut chosen = best;
         for held in &self.0 {
             let (combo, c, _) = held;
             let as_accurate = combo.iter().zip(&cheapest).all(|(a, b)| a <= b);
