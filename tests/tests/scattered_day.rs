@@ -8,8 +8,9 @@
 //! those rows as rows of its own. The first table read for each of those suns
 //! (`SunlitPaths::at_zenith`, which interpolates between its suns) is compared with the
 //! second's scattered sunlight, on lines of sight away from the sun and, apart, within
-//! 15° of it (the aureole); the errors are printed and held to the bounds
-//! `docs/accuracy.md` states (the floor of 0.5 % is not met: see there). The same
+//! 15° of it (the aureole), the build's measured phase function divided out of each node
+//! (`SpectralSolar::phase`); the errors are printed and held to the bounds
+//! `docs/accuracy.md` states: 0.5 % away from the sun, 2 % within 15° of it. The same
 //! with every other row left out (rows 10° apart) is printed: what a coarser scattered
 //! grid would cost in accuracy.
 //!
@@ -228,14 +229,31 @@ fn the_scattered_sunlight_between_the_rows_of_one_build_is_lowtran7s_for_that_su
         println!("{z:5.1} | {} | {}", pc(fine), pc(coarse));
         worst_seen.push((z, fine[0], fine[2]));
     }
-    // The bounds docs/accuracy.md states, above the floor of 0.5 % this interpolation
-    // does not meet with rows 5 deg apart: 3 % of the scattered sunlight away from the
-    // sun, 15 % within AUREOLE_DEG of it (where the sun's own aureole crosses the line of
-    // sight between two rows).
+    // The bounds docs/accuracy.md states with rows 5 deg apart: 0.5 % of the scattered
+    // sunlight away from the sun (the floor, at every sun here, below 10 deg of elevation
+    // too), 2 % within AUREOLE_DEG of it (where the sun's own aureole crosses the line of
+    // sight between two rows: the phase function divided out, what is left is the
+    // aureole's mixture of layers the one measured at the node's altitude does not hold).
     for (z, away, near) in worst_seen {
-        assert!(away < 0.03, "the sun at {z} deg: {away} away from the sun");
-        assert!(near < 0.15, "the sun at {z} deg: {near} near the sun");
+        assert!(away < 0.005, "the sun at {z} deg: {away} away from the sun");
+        assert!(near < 0.02, "the sun at {z} deg: {near} near the sun");
     }
+    // The build measured the phase function at each of the sun's altitudes, on the sun
+    // more than 3 times what it is 10 deg away (LOWTRAN7's rural aerosol's forward peak).
+    let phase = day.solar.as_ref().unwrap().phase.as_ref().unwrap();
+    let at = |deg: f64| {
+        let k = phase
+            .scattering_deg
+            .iter()
+            .position(|&t| (t - deg).abs() < 1e-9)
+            .unwrap();
+        let n = day.grid.points.len();
+        phase.scattered_w_m2_sr_per_unit_per_m[k * n..(k + 1) * n]
+            .iter()
+            .map(|&v| f64::from(v))
+            .sum::<f64>()
+    };
+    assert!(at(0.0) > 3.0 * at(10.0), "{} {}", at(0.0), at(10.0));
     // A sun outside the table's suns is refused, naming them.
     let e = SunlitPaths::at_zenith(&day, LO_UM, HI_UM, |_| 1.0, 12.0)
         .unwrap_err()
@@ -249,8 +267,8 @@ fn the_scattered_sunlight_between_the_rows_of_one_build_is_lowtran7s_for_that_su
 /// sun between the day table's rows. The scattered part of the pixel's path radiance (the
 /// probe's `L_u` by day less the same at night) is the day table's interpolation at the
 /// frame's sun (`SunlitPaths::at_zenith`), not a row's; and it lies within the
-/// interpolation's stated 3 % of what the tracer gives through the table that holds that
-/// sun as a row of its own.
+/// interpolation's stated 0.5 % of what the tracer gives through the table that holds
+/// that sun as a row of its own.
 fn the_tracer_reads_the_days_table_at_the_frames_sun(dir: &Path, day: &SpectralAtmosphere) {
     let (day_spa, exact_spa) = (dir.join("day.spa"), dir.join("exact.spa"));
     let scene = plate(dir, 0.0);
@@ -277,6 +295,6 @@ fn the_tracer_reads_the_days_table_at_the_frames_sun(dir: &Path, day: &SpectralA
             100.0 * (traced - exact) / exact
         );
         assert!((traced - read).abs() <= 1e-4 * read, "{traced} {read}");
-        assert!((traced - exact).abs() <= 0.03 * exact, "{traced} {exact}");
+        assert!((traced - exact).abs() <= 0.005 * exact, "{traced} {exact}");
     }
 }

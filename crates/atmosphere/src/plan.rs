@@ -32,10 +32,12 @@ use crate::error::{AtmosphereError, AtmosphereErrorKind};
 mod assemble;
 mod deck;
 mod outputs;
+mod phase;
 
 pub use assemble::*;
 pub use deck::*;
 pub use outputs::*;
+pub use phase::{PhaseSlab, SCATTERING_DEG, slab as phase_slab};
 
 /// The built-ins' slant observer altitudes, metres (the grid extends past 3 km as needed).
 pub const SLANT_ALTITUDE_M: [f64; 19] = [
@@ -526,6 +528,15 @@ pub enum Path {
         /// Day of the year, 1–366.
         day_of_year: u16,
     },
+    /// A phase-function run of a day's table: a short slab in the layer above
+    /// `altitude_m` that scatters the sun by `scattering_deg` (`phase::slab`), for the
+    /// interpolation between the table's suns.
+    Phase {
+        /// The layer's bottom, metres (one of the sun's altitudes).
+        altitude_m: f64,
+        /// The scattering angle, degrees.
+        scattering_deg: f64,
+    },
 }
 
 type Key = (u8, i64, i64, i64, i64);
@@ -587,6 +598,11 @@ fn key(p: &Path) -> Key {
             zenith_deg,
             azimuth_deg,
         } => (6, q(observer_m), q(target_m), q(zenith_deg), q(azimuth_deg)),
+        // Last: a plan without them numbers as before.
+        Path::Phase {
+            altitude_m,
+            scattering_deg,
+        } => (7, q(altitude_m), q(scattering_deg), 0, 0),
     }
 }
 
@@ -696,6 +712,7 @@ fn wanted(plan: &AtmospherePlan) -> Vec<Path> {
     {
         out.extend(slab_paths(plan, Some(&sun.relative_azimuth_deg)));
     }
+    out.extend(phase::phase_paths(plan));
     out
 }
 

@@ -284,6 +284,7 @@ mod tests {
                 sky_scattered_w_m2_sr_per_unit: Vec::new(),
                 further_suns: Vec::new(),
                 apparent_zenith_deg: Vec::new(),
+                phase: None,
             }),
             slabs: Vec::new(),
         }
@@ -351,6 +352,7 @@ mod tests {
             sky_scattered_w_m2_sr_per_unit: Vec::new(),
             further_suns: Vec::new(),
             apparent_zenith_deg: Vec::new(),
+            phase: None,
         });
         atm.validate().unwrap();
         let sun = DirectSun::new(&atm, 4.0, 5.0, |_| 1.0).unwrap();

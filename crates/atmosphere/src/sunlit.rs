@@ -215,7 +215,7 @@ impl SunlitPaths {
                 band(&solar.sky_scattered_w_m2_sr_per_unit),
             )
         } else {
-            let (path, sky) = between::scattered_between(solar, zenith_deg, &band)?;
+            let (path, sky) = between::scattered_between(solar, slant, zenith_deg, &band)?;
             (zenith_deg, path, sky)
         };
         Ok(Self {

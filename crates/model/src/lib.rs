@@ -88,7 +88,7 @@ pub use raw::{MixTemperatures, RawFacet, RawScene};
 pub use regions::{PixelBox, ReferenceColumn, ReferenceValue, Region, RegionSet};
 pub use scene::{FacetOverride, FacetSelection, Placement, Scene, Terrain};
 pub use spectral::{
-    CorrectionPaths, ProfileLevel, SolarBeam, SpectralAtmosphere, SpectralAxis, SpectralGrid,
-    SpectralSlab, SpectralSlabTable, SpectralSlantTables, SpectralSolar,
+    CorrectionPaths, ProfileLevel, SolarBeam, SolarPhase, SpectralAtmosphere, SpectralAxis,
+    SpectralGrid, SpectralSlab, SpectralSlabTable, SpectralSlantTables, SpectralSolar,
 };
 pub use view::{LengthUnit, View};

@@ -169,6 +169,27 @@ pub struct SpectralSolar {
     /// beams were refracted).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub apparent_zenith_deg: Vec<f64>,
+    /// The sunlight the air scatters by scattering angle, as LOWTRAN7 scatters it (its
+    /// aerosols' phase functions), measured by the build for a table of several suns with
+    /// scattered-sunlight tables. A sun between the rows divides each node's scattered
+    /// sunlight by it before interpolating, and multiplies back
+    /// (`irsig_atmosphere::sunlit`). None: the nodes are interpolated as they are.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub phase: Option<SolarPhase>,
+}
+
+/// The sunlight single-scattered by a short path at each scattering angle, per metre of
+/// path: the shape of the phase function LOWTRAN7 applies in the layer above each altitude
+/// of a [`SpectralSolar`] table (`altitude_m`), for one sun (its beam's strength is a
+/// factor common to every angle, which a ratio of two angles cancels).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolarPhase {
+    /// Scattering angles, degrees, increasing within 0 to 180.
+    pub scattering_deg: Vec<f64>,
+    /// W m⁻² sr⁻¹ per grid unit per metre, `[altitude][angle]` spectra on the table's
+    /// `altitude_m` and `scattering_deg`.
+    pub scattered_w_m2_sr_per_unit_per_m: Vec<f32>,
 }
 
 /// The direct beam of one more sun of a [`SpectralSolar`] table: its zenith angle and the
@@ -645,7 +666,34 @@ fn check_solar(
         1.0,
     )?;
     check_further_suns(s, n)?;
-    check_scattered(s, slant, n)
+    check_scattered(s, slant, n)?;
+    check_phase(s, n)
+}
+
+/// The measured phase function of a solar table, when it has one: scattering angles
+/// increasing within 0–180°, one spectrum per altitude and angle, and only beside
+/// scattered-sunlight tables (it serves their interpolation alone).
+fn check_phase(s: &SpectralSolar, n: usize) -> Result<(), ModelError> {
+    let Some(p) = &s.phase else {
+        return Ok(());
+    };
+    if s.relative_azimuth_deg.is_empty() {
+        return Err(ModelError::new(
+            "solar.phase",
+            ModelErrorKind::Other(
+                "a phase function without scattered-sunlight tables (solar.relative_azimuth_deg)"
+                    .into(),
+            ),
+        ));
+    }
+    check_axis("solar.phase.scattering_deg", &p.scattering_deg, 180.0)?;
+    check_spectra(
+        "solar.phase.scattered_w_m2_sr_per_unit_per_m",
+        &p.scattered_w_m2_sr_per_unit_per_m,
+        s.altitude_m.len() * p.scattering_deg.len(),
+        n,
+        SPECTRAL_FLUX_MAX,
+    )
 }
 
 impl SpectralAtmosphere {

@@ -133,7 +133,10 @@ fn check_lengths(all: &[Path], spectra: &[PathSpectra], n: usize) -> Result<(), 
                 "an extraterrestrial solar irradiance (a direct solar irradiance run, IEMSCT = 3)",
                 s.extraterrestrial_w_m2_per_cm.len(),
             ),
-            Path::DownSunlit { .. } | Path::UpSunlit { .. } | Path::SlabSunlit { .. } => (
+            Path::DownSunlit { .. }
+            | Path::UpSunlit { .. }
+            | Path::SlabSunlit { .. }
+            | Path::Phase { .. } => (
                 "a scattered solar radiance (a solar scattering run, IEMSCT = 2)",
                 s.scattered_w_m2_sr_per_cm.len(),
             ),
@@ -312,6 +315,7 @@ impl<'a> Runs<'a> {
             further_suns,
             // The build records the angles LOWTRAN7 ran, which the plan does not know.
             apparent_zenith_deg: Vec::new(),
+            phase: super::phase::assemble(plan, &scattered),
             relative_azimuth_deg: sun.relative_azimuth_deg.clone(),
             path_scattered_w_m2_sr_per_unit: flat(
                 sunlit_slant_paths(plan, sun, sun.zenith_deg),

@@ -193,6 +193,25 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
                 len: 0,
             },
         ),
+        Path::Phase {
+            altitude_m,
+            scattering_deg,
+        } => {
+            let s = super::phase::slab(altitude_m, scattering_deg, plan.path_end_m);
+            (
+                2,
+                1,
+                Card3::Path {
+                    h1_km: round3(s.observer_m / 1000.0),
+                    h2_km: round3(s.target_m / 1000.0),
+                    angle_deg: round3(s.zenith_deg),
+                    range_km: 0.0,
+                    beta_deg: 0.0,
+                    ro_km: 0.0,
+                    len: 0,
+                },
+            )
+        }
         Path::Sun {
             altitude_m,
             zenith_deg,
@@ -236,6 +255,14 @@ pub fn deck(plan: &AtmospherePlan, path: &Path) -> Result<CardDeck, AtmosphereEr
         } => Some((azimuth_deg, Some(sun_zenith_deg))),
         // A slab table holds the plan's one sun's scattered sunlight.
         Path::SlabSunlit { azimuth_deg, .. } => Some((azimuth_deg, None)),
+        // The phase function's runs have a sun of their own.
+        Path::Phase {
+            altitude_m,
+            scattering_deg,
+        } => Some((
+            super::phase::slab(altitude_m, scattering_deg, plan.path_end_m).azimuth_deg,
+            Some(super::phase::SUN_ZENITH_DEG),
+        )),
         _ => None,
     };
     if let (Some((azimuth_deg, sun_zenith_deg)), Some(sun)) = (lit, &plan.sun) {

@@ -29,9 +29,10 @@ impl RunKind {
     pub fn of(path: &Path) -> Self {
         match path {
             Path::Sun { .. } => Self::Solar,
-            Path::DownSunlit { .. } | Path::UpSunlit { .. } | Path::SlabSunlit { .. } => {
-                Self::Scattered
-            }
+            Path::DownSunlit { .. }
+            | Path::UpSunlit { .. }
+            | Path::SlabSunlit { .. }
+            | Path::Phase { .. } => Self::Scattered,
             Path::Down { .. } | Path::Up { .. } | Path::Slab { .. } => Self::Thermal,
         }
     }

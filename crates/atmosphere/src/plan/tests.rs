@@ -125,10 +125,13 @@ fn several_suns_with_scattering_run_every_sunlit_path_once_per_sun() {
         sunlit,
         single.len() - paths(&night).len() - sun.altitude_m.len()
     );
+    // And once, the phase function at each of the sun's altitudes: a lone sun has none.
+    let phase = sun.altitude_m.len() * SCATTERING_DEG.len();
     assert_eq!(
         all.len(),
-        paths(&night).len() + 3 * (sun.altitude_m.len() + sunlit)
+        paths(&night).len() + 3 * (sun.altitude_m.len() + sunlit) + phase
     );
+    assert!(!single.iter().any(|p| matches!(p, Path::Phase { .. })));
     for z in [30.0, 45.0, 60.0] {
         let lit = all
             .iter()
@@ -160,6 +163,48 @@ fn several_suns_with_scattering_run_every_sunlit_path_once_per_sun() {
         panic!("a full deck")
     };
     assert_eq!(c.geometry.scattering.as_ref().unwrap().card3a2[1], 45.0);
+    // The phase function's runs come last, each a slab of 100 m above its altitude lit
+    // by a sun of their own at 45 deg: on the sun (a line of sight up at 45 deg toward
+    // its azimuth) and straight back (down at nadir 45 deg away from it).
+    let phases: Vec<&Path> = all
+        .iter()
+        .filter(|p| matches!(p, Path::Phase { .. }))
+        .collect();
+    assert_eq!(phases.len(), phase);
+    assert!(matches!(all[all.len() - phase], Path::Phase { .. }));
+    let low = sun.altitude_m[0].max(day.path_end_m);
+    for (theta, h1, h2, angle, azimuth) in [
+        (0.0, low, low + 100.0, 45.0, 0.0),
+        (90.0, low, low + 100.0, 45.0, 180.0),
+        (180.0, low + 100.0, low, 135.0, 180.0),
+    ] {
+        let p = Path::Phase {
+            altitude_m: sun.altitude_m[0],
+            scattering_deg: theta,
+        };
+        assert!(phases.contains(&&p), "{p:?}");
+        let d = deck(&day, &p).unwrap();
+        let Step::Full(c) = &d.steps[0] else {
+            panic!("a full deck")
+        };
+        assert_eq!(c.card1.iemsct, 2, "{theta}");
+        let Card3::Path {
+            h1_km,
+            h2_km,
+            angle_deg,
+            ..
+        } = c.geometry.card3
+        else {
+            panic!("{theta}: {:?}", c.geometry.card3)
+        };
+        assert_eq!(
+            (h1_km, h2_km, angle_deg),
+            (h1 / 1000.0, h2 / 1000.0, angle),
+            "{theta}"
+        );
+        let sc = c.geometry.scattering.as_ref().unwrap();
+        assert_eq!((sc.card3a2[0], sc.card3a2[1]), (azimuth, 45.0), "{theta}");
+    }
     // A slab table holds one sun's scattered sunlight: slabs beside several are refused,
     // either way round.
     let mut slabbed = day.clone();

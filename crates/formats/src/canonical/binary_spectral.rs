@@ -23,7 +23,8 @@
 //! `solar.relative_azimuth_deg` is not empty `solar.path_scattered_w_m2_sr_per_unit`,
 //! `solar.sky_scattered_w_m2_sr_per_unit`, then each of `solar.further_suns`'
 //! `transmission` (and, when `solar.relative_azimuth_deg` is not empty, its
-//! `path_scattered_w_m2_sr_per_unit` and `sky_scattered_w_m2_sr_per_unit`), then for each
+//! `path_scattered_w_m2_sr_per_unit` and `sky_scattered_w_m2_sr_per_unit`), then
+//! `solar.phase.scattered_w_m2_sr_per_unit_per_m` when `solar.phase` is there, then for each
 //! of `slabs`, its `down` and its
 //! `up` table when present, `transmission`, `path_radiance_w_m2_sr_per_unit` and, when
 //! `solar.relative_azimuth_deg` is not empty, `scattered_w_m2_sr_per_unit`. (A file
@@ -87,6 +88,9 @@ fn tables(a: &SpectralAtmosphere) -> Vec<&Vec<f32>> {
                 ]);
             }
         }
+        if let Some(p) = &s.phase {
+            t.push(&p.scattered_w_m2_sr_per_unit_per_m);
+        }
     }
     let lit = a
         .solar
@@ -143,6 +147,9 @@ fn tables_mut(a: &mut SpectralAtmosphere) -> Vec<&mut Vec<f32>> {
                     &mut b.sky_scattered_w_m2_sr_per_unit,
                 ]);
             }
+        }
+        if let Some(p) = &mut s.phase {
+            t.push(&mut p.scattered_w_m2_sr_per_unit_per_m);
         }
     }
     for table in a
@@ -248,6 +255,12 @@ fn expected_spectra(a: &SpectralAtmosphere) -> Result<Vec<(String, usize)>, (Str
                     ),
                 ]);
             }
+        }
+        if let Some(p) = &s.phase {
+            t.push((
+                "solar.phase.scattered_w_m2_sr_per_unit_per_m".to_owned(),
+                product(s.altitude_m.len(), p.scattering_deg.len()),
+            ));
         }
     }
     for (i, slab) in a.slabs.iter().enumerate() {
@@ -601,6 +614,11 @@ pub fn decode(file: &str, bytes: &[u8]) -> Result<SpectralAtmosphere, ParseError
         (
             "solar.sky_scattered_w_m2_sr_per_unit",
             so.map_or(0, |s| s.sky_scattered_w_m2_sr_per_unit.len()),
+        ),
+        (
+            "solar.phase.scattered_w_m2_sr_per_unit_per_m",
+            so.and_then(|s| s.phase.as_ref())
+                .map_or(0, |p| p.scattered_w_m2_sr_per_unit_per_m.len()),
         ),
     ];
     let slab_values = atm.slabs.iter().enumerate().flat_map(|(i, s)| {

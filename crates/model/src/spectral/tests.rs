@@ -154,6 +154,7 @@ fn the_solar_table_is_checked_like_the_others() {
         sky_scattered_w_m2_sr_per_unit: Vec::new(),
         further_suns: Vec::new(),
         apparent_zenith_deg: Vec::new(),
+        phase: None,
     };
     let mut a = small();
     a.solar = Some(sun.clone());

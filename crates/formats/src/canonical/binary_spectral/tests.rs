@@ -91,6 +91,7 @@ fn a_solar_table_follows_the_others_and_round_trips() {
         sky_scattered_w_m2_sr_per_unit: Vec::new(),
         further_suns: Vec::new(),
         apparent_zenith_deg: Vec::new(),
+        phase: None,
     });
     let bytes = encode(&a).unwrap();
     assert_eq!(decode("a.spa", &bytes).unwrap(), a);
@@ -121,6 +122,7 @@ fn further_suns_follow_the_first_suns_tables_and_round_trip_in_both_versions() {
         sky_scattered_w_m2_sr_per_unit: Vec::new(),
         further_suns: Vec::new(),
         apparent_zenith_deg: Vec::new(),
+        phase: None,
     };
     a.solar = Some(first.clone());
     let one_sun = encode(&a).unwrap();
@@ -285,6 +287,7 @@ fn the_expected_counts_follow_the_tables_in_order() {
         sky_scattered_w_m2_sr_per_unit: vec![0.01; 24],
         further_suns: Vec::new(),
         apparent_zenith_deg: Vec::new(),
+        phase: None,
     });
     let own_row =
         |own: f32, away: f32| -> Vec<f32> { [away, away, away, away, own, own, own, own].to_vec() };
