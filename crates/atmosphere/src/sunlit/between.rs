@@ -472,6 +472,20 @@ mod tests {
         }
         // Without it, the sun crossing the line of sight between rows is missed.
         assert!(worst_without > 0.1, "{worst_without}");
+        // A phase function with no light at some angle (a band the air does not scatter
+        // in) divides nothing out: the nodes are interpolated as they are.
+        let mut dark = with.clone();
+        let p = dark.solar.as_mut().unwrap().phase.as_mut().unwrap();
+        p.scattered_w_m2_sr_per_unit_per_m[..5].fill(0.0);
+        dark.validate().unwrap();
+        for z in [47.3, 61.0] {
+            let read = |atm: &SpectralAtmosphere| {
+                SunlitPaths::at_zenith(atm, 3.0, 5.0, |_| 1.0, z)
+                    .unwrap()
+                    .sky_radiance(0.0, 60.0, 0.0)
+            };
+            assert_eq!(read(&dark), read(&without), "{z}");
+        }
         // A slant node straight down is 180 deg less the sun's angle from the sun, and
         // takes the same division (its sunlight is Beer's law alone: the factor cancels
         // only where the rows carry it, so it is checked to be followed, not exact).

@@ -292,6 +292,54 @@ fn the_solar_table_is_checked_like_the_others() {
     }
     a.solar = Some(lit.clone());
     a.validate().unwrap();
+    // The measured phase function: one spectrum per altitude and angle, the angles
+    // increasing within 0-180, and only beside scattered-sunlight tables.
+    let mut phased = lit.clone();
+    phased.phase = Some(SolarPhase {
+        scattering_deg: vec![0.0, 10.0, 180.0],
+        scattered_w_m2_sr_per_unit_per_m: vec![1e-6; 2 * 3 * 3],
+    });
+    a.solar = Some(phased.clone());
+    a.validate().unwrap();
+    type BreakPhase = dyn Fn(&mut SolarPhase);
+    let phase_cases: [(&BreakPhase, &str); 5] = [
+        (
+            &|p| {
+                p.scattered_w_m2_sr_per_unit_per_m.pop();
+            },
+            "solar.phase.scattered_w_m2_sr_per_unit_per_m",
+        ),
+        (
+            &|p| p.scattered_w_m2_sr_per_unit_per_m[5] = f32::NAN,
+            "solar.phase.scattered_w_m2_sr_per_unit_per_m[1][2]",
+        ),
+        (
+            &|p| p.scattering_deg[2] = 180.5,
+            "solar.phase.scattering_deg[2]",
+        ),
+        (
+            &|p| p.scattering_deg[1] = 0.0,
+            "solar.phase.scattering_deg[1]",
+        ),
+        (&|p| p.scattering_deg.clear(), "solar.phase.scattering_deg"),
+    ];
+    for (break_it, path) in phase_cases {
+        let mut s = phased.clone();
+        break_it(s.phase.as_mut().unwrap());
+        a.solar = Some(s);
+        let e = a.validate().unwrap_err();
+        assert_eq!(e.path, path, "{e}");
+    }
+    let mut unlit = phased.clone();
+    unlit.relative_azimuth_deg.clear();
+    unlit.path_scattered_w_m2_sr_per_unit.clear();
+    unlit.sky_scattered_w_m2_sr_per_unit.clear();
+    for b in &mut unlit.further_suns {
+        b.path_scattered_w_m2_sr_per_unit.clear();
+        b.sky_scattered_w_m2_sr_per_unit.clear();
+    }
+    a.solar = Some(unlit);
+    assert_eq!(a.validate().unwrap_err().path, "solar.phase");
     let mut short = lit.clone();
     short.further_suns[1].sky_scattered_w_m2_sr_per_unit.pop();
     a.solar = Some(short);
