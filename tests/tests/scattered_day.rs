@@ -232,8 +232,8 @@ fn the_scattered_sunlight_between_the_rows_of_one_build_is_lowtran7s_for_that_su
     // The bounds docs/accuracy.md states with rows 5 deg apart: 0.5 % of the scattered
     // sunlight away from the sun (the floor, at every sun here, below 10 deg of elevation
     // too), 2 % within AUREOLE_DEG of it (where the sun's own aureole crosses the line of
-    // sight between two rows: the phase function divided out, what is left is the
-    // aureole's mixture of layers the one measured at the node's altitude does not hold).
+    // sight between two rows: the phase function divided out, what is left is a dip of a
+    // few per cent exactly on the sun whose cause docs/accuracy.md says was not found).
     for (z, away, near) in worst_seen {
         assert!(away < 0.005, "the sun at {z} deg: {away} away from the sun");
         assert!(near < 0.02, "the sun at {z} deg: {near} near the sun");
