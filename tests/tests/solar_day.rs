@@ -334,6 +334,32 @@ fn a_plan_of_a_days_times_holds_every_lit_hours_sun_and_drops_the_night() {
     );
     // Each sun row: its beam at each altitude and every sunlit path.
     assert!(lit_runs >= lit_rows.len() * (lit_sun.altitude_m.len() + sunlit_per_sun));
+    // And the phase function's short runs at each of the sun's altitudes, which the plan's
+    // line on stderr counts.
+    let phase_runs = lit_sun.altitude_m.len() * irsig_atmosphere::plan::SCATTERING_DEG.len();
+    let again = bin("irsig-atmos")
+        .args(["plan", "--scene"])
+        .arg(dir.path().join("scene.raw"))
+        .args(["--view", "pipelines/quickstart/view.ron"])
+        .args([
+            "--atmosphere",
+            "us-std-1976",
+            "--sun-utc",
+            LIT_HOURS,
+            "--sun-scattering",
+        ])
+        .args(PLACE)
+        .arg("-o")
+        .arg(dir.path().join("lit-day-again.ron"))
+        .assert()
+        .success();
+    let said = String::from_utf8_lossy(&again.get_output().stderr).into_owned();
+    assert!(
+        said.contains(&format!(
+            "the aerosol's phase function at each altitude ({phase_runs} short runs"
+        )) && said.contains(&format!("{lit_runs} paths")),
+        "{said}"
+    );
     // Refused at the flag: an end before the start, a step of 0, several suns with the
     // scattered sunlight and slabs (a slab table holds one sun's), a day that has no lit
     // moment.

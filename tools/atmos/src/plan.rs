@@ -606,8 +606,10 @@ fn summary(plan: &AtmospherePlan, output: &Path, paths: usize, ground_z: f64) ->
         } else {
             format!(
                 ", and each sun's sunlight scattered into every slant and sky path at {} \
-                 azimuths",
-                s.relative_azimuth_deg.len()
+                 azimuths, and the aerosol's phase function at each altitude ({} short runs, \
+                 which the interpolation between the suns divides out)",
+                s.relative_azimuth_deg.len(),
+                s.altitude_m.len() * irsig_atmosphere::plan::SCATTERING_DEG.len()
             )
         };
         let zeniths = s.zeniths_deg();
