@@ -37,7 +37,7 @@ mod phase;
 pub use assemble::*;
 pub use deck::*;
 pub use outputs::*;
-pub use phase::{PhaseSlab, SCATTERING_DEG, slab as phase_slab};
+pub use phase::SCATTERING_DEG;
 
 /// The built-ins' slant observer altitudes, metres (the grid extends past 3 km as needed).
 pub const SLANT_ALTITUDE_M: [f64; 19] = [

@@ -21,7 +21,7 @@
 //! The scattered radiance divided by the path's length is the layer's phase function
 //! times a factor common to every angle (the beam's strength there).
 
-use irsig_model::{AtmospherePlan, PlanSun, SolarPhase};
+use irsig_model::{AtmospherePlan, SolarPhase};
 
 use super::Path;
 
@@ -97,28 +97,31 @@ pub fn slab(altitude_m: f64, scattering_deg: f64, path_end_m: f64) -> PhaseSlab 
     }
 }
 
-/// Whether `plan` runs the phase function: a sun with relative azimuths (scattered
-/// sunlight) and further suns to interpolate between.
-fn wants_phase(sun: &PlanSun) -> bool {
-    !(sun.relative_azimuth_deg.is_empty() || sun.further_zenith_deg.is_empty())
-}
-
-/// The phase-function runs of `plan`, `[altitude][angle]` over the sun's altitudes and
-/// [`SCATTERING_DEG`]; none when it does not run them.
-#[must_use]
-pub fn phase_paths(plan: &AtmospherePlan) -> Vec<Path> {
-    let Some(sun) = plan.sun.as_ref().filter(|s| wants_phase(s)) else {
+/// The layer bottoms and scattering angles of `plan`'s phase-function runs,
+/// `[altitude][angle]` over the sun's altitudes and [`SCATTERING_DEG`]: none without a sun
+/// that has relative azimuths (scattered sunlight) and further suns to interpolate between.
+fn runs(plan: &AtmospherePlan) -> Vec<(f64, f64)> {
+    let Some(sun) = plan
+        .sun
+        .as_ref()
+        .filter(|s| !(s.relative_azimuth_deg.is_empty() || s.further_zenith_deg.is_empty()))
+    else {
         return Vec::new();
     };
     sun.altitude_m
         .iter()
-        .flat_map(|&altitude_m| {
-            SCATTERING_DEG
-                .iter()
-                .map(move |&scattering_deg| Path::Phase {
-                    altitude_m,
-                    scattering_deg,
-                })
+        .flat_map(|&altitude_m| SCATTERING_DEG.iter().map(move |&t| (altitude_m, t)))
+        .collect()
+}
+
+/// The phase-function runs of `plan` ([`runs`]).
+#[must_use]
+pub fn phase_paths(plan: &AtmospherePlan) -> Vec<Path> {
+    runs(plan)
+        .into_iter()
+        .map(|(altitude_m, scattering_deg)| Path::Phase {
+            altitude_m,
+            scattering_deg,
         })
         .collect()
 }
@@ -130,22 +133,19 @@ pub(super) fn assemble(
     plan: &AtmospherePlan,
     scattered: &dyn Fn(Path) -> Vec<f32>,
 ) -> Option<SolarPhase> {
-    let paths = phase_paths(plan);
-    if paths.is_empty() {
+    let runs = runs(plan);
+    if runs.is_empty() {
         return None;
     }
     let mut values = Vec::new();
-    for p in paths {
-        let Path::Phase {
+    for (altitude_m, scattering_deg) in runs {
+        let length = slab(altitude_m, scattering_deg, plan.path_end_m).length_m;
+        let spectrum = scattered(Path::Phase {
             altitude_m,
             scattering_deg,
-        } = p
-        else {
-            continue;
-        };
-        let length = slab(altitude_m, scattering_deg, plan.path_end_m).length_m;
+        });
         #[allow(clippy::cast_possible_truncation)] // spectra are f32
-        values.extend(scattered(p).iter().map(|&v| (f64::from(v) / length) as f32));
+        values.extend(spectrum.iter().map(|&v| (f64::from(v) / length) as f32));
     }
     Some(SolarPhase {
         scattering_deg: SCATTERING_DEG.to_vec(),
