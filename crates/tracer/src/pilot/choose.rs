@@ -310,6 +310,8 @@ pub(crate) struct Pixels<'a> {
     pub(crate) residual_k: &'a [f64],
     /// Each class's residual's deterministic part, K.
     pub(crate) bounces_k: &'a [f64],
+    /// The sky-view rays' noise each class's refined pixels keep, K.
+    pub(crate) refined_noise_k: &'a [f64],
     /// Refinement's target σ as a share of the tolerance.
     pub(crate) target_share: f64,
     /// Each point's pixel is a refinement candidate.
@@ -318,8 +320,8 @@ pub(crate) struct Pixels<'a> {
 
 /// Whether `combo` holds: in every guaranteed class and over the frame ([`self`]), and
 /// every guaranteed class's pixels, with its residual (a refined pixel's with
-/// refinement's noise in place of the residual's), within the tolerance at the 90th
-/// percentile ([`super::predict`]).
+/// refinement's noise and the sky-view rays' it keeps in place of the residual's), within
+/// the tolerance at the 90th percentile ([`super::predict`]).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn holds(
     census: &Census,
@@ -349,6 +351,7 @@ pub(crate) fn holds(
                 b + pixels.bounces_k[c],
                 pixels.candidate[i],
                 pixels.target_share * tolerance_k,
+                pixels.refined_noise_k[c],
             ));
             // No model alone may change a point by more than the tolerance.
             if (0..MODELS).any(|k| error_of(m, combo, k) > tolerance_k) {

@@ -12,7 +12,8 @@
 //!
 //! So a class is held to the tolerance at its 90th percentile (at the pilot's confidence,
 //! [`super::stats::confident_rank`]) with each point's need, the 90th percentile of its
-//! pixel's error ([`need_k`]), refinement's target σ standing for its standard error; and
+//! pixel's error ([`need_k`]), refinement's target σ standing for its standard error's
+//! geometric part and the centre's sky-view noise over √8 for the rest; and
 //! the frame's percentile is predicted from the mixture of centre pixels, off by their bias
 //! and a normal of their class's Monte Carlo error, and refined pixels, off by their bias
 //! and a Student's t of the standard errors refinement left the trial's pixels at
@@ -40,6 +41,8 @@ pub(crate) struct PixelTerms {
     /// Each class's Monte Carlo standard error at the most rays on offer, K
     /// ([`Residual::sampling_sigma_k`]).
     pub(crate) sampling_sigma_k: Vec<f64>,
+    /// What of that noise each class's refined pixels keep, K ([`refined_noise_k`]).
+    pub(crate) refined_noise_k: Vec<f64>,
     /// Refinement's target σ as a share of the tolerance (0 without refinement).
     pub(crate) target_share: f64,
     /// Each point's pixel is refined: a refinement candidate, with refinement on offer.
@@ -64,6 +67,10 @@ impl PixelTerms {
         let residual_k: Vec<f64> = residual.iter().map(|r| r.k).collect();
         let bounces_k: Vec<f64> = residual.iter().map(|r| r.bounces_k).collect();
         let sampling_sigma_k: Vec<f64> = residual.iter().map(|r| r.sampling_sigma_k).collect();
+        let refined_noise: Vec<f64> = sampling_sigma_k
+            .iter()
+            .map(|&s| refined_noise_k(s))
+            .collect();
         let refines = space
             .supersampling
             .iter()
@@ -86,7 +93,7 @@ impl PixelTerms {
                 let candidates = points.iter().filter(|&&i| candidate[i]).count();
                 class_floor_k(
                     residual_k[c],
-                    bounces_k[c],
+                    (bounces_k[c], refined_noise[c]),
                     points.len(),
                     candidates,
                     target_share,
@@ -97,6 +104,7 @@ impl PixelTerms {
             residual_k,
             bounces_k,
             sampling_sigma_k,
+            refined_noise_k: refined_noise,
             target_share,
             candidate,
             class_floor_k,
@@ -116,6 +124,7 @@ impl PixelTerms {
         Pixels {
             residual_k: &self.residual_k,
             bounces_k: &self.bounces_k,
+            refined_noise_k: &self.refined_noise_k,
             target_share: self.target_share,
             candidate: &self.candidate,
         }
@@ -183,15 +192,31 @@ pub(crate) fn reachable_floor_k(tolerance_k: f64, predict_at: impl Fn(f64) -> f6
 /// What one point of a class needs of the tolerance, K: the 90th percentile of its pixel's
 /// error. A centre pixel's is its bias `bias_k` (the bound plus its class's whole
 /// residual, the Monte Carlo noise of the most rays in it); a refined pixel's is its bias
-/// `refined_bias_k` (the bound plus the residual's deterministic part: the sky-view rays'
-/// noise is averaged into refinement's own standard error) plus 1.645 times refinement's
-/// target σ `target_k`.
-pub(crate) fn need_k(bias_k: f64, refined_bias_k: f64, candidate: bool, target_k: f64) -> f64 {
+/// `refined_bias_k` (the bound plus the residual's deterministic part) plus 1.645 times
+/// its standard error: refinement's target σ `target_k` for the geometric part, which the
+/// stopping test holds, in quadrature with the sky-view rays' noise `refined_noise_k`,
+/// which it does not ([`refined_noise_k`]).
+pub(crate) fn need_k(
+    bias_k: f64,
+    refined_bias_k: f64,
+    candidate: bool,
+    target_k: f64,
+    refined_noise_k: f64,
+) -> f64 {
     if candidate {
-        refined_bias_k + P90_OF_NORMAL * target_k
+        refined_bias_k + P90_OF_NORMAL * target_k.hypot(refined_noise_k)
     } else {
         bias_k
     }
+}
+
+/// The sky-view and shadow rays' noise left in a refined pixel of a class whose centre
+/// pixels have `sampling_sigma_k` of it, K: every round of a level samples the hemisphere
+/// with at least the centre's rays ([`crate::refine::level_sky_view_rays`]), and the
+/// pixel is the mean of [`ROUNDS`] rounds, so at most σ/√ROUNDS (less where refinement
+/// goes on to finer levels).
+pub(crate) fn refined_noise_k(sampling_sigma_k: f64) -> f64 {
+    sampling_sigma_k / (ROUNDS as f64).sqrt()
 }
 
 /// Whether a class whose points need `needs` ([`need_k`]) holds at `tolerance_k`: their
@@ -202,22 +227,28 @@ pub(crate) fn class_holds(needs: &mut [f64], tolerance_k: f64) -> bool {
 }
 
 /// The smallest tolerance at which a class is held by the most accurate settings: each of
-/// its points holds from its own threshold (a centre pixel's its class's residual
-/// `residual_k`, a refined pixel's the residual's deterministic part `bounces_k` over
-/// `1 − 1.645·σ_t/T`, refinement's target σ being a fixed share `target_share` of the
-/// tolerance), and the class from the confident 90th percentile's rank of those thresholds
-/// (`candidates` of its `points` refined).
+/// its points holds from its own threshold, and the class from the confident 90th
+/// percentile's rank of those thresholds (`candidates` of its `points` refined). A centre
+/// pixel's threshold is its class's residual `residual_k`. A refined pixel's is the T at
+/// which its need ([`need_k`]) is T: the residual's deterministic part `bounces_k` = b plus
+/// a = 1.645 times the standard error √((sT)² + ν²), refinement's target σ being a fixed
+/// share s = `target_share` of the tolerance and ν the sky-view rays' noise
+/// `refined_noise_k`. Squared, (1 − a²s²)T² − 2bT + b² − a²ν² = 0, whose larger root is
+/// T = (b + a·√(s²b² + (1 − a²s²)ν²)) / (1 − a²s²); b/(1 − as) without noise. With
+/// a·s ≥ 1 the target alone is the tolerance: never held.
 pub(crate) fn class_floor_k(
     residual_k: f64,
-    bounces_k: f64,
+    (bounces_k, refined_noise_k): (f64, f64),
     points: usize,
     candidates: usize,
     target_share: f64,
 ) -> f64 {
     let rank = confident_rank(points, 90.0);
-    let refined = 1.0 - P90_OF_NORMAL * target_share;
-    let refined_k = if refined > 0.0 {
-        bounces_k / refined
+    let a = P90_OF_NORMAL;
+    let (b, s, nu) = (bounces_k, target_share, refined_noise_k);
+    let d = 1.0 - a * a * s * s;
+    let refined_k = if d > 0.0 {
+        (b + a * (s * s * b * b + d * nu * nu).sqrt()) / d
     } else {
         f64::INFINITY
     };
@@ -390,28 +421,56 @@ mod tests {
     fn a_class_holds_from_the_rank_of_its_points_thresholds() {
         // 24 points (a class's floor): the confident 90th percentile is the largest. All
         // centre pixels: the residual.
-        assert!((class_floor_k(0.2, 0.05, 24, 0, 0.2) - 0.2).abs() < 1e-15);
+        assert!((class_floor_k(0.2, (0.05, 0.0), 24, 0, 0.2) - 0.2).abs() < 1e-15);
         // One refined point of deterministic part 0.05 K, σ_t = 0.2 T: it holds from
         // 0.05/(1 − 1.645·0.2) = 0.07452… K, under the centre pixels' 0.2 K.
-        assert!((class_floor_k(0.2, 0.05, 24, 1, 0.2) - 0.2).abs() < 1e-15);
+        assert!((class_floor_k(0.2, (0.05, 0.0), 24, 1, 0.2) - 0.2).abs() < 1e-15);
         let refined = 0.05 / (1.0 - 1.645 * 0.2);
-        assert!((class_floor_k(0.2, 0.05, 24, 24, 0.2) - refined).abs() < 1e-12);
+        assert!((class_floor_k(0.2, (0.05, 0.0), 24, 24, 0.2) - refined).abs() < 1e-12);
         // A deterministic part larger than the whole centre residual decides where it is
         // the largest.
-        assert!((class_floor_k(0.1, 0.1, 24, 1, 0.2) - 0.1 / (1.0 - 0.329)).abs() < 1e-12);
+        assert!((class_floor_k(0.1, (0.1, 0.0), 24, 1, 0.2) - 0.1 / (1.0 - 0.329)).abs() < 1e-12);
         // A target σ no smaller than the tolerance over 1.645: never held.
-        assert!(class_floor_k(0.1, 0.1, 24, 24, 0.7).is_infinite());
+        assert!(class_floor_k(0.1, (0.1, 0.0), 24, 24, 0.7).is_infinite());
         // Nothing measured: nothing to add.
-        assert!((class_floor_k(0.0, 0.0, 0, 0, 0.2)).abs() < 1e-15);
+        assert!((class_floor_k(0.0, (0.0, 0.0), 0, 0, 0.2)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_refined_pixels_sky_view_noise_raises_its_class_floor() {
+        // No deterministic part, σ_t = 0.2 T, noise 0.05 K: T = 1.645·√((0.2 T)² + 0.05²),
+        // so T² (1 − 1.645²·0.04) = 1.645²·0.0025 and T = 0.08225 / √0.891759 = 0.08710 K
+        // (by hand), where the target alone would hold from 0.
+        let floor = class_floor_k(0.0, (0.0, 0.05), 24, 24, 0.2);
+        assert!((floor - 0.087_10).abs() < 1e-5, "{floor}");
+        // With a deterministic part too: the floor is where the need, which adds the two
+        // standard errors in quadrature, meets the tolerance (found here by bisection).
+        let (b, nu, s) = (0.03, 0.04, 0.25);
+        let (mut lo, mut hi) = (b, 10.0);
+        for _ in 0..200 {
+            let t = 0.5 * (lo + hi);
+            if need_k(f64::NAN, b, true, s * t, nu) > t {
+                lo = t;
+            } else {
+                hi = t;
+            }
+        }
+        let floor = class_floor_k(1.0, (b, nu), 24, 24, s);
+        assert!((floor - lo).abs() < 1e-9, "{floor} against {lo}");
+        // It is more than either alone would need.
+        assert!(floor > class_floor_k(1.0, (b, 0.0), 24, 24, s));
+        assert!(floor > class_floor_k(1.0, (0.0, nu), 24, 24, s));
+        // The noise left after ROUNDS rounds of at least the centre's rays.
+        assert!((refined_noise_k(0.08) - 0.08 / 8.0_f64.sqrt()).abs() < 1e-15);
     }
 
     #[test]
     fn a_class_holds_when_its_needs_at_the_90th_percentile_are_within_the_tolerance() {
-        let mut needs: Vec<f64> = (0..24).map(|_| need_k(0.3, 0.0, false, 0.1)).collect();
+        let mut needs: Vec<f64> = (0..24).map(|_| need_k(0.3, 0.0, false, 0.1, 0.0)).collect();
         assert!(class_holds(&mut needs, 0.5));
         // One refined point of deterministic part 0.3 K needs 0.3 + 1.645·0.15 > 0.5: the
         // largest of 24 decides.
-        needs[3] = need_k(0.0, 0.3, true, 0.15);
+        needs[3] = need_k(0.0, 0.3, true, 0.15, 0.0);
         assert!(!class_holds(&mut needs, 0.5));
         assert!(class_holds(&mut [], 0.1));
     }
