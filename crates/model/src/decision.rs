@@ -244,6 +244,12 @@ pub struct SamplingReport {
     pub capped_share: f64,
     /// Pixels refined in the trial.
     pub trial_pixels: u32,
+    /// A refined pixel that reaches the largest side with a standard error above this is
+    /// not guaranteed, K: the bias its class may carry under the chosen settings plus
+    /// 1.645 times it would pass the tolerance. Absent in decisions written before it:
+    /// then the bias is taken as half the tolerance, the deterministic models' share.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unsure_sigma_k: Option<f64>,
 }
 
 /// What the pilot chose for a frame, with what it predicts and what it cost.
@@ -403,6 +409,9 @@ impl Decision {
                 1.0,
             )?;
             check_range(|| "sampling.capped_share".into(), s.capped_share, 0.0, 1.0)?;
+            if let Some(u) = s.unsure_sigma_k {
+                check_range(|| "sampling.unsure_sigma_k".into(), u, 0.0, f64::MAX)?;
+            }
             check_range(
                 || "sampling.paths_per_candidate".into(),
                 s.paths_per_candidate,

@@ -4,7 +4,7 @@
 //! that reached the cap). A frame and each of its tiles give every pixel the same values.
 
 use irsig_model::decision::Decision;
-use irsig_tracer::pilot::{PixelClass, ungranted_sigma_k};
+use irsig_tracer::pilot::{DETERMINISTIC_SHARE, PixelClass, ungranted_sigma_k};
 use irsig_tracer::{Camera, Frame};
 use rayon::prelude::*;
 
@@ -77,10 +77,17 @@ impl Guarantee<'_> {
 
     /// 1 where the decision does not guarantee the pixel, 0 elsewhere: a class it lists
     /// as not guaranteed, or a refinement that reached the cap with a standard error above
-    /// [`ungranted_sigma_k`].
+    /// the decision's `sampling.unsure_sigma_k` (a decision written before it: the
+    /// [`ungranted_sigma_k`] of a bias of the deterministic models' whole share).
     #[must_use]
     pub fn not_guaranteed(&self, frame: &Frame) -> Vec<f32> {
-        let unsure = ungranted_sigma_k(self.decision.tolerance_k);
+        let tolerance_k = self.decision.tolerance_k;
+        let unsure = self
+            .decision
+            .sampling
+            .as_ref()
+            .and_then(|s| s.unsure_sigma_k)
+            .unwrap_or_else(|| ungranted_sigma_k(tolerance_k, tolerance_k * DETERMINISTIC_SHARE));
         self.classes(frame)
             .into_iter()
             .enumerate()

@@ -265,6 +265,7 @@ mod tests {
             paths_per_candidate: 300.0,
             capped_share: 0.0,
             trial_pixels: 48,
+            unsure_sigma_k: None,
         });
         let s = Settings::of(&SettingsRequest::default())
             .with_decision(&d)

@@ -150,6 +150,17 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             let spread = predict::RefinedSpread { sigmas_k };
             terms.frame_percentile_k(at, combo, spread, percentile)
         };
+        // A capped pixel is not guaranteed where the bias its class may carry under the
+        // combination and its σ take it past the tolerance (`residual::ungranted_sigma_k`).
+        let capped_bias_k = |combo: &Combo| {
+            terms.capped_bias_k(&by_class, &guaranteed, |i| {
+                choose::bound(&measured[i], combo)
+            })
+        };
+        let unsure_sigma_k = |combo: &Combo| ungranted_sigma_k(tolerance_k, capped_bias_k(combo));
+        let shortfall_of = |combo: &Combo, trial: &Trial| {
+            Shortfall::of(&census, &guaranteed, trial, unsure_sigma_k(combo))
+        };
         let Choice {
             combo: chosen_combo,
             verdict,
@@ -165,6 +176,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 counts: &counts,
                 cheapest: search::cheapest(&holding, &census, &measured, &guaranteed),
                 predict: &predict,
+                keeps_cap: &|c, t| shortfall_of(c, t).total() <= NOT_GUARANTEED_MAX,
             },
             [tolerance_k, det_k, edge_k],
             seed,
@@ -172,7 +184,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         counts.take_trial(&trial);
 
         // 5. What is not guaranteed, and whether that is too much.
-        let shortfall = Shortfall::of(&census, &guaranteed, &trial, tolerance_k);
+        let shortfall = shortfall_of(&chosen_combo, &trial);
         let not_guaranteed = shortfall.total();
         let cost_of = |c: &Combo| choose::cost(space, &counts, c);
         if not_guaranteed > NOT_GUARANTEED_MAX {
@@ -182,7 +194,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 &terms.class_floor_k,
                 &guaranteed,
                 &trial,
-                &shortfall,
+                (&shortfall, capped_bias_k(&reference_combo)),
                 refinement,
                 tolerance_k,
                 cost_of(&reference_combo) / 1e9,
@@ -231,7 +243,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
                 self.reference_names(space)
             ),
             classes,
-            sampling: sampling_report(refinement, &census, &counts, &trial),
+            sampling: sampling_report(refinement, &census, &counts, &trial, &shortfall),
             not_guaranteed_share: not_guaranteed,
             data_error: None,
             data_error_k: None,
@@ -316,6 +328,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             counts,
             cheapest: (combo, verdict),
             predict,
+            keeps_cap,
         } = search;
         let (refinement, trial) = self.refinement_trial(fc, space, census, &combo, limits, seed);
         let predicted_k = predict(&combo, &trial.sigmas_k);
@@ -326,14 +339,13 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             trial,
             predicted_k,
         };
-        if predicted_k <= limits[0] {
+        if predicted_k <= limits[0] && keeps_cap(&cheapest.combo, &cheapest.trial) {
             return cheapest;
         }
         let cost = choose::cost(space, counts, &combo);
-        let within = holding
-            .dearer_than(cost)
-            .into_iter()
-            .find(|(c, _)| predict(c, &cheapest.trial.sigmas_k) <= limits[0]);
+        let within = holding.dearer_than(cost).into_iter().find(|(c, _)| {
+            predict(c, &cheapest.trial.sigmas_k) <= limits[0] && keeps_cap(c, &cheapest.trial)
+        });
         match within {
             Some((combo, verdict)) => {
                 let (refinement, trial) =
@@ -394,6 +406,9 @@ struct FrameSearch<'a> {
     counts: &'a Counts,
     cheapest: (Combo, choose::Verdict),
     predict: &'a dyn Fn(&Combo, &[f64]) -> f64,
+    /// Whether a combination, with a trial's capped pixels, leaves no more of the frame
+    /// than [`NOT_GUARANTEED_MAX`] not guaranteed.
+    keeps_cap: &'a dyn Fn(&Combo, &Trial) -> bool,
 }
 
 /// A combination chosen for the frame, with its verdict, refinement, trial and the frame's
@@ -435,6 +450,7 @@ fn sampling_report(
     census: &Census,
     counts: &Counts,
     trial: &Trial,
+    shortfall: &Shortfall,
 ) -> Option<SamplingReport> {
     refinement.map(|r| SamplingReport {
         target_k: r.target_k,
@@ -444,6 +460,7 @@ fn sampling_report(
         paths_per_candidate: counts.paths_per_candidate,
         capped_share: trial.capped_share,
         trial_pixels: trial.pixels as u32,
+        unsure_sigma_k: Some(shortfall.unsure_sigma_k),
     })
 }
 

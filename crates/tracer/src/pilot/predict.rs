@@ -119,6 +119,31 @@ impl PixelTerms {
             .collect()
     }
 
+    /// The bias a refined pixel that reaches refinement's cap may carry under a
+    /// combination whose bound at point i is `bound(i)`, K: the largest, over the
+    /// guaranteed classes of `by_class`, of the class's bound at its 90th percentile (at
+    /// the pilot's confidence) plus its bounces' tail. The trial does not know its pixels'
+    /// classes, so each is given the largest.
+    pub(crate) fn capped_bias_k(
+        &self,
+        by_class: &[Vec<usize>],
+        guaranteed: &[bool],
+        bound: impl Fn(usize) -> f64,
+    ) -> f64 {
+        let mut bounds = Vec::new();
+        by_class
+            .iter()
+            .enumerate()
+            .filter(|&(c, points)| guaranteed[c] && !points.is_empty())
+            .map(|(c, points)| {
+                bounds.clear();
+                bounds.extend(points.iter().map(|&i| bound(i)));
+                let rank = confident_rank(bounds.len(), 90.0);
+                order_statistic(&mut bounds, rank) + self.bounces_k[c]
+            })
+            .fold(0.0, f64::max)
+    }
+
     /// What the choice holds each class's pixels with.
     pub(crate) fn pixels(&self) -> Pixels<'_> {
         Pixels {
@@ -434,6 +459,39 @@ mod tests {
         assert!(class_floor_k(0.1, (0.1, 0.0), 24, 24, 0.7).is_infinite());
         // Nothing measured: nothing to add.
         assert!((class_floor_k(0.0, (0.0, 0.0), 0, 0, 0.2)).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_capped_pixel_may_carry_the_largest_bias_of_a_guaranteed_class() {
+        // Three classes of 24 points (the confident 90th percentile is the largest): bounds
+        // up to 0.03 K with a bounces' tail of 0.01 K; up to 0.02 K with 0.025 K; and one
+        // not guaranteed, up to 0.5 K, which no capped pixel is held to.
+        let terms = PixelTerms {
+            residual_k: vec![0.0; 3],
+            bounces_k: vec![0.01, 0.025, 0.0],
+            sampling_sigma_k: vec![0.0; 3],
+            refined_noise_k: vec![0.0; 3],
+            target_share: 0.2,
+            candidate: vec![false; 72],
+            class_floor_k: vec![0.0; 3],
+        };
+        let by_class: Vec<Vec<usize>> = (0..3).map(|c| (24 * c..24 * c + 24).collect()).collect();
+        let largest = [0.03, 0.02, 0.5];
+        let bound = |i: usize| largest[i / 24] * (i % 24 + 1) as f64 / 24.0;
+        let bias = terms.capped_bias_k(&by_class, &[true, true, false], bound);
+        assert!((bias - 0.045).abs() < 1e-12, "{bias}");
+        // The most accurate settings' bounds are 0: the bounces' tails alone.
+        let bias = terms.capped_bias_k(&by_class, &[true, true, false], |_| 0.0);
+        assert!((bias - 0.025).abs() < 1e-12, "{bias}");
+        // Nothing guaranteed: no bias.
+        assert!(terms.capped_bias_k(&by_class, &[false; 3], bound).abs() < 1e-15);
+        // The σ above which such a pixel is not guaranteed at 0.1 K: (0.1 − 0.045)/1.645,
+        // by hand 0.033435 K; none when the bias takes the tolerance; and the deterministic
+        // share taken whole is the half of the tolerance over 1.645.
+        let u = super::super::ungranted_sigma_k(0.1, 0.045);
+        assert!((u - 0.033_435).abs() < 1e-6, "{u}");
+        assert!(super::super::ungranted_sigma_k(0.1, 0.2).abs() < 1e-15);
+        assert!((super::super::ungranted_sigma_k(0.1, 0.05) - 0.05 / 1.645).abs() < 1e-15);
     }
 
     #[test]

@@ -11,11 +11,11 @@ use irsig_radiometry::BandModel;
 use super::choose::{self, Combo, MODELS};
 use super::classes::{Census, PixelClass};
 use super::measure::Measured;
-use super::residual::{P90_OF_NORMAL, Residual, ungranted_sigma_k};
+use super::residual::{P90_OF_NORMAL, Residual};
 use super::space::{PilotSpace, Supersample};
 use super::stats::{confident_rank, order_statistic, weighted_percentile};
 use super::trial::Trial;
-use super::{DETERMINISTIC_SHARE, NOT_GUARANTEED_MAX, REFINE_THIN_SIDE};
+use super::{NOT_GUARANTEED_MAX, REFINE_THIN_SIDE};
 use crate::env::Atmosphere;
 use crate::error::{TraceError, TraceErrorKind};
 use crate::path_table::PathTermsMode;
@@ -105,26 +105,26 @@ pub(crate) struct Shortfall {
     /// Refined pixels predicted to stop at refinement's cap with a standard error above
     /// `unsure_sigma_k`.
     pub capped: f64,
-    /// [`ungranted_sigma_k`] at the tolerance, K.
+    /// [`super::residual::ungranted_sigma_k`] at the tolerance and the chosen settings'
+    /// bias, K.
     pub unsure_sigma_k: f64,
 }
 
 impl Shortfall {
     /// The shortfall of `census`'s classes that are not `guaranteed`, and of the candidates
-    /// the trial predicts to reach the cap with too large a standard error: a capped pixel
-    /// is not guaranteed when its error exceeds refinement's half of the tolerance more
-    /// often than one time in ten.
+    /// the trial predicts to reach the cap with a standard error above `unsure_sigma_k`
+    /// ([`super::residual::ungranted_sigma_k`]: the bias a capped pixel may carry and a
+    /// normal of its σ then exceed the tolerance more often than one time in ten).
     pub(crate) fn of(
         census: &Census,
         guaranteed: &[bool],
         trial: &Trial,
-        tolerance_k: f64,
+        unsure_sigma_k: f64,
     ) -> Self {
         let classes: f64 = (0..census.classes.len())
             .filter(|&c| !guaranteed[c])
             .map(|c| census.classes[c].share)
             .sum();
-        let unsure_sigma_k = ungranted_sigma_k(tolerance_k);
         let unsure = trial
             .capped_sigma_k
             .iter()
@@ -147,8 +147,9 @@ impl Shortfall {
 impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
     /// The error refusing `tolerance_k` when `shortfall` is more than
     /// [`NOT_GUARANTEED_MAX`]: what is not guaranteed, and the reachable floor (the smallest
-    /// tolerance at which what stays above it is within the limit) at `cpu_s`, the most
-    /// accurate settings' cost.
+    /// tolerance at which what stays above it is within the limit: a capped pixel's
+    /// threshold the bias `capped_bias_k` the most accurate settings leave plus 1.645
+    /// times its σ) at `cpu_s`, the most accurate settings' cost.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn unreachable(
         &self,
@@ -157,7 +158,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
         class_floor_k: &[f64],
         guaranteed: &[bool],
         trial: &Trial,
-        shortfall: &Shortfall,
+        (shortfall, capped_bias_k): (&Shortfall, f64),
         refinement: Option<Refinement>,
         tolerance_k: f64,
         cpu_s: f64,
@@ -171,7 +172,7 @@ impl<B: BandModel, A: Atmosphere> Tracer<B, A> {
             trial
                 .capped_sigma_k
                 .iter()
-                .map(|&s| (s * P90_OF_NORMAL / (1.0 - DETERMINISTIC_SHARE), per_capped)),
+                .map(|&s| (capped_bias_k + s * P90_OF_NORMAL, per_capped)),
         );
         // The smallest tolerance at which what stays above it is within the limit.
         thresholds.sort_by(|a, b| b.0.total_cmp(&a.0));

@@ -4,7 +4,6 @@
 //! Carlo error's power of the samples), and the standard error above which a pixel refined
 //! to the cap is not guaranteed.
 
-use super::DETERMINISTIC_SHARE;
 use super::measure::Measured;
 use super::rate::{self, NoRate, Step, Tail};
 use super::space::PilotSpace;
@@ -14,11 +13,14 @@ use super::stats::{confident_rank, order_statistic};
 pub(crate) const P90_OF_NORMAL: f64 = 1.645;
 
 /// The standard error above which a pixel refined to the cap is not guaranteed at
-/// `tolerance_k`, K: its error then exceeds refinement's share of the tolerance more
-/// often than one time in ten.
+/// `tolerance_k` when its class may carry a bias of `bias_k`, K: its error, that bias
+/// and a normal of that σ, then exceeds the tolerance more often than one time in ten
+/// (a refined pixel's need, as the pilot holds its classes to). 0 when the bias alone
+/// takes the tolerance. A decision written before it recorded this took the bias as the
+/// deterministic models' whole share of the tolerance.
 #[must_use]
-pub fn ungranted_sigma_k(tolerance_k: f64) -> f64 {
-    tolerance_k * (1.0 - DETERMINISTIC_SHARE) / P90_OF_NORMAL
+pub fn ungranted_sigma_k(tolerance_k: f64, bias_k: f64) -> f64 {
+    ((tolerance_k - bias_k) / P90_OF_NORMAL).max(0.0)
 }
 
 /// The standard error of a Monte Carlo estimate (sky-view rays, shadow rays) at the most
