@@ -22,13 +22,15 @@
 //!    some candidates to measure what that costs and how many reach the cap. With it the
 //!    frame's percentile of |ΔT| against a converged rendering is predicted
 //!    ([`predict`]); where the cheapest combination leaves that over the tolerance (the
-//!    most rays' own noise, in classes whose 90th percentile holds), the cheapest dearer
-//!    combination that holds and is predicted within it is taken.
+//!    most rays' own noise, in classes whose 90th percentile holds) or leaves too many
+//!    capped pixels unsure (item 5), the cheapest dearer combination that holds, is
+//!    predicted within it and leaves few enough is taken.
 //! 5. Pixels the decision cannot guarantee (classes it cannot afford, pixels predicted to
-//!    cap) must stay under [`NOT_GUARANTEED_MAX`] of the frame, and the frame's predicted
-//!    percentile within the tolerance, or the tolerance is refused before tracing, with
-//!    the floor that can be reached and its cost; else the [`Decision`] records the
-//!    settings, their errors and reasons ([`report`]).
+//!    reach the cap with their class's bias and 1.645 σ over the tolerance) must stay
+//!    under [`NOT_GUARANTEED_MAX`] of the frame, and the frame's predicted percentile
+//!    within the tolerance, or the tolerance is refused before tracing, with the floor
+//!    that can be reached and its cost; else the [`Decision`] records the settings, their
+//!    errors and reasons ([`report`]).
 //!
 //! Everything is seeded and counted, never timed, so the same inputs give the same
 //! decision and the same image on every run.
